@@ -1,0 +1,10 @@
+!> egw: extended Greenwood-Williamson contact of rough spheres (Zhao & Feng 2018).
+!> `use egw` gives a Fortran user the whole public API.
+module egw
+   use egw_kinds, only: dp
+   use egw_version, only: egw_version_string, egw_version_number, get_egw_version
+   use egw_status
+   use egw_params
+   implicit none
+   public
+end module egw

@@ -1,0 +1,79 @@
+!> Status codes and the error object every fallible egw routine returns.
+!> Library code never prints or stops: it sets a status and a message that
+!> names the offending argument, and the caller decides what to do.
+module egw_status
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use egw_kinds, only: dp
+   implicit none
+   private
+
+   integer, parameter, public :: egw_ok = 0
+   integer, parameter, public :: egw_invalid_argument = 1   !< bad argument to a routine
+   integer, parameter, public :: egw_invalid_parameter = 2  !< a contact parameter failed validation
+   integer, parameter, public :: egw_not_converged = 3      !< an iterative solve did not converge
+   integer, parameter, public :: egw_io_error = 4           !< a file could not be opened/written/renamed
+   integer, parameter, public :: egw_bad_file = 5           !< truncated, corrupted or wrong-version file
+   integer, parameter, public :: egw_out_of_memory = 6      !< an allocation failed
+   integer, parameter, public :: egw_null_pointer = 7       !< a required pointer was NULL (C API)
+   integer, parameter, public :: egw_out_of_range = 8       !< an argument is outside a table's range
+   integer, parameter, public :: egw_unsupported = 9        !< valid request that egw does not support
+   integer, parameter, public :: egw_status_max = 9
+
+   !> Error object: status code and a message naming what was wrong.
+   type, public :: egw_error
+      integer :: stat = egw_ok
+      character(len=:), allocatable :: message
+   end type egw_error
+
+   public :: status_message, fatal_error, format_real
+
+contains
+
+   !> Generic one-line description of a status code.
+   pure function status_message(stat) result(msg)
+      integer, intent(in) :: stat
+      character(len=:), allocatable :: msg
+      select case (stat)
+      case (egw_ok);                msg = "success"
+      case (egw_invalid_argument);  msg = "invalid argument"
+      case (egw_invalid_parameter); msg = "invalid contact parameter"
+      case (egw_not_converged);     msg = "iterative solve did not converge"
+      case (egw_io_error);          msg = "input/output error"
+      case (egw_bad_file);          msg = "file is truncated, corrupted or of an unknown version"
+      case (egw_out_of_memory);     msg = "out of memory"
+      case (egw_null_pointer);      msg = "required pointer is NULL"
+      case (egw_out_of_range);      msg = "argument outside the valid range"
+      case (egw_unsupported);       msg = "unsupported request"
+      case default;                 msg = "unknown status code"
+      end select
+   end function status_message
+
+   !> Allocate and fill an error; the message is prefixed by nothing so callers
+   !> can compose "name = value: reason" themselves.
+   pure subroutine fatal_error(error, stat, message)
+      type(egw_error), allocatable, intent(out) :: error
+      integer, intent(in) :: stat
+      character(len=*), intent(in) :: message
+      allocate (error)
+      error%stat = stat
+      error%message = message
+   end subroutine fatal_error
+
+   !> Shortest readable form of a real for messages (NaN and Inf spelled out).
+   pure function format_real(x) result(str)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=32) :: buf
+      if (ieee_is_nan(x)) then
+         str = "NaN"
+      else if (x > huge(x)) then
+         str = "+Inf"
+      else if (x < -huge(x)) then
+         str = "-Inf"
+      else
+         write (buf, '(es23.15e3)') x
+         str = trim(adjustl(buf))
+      end if
+   end function format_real
+
+end module egw_status

@@ -1,0 +1,63 @@
+!> Runs every egw test suite, or one suite (`fpm test -- suite`), or one test
+!> of one suite (`fpm test -- suite test`). Ends with "N passed, N failed".
+program tester
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   use testdrive, only: run_testsuite, run_selected, new_testsuite, testsuite_type, &
+      & select_suite, unittest_type
+   use test_params, only: collect_params
+   implicit none
+   type(testsuite_type), allocatable :: suites(:)
+   type(unittest_type), allocatable :: tests(:)
+   character(len=:), allocatable :: suite_name, test_name
+   integer :: stat, is, ntotal
+
+   suites = [ &
+      & new_testsuite("params", collect_params) &
+      & ]
+
+   stat = 0
+   ntotal = 0
+   if (command_argument_count() >= 1) then
+      call get_arg(1, suite_name)
+      is = select_suite(suites, suite_name)
+      if (is < 1) then
+         write (error_unit, '(a)') "unknown suite '"//suite_name//"'; suites are:"
+         do is = 1, size(suites)
+            write (error_unit, '(2x,a)') suites(is)%name
+         end do
+         error stop 1
+      end if
+      write (output_unit, '(a)') "# suite "//suites(is)%name
+      if (command_argument_count() >= 2) then
+         call get_arg(2, test_name)
+         call run_selected(suites(is)%collect, test_name, output_unit, stat)
+         ntotal = 1
+      else
+         call run_testsuite(suites(is)%collect, output_unit, stat)
+         call suites(is)%collect(tests)
+         ntotal = size(tests)
+      end if
+   else
+      do is = 1, size(suites)
+         write (output_unit, '(a)') "# suite "//suites(is)%name
+         call run_testsuite(suites(is)%collect, output_unit, stat)
+         call suites(is)%collect(tests)
+         ntotal = ntotal + size(tests)
+      end do
+   end if
+
+   write (output_unit, '(i0,a,i0,a)') ntotal - stat, " passed, ", stat, " failed"
+   if (stat > 0) error stop 1
+
+contains
+
+   subroutine get_arg(i, arg)
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: arg
+      integer :: n
+      call get_command_argument(i, length=n)
+      allocate (character(len=n) :: arg)
+      call get_command_argument(i, arg)
+   end subroutine get_arg
+
+end program tester
