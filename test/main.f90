@@ -6,6 +6,7 @@ program tester
       & select_suite, unittest_type
    use test_params, only: collect_params
    use test_table, only: collect_table
+   use test_table_format, only: collect_table_format
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -14,7 +15,8 @@ program tester
 
    suites = [ &
       & new_testsuite("params", collect_params), &
-      & new_testsuite("table", collect_table) &
+      & new_testsuite("table", collect_table), &
+      & new_testsuite("table_format", collect_table_format) &
       & ]
 
    stat = 0
