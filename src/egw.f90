@@ -6,7 +6,7 @@ module egw
    use egw_status
    use egw_params
    use egw_ellip
-   use egw_hertz
+   use egw_smooth_sphere
    implicit none
    public
 end module egw

@@ -6,7 +6,9 @@
 !> Conventions: delta is the overlap (> 0 compression), radius the equivalent radius R,
 !> modulus the effective modulus E*. For delta <= 0 the spheres do not touch: force,
 !> pressure and deflection are 0 and the gap is the undeformed r**2/(2R) - delta.
-module egw_hertz
+!> (Not called egw_hertz: gfortran 12 rejects a module whose name equals the binding
+!> label of a bind(C) routine, and the C API has egw_hertz.)
+module egw_smooth_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real
@@ -168,4 +170,4 @@ contains
       end do
    end function u_minus_atan_over_cube
 
-end module egw_hertz
+end module egw_smooth_sphere
