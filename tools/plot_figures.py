@@ -58,7 +58,7 @@ MODEL_STYLES = {"GW": "--", "E-GW": "-"}
 DELTA = 0.01   # the paper's overlap, R = E = 1
 
 
-def figure3(plt, rows, out):
+def figure3(plt, rows, out, misprint_rows=None):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     for ax, log in zip(axes, (False, True)):
         for model in ("GW", "E-GW"):
@@ -66,6 +66,11 @@ def figure3(plt, rows, out):
                 xs, ys = series(rows, "sigma", "force_ratio", model=model, mu=mu)
                 ax.plot(xs, ys, MODEL_STYLES[model], color=colour, marker="." if log else None,
                         label=f"{model}, $\\mu$ = {mu:g}")
+            if misprint_rows and not log:
+                # DESIGN §6 misprint 1: the printed 3/4 of eq. 5 instead of 4/3
+                xs, ys = series(misprint_rows, "sigma", "force_ratio", model=model, mu=4.0)
+                ax.plot(xs, ys, MODEL_STYLES[model], color="grey", lw=0.8,
+                        label=f"{model}, $\\mu$ = 4, eq. 5 as printed (3/4)")
         ax.axhline(1.0, color="k", lw=0.8)
         ax.set_xlabel(r"$\sigma$ (R = E = 1, $\delta$ = 0.01)")
         ax.set_ylabel(r"$P^* = P/P_H$")
@@ -194,7 +199,9 @@ def main():
                  "or pass --run")
     plt = import_pyplot()
     os.makedirs(args.out, exist_ok=True)
-    figure3(plt, read_csv(os.path.join(args.data, needed[0])), args.out)
+    misprint1 = os.path.join(args.data, "fig3_misprint1.csv")
+    figure3(plt, read_csv(os.path.join(args.data, needed[0])), args.out,
+            read_csv(misprint1) if os.path.exists(misprint1) else None)
     profiles(plt, read_csv(os.path.join(args.data, needed[1])), args.out, "fig4.png",
              "pressure", "pressure p(r)", 4)
     profiles(plt, read_csv(os.path.join(args.data, needed[2])), args.out, "fig5.png",

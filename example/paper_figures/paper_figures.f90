@@ -45,11 +45,10 @@ contains
    subroutine figure3()
       real(dp), parameter :: mus(3) = [1.0_dp, 4.0_dp, 10.0_dp]
       integer, parameter :: models(2) = [model_gw, model_egw]
+      character(len=*), parameter :: fig3_columns = "model,mu,sigma,delta_over_sigma," &
+         & //"force,force_hertz,force_ratio,est_rel_err,iterations"
       real(dp) :: sigmas(45), p_hertz
-      type(contact_params) :: params
-      type(solve_result) :: res
-      logical :: ok
-      integer :: unit, i, j, m
+      integer :: unit, i
 
       do i = 1, 25
          sigmas(i) = 10.0_dp**(-6.0_dp + 4.0_dp*real(i - 1, dp)/24.0_dp)
@@ -61,8 +60,27 @@ contains
       p_hertz = hertz_force(overlap, 1.0_dp, 1.0_dp)
 
       call open_csv(unit, "fig3_force_ratio.csv", &
-         & "Fig. 3: P* = P/P_H against sigma; R = E = 1, delta = 0.01", &
-         & "model,mu,sigma,delta_over_sigma,force,force_hertz,force_ratio,est_rel_err,iterations")
+         & "Fig. 3: P* = P/P_H against sigma; R = E = 1, delta = 0.01", fig3_columns)
+      call fig3_rows(unit, models, mus, 1.0_dp, sigmas, p_hertz)
+      close (unit)
+      ! The printed eq. (5) has 3/4 where eqs. (9) and (42) have 4/3 (DESIGN.md §6,
+      ! misprint 1). p_G is proportional to C, hence to mu, so that misprint is exactly
+      ! the corrected model at mu' = (9/16) mu; the rows keep the nominal mu.
+      call open_csv(unit, "fig3_misprint1.csv", "Fig. 3 with the asperity force factor " &
+         & //"3/4 of the printed eq. 5 (solved as mu' = 9 mu/16; mu column is nominal)", &
+         & fig3_columns)
+      call fig3_rows(unit, models, [4.0_dp], 9.0_dp/16.0_dp, sigmas, p_hertz)
+      close (unit)
+   end subroutine figure3
+
+   !> One Fig. 3 row per model, mu and sigma; the solve uses mu_factor * mu.
+   subroutine fig3_rows(unit, models, mus, mu_factor, sigmas, p_hertz)
+      integer, intent(in) :: unit, models(:)
+      real(dp), intent(in) :: mus(:), mu_factor, sigmas(:), p_hertz
+      type(contact_params) :: params
+      type(solve_result) :: res
+      logical :: ok
+      integer :: i, j, m
       do m = 1, size(models)
          do j = 1, size(mus)
             do i = 1, size(sigmas)
@@ -70,7 +88,7 @@ contains
                if (i > 1) then
                   if (sigmas(i) <= sigmas(i - 1)*(1.0_dp + 1.0e-9_dp)) cycle
                end if
-               params = scene(models(m), sigmas(i), mus(j))
+               params = scene(models(m), sigmas(i), mu_factor*mus(j))
                call solve(params, overlap, res, ok)
                if (.not. ok) cycle
                write (unit, '(a)') model_name(models(m))//","//num(mus(j))//"," &
@@ -80,8 +98,7 @@ contains
             end do
          end do
       end do
-      close (unit)
-   end subroutine figure3
+   end subroutine fig3_rows
 
    !> Figs. 4 and 5: p(r) and w(r) at delta = 0.01, mu = 4, sigma = 1e-5, 1e-4, 1e-3 for
    !> GW and E-GW, with the Hertz solution and the differences from it.
