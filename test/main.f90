@@ -5,6 +5,8 @@ program tester
    use testdrive, only: run_testsuite, run_selected, new_testsuite, testsuite_type, &
       & select_suite, unittest_type
    use test_params, only: collect_params
+   use test_ellip, only: collect_ellip
+   use test_hertz, only: collect_hertz
    use test_table, only: collect_table
    use test_table_format, only: collect_table_format
    implicit none
@@ -15,6 +17,8 @@ program tester
 
    suites = [ &
       & new_testsuite("params", collect_params), &
+      & new_testsuite("ellip", collect_ellip), &
+      & new_testsuite("hertz", collect_hertz), &
       & new_testsuite("table", collect_table), &
       & new_testsuite("table_format", collect_table_format) &
       & ]
