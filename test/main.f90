@@ -9,6 +9,7 @@ program tester
    use test_hertz, only: collect_hertz
    use test_table, only: collect_table
    use test_table_format, only: collect_table_format
+   use test_capi_table, only: collect_capi_table
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -20,7 +21,8 @@ program tester
       & new_testsuite("ellip", collect_ellip), &
       & new_testsuite("hertz", collect_hertz), &
       & new_testsuite("table", collect_table), &
-      & new_testsuite("table_format", collect_table_format) &
+      & new_testsuite("table_format", collect_table_format), &
+      & new_testsuite("capi_table", collect_capi_table) &
       & ]
 
    stat = 0

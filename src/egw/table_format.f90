@@ -10,6 +10,7 @@ module egw_table_format
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_bad_file, egw_io_error, egw_invalid_argument, &
+      & egw_invalid_parameter, &
       & egw_unsupported, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_name
    use egw_version, only: egw_version_string, egw_version_number
@@ -881,7 +882,7 @@ contains
       call validate_params(params, error)
       if (allocated(error)) return
       if (.not. params%sigma > 0.0_dp) then
-         call fatal_error(error, egw_invalid_argument, "sigma = "//format_real(params%sigma)// &
+         call fatal_error(error, egw_invalid_parameter, "sigma = "//format_real(params%sigma)// &
             & ": a rough flat needs sigma > 0")
          return
       end if

@@ -1,0 +1,218 @@
+/* C tests of the table API (include/egw_table_api.h): build, evaluate, write, read,
+ * free, universal tables, with good and bad input. Each egw_capi_test_table_* returns
+ * the number of failed checks and prints why; test/test_capi_table.f90 runs them as a
+ * test-drive suite. Exact references: the Hertz closed form, written out here. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "egw.h"
+#ifndef EGW_TABLE_API_H
+#include "egw_table_api.h"
+#endif
+
+static int failures;
+#define CHECK(cond) do { if (!(cond)) { failures++; \
+  printf("    C check failed at %s:%d: %s\n", __FILE__, __LINE__, #cond); } } while (0)
+
+static double p_hertz(double e, double r, double d) {
+  return d > 0.0 ? 4.0 / 3.0 * e * sqrt(r) * pow(d, 1.5) : 0.0;
+}
+static int last_error_names(const char *name) {
+  char buf[512];
+  if (egw_last_error(buf, (int)sizeof buf) != EGW_OK) return 0;
+  return strncmp(buf, name, strlen(name)) == 0;
+}
+static egw_params hertz_params(void) {
+  egw_params p;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_HERTZ; p.radius = 0.5; p.modulus = 2.0;
+  return p;
+}
+
+/* Build and evaluate: the table's documented accuracy is rel_tol at check points;
+ * between them 1.5 rel_tol (the Hermite error kernel peaks at the checked midpoints;
+ * 1.5 allows the fourth derivative to vary across an interval). */
+int egw_capi_test_table_build_eval(void) {
+  egw_params p = hertz_params();
+  egw_table t = NULL;
+  egw_table_info info;
+  double f = -1.0, k = -1.0, w = -1.0, a = -1.0;
+  const double tol = 1e-6;
+  failures = 0;
+  CHECK(egw_table_build(&p, NULL, 0.0, 0.01, tol, &t) == EGW_OK && t != NULL);
+  if (t == NULL) return failures;
+  CHECK(egw_table_get_info(t, &info) == EGW_OK);
+  CHECK(info.model == EGW_MODEL_HERTZ && info.n_nodes > 10 && info.delta_max == 0.01);
+  CHECK(info.max_force_error <= tol && info.rel_tol == tol);
+  /* P_ref = P(delta_max) for Hertz; tol P_ref / 2 <= P(cutoff) <= tol P_ref */
+  CHECK(fabs(info.reference_force - p_hertz(2.0, 0.5, 0.01)) <= 1e-15 * info.reference_force);
+  CHECK(p_hertz(2.0, 0.5, info.cutoff) <= tol * info.reference_force * (1 + 1e-12));
+  for (int i = 1; i < 200; i++) {
+    double d = info.cutoff + (0.01 - info.cutoff) * pow(i / 200.0, 2);
+    CHECK(egw_table_eval(t, d, &f, &k) == EGW_OK);
+    CHECK(fabs(f / p_hertz(2.0, 0.5, d) - 1.0) <= 1.5 * tol);
+  }
+  /* energy (8/15) E sqrt(R) (d^2.5 - d_c^2.5) within 1.5 rel_tol; a = sqrt(R d) */
+  CHECK(egw_table_eval_all(t, 0.005, &f, &k, &w, &a) == EGW_OK);
+  CHECK(fabs(w / (8.0 / 15.0 * 2.0 * sqrt(0.5) * (pow(0.005, 2.5) - pow(info.cutoff, 2.5)))
+             - 1.0) <= 1.5 * tol);
+  CHECK(a > 0.0);
+  /* exactly zero below the cut-off */
+  CHECK(egw_table_eval(t, 0.5 * info.cutoff, &f, &k) == EGW_OK && f == 0.0 && k == 0.0);
+  CHECK(egw_table_eval(t, -1.0, &f, &k) == EGW_OK && f == 0.0 && k == 0.0);
+  /* above delta_max: linear continuation, flagged, outputs written */
+  {
+    double f1, k1;
+    CHECK(egw_table_eval(t, 0.01, &f1, &k1) == EGW_OK);
+    CHECK(egw_table_eval(t, 0.011, &f, &k) == EGW_OUT_OF_RANGE);
+    CHECK(k == k1 && fabs(f - (f1 + k1 * 0.001)) <= 1e-15 * f);
+    CHECK(last_error_names("delta"));
+  }
+  f = 7.0;
+  CHECK(egw_table_eval(t, NAN, &f, &k) == EGW_INVALID_ARGUMENT && f == 7.0);
+  CHECK(egw_table_eval(t, 0.005, NULL, &k) == EGW_OK); /* unwanted outputs may be NULL */
+  CHECK(egw_table_eval(NULL, 0.005, &f, &k) == EGW_NULL_POINTER);
+  CHECK(egw_table_get_info(t, NULL) == EGW_NULL_POINTER);
+  egw_table_free(&t);
+  CHECK(t == NULL);
+  /* bad input: statuses, messages, and no handle */
+  {
+    egw_table u = NULL;
+    egw_params q = p;
+    q.radius = -1.0;
+    CHECK(egw_table_build(&q, NULL, 0.0, 0.01, tol, &u) == EGW_INVALID_PARAMETER && u == NULL);
+    CHECK(last_error_names("radius"));
+    CHECK(egw_table_build(&p, NULL, 0.0, 0.01, 0.0, &u) == EGW_INVALID_ARGUMENT && u == NULL);
+    CHECK(last_error_names("rel_tol"));
+    CHECK(egw_table_build(&p, NULL, 0.01, 0.0, tol, &u) == EGW_INVALID_ARGUMENT && u == NULL);
+    CHECK(last_error_names("delta_max"));
+    CHECK(egw_table_build(NULL, NULL, 0.0, 0.01, tol, &u) == EGW_NULL_POINTER);
+    CHECK(egw_table_build(&p, NULL, 0.0, 0.01, tol, NULL) == EGW_NULL_POINTER);
+  }
+  return failures;
+}
+
+/* Files through the C API: CSV and binary read back evaluate bit-for-bit the same;
+ * corrupted or missing files fail cleanly; radii are checked. */
+int egw_capi_test_table_files(void) {
+  egw_params p = hertz_params();
+  egw_table t = NULL, back = NULL;
+  const char *csv = "build/capi_table.csv", *bin = "build/capi_table.egwt";
+  failures = 0;
+  CHECK(egw_table_build(&p, NULL, 0.0, 0.01, 1e-5, &t) == EGW_OK);
+  if (t == NULL) return failures;
+  CHECK(egw_table_set_radii(t, 1.0, 1.0) == EGW_OK);
+  CHECK(egw_table_set_radii(t, 1.0, 3.0) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("radius1"));
+  CHECK(egw_table_write(t, csv, EGW_FORMAT_CSV) == EGW_OK);
+  CHECK(egw_table_write(t, bin, EGW_FORMAT_BINARY) == EGW_OK);
+  CHECK(egw_table_write(t, "build/capi_table.table", EGW_FORMAT_LAMMPS) == EGW_OK);
+  CHECK(egw_table_write(t, "build/capi_table.inp", EGW_FORMAT_CALCULIX) == EGW_OK);
+  CHECK(egw_table_write(t, csv, 9) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("format"));
+  CHECK(egw_table_write(t, NULL, EGW_FORMAT_CSV) == EGW_NULL_POINTER);
+  CHECK(egw_table_write(t, "build/no/such/dir/t.csv", EGW_FORMAT_CSV) == EGW_IO_ERROR);
+  for (int which = 0; which < 2; which++) {
+    back = NULL;
+    CHECK(egw_table_read(which ? bin : csv, &back) == EGW_OK && back != NULL);
+    if (back == NULL) continue;
+    for (int i = 0; i <= 100; i++) {
+      double d = 0.01 * i / 100.0, f1, k1, f2, k2;
+      egw_table_eval(t, d, &f1, &k1);
+      egw_table_eval(back, d, &f2, &k2);
+      CHECK(f1 == f2 && k1 == k2);
+    }
+    egw_table_free(&back);
+  }
+  /* a flipped byte in the binary file: EGW_BAD_FILE, no handle */
+  {
+    FILE *fp = fopen(bin, "r+b");
+    CHECK(fp != NULL);
+    if (fp != NULL) {
+      int c;
+      fseek(fp, 200, SEEK_SET);
+      c = fgetc(fp);
+      fseek(fp, 200, SEEK_SET);
+      fputc(c ^ 0x20, fp);
+      fclose(fp);
+    }
+    back = NULL;
+    CHECK(egw_table_read(bin, &back) == EGW_BAD_FILE && back == NULL);
+    CHECK(last_error_names("path"));
+  }
+  back = NULL;
+  CHECK(egw_table_read("build/does-not-exist.egwt", &back) == EGW_IO_ERROR && back == NULL);
+  CHECK(egw_table_read(NULL, &back) == EGW_NULL_POINTER);
+  CHECK(egw_table_read(csv, NULL) == EGW_NULL_POINTER);
+  egw_table_free(&t);
+  egw_table_free(&t);   /* *t == NULL: fine */
+  egw_table_free(NULL); /* fine */
+  CHECK(t == NULL);
+  /* the rough flat for CalculiX */
+  {
+    egw_params q;
+    egw_params_default(&q);
+    q.sigma = 1e-3; q.mu = 4.0;
+    CHECK(egw_write_flat_calculix(&q, 3e-3, 1e-5, "build/capi_flat.inp") == EGW_OK);
+    q.sigma = 0.0;
+    CHECK(egw_write_flat_calculix(&q, 3e-3, 1e-5, "build/capi_flat.inp")
+          == EGW_INVALID_PARAMETER);
+    CHECK(last_error_names("sigma"));
+  }
+  return failures;
+}
+
+/* Universal Hertz table: p = (4/3) x^1.5 for every mu, so scaling by E sqrt(R)
+ * sigma^1.5 at call time reproduces the Hertz force of any R, E, sigma to the 1-D
+ * accuracy (1.5 rel_tol). */
+int egw_capi_test_table_universal(void) {
+  egw_params p = hertz_params(), c;
+  egw_universal u = NULL, back = NULL;
+  double f = -1.0, k = -1.0;
+  const double tol = 1e-6;
+  failures = 0;
+  CHECK(egw_universal_build(&p, NULL, 0.5, 4.0, -1.0, 100.0, tol, &u) == EGW_OK && u != NULL);
+  if (u == NULL) return failures;
+  c = p;
+  c.radius = 0.3; c.modulus = 7.0; c.sigma = 2e-3; c.mu = 1.3;
+  for (int i = 1; i <= 40; i++) {
+    double d = c.sigma * (1.0 + 99.0 * (i - 0.5) / 40);
+    CHECK(egw_universal_eval(u, &c, d, &f, &k) == EGW_OK);
+    CHECK(fabs(f / p_hertz(7.0, 0.3, d) - 1.0) <= 1.5 * tol);
+  }
+  CHECK(egw_universal_eval(u, &c, -1.0, &f, &k) == EGW_OK && f == 0.0 && k == 0.0);
+  { egw_params q = c; q.mu = 8.0; f = 3.0;
+    CHECK(egw_universal_eval(u, &q, 0.01, &f, &k) == EGW_OUT_OF_RANGE && f == 3.0);
+    CHECK(last_error_names("mu")); }
+  { egw_params q = c; q.model = EGW_MODEL_EGW;
+    CHECK(egw_universal_eval(u, &q, 0.01, &f, &k) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("model")); }
+  { egw_params q = c; q.sigma = 0.0;
+    CHECK(egw_universal_eval(u, &q, 0.01, &f, &k) == EGW_INVALID_PARAMETER); }
+  CHECK(egw_universal_eval(u, &c, 1.0, &f, &k) == EGW_OUT_OF_RANGE && f > 0.0);
+  CHECK(egw_universal_eval(u, &c, NAN, &f, &k) == EGW_INVALID_ARGUMENT);
+  CHECK(egw_universal_eval(NULL, &c, 0.01, &f, &k) == EGW_NULL_POINTER);
+  CHECK(egw_universal_eval(u, NULL, 0.01, &f, &k) == EGW_NULL_POINTER);
+  CHECK(egw_universal_write(u, "build/capi_universal.egwu", EGW_FORMAT_BINARY) == EGW_OK);
+  CHECK(egw_universal_write(u, "build/capi_universal.table", EGW_FORMAT_LAMMPS)
+        == EGW_UNSUPPORTED);
+  CHECK(egw_universal_read("build/capi_universal.egwu", &back) == EGW_OK && back != NULL);
+  if (back != NULL) {
+    double f2, k2;
+    egw_universal_eval(u, &c, 0.05, &f, &k);
+    egw_universal_eval(back, &c, 0.05, &f2, &k2);
+    CHECK(f == f2 && k == k2);
+  }
+  { egw_universal v = NULL;
+    CHECK(egw_universal_read("build/capi_table.csv", &v) == EGW_BAD_FILE && v == NULL); }
+  egw_universal_free(&back);
+  egw_universal_free(&u);
+  egw_universal_free(&u);
+  egw_universal_free(NULL);
+  CHECK(u == NULL && back == NULL);
+  { egw_universal v = NULL;
+    CHECK(egw_universal_build(&p, NULL, 4.0, 0.5, -1.0, 100.0, tol, &v) == EGW_INVALID_ARGUMENT
+          && v == NULL);
+    CHECK(last_error_names("mu_max")); }
+  return failures;
+}
