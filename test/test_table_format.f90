@@ -215,7 +215,7 @@ contains
       call check(error, index(err%message, what) > 0, "message '"//err%message// &
          & "' should mention '"//what//"'")
       if (allocated(error)) return
-      call check(error, .not. allocated(t%delta) .and. .not. allocated(t%coef), &
+      call check(error, .not. allocated(t%delta) .and. .not. allocated(t%seg), &
          & "a partial table was returned")
    end subroutine expect_bad
 

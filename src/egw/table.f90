@@ -25,10 +25,10 @@ module egw_table
 
    !> Hard limits of the adaptive build (a table that needs more is not converging:
    !> the solver's noise is above rel_tol).
-   integer, parameter :: max_nodes = 20000, max_rounds = 60
+   integer, parameter :: max_nodes = 20000, max_rounds = 200
 
    !> One-parameter-set force table. Arrays are the nodes (delta ascending); the
-   !> evaluation data (coef, bucket) are derived from them by table_prepare.
+   !> evaluation data (seg, bucket) are derived from them by table_prepare.
    type, public :: force_table
       type(contact_params) :: params              !< parameters the table was built for
       real(dp) :: rel_tol = 0.0_dp                !< requested interpolation tolerance
@@ -45,9 +45,11 @@ module egw_table
       real(dp), allocatable :: energy(:)          !< int_{delta_c}^{delta} P of the interpolant
       real(dp), allocatable :: contact_radius(:)  !< solver effective contact radius a*
       ! evaluation data
-      real(dp), allocatable :: coef(:, :)         !< (0:3, n-1): cubic in t = delta - delta(i)
+      !> (0:4, n): node delta(i) and the cubic c1..c4 in t = delta - delta(i) of interval i
+      !> (seg(0, n) = delta_max ends the forward scan; one cache line per interval)
+      real(dp), allocatable :: seg(:, :)
       real(dp), allocatable :: radius_slope(:)    !< monotone Hermite slopes of a*
-      integer, allocatable :: bucket(:)           !< (0:n_bucket): interval at bucket start
+      integer, allocatable :: bucket(:)           !< (0:n_bucket+1): interval at bucket start
       integer :: n_bucket = 0
       real(dp) :: bucket_scale = 0.0_dp
    end type force_table
@@ -216,7 +218,14 @@ contains
                & rough .and. x(i + 1) <= 0.0_dp, xm(j), fi, ki)
             err_f(i) = rel_diff(fi, fm(j))
             err_k(i) = rel_diff(ki, km(j))
-            split(j) = err_f(i) > rel_tol .or. .not. monotone_ok(x(i), x(i + 1), f(i), &
+            ! the stiffness check (10 rel_tol) catches the sqrt(delta) singularity of the
+            ! Hertz stiffness at delta = 0 that the force check misses; for smooth data the
+            ! midpoint derivative error of cubic Hermite vanishes to leading order, so it
+            ! adds no nodes there
+            split(j) = err_f(i) > rel_tol .or. &
+               & err_k(i) > 10*rel_tol + slope_roundoff(x(i), x(i + 1), f(i), f(i + 1), &
+               & km(j), rough .and. x(i + 1) <= 0.0_dp) .or. &
+               & .not. monotone_ok(x(i), x(i + 1), f(i), &
                & f(i + 1), k(i), k(i + 1), rough .and. x(i + 1) <= 0.0_dp)
          end do
          call merge_nodes(x, f, k, a, accepted, err_f, err_k, todo, xm, fm, km, am, split)
@@ -249,12 +258,13 @@ contains
       real(dp) :: h, v0, v1, d0, d1, s, xb
 
       n = size(table%delta)
-      if (allocated(table%coef)) deallocate (table%coef)
+      if (allocated(table%seg)) deallocate (table%seg)
       if (allocated(table%radius_slope)) deallocate (table%radius_slope)
       if (allocated(table%bucket)) deallocate (table%bucket)
-      allocate (table%coef(0:3, n - 1), table%radius_slope(n))
       if (allocated(table%energy)) deallocate (table%energy)
-      allocate (table%energy(n))
+      allocate (table%seg(0:4, n), table%radius_slope(n), table%energy(n))
+      table%seg = 0.0_dp
+      table%seg(0, :) = table%delta
       do i = 1, n - 1
          h = table%delta(i + 1) - table%delta(i)
          if (i <= table%n_log) then
@@ -269,10 +279,10 @@ contains
             d1 = table%stiffness(i + 1)
          end if
          s = (v1 - v0)/h
-         table%coef(0, i) = v0
-         table%coef(1, i) = d0
-         table%coef(2, i) = (3*s - 2*d0 - d1)/h
-         table%coef(3, i) = (d0 + d1 - 2*s)/h**2
+         table%seg(1, i) = v0
+         table%seg(2, i) = d0
+         table%seg(3, i) = (3*s - 2*d0 - d1)/h
+         table%seg(4, i) = (d0 + d1 - 2*s)/h**2
       end do
       ! energy: exact integral of the interpolant (Hermite rule in linear intervals)
       table%energy(1) = 0.0_dp
@@ -281,14 +291,15 @@ contains
             & table%delta(i + 1) - table%delta(i))
       end do
       call monotone_slopes(table%delta, table%contact_radius, table%radius_slope)
-      ! buckets: uniform in delta, 2 per interval on average; bucket b starts at
-      ! cutoff + b/bucket_scale and stores the interval containing that point
+      ! buckets: uniform in delta, 2 per interval on average; bucket b stores the
+      ! interval containing cutoff + (b - 1e-6)/bucket_scale: never past the interval of
+      ! any delta that maps to b despite rounding, so evaluation only scans forward
       table%n_bucket = 2*(n - 1)
       table%bucket_scale = table%n_bucket/(table%delta(n) - table%delta(1))
-      allocate (table%bucket(0:table%n_bucket))
+      allocate (table%bucket(0:table%n_bucket + 1))
       i = 1
-      do b = 0, table%n_bucket
-         xb = table%delta(1) + b/table%bucket_scale
+      do b = 0, table%n_bucket + 1
+         xb = table%delta(1) + (b - 1.0e-6_dp)/table%bucket_scale
          do while (i < n - 1)
             if (xb < table%delta(i + 1)) exit
             i = i + 1
@@ -300,7 +311,7 @@ contains
    !> True when the evaluation data are present (a built or read table).
    pure logical function table_is_ready(table)
       type(force_table), intent(in) :: table
-      table_is_ready = allocated(table%coef) .and. allocated(table%bucket)
+      table_is_ready = allocated(table%seg) .and. allocated(table%bucket)
    end function table_is_ready
 
    !> Force and stiffness at overlap delta: 0 below the cut-off; above delta_max the
@@ -310,34 +321,31 @@ contains
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
       real(dp), intent(out) :: force, stiffness
-      integer :: i, n
+      integer :: i
       real(dp) :: t, v, d
 
-      if (.not. delta > table%cutoff) then
+      if (delta > table%cutoff .and. delta < table%delta_max) then
+         ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
+         i = find_interval(table, delta)
+         t = delta - table%seg(0, i)
+         v = table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i)))
+         d = table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i))
+         if (i > table%n_log) then
+            force = v
+            stiffness = d
+         else
+            force = exp(v)
+            stiffness = force*d
+         end if
+      else if (delta >= table%delta_max) then
+         stiffness = table%stiffness(size(table%stiffness))
+         force = table%force(size(table%force)) + stiffness*(delta - table%delta_max)
+      else if (delta == table%cutoff) then
+         force = table%force(1)
+         stiffness = table%stiffness(1)
+      else
          force = 0.0_dp
          stiffness = 0.0_dp
-         if (delta == table%cutoff) then
-            force = table%force(1)
-            stiffness = table%stiffness(1)
-         end if
-         return
-      end if
-      n = size(table%delta)
-      if (delta >= table%delta_max) then
-         stiffness = table%stiffness(n)
-         force = table%force(n) + stiffness*(delta - table%delta_max)
-         return
-      end if
-      i = find_interval(table, delta)
-      t = delta - table%delta(i)
-      v = table%coef(0, i) + t*(table%coef(1, i) + t*(table%coef(2, i) + t*table%coef(3, i)))
-      d = table%coef(1, i) + t*(2*table%coef(2, i) + 3*t*table%coef(3, i))
-      if (i <= table%n_log) then
-         force = exp(v)
-         stiffness = force*d
-      else
-         force = v
-         stiffness = d
       end if
    end subroutine table_eval
 
@@ -359,8 +367,8 @@ contains
       end if
       i = find_interval(table, max(delta, table%cutoff))
       t = delta - table%delta(i)
-      v = table%coef(0, i) + t*(table%coef(1, i) + t*(table%coef(2, i) + t*table%coef(3, i)))
-      d = table%coef(1, i) + t*(2*table%coef(2, i) + 3*t*table%coef(3, i))
+      v = table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i)))
+      d = table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i))
       if (i <= table%n_log) then
          log_force = v
          dlog_force = d
@@ -470,18 +478,17 @@ contains
    pure integer function find_interval(table, delta) result(i)
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
-      integer :: b, j, n, lo, hi, mid
-      n = size(table%delta)
-      b = min(int((delta - table%delta(1))*table%bucket_scale), table%n_bucket - 1)
-      b = max(b, 0)
+      integer :: b, lo, hi, mid
+      b = min(max(int((delta - table%seg(0, 1))*table%bucket_scale), 0), table%n_bucket)
       i = table%bucket(b)
-      j = table%bucket(b + 1)
-      if (j - i > 4) then
+      hi = table%bucket(b + 1) + 1
+      if (hi - i > 6) then
+         ! crowded bucket (graded nodes near a singular point): bisect
          lo = i
-         hi = min(j + 1, n)
+         hi = min(hi, size(table%seg, 2))
          do while (hi - lo > 1)
             mid = (lo + hi)/2
-            if (delta >= table%delta(mid)) then
+            if (delta >= table%seg(0, mid)) then
                lo = mid
             else
                hi = mid
@@ -489,13 +496,8 @@ contains
          end do
          i = lo
       end if
-      ! the bucket start is computed with rounding: fix up by one either way
-      do while (i > 1)
-         if (delta >= table%delta(i)) exit
-         i = i - 1
-      end do
-      do while (i < n - 1)
-         if (delta < table%delta(i + 1)) exit
+      ! seg(0, n) = delta_max > delta ends the scan
+      do while (delta >= table%seg(0, i + 1))
          i = i + 1
       end do
    end function find_interval
@@ -511,13 +513,13 @@ contains
          s = 0.0_dp
          do q = 1, size(gl_x)
             u = gl_x(q)*t
-            s = s + gl_w(q)*exp(table%coef(0, i) + u*(table%coef(1, i) + u*(table%coef(2, i) &
-               & + u*table%coef(3, i))))
+            s = s + gl_w(q)*exp(table%seg(1, i) + u*(table%seg(2, i) + u*(table%seg(3, i) &
+               & + u*table%seg(4, i))))
          end do
          s = s*t
       else
-         s = t*(table%coef(0, i) + t*(table%coef(1, i)/2 + t*(table%coef(2, i)/3 + &
-            & t*table%coef(3, i)/4)))
+         s = t*(table%seg(1, i) + t*(table%seg(2, i)/2 + t*(table%seg(3, i)/3 + &
+            & t*table%seg(4, i)/4)))
       end if
    end function interval_integral
 
@@ -568,10 +570,28 @@ contains
          d1 = k1
       end if
       ok = .true.
+      ! where the data differ by round-off only, the secant is noise: nothing to check
+      if (abs(f1 - f0) <= 1.0e3_dp*epsilon(f1)*max(abs(f0), abs(f1))) return
       if (s > 0.0_dp .and. d0 >= 0.0_dp .and. d1 >= 0.0_dp) then
          ok = (d0/s)**2 + (d1/s)**2 <= 9.0_dp
       end if
    end function monotone_ok
+
+   !> Relative round-off of the interpolant's slope on a tiny interval: the cubic's
+   !> derivative contains (v1 - v0)/h, whose rounding error is ~eps |v|/h. Below this
+   !> floor a stiffness mismatch is noise, not interpolation error.
+   pure real(dp) function slope_roundoff(x0, x1, f0, f1, k, in_log) result(floor)
+      real(dp), intent(in) :: x0, x1, f0, f1, k
+      logical, intent(in) :: in_log
+      real(dp) :: v
+      if (in_log) then
+         v = max(abs(log(f0)), abs(log(f1)))*max(f0, f1)
+      else
+         v = max(abs(f0), abs(f1))
+      end if
+      floor = huge(1.0_dp)
+      if (abs(k) > 0.0_dp) floor = 100*epsilon(1.0_dp)*v/((x1 - x0)*abs(k))
+   end function slope_roundoff
 
    !> Monotone Hermite slopes (Fritsch-Butland harmonic mean) for the contact radius.
    pure subroutine monotone_slopes(x, y, d)

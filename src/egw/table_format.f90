@@ -1280,7 +1280,7 @@ contains
       call move_alloc(from%stiffness, to%stiffness)
       call move_alloc(from%energy, to%energy)
       call move_alloc(from%contact_radius, to%contact_radius)
-      call move_alloc(from%coef, to%coef)
+      call move_alloc(from%seg, to%seg)
       call move_alloc(from%radius_slope, to%radius_slope)
       call move_alloc(from%bucket, to%bucket)
    end subroutine move_table

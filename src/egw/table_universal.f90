@@ -4,7 +4,9 @@
 !> in ln mu, all with one common cut-off x_c, and interpolates ln p across mu with the
 !> 4-point Lagrange cubic in ln mu (exact where p is a power of mu, as in the far tail
 !> where p is proportional to mu, and where p does not depend on mu, as for Hertz).
-!> The mu grid is doubled until solves at mid-grid mu agree to rel_tol.
+!> Error budget: the slices are built to rel_tol/2 in x; the mu grid is doubled until
+!> the whole interpolant agrees with solves at mid-grid mu (where the Lagrange error in mu
+!> peaks) to rel_tol.
 module egw_table_universal
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
@@ -107,7 +109,7 @@ contains
                cycle
             end if
             call build_table_fixed_cutoff(universal_slice_params(model, psi, &
-               & hardness_coeff, plastic_ratio, mus(j)), opts, x_cut, x_max, rel_tol, &
+               & hardness_coeff, plastic_ratio, mus(j)), opts, x_cut, x_max, 0.5_dp*rel_tol, &
                & u%slices(j), error)
             if (allocated(error)) return
          end do
