@@ -52,6 +52,8 @@ module egw_table
       integer, allocatable :: bucket(:)           !< (0:n_bucket+1): interval at bucket start
       integer :: n_bucket = 0
       real(dp) :: bucket_scale = 0.0_dp
+      real(dp) :: bucket_origin = 0.0_dp          !< bucket variable at the first node
+      logical :: sqrt_buckets = .false.           !< buckets uniform in sign(d) sqrt|d|
    end type force_table
 
    !> 8-point Gauss-Legendre rule on [0, 1] for the energy of log-space intervals,
@@ -87,16 +89,19 @@ contains
       opts = point_options(options, rel_tol)
       call table_find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, error)
       if (allocated(error)) return
-      call build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, table, error)
+      call build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, .false., table, error)
    end subroutine build_table
 
    !> Build a table whose cut-off is fixed at cutoff (used by the universal table,
-   !> whose slices share one cut-off). P_ref is computed as in build_table.
+   !> whose slices share one cut-off). P_ref is computed as in build_table. With
+   !> log_space, every interval interpolates ln P (the universal table combines slices
+   !> in log space; the force must be positive from the cut-off on).
    subroutine build_table_fixed_cutoff(params, options, cutoff, delta_max, rel_tol, &
-      & table, error)
+      & log_space, table, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: cutoff, delta_max, rel_tol
+      logical, intent(in) :: log_space
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       type(solver_options) :: opts
@@ -107,7 +112,7 @@ contains
       opts = point_options(options, rel_tol)
       call solve_point(params, opts, reference_overlap(params, delta_max), p_ref, k, a, error)
       if (allocated(error)) return
-      call build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, table, error)
+      call build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, log_space, table, error)
    end subroutine build_table_fixed_cutoff
 
    !> Cut-off rule: P_ref = P(min(0, delta_max)) for rough models, P(delta_max) for Hertz;
@@ -169,10 +174,11 @@ contains
    end subroutine table_find_cutoff
 
    !> Adaptive build between a given cut-off and delta_max.
-   subroutine build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, table, error)
+   subroutine build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, table, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: cutoff, delta_max, rel_tol, p_ref
+      logical, intent(in) :: log_all
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       real(dp), allocatable :: x(:), f(:), k(:), a(:), xm(:), fm(:), km(:), am(:)
@@ -181,7 +187,7 @@ contains
       integer, allocatable :: todo(:)
       real(dp) :: fi, ki
       integer :: round, n, i, j, m
-      logical :: rough
+      logical :: rough, in_log
 
       rough = is_rough(params)
       call initial_nodes(params, cutoff, delta_max, x)
@@ -214,8 +220,9 @@ contains
          if (allocated(error)) return
          do j = 1, m
             i = todo(j)
+            in_log = log_all .or. (rough .and. x(i + 1) <= 0.0_dp)
             call hermite_at(x(i), x(i + 1), f(i), f(i + 1), k(i), k(i + 1), &
-               & rough .and. x(i + 1) <= 0.0_dp, xm(j), fi, ki)
+               & in_log, xm(j), fi, ki)
             err_f(i) = rel_diff(fi, fm(j))
             err_k(i) = rel_diff(ki, km(j))
             ! the stiffness check (10 rel_tol) catches the sqrt(delta) singularity of the
@@ -224,9 +231,9 @@ contains
             ! adds no nodes there
             split(j) = err_f(i) > rel_tol .or. &
                & err_k(i) > 10*rel_tol + slope_roundoff(x(i), x(i + 1), f(i), f(i + 1), &
-               & km(j), rough .and. x(i + 1) <= 0.0_dp) .or. &
+               & km(j), in_log) .or. &
                & .not. monotone_ok(x(i), x(i + 1), f(i), &
-               & f(i + 1), k(i), k(i + 1), rough .and. x(i + 1) <= 0.0_dp)
+               & f(i + 1), k(i), k(i + 1), in_log)
          end do
          call merge_nodes(x, f, k, a, accepted, err_f, err_k, todo, xm, fm, km, am, split)
          n = size(x)
@@ -242,6 +249,7 @@ contains
       table%max_stiffness_error = maxval(err_k)
       table%n_log = 0
       if (rough) table%n_log = count(x(2:n) <= 0.0_dp)
+      if (log_all) table%n_log = n - 1
       call move_alloc(x, table%delta)
       call move_alloc(f, table%force)
       call move_alloc(k, table%stiffness)
@@ -254,8 +262,8 @@ contains
    !> evaluates bit-for-bit like the one written.
    pure subroutine table_prepare(table)
       type(force_table), intent(inout) :: table
-      integer :: n, i, b
-      real(dp) :: h, v0, v1, d0, d1, s, xb
+      integer :: n, i
+      real(dp) :: h, v0, v1, d0, d1, s, cost_sqrt
 
       n = size(table%delta)
       if (allocated(table%seg)) deallocate (table%seg)
@@ -291,22 +299,60 @@ contains
             & table%delta(i + 1) - table%delta(i))
       end do
       call monotone_slopes(table%delta, table%contact_radius, table%radius_slope)
-      ! buckets: uniform in delta, 2 per interval on average; bucket b stores the
-      ! interval containing cutoff + (b - 1e-6)/bucket_scale: never past the interval of
-      ! any delta that maps to b despite rounding, so evaluation only scans forward
-      table%n_bucket = 2*(n - 1)
-      table%bucket_scale = table%n_bucket/(table%delta(n) - table%delta(1))
+      ! buckets: 8 per interval on average, uniform either in delta or in
+      ! u = sign(delta) sqrt|delta|, whichever needs the shorter scans: nodes graded
+      ! towards delta = 0 (the sqrt(delta) stiffness of Hertz) or spread over a long
+      ! Hertz range crowd uniform buckets, and the sqrt variable spreads them out
+      table%n_bucket = 8*(n - 1)
       allocate (table%bucket(0:table%n_bucket + 1))
+      call make_buckets(table, .true.)
+      cost_sqrt = scan_cost(table)
+      call make_buckets(table, .false.)
+      if (cost_sqrt < 0.5_dp*scan_cost(table)) call make_buckets(table, .true.)
+   end subroutine table_prepare
+
+   !> Fill the lookup buckets: bucket b holds the interval containing the point whose
+   !> bucket variable is origin + (b - 1e-6)/scale, so rounding never puts it past the
+   !> interval of a delta that maps to b, and evaluation only scans forward.
+   pure subroutine make_buckets(table, use_sqrt)
+      type(force_table), intent(inout) :: table
+      logical, intent(in) :: use_sqrt
+      integer :: n, i, b
+      real(dp) :: xb, v
+      n = size(table%delta)
+      table%sqrt_buckets = use_sqrt
+      table%bucket_origin = bucket_variable(table, table%delta(1))
+      table%bucket_scale = table%n_bucket/(bucket_variable(table, table%delta(n)) - &
+         & table%bucket_origin)
       i = 1
       do b = 0, table%n_bucket + 1
-         xb = table%delta(1) + (b - 1.0e-6_dp)/table%bucket_scale
+         v = table%bucket_origin + (b - 1.0e-6_dp)/table%bucket_scale
+         xb = v
+         if (use_sqrt) xb = sign(v*v, v)
          do while (i < n - 1)
             if (xb < table%delta(i + 1)) exit
             i = i + 1
          end do
          table%bucket(b) = i
       end do
-   end subroutine table_prepare
+   end subroutine make_buckets
+
+   !> Mean squared number of intervals per bucket: the expected scan work.
+   pure real(dp) function scan_cost(table)
+      type(force_table), intent(in) :: table
+      scan_cost = sum(real(table%bucket(1:table%n_bucket) - &
+         & table%bucket(0:table%n_bucket - 1) + 1, dp)**2)/table%n_bucket
+   end function scan_cost
+
+   pure real(dp) function bucket_variable(table, delta) result(v)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      if (table%sqrt_buckets) then
+         v = sign(sqrt(abs(delta)), delta)
+      else
+         v = delta
+      end if
+   end function bucket_variable
 
    !> True when the evaluation data are present (a built or read table).
    pure logical function table_is_ready(table)
@@ -479,7 +525,12 @@ contains
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
       integer :: b, lo, hi, mid
-      b = min(max(int((delta - table%seg(0, 1))*table%bucket_scale), 0), table%n_bucket)
+      if (table%sqrt_buckets) then
+         b = int((sign(sqrt(abs(delta)), delta) - table%bucket_origin)*table%bucket_scale)
+      else
+         b = int((delta - table%bucket_origin)*table%bucket_scale)
+      end if
+      b = min(max(b, 0), table%n_bucket)
       i = table%bucket(b)
       hi = table%bucket(b + 1) + 1
       if (hi - i > 6) then

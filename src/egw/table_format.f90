@@ -1275,6 +1275,8 @@ contains
       to%n_log = from%n_log
       to%n_bucket = from%n_bucket
       to%bucket_scale = from%bucket_scale
+      to%bucket_origin = from%bucket_origin
+      to%sqrt_buckets = from%sqrt_buckets
       call move_alloc(from%delta, to%delta)
       call move_alloc(from%force, to%force)
       call move_alloc(from%stiffness, to%stiffness)

@@ -110,7 +110,7 @@ contains
             end if
             call build_table_fixed_cutoff(universal_slice_params(model, psi, &
                & hardness_coeff, plastic_ratio, mus(j)), opts, x_cut, x_max, 0.5_dp*rel_tol, &
-               & u%slices(j), error)
+               & .true., u%slices(j), error)
             if (allocated(error)) return
          end do
          call universal_prepare(u)
