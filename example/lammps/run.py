@@ -99,7 +99,8 @@ def main():
                 e_max = energy_at(s["rows"], s["rsum"] - d_max)
                 checks = [("energy at max overlap / KE", e_max / (m_eff * V0**2 / 2), TOL_ENERGY)]
             checks.append(("restitution", e, TOL_RESTITUTION))
-            print(f"{name} ({s['model']}): max overlap {d_max:.6e} m, time with delta > 0 {t_c:.6e} s")
+            print(f"{name} ({s['model']}): max overlap {d_max:.6e} m, "
+                  f"time with delta > 0 {t_c:.6e} s")
             for what, ratio, tol in checks:
                 good = abs(ratio - 1) < tol
                 ok &= good
