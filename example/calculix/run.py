@@ -5,7 +5,8 @@ result against p_G. block.inp presses a steel block with a uniform 1, 10 and 100
 step the contact pressure must be the load over the current area at every slave node,
 and the separation d of the summit base plane must give p_G(d) = that pressure, where
 p_G(d) = C sigma^1.5 F_3/2(d/sigma) (DESIGN.md section 3) is computed here independently
-of egw (quadrature of F_3/2, checked against DESIGN.md's values), with C = mu E/(2 sigma sqrt(2R)) from the curve's header.
+of egw (quadrature of F_3/2, checked against DESIGN.md's values), with
+C = mu E/(2 sigma sqrt(2R)) from the curve's header.
 Usage: run.py FLAT_INC [CCX]   (FLAT_INC written by calculix_flat.f90; CCX default ccx)."""
 import math
 import os
