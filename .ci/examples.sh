@@ -74,6 +74,11 @@ step "dem_c: pkg-config egw (shared)" sh -c "
 step "dem_c: pkg-config egw-static" sh -c "
   cc -O2 -o '$work/dem_c_pcs' '$root/example/dem_c/dem_c.c' \
     \$(pkg-config --cflags --libs egw-static) -lm && '$work/dem_c_pcs'"
+if command -v c++ >/dev/null; then
+  step "dem_c compiled as C++: pkg-config egw" sh -c "
+    c++ -x c++ -O2 -o '$work/dem_cxx_pc' '$root/example/dem_c/dem_c.c' \
+      \$(pkg-config --cflags --libs egw) -Wl,-rpath,'$libdir' && '$work/dem_cxx_pc'"
+fi
 step "dem_fortran: pkg-config egw-static" sh -c "
   gfortran -O2 -o '$work/dem_f_pcs' '$root/example/dem_fortran/dem_fortran.f90' \
     \$(pkg-config --cflags --libs egw-static) && '$work/dem_f_pcs'"
