@@ -14,7 +14,7 @@ module egw_gauss
 
    public :: gauss_integral, gauss_integral_deriv, get_gauss_integral
    public :: gauss_fm12, gauss_f0, gauss_f12, gauss_f1, gauss_f32, gauss_f52
-   public :: normal_density, zmc_integrals
+   public :: normal_density, zmc_integrals, zmc_flat_integral
 
    ! Order index of the fitted kernels in egw_gauss_fits.
    integer, parameter :: ord_m12 = 1, ord_0 = 2, ord_12 = 3, ord_1 = 4, ord_32 = 5, ord_52 = 6
@@ -169,18 +169,59 @@ contains
       real(dp), intent(in) :: q               !< delta_p / sigma
       real(dp), intent(in) :: hardness_coeff  !< ZMC K
       real(dp), intent(out) :: i_e, i_ep, i_p, di_e, di_ep, di_p
-      real(dp) :: j_half, j_ep, phi_e, phi_q, hq
-      call gauss_moments(kind_power32, 1.5_dp, e, q, hardness_coeff, 0.0_dp, e, h, i_e, j_half)
-      call gauss_moments(kind_ep, 1.0_dp, e, q, hardness_coeff, e, q, h, i_ep, j_ep)
-      hq = h + q
-      i_p = gauss_f1(hq) + q*gauss_f0(hq)
+      real(dp) :: j_e, j_ep, m3, m4, hq, phi_e, phi_q, b1, b2
+      ! Two exact forms of d/dh int_a^b g(x) phi(h+x) dx: under the integral sign,
+      ! -int g(x) (h+x) phi(h+x) dx, which cancels when the Gaussian sits inside a long
+      ! interval, and by parts, g(b) phi(h+b) - g(a) phi(h+a) - int g' phi, which cancels
+      ! when the interval is short. Each is taken where its terms are smaller (|sum of
+      ! magnitudes| is the rounding error bound of either).
       phi_e = shifted_density(h, e)
       phi_q = shifted_density(h, q)
-      ! d/dh int_a^b g(x) phi(h+x) dx = g(b) phi(h+b) - g(a) phi(h+a) - int_a^b g' phi
-      di_e = e*sqrt(e)*phi_e - 1.5_dp*j_half
-      di_ep = 2.0_dp*q*phi_q - hardness_coeff*e*phi_e - j_ep
-      di_p = -q*phi_q - gauss_f0(hq)
+      call gauss_moments(kind_power32, 1.5_dp, e, q, hardness_coeff, 0.0_dp, e, h, i_e, j_e, &
+         & m3, m4)
+      b1 = e*sqrt(e)*phi_e
+      b2 = 1.5_dp*j_e
+      if (m4 <= b1 + b2) then
+         di_e = -m3
+      else
+         di_e = b1 - b2
+      end if
+      call gauss_moments(kind_ep, 1.0_dp, e, q, hardness_coeff, e, q, h, i_ep, j_ep, m3, m4)
+      b1 = 2.0_dp*q*phi_q
+      b2 = hardness_coeff*e*phi_e
+      if (m4 <= b1 + b2 + abs(j_ep)) then
+         di_ep = -m3
+      else
+         di_ep = (b1 - b2) - j_ep
+      end if
+      hq = h + q
+      i_p = gauss_f1(hq) + q*gauss_f0(hq)
+      di_p = -q*shifted_density(h, q) - gauss_f0(hq)
    end subroutine zmc_integrals
+
+   !> The ZMC rough-flat integral p = I_e + (I_ep + 2 I_p) sqrt(e)/K (DESIGN.md §3 with
+   !> 1/psi = sqrt(e); DESIGN §6 misprint 4) and dp/dh = -int f'(x) phi(h+x) dx, where f is
+   !> the whole (continuous) ZMC law in units of sigma: the boundary terms of the pieces
+   !> cancel, so they are left out rather than cancelled numerically.
+   pure subroutine zmc_flat_integral(h, e, q, hardness_coeff, p, dpdh)
+      real(dp), intent(in) :: h               !< separation of the summit base plane / sigma
+      real(dp), intent(in) :: e               !< delta_ep / sigma = 1/psi^2
+      real(dp), intent(in) :: q               !< delta_p / sigma = rho_p e
+      real(dp), intent(in) :: hardness_coeff  !< ZMC K
+      real(dp), intent(out) :: p     !< the integral p(h)
+      real(dp), intent(out) :: dpdh  !< dp/dh
+      real(dp) :: i_e, j_e, i_ep, j_ep, unused, unused4, hq, f0, c
+      call gauss_moments(kind_power32, 1.5_dp, e, q, hardness_coeff, 0.0_dp, e, h, i_e, j_e, &
+         & unused, unused4)
+      call gauss_moments(kind_ep, 1.0_dp, e, q, hardness_coeff, e, q, h, i_ep, j_ep, unused, &
+         & unused4)
+      hq = h + q
+      f0 = gauss_f0(hq)
+      c = sqrt(e)/hardness_coeff
+      p = i_e + c*(i_ep + 2.0_dp*(gauss_f1(hq) + q*f0))
+      ! f' = (3/2) x^(1/2) below e, g_ep' between e and q, 2 sqrt(e)/K beyond q
+      dpdh = -(1.5_dp*j_e + c*(j_ep + 2.0_dp*f0))
+   end subroutine zmc_flat_integral
 
    ! ---------------------------------------------------------------------------------------
 
@@ -322,34 +363,38 @@ contains
    !> quadrature of int_0^inf x^n phi(h + x) dx.
    elemental real(dp) function general_order(n, h) result(f)
       real(dp), intent(in) :: n, h
-      real(dp) :: unused
+      real(dp) :: unused, unused3, unused4
       if (ieee_is_nan(h) .or. ieee_is_nan(n)) then
          f = h + n
       else if (h < -max(12.0_dp, 2.0_dp*n + 2.0_dp)) then
          f = asymptotic_negative(n, h)
       else
          call gauss_moments(kind_power, n, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, huge(1.0_dp), h, &
-            & f, unused)
+            & f, unused, unused3, unused4)
       end if
    end function general_order
 
-   !> m1 = int_a^b g1(x) phi(h + x) dx and m2 = int_a^b g2(x) phi(h + x) dx, 0 <= a < b,
-   !> for the integrand kinds above, by composite 16-point Gauss-Legendre.
+   !> m1 = int_a^b g1(x) phi(h + x) dx, m2 = int_a^b g2(x) phi(h + x) dx and
+   !> m3 = int_a^b g1(x) (h + x) phi(h + x) dx, m4 = the same with |h + x| (the size of the
+   !> terms that cancel in m3), 0 <= a < b, for the integrand kinds above,
+   !> by composite 16-point Gauss-Legendre.
    !> Panels start at the peak x_m of the Gaussian factor on [a, b] and march outwards
    !> until the factor has lost loss_max e-folds; widths are set by the local exponent
    !> change (dloss) and, for x^p and log x, by the distance to x = 0 (panel_ratio). A panel
    !> touching x = 0 with a branch point there is done by its Taylor series instead.
    !> All node values are scaled by phi(h + x_m), formed exactly, so nothing overflows and
    !> nothing cancels in the exponent.
-   pure subroutine gauss_moments(kind, p, e, q, kc, a, b, h, m1, m2)
+   pure subroutine gauss_moments(kind, p, e, q, kc, a, b, h, m1, m2, m3, m4)
       integer, intent(in) :: kind
       real(dp), intent(in) :: p, e, q, kc, a, b, h
-      real(dp), intent(out) :: m1, m2
-      real(dp) :: xm, zh, zl, lo_end, hi_end, x, w, s1, s2, loss, slope, dl, lnqe
-      real(dp) :: r1, r2, ratio, pw, lmax
+      real(dp), intent(out) :: m1, m2, m3, m4
+      real(dp) :: xm, zh, zl, lo_end, hi_end, x, w, s1, s2, s3, s4, loss, slope, dl, lnqe
+      real(dp) :: r1, r2, r3, r4, ratio, pw, lmax, f
       integer :: ip
       m1 = 0.0_dp
       m2 = 0.0_dp
+      m3 = 0.0_dp
+      m4 = 0.0_dp
       xm = min(max(-h, a), b)
       call two_sum(h, xm, zh, zl)
       if (abs(zh) > 40.0_dp) return  ! phi(h + x) < e^-800 on all of [a, b]: underflow
@@ -376,15 +421,20 @@ contains
       if (xm < b) hi_end = min(b, xm + 2.0_dp*lmax/(zh + sqrt(zh*zh + 2.0_dp*lmax)))
       s1 = 0.0_dp
       s2 = 0.0_dp
+      s3 = 0.0_dp
+      s4 = 0.0_dp
       ! march right from the peak
       x = xm
       do ip = 1, max_panels
          if (x >= hi_end) exit
          if (x == 0.0_dp .and. kind /= kind_ep) then
             w = min(series_width(h), hi_end)
-            call series_panel(kind, p, h, w, r1, r2)
-            s1 = s1 + r1*loss_factor(0.0_dp)
-            s2 = s2 + r2*loss_factor(0.0_dp)
+            call series_panel(kind, p, h, w, r1, r2, r3, r4)
+            f = loss_factor(0.0_dp)
+            s1 = s1 + r1*f
+            s2 = s2 + r2*f
+            s3 = s3 + r3*f
+            s4 = s4 + r4*f
          else
             loss = loss_at(x)
             slope = abs(zh + (x - xm))
@@ -392,9 +442,11 @@ contains
             w = 2.0_dp*dl/(slope + sqrt(slope*slope + 2.0_dp*dl))
             w = min(w, ratio*x)
             w = min(w, hi_end - x)
-            call gl_panel(x, x + w, r1, r2)
+            call gl_panel(x, x + w, r1, r2, r3, r4)
             s1 = s1 + r1
             s2 = s2 + r2
+            s3 = s3 + r3
+            s4 = s4 + r4
          end if
          x = x + w
       end do
@@ -403,9 +455,12 @@ contains
       do ip = 1, max_panels
          if (x <= lo_end) exit
          if (lo_end == 0.0_dp .and. kind /= kind_ep .and. x <= series_width(h)) then
-            call series_panel(kind, p, h, x, r1, r2)
-            s1 = s1 + r1*loss_factor(0.0_dp)
-            s2 = s2 + r2*loss_factor(0.0_dp)
+            call series_panel(kind, p, h, x, r1, r2, r3, r4)
+            f = loss_factor(0.0_dp)
+            s1 = s1 + r1*f
+            s2 = s2 + r2*f
+            s3 = s3 + r3*f
+            s4 = s4 + r4*f
             exit
          end if
          loss = loss_at(x)
@@ -414,14 +469,18 @@ contains
          w = 2.0_dp*dl/(slope + sqrt(slope*slope + 2.0_dp*dl))
          w = min(w, ratio*x/(1.0_dp + ratio))
          w = min(w, x - lo_end)
-         call gl_panel(x - w, x, r1, r2)
+         call gl_panel(x - w, x, r1, r2, r3, r4)
          s1 = s1 + r1
          s2 = s2 + r2
+         s3 = s3 + r3
+         s4 = s4 + r4
          x = x - w
       end do
       r1 = inv_sqrt2pi*exp_neg_half_square(zh, zl)
       m1 = s1*r1
       m2 = s2*r1
+      m3 = s3*r1
+      m4 = s4*r1
 
    contains
 
@@ -443,15 +502,17 @@ contains
       end function series_width
 
       !> 16-point Gauss-Legendre on [x0, x1] of g * exp(-loss), relative to phi(h + x_m).
-      pure subroutine gl_panel(x0, x1, r1, r2)
+      pure subroutine gl_panel(x0, x1, r1, r2, r3, r4)
          real(dp), intent(in) :: x0, x1
-         real(dp), intent(out) :: r1, r2
-         real(dp) :: half, d0, off, dlt, xx, fac, g1, g2
+         real(dp), intent(out) :: r1, r2, r3, r4
+         real(dp) :: half, d0, off, dlt, xx, fac, g1, g2, z
          integer :: i, sgn
          half = 0.5_dp*(x1 - x0)
          d0 = x0 - xm
          r1 = 0.0_dp
          r2 = 0.0_dp
+         r3 = 0.0_dp
+         r4 = 0.0_dp
          do i = 1, 8
             do sgn = -1, 1, 2
                off = half*(1.0_dp + sgn*gl_x(i))
@@ -461,10 +522,16 @@ contains
                call integrand(kind, xx, p, e, q, kc, lnqe, g1, g2)
                r1 = r1 + fac*g1
                r2 = r2 + fac*g2
+               ! h + x = (h + x_m) + (x - x_m), exact up to two roundings
+               z = (zh + dlt) + zl
+               r3 = r3 + fac*g1*z
+               r4 = r4 + fac*g1*abs(z)
             end do
          end do
          r1 = r1*half
          r2 = r2*half
+         r3 = r3*half
+         r4 = r4*half
       end subroutine gl_panel
 
    end subroutine gauss_moments
@@ -497,11 +564,11 @@ contains
    !> int_0^w x^p e^(-h x - x^2/2) dx (and the same with x^(p-1) for kind_power32) by the
    !> Taylor series of the exponential: with d_k the coefficients of (w x')^k,
    !> (k+1) d_(k+1) = -h w d_k - w^2 d_(k-1), the integral is w^(p+1) sum_k d_k/(p+k+1).
-   pure subroutine series_panel(kind, p, h, w, r1, r2)
+   pure subroutine series_panel(kind, p, h, w, r1, r2, r3, r4)
       integer, intent(in) :: kind
       real(dp), intent(in) :: p, h, w
-      real(dp), intent(out) :: r1, r2
-      real(dp) :: hw, w2, dkm1, dk, dnext, sum1, sum2
+      real(dp), intent(out) :: r1, r2, r3, r4
+      real(dp) :: hw, w2, dkm1, dk, dnext, sum1, sum2, sum3
       integer :: k
       hw = h*w
       w2 = w*w
@@ -509,6 +576,7 @@ contains
       dk = 1.0_dp
       sum1 = 1.0_dp/(p + 1.0_dp)
       sum2 = 0.0_dp
+      sum3 = 1.0_dp/(p + 2.0_dp)
       if (kind == kind_power32) sum2 = 1.0_dp/p
       do k = 0, 80
          dnext = (-hw*dk - w2*dkm1)/(k + 1)
@@ -516,14 +584,21 @@ contains
          dk = dnext
          sum1 = sum1 + dk/(p + k + 2)
          sum2 = sum2 + dk/(p + k + 1)
+         sum3 = sum3 + dk/(p + k + 3)
          if (abs(dk) + abs(dkm1) <= 1.0e-17_dp*abs(sum1)) exit
       end do
       if (kind == kind_power32) then
          r2 = w*sqrt(w)*sum2
          r1 = w*w*sqrt(w)*sum1
+         ! int x^(3/2) (h + x) e^(...) = h r1 + int x^(5/2) e^(...)
+         r3 = h*r1 + w*w*w*sqrt(w)*sum3
+         ! a bound on int x^(3/2) |h + x| e^(...), enough to choose a derivative form
+         r4 = abs(h)*r1 + w*w*w*sqrt(w)*abs(sum3)
       else
          r1 = w**(p + 1.0_dp)*sum1
          r2 = 0.0_dp
+         r3 = 0.0_dp
+         r4 = 0.0_dp
       end if
    end subroutine series_panel
 
