@@ -6,6 +6,7 @@ module egw
    use egw_status
    use egw_params
    use egw_gauss
+   use egw_asperity
    implicit none
    public
 end module egw

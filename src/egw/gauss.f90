@@ -1,6 +1,6 @@
 !> Gaussian asperity integrals F_n(h) = int_h^inf (s-h)^n phi(s) ds (DESIGN.md §2), their
 !> h-derivatives, and the three truncated integrals of the ZMC asperity law (eqs. 42-45).
-!> Hot orders (n = -1/2, 0, 1/2, 1, 3/2, 5/2) use piecewise Chebyshev fits made offline by
+!> Hot orders (n = -1/2, 0, 1/2, 1, 3/2, 5/2) use piecewise polynomial fits made offline by
 !> tools/reference/gauss_fits.py; other orders and the truncated integrals use a fixed
 !> composite 16-point Gauss-Legendre rule whose panels are placed from the Gaussian peak
 !> (a deterministic rule, no error estimates, no adaptivity).
@@ -276,7 +276,7 @@ contains
       t = (a - (s - v)) + (b - v)
    end subroutine two_sum
 
-   !> Fitted F_n: G_n = F_n/phi by Chebyshev series for 0 <= h < 40 (F_n underflows beyond),
+   !> Fitted F_n: G_n = F_n/phi by polynomial pieces for 0 <= h < 40 (F_n underflows beyond),
    !> F_n itself for -12 <= h < 0, the asymptotic expansion below -12.
    elemental real(dp) function fitted(iord, h) result(f)
       integer, intent(in) :: iord
@@ -305,7 +305,7 @@ contains
          a = fit_pos_breaks(i - 1)
          b = fit_pos_breaks(i)
          t = (2.0_dp*h - (a + b))/(b - a)
-         g = clenshaw(fit_pos(:, i, iord), fit_deg_pos(i, iord), t)
+         g = power_series(fit_pos(:, i, iord), fit_deg_pos(i, iord), t)
          if (h < 37.0_dp) then
             f = g*normal_density(h)
          else
@@ -315,7 +315,7 @@ contains
          fl = floor(h)
          i = int(fl) + 13
          t = 2.0_dp*(h - fl) - 1.0_dp
-         f = clenshaw(fit_neg(:, i, iord), fit_deg_neg(i, iord), t)
+         f = power_series(fit_neg(:, i, iord), fit_deg_neg(i, iord), t)
       else if (h < 0.0_dp) then
          f = asymptotic_negative(order(iord), h)
       else  ! NaN
@@ -323,23 +323,23 @@ contains
       end if
    end function fitted
 
-   !> Chebyshev series sum_k c_k T_k(t), k = 0..deg, by Clenshaw's recurrence.
-   pure real(dp) function clenshaw(c, deg, t) result(s)
+   !> Polynomial sum_k c_k t^k, k = 0..deg (c padded with a zero to an odd top index), as
+   !> even + t * odd part in t^2: two independent Horner chains run in parallel in the CPU.
+   pure real(dp) function power_series(c, deg, t) result(s)
       real(dp), intent(in) :: c(0:)
       integer, intent(in) :: deg
       real(dp), intent(in) :: t
-      real(dp) :: b0, b1, b2, t2
-      integer :: k
-      b1 = 0.0_dp
-      b2 = 0.0_dp
-      t2 = 2.0_dp*t
-      do k = deg, 1, -1
-         b0 = t2*b1 - b2 + c(k)
-         b2 = b1
-         b1 = b0
+      real(dp) :: even, odd, t2
+      integer :: j
+      t2 = t*t
+      even = c(2*(deg/2))
+      odd = c(2*(deg/2) + 1)
+      do j = deg/2 - 1, 0, -1
+         even = even*t2 + c(2*j)
+         odd = odd*t2 + c(2*j + 1)
       end do
-      s = t*b1 - b2 + c(0)
-   end function clenshaw
+      s = even + t*odd
+   end function power_series
 
    !> h -> -inf: F_n = E[(X - h)_+^n] = |h|^n sum_k C(n,2k) (2k-1)!! h^(-2k) up to a term of
    !> order phi(h) (the mass of X below h), i.e. e^-72 relative at h = -12.
