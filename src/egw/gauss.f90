@@ -33,13 +33,13 @@ module egw_gauss
    !> small, because there the absolute error is scaled down by e^-loss.
    real(dp), parameter :: dloss_peak = 12.0_dp, dloss_cap = 40.0_dp
    !> Width/left-end ratio of panels when the integrand has a branch point at x = 0
-   !> (x^p, log x): the singularity then lies 2 half-widths beyond the panel (Bernstein
-   !> ellipse rho ~ 3.7, 16-point error ~ rho^-32 ~ 1e-18).
-   real(dp), parameter :: panel_ratio = 2.0_dp
+   !> (x^p, log x): the singularity then lies 5/3 half-widths from the panel's centre
+   !> (Bernstein ellipse rho = 3, 16-point error ~ rho^-32 ~ 5e-16 of the panel).
+   real(dp), parameter :: panel_ratio = 3.0_dp
    !> Exponent span of the Taylor-series panel at x = 0 (terms then stay below e^2 so the
    !> alternating sum loses at most ~1.5 digits).
    real(dp), parameter :: series_span = 2.0_dp
-   real(dp), parameter :: power_span = 4.0_dp
+   real(dp), parameter :: power_span = 6.0_dp
    integer, parameter :: max_panels = 200
 
    !> 16-point Gauss-Legendre nodes (positive half) and weights on [-1, 1].
@@ -65,17 +65,17 @@ contains
    !> orders n = -1/2, 0, 1/2, 1, 3/2, 5/2 and about 1e-13 for other n up to ~10.
    elemental real(dp) function gauss_integral(n, h) result(f)
       real(dp), intent(in) :: n, h
-      if (n == 1.5_dp) then
+      if (same(n, 1.5_dp)) then
          f = fitted(ord_32, h)
-      else if (n == 0.5_dp) then
+      else if (same(n, 0.5_dp)) then
          f = fitted(ord_12, h)
-      else if (n == 0.0_dp) then
+      else if (same(n, 0.0_dp)) then
          f = fitted(ord_0, h)
-      else if (n == 1.0_dp) then
+      else if (same(n, 1.0_dp)) then
          f = fitted(ord_1, h)
-      else if (n == 2.5_dp) then
+      else if (same(n, 2.5_dp)) then
          f = fitted(ord_52, h)
-      else if (n == -0.5_dp) then
+      else if (same(n, -0.5_dp)) then
          f = fitted(ord_m12, h)
       else
          f = general_order(n, h)
@@ -86,7 +86,7 @@ contains
    !> gauss_integral.
    elemental real(dp) function gauss_integral_deriv(n, h) result(df)
       real(dp), intent(in) :: n, h
-      if (n == 0.0_dp) then
+      if (same(n, 0.0_dp)) then
          df = -normal_density(h)
       else
          df = -n*gauss_integral(n - 1.0_dp, h)
@@ -169,7 +169,7 @@ contains
       real(dp), intent(in) :: q               !< delta_p / sigma
       real(dp), intent(in) :: hardness_coeff  !< ZMC K
       real(dp), intent(out) :: i_e, i_ep, i_p, di_e, di_ep, di_p
-      real(dp) :: j_e, j_ep, m3, m4, hq, phi_e, phi_q, b1, b2
+      real(dp) :: j_e, j_ep, m3, m4, f0, phi_e, phi_q, b1, b2
       ! Two exact forms of d/dh int_a^b g(x) phi(h+x) dx: under the integral sign,
       ! -int g(x) (h+x) phi(h+x) dx, which cancels when the Gaussian sits inside a long
       ! interval, and by parts, g(b) phi(h+b) - g(a) phi(h+a) - int g' phi, which cancels
@@ -194,10 +194,22 @@ contains
       else
          di_ep = (b1 - b2) - j_ep
       end if
-      hq = h + q
-      i_p = gauss_f1(hq) + q*gauss_f0(hq)
-      di_p = -q*shifted_density(h, q) - gauss_f0(hq)
+      call plastic_part(h, q, i_p, di_p, f0)
    end subroutine zmc_integrals
+
+   !> I_p = F_1(h+q) + q F_0(h+q) and dI_p/dh = -q phi(h+q) - F_0(h+q). The rounding error
+   !> t of h + q = s + t would cost (h+q)^2 ulp (3e-14 at h+q = 16); it is put back by
+   !> first-order Taylor terms, dF_1 = -F_0 t and dF_0 = -phi t. Also returns F_0(h+q).
+   elemental subroutine plastic_part(h, q, i_p, di_p, f0)
+      real(dp), intent(in) :: h, q
+      real(dp), intent(out) :: i_p, di_p, f0
+      real(dp) :: s, t, phi
+      call two_sum(h, q, s, t)
+      phi = inv_sqrt2pi*exp_neg_half_square(s, t)
+      f0 = gauss_f0(s) - phi*t
+      i_p = (gauss_f1(s) - f0*t) + q*f0
+      di_p = -q*phi - f0
+   end subroutine plastic_part
 
    !> The ZMC rough-flat integral p = I_e + (I_ep + 2 I_p) sqrt(e)/K (DESIGN.md §3 with
    !> 1/psi = sqrt(e); DESIGN §6 misprint 4) and dp/dh = -int f'(x) phi(h+x) dx, where f is
@@ -210,20 +222,25 @@ contains
       real(dp), intent(in) :: hardness_coeff  !< ZMC K
       real(dp), intent(out) :: p     !< the integral p(h)
       real(dp), intent(out) :: dpdh  !< dp/dh
-      real(dp) :: i_e, j_e, i_ep, j_ep, unused, unused4, hq, f0, c
+      real(dp) :: i_e, j_e, i_ep, j_ep, unused, unused4, i_p, di_p, f0, c
       call gauss_moments(kind_power32, 1.5_dp, e, q, hardness_coeff, 0.0_dp, e, h, i_e, j_e, &
          & unused, unused4)
       call gauss_moments(kind_ep, 1.0_dp, e, q, hardness_coeff, e, q, h, i_ep, j_ep, unused, &
          & unused4)
-      hq = h + q
-      f0 = gauss_f0(hq)
+      call plastic_part(h, q, i_p, di_p, f0)
       c = sqrt(e)/hardness_coeff
-      p = i_e + c*(i_ep + 2.0_dp*(gauss_f1(hq) + q*f0))
+      p = i_e + c*(i_ep + 2.0_dp*i_p)
       ! f' = (3/2) x^(1/2) below e, g_ep' between e and q, 2 sqrt(e)/K beyond q
       dpdh = -(1.5_dp*j_e + c*(j_ep + 2.0_dp*f0))
    end subroutine zmc_flat_integral
 
    ! ---------------------------------------------------------------------------------------
+
+   !> Exact equality of reals, spelled so that -Wcompare-reals sees it is intended.
+   elemental logical function same(a, b)
+      real(dp), intent(in) :: a, b
+      same = abs(a - b) <= 0.0_dp
+   end function same
 
    !> phi(h + x) with the sum h + x carried exactly into the exponent.
    elemental real(dp) function shifted_density(h, x) result(phi)
@@ -247,7 +264,7 @@ contains
          c = splitter*a
          hi = c - (c - a)
          lo = a - hi
-         small = 0.5_dp*lo*(a + hi) + a*sign(zl, zh)
+         small = 0.5_dp*lo*(a + hi) + zh*zl
          ! |small| < 2e-5, so the cubic is exp(-small) to 1e-21
          r = exp(-0.5_dp*hi*hi)*(1.0_dp - small*(1.0_dp - small*(0.5_dp - small/6.0_dp)))
       end if
@@ -399,8 +416,8 @@ contains
       call two_sum(h, xm, zh, zl)
       if (abs(zh) > 40.0_dp) return  ! phi(h + x) < e^-800 on all of [a, b]: underflow
       lnqe = 0.0_dp
-      ! A panel [x, (1+ratio) x] lets a power x^p grow by p ln(1+ratio) e-folds on top of
-      ! the Gaussian's change: keep that below power_span.
+      ! Polynomial factors are integrated exactly, but a high power x^p (general order)
+      ! also grows by p ln(1 + ratio) e-folds over a panel: keep that below power_span.
       select case (kind)
       case (kind_ep)
          lnqe = log(q/e)
@@ -410,7 +427,8 @@ contains
       case default
          pw = max(abs(p), 1.0_dp)
       end select
-      ratio = min(panel_ratio, exp(power_span/pw) - 1.0_dp)
+      ratio = panel_ratio
+      if (kind == kind_power) ratio = min(panel_ratio, exp(power_span/pw) - 1.0_dp)
       ! The integrand peaks up to p e-folds beyond the Gaussian's peak and the tail of
       ! x^p e^-loss beyond loss L is ~ e^-L L^p/p!: widen the kept region accordingly.
       lmax = loss_max + 3.0_dp*pw
@@ -427,7 +445,7 @@ contains
       x = xm
       do ip = 1, max_panels
          if (x >= hi_end) exit
-         if (x == 0.0_dp .and. kind /= kind_ep) then
+         if (.not. x > 0.0_dp .and. kind /= kind_ep) then
             w = min(series_width(h), hi_end)
             call series_panel(kind, p, h, w, r1, r2, r3, r4)
             f = loss_factor(0.0_dp)
@@ -454,7 +472,7 @@ contains
       x = xm
       do ip = 1, max_panels
          if (x <= lo_end) exit
-         if (lo_end == 0.0_dp .and. kind /= kind_ep .and. x <= series_width(h)) then
+         if (.not. lo_end > 0.0_dp .and. kind /= kind_ep .and. x <= series_width(h)) then
             call series_panel(kind, p, h, x, r1, r2, r3, r4)
             f = loss_factor(0.0_dp)
             s1 = s1 + r1*f
