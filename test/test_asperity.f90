@@ -1,7 +1,8 @@
 !> Tests of egw_asperity: the asperity laws (continuity, limits) and the rough-flat law
 !> against mpmath values (test/ref_gauss.f90, tools/reference/gauss_refs.py).
 module test_asperity
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
+      & ieee_negative_inf, ieee_is_nan
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
    use egw_kinds, only: pi
    use egw, only: dp, hertz_asperity_force, zmc_asperity_force, rough_flat_law, &
@@ -178,7 +179,8 @@ contains
    end subroutine test_elastic_limit
 
    !> The law of increasing summit force integrated over a Gaussian: p decreases with h and
-   !> dp/dh < 0 wherever p is not 0, for every plasticity index.
+   !> dp/dh < 0 wherever p is not 0, for every plasticity index; at h = +Inf p = dp/dh = 0,
+   !> at h = -Inf p = +Inf (no NaN either way).
    subroutine test_monotone(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: psis(5) = [0.0_dp, 0.1_dp, 1.0_dp, 10.0_dp, 100.0_dp]
@@ -195,6 +197,12 @@ contains
             end if
             last = p
          end do
+         call rough_flat_law(ieee_value(h, ieee_positive_inf), psis(j), kc, rho, p, dpdh)
+         call check(error, abs(p) + abs(dpdh) <= 0.0_dp, "p and dp/dh at h = +Inf must be 0")
+         if (allocated(error)) return
+         call rough_flat_law(ieee_value(h, ieee_negative_inf), psis(j), kc, rho, p, dpdh)
+         call check(error, p > huge(p) .and. .not. ieee_is_nan(dpdh), "p(-Inf) = +Inf")
+         if (allocated(error)) return
       end do
    end subroutine test_monotone
 

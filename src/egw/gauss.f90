@@ -208,6 +208,7 @@ contains
       real(dp), intent(out) :: i_p, di_p, f0
       real(dp) :: s, t, phi
       call two_sum(h, q, s, t)
+      if (.not. abs(s) <= huge(s)) t = 0.0_dp  ! h = +-Inf: two_sum leaves t = NaN
       phi = inv_sqrt2pi*exp_neg_half_square(s, t)
       f0 = gauss_f0(s) - phi*t
       i_p = (gauss_f1(s) - f0*t) + q*f0
