@@ -5,6 +5,8 @@ program tester
    use testdrive, only: run_testsuite, run_selected, new_testsuite, testsuite_type, &
       & select_suite, unittest_type
    use test_params, only: collect_params
+   use test_gauss, only: collect_gauss
+   use test_asperity, only: collect_asperity
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -12,7 +14,9 @@ program tester
    integer :: stat, is, ntotal
 
    suites = [ &
-      & new_testsuite("params", collect_params) &
+      & new_testsuite("params", collect_params), &
+      & new_testsuite("gauss", collect_gauss), &
+      & new_testsuite("asperity", collect_asperity) &
       & ]
 
    stat = 0
