@@ -8,7 +8,8 @@ module egw_gauss
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp, inv_sqrt2pi
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real
-   use egw_gauss_fits, only: fit_pos, fit_neg, fit_deg_pos, fit_deg_neg, fit_pos_breaks
+   use egw_gauss_fits, only: fit_pos, fit_neg, fit_deg_pos, fit_deg_neg, fit_pos_breaks, &
+      & fit_store
    implicit none
    private
 
@@ -344,22 +345,22 @@ contains
       end if
    end function fitted
 
-   !> Polynomial sum_k c_k t^k, k = 0..deg (c padded with a zero to an odd top index), as
-   !> even + t * odd part in t^2: two independent Horner chains run in parallel in the CPU.
+   !> Polynomial sum_k c_k t^k, k = 0..deg (c zero padded to whole groups of four), by
+   !> Estrin's scheme: the groups c_4k + c_4k+1 t + (c_4k+2 + c_4k+3 t) t^2 are independent,
+   !> so the serial chain is a Horner recurrence in t^4 of deg/4 steps only.
    pure real(dp) function power_series(c, deg, t) result(s)
-      real(dp), intent(in) :: c(0:)
+      real(dp), intent(in) :: c(0:fit_store - 1)
       integer, intent(in) :: deg
       real(dp), intent(in) :: t
-      real(dp) :: even, odd, t2
-      integer :: j
+      real(dp) :: t2, t4
+      integer :: k
       t2 = t*t
-      even = c(2*(deg/2))
-      odd = c(2*(deg/2) + 1)
-      do j = deg/2 - 1, 0, -1
-         even = even*t2 + c(2*j)
-         odd = odd*t2 + c(2*j + 1)
+      t4 = t2*t2
+      k = 4*(deg/4)
+      s = (c(k) + c(k + 1)*t) + (c(k + 2) + c(k + 3)*t)*t2
+      do k = 4*(deg/4) - 4, 0, -4
+         s = s*t4 + ((c(k) + c(k + 1)*t) + (c(k + 2) + c(k + 3)*t)*t2)
       end do
-      s = even + t*odd
    end function power_series
 
    !> h -> -inf: F_n = E[(X - h)_+^n] = |h|^n sum_k C(n,2k) (2k-1)!! h^(-2k) up to a term of
