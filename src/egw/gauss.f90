@@ -52,6 +52,9 @@ module egw_gauss
    real(dp), parameter :: gl_w(8) = [0.18945061045506849629_dp, 0.18260341504492358887_dp, &
       & 0.16915651939500253819_dp, 0.14959598881657673208_dp, 0.12462897125553387205_dp, &
       & 0.09515851168249278481_dp, 0.062253523938647892863_dp, 0.027152459411754094852_dp]
+   !> The 16 nodes mapped to [0, 2] and their weights.
+   real(dp), parameter :: gl_u(16) = [1.0_dp - gl_x, 1.0_dp + gl_x]
+   real(dp), parameter :: gl_w16(16) = [gl_w, gl_w]
 
    !> exp(-704): scale used to land subnormal results with a single rounding.
    real(dp), parameter :: exp_m704 = 1.80586275135226673053904237717e-306_dp
@@ -528,43 +531,30 @@ contains
       pure subroutine gl_panel(x0, x1, r1, r2, r3, r4)
          real(dp), intent(in) :: x0, x1
          real(dp), intent(out) :: r1, r2, r3, r4
-         real(dp) :: half, d0, off, dlt, xx, fac, g1, g2, z
-         integer :: i, sgn
+         real(dp) :: half, d0, off(16), dlt(16), fac(16), g1(16), g2(16), z(16)
          half = 0.5_dp*(x1 - x0)
          d0 = x0 - xm
-         r1 = 0.0_dp
-         r2 = 0.0_dp
-         r3 = 0.0_dp
-         r4 = 0.0_dp
-         do i = 1, 8
-            do sgn = -1, 1, 2
-               off = half*(1.0_dp + sgn*gl_x(i))
-               xx = x0 + off
-               dlt = d0 + off
-               fac = gl_w(i)*exp(-0.5_dp*dlt*(2.0_dp*zh + dlt))
-               call integrand(kind, xx, p, e, q, kc, lnqe, g1, g2)
-               r1 = r1 + fac*g1
-               r2 = r2 + fac*g2
-               ! h + x = (h + x_m) + (x - x_m), exact up to two roundings
-               z = (zh + dlt) + zl
-               r3 = r3 + fac*g1*z
-               r4 = r4 + fac*g1*abs(z)
-            end do
-         end do
-         r1 = r1*half
-         r2 = r2*half
-         r3 = r3*half
-         r4 = r4*half
+         off = half*gl_u
+         dlt = d0 + off
+         ! weight times phi(h + x)/phi(h + x_m) at the 16 nodes
+         fac = gl_w16*exp(-0.5_dp*dlt*(2.0_dp*zh + dlt))
+         call integrand(kind, x0 + off, p, e, q, kc, lnqe, g1, g2)
+         ! h + x = (h + x_m) + (x - x_m), exact up to two roundings
+         z = (zh + dlt) + zl
+         r1 = half*sum(fac*g1)
+         r2 = half*sum(fac*g2)
+         r3 = half*sum(fac*g1*z)
+         r4 = half*sum(fac*g1*abs(z))
       end subroutine gl_panel
 
    end subroutine gauss_moments
 
-   !> The asperity-law integrands g1 (and g2 where needed) at x > 0.
+   !> The asperity-law integrands g1 (and g2 where needed) at the 16 nodes x > 0.
    pure subroutine integrand(kind, x, p, e, q, kc, lnqe, g1, g2)
       integer, intent(in) :: kind
-      real(dp), intent(in) :: x, p, e, q, kc, lnqe
-      real(dp), intent(out) :: g1, g2
-      real(dp) :: lam, area, darea, pres
+      real(dp), intent(in) :: x(16), p, e, q, kc, lnqe
+      real(dp), intent(out) :: g1(16), g2(16)
+      real(dp) :: lam(16), area(16), pres(16), inv_width, slope
       select case (kind)
       case (kind_power32)
          g2 = sqrt(x)
@@ -572,12 +562,13 @@ contains
       case (kind_ep)
          ! eqs. (40)-(43) in units of sigma: mean pressure ratio pres (eq. 40), area factor
          ! 1 + 3 lambda^2 - 2 lambda^3 (eq. 41); g1 = pres * area * x and g2 = d g1/dx
-         lam = (x - e)/(q - e)
+         inv_width = 1.0_dp/(q - e)
+         slope = (1.0_dp - kc)/lnqe
+         lam = (x - e)*inv_width
          area = 1.0_dp + lam*lam*(3.0_dp - 2.0_dp*lam)
-         darea = 6.0_dp*lam*(1.0_dp - lam)/(q - e)
-         pres = 1.0_dp - (1.0_dp - kc)*log(q/x)/lnqe
+         pres = 1.0_dp - slope*log(q/x)
          g1 = pres*area*x
-         g2 = (1.0_dp - kc)*area/lnqe + pres*(darea*x + area)
+         g2 = slope*area + pres*(6.0_dp*inv_width*lam*(1.0_dp - lam)*x + area)
       case default
          g1 = x**p
          g2 = 0.0_dp
