@@ -61,6 +61,7 @@ module egw_gauss
    real(dp), parameter :: shift704 = 704.0_dp
    !> Dekker's splitter 2^27 + 1: hi keeps 26 significant bits, so hi*hi is exact.
    real(dp), parameter :: splitter = 134217729.0_dp
+   real(dp), parameter :: sixth = 1.0_dp/6.0_dp
 
 contains
 
@@ -274,7 +275,7 @@ contains
          lo = a - hi
          small = 0.5_dp*lo*(a + hi) + zh*zl
          ! |small| < 2e-5, so the cubic is exp(-small) to 1e-21
-         r = exp(-0.5_dp*hi*hi)*(1.0_dp - small*(1.0_dp - small*(0.5_dp - small/6.0_dp)))
+         r = exp(-0.5_dp*hi*hi)*(1.0_dp - small*(1.0_dp - small*(0.5_dp - small*sixth)))
       end if
    end function exp_neg_half_square
 
@@ -288,7 +289,7 @@ contains
       hi = c - (c - a)
       lo = a - hi
       small = 0.5_dp*lo*(a + hi)
-      r = exp(shift704 - 0.5_dp*hi*hi)*(1.0_dp - small*(1.0_dp - small*(0.5_dp - small/6.0_dp)))
+      r = exp(shift704 - 0.5_dp*hi*hi)*(1.0_dp - small*(1.0_dp - small*(0.5_dp - small*sixth)))
    end function exp_neg_half_square_scaled
 
    !> Knuth's two-sum: s + t = a + b exactly.
