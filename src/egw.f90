@@ -5,6 +5,8 @@ module egw
    use egw_version, only: egw_version_string, egw_version_number, get_egw_version
    use egw_status
    use egw_params
+   use egw_ellip
+   use egw_smooth_sphere
    use egw_gauss
    use egw_asperity
    implicit none

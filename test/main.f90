@@ -5,6 +5,8 @@ program tester
    use testdrive, only: run_testsuite, run_selected, new_testsuite, testsuite_type, &
       & select_suite, unittest_type
    use test_params, only: collect_params
+   use test_ellip, only: collect_ellip
+   use test_hertz, only: collect_hertz
    use test_gauss, only: collect_gauss
    use test_asperity, only: collect_asperity
    implicit none
@@ -15,6 +17,8 @@ program tester
 
    suites = [ &
       & new_testsuite("params", collect_params), &
+      & new_testsuite("ellip", collect_ellip), &
+      & new_testsuite("hertz", collect_hertz), &
       & new_testsuite("gauss", collect_gauss), &
       & new_testsuite("asperity", collect_asperity) &
       & ]
