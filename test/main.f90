@@ -9,6 +9,7 @@ program tester
    use test_hertz, only: collect_hertz
    use test_gauss, only: collect_gauss
    use test_asperity, only: collect_asperity
+   use test_capi, only: collect_capi
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -20,7 +21,8 @@ program tester
       & new_testsuite("ellip", collect_ellip), &
       & new_testsuite("hertz", collect_hertz), &
       & new_testsuite("gauss", collect_gauss), &
-      & new_testsuite("asperity", collect_asperity) &
+      & new_testsuite("asperity", collect_asperity), &
+      & new_testsuite("capi", collect_capi) &
       & ]
 
    stat = 0
