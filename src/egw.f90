@@ -5,6 +5,7 @@ module egw
    use egw_version, only: egw_version_string, egw_version_number, get_egw_version
    use egw_status
    use egw_params
+   use egw_halfspace
    implicit none
    public
 end module egw

@@ -5,6 +5,7 @@ program tester
    use testdrive, only: run_testsuite, run_selected, new_testsuite, testsuite_type, &
       & select_suite, unittest_type
    use test_params, only: collect_params
+   use test_halfspace, only: collect_halfspace
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -12,7 +13,8 @@ program tester
    integer :: stat, is, ntotal
 
    suites = [ &
-      & new_testsuite("params", collect_params) &
+      & new_testsuite("params", collect_params), &
+      & new_testsuite("halfspace", collect_halfspace) &
       & ]
 
    stat = 0
