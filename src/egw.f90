@@ -6,6 +6,7 @@ module egw
    use egw_status
    use egw_params
    use egw_halfspace
+   use egw_rough_sphere
    implicit none
    public
 end module egw
