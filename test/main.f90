@@ -6,6 +6,7 @@ program tester
       & select_suite, unittest_type
    use test_params, only: collect_params
    use test_halfspace, only: collect_halfspace
+   use test_rough_sphere, only: collect_rough_sphere
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -14,7 +15,8 @@ program tester
 
    suites = [ &
       & new_testsuite("params", collect_params), &
-      & new_testsuite("halfspace", collect_halfspace) &
+      & new_testsuite("halfspace", collect_halfspace), &
+      & new_testsuite("rough_sphere", collect_rough_sphere) &
       & ]
 
    stat = 0

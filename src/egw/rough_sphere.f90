@@ -140,6 +140,14 @@ contains
       end if
 
       prob = scaled(params, delta)
+      if (negligible(prob)) then
+         ! Beyond ~37 sigma apart the summit pressure underflows: the force is below
+         ! 1e-250 E sqrt(R) sigma**1.5 and is returned as 0 with est_rel_err = 1 (honest:
+         ! zero has relative error 1).
+         result%method_used = options%method
+         result%est_rel_err = 1.0_dp
+         return
+      end if
       call solve_scaled(prob, options, sol, est, result%method_used, error)
       if (allocated(error)) return
 
@@ -194,6 +202,11 @@ contains
       end if
 
       prob = scaled(params, delta)
+      if (negligible(prob)) then
+         pressure = 0.0_dp
+         deflection = 0.0_dp
+         return
+      end if
       call solve_scaled(prob, options, sol, est, method_used, error)
       if (allocated(error)) return
       length = sqrt(params%radius*params%sigma)
@@ -245,6 +258,16 @@ contains
       prob%hardness = params%hardness_coeff
       prob%plastic_ratio = params%plastic_ratio
    end function scaled
+
+   !> True when the spheres are so far apart that the summit pressure underflows.
+   elemental logical function negligible(prob)
+      type(scaled_problem), intent(in) :: prob
+      real(dp) :: f, dfdh
+      negligible = .false.
+      if (prob%delta >= 0.0_dp) return
+      call rough_flat_law(-prob%delta, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+      negligible = prob%scale*f < 1.0e-250_dp
+   end function negligible
 
    !> Base gap z(r): the Hertz gap of eq. (28) (zero inside a) for the extended models at
    !> delta > 0, else the rigid gap r**2/2 - delta (classic GW, eq. 10).
@@ -332,9 +355,10 @@ contains
       real(dp) :: h_ref, f_ref, h_cut, f, dfdh, lo, hi, mid
       integer :: i
 
-      if (prob%a > 1.0_dp) then
+      if (prob%a > 1.0_dp .or. (prob%extended .and. prob%a > 0.0_dp)) then
+         ! The extended models need a node at a, where z has its (r - a)**1.5 onset.
          focus = prob%a
-         width = 0.5_dp*prob%a*(0.75_dp*pi/prob%a**2)**(2.0_dp/3.0_dp)
+         width = min(1.0_dp, 0.5_dp*prob%a*(0.75_dp*pi/prob%a**2)**(2.0_dp/3.0_dp))
       else
          focus = 0.0_dp
          width = min(1.0_dp, 1.0_dp/sqrt(max(1.0_dp, -prob%delta)))
