@@ -31,7 +31,7 @@ module egw_halfspace
    public :: gauss_legendre
 
    !> Points of the plain rule on near pieces and of the log-product rule.
-   integer, parameter :: n_fine = 16, n_log = 20
+   integer, parameter :: n_fine = 12, n_log = 14
    !> Recursion guard for the bisection of near pieces (r is never closer than
    !> 2**(-max_depth) element lengths to a piece without being on its end).
    integer, parameter :: max_depth = 60
