@@ -7,6 +7,8 @@ module egw
    use egw_params
    use egw_halfspace
    use egw_rough_sphere
+   use egw_ellip
+   use egw_smooth_sphere
    implicit none
    public
 end module egw

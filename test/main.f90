@@ -7,6 +7,8 @@ program tester
    use test_params, only: collect_params
    use test_halfspace, only: collect_halfspace
    use test_rough_sphere, only: collect_rough_sphere
+   use test_ellip, only: collect_ellip
+   use test_hertz, only: collect_hertz
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -16,7 +18,9 @@ program tester
    suites = [ &
       & new_testsuite("params", collect_params), &
       & new_testsuite("halfspace", collect_halfspace), &
-      & new_testsuite("rough_sphere", collect_rough_sphere) &
+      & new_testsuite("rough_sphere", collect_rough_sphere), &
+      & new_testsuite("ellip", collect_ellip), &
+      & new_testsuite("hertz", collect_hertz) &
       & ]
 
    stat = 0

@@ -20,7 +20,7 @@ module egw_rough_sphere
       & format_real
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw
-   use egw_hertz, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
+   use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_asperity, only: rough_flat_law
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
