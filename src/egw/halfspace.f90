@@ -49,6 +49,7 @@ module egw_halfspace
       real(dp), allocatable :: gauss_w(:)     !< their weights for int dr
       real(dp), allocatable :: local_s(:)     !< (n_gauss) Gauss points on [-1, 1]
       real(dp), allocatable :: local_w(:)     !< (n_gauss) their weights
+      real(dp), allocatable :: local_bary(:)  !< (n_gauss) barycentric weights of local_s
       real(dp), allocatable :: node_s(:)      !< (0:degree) element nodes on [-1, 1]
       !> interp(j, q): weight of local node j in the deflection at Gauss point q.
       real(dp), allocatable :: interp(:, :)
@@ -146,6 +147,11 @@ contains
       mesh%edge = edge
       allocate (mesh%local_s(n_gauss), mesh%local_w(n_gauss))
       call gauss_legendre(n_gauss, mesh%local_s, mesh%local_w)
+      allocate (mesh%local_bary(n_gauss))
+      do q = 1, n_gauss
+         mesh%local_bary(q) = 1.0_dp/product(mesh%local_s(q) - mesh%local_s, &
+            & mask=[(k /= q, k=1, n_gauss)])
+      end do
       allocate (mesh%node_s(0:degree))
       do j = 0, degree
          mesh%node_s(j) = -cos(pi*real(j, dp)/real(degree, dp))
@@ -303,7 +309,7 @@ contains
       do i = 1, n_fine
          t = 0.5_dp*(alpha + beta) + 0.5_dp*(beta - alpha)*mesh%fine_s(i)
          wt = 0.5_dp*(beta - alpha)*mesh%fine_w(i)*halfspace_kernel(r, t)
-         acc = acc + wt*lagrange_weights(mesh%local_s, local_coord(x0, x1, t))
+         acc = acc + wt*pressure_basis(mesh, local_coord(x0, x1, t))
       end do
    end subroutine add_gauss_piece
 
@@ -324,9 +330,24 @@ contains
          g1 = 4.0_dp/pi*t/(r + t)*(kreg + klog*log(r + t))
          g2 = 4.0_dp/pi*t/(r + t)*klog
          wt = len*(mesh%log_w(i)*(g1 - g2*log(len)) - mesh%log_lw(i)*g2)
-         acc = acc + wt*lagrange_weights(mesh%local_s, local_coord(x0, x1, t))
+         acc = acc + wt*pressure_basis(mesh, local_coord(x0, x1, t))
       end do
    end subroutine add_log_piece
+
+   !> Pressure basis L_q(s), q = 1..n_gauss, in the first barycentric form
+   !> L_q = prod_k (s - s_k) * bary_q/(s - s_q): O(n_gauss) per point.
+   pure function pressure_basis(mesh, s) result(l)
+      type(radial_mesh), intent(in) :: mesh
+      real(dp), intent(in) :: s
+      real(dp) :: l(mesh%n_gauss)
+      real(dp) :: diff(mesh%n_gauss)
+      diff = s - mesh%local_s
+      if (any(diff == 0.0_dp)) then
+         l = merge(1.0_dp, 0.0_dp, diff == 0.0_dp)
+         return
+      end if
+      l = product(diff)*mesh%local_bary/diff
+   end function pressure_basis
 
    elemental real(dp) function local_coord(x0, x1, t) result(s)
       real(dp), intent(in) :: x0, x1, t
