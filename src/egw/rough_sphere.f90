@@ -425,6 +425,10 @@ contains
          call rough_flat_law(h_cut, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
          if (f <= 1.0e-3_dp*rel_tol*f_ref) exit
       end do
+      ! Classic GW at delta > 0 has its gap below the Hertz gap by up to the centre value
+      ! -h(p_H(0)) (eq. 19; ~15 sigma at sigma/delta = 1e-5): reach that much further out.
+      if (prob%model == model_gw .and. prob%delta > 0.0_dp) h_cut = h_cut &
+         & + max(0.0_dp, -law_inverse(prob, 2.0_dp*prob%a/pi/prob%scale))
       ! Radius where the Hertz (or rigid) gap reaches h_cut: bisection, the gap grows with r.
       lo = prob%a
       hi = prob%a + sqrt(2.0_dp*(h_cut + abs(prob%delta))) + 10.0_dp
@@ -474,9 +478,10 @@ contains
       if (sol%p(n) > 0.0_dp .and. sol%p(n - 1) > sol%p(n)) kappa = log(sol%p(n - 1)/sol%p(n)) &
          & /(sol%mesh%gauss_r(n) - sol%mesh%gauss_r(n - 1))
       if (kappa > 0.0_dp) then
-         new_outer = outer + max(0.25_dp*outer, log(max(sol%tail/(0.001_dp*allowed), 2.0_dp))/kappa)
+         new_outer = outer + max(0.25_dp*(outer - prob%a), &
+            & log(max(sol%tail/(0.001_dp*allowed), 2.0_dp))/kappa)
       else
-         new_outer = 1.5_dp*outer
+         new_outer = outer + 0.5_dp*(outer - prob%a)
       end if
       if (prob%a > 0.0_dp) new_outer = max(new_outer, prob%a*1.05_dp)
    end function grown_outer
