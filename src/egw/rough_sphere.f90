@@ -153,6 +153,8 @@ contains
       end if
       call solve_scaled(prob, options, sol, est, result%method_used, error)
       if (allocated(error)) return
+      call differentiate(prob, sol, error)
+      if (allocated(error)) return
 
       force_scale = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
       result%force = force_scale*(smooth_force(prob) + sol%force)
@@ -322,7 +324,9 @@ contains
          step = step_for_nodes(focus, width, outer, options%n_radial)
          step_prev = coarsen*step
       else
-         step_prev = coarsest_step
+         ! Deep contacts resolve the same relative error on coarser steps (the rough part,
+         ! where the error lives, weighs less): start coarser there.
+         step_prev = coarsest_step*max(1.0_dp, prob%delta)**0.1_dp
          step = step_prev/coarsen
       end if
       call solve_with_tail(prob, options, method_used, focus, width, step_prev, outer, coarse, &
@@ -496,19 +500,14 @@ contains
       type(discrete_solution), intent(out) :: sol
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
-      integer :: n, ng, info, max_iter, i
-      real(dp), allocatable :: jac(:, :), rhs(:, :), rate(:)
-      integer, allocatable :: ipiv(:)
+      integer :: n, ng, max_iter, i
       real(dp) :: kappa, rn
-      integer(8) :: cr0, cr1, crr, cr2
 
       call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
       allocate (sol%infl(n, ng))
-      call system_clock(cr0, crr)
       call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads)
-      call system_clock(cr1)
       sol%base = base_gap(prob, sol%mesh%gauss_r)
       sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
       if (present(guess)) then
@@ -531,23 +530,8 @@ contains
          call newton(prob, sol, max_iter, error)
       end if
       if (allocated(error)) return
-      call system_clock(cr2)
 
-      ! Implicit differentiation: J dw/d(delta) = infl (p' dz/d(delta)), J at the solution.
-      allocate (jac(n, n), rhs(n, 1), ipiv(n))
-      call evaluate(prob, sol)
-      call jacobian(sol, jac)
-      call dgetrf(n, n, jac, n, ipiv, info)
-      if (info /= 0) then
-         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
-            & //" (scaled): singular Jacobian at the solution")
-         return
-      end if
-      rhs(:, 1) = matmul(sol%infl, sol%dpdh*sol%dbase)
-      call dgetrs('N', n, 1, jac, n, ipiv, rhs, n, info)
-      rate = sol%dbase + gauss_values(sol%mesh, rhs(:, 1))
       sol%force = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
-      sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%dpdh*rate)
       sol%moment0 = sum(sol%mesh%gauss_w*sol%p)
       sol%moment1 = sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
       ! Force beyond the outer radius if p keeps falling like at the last two Gauss points.
@@ -562,6 +546,31 @@ contains
          if (sol%p(ng) == 0.0_dp) sol%tail = 0.0_dp
       end if
    end subroutine solve_mesh
+
+   !> d(force)/d(delta) of the converged discrete solution by implicit differentiation:
+   !> J dw/d(delta) = infl (p' dz/d(delta)) with J the Jacobian at the solution (one LU).
+   subroutine differentiate(prob, sol, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: jac(:, :), rhs(:, :), rate(:)
+      integer, allocatable :: ipiv(:)
+      integer :: n, info
+      n = size(sol%w)
+      allocate (jac(n, n), rhs(n, 1), ipiv(n))
+      call evaluate(prob, sol)
+      call jacobian(sol, jac)
+      call dgetrf(n, n, jac, n, ipiv, info)
+      if (info /= 0) then
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): singular Jacobian at the solution")
+         return
+      end if
+      rhs(:, 1) = matmul(sol%infl, sol%dpdh*sol%dbase)
+      call dgetrs('N', n, 1, jac, n, ipiv, rhs, n, info)
+      rate = sol%dbase + gauss_values(sol%mesh, rhs(:, 1))
+      sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%dpdh*rate)
+   end subroutine differentiate
 
    !> Initial rough deflection. Extended models and separated spheres: 0 (the base gap is
    !> already close). Classic GW at delta > 0: the deflection whose gap gives the Hertz
