@@ -56,15 +56,17 @@ module egw_rough_sphere
 
    public :: validate_options, solve_contact, contact_profile
 
-   !> Element degree of the deflection and pressure points per element (module design:
-   !> quartic deflection elements, 6 Gauss points: the cheapest
-   !> per digit of the pairs tried (degree 2-4, 4-8 points)).
+   !> Degree of the deflection elements and pressure points per element: quartic elements
+   !> with 6 Gauss points were the cheapest per digit of the pairs tried (degree 2-4,
+   !> 4-8 points); the force error then falls like step**5 to step**6.
    integer, parameter :: deflection_degree = 4, pressure_points = 6
-   !> Coarse/fine mesh step ratio of the two-level error estimate and the observed order
-   !> of the force error (measured, see the tests) used to extrapolate it.
+   !> Step ratio of the first two levels, and the order assumed when extrapolating the
+   !> difference of two levels to an error estimate (4 < observed: errs on the safe side).
    real(dp), parameter :: coarsen = 1.5_dp, force_order = 4.0_dp
+   !> Geometric layers at the Hertz edge (number, size ratio).
    integer, parameter :: focus_layers = 2
    real(dp), parameter :: focus_ratio = 0.25_dp
+   !> Step (in asinh units) of the first level, and the finest allowed.
    real(dp), parameter :: finest_step = 0.01_dp, coarsest_step = 0.6_dp
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
 
