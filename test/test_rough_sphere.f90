@@ -30,6 +30,7 @@ contains
          & new_unittest("stiffness is dP/d(delta)", test_stiffness), &
          & new_unittest("Picard agrees on E-GW, fails on stiff GW", test_methods), &
          & new_unittest("Newton on stiff classic GW", test_stiff_gw), &
+         & new_unittest("continuation in delta rescues a cold start", test_continuation), &
          & new_unittest("mesh refinement: force error order", test_force_order), &
          & new_unittest("EP-GW with psi = 0 is E-GW", test_psi_zero), &
          & new_unittest("EP-GW on Fig. 8 settings", test_fig8), &
@@ -313,6 +314,23 @@ contains
       if (allocated(error)) return
       call check(error, abs(res%force/p_hertz - 1.0_dp) < 2.0e-3_dp, "GW far from Hertz")
    end subroutine test_stiff_gw
+
+   !> Classic GW at delta/sigma = 1e6 needs 6 Newton steps from its cold start; with
+   !> max_iter = 5 the solver must fall back on continuation in delta (stages of factor 4,
+   !> each warm-started) and reach the same force: both solutions are converged to
+   !> residuals <= 1e-12 on the same final meshes, so 1e-9.
+   subroutine test_continuation(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solve_result) :: reference, res
+      p = contact_params(model=model_gw, mu=4.0_dp, sigma=1.0_dp)
+      call solve(error, p, 1.0e6_dp, reference)
+      if (allocated(error)) return
+      call solve(error, p, 1.0e6_dp, res, solver_options(max_iter=5))
+      if (allocated(error)) return
+      call check(error, res%force, reference%force, "force after continuation", rel=.true., &
+         & thr=1.0e-9_dp)
+   end subroutine test_continuation
 
    !> On meshes of n_radial = 40, 80, 160 nodes the E-GW force error (against 640 nodes)
    !> must fall at an observed order >= 3 in the node count (quartic deflection elements,

@@ -333,7 +333,14 @@ contains
       end if
       call solve_with_tail(prob, options, method_used, focus, width, step_prev, outer, coarse, &
          & error)
-      if (allocated(error)) return
+      if (allocated(error)) then
+         ! A cold start that fails (classic GW deep in contact is the stiff case) is retried
+         ! by continuation in delta from a shallow contact.
+         if (error%stat /= egw_not_converged .or. prob%delta <= 1.0_dp) return
+         call continuation(prob, options, method_used, focus, width, step_prev, outer, coarse, &
+            & error)
+         if (allocated(error)) return
+      end if
       do level = 1, 12
          ! The previous level's solution is the initial guess: 2-3 Newton steps instead of 5-8.
          call solve_with_tail(prob, options, method_used, focus, width, step, outer, sol, error, &
@@ -353,6 +360,53 @@ contains
       call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(options%rel_tol) &
          & //": force error estimate "//format_real(est)//" not reached on the finest mesh")
    end subroutine solve_scaled
+
+   !> Continuation in delta: solve at delta/sigma = 1 from a cold start, then at delta
+   !> values growing by at most a factor 4 up to prob%delta, each started from the previous
+   !> solution stretched by the Hertz similarity (r ~ sqrt(delta), w ~ delta).
+   subroutine continuation(prob, options, method, focus, width, step, outer, sol, error)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      integer, intent(in) :: method
+      real(dp), intent(in) :: focus, width, step
+      real(dp), intent(inout) :: outer
+      type(discrete_solution), intent(out) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: stage
+      type(discrete_solution) :: previous
+      real(dp) :: stage_focus, stage_width, stage_outer, ratio, delta_prev
+      integer :: k, n_stages
+
+      n_stages = ceiling(log(prob%delta)/log(4.0_dp))
+      stage = prob
+      do k = 0, n_stages
+         stage%delta = prob%delta**(real(k, dp)/real(n_stages, dp))
+         stage%a = sqrt(stage%delta)
+         if (k == n_stages) then
+            ! The last stage is the problem itself, on its own mesh.
+            stage = prob
+            stage_focus = focus
+            stage_width = width
+            stage_outer = outer
+         else
+            call mesh_geometry(stage, options%rel_tol, stage_focus, stage_width, stage_outer)
+         end if
+         if (k == 0) then
+            call solve_with_tail(stage, options, method, stage_focus, stage_width, step, &
+               & stage_outer, sol, error)
+         else
+            ratio = stage%delta/delta_prev
+            previous%mesh%edge = previous%mesh%edge*sqrt(ratio)
+            previous%w = previous%w*ratio
+            call solve_with_tail(stage, options, method, stage_focus, stage_width, step, &
+               & stage_outer, sol, error, previous)
+         end if
+         if (allocated(error)) return
+         previous = sol
+         delta_prev = stage%delta
+      end do
+      outer = stage_outer
+   end subroutine continuation
 
    !> Solve on the mesh of the given step, growing the outer radius (kept for the next
    !> levels) until the force estimated beyond it is below 1 % of the tolerance.
@@ -687,10 +741,11 @@ contains
       allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n))
       call evaluate(prob, sol)
       call residual(sol, res, norm)
-      do it = 1, max_iter
+      do it = 1, max_iter + 1
          sol%iterations = it - 1
          sol%residual = norm
          if (norm <= 1.0e-12_dp) return
+         if (it > max_iter) exit
          call jacobian(sol, jac)
          call dgetrf(n, n, jac, n, ipiv, info)
          if (info /= 0) exit
@@ -739,10 +794,11 @@ contains
       omega = 0.5_dp
       call evaluate(prob, sol)
       call residual(sol, res, norm)
-      do it = 1, max_iter
+      do it = 1, max_iter + 1
          sol%iterations = it - 1
          sol%residual = norm
          if (norm <= 1.0e-11_dp) return
+         if (it > max_iter) exit
          w0 = sol%w
          norm_old = norm
          sol%w = w0 - omega*res
