@@ -34,6 +34,7 @@ contains
          & new_unittest("mesh refinement: force error order", test_force_order), &
          & new_unittest("EP-GW with psi = 0 is E-GW", test_psi_zero), &
          & new_unittest("EP-GW on Fig. 8 settings", test_fig8), &
+         & new_unittest("profile integrates to the force", test_profile_force), &
          & new_unittest("bad input is reported", test_bad_input) &
          & ]
    end subroutine collect_rough_sphere
@@ -408,6 +409,53 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_fig8
+
+   !> Classic GW (smooth pressure): 2 pi int r p dr of contact_profile (40 panels of 8-point
+   !> Gauss on [0, 6 sqrt(R sigma) + a], beyond which p < 1e-14 p(0)) equals the force, and
+   !> the effective radius (3 pi/4) int r p/int p equals contact_radius, to 1e-7 (the
+   !> profile evaluates the same discrete pressure; the quadrature is good to ~1e-10).
+   subroutine test_profile_force(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solver_options) :: opts
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp), parameter :: xg(4) = [0.1834346424956498_dp, 0.5255324099163290_dp, &
+         & 0.7966664774136267_dp, 0.9602898564975363_dp]
+      real(dp), parameter :: wg(4) = [0.3626837833783620_dp, 0.3137066458778873_dp, &
+         & 0.2223810344533745_dp, 0.1012285362903763_dp]
+      real(dp) :: r(320), wr(320), pres(320), defl(320), length, top, h
+      integer :: i, j, k
+      p = contact_params(model=model_gw, radius=2.0_dp, modulus=5.0_dp, sigma=1.0e-3_dp, &
+         & mu=3.0_dp)
+      call solve(error, p, 5.0e-3_dp, res)
+      if (allocated(error)) return
+      length = sqrt(p%radius*p%sigma)
+      top = 6.0_dp*length + sqrt(p%radius*5.0e-3_dp)
+      h = top/40.0_dp
+      k = 0
+      do i = 1, 40
+         do j = 1, 8
+            k = k + 1
+            if (j <= 4) then
+               r(k) = h*(real(i, dp) - 0.5_dp) - 0.5_dp*h*xg(5 - j)
+               wr(k) = 0.5_dp*h*wg(5 - j)
+            else
+               r(k) = h*(real(i, dp) - 0.5_dp) + 0.5_dp*h*xg(j - 4)
+               wr(k) = 0.5_dp*h*wg(j - 4)
+            end if
+         end do
+      end do
+      call contact_profile(p, opts, 5.0e-3_dp, r, pres, defl, err)
+      if (allocated(err)) then
+         call test_failed(error, err%message); return
+      end if
+      call check(error, 2.0_dp*pi*sum(wr*r*pres), res%force, "2 pi int r p dr", rel=.true., &
+         & thr=1.0e-7_dp)
+      if (allocated(error)) return
+      call check(error, 0.75_dp*pi*sum(wr*r*pres)/sum(wr*pres), res%contact_radius, "a*", &
+         & rel=.true., thr=1.0e-7_dp)
+   end subroutine test_profile_force
 
    !> Every bad argument returns a status whose message names it.
    subroutine test_bad_input(error)
