@@ -120,7 +120,7 @@ contains
    !> Force, stiffness, effective contact radius and maximum pressure at overlap delta
    !> (> 0 overlap, < 0 separation) for any model of params. Hertz (and sigma = 0) in
    !> closed form; the rough models by the discrete solve, refined until the two-level
-   !> estimate of the force error is below options%rel_tol (n_radial = 0) or on the mesh
+   !> estimate of the force error is below options%rel_tol/2 (n_radial = 0) or on the mesh
    !> of about n_radial nodes. Fails with egw_not_converged rather than return a doubtful
    !> answer.
    subroutine solve_contact(params, options, delta, result, error)
@@ -304,7 +304,7 @@ contains
       end if
    end function base_gap_rate
 
-   !> Solve on meshes of decreasing step until the estimated force error is below rel_tol
+   !> Solve on meshes of decreasing step until the estimated force error is below rel_tol/2
    !> (or on the mesh fixed by n_radial). Each level costs one solve: its force and the
    !> previous level's give the estimate |P_h - P_H|/((H/h)**force_order - 1) of the error
    !> of P_h (Richardson), and the next step is predicted from it.
@@ -350,11 +350,12 @@ contains
          est = 0.0_dp
          if (total > 0.0_dp) est = abs(sol%force - coarse%force)/total &
             & /((step_prev/step)**force_order - 1.0_dp)
-         if (options%n_radial > 0 .or. est <= options%rel_tol) return
+         ! Half the tolerance: a margin for the estimate itself.
+         if (options%n_radial > 0 .or. est <= 0.5_dp*options%rel_tol) return
          if (step <= finest_step) exit
          step_prev = step
          step = max(finest_step, 0.25_dp*step, min(step/1.25_dp, &
-            & step*(0.5_dp*options%rel_tol/est)**(1.0_dp/force_order)))
+            & step*(0.25_dp*options%rel_tol/est)**(1.0_dp/force_order)))
          coarse = sol
       end do
       call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(options%rel_tol) &
