@@ -355,30 +355,31 @@ contains
    end function local_coord
 
    !> Influence matrix infl(i, :) = influence_row(mesh, r(i)), rows in parallel (OpenMP);
-   !> n_threads = 0 leaves the team size to OpenMP.
+   !> n_threads = 0 leaves the team size to OpenMP. Each thread fills whole columns of a
+   !> transposed buffer (contiguous, no cache line shared between threads), transposed
+   !> after the parallel region.
    subroutine assemble_influence(mesh, r, infl, n_threads)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: r(:)
       real(dp), intent(out) :: infl(:, :)   !< (size(r), n_elem*n_gauss)
       integer, intent(in) :: n_threads
       integer :: i
-      real(dp), allocatable :: row(:)
-      allocate (row(mesh%n_elem*mesh%n_gauss))
+      real(dp), allocatable :: rows(:, :)
+      allocate (rows(mesh%n_elem*mesh%n_gauss, size(r)))
       if (n_threads > 0) then
-         !$omp parallel do schedule(dynamic, 4) private(row) num_threads(n_threads)
+         !$omp parallel do schedule(dynamic, 4) num_threads(n_threads)
          do i = 1, size(r)
-            call influence_row(mesh, r(i), row)
-            infl(i, :) = row
+            call influence_row(mesh, r(i), rows(:, i))
          end do
          !$omp end parallel do
       else
-         !$omp parallel do schedule(dynamic, 4) private(row)
+         !$omp parallel do schedule(dynamic, 4)
          do i = 1, size(r)
-            call influence_row(mesh, r(i), row)
-            infl(i, :) = row
+            call influence_row(mesh, r(i), rows(:, i))
          end do
          !$omp end parallel do
       end if
+      infl = transpose(rows)
    end subroutine assemble_influence
 
    !> Value at r of the continuous piecewise-Lagrange field with nodal values v; r beyond
