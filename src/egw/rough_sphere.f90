@@ -521,8 +521,13 @@ contains
       real(dp), intent(in) :: focus, width, outer
       integer, intent(in) :: n_nodes
       real(dp) :: xi_total
+      integer :: graded_nodes
       xi_total = asinh(focus/width) + asinh((outer - focus)/width)
-      step = xi_total*real(deflection_degree, dp)/real(max(n_nodes - 1, 2*deflection_degree), dp)
+      ! The focus layers add 2 focus_layers elements when the focus is inside the mesh.
+      graded_nodes = n_nodes - 1
+      if (focus > 0.0_dp) graded_nodes = graded_nodes - 2*focus_layers*deflection_degree
+      step = xi_total*real(deflection_degree, dp) &
+         & /real(max(graded_nodes, 2*deflection_degree), dp)
    end function step_for_nodes
 
    !> New outer radius when the pressure at the old one leaves too much force outside:
