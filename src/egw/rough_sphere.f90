@@ -61,13 +61,15 @@ module egw_rough_sphere
    !> 4-8 points); the force error then falls like step**5 to step**6.
    integer, parameter :: deflection_degree = 4, pressure_points = 6
    !> Step ratio of the first two levels, and the order assumed when extrapolating the
-   !> difference of two levels to an error estimate (4 < observed: errs on the safe side).
-   real(dp), parameter :: coarsen = 1.5_dp, force_order = 4.0_dp
+   !> difference of two levels to an error estimate: 3, the lowest seen on coarse meshes
+   !> (5-6 asymptotically), so that the estimate errs on the safe side.
+   real(dp), parameter :: coarsen = 1.5_dp, force_order = 3.0_dp
    !> Geometric layers at the Hertz edge (number, size ratio).
    integer, parameter :: focus_layers = 2
    real(dp), parameter :: focus_ratio = 0.25_dp
    !> Step (in asinh units) of the first level, and the finest allowed.
    real(dp), parameter :: finest_step = 0.01_dp, coarsest_step = 0.6_dp
+   integer, parameter :: min_elements = 8
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
 
    !> The scaled problem.
@@ -329,6 +331,10 @@ contains
          ! Deep contacts resolve the same relative error on coarser steps (the rough part,
          ! where the error lives, weighs less): start coarser there.
          step_prev = coarsest_step*max(1.0_dp, prob%delta)**0.1_dp
+         ! ... but never fewer than min_elements graded elements: on fewer, two levels can
+         ! agree by accident (not yet asymptotic) and the estimate would be worthless.
+         step_prev = min(step_prev, (asinh(focus/width) + asinh((outer - focus)/width)) &
+            & /real(min_elements, dp))
          step = step_prev/coarsen
       end if
       call solve_with_tail(prob, options, method_used, focus, width, step_prev, outer, coarse, &
@@ -348,8 +354,10 @@ contains
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          est = 0.0_dp
+         ! Discretisation (Richardson) plus the force estimated beyond the outer radius,
+         ! which both levels share and their difference cannot see.
          if (total > 0.0_dp) est = abs(sol%force - coarse%force)/total &
-            & /((step_prev/step)**force_order - 1.0_dp)
+            & /((step_prev/step)**force_order - 1.0_dp) + sol%tail/total
          ! Half the tolerance: a margin for the estimate itself.
          if (options%n_radial > 0 .or. est <= 0.5_dp*options%rel_tol) return
          if (step <= finest_step) exit
