@@ -740,7 +740,8 @@ contains
    end subroutine jacobian
 
    !> Newton with backtracking (Armijo on |F|_2). Converged when the scaled residual is
-   !> below 1e-12, or the step is at rounding level with a residual below 1e-9.
+   !> below 1e-11 (the rounding floor of H p is ~1e-12 for w ~ 1e6), or the step is at
+   !> rounding level with a residual below 1e-9.
    subroutine newton(prob, sol, max_iter, error)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(inout) :: sol
@@ -758,7 +759,7 @@ contains
       do it = 1, max_iter + 1
          sol%iterations = it - 1
          sol%residual = norm
-         if (norm <= 1.0e-12_dp) return
+         if (norm <= 1.0e-11_dp) return
          if (it > max_iter) exit
          call jacobian(sol, jac)
          call dgetrf(n, n, jac, n, ipiv, info)
