@@ -325,7 +325,7 @@ contains
       if (method_used == method_auto) method_used = method_newton
       call mesh_geometry(prob, options%rel_tol, focus, width, outer)
       if (options%n_radial > 0) then
-         step = step_for_nodes(focus, width, outer, options%n_radial)
+         step = step_for_nodes(prob%extended, focus, width, outer, options%n_radial)
          step_prev = coarsen*step
       else
          ! Deep contacts resolve the same relative error on coarser steps (the rough part,
@@ -432,8 +432,14 @@ contains
       real(dp) :: total
       integer :: attempt
       do attempt = 1, 8
-         call solve_mesh(prob, options, method, focus_refined(graded_edges(focus, width, outer, &
-            & step), focus), sol, error, guess)
+         if (prob%extended) then
+            call solve_mesh(prob, options, method, focus_refined(graded_edges(focus, width, &
+               & outer, step), focus), sol, error, guess)
+         else
+            ! Classic GW has no kink at the Hertz edge: grading alone resolves it.
+            call solve_mesh(prob, options, method, graded_edges(focus, width, outer, step), sol, &
+               & error, guess)
+         end if
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          if (sol%tail <= 0.01_dp*options%rel_tol*total .or. total == 0.0_dp) return
@@ -525,7 +531,8 @@ contains
    end function estimated_gap
 
    !> Step that gives about n_nodes nodes with graded_edges.
-   pure real(dp) function step_for_nodes(focus, width, outer, n_nodes) result(step)
+   pure real(dp) function step_for_nodes(extended, focus, width, outer, n_nodes) result(step)
+      logical, intent(in) :: extended
       real(dp), intent(in) :: focus, width, outer
       integer, intent(in) :: n_nodes
       real(dp) :: xi_total
@@ -533,7 +540,8 @@ contains
       xi_total = asinh(focus/width) + asinh((outer - focus)/width)
       ! The focus layers add 2 focus_layers elements when the focus is inside the mesh.
       graded_nodes = n_nodes - 1
-      if (focus > 0.0_dp) graded_nodes = graded_nodes - 2*focus_layers*deflection_degree
+      if (extended .and. focus > 0.0_dp) graded_nodes = graded_nodes &
+         & - 2*focus_layers*deflection_degree
       step = xi_total*real(deflection_degree, dp) &
          & /real(max(graded_nodes, 2*deflection_degree), dp)
    end function step_for_nodes
