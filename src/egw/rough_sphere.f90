@@ -320,10 +320,12 @@ contains
       type(discrete_solution) :: coarse
       real(dp) :: focus, width, outer, step, step_prev, total
       integer :: level
+      logical :: layered
 
       method_used = options%method
       if (method_used == method_auto) method_used = method_newton
       call mesh_geometry(prob, options%rel_tol, focus, width, outer)
+      layered = prob%extended
       if (options%n_radial > 0) then
          step = step_for_nodes(prob%extended, focus, width, outer, options%n_radial)
          step_prev = coarsen*step
@@ -337,8 +339,8 @@ contains
             & /real(min_elements, dp))
          step = step_prev/coarsen
       end if
-      call solve_with_tail(prob, options, method_used, focus, width, step_prev, outer, coarse, &
-         & error)
+      call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, outer, &
+         & coarse, error)
       if (allocated(error)) then
          ! A cold start that fails (classic GW deep in contact is the stiff case) is retried
          ! by continuation in delta from a shallow contact.
@@ -347,10 +349,19 @@ contains
             & error)
          if (allocated(error)) return
       end if
+      if (prob%model == model_gw .and. prob%delta > 1.0_dp) then
+         ! Classic GW deep in contact with p_H(0) >> C sigma**1.5 (centre gap below -3 sigma)
+         ! ends in a thin layer around d = 0 whose place is only known from a solution
+         ! (near, not at, the Hertz edge): refocus the mesh there.
+         if (law_inverse(prob, 2.0_dp*prob%a/pi/prob%scale) < -3.0_dp) then
+            call gap_edge(coarse, focus, width)
+            layered = .true.
+         end if
+      end if
       do level = 1, 12
          ! The previous level's solution is the initial guess: 2-3 Newton steps instead of 5-8.
-         call solve_with_tail(prob, options, method_used, focus, width, step, outer, sol, error, &
-            & coarse)
+         call solve_with_tail(prob, options, method_used, layered, focus, width, step, outer, &
+            & sol, error, coarse)
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          est = 0.0_dp
@@ -401,14 +412,14 @@ contains
             call mesh_geometry(stage, options%rel_tol, stage_focus, stage_width, stage_outer)
          end if
          if (k == 0) then
-            call solve_with_tail(stage, options, method, stage_focus, stage_width, step, &
-               & stage_outer, sol, error)
+            call solve_with_tail(stage, options, method, stage%extended, stage_focus, &
+               & stage_width, step, stage_outer, sol, error)
          else
             ratio = stage%delta/delta_prev
             previous%mesh%edge = previous%mesh%edge*sqrt(ratio)
             previous%w = previous%w*ratio
-            call solve_with_tail(stage, options, method, stage_focus, stage_width, step, &
-               & stage_outer, sol, error, previous)
+            call solve_with_tail(stage, options, method, stage%extended, stage_focus, &
+               & stage_width, step, stage_outer, sol, error, previous)
          end if
          if (allocated(error)) return
          previous = sol
@@ -419,11 +430,12 @@ contains
 
    !> Solve on the mesh of the given step, growing the outer radius (kept for the next
    !> levels) until the force estimated beyond it is below 1 % of the tolerance.
-   subroutine solve_with_tail(prob, options, method, focus, width, step, outer, sol, error, &
-      & guess)
+   subroutine solve_with_tail(prob, options, method, layered, focus, width, step, outer, sol, &
+      & error, guess)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
+      logical, intent(in) :: layered   !< geometric layers at the focus
       real(dp), intent(in) :: focus, width, step
       real(dp), intent(inout) :: outer
       type(discrete_solution), intent(out) :: sol
@@ -432,11 +444,10 @@ contains
       real(dp) :: total
       integer :: attempt
       do attempt = 1, 8
-         if (prob%extended) then
+         if (layered) then
             call solve_mesh(prob, options, method, focus_refined(graded_edges(focus, width, &
                & outer, step), focus), sol, error, guess)
          else
-            ! Classic GW has no kink at the Hertz edge: grading alone resolves it.
             call solve_mesh(prob, options, method, graded_edges(focus, width, outer, step), sol, &
                & error, guess)
          end if
@@ -449,6 +460,24 @@ contains
          & //" (in units of sigma): the pressure does not decay within the outer radius " &
          & //format_real(outer))
    end subroutine solve_with_tail
+
+   !> Where the gap of a solution last crosses 0 (linear between Gauss points), and the
+   !> distance over which it grows by one sigma there; focus and width unchanged if the
+   !> gap never crosses 0.
+   pure subroutine gap_edge(sol, focus, width)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(inout) :: focus, width
+      real(dp) :: slope
+      integer :: g
+      do g = size(sol%gap) - 1, 1, -1
+         if (sol%gap(g) < 0.0_dp .and. sol%gap(g + 1) >= 0.0_dp) then
+            slope = (sol%gap(g + 1) - sol%gap(g))/(sol%mesh%gauss_r(g + 1) - sol%mesh%gauss_r(g))
+            focus = sol%mesh%gauss_r(g) - sol%gap(g)/slope
+            width = min(width, 1.0_dp/slope)
+            return
+         end if
+      end do
+   end subroutine gap_edge
 
    !> Geometric layers on both sides of the focus (the Hertz edge of the extended models),
    !> where the pressure has its one-sided (r - a)**1.5 onset: a polynomial on an element
