@@ -13,6 +13,13 @@
 !> (never interpolated), and w_G = H p_G is imposed at the nodes (collocation) with the
 !> influence matrix of egw_halfspace. Newton with a backtracking line search (Jacobian by
 !> LAPACK dgetrf/dgetrs), or damped Picard. The force is the Gauss sum of p_G(d).
+!>
+!> Mesh: graded in asinh((r - focus)/width) (egw_halfspace graded_edges) about the Hertz
+!> edge (boundary layer width ~ a (sigma/delta)**(2/3)) with two geometric layers at it for
+!> the extended models, about the computed gap's zero for classic GW deep in contact, and
+!> about r = 0 otherwise; the outer radius grows until the force left outside is below
+!> 1 % of the tolerance. Levels of decreasing step, each warm-started from the previous,
+!> until the Richardson estimate from the last two (plus the tail) is below rel_tol/2.
 module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi, sqrt2
