@@ -28,6 +28,7 @@ contains
          & new_unittest("E-GW rough pressure bound", test_pressure_bound), &
          & new_unittest("GW centre deflection (corrected eq. 20)", test_gw_centre), &
          & new_unittest("stiffness is dP/d(delta)", test_stiffness), &
+         & new_unittest("GW edge layer: stiffness converged", test_gw_layer), &
          & new_unittest("Picard agrees on E-GW, fails on stiff GW", test_methods), &
          & new_unittest("Newton on stiff classic GW", test_stiff_gw), &
          & new_unittest("continuation in delta rescues a cold start", test_continuation), &
@@ -271,6 +272,24 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_stiffness
+
+   !> Classic GW deep in contact with small mu (delta/sigma = 1e4, mu = 0.1) ends in a thin
+   !> layer (~1e-5 sqrt(R sigma)) near, not at, the Hertz edge; the stiffness lives there.
+   !> At the default tolerance force and stiffness must agree with a rel_tol = 1e-10 solve
+   !> to 1e-6 and 1e-5 (on a mesh focused on the Hertz edge the stiffness was 1e-4 off).
+   subroutine test_gw_layer(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solve_result) :: res, fine
+      p = contact_params(model=model_gw, mu=0.1_dp, sigma=1.0_dp)
+      call solve(error, p, 1.0e4_dp, res)
+      if (allocated(error)) return
+      call solve(error, p, 1.0e4_dp, fine, solver_options(rel_tol=1.0e-10_dp))
+      if (allocated(error)) return
+      call check(error, res%force, fine%force, "force", rel=.true., thr=1.0e-6_dp)
+      if (allocated(error)) return
+      call check(error, res%stiffness, fine%stiffness, "stiffness", rel=.true., thr=1.0e-5_dp)
+   end subroutine test_gw_layer
 
    !> E-GW (spectral radius <= 6.5): damped Picard converges to Newton's answer (both
    !> stop at residuals <= 1e-11 on the same meshes: 1e-8). Classic GW at sigma/delta = 1e-5
