@@ -9,6 +9,8 @@ module egw
    use egw_ellip
    use egw_asperity
    use egw_smooth_sphere
+   use egw_halfspace
+   use egw_rough_sphere
    use egw_io
    implicit none
    public

@@ -5,6 +5,8 @@ program tester
    use testdrive, only: run_testsuite, run_selected, new_testsuite, testsuite_type, &
       & select_suite, unittest_type
    use test_params, only: collect_params
+   use test_halfspace, only: collect_halfspace
+   use test_rough_sphere, only: collect_rough_sphere
    use test_ellip, only: collect_ellip
    use test_hertz, only: collect_hertz
    use test_gauss, only: collect_gauss
@@ -18,6 +20,8 @@ program tester
 
    suites = [ &
       & new_testsuite("params", collect_params), &
+      & new_testsuite("halfspace", collect_halfspace), &
+      & new_testsuite("rough_sphere", collect_rough_sphere), &
       & new_testsuite("ellip", collect_ellip), &
       & new_testsuite("hertz", collect_hertz), &
       & new_testsuite("gauss", collect_gauss), &
