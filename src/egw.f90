@@ -7,6 +7,9 @@ module egw
    use egw_params
    use egw_ellip
    use egw_smooth_sphere
+   use egw_table
+   use egw_table_universal
+   use egw_table_format
    implicit none
    public
 end module egw
