@@ -147,8 +147,8 @@ contains
       real(dp) :: x, mu, f1, k1, f2, k2
       character(len=*), parameter :: names(0:1) = [character(len=14) :: "universal.csv", &
          & "universal.egwu"]
-      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 1.0_dp, &
-         & 10.0_dp, -6.0_dp, 20.0_dp, 1.0e-4_dp, u, err)
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 2.0_dp, &
+         & 8.0_dp, -6.0_dp, 20.0_dp, 1.0e-4_dp, u, err)
       call check(error, .not. allocated(err), "universal build failed")
       if (allocated(error)) return
       do fmt_id = format_csv, format_binary
@@ -169,7 +169,7 @@ contains
          end do
          do i = 1, 50
             x = -2.0_dp + 22.0_dp*(i - 0.5_dp)/50
-            mu = 10.0_dp**((i - 0.5_dp)/50)
+            mu = 2.0_dp*4.0_dp**((i - 0.5_dp)/50)
             call universal_eval(u, 2.0_dp, 3.0_dp, 1e-3_dp, mu, x*1e-3_dp, f1, k1, s1)
             call universal_eval(back, 2.0_dp, 3.0_dp, 1e-3_dp, mu, x*1e-3_dp, f2, k2, s2)
             call check(error, f1 == f2 .and. k1 == k2 .and. s1 == s2, "universal eval differs")
