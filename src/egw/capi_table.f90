@@ -41,6 +41,7 @@ contains
 
    ! ------------------------------------------------------------ 1-D tables
 
+   !> C: egw_table_build (see include/egw_table_api.h for units and statuses).
    function egw_table_build(p, o, delta_min, delta_max, rel_tol, out) result(stat) &
       & bind(C, name="egw_table_build")
       type(c_ptr), value, intent(in) :: p, o, out
@@ -66,6 +67,7 @@ contains
       handle = c_loc(t)
    end function egw_table_build
 
+   !> C: egw_table_eval; above delta_max returns EGW_OUT_OF_RANGE with values written.
    function egw_table_eval(h, delta, force, stiffness) result(stat) &
       & bind(C, name="egw_table_eval")
       type(c_ptr), value, intent(in) :: h, force, stiffness
@@ -85,6 +87,7 @@ contains
       if (.not. table_covers(t, delta)) stat = out_of_range(t, delta)
    end function egw_table_eval
 
+   !> C: egw_table_eval_all (force, stiffness, energy, contact radius).
    function egw_table_eval_all(h, delta, force, stiffness, energy, contact_radius) &
       & result(stat) bind(C, name="egw_table_eval_all")
       type(c_ptr), value, intent(in) :: h, force, stiffness, energy, contact_radius
@@ -106,6 +109,7 @@ contains
       if (.not. table_covers(t, delta)) stat = out_of_range(t, delta)
    end function egw_table_eval_all
 
+   !> C: egw_table_get_info.
    function egw_table_get_info(h, info) result(stat) bind(C, name="egw_table_get_info")
       type(c_ptr), value, intent(in) :: h, info
       integer(c_int) :: stat
@@ -121,6 +125,7 @@ contains
          & max_force_error=t%max_force_error, max_stiffness_error=t%max_stiffness_error)
    end function egw_table_get_info
 
+   !> C: egw_table_set_radii (R1, R2 consistent with the table's R).
    function egw_table_set_radii(h, radius1, radius2) result(stat) &
       & bind(C, name="egw_table_set_radii")
       type(c_ptr), value, intent(in) :: h
@@ -134,6 +139,7 @@ contains
       stat = settle(error)
    end function egw_table_set_radii
 
+   !> C: egw_table_write (atomic; EGW_FORMAT_*).
    function egw_table_write(h, path, format) result(stat) bind(C, name="egw_table_write")
       type(c_ptr), value, intent(in) :: h, path
       integer(c_int), value, intent(in) :: format
@@ -148,6 +154,7 @@ contains
       stat = settle(error)
    end function egw_table_write
 
+   !> C: egw_table_read (egw CSV or binary; no handle on a bad file).
    function egw_table_read(path, out) result(stat) bind(C, name="egw_table_read")
       type(c_ptr), value, intent(in) :: path, out
       integer(c_int) :: stat
@@ -169,6 +176,7 @@ contains
       handle = c_loc(t)
    end function egw_table_read
 
+   !> C: egw_table_free(egw_table *t): releases the table, sets *t = NULL.
    subroutine egw_table_free(h) bind(C, name="egw_table_free")
       type(c_ptr), value, intent(in) :: h
       type(c_ptr), pointer :: handle
@@ -181,6 +189,7 @@ contains
       handle = c_null_ptr
    end subroutine egw_table_free
 
+   !> C: egw_write_flat_calculix (rough-flat p_G for CalculiX).
    function egw_write_flat_calculix(p, overclosure_max, rel_tol, path) result(stat) &
       & bind(C, name="egw_write_flat_calculix")
       type(c_ptr), value, intent(in) :: p, path
@@ -198,6 +207,7 @@ contains
 
    ! ------------------------------------------------------------ universal tables
 
+   !> C: egw_universal_build.
    function egw_universal_build(p, o, mu_min, mu_max, x_min, x_max, rel_tol, out) &
       & result(stat) bind(C, name="egw_universal_build")
       type(c_ptr), value, intent(in) :: p, o, out
@@ -224,6 +234,7 @@ contains
       handle = c_loc(u)
    end function egw_universal_build
 
+   !> C: egw_universal_eval (R, E, sigma, mu from p; model, psi, K, rho_p must match).
    function egw_universal_eval(h, p, delta, force, stiffness) result(stat) &
       & bind(C, name="egw_universal_eval")
       type(c_ptr), value, intent(in) :: h, p, force, stiffness
@@ -275,6 +286,7 @@ contains
       end if
    end function egw_universal_eval
 
+   !> C: egw_universal_write (CSV or binary).
    function egw_universal_write(h, path, format) result(stat) &
       & bind(C, name="egw_universal_write")
       type(c_ptr), value, intent(in) :: h, path
@@ -290,6 +302,7 @@ contains
       stat = settle(error)
    end function egw_universal_write
 
+   !> C: egw_universal_read.
    function egw_universal_read(path, out) result(stat) bind(C, name="egw_universal_read")
       type(c_ptr), value, intent(in) :: path, out
       integer(c_int) :: stat
@@ -311,6 +324,7 @@ contains
       handle = c_loc(u)
    end function egw_universal_read
 
+   !> C: egw_universal_free(egw_universal *u): releases, sets *u = NULL.
    subroutine egw_universal_free(h) bind(C, name="egw_universal_free")
       type(c_ptr), value, intent(in) :: h
       type(c_ptr), pointer :: handle
