@@ -75,16 +75,22 @@ contains
       integer(c_int) :: stat
       type(force_table), pointer :: t
       real(dp) :: f, k
-      stat = get_table(h, t)
-      if (stat /= egw_ok) return
+      ! lean: this is the per-contact hot path (a handle only comes from build or read,
+      ! so it always holds a prepared table)
+      if (.not. c_associated(h)) then
+         stat = require(h, "t")
+         return
+      end if
       if (ieee_is_nan(delta)) then
          stat = invalid("delta = NaN: must be a number")
          return
       end if
+      call c_f_pointer(h, t)
       call table_eval(t, delta, f, k)
       call put(force, f)
       call put(stiffness, k)
-      if (.not. table_covers(t, delta)) stat = out_of_range(t, delta)
+      stat = egw_ok
+      if (delta > t%delta_max) stat = out_of_range(t, delta)
    end function egw_table_eval
 
    !> C: egw_table_eval_all (force, stiffness, energy, contact radius).
