@@ -315,6 +315,22 @@ contains
       call check(error, worst <= 1.5e-5_dp + 1.0e-6_dp, "max rel. error vs solves "// &
          & format_real(worst))
       if (allocated(error)) return
+      ! energy is the integral of the interpolated force, in the log tail (Gauss-Legendre)
+      ! as elsewhere: dW/ddelta = P by the 4th-order central difference with h = 1e-3 of
+      ! the interval (width w in [1e-2, 1] sigma): truncation h^4 |P^(4)|/(30 P) <=
+      ! (1e-3 w/sigma)^4 (delta/sigma)^4/30 < 1e-10, round-off 1.5 eps W/(h P) < 2e-10
+      ! since W/P < 4 sigma here
+      do i = 1, size(t%delta) - 1, max(1, (size(t%delta) - 1)/40)
+         ! (graded intervals near delta = 0 are too narrow for a clean difference)
+         if (t%delta(i + 1) - t%delta(i) < 1.0e-2_dp*p%sigma) cycle
+         d = 0.5_dp*(t%delta(i) + t%delta(i + 1))
+         k = 1.0e-3_dp*(t%delta(i + 1) - t%delta(i))
+         call table_eval(t, d, f, fprev)
+         call check(error, (8*(table_energy(t, d + k) - table_energy(t, d - k)) - &
+            & (table_energy(t, d + 2*k) - table_energy(t, d - 2*k)))/(12*k), f, &
+            & "dW/ddelta = P at "//format_real(d), thr=1.0e-8_dp, rel=.true.)
+         if (allocated(error)) return
+      end do
       fprev = 0
       do i = 0, 2000
          d = t%cutoff + (t%delta_max - t%cutoff)*i/2000.0_dp
