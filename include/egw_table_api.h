@@ -76,6 +76,11 @@ int egw_table_set_radii(egw_table t, double radius1, double radius2);
  * format, non-finite data), EGW_NULL_POINTER. */
 int egw_table_write(egw_table t, const char *path, int format);
 
+/* LAMMPS file with one pair_style table section per table (keywords EGW_1 .. EGW_n, in
+ * the order given), e.g. one per particle-type pair. Atomic like egw_table_write.
+ * EGW_INVALID_ARGUMENT for n < 1, EGW_NULL_POINTER for a NULL array, handle or path. */
+int egw_tables_write_lammps(int n, const egw_table *tables, const char *path);
+
 /* Read an egw CSV or binary table (format recognised from the file's start). A
  * truncated, corrupted (checksum), wrong-version or inconsistent file gives EGW_BAD_FILE
  * with a message saying what is wrong, and no table. EGW_IO_ERROR if it cannot be

@@ -110,6 +110,30 @@ int egw_capi_test_table_files(void) {
   CHECK(egw_table_write(t, bin, EGW_FORMAT_BINARY) == EGW_OK);
   CHECK(egw_table_write(t, "build/capi_table.table", EGW_FORMAT_LAMMPS) == EGW_OK);
   CHECK(egw_table_write(t, "build/capi_table.inp", EGW_FORMAT_CALCULIX) == EGW_OK);
+  {
+    /* two sections; the second from R alone (R1 = R2 = 2R) */
+    egw_table two[2] = {t, NULL};
+    FILE *fp;
+    char line[256];
+    int sections = 0;
+    CHECK(egw_table_build(&p, NULL, 0.0, 0.01, 1e-4, &two[1]) == EGW_OK);
+    CHECK(egw_tables_write_lammps(2, two, "build/capi_two.table") == EGW_OK);
+    fp = fopen("build/capi_two.table", "r");
+    CHECK(fp != NULL);
+    if (fp != NULL) {
+      while (fgets(line, sizeof line, fp) != NULL)
+        sections += strcmp(line, "EGW_1\n") == 0 || strcmp(line, "EGW_2\n") == 0;
+      fclose(fp);
+    }
+    CHECK(sections == 2);
+    {
+      egw_table second = two[1];
+      two[1] = NULL;
+      CHECK(egw_tables_write_lammps(2, two, "build/capi_two.table") == EGW_NULL_POINTER);
+      CHECK(egw_tables_write_lammps(0, two, "build/capi_two.table") == EGW_INVALID_ARGUMENT);
+      egw_table_free(&second);
+    }
+  }
   CHECK(egw_table_write(t, csv, 9) == EGW_INVALID_ARGUMENT);
   CHECK(last_error_names("format"));
   CHECK(egw_table_write(t, NULL, EGW_FORMAT_CSV) == EGW_NULL_POINTER);

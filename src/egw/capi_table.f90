@@ -15,7 +15,7 @@ module egw_capi_table
       & table_contact_radius, table_set_radii, table_is_ready
    use egw_table_universal, only: universal_table, build_universal, universal_eval
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
-      & write_calculix_flat
+      & write_calculix_flat, write_lammps
    use egw_capi, only: egw_params_c, egw_options_c, to_params, settle, require
    implicit none
    private
@@ -194,6 +194,36 @@ contains
       deallocate (t)
       handle = c_null_ptr
    end subroutine egw_table_free
+
+   !> C: egw_tables_write_lammps: one pair_style table section (EGW_1..EGW_n) per table.
+   function egw_tables_write_lammps(n, tables, path) result(stat) &
+      & bind(C, name="egw_tables_write_lammps")
+      integer(c_int), value, intent(in) :: n
+      type(c_ptr), value, intent(in) :: tables, path
+      integer(c_int) :: stat
+      type(c_ptr), pointer :: handles(:)
+      type(force_table), allocatable :: copies(:)
+      type(force_table), pointer :: t
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      integer :: i
+      if (n < 1) then
+         stat = invalid("n = "//int_str(int(n))//": need at least one table")
+         return
+      end if
+      stat = require(tables, "tables")
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      call c_f_pointer(tables, handles, [n])
+      allocate (copies(n))
+      do i = 1, n
+         stat = get_table(handles(i), t)
+         if (stat /= egw_ok) return
+         copies(i) = t
+      end do
+      call write_lammps(copies, fpath, error)
+      stat = settle(error)
+   end function egw_tables_write_lammps
 
    !> C: egw_write_flat_calculix (rough-flat p_G for CalculiX).
    function egw_write_flat_calculix(p, overclosure_max, rel_tol, path) result(stat) &
