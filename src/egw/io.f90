@@ -21,16 +21,26 @@ module egw_io
 contains
 
    !> Open a fresh temporary file for path; tmp_path receives its name.
-   subroutine open_temporary(path, unit, tmp_path, error)
+   !> binary (default false): unformatted stream access, for byte-exact binary formats.
+   subroutine open_temporary(path, unit, tmp_path, error, binary)
       character(len=*), intent(in) :: path
       integer, intent(out) :: unit
       character(len=:), allocatable, intent(out) :: tmp_path
       type(egw_error), allocatable, intent(out) :: error
+      logical, intent(in), optional :: binary
       integer :: ios
       character(len=256) :: msg
+      logical :: stream
+      stream = .false.
+      if (present(binary)) stream = binary
       tmp_path = path//".egw-tmp"
-      open (newunit=unit, file=tmp_path, status="replace", action="write", &
-         & form="formatted", iostat=ios, iomsg=msg)
+      if (stream) then
+         open (newunit=unit, file=tmp_path, status="replace", action="write", &
+            & form="unformatted", access="stream", iostat=ios, iomsg=msg)
+      else
+         open (newunit=unit, file=tmp_path, status="replace", action="write", &
+            & form="formatted", iostat=ios, iomsg=msg)
+      end if
       if (ios /= 0) then
          call fatal_error(error, egw_io_error, "path = "//path//": cannot create "// &
             & tmp_path//" ("//trim(msg)//")")

@@ -1,0 +1,487 @@
+!> C API of the force tables (include/egw.h): opaque handles to Fortran table
+!> objects (c_loc of an allocated object, released by egw_table_free /
+!> egw_universal_free), build, evaluation, file output and input. Errors go through
+!> egw_capi's per-thread last-error message (settle, require).
+module egw_capi_table
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_ptr, &
+      & c_associated, c_f_pointer, c_loc, c_size_t
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_invalid_parameter, &
+      & egw_out_of_range, egw_null_pointer, fatal_error, format_real
+   use egw_params, only: contact_params, validate_params
+   use egw_rough_sphere, only: solver_options
+   use egw_table, only: force_table, build_table, table_eval, table_covers, table_energy, &
+      & table_contact_radius, table_set_radii, table_is_ready
+   use egw_table_universal, only: universal_table, build_universal, universal_eval
+   use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
+      & write_calculix_flat, write_lammps
+   use egw_capi, only: egw_params_c, egw_options_c, to_params, settle, require
+   implicit none
+   private
+
+   !> Mirror of the C struct egw_table_info.
+   type, bind(C) :: egw_table_info_c
+      integer(c_int) :: model, n_nodes
+      real(c_double) :: cutoff, delta_max, reference_force, rel_tol, max_force_error, &
+         & max_stiffness_error
+   end type egw_table_info_c
+
+   interface
+      pure function c_strlen(s) result(n) bind(C, name="strlen")
+         import :: c_ptr, c_size_t
+         type(c_ptr), value, intent(in) :: s
+         integer(c_size_t) :: n
+      end function c_strlen
+   end interface
+
+   public :: egw_table_info_c
+
+contains
+
+   ! ------------------------------------------------------------ 1-D tables
+
+   !> C: egw_table_build (see include/egw_table_api.h for units and statuses).
+   function egw_table_build(p, o, delta_min, delta_max, rel_tol, out) result(stat) &
+      & bind(C, name="egw_table_build")
+      type(c_ptr), value, intent(in) :: p, o, out
+      real(c_double), value, intent(in) :: delta_min, delta_max, rel_tol
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(force_table), pointer :: t
+      type(c_ptr), pointer :: handle
+      type(egw_error), allocatable :: error
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat /= egw_ok) return
+      call read_options(o, options)
+      allocate (t)
+      call build_table(params, options, delta_min, delta_max, rel_tol, t, error)
+      stat = settle(error)
+      if (stat /= egw_ok) then
+         deallocate (t)
+         return
+      end if
+      call c_f_pointer(out, handle)
+      handle = c_loc(t)
+   end function egw_table_build
+
+   !> C: egw_table_eval; above delta_max returns EGW_OUT_OF_RANGE with values written.
+   function egw_table_eval(h, delta, force, stiffness) result(stat) &
+      & bind(C, name="egw_table_eval")
+      type(c_ptr), value, intent(in) :: h, force, stiffness
+      real(c_double), value, intent(in) :: delta
+      integer(c_int) :: stat
+      type(force_table), pointer :: t
+      real(dp) :: f, k
+      ! lean: this is the per-contact hot path (a handle only comes from build or read,
+      ! so it always holds a prepared table)
+      if (.not. c_associated(h)) then
+         stat = require(h, "t")
+         return
+      end if
+      if (ieee_is_nan(delta)) then
+         stat = invalid("delta = NaN: must be a number")
+         return
+      end if
+      call c_f_pointer(h, t)
+      call table_eval(t, delta, f, k)
+      call put(force, f)
+      call put(stiffness, k)
+      stat = egw_ok
+      if (delta > t%delta_max) stat = out_of_range(t, delta)
+   end function egw_table_eval
+
+   !> C: egw_table_eval_all (force, stiffness, energy, contact radius).
+   function egw_table_eval_all(h, delta, force, stiffness, energy, contact_radius) &
+      & result(stat) bind(C, name="egw_table_eval_all")
+      type(c_ptr), value, intent(in) :: h, force, stiffness, energy, contact_radius
+      real(c_double), value, intent(in) :: delta
+      integer(c_int) :: stat
+      type(force_table), pointer :: t
+      real(dp) :: f, k
+      stat = get_table(h, t)
+      if (stat /= egw_ok) return
+      if (ieee_is_nan(delta)) then
+         stat = invalid("delta = NaN: must be a number")
+         return
+      end if
+      call table_eval(t, delta, f, k)
+      call put(force, f)
+      call put(stiffness, k)
+      call put(energy, table_energy(t, delta))
+      call put(contact_radius, table_contact_radius(t, delta))
+      if (.not. table_covers(t, delta)) stat = out_of_range(t, delta)
+   end function egw_table_eval_all
+
+   !> C: egw_table_get_info.
+   function egw_table_get_info(h, info) result(stat) bind(C, name="egw_table_get_info")
+      type(c_ptr), value, intent(in) :: h, info
+      integer(c_int) :: stat
+      type(force_table), pointer :: t
+      type(egw_table_info_c), pointer :: ci
+      stat = get_table(h, t)
+      if (stat == egw_ok) stat = require(info, "info")
+      if (stat /= egw_ok) return
+      call c_f_pointer(info, ci)
+      ci = egw_table_info_c(model=int(t%params%model, c_int), &
+         & n_nodes=int(size(t%delta), c_int), cutoff=t%cutoff, delta_max=t%delta_max, &
+         & reference_force=t%reference_force, rel_tol=t%rel_tol, &
+         & max_force_error=t%max_force_error, max_stiffness_error=t%max_stiffness_error)
+   end function egw_table_get_info
+
+   !> C: egw_table_set_radii (R1, R2 consistent with the table's R).
+   function egw_table_set_radii(h, radius1, radius2) result(stat) &
+      & bind(C, name="egw_table_set_radii")
+      type(c_ptr), value, intent(in) :: h
+      real(c_double), value, intent(in) :: radius1, radius2
+      integer(c_int) :: stat
+      type(force_table), pointer :: t
+      type(egw_error), allocatable :: error
+      stat = get_table(h, t)
+      if (stat /= egw_ok) return
+      call table_set_radii(t, radius1, radius2, error)
+      stat = settle(error)
+   end function egw_table_set_radii
+
+   !> C: egw_table_write (atomic; EGW_FORMAT_*).
+   function egw_table_write(h, path, format) result(stat) bind(C, name="egw_table_write")
+      type(c_ptr), value, intent(in) :: h, path
+      integer(c_int), value, intent(in) :: format
+      integer(c_int) :: stat
+      type(force_table), pointer :: t
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      stat = get_table(h, t)
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      call write_table(t, fpath, int(format), error)
+      stat = settle(error)
+   end function egw_table_write
+
+   !> C: egw_table_read (egw CSV or binary; no handle on a bad file).
+   function egw_table_read(path, out) result(stat) bind(C, name="egw_table_read")
+      type(c_ptr), value, intent(in) :: path, out
+      integer(c_int) :: stat
+      character(len=:), allocatable :: fpath
+      type(force_table), pointer :: t
+      type(c_ptr), pointer :: handle
+      type(egw_error), allocatable :: error
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      allocate (t)
+      call read_table(fpath, t, error)
+      stat = settle(error)
+      if (stat /= egw_ok) then
+         deallocate (t)
+         return
+      end if
+      call c_f_pointer(out, handle)
+      handle = c_loc(t)
+   end function egw_table_read
+
+   !> C: egw_table_free(egw_table *t): releases the table, sets *t = NULL.
+   subroutine egw_table_free(h) bind(C, name="egw_table_free")
+      type(c_ptr), value, intent(in) :: h
+      type(c_ptr), pointer :: handle
+      type(force_table), pointer :: t
+      if (.not. c_associated(h)) return
+      call c_f_pointer(h, handle)
+      if (.not. c_associated(handle)) return
+      call c_f_pointer(handle, t)
+      deallocate (t)
+      handle = c_null_ptr
+   end subroutine egw_table_free
+
+   !> C: egw_tables_write_lammps: one pair_style table section (EGW_1..EGW_n) per table.
+   function egw_tables_write_lammps(n, tables, path) result(stat) &
+      & bind(C, name="egw_tables_write_lammps")
+      integer(c_int), value, intent(in) :: n
+      type(c_ptr), value, intent(in) :: tables, path
+      integer(c_int) :: stat
+      type(c_ptr), pointer :: handles(:)
+      type(force_table), allocatable :: copies(:)
+      type(force_table), pointer :: t
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      integer :: i
+      if (n < 1) then
+         stat = invalid("n = "//int_str(int(n))//": need at least one table")
+         return
+      end if
+      stat = require(tables, "tables")
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      call c_f_pointer(tables, handles, [n])
+      allocate (copies(n))
+      do i = 1, n
+         stat = get_table(handles(i), t)
+         if (stat /= egw_ok) return
+         copies(i) = t
+      end do
+      call write_lammps(copies, fpath, error)
+      stat = settle(error)
+   end function egw_tables_write_lammps
+
+   !> C: egw_write_flat_calculix (rough-flat p_G for CalculiX).
+   function egw_write_flat_calculix(p, overclosure_max, rel_tol, path) result(stat) &
+      & bind(C, name="egw_write_flat_calculix")
+      type(c_ptr), value, intent(in) :: p, path
+      real(c_double), value, intent(in) :: overclosure_max, rel_tol
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      stat = read_params(p, params)
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      call write_calculix_flat(params, overclosure_max, rel_tol, fpath, error)
+      stat = settle(error)
+   end function egw_write_flat_calculix
+
+   ! ------------------------------------------------------------ universal tables
+
+   !> C: egw_universal_build.
+   function egw_universal_build(p, o, mu_min, mu_max, x_min, x_max, rel_tol, out) &
+      & result(stat) bind(C, name="egw_universal_build")
+      type(c_ptr), value, intent(in) :: p, o, out
+      real(c_double), value, intent(in) :: mu_min, mu_max, x_min, x_max, rel_tol
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(universal_table), pointer :: u
+      type(c_ptr), pointer :: handle
+      type(egw_error), allocatable :: error
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat /= egw_ok) return
+      call read_options(o, options)
+      allocate (u)
+      call build_universal(params%model, params%psi, params%hardness_coeff, &
+         & params%plastic_ratio, options, mu_min, mu_max, x_min, x_max, rel_tol, u, error)
+      stat = settle(error)
+      if (stat /= egw_ok) then
+         deallocate (u)
+         return
+      end if
+      call c_f_pointer(out, handle)
+      handle = c_loc(u)
+   end function egw_universal_build
+
+   !> C: egw_universal_eval (R, E, sigma, mu from p; model, psi, K, rho_p must match).
+   function egw_universal_eval(h, p, delta, force, stiffness) result(stat) &
+      & bind(C, name="egw_universal_eval")
+      type(c_ptr), value, intent(in) :: h, p, force, stiffness
+      real(c_double), value, intent(in) :: delta
+      integer(c_int) :: stat
+      type(universal_table), pointer :: u
+      type(egw_params_c), pointer :: cp
+      integer :: st
+      real(dp) :: f, k
+      stat = get_universal(h, u)
+      if (stat == egw_ok) stat = require(p, "p")
+      if (stat /= egw_ok) return
+      call c_f_pointer(p, cp)
+      ! cheap checks only: this is the per-contact hot path
+      if (cp%model /= u%model) then
+         stat = invalid("model = "//int_str(int(cp%model))//": table is for model "// &
+            & int_str(u%model))
+         return
+      end if
+      if (cp%psi /= u%psi .or. cp%hardness_coeff /= u%hardness_coeff .or. &
+         & cp%plastic_ratio /= u%plastic_ratio) then
+         stat = invalid("psi = "//format_real(cp%psi)//": psi, K, rho_p differ from the table's")
+         return
+      end if
+      if (.not. (cp%sigma > 0.0_dp .and. cp%radius > 0.0_dp .and. cp%modulus > 0.0_dp)) then
+         stat = egw_invalid_parameter
+         call record("sigma = "//format_real(cp%sigma)//": universal tables need sigma, "// &
+            & "radius, modulus > 0")
+         return
+      end if
+      if (ieee_is_nan(delta)) then
+         stat = invalid("delta = NaN: must be a number")
+         return
+      end if
+      call universal_eval(u, cp%radius, cp%modulus, cp%sigma, cp%mu, delta, f, k, st)
+      if (st /= egw_ok .and. .not. (cp%mu >= u%mu_min*(1 - 1.0e-12_dp) .and. &
+         & cp%mu <= u%mu_max*(1 + 1.0e-12_dp))) then
+         stat = egw_out_of_range
+         call record("mu = "//format_real(cp%mu)//": outside the table's ["// &
+            & format_real(u%mu_min)//", "//format_real(u%mu_max)//"]")
+         return
+      end if
+      call put(force, f)
+      call put(stiffness, k)
+      if (st /= egw_ok) then
+         stat = int(st, c_int)
+         call record("delta = "//format_real(delta)//": above the table's x_max*sigma = "// &
+            & format_real(u%x_max*cp%sigma)//" (values extrapolated)")
+      end if
+   end function egw_universal_eval
+
+   !> C: egw_universal_write (CSV or binary).
+   function egw_universal_write(h, path, format) result(stat) &
+      & bind(C, name="egw_universal_write")
+      type(c_ptr), value, intent(in) :: h, path
+      integer(c_int), value, intent(in) :: format
+      integer(c_int) :: stat
+      type(universal_table), pointer :: u
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      stat = get_universal(h, u)
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      call write_universal(u, fpath, int(format), error)
+      stat = settle(error)
+   end function egw_universal_write
+
+   !> C: egw_universal_read.
+   function egw_universal_read(path, out) result(stat) bind(C, name="egw_universal_read")
+      type(c_ptr), value, intent(in) :: path, out
+      integer(c_int) :: stat
+      character(len=:), allocatable :: fpath
+      type(universal_table), pointer :: u
+      type(c_ptr), pointer :: handle
+      type(egw_error), allocatable :: error
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      allocate (u)
+      call read_universal(fpath, u, error)
+      stat = settle(error)
+      if (stat /= egw_ok) then
+         deallocate (u)
+         return
+      end if
+      call c_f_pointer(out, handle)
+      handle = c_loc(u)
+   end function egw_universal_read
+
+   !> C: egw_universal_free(egw_universal *u): releases, sets *u = NULL.
+   subroutine egw_universal_free(h) bind(C, name="egw_universal_free")
+      type(c_ptr), value, intent(in) :: h
+      type(c_ptr), pointer :: handle
+      type(universal_table), pointer :: u
+      if (.not. c_associated(h)) return
+      call c_f_pointer(h, handle)
+      if (.not. c_associated(handle)) return
+      call c_f_pointer(handle, u)
+      deallocate (u)
+      handle = c_null_ptr
+   end subroutine egw_universal_free
+
+   ! ------------------------------------------------------------ helpers
+
+   integer(c_int) function get_table(h, t) result(stat)
+      type(c_ptr), intent(in) :: h
+      type(force_table), pointer, intent(out) :: t
+      t => null()
+      stat = require(h, "t")
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, t)
+      if (.not. table_is_ready(t)) stat = invalid("t: not a built or read table")
+   end function get_table
+
+   integer(c_int) function get_universal(h, u) result(stat)
+      type(c_ptr), intent(in) :: h
+      type(universal_table), pointer, intent(out) :: u
+      u => null()
+      stat = require(h, "u")
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, u)
+      if (.not. allocated(u%slices)) stat = invalid("u: not a built or read table")
+   end function get_universal
+
+   !> A NUL-terminated C path as a Fortran string.
+   integer(c_int) function get_path(path, fpath) result(stat)
+      type(c_ptr), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: fpath
+      character(kind=c_char), pointer :: chars(:)
+      integer :: n, i
+      stat = require(path, "path")
+      if (stat /= egw_ok) return
+      n = int(c_strlen(path))
+      if (n == 0) then
+         stat = invalid("path: empty")
+         return
+      end if
+      call c_f_pointer(path, chars, [n])
+      allocate (character(len=n) :: fpath)
+      do i = 1, n
+         fpath(i:i) = chars(i)
+      end do
+   end function get_path
+
+   !> Read and validate a const egw_params* (as egw_capi does).
+   integer(c_int) function read_params(p, params) result(stat)
+      type(c_ptr), intent(in) :: p
+      type(contact_params), intent(out) :: params
+      type(egw_params_c), pointer :: cp
+      type(egw_error), allocatable :: error
+      stat = require(p, "p")
+      if (stat /= egw_ok) return
+      call c_f_pointer(p, cp)
+      params = to_params(cp)
+      call validate_params(params, error)
+      stat = settle(error)
+   end function read_params
+
+   !> Options from a nullable const egw_options* (NULL: defaults); copied from egw_capi,
+   !> where it is private.
+   subroutine read_options(o, options)
+      type(c_ptr), intent(in) :: o
+      type(solver_options), intent(out) :: options
+      type(egw_options_c), pointer :: co
+      if (.not. c_associated(o)) return
+      call c_f_pointer(o, co)
+      options%n_radial = int(co%n_radial)
+      options%rel_tol = co%rel_tol
+      options%max_iter = int(co%max_iter)
+      options%method = int(co%method)
+      options%n_threads = int(co%n_threads)
+   end subroutine read_options
+
+   integer(c_int) function out_of_range(t, delta) result(stat)
+      type(force_table), intent(in) :: t
+      real(dp), intent(in) :: delta
+      stat = egw_out_of_range
+      call record("delta = "//format_real(delta)//": above the table's delta_max = "// &
+         & format_real(t%delta_max)//" (values extrapolated linearly)")
+   end function out_of_range
+
+   integer(c_int) function invalid(message) result(stat)
+      character(len=*), intent(in) :: message
+      stat = egw_invalid_argument
+      call record(message)
+   end function invalid
+
+   !> Store a message as this thread's last error (through egw_capi's settle).
+   subroutine record(message)
+      character(len=*), intent(in) :: message
+      type(egw_error), allocatable :: error
+      integer(c_int) :: ignored
+      call fatal_error(error, egw_invalid_argument, message)
+      ignored = settle(error)
+   end subroutine record
+
+   subroutine put(ptr, x)
+      type(c_ptr), intent(in) :: ptr
+      real(dp), intent(in) :: x
+      real(c_double), pointer :: target
+      if (.not. c_associated(ptr)) return
+      call c_f_pointer(ptr, target)
+      target = x
+   end subroutine put
+
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      str = trim(buf)
+   end function int_str
+
+end module egw_capi_table

@@ -1,0 +1,957 @@
+!> Force tables of one parameter set for DEM and FE codes: force, stiffness, elastic
+!> energy and contact radius against overlap delta, built from full solves with nodes
+!> placed adaptively, and evaluated at about the cost of the Hertz closed form.
+!>
+!> Interpolation: cubic Hermite in delta with the solver's exact stiffness as the
+!> derivative (C1, exact at the nodes). In the separated tail (delta <= 0 for rough
+!> models, where P decays like a Gaussian in delta/sigma) the cubic interpolates ln P with
+!> derivative K/P, so the relative error stays bounded however small P gets. Below the
+!> cut-off delta_c, where P has fallen to rel_tol * P_ref, force and stiffness are exactly
+!> zero (the jump is <= rel_tol * P_ref). P_ref is the force at delta = min(0, delta_max)
+!> for rough models (first contact of the mean planes) and at delta_max for Hertz.
+module egw_table
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
+      & format_real
+   use egw_params, only: contact_params, validate_params, model_hertz
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact
+   implicit none
+   private
+
+   public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, table_eval, table_eval_log, &
+      & table_eval_all, table_covers, table_energy, table_contact_radius, &
+      & table_set_radii, table_prepare, table_is_ready, table_find_cutoff
+
+   !> Hard limits of the adaptive build (a table that needs more is not converging:
+   !> the solver's noise is above rel_tol).
+   integer, parameter :: max_nodes = 20000, max_rounds = 200
+
+   !> One-parameter-set force table. Arrays are the nodes (delta ascending); the
+   !> evaluation data (seg, bucket) are derived from them by table_prepare.
+   type, public :: force_table
+      type(contact_params) :: params              !< parameters the table was built for
+      real(dp) :: rel_tol = 0.0_dp                !< requested interpolation tolerance
+      real(dp) :: cutoff = 0.0_dp                 !< delta_c: first node, force 0 below
+      real(dp) :: delta_max = 0.0_dp              !< last node
+      real(dp) :: reference_force = 0.0_dp        !< P_ref of the cut-off rule
+      real(dp) :: max_force_error = 0.0_dp        !< max |P_table/P_solve - 1| at check points
+      real(dp) :: max_stiffness_error = 0.0_dp    !< same for the stiffness (not enforced)
+      real(dp) :: radius_sum = 0.0_dp             !< R1 + R2 if known, 0 otherwise
+      integer :: n_log = 0                        !< intervals 1..n_log interpolate ln P
+      real(dp), allocatable :: delta(:)           !< overlap at the nodes
+      real(dp), allocatable :: force(:)           !< solver force P at the nodes
+      real(dp), allocatable :: stiffness(:)       !< solver stiffness dP/ddelta
+      real(dp), allocatable :: energy(:)          !< int_{delta_c}^{delta} P of the interpolant
+      real(dp), allocatable :: contact_radius(:)  !< solver effective contact radius a*
+      ! evaluation data
+      !> (0:4, n): node delta(i) and the cubic c1..c4 in t = delta - delta(i) of interval i
+      !> (seg(0, n) = delta_max ends the forward scan; one cache line per interval)
+      real(dp), allocatable :: seg(:, :)
+      real(dp), allocatable :: radius_slope(:)    !< monotone Hermite slopes of a*
+      integer, allocatable :: bucket(:)           !< (0:n_bucket+1): interval at bucket start
+      integer :: n_bucket = 0
+      real(dp) :: bucket_scale = 0.0_dp
+      real(dp) :: bucket_origin = 0.0_dp          !< bucket variable at the first node
+      logical :: sqrt_buckets = .false.           !< buckets uniform in sign(d) sqrt|d|
+   end type force_table
+
+   !> 8-point Gauss-Legendre rule on [0, 1] for the energy of log-space intervals,
+   !> where exp(cubic) has no closed-form integral (exact to ~1e-16 relative for the
+   !> near-quadratic ln P of a refined interval).
+   real(dp), parameter :: gl_x(8) = 0.5_dp + 0.5_dp*[-0.9602898564975363_dp, &
+      & -0.7966664774136267_dp, -0.5255324099163290_dp, -0.1834346424956498_dp, &
+      & 0.1834346424956498_dp, 0.5255324099163290_dp, 0.7966664774136267_dp, &
+      & 0.9602898564975363_dp]
+   real(dp), parameter :: gl_w(8) = 0.5_dp*[0.1012285362903763_dp, 0.2223810344533745_dp, &
+      & 0.3137066458778873_dp, 0.3626837833783620_dp, 0.3626837833783620_dp, &
+      & 0.3137066458778873_dp, 0.2223810344533745_dp, 0.1012285362903763_dp]
+
+contains
+
+   !> Build a table over [delta_min, delta_max] with interpolation error <= rel_tol.
+   !> The table starts at the cut-off delta_c where P = rel_tol*P_ref (below delta_min
+   !> if the force at delta_min is still larger than that). The solver runs with
+   !> options%n_threads = 1 inside an OpenMP loop over points, and with its rel_tol
+   !> tightened to min(options%rel_tol, rel_tol/10) so that its own error does not
+   !> dominate the interpolation check.
+   subroutine build_table(params, options, delta_min, delta_max, rel_tol, table, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: opts
+      real(dp) :: cutoff, p_ref
+
+      call check_request(params, delta_min, delta_max, rel_tol, error)
+      if (allocated(error)) return
+      opts = point_options(options, rel_tol)
+      call table_find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, error)
+      if (allocated(error)) return
+      call build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, .false., table, error)
+   end subroutine build_table
+
+   !> Build a table whose cut-off is fixed at cutoff (used by the universal table,
+   !> whose slices share one cut-off). P_ref is computed as in build_table. With
+   !> log_space, every interval interpolates ln P (the universal table combines slices
+   !> in log space; the force must be positive from the cut-off on).
+   subroutine build_table_fixed_cutoff(params, options, cutoff, delta_max, rel_tol, &
+      & log_space, table, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: cutoff, delta_max, rel_tol
+      logical, intent(in) :: log_space
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: opts
+      real(dp) :: p_ref, k, a
+
+      call check_request(params, cutoff, delta_max, rel_tol, error)
+      if (allocated(error)) return
+      opts = point_options(options, rel_tol)
+      call solve_point(params, opts, reference_overlap(params, delta_max), p_ref, k, a, error)
+      if (allocated(error)) return
+      call build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, log_space, table, error)
+   end subroutine build_table_fixed_cutoff
+
+   !> Tables of several parameter sets on one common set of nodes, all from the fixed
+   !> cutoff to delta_max (the mu slices of a universal table, which then needs one
+   !> lookup for all slices). P_ref of each set as in build_table.
+   subroutine build_tables_shared(params, options, cutoff, delta_max, rel_tol, log_space, &
+      & tables, error)
+      type(contact_params), intent(in) :: params(:)
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: cutoff, delta_max, rel_tol
+      logical, intent(in) :: log_space
+      type(force_table), intent(inout) :: tables(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: opts
+      real(dp) :: p_ref(size(params)), k, a
+      integer :: s
+      do s = 1, size(params)
+         call check_request(params(s), cutoff, delta_max, rel_tol, error)
+         if (allocated(error)) return
+      end do
+      opts = point_options(options, rel_tol)
+      do s = 1, size(params)
+         call solve_point(params(s), opts, reference_overlap(params(s), delta_max), p_ref(s), &
+            & k, a, error)
+         if (allocated(error)) return
+      end do
+      call build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_space, &
+         & tables, error)
+   end subroutine build_tables_shared
+
+   !> Cut-off rule: P_ref = P(min(0, delta_max)) for rough models, P(delta_max) for Hertz;
+   !> delta_c is where P falls to between rel_tol*P_ref/2 and rel_tol*P_ref (bisection
+   !> on solves; P is increasing in delta).
+   subroutine table_find_cutoff(params, options, delta_min, delta_max, rel_tol, cutoff, &
+      & p_ref, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol
+      real(dp), intent(out) :: cutoff, p_ref
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: lo, hi, mid, p_lo, p_mid, k, a, target, step, d_ref
+      integer :: it
+
+      d_ref = reference_overlap(params, delta_max)
+      call solve_point(params, options, d_ref, p_ref, k, a, error)
+      if (allocated(error)) return
+      if (.not. p_ref > 0.0_dp) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "// &
+            & format_real(delta_max)//": the force there is zero, nothing to tabulate")
+         return
+      end if
+      target = rel_tol*p_ref
+      hi = d_ref
+      lo = min(delta_min, d_ref)
+      step = length_scale(params, delta_max)
+      call solve_point(params, options, lo, p_lo, k, a, error)
+      if (allocated(error)) return
+      ! extend below delta_min until the force is small enough (Gaussian tail: a few sigma)
+      it = 0
+      do while (p_lo > target)
+         it = it + 1
+         if (it > 60) then
+            call fatal_error(error, egw_not_converged, "delta_min = "// &
+               & format_real(delta_min)//": force does not fall to rel_tol*P_ref below it")
+            return
+         end if
+         hi = lo
+         lo = lo - step
+         step = 2*step
+         call solve_point(params, options, lo, p_lo, k, a, error)
+         if (allocated(error)) return
+      end do
+      do it = 1, 200
+         if (p_lo >= 0.5_dp*target) exit
+         if (hi - lo <= 1.0e-14_dp*max(abs(lo), abs(hi), step)) exit
+         mid = 0.5_dp*(lo + hi)
+         call solve_point(params, options, mid, p_mid, k, a, error)
+         if (allocated(error)) return
+         if (p_mid > target) then
+            hi = mid
+         else
+            lo = mid
+            p_lo = p_mid
+         end if
+      end do
+      cutoff = lo
+   end subroutine table_find_cutoff
+
+   !> Adaptive build between a given cut-off and delta_max (one parameter set).
+   subroutine build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, table, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: cutoff, delta_max, rel_tol, p_ref
+      logical, intent(in) :: log_all
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      type(force_table) :: tables(1)
+      call build_shared_nodes([params], opts, cutoff, delta_max, rel_tol, [p_ref], log_all, &
+         & tables, error)
+      if (allocated(error)) return
+      table = tables(1)
+   end subroutine build_core
+
+   !> Tables of several parameter sets (the mu slices of a universal table) on one
+   !> common set of nodes: an interval is accepted only when the check passes for every
+   !> set. Solves run in parallel over all (node, set) pairs. A single set is the
+   !> ordinary 1-D build.
+   subroutine build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, &
+      & tables, error)
+      type(contact_params), intent(in) :: params(:)
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: cutoff, delta_max, rel_tol, p_ref(:)
+      logical, intent(in) :: log_all
+      type(force_table), intent(inout) :: tables(:)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: x(:), f(:, :), k(:, :), a(:, :), xm(:), fm(:, :), km(:, :)
+      real(dp), allocatable :: am(:, :), err_f(:), err_k(:)
+      logical, allocatable :: accepted(:), split(:)
+      integer, allocatable :: todo(:)
+      real(dp) :: fi, ki, ef, ek
+      integer :: round, n, i, j, m, s, ns
+      logical :: rough, in_log, bad_interval
+
+      ns = size(params)
+      rough = is_rough(params(1))
+      call initial_nodes(params(1), cutoff, delta_max, x)
+      n = size(x)
+      allocate (f(n, ns), k(n, ns), a(n, ns))
+      call solve_grid(params, opts, x, f, k, a, error)
+      if (allocated(error)) return
+      allocate (accepted(n - 1), err_f(n - 1), err_k(n - 1))
+      accepted = .false.
+      err_f = 0.0_dp
+      err_k = 0.0_dp
+
+      do round = 1, max_rounds
+         todo = pack([(i, i=1, n - 1)], .not. accepted)
+         m = size(todo)
+         if (m == 0) exit
+         if (n + m > max_nodes .or. round == max_rounds) then
+            call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
+               & ": table did not converge within the node limit (solver noise above rel_tol?)")
+            return
+         end if
+         xm = 0.5_dp*(x(todo) + x(todo + 1))
+         if (any(xm <= x(todo) .or. xm >= x(todo + 1))) then
+            call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
+               & ": node spacing reached round-off before the tolerance was met")
+            return
+         end if
+         allocate (fm(m, ns), km(m, ns), am(m, ns), split(m))
+         call solve_grid(params, opts, xm, fm, km, am, error)
+         if (allocated(error)) return
+         do j = 1, m
+            i = todo(j)
+            in_log = log_all .or. (rough .and. x(i + 1) <= 0.0_dp)
+            split(j) = .false.
+            err_f(i) = 0.0_dp
+            err_k(i) = 0.0_dp
+            do s = 1, ns
+               call hermite_at(x(i), x(i + 1), f(i, s), f(i + 1, s), k(i, s), k(i + 1, s), &
+                  & in_log, xm(j), fi, ki)
+               ef = rel_diff(fi, fm(j, s))
+               ek = rel_diff(ki, km(j, s))
+               ! the stiffness check (10 rel_tol) catches the sqrt(delta) singularity of
+               ! the Hertz stiffness at delta = 0 that the force check misses; for smooth
+               ! data the midpoint derivative error of cubic Hermite vanishes to leading
+               ! order, so it adds no nodes there
+               bad_interval = ef > rel_tol .or. &
+                  & ek > 10*rel_tol + slope_roundoff(x(i), x(i + 1), f(i, s), f(i + 1, s), &
+                  & km(j, s), in_log) .or. &
+                  & .not. monotone_ok(x(i), x(i + 1), f(i, s), f(i + 1, s), k(i, s), &
+                  & k(i + 1, s), in_log)
+               split(j) = split(j) .or. bad_interval
+               err_f(i) = max(err_f(i), ef)
+               err_k(i) = max(err_k(i), ek)
+            end do
+         end do
+         call merge_nodes(x, f, k, a, accepted, err_f, err_k, todo, xm, fm, km, am, split)
+         n = size(x)
+         deallocate (fm, km, am, split)
+      end do
+
+      do s = 1, ns
+         associate (table => tables(s))
+            table%params = params(s)
+            table%rel_tol = rel_tol
+            table%cutoff = x(1)
+            table%delta_max = x(n)
+            table%reference_force = p_ref(s)
+            table%max_force_error = maxval(err_f)
+            table%max_stiffness_error = maxval(err_k)
+            table%radius_sum = 0.0_dp
+            table%n_log = 0
+            if (rough) table%n_log = count(x(2:n) <= 0.0_dp)
+            if (log_all) table%n_log = n - 1
+            table%delta = x
+            table%force = f(:, s)
+            table%stiffness = k(:, s)
+            table%contact_radius = a(:, s)
+            call table_prepare(table)
+         end associate
+      end do
+   end subroutine build_shared_nodes
+
+   !> Derive the evaluation data (coefficients, energy, lookup buckets) from the nodes.
+   !> Called by the builder and by the readers; deterministic, so a table read back
+   !> evaluates bit-for-bit like the one written.
+   pure subroutine table_prepare(table)
+      type(force_table), intent(inout) :: table
+      integer :: n, i
+      real(dp) :: h, v0, v1, d0, d1, s, cost_sqrt
+
+      n = size(table%delta)
+      if (allocated(table%seg)) deallocate (table%seg)
+      if (allocated(table%radius_slope)) deallocate (table%radius_slope)
+      if (allocated(table%bucket)) deallocate (table%bucket)
+      if (allocated(table%energy)) deallocate (table%energy)
+      allocate (table%seg(0:4, n), table%radius_slope(n), table%energy(n))
+      table%seg = 0.0_dp
+      table%seg(0, :) = table%delta
+      do i = 1, n - 1
+         h = table%delta(i + 1) - table%delta(i)
+         if (i <= table%n_log) then
+            v0 = log(table%force(i))
+            v1 = log(table%force(i + 1))
+            d0 = table%stiffness(i)/table%force(i)
+            d1 = table%stiffness(i + 1)/table%force(i + 1)
+         else
+            v0 = table%force(i)
+            v1 = table%force(i + 1)
+            d0 = table%stiffness(i)
+            d1 = table%stiffness(i + 1)
+         end if
+         s = (v1 - v0)/h
+         table%seg(1, i) = v0
+         table%seg(2, i) = d0
+         table%seg(3, i) = (3*s - 2*d0 - d1)/h
+         table%seg(4, i) = (d0 + d1 - 2*s)/h**2
+      end do
+      ! energy: exact integral of the interpolant (Hermite rule in linear intervals)
+      table%energy(1) = 0.0_dp
+      do i = 1, n - 1
+         table%energy(i + 1) = table%energy(i) + interval_integral(table, i, &
+            & table%delta(i + 1) - table%delta(i))
+      end do
+      call monotone_slopes(table%delta, table%contact_radius, table%radius_slope)
+      ! buckets: 8 per interval on average, uniform either in delta or in
+      ! u = sign(delta) sqrt|delta|, whichever needs the shorter scans: nodes graded
+      ! towards delta = 0 (the sqrt(delta) stiffness of Hertz) or spread over a long
+      ! Hertz range crowd uniform buckets, and the sqrt variable spreads them out
+      table%n_bucket = 8*(n - 1)
+      allocate (table%bucket(0:table%n_bucket + 1))
+      call make_buckets(table, .true.)
+      cost_sqrt = scan_cost(table)
+      call make_buckets(table, .false.)
+      if (cost_sqrt < 0.5_dp*scan_cost(table)) call make_buckets(table, .true.)
+   end subroutine table_prepare
+
+   !> Fill the lookup buckets: bucket b holds the interval containing the point whose
+   !> bucket variable is origin + (b - 1e-6)/scale, so rounding never puts it past the
+   !> interval of a delta that maps to b, and evaluation only scans forward.
+   pure subroutine make_buckets(table, use_sqrt)
+      type(force_table), intent(inout) :: table
+      logical, intent(in) :: use_sqrt
+      integer :: n, i, b
+      real(dp) :: xb, v
+      n = size(table%delta)
+      table%sqrt_buckets = use_sqrt
+      table%bucket_origin = bucket_variable(table, table%delta(1))
+      table%bucket_scale = table%n_bucket/(bucket_variable(table, table%delta(n)) - &
+         & table%bucket_origin)
+      i = 1
+      do b = 0, table%n_bucket + 1
+         v = table%bucket_origin + (b - 1.0e-6_dp)/table%bucket_scale
+         xb = v
+         if (use_sqrt) xb = sign(v*v, v)
+         do while (i < n - 1)
+            if (xb < table%delta(i + 1)) exit
+            i = i + 1
+         end do
+         table%bucket(b) = i
+      end do
+   end subroutine make_buckets
+
+   !> Mean squared number of intervals per bucket: the expected scan work.
+   pure real(dp) function scan_cost(table)
+      type(force_table), intent(in) :: table
+      scan_cost = sum(real(table%bucket(1:table%n_bucket) - &
+         & table%bucket(0:table%n_bucket - 1) + 1, dp)**2)/table%n_bucket
+   end function scan_cost
+
+   pure real(dp) function bucket_variable(table, delta) result(v)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      if (table%sqrt_buckets) then
+         v = sign(sqrt(abs(delta)), delta)
+      else
+         v = delta
+      end if
+   end function bucket_variable
+
+   !> True when the evaluation data are present (a built or read table).
+   pure logical function table_is_ready(table)
+      type(force_table), intent(in) :: table
+      table_is_ready = allocated(table%seg) .and. allocated(table%bucket)
+   end function table_is_ready
+
+   !> Force and stiffness at overlap delta: 0 below the cut-off; above delta_max the
+   !> force is continued linearly with the stiffness at delta_max (C1, see table_covers).
+   !> No allocation, no shared state: safe in OpenMP loops over contacts.
+   pure subroutine table_eval(table, delta, force, stiffness)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: force, stiffness
+      integer :: i
+      real(dp) :: t, v, d
+
+      if (delta > table%cutoff .and. delta < table%delta_max) then
+         ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
+         i = find_interval(table, delta)
+         t = delta - table%seg(0, i)
+         v = table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i)))
+         d = table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i))
+         if (i > table%n_log) then
+            force = v
+            stiffness = d
+         else
+            force = exp(v)
+            stiffness = force*d
+         end if
+      else if (delta >= table%delta_max) then
+         stiffness = table%stiffness(size(table%stiffness))
+         force = table%force(size(table%force)) + stiffness*(delta - table%delta_max)
+      else if (delta == table%cutoff) then
+         force = table%force(1)
+         stiffness = table%stiffness(1)
+      else
+         force = 0.0_dp
+         stiffness = 0.0_dp
+      end if
+   end subroutine table_eval
+
+   !> ln P and d ln P/ddelta at delta in (cutoff, delta_max) (used by the universal table
+   !> to interpolate across mu in log space without an exp per slice).
+   pure subroutine table_eval_log(table, delta, log_force, dlog_force)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: log_force, dlog_force
+      integer :: i, n
+      real(dp) :: t, v, d
+
+      n = size(table%delta)
+      if (delta >= table%delta_max) then
+         v = table%force(n) + table%stiffness(n)*(delta - table%delta_max)
+         log_force = log(v)
+         dlog_force = table%stiffness(n)/v
+         return
+      end if
+      i = find_interval(table, max(delta, table%cutoff))
+      t = delta - table%delta(i)
+      v = table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i)))
+      d = table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i))
+      if (i <= table%n_log) then
+         log_force = v
+         dlog_force = d
+      else
+         log_force = log(v)
+         dlog_force = d/v
+      end if
+   end subroutine table_eval_log
+
+   !> True when delta lies in [cutoff, delta_max] or below the cut-off (force 0 is exact
+   !> there by construction); false above delta_max (extrapolated) or for NaN.
+   elemental logical function table_covers(table, delta)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      table_covers = delta <= table%delta_max
+   end function table_covers
+
+   !> Elastic energy int_{delta_c}^{delta} P ddelta of the interpolant (0 below the
+   !> cut-off; above delta_max, of the linear continuation).
+   pure function table_energy(table, delta) result(energy)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp) :: energy
+      integer :: i, n
+      real(dp) :: t
+      n = size(table%delta)
+      if (.not. delta > table%cutoff) then
+         energy = 0.0_dp
+      else if (delta >= table%delta_max) then
+         t = delta - table%delta_max
+         energy = table%energy(n) + table%force(n)*t + 0.5_dp*table%stiffness(n)*t**2
+      else
+         i = find_interval(table, delta)
+         energy = table%energy(i) + interval_integral(table, i, delta - table%delta(i))
+      end if
+   end function table_energy
+
+   !> Effective contact radius a* at delta (monotone cubic Hermite through the solver's
+   !> node values; 0 below the cut-off, constant above delta_max). Not part of the
+   !> adaptive error control.
+   pure function table_contact_radius(table, delta) result(radius)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp) :: radius
+      integer :: i, n
+      real(dp) :: h, t, h00, h10, h01, h11
+      n = size(table%delta)
+      if (.not. delta >= table%cutoff) then
+         radius = 0.0_dp
+      else if (delta >= table%delta_max) then
+         radius = table%contact_radius(n)
+      else
+         i = find_interval(table, delta)
+         h = table%delta(i + 1) - table%delta(i)
+         t = (delta - table%delta(i))/h
+         h00 = (1 + 2*t)*(1 - t)**2
+         h10 = t*(1 - t)**2
+         h01 = t**2*(3 - 2*t)
+         h11 = t**2*(t - 1)
+         radius = h00*table%contact_radius(i) + h10*h*table%radius_slope(i) + &
+            & h01*table%contact_radius(i + 1) + h11*h*table%radius_slope(i + 1)
+      end if
+   end function table_contact_radius
+
+   !> All four tabulated quantities at delta.
+   pure subroutine table_eval_all(table, delta, force, stiffness, energy, contact_radius)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: force, stiffness, energy, contact_radius
+      call table_eval(table, delta, force, stiffness)
+      energy = table_energy(table, delta)
+      contact_radius = table_contact_radius(table, delta)
+   end subroutine table_eval_all
+
+   !> Record the particle radii R1, R2 of the pair (used by the LAMMPS writer for
+   !> r = R1 + R2 - delta). They must reproduce the table's R: 1/R = 1/R1 + 1/R2.
+   pure subroutine table_set_radii(table, radius1, radius2, error)
+      type(force_table), intent(inout) :: table
+      real(dp), intent(in) :: radius1, radius2
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: r_eq
+      if (.not. (ieee_is_finite(radius1) .and. radius1 > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "radius1 = "//format_real(radius1)// &
+            & ": must be finite and > 0")
+         return
+      end if
+      if (.not. (ieee_is_finite(radius2) .and. radius2 > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "radius2 = "//format_real(radius2)// &
+            & ": must be finite and > 0")
+         return
+      end if
+      r_eq = radius1*radius2/(radius1 + radius2)
+      ! 1e-12: a few roundings of the harmonic mean
+      if (abs(r_eq - table%params%radius) > 1.0e-12_dp*table%params%radius) then
+         call fatal_error(error, egw_invalid_argument, "radius1 = "//format_real(radius1)// &
+            & ", radius2 = "//format_real(radius2)//": equivalent radius "// &
+            & format_real(r_eq)//" differs from the table's "//format_real(table%params%radius))
+         return
+      end if
+      table%radius_sum = radius1 + radius2
+   end subroutine table_set_radii
+
+   !> Interval i (delta(i) <= delta < delta(i+1)) for cutoff <= delta < delta_max, found
+   !> in O(1) by the table's buckets (used by the universal table, whose slices share
+   !> their nodes).
+   pure integer function table_interval(table, delta) result(i)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      i = find_interval(table, delta)
+   end function table_interval
+
+   ! ------------------------------------------------------------------ internals
+
+   !> Interval i with delta(i) <= delta < delta(i+1), from the bucket of delta and a
+   !> short forward scan (typically 0 or 1 step; bisection if the bucket is crowded).
+   pure integer function find_interval(table, delta) result(i)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      integer :: b, lo, hi, mid
+      if (table%sqrt_buckets) then
+         b = int((sign(sqrt(abs(delta)), delta) - table%bucket_origin)*table%bucket_scale)
+      else
+         b = int((delta - table%bucket_origin)*table%bucket_scale)
+      end if
+      b = min(max(b, 0), table%n_bucket)
+      i = table%bucket(b)
+      hi = table%bucket(b + 1) + 1
+      if (hi - i > 6) then
+         ! crowded bucket (graded nodes near a singular point): bisect
+         lo = i
+         hi = min(hi, size(table%seg, 2))
+         do while (hi - lo > 1)
+            mid = (lo + hi)/2
+            if (delta >= table%seg(0, mid)) then
+               lo = mid
+            else
+               hi = mid
+            end if
+         end do
+         i = lo
+      end if
+      ! seg(0, n) = delta_max > delta ends the scan
+      do while (delta >= table%seg(0, i + 1))
+         i = i + 1
+      end do
+   end function find_interval
+
+   !> Integral of the interpolated force over [delta(i), delta(i) + t].
+   pure real(dp) function interval_integral(table, i, t) result(s)
+      type(force_table), intent(in) :: table
+      integer, intent(in) :: i
+      real(dp), intent(in) :: t
+      integer :: q
+      real(dp) :: u
+      if (i <= table%n_log) then
+         s = 0.0_dp
+         do q = 1, size(gl_x)
+            u = gl_x(q)*t
+            s = s + gl_w(q)*exp(table%seg(1, i) + u*(table%seg(2, i) + u*(table%seg(3, i) &
+               & + u*table%seg(4, i))))
+         end do
+         s = s*t
+      else
+         s = t*(table%seg(1, i) + t*(table%seg(2, i)/2 + t*(table%seg(3, i)/3 + &
+            & t*table%seg(4, i)/4)))
+      end if
+   end function interval_integral
+
+   !> Hermite interpolant of one interval at xq (log space if in_log).
+   pure subroutine hermite_at(x0, x1, f0, f1, k0, k1, in_log, xq, f, k)
+      real(dp), intent(in) :: x0, x1, f0, f1, k0, k1, xq
+      logical, intent(in) :: in_log
+      real(dp), intent(out) :: f, k
+      real(dp) :: h, t, v0, v1, d0, d1, v, d
+      h = x1 - x0
+      t = (xq - x0)/h
+      if (in_log) then
+         v0 = log(f0)
+         v1 = log(f1)
+         d0 = k0/f0
+         d1 = k1/f1
+      else
+         v0 = f0
+         v1 = f1
+         d0 = k0
+         d1 = k1
+      end if
+      v = (1 + 2*t)*(1 - t)**2*v0 + t*(1 - t)**2*h*d0 + t**2*(3 - 2*t)*v1 + t**2*(t - 1)*h*d1
+      d = 6*t*(t - 1)/h*(v0 - v1) + (1 - t)*(1 - 3*t)*d0 + t*(3*t - 2)*d1
+      if (in_log) then
+         f = exp(v)
+         k = f*d
+      else
+         f = v
+         k = d
+      end if
+   end subroutine hermite_at
+
+   !> Fritsch-Carlson: where the data are monotone (increasing values, non-negative
+   !> slopes) the cubic is monotone if alpha^2 + beta^2 <= 9 (alpha, beta = end slopes
+   !> over the secant). Otherwise the interval is split.
+   pure logical function monotone_ok(x0, x1, f0, f1, k0, k1, in_log) result(ok)
+      real(dp), intent(in) :: x0, x1, f0, f1, k0, k1
+      logical, intent(in) :: in_log
+      real(dp) :: s, d0, d1
+      if (in_log) then
+         s = (log(f1) - log(f0))/(x1 - x0)
+         d0 = k0/f0
+         d1 = k1/f1
+      else
+         s = (f1 - f0)/(x1 - x0)
+         d0 = k0
+         d1 = k1
+      end if
+      ok = .true.
+      ! where the data differ by round-off only, the secant is noise: nothing to check
+      if (abs(f1 - f0) <= 1.0e3_dp*epsilon(f1)*max(abs(f0), abs(f1))) return
+      if (s > 0.0_dp .and. d0 >= 0.0_dp .and. d1 >= 0.0_dp) then
+         ok = (d0/s)**2 + (d1/s)**2 <= 9.0_dp
+      end if
+   end function monotone_ok
+
+   !> Relative round-off of the interpolant's slope on a tiny interval: the cubic's
+   !> derivative contains (v1 - v0)/h, whose rounding error is ~eps |v|/h. Below this
+   !> floor a stiffness mismatch is noise, not interpolation error.
+   pure real(dp) function slope_roundoff(x0, x1, f0, f1, k, in_log) result(floor)
+      real(dp), intent(in) :: x0, x1, f0, f1, k
+      logical, intent(in) :: in_log
+      real(dp) :: v
+      if (in_log) then
+         v = max(abs(log(f0)), abs(log(f1)))*max(f0, f1)
+      else
+         v = max(abs(f0), abs(f1))
+      end if
+      floor = huge(1.0_dp)
+      if (abs(k) > 0.0_dp) floor = 100*epsilon(1.0_dp)*v/((x1 - x0)*abs(k))
+   end function slope_roundoff
+
+   !> Monotone Hermite slopes (Fritsch-Butland harmonic mean) for the contact radius.
+   pure subroutine monotone_slopes(x, y, d)
+      real(dp), intent(in) :: x(:), y(:)
+      real(dp), intent(out) :: d(:)
+      integer :: n, i
+      real(dp) :: s0, s1
+      n = size(x)
+      if (n < 2) then
+         d = 0.0_dp
+         return
+      end if
+      d(1) = (y(2) - y(1))/(x(2) - x(1))
+      d(n) = (y(n) - y(n - 1))/(x(n) - x(n - 1))
+      do i = 2, n - 1
+         s0 = (y(i) - y(i - 1))/(x(i) - x(i - 1))
+         s1 = (y(i + 1) - y(i))/(x(i + 1) - x(i))
+         if (s0*s1 > 0.0_dp) then
+            d(i) = 2*s0*s1/(s0 + s1)
+         else
+            d(i) = 0.0_dp
+         end if
+      end do
+   end subroutine monotone_slopes
+
+   pure real(dp) function rel_diff(a, b)
+      real(dp), intent(in) :: a, b
+      if (b /= 0.0_dp) then
+         rel_diff = abs(a - b)/abs(b)
+      else
+         rel_diff = abs(a)
+      end if
+   end function rel_diff
+
+   !> Insert the midpoints of split intervals as nodes, keep the others' verdicts.
+   pure subroutine merge_nodes(x, f, k, a, accepted, err_f, err_k, todo, xm, fm, km, am, split)
+      real(dp), allocatable, intent(inout) :: x(:), f(:, :), k(:, :), a(:, :), err_f(:), &
+         & err_k(:)
+      logical, allocatable, intent(inout) :: accepted(:)
+      integer, intent(in) :: todo(:)
+      real(dp), intent(in) :: xm(:), fm(:, :), km(:, :), am(:, :)
+      logical, intent(in) :: split(:)
+      real(dp), allocatable :: x2(:), f2(:, :), k2(:, :), a2(:, :), ef2(:), ek2(:)
+      logical, allocatable :: acc2(:)
+      integer, allocatable :: slot(:)
+      integer :: n, n2, i, j, p, ns
+
+      n = size(x)
+      ns = size(f, 2)
+      allocate (slot(n - 1))
+      slot = 0
+      do j = 1, size(todo)
+         if (split(j)) then
+            slot(todo(j)) = j
+         else
+            accepted(todo(j)) = .true.
+         end if
+      end do
+      n2 = n + count(split)
+      allocate (x2(n2), f2(n2, ns), k2(n2, ns), a2(n2, ns), acc2(n2 - 1), ef2(n2 - 1), &
+         & ek2(n2 - 1))
+      p = 1
+      x2(1) = x(1); f2(1, :) = f(1, :); k2(1, :) = k(1, :); a2(1, :) = a(1, :)
+      do i = 1, n - 1
+         j = slot(i)
+         if (j > 0) then
+            acc2(p) = .false.; ef2(p) = 0.0_dp; ek2(p) = 0.0_dp
+            p = p + 1
+            x2(p) = xm(j); f2(p, :) = fm(j, :); k2(p, :) = km(j, :); a2(p, :) = am(j, :)
+            acc2(p) = .false.; ef2(p) = 0.0_dp; ek2(p) = 0.0_dp
+         else
+            acc2(p) = accepted(i); ef2(p) = err_f(i); ek2(p) = err_k(i)
+         end if
+         p = p + 1
+         x2(p) = x(i + 1); f2(p, :) = f(i + 1, :); k2(p, :) = k(i + 1, :); a2(p, :) = a(i + 1, :)
+      end do
+      call move_alloc(x2, x)
+      call move_alloc(f2, f)
+      call move_alloc(k2, k)
+      call move_alloc(a2, a)
+      call move_alloc(acc2, accepted)
+      call move_alloc(ef2, err_f)
+      call move_alloc(ek2, err_k)
+   end subroutine merge_nodes
+
+   !> Starting nodes: geometric in delta above 0 (delta^(3/2) and the E-GW curvature
+   !> jump at 0 need grading), every sigma in the tail, 0 itself for rough models.
+   pure subroutine initial_nodes(params, cutoff, delta_max, x)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: cutoff, delta_max
+      real(dp), allocatable, intent(out) :: x(:)
+      real(dp) :: buf(4000), step, d
+      integer :: n
+      n = 1
+      buf(1) = cutoff
+      if (is_rough(params)) then
+         step = params%sigma
+         d = cutoff + step
+         do while (d < min(0.0_dp, delta_max) - 0.25_dp*step .and. n < 1000)
+            n = n + 1
+            buf(n) = d
+            d = d + step
+         end do
+         if (cutoff < 0.0_dp .and. delta_max > 0.0_dp) then
+            n = n + 1
+            buf(n) = 0.0_dp
+         end if
+         d = max(cutoff, 0.0_dp)
+         step = params%sigma/8
+      else
+         d = cutoff
+         step = cutoff
+      end if
+      do while (d + step < delta_max*(1 - 1.0e-3_dp) .and. n < 3990)
+         d = d + step
+         n = n + 1
+         buf(n) = d
+         step = max(step, 0.5_dp*d)
+      end do
+      n = n + 1
+      buf(n) = delta_max
+      x = buf(1:n)
+   end subroutine initial_nodes
+
+   !> Solve every (point, parameter set) pair in parallel (solver threads off).
+   subroutine solve_grid(params, opts, x, f, k, a, error)
+      type(contact_params), intent(in) :: params(:)
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: x(:)
+      real(dp), intent(out) :: f(:, :), k(:, :), a(:, :)
+      type(egw_error), allocatable, intent(out) :: error
+      integer, allocatable :: stat(:, :)
+      integer :: i, s, idx, nx
+      nx = size(x)
+      allocate (stat(nx, size(params)))
+      !$omp parallel do schedule(dynamic) private(i, s)
+      do idx = 1, nx*size(params)
+         i = mod(idx - 1, nx) + 1
+         s = (idx - 1)/nx + 1
+         call solve_quiet(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), stat(i, s))
+      end do
+      !$omp end parallel do
+      do s = 1, size(params)
+         do i = 1, nx
+            if (stat(i, s) /= 0) then
+               ! redo the first failure serially to recover its message
+               call solve_point(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), error)
+               if (.not. allocated(error)) call fatal_error(error, stat(i, s), "delta = "// &
+                  & format_real(x(i))//": solve failed while building the table")
+               return
+            end if
+         end do
+      end do
+   end subroutine solve_grid
+
+   subroutine solve_quiet(params, opts, x, f, k, a, stat)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: x
+      real(dp), intent(out) :: f, k, a
+      integer, intent(out) :: stat
+      type(egw_error), allocatable :: error
+      call solve_point(params, opts, x, f, k, a, error)
+      stat = 0
+      if (allocated(error)) stat = error%stat
+   end subroutine solve_quiet
+
+   subroutine solve_point(params, opts, x, f, k, a, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: x
+      real(dp), intent(out) :: f, k, a
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      call solve_contact(params, opts, x, res, error)
+      f = res%force
+      k = res%stiffness
+      a = res%contact_radius
+      if (allocated(error)) return
+      if (.not. (ieee_is_finite(f) .and. f >= 0.0_dp .and. ieee_is_finite(k))) then
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(x)// &
+            & ": solver returned force "//format_real(f)//", stiffness "//format_real(k))
+      end if
+   end subroutine solve_point
+
+   pure subroutine check_request(params, delta_min, delta_max, rel_tol, error)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol
+      type(egw_error), allocatable, intent(out) :: error
+      call validate_params(params, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_min)) then
+         call fatal_error(error, egw_invalid_argument, "delta_min = "// &
+            & format_real(delta_min)//": must be finite")
+      else if (.not. (ieee_is_finite(delta_max) .and. delta_max > delta_min)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "// &
+            & format_real(delta_max)//": must be finite and > delta_min")
+      else if (.not. (rel_tol >= 1.0e-10_dp .and. rel_tol <= 0.1_dp)) then
+         ! below 1e-10 the solver's own accuracy is the limit; above 0.1 no table
+         call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
+            & ": must lie in [1e-10, 0.1]")
+      else if (.not. is_rough(params) .and. .not. delta_max > 0.0_dp) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "// &
+            & format_real(delta_max)//": smooth spheres need delta_max > 0")
+      end if
+   end subroutine check_request
+
+   pure function point_options(options, rel_tol) result(opts)
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: rel_tol
+      type(solver_options) :: opts
+      opts = options
+      opts%n_threads = 1
+      opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
+   end function point_options
+
+   pure logical function is_rough(params)
+      type(contact_params), intent(in) :: params
+      is_rough = params%model /= model_hertz .and. params%sigma > 0.0_dp
+   end function is_rough
+
+   pure real(dp) function reference_overlap(params, delta_max)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta_max
+      if (is_rough(params)) then
+         reference_overlap = min(0.0_dp, delta_max)
+      else
+         reference_overlap = delta_max
+      end if
+   end function reference_overlap
+
+   pure real(dp) function length_scale(params, delta_max)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta_max
+      if (is_rough(params)) then
+         length_scale = params%sigma
+      else
+         length_scale = abs(delta_max)
+      end if
+   end function length_scale
+
+end module egw_table

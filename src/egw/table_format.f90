@@ -1,0 +1,1408 @@
+!> Writers and readers of force tables (doc/formats.md): egw CSV with a metadata header,
+!> the versioned egw binary format with an FNV-1a checksum, LAMMPS `pair_style table`,
+!> and CalculiX/Abaqus `*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR`.
+!> Every write goes to a temporary file renamed over the target (egw_io), so a failed
+!> write leaves an existing file untouched. Readers build into locals and hand over a
+!> table only when the whole file has been checked: a bad file gives egw_bad_file and
+!> no table.
+module egw_table_format
+   use, intrinsic :: iso_fortran_env, only: int32, int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_ok, egw_bad_file, egw_io_error, egw_invalid_argument, &
+      & egw_invalid_parameter, &
+      & egw_unsupported, fatal_error, format_real
+   use egw_params, only: contact_params, validate_params, model_name
+   use egw_version, only: egw_version_string, egw_version_number
+   use egw_io, only: open_temporary, commit_temporary, discard_temporary
+   use egw_asperity, only: flat_pressure
+   use egw_table, only: force_table, table_prepare, table_eval, table_energy
+   use egw_table_universal, only: universal_table, universal_prepare, universal_slice_params, &
+      & universal_nodes_shared
+   implicit none
+   private
+
+   public :: write_table, read_table, write_universal, read_universal, write_lammps, &
+      & write_calculix_flat, fnv1a32
+
+   integer, parameter, public :: format_csv = 0       !< egw CSV with metadata header
+   integer, parameter, public :: format_binary = 1    !< egw binary, versioned, checksummed
+   integer, parameter, public :: format_lammps = 2    !< LAMMPS pair_style table
+   integer, parameter, public :: format_calculix = 3  !< CalculiX/Abaqus tabular overclosure
+
+   !> Binary format version written and the only one read.
+   integer(int32), parameter, public :: binary_version = 1
+   character(len=8), parameter :: magic_table = "EGWTAB1D", magic_universal = "EGWTABUN"
+   integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
+   !> Fixed part of a 1-D table file before the arrays (doc/formats.md).
+   integer, parameter :: table_header_bytes = 144
+   integer, parameter :: universal_header_bytes = 104, slice_header_bytes = 64
+   !> Most points a LAMMPS or CalculiX file gets (resampling is adaptive below this).
+   integer, parameter :: max_export_points = 200000
+   character(len=*), parameter :: real_fmt = "(es25.17e3)"
+
+   !> key = value pairs of a CSV header.
+   type :: header_dict
+      character(len=64), allocatable :: keys(:)
+      character(len=256), allocatable :: values(:)
+      integer :: n = 0
+   end type header_dict
+
+   !> What resample_linear samples: the force of a table against overlap, or the
+   !> rough-flat pressure against overclosure (a type, not an internal procedure, so no
+   !> trampoline / executable stack is needed).
+   type :: sampler
+      type(force_table), pointer :: table => null()
+      type(contact_params) :: params
+      logical :: flat = .false.
+      integer :: stat = egw_ok
+   end type sampler
+
+contains
+
+   ! =========================================================== dispatch
+
+   !> Write a table in one of the formats (format_csv, format_binary, format_lammps,
+   !> format_calculix).
+   subroutine write_table(table, path, format, error)
+      type(force_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: format
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. allocated(table%delta)) then
+         call fatal_error(error, egw_invalid_argument, "table: not built or read")
+         return
+      end if
+      select case (format)
+      case (format_csv)
+         call write_table_csv(table, path, error)
+      case (format_binary)
+         call write_table_binary(table, path, error)
+      case (format_lammps)
+         call write_lammps([table], path, error)
+      case (format_calculix)
+         call write_calculix_sphere(table, path, error)
+      case default
+         call fatal_error(error, egw_invalid_argument, "format = "//int_str(format)// &
+            & ": unknown (0 CSV, 1 binary, 2 LAMMPS, 3 CalculiX)")
+      end select
+   end subroutine write_table
+
+   !> Read an egw CSV or binary table file (the format is recognised from its start).
+   subroutine read_table(path, table, error)
+      character(len=*), intent(in) :: path
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: bytes
+      call read_bytes(path, bytes, error)
+      if (allocated(error)) return
+      if (len(bytes) >= 8) then
+         if (bytes(1:8) == magic_table) then
+            call parse_table_binary(path, bytes, table, error)
+            return
+         end if
+      end if
+      if (starts_with(bytes, "# egw force table")) then
+         call parse_table_csv(path, bytes, table, error)
+      else
+         call fatal_error(error, egw_bad_file, "path = "//path// &
+            & ": not an egw table (neither binary magic "//magic_table//" nor CSV header)")
+      end if
+   end subroutine read_table
+
+   !> Write a universal table (format_csv or format_binary; the DEM/FE formats need one
+   !> parameter set: build or slice a 1-D table for them).
+   subroutine write_universal(table, path, format, error)
+      type(universal_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: format
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. allocated(table%slices)) then
+         call fatal_error(error, egw_invalid_argument, "table: not built or read")
+         return
+      end if
+      select case (format)
+      case (format_csv)
+         call write_universal_csv(table, path, error)
+      case (format_binary)
+         call write_universal_binary(table, path, error)
+      case (format_lammps, format_calculix)
+         call fatal_error(error, egw_unsupported, "format = "//int_str(format)// &
+            & ": LAMMPS and CalculiX files hold one parameter set; use a 1-D table")
+      case default
+         call fatal_error(error, egw_invalid_argument, "format = "//int_str(format)// &
+            & ": unknown (0 CSV, 1 binary)")
+      end select
+   end subroutine write_universal
+
+   !> Read an egw CSV or binary universal table.
+   subroutine read_universal(path, table, error)
+      character(len=*), intent(in) :: path
+      type(universal_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: bytes
+      call read_bytes(path, bytes, error)
+      if (allocated(error)) return
+      if (len(bytes) >= 8) then
+         if (bytes(1:8) == magic_universal) then
+            call parse_universal_binary(path, bytes, table, error)
+            return
+         end if
+      end if
+      if (starts_with(bytes, "# egw universal table")) then
+         call parse_universal_csv(path, bytes, table, error)
+      else
+         call fatal_error(error, egw_bad_file, "path = "//path//": not an egw universal "// &
+            & "table (neither binary magic "//magic_universal//" nor CSV header)")
+      end if
+   end subroutine read_universal
+
+   ! =========================================================== CSV
+
+   subroutine write_table_csv(table, path, error)
+      type(force_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: unit, i
+      character(len=:), allocatable :: tmp
+      call open_temporary(path, unit, tmp, error)
+      if (allocated(error)) return
+      write (unit, '(a)') "# egw force table, CSV format 1"
+      write (unit, '(a)') "# egw_version = "//egw_version_string
+      call write_params_csv(unit, table%params)
+      call write_table_meta_csv(unit, "", table)
+      write (unit, '(a)') "# units = consistent set of the parameters: delta, "// &
+         & "contact_radius [length]; force [modulus*length^2]; stiffness [modulus*length]; "// &
+         & "energy [modulus*length^3]"
+      write (unit, '(a)') "# interpolation = cubic Hermite in delta with stiffness as slope; "// &
+         & "ln(force) in intervals 1..n_log; force = 0 below cutoff; energy = int of force "// &
+         & "from cutoff"
+      write (unit, '(a)') "delta,force,stiffness,energy,contact_radius"
+      do i = 1, size(table%delta)
+         if (.not. row_ok([table%delta(i), table%force(i), table%stiffness(i), &
+            & table%energy(i), table%contact_radius(i)])) then
+            call discard_temporary(unit, tmp)
+            call fatal_error(error, egw_invalid_argument, "table: node "//int_str(i)// &
+               & " is not finite; nothing written")
+            return
+         end if
+         write (unit, '(a)') csv_row([table%delta(i), table%force(i), table%stiffness(i), &
+            & table%energy(i), table%contact_radius(i)])
+      end do
+      write (unit, '(a)') "# end of table, "//int_str(size(table%delta))//" rows"
+      call commit_temporary(unit, tmp, path, error)
+   end subroutine write_table_csv
+
+   subroutine write_universal_csv(table, path, error)
+      type(universal_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: unit, i, j, nrows
+      character(len=:), allocatable :: tmp
+      call open_temporary(path, unit, tmp, error)
+      if (allocated(error)) return
+      write (unit, '(a)') "# egw universal table, CSV format 1"
+      write (unit, '(a)') "# egw_version = "//egw_version_string
+      write (unit, '(a)') "# model = "//int_str(table%model)//" ("//model_name(table%model)//")"
+      call kv(unit, "psi", table%psi)
+      call kv(unit, "hardness_coeff", table%hardness_coeff)
+      call kv(unit, "plastic_ratio", table%plastic_ratio)
+      call kv(unit, "rel_tol", table%rel_tol)
+      call kv(unit, "x_cut", table%x_cut)
+      call kv(unit, "x_max", table%x_max)
+      call kv(unit, "mu_min", table%mu_min)
+      call kv(unit, "mu_max", table%mu_max)
+      call kv(unit, "max_mu_error", table%max_mu_error)
+      write (unit, '(a)') "# n_mu = "//int_str(table%n_mu)
+      write (unit, '(a)') "# units = dimensionless: x = delta/sigma; p = P/(E sqrt(R) "// &
+         & "sigma^1.5); dp_dx; energy = W/(E sqrt(R) sigma^2.5); contact_radius = "// &
+         & "a/sqrt(R sigma); mu_j = mu_min (mu_max/mu_min)^((j-1)/(n_mu-1))"
+      do j = 1, table%n_mu
+         call kv(unit, "slice."//int_str(j)//".mu", table%slices(j)%params%mu)
+         call write_table_meta_csv(unit, "slice."//int_str(j)//".", table%slices(j))
+      end do
+      write (unit, '(a)') "mu_index,x,p,dp_dx,energy,contact_radius"
+      nrows = 0
+      do j = 1, table%n_mu
+         associate (s => table%slices(j))
+            do i = 1, size(s%delta)
+               if (.not. row_ok([s%delta(i), s%force(i), s%stiffness(i), s%energy(i), &
+                  & s%contact_radius(i)])) then
+                  call discard_temporary(unit, tmp)
+                  call fatal_error(error, egw_invalid_argument, "table: slice "// &
+                     & int_str(j)//" node "//int_str(i)//" is not finite; nothing written")
+                  return
+               end if
+               write (unit, '(a)') int_str(j)//","//csv_row([s%delta(i), s%force(i), &
+                  & s%stiffness(i), s%energy(i), s%contact_radius(i)])
+               nrows = nrows + 1
+            end do
+         end associate
+      end do
+      write (unit, '(a)') "# end of table, "//int_str(nrows)//" rows"
+      call commit_temporary(unit, tmp, path, error)
+   end subroutine write_universal_csv
+
+   subroutine write_params_csv(unit, p)
+      integer, intent(in) :: unit
+      type(contact_params), intent(in) :: p
+      write (unit, '(a)') "# model = "//int_str(p%model)//" ("//model_name(p%model)//")"
+      call kv(unit, "radius", p%radius)
+      call kv(unit, "modulus", p%modulus)
+      call kv(unit, "sigma", p%sigma)
+      call kv(unit, "mu", p%mu)
+      call kv(unit, "psi", p%psi)
+      call kv(unit, "hardness_coeff", p%hardness_coeff)
+      call kv(unit, "plastic_ratio", p%plastic_ratio)
+   end subroutine write_params_csv
+
+   subroutine write_table_meta_csv(unit, prefix, t)
+      integer, intent(in) :: unit
+      character(len=*), intent(in) :: prefix
+      type(force_table), intent(in) :: t
+      call kv(unit, prefix//"rel_tol", t%rel_tol)
+      call kv(unit, prefix//"cutoff", t%cutoff)
+      call kv(unit, prefix//"delta_max", t%delta_max)
+      call kv(unit, prefix//"reference_force", t%reference_force)
+      call kv(unit, prefix//"max_force_error", t%max_force_error)
+      call kv(unit, prefix//"max_stiffness_error", t%max_stiffness_error)
+      call kv(unit, prefix//"radius_sum", t%radius_sum)
+      write (unit, '(a)') "# "//prefix//"n_nodes = "//int_str(size(t%delta))
+      write (unit, '(a)') "# "//prefix//"n_log = "//int_str(t%n_log)
+   end subroutine write_table_meta_csv
+
+   subroutine parse_table_csv(path, text, table, error)
+      character(len=*), intent(in) :: path, text
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      type(header_dict) :: dict
+      type(force_table) :: t
+      real(dp), allocatable :: rows(:, :)
+      integer, allocatable :: idx(:)
+      integer :: n
+
+      call parse_csv(path, text, 5, "delta,force,stiffness,energy,contact_radius", dict, &
+         & rows, idx, error)
+      if (allocated(error)) return
+      call get_params(path, dict, t%params, error)
+      if (allocated(error)) return
+      call get_table_meta(path, dict, "", t, n, error)
+      if (allocated(error)) return
+      if (size(rows, 2) /= n) then
+         call bad(error, path, "n_nodes = "//int_str(n)//" but "//int_str(size(rows, 2))// &
+            & " data rows")
+         return
+      end if
+      call set_nodes(t, rows)
+      call check_table(path, "", t, error)
+      if (allocated(error)) return
+      call table_prepare(t)
+      call move_table(t, table)
+   end subroutine parse_table_csv
+
+   subroutine parse_universal_csv(path, text, table, error)
+      character(len=*), intent(in) :: path, text
+      type(universal_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      type(header_dict) :: dict
+      type(universal_table) :: u
+      real(dp), allocatable :: rows(:, :)
+      integer, allocatable :: idx(:)
+      integer :: j, n, first
+      real(dp) :: mu
+      character(len=:), allocatable :: prefix
+
+      call parse_csv(path, text, 5, "mu_index,x,p,dp_dx,energy,contact_radius", dict, rows, &
+         & idx, error)
+      if (allocated(error)) return
+      call get_int(path, dict, "model", u%model, error)
+      if (.not. allocated(error)) call get_real(path, dict, "psi", u%psi, error)
+      if (.not. allocated(error)) call get_real(path, dict, "hardness_coeff", &
+         & u%hardness_coeff, error)
+      if (.not. allocated(error)) call get_real(path, dict, "plastic_ratio", &
+         & u%plastic_ratio, error)
+      if (.not. allocated(error)) call get_real(path, dict, "rel_tol", u%rel_tol, error)
+      if (.not. allocated(error)) call get_real(path, dict, "x_cut", u%x_cut, error)
+      if (.not. allocated(error)) call get_real(path, dict, "x_max", u%x_max, error)
+      if (.not. allocated(error)) call get_real(path, dict, "mu_min", u%mu_min, error)
+      if (.not. allocated(error)) call get_real(path, dict, "mu_max", u%mu_max, error)
+      if (.not. allocated(error)) call get_real(path, dict, "max_mu_error", u%max_mu_error, error)
+      if (.not. allocated(error)) call get_int(path, dict, "n_mu", u%n_mu, error)
+      if (allocated(error)) return
+      call check_universal_header(path, u, error)
+      if (allocated(error)) return
+      allocate (u%slices(u%n_mu))
+      first = 1
+      do j = 1, u%n_mu
+         prefix = "slice."//int_str(j)//"."
+         call get_table_meta(path, dict, prefix, u%slices(j), n, error)
+         if (.not. allocated(error)) call get_real(path, dict, prefix//"mu", mu, error)
+         if (allocated(error)) return
+         if (abs(mu - slice_mu(u, j)) > 1.0e-12_dp*mu) then
+            call bad(error, path, "slice "//int_str(j)//": mu = "//format_real(mu)// &
+               & " is not on the grid")
+            return
+         end if
+         if (first + n - 1 > size(rows, 2)) then
+            call bad(error, path, "slice "//int_str(j)//": fewer data rows than n_nodes")
+            return
+         end if
+         if (any(idx(first:first + n - 1) /= j)) then
+            call bad(error, path, "slice "//int_str(j)//": rows out of order or missing")
+            return
+         end if
+         u%slices(j)%params = universal_slice_params(u%model, u%psi, u%hardness_coeff, &
+            & u%plastic_ratio, mu)
+         call set_nodes(u%slices(j), rows(:, first:first + n - 1))
+         call check_table(path, "slice "//int_str(j)//": ", u%slices(j), error)
+         if (allocated(error)) return
+         call table_prepare(u%slices(j))
+         first = first + n
+      end do
+      if (first - 1 /= size(rows, 2)) then
+         call bad(error, path, "more data rows than the slices' n_nodes")
+         return
+      end if
+      call check_common_cutoff(path, u, error)
+      if (allocated(error)) return
+      if (.not. universal_nodes_shared(u)) then
+         call bad(error, path, "slices do not share their nodes or are not in log space")
+         return
+      end if
+      call universal_prepare(u)
+      call move_universal(u, table)
+   end subroutine parse_universal_csv
+
+   !> Split a CSV file into its "# key = value" header, check the column header line,
+   !> read ncol reals per data row (after an integer index when the columns start with
+   !> "mu_index") and require the "# end of table, N rows" trailer (so that a file cut
+   !> inside its last number is detected).
+   subroutine parse_csv(path, text, ncol, columns, dict, rows, idx, error)
+      character(len=*), intent(in) :: path, text, columns
+      integer, intent(in) :: ncol
+      type(header_dict), intent(out) :: dict
+      real(dp), allocatable, intent(out) :: rows(:, :)
+      integer, allocatable, intent(out) :: idx(:)
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: pos, eol, nrow, ios, line_no, eq, cap, n_end
+      logical :: in_data, ended, indexed
+      character(len=:), allocatable :: line
+      real(dp) :: vals(ncol)
+      integer :: j
+
+      indexed = starts_with(columns, "mu_index")
+      cap = 1024
+      allocate (rows(ncol, cap), idx(cap), dict%keys(64), dict%values(64))
+      nrow = 0
+      pos = 1
+      line_no = 0
+      in_data = .false.
+      ended = .false.
+      do while (pos <= len(text))
+         eol = index(text(pos:), new_line("a"))
+         if (eol == 0) then
+            ! a complete file ends with a newline: a missing one means truncation
+            call bad(error, path, "truncated (last line has no end of line)")
+            return
+         end if
+         line = text(pos:pos + eol - 2)
+         pos = pos + eol
+         line_no = line_no + 1
+         if (len(line) > 0) then
+            if (line(len(line):len(line)) == achar(13)) line = line(1:len(line) - 1)
+         end if
+         if (ended) then
+            if (len_trim(line) > 0) then
+               call bad(error, path, "line "//int_str(line_no)//": text after the end line")
+               return
+            end if
+            cycle
+         end if
+         if (starts_with(line, "# end of table,")) then
+            read (line(16:), *, iostat=ios) n_end
+            if (ios /= 0 .or. n_end /= nrow .or. .not. in_data) then
+               call bad(error, path, "line "//int_str(line_no)//": end line does not match "// &
+                  & int_str(nrow)//" data rows")
+               return
+            end if
+            ended = .true.
+         else if (starts_with(line, "#")) then
+            if (in_data) then
+               call bad(error, path, "line "//int_str(line_no)//": comment inside the data")
+               return
+            end if
+            eq = index(line, "=")
+            if (eq > 0) call dict_add(dict, adjustl(trim(line(2:eq - 1))), &
+               & adjustl(trim(line(eq + 1:))))
+         else if (.not. in_data) then
+            if (trim(line) /= columns) then
+               call bad(error, path, "line "//int_str(line_no)//": expected column header '"// &
+                  & columns//"'")
+               return
+            end if
+            in_data = .true.
+         else
+            if (indexed) then
+               read (line, *, iostat=ios) j, vals
+            else
+               j = 0
+               read (line, *, iostat=ios) vals
+            end if
+            if (ios /= 0) then
+               call bad(error, path, "line "//int_str(line_no)//": cannot read "// &
+                  & int_str(ncol)//" numbers")
+               return
+            end if
+            if (nrow == cap) then
+               cap = 2*cap
+               call grow(rows, idx, cap)
+            end if
+            nrow = nrow + 1
+            rows(:, nrow) = vals
+            idx(nrow) = j
+         end if
+      end do
+      if (.not. ended) then
+         call bad(error, path, "truncated (no '# end of table' line)")
+         return
+      end if
+      rows = rows(:, 1:nrow)
+      idx = idx(1:nrow)
+   end subroutine parse_csv
+
+   ! =========================================================== binary
+
+   subroutine write_table_binary(table, path, error)
+      type(force_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: buf
+      integer :: n, pos
+      n = size(table%delta)
+      if (.not. (row_ok(table%delta) .and. row_ok(table%force) .and. row_ok(table%stiffness) &
+         & .and. row_ok(table%energy) .and. row_ok(table%contact_radius))) then
+         call fatal_error(error, egw_invalid_argument, "table: a node is not finite; "// &
+            & "nothing written")
+         return
+      end if
+      allocate (character(len=table_header_bytes + 40*n + 4) :: buf)
+      buf(1:8) = magic_table
+      pos = 9
+      call put_i32(buf, pos, binary_version)
+      call put_i32(buf, pos, byte_order_mark)
+      call put_i32(buf, pos, int(egw_version_number, int32))
+      call put_i32(buf, pos, int(table%params%model, int32))
+      call put_i32(buf, pos, int(n, int32))
+      call put_i32(buf, pos, int(table%n_log, int32))
+      call put_f64(buf, pos, [table%params%radius, table%params%modulus, table%params%sigma, &
+         & table%params%mu, table%params%psi, table%params%hardness_coeff, &
+         & table%params%plastic_ratio])
+      call put_f64(buf, pos, [table%rel_tol, table%cutoff, table%delta_max, &
+         & table%reference_force, table%max_force_error, table%max_stiffness_error, &
+         & table%radius_sum])
+      call put_f64(buf, pos, table%delta)
+      call put_f64(buf, pos, table%force)
+      call put_f64(buf, pos, table%stiffness)
+      call put_f64(buf, pos, table%energy)
+      call put_f64(buf, pos, table%contact_radius)
+      call write_checked(path, buf, pos, error)
+   end subroutine write_table_binary
+
+   subroutine write_universal_binary(table, path, error)
+      type(universal_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: buf
+      integer :: nbytes, pos, j, n
+      nbytes = universal_header_bytes + 4
+      do j = 1, table%n_mu
+         nbytes = nbytes + slice_header_bytes + 40*size(table%slices(j)%delta)
+      end do
+      allocate (character(len=nbytes) :: buf)
+      buf(1:8) = magic_universal
+      pos = 9
+      call put_i32(buf, pos, binary_version)
+      call put_i32(buf, pos, byte_order_mark)
+      call put_i32(buf, pos, int(egw_version_number, int32))
+      call put_i32(buf, pos, int(table%model, int32))
+      call put_i32(buf, pos, int(table%n_mu, int32))
+      call put_i32(buf, pos, 0_int32)
+      call put_f64(buf, pos, [table%psi, table%hardness_coeff, table%plastic_ratio, &
+         & table%rel_tol, table%x_cut, table%x_max, table%mu_min, table%mu_max, &
+         & table%max_mu_error])
+      do j = 1, table%n_mu
+         associate (s => table%slices(j))
+            n = size(s%delta)
+            call put_i32(buf, pos, int(n, int32))
+            call put_i32(buf, pos, int(s%n_log, int32))
+            call put_f64(buf, pos, [s%rel_tol, s%cutoff, s%delta_max, s%reference_force, &
+               & s%max_force_error, s%max_stiffness_error, s%params%mu])
+            call put_f64(buf, pos, s%delta)
+            call put_f64(buf, pos, s%force)
+            call put_f64(buf, pos, s%stiffness)
+            call put_f64(buf, pos, s%energy)
+            call put_f64(buf, pos, s%contact_radius)
+         end associate
+      end do
+      call write_checked(path, buf, pos, error)
+   end subroutine write_universal_binary
+
+   !> Append the checksum of buf(1:pos-1) and write buf atomically.
+   subroutine write_checked(path, buf, pos, error)
+      character(len=*), intent(in) :: path
+      character(len=*), intent(inout) :: buf
+      integer, intent(inout) :: pos
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: unit, ios
+      character(len=:), allocatable :: tmp
+      call put_i32(buf, pos, checksum_i32(fnv1a32(buf(1:pos - 1))))
+      call open_temporary(path, unit, tmp, error, binary=.true.)
+      if (allocated(error)) return
+      write (unit, iostat=ios) buf
+      if (ios /= 0) then
+         call discard_temporary(unit, tmp)
+         call fatal_error(error, egw_io_error, "path = "//path//": write failed")
+         return
+      end if
+      call commit_temporary(unit, tmp, path, error)
+   end subroutine write_checked
+
+   subroutine parse_table_binary(path, bytes, table, error)
+      character(len=*), intent(in) :: path, bytes
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      type(force_table) :: t
+      integer :: pos, n
+      integer(int32) :: model
+      real(dp) :: p(7), meta(7)
+
+      call check_binary_frame(path, bytes, table_header_bytes, error)
+      if (allocated(error)) return
+      pos = 21
+      model = get_i32(bytes, pos)
+      n = get_i32(bytes, pos)
+      t%n_log = get_i32(bytes, pos)
+      if (n < 2 .or. len(bytes) /= table_header_bytes + 40*int(n, int64) + 4) then
+         call bad(error, path, "n_nodes = "//int_str(n)//" does not match the file size "// &
+            & int_str(len(bytes)))
+         return
+      end if
+      call get_f64(bytes, pos, p)
+      call get_f64(bytes, pos, meta)
+      t%params = contact_params(model=int(model), radius=p(1), modulus=p(2), sigma=p(3), &
+         & mu=p(4), psi=p(5), hardness_coeff=p(6), plastic_ratio=p(7))
+      call set_meta(t, meta)
+      allocate (t%delta(n), t%force(n), t%stiffness(n), t%energy(n), t%contact_radius(n))
+      call get_f64(bytes, pos, t%delta)
+      call get_f64(bytes, pos, t%force)
+      call get_f64(bytes, pos, t%stiffness)
+      call get_f64(bytes, pos, t%energy)
+      call get_f64(bytes, pos, t%contact_radius)
+      call validate_params(t%params, error)
+      if (allocated(error)) then
+         call bad(error, path, "stored parameters invalid: "//error%message)
+         return
+      end if
+      call check_table(path, "", t, error)
+      if (allocated(error)) return
+      call table_prepare(t)
+      call move_table(t, table)
+   end subroutine parse_table_binary
+
+   subroutine parse_universal_binary(path, bytes, table, error)
+      character(len=*), intent(in) :: path, bytes
+      type(universal_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      type(universal_table) :: u
+      integer :: pos, j, n
+      real(dp) :: h(9), meta(7)
+
+      call check_binary_frame(path, bytes, universal_header_bytes, error)
+      if (allocated(error)) return
+      pos = 21
+      u%model = get_i32(bytes, pos)
+      u%n_mu = get_i32(bytes, pos)
+      pos = pos + 4
+      call get_f64(bytes, pos, h)
+      u%psi = h(1); u%hardness_coeff = h(2); u%plastic_ratio = h(3); u%rel_tol = h(4)
+      u%x_cut = h(5); u%x_max = h(6); u%mu_min = h(7); u%mu_max = h(8); u%max_mu_error = h(9)
+      call check_universal_header(path, u, error)
+      if (allocated(error)) return
+      allocate (u%slices(u%n_mu))
+      do j = 1, u%n_mu
+         if (pos + slice_header_bytes > len(bytes) - 4) then
+            call bad(error, path, "slice "//int_str(j)//": file too short")
+            return
+         end if
+         n = get_i32(bytes, pos)
+         u%slices(j)%n_log = get_i32(bytes, pos)
+         call get_f64(bytes, pos, meta)
+         if (n < 2 .or. pos - 1 + 40*int(n, int64) > len(bytes) - 4) then
+            call bad(error, path, "slice "//int_str(j)//": n_nodes = "//int_str(n)// &
+               & " does not fit the file size")
+            return
+         end if
+         associate (s => u%slices(j))
+            call set_meta(s, [meta(1:6), 0.0_dp])
+            s%params = universal_slice_params(u%model, u%psi, u%hardness_coeff, &
+               & u%plastic_ratio, meta(7))
+            allocate (s%delta(n), s%force(n), s%stiffness(n), s%energy(n), s%contact_radius(n))
+            call get_f64(bytes, pos, s%delta)
+            call get_f64(bytes, pos, s%force)
+            call get_f64(bytes, pos, s%stiffness)
+            call get_f64(bytes, pos, s%energy)
+            call get_f64(bytes, pos, s%contact_radius)
+            if (abs(meta(7) - slice_mu(u, j)) > 1.0e-12_dp*meta(7)) then
+               call bad(error, path, "slice "//int_str(j)//": mu = "//format_real(meta(7))// &
+                  & " is not on the grid")
+               return
+            end if
+            call check_table(path, "slice "//int_str(j)//": ", s, error)
+            if (allocated(error)) return
+            call table_prepare(s)
+         end associate
+      end do
+      if (pos /= len(bytes) - 3) then
+         call bad(error, path, "file size does not match its slices")
+         return
+      end if
+      call check_common_cutoff(path, u, error)
+      if (allocated(error)) return
+      if (.not. universal_nodes_shared(u)) then
+         call bad(error, path, "slices do not share their nodes or are not in log space")
+         return
+      end if
+      call universal_prepare(u)
+      call move_universal(u, table)
+   end subroutine parse_universal_binary
+
+   !> Magic, version, byte order, minimum size and checksum of a binary file.
+   subroutine check_binary_frame(path, bytes, header_bytes, error)
+      character(len=*), intent(in) :: path, bytes
+      integer, intent(in) :: header_bytes
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: pos
+      integer(int32) :: version, bom, stored
+      if (len(bytes) < header_bytes + 4) then
+         call bad(error, path, "truncated: "//int_str(len(bytes))//" bytes, header needs "// &
+            & int_str(header_bytes + 4))
+         return
+      end if
+      pos = 9
+      version = get_i32(bytes, pos)
+      bom = get_i32(bytes, pos)
+      if (bom /= byte_order_mark) then
+         call bad(error, path, "byte order mark "//int_str(int(bom))//": written on a "// &
+            & "machine of the other endianness, or corrupted")
+         return
+      end if
+      if (version /= binary_version) then
+         call bad(error, path, "format version "//int_str(int(version))// &
+            & " is not supported (this egw reads version "//int_str(int(binary_version))//")")
+         return
+      end if
+      pos = len(bytes) - 3
+      stored = get_i32(bytes, pos)
+      if (stored /= checksum_i32(fnv1a32(bytes(1:len(bytes) - 4)))) then
+         call bad(error, path, "checksum mismatch: file is corrupted or truncated")
+         return
+      end if
+   end subroutine check_binary_frame
+
+   !> FNV-1a 32-bit hash of a byte string (offset basis 2166136261, prime 16777619),
+   !> returned in the low 32 bits of an int64. Products stay below 2^57: no overflow.
+   pure function fnv1a32(bytes) result(h)
+      character(len=*), intent(in) :: bytes
+      integer(int64) :: h
+      integer :: i
+      integer(int64), parameter :: mask = int(z'FFFFFFFF', int64)
+      h = 2166136261_int64
+      do i = 1, len(bytes)
+         h = ieor(h, int(ichar(bytes(i:i)), int64))
+         h = iand(h*16777619_int64, mask)
+      end do
+   end function fnv1a32
+
+   !> The unsigned 32-bit checksum as the int32 with the same bits.
+   pure integer(int32) function checksum_i32(h)
+      integer(int64), intent(in) :: h
+      if (h >= 2147483648_int64) then
+         checksum_i32 = int(h - 4294967296_int64, int32)
+      else
+         checksum_i32 = int(h, int32)
+      end if
+   end function checksum_i32
+
+   ! =========================================================== LAMMPS
+
+   !> LAMMPS pair_style table file, one section per table (particle-type pair), keywords
+   !> EGW_1, EGW_2, ... Distances r = R1 + R2 - delta, uniform in r (N points R rlo rhi),
+   !> from the largest overlap (rlo) to the cut-off (rhi); energy = work of the force from
+   !> the cut-off, force = -dE/dr = P. N is doubled (from 500) until linear interpolation
+   !> between the points reproduces the table to rel_tol * P_ref.
+   subroutine write_lammps(tables, path, error)
+      type(force_table), intent(in) :: tables(:)
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: unit, s, i, n
+      character(len=:), allocatable :: tmp
+      real(dp) :: rsum, rlo, rhi, r, d, f, k, e
+      character(len=:), allocatable :: note
+
+      do s = 1, size(tables)
+         if (.not. allocated(tables(s)%delta)) then
+            call fatal_error(error, egw_invalid_argument, "tables("//int_str(s)// &
+               & "): not built or read")
+            return
+         end if
+      end do
+      call open_temporary(path, unit, tmp, error)
+      if (allocated(error)) return
+      write (unit, '(a)') "# UNITS: consistent with the egw parameters (force = "// &
+         & "modulus*length^2, energy = force*length)"
+      write (unit, '(a)') "# egw "//egw_version_string//" contact force tables for "// &
+         & "pair_style table (linear or spline, N >= the section's N)"
+      do s = 1, size(tables)
+         associate (t => tables(s))
+            if (t%radius_sum > 0.0_dp) then
+               rsum = t%radius_sum
+               note = "R1 + R2 = "//fmt(rsum)//" (particle radii)"
+            else
+               rsum = 4*t%params%radius
+               note = "R1 = R2 = 2R = "//fmt(2*t%params%radius)//": built from the "// &
+                  & "equivalent radius R alone, distances are for two equal spheres"
+            end if
+            rlo = rsum - t%delta_max
+            rhi = rsum - t%cutoff
+            n = lammps_points(t, rlo, rhi)
+            write (unit, '(a)') ""
+            write (unit, '(a)') "# section EGW_"//int_str(s)//": model "// &
+               & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
+               & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
+               & fmt(t%params%mu)//", psi = "//fmt(t%params%psi)//", K = "// &
+               & fmt(t%params%hardness_coeff)//", rho_p = "//fmt(t%params%plastic_ratio)
+            write (unit, '(a)') "# r = R1 + R2 - delta with "//note
+            write (unit, '(a)') "# force = -dE/dr = P(delta) >= 0 (repulsive), zero for r > "// &
+               & fmt(rhi)//" (pair cutoff); energy = int of P from the cut-off"
+            write (unit, '(a)') "# rel_tol = "//fmt(t%rel_tol)//" relative to P_ref = "// &
+               & fmt(t%reference_force)
+            if (rlo <= 0.0_dp) then
+               call discard_temporary(unit, tmp)
+               call fatal_error(error, egw_invalid_argument, "delta_max = "// &
+                  & format_real(t%delta_max)//": r = R1 + R2 - delta_max must be > 0")
+               return
+            end if
+            write (unit, '(a)') "EGW_"//int_str(s)
+            write (unit, '(a)') "N "//int_str(n)//" R "//fmt(rlo)//" "//fmt(rhi)
+            write (unit, '(a)') ""
+            do i = 1, n
+               r = rlo + (rhi - rlo)*(i - 1)/(n - 1)
+               d = rsum - r
+               if (i == n) d = t%cutoff
+               call table_eval(t, d, f, k)
+               e = table_energy(t, d)
+               if (.not. row_ok([r, e, f])) then
+                  call discard_temporary(unit, tmp)
+                  call fatal_error(error, egw_invalid_argument, "tables("//int_str(s)// &
+                     & "): not finite at delta = "//format_real(d)//"; nothing written")
+                  return
+               end if
+               write (unit, '(a)') int_str(i)//" "//fmt(r)//" "//fmt(e)//" "//fmt(f)
+            end do
+         end associate
+      end do
+      call commit_temporary(unit, tmp, path, error)
+   end subroutine write_lammps
+
+   !> Points of a LAMMPS section: doubled until the midpoint linear-interpolation error
+   !> of the force is <= rel_tol * P_ref everywhere (or the point limit is reached).
+   function lammps_points(t, rlo, rhi) result(n)
+      type(force_table), intent(in) :: t
+      real(dp), intent(in) :: rlo, rhi
+      integer :: n, i
+      real(dp) :: rsum, h, f0, f1, fm, k, worst
+      rsum = rlo + t%delta_max
+      n = 500
+      do
+         h = (rhi - rlo)/(n - 1)
+         worst = 0
+         call table_eval(t, rsum - rlo, f0, k)
+         do i = 1, n - 1
+            call table_eval(t, rsum - (rlo + i*h), f1, k)
+            call table_eval(t, rsum - (rlo + (i - 0.5_dp)*h), fm, k)
+            worst = max(worst, abs(0.5_dp*(f0 + f1) - fm))
+            f0 = f1
+         end do
+         if (worst <= t%rel_tol*t%reference_force .or. 2*n > max_export_points) exit
+         n = 2*n - 1
+      end do
+   end function lammps_points
+
+   ! =========================================================== CalculiX
+
+   !> Node-to-surface sphere contact: force per node against overclosure = overlap delta,
+   !> first pair (0, delta_c); points placed so that the linear interpolation CalculiX
+   !> applies reproduces the table to rel_tol of the local force.
+   subroutine write_calculix_sphere(t, path, error)
+      type(force_table), intent(in), target :: t
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: x(:), y(:)
+      integer :: unit
+      character(len=:), allocatable :: tmp
+      type(sampler) :: smp
+      smp%table => t
+      call resample_linear(smp, t%cutoff, t%delta_max, t%rel_tol, x, y)
+      if (smp%stat /= egw_ok) then
+         call fatal_error(error, smp%stat, "table: force not finite; nothing written")
+         return
+      end if
+      y(1) = 0.0_dp
+      call open_temporary(path, unit, tmp, error)
+      if (allocated(error)) return
+      write (unit, '(a)') "** egw "//egw_version_string//": rough-sphere contact, model "// &
+         & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
+         & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
+         & fmt(t%params%mu)
+      write (unit, '(a)') "** node-to-surface contact: FORCE per node against overclosure"// &
+         & " (= overlap delta); force 0 below overclosure "//fmt(t%cutoff)
+      write (unit, '(a)') "** linear interpolation between pairs within rel_tol = "// &
+         & fmt(t%rel_tol)
+      call write_pairs(unit, tmp, x, y, error)
+      if (allocated(error)) return
+      call commit_temporary(unit, tmp, path, error)
+   end subroutine write_calculix_sphere
+
+   !> Rough flat: nominal pressure p_G(d) (egw_asperity) against overclosure = -d, from
+   !> the separation d_c where p_G has fallen to rel_tol * p_G(0) (first pair at zero
+   !> pressure) to overclosure_max; linear interpolation error <= rel_tol of the local
+   !> pressure.
+   subroutine write_calculix_flat(params, overclosure_max, rel_tol, path, error)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: overclosure_max, rel_tol
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: x(:), y(:)
+      real(dp) :: p0, dp0, pc, d_c, step
+      integer :: unit, it
+      character(len=:), allocatable :: tmp
+      type(sampler) :: smp
+
+      call validate_params(params, error)
+      if (allocated(error)) return
+      if (.not. params%sigma > 0.0_dp) then
+         call fatal_error(error, egw_invalid_parameter, "sigma = "//format_real(params%sigma)// &
+            & ": a rough flat needs sigma > 0")
+         return
+      end if
+      if (.not. (rel_tol >= 1.0e-12_dp .and. rel_tol <= 0.1_dp)) then
+         call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
+            & ": must lie in [1e-12, 0.1]")
+         return
+      end if
+      if (.not. (ieee_is_finite(overclosure_max) .and. overclosure_max > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "overclosure_max = "// &
+            & format_real(overclosure_max)//": must be finite and > 0")
+         return
+      end if
+      call flat_pressure(params, 0.0_dp, p0, dp0, error)
+      if (allocated(error)) return
+      ! separation where p_G falls below rel_tol * p_G(0): step out by sigma
+      d_c = 0.0_dp
+      step = params%sigma
+      do it = 1, 200
+         d_c = d_c + step
+         call flat_pressure(params, d_c, pc, dp0, error)
+         if (allocated(error)) return
+         if (pc <= rel_tol*p0) exit
+      end do
+      smp%params = params
+      smp%flat = .true.
+      call resample_linear(smp, -d_c, overclosure_max, rel_tol, x, y)
+      if (smp%stat /= egw_ok) then
+         call fatal_error(error, smp%stat, "flat_pressure failed while sampling p_G")
+         return
+      end if
+      y(1) = 0.0_dp
+      call open_temporary(path, unit, tmp, error)
+      if (allocated(error)) return
+      write (unit, '(a)') "** egw "//egw_version_string//": rough flat, GW nominal "// &
+         & "pressure p_G (DESIGN.md section 3), model "//model_name(params%model)// &
+         & ", E = "//fmt(params%modulus)//", sigma = "//fmt(params%sigma)//", mu = "// &
+         & fmt(params%mu)//", R = "//fmt(params%radius)//", psi = "//fmt(params%psi)
+      write (unit, '(a)') "** PRESSURE against overclosure = -separation of the summit "// &
+         & "base plane; pressure 0 for overclosure < "//fmt(-d_c)
+      write (unit, '(a)') "** linear interpolation between pairs within rel_tol = "// &
+         & fmt(rel_tol)
+      call write_pairs(unit, tmp, x, y, error)
+      if (allocated(error)) return
+      call commit_temporary(unit, tmp, path, error)
+   end subroutine write_calculix_flat
+
+   subroutine write_pairs(unit, tmp, x, y, error)
+      integer, intent(in) :: unit
+      character(len=*), intent(in) :: tmp
+      real(dp), intent(in) :: x(:), y(:)
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i
+      write (unit, '(a)') "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR"
+      do i = 1, size(x)
+         if (.not. row_ok([x(i), y(i)])) then
+            call discard_temporary(unit, tmp)
+            call fatal_error(error, egw_invalid_argument, "value at overclosure "// &
+               & format_real(x(i))//" is not finite; nothing written")
+            return
+         end if
+         write (unit, '(a)') fmt(y(i))//", "//fmt(x(i))
+      end do
+   end subroutine write_pairs
+
+   !> Points on [a, b] such that linear interpolation of g has midpoint error
+   !> <= rel_tol * |g(mid)| (bisection; at most max_export_points points).
+   subroutine resample_linear(g, a, b, rel_tol, x, y)
+      type(sampler), intent(inout) :: g
+      real(dp), intent(in) :: a, b, rel_tol
+      real(dp), allocatable, intent(out) :: x(:), y(:)
+      real(dp), allocatable :: sx(:), sy(:)
+      integer :: n, top
+      real(dp) :: xl, yl, xr, yr, xm, ym
+      ! depth-first bisection with an explicit stack of right ends
+      allocate (x(1024), y(1024), sx(200), sy(200))
+      n = 1
+      x(1) = a
+      y(1) = sample(g, a)
+      top = 1
+      sx(1) = b
+      sy(1) = sample(g, b)
+      do while (top > 0)
+         xl = x(n); yl = y(n)
+         xr = sx(top); yr = sy(top)
+         xm = 0.5_dp*(xl + xr)
+         ym = sample(g, xm)
+         if (.not. ieee_is_finite(ym)) then
+            if (g%stat == egw_ok) g%stat = egw_invalid_argument
+            exit
+         end if
+         if (abs(0.5_dp*(yl + yr) - ym) > rel_tol*abs(ym) .and. top < size(sx) .and. &
+            & n < max_export_points .and. xm > xl .and. xm < xr) then
+            top = top + 1
+            sx(top) = xm
+            sy(top) = ym
+         else
+            if (n == size(x)) then
+               x = [x, x]
+               y = [y, y]
+            end if
+            n = n + 1
+            x(n) = xr
+            y(n) = yr
+            top = top - 1
+         end if
+      end do
+      x = x(1:n)
+      y = y(1:n)
+   end subroutine resample_linear
+
+   !> Value of the sampled curve at x (records a failure of flat_pressure in g%stat).
+   real(dp) function sample(g, x)
+      type(sampler), intent(inout) :: g
+      real(dp), intent(in) :: x
+      real(dp) :: k
+      type(egw_error), allocatable :: e
+      if (g%flat) then
+         call flat_pressure(g%params, -x, sample, k, e)
+         if (allocated(e) .and. g%stat == egw_ok) g%stat = e%stat
+      else
+         call table_eval(g%table, x, sample, k)
+      end if
+   end function sample
+
+   ! =========================================================== checks and helpers
+
+   !> Everything a reader must verify before handing over a table.
+   subroutine check_table(path, where, t, error)
+      character(len=*), intent(in) :: path, where
+      type(force_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: n, i
+      n = size(t%delta)
+      if (n < 2) then
+         call bad(error, path, where//"fewer than 2 nodes")
+         return
+      end if
+      do i = 1, n
+         if (.not. row_ok([t%delta(i), t%force(i), t%stiffness(i), t%energy(i), &
+            & t%contact_radius(i)])) then
+            call bad(error, path, where//"node "//int_str(i)//" is not finite")
+            return
+         end if
+         if (t%force(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative force")
+            return
+         end if
+      end do
+      if (any(t%delta(2:n) <= t%delta(1:n - 1))) then
+         call bad(error, path, where//"delta is not strictly increasing")
+         return
+      end if
+      if (t%n_log < 0 .or. t%n_log > n - 1) then
+         call bad(error, path, where//"n_log = "//int_str(t%n_log)//" out of range")
+         return
+      end if
+      if (t%n_log > 0) then
+         if (any(t%force(1:t%n_log + 1) <= 0.0_dp)) then
+            call bad(error, path, where//"log-space interval with a zero force")
+            return
+         end if
+      end if
+      if (t%cutoff /= t%delta(1) .or. t%delta_max /= t%delta(n)) then
+         call bad(error, path, where//"cutoff/delta_max disagree with the nodes")
+         return
+      end if
+   end subroutine check_table
+
+   subroutine check_universal_header(path, u, error)
+      character(len=*), intent(in) :: path
+      type(universal_table), intent(in) :: u
+      type(egw_error), allocatable, intent(out) :: error
+      if (u%n_mu < 4 .or. u%n_mu > 100000) then
+         call bad(error, path, "n_mu = "//int_str(u%n_mu)//": need at least 4")
+      else if (.not. (ieee_is_finite(u%mu_min) .and. u%mu_min > 0.0_dp .and. &
+         & ieee_is_finite(u%mu_max) .and. u%mu_max > u%mu_min)) then
+         call bad(error, path, "mu range ["//format_real(u%mu_min)//", "// &
+            & format_real(u%mu_max)//"] invalid")
+      else
+         call validate_params(universal_slice_params(u%model, u%psi, u%hardness_coeff, &
+            & u%plastic_ratio, u%mu_min), error)
+         if (allocated(error)) call bad(error, path, "stored parameters invalid: "// &
+            & error%message)
+      end if
+   end subroutine check_universal_header
+
+   subroutine check_common_cutoff(path, u, error)
+      character(len=*), intent(in) :: path
+      type(universal_table), intent(in) :: u
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: j
+      do j = 1, u%n_mu
+         if (u%slices(j)%cutoff /= u%x_cut .or. u%slices(j)%delta_max /= u%x_max) then
+            call bad(error, path, "slice "//int_str(j)//": range differs from x_cut, x_max")
+            return
+         end if
+      end do
+   end subroutine check_common_cutoff
+
+   pure real(dp) function slice_mu(u, j)
+      type(universal_table), intent(in) :: u
+      integer, intent(in) :: j
+      if (j == 1) then
+         slice_mu = u%mu_min
+      else if (j == u%n_mu) then
+         slice_mu = u%mu_max
+      else
+         slice_mu = exp(log(u%mu_min) + (log(u%mu_max) - log(u%mu_min))*(j - 1)/(u%n_mu - 1))
+      end if
+   end function slice_mu
+
+   subroutine set_nodes(t, rows)
+      type(force_table), intent(inout) :: t
+      real(dp), intent(in) :: rows(:, :)
+      t%delta = rows(1, :)
+      t%force = rows(2, :)
+      t%stiffness = rows(3, :)
+      t%energy = rows(4, :)
+      t%contact_radius = rows(5, :)
+   end subroutine set_nodes
+
+   pure subroutine set_meta(t, meta)
+      type(force_table), intent(inout) :: t
+      real(dp), intent(in) :: meta(7)
+      t%rel_tol = meta(1)
+      t%cutoff = meta(2)
+      t%delta_max = meta(3)
+      t%reference_force = meta(4)
+      t%max_force_error = meta(5)
+      t%max_stiffness_error = meta(6)
+      t%radius_sum = meta(7)
+   end subroutine set_meta
+
+   subroutine get_params(path, dict, p, error)
+      character(len=*), intent(in) :: path
+      type(header_dict), intent(in) :: dict
+      type(contact_params), intent(out) :: p
+      type(egw_error), allocatable, intent(out) :: error
+      call get_int(path, dict, "model", p%model, error)
+      if (.not. allocated(error)) call get_real(path, dict, "radius", p%radius, error)
+      if (.not. allocated(error)) call get_real(path, dict, "modulus", p%modulus, error)
+      if (.not. allocated(error)) call get_real(path, dict, "sigma", p%sigma, error)
+      if (.not. allocated(error)) call get_real(path, dict, "mu", p%mu, error)
+      if (.not. allocated(error)) call get_real(path, dict, "psi", p%psi, error)
+      if (.not. allocated(error)) call get_real(path, dict, "hardness_coeff", &
+         & p%hardness_coeff, error)
+      if (.not. allocated(error)) call get_real(path, dict, "plastic_ratio", &
+         & p%plastic_ratio, error)
+      if (allocated(error)) return
+      call validate_params(p, error)
+      if (allocated(error)) call bad(error, path, "stored parameters invalid: "//error%message)
+   end subroutine get_params
+
+   subroutine get_table_meta(path, dict, prefix, t, n, error)
+      character(len=*), intent(in) :: path, prefix
+      type(header_dict), intent(in) :: dict
+      type(force_table), intent(inout) :: t
+      integer, intent(out) :: n
+      type(egw_error), allocatable, intent(out) :: error
+      call get_real(path, dict, prefix//"rel_tol", t%rel_tol, error)
+      if (.not. allocated(error)) call get_real(path, dict, prefix//"cutoff", t%cutoff, error)
+      if (.not. allocated(error)) call get_real(path, dict, prefix//"delta_max", &
+         & t%delta_max, error)
+      if (.not. allocated(error)) call get_real(path, dict, prefix//"reference_force", &
+         & t%reference_force, error)
+      if (.not. allocated(error)) call get_real(path, dict, prefix//"max_force_error", &
+         & t%max_force_error, error)
+      if (.not. allocated(error)) call get_real(path, dict, prefix//"max_stiffness_error", &
+         & t%max_stiffness_error, error)
+      if (.not. allocated(error)) call get_real(path, dict, prefix//"radius_sum", &
+         & t%radius_sum, error)
+      if (.not. allocated(error)) call get_int(path, dict, prefix//"n_nodes", n, error)
+      if (.not. allocated(error)) call get_int(path, dict, prefix//"n_log", t%n_log, error)
+   end subroutine get_table_meta
+
+   subroutine get_real(path, dict, key, x, error)
+      character(len=*), intent(in) :: path, key
+      type(header_dict), intent(in) :: dict
+      real(dp), intent(out) :: x
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i, ios
+      i = dict_find(dict, key)
+      x = 0.0_dp
+      if (i == 0) then
+         call bad(error, path, "header key '"//key//"' missing")
+         return
+      end if
+      read (dict%values(i), *, iostat=ios) x
+      if (ios /= 0 .or. .not. ieee_is_finite(x)) then
+         call bad(error, path, "header key '"//key//"' = '"//trim(dict%values(i))// &
+            & "' is not a finite number")
+      end if
+   end subroutine get_real
+
+   subroutine get_int(path, dict, key, k, error)
+      character(len=*), intent(in) :: path, key
+      type(header_dict), intent(in) :: dict
+      integer, intent(out) :: k
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i, ios
+      i = dict_find(dict, key)
+      k = 0
+      if (i == 0) then
+         call bad(error, path, "header key '"//key//"' missing")
+         return
+      end if
+      read (dict%values(i), *, iostat=ios) k
+      if (ios /= 0) call bad(error, path, "header key '"//key//"' = '"// &
+         & trim(dict%values(i))//"' is not an integer")
+   end subroutine get_int
+
+   pure integer function dict_find(dict, key) result(i)
+      type(header_dict), intent(in) :: dict
+      character(len=*), intent(in) :: key
+      do i = 1, dict%n
+         if (trim(dict%keys(i)) == key) return
+      end do
+      i = 0
+   end function dict_find
+
+   pure subroutine dict_add(dict, key, value)
+      type(header_dict), intent(inout) :: dict
+      character(len=*), intent(in) :: key, value
+      character(len=64), allocatable :: k2(:)
+      character(len=256), allocatable :: v2(:)
+      if (dict%n == size(dict%keys)) then
+         allocate (k2(2*dict%n), v2(2*dict%n))
+         k2(1:dict%n) = dict%keys
+         v2(1:dict%n) = dict%values
+         call move_alloc(k2, dict%keys)
+         call move_alloc(v2, dict%values)
+      end if
+      dict%n = dict%n + 1
+      dict%keys(dict%n) = key
+      dict%values(dict%n) = value
+   end subroutine dict_add
+
+   pure subroutine grow(rows, idx, cap)
+      real(dp), allocatable, intent(inout) :: rows(:, :)
+      integer, allocatable, intent(inout) :: idx(:)
+      integer, intent(in) :: cap
+      real(dp), allocatable :: r2(:, :)
+      integer, allocatable :: i2(:)
+      allocate (r2(size(rows, 1), cap), i2(cap))
+      r2(:, 1:size(rows, 2)) = rows
+      i2(1:size(idx)) = idx
+      call move_alloc(r2, rows)
+      call move_alloc(i2, idx)
+   end subroutine grow
+
+   !> Whole file as bytes (stream access).
+   subroutine read_bytes(path, bytes, error)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: bytes
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: unit, ios
+      integer(int64) :: nbytes
+      character(len=256) :: msg
+      open (newunit=unit, file=path, status="old", action="read", form="unformatted", &
+         & access="stream", iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("// &
+            & trim(msg)//")")
+         return
+      end if
+      inquire (unit=unit, size=nbytes)
+      if (nbytes < 0 .or. nbytes > huge(1)) then
+         close (unit)
+         call fatal_error(error, egw_bad_file, "path = "//path//": size unknown or too large")
+         return
+      end if
+      allocate (character(len=int(nbytes)) :: bytes)
+      if (nbytes > 0) read (unit, iostat=ios) bytes
+      close (unit)
+      if (ios /= 0) call fatal_error(error, egw_io_error, "path = "//path//": read failed")
+   end subroutine read_bytes
+
+   subroutine move_table(from, to)
+      type(force_table), intent(inout) :: from
+      type(force_table), intent(out) :: to
+      to%params = from%params
+      to%rel_tol = from%rel_tol
+      to%cutoff = from%cutoff
+      to%delta_max = from%delta_max
+      to%reference_force = from%reference_force
+      to%max_force_error = from%max_force_error
+      to%max_stiffness_error = from%max_stiffness_error
+      to%radius_sum = from%radius_sum
+      to%n_log = from%n_log
+      to%n_bucket = from%n_bucket
+      to%bucket_scale = from%bucket_scale
+      to%bucket_origin = from%bucket_origin
+      to%sqrt_buckets = from%sqrt_buckets
+      call move_alloc(from%delta, to%delta)
+      call move_alloc(from%force, to%force)
+      call move_alloc(from%stiffness, to%stiffness)
+      call move_alloc(from%energy, to%energy)
+      call move_alloc(from%contact_radius, to%contact_radius)
+      call move_alloc(from%seg, to%seg)
+      call move_alloc(from%radius_slope, to%radius_slope)
+      call move_alloc(from%bucket, to%bucket)
+   end subroutine move_table
+
+   subroutine move_universal(from, to)
+      type(universal_table), intent(inout) :: from
+      type(universal_table), intent(out) :: to
+      to%model = from%model
+      to%psi = from%psi
+      to%hardness_coeff = from%hardness_coeff
+      to%plastic_ratio = from%plastic_ratio
+      to%rel_tol = from%rel_tol
+      to%x_cut = from%x_cut
+      to%x_max = from%x_max
+      to%mu_min = from%mu_min
+      to%mu_max = from%mu_max
+      to%n_mu = from%n_mu
+      to%max_mu_error = from%max_mu_error
+      to%log_mu_min = from%log_mu_min
+      to%inv_dlog_mu = from%inv_dlog_mu
+      call move_alloc(from%slices, to%slices)
+      call move_alloc(from%coef, to%coef)
+   end subroutine move_universal
+
+   pure subroutine put_i32(buf, pos, v)
+      character(len=*), intent(inout) :: buf
+      integer, intent(inout) :: pos
+      integer(int32), intent(in) :: v
+      buf(pos:pos + 3) = transfer(v, buf(pos:pos + 3))
+      pos = pos + 4
+   end subroutine put_i32
+
+   pure subroutine put_f64(buf, pos, v)
+      character(len=*), intent(inout) :: buf
+      integer, intent(inout) :: pos
+      real(dp), intent(in) :: v(:)
+      integer :: nb
+      nb = 8*size(v)
+      if (nb == 0) return
+      buf(pos:pos + nb - 1) = transfer(v, buf(pos:pos + nb - 1))
+      pos = pos + nb
+   end subroutine put_f64
+
+   integer(int32) function get_i32(buf, pos) result(v)
+      character(len=*), intent(in) :: buf
+      integer, intent(inout) :: pos
+      v = transfer(buf(pos:pos + 3), v)
+      pos = pos + 4
+   end function get_i32
+
+   pure subroutine get_f64(buf, pos, v)
+      character(len=*), intent(in) :: buf
+      integer, intent(inout) :: pos
+      real(dp), intent(out) :: v(:)
+      integer :: nb
+      nb = 8*size(v)
+      if (nb == 0) return
+      v = transfer(buf(pos:pos + nb - 1), v, size(v))
+      pos = pos + nb
+   end subroutine get_f64
+
+   subroutine bad(error, path, what)
+      type(egw_error), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: path, what
+      if (allocated(error)) deallocate (error)
+      call fatal_error(error, egw_bad_file, "path = "//path//": "//what)
+   end subroutine bad
+
+   subroutine kv(unit, key, x)
+      integer, intent(in) :: unit
+      character(len=*), intent(in) :: key
+      real(dp), intent(in) :: x
+      write (unit, '(a)') "# "//key//" = "//fmt(x)
+   end subroutine kv
+
+   pure logical function row_ok(v)
+      real(dp), intent(in) :: v(:)
+      row_ok = all(ieee_is_finite(v))
+   end function row_ok
+
+   !> 17 significant digits: every double reads back bit-for-bit.
+   pure function fmt(x) result(str)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=32) :: buf
+      write (buf, real_fmt) x
+      str = trim(adjustl(buf))
+   end function fmt
+
+   pure function csv_row(v) result(str)
+      real(dp), intent(in) :: v(:)
+      character(len=:), allocatable :: str
+      integer :: i
+      str = fmt(v(1))
+      do i = 2, size(v)
+         str = str//","//fmt(v(i))
+      end do
+   end function csv_row
+
+   pure logical function starts_with(str, prefix)
+      character(len=*), intent(in) :: str, prefix
+      starts_with = .false.
+      if (len(str) >= len(prefix)) starts_with = str(1:len(prefix)) == prefix
+   end function starts_with
+
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      str = trim(buf)
+   end function int_str
+
+end module egw_table_format

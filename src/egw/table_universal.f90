@@ -1,0 +1,327 @@
+!> The universal table: P/(E sqrt(R) sigma^(3/2)) depends only on x = delta/sigma and mu
+!> for the elastic models (and on psi, K, rho_p for EP-GW, fixed per table; DESIGN §5).
+!> It holds one 1-D table ("slice", built with R = E = sigma = 1) per mu on a grid uniform
+!> in ln mu, all with one common cut-off x_c, and interpolates ln p across mu with the
+!> 4-point Lagrange cubic in ln mu (exact where p is a power of mu, as in the far tail
+!> where p is proportional to mu, and where p does not depend on mu, as for Hertz).
+!> Error budget: the slices are built to rel_tol/2 in x; the mu grid is doubled until
+!> the whole interpolant agrees with solves at mid-grid mu (where the Lagrange error in mu
+!> peaks) to rel_tol.
+module egw_table_universal
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
+      & egw_out_of_range, fatal_error, format_real
+   use egw_params, only: contact_params, validate_params
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact
+   use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
+      & table_eval_log, table_interval
+   implicit none
+   private
+
+   public :: build_universal, universal_eval, universal_prepare, universal_slice_params, &
+      & universal_nodes_shared
+
+   !> At most this many mu nodes (a grid that needs more is not converging).
+   integer, parameter :: max_mu_nodes = 257
+   !> Check points in x per mu interval when testing the mu interpolation.
+   integer, parameter :: n_check_x = 16
+
+   !> Universal (dimensionless) table over x = delta/sigma and mu.
+   type, public :: universal_table
+      integer :: model = 0
+      real(dp) :: psi = 0.0_dp, hardness_coeff = 0.6_dp, plastic_ratio = 54.0_dp
+      real(dp) :: rel_tol = 0.0_dp
+      real(dp) :: x_cut = 0.0_dp          !< common cut-off in x: p = 0 below
+      real(dp) :: x_max = 0.0_dp          !< upper end in x
+      real(dp) :: mu_min = 0.0_dp, mu_max = 0.0_dp
+      integer :: n_mu = 0                  !< mu_j = mu_min (mu_max/mu_min)^((j-1)/(n_mu-1))
+      real(dp) :: max_mu_error = 0.0_dp   !< max rel. error at the mid-grid check solves
+      real(dp) :: log_mu_min = 0.0_dp, inv_dlog_mu = 0.0_dp
+      type(force_table), allocatable :: slices(:)
+      !> (0:3, n_mu, n-1): cubic of ln p in t = x - x_i for every slice and interval,
+      !> the 4 slices of a stencil contiguous (derived by universal_prepare)
+      real(dp), allocatable :: coef(:, :, :)
+   end type universal_table
+
+contains
+
+   !> Build the universal table of a model over mu in [mu_min, mu_max] (mu_max > mu_min)
+   !> and x = delta/sigma up to x_max, starting where the force has fallen to rel_tol times
+   !> its reference (see egw_table) for every grid mu, or at x_min if that is lower.
+   subroutine build_universal(model, psi, hardness_coeff, plastic_ratio, options, mu_min, &
+      & mu_max, x_min, x_max, rel_tol, table, error)
+      integer, intent(in) :: model
+      real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: mu_min, mu_max, x_min, x_max, rel_tol
+      type(universal_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      type(universal_table) :: u
+      type(solver_options) :: opts
+      type(contact_params), allocatable :: params(:)
+      real(dp), allocatable :: xc(:), mus(:), xs(:), pref(:)
+      real(dp) :: x_cut, worst
+      integer :: j, n0
+
+      if (.not. (ieee_is_finite(mu_min) .and. mu_min > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "mu_min = "//format_real(mu_min)// &
+            & ": must be finite and > 0")
+         return
+      end if
+      if (.not. (ieee_is_finite(mu_max) .and. mu_max > mu_min)) then
+         call fatal_error(error, egw_invalid_argument, "mu_max = "//format_real(mu_max)// &
+            & ": must be finite and > mu_min")
+         return
+      end if
+      call validate_params(universal_slice_params(model, psi, hardness_coeff, &
+         & plastic_ratio, mu_min), error)
+      if (allocated(error)) return
+      opts = options
+      opts%n_threads = 1
+      opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
+
+      u%model = model
+      u%psi = psi
+      u%hardness_coeff = hardness_coeff
+      u%plastic_ratio = plastic_ratio
+      u%rel_tol = rel_tol
+      u%x_max = x_max
+      u%mu_min = mu_min
+      u%mu_max = mu_max
+      ! 4 nodes per decade to start (and at least 4 for the cubic stencil)
+      n0 = max(4, ceiling(4*log10(mu_max/mu_min)) + 1)
+      mus = grid(mu_min, mu_max, n0)
+      ! common cut-off: the lowest of the grid's own cut-offs
+      allocate (xc(n0), pref(n0))
+      do j = 1, n0
+         call table_find_cutoff(universal_slice_params(model, psi, hardness_coeff, &
+            & plastic_ratio, mus(j)), opts, x_min, x_max, rel_tol, xc(j), pref(j), error)
+         if (allocated(error)) return
+      end do
+      x_cut = minval(xc)
+      u%x_cut = x_cut
+
+      u%n_mu = n0
+      do
+         ! all slices on one set of x nodes (one lookup serves all mu at evaluation)
+         if (allocated(u%slices)) deallocate (u%slices)
+         allocate (u%slices(u%n_mu))
+         params = [(universal_slice_params(model, psi, hardness_coeff, plastic_ratio, &
+            & mus(j)), j=1, u%n_mu)]
+         call build_tables_shared(params, opts, x_cut, x_max, 0.5_dp*rel_tol, .true., &
+            & u%slices, error)
+         if (allocated(error)) return
+         call universal_prepare(u)
+         ! check the mu interpolation at mid-grid mu against solves
+         xs = check_points(x_cut, x_max, u%slices(1)%delta)
+         call mid_grid_error(u, opts, xs, worst, error)
+         if (allocated(error)) return
+         u%max_mu_error = worst
+         if (worst <= rel_tol) exit
+         if (2*u%n_mu - 1 > max_mu_nodes) then
+            call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
+               & ": mu interpolation error "//format_real(worst)//" with "// &
+               & "the maximum number of mu nodes")
+            return
+         end if
+         ! rebuild on the doubled grid (shared nodes must be re-chosen for all slices);
+         ! the total cost stays below twice the final build
+         u%n_mu = 2*u%n_mu - 1
+         mus = grid(mu_min, mu_max, u%n_mu)
+      end do
+      call move_universal(u, table)
+   end subroutine build_universal
+
+   !> Parameters of the slice at mu (R = E = sigma = 1, so P = p, delta = x).
+   pure function universal_slice_params(model, psi, hardness_coeff, plastic_ratio, mu) &
+      & result(params)
+      integer, intent(in) :: model
+      real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio, mu
+      type(contact_params) :: params
+      params = contact_params(model=model, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
+         & mu=mu, psi=psi, hardness_coeff=hardness_coeff, plastic_ratio=plastic_ratio)
+   end function universal_slice_params
+
+   !> Derived evaluation data (after build or read): mu lookup constants and the
+   !> slices' log-space cubics gathered per interval. Needs universal_nodes_shared(u).
+   pure subroutine universal_prepare(u)
+      type(universal_table), intent(inout) :: u
+      integer :: j, n
+      u%log_mu_min = log(u%mu_min)
+      u%inv_dlog_mu = (u%n_mu - 1)/(log(u%mu_max) - u%log_mu_min)
+      n = size(u%slices(1)%delta)
+      if (allocated(u%coef)) deallocate (u%coef)
+      allocate (u%coef(0:3, u%n_mu, n - 1))
+      do j = 1, u%n_mu
+         u%coef(:, j, :) = u%slices(j)%seg(1:4, 1:n - 1)
+      end do
+   end subroutine universal_prepare
+
+   !> Force and stiffness of a contact (R, E, sigma > 0, mu) at overlap delta:
+   !> P = E sqrt(R) sigma^1.5 p(delta/sigma, mu), K = E sqrt(R) sigma^0.5 dp/dx.
+   !> stat: 0; egw_out_of_range for mu outside [mu_min, mu_max] (force, stiffness 0)
+   !> or x above x_max (values continued linearly per slice, as in the 1-D table).
+   !> Exactly 0 below the cut-off. No allocation; thread-safe.
+   pure subroutine universal_eval(u, radius, modulus, sigma, mu, delta, force, stiffness, stat)
+      type(universal_table), intent(in) :: u
+      real(dp), intent(in) :: radius, modulus, sigma, mu, delta
+      real(dp), intent(out) :: force, stiffness
+      integer, intent(out) :: stat
+      real(dp) :: x, s, t, w(0:3), lp, dlp, l, dl, scale, c(0:3)
+      integer :: j0, m, i
+
+      force = 0.0_dp
+      stiffness = 0.0_dp
+      stat = 0
+      ! 1e-12: mu at the ends of the range after a round trip through ln
+      if (.not. (mu >= u%mu_min*(1 - 1.0e-12_dp) .and. mu <= u%mu_max*(1 + 1.0e-12_dp))) then
+         stat = egw_out_of_range
+         return
+      end if
+      x = delta/sigma
+      if (.not. x > u%x_cut) return
+      if (x > u%x_max) stat = egw_out_of_range
+      s = (log(mu) - u%log_mu_min)*u%inv_dlog_mu
+      j0 = min(max(int(s) - 1, 0), u%n_mu - 4)
+      t = s - j0
+      w(0) = -(t - 1)*(t - 2)*(t - 3)/6
+      w(1) = t*(t - 2)*(t - 3)/2
+      w(2) = -t*(t - 1)*(t - 3)/2
+      w(3) = t*(t - 1)*(t - 2)/6
+      if (x < u%x_max) then
+         ! one lookup for all slices (shared nodes), then one cubic of the combination
+         i = table_interval(u%slices(1), x)
+         t = x - u%slices(1)%seg(0, i)
+         c = w(0)*u%coef(:, j0 + 1, i) + w(1)*u%coef(:, j0 + 2, i) + &
+            & w(2)*u%coef(:, j0 + 3, i) + w(3)*u%coef(:, j0 + 4, i)
+         lp = c(0) + t*(c(1) + t*(c(2) + t*c(3)))
+         dlp = c(1) + t*(2*c(2) + 3*t*c(3))
+      else
+         lp = 0.0_dp
+         dlp = 0.0_dp
+         do m = 0, 3
+            call table_eval_log(u%slices(j0 + m + 1), x, l, dl)
+            lp = lp + w(m)*l
+            dlp = dlp + w(m)*dl
+         end do
+      end if
+      scale = modulus*sqrt(radius)*sigma*sqrt(sigma)
+      force = scale*exp(lp)
+      stiffness = force*dlp/sigma
+   end subroutine universal_eval
+
+   !> True when every slice interpolates ln p on the nodes of the first (as the builder
+   !> makes them; readers check it before universal_prepare).
+   pure logical function universal_nodes_shared(u)
+      type(universal_table), intent(in) :: u
+      integer :: j
+      universal_nodes_shared = .false.
+      do j = 1, u%n_mu
+         if (size(u%slices(j)%delta) /= size(u%slices(1)%delta)) return
+         if (any(u%slices(j)%delta /= u%slices(1)%delta)) return
+         if (u%slices(j)%n_log /= size(u%slices(j)%delta) - 1) return
+      end do
+      universal_nodes_shared = .true.
+   end function universal_nodes_shared
+
+   ! ------------------------------------------------------------------ internals
+
+   pure function grid(mu_min, mu_max, n) result(mus)
+      real(dp), intent(in) :: mu_min, mu_max
+      integer, intent(in) :: n
+      real(dp) :: mus(n)
+      integer :: j
+      do j = 1, n
+         mus(j) = exp(log(mu_min) + (log(mu_max) - log(mu_min))*(j - 1)/(n - 1))
+      end do
+      mus(1) = mu_min
+      mus(n) = mu_max
+   end function grid
+
+   !> x check points: the midpoints of every k-th interval of a slice's nodes, so that
+   !> they sample the tail, the contact onset and the Hertz range as densely as the
+   !> x-table itself needs.
+   pure function check_points(x_cut, x_max, nodes) result(xs)
+      real(dp), intent(in) :: x_cut, x_max
+      real(dp), intent(in) :: nodes(:)
+      real(dp), allocatable :: xs(:)
+      integer :: n, stride, i
+      n = size(nodes)
+      stride = max(1, (n - 1)/n_check_x)
+      xs = [(0.5_dp*(nodes(i) + nodes(i + 1)), i=1, n - 1, stride)]
+      xs = pack(xs, xs > x_cut .and. xs < x_max)
+   end function check_points
+
+   !> Max relative error of the mu interpolation at the mid-grid mu of every interval.
+   subroutine mid_grid_error(u, opts, xs, worst, error)
+      type(universal_table), intent(in) :: u
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: xs(:)
+      real(dp), intent(out) :: worst
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: n, nx, idx, jm, ix
+      real(dp), allocatable :: err(:)
+      integer, allocatable :: stat(:)
+      nx = size(xs)
+      n = (u%n_mu - 1)*nx
+      allocate (err(n), stat(n))
+      !$omp parallel do schedule(dynamic) private(jm, ix)
+      do idx = 1, n
+         jm = (idx - 1)/nx + 1
+         ix = idx - (jm - 1)*nx
+         call one_check(u, opts, jm, xs(ix), err(idx), stat(idx))
+      end do
+      !$omp end parallel do
+      worst = 0.0_dp
+      if (n > 0) worst = maxval(err)
+      if (any(stat /= 0)) then
+         call fatal_error(error, stat(findloc(stat /= 0, .true., dim=1)), &
+            & "mu check solve failed while building the universal table")
+      end if
+   end subroutine mid_grid_error
+
+   subroutine one_check(u, opts, jm, x, err, stat)
+      type(universal_table), intent(in) :: u
+      type(solver_options), intent(in) :: opts
+      integer, intent(in) :: jm
+      real(dp), intent(in) :: x
+      real(dp), intent(out) :: err
+      integer, intent(out) :: stat
+      type(egw_error), allocatable :: e
+      type(solve_result) :: res
+      real(dp) :: mu, f, k
+      integer :: st
+      mu = exp(u%log_mu_min + (jm - 0.5_dp)/u%inv_dlog_mu)
+      call solve_contact(universal_slice_params(u%model, u%psi, u%hardness_coeff, &
+         & u%plastic_ratio, mu), opts, x, res, e)
+      err = 0.0_dp
+      stat = 0
+      if (allocated(e)) then
+         stat = e%stat
+         return
+      end if
+      call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, mu, x, f, k, st)
+      if (res%force > 0.0_dp) err = abs(f/res%force - 1)
+   end subroutine one_check
+
+   subroutine move_universal(from, to)
+      type(universal_table), intent(inout) :: from
+      type(universal_table), intent(out) :: to
+      to%model = from%model
+      to%psi = from%psi
+      to%hardness_coeff = from%hardness_coeff
+      to%plastic_ratio = from%plastic_ratio
+      to%rel_tol = from%rel_tol
+      to%x_cut = from%x_cut
+      to%x_max = from%x_max
+      to%mu_min = from%mu_min
+      to%mu_max = from%mu_max
+      to%n_mu = from%n_mu
+      to%max_mu_error = from%max_mu_error
+      call move_alloc(from%slices, to%slices)
+      call move_alloc(from%coef, to%coef)
+      call universal_prepare(to)
+   end subroutine move_universal
+
+end module egw_table_universal

@@ -1,0 +1,342 @@
+/* C tests of the table API of include/egw.h: build, evaluate, write, read,
+ * free, universal tables, with good and bad input. Each egw_capi_test_table_* returns
+ * the number of failed checks and prints why; test/test_capi_table.f90 runs them as a
+ * test-drive suite. Exact references: the Hertz closed form, written out here. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "egw.h"
+
+static int failures;
+#define CHECK(cond) do { if (!(cond)) { failures++; \
+  printf("    C check failed at %s:%d: %s\n", __FILE__, __LINE__, #cond); } } while (0)
+
+static double p_hertz(double e, double r, double d) {
+  return d > 0.0 ? 4.0 / 3.0 * e * sqrt(r) * pow(d, 1.5) : 0.0;
+}
+static int last_error_names(const char *name) {
+  char buf[512];
+  if (egw_last_error(buf, (int)sizeof buf) != EGW_OK) return 0;
+  return strncmp(buf, name, strlen(name)) == 0;
+}
+static egw_params hertz_params(void) {
+  egw_params p;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_HERTZ; p.radius = 0.5; p.modulus = 2.0;
+  return p;
+}
+
+/* Build and evaluate: the table's documented accuracy is rel_tol at check points;
+ * between them 1.5 rel_tol (the Hermite error kernel peaks at the checked midpoints;
+ * 1.5 allows the fourth derivative to vary across an interval). */
+int egw_capi_test_table_build_eval(void) {
+  egw_params p = hertz_params();
+  egw_table t = NULL;
+  egw_table_info info;
+  double f = -1.0, k = -1.0, w = -1.0, a = -1.0;
+  const double tol = 1e-6;
+  failures = 0;
+  CHECK(egw_table_build(&p, NULL, 0.0, 0.01, tol, &t) == EGW_OK && t != NULL);
+  if (t == NULL) return failures;
+  CHECK(egw_table_get_info(t, &info) == EGW_OK);
+  CHECK(info.model == EGW_MODEL_HERTZ && info.n_nodes > 10 && info.delta_max == 0.01);
+  CHECK(info.max_force_error <= tol && info.rel_tol == tol);
+  /* P_ref = P(delta_max) for Hertz; tol P_ref / 2 <= P(cutoff) <= tol P_ref */
+  CHECK(fabs(info.reference_force - p_hertz(2.0, 0.5, 0.01)) <= 1e-15 * info.reference_force);
+  CHECK(p_hertz(2.0, 0.5, info.cutoff) <= tol * info.reference_force * (1 + 1e-12));
+  for (int i = 1; i < 200; i++) {
+    double d = info.cutoff + (0.01 - info.cutoff) * pow(i / 200.0, 2);
+    CHECK(egw_table_eval(t, d, &f, &k) == EGW_OK);
+    CHECK(fabs(f / p_hertz(2.0, 0.5, d) - 1.0) <= 1.5 * tol);
+  }
+  /* energy (8/15) E sqrt(R) (d^2.5 - d_c^2.5) within 1.5 rel_tol; a = sqrt(R d) */
+  CHECK(egw_table_eval_all(t, 0.005, &f, &k, &w, &a) == EGW_OK);
+  CHECK(fabs(w / (8.0 / 15.0 * 2.0 * sqrt(0.5) * (pow(0.005, 2.5) - pow(info.cutoff, 2.5)))
+             - 1.0) <= 1.5 * tol);
+  CHECK(a > 0.0);
+  /* exactly zero below the cut-off */
+  CHECK(egw_table_eval(t, 0.5 * info.cutoff, &f, &k) == EGW_OK && f == 0.0 && k == 0.0);
+  CHECK(egw_table_eval(t, -1.0, &f, &k) == EGW_OK && f == 0.0 && k == 0.0);
+  /* above delta_max: linear continuation, flagged, outputs written */
+  {
+    double f1, k1;
+    CHECK(egw_table_eval(t, 0.01, &f1, &k1) == EGW_OK);
+    CHECK(egw_table_eval(t, 0.011, &f, &k) == EGW_OUT_OF_RANGE);
+    CHECK(k == k1 && fabs(f - (f1 + k1 * 0.001)) <= 1e-15 * f);
+    CHECK(last_error_names("delta"));
+  }
+  f = 7.0;
+  CHECK(egw_table_eval(t, NAN, &f, &k) == EGW_INVALID_ARGUMENT && f == 7.0);
+  CHECK(egw_table_eval(t, 0.005, NULL, &k) == EGW_OK); /* unwanted outputs may be NULL */
+  CHECK(egw_table_eval(NULL, 0.005, &f, &k) == EGW_NULL_POINTER);
+  CHECK(egw_table_get_info(t, NULL) == EGW_NULL_POINTER);
+  egw_table_free(&t);
+  CHECK(t == NULL);
+  /* bad input: statuses, messages, and no handle */
+  {
+    egw_table u = NULL;
+    egw_params q = p;
+    q.radius = -1.0;
+    CHECK(egw_table_build(&q, NULL, 0.0, 0.01, tol, &u) == EGW_INVALID_PARAMETER && u == NULL);
+    CHECK(last_error_names("radius"));
+    CHECK(egw_table_build(&p, NULL, 0.0, 0.01, 0.0, &u) == EGW_INVALID_ARGUMENT && u == NULL);
+    CHECK(last_error_names("rel_tol"));
+    CHECK(egw_table_build(&p, NULL, 0.01, 0.0, tol, &u) == EGW_INVALID_ARGUMENT && u == NULL);
+    CHECK(last_error_names("delta_max"));
+    CHECK(egw_table_build(NULL, NULL, 0.0, 0.01, tol, &u) == EGW_NULL_POINTER);
+    CHECK(egw_table_build(&p, NULL, 0.0, 0.01, tol, NULL) == EGW_NULL_POINTER);
+  }
+  return failures;
+}
+
+/* Files through the C API: CSV and binary read back evaluate bit-for-bit the same;
+ * corrupted or missing files fail cleanly; radii are checked. */
+int egw_capi_test_table_files(void) {
+  egw_params p = hertz_params();
+  egw_table t = NULL, back = NULL;
+  const char *csv = "build/capi_table.csv", *bin = "build/capi_table.egwt";
+  failures = 0;
+  CHECK(egw_table_build(&p, NULL, 0.0, 0.01, 1e-5, &t) == EGW_OK);
+  if (t == NULL) return failures;
+  CHECK(egw_table_set_radii(t, 1.0, 1.0) == EGW_OK);
+  CHECK(egw_table_set_radii(t, 1.0, 3.0) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("radius1"));
+  CHECK(egw_table_write(t, csv, EGW_FORMAT_CSV) == EGW_OK);
+  CHECK(egw_table_write(t, bin, EGW_FORMAT_BINARY) == EGW_OK);
+  CHECK(egw_table_write(t, "build/capi_table.table", EGW_FORMAT_LAMMPS) == EGW_OK);
+  CHECK(egw_table_write(t, "build/capi_table.inp", EGW_FORMAT_CALCULIX) == EGW_OK);
+  {
+    /* two sections; the second from R alone (R1 = R2 = 2R) */
+    egw_table two[2] = {t, NULL};
+    FILE *fp;
+    char line[256];
+    int sections = 0;
+    CHECK(egw_table_build(&p, NULL, 0.0, 0.01, 1e-4, &two[1]) == EGW_OK);
+    CHECK(egw_tables_write_lammps(2, two, "build/capi_two.table") == EGW_OK);
+    fp = fopen("build/capi_two.table", "r");
+    CHECK(fp != NULL);
+    if (fp != NULL) {
+      while (fgets(line, sizeof line, fp) != NULL)
+        sections += strcmp(line, "EGW_1\n") == 0 || strcmp(line, "EGW_2\n") == 0;
+      fclose(fp);
+    }
+    CHECK(sections == 2);
+    {
+      egw_table second = two[1];
+      two[1] = NULL;
+      CHECK(egw_tables_write_lammps(2, two, "build/capi_two.table") == EGW_NULL_POINTER);
+      CHECK(egw_tables_write_lammps(0, two, "build/capi_two.table") == EGW_INVALID_ARGUMENT);
+      egw_table_free(&second);
+    }
+  }
+  CHECK(egw_table_write(t, csv, 9) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("format"));
+  CHECK(egw_table_write(t, NULL, EGW_FORMAT_CSV) == EGW_NULL_POINTER);
+  CHECK(egw_table_write(t, "build/no/such/dir/t.csv", EGW_FORMAT_CSV) == EGW_IO_ERROR);
+  for (int which = 0; which < 2; which++) {
+    back = NULL;
+    CHECK(egw_table_read(which ? bin : csv, &back) == EGW_OK && back != NULL);
+    if (back == NULL) continue;
+    for (int i = 0; i <= 100; i++) {
+      double d = 0.01 * i / 100.0, f1, k1, f2, k2;
+      egw_table_eval(t, d, &f1, &k1);
+      egw_table_eval(back, d, &f2, &k2);
+      CHECK(f1 == f2 && k1 == k2);
+    }
+    egw_table_free(&back);
+  }
+  /* a flipped byte in the binary file: EGW_BAD_FILE, no handle */
+  {
+    FILE *fp = fopen(bin, "r+b");
+    CHECK(fp != NULL);
+    if (fp != NULL) {
+      int c;
+      fseek(fp, 200, SEEK_SET);
+      c = fgetc(fp);
+      fseek(fp, 200, SEEK_SET);
+      fputc(c ^ 0x20, fp);
+      fclose(fp);
+    }
+    back = NULL;
+    CHECK(egw_table_read(bin, &back) == EGW_BAD_FILE && back == NULL);
+    CHECK(last_error_names("path"));
+  }
+  back = NULL;
+  CHECK(egw_table_read("build/does-not-exist.egwt", &back) == EGW_IO_ERROR && back == NULL);
+  CHECK(egw_table_read(NULL, &back) == EGW_NULL_POINTER);
+  CHECK(egw_table_read(csv, NULL) == EGW_NULL_POINTER);
+  egw_table_free(&t);
+  egw_table_free(&t);   /* *t == NULL: fine */
+  egw_table_free(NULL); /* fine */
+  CHECK(t == NULL);
+  /* the rough flat for CalculiX */
+  {
+    egw_params q;
+    egw_params_default(&q);
+    q.sigma = 1e-3; q.mu = 4.0;
+    CHECK(egw_write_flat_calculix(&q, 3e-3, 1e-5, "build/capi_flat.inp") == EGW_OK);
+    q.sigma = 0.0;
+    CHECK(egw_write_flat_calculix(&q, 3e-3, 1e-5, "build/capi_flat.inp")
+          == EGW_INVALID_PARAMETER);
+    CHECK(last_error_names("sigma"));
+  }
+  return failures;
+}
+
+/* Universal Hertz table: p = (4/3) x^1.5 for every mu, so scaling by E sqrt(R)
+ * sigma^1.5 at call time reproduces the Hertz force of any R, E, sigma to the 1-D
+ * accuracy (1.5 rel_tol). */
+int egw_capi_test_table_universal(void) {
+  egw_params p = hertz_params(), c;
+  egw_universal u = NULL, back = NULL;
+  double f = -1.0, k = -1.0;
+  const double tol = 1e-6;
+  failures = 0;
+  CHECK(egw_universal_build(&p, NULL, 0.5, 4.0, -1.0, 100.0, tol, &u) == EGW_OK && u != NULL);
+  if (u == NULL) return failures;
+  c = p;
+  c.radius = 0.3; c.modulus = 7.0; c.sigma = 2e-3; c.mu = 1.3;
+  for (int i = 1; i <= 40; i++) {
+    double d = c.sigma * (1.0 + 99.0 * (i - 0.5) / 40);
+    CHECK(egw_universal_eval(u, &c, d, &f, &k) == EGW_OK);
+    CHECK(fabs(f / p_hertz(7.0, 0.3, d) - 1.0) <= 1.5 * tol);
+  }
+  CHECK(egw_universal_eval(u, &c, -1.0, &f, &k) == EGW_OK && f == 0.0 && k == 0.0);
+  { egw_params q = c; q.mu = 8.0; f = 3.0;
+    CHECK(egw_universal_eval(u, &q, 0.01, &f, &k) == EGW_OUT_OF_RANGE && f == 3.0);
+    CHECK(last_error_names("mu")); }
+  { egw_params q = c; q.model = EGW_MODEL_EGW;
+    CHECK(egw_universal_eval(u, &q, 0.01, &f, &k) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("model")); }
+  { egw_params q = c; q.sigma = 0.0;
+    CHECK(egw_universal_eval(u, &q, 0.01, &f, &k) == EGW_INVALID_PARAMETER); }
+  CHECK(egw_universal_eval(u, &c, 1.0, &f, &k) == EGW_OUT_OF_RANGE && f > 0.0);
+  CHECK(egw_universal_eval(u, &c, NAN, &f, &k) == EGW_INVALID_ARGUMENT);
+  CHECK(egw_universal_eval(NULL, &c, 0.01, &f, &k) == EGW_NULL_POINTER);
+  CHECK(egw_universal_eval(u, NULL, 0.01, &f, &k) == EGW_NULL_POINTER);
+  CHECK(egw_universal_write(u, "build/capi_universal.egwu", EGW_FORMAT_BINARY) == EGW_OK);
+  CHECK(egw_universal_write(u, "build/capi_universal.table", EGW_FORMAT_LAMMPS)
+        == EGW_UNSUPPORTED);
+  CHECK(egw_universal_read("build/capi_universal.egwu", &back) == EGW_OK && back != NULL);
+  if (back != NULL) {
+    double f2, k2;
+    egw_universal_eval(u, &c, 0.05, &f, &k);
+    egw_universal_eval(back, &c, 0.05, &f2, &k2);
+    CHECK(f == f2 && k == k2);
+  }
+  { egw_universal v = NULL;
+    CHECK(egw_universal_read("build/capi_table.csv", &v) == EGW_BAD_FILE && v == NULL); }
+  egw_universal_free(&back);
+  egw_universal_free(&u);
+  egw_universal_free(&u);
+  egw_universal_free(NULL);
+  CHECK(u == NULL && back == NULL);
+  { egw_universal v = NULL;
+    CHECK(egw_universal_build(&p, NULL, 4.0, 0.5, -1.0, 100.0, tol, &v) == EGW_INVALID_ARGUMENT
+          && v == NULL);
+    CHECK(last_error_names("mu_max")); }
+  return failures;
+}
+
+/* ---- the stand-alone reader of doc/formats.md, verbatim (a C program without egw) ---- */
+
+typedef struct {
+  int32_t model, n, n_log;
+  double params[7], meta[7]; /* as in the table above */
+  double *delta, *force, *stiffness, *energy, *contact_radius; /* one block */
+} plain_table;
+
+static uint32_t fnv1a32(const unsigned char *p, size_t n) {
+  uint32_t h = 2166136261u;
+  for (size_t i = 0; i < n; i++) { h ^= p[i]; h *= 16777619u; }
+  return h;
+}
+
+/* 0 on success; 1 cannot open/read; 2 not a valid egw 1-D table file */
+static int plain_table_read(const char *path, plain_table *t) {
+  FILE *fp = fopen(path, "rb");
+  unsigned char *b;
+  long size;
+  int32_t version, bom;
+  uint32_t sum;
+  if (fp == NULL) return 1;
+  fseek(fp, 0, SEEK_END); size = ftell(fp); fseek(fp, 0, SEEK_SET);
+  b = malloc(size > 0 ? size : 1);
+  if (b == NULL || size < 148 || fread(b, 1, size, fp) != (size_t)size) {
+    fclose(fp); free(b); return size < 148 ? 2 : 1;
+  }
+  fclose(fp);
+  memcpy(&version, b + 8, 4); memcpy(&bom, b + 12, 4); memcpy(&sum, b + size - 4, 4);
+  memcpy(&t->model, b + 20, 4); memcpy(&t->n, b + 24, 4); memcpy(&t->n_log, b + 28, 4);
+  if (memcmp(b, "EGWTAB1D", 8) != 0 || version != 1 || bom != 0x01020304
+      || sum != fnv1a32(b, size - 4) || t->n < 2 || size != 148 + 40L * t->n) {
+    free(b); return 2;
+  }
+  memcpy(t->params, b + 32, 56);
+  memcpy(t->meta, b + 88, 56);
+  t->delta = malloc(40L * t->n);
+  memcpy(t->delta, b + 144, 40L * t->n);
+  t->force = t->delta + t->n; t->stiffness = t->force + t->n;
+  t->energy = t->stiffness + t->n; t->contact_radius = t->energy + t->n;
+  free(b);
+  return 0;
+}
+static void plain_table_eval(const plain_table *t, double d, double *f, double *k) {
+  int lo = 0, hi = t->n - 1, n = t->n;
+  if (d < t->delta[0]) { *f = *k = 0.0; return; }
+  if (d >= t->delta[n - 1]) {
+    *k = t->stiffness[n - 1]; *f = t->force[n - 1] + *k * (d - t->delta[n - 1]); return;
+  }
+  while (hi - lo > 1) { int m = (lo + hi) / 2; if (d >= t->delta[m]) lo = m; else hi = m; }
+  {
+    int lg = lo < t->n_log; /* 0-based interval lo is 1-based lo+1 <= n_log */
+    double h = t->delta[hi] - t->delta[lo], s = (d - t->delta[lo]) / h;
+    double v0 = lg ? log(t->force[lo]) : t->force[lo], v1 = lg ? log(t->force[hi]) : t->force[hi];
+    double d0 = lg ? t->stiffness[lo] / t->force[lo] : t->stiffness[lo];
+    double d1 = lg ? t->stiffness[hi] / t->force[hi] : t->stiffness[hi];
+    double v = (1 + 2 * s) * (1 - s) * (1 - s) * v0 + s * (1 - s) * (1 - s) * h * d0
+             + s * s * (3 - 2 * s) * v1 + s * s * (s - 1) * h * d1;
+    double dv = 6 * s * (s - 1) / h * (v0 - v1) + (1 - s) * (1 - 3 * s) * d0
+              + s * (3 * s - 2) * d1;
+    if (lg) { *f = exp(v); *k = *f * dv; } else { *f = v; *k = dv; }
+  }
+}
+
+/* The documented reader loads the binary file and evaluates it like egw: same node
+ * count, metadata, and force/stiffness to 1e-12 relative (the reader evaluates the
+ * Hermite basis form, egw the polynomial form: different rounding, and exp() in the
+ * log tail amplifies it by |ln P| < 30). A corrupted copy is refused. */
+int egw_capi_test_table_plain_reader(void) {
+  egw_params p;
+  egw_table t = NULL;
+  egw_table_info info;
+  plain_table pt;
+  const char *path = "build/capi_plain.egwt";
+  failures = 0;
+  egw_params_default(&p);
+  p.sigma = 1e-3; p.mu = 4.0; /* E-GW: exercises the log tail too */
+  CHECK(egw_table_build(&p, NULL, -6e-3, 5e-3, 1e-5, &t) == EGW_OK);
+  if (t == NULL) return failures;
+  CHECK(egw_table_write(t, path, EGW_FORMAT_BINARY) == EGW_OK);
+  CHECK(egw_table_get_info(t, &info) == EGW_OK);
+  CHECK(plain_table_read(path, &pt) == 0);
+  CHECK(pt.n == info.n_nodes && pt.model == EGW_MODEL_EGW && pt.n_log > 0);
+  CHECK(pt.meta[1] == info.cutoff && pt.meta[2] == info.delta_max && pt.params[3] == 4.0);
+  for (int i = 0; i <= 400; i++) {
+    double d = -7e-3 + 13e-3 * i / 400.0, f1, k1, f2, k2;
+    int st = egw_table_eval(t, d, &f1, &k1);
+    CHECK(st == EGW_OK || st == EGW_OUT_OF_RANGE);
+    plain_table_eval(&pt, d, &f2, &k2);
+    CHECK(fabs(f1 - f2) <= 1e-12 * fabs(f1) && fabs(k1 - k2) <= 1e-12 * fabs(k1) + 1e-300);
+  }
+  free(pt.delta);
+  {
+    FILE *fp = fopen(path, "r+b");
+    if (fp != NULL) { fseek(fp, 150, SEEK_SET); fputc(0x55, fp); fclose(fp); }
+    CHECK(plain_table_read(path, &pt) == 2);
+  }
+  egw_table_free(&t);
+  return failures;
+}

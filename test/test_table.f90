@@ -1,0 +1,433 @@
+!> Tests of egw_table (one parameter set) and egw_table_universal.
+!> Exact references come from the Hertz closed form (written out here, independently of
+!> the library): P = (4/3) E sqrt(R) d^(3/2), K = 2 E sqrt(R d), W = (8/15) E sqrt(R) d^(5/2).
+!> Tests on rough models assume only the solver's contract (tables agree with
+!> solve_contact between nodes to the stated tolerance); they become accuracy tests of
+!> the real rough solver once it is linked.
+module test_table
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+   use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
+   use egw_kinds, only: dp
+   use egw_status, only: format_real, egw_error, egw_invalid_argument, egw_invalid_parameter, &
+      & egw_out_of_range
+   use egw_params, only: contact_params, model_hertz, model_egw
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact
+   use egw_table
+   use egw_table_universal
+   implicit none
+   private
+   public :: collect_table
+
+   real(dp), parameter :: tol = 1.0e-6_dp
+
+contains
+
+   subroutine collect_table(testsuite)
+      type(unittest_type), allocatable, intent(out) :: testsuite(:)
+      testsuite = [ &
+         & new_unittest("hertz force between nodes", test_hertz_force), &
+         & new_unittest("hertz stiffness between nodes", test_hertz_stiffness), &
+         & new_unittest("hertz energy", test_hertz_energy), &
+         & new_unittest("hertz cut-off and zero below", test_hertz_cutoff), &
+         & new_unittest("extrapolation above delta_max", test_extrapolation), &
+         & new_unittest("invalid requests", test_invalid), &
+         & new_unittest("particle radii", test_radii), &
+         & new_unittest("threads give the same table", test_threads), &
+         & new_unittest("parallel evaluation", test_parallel_eval), &
+         & new_unittest("rough table vs solves (contract)", test_rough_contract), &
+         & new_unittest("universal hertz exact scaling", test_universal_hertz), &
+         & new_unittest("universal rough vs solves (contract)", test_universal_rough), &
+         & new_unittest("universal invalid calls", test_universal_invalid) &
+         & ]
+   end subroutine collect_table
+
+   pure real(dp) function p_hertz(e, r, d)
+      real(dp), intent(in) :: e, r, d
+      p_hertz = 4.0_dp/3.0_dp*e*sqrt(r)*max(d, 0.0_dp)**1.5_dp
+   end function p_hertz
+
+   pure real(dp) function k_hertz(e, r, d)
+      real(dp), intent(in) :: e, r, d
+      k_hertz = 2*e*sqrt(r*max(d, 0.0_dp))
+   end function k_hertz
+
+   subroutine hertz_table(t, error)
+      type(force_table), intent(out) :: t
+      type(error_type), allocatable, intent(out) :: error
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      p = contact_params(model=model_hertz, radius=0.5_dp, modulus=2.0_dp)
+      call build_table(p, solver_options(), -1.0e-3_dp, 1.0e-2_dp, tol, t, err)
+      call check(error, .not. allocated(err), "Hertz table build failed")
+   end subroutine hertz_table
+
+   !> Exact at nodes; between nodes (8 points per interval) |P/P_H - 1| <= 1.5 rel_tol:
+   !> the build certifies rel_tol at each midpoint, where the Hermite error kernel
+   !> t^2 (1-t)^2 peaks; 1.5 allows the fourth derivative to vary across an interval.
+   subroutine test_hertz_force(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      integer :: i, j
+      real(dp) :: d, f, k, worst
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call check(error, size(t%delta) > 10 .and. size(t%delta) < 2000, "node count "// &
+         & to_string(size(t%delta))//" is implausible")
+      if (allocated(error)) return
+      do i = 1, size(t%delta)
+         call table_eval(t, t%delta(i), f, k)
+         ! nodes hold the solver's closed form; eval returns the stored value exactly
+         ! up to one rounding of delta - delta(i) = 0 (8 ulp margin)
+         call check(error, f, p_hertz(2.0_dp, 0.5_dp, t%delta(i)), "force at node "// &
+            & to_string(i), thr=8*epsilon(1.0_dp), rel=.true.)
+         if (allocated(error)) return
+      end do
+      worst = 0
+      do i = 1, size(t%delta) - 1
+         do j = 1, 7
+            d = t%delta(i) + j*(t%delta(i + 1) - t%delta(i))/8
+            call table_eval(t, d, f, k)
+            worst = max(worst, abs(f/p_hertz(2.0_dp, 0.5_dp, d) - 1))
+         end do
+      end do
+      call check(error, worst <= 1.5_dp*tol, "max rel. force error "//format_real(worst))
+      if (allocated(error)) return
+      call check(error, t%max_force_error <= tol, "reported error above rel_tol")
+   end subroutine test_hertz_force
+
+   !> Stiffness is the derivative of the force interpolant. For cubic Hermite the
+   !> derivative error is at most 3.08/h times the value error (ratio of the maxima of
+   !> |d/dx (x-x0)^2 (x-x1)^2| = h^3/(3 sqrt 3) and (x-x0)^2 (x-x1)^2 = h^4/16, times 2/24
+   !> vs 1/24), so |K~ - K| <= 1.5 * 3.08 * rel_tol * P / h per interval.
+   subroutine test_hertz_stiffness(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      integer :: i, j
+      real(dp) :: d, f, k, h, bound
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      do i = 1, size(t%delta) - 1
+         h = t%delta(i + 1) - t%delta(i)
+         do j = 1, 7
+            d = t%delta(i) + j*h/8
+            call table_eval(t, d, f, k)
+            bound = 1.5_dp*3.08_dp*tol*p_hertz(2.0_dp, 0.5_dp, t%delta(i + 1))/h
+            call check(error, abs(k - k_hertz(2.0_dp, 0.5_dp, d)) <= bound, &
+               & "stiffness error "//format_real(abs(k - k_hertz(2.0_dp, 0.5_dp, d)))// &
+               & " > bound "//format_real(bound)//" at delta = "//format_real(d))
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine test_hertz_stiffness
+
+   !> W(d) = int_{d_c}^{d} P = (8/15) E sqrt(R) (d^2.5 - d_c^2.5); the integral of a
+   !> force with pointwise relative error <= 1.5 rel_tol has relative error <= 1.5 rel_tol.
+   subroutine test_hertz_energy(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      integer :: i
+      real(dp) :: d, w, dc
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      dc = t%cutoff
+      do i = 1, 50
+         d = dc + (t%delta_max - dc)*(real(i, dp)/50)**2
+         w = 8.0_dp/15.0_dp*2.0_dp*sqrt(0.5_dp)*(d**2.5_dp - dc**2.5_dp)
+         call check(error, table_energy(t, d), w, "energy at delta = "//format_real(d), &
+            & thr=1.5_dp*tol, rel=.true.)
+         if (allocated(error)) return
+      end do
+      call check(error, table_energy(t, 0.5_dp*dc) == 0.0_dp, "energy below cut-off")
+   end subroutine test_hertz_energy
+
+   !> P_ref = P(delta_max) for Hertz; tol*P_ref/2 <= P(delta_c) <= tol*P_ref; zero below.
+   subroutine test_hertz_cutoff(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      real(dp) :: f, k, pref
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      pref = p_hertz(2.0_dp, 0.5_dp, 1.0e-2_dp)
+      call check(error, t%reference_force, pref, "reference force", thr=1e-15_dp, rel=.true.)
+      if (allocated(error)) return
+      call check(error, t%force(1) <= tol*pref .and. t%force(1) >= 0.5_dp*tol*pref, &
+         & "jump at the cut-off "//format_real(t%force(1)/pref)//" * P_ref")
+      if (allocated(error)) return
+      call table_eval(t, t%cutoff*(1 - 1e-12_dp), f, k)
+      call check(error, f == 0.0_dp .and. k == 0.0_dp, "force below the cut-off must be 0")
+      if (allocated(error)) return
+      call table_eval(t, -1.0_dp, f, k)
+      call check(error, f == 0.0_dp .and. k == 0.0_dp, "force far below the cut-off")
+   end subroutine test_hertz_cutoff
+
+   subroutine test_extrapolation(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      real(dp) :: f, k, f1, k1, d
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      d = t%delta_max*1.1_dp
+      call table_eval(t, d, f, k)
+      call table_eval(t, t%delta_max, f1, k1)
+      call check(error, .not. table_covers(t, d) .and. table_covers(t, t%delta_max), &
+         & "table_covers above/at delta_max")
+      if (allocated(error)) return
+      ! linear continuation with the end stiffness: C1 at delta_max
+      call check(error, k, k1, "stiffness continuation", thr=1e-15_dp, rel=.true.)
+      if (allocated(error)) return
+      call check(error, f, f1 + k1*(d - t%delta_max), "force continuation", thr=1e-15_dp, &
+         & rel=.true.)
+   end subroutine test_extrapolation
+
+   subroutine test_invalid(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      real(dp) :: nan
+      nan = ieee_value(nan, ieee_quiet_nan)
+      p = contact_params(model=model_hertz)
+      call build_table(p, solver_options(), 0.0_dp, 1.0_dp, 0.0_dp, t, err)
+      call expect(err, egw_invalid_argument, "rel_tol")
+      if (allocated(error)) return
+      call build_table(p, solver_options(), 1.0_dp, 1.0_dp, tol, t, err)
+      call expect(err, egw_invalid_argument, "delta_max")
+      if (allocated(error)) return
+      call build_table(p, solver_options(), nan, 1.0_dp, tol, t, err)
+      call expect(err, egw_invalid_argument, "delta_min")
+      if (allocated(error)) return
+      call build_table(p, solver_options(), -1.0_dp, -0.5_dp, tol, t, err)
+      call expect(err, egw_invalid_argument, "delta_max")
+      if (allocated(error)) return
+      p%radius = -1
+      call build_table(p, solver_options(), 0.0_dp, 1.0_dp, tol, t, err)
+      call expect(err, egw_invalid_parameter, "radius")
+      if (allocated(error)) return
+      call check(error, .not. allocated(t%delta), "a failed build must leave no table")
+   contains
+      subroutine expect(err, stat, name)
+         type(egw_error), allocatable, intent(in) :: err
+         integer, intent(in) :: stat
+         character(len=*), intent(in) :: name
+         call check(error, allocated(err), "expected a failure naming "//name)
+         if (allocated(error)) return
+         call check(error, err%stat == stat .and. index(err%message, name) == 1, &
+            & "got '"//err%message//"' for "//name)
+      end subroutine expect
+   end subroutine test_invalid
+
+   subroutine test_radii(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      ! R = 0.5 from R1 = R2 = 1 and from R1 = 0.75, R2 = 1.5
+      call table_set_radii(t, 1.0_dp, 1.0_dp, err)
+      call check(error, .not. allocated(err) .and. t%radius_sum == 2.0_dp, "R1 = R2 = 1")
+      if (allocated(error)) return
+      call table_set_radii(t, 0.75_dp, 1.5_dp, err)
+      call check(error, .not. allocated(err) .and. t%radius_sum == 2.25_dp, "R1 = .75, R2 = 1.5")
+      if (allocated(error)) return
+      call table_set_radii(t, 1.0_dp, 2.0_dp, err)
+      call check(error, allocated(err), "inconsistent radii must fail")
+      if (allocated(error)) return
+      call check(error, t%radius_sum == 2.25_dp, "failed call keeps the radii")
+   end subroutine test_radii
+
+   !> The adaptive decisions do not depend on thread timing: same nodes on 1 and N threads.
+   subroutine test_threads(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t1, t2
+      integer :: nt
+      nt = 1
+      !$ nt = omp_get_max_threads()
+      !$ call omp_set_num_threads(1)
+      call hertz_table(t1, error)
+      !$ call omp_set_num_threads(max(nt, 2))
+      if (allocated(error)) return
+      call hertz_table(t2, error)
+      !$ call omp_set_num_threads(nt)
+      if (allocated(error)) return
+      call check(error, size(t1%delta) == size(t2%delta), "node counts differ")
+      if (allocated(error)) return
+      call check(error, all(t1%delta == t2%delta) .and. all(t1%force == t2%force), &
+         & "nodes differ between thread counts")
+   end subroutine test_threads
+
+   !> Evaluation keeps no state: an OpenMP loop over contacts gives exactly the serial
+   !> results.
+   subroutine test_parallel_eval(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      integer, parameter :: n = 20000
+      real(dp) :: d(n), f1(n), k1(n), f2(n), k2(n)
+      integer :: i
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      do i = 1, n
+         d(i) = -1.0e-3_dp + 1.2e-2_dp*modulo(i*0.6180339887498949_dp, 1.0_dp)
+         call table_eval(t, d(i), f1(i), k1(i))
+      end do
+      !$omp parallel do schedule(static, 7)
+      do i = 1, n
+         call table_eval(t, d(i), f2(i), k2(i))
+      end do
+      !$omp end parallel do
+      call check(error, all(f1 == f2) .and. all(k1 == k2), "parallel evaluation differs")
+   end subroutine test_parallel_eval
+
+   !> Contract-only test on E-GW (meaningful with the real solver): between the check
+   !> points (t = 1/4, 3/4 of each interval) the table agrees with solve_contact to
+   !> 1.5 rel_tol plus the solver's own tolerance (rel_tol/10, set by the builder);
+   !> force increases, the tail is positive and in log space, zero below the cut-off.
+   subroutine test_rough_contract(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(solver_options) :: opts
+      integer :: i, j, stride
+      real(dp) :: d, f, k, fprev, worst
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0e-3_dp, &
+         & mu=4.0_dp)
+      call build_table(p, solver_options(), -6.0e-3_dp, 1.0e-2_dp, 1.0e-5_dp, t, err)
+      call check(error, .not. allocated(err), "E-GW table build failed")
+      if (allocated(error)) return
+      call check(error, t%n_log > 0 .and. t%cutoff < 0.0_dp, "rough table must have a log tail")
+      if (allocated(error)) return
+      call check(error, t%force(1) <= 1.0e-5_dp*t%reference_force, "jump at cut-off")
+      if (allocated(error)) return
+      opts%rel_tol = 1.0e-6_dp
+      worst = 0
+      stride = max(1, (size(t%delta) - 1)/25)
+      do i = 1, size(t%delta) - 1, stride
+         do j = 1, 3, 2
+            d = t%delta(i) + j*(t%delta(i + 1) - t%delta(i))/4
+            call solve_contact(p, opts, d, res, err)
+            if (allocated(err)) cycle
+            call table_eval(t, d, f, k)
+            worst = max(worst, abs(f/res%force - 1))
+         end do
+      end do
+      call check(error, worst <= 1.5e-5_dp + 1.0e-6_dp, "max rel. error vs solves "// &
+         & format_real(worst))
+      if (allocated(error)) return
+      ! energy is the integral of the interpolated force, in the log tail (Gauss-Legendre)
+      ! as elsewhere: dW/ddelta = P by the 4th-order central difference with h = 1e-3 of
+      ! the interval (width w in [1e-2, 1] sigma): truncation h^4 |P^(4)|/(30 P) <=
+      ! (1e-3 w/sigma)^4 (delta/sigma)^4/30 < 1e-10, round-off 1.5 eps W/(h P) < 2e-10
+      ! since W/P < 4 sigma here
+      do i = 1, size(t%delta) - 1, max(1, (size(t%delta) - 1)/40)
+         ! (graded intervals near delta = 0 are too narrow for a clean difference)
+         if (t%delta(i + 1) - t%delta(i) < 1.0e-2_dp*p%sigma) cycle
+         d = 0.5_dp*(t%delta(i) + t%delta(i + 1))
+         k = 1.0e-3_dp*(t%delta(i + 1) - t%delta(i))
+         call table_eval(t, d, f, fprev)
+         call check(error, (8*(table_energy(t, d + k) - table_energy(t, d - k)) - &
+            & (table_energy(t, d + 2*k) - table_energy(t, d - 2*k)))/(12*k), f, &
+            & "dW/ddelta = P at "//format_real(d), thr=1.0e-8_dp, rel=.true.)
+         if (allocated(error)) return
+      end do
+      fprev = 0
+      do i = 0, 2000
+         d = t%cutoff + (t%delta_max - t%cutoff)*i/2000.0_dp
+         call table_eval(t, d, f, k)
+         call check(error, f >= fprev .and. k >= 0.0_dp, "force not monotone at "//format_real(d))
+         if (allocated(error)) return
+         fprev = f
+      end do
+   end subroutine test_rough_contract
+
+   !> Hertz in universal form: p = P/(E sqrt(R) sigma^1.5) = (4/3) x^1.5 whatever mu, so
+   !> the mu-interpolation (in log space) is exact and the error is the x-table's
+   !> (1.5 rel_tol as above); scale by R, E, sigma at call time.
+   subroutine test_universal_hertz(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table) :: u
+      type(egw_error), allocatable :: err
+      integer :: i, stat
+      real(dp) :: x, f, k, r, e, s, mu, d
+      call build_universal(model_hertz, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), &
+         & 0.5_dp, 8.0_dp, -1.0_dp, 100.0_dp, tol, u, err)
+      call check(error, .not. allocated(err), "universal Hertz build failed")
+      if (allocated(error)) return
+      r = 0.3_dp; e = 7.0_dp; s = 2.0e-3_dp
+      do i = 1, 40
+         x = 1.0_dp + 99.0_dp*(i - 0.5_dp)/40
+         mu = 0.5_dp*16.0_dp**((i - 0.3_dp)/40)
+         d = x*s
+         call universal_eval(u, r, e, s, mu, d, f, k, stat)
+         call check(error, stat == 0, "universal eval status")
+         if (allocated(error)) return
+         call check(error, f, p_hertz(e, r, d), "universal force at x = "//format_real(x), &
+            & thr=1.5_dp*tol, rel=.true.)
+         if (allocated(error)) return
+      end do
+   end subroutine test_universal_hertz
+
+   !> Contract-only (meaningful with the real solver): off-grid in both mu and x, with
+   !> R, E, sigma far from 1, the universal table agrees with solve_contact to
+   !> 3 rel_tol (x-interpolation rel_tol, mu-interpolation rel_tol as checked on the
+   !> grid of check points, solver rel_tol/10 each, and a factor for points between
+   !> check points).
+   subroutine test_universal_rough(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table) :: u
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(solver_options) :: opts
+      integer :: i, stat
+      real(dp) :: f, k, worst, x
+      real(dp), parameter :: utol = 1.0e-4_dp
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), &
+         & 2.0_dp, 8.0_dp, -6.0_dp, 50.0_dp, utol, u, err)
+      call check(error, .not. allocated(err), "universal E-GW build failed")
+      if (allocated(error)) return
+      p = contact_params(model=model_egw, radius=2.5e-3_dp, modulus=7.0e10_dp, sigma=3.0e-7_dp)
+      opts%rel_tol = utol/10
+      worst = 0
+      do i = 1, 30
+         p%mu = 2.0_dp*4.0_dp**((i - 0.37_dp)/30)
+         x = -3.0_dp + 53.0_dp*((i - 0.61_dp)/30)**2
+         call solve_contact(p, opts, x*p%sigma, res, err)
+         if (allocated(err)) cycle
+         call universal_eval(u, p%radius, p%modulus, p%sigma, p%mu, x*p%sigma, f, k, stat)
+         call check(error, stat == 0, "universal eval status")
+         if (allocated(error)) return
+         worst = max(worst, abs(f/res%force - 1))
+      end do
+      call check(error, worst <= 3*utol, "max rel. error vs solves "//format_real(worst))
+   end subroutine test_universal_rough
+
+   subroutine test_universal_invalid(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table) :: u
+      type(egw_error), allocatable :: err
+      integer :: stat
+      real(dp) :: f, k
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), &
+         & 10.0_dp, 1.0_dp, -6.0_dp, 50.0_dp, tol, u, err)
+      call check(error, allocated(err), "mu_max < mu_min must fail")
+      if (allocated(error)) return
+      call check(error, index(err%message, "mu_max") == 1, "message names mu_max: "//err%message)
+      if (allocated(error)) return
+      call build_universal(model_hertz, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), &
+         & 1.0_dp, 2.0_dp, -1.0_dp, 10.0_dp, 1e-4_dp, u, err)
+      call check(error, .not. allocated(err), "small universal build failed")
+      if (allocated(error)) return
+      call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, 3.0_dp, 1.0_dp, f, k, stat)
+      call check(error, stat == egw_out_of_range, "mu above the range must be out of range")
+      if (allocated(error)) return
+      call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, 1.5_dp, 20.0_dp, f, k, stat)
+      call check(error, stat == egw_out_of_range .and. f > 0, &
+         & "x above the range: extrapolated and flagged")
+      if (allocated(error)) return
+      call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, 1.5_dp, -30.0_dp, f, k, stat)
+      call check(error, stat == 0 .and. f == 0 .and. k == 0, "below the cut-off: exact zero")
+   end subroutine test_universal_invalid
+
+end module test_table

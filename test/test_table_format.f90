@@ -1,0 +1,698 @@
+!> Tests of egw_table_format: round trips of the egw formats (bit-exact), rejection of
+!> truncated, corrupted and wrong-version files, atomic writes, and the LAMMPS and
+!> CalculiX exports parsed back by small readers written here.
+module test_table_format
+   use, intrinsic :: iso_fortran_env, only: int32, int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_bad_file, egw_io_error, egw_invalid_argument, &
+      & egw_unsupported, format_real
+   use egw_params, only: contact_params, model_hertz, model_egw
+   use egw_rough_sphere, only: solver_options
+   use egw_asperity, only: flat_pressure
+   use egw_table
+   use egw_table_universal
+   use egw_table_format
+   implicit none
+   private
+   public :: collect_table_format
+
+   real(dp), parameter :: tol = 1.0e-6_dp
+   character(len=*), parameter :: dir = "build/test_table_format"
+
+contains
+
+   subroutine collect_table_format(testsuite)
+      type(unittest_type), allocatable, intent(out) :: testsuite(:)
+      call execute_command_line("mkdir -p "//dir)
+      testsuite = [ &
+         & new_unittest("csv round trip", test_csv_round_trip), &
+         & new_unittest("binary round trip", test_binary_round_trip), &
+         & new_unittest("universal round trips", test_universal_round_trip), &
+         & new_unittest("binary truncated", test_binary_truncated), &
+         & new_unittest("binary corrupted", test_binary_corrupted), &
+         & new_unittest("binary wrong version", test_binary_version), &
+         & new_unittest("csv truncated or corrupted", test_csv_bad), &
+         & new_unittest("atomic writes", test_atomic), &
+         & new_unittest("lammps export", test_lammps), &
+         & new_unittest("lammps export, rough table", test_lammps_rough), &
+         & new_unittest("calculix sphere export", test_calculix_sphere), &
+         & new_unittest("calculix rough flat export", test_calculix_flat), &
+         & new_unittest("unsupported and missing", test_unsupported) &
+         & ]
+   end subroutine collect_table_format
+
+   pure real(dp) function p_hertz(e, r, d)
+      real(dp), intent(in) :: e, r, d
+      p_hertz = 4.0_dp/3.0_dp*e*sqrt(r)*max(d, 0.0_dp)**1.5_dp
+   end function p_hertz
+
+   subroutine hertz_table(t, error)
+      type(force_table), intent(out) :: t
+      type(error_type), allocatable, intent(out) :: error
+      type(egw_error), allocatable :: err
+      call build_table(contact_params(model=model_hertz, radius=0.5_dp, modulus=2.0_dp), &
+         & solver_options(), 0.0_dp, 1.0e-2_dp, tol, t, err)
+      call check(error, .not. allocated(err), "Hertz table build failed")
+   end subroutine hertz_table
+
+   subroutine rough_table(t, error)
+      type(force_table), intent(out) :: t
+      type(error_type), allocatable, intent(out) :: error
+      type(egw_error), allocatable :: err
+      call build_table(contact_params(model=model_egw, sigma=1.0e-3_dp, mu=4.0_dp), &
+         & solver_options(), -6.0e-3_dp, 5.0e-3_dp, 1.0e-4_dp, t, err)
+      call check(error, .not. allocated(err), "E-GW table build failed")
+   end subroutine rough_table
+
+   !> Tables read back must be identical: 17 significant digits (CSV) and raw bytes
+   !> (binary) reproduce every double, and the evaluation data are derived
+   !> deterministically, so evaluation is bit-for-bit the same too.
+   subroutine same_table(error, a, b)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table), intent(in) :: a, b
+      integer :: i
+      real(dp) :: d, fa, ka, fb, kb
+      call check(error, size(a%delta) == size(b%delta), "node count differs")
+      if (allocated(error)) return
+      call check(error, all(a%delta == b%delta) .and. all(a%force == b%force) .and. &
+         & all(a%stiffness == b%stiffness) .and. all(a%energy == b%energy) .and. &
+         & all(a%contact_radius == b%contact_radius), "node data differ")
+      if (allocated(error)) return
+      call check(error, a%params%model == b%params%model .and. a%params%radius == &
+         & b%params%radius .and. a%params%mu == b%params%mu .and. a%params%sigma == &
+         & b%params%sigma .and. a%n_log == b%n_log .and. a%cutoff == b%cutoff .and. &
+         & a%rel_tol == b%rel_tol .and. a%reference_force == b%reference_force .and. &
+         & a%radius_sum == b%radius_sum .and. a%max_force_error == b%max_force_error, &
+         & "metadata differ")
+      if (allocated(error)) return
+      do i = 0, 200
+         d = a%cutoff + (a%delta_max - a%cutoff)*(i/200.0_dp)**1.5_dp
+         call table_eval(a, d, fa, ka)
+         call table_eval(b, d, fb, kb)
+         call check(error, fa == fb .and. ka == kb, "evaluation differs at "//format_real(d))
+         if (allocated(error)) return
+      end do
+   end subroutine same_table
+
+   subroutine round_trip(error, t, path, format)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table), intent(in) :: t
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: format
+      type(force_table) :: back
+      type(egw_error), allocatable :: err
+      call write_table(t, path, format, err)
+      call check(error, .not. allocated(err), "write failed")
+      if (allocated(error)) return
+      call read_table(path, back, err)
+      if (allocated(err)) then
+         call check(error, .false., "read failed: "//err%message)
+         return
+      end if
+      call same_table(error, t, back)
+   end subroutine round_trip
+
+   subroutine test_csv_round_trip(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call table_set_radii(t, 1.0_dp, 1.0_dp, err)
+      call round_trip(error, t, dir//"/hertz.csv", format_csv)
+      if (allocated(error)) return
+      call rough_table(t, error)
+      if (allocated(error)) return
+      call round_trip(error, t, dir//"/egw.csv", format_csv)
+   end subroutine test_csv_round_trip
+
+   subroutine test_binary_round_trip(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call round_trip(error, t, dir//"/hertz.egwt", format_binary)
+      if (allocated(error)) return
+      call rough_table(t, error)
+      if (allocated(error)) return
+      call round_trip(error, t, dir//"/egw.egwt", format_binary)
+   end subroutine test_binary_round_trip
+
+   subroutine test_universal_round_trip(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table) :: u, back
+      type(egw_error), allocatable :: err
+      integer :: fmt_id, j, i, s1, s2
+      real(dp) :: x, mu, f1, k1, f2, k2
+      character(len=*), parameter :: names(0:1) = [character(len=14) :: "universal.csv", &
+         & "universal.egwu"]
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 2.0_dp, &
+         & 8.0_dp, -6.0_dp, 20.0_dp, 1.0e-4_dp, u, err)
+      call check(error, .not. allocated(err), "universal build failed")
+      if (allocated(error)) return
+      do fmt_id = format_csv, format_binary
+         call write_universal(u, dir//"/"//trim(names(fmt_id)), fmt_id, err)
+         call check(error, .not. allocated(err), "universal write failed")
+         if (allocated(error)) return
+         call read_universal(dir//"/"//trim(names(fmt_id)), back, err)
+         if (allocated(err)) then
+            call check(error, .false., "universal read failed: "//err%message)
+            return
+         end if
+         call check(error, back%n_mu == u%n_mu .and. back%x_cut == u%x_cut .and. &
+            & back%mu_max == u%mu_max, "universal header differs")
+         if (allocated(error)) return
+         do j = 1, u%n_mu
+            call same_table(error, u%slices(j), back%slices(j))
+            if (allocated(error)) return
+         end do
+         do i = 1, 50
+            x = -2.0_dp + 22.0_dp*(i - 0.5_dp)/50
+            mu = 2.0_dp*4.0_dp**((i - 0.5_dp)/50)
+            call universal_eval(u, 2.0_dp, 3.0_dp, 1e-3_dp, mu, x*1e-3_dp, f1, k1, s1)
+            call universal_eval(back, 2.0_dp, 3.0_dp, 1e-3_dp, mu, x*1e-3_dp, f2, k2, s2)
+            call check(error, f1 == f2 .and. k1 == k2 .and. s1 == s2, "universal eval differs")
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine test_universal_round_trip
+
+   ! ------------------------------------------------------------ bad files
+
+   subroutine slurp(path, bytes)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: bytes
+      integer :: unit
+      integer(int64) :: n
+      open (newunit=unit, file=path, access="stream", form="unformatted", status="old")
+      inquire (unit=unit, size=n)
+      allocate (character(len=int(n)) :: bytes)
+      read (unit) bytes
+      close (unit)
+   end subroutine slurp
+
+   subroutine spit(path, bytes)
+      character(len=*), intent(in) :: path, bytes
+      integer :: unit
+      open (newunit=unit, file=path, access="stream", form="unformatted", status="replace")
+      write (unit) bytes
+      close (unit)
+   end subroutine spit
+
+   !> Reading must fail with egw_bad_file, a message containing `what`, and no table.
+   subroutine expect_bad(error, path, what)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: path, what
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      call read_table(path, t, err)
+      call check(error, allocated(err), path//": bad file accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_bad_file, path//": status "//to_string(err%stat)// &
+         & " ("//err%message//")")
+      if (allocated(error)) return
+      call check(error, index(err%message, what) > 0, "message '"//err%message// &
+         & "' should mention '"//what//"'")
+      if (allocated(error)) return
+      call check(error, .not. allocated(t%delta) .and. .not. allocated(t%seg), &
+         & "a partial table was returned")
+   end subroutine expect_bad
+
+   subroutine good_binary(error, bytes)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable, intent(out) :: bytes
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call write_table(t, dir//"/good.egwt", format_binary, err)
+      call check(error, .not. allocated(err), "write failed")
+      if (allocated(error)) return
+      call slurp(dir//"/good.egwt", bytes)
+   end subroutine good_binary
+
+   subroutine test_binary_truncated(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: b
+      call good_binary(error, b)
+      if (allocated(error)) return
+      call spit(dir//"/trunc1.egwt", b(1:len(b) - 1))
+      call expect_bad(error, dir//"/trunc1.egwt", "checksum")
+      if (allocated(error)) return
+      call spit(dir//"/trunc2.egwt", b(1:len(b)/2))
+      call expect_bad(error, dir//"/trunc2.egwt", "")
+      if (allocated(error)) return
+      call spit(dir//"/trunc3.egwt", b(1:60))
+      call expect_bad(error, dir//"/trunc3.egwt", "truncated")
+      if (allocated(error)) return
+      call spit(dir//"/trunc4.egwt", b(1:8))
+      call expect_bad(error, dir//"/trunc4.egwt", "truncated")
+   end subroutine test_binary_truncated
+
+   subroutine test_binary_corrupted(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: b, c
+      integer :: where
+      call good_binary(error, b)
+      if (allocated(error)) return
+      ! one flipped bit in the arrays, in the header, in the checksum itself
+      do where = 1, 3
+         c = b
+         select case (where)
+         case (1); c(len(c)/2:len(c)/2) = achar(ieor(iachar(c(len(c)/2:len(c)/2)), 1))
+         case (2); c(100:100) = achar(ieor(iachar(c(100:100)), 16))
+         case (3); c(len(c):len(c)) = achar(ieor(iachar(c(len(c):len(c))), 128))
+         end select
+         call spit(dir//"/corrupt.egwt", c)
+         call expect_bad(error, dir//"/corrupt.egwt", "checksum")
+         if (allocated(error)) return
+      end do
+      ! the node count made inconsistent with the size, checksum recomputed
+      c = b
+      c(25:28) = transfer(7_int32, c(25:28))
+      call reseal(c)
+      call spit(dir//"/count.egwt", c)
+      call expect_bad(error, dir//"/count.egwt", "n_nodes")
+      if (allocated(error)) return
+      ! a node made non-monotone, checksum recomputed: the content check catches it
+      c = b
+      c(145 + 8:152 + 8) = transfer(-1.0_dp, c(145:152))
+      call reseal(c)
+      call spit(dir//"/order.egwt", c)
+      call expect_bad(error, dir//"/order.egwt", "increasing")
+      if (allocated(error)) return
+      c = b
+      c(1:8) = "EGWTAB9X"
+      call spit(dir//"/magic.egwt", c)
+      call expect_bad(error, dir//"/magic.egwt", "not an egw table")
+   end subroutine test_binary_corrupted
+
+   !> Recompute the trailing FNV-1a checksum after an edit (as a writer of a newer or
+   !> foreign file would).
+   subroutine reseal(c)
+      character(len=*), intent(inout) :: c
+      integer(int64) :: h
+      integer(int32) :: v
+      h = fnv1a32(c(1:len(c) - 4))
+      if (h >= 2147483648_int64) h = h - 4294967296_int64
+      v = int(h, int32)
+      c(len(c) - 3:len(c)) = transfer(v, c(1:4))
+   end subroutine reseal
+
+   subroutine test_binary_version(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: b, c
+      call good_binary(error, b)
+      if (allocated(error)) return
+      c = b
+      c(9:12) = transfer(2_int32, c(9:12))
+      call reseal(c)
+      call spit(dir//"/v2.egwt", c)
+      call expect_bad(error, dir//"/v2.egwt", "version 2")
+      if (allocated(error)) return
+      c = b
+      c(13:16) = transfer(int(z'04030201', int32), c(13:16))
+      call reseal(c)
+      call spit(dir//"/endian.egwt", c)
+      call expect_bad(error, dir//"/endian.egwt", "byte order")
+   end subroutine test_binary_version
+
+   subroutine test_csv_bad(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      character(len=:), allocatable :: b, c
+      integer :: p
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call write_table(t, dir//"/good.csv", format_csv, err)
+      call check(error, .not. allocated(err), "write failed")
+      if (allocated(error)) return
+      call slurp(dir//"/good.csv", b)
+      ! cut inside the last number of the last row: the end line is missing
+      p = index(b, "# end of table") - 5
+      call spit(dir//"/cut.csv", b(1:p))
+      call expect_bad(error, dir//"/cut.csv", "truncated")
+      if (allocated(error)) return
+      ! drop a whole data row (the end line's count no longer matches)
+      p = index(b, "delta,force,stiffness,energy,contact_radius")
+      p = p + index(b(p:), new_line("a"))
+      c = b(1:p - 1)//b(p + index(b(p:), new_line("a")):)
+      call spit(dir//"/row.csv", c)
+      call expect_bad(error, dir//"/row.csv", "end line")
+      if (allocated(error)) return
+      ! a garbled number
+      c = b
+      c(p + 3:p + 3) = "x"
+      call spit(dir//"/garbled.csv", c)
+      call expect_bad(error, dir//"/garbled.csv", "cannot read")
+      if (allocated(error)) return
+      ! a missing header key
+      p = index(b, "# rel_tol")
+      c = b(1:p - 1)//"# rel_tel"//b(p + 9:)
+      call spit(dir//"/key.csv", c)
+      call expect_bad(error, dir//"/key.csv", "rel_tol")
+   end subroutine test_csv_bad
+
+   !> A write that fails halfway (a NaN found while writing rows) or cannot start (no such
+   !> directory) leaves the existing file byte-for-byte intact and no temporary behind.
+   subroutine test_atomic(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      character(len=:), allocatable :: before, after
+      logical :: exists
+      integer :: fmt_id
+      character(len=*), parameter :: path = dir//"/atomic.out"
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      do fmt_id = format_csv, format_calculix
+         call write_table(t, path, fmt_id, err)
+         call check(error, .not. allocated(err), "first write failed")
+         if (allocated(error)) return
+         call slurp(path, before)
+         block
+            type(force_table) :: broken
+            broken = t
+            broken%force(size(broken%force)/2) = ieee_value(1.0_dp, ieee_quiet_nan)
+            call table_prepare(broken)
+            call write_table(broken, path, fmt_id, err)
+         end block
+         call check(error, allocated(err), "writing a NaN must fail (format "// &
+            & to_string(fmt_id)//")")
+         if (allocated(error)) return
+         call slurp(path, after)
+         call check(error, before == after, "old file changed by a failed write (format "// &
+            & to_string(fmt_id)//")")
+         if (allocated(error)) return
+         inquire (file=path//".egw-tmp", exist=exists)
+         call check(error, .not. exists, "temporary file left behind")
+         if (allocated(error)) return
+      end do
+      call write_table(t, dir//"/no/such/dir/t.csv", format_csv, err)
+      call check(error, allocated(err), "write into a missing directory must fail")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_io_error, "status of a failed open: "//err%message)
+   end subroutine test_atomic
+
+   ! ------------------------------------------------------------ LAMMPS
+
+   !> Parse section `keyword` of a LAMMPS table file: N, rlo, rhi and the rows.
+   subroutine read_lammps_section(path, keyword, n, rlo, rhi, r, e, f, comments, ok)
+      character(len=*), intent(in) :: path, keyword
+      integer, intent(out) :: n
+      real(dp), intent(out) :: rlo, rhi
+      real(dp), allocatable, intent(out) :: r(:), e(:), f(:)
+      character(len=:), allocatable, intent(out) :: comments
+      logical, intent(out) :: ok
+      integer :: unit, ios, i, idx
+      character(len=512) :: line
+      character(len=8) :: nkey, rkey
+      ok = .false.
+      comments = ""
+      open (newunit=unit, file=path, status="old", action="read")
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) then
+            close (unit)
+            return
+         end if
+         if (line(1:1) == "#") then
+            comments = comments//trim(line)//new_line("a")
+         else if (trim(line) == keyword) then
+            exit
+         end if
+      end do
+      read (unit, *) nkey, n, rkey, rlo, rhi
+      read (unit, '(a)') line
+      if (nkey /= "N" .or. rkey /= "R" .or. len_trim(line) /= 0) then
+         close (unit)
+         return
+      end if
+      allocate (r(n), e(n), f(n))
+      do i = 1, n
+         read (unit, *, iostat=ios) idx, r(i), e(i), f(i)
+         if (ios /= 0 .or. idx /= i) then
+            close (unit)
+            return
+         end if
+      end do
+      close (unit)
+      ok = .true.
+   end subroutine read_lammps_section
+
+   !> Two sections: one built from particle radii R1 = R2 = 1 (R1 + R2 = 2), one from R
+   !> alone (distances for R1 = R2 = 2R, sum 4R = 2 too: R = 0.5). Checks:
+   !> r uniform from rlo to rhi; force = P_Hertz(R1 + R2 - r) within 1.5 rel_tol (table
+   !> accuracy; the last point, at the cut-off, within 1.5 rel_tol * P_ref);
+   !> F = -dE/dr: E(r_i) - E(r_i+1) equals the trapezoid of F within h^3/12 max|F''|
+   !> (F'' = E sqrt(R)/sqrt(delta) for Hertz, largest at the smaller overlap) plus the
+   !> rounding of E (17 digits).
+   subroutine test_lammps(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t1, t2
+      type(egw_error), allocatable :: err
+      integer :: n, i, s
+      real(dp) :: rlo, rhi, h, dlo, bound, pref
+      real(dp), allocatable :: r(:), e(:), f(:)
+      character(len=:), allocatable :: comments
+      logical :: ok
+      character(len=*), parameter :: path = dir//"/hertz.table"
+      call hertz_table(t1, error)
+      if (allocated(error)) return
+      call table_set_radii(t1, 1.0_dp, 1.0_dp, err)
+      call check(error, .not. allocated(err), "set radii")
+      if (allocated(error)) return
+      t2 = t1
+      t2%radius_sum = 0
+      call write_lammps([t1, t2], path, err)
+      call check(error, .not. allocated(err), "LAMMPS write failed")
+      if (allocated(error)) return
+      pref = t1%reference_force
+      do s = 1, 2
+         call read_lammps_section(path, "EGW_"//to_string(s), n, rlo, rhi, r, e, f, &
+            & comments, ok)
+         call check(error, ok, "section EGW_"//to_string(s)//" not parsed")
+         if (allocated(error)) return
+         if (s == 2) then
+            call check(error, index(comments, "two equal spheres") > 0, &
+               & "equivalent-radius section must say so")
+            if (allocated(error)) return
+         end if
+         call check(error, rlo, 2.0_dp - t1%delta_max, "rlo", thr=1e-15_dp, rel=.true.)
+         if (allocated(error)) return
+         call check(error, rhi, 2.0_dp - t1%cutoff, "rhi", thr=1e-15_dp, rel=.true.)
+         if (allocated(error)) return
+         h = (rhi - rlo)/(n - 1)
+         do i = 1, n
+            call check(error, r(i), rlo + (i - 1)*h, "r uniform", thr=4e-16_dp*2, rel=.true.)
+            if (allocated(error)) return
+            call check(error, abs(f(i) - p_hertz(2.0_dp, 0.5_dp, 2.0_dp - r(i))) <= &
+               & 1.5_dp*tol*max(p_hertz(2.0_dp, 0.5_dp, 2.0_dp - r(i)), &
+               & merge(pref, 0.0_dp, i == n)) + 4*epsilon(1.0_dp)*pref, &
+               & "force at r = "//format_real(r(i)))
+            if (allocated(error)) return
+         end do
+         do i = 1, n - 1
+            dlo = 2.0_dp - r(i + 1)
+            bound = h**3/12*2.0_dp*sqrt(0.5_dp)/sqrt(dlo)*1.01_dp + 4*epsilon(1.0_dp)*e(1)
+            call check(error, abs((e(i) - e(i + 1)) - h*(f(i) + f(i + 1))/2) <= bound, &
+               & "F = -dE/dr violated between r = "//format_real(r(i))//" and "// &
+               & format_real(r(i + 1)))
+            if (allocated(error)) return
+         end do
+         call check(error, e(n) == 0.0_dp, "energy is zero at the cut-off")
+         if (allocated(error)) return
+      end do
+   end subroutine test_lammps
+
+   !> E-GW (contract only: any table): F = -dE/dr across the log tail and the contact
+   !> onset. The energy column is the exact integral of the interpolated force, so the
+   !> trapezoid rule of the force column matches the energy difference to h^3/12 |F''|;
+   !> |F''| is bounded by twice the largest second difference of F around the interval
+   !> (divided by h^2), plus the 17-digit rounding of E.
+   subroutine test_lammps_rough(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      integer :: n, i
+      real(dp) :: rlo, rhi, h, f2, bound
+      real(dp), allocatable :: r(:), e(:), f(:)
+      character(len=:), allocatable :: comments
+      logical :: ok
+      character(len=*), parameter :: path = dir//"/egw.table"
+      call rough_table(t, error)
+      if (allocated(error)) return
+      call write_lammps([t], path, err)
+      call check(error, .not. allocated(err), "LAMMPS write failed")
+      if (allocated(error)) return
+      call read_lammps_section(path, "EGW_1", n, rlo, rhi, r, e, f, comments, ok)
+      call check(error, ok, "section not parsed")
+      if (allocated(error)) return
+      call check(error, index(comments, "two equal spheres") > 0, "equal-spheres note")
+      if (allocated(error)) return
+      h = (rhi - rlo)/(n - 1)
+      do i = 2, n - 2
+         f2 = 2*max(abs(f(i + 1) - 2*f(i) + f(i - 1)), abs(f(i + 2) - 2*f(i + 1) + f(i)))/h**2
+         bound = h**3/12*f2 + 4*epsilon(1.0_dp)*e(1)
+         call check(error, abs((e(i) - e(i + 1)) - h*(f(i) + f(i + 1))/2) <= bound, &
+            & "F = -dE/dr violated at r = "//format_real(r(i)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_lammps_rough
+
+   ! ------------------------------------------------------------ CalculiX
+
+   subroutine read_calculix(path, p, x, comments, ok)
+      character(len=*), intent(in) :: path
+      real(dp), allocatable, intent(out) :: p(:), x(:)
+      character(len=:), allocatable, intent(out) :: comments
+      logical, intent(out) :: ok
+      integer :: unit, ios, n
+      character(len=256) :: line
+      real(dp) :: a, b
+      ok = .false.
+      comments = ""
+      allocate (p(0), x(0))
+      open (newunit=unit, file=path, status="old", action="read")
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) then
+            close (unit)
+            return
+         end if
+         if (line(1:2) == "**") comments = comments//trim(line)//new_line("a")
+         if (trim(line) == "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR") exit
+      end do
+      n = 0
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         read (line, *, iostat=ios) a, b
+         if (ios /= 0) then
+            close (unit)
+            return
+         end if
+         p = [p, a]
+         x = [x, b]
+         n = n + 1
+      end do
+      close (unit)
+      ok = n >= 2
+   end subroutine read_calculix
+
+   !> Force vs overclosure = delta: first pair at zero force at the cut-off, overclosure
+   !> strictly increasing, nodes on the table (17 digits), and linear interpolation
+   !> between pairs (what CalculiX does) within 2.5 rel_tol of the Hertz force
+   !> (table 1.5 rel_tol + resampling rel_tol).
+   subroutine test_calculix_sphere(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      real(dp), allocatable :: p(:), x(:)
+      character(len=:), allocatable :: comments
+      logical :: ok
+      integer :: i
+      real(dp) :: xm, pm
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call write_table(t, dir//"/hertz.inp", format_calculix, err)
+      call check(error, .not. allocated(err), "CalculiX write failed")
+      if (allocated(error)) return
+      call read_calculix(dir//"/hertz.inp", p, x, comments, ok)
+      call check(error, ok, "CalculiX file not parsed")
+      if (allocated(error)) return
+      call check(error, p(1) == 0.0_dp .and. x(1) == t%cutoff, "first pair (0, delta_c)")
+      if (allocated(error)) return
+      call check(error, all(x(2:) > x(:size(x) - 1)), "overclosure not increasing")
+      if (allocated(error)) return
+      call check(error, abs(x(size(x)) - t%delta_max) <= 1e-15_dp*t%delta_max, "last overclosure")
+      if (allocated(error)) return
+      do i = 2, size(x) - 1
+         xm = 0.5_dp*(x(i) + x(i + 1))
+         pm = 0.5_dp*(p(i) + p(i + 1))
+         call check(error, pm, p_hertz(2.0_dp, 0.5_dp, xm), "interpolated force at "// &
+            & format_real(xm), thr=2.5_dp*tol, rel=.true.)
+         if (allocated(error)) return
+      end do
+   end subroutine test_calculix_sphere
+
+   !> Rough flat (contract of flat_pressure only): pairs are p_G(-overclosure) to 17
+   !> digits, the first at zero pressure where p_G <= rel_tol p_G(0), overclosure
+   !> increasing, linear interpolation within rel_tol of p_G at the midpoints.
+   subroutine test_calculix_flat(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: params
+      type(egw_error), allocatable :: err
+      real(dp), allocatable :: p(:), x(:)
+      character(len=:), allocatable :: comments
+      logical :: ok
+      integer :: i
+      real(dp) :: pg, dpg, p0
+      real(dp), parameter :: ftol = 1.0e-5_dp
+      params = contact_params(model=model_egw, radius=1.0_dp, modulus=2.0_dp, &
+         & sigma=1.0e-3_dp, mu=4.0_dp)
+      call write_calculix_flat(params, 3.0e-3_dp, ftol, dir//"/flat.inp", err)
+      call check(error, .not. allocated(err), "CalculiX flat write failed")
+      if (allocated(error)) return
+      call read_calculix(dir//"/flat.inp", p, x, comments, ok)
+      call check(error, ok, "CalculiX flat file not parsed")
+      if (allocated(error)) return
+      call flat_pressure(params, 0.0_dp, p0, dpg, err)
+      call flat_pressure(params, -x(1), pg, dpg, err)
+      call check(error, p(1) == 0.0_dp .and. pg <= ftol*p0, "first pair at zero pressure")
+      if (allocated(error)) return
+      call check(error, all(x(2:) > x(:size(x) - 1)), "overclosure not increasing")
+      if (allocated(error)) return
+      do i = 2, size(x)
+         call flat_pressure(params, -x(i), pg, dpg, err)
+         call check(error, p(i), pg, "pair "//to_string(i), thr=1e-15_dp, rel=.true.)
+         if (allocated(error)) return
+      end do
+      do i = 2, size(x) - 1
+         call flat_pressure(params, -0.5_dp*(x(i) + x(i + 1)), pg, dpg, err)
+         call check(error, 0.5_dp*(p(i) + p(i + 1)), pg, "interpolated p_G", &
+            & thr=ftol*1.0001_dp, rel=.true.)
+         if (allocated(error)) return
+      end do
+      call write_calculix_flat(contact_params(model=model_hertz), 1.0_dp, ftol, &
+         & dir//"/flat2.inp", err)
+      call check(error, allocated(err), "smooth flat must be refused")
+   end subroutine test_calculix_flat
+
+   subroutine test_unsupported(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table) :: u
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      call build_universal(model_hertz, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 1.0_dp, &
+         & 2.0_dp, -1.0_dp, 10.0_dp, 1e-4_dp, u, err)
+      call check(error, .not. allocated(err), "universal build")
+      if (allocated(error)) return
+      call write_universal(u, dir//"/u.table", format_lammps, err)
+      call check(error, allocated(err), "universal LAMMPS must be refused")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_unsupported, "status of refused format")
+      if (allocated(error)) return
+      call write_universal(u, dir//"/u.egwu", format_binary, err)
+      call read_table(dir//"/u.egwu", t, err)
+      call check(error, allocated(err), "a universal file is not a 1-D table")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_bad_file, "status for the wrong kind of file")
+      if (allocated(error)) return
+      call read_table(dir//"/does-not-exist", t, err)
+      call check(error, allocated(err), "missing file")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_io_error, "status for a missing file")
+      if (allocated(error)) return
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call write_table(t, dir//"/x", 7, err)
+      call check(error, allocated(err), "unknown format")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument, "status of an unknown format")
+   end subroutine test_unsupported
+
+end module test_table_format
