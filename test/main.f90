@@ -5,8 +5,13 @@ program tester
    use testdrive, only: run_testsuite, run_selected, new_testsuite, testsuite_type, &
       & select_suite, unittest_type
    use test_params, only: collect_params
+   use test_halfspace, only: collect_halfspace
+   use test_rough_sphere, only: collect_rough_sphere
    use test_ellip, only: collect_ellip
    use test_hertz, only: collect_hertz
+   use test_gauss, only: collect_gauss
+   use test_asperity, only: collect_asperity
+   use test_capi, only: collect_capi
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -15,8 +20,13 @@ program tester
 
    suites = [ &
       & new_testsuite("params", collect_params), &
+      & new_testsuite("halfspace", collect_halfspace), &
+      & new_testsuite("rough_sphere", collect_rough_sphere), &
       & new_testsuite("ellip", collect_ellip), &
-      & new_testsuite("hertz", collect_hertz) &
+      & new_testsuite("hertz", collect_hertz), &
+      & new_testsuite("gauss", collect_gauss), &
+      & new_testsuite("asperity", collect_asperity), &
+      & new_testsuite("capi", collect_capi) &
       & ]
 
    stat = 0
