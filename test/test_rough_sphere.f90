@@ -22,7 +22,7 @@ contains
       testsuite = [ &
          & new_unittest("Hertz model and sigma = 0 are exact", test_hertz_exact), &
          & new_unittest("DESIGN 5 table of P/P_H", test_design_table), &
-         & new_unittest("independent references (188 points)", test_references), &
+         & new_unittest("independent references (208 points)", test_references), &
          & new_unittest("independent reference profiles", test_reference_profiles), &
          & new_unittest("sigma -> 0: E-GW above, GW below Hertz", test_small_sigma), &
          & new_unittest("scale invariance", test_scale_invariance), &
@@ -163,7 +163,7 @@ contains
       end do
       close (unit)
       if (allocated(error)) return
-      call check(error, rows, 188, "rows read from "//path)
+      call check(error, rows, 208, "rows read from "//path)
    end subroutine test_references
 
    !> p(r) and w(r) of contact_profile against test/data/sphere_reference_profiles.csv
