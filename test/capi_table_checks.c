@@ -1,14 +1,13 @@
-/* C tests of the table API (include/egw_table_api.h): build, evaluate, write, read,
+/* C tests of the table API of include/egw.h: build, evaluate, write, read,
  * free, universal tables, with good and bad input. Each egw_capi_test_table_* returns
  * the number of failed checks and prints why; test/test_capi_table.f90 runs them as a
  * test-drive suite. Exact references: the Hertz closed form, written out here. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "egw.h"
-#ifndef EGW_TABLE_API_H
-#include "egw_table_api.h"
-#endif
 
 static int failures;
 #define CHECK(cond) do { if (!(cond)) { failures++; \
@@ -108,6 +107,30 @@ int egw_capi_test_table_files(void) {
   CHECK(egw_table_write(t, bin, EGW_FORMAT_BINARY) == EGW_OK);
   CHECK(egw_table_write(t, "build/capi_table.table", EGW_FORMAT_LAMMPS) == EGW_OK);
   CHECK(egw_table_write(t, "build/capi_table.inp", EGW_FORMAT_CALCULIX) == EGW_OK);
+  {
+    /* two sections; the second from R alone (R1 = R2 = 2R) */
+    egw_table two[2] = {t, NULL};
+    FILE *fp;
+    char line[256];
+    int sections = 0;
+    CHECK(egw_table_build(&p, NULL, 0.0, 0.01, 1e-4, &two[1]) == EGW_OK);
+    CHECK(egw_tables_write_lammps(2, two, "build/capi_two.table") == EGW_OK);
+    fp = fopen("build/capi_two.table", "r");
+    CHECK(fp != NULL);
+    if (fp != NULL) {
+      while (fgets(line, sizeof line, fp) != NULL)
+        sections += strcmp(line, "EGW_1\n") == 0 || strcmp(line, "EGW_2\n") == 0;
+      fclose(fp);
+    }
+    CHECK(sections == 2);
+    {
+      egw_table second = two[1];
+      two[1] = NULL;
+      CHECK(egw_tables_write_lammps(2, two, "build/capi_two.table") == EGW_NULL_POINTER);
+      CHECK(egw_tables_write_lammps(0, two, "build/capi_two.table") == EGW_INVALID_ARGUMENT);
+      egw_table_free(&second);
+    }
+  }
   CHECK(egw_table_write(t, csv, 9) == EGW_INVALID_ARGUMENT);
   CHECK(last_error_names("format"));
   CHECK(egw_table_write(t, NULL, EGW_FORMAT_CSV) == EGW_NULL_POINTER);
@@ -214,5 +237,106 @@ int egw_capi_test_table_universal(void) {
     CHECK(egw_universal_build(&p, NULL, 4.0, 0.5, -1.0, 100.0, tol, &v) == EGW_INVALID_ARGUMENT
           && v == NULL);
     CHECK(last_error_names("mu_max")); }
+  return failures;
+}
+
+/* ---- the stand-alone reader of doc/formats.md, verbatim (a C program without egw) ---- */
+
+typedef struct {
+  int32_t model, n, n_log;
+  double params[7], meta[7]; /* as in the table above */
+  double *delta, *force, *stiffness, *energy, *contact_radius; /* one block */
+} plain_table;
+
+static uint32_t fnv1a32(const unsigned char *p, size_t n) {
+  uint32_t h = 2166136261u;
+  for (size_t i = 0; i < n; i++) { h ^= p[i]; h *= 16777619u; }
+  return h;
+}
+
+/* 0 on success; 1 cannot open/read; 2 not a valid egw 1-D table file */
+static int plain_table_read(const char *path, plain_table *t) {
+  FILE *fp = fopen(path, "rb");
+  unsigned char *b;
+  long size;
+  int32_t version, bom;
+  uint32_t sum;
+  if (fp == NULL) return 1;
+  fseek(fp, 0, SEEK_END); size = ftell(fp); fseek(fp, 0, SEEK_SET);
+  b = malloc(size > 0 ? size : 1);
+  if (b == NULL || size < 148 || fread(b, 1, size, fp) != (size_t)size) {
+    fclose(fp); free(b); return size < 148 ? 2 : 1;
+  }
+  fclose(fp);
+  memcpy(&version, b + 8, 4); memcpy(&bom, b + 12, 4); memcpy(&sum, b + size - 4, 4);
+  memcpy(&t->model, b + 20, 4); memcpy(&t->n, b + 24, 4); memcpy(&t->n_log, b + 28, 4);
+  if (memcmp(b, "EGWTAB1D", 8) != 0 || version != 1 || bom != 0x01020304
+      || sum != fnv1a32(b, size - 4) || t->n < 2 || size != 148 + 40L * t->n) {
+    free(b); return 2;
+  }
+  memcpy(t->params, b + 32, 56);
+  memcpy(t->meta, b + 88, 56);
+  t->delta = malloc(40L * t->n);
+  memcpy(t->delta, b + 144, 40L * t->n);
+  t->force = t->delta + t->n; t->stiffness = t->force + t->n;
+  t->energy = t->stiffness + t->n; t->contact_radius = t->energy + t->n;
+  free(b);
+  return 0;
+}
+static void plain_table_eval(const plain_table *t, double d, double *f, double *k) {
+  int lo = 0, hi = t->n - 1, n = t->n;
+  if (d < t->delta[0]) { *f = *k = 0.0; return; }
+  if (d >= t->delta[n - 1]) {
+    *k = t->stiffness[n - 1]; *f = t->force[n - 1] + *k * (d - t->delta[n - 1]); return;
+  }
+  while (hi - lo > 1) { int m = (lo + hi) / 2; if (d >= t->delta[m]) lo = m; else hi = m; }
+  {
+    int lg = lo < t->n_log; /* 0-based interval lo is 1-based lo+1 <= n_log */
+    double h = t->delta[hi] - t->delta[lo], s = (d - t->delta[lo]) / h;
+    double v0 = lg ? log(t->force[lo]) : t->force[lo], v1 = lg ? log(t->force[hi]) : t->force[hi];
+    double d0 = lg ? t->stiffness[lo] / t->force[lo] : t->stiffness[lo];
+    double d1 = lg ? t->stiffness[hi] / t->force[hi] : t->stiffness[hi];
+    double v = (1 + 2 * s) * (1 - s) * (1 - s) * v0 + s * (1 - s) * (1 - s) * h * d0
+             + s * s * (3 - 2 * s) * v1 + s * s * (s - 1) * h * d1;
+    double dv = 6 * s * (s - 1) / h * (v0 - v1) + (1 - s) * (1 - 3 * s) * d0
+              + s * (3 * s - 2) * d1;
+    if (lg) { *f = exp(v); *k = *f * dv; } else { *f = v; *k = dv; }
+  }
+}
+
+/* The documented reader loads the binary file and evaluates it like egw: same node
+ * count, metadata, and force/stiffness to 1e-12 relative (the reader evaluates the
+ * Hermite basis form, egw the polynomial form: different rounding, and exp() in the
+ * log tail amplifies it by |ln P| < 30). A corrupted copy is refused. */
+int egw_capi_test_table_plain_reader(void) {
+  egw_params p;
+  egw_table t = NULL;
+  egw_table_info info;
+  plain_table pt;
+  const char *path = "build/capi_plain.egwt";
+  failures = 0;
+  egw_params_default(&p);
+  p.sigma = 1e-3; p.mu = 4.0; /* E-GW: exercises the log tail too */
+  CHECK(egw_table_build(&p, NULL, -6e-3, 5e-3, 1e-5, &t) == EGW_OK);
+  if (t == NULL) return failures;
+  CHECK(egw_table_write(t, path, EGW_FORMAT_BINARY) == EGW_OK);
+  CHECK(egw_table_get_info(t, &info) == EGW_OK);
+  CHECK(plain_table_read(path, &pt) == 0);
+  CHECK(pt.n == info.n_nodes && pt.model == EGW_MODEL_EGW && pt.n_log > 0);
+  CHECK(pt.meta[1] == info.cutoff && pt.meta[2] == info.delta_max && pt.params[3] == 4.0);
+  for (int i = 0; i <= 400; i++) {
+    double d = -7e-3 + 13e-3 * i / 400.0, f1, k1, f2, k2;
+    int st = egw_table_eval(t, d, &f1, &k1);
+    CHECK(st == EGW_OK || st == EGW_OUT_OF_RANGE);
+    plain_table_eval(&pt, d, &f2, &k2);
+    CHECK(fabs(f1 - f2) <= 1e-12 * fabs(f1) && fabs(k1 - k2) <= 1e-12 * fabs(k1) + 1e-300);
+  }
+  free(pt.delta);
+  {
+    FILE *fp = fopen(path, "r+b");
+    if (fp != NULL) { fseek(fp, 150, SEEK_SET); fputc(0x55, fp); fclose(fp); }
+    CHECK(plain_table_read(path, &pt) == 2);
+  }
+  egw_table_free(&t);
   return failures;
 }

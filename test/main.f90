@@ -7,8 +7,13 @@ program tester
    use test_params, only: collect_params
    use test_ellip, only: collect_ellip
    use test_hertz, only: collect_hertz
+   use test_gauss, only: collect_gauss
+   use test_asperity, only: collect_asperity
+   use test_halfspace, only: collect_halfspace
+   use test_rough_sphere, only: collect_rough_sphere
    use test_table, only: collect_table
    use test_table_format, only: collect_table_format
+   use test_capi, only: collect_capi
    use test_capi_table, only: collect_capi_table
    implicit none
    type(testsuite_type), allocatable :: suites(:)
@@ -20,8 +25,13 @@ program tester
       & new_testsuite("params", collect_params), &
       & new_testsuite("ellip", collect_ellip), &
       & new_testsuite("hertz", collect_hertz), &
+      & new_testsuite("gauss", collect_gauss), &
+      & new_testsuite("asperity", collect_asperity), &
+      & new_testsuite("halfspace", collect_halfspace), &
+      & new_testsuite("rough_sphere", collect_rough_sphere), &
       & new_testsuite("table", collect_table), &
       & new_testsuite("table_format", collect_table_format), &
+      & new_testsuite("capi", collect_capi), &
       & new_testsuite("capi_table", collect_capi_table) &
       & ]
 

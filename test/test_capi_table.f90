@@ -16,6 +16,9 @@ module test_capi_table
       integer(c_int) function c_universal() bind(C, name="egw_capi_test_table_universal")
          import :: c_int
       end function c_universal
+      integer(c_int) function c_plain() bind(C, name="egw_capi_test_table_plain_reader")
+         import :: c_int
+      end function c_plain
    end interface
 
 contains
@@ -25,7 +28,8 @@ contains
       testsuite = [ &
          & new_unittest("build and eval", t_build_eval), &
          & new_unittest("files", t_files), &
-         & new_unittest("universal", t_universal) &
+         & new_unittest("universal", t_universal), &
+         & new_unittest("documented plain C reader", t_plain) &
          & ]
    end subroutine collect_capi_table
 
@@ -49,5 +53,10 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_universal())
    end subroutine t_universal
+
+   subroutine t_plain(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_plain())
+   end subroutine t_plain
 
 end module test_capi_table

@@ -9,8 +9,9 @@ module test_table
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
-   use egw_status, only: format_real, egw_error, egw_invalid_argument, egw_invalid_parameter, egw_out_of_range
-   use egw_params, only: contact_params, model_hertz, model_egw, model_gw
+   use egw_status, only: format_real, egw_error, egw_invalid_argument, egw_invalid_parameter, &
+      & egw_out_of_range
+   use egw_params, only: contact_params, model_hertz, model_egw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table
    use egw_table_universal
@@ -33,6 +34,7 @@ contains
          & new_unittest("invalid requests", test_invalid), &
          & new_unittest("particle radii", test_radii), &
          & new_unittest("threads give the same table", test_threads), &
+         & new_unittest("parallel evaluation", test_parallel_eval), &
          & new_unittest("rough table vs solves (contract)", test_rough_contract), &
          & new_unittest("universal hertz exact scaling", test_universal_hertz), &
          & new_unittest("universal rough vs solves (contract)", test_universal_rough), &
@@ -254,6 +256,28 @@ contains
          & "nodes differ between thread counts")
    end subroutine test_threads
 
+   !> Evaluation keeps no state: an OpenMP loop over contacts gives exactly the serial
+   !> results.
+   subroutine test_parallel_eval(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      integer, parameter :: n = 20000
+      real(dp) :: d(n), f1(n), k1(n), f2(n), k2(n)
+      integer :: i
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      do i = 1, n
+         d(i) = -1.0e-3_dp + 1.2e-2_dp*modulo(i*0.6180339887498949_dp, 1.0_dp)
+         call table_eval(t, d(i), f1(i), k1(i))
+      end do
+      !$omp parallel do schedule(static, 7)
+      do i = 1, n
+         call table_eval(t, d(i), f2(i), k2(i))
+      end do
+      !$omp end parallel do
+      call check(error, all(f1 == f2) .and. all(k1 == k2), "parallel evaluation differs")
+   end subroutine test_parallel_eval
+
    !> Contract-only test on E-GW (meaningful with the real solver): between the check
    !> points (t = 1/4, 3/4 of each interval) the table agrees with solve_contact to
    !> 1.5 rel_tol plus the solver's own tolerance (rel_tol/10, set by the builder);
@@ -291,6 +315,22 @@ contains
       call check(error, worst <= 1.5e-5_dp + 1.0e-6_dp, "max rel. error vs solves "// &
          & format_real(worst))
       if (allocated(error)) return
+      ! energy is the integral of the interpolated force, in the log tail (Gauss-Legendre)
+      ! as elsewhere: dW/ddelta = P by the 4th-order central difference with h = 1e-3 of
+      ! the interval (width w in [1e-2, 1] sigma): truncation h^4 |P^(4)|/(30 P) <=
+      ! (1e-3 w/sigma)^4 (delta/sigma)^4/30 < 1e-10, round-off 1.5 eps W/(h P) < 2e-10
+      ! since W/P < 4 sigma here
+      do i = 1, size(t%delta) - 1, max(1, (size(t%delta) - 1)/40)
+         ! (graded intervals near delta = 0 are too narrow for a clean difference)
+         if (t%delta(i + 1) - t%delta(i) < 1.0e-2_dp*p%sigma) cycle
+         d = 0.5_dp*(t%delta(i) + t%delta(i + 1))
+         k = 1.0e-3_dp*(t%delta(i + 1) - t%delta(i))
+         call table_eval(t, d, f, fprev)
+         call check(error, (8*(table_energy(t, d + k) - table_energy(t, d - k)) - &
+            & (table_energy(t, d + 2*k) - table_energy(t, d - 2*k)))/(12*k), f, &
+            & "dW/ddelta = P at "//format_real(d), thr=1.0e-8_dp, rel=.true.)
+         if (allocated(error)) return
+      end do
       fprev = 0
       do i = 0, 2000
          d = t%cutoff + (t%delta_max - t%cutoff)*i/2000.0_dp
@@ -342,16 +382,16 @@ contains
       type(solver_options) :: opts
       integer :: i, stat
       real(dp) :: f, k, worst, x
-      real(dp), parameter :: utol = 1.0e-5_dp
+      real(dp), parameter :: utol = 1.0e-4_dp
       call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), &
-         & 1.0_dp, 10.0_dp, -6.0_dp, 50.0_dp, utol, u, err)
+         & 2.0_dp, 8.0_dp, -6.0_dp, 50.0_dp, utol, u, err)
       call check(error, .not. allocated(err), "universal E-GW build failed")
       if (allocated(error)) return
       p = contact_params(model=model_egw, radius=2.5e-3_dp, modulus=7.0e10_dp, sigma=3.0e-7_dp)
       opts%rel_tol = utol/10
       worst = 0
       do i = 1, 30
-         p%mu = 10.0_dp**((i - 0.37_dp)/30)
+         p%mu = 2.0_dp*4.0_dp**((i - 0.37_dp)/30)
          x = -3.0_dp + 53.0_dp*((i - 0.61_dp)/30)**2
          call solve_contact(p, opts, x*p%sigma, res, err)
          if (allocated(err)) cycle

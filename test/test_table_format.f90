@@ -36,6 +36,7 @@ contains
          & new_unittest("csv truncated or corrupted", test_csv_bad), &
          & new_unittest("atomic writes", test_atomic), &
          & new_unittest("lammps export", test_lammps), &
+         & new_unittest("lammps export, rough table", test_lammps_rough), &
          & new_unittest("calculix sphere export", test_calculix_sphere), &
          & new_unittest("calculix rough flat export", test_calculix_flat), &
          & new_unittest("unsupported and missing", test_unsupported) &
@@ -147,8 +148,8 @@ contains
       real(dp) :: x, mu, f1, k1, f2, k2
       character(len=*), parameter :: names(0:1) = [character(len=14) :: "universal.csv", &
          & "universal.egwu"]
-      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 1.0_dp, &
-         & 10.0_dp, -6.0_dp, 20.0_dp, 1.0e-4_dp, u, err)
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 2.0_dp, &
+         & 8.0_dp, -6.0_dp, 20.0_dp, 1.0e-4_dp, u, err)
       call check(error, .not. allocated(err), "universal build failed")
       if (allocated(error)) return
       do fmt_id = format_csv, format_binary
@@ -169,7 +170,7 @@ contains
          end do
          do i = 1, 50
             x = -2.0_dp + 22.0_dp*(i - 0.5_dp)/50
-            mu = 10.0_dp**((i - 0.5_dp)/50)
+            mu = 2.0_dp*4.0_dp**((i - 0.5_dp)/50)
             call universal_eval(u, 2.0_dp, 3.0_dp, 1e-3_dp, mu, x*1e-3_dp, f1, k1, s1)
             call universal_eval(back, 2.0_dp, 3.0_dp, 1e-3_dp, mu, x*1e-3_dp, f2, k2, s2)
             call check(error, f1 == f2 .and. k1 == k2 .and. s1 == s2, "universal eval differs")
@@ -506,6 +507,41 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_lammps
+
+   !> E-GW (contract only: any table): F = -dE/dr across the log tail and the contact
+   !> onset. The energy column is the exact integral of the interpolated force, so the
+   !> trapezoid rule of the force column matches the energy difference to h^3/12 |F''|;
+   !> |F''| is bounded by twice the largest second difference of F around the interval
+   !> (divided by h^2), plus the 17-digit rounding of E.
+   subroutine test_lammps_rough(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      integer :: n, i
+      real(dp) :: rlo, rhi, h, f2, bound
+      real(dp), allocatable :: r(:), e(:), f(:)
+      character(len=:), allocatable :: comments
+      logical :: ok
+      character(len=*), parameter :: path = dir//"/egw.table"
+      call rough_table(t, error)
+      if (allocated(error)) return
+      call write_lammps([t], path, err)
+      call check(error, .not. allocated(err), "LAMMPS write failed")
+      if (allocated(error)) return
+      call read_lammps_section(path, "EGW_1", n, rlo, rhi, r, e, f, comments, ok)
+      call check(error, ok, "section not parsed")
+      if (allocated(error)) return
+      call check(error, index(comments, "two equal spheres") > 0, "equal-spheres note")
+      if (allocated(error)) return
+      h = (rhi - rlo)/(n - 1)
+      do i = 2, n - 2
+         f2 = 2*max(abs(f(i + 1) - 2*f(i) + f(i - 1)), abs(f(i + 2) - 2*f(i + 1) + f(i)))/h**2
+         bound = h**3/12*f2 + 4*epsilon(1.0_dp)*e(1)
+         call check(error, abs((e(i) - e(i + 1)) - h*(f(i) + f(i + 1))/2) <= bound, &
+            & "F = -dE/dr violated at r = "//format_real(r(i)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_lammps_rough
 
    ! ------------------------------------------------------------ CalculiX
 

@@ -8,9 +8,6 @@
 #include <math.h>
 #include <stdio.h>
 #include "egw.h"
-#ifndef EGW_TABLE_API_H
-#include "egw_table_api.h" /* until the table API is part of egw.h */
-#endif
 
 static const double R1 = 1e-3, YOUNG = 70e9, NU = 0.22, RHO = 2500, V0 = 0.2;
 static const double PI = 3.14159265358979323846;

@@ -105,7 +105,7 @@ contains
    subroutine figures4and5()
       real(dp), parameter :: sigmas(3) = [1.0e-5_dp, 1.0e-4_dp, 1.0e-3_dp]
       integer, parameter :: models(2) = [model_gw, model_egw]
-      real(dp) :: r(401), pressure(401), deflection(401), p_h(401), w_h(401)
+      real(dp) :: r(801), pressure(801), deflection(801), p_h(801), w_h(801)
       type(contact_params) :: params
       logical :: ok
       integer :: unit_p, unit_w, i, j, m
@@ -145,7 +145,7 @@ contains
    !> Fig. 7: pressure at delta = 0.01, sigma = 1e-3, mu = 4 for EP-GW (panel a:
    !> psi = 2, 4, 10 at K = 0.6; panel b: K = 0.4, 0.6, 0.8 at psi = 4), E-GW and Hertz.
    subroutine figure7()
-      real(dp) :: r(321), pressure(321), deflection(321), p_h(321)
+      real(dp) :: r(641), pressure(641), deflection(641), p_h(641)
       type(contact_params) :: params
       logical :: ok
       integer :: unit, i, c

@@ -1,4 +1,4 @@
-!> C API of the force tables (include/egw_table_api.h): opaque handles to Fortran table
+!> C API of the force tables (include/egw.h): opaque handles to Fortran table
 !> objects (c_loc of an allocated object, released by egw_table_free /
 !> egw_universal_free), build, evaluation, file output and input. Errors go through
 !> egw_capi's per-thread last-error message (settle, require).
@@ -15,8 +15,9 @@ module egw_capi_table
       & table_contact_radius, table_set_radii, table_is_ready
    use egw_table_universal, only: universal_table, build_universal, universal_eval
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
-      & write_calculix_flat
-   use egw_capi, only: egw_params_c, egw_options_c, to_params, settle, require
+      & write_calculix_flat, write_lammps
+   use egw_capi, only: egw_params_c, egw_options_c, settle, require, read_params, &
+      & read_options, put, int_str
    implicit none
    private
 
@@ -41,6 +42,7 @@ contains
 
    ! ------------------------------------------------------------ 1-D tables
 
+   !> C: egw_table_build (see include/egw_table_api.h for units and statuses).
    function egw_table_build(p, o, delta_min, delta_max, rel_tol, out) result(stat) &
       & bind(C, name="egw_table_build")
       type(c_ptr), value, intent(in) :: p, o, out
@@ -66,6 +68,7 @@ contains
       handle = c_loc(t)
    end function egw_table_build
 
+   !> C: egw_table_eval; above delta_max returns EGW_OUT_OF_RANGE with values written.
    function egw_table_eval(h, delta, force, stiffness) result(stat) &
       & bind(C, name="egw_table_eval")
       type(c_ptr), value, intent(in) :: h, force, stiffness
@@ -73,18 +76,25 @@ contains
       integer(c_int) :: stat
       type(force_table), pointer :: t
       real(dp) :: f, k
-      stat = get_table(h, t)
-      if (stat /= egw_ok) return
+      ! lean: this is the per-contact hot path (a handle only comes from build or read,
+      ! so it always holds a prepared table)
+      if (.not. c_associated(h)) then
+         stat = require(h, "t")
+         return
+      end if
       if (ieee_is_nan(delta)) then
          stat = invalid("delta = NaN: must be a number")
          return
       end if
+      call c_f_pointer(h, t)
       call table_eval(t, delta, f, k)
       call put(force, f)
       call put(stiffness, k)
-      if (.not. table_covers(t, delta)) stat = out_of_range(t, delta)
+      stat = egw_ok
+      if (delta > t%delta_max) stat = out_of_range(t, delta)
    end function egw_table_eval
 
+   !> C: egw_table_eval_all (force, stiffness, energy, contact radius).
    function egw_table_eval_all(h, delta, force, stiffness, energy, contact_radius) &
       & result(stat) bind(C, name="egw_table_eval_all")
       type(c_ptr), value, intent(in) :: h, force, stiffness, energy, contact_radius
@@ -106,6 +116,7 @@ contains
       if (.not. table_covers(t, delta)) stat = out_of_range(t, delta)
    end function egw_table_eval_all
 
+   !> C: egw_table_get_info.
    function egw_table_get_info(h, info) result(stat) bind(C, name="egw_table_get_info")
       type(c_ptr), value, intent(in) :: h, info
       integer(c_int) :: stat
@@ -121,6 +132,7 @@ contains
          & max_force_error=t%max_force_error, max_stiffness_error=t%max_stiffness_error)
    end function egw_table_get_info
 
+   !> C: egw_table_set_radii (R1, R2 consistent with the table's R).
    function egw_table_set_radii(h, radius1, radius2) result(stat) &
       & bind(C, name="egw_table_set_radii")
       type(c_ptr), value, intent(in) :: h
@@ -134,6 +146,7 @@ contains
       stat = settle(error)
    end function egw_table_set_radii
 
+   !> C: egw_table_write (atomic; EGW_FORMAT_*).
    function egw_table_write(h, path, format) result(stat) bind(C, name="egw_table_write")
       type(c_ptr), value, intent(in) :: h, path
       integer(c_int), value, intent(in) :: format
@@ -148,6 +161,7 @@ contains
       stat = settle(error)
    end function egw_table_write
 
+   !> C: egw_table_read (egw CSV or binary; no handle on a bad file).
    function egw_table_read(path, out) result(stat) bind(C, name="egw_table_read")
       type(c_ptr), value, intent(in) :: path, out
       integer(c_int) :: stat
@@ -169,6 +183,7 @@ contains
       handle = c_loc(t)
    end function egw_table_read
 
+   !> C: egw_table_free(egw_table *t): releases the table, sets *t = NULL.
    subroutine egw_table_free(h) bind(C, name="egw_table_free")
       type(c_ptr), value, intent(in) :: h
       type(c_ptr), pointer :: handle
@@ -181,6 +196,37 @@ contains
       handle = c_null_ptr
    end subroutine egw_table_free
 
+   !> C: egw_tables_write_lammps: one pair_style table section (EGW_1..EGW_n) per table.
+   function egw_tables_write_lammps(n, tables, path) result(stat) &
+      & bind(C, name="egw_tables_write_lammps")
+      integer(c_int), value, intent(in) :: n
+      type(c_ptr), value, intent(in) :: tables, path
+      integer(c_int) :: stat
+      type(c_ptr), pointer :: handles(:)
+      type(force_table), allocatable :: copies(:)
+      type(force_table), pointer :: t
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      integer :: i
+      if (n < 1) then
+         stat = invalid("n = "//int_str(int(n))//": need at least one table")
+         return
+      end if
+      stat = require(tables, "tables")
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      call c_f_pointer(tables, handles, [n])
+      allocate (copies(n))
+      do i = 1, n
+         stat = get_table(handles(i), t)
+         if (stat /= egw_ok) return
+         copies(i) = t
+      end do
+      call write_lammps(copies, fpath, error)
+      stat = settle(error)
+   end function egw_tables_write_lammps
+
+   !> C: egw_write_flat_calculix (rough-flat p_G for CalculiX).
    function egw_write_flat_calculix(p, overclosure_max, rel_tol, path) result(stat) &
       & bind(C, name="egw_write_flat_calculix")
       type(c_ptr), value, intent(in) :: p, path
@@ -198,6 +244,7 @@ contains
 
    ! ------------------------------------------------------------ universal tables
 
+   !> C: egw_universal_build.
    function egw_universal_build(p, o, mu_min, mu_max, x_min, x_max, rel_tol, out) &
       & result(stat) bind(C, name="egw_universal_build")
       type(c_ptr), value, intent(in) :: p, o, out
@@ -224,6 +271,7 @@ contains
       handle = c_loc(u)
    end function egw_universal_build
 
+   !> C: egw_universal_eval (R, E, sigma, mu from p; model, psi, K, rho_p must match).
    function egw_universal_eval(h, p, delta, force, stiffness) result(stat) &
       & bind(C, name="egw_universal_eval")
       type(c_ptr), value, intent(in) :: h, p, force, stiffness
@@ -275,6 +323,7 @@ contains
       end if
    end function egw_universal_eval
 
+   !> C: egw_universal_write (CSV or binary).
    function egw_universal_write(h, path, format) result(stat) &
       & bind(C, name="egw_universal_write")
       type(c_ptr), value, intent(in) :: h, path
@@ -290,6 +339,7 @@ contains
       stat = settle(error)
    end function egw_universal_write
 
+   !> C: egw_universal_read.
    function egw_universal_read(path, out) result(stat) bind(C, name="egw_universal_read")
       type(c_ptr), value, intent(in) :: path, out
       integer(c_int) :: stat
@@ -311,6 +361,7 @@ contains
       handle = c_loc(u)
    end function egw_universal_read
 
+   !> C: egw_universal_free(egw_universal *u): releases, sets *u = NULL.
    subroutine egw_universal_free(h) bind(C, name="egw_universal_free")
       type(c_ptr), value, intent(in) :: h
       type(c_ptr), pointer :: handle
@@ -365,35 +416,6 @@ contains
       end do
    end function get_path
 
-   !> Read and validate a const egw_params* (as egw_capi does).
-   integer(c_int) function read_params(p, params) result(stat)
-      type(c_ptr), intent(in) :: p
-      type(contact_params), intent(out) :: params
-      type(egw_params_c), pointer :: cp
-      type(egw_error), allocatable :: error
-      stat = require(p, "p")
-      if (stat /= egw_ok) return
-      call c_f_pointer(p, cp)
-      params = to_params(cp)
-      call validate_params(params, error)
-      stat = settle(error)
-   end function read_params
-
-   !> Options from a nullable const egw_options* (NULL: defaults); copied from egw_capi,
-   !> where it is private.
-   subroutine read_options(o, options)
-      type(c_ptr), intent(in) :: o
-      type(solver_options), intent(out) :: options
-      type(egw_options_c), pointer :: co
-      if (.not. c_associated(o)) return
-      call c_f_pointer(o, co)
-      options%n_radial = int(co%n_radial)
-      options%rel_tol = co%rel_tol
-      options%max_iter = int(co%max_iter)
-      options%method = int(co%method)
-      options%n_threads = int(co%n_threads)
-   end subroutine read_options
-
    integer(c_int) function out_of_range(t, delta) result(stat)
       type(force_table), intent(in) :: t
       real(dp), intent(in) :: delta
@@ -416,22 +438,5 @@ contains
       call fatal_error(error, egw_invalid_argument, message)
       ignored = settle(error)
    end subroutine record
-
-   subroutine put(ptr, x)
-      type(c_ptr), intent(in) :: ptr
-      real(dp), intent(in) :: x
-      real(c_double), pointer :: target
-      if (.not. c_associated(ptr)) return
-      call c_f_pointer(ptr, target)
-      target = x
-   end subroutine put
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
-   end function int_str
 
 end module egw_capi_table

@@ -19,7 +19,7 @@ module egw_table
    implicit none
    private
 
-   public :: build_table, build_table_fixed_cutoff, table_eval, table_eval_log, &
+   public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, table_eval, table_eval_log, &
       & table_eval_all, table_covers, table_energy, table_contact_radius, &
       & table_set_radii, table_prepare, table_is_ready, table_find_cutoff
 
@@ -115,6 +115,34 @@ contains
       call build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, log_space, table, error)
    end subroutine build_table_fixed_cutoff
 
+   !> Tables of several parameter sets on one common set of nodes, all from the fixed
+   !> cutoff to delta_max (the mu slices of a universal table, which then needs one
+   !> lookup for all slices). P_ref of each set as in build_table.
+   subroutine build_tables_shared(params, options, cutoff, delta_max, rel_tol, log_space, &
+      & tables, error)
+      type(contact_params), intent(in) :: params(:)
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: cutoff, delta_max, rel_tol
+      logical, intent(in) :: log_space
+      type(force_table), intent(inout) :: tables(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: opts
+      real(dp) :: p_ref(size(params)), k, a
+      integer :: s
+      do s = 1, size(params)
+         call check_request(params(s), cutoff, delta_max, rel_tol, error)
+         if (allocated(error)) return
+      end do
+      opts = point_options(options, rel_tol)
+      do s = 1, size(params)
+         call solve_point(params(s), opts, reference_overlap(params(s), delta_max), p_ref(s), &
+            & k, a, error)
+         if (allocated(error)) return
+      end do
+      call build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_space, &
+         & tables, error)
+   end subroutine build_tables_shared
+
    !> Cut-off rule: P_ref = P(min(0, delta_max)) for rough models, P(delta_max) for Hertz;
    !> delta_c is where P falls to between rel_tol*P_ref/2 and rel_tol*P_ref (bisection
    !> on solves; P is increasing in delta).
@@ -173,7 +201,7 @@ contains
       cutoff = lo
    end subroutine table_find_cutoff
 
-   !> Adaptive build between a given cut-off and delta_max.
+   !> Adaptive build between a given cut-off and delta_max (one parameter set).
    subroutine build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, table, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: opts
@@ -181,19 +209,39 @@ contains
       logical, intent(in) :: log_all
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
-      real(dp), allocatable :: x(:), f(:), k(:), a(:), xm(:), fm(:), km(:), am(:)
-      real(dp), allocatable :: err_f(:), err_k(:)
+      type(force_table) :: tables(1)
+      call build_shared_nodes([params], opts, cutoff, delta_max, rel_tol, [p_ref], log_all, &
+         & tables, error)
+      if (allocated(error)) return
+      table = tables(1)
+   end subroutine build_core
+
+   !> Tables of several parameter sets (the mu slices of a universal table) on one
+   !> common set of nodes: an interval is accepted only when the check passes for every
+   !> set. Solves run in parallel over all (node, set) pairs. A single set is the
+   !> ordinary 1-D build.
+   subroutine build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, &
+      & tables, error)
+      type(contact_params), intent(in) :: params(:)
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: cutoff, delta_max, rel_tol, p_ref(:)
+      logical, intent(in) :: log_all
+      type(force_table), intent(inout) :: tables(:)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: x(:), f(:, :), k(:, :), a(:, :), xm(:), fm(:, :), km(:, :)
+      real(dp), allocatable :: am(:, :), err_f(:), err_k(:)
       logical, allocatable :: accepted(:), split(:)
       integer, allocatable :: todo(:)
-      real(dp) :: fi, ki
-      integer :: round, n, i, j, m
-      logical :: rough, in_log
+      real(dp) :: fi, ki, ef, ek
+      integer :: round, n, i, j, m, s, ns
+      logical :: rough, in_log, bad_interval
 
-      rough = is_rough(params)
-      call initial_nodes(params, cutoff, delta_max, x)
+      ns = size(params)
+      rough = is_rough(params(1))
+      call initial_nodes(params(1), cutoff, delta_max, x)
       n = size(x)
-      allocate (f(n), k(n), a(n))
-      call solve_points(params, opts, x, f, k, a, error)
+      allocate (f(n, ns), k(n, ns), a(n, ns))
+      call solve_grid(params, opts, x, f, k, a, error)
       if (allocated(error)) return
       allocate (accepted(n - 1), err_f(n - 1), err_k(n - 1))
       accepted = .false.
@@ -215,47 +263,60 @@ contains
                & ": node spacing reached round-off before the tolerance was met")
             return
          end if
-         allocate (fm(m), km(m), am(m), split(m))
-         call solve_points(params, opts, xm, fm, km, am, error)
+         allocate (fm(m, ns), km(m, ns), am(m, ns), split(m))
+         call solve_grid(params, opts, xm, fm, km, am, error)
          if (allocated(error)) return
          do j = 1, m
             i = todo(j)
             in_log = log_all .or. (rough .and. x(i + 1) <= 0.0_dp)
-            call hermite_at(x(i), x(i + 1), f(i), f(i + 1), k(i), k(i + 1), &
-               & in_log, xm(j), fi, ki)
-            err_f(i) = rel_diff(fi, fm(j))
-            err_k(i) = rel_diff(ki, km(j))
-            ! the stiffness check (10 rel_tol) catches the sqrt(delta) singularity of the
-            ! Hertz stiffness at delta = 0 that the force check misses; for smooth data the
-            ! midpoint derivative error of cubic Hermite vanishes to leading order, so it
-            ! adds no nodes there
-            split(j) = err_f(i) > rel_tol .or. &
-               & err_k(i) > 10*rel_tol + slope_roundoff(x(i), x(i + 1), f(i), f(i + 1), &
-               & km(j), in_log) .or. &
-               & .not. monotone_ok(x(i), x(i + 1), f(i), &
-               & f(i + 1), k(i), k(i + 1), in_log)
+            split(j) = .false.
+            err_f(i) = 0.0_dp
+            err_k(i) = 0.0_dp
+            do s = 1, ns
+               call hermite_at(x(i), x(i + 1), f(i, s), f(i + 1, s), k(i, s), k(i + 1, s), &
+                  & in_log, xm(j), fi, ki)
+               ef = rel_diff(fi, fm(j, s))
+               ek = rel_diff(ki, km(j, s))
+               ! the stiffness check (10 rel_tol) catches the sqrt(delta) singularity of
+               ! the Hertz stiffness at delta = 0 that the force check misses; for smooth
+               ! data the midpoint derivative error of cubic Hermite vanishes to leading
+               ! order, so it adds no nodes there
+               bad_interval = ef > rel_tol .or. &
+                  & ek > 10*rel_tol + slope_roundoff(x(i), x(i + 1), f(i, s), f(i + 1, s), &
+                  & km(j, s), in_log) .or. &
+                  & .not. monotone_ok(x(i), x(i + 1), f(i, s), f(i + 1, s), k(i, s), &
+                  & k(i + 1, s), in_log)
+               split(j) = split(j) .or. bad_interval
+               err_f(i) = max(err_f(i), ef)
+               err_k(i) = max(err_k(i), ek)
+            end do
          end do
          call merge_nodes(x, f, k, a, accepted, err_f, err_k, todo, xm, fm, km, am, split)
          n = size(x)
          deallocate (fm, km, am, split)
       end do
 
-      table%params = params
-      table%rel_tol = rel_tol
-      table%cutoff = x(1)
-      table%delta_max = x(n)
-      table%reference_force = p_ref
-      table%max_force_error = maxval(err_f)
-      table%max_stiffness_error = maxval(err_k)
-      table%n_log = 0
-      if (rough) table%n_log = count(x(2:n) <= 0.0_dp)
-      if (log_all) table%n_log = n - 1
-      call move_alloc(x, table%delta)
-      call move_alloc(f, table%force)
-      call move_alloc(k, table%stiffness)
-      call move_alloc(a, table%contact_radius)
-      call table_prepare(table)
-   end subroutine build_core
+      do s = 1, ns
+         associate (table => tables(s))
+            table%params = params(s)
+            table%rel_tol = rel_tol
+            table%cutoff = x(1)
+            table%delta_max = x(n)
+            table%reference_force = p_ref(s)
+            table%max_force_error = maxval(err_f)
+            table%max_stiffness_error = maxval(err_k)
+            table%radius_sum = 0.0_dp
+            table%n_log = 0
+            if (rough) table%n_log = count(x(2:n) <= 0.0_dp)
+            if (log_all) table%n_log = n - 1
+            table%delta = x
+            table%force = f(:, s)
+            table%stiffness = k(:, s)
+            table%contact_radius = a(:, s)
+            call table_prepare(table)
+         end associate
+      end do
+   end subroutine build_shared_nodes
 
    !> Derive the evaluation data (coefficients, energy, lookup buckets) from the nodes.
    !> Called by the builder and by the readers; deterministic, so a table read back
@@ -517,6 +578,15 @@ contains
       table%radius_sum = radius1 + radius2
    end subroutine table_set_radii
 
+   !> Interval i (delta(i) <= delta < delta(i+1)) for cutoff <= delta < delta_max, found
+   !> in O(1) by the table's buckets (used by the universal table, whose slices share
+   !> their nodes).
+   pure integer function table_interval(table, delta) result(i)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      i = find_interval(table, delta)
+   end function table_interval
+
    ! ------------------------------------------------------------------ internals
 
    !> Interval i with delta(i) <= delta < delta(i+1), from the bucket of delta and a
@@ -679,17 +749,19 @@ contains
 
    !> Insert the midpoints of split intervals as nodes, keep the others' verdicts.
    pure subroutine merge_nodes(x, f, k, a, accepted, err_f, err_k, todo, xm, fm, km, am, split)
-      real(dp), allocatable, intent(inout) :: x(:), f(:), k(:), a(:), err_f(:), err_k(:)
+      real(dp), allocatable, intent(inout) :: x(:), f(:, :), k(:, :), a(:, :), err_f(:), &
+         & err_k(:)
       logical, allocatable, intent(inout) :: accepted(:)
       integer, intent(in) :: todo(:)
-      real(dp), intent(in) :: xm(:), fm(:), km(:), am(:)
+      real(dp), intent(in) :: xm(:), fm(:, :), km(:, :), am(:, :)
       logical, intent(in) :: split(:)
-      real(dp), allocatable :: x2(:), f2(:), k2(:), a2(:), ef2(:), ek2(:)
+      real(dp), allocatable :: x2(:), f2(:, :), k2(:, :), a2(:, :), ef2(:), ek2(:)
       logical, allocatable :: acc2(:)
       integer, allocatable :: slot(:)
-      integer :: n, n2, i, j, p
+      integer :: n, n2, i, j, p, ns
 
       n = size(x)
+      ns = size(f, 2)
       allocate (slot(n - 1))
       slot = 0
       do j = 1, size(todo)
@@ -700,21 +772,22 @@ contains
          end if
       end do
       n2 = n + count(split)
-      allocate (x2(n2), f2(n2), k2(n2), a2(n2), acc2(n2 - 1), ef2(n2 - 1), ek2(n2 - 1))
+      allocate (x2(n2), f2(n2, ns), k2(n2, ns), a2(n2, ns), acc2(n2 - 1), ef2(n2 - 1), &
+         & ek2(n2 - 1))
       p = 1
-      x2(1) = x(1); f2(1) = f(1); k2(1) = k(1); a2(1) = a(1)
+      x2(1) = x(1); f2(1, :) = f(1, :); k2(1, :) = k(1, :); a2(1, :) = a(1, :)
       do i = 1, n - 1
          j = slot(i)
          if (j > 0) then
             acc2(p) = .false.; ef2(p) = 0.0_dp; ek2(p) = 0.0_dp
             p = p + 1
-            x2(p) = xm(j); f2(p) = fm(j); k2(p) = km(j); a2(p) = am(j)
+            x2(p) = xm(j); f2(p, :) = fm(j, :); k2(p, :) = km(j, :); a2(p, :) = am(j, :)
             acc2(p) = .false.; ef2(p) = 0.0_dp; ek2(p) = 0.0_dp
          else
             acc2(p) = accepted(i); ef2(p) = err_f(i); ek2(p) = err_k(i)
          end if
          p = p + 1
-         x2(p) = x(i + 1); f2(p) = f(i + 1); k2(p) = k(i + 1); a2(p) = a(i + 1)
+         x2(p) = x(i + 1); f2(p, :) = f(i + 1, :); k2(p, :) = k(i + 1, :); a2(p, :) = a(i + 1, :)
       end do
       call move_alloc(x2, x)
       call move_alloc(f2, f)
@@ -764,31 +837,36 @@ contains
       x = buf(1:n)
    end subroutine initial_nodes
 
-   !> Solve at every point of x in parallel (one point per thread, solver threads off).
-   subroutine solve_points(params, opts, x, f, k, a, error)
-      type(contact_params), intent(in) :: params
+   !> Solve every (point, parameter set) pair in parallel (solver threads off).
+   subroutine solve_grid(params, opts, x, f, k, a, error)
+      type(contact_params), intent(in) :: params(:)
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: x(:)
-      real(dp), intent(out) :: f(:), k(:), a(:)
+      real(dp), intent(out) :: f(:, :), k(:, :), a(:, :)
       type(egw_error), allocatable, intent(out) :: error
-      integer, allocatable :: stat(:)
-      integer :: i
-      allocate (stat(size(x)))
-      !$omp parallel do schedule(dynamic)
-      do i = 1, size(x)
-         call solve_quiet(params, opts, x(i), f(i), k(i), a(i), stat(i))
+      integer, allocatable :: stat(:, :)
+      integer :: i, s, idx, nx
+      nx = size(x)
+      allocate (stat(nx, size(params)))
+      !$omp parallel do schedule(dynamic) private(i, s)
+      do idx = 1, nx*size(params)
+         i = mod(idx - 1, nx) + 1
+         s = (idx - 1)/nx + 1
+         call solve_quiet(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), stat(i, s))
       end do
       !$omp end parallel do
-      do i = 1, size(x)
-         if (stat(i) /= 0) then
-            ! redo the first failure serially to recover its message
-            call solve_point(params, opts, x(i), f(i), k(i), a(i), error)
-            if (.not. allocated(error)) call fatal_error(error, stat(i), "delta = "// &
-               & format_real(x(i))//": solve failed while building the table")
-            return
-         end if
+      do s = 1, size(params)
+         do i = 1, nx
+            if (stat(i, s) /= 0) then
+               ! redo the first failure serially to recover its message
+               call solve_point(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), error)
+               if (.not. allocated(error)) call fatal_error(error, stat(i, s), "delta = "// &
+                  & format_real(x(i))//": solve failed while building the table")
+               return
+            end if
+         end do
       end do
-   end subroutine solve_points
+   end subroutine solve_grid
 
    subroutine solve_quiet(params, opts, x, f, k, a, stat)
       type(contact_params), intent(in) :: params

@@ -17,7 +17,8 @@ module egw_table_format
    use egw_io, only: open_temporary, commit_temporary, discard_temporary
    use egw_asperity, only: flat_pressure
    use egw_table, only: force_table, table_prepare, table_eval, table_energy
-   use egw_table_universal, only: universal_table, universal_prepare, universal_slice_params
+   use egw_table_universal, only: universal_table, universal_prepare, universal_slice_params, &
+      & universal_nodes_shared
    implicit none
    private
 
@@ -364,6 +365,10 @@ contains
       end if
       call check_common_cutoff(path, u, error)
       if (allocated(error)) return
+      if (.not. universal_nodes_shared(u)) then
+         call bad(error, path, "slices do not share their nodes or are not in log space")
+         return
+      end if
       call universal_prepare(u)
       call move_universal(u, table)
    end subroutine parse_universal_csv
@@ -663,6 +668,10 @@ contains
       end if
       call check_common_cutoff(path, u, error)
       if (allocated(error)) return
+      if (.not. universal_nodes_shared(u)) then
+         call bad(error, path, "slices do not share their nodes or are not in log space")
+         return
+      end if
       call universal_prepare(u)
       call move_universal(u, table)
    end subroutine parse_universal_binary
@@ -1304,6 +1313,7 @@ contains
       to%log_mu_min = from%log_mu_min
       to%inv_dlog_mu = from%inv_dlog_mu
       call move_alloc(from%slices, to%slices)
+      call move_alloc(from%coef, to%coef)
    end subroutine move_universal
 
    pure subroutine put_i32(buf, pos, v)

@@ -14,12 +14,13 @@ module egw_table_universal
       & egw_out_of_range, fatal_error, format_real
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
-   use egw_table, only: force_table, build_table_fixed_cutoff, table_find_cutoff, &
-      & table_eval_log
+   use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
+      & table_eval_log, table_interval
    implicit none
    private
 
-   public :: build_universal, universal_eval, universal_prepare, universal_slice_params
+   public :: build_universal, universal_eval, universal_prepare, universal_slice_params, &
+      & universal_nodes_shared
 
    !> At most this many mu nodes (a grid that needs more is not converging).
    integer, parameter :: max_mu_nodes = 257
@@ -38,6 +39,9 @@ module egw_table_universal
       real(dp) :: max_mu_error = 0.0_dp   !< max rel. error at the mid-grid check solves
       real(dp) :: log_mu_min = 0.0_dp, inv_dlog_mu = 0.0_dp
       type(force_table), allocatable :: slices(:)
+      !> (0:3, n_mu, n-1): cubic of ln p in t = x - x_i for every slice and interval,
+      !> the 4 slices of a stencil contiguous (derived by universal_prepare)
+      real(dp), allocatable :: coef(:, :, :)
    end type universal_table
 
 contains
@@ -54,11 +58,11 @@ contains
       type(universal_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       type(universal_table) :: u
-      type(force_table), allocatable :: old(:)
       type(solver_options) :: opts
+      type(contact_params), allocatable :: params(:)
       real(dp), allocatable :: xc(:), mus(:), xs(:), pref(:)
       real(dp) :: x_cut, worst
-      integer :: j, n0, n_old
+      integer :: j, n0
 
       if (.not. (ieee_is_finite(mu_min) .and. mu_min > 0.0_dp)) then
          call fatal_error(error, egw_invalid_argument, "mu_min = "//format_real(mu_min)// &
@@ -99,20 +103,15 @@ contains
       u%x_cut = x_cut
 
       u%n_mu = n0
-      allocate (u%slices(n0))
-      n_old = 0
       do
-         ! build the slices that are new on this grid (odd positions keep the old ones)
-         do j = 1, u%n_mu
-            if (n_old > 0 .and. mod(j, 2) == 1) then
-               call move_alloc_slice(old((j + 1)/2), u%slices(j))
-               cycle
-            end if
-            call build_table_fixed_cutoff(universal_slice_params(model, psi, &
-               & hardness_coeff, plastic_ratio, mus(j)), opts, x_cut, x_max, 0.5_dp*rel_tol, &
-               & .true., u%slices(j), error)
-            if (allocated(error)) return
-         end do
+         ! all slices on one set of x nodes (one lookup serves all mu at evaluation)
+         if (allocated(u%slices)) deallocate (u%slices)
+         allocate (u%slices(u%n_mu))
+         params = [(universal_slice_params(model, psi, hardness_coeff, plastic_ratio, &
+            & mus(j)), j=1, u%n_mu)]
+         call build_tables_shared(params, opts, x_cut, x_max, 0.5_dp*rel_tol, .true., &
+            & u%slices, error)
+         if (allocated(error)) return
          call universal_prepare(u)
          ! check the mu interpolation at mid-grid mu against solves
          xs = check_points(x_cut, x_max, u%slices(1)%delta)
@@ -126,11 +125,10 @@ contains
                & "the maximum number of mu nodes")
             return
          end if
-         n_old = u%n_mu
-         call move_alloc(u%slices, old)
-         u%n_mu = 2*n_old - 1
+         ! rebuild on the doubled grid (shared nodes must be re-chosen for all slices);
+         ! the total cost stays below twice the final build
+         u%n_mu = 2*u%n_mu - 1
          mus = grid(mu_min, mu_max, u%n_mu)
-         allocate (u%slices(u%n_mu))
       end do
       call move_universal(u, table)
    end subroutine build_universal
@@ -145,11 +143,19 @@ contains
          & mu=mu, psi=psi, hardness_coeff=hardness_coeff, plastic_ratio=plastic_ratio)
    end function universal_slice_params
 
-   !> Derived lookup constants (after build or read).
+   !> Derived evaluation data (after build or read): mu lookup constants and the
+   !> slices' log-space cubics gathered per interval. Needs universal_nodes_shared(u).
    pure subroutine universal_prepare(u)
       type(universal_table), intent(inout) :: u
+      integer :: j, n
       u%log_mu_min = log(u%mu_min)
       u%inv_dlog_mu = (u%n_mu - 1)/(log(u%mu_max) - u%log_mu_min)
+      n = size(u%slices(1)%delta)
+      if (allocated(u%coef)) deallocate (u%coef)
+      allocate (u%coef(0:3, u%n_mu, n - 1))
+      do j = 1, u%n_mu
+         u%coef(:, j, :) = u%slices(j)%seg(1:4, 1:n - 1)
+      end do
    end subroutine universal_prepare
 
    !> Force and stiffness of a contact (R, E, sigma > 0, mu) at overlap delta:
@@ -162,8 +168,8 @@ contains
       real(dp), intent(in) :: radius, modulus, sigma, mu, delta
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: x, s, t, w(0:3), lp, dlp, l, dl, scale
-      integer :: j0, m
+      real(dp) :: x, s, t, w(0:3), lp, dlp, l, dl, scale, c(0:3)
+      integer :: j0, m, i
 
       force = 0.0_dp
       stiffness = 0.0_dp
@@ -183,17 +189,41 @@ contains
       w(1) = t*(t - 2)*(t - 3)/2
       w(2) = -t*(t - 1)*(t - 3)/2
       w(3) = t*(t - 1)*(t - 2)/6
-      lp = 0.0_dp
-      dlp = 0.0_dp
-      do m = 0, 3
-         call table_eval_log(u%slices(j0 + m + 1), x, l, dl)
-         lp = lp + w(m)*l
-         dlp = dlp + w(m)*dl
-      end do
+      if (x < u%x_max) then
+         ! one lookup for all slices (shared nodes), then one cubic of the combination
+         i = table_interval(u%slices(1), x)
+         t = x - u%slices(1)%seg(0, i)
+         c = w(0)*u%coef(:, j0 + 1, i) + w(1)*u%coef(:, j0 + 2, i) + &
+            & w(2)*u%coef(:, j0 + 3, i) + w(3)*u%coef(:, j0 + 4, i)
+         lp = c(0) + t*(c(1) + t*(c(2) + t*c(3)))
+         dlp = c(1) + t*(2*c(2) + 3*t*c(3))
+      else
+         lp = 0.0_dp
+         dlp = 0.0_dp
+         do m = 0, 3
+            call table_eval_log(u%slices(j0 + m + 1), x, l, dl)
+            lp = lp + w(m)*l
+            dlp = dlp + w(m)*dl
+         end do
+      end if
       scale = modulus*sqrt(radius)*sigma*sqrt(sigma)
       force = scale*exp(lp)
       stiffness = force*dlp/sigma
    end subroutine universal_eval
+
+   !> True when every slice interpolates ln p on the nodes of the first (as the builder
+   !> makes them; readers check it before universal_prepare).
+   pure logical function universal_nodes_shared(u)
+      type(universal_table), intent(in) :: u
+      integer :: j
+      universal_nodes_shared = .false.
+      do j = 1, u%n_mu
+         if (size(u%slices(j)%delta) /= size(u%slices(1)%delta)) return
+         if (any(u%slices(j)%delta /= u%slices(1)%delta)) return
+         if (u%slices(j)%n_log /= size(u%slices(j)%delta) - 1) return
+      end do
+      universal_nodes_shared = .true.
+   end function universal_nodes_shared
 
    ! ------------------------------------------------------------------ internals
 
@@ -275,12 +305,6 @@ contains
       if (res%force > 0.0_dp) err = abs(f/res%force - 1)
    end subroutine one_check
 
-   subroutine move_alloc_slice(from, to)
-      type(force_table), intent(inout) :: from
-      type(force_table), intent(out) :: to
-      to = from
-   end subroutine move_alloc_slice
-
    subroutine move_universal(from, to)
       type(universal_table), intent(inout) :: from
       type(universal_table), intent(out) :: to
@@ -296,6 +320,7 @@ contains
       to%n_mu = from%n_mu
       to%max_mu_error = from%max_mu_error
       call move_alloc(from%slices, to%slices)
+      call move_alloc(from%coef, to%coef)
       call universal_prepare(to)
    end subroutine move_universal
 

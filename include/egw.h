@@ -1,0 +1,283 @@
+/*
+ * egw.h - C API of egw, the extended Greenwood-Williamson contact library
+ * (Zhao & Feng 2018, J. Appl. Mech. 85:101007, with the misprints listed in
+ * DESIGN.md section 6 corrected).
+ *
+ * Conventions
+ *   - Units: any consistent set (e.g. SI: m, Pa, N). Results carry the units
+ *     implied by the inputs: force = modulus * length^2, pressure = modulus.
+ *   - delta is the overlap of the undeformed sphere with the mean summit
+ *     plane: > 0 overlap, < 0 separation. Forces and pressures are positive
+ *     in compression.
+ *   - Every int function returns EGW_OK (0) on success and a non-zero status
+ *     otherwise; it never aborts. On failure, outputs are left unchanged and
+ *     egw_last_error() returns a message naming the offending argument.
+ *   - All functions are thread-safe: they keep no shared state (the last-error
+ *     message is per thread).
+ */
+#ifndef EGW_H
+#define EGW_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Version of this header; egw_get_version() returns the library's. */
+#define EGW_VERSION 100
+
+/* Status codes. */
+enum {
+  EGW_OK = 0,
+  EGW_INVALID_ARGUMENT = 1,  /* an argument of the call is invalid (NaN, out of domain) */
+  EGW_INVALID_PARAMETER = 2, /* a field of egw_params failed validation */
+  EGW_NOT_CONVERGED = 3,     /* an iterative solve did not converge */
+  EGW_IO_ERROR = 4,          /* a file could not be opened, written or renamed */
+  EGW_BAD_FILE = 5,          /* a file is truncated, corrupted or of an unknown version */
+  EGW_OUT_OF_MEMORY = 6,     /* an allocation failed */
+  EGW_NULL_POINTER = 7,      /* a required pointer argument was NULL */
+  EGW_OUT_OF_RANGE = 8,      /* an argument lies outside a table's range */
+  EGW_UNSUPPORTED = 9        /* a valid request that egw does not support */
+};
+
+/* Models. */
+enum {
+  EGW_MODEL_HERTZ = 0, /* smooth spheres, closed form */
+  EGW_MODEL_GW = 1,    /* classic Greenwood-Williamson / Greenwood-Tripp */
+  EGW_MODEL_EGW = 2,   /* extended elastic GW */
+  EGW_MODEL_EPGW = 3   /* extended elasto-plastic GW (ZMC asperities) */
+};
+
+/* Parameters of one contact (DESIGN.md section 1). */
+typedef struct {
+  int    model;          /* EGW_MODEL_HERTZ=0, EGW_MODEL_GW=1, EGW_MODEL_EGW=2, EGW_MODEL_EPGW=3 */
+  double radius;         /* equivalent radius R, 1/R = 1/R1 + 1/R2; > 0 */
+  double modulus;        /* effective modulus E*, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2; > 0 */
+  double sigma;          /* std of summit heights, sigma^2 = sigma1^2 + sigma2^2; 0 = smooth */
+  double mu;             /* Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta); > 0 if sigma > 0 */
+  double psi;            /* plasticity index of the paper, delta_ep = sigma/psi^2; 0 = elastic */
+  double hardness_coeff; /* ZMC K, mean pressure K*H at yield onset; in (0, 1) */
+  double plastic_ratio;  /* delta_p / delta_ep (ZMC: 54); > 1 */
+} egw_params;
+
+/* 10000*major + 100*minor + patch. */
+int egw_get_version(void);
+
+/* Generic message of a status code, NUL-terminated, truncated to fit buflen.
+ * Returns EGW_OK, EGW_NULL_POINTER (buf NULL) or EGW_INVALID_ARGUMENT (buflen < 1). */
+int egw_status_message(int status, char *buf, int buflen);
+
+/* Detailed message of the last failing egw call on this thread (empty if none),
+ * e.g. "sigma = -1.0E-003: must be finite and >= 0". Same returns as above. */
+int egw_last_error(char *buf, int buflen);
+
+/* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54. */
+void egw_params_default(egw_params *p);
+
+/* Validate every field of p. EGW_INVALID_PARAMETER names the field; EGW_NULL_POINTER. */
+int egw_params_validate(const egw_params *p);
+
+/* mu = (8/3) eta sigma sqrt(2 R beta) from summit density eta (per unit area), summit
+ * radius beta, roughness sigma and equivalent radius R (all >= 0, finite). */
+int egw_mu_from_summits(double summit_density, double summit_radius, double sigma,
+                        double radius, double *mu);
+
+/* F_n(h) = int_h^inf (s-h)^n phi(s) ds, phi the standard normal density (DESIGN.md
+ * section 2). n >= 0, h any non-NaN value (F_n(+inf) = 0). Relative error <= 1e-14 for
+ * n in {0, 1/2, 1, 3/2, 5/2}, <= 1e-12 otherwise. EGW_INVALID_ARGUMENT for NaN or n < 0. */
+int egw_gauss_integral(double n, double h, double *value);
+
+/* dF_n/dh = -n F_{n-1}(h) (-phi(h) for n = 0). Same domain and statuses. */
+int egw_gauss_integral_deriv(double n, double h, double *value);
+
+/* Complete elliptic integrals K(k), E(k) of MODULUS k (not the parameter m = k^2),
+ * 0 <= k < 1; a few ulp. EGW_INVALID_ARGUMENT for k < 0, k >= 1 or NaN. */
+int egw_ellipk(double k, double *value);
+int egw_ellipe(double k, double *value);
+
+/* Nominal pressure p_G(d) of the rough flat at separation d of the summit base plane
+ * from a rigid smooth surface (DESIGN.md section 3): elastic asperities, or ZMC
+ * asperities when p->model == EGW_MODEL_EPGW and p->psi > 0. Needs p->sigma > 0.
+ * Units of p->modulus. egw_flat_pressure_deriv also returns dp_G/dd (<= 0). */
+int egw_flat_pressure(const egw_params *p, double separation, double *pressure);
+int egw_flat_pressure_deriv(const egw_params *p, double separation, double *pressure,
+                            double *dpressure);
+
+/* Hertz contact of smooth spheres (sigma ignored): force (4/3) E sqrt(R) delta^1.5,
+ * stiffness dP/ddelta = 2 E a, contact radius a = sqrt(R delta); all 0 for delta <= 0.
+ * Outputs other than NULL are written. EGW_INVALID_ARGUMENT for NaN/inf delta. */
+int egw_hertz(const egw_params *p, double delta, double *force, double *stiffness,
+              double *contact_radius);
+
+/* ------------------------------------------------------------------------
+ * Rough-sphere solver (DESIGN.md sections 4-5): the axisymmetric half-space
+ * with the elliptic-integral kernel, coupled to the rough-flat law.
+ * ------------------------------------------------------------------------ */
+
+enum {
+  EGW_METHOD_AUTO = 0,   /* Newton with line search, continuation when a cold start fails */
+  EGW_METHOD_NEWTON = 1, /* Newton with line search (Jacobian factored by LAPACK) */
+  EGW_METHOD_PICARD = 2  /* damped fixed point; fails where the problem is stiff */
+};
+
+typedef struct {
+  int    n_radial;   /* mesh nodes; 0 = chosen from rel_tol */
+  double rel_tol;    /* target relative accuracy of the force (default 1e-6) */
+  int    max_iter;   /* 0 = default */
+  int    method;     /* EGW_METHOD_AUTO=0, EGW_METHOD_NEWTON=1, EGW_METHOD_PICARD=2 */
+  int    n_threads;  /* 0 = OpenMP default */
+} egw_options;
+
+typedef struct {
+  double force, stiffness, contact_radius, max_pressure;
+  double est_rel_err;  /* estimated relative error of force */
+  double residual;     /* final nonlinear residual */
+  int    iterations;
+  int    method_used;
+} egw_result;
+
+/* Fill o with the defaults: n_radial 0, rel_tol 1e-6, max_iter 0, AUTO, n_threads 0. */
+void egw_options_default(egw_options *o);
+
+/* Solve the contact of p at overlap delta (> 0 overlap, < 0 separation).
+ * force: total normal force P (>= 0); stiffness: dP/ddelta by implicit differentiation;
+ * contact_radius: effective a* = (3 pi/4) int r p dr / int p dr (= a for Hertz);
+ * max_pressure: max of the total pressure. Works for every model (Hertz exactly).
+ * o may be NULL (defaults). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (delta
+ * not finite, bad options), EGW_NULL_POINTER, EGW_NOT_CONVERGED (res still holds the
+ * last iterate's diagnostics; its force must not be used). */
+int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
+
+/* Total pressure p(r) and surface deflection w(r) of the solved contact at the n radii
+ * r[0..n-1] (>= 0, any order) into pressure[] and deflection[]. Same statuses. */
+int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
+                const double *r, double *pressure, double *deflection);
+
+/* ------------------------------------------------------------------------
+ * Force tables for DEM and FE codes.
+ * A table is built from full solves with nodes placed adaptively until the cubic
+ * Hermite interpolant (slope = the solver's stiffness; ln P in the separated tail)
+ * agrees with solves between nodes to rel_tol. Below the cut-off delta_c, where the
+ * force has fallen to rel_tol * P_ref, force and stiffness are exactly 0 (jump <=
+ * rel_tol * P_ref). P_ref = P(min(0, delta_max)) for rough models, P(delta_max) for
+ * Hertz. Evaluation allocates nothing and is thread-safe. File formats: doc/formats.md.
+ * ------------------------------------------------------------------------ */
+
+typedef struct egw_table_s *egw_table;         /* opaque: one parameter set */
+typedef struct egw_universal_s *egw_universal; /* opaque: every R, E, sigma, mu */
+
+enum { EGW_FORMAT_CSV = 0, EGW_FORMAT_BINARY = 1, EGW_FORMAT_LAMMPS = 2, EGW_FORMAT_CALCULIX = 3 };
+
+/* Facts about a table. */
+typedef struct {
+  int    model;               /* EGW_MODEL_* of the parameters */
+  int    n_nodes;             /* interpolation nodes */
+  double cutoff;              /* delta_c: force and stiffness are 0 below [length] */
+  double delta_max;           /* last node [length]; above it the table extrapolates */
+  double reference_force;     /* P_ref of the cut-off rule [force] */
+  double rel_tol;             /* requested interpolation tolerance */
+  double max_force_error;     /* measured max |P_table/P_solve - 1| at check solves */
+  double max_stiffness_error; /* same for the stiffness (reported, not enforced) */
+} egw_table_info;
+
+/* Build the table of p over at least [delta_min, delta_max] with interpolation error
+ * <= rel_tol (1e-10 <= rel_tol <= 0.1). Points are solved in parallel (OpenMP; o's
+ * n_threads is set to 1 inside, its rel_tol tightened to min(o->rel_tol, rel_tol/10));
+ * o may be NULL (defaults). The table starts at the cut-off delta_c, below delta_min if
+ * the force there still exceeds rel_tol * P_ref. *out receives a handle only on success.
+ * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (range, rel_tol, smooth spheres
+ * with delta_max <= 0), EGW_NOT_CONVERGED (a solve failed, or the node limit of 20000
+ * was reached), EGW_NULL_POINTER. */
+int egw_table_build(const egw_params *p, const egw_options *o, double delta_min,
+                    double delta_max, double rel_tol, egw_table *out);
+
+/* Force [force] and stiffness dP/ddelta [force/length] at overlap delta. Exactly 0 below
+ * the cut-off. Above delta_max the force continues linearly with the stiffness at
+ * delta_max (C1, below a convex force law) and EGW_OUT_OF_RANGE is returned WITH the
+ * outputs written (the one exception to "outputs unchanged on failure"). NULL outputs
+ * are skipped. EGW_INVALID_ARGUMENT for NaN delta; EGW_NULL_POINTER for t. */
+int egw_table_eval(egw_table t, double delta, double *force, double *stiffness);
+
+/* As egw_table_eval, plus the elastic energy int_{delta_c}^{delta} P ddelta of the
+ * interpolant [force*length] and the effective contact radius a* [length] (monotone
+ * cubic through the solver's values; not error-controlled). */
+int egw_table_eval_all(egw_table t, double delta, double *force, double *stiffness,
+                       double *energy, double *contact_radius);
+
+/* Facts about t into *info. EGW_NULL_POINTER. */
+int egw_table_get_info(egw_table t, egw_table_info *info);
+
+/* Record the particle radii R1, R2 of the pair (LAMMPS distances r = R1 + R2 - delta).
+ * They must give the table's R: 1/R = 1/R1 + 1/R2 (to 1e-12); otherwise
+ * EGW_INVALID_ARGUMENT and nothing changes. Without radii the LAMMPS file is written for
+ * two equal spheres R1 = R2 = 2R, and says so. */
+int egw_table_set_radii(egw_table t, double radius1, double radius2);
+
+/* Write t to path (NUL-terminated) atomically (temporary file, then rename: a failed
+ * write leaves an existing file intact). format: EGW_FORMAT_CSV, EGW_FORMAT_BINARY,
+ * EGW_FORMAT_LAMMPS (one pair_style table section, keyword EGW_1), EGW_FORMAT_CALCULIX
+ * (*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR: force per node against overlap, for
+ * node-to-surface contact). Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (unknown
+ * format, non-finite data), EGW_NULL_POINTER. */
+int egw_table_write(egw_table t, const char *path, int format);
+
+/* LAMMPS file with one pair_style table section per table (keywords EGW_1 .. EGW_n, in
+ * the order given), e.g. one per particle-type pair. Atomic like egw_table_write.
+ * EGW_INVALID_ARGUMENT for n < 1, EGW_NULL_POINTER for a NULL array, handle or path. */
+int egw_tables_write_lammps(int n, const egw_table *tables, const char *path);
+
+/* Read an egw CSV or binary table (format recognised from the file's start). A
+ * truncated, corrupted (checksum), wrong-version or inconsistent file gives EGW_BAD_FILE
+ * with a message saying what is wrong, and no table. EGW_IO_ERROR if it cannot be
+ * opened. *out receives a handle only on success. */
+int egw_table_read(const char *path, egw_table *out);
+
+/* Release a table; sets *t to NULL. NULL or *t == NULL is fine. */
+void egw_table_free(egw_table *t);
+
+/* CalculiX pressure-overclosure curve of the rough flat of p (p_G of DESIGN.md section 3,
+ * overclosure = -separation) from zero pressure where p_G < rel_tol * p_G(0) up to
+ * overclosure_max > 0 [length], linear-interpolation error <= rel_tol of the local
+ * pressure. Needs p->sigma > 0. Statuses as egw_table_write, EGW_INVALID_PARAMETER. */
+int egw_write_flat_calculix(const egw_params *p, double overclosure_max, double rel_tol,
+                            const char *path);
+
+/* ------------------------------------------------------------------------
+ * Universal tables: p = P/(E sqrt(R) sigma^1.5) over x = delta/sigma and mu, for one
+ * model (and psi, K, rho_p for EP-GW). One table serves every radius, modulus and
+ * roughness of a polydisperse scene; mu is interpolated in ln mu (4-point Lagrange on
+ * ln p) on a grid refined until solves at mid-grid mu agree to rel_tol (the slices are
+ * built to rel_tol/2 on shared x nodes). Evaluation costs about 10 Hertz forces (a log
+ * of mu, one lookup, one cubic, an exp): for one parameter set a 1-D table is cheaper.
+ * ------------------------------------------------------------------------ */
+
+/* Build for p->model, p->psi, p->hardness_coeff, p->plastic_ratio (R, E, sigma, mu of p
+ * are ignored) over mu in [mu_min, mu_max] (0 < mu_min < mu_max) and x up to x_max, from
+ * the common cut-off (the lowest of the grid's cut-offs; below x_min if needed).
+ * Statuses as egw_table_build. */
+int egw_universal_build(const egw_params *p, const egw_options *o, double mu_min,
+                        double mu_max, double x_min, double x_max, double rel_tol,
+                        egw_universal *out);
+
+/* Force and stiffness of the contact p (R, E, sigma > 0, mu; model, psi, K, rho_p must
+ * equal the table's, else EGW_INVALID_ARGUMENT) at overlap delta: P = E sqrt(R)
+ * sigma^1.5 p(delta/sigma, mu). Exactly 0 below the cut-off. mu outside the table:
+ * EGW_OUT_OF_RANGE, outputs unchanged. delta above x_max*sigma: EGW_OUT_OF_RANGE with
+ * extrapolated outputs written. EGW_INVALID_PARAMETER for sigma, R or E <= 0. */
+int egw_universal_eval(egw_universal u, const egw_params *p, double delta, double *force,
+                       double *stiffness);
+
+/* Write (EGW_FORMAT_CSV or EGW_FORMAT_BINARY; LAMMPS and CalculiX need one parameter set:
+ * EGW_UNSUPPORTED) and read, with the guarantees of egw_table_write / egw_table_read. */
+int egw_universal_write(egw_universal u, const char *path, int format);
+int egw_universal_read(const char *path, egw_universal *out);
+
+/* Release a universal table; sets *u to NULL. NULL or *u == NULL is fine. */
+void egw_universal_free(egw_universal *u);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* EGW_H */

@@ -1,0 +1,402 @@
+!> The C API (include/egw.h): the one layer of egw that touches iso_c_binding.
+!> Each entry point converts C arguments, calls the Fortran API, and turns an
+!> egw_error into a status code plus a per-thread last-error message.
+module egw_capi
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_char, &
+      & c_associated, c_f_pointer
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
+      & status_message, format_real
+   use egw_params, only: contact_params, validate_params, mu_from_summits
+   use egw_version, only: egw_version_number
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile
+   use egw_gauss, only: get_gauss_integral, gauss_integral_deriv
+   use egw_ellip, only: get_ellipk, get_ellipe
+   use egw_asperity, only: flat_pressure
+   ! (the Hertz module is not called egw_hertz: gfortran 12 resolves its procedures to a
+   ! bind(C) routine whose label equals the module name)
+   use egw_smooth_sphere, only: hertz_contact
+   implicit none
+   private
+
+   !> Mirror of the C struct egw_params.
+   type, bind(C) :: egw_params_c
+      integer(c_int) :: model
+      real(c_double) :: radius, modulus, sigma, mu, psi, hardness_coeff, plastic_ratio
+   end type egw_params_c
+
+   !> Last error message of this thread: the only mutable state of egw, kept per thread
+   !> so that concurrent callers never see each other's messages.
+   character(len=1024), save :: last_message = ""
+   !$omp threadprivate(last_message)
+
+   !> Mirror of the C struct egw_options.
+   type, bind(C) :: egw_options_c
+      integer(c_int) :: n_radial
+      real(c_double) :: rel_tol
+      integer(c_int) :: max_iter, method, n_threads
+   end type egw_options_c
+
+   !> Mirror of the C struct egw_result.
+   type, bind(C) :: egw_result_c
+      real(c_double) :: force, stiffness, contact_radius, max_pressure, est_rel_err, residual
+      integer(c_int) :: iterations, method_used
+   end type egw_result_c
+
+   public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params
+   ! shared with the table bindings (egw_capi_table): error bookkeeping and conversions
+   public :: settle, require, read_params, read_options, put, int_str
+
+contains
+
+   !> 10000*major + 100*minor + patch.
+   function egw_get_version() result(version) bind(C, name="egw_get_version")
+      integer(c_int) :: version
+      version = int(egw_version_number, c_int)
+   end function egw_get_version
+
+   function egw_status_message(status, buf, buflen) result(stat) &
+      & bind(C, name="egw_status_message")
+      integer(c_int), value, intent(in) :: status
+      type(c_ptr), value, intent(in) :: buf
+      integer(c_int), value, intent(in) :: buflen
+      integer(c_int) :: stat
+      stat = copy_to_c(status_message(int(status)), buf, buflen)
+   end function egw_status_message
+
+   function egw_last_error(buf, buflen) result(stat) bind(C, name="egw_last_error")
+      type(c_ptr), value, intent(in) :: buf
+      integer(c_int), value, intent(in) :: buflen
+      integer(c_int) :: stat
+      stat = copy_to_c(trim(last_message), buf, buflen)
+   end function egw_last_error
+
+   subroutine egw_params_default(p) bind(C, name="egw_params_default")
+      type(c_ptr), value, intent(in) :: p
+      type(egw_params_c), pointer :: cp
+      if (.not. c_associated(p)) return
+      call c_f_pointer(p, cp)
+      cp = from_params(contact_params())
+   end subroutine egw_params_default
+
+   function egw_params_validate(p) result(stat) bind(C, name="egw_params_validate")
+      type(c_ptr), value, intent(in) :: p
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      stat = read_params(p, params)
+   end function egw_params_validate
+
+   function egw_mu_from_summits(summit_density, summit_radius, sigma, radius, mu) &
+      & result(stat) bind(C, name="egw_mu_from_summits")
+      real(c_double), value, intent(in) :: summit_density, summit_radius, sigma, radius
+      type(c_ptr), value, intent(in) :: mu
+      integer(c_int) :: stat
+      stat = check_nonneg("summit_density", summit_density)
+      if (stat == egw_ok) stat = check_nonneg("summit_radius", summit_radius)
+      if (stat == egw_ok) stat = check_nonneg("sigma", sigma)
+      if (stat == egw_ok) stat = check_nonneg("radius", radius)
+      if (stat == egw_ok) stat = require(mu, "mu")
+      if (stat /= egw_ok) return
+      call put(mu, mu_from_summits(summit_density, summit_radius, sigma, radius))
+   end function egw_mu_from_summits
+
+   function egw_gauss_integral(n, h, value) result(stat) bind(C, name="egw_gauss_integral")
+      real(c_double), value, intent(in) :: n, h
+      type(c_ptr), value, intent(in) :: value
+      integer(c_int) :: stat
+      type(egw_error), allocatable :: error
+      real(dp) :: f
+      stat = require(value, "value")
+      if (stat /= egw_ok) return
+      call get_gauss_integral(n, h, f, error)
+      stat = settle(error)
+      if (stat == egw_ok) call put(value, f)
+   end function egw_gauss_integral
+
+   function egw_gauss_integral_deriv(n, h, value) result(stat) &
+      & bind(C, name="egw_gauss_integral_deriv")
+      real(c_double), value, intent(in) :: n, h
+      type(c_ptr), value, intent(in) :: value
+      integer(c_int) :: stat
+      type(egw_error), allocatable :: error
+      real(dp) :: f
+      stat = require(value, "value")
+      if (stat /= egw_ok) return
+      ! the checked kernel validates (n, h) with the same rules as F_n itself
+      call get_gauss_integral(n, h, f, error)
+      stat = settle(error)
+      if (stat == egw_ok) call put(value, gauss_integral_deriv(n, h))
+   end function egw_gauss_integral_deriv
+
+   function egw_ellipk(k, value) result(stat) bind(C, name="egw_ellipk")
+      real(c_double), value, intent(in) :: k
+      type(c_ptr), value, intent(in) :: value
+      integer(c_int) :: stat
+      type(egw_error), allocatable :: error
+      real(dp) :: f
+      stat = require(value, "value")
+      if (stat /= egw_ok) return
+      call get_ellipk(k, f, error)
+      stat = settle(error)
+      if (stat == egw_ok) call put(value, f)
+   end function egw_ellipk
+
+   function egw_ellipe(k, value) result(stat) bind(C, name="egw_ellipe")
+      real(c_double), value, intent(in) :: k
+      type(c_ptr), value, intent(in) :: value
+      integer(c_int) :: stat
+      type(egw_error), allocatable :: error
+      real(dp) :: f
+      stat = require(value, "value")
+      if (stat /= egw_ok) return
+      call get_ellipe(k, f, error)
+      stat = settle(error)
+      if (stat == egw_ok) call put(value, f)
+   end function egw_ellipe
+
+   function egw_flat_pressure(p, separation, pressure) result(stat) &
+      & bind(C, name="egw_flat_pressure")
+      type(c_ptr), value, intent(in) :: p, pressure
+      real(c_double), value, intent(in) :: separation
+      integer(c_int) :: stat
+      stat = require(pressure, "pressure")
+      if (stat /= egw_ok) return
+      stat = flat_pressure_c(p, separation, pressure, pressure, .false.)
+   end function egw_flat_pressure
+
+   function egw_flat_pressure_deriv(p, separation, pressure, dpressure) result(stat) &
+      & bind(C, name="egw_flat_pressure_deriv")
+      type(c_ptr), value, intent(in) :: p, pressure, dpressure
+      real(c_double), value, intent(in) :: separation
+      integer(c_int) :: stat
+      stat = require(pressure, "pressure")
+      if (stat == egw_ok) stat = require(dpressure, "dpressure")
+      if (stat /= egw_ok) return
+      stat = flat_pressure_c(p, separation, pressure, dpressure, .true.)
+   end function egw_flat_pressure_deriv
+
+   function hertz_c(p, delta, force, stiffness, contact_radius) result(stat) &
+      & bind(C, name="egw_hertz")
+      type(c_ptr), value, intent(in) :: p, force, stiffness, contact_radius
+      real(c_double), value, intent(in) :: delta
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(egw_error), allocatable :: error
+      real(dp) :: f, k, a
+      stat = read_params(p, params)
+      if (stat /= egw_ok) return
+      call hertz_contact(params, delta, f, k, a, error)
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      call put(force, f)
+      call put(stiffness, k)
+      call put(contact_radius, a)
+   end function hertz_c
+
+   subroutine egw_options_default(o) bind(C, name="egw_options_default")
+      type(c_ptr), value, intent(in) :: o
+      type(egw_options_c), pointer :: co
+      type(solver_options) :: defaults
+      if (.not. c_associated(o)) return
+      call c_f_pointer(o, co)
+      co = egw_options_c(n_radial=int(defaults%n_radial, c_int), rel_tol=defaults%rel_tol, &
+         & max_iter=int(defaults%max_iter, c_int), method=int(defaults%method, c_int), &
+         & n_threads=int(defaults%n_threads, c_int))
+   end subroutine egw_options_default
+
+   function egw_solve(p, o, delta, res) result(stat) bind(C, name="egw_solve")
+      type(c_ptr), value, intent(in) :: p, o, res
+      real(c_double), value, intent(in) :: delta
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(solve_result) :: result
+      type(egw_result_c), pointer :: cres
+      type(egw_error), allocatable :: error
+      stat = require(res, "res")
+      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat == egw_ok) call read_options(o, options)
+      if (stat /= egw_ok) return
+      call solve_contact(params, options, delta, result, error)
+      stat = settle(error)
+      ! a failed solve still reports its diagnostics (iterations, residual)
+      call c_f_pointer(res, cres)
+      cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
+         & contact_radius=result%contact_radius, max_pressure=result%max_pressure, &
+         & est_rel_err=result%est_rel_err, residual=result%residual, &
+         & iterations=int(result%iterations, c_int), method_used=int(result%method_used, c_int))
+   end function egw_solve
+
+   function egw_profile(p, o, delta, n, r, pressure, deflection) result(stat) &
+      & bind(C, name="egw_profile")
+      type(c_ptr), value, intent(in) :: p, o, r, pressure, deflection
+      real(c_double), value, intent(in) :: delta
+      integer(c_int), value, intent(in) :: n
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      real(c_double), pointer :: cr(:), cp(:), cw(:)
+      real(dp), allocatable :: pr(:), w(:)
+      type(egw_error), allocatable :: error
+      if (n < 0) then
+         stat = egw_invalid_argument
+         last_message = "n = "//int_str(int(n))//": must be >= 0"
+         return
+      end if
+      stat = read_params(p, params)
+      if (stat == egw_ok) stat = require(r, "r")
+      if (stat == egw_ok) stat = require(pressure, "pressure")
+      if (stat == egw_ok) stat = require(deflection, "deflection")
+      if (stat /= egw_ok) return
+      call read_options(o, options)
+      call c_f_pointer(r, cr, [n])
+      call c_f_pointer(pressure, cp, [n])
+      call c_f_pointer(deflection, cw, [n])
+      allocate (pr(n), w(n))
+      call contact_profile(params, options, delta, cr, pr, w, error)
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      cp = pr
+      cw = w
+   end function egw_profile
+
+   ! ---------------------------------------------------------------- helpers
+
+   !> Options from a nullable const egw_options* (NULL: defaults); checked by the solver.
+   subroutine read_options(o, options)
+      type(c_ptr), intent(in) :: o
+      type(solver_options), intent(out) :: options
+      type(egw_options_c), pointer :: co
+      if (.not. c_associated(o)) return
+      call c_f_pointer(o, co)
+      options%n_radial = int(co%n_radial)
+      options%rel_tol = co%rel_tol
+      options%max_iter = int(co%max_iter)
+      options%method = int(co%method)
+      options%n_threads = int(co%n_threads)
+   end subroutine read_options
+
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      str = trim(buf)
+   end function int_str
+
+
+   integer(c_int) function flat_pressure_c(p, separation, pressure, dpressure, want_deriv) &
+      & result(stat)
+      type(c_ptr), intent(in) :: p, pressure, dpressure
+      real(c_double), intent(in) :: separation
+      logical, intent(in) :: want_deriv
+      type(contact_params) :: params
+      type(egw_error), allocatable :: error
+      real(dp) :: pg, dpg
+      stat = read_params(p, params)
+      if (stat /= egw_ok) return
+      call flat_pressure(params, separation, pg, dpg, error)
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      call put(pressure, pg)
+      if (want_deriv) call put(dpressure, dpg)
+   end function flat_pressure_c
+
+   !> Convert the C struct to the Fortran type.
+   pure function to_params(cp) result(params)
+      type(egw_params_c), intent(in) :: cp
+      type(contact_params) :: params
+      params = contact_params(model=int(cp%model), radius=cp%radius, modulus=cp%modulus, &
+         & sigma=cp%sigma, mu=cp%mu, psi=cp%psi, hardness_coeff=cp%hardness_coeff, &
+         & plastic_ratio=cp%plastic_ratio)
+   end function to_params
+
+   pure function from_params(params) result(cp)
+      type(contact_params), intent(in) :: params
+      type(egw_params_c) :: cp
+      cp = egw_params_c(model=int(params%model, c_int), radius=params%radius, &
+         & modulus=params%modulus, sigma=params%sigma, mu=params%mu, psi=params%psi, &
+         & hardness_coeff=params%hardness_coeff, plastic_ratio=params%plastic_ratio)
+   end function from_params
+
+   !> Read and validate a const egw_params*.
+   integer(c_int) function read_params(p, params) result(stat)
+      type(c_ptr), intent(in) :: p
+      type(contact_params), intent(out) :: params
+      type(egw_params_c), pointer :: cp
+      type(egw_error), allocatable :: error
+      stat = require(p, "p")
+      if (stat /= egw_ok) return
+      call c_f_pointer(p, cp)
+      params = to_params(cp)
+      call validate_params(params, error)
+      stat = settle(error)
+   end function read_params
+
+   !> Status of an error (recording its message), EGW_OK when none.
+   integer(c_int) function settle(error) result(stat)
+      type(egw_error), allocatable, intent(in) :: error
+      stat = egw_ok
+      if (.not. allocated(error)) return
+      stat = int(error%stat, c_int)
+      if (allocated(error%message)) then
+         last_message = error%message
+      else
+         last_message = status_message(error%stat)
+      end if
+   end function settle
+
+   integer(c_int) function require(ptr, name) result(stat)
+      type(c_ptr), intent(in) :: ptr
+      character(len=*), intent(in) :: name
+      stat = egw_ok
+      if (c_associated(ptr)) return
+      stat = egw_null_pointer
+      last_message = name//": NULL pointer"
+   end function require
+
+   integer(c_int) function check_nonneg(name, x) result(stat)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: x
+      stat = egw_ok
+      if (ieee_is_finite(x) .and. x >= 0.0_dp) return
+      stat = egw_invalid_argument
+      last_message = name//" = "//format_real(x)//": must be finite and >= 0"
+   end function check_nonneg
+
+   !> Store x at a C double* (NULL: nothing wanted).
+   subroutine put(ptr, x)
+      type(c_ptr), intent(in) :: ptr
+      real(dp), intent(in) :: x
+      real(c_double), pointer :: target
+      if (.not. c_associated(ptr)) return
+      call c_f_pointer(ptr, target)
+      target = x
+   end subroutine put
+
+   !> Copy a Fortran string into a C buffer of buflen bytes, NUL-terminated, truncated.
+   integer(c_int) function copy_to_c(str, buf, buflen) result(stat)
+      character(len=*), intent(in) :: str
+      type(c_ptr), intent(in) :: buf
+      integer(c_int), intent(in) :: buflen
+      character(kind=c_char), pointer :: chars(:)
+      integer :: i, n
+      stat = egw_ok
+      if (.not. c_associated(buf)) then
+         stat = egw_null_pointer
+         return
+      end if
+      if (buflen < 1) then
+         stat = egw_invalid_argument
+         return
+      end if
+      call c_f_pointer(buf, chars, [buflen])
+      n = min(len(str), int(buflen) - 1)
+      do i = 1, n
+         chars(i) = str(i:i)
+      end do
+      chars(n + 1) = c_null_char
+   end function copy_to_c
+
+end module egw_capi

@@ -1,0 +1,931 @@
+!> Normal contact of rough spheres: classic GW (Greenwood-Tripp), E-GW and EP-GW
+!> (DESIGN.md §5; paper eqs. 10-13 and 28-35), with Hertz as sigma = 0.
+!>
+!> Everything is solved in scaled variables (DESIGN §5 "useful facts"): radii in units of
+!> sqrt(R sigma), gaps and deflections in sigma, pressures in E sqrt(sigma/R), forces in
+!> E sqrt(R) sigma**1.5. Then R = E = sigma = 1, the Hertz radius is sqrt(delta/sigma) and
+!> the rough-flat law is p_G = mu/(2 sqrt 2) f(h) with f the dimensionless law of
+!> egw_asperity (f = F_{3/2} for elastic summits). Scale invariance is thus exact.
+!>
+!> Unknown: the rough deflection w_G at the nodes of continuous Lagrange elements. The
+!> gap at the Gauss points is d = z + w_G (z the base gap: Hertz gap of eq. 28 for the
+!> extended models at delta > 0, else r**2/2 - delta), the pressure there is p_G(d) exactly
+!> (never interpolated), and w_G = H p_G is imposed at the nodes (collocation) with the
+!> influence matrix of egw_halfspace. Newton with a backtracking line search (Jacobian by
+!> LAPACK dgetrf/dgetrs), or damped Picard. The force is the Gauss sum of p_G(d).
+!>
+!> Mesh: graded in asinh((r - focus)/width) (egw_halfspace graded_edges) about the Hertz
+!> edge (boundary layer width ~ a (sigma/delta)**(2/3)) with two geometric layers at it for
+!> the extended models, about the computed gap's zero for classic GW deep in contact, and
+!> about r = 0 otherwise; the outer radius grows until the force left outside is below
+!> 1 % of the tolerance. Levels of decreasing step, each warm-started from the previous,
+!> until the Richardson estimate from the last two (plus the tail) is below rel_tol/2.
+module egw_rough_sphere
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp, pi, sqrt2
+   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
+      & format_real
+   use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
+      & model_epgw
+   use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
+      & hertz_stiffness, hertz_contact_radius
+   use egw_asperity, only: rough_flat_law
+   use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
+      & assemble_influence, influence_row, interpolate_nodal
+   use egw_lapack, only: dgetrf, dgetrs
+   implicit none
+   private
+
+   integer, parameter, public :: method_auto = 0    !< Newton (the robust choice)
+   integer, parameter, public :: method_newton = 1  !< Newton + backtracking line search
+   integer, parameter, public :: method_picard = 2  !< damped fixed point (Picard)
+
+   !> Options of a solve. Field order and meaning match the C struct egw_options.
+   type, public :: solver_options
+      integer :: n_radial = 0          !< mesh nodes; 0 = chosen from rel_tol
+      real(dp) :: rel_tol = 1.0e-6_dp  !< target relative accuracy of the force
+      integer :: max_iter = 0          !< nonlinear iterations; 0 = default
+      integer :: method = method_auto  !< method_auto, method_newton or method_picard
+      integer :: n_threads = 0         !< threads of the assembly; 0 = OpenMP default
+   end type solver_options
+
+   !> Result of a solve, in the caller's units. Field order matches the C struct egw_result.
+   type, public :: solve_result
+      real(dp) :: force = 0.0_dp           !< total normal force P
+      real(dp) :: stiffness = 0.0_dp       !< dP/d(delta), by implicit differentiation
+      real(dp) :: contact_radius = 0.0_dp  !< a* = (3 pi/4) int r p dr / int p dr
+      real(dp) :: max_pressure = 0.0_dp    !< maximum of the total pressure
+      real(dp) :: est_rel_err = 0.0_dp     !< estimated relative discretisation error of P
+      real(dp) :: residual = 0.0_dp        !< final scaled nonlinear residual
+      integer :: iterations = 0            !< nonlinear iterations of the final solve
+      integer :: method_used = method_auto !< method that produced the result
+   end type solve_result
+
+   public :: validate_options, solve_contact, contact_profile
+
+   !> Degree of the deflection elements and pressure points per element: quartic elements
+   !> with 6 Gauss points were the cheapest per digit of the pairs tried (degree 2-4,
+   !> 4-8 points); the force error then falls like step**5 to step**6.
+   integer, parameter :: deflection_degree = 4, pressure_points = 6
+   !> Step ratio of the first two levels, and the order assumed when extrapolating the
+   !> difference of two levels to an error estimate: 3, the lowest seen on coarse meshes
+   !> (5-6 asymptotically), so that the estimate errs on the safe side.
+   real(dp), parameter :: coarsen = 1.5_dp, force_order = 3.0_dp
+   !> Geometric layers at the Hertz edge (number, size ratio).
+   integer, parameter :: focus_layers = 2
+   real(dp), parameter :: focus_ratio = 0.25_dp
+   !> Step (in asinh units) of the first level, and the finest allowed.
+   real(dp), parameter :: finest_step = 0.01_dp, coarsest_step = 0.6_dp
+   integer, parameter :: min_elements = 8
+   integer, parameter :: newton_max_default = 100, picard_max_default = 3000
+
+   !> The scaled problem.
+   type :: scaled_problem
+      integer :: model = model_egw
+      real(dp) :: delta = 0.0_dp       !< delta/sigma
+      logical :: extended = .false.    !< base gap is the Hertz gap (E-GW/EP-GW, delta > 0)
+      real(dp) :: a = 0.0_dp           !< Hertz radius sqrt(delta/sigma) (0 if delta <= 0)
+      real(dp) :: scale = 0.0_dp       !< mu/(2 sqrt 2): p_G = scale * f(h)
+      real(dp) :: psi = 0.0_dp, hardness = 0.6_dp, plastic_ratio = 54.0_dp
+   end type scaled_problem
+
+   !> A converged discrete solution and what is derived from it (scaled units, rough part).
+   type :: discrete_solution
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: infl(:, :)        !< nodes x Gauss points
+      real(dp), allocatable :: w(:)              !< nodal rough deflection
+      real(dp), allocatable :: base(:), dbase(:) !< base gap and d(base)/d(delta) at Gauss pts
+      real(dp), allocatable :: gap(:), p(:), dpdh(:)  !< at the Gauss points
+      real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
+      real(dp) :: residual = 0.0_dp, tail = 0.0_dp
+      integer :: iterations = 0
+   end type discrete_solution
+
+contains
+
+   !> Check the options; the message names the offending field and its value.
+   pure subroutine validate_options(options, error)
+      type(solver_options), intent(in) :: options
+      type(egw_error), allocatable, intent(out) :: error
+      if (options%n_radial /= 0 .and. options%n_radial < 8) then
+         call fatal_error(error, egw_invalid_argument, "n_radial = "//int_str(options%n_radial) &
+            & //": must be 0 (automatic) or >= 8")
+      else if (.not. ieee_is_finite(options%rel_tol) .or. .not. options%rel_tol >= 1.0e-10_dp &
+         & .or. options%rel_tol > 0.1_dp) then
+         call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(options%rel_tol) &
+            & //": must lie in [1e-10, 0.1]")
+      else if (options%max_iter < 0) then
+         call fatal_error(error, egw_invalid_argument, "max_iter = "//int_str(options%max_iter) &
+            & //": must be >= 0 (0 = default)")
+      else if (options%method < method_auto .or. options%method > method_picard) then
+         call fatal_error(error, egw_invalid_argument, "method = "//int_str(options%method) &
+            & //": must be 0 (auto), 1 (Newton) or 2 (Picard)")
+      else if (options%n_threads < 0) then
+         call fatal_error(error, egw_invalid_argument, "n_threads = " &
+            & //int_str(options%n_threads)//": must be >= 0 (0 = OpenMP default)")
+      end if
+   end subroutine validate_options
+
+   !> Force, stiffness, effective contact radius and maximum pressure at overlap delta
+   !> (> 0 overlap, < 0 separation) for any model of params. Hertz (and sigma = 0) in
+   !> closed form; the rough models by the discrete solve, refined until the two-level
+   !> estimate of the force error is below options%rel_tol/2 (n_radial = 0) or on the mesh
+   !> of about n_radial nodes. Fails with egw_not_converged rather than return a doubtful
+   !> answer.
+   subroutine solve_contact(params, options, delta, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(out) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      real(dp) :: est, force_scale, pmax
+
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
+         result%force = hertz_force(delta, params%radius, params%modulus)
+         result%stiffness = hertz_stiffness(delta, params%radius, params%modulus)
+         result%contact_radius = hertz_contact_radius(delta, params%radius)
+         result%max_pressure = hertz_pressure(0.0_dp, delta, params%radius, params%modulus)
+         result%method_used = options%method
+         return
+      end if
+
+      prob = scaled(params, delta)
+      if (negligible(prob)) then
+         ! Beyond ~37 sigma apart the summit pressure underflows: the force is below
+         ! 1e-250 E sqrt(R) sigma**1.5 and is returned as 0 with est_rel_err = 1 (honest:
+         ! zero has relative error 1).
+         result%method_used = options%method
+         result%est_rel_err = 1.0_dp
+         return
+      end if
+      call solve_scaled(prob, options, sol, est, result%method_used, error)
+      if (allocated(error)) return
+      call differentiate(prob, sol, error)
+      if (allocated(error)) return
+
+      force_scale = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
+      result%force = force_scale*(smooth_force(prob) + sol%force)
+      result%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
+      result%contact_radius = sqrt(params%radius*params%sigma)*effective_radius(prob, sol)
+      pmax = max(total_pressure(prob, sol, 0.0_dp), maxval(sol%p))
+      if (prob%extended) pmax = max(pmax, &
+         & maxval(hertz_pressure(sol%mesh%gauss_r, prob%delta, 1.0_dp, 1.0_dp) + sol%p))
+      result%max_pressure = params%modulus*sqrt(params%sigma/params%radius)*pmax
+      result%est_rel_err = est
+      result%residual = sol%residual
+      result%iterations = sol%iterations
+   end subroutine solve_contact
+
+   !> Total pressure p and deflection w (Hertz + rough part for E-GW/EP-GW, the GW part for
+   !> classic GW, Hertz for model_hertz or sigma = 0) at the radii r(:) >= 0.
+   subroutine contact_profile(params, options, delta, r, pressure, deflection, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      real(dp), intent(in) :: r(:)             !< radii, >= 0
+      real(dp), intent(out) :: pressure(:)     !< total pressure at r, size(r)
+      real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      real(dp) :: est, length, rs, wg, f, dfdh
+      integer :: i, method_used
+      real(dp), allocatable :: row(:)
+
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
+         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
+            & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
+            & //" differs from size(r) = "//int_str(size(r)))
+         return
+      end if
+      do i = 1, size(r)
+         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
+               & //format_real(r(i))//": radii must be finite and >= 0")
+            return
+         end if
+      end do
+      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
+         pressure = hertz_pressure(r, delta, params%radius, params%modulus)
+         deflection = hertz_deflection(r, delta, params%radius)
+         return
+      end if
+
+      prob = scaled(params, delta)
+      if (negligible(prob)) then
+         pressure = 0.0_dp
+         deflection = 0.0_dp
+         return
+      end if
+      call solve_scaled(prob, options, sol, est, method_used, error)
+      if (allocated(error)) return
+      length = sqrt(params%radius*params%sigma)
+      allocate (row(size(sol%p)))
+      do i = 1, size(r)
+         rs = r(i)/length
+         call influence_row(sol%mesh, rs, row)
+         wg = dot_product(row, sol%p)
+         call rough_flat_law(base_gap(prob, rs) + wg, prob%psi, prob%hardness, &
+            & prob%plastic_ratio, f, dfdh)
+         pressure(i) = prob%scale*f
+         deflection(i) = wg
+         if (prob%delta > 0.0_dp .and. prob%model /= model_gw) then
+            pressure(i) = pressure(i) + hertz_pressure(rs, prob%delta, 1.0_dp, 1.0_dp)
+            deflection(i) = deflection(i) + hertz_deflection(rs, prob%delta, 1.0_dp)
+         end if
+      end do
+      pressure = pressure*params%modulus*sqrt(params%sigma/params%radius)
+      deflection = deflection*params%sigma
+   end subroutine contact_profile
+
+   pure subroutine check_input(params, options, delta, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      type(egw_error), allocatable, intent(out) :: error
+      call validate_params(params, error)
+      if (allocated(error)) return
+      call validate_options(options, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the overlap must be finite")
+      end if
+   end subroutine check_input
+
+   !> The scaled problem of params at overlap delta (sigma > 0).
+   pure function scaled(params, delta) result(prob)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta
+      type(scaled_problem) :: prob
+      prob%model = params%model
+      prob%delta = delta/params%sigma
+      prob%a = sqrt(max(prob%delta, 0.0_dp))
+      prob%extended = params%model /= model_gw .and. prob%delta > 0.0_dp
+      prob%scale = params%mu/(2.0_dp*sqrt2)
+      prob%psi = 0.0_dp
+      if (params%model == model_epgw) prob%psi = params%psi
+      prob%hardness = params%hardness_coeff
+      prob%plastic_ratio = params%plastic_ratio
+   end function scaled
+
+   !> True when the spheres are so far apart that the summit pressure underflows.
+   elemental logical function negligible(prob)
+      type(scaled_problem), intent(in) :: prob
+      real(dp) :: f, dfdh
+      negligible = .false.
+      if (prob%delta >= 0.0_dp) return
+      call rough_flat_law(-prob%delta, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+      negligible = prob%scale*f < 1.0e-250_dp
+   end function negligible
+
+   !> Base gap z(r): the Hertz gap of eq. (28) (zero inside a) for the extended models at
+   !> delta > 0, else the rigid gap r**2/2 - delta (classic GW, eq. 10).
+   elemental real(dp) function base_gap(prob, r) result(z)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: r
+      if (prob%extended) then
+         z = hertz_gap(r, prob%delta, 1.0_dp)
+      else
+         z = 0.5_dp*r*r - prob%delta
+      end if
+   end function base_gap
+
+   !> d z / d delta at fixed r: Hertz gives d w_H/d delta = 1 inside a and
+   !> (2/pi) asin(a/r) outside (the flat-punch field), so dz/d delta = 0 inside.
+   elemental real(dp) function base_gap_rate(prob, r) result(dz)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: r
+      if (prob%extended) then
+         if (r <= prob%a) then
+            dz = 0.0_dp
+         else
+            dz = 2.0_dp/pi*asin(prob%a/r) - 1.0_dp
+         end if
+      else
+         dz = -1.0_dp
+      end if
+   end function base_gap_rate
+
+   !> Solve on meshes of decreasing step until the estimated force error is below rel_tol/2
+   !> (or on the mesh fixed by n_radial). Each level costs one solve: its force and the
+   !> previous level's give the estimate |P_h - P_H|/((H/h)**force_order - 1) of the error
+   !> of P_h (Richardson), and the next step is predicted from it.
+   subroutine solve_scaled(prob, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution) :: coarse
+      real(dp) :: focus, width, outer, step, step_prev, total
+      integer :: level
+      logical :: layered
+
+      method_used = options%method
+      if (method_used == method_auto) method_used = method_newton
+      call mesh_geometry(prob, options%rel_tol, focus, width, outer)
+      layered = prob%extended
+      if (options%n_radial > 0) then
+         step = step_for_nodes(prob%extended, focus, width, outer, options%n_radial)
+         step_prev = coarsen*step
+      else
+         ! Deep contacts resolve the same relative error on coarser steps (the rough part,
+         ! where the error lives, weighs less): start coarser there.
+         step_prev = coarsest_step*max(1.0_dp, prob%delta)**0.1_dp
+         ! ... but never fewer than min_elements graded elements: on fewer, two levels can
+         ! agree by accident (not yet asymptotic) and the estimate would be worthless.
+         step_prev = min(step_prev, (asinh(focus/width) + asinh((outer - focus)/width)) &
+            & /real(min_elements, dp))
+         step = step_prev/coarsen
+      end if
+      call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, outer, &
+         & coarse, error)
+      if (allocated(error)) then
+         ! A cold start that fails (classic GW deep in contact is the stiff case) is retried
+         ! by continuation in delta from a shallow contact.
+         if (error%stat /= egw_not_converged .or. prob%delta <= 1.0_dp) return
+         call continuation(prob, options, method_used, focus, width, step_prev, outer, coarse, &
+            & error)
+         if (allocated(error)) return
+      end if
+      if (prob%model == model_gw .and. prob%delta > 1.0_dp) then
+         ! Classic GW deep in contact with p_H(0) >> C sigma**1.5 (centre gap below -3 sigma)
+         ! ends in a thin layer around d = 0 whose place is only known from a solution
+         ! (near, not at, the Hertz edge): refocus the mesh there.
+         if (law_inverse(prob, 2.0_dp*prob%a/pi/prob%scale) < -3.0_dp) then
+            call gap_edge(coarse, focus, width)
+            layered = .true.
+         end if
+      end if
+      do level = 1, 12
+         ! The previous level's solution is the initial guess: 2-3 Newton steps instead of 5-8.
+         call solve_with_tail(prob, options, method_used, layered, focus, width, step, outer, &
+            & sol, error, coarse)
+         if (allocated(error)) return
+         total = abs(smooth_force(prob) + sol%force)
+         est = 0.0_dp
+         ! Discretisation (Richardson) plus the force estimated beyond the outer radius,
+         ! which both levels share and their difference cannot see.
+         if (total > 0.0_dp) est = abs(sol%force - coarse%force)/total &
+            & /((step_prev/step)**force_order - 1.0_dp) + sol%tail/total
+         ! Half the tolerance: a margin for the estimate itself.
+         if (options%n_radial > 0 .or. est <= 0.5_dp*options%rel_tol) return
+         if (step <= finest_step) exit
+         step_prev = step
+         step = max(finest_step, 0.25_dp*step, min(step/1.25_dp, &
+            & step*(0.25_dp*options%rel_tol/est)**(1.0_dp/force_order)))
+         coarse = sol
+      end do
+      call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(options%rel_tol) &
+         & //": force error estimate "//format_real(est)//" not reached on the finest mesh")
+   end subroutine solve_scaled
+
+   !> Continuation in delta: solve at delta/sigma = 1 from a cold start, then at delta
+   !> values growing by at most a factor 4 up to prob%delta, each started from the previous
+   !> solution stretched by the Hertz similarity (r ~ sqrt(delta), w ~ delta).
+   subroutine continuation(prob, options, method, focus, width, step, outer, sol, error)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      integer, intent(in) :: method
+      real(dp), intent(in) :: focus, width, step
+      real(dp), intent(inout) :: outer
+      type(discrete_solution), intent(out) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: stage
+      type(discrete_solution) :: previous
+      real(dp) :: stage_focus, stage_width, stage_outer, ratio, delta_prev
+      integer :: k, n_stages
+
+      n_stages = ceiling(log(prob%delta)/log(4.0_dp))
+      stage = prob
+      do k = 0, n_stages
+         stage%delta = prob%delta**(real(k, dp)/real(n_stages, dp))
+         stage%a = sqrt(stage%delta)
+         if (k == n_stages) then
+            ! The last stage is the problem itself, on its own mesh.
+            stage = prob
+            stage_focus = focus
+            stage_width = width
+            stage_outer = outer
+         else
+            call mesh_geometry(stage, options%rel_tol, stage_focus, stage_width, stage_outer)
+         end if
+         if (k == 0) then
+            call solve_with_tail(stage, options, method, stage%extended, stage_focus, &
+               & stage_width, step, stage_outer, sol, error)
+         else
+            ratio = stage%delta/delta_prev
+            previous%mesh%edge = previous%mesh%edge*sqrt(ratio)
+            previous%w = previous%w*ratio
+            call solve_with_tail(stage, options, method, stage%extended, stage_focus, &
+               & stage_width, step, stage_outer, sol, error, previous)
+         end if
+         if (allocated(error)) return
+         previous = sol
+         delta_prev = stage%delta
+      end do
+      outer = stage_outer
+   end subroutine continuation
+
+   !> Solve on the mesh of the given step, growing the outer radius (kept for the next
+   !> levels) until the force estimated beyond it is below 1 % of the tolerance.
+   subroutine solve_with_tail(prob, options, method, layered, focus, width, step, outer, sol, &
+      & error, guess)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      integer, intent(in) :: method
+      logical, intent(in) :: layered   !< geometric layers at the focus
+      real(dp), intent(in) :: focus, width, step
+      real(dp), intent(inout) :: outer
+      type(discrete_solution), intent(out) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
+      real(dp) :: total
+      integer :: attempt
+      do attempt = 1, 8
+         if (layered) then
+            call solve_mesh(prob, options, method, focus_refined(graded_edges(focus, width, &
+               & outer, step), focus), sol, error, guess)
+         else
+            call solve_mesh(prob, options, method, graded_edges(focus, width, outer, step), sol, &
+               & error, guess)
+         end if
+         if (allocated(error)) return
+         total = abs(smooth_force(prob) + sol%force)
+         if (sol%tail <= 0.01_dp*options%rel_tol*total .or. total == 0.0_dp) return
+         outer = grown_outer(prob, sol, options%rel_tol*total, outer)
+      end do
+      call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+         & //" (in units of sigma): the pressure does not decay within the outer radius " &
+         & //format_real(outer))
+   end subroutine solve_with_tail
+
+   !> Where the gap of a solution last crosses 0 (linear between Gauss points), and the
+   !> distance over which it grows by one sigma there; focus and width unchanged if the
+   !> gap never crosses 0.
+   pure subroutine gap_edge(sol, focus, width)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(inout) :: focus, width
+      real(dp) :: slope
+      integer :: g
+      do g = size(sol%gap) - 1, 1, -1
+         if (sol%gap(g) < 0.0_dp .and. sol%gap(g + 1) >= 0.0_dp) then
+            slope = (sol%gap(g + 1) - sol%gap(g))/(sol%mesh%gauss_r(g + 1) - sol%mesh%gauss_r(g))
+            focus = sol%mesh%gauss_r(g) - sol%gap(g)/slope
+            width = min(width, 1.0_dp/slope)
+            return
+         end if
+      end do
+   end subroutine gap_edge
+
+   !> Geometric layers on both sides of the focus (the Hertz edge of the extended models),
+   !> where the pressure has its one-sided (r - a)**1.5 onset: a polynomial on an element
+   !> touching a converges only algebraically, on geometric layers exponentially.
+   pure function focus_refined(edge, focus) result(refined)
+      real(dp), intent(in) :: edge(0:), focus
+      real(dp), allocatable :: refined(:)
+      real(dp) :: left, right
+      integer :: i, k, n
+      n = size(edge) - 1
+      k = -1
+      if (focus > 0.0_dp) k = findloc(edge, focus, dim=1) - 1
+      if (k <= 0 .or. k >= n .or. focus_layers == 0) then
+         refined = edge
+         return
+      end if
+      left = focus - edge(k - 1)
+      right = edge(k + 1) - focus
+      refined = [edge(0:k - 1), (focus - left*focus_ratio**i, i=1, focus_layers), focus, &
+         & (focus + right*focus_ratio**i, i=focus_layers, 1, -1), edge(k + 1:n)]
+   end function focus_refined
+
+   !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
+   !> Outside the Hertz edge the gap grows like (4/3)(a**2/pi)(2 s/a)**1.5 (s = r - a), so
+   !> it reaches one sigma at s_b = (a/2)(3 pi/(4 a**2))**(2/3): the boundary layer whose
+   !> relative width is ~ (sigma/delta)**(2/3).
+   pure subroutine mesh_geometry(prob, rel_tol, focus, width, outer)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: rel_tol
+      real(dp), intent(out) :: focus, width, outer
+      real(dp) :: h_ref, f_ref, h_cut, f, dfdh, lo, hi, mid
+      integer :: i
+
+      if (prob%a > 1.0_dp .or. (prob%extended .and. prob%a > 0.0_dp)) then
+         ! The extended models need a node at a, where z has its (r - a)**1.5 onset.
+         focus = prob%a
+         width = min(1.0_dp, 0.5_dp*prob%a*(0.75_dp*pi/prob%a**2)**(2.0_dp/3.0_dp))
+      else
+         focus = 0.0_dp
+         width = min(1.0_dp, 1.0_dp/sqrt(max(1.0_dp, -prob%delta)))
+      end if
+      ! Gap where the law has fallen by 1e-3 rel_tol from its value at the closest point.
+      h_ref = max(0.0_dp, -prob%delta)
+      if (prob%model == model_gw .and. prob%delta > 0.0_dp) h_ref = 0.0_dp
+      call rough_flat_law(h_ref, prob%psi, prob%hardness, prob%plastic_ratio, f_ref, dfdh)
+      h_cut = h_ref
+      do i = 1, 400
+         h_cut = h_cut + 0.25_dp
+         call rough_flat_law(h_cut, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+         if (f <= 1.0e-3_dp*rel_tol*f_ref) exit
+      end do
+      ! Classic GW at delta > 0 has its gap below the Hertz gap by up to the centre value
+      ! -h(p_H(0)) (eq. 19; ~15 sigma at sigma/delta = 1e-5): reach that much further out.
+      if (prob%model == model_gw .and. prob%delta > 0.0_dp) h_cut = h_cut &
+         & + max(0.0_dp, -law_inverse(prob, 2.0_dp*prob%a/pi/prob%scale))
+      ! Radius where the Hertz (or rigid) gap reaches h_cut: bisection, the gap grows with r.
+      lo = prob%a
+      hi = prob%a + sqrt(2.0_dp*(h_cut + abs(prob%delta))) + 10.0_dp
+      do i = 1, 100
+         mid = 0.5_dp*(lo + hi)
+         if (estimated_gap(prob, mid) < h_cut) then
+            lo = mid
+         else
+            hi = mid
+         end if
+      end do
+      outer = max(hi, focus + 2.0_dp*width)
+   end subroutine mesh_geometry
+
+   !> Gap estimate before solving: the Hertz gap (extended models, and classic GW at
+   !> delta > 0 whose gap is close to it) or the rigid gap.
+   elemental real(dp) function estimated_gap(prob, r) result(z)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: r
+      if (prob%delta > 0.0_dp) then
+         z = hertz_gap(r, prob%delta, 1.0_dp)
+      else
+         z = 0.5_dp*r*r - prob%delta
+      end if
+   end function estimated_gap
+
+   !> Step that gives about n_nodes nodes with graded_edges.
+   pure real(dp) function step_for_nodes(extended, focus, width, outer, n_nodes) result(step)
+      logical, intent(in) :: extended
+      real(dp), intent(in) :: focus, width, outer
+      integer, intent(in) :: n_nodes
+      real(dp) :: xi_total
+      integer :: graded_nodes
+      xi_total = asinh(focus/width) + asinh((outer - focus)/width)
+      ! The focus layers add 2 focus_layers elements when the focus is inside the mesh.
+      graded_nodes = n_nodes - 1
+      if (extended .and. focus > 0.0_dp) graded_nodes = graded_nodes &
+         & - 2*focus_layers*deflection_degree
+      step = xi_total*real(deflection_degree, dp) &
+         & /real(max(graded_nodes, 2*deflection_degree), dp)
+   end function step_for_nodes
+
+   !> New outer radius when the pressure at the old one leaves too much force outside:
+   !> the pressure falls at least like exp(-kappa (r - outer)) with kappa from the last
+   !> two Gauss points.
+   pure real(dp) function grown_outer(prob, sol, allowed, outer) result(new_outer)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: allowed, outer
+      real(dp) :: kappa
+      integer :: n
+      n = size(sol%p)
+      kappa = 0.0_dp
+      if (sol%p(n) > 0.0_dp .and. sol%p(n - 1) > sol%p(n)) kappa = log(sol%p(n - 1)/sol%p(n)) &
+         & /(sol%mesh%gauss_r(n) - sol%mesh%gauss_r(n - 1))
+      if (kappa > 0.0_dp) then
+         new_outer = outer + max(0.25_dp*(outer - prob%a), &
+            & log(max(sol%tail/(0.001_dp*allowed), 2.0_dp))/kappa)
+      else
+         new_outer = outer + 0.5_dp*(outer - prob%a)
+      end if
+      if (prob%a > 0.0_dp) new_outer = max(new_outer, prob%a*1.05_dp)
+   end function grown_outer
+
+   !> Build the mesh on edges, assemble, and solve the discrete equations; then the force,
+   !> its delta-derivative (implicit differentiation), moments and the tail estimate.
+   subroutine solve_mesh(prob, options, method, edges, sol, error, guess)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      integer, intent(in) :: method
+      real(dp), intent(in) :: edges(0:)
+      type(discrete_solution), intent(out) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
+      integer :: n, ng, max_iter, i
+      real(dp) :: kappa, rn
+
+      call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
+      n = mesh_nodes(sol%mesh)
+      ng = size(sol%mesh%gauss_r)
+      allocate (sol%infl(n, ng))
+      call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads)
+      sol%base = base_gap(prob, sol%mesh%gauss_r)
+      sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
+      if (present(guess)) then
+         ! Interpolated; beyond the guess's mesh its outermost value (w_G varies slowly there).
+         allocate (sol%w(n))
+         do i = 1, n
+            sol%w(i) = interpolate_nodal(guess%mesh, guess%w, &
+               & min(sol%mesh%node(i), guess%mesh%edge(guess%mesh%n_elem)))
+         end do
+      else
+         call initial_deflection(prob, sol)
+      end if
+
+      max_iter = options%max_iter
+      if (method == method_picard) then
+         if (max_iter == 0) max_iter = picard_max_default
+         call picard(prob, sol, max_iter, error)
+      else
+         if (max_iter == 0) max_iter = newton_max_default
+         call newton(prob, sol, max_iter, error)
+      end if
+      if (allocated(error)) return
+
+      sol%force = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
+      sol%moment0 = sum(sol%mesh%gauss_w*sol%p)
+      sol%moment1 = sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
+      ! Force beyond the outer radius if p keeps falling like at the last two Gauss points.
+      rn = sol%mesh%gauss_r(ng)
+      kappa = 0.0_dp
+      if (sol%p(ng) > 0.0_dp .and. sol%p(ng - 1) > sol%p(ng)) &
+         & kappa = log(sol%p(ng - 1)/sol%p(ng))/(rn - sol%mesh%gauss_r(ng - 1))
+      if (kappa > 0.0_dp) then
+         sol%tail = 2.0_dp*pi*rn*sol%p(ng)*(1.0_dp/kappa + 1.0_dp/(rn*kappa**2))
+      else
+         sol%tail = huge(1.0_dp)
+         if (sol%p(ng) == 0.0_dp) sol%tail = 0.0_dp
+      end if
+   end subroutine solve_mesh
+
+   !> d(force)/d(delta) of the converged discrete solution by implicit differentiation:
+   !> J dw/d(delta) = infl (p' dz/d(delta)) with J the Jacobian at the solution (one LU).
+   subroutine differentiate(prob, sol, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: jac(:, :), rhs(:, :), rate(:)
+      integer, allocatable :: ipiv(:)
+      integer :: n, info
+      n = size(sol%w)
+      allocate (jac(n, n), rhs(n, 1), ipiv(n))
+      call evaluate(prob, sol)
+      call jacobian(sol, jac)
+      call dgetrf(n, n, jac, n, ipiv, info)
+      if (info /= 0) then
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): singular Jacobian at the solution")
+         return
+      end if
+      rhs(:, 1) = matmul(sol%infl, sol%dpdh*sol%dbase)
+      call dgetrs('N', n, 1, jac, n, ipiv, rhs, n, info)
+      rate = sol%dbase + gauss_values(sol%mesh, rhs(:, 1))
+      sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%dpdh*rate)
+   end subroutine differentiate
+
+   !> Initial rough deflection. Extended models and separated spheres: 0 (the base gap is
+   !> already close). Classic GW at delta > 0: the deflection whose gap gives the Hertz
+   !> pressure through the law (capped near the edge), so that w ~ w_H: the stiff case
+   !> starts close to its solution.
+   pure subroutine initial_deflection(prob, sol)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      integer :: i
+      real(dp) :: r, h, target
+      real(dp), parameter :: h_cap = 1.5_dp
+      allocate (sol%w(mesh_nodes(sol%mesh)))
+      sol%w = 0.0_dp
+      if (prob%extended .or. prob%delta <= 0.0_dp) return
+      do i = 1, size(sol%w)
+         r = sol%mesh%node(i)
+         target = hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)/prob%scale
+         h = h_cap
+         if (target > 0.0_dp) h = min(h_cap, law_inverse(prob, target))
+         sol%w(i) = hertz_gap(r, prob%delta, 1.0_dp) + h - base_gap(prob, r)
+      end do
+   end subroutine initial_deflection
+
+   !> h with f(h) = target (f decreasing) by bisection.
+   pure real(dp) function law_inverse(prob, target) result(h)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: target
+      real(dp) :: lo, hi, f, dfdh
+      integer :: i
+      lo = -(2.0_dp*target)**(2.0_dp/3.0_dp) - 2.0_dp
+      hi = 40.0_dp
+      do i = 1, 60
+         h = 0.5_dp*(lo + hi)
+         call rough_flat_law(h, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+         if (f > target) then
+            lo = h
+         else
+            hi = h
+         end if
+      end do
+   end function law_inverse
+
+   !> Nodal field -> values at the Gauss points (element-wise Lagrange interpolation).
+   pure function gauss_values(mesh, v) result(vg)
+      type(radial_mesh), intent(in) :: mesh
+      real(dp), intent(in) :: v(:)
+      real(dp) :: vg(size(mesh%gauss_r))
+      integer :: e, q, i0, j0
+      do e = 1, mesh%n_elem
+         i0 = (e - 1)*mesh%n_gauss
+         j0 = node_index(mesh, e, 0)
+         do q = 1, mesh%n_gauss
+            vg(i0 + q) = dot_product(mesh%interp(:, q), v(j0:j0 + mesh%degree))
+         end do
+      end do
+   end function gauss_values
+
+   !> Gap, pressure and its derivative at the Gauss points for the current w.
+   pure subroutine evaluate(prob, sol)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      real(dp), allocatable :: f(:), dfdh(:)
+      sol%gap = sol%base + gauss_values(sol%mesh, sol%w)
+      allocate (f(size(sol%gap)), dfdh(size(sol%gap)))
+      call rough_flat_law(sol%gap, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+      sol%p = prob%scale*f
+      sol%dpdh = prob%scale*dfdh
+   end subroutine evaluate
+
+   !> Residual F = w - H p_G(z + w) (at the current evaluate()) and its scaled max norm.
+   pure subroutine residual(sol, res, norm)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(out) :: res(:)
+      real(dp), intent(out) :: norm
+      res = sol%w - matmul(sol%infl, sol%p)
+      norm = maxval(abs(res))/max(1.0_dp, maxval(abs(sol%w)))
+   end subroutine residual
+
+   !> Jacobian J = I - infl diag(p') interp.
+   pure subroutine jacobian(sol, jac)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(out) :: jac(:, :)
+      integer :: e, q, j, g, col
+      jac = 0.0_dp
+      do j = 1, size(jac, 1)
+         jac(j, j) = 1.0_dp
+      end do
+      do e = 1, sol%mesh%n_elem
+         do q = 1, sol%mesh%n_gauss
+            g = (e - 1)*sol%mesh%n_gauss + q
+            do j = 0, sol%mesh%degree
+               col = node_index(sol%mesh, e, j)
+               jac(:, col) = jac(:, col) - sol%infl(:, g)*(sol%dpdh(g)*sol%mesh%interp(j, q))
+            end do
+         end do
+      end do
+   end subroutine jacobian
+
+   !> Newton with backtracking (Armijo on |F|_2). Converged when the scaled residual is
+   !> below 1e-11 (the rounding floor of H p is ~1e-12 for w ~ 1e6), or the step is at
+   !> rounding level with a residual below 1e-9.
+   subroutine newton(prob, sol, max_iter, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      integer, intent(in) :: max_iter
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: jac(:, :), res(:), step(:, :), w0(:), res_try(:)
+      integer, allocatable :: ipiv(:)
+      integer :: n, it, info, k
+      real(dp) :: norm, norm_try, lambda, f2, f2_try
+
+      n = size(sol%w)
+      allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n))
+      call evaluate(prob, sol)
+      call residual(sol, res, norm)
+      do it = 1, max_iter + 1
+         sol%iterations = it - 1
+         sol%residual = norm
+         if (norm <= 1.0e-11_dp) return
+         if (it > max_iter) exit
+         call jacobian(sol, jac)
+         call dgetrf(n, n, jac, n, ipiv, info)
+         if (info /= 0) exit
+         step(:, 1) = -res
+         call dgetrs('N', n, 1, jac, n, ipiv, step, n, info)
+         w0 = sol%w
+         f2 = sum(res**2)
+         lambda = 1.0_dp
+         do k = 1, 40
+            sol%w = w0 + lambda*step(:, 1)
+            call evaluate(prob, sol)
+            call residual(sol, res_try, norm_try)
+            f2_try = sum(res_try**2)
+            if (f2_try <= (1.0_dp - 1.0e-4_dp*lambda)*f2) exit
+            lambda = 0.5_dp*lambda
+         end do
+         res = res_try
+         norm = norm_try
+         if (maxval(abs(lambda*step(:, 1))) <= 1.0e-14_dp*max(1.0_dp, maxval(abs(sol%w))) &
+            & .and. norm <= 1.0e-9_dp) then
+            sol%iterations = it
+            sol%residual = norm
+            return
+         end if
+      end do
+      sol%iterations = max_iter
+      sol%residual = norm
+      call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+         & //" (in units of sigma): Newton did not converge in "//int_str(max_iter) &
+         & //" iterations, residual "//format_real(norm))
+   end subroutine newton
+
+   !> Damped fixed point w <- w - omega (w - H p_G(z + w)); omega halves when the residual
+   !> grows and recovers slowly while it falls. Converged at a scaled residual of 1e-11.
+   !> Where the spectral radius of H |dp/dw| is large (classic GW at small sigma/delta)
+   !> omega must become tiny and the iteration runs out of max_iter: not converged.
+   subroutine picard(prob, sol, max_iter, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      integer, intent(in) :: max_iter
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: res(:), w0(:)
+      real(dp) :: norm, norm_old, omega
+      integer :: it
+      allocate (res(size(sol%w)))
+      omega = 0.5_dp
+      call evaluate(prob, sol)
+      call residual(sol, res, norm)
+      do it = 1, max_iter + 1
+         sol%iterations = it - 1
+         sol%residual = norm
+         if (norm <= 1.0e-11_dp) return
+         if (it > max_iter) exit
+         w0 = sol%w
+         norm_old = norm
+         sol%w = w0 - omega*res
+         call evaluate(prob, sol)
+         call residual(sol, res, norm)
+         if (norm > norm_old) then
+            omega = 0.5_dp*omega
+         else
+            omega = min(1.0_dp, 1.05_dp*omega)
+         end if
+      end do
+      sol%iterations = max_iter
+      sol%residual = norm
+      call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+         & //" (in units of sigma): Picard did not converge in "//int_str(max_iter) &
+         & //" iterations, residual "//format_real(norm))
+   end subroutine picard
+
+   !> Effective contact radius a* = (3 pi/4) int r p dr / int p dr of the total pressure
+   !> (scaled); the Hertz part has int r p_H dr = P_H/(2 pi), int p_H dr = a**2/2.
+   pure real(dp) function effective_radius(prob, sol) result(a_eff)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp) :: m0, m1
+      m0 = sol%moment0
+      m1 = sol%moment1
+      if (prob%extended) then
+         m0 = m0 + 0.5_dp*prob%a**2
+         m1 = m1 + hertz_force(prob%delta, 1.0_dp, 1.0_dp)/(2.0_dp*pi)
+      end if
+      a_eff = 0.0_dp
+      if (m0 > 0.0_dp) a_eff = 0.75_dp*pi*m1/m0
+   end function effective_radius
+
+   !> Total scaled pressure at r from the solved deflection (influence row, exact for the
+   !> discrete pressure).
+   pure real(dp) function total_pressure(prob, sol, r) result(p)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: r
+      real(dp) :: row(size(sol%p)), f, dfdh
+      call influence_row(sol%mesh, r, row)
+      call rough_flat_law(base_gap(prob, r) + dot_product(row, sol%p), prob%psi, &
+         & prob%hardness, prob%plastic_ratio, f, dfdh)
+      p = prob%scale*f
+      if (prob%extended) p = p + hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
+   end function total_pressure
+
+   !> Scaled Hertz force of the smooth part (extended models only).
+   pure real(dp) function smooth_force(prob) result(force)
+      type(scaled_problem), intent(in) :: prob
+      force = 0.0_dp
+      if (prob%extended) force = hertz_force(prob%delta, 1.0_dp, 1.0_dp)
+   end function smooth_force
+
+   !> Scaled Hertz stiffness of the smooth part (extended models only).
+   pure real(dp) function smooth_stiffness(prob) result(stiffness)
+      type(scaled_problem), intent(in) :: prob
+      stiffness = 0.0_dp
+      if (prob%extended) stiffness = hertz_stiffness(prob%delta, 1.0_dp, 1.0_dp)
+   end function smooth_stiffness
+
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      str = trim(buf)
+   end function int_str
+
+end module egw_rough_sphere

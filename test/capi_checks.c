@@ -1,0 +1,264 @@
+/* C tests of include/egw.h: every entry point, with good and bad input.
+ * Each egw_capi_test_* returns the number of failed checks and prints why;
+ * test/test_capi.f90 runs them as one test-drive suite. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "egw.h"
+
+static int failures;
+#define CHECK(cond) do { if (!(cond)) { failures++; \
+  printf("    C check failed at %s:%d: %s\n", __FILE__, __LINE__, #cond); } } while (0)
+/* relative closeness; tol states the accuracy the API documents */
+static int close_rel(double a, double b, double tol) {
+  return fabs(a - b) <= tol * fabs(b);
+}
+static int last_error_names(const char *name) {
+  char buf[256];
+  if (egw_last_error(buf, (int)sizeof buf) != EGW_OK) return 0;
+  return strncmp(buf, name, strlen(name)) == 0;
+}
+
+int egw_capi_test_version(void) {
+  failures = 0;
+  CHECK(egw_get_version() == EGW_VERSION);
+  return failures;
+}
+
+int egw_capi_test_status_message(void) {
+  char buf[128];
+  failures = 0;
+  for (int s = EGW_OK; s <= EGW_UNSUPPORTED; s++) {
+    CHECK(egw_status_message(s, buf, (int)sizeof buf) == EGW_OK);
+    CHECK(strlen(buf) > 0);
+  }
+  CHECK(egw_status_message(EGW_OK, buf, (int)sizeof buf) == EGW_OK && strcmp(buf, "success") == 0);
+  /* truncation keeps the NUL inside the buffer */
+  CHECK(egw_status_message(EGW_OK, buf, 4) == EGW_OK && strcmp(buf, "suc") == 0);
+  CHECK(egw_status_message(EGW_OK, NULL, 10) == EGW_NULL_POINTER);
+  CHECK(egw_status_message(EGW_OK, buf, 0) == EGW_INVALID_ARGUMENT);
+  CHECK(egw_last_error(NULL, 10) == EGW_NULL_POINTER);
+  return failures;
+}
+
+int egw_capi_test_params(void) {
+  egw_params p;
+  failures = 0;
+  egw_params_default(&p);
+  egw_params_default(NULL); /* documented no-op */
+  CHECK(p.model == EGW_MODEL_EGW && p.radius == 1.0 && p.modulus == 1.0 && p.sigma == 0.0);
+  CHECK(p.mu == 1.0 && p.psi == 0.0 && p.hardness_coeff == 0.6 && p.plastic_ratio == 54.0);
+  CHECK(egw_params_validate(&p) == EGW_OK);
+  CHECK(egw_params_validate(NULL) == EGW_NULL_POINTER);
+  CHECK(last_error_names("p"));
+#define BAD(field, value, name) do { egw_params q = p; q.field = value; \
+    CHECK(egw_params_validate(&q) == EGW_INVALID_PARAMETER); CHECK(last_error_names(name)); } while (0)
+  BAD(model, 4, "model");
+  BAD(model, -1, "model");
+  BAD(radius, 0.0, "radius");
+  BAD(radius, NAN, "radius");
+  BAD(modulus, -1.0, "modulus");
+  BAD(modulus, INFINITY, "modulus");
+  BAD(sigma, -1e-3, "sigma");
+  BAD(sigma, NAN, "sigma");
+  BAD(psi, -0.5, "psi");
+  BAD(hardness_coeff, 1.0, "hardness_coeff");
+  BAD(hardness_coeff, 0.0, "hardness_coeff");
+  BAD(plastic_ratio, 1.0, "plastic_ratio");
+  { egw_params q = p; q.sigma = 1e-3; q.mu = 0.0;
+    CHECK(egw_params_validate(&q) == EGW_INVALID_PARAMETER); CHECK(last_error_names("mu")); }
+#undef BAD
+  {
+    double mu = 0.0;
+    /* (8/3) * 3/8 * 1 * sqrt(2*2*1) = 2 */
+    CHECK(egw_mu_from_summits(0.375, 1.0, 1.0, 2.0, &mu) == EGW_OK && close_rel(mu, 2.0, 4e-16));
+    CHECK(egw_mu_from_summits(-1.0, 1.0, 1.0, 2.0, &mu) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("summit_density"));
+    CHECK(egw_mu_from_summits(1.0, 1.0, 1.0, 2.0, NULL) == EGW_NULL_POINTER);
+  }
+  return failures;
+}
+
+int egw_capi_test_gauss(void) {
+  double v = -1.0;
+  failures = 0;
+  /* DESIGN.md section 2 check values (15 significant digits), documented error 1e-14 */
+  CHECK(egw_gauss_integral(1.5, 0.0, &v) == EGW_OK && close_rel(v, 0.430019993662260, 2e-14));
+  CHECK(egw_gauss_integral(1.5, 2.0, &v) == EGW_OK && close_rel(v, 6.64817762358709e-3, 2e-14));
+  CHECK(egw_gauss_integral(1.5, 6.0, &v) == EGW_OK && close_rel(v, 8.20358058981517e-11, 2e-14));
+  CHECK(egw_gauss_integral(1.5, -5.0, &v) == EGW_OK && close_rel(v, 11.3493877980066, 2e-14));
+  /* F_0 = erfc(h/sqrt 2)/2 */
+  CHECK(egw_gauss_integral(0.0, 1.0, &v) == EGW_OK && close_rel(v, 0.5 * erfc(1.0 / sqrt(2.0)), 1e-14));
+  /* dF_0/dh = -phi(h) */
+  CHECK(egw_gauss_integral_deriv(0.0, 1.0, &v) == EGW_OK
+        && close_rel(v, -exp(-0.5) / sqrt(2.0 * M_PI), 1e-14));
+  /* far tail underflows to zero, never NaN */
+  CHECK(egw_gauss_integral(1.5, 60.0, &v) == EGW_OK && v == 0.0);
+  v = 7.0;
+  CHECK(egw_gauss_integral(-1.0, 0.0, &v) == EGW_INVALID_ARGUMENT && v == 7.0);
+  CHECK(last_error_names("n"));
+  CHECK(egw_gauss_integral(1.5, NAN, &v) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("h"));
+  CHECK(egw_gauss_integral(NAN, 0.0, &v) == EGW_INVALID_ARGUMENT);
+  CHECK(egw_gauss_integral(1.5, 0.0, NULL) == EGW_NULL_POINTER);
+  CHECK(egw_gauss_integral_deriv(-1.0, 0.0, &v) == EGW_INVALID_ARGUMENT);
+  return failures;
+}
+
+int egw_capi_test_ellip(void) {
+  double v = 0.0;
+  failures = 0;
+  CHECK(egw_ellipk(0.0, &v) == EGW_OK && close_rel(v, M_PI / 2, 4.5e-16));
+  CHECK(egw_ellipe(0.0, &v) == EGW_OK && close_rel(v, M_PI / 2, 4.5e-16));
+  /* K(1/sqrt 2) = Gamma(1/4)^2 / (4 sqrt(pi)) = 1.854074677301372 (lemniscate), a few ulp */
+  CHECK(egw_ellipk(sqrt(0.5), &v) == EGW_OK && close_rel(v, 1.8540746773013719, 1e-15));
+  /* E(1/sqrt 2) = 1.350643881047675 */
+  CHECK(egw_ellipe(sqrt(0.5), &v) == EGW_OK && close_rel(v, 1.3506438810476755, 1e-15));
+  CHECK(egw_ellipk(1.0, &v) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("k"));
+  CHECK(egw_ellipk(-0.1, &v) == EGW_INVALID_ARGUMENT);
+  CHECK(egw_ellipk(NAN, &v) == EGW_INVALID_ARGUMENT);
+  CHECK(egw_ellipe(1.5, &v) == EGW_INVALID_ARGUMENT);
+  CHECK(egw_ellipk(0.5, NULL) == EGW_NULL_POINTER);
+  return failures;
+}
+
+int egw_capi_test_flat_pressure(void) {
+  egw_params p;
+  double pr = 0.0, dpr = 0.0;
+  /* F_3/2(0) (DESIGN.md s2) and F_1/2(0) = 2^(1/4) Gamma(3/4)/(2 sqrt(pi)) (mpmath, 30 digits) */
+  const double f32_0 = 0.430019993662260, f12_0 = 0.411089479331229276;
+  failures = 0;
+  egw_params_default(&p);
+  p.sigma = 1e-3; p.mu = 4.0;
+  /* p_G(0) = C sigma^1.5 F_3/2(0), C = mu E / (2 sigma sqrt(2R)) (DESIGN.md section 3) */
+  {
+    double c = p.mu * p.modulus / (2.0 * p.sigma * sqrt(2.0 * p.radius));
+    CHECK(egw_flat_pressure(&p, 0.0, &pr) == EGW_OK
+          && close_rel(pr, c * pow(p.sigma, 1.5) * f32_0, 1e-13));
+    CHECK(egw_flat_pressure_deriv(&p, 0.0, &pr, &dpr) == EGW_OK
+          && close_rel(dpr, -1.5 * c * sqrt(p.sigma) * f12_0, 1e-13));
+  }
+  /* ZMC asperities carry less than elastic ones at the same separation */
+  {
+    egw_params q = p; double pe = 0.0, pp = 0.0;
+    q.model = EGW_MODEL_EPGW; q.psi = 4.0;
+    CHECK(egw_flat_pressure(&p, -2e-3, &pe) == EGW_OK);
+    CHECK(egw_flat_pressure(&q, -2e-3, &pp) == EGW_OK && pp < pe && pp > 0.0);
+  }
+  { egw_params q = p; q.sigma = 0.0;
+    CHECK(egw_flat_pressure(&q, 0.0, &pr) == EGW_INVALID_PARAMETER); CHECK(last_error_names("sigma")); }
+  { egw_params q = p; q.radius = -1.0;
+    CHECK(egw_flat_pressure(&q, 0.0, &pr) == EGW_INVALID_PARAMETER); CHECK(last_error_names("radius")); }
+  CHECK(egw_flat_pressure(&p, NAN, &pr) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("separation"));
+  CHECK(egw_flat_pressure(NULL, 0.0, &pr) == EGW_NULL_POINTER);
+  CHECK(egw_flat_pressure(&p, 0.0, NULL) == EGW_NULL_POINTER);
+  CHECK(egw_flat_pressure_deriv(&p, 0.0, &pr, NULL) == EGW_NULL_POINTER);
+  return failures;
+}
+
+int egw_capi_test_hertz(void) {
+  egw_params p;
+  double f = -1.0, k = -1.0, a = -1.0;
+  failures = 0;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_HERTZ; p.radius = 2.0; p.modulus = 3.0;
+  /* delta = 0.02: a = sqrt(R delta) = 0.2, P = (4/3) E sqrt(R) delta^1.5, k = 2 E a */
+  CHECK(egw_hertz(&p, 0.02, &f, &k, &a) == EGW_OK);
+  CHECK(close_rel(a, 0.2, 4e-16));
+  CHECK(close_rel(f, 4.0 / 3.0 * 3.0 * sqrt(2.0) * pow(0.02, 1.5), 4e-15));
+  CHECK(close_rel(k, 2.0 * 3.0 * 0.2, 4e-16));
+  CHECK(egw_hertz(&p, -0.01, &f, &k, &a) == EGW_OK && f == 0.0 && k == 0.0 && a == 0.0);
+  CHECK(egw_hertz(&p, 0.02, &f, NULL, NULL) == EGW_OK); /* unwanted outputs may be NULL */
+  CHECK(egw_hertz(&p, NAN, &f, &k, &a) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("delta"));
+  CHECK(egw_hertz(&p, INFINITY, &f, &k, &a) == EGW_INVALID_ARGUMENT);
+  { egw_params q = p; q.modulus = 0.0;
+    CHECK(egw_hertz(&q, 0.01, &f, &k, &a) == EGW_INVALID_PARAMETER); CHECK(last_error_names("modulus")); }
+  CHECK(egw_hertz(NULL, 0.01, &f, &k, &a) == EGW_NULL_POINTER);
+  return failures;
+}
+
+int egw_capi_test_solver(void) {
+  egw_params p;
+  egw_options o;
+  egw_result res;
+  failures = 0;
+  egw_options_default(&o);
+  egw_options_default(NULL); /* no-op */
+  CHECK(o.n_radial == 0 && o.rel_tol == 1e-6 && o.max_iter == 0 && o.method == EGW_METHOD_AUTO
+        && o.n_threads == 0);
+  egw_params_default(&p);
+  /* Hertz model: closed form exactly (R = 2, E = 3, delta = 0.02: a = 0.2) */
+  p.model = EGW_MODEL_HERTZ; p.radius = 2.0; p.modulus = 3.0;
+  CHECK(egw_solve(&p, &o, 0.02, &res) == EGW_OK);
+  CHECK(close_rel(res.force, 4.0 / 3.0 * 3.0 * sqrt(2.0) * pow(0.02, 1.5), 1e-12));
+  CHECK(close_rel(res.stiffness, 2.0 * 3.0 * 0.2, 1e-12));
+  CHECK(close_rel(res.contact_radius, 0.2, 1e-12));
+  CHECK(close_rel(res.max_pressure, 2.0 * 3.0 * 0.2 / (M_PI * 2.0), 1e-12));
+  /* a rough model with sigma = 0 is Hertz too; options may be NULL */
+  p.model = EGW_MODEL_EGW; p.sigma = 0.0;
+  CHECK(egw_solve(&p, NULL, 0.02, &res) == EGW_OK);
+  CHECK(close_rel(res.force, 4.0 / 3.0 * 3.0 * sqrt(2.0) * pow(0.02, 1.5), 1e-12));
+  /* DESIGN.md section 5 table (R = E = 1, delta = 0.01, mu = 4, delta/sigma = 10):
+   * P/P_H = 1.13475 (E-GW), 0.97696 (GW), quoted to a few 1e-5 */
+  {
+    const double ph = 4.0 / 3.0 * pow(0.01, 1.5);
+    egw_params_default(&p);
+    p.sigma = 1e-3; p.mu = 4.0;
+    CHECK(egw_solve(&p, &o, 0.01, &res) == EGW_OK && close_rel(res.force / ph, 1.13475, 5e-5));
+    CHECK(res.iterations > 0 && res.est_rel_err < 1e-5 && res.stiffness > 0.0);
+    p.model = EGW_MODEL_GW;
+    CHECK(egw_solve(&p, &o, 0.01, &res) == EGW_OK && close_rel(res.force / ph, 0.97696, 5e-5));
+  }
+  /* bad input */
+  CHECK(egw_solve(&p, &o, 0.01, NULL) == EGW_NULL_POINTER);
+  CHECK(egw_solve(NULL, &o, 0.01, &res) == EGW_NULL_POINTER);
+  CHECK(egw_solve(&p, &o, NAN, &res) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("delta"));
+  { egw_options q = o; q.rel_tol = -1.0;
+    CHECK(egw_solve(&p, &q, 0.01, &res) == EGW_INVALID_ARGUMENT); CHECK(last_error_names("rel_tol")); }
+  { egw_options q = o; q.method = 9;
+    CHECK(egw_solve(&p, &q, 0.01, &res) == EGW_INVALID_ARGUMENT); CHECK(last_error_names("method")); }
+  { egw_params q = p; q.mu = -4.0;
+    CHECK(egw_solve(&q, &o, 0.01, &res) == EGW_INVALID_PARAMETER); CHECK(last_error_names("mu")); }
+  return failures;
+}
+
+int egw_capi_test_profile(void) {
+  egw_params p;
+  const double r[3] = {0.0, 0.1, 0.3};
+  double pr[3], w[3];
+  failures = 0;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_HERTZ;
+  /* Hertz, delta = 0.04, R = E = 1: a = 0.2, p0 = 2a/pi; w(0) = delta,
+   * w(r <= a) = delta - r^2/2; p = 0 outside */
+  CHECK(egw_profile(&p, NULL, 0.04, 3, r, pr, w) == EGW_OK);
+  CHECK(close_rel(pr[0], 0.4 / M_PI, 1e-12) && close_rel(w[0], 0.04, 1e-12));
+  CHECK(close_rel(pr[1], 0.4 / M_PI * sqrt(1.0 - 0.25), 1e-12));
+  CHECK(close_rel(w[1], 0.04 - 0.005, 1e-12));
+  /* outside, corrected eq. (15): w = a^2/(pi R) [sqrt(r^2/a^2 - 1) + (2 - r^2/a^2) asin(a/r)] */
+  CHECK(pr[2] == 0.0);
+  CHECK(close_rel(w[2], 0.04 / M_PI * (sqrt(2.25 - 1.0) + (2.0 - 2.25) * asin(0.2 / 0.3)), 1e-12));
+  /* E-GW: rough pressure adds to Hertz everywhere */
+  {
+    double ph[3], wh[3];
+    egw_params q = p;
+    q.model = EGW_MODEL_EGW; q.sigma = 1e-3; q.mu = 4.0;
+    CHECK(egw_profile(&p, NULL, 0.01, 3, r, ph, wh) == EGW_OK);
+    CHECK(egw_profile(&q, NULL, 0.01, 3, r, pr, w) == EGW_OK);
+    CHECK(pr[0] > ph[0] && pr[2] > ph[2] && w[0] > wh[0]);
+  }
+  CHECK(egw_profile(&p, NULL, 0.04, 0, r, pr, w) == EGW_OK); /* nothing asked, nothing done */
+  CHECK(egw_profile(&p, NULL, 0.04, -1, r, pr, w) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("n"));
+  CHECK(egw_profile(&p, NULL, 0.04, 3, NULL, pr, w) == EGW_NULL_POINTER);
+  CHECK(egw_profile(&p, NULL, 0.04, 3, r, pr, NULL) == EGW_NULL_POINTER);
+  {
+    const double rbad[1] = {-1.0};
+    CHECK(egw_profile(&p, NULL, 0.04, 1, rbad, pr, w) == EGW_INVALID_ARGUMENT);
+  }
+  return failures;
+}

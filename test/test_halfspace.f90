@@ -1,0 +1,166 @@
+!> Tests of egw_halfspace against exact half-space solutions (Johnson 1985, §3.2 and §4.2):
+!> uniform pressure on a disc and the Hertz pressure.
+module test_halfspace
+   use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
+   use egw_kinds, only: dp, pi
+   use egw_ellip, only: ellipk, ellipe
+   use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, influence_row, &
+      & assemble_influence, interpolate_nodal, mesh_nodes
+   implicit none
+   private
+   public :: collect_halfspace
+
+contains
+
+   subroutine collect_halfspace(testsuite)
+      type(unittest_type), allocatable, intent(out) :: testsuite(:)
+      testsuite = [ &
+         & new_unittest("uniform pressure on a disc is exact", test_uniform_disc), &
+         & new_unittest("Hertz pressure converges at order 1.5", test_hertz_order), &
+         & new_unittest("deflection at r = 0 is 2 int p dt", test_centre), &
+         & new_unittest("parallel assembly equals the rows", test_assembly), &
+         & new_unittest("nodal interpolation reproduces polynomials", test_interpolation) &
+         & ]
+   end subroutine collect_halfspace
+
+   !> Uniform pressure p = 1 on the unit disc (E = 1): w = (4/pi) E(r) inside and
+   !> w = (4 r/pi) [E(1/r) - (1 - 1/r**2) K(1/r)] outside. The pressure is a polynomial on
+   !> every element, so only quadrature error remains: 1e-13 (a hundred ulp of w ~ 1)
+   !> proves the log singularity is integrated exactly, on node and off node.
+   subroutine test_uniform_disc(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: row(:)
+      real(dp) :: r, w, exact, worst
+      integer :: i, imesh
+
+      do imesh = 1, 2
+         if (imesh == 1) then
+            call build_mesh([(real(i, dp)/7.0_dp, i=0, 7)], 2, 8, mesh)
+         else
+            call build_mesh(graded_edges(0.999_dp, 0.01_dp, 1.0_dp, 0.4_dp), 3, 6, mesh)
+         end if
+         allocate (row(mesh%n_elem*mesh%n_gauss))
+         worst = 0.0_dp
+         do i = 0, 161
+            r = 2.0_dp*real(i, dp)/161.0_dp
+            if (i == 161) r = mesh%node(2)     ! a node close to r = 0
+            call influence_row(mesh, r, row)
+            w = sum(row)
+            if (r <= 1.0_dp) then
+               exact = 4.0_dp/pi*ellipe(r)
+            else
+               exact = 4.0_dp*r/pi*(ellipe(1.0_dp/r) - (1.0_dp - 1.0_dp/r**2)*ellipk(1.0_dp/r))
+            end if
+            worst = max(worst, abs(w - exact))
+         end do
+         deallocate (row)
+         call check(error, worst < 1.0e-13_dp, "uniform disc: max |w - exact| = " &
+            & //real_str(worst))
+         if (allocated(error)) return
+      end do
+   end subroutine test_uniform_disc
+
+   !> Hertz pressure p = sqrt(1 - r**2) (a = 1, E = 1, so R = 2/pi): w = (pi/4)(2 - r**2)
+   !> inside and (1/2)[sqrt(r**2-1) + (2 - r**2) asin(1/r)] outside. On uniform meshes the
+   !> square-root edge limits the pressure interpolation on the last element to h**1.5, so
+   !> the max error must fall at order 1.5; the asymptotic regime is reached slowly from
+   !> below (log corrections), hence the band [1.35, 1.65] on the h = 1/16 -> 1/64 steps.
+   subroutine test_hertz_order(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: row(:), p(:)
+      real(dp) :: r, w, exact, err(3), order
+      integer :: i, k, n
+
+      do k = 1, 3
+         n = 8*2**k
+         call build_mesh([(real(i, dp)/real(n, dp), i=0, n)], 2, 8, mesh)
+         allocate (row(mesh%n_elem*mesh%n_gauss))
+         p = sqrt(max(0.0_dp, 1.0_dp - mesh%gauss_r**2))
+         err(k) = 0.0_dp
+         do i = 0, 60
+            r = 1.5_dp*real(i, dp)/60.0_dp
+            call influence_row(mesh, r, row)
+            w = sum(row*p)
+            if (r <= 1.0_dp) then
+               exact = 0.25_dp*pi*(2.0_dp - r*r)
+            else
+               exact = 0.5_dp*(sqrt(r*r - 1.0_dp) + (2.0_dp - r*r)*asin(1.0_dp/r))
+            end if
+            err(k) = max(err(k), abs(w - exact))
+         end do
+         deallocate (row)
+      end do
+      do k = 2, 3
+         order = log(err(k - 1)/err(k))/log(2.0_dp)
+         call check(error, order > 1.35_dp .and. order < 1.65_dp, &
+            & "Hertz on uniform meshes: observed order "//real_str(order)//" not ~1.5")
+         if (allocated(error)) return
+      end do
+   end subroutine test_hertz_order
+
+   !> At r = 0 the kernel is 4/pi * pi/2 = 2: w(0) = 2 int p dt, exact for the pressure
+   !> polynomials, so the row must equal twice the Gauss weights to rounding.
+   subroutine test_centre(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: row(:)
+      call build_mesh(graded_edges(0.0_dp, 0.3_dp, 3.0_dp, 0.5_dp), 2, 8, mesh)
+      allocate (row(mesh%n_elem*mesh%n_gauss))
+      call influence_row(mesh, 0.0_dp, row)
+      call check(error, maxval(abs(row - 2.0_dp*mesh%gauss_w)) < 1.0e-15_dp, &
+         & "w(0) row differs from 2 * weights")
+   end subroutine test_centre
+
+   !> The OpenMP assembly must give the serial rows bit for bit (rows are independent).
+   subroutine test_assembly(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: infl(:, :), row(:)
+      integer :: i
+      call build_mesh(graded_edges(3.0_dp, 0.2_dp, 5.0_dp, 0.5_dp), 2, 8, mesh)
+      allocate (infl(mesh_nodes(mesh), mesh%n_elem*mesh%n_gauss))
+      allocate (row(size(infl, 2)))
+      call assemble_influence(mesh, mesh%node, infl, 2)
+      do i = 1, mesh_nodes(mesh)
+         call influence_row(mesh, mesh%node(i), row)
+         if (any(row /= infl(i, :))) then
+            call test_failed(error, "assembled row differs from influence_row")
+            return
+         end if
+      end do
+   end subroutine test_assembly
+
+   !> Continuous Lagrange elements of degree 3 reproduce a cubic to rounding (1e-13 for
+   !> values ~ 30), at nodes and between them.
+   subroutine test_interpolation(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: v(:)
+      real(dp) :: r, worst
+      integer :: i
+      call build_mesh(graded_edges(1.0_dp, 0.1_dp, 3.0_dp, 0.7_dp), 3, 4, mesh)
+      v = cubic(mesh%node)
+      worst = 0.0_dp
+      do i = 0, 100
+         r = 3.0_dp*real(i, dp)/100.0_dp
+         worst = max(worst, abs(interpolate_nodal(mesh, v, r) - cubic(r)))
+      end do
+      call check(error, worst < 1.0e-13_dp, "cubic not reproduced: "//real_str(worst))
+   end subroutine test_interpolation
+
+   elemental real(dp) function cubic(r)
+      real(dp), intent(in) :: r
+      cubic = 1.0_dp - 2.0_dp*r + 0.5_dp*r**2 + r**3
+   end function cubic
+
+   function real_str(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(es12.4)') x
+      s = trim(adjustl(buf))
+   end function real_str
+
+end module test_halfspace
