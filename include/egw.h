@@ -243,6 +243,31 @@ void egw_table_free(egw_table *t);
 int egw_write_flat_calculix(const egw_params *p, double overclosure_max, double rel_tol,
                             const char *path);
 
+/* CalculiX limits, honoured by every CalculiX writer: fields of at most 20 characters
+ * (numbers are written with 13 significant digits) and at most EGW_CALCULIX_MAX_PAIRS
+ * pairs per tabular curve. When rel_tol needs more pairs, the pairs are placed to
+ * minimise the largest linear-interpolation error; the error achieved (relative to
+ * max(|value|, rel_tol * reference value)) is written in the file's header, with a
+ * WARNING line if it exceeds rel_tol, and returned in *max_error (max_error may be NULL).
+ * shift != 0: overclosure is measured from the curve's zero-force end (the cut-off
+ * delta_c of the table, or the separation d_c of the flat), so the curve starts at
+ * (0, 0): CalculiX makes node-to-surface contact springs only where surfaces touch or
+ * penetrate and never reaches a negative-overclosure part. The model's surfaces then
+ * stand for the sphere surfaces at overlap delta_c / the summit base planes at separation
+ * d_c (doc/formats.md section 5). */
+#define EGW_CALCULIX_MAX_PAIRS 200
+int egw_table_write_calculix(egw_table t, const char *path, int shift, double *max_error);
+int egw_write_flat_calculix_shifted(const egw_params *p, double overclosure_max,
+                                    double rel_tol, int shift, const char *path,
+                                    double *max_error);
+
+/* As egw_tables_write_lammps, with the file's first line "# DATE: ... UNITS: <units>"
+ * (a LAMMPS units style such as "si" or "metal"; LAMMPS then refuses the file under other
+ * units). Use it only when the tables' parameters are in that style's units. Without it
+ * (egw_tables_write_lammps, egw_table_write) the file has no UNITS: tag. */
+int egw_tables_write_lammps_units(int n, const egw_table *tables, const char *path,
+                                  const char *units);
+
 /* ------------------------------------------------------------------------
  * Universal tables: p = P/(E sqrt(R) sigma^1.5) over x = delta/sigma and mu, for one
  * model (and psi, K, rho_p for EP-GW). One table serves every radius, modulus and

@@ -21,6 +21,43 @@ static int last_error_names(const char *name) {
   if (egw_last_error(buf, (int)sizeof buf) != EGW_OK) return 0;
   return strncmp(buf, name, strlen(name)) == 0;
 }
+/* Reader-side checks of a CalculiX curve, as CalculiX 2.20 reads it: every field of the
+ * pair lines after the *SURFACE BEHAVIOR line at most 20 characters, at most 200 pairs.
+ * Returns the number of pairs (-1 if a check fails); *first_x: first overclosure. */
+static int calculix_pairs(const char *path, double *first_x) {
+  FILE *fp = fopen(path, "r");
+  char line[512];
+  int data = 0, n = 0, ok = 1;
+  if (fp == NULL) return -1;
+  while (fgets(line, sizeof line, fp) != NULL) {
+    if (data && line[0] != '*') {
+      char *field = strtok(line, ",\n");
+      int fields = 0;
+      while (field != NULL) {
+        while (*field == ' ') field++;
+        if (strlen(field) > 20) ok = 0;
+        if (fields == 1 && n == 0) *first_x = atof(field);
+        fields++;
+        field = strtok(NULL, ",\n");
+      }
+      if (fields != 2) ok = 0;
+      n++;
+    }
+    if (strncmp(line, "*SURFACE BEHAVIOR", 17) == 0) data = 1;
+  }
+  fclose(fp);
+  return ok && n <= 200 ? n : -1;
+}
+/* Does the file contain LAMMPS's "UNITS:" tag (case-sensitive, as LAMMPS reads it)? */
+static int has_units_tag(const char *path) {
+  FILE *fp = fopen(path, "r");
+  char line[512];
+  int found = 0;
+  if (fp == NULL) return 0;
+  while (fgets(line, sizeof line, fp) != NULL) found |= strstr(line, "UNITS:") != NULL;
+  fclose(fp);
+  return found;
+}
 static egw_params hertz_params(void) {
   egw_params p;
   egw_params_default(&p);
@@ -107,6 +144,22 @@ int egw_capi_test_table_files(void) {
   CHECK(egw_table_write(t, bin, EGW_FORMAT_BINARY) == EGW_OK);
   CHECK(egw_table_write(t, "build/capi_table.table", EGW_FORMAT_LAMMPS) == EGW_OK);
   CHECK(egw_table_write(t, "build/capi_table.inp", EGW_FORMAT_CALCULIX) == EGW_OK);
+  CHECK(!has_units_tag("build/capi_table.table"));
+  {
+    /* CalculiX limits; shift: the curve starts at overclosure 0. The table at 1e-5 over
+     * four decades of delta needs more than 200 pairs: error above rel_tol, reported. */
+    double x0 = -1.0, err = -1.0;
+    egw_table_info info;
+    CHECK(egw_table_get_info(t, &info) == EGW_OK);
+    CHECK(calculix_pairs("build/capi_table.inp", &x0) > 0);
+    CHECK(fabs(x0 - info.cutoff) <= 1e-12 * info.cutoff); /* 13 significant digits */
+    CHECK(egw_table_write_calculix(t, "build/capi_shift.inp", 1, &err) == EGW_OK);
+    CHECK(calculix_pairs("build/capi_shift.inp", &x0) == 200 && x0 == 0.0);
+    CHECK(err > 1e-5 && err < 1e-3);
+    CHECK(egw_table_write_calculix(t, "build/capi_shift.inp", 0, NULL) == EGW_OK);
+    CHECK(egw_table_write_calculix(NULL, "build/capi_shift.inp", 0, NULL)
+          == EGW_NULL_POINTER);
+  }
   {
     /* two sections; the second from R alone (R1 = R2 = 2R) */
     egw_table two[2] = {t, NULL};
@@ -123,6 +176,18 @@ int egw_capi_test_table_files(void) {
       fclose(fp);
     }
     CHECK(sections == 2);
+    CHECK(!has_units_tag("build/capi_two.table"));
+    CHECK(egw_tables_write_lammps_units(2, two, "build/capi_si.table", "si") == EGW_OK);
+    fp = fopen("build/capi_si.table", "r");
+    CHECK(fp != NULL);
+    if (fp != NULL) {
+      CHECK(fgets(line, sizeof line, fp) != NULL && strncmp(line, "# DATE: ", 8) == 0 &&
+            strstr(line, " UNITS: si ") != NULL);
+      fclose(fp);
+    }
+    CHECK(egw_tables_write_lammps_units(2, two, "build/capi_bad.table", "SI")
+          == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("units"));
     {
       egw_table second = two[1];
       two[1] = NULL;
@@ -177,6 +242,15 @@ int egw_capi_test_table_files(void) {
     egw_params_default(&q);
     q.sigma = 1e-3; q.mu = 4.0;
     CHECK(egw_write_flat_calculix(&q, 3e-3, 1e-5, "build/capi_flat.inp") == EGW_OK);
+    {
+      double x0 = -1.0, err = -1.0;
+      CHECK(calculix_pairs("build/capi_flat.inp", &x0) > 0 && x0 < 0.0);
+      CHECK(egw_write_flat_calculix_shifted(&q, 3e-3, 1e-3, 1, "build/capi_flat_s.inp",
+                                            &err) == EGW_OK);
+      /* 1e-3 fits in 200 pairs: the bisection result, error <= rel_tol */
+      CHECK(calculix_pairs("build/capi_flat_s.inp", &x0) > 0 && x0 == 0.0);
+      CHECK(err > 0.0 && err <= 1e-3);
+    }
     q.sigma = 0.0;
     CHECK(egw_write_flat_calculix(&q, 3e-3, 1e-5, "build/capi_flat.inp")
           == EGW_INVALID_PARAMETER);

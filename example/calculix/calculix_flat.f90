@@ -3,7 +3,8 @@
 !> units mm, N, MPa: E* = 210000/(1 - 0.3^2) MPa, sigma = 1 um, summit radius
 !> beta = 50 um, summit density eta = 500 /mm^2 (eta beta sigma = 0.025), linear
 !> interpolation within rel_tol = 1e-3, overclosure up to +1 um: 133 pairs (CalculiX 2.20
-!> uses at most 200 pairs of a tabular curve; 1e-4 would need 620).
+!> uses at most 200 pairs of a tabular curve; the writer caps there), shifted so that
+!> overclosure is measured from d_c, the separation where p_G has fallen to rel_tol p_G(0).
 !> Usage: calculix-flat [output path]  (default flat.inc, included by block.inp)
 program calculix_flat
    use egw_kinds, only: dp
@@ -24,7 +25,9 @@ program calculix_flat
    if (command_argument_count() >= 1) call get_command_argument(1, path)
    p = contact_params(model=model_egw, radius=radius, modulus=modulus, sigma=sigma, &
       & mu=mu_from_summits(eta, beta, sigma, radius))
-   call write_calculix_flat(p, 1.0e-3_dp, 1.0e-3_dp, trim(path), error)
+   ! shift: overclosure from d_c (CalculiX only reaches overclosure >= 0 in
+   ! node-to-surface contact): the model's surfaces are the summit base planes at d_c
+   call write_calculix_flat(p, 1.0e-3_dp, 1.0e-3_dp, trim(path), error, shift=.true.)
    if (allocated(error)) then
       write (*, '(a)') "calculix-flat: "//error%message
       error stop 1

@@ -90,18 +90,23 @@ def main():
     meta = {k: float(v) for k, v in re.findall(r"\b(E|sigma|mu|R) = (\S+?),?(?=\s|$)",
                                                " ".join(header))}
     c = meta["mu"] * meta["E"] / (2 * meta["sigma"] * math.sqrt(2 * meta["R"]))
-    # CalculiX creates node-to-surface contact springs only where the surfaces touch or
-    # penetrate, so the curve must start at overclosure 0: shift it by d_c (the model's
-    # surfaces are the summit base planes at separation d_c when they touch). CalculiX also
-    # reads a number from the first 20 characters of its field only: print 13 digits.
-    if len(pairs) > MAX_PAIRS:
-        print(f"calculix: {len(pairs)} pairs, CalculiX handles at most {MAX_PAIRS}: FAILED")
+    # The curve is written with shift (calculix_flat.f90): overclosure measured from d_c,
+    # the separation where p_G has fallen to rel_tol p_G(0), because CalculiX creates
+    # node-to-surface contact springs only where the surfaces touch or penetrate. The
+    # model's surfaces are the summit base planes at separation d_c.
+    if len(pairs) > MAX_PAIRS or any(len(v.strip()) > 20 for line in open(flat)
+                                     if re.match(r"\s*[-+.\d]", line)
+                                     for v in line.split(",")):
+        print(f"calculix: {len(pairs)} pairs or a field > 20 characters: CalculiX reads at "
+              f"most {MAX_PAIRS} pairs of 20-character fields: FAILED")
         return 1
-    d_c = -pairs[0][1]
+    m = re.search(r"d_c = (\S+?)\s", " ".join(header) + " ")
+    if not m or pairs[0] != (0.0, 0.0):
+        print("calculix: the curve is not shifted (no d_c in the header): FAILED")
+        return 1
+    d_c = float(m.group(1))
     with tempfile.TemporaryDirectory() as work:
-        with open(os.path.join(work, "flat.inc"), "w") as g:
-            g.write("\n".join(header) + "\n")
-            g.write("".join(f"{p:.12e}, {o + d_c:.12e}\n" for p, o in pairs))
+        shutil.copy(flat, os.path.join(work, "flat.inc"))
         shutil.copy(os.path.join(os.path.dirname(os.path.abspath(__file__)), "block.inp"), work)
         subprocess.run([ccx, "-i", "block"], cwd=work, check=True, stdout=subprocess.DEVNULL)
         with open(os.path.join(work, "block.dat")) as f:

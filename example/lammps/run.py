@@ -82,15 +82,9 @@ def main():
     table, lmp = sys.argv[1], (sys.argv[2] if len(sys.argv) > 2 else "lmp")
     ok = True
     with tempfile.TemporaryDirectory() as work:
-        # LAMMPS reads a "UNITS:" tag on a potential file's first line as a unit style;
-        # egw's "# UNITS: consistent ..." is not one, so drop that tag from a copy.
-        copy = os.path.join(work, "egw_pair.table")
-        with open(table) as f, open(copy, "w") as g:
-            text = f.read().split("\n", 1)
-            g.write(text[0].replace("UNITS:", "units") + "\n" + text[1])
-        secs = sections(copy)
+        secs = sections(table)
         for name, s in secs.items():
-            d_max, t_c, e, m_eff, d_h = collide(lmp, copy, name, s, work)
+            d_max, t_c, e, m_eff, d_h = collide(lmp, table, name, s, work)
             if s["model"] == "Hertz":
                 t_h = 2 * d_h / V0 * 0.4 * math.gamma(0.4) * math.sqrt(math.pi) / math.gamma(0.9)
                 checks = [("max overlap / Hertz", d_max / d_h, TOL_HERTZ),

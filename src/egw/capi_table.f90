@@ -15,7 +15,7 @@ module egw_capi_table
       & table_contact_radius, table_set_radii, table_is_ready
    use egw_table_universal, only: universal_table, build_universal, universal_eval
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
-      & write_calculix_flat, write_lammps
+      & write_calculix_flat, write_lammps, write_calculix_sphere
    use egw_capi, only: egw_params_c, egw_options_c, settle, require, read_params, &
       & read_options, put, int_str
    implicit none
@@ -241,6 +241,78 @@ contains
       call write_calculix_flat(params, overclosure_max, rel_tol, fpath, error)
       stat = settle(error)
    end function egw_write_flat_calculix
+
+   !> C: egw_table_write_calculix (sphere curve; shift: overclosure from the cut-off;
+   !> max_error may be NULL).
+   function egw_table_write_calculix(h, path, shift, max_error) result(stat) &
+      & bind(C, name="egw_table_write_calculix")
+      type(c_ptr), value, intent(in) :: h, path, max_error
+      integer(c_int), value, intent(in) :: shift
+      integer(c_int) :: stat
+      type(force_table), pointer :: t
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      real(dp) :: achieved
+      stat = get_table(h, t)
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      call write_calculix_sphere(t, fpath, error, shift=shift /= 0, max_error=achieved)
+      stat = settle(error)
+      if (stat == egw_ok) call put(max_error, achieved)
+   end function egw_table_write_calculix
+
+   !> C: egw_write_flat_calculix_shifted (rough flat; shift: overclosure from d_c;
+   !> max_error may be NULL).
+   function egw_write_flat_calculix_shifted(p, overclosure_max, rel_tol, shift, path, &
+      & max_error) result(stat) bind(C, name="egw_write_flat_calculix_shifted")
+      type(c_ptr), value, intent(in) :: p, path, max_error
+      real(c_double), value, intent(in) :: overclosure_max, rel_tol
+      integer(c_int), value, intent(in) :: shift
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      real(dp) :: achieved
+      stat = read_params(p, params)
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat /= egw_ok) return
+      call write_calculix_flat(params, overclosure_max, rel_tol, fpath, error, &
+         & shift=shift /= 0, max_error=achieved)
+      stat = settle(error)
+      if (stat == egw_ok) call put(max_error, achieved)
+   end function egw_write_flat_calculix_shifted
+
+   !> C: egw_tables_write_lammps_units: as egw_tables_write_lammps with a LAMMPS units
+   !> style written as the file's UNITS: tag.
+   function egw_tables_write_lammps_units(n, tables, path, units) result(stat) &
+      & bind(C, name="egw_tables_write_lammps_units")
+      integer(c_int), value, intent(in) :: n
+      type(c_ptr), value, intent(in) :: tables, path, units
+      integer(c_int) :: stat
+      type(c_ptr), pointer :: handles(:)
+      type(force_table), allocatable :: copies(:)
+      type(force_table), pointer :: t
+      character(len=:), allocatable :: fpath, funits
+      type(egw_error), allocatable :: error
+      integer :: i
+      if (n < 1) then
+         stat = invalid("n = "//int_str(int(n))//": need at least one table")
+         return
+      end if
+      stat = require(tables, "tables")
+      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = get_path(units, funits)
+      if (stat /= egw_ok) return
+      call c_f_pointer(tables, handles, [n])
+      allocate (copies(n))
+      do i = 1, n
+         stat = get_table(handles(i), t)
+         if (stat /= egw_ok) return
+         copies(i) = t
+      end do
+      call write_lammps(copies, fpath, error, units=funits)
+      stat = settle(error)
+   end function egw_tables_write_lammps_units
 
    ! ------------------------------------------------------------ universal tables
 

@@ -23,7 +23,7 @@ module egw_table_format
    private
 
    public :: write_table, read_table, write_universal, read_universal, write_lammps, &
-      & write_calculix_flat, fnv1a32
+      & write_calculix_flat, write_calculix_sphere, fnv1a32
 
    integer, parameter, public :: format_csv = 0       !< egw CSV with metadata header
    integer, parameter, public :: format_binary = 1    !< egw binary, versioned, checksummed
@@ -40,6 +40,11 @@ module egw_table_format
    !> Most points a LAMMPS or CalculiX file gets (resampling is adaptive below this).
    integer, parameter :: max_export_points = 200000
    character(len=*), parameter :: real_fmt = "(es25.17e3)"
+   !> CalculiX reads only the first 20 characters of a field: 13 significant digits
+   !> (relative rounding <= 5e-13, below every rel_tol a curve can be asked for).
+   character(len=*), parameter :: calculix_fmt = "(es20.12e3)"
+   !> CalculiX 2.20 keeps at most 200 pairs of a tabular curve (silently wrong beyond).
+   integer, parameter, public :: calculix_max_pairs = 200
 
    !> key = value pairs of a CSV header.
    type :: header_dict
@@ -740,10 +745,18 @@ contains
    !> from the largest overlap (rlo) to the cut-off (rhi); energy = work of the force from
    !> the cut-off, force = -dE/dr = P. N is doubled (from 500) until linear interpolation
    !> between the points reproduces the table to rel_tol * P_ref.
-   subroutine write_lammps(tables, path, error)
+   !>
+   !> The first line carries no `UNITS:` tag unless units is given: LAMMPS (29 Sep 2021
+   !> and later) reads `UNITS: <style>` on a potential file's first line and refuses the
+   !> file when <style> differs from the run's units command. egw's numbers are in the
+   !> units of the parameters; pass units (a LAMMPS units style such as "si", "metal")
+   !> only when they are that style's force/length/energy units: it is then written as
+   !> `# DATE: ... UNITS: <units>` and LAMMPS checks it against the input deck.
+   subroutine write_lammps(tables, path, error, units)
       type(force_table), intent(in) :: tables(:)
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in), optional :: units
       integer :: unit, s, i, n
       character(len=:), allocatable :: tmp
       real(dp) :: rsum, rlo, rhi, r, d, f, k, e
@@ -756,10 +769,24 @@ contains
             return
          end if
       end do
+      if (present(units)) then
+         if (len_trim(units) == 0 .or. verify(trim(units), &
+            & "abcdefghijklmnopqrstuvwxyz") /= 0) then
+            call fatal_error(error, egw_invalid_argument, "units = '"//units// &
+               & "': must be a LAMMPS units style (lowercase letters, e.g. si)")
+            return
+         end if
+      end if
       call open_temporary(path, unit, tmp, error)
       if (allocated(error)) return
-      write (unit, '(a)') "# UNITS: consistent with the egw parameters (force = "// &
-         & "modulus*length^2, energy = force*length)"
+      if (present(units)) then
+         write (unit, '(a)') "# DATE: "//egw_version_string//" UNITS: "//trim(units)// &
+            & " CONTRIBUTOR: egw"
+      else
+         ! lowercase on purpose: an uppercase UNITS: tag is a unit style for LAMMPS
+         write (unit, '(a)') "# egw tables, units: those of the egw parameters (force = "// &
+            & "modulus*length^2, energy = force*length)"
+      end if
       write (unit, '(a)') "# egw "//egw_version_string//" contact force tables for "// &
          & "pair_style table (linear or spline, N >= the section's N)"
       do s = 1, size(tables)
@@ -841,53 +868,81 @@ contains
    ! =========================================================== CalculiX
 
    !> Node-to-surface sphere contact: force per node against overclosure = overlap delta,
-   !> first pair (0, delta_c); points placed so that the linear interpolation CalculiX
-   !> applies reproduces the table to rel_tol of the local force.
-   subroutine write_calculix_sphere(t, path, error)
+   !> first pair (0, delta_c); at most calculix_max_pairs pairs placed so that the linear
+   !> interpolation CalculiX applies reproduces the table (see fit_pairs). With shift,
+   !> overclosure is measured from the cut-off, delta - delta_c (first pair (0, 0)):
+   !> CalculiX makes node-to-surface contact springs only where the surfaces touch or
+   !> penetrate, so a curve starting at negative overclosure is never reached there; the
+   !> model's surfaces then stand for the spheres at overlap delta_c when they touch.
+   !> max_error: the achieved error (as in the file's header).
+   subroutine write_calculix_sphere(t, path, error, shift, max_error)
       type(force_table), intent(in), target :: t
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
+      logical, intent(in), optional :: shift
+      real(dp), intent(out), optional :: max_error
       real(dp), allocatable :: x(:), y(:)
+      real(dp) :: achieved, origin
       integer :: unit
       character(len=:), allocatable :: tmp
       type(sampler) :: smp
+      logical :: shifted
+      shifted = .false.
+      if (present(shift)) shifted = shift
       smp%table => t
-      call resample_linear(smp, t%cutoff, t%delta_max, t%rel_tol, x, y)
+      call fit_pairs(smp, t%cutoff, t%delta_max, t%rel_tol, t%rel_tol*t%reference_force, &
+         & x, y, achieved)
+      if (present(max_error)) max_error = achieved
       if (smp%stat /= egw_ok) then
          call fatal_error(error, smp%stat, "table: force not finite; nothing written")
          return
       end if
       y(1) = 0.0_dp
+      origin = 0.0_dp
+      if (shifted) origin = t%cutoff
       call open_temporary(path, unit, tmp, error)
       if (allocated(error)) return
       write (unit, '(a)') "** egw "//egw_version_string//": rough-sphere contact, model "// &
          & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
          & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
          & fmt(t%params%mu)
-      write (unit, '(a)') "** node-to-surface contact: FORCE per node against overclosure"// &
-         & " (= overlap delta); force 0 below overclosure "//fmt(t%cutoff)
-      write (unit, '(a)') "** linear interpolation between pairs within rel_tol = "// &
-         & fmt(t%rel_tol)
-      call write_pairs(unit, tmp, x, y, error)
+      if (shifted) then
+         write (unit, '(a)') "** node-to-surface contact: FORCE per node against "// &
+            & "overclosure = delta - delta_c (shifted: overlap delta = overclosure + "// &
+            & fmt(t%cutoff)//"); force 0 below overclosure 0"
+      else
+         write (unit, '(a)') "** node-to-surface contact: FORCE per node against "// &
+            & "overclosure (= overlap delta); force 0 below overclosure "//fmt(t%cutoff)
+      end if
+      call write_error_comment(unit, t%rel_tol, achieved, size(x))
+      call write_pairs(unit, tmp, x - origin, y, error)
       if (allocated(error)) return
       call commit_temporary(unit, tmp, path, error)
    end subroutine write_calculix_sphere
 
    !> Rough flat: nominal pressure p_G(d) (egw_asperity) against overclosure = -d, from
    !> the separation d_c where p_G has fallen to rel_tol * p_G(0) (first pair at zero
-   !> pressure) to overclosure_max; linear interpolation error <= rel_tol of the local
-   !> pressure.
-   subroutine write_calculix_flat(params, overclosure_max, rel_tol, path, error)
+   !> pressure) to overclosure_max; at most calculix_max_pairs pairs (fit_pairs). With
+   !> shift, overclosure is measured from d_c: overclosure = d_c - d (first pair (0, 0);
+   !> the model's surfaces are the summit base planes at separation d_c, see
+   !> write_calculix_sphere for why CalculiX needs this). max_error: the achieved error.
+   subroutine write_calculix_flat(params, overclosure_max, rel_tol, path, error, shift, &
+      & max_error)
       type(contact_params), intent(in) :: params
       real(dp), intent(in) :: overclosure_max, rel_tol
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
+      logical, intent(in), optional :: shift
+      real(dp), intent(out), optional :: max_error
       real(dp), allocatable :: x(:), y(:)
-      real(dp) :: p0, dp0, pc, d_c, step
+      real(dp) :: p0, dp0, pc, d_c, step, achieved, origin
       integer :: unit, it
       character(len=:), allocatable :: tmp
       type(sampler) :: smp
+      logical :: shifted
 
+      shifted = .false.
+      if (present(shift)) shifted = shift
       call validate_params(params, error)
       if (allocated(error)) return
       if (.not. params%sigma > 0.0_dp) then
@@ -918,26 +973,45 @@ contains
       end do
       smp%params = params
       smp%flat = .true.
-      call resample_linear(smp, -d_c, overclosure_max, rel_tol, x, y)
+      call fit_pairs(smp, -d_c, overclosure_max, rel_tol, rel_tol*p0, x, y, achieved)
+      if (present(max_error)) max_error = achieved
       if (smp%stat /= egw_ok) then
          call fatal_error(error, smp%stat, "flat_pressure failed while sampling p_G")
          return
       end if
       y(1) = 0.0_dp
+      origin = 0.0_dp
+      if (shifted) origin = -d_c
       call open_temporary(path, unit, tmp, error)
       if (allocated(error)) return
       write (unit, '(a)') "** egw "//egw_version_string//": rough flat, GW nominal "// &
          & "pressure p_G (DESIGN.md section 3), model "//model_name(params%model)// &
          & ", E = "//fmt(params%modulus)//", sigma = "//fmt(params%sigma)//", mu = "// &
          & fmt(params%mu)//", R = "//fmt(params%radius)//", psi = "//fmt(params%psi)
-      write (unit, '(a)') "** PRESSURE against overclosure = -separation of the summit "// &
-         & "base plane; pressure 0 for overclosure < "//fmt(-d_c)
-      write (unit, '(a)') "** linear interpolation between pairs within rel_tol = "// &
-         & fmt(rel_tol)
-      call write_pairs(unit, tmp, x, y, error)
+      if (shifted) then
+         write (unit, '(a)') "** PRESSURE against overclosure = d_c - separation of the "// &
+            & "summit base plane, d_c = "//fmt(d_c)//" (shifted); pressure 0 for "// &
+            & "overclosure < 0"
+      else
+         write (unit, '(a)') "** PRESSURE against overclosure = -separation of the summit "// &
+            & "base plane; pressure 0 for overclosure < "//fmt(-d_c)
+      end if
+      call write_error_comment(unit, rel_tol, achieved, size(x))
+      call write_pairs(unit, tmp, x - origin, y, error)
       if (allocated(error)) return
       call commit_temporary(unit, tmp, path, error)
    end subroutine write_calculix_flat
+
+   !> Header lines on the interpolation error achieved (and a warning if above rel_tol).
+   subroutine write_error_comment(unit, rel_tol, achieved, n)
+      integer, intent(in) :: unit, n
+      real(dp), intent(in) :: rel_tol, achieved
+      write (unit, '(a)') "** linear interpolation between pairs within rel_tol = "// &
+         & fmt(rel_tol)//" requested; max error achieved = "//fmt(achieved)// &
+         & " (relative to max(|value|, rel_tol*reference)); "//int_str(n)//" pairs"
+      if (achieved > rel_tol) write (unit, '(a)') "** WARNING: rel_tol not met within "// &
+         & "CalculiX's limit of "//int_str(calculix_max_pairs)//" pairs per curve"
+   end subroutine write_error_comment
 
    subroutine write_pairs(unit, tmp, x, y, error)
       integer, intent(in) :: unit
@@ -953,9 +1027,128 @@ contains
                & format_real(x(i))//" is not finite; nothing written")
             return
          end if
-         write (unit, '(a)') fmt(y(i))//", "//fmt(x(i))
+         write (unit, '(a)') fmt20(y(i))//", "//fmt20(x(i))
       end do
    end subroutine write_pairs
+
+   !> At most calculix_max_pairs points on [a, b] for linear interpolation of g. First
+   !> the bisection of resample_linear at rel_tol; if that needs more points, they are
+   !> placed by equidistributing the interpolation error: on the fine bisection grid
+   !> interval j has midpoint error e_j ~ c h_j^2, so covering it with m_j intervals
+   !> gives e_j/m_j^2, and the largest error over the curve is smallest when m_j is
+   !> proportional to sqrt(e_j): the new points split the cumulative sum of sqrt(e_j)
+   !> equally. achieved = the largest midpoint error of the result, relative to
+   !> max(|g|, floor) (floor = rel_tol * the curve's reference value: the tail below it
+   !> needs only absolute accuracy).
+   subroutine fit_pairs(g, a, b, rel_tol, floor, x, y, achieved)
+      type(sampler), intent(inout) :: g
+      real(dp), intent(in) :: a, b, rel_tol, floor
+      real(dp), allocatable, intent(out) :: x(:), y(:)
+      real(dp), intent(out) :: achieved
+      real(dp), allocatable :: xf(:), yf(:), w(:)
+      real(dp) :: target, frac
+      integer :: nf, j, k
+      call resample_linear(g, a, b, rel_tol, xf, yf)
+      nf = size(xf)
+      if (g%stat /= egw_ok) return
+      if (nf <= calculix_max_pairs) then
+         call move_alloc(xf, x)
+         call move_alloc(yf, y)
+      else
+         allocate (w(0:nf - 1))
+         w(0) = 0.0_dp
+         do j = 1, nf - 1
+            w(j) = w(j - 1) + sqrt(midpoint_error(g, xf(j), xf(j + 1), yf(j), yf(j + 1), &
+               & floor))
+         end do
+         allocate (x(calculix_max_pairs), y(calculix_max_pairs))
+         x(1) = a
+         x(calculix_max_pairs) = b
+         j = 1
+         do k = 2, calculix_max_pairs - 1
+            target = w(nf - 1)*(k - 1)/(calculix_max_pairs - 1)
+            do while (w(j) < target .and. j < nf - 1)
+               j = j + 1
+            end do
+            ! target lies in fine interval j: w(j-1) <= target <= w(j)
+            frac = 0.5_dp
+            if (w(j) > w(j - 1)) frac = (target - w(j - 1))/(w(j) - w(j - 1))
+            x(k) = xf(j) + frac*(xf(j + 1) - xf(j))
+         end do
+         ! keep the points strictly increasing (plateaus of w can stack them)
+         do k = 2, calculix_max_pairs - 1
+            x(k) = max(x(k), x(k - 1) + 1.0e-9_dp*(b - a))
+         end do
+         do k = 1, calculix_max_pairs
+            y(k) = sample(g, x(k))
+         end do
+         call equalise_errors(g, floor, x, y)
+      end if
+      achieved = 0.0_dp
+      do k = 1, size(x) - 1
+         achieved = max(achieved, midpoint_error(g, x(k), x(k + 1), y(k), y(k + 1), floor))
+      end do
+   end subroutine fit_pairs
+
+   !> A few passes of de Boor's equidistribution on the points themselves: interval k
+   !> with midpoint error e_k would need sqrt(e_k/eps) intervals for error eps, so the
+   !> points are moved to split the cumulative sum of sqrt(e_k) (linear within each
+   !> interval) equally. The fine-grid estimate of fit_pairs is only a start (its
+   !> errors are sampled once per fine interval); the best set of the passes is kept.
+   subroutine equalise_errors(g, floor, x, y)
+      type(sampler), intent(inout) :: g
+      real(dp), intent(in) :: floor
+      real(dp), intent(inout) :: x(:), y(:)
+      real(dp) :: w(0:size(x) - 1), xn(size(x)), yn(size(x)), xo(size(x)), best, worst, e, &
+         & target, frac
+      integer :: n, pass, k, j
+      n = size(x)
+      best = huge(1.0_dp)
+      xn = x
+      yn = y
+      do pass = 1, 8
+         w(0) = 0.0_dp
+         worst = 0.0_dp
+         do k = 1, n - 1
+            e = midpoint_error(g, xn(k), xn(k + 1), yn(k), yn(k + 1), floor)
+            worst = max(worst, e)
+            w(k) = w(k - 1) + sqrt(e)
+         end do
+         if (worst < best) then
+            best = worst
+            x = xn
+            y = yn
+         end if
+         if (pass == 8 .or. .not. w(n - 1) > 0.0_dp) exit
+         ! new points from the current set (the weights belong to it)
+         xo = xn
+         j = 1
+         do k = 2, n - 1
+            target = w(n - 1)*(k - 1)/(n - 1)
+            do while (w(j) < target .and. j < n - 1)
+               j = j + 1
+            end do
+            frac = 0.5_dp
+            if (w(j) > w(j - 1)) frac = (target - w(j - 1))/(w(j) - w(j - 1))
+            xn(k) = xo(j) + frac*(xo(j + 1) - xo(j))
+         end do
+         do k = 2, n - 1
+            xn(k) = max(xn(k), xn(k - 1) + 1.0e-9_dp*(x(n) - x(1)))
+         end do
+         do k = 1, n
+            yn(k) = sample(g, xn(k))
+         end do
+      end do
+   end subroutine equalise_errors
+
+   !> |linear interpolant - g| at the midpoint of [xl, xr], relative to max(|g|, floor).
+   real(dp) function midpoint_error(g, xl, xr, yl, yr, floor) result(e)
+      type(sampler), intent(inout) :: g
+      real(dp), intent(in) :: xl, xr, yl, yr, floor
+      real(dp) :: ym
+      ym = sample(g, 0.5_dp*(xl + xr))
+      e = abs(0.5_dp*(yl + yr) - ym)/max(abs(ym), floor, tiny(1.0_dp))
+   end function midpoint_error
 
    !> Points on [a, b] such that linear interpolation of g has midpoint error
    !> <= rel_tol * |g(mid)| (bisection; at most max_export_points points).
@@ -1380,6 +1573,15 @@ contains
       write (buf, real_fmt) x
       str = trim(adjustl(buf))
    end function fmt
+
+   !> 20 characters at most (CalculiX fields), 13 significant digits.
+   pure function fmt20(x) result(str)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=20) :: buf
+      write (buf, calculix_fmt) x
+      str = trim(adjustl(buf))
+   end function fmt20
 
    pure function csv_row(v) result(str)
       real(dp), intent(in) :: v(:)
