@@ -11,7 +11,7 @@ module test_table
    use egw_kinds, only: dp
    use egw_status, only: format_real, egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_out_of_range
-   use egw_params, only: contact_params, model_hertz, model_egw
+   use egw_params, only: contact_params, model_hertz, model_egw, model_gw, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table
    use egw_table_universal
@@ -36,6 +36,7 @@ contains
          & new_unittest("threads give the same table", test_threads), &
          & new_unittest("parallel evaluation", test_parallel_eval), &
          & new_unittest("rough table vs solves (contract)", test_rough_contract), &
+         & new_unittest("rough tables at 1e-6 (E-GW, GW, EP-GW)", test_rough_tight), &
          & new_unittest("universal hertz exact scaling", test_universal_hertz), &
          & new_unittest("universal rough vs solves (contract)", test_universal_rough), &
          & new_unittest("universal invalid calls", test_universal_invalid) &
@@ -340,6 +341,53 @@ contains
          fprev = f
       end do
    end subroutine test_rough_contract
+
+   !> Tables at rel_tol = 1e-6 (they used to hit the node limit below ~5e-6: the
+   !> stiffness check near delta = 0) for E-GW, GW and EP-GW (psi = 1), sigma/R = 2e-4,
+   !> mu = 4, delta from -10 sigma to 20 sigma, in SI-like (R = 5 mm, E = 70 GPa) units.
+   !> Between the builder's check points (t = 1/4, 3/4 of every third interval and of
+   !> the intervals next to delta = 0, the non-smooth point) the table agrees with
+   !> solve_contact to 1.5 rel_tol (the Hermite error kernel at t = 1/4 is 3/4 of its
+   !> midpoint value; 1.5 allows the fourth derivative to vary across an interval) plus
+   !> twice the solver's own tolerance (rel_tol/10 in the builder and here).
+   subroutine test_rough_tight(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(solver_options) :: opts
+      integer :: i, j, m, models(3)
+      real(dp) :: d, f, k, worst, sigma
+      real(dp), parameter :: rel_tol = 1.0e-6_dp
+      models = [model_egw, model_gw, model_epgw]
+      opts%rel_tol = 0.1_dp*rel_tol
+      do m = 1, 3
+         sigma = 2.0e-4_dp*5.0e-3_dp
+         p = contact_params(model=models(m), radius=5.0e-3_dp, modulus=7.0e10_dp, &
+            & sigma=sigma, mu=4.0_dp)
+         if (models(m) == model_epgw) p%psi = 1.0_dp
+         call build_table(p, solver_options(), -10*sigma, 20*sigma, rel_tol, t, err)
+         call check(error, .not. allocated(err), "model "//to_string(models(m))// &
+            & ": table build at 1e-6 failed")
+         if (allocated(error)) return
+         worst = 0
+         do i = 1, size(t%delta) - 1
+            if (mod(i, 3) /= 0 .and. t%delta(i) /= 0.0_dp .and. t%delta(i + 1) /= 0.0_dp) cycle
+            do j = 1, 3, 2
+               d = t%delta(i) + j*(t%delta(i + 1) - t%delta(i))/4
+               call solve_contact(p, opts, d, res, err)
+               call check(error, .not. allocated(err), "solve at "//format_real(d))
+               if (allocated(error)) return
+               call table_eval(t, d, f, k)
+               worst = max(worst, abs(f/res%force - 1))
+            end do
+         end do
+         call check(error, worst <= 1.5_dp*rel_tol + 2*opts%rel_tol, "model "// &
+            & to_string(models(m))//": max rel. error vs solves "//format_real(worst))
+         if (allocated(error)) return
+      end do
+   end subroutine test_rough_tight
 
    !> Hertz in universal form: p = P/(E sqrt(R) sigma^1.5) = (4/3) x^1.5 whatever mu, so
    !> the mu-interpolation (in log space) is exact and the error is the x-table's
