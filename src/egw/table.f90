@@ -36,6 +36,8 @@ module egw_table
    !> Hard limits of the adaptive build (a table that needs more is not converging:
    !> the solver's noise is above rel_tol).
    integer, parameter :: max_nodes = 20000, max_rounds = 200
+   !> Most lookup buckets of a table (table_prepare): 64 kB.
+   integer, parameter :: max_buckets = 16384
 
    !> One-parameter-set force table. Arrays are the nodes (delta ascending); the
    !> evaluation data (seg, bucket) are derived from them by table_prepare.
@@ -64,6 +66,7 @@ module egw_table
       real(dp) :: bucket_scale = 0.0_dp
       real(dp) :: bucket_origin = 0.0_dp          !< bucket variable at the first node
       logical :: sqrt_buckets = .false.           !< buckets uniform in sign(d) sqrt|d|
+      logical :: crowded = .false.                !< some bucket spans > 6 intervals
    end type force_table
 
    !> 8-point Gauss-Legendre rule on [0, 1] for the energy of log-space intervals,
@@ -340,7 +343,7 @@ contains
    pure subroutine table_prepare(table)
       type(force_table), intent(inout) :: table
       integer :: n, i
-      real(dp) :: h, v0, v1, d0, d1, s, cost_sqrt
+      real(dp) :: h, v0, v1, d0, d1, s
 
       n = size(table%delta)
       if (allocated(table%seg)) deallocate (table%seg)
@@ -376,17 +379,32 @@ contains
             & table%delta(i + 1) - table%delta(i))
       end do
       call monotone_slopes(table%delta, table%contact_radius, table%radius_slope)
-      ! buckets: 8 per interval on average, uniform either in delta or in
-      ! u = sign(delta) sqrt|delta|, whichever needs the shorter scans: nodes graded
-      ! towards delta = 0 (the sqrt(delta) stiffness of Hertz) or spread over a long
-      ! Hertz range crowd uniform buckets, and the sqrt variable spreads them out
-      table%n_bucket = 8*(n - 1)
-      allocate (table%bucket(0:table%n_bucket + 1))
-      call make_buckets(table, .true.)
-      cost_sqrt = scan_cost(table)
-      call make_buckets(table, .false.)
-      if (cost_sqrt < 0.5_dp*scan_cost(table)) call make_buckets(table, .true.)
+      ! buckets: uniform in delta, from 8 per interval on average doubled until no
+      ! bucket spans more than 6 intervals (table_eval then scans without a fallback),
+      ! up to max_buckets. Only if that is not enough (nodes graded towards a singular
+      ! point over a long range) in u = sign(delta) sqrt|delta|, which spreads nodes
+      ! graded towards delta = 0 (measured: the sqrt on the lookup path made an
+      ! evaluation ~1.8x slower, the larger bucket array costs nothing noticeable)
+      call fit_buckets(table, .false.)
+      if (table%crowded) call fit_buckets(table, .true.)
    end subroutine table_prepare
+
+   !> Buckets in one variable, 8 per interval doubled until none spans > 6 intervals
+   !> (table%crowded stays true if max_buckets is reached first).
+   pure subroutine fit_buckets(table, use_sqrt)
+      type(force_table), intent(inout) :: table
+      logical, intent(in) :: use_sqrt
+      table%n_bucket = 8*(size(table%delta) - 1)
+      do
+         if (allocated(table%bucket)) deallocate (table%bucket)
+         allocate (table%bucket(0:table%n_bucket + 1))
+         call make_buckets(table, use_sqrt)
+         table%crowded = maxval(table%bucket(1:table%n_bucket + 1) - &
+            & table%bucket(0:table%n_bucket)) + 1 > 6
+         if (.not. table%crowded .or. 2*table%n_bucket > max_buckets) exit
+         table%n_bucket = 2*table%n_bucket
+      end do
+   end subroutine fit_buckets
 
    !> Fill the lookup buckets: bucket b holds the interval containing the point whose
    !> bucket variable is origin + (b - 1e-6)/scale, so rounding never puts it past the
@@ -414,13 +432,6 @@ contains
       end do
    end subroutine make_buckets
 
-   !> Mean squared number of intervals per bucket: the expected scan work.
-   pure real(dp) function scan_cost(table)
-      type(force_table), intent(in) :: table
-      scan_cost = sum(real(table%bucket(1:table%n_bucket) - &
-         & table%bucket(0:table%n_bucket - 1) + 1, dp)**2)/table%n_bucket
-   end function scan_cost
-
    pure real(dp) function bucket_variable(table, delta) result(v)
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
@@ -444,21 +455,13 @@ contains
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
       real(dp), intent(out) :: force, stiffness
-      integer :: i
-      real(dp) :: t, v, d
-
       if (delta > table%cutoff .and. delta < table%delta_max) then
          ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
-         i = find_interval(table, delta)
-         t = delta - table%seg(0, i)
-         v = table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i)))
-         d = table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i))
-         if (i > table%n_log) then
-            force = v
-            stiffness = d
+         if (table%crowded) then
+            call eval_crowded(table, delta, force, stiffness)
          else
-            force = exp(v)
-            stiffness = force*d
+            call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
+               & table%bucket_scale, table%sqrt_buckets, table%n_log, delta, force, stiffness)
          end if
       else if (delta >= table%delta_max) then
          stiffness = table%stiffness(size(table%stiffness))
@@ -471,6 +474,61 @@ contains
          stiffness = 0.0_dp
       end if
    end subroutine table_eval
+
+   !> Evaluation on plain explicit-shape arrays: the same lookup and cubic through the
+   !> table's allocatable components costs ~1.6x as much (descriptor loads and index
+   !> arithmetic on the critical path of a latency-bound evaluation).
+   pure subroutine eval_kernel(seg, bucket, n_bucket, origin, scale, use_sqrt, n_log, delta, &
+      & force, stiffness)
+      real(dp), intent(in) :: seg(0:4, *), origin, scale, delta
+      integer, intent(in) :: n_bucket, bucket(0:n_bucket + 1), n_log
+      logical, intent(in) :: use_sqrt
+      real(dp), intent(out) :: force, stiffness
+      integer :: i
+      real(dp) :: t, t2, v, d
+      if (use_sqrt) then
+         t = sign(sqrt(abs(delta)), delta)
+      else
+         t = delta
+      end if
+      i = bucket(min(max(int((t - origin)*scale), 0), n_bucket))
+      ! no bucket spans more than 6 intervals (table_prepare); seg(0, n) = delta_max > delta
+      do while (delta >= seg(0, i + 1))
+         i = i + 1
+      end do
+      t = delta - seg(0, i)
+      ! Estrin's scheme: shorter dependency chains than Horner
+      t2 = t*t
+      v = (seg(1, i) + t*seg(2, i)) + t2*(seg(3, i) + t*seg(4, i))
+      d = (seg(2, i) + 2*t*seg(3, i)) + 3*t2*seg(4, i)
+      if (i > n_log) then
+         force = v
+         stiffness = d
+      else
+         force = exp(v)
+         stiffness = force*d
+      end if
+   end subroutine eval_kernel
+
+   !> Evaluation through find_interval (tables whose buckets stay crowded).
+   pure subroutine eval_crowded(table, delta, force, stiffness)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: force, stiffness
+      integer :: i
+      real(dp) :: t, v, d
+      i = find_interval(table, delta)
+      t = delta - table%seg(0, i)
+      v = table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i)))
+      d = table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i))
+      if (i > table%n_log) then
+         force = v
+         stiffness = d
+      else
+         force = exp(v)
+         stiffness = force*d
+      end if
+   end subroutine eval_crowded
 
    !> ln P and d ln P/ddelta at delta in (cutoff, delta_max) (used by the universal table
    !> to interpolate across mu in log space without an exp per slice).

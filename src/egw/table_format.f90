@@ -1479,6 +1479,7 @@ contains
       to%bucket_scale = from%bucket_scale
       to%bucket_origin = from%bucket_origin
       to%sqrt_buckets = from%sqrt_buckets
+      to%crowded = from%crowded
       call move_alloc(from%delta, to%delta)
       call move_alloc(from%force, to%force)
       call move_alloc(from%stiffness, to%stiffness)
