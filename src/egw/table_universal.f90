@@ -4,8 +4,8 @@
 !> in ln mu, all with one common cut-off x_c, and interpolates ln p across mu with the
 !> 4-point Lagrange cubic in ln mu (exact where p is a power of mu, as in the far tail
 !> where p is proportional to mu, and where p does not depend on mu, as for Hertz).
-!> Error budget: the slices are built to rel_tol/2 in x; the mu grid is doubled until
-!> the whole interpolant agrees with solves at mid-grid mu (where the Lagrange error in mu
+!> Error budget: the slices are built to rel_tol/2 in x; the mu grid is refined (to the
+!> size the h^4 law of the measured error asks for) until the whole interpolant agrees with solves at mid-grid mu (where the Lagrange error in mu
 !> peaks) to rel_tol.
 module egw_table_universal
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -119,15 +119,19 @@ contains
          if (allocated(error)) return
          u%max_mu_error = worst
          if (worst <= rel_tol) exit
-         if (2*u%n_mu - 1 > max_mu_nodes) then
+         if (u%n_mu >= max_mu_nodes) then
             call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
                & ": mu interpolation error "//format_real(worst)//" with "// &
                & "the maximum number of mu nodes")
             return
          end if
-         ! rebuild on the doubled grid (shared nodes must be re-chosen for all slices);
-         ! the total cost stays below twice the final build
-         u%n_mu = 2*u%n_mu - 1
+         ! rebuild on a finer grid (shared nodes must be re-chosen for all slices). The
+         ! 4-point Lagrange error in ln mu falls like h^4: jump straight to the grid
+         ! that should bring it to 0.4 rel_tol (the slices' own x error is <= 0.5
+         ! rel_tol), with 10 % margin, instead of doubling (doubling built 13 + 25 + 49
+         ! + 97 slices where ~75 suffice for mu in [0.1, 100] at 1e-6)
+         u%n_mu = min(max_mu_nodes, max(u%n_mu + 2, 1 + ceiling(1.1_dp*(u%n_mu - 1)* &
+            & sqrt(sqrt(worst/(0.4_dp*rel_tol))))))
          mus = grid(mu_min, mu_max, u%n_mu)
       end do
       call move_universal(u, table)
