@@ -358,7 +358,7 @@ contains
       type(solve_result) :: res
       type(solver_options) :: opts
       integer :: i, j, m, models(3)
-      real(dp) :: d, f, k, worst, sigma
+      real(dp) :: d, f, k, worst, worst_k, sigma
       real(dp), parameter :: rel_tol = 1.0e-6_dp
       models = [model_egw, model_gw, model_epgw]
       opts%rel_tol = 0.1_dp*rel_tol
@@ -372,6 +372,7 @@ contains
             & ": table build at 1e-6 failed")
          if (allocated(error)) return
          worst = 0
+         worst_k = 0
          do i = 1, size(t%delta) - 1
             if (mod(i, 3) /= 0 .and. t%delta(i) /= 0.0_dp .and. t%delta(i + 1) /= 0.0_dp) cycle
             do j = 1, 3, 2
@@ -381,10 +382,19 @@ contains
                if (allocated(error)) return
                call table_eval(t, d, f, k)
                worst = max(worst, abs(f/res%force - 1))
+               worst_k = max(worst_k, abs(k/res%stiffness - 1))
             end do
          end do
          call check(error, worst <= 1.5_dp*rel_tol + 2*opts%rel_tol, "model "// &
             & to_string(models(m))//": max rel. error vs solves "//format_real(worst))
+         if (allocated(error)) return
+         ! stiffness: the interval starting at delta = 0 (sqrt(delta) term) is checked to
+         ! 1e-4 at its midpoint; for K = K0 + c sqrt(delta) the cubic's slope error at
+         ! t = 1/4, 3/4 is up to 1.67x the midpoint one (Hermite of (2/3) delta^1.5 on
+         ! [0, 1]: slope error 0.0429 at t = 1/2, -0.0625 at 1/4, 0.0715 at 3/4), so
+         ! <= 1.67e-4 (+ solver); elsewhere it is ~1e-5
+         call check(error, worst_k <= 2.5e-4_dp, "model "//to_string(models(m))// &
+            & ": max rel. stiffness error vs solves "//format_real(worst_k))
          if (allocated(error)) return
       end do
    end subroutine test_rough_tight
