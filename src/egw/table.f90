@@ -14,7 +14,8 @@
 !> smooth spheres the stiffness is checked too (10 rel_tol), because P ~ delta^(3/2)
 !> near the cut-off hides its sqrt(delta) stiffness from the force check. For rough
 !> models the stiffness is the Hermite slope and is checked only on the interval
-!> starting at delta = 0 (a node), to max(10 rel_tol, 1e-4) (max_stiffness_error records
+!> starting at delta = 0 (a node), to max(10 rel_tol, 1e-4) while it is wider than
+!> 1e-6 sigma (max_stiffness_error records
 !> it at the check points): P(0) > 0 there, so the delta^(3/2) onset is seen by the force
 !> check, while the solver's stiffness just above 0 is not consistent with its force to
 !> better than ~1e-4 (the bulk contact patch is far below the mesh), which drove builds
@@ -140,18 +141,19 @@ contains
       type(force_table), intent(inout) :: tables(:)
       type(egw_error), allocatable, intent(out) :: error
       type(solver_options) :: opts
-      real(dp) :: p_ref(size(params)), k, a
+      real(dp) :: p_ref(size(params))
+      real(dp) :: pk(1, size(params)), kk(1, size(params)), ak(1, size(params))
       integer :: s
       do s = 1, size(params)
          call check_request(params(s), cutoff, delta_max, rel_tol, error)
          if (allocated(error)) return
       end do
       opts = point_options(options, rel_tol)
-      do s = 1, size(params)
-         call solve_point(params(s), opts, reference_overlap(params(s), delta_max), p_ref(s), &
-            & k, a, error)
-         if (allocated(error)) return
-      end do
+      ! P_ref of every set, in parallel (the sets are slices of one model: one overlap)
+      call solve_grid(params, opts, [reference_overlap(params(1), delta_max)], pk(1:1, :), &
+         & kk(1:1, :), ak(1:1, :), error)
+      if (allocated(error)) return
+      p_ref = pk(1, :)
       call build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_space, &
          & tables, error)
    end subroutine build_tables_shared
@@ -301,11 +303,14 @@ contains
                ! derivative of its force to 1e-5: checking it made tables below
                ! rel_tol ~ 5e-6 split towards 0 without end. Only the interval starting
                ! at delta = 0 of a rough table is checked, to 1e-4 (its sqrt(delta)
-               ! stiffness term gave errors ~1e-3 there; 1e-4 is reached at ~1e-5 sigma,
-               ! where the solver's stiffness is still consistent to ~1e-6)
+               ! stiffness term gave errors ~1e-3 there; 1e-4 is reached at ~1e-5 sigma
+               ! for mu = 4, where the solver's stiffness is still consistent to ~1e-6),
+               ! and not below 1e-6 sigma (small mu, where the bulk sqrt(delta) term
+               ! dominates K(0), would need intervals where it is not)
                k_tol = huge(1.0_dp)
                if (check_k) k_tol = 10*rel_tol
-               if (rough .and. x(i) == 0.0_dp) k_tol = max(10*rel_tol, 1.0e-4_dp)
+               if (rough .and. x(i) == 0.0_dp .and. x(i + 1) > 1.0e-6_dp*params(s)%sigma) &
+                  & k_tol = max(10*rel_tol, 1.0e-4_dp)
                bad_interval = ef > rel_tol .or. &
                   & ek > k_tol + slope_roundoff(x(i), x(i + 1), f(i, s), f(i + 1, s), &
                   & km(j, s), in_log) .or. &

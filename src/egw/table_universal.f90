@@ -63,6 +63,7 @@ contains
       real(dp), allocatable :: xc(:), mus(:), xs(:), pref(:)
       real(dp) :: x_cut, worst
       integer :: j, n0
+      integer, allocatable :: stat(:)
 
       if (.not. (ieee_is_finite(mu_min) .and. mu_min > 0.0_dp)) then
          call fatal_error(error, egw_invalid_argument, "mu_min = "//format_real(mu_min)// &
@@ -93,11 +94,23 @@ contains
       n0 = max(4, ceiling(4*log10(mu_max/mu_min)) + 1)
       mus = grid(mu_min, mu_max, n0)
       ! common cut-off: the lowest of the grid's own cut-offs
-      allocate (xc(n0), pref(n0))
+      allocate (xc(n0), pref(n0), stat(n0))
+      ! the searches are serial chains of solves: run the mu nodes in parallel
+      !$omp parallel do schedule(dynamic)
       do j = 1, n0
-         call table_find_cutoff(universal_slice_params(model, psi, hardness_coeff, &
-            & plastic_ratio, mus(j)), opts, x_min, x_max, rel_tol, xc(j), pref(j), error)
-         if (allocated(error)) return
+         call find_cutoff_quiet(universal_slice_params(model, psi, hardness_coeff, &
+            & plastic_ratio, mus(j)), opts, x_min, x_max, rel_tol, xc(j), pref(j), stat(j))
+      end do
+      !$omp end parallel do
+      do j = 1, n0
+         if (stat(j) /= 0) then
+            ! redo the first failure serially to recover its message
+            call table_find_cutoff(universal_slice_params(model, psi, hardness_coeff, &
+               & plastic_ratio, mus(j)), opts, x_min, x_max, rel_tol, xc(j), pref(j), error)
+            if (.not. allocated(error)) call fatal_error(error, stat(j), "mu = "// &
+               & format_real(mus(j))//": cut-off search failed")
+            return
+         end if
       end do
       x_cut = minval(xc)
       u%x_cut = x_cut
@@ -136,6 +149,19 @@ contains
       end do
       call move_universal(u, table)
    end subroutine build_universal
+
+   !> table_find_cutoff with the status only (for use inside a parallel loop).
+   subroutine find_cutoff_quiet(params, opts, x_min, x_max, rel_tol, cutoff, p_ref, stat)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: x_min, x_max, rel_tol
+      real(dp), intent(out) :: cutoff, p_ref
+      integer, intent(out) :: stat
+      type(egw_error), allocatable :: error
+      call table_find_cutoff(params, opts, x_min, x_max, rel_tol, cutoff, p_ref, error)
+      stat = 0
+      if (allocated(error)) stat = error%stat
+   end subroutine find_cutoff_quiet
 
    !> Parameters of the slice at mu (R = E = sigma = 1, so P = p, delta = x).
    pure function universal_slice_params(model, psi, hardness_coeff, plastic_ratio, mu) &
