@@ -67,7 +67,8 @@ module egw_table
       real(dp) :: bucket_scale = 0.0_dp
       real(dp) :: bucket_origin = 0.0_dp          !< bucket variable at the first node
       logical :: sqrt_buckets = .false.           !< buckets uniform in sign(d) sqrt|d|
-      logical :: crowded = .false.                !< some bucket spans > 6 intervals
+      !> some bucket spans > 6 intervals (its entry is negated: bisect there)
+      logical :: crowded = .false.
    end type force_table
 
    !> 8-point Gauss-Legendre rule on [0, 1] for the energy of log-space intervals,
@@ -390,31 +391,40 @@ contains
             & table%delta(i + 1) - table%delta(i))
       end do
       call monotone_slopes(table%delta, table%contact_radius, table%radius_slope)
-      ! buckets: uniform in delta, from 8 per interval on average doubled until no
-      ! bucket spans more than 6 intervals (table_eval then scans without a fallback),
-      ! up to max_buckets. Only if that is not enough (nodes graded towards a singular
-      ! point over a long range) in u = sign(delta) sqrt|delta|, which spreads nodes
-      ! graded towards delta = 0 (measured: the sqrt on the lookup path made an
-      ! evaluation ~1.8x slower, the larger bucket array costs nothing noticeable)
+      ! buckets: uniform in delta, 8 per interval on average, doubled while more than
+      ! 1/64 of them span more than 6 intervals (up to max_buckets); lookups scan forward
+      ! from the bucket's interval, and in the few crowded buckets (nodes graded towards
+      ! delta = 0) bisect.
+      ! (Buckets uniform in sign(delta) sqrt|delta| would spread graded nodes, but the
+      ! sqrt on the lookup path made an evaluation ~1.8x slower, measured.)
       call fit_buckets(table, .false.)
-      if (table%crowded) call fit_buckets(table, .true.)
    end subroutine table_prepare
 
-   !> Buckets in one variable, 8 per interval doubled until none spans > 6 intervals
-   !> (table%crowded stays true if max_buckets is reached first).
+   !> Buckets in one variable, 8 per interval, doubled while more than 1/64 of them span
+   !> more than 6 intervals (up to max_buckets); those left crowded are marked.
    pure subroutine fit_buckets(table, use_sqrt)
       type(force_table), intent(inout) :: table
       logical, intent(in) :: use_sqrt
+      integer :: n_crowded
       table%n_bucket = 8*(size(table%delta) - 1)
       do
          if (allocated(table%bucket)) deallocate (table%bucket)
          allocate (table%bucket(0:table%n_bucket + 1))
          call make_buckets(table, use_sqrt)
-         table%crowded = maxval(table%bucket(1:table%n_bucket + 1) - &
-            & table%bucket(0:table%n_bucket)) + 1 > 6
-         if (.not. table%crowded .or. 2*table%n_bucket > max_buckets) exit
+         ! crowded: spans more than 6 intervals. Refine while more than 1/64 of the
+         ! buckets are (a small array stays in L1 cache; a rare bisection is cheaper)
+         n_crowded = count(table%bucket(1:table%n_bucket + 1) - &
+            & table%bucket(0:table%n_bucket) + 1 > 6)
+         table%crowded = n_crowded > 0
+         if (64*n_crowded <= table%n_bucket .or. 2*table%n_bucket > max_buckets) exit
          table%n_bucket = 2*table%n_bucket
       end do
+      ! buckets still spanning more than 6 intervals (a few, at nodes graded towards a
+      ! singular point) are marked by a negative entry: lookups there bisect
+      if (table%crowded) then
+         where ([table%bucket(1:table%n_bucket + 1) - table%bucket(0:table%n_bucket) + 1 > 6, &
+            & .false.]) table%bucket = -table%bucket
+      end if
    end subroutine fit_buckets
 
    !> Fill the lookup buckets: bucket b holds the interval containing the point whose
@@ -468,11 +478,11 @@ contains
       real(dp), intent(out) :: force, stiffness
       if (delta > table%cutoff .and. delta < table%delta_max) then
          ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
-         if (table%crowded) then
+         if (table%sqrt_buckets) then
             call eval_crowded(table, delta, force, stiffness)
          else
             call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
-               & table%bucket_scale, table%sqrt_buckets, table%n_log, delta, force, stiffness)
+               & table%bucket_scale, table%n_log, size(table%seg, 2), delta, force, stiffness)
          end if
       else if (delta >= table%delta_max) then
          stiffness = table%stiffness(size(table%stiffness))
@@ -489,21 +499,29 @@ contains
    !> Evaluation on plain explicit-shape arrays: the same lookup and cubic through the
    !> table's allocatable components costs ~1.6x as much (descriptor loads and index
    !> arithmetic on the critical path of a latency-bound evaluation).
-   pure subroutine eval_kernel(seg, bucket, n_bucket, origin, scale, use_sqrt, n_log, delta, &
-      & force, stiffness)
-      real(dp), intent(in) :: seg(0:4, *), origin, scale, delta
-      integer, intent(in) :: n_bucket, bucket(0:n_bucket + 1), n_log
-      logical, intent(in) :: use_sqrt
+   pure subroutine eval_kernel(seg, bucket, n_bucket, origin, scale, n_log, n, delta, force, &
+      & stiffness)
+      integer, intent(in) :: n_bucket, bucket(0:n_bucket + 1), n_log, n
+      real(dp), intent(in) :: seg(0:4, n), origin, scale, delta
       real(dp), intent(out) :: force, stiffness
-      integer :: i
+      integer :: i, b, hi, mid
       real(dp) :: t, t2, v, d
-      if (use_sqrt) then
-         t = sign(sqrt(abs(delta)), delta)
-      else
-         t = delta
+      b = min(max(int((delta - origin)*scale), 0), n_bucket)
+      i = bucket(b)
+      if (i < 0) then
+         ! crowded bucket (fit_buckets): bisect between its first and last interval
+         i = -i
+         hi = min(abs(bucket(b + 1)) + 1, n)
+         do while (hi - i > 1)
+            mid = (i + hi)/2
+            if (delta >= seg(0, mid)) then
+               i = mid
+            else
+               hi = mid
+            end if
+         end do
       end if
-      i = bucket(min(max(int((t - origin)*scale), 0), n_bucket))
-      ! no bucket spans more than 6 intervals (table_prepare); seg(0, n) = delta_max > delta
+      ! seg(0, n) = delta_max > delta ends the scan
       do while (delta >= seg(0, i + 1))
          i = i + 1
       end do
@@ -521,7 +539,7 @@ contains
       end if
    end subroutine eval_kernel
 
-   !> Evaluation through find_interval (tables whose buckets stay crowded).
+   !> Evaluation through find_interval (general bucket variable).
    pure subroutine eval_crowded(table, delta, force, stiffness)
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
@@ -686,8 +704,8 @@ contains
          b = int((delta - table%bucket_origin)*table%bucket_scale)
       end if
       b = min(max(b, 0), table%n_bucket)
-      i = table%bucket(b)
-      hi = table%bucket(b + 1) + 1
+      i = abs(table%bucket(b))
+      hi = abs(table%bucket(b + 1)) + 1
       if (hi - i > 6) then
          ! crowded bucket (graded nodes near a singular point): bisect
          lo = i
