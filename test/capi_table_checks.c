@@ -188,6 +188,9 @@ int egw_capi_test_table_files(void) {
     CHECK(egw_tables_write_lammps_units(2, two, "build/capi_bad.table", "SI")
           == EGW_INVALID_ARGUMENT);
     CHECK(last_error_names("units"));
+    CHECK(egw_tables_write_lammps_units(2, two, "build/capi_bad.table", NULL)
+          == EGW_NULL_POINTER);
+    CHECK(last_error_names("units"));
     {
       egw_table second = two[1];
       two[1] = NULL;

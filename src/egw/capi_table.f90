@@ -301,6 +301,7 @@ contains
       end if
       stat = require(tables, "tables")
       if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = require(units, "units")
       if (stat == egw_ok) stat = get_path(units, funits)
       if (stat /= egw_ok) return
       call c_f_pointer(tables, handles, [n])
