@@ -27,7 +27,9 @@ program lammps_tables
    if (.not. allocated(error)) call build_table(p, solver_options(), -10*p%sigma, &
       & 2.0e-6_dp, 1.0e-5_dp, tables(2), error)
    if (.not. allocated(error)) call table_set_radii(tables(2), r1, r1, error)
-   if (.not. allocated(error)) call write_lammps(tables, trim(path), error)
+   ! the parameters are SI (m, Pa: forces in N, energies in J), as in.collide's
+   ! "units si": say so in the file, and LAMMPS checks it against the deck
+   if (.not. allocated(error)) call write_lammps(tables, trim(path), error, units="si")
    if (allocated(error)) then
       write (*, '(a)') "lammps-tables: "//error%message
       error stop 1
