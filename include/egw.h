@@ -218,7 +218,8 @@ int egw_table_set_radii(egw_table t, double radius1, double radius2);
  * write leaves an existing file intact). format: EGW_FORMAT_CSV, EGW_FORMAT_BINARY,
  * EGW_FORMAT_LAMMPS (one pair_style table section, keyword EGW_1), EGW_FORMAT_CALCULIX
  * (*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR: force per node against overlap, for
- * node-to-surface contact). Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (unknown
+ * node-to-surface contact; at most EGW_CALCULIX_MAX_PAIRS pairs, see
+ * egw_table_write_calculix). No UNITS: tag in LAMMPS files (egw_tables_write_lammps_units). Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (unknown
  * format, non-finite data), EGW_NULL_POINTER. */
 int egw_table_write(egw_table t, const char *path, int format);
 
@@ -239,7 +240,8 @@ void egw_table_free(egw_table *t);
 /* CalculiX pressure-overclosure curve of the rough flat of p (p_G of DESIGN.md section 3,
  * overclosure = -separation) from zero pressure where p_G < rel_tol * p_G(0) up to
  * overclosure_max > 0 [length], linear-interpolation error <= rel_tol of the local
- * pressure. Needs p->sigma > 0. Statuses as egw_table_write, EGW_INVALID_PARAMETER. */
+ * pressure if 200 pairs allow it (else the best 200: see egw_write_flat_calculix_shifted).
+ * Needs p->sigma > 0. Statuses as egw_table_write, EGW_INVALID_PARAMETER. */
 int egw_write_flat_calculix(const egw_params *p, double overclosure_max, double rel_tol,
                             const char *path);
 
