@@ -246,7 +246,7 @@ contains
       real(dp), intent(in) :: r
       real(dp), intent(out) :: row(:)   !< size n_elem*n_gauss
       integer :: e, q, i0
-      real(dp) :: x0, x1, dist, acc(mesh%n_gauss)
+      real(dp) :: x0, x1, dist
 
       do e = 1, mesh%n_elem
          x0 = mesh%edge(e - 1)
@@ -259,9 +259,9 @@ contains
                row(i0 + q) = mesh%gauss_w(i0 + q)*halfspace_kernel(r, mesh%gauss_r(i0 + q))
             end do
          else
-            acc = 0.0_dp
-            call add_piece(mesh, x0, x1, x0, x1, r, 0, acc)
-            row(i0 + 1:i0 + mesh%n_gauss) = acc
+            ! Accumulated in place: a local buffer of run-time size would be a heap array.
+            row(i0 + 1:i0 + mesh%n_gauss) = 0.0_dp
+            call add_piece(mesh, x0, x1, x0, x1, r, 0, row(i0 + 1:i0 + mesh%n_gauss))
          end if
       end do
    end subroutine influence_row
@@ -312,7 +312,7 @@ contains
       do i = 1, n_fine
          t = 0.5_dp*(alpha + beta) + 0.5_dp*(beta - alpha)*mesh%fine_s(i)
          wt = 0.5_dp*(beta - alpha)*mesh%fine_w(i)*halfspace_kernel(r, t)
-         acc = acc + wt*pressure_basis(mesh, local_coord(x0, x1, t))
+         call add_basis(mesh, local_coord(x0, x1, t), wt, acc)
       end do
    end subroutine add_gauss_piece
 
@@ -333,24 +333,31 @@ contains
          g1 = 4.0_dp/pi*t/(r + t)*(kreg + klog*log(r + t))
          g2 = 4.0_dp/pi*t/(r + t)*klog
          wt = len*(mesh%log_w(i)*(g1 - g2*log(len)) - mesh%log_lw(i)*g2)
-         acc = acc + wt*pressure_basis(mesh, local_coord(x0, x1, t))
+         call add_basis(mesh, local_coord(x0, x1, t), wt, acc)
       end do
    end subroutine add_log_piece
 
-   !> Pressure basis L_q(s), q = 1..n_gauss, in the first barycentric form
-   !> L_q = prod_k (s - s_k) * bary_q/(s - s_q): O(n_gauss) per point.
-   pure function pressure_basis(mesh, s) result(l)
+   !> acc(q) += wt L_q(s), q = 1..n_gauss, for the pressure basis L_q in the first
+   !> barycentric form L_q = prod_k (s - s_k) * bary_q/(s - s_q): O(n_gauss) per point,
+   !> and no array temporaries (this is the innermost loop of the assembly).
+   pure subroutine add_basis(mesh, s, wt, acc)
       type(radial_mesh), intent(in) :: mesh
-      real(dp), intent(in) :: s
-      real(dp) :: l(mesh%n_gauss)
-      real(dp) :: diff(mesh%n_gauss)
-      diff = s - mesh%local_s
-      if (any(diff == 0.0_dp)) then
-         l = merge(1.0_dp, 0.0_dp, diff == 0.0_dp)
-         return
-      end if
-      l = product(diff)*mesh%local_bary/diff
-   end function pressure_basis
+      real(dp), intent(in) :: s, wt
+      real(dp), intent(inout) :: acc(:)
+      real(dp) :: prod
+      integer :: q
+      prod = wt
+      do q = 1, mesh%n_gauss
+         if (s == mesh%local_s(q)) then
+            acc(q) = acc(q) + wt
+            return
+         end if
+         prod = prod*(s - mesh%local_s(q))
+      end do
+      do q = 1, mesh%n_gauss
+         acc(q) = acc(q) + prod*mesh%local_bary(q)/(s - mesh%local_s(q))
+      end do
+   end subroutine add_basis
 
    elemental real(dp) function local_coord(x0, x1, t) result(s)
       real(dp), intent(in) :: x0, x1, t
