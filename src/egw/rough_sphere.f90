@@ -12,7 +12,7 @@
 !> extended models at delta > 0, else r**2/2 - delta), the pressure there is p_G(d) exactly
 !> (never interpolated), and w_G = H p_G is imposed at the nodes (collocation) with the
 !> influence matrix of egw_halfspace. Newton with a backtracking line search (Jacobian by
-!> LAPACK dgetrf/dgetrs), or damped Picard. The force is the Gauss sum of p_G(d).
+!> LAPACK dgetf2/dgetrs, factors reused while they contract), or damped Picard. The force is the Gauss sum of p_G(d).
 !>
 !> Mesh: graded in asinh((r - focus)/width) (egw_halfspace graded_edges) about the Hertz
 !> edge (boundary layer width ~ a (sigma/delta)**(2/3)) with two geometric layers at it for
@@ -32,7 +32,7 @@ module egw_rough_sphere
    use egw_asperity, only: rough_flat_law
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
       & assemble_influence, influence_row, interpolate_nodal
-   use egw_lapack, only: dgetrf, dgetrs
+   use egw_lapack, only: dgetf2, dgetrs
    implicit none
    private
 
@@ -674,7 +674,7 @@ contains
       allocate (jac(n, n), rhs(n, 1), ipiv(n))
       call evaluate(prob, sol)
       call jacobian(sol, jac)
-      call dgetrf(n, n, jac, n, ipiv, info)
+      call dgetf2(n, n, jac, n, ipiv, info)
       if (info /= 0) then
          call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
             & //" (in units of sigma): singular Jacobian at the solution")
@@ -786,41 +786,68 @@ contains
    !> Newton with backtracking (Armijo on |F|_2). Converged when the scaled residual is
    !> below 1e-11 (the rounding floor of H p is ~1e-12 for w ~ 1e6), or the step is at
    !> rounding level with a residual below 1e-9.
+   !> The LU factors are kept while they work (chord steps): a full step with the old
+   !> factors is accepted when it cuts |F|_2 at least chord_gain-fold, else the Jacobian is
+   !> refactored at the same iterate and the Newton step with line search taken. Near the
+   !> solution a chord step contracts like |w - w*|, so the fallback only costs one
+   !> evaluation; the LU (n**3) is most of an iteration's cost on the solver's meshes.
    subroutine newton(prob, sol, max_iter, error)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(inout) :: sol
       integer, intent(in) :: max_iter
       type(egw_error), allocatable, intent(out) :: error
+      real(dp), parameter :: chord_gain = 4.0_dp
       real(dp), allocatable :: jac(:, :), res(:), step(:, :), w0(:), res_try(:)
       integer, allocatable :: ipiv(:)
       integer :: n, it, info, k
       real(dp) :: norm, norm_try, lambda, f2, f2_try
+      logical :: factored
 
       n = size(sol%w)
       allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n))
       call evaluate(prob, sol)
       call residual(sol, res, norm)
+      factored = .false.
       do it = 1, max_iter + 1
          sol%iterations = it - 1
          sol%residual = norm
          if (norm <= 1.0e-11_dp) return
          if (it > max_iter) exit
-         call jacobian(sol, jac)
-         call dgetrf(n, n, jac, n, ipiv, info)
-         if (info /= 0) exit
-         step(:, 1) = -res
-         call dgetrs('N', n, 1, jac, n, ipiv, step, n, info)
          w0 = sol%w
          f2 = sum(res**2)
          lambda = 1.0_dp
-         do k = 1, 40
-            sol%w = w0 + lambda*step(:, 1)
+         if (factored) then
+            step(:, 1) = -res
+            call dgetrs('N', n, 1, jac, n, ipiv, step, n, info)
+            sol%w = w0 + step(:, 1)
             call evaluate(prob, sol)
             call residual(sol, res_try, norm_try)
             f2_try = sum(res_try**2)
-            if (f2_try <= (1.0_dp - 1.0e-4_dp*lambda)*f2) exit
-            lambda = 0.5_dp*lambda
-         end do
+            factored = f2_try <= f2/chord_gain**2 .and. ieee_is_finite(f2_try)
+            if (.not. factored) then
+               sol%w = w0
+               call evaluate(prob, sol)
+            end if
+         end if
+         if (.not. factored) then
+            call jacobian(sol, jac)
+            call dgetf2(n, n, jac, n, ipiv, info)
+            if (info /= 0) exit
+            factored = .true.
+            step(:, 1) = -res
+            call dgetrs('N', n, 1, jac, n, ipiv, step, n, info)
+            do k = 1, 40
+               sol%w = w0 + lambda*step(:, 1)
+               call evaluate(prob, sol)
+               call residual(sol, res_try, norm_try)
+               f2_try = sum(res_try**2)
+               if (f2_try <= (1.0_dp - 1.0e-4_dp*lambda)*f2) exit
+               lambda = 0.5_dp*lambda
+            end do
+            ! A step that needed damping came from far away: its factors are not worth
+            ! reusing.
+            factored = lambda == 1.0_dp
+         end if
          res = res_try
          norm = norm_try
          if (maxval(abs(lambda*step(:, 1))) <= 1.0e-14_dp*max(1.0_dp, maxval(abs(sol%w))) &
