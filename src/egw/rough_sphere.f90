@@ -12,7 +12,8 @@
 !> extended models at delta > 0, else r**2/2 - delta), the pressure there is p_G(d) exactly
 !> (never interpolated), and w_G = H p_G is imposed at the nodes (collocation) with the
 !> influence matrix of egw_halfspace. Newton with a backtracking line search (Jacobian by
-!> LAPACK dgetf2/dgetrs, factors reused while they contract), or damped Picard. The force is the Gauss sum of p_G(d).
+!> LAPACK dgetf2/dgetrs, factors reused while they contract), or damped Picard. The force
+!> is the Gauss sum of p_G(d).
 !>
 !> Mesh: graded in asinh((r - focus)/width) (egw_halfspace graded_edges) about the Hertz
 !> edge (boundary layer width ~ a (sigma/delta)**(2/3)) with two geometric layers at it for
