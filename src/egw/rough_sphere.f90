@@ -787,17 +787,19 @@ contains
    !> Newton with backtracking (Armijo on |F|_2). Converged when the scaled residual is
    !> below 1e-11 (the rounding floor of H p is ~1e-12 for w ~ 1e6), or the step is at
    !> rounding level with a residual below 1e-9.
-   !> The LU factors are kept while they work (chord steps): a full step with the old
-   !> factors is accepted when it cuts |F|_2 at least chord_gain-fold, else the Jacobian is
-   !> refactored at the same iterate and the Newton step with line search taken. Near the
-   !> solution a chord step contracts like |w - w*|, so the fallback only costs one
-   !> evaluation; the LU (n**3) is most of an iteration's cost on the solver's meshes.
+   !> The LU factors are kept once Newton is in its quadratic regime (the last full step
+   !> cut |F|_2 at least chord_start-fold): a full step with the old factors (chord step) is
+   !> accepted when it cuts |F|_2 at least chord_gain-fold, else the Jacobian is refactored
+   !> at the same iterate and the Newton step with line search taken. Near the solution a
+   !> chord step contracts like |w - w*|, so the fallback only costs one evaluation, while
+   !> the LU (n**3) is most of an iteration's cost on the solver's meshes. Far from the
+   !> solution chord steps would cost iterations: max_iter counts both kinds alike.
    subroutine newton(prob, sol, max_iter, error)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(inout) :: sol
       integer, intent(in) :: max_iter
       type(egw_error), allocatable, intent(out) :: error
-      real(dp), parameter :: chord_gain = 4.0_dp
+      real(dp), parameter :: chord_gain = 10.0_dp, chord_start = 100.0_dp
       real(dp), allocatable :: jac(:, :), res(:), step(:, :), w0(:), res_try(:)
       integer, allocatable :: ipiv(:)
       integer :: n, it, info, k
@@ -845,9 +847,8 @@ contains
                if (f2_try <= (1.0_dp - 1.0e-4_dp*lambda)*f2) exit
                lambda = 0.5_dp*lambda
             end do
-            ! A step that needed damping came from far away: its factors are not worth
-            ! reusing.
-            factored = lambda == 1.0_dp
+            ! Factors from far away (damped, or slow) are not worth reusing.
+            factored = lambda == 1.0_dp .and. f2_try <= f2/chord_start**2
          end if
          res = res_try
          norm = norm_try
