@@ -24,7 +24,7 @@
 !>   uniform-disc test (exact pressure representation) holds to 1e-15.
 module egw_halfspace
    use egw_kinds, only: dp, pi
-   use egw_ellip, only: ellipk_comp, ellipk_log_split
+   use egw_ellip, only: ellipk_comp_fast, ellipk_log_split
    implicit none
    private
 
@@ -237,7 +237,7 @@ contains
          g = 0.0_dp
          return
       end if
-      g = 4.0_dp/pi*t/(r + t)*ellipk_comp(abs(r - t)/(r + t))
+      g = 4.0_dp/pi*t/(r + t)*ellipk_comp_fast(abs(r - t)/(r + t))
    end function halfspace_kernel
 
    !> Influence row at radius r >= 0: w(r) = sum_i row(i) p(gauss_r(i)) (E = 1).
