@@ -337,25 +337,41 @@ contains
       end do
    end subroutine add_log_piece
 
-   !> acc(q) += wt L_q(s), q = 1..n_gauss, for the pressure basis L_q in the first
-   !> barycentric form L_q = prod_k (s - s_k) * bary_q/(s - s_q): O(n_gauss) per point,
-   !> and no array temporaries (this is the innermost loop of the assembly).
+   !> acc(q) += wt L_q(s), q = 1..n_gauss, for the pressure basis of the element,
+   !> L_q(s) = bary_q prod_{k /= q} (s - s_k), by prefix and suffix products: no
+   !> divisions and no array temporaries (this is the innermost loop of the assembly).
+   !> Rules beyond max_basis points (never used by the solver) take the barycentric
+   !> form with one division per point.
    pure subroutine add_basis(mesh, s, wt, acc)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: s, wt
       real(dp), intent(inout) :: acc(:)
-      real(dp) :: prod
-      integer :: q
-      prod = wt
-      do q = 1, mesh%n_gauss
-         if (s == mesh%local_s(q)) then
-            acc(q) = acc(q) + wt
-            return
-         end if
-         prod = prod*(s - mesh%local_s(q))
+      integer, parameter :: max_basis = 32
+      real(dp) :: prefix(max_basis), suffix, prod
+      integer :: q, n
+      n = mesh%n_gauss
+      if (n > max_basis) then
+         prod = wt
+         do q = 1, n
+            if (s == mesh%local_s(q)) then
+               acc(q) = acc(q) + wt
+               return
+            end if
+            prod = prod*(s - mesh%local_s(q))
+         end do
+         do q = 1, n
+            acc(q) = acc(q) + prod*mesh%local_bary(q)/(s - mesh%local_s(q))
+         end do
+         return
+      end if
+      prefix(1) = wt
+      do q = 2, n
+         prefix(q) = prefix(q - 1)*(s - mesh%local_s(q - 1))
       end do
-      do q = 1, mesh%n_gauss
-         acc(q) = acc(q) + prod*mesh%local_bary(q)/(s - mesh%local_s(q))
+      suffix = 1.0_dp
+      do q = n, 1, -1
+         acc(q) = acc(q) + prefix(q)*suffix*mesh%local_bary(q)
+         suffix = suffix*(s - mesh%local_s(q))
       end do
    end subroutine add_basis
 
