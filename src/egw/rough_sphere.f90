@@ -100,6 +100,10 @@ module egw_rough_sphere
       real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
       real(dp) :: residual = 0.0_dp, tail = 0.0_dp
       integer :: iterations = 0
+      !> LU factors (dgetf2) of the last Jacobian Newton factored, near the solution; not
+      !> allocated after Picard.
+      real(dp), allocatable :: lu(:, :)
+      integer, allocatable :: pivots(:)
    end type discrete_solution
 
 contains
@@ -663,27 +667,52 @@ contains
    end subroutine solve_mesh
 
    !> d(force)/d(delta) of the converged discrete solution by implicit differentiation:
-   !> J dw/d(delta) = infl (p' dz/d(delta)) with J the Jacobian at the solution (one LU).
+   !> J dw/d(delta) = infl (p' dz/d(delta)) with J the Jacobian at the solution. Newton's
+   !> last factors belong to an iterate near the solution: iterative refinement with them
+   !> (residuals with the exact J) contracts by |J_old**-1 (J - J_old)| << 1 per sweep
+   !> and spares an LU; without them, or if refinement stalls, J itself is factored.
    subroutine differentiate(prob, sol, error)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(inout) :: sol
       type(egw_error), allocatable, intent(out) :: error
-      real(dp), allocatable :: jac(:, :), rhs(:, :), rate(:)
+      integer, parameter :: max_sweeps = 6
+      real(dp), allocatable :: jac(:, :), rhs(:), x(:, :), corr(:, :), rate(:)
       integer, allocatable :: ipiv(:)
-      integer :: n, info
+      integer :: n, info, sweep
+      logical :: refined
       n = size(sol%w)
-      allocate (jac(n, n), rhs(n, 1), ipiv(n))
+      allocate (jac(n, n), x(n, 1), corr(n, 1))
       call evaluate(prob, sol)
       call jacobian(sol, jac)
-      call dgetf2(n, n, jac, n, ipiv, info)
-      if (info /= 0) then
-         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
-            & //" (in units of sigma): singular Jacobian at the solution")
-         return
+      rhs = matmul(sol%infl, sol%dpdh*sol%dbase)
+      refined = .false.
+      if (allocated(sol%lu)) then
+         if (size(sol%lu, 1) == n) then
+            x(:, 1) = rhs
+            call dgetrs('N', n, 1, sol%lu, n, sol%pivots, x, n, info)
+            do sweep = 1, max_sweeps
+               corr(:, 1) = rhs - matmul(jac, x(:, 1))
+               call dgetrs('N', n, 1, sol%lu, n, sol%pivots, corr, n, info)
+               x = x + corr
+               if (maxval(abs(corr)) <= 1.0e-14_dp*maxval(abs(x))) then
+                  refined = .true.
+                  exit
+               end if
+            end do
+         end if
       end if
-      rhs(:, 1) = matmul(sol%infl, sol%dpdh*sol%dbase)
-      call dgetrs('N', n, 1, jac, n, ipiv, rhs, n, info)
-      rate = sol%dbase + gauss_values(sol%mesh, rhs(:, 1))
+      if (.not. refined) then
+         allocate (ipiv(n))
+         call dgetf2(n, n, jac, n, ipiv, info)
+         if (info /= 0) then
+            call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+               & //" (in units of sigma): singular Jacobian at the solution")
+            return
+         end if
+         x(:, 1) = rhs
+         call dgetrs('N', n, 1, jac, n, ipiv, x, n, info)
+      end if
+      rate = sol%dbase + gauss_values(sol%mesh, x(:, 1))
       sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%dpdh*rate)
    end subroutine differentiate
 
@@ -828,18 +857,20 @@ contains
       integer, allocatable :: ipiv(:)
       integer :: n, it, info, k
       real(dp) :: norm, norm_try, lambda, f2, f2_try
-      logical :: factored
+      logical :: factored, have_lu, converged
 
       n = size(sol%w)
       allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n))
       call evaluate(prob, sol)
       call residual(sol, res, norm)
       factored = .false.
+      have_lu = .false.
+      converged = .false.
       do it = 1, max_iter + 1
          sol%iterations = it - 1
          sol%residual = norm
-         if (norm <= 1.0e-11_dp) return
-         if (it > max_iter) exit
+         converged = norm <= 1.0e-11_dp
+         if (converged .or. it > max_iter) exit
          w0 = sol%w
          f2 = sum(res**2)
          lambda = 1.0_dp
@@ -859,7 +890,8 @@ contains
          if (.not. factored) then
             call jacobian(sol, jac)
             call dgetf2(n, n, jac, n, ipiv, info)
-            if (info /= 0) exit
+            have_lu = info == 0
+            if (.not. have_lu) exit
             factored = .true.
             step(:, 1) = -res
             call dgetrs('N', n, 1, jac, n, ipiv, step, n, info)
@@ -880,9 +912,18 @@ contains
             & .and. norm <= 1.0e-9_dp) then
             sol%iterations = it
             sol%residual = norm
-            return
+            converged = .true.
+            exit
          end if
       end do
+      if (converged) then
+         ! Keep the last factors for differentiate.
+         if (have_lu) then
+            call move_alloc(jac, sol%lu)
+            call move_alloc(ipiv, sol%pivots)
+         end if
+         return
+      end if
       sol%iterations = max_iter
       sol%residual = norm
       call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
