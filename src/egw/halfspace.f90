@@ -15,7 +15,7 @@
 !> - far from r (distance >= 2 element lengths) by the element's own Gauss rule, which
 !>   then is exact to ~rho**(-2 n_gauss), rho >= 9.9 (Bernstein ellipse);
 !> - near r by bisection into pieces whose distance from r is at least their length
-!>   (12-point Gauss), and, on pieces no longer than r/2 that end at r (there kc <= 1/3),
+!>   (8-point Gauss), and, on pieces no longer than r/2 that end at r (there kc <= 1/3),
 !>   by 14-point product integration: with
 !>   kc = |r-t|/(r+t), K = kreg + klog ln(r+t) - klog ln|r-t| (egw_ellip), the smooth
 !>   parts by Gauss and the ln|r-t| part by Gauss weights modified to integrate
@@ -32,9 +32,11 @@ module egw_halfspace
    public :: influence_row, assemble_influence, interpolate_nodal, halfspace_kernel
    public :: gauss_legendre
 
-   !> Points of the plain rule on near pieces and of the log-product rule (16/20 gave the
-   !> same 1e-15 on the uniform disc, 10/12 lost a digit).
-   integer, parameter :: n_fine = 12, n_log = 14
+   !> Points of the plain rule on near pieces and of the log-product rule. Max error on the
+   !> uniform disc (test_halfspace) with n_log = 14: 9e-16 for n_fine = 10 or 12, 9e-15 for
+   !> 8, 1.5e-11 for 6; 8 is 1e-14 relative to w, far below any force tolerance, and the near
+   !> pieces are most of the assembly's kernel evaluations. n_log = 12 lost a digit.
+   integer, parameter :: n_fine = 8, n_log = 14
    !> Recursion guard for the bisection of near pieces (r is never closer than
    !> 2**(-max_depth) element lengths to a piece without being on its end).
    integer, parameter :: max_depth = 60
