@@ -143,7 +143,8 @@ contains
                & //where(p, delta, method))
             if (allocated(error)) exit
             if (stat /= 0) cycle
-            call check(error, res%force, force, "force vs reference at "//where(p, delta, method), &
+            call check(error, res%force, force, "force vs reference at " &
+               & //where(p, delta, method), &
                & rel=.true., thr=1.0e-6_dp)
             if (allocated(error)) exit
          end do

@@ -71,7 +71,8 @@ program stability_map
    write (unit, '(a)') "# egw stability map: fpm run --profile release --example stability-map"
    write (unit, '(a)') "# status 0 = OK, 3 = NOT_CONVERGED; error = |P - P_ref|/P_ref with "// &
       & "P_ref from test/data/sphere_reference.csv (ref = independent) or an AUTO solve at "// &
-      & "rel_tol = 1e-9, n_radial = 300 (ref = tight); -1 = no reference; scale_dev = relative difference of the "// &
+      & "rel_tol = 1e-9, n_radial = 300 (ref = tight); -1 = no reference; "// &
+      & "scale_dev = relative difference of the "// &
       & "scaled force at sigma/R = 1e-9, R = 1e3, E = 2e11 (AUTO rows only)"
    write (unit, '(a)') "model,method,mu,delta_over_sigma,psi,K,status,iterations,force,"// &
       & "est_rel_err,error,ref,scale_dev"
