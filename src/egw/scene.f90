@@ -118,7 +118,7 @@ contains
 
    !> The embedded default scene: two 1 mm glass beads (E = 70 GPa, nu = 0.22 each),
    !> combined summit-height std 1 um, mu = 4, E-GW, overlaps -2 sigma .. 20 sigma
-   !> (first summit contacts to several times the roughness), force tolerance 1e-3.
+   !> (first summit contacts to several times the roughness), force tolerance 1e-4.
    pure function default_scene_input() result(s)
       type(scene_input) :: s
       s%model = model_egw
@@ -132,7 +132,7 @@ contains
       s%delta_min = -2.0_dp
       s%delta_max = 20.0_dp
       s%delta_in_sigma = 1
-      s%tol = 1.0e-3_dp
+      s%tol = 1.0e-4_dp
    end function default_scene_input
 
    !> Model constant from a name: Hertz, GW, E-GW, EP-GW (case and '-' ignored) or 0..3.
@@ -614,25 +614,25 @@ contains
          choice%kind = choice_hertz
          choice%error_bound = choice%hertz_error
          choice%reason = "roughness changes the force by at most "// &
-            & format_real(choice%hertz_error)//hertz_measure(choice)//" <= tol = "// &
-            & format_real(tol)
+            & num(choice%hertz_error)//hertz_measure(choice)//" <= tol = "// &
+            & num(tol)
       else if (ns == 1 .and. .not. scene%continuous) then
          choice%kind = choice_table
          choice%error_bound = tol
          choice%reason = "roughness changes the force by up to "// &
-            & format_real(choice%hertz_error)//hertz_measure(choice)//" > tol; "// &
+            & num(choice%hertz_error)//hertz_measure(choice)//" > tol; "// &
             & "one parameter set: one 1-D table"
       else
          choice%kind = choice_universal
          choice%error_bound = tol
          choice%reason = "roughness changes the force by up to "// &
-            & format_real(choice%hertz_error)//hertz_measure(choice)//" > tol; "// &
+            & num(choice%hertz_error)//hertz_measure(choice)//" > tol; "// &
             & int_str(ns)//" parameter sets"//merge(" (radius range)", "               ", &
             & scene%continuous)
          choice%reason = trim(choice%reason)//": the universal table over mu in ["// &
-            & format_real(choice%mu_min)//", "//format_real(choice%mu_max)// &
-            & "], delta/sigma in ["//format_real(choice%x_min)//", "// &
-            & format_real(choice%x_max)//"]"
+            & num(choice%mu_min)//", "//num(choice%mu_max)// &
+            & "], delta/sigma in ["//num(choice%x_min)//", "// &
+            & num(choice%x_max)//"]"
       end if
    end subroutine choose_model
 
@@ -848,6 +848,15 @@ contains
       call fatal_error(error, egw_invalid_parameter, name//" = "//format_real(value)// &
          & ": "//reason)
    end subroutine bad
+
+   !> Short form of a number for messages (4 significant digits).
+   pure function num(x) result(str)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(es11.4)') x
+      str = trim(adjustl(buf))
+   end function num
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
