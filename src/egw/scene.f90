@@ -291,6 +291,10 @@ contains
                & "give one sigma or a range, not both")
             return
          end if
+         ! (named here: validation would name sigma_min)
+         if (.not. (ieee_is_finite(ov%sigma) .and. ov%sigma >= 0.0_dp)) then
+            call bad(error, "sigma", ov%sigma, "must be finite and >= 0"); return
+         end if
          s%sigma_min = ov%sigma
          s%sigma_max = ov%sigma
       else if (given(ov%sigma_min) .or. given(ov%sigma_max)) then
