@@ -10,7 +10,7 @@ program egw_table_app
       & default_scene_input, read_scene_file, apply_scene_overrides, resolve_scene, &
       & choose_model, build_scene_tables, choice_name, choice_hertz, choice_table, &
       & choice_universal, max_types, solver_options, write_table, write_universal, &
-      & write_calculix_flat, format_csv, format_binary, format_lammps, format_calculix
+      & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, format_binary, format_lammps, format_calculix
    implicit none
 
    interface
@@ -30,7 +30,8 @@ program egw_table_app
    type(egw_error), allocatable :: error
    character(len=:), allocatable :: out_dir, arg, val, scene_file, format_list
    character(len=:), allocatable :: written(:)
-   logical :: want(0:3), formats_given, quiet, choose_only
+   type(force_table), allocatable :: pair_tables(:)
+   logical :: want(0:3), formats_given, quiet, choose_only, pair_lammps
    integer :: iarg, n_written
    integer(int64) :: t0, t1, rate
    real(dp) :: elapsed
@@ -109,10 +110,16 @@ program egw_table_app
    call progress("choosing the model (Hertz check by full solves) ...")
    call choose_model(scene, options, choice, error)
    if (allocated(error)) call die(error%message)
-   if (choice%kind == choice_universal .and. formats_given .and. &
-      & (want(format_lammps) .or. want(format_calculix))) call die("--formats: LAMMPS "// &
-      & "and CalculiX files hold one parameter set; this scene needs the universal "// &
-      & "table (csv, binary)")
+   ! LAMMPS beside a universal table: one 1-D table per particle-type pair (possible for
+   ! discrete types with one sigma); CalculiX files hold one parameter set
+   pair_lammps = choice%kind == choice_universal .and. formats_given .and. &
+      & want(format_lammps)
+   if (choice%kind == choice_universal .and. formats_given .and. want(format_calculix)) &
+      & call die("--formats: CalculiX files hold one parameter set; this scene needs "// &
+      & "the universal table (csv, binary; lammps for particle types)")
+   if (pair_lammps .and. (input%n_types == 0 .or. input%sigma_min /= input%sigma_max)) &
+      & call die("--formats: a LAMMPS file needs one table per particle-type pair: "// &
+      & "list the types (--radii) and give one sigma")
    if (.not. formats_given) want = [.true., .true., choice%kind == choice_table, &
       & choice%kind == choice_table]
    write (output_unit, '(a)') "model: "//choice_name(choice%kind)//" ("// &
@@ -126,6 +133,11 @@ program egw_table_app
          & num(input%tol)//" (full solves, OpenMP over points) ...")
       call build_scene_tables(scene, choice, options, tables, error)
       if (allocated(error)) call die(error%message)
+      if (pair_lammps) then
+         call progress("LAMMPS: building one 1-D table per particle-type pair ...")
+         call build_pair_tables(scene, options, pair_tables, error)
+         if (allocated(error)) call die(error%message)
+      end if
       call write_all()
    end if
 
@@ -157,6 +169,12 @@ contains
          base = out_dir//"/scene_universal"
          if (want(format_csv)) call put(base//".csv", format_csv)
          if (want(format_binary)) call put(base//".bin", format_binary)
+         if (pair_lammps) then
+            call write_lammps(pair_tables, out_dir//"/scene_pairs.lammps.part", error)
+            if (allocated(error)) call fail_write(error%message)
+            n_written = n_written + 1
+            written(n_written) = out_dir//"/scene_pairs.lammps"
+         end if
       end select
       parts(1:n_written) = written(1:n_written)
       do i = 1, n_written
@@ -260,7 +278,22 @@ contains
       do i = 1, n_written
          write (output_unit, '(a)') "  wrote             "//trim(written(i))
       end do
+      if (allocated(pair_tables)) call pair_sections()
    end subroutine summary
+
+   !> Which particle types each LAMMPS section of scene_pairs.lammps is for.
+   subroutine pair_sections()
+      integer :: i, j, k
+      k = 0
+      do i = 1, input%n_types
+         do j = i, input%n_types
+            k = k + 1
+            write (output_unit, '(a)') "    section EGW_"//int_str(k)//": types "// &
+               & int_str(i)//" "//int_str(j)//" (pair_coeff "//int_str(i)//" "// &
+               & int_str(j)//" scene_pairs.lammps EGW_"//int_str(k)//")"
+         end do
+      end do
+   end subroutine pair_sections
 
    subroutine parse_formats(list, given_list, want)
       character(len=*), intent(in) :: list
@@ -375,7 +408,9 @@ contains
          & "Output:", &
          & "  --formats LIST          of csv,binary,lammps,calculix (default: all that apply:", &
          & "                          CSV + binary for every table; LAMMPS pair_style table", &
-         & "                          and CalculiX sphere + rough-flat curves for a 1-D table)", &
+         & "                          and CalculiX sphere + rough-flat curves for a 1-D table;", &
+         & "                          with the universal table, lammps writes one section", &
+         & "                          per particle-type pair from 1-D tables)", &
          & "  -o, --out DIR           output directory (default: out)", &
          & "  --choose-only           report the model choice, build and write nothing", &
          & "  -q, --quiet             no progress lines on stderr", &

@@ -6,10 +6,11 @@ module test_scene
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_parameter, egw_io_error, egw_bad_file, &
+      & egw_unsupported, &
       & format_real
    use egw_params, only: contact_params, model_egw, model_gw, model_hertz
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
-   use egw_table, only: table_eval
+   use egw_table, only: table_eval, force_table
    use egw_table_universal, only: universal_eval
    use egw_scene
    implicit none
@@ -31,7 +32,8 @@ contains
          & new_unittest("Hertz chosen from contact onset", test_hertz_separated), &
          & new_unittest("Hertz rejected: bound exceeded", test_hertz_rejected), &
          & new_unittest("1-D table error vs full solves", test_table_choice), &
-         & new_unittest("universal table error vs full solves", test_universal_choice) &
+         & new_unittest("universal table error vs full solves", test_universal_choice), &
+         & new_unittest("per-pair tables for LAMMPS", test_pair_tables) &
          & ]
    end subroutine collect_scene
 
@@ -474,5 +476,46 @@ contains
       end do
       call check(error, worst <= 1.5_dp*s%tol, "universal error "//format_real(worst))
    end subroutine test_universal_choice
+
+   !> Types of radii 1, 1, 2 mm (pairs 1-1, 1-2, 1-3, 2-2, 2-3, 3-3): 6 tables in type-pair
+   !> order with the pairs' R1 + R2 recorded; identical pairs (1-1 and 2-2, one set) give
+   !> identical tables. A sigma range is unsupported (no finite set of pairs).
+   subroutine test_pair_tables(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(scene_input) :: s
+      type(contact_scene) :: scene
+      type(force_table), allocatable :: tables(:)
+      type(egw_error), allocatable :: err
+      real(dp), parameter :: sums(6) = [2e-3_dp, 2e-3_dp, 3e-3_dp, 2e-3_dp, 3e-3_dp, 4e-3_dp]
+      integer :: k
+      s = default_scene_input()
+      s%n_types = 3
+      s%radius(1:3) = [1e-3_dp, 1e-3_dp, 2e-3_dp]
+      s%tol = 1e-2_dp
+      call resolve_scene(s, scene, err)
+      call check(error, .not. allocated(err), "scene rejected")
+      if (allocated(error)) return
+      call check(error, size(scene%sets), 3)  ! R = 0.5, 2/3 and 1 mm
+      if (allocated(error)) return
+      call build_pair_tables(scene, solver_options(), tables, err)
+      call check(error, .not. allocated(err), "build failed")
+      if (allocated(error)) return
+      call check(error, size(tables), 6)
+      if (allocated(error)) return
+      do k = 1, 6
+         call check(error, tables(k)%radius_sum, sums(k), rel=.true., thr=1e-15_dp, &
+            & more="pair "//to_string(k))
+         if (allocated(error)) return
+      end do
+      call check(error, all(tables(1)%force == tables(4)%force) .and. &
+         & tables(3)%params%radius == 2e-3_dp/3, "pairs 1-1, 2-2 differ or 1-3 wrong")
+      if (allocated(error)) return
+      s%sigma_min = 0.5e-6_dp
+      call resolve_scene(s, scene, err)
+      if (.not. allocated(err)) call build_pair_tables(scene, solver_options(), tables, err)
+      call check(error, allocated(err), "sigma range accepted")
+      if (allocated(error)) return
+      call check(error, err%stat, egw_unsupported)
+   end subroutine test_pair_tables
 
 end module test_scene

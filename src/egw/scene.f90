@@ -6,7 +6,8 @@ module egw_scene
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_io_error, egw_bad_file, egw_not_converged, fatal_error, format_real
+      & egw_io_error, egw_bad_file, egw_not_converged, egw_unsupported, fatal_error, &
+      & format_real
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, model_name, mu_from_summits
    use egw_smooth_sphere, only: hertz_force
@@ -17,7 +18,7 @@ module egw_scene
    private
 
    public :: default_scene_input, read_scene_file, apply_scene_overrides, validate_scene_input, resolve_scene, &
-      & choose_model, build_scene_tables, model_from_name, choice_name, scene_hertz_error
+      & choose_model, build_scene_tables, build_pair_tables, model_from_name, choice_name, scene_hertz_error
 
    !> Most particle types (and materials) a scene lists.
    integer, parameter, public :: max_types = 8
@@ -82,6 +83,9 @@ module egw_scene
       type(contact_params), allocatable :: sets(:)
       real(dp), allocatable :: radius1(:), radius2(:)  !< particle radii of each set's pair
       real(dp), allocatable :: delta_min(:), delta_max(:)
+      !> set of each (type pair, sigma) in the order (1,1), (1,2), .., (1,n), (2,2), ..,
+      !> (n,n), sigma_min before sigma_max (identical sets are stored once)
+      integer, allocatable :: pair_set(:)
    end type contact_scene
 
    !> The cheapest model meeting the scene's tolerance, and why.
@@ -505,7 +509,8 @@ contains
       type(contact_scene), intent(out) :: scene
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: radii(max_types), e_star, r, sig(2)
-      integer :: n, i, j, is, ns, nsig
+      integer :: n, i, j, is, ns, nsig, np, match
+      integer, allocatable :: pset(:)
       type(contact_params) :: p
       type(contact_params), allocatable :: sets(:)
       real(dp), allocatable :: r1(:), r2(:)
@@ -524,7 +529,9 @@ contains
       sig = [input%sigma_min, input%sigma_max]
       nsig = merge(1, 2, input%sigma_min == input%sigma_max)
       allocate (sets(n*(n + 1)/2*nsig), r1(n*(n + 1)/2*nsig), r2(n*(n + 1)/2*nsig))
+      allocate (pset(n*(n + 1)/2*nsig))
       ns = 0
+      np = 0
       do i = 1, n
          do j = i, n
             r = radii(i)*radii(j)/(radii(i) + radii(j))
@@ -544,7 +551,12 @@ contains
                   p%mu = mu_from_summits(input%summit_density, input%summit_radius, &
                      & sig(is), r)
                end if
-               if (any(same_params(sets(1:ns), p))) cycle
+               np = np + 1
+               match = findloc(same_params(sets(1:ns), p), .true., dim=1)
+               if (match > 0) then
+                  pset(np) = match
+                  cycle
+               end if
                call validate_params(p, error)
                if (allocated(error)) then
                   error%message = "pair of types "//int_str(i)//", "//int_str(j)//": "// &
@@ -555,10 +567,12 @@ contains
                sets(ns) = p
                r1(ns) = radii(i)
                r2(ns) = radii(j)
+               pset(np) = ns
             end do
          end do
       end do
       scene%sets = sets(1:ns)
+      scene%pair_set = pset(1:np)
       scene%radius1 = r1(1:ns)
       scene%radius2 = r2(1:ns)
       allocate (scene%delta_min(ns), scene%delta_max(ns))
@@ -813,6 +827,51 @@ contains
             & int_str(choice%kind)//": unknown")
       end select
    end subroutine build_scene_tables
+
+   !> One 1-D table per particle-type pair (1,1), (1,2), .., (1,n), (2,2), .., (n,n) of a
+   !> scene with discrete types and one sigma (for LAMMPS, whose pair_style table needs
+   !> one section per type pair), each over its pair's overlap range at the scene's
+   !> tolerance with the pair's particle radii recorded; pairs with the same parameter
+   !> set share one build. egw_unsupported for a radius or sigma range (no finite set
+   !> of type pairs).
+   subroutine build_pair_tables(scene, options, tables, error)
+      type(contact_scene), intent(in) :: scene
+      type(solver_options), intent(in) :: options
+      type(force_table), allocatable, intent(out) :: tables(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(force_table), allocatable :: built(:)
+      integer :: s, i, j, k, n
+      if (.not. allocated(scene%sets)) then
+         call fatal_error(error, egw_invalid_argument, "scene: not resolved (resolve_scene)")
+         return
+      end if
+      if (scene%continuous .or. scene%input%sigma_min /= scene%input%sigma_max) then
+         call fatal_error(error, egw_unsupported, "scene: a radius or sigma range has no "// &
+            & "finite set of type pairs; per-pair tables need particle types and one sigma")
+         return
+      end if
+      allocate (built(size(scene%sets)))
+      do s = 1, size(scene%sets)
+         call build_table(scene%sets(s), options, scene%delta_min(s), scene%delta_max(s), &
+            & scene%input%tol, built(s), error)
+         if (allocated(error)) then
+            error%message = "parameter set "//int_str(s)//": "//error%message
+            return
+         end if
+      end do
+      n = scene%input%n_types
+      allocate (tables(size(scene%pair_set)))
+      k = 0
+      do i = 1, n
+         do j = i, n
+            k = k + 1
+            tables(k) = built(scene%pair_set(k))
+            call table_set_radii(tables(k), scene%input%radius(i), scene%input%radius(j), &
+               & error)
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine build_pair_tables
 
    ! ------------------------------------------------------------------ helpers
 
