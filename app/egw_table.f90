@@ -10,7 +10,8 @@ program egw_table_app
       & default_scene_input, read_scene_file, apply_scene_overrides, resolve_scene, &
       & choose_model, build_scene_tables, choice_name, choice_hertz, choice_table, &
       & choice_universal, max_types, solver_options, write_table, write_universal, &
-      & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, format_binary, format_lammps, format_calculix
+      & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
+      & format_binary, format_lammps, format_calculix
    implicit none
 
    interface

@@ -17,8 +17,9 @@ module egw_scene
    implicit none
    private
 
-   public :: default_scene_input, read_scene_file, apply_scene_overrides, validate_scene_input, resolve_scene, &
-      & choose_model, build_scene_tables, build_pair_tables, model_from_name, choice_name, scene_hertz_error
+   public :: default_scene_input, read_scene_file, apply_scene_overrides, &
+      & validate_scene_input, resolve_scene, choose_model, build_scene_tables, &
+      & build_pair_tables, model_from_name, choice_name, scene_hertz_error
 
    !> Most particle types (and materials) a scene lists.
    integer, parameter, public :: max_types = 8
