@@ -130,13 +130,15 @@ contains
    !> the scene is unchanged.
    subroutine test_bad_files(error)
       type(error_type), allocatable, intent(out) :: error
-      character(len=60), parameter :: bodies(9) = [character(len=60) :: &
+      character(len=60), parameter :: bodies(11) = [character(len=60) :: &
          & "&scene sigma = -1e-6 /", "&scene K = 1.5 /", "&scene tol = 0 /", &
          & "&scene radius = 1e-3, -2e-3 /", "&scene poisson = 0.7 /", &
          & "&scene model = 'JKR' /", "&scene sigmaa = 1e-6 /", &
-         & "&scene mu = 2, summit_density = 1e10 /", "&scene delta_max_sigma = -5 /"]
-      character(len=20), parameter :: names(9) = [character(len=20) :: "sigma", "K", &
-         & "tol", "radius(2)", "poisson(1)", "model", "sigmaa", "mu", "delta_max_sigma"]
+         & "&scene mu = 2, summit_density = 1e10 /", "&scene delta_max_sigma = -5 /", &
+         & "&scene psi = 0.1,   tol = abc /", "&scene tol = 1e-3"]
+      character(len=20), parameter :: names(11) = [character(len=20) :: "sigma", "K", &
+         & "tol", "radius(2)", "poisson(1)", "model", "sigmaa", "mu", "delta_max_sigma", &
+         & "tol = abc", "closing '/'"]
       type(scene_input) :: s, s0
       type(egw_error), allocatable :: err
       character(len=*), parameter :: path = "test_scene_bad.nml"

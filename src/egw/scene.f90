@@ -218,12 +218,15 @@ contains
          return
       end if
       read (unit, nml=scene, iostat=stat, iomsg=msg)
-      close (unit)
       if (stat /= 0) then
-         if (is_iostat_end(stat)) msg = "no namelist group &scene found"
+         ! gfortran reports most malformed groups as end of file: find the entry at fault
+         rewind (unit)
+         call diagnose(unit, msg)
+         close (unit)
          call fatal_error(error, egw_bad_file, "path = "//path//": "//trim(msg))
          return
       end if
+      close (unit)
       ov = scene_overrides(model=model, radius=radius, radius_min=radius_min, &
          & radius_max=radius_max, modulus=modulus, poisson=poisson, &
          & effective_modulus=effective_modulus, sigma=sigma, sigma_min=sigma_min, &
@@ -233,7 +236,109 @@ contains
          & delta_min_sigma=delta_min_sigma, delta_max_sigma=delta_max_sigma, tol=tol)
       call apply_scene_overrides(input, ov, error)
       if (allocated(error)) error%message = "path = "//path//": "//error%message
+
+   contains
+
+      !> Why the group could not be read: no group, no closing '/', or the first entry
+      !> (a line starting "name =" with its continuation lines) that fails on its own.
+      subroutine diagnose(unit, why)
+         integer, intent(in) :: unit
+         character(len=*), intent(inout) :: why
+         character(len=:), allocatable :: line, entry, lower
+         character(len=512) :: entry_msg
+         logical :: in_group, closed
+         integer :: ios, at
+         in_group = .false.
+         closed = .false.
+         entry = ""
+         do
+            call read_line(unit, line, ios)
+            if (ios /= 0) exit
+            at = index(line, "!")
+            if (at > 0) line = line(:at - 1)
+            if (.not. in_group) then
+               lower = to_lower(line)
+               at = index(lower, "&scene")
+               if (at == 0) cycle
+               in_group = .true.
+               line = line(at + 6:)
+            end if
+            at = index(line, "/")
+            if (at > 0) then
+               closed = .true.
+               line = line(:at - 1)
+            end if
+            if (starts_entry(line) .and. len_trim(entry) > 0) then
+               if (.not. entry_ok(entry, entry_msg)) exit
+               entry = ""
+            end if
+            entry = entry//" "//trim(line)
+            if (closed) exit
+         end do
+         if (.not. in_group) then
+            why = "no namelist group &scene found"
+         else if (len_trim(entry) > 0 .and. .not. entry_ok(entry, entry_msg)) then
+            why = "'"//trim(adjustl(entry))//"': "//trim(entry_msg)
+         else if (.not. closed) then
+            why = "the &scene group has no closing '/'"
+         end if
+      end subroutine diagnose
+
+      logical function entry_ok(entry, why)
+         character(len=*), intent(in) :: entry
+         character(len=*), intent(out) :: why
+         character(len=:), allocatable :: text
+         integer :: ios
+         why = ""
+         text = "&scene "//entry//" /"
+         read (text, nml=scene, iostat=ios, iomsg=why)
+         entry_ok = ios == 0
+      end function entry_ok
+
    end subroutine read_scene_file
+
+   !> Whether a namelist line starts an entry: a name (optionally indexed) then '='.
+   pure logical function starts_entry(line)
+      character(len=*), intent(in) :: line
+      integer :: i, eq
+      character :: c
+      starts_entry = .false.
+      eq = index(line, "=")
+      if (eq == 0) return
+      do i = 1, eq - 1
+         c = line(i:i)
+         if (.not. (c == " " .or. c == "_" .or. c == "(" .or. c == ")" .or. c == ":" &
+            & .or. c == "," .or. (c >= "a" .and. c <= "z") .or. (c >= "A" .and. c <= "Z") &
+            & .or. (c >= "0" .and. c <= "9"))) return
+      end do
+      starts_entry = len_trim(line(:eq - 1)) > 0
+   end function starts_entry
+
+   !> One line of a formatted file, any length.
+   subroutine read_line(unit, line, ios)
+      integer, intent(in) :: unit
+      character(len=:), allocatable, intent(out) :: line
+      integer, intent(out) :: ios
+      character(len=256) :: chunk
+      integer :: n
+      line = ""
+      do
+         read (unit, '(a)', advance="no", iostat=ios, size=n) chunk
+         line = line//chunk(:n)
+         if (ios /= 0) exit
+      end do
+      if (is_iostat_eor(ios)) ios = 0
+   end subroutine read_line
+
+   pure function to_lower(str) result(lower)
+      character(len=*), intent(in) :: str
+      character(len=len(str)) :: lower
+      integer :: i
+      lower = str
+      do i = 1, len(str)
+         if (str(i:i) >= "A" .and. str(i:i) <= "Z") lower(i:i) = achar(iachar(str(i:i)) + 32)
+      end do
+   end function to_lower
 
    !> Replace the fields of input that ov gives (see scene_overrides), then validate.
    !> On any error input is unchanged and the message names the variable.
