@@ -247,7 +247,8 @@ contains
          & " sigma", "")//", tol = "//num(input%tol)
       do i = 1, size(scene%sets)
          associate (p => scene%sets(i))
-            write (output_unit, '(a)') "  pair "//int_str(i)//": R = "// &
+            write (output_unit, '(a)') "  "//either(input%n_types == 0, "range corner ", &
+               & "parameter set ")//int_str(i)//": R = "// &
                & num(p%radius)//", E* = "//num(p%modulus)//", sigma = "// &
                & num(p%sigma)//", mu = "//num(p%mu)//", delta in ["// &
                & num(scene%delta_min(i))//", "//num(scene%delta_max(i))//"]"
