@@ -631,7 +631,11 @@ def solve(prob, tol=1e-10, n=16, quad="std", start=None, max_adapt=60, verbose=F
     dP = 2.0 * np.pi * np.sum(pan.w * pan.r * dp * dd) + dPH
     Ptot = P + PH
     astar = 0.75 * np.pi * (Ptot / (2.0 * np.pi)) / S0
-    return dict(P=Ptot, dP=dP, astar=astar, PG=P, N=pan.N, M=pan.M, pan=pan, u=u, d=d,
+    # central deflection w(0) (total; Delta w(0) = delta - w(0) is the quantity of eq. 20)
+    w0 = float(build_operator(pan, targets=np.array([0.0]), quad=quad)[0] @ p)
+    if prob.hertz:
+        w0 += prob.delta
+    return dict(P=Ptot, dP=dP, astar=astar, w0=w0, PG=P, N=pan.N, M=pan.M, pan=pan, u=u, d=d,
                 p=p, newton=its, residual=res, abar=breaks[-1], hmin=pan.h.min(),
                 rcond=rcond, quad=quad, cycles=cycle + 1)
 
@@ -658,7 +662,7 @@ def study(prob, levels=LEVELS):
     ref = res[-1]
     out = dict(ref)
     floor = 1e-14 + np.finfo(float).eps / min(r["rcond"] for r in res)
-    for key in ("P", "dP", "astar"):
+    for key in ("P", "dP", "astar", "w0"):
         vals = np.array([r[key] for r in res])
         out[key + "_levels"] = vals
         out[key + "_err"] = max(float(np.max(np.abs(vals[-3:-1] - vals[-1])) / abs(vals[-1])),
@@ -691,6 +695,8 @@ EP_MUS = (1.0, 10.0)
 EP_PSIS = (0.5, 2.0, 10.0, 20.0)
 EP_KS = (0.3, 0.6, 0.9)
 RHO_P = 54.0
+FIG8_PSI_K = ((2.0, 0.6), (4.0, 0.6), (10.0, 0.6), (4.0, 0.4), (4.0, 0.8))
+FIG8_DELTAS = (1.0, 2.0, 5.0, 10.0)
 
 
 def point_list(which):
@@ -710,6 +716,12 @@ def point_list(which):
                 for K in EP_KS:
                     for ds in EP_DELTAS:
                         pts.append(("epgw", "EPGW", ds, mu, psi, K, RHO_P))
+    if "fig8" in which:
+        # the paper's Fig. 8 settings (delta = 0.01, sigma = 0.001, mu = 4): psi = 2, 4, 10 at
+        # K = 0.6 and K = 0.4, 0.8 at psi = 4; E-GW at mu = 4 is in the design set
+        for psi, K in FIG8_PSI_K:
+            for ds in FIG8_DELTAS:
+                pts.append(("fig8", "EPGW", ds, 4.0, psi, K, RHO_P))
     return pts
 
 
@@ -736,8 +748,8 @@ def _run_point(pt):
         r = study(Problem(solve_model, ds, mu, psi, K, rho))
     except NotConverged as exc:
         return pt, None, str(exc), time.process_time() - t0
-    keep = {k: r[k] for k in ("P", "dP", "astar", "P_err", "dP_err", "astar_err", "N",
-                              "P_levels", "dP_levels", "astar_levels", "hmin")}
+    keep = {k: r[k] for k in ("P", "dP", "astar", "w0", "P_err", "dP_err", "astar_err",
+                              "w0_err", "N", "P_levels", "dP_levels", "astar_levels", "hmin")}
     return pt, keep, "", time.process_time() - t0
 
 
@@ -747,7 +759,7 @@ CSV_HEADER = """\
 # scaled variables: R = E* = sigma = 1 (sigma = std of summit heights).
 # columns:
 #   model            GW (classic Greenwood-Tripp), EGW (extended elastic), EPGW (ZMC asperities)
-#   set              design (DESIGN.md section 5 table points), grid, epgw
+#   set              design (DESIGN.md section 5 table points), grid, epgw, fig8 (paper Fig. 8)
 #   delta_over_sigma overlap / sigma
 #   mu               Greenwood-Tripp roughness parameter mu = (8/3) eta sigma sqrt(2 R beta)
 #   psi, K, rho_p    ZMC plasticity index, hardness coefficient, delta_p/delta_ep (EPGW only;
@@ -759,10 +771,13 @@ CSV_HEADER = """\
 #   a_star_scaled    a* / sqrt(R sigma), a* = (3 pi/4) int r p dr / int p dr (p total pressure)
 #   a_star_rel_err   estimated relative error of a_star_scaled
 #   P_star           P / P_Hertz with P_Hertz = (4/3) E* sqrt(R) delta^(3/2) (0 if delta <= 0)
+#   w0_scaled        total surface deflection at r = 0, w(0) / sigma (Hertz part included for
+#                    EGW/EPGW; for classic GW, Delta w(0) of eq. 20 is delta - w(0))
+#   w0_rel_err       estimated relative error of w0_scaled
 # for delta <= 0 the EGW rows equal the GW rows by definition (E-GW is classic GW there).
 """
 CSV_COLUMNS = ("model,set,delta_over_sigma,mu,psi,K,rho_p,P_scaled,P_rel_err,dP_scaled,"
-               "dP_rel_err,a_star_scaled,a_star_rel_err,P_star")
+               "dP_rel_err,a_star_scaled,a_star_rel_err,P_star,w0_scaled,w0_rel_err")
 
 
 def write_csv(path, rows):
@@ -772,9 +787,10 @@ def write_csv(path, rows):
         for pt, r in rows:
             setname, model, ds, mu, psi, K, rho = pt
             pstar = r["P"] / ((4.0 / 3.0) * ds ** 1.5) if ds > 0 else 0.0
-            f.write("%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.16e,%.2e,%.16e,%.2e,%.16e,%.2e,%.16e\n"
+            f.write("%s,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.16e,%.2e,%.16e,%.2e,%.16e,%.2e,%.16e,"
+                    "%.16e,%.2e\n"
                     % (model, setname, ds, mu, psi, K, rho, r["P"], r["P_err"], r["dP"],
-                       r["dP_err"], r["astar"], r["astar_err"], pstar))
+                       r["dP_err"], r["astar"], r["astar_err"], pstar, r["w0"], r["w0_err"]))
 
 
 PROFILE_RADII = (0.0, 0.5, 1.0, 2.0, 2.5, 3.0, math.sqrt(10.0), 3.5, 4.0, 5.0, 6.0)
@@ -819,7 +835,7 @@ def main(argv=None):
     sub = ap.add_subparsers(dest="cmd", required=True)
     g = sub.add_parser("generate", help="write the reference CSV")
     g.add_argument("--out", default="test/data/sphere_reference.csv")
-    g.add_argument("--sets", default="design,grid,epgw")
+    g.add_argument("--sets", default="design,grid,epgw,fig8")
     g.add_argument("--jobs", type=int, default=2)
     pr = sub.add_parser("profiles", help="write the profile CSV")
     pr.add_argument("--out", default="test/data/sphere_reference_profiles.csv")
@@ -866,11 +882,11 @@ def main(argv=None):
         if key in results:
             rows.append((pt, results[key]))
     write_csv(args.out, rows)
-    errs = np.array([[r["P_err"], r["dP_err"], r["astar_err"]] for _, r in rows])
-    print("wrote %d rows to %s; max est. rel. error P %.1e dP %.1e a* %.1e; "
+    errs = np.array([[r["P_err"], r["dP_err"], r["astar_err"], r["w0_err"]] for _, r in rows])
+    print("wrote %d rows to %s; max est. rel. error P %.1e dP %.1e a* %.1e w0 %.1e; "
           "wall %.0f s, worker CPU %.0f s"
           % (len(rows), args.out, errs[:, 0].max(), errs[:, 1].max(), errs[:, 2].max(),
-             time.time() - t0, cpu))
+             errs[:, 3].max(), time.time() - t0, cpu))
     return 0
 
 
@@ -962,6 +978,25 @@ def verify():
         dP = solve(Problem(model, ds, mu), 1e-12, 20)["dP"]
         report("dP/d delta implicit vs 5-point FD, %s d/s=%g mu=%g" % (model, ds, mu),
                abs(fd / dP - 1), 1e-8)
+    # uniform (non-graded, non-adaptive) meshes must converge to the adaptive reference at
+    # the rates set by the Hertz-edge singularity: P ~ h^{5/2}, dP/d delta ~ h^{3/2}
+    prob = Problem("EGW", 10.0, 4.0)
+    ref = study(prob)
+    ab = prob.outer_radius()
+    errs = []
+    for M in (20, 40, 80):
+        br = np.unique(np.concatenate([np.linspace(0, prob.a, M + 1),
+                                       np.linspace(prob.a, ab, M + 1)]))
+        pan = Panels(br, 16)
+        r = solve(prob, 1.0, 16, start=dict(pan=pan, u=np.zeros(pan.N)))
+        errs.append((r["P"] / ref["P"] - 1, r["dP"] / ref["dP"] - 1))
+        print("%-62s %.3e %.3e" % ("EGW d/s=10 mu=4, uniform mesh 2x%d panels: P, dP rel err" % M,
+                                   errs[-1][0], errs[-1][1]))
+    orders = [math.log2(errs[i][k] / errs[i + 1][k]) for i in range(2) for k in range(2)]
+    print("%-62s %.2f %.2f %.2f %.2f" % ("  observed orders P, dP (expected 2.5, 1.5)", *orders))
+    report("  |observed order - expected| (max)",
+           max(abs(orders[0] - 2.5), abs(orders[2] - 2.5), abs(orders[1] - 1.5),
+               abs(orders[3] - 1.5)), 0.1)
     # 4. DESIGN section 5 table (published to 5 decimals, 'a few 1e-5 accurate')
     table = {"GW": (0.99493, 0.98000, 0.97696, 1.03628, 1.33500, 2.01623),
              "EGW": (1.00226, 1.01745, 1.13475, 1.25753, 1.64509, 2.38245)}
