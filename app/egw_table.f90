@@ -11,7 +11,8 @@ program egw_table_app
       & choose_model, build_scene_tables, choice_name, choice_hertz, choice_table, &
       & choice_universal, max_types, solver_options, write_table, write_universal, &
       & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
-      & format_binary, format_lammps, format_calculix
+      & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
+      & hertz_force, hertz_stiffness, hertz_contact_radius
    implicit none
 
    interface
@@ -128,7 +129,7 @@ program egw_table_app
    write (output_unit, '(a)') "  why: "//choice%reason
 
    n_written = 0
-   allocate (character(len=1024) :: written(8))
+   allocate (character(len=1024) :: written(10))
    if (.not. choose_only .and. choice%kind /= choice_hertz) then
       call progress("building the "//choice_name(choice%kind)//" at tol = "// &
          & num(input%tol)//" (full solves, OpenMP over points) ...")
@@ -153,13 +154,16 @@ contains
    !> leaves no partial set of files behind.
    subroutine write_all()
       character(len=:), allocatable :: base
-      character(len=1024) :: parts(8)
+      character(len=1024) :: parts(10)
       integer :: i
       call execute_command_line("mkdir -p '"//out_dir//"'")
       select case (tables%kind)
       case (choice_table)
          base = out_dir//"/scene_table"
-         if (want(format_csv)) call put(base//".csv", format_csv)
+         if (want(format_csv)) then
+            call put(base//".csv", format_csv)
+            call put_curves(scene%sets(1), scene%delta_min(1), scene%delta_max(1))
+         end if
          if (want(format_binary)) call put(base//".bin", format_binary)
          if (want(format_lammps)) call put(base//".lammps", format_lammps)
          if (want(format_calculix)) then
@@ -207,6 +211,69 @@ contains
       n_written = n_written + 1
       written(n_written) = path
    end subroutine put_flat
+
+   !> Reference curves of a parameter set as CSV with a metadata header: the smooth
+   !> spheres' Hertz force-overlap curve (DESIGN.md s5) and the rough flat's
+   !> pressure-separation law p_G(d) (DESIGN.md s3), 201 points each.
+   subroutine put_curves(p, delta_lo, delta_hi)
+      type(contact_params), intent(in) :: p
+      real(dp), intent(in) :: delta_lo, delta_hi
+      integer, parameter :: n = 201
+      character(len=:), allocatable :: path
+      real(dp) :: x, lo, hi, pg, dpg
+      integer :: u, i, ios
+      path = out_dir//"/hertz_force.csv"
+      open (newunit=u, file=path//".part", status="replace", action="write", iostat=ios)
+      if (ios /= 0) call fail_write("cannot create "//path//".part")
+      n_written = n_written + 1
+      written(n_written) = path
+      call curve_header(u, p, "Hertz force-overlap curve of the smooth spheres (DESIGN.md s5)")
+      write (u, '(a)') "delta,force,stiffness,contact_radius"
+      hi = max(delta_hi, 0.0_dp)
+      do i = 0, n - 1
+         x = hi*real(i, dp)/real(n - 1, dp)
+         write (u, '(3(g0.17,","),g0.17)') x, hertz_force(x, p%radius, p%modulus), &
+            & hertz_stiffness(x, p%radius, p%modulus), hertz_contact_radius(x, p%radius)
+      end do
+      close (u)
+      if (p%sigma <= 0.0_dp) return
+      path = out_dir//"/rough_flat_pressure.csv"
+      open (newunit=u, file=path//".part", status="replace", action="write", iostat=ios)
+      if (ios /= 0) call fail_write("cannot create "//path//".part")
+      n_written = n_written + 1
+      written(n_written) = path
+      call curve_header(u, p, "rough-flat pressure-separation law p_G(d) and dp_G/dd "// &
+         & "(DESIGN.md s3); separation d = -overlap")
+      write (u, '(a)') "separation,pressure,dpressure_dseparation"
+      lo = -max(delta_hi, 4.0_dp*p%sigma)
+      hi = max(-delta_lo, 6.0_dp*p%sigma)
+      do i = 0, n - 1
+         x = lo + (hi - lo)*real(i, dp)/real(n - 1, dp)
+         call flat_pressure(p, x, pg, dpg, error)
+         if (allocated(error)) then
+            close (u)
+            call fail_write(error%message)
+         end if
+         write (u, '(2(g0.17,","),g0.17)') x, pg, dpg
+      end do
+      close (u)
+   end subroutine put_curves
+
+   subroutine curve_header(u, p, title)
+      integer, intent(in) :: u
+      type(contact_params), intent(in) :: p
+      character(len=*), intent(in) :: title
+      write (u, '(a)') "# egw "//egw_version_string//": "//title
+      write (u, '(a)') "# units: those of the scene (SI suggested: m, Pa, N)"
+      write (u, '(a)') "# model = "//model_name(p%model)
+      write (u, '(a)') "# radius = "//format_real(p%radius)
+      write (u, '(a)') "# modulus = "//format_real(p%modulus)
+      write (u, '(a)') "# sigma = "//format_real(p%sigma)
+      write (u, '(a)') "# mu = "//format_real(p%mu)
+      write (u, '(a)') "# psi = "//format_real(p%psi)
+      write (u, '(a)') "# hardness_coeff = "//format_real(p%hardness_coeff)
+      write (u, '(a)') "# plastic_ratio = "//format_real(p%plastic_ratio)
+   end subroutine curve_header
 
    !> Remove the '.part' files written so far, then stop with the message.
    subroutine fail_write(message)

@@ -1,4 +1,4 @@
-/* C tests of the scene API (include/egw_scene_api.h): default scene, reading namelist
+/* C tests of the scene API (include/egw.h): default scene, reading namelist
  * files (good and bad), validation messages, the model choice and the build of its
  * tables through handles. Each egw_capi_test_scene_* returns the number of failed
  * checks and prints why; test/test_capi_scene.f90 runs them as a test-drive suite.
@@ -7,9 +7,6 @@
 #include <stdio.h>
 #include <string.h>
 #include "egw.h"
-#ifndef EGW_SCENE_API_H
-#include "egw_scene_api.h"
-#endif
 
 static int failures;
 #define CHECK(cond) do { if (!(cond)) { failures++; \

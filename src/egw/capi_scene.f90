@@ -1,4 +1,4 @@
-!> C API of scenes (include/egw_scene_api.h, pasted into include/egw.h): the egw_scene
+!> C API of scenes (include/egw.h): the egw_scene
 !> struct, reading a namelist scene file, the model choice and the build of its tables
 !> as egw_table / egw_universal handles (released by egw_table_free /
 !> egw_universal_free). Errors go through egw_capi's per-thread last-error message.
