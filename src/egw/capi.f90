@@ -46,7 +46,7 @@ module egw_capi
 
    public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params
    ! shared with the table bindings (egw_capi_table): error bookkeeping and conversions
-   public :: settle, require, read_params, read_options, int_str
+   public :: settle, require, read_params, read_options, put, int_str
 
 contains
 

@@ -16,7 +16,8 @@ module egw_capi_table
    use egw_table_universal, only: universal_table, build_universal, universal_eval
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
       & write_calculix_flat, write_lammps
-   use egw_capi, only: egw_params_c, egw_options_c, to_params, settle, require
+   use egw_capi, only: egw_params_c, egw_options_c, settle, require, read_params, &
+      & read_options, put, int_str
    implicit none
    private
 
@@ -41,7 +42,7 @@ contains
 
    ! ------------------------------------------------------------ 1-D tables
 
-   !> C: egw_table_build (see include/egw_table_api.h for units and statuses).
+   !> C: egw_table_build (see include/egw.h for units and statuses).
    function egw_table_build(p, o, delta_min, delta_max, rel_tol, out) result(stat) &
       & bind(C, name="egw_table_build")
       type(c_ptr), value, intent(in) :: p, o, out
@@ -415,35 +416,6 @@ contains
       end do
    end function get_path
 
-   !> Read and validate a const egw_params* (as egw_capi does).
-   integer(c_int) function read_params(p, params) result(stat)
-      type(c_ptr), intent(in) :: p
-      type(contact_params), intent(out) :: params
-      type(egw_params_c), pointer :: cp
-      type(egw_error), allocatable :: error
-      stat = require(p, "p")
-      if (stat /= egw_ok) return
-      call c_f_pointer(p, cp)
-      params = to_params(cp)
-      call validate_params(params, error)
-      stat = settle(error)
-   end function read_params
-
-   !> Options from a nullable const egw_options* (NULL: defaults); copied from egw_capi,
-   !> where it is private.
-   subroutine read_options(o, options)
-      type(c_ptr), intent(in) :: o
-      type(solver_options), intent(out) :: options
-      type(egw_options_c), pointer :: co
-      if (.not. c_associated(o)) return
-      call c_f_pointer(o, co)
-      options%n_radial = int(co%n_radial)
-      options%rel_tol = co%rel_tol
-      options%max_iter = int(co%max_iter)
-      options%method = int(co%method)
-      options%n_threads = int(co%n_threads)
-   end subroutine read_options
-
    integer(c_int) function out_of_range(t, delta) result(stat)
       type(force_table), intent(in) :: t
       real(dp), intent(in) :: delta
@@ -466,22 +438,5 @@ contains
       call fatal_error(error, egw_invalid_argument, message)
       ignored = settle(error)
    end subroutine record
-
-   subroutine put(ptr, x)
-      type(c_ptr), intent(in) :: ptr
-      real(dp), intent(in) :: x
-      real(c_double), pointer :: target
-      if (.not. c_associated(ptr)) return
-      call c_f_pointer(ptr, target)
-      target = x
-   end subroutine put
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
-   end function int_str
 
 end module egw_capi_table
