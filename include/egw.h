@@ -145,8 +145,8 @@ void egw_options_default(egw_options *o);
  * contact_radius: effective a* = (3 pi/4) int r p dr / int p dr (= a for Hertz);
  * max_pressure: max of the total pressure. Works for every model (Hertz exactly).
  * o may be NULL (defaults). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (delta
- * not finite, bad options), EGW_NULL_POINTER, EGW_NOT_CONVERGED (res still holds the
- * last iterate's diagnostics; its force must not be used). */
+ * not finite, bad options), EGW_NULL_POINTER, EGW_NOT_CONVERGED (res is then zeroed:
+ * no force is ever returned from a failed solve). */
 int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
 
 /* Total pressure p(r) and surface deflection w(r) of the solved contact at the n radii
