@@ -77,7 +77,7 @@ contains
       real(dp), intent(in) :: x
       character(len=:), allocatable :: s
       character(len=32) :: buf
-      write (buf, '(es16.8e3)') x
+      write (buf, '(es23.15e3)') x
       s = trim(adjustl(buf))
    end function fmt_e
 

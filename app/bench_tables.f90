@@ -229,15 +229,20 @@ contains
       call close_csv(unit)
 
       ! Build speed-up: the same E-GW table at 1e-6 with 1 and with 2 OpenMP threads
-      do nt = 1, 2
-         call omp_set_num_threads(nt)
-         t0 = wall()
-         call build_table(rough, opts, d_lo, d_hi, 1.0e-6_dp, table, error)
-         tb(nt) = wall() - t0
-         if (allocated(error)) deallocate (error)
+      ! 1 and 2 threads interleaved, best of 3 each (other processes on the shared
+      ! machine then slow both alike)
+      tb = huge(1.0_dp)
+      do i = 1, merge(1, 3, quick)
+         do nt = 1, 2
+            call omp_set_num_threads(nt)
+            t0 = wall()
+            call build_table(rough, opts, d_lo, d_hi, 1.0e-6_dp, table, error)
+            tb(nt) = min(tb(nt), wall() - t0)
+            if (allocated(error)) deallocate (error)
+         end do
       end do
       call omp_set_num_threads(2)
-      write (output_unit, '(a,f8.3,a,f8.3,a,f6.3)') "== E-GW table build 1e-6: 1 thread ", &
+      write (output_unit, '(a,f8.3,a,f8.3,a,f6.3)') "== E-GW table build 1e-6 (best of 3): 1 thread ", &
          & tb(1), " s, 2 threads ", tb(2), " s, speed-up ", tb(1)/tb(2)
       write (unit_speedup, '(a)') "build_table E-GW 1e-6,"//fmt_i(size(table%delta))// &
          & " nodes,"//fmt_e(tb(1))//","//fmt_e(tb(2))//","//fmt_e(tb(1)/tb(2))
@@ -254,12 +259,12 @@ contains
       type(egw_error), allocatable :: error
       type(force_table) :: dummy
       real(dp) :: tb(2), t0, d(n_eval), mus(n_eval), t_u, t_hertz, t_hertz_k, acc, f, k
-      real(dp) :: e, emax, pref
+      real(dp) :: e, emax, pref, d_worst, mu_worst
       ! every E-GW reference row (grid and design sets) inside the table's range
       real(dp), parameter :: dgrid(11) = [-6.0_dp, -3.0_dp, -1.0_dp, 0.0_dp, 1.0_dp, &
          & 2.0_dp, 3.0_dp, 5.0_dp, 10.0_dp, 100.0_dp, 1000.0_dp]
       real(dp), parameter :: mgrid(5) = [0.1_dp, 1.0_dp, 4.0_dp, 10.0_dp, 100.0_dp]
-      integer :: nt, r, s, j, stat, i, n_ref
+      integer :: nt, r, s, j, stat, i, n_ref, n_below
       type(solver_options) :: opts
 
       opts = solver_options(n_threads=1)
@@ -307,25 +312,43 @@ contains
 
       ! error against the independent references inside the table's range
       emax = 0
+      d_worst = 0
+      mu_worst = 0
       n_ref = 0
+      n_below = 0
       do i = 1, size(dgrid)
          do j = 1, size(mgrid)
             pref = reference_force("EGW", dgrid(i), mgrid(j), 0.0_dp, 0.0_dp)
             if (pref <= 0) cycle
+            ! below the common cut-off the table returns 0 by design (P < rel_tol P_ref
+            ! there: the cut-off's absolute error, not an interpolation error)
+            if (dgrid(i) <= u%x_cut) then
+               n_below = n_below + 1
+               cycle
+            end if
             call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, mgrid(j), dgrid(i), f, k, stat)
             e = abs(f/pref - 1)
+            if (e > emax) then
+               d_worst = dgrid(i)
+               mu_worst = mgrid(j)
+            end if
             emax = max(emax, e)
             n_ref = n_ref + 1
          end do
       end do
       write (output_unit, '(a,f8.2,a,f6.2,a,f6.2,a,es9.2,a,i0,a)') "   eval ", t_u, &
          & " ns = ", t_u/t_hertz, " x Hertz F, ", t_u/t_hertz_k, " x Hertz F+K; max error ", &
-         & emax, " at ", n_ref, " reference points"
+         & emax, " over ", n_ref, " reference points above the cut-off"
+      write (output_unit, '(a,g0.4,a,g0.4,a,g0.4,a,i0,a)') "   worst at delta/sigma = ", &
+         & d_worst, ", mu = ", mu_worst, "; x_cut = ", u%x_cut, " (", n_below, &
+         & " reference points below it: force 0 by design)"
       call write_row(unit_csv, "universal", "universal table", "mu 0.1-100 d -6..1e3", &
          & "rel_tol="//fmt_s(rel_tol), t_u*1e-9_dp, emax, "sphere_reference.csv", 0, &
          & "build_s_2thr="//fmt_e(tb(2))//" build_s_1thr="//fmt_e(tb(1))//" ratio_F="// &
          & fmt_e(t_u/t_hertz)//" ratio_FK="//fmt_e(t_u/t_hertz_k)//" n_mu="//fmt_i(u%n_mu) &
-         & //" n_ref="//fmt_i(n_ref))
+         & //" n_ref="//fmt_i(n_ref)//" worst_d="//fmt_e(d_worst)// &
+         & " worst_mu="//fmt_e(mu_worst)//" x_cut="//fmt_e(u%x_cut)//" n_below_cut="// &
+         & fmt_i(n_below))
    end subroutine run_universal
 
 end module bench_tables
