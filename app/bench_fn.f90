@@ -38,14 +38,14 @@ contains
       write (output_unit, '(/a)') "== F_3/2(h): time per call vs error (64 h in [-6, 8];"// &
          & " error vs 40-digit mpmath)"
       call time_path(1, 0.0_dp, h, ref, t, e)
-      call write_row(unit, "F_n", "fitted kernel", "F_3/2 h in [-6,8]", "-", t, e, &
+      call write_row(unit, "F_n", "fitted kernel", "F_3/2 h in [-6:8]", "-", t, e, &
          & "mpmath 40 digits", 0, "")
       call time_path(2, 0.0_dp, h, ref, t, e)
-      call write_row(unit, "F_n", "general-order quadrature", "F_3/2 h in [-6,8]", "-", t, e, &
+      call write_row(unit, "F_n", "general-order quadrature", "F_3/2 h in [-6:8]", "-", t, e, &
          & "mpmath 40 digits", 0, "")
       do it = 1, size(tols)
          call time_path(3, tols(it), h, ref, t, e)
-         call write_row(unit, "F_n", "naive adaptive Simpson", "F_3/2 h in [-6,8]", &
+         call write_row(unit, "F_n", "naive adaptive Simpson", "F_3/2 h in [-6:8]", &
             & "tol="//fmt_s(tols(it)), t, e, "mpmath 40 digits", 0, "")
       end do
    end subroutine run_fn
