@@ -16,7 +16,7 @@ module bench_tables
    public :: run_tables, run_universal
 
    integer, parameter :: n_eval = 4096   !< overlaps per sweep (fit in cache)
-   integer, parameter :: repeats = 7     !< best of 7: sheds the noise of a shared machine
+   integer, parameter :: repeats = 11    !< best of 11: sheds the noise of a shared machine
 
    !> Scene of the 1-D tables, scaled (R = E = sigma = 1): mu = 4, overlaps from 6 sigma
    !> apart to 50 sigma (a 1 mm sphere with 1 um roughness pressed 50 um).
@@ -38,44 +38,57 @@ contains
       end do
    end function collision_mix
 
-   !> ns per call of `which` over the overlaps d (best of `repeats`).
-   !> 1 Hertz force, 2 Hertz force + stiffness, 3 table_eval (Hermite), 4 linear interp.
-   function eval_ns(which, d, table) result(t)
-      integer, intent(in) :: which
+   !> ns per call of each evaluation in `which` over the overlaps d: the evaluations are
+   !> timed in turn within each of `repeats` rounds and the best round of each is kept, so
+   !> that load from other processes on the shared machine hits all of them alike and
+   !> their ratios stay meaningful. 1 Hertz force, 2 Hertz force + stiffness,
+   !> 3 table_eval (Hermite), 4 linear interpolation of the nodes, 5 universal_eval with
+   !> mu = mus(j).
+   function eval_ns(which, d, table, u, mus) result(t)
+      integer, intent(in) :: which(:)
       real(dp), intent(in) :: d(:)
       type(force_table), intent(in) :: table
-      real(dp) :: t, acc, f, k, t0
-      integer :: r, s, j, sweeps
+      type(universal_table), intent(in), optional :: u
+      real(dp), intent(in), optional :: mus(:)
+      real(dp) :: t(size(which)), acc, f, k, t0
+      integer :: r, s, j, w, sweeps, stat
       sweeps = 200
       t = huge(1.0_dp)
       do r = 1, repeats
-         acc = 0
-         t0 = wall()
-         do s = 1, sweeps
-            select case (which)
-            case (1)
-               do j = 1, size(d)
-                  acc = acc + hertz_force(d(j), 1.0_dp, 1.0_dp)
-               end do
-            case (2)
-               do j = 1, size(d)
-                  acc = acc + hertz_force(d(j), 1.0_dp, 1.0_dp) + &
-                     & hertz_stiffness(d(j), 1.0_dp, 1.0_dp)
-               end do
-            case (3)
-               do j = 1, size(d)
-                  call table_eval(table, d(j), f, k)
-                  acc = acc + f + k
-               end do
-            case (4)
-               do j = 1, size(d)
-                  call linear_eval(table, d(j), f, k)
-                  acc = acc + f + k
-               end do
-            end select
+         do w = 1, size(which)
+            acc = 0
+            t0 = wall()
+            do s = 1, sweeps
+               select case (which(w))
+               case (1)
+                  do j = 1, size(d)
+                     acc = acc + hertz_force(d(j), 1.0_dp, 1.0_dp)
+                  end do
+               case (2)
+                  do j = 1, size(d)
+                     acc = acc + hertz_force(d(j), 1.0_dp, 1.0_dp) + &
+                        & hertz_stiffness(d(j), 1.0_dp, 1.0_dp)
+                  end do
+               case (3)
+                  do j = 1, size(d)
+                     call table_eval(table, d(j), f, k)
+                     acc = acc + f + k
+                  end do
+               case (4)
+                  do j = 1, size(d)
+                     call linear_eval(table, d(j), f, k)
+                     acc = acc + f + k
+                  end do
+               case (5)
+                  do j = 1, size(d)
+                     call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, mus(j), d(j), f, k, stat)
+                     acc = acc + f + k
+                  end do
+               end select
+            end do
+            t(w) = min(t(w), (wall() - t0)/real(size(d)*sweeps, dp)*1.0e9_dp)
+            if (acc == -1.0_dp) write (output_unit, *) acc   ! keeps acc alive
          end do
-         t = min(t, (wall() - t0)/real(size(d)*sweeps, dp)*1.0e9_dp)
-         if (acc == -1.0_dp) write (output_unit, *) acc   ! keeps acc alive
       end do
    end function eval_ns
 
@@ -160,7 +173,7 @@ contains
       type(egw_error), allocatable :: error
       real(dp) :: d(n_eval), t_hertz, t_hertz_k, t_tab, t_lin, t_build, t0, tb(2)
       real(dp), allocatable :: dchk(:), pchk(:)
-      real(dp) :: e_h, f_h, k_h
+      real(dp) :: e_h, f_h, k_h, tt3(3), tt4(4)
       integer :: unit, it, i, nt, n_chk
       type(solver_options) :: opts
 
@@ -175,20 +188,21 @@ contains
 
       ! Hertz closed form and a Hertz table on the same overlaps (0..d_hi, sigma = 0)
       d = collision_mix(d_lo, d_hi)
-      t_hertz = eval_ns(1, d, table)
-      t_hertz_k = eval_ns(2, d, table)
       call build_table(hertz, opts, 0.0_dp, d_hi, 1.0e-6_dp, table_h, error)
       if (allocated(error)) then
          write (output_unit, '(a)') "Hertz table: "//error%message
          return
       end if
-      t_tab = eval_ns(3, d, table_h)
+      tt3 = eval_ns([1, 2, 3], d, table_h)
+      t_hertz = tt3(1)
+      t_hertz_k = tt3(2)
+      t_tab = tt3(3)
       e_h = 0
       do i = 1, n_eval
          call table_eval(table_h, d(i), f_h, k_h)
          if (d(i) > 0) e_h = max(e_h, abs(f_h/hertz_force(d(i), 1.0_dp, 1.0_dp) - 1))
       end do
-      write (output_unit, '(/a)') "== table eval: ns per call (best of 7), DEM collision mix"// &
+      write (output_unit, '(/a)') "== table eval: ns per call (best of 11, interleaved), DEM mix"// &
          & " delta/sigma in [-6, 50]"
       write (output_unit, '(a,f8.2)') "   Hertz force (closed form)          ", t_hertz
       write (output_unit, '(a,f8.2)') "   Hertz force + stiffness (closed)   ", t_hertz_k
@@ -224,8 +238,12 @@ contains
             deallocate (error)
             cycle
          end if
-         t_tab = eval_ns(3, d, table)
-         t_lin = eval_ns(4, d, table)
+         ! Hertz again in the same rounds: the ratios of this row are of one moment
+         tt4 = eval_ns([1, 2, 3, 4], d, table)
+         t_hertz = tt4(1)
+         t_hertz_k = tt4(2)
+         t_tab = tt4(3)
+         t_lin = tt4(4)
          call write_row(unit, "table", "E-GW table hermite", "mu=4 d in [-6:50]", &
             & "rel_tol="//fmt_s(tols(it)), t_tab*1e-9_dp, table_error(table, dchk, pchk, &
             & .false.), "solve rel_tol=1e-9", 0, "nodes="//fmt_i(size(table%delta))// &
@@ -233,7 +251,8 @@ contains
             & " ratio_FK="//fmt_e(t_tab/t_hertz_k))
          call write_row(unit, "table", "E-GW table linear", "mu=4 d in [-6:50]", &
             & "rel_tol="//fmt_s(tols(it)), t_lin*1e-9_dp, table_error(table, dchk, pchk, &
-            & .true.), "solve rel_tol=1e-9", 0, "nodes="//fmt_i(size(table%delta)))
+            & .true.), "solve rel_tol=1e-9", 0, "nodes="//fmt_i(size(table%delta))// &
+            & " hertz_F_ns="//fmt_e(t_hertz)//" hertz_FK_ns="//fmt_e(t_hertz_k))
       end do
       call close_csv(unit)
 
@@ -275,13 +294,13 @@ contains
       type(universal_table) :: u
       type(egw_error), allocatable :: error
       type(force_table) :: dummy
-      real(dp) :: tb(2), t0, d(n_eval), mus(n_eval), t_u, t_hertz, t_hertz_k, acc, f, k
+      real(dp) :: tb(2), t0, d(n_eval), mus(n_eval), t_u, t_hertz, t_hertz_k, f, k, tt3(3)
       real(dp) :: e, emax, pref, d_worst, mu_worst
       ! every E-GW reference row (grid and design sets) inside the table's range
       real(dp), parameter :: dgrid(11) = [-6.0_dp, -3.0_dp, -1.0_dp, 0.0_dp, 1.0_dp, &
          & 2.0_dp, 3.0_dp, 5.0_dp, 10.0_dp, 100.0_dp, 1000.0_dp]
       real(dp), parameter :: mgrid(5) = [0.1_dp, 1.0_dp, 4.0_dp, 10.0_dp, 100.0_dp]
-      integer :: nt, r, s, j, stat, i, n_ref, n_below
+      integer :: nt, j, stat, i, n_ref, n_below
       type(solver_options) :: opts
 
       opts = solver_options(n_threads=1)
@@ -317,21 +336,10 @@ contains
       do j = 1, n_eval
          mus(j) = 0.1_dp*1000.0_dp**frac(0.7548776662466927_dp*j)
       end do
-      t_hertz = eval_ns(1, d, dummy)
-      t_hertz_k = eval_ns(2, d, dummy)
-      t_u = huge(1.0_dp)
-      do r = 1, repeats
-         acc = 0
-         t0 = wall()
-         do s = 1, 200
-            do j = 1, n_eval
-               call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, mus(j), d(j), f, k, stat)
-               acc = acc + f + k
-            end do
-         end do
-         t_u = min(t_u, (wall() - t0)/real(n_eval*200, dp)*1.0e9_dp)
-         if (acc == -1.0_dp) write (output_unit, *) acc
-      end do
+      tt3 = eval_ns([1, 2, 5], d, dummy, u, mus)
+      t_hertz = tt3(1)
+      t_hertz_k = tt3(2)
+      t_u = tt3(3)
 
       ! error against the independent references inside the table's range
       emax = 0

@@ -85,6 +85,13 @@ def panel(ax, pts, title):
         sel = [p for p in pts if p[0] == m]
         ax.scatter([p[1] for p in sel], [p[2] for p in sel], s=18, alpha=0.75,
                    marker=markers[k % len(markers)], label=m)
+    if len(pts) <= 24:  # few points: name their setting
+        for p in pts:
+            setting = p[3].split(" ")[-1] if "(" not in p[3] else p[3].split(" (")[0]
+            if setting not in ("-", ""):
+                ax.annotate(setting.replace("rel_tol=", "").replace("tol=", ""),
+                            (p[1], p[2]), fontsize=6, xytext=(3, 2),
+                            textcoords="offset points", color="0.3")
     if pts:
         f = pareto(pts)
         ax.plot([pts[i][1] for i in f], [pts[i][2] for i in f], "k-", lw=1.2,
