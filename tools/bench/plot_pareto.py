@@ -113,9 +113,9 @@ def main():
     peer = read("peer.csv")
     for r in peer:
         solver.append(("peer: ContactMechanics GT n=" + r["peer_n"], float(r["peer_time_s"]),
-                       max(float(r["peer_rel_err"]), FLOOR), "d*=" + r["d_star"]))
+                       max(float(r["peer_rel_err"]), FLOOR), "classic-GW"))
         solver.append(("egw GW rel_tol=1e-6 (peer cases)", float(r["egw_time_s"]),
-                       max(float(r["egw_rel_err"]), FLOOR), "d*=" + r["d_star"]))
+                       max(float(r["egw_rel_err"]), FLOOR), "classic-GW"))
     solver = by_configuration(solver)
     table_rows = read("tables.csv")
     hertz = {r["case"]: float(r["time_s"]) for r in table_rows
