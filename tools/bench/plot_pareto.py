@@ -28,6 +28,7 @@ except ImportError:  # the script installs what it needs
     import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402,F401
 
 DIR = "doc/bench"
 FLOOR = 1e-16
@@ -78,7 +79,7 @@ def pareto(pts):
     return front
 
 
-def panel(ax, pts, title):
+def panel(ax, pts, title, ylabel="relative error of the force"):
     methods = sorted({p[0] for p in pts})
     markers = "osD^v<>ph*X"
     for k, m in enumerate(methods):
@@ -101,7 +102,8 @@ def panel(ax, pts, title):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("time per evaluation [s]")
-    ax.set_ylabel("relative error of the force")
+    ax.set_ylabel(ylabel)
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.set_title(title, fontsize=10)
     ax.grid(True, which="major", alpha=0.3)
     ax.legend(fontsize=7, loc="best")
@@ -123,7 +125,7 @@ def main():
     tables = points([r for r in table_rows if r["section"] == "table"]) + \
         points(read("universal.csv"))
     fig, axes = plt.subplots(1, 3, figsize=(17, 5.5))
-    panel(axes[0], fn, "(a) F_3/2(h) evaluation paths")
+    panel(axes[0], fn, "(a) F_3/2(h) evaluation paths", "max relative error of F_3/2")
     panel(axes[1], solver, "(b) one force point, full solve: mean time, worst error\n"
           "over the GW, E-GW, EP-GW cases (n_threads = 1)")
     panel(axes[2], tables, "(c) force from tables (E-GW, DEM collision mix)")
