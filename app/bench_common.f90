@@ -12,8 +12,9 @@ module bench_common
    public :: wall, frac, open_csv, write_row, close_csv, load_reference, reference_force
    public :: fmt_e, fmt_i, fmt_s, csv_header, out_dir
 
-   !> Directory the CSVs go to (relative to the project root, where fpm runs).
-   character(len=*), parameter :: out_dir = "doc/bench/"
+   !> Directory the CSVs go to (relative to the project root, where fpm runs); set once
+   !> by the driver's --out flag before any section runs.
+   character(len=:), allocatable :: out_dir
    character(len=*), parameter :: csv_header = &
       & "section,method,case,setting,time_s,rel_err,reference,status,extra"
 
@@ -44,6 +45,7 @@ contains
       character(len=*), intent(in) :: name
       integer, intent(out) :: unit
       character(len=*), intent(in), optional :: header
+      if (.not. allocated(out_dir)) out_dir = "doc/bench/"
       call execute_command_line("mkdir -p "//out_dir)
       open (newunit=unit, file=out_dir//name, status="replace", action="write")
       if (present(header)) then

@@ -13,7 +13,7 @@ module bench_tables
    implicit none
    private
 
-   public :: run_tables, run_universal
+   public :: run_tables, run_universal, run_build_speedup
 
    integer, parameter :: n_eval = 4096   !< overlaps per sweep (fit in cache)
    integer, parameter :: repeats = 11    !< best of 11: sheds the noise of a shared machine
@@ -171,10 +171,10 @@ contains
       type(contact_params) :: hertz, rough
       type(force_table) :: table, table_h
       type(egw_error), allocatable :: error
-      real(dp) :: d(n_eval), t_hertz, t_hertz_k, t_tab, t_lin, t_build, t0, tb(2)
+      real(dp) :: d(n_eval), t_hertz, t_hertz_k, t_tab, t_lin, t_build, t0
       real(dp), allocatable :: dchk(:), pchk(:)
       real(dp) :: e_h, f_h, k_h, tt3(3), tt4(4)
-      integer :: unit, it, i, nt, n_chk
+      integer :: unit, it, i, n_chk
       type(solver_options) :: opts
 
       tols = [1e-3_dp, 1e-4_dp, 1e-5_dp, 1e-6_dp, 1e-7_dp]
@@ -202,8 +202,8 @@ contains
          call table_eval(table_h, d(i), f_h, k_h)
          if (d(i) > 0) e_h = max(e_h, abs(f_h/hertz_force(d(i), 1.0_dp, 1.0_dp) - 1))
       end do
-      write (output_unit, '(/a)') "== table eval: ns per call (best of 11, interleaved), DEM mix"// &
-         & " delta/sigma in [-6, 50]"
+      write (output_unit, '(/a)') "== table eval: ns per call (best of 11, interleaved),"// &
+         & " DEM mix delta/sigma in [-6, 50]"
       write (output_unit, '(a,f8.2)') "   Hertz force (closed form)          ", t_hertz
       write (output_unit, '(a,f8.2)') "   Hertz force + stiffness (closed)   ", t_hertz_k
       write (output_unit, '(a,f8.2,a,f6.2,a,f6.2,a,i0,a,es8.1,a)') &
@@ -256,13 +256,26 @@ contains
       end do
       call close_csv(unit)
 
-      ! Build speed-up: the same E-GW table at 1e-6 with 1 and with 2 OpenMP threads
-      ! (rel_tol 1e-7: the 1e-6 build of this scene hits the node limit, see
-      ! doc/benchmarks.md; 1e-7 builds and takes ~1 s, long enough to time)
-      ! 1 and 2 threads interleaved, best of 3 each (other processes on the shared
-      ! machine then slow both alike)
+      call run_build_speedup(merge(1, 3, quick), unit_speedup)
+   end subroutine run_tables
+
+   !> Build speed-up: the same E-GW table (mu = 4, delta/sigma in [-6, 50]) built with 1
+   !> and with 2 OpenMP threads, interleaved, best of n_best each (other processes on the
+   !> shared machine then slow both alike). rel_tol 1e-7: the 1e-6 build of this scene hits
+   !> the node limit (see doc/benchmarks.md); 1e-7 builds and takes ~0.6 s, enough to time.
+   subroutine run_build_speedup(n_best, unit_speedup)
+      integer, intent(in) :: n_best, unit_speedup
+      type(contact_params) :: rough
+      type(force_table) :: table
+      type(egw_error), allocatable :: error
+      type(solver_options) :: opts
+      real(dp) :: tb(2), t0
+      integer :: i, nt
+      rough = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
+         & mu=mu_scene)
+      opts = solver_options(n_threads=1)
       tb = huge(1.0_dp)
-      do i = 1, merge(1, 3, quick)
+      do i = 1, n_best
          do nt = 1, 2
             call omp_set_num_threads(nt)
             t0 = wall()
@@ -276,13 +289,13 @@ contains
          end do
       end do
       call omp_set_num_threads(2)
-      write (output_unit, '(a,es8.1,a,f8.3,a,f8.3,a,f6.3)') "== E-GW table build ", &
-         & speedup_tol, " (best of 3): 1 thread ", tb(1), " s, 2 threads ", tb(2), &
-         & " s, speed-up ", tb(1)/tb(2)
+      write (output_unit, '(a,es8.1,a,i0,a,f8.3,a,f8.3,a,f6.3)') "== E-GW table build ", &
+         & speedup_tol, " (best of ", n_best, "): 1 thread ", tb(1), " s, 2 threads ", &
+         & tb(2), " s, speed-up ", tb(1)/tb(2)
       write (unit_speedup, '(a)') "build_table E-GW mu=4 d -6..50 rel_tol="// &
          & fmt_s(speedup_tol)//","//fmt_i(size(table%delta))// &
          & " nodes,"//fmt_e(tb(1))//","//fmt_e(tb(2))//","//fmt_e(tb(1)/tb(2))
-   end subroutine run_tables
+   end subroutine run_build_speedup
 
    !> The universal table over mu in [0.1, 100], delta/sigma in [-6, 1e3] at rel_tol:
    !> build time (2 threads; and 1 thread if both_threads), eval cost vs Hertz on a

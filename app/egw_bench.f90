@@ -12,16 +12,19 @@
 !>                 and 2 threads (speed-up), 1e-6 with 2 threads -> doc/bench/universal.csv
 !>   --universal-1thread  also build the 1e-6 universal table with 1 thread
 !>   --peer FILE   egw side of the peer comparison (tools/bench/peer_greenwood_tripp.py)
+!>   --speedup     only the 1-vs-2-thread measurements: assembly, 1-D table build (best of
+!>                 5), universal 1e-4 build -> doc/bench/speedup.csv, universal_speedup.csv
 !>   --quick       fewer cases and shorter timings (a smoke run)
+!>   --out DIR     write the CSVs to DIR/ instead of doc/bench/ (keeps committed results)
 !> Run from the project root (reads test/data/sphere_reference.csv, writes doc/bench/).
 program egw_bench
    use, intrinsic :: iso_fortran_env, only: output_unit, int64
    use omp_lib, only: omp_set_num_threads
    use egw, only: dp, gauss_integral, ellipk, rough_flat_law, hertz_force
-   use bench_common, only: load_reference, open_csv, close_csv, frac
+   use bench_common, only: load_reference, open_csv, close_csv, frac, out_dir
    use bench_fn, only: run_fn
    use bench_solver, only: run_solver, run_assembly, run_peer_cases
-   use bench_tables, only: run_tables, run_universal
+   use bench_tables, only: run_tables, run_universal, run_build_speedup
    implicit none
 
    integer, parameter :: n = 4096        ! inputs per sweep (fit in L1/L2 cache)
@@ -30,7 +33,7 @@ program egw_bench
    real(dp) :: t_erfc, t_hertz, t_f32, t_ellipk, t_pg, t_pg_zmc
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
-   logical :: universal_1thread, any_section, ok
+   logical :: universal_1thread, any_section, ok, do_speedup
    character(len=512) :: arg, peer_file
    integer :: unit_speedup, unit_csv
 
@@ -41,6 +44,16 @@ program egw_bench
    if (len_trim(peer_file) > 0) then
       call run_peer_cases(trim(peer_file))
       if (.not. any_section) stop
+   end if
+   if (do_speedup) then
+      call open_csv("speedup.csv", unit_speedup, &
+         & "what,size,time_1thread_s,time_2threads_s,speedup")
+      call run_assembly(unit_speedup)
+      call run_build_speedup(5, unit_speedup)
+      call open_csv("universal_speedup.csv", unit_csv)
+      call run_universal(1.0e-4_dp, .true., unit_speedup, unit_csv)
+      call close_csv(unit_csv)
+      call close_csv(unit_speedup)
    end if
    if (do_kernels) call run_kernels()
    if (do_fn) then
@@ -71,8 +84,9 @@ contains
    subroutine parse_arguments()
       integer :: k
       do_kernels = .false.; do_fn = .false.; do_solver = .false.; do_assembly = .false.
-      do_tables = .false.; do_universal = .false.; quick = .false.
+      do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
       universal_1thread = .false.; peer_file = ""
+      out_dir = "doc/bench/"
       k = 0
       do while (k < command_argument_count())
          k = k + 1
@@ -86,6 +100,11 @@ contains
          case ("--universal"); do_universal = .true.
          case ("--universal-1thread"); do_universal = .true.; universal_1thread = .true.
          case ("--quick"); quick = .true.
+         case ("--speedup"); do_speedup = .true.
+         case ("--out")
+            k = k + 1
+            call get_command_argument(k, arg)
+            out_dir = trim(arg)//"/"
          case ("--peer")
             k = k + 1
             call get_command_argument(k, peer_file)
@@ -96,7 +115,7 @@ contains
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
-         & .or. do_universal
+         & .or. do_universal .or. do_speedup
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
          do_tables = .true.; do_universal = .true.
