@@ -14,6 +14,8 @@
 !>   --peer FILE   egw side of the peer comparison (tools/bench/peer_greenwood_tripp.py)
 !>   --speedup     only the 1-vs-2-thread measurements: assembly, 1-D table build (best of
 !>                 5), universal 1e-4 build -> doc/bench/speedup.csv, universal_speedup.csv
+!>   --universal-tol X  only the universal table at rel_tol X (2 threads)
+!>                 -> doc/bench/universal_tol.csv
 !>   --quick       fewer cases and shorter timings (a smoke run)
 !>   --out DIR     write the CSVs to DIR/ instead of doc/bench/ (keeps committed results)
 !> Run from the project root (reads test/data/sphere_reference.csv, writes doc/bench/).
@@ -34,6 +36,7 @@ program egw_bench
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
    logical :: universal_1thread, any_section, ok, do_speedup
+   real(dp) :: universal_tol
    character(len=512) :: arg, peer_file
    integer :: unit_speedup, unit_csv
 
@@ -54,6 +57,14 @@ program egw_bench
       call run_universal(1.0e-4_dp, .true., unit_speedup, unit_csv)
       call close_csv(unit_csv)
       call close_csv(unit_speedup)
+   end if
+   if (universal_tol > 0) then
+      call open_csv("universal_tol.csv", unit_csv)
+      call open_csv("universal_tol_speedup.csv", unit_speedup, &
+         & "what,size,time_1thread_s,time_2threads_s,speedup")
+      call run_universal(universal_tol, .false., unit_speedup, unit_csv)
+      call close_csv(unit_speedup)
+      call close_csv(unit_csv)
    end if
    if (do_kernels) call run_kernels()
    if (do_fn) then
@@ -85,6 +96,7 @@ contains
       integer :: k
       do_kernels = .false.; do_fn = .false.; do_solver = .false.; do_assembly = .false.
       do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
+      universal_tol = 0
       universal_1thread = .false.; peer_file = ""
       out_dir = "doc/bench/"
       k = 0
@@ -101,6 +113,10 @@ contains
          case ("--universal-1thread"); do_universal = .true.; universal_1thread = .true.
          case ("--quick"); quick = .true.
          case ("--speedup"); do_speedup = .true.
+         case ("--universal-tol")
+            k = k + 1
+            call get_command_argument(k, arg)
+            read (arg, *) universal_tol
          case ("--out")
             k = k + 1
             call get_command_argument(k, arg)
@@ -115,7 +131,7 @@ contains
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
-         & .or. do_universal .or. do_speedup
+         & .or. do_universal .or. do_speedup .or. universal_tol > 0
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
          do_tables = .true.; do_universal = .true.
