@@ -1,8 +1,32 @@
-!> egw-bench: cost per call of egw's kernels, as ratios to a libm erfc call and to the
-!> closed-form Hertz force, all timed in one run. Run: fpm run egw-bench --profile release
+!> egw-bench: speed against accuracy of every egw method, timed in one run (doc/benchmarks.md).
+!>   fpm run egw-bench --profile release [-- sections] [--quick]
+!> Sections (default: all but --universal-1thread and --peer):
+!>   --kernels     ns per call of the kernels, as ratios to libm erfc and the Hertz force
+!>   --fn          F_3/2 evaluation paths vs error          -> doc/bench/fn.csv
+!>   --solver      time per force point vs error, meshes, tolerances, Newton vs Picard
+!>                                                           -> doc/bench/solver.csv
+!>   --assembly    OpenMP speed-up of assemble_influence     -> doc/bench/speedup.csv
+!>   --tables      1-D table eval vs Hertz, resolutions, Hermite vs linear, build speed-up
+!>                                                           -> doc/bench/tables.csv
+!>   --universal   universal E-GW table (mu 0.1-100, delta/sigma -6..1e3): 1e-4 built with 1
+!>                 and 2 threads (speed-up), 1e-6 with 2 threads -> doc/bench/universal.csv
+!>   --universal-1thread  also build the 1e-6 universal table with 1 thread
+!>   --peer FILE   egw side of the peer comparison (tools/bench/peer_greenwood_tripp.py)
+!>   --speedup     only the 1-vs-2-thread measurements: assembly, 1-D table build (best of
+!>                 5), universal 1e-4 build -> doc/bench/speedup.csv, universal_speedup.csv
+!>   --universal-tol X  only the universal table at rel_tol X (2 threads)
+!>                 -> doc/bench/universal_tol.csv
+!>   --quick       fewer cases and shorter timings (a smoke run)
+!>   --out DIR     write the CSVs to DIR/ instead of doc/bench/ (keeps committed results)
+!> Run from the project root (reads test/data/sphere_reference.csv, writes doc/bench/).
 program egw_bench
    use, intrinsic :: iso_fortran_env, only: output_unit, int64
+   use omp_lib, only: omp_set_num_threads
    use egw, only: dp, gauss_integral, ellipk, rough_flat_law, hertz_force
+   use bench_common, only: load_reference, open_csv, close_csv, frac, out_dir
+   use bench_fn, only: run_fn
+   use bench_solver, only: run_solver, run_assembly, run_peer_cases
+   use bench_tables, only: run_tables, run_universal, run_build_speedup
    implicit none
 
    integer, parameter :: n = 4096        ! inputs per sweep (fit in L1/L2 cache)
@@ -10,34 +34,138 @@ program egw_bench
    real(dp) :: h(n), k(n), delta(n), sink
    real(dp) :: t_erfc, t_hertz, t_f32, t_ellipk, t_pg, t_pg_zmc
    integer :: i, sweeps
+   logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
+   logical :: universal_1thread, any_section, ok, do_speedup
+   real(dp) :: universal_tol
+   character(len=512) :: arg, peer_file
+   integer :: unit_speedup, unit_csv
 
-   do i = 1, n
-      ! inputs spread over the ranges a solver visits; irregular so nothing is hoisted
-      h(i) = -6.0_dp + 14.0_dp*frac(0.6180339887498949_dp*i)
-      k(i) = 0.999_dp*frac(0.7548776662466927_dp*i)
-      delta(i) = 1.0e-2_dp*frac(0.5698402909980532_dp*i)
-   end do
-   sweeps = 500
-   sink = 0
-
-   t_erfc = best_time(1)
-   t_hertz = best_time(2)
-   t_f32 = best_time(3)
-   t_ellipk = best_time(4)
-   t_pg = best_time(5)
-   t_pg_zmc = best_time(6)
-
-   write (output_unit, '(a)') "egw-bench: ns per call (best of 7), ratios in one run"
-   write (output_unit, '(a)') "kernel                         ns/call   / erfc   / Hertz"
-   call row("libm erfc(x)", t_erfc)
-   call row("Hertz force (closed form)", t_hertz)
-   call row("F_3/2(h)  gauss_integral", t_f32)
-   call row("K(k)      ellipk", t_ellipk)
-   call row("p_G(h)    elastic + deriv", t_pg)
-   call row("p_G(h)    ZMC psi=4 + deriv", t_pg_zmc)
-   write (output_unit, '(a,es10.3)') "(checksum, ignore) ", sink
+   call parse_arguments()
+   call load_reference("test/data/sphere_reference.csv", ok)
+   if (.not. ok) write (output_unit, '(a)') "warning: test/data/sphere_reference.csv not"// &
+      & " found (run from the project root): solver errors will be -1"
+   if (len_trim(peer_file) > 0) then
+      call run_peer_cases(trim(peer_file))
+      if (.not. any_section) stop
+   end if
+   if (do_speedup) then
+      call open_csv("speedup.csv", unit_speedup, &
+         & "what,size,time_1thread_s,time_2threads_s,speedup")
+      call run_assembly(unit_speedup)
+      call run_build_speedup(5, unit_speedup)
+      call open_csv("universal_speedup.csv", unit_csv)
+      call run_universal(1.0e-4_dp, .true., unit_speedup, unit_csv)
+      call close_csv(unit_csv)
+      call close_csv(unit_speedup)
+   end if
+   if (universal_tol > 0) then
+      call open_csv("universal_tol.csv", unit_csv)
+      call open_csv("universal_tol_speedup.csv", unit_speedup, &
+         & "what,size,time_1thread_s,time_2threads_s,speedup")
+      call run_universal(universal_tol, .false., unit_speedup, unit_csv)
+      call close_csv(unit_speedup)
+      call close_csv(unit_csv)
+   end if
+   if (do_kernels) call run_kernels()
+   if (do_fn) then
+      call open_csv("fn.csv", unit_csv)
+      call run_fn(unit_csv)
+      call close_csv(unit_csv)
+   end if
+   if (do_solver) call run_solver(quick)
+   if (do_assembly .or. do_tables .or. do_universal) then
+      ! one speed-up CSV for the sections that measure 1 thread against 2
+      call open_csv("speedup.csv", unit_speedup, &
+         & "what,size,time_1thread_s,time_2threads_s,speedup")
+      if (do_assembly) call run_assembly(unit_speedup)
+      if (do_tables) call run_tables(quick, unit_speedup)
+      if (do_universal) then
+         call open_csv("universal.csv", unit_csv)
+         ! 1e-4 with 1 and 2 threads (the build speed-up), then the target 1e-6 (2 threads)
+         call run_universal(1.0e-4_dp, .not. quick, unit_speedup, unit_csv)
+         if (.not. quick) call run_universal(1.0e-6_dp, universal_1thread, unit_speedup, &
+            & unit_csv)
+         call close_csv(unit_csv)
+      end if
+      call close_csv(unit_speedup)
+   end if
 
 contains
+
+   subroutine parse_arguments()
+      integer :: k
+      do_kernels = .false.; do_fn = .false.; do_solver = .false.; do_assembly = .false.
+      do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
+      universal_tol = 0
+      universal_1thread = .false.; peer_file = ""
+      out_dir = "doc/bench/"
+      k = 0
+      do while (k < command_argument_count())
+         k = k + 1
+         call get_command_argument(k, arg)
+         select case (trim(arg))
+         case ("--kernels"); do_kernels = .true.
+         case ("--fn"); do_fn = .true.
+         case ("--solver"); do_solver = .true.
+         case ("--assembly"); do_assembly = .true.
+         case ("--tables"); do_tables = .true.
+         case ("--universal"); do_universal = .true.
+         case ("--universal-1thread"); do_universal = .true.; universal_1thread = .true.
+         case ("--quick"); quick = .true.
+         case ("--speedup"); do_speedup = .true.
+         case ("--universal-tol")
+            k = k + 1
+            call get_command_argument(k, arg)
+            read (arg, *) universal_tol
+         case ("--out")
+            k = k + 1
+            call get_command_argument(k, arg)
+            out_dir = trim(arg)//"/"
+         case ("--peer")
+            k = k + 1
+            call get_command_argument(k, peer_file)
+         case default
+            write (output_unit, '(a)') "egw-bench: unknown argument "//trim(arg)// &
+               & " (see the header of app/egw_bench.f90)"
+            error stop 2
+         end select
+      end do
+      any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
+         & .or. do_universal .or. do_speedup .or. universal_tol > 0
+      if (.not. any_section .and. len_trim(peer_file) == 0) then
+         do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
+         do_tables = .true.; do_universal = .true.
+      end if
+   end subroutine parse_arguments
+
+   !> The issue-2 kernel benchmark: ns per call, ratios to erfc and Hertz.
+   subroutine run_kernels()
+      do i = 1, n
+         ! inputs spread over the ranges a solver visits; irregular so nothing is hoisted
+         h(i) = -6.0_dp + 14.0_dp*frac(0.6180339887498949_dp*i)
+         k(i) = 0.999_dp*frac(0.7548776662466927_dp*i)
+         delta(i) = 1.0e-2_dp*frac(0.5698402909980532_dp*i)
+      end do
+      sweeps = 500
+      sink = 0
+
+      t_erfc = best_time(1)
+      t_hertz = best_time(2)
+      t_f32 = best_time(3)
+      t_ellipk = best_time(4)
+      t_pg = best_time(5)
+      t_pg_zmc = best_time(6)
+
+      write (output_unit, '(a)') "egw-bench: ns per call (best of 7), ratios in one run"
+      write (output_unit, '(a)') "kernel                         ns/call   / erfc   / Hertz"
+      call row("libm erfc(x)", t_erfc)
+      call row("Hertz force (closed form)", t_hertz)
+      call row("F_3/2(h)  gauss_integral", t_f32)
+      call row("K(k)      ellipk", t_ellipk)
+      call row("p_G(h)    elastic + deriv", t_pg)
+      call row("p_G(h)    ZMC psi=4 + deriv", t_pg_zmc)
+      write (output_unit, '(a,es10.3)') "(checksum, ignore) ", sink
+   end subroutine run_kernels
 
    !> Best time per call, in ns, of kernel `which` over `repeats` runs.
    function best_time(which) result(t)
@@ -91,10 +219,5 @@ contains
       real(dp), intent(in) :: t
       write (output_unit, '(a30,f9.2,2f9.2)') name, t, t/t_erfc, t/t_hertz
    end subroutine row
-
-   elemental real(dp) function frac(x)
-      real(dp), intent(in) :: x
-      frac = x - aint(x)
-   end function frac
 
 end program egw_bench

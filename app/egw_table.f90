@@ -1,148 +1,495 @@
-!> egw-table: writes force-overlap and pressure-separation tables for a contact scene.
-!> With no arguments it runs the embedded default scene (two 1 mm glass beads with
-!> 1 um combined roughness, SI units) and writes its curves as CSV under out/.
+!> egw-table: the table generator. A scene (the embedded default, a namelist file, and/or
+!> command-line flags) goes in; egw_scene picks the cheapest model that meets the
+!> scene's force tolerance, builds its tables and this program writes them (the minimal
+!> set: none for Hertz, one 1-D table, or the universal table) and a summary.
+!> Parsing and printing only; the logic lives in src/egw/scene.f90.
 program egw_table_app
-   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-   use egw, only: dp, egw_version_string, contact_params, model_egw, model_name, &
-      & egw_error, validate_params, flat_pressure, hertz_force, hertz_stiffness, &
-      & hertz_contact_radius, open_temporary, commit_temporary, discard_temporary, &
-      & format_real
+   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
+   use egw, only: dp, egw_version_string, egw_error, format_real, model_name, &
+      & scene_input, scene_overrides, contact_scene, model_choice, scene_tables, &
+      & default_scene_input, read_scene_file, apply_scene_overrides, resolve_scene, &
+      & choose_model, build_scene_tables, choice_name, choice_hertz, choice_table, &
+      & choice_universal, max_types, solver_options, write_table, write_universal, &
+      & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
+      & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
+      & hertz_force, hertz_stiffness, hertz_contact_radius
    implicit none
 
-   type(contact_params) :: scene
-   type(egw_error), allocatable :: error
-   character(len=:), allocatable :: out_dir, arg
-   integer :: iarg, n_points
+   interface
+      function c_rename(from, to) result(stat) bind(C, name="rename")
+         use, intrinsic :: iso_c_binding, only: c_char, c_int
+         character(kind=c_char), intent(in) :: from(*), to(*)
+         integer(c_int) :: stat
+      end function c_rename
+   end interface
 
+   type(scene_input) :: input
+   type(scene_overrides) :: ov
+   type(contact_scene) :: scene
+   type(model_choice) :: choice
+   type(scene_tables) :: tables
+   type(solver_options) :: options
+   type(egw_error), allocatable :: error
+   character(len=:), allocatable :: out_dir, arg, val, scene_file, format_list
+   character(len=:), allocatable :: written(:)
+   type(force_table), allocatable :: pair_tables(:)
+   logical :: want(0:3), formats_given, quiet, choose_only, pair_lammps
+   integer :: iarg, n_written
+   integer(int64) :: t0, t1, rate
+   real(dp) :: elapsed
+
+   call system_clock(t0, rate)
    out_dir = "out"
-   n_points = 201
+   scene_file = ""
+   format_list = ""
+   formats_given = .false.
+   quiet = .false.
+   choose_only = .false.
    iarg = 1
    do while (iarg <= command_argument_count())
       call get_arg(iarg, arg)
+      if (arg(1:min(2, len(arg))) /= "--" .and. arg /= "-h" .and. arg /= "-o" &
+         & .and. arg /= "-q") then
+         if (len(scene_file) > 0) call die("two scene files given: '"//scene_file// &
+            & "' and '"//arg//"'")
+         scene_file = arg
+         iarg = iarg + 1
+         cycle
+      end if
       select case (arg)
       case ("-h", "--help")
          call usage()
          stop
-      case ("-o", "--out")
-         iarg = iarg + 1
-         if (iarg > command_argument_count()) call die("--out needs a directory")
-         call get_arg(iarg, out_dir)
+      case ("-q", "--quiet")
+         quiet = .true.
+      case ("--choose-only")
+         choose_only = .true.
       case default
-         call die("unknown argument '"//arg//"' (see --help)")
+         call next_value(iarg, arg, val)
+         select case (arg)
+         case ("-o", "--out"); out_dir = val
+         case ("--formats"); format_list = val; formats_given = .true.
+         case ("--model"); ov%model = val
+         case ("--radius"); ov%radius(1) = real_value(arg, val)
+         case ("--radii"); call real_list(arg, val, ov%radius)
+         case ("--radius-range"); call real_pair(arg, val, ov%radius_min, ov%radius_max)
+         case ("--modulus"); call real_list(arg, val, ov%modulus)
+         case ("--poisson"); call real_list(arg, val, ov%poisson)
+         case ("--effective-modulus"); ov%effective_modulus = real_value(arg, val)
+         case ("--sigma"); ov%sigma = real_value(arg, val)
+         case ("--sigma-range"); call real_pair(arg, val, ov%sigma_min, ov%sigma_max)
+         case ("--mu"); ov%mu = real_value(arg, val)
+         case ("--summit-density"); ov%summit_density = real_value(arg, val)
+         case ("--summit-radius"); ov%summit_radius = real_value(arg, val)
+         case ("--psi"); ov%psi = real_value(arg, val)
+         case ("--K", "--k"); ov%hardness_coeff = real_value(arg, val)
+         case ("--plastic-ratio"); ov%plastic_ratio = real_value(arg, val)
+         case ("--delta-min"); ov%delta_min = real_value(arg, val)
+         case ("--delta-max"); ov%delta_max = real_value(arg, val)
+         case ("--delta-min-sigma"); ov%delta_min_sigma = real_value(arg, val)
+         case ("--delta-max-sigma"); ov%delta_max_sigma = real_value(arg, val)
+         case ("--tol"); ov%tol = real_value(arg, val)
+         case default
+            call die("unknown option '"//arg//"' (see --help)")
+         end select
       end select
       iarg = iarg + 1
    end do
 
-   scene = default_scene()
-   call validate_params(scene, error)
+   ! --- everything is validated before anything is built or written
+   input = default_scene_input()
+   if (len(scene_file) > 0) then
+      call read_scene_file(scene_file, input, error)
+      if (allocated(error)) call die(error%message)
+   end if
+   call apply_scene_overrides(input, ov, error)
+   if (allocated(error)) call die("command line: "//error%message)
+   call resolve_scene(input, scene, error)
    if (allocated(error)) call die(error%message)
+   call parse_formats(format_list, formats_given, want)
 
-   write (output_unit, '(a)') "egw-table "//egw_version_string//": default scene, model " &
-      & //model_name(scene%model)
-   write (output_unit, '(a)') "  R = "//format_real(scene%radius)//" m, E* = " &
-      & //format_real(scene%modulus)//" Pa, sigma = "//format_real(scene%sigma) &
-      & //" m, mu = "//format_real(scene%mu)
-   call execute_command_line("mkdir -p '"//out_dir//"'")
+   call print_scene()
+   call progress("choosing the model (Hertz check by full solves) ...")
+   call choose_model(scene, options, choice, error)
+   if (allocated(error)) call die(error%message)
+   ! LAMMPS beside a universal table: one 1-D table per particle-type pair (possible for
+   ! discrete types with one sigma); CalculiX files hold one parameter set
+   pair_lammps = choice%kind == choice_universal .and. formats_given .and. &
+      & want(format_lammps)
+   if (choice%kind == choice_universal .and. formats_given .and. want(format_calculix)) &
+      & call die("--formats: CalculiX files hold one parameter set; this scene needs "// &
+      & "the universal table (csv, binary; lammps for particle types)")
+   if (pair_lammps .and. (input%n_types == 0 .or. input%sigma_min /= input%sigma_max)) &
+      & call die("--formats: a LAMMPS file needs one table per particle-type pair: "// &
+      & "list the types (--radii) and give one sigma")
+   if (.not. formats_given) want = [.true., .true., choice%kind == choice_table, &
+      & choice%kind == choice_table]
+   write (output_unit, '(a)') "model: "//choice_name(choice%kind)//" ("// &
+      & model_name(merge(0, input%model, choice%kind == choice_hertz))//")"
+   write (output_unit, '(a)') "  why: "//choice%reason
 
-   call write_hertz_curve(scene, out_dir//"/hertz_force.csv", n_points, error)
-   if (allocated(error)) call die(error%message)
-   call write_flat_curve(scene, out_dir//"/rough_flat_pressure.csv", n_points, error)
-   if (allocated(error)) call die(error%message)
+   n_written = 0
+   allocate (character(len=1024) :: written(10))
+   if (.not. choose_only .and. choice%kind /= choice_hertz) then
+      call progress("building the "//choice_name(choice%kind)//" at tol = "// &
+         & num(input%tol)//" (full solves, OpenMP over points) ...")
+      call build_scene_tables(scene, choice, options, tables, error)
+      if (allocated(error)) call die(error%message)
+      if (pair_lammps) then
+         call progress("LAMMPS: building one 1-D table per particle-type pair ...")
+         call build_pair_tables(scene, options, pair_tables, error)
+         if (allocated(error)) call die(error%message)
+      end if
+      call write_all()
+   end if
+
+   call system_clock(t1)
+   elapsed = real(t1 - t0, dp)/real(rate, dp)
+   call summary()
 
 contains
 
-   !> Two glass beads, R1 = R2 = 1 mm (R = 0.5 mm), E = 70 GPa, nu = 0.22 each,
-   !> combined summit-height std 1 um, Greenwood-Tripp mu = 4, E-GW.
-   function default_scene() result(p)
-      type(contact_params) :: p
-      real(dp), parameter :: e_glass = 70.0e9_dp, nu_glass = 0.22_dp
-      p = contact_params()
-      p%model = model_egw
-      p%radius = 1.0_dp/(1.0_dp/1.0e-3_dp + 1.0_dp/1.0e-3_dp)
-      p%modulus = 1.0_dp/(2.0_dp*(1.0_dp - nu_glass**2)/e_glass)
-      p%sigma = 1.0e-6_dp
-      p%mu = 4.0_dp
-   end function default_scene
-
-   !> Hertz force, stiffness and contact radius for overlaps 0 .. 20 sigma.
-   subroutine write_hertz_curve(p, path, n, error)
-      type(contact_params), intent(in) :: p
-      character(len=*), intent(in) :: path
-      integer, intent(in) :: n
-      type(egw_error), allocatable, intent(out) :: error
-      character(len=:), allocatable :: tmp
-      integer :: unit, i
-      real(dp) :: delta, delta_max
-      delta_max = 20.0_dp*p%sigma
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
-      call write_header(unit, p, "Hertz force-overlap curve of the smooth spheres (DESIGN.md s5)")
-      write (unit, '(a)') "delta_m,force_N,stiffness_N_per_m,contact_radius_m"
-      do i = 0, n - 1
-         delta = delta_max*real(i, dp)/real(n - 1, dp)
-         write (unit, '(4(es24.16e3,:,","))') delta, hertz_force(delta, p%radius, p%modulus), &
-            & hertz_stiffness(delta, p%radius, p%modulus), hertz_contact_radius(delta, p%radius)
-      end do
-      call commit_temporary(unit, tmp, path, error)
-      if (.not. allocated(error)) call report(path, n, "delta in [0, "//format_real(delta_max)//"] m")
-   end subroutine write_hertz_curve
-
-   !> Rough-flat nominal pressure p_G(d) and dp_G/dd for separations -4 sigma .. 6 sigma.
-   subroutine write_flat_curve(p, path, n, error)
-      type(contact_params), intent(in) :: p
-      character(len=*), intent(in) :: path
-      integer, intent(in) :: n
-      type(egw_error), allocatable, intent(out) :: error
-      character(len=:), allocatable :: tmp
-      integer :: unit, i
-      real(dp) :: d, pg, dpg, d_min, d_max
-      d_min = -4.0_dp*p%sigma
-      d_max = 6.0_dp*p%sigma
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
-      call write_header(unit, p, "rough-flat pressure-separation law p_G(d) (DESIGN.md s3)")
-      write (unit, '(a)') "separation_m,pressure_Pa,dpressure_dseparation_Pa_per_m"
-      do i = 0, n - 1
-         d = d_min + (d_max - d_min)*real(i, dp)/real(n - 1, dp)
-         call flat_pressure(p, d, pg, dpg, error)
-         if (allocated(error)) then
-            call discard_temporary(unit, tmp)
-            return
+   !> Write every wanted format of the tables under out_dir: first each to a
+   !> '.part' file (itself written atomically), then all renamed, so that a failure
+   !> leaves no partial set of files behind.
+   subroutine write_all()
+      character(len=:), allocatable :: base
+      character(len=1024) :: parts(10)
+      integer :: i
+      call execute_command_line("mkdir -p '"//out_dir//"'")
+      select case (tables%kind)
+      case (choice_table)
+         base = out_dir//"/scene_table"
+         if (want(format_csv)) then
+            call put(base//".csv", format_csv)
+            call put_curves(scene%sets(1), scene%delta_min(1), scene%delta_max(1))
          end if
-         write (unit, '(3(es24.16e3,:,","))') d, pg, dpg
+         if (want(format_binary)) call put(base//".bin", format_binary)
+         if (want(format_lammps)) call put(base//".lammps", format_lammps)
+         if (want(format_calculix)) then
+            call put(base//"_sphere.inp", format_calculix)
+            call put_flat(out_dir//"/scene_flat.inp")
+         end if
+      case (choice_universal)
+         base = out_dir//"/scene_universal"
+         if (want(format_csv)) call put(base//".csv", format_csv)
+         if (want(format_binary)) call put(base//".bin", format_binary)
+         if (pair_lammps) then
+            call write_lammps(pair_tables, out_dir//"/scene_pairs.lammps.part", error)
+            if (allocated(error)) call fail_write(error%message)
+            n_written = n_written + 1
+            written(n_written) = out_dir//"/scene_pairs.lammps"
+         end if
+      end select
+      parts(1:n_written) = written(1:n_written)
+      do i = 1, n_written
+         if (c_rename(trim(parts(i))//".part"//achar(0), trim(parts(i))//achar(0)) /= 0) &
+            & call fail_write("cannot rename "//trim(parts(i))//".part")
       end do
-      call commit_temporary(unit, tmp, path, error)
-      if (.not. allocated(error)) call report(path, n, "separation in [" &
-         & //format_real(d_min)//", "//format_real(d_max)//"] m")
-   end subroutine write_flat_curve
+   end subroutine write_all
 
-   subroutine write_header(unit, p, title)
-      integer, intent(in) :: unit
+   subroutine put(path, format)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: format
+      if (tables%kind == choice_table) then
+         call write_table(tables%table, path//".part", format, error)
+      else
+         call write_universal(tables%universal, path//".part", format, error)
+      end if
+      if (allocated(error)) call fail_write(error%message)
+      n_written = n_written + 1
+      written(n_written) = path
+   end subroutine put
+
+   !> CalculiX pressure-overclosure curve of the rough flat of the scene's pair, up to
+   !> an overclosure of delta_max.
+   subroutine put_flat(path)
+      character(len=*), intent(in) :: path
+      call write_calculix_flat(scene%sets(1), scene%delta_max(1), input%tol, &
+         & path//".part", error)
+      if (allocated(error)) call fail_write(error%message)
+      n_written = n_written + 1
+      written(n_written) = path
+   end subroutine put_flat
+
+   !> Reference curves of a parameter set as CSV with a metadata header: the smooth
+   !> spheres' Hertz force-overlap curve (DESIGN.md s5) and the rough flat's
+   !> pressure-separation law p_G(d) (DESIGN.md s3), 201 points each.
+   subroutine put_curves(p, delta_lo, delta_hi)
+      type(contact_params), intent(in) :: p
+      real(dp), intent(in) :: delta_lo, delta_hi
+      integer, parameter :: n = 201
+      character(len=:), allocatable :: path
+      real(dp) :: x, lo, hi, pg, dpg
+      integer :: u, i, ios
+      path = out_dir//"/hertz_force.csv"
+      open (newunit=u, file=path//".part", status="replace", action="write", iostat=ios)
+      if (ios /= 0) call fail_write("cannot create "//path//".part")
+      n_written = n_written + 1
+      written(n_written) = path
+      call curve_header(u, p, "Hertz force-overlap curve of the smooth spheres (DESIGN.md s5)")
+      write (u, '(a)') "delta,force,stiffness,contact_radius"
+      hi = max(delta_hi, 0.0_dp)
+      do i = 0, n - 1
+         x = hi*real(i, dp)/real(n - 1, dp)
+         write (u, '(3(g0.17,","),g0.17)') x, hertz_force(x, p%radius, p%modulus), &
+            & hertz_stiffness(x, p%radius, p%modulus), hertz_contact_radius(x, p%radius)
+      end do
+      close (u)
+      if (p%sigma <= 0.0_dp) return
+      path = out_dir//"/rough_flat_pressure.csv"
+      open (newunit=u, file=path//".part", status="replace", action="write", iostat=ios)
+      if (ios /= 0) call fail_write("cannot create "//path//".part")
+      n_written = n_written + 1
+      written(n_written) = path
+      call curve_header(u, p, "rough-flat pressure-separation law p_G(d) and dp_G/dd "// &
+         & "(DESIGN.md s3); separation d = -overlap")
+      write (u, '(a)') "separation,pressure,dpressure_dseparation"
+      lo = -max(delta_hi, 4.0_dp*p%sigma)
+      hi = max(-delta_lo, 6.0_dp*p%sigma)
+      do i = 0, n - 1
+         x = lo + (hi - lo)*real(i, dp)/real(n - 1, dp)
+         call flat_pressure(p, x, pg, dpg, error)
+         if (allocated(error)) then
+            close (u)
+            call fail_write(error%message)
+         end if
+         write (u, '(2(g0.17,","),g0.17)') x, pg, dpg
+      end do
+      close (u)
+   end subroutine put_curves
+
+   subroutine curve_header(u, p, title)
+      integer, intent(in) :: u
       type(contact_params), intent(in) :: p
       character(len=*), intent(in) :: title
-      write (unit, '(a)') "# egw "//egw_version_string//": "//title
-      write (unit, '(a)') "# units: SI (m, Pa, N)"
-      write (unit, '(a)') "# model = "//model_name(p%model)
-      write (unit, '(a)') "# radius = "//format_real(p%radius)
-      write (unit, '(a)') "# modulus = "//format_real(p%modulus)
-      write (unit, '(a)') "# sigma = "//format_real(p%sigma)
-      write (unit, '(a)') "# mu = "//format_real(p%mu)
-      write (unit, '(a)') "# psi = "//format_real(p%psi)
-      write (unit, '(a)') "# hardness_coeff = "//format_real(p%hardness_coeff)
-      write (unit, '(a)') "# plastic_ratio = "//format_real(p%plastic_ratio)
-   end subroutine write_header
+      write (u, '(a)') "# egw "//egw_version_string//": "//title
+      write (u, '(a)') "# units: those of the scene (SI suggested: m, Pa, N)"
+      write (u, '(a)') "# model = "//model_name(p%model)
+      write (u, '(a)') "# radius = "//format_real(p%radius)
+      write (u, '(a)') "# modulus = "//format_real(p%modulus)
+      write (u, '(a)') "# sigma = "//format_real(p%sigma)
+      write (u, '(a)') "# mu = "//format_real(p%mu)
+      write (u, '(a)') "# psi = "//format_real(p%psi)
+      write (u, '(a)') "# hardness_coeff = "//format_real(p%hardness_coeff)
+      write (u, '(a)') "# plastic_ratio = "//format_real(p%plastic_ratio)
+   end subroutine curve_header
 
-   subroutine report(path, n, what)
-      character(len=*), intent(in) :: path, what
-      integer, intent(in) :: n
-      write (output_unit, '(a,i0,a)') "  wrote "//path//" (", n, " rows, "//what//")"
-   end subroutine report
+   !> Remove the '.part' files written so far, then stop with the message.
+   subroutine fail_write(message)
+      character(len=*), intent(in) :: message
+      integer :: i, u, stat
+      do i = 1, n_written
+         open (newunit=u, file=trim(written(i))//".part", status="old", iostat=stat)
+         if (stat == 0) close (u, status="delete")
+      end do
+      call die(message//" (no files written)")
+   end subroutine fail_write
+
+   subroutine print_scene()
+      character(len=:), allocatable :: line
+      integer :: i
+      if (quiet) return
+      write (output_unit, '(a)') "egw-table "//egw_version_string//": scene "// &
+         & either(len(scene_file) > 0, scene_file, "(default"// &
+         & either(command_argument_count() > 0, " + options)", ")"))
+      if (input%n_types == 0) then
+         line = "  radius range ["//num(input%radius_min)//", "// &
+            & num(input%radius_max)//"]"
+      else
+         line = "  particle radii"
+         do i = 1, input%n_types
+            line = line//" "//num(input%radius(i))
+         end do
+      end if
+      write (output_unit, '(a)') line//", model "//model_name(input%model)
+      if (input%sigma_min == input%sigma_max) then
+         line = "  sigma = "//num(input%sigma_min)
+      else
+         line = "  sigma in ["//num(input%sigma_min)//", "// &
+            & num(input%sigma_max)//"]"
+      end if
+      write (output_unit, '(a)') line//", overlaps ["//num(input%delta_min)//", "// &
+         & num(input%delta_max)//"]"//either(input%delta_in_sigma == 1, &
+         & " sigma", "")//", tol = "//num(input%tol)
+      do i = 1, size(scene%sets)
+         associate (p => scene%sets(i))
+            write (output_unit, '(a)') "  "//either(input%n_types == 0, "range corner ", &
+               & "parameter set ")//int_str(i)//": R = "// &
+               & num(p%radius)//", E* = "//num(p%modulus)//", sigma = "// &
+               & num(p%sigma)//", mu = "//num(p%mu)//", delta in ["// &
+               & num(scene%delta_min(i))//", "//num(scene%delta_max(i))//"]"
+         end associate
+      end do
+   end subroutine print_scene
+
+   subroutine summary()
+      integer :: i
+      write (output_unit, '(a)') "summary:"
+      write (output_unit, '(a)') "  model chosen      "//choice_name(choice%kind)
+      write (output_unit, '(a)') "  Hertz error       "//num(choice%hertz_error)// &
+         & either(choice%hertz_relative_to_max, " of P(delta_max)", " (relative)")// &
+         & " (" //int_str(choice%n_solves)//" full solves)"
+      write (output_unit, '(a)') "  error bound       "//num(choice%error_bound)
+      if (.not. choose_only .and. choice%kind /= choice_hertz) then
+         write (output_unit, '(a)') "  measured error    "// &
+            & num(tables%measured_error)//" (max at the build's check solves)"
+         write (output_unit, '(a)') "  nodes             "//int_str(tables%n_nodes)// &
+            & either(tables%kind == choice_universal, &
+            & " (x nodes * mu nodes)", "")
+      end if
+      write (output_unit, '(a,f7.3,a)') "  time           ", elapsed, " s"
+      if (n_written == 0) then
+         write (output_unit, '(a)') "  files             none"// &
+            & either(choice%kind == choice_hertz, " (Hertz closed form: no table needed)", &
+            & "")
+      end if
+      do i = 1, n_written
+         write (output_unit, '(a)') "  wrote             "//trim(written(i))
+      end do
+      if (allocated(pair_tables)) call pair_sections()
+   end subroutine summary
+
+   !> Which particle types each LAMMPS section of scene_pairs.lammps is for.
+   subroutine pair_sections()
+      integer :: i, j, k
+      k = 0
+      do i = 1, input%n_types
+         do j = i, input%n_types
+            k = k + 1
+            write (output_unit, '(a)') "    section EGW_"//int_str(k)//": types "// &
+               & int_str(i)//" "//int_str(j)//" (pair_coeff "//int_str(i)//" "// &
+               & int_str(j)//" scene_pairs.lammps EGW_"//int_str(k)//")"
+         end do
+      end do
+   end subroutine pair_sections
+
+   subroutine parse_formats(list, given_list, want)
+      character(len=*), intent(in) :: list
+      logical, intent(in) :: given_list
+      logical, intent(out) :: want(0:3)
+      integer :: i0, i
+      character(len=:), allocatable :: item
+      want = .false.
+      if (.not. given_list) return
+      i0 = 1
+      do i = 1, len(list) + 1
+         if (i <= len(list)) then
+            if (list(i:i) /= ",") cycle
+         end if
+         item = list(i0:i - 1)
+         select case (item)
+         case ("csv"); want(format_csv) = .true.
+         case ("binary", "bin"); want(format_binary) = .true.
+         case ("lammps"); want(format_lammps) = .true.
+         case ("calculix", "ccx"); want(format_calculix) = .true.
+         case default
+            call die("--formats: '"//item//"' is not one of csv, binary, lammps, calculix")
+         end select
+         i0 = i + 1
+      end do
+   end subroutine parse_formats
+
+   subroutine progress(message)
+      character(len=*), intent(in) :: message
+      if (.not. quiet) write (error_unit, '(a)') "egw-table: "//message
+      flush (error_unit)
+   end subroutine progress
+
+   subroutine next_value(i, name, val)
+      integer, intent(inout) :: i
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable, intent(out) :: val
+      if (i + 1 > command_argument_count()) call die(name//" needs a value (see --help)")
+      i = i + 1
+      call get_arg(i, val)
+   end subroutine next_value
+
+   real(dp) function real_value(name, text) result(x)
+      character(len=*), intent(in) :: name, text
+      integer :: stat
+      read (text, *, iostat=stat) x
+      if (stat /= 0 .or. len_trim(text) == 0 .or. index(text, ",") > 0 .or. &
+         & index(text, "/") > 0) call die(name//" = '"//text//"': not a number")
+   end function real_value
+
+   subroutine real_list(name, text, x)
+      character(len=*), intent(in) :: name, text
+      real(dp), intent(inout) :: x(:)
+      integer :: i0, i, n
+      n = 0
+      i0 = 1
+      do i = 1, len(text) + 1
+         if (i <= len(text)) then
+            if (text(i:i) /= ",") cycle
+         end if
+         n = n + 1
+         if (n > size(x)) call die(name//": at most "//int_str(size(x))//" values")
+         x(n) = real_value(name, text(i0:i - 1))
+         i0 = i + 1
+      end do
+   end subroutine real_list
+
+   subroutine real_pair(name, text, lo, hi)
+      character(len=*), intent(in) :: name, text
+      real(dp), intent(out) :: lo, hi
+      real(dp) :: x(max_types)
+      x = huge(1.0_dp)
+      call real_list(name, text, x)
+      if (x(2) == huge(1.0_dp) .or. x(3) /= huge(1.0_dp)) &
+         & call die(name//" = '"//text//"': give two values MIN,MAX")
+      lo = x(1)
+      hi = x(2)
+   end subroutine real_pair
 
    subroutine usage()
-      write (output_unit, '(a)') "usage: egw-table [--out DIR]"
-      write (output_unit, '(a)') "  Writes the Hertz force-overlap curve and the rough-flat"
-      write (output_unit, '(a)') "  pressure-separation curve of the default scene as CSV."
-      write (output_unit, '(a)') "  --out DIR   output directory (default: out)"
+      character(len=*), parameter :: lines(*) = [character(len=92) :: &
+         & "usage: egw-table [SCENE.nml] [options]", &
+         & "", &
+         & "Picks the cheapest model that meets the scene's force tolerance (Hertz closed", &
+         & "form, one 1-D table, or the universal 2-D table) and writes its tables.", &
+         & "Without arguments: the default scene, two 1 mm glass beads (E = 70 GPa,", &
+         & "nu = 0.22), sigma = 1 um, mu = 4, E-GW, overlaps -2..20 sigma, tol = 1e-4.", &
+         & "A namelist file (&scene ... /, see doc/scenes.md) changes the default scene;", &
+         & "options override the file. Units: any consistent set (SI suggested: m, Pa,", &
+         & "N); eta is per unit area, so eta*sigma*sqrt(R*beta) is dimensionless.", &
+         & "", &
+         & "Scene:", &
+         & "  --model NAME            Hertz, GW, E-GW (default) or EP-GW", &
+         & "  --radius R              one particle type of radius R [length]", &
+         & "  --radii R1,R2,...       particle types (all type pairs are contacts; <= 8)", &
+         & "  --radius-range MIN,MAX  continuous radius range (polydisperse, one material)", &
+         & "  --modulus E1[,E2..]     Young's modulus per type [pressure]", &
+         & "  --poisson NU1[,NU2..]   Poisson's ratio per type (a missing type: type 1's)", &
+         & "  --effective-modulus E*  E* of every pair instead of modulus/poisson", &
+         & "  --sigma S               combined summit-height std of a pair [length]", &
+         & "  --sigma-range MIN,MAX   range of the combined sigma", &
+         & "  --mu MU                 Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta)", &
+         & "  --summit-density ETA    summits per area [1/length^2] (with --summit-radius:", &
+         & "  --summit-radius BETA    mu per pair from eta, beta [length], sigma and R)", &
+         & "  --psi PSI               plasticity index (EP-GW)", &
+         & "  --K K                   ZMC hardness coefficient in (0, 1) (EP-GW)", &
+         & "  --plastic-ratio RHO     ZMC delta_p/delta_ep > 1 (EP-GW)", &
+         & "  --delta-min D, --delta-max D            overlap range [length]", &
+         & "  --delta-min-sigma X, --delta-max-sigma X  overlap range in units of sigma", &
+         & "  --tol TOL               force tolerance (relative), 1e-8 .. 0.1", &
+         & "", &
+         & "Output:", &
+         & "  --formats LIST          of csv,binary,lammps,calculix (default: all that apply:", &
+         & "                          CSV + binary for every table; LAMMPS pair_style table", &
+         & "                          and CalculiX sphere + rough-flat curves for a 1-D table;", &
+         & "                          with the universal table, lammps writes one section", &
+         & "                          per particle-type pair from 1-D tables)", &
+         & "  -o, --out DIR           output directory (default: out)", &
+         & "  --choose-only           report the model choice, build and write nothing", &
+         & "  -q, --quiet             no progress lines on stderr", &
+         & "  -h, --help              this text", &
+         & "", &
+         & "Invalid input: a message naming the parameter, exit status 2, no files."]
+      integer :: i
+      do i = 1, size(lines)
+         write (output_unit, '(a)') trim(lines(i))
+      end do
    end subroutine usage
 
    subroutine die(message)
@@ -159,5 +506,33 @@ contains
       allocate (character(len=n) :: val)
       call get_command_argument(i, val)
    end subroutine get_arg
+
+   pure function either(cond, a, b) result(str)
+      logical, intent(in) :: cond
+      character(len=*), intent(in) :: a, b
+      character(len=:), allocatable :: str
+      if (cond) then
+         str = a
+      else
+         str = b
+      end if
+   end function either
+
+   !> Short form of a number for messages (4 significant digits).
+   pure function num(x) result(str)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(es11.4)') x
+      str = trim(adjustl(buf))
+   end function num
+
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      str = trim(buf)
+   end function int_str
 
 end program egw_table_app

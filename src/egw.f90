@@ -14,6 +14,7 @@ module egw
    use egw_table
    use egw_table_universal
    use egw_table_format
+   use egw_scene
    use egw_io
    implicit none
    public

@@ -15,6 +15,9 @@ program tester
    use test_table_format, only: collect_table_format
    use test_capi, only: collect_capi
    use test_capi_table, only: collect_capi_table
+   use test_scene, only: collect_scene
+   use test_capi_scene, only: collect_capi_scene
+   use test_stability, only: collect_stability
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -32,7 +35,10 @@ program tester
       & new_testsuite("table", collect_table), &
       & new_testsuite("table_format", collect_table_format), &
       & new_testsuite("capi", collect_capi), &
-      & new_testsuite("capi_table", collect_capi_table) &
+      & new_testsuite("capi_table", collect_capi_table), &
+      & new_testsuite("scene", collect_scene), &
+      & new_testsuite("capi_scene", collect_capi_scene), &
+      & new_testsuite("stability", collect_stability) &
       & ]
 
    stat = 0

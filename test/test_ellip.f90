@@ -6,7 +6,7 @@ module test_ellip
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
    use egw_kinds, only: pi
    use egw, only: dp, egw_error, egw_invalid_argument, ellipk, ellipe, ellipk_comp, &
-      & ellipe_comp, get_ellipk, get_ellipe, ellipk_log_split
+      & ellipe_comp, get_ellipk, get_ellipe, ellipk_log_split, ellipk_comp_fast
    use ref_ellip, only: k_arg, k_ellipk, k_ellipe, kc_arg, kc_ellipk, kc_ellipe, kc_kreg, &
       & kc_klog
    implicit none
@@ -26,6 +26,7 @@ contains
          & new_unittest("E(k) against mpmath", test_e_modulus), &
          & new_unittest("K(kc) against mpmath", test_k_comp), &
          & new_unittest("E(kc) against mpmath", test_e_comp), &
+         & new_unittest("fast K(kc) against mpmath and the AGM", test_k_fast), &
          & new_unittest("log split of K against mpmath", test_log_split), &
          & new_unittest("Legendre relation", test_legendre), &
          & new_unittest("special values and limits", test_special), &
@@ -70,6 +71,31 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call check_ulps(error, "ellipk_comp", kc_arg, ellipk_comp(kc_arg), kc_ellipk)
    end subroutine test_k_comp
+
+   !> The polynomial K of the kernel: a few ulp against mpmath on the reference grid
+   !> (kc from 1 down to the smallest normal), and on 2000 points of kc in (0, 1] (uniform
+   !> and logarithmic) within 8 ulp of the AGM's ellipk_comp (each is within ~4 ulp of the
+   !> truth, the AGM by the test above); +Inf at kc = 0 and NaN outside [0, 1].
+   subroutine test_k_fast(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp) :: kc
+      integer :: i
+      call check_ulps(error, "ellipk_comp_fast", kc_arg, ellipk_comp_fast(kc_arg), kc_ellipk)
+      if (allocated(error)) return
+      do i = 1, 2000
+         if (i <= 1000) then
+            kc = real(i, dp)/1000.0_dp
+         else
+            kc = 10.0_dp**(-0.3_dp*real(i - 1000, dp))
+         end if
+         call check(error, ulps(ellipk_comp_fast(kc), ellipk_comp(kc)) <= 8.0_dp, &
+            & "fast K and AGM K differ by more than 8 ulp")
+         if (allocated(error)) return
+      end do
+      call check(error, ellipk_comp_fast(0.0_dp) > huge(1.0_dp), "fast K(kc = 0) = +Inf")
+      if (allocated(error)) return
+      call check(error, ieee_is_nan(ellipk_comp_fast(1.5_dp)), "fast K(kc = 1.5) is NaN")
+   end subroutine test_k_fast
 
    subroutine test_e_comp(error)
       type(error_type), allocatable, intent(out) :: error

@@ -220,7 +220,8 @@ contains
       if (stat /= egw_ok) return
       call solve_contact(params, options, delta, result, error)
       stat = settle(error)
-      ! a failed solve still reports its diagnostics (iterations, residual)
+      ! a solve that failed returns a zeroed result, never a force (egw.h)
+      if (stat /= egw_ok) result = solve_result()
       call c_f_pointer(res, cres)
       cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
          & contact_radius=result%contact_radius, max_pressure=result%max_pressure, &

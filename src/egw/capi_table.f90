@@ -42,7 +42,7 @@ contains
 
    ! ------------------------------------------------------------ 1-D tables
 
-   !> C: egw_table_build (see include/egw_table_api.h for units and statuses).
+   !> C: egw_table_build (see include/egw.h for units and statuses).
    function egw_table_build(p, o, delta_min, delta_max, rel_tol, out) result(stat) &
       & bind(C, name="egw_table_build")
       type(c_ptr), value, intent(in) :: p, o, out

@@ -15,7 +15,7 @@
 !> - far from r (distance >= 2 element lengths) by the element's own Gauss rule, which
 !>   then is exact to ~rho**(-2 n_gauss), rho >= 9.9 (Bernstein ellipse);
 !> - near r by bisection into pieces whose distance from r is at least their length
-!>   (12-point Gauss), and, on pieces no longer than r/2 that end at r (there kc <= 1/3),
+!>   (8-point Gauss), and, on pieces no longer than r/2 that end at r (there kc <= 1/3),
 !>   by 14-point product integration: with
 !>   kc = |r-t|/(r+t), K = kreg + klog ln(r+t) - klog ln|r-t| (egw_ellip), the smooth
 !>   parts by Gauss and the ln|r-t| part by Gauss weights modified to integrate
@@ -24,7 +24,7 @@
 !>   uniform-disc test (exact pressure representation) holds to 1e-15.
 module egw_halfspace
    use egw_kinds, only: dp, pi
-   use egw_ellip, only: ellipk_comp, ellipk_log_split
+   use egw_ellip, only: ellipk_comp_fast, ellipk_log_split
    implicit none
    private
 
@@ -32,9 +32,11 @@ module egw_halfspace
    public :: influence_row, assemble_influence, interpolate_nodal, halfspace_kernel
    public :: gauss_legendre
 
-   !> Points of the plain rule on near pieces and of the log-product rule (16/20 gave the
-   !> same 1e-15 on the uniform disc, 10/12 lost a digit).
-   integer, parameter :: n_fine = 12, n_log = 14
+   !> Points of the plain rule on near pieces and of the log-product rule. Max error on the
+   !> uniform disc (test_halfspace) with n_log = 14: 9e-16 for n_fine = 10 or 12, 9e-15 for
+   !> 8, 1.5e-11 for 6; 8 is 1e-14 relative to w, far below any force tolerance, and the near
+   !> pieces are most of the assembly's kernel evaluations. n_log = 12 lost a digit.
+   integer, parameter :: n_fine = 8, n_log = 14
    !> Recursion guard for the bisection of near pieces (r is never closer than
    !> 2**(-max_depth) element lengths to a piece without being on its end).
    integer, parameter :: max_depth = 60
@@ -237,7 +239,7 @@ contains
          g = 0.0_dp
          return
       end if
-      g = 4.0_dp/pi*t/(r + t)*ellipk_comp(abs(r - t)/(r + t))
+      g = 4.0_dp/pi*t/(r + t)*ellipk_comp_fast(abs(r - t)/(r + t))
    end function halfspace_kernel
 
    !> Influence row at radius r >= 0: w(r) = sum_i row(i) p(gauss_r(i)) (E = 1).
@@ -246,7 +248,7 @@ contains
       real(dp), intent(in) :: r
       real(dp), intent(out) :: row(:)   !< size n_elem*n_gauss
       integer :: e, q, i0
-      real(dp) :: x0, x1, dist, acc(mesh%n_gauss)
+      real(dp) :: x0, x1, dist
 
       do e = 1, mesh%n_elem
          x0 = mesh%edge(e - 1)
@@ -259,9 +261,9 @@ contains
                row(i0 + q) = mesh%gauss_w(i0 + q)*halfspace_kernel(r, mesh%gauss_r(i0 + q))
             end do
          else
-            acc = 0.0_dp
-            call add_piece(mesh, x0, x1, x0, x1, r, 0, acc)
-            row(i0 + 1:i0 + mesh%n_gauss) = acc
+            ! Accumulated in place: a local buffer of run-time size would be a heap array.
+            row(i0 + 1:i0 + mesh%n_gauss) = 0.0_dp
+            call add_piece(mesh, x0, x1, x0, x1, r, 0, row(i0 + 1:i0 + mesh%n_gauss))
          end if
       end do
    end subroutine influence_row
@@ -312,7 +314,7 @@ contains
       do i = 1, n_fine
          t = 0.5_dp*(alpha + beta) + 0.5_dp*(beta - alpha)*mesh%fine_s(i)
          wt = 0.5_dp*(beta - alpha)*mesh%fine_w(i)*halfspace_kernel(r, t)
-         acc = acc + wt*pressure_basis(mesh, local_coord(x0, x1, t))
+         call add_basis(mesh, local_coord(x0, x1, t), wt, acc)
       end do
    end subroutine add_gauss_piece
 
@@ -333,24 +335,47 @@ contains
          g1 = 4.0_dp/pi*t/(r + t)*(kreg + klog*log(r + t))
          g2 = 4.0_dp/pi*t/(r + t)*klog
          wt = len*(mesh%log_w(i)*(g1 - g2*log(len)) - mesh%log_lw(i)*g2)
-         acc = acc + wt*pressure_basis(mesh, local_coord(x0, x1, t))
+         call add_basis(mesh, local_coord(x0, x1, t), wt, acc)
       end do
    end subroutine add_log_piece
 
-   !> Pressure basis L_q(s), q = 1..n_gauss, in the first barycentric form
-   !> L_q = prod_k (s - s_k) * bary_q/(s - s_q): O(n_gauss) per point.
-   pure function pressure_basis(mesh, s) result(l)
+   !> acc(q) += wt L_q(s), q = 1..n_gauss, for the pressure basis of the element,
+   !> L_q(s) = bary_q prod_{k /= q} (s - s_k), by prefix and suffix products: no
+   !> divisions and no array temporaries (this is the innermost loop of the assembly).
+   !> Rules beyond max_basis points (never used by the solver) take the barycentric
+   !> form with one division per point.
+   pure subroutine add_basis(mesh, s, wt, acc)
       type(radial_mesh), intent(in) :: mesh
-      real(dp), intent(in) :: s
-      real(dp) :: l(mesh%n_gauss)
-      real(dp) :: diff(mesh%n_gauss)
-      diff = s - mesh%local_s
-      if (any(diff == 0.0_dp)) then
-         l = merge(1.0_dp, 0.0_dp, diff == 0.0_dp)
+      real(dp), intent(in) :: s, wt
+      real(dp), intent(inout) :: acc(:)
+      integer, parameter :: max_basis = 32
+      real(dp) :: prefix(max_basis), suffix, prod
+      integer :: q, n
+      n = mesh%n_gauss
+      if (n > max_basis) then
+         prod = wt
+         do q = 1, n
+            if (s == mesh%local_s(q)) then
+               acc(q) = acc(q) + wt
+               return
+            end if
+            prod = prod*(s - mesh%local_s(q))
+         end do
+         do q = 1, n
+            acc(q) = acc(q) + prod*mesh%local_bary(q)/(s - mesh%local_s(q))
+         end do
          return
       end if
-      l = product(diff)*mesh%local_bary/diff
-   end function pressure_basis
+      prefix(1) = wt
+      do q = 2, n
+         prefix(q) = prefix(q - 1)*(s - mesh%local_s(q - 1))
+      end do
+      suffix = 1.0_dp
+      do q = n, 1, -1
+         acc(q) = acc(q) + prefix(q)*suffix*mesh%local_bary(q)
+         suffix = suffix*(s - mesh%local_s(q))
+      end do
+   end subroutine add_basis
 
    elemental real(dp) function local_coord(x0, x1, t) result(s)
       real(dp), intent(in) :: x0, x1, t

@@ -5,7 +5,7 @@ module egw_lapack
    implicit none
    private
 
-   public :: dgetrf, dgetrs
+   public :: dgetrf, dgetf2, dgetrs
 
    interface
       !> LU factorisation with partial pivoting of a general m x n matrix.
@@ -16,6 +16,17 @@ module egw_lapack
          integer, intent(out) :: ipiv(*)
          integer, intent(out) :: info
       end subroutine dgetrf
+
+      !> Unblocked LU factorisation with partial pivoting (same factors as dgetrf). For the
+      !> solver's matrices (n ~ 30-300) it takes 3-4 times fewer instructions than the
+      !> reference dgetrf, whose recursive panel code calls dgemm/dtrsm on tiny blocks.
+      pure subroutine dgetf2(m, n, a, lda, ipiv, info)
+         import :: dp
+         integer, intent(in) :: m, n, lda
+         real(dp), intent(inout) :: a(lda, *)
+         integer, intent(out) :: ipiv(*)
+         integer, intent(out) :: info
+      end subroutine dgetf2
 
       !> Solve A X = B (trans = 'N') with the factors from dgetrf.
       pure subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)

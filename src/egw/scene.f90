@@ -1,0 +1,1038 @@
+!> Scenes: what a DEM or FE user knows about their contacts (particle radii, materials,
+!> roughness, overlap range, force tolerance), resolved into the contact parameter sets
+!> of its particle pairs, and the rule that picks the cheapest model meeting the
+!> tolerance: Hertz closed form, one 1-D table, or the universal 2-D table (doc/scenes.md).
+module egw_scene
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
+      & egw_io_error, egw_bad_file, egw_not_converged, egw_unsupported, fatal_error, &
+      & format_real
+   use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
+      & model_epgw, model_name, mu_from_summits
+   use egw_smooth_sphere, only: hertz_force
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options
+   use egw_table, only: force_table, build_table, table_set_radii
+   use egw_table_universal, only: universal_table, build_universal
+   implicit none
+   private
+
+   public :: default_scene_input, read_scene_file, apply_scene_overrides, &
+      & validate_scene_input, resolve_scene, choose_model, build_scene_tables, &
+      & build_pair_tables, model_from_name, choice_name, scene_hertz_error
+
+   !> Most particle types (and materials) a scene lists.
+   integer, parameter, public :: max_types = 8
+
+   integer, parameter, public :: choice_hertz = 0      !< Hertz closed form, no table
+   integer, parameter, public :: choice_table = 1      !< one 1-D force table
+   integer, parameter, public :: choice_universal = 2  !< the universal 2-D table
+
+   !> Tolerances a scene may ask for (the table builders' range is [1e-10, 0.1]; below
+   !> 1e-8 the builds take minutes and the solver's own accuracy is the limit).
+   real(dp), parameter :: tol_min = 1.0e-8_dp, tol_max = 0.1_dp
+
+   !> A scene as the user states it (any consistent units). Field order matches the C
+   !> struct egw_scene. Particle types: radius(1:n_types); n_types = 0 means a continuous
+   !> radius range [radius_min, radius_max] of one material. Materials: E* of every pair
+   !> directly (effective_modulus > 0), or E and nu per type (modulus(i) = 0 for i >= 2:
+   !> same material as type 1). Roughness: combined summit-height std of a pair in
+   !> [sigma_min, sigma_max]; mu directly (mu > 0) or from the summit density and radius
+   !> (then mu = (8/3) eta sigma sqrt(2 R beta) differs between pairs). Overlaps
+   !> [delta_min, delta_max], in length units or (delta_in_sigma = 1) in units of sigma.
+   type, public :: scene_input
+      integer :: model = model_egw
+      integer :: n_types = 0
+      real(dp) :: radius(max_types) = 0.0_dp
+      real(dp) :: radius_min = 0.0_dp, radius_max = 0.0_dp
+      real(dp) :: modulus(max_types) = 0.0_dp, poisson(max_types) = 0.0_dp
+      real(dp) :: effective_modulus = 0.0_dp
+      real(dp) :: sigma_min = 0.0_dp, sigma_max = 0.0_dp
+      real(dp) :: mu = 0.0_dp, summit_density = 0.0_dp, summit_radius = 0.0_dp
+      real(dp) :: psi = 0.0_dp, hardness_coeff = 0.6_dp, plastic_ratio = 54.0_dp
+      real(dp) :: delta_min = 0.0_dp, delta_max = 0.0_dp
+      integer :: delta_in_sigma = 0
+      real(dp) :: tol = 1.0e-3_dp
+   end type scene_input
+
+   !> "Not given" marker of scene_overrides (a value no scene uses).
+   real(dp), parameter, public :: unset = huge(1.0_dp)
+
+   !> Values that replace those of a scene_input (from a namelist file or command-line
+   !> flags); fields left at unset (model: blank) are not given. Names as in the
+   !> namelist; sigma and delta_*_sigma are the one-value / units-of-sigma forms.
+   type, public :: scene_overrides
+      character(len=32) :: model = ""
+      real(dp) :: radius(max_types) = unset
+      real(dp) :: radius_min = unset, radius_max = unset
+      real(dp) :: modulus(max_types) = unset, poisson(max_types) = unset
+      real(dp) :: effective_modulus = unset
+      real(dp) :: sigma = unset, sigma_min = unset, sigma_max = unset
+      real(dp) :: mu = unset, summit_density = unset, summit_radius = unset
+      real(dp) :: psi = unset, hardness_coeff = unset, plastic_ratio = unset
+      real(dp) :: delta_min = unset, delta_max = unset
+      real(dp) :: delta_min_sigma = unset, delta_max_sigma = unset
+      real(dp) :: tol = unset
+   end type scene_overrides
+
+   !> A validated scene resolved into the distinct parameter sets of its pairs (for a
+   !> continuous radius range: the pairs of the range's ends, whose R and mu bound those
+   !> of every pair), each with its overlap range in length units.
+   type, public :: contact_scene
+      type(scene_input) :: input
+      logical :: continuous = .false.             !< radius range: sets are its corners
+      type(contact_params), allocatable :: sets(:)
+      real(dp), allocatable :: radius1(:), radius2(:)  !< particle radii of each set's pair
+      real(dp), allocatable :: delta_min(:), delta_max(:)
+      !> set of each (type pair, sigma) in the order (1,1), (1,2), .., (1,n), (2,2), ..,
+      !> (n,n), sigma_min before sigma_max (identical sets are stored once)
+      integer, allocatable :: pair_set(:)
+   end type contact_scene
+
+   !> The cheapest model meeting the scene's tolerance, and why.
+   type, public :: model_choice
+      integer :: kind = choice_hertz
+      !> bound on the force error of the choice: for Hertz the measured maximum of the
+      !> Hertz error measure (see scene_hertz_error) over the sampled overlaps; for the
+      !> tables the tolerance they are built to (their measured error is reported by
+      !> build_scene_tables)
+      real(dp) :: error_bound = 0.0_dp
+      real(dp) :: hertz_error = 0.0_dp   !< Hertz error measure (0 when not computed)
+      logical :: hertz_relative_to_max = .false.  !< measure relative to P(delta_max)
+      integer :: n_sets = 0              !< distinct pair parameter sets
+      integer :: n_solves = 0            !< full solves spent on the choice
+      real(dp) :: mu_min = 0.0_dp, mu_max = 0.0_dp   !< mu range of the scene
+      real(dp) :: x_min = 0.0_dp, x_max = 0.0_dp     !< delta/sigma range of the scene
+      character(len=:), allocatable :: reason
+   end type model_choice
+
+   !> The tables of a choice (none for Hertz).
+   type, public :: scene_tables
+      integer :: kind = choice_hertz
+      type(force_table) :: table          !< choice_table
+      type(universal_table) :: universal  !< choice_universal
+      real(dp) :: measured_error = 0.0_dp !< max rel. force error at the builds' check solves
+      integer :: n_nodes = 0              !< nodes (universal: x nodes times mu nodes)
+   end type scene_tables
+
+   !> Hertz samples per decade of overlap (the Hertz error varies slowly and smoothly
+   !> in ln delta: 4 per decade resolve its maximum to a few per cent of itself).
+   integer, parameter :: samples_per_decade = 4
+
+contains
+
+   !> The embedded default scene: two 1 mm glass beads (E = 70 GPa, nu = 0.22 each),
+   !> combined summit-height std 1 um, mu = 4, E-GW, overlaps -2 sigma .. 20 sigma
+   !> (first summit contacts to several times the roughness), force tolerance 1e-4.
+   pure function default_scene_input() result(s)
+      type(scene_input) :: s
+      s%model = model_egw
+      s%n_types = 1
+      s%radius(1) = 1.0e-3_dp
+      s%modulus(1) = 70.0e9_dp
+      s%poisson(1) = 0.22_dp
+      s%sigma_min = 1.0e-6_dp
+      s%sigma_max = 1.0e-6_dp
+      s%mu = 4.0_dp
+      s%delta_min = -2.0_dp
+      s%delta_max = 20.0_dp
+      s%delta_in_sigma = 1
+      s%tol = 1.0e-4_dp
+   end function default_scene_input
+
+   !> Model constant from a name: Hertz, GW, E-GW, EP-GW (case and '-' ignored) or 0..3.
+   pure subroutine model_from_name(name, model, error)
+      character(len=*), intent(in) :: name
+      integer, intent(out) :: model
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: key
+      integer :: i
+      key = ""
+      do i = 1, len_trim(name)
+         select case (name(i:i))
+         case ("-", "_", " ")
+         case ("A":"Z"); key = key//achar(iachar(name(i:i)) + 32)
+         case default; key = key//name(i:i)
+         end select
+      end do
+      select case (key)
+      case ("hertz", "0"); model = model_hertz
+      case ("gw", "1"); model = model_gw
+      case ("egw", "2"); model = model_egw
+      case ("epgw", "3"); model = model_epgw
+      case default
+         model = -1
+         call fatal_error(error, egw_invalid_parameter, "model = '"//trim(name)// &
+            & "': unknown (Hertz, GW, E-GW or EP-GW)")
+      end select
+   end subroutine model_from_name
+
+   !> Name of a choice for messages.
+   pure function choice_name(kind) result(name)
+      integer, intent(in) :: kind
+      character(len=:), allocatable :: name
+      select case (kind)
+      case (choice_hertz); name = "Hertz closed form"
+      case (choice_table); name = "1-D table"
+      case (choice_universal); name = "universal 2-D table"
+      case default; name = "unknown"
+      end select
+   end function choice_name
+
+   !> Read the namelist group &scene of a file into input: the variables given replace
+   !> those of input, the rest keep their values (so a file may change only sigma of the
+   !> default scene). Variables (doc/scenes.md): model, radius(1:8) or radius_min and
+   !> radius_max, modulus(1:8), poisson(1:8) or effective_modulus, sigma or sigma_min and
+   !> sigma_max, mu or summit_density and summit_radius, psi, K, plastic_ratio,
+   !> delta_min and delta_max or delta_min_sigma and delta_max_sigma, tol. The result is
+   !> validated; on any error input is unchanged and the message names the variable.
+   subroutine read_scene_file(path, input, error)
+      character(len=*), intent(in) :: path
+      type(scene_input), intent(inout) :: input
+      type(egw_error), allocatable, intent(out) :: error
+      type(scene_overrides) :: ov
+      character(len=32) :: model
+      real(dp) :: radius(max_types), radius_min, radius_max, modulus(max_types), &
+         & poisson(max_types), effective_modulus, sigma, sigma_min, sigma_max, mu, &
+         & summit_density, summit_radius, psi, k, plastic_ratio, delta_min, delta_max, &
+         & delta_min_sigma, delta_max_sigma, tol
+      namelist /scene/ model, radius, radius_min, radius_max, modulus, poisson, &
+         & effective_modulus, sigma, sigma_min, sigma_max, mu, summit_density, summit_radius, &
+         & psi, k, plastic_ratio, delta_min, delta_max, delta_min_sigma, delta_max_sigma, tol
+      integer :: unit, stat
+      character(len=512) :: msg
+
+      model = ov%model
+      radius = ov%radius; radius_min = ov%radius_min; radius_max = ov%radius_max
+      modulus = ov%modulus; poisson = ov%poisson; effective_modulus = ov%effective_modulus
+      sigma = ov%sigma; sigma_min = ov%sigma_min; sigma_max = ov%sigma_max
+      mu = ov%mu; summit_density = ov%summit_density; summit_radius = ov%summit_radius
+      psi = ov%psi; k = ov%hardness_coeff; plastic_ratio = ov%plastic_ratio
+      delta_min = ov%delta_min; delta_max = ov%delta_max
+      delta_min_sigma = ov%delta_min_sigma; delta_max_sigma = ov%delta_max_sigma
+      tol = ov%tol
+
+      open (newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=msg)
+      if (stat /= 0) then
+         call fatal_error(error, egw_io_error, "path = "//path//": "//trim(msg))
+         return
+      end if
+      read (unit, nml=scene, iostat=stat, iomsg=msg)
+      if (stat /= 0) then
+         ! gfortran reports most malformed groups as end of file: find the entry at fault
+         rewind (unit)
+         call diagnose(unit, msg)
+         close (unit)
+         call fatal_error(error, egw_bad_file, "path = "//path//": "//trim(msg))
+         return
+      end if
+      close (unit)
+      ov = scene_overrides(model=model, radius=radius, radius_min=radius_min, &
+         & radius_max=radius_max, modulus=modulus, poisson=poisson, &
+         & effective_modulus=effective_modulus, sigma=sigma, sigma_min=sigma_min, &
+         & sigma_max=sigma_max, mu=mu, summit_density=summit_density, &
+         & summit_radius=summit_radius, psi=psi, hardness_coeff=k, &
+         & plastic_ratio=plastic_ratio, delta_min=delta_min, delta_max=delta_max, &
+         & delta_min_sigma=delta_min_sigma, delta_max_sigma=delta_max_sigma, tol=tol)
+      call apply_scene_overrides(input, ov, error)
+      if (allocated(error)) error%message = "path = "//path//": "//error%message
+
+   contains
+
+      !> Why the group could not be read: no group, no closing '/', or the first entry
+      !> (a line starting "name =" with its continuation lines) that fails on its own.
+      subroutine diagnose(unit, why)
+         integer, intent(in) :: unit
+         character(len=*), intent(inout) :: why
+         character(len=:), allocatable :: line, entry, lower
+         character(len=512) :: entry_msg
+         logical :: in_group, closed
+         integer :: ios, at
+         in_group = .false.
+         closed = .false.
+         entry = ""
+         do
+            call read_line(unit, line, ios)
+            if (ios /= 0) exit
+            at = index(line, "!")
+            if (at > 0) line = line(:at - 1)
+            if (.not. in_group) then
+               lower = to_lower(line)
+               at = index(lower, "&scene")
+               if (at == 0) cycle
+               in_group = .true.
+               line = line(at + 6:)
+            end if
+            at = index(line, "/")
+            if (at > 0) then
+               closed = .true.
+               line = line(:at - 1)
+            end if
+            if (starts_entry(line) .and. len_trim(entry) > 0) then
+               if (.not. entry_ok(entry, entry_msg)) exit
+               entry = ""
+            end if
+            entry = entry//" "//trim(line)
+            if (closed) exit
+         end do
+         if (.not. in_group) then
+            why = "no namelist group &scene found"
+         else if (len_trim(entry) > 0 .and. .not. entry_ok(entry, entry_msg)) then
+            why = "'"//trim(adjustl(entry))//"': "//trim(entry_msg)
+         else if (.not. closed) then
+            why = "the &scene group has no closing '/'"
+         end if
+      end subroutine diagnose
+
+      logical function entry_ok(entry, why)
+         character(len=*), intent(in) :: entry
+         character(len=*), intent(out) :: why
+         character(len=:), allocatable :: text
+         integer :: ios
+         why = ""
+         text = "&scene "//entry//" /"
+         read (text, nml=scene, iostat=ios, iomsg=why)
+         entry_ok = ios == 0
+      end function entry_ok
+
+   end subroutine read_scene_file
+
+   !> Whether a namelist line starts an entry: a name (optionally indexed) then '='.
+   pure logical function starts_entry(line)
+      character(len=*), intent(in) :: line
+      integer :: i, eq
+      character :: c
+      starts_entry = .false.
+      eq = index(line, "=")
+      if (eq == 0) return
+      do i = 1, eq - 1
+         c = line(i:i)
+         if (.not. (c == " " .or. c == "_" .or. c == "(" .or. c == ")" .or. c == ":" &
+            & .or. c == "," .or. (c >= "a" .and. c <= "z") .or. (c >= "A" .and. c <= "Z") &
+            & .or. (c >= "0" .and. c <= "9"))) return
+      end do
+      starts_entry = len_trim(line(:eq - 1)) > 0
+   end function starts_entry
+
+   !> One line of a formatted file, any length.
+   subroutine read_line(unit, line, ios)
+      integer, intent(in) :: unit
+      character(len=:), allocatable, intent(out) :: line
+      integer, intent(out) :: ios
+      character(len=256) :: chunk
+      integer :: n
+      line = ""
+      do
+         read (unit, '(a)', advance="no", iostat=ios, size=n) chunk
+         line = line//chunk(:n)
+         if (ios /= 0) exit
+      end do
+      if (is_iostat_eor(ios)) ios = 0
+   end subroutine read_line
+
+   pure function to_lower(str) result(lower)
+      character(len=*), intent(in) :: str
+      character(len=len(str)) :: lower
+      integer :: i
+      lower = str
+      do i = 1, len(str)
+         if (str(i:i) >= "A" .and. str(i:i) <= "Z") lower(i:i) = achar(iachar(str(i:i)) + 32)
+      end do
+   end function to_lower
+
+   !> Replace the fields of input that ov gives (see scene_overrides), then validate.
+   !> On any error input is unchanged and the message names the variable.
+   pure subroutine apply_scene_overrides(input, ov, error)
+      type(scene_input), intent(inout) :: input
+      type(scene_overrides), intent(in) :: ov
+      type(egw_error), allocatable, intent(out) :: error
+      type(scene_input) :: s
+      integer :: n
+
+      s = input
+      if (len_trim(ov%model) > 0) then
+         call model_from_name(ov%model, s%model, error)
+         if (allocated(error)) return
+      end if
+      ! radii: a list or a range
+      n = count(given(ov%radius))
+      if (n > 0 .and. .not. all(given(ov%radius(1:n)))) then
+         call fatal_error(error, egw_invalid_parameter, "radius: give the types' radii "// &
+            & "as radius = R1, R2, ... without gaps")
+         return
+      end if
+      if (n > 0 .and. (given(ov%radius_min) .or. given(ov%radius_max))) then
+         call fatal_error(error, egw_invalid_parameter, "radius and radius_min/radius_max: "// &
+            & "give a list of radii or a range, not both")
+         return
+      end if
+      if (n > 0) then
+         s%n_types = n
+         s%radius = 0.0_dp
+         s%radius(1:n) = ov%radius(1:n)
+      else if (given(ov%radius_min) .or. given(ov%radius_max)) then
+         if (.not. (given(ov%radius_min) .and. given(ov%radius_max))) then
+            call fatal_error(error, egw_invalid_parameter, "radius_min, radius_max: "// &
+               & "a radius range needs both")
+            return
+         end if
+         s%n_types = 0
+         s%radius = 0.0_dp
+         s%radius_min = ov%radius_min
+         s%radius_max = ov%radius_max
+      end if
+      ! materials
+      if (given(ov%effective_modulus)) then
+         if (any(given(ov%modulus)) .or. any(given(ov%poisson))) then
+            call fatal_error(error, egw_invalid_parameter, "effective_modulus and "// &
+               & "modulus/poisson: give E* or the materials, not both")
+            return
+         end if
+         s%effective_modulus = ov%effective_modulus
+      else if (any(given(ov%modulus)) .or. any(given(ov%poisson))) then
+         s%effective_modulus = 0.0_dp
+         where (given(ov%modulus)) s%modulus = ov%modulus
+         where (given(ov%poisson)) s%poisson = ov%poisson
+      end if
+      ! roughness
+      if (given(ov%sigma)) then
+         if (given(ov%sigma_min) .or. given(ov%sigma_max)) then
+            call fatal_error(error, egw_invalid_parameter, "sigma and sigma_min/sigma_max: "// &
+               & "give one sigma or a range, not both")
+            return
+         end if
+         ! (named here: validation would name sigma_min)
+         if (.not. (ieee_is_finite(ov%sigma) .and. ov%sigma >= 0.0_dp)) then
+            call bad(error, "sigma", ov%sigma, "must be finite and >= 0"); return
+         end if
+         s%sigma_min = ov%sigma
+         s%sigma_max = ov%sigma
+      else if (given(ov%sigma_min) .or. given(ov%sigma_max)) then
+         if (.not. (given(ov%sigma_min) .and. given(ov%sigma_max))) then
+            call fatal_error(error, egw_invalid_parameter, "sigma_min, sigma_max: "// &
+               & "a roughness range needs both")
+            return
+         end if
+         s%sigma_min = ov%sigma_min
+         s%sigma_max = ov%sigma_max
+      end if
+      if (given(ov%mu)) then
+         if (given(ov%summit_density) .or. given(ov%summit_radius)) then
+            call fatal_error(error, egw_invalid_parameter, "mu and summit_density/"// &
+               & "summit_radius: give mu or the summits, not both")
+            return
+         end if
+         s%mu = ov%mu
+         s%summit_density = 0.0_dp
+         s%summit_radius = 0.0_dp
+      else if (given(ov%summit_density) .or. given(ov%summit_radius)) then
+         if (.not. (given(ov%summit_density) .and. given(ov%summit_radius))) then
+            call fatal_error(error, egw_invalid_parameter, "summit_density, summit_radius: "// &
+               & "mu from the summits needs both")
+            return
+         end if
+         s%mu = 0.0_dp
+         s%summit_density = ov%summit_density
+         s%summit_radius = ov%summit_radius
+      end if
+      if (given(ov%psi)) s%psi = ov%psi
+      if (given(ov%hardness_coeff)) s%hardness_coeff = ov%hardness_coeff
+      if (given(ov%plastic_ratio)) s%plastic_ratio = ov%plastic_ratio
+      ! overlaps: both ends in one unit, or one end in the scene's current unit
+      if (given(ov%delta_min_sigma) .or. given(ov%delta_max_sigma)) then
+         if (given(ov%delta_min) .or. given(ov%delta_max)) then
+            call fatal_error(error, egw_invalid_parameter, "delta_min/delta_max and "// &
+               & "delta_min_sigma/delta_max_sigma: give the range in one unit")
+            return
+         end if
+         call set_range(s, ov%delta_min_sigma, ov%delta_max_sigma, 1, "delta_min_sigma", &
+            & "delta_max_sigma", error)
+      else
+         call set_range(s, ov%delta_min, ov%delta_max, 0, "delta_min", "delta_max", error)
+      end if
+      if (allocated(error)) return
+      if (given(ov%tol)) s%tol = ov%tol
+
+      call validate_scene_input(s, error)
+      if (allocated(error)) return
+      input = s
+   end subroutine apply_scene_overrides
+
+   !> Whether a scene_overrides value was given.
+   elemental logical function given(x)
+      real(dp), intent(in) :: x
+      given = x /= unset
+   end function given
+
+   !> Set the overlap range in the given unit (0 length, 1 sigma); a single end is
+   !> accepted only when the scene's range is already in that unit.
+   pure subroutine set_range(s, lo, hi, unit_kind, name_lo, name_hi, error)
+      type(scene_input), intent(inout) :: s
+      real(dp), intent(in) :: lo, hi
+      integer, intent(in) :: unit_kind
+      character(len=*), intent(in) :: name_lo, name_hi
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. (given(lo) .or. given(hi))) return
+      if (.not. (given(lo) .and. given(hi)) .and. s%delta_in_sigma /= unit_kind) then
+         call fatal_error(error, egw_invalid_parameter, name_lo//", "//name_hi// &
+            & ": the scene's range is in other units; give both ends")
+         return
+      end if
+      s%delta_in_sigma = unit_kind
+      if (given(lo)) s%delta_min = lo
+      if (given(hi)) s%delta_max = hi
+   end subroutine set_range
+
+   !> Check a scene; the message names the first offending field and its value.
+   pure subroutine validate_scene_input(s, error)
+      type(scene_input), intent(in) :: s
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i
+      if (s%model < model_hertz .or. s%model > model_epgw) then
+         call fatal_error(error, egw_invalid_parameter, "model = "//int_str(s%model)// &
+            & ": unknown (0 Hertz, 1 GW, 2 E-GW, 3 EP-GW)")
+         return
+      end if
+      if (s%n_types < 0 .or. s%n_types > max_types) then
+         call fatal_error(error, egw_invalid_parameter, "n_types = "//int_str(s%n_types)// &
+            & ": must lie in [0, "//int_str(max_types)//"] (0: radius range)")
+         return
+      end if
+      if (s%n_types == 0) then
+         if (.not. positive(s%radius_min)) then
+            call bad(error, "radius_min", s%radius_min, "must be finite and > 0"); return
+         end if
+         if (.not. (positive(s%radius_max) .and. s%radius_max >= s%radius_min)) then
+            call bad(error, "radius_max", s%radius_max, "must be finite and >= radius_min")
+            return
+         end if
+      end if
+      do i = 1, s%n_types
+         if (.not. positive(s%radius(i))) then
+            call bad(error, "radius("//int_str(i)//")", s%radius(i), "must be finite and > 0")
+            return
+         end if
+      end do
+      if (s%effective_modulus /= 0.0_dp) then
+         if (.not. positive(s%effective_modulus)) then
+            call bad(error, "effective_modulus", s%effective_modulus, &
+               & "must be finite and > 0 (or 0: from modulus and poisson)")
+            return
+         end if
+      else
+         do i = 1, max(1, s%n_types)
+            if (i > 1 .and. s%modulus(i) == 0.0_dp) cycle  ! same material as type 1
+            if (.not. positive(s%modulus(i))) then
+               call bad(error, "modulus("//int_str(i)//")", s%modulus(i), &
+                  & "must be finite and > 0")
+               return
+            end if
+            if (.not. (s%poisson(i) > -1.0_dp .and. s%poisson(i) <= 0.5_dp)) then
+               call bad(error, "poisson("//int_str(i)//")", s%poisson(i), &
+                  & "must lie in (-1, 0.5]")
+               return
+            end if
+         end do
+         if (s%n_types == 0 .and. any(s%modulus(2:) /= 0.0_dp)) then
+            call fatal_error(error, egw_invalid_parameter, "modulus(2): a radius range "// &
+               & "has one material (give a list of types for several)")
+            return
+         end if
+      end if
+      if (.not. (ieee_is_finite(s%sigma_min) .and. s%sigma_min >= 0.0_dp)) then
+         call bad(error, "sigma_min", s%sigma_min, "must be finite and >= 0"); return
+      end if
+      if (.not. (ieee_is_finite(s%sigma_max) .and. s%sigma_max >= s%sigma_min)) then
+         call bad(error, "sigma_max", s%sigma_max, "must be finite and >= sigma_min"); return
+      end if
+      if (s%sigma_min == 0.0_dp .and. s%sigma_max > 0.0_dp) then
+         call bad(error, "sigma_min", s%sigma_min, "a roughness range must be > 0 "// &
+            & "(sigma = 0 alone means smooth spheres)")
+         return
+      end if
+      if (s%sigma_max > 0.0_dp .and. s%model /= model_hertz) then
+         if (s%mu /= 0.0_dp) then
+            if (.not. positive(s%mu)) then
+               call bad(error, "mu", s%mu, "must be finite and > 0"); return
+            end if
+         else
+            if (.not. positive(s%summit_density)) then
+               call bad(error, "summit_density", s%summit_density, &
+                  & "must be finite and > 0 (or give mu)")
+               return
+            end if
+            if (.not. positive(s%summit_radius)) then
+               call bad(error, "summit_radius", s%summit_radius, &
+                  & "must be finite and > 0 (or give mu)")
+               return
+            end if
+         end if
+      end if
+      if (.not. (ieee_is_finite(s%psi) .and. s%psi >= 0.0_dp)) then
+         call bad(error, "psi", s%psi, "must be finite and >= 0"); return
+      end if
+      if (.not. (s%hardness_coeff > 0.0_dp .and. s%hardness_coeff < 1.0_dp)) then
+         call bad(error, "K", s%hardness_coeff, "must lie in (0, 1)"); return
+      end if
+      if (.not. (ieee_is_finite(s%plastic_ratio) .and. s%plastic_ratio > 1.0_dp)) then
+         call bad(error, "plastic_ratio", s%plastic_ratio, "must be finite and > 1"); return
+      end if
+      if (s%delta_in_sigma /= 0 .and. s%delta_in_sigma /= 1) then
+         call fatal_error(error, egw_invalid_parameter, "delta_in_sigma = "// &
+            & int_str(s%delta_in_sigma)//": must be 0 (length) or 1 (units of sigma)")
+         return
+      end if
+      if (s%delta_in_sigma == 1 .and. s%sigma_max == 0.0_dp) then
+         call fatal_error(error, egw_invalid_parameter, "delta_min_sigma/delta_max_sigma:"// &
+            & " overlaps in units of sigma need sigma > 0")
+         return
+      end if
+      if (.not. ieee_is_finite(s%delta_min)) then
+         call bad(error, delta_name(s, "min"), s%delta_min, "must be finite"); return
+      end if
+      if (.not. (ieee_is_finite(s%delta_max) .and. s%delta_max > s%delta_min)) then
+         call bad(error, delta_name(s, "max"), s%delta_max, "must be finite and > "// &
+            & delta_name(s, "min"))
+         return
+      end if
+      if ((s%model == model_hertz .or. s%sigma_max == 0.0_dp) .and. s%delta_max <= 0.0_dp) then
+         call bad(error, delta_name(s, "max"), s%delta_max, "smooth spheres need overlaps > 0")
+         return
+      end if
+      if (.not. (s%tol >= tol_min .and. s%tol <= tol_max)) then
+         call bad(error, "tol", s%tol, "must lie in ["//format_real(tol_min)//", "// &
+            & format_real(tol_max)//"]")
+         return
+      end if
+   end subroutine validate_scene_input
+
+   !> Validate a scene and resolve it into the distinct parameter sets of its pairs.
+   !> Pairs (i <= j) of types combine as 1/R = 1/R_i + 1/R_j and
+   !> 1/E* = (1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j; each at sigma_min and sigma_max (mu from
+   !> the summits is increasing in R and sigma, so the ends bound it).
+   pure subroutine resolve_scene(input, scene, error)
+      type(scene_input), intent(in) :: input
+      type(contact_scene), intent(out) :: scene
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: radii(max_types), e_star, r, sig(2)
+      integer :: n, i, j, is, ns, nsig, np, match
+      integer, allocatable :: pset(:)
+      type(contact_params) :: p
+      type(contact_params), allocatable :: sets(:)
+      real(dp), allocatable :: r1(:), r2(:)
+
+      call validate_scene_input(input, error)
+      if (allocated(error)) return
+      scene%input = input
+      scene%continuous = input%n_types == 0
+      if (scene%continuous) then
+         n = 2
+         radii(1:2) = [input%radius_min, input%radius_max]
+      else
+         n = input%n_types
+         radii(1:n) = input%radius(1:n)
+      end if
+      sig = [input%sigma_min, input%sigma_max]
+      nsig = merge(1, 2, input%sigma_min == input%sigma_max)
+      allocate (sets(n*(n + 1)/2*nsig), r1(n*(n + 1)/2*nsig), r2(n*(n + 1)/2*nsig))
+      allocate (pset(n*(n + 1)/2*nsig))
+      ns = 0
+      np = 0
+      do i = 1, n
+         do j = i, n
+            r = radii(i)*radii(j)/(radii(i) + radii(j))
+            if (input%effective_modulus > 0.0_dp) then
+               e_star = input%effective_modulus
+            else
+               e_star = 1.0_dp/(compliance(input, i) + compliance(input, j))
+            end if
+            do is = 1, nsig
+               p = contact_params(model=input%model, radius=r, modulus=e_star, &
+                  & sigma=sig(is), mu=1.0_dp, psi=input%psi, &
+                  & hardness_coeff=input%hardness_coeff, plastic_ratio=input%plastic_ratio)
+               ! (mu stays 1 for smooth spheres and Hertz scenes without roughness data)
+               if (input%mu > 0.0_dp) then
+                  p%mu = input%mu
+               else if (input%summit_density > 0.0_dp .and. sig(is) > 0.0_dp) then
+                  p%mu = mu_from_summits(input%summit_density, input%summit_radius, &
+                     & sig(is), r)
+               end if
+               np = np + 1
+               match = findloc(same_params(sets(1:ns), p), .true., dim=1)
+               if (match > 0) then
+                  pset(np) = match
+                  cycle
+               end if
+               call validate_params(p, error)
+               if (allocated(error)) then
+                  error%message = "pair of types "//int_str(i)//", "//int_str(j)//": "// &
+                     & error%message
+                  return
+               end if
+               ns = ns + 1
+               sets(ns) = p
+               r1(ns) = radii(i)
+               r2(ns) = radii(j)
+               pset(np) = ns
+            end do
+         end do
+      end do
+      scene%sets = sets(1:ns)
+      scene%pair_set = pset(1:np)
+      scene%radius1 = r1(1:ns)
+      scene%radius2 = r2(1:ns)
+      allocate (scene%delta_min(ns), scene%delta_max(ns))
+      do is = 1, ns
+         if (input%delta_in_sigma == 1) then
+            scene%delta_min(is) = input%delta_min*scene%sets(is)%sigma
+            scene%delta_max(is) = input%delta_max*scene%sets(is)%sigma
+         else
+            scene%delta_min(is) = input%delta_min
+            scene%delta_max(is) = input%delta_max
+         end if
+      end do
+   end subroutine resolve_scene
+
+   !> The cheapest model that meets the scene's tolerance (doc/scenes.md):
+   !> 1. Hertz, exactly, for smooth spheres (model Hertz or sigma = 0);
+   !> 2. Hertz when the Hertz error measure (scene_hertz_error) is <= tol for every set;
+   !> 3. one 1-D table when the scene has a single parameter set (one pair, one sigma);
+   !> 4. the universal 2-D table otherwise (radius range, several types or materials,
+   !>    sigma range), over the scene's mu and delta/sigma ranges.
+   !> Full solves (options) are spent only on the Hertz check; tables are built by
+   !> build_scene_tables.
+   subroutine choose_model(scene, options, choice, error)
+      type(contact_scene), intent(in) :: scene
+      type(solver_options), intent(in) :: options
+      type(model_choice), intent(out) :: choice
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: tol
+      integer :: ns
+
+      if (.not. allocated(scene%sets)) then
+         call fatal_error(error, egw_invalid_argument, "scene: not resolved (resolve_scene)")
+         return
+      end if
+      call validate_options(options, error)
+      if (allocated(error)) return
+      tol = scene%input%tol
+      ns = size(scene%sets)
+      choice%n_sets = ns
+      choice%mu_min = minval(scene%sets%mu)
+      choice%mu_max = maxval(scene%sets%mu)
+      if (all(scene%sets%sigma > 0.0_dp)) then
+         choice%x_min = minval(scene%delta_min/scene%sets%sigma)
+         choice%x_max = maxval(scene%delta_max/scene%sets%sigma)
+      end if
+      if (scene%input%model == model_hertz .or. scene%input%sigma_max == 0.0_dp) then
+         choice%kind = choice_hertz
+         choice%error_bound = 0.0_dp
+         choice%reason = "smooth spheres (model Hertz or sigma = 0): Hertz is exact"
+         return
+      end if
+
+      call scene_hertz_error(scene, options, choice%hertz_error, choice%n_solves, error)
+      if (allocated(error)) return
+      choice%hertz_relative_to_max = scene%input%delta_min <= 0.0_dp
+      if (choice%hertz_error <= tol) then
+         choice%kind = choice_hertz
+         choice%error_bound = choice%hertz_error
+         choice%reason = "roughness changes the force by at most "// &
+            & num(choice%hertz_error)//hertz_measure(choice)//" <= tol = "// &
+            & num(tol)
+      else if (ns == 1 .and. .not. scene%continuous) then
+         choice%kind = choice_table
+         choice%error_bound = tol
+         choice%reason = "roughness changes the force by up to "// &
+            & num(choice%hertz_error)//hertz_measure(choice)//" > tol; "// &
+            & "one parameter set: one 1-D table"
+      else
+         choice%kind = choice_universal
+         choice%error_bound = tol
+         choice%reason = "roughness changes the force by up to "// &
+            & num(choice%hertz_error)//hertz_measure(choice)//" > tol; "// &
+            & int_str(ns)//" parameter sets"//merge(" (radius range)", "               ", &
+            & scene%continuous)
+         choice%reason = trim(choice%reason)//": the universal table over mu in ["// &
+            & num(choice%mu_min)//", "//num(choice%mu_max)// &
+            & "], delta/sigma in ["//num(choice%x_min)//", "// &
+            & num(choice%x_max)//"]"
+      end if
+   end subroutine choose_model
+
+   pure function hertz_measure(choice) result(str)
+      type(model_choice), intent(in) :: choice
+      character(len=:), allocatable :: str
+      if (choice%hertz_relative_to_max) then
+         str = " of P(delta_max)"
+      else
+         str = " (relative)"
+      end if
+   end function hertz_measure
+
+   !> The Hertz error measure of a scene, the maximum over its parameter sets of:
+   !> - delta_min > 0: max |P_Hertz(delta)/P(delta) - 1| over the overlaps (pointwise
+   !>   relative error, P from full solves);
+   !> - delta_min <= 0: max |P_Hertz(delta) - P(delta)| / P(delta_max) (relative to the
+   !>   scene's largest force): Hertz gives 0 for delta <= 0 where the rough force is not,
+   !>   and a pointwise relative error would be 1 there whatever the scene.
+   !> Sampled at delta = 0 (for delta_min <= 0: P increases with delta, so P(0) bounds
+   !> the missing force of all separations) and at 4 overlaps per decade from the
+   !> smallest positive overlap of interest (delta_min, or sigma/100) to delta_max, where
+   !> roughness matters most relative to Hertz at the small end. Solves in parallel at
+   !> rel_tol = min(options%rel_tol, tol/10).
+   subroutine scene_hertz_error(scene, options, worst, n_solves, error)
+      type(contact_scene), intent(in) :: scene
+      type(solver_options), intent(in) :: options
+      real(dp), intent(out) :: worst
+      integer, intent(out) :: n_solves
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: opts
+      real(dp), allocatable :: deltas(:, :), force(:, :), p_ref(:)
+      integer, allocatable :: stat(:, :), n_pts(:)
+      integer :: ns, s, i, idx, np, nmax, i0
+      real(dp) :: lo, hi, e
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+
+      worst = 0.0_dp
+      n_solves = 0
+      ns = size(scene%sets)
+      opts = options
+      opts%n_threads = 1
+      opts%rel_tol = min(options%rel_tol, 0.1_dp*scene%input%tol)
+      nmax = 0
+      allocate (n_pts(ns))
+      do s = 1, ns
+         n_pts(s) = 0
+         if (scene%delta_max(s) <= 0.0_dp) cycle  ! no overlap at all: see below
+         call sample_range(scene, s, lo, hi)
+         n_pts(s) = max(2, ceiling(samples_per_decade*log10(hi/lo)) + 1)
+         if (scene%delta_min(s) <= 0.0_dp) n_pts(s) = n_pts(s) + 1
+         nmax = max(nmax, n_pts(s))
+      end do
+      allocate (deltas(nmax, ns), force(nmax, ns), stat(nmax, ns), p_ref(ns))
+      deltas = 0.0_dp
+      force = 0.0_dp
+      stat = 0
+      do s = 1, ns
+         if (n_pts(s) == 0) cycle
+         call sample_range(scene, s, lo, hi)
+         ! geometric from lo to hi, after delta = 0 when the scene starts separated
+         i0 = merge(1, 0, scene%delta_min(s) <= 0.0_dp)
+         np = n_pts(s) - i0
+         do i = 1, np
+            deltas(i0 + i, s) = lo*(hi/lo)**(real(i - 1, dp)/real(np - 1, dp))
+         end do
+         deltas(n_pts(s), s) = hi
+         n_solves = n_solves + n_pts(s)
+      end do
+      !$omp parallel do schedule(dynamic) private(s, i, res, err)
+      do idx = 1, nmax*ns
+         i = mod(idx - 1, nmax) + 1
+         s = (idx - 1)/nmax + 1
+         if (i <= n_pts(s)) then
+            call solve_contact(scene%sets(s), opts, deltas(i, s), res, err)
+            force(i, s) = res%force
+            if (allocated(err)) stat(i, s) = err%stat
+         end if
+      end do
+      !$omp end parallel do
+      do s = 1, ns
+         if (n_pts(s) == 0) then
+            ! delta_max <= 0: Hertz gives no force at all where the rough force is
+            ! positive, an error of 1 in the measure relative to P(delta_max)
+            worst = max(worst, 1.0_dp)
+            cycle
+         end if
+         do i = 1, n_pts(s)
+            if (stat(i, s) /= 0 .or. .not. (ieee_is_finite(force(i, s)) .and. &
+               & force(i, s) >= 0.0_dp)) then
+               call fatal_error(error, egw_not_converged, "delta = "// &
+                  & format_real(deltas(i, s))//": full solve failed in the Hertz check "// &
+                  & "of parameter set "//int_str(s))
+               return
+            end if
+         end do
+         associate (p => scene%sets(s))
+            if (scene%delta_min(s) <= 0.0_dp) then
+               p_ref(s) = force(n_pts(s), s)
+               do i = 1, n_pts(s)
+                  e = abs(hertz_force(deltas(i, s), p%radius, p%modulus) - force(i, s))/p_ref(s)
+                  worst = max(worst, e)
+               end do
+            else
+               do i = 1, n_pts(s)
+                  e = abs(hertz_force(deltas(i, s), p%radius, p%modulus)/force(i, s) - 1.0_dp)
+                  worst = max(worst, e)
+               end do
+            end if
+         end associate
+      end do
+   end subroutine scene_hertz_error
+
+   !> Positive overlaps sampled by the Hertz check of set s: [delta_min, delta_max] when
+   !> delta_min > 0, else [min(sigma/100, delta_max/10), delta_max].
+   pure subroutine sample_range(scene, s, lo, hi)
+      type(contact_scene), intent(in) :: scene
+      integer, intent(in) :: s
+      real(dp), intent(out) :: lo, hi
+      hi = scene%delta_max(s)
+      if (scene%delta_min(s) > 0.0_dp) then
+         lo = scene%delta_min(s)
+      else
+         lo = min(0.01_dp*scene%sets(s)%sigma, 0.1_dp*hi)
+      end if
+   end subroutine sample_range
+
+   !> Build the tables of a choice at the scene's tolerance (nothing for Hertz): the 1-D
+   !> table over the set's overlap range (with the pair's particle radii recorded for
+   !> LAMMPS), or the universal table over the scene's mu range (widened to +-5 % when
+   !> mu is one value: the table needs a range) and delta/sigma range. measured_error is
+   !> the largest relative force error the builds measured at their check solves.
+   subroutine build_scene_tables(scene, choice, options, tables, error)
+      type(contact_scene), intent(in) :: scene
+      type(model_choice), intent(in) :: choice
+      type(solver_options), intent(in) :: options
+      type(scene_tables), intent(out) :: tables
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: mu_lo, mu_hi
+      integer :: j
+
+      tables%kind = choice%kind
+      select case (choice%kind)
+      case (choice_hertz)
+         tables%measured_error = choice%error_bound
+      case (choice_table)
+         call build_table(scene%sets(1), options, scene%delta_min(1), scene%delta_max(1), &
+            & scene%input%tol, tables%table, error)
+         if (allocated(error)) return
+         call table_set_radii(tables%table, scene%radius1(1), scene%radius2(1), error)
+         if (allocated(error)) return
+         tables%measured_error = tables%table%max_force_error
+         tables%n_nodes = size(tables%table%delta)
+      case (choice_universal)
+         mu_lo = choice%mu_min
+         mu_hi = choice%mu_max
+         if (mu_hi <= mu_lo*(1.0_dp + 1.0e-12_dp)) then
+            mu_lo = mu_lo/1.05_dp
+            mu_hi = mu_hi*1.05_dp
+         end if
+         call build_universal(scene%input%model, scene%input%psi, &
+            & scene%input%hardness_coeff, scene%input%plastic_ratio, options, mu_lo, mu_hi, &
+            & choice%x_min, choice%x_max, scene%input%tol, tables%universal, error)
+         if (allocated(error)) return
+         tables%measured_error = tables%universal%max_mu_error
+         do j = 1, tables%universal%n_mu
+            tables%measured_error = max(tables%measured_error, &
+               & tables%universal%slices(j)%max_force_error)
+         end do
+         tables%n_nodes = tables%universal%n_mu*size(tables%universal%slices(1)%delta)
+      case default
+         call fatal_error(error, egw_invalid_argument, "choice%kind = "// &
+            & int_str(choice%kind)//": unknown")
+      end select
+   end subroutine build_scene_tables
+
+   !> One 1-D table per particle-type pair (1,1), (1,2), .., (1,n), (2,2), .., (n,n) of a
+   !> scene with discrete types and one sigma (for LAMMPS, whose pair_style table needs
+   !> one section per type pair), each over its pair's overlap range at the scene's
+   !> tolerance with the pair's particle radii recorded; pairs with the same parameter
+   !> set share one build. egw_unsupported for a radius or sigma range (no finite set
+   !> of type pairs).
+   subroutine build_pair_tables(scene, options, tables, error)
+      type(contact_scene), intent(in) :: scene
+      type(solver_options), intent(in) :: options
+      type(force_table), allocatable, intent(out) :: tables(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(force_table), allocatable :: built(:)
+      integer :: s, i, j, k, n
+      if (.not. allocated(scene%sets)) then
+         call fatal_error(error, egw_invalid_argument, "scene: not resolved (resolve_scene)")
+         return
+      end if
+      if (scene%continuous .or. scene%input%sigma_min /= scene%input%sigma_max) then
+         call fatal_error(error, egw_unsupported, "scene: a radius or sigma range has no "// &
+            & "finite set of type pairs; per-pair tables need particle types and one sigma")
+         return
+      end if
+      allocate (built(size(scene%sets)))
+      do s = 1, size(scene%sets)
+         call build_table(scene%sets(s), options, scene%delta_min(s), scene%delta_max(s), &
+            & scene%input%tol, built(s), error)
+         if (allocated(error)) then
+            error%message = "parameter set "//int_str(s)//": "//error%message
+            return
+         end if
+      end do
+      n = scene%input%n_types
+      allocate (tables(size(scene%pair_set)))
+      k = 0
+      do i = 1, n
+         do j = i, n
+            k = k + 1
+            tables(k) = built(scene%pair_set(k))
+            call table_set_radii(tables(k), scene%input%radius(i), scene%input%radius(j), &
+               & error)
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine build_pair_tables
+
+   ! ------------------------------------------------------------------ helpers
+
+   !> (1 - nu^2)/E of type i (types without a material of their own use type 1's).
+   pure real(dp) function compliance(s, i)
+      type(scene_input), intent(in) :: s
+      integer, intent(in) :: i
+      integer :: m
+      m = i
+      if (s%modulus(m) == 0.0_dp) m = 1
+      compliance = (1.0_dp - s%poisson(m)**2)/s%modulus(m)
+   end function compliance
+
+   elemental logical function same_params(a, b)
+      type(contact_params), intent(in) :: a, b
+      same_params = a%model == b%model .and. a%radius == b%radius .and. &
+         & a%modulus == b%modulus .and. a%sigma == b%sigma .and. a%mu == b%mu
+   end function same_params
+
+   pure function delta_name(s, which) result(name)
+      type(scene_input), intent(in) :: s
+      character(len=*), intent(in) :: which
+      character(len=:), allocatable :: name
+      name = "delta_"//which
+      if (s%delta_in_sigma == 1) name = name//"_sigma"
+   end function delta_name
+
+   elemental logical function positive(x)
+      real(dp), intent(in) :: x
+      positive = ieee_is_finite(x) .and. x > 0.0_dp
+   end function positive
+
+   pure subroutine bad(error, name, value, reason)
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: name, reason
+      real(dp), intent(in) :: value
+      call fatal_error(error, egw_invalid_parameter, name//" = "//format_real(value)// &
+         & ": "//reason)
+   end subroutine bad
+
+   !> Short form of a number for messages (4 significant digits).
+   pure function num(x) result(str)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(es11.4)') x
+      str = trim(adjustl(buf))
+   end function num
+
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      str = trim(buf)
+   end function int_str
+
+end module egw_scene
