@@ -169,23 +169,25 @@ contains
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
       real(dp), intent(out) :: cutoff, p_ref
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: lo, hi, mid, p_lo, p_mid, k, a, target, step, d_ref
-      integer :: it
+      real(dp) :: lo, hi, p_lo, k, a, target, step, d_ref, xs(2), ps(2, 1), ks(2, 1), &
+         & as(2, 1)
+      integer :: it, j
 
       d_ref = reference_overlap(params, delta_max)
-      call solve_point(params, options, d_ref, p_ref, k, a, error)
+      hi = d_ref
+      lo = min(delta_min, d_ref)
+      ! P_ref and the force at delta_min together (solve_grid: in parallel)
+      call solve_grid([params], options, [d_ref, lo], ps, ks, as, error)
       if (allocated(error)) return
+      p_ref = ps(1, 1)
+      p_lo = ps(2, 1)
       if (.not. p_ref > 0.0_dp) then
          call fatal_error(error, egw_invalid_argument, "delta_max = "// &
             & format_real(delta_max)//": the force there is zero, nothing to tabulate")
          return
       end if
       target = rel_tol*p_ref
-      hi = d_ref
-      lo = min(delta_min, d_ref)
       step = length_scale(params, delta_max)
-      call solve_point(params, options, lo, p_lo, k, a, error)
-      if (allocated(error)) return
       ! extend below delta_min until the force is small enough (Gaussian tail: a few sigma)
       it = 0
       do while (p_lo > target)
@@ -201,17 +203,24 @@ contains
          call solve_point(params, options, lo, p_lo, k, a, error)
          if (allocated(error)) return
       end do
+      ! trisection: two solves per step in parallel shrink the bracket 3x per solve
+      ! time (bisection: 2x); a fixed two points, so the result does not depend on the
+      ! number of threads
       do it = 1, 200
          if (p_lo >= 0.5_dp*target) exit
          if (hi - lo <= 1.0e-14_dp*max(abs(lo), abs(hi), step)) exit
-         mid = 0.5_dp*(lo + hi)
-         call solve_point(params, options, mid, p_mid, k, a, error)
+         xs = [lo + (hi - lo)/3, lo + 2*(hi - lo)/3]
+         if (.not. (xs(1) > lo .and. xs(2) > xs(1) .and. hi > xs(2))) exit
+         call solve_grid([params], options, xs, ps, ks, as, error)
          if (allocated(error)) return
-         if (p_mid > target) then
-            hi = mid
-         else
-            lo = mid
-            p_lo = p_mid
+         do j = 2, 1, -1
+            if (.not. ps(j, 1) > target) exit
+            hi = xs(j)
+         end do
+         ! j = last point with force <= target (0: none)
+         if (j >= 1) then
+            lo = xs(j)
+            p_lo = ps(j, 1)
          end if
       end do
       cutoff = lo
