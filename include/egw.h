@@ -276,7 +276,8 @@ int egw_tables_write_lammps_units(int n, const egw_table *tables, const char *pa
  * roughness of a polydisperse scene; mu is interpolated in ln mu (4-point Lagrange on
  * ln p) on a grid refined until solves at mid-grid mu agree to rel_tol (the slices are
  * built to rel_tol/2 on shared x nodes). Evaluation costs about 10 Hertz forces (a log
- * of mu, one lookup, one cubic, an exp): for one parameter set a 1-D table is cheaper.
+ * of mu, one lookup, one cubic, an exp): for one parameter set a 1-D table is cheaper,
+ * and egw_universal_slice cuts one out of the universal table without solves.
  * ------------------------------------------------------------------------ */
 
 /* Build for p->model, p->psi, p->hardness_coeff, p->plastic_ratio (R, E, sigma, mu of p
@@ -291,9 +292,23 @@ int egw_universal_build(const egw_params *p, const egw_options *o, double mu_min
  * equal the table's, else EGW_INVALID_ARGUMENT) at overlap delta: P = E sqrt(R)
  * sigma^1.5 p(delta/sigma, mu). Exactly 0 below the cut-off. mu outside the table:
  * EGW_OUT_OF_RANGE, outputs unchanged. delta above x_max*sigma: EGW_OUT_OF_RANGE with
- * extrapolated outputs written. EGW_INVALID_PARAMETER for sigma, R or E <= 0. */
+ * extrapolated outputs written (force continued linearly with the stiffness at
+ * x_max*sigma, as a 1-D table). EGW_INVALID_PARAMETER for sigma, R or E <= 0. */
 int egw_universal_eval(egw_universal u, const egw_params *p, double delta, double *force,
                        double *stiffness);
+
+/* The 1-D table of the contact p (R, E, sigma > 0, mu; model, psi, K, rho_p equal to
+ * u's) cut out of u: egw_table_eval on it gives egw_universal_eval's force [force] and
+ * stiffness [force/length] at every delta [length] to rounding (relative ~1e-14: the
+ * 4 slices' nodal ln p, d ln p/dx are combined once, as the evaluation combines their
+ * cubics), including the zero below the cut-off and the linear continuation above
+ * x_max*sigma, at the cost of a 1-D table (no log, no mu interpolation). info:
+ * rel_tol and max_force_error are u's; a* = sqrt(R sigma) a*(x) with the same weights.
+ * *out receives a handle only on success; free it with egw_table_free. Statuses:
+ * EGW_OUT_OF_RANGE (mu outside [mu_min, mu_max]), EGW_INVALID_PARAMETER (p invalid,
+ * sigma = 0), EGW_INVALID_ARGUMENT (model, psi, K, rho_p differ from u's),
+ * EGW_NULL_POINTER. */
+int egw_universal_slice(egw_universal u, const egw_params *p, egw_table *out);
 
 /* Write (EGW_FORMAT_CSV or EGW_FORMAT_BINARY; LAMMPS and CalculiX need one parameter set:
  * EGW_UNSUPPORTED) and read, with the guarantees of egw_table_write / egw_table_read. */

@@ -305,6 +305,30 @@ int egw_capi_test_table_universal(void) {
   }
   { egw_universal v = NULL;
     CHECK(egw_universal_read("build/capi_table.csv", &v) == EGW_BAD_FILE && v == NULL); }
+  /* the slice at c (mu between grid slices) evaluates like the universal table: the
+   * same cubic in ln P from combined nodal data, so only rounding differs (a few ulp
+   * of ln P ~ 1e-15 relative; 1e-12 leaves room); zero below the cut-off on both */
+  { egw_table s = NULL;
+    double fs, ks;
+    CHECK(egw_universal_slice(u, &c, &s) == EGW_OK && s != NULL);
+    if (s != NULL) {
+      for (int i = 0; i <= 60; i++) {
+        double d = c.sigma * (-2.0 + 112.0 * i / 60.0 + 1e-3); /* to 1.1 x_max */
+        int su = egw_universal_eval(u, &c, d, &f, &k);
+        int st = egw_table_eval(s, d, &fs, &ks);
+        CHECK(su == st);
+        CHECK(fabs(fs - f) <= 1e-12 * fabs(f) && fabs(ks - k) <= 1e-12 * fabs(k));
+      }
+    }
+    egw_table_free(&s);
+    CHECK(s == NULL);
+    { egw_params q = c; q.mu = 8.0;
+      CHECK(egw_universal_slice(u, &q, &s) == EGW_OUT_OF_RANGE && s == NULL);
+      CHECK(last_error_names("mu")); }
+    { egw_params q = c; q.model = EGW_MODEL_EGW;
+      CHECK(egw_universal_slice(u, &q, &s) == EGW_INVALID_ARGUMENT && s == NULL); }
+    CHECK(egw_universal_slice(NULL, &c, &s) == EGW_NULL_POINTER && s == NULL);
+    CHECK(egw_universal_slice(u, &c, NULL) == EGW_NULL_POINTER); }
   egw_universal_free(&back);
   egw_universal_free(&u);
   egw_universal_free(&u);

@@ -15,6 +15,7 @@ module test_table
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table
    use egw_table_universal
+   use egw_table_format, only: write_table, read_table, format_csv, format_binary
    implicit none
    private
    public :: collect_table
@@ -39,7 +40,8 @@ contains
          & new_unittest("rough tables at 1e-6 (E-GW, GW, EP-GW)", test_rough_tight), &
          & new_unittest("universal hertz exact scaling", test_universal_hertz), &
          & new_unittest("universal rough vs solves (contract)", test_universal_rough), &
-         & new_unittest("universal invalid calls", test_universal_invalid) &
+         & new_unittest("universal invalid calls", test_universal_invalid), &
+         & new_unittest("universal slice = universal eval", test_universal_slice) &
          & ]
    end subroutine collect_table
 
@@ -487,5 +489,91 @@ contains
       call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, 1.5_dp, -30.0_dp, f, k, stat)
       call check(error, stat == 0 .and. f == 0 .and. k == 0, "below the cut-off: exact zero")
    end subroutine test_universal_invalid
+
+   !> universal_slice: the 1-D table cut out of a universal table at (R, E, sigma, mu)
+   !> evaluates like universal_eval there. Both evaluate the same cubic of ln P in each
+   !> interval (nodal ln p, d ln p/dx combined with the same Lagrange weights before, not
+   !> after, the Hermite formula: both linear), scaled by the same E sqrt(R) sigma^1.5;
+   !> only rounding differs: a few ulp of |ln P| <~ 40 plus the scaled t, i.e. ~1e-14
+   !> relative in P and K, so 1e-12 fails on any real mismatch (a wrong weight, node,
+   !> scale or a missed branch changes P by >= ~rel_tol = 1e-4). Checked for mu on a grid
+   !> slice, between slices and at both ends of the range, at overlaps from below the
+   !> cut-off through the tail and the contact range to 1.2 x_max (extrapolation), then
+   !> after CSV and binary round-trips of the slice (bit-identical: both store all digits).
+   subroutine test_universal_slice(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table) :: u
+      type(force_table) :: t, back
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      character(len=*), parameter :: dir = "build/test_table_slice"
+      real(dp) :: mus(5), x, fu, ku, ft, kt, fb, kb, worst
+      integer :: j, i, stat, fmt_id
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), &
+         & 1.0_dp, 10.0_dp, -4.0_dp, 50.0_dp, 1.0e-4_dp, u, err)
+      call check(error, .not. allocated(err), "small universal E-GW build failed")
+      if (allocated(error)) return
+      ! grid slice 2, between slices, the two ends
+      mus = [exp(log(1.0_dp) + log(10.0_dp)/(u%n_mu - 1)), 1.7_dp, 3.3_dp, 1.0_dp, 10.0_dp]
+      worst = 0
+      do j = 1, size(mus)
+         p = contact_params(model=model_egw, radius=1.5e-3_dp*j, modulus=7.0e10_dp/j, &
+            & sigma=3.0e-7_dp*j, mu=mus(j))
+         call universal_slice(u, p, t, err)
+         call check(error, .not. allocated(err), "slice at mu = "//format_real(mus(j)))
+         if (allocated(error)) return
+         call check(error, table_is_ready(t) .and. t%cutoff == t%delta(1) .and. &
+            & t%rel_tol == u%rel_tol .and. t%max_force_error >= u%max_mu_error, &
+            & "slice metadata")
+         if (allocated(error)) return
+         do i = 0, 400
+            ! x from below the cut-off to 1.2 x_max, off the nodes
+            x = u%x_cut - 1.0_dp + (1.2_dp*u%x_max - u%x_cut + 1.0_dp)*(i + 0.37_dp)/400
+            call universal_eval(u, p%radius, p%modulus, p%sigma, p%mu, x*p%sigma, fu, ku, stat)
+            call table_eval(t, x*p%sigma, ft, kt)
+            call check(error, stat == merge(egw_out_of_range, 0, x > u%x_max), "eval status")
+            if (allocated(error)) return
+            call check(error, (fu == 0) .eqv. (ft == 0), "zero below the cut-off on both, x = " &
+               & //format_real(x))
+            if (allocated(error)) return
+            if (fu > 0) worst = max(worst, abs(ft/fu - 1), abs(kt/ku - 1))
+         end do
+      end do
+      ! 1e-12: see above (rounding only)
+      call check(error, worst <= 1.0e-12_dp, "slice vs universal eval: "//format_real(worst))
+      if (allocated(error)) return
+      ! round trips of the last slice
+      call execute_command_line("mkdir -p "//dir)
+      do fmt_id = format_csv, format_binary
+         call write_table(t, dir//"/slice.out", fmt_id, err)
+         call check(error, .not. allocated(err), "write slice")
+         if (allocated(error)) return
+         call read_table(dir//"/slice.out", back, err)
+         call check(error, .not. allocated(err), "read slice")
+         if (allocated(error)) return
+         do i = 0, 100
+            x = u%x_cut + (u%x_max - u%x_cut)*(i + 0.5_dp)/101
+            call table_eval(t, x*p%sigma, ft, kt)
+            call table_eval(back, x*p%sigma, fb, kb)
+            call check(error, ft == fb .and. kt == kb, "slice round trip, format "// &
+               & to_string(fmt_id))
+            if (allocated(error)) return
+         end do
+      end do
+      ! mu outside the range: status and a message naming mu
+      p%mu = 10.5_dp
+      call universal_slice(u, p, t, err)
+      call check(error, allocated(err), "mu above the range accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_out_of_range .and. index(err%message, "mu =") == 1, &
+         & "mu out of range: "//err%message)
+      if (allocated(error)) return
+      p%mu = 2.0_dp
+      p%model = model_gw
+      call universal_slice(u, p, t, err)
+      call check(error, allocated(err), "other model accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument, "other model: "//err%message)
+   end subroutine test_universal_slice
 
 end module test_table

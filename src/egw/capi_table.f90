@@ -13,7 +13,8 @@ module egw_capi_table
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, build_table, table_eval, table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_is_ready
-   use egw_table_universal, only: universal_table, build_universal, universal_eval
+   use egw_table_universal, only: universal_table, build_universal, universal_eval, &
+      & universal_slice
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
       & write_calculix_flat, write_lammps, write_calculix_sphere
    use egw_capi, only: egw_params_c, egw_options_c, settle, require, read_params, &
@@ -395,6 +396,30 @@ contains
             & format_real(u%x_max*cp%sigma)//" (values extrapolated)")
       end if
    end function egw_universal_eval
+
+   !> C: egw_universal_slice: the 1-D table of the contact p cut out of u.
+   function egw_universal_slice(h, p, out) result(stat) bind(C, name="egw_universal_slice")
+      type(c_ptr), value, intent(in) :: h, p, out
+      integer(c_int) :: stat
+      type(universal_table), pointer :: u
+      type(contact_params) :: params
+      type(force_table), pointer :: t
+      type(c_ptr), pointer :: handle
+      type(egw_error), allocatable :: error
+      stat = get_universal(h, u)
+      if (stat == egw_ok) stat = require(out, "out")
+      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat /= egw_ok) return
+      allocate (t)
+      call universal_slice(u, params, t, error)
+      stat = settle(error)
+      if (stat /= egw_ok) then
+         deallocate (t)
+         return
+      end if
+      call c_f_pointer(out, handle)
+      handle = c_loc(t)
+   end function egw_universal_slice
 
    !> C: egw_universal_write (CSV or binary).
    function egw_universal_write(h, path, format) result(stat) &

@@ -10,17 +10,17 @@
 module egw_table_universal
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
-      & egw_out_of_range, fatal_error, format_real
+   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
+      & egw_not_converged, egw_out_of_range, fatal_error, format_real
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
-      & table_eval_log, table_interval
+      & table_interval, table_prepare
    implicit none
    private
 
    public :: build_universal, universal_eval, universal_prepare, universal_slice_params, &
-      & universal_nodes_shared
+      & universal_nodes_shared, universal_slice
 
    !> At most this many mu nodes (a grid that needs more is not converging).
    integer, parameter :: max_mu_nodes = 257
@@ -191,34 +191,29 @@ contains
    !> Force and stiffness of a contact (R, E, sigma > 0, mu) at overlap delta:
    !> P = E sqrt(R) sigma^1.5 p(delta/sigma, mu), K = E sqrt(R) sigma^0.5 dp/dx.
    !> stat: 0; egw_out_of_range for mu outside [mu_min, mu_max] (force, stiffness 0)
-   !> or x above x_max (values continued linearly per slice, as in the 1-D table).
+   !> or x above x_max (the interpolated force continued linearly with its stiffness at
+   !> x_max, as in the 1-D table, so that universal_slice reproduces it).
    !> Exactly 0 below the cut-off. No allocation; thread-safe.
    pure subroutine universal_eval(u, radius, modulus, sigma, mu, delta, force, stiffness, stat)
       type(universal_table), intent(in) :: u
       real(dp), intent(in) :: radius, modulus, sigma, mu, delta
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: x, s, t, w(0:3), lp, dlp, l, dl, scale, c(0:3)
-      integer :: j0, m, i
+      real(dp) :: x, t, w(0:3), lp, dlp, scale, c(0:3), p_end
+      integer :: j0, m, i, n
 
       force = 0.0_dp
       stiffness = 0.0_dp
       stat = 0
-      ! 1e-12: mu at the ends of the range after a round trip through ln
-      if (.not. (mu >= u%mu_min*(1 - 1.0e-12_dp) .and. mu <= u%mu_max*(1 + 1.0e-12_dp))) then
+      if (.not. mu_in_range(u, mu)) then
          stat = egw_out_of_range
          return
       end if
       x = delta/sigma
       if (.not. x > u%x_cut) return
       if (x > u%x_max) stat = egw_out_of_range
-      s = (log(mu) - u%log_mu_min)*u%inv_dlog_mu
-      j0 = min(max(int(s) - 1, 0), u%n_mu - 4)
-      t = s - j0
-      w(0) = -(t - 1)*(t - 2)*(t - 3)/6
-      w(1) = t*(t - 2)*(t - 3)/2
-      w(2) = -t*(t - 1)*(t - 3)/2
-      w(3) = t*(t - 1)*(t - 2)/6
+      call mu_stencil(u, mu, j0, w)
+      scale = modulus*sqrt(radius)*sigma*sqrt(sigma)
       if (x < u%x_max) then
          ! one lookup for all slices (shared nodes), then one cubic of the combination
          i = table_interval(u%slices(1), x)
@@ -227,19 +222,130 @@ contains
             & w(2)*u%coef(:, j0 + 3, i) + w(3)*u%coef(:, j0 + 4, i)
          lp = c(0) + t*(c(1) + t*(c(2) + t*c(3)))
          dlp = c(1) + t*(2*c(2) + 3*t*c(3))
+         force = scale*exp(lp)
+         stiffness = force*dlp/sigma
       else
+         ! above x_max: the combined ln p and d ln p/dx at the last node, continued
+         ! linearly in p (a 1-D table's extrapolation: universal_slice gives the same)
+         n = size(u%slices(1)%delta)
          lp = 0.0_dp
          dlp = 0.0_dp
          do m = 0, 3
-            call table_eval_log(u%slices(j0 + m + 1), x, l, dl)
-            lp = lp + w(m)*l
-            dlp = dlp + w(m)*dl
+            associate (sl => u%slices(j0 + m + 1))
+               lp = lp + w(m)*log(sl%force(n))
+               dlp = dlp + w(m)*(sl%stiffness(n)/sl%force(n))
+            end associate
          end do
+         p_end = scale*exp(lp)
+         stiffness = p_end*dlp/sigma
+         force = p_end + stiffness*(delta - sigma*u%x_max)
       end if
-      scale = modulus*sqrt(radius)*sigma*sqrt(sigma)
-      force = scale*exp(lp)
-      stiffness = force*dlp/sigma
    end subroutine universal_eval
+
+   !> The 1-D force table of one contact (R, E, sigma > 0 and mu of params; model, psi,
+   !> K, rho_p must equal the table's) cut out of the universal table: table_eval of it
+   !> equals universal_eval at these parameters to rounding, at the cost of a 1-D table
+   !> (no log, no mu interpolation, no exp outside the separated tail).
+   !> Why it is exact: the slices share their x nodes, and both the cubic Hermite of ln p
+   !> in x and the Lagrange combination in ln mu are linear in the nodal data (ln p,
+   !> d ln p/dx). Combining the nodal data of the 4 slices of mu's stencil first gives the
+   !> same cubic per interval; scaling delta = sigma x, P = E sqrt(R) sigma^1.5 p,
+   !> dP/ddelta = E sqrt(R) sigma^0.5 dp/dx turns it into a table in physical units with
+   !> every interval in ln P (as the slices), the same cut-off and the same linear
+   !> continuation above delta_max. The contact radius a* = sqrt(R sigma) a*_x is combined
+   !> with the same weights (not error-controlled, as in every table).
+   !> rel_tol is the universal table's; max_force_error its measured error (mid-grid mu
+   !> checks and the slices' x checks); reference_force the combined P_ref.
+   !> Errors: egw_invalid_parameter (params invalid, sigma = 0), egw_invalid_argument
+   !> (model, psi, K, rho_p differ from the table's; table not built; forces not
+   !> representable), egw_out_of_range (mu outside [mu_min, mu_max]).
+   pure subroutine universal_slice(u, params, table, error)
+      type(universal_table), intent(in) :: u
+      type(contact_params), intent(in) :: params
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: w(0:3), scale, lp, dlp, a, lref
+      integer :: j0, m, i, n
+
+      call validate_params(params, error)
+      if (allocated(error)) return
+      if (.not. allocated(u%slices) .or. .not. allocated(u%coef)) then
+         call fatal_error(error, egw_invalid_argument, "u: not a built or read table")
+         return
+      end if
+      if (.not. params%sigma > 0.0_dp) then
+         call fatal_error(error, egw_invalid_parameter, "sigma = "// &
+            & format_real(params%sigma)//": universal tables need sigma > 0")
+         return
+      end if
+      if (params%model /= u%model) then
+         call fatal_error(error, egw_invalid_argument, "model = "// &
+            & int_str(params%model)//": table is for model "//int_str(u%model))
+         return
+      end if
+      if (params%psi /= u%psi .or. params%hardness_coeff /= u%hardness_coeff .or. &
+         & params%plastic_ratio /= u%plastic_ratio) then
+         call fatal_error(error, egw_invalid_argument, "psi = "//format_real(params%psi)// &
+            & ": psi, K, rho_p differ from the table's")
+         return
+      end if
+      if (.not. mu_in_range(u, params%mu)) then
+         call fatal_error(error, egw_out_of_range, "mu = "//format_real(params%mu)// &
+            & ": outside the table's ["//format_real(u%mu_min)//", "// &
+            & format_real(u%mu_max)//"]")
+         return
+      end if
+      call mu_stencil(u, params%mu, j0, w)
+      scale = params%modulus*sqrt(params%radius)*params%sigma*sqrt(params%sigma)
+      n = size(u%slices(1)%delta)
+      allocate (table%delta(n), table%force(n), table%stiffness(n), &
+         & table%contact_radius(n))
+      do i = 1, n
+         ! the nodal data universal_prepare's cubics interpolate (ln p, d ln p/dx)
+         lp = 0.0_dp
+         dlp = 0.0_dp
+         a = 0.0_dp
+         do m = 0, 3
+            associate (sl => u%slices(j0 + m + 1))
+               lp = lp + w(m)*log(sl%force(i))
+               dlp = dlp + w(m)*(sl%stiffness(i)/sl%force(i))
+               a = a + w(m)*sl%contact_radius(i)
+            end associate
+         end do
+         table%delta(i) = params%sigma*u%slices(1)%delta(i)
+         table%force(i) = scale*exp(lp)
+         table%stiffness(i) = table%force(i)*dlp/params%sigma
+         table%contact_radius(i) = sqrt(params%radius*params%sigma)*max(a, 0.0_dp)
+      end do
+      if (.not. all(ieee_is_finite(table%force) .and. table%force > 0.0_dp .and. &
+         & ieee_is_finite(table%stiffness))) then
+         call fatal_error(error, egw_invalid_argument, "modulus = "// &
+            & format_real(params%modulus)//": with radius, sigma the forces are not "// &
+            & "representable (overflow or underflow)")
+         deallocate (table%delta, table%force, table%stiffness, table%contact_radius)
+         return
+      end if
+      table%params = params
+      table%rel_tol = u%rel_tol
+      table%cutoff = table%delta(1)
+      table%delta_max = table%delta(n)
+      lref = 0.0_dp
+      table%max_force_error = u%max_mu_error
+      table%max_stiffness_error = 0.0_dp
+      do m = 0, 3
+         lref = lref + w(m)*log(u%slices(j0 + m + 1)%reference_force)
+      end do
+      table%reference_force = scale*exp(lref)
+      do m = 1, u%n_mu
+         table%max_force_error = max(table%max_force_error, u%slices(m)%max_force_error)
+         table%max_stiffness_error = max(table%max_stiffness_error, &
+            & u%slices(m)%max_stiffness_error)
+      end do
+      table%radius_sum = 0.0_dp
+      ! every interval in ln P, as in the slices (force > 0 from the cut-off on)
+      table%n_log = n - 1
+      call table_prepare(table)
+   end subroutine universal_slice
 
    !> True when every slice interpolates ln p on the nodes of the first (as the builder
    !> makes them; readers check it before universal_prepare).
@@ -256,6 +362,39 @@ contains
    end function universal_nodes_shared
 
    ! ------------------------------------------------------------------ internals
+
+   !> mu inside [mu_min, mu_max] (1e-12: mu at the ends of the range after a round trip
+   !> through ln); false for NaN.
+   pure logical function mu_in_range(u, mu)
+      type(universal_table), intent(in) :: u
+      real(dp), intent(in) :: mu
+      mu_in_range = mu >= u%mu_min*(1 - 1.0e-12_dp) .and. mu <= u%mu_max*(1 + 1.0e-12_dp)
+   end function mu_in_range
+
+   !> First slice j0 + 1 of mu's 4-point stencil and its Lagrange weights in ln mu
+   !> (one code path for universal_eval and universal_slice: the same weights bit for bit).
+   pure subroutine mu_stencil(u, mu, j0, w)
+      type(universal_table), intent(in) :: u
+      real(dp), intent(in) :: mu
+      integer, intent(out) :: j0
+      real(dp), intent(out) :: w(0:3)
+      real(dp) :: s, t
+      s = (log(mu) - u%log_mu_min)*u%inv_dlog_mu
+      j0 = min(max(int(s) - 1, 0), u%n_mu - 4)
+      t = s - j0
+      w(0) = -(t - 1)*(t - 2)*(t - 3)/6
+      w(1) = t*(t - 2)*(t - 3)/2
+      w(2) = -t*(t - 1)*(t - 3)/2
+      w(3) = t*(t - 1)*(t - 2)/6
+   end subroutine mu_stencil
+
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      str = trim(buf)
+   end function int_str
 
    pure function grid(mu_min, mu_max, n) result(mus)
       real(dp), intent(in) :: mu_min, mu_max
