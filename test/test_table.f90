@@ -560,6 +560,34 @@ contains
             if (allocated(error)) return
          end do
       end do
+      ! linear_contact: P (not ln P) interpolated above delta = 0. It may differ from
+      ! universal_eval by the re-interpolation difference, which max_force_error must
+      ! account for (measured at 3 points per interval; 1.2: the peak may fall between
+      ! them) and which stays below rel_tol (both cubics are O(h^4) accurate on nodes
+      ! placed for rel_tol/2); exact in the log tail (delta <= 0: same cubic, 1e-12)
+      call universal_slice(u, p, t, err)
+      call universal_slice(u, p, back, err, linear_contact=.true.)
+      call check(error, .not. allocated(err), "linear_contact slice")
+      if (allocated(error)) return
+      call check(error, back%n_log < t%n_log .and. back%n_log > 0, "linear intervals")
+      if (allocated(error)) return
+      worst = 0
+      do i = 0, 2000
+         x = u%x_cut + (u%x_max - u%x_cut)*(i + 0.37_dp)/2001
+         call universal_eval(u, p%radius, p%modulus, p%sigma, p%mu, x*p%sigma, fu, ku, stat)
+         call table_eval(back, x*p%sigma, fb, kb)
+         if (x <= 0) then
+            call check(error, abs(fb/fu - 1) <= 1.0e-12_dp, "log tail differs at x = "// &
+               & format_real(x))
+            if (allocated(error)) return
+         end if
+         worst = max(worst, abs(fb/fu - 1))
+      end do
+      call check(error, worst > 1.0e-12_dp .and. worst <= 1.0e-4_dp .and. worst <= &
+         & 1.2_dp*(back%max_force_error - t%max_force_error) + 1.0e-12_dp, &
+         & "linear_contact difference "//format_real(worst)//", recorded "// &
+         & format_real(back%max_force_error - t%max_force_error))
+      if (allocated(error)) return
       ! mu outside the range: status and a message naming mu
       p%mu = 10.5_dp
       call universal_slice(u, p, t, err)

@@ -15,7 +15,7 @@ module egw_table_universal
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
-      & table_interval, table_prepare
+      & table_interval, table_prepare, table_eval
    implicit none
    private
 
@@ -259,13 +259,21 @@ contains
    !> Errors: egw_invalid_parameter (params invalid, sigma = 0), egw_invalid_argument
    !> (model, psi, K, rho_p differ from the table's; table not built; forces not
    !> representable), egw_out_of_range (mu outside [mu_min, mu_max]).
-   pure subroutine universal_slice(u, params, table, error)
+   !> linear_contact (default false): interpolate P itself (not ln P) on the intervals
+   !> above delta = 0, as build_table does, so that evaluation in the contact range needs
+   !> no exp (~1.8x faster, measured: ~6 ns against ~11 ns). The two cubics share their
+   !> nodal data and differ by O(h^4) inside the intervals; that difference is measured
+   !> at 3 points per interval (it peaks mid-interval, like t^2 (1-t)^2) and added to
+   !> max_force_error, so the table no longer equals universal_eval to rounding there.
+   pure subroutine universal_slice(u, params, table, error, linear_contact)
       type(universal_table), intent(in) :: u
       type(contact_params), intent(in) :: params
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: w(0:3), scale, lp, dlp, a, lref
-      integer :: j0, m, i, n
+      logical, intent(in), optional :: linear_contact
+      type(force_table) :: exact
+      real(dp) :: w(0:3), scale, lp, dlp, a, lref, diff, d, f0, k0, f1, k1
+      integer :: j0, m, i, n, q
 
       call validate_params(params, error)
       if (allocated(error)) return
@@ -345,6 +353,21 @@ contains
       ! every interval in ln P, as in the slices (force > 0 from the cut-off on)
       table%n_log = n - 1
       call table_prepare(table)
+      if (.not. present(linear_contact)) return
+      if (.not. linear_contact) return
+      exact = table
+      table%n_log = count(table%delta(2:n) <= 0.0_dp)
+      call table_prepare(table)
+      diff = 0.0_dp
+      do i = table%n_log + 1, n - 1
+         do q = 1, 3
+            d = table%delta(i) + 0.25_dp*q*(table%delta(i + 1) - table%delta(i))
+            call table_eval(exact, d, f0, k0)
+            call table_eval(table, d, f1, k1)
+            diff = max(diff, abs(f1/f0 - 1))
+         end do
+      end do
+      table%max_force_error = table%max_force_error + diff
    end subroutine universal_slice
 
    !> True when every slice interpolates ln p on the nodes of the first (as the builder
