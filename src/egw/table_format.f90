@@ -17,8 +17,8 @@ module egw_table_format
    use egw_io, only: open_temporary, commit_temporary, discard_temporary
    use egw_asperity, only: flat_pressure
    use egw_table, only: force_table, table_prepare, table_eval, table_energy
-   use egw_table_universal, only: universal_table, universal_prepare, universal_slice_params, &
-      & universal_nodes_shared
+   use egw_table_universal, only: universal_table, universal_slice_params, &
+      & universal_nodes_shared, move_universal
    implicit none
    private
 
@@ -374,7 +374,6 @@ contains
          call bad(error, path, "slices do not share their nodes or are not in log space")
          return
       end if
-      call universal_prepare(u)
       call move_universal(u, table)
    end subroutine parse_universal_csv
 
@@ -677,7 +676,6 @@ contains
          call bad(error, path, "slices do not share their nodes or are not in log space")
          return
       end if
-      call universal_prepare(u)
       call move_universal(u, table)
    end subroutine parse_universal_binary
 
@@ -1489,26 +1487,6 @@ contains
       call move_alloc(from%radius_slope, to%radius_slope)
       call move_alloc(from%bucket, to%bucket)
    end subroutine move_table
-
-   subroutine move_universal(from, to)
-      type(universal_table), intent(inout) :: from
-      type(universal_table), intent(out) :: to
-      to%model = from%model
-      to%psi = from%psi
-      to%hardness_coeff = from%hardness_coeff
-      to%plastic_ratio = from%plastic_ratio
-      to%rel_tol = from%rel_tol
-      to%x_cut = from%x_cut
-      to%x_max = from%x_max
-      to%mu_min = from%mu_min
-      to%mu_max = from%mu_max
-      to%n_mu = from%n_mu
-      to%max_mu_error = from%max_mu_error
-      to%log_mu_min = from%log_mu_min
-      to%inv_dlog_mu = from%inv_dlog_mu
-      call move_alloc(from%slices, to%slices)
-      call move_alloc(from%coef, to%coef)
-   end subroutine move_universal
 
    pure subroutine put_i32(buf, pos, v)
       character(len=*), intent(inout) :: buf

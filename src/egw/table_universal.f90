@@ -20,7 +20,7 @@ module egw_table_universal
    private
 
    public :: build_universal, universal_eval, universal_prepare, universal_slice_params, &
-      & universal_nodes_shared, universal_slice
+      & universal_nodes_shared, universal_slice, move_universal
 
    !> At most this many mu nodes (a grid that needs more is not converging).
    integer, parameter :: max_mu_nodes = 257
@@ -497,6 +497,8 @@ contains
       if (res%force > 0.0_dp) err = abs(f/res%force - 1)
    end subroutine one_check
 
+   !> Move a built universal table into `to` (allocations moved, not copied) and prepare
+   !> it for evaluation.
    subroutine move_universal(from, to)
       type(universal_table), intent(inout) :: from
       type(universal_table), intent(out) :: to
