@@ -13,6 +13,7 @@ program egw_table_app
       & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius
+   use egw_progress_bar, only: bar_start, bar_update, bar_finish
    implicit none
 
    interface
@@ -133,11 +134,24 @@ program egw_table_app
    if (.not. choose_only .and. choice%kind /= choice_hertz) then
       call progress("building the "//choice_name(choice%kind)//" at tol = "// &
          & num(input%tol)//" (full solves, OpenMP over points) ...")
-      call build_scene_tables(scene, choice, options, tables, error)
+      if (quiet) then
+         call build_scene_tables(scene, choice, options, tables, error)
+      else
+         call bar_start("building")
+         call build_scene_tables(scene, choice, options, tables, error, bar_update)
+         call bar_finish()
+      end if
       if (allocated(error)) call die(error%message)
       if (pair_lammps) then
          call progress("LAMMPS: building one 1-D table per particle-type pair ...")
-         call build_pair_tables(scene, options, pair_tables, error)
+         if (quiet) then
+            call build_pair_tables(scene, options, pair_tables, error)
+         else
+            ! the bar restarts for every distinct parameter set (so does the count)
+            call bar_start("building")
+            call build_pair_tables(scene, options, pair_tables, error, bar_update)
+            call bar_finish()
+         end if
          if (allocated(error)) call die(error%message)
       end if
       call write_all()
@@ -482,7 +496,7 @@ contains
          & "                          per particle-type pair from 1-D tables)", &
          & "  -o, --out DIR           output directory (default: out)", &
          & "  --choose-only           report the model choice, build and write nothing", &
-         & "  -q, --quiet             no progress lines on stderr", &
+         & "  -q, --quiet             no progress lines or bar on stderr", &
          & "  -h, --help              this text", &
          & "", &
          & "Invalid input: a message naming the parameter, exit status 2, no files."]

@@ -22,6 +22,10 @@ module test_table
 
    real(dp), parameter :: tol = 1.0e-6_dp
 
+   ! record of the calls of the progress hook (record_progress); test-only module state
+   integer :: n_calls = 0, last_done = -1, last_total = -1
+   logical :: monotone = .true., in_bounds = .true.
+
 contains
 
    subroutine collect_table(testsuite)
@@ -41,9 +45,89 @@ contains
          & new_unittest("universal hertz exact scaling", test_universal_hertz), &
          & new_unittest("universal rough vs solves (contract)", test_universal_rough), &
          & new_unittest("universal invalid calls", test_universal_invalid), &
-         & new_unittest("universal slice = universal eval", test_universal_slice) &
+         & new_unittest("universal slice = universal eval", test_universal_slice), &
+         & new_unittest("progress hook (1-D table)", test_progress_table), &
+         & new_unittest("progress hook (universal table)", test_progress_universal) &
          & ]
    end subroutine collect_table
+
+   !> Progress hook for the tests: checks each call against the previous one.
+   subroutine record_progress(done, total)
+      integer, intent(in) :: done, total
+      if (n_calls > 0 .and. done < last_done) monotone = .false.
+      if (done < 0 .or. done > total) in_bounds = .false.
+      n_calls = n_calls + 1
+      last_done = done
+      last_total = total
+   end subroutine record_progress
+
+   subroutine reset_progress()
+      n_calls = 0
+      last_done = -1
+      last_total = -1
+      monotone = .true.
+      in_bounds = .true.
+   end subroutine reset_progress
+
+   !> The contract of table_progress after a finished build that needed at least
+   !> min_solves solves.
+   subroutine check_progress(error, min_solves)
+      type(error_type), allocatable, intent(out) :: error
+      integer, intent(in) :: min_solves
+      call check(error, n_calls >= 1, "progress was never called")
+      if (allocated(error)) return
+      call check(error, monotone, "progress: done decreased")
+      if (allocated(error)) return
+      call check(error, in_bounds, "progress: done outside [0, total]")
+      if (allocated(error)) return
+      call check(error, last_done == last_total, "progress: last call done = "// &
+         & to_string(last_done)//" /= total = "//to_string(last_total))
+      if (allocated(error)) return
+      call check(error, last_done >= min_solves, "progress: done = "// &
+         & to_string(last_done)//" < "//to_string(min_solves)//" solves the build needs")
+   end subroutine check_progress
+
+   !> A 1-D Hertz build with the hook: the contract of table_progress, the count covers
+   !> the solves (every node is a solve and every final interval had one midpoint check:
+   !> >= 2 n - 1), and the hook does not change the table.
+   subroutine test_progress_table(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t, t0
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      integer :: n
+      p = contact_params(model=model_hertz, radius=0.5_dp, modulus=2.0_dp)
+      call reset_progress()
+      call build_table(p, solver_options(), -1.0e-3_dp, 1.0e-2_dp, 1.0e-5_dp, t, err, &
+         & progress=record_progress)
+      call check(error, .not. allocated(err), "Hertz table build with progress failed")
+      if (allocated(error)) return
+      n = size(t%delta)
+      call check_progress(error, 2*n - 1)
+      if (allocated(error)) return
+      call check(error, n_calls >= 2, "progress: one call per round expected, got "// &
+         & to_string(n_calls))
+      if (allocated(error)) return
+      call build_table(p, solver_options(), -1.0e-3_dp, 1.0e-2_dp, 1.0e-5_dp, t0, err)
+      call check(error, .not. allocated(err), "Hertz table build failed")
+      if (allocated(error)) return
+      call check(error, size(t0%delta) == n .and. all(t0%delta == t%delta), &
+         & "the progress hook changed the table")
+   end subroutine test_progress_table
+
+   !> The universal (Hertz) build reports one monotone sequence over its slice builds;
+   !> each of the n_mu slices solves its P_ref, its n nodes and n - 1 midpoint checks.
+   subroutine test_progress_universal(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table) :: u
+      type(egw_error), allocatable :: err
+      call reset_progress()
+      call build_universal(model_hertz, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), &
+         & 0.5_dp, 8.0_dp, -1.0_dp, 100.0_dp, 1.0e-4_dp, u, err, progress=record_progress)
+      call check(error, .not. allocated(err), "universal Hertz build with progress failed")
+      if (allocated(error)) return
+      call check_progress(error, u%n_mu*(2*size(u%slices(1)%delta)))
+   end subroutine test_progress_universal
 
    pure real(dp) function p_hertz(e, r, d)
       real(dp), intent(in) :: e, r, d

@@ -12,7 +12,7 @@ module egw_scene
       & model_epgw, model_name, mu_from_summits
    use egw_smooth_sphere, only: hertz_force
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options
-   use egw_table, only: force_table, build_table, table_set_radii
+   use egw_table, only: force_table, build_table, table_set_radii, table_progress
    use egw_table_universal, only: universal_table, build_universal
    implicit none
    private
@@ -890,12 +890,14 @@ contains
    !> LAMMPS), or the universal table over the scene's mu range (widened to +-5 % when
    !> mu is one value: the table needs a range) and delta/sigma range. measured_error is
    !> the largest relative force error the builds measured at their check solves.
-   subroutine build_scene_tables(scene, choice, options, tables, error)
+   subroutine build_scene_tables(scene, choice, options, tables, error, progress)
       type(contact_scene), intent(in) :: scene
       type(model_choice), intent(in) :: choice
       type(solver_options), intent(in) :: options
       type(scene_tables), intent(out) :: tables
       type(egw_error), allocatable, intent(out) :: error
+      !> called as the build goes (see egw_table's table_progress; not called for Hertz)
+      procedure(table_progress), optional :: progress
       real(dp) :: mu_lo, mu_hi
       integer :: j
 
@@ -905,7 +907,7 @@ contains
          tables%measured_error = choice%error_bound
       case (choice_table)
          call build_table(scene%sets(1), options, scene%delta_min(1), scene%delta_max(1), &
-            & scene%input%tol, tables%table, error)
+            & scene%input%tol, tables%table, error, progress)
          if (allocated(error)) return
          call table_set_radii(tables%table, scene%radius1(1), scene%radius2(1), error)
          if (allocated(error)) return
@@ -920,7 +922,8 @@ contains
          end if
          call build_universal(scene%input%model, scene%input%psi, &
             & scene%input%hardness_coeff, scene%input%plastic_ratio, options, mu_lo, mu_hi, &
-            & choice%x_min, choice%x_max, scene%input%tol, tables%universal, error)
+            & choice%x_min, choice%x_max, scene%input%tol, tables%universal, error, &
+            & progress)
          if (allocated(error)) return
          tables%measured_error = tables%universal%max_mu_error
          do j = 1, tables%universal%n_mu
@@ -939,12 +942,14 @@ contains
    !> one section per type pair), each over its pair's overlap range at the scene's
    !> tolerance with the pair's particle radii recorded; pairs with the same parameter
    !> set share one build. egw_unsupported for a radius or sigma range (no finite set
-   !> of type pairs).
-   subroutine build_pair_tables(scene, options, tables, error)
+   !> of type pairs). The optional progress hook is passed to every build_table: one
+   !> sequence (done from 0 to total) per distinct parameter set, one set after another.
+   subroutine build_pair_tables(scene, options, tables, error, progress)
       type(contact_scene), intent(in) :: scene
       type(solver_options), intent(in) :: options
       type(force_table), allocatable, intent(out) :: tables(:)
       type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
       type(force_table), allocatable :: built(:)
       integer :: s, i, j, k, n
       if (.not. allocated(scene%sets)) then
@@ -959,7 +964,7 @@ contains
       allocate (built(size(scene%sets)))
       do s = 1, size(scene%sets)
          call build_table(scene%sets(s), options, scene%delta_min(s), scene%delta_max(s), &
-            & scene%input%tol, built(s), error)
+            & scene%input%tol, built(s), error, progress)
          if (allocated(error)) then
             error%message = "parameter set "//int_str(s)//": "//error%message
             return

@@ -30,9 +30,22 @@ module egw_table
    implicit none
    private
 
-   public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, table_eval, table_eval_log, &
-      & table_eval_all, table_covers, table_energy, table_contact_radius, &
-      & table_set_radii, table_prepare, table_is_ready, table_find_cutoff
+   public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, &
+      & table_eval, table_eval_log, table_eval_all, table_covers, table_energy, &
+      & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff
+
+   public :: table_progress
+
+   abstract interface
+      !> Progress hook of the table builds, called from the serial part of a build (never
+      !> inside an OpenMP region, so it need not be thread-safe) after every batch of
+      !> solves: done = solves finished so far, total = done + solves known to be pending.
+      !> The total grows as adaptive refinement splits intervals; done never decreases
+      !> within one build, 0 <= done <= total, and the last call has done == total.
+      subroutine table_progress(done, total)
+         integer, intent(in) :: done, total
+      end subroutine table_progress
+   end interface
 
    !> Hard limits of the adaptive build (a table that needs more is not converging:
    !> the solver's noise is above rel_tol).
@@ -89,22 +102,32 @@ contains
    !> if the force at delta_min is still larger than that). The solver runs with
    !> options%n_threads = 1 inside an OpenMP loop over points, and with its rel_tol
    !> tightened to min(options%rel_tol, rel_tol/10) so that its own error does not
-   !> dominate the interpolation check.
-   subroutine build_table(params, options, delta_min, delta_max, rel_tol, table, error)
+   !> dominate the interpolation check. The optional progress hook (table_progress)
+   !> counts solves; the cut-off search is counted in done but not reported on its own
+   !> (its length is not known in advance).
+   subroutine build_table(params, options, delta_min, delta_max, rel_tol, table, error, &
+      & progress)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
       type(solver_options) :: opts
       real(dp) :: cutoff, p_ref
+      type(force_table) :: tables(1)
+      integer :: n_solves
 
       call check_request(params, delta_min, delta_max, rel_tol, error)
       if (allocated(error)) return
       opts = point_options(options, rel_tol)
-      call table_find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, error)
+      call find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, n_solves, &
+         & error)
       if (allocated(error)) return
-      call build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, .false., table, error)
+      call build_shared_nodes([params], opts, cutoff, delta_max, rel_tol, [p_ref], .false., &
+         & tables, error, n_solves, progress)
+      if (allocated(error)) return
+      table = tables(1)
    end subroutine build_table
 
    !> Build a table whose cut-off is fixed at cutoff (used by the universal table,
@@ -132,19 +155,28 @@ contains
 
    !> Tables of several parameter sets on one common set of nodes, all from the fixed
    !> cutoff to delta_max (the mu slices of a universal table, which then needs one
-   !> lookup for all slices). P_ref of each set as in build_table.
+   !> lookup for all slices). P_ref of each set as in build_table. Progress (optional
+   !> table_progress hook) counts solves of (node, set) pairs, starting from solves_before
+   !> (default 0) so that a caller running several builds can report one monotone
+   !> sequence; solves returns the count at the end (solves_before included).
    subroutine build_tables_shared(params, options, cutoff, delta_max, rel_tol, log_space, &
-      & tables, error)
+      & tables, error, progress, solves_before, solves)
       type(contact_params), intent(in) :: params(:)
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: cutoff, delta_max, rel_tol
       logical, intent(in) :: log_space
       type(force_table), intent(inout) :: tables(:)
       type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
+      integer, intent(in), optional :: solves_before
+      integer, intent(out), optional :: solves
       type(solver_options) :: opts
       real(dp) :: p_ref(size(params))
       real(dp) :: pk(1, size(params)), kk(1, size(params)), ak(1, size(params))
-      integer :: s
+      integer :: s, n_solves
+      n_solves = 0
+      if (present(solves_before)) n_solves = solves_before
+      if (present(solves)) solves = n_solves
       do s = 1, size(params)
          call check_request(params(s), cutoff, delta_max, rel_tol, error)
          if (allocated(error)) return
@@ -155,8 +187,10 @@ contains
          & kk(1:1, :), ak(1:1, :), error)
       if (allocated(error)) return
       p_ref = pk(1, :)
+      n_solves = n_solves + size(params)
       call build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_space, &
-         & tables, error)
+         & tables, error, n_solves, progress)
+      if (present(solves)) solves = n_solves
    end subroutine build_tables_shared
 
    !> Cut-off rule: P_ref = P(min(0, delta_max)) for rough models, P(delta_max) for Hertz;
@@ -169,6 +203,20 @@ contains
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
       real(dp), intent(out) :: cutoff, p_ref
       type(egw_error), allocatable, intent(out) :: error
+      integer :: n_solves
+      call find_cutoff(params, options, delta_min, delta_max, rel_tol, cutoff, p_ref, &
+         & n_solves, error)
+   end subroutine table_find_cutoff
+
+   !> table_find_cutoff, also counting its solves (n_solves, for progress reports).
+   subroutine find_cutoff(params, options, delta_min, delta_max, rel_tol, cutoff, p_ref, &
+      & n_solves, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol
+      real(dp), intent(out) :: cutoff, p_ref
+      integer, intent(out) :: n_solves
+      type(egw_error), allocatable, intent(out) :: error
       real(dp) :: lo, hi, p_lo, k, a, target, step, d_ref, xs(2), ps(2, 1), ks(2, 1), &
          & as(2, 1)
       integer :: it, j
@@ -177,6 +225,7 @@ contains
       hi = d_ref
       lo = min(delta_min, d_ref)
       ! P_ref and the force at delta_min together (solve_grid: in parallel)
+      n_solves = 2
       call solve_grid([params], options, [d_ref, lo], ps, ks, as, error)
       if (allocated(error)) return
       p_ref = ps(1, 1)
@@ -200,6 +249,7 @@ contains
          hi = lo
          lo = lo - step
          step = 2*step
+         n_solves = n_solves + 1
          call solve_point(params, options, lo, p_lo, k, a, error)
          if (allocated(error)) return
       end do
@@ -211,6 +261,7 @@ contains
          if (hi - lo <= 1.0e-14_dp*max(abs(lo), abs(hi), step)) exit
          xs = [lo + (hi - lo)/3, lo + 2*(hi - lo)/3]
          if (.not. (xs(1) > lo .and. xs(2) > xs(1) .and. hi > xs(2))) exit
+         n_solves = n_solves + 2
          call solve_grid([params], options, xs, ps, ks, as, error)
          if (allocated(error)) return
          do j = 2, 1, -1
@@ -224,7 +275,7 @@ contains
          end if
       end do
       cutoff = lo
-   end subroutine table_find_cutoff
+   end subroutine find_cutoff
 
    !> Adaptive build between a given cut-off and delta_max (one parameter set).
    subroutine build_core(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, table, error)
@@ -235,8 +286,10 @@ contains
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       type(force_table) :: tables(1)
+      integer :: n_solves
+      n_solves = 0
       call build_shared_nodes([params], opts, cutoff, delta_max, rel_tol, [p_ref], log_all, &
-         & tables, error)
+         & tables, error, n_solves)
       if (allocated(error)) return
       table = tables(1)
    end subroutine build_core
@@ -244,15 +297,18 @@ contains
    !> Tables of several parameter sets (the mu slices of a universal table) on one
    !> common set of nodes: an interval is accepted only when the check passes for every
    !> set. Solves run in parallel over all (node, set) pairs. A single set is the
-   !> ordinary 1-D build.
+   !> ordinary 1-D build. n_solves: solves done before (counted on in place, for the
+   !> optional progress hook, which is called after every batch of solves).
    subroutine build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, &
-      & tables, error)
+      & tables, error, n_solves, progress)
       type(contact_params), intent(in) :: params(:)
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: cutoff, delta_max, rel_tol, p_ref(:)
       logical, intent(in) :: log_all
       type(force_table), intent(inout) :: tables(:)
       type(egw_error), allocatable, intent(out) :: error
+      integer, intent(inout) :: n_solves
+      procedure(table_progress), optional :: progress
       real(dp), allocatable :: x(:), f(:, :), k(:, :), a(:, :), xm(:), fm(:, :), km(:, :)
       real(dp), allocatable :: am(:, :), err_f(:), err_k(:)
       logical, allocatable :: accepted(:), split(:)
@@ -269,6 +325,9 @@ contains
       allocate (f(n, ns), k(n, ns), a(n, ns))
       call solve_grid(params, opts, x, f, k, a, error)
       if (allocated(error)) return
+      n_solves = n_solves + n*ns
+      ! pending: one midpoint solve per set for each of the n - 1 unchecked intervals
+      if (present(progress)) call progress(n_solves, n_solves + (n - 1)*ns)
       allocate (accepted(n - 1), err_f(n - 1), err_k(n - 1))
       accepted = .false.
       err_f = 0.0_dp
@@ -334,6 +393,8 @@ contains
          call merge_nodes(x, f, k, a, accepted, err_f, err_k, todo, xm, fm, km, am, split)
          n = size(x)
          deallocate (fm, km, am, split)
+         n_solves = n_solves + m*ns
+         if (present(progress)) call progress(n_solves, n_solves + count(.not. accepted)*ns)
       end do
 
       do s = 1, ns

@@ -15,7 +15,7 @@ module egw_table_universal
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
-      & table_interval, table_prepare, table_eval
+      & table_interval, table_prepare, table_eval, table_progress
    implicit none
    private
 
@@ -49,20 +49,25 @@ contains
    !> Build the universal table of a model over mu in [mu_min, mu_max] (mu_max > mu_min)
    !> and x = delta/sigma up to x_max, starting where the force has fallen to rel_tol times
    !> its reference (see egw_table) for every grid mu, or at x_min if that is lower.
+   !> The optional progress hook (egw_table's table_progress) counts solves of the slice
+   !> builds and their mu checks over all rounds of mu refinement as one monotone
+   !> sequence (the cut-off searches are not counted: they run in parallel); the total
+   !> grows when a round rebuilds on a finer mu grid.
    subroutine build_universal(model, psi, hardness_coeff, plastic_ratio, options, mu_min, &
-      & mu_max, x_min, x_max, rel_tol, table, error)
+      & mu_max, x_min, x_max, rel_tol, table, error, progress)
       integer, intent(in) :: model
       real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: mu_min, mu_max, x_min, x_max, rel_tol
       type(universal_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
       type(universal_table) :: u
       type(solver_options) :: opts
       type(contact_params), allocatable :: params(:)
       real(dp), allocatable :: xc(:), mus(:), xs(:), pref(:)
       real(dp) :: x_cut, worst
-      integer :: j, n0
+      integer :: j, n0, n_solves, n_before
       integer, allocatable :: stat(:)
 
       if (.not. (ieee_is_finite(mu_min) .and. mu_min > 0.0_dp)) then
@@ -116,20 +121,25 @@ contains
       u%x_cut = x_cut
 
       u%n_mu = n0
+      n_solves = 0
       do
          ! all slices on one set of x nodes (one lookup serves all mu at evaluation)
+         n_before = n_solves  ! (not the same actual for solves_before and solves)
          if (allocated(u%slices)) deallocate (u%slices)
          allocate (u%slices(u%n_mu))
          params = [(universal_slice_params(model, psi, hardness_coeff, plastic_ratio, &
             & mus(j)), j=1, u%n_mu)]
          call build_tables_shared(params, opts, x_cut, x_max, 0.5_dp*rel_tol, .true., &
-            & u%slices, error)
+            & u%slices, error, progress, n_before, n_solves)
          if (allocated(error)) return
          call universal_prepare(u)
          ! check the mu interpolation at mid-grid mu against solves
          xs = check_points(x_cut, x_max, u%slices(1)%delta)
          call mid_grid_error(u, opts, xs, worst, error)
          if (allocated(error)) return
+         ! the mu check: one solve per mid-grid mu and check point
+         n_solves = n_solves + (u%n_mu - 1)*size(xs)
+         if (present(progress)) call progress(n_solves, n_solves)
          u%max_mu_error = worst
          if (worst <= rel_tol) exit
          if (u%n_mu >= max_mu_nodes) then
