@@ -274,10 +274,12 @@ int egw_tables_write_lammps_units(int n, const egw_table *tables, const char *pa
  * Universal tables: p = P/(E sqrt(R) sigma^1.5) over x = delta/sigma and mu, for one
  * model (and psi, K, rho_p for EP-GW). One table serves every radius, modulus and
  * roughness of a polydisperse scene; mu is interpolated in ln mu (4-point Lagrange on
- * ln p) on a grid refined until solves at mid-grid mu agree to rel_tol (the slices are
- * built to rel_tol/2 on shared x nodes). Evaluation costs about 10 Hertz forces (a log
- * of mu, one lookup, one cubic, an exp): for one parameter set a 1-D table is cheaper,
- * and egw_universal_slice cuts one out of the universal table without solves.
+ * ln p in the separated tail, on p in the contact range, as the slices interpolate in
+ * x) on a grid refined until solves at mid-grid mu agree to rel_tol (the slices are
+ * built to rel_tol/2 on shared x nodes). Evaluation costs about 9 Hertz forces (a log
+ * of mu, one lookup, one cubic, an exp in the tail): for one parameter set a 1-D table
+ * is cheaper (~1.75 Hertz forces), and egw_universal_slice cuts one out of the
+ * universal table without solves.
  * ------------------------------------------------------------------------ */
 
 /* Build for p->model, p->psi, p->hardness_coeff, p->plastic_ratio (R, E, sigma, mu of p
@@ -300,9 +302,10 @@ int egw_universal_eval(egw_universal u, const egw_params *p, double delta, doubl
 /* The 1-D table of the contact p (R, E, sigma > 0, mu; model, psi, K, rho_p equal to
  * u's) cut out of u: egw_table_eval on it gives egw_universal_eval's force [force] and
  * stiffness [force/length] at every delta [length] to rounding (relative ~1e-14: the
- * 4 slices' nodal ln p, d ln p/dx are combined once, as the evaluation combines their
- * cubics), including the zero below the cut-off and the linear continuation above
- * x_max*sigma, at the cost of a 1-D table (no log, no mu interpolation). info:
+ * 4 slices' nodal data, ln p, d ln p/dx in the tail and p, dp/dx in the contact range,
+ * are combined once, as the evaluation combines their cubics), including the zero below
+ * the cut-off and the linear continuation above x_max*sigma, at the cost of a 1-D table
+ * (no log, no mu interpolation, no exp in the contact range). info:
  * rel_tol and max_force_error are u's; a* = sqrt(R sigma) a*(x) with the same weights.
  * *out receives a handle only on success; free it with egw_table_free. Statuses:
  * EGW_OUT_OF_RANGE (mu outside [mu_min, mu_max]), EGW_INVALID_PARAMETER (p invalid,

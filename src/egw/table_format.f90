@@ -371,7 +371,7 @@ contains
       call check_common_cutoff(path, u, error)
       if (allocated(error)) return
       if (.not. universal_nodes_shared(u)) then
-         call bad(error, path, "slices do not share their nodes or are not in log space")
+         call bad(error, path, "slices do not share their nodes or ln p intervals")
          return
       end if
       call move_universal(u, table)
@@ -673,7 +673,7 @@ contains
       call check_common_cutoff(path, u, error)
       if (allocated(error)) return
       if (.not. universal_nodes_shared(u)) then
-         call bad(error, path, "slices do not share their nodes or are not in log space")
+         call bad(error, path, "slices do not share their nodes or ln p intervals")
          return
       end if
       call move_universal(u, table)
