@@ -313,6 +313,15 @@ int egw_universal_eval(egw_universal u, const egw_params *p, double delta, doubl
  * EGW_NULL_POINTER. */
 int egw_universal_slice(egw_universal u, const egw_params *p, egw_table *out);
 
+/* As egw_universal_slice, trimmed to overlaps up to delta_max [length]: the slice keeps
+ * the nodes up to the first at or above delta_max (values below unchanged), so its lookup
+ * serves the overlaps a scene visits; above it the table extrapolates (EGW_OUT_OF_RANGE,
+ * values written). This is the DEM path for a polydisperse scene: one call per particle
+ * pair, then egw_table_eval at ~1.8 Hertz forces. EGW_INVALID_ARGUMENT for a delta_max
+ * not finite or below the cut-off; otherwise the statuses of egw_universal_slice. */
+int egw_universal_slice_range(egw_universal u, const egw_params *p, double delta_max,
+                              egw_table *out);
+
 /* Write (EGW_FORMAT_CSV or EGW_FORMAT_BINARY; LAMMPS and CalculiX need one parameter set:
  * EGW_UNSUPPORTED) and read, with the guarantees of egw_table_write / egw_table_read. */
 int egw_universal_write(egw_universal u, const char *path, int format);

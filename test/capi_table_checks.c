@@ -328,7 +328,21 @@ int egw_capi_test_table_universal(void) {
     { egw_params q = c; q.model = EGW_MODEL_EGW;
       CHECK(egw_universal_slice(u, &q, &s) == EGW_INVALID_ARGUMENT && s == NULL); }
     CHECK(egw_universal_slice(NULL, &c, &s) == EGW_NULL_POINTER && s == NULL);
-    CHECK(egw_universal_slice(u, &c, NULL) == EGW_NULL_POINTER); }
+    CHECK(egw_universal_slice(u, &c, NULL) == EGW_NULL_POINTER);
+    /* trimmed to delta <= 20 sigma: the same values below it (same cubics; 1e-12 as
+     * above), then extrapolation flagged EGW_OUT_OF_RANGE */
+    CHECK(egw_universal_slice_range(u, &c, 20.0 * c.sigma, &s) == EGW_OK && s != NULL);
+    if (s != NULL) {
+      for (int i = 0; i <= 40; i++) {
+        double d = c.sigma * (-2.0 + 22.0 * i / 40.0 + 1e-3);
+        int su = egw_universal_eval(u, &c, d, &f, &k);
+        CHECK(egw_table_eval(s, d, &fs, &ks) == su);
+        CHECK(fabs(fs - f) <= 1e-12 * fabs(f) && fabs(ks - k) <= 1e-12 * fabs(k));
+      }
+    }
+    egw_table_free(&s);
+    CHECK(egw_universal_slice_range(u, &c, NAN, &s) == EGW_INVALID_ARGUMENT && s == NULL);
+    CHECK(last_error_names("delta_max")); }
   egw_universal_free(&back);
   egw_universal_free(&u);
   egw_universal_free(&u);

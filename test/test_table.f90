@@ -628,6 +628,37 @@ contains
       ! 1e-12: see above (rounding only)
       call check(error, worst <= 1.0e-12_dp, "slice vs universal eval: "//format_real(worst))
       if (allocated(error)) return
+      ! a slice trimmed to the overlaps a scene needs (delta_max = 10 sigma) keeps the
+      ! same cubics below it: same values to rounding (1e-12 as above), fewer nodes
+      block
+         type(force_table) :: trimmed
+         call universal_slice(u, p, trimmed, err, delta_max=10.0_dp*p%sigma)
+         call check(error, .not. allocated(err), "trimmed slice")
+         if (allocated(error)) return
+         call check(error, size(trimmed%delta) < size(t%delta) .and. &
+            & trimmed%delta_max >= 10.0_dp*p%sigma, "trimmed slice covers delta_max with "// &
+            & "fewer nodes")
+         if (allocated(error)) return
+         worst = 0
+         do i = 0, 200
+            x = u%x_cut - 1.0_dp + (10.0_dp - u%x_cut + 1.0_dp)*(i + 0.37_dp)/201
+            call universal_eval(u, p%radius, p%modulus, p%sigma, p%mu, x*p%sigma, fu, ku, stat)
+            call table_eval(trimmed, x*p%sigma, ft, kt)
+            call check(error, (fu == 0) .eqv. (ft == 0), "trimmed: zero below the cut-off")
+            if (allocated(error)) return
+            if (fu > 0) worst = max(worst, abs(ft/fu - 1), abs(kt/ku - 1))
+         end do
+         call check(error, worst <= 1.0e-12_dp, "trimmed slice vs universal eval: "// &
+            & format_real(worst))
+         if (allocated(error)) return
+         call universal_slice(u, p, trimmed, err, delta_max=(u%x_cut - 1.0_dp)*p%sigma)
+         call check(error, allocated(err), "delta_max below the cut-off must be refused")
+         if (allocated(error)) return
+         call check(error, err%stat, egw_invalid_argument, "status of a bad delta_max")
+         if (allocated(error)) return
+         call check(error, index(err%message, "delta_max =") == 1, "message names delta_max")
+         if (allocated(error)) return
+      end block
       ! round trips of the last slice
       call execute_command_line("mkdir -p "//dir)
       do fmt_id = format_csv, format_binary

@@ -401,6 +401,22 @@ contains
    function egw_universal_slice(h, p, out) result(stat) bind(C, name="egw_universal_slice")
       type(c_ptr), value, intent(in) :: h, p, out
       integer(c_int) :: stat
+      stat = slice_c(h, p, out, .false., 0.0_dp)
+   end function egw_universal_slice
+
+   !> C: egw_universal_slice_range: the same, trimmed to overlaps up to delta_max.
+   function egw_universal_slice_range(h, p, delta_max, out) result(stat) &
+      & bind(C, name="egw_universal_slice_range")
+      type(c_ptr), value, intent(in) :: h, p, out
+      real(c_double), value, intent(in) :: delta_max
+      integer(c_int) :: stat
+      stat = slice_c(h, p, out, .true., delta_max)
+   end function egw_universal_slice_range
+
+   integer(c_int) function slice_c(h, p, out, trim, delta_max) result(stat)
+      type(c_ptr), intent(in) :: h, p, out
+      logical, intent(in) :: trim
+      real(dp), intent(in) :: delta_max
       type(universal_table), pointer :: u
       type(contact_params) :: params
       type(force_table), pointer :: t
@@ -411,7 +427,11 @@ contains
       if (stat == egw_ok) stat = read_params(p, params)
       if (stat /= egw_ok) return
       allocate (t)
-      call universal_slice(u, params, t, error)
+      if (trim) then
+         call universal_slice(u, params, t, error, delta_max=delta_max)
+      else
+         call universal_slice(u, params, t, error)
+      end if
       stat = settle(error)
       if (stat /= egw_ok) then
          deallocate (t)
@@ -419,7 +439,7 @@ contains
       end if
       call c_f_pointer(out, handle)
       handle = c_loc(t)
-   end function egw_universal_slice
+   end function slice_c
 
    !> C: egw_universal_write (CSV or binary).
    function egw_universal_write(h, path, format) result(stat) &

@@ -344,12 +344,17 @@ contains
    !> P instead of ln P above delta = 0 (for speed, at the price of differing from
    !> universal_eval); the universal table itself now interpolates P there, so the
    !> exact slice is already as fast.
-   pure subroutine universal_slice(u, params, table, error, linear_contact)
+   pure subroutine universal_slice(u, params, table, error, linear_contact, delta_max)
       type(universal_table), intent(in) :: u
       type(contact_params), intent(in) :: params
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       logical, intent(in), optional :: linear_contact
+      !> Largest overlap the caller will evaluate (optional): the slice keeps the nodes up
+      !> to the first one at or above it, so its values below are unchanged and its lookup
+      !> buckets are spent where the contacts are (a DEM mix over a table reaching
+      !> delta/sigma = 1e3 otherwise crowds its buckets). Above it the table extrapolates.
+      real(dp), intent(in), optional :: delta_max
       real(dp) :: w(0:3), scale, p, dp_dx, a, lref
       integer :: j0, m, i, n
 
@@ -384,6 +389,22 @@ contains
       call mu_stencil(u, params%mu, j0, w)
       scale = params%modulus*sqrt(params%radius)*params%sigma*sqrt(params%sigma)
       n = size(u%slices(1)%delta)
+      if (present(delta_max)) then
+         if (.not. (ieee_is_finite(delta_max) .and. delta_max > params%sigma*u%x_cut)) then
+            call fatal_error(error, egw_invalid_argument, "delta_max = "// &
+               & format_real(delta_max)//": must be finite and above the cut-off "// &
+               & format_real(params%sigma*u%x_cut))
+            return
+         end if
+         do i = 2, n
+            if (params%sigma*u%slices(1)%delta(i) >= delta_max) then
+               ! keep every ln P interval and one P interval: the intervals kept are
+               ! then exactly those of the full slice
+               n = max(i, min(n, u%n_log + 2))
+               exit
+            end if
+         end do
+      end if
       allocate (table%delta(n), table%force(n), table%stiffness(n), &
          & table%contact_radius(n))
       do i = 1, n
