@@ -11,7 +11,7 @@ module egw_capi
    use egw_params, only: contact_params, validate_params, mu_from_summits
    use egw_version, only: egw_version_number
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile
-   use egw_gauss, only: get_gauss_integral, gauss_integral_deriv
+   use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
    use egw_ellip, only: get_ellipk, get_ellipe
    use egw_asperity, only: flat_pressure
    ! (the Hertz module is not called egw_hertz: gfortran 12 resolves its procedures to a
@@ -123,10 +123,9 @@ contains
       real(dp) :: f
       stat = require(value, "value")
       if (stat /= egw_ok) return
-      ! the checked kernel validates (n, h) with the same rules as F_n itself
-      call get_gauss_integral(n, h, f, error)
+      call get_gauss_integral_deriv(n, h, f, error)
       stat = settle(error)
-      if (stat == egw_ok) call put(value, gauss_integral_deriv(n, h))
+      if (stat == egw_ok) call put(value, f)
    end function egw_gauss_integral_deriv
 
    function egw_ellipk(k, value) result(stat) bind(C, name="egw_ellipk")

@@ -13,7 +13,7 @@ module egw_gauss
    implicit none
    private
 
-   public :: gauss_integral, gauss_integral_deriv, get_gauss_integral
+   public :: gauss_integral, gauss_integral_deriv, get_gauss_integral, get_gauss_integral_deriv
    public :: gauss_fm12, gauss_f0, gauss_f12, gauss_f1, gauss_f32, gauss_f52
    public :: normal_density, zmc_integrals, zmc_flat_integral
 
@@ -108,18 +108,34 @@ contains
       real(dp), intent(out) :: value
       type(egw_error), allocatable, intent(out) :: error
       value = 0.0_dp
+      call check_gauss_args(n, h, error)
+      if (allocated(error)) return
+      value = gauss_integral(n, h)
+   end subroutine get_gauss_integral
+
+   !> dF_n/dh with the checks of get_gauss_integral.
+   pure subroutine get_gauss_integral_deriv(n, h, value, error)
+      real(dp), intent(in) :: n  !< order, n >= 0
+      real(dp), intent(in) :: h  !< lower limit (separation in units of sigma)
+      real(dp), intent(out) :: value
+      type(egw_error), allocatable, intent(out) :: error
+      value = 0.0_dp
+      call check_gauss_args(n, h, error)
+      if (allocated(error)) return
+      value = gauss_integral_deriv(n, h)
+   end subroutine get_gauss_integral_deriv
+
+   pure subroutine check_gauss_args(n, h, error)
+      real(dp), intent(in) :: n, h
+      type(egw_error), allocatable, intent(out) :: error
       if (ieee_is_nan(n) .or. n < 0.0_dp) then
          call fatal_error(error, egw_invalid_argument, "n = "//format_real(n)// &
             & ": the order of the Gaussian integral must be a number >= 0")
-         return
-      end if
-      if (ieee_is_nan(h)) then
+      else if (ieee_is_nan(h)) then
          call fatal_error(error, egw_invalid_argument, "h = "//format_real(h)// &
             & ": the lower limit of the Gaussian integral must not be NaN")
-         return
       end if
-      value = gauss_integral(n, h)
-   end subroutine get_gauss_integral
+   end subroutine check_gauss_args
 
    !> F_{-1/2}(h) (the derivative of F_{1/2} is -F_{-1/2}/2).
    elemental real(dp) function gauss_fm12(h)
