@@ -12,17 +12,9 @@ program egw_table_app
       & choice_universal, max_types, solver_options, write_table, write_universal, &
       & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
-      & hertz_force, hertz_stiffness, hertz_contact_radius
+      & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    implicit none
-
-   interface
-      function c_rename(from, to) result(stat) bind(C, name="rename")
-         use, intrinsic :: iso_c_binding, only: c_char, c_int
-         character(kind=c_char), intent(in) :: from(*), to(*)
-         integer(c_int) :: stat
-      end function c_rename
-   end interface
 
    type(scene_input) :: input
    type(scene_overrides) :: ov
@@ -168,7 +160,6 @@ contains
    !> leaves no partial set of files behind.
    subroutine write_all()
       character(len=:), allocatable :: base
-      character(len=1024) :: parts(10)
       integer :: i
       call execute_command_line("mkdir -p '"//out_dir//"'")
       select case (tables%kind)
@@ -195,10 +186,9 @@ contains
             written(n_written) = out_dir//"/scene_pairs.lammps"
          end if
       end select
-      parts(1:n_written) = written(1:n_written)
       do i = 1, n_written
-         if (c_rename(trim(parts(i))//".part"//achar(0), trim(parts(i))//achar(0)) /= 0) &
-            & call fail_write("cannot rename "//trim(parts(i))//".part")
+         call rename_file(trim(written(i))//".part", trim(written(i)), error)
+         if (allocated(error)) call fail_write(error%message)
       end do
    end subroutine write_all
 

@@ -8,7 +8,7 @@ module egw_io
    implicit none
    private
 
-   public :: open_temporary, commit_temporary, discard_temporary
+   public :: open_temporary, commit_temporary, discard_temporary, rename_file
 
    interface
       function c_rename(from, to) result(stat) bind(C, name="rename")
@@ -59,12 +59,19 @@ contains
          call fatal_error(error, egw_io_error, "path = "//path//": cannot close "//tmp_path)
          return
       end if
-      if (c_rename(tmp_path//c_null_char, path//c_null_char) /= 0) then
-         call discard_file(tmp_path)
-         call fatal_error(error, egw_io_error, "path = "//path//": cannot rename "// &
-            & tmp_path//" onto it")
-      end if
+      call rename_file(tmp_path, path, error)
+      if (allocated(error)) call discard_file(tmp_path)
    end subroutine commit_temporary
+
+   !> Rename a file onto path (atomic within a file system; replaces an existing path).
+   subroutine rename_file(from, path, error)
+      character(len=*), intent(in) :: from, path
+      type(egw_error), allocatable, intent(out) :: error
+      if (c_rename(from//c_null_char, path//c_null_char) /= 0) then
+         call fatal_error(error, egw_io_error, "path = "//path//": cannot rename "// &
+            & from//" onto it")
+      end if
+   end subroutine rename_file
 
    !> Abandon a temporary file (after a failure while writing it).
    subroutine discard_temporary(unit, tmp_path)
