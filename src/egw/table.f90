@@ -78,8 +78,7 @@ module egw_table
       integer, allocatable :: bucket(:)           !< (0:n_bucket+1): interval at bucket start
       integer :: n_bucket = 0
       real(dp) :: bucket_scale = 0.0_dp
-      real(dp) :: bucket_origin = 0.0_dp          !< bucket variable at the first node
-      logical :: sqrt_buckets = .false.           !< buckets uniform in sign(d) sqrt|d|
+      real(dp) :: bucket_origin = 0.0_dp          !< overlap at the first node
       !> some bucket spans > 6 intervals (its entry is negated: bisect there)
       logical :: crowded = .false.
    end type force_table
@@ -467,20 +466,19 @@ contains
       ! delta = 0) bisect.
       ! (Buckets uniform in sign(delta) sqrt|delta| would spread graded nodes, but the
       ! sqrt on the lookup path made an evaluation ~1.8x slower, measured.)
-      call fit_buckets(table, .false.)
+      call fit_buckets(table)
    end subroutine table_prepare
 
-   !> Buckets in one variable, 8 per interval, doubled while more than 1/64 of them span
+   !> Buckets uniform in delta, 8 per interval, doubled while more than 1/64 of them span
    !> more than 6 intervals (up to max_buckets); those left crowded are marked.
-   pure subroutine fit_buckets(table, use_sqrt)
+   pure subroutine fit_buckets(table)
       type(force_table), intent(inout) :: table
-      logical, intent(in) :: use_sqrt
       integer :: n_crowded
       table%n_bucket = 8*(size(table%delta) - 1)
       do
          if (allocated(table%bucket)) deallocate (table%bucket)
          allocate (table%bucket(0:table%n_bucket + 1))
-         call make_buckets(table, use_sqrt)
+         call make_buckets(table)
          ! crowded: spans more than 6 intervals. Refine while more than 1/64 of the
          ! buckets are (a small array stays in L1 cache; a rare bisection is cheaper)
          n_crowded = count(table%bucket(1:table%n_bucket + 1) - &
@@ -498,23 +496,18 @@ contains
    end subroutine fit_buckets
 
    !> Fill the lookup buckets: bucket b holds the interval containing the point whose
-   !> bucket variable is origin + (b - 1e-6)/scale, so rounding never puts it past the
+   !> overlap is origin + (b - 1e-6)/scale, so rounding never puts it past the
    !> interval of a delta that maps to b, and evaluation only scans forward.
-   pure subroutine make_buckets(table, use_sqrt)
+   pure subroutine make_buckets(table)
       type(force_table), intent(inout) :: table
-      logical, intent(in) :: use_sqrt
       integer :: n, i, b
-      real(dp) :: xb, v
+      real(dp) :: xb
       n = size(table%delta)
-      table%sqrt_buckets = use_sqrt
-      table%bucket_origin = bucket_variable(table, table%delta(1))
-      table%bucket_scale = table%n_bucket/(bucket_variable(table, table%delta(n)) - &
-         & table%bucket_origin)
+      table%bucket_origin = table%delta(1)
+      table%bucket_scale = table%n_bucket/(table%delta(n) - table%bucket_origin)
       i = 1
       do b = 0, table%n_bucket + 1
-         v = table%bucket_origin + (b - 1.0e-6_dp)/table%bucket_scale
-         xb = v
-         if (use_sqrt) xb = sign(v*v, v)
+         xb = table%bucket_origin + (b - 1.0e-6_dp)/table%bucket_scale
          do while (i < n - 1)
             if (xb < table%delta(i + 1)) exit
             i = i + 1
@@ -522,16 +515,6 @@ contains
          table%bucket(b) = i
       end do
    end subroutine make_buckets
-
-   pure real(dp) function bucket_variable(table, delta) result(v)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      if (table%sqrt_buckets) then
-         v = sign(sqrt(abs(delta)), delta)
-      else
-         v = delta
-      end if
-   end function bucket_variable
 
    !> True when the evaluation data are present (a built or read table).
    pure logical function table_is_ready(table)
@@ -548,12 +531,8 @@ contains
       real(dp), intent(out) :: force, stiffness
       if (delta > table%cutoff .and. delta < table%delta_max) then
          ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
-         if (table%sqrt_buckets) then
-            call eval_crowded(table, delta, force, stiffness)
-         else
-            call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
-               & table%bucket_scale, table%n_log, size(table%seg, 2), delta, force, stiffness)
-         end if
+         call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
+            & table%bucket_scale, table%n_log, size(table%seg, 2), delta, force, stiffness)
       else if (delta >= table%delta_max) then
          stiffness = table%stiffness(size(table%stiffness))
          force = table%force(size(table%force)) + stiffness*(delta - table%delta_max)
@@ -608,26 +587,6 @@ contains
          stiffness = force*d
       end if
    end subroutine eval_kernel
-
-   !> Evaluation through find_interval (general bucket variable).
-   pure subroutine eval_crowded(table, delta, force, stiffness)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: force, stiffness
-      integer :: i
-      real(dp) :: t, v, d
-      i = find_interval(table, delta)
-      t = delta - table%seg(0, i)
-      v = table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i)))
-      d = table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i))
-      if (i > table%n_log) then
-         force = v
-         stiffness = d
-      else
-         force = exp(v)
-         stiffness = force*d
-      end if
-   end subroutine eval_crowded
 
    !> ln P and d ln P/ddelta at delta in (cutoff, delta_max) (used by the universal table
    !> to interpolate across mu in log space without an exp per slice).
@@ -768,12 +727,7 @@ contains
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
       integer :: b, lo, hi, mid
-      if (table%sqrt_buckets) then
-         b = int((sign(sqrt(abs(delta)), delta) - table%bucket_origin)*table%bucket_scale)
-      else
-         b = int((delta - table%bucket_origin)*table%bucket_scale)
-      end if
-      b = min(max(b, 0), table%n_bucket)
+      b = min(max(int((delta - table%bucket_origin)*table%bucket_scale), 0), table%n_bucket)
       i = abs(table%bucket(b))
       hi = abs(table%bucket(b + 1)) + 1
       if (hi - i > 6) then

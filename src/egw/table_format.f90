@@ -1476,7 +1476,6 @@ contains
       to%n_bucket = from%n_bucket
       to%bucket_scale = from%bucket_scale
       to%bucket_origin = from%bucket_origin
-      to%sqrt_buckets = from%sqrt_buckets
       to%crowded = from%crowded
       call move_alloc(from%delta, to%delta)
       call move_alloc(from%force, to%force)
