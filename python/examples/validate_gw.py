@@ -74,11 +74,16 @@ def bem_forces(heights, size, radius, modulus, overlaps):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--grid", type=int, default=512, help="BEM grid points per side")
+    ap.add_argument("--surface-grid", type=int, default=1024,
+                    help="grid the surfaces are generated on (a multiple of --grid)")
     ap.add_argument("--out", default="out/validation", help="output path without extension")
     ap.add_argument("--seed", type=int, default=2018, help="first random seed")
     ap.add_argument("--seeds", type=int, default=1,
                     help="surface realisations: the BEM force is their mean")
     args = ap.parse_args(argv)
+    if args.surface_grid % args.grid or args.grid < 256:
+        ap.error("--grid must be >= 256 (4 pixels per shortest wavelength) and divide "
+                 "--surface-grid")
 
     # a 0.5 mm patch, 1 um pixels at 512 points, self-affine H = 0.8 between 100 um and
     # 8 um (8+ pixels per shortest wavelength: summits resolved), rms height 0.2 um;
@@ -89,7 +94,11 @@ def main(argv=None):
     stats = {"summits": [], "spectral": []}
     surfaces = []
     for seed in seeds:
-        heights = rough_surface(n, size, 0.2e-6, 0.8, 8e-6, 100e-6, seed)
+        # one continuous band-limited surface per seed, sampled on the finest grid; its
+        # spectrum ends at 8 um, far below the Nyquist limit of a 256+ grid, so every
+        # second (fourth) pixel samples the SAME surface: BEM grids compare like for like
+        heights = rough_surface(args.surface_grid, size, 0.2e-6, 0.8, 8e-6, 100e-6,
+                                seed)[::args.surface_grid // n, ::args.surface_grid // n]
         surface = topo.detrend(topo.HeightMap(heights, size / n, size / n), "mean")
         surfaces.append(surface)
         stats["summits"].append(topo.summit_statistics(surface, periodic=True))
