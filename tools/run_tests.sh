@@ -5,7 +5,7 @@
 # own results; the last line adds them up as "total: N passed, N failed". Exit status 0
 # only if every suite that ran passed.
 # Environment: FPM (fpm command), FPM_FLAGS, VENV (default .venv).
-FPM=${FPM:-fpm}
+FPM=${FPM:-${VENV:-.venv}/bin/fpm}
 FPM_FLAGS=${FPM_FLAGS:---profile release}
 VENV=${VENV:-.venv}
 log=$(mktemp)
