@@ -112,6 +112,18 @@ int egw_flat_pressure(const egw_params *p, double separation, double *pressure);
 int egw_flat_pressure_deriv(const egw_params *p, double separation, double *pressure,
                             double *dpressure);
 
+/* EP-GW rough flat on unloading and reloading (doc/theory.md, unloading): nominal
+ * pressure p_G,u(d, d_min) of the rough flat at separation d after its closest approach
+ * d_min [length], and dp_G,u/dd at fixed d_min (<= 0; dpressure may be NULL). d >= d_min:
+ * each summit unloads elastically (Hertz, from its contact radius at maximum
+ * interference) towards its residual interference; d < d_min: the loading law (the
+ * approach is new: the caller's history becomes d). ZMC summits when p->model ==
+ * EGW_MODEL_EPGW and p->psi > 0, else elastic summits (reversible: the loading law).
+ * Needs p->sigma > 0. Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (NaN
+ * separation, non-finite separation_min), EGW_NULL_POINTER (p, pressure). */
+int egw_flat_pressure_unload(const egw_params *p, double separation, double separation_min,
+                             double *pressure, double *dpressure);
+
 /* Hertz contact of smooth spheres (sigma ignored): force (4/3) E sqrt(R) delta^1.5,
  * stiffness dP/ddelta = 2 E a, contact radius a = sqrt(R delta); all 0 for delta <= 0.
  * Outputs other than NULL are written. EGW_INVALID_ARGUMENT for NaN/inf delta. */

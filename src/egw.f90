@@ -8,6 +8,7 @@ module egw
    use egw_gauss
    use egw_ellip
    use egw_asperity
+   use egw_unloading
    use egw_smooth_sphere
    use egw_halfspace
    use egw_rough_sphere

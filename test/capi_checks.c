@@ -171,6 +171,26 @@ int egw_capi_test_flat_pressure(void) {
   CHECK(egw_flat_pressure(NULL, 0.0, &pr) == EGW_NULL_POINTER);
   CHECK(egw_flat_pressure(&p, 0.0, NULL) == EGW_NULL_POINTER);
   CHECK(egw_flat_pressure_deriv(&p, 0.0, &pr, NULL) == EGW_NULL_POINTER);
+  /* unloading: Z_u(-0.5, -1) = 0.0999943188254676126 for psi = 4, K = 0.6, rho_p = 54
+   * (tools/reference/unload_refs.py, two forms agreeing to 20+ digits); 1e-12 promised */
+  {
+    egw_params q = p; double pu = 7.0, dpu = 7.0, pl = 0.0;
+    double c = q.mu * q.modulus / (2.0 * q.sigma * sqrt(2.0 * q.radius));
+    q.model = EGW_MODEL_EPGW; q.psi = 4.0; q.hardness_coeff = 0.6; q.plastic_ratio = 54.0;
+    CHECK(egw_flat_pressure_unload(&q, -0.5e-3, -1.0e-3, &pu, &dpu) == EGW_OK);
+    CHECK(close_rel(pu, c * pow(q.sigma, 1.5) * 0.0999943188254676126, 1e-12) && dpu < 0.0);
+    CHECK(egw_flat_pressure(&q, -0.5e-3, &pl) == EGW_OK && pu < pl); /* below loading */
+    CHECK(egw_flat_pressure_unload(&q, -0.5e-3, -1.0e-3, &pu, NULL) == EGW_OK);
+    CHECK(egw_flat_pressure_unload(&q, -1.5e-3, -1.0e-3, &pu, NULL) == EGW_OK); /* reload */
+    CHECK(egw_flat_pressure(&q, -1.5e-3, &pl) == EGW_OK && pu == pl);
+    pu = 7.0;
+    CHECK(egw_flat_pressure_unload(&q, NAN, 0.0, &pu, &dpu) == EGW_INVALID_ARGUMENT && pu == 7.0);
+    CHECK(last_error_names("separation"));
+    CHECK(egw_flat_pressure_unload(&q, 0.0, INFINITY, &pu, &dpu) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("separation_min"));
+    CHECK(egw_flat_pressure_unload(&q, 0.0, 0.0, NULL, &dpu) == EGW_NULL_POINTER);
+    CHECK(egw_flat_pressure_unload(NULL, 0.0, 0.0, &pu, &dpu) == EGW_NULL_POINTER);
+  }
   return failures;
 }
 

@@ -121,3 +121,19 @@ def test_mu_and_psi_from_surface_data():
     with pytest.raises(egw.InvalidArgumentError) as info:
         egw.psi_from_hardness(e, -1.0, sigma, beta, k)
     assert "hardness" in info.value.message
+
+
+def test_flat_pressure_unload_reference_and_reloading():
+    # Z_u(-0.5, -1) = 0.0999943188254676126 for psi = 4, K = 0.6, rho_p = 54
+    # (tools/reference/unload_refs.py, 40 digits); p = C sigma^1.5 Z_u; egw promises 1e-12
+    p = egw.Params(model="EP-GW", sigma=1e-3, mu=4.0, psi=4.0)
+    c = p.mu * p.modulus / (2 * p.sigma * math.sqrt(2 * p.radius))
+    pu, dpu = egw.flat_pressure_unload(p, -0.5e-3, -1.0e-3, derivative=True)
+    assert pu == pytest.approx(c * p.sigma ** 1.5 * 0.0999943188254676126, rel=1e-12)
+    assert dpu < 0
+    # below the closest approach the loading law holds (reloading past the history)
+    d = np.array([-1.5e-3, -1.2e-3])
+    np.testing.assert_array_equal(egw.flat_pressure_unload(p, d, -1.0e-3),
+                                  egw.flat_pressure(p, d))
+    with pytest.raises(egw.InvalidArgumentError, match="separation_min"):
+        egw.flat_pressure_unload(p, 0.0, float("inf"))

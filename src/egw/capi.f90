@@ -15,6 +15,7 @@ module egw_capi
    use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
    use egw_ellip, only: get_ellipk, get_ellipe
    use egw_asperity, only: flat_pressure
+   use egw_unloading, only: flat_pressure_unload
    ! (the Hertz module is not called egw_hertz: gfortran 12 resolves its procedures to a
    ! bind(C) routine whose label equals the module name)
    use egw_smooth_sphere, only: hertz_contact
@@ -205,6 +206,27 @@ contains
       if (stat /= egw_ok) return
       stat = flat_pressure_c(p, separation, pressure, dpressure, .true.)
    end function egw_flat_pressure_deriv
+
+   !> C: egw_flat_pressure_unload (include/egw.h). dpressure may be NULL.
+   function egw_flat_pressure_unload(p, separation, separation_min, pressure, dpressure) &
+      & result(stat) bind(C, name="egw_flat_pressure_unload")
+      type(c_ptr), value, intent(in) :: p, pressure, dpressure
+      real(c_double), value, intent(in) :: separation, separation_min
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(egw_error), allocatable :: error
+      real(dp) :: pg, dpg
+      stat = require(pressure, "pressure")
+      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat /= egw_ok) return
+      pg = 0.0_dp
+      dpg = 0.0_dp
+      call flat_pressure_unload(params, separation, separation_min, pg, dpg, error)
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      call put(pressure, pg)
+      call put(dpressure, dpg)
+   end function egw_flat_pressure_unload
 
    function hertz_c(p, delta, force, stiffness, contact_radius) result(stat) &
       & bind(C, name="egw_hertz")

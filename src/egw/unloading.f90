@@ -1,0 +1,501 @@
+!> EP-GW unloading and reloading (DESIGN.md §8, doc/theory.md): the single ZMC asperity
+!> unloaded elastically from its contact at maximum interference, and the rough flat's
+!> pressure after a closest approach, Z_u(h, h_min).
+!>
+!> Everything is in units of sigma: interference u, e = delta_ep/sigma = 1/psi^2,
+!> q = rho_p e; forces f^ in units of (4/3) E beta^(1/2) sigma^(3/2) (so that the rough
+!> flat's pressure is C sigma^(3/2) int f^ phi, as in egw_asperity's rough_flat_law) and
+!> contact areas A^ = A/(pi beta sigma).
+!>
+!> Z_u(h, h_min) = int f^(t) ((D(t) - Delta)_+ / D(t))^(3/2) phi(t + h_min) dt with
+!> t = s - h_min the summit's maximum interference, Delta = h - h_min >= 0 and
+!> D(t) = t - u_r(t) = min(t, f^(t)/sqrt(A^(t))) its elastic recovery. D is continuous and
+!> increasing, so the summits in contact are those beyond t* = D^-1(Delta). The integrand
+!> has a (t - t*)^(3/2) edge at t* and kinks at e, q and where the recovery switches between
+!> "complete" (D = t, u_r clamped at 0) and "partial" (D = f^/sqrt(A^)); the integral is a
+!> fixed composite 16-point Gauss-Legendre rule on the pieces between those points, with
+!> t = t* + w^2 on the first panel (the edge becomes smooth), panels sized by the Gaussian's
+!> slope and by the distance to t = 0 (the law's branch point), and the Gaussian factor
+!> evaluated at exact node values z = t + h_min.
+module egw_unloading
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
+      & fatal_error, format_real
+   use egw_params, only: contact_params, validate_params, rough_flat_coefficient, model_epgw
+   use egw_asperity, only: rough_flat_law
+   use egw_gauss, only: shifted_density
+   implicit none
+   private
+
+   public :: asperity_load_force, asperity_contact_area, asperity_residual_interference, &
+      & asperity_unload_force, rough_flat_unload_law, flat_pressure_unload
+
+   !> Gaussian factor kept down to e^-loss_max of its largest value on the domain, plus the
+   !> growth of f^ (at most (t_hi/t_lo)^(3/2), a few e-folds) on top.
+   real(dp), parameter :: loss_max = 46.0_dp
+   !> Panel width: at most max_width in z, at most dloss/|z| where the Gaussian is steep
+   !> (exponent change per panel ~ dloss e-folds: 16-point GL error ~1e-16 relative), at
+   !> most ratio_max times the distance of the panel's left end to t = 0 (branch point of
+   !> the law: Bernstein ellipse rho >= 3, error 3^-32).
+   real(dp), parameter :: max_width = 1.5_dp, dloss = 10.0_dp, ratio_max = 2.0_dp
+   !> Samples of the clamp test t = f^/sqrt(A^) on (e, q): sign changes are located on this
+   !> logarithmic grid, then refined by bisection to full precision.
+   integer, parameter :: clamp_samples = 48
+   integer, parameter :: max_panels = 400
+
+   real(dp), parameter :: gl_x(8) = [0.095012509837637440185_dp, 0.28160355077925891323_dp, &
+      & 0.45801677765722738634_dp, 0.61787624440264374845_dp, 0.7554044083550030339_dp, &
+      & 0.86563120238783174388_dp, 0.94457502307323257608_dp, 0.9894009349916499326_dp]
+   real(dp), parameter :: gl_w(8) = [0.18945061045506849629_dp, 0.18260341504492358887_dp, &
+      & 0.16915651939500253819_dp, 0.14959598881657673208_dp, 0.12462897125553387205_dp, &
+      & 0.09515851168249278481_dp, 0.062253523938647892863_dp, 0.027152459411754094852_dp]
+   !> nodes on [0, 1] and weights summing to 1
+   real(dp), parameter :: gl_u(16) = [0.5_dp*(1.0_dp - gl_x), 0.5_dp*(1.0_dp + gl_x)]
+   real(dp), parameter :: gl_w16(16) = [0.5_dp*gl_w, 0.5_dp*gl_w]
+
+   !> The ZMC law of one parameter set in units of sigma.
+   type :: zmc_law
+      real(dp) :: e = huge(1.0_dp)  !< delta_ep/sigma (huge: elastic)
+      real(dp) :: q = huge(1.0_dp)  !< delta_p/sigma
+      real(dp) :: k = 1.0_dp        !< hardness coefficient K
+      real(dp) :: lnqe = 1.0_dp     !< ln(q/e) = ln rho_p
+      real(dp) :: c = 1.0_dp        !< sqrt(e)/K, the prefactor of the ZMC pieces
+   end type zmc_law
+
+contains
+
+   !> Loading force f^(u) of one summit at interference u (units above): u^(3/2) up to e,
+   !> (sqrt(e)/K) [1 - (1-K) ln(q/u)/ln(q/e)] (1 + 3 l^2 - 2 l^3) u up to q
+   !> (l = (u-e)/(q-e)), (sqrt(e)/K) 2u beyond (ZMC, eqs. 36-43); 0 for u <= 0.
+   !> psi = 0: elastic (u^(3/2) everywhere).
+   elemental real(dp) function asperity_load_force(u, psi, hardness_coeff, plastic_ratio) &
+      & result(f)
+      real(dp), intent(in) :: u               !< interference / sigma
+      real(dp), intent(in) :: psi             !< plasticity index of the paper (0: elastic)
+      real(dp), intent(in) :: hardness_coeff  !< ZMC K in (0, 1)
+      real(dp), intent(in) :: plastic_ratio   !< rho_p > 1
+      real(dp) :: a, d
+      call law_at(make_law(psi, hardness_coeff, plastic_ratio), u, f, a, d)
+   end function asperity_load_force
+
+   !> Contact area A^ = A/(pi beta sigma) of one summit at interference u: u up to e,
+   !> u (1 + 3 l^2 - 2 l^3) up to q, 2u beyond (ZMC eq. 41); 0 for u <= 0.
+   elemental real(dp) function asperity_contact_area(u, psi, plastic_ratio) result(a)
+      real(dp), intent(in) :: u              !< interference / sigma
+      real(dp), intent(in) :: psi            !< plasticity index of the paper (0: elastic)
+      real(dp), intent(in) :: plastic_ratio  !< rho_p > 1
+      real(dp) :: f, d
+      call law_at(make_law(psi, 0.5_dp, plastic_ratio), u, f, a, d)
+   end function asperity_contact_area
+
+   !> Residual interference u_r = max(0, u_m - f^(u_m)/sqrt(A^(u_m))) after unloading from
+   !> the maximum interference u_m: Hertzian unloading from the contact radius at u_m, whose
+   !> initial stiffness is the elastic stiffness 2 E a_m. 0 for elastic summits (u_m <= e).
+   elemental real(dp) function asperity_residual_interference(u_max, psi, hardness_coeff, &
+      & plastic_ratio) result(u_r)
+      real(dp), intent(in) :: u_max           !< maximum interference u_m / sigma
+      real(dp), intent(in) :: psi             !< plasticity index of the paper (0: elastic)
+      real(dp), intent(in) :: hardness_coeff  !< ZMC K in (0, 1)
+      real(dp), intent(in) :: plastic_ratio   !< rho_p > 1
+      real(dp) :: f, a, d
+      call law_at(make_law(psi, hardness_coeff, plastic_ratio), u_max, f, a, d)
+      u_r = max(0.0_dp, u_max - d)
+   end function asperity_residual_interference
+
+   !> Unloading/reloading force of one summit at interference u after the maximum u_m:
+   !> f^(u_m) ((u - u_r)/(u_m - u_r))^(3/2) for u_r < u <= u_m, 0 for u <= u_r, and the
+   !> loading law f^(u) above u_m (the history then moves up).
+   elemental real(dp) function asperity_unload_force(u, u_max, psi, hardness_coeff, &
+      & plastic_ratio) result(f)
+      real(dp), intent(in) :: u               !< interference / sigma
+      real(dp), intent(in) :: u_max           !< maximum interference so far / sigma
+      real(dp), intent(in) :: psi             !< plasticity index of the paper (0: elastic)
+      real(dp), intent(in) :: hardness_coeff  !< ZMC K in (0, 1)
+      real(dp), intent(in) :: plastic_ratio   !< rho_p > 1
+      type(zmc_law) :: law
+      real(dp) :: fm, a, d, x
+      law = make_law(psi, hardness_coeff, plastic_ratio)
+      if (u >= u_max) then
+         call law_at(law, u, f, a, d)
+         return
+      end if
+      call law_at(law, u_max, fm, a, d)
+      x = d - (u_max - u)  ! u - u_r
+      if (x > 0.0_dp) then
+         f = fm*(x/d)*sqrt(x/d)
+      else
+         f = 0.0_dp
+      end if
+   end function asperity_unload_force
+
+   !> Dimensionless unloading/reloading pressure of the rough flat, Z_u(h, h_min)
+   !> (DESIGN.md §8), in the units of rough_flat_law (p_G = C sigma^(3/2) Z_u), and dZ_u/dh
+   !> at fixed h_min. h < h_min, or psi = 0 (elastic summits: reversible), is the loading
+   !> law; at h = h_min the value is the loading law's and dp the unloading slope.
+   !> Preconditions as rough_flat_law (psi >= 0, 0 < K < 1, rho_p > 1, no NaN).
+   elemental subroutine rough_flat_unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, &
+      & p, dpdh)
+      real(dp), intent(in) :: h               !< separation / sigma
+      real(dp), intent(in) :: h_min           !< closest approach so far / sigma
+      real(dp), intent(in) :: psi             !< plasticity index of the paper (0: elastic)
+      real(dp), intent(in) :: hardness_coeff  !< ZMC K
+      real(dp), intent(in) :: plastic_ratio   !< ZMC rho_p
+      real(dp), intent(out) :: p              !< Z_u
+      real(dp), intent(out) :: dpdh           !< dZ_u/dh at fixed h_min (<= 0)
+      real(dp) :: p_load, dp_load
+      if (.not. psi > 0.0_dp .or. h < h_min) then
+         call rough_flat_law(h, psi, hardness_coeff, plastic_ratio, p, dpdh)
+         return
+      end if
+      call unload_integral(make_law(psi, hardness_coeff, plastic_ratio), h - h_min, h_min, &
+         & p, dpdh)
+      if (.not. h > h_min) then  ! h = h_min: the loading value exactly
+         call rough_flat_law(h, psi, hardness_coeff, plastic_ratio, p_load, dp_load)
+         p = p_load
+      end if
+   end subroutine rough_flat_unload_law
+
+   !> Nominal pressure p_G,u(d, d_min) = C sigma^(3/2) Z_u(d/sigma, d_min/sigma) of the rough
+   !> flat at separation d after the closest approach d_min (d_min <= d: unloading or
+   !> reloading; d < d_min: the loading law, the approach then being new), and dp_G,u/dd at
+   !> fixed d_min. ZMC summits iff model is EP-GW and psi > 0, else elastic (reversible).
+   !> Errors: invalid params, sigma = 0 (egw_invalid_parameter); NaN separation or
+   !> non-finite separation_min (egw_invalid_argument). Outputs unchanged on error.
+   pure subroutine flat_pressure_unload(params, separation, separation_min, pressure, &
+      & dpressure, error)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: separation      !< d, same length unit as sigma
+      real(dp), intent(in) :: separation_min  !< d_min, the closest approach so far
+      real(dp), intent(inout) :: pressure     !< p_G,u
+      real(dp), intent(inout) :: dpressure    !< dp_G,u/dd (<= 0)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: c, sigma, p, dpdh, psi
+      call validate_params(params, error)
+      if (allocated(error)) return
+      if (ieee_is_nan(separation)) then
+         call fatal_error(error, egw_invalid_argument, "separation = "// &
+            & format_real(separation)//": the separation must be a number")
+         return
+      end if
+      if (.not. ieee_is_finite(separation_min)) then
+         call fatal_error(error, egw_invalid_argument, "separation_min = "// &
+            & format_real(separation_min)//": the closest approach must be finite")
+         return
+      end if
+      sigma = params%sigma
+      if (.not. sigma > 0.0_dp) then
+         call fatal_error(error, egw_invalid_parameter, &
+            & "sigma = 0: the rough-flat law needs sigma > 0")
+         return
+      end if
+      psi = 0.0_dp
+      if (params%model == model_epgw) psi = params%psi
+      call rough_flat_unload_law(separation/sigma, separation_min/sigma, psi, &
+         & params%hardness_coeff, params%plastic_ratio, p, dpdh)
+      c = rough_flat_coefficient(params)
+      pressure = c*sigma*sqrt(sigma)*p
+      dpressure = c*sqrt(sigma)*dpdh
+   end subroutine flat_pressure_unload
+
+   ! ---------------------------------------------------------------------------------------
+
+   elemental function make_law(psi, hardness_coeff, plastic_ratio) result(law)
+      real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio
+      type(zmc_law) :: law
+      if (psi > 0.0_dp) then
+         law%e = 1.0_dp/(psi*psi)
+         law%q = plastic_ratio*law%e
+         law%k = hardness_coeff
+         law%lnqe = log(plastic_ratio)
+         law%c = sqrt(law%e)/hardness_coeff
+      end if
+   end function make_law
+
+   !> f^(t), A^(t) and the elastic recovery r(t) = f^/sqrt(A^) (t above e; t below it, where
+   !> they are equal), for t > 0; all 0 for t <= 0.
+   elemental subroutine law_at(law, t, f, a, r)
+      type(zmc_law), intent(in) :: law
+      real(dp), intent(in) :: t
+      real(dp), intent(out) :: f, a, r
+      real(dp) :: l, area, pres
+      if (.not. t > 0.0_dp) then
+         f = 0.0_dp
+         a = 0.0_dp
+         r = 0.0_dp
+      else if (t <= law%e) then
+         f = t*sqrt(t)
+         a = t
+         r = t
+      else if (t <= law%q) then
+         l = (t - law%e)/(law%q - law%e)
+         area = 1.0_dp + l*l*(3.0_dp - 2.0_dp*l)
+         pres = 1.0_dp - (1.0_dp - law%k)*log(law%q/t)/law%lnqe
+         f = law%c*pres*area*t
+         a = area*t
+         r = law%c*pres*sqrt(a)
+      else
+         f = 2.0_dp*law%c*t
+         a = 2.0_dp*t
+         r = law%c*sqrt(a)
+      end if
+      r = min(t, r)
+   end subroutine law_at
+
+   !> The partial recovery r(t) = f^/sqrt(A^) (not clamped at t).
+   elemental real(dp) function recovery(law, t) result(r)
+      type(zmc_law), intent(in) :: law
+      real(dp), intent(in) :: t
+      real(dp) :: l, area, pres
+      if (t <= law%e) then
+         r = t
+      else if (t <= law%q) then
+         l = (t - law%e)/(law%q - law%e)
+         area = 1.0_dp + l*l*(3.0_dp - 2.0_dp*l)
+         pres = 1.0_dp - (1.0_dp - law%k)*log(law%q/t)/law%lnqe
+         r = law%c*pres*sqrt(area*t)
+      else
+         r = law%c*sqrt(2.0_dp*t)
+      end if
+   end function recovery
+
+   !> t* = D^-1(Delta) = max(Delta, r^-1(Delta)) (both D = min(t, r) and r increase).
+   pure real(dp) function contact_start(law, delta) result(t)
+      type(zmc_law), intent(in) :: law
+      real(dp), intent(in) :: delta
+      real(dp) :: lo, hi, mid
+      integer :: i
+      if (delta <= law%e) then
+         t = delta
+      else if (delta <= recovery(law, law%q)) then
+         ! r is smooth and increasing on (e, q): bisection to the last bit (fixed cost,
+         ! 60 halvings of a bracket whose ends are representable)
+         lo = law%e
+         hi = law%q
+         do i = 1, 200
+            mid = 0.5_dp*(lo + hi)
+            if (.not. (mid > lo .and. mid < hi)) exit
+            if (recovery(law, mid) < delta) then
+               lo = mid
+            else
+               hi = mid
+            end if
+         end do
+         t = max(delta, hi)
+      else
+         t = max(delta, 0.5_dp*(delta/law%c)**2)
+      end if
+   end function contact_start
+
+   !> Points in (t_lo, t_hi) where the recovery switches between complete (r >= t) and
+   !> partial (r < t): kinks of D. On (e, q) by sign changes of r - t on a log grid refined
+   !> by bisection; beyond q at t = 2 e/K^2 (r = t there in closed form).
+   pure subroutine clamp_switches(law, t_lo, t_hi, sw, n)
+      type(zmc_law), intent(in) :: law
+      real(dp), intent(in) :: t_lo, t_hi
+      real(dp), intent(out) :: sw(:)
+      integer, intent(out) :: n
+      real(dp) :: lo, hi, g_lo, g_hi, ratio, root
+      integer :: i
+      n = 0
+      if (max(law%e, t_lo) < min(law%q, t_hi)) then
+         ratio = (law%q/law%e)**(1.0_dp/clamp_samples)
+         lo = law%e*(1.0_dp + 1.0e-12_dp)  ! r = t at e itself
+         g_lo = recovery(law, lo) - lo
+         do i = 1, clamp_samples
+            hi = law%e*ratio**i
+            if (i == clamp_samples) hi = law%q
+            g_hi = recovery(law, hi) - hi
+            if ((g_lo < 0.0_dp .neqv. g_hi < 0.0_dp) .and. hi > t_lo .and. lo < t_hi) then
+               root = switch_point(law, lo, hi, g_lo < 0.0_dp)
+               if (root > t_lo .and. root < t_hi .and. n < size(sw)) then
+                  n = n + 1
+                  sw(n) = root
+               end if
+            end if
+            if (hi >= t_hi) exit
+            lo = hi
+            g_lo = g_hi
+         end do
+      end if
+      root = 2.0_dp*law%e/(law%k*law%k)
+      if (root > law%q .and. root > t_lo .and. root < t_hi .and. n < size(sw)) then
+         n = n + 1
+         sw(n) = root
+      end if
+   end subroutine clamp_switches
+
+   !> The zero of r(t) - t in (lo, hi), where it changes sign, by bisection to the last bit.
+   pure real(dp) function switch_point(law, lo, hi, negative_at_lo) result(t)
+      type(zmc_law), intent(in) :: law
+      real(dp), intent(in) :: lo, hi
+      logical, intent(in) :: negative_at_lo
+      real(dp) :: a, b
+      integer :: i
+      a = lo
+      b = hi
+      t = 0.5_dp*(a + b)
+      do i = 1, 200
+         t = 0.5_dp*(a + b)
+         if (.not. (t > a .and. t < b)) exit
+         if ((recovery(law, t) - t < 0.0_dp) .eqv. negative_at_lo) then
+            a = t
+         else
+            b = t
+         end if
+      end do
+   end function switch_point
+
+   !> Z_u and dZ_u/dh for Delta = h - h_min >= 0 by the piecewise rule described above.
+   pure subroutine unload_integral(law, delta, h_min, p, dpdh)
+      type(zmc_law), intent(in) :: law
+      real(dp), intent(in) :: delta, h_min
+      real(dp), intent(out) :: p, dpdh
+      real(dp) :: t_star, z_star, z_lo, z_hi, z_peak, span, breaks(8), sw(6), z0, z1, w
+      real(dp) :: s_p, s_dp, r_p, r_dp, t0
+      integer :: nb, ns, i, ip
+      p = 0.0_dp
+      dpdh = 0.0_dp
+      t_star = contact_start(law, delta)
+      z_star = t_star + h_min
+      ! Gaussian window on [z_star, inf): from the peak z_peak of phi there, keep the
+      ! region where phi has lost at most loss_max e-folds
+      z_peak = max(z_star, 0.0_dp)
+      if (z_peak > 38.7_dp) return  ! phi < 1e-325 everywhere: underflow, Z_u = 0
+      span = loss_max + 6.0_dp
+      z_hi = z_peak + 2.0_dp*span/(z_peak + sqrt(z_peak*z_peak + 2.0_dp*span))
+      z_lo = z_star
+      if (z_peak > z_star) z_lo = max(z_star, -sqrt(2.0_dp*span))
+      ! breakpoints of the law inside the window, in z
+      nb = 0
+      call add_break(law%e + h_min, z_lo, z_hi, breaks, nb)
+      call add_break(law%q + h_min, z_lo, z_hi, breaks, nb)
+      call clamp_switches(law, z_lo - h_min, z_hi - h_min, sw, ns)
+      do i = 1, ns
+         call add_break(sw(i) + h_min, z_lo, z_hi, breaks, nb)
+      end do
+      call sort(breaks(:nb))
+      s_p = 0.0_dp
+      s_dp = 0.0_dp
+      z0 = z_lo
+      do i = 1, nb + 1
+         if (i <= nb) then
+            z1 = breaks(i)
+         else
+            z1 = z_hi
+         end if
+         if (z1 <= z0) cycle
+         ! panels near the contact edge (the first, and any starting closer to it than their
+         ! width, e.g. right after a breakpoint just beyond t*) in t = t* + v^2, which
+         ! makes the (t - t*)^(3/2) edge smooth
+         do ip = 1, max_panels
+            if (z0 >= z1) exit
+            w = min(z1 - z0, max_width)
+            if (abs(z0) > 1.0_dp) w = min(w, dloss/abs(z0))
+            ! beyond e the law has log t and sqrt t: keep t = 0 far from the panel
+            t0 = max(z0 - h_min, t_star)
+            if (t0 >= law%e) w = min(w, ratio_max*t0)
+            if (z0 - z_star < w) then
+               ! a panel that starts just beyond the edge (after a breakpoint) sees the
+               ! edge's branch point at v ~ +-i sqrt(z0 - z*): at most 3x that in v
+               if (z0 > z_star) w = min(w, 8.0_dp*(z0 - z_star))
+               call edge_panel(z0, z0 + w, r_p, r_dp)
+            else
+               call plain_panel(z0, z0 + w, r_p, r_dp)
+            end if
+            s_p = s_p + r_p
+            s_dp = s_dp + r_dp
+            z0 = z0 + w
+         end do
+         z0 = max(z0, z1)
+      end do
+      p = s_p
+      dpdh = -1.5_dp*s_dp
+
+   contains
+
+      !> integrands at z: F = f^ ((D - Delta)/D)^(3/2) phi(z), G = f^ (D - Delta)^(1/2)
+      !> / D^(3/2) phi(z) (dZ_u/dh = -(3/2) int G)
+      pure subroutine integrands(z, fz, gz)
+         real(dp), intent(in) :: z
+         real(dp), intent(out) :: fz, gz
+         real(dp) :: t, f, a, d, x, phi
+         t = z - h_min
+         call law_at(law, t, f, a, d)
+         x = d - delta
+         if (.not. x > 0.0_dp .or. .not. d > 0.0_dp) then
+            fz = 0.0_dp
+            gz = 0.0_dp
+            return
+         end if
+         phi = shifted_density(z, 0.0_dp)
+         gz = f*sqrt(x/d)/d*phi
+         fz = gz*x
+      end subroutine integrands
+
+      pure subroutine plain_panel(za, zb, rp, rdp)
+         real(dp), intent(in) :: za, zb
+         real(dp), intent(out) :: rp, rdp
+         real(dp) :: fz, gz
+         integer :: k
+         rp = 0.0_dp
+         rdp = 0.0_dp
+         do k = 1, 16
+            call integrands(za + (zb - za)*gl_u(k), fz, gz)
+            rp = rp + gl_w16(k)*fz
+            rdp = rdp + gl_w16(k)*gz
+         end do
+         rp = rp*(zb - za)
+         rdp = rdp*(zb - za)
+      end subroutine plain_panel
+
+      !> [za, zb] in z = z* + v^2, v from sqrt(za - z*) to sqrt(zb - z*)
+      pure subroutine edge_panel(za, zb, rp, rdp)
+         real(dp), intent(in) :: za, zb
+         real(dp), intent(out) :: rp, rdp
+         real(dp) :: fz, gz, va, vb, v
+         integer :: k
+         va = sqrt(max(za - z_star, 0.0_dp))
+         vb = sqrt(max(zb - z_star, 0.0_dp))
+         rp = 0.0_dp
+         rdp = 0.0_dp
+         do k = 1, 16
+            v = va + (vb - va)*gl_u(k)
+            call integrands(z_star + v*v, fz, gz)
+            rp = rp + gl_w16(k)*fz*2.0_dp*v
+            rdp = rdp + gl_w16(k)*gz*2.0_dp*v
+         end do
+         rp = rp*(vb - va)
+         rdp = rdp*(vb - va)
+      end subroutine edge_panel
+
+   end subroutine unload_integral
+
+   !> Append z to breaks(1:nb) if it lies inside (z_lo, z_hi).
+   pure subroutine add_break(z, z_lo, z_hi, breaks, nb)
+      real(dp), intent(in) :: z, z_lo, z_hi
+      real(dp), intent(inout) :: breaks(:)
+      integer, intent(inout) :: nb
+      if (z > z_lo .and. z < z_hi .and. nb < size(breaks)) then
+         nb = nb + 1
+         breaks(nb) = z
+      end if
+   end subroutine add_break
+
+   pure subroutine sort(x)
+      real(dp), intent(inout) :: x(:)
+      real(dp) :: v
+      integer :: i, j
+      do i = 2, size(x)
+         v = x(i)
+         j = i - 1
+         do while (j >= 1)
+            if (x(j) <= v) exit
+            x(j + 1) = x(j)
+            j = j - 1
+         end do
+         x(j + 1) = v
+      end do
+   end subroutine sort
+
+end module egw_unloading
