@@ -14,6 +14,7 @@ program egw_table_app
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
+   use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
 
    type(scene_input) :: input
@@ -58,6 +59,7 @@ program egw_table_app
       case ("--choose-only")
          choose_only = .true.
       case default
+         if (.not. takes_value(arg)) call die("unknown option "//arg//" (see --help)")
          call next_value(iarg, arg, val)
          select case (arg)
          case ("-o", "--out"); out_dir = val
@@ -83,7 +85,7 @@ program egw_table_app
          case ("--delta-max-sigma"); ov%delta_max_sigma = real_value(arg, val)
          case ("--tol"); ov%tol = real_value(arg, val)
          case default
-            call die("unknown option '"//arg//"' (see --help)")
+            call die("unknown option "//arg//" (see --help)")
          end select
       end select
       iarg = iarg + 1
@@ -129,7 +131,7 @@ program egw_table_app
       if (quiet) then
          call build_scene_tables(scene, choice, options, tables, error)
       else
-         call bar_start("building")
+         call bar_start("building", stderr_is_terminal())
          call build_scene_tables(scene, choice, options, tables, error, bar_update)
          call bar_finish()
       end if
@@ -140,7 +142,7 @@ program egw_table_app
             call build_pair_tables(scene, options, pair_tables, error)
          else
             ! the bar restarts for every distinct parameter set (so does the count)
-            call bar_start("building")
+            call bar_start("building", stderr_is_terminal())
             call build_pair_tables(scene, options, pair_tables, error, bar_update)
             call bar_finish()
          end if
@@ -496,11 +498,27 @@ contains
       end do
    end subroutine usage
 
+   !> One line "egw-table: <message>" on stderr and exit status 2 (no runtime backtrace).
    subroutine die(message)
       character(len=*), intent(in) :: message
-      write (error_unit, '(a)') "egw-table: error: "//message
-      error stop 2
+      write (error_unit, '(a)') "egw-table: "//message
+      call exit_process(2)
    end subroutine die
+
+   !> The options that take a value (the others are --help, --quiet, --choose-only).
+   pure logical function takes_value(name)
+      character(len=*), intent(in) :: name
+      select case (name)
+      case ("-o", "--out", "--formats", "--model", "--radius", "--radii", "--radius-range", &
+         & "--modulus", "--poisson", "--effective-modulus", "--sigma", "--sigma-range", &
+         & "--mu", "--summit-density", "--summit-radius", "--psi", "--K", "--k", &
+         & "--plastic-ratio", "--delta-min", "--delta-max", "--delta-min-sigma", &
+         & "--delta-max-sigma", "--tol")
+         takes_value = .true.
+      case default
+         takes_value = .false.
+      end select
+   end function takes_value
 
    subroutine get_arg(i, val)
       integer, intent(in) :: i
