@@ -12,7 +12,7 @@ program egw_table_app
       & choice_universal, max_types, solver_options, write_table, write_universal, &
       & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
-      & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file
+      & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
@@ -31,6 +31,9 @@ program egw_table_app
    integer :: iarg, n_written
    integer(int64) :: t0, t1, rate
    real(dp) :: elapsed
+   !> deepest overlap the LAMMPS sections reach (0: default, twice the scene's delta_max)
+   real(dp) :: lammps_reach = 0.0_dp
+   logical :: lammps_written = .false.
 
    call system_clock(t0, rate)
    out_dir = "out"
@@ -84,6 +87,7 @@ program egw_table_app
          case ("--delta-min-sigma"); ov%delta_min_sigma = real_value(arg, val)
          case ("--delta-max-sigma"); ov%delta_max_sigma = real_value(arg, val)
          case ("--tol"); ov%tol = real_value(arg, val)
+         case ("--lammps-delta-max"); lammps_reach = real_value(arg, val)
          case default
             call die("unknown option "//arg//" (see --help)")
          end select
@@ -102,6 +106,13 @@ program egw_table_app
    call resolve_scene(input, scene, error)
    if (allocated(error)) call die(error%message)
    call parse_formats(format_list, formats_given, want)
+   if (lammps_reach == 0.0_dp) then
+      lammps_reach = 2.0_dp*maxval(scene%delta_max)
+   else if (.not. (lammps_reach >= maxval(scene%delta_max) .and. lammps_reach < huge(1.0_dp))) &
+      & then
+      call die("--lammps-delta-max = "//num(lammps_reach)//": must be finite and >= "// &
+         & "the scene's delta_max = "//num(maxval(scene%delta_max))//" [length]")
+   end if
 
    call print_scene()
    call progress("choosing the model (Hertz check by full solves) ...")
@@ -172,7 +183,14 @@ contains
             call put_curves(scene%sets(1), scene%delta_min(1), scene%delta_max(1))
          end if
          if (want(format_binary)) call put(base//".bin", format_binary)
-         if (want(format_lammps)) call put(base//".lammps", format_lammps)
+         if (want(format_lammps)) then
+            call write_lammps([tables%table], base//".lammps.part", error, &
+               & delta_reach=lammps_reach)
+            if (allocated(error)) call fail_write(error%message)
+            n_written = n_written + 1
+            written(n_written) = base//".lammps"
+            lammps_written = .true.
+         end if
          if (want(format_calculix)) then
             call put(base//"_sphere.inp", format_calculix)
             call put_flat(out_dir//"/scene_flat.inp")
@@ -182,7 +200,9 @@ contains
          if (want(format_csv)) call put(base//".csv", format_csv)
          if (want(format_binary)) call put(base//".bin", format_binary)
          if (pair_lammps) then
-            call write_lammps(pair_tables, out_dir//"/scene_pairs.lammps.part", error)
+            call write_lammps(pair_tables, out_dir//"/scene_pairs.lammps.part", error, &
+               & delta_reach=lammps_reach)
+            lammps_written = .true.
             if (allocated(error)) call fail_write(error%message)
             n_written = n_written + 1
             written(n_written) = out_dir//"/scene_pairs.lammps"
@@ -354,6 +374,16 @@ contains
          write (output_unit, '(a)') "  wrote             "//trim(written(i))
       end do
       if (allocated(pair_tables)) call pair_sections()
+      if (input%model == model_epgw .and. input%psi > 0.0_dp .and. n_written > 0 .and. &
+         & (want(format_lammps) .or. want(format_calculix))) write (output_unit, '(a)') &
+         & "  WARNING           EP-GW: the LAMMPS and CalculiX files carry the loading"// &
+         & " curve only (no unloading hysteresis, no plastic dissipation)"
+      if (lammps_written) then
+         write (output_unit, '(a)') "  LAMMPS reach      delta <= "//num(lammps_reach)// &
+            & " (--lammps-delta-max; default 2 x delta_max): deeper overlaps stop LAMMPS"// &
+            & " with 'Pair distance < table inner cutoff'; above delta_max the force"// &
+            & " continues linearly"
+      end if
    end subroutine summary
 
    !> Which particle types each LAMMPS section of scene_pairs.lammps is for.
@@ -479,6 +509,8 @@ contains
          & "  --delta-min D, --delta-max D            overlap range [length]", &
          & "  --delta-min-sigma X, --delta-max-sigma X  overlap range in units of sigma", &
          & "  --tol TOL               force tolerance (relative), 1e-8 .. 0.1", &
+         & "  --lammps-delta-max D    deepest overlap the LAMMPS table reaches [length]", &
+         & "                          (default 2 x delta_max; LAMMPS stops beyond it)", &
          & "", &
          & "Output:", &
          & "  --formats LIST          of csv,binary,lammps,calculix (default: all that apply:", &
@@ -513,7 +545,7 @@ contains
          & "--modulus", "--poisson", "--effective-modulus", "--sigma", "--sigma-range", &
          & "--mu", "--summit-density", "--summit-radius", "--psi", "--K", "--k", &
          & "--plastic-ratio", "--delta-min", "--delta-max", "--delta-min-sigma", &
-         & "--delta-max-sigma", "--tol")
+         & "--delta-max-sigma", "--tol", "--lammps-delta-max")
          takes_value = .true.
       case default
          takes_value = .false.
