@@ -7,7 +7,7 @@ VENV ?= .venv
 FPM := $(VENV)/bin/fpm
 export VENV
 
-.PHONY: run test bench setup clean python
+.PHONY: run test bench setup clean python docs
 run: setup
 	@$(FPM) run egw-table $(FPM_FLAGS) -- $(ARGS)
 
@@ -26,6 +26,12 @@ setup:
 python: setup
 	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check numpy pytest ./python
 	@echo "python: egw $$($(VENV)/bin/python -c 'import egw; print(egw.version())') in $(VENV)/ ($(VENV)/bin/python, $(VENV)/bin/egw-topo)"
+
+# API reference from the sources' !> comments (FORD, from PyPI, into the project venv).
+docs: setup
+	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "ford>=7"
+	@$(VENV)/bin/ford --quiet ford.md
+	@echo "docs: build/doc/index.html"
 
 clean:
 	rm -rf build

@@ -58,6 +58,10 @@ step "cmake: configure, build, install" sh -c "
   cmake --build '$work/build' -j 2 >>'$work/cmake.log' &&
   cmake --install '$work/build' >>'$work/cmake.log' || { tail -40 '$work/cmake.log'; exit 1; }"
 
+step "egw-table: installed, runs from the prefix (rpath), no LD_LIBRARY_PATH" sh -c "
+  env -i PATH=/usr/bin:/bin '$prefix/bin/egw-table' --quiet --formats csv --out '$work/installed_out' \
+    >/dev/null && test -s '$work/installed_out/scene_table.csv'"
+
 # --- C and Fortran DEM examples against the installed package ---------------------------
 for lang in c fortran; do
   for st in OFF ON; do

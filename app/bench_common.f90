@@ -45,7 +45,7 @@ contains
       character(len=*), intent(in) :: name
       integer, intent(out) :: unit
       character(len=*), intent(in), optional :: header
-      if (.not. allocated(out_dir)) out_dir = "doc/bench/"
+      if (.not. allocated(out_dir)) out_dir = "out/bench/"
       call execute_command_line("mkdir -p "//out_dir)
       open (newunit=unit, file=out_dir//name, status="replace", action="write")
       if (present(header)) then

@@ -85,7 +85,7 @@ contains
    end subroutine time_solve
 
    !> Issue 3 item 5 / issue 5 item 1: tolerance and mesh sweeps, Newton vs Picard.
-   !> Writes doc/bench/solver.csv; one thread per solve (n_threads = 1).
+   !> Writes <out>/solver.csv; one thread per solve (n_threads = 1).
    subroutine run_solver(quick)
       logical, intent(in) :: quick
       type(solve_case), allocatable :: cases(:)
@@ -161,7 +161,7 @@ contains
    end function rel_error
 
    !> OpenMP speed-up of assemble_influence: 1 thread vs 2 threads, same run, on a
-   !> graded quartic mesh like the solver's fine levels. Writes doc/bench/speedup.csv
+   !> graded quartic mesh like the solver's fine levels. Writes <out>/speedup.csv
    !> rows (appended by the table section too).
    subroutine run_assembly(unit)
       integer, intent(in) :: unit
@@ -192,7 +192,7 @@ contains
 
    !> egw side of the peer comparison: for each (delta/sigma, mu) line of `path`, classic
    !> GW at the default options (rel_tol 1e-6, one thread) timed, and a reference solve at
-   !> rel_tol 1e-9. Writes doc/bench/peer_egw.csv.
+   !> rel_tol 1e-9. Writes <out>/peer_egw.csv.
    subroutine run_peer_cases(path)
       character(len=*), intent(in) :: path
       integer :: in, unit, ios, stat, stat_ref

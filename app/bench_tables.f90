@@ -163,7 +163,7 @@ contains
       end do
    end function table_error
 
-   !> The 1-D table sections. Writes doc/bench/tables.csv and appends build speed-up rows
+   !> The 1-D table sections. Writes <out>/tables.csv and appends build speed-up rows
    !> to the speed-up CSV (unit_speedup).
    subroutine run_tables(quick, unit_speedup)
       logical, intent(in) :: quick

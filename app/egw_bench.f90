@@ -2,25 +2,28 @@
 !>   fpm run egw-bench --profile release [-- sections] [--quick]
 !> Sections (default: all but --universal-1thread and --peer):
 !>   --kernels     ns per call of the kernels, as ratios to libm erfc and the Hertz force
-!>   --fn          F_3/2 evaluation paths vs error          -> doc/bench/fn.csv
+!>   --fn          F_3/2 evaluation paths vs error          -> out/bench/fn.csv
 !>   --solver      time per force point vs error, meshes, tolerances, Newton vs Picard
-!>                                                           -> doc/bench/solver.csv
-!>   --assembly    OpenMP speed-up of assemble_influence     -> doc/bench/speedup.csv
+!>                                                           -> out/bench/solver.csv
+!>   --assembly    OpenMP speed-up of assemble_influence     -> out/bench/speedup.csv
 !>   --tables      1-D table eval vs Hertz, resolutions, Hermite vs linear, build speed-up
-!>                                                           -> doc/bench/tables.csv
+!>                                                           -> out/bench/tables.csv
 !>   --universal   universal E-GW table (mu 0.1-100, delta/sigma -6..1e3): 1e-4 built with 1
-!>                 and 2 threads (speed-up), 1e-6 with 2 threads -> doc/bench/universal.csv
+!>                 and 2 threads (speed-up), 1e-6 with 2 threads -> out/bench/universal.csv
 !>   --universal-1thread  also build the 1e-6 universal table with 1 thread
 !>   --peer FILE   egw side of the peer comparison (tools/bench/peer_greenwood_tripp.py)
 !>   --speedup     only the 1-vs-2-thread measurements: assembly, 1-D table build (best of
-!>                 5), universal 1e-4 build -> doc/bench/speedup.csv, universal_speedup.csv
+!>                 5), universal 1e-4 build -> out/bench/speedup.csv, universal_speedup.csv
 !>   --universal-tol X  only the universal table at rel_tol X (2 threads)
-!>                 -> doc/bench/universal_tol.csv
+!>                 -> out/bench/universal_tol.csv
 !>   --quick       fewer cases and shorter timings (a smoke run)
-!>   --out DIR     write the CSVs to DIR/ instead of doc/bench/ (keeps committed results)
-!> Run from the project root (reads test/data/sphere_reference.csv, writes doc/bench/).
+!>   --out DIR     write the CSVs to DIR/ (default out/bench/)
+!>   --update-docs write the CSVs to doc/bench/, replacing the committed results that
+!>                 doc/benchmarks.md quotes (only when regenerating those on purpose)
+!> Run from the project root (reads test/data/sphere_reference.csv, writes out/bench/).
 program egw_bench
-   use, intrinsic :: iso_fortran_env, only: output_unit, int64
+   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
+   use egw_terminal, only: exit_process
    use omp_lib, only: omp_set_num_threads
    use egw, only: dp, gauss_integral, ellipk, rough_flat_law, hertz_force
    use bench_common, only: load_reference, open_csv, close_csv, frac, out_dir
@@ -98,7 +101,7 @@ contains
       do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
       universal_tol = 0
       universal_1thread = .false.; peer_file = ""
-      out_dir = "doc/bench/"
+      out_dir = "out/bench/"
       k = 0
       do while (k < command_argument_count())
          k = k + 1
@@ -121,13 +124,15 @@ contains
             k = k + 1
             call get_command_argument(k, arg)
             out_dir = trim(arg)//"/"
+         case ("--update-docs")
+            out_dir = "doc/bench/"
          case ("--peer")
             k = k + 1
             call get_command_argument(k, peer_file)
          case default
-            write (output_unit, '(a)') "egw-bench: unknown argument "//trim(arg)// &
+            write (error_unit, '(a)') "egw-bench: unknown option "//trim(arg)// &
                & " (see the header of app/egw_bench.f90)"
-            error stop 2
+            call exit_process(2)
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &

@@ -12,8 +12,9 @@ program egw_table_app
       & choice_universal, max_types, solver_options, write_table, write_universal, &
       & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
-      & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file
+      & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
+   use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
 
    type(scene_input) :: input
@@ -30,6 +31,9 @@ program egw_table_app
    integer :: iarg, n_written
    integer(int64) :: t0, t1, rate
    real(dp) :: elapsed
+   !> deepest overlap the LAMMPS sections reach (0: default, twice the scene's delta_max)
+   real(dp) :: lammps_reach = 0.0_dp
+   logical :: lammps_written = .false.
 
    call system_clock(t0, rate)
    out_dir = "out"
@@ -58,6 +62,7 @@ program egw_table_app
       case ("--choose-only")
          choose_only = .true.
       case default
+         if (.not. takes_value(arg)) call die("unknown option "//arg//" (see --help)")
          call next_value(iarg, arg, val)
          select case (arg)
          case ("-o", "--out"); out_dir = val
@@ -82,8 +87,9 @@ program egw_table_app
          case ("--delta-min-sigma"); ov%delta_min_sigma = real_value(arg, val)
          case ("--delta-max-sigma"); ov%delta_max_sigma = real_value(arg, val)
          case ("--tol"); ov%tol = real_value(arg, val)
+         case ("--lammps-delta-max"); lammps_reach = real_value(arg, val)
          case default
-            call die("unknown option '"//arg//"' (see --help)")
+            call die("unknown option "//arg//" (see --help)")
          end select
       end select
       iarg = iarg + 1
@@ -100,6 +106,13 @@ program egw_table_app
    call resolve_scene(input, scene, error)
    if (allocated(error)) call die(error%message)
    call parse_formats(format_list, formats_given, want)
+   if (lammps_reach == 0.0_dp) then
+      lammps_reach = 2.0_dp*maxval(scene%delta_max)
+   else if (.not. (lammps_reach >= maxval(scene%delta_max) .and. lammps_reach < huge(1.0_dp))) &
+      & then
+      call die("--lammps-delta-max = "//num(lammps_reach)//": must be finite and >= "// &
+         & "the scene's delta_max = "//num(maxval(scene%delta_max))//" [length]")
+   end if
 
    call print_scene()
    call progress("choosing the model (Hertz check by full solves) ...")
@@ -129,7 +142,7 @@ program egw_table_app
       if (quiet) then
          call build_scene_tables(scene, choice, options, tables, error)
       else
-         call bar_start("building")
+         call bar_start("building", stderr_is_terminal())
          call build_scene_tables(scene, choice, options, tables, error, bar_update)
          call bar_finish()
       end if
@@ -140,7 +153,7 @@ program egw_table_app
             call build_pair_tables(scene, options, pair_tables, error)
          else
             ! the bar restarts for every distinct parameter set (so does the count)
-            call bar_start("building")
+            call bar_start("building", stderr_is_terminal())
             call build_pair_tables(scene, options, pair_tables, error, bar_update)
             call bar_finish()
          end if
@@ -170,7 +183,14 @@ contains
             call put_curves(scene%sets(1), scene%delta_min(1), scene%delta_max(1))
          end if
          if (want(format_binary)) call put(base//".bin", format_binary)
-         if (want(format_lammps)) call put(base//".lammps", format_lammps)
+         if (want(format_lammps)) then
+            call write_lammps([tables%table], base//".lammps.part", error, &
+               & delta_reach=lammps_reach)
+            if (allocated(error)) call fail_write(error%message)
+            n_written = n_written + 1
+            written(n_written) = base//".lammps"
+            lammps_written = .true.
+         end if
          if (want(format_calculix)) then
             call put(base//"_sphere.inp", format_calculix)
             call put_flat(out_dir//"/scene_flat.inp")
@@ -180,7 +200,9 @@ contains
          if (want(format_csv)) call put(base//".csv", format_csv)
          if (want(format_binary)) call put(base//".bin", format_binary)
          if (pair_lammps) then
-            call write_lammps(pair_tables, out_dir//"/scene_pairs.lammps.part", error)
+            call write_lammps(pair_tables, out_dir//"/scene_pairs.lammps.part", error, &
+               & delta_reach=lammps_reach)
+            lammps_written = .true.
             if (allocated(error)) call fail_write(error%message)
             n_written = n_written + 1
             written(n_written) = out_dir//"/scene_pairs.lammps"
@@ -352,6 +374,16 @@ contains
          write (output_unit, '(a)') "  wrote             "//trim(written(i))
       end do
       if (allocated(pair_tables)) call pair_sections()
+      if (input%model == model_epgw .and. input%psi > 0.0_dp .and. n_written > 0 .and. &
+         & (want(format_lammps) .or. want(format_calculix))) write (output_unit, '(a)') &
+         & "  WARNING           EP-GW: the LAMMPS and CalculiX files carry the loading"// &
+         & " curve only (no unloading hysteresis, no plastic dissipation)"
+      if (lammps_written) then
+         write (output_unit, '(a)') "  LAMMPS reach      delta <= "//num(lammps_reach)// &
+            & " (--lammps-delta-max; default 2 x delta_max): deeper overlaps stop LAMMPS"// &
+            & " with 'Pair distance < table inner cutoff'; above delta_max the force"// &
+            & " continues linearly"
+      end if
    end subroutine summary
 
    !> Which particle types each LAMMPS section of scene_pairs.lammps is for.
@@ -477,6 +509,8 @@ contains
          & "  --delta-min D, --delta-max D            overlap range [length]", &
          & "  --delta-min-sigma X, --delta-max-sigma X  overlap range in units of sigma", &
          & "  --tol TOL               force tolerance (relative), 1e-8 .. 0.1", &
+         & "  --lammps-delta-max D    deepest overlap the LAMMPS table reaches [length]", &
+         & "                          (default 2 x delta_max; LAMMPS stops beyond it)", &
          & "", &
          & "Output:", &
          & "  --formats LIST          of csv,binary,lammps,calculix (default: all that apply:", &
@@ -496,11 +530,27 @@ contains
       end do
    end subroutine usage
 
+   !> One line "egw-table: <message>" on stderr and exit status 2 (no runtime backtrace).
    subroutine die(message)
       character(len=*), intent(in) :: message
-      write (error_unit, '(a)') "egw-table: error: "//message
-      error stop 2
+      write (error_unit, '(a)') "egw-table: "//message
+      call exit_process(2)
    end subroutine die
+
+   !> The options that take a value (the others are --help, --quiet, --choose-only).
+   pure logical function takes_value(name)
+      character(len=*), intent(in) :: name
+      select case (name)
+      case ("-o", "--out", "--formats", "--model", "--radius", "--radii", "--radius-range", &
+         & "--modulus", "--poisson", "--effective-modulus", "--sigma", "--sigma-range", &
+         & "--mu", "--summit-density", "--summit-radius", "--psi", "--K", "--k", &
+         & "--plastic-ratio", "--delta-min", "--delta-max", "--delta-min-sigma", &
+         & "--delta-max-sigma", "--tol", "--lammps-delta-max")
+         takes_value = .true.
+      case default
+         takes_value = .false.
+      end select
+   end function takes_value
 
    subroutine get_arg(i, val)
       integer, intent(in) :: i

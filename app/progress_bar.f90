@@ -11,20 +11,24 @@ module egw_progress_bar
 
    public :: bar_start, bar_update, bar_finish
 
-   !> width of the bar in characters, and the least time between redraws (s)
+   !> width of the bar in characters, and the least time between redraws (s); in a log
+   !> (stderr not a terminal) a plain line at most every log_interval seconds
    integer, parameter :: bar_width = 30
-   real, parameter :: min_interval = 0.1
+   real, parameter :: min_interval = 0.1, log_interval = 5.0
 
    character(len=:), allocatable :: label
    integer :: last_done = 0, last_total = 0, last_len = 0
    integer(int64) :: last_draw = 0, clock_rate = 1
-   logical :: active = .false., drawn = .false., stale = .false.
+   logical :: active = .false., drawn = .false., stale = .false., plain = .false.
 
 contains
 
-   !> Start a bar named name (drawn at the first update).
-   subroutine bar_start(name)
+   !> Start a bar named name (drawn at the first update). terminal: stderr is a terminal
+   !> (a bar redrawn in place); otherwise plain progress lines, one every log_interval s.
+   subroutine bar_start(name, terminal)
       character(len=*), intent(in) :: name
+      logical, intent(in) :: terminal
+      plain = .not. terminal
       label = name
       last_done = 0
       last_total = 0
@@ -44,7 +48,8 @@ contains
       last_done = done
       last_total = total
       call system_clock(now)
-      stale = drawn .and. real(now - last_draw)/real(clock_rate) < min_interval
+      stale = drawn .and. real(now - last_draw)/real(clock_rate) < &
+         & merge(log_interval, min_interval, plain)
       if (stale) return
       last_draw = now
       call draw(.false.)
@@ -56,9 +61,9 @@ contains
    subroutine bar_finish()
       if (.not. active) return
       active = .false.
-      if (stale) then
+      if (stale .or. (plain .and. .not. drawn .and. last_total > 0)) then
          call draw(.true.)
-      else if (drawn) then
+      else if (drawn .and. .not. plain) then
          write (error_unit, '(a)') ""
          flush (error_unit)
       end if
@@ -80,7 +85,9 @@ contains
       ! blank out what is left of a longer previous line
       if (len(line) < last_len) line = line//repeat(" ", last_len - len(line))
       last_len = len(line)
-      if (final) then
+      if (plain) then
+         write (error_unit, '(a)') "egw-table: "//trim(adjustl(line))
+      else if (final) then
          write (error_unit, '(a)') achar(13)//line
       else
          write (error_unit, '(a)', advance='no') achar(13)//line

@@ -19,6 +19,7 @@ program tester
    use test_capi_scene, only: collect_capi_scene
    use test_stability, only: collect_stability
    use test_unloading, only: collect_unloading
+   use test_cli, only: collect_cli
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -40,7 +41,8 @@ program tester
       & new_testsuite("scene", collect_scene), &
       & new_testsuite("capi_scene", collect_capi_scene), &
       & new_testsuite("stability", collect_stability), &
-      & new_testsuite("unloading", collect_unloading) &
+      & new_testsuite("unloading", collect_unloading), &
+      & new_testsuite("cli", collect_cli) &
       & ]
 
    stat = 0

@@ -23,6 +23,9 @@ count() {
   failed=$((failed + ${f:-0} + ${e:-0}))
 }
 
+# the programs too: the cli suite runs the egw-table built beside the tester
+# shellcheck disable=SC2086
+$FPM build $FPM_FLAGS >/dev/null 2>&1 || $FPM build $FPM_FLAGS || status=1
 echo "=== Fortran and C suites (fpm test)"
 # shellcheck disable=SC2086
 { $FPM test $FPM_FLAGS 2>&1; echo $? >"$log.rc"; } | tee "$log"

@@ -448,6 +448,14 @@ contains
          call set_range(s, ov%delta_min_sigma, ov%delta_max_sigma, 1, "delta_min_sigma", &
             & "delta_max_sigma", error)
       else
+         ! a scene made smooth (sigma = 0) keeps its overlaps: a range in units of the
+         ! old sigma becomes that range in length (the only unit left)
+         if (s%delta_in_sigma == 1 .and. s%sigma_max == 0.0_dp .and. &
+            & input%sigma_max > 0.0_dp) then
+            s%delta_min = s%delta_min*input%sigma_max
+            s%delta_max = s%delta_max*input%sigma_max
+            s%delta_in_sigma = 0
+         end if
          call set_range(s, ov%delta_min, ov%delta_max, 0, "delta_min", "delta_max", error)
       end if
       if (allocated(error)) return

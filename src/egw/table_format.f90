@@ -12,7 +12,7 @@ module egw_table_format
    use egw_status, only: egw_error, egw_ok, egw_bad_file, egw_io_error, egw_invalid_argument, &
       & egw_invalid_parameter, &
       & egw_unsupported, fatal_error, format_real
-   use egw_params, only: contact_params, validate_params, model_name
+   use egw_params, only: contact_params, validate_params, model_name, model_epgw
    use egw_version, only: egw_version_string, egw_version_number
    use egw_io, only: open_temporary, commit_temporary, discard_temporary
    use egw_asperity, only: flat_pressure
@@ -750,14 +750,18 @@ contains
    !> units of the parameters; pass units (a LAMMPS units style such as "si", "metal")
    !> only when they are that style's force/length/energy units: it is then written as
    !> `# DATE: ... UNITS: <units>` and LAMMPS checks it against the input deck.
-   subroutine write_lammps(tables, path, error, units)
+   subroutine write_lammps(tables, path, error, units, delta_reach)
       type(force_table), intent(in) :: tables(:)
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
       character(len=*), intent(in), optional :: units
+      !> deepest overlap the sections reach (>= each table's delta_max; beyond delta_max
+      !> the force continues linearly with the end stiffness, as table_eval does); LAMMPS
+      !> stops with "Pair distance < table inner cutoff" at deeper overlaps
+      real(dp), intent(in), optional :: delta_reach
       integer :: unit, s, i, n
       character(len=:), allocatable :: tmp
-      real(dp) :: rsum, rlo, rhi, r, d, f, k, e
+      real(dp) :: rsum, rlo, rhi, r, d, f, k, e, reach
       character(len=:), allocatable :: note
 
       do s = 1, size(tables)
@@ -797,9 +801,11 @@ contains
                note = "R1 = R2 = 2R = "//fmt(2*t%params%radius)//": built from the "// &
                   & "equivalent radius R alone, distances are for two equal spheres"
             end if
-            rlo = rsum - t%delta_max
+            reach = t%delta_max
+            if (present(delta_reach)) reach = max(reach, delta_reach)
+            rlo = rsum - reach
             rhi = rsum - t%cutoff
-            n = lammps_points(t, rlo, rhi)
+            n = lammps_points(t, rsum, rlo, rhi)
             write (unit, '(a)') ""
             write (unit, '(a)') "# section EGW_"//int_str(s)//": model "// &
                & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
@@ -811,10 +817,19 @@ contains
                & fmt(rhi)//" (pair cutoff); energy = int of P from the cut-off"
             write (unit, '(a)') "# rel_tol = "//fmt(t%rel_tol)//" relative to P_ref = "// &
                & fmt(t%reference_force)
+            write (unit, '(a)') "# ends: r > "//fmt(rhi)//" (delta < cutoff): no force; r < "// &
+               & fmt(rlo)//" (delta > "//fmt(reach)//"): LAMMPS stops with 'Pair distance "// &
+               & "< table inner cutoff'"
+            if (reach > t%delta_max) write (unit, '(a)') "# delta in ("// &
+               & fmt(t%delta_max)//", "//fmt(reach)//"]: beyond the table's delta_max, "// &
+               & "force continued linearly with the end stiffness"
+            if (t%params%model == model_epgw .and. t%params%psi > 0.0_dp) write (unit, '(a)') &
+               & "# EP-GW: loading curve only (pair_style table has no history: no "// &
+               & "unloading hysteresis, no plastic dissipation)"
             if (rlo <= 0.0_dp) then
                call discard_temporary(unit, tmp)
                call fatal_error(error, egw_invalid_argument, "delta_max = "// &
-                  & format_real(t%delta_max)//": r = R1 + R2 - delta_max must be > 0")
+                  & format_real(reach)//": r = R1 + R2 - delta_max must be > 0")
                return
             end if
             write (unit, '(a)') "EGW_"//int_str(s)
@@ -841,12 +856,11 @@ contains
 
    !> Points of a LAMMPS section: doubled until the midpoint linear-interpolation error
    !> of the force is <= rel_tol * P_ref everywhere (or the point limit is reached).
-   function lammps_points(t, rlo, rhi) result(n)
+   function lammps_points(t, rsum, rlo, rhi) result(n)
       type(force_table), intent(in) :: t
-      real(dp), intent(in) :: rlo, rhi
+      real(dp), intent(in) :: rsum, rlo, rhi
       integer :: n, i
-      real(dp) :: rsum, h, f0, f1, fm, k, worst
-      rsum = rlo + t%delta_max
+      real(dp) :: h, f0, f1, fm, k, worst
       n = 500
       do
          h = (rhi - rlo)/(n - 1)

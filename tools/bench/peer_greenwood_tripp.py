@@ -97,8 +97,9 @@ def main():
     with open(case_file, "w") as f:
         for r in rows:
             f.write(f"{r['delta']!r} {r['mu']!r}\n")
-    subprocess.check_call(["fpm", "run", "egw-bench", "--profile", "release", "--",
-                           "--peer", case_file])
+    fpm = os.path.join(".venv", "bin", "fpm") if os.path.exists(".venv/bin/fpm") else "fpm"
+    subprocess.check_call([fpm, "run", "egw-bench", "--profile", "release", "--",
+                           "--update-docs", "--peer", case_file])
     with open("doc/bench/peer_egw.csv") as f:
         egw = list(csv.DictReader(f))
     out = "doc/bench/peer.csv"

@@ -1,0 +1,62 @@
+#!/bin/sh
+# Command-line behaviour of egw-table (issue: a newcomer's path; reliability): every
+# refusal is one line "egw-table: <message>" on stderr with exit status 2, no runtime
+# "ERROR STOP" or backtrace, no files; unknown options are named as such; --sigma 0 gives
+# the Hertz model; progress in a log is plain lines (no carriage returns).
+# Usage: egw_table_cli.sh PATH/TO/egw-table   (prints failures; exit status = their number)
+exe=$1
+[ -x "$exe" ] || { echo "    egw-table not found at '$exe'"; exit 1; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+fail() { echo "    CLI check failed: $*"; fails=$((fails + 1)); }
+
+# refuse NAME EXPECTED_SUBSTRING ARGS...: exit 2, one stderr line starting "egw-table: "
+# that contains EXPECTED_SUBSTRING, nothing written to the output directory
+refuse() {
+  name=$1 expect=$2
+  shift 2
+  out="$work/out_$name"
+  "$exe" --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"
+  rc=$?
+  [ "$rc" -eq 2 ] || fail "$name: exit status $rc, expected 2"
+  lines=$(wc -l <"$work/stderr")
+  [ "$lines" -eq 1 ] || fail "$name: $lines stderr lines, expected 1: $(cat "$work/stderr")"
+  grep -q "^egw-table: " "$work/stderr" || fail "$name: stderr does not start 'egw-table: '"
+  grep -qF -- "$expect" "$work/stderr" || fail "$name: stderr lacks '$expect': $(cat "$work/stderr")"
+  if grep -qiE "error stop|backtrace|#0 " "$work/stderr"; then fail "$name: runtime trace"; fi
+  if [ -d "$out" ] && [ -n "$(ls -A "$out")" ]; then fail "$name: files written: $(ls "$out")"; fi
+}
+
+refuse unknown "egw-table: unknown option --x (see --help)" --x
+refuse unknown_with_value "unknown option --bogus" --bogus 3
+refuse missing_value "--tol needs a value" --tol
+refuse not_a_number "--radius = 'abc': not a number" --radius abc
+refuse bad_radius "radius" --radius -1e-3
+refuse bad_tol "tol" --tol 2
+refuse no_scene_file "nonexistent.nml" "$work/nonexistent.nml"
+printf '&scene\n  no_such_variable = 1\n/\n' >"$work/bad.nml"
+refuse bad_scene_variable "bad.nml" "$work/bad.nml"
+printf '&scene\n  radius = -1.0\n/\n' >"$work/neg.nml"
+refuse bad_scene_value "radius" "$work/neg.nml"
+
+# smooth spheres: sigma = 0 is the Hertz model, not an error
+"$exe" --sigma 0 --quiet --out "$work/smooth" >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 0 ] || fail "--sigma 0: exit status $rc: $(cat "$work/stderr")"
+grep -q "Hertz" "$work/stdout" || fail "--sigma 0: no Hertz model in the summary"
+
+# progress into a log: plain lines, no carriage returns, every line 'egw-table: ...'
+"$exe" --out "$work/log" --formats csv --tol 1e-3 >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 0 ] || fail "build: exit status $rc: $(cat "$work/stderr")"
+if tr -d '\n' <"$work/stderr" | grep -q "$(printf '\r')"; then
+  fail "progress in a log contains carriage returns"
+fi
+if grep -v "^egw-table: " "$work/stderr" | grep -q .; then
+  fail "progress lines in a log: $(grep -v '^egw-table: ' "$work/stderr" | head -2)"
+fi
+grep -q "building" "$work/stderr" || fail "no progress line in the log"
+[ -s "$work/log/scene_table.csv" ] || fail "build: no scene_table.csv"
+echo "    $fails CLI check(s) failed"
+exit "$fails"
