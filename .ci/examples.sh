@@ -98,6 +98,16 @@ step "calculix: rough flat, p_G" sh -c "
   fpm run --example calculix-flat $FPM_FLAGS -- '$work/flat.inc' &&
   python3 '$root/example/calculix/run.py' '$work/flat.inc' ccx"
 
+# egw-table's own CalculiX output in a real ccx: the block of example/calculix on the
+# scene_flat.inp that egw-table writes for the same surface (mm, N, MPa; E* of steel on a
+# rigid base, eta = 500 /mm^2, beta = 0.05 mm, sigma = 1 um; R = 1 mm: p_G depends on
+# mu/sqrt(R) only)
+step "calculix: egw-table's scene_flat.inp in ccx" sh -c "
+  fpm run egw-table $FPM_FLAGS -- --quiet --radius 2 --effective-modulus 230769.23076923077 \
+    --sigma 1e-3 --summit-density 500 --summit-radius 0.05 --delta-min -0.002 \
+    --delta-max 1e-3 --tol 1e-3 --formats calculix --out '$work/ccx_scene' >/dev/null &&
+  python3 '$root/example/calculix/run.py' '$work/ccx_scene/scene_flat.inp' ccx"
+
 echo "=== examples summary"
 printf '%s\n' "${summary[@]}"
 if ((${#failed[@]})); then

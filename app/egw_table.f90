@@ -191,10 +191,11 @@ contains
             written(n_written) = base//".lammps"
             lammps_written = .true.
          end if
-         if (want(format_calculix)) then
-            call put(base//"_sphere.inp", format_calculix)
-            call put_flat(out_dir//"/scene_flat.inp")
-         end if
+         ! CalculiX: the rough flat's pressure-overclosure law (a contact law between
+         ! surfaces). The sphere's force-overlap curve is not one: CalculiX multiplies a
+         ! pressure-overclosure curve by each slave node's area, so it is not written here
+         ! (the library's write_calculix_sphere documents what it is for).
+         if (want(format_calculix)) call put_flat(out_dir//"/scene_flat.inp")
       case (choice_universal)
          base = out_dir//"/scene_universal"
          if (want(format_csv)) call put(base//".csv", format_csv)
@@ -231,8 +232,12 @@ contains
    !> an overclosure of delta_max.
    subroutine put_flat(path)
       character(len=*), intent(in) :: path
+      ! shifted: CalculiX only reaches overclosures >= 0 (node-to-surface contact springs
+      ! exist only where the surfaces touch or penetrate), so the curve starts at (0, 0)
+      ! at the separation d_c where p_G has fallen to tol p_G(0): the model's surfaces
+      ! stand for the summit base planes at separation d_c (doc/formats.md section 5)
       call write_calculix_flat(scene%sets(1), scene%delta_max(1), input%tol, &
-         & path//".part", error)
+         & path//".part", error, shift=.true.)
       if (allocated(error)) call fail_write(error%message)
       n_written = n_written + 1
       written(n_written) = path
