@@ -22,9 +22,9 @@ bench: setup
 setup:
 	@sh tools/setup.sh
 
-# The Python package (python/) in the project venv, with numpy and pytest.
+# The Python package (python/) in the project venv, with numpy, pandas and pytest.
 python: setup
-	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check numpy pytest ./python
+	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check numpy pandas pytest ./python
 	@echo "python: egw $$($(VENV)/bin/python -c 'import egw; print(egw.version())') in $(VENV)/ ($(VENV)/bin/python, $(VENV)/bin/egw-topo)"
 
 # API reference from the sources' !> comments (FORD, from PyPI, into the project venv).

@@ -258,8 +258,10 @@ contains
       if (ios /= 0) call fail_write("cannot create "//path//".part")
       n_written = n_written + 1
       written(n_written) = path
-      call curve_header(u, p, "Hertz force-overlap curve of the smooth spheres (DESIGN.md s5)")
+      ! column header first, metadata as '#' lines (read as is by pandas.read_csv(path,
+      ! comment="#") and numpy.loadtxt(path, delimiter=",", skiprows=1))
       write (u, '(a)') "delta,force,stiffness,contact_radius"
+      call curve_header(u, p, "Hertz force-overlap curve of the smooth spheres (DESIGN.md s5)")
       hi = max(delta_hi, 0.0_dp)
       do i = 0, n - 1
          x = hi*real(i, dp)/real(n - 1, dp)
@@ -273,9 +275,9 @@ contains
       if (ios /= 0) call fail_write("cannot create "//path//".part")
       n_written = n_written + 1
       written(n_written) = path
+      write (u, '(a)') "separation,pressure,dpressure_dseparation"
       call curve_header(u, p, "rough-flat pressure-separation law p_G(d) and dp_G/dd "// &
          & "(DESIGN.md s3); separation d = -overlap")
-      write (u, '(a)') "separation,pressure,dpressure_dseparation"
       lo = -max(delta_hi, 4.0_dp*p%sigma)
       hi = max(-delta_lo, 6.0_dp*p%sigma)
       do i = 0, n - 1

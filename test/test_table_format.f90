@@ -339,7 +339,8 @@ contains
       call expect_bad(error, dir//"/cut.csv", "truncated")
       if (allocated(error)) return
       ! drop a whole data row (the end line's count no longer matches)
-      p = index(b, "delta,force,stiffness,energy,contact_radius")
+      ! (the first data row follows the last metadata line, "# interpolation = ...")
+      p = index(b, "# interpolation")
       p = p + index(b(p:), new_line("a"))
       c = b(1:p - 1)//b(p + index(b(p:), new_line("a")):)
       call spit(dir//"/row.csv", c)

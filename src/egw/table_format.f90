@@ -39,6 +39,11 @@ module egw_table_format
    integer, parameter :: universal_header_bytes = 104, slice_header_bytes = 64
    !> Most points a LAMMPS or CalculiX file gets (resampling is adaptive below this).
    integer, parameter :: max_export_points = 200000
+   !> Column headers of the CSV tables (the first line from CSV format 2 on).
+   character(len=*), parameter :: csv_columns_table = &
+      & "delta,force,stiffness,energy,contact_radius"
+   character(len=*), parameter :: csv_columns_universal = &
+      & "mu_index,x,p,dp_dx,energy,contact_radius"
    character(len=*), parameter :: real_fmt = "(es25.17e3)"
    !> CalculiX reads only the first 20 characters of a field: 13 significant digits
    !> (relative rounding <= 5e-13, below every rel_tol a curve can be asked for).
@@ -107,7 +112,8 @@ contains
             return
          end if
       end if
-      if (starts_with(bytes, "# egw force table")) then
+      if (starts_with(bytes, "# egw force table") .or. &
+         & starts_with(bytes, csv_columns_table//new_line("a")//"# egw force table")) then
          call parse_table_csv(path, bytes, table, error)
       else
          call fatal_error(error, egw_bad_file, "path = "//path// &
@@ -154,7 +160,9 @@ contains
             return
          end if
       end if
-      if (starts_with(bytes, "# egw universal table")) then
+      if (starts_with(bytes, "# egw universal table") .or. &
+         & starts_with(bytes, csv_columns_universal//new_line("a")//"# egw universal table")) &
+         & then
          call parse_universal_csv(path, bytes, table, error)
       else
          call fatal_error(error, egw_bad_file, "path = "//path//": not an egw universal "// &
@@ -172,7 +180,11 @@ contains
       character(len=:), allocatable :: tmp
       call open_temporary(path, unit, tmp, error)
       if (allocated(error)) return
-      write (unit, '(a)') "# egw force table, CSV format 1"
+      ! the column header first and the metadata as '#' lines: pandas.read_csv(path,
+      ! comment="#"), numpy.loadtxt(path, delimiter=",", skiprows=1) and
+      ! numpy.genfromtxt(path, delimiter=",", names=True) read it as it is
+      write (unit, '(a)') csv_columns_table
+      write (unit, '(a)') "# egw force table, CSV format 2"
       write (unit, '(a)') "# egw_version = "//egw_version_string
       call write_params_csv(unit, table%params)
       call write_table_meta_csv(unit, "", table)
@@ -182,7 +194,6 @@ contains
       write (unit, '(a)') "# interpolation = cubic Hermite in delta with stiffness as slope; "// &
          & "ln(force) in intervals 1..n_log; force = 0 below cutoff; energy = int of force "// &
          & "from cutoff"
-      write (unit, '(a)') "delta,force,stiffness,energy,contact_radius"
       do i = 1, size(table%delta)
          if (.not. row_ok([table%delta(i), table%force(i), table%stiffness(i), &
             & table%energy(i), table%contact_radius(i)])) then
@@ -206,7 +217,8 @@ contains
       character(len=:), allocatable :: tmp
       call open_temporary(path, unit, tmp, error)
       if (allocated(error)) return
-      write (unit, '(a)') "# egw universal table, CSV format 1"
+      write (unit, '(a)') csv_columns_universal  ! first: see write_table_csv
+      write (unit, '(a)') "# egw universal table, CSV format 2"
       write (unit, '(a)') "# egw_version = "//egw_version_string
       write (unit, '(a)') "# model = "//int_str(table%model)//" ("//model_name(table%model)//")"
       call kv(unit, "psi", table%psi)
@@ -226,7 +238,6 @@ contains
          call kv(unit, "slice."//int_str(j)//".mu", table%slices(j)%params%mu)
          call write_table_meta_csv(unit, "slice."//int_str(j)//".", table%slices(j))
       end do
-      write (unit, '(a)') "mu_index,x,p,dp_dx,energy,contact_radius"
       nrows = 0
       do j = 1, table%n_mu
          associate (s => table%slices(j))
@@ -286,8 +297,7 @@ contains
       integer, allocatable :: idx(:)
       integer :: n
 
-      call parse_csv(path, text, 5, "delta,force,stiffness,energy,contact_radius", dict, &
-         & rows, idx, error)
+      call parse_csv(path, text, 5, csv_columns_table, dict, rows, idx, error)
       if (allocated(error)) return
       call get_params(path, dict, t%params, error)
       if (allocated(error)) return
@@ -317,7 +327,7 @@ contains
       real(dp) :: mu
       character(len=:), allocatable :: prefix
 
-      call parse_csv(path, text, 5, "mu_index,x,p,dp_dx,energy,contact_radius", dict, rows, &
+      call parse_csv(path, text, 5, csv_columns_universal, dict, rows, &
          & idx, error)
       if (allocated(error)) return
       call get_int(path, dict, "model", u%model, error)
@@ -431,7 +441,7 @@ contains
             end if
             ended = .true.
          else if (starts_with(line, "#")) then
-            if (in_data) then
+            if (nrow > 0) then
                call bad(error, path, "line "//int_str(line_no)//": comment inside the data")
                return
             end if
