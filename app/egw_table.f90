@@ -244,8 +244,8 @@ contains
    end subroutine put_flat
 
    !> Reference curves of a parameter set as CSV with a metadata header: the smooth
-   !> spheres' Hertz force-overlap curve (DESIGN.md s5) and the rough flat's
-   !> pressure-separation law p_G(d) (DESIGN.md s3), 201 points each.
+   !> spheres' Hertz force-overlap curve (doc/theory.md §5) and the rough flat's
+   !> pressure-separation law p_G(d) (doc/theory.md §3), 201 points each.
    subroutine put_curves(p, delta_lo, delta_hi)
       type(contact_params), intent(in) :: p
       real(dp), intent(in) :: delta_lo, delta_hi
@@ -261,7 +261,7 @@ contains
       ! column header first, metadata as '#' lines (read as is by pandas.read_csv(path,
       ! comment="#") and numpy.loadtxt(path, delimiter=",", skiprows=1))
       write (u, '(a)') "delta,force,stiffness,contact_radius"
-      call curve_header(u, p, "Hertz force-overlap curve of the smooth spheres (DESIGN.md s5)")
+      call curve_header(u, p, "Hertz force-overlap curve of the smooth spheres (doc/theory.md §5)")
       hi = max(delta_hi, 0.0_dp)
       do i = 0, n - 1
          x = hi*real(i, dp)/real(n - 1, dp)
@@ -277,7 +277,7 @@ contains
       written(n_written) = path
       write (u, '(a)') "separation,pressure,dpressure_dseparation"
       call curve_header(u, p, "rough-flat pressure-separation law p_G(d) and dp_G/dd "// &
-         & "(DESIGN.md s3); separation d = -overlap")
+         & "(doc/theory.md §3); separation d = -overlap")
       lo = -max(delta_hi, 4.0_dp*p%sigma)
       hi = max(-delta_lo, 6.0_dp*p%sigma)
       do i = 0, n - 1

@@ -1,7 +1,7 @@
 /*
  * egw.h - C API of egw, the extended Greenwood-Williamson contact library
  * (Zhao & Feng 2018, J. Appl. Mech. 85:101007, with the misprints listed in
- * DESIGN.md section 6 corrected).
+ * doc/theory.md section 6 corrected).
  *
  * Conventions
  *   - Units: any consistent set (e.g. SI: m, Pa, N). Results carry the units
@@ -49,7 +49,7 @@ enum {
   EGW_MODEL_EPGW = 3   /* extended elasto-plastic GW (ZMC asperities) */
 };
 
-/* Parameters of one contact (DESIGN.md section 1). */
+/* Parameters of one contact (doc/theory.md section 1). */
 typedef struct {
   int    model;          /* EGW_MODEL_HERTZ=0, EGW_MODEL_GW=1, EGW_MODEL_EGW=2, EGW_MODEL_EPGW=3 */
   double radius;         /* equivalent radius R, 1/R = 1/R1 + 1/R2; > 0 */
@@ -91,7 +91,7 @@ int egw_mu_from_summits(double summit_density, double summit_radius, double sigm
 int egw_psi_from_hardness(double modulus, double hardness, double hardness_coeff,
                           double sigma, double summit_radius, double *psi);
 
-/* F_n(h) = int_h^inf (s-h)^n phi(s) ds, phi the standard normal density (DESIGN.md
+/* F_n(h) = int_h^inf (s-h)^n phi(s) ds, phi the standard normal density (doc/theory.md
  * section 2). n >= 0, h any non-NaN value (F_n(+inf) = 0). Relative error <= 1e-14 for
  * n in {0, 1/2, 1, 3/2, 5/2}, <= 1e-12 otherwise. EGW_INVALID_ARGUMENT for NaN or n < 0. */
 int egw_gauss_integral(double n, double h, double *value);
@@ -105,7 +105,7 @@ int egw_ellipk(double k, double *value);
 int egw_ellipe(double k, double *value);
 
 /* Nominal pressure p_G(d) of the rough flat at separation d of the summit base plane
- * from a rigid smooth surface (DESIGN.md section 3): elastic asperities, or ZMC
+ * from a rigid smooth surface (doc/theory.md section 3): elastic asperities, or ZMC
  * asperities when p->model == EGW_MODEL_EPGW and p->psi > 0. Needs p->sigma > 0.
  * Units of p->modulus. egw_flat_pressure_deriv also returns dp_G/dd (<= 0). */
 int egw_flat_pressure(const egw_params *p, double separation, double *pressure);
@@ -131,7 +131,7 @@ int egw_hertz(const egw_params *p, double delta, double *force, double *stiffnes
               double *contact_radius);
 
 /* ------------------------------------------------------------------------
- * Rough-sphere solver (DESIGN.md sections 4-5): the axisymmetric half-space
+ * Rough-sphere solver (doc/theory.md sections 4-5): the axisymmetric half-space
  * with the elliptic-integral kernel, coupled to the rough-flat law.
  * ------------------------------------------------------------------------ */
 
@@ -266,7 +266,7 @@ int egw_table_read(const char *path, egw_table *out);
 /* Release a table; sets *t to NULL. NULL or *t == NULL is fine. */
 void egw_table_free(egw_table *t);
 
-/* CalculiX pressure-overclosure curve of the rough flat of p (p_G of DESIGN.md section 3,
+/* CalculiX pressure-overclosure curve of the rough flat of p (p_G of doc/theory.md section 3,
  * overclosure = -separation) from zero pressure where p_G < rel_tol * p_G(0) up to
  * overclosure_max > 0 [length], linear-interpolation error <= rel_tol of the local
  * pressure if 200 pairs allow it (else the best 200: see egw_write_flat_calculix_shifted).

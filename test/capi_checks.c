@@ -98,7 +98,7 @@ int egw_capi_test_params(void) {
 int egw_capi_test_gauss(void) {
   double v = -1.0;
   failures = 0;
-  /* DESIGN.md section 2 check values (15 significant digits), documented error 1e-14 */
+  /* doc/theory.md section 2 check values (15 significant digits), documented error 1e-14 */
   CHECK(egw_gauss_integral(1.5, 0.0, &v) == EGW_OK && close_rel(v, 0.430019993662260, 2e-14));
   CHECK(egw_gauss_integral(1.5, 2.0, &v) == EGW_OK && close_rel(v, 6.64817762358709e-3, 2e-14));
   CHECK(egw_gauss_integral(1.5, 6.0, &v) == EGW_OK && close_rel(v, 8.20358058981517e-11, 2e-14));
@@ -142,12 +142,12 @@ int egw_capi_test_ellip(void) {
 int egw_capi_test_flat_pressure(void) {
   egw_params p;
   double pr = 0.0, dpr = 0.0;
-  /* F_3/2(0) (DESIGN.md s2) and F_1/2(0) = 2^(1/4) Gamma(3/4)/(2 sqrt(pi)) (mpmath, 30 digits) */
+  /* F_3/2(0) (doc/theory.md §2) and F_1/2(0) = 2^(1/4) Gamma(3/4)/(2 sqrt(pi)) (mpmath, 30 digits) */
   const double f32_0 = 0.430019993662260, f12_0 = 0.411089479331229276;
   failures = 0;
   egw_params_default(&p);
   p.sigma = 1e-3; p.mu = 4.0;
-  /* p_G(0) = C sigma^1.5 F_3/2(0), C = mu E / (2 sigma sqrt(2R)) (DESIGN.md section 3) */
+  /* p_G(0) = C sigma^1.5 F_3/2(0), C = mu E / (2 sigma sqrt(2R)) (doc/theory.md section 3) */
   {
     double c = p.mu * p.modulus / (2.0 * p.sigma * sqrt(2.0 * p.radius));
     CHECK(egw_flat_pressure(&p, 0.0, &pr) == EGW_OK
@@ -237,7 +237,7 @@ int egw_capi_test_solver(void) {
   p.model = EGW_MODEL_EGW; p.sigma = 0.0;
   CHECK(egw_solve(&p, NULL, 0.02, &res) == EGW_OK);
   CHECK(close_rel(res.force, 4.0 / 3.0 * 3.0 * sqrt(2.0) * pow(0.02, 1.5), 1e-12));
-  /* DESIGN.md section 5 table (R = E = 1, delta = 0.01, mu = 4, delta/sigma = 10):
+  /* doc/theory.md section 5 table (R = E = 1, delta = 0.01, mu = 4, delta/sigma = 10):
    * P/P_H = 1.13475 (E-GW), 0.97696 (GW), quoted to a few 1e-5 */
   {
     const double ph = 4.0 / 3.0 * pow(0.01, 1.5);

@@ -34,7 +34,7 @@ contains
    end subroutine collect_asperity
 
    !> (4/3) E beta^(1/2) x^(3/2) with E = 3, beta = 4, x = 1/4 is exactly 1 (eq. 5 with the
-   !> corrected 4/3, DESIGN.md §6 misprint 1); no force without overlap.
+   !> corrected 4/3, doc/theory.md §6 misprint 1); no force without overlap.
    subroutine test_hertz(error)
       type(error_type), allocatable, intent(out) :: error
       call check(error, hertz_asperity_force(0.25_dp, 3.0_dp, 4.0_dp), 1.0_dp, thr=4e-16_dp)

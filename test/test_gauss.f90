@@ -20,7 +20,7 @@ contains
    subroutine collect_gauss(testsuite)
       type(unittest_type), allocatable, intent(out) :: testsuite(:)
       testsuite = [ &
-         & new_unittest("DESIGN check values of F_3/2", test_design_values), &
+         & new_unittest("doc/theory.md check values of F_3/2", test_design_values), &
          & new_unittest("fitted orders to 1e-14", test_fitted_orders), &
          & new_unittest("other orders to 1e-12", test_general_orders), &
          & new_unittest("derivative dF_n/dh = -n F_(n-1)", test_derivative), &
@@ -57,7 +57,7 @@ contains
          & n, h, actual, expected
    end function describe
 
-   !> DESIGN.md §2 values (15 digits given, so 1e-14 relative).
+   !> doc/theory.md §2 values (15 digits given, so 1e-14 relative).
    subroutine test_design_values(error)
       type(error_type), allocatable, intent(out) :: error
       call check(error, gauss_f32(0.0_dp), 0.430019993662260_dp, rel=.true., thr=1e-14_dp)
@@ -154,7 +154,7 @@ contains
          & thr=1e-15_dp)
    end subroutine test_named_kernels
 
-   !> F_{n+1} = n F_{n-1} - h F_n (DESIGN.md §2); for h <= 0 every term is positive, so
+   !> F_{n+1} = n F_{n-1} - h F_n (doc/theory.md §2); for h <= 0 every term is positive, so
    !> the identity holds to a few ulp of the fitted values (3e-15 allowed).
    subroutine test_recurrence(error)
       type(error_type), allocatable, intent(out) :: error

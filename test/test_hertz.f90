@@ -1,6 +1,6 @@
 !> Tests of egw_smooth_sphere (Hertz): identities of the smooth-sphere closed forms, the deflection and
 !> gap against mpmath (test/ref_hertz.f90), the misprinted eq. (15) against the corrected
-!> one (DESIGN.md §6 misprint 2), and the statuses of hertz_contact.
+!> one (doc/theory.md §6 misprint 2), and the statuses of hertz_contact.
 module test_hertz
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
       & ieee_is_nan

@@ -21,7 +21,7 @@ contains
       type(unittest_type), allocatable, intent(out) :: testsuite(:)
       testsuite = [ &
          & new_unittest("Hertz model and sigma = 0 are exact", test_hertz_exact), &
-         & new_unittest("DESIGN 5 table of P/P_H", test_design_table), &
+         & new_unittest("doc/theory.md 5 table of P/P_H", test_design_table), &
          & new_unittest("independent references (208 points)", test_references), &
          & new_unittest("independent reference profiles", test_reference_profiles), &
          & new_unittest("sigma -> 0: E-GW above, GW below Hertz", test_small_sigma), &
@@ -88,7 +88,7 @@ contains
       call check(error, res%force == 0.0_dp, "smooth spheres apart carry no force")
    end subroutine test_hertz_exact
 
-   !> DESIGN §5 table (R = E = 1, delta = 0.01, mu = 4), published to 5 digits and "a few
+   !> doc/theory.md §5 table (R = E = 1, delta = 0.01, mu = 4), published to 5 digits and "a few
    !> 1e-5 accurate": tolerance 5e-5 relative.
    subroutine test_design_table(error)
       type(error_type), allocatable, intent(out) :: error
@@ -323,7 +323,7 @@ contains
    end subroutine test_pressure_bound
 
    !> Classic GW, sigma/delta -> 0: Delta w(0) = delta - w_G(0) -> (4 sqrt2 sigma/(pi mu delta))
-   !> **(2/3) delta (eq. 20 corrected, DESIGN §6 misprint 3). Corrections are O(1/h**2)
+   !> **(2/3) delta (eq. 20 corrected, doc/theory.md §6 misprint 3). Corrections are O(1/h**2)
    !> from F_{3/2}(h) ~ |h|**1.5 (h ~ -13 at sigma/delta = 1e-4, mu = 4) and O(Delta p/p_H):
    !> 1 % at sigma/delta = 1e-4, and closer than at 1e-3.
    subroutine test_gw_centre(error)
@@ -422,7 +422,7 @@ contains
    end subroutine test_methods
 
    !> Newton with line search converges on classic GW down to sigma/delta = 1e-6
-   !> (spectral radius ~1e4 at sigma = 1e-8, DESIGN §5) in at most 20 iterations, and the
+   !> (spectral radius ~1e4 at sigma = 1e-8, doc/theory.md §5) in at most 20 iterations, and the
    !> force is within 2e-3 of Hertz (GW -> Hertz as sigma -> 0, eq. 26).
    subroutine test_stiff_gw(error)
       type(error_type), allocatable, intent(out) :: error

@@ -4,7 +4,7 @@
 !> every method. Asserts that AUTO converges everywhere, that a failure is always
 !> egw_not_converged, that no method returns OK with a non-finite result or with a force
 !> error above rel_tol (against the independent references, and between methods), and that
-!> Picard fails where DESIGN §5 says it must (classic GW, large spectral radius).
+!> Picard fails where doc/theory.md §5 says it must (classic GW, large spectral radius).
 module test_stability
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
@@ -204,7 +204,7 @@ contains
    end subroutine test_tolerances
 
    !> Classic GW at delta/sigma = 1e5, mu = 10: the spectral radius of H |dp/dw| is far
-   !> above 1 (DESIGN §5), so damped Picard must report egw_not_converged (never a wrong
+   !> above 1 (doc/theory.md §5), so damped Picard must report egw_not_converged (never a wrong
    !> OK), while AUTO (Newton with line search and continuation) converges.
    subroutine test_picard_fails(error)
       type(error_type), allocatable, intent(out) :: error

@@ -67,7 +67,7 @@ def figure3(plt, rows, out, misprint_rows=None):
                 ax.plot(xs, ys, MODEL_STYLES[model], color=colour, marker="." if log else None,
                         label=f"{model}, $\\mu$ = {mu:g}")
             if misprint_rows and not log:
-                # DESIGN §6 misprint 1: the printed 3/4 of eq. 5 instead of 4/3
+                # doc/theory.md §6 misprint 1: the printed 3/4 of eq. 5 instead of 4/3
                 xs, ys = series(misprint_rows, "sigma", "force_ratio", model=model, mu=4.0)
                 ax.plot(xs, ys, MODEL_STYLES[model], color="grey", lw=0.8,
                         label=f"{model}, $\\mu$ = 4, eq. 5 as printed (3/4)")
@@ -101,7 +101,7 @@ def profiles(plt, rows, out, name, quantity, label, fig_no, mark_eq20=False):
             xs, ys = series(rows, "r", quantity + "_difference", model=model, sigma=sigma)
             axes[1].plot(xs, ys, MODEL_STYLES[model], color=colour, label=lab)
             if mark_eq20 and model == "GW":
-                # eq. (20), corrected (DESIGN §6 misprint 3): the sigma -> 0 asymptote of
+                # eq. (20), corrected (doc/theory.md §6 misprint 3): the sigma -> 0 asymptote of
                 # w_H(0) - w_G(0); the printed bracket is 4/3 too large.
                 mu = 4.0
                 corrected = (4 * math.sqrt(2) * sigma / (math.pi * mu * DELTA))**(2 / 3) * DELTA

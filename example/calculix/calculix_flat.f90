@@ -1,5 +1,5 @@
 !> Writes the pressure-overclosure curve of a rough flat for example/calculix: the GW
-!> nominal pressure p_G (DESIGN.md section 3) of a steel surface on a rigid smooth one,
+!> nominal pressure p_G (doc/theory.md section 3) of a steel surface on a rigid smooth one,
 !> units mm, N, MPa: E* = 210000/(1 - 0.3^2) MPa, sigma = 1 um, summit radius
 !> beta = 50 um, summit density eta = 500 /mm^2 (eta beta sigma = 0.025), linear
 !> interpolation within rel_tol = 1e-3, overclosure up to +1 um: 133 pairs (CalculiX 2.20

@@ -4,8 +4,8 @@ result against p_G. block.inp presses a steel block with a uniform 1, 10 and 100
 (steps 1-3) onto a rigid base (frictionless, free lateral expansion): at the end of each
 step the contact pressure must be the load over the current area at every slave node,
 and the separation d of the summit base plane must give p_G(d) = that pressure, where
-p_G(d) = C sigma^1.5 F_3/2(d/sigma) (DESIGN.md section 3) is computed here independently
-of egw (quadrature of F_3/2, checked against DESIGN.md's values), with
+p_G(d) = C sigma^1.5 F_3/2(d/sigma) (doc/theory.md section 3) is computed here independently
+of egw (quadrature of F_3/2, checked against doc/theory.md's values), with
 C = mu E/(2 sigma sqrt(2R)) from the curve's header.
 Usage: run.py FLAT_INC [CCX]   (FLAT_INC written by calculix_flat.f90; CCX default ccx)."""
 import math
@@ -79,7 +79,7 @@ def check_step(table, load, d_c, c, sigma):
 def main():
     flat, ccx = sys.argv[1], (sys.argv[2] if len(sys.argv) > 2 else "ccx")
     for h, ref in ((0.0, 0.430019993662260), (2.0, 6.64817762358709e-3)):
-        assert abs(f32(h) / ref - 1) < 1e-10, "F_3/2 quadrature is off"  # DESIGN.md section 2
+        assert abs(f32(h) / ref - 1) < 1e-10, "F_3/2 quadrature is off"  # doc/theory.md section 2
     header, pairs = [], []
     with open(flat) as f:
         for line in f:

@@ -1,5 +1,5 @@
 !> Data of the figures of Zhao & Feng (2018) that egw can recompute, with the corrected
-!> equations (DESIGN.md §6): Fig. 3 (P/P_H against sigma, GW and E-GW), Figs. 4 and 5
+!> equations (doc/theory.md §6): Fig. 3 (P/P_H against sigma, GW and E-GW), Figs. 4 and 5
 !> (pressure and deflection profiles and their differences from Hertz), Fig. 7 (EP-GW
 !> pressure profiles) and Fig. 8 (EP-GW force against overlap). R = E = 1 as in the paper.
 !>
@@ -63,7 +63,7 @@ contains
          & "Fig. 3: P* = P/P_H against sigma; R = E = 1, delta = 0.01", fig3_columns)
       call fig3_rows(unit, models, mus, 1.0_dp, sigmas, p_hertz)
       close (unit)
-      ! The printed eq. (5) has 3/4 where eqs. (9) and (42) have 4/3 (DESIGN.md §6,
+      ! The printed eq. (5) has 3/4 where eqs. (9) and (42) have 4/3 (doc/theory.md §6,
       ! misprint 1). p_G is proportional to C, hence to mu, so that misprint is exactly
       ! the corrected model at mu' = (9/16) mu; the rows keep the nominal mu.
       call open_csv(unit, "fig3_misprint1.csv", "Fig. 3 with the asperity force factor " &
@@ -153,7 +153,7 @@ contains
       r = radii(size(r), 0.16_dp)
       p_h = hertz_pressure(r, overlap, 1.0_dp, 1.0_dp)
       call open_csv(unit, "fig7_pressure.csv", "Fig. 7: EP-GW pressure p(r); R = E = 1, " &
-         & //"delta = 0.01, sigma = 1e-3, mu = 4, plastic_ratio = 54 (eq. 45 per DESIGN " &
+         & //"delta = 0.01, sigma = 1e-3, mu = 4, plastic_ratio = 54 (eq. 45 per doc/theory.md " &
          & //"misprint 4)", "panel,model,psi,hardness_coeff,r,pressure")
       do i = 1, size(r)
          write (unit, '(a)') "ab,Hertz,0,0,"//num(r(i))//","//num(p_h(i))

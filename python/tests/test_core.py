@@ -1,5 +1,5 @@
 """Point functions against independent values: closed forms (Hertz), published check values
-(F_3/2, DESIGN.md §2), the independent Python reference solver's CSV
+(F_3/2, doc/theory.md §2), the independent Python reference solver's CSV
 (tools/reference/sphere_reference.py), and egw's error contract."""
 import csv
 import ctypes
@@ -45,7 +45,7 @@ def test_hertz_closed_form_vectorised():
 
 
 def test_gauss_integral_published_check_values():
-    # DESIGN.md §2 (15 significant digits): relative 1e-14 (the library promises 1e-14)
+    # doc/theory.md §2 (15 significant digits): relative 1e-14 (the library promises 1e-14)
     ref = {0.0: 0.430019993662260, 2.0: 6.64817762358709e-3, 6.0: 8.20358058981517e-11,
            -5.0: 11.3493877980066}
     got = egw.gauss_integral(1.5, list(ref))
@@ -53,7 +53,7 @@ def test_gauss_integral_published_check_values():
 
 
 def test_flat_pressure_elastic_is_c_sigma32_f32():
-    # p_G(d) = C sigma^1.5 F_3/2(d/sigma), C = mu E/(2 sigma sqrt(2R)) (DESIGN.md §3)
+    # p_G(d) = C sigma^1.5 F_3/2(d/sigma), C = mu E/(2 sigma sqrt(2R)) (doc/theory.md §3)
     p = egw.Params(model="E-GW", radius=1.0, modulus=1.0, sigma=1e-3, mu=4.0)
     c = p.mu * p.modulus / (2 * p.sigma * math.sqrt(2 * p.radius))
     pg = egw.flat_pressure(p, 0.0)
@@ -111,7 +111,7 @@ def test_errors_name_the_parameter_and_leave_no_nan():
 
 
 def test_mu_and_psi_from_surface_data():
-    # mu = (8/3) eta sigma sqrt(2 R beta) (DESIGN.md §1); psi = 4E/(3 pi K H) sqrt(sigma/beta)
+    # mu = (8/3) eta sigma sqrt(2 R beta) (doc/theory.md §1); psi = 4E/(3 pi K H) sqrt(sigma/beta)
     eta, beta, sigma, radius = 1e10, 1e-5, 1e-6, 5e-4
     assert egw.mu_from_summits(eta, beta, sigma, radius) == pytest.approx(
         8 / 3 * eta * sigma * math.sqrt(2 * radius * beta), rel=1e-15)

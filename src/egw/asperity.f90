@@ -1,6 +1,6 @@
 !> Single-asperity contact laws (Hertz, eq. 5; ZMC elasto-plastic, eqs. 36-43) and the
 !> nominal pressure of a rough flat on a smooth rigid flat, p_G(d) (eqs. 8, 9, 44;
-!> DESIGN.md §3), which is also the pressure-overclosure law an FE code wants.
+!> doc/theory.md §3), which is also the pressure-overclosure law an FE code wants.
 module egw_asperity
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    ! The kind is imported as wp because the rough-flat law's derivative argument is dp.
@@ -17,7 +17,7 @@ module egw_asperity
 contains
 
    !> Hertz force of one spherical summit of radius beta pressed by x into a rigid flat:
-   !> f = (4/3) E beta^(1/2) x^(3/2) (eq. 5 with 4/3, DESIGN.md §6 misprint 1); 0 for x <= 0.
+   !> f = (4/3) E beta^(1/2) x^(3/2) (eq. 5 with 4/3, doc/theory.md §6 misprint 1); 0 for x <= 0.
    elemental real(wp) function hertz_asperity_force(overlap, modulus, summit_radius) result(f)
       real(wp), intent(in) :: overlap        !< x, the summit's overlap (> 0 in contact)
       real(wp), intent(in) :: modulus        !< effective modulus E
@@ -69,7 +69,7 @@ contains
    !> Dimensionless rough-flat pressure p = p_G/(C sigma^(3/2)) at h = d/sigma, and dp/dh.
    !> psi = 0 (elastic asperities): p = F_{3/2}(h), dp/dh = -(3/2) F_{1/2}(h) (eq. 9).
    !> psi > 0 (ZMC asperities, eq. 44 with eq. 42 and H from eq. 36, e = 1/psi^2,
-   !> q = rho_p e): p = I_e + (I_ep + 2 I_p)/(K psi) (DESIGN.md §6 misprint 4: the paper's
+   !> q = rho_p e): p = I_e + (I_ep + 2 I_p)/(K psi) (doc/theory.md §6 misprint 4: the paper's
    !> common prefactor 3/(2 K psi) in eq. 45 is wrong). Preconditions (not checked):
    !> psi >= 0, 0 < K < 1, rho_p > 1, h not NaN.
    elemental subroutine rough_flat_law(h, psi, hardness_coeff, plastic_ratio, p, dp)

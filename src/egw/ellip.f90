@@ -1,7 +1,7 @@
 !> Complete elliptic integrals K and E of MODULUS k (not the parameter m = k**2), as
 !> functions of k or of the complementary modulus kc = sqrt(1 - k**2), and the split of
 !> K into a smooth part and the coefficient of its logarithmic singularity at k -> 1,
-!> which product integration of the half-space kernel needs (DESIGN.md §4).
+!> which product integration of the half-space kernel needs (doc/theory.md §4).
 !>
 !> Method: the arithmetic-geometric mean (AGM). With a0 = 1, b0 = kc, c0 = k,
 !> K(k) = pi / (2 AGM(1, kc)) and E(k) = K(k) (1 - sum_n 2**(n-1) c_n**2). Every step

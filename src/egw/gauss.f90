@@ -1,4 +1,4 @@
-!> Gaussian asperity integrals F_n(h) = int_h^inf (s-h)^n phi(s) ds (DESIGN.md §2), their
+!> Gaussian asperity integrals F_n(h) = int_h^inf (s-h)^n phi(s) ds (doc/theory.md §2), their
 !> h-derivatives, and the three truncated integrals of the ZMC asperity law (eqs. 42-45).
 !> Hot orders (n = -1/2, 0, 1/2, 1, 3/2, 5/2) use piecewise polynomial fits made offline by
 !> tools/reference/gauss_fits.py; other orders and the truncated integrals use a fixed
@@ -167,7 +167,7 @@ contains
       gauss_f32 = fitted(ord_32, h)
    end function gauss_f32
 
-   !> F_{5/2}(h) (far-field force of a rigid rough sphere, DESIGN.md §5).
+   !> F_{5/2}(h) (far-field force of a rigid rough sphere, doc/theory.md §5).
    elemental real(dp) function gauss_f52(h)
       real(dp), intent(in) :: h
       gauss_f52 = fitted(ord_52, h)
@@ -180,7 +180,7 @@ contains
       phi = inv_sqrt2pi*exp_neg_half_square(h, 0.0_dp)
    end function normal_density
 
-   !> Truncated ZMC integrals (DESIGN.md §2; x = s - h, lambda = (x-e)/(q-e)):
+   !> Truncated ZMC integrals (doc/theory.md §2; x = s - h, lambda = (x-e)/(q-e)):
    !>   i_e  = int_0^e x^(3/2) phi(h+x) dx
    !>   i_ep = int_e^q [1 - (1-K) ln(q/x)/ln(q/e)] (1 + 3 lambda^2 - 2 lambda^3) x phi(h+x) dx
    !>   i_p  = int_q^inf x phi(h+x) dx = F_1(h+q) + q F_0(h+q)
@@ -236,8 +236,8 @@ contains
       di_p = -q*phi - f0
    end subroutine plastic_part
 
-   !> The ZMC rough-flat integral p = I_e + (I_ep + 2 I_p) sqrt(e)/K (DESIGN.md §3 with
-   !> 1/psi = sqrt(e); DESIGN §6 misprint 4) and dp/dh = -int f'(x) phi(h+x) dx, where f is
+   !> The ZMC rough-flat integral p = I_e + (I_ep + 2 I_p) sqrt(e)/K (doc/theory.md §3 with
+   !> 1/psi = sqrt(e); doc/theory.md §6 misprint 4) and dp/dh = -int f'(x) phi(h+x) dx, where f is
    !> the whole (continuous) ZMC law in units of sigma: the boundary terms of the pieces
    !> cancel, so they are left out rather than cancelled numerically.
    pure subroutine zmc_flat_integral(h, e, q, hardness_coeff, p, dpdh)

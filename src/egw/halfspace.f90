@@ -1,4 +1,4 @@
-!> The axisymmetric elastic half-space on a radial mesh (DESIGN.md §4):
+!> The axisymmetric elastic half-space on a radial mesh (doc/theory.md §4):
 !>
 !>   w(r) = 4/(pi E) int_0^abar t/(r+t) p(t) K(k) dt,   k = 2 sqrt(r t)/(r+t),
 !>

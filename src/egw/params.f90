@@ -1,4 +1,4 @@
-!> Contact parameters of a rough-sphere pair (DESIGN.md §1) and their validation.
+!> Contact parameters of a rough-sphere pair (doc/theory.md §1) and their validation.
 !> Units are any consistent set; the defaults are the dimensionless E-GW case.
 module egw_params
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
@@ -76,7 +76,7 @@ contains
    !> Plasticity index of the paper, psi = sqrt(sigma/delta_ep) (eq. 47) with the ZMC
    !> yield-onset interference delta_ep = (3 pi K H/(4 E))**2 beta (eq. 36):
    !> psi = 4 E/(3 pi K H) sqrt(sigma/beta), i.e. 4/(3 pi K) times the GW index
-   !> (E/H) sqrt(sigma/beta) (DESIGN.md §6 misprint 6). Preconditions (not checked):
+   !> (E/H) sqrt(sigma/beta) (doc/theory.md §6 misprint 6). Preconditions (not checked):
    !> modulus, hardness, summit_radius > 0, 0 < K < 1, sigma >= 0.
    elemental function psi_from_hardness(modulus, hardness, hardness_coeff, sigma, &
       & summit_radius) result(psi)

@@ -1,7 +1,7 @@
 !> Normal contact of rough spheres: classic GW (Greenwood-Tripp), E-GW and EP-GW
-!> (DESIGN.md §5; paper eqs. 10-13 and 28-35), with Hertz as sigma = 0.
+!> (doc/theory.md §5; paper eqs. 10-13 and 28-35), with Hertz as sigma = 0.
 !>
-!> Everything is solved in scaled variables (DESIGN §5 "useful facts"): radii in units of
+!> Everything is solved in scaled variables (doc/theory.md §5 "useful facts"): radii in units of
 !> sqrt(R sigma), gaps and deflections in sigma, pressures in E sqrt(sigma/R), forces in
 !> E sqrt(R) sigma**1.5. Then R = E = sigma = 1, the Hertz radius is sqrt(delta/sigma) and
 !> the rough-flat law is p_G = mu/(2 sqrt 2) f(h) with f the dimensionless law of

@@ -1,7 +1,7 @@
-!> Closed forms for two smooth elastic spheres (Hertz; paper eqs. 13-16, DESIGN.md §5):
+!> Closed forms for two smooth elastic spheres (Hertz; paper eqs. 13-16, doc/theory.md §5):
 !> contact radius, force, stiffness, energy, pressure, surface deflection and the gap
 !> z(r) of the E-GW model (eq. 28). Eq. (15) is implemented in its corrected form
-!> (DESIGN.md §6, misprint 2: sqrt(r**2/a**2 - 1), not r**2/a**2 - 1).
+!> (doc/theory.md §6, misprint 2: sqrt(r**2/a**2 - 1), not r**2/a**2 - 1).
 !>
 !> Conventions: delta is the overlap (> 0 compression), radius the equivalent radius R,
 !> modulus the effective modulus E*. For delta <= 0 the spheres do not touch: force,
@@ -66,7 +66,7 @@ contains
       end if
    end function hertz_pressure
 
-   !> Normal surface deflection w_H(r) (eq. 15 corrected, DESIGN.md §6 misprint 2):
+   !> Normal surface deflection w_H(r) (eq. 15 corrected, doc/theory.md §6 misprint 2):
    !> delta - r**2/(2R) for r <= a, and for r > a
    !> w_H = a**2/(pi R) [sqrt(r**2/a**2 - 1) + (2 - r**2/a**2) asin(a/r)],
    !> evaluated without the cancellation that form suffers far out (it decays like

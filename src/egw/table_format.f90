@@ -1007,7 +1007,7 @@ contains
       call open_temporary(path, unit, tmp, error)
       if (allocated(error)) return
       write (unit, '(a)') "** egw "//egw_version_string//": rough flat, GW nominal "// &
-         & "pressure p_G (DESIGN.md section 3), model "//model_name(params%model)// &
+         & "pressure p_G (doc/theory.md section 3), model "//model_name(params%model)// &
          & ", E = "//fmt(params%modulus)//", sigma = "//fmt(params%sigma)//", mu = "// &
          & fmt(params%mu)//", R = "//fmt(params%radius)//", psi = "//fmt(params%psi)
       if (shifted) then

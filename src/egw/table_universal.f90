@@ -1,5 +1,5 @@
 !> The universal table: P/(E sqrt(R) sigma^(3/2)) depends only on x = delta/sigma and mu
-!> for the elastic models (and on psi, K, rho_p for EP-GW, fixed per table; DESIGN §5).
+!> for the elastic models (and on psi, K, rho_p for EP-GW, fixed per table; doc/theory.md §5).
 !> It holds one 1-D table ("slice", built with R = E = sigma = 1) per mu on a grid uniform
 !> in ln mu, all with one common cut-off x_c and one set of x nodes. Like a 1-D table
 !> (egw_table), a slice interpolates ln p in the separated tail (intervals ending at

@@ -1,4 +1,4 @@
-!> EP-GW unloading and reloading (DESIGN.md §8, doc/theory.md): the single ZMC asperity
+!> EP-GW unloading and reloading (doc/theory.md §8, doc/theory.md): the single ZMC asperity
 !> unloaded elastically from its contact at maximum interference, and the rough flat's
 !> pressure after a closest approach, Z_u(h, h_min).
 !>
@@ -130,7 +130,7 @@ contains
    end function asperity_unload_force
 
    !> Dimensionless unloading/reloading pressure of the rough flat, Z_u(h, h_min)
-   !> (DESIGN.md §8), in the units of rough_flat_law (p_G = C sigma^(3/2) Z_u), and dZ_u/dh
+   !> (doc/theory.md §8), in the units of rough_flat_law (p_G = C sigma^(3/2) Z_u), and dZ_u/dh
    !> at fixed h_min. h < h_min, or psi = 0 (elastic summits: reversible), is the loading
    !> law; at h = h_min the value is the loading law's and dp the unloading slope.
    !> Preconditions as rough_flat_law (psi >= 0, 0 < K < 1, rho_p > 1, no NaN).

@@ -6,7 +6,7 @@ h >= 0 : fit G_n(h) = F_n(h)/phi(h)  (smooth, ~ Gamma(n+1)/h^(n+1)); the caller 
          by phi(h) formed without cancellation.
 -12 <= h < 0 : fit F_n(h) itself (entire, grows like |h|^n).
 Values come from mpmath at 50 digits through the parabolic cylinder function
-F_n(h) = Gamma(n+1) exp(-h^2/4) D_{-n-1}(h) / sqrt(2 pi) (DESIGN.md section 2).
+F_n(h) = Gamma(n+1) exp(-h^2/4) D_{-n-1}(h) / sqrt(2 pi) (doc/theory.md section 2).
 Each series is truncated where the remaining coefficients fall below 1e-18 of the
 smallest function value on its interval, then converted (exactly, in mpmath) to powers of
 the interval variable t in [-1, 1]: the coefficients still decay (the Chebyshev ones decay

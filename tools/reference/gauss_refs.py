@@ -2,7 +2,7 @@
 """Reference values for the egw_gauss and egw_asperity tests -> test/ref_gauss.f90.
 
 Everything is computed at 50 significant digits by mpmath quadrature of the DEFINITIONS
-(DESIGN.md section 2): F_n(h) = int_h^inf (s-h)^n phi(s) ds, the truncated ZMC integrals
+(doc/theory.md section 2): F_n(h) = int_h^inf (s-h)^n phi(s) ds, the truncated ZMC integrals
 I_e, I_ep, I_p with x = s - h, and their h-derivatives as d/dh under the integral sign,
 dI/dh = -int g(x) (h+x) phi(h+x) dx, which needs no boundary terms.  F_n is cross-checked
 against the parabolic-cylinder form Gamma(n+1) e^{-h^2/4} D_{-n-1}(h)/sqrt(2 pi) and the
@@ -10,7 +10,7 @@ script stops if the two disagree beyond 1e-25 relative (two quadratures of one i
 must agree to 1e-18).  Run:
     python3 tools/reference/gauss_refs.py
 (takes about 20 minutes on two cores).  The rough-flat law of egw_asperity,
-p = I_e + (I_ep + 2 I_p)/(K psi) (DESIGN.md section 3, misprint 4), and dp/dh are formed
+p = I_e + (I_ep + 2 I_p)/(K psi) (doc/theory.md section 3, misprint 4), and dp/dh are formed
 here from the 50-digit integrals; its psi = 0 case is F_{3/2}, dp/dh = -(3/2) F_{1/2}.
 """
 import multiprocessing
@@ -193,7 +193,7 @@ def main():
     with multiprocessing.Pool(2) as pool:
         values = pool.starmap(zmc, [(r[0], r[1], r[2], r[3]) for r in zrows])
     for r, (i_e, i_ep, i_p, di_e, di_ep, di_p) in zip(zrows, values):
-        c = 1 / (r[3] * r[4])  # 1/(K psi), DESIGN.md section 3
+        c = 1 / (r[3] * r[4])  # 1/(K psi), doc/theory.md section 3
         r[6:] = [i_e, i_ep, i_p, di_e, di_ep, di_p, i_e + c * (i_ep + 2 * i_p),
                  di_e + c * (di_ep + 2 * di_p)]
     print("ZMC done", len(zrows), file=sys.stderr)

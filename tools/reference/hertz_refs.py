@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Reference values of the Hertz surface deflection w_H(r) (paper eq. 15 corrected,
-DESIGN.md §6 misprint 2) and of the E-GW gap z(r) = w_H + r**2/(2R) - delta (eq. 28),
+doc/theory.md §6 misprint 2) and of the E-GW gap z(r) = w_H + r**2/(2R) - delta (eq. 28),
 computed with mpmath at 60 digits straight from those definitions (the forms that cancel
 in double precision, which 60 digits absorb).
 

@@ -1,7 +1,7 @@
 """Reference values for test/test_rough_sphere.f90 (far-apart rigid limit).
 
 F_n(h) = int_h^inf (s - h)^n phi(s) ds = Gamma(n+1) exp(-h^2/4) D_{-n-1}(h)/sqrt(2 pi)
-(parabolic cylinder function, DESIGN.md §2), cross-checked by quadrature on a fine split
+(parabolic cylinder function, doc/theory.md §2), cross-checked by quadrature on a fine split
 of the integration range (phi(x + h) decays on a scale 1/h). 30 digits; the output is
 pasted into test/ref_rough_sphere.f90. Run: python3 tools/reference/rough_sphere_refs.py
 """

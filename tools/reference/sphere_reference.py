@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Independent high-accuracy reference solver for rough-sphere contact (egw issue 3).
 
-Models (DESIGN.md sections 2-5, Zhao & Feng 2018 eqs. 2-3, 8-12, 28-35, 44-47, with the
-DESIGN section 6 corrections): classic Greenwood-Williamson (GW), extended elastic GW (EGW)
+Models (doc/theory.md sections 2-5, Zhao & Feng 2018 eqs. 2-3, 8-12, 28-35, 44-47, with the
+doc/theory.md section 6 corrections): classic Greenwood-Williamson (GW), extended elastic GW (EGW)
 and extended elasto-plastic GW with the ZMC asperity law (EPGW).
 
 Everything is solved in scaled variables R = E* = sigma = 1: heights in units of sigma,
@@ -53,7 +53,7 @@ SQRT2PI = math.sqrt(2.0 * math.pi)
 
 
 # ----------------------------------------------------------------------------------------
-# Gaussian asperity integrals (DESIGN section 2)
+# Gaussian asperity integrals (doc/theory.md section 2)
 # ----------------------------------------------------------------------------------------
 
 def mp_phi(s):
@@ -61,14 +61,14 @@ def mp_phi(s):
 
 
 def mp_Fn(n, h):
-    """F_n(h) = Gamma(n+1) exp(-h^2/4) D_{-n-1}(h) / sqrt(2 pi) (DESIGN section 2)."""
+    """F_n(h) = Gamma(n+1) exp(-h^2/4) D_{-n-1}(h) / sqrt(2 pi) (doc/theory.md section 2)."""
     h = mp.mpf(h)
     return mp.gamma(n + 1) * mp.exp(-h * h / 4) * mp.pcfd(-n - 1, h) / mp.sqrt(2 * mp.pi)
 
 
 def zmc_law(psi, K, rho):
     """Scaled ZMC asperity force g(x) (x = asperity compression / sigma), so that
-    p_G = C sigma^{3/2} int_0^inf g(x) phi(x+h) dx  (eqs. 42, 44 with DESIGN section 6 #4).
+    p_G = C sigma^{3/2} int_0^inf g(x) phi(x+h) dx  (eqs. 42, 44 with doc/theory.md section 6 #4).
     Elastic x^{3/2} below e = 1/psi^2, logarithmic mean pressure times cubic area blend
     up to q = rho e, fully plastic 2x/(K psi) above."""
     e = mp.mpf(1) / mp.mpf(psi) ** 2
@@ -270,7 +270,7 @@ def lagrange_matrix(xnodes, lam, xe):
 
 
 def kernel(r, t, diff):
-    """(4/pi) t/(r+t) K(k), k = 2 sqrt(rt)/(r+t) (modulus k), E* = 1 (DESIGN section 4).
+    """(4/pi) t/(r+t) K(k), k = 2 sqrt(rt)/(r+t) (modulus k), E* = 1 (doc/theory.md section 4).
     m1 = 1 - k^2 = ((r-t)/(r+t))^2 is formed from the accurately known difference."""
     s = r + t
     zero = s == 0.0  # r = t = 0: a single point of zero measure
@@ -379,7 +379,7 @@ def build_operator(pan, targets=None, quad="std"):
 
 
 # ----------------------------------------------------------------------------------------
-# Sphere models (DESIGN section 5), scaled R = E* = sigma = 1
+# Sphere models (doc/theory.md section 5), scaled R = E* = sigma = 1
 # ----------------------------------------------------------------------------------------
 
 class NotConverged(RuntimeError):
@@ -387,7 +387,7 @@ class NotConverged(RuntimeError):
 
 
 def hertz_gap(r, delta):
-    """Gap z of the smooth Hertz contact (0 inside a = sqrt(delta)); DESIGN section 5 form
+    """Gap z of the smooth Hertz contact (0 inside a = sqrt(delta)); doc/theory.md section 5 form
     z = a^2/pi [(t - atan t) + t^2 atan t], t = sqrt(r^2/a^2 - 1) (eq. 15, misprint #2)."""
     r = np.asarray(r, dtype=float)
     a = math.sqrt(delta)
@@ -742,7 +742,7 @@ def _install_phis(items):
 def _run_point(pt):
     setname, model, ds, mu, psi, K, rho = pt
     t0 = time.process_time()
-    # for delta <= 0 the extended models are classic GW (DESIGN section 5)
+    # for delta <= 0 the extended models are classic GW (doc/theory.md section 5)
     solve_model = "GW" if (model == "EGW" and ds <= 0.0) else model
     try:
         r = study(Problem(solve_model, ds, mu, psi, K, rho))
@@ -759,7 +759,7 @@ CSV_HEADER = """\
 # scaled variables: R = E* = sigma = 1 (sigma = std of summit heights).
 # columns:
 #   model            GW (classic Greenwood-Tripp), EGW (extended elastic), EPGW (ZMC asperities)
-#   set              design (DESIGN.md section 5 table points), grid, epgw, fig8 (paper Fig. 8)
+#   set              design (doc/theory.md section 5 table points), grid, epgw, fig8 (paper Fig. 8)
 #   delta_over_sigma overlap / sigma
 #   mu               Greenwood-Tripp roughness parameter mu = (8/3) eta sigma sqrt(2 R beta)
 #   psi, K, rho_p    ZMC plasticity index, hardness coefficient, delta_p/delta_ep (EPGW only;
@@ -907,7 +907,7 @@ def verify():
     checks = {0.0: 0.430019993662260, 2.0: 6.64817762358709e-3, 6.0: 8.20358058981517e-11,
               -5.0: 11.3493877980066}
     v = ph(np.array(list(checks)))[0]
-    report("F_3/2 vs DESIGN check values", max(abs(v[i] / c - 1) for i, c in
+    report("F_3/2 vs doc/theory.md check values", max(abs(v[i] / c - 1) for i, c in
                                                enumerate(checks.values())), 1e-13)
     rng = np.random.default_rng(7)
     hs = np.concatenate([-np.exp(rng.uniform(0, math.log(4000), 25)), rng.uniform(0, 37, 25)])
@@ -997,7 +997,7 @@ def verify():
     report("  |observed order - expected| (max)",
            max(abs(orders[0] - 2.5), abs(orders[2] - 2.5), abs(orders[1] - 1.5),
                abs(orders[3] - 1.5)), 0.1)
-    # 4. DESIGN section 5 table (published to 5 decimals, 'a few 1e-5 accurate')
+    # 4. doc/theory.md section 5 table (published to 5 decimals, 'a few 1e-5 accurate')
     table = {"GW": (0.99493, 0.98000, 0.97696, 1.03628, 1.33500, 2.01623),
              "EGW": (1.00226, 1.01745, 1.13475, 1.25753, 1.64509, 2.38245)}
     worst = 0.0
@@ -1005,7 +1005,7 @@ def verify():
         for ds, ref in zip(DESIGN_DELTAS, vals):
             pstar = solve(Problem(model, ds, 4.0), 1e-10, 16)["P"] / (4 / 3 * ds ** 1.5)
             worst = max(worst, abs(pstar - ref))
-    report("DESIGN section 5 table, 12 points, max |P* - table|", worst, 3e-5)
+    report("doc/theory.md section 5 table, 12 points, max |P* - table|", worst, 3e-5)
     print("verify:", "all checks passed" if ok else "SOME CHECKS FAILED")
     return 0 if ok else 1
 
