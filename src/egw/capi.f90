@@ -330,6 +330,7 @@ contains
       options%n_threads = int(co%n_threads)
    end subroutine read_options
 
+   !> Decimal text of an integer, for messages.
    pure function int_str(i) result(str)
       integer, intent(in) :: i
       character(len=:), allocatable :: str
@@ -365,6 +366,7 @@ contains
          & plastic_ratio=cp%plastic_ratio)
    end function to_params
 
+   !> The C struct egw_params of Fortran contact_params (field by field).
    pure function from_params(params) result(cp)
       type(contact_params), intent(in) :: params
       type(egw_params_c) :: cp
@@ -400,6 +402,7 @@ contains
       end if
    end function settle
 
+   !> EGW_OK if ptr is not NULL, else EGW_NULL_POINTER with a message naming the argument.
    integer(c_int) function require(ptr, name) result(stat)
       type(c_ptr), intent(in) :: ptr
       character(len=*), intent(in) :: name

@@ -8,6 +8,7 @@ module egw_version
    integer, parameter, public :: egw_version_number = 10000*egw_major + 100*egw_minor + egw_patch
    public :: get_egw_version
 contains
+   !> The library's version as 10000*major + 100*minor + patch (egw_get_version in C).
    pure integer function get_egw_version()
       get_egw_version = egw_version_number
    end function get_egw_version
