@@ -58,6 +58,7 @@ contains
       version = int(egw_version_number, c_int)
    end function egw_get_version
 
+   !> C: egw_status_message (include/egw.h): the generic text of a status code.
    function egw_status_message(status, buf, buflen) result(stat) &
       & bind(C, name="egw_status_message")
       integer(c_int), value, intent(in) :: status
@@ -67,6 +68,7 @@ contains
       stat = copy_to_c(status_message(int(status)), buf, buflen)
    end function egw_status_message
 
+   !> C: egw_last_error: this thread's message of the last failing call.
    function egw_last_error(buf, buflen) result(stat) bind(C, name="egw_last_error")
       type(c_ptr), value, intent(in) :: buf
       integer(c_int), value, intent(in) :: buflen
@@ -74,6 +76,7 @@ contains
       stat = copy_to_c(trim(last_message), buf, buflen)
    end function egw_last_error
 
+   !> C: egw_params_default: fill an egw_params with the defaults.
    subroutine egw_params_default(p) bind(C, name="egw_params_default")
       type(c_ptr), value, intent(in) :: p
       type(egw_params_c), pointer :: cp
@@ -82,6 +85,7 @@ contains
       cp = from_params(contact_params())
    end subroutine egw_params_default
 
+   !> C: egw_params_validate: EGW_INVALID_PARAMETER naming the first bad field.
    function egw_params_validate(p) result(stat) bind(C, name="egw_params_validate")
       type(c_ptr), value, intent(in) :: p
       integer(c_int) :: stat
@@ -89,6 +93,7 @@ contains
       stat = read_params(p, params)
    end function egw_params_validate
 
+   !> C: egw_mu_from_summits: mu = (8/3) eta sigma sqrt(2 R beta).
    function egw_mu_from_summits(summit_density, summit_radius, sigma, radius, mu) &
       & result(stat) bind(C, name="egw_mu_from_summits")
       real(c_double), value, intent(in) :: summit_density, summit_radius, sigma, radius
@@ -133,6 +138,7 @@ contains
       call put(psi, value)
    end function egw_psi_from_hardness
 
+   !> C: egw_gauss_integral: F_n(h).
    function egw_gauss_integral(n, h, value) result(stat) bind(C, name="egw_gauss_integral")
       real(c_double), value, intent(in) :: n, h
       type(c_ptr), value, intent(in) :: value
@@ -146,6 +152,7 @@ contains
       if (stat == egw_ok) call put(value, f)
    end function egw_gauss_integral
 
+   !> C: egw_gauss_integral_deriv: dF_n/dh.
    function egw_gauss_integral_deriv(n, h, value) result(stat) &
       & bind(C, name="egw_gauss_integral_deriv")
       real(c_double), value, intent(in) :: n, h
@@ -160,6 +167,7 @@ contains
       if (stat == egw_ok) call put(value, f)
    end function egw_gauss_integral_deriv
 
+   !> C: egw_ellipk: K(k) of modulus k.
    function egw_ellipk(k, value) result(stat) bind(C, name="egw_ellipk")
       real(c_double), value, intent(in) :: k
       type(c_ptr), value, intent(in) :: value
@@ -173,6 +181,7 @@ contains
       if (stat == egw_ok) call put(value, f)
    end function egw_ellipk
 
+   !> C: egw_ellipe: E(k) of modulus k.
    function egw_ellipe(k, value) result(stat) bind(C, name="egw_ellipe")
       real(c_double), value, intent(in) :: k
       type(c_ptr), value, intent(in) :: value
@@ -186,6 +195,7 @@ contains
       if (stat == egw_ok) call put(value, f)
    end function egw_ellipe
 
+   !> C: egw_flat_pressure: p_G(d) of the rough flat.
    function egw_flat_pressure(p, separation, pressure) result(stat) &
       & bind(C, name="egw_flat_pressure")
       type(c_ptr), value, intent(in) :: p, pressure
@@ -196,6 +206,7 @@ contains
       stat = flat_pressure_c(p, separation, pressure, pressure, .false.)
    end function egw_flat_pressure
 
+   !> C: egw_flat_pressure_deriv: p_G(d) and dp_G/dd.
    function egw_flat_pressure_deriv(p, separation, pressure, dpressure) result(stat) &
       & bind(C, name="egw_flat_pressure_deriv")
       type(c_ptr), value, intent(in) :: p, pressure, dpressure
@@ -228,6 +239,7 @@ contains
       call put(dpressure, dpg)
    end function egw_flat_pressure_unload
 
+   !> C: egw_hertz: force, stiffness and contact radius of smooth spheres.
    function hertz_c(p, delta, force, stiffness, contact_radius) result(stat) &
       & bind(C, name="egw_hertz")
       type(c_ptr), value, intent(in) :: p, force, stiffness, contact_radius
@@ -246,6 +258,7 @@ contains
       call put(contact_radius, a)
    end function hertz_c
 
+   !> C: egw_options_default: fill an egw_options with the defaults.
    subroutine egw_options_default(o) bind(C, name="egw_options_default")
       type(c_ptr), value, intent(in) :: o
       type(egw_options_c), pointer :: co
@@ -257,6 +270,7 @@ contains
          & n_threads=int(defaults%n_threads, c_int))
    end subroutine egw_options_default
 
+   !> C: egw_solve: the rough-sphere solve at one overlap (include/egw.h).
    function egw_solve(p, o, delta, res) result(stat) bind(C, name="egw_solve")
       type(c_ptr), value, intent(in) :: p, o, res
       real(c_double), value, intent(in) :: delta
@@ -281,6 +295,7 @@ contains
          & iterations=int(result%iterations, c_int), method_used=int(result%method_used, c_int))
    end function egw_solve
 
+   !> C: egw_profile: pressure and deflection of the solved contact at given radii.
    function egw_profile(p, o, delta, n, r, pressure, deflection) result(stat) &
       & bind(C, name="egw_profile")
       type(c_ptr), value, intent(in) :: p, o, r, pressure, deflection

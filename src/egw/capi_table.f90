@@ -30,6 +30,7 @@ module egw_capi_table
    end type egw_table_info_c
 
    interface
+      !> strlen of libc: the length of a NUL-terminated C string.
       pure function c_strlen(s) result(n) bind(C, name="strlen")
          import :: c_ptr, c_size_t
          type(c_ptr), value, intent(in) :: s
