@@ -170,7 +170,11 @@ void egw_options_default(egw_options *o);
 int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
 
 /* Total pressure p(r) and surface deflection w(r) of the solved contact at the n radii
- * r[0..n-1] (>= 0, any order) into pressure[] and deflection[]. Same statuses. */
+ * r[0..n-1] (>= 0, any order) into pressure[] and deflection[], each pointwise within
+ * o->rel_tol of the profile's peak (pressure) and of its largest deflection: the contact
+ * is solved again at rel_tol/10 (at most 4 times, down to 1e-12) until the profile
+ * changes by less than that, so a profile costs a few solves. Same statuses, and
+ * EGW_NOT_CONVERGED if the profile does not settle. */
 int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
                 const double *r, double *pressure, double *deflection);
 

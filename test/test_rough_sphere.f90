@@ -24,6 +24,7 @@ contains
          & new_unittest("doc/theory.md 5 table of P/P_H", test_design_table), &
          & new_unittest("independent references (208 points)", test_references), &
          & new_unittest("independent reference profiles", test_reference_profiles), &
+         & new_unittest("profile deep in contact (GW, delta/sigma 1000)", test_stiff_profile), &
          & new_unittest("sigma -> 0: E-GW above, GW below Hertz", test_small_sigma), &
          & new_unittest("scale invariance", test_scale_invariance), &
          & new_unittest("far apart: rigid-sphere limit", test_far_apart), &
@@ -170,6 +171,53 @@ contains
    !> (GW and E-GW, mu = 4, delta/sigma = 10, 11 radii, reference errors <= 1.3e-14).
    !> Pointwise values are not what rel_tol controls; at the default options they must
    !> agree to 1e-6 of the centre values (p ~ 2, w ~ 10; observed 1.4e-7 for p, 1.5e-8 for w).
+   !> Classic GW deep in contact, delta/sigma = 1000 (sigma = 1e-5 at R = E = 1, delta =
+   !> 0.01), where the force converges long before the pressure does pointwise: at the
+   !> default rel_tol = 1e-6 every pressure of test/data/sphere_reference_profile_gw1000.csv
+   !> (independent solver, its error <= 1e-11) within 1e-6 of the peak pressure, every
+   !> deflection within 1e-6 of the central one (the contract of contact_profile).
+   subroutine test_stiff_profile(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: path = "test/data/sphere_reference_profile_gw1000.csv"
+      character(len=512) :: line
+      character(len=8) :: model
+      real(dp) :: r(11), p_ref(11), w_ref(11), pres(11), defl(11), pg, wg, gap, p_err, w_err
+      type(contact_params) :: p
+      type(solver_options) :: opts
+      type(egw_error), allocatable :: err
+      integer :: unit, ios, n
+      open (newunit=unit, file=path, status="old", action="read", iostat=ios)
+      if (ios /= 0) then
+         call test_failed(error, "cannot open "//path//" (run the tests from the project root)")
+         return
+      end if
+      n = 0
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (line(1:1) == "#" .or. line(1:6) == "model,") cycle
+         n = n + 1
+         read (line, *) model, r(n), p_ref(n), w_ref(n), pg, wg, gap, p_err, w_err
+      end do
+      close (unit)
+      call check(error, n, 11, "rows read from "//path)
+      if (allocated(error)) return
+      ! scaled: R = E = 1, sigma = 1e-5, delta = 0.01; radii in units of sqrt(R sigma)
+      p = contact_params(model=model_gw, mu=4.0_dp, sigma=1.0e-5_dp)
+      call contact_profile(p, opts, 0.01_dp, r*sqrt(1.0e-5_dp), pres, defl, err)
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      pres = pres/sqrt(1.0e-5_dp)  ! in units of E sqrt(sigma/R)
+      defl = defl/1.0e-5_dp        ! in units of sigma
+      call check(error, maxval(abs(pres - p_ref)) <= 1.0e-6_dp*p_ref(1), &
+         & "pressure error "//str(maxval(abs(pres - p_ref))/p_ref(1))//" of the peak")
+      if (allocated(error)) return
+      call check(error, maxval(abs(defl - w_ref)) <= 1.0e-6_dp*w_ref(1), &
+         & "deflection error "//str(maxval(abs(defl - w_ref))/w_ref(1))//" of w(0)")
+   end subroutine test_stiff_profile
+
    subroutine test_reference_profiles(error)
       type(error_type), allocatable, intent(out) :: error
       character(len=*), parameter :: path = "test/data/sphere_reference_profiles.csv"

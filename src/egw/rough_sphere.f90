@@ -78,6 +78,10 @@ module egw_rough_sphere
    !> Step (in asinh units) of the first level, and the finest allowed.
    real(dp), parameter :: finest_step = 0.01_dp, coarsest_step = 0.6_dp
    integer, parameter :: min_elements = 8
+   !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
+   !> tolerance the solver's error estimate can resolve in double precision.
+   integer, parameter :: profile_levels = 4
+   real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
 
    !> The scaled problem.
@@ -186,7 +190,9 @@ contains
    end subroutine solve_contact
 
    !> Total pressure p and deflection w (Hertz + rough part for E-GW/EP-GW, the GW part for
-   !> classic GW, Hertz for model_hertz or sigma = 0) at the radii r(:) >= 0.
+   !> classic GW, Hertz for model_hertz or sigma = 0) at the radii r(:) >= 0, pointwise
+   !> within options%rel_tol of the peak pressure and of the largest deflection (re-solved
+   !> at rel_tol/10 until the profile settles; egw_not_converged if it does not).
    subroutine contact_profile(params, options, delta, r, pressure, deflection, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
@@ -197,9 +203,11 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
-      real(dp) :: est, length, rs, wg, f, dfdh
-      integer :: i, method_used
-      real(dp), allocatable :: row(:)
+      type(solver_options) :: level_options
+      real(dp) :: est
+      real(dp), allocatable :: rs_all(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
+      integer :: i, method_used, level
+      logical :: converged
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
@@ -228,26 +236,61 @@ contains
          deflection = 0.0_dp
          return
       end if
-      call solve_scaled(prob, options, sol, est, method_used, error)
-      if (allocated(error)) return
-      length = sqrt(params%radius*params%sigma)
+      ! The force's error control does not bound the pressure pointwise (classic GW deep
+      ! in contact: 2e-4 of the peak at rel_tol 1e-6). Solve again at rel_tol/10 until
+      ! the profile changes by at most rel_tol of its peak (pressure) and of the largest
+      ! deflection: the finer of the two is then the answer.
+      rs_all = [0.0_dp, r/sqrt(params%radius*params%sigma)]
+      allocate (p_prev(size(rs_all)), w_prev(size(rs_all)), p_new(size(rs_all)), &
+         & w_new(size(rs_all)))
+      level_options = options
+      converged = .false.
+      do level = 0, profile_levels
+         call solve_scaled(prob, level_options, sol, est, method_used, error)
+         if (allocated(error)) return
+         call profile_values(prob, sol, rs_all, p_new, w_new)
+         if (level > 0) then
+            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
+               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            if (converged) exit
+         end if
+         p_prev = p_new
+         w_prev = w_new
+         if (level_options%rel_tol <= finest_profile_tol) exit
+         level_options%rel_tol = max(level_options%rel_tol/10.0_dp, finest_profile_tol)
+      end do
+      if (.not. converged) then
+         call fatal_error(error, egw_not_converged, "profile: the pressure profile did "// &
+            & "not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
+         return
+      end if
+      pressure = p_new(2:)*params%modulus*sqrt(params%sigma/params%radius)
+      deflection = w_new(2:)*params%sigma
+   end subroutine contact_profile
+
+   !> Total pressure and deflection of a solved contact at scaled radii rs (scaled units).
+   subroutine profile_values(prob, sol, rs, pressure, deflection)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: rs(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      real(dp), allocatable :: row(:)
+      real(dp) :: wg, f, dfdh
+      integer :: i
       allocate (row(size(sol%p)))
-      do i = 1, size(r)
-         rs = r(i)/length
-         call influence_row(sol%mesh, rs, row)
+      do i = 1, size(rs)
+         call influence_row(sol%mesh, rs(i), row)
          wg = dot_product(row, sol%p)
-         call rough_flat_law(base_gap(prob, rs) + wg, prob%psi, prob%hardness, &
+         call rough_flat_law(base_gap(prob, rs(i)) + wg, prob%psi, prob%hardness, &
             & prob%plastic_ratio, f, dfdh)
          pressure(i) = prob%scale*f
          deflection(i) = wg
          if (prob%delta > 0.0_dp .and. prob%model /= model_gw) then
-            pressure(i) = pressure(i) + hertz_pressure(rs, prob%delta, 1.0_dp, 1.0_dp)
-            deflection(i) = deflection(i) + hertz_deflection(rs, prob%delta, 1.0_dp)
+            pressure(i) = pressure(i) + hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
+            deflection(i) = deflection(i) + hertz_deflection(rs(i), prob%delta, 1.0_dp)
          end if
       end do
-      pressure = pressure*params%modulus*sqrt(params%sigma/params%radius)
-      deflection = deflection*params%sigma
-   end subroutine contact_profile
+   end subroutine profile_values
 
    pure subroutine check_input(params, options, delta, error)
       type(contact_params), intent(in) :: params

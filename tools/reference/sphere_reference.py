@@ -830,6 +830,32 @@ def run_profiles(path):
         f.writelines(lines)
 
 
+STIFF_PROFILE_RADII = (0.0, 10.0, 20.0, 25.0, 28.0, 30.0, 31.0, math.sqrt(1000.0), 32.5, 34.0,
+                       40.0)
+
+
+def run_stiff_profile(path):
+    """Classic GW deep in contact (delta/sigma = 1000, mu = 4: sigma = 1e-5 at R = E = 1,
+    delta = 0.01), where the pressure profile is hardest to converge pointwise."""
+    prob = Problem("GW", 1000.0, 4.0)
+    r1 = solve(prob, 1e-12, 16)
+    r2 = solve(prob, 1e-12, 24, quad="fine", start=r1)
+    a = profile(prob, r2, STIFF_PROFILE_RADII)
+    b = profile(prob, r1, STIFF_PROFILE_RADII)
+    with open(path, "w") as f:
+        f.write(PROFILE_HEADER.replace("mu = 4, delta/sigma = 10", "GW, mu = 4, "
+                                       "delta/sigma = 1000").replace(
+            "(the Hertz radius is sqrt(10) = 3.16227766...)", "(Hertz radius sqrt(1000))")
+                .replace("sphere_reference.py profiles", "sphere_reference.py stiff-profile"))
+        f.write("model,r_scaled,p_scaled,w_scaled,pG_scaled,wG_scaled,gap_scaled,"
+                "p_abs_err,w_abs_err\n")
+        for i, rr in enumerate(STIFF_PROFILE_RADII):
+            f.write("%s,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.2e,%.2e\n"
+                    % ("GW", rr, a[0][i], a[1][i], a[2][i], a[3][i], a[4][i],
+                       max(abs(a[0][i] - b[0][i]), 1e-15 * abs(a[0][i])),
+                       max(abs(a[1][i] - b[1][i]), 1e-15 * abs(a[1][i]))))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -839,10 +865,15 @@ def main(argv=None):
     g.add_argument("--jobs", type=int, default=2)
     pr = sub.add_parser("profiles", help="write the profile CSV")
     pr.add_argument("--out", default="test/data/sphere_reference_profiles.csv")
+    sp = sub.add_parser("stiff-profile", help="write the classic-GW profile at delta/sigma 1000")
+    sp.add_argument("--out", default="test/data/sphere_reference_profile_gw1000.csv")
     sub.add_parser("verify", help="run the independent checks of the building blocks")
     args = ap.parse_args(argv)
     if args.cmd == "profiles":
         run_profiles(args.out)
+        return 0
+    if args.cmd == "stiff-profile":
+        run_stiff_profile(args.out)
         return 0
     if args.cmd == "verify":
         return verify()
