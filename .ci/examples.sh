@@ -108,6 +108,16 @@ step "calculix: egw-table's scene_flat.inp in ccx" sh -c "
     --delta-max 1e-3 --tol 1e-3 --formats calculix --out '$work/ccx_scene' >/dev/null &&
   python3 '$root/example/calculix/run.py' '$work/ccx_scene/scene_flat.inp' ccx"
 
+# ... and a sphere on a plane: an elastic steel sphere (R = 2 mm) on a rigid plane through
+# egw-table's scene_flat.inp; the contact force against egw-table's own classic-GW table
+step "calculix: sphere on a plane, egw-table's outputs" sh -c "
+  fpm run egw-table $FPM_FLAGS -- --quiet --model GW --radius 4 \
+    --effective-modulus 230769.23076923077 --sigma 1e-3 --summit-density 500 \
+    --summit-radius 0.05 --delta-min -0.003 --delta-max 0.006 --tol 1e-4 \
+    --formats csv,calculix --out '$work/ccx_sphere' >/dev/null &&
+  python3 '$root/example/calculix/sphere.py' '$work/ccx_sphere/scene_flat.inp' \
+    '$work/ccx_sphere/scene_table.csv' ccx"
+
 echo "=== examples summary"
 printf '%s\n' "${summary[@]}"
 if ((${#failed[@]})); then
