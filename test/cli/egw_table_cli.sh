@@ -58,5 +58,16 @@ if grep -v "^egw-table: " "$work/stderr" | grep -q .; then
 fi
 grep -q "building" "$work/stderr" || fail "no progress line in the log"
 [ -s "$work/log/scene_table.csv" ] || fail "build: no scene_table.csv"
+# on a terminal (a pseudo-terminal from util-linux's script, where available): the bar,
+# redrawn in place
+if command -v script >/dev/null 2>&1; then
+  script -qec "'$exe' --out '$work/tty' --formats csv --tol 1e-3 >/dev/null" "$work/tty.log" \
+    >/dev/null 2>&1 </dev/null
+  # the bar starts each redraw with a carriage return and "  building [" (the plain log
+  # lines start "egw-table: building"; the terminal itself turns every newline into \r\n)
+  grep -q "$(printf '\r')  building \[" "$work/tty.log" || fail "no progress bar on a terminal"
+else
+  echo "    (script(1) missing: the terminal bar is not checked)"
+fi
 echo "    $fails CLI check(s) failed"
 exit "$fails"
