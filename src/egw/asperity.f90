@@ -13,6 +13,7 @@ module egw_asperity
    private
 
    public :: hertz_asperity_force, zmc_asperity_force, rough_flat_law, flat_pressure
+   public :: check_flat_input, flat_psi
 
 contains
 
@@ -104,26 +105,40 @@ contains
       real(wp) :: c, sigma, p, dpdh, psi
       pressure = 0.0_wp
       dpressure = 0.0_wp
-      call validate_params(params, error)
+      call check_flat_input(params, separation, error)
       if (allocated(error)) return
-      if (ieee_is_nan(separation)) then
-         call fatal_error(error, egw_invalid_argument, "separation = "// &
-            & format_real(separation)//": the separation must be a number")
-         return
-      end if
       sigma = params%sigma
-      if (.not. sigma > 0.0_wp) then
-         call fatal_error(error, egw_invalid_parameter, &
-            & "sigma = 0: the rough-flat law needs sigma > 0")
-         return
-      end if
-      psi = 0.0_wp
-      if (params%model == model_epgw) psi = params%psi
+      psi = flat_psi(params)
       call rough_flat_law(separation/sigma, psi, params%hardness_coeff, params%plastic_ratio, &
          & p, dpdh)
       c = rough_flat_coefficient(params)
       pressure = c*sigma*sqrt(sigma)*p
       dpressure = c*sqrt(sigma)*dpdh
    end subroutine flat_pressure
+
+   !> The checks of the rough-flat laws' input (flat_pressure, flat_pressure_unload): valid
+   !> params, sigma > 0 (a flat needs roughness), a separation that is a number.
+   pure subroutine check_flat_input(params, separation, error)
+      type(contact_params), intent(in) :: params
+      real(wp), intent(in) :: separation   !< d, same length unit as sigma
+      type(egw_error), allocatable, intent(out) :: error
+      call validate_params(params, error)
+      if (allocated(error)) return
+      if (ieee_is_nan(separation)) then
+         call fatal_error(error, egw_invalid_argument, "separation = "// &
+            & format_real(separation)//": the separation must be a number")
+      else if (.not. params%sigma > 0.0_wp) then
+         call fatal_error(error, egw_invalid_parameter, &
+            & "sigma = 0: the rough-flat law needs sigma > 0")
+      end if
+   end subroutine check_flat_input
+
+   !> The plasticity index the rough-flat law uses: psi for EP-GW, 0 (elastic summits)
+   !> for every other model.
+   elemental real(wp) function flat_psi(params) result(psi)
+      type(contact_params), intent(in) :: params
+      psi = 0.0_wp
+      if (params%model == model_epgw) psi = params%psi
+   end function flat_psi
 
 end module egw_asperity

@@ -16,6 +16,7 @@ module egw_gauss
    public :: gauss_integral, gauss_integral_deriv, get_gauss_integral, get_gauss_integral_deriv
    public :: gauss_fm12, gauss_f0, gauss_f12, gauss_f1, gauss_f32, gauss_f52
    public :: normal_density, shifted_density, zmc_integrals, zmc_flat_integral
+   public :: gl_x, gl_w
 
    ! Order index of the fitted kernels in egw_gauss_fits.
    integer, parameter :: ord_m12 = 1, ord_0 = 2, ord_12 = 3, ord_1 = 4, ord_32 = 5, ord_52 = 6

@@ -18,13 +18,12 @@
 !> slope and by the distance to t = 0 (the law's branch point), and the Gaussian factor
 !> evaluated at exact node values z = t + h_min.
 module egw_unloading
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
-      & fatal_error, format_real
-   use egw_params, only: contact_params, validate_params, rough_flat_coefficient, model_epgw
-   use egw_asperity, only: rough_flat_law
-   use egw_gauss, only: shifted_density
+   use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real
+   use egw_params, only: contact_params, rough_flat_coefficient
+   use egw_asperity, only: rough_flat_law, check_flat_input, flat_psi
+   use egw_gauss, only: shifted_density, gl_x, gl_w
    implicit none
    private
 
@@ -44,13 +43,7 @@ module egw_unloading
    integer, parameter :: clamp_samples = 48
    integer, parameter :: max_panels = 400
 
-   real(dp), parameter :: gl_x(8) = [0.095012509837637440185_dp, 0.28160355077925891323_dp, &
-      & 0.45801677765722738634_dp, 0.61787624440264374845_dp, 0.7554044083550030339_dp, &
-      & 0.86563120238783174388_dp, 0.94457502307323257608_dp, 0.9894009349916499326_dp]
-   real(dp), parameter :: gl_w(8) = [0.18945061045506849629_dp, 0.18260341504492358887_dp, &
-      & 0.16915651939500253819_dp, 0.14959598881657673208_dp, 0.12462897125553387205_dp, &
-      & 0.09515851168249278481_dp, 0.062253523938647892863_dp, 0.027152459411754094852_dp]
-   !> nodes on [0, 1] and weights summing to 1
+   !> 16-point Gauss-Legendre nodes on [0, 1] and weights summing to 1 (from egw_gauss's).
    real(dp), parameter :: gl_u(16) = [0.5_dp*(1.0_dp - gl_x), 0.5_dp*(1.0_dp + gl_x)]
    real(dp), parameter :: gl_w16(16) = [0.5_dp*gl_w, 0.5_dp*gl_w]
 
@@ -171,26 +164,15 @@ contains
       real(dp), intent(inout) :: dpressure    !< dp_G,u/dd (<= 0)
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: c, sigma, p, dpdh, psi
-      call validate_params(params, error)
+      call check_flat_input(params, separation, error)
       if (allocated(error)) return
-      if (ieee_is_nan(separation)) then
-         call fatal_error(error, egw_invalid_argument, "separation = "// &
-            & format_real(separation)//": the separation must be a number")
-         return
-      end if
       if (.not. ieee_is_finite(separation_min)) then
          call fatal_error(error, egw_invalid_argument, "separation_min = "// &
             & format_real(separation_min)//": the closest approach must be finite")
          return
       end if
       sigma = params%sigma
-      if (.not. sigma > 0.0_dp) then
-         call fatal_error(error, egw_invalid_parameter, &
-            & "sigma = 0: the rough-flat law needs sigma > 0")
-         return
-      end if
-      psi = 0.0_dp
-      if (params%model == model_epgw) psi = params%psi
+      psi = flat_psi(params)
       call rough_flat_unload_law(separation/sigma, separation_min/sigma, psi, &
          & params%hardness_coeff, params%plastic_ratio, p, dpdh)
       c = rough_flat_coefficient(params)
