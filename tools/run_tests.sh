@@ -2,71 +2,55 @@
 # The README's test command (`make test`) runs this: the Fortran and C suites (fpm test),
 # then, when the project venv has them, the Python package's tests (pytest, after
 # `make python`) and the LAMMPS plugin's tests (after `make lammps`). Each suite prints its
-# own results; the last line adds them up as "total: N passed, N failed". Exit status 0
-# only if every suite that ran passed.
+# own results; the last line adds them up as "total: N passed, N failed" (a suite that
+# crashes counts as one failure). Exit status 0 only if every suite that ran passed.
 # Environment: FPM (fpm command), FPM_FLAGS, VENV (default .venv).
-FPM=${FPM:-${VENV:-.venv}/bin/fpm}
-FPM_FLAGS=${FPM_FLAGS:---profile release}
 VENV=${VENV:-.venv}
+FPM=${FPM:-$VENV/bin/fpm}
+FPM_FLAGS=${FPM_FLAGS:---profile release}
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+trap 'rm -f "$log" "$log.rc"' EXIT
 passed=0
 failed=0
 status=0
 
-# add the "N passed, N failed" (test-drive) or pytest "N passed, N failed" counts of $log
-count() {
+# suite TITLE COMMAND...: run it, show its output, add its "N passed" / "N failed" /
+# "N error(s)" counts (test-drive and pytest both print them)
+suite() {
+  echo "=== $1"
+  shift
+  { "$@" 2>&1; echo $? >"$log.rc"; } | tee "$log"
   p=$(grep -Eo '[0-9]+ passed' "$log" | tail -n 1 | grep -Eo '[0-9]+')
   f=$(grep -Eo '[0-9]+ failed' "$log" | tail -n 1 | grep -Eo '[0-9]+')
   e=$(grep -Eo '[0-9]+ errors?' "$log" | tail -n 1 | grep -Eo '[0-9]+')
+  f=$((${f:-0} + ${e:-0}))
   passed=$((passed + ${p:-0}))
-  failed=$((failed + ${f:-0} + ${e:-0}))
+  failed=$((failed + f))
+  if [ "$(cat "$log.rc")" -ne 0 ]; then
+    status=1
+    [ "$f" -gt 0 ] || failed=$((failed + 1))
+  fi
 }
 
 # the programs too: the cli suite runs the egw-table built beside the tester
 # shellcheck disable=SC2086
 $FPM build $FPM_FLAGS >/dev/null 2>&1 || $FPM build $FPM_FLAGS || status=1
-echo "=== Fortran and C suites (fpm test)"
 # shellcheck disable=SC2086
-{ $FPM test $FPM_FLAGS 2>&1; echo $? >"$log.rc"; } | tee "$log"
-rc=$(cat "$log.rc")
-before=$failed
-count
-if [ "$rc" -ne 0 ]; then
-  status=1
-  # a suite that crashed or did not build reports no failures of its own: count one
-  [ "$failed" -gt "$before" ] || failed=$((failed + 1))
-fi
+suite "Fortran and C suites (fpm test)" $FPM test $FPM_FLAGS
 
 if [ -x "$VENV/bin/python" ] && "$VENV/bin/python" -c "import egw, pytest" 2>/dev/null; then
-  echo "=== Python package (pytest python/tests)"
-  { "$VENV/bin/python" -m pytest -q -p no:cacheprovider python/tests 2>&1; echo $? >"$log.rc"; } |
-    tee "$log"
-  rc=$(cat "$log.rc")
-  before=$failed
-  count
-  if [ "$rc" -ne 0 ]; then
-    status=1
-    [ "$failed" -gt "$before" ] || failed=$((failed + 1))
-  fi
+  suite "Python package (pytest python/tests)" \
+    "$VENV/bin/python" -m pytest -q -p no:cacheprovider python/tests
 else
   echo "=== Python package: skipped (run 'make python' to install it into $VENV)"
 fi
 
 if [ -x integrations/lammps/test/run_tests.sh ] && [ -f build/lammps/egwplugin.so ]; then
-  echo "=== LAMMPS plugin (integrations/lammps/test/run_tests.sh)"
-  { integrations/lammps/test/run_tests.sh 2>&1; echo $? >"$log.rc"; } | tee "$log"
-  rc=$(cat "$log.rc")
-  before=$failed
-  count
-  if [ "$rc" -ne 0 ]; then
-    status=1
-    [ "$failed" -gt "$before" ] || failed=$((failed + 1))
-  fi
+  suite "LAMMPS plugin (integrations/lammps/test/run_tests.sh)" \
+    integrations/lammps/test/run_tests.sh
 else
   echo "=== LAMMPS plugin: skipped (run 'make lammps' to build it)"
 fi
-rm -f "$log.rc"
 [ "$failed" -eq 0 ] || status=1
 echo "total: $passed passed, $failed failed"
 exit $status
