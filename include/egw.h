@@ -149,6 +149,19 @@ void egw_options_default(egw_options *o);
  * no force is ever returned from a failed solve). */
 int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
 
+/* Unloading (and reloading) after the largest overlap delta_max (EP-GW, DESIGN.md 8):
+ * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
+ * delta_max, keeps the separation field d_max(r) of that solve and solves the contact with
+ * the rough-flat unloading law p_G(d(r), d_max(r)) (the loading law wherever
+ * d(r) < d_max(r)); delta = delta_max gives the loading solve at delta_max exactly.
+ * force = P_Hertz(delta) + P_G (E-GW/EP-GW; classic GW P_G only); stiffness dP/ddelta on
+ * the unloading curve (fixed history); elastic summits (GW, E-GW, psi = 0) are reversible.
+ * Each call solves the loading problem again: for many overlaps after one delta_max use
+ * the Fortran load_history/solve_unload. Statuses: as egw_solve, and EGW_INVALID_ARGUMENT
+ * naming delta_max when it is not finite; res is left untouched on any failure. */
+int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, double delta_max,
+                     egw_result *res);
+
 /* Total pressure p(r) and surface deflection w(r) of the solved contact at the n radii
  * r[0..n-1] (>= 0, any order) into pressure[] and deflection[]. Same statuses. */
 int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,

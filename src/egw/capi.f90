@@ -10,7 +10,8 @@ module egw_capi
       & status_message, format_real
    use egw_params, only: contact_params, validate_params, mu_from_summits
    use egw_version, only: egw_version_number
-   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
+      & solve_contact_unload
    use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
    use egw_ellip, only: get_ellipk, get_ellipe
    use egw_asperity, only: flat_pressure
@@ -211,7 +212,6 @@ contains
       type(contact_params) :: params
       type(solver_options) :: options
       type(solve_result) :: result
-      type(egw_result_c), pointer :: cres
       type(egw_error), allocatable :: error
       stat = require(res, "res")
       if (stat == egw_ok) stat = read_params(p, params)
@@ -221,12 +221,27 @@ contains
       stat = settle(error)
       ! a solve that failed returns a zeroed result, never a force (egw.h)
       if (stat /= egw_ok) result = solve_result()
-      call c_f_pointer(res, cres)
-      cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
-         & contact_radius=result%contact_radius, max_pressure=result%max_pressure, &
-         & est_rel_err=result%est_rel_err, residual=result%residual, &
-         & iterations=int(result%iterations, c_int), method_used=int(result%method_used, c_int))
+      call put_result(res, result)
    end function egw_solve
+
+   function egw_solve_unload(p, o, delta, delta_max, res) result(stat) &
+      & bind(C, name="egw_solve_unload")
+      type(c_ptr), value, intent(in) :: p, o, res
+      real(c_double), value, intent(in) :: delta, delta_max
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(solve_result) :: result
+      type(egw_error), allocatable :: error
+      stat = require(res, "res")
+      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat == egw_ok) call read_options(o, options)
+      if (stat /= egw_ok) return
+      call solve_contact_unload(params, options, delta, delta_max, result, error)
+      stat = settle(error)
+      ! res untouched on failure (egw.h)
+      if (stat == egw_ok) call put_result(res, result)
+   end function egw_solve_unload
 
    function egw_profile(p, o, delta, n, r, pressure, deflection) result(stat) &
       & bind(C, name="egw_profile")
@@ -262,6 +277,18 @@ contains
    end function egw_profile
 
    ! ---------------------------------------------------------------- helpers
+
+   !> Store a solve_result at a C egw_result* (not NULL).
+   subroutine put_result(res, result)
+      type(c_ptr), intent(in) :: res
+      type(solve_result), intent(in) :: result
+      type(egw_result_c), pointer :: cres
+      call c_f_pointer(res, cres)
+      cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
+         & contact_radius=result%contact_radius, max_pressure=result%max_pressure, &
+         & est_rel_err=result%est_rel_err, residual=result%residual, &
+         & iterations=int(result%iterations, c_int), method_used=int(result%method_used, c_int))
+   end subroutine put_result
 
    !> Options from a nullable const egw_options* (NULL: defaults); checked by the solver.
    subroutine read_options(o, options)

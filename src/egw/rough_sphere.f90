@@ -21,6 +21,13 @@
 !> about r = 0 otherwise; the outer radius grows until the force left outside is below
 !> 1 % of the tolerance. Levels of decreasing step, each warm-started from the previous,
 !> until the Richardson estimate from the last two (plus the tail) is below rel_tol/2.
+!>
+!> Unloading (DESIGN §8, issue 10 item 3): a loading_history keeps the separation field
+!> d_max(r) of the solve at delta_max (its mesh and nodal w_G); an unloading solve at
+!> delta <= delta_max is the same problem with the law p_G = scale Z_u(d/sigma, d_max/sigma)
+!> at fixed d_max (egw_unloading), on the same meshes with the same Newton, error estimate
+!> and stiffness (h_min does not depend on delta or w, so the Jacobian and the implicit
+!> derivative keep their form).
 module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi, sqrt2
@@ -63,6 +70,7 @@ module egw_rough_sphere
    end type solve_result
 
    public :: validate_options, solve_contact, contact_profile
+   public :: load_history, solve_unload, solve_contact_unload
 
    !> Degree of the deflection elements and pressure points per element: quartic elements
    !> with 6 Gauss points were the cheapest per digit of the pairs tried (degree 2-4,
@@ -80,6 +88,16 @@ module egw_rough_sphere
    integer, parameter :: min_elements = 8
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
 
+   !> Separation field of the loading solve at delta_max (scaled): d_max(r) = z_max(r) +
+   !> w_max(r) with z_max the base gap at delta_max and w_max the nodal rough deflection
+   !> interpolated on its mesh (beyond the mesh it falls like 1/r, the far field of a load).
+   type :: separation_field
+      logical :: extended = .false.   !< z_max is the Hertz gap (else the rigid gap)
+      real(dp) :: delta = 0.0_dp      !< delta_max/sigma
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: w(:)
+   end type separation_field
+
    !> The scaled problem.
    type :: scaled_problem
       integer :: model = model_egw
@@ -88,7 +106,25 @@ module egw_rough_sphere
       real(dp) :: a = 0.0_dp           !< Hertz radius sqrt(delta/sigma) (0 if delta <= 0)
       real(dp) :: scale = 0.0_dp       !< mu/(2 sqrt 2): p_G = scale * f(h)
       real(dp) :: psi = 0.0_dp, hardness = 0.6_dp, plastic_ratio = 54.0_dp
+      !> Unloading: the closest approach so far (allocated), else the loading law.
+      type(separation_field), allocatable :: closest
    end type scaled_problem
+
+   !> Loading history of one contact: the loading solve at delta_max and its separation
+   !> field, from which any number of unloading/reloading solves at delta <= delta_max
+   !> follow (solve_unload). Read-only after load_history: one history may serve several
+   !> threads at once. Above delta_max the loading curve holds; load a new history there.
+   type, public :: loading_history
+      logical :: loaded = .false.             !< set by a successful load_history
+      type(contact_params) :: params          !< parameters of the loading solve
+      type(solver_options) :: options         !< options of the loading and unloading solves
+      real(dp) :: delta_max = 0.0_dp          !< largest overlap reached
+      type(solve_result) :: loading           !< the loading solve at delta_max
+      !> No rough field to remember (Hertz, sigma = 0, or too far apart to touch): the
+      !> unloading curve is the loading curve.
+      logical :: reversible = .true.
+      type(separation_field), private :: closest
+   end type loading_history
 
    !> A converged discrete solution and what is derived from it (scaled units, rough part).
    type :: discrete_solution
@@ -97,6 +133,7 @@ module egw_rough_sphere
       real(dp), allocatable :: w(:)              !< nodal rough deflection
       real(dp), allocatable :: base(:), dbase(:) !< base gap and d(base)/d(delta) at Gauss pts
       real(dp), allocatable :: gap(:), p(:), dpdh(:)  !< at the Gauss points
+      real(dp), allocatable :: gap_min(:)  !< closest-approach gap at the Gauss points (unloading)
       real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
       real(dp) :: residual = 0.0_dp, tail = 0.0_dp
       integer :: iterations = 0
@@ -145,7 +182,6 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
-      real(dp) :: est, force_scale, pmax
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
@@ -167,23 +203,208 @@ contains
          result%est_rel_err = 1.0_dp
          return
       end if
-      call solve_scaled(prob, options, sol, est, result%method_used, error)
+      call solve_rough(params, options, prob, sol, result, error)
+   end subroutine solve_contact
+
+   !> The discrete solve of a rough scaled problem (loading, or unloading when
+   !> prob%closest is allocated), its stiffness, and the result in the caller's units.
+   !> result is only written on success.
+   subroutine solve_rough(params, options, prob, sol, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(out) :: sol
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      real(dp) :: est, force_scale, pmax
+
+      call solve_scaled(prob, options, sol, est, res%method_used, error)
       if (allocated(error)) return
       call differentiate(prob, sol, error)
       if (allocated(error)) return
 
       force_scale = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
-      result%force = force_scale*(smooth_force(prob) + sol%force)
-      result%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
-      result%contact_radius = sqrt(params%radius*params%sigma)*effective_radius(prob, sol)
+      res%force = force_scale*(smooth_force(prob) + sol%force)
+      res%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
+      res%contact_radius = sqrt(params%radius*params%sigma)*effective_radius(prob, sol)
       pmax = max(total_pressure(prob, sol, 0.0_dp), maxval(sol%p))
       if (prob%extended) pmax = max(pmax, &
          & maxval(hertz_pressure(sol%mesh%gauss_r, prob%delta, 1.0_dp, 1.0_dp) + sol%p))
-      result%max_pressure = params%modulus*sqrt(params%sigma/params%radius)*pmax
-      result%est_rel_err = est
-      result%residual = sol%residual
-      result%iterations = sol%iterations
-   end subroutine solve_contact
+      res%max_pressure = params%modulus*sqrt(params%sigma/params%radius)*pmax
+      res%est_rel_err = est
+      res%residual = sol%residual
+      res%iterations = sol%iterations
+      result = res
+   end subroutine solve_rough
+
+   !> Load to delta_max and keep what unloading needs (the loading solve's separation
+   !> field d_max(r)); result is the loading solve at delta_max. Errors as solve_contact
+   !> (delta_max not finite: egw_invalid_argument naming delta_max); history and result
+   !> are left untouched on any error. A delta_max so far apart that the summit pressure
+   !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
+   subroutine load_history(params, options, delta_max, history, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max              !< largest overlap reached
+      type(loading_history), intent(inout) :: history
+      type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
+      type(egw_error), allocatable, intent(out) :: error
+      type(loading_history) :: hist
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+
+      call check_input(params, options, 0.0_dp, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+      hist%params = params
+      hist%options = options
+      hist%delta_max = delta_max
+      hist%reversible = params%model == model_hertz .or. params%sigma == 0.0_dp
+      if (.not. hist%reversible) then
+         prob = scaled(params, delta_max)
+         hist%reversible = negligible(prob)
+      end if
+      if (hist%reversible) then
+         call solve_contact(params, options, delta_max, hist%loading, error)
+         if (allocated(error)) return
+      else
+         call solve_rough(params, options, prob, sol, hist%loading, error)
+         if (allocated(error)) return
+         hist%closest%extended = prob%extended
+         hist%closest%delta = prob%delta
+         call move_alloc(sol%w, hist%closest%w)
+         hist%closest%mesh = sol%mesh
+      end if
+      hist%loaded = .true.
+      result = hist%loading
+      call move_history(hist, history)
+   end subroutine load_history
+
+   !> history <- hist without copying the arrays.
+   pure subroutine move_history(hist, history)
+      type(loading_history), intent(inout) :: hist
+      type(loading_history), intent(inout) :: history
+      history%loaded = hist%loaded
+      history%params = hist%params
+      history%options = hist%options
+      history%delta_max = hist%delta_max
+      history%loading = hist%loading
+      history%reversible = hist%reversible
+      history%closest%extended = hist%closest%extended
+      history%closest%delta = hist%closest%delta
+      history%closest%mesh = hist%closest%mesh
+      if (allocated(history%closest%w)) deallocate (history%closest%w)
+      if (allocated(hist%closest%w)) call move_alloc(hist%closest%w, history%closest%w)
+   end subroutine move_history
+
+   !> Unloading/reloading solve at overlap delta after loading to history%delta_max:
+   !> delta < delta_max solves DESIGN §5 with the unloading law p_G = C sigma**1.5
+   !> Z_u(d/sigma, d_max/sigma) (the loading law wherever d(r) < d_max(r)); delta =
+   !> delta_max returns the history's loading solve; delta > delta_max is the loading
+   !> solve (the curve has left the history: load a new one). Same meshes, Newton, error
+   !> estimate, stiffness (dP/d(delta) at fixed history) and egw_not_converged contract
+   !> as solve_contact. history is only read: thread-safe. result untouched on error.
+   subroutine solve_unload(history, delta, result, error)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      type(solve_result) :: res
+
+      if (.not. history%loaded) then
+         call fatal_error(error, egw_invalid_argument, &
+            & "history: not loaded (call load_history first)")
+         return
+      end if
+      if (.not. ieee_is_finite(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the overlap must be finite")
+         return
+      end if
+      if (delta == history%delta_max) then
+         result = history%loading
+         return
+      end if
+      if (delta > history%delta_max .or. history%reversible) then
+         call solve_contact(history%params, history%options, delta, res, error)
+         if (.not. allocated(error)) result = res
+         return
+      end if
+      prob = scaled(history%params, delta)
+      if (negligible(prob)) then
+         ! Unloading never presses harder than loading at the same delta (Z_u <= Z).
+         res%method_used = history%options%method
+         res%est_rel_err = 1.0_dp
+         result = res
+         return
+      end if
+      allocate (prob%closest)
+      prob%closest = history%closest
+      call solve_rough(history%params, history%options, prob, sol, result, error)
+   end subroutine solve_unload
+
+   !> One unloading solve from scratch: load to delta_max, then solve_unload at delta
+   !> (delta > delta_max: just the loading solve at delta). For many overlaps after one
+   !> delta_max use load_history once and solve_unload for each. Errors as load_history
+   !> and solve_unload; result untouched on error.
+   subroutine solve_contact_unload(params, options, delta, delta_max, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta        !< overlap of this solve
+      real(dp), intent(in) :: delta_max    !< largest overlap reached before
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(loading_history) :: history
+      type(solve_result) :: loaded, res
+
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+      if (delta > delta_max) then
+         call solve_contact(params, options, delta, res, error)
+         if (.not. allocated(error)) result = res
+         return
+      end if
+      call load_history(params, options, delta_max, history, loaded, error)
+      if (allocated(error)) return
+      call solve_unload(history, delta, result, error)
+   end subroutine solve_contact_unload
+
+   !> Gap at the closest approach, d_max(r)/sigma, at scaled radii r >= 0.
+   pure function closest_gap(field, r) result(gap)
+      type(separation_field), intent(in) :: field
+      real(dp), intent(in) :: r(:)
+      real(dp) :: gap(size(r))
+      real(dp) :: r_out, w_out
+      integer :: i
+      r_out = field%mesh%edge(field%mesh%n_elem)
+      w_out = field%w(size(field%w))
+      do i = 1, size(r)
+         if (r(i) <= r_out) then
+            gap(i) = interpolate_nodal(field%mesh, field%w, r(i))
+         else
+            ! Beyond the loading mesh the pressure was negligible: the deflection is that
+            ! of a point load there, continued from the outer radius.
+            gap(i) = w_out*r_out/r(i)
+         end if
+         if (field%extended) then
+            gap(i) = gap(i) + hertz_gap(r(i), field%delta, 1.0_dp)
+         else
+            gap(i) = gap(i) + 0.5_dp*r(i)*r(i) - field%delta
+         end if
+      end do
+   end function closest_gap
 
    !> Total pressure p and deflection w (Hertz + rough part for E-GW/EP-GW, the GW part for
    !> classic GW, Hertz for model_hertz or sigma = 0) at the radii r(:) >= 0.
@@ -462,14 +683,17 @@ contains
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       real(dp) :: total
       integer :: attempt
+      real(dp), allocatable :: edges(:)
+
       do attempt = 1, 8
-         if (layered) then
-            call solve_mesh(prob, options, method, focus_refined(graded_edges(focus, width, &
-               & outer, step), focus), sol, error, guess)
-         else
-            call solve_mesh(prob, options, method, graded_edges(focus, width, outer, step), sol, &
-               & error, guess)
+         edges = graded_edges(focus, width, outer, step)
+         if (layered) edges = focus_refined(edges, focus)
+         ! Unloading after an extended loading: d_max has its (r - a_max)**1.5 onset at
+         ! the loading Hertz edge; an element edge there keeps the elements smooth.
+         if (allocated(prob%closest)) then
+            if (prob%closest%extended) edges = with_edge(edges, sqrt(prob%closest%delta))
          end if
+         call solve_mesh(prob, options, method, edges, sol, error, guess)
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          if (sol%tail <= 0.01_dp*options%rel_tol*total .or. total == 0.0_dp) return
@@ -518,6 +742,31 @@ contains
       refined = [edge(0:k - 1), (focus - left*focus_ratio**i, i=1, focus_layers), focus, &
          & (focus + right*focus_ratio**i, i=focus_layers, 1, -1), edge(k + 1:n)]
    end function focus_refined
+
+   !> edge with r added as an element edge (the element holding r split in two) unless r
+   !> is outside (0, outer) or within a tenth of its element's length of an edge already.
+   pure function with_edge(edge, r) result(out)
+      real(dp), intent(in) :: edge(0:), r
+      real(dp), allocatable :: out(:)
+      integer :: k, n
+      n = size(edge) - 1
+      out = edge
+      if (.not. (r > 0.0_dp .and. r < edge(n))) return
+      k = 1
+      do while (edge(k) < r)
+         k = k + 1
+      end do
+      if (min(edge(k) - r, r - edge(k - 1)) <= 0.1_dp*(edge(k) - edge(k - 1))) return
+      out = [edge(0:k - 1), r, edge(k:n)]
+   end function with_edge
+
+   !> Dimensionless unloading law Z_u(h, h_min) and dZ_u/dh at fixed h_min (DESIGN §8).
+   elemental subroutine unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
+      real(dp), intent(in) :: h, h_min, psi, hardness_coeff, plastic_ratio
+      real(dp), intent(out) :: p, dpdh
+      ! TEMPORARY stand-in until egw_unloading (branch unloadflat) is merged.
+      call rough_flat_law(h + 0.0_dp*h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
+   end subroutine unload_law
 
    !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
    !> Outside the Hertz edge the gap grows like (4/3)(a**2/pi)(2 s/a)**1.5 (s = r - a), so
@@ -636,6 +885,7 @@ contains
       call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads)
       sol%base = base_gap(prob, sol%mesh%gauss_r)
       sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
+      if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
       if (present(guess)) then
          ! Interpolated; beyond the guess's mesh its outermost value (w_G varies slowly there).
          allocate (sol%w(n))
@@ -803,14 +1053,20 @@ contains
       end do
    end function gauss_values
 
-   !> Gap, pressure and its derivative at the Gauss points for the current w.
+   !> Gap, pressure and its derivative at the Gauss points for the current w (the
+   !> unloading law at the closest-approach gaps when unloading).
    pure subroutine evaluate(prob, sol)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(inout) :: sol
       real(dp), allocatable :: f(:), dfdh(:)
       sol%gap = sol%base + gauss_values(sol%mesh, sol%w)
       allocate (f(size(sol%gap)), dfdh(size(sol%gap)))
-      call rough_flat_law(sol%gap, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+      if (allocated(sol%gap_min)) then
+         call unload_law(sol%gap, sol%gap_min, prob%psi, prob%hardness, prob%plastic_ratio, &
+            & f, dfdh)
+      else
+         call rough_flat_law(sol%gap, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+      end if
       sol%p = prob%scale*f
       sol%dpdh = prob%scale*dfdh
    end subroutine evaluate
@@ -999,10 +1255,16 @@ contains
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(in) :: sol
       real(dp), intent(in) :: r
-      real(dp) :: row(size(sol%p)), f, dfdh
+      real(dp) :: row(size(sol%p)), f, dfdh, gap_min(1)
       call influence_row(sol%mesh, r, row)
-      call rough_flat_law(base_gap(prob, r) + dot_product(row, sol%p), prob%psi, &
-         & prob%hardness, prob%plastic_ratio, f, dfdh)
+      if (allocated(prob%closest)) then
+         gap_min = closest_gap(prob%closest, [r])
+         call unload_law(base_gap(prob, r) + dot_product(row, sol%p), gap_min(1), prob%psi, &
+            & prob%hardness, prob%plastic_ratio, f, dfdh)
+      else
+         call rough_flat_law(base_gap(prob, r) + dot_product(row, sol%p), prob%psi, &
+            & prob%hardness, prob%plastic_ratio, f, dfdh)
+      end if
       p = prob%scale*f
       if (prob%extended) p = p + hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
    end function total_pressure
