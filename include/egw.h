@@ -162,6 +162,25 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
 int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, double delta_max,
                      egw_result *res);
 
+/* Coefficient of restitution e of a head-on impact (DESIGN.md 8): effective mass
+ * m* = mass (1/m* = 1/m1 + 1/m2, > 0), approach speed velocity (> 0) from far apart;
+ * e = sqrt(W_unload/W_load) with W_load = int_{-inf}^{delta_m} P_load ddelta = m* v^2/2
+ * (defining the deepest overlap delta_m) and W_unload the same integral of the unloading
+ * curve from delta_m, to about o->rel_tol. 0 < e <= 1; e = 1 for elastic summits (GW, E-GW,
+ * psi = 0; exactly for Hertz and sigma = 0). Units: any consistent set (SI: kg, m/s).
+ * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (mass or velocity not finite and
+ * > 0, bad options), EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed); e is
+ * left untouched on any failure. */
+int egw_restitution(const egw_params *p, const egw_options *o, double mass, double velocity,
+                    double *e);
+
+/* egw_restitution with its energies: w_load = W_load (= m* v^2/2 to the tolerance) and
+ * w_dissipated = W_load - W_unload, the energy lost in the asperity layer (energy units).
+ * Any of e, w_load, w_dissipated may be NULL (not wanted). Statuses as egw_restitution
+ * (EGW_NULL_POINTER only for p); outputs untouched on failure. */
+int egw_restitution_energy(const egw_params *p, const egw_options *o, double mass,
+                           double velocity, double *e, double *w_load, double *w_dissipated);
+
 /* Total pressure p(r) and surface deflection w(r) of the solved contact at the n radii
  * r[0..n-1] (>= 0, any order) into pressure[] and deflection[]. Same statuses. */
 int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,

@@ -18,6 +18,7 @@ program tester
    use test_scene, only: collect_scene
    use test_capi_scene, only: collect_capi_scene
    use test_stability, only: collect_stability
+   use test_unload_sphere, only: collect_unload_sphere
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -38,7 +39,8 @@ program tester
       & new_testsuite("capi_table", collect_capi_table), &
       & new_testsuite("scene", collect_scene), &
       & new_testsuite("capi_scene", collect_capi_scene), &
-      & new_testsuite("stability", collect_stability) &
+      & new_testsuite("stability", collect_stability), &
+      & new_testsuite("unload_sphere", collect_unload_sphere) &
       & ]
 
    stat = 0

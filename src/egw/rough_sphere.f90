@@ -70,7 +70,7 @@ module egw_rough_sphere
    end type solve_result
 
    public :: validate_options, solve_contact, contact_profile
-   public :: load_history, solve_unload, solve_contact_unload
+   public :: load_history, solve_unload, solve_contact_unload, unload_profile
 
    !> Degree of the deflection elements and pressure points per element: quartic elements
    !> with 6 Gauss points were the cheapest per digit of the pairs tried (degree 2-4,
@@ -380,6 +380,74 @@ contains
       if (allocated(error)) return
       call solve_unload(history, delta, result, error)
    end subroutine solve_contact_unload
+
+   !> Rough (asperity) pressure p_G, separation d and closest-approach separation d_max
+   !> at the radii r(:) >= 0 of the unloading solve at delta < history%delta_max (where
+   !> d < d_max the loading law holds; elsewhere the unloading law). For delta >=
+   !> delta_max or a reversible history, d_max = d. Errors as solve_unload, and sizes or
+   !> radii that do not fit (egw_invalid_argument); outputs untouched on error.
+   subroutine unload_profile(history, delta, r, pressure, separation, separation_min, error)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      real(dp), intent(in) :: r(:)                   !< radii, >= 0
+      real(dp), intent(inout) :: pressure(:)         !< p_G at r
+      real(dp), intent(inout) :: separation(:)       !< d at r
+      real(dp), intent(inout) :: separation_min(:)   !< d_max at r
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      real(dp), allocatable :: row(:), rs(:), gap(:), gap_min(:), f(:), dfdh(:)
+      real(dp) :: est, length, c
+      integer :: i, method_used
+
+      if (size(pressure) /= size(r) .or. size(separation) /= size(r) .or. &
+         & size(separation_min) /= size(r)) then
+         call fatal_error(error, egw_invalid_argument, "pressure/separation/separation_min:" &
+            & //" sizes differ from size(r) = "//int_str(size(r)))
+         return
+      end if
+      do i = 1, size(r)
+         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
+               & //format_real(r(i))//": radii must be finite and >= 0")
+            return
+         end if
+      end do
+      if (.not. history%loaded .or. .not. ieee_is_finite(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //" or history: the overlap must be finite and the history loaded")
+         return
+      end if
+      if (history%reversible .or. delta >= history%delta_max) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the unloading profile needs delta < delta_max and a rough history")
+         return
+      end if
+      prob = scaled(history%params, delta)
+      allocate (prob%closest)
+      prob%closest = history%closest
+      length = sqrt(history%params%radius*history%params%sigma)
+      rs = r/length
+      if (negligible(prob)) then
+         gap = base_gap(prob, rs)
+         f = 0.0_dp*rs
+      else
+         call solve_scaled(prob, history%options, sol, est, method_used, error)
+         if (allocated(error)) return
+         allocate (row(size(sol%p)), gap(size(r)), f(size(r)), dfdh(size(r)))
+         do i = 1, size(r)
+            call influence_row(sol%mesh, rs(i), row)
+            gap(i) = base_gap(prob, rs(i)) + dot_product(row, sol%p)
+         end do
+      end if
+      gap_min = closest_gap(prob%closest, rs)
+      if (.not. negligible(prob)) call unload_law(gap, gap_min, prob%psi, prob%hardness, &
+         & prob%plastic_ratio, f, dfdh)
+      c = history%params%modulus*sqrt(history%params%sigma/history%params%radius)
+      pressure = c*prob%scale*f
+      separation = history%params%sigma*gap
+      separation_min = history%params%sigma*gap_min
+   end subroutine unload_profile
 
    !> Gap at the closest approach, d_max(r)/sigma, at scaled radii r >= 0.
    pure function closest_gap(field, r) result(gap)
