@@ -38,6 +38,7 @@ module egw_rough_sphere
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_asperity, only: rough_flat_law
+   use egw_unload_standin, only: rough_flat_unload_law
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
       & assemble_influence, influence_row, interpolate_nodal
    use egw_lapack, only: dgetf2, dgetrs
@@ -87,6 +88,8 @@ module egw_rough_sphere
    real(dp), parameter :: finest_step = 0.01_dp, coarsest_step = 0.6_dp
    integer, parameter :: min_elements = 8
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
+   !> Scaled force below which a solve returns 0 (as negligible() does before solving).
+   real(dp), parameter :: tiny_force = 1.0e-250_dp
 
    !> Separation field of the loading solve at delta_max (scaled): d_max(r) = z_max(r) +
    !> w_max(r) with z_max the base gap at delta_max and w_max the nodal rough deflection
@@ -108,6 +111,8 @@ module egw_rough_sphere
       real(dp) :: psi = 0.0_dp, hardness = 0.6_dp, plastic_ratio = 54.0_dp
       !> Unloading: the closest approach so far (allocated), else the loading law.
       type(separation_field), allocatable :: closest
+      !> Unloading: radii where d crosses d_max (the law switches branch), element edges.
+      real(dp), allocatable :: branch(:)
    end type scaled_problem
 
    !> Loading history of one contact: the loading solve at delta_max and its separation
@@ -221,6 +226,12 @@ contains
 
       call solve_scaled(prob, options, sol, est, res%method_used, error)
       if (allocated(error)) return
+      if (sol%force == 0.0_dp .and. est >= 1.0_dp) then
+         ! Underflow range (tiny_force): 0 with relative error 1, as negligible().
+         res%est_rel_err = 1.0_dp
+         result = res
+         return
+      end if
       call differentiate(prob, sol, error)
       if (allocated(error)) return
 
@@ -576,7 +587,7 @@ contains
       negligible = .false.
       if (prob%delta >= 0.0_dp) return
       call rough_flat_law(-prob%delta, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
-      negligible = prob%scale*f < 1.0e-250_dp
+      negligible = prob%scale*f < tiny_force
    end function negligible
 
    !> Base gap z(r): the Hertz gap of eq. (28) (zero inside a) for the extended models at
@@ -611,18 +622,20 @@ contains
    !> (or on the mesh fixed by n_radial). Each level costs one solve: its force and the
    !> previous level's give the estimate |P_h - P_H|/((H/h)**force_order - 1) of the error
    !> of P_h (Richardson), and the next step is predicted from it.
-   subroutine solve_scaled(prob, options, sol, est, method_used, error)
-      type(scaled_problem), intent(in) :: prob
+   subroutine solve_scaled(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution) :: coarse, first
+      type(scaled_problem) :: prob
       real(dp) :: focus, width, outer, step, step_prev, total
       integer :: level
       logical :: layered
 
+      prob = problem
       method_used = options%method
       if (method_used == method_auto) method_used = method_newton
       call mesh_geometry(prob, options%rel_tol, focus, width, outer)
@@ -666,6 +679,19 @@ contains
             if (allocated(error)) return
          end if
       end if
+      if (allocated(prob%closest)) then
+         ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
+         ! (dp/dh jumps), which costs an element holding it its order (and the Richardson
+         ! estimate its meaning). Element edges at the crossings of the first level; that
+         ! level again on the new mesh family (one family for Richardson, as above).
+         prob%branch = branch_radii(coarse)
+         if (size(prob%branch) > 0) then
+            first = coarse
+            call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
+               & outer, coarse, error, first)
+            if (allocated(error)) return
+         end if
+      end if
       do level = 1, 12
          ! The previous level's solution is the initial guess: 2-3 Newton steps instead of 5-8.
          call solve_with_tail(prob, options, method_used, layered, focus, width, step, outer, &
@@ -673,6 +699,14 @@ contains
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          est = 0.0_dp
+         if (total < tiny_force) then
+            ! Unloading far apart: the force has fallen to the underflow range, where
+            ! relative differences are rounding noise. As for negligible(): 0, error 1.
+            sol%p = 0.0_dp
+            sol%force = 0.0_dp
+            est = 1.0_dp
+            return
+         end if
          ! Discretisation (Richardson) plus the force estimated beyond the outer radius,
          ! which both levels share and their difference cannot see.
          if (total > 0.0_dp) est = abs(sol%force - coarse%force)/total &
@@ -750,7 +784,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       real(dp) :: total
-      integer :: attempt
+      integer :: attempt, k
       real(dp), allocatable :: edges(:)
 
       do attempt = 1, 8
@@ -760,6 +794,11 @@ contains
          ! the loading Hertz edge; an element edge there keeps the elements smooth.
          if (allocated(prob%closest)) then
             if (prob%closest%extended) edges = with_edge(edges, sqrt(prob%closest%delta))
+         end if
+         if (allocated(prob%branch)) then
+            do k = 1, size(prob%branch)
+               edges = with_edge(edges, prob%branch(k))
+            end do
          end if
          call solve_mesh(prob, options, method, edges, sol, error, guess)
          if (allocated(error)) return
@@ -789,6 +828,22 @@ contains
          end if
       end do
    end subroutine gap_edge
+
+   !> Radii where the gap of a solution crosses its closest-approach gap (linear between
+   !> Gauss points in gap - gap_min), at most 8.
+   pure function branch_radii(sol) result(radii)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), allocatable :: radii(:)
+      real(dp) :: f0, f1
+      integer :: g
+      allocate (radii(0))
+      do g = 1, size(sol%gap) - 1
+         f0 = sol%gap(g) - sol%gap_min(g)
+         f1 = sol%gap(g + 1) - sol%gap_min(g + 1)
+         if ((f0 < 0.0_dp .neqv. f1 < 0.0_dp) .and. size(radii) < 8) radii = [radii, &
+            & sol%mesh%gauss_r(g) + f0/(f0 - f1)*(sol%mesh%gauss_r(g + 1) - sol%mesh%gauss_r(g))]
+      end do
+   end function branch_radii
 
    !> Geometric layers on both sides of the focus (the Hertz edge of the extended models),
    !> where the pressure has its one-sided (r - a)**1.5 onset: a polynomial on an element
@@ -832,8 +887,7 @@ contains
    elemental subroutine unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
       real(dp), intent(in) :: h, h_min, psi, hardness_coeff, plastic_ratio
       real(dp), intent(out) :: p, dpdh
-      ! TEMPORARY stand-in until egw_unloading (branch unloadflat) is merged.
-      call rough_flat_law(h + 0.0_dp*h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
+      call rough_flat_unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
    end subroutine unload_law
 
    !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
