@@ -1,5 +1,7 @@
-!> TEMPORARY, NOT TO BE COMMITTED: a slow stand-in for egw_unloading (branch unloadflat)
-!> so that the unloading sphere can be exercised before that branch lands.
+!> TEMPORARY stand-in for egw_unloading (branch unloadflat), to be deleted when that
+!> branch is merged: the DESIGN §8 rough-flat unloading law Z_u(h, h_min) by plain
+!> Gauss-Legendre quadrature (pieces split at the kinks of the summit law and of D, found
+!> by scanning; t = t* + x**2 at the contact edge). Slow (~10 us per call), ~1e-10 accurate.
 module egw_unload_standin
    use egw_kinds, only: dp, pi
    use egw_asperity, only: rough_flat_law
@@ -10,6 +12,7 @@ module egw_unload_standin
    integer, parameter :: n_gl = 16, n_sub = 6
 contains
 
+   !> Z_u(h, h_min) and dZ_u/dh at fixed h_min; h < h_min or psi = 0: the loading law.
    elemental subroutine rough_flat_unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dp_)
       real(dp), intent(in) :: h, h_min, psi, hardness_coeff, plastic_ratio
       real(dp), intent(out) :: p, dp_
