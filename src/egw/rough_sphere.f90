@@ -653,8 +653,26 @@ contains
             & /real(min_elements, dp))
          step = step_prev/coarsen
       end if
-      call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, outer, &
-         & coarse, error)
+      if (allocated(prob%closest)) then
+         ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
+         ! (dp/dh jumps), which costs an element holding it its order (and the Richardson
+         ! estimate its meaning). The crossings, from a solve on a mesh of twice the step
+         ! (a quarter of a level's cost), become element edges of every level.
+         call solve_with_tail(prob, options, method_used, layered, focus, width, &
+            & 2.0_dp*step_prev, outer, first, error)
+         if (allocated(error)) then
+            deallocate (error)
+            call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
+               & outer, coarse, error)
+         else
+            prob%branch = branch_radii(first)
+            call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
+               & outer, coarse, error, first)
+         end if
+      else
+         call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
+            & outer, coarse, error)
+      end if
       if (allocated(error)) then
          ! A cold start that fails (classic GW deep in contact is the stiff case) is retried
          ! by continuation in delta from a shallow contact.
@@ -673,19 +691,6 @@ contains
             ! The first level again, on the refocused mesh family: two levels of different
             ! families can agree by accident (seen: both 1.3e-7 off at mu = 0.1,
             ! delta/sigma = 100, their difference 1.5e-8), so Richardson needs one family.
-            first = coarse
-            call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
-               & outer, coarse, error, first)
-            if (allocated(error)) return
-         end if
-      end if
-      if (allocated(prob%closest)) then
-         ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
-         ! (dp/dh jumps), which costs an element holding it its order (and the Richardson
-         ! estimate its meaning). Element edges at the crossings of the first level; that
-         ! level again on the new mesh family (one family for Richardson, as above).
-         prob%branch = branch_radii(coarse)
-         if (size(prob%branch) > 0) then
             first = coarse
             call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
                & outer, coarse, error, first)
