@@ -7,7 +7,8 @@
 !>
 !> The integrals use the solver's force and stiffness: on each interval the two-point
 !> Hermite rule (h/2)(P_a + P_b) + (h**2/12)(k_a - k_b), bisected until it agrees with its
-!> two halves to a tenth of rel_tol (relative, the integrands are positive). Below delta_lo
+!> two halves to a tenth of rel_tol, relative to the larger of the interval's integral and
+!> its share (by length) of the whole (the integrands are positive). Below delta_lo
 !> the force decays faster than exponentially (Gaussian summit heights), so
 !> int_{-inf}^{delta_lo} P <= P(delta_lo)**2/k(delta_lo); delta_lo is lowered until that
 !> bound is below rel_tol/20 of the impact energy and the bound is added to both integrals.
@@ -33,6 +34,10 @@ module egw_impact
       type(solver_options) :: options
       type(loading_history) :: history
       logical :: unloading = .false.
+      !> Work per unit overlap below which an interval needs no relative accuracy: the
+      !> integral's error budget spread over its range (energy/span), so that the far tail,
+      !> negligible but decaying like a Gaussian, is not bisected to relative precision.
+      real(dp) :: work_density = 0.0_dp
    end type force_curve
 
 contains
@@ -76,11 +81,16 @@ contains
       curve%options = options
       call lower_limit(curve, energy, delta_lo, tail_load, error)
       if (allocated(error)) return
+      ! The range is at most up to the Hertz turning point plus a few sigma (the rough
+      ! models press at least as hard as Hertz beyond contact, GW nearly so).
+      curve%work_density = energy/(max(0.0_dp, (15.0_dp*energy/(8.0_dp*params%modulus &
+         & *sqrt(params%radius)))**0.4_dp) - delta_lo + params%sigma)
       call turning_point(curve, energy, delta_lo, tail_load, delta_m, w_load, nodes, error)
       if (allocated(error)) return
       call load_history(params, options, delta_m, curve%history, res, error)
       if (allocated(error)) return
       curve%unloading = .true.
+      curve%work_density = w_load/(delta_m - delta_lo)
       call work(curve, [delta_lo, pack(nodes, nodes > delta_lo .and. nodes < delta_m), &
          & delta_m], w_unload, error)
       if (allocated(error)) return
@@ -287,8 +297,8 @@ contains
       total = left + right
       ! The rule is exact for cubics: halving cuts its error 16-fold, so |halves - whole|
       ! is ~15 times the error of the halves.
-      if (abs(total - whole) <= 1.5_dp*curve%options%rel_tol*abs(total) &
-         & .or. depth >= max_depth) then
+      if (abs(total - whole) <= 1.5_dp*curve%options%rel_tol*max(abs(total), &
+         & curve%work_density*(b - a)) .or. depth >= max_depth) then
          total = total + (total - whole)/15.0_dp
          return
       end if
