@@ -34,7 +34,7 @@ contains
       do while (dd(hi) < delta)
          hi = 2.0_dp*hi
       end do
-      do it = 1, 100
+      do it = 1, 60
          mid = 0.5_dp*(lo + hi)
          if (dd(mid) >= delta) then
             hi = mid
@@ -50,13 +50,13 @@ contains
       call add_b(e, lo, hi, b, nb)
       call add_b(q, lo, hi, b, nb)
       ! branch points of D in (e, q): scan
-      do i = 1, 64
-         tl = e + (q - e)*real(i - 1, dp)/64.0_dp
-         th = e + (q - e)*real(i, dp)/64.0_dp
+      do i = 1, 16
+         tl = e + (q - e)*real(i - 1, dp)/16.0_dp
+         th = e + (q - e)*real(i, dp)/16.0_dp
          gl = g(tl + 1.0e-12_dp*e)
          gh = g(th)
          if (gl*gh < 0.0_dp) then
-            do it = 1, 80
+            do it = 1, 52
                mid = 0.5_dp*(tl + th)
                if (g(mid)*gl > 0.0_dp) then
                   tl = mid
