@@ -1,20 +1,31 @@
 # Two entry points: `make run` (the table generator) and `make test`.
-# Both install missing tools first (tools/setup.sh).
+# Both install missing tools first (tools/setup.sh): gfortran and LAPACK from Debian, fpm
+# into the project venv .venv/ (VENV), which other targets (python, lammps, docs) share.
 FPM_FLAGS ?= --profile release
 ARGS ?=
+VENV ?= .venv
+FPM := $(VENV)/bin/fpm
+export VENV
 
-.PHONY: run test bench setup clean
+.PHONY: run test bench setup clean python
 run: setup
-	@fpm run egw-table $(FPM_FLAGS) -- $(ARGS)
+	@$(FPM) run egw-table $(FPM_FLAGS) -- $(ARGS)
 
+# fpm test, then the Python and LAMMPS suites where installed; ends "total: N passed, N failed"
 test: setup
-	@OMP_NUM_THREADS=$${OMP_NUM_THREADS:-2} fpm test $(FPM_FLAGS)
+	@OMP_NUM_THREADS=$${OMP_NUM_THREADS:-2} FPM="$(FPM)" FPM_FLAGS="$(FPM_FLAGS)" \
+		sh tools/run_tests.sh
 
 bench: setup
-	@fpm run egw-bench $(FPM_FLAGS)
+	@$(FPM) run egw-bench $(FPM_FLAGS)
 
 setup:
 	@sh tools/setup.sh
+
+# The Python package (python/) in the project venv, with numpy and pytest.
+python: setup
+	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check numpy pytest ./python
+	@echo "python: egw $$($(VENV)/bin/python -c 'import egw; print(egw.version())') in $(VENV)/ ($(VENV)/bin/python, $(VENV)/bin/egw-topo)"
 
 clean:
 	rm -rf build

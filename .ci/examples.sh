@@ -8,6 +8,8 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-2}
+sh tools/setup.sh || exit 1
+export PATH="$root/${VENV:-.venv}/bin:$PATH"  # fpm from the project venv
 FPM_FLAGS=${FPM_FLAGS:---profile release}
 
 # --- tools ------------------------------------------------------------------------------

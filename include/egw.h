@@ -83,6 +83,14 @@ int egw_params_validate(const egw_params *p);
 int egw_mu_from_summits(double summit_density, double summit_radius, double sigma,
                         double radius, double *mu);
 
+/* Plasticity index of the paper psi = sqrt(sigma/delta_ep) with the ZMC yield-onset
+ * interference delta_ep = (3 pi K H/(4 E*))^2 beta (paper eqs. 36, 47):
+ * psi = 4 E* / (3 pi K H) sqrt(sigma/beta), from the effective modulus E* and hardness H
+ * [pressure] (both > 0), K in (0, 1), sigma >= 0 and summit radius beta > 0 [length].
+ * EGW_INVALID_ARGUMENT names a bad argument (or an overflowing result). */
+int egw_psi_from_hardness(double modulus, double hardness, double hardness_coeff,
+                          double sigma, double summit_radius, double *psi);
+
 /* F_n(h) = int_h^inf (s-h)^n phi(s) ds, phi the standard normal density (DESIGN.md
  * section 2). n >= 0, h any non-NaN value (F_n(+inf) = 0). Relative error <= 1e-14 for
  * n in {0, 1/2, 1, 3/2, 5/2}, <= 1e-12 otherwise. EGW_INVALID_ARGUMENT for NaN or n < 0. */
@@ -230,6 +238,15 @@ int egw_table_build(const egw_params *p, const egw_options *o, double delta_min,
  * outputs written (the one exception to "outputs unchanged on failure"). NULL outputs
  * are skipped. EGW_INVALID_ARGUMENT for NaN delta; EGW_NULL_POINTER for t. */
 int egw_table_eval(egw_table t, double delta, double *force, double *stiffness);
+
+/* egw_table_eval at the n overlaps delta[0..n-1] in one call: force[i], stiffness[i]
+ * (either may be NULL). A NaN overlap refuses the call (EGW_INVALID_ARGUMENT naming its
+ * index) before anything is written; overlaps above delta_max are extrapolated as by
+ * egw_table_eval and EGW_OUT_OF_RANGE names the first of them (all values written).
+ * n = 0 does nothing; n < 0: EGW_INVALID_ARGUMENT. For callers that pay per call
+ * (Python, scripting languages): the cost per point is that of egw_table_eval. */
+int egw_table_eval_array(egw_table t, int n, const double *delta, double *force,
+                         double *stiffness);
 
 /* As egw_table_eval, plus the elastic energy int_{delta_c}^{delta} P ddelta of the
  * interpolant [force*length] and the effective contact radius a* [length] (monotone

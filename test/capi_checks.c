@@ -76,6 +76,22 @@ int egw_capi_test_params(void) {
     CHECK(last_error_names("summit_density"));
     CHECK(egw_mu_from_summits(1.0, 1.0, 1.0, 2.0, NULL) == EGW_NULL_POINTER);
   }
+  {
+    /* psi = 4 E/(3 pi K H) sqrt(sigma/beta): with E = 3 pi, K H = 0.5 * 8, sigma/beta = 4
+     * it is 4 * 3 pi/(3 pi * 4) * 2 = 2 exactly (up to the rounding of pi's products) */
+    double psi = -1.0;
+    CHECK(egw_psi_from_hardness(3.0 * M_PI, 8.0, 0.5, 4e-6, 1e-6, &psi) == EGW_OK &&
+          close_rel(psi, 2.0, 4e-16));
+    psi = -1.0;
+    CHECK(egw_psi_from_hardness(1.0, 0.0, 0.5, 1.0, 1.0, &psi) == EGW_INVALID_ARGUMENT &&
+          psi == -1.0);
+    CHECK(last_error_names("hardness"));
+    CHECK(egw_psi_from_hardness(1.0, 1.0, 1.0, 1.0, 1.0, &psi) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("hardness_coeff"));
+    CHECK(egw_psi_from_hardness(1e300, 1e-300, 0.5, 1.0, 1.0, &psi) == EGW_INVALID_ARGUMENT);
+    CHECK(egw_psi_from_hardness(1.0, 1.0, 0.5, 1.0, 0.0, &psi) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("summit_radius"));
+  }
   return failures;
 }
 

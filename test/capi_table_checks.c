@@ -104,6 +104,26 @@ int egw_capi_test_table_build_eval(void) {
     CHECK(k == k1 && fabs(f - (f1 + k1 * 0.001)) <= 1e-15 * f);
     CHECK(last_error_names("delta"));
   }
+  /* the array evaluator: bit-for-bit egw_table_eval at each point, one status */
+  {
+    double d[5] = {-1.0, 0.5 * info.cutoff, 0.003, 0.01, 0.012}, fa[5], ka[5];
+    double fs, ks;
+    CHECK(egw_table_eval_array(t, 4, d, fa, ka) == EGW_OK);
+    for (int i = 0; i < 4; i++) {
+      egw_table_eval(t, d[i], &fs, &ks);
+      CHECK(fa[i] == fs && ka[i] == ks);
+    }
+    CHECK(egw_table_eval_array(t, 5, d, fa, NULL) == EGW_OUT_OF_RANGE);
+    egw_table_eval(t, d[4], &fs, &ks);
+    CHECK(fa[4] == fs && last_error_names("delta"));
+    d[2] = NAN;
+    fa[0] = 7.0;
+    CHECK(egw_table_eval_array(t, 5, d, fa, ka) == EGW_INVALID_ARGUMENT && fa[0] == 7.0);
+    CHECK(last_error_names("delta[2]"));
+    CHECK(egw_table_eval_array(t, -1, d, fa, ka) == EGW_INVALID_ARGUMENT);
+    CHECK(egw_table_eval_array(t, 0, NULL, NULL, NULL) == EGW_OK);
+    CHECK(egw_table_eval_array(NULL, 1, d, fa, ka) == EGW_NULL_POINTER);
+  }
   f = 7.0;
   CHECK(egw_table_eval(t, NAN, &f, &k) == EGW_INVALID_ARGUMENT && f == 7.0);
   CHECK(egw_table_eval(t, 0.005, NULL, &k) == EGW_OK); /* unwanted outputs may be NULL */

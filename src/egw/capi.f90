@@ -8,7 +8,8 @@ module egw_capi
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
       & status_message, format_real
-   use egw_params, only: contact_params, validate_params, mu_from_summits
+   use egw_params, only: contact_params, validate_params, mu_from_summits, &
+      & psi_from_hardness
    use egw_version, only: egw_version_number
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
       & solve_contact_unload
@@ -103,6 +104,36 @@ contains
       if (stat /= egw_ok) return
       call put(mu, mu_from_summits(summit_density, summit_radius, sigma, radius))
    end function egw_mu_from_summits
+
+   !> C: egw_psi_from_hardness (include/egw.h).
+   function egw_psi_from_hardness(modulus, hardness, hardness_coeff, sigma, summit_radius, &
+      & psi) result(stat) bind(C, name="egw_psi_from_hardness")
+      real(c_double), value, intent(in) :: modulus, hardness, hardness_coeff, sigma, &
+         & summit_radius
+      type(c_ptr), value, intent(in) :: psi
+      integer(c_int) :: stat
+      real(dp) :: value
+      stat = check_positive("modulus", modulus)
+      if (stat == egw_ok) stat = check_positive("hardness", hardness)
+      if (stat == egw_ok) stat = check_nonneg("sigma", sigma)
+      if (stat == egw_ok) stat = check_positive("summit_radius", summit_radius)
+      if (stat == egw_ok .and. .not. (hardness_coeff > 0.0_dp .and. hardness_coeff < 1.0_dp)) &
+         & then
+         stat = egw_invalid_argument
+         last_message = "hardness_coeff = "//format_real(hardness_coeff)//": K must lie in (0, 1)"
+      end if
+      if (stat == egw_ok) stat = require(psi, "psi")
+      if (stat /= egw_ok) return
+      value = psi_from_hardness(modulus, hardness, hardness_coeff, sigma, summit_radius)
+      if (.not. ieee_is_finite(value)) then
+         stat = egw_invalid_argument
+         last_message = "psi = E/(K H) sqrt(sigma/beta) overflows: modulus/hardness = "// &
+            & format_real(modulus/hardness)//", sigma/summit_radius = "// &
+            & format_real(sigma/summit_radius)
+         return
+      end if
+      call put(psi, value)
+   end function egw_psi_from_hardness
 
    function egw_gauss_integral(n, h, value) result(stat) bind(C, name="egw_gauss_integral")
       real(c_double), value, intent(in) :: n, h
@@ -436,6 +467,15 @@ contains
       stat = egw_invalid_argument
       last_message = name//" = "//format_real(x)//": must be finite and >= 0"
    end function check_nonneg
+
+   integer(c_int) function check_positive(name, x) result(stat)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: x
+      stat = egw_ok
+      if (ieee_is_finite(x) .and. x > 0.0_dp) return
+      stat = egw_invalid_argument
+      last_message = name//" = "//format_real(x)//": must be finite and > 0"
+   end function check_positive
 
    !> Store x at a C double* (NULL: nothing wanted).
    subroutine put(ptr, x)

@@ -95,6 +95,47 @@ contains
       if (delta > t%delta_max) stat = out_of_range(t, delta)
    end function egw_table_eval
 
+   !> C: egw_table_eval_array: egw_table_eval at n overlaps in one call (for callers such
+   !> as Python/numpy that pay a high price per call). NaN refuses the whole call before
+   !> any output is written; above delta_max the values are written and EGW_OUT_OF_RANGE
+   !> names the first such overlap.
+   function egw_table_eval_array(h, n, delta, force, stiffness) result(stat) &
+      & bind(C, name="egw_table_eval_array")
+      type(c_ptr), value, intent(in) :: h
+      integer(c_int), value, intent(in) :: n
+      real(c_double), intent(in) :: delta(*)
+      type(c_ptr), value, intent(in) :: force, stiffness
+      integer(c_int) :: stat
+      type(force_table), pointer :: t
+      real(c_double), pointer :: f(:), k(:)
+      real(dp) :: fi, ki
+      integer :: i, first_out
+      stat = get_table(h, t)
+      if (stat /= egw_ok) return
+      if (n < 0) then
+         stat = invalid("n = "//int_str(int(n))//": must be >= 0")
+         return
+      end if
+      if (n == 0) return
+      do i = 1, n
+         if (ieee_is_nan(delta(i))) then
+            stat = invalid("delta["//int_str(i - 1)//"] = NaN: must be a number")
+            return
+         end if
+      end do
+      nullify (f, k)
+      if (c_associated(force)) call c_f_pointer(force, f, [n])
+      if (c_associated(stiffness)) call c_f_pointer(stiffness, k, [n])
+      first_out = 0
+      do i = 1, n
+         call table_eval(t, delta(i), fi, ki)
+         if (associated(f)) f(i) = fi
+         if (associated(k)) k(i) = ki
+         if (first_out == 0 .and. delta(i) > t%delta_max) first_out = i
+      end do
+      if (first_out > 0) stat = out_of_range(t, delta(first_out))
+   end function egw_table_eval_array
+
    !> C: egw_table_eval_all (force, stiffness, energy, contact radius).
    function egw_table_eval_all(h, delta, force, stiffness, energy, contact_radius) &
       & result(stat) bind(C, name="egw_table_eval_all")

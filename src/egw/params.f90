@@ -2,7 +2,7 @@
 !> Units are any consistent set; the defaults are the dimensionless E-GW case.
 module egw_params
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
-   use egw_kinds, only: dp
+   use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_parameter, fatal_error, format_real
    implicit none
    private
@@ -24,7 +24,8 @@ module egw_params
       real(dp) :: plastic_ratio = 54.0_dp  !< ZMC delta_p/delta_ep > 1
    end type contact_params
 
-   public :: validate_params, model_name, mu_from_summits, rough_flat_coefficient
+   public :: validate_params, model_name, mu_from_summits, psi_from_hardness, &
+      & rough_flat_coefficient
 
 contains
 
@@ -71,6 +72,22 @@ contains
       real(dp) :: mu
       mu = (8.0_dp/3.0_dp)*summit_density*sigma*sqrt(2.0_dp*radius*summit_radius)
    end function mu_from_summits
+
+   !> Plasticity index of the paper, psi = sqrt(sigma/delta_ep) (eq. 47) with the ZMC
+   !> yield-onset interference delta_ep = (3 pi K H/(4 E))**2 beta (eq. 36):
+   !> psi = 4 E/(3 pi K H) sqrt(sigma/beta), i.e. 4/(3 pi K) times the GW index
+   !> (E/H) sqrt(sigma/beta) (DESIGN.md §6 misprint 6). Preconditions (not checked):
+   !> modulus, hardness, summit_radius > 0, 0 < K < 1, sigma >= 0.
+   elemental function psi_from_hardness(modulus, hardness, hardness_coeff, sigma, &
+      & summit_radius) result(psi)
+      real(dp), intent(in) :: modulus        !< effective modulus E*
+      real(dp), intent(in) :: hardness       !< hardness H of the softer surface
+      real(dp), intent(in) :: hardness_coeff !< ZMC K (mean pressure K H at yield onset)
+      real(dp), intent(in) :: sigma          !< std of summit heights
+      real(dp), intent(in) :: summit_radius  !< summit radius beta
+      real(dp) :: psi
+      psi = 4.0_dp*modulus/(3.0_dp*pi*hardness_coeff*hardness)*sqrt(sigma/summit_radius)
+   end function psi_from_hardness
 
    !> C = (4/3) E eta beta^(1/2) = mu E / (2 sigma sqrt(2R)) of eq. (9) (sigma > 0).
    elemental function rough_flat_coefficient(params) result(c)

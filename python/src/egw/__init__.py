@@ -1,0 +1,28 @@
+"""egw: extended Greenwood-Williamson contact of rough spheres (Zhao & Feng 2018), from
+Python. A thin ctypes layer over the egw C library (include/egw.h): every number is
+computed by the library; errors are raised as egw.EgwError subclasses carrying egw's
+message (which names the offending parameter).
+
+>>> import numpy as np, egw
+>>> p = egw.Params(model="E-GW", radius=5e-4, modulus=3.678e10, sigma=1e-6, mu=4.0)
+>>> r = egw.solve(p, [0.0, 1e-6, 1e-5])       # full solves: r.force, r.stiffness, ...
+>>> t = egw.Table.build(p, -2e-6, 2e-5, 1e-6)  # a force table for a DEM code
+>>> force, stiffness = t.eval(np.linspace(0, 2e-5, 1000))
+"""
+from .core import (EgwError, FileError, InvalidArgumentError, NotConvergedError, Options,
+                   OutOfRangeWarning, Params, Restitution, SolveResult, ellipe, ellipk,
+                   flat_pressure, flat_pressure_unload, gauss_integral, hertz, last_error,
+                   mu_from_summits, profile, restitution, solve, solve_unload, version)
+from .scene import ModelChoice, Scene, build, choose
+from .tables import HysteresisTable, Table, TableInfo, UniversalTable
+from . import topography
+from .topography import psi_from_hardness
+
+__version__ = "0.1.0"
+
+__all__ = ["EgwError", "FileError", "InvalidArgumentError", "NotConvergedError", "Options",
+           "OutOfRangeWarning", "Params", "Restitution", "SolveResult", "ellipe", "ellipk",
+           "flat_pressure", "flat_pressure_unload", "gauss_integral", "hertz", "last_error",
+           "mu_from_summits", "profile", "restitution", "solve", "solve_unload", "version",
+           "ModelChoice", "Scene", "build", "choose", "HysteresisTable", "Table",
+           "TableInfo", "UniversalTable", "topography", "psi_from_hardness"]

@@ -1,0 +1,240 @@
+"""Force tables (one parameter set), universal tables (every R, E, sigma, mu of a model)
+and EP-GW hysteresis tables, as owned handles of the C library. A table is evaluated over
+a whole numpy array in ONE C call (egw_table_eval_array), so the cost per point is that of
+the C evaluation; the tables themselves are built, written and read by the library.
+"""
+from __future__ import annotations
+
+import ctypes
+import os
+from dataclasses import dataclass
+from typing import Optional, Tuple, Union
+
+import numpy as np
+
+from . import _capi
+from ._capi import lib
+from .core import (ArrayLike, OUT_OF_RANGE, Options, Params, _array, _double_ptr,
+                   _options, _params, _require, _scalar_or_array, check)
+
+FORMATS = {"csv": 0, "binary": 1, "lammps": 2, "calculix": 3}
+PathLike = Union[str, os.PathLike]
+
+
+def _format(fmt: Union[str, int]) -> int:
+    if isinstance(fmt, str):
+        if fmt not in FORMATS:
+            raise ValueError(f"format = {fmt!r}: must be one of {list(FORMATS)}")
+        return FORMATS[fmt]
+    return int(fmt)
+
+
+def _path(path: PathLike) -> bytes:
+    return os.fsencode(path)
+
+
+class _Handle:
+    """An owned C handle, released by the library's free function."""
+    _free = None  # name of the C free function
+
+    def __init__(self, handle: ctypes.c_void_p):
+        self._handle = handle
+
+    def close(self) -> None:
+        """Release the C object now (also done when garbage-collected)."""
+        if getattr(self, "_handle", None) is not None and self._handle.value:
+            getattr(lib, self._free)(ctypes.byref(self._handle))
+        self._handle = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown: the library may be gone
+            pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    @property
+    def _ptr(self) -> ctypes.c_void_p:
+        if self._handle is None or not self._handle.value:
+            raise ValueError("the table was closed")
+        return self._handle
+
+
+@dataclass
+class TableInfo:
+    """egw_table_info: model, n_nodes, cutoff (force 0 below) [length], delta_max (last
+    node) [length], reference_force, rel_tol, max_force_error, max_stiffness_error."""
+    model: int
+    n_nodes: int
+    cutoff: float
+    delta_max: float
+    reference_force: float
+    rel_tol: float
+    max_force_error: float
+    max_stiffness_error: float
+
+
+class Table(_Handle):
+    """Force table of one parameter set: force and stiffness against the overlap delta,
+    built adaptively to rel_tol from full solves (egw_table_build)."""
+    _free = "egw_table_free"
+
+    @classmethod
+    def build(cls, params: Params, delta_min: float, delta_max: float,
+              rel_tol: float = 1e-6, options: Optional[Options] = None) -> "Table":
+        p = _params(params)
+        h = ctypes.c_void_p()
+        check(lib.egw_table_build(ctypes.byref(p), _options(options), float(delta_min),
+                                  float(delta_max), float(rel_tol), ctypes.byref(h)))
+        return cls(h)
+
+    @classmethod
+    def read(cls, path: PathLike) -> "Table":
+        """Read an egw CSV or binary table (format recognised from the file)."""
+        h = ctypes.c_void_p()
+        check(lib.egw_table_read(_path(path), ctypes.byref(h)))
+        return cls(h)
+
+    def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
+        """Write atomically as 'csv', 'binary', 'lammps' or 'calculix'."""
+        check(lib.egw_table_write(self._ptr, _path(path), _format(format)))
+
+    @property
+    def info(self) -> TableInfo:
+        c = _capi.TableInfo()
+        check(lib.egw_table_get_info(self._ptr, ctypes.byref(c)))
+        return TableInfo(*(getattr(c, f) for f, _ in c._fields_))
+
+    def eval(self, delta: ArrayLike) -> Tuple[ArrayLike, ArrayLike]:
+        """(force, stiffness) at delta: one C call for the whole array. Above the last
+        node the values are extrapolated linearly and an OutOfRangeWarning is issued."""
+        d = _array(delta)
+        force = np.empty_like(d)
+        stiffness = np.empty_like(d)
+        if d.size:
+            check(lib.egw_table_eval_array(self._ptr, d.size, _double_ptr(d),
+                                           _double_ptr(force), _double_ptr(stiffness)),
+                  allow_out_of_range=True)
+        return _scalar_or_array(d.shape, force, stiffness)
+
+    def eval_all(self, delta: float) -> Tuple[float, float, float, float]:
+        """(force, stiffness, elastic energy int P ddelta, effective contact radius)."""
+        out = [ctypes.c_double() for _ in range(4)]
+        check(lib.egw_table_eval_all(self._ptr, float(delta), *map(ctypes.byref, out)),
+              allow_out_of_range=True)
+        return tuple(v.value for v in out)
+
+
+class UniversalTable(_Handle):
+    """P/(E sqrt(R) sigma^1.5) over (delta/sigma, mu) for one model: every radius,
+    modulus and roughness (egw_universal_build)."""
+    _free = "egw_universal_free"
+
+    @classmethod
+    def build(cls, params: Params, mu_min: float, mu_max: float, x_min: float,
+              x_max: float, rel_tol: float = 1e-6,
+              options: Optional[Options] = None) -> "UniversalTable":
+        p = _params(params)
+        h = ctypes.c_void_p()
+        check(lib.egw_universal_build(ctypes.byref(p), _options(options), float(mu_min),
+                                      float(mu_max), float(x_min), float(x_max),
+                                      float(rel_tol), ctypes.byref(h)))
+        return cls(h)
+
+    @classmethod
+    def read(cls, path: PathLike) -> "UniversalTable":
+        h = ctypes.c_void_p()
+        check(lib.egw_universal_read(_path(path), ctypes.byref(h)))
+        return cls(h)
+
+    def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
+        check(lib.egw_universal_write(self._ptr, _path(path), _format(format)))
+
+    def eval(self, params: Params, delta: ArrayLike) -> Tuple[ArrayLike, ArrayLike]:
+        """(force, stiffness) of the contact `params` (its R, E, sigma, mu) at delta."""
+        p = _params(params)
+        d = _array(delta)
+        flat = d.reshape(-1)
+        force = np.empty(d.shape)
+        stiffness = np.empty(d.shape)
+        f, k = ctypes.c_double(), ctypes.c_double()
+        ff, kf = force.reshape(-1), stiffness.reshape(-1)
+        for i in range(flat.size):
+            check(lib.egw_universal_eval(self._ptr, ctypes.byref(p), float(flat[i]),
+                                         ctypes.byref(f), ctypes.byref(k)),
+                  allow_out_of_range=True)
+            ff[i], kf[i] = f.value, k.value
+        return _scalar_or_array(d.shape, force, stiffness)
+
+    def slice(self, params: Params, delta_max: Optional[float] = None) -> Table:
+        """The 1-D table of one contact cut out of the universal table (no solves); with
+        delta_max, trimmed to the overlaps a scene visits (faster lookups)."""
+        p = _params(params)
+        h = ctypes.c_void_p()
+        if delta_max is None:
+            check(lib.egw_universal_slice(self._ptr, ctypes.byref(p), ctypes.byref(h)))
+        else:
+            check(lib.egw_universal_slice_range(self._ptr, ctypes.byref(p),
+                                                float(delta_max), ctypes.byref(h)))
+        return Table(h)
+
+
+class HysteresisTable(_Handle):
+    """EP-GW loading/unloading/reloading force over (delta, delta_max) for one parameter
+    set (egw_hysteresis_build). The history (the largest overlap so far) belongs to the
+    caller: a new contact starts from -inf."""
+    _free = "egw_hysteresis_free"
+
+    @classmethod
+    def build(cls, params: Params, delta_min: float, delta_max: float,
+              rel_tol: float = 1e-4, options: Optional[Options] = None) -> "HysteresisTable":
+        _require("egw_hysteresis_build")
+        p = _params(params)
+        h = ctypes.c_void_p()
+        check(lib.egw_hysteresis_build(ctypes.byref(p), _options(options), float(delta_min),
+                                       float(delta_max), float(rel_tol), ctypes.byref(h)))
+        return cls(h)
+
+    @classmethod
+    def read(cls, path: PathLike) -> "HysteresisTable":
+        _require("egw_hysteresis_read")
+        h = ctypes.c_void_p()
+        check(lib.egw_hysteresis_read(_path(path), ctypes.byref(h)))
+        return cls(h)
+
+    def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
+        _require("egw_hysteresis_write")
+        check(lib.egw_hysteresis_write(self._ptr, _path(path), _format(format)))
+
+    def eval(self, delta: ArrayLike, state: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+        """(force, stiffness) at delta for contacts whose histories are `state` (a float
+        array of the same shape, updated in place to max(state, delta))."""
+        d = _array(delta)
+        if not (isinstance(state, np.ndarray) and state.dtype == np.float64
+                and state.shape == d.shape and state.flags.c_contiguous):
+            raise TypeError("state must be a C-contiguous float64 array shaped like delta")
+        force = np.empty(d.shape)
+        stiffness = np.empty(d.shape)
+        ff, kf, sf, df = (a.reshape(-1) for a in (force, stiffness, state, d))
+        s, f, k = ctypes.c_double(), ctypes.c_double(), ctypes.c_double()
+        for i in range(df.size):
+            s.value = sf[i]
+            check(lib.egw_hysteresis_eval(self._ptr, float(df[i]), ctypes.byref(s),
+                                          ctypes.byref(f), ctypes.byref(k)),
+                  allow_out_of_range=True)
+            sf[i], ff[i], kf[i] = s.value, f.value, k.value
+        return force, stiffness
+
+    @staticmethod
+    def new_state(shape=()) -> np.ndarray:
+        """Histories of contacts that never touched (-inf)."""
+        return np.full(shape, -np.inf)
+
+
+__all__ = ["Table", "TableInfo", "UniversalTable", "HysteresisTable", "FORMATS",
+           "OUT_OF_RANGE"]

@@ -1,0 +1,69 @@
+"""Tables from Python: values against full solves (the table's contract: rel_tol between
+nodes), one C call per array, files, and the range warning."""
+import numpy as np
+import pytest
+
+import egw
+
+P = egw.Params(model="E-GW", radius=5e-4, modulus=3.678e10, sigma=1e-6, mu=4.0)
+
+
+@pytest.fixture(scope="module")
+def table():
+    t = egw.Table.build(P, -2e-6, 2e-5, rel_tol=1e-5)
+    yield t
+    t.close()
+
+
+def test_table_meets_rel_tol_against_solves(table):
+    info = table.info
+    assert info.n_nodes > 4 and info.rel_tol == 1e-5
+    d = np.linspace(0.0, 2e-5, 7)[1:]
+    f, _ = table.eval(d)
+    ref = egw.solve(P, d, egw.Options(rel_tol=1e-8)).force
+    # interpolation error <= rel_tol (1e-5) + the solves' own 1e-8
+    np.testing.assert_allclose(f, ref, rtol=1.1e-5)
+
+
+def test_array_eval_equals_pointwise_eval(table):
+    d = np.linspace(-3e-6, 1.9e-5, 101).reshape(101)
+    f, k = table.eval(d)
+    for i in range(0, 101, 10):
+        fi, ki = table.eval(float(d[i]))
+        assert fi == f[i] and ki == k[i]
+    below = table.info.cutoff * (1 + 1e-9)  # cut-off < 0: just below it
+    assert table.eval(below) == (0.0, 0.0)  # below the cut-off: exactly zero
+
+
+def test_above_range_warns_and_extrapolates(table):
+    with pytest.warns(egw.OutOfRangeWarning, match="delta_max"):
+        f, k = table.eval([1e-5, 3e-5])
+    assert f[1] > f[0]
+
+
+def test_write_read_roundtrip(table, tmp_path):
+    for fmt in ("binary", "csv"):
+        path = tmp_path / f"t.{fmt}"
+        table.write(path, fmt)
+        back = egw.Table.read(path)
+        d = np.linspace(0, 2e-5, 33)
+        np.testing.assert_allclose(back.eval(d)[0], table.eval(d)[0], rtol=1e-14)
+
+
+def test_bad_file_and_closed_table(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("not a table\n")
+    with pytest.raises(egw.FileError):
+        egw.Table.read(bad)
+    t = egw.Table.build(egw.Params(model="Hertz", radius=1e-3, modulus=1e9), 0, 1e-5, 1e-4)
+    t.close()
+    with pytest.raises(ValueError, match="closed"):
+        t.eval(1e-6)
+
+
+def test_universal_slice_matches_universal_eval():
+    u = egw.UniversalTable.build(egw.Params(model="E-GW"), 2.0, 8.0, -3.0, 20.0, 1e-4)
+    p = P.replace(mu=5.0)
+    s = u.slice(p, 1.5e-5)
+    d = np.linspace(-1e-6, 1.5e-5, 9)
+    np.testing.assert_allclose(s.eval(d)[0], u.eval(p, d)[0], rtol=1e-12, atol=1e-30)
