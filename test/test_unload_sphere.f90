@@ -37,6 +37,7 @@ contains
          & new_unittest("d < d_max locally takes the loading law", test_reloaded_core), &
          & new_unittest("independent reference (12 points)", test_reference), &
          & new_unittest("bad input is reported, outputs untouched", test_bad_input), &
+         & new_unittest("one history shared by threads", test_threads), &
          & new_unittest("restitution: e = 1 for elastic summits", test_e_elastic), &
          & new_unittest("restitution: rigid-sphere limit (closed form)", test_e_rigid), &
          & new_unittest("restitution: e falls as psi grows", test_e_psi), &
@@ -263,6 +264,42 @@ contains
       if (allocated(error)) return
       call check(error, rows, 12, "rows read from "//path)
    end subroutine test_reference
+
+   !> One history read by several OpenMP threads at once gives the serial results exactly
+   !> (no shared mutable state: the solves are deterministic, so bitwise equality).
+   subroutine test_threads(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(loading_history) :: hist
+      type(solve_result) :: load, serial(4), parallel(4)
+      type(solver_options) :: opts
+      type(egw_error), allocatable :: err
+      real(dp), parameter :: deltas(4) = [-1.0_dp, 2.0_dp, 5.0_dp, 9.0_dp]
+      integer :: i, failed
+      opts%n_threads = 1
+      call load_history(epgw(2.0_dp, 4.0_dp, 0.6_dp), opts, 10.0_dp, hist, load, err)
+      if (allocated(err)) call test_failed(error, err%message)
+      if (allocated(error)) return
+      do i = 1, size(deltas)
+         call solve_unload(hist, deltas(i), serial(i), err)
+         if (allocated(err)) call test_failed(error, err%message)
+         if (allocated(error)) return
+      end do
+      failed = 0
+      !$omp parallel do num_threads(2) private(err) reduction(+:failed)
+      do i = 1, size(deltas)
+         call solve_unload(hist, deltas(i), parallel(i), err)
+         if (allocated(err)) failed = failed + 1
+      end do
+      !$omp end parallel do
+      call check(error, failed, 0, "parallel solves failed")
+      if (allocated(error)) return
+      do i = 1, size(deltas)
+         call check(error, parallel(i)%force == serial(i)%force .and. &
+            & parallel(i)%stiffness == serial(i)%stiffness, "delta = "//str(deltas(i)) &
+            & //": parallel result differs from the serial one")
+         if (allocated(error)) return
+      end do
+   end subroutine test_threads
 
    !> NaN/Inf overlaps, an unloaded history and bad parameters give named statuses, and
    !> the outputs keep their values.
