@@ -10,6 +10,8 @@
 !>                                                           -> out/bench/tables.csv
 !>   --universal   universal E-GW table (mu 0.1-100, delta/sigma -6..1e3): 1e-4 built with 1
 !>                 and 2 threads (speed-up), 1e-6 with 2 threads -> out/bench/universal.csv
+!>   --unloading   unloading solve vs loading solve at the same overlap (issue 10)
+!>                                                           -> out/bench/unloading.csv
 !>   --universal-1thread  also build the 1e-6 universal table with 1 thread
 !>   --peer FILE   egw side of the peer comparison (tools/bench/peer_greenwood_tripp.py)
 !>   --speedup     only the 1-vs-2-thread measurements: assembly, 1-D table build (best of
@@ -30,6 +32,7 @@ program egw_bench
    use bench_fn, only: run_fn
    use bench_solver, only: run_solver, run_assembly, run_peer_cases
    use bench_tables, only: run_tables, run_universal, run_build_speedup
+   use bench_unloading, only: run_unloading
    implicit none
 
    integer, parameter :: n = 4096        ! inputs per sweep (fit in L1/L2 cache)
@@ -38,7 +41,7 @@ program egw_bench
    real(dp) :: t_erfc, t_hertz, t_f32, t_ellipk, t_pg, t_pg_zmc
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
-   logical :: universal_1thread, any_section, ok, do_speedup
+   logical :: universal_1thread, any_section, ok, do_speedup, do_unloading
    real(dp) :: universal_tol
    character(len=512) :: arg, peer_file
    integer :: unit_speedup, unit_csv
@@ -76,6 +79,7 @@ program egw_bench
       call close_csv(unit_csv)
    end if
    if (do_solver) call run_solver(quick)
+   if (do_unloading) call run_unloading(quick)
    if (do_assembly .or. do_tables .or. do_universal) then
       ! one speed-up CSV for the sections that measure 1 thread against 2
       call open_csv("speedup.csv", unit_speedup, &
@@ -99,6 +103,7 @@ contains
       integer :: k
       do_kernels = .false.; do_fn = .false.; do_solver = .false.; do_assembly = .false.
       do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
+      do_unloading = .false.
       universal_tol = 0
       universal_1thread = .false.; peer_file = ""
       out_dir = "out/bench/"
@@ -116,6 +121,7 @@ contains
          case ("--universal-1thread"); do_universal = .true.; universal_1thread = .true.
          case ("--quick"); quick = .true.
          case ("--speedup"); do_speedup = .true.
+         case ("--unloading"); do_unloading = .true.
          case ("--universal-tol")
             k = k + 1
             call get_command_argument(k, arg)
@@ -136,10 +142,10 @@ contains
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
-         & .or. do_universal .or. do_speedup .or. universal_tol > 0
+         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_unloading
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
-         do_tables = .true.; do_universal = .true.
+         do_tables = .true.; do_universal = .true.; do_unloading = .true.
       end if
    end subroutine parse_arguments
 

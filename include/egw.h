@@ -169,6 +169,38 @@ void egw_options_default(egw_options *o);
  * no force is ever returned from a failed solve). */
 int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
 
+/* Unloading (and reloading) after the largest overlap delta_max (EP-GW, DESIGN.md 8):
+ * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
+ * delta_max, keeps the separation field d_max(r) of that solve and solves the contact with
+ * the rough-flat unloading law p_G(d(r), d_max(r)) (the loading law wherever
+ * d(r) < d_max(r)); delta = delta_max gives the loading solve at delta_max exactly.
+ * force = P_Hertz(delta) + P_G (E-GW/EP-GW; classic GW P_G only); stiffness dP/ddelta on
+ * the unloading curve (fixed history); elastic summits (GW, E-GW, psi = 0) are reversible.
+ * Each call solves the loading problem again: for many overlaps after one delta_max use
+ * the Fortran load_history/solve_unload. Statuses: as egw_solve, and EGW_INVALID_ARGUMENT
+ * naming delta_max when it is not finite; res is left untouched on any failure. */
+int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, double delta_max,
+                     egw_result *res);
+
+/* Coefficient of restitution e of a head-on impact (DESIGN.md 8): effective mass
+ * m* = mass (1/m* = 1/m1 + 1/m2, > 0), approach speed velocity (> 0) from far apart;
+ * e = sqrt(W_unload/W_load) with W_load = int_{-inf}^{delta_m} P_load ddelta = m* v^2/2
+ * (defining the deepest overlap delta_m) and W_unload the same integral of the unloading
+ * curve from delta_m, to about o->rel_tol. 0 < e <= 1; e = 1 for elastic summits (GW, E-GW,
+ * psi = 0; exactly for Hertz and sigma = 0). Units: any consistent set (SI: kg, m/s).
+ * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (mass or velocity not finite and
+ * > 0, bad options), EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed); e is
+ * left untouched on any failure. */
+int egw_restitution(const egw_params *p, const egw_options *o, double mass, double velocity,
+                    double *e);
+
+/* egw_restitution with its energies: w_load = W_load (= m* v^2/2 to the tolerance) and
+ * w_dissipated = W_load - W_unload, the energy lost in the asperity layer (energy units).
+ * Any of e, w_load, w_dissipated may be NULL (not wanted). Statuses as egw_restitution
+ * (EGW_NULL_POINTER only for p); outputs untouched on failure. */
+int egw_restitution_energy(const egw_params *p, const egw_options *o, double mass,
+                           double velocity, double *e, double *w_load, double *w_dissipated);
+
 /* Total pressure p(r) and surface deflection w(r) of the solved contact at the n radii
  * r[0..n-1] (>= 0, any order) into pressure[] and deflection[], each pointwise within
  * o->rel_tol of the profile's peak (pressure) and of its largest deflection: the contact

@@ -12,6 +12,7 @@ module egw
    use egw_smooth_sphere
    use egw_halfspace
    use egw_rough_sphere
+   use egw_impact
    use egw_table
    use egw_table_universal
    use egw_table_format

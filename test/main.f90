@@ -20,6 +20,7 @@ program tester
    use test_stability, only: collect_stability
    use test_unloading, only: collect_unloading
    use test_cli, only: collect_cli
+   use test_unload_sphere, only: collect_unload_sphere
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -42,7 +43,8 @@ program tester
       & new_testsuite("capi_scene", collect_capi_scene), &
       & new_testsuite("stability", collect_stability), &
       & new_testsuite("unloading", collect_unloading), &
-      & new_testsuite("cli", collect_cli) &
+      & new_testsuite("cli", collect_cli), &
+      & new_testsuite("unload_sphere", collect_unload_sphere) &
       & ]
 
    stat = 0

@@ -3,7 +3,7 @@
 !> egw_error into a status code plus a per-thread last-error message.
 module egw_capi
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_char, &
-      & c_associated, c_f_pointer
+      & c_associated, c_f_pointer, c_null_ptr
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
@@ -11,13 +11,16 @@ module egw_capi
    use egw_params, only: contact_params, validate_params, mu_from_summits, &
       & psi_from_hardness
    use egw_version, only: egw_version_number
-   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
+      & solve_contact_unload
+   use egw_impact, only: restitution
    use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
    use egw_ellip, only: get_ellipk, get_ellipe
    use egw_asperity, only: flat_pressure
    use egw_unloading, only: flat_pressure_unload
-   ! (the Hertz module is not called egw_hertz: gfortran 12 resolves its procedures to a
-   ! bind(C) routine whose label equals the module name)
+   ! (the Hertz module is not called egw_hertz, nor the restitution module egw_restitution:
+   ! gfortran 12 resolves their procedures to a bind(C) routine whose label equals the
+   ! module name)
    use egw_smooth_sphere, only: hertz_contact
    implicit none
    private
@@ -278,7 +281,6 @@ contains
       type(contact_params) :: params
       type(solver_options) :: options
       type(solve_result) :: result
-      type(egw_result_c), pointer :: cres
       type(egw_error), allocatable :: error
       stat = require(res, "res")
       if (stat == egw_ok) stat = read_params(p, params)
@@ -288,12 +290,45 @@ contains
       stat = settle(error)
       ! a solve that failed returns a zeroed result, never a force (egw.h)
       if (stat /= egw_ok) result = solve_result()
-      call c_f_pointer(res, cres)
-      cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
-         & contact_radius=result%contact_radius, max_pressure=result%max_pressure, &
-         & est_rel_err=result%est_rel_err, residual=result%residual, &
-         & iterations=int(result%iterations, c_int), method_used=int(result%method_used, c_int))
+      call put_result(res, result)
    end function egw_solve
+
+   function egw_solve_unload(p, o, delta, delta_max, res) result(stat) &
+      & bind(C, name="egw_solve_unload")
+      type(c_ptr), value, intent(in) :: p, o, res
+      real(c_double), value, intent(in) :: delta, delta_max
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(solve_result) :: result
+      type(egw_error), allocatable :: error
+      stat = require(res, "res")
+      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat == egw_ok) call read_options(o, options)
+      if (stat /= egw_ok) return
+      call solve_contact_unload(params, options, delta, delta_max, result, error)
+      stat = settle(error)
+      ! res untouched on failure (egw.h)
+      if (stat == egw_ok) call put_result(res, result)
+   end function egw_solve_unload
+
+   function egw_restitution(p, o, mass, velocity, e) result(stat) &
+      & bind(C, name="egw_restitution")
+      type(c_ptr), value, intent(in) :: p, o, e
+      real(c_double), value, intent(in) :: mass, velocity
+      integer(c_int) :: stat
+      stat = require(e, "e")
+      if (stat /= egw_ok) return
+      stat = restitution_c(p, o, mass, velocity, e, c_null_ptr, c_null_ptr)
+   end function egw_restitution
+
+   function egw_restitution_energy(p, o, mass, velocity, e, w_load, w_dissipated) &
+      & result(stat) bind(C, name="egw_restitution_energy")
+      type(c_ptr), value, intent(in) :: p, o, e, w_load, w_dissipated
+      real(c_double), value, intent(in) :: mass, velocity
+      integer(c_int) :: stat
+      stat = restitution_c(p, o, mass, velocity, e, w_load, w_dissipated)
+   end function egw_restitution_energy
 
    !> C: egw_profile: pressure and deflection of the solved contact at given radii.
    function egw_profile(p, o, delta, n, r, pressure, deflection) result(stat) &
@@ -330,6 +365,43 @@ contains
    end function egw_profile
 
    ! ---------------------------------------------------------------- helpers
+
+   !> Restitution with its energies into nullable double* (NULL: not wanted); all
+   !> outputs untouched on failure.
+   integer(c_int) function restitution_c(p, o, mass, velocity, e, w_load, w_dissipated) &
+      & result(stat)
+      type(c_ptr), intent(in) :: p, o, e, w_load, w_dissipated
+      real(c_double), intent(in) :: mass, velocity
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(egw_error), allocatable :: error
+      real(dp) :: coefficient, dissipated, work
+      stat = read_params(p, params)
+      if (stat /= egw_ok) return
+      call read_options(o, options)
+      coefficient = 1.0_dp
+      dissipated = 0.0_dp
+      work = 0.0_dp
+      call restitution(params, options, mass, velocity, coefficient, dissipated, error, &
+         & work_load=work)
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      call put(e, coefficient)
+      call put(w_load, work)
+      call put(w_dissipated, dissipated)
+   end function restitution_c
+
+   !> Store a solve_result at a C egw_result* (not NULL).
+   subroutine put_result(res, result)
+      type(c_ptr), intent(in) :: res
+      type(solve_result), intent(in) :: result
+      type(egw_result_c), pointer :: cres
+      call c_f_pointer(res, cres)
+      cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
+         & contact_radius=result%contact_radius, max_pressure=result%max_pressure, &
+         & est_rel_err=result%est_rel_err, residual=result%residual, &
+         & iterations=int(result%iterations, c_int), method_used=int(result%method_used, c_int))
+   end subroutine put_result
 
    !> Options from a nullable const egw_options* (NULL: defaults); checked by the solver.
    subroutine read_options(o, options)

@@ -21,6 +21,13 @@
 !> about r = 0 otherwise; the outer radius grows until the force left outside is below
 !> 1 % of the tolerance. Levels of decreasing step, each warm-started from the previous,
 !> until the Richardson estimate from the last two (plus the tail) is below rel_tol/2.
+!>
+!> Unloading (DESIGN §8, issue 10 item 3): a loading_history keeps the separation field
+!> d_max(r) of the solve at delta_max (its mesh and nodal w_G); an unloading solve at
+!> delta <= delta_max is the same problem with the law p_G = scale Z_u(d/sigma, d_max/sigma)
+!> at fixed d_max (egw_unloading), on the same meshes with the same Newton, error estimate
+!> and stiffness (h_min does not depend on delta or w, so the Jacobian and the implicit
+!> derivative keep their form).
 module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi, sqrt2
@@ -31,6 +38,7 @@ module egw_rough_sphere
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_asperity, only: rough_flat_law
+   use egw_unloading, only: rough_flat_unload_law
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
       & assemble_influence, influence_row, interpolate_nodal
    use egw_lapack, only: dgetf2, dgetrs
@@ -63,6 +71,7 @@ module egw_rough_sphere
    end type solve_result
 
    public :: validate_options, solve_contact, contact_profile
+   public :: load_history, solve_unload, solve_contact_unload, unload_profile
 
    !> Degree of the deflection elements and pressure points per element: quartic elements
    !> with 6 Gauss points were the cheapest per digit of the pairs tried (degree 2-4,
@@ -83,6 +92,18 @@ module egw_rough_sphere
    integer, parameter :: profile_levels = 4
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
+   !> Scaled force below which a solve returns 0 (as negligible() does before solving).
+   real(dp), parameter :: tiny_force = 1.0e-250_dp
+
+   !> Separation field of the loading solve at delta_max (scaled): d_max(r) = z_max(r) +
+   !> w_max(r) with z_max the base gap at delta_max and w_max the nodal rough deflection
+   !> interpolated on its mesh (beyond the mesh it falls like 1/r, the far field of a load).
+   type :: separation_field
+      logical :: extended = .false.   !< z_max is the Hertz gap (else the rigid gap)
+      real(dp) :: delta = 0.0_dp      !< delta_max/sigma
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: w(:)
+   end type separation_field
 
    !> The scaled problem.
    type :: scaled_problem
@@ -92,7 +113,27 @@ module egw_rough_sphere
       real(dp) :: a = 0.0_dp           !< Hertz radius sqrt(delta/sigma) (0 if delta <= 0)
       real(dp) :: scale = 0.0_dp       !< mu/(2 sqrt 2): p_G = scale * f(h)
       real(dp) :: psi = 0.0_dp, hardness = 0.6_dp, plastic_ratio = 54.0_dp
+      !> Unloading: the closest approach so far (allocated), else the loading law.
+      type(separation_field), allocatable :: closest
+      !> Unloading: radii where d crosses d_max (the law switches branch), element edges.
+      real(dp), allocatable :: branch(:)
    end type scaled_problem
+
+   !> Loading history of one contact: the loading solve at delta_max and its separation
+   !> field, from which any number of unloading/reloading solves at delta <= delta_max
+   !> follow (solve_unload). Read-only after load_history: one history may serve several
+   !> threads at once. Above delta_max the loading curve holds; load a new history there.
+   type, public :: loading_history
+      logical :: loaded = .false.             !< set by a successful load_history
+      type(contact_params) :: params          !< parameters of the loading solve
+      type(solver_options) :: options         !< options of the loading and unloading solves
+      real(dp) :: delta_max = 0.0_dp          !< largest overlap reached
+      type(solve_result) :: loading           !< the loading solve at delta_max
+      !> No rough field to remember (Hertz, sigma = 0, or too far apart to touch): the
+      !> unloading curve is the loading curve.
+      logical :: reversible = .true.
+      type(separation_field), private :: closest
+   end type loading_history
 
    !> A converged discrete solution and what is derived from it (scaled units, rough part).
    type :: discrete_solution
@@ -101,6 +142,7 @@ module egw_rough_sphere
       real(dp), allocatable :: w(:)              !< nodal rough deflection
       real(dp), allocatable :: base(:), dbase(:) !< base gap and d(base)/d(delta) at Gauss pts
       real(dp), allocatable :: gap(:), p(:), dpdh(:)  !< at the Gauss points
+      real(dp), allocatable :: gap_min(:)  !< closest-approach gap at the Gauss points (unloading)
       real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
       real(dp) :: residual = 0.0_dp, tail = 0.0_dp
       integer :: iterations = 0
@@ -149,7 +191,6 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
-      real(dp) :: est, force_scale, pmax
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
@@ -171,23 +212,282 @@ contains
          result%est_rel_err = 1.0_dp
          return
       end if
-      call solve_scaled(prob, options, sol, est, result%method_used, error)
+      call solve_rough(params, options, prob, sol, result, error)
+   end subroutine solve_contact
+
+   !> The discrete solve of a rough scaled problem (loading, or unloading when
+   !> prob%closest is allocated), its stiffness, and the result in the caller's units.
+   !> result is only written on success.
+   subroutine solve_rough(params, options, prob, sol, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(out) :: sol
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      real(dp) :: est, force_scale, pmax
+
+      call solve_scaled(prob, options, sol, est, res%method_used, error)
       if (allocated(error)) return
+      if (sol%force == 0.0_dp .and. est >= 1.0_dp) then
+         ! Underflow range (tiny_force): 0 with relative error 1, as negligible().
+         res%est_rel_err = 1.0_dp
+         result = res
+         return
+      end if
       call differentiate(prob, sol, error)
       if (allocated(error)) return
 
       force_scale = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
-      result%force = force_scale*(smooth_force(prob) + sol%force)
-      result%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
-      result%contact_radius = sqrt(params%radius*params%sigma)*effective_radius(prob, sol)
+      res%force = force_scale*(smooth_force(prob) + sol%force)
+      res%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
+      res%contact_radius = sqrt(params%radius*params%sigma)*effective_radius(prob, sol)
       pmax = max(total_pressure(prob, sol, 0.0_dp), maxval(sol%p))
       if (prob%extended) pmax = max(pmax, &
          & maxval(hertz_pressure(sol%mesh%gauss_r, prob%delta, 1.0_dp, 1.0_dp) + sol%p))
-      result%max_pressure = params%modulus*sqrt(params%sigma/params%radius)*pmax
-      result%est_rel_err = est
-      result%residual = sol%residual
-      result%iterations = sol%iterations
-   end subroutine solve_contact
+      res%max_pressure = params%modulus*sqrt(params%sigma/params%radius)*pmax
+      res%est_rel_err = est
+      res%residual = sol%residual
+      res%iterations = sol%iterations
+      result = res
+   end subroutine solve_rough
+
+   !> Load to delta_max and keep what unloading needs (the loading solve's separation
+   !> field d_max(r)); result is the loading solve at delta_max. Errors as solve_contact
+   !> (delta_max not finite: egw_invalid_argument naming delta_max); history and result
+   !> are left untouched on any error. A delta_max so far apart that the summit pressure
+   !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
+   subroutine load_history(params, options, delta_max, history, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max              !< largest overlap reached
+      type(loading_history), intent(inout) :: history
+      type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
+      type(egw_error), allocatable, intent(out) :: error
+      type(loading_history) :: hist
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+
+      call check_input(params, options, 0.0_dp, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+      hist%params = params
+      hist%options = options
+      hist%delta_max = delta_max
+      hist%reversible = params%model == model_hertz .or. params%sigma == 0.0_dp
+      if (.not. hist%reversible) then
+         prob = scaled(params, delta_max)
+         hist%reversible = negligible(prob)
+      end if
+      if (hist%reversible) then
+         call solve_contact(params, options, delta_max, hist%loading, error)
+         if (allocated(error)) return
+      else
+         call solve_rough(params, options, prob, sol, hist%loading, error)
+         if (allocated(error)) return
+         hist%closest%extended = prob%extended
+         hist%closest%delta = prob%delta
+         call move_alloc(sol%w, hist%closest%w)
+         hist%closest%mesh = sol%mesh
+      end if
+      hist%loaded = .true.
+      result = hist%loading
+      call move_history(hist, history)
+   end subroutine load_history
+
+   !> history <- hist without copying the arrays.
+   pure subroutine move_history(hist, history)
+      type(loading_history), intent(inout) :: hist
+      type(loading_history), intent(inout) :: history
+      history%loaded = hist%loaded
+      history%params = hist%params
+      history%options = hist%options
+      history%delta_max = hist%delta_max
+      history%loading = hist%loading
+      history%reversible = hist%reversible
+      history%closest%extended = hist%closest%extended
+      history%closest%delta = hist%closest%delta
+      history%closest%mesh = hist%closest%mesh
+      if (allocated(history%closest%w)) deallocate (history%closest%w)
+      if (allocated(hist%closest%w)) call move_alloc(hist%closest%w, history%closest%w)
+   end subroutine move_history
+
+   !> Unloading/reloading solve at overlap delta after loading to history%delta_max:
+   !> delta < delta_max solves DESIGN §5 with the unloading law p_G = C sigma**1.5
+   !> Z_u(d/sigma, d_max/sigma) (the loading law wherever d(r) < d_max(r)); delta =
+   !> delta_max returns the history's loading solve; delta > delta_max is the loading
+   !> solve (the curve has left the history: load a new one). Same meshes, Newton, error
+   !> estimate, stiffness (dP/d(delta) at fixed history) and egw_not_converged contract
+   !> as solve_contact. history is only read: thread-safe. result untouched on error.
+   subroutine solve_unload(history, delta, result, error)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      type(solve_result) :: res
+
+      if (.not. history%loaded) then
+         call fatal_error(error, egw_invalid_argument, &
+            & "history: not loaded (call load_history first)")
+         return
+      end if
+      if (.not. ieee_is_finite(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the overlap must be finite")
+         return
+      end if
+      if (delta == history%delta_max) then
+         result = history%loading
+         return
+      end if
+      if (delta > history%delta_max .or. history%reversible) then
+         call solve_contact(history%params, history%options, delta, res, error)
+         if (.not. allocated(error)) result = res
+         return
+      end if
+      prob = scaled(history%params, delta)
+      if (negligible(prob)) then
+         ! Unloading never presses harder than loading at the same delta (Z_u <= Z).
+         res%method_used = history%options%method
+         res%est_rel_err = 1.0_dp
+         result = res
+         return
+      end if
+      allocate (prob%closest)
+      prob%closest = history%closest
+      call solve_rough(history%params, history%options, prob, sol, result, error)
+   end subroutine solve_unload
+
+   !> One unloading solve from scratch: load to delta_max, then solve_unload at delta
+   !> (delta > delta_max: just the loading solve at delta). For many overlaps after one
+   !> delta_max use load_history once and solve_unload for each. Errors as load_history
+   !> and solve_unload; result untouched on error.
+   subroutine solve_contact_unload(params, options, delta, delta_max, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta        !< overlap of this solve
+      real(dp), intent(in) :: delta_max    !< largest overlap reached before
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(loading_history) :: history
+      type(solve_result) :: loaded, res
+
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+      if (delta > delta_max) then
+         call solve_contact(params, options, delta, res, error)
+         if (.not. allocated(error)) result = res
+         return
+      end if
+      call load_history(params, options, delta_max, history, loaded, error)
+      if (allocated(error)) return
+      call solve_unload(history, delta, result, error)
+   end subroutine solve_contact_unload
+
+   !> Rough (asperity) pressure p_G, separation d and closest-approach separation d_max
+   !> at the radii r(:) >= 0 of the unloading solve at delta < history%delta_max (where
+   !> d < d_max the loading law holds; elsewhere the unloading law). For delta >=
+   !> delta_max or a reversible history, d_max = d. Errors as solve_unload, and sizes or
+   !> radii that do not fit (egw_invalid_argument); outputs untouched on error.
+   subroutine unload_profile(history, delta, r, pressure, separation, separation_min, error)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      real(dp), intent(in) :: r(:)                   !< radii, >= 0
+      real(dp), intent(inout) :: pressure(:)         !< p_G at r
+      real(dp), intent(inout) :: separation(:)       !< d at r
+      real(dp), intent(inout) :: separation_min(:)   !< d_max at r
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      real(dp), allocatable :: row(:), rs(:), gap(:), gap_min(:), f(:), dfdh(:)
+      real(dp) :: est, length, c
+      integer :: i, method_used
+
+      if (size(pressure) /= size(r) .or. size(separation) /= size(r) .or. &
+         & size(separation_min) /= size(r)) then
+         call fatal_error(error, egw_invalid_argument, "pressure/separation/separation_min:" &
+            & //" sizes differ from size(r) = "//int_str(size(r)))
+         return
+      end if
+      do i = 1, size(r)
+         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
+               & //format_real(r(i))//": radii must be finite and >= 0")
+            return
+         end if
+      end do
+      if (.not. history%loaded .or. .not. ieee_is_finite(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //" or history: the overlap must be finite and the history loaded")
+         return
+      end if
+      if (history%reversible .or. delta >= history%delta_max) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the unloading profile needs delta < delta_max and a rough history")
+         return
+      end if
+      prob = scaled(history%params, delta)
+      allocate (prob%closest)
+      prob%closest = history%closest
+      length = sqrt(history%params%radius*history%params%sigma)
+      rs = r/length
+      if (negligible(prob)) then
+         gap = base_gap(prob, rs)
+         f = 0.0_dp*rs
+      else
+         call solve_scaled(prob, history%options, sol, est, method_used, error)
+         if (allocated(error)) return
+         allocate (row(size(sol%p)), gap(size(r)), f(size(r)), dfdh(size(r)))
+         do i = 1, size(r)
+            call influence_row(sol%mesh, rs(i), row)
+            gap(i) = base_gap(prob, rs(i)) + dot_product(row, sol%p)
+         end do
+      end if
+      gap_min = closest_gap(prob%closest, rs)
+      if (.not. negligible(prob)) call unload_law(gap, gap_min, prob%psi, prob%hardness, &
+         & prob%plastic_ratio, f, dfdh)
+      c = history%params%modulus*sqrt(history%params%sigma/history%params%radius)
+      pressure = c*prob%scale*f
+      separation = history%params%sigma*gap
+      separation_min = history%params%sigma*gap_min
+   end subroutine unload_profile
+
+   !> Gap at the closest approach, d_max(r)/sigma, at scaled radii r >= 0.
+   pure function closest_gap(field, r) result(gap)
+      type(separation_field), intent(in) :: field
+      real(dp), intent(in) :: r(:)
+      real(dp) :: gap(size(r))
+      real(dp) :: r_out, w_out
+      integer :: i
+      r_out = field%mesh%edge(field%mesh%n_elem)
+      w_out = field%w(size(field%w))
+      do i = 1, size(r)
+         if (r(i) <= r_out) then
+            gap(i) = interpolate_nodal(field%mesh, field%w, r(i))
+         else
+            ! Beyond the loading mesh the pressure was negligible: the deflection is that
+            ! of a point load there, continued from the outer radius.
+            gap(i) = w_out*r_out/r(i)
+         end if
+         if (field%extended) then
+            gap(i) = gap(i) + hertz_gap(r(i), field%delta, 1.0_dp)
+         else
+            gap(i) = gap(i) + 0.5_dp*r(i)*r(i) - field%delta
+         end if
+      end do
+   end function closest_gap
 
    !> Total pressure p and deflection w (Hertz + rough part for E-GW/EP-GW, the GW part for
    !> classic GW, Hertz for model_hertz or sigma = 0) at the radii r(:) >= 0, pointwise
@@ -330,7 +630,7 @@ contains
       negligible = .false.
       if (prob%delta >= 0.0_dp) return
       call rough_flat_law(-prob%delta, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
-      negligible = prob%scale*f < 1.0e-250_dp
+      negligible = prob%scale*f < tiny_force
    end function negligible
 
    !> Base gap z(r): the Hertz gap of eq. (28) (zero inside a) for the extended models at
@@ -365,18 +665,20 @@ contains
    !> (or on the mesh fixed by n_radial). Each level costs one solve: its force and the
    !> previous level's give the estimate |P_h - P_H|/((H/h)**force_order - 1) of the error
    !> of P_h (Richardson), and the next step is predicted from it.
-   subroutine solve_scaled(prob, options, sol, est, method_used, error)
-      type(scaled_problem), intent(in) :: prob
+   subroutine solve_scaled(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution) :: coarse, first
+      type(scaled_problem) :: prob
       real(dp) :: focus, width, outer, step, step_prev, total
       integer :: level
       logical :: layered
 
+      prob = problem
       method_used = options%method
       if (method_used == method_auto) method_used = method_newton
       call mesh_geometry(prob, options%rel_tol, focus, width, outer)
@@ -394,8 +696,26 @@ contains
             & /real(min_elements, dp))
          step = step_prev/coarsen
       end if
-      call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, outer, &
-         & coarse, error)
+      if (allocated(prob%closest)) then
+         ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
+         ! (dp/dh jumps), which costs an element holding it its order (and the Richardson
+         ! estimate its meaning). The crossings, from a solve on a mesh of twice the step
+         ! (a quarter of a level's cost), become element edges of every level.
+         call solve_with_tail(prob, options, method_used, layered, focus, width, &
+            & 2.0_dp*step_prev, outer, first, error)
+         if (allocated(error)) then
+            deallocate (error)
+            call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
+               & outer, coarse, error)
+         else
+            prob%branch = branch_radii(first)
+            call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
+               & outer, coarse, error, first)
+         end if
+      else
+         call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
+            & outer, coarse, error)
+      end if
       if (allocated(error)) then
          ! A cold start that fails (classic GW deep in contact is the stiff case) is retried
          ! by continuation in delta from a shallow contact.
@@ -427,6 +747,14 @@ contains
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          est = 0.0_dp
+         if (total < tiny_force) then
+            ! Unloading far apart: the force has fallen to the underflow range, where
+            ! relative differences are rounding noise. As for negligible(): 0, error 1.
+            sol%p = 0.0_dp
+            sol%force = 0.0_dp
+            est = 1.0_dp
+            return
+         end if
          ! Discretisation (Richardson) plus the force estimated beyond the outer radius,
          ! which both levels share and their difference cannot see.
          if (total > 0.0_dp) est = abs(sol%force - coarse%force)/total &
@@ -504,15 +832,23 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       real(dp) :: total
-      integer :: attempt
+      integer :: attempt, k
+      real(dp), allocatable :: edges(:)
+
       do attempt = 1, 8
-         if (layered) then
-            call solve_mesh(prob, options, method, focus_refined(graded_edges(focus, width, &
-               & outer, step), focus), sol, error, guess)
-         else
-            call solve_mesh(prob, options, method, graded_edges(focus, width, outer, step), sol, &
-               & error, guess)
+         edges = graded_edges(focus, width, outer, step)
+         if (layered) edges = focus_refined(edges, focus)
+         ! Unloading after an extended loading: d_max has its (r - a_max)**1.5 onset at
+         ! the loading Hertz edge; an element edge there keeps the elements smooth.
+         if (allocated(prob%closest)) then
+            if (prob%closest%extended) edges = with_edge(edges, sqrt(prob%closest%delta))
          end if
+         if (allocated(prob%branch)) then
+            do k = 1, size(prob%branch)
+               edges = with_edge(edges, prob%branch(k))
+            end do
+         end if
+         call solve_mesh(prob, options, method, edges, sol, error, guess)
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          if (sol%tail <= 0.01_dp*options%rel_tol*total .or. total == 0.0_dp) return
@@ -541,6 +877,22 @@ contains
       end do
    end subroutine gap_edge
 
+   !> Radii where the gap of a solution crosses its closest-approach gap (linear between
+   !> Gauss points in gap - gap_min), at most 8.
+   pure function branch_radii(sol) result(radii)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), allocatable :: radii(:)
+      real(dp) :: f0, f1
+      integer :: g
+      allocate (radii(0))
+      do g = 1, size(sol%gap) - 1
+         f0 = sol%gap(g) - sol%gap_min(g)
+         f1 = sol%gap(g + 1) - sol%gap_min(g + 1)
+         if ((f0 < 0.0_dp .neqv. f1 < 0.0_dp) .and. size(radii) < 8) radii = [radii, &
+            & sol%mesh%gauss_r(g) + f0/(f0 - f1)*(sol%mesh%gauss_r(g + 1) - sol%mesh%gauss_r(g))]
+      end do
+   end function branch_radii
+
    !> Geometric layers on both sides of the focus (the Hertz edge of the extended models),
    !> where the pressure has its one-sided (r - a)**1.5 onset: a polynomial on an element
    !> touching a converges only algebraically, on geometric layers exponentially.
@@ -561,6 +913,30 @@ contains
       refined = [edge(0:k - 1), (focus - left*focus_ratio**i, i=1, focus_layers), focus, &
          & (focus + right*focus_ratio**i, i=focus_layers, 1, -1), edge(k + 1:n)]
    end function focus_refined
+
+   !> edge with r added as an element edge (the element holding r split in two) unless r
+   !> is outside (0, outer) or within a tenth of its element's length of an edge already.
+   pure function with_edge(edge, r) result(out)
+      real(dp), intent(in) :: edge(0:), r
+      real(dp), allocatable :: out(:)
+      integer :: k, n
+      n = size(edge) - 1
+      out = edge
+      if (.not. (r > 0.0_dp .and. r < edge(n))) return
+      k = 1
+      do while (edge(k) < r)
+         k = k + 1
+      end do
+      if (min(edge(k) - r, r - edge(k - 1)) <= 0.1_dp*(edge(k) - edge(k - 1))) return
+      out = [edge(0:k - 1), r, edge(k:n)]
+   end function with_edge
+
+   !> Dimensionless unloading law Z_u(h, h_min) and dZ_u/dh at fixed h_min (DESIGN §8).
+   elemental subroutine unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
+      real(dp), intent(in) :: h, h_min, psi, hardness_coeff, plastic_ratio
+      real(dp), intent(out) :: p, dpdh
+      call rough_flat_unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
+   end subroutine unload_law
 
    !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
    !> Outside the Hertz edge the gap grows like (4/3)(a**2/pi)(2 s/a)**1.5 (s = r - a), so
@@ -679,6 +1055,7 @@ contains
       call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads)
       sol%base = base_gap(prob, sol%mesh%gauss_r)
       sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
+      if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
       if (present(guess)) then
          ! Interpolated; beyond the guess's mesh its outermost value (w_G varies slowly there).
          allocate (sol%w(n))
@@ -846,14 +1223,20 @@ contains
       end do
    end function gauss_values
 
-   !> Gap, pressure and its derivative at the Gauss points for the current w.
+   !> Gap, pressure and its derivative at the Gauss points for the current w (the
+   !> unloading law at the closest-approach gaps when unloading).
    pure subroutine evaluate(prob, sol)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(inout) :: sol
       real(dp), allocatable :: f(:), dfdh(:)
       sol%gap = sol%base + gauss_values(sol%mesh, sol%w)
       allocate (f(size(sol%gap)), dfdh(size(sol%gap)))
-      call rough_flat_law(sol%gap, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+      if (allocated(sol%gap_min)) then
+         call unload_law(sol%gap, sol%gap_min, prob%psi, prob%hardness, prob%plastic_ratio, &
+            & f, dfdh)
+      else
+         call rough_flat_law(sol%gap, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+      end if
       sol%p = prob%scale*f
       sol%dpdh = prob%scale*dfdh
    end subroutine evaluate
@@ -1042,10 +1425,16 @@ contains
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(in) :: sol
       real(dp), intent(in) :: r
-      real(dp) :: row(size(sol%p)), f, dfdh
+      real(dp) :: row(size(sol%p)), f, dfdh, gap_min(1)
       call influence_row(sol%mesh, r, row)
-      call rough_flat_law(base_gap(prob, r) + dot_product(row, sol%p), prob%psi, &
-         & prob%hardness, prob%plastic_ratio, f, dfdh)
+      if (allocated(prob%closest)) then
+         gap_min = closest_gap(prob%closest, [r])
+         call unload_law(base_gap(prob, r) + dot_product(row, sol%p), gap_min(1), prob%psi, &
+            & prob%hardness, prob%plastic_ratio, f, dfdh)
+      else
+         call rough_flat_law(base_gap(prob, r) + dot_product(row, sol%p), prob%psi, &
+            & prob%hardness, prob%plastic_ratio, f, dfdh)
+      end if
       p = prob%scale*f
       if (prob%extended) p = p + hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
    end function total_pressure

@@ -1,0 +1,320 @@
+!> Coefficient of restitution and dissipated energy of a head-on impact of rough spheres
+!> (DESIGN.md §8, issue 10 item 5): effective mass m*, approach speed v from far apart,
+!>
+!>   W_load = int_{-inf}^{delta_m} P_load d(delta) = m* v**2/2   (defines delta_m),
+!>   W_unload = int_{-inf}^{delta_m} P_unload(delta; delta_m) d(delta),
+!>   e = sqrt(W_unload/W_load),  dissipated = W_load - W_unload.
+!>
+!> The integrals use the solver's force and stiffness: on each interval the two-point
+!> Hermite rule (h/2)(P_a + P_b) + (h**2/12)(k_a - k_b), bisected until it agrees with its
+!> two halves to a tenth of rel_tol, relative to the larger of the interval's integral and
+!> its share (by length) of the whole (the integrands are positive). Below delta_lo
+!> the force decays faster than exponentially (Gaussian summit heights), so
+!> int_{-inf}^{delta_lo} P <= P(delta_lo)**2/k(delta_lo); delta_lo is lowered until that
+!> bound is below rel_tol/20 of the impact energy and the bound is added to both integrals.
+module egw_impact
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
+      & format_real
+   use egw_params, only: contact_params, model_hertz, validate_params
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
+      & loading_history, load_history, solve_unload
+   implicit none
+   private
+
+   public :: restitution
+
+   !> Depth of the interval bisection, and steps allowed to find delta_lo and delta_m.
+   integer, parameter :: max_depth = 24, max_steps = 400
+
+   !> One force curve: loading (history not loaded) or unloading from a history.
+   type :: force_curve
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(loading_history) :: history
+      logical :: unloading = .false.
+      !> Work per unit overlap below which an interval needs no relative accuracy: the
+      !> integral's error budget spread over its range (energy/span), so that the far tail,
+      !> negligible but decaying like a Gaussian, is not bisected to relative precision.
+      real(dp) :: work_density = 0.0_dp
+   end type force_curve
+
+contains
+
+   !> Coefficient of restitution e and dissipated energy of a head-on impact with effective
+   !> mass m* (1/m* = 1/m1 + 1/m2) and approach speed v, for the contact params (all models;
+   !> elastic models and psi = 0 give e = 1 to the tolerance; Hertz and sigma = 0 exactly 1).
+   !> Accurate to about options%rel_tol. Errors: invalid params/options as solve_contact,
+   !> mass or velocity not finite and > 0 (egw_invalid_argument naming it), a failed solve
+   !> (egw_not_converged). e, dissipated and max_overlap are untouched on any error.
+   subroutine restitution(params, options, mass, velocity, e, dissipated, error, max_overlap, &
+         & work_load)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: mass        !< effective mass m* > 0
+      real(dp), intent(in) :: velocity    !< approach speed v > 0
+      real(dp), intent(inout) :: e             !< coefficient of restitution, 0 < e <= 1
+      real(dp), intent(inout) :: dissipated    !< W_load - W_unload (energy units)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), intent(inout), optional :: max_overlap  !< delta_m, the deepest overlap
+      real(dp), intent(inout), optional :: work_load    !< W_load as integrated (~ m* v**2/2)
+      type(force_curve) :: curve
+      type(solve_result) :: res
+      real(dp) :: energy, delta_lo, delta_m, w_load, w_unload, tail_load
+      real(dp), allocatable :: nodes(:)
+
+      call check(params, options, mass, velocity, error)
+      if (allocated(error)) return
+      energy = 0.5_dp*mass*velocity**2
+      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
+         ! Smooth elastic spheres: W_unload = W_load exactly; delta_m from (8/15) E sqrt(R)
+         ! delta**2.5 = energy.
+         if (present(max_overlap)) max_overlap = (15.0_dp*energy/(8.0_dp*params%modulus &
+            & *sqrt(params%radius)))**0.4_dp
+         if (present(work_load)) work_load = energy
+         e = 1.0_dp
+         dissipated = 0.0_dp
+         return
+      end if
+      curve%params = params
+      curve%options = options
+      call lower_limit(curve, energy, delta_lo, tail_load, error)
+      if (allocated(error)) return
+      ! The range is at most up to the Hertz turning point plus a few sigma (the rough
+      ! models press at least as hard as Hertz beyond contact, GW nearly so).
+      curve%work_density = energy/(max(0.0_dp, (15.0_dp*energy/(8.0_dp*params%modulus &
+         & *sqrt(params%radius)))**0.4_dp) - delta_lo + params%sigma)
+      call turning_point(curve, energy, delta_lo, tail_load, delta_m, w_load, nodes, error)
+      if (allocated(error)) return
+      call load_history(params, options, delta_m, curve%history, res, error)
+      if (allocated(error)) return
+      curve%unloading = .true.
+      curve%work_density = w_load/(delta_m - delta_lo)
+      call work(curve, [delta_lo, pack(nodes, nodes > delta_lo .and. nodes < delta_m), &
+         & delta_m], w_unload, error)
+      if (allocated(error)) return
+      w_unload = w_unload + tail_bound(curve, delta_lo, error)
+      if (allocated(error)) return
+      ! P_unload <= P_load pointwise, so W_unload <= W_load: an excess is quadrature noise
+      ! within the tolerance.
+      w_unload = min(w_unload, w_load)
+      e = sqrt(w_unload/w_load)
+      dissipated = w_load - w_unload
+      if (present(max_overlap)) max_overlap = delta_m
+      if (present(work_load)) work_load = w_load
+   end subroutine restitution
+
+   pure subroutine check(params, options, mass, velocity, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: mass, velocity
+      type(egw_error), allocatable, intent(out) :: error
+      call validate_params(params, error)
+      if (allocated(error)) return
+      call validate_options(options, error)
+      if (allocated(error)) return
+      if (.not. (ieee_is_finite(mass) .and. mass > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "mass = "//format_real(mass) &
+            & //": the effective mass must be finite and > 0")
+      else if (.not. (ieee_is_finite(velocity) .and. velocity > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "velocity = "//format_real(velocity) &
+            & //": the approach speed must be finite and > 0")
+      else if (.not. ieee_is_finite(0.5_dp*mass*velocity**2)) then
+         call fatal_error(error, egw_invalid_argument, "mass, velocity = "//format_real(mass) &
+            & //", "//format_real(velocity)//": the kinetic energy overflows")
+      end if
+   end subroutine check
+
+   !> Force and stiffness of the curve at delta.
+   subroutine evaluate(curve, delta, force, stiffness, error)
+      type(force_curve), intent(in) :: curve
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: force, stiffness
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      if (curve%unloading) then
+         call solve_unload(curve%history, delta, res, error)
+      else
+         call solve_contact(curve%params, curve%options, delta, res, error)
+      end if
+      force = res%force
+      stiffness = res%stiffness
+   end subroutine evaluate
+
+   !> Bound of int_{-inf}^{delta} P: P**2/k (P decays faster than exp(k/P (delta' - delta))
+   !> below delta in the separated tail); 0 where the force has underflowed.
+   real(dp) function tail_bound(curve, delta, error) result(tail)
+      type(force_curve), intent(in) :: curve
+      real(dp), intent(in) :: delta
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: force, stiffness
+      tail = 0.0_dp
+      call evaluate(curve, delta, force, stiffness, error)
+      if (allocated(error)) return
+      if (force > 0.0_dp .and. stiffness > 0.0_dp) tail = force*force/stiffness
+   end function tail_bound
+
+   !> Lowest overlap of the integrals: from -sigma down in steps of sigma until the tail
+   !> bound is below rel_tol/20 of the impact energy.
+   subroutine lower_limit(curve, energy, delta_lo, tail, error)
+      type(force_curve), intent(in) :: curve
+      real(dp), intent(in) :: energy
+      real(dp), intent(out) :: delta_lo, tail
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i
+      delta_lo = 0.0_dp
+      do i = 1, max_steps
+         delta_lo = -real(i, dp)*curve%params%sigma
+         tail = tail_bound(curve, delta_lo, error)
+         if (allocated(error)) return
+         if (tail <= 0.05_dp*curve%options%rel_tol*energy) return
+      end do
+      call fatal_error(error, egw_not_converged, "energy = "//format_real(energy) &
+         & //": no separation found where the force's tail is negligible")
+   end subroutine lower_limit
+
+   !> delta_m with W_load(delta_m) = energy: march up from delta_lo, integrating as it goes,
+   !> until W passes the energy; then in the last interval Newton on the Hermite model of W
+   !> (W' = P, W'' = k), each candidate integrated exactly, until W is within rel_tol/10.
+   !> nodes: the overlaps visited (a starting partition for the unloading integral).
+   subroutine turning_point(curve, energy, delta_lo, tail, delta_m, w_load, nodes, error)
+      type(force_curve), intent(in) :: curve
+      real(dp), intent(in) :: energy, delta_lo, tail
+      real(dp), intent(out) :: delta_m, w_load
+      real(dp), allocatable, intent(out) :: nodes(:)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: a, pa, ka, b, pb, kb, wa, wb, step, piece, sigma, x, w_try, p_x, k_x
+      integer :: i
+      logical :: bracketed
+      sigma = curve%params%sigma
+      a = delta_lo
+      call evaluate(curve, a, pa, ka, error)
+      if (allocated(error)) return
+      wa = tail
+      nodes = [a]
+      bracketed = .false.
+      do i = 1, max_steps
+         ! Next overlap from the quadratic model of W, at most 2 sigma + delta/2 ahead.
+         step = quadratic_step(energy - wa, pa, ka)
+         step = min(step, 2.0_dp*sigma + 0.5_dp*max(a, 0.0_dp))
+         step = max(step, 1.0e-3_dp*sigma)
+         b = a + step
+         call evaluate(curve, b, pb, kb, error)
+         if (allocated(error)) return
+         call integrate(curve, a, pa, ka, b, pb, kb, 0, piece, error)
+         if (allocated(error)) return
+         wb = wa + piece
+         nodes = [nodes, b]
+         if (wb >= energy) then
+            bracketed = .true.
+            exit
+         end if
+         a = b; pa = pb; ka = kb; wa = wb
+      end do
+      if (.not. bracketed) then
+         call fatal_error(error, egw_not_converged, "energy = "//format_real(energy) &
+            & //": the loading work did not reach the impact energy")
+         return
+      end if
+      ! Bracket [a, b]: W(a) < energy <= W(b).
+      do i = 1, 60
+         if (abs(wb - energy) <= 0.1_dp*curve%options%rel_tol*energy) then
+            delta_m = b
+            w_load = wb
+            return
+         end if
+         x = a + quadratic_step(energy - wa, pa, ka)
+         if (.not. (x > a .and. x < b)) x = 0.5_dp*(a + b)
+         call evaluate(curve, x, p_x, k_x, error)
+         if (allocated(error)) return
+         call integrate(curve, a, pa, ka, x, p_x, k_x, 0, piece, error)
+         if (allocated(error)) return
+         w_try = wa + piece
+         if (w_try >= energy) then
+            b = x; pb = p_x; kb = k_x; wb = w_try
+         else
+            a = x; pa = p_x; ka = k_x; wa = w_try
+            if (abs(wa - energy) <= 0.1_dp*curve%options%rel_tol*energy) then
+               delta_m = a
+               w_load = wa
+               return
+            end if
+         end if
+      end do
+      call fatal_error(error, egw_not_converged, "energy = "//format_real(energy) &
+         & //": the turning point was not located")
+   end subroutine turning_point
+
+   !> Smallest s > 0 with p s + k s**2/2 = gap (k >= 0; gap/p if k <= 0).
+   pure real(dp) function quadratic_step(gap, p, k) result(s)
+      real(dp), intent(in) :: gap, p, k
+      if (k > 0.0_dp) then
+         s = 2.0_dp*gap/(p + sqrt(p*p + 2.0_dp*k*gap))
+      else if (p > 0.0_dp) then
+         s = gap/p
+      else
+         s = huge(1.0_dp)
+      end if
+   end function quadratic_step
+
+   !> int of the curve over the partition delta(:) (increasing).
+   subroutine work(curve, delta, total, error)
+      type(force_curve), intent(in) :: curve
+      real(dp), intent(in) :: delta(:)
+      real(dp), intent(out) :: total
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: pa, ka, pb, kb, piece
+      integer :: i
+      total = 0.0_dp
+      call evaluate(curve, delta(1), pa, ka, error)
+      if (allocated(error)) return
+      do i = 2, size(delta)
+         call evaluate(curve, delta(i), pb, kb, error)
+         if (allocated(error)) return
+         call integrate(curve, delta(i - 1), pa, ka, delta(i), pb, kb, 0, piece, error)
+         if (allocated(error)) return
+         total = total + piece
+         pa = pb
+         ka = kb
+      end do
+   end subroutine work
+
+   !> Adaptive Hermite quadrature of the curve on [a, b] given P and k at both ends.
+   recursive subroutine integrate(curve, a, pa, ka, b, pb, kb, depth, total, error)
+      type(force_curve), intent(in) :: curve
+      real(dp), intent(in) :: a, pa, ka, b, pb, kb
+      integer, intent(in) :: depth
+      real(dp), intent(out) :: total
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: m, pm, km, whole, left, right
+      whole = hermite_rule(a, pa, ka, b, pb, kb)
+      m = 0.5_dp*(a + b)
+      call evaluate(curve, m, pm, km, error)
+      if (allocated(error)) return
+      left = hermite_rule(a, pa, ka, m, pm, km)
+      right = hermite_rule(m, pm, km, b, pb, kb)
+      total = left + right
+      ! The rule is exact for cubics: halving cuts its error 16-fold, so |halves - whole|
+      ! is ~15 times the error of the halves.
+      if (abs(total - whole) <= 1.5_dp*curve%options%rel_tol*max(abs(total), &
+         & curve%work_density*(b - a)) .or. depth >= max_depth) then
+         total = total + (total - whole)/15.0_dp
+         return
+      end if
+      call integrate(curve, a, pa, ka, m, pm, km, depth + 1, left, error)
+      if (allocated(error)) return
+      call integrate(curve, m, pm, km, b, pb, kb, depth + 1, right, error)
+      if (allocated(error)) return
+      total = left + right
+   end subroutine integrate
+
+   !> Integral of the cubic Hermite interpolant of (P, k) at a and b.
+   pure real(dp) function hermite_rule(a, pa, ka, b, pb, kb) result(s)
+      real(dp), intent(in) :: a, pa, ka, b, pb, kb
+      real(dp) :: h
+      h = b - a
+      s = 0.5_dp*h*(pa + pb) + h*h/12.0_dp*(ka - kb)
+   end function hermite_rule
+
+end module egw_impact

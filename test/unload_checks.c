@@ -1,0 +1,96 @@
+/* C tests of the unloading and restitution entry points of include/egw.h
+ * (egw_solve_unload, egw_restitution, egw_restitution_energy), with good and bad input.
+ * Each egw_capi_test_* returns the number of failed checks and prints why;
+ * test/test_unload_sphere.f90 runs them. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "egw.h"
+
+static int failures;
+#define CHECK(cond) do { if (!(cond)) { failures++; \
+  printf("    C check failed at %s:%d: %s\n", __FILE__, __LINE__, #cond); } } while (0)
+static int close_rel(double a, double b, double tol) {
+  return fabs(a - b) <= tol * fabs(b);
+}
+static int last_error_names(const char *name) {
+  char buf[256];
+  if (egw_last_error(buf, (int)sizeof buf) != EGW_OK) return 0;
+  return strstr(buf, name) != NULL;
+}
+
+/* EP-GW, R = E = sigma = 1, mu = 4, psi = 2, K = 0.6 */
+static void epgw(egw_params *p) {
+  egw_params_default(p);
+  p->model = EGW_MODEL_EPGW; p->sigma = 1.0; p->mu = 4.0; p->psi = 2.0;
+  p->hardness_coeff = 0.6;
+}
+
+int egw_capi_test_unload(void) {
+  egw_params p;
+  egw_result load, res;
+  failures = 0;
+  epgw(&p);
+  CHECK(egw_solve(&p, NULL, 10.0, &load) == EGW_OK);
+  /* delta = delta_max: the loading solve itself (same solve, rounding only) */
+  CHECK(egw_solve_unload(&p, NULL, 10.0, 10.0, &res) == EGW_OK);
+  CHECK(close_rel(res.force, load.force, 1e-10));
+  /* delta > delta_max: the loading curve */
+  CHECK(egw_solve_unload(&p, NULL, 10.0, 5.0, &res) == EGW_OK);
+  CHECK(close_rel(res.force, load.force, 1e-10));
+  /* below delta_max: less than the loading force at the same overlap (plastic summits) */
+  CHECK(egw_solve(&p, NULL, 5.0, &load) == EGW_OK);
+  CHECK(egw_solve_unload(&p, NULL, 5.0, 10.0, &res) == EGW_OK);
+  CHECK(res.force > 0.0 && res.force < 0.999 * load.force && res.stiffness > 0.0);
+  CHECK(res.est_rel_err <= 0.5e-6);
+  /* bad input: named status, res untouched */
+  res.force = -1.0;
+  CHECK(egw_solve_unload(&p, NULL, 5.0, NAN, &res) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("delta_max") && res.force == -1.0);
+  CHECK(egw_solve_unload(&p, NULL, 5.0, INFINITY, &res) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("delta_max") && res.force == -1.0);
+  CHECK(egw_solve_unload(&p, NULL, NAN, 1.0, &res) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("delta") && res.force == -1.0);
+  { egw_params q = p; q.psi = -1.0;
+    CHECK(egw_solve_unload(&q, NULL, 1.0, 2.0, &res) == EGW_INVALID_PARAMETER);
+    CHECK(last_error_names("psi") && res.force == -1.0); }
+  CHECK(egw_solve_unload(NULL, NULL, 1.0, 2.0, &res) == EGW_NULL_POINTER);
+  CHECK(egw_solve_unload(&p, NULL, 1.0, 2.0, NULL) == EGW_NULL_POINTER);
+  return failures;
+}
+
+int egw_capi_test_restitution(void) {
+  egw_params p;
+  egw_options o;
+  double e = -1.0, e2 = -1.0, w_load = -1.0, w_lost = -1.0;
+  failures = 0;
+  egw_options_default(&o);
+  o.rel_tol = 1e-5;
+  epgw(&p);
+  /* plastic summits at delta_m ~ sigma (m* = 1, v = 1): 0 < e < 1 */
+  CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e) == EGW_OK);
+  CHECK(e > 0.0 && e < 0.999);
+  /* the energies: W_load = m v^2/2 to the tolerance, e^2 = 1 - W_lost/W_load */
+  CHECK(egw_restitution_energy(&p, &o, 1.0, 1.0, &e2, &w_load, &w_lost) == EGW_OK);
+  CHECK(e2 == e && close_rel(w_load, 0.5, 1e-5));
+  CHECK(w_lost > 0.0 && close_rel(e2 * e2, 1.0 - w_lost / w_load, 1e-12));
+  CHECK(egw_restitution_energy(&p, &o, 1.0, 1.0, NULL, NULL, &w_lost) == EGW_OK);
+  /* elastic summits: e = 1 to the tolerance; smooth spheres exactly */
+  p.psi = 0.0;
+  CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e) == EGW_OK && fabs(1.0 - e) <= 1e-5);
+  p.sigma = 0.0;
+  CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e) == EGW_OK && e == 1.0);
+  /* bad input: named status, outputs untouched */
+  epgw(&p);
+  e = -1.0;
+  CHECK(egw_restitution(&p, &o, -1.0, 1.0, &e) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("mass") && e == -1.0);
+  CHECK(egw_restitution(&p, &o, 1.0, NAN, &e) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_names("velocity") && e == -1.0);
+  CHECK(egw_restitution(&p, &o, 1.0, 1.0, NULL) == EGW_NULL_POINTER);
+  CHECK(egw_restitution(NULL, &o, 1.0, 1.0, &e) == EGW_NULL_POINTER);
+  w_load = -1.0;
+  CHECK(egw_restitution_energy(&p, &o, 1.0, -2.0, &e, &w_load, NULL) == EGW_INVALID_ARGUMENT);
+  CHECK(w_load == -1.0 && e == -1.0);
+  return failures;
+}
