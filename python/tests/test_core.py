@@ -137,3 +137,23 @@ def test_flat_pressure_unload_reference_and_reloading():
                                   egw.flat_pressure(p, d))
     with pytest.raises(egw.InvalidArgumentError, match="separation_min"):
         egw.flat_pressure_unload(p, 0.0, float("inf"))
+
+
+def test_solve_unload_and_restitution():
+    # EP-GW: at delta = delta_max the unloading solve is the loading solve; below, less
+    # force (plastic summits keep a residual interference); elastic summits (psi = 0)
+    # unload on the loading curve, and e = 1 to the tolerance
+    p = egw.Params(model="EP-GW", sigma=1.0, mu=4.0, psi=2.0)
+    load = egw.solve(p, 2.0)
+    same = egw.solve_unload(p, 2.0, 2.0)
+    assert same.force == pytest.approx(load.force, rel=1e-10)
+    un = egw.solve_unload(p, [0.5, 1.0, 1.5], 2.0)
+    lo = egw.solve(p, [0.5, 1.0, 1.5])
+    assert np.all(un.force < lo.force) and np.all(np.diff(un.force) > 0)
+    r = egw.restitution(p, mass=1.0, velocity=1.0)
+    assert 0 < r.e < 1 and r.dissipated > 0
+    assert r.work_load == pytest.approx(0.5, rel=1e-5)  # W_load = m v^2/2 defines delta_m
+    elastic = egw.restitution(p.replace(psi=0.0), mass=1.0, velocity=1.0)
+    assert elastic.e == pytest.approx(1.0, abs=1e-5)
+    with pytest.raises(egw.InvalidArgumentError, match="mass"):
+        egw.restitution(p, mass=-1.0, velocity=1.0)
