@@ -16,6 +16,7 @@ module egw
    use egw_table
    use egw_table_universal
    use egw_table_format
+   use egw_hysteresis
    use egw_scene
    use egw_io
    implicit none
