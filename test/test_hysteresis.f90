@@ -3,6 +3,7 @@
 !> independent unloading solves (solve_unload) between nodes in delta and delta_max.
 module test_hysteresis
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: iso_c_binding, only: c_int
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, format_real
@@ -15,6 +16,12 @@ module test_hysteresis
    private
    public :: collect_hysteresis
 
+   interface
+      integer(c_int) function c_hysteresis() bind(C, name="egw_capi_test_hysteresis")
+         import :: c_int
+      end function c_hysteresis
+   end interface
+
 contains
 
    subroutine collect_hysteresis(testsuite)
@@ -23,7 +30,8 @@ contains
          & new_unittest("analytic family between nodes", test_analytic), &
          & new_unittest("history semantics", test_history), &
          & new_unittest("EP-GW table vs unloading solves", test_epgw), &
-         & new_unittest("invalid requests", test_invalid) &
+         & new_unittest("invalid requests", test_invalid), &
+         & new_unittest("C API (test/hysteresis_checks.c)", test_c) &
          & ]
    end subroutine collect_hysteresis
 
@@ -187,5 +195,12 @@ contains
       if (allocated(error)) return
       call check(error, .not. allocated(h%peak), "table untouched")
    end subroutine test_invalid
+
+   subroutine test_c(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer(c_int) :: nfail
+      nfail = c_hysteresis()
+      call check(error, int(nfail) == 0, to_string(int(nfail))//" C check(s) failed")
+   end subroutine test_c
 
 end module test_hysteresis
