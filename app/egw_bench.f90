@@ -11,6 +11,8 @@
 !>   --universal   universal E-GW table (mu 0.1-100, delta/sigma -6..1e3): 1e-4 built with 1
 !>                 and 2 threads (speed-up), 1e-6 with 2 threads -> out/bench/universal.csv
 !>   --unloading   unloading solve vs loading solve at the same overlap (issue 10)
+!>   --hysteresis  hysteresis table build (2 threads) and eval / Hertz force (issue 10)
+!>                                                           -> out/bench/hysteresis.csv
 !>                                                           -> out/bench/unloading.csv
 !>   --universal-1thread  also build the 1e-6 universal table with 1 thread
 !>   --peer FILE   egw side of the peer comparison (tools/bench/peer_greenwood_tripp.py)
@@ -33,6 +35,7 @@ program egw_bench
    use bench_solver, only: run_solver, run_assembly, run_peer_cases
    use bench_tables, only: run_tables, run_universal, run_build_speedup
    use bench_unloading, only: run_unloading
+   use bench_hysteresis, only: run_hysteresis
    implicit none
 
    integer, parameter :: n = 4096        ! inputs per sweep (fit in L1/L2 cache)
@@ -41,7 +44,7 @@ program egw_bench
    real(dp) :: t_erfc, t_hertz, t_f32, t_ellipk, t_pg, t_pg_zmc
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
-   logical :: universal_1thread, any_section, ok, do_speedup, do_unloading
+   logical :: universal_1thread, any_section, ok, do_speedup, do_unloading, do_hysteresis
    real(dp) :: universal_tol
    character(len=512) :: arg, peer_file
    integer :: unit_speedup, unit_csv
@@ -80,6 +83,7 @@ program egw_bench
    end if
    if (do_solver) call run_solver(quick)
    if (do_unloading) call run_unloading(quick)
+   if (do_hysteresis) call run_hysteresis(quick)
    if (do_assembly .or. do_tables .or. do_universal) then
       ! one speed-up CSV for the sections that measure 1 thread against 2
       call open_csv("speedup.csv", unit_speedup, &
@@ -103,7 +107,7 @@ contains
       integer :: k
       do_kernels = .false.; do_fn = .false.; do_solver = .false.; do_assembly = .false.
       do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
-      do_unloading = .false.
+      do_unloading = .false.; do_hysteresis = .false.
       universal_tol = 0
       universal_1thread = .false.; peer_file = ""
       out_dir = "out/bench/"
@@ -122,6 +126,7 @@ contains
          case ("--quick"); quick = .true.
          case ("--speedup"); do_speedup = .true.
          case ("--unloading"); do_unloading = .true.
+         case ("--hysteresis"); do_hysteresis = .true.
          case ("--universal-tol")
             k = k + 1
             call get_command_argument(k, arg)
@@ -142,10 +147,12 @@ contains
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
-         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_unloading
+         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_unloading &
+         & .or. do_hysteresis
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
          do_tables = .true.; do_universal = .true.; do_unloading = .true.
+         do_hysteresis = .true.
       end if
    end subroutine parse_arguments
 
