@@ -9,6 +9,7 @@ module egw
    use egw_ellip
    use egw_asperity
    use egw_unloading
+   use egw_hysteresis
    use egw_smooth_sphere
    use egw_halfspace
    use egw_rough_sphere

@@ -20,6 +20,7 @@ program tester
    use test_stability, only: collect_stability
    use test_unloading, only: collect_unloading
    use test_cli, only: collect_cli
+   use test_hysteresis, only: collect_hysteresis
    use test_unload_sphere, only: collect_unload_sphere
    implicit none
    type(testsuite_type), allocatable :: suites(:)
@@ -44,7 +45,8 @@ program tester
       & new_testsuite("stability", collect_stability), &
       & new_testsuite("unloading", collect_unloading), &
       & new_testsuite("cli", collect_cli), &
-      & new_testsuite("unload_sphere", collect_unload_sphere) &
+      & new_testsuite("unload_sphere", collect_unload_sphere), &
+      & new_testsuite("hysteresis", collect_hysteresis) &
       & ]
 
    stat = 0

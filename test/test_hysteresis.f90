@@ -1,0 +1,191 @@
+!> Tests of egw_hysteresis: the table against unloading solves between its nodes, the
+!> history semantics of the evaluation, reversibility of elastic summits, bad input.
+module test_hysteresis
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, format_real
+   use egw_params, only: contact_params, model_epgw, model_egw
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
+      & solve_contact_unload
+   use egw_table, only: table_eval
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval
+   use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
+   use, intrinsic :: iso_c_binding, only: c_int
+   implicit none
+   private
+   public :: collect_hysteresis
+
+   interface
+      integer(c_int) function c_hysteresis() bind(C, name="egw_capi_test_hysteresis")
+         import :: c_int
+      end function c_hysteresis
+   end interface
+
+   !> Scaled EP-GW contact (R = E = sigma = 1): psi = 2 (delta_ep = sigma/4), mu = 4.
+   type(contact_params), parameter :: ep = contact_params(model=model_epgw, radius=1.0_dp, &
+      & modulus=1.0_dp, sigma=1.0_dp, mu=4.0_dp, psi=2.0_dp, hardness_coeff=0.6_dp, &
+      & plastic_ratio=54.0_dp)
+   real(dp), parameter :: tol = 1.0e-3_dp
+   !> The EP-GW table, built once for the suite (a build is the expensive part).
+   type(hysteresis_table), save :: ep_table
+   logical, save :: ep_built = .false.
+
+contains
+
+   subroutine collect_hysteresis(testsuite)
+      type(unittest_type), allocatable, intent(out) :: testsuite(:)
+      testsuite = [ &
+         & new_unittest("table within rel_tol of solves between nodes", test_accuracy), &
+         & new_unittest("history: load, unload, reload, new contact", test_history), &
+         & new_unittest("elastic summits: no hysteresis", test_reversible), &
+         & new_unittest("bad input", test_bad_input), &
+         & new_unittest("C egw_hysteresis_build, _eval, _free", test_c_api) &
+         & ]
+   end subroutine collect_hysteresis
+
+   subroutine build(params, table, error)
+      type(contact_params), intent(in) :: params
+      type(hysteresis_table), intent(out) :: table
+      type(error_type), allocatable, intent(out) :: error
+      type(solver_options) :: opts
+      type(egw_error), allocatable :: err
+      if (params%model == model_epgw .and. ep_built) then
+         table = ep_table
+         return
+      end if
+      call build_hysteresis(params, opts, -2.0_dp, 6.0_dp, tol, table, err)
+      if (allocated(err)) then
+         call test_failed(error, "build: "//err%message)
+      else if (params%model == model_epgw) then
+         ep_table = table
+         ep_built = .true.
+      end if
+   end subroutine build
+
+   !> At delta_max halfway between table nodes and delta halfway between the xi nodes of
+   !> the curves, the table's force against a solve at rel_tol 1e-8 (the build checked the
+   !> xi midpoints of every curve and three xi of every delta_max midpoint): within
+   !> 2 rel_tol of the force at the turning point (the bilinear combination of two curves
+   !> that each meet rel_tol).
+   subroutine test_accuracy(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(solver_options) :: fine
+      type(solve_result) :: res, top
+      type(egw_error), allocatable :: err
+      real(dp), parameter :: fractions(5) = [0.02_dp, 0.1_dp, 0.3_dp, 0.55_dp, 0.8_dp]
+      real(dp) :: m, d, f, k, state, worst
+      integer :: j, i, stat
+      call build(ep, t, error)
+      if (allocated(error)) return
+      fine%rel_tol = 1.0e-8_dp
+      worst = 0.0_dp
+      do j = 2, size(t%m) - 1, max(1, (size(t%m) - 2)/4)
+         m = 0.5_dp*(t%m(j) + t%m(j + 1))
+         call solve_contact(ep, fine, m, top, err)
+         if (allocated(err)) exit
+         do i = 1, 5
+            d = m - (m - t%loading%cutoff)*fractions(i)
+            call solve_contact_unload(ep, fine, d, m, res, err)
+            if (allocated(err)) exit
+            state = m
+            call hysteresis_eval(t, d, state, f, k, stat)
+            worst = max(worst, abs(f - res%force)/top%force)
+         end do
+      end do
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      call check(error, worst <= 2*tol, "worst error "//format_real(worst)// &
+         & " of P(delta_max) over "//to_string(size(t%m))//" delta_max nodes")
+   end subroutine test_accuracy
+
+   subroutine test_history(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      real(dp) :: state, f, k, f_load, k_load, f_un
+      integer :: stat
+      call build(ep, t, error)
+      if (allocated(error)) return
+      state = -huge(1.0_dp)
+      call hysteresis_eval(t, 3.0_dp, state, f, k, stat)
+      call table_eval(t%loading, 3.0_dp, f_load, k_load)
+      call check(error, state == 3.0_dp .and. f == f_load .and. k == k_load, &
+         & "a new contact loads on the loading curve; the state becomes delta")
+      if (allocated(error)) return
+      call hysteresis_eval(t, 2.0_dp, state, f_un, k, stat)
+      call table_eval(t%loading, 2.0_dp, f_load, k_load)
+      call check(error, state == 3.0_dp .and. f_un < f_load .and. k > k_load, &
+         & "unloading: below the loading curve, stiffer, state kept")
+      if (allocated(error)) return
+      call hysteresis_eval(t, 3.0_dp, state, f, k, stat)
+      call table_eval(t%loading, 3.0_dp, f_load, k_load)
+      call check(error, f, f_load, "reloading to the state meets the loading curve exactly")
+      if (allocated(error)) return
+      call hysteresis_eval(t, 2.0_dp, state, f, k, stat)
+      call check(error, f, f_un, "reloading retraces the unloading curve")
+      if (allocated(error)) return
+      call hysteresis_eval(t, 4.0_dp, state, f, k, stat)
+      call check(error, state == 4.0_dp .and. stat == 0, "loading past the state moves it up")
+      if (allocated(error)) return
+      call hysteresis_eval(t, 7.0_dp, state, f, k, stat)
+      call check(error, stat, egw_out_of_range, "beyond delta_max: out of range")
+   end subroutine test_history
+
+   !> E-GW (elastic summits): unloading follows loading, to the table's tolerance.
+   subroutine test_reversible(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(contact_params) :: p
+      real(dp) :: state, f, k, f_load, k_load
+      integer :: stat, i
+      p = ep
+      p%model = model_egw
+      call build(p, t, error)
+      if (allocated(error)) return
+      do i = 1, 5
+         state = 5.0_dp
+         call hysteresis_eval(t, 5.0_dp - i, state, f, k, stat)
+         call table_eval(t%loading, 5.0_dp - i, f_load, k_load)
+         call check(error, abs(f - f_load) <= tol*f_load + 1e-12_dp, "E-GW at delta = "// &
+            & format_real(5.0_dp - i))
+         if (allocated(error)) return
+      end do
+   end subroutine test_reversible
+
+   subroutine test_bad_input(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(solver_options) :: opts
+      type(egw_error), allocatable :: err
+      real(dp) :: state, f, k, nan
+      integer :: stat
+      call build_hysteresis(ep, opts, -2.0_dp, 6.0_dp, 0.0_dp, t, err)
+      call check(error, allocated(err), "rel_tol = 0 refused")
+      if (allocated(error)) return
+      call check(error, index(err%message, "rel_tol") == 1, "message names rel_tol")
+      if (allocated(error)) return
+      call build_hysteresis(ep, opts, 6.0_dp, -2.0_dp, 1.0e-3_dp, t, err)
+      call check(error, allocated(err), "delta_max < delta_min refused")
+      if (allocated(error)) return
+      call build(ep, t, error)
+      if (allocated(error)) return
+      nan = ieee_nan()
+      state = 1.0_dp
+      call hysteresis_eval(t, nan, state, f, k, stat)
+      call check(error, stat == egw_invalid_argument .and. state == 1.0_dp, "NaN delta")
+   end subroutine test_bad_input
+
+   subroutine test_c_api(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer :: nfail
+      nfail = c_hysteresis()
+      call check(error, nfail == 0, to_string(nfail)//" C check(s) failed (see above)")
+   end subroutine test_c_api
+
+   real(dp) function ieee_nan()
+      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+      ieee_nan = ieee_value(1.0_dp, ieee_quiet_nan)
+   end function ieee_nan
+
+end module test_hysteresis
