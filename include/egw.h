@@ -396,6 +396,38 @@ int egw_universal_read(const char *path, egw_universal *out);
 void egw_universal_free(egw_universal *u);
 
 /* ------------------------------------------------------------------------
+ * EP-GW hysteresis tables for DEM (doc/theory.md section 8): loading, unloading and
+ * reloading of one parameter set over (delta, delta_max), with a per-contact history
+ * delta_max_state owned by the caller (a double per contact; a new contact starts at
+ * -HUGE_VAL). Loading (delta >= state) follows the loading table and moves the state up;
+ * below the state, the unloading curve of that state (reloading retraces it). Built
+ * adaptively: solves at the midpoints of both grids agree to rel_tol of the force at the
+ * turning point. Evaluation allocates nothing and takes no lock; a table is read-only
+ * after the build, so any number of threads may evaluate it (each with its own states).
+ * ------------------------------------------------------------------------ */
+typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
+
+/* Build for p (EP-GW for hysteresis; other models give reversible curves) over overlaps
+ * [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL (defaults).
+ * *out receives a handle only on success. Statuses: EGW_INVALID_PARAMETER,
+ * EGW_INVALID_ARGUMENT (range, rel_tol), EGW_NOT_CONVERGED (a solve failed or a node
+ * limit was reached), EGW_OUT_OF_MEMORY, EGW_NULL_POINTER. */
+int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta_min,
+                         double delta_max, double rel_tol, egw_hysteresis *out);
+
+/* Force [force] and stiffness dP/ddelta [force/length] at overlap delta for the contact
+ * whose history is *delta_max_state, updated to max(*delta_max_state, delta). force or
+ * stiffness may be NULL. A state above the table's delta_max: EGW_OUT_OF_RANGE with the
+ * values written (the last unloading curve, the loading table extrapolated linearly).
+ * EGW_INVALID_ARGUMENT for NaN delta or a NaN state (nothing changed);
+ * EGW_NULL_POINTER for h or delta_max_state. */
+int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
+                        double *force, double *stiffness);
+
+/* Release a hysteresis table; sets *h to NULL. NULL or *h == NULL is fine. */
+void egw_hysteresis_free(egw_hysteresis *h);
+
+/* ------------------------------------------------------------------------
  * Scenes and the model choice. Units: any consistent set (SI suggested).
  * doc/scenes.md describes scenes and the choice rule.
  *

@@ -9,6 +9,7 @@ module egw
    use egw_ellip
    use egw_asperity
    use egw_unloading
+   use egw_hysteresis
    use egw_smooth_sphere
    use egw_halfspace
    use egw_rough_sphere
@@ -16,7 +17,6 @@ module egw
    use egw_table
    use egw_table_universal
    use egw_table_format
-   use egw_hysteresis
    use egw_scene
    use egw_io
    implicit none

@@ -20,8 +20,8 @@ program tester
    use test_stability, only: collect_stability
    use test_unloading, only: collect_unloading
    use test_cli, only: collect_cli
-   use test_unload_sphere, only: collect_unload_sphere
    use test_hysteresis, only: collect_hysteresis
+   use test_unload_sphere, only: collect_unload_sphere
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)

@@ -1,17 +1,15 @@
-!> Tests of egw_hysteresis (issue 10 item 4). The interpolation is tested on an analytic
-!> hysteresis family with known values (exact references), the EP-GW build against
-!> independent unloading solves (solve_unload) between nodes in delta and delta_max.
+!> Tests of egw_hysteresis: the table against unloading solves between its nodes, the
+!> history semantics of the evaluation, reversibility of elastic summits, bad input.
 module test_hysteresis
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-   use, intrinsic :: iso_c_binding, only: c_int
-   use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, format_real
-   use egw_params, only: contact_params, model_hertz, model_epgw
-   use egw_rough_sphere, only: solver_options, solve_result, loading_history, &
-      & load_history, solve_unload
-   use egw_table, only: force_table, build_table, table_eval
-   use egw_hysteresis
+   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, format_real
+   use egw_params, only: contact_params, model_epgw, model_egw
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
+      & solve_contact_unload
+   use egw_table, only: table_eval
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval
+   use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
+   use, intrinsic :: iso_c_binding, only: c_int
    implicit none
    private
    public :: collect_hysteresis
@@ -22,185 +20,172 @@ module test_hysteresis
       end function c_hysteresis
    end interface
 
+   !> Scaled EP-GW contact (R = E = sigma = 1): psi = 2 (delta_ep = sigma/4), mu = 4.
+   type(contact_params), parameter :: ep = contact_params(model=model_epgw, radius=1.0_dp, &
+      & modulus=1.0_dp, sigma=1.0_dp, mu=4.0_dp, psi=2.0_dp, hardness_coeff=0.6_dp, &
+      & plastic_ratio=54.0_dp)
+   real(dp), parameter :: tol = 1.0e-3_dp
+   !> The EP-GW table, built once for the suite (a build is the expensive part).
+   type(hysteresis_table), save :: ep_table
+   logical, save :: ep_built = .false.
+
 contains
 
    subroutine collect_hysteresis(testsuite)
       type(unittest_type), allocatable, intent(out) :: testsuite(:)
       testsuite = [ &
-         & new_unittest("analytic family between nodes", test_analytic), &
-         & new_unittest("history semantics", test_history), &
-         & new_unittest("EP-GW table vs unloading solves", test_epgw), &
-         & new_unittest("invalid requests", test_invalid), &
-         & new_unittest("C API (test/hysteresis_checks.c)", test_c) &
+         & new_unittest("table within rel_tol of solves between nodes", test_accuracy), &
+         & new_unittest("history: load, unload, reload, new contact", test_history), &
+         & new_unittest("elastic summits: no hysteresis", test_reversible), &
+         & new_unittest("bad input", test_bad_input), &
+         & new_unittest("C egw_hysteresis_build, _eval, _free", test_c_api) &
          & ]
    end subroutine collect_hysteresis
 
-   !> Exponent of the analytic family r(s; peak) = s**a(peak): varies with peak as the
-   !> EP-GW curves do (steeper after deeper loading), smooth in both directions.
-   pure real(dp) function expo(peak)
-      real(dp), intent(in) :: peak
-      expo = 1.5_dp + peak + 0.3_dp*sin(5*peak)
-   end function expo
-
-   subroutine analytic(peak, s, r, drds, error)
-      real(dp), intent(in) :: peak, s(:)
-      real(dp), intent(out) :: r(:), drds(:)
-      type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: a
-      a = expo(peak)
-      r = s**a
-      drds = a*s**(a - 1)
-   end subroutine analytic
-
-   !> Hertz loading (exact table) with the analytic unloading family, rel_tol 1e-5: at
-   !> points midway between peaks and between s nodes (where the interpolation error is
-   !> largest) |P - r_exact P_load(peak)| <= rel_tol P_load(peak) (the table's criterion).
-   subroutine test_analytic(error)
+   subroutine build(params, table, error)
+      type(contact_params), intent(in) :: params
+      type(hysteresis_table), intent(out) :: table
       type(error_type), allocatable, intent(out) :: error
-      type(force_table) :: loading
-      type(hysteresis_table) :: h
+      type(solver_options) :: opts
       type(egw_error), allocatable :: err
-      real(dp), parameter :: rel_tol = 1.0e-5_dp
-      real(dp) :: peak, s, state, f, k, p_top, k_top, worst
-      integer :: i, j
-      call build_table(contact_params(model=model_hertz, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=0.0_dp), solver_options(), 0.0_dp, 1.0_dp, rel_tol, loading, err)
-      call check(error, .not. allocated(err), "loading table")
+      if (params%model == model_epgw .and. ep_built) then
+         table = ep_table
+         return
+      end if
+      call build_hysteresis(params, opts, -2.0_dp, 6.0_dp, tol, table, err)
+      if (allocated(err)) then
+         call test_failed(error, "build: "//err%message)
+      else if (params%model == model_epgw) then
+         ep_table = table
+         ep_built = .true.
+      end if
+   end subroutine build
+
+   !> At delta_max halfway between table nodes and delta halfway between the xi nodes of
+   !> the curves, the table's force against a solve at rel_tol 1e-8 (the build checked the
+   !> xi midpoints of every curve and three xi of every delta_max midpoint): within
+   !> 2 rel_tol of the force at the turning point (the bilinear combination of two curves
+   !> that each meet rel_tol).
+   subroutine test_accuracy(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(solver_options) :: fine
+      type(solve_result) :: res, top
+      type(egw_error), allocatable :: err
+      real(dp), parameter :: fractions(5) = [0.02_dp, 0.1_dp, 0.3_dp, 0.55_dp, 0.8_dp]
+      real(dp) :: m, d, f, k, state, worst
+      integer :: j, i, stat
+      call build(ep, t, error)
       if (allocated(error)) return
-      call build_hysteresis_with(loading, analytic, h, err)
-      call check(error, .not. allocated(err), "analytic build")
-      if (allocated(error)) return
+      fine%rel_tol = 1.0e-8_dp
       worst = 0.0_dp
-      do j = 1, size(h%peak) - 1
-         peak = 0.5_dp*(h%peak(j) + h%peak(j + 1))
-         call table_eval(h%loading, peak, p_top, k_top)
-         do i = 1, size(h%s) - 1
-            s = 0.5_dp*(h%s(i) + h%s(i + 1))
-            state = peak
-            call hysteresis_eval(h, h%cutoff + s*(peak - h%cutoff), state, f, k)
-            if (f > 0.0_dp) worst = max(worst, abs(f/p_top - s**expo(peak)))
+      do j = 2, size(t%m) - 1, max(1, (size(t%m) - 2)/4)
+         m = 0.5_dp*(t%m(j) + t%m(j + 1))
+         call solve_contact(ep, fine, m, top, err)
+         if (allocated(err)) exit
+         do i = 1, 5
+            d = m - (m - t%loading%cutoff)*fractions(i)
+            call solve_contact_unload(ep, fine, d, m, res, err)
+            if (allocated(err)) exit
+            state = m
+            call hysteresis_eval(t, d, state, f, k, stat)
+            worst = max(worst, abs(f - res%force)/top%force)
          end do
       end do
-      call check(error, worst <= rel_tol, "max error "//format_real(worst)//" > rel_tol; "// &
-         & to_string(size(h%peak))//" peaks, "//to_string(size(h%s))//" s nodes")
-   end subroutine test_analytic
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      call check(error, worst <= 2*tol, "worst error "//format_real(worst)// &
+         & " of P(delta_max) over "//to_string(size(t%m))//" delta_max nodes")
+   end subroutine test_accuracy
 
-   !> A small EP-GW table (sigma = 1, rel_tol 1e-2 to keep the suite short).
-   subroutine epgw_table(h, params, err)
-      type(hysteresis_table), intent(out) :: h
-      type(contact_params), intent(out) :: params
-      type(egw_error), allocatable, intent(out) :: err
-      params = contact_params(model=model_epgw, radius=100.0_dp, modulus=1.0_dp, &
-         & sigma=1.0_dp, mu=4.0_dp, psi=1.0_dp)
-      call build_hysteresis(params, solver_options(), -2.0_dp, 4.0_dp, 1.0e-2_dp, h, err)
-   end subroutine epgw_table
-
-   !> New contact (-huge) loads; the state follows the largest overlap; below it the
-   !> force is the unloading curve (below loading), the same on reloading, continuous at
-   !> delta = state (to the Hermite slope times the step), and loading resumes above.
    subroutine test_history(error)
       type(error_type), allocatable, intent(out) :: error
-      type(hysteresis_table) :: h
-      type(contact_params) :: params
-      type(egw_error), allocatable :: err
-      real(dp) :: state, f, k, fl, kl, fu, ku, fr, kr
-      call epgw_table(h, params, err)
-      call check(error, .not. allocated(err), "build")
+      type(hysteresis_table) :: t
+      real(dp) :: state, f, k, f_load, k_load, f_un
+      integer :: stat
+      call build(ep, t, error)
       if (allocated(error)) return
       state = -huge(1.0_dp)
-      call hysteresis_eval(h, 3.0_dp, state, f, k)
-      call table_eval(h%loading, 3.0_dp, fl, kl)
-      call check(error, f == fl .and. k == kl .and. state == 3.0_dp, "new contact loads")
+      call hysteresis_eval(t, 3.0_dp, state, f, k, stat)
+      call table_eval(t%loading, 3.0_dp, f_load, k_load)
+      call check(error, state == 3.0_dp .and. f == f_load .and. k == k_load, &
+         & "a new contact loads on the loading curve; the state becomes delta")
       if (allocated(error)) return
-      call hysteresis_eval(h, 2.0_dp, state, fu, ku)
-      call table_eval(h%loading, 2.0_dp, fl, kl)
-      call check(error, state == 3.0_dp .and. fu < fl .and. fu > 0.0_dp .and. ku > kl, &
-         & "unloading below loading, stiffer")
+      call hysteresis_eval(t, 2.0_dp, state, f_un, k, stat)
+      call table_eval(t%loading, 2.0_dp, f_load, k_load)
+      call check(error, state == 3.0_dp .and. f_un < f_load .and. k > k_load, &
+         & "unloading: below the loading curve, stiffer, state kept")
       if (allocated(error)) return
-      call hysteresis_eval(h, 1.0_dp, state, f, k)
-      call hysteresis_eval(h, 2.0_dp, state, fr, kr)
-      call check(error, fr == fu .and. kr == ku .and. state == 3.0_dp, &
-         & "reloading follows the unloading curve")
+      call hysteresis_eval(t, 3.0_dp, state, f, k, stat)
+      call table_eval(t%loading, 3.0_dp, f_load, k_load)
+      call check(error, f, f_load, "reloading to the state meets the loading curve exactly")
       if (allocated(error)) return
-      call hysteresis_eval(h, 3.0_dp - 1.0e-9_dp, state, fu, ku)
-      call table_eval(h%loading, 3.0_dp, fl, kl)
-      call check(error, abs(fu - fl) <= 2.0e-9_dp*ku, "continuous at delta = state")
+      call hysteresis_eval(t, 2.0_dp, state, f, k, stat)
+      call check(error, f, f_un, "reloading retraces the unloading curve")
       if (allocated(error)) return
-      call hysteresis_eval(h, 3.5_dp, state, f, k)
-      call table_eval(h%loading, 3.5_dp, fl, kl)
-      call check(error, f == fl .and. state == 3.5_dp, "loading resumes above the state")
+      call hysteresis_eval(t, 4.0_dp, state, f, k, stat)
+      call check(error, state == 4.0_dp .and. stat == 0, "loading past the state moves it up")
       if (allocated(error)) return
-      call hysteresis_eval(h, -1.9_dp, state, f, k)
-      call check(error, f == 0.0_dp .and. k == 0.0_dp, "zero far below the history")
+      call hysteresis_eval(t, 7.0_dp, state, f, k, stat)
+      call check(error, stat, egw_out_of_range, "beyond delta_max: out of range")
    end subroutine test_history
 
-   !> Table against solve_unload at (delta, delta_max) both between nodes: error <=
-   !> rel_tol P_load(delta_max) (the build checks each direction to rel_tol/2); where the
-   !> table gives 0 (cut-off rule) the solve's force is below ~rel_tol P_ref.
-   subroutine test_epgw(error)
+   !> E-GW (elastic summits): unloading follows loading, to the table's tolerance.
+   subroutine test_reversible(error)
       type(error_type), allocatable, intent(out) :: error
-      type(hysteresis_table) :: h
-      type(contact_params) :: params
-      type(egw_error), allocatable :: err
-      type(loading_history) :: history
-      type(solve_result) :: top, res
-      real(dp) :: peak, s, state, f, k, worst
-      integer :: i, j
-      call epgw_table(h, params, err)
-      call check(error, .not. allocated(err), "build")
+      type(hysteresis_table) :: t
+      type(contact_params) :: p
+      real(dp) :: state, f, k, f_load, k_load
+      integer :: stat, i
+      p = ep
+      p%model = model_egw
+      call build(p, t, error)
       if (allocated(error)) return
-      worst = 0.0_dp
-      do j = 2, size(h%peak) - 1, 3
-         peak = 0.5_dp*(h%peak(j) + h%peak(j + 1))
-         call load_history(params, solver_options(rel_tol=1.0e-4_dp), peak, history, top, err)
-         call check(error, .not. allocated(err), "history")
+      do i = 1, 5
+         state = 5.0_dp
+         call hysteresis_eval(t, 5.0_dp - i, state, f, k, stat)
+         call table_eval(t%loading, 5.0_dp - i, f_load, k_load)
+         call check(error, abs(f - f_load) <= tol*f_load + 1e-12_dp, "E-GW at delta = "// &
+            & format_real(5.0_dp - i))
          if (allocated(error)) return
-         do i = 2, size(h%s) - 1, 2
-            s = 0.5_dp*(h%s(i) + h%s(i + 1))
-            call solve_unload(history, h%cutoff + s*(peak - h%cutoff), res, err)
-            call check(error, .not. allocated(err), "unloading solve")
-            if (allocated(error)) return
-            state = peak
-            call hysteresis_eval(h, h%cutoff + s*(peak - h%cutoff), state, f, k)
-            if (f == 0.0_dp) then
-               ! the cut-off rule: zero where the force has fallen to rel_tol P_ref
-               call check(error, res%force <= 2.0e-2_dp*h%loading%reference_force, &
-                  & "zero force where the solve gives "//format_real(res%force))
-               if (allocated(error)) return
-            else
-               worst = max(worst, abs(f - res%force)/top%force)
-            end if
-         end do
       end do
-      call check(error, worst <= 1.0e-2_dp, "max error "//format_real(worst)// &
-         & " of P_load(delta_max) > rel_tol 1e-2")
-   end subroutine test_epgw
+   end subroutine test_reversible
 
-   !> delta_max < delta_min and NaN rel_tol: egw_invalid_argument, table untouched.
-   subroutine test_invalid(error)
+   subroutine test_bad_input(error)
       type(error_type), allocatable, intent(out) :: error
-      type(hysteresis_table) :: h
+      type(hysteresis_table) :: t
+      type(solver_options) :: opts
       type(egw_error), allocatable :: err
-      type(contact_params) :: params
-      params = contact_params(model=model_epgw, radius=100.0_dp, modulus=1.0_dp, &
-         & sigma=1.0_dp, mu=4.0_dp, psi=1.0_dp)
-      call build_hysteresis(params, solver_options(), 4.0_dp, -2.0_dp, 1.0e-2_dp, h, err)
+      real(dp) :: state, f, k, nan
+      integer :: stat
+      call build_hysteresis(ep, opts, -2.0_dp, 6.0_dp, 0.0_dp, t, err)
+      call check(error, allocated(err), "rel_tol = 0 refused")
+      if (allocated(error)) return
+      call check(error, index(err%message, "rel_tol") == 1, "message names rel_tol")
+      if (allocated(error)) return
+      call build_hysteresis(ep, opts, 6.0_dp, -2.0_dp, 1.0e-3_dp, t, err)
       call check(error, allocated(err), "delta_max < delta_min refused")
       if (allocated(error)) return
-      call check(error, err%stat == egw_invalid_argument, "stat "//to_string(err%stat))
+      call build(ep, t, error)
       if (allocated(error)) return
-      call build_hysteresis(params, solver_options(), -2.0_dp, 4.0_dp, &
-         & ieee_value(1.0_dp, ieee_quiet_nan), h, err)
-      call check(error, allocated(err), "NaN rel_tol refused")
-      if (allocated(error)) return
-      call check(error, .not. allocated(h%peak), "table untouched")
-   end subroutine test_invalid
+      nan = ieee_nan()
+      state = 1.0_dp
+      call hysteresis_eval(t, nan, state, f, k, stat)
+      call check(error, stat == egw_invalid_argument .and. state == 1.0_dp, "NaN delta")
+   end subroutine test_bad_input
 
-   subroutine test_c(error)
+   subroutine test_c_api(error)
       type(error_type), allocatable, intent(out) :: error
-      integer(c_int) :: nfail
+      integer :: nfail
       nfail = c_hysteresis()
-      call check(error, int(nfail) == 0, to_string(int(nfail))//" C check(s) failed")
-   end subroutine test_c
+      call check(error, nfail == 0, to_string(nfail)//" C check(s) failed (see above)")
+   end subroutine test_c_api
+
+   real(dp) function ieee_nan()
+      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+      ieee_nan = ieee_value(1.0_dp, ieee_quiet_nan)
+   end function ieee_nan
 
 end module test_hysteresis

@@ -94,3 +94,40 @@ int egw_capi_test_restitution(void) {
   CHECK(w_load == -1.0 && e == -1.0);
   return failures;
 }
+
+/* Hysteresis tables through the C API: a contact's history, loading/unloading, statuses.
+ * Exact references: the table's own loading curve at the turning point (the gap is 0
+ * there by construction) and egw_solve at a loading point (the loading table meets
+ * rel_tol = 1e-3 there, 1.5e-3 allowed between its checked midpoints). */
+int egw_capi_test_hysteresis(void) {
+  egw_params p;
+  egw_result r;
+  egw_hysteresis h = NULL;
+  double state = -HUGE_VAL, f = -1.0, k = -1.0, f_top, f_un;
+  int nf = 0;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_EPGW; p.sigma = 1.0; p.mu = 4.0; p.psi = 2.0;
+#define HCHECK(c) do { if (!(c)) { nf++; printf("    C check failed at %s:%d: %s\n", \
+  __FILE__, __LINE__, #c); } } while (0)
+  HCHECK(egw_hysteresis_build(&p, NULL, -2.0, 4.0, 1e-3, &h) == EGW_OK && h != NULL);
+  if (h == NULL) return nf;
+  HCHECK(egw_hysteresis_eval(h, 3.0, &state, &f_top, &k) == EGW_OK && state == 3.0);
+  HCHECK(egw_solve(&p, NULL, 3.0, &r) == EGW_OK && fabs(f_top / r.force - 1.0) <= 1.5e-3);
+  HCHECK(egw_hysteresis_eval(h, 2.0, &state, &f_un, &k) == EGW_OK && state == 3.0);
+  HCHECK(egw_hysteresis_eval(h, 2.0, &state, &f, NULL) == EGW_OK && f == f_un);
+  HCHECK(f_un > 0.0 && f_un < f_top);
+  HCHECK(egw_hysteresis_eval(h, 3.0, &state, &f, &k) == EGW_OK && f == f_top);
+  f = 7.0;
+  HCHECK(egw_hysteresis_eval(h, NAN, &state, &f, &k) == EGW_INVALID_ARGUMENT && f == 7.0);
+  nf += !last_error_names("delta");
+  HCHECK(egw_hysteresis_eval(h, 5.0, &state, &f, &k) == EGW_OUT_OF_RANGE && state == 5.0);
+  HCHECK(egw_hysteresis_eval(NULL, 1.0, &state, &f, &k) == EGW_NULL_POINTER);
+  HCHECK(egw_hysteresis_eval(h, 1.0, NULL, &f, &k) == EGW_NULL_POINTER);
+  egw_hysteresis_free(&h);
+  HCHECK(h == NULL);
+  egw_hysteresis_free(&h); /* NULL handle: nothing */
+  HCHECK(egw_hysteresis_build(&p, NULL, 4.0, -2.0, 1e-3, &h) == EGW_INVALID_ARGUMENT &&
+         h == NULL);
+#undef HCHECK
+  return nf;
+}

@@ -67,3 +67,17 @@ def test_universal_slice_matches_universal_eval():
     s = u.slice(p, 1.5e-5)
     d = np.linspace(-1e-6, 1.5e-5, 9)
     np.testing.assert_allclose(s.eval(d)[0], u.eval(p, d)[0], rtol=1e-12, atol=1e-30)
+
+
+def test_hysteresis_table_histories():
+    # EP-GW (scaled: R = E = sigma = 1, psi = 2): loading moves each contact's state up;
+    # below its state a contact follows its unloading curve, under the loading force
+    p = egw.Params(model="EP-GW", sigma=1.0, mu=4.0, psi=2.0)
+    h = egw.HysteresisTable.build(p, -2.0, 4.0, rel_tol=1e-3)
+    state = egw.HysteresisTable.new_state(3)
+    f_up, _ = h.eval(np.array([1.0, 2.0, 3.0]), state)
+    np.testing.assert_array_equal(state, [1.0, 2.0, 3.0])
+    f_down, _ = h.eval(np.array([0.5, 1.5, 2.5]), state)
+    np.testing.assert_array_equal(state, [1.0, 2.0, 3.0])  # unloading keeps the history
+    load = egw.solve(p, [0.5, 1.5, 2.5]).force
+    assert np.all(f_down < load) and np.all(f_down >= 0)

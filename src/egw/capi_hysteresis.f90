@@ -1,12 +1,12 @@
-!> C API of hysteresis tables (include/egw.h, egw_hysteresis_*): opaque handles (c_loc of
-!> an allocated hysteresis_table, released by egw_hysteresis_free), build and evaluation.
-!> Errors go through egw_capi's per-thread last-error message (settle, require).
+!> C API of the EP-GW hysteresis tables (include/egw.h): an opaque handle to a Fortran
+!> hysteresis_table (c_loc of an allocated object, released by egw_hysteresis_free).
 module egw_capi_hysteresis
-   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
-      & c_associated, c_f_pointer, c_loc
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_associated, &
+      & c_f_pointer, c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_out_of_range, &
+      & egw_out_of_memory, &
       & fatal_error, format_real
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
@@ -17,7 +17,7 @@ module egw_capi_hysteresis
 
 contains
 
-   !> C: egw_hysteresis_build (see include/egw.h for units and statuses).
+   !> C: egw_hysteresis_build (include/egw.h).
    function egw_hysteresis_build(p, o, delta_min, delta_max, rel_tol, out) result(stat) &
       & bind(C, name="egw_hysteresis_build")
       type(c_ptr), value, intent(in) :: p, o, out
@@ -25,84 +25,82 @@ contains
       integer(c_int) :: stat
       type(contact_params) :: params
       type(solver_options) :: options
-      type(hysteresis_table), pointer :: t
+      type(hysteresis_table), pointer :: h
       type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
-      integer :: ios
+      integer :: alloc_stat
       stat = require(out, "out")
       if (stat == egw_ok) stat = read_params(p, params)
       if (stat /= egw_ok) return
       call read_options(o, options)
-      allocate (t, stat=ios)
-      if (ios /= 0) then
-         call fatal_error(error, egw_invalid_argument, "out: cannot allocate the table")
+      allocate (h, stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call fatal_error(error, egw_out_of_memory, "hysteresis table: out of memory")
          stat = settle(error)
          return
       end if
-      call build_hysteresis(params, options, delta_min, delta_max, rel_tol, t, error)
+      call build_hysteresis(params, options, delta_min, delta_max, rel_tol, h, error)
       stat = settle(error)
       if (stat /= egw_ok) then
-         deallocate (t)
+         deallocate (h)
          return
       end if
       call c_f_pointer(out, handle)
-      handle = c_loc(t)
+      handle = c_loc(h)
    end function egw_hysteresis_build
 
-   !> C: egw_hysteresis_eval; above the table's delta_max returns EGW_OUT_OF_RANGE with
-   !> values and state written. No allocation, no lock (the handle is only read).
-   function egw_hysteresis_eval(h, delta, state, force, stiffness) result(stat) &
+   !> C: egw_hysteresis_eval: the per-contact hot path (no allocation, no lock).
+   function egw_hysteresis_eval(hp, delta, state, force, stiffness) result(stat) &
       & bind(C, name="egw_hysteresis_eval")
-      type(c_ptr), value, intent(in) :: h, state, force, stiffness
+      type(c_ptr), value, intent(in) :: hp, state, force, stiffness
       real(c_double), value, intent(in) :: delta
       integer(c_int) :: stat
-      type(hysteresis_table), pointer :: t
+      type(hysteresis_table), pointer :: h
       real(c_double), pointer :: s
-      real(dp) :: f, k
-      if (.not. c_associated(h)) then
-         stat = require(h, "h")
+      type(egw_error), allocatable :: error
+      real(dp) :: f, k, m
+      integer :: st
+      stat = require(hp, "h")
+      if (stat == egw_ok) stat = require(state, "delta_max_state")
+      if (stat /= egw_ok) return
+      if (ieee_is_nan(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = NaN: must be a number")
+         stat = settle(error)
          return
       end if
-      if (.not. c_associated(state)) then
-         stat = require(state, "delta_max_state")
-         return
-      end if
+      call c_f_pointer(hp, h)
       call c_f_pointer(state, s)
-      if (ieee_is_nan(delta) .or. ieee_is_nan(s)) then
-         stat = failure(egw_invalid_argument, "delta = "//format_real(delta)// &
-            & ", delta_max_state = "//format_real(s)//": must be numbers")
+      if (ieee_is_nan(s)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max_state = NaN: a new "// &
+            & "contact starts from -HUGE_VAL")
+         stat = settle(error)
          return
       end if
-      call c_f_pointer(h, t)
-      call hysteresis_eval(t, delta, s, f, k)
+      m = s
+      call hysteresis_eval(h, delta, m, f, k, st)
+      s = m
       call put(force, f)
       call put(stiffness, k)
-      stat = egw_ok
-      if (s > t%delta_max) stat = failure(egw_out_of_range, "delta_max_state = "// &
-         & format_real(s)//": above the table's delta_max = "//format_real(t%delta_max)// &
-         & " (loading extrapolated linearly, the last unloading curve's shape)")
+      stat = int(st, c_int)
+      if (stat == egw_out_of_range) then
+         call fatal_error(error, egw_out_of_range, "delta_max_state = "//format_real(m)// &
+            & ": above the table's delta_max = "//format_real(h%delta_max)// &
+            & " (values extrapolated)")
+         stat = settle(error)
+      end if
    end function egw_hysteresis_eval
 
-   !> C: egw_hysteresis_free(egw_hysteresis *h): releases the table, sets *h = NULL.
-   subroutine egw_hysteresis_free(h) bind(C, name="egw_hysteresis_free")
-      type(c_ptr), value, intent(in) :: h
+   !> C: egw_hysteresis_free: release a table; sets *h to NULL (NULL is fine).
+   subroutine egw_hysteresis_free(hp) bind(C, name="egw_hysteresis_free")
+      type(c_ptr), value, intent(in) :: hp
       type(c_ptr), pointer :: handle
-      type(hysteresis_table), pointer :: t
-      if (.not. c_associated(h)) return
-      call c_f_pointer(h, handle)
+      type(hysteresis_table), pointer :: h
+      if (.not. c_associated(hp)) return
+      call c_f_pointer(hp, handle)
       if (.not. c_associated(handle)) return
-      call c_f_pointer(handle, t)
-      deallocate (t)
+      call c_f_pointer(handle, h)
+      deallocate (h)
       handle = c_null_ptr
    end subroutine egw_hysteresis_free
-
-   !> Record message as this thread's last error with status code; returns code.
-   integer(c_int) function failure(code, message) result(stat)
-      integer, intent(in) :: code
-      character(len=*), intent(in) :: message
-      type(egw_error), allocatable :: error
-      call fatal_error(error, code, message)
-      stat = settle(error)
-   end function failure
 
 end module egw_capi_hysteresis

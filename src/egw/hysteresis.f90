@@ -1,290 +1,389 @@
-!> Hysteresis tables for DEM (issue 10 item 4): the EP-GW force over (delta, delta_max) of
-!> one parameter set, built adaptively to rel_tol, evaluated with a history (the largest
-!> overlap so far) that the caller owns.
+!> Hysteresis tables for DEM (EP-GW loading, unloading and reloading, doc/theory.md §8):
+!> the force of one parameter set over (delta, delta_max), with a per-contact history that
+!> the caller owns (the largest overlap so far; -huge for a contact that never touched).
 !>
-!> Layout: the loading curve is a 1-D force_table (egw_table). Unloading curves are stored
-!> at peak nodes delta_max = peak(j) as the ratio r(s) = P_unload(delta; peak)/P_load(peak)
-!> over the normalised unloading coordinate s = (delta - delta_c)/(peak - delta_c) in
-!> [0, 1] (delta_c the loading table's cut-off), on one s grid shared by all peaks, with
-!> dr/ds from the solver's stiffness: cubic Hermite in s, linear in peak. r(1) = 1 at every
-!> peak, so the force is continuous where unloading leaves the loading curve. The error
-!> criterion of the unloading part is |P_table - P_solve| <= rel_tol*P_load(delta_max)
-!> (the scale of the curve that the history selects); each direction gets rel_tol/2.
+!> Layout: the loading curve is a 1-D force table (egw_table). Each node m_j of the
+!> delta_max grid carries its unloading curve as the hysteresis gap
+!> D_j(xi) = P_load(m_j - xi) - P_unload(m_j - xi; m_j), xi = m_j - delta >= 0, on cubic
+!> Hermite nodes in xi (slope dD/dxi = k_unload - k_load from the solver's stiffnesses).
+!> Between m nodes D is interpolated linearly in m at the same xi, and the force is
+!> P = max(0, P_load(delta) - D): D = 0 at xi = 0 for every m, so the force is continuous
+!> where unloading starts, and the loading table is used as it is. Both grids are refined
+!> until solves at the midpoints (xi midpoints of every curve; three xi of the curve of
+!> every m midpoint) agree with the table to rel_tol of the force at the turning point.
+!> Evaluation allocates nothing and changes only the caller's history.
 module egw_hysteresis
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
-      & format_real
-   use egw_params, only: contact_params
-   use egw_rough_sphere, only: solver_options, solve_result, loading_history, &
-      & load_history, solve_unload
+   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
+      & egw_not_converged, egw_out_of_range, fatal_error, format_real
+   use egw_params, only: contact_params, validate_params, model_epgw
+   use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
+      & solve_unload
    use egw_table, only: force_table, build_table, table_eval
    implicit none
    private
 
-   public :: build_hysteresis, build_hysteresis_with, hysteresis_eval, hysteresis_sampler
+   public :: hysteresis_table, build_hysteresis, hysteresis_eval
 
-   !> Unloading ratios of one peak: r(s_i) = P_unload(delta_c + s_i (peak - delta_c); peak)
-   !> / P_load(peak) and dr/ds at the given s (0 <= s <= 1).
-   abstract interface
-      subroutine hysteresis_sampler(peak, s, r, drds, error)
-         import :: dp, egw_error
-         real(dp), intent(in) :: peak        !< largest overlap of the history
-         real(dp), intent(in) :: s(:)        !< normalised unloading coordinates
-         real(dp), intent(out) :: r(:)       !< force ratio to the loading force at peak
-         real(dp), intent(out) :: drds(:)    !< dr/ds
-         type(egw_error), allocatable, intent(out) :: error
-      end subroutine hysteresis_sampler
-   end interface
+   !> Nodes in xi of one unloading curve (at most), and of the delta_max grid.
+   integer, parameter :: max_xi_nodes = 400, max_m_nodes = 400
 
-   !> Hysteresis table of one parameter set. Evaluation (hysteresis_eval) reads it only.
-   type, public :: hysteresis_table
-      type(force_table) :: loading                !< the loading curve (1-D table)
-      real(dp) :: rel_tol = 0.0_dp                !< requested tolerance
-      real(dp) :: cutoff = 0.0_dp                 !< delta_c: force 0 below
-      real(dp) :: delta_max = 0.0_dp              !< last overlap and peak covered
-      real(dp) :: max_unload_error = 0.0_dp       !< max |dP|/P_load(peak) at the checks
-      real(dp), allocatable :: s(:)               !< (n_s) unloading coordinate, 0 .. 1
-      real(dp), allocatable :: peak(:)            !< (n_peak) delta_max nodes, ascending
-      real(dp), allocatable :: ratio(:, :)        !< (n_s, n_peak) P_unload/P_load(peak)
-      real(dp), allocatable :: dratio(:, :)       !< (n_s, n_peak) d ratio/ds
+   !> The unloading curve of one delta_max node: the gap D(xi) and dD/dxi at nodes xi.
+   type :: unloading_curve
+      real(dp), allocatable :: xi(:), gap(:), slope(:)
+   end type unloading_curve
+
+   !> A hysteresis table of one parameter set (build_hysteresis).
+   type :: hysteresis_table
+      type(contact_params) :: params           !< parameters the table was built for
+      real(dp) :: rel_tol = 0.0_dp             !< requested tolerance
+      real(dp) :: delta_max = 0.0_dp           !< last delta_max node (table range)
+      real(dp) :: max_error = 0.0_dp           !< largest mismatch found at check solves
+      type(force_table) :: loading             !< the loading curve
+      real(dp), allocatable :: m(:)            !< delta_max nodes, increasing
+      type(unloading_curve), allocatable :: curves(:)  !< one per delta_max node
    end type hysteresis_table
-
-   integer, parameter :: max_rounds = 40, max_s = 400, max_peaks = 400
 
 contains
 
-   !> Build the EP-GW (or any model's) hysteresis table over [delta_min, delta_max] to
-   !> rel_tol: the loading table as build_table (same cut-off rule and errors), unloading
-   !> curves from load_history/solve_unload at adaptively placed peaks and unloading
-   !> coordinates, checked by solves midway between nodes in s and in delta_max. The
-   !> solver runs with one thread inside an OpenMP loop over peaks.
+   !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
+   !> (relative to the force at the turning point). Errors: invalid params or range,
+   !> solves that fail (egw_not_converged), node limits reached.
    subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: delta_min            !< smallest overlap (separation < 0)
-      real(dp), intent(in) :: delta_max            !< largest overlap and history
-      real(dp), intent(in) :: rel_tol              !< interpolation tolerance, (0, 0.1]
-      type(hysteresis_table), intent(inout) :: table  !< untouched on error
+      real(dp), intent(in) :: delta_min      !< smallest overlap of interest (< 0: separation)
+      real(dp), intent(in) :: delta_max      !< largest overlap (and delta_max) tabulated
+      real(dp), intent(in) :: rel_tol        !< tolerance, in [1e-8, 0.1]
+      type(hysteresis_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
-      type(force_table) :: loading
-      type(solver_options) :: opts
+      type(unloading_curve), allocatable :: curves(:), merged(:), mid_curves(:)
+      real(dp), allocatable :: m(:), m_new(:)
+      real(dp) :: err_mid
+      integer, allocatable :: idx(:)
+      integer :: j, n, k, pass, i
+      logical, allocatable :: split(:), checked(:), checked_new(:)
 
-      call build_table(params, options, delta_min, delta_max, rel_tol, loading, error)
+      call validate_params(params, error)
       if (allocated(error)) return
-      opts = options
-      opts%n_threads = 1
-      opts%rel_tol = min(options%rel_tol, rel_tol/10)
-      call build_hysteresis_with(loading, solved_ratios, table, error)
-   contains
-      subroutine solved_ratios(peak, s, r, drds, error)
-         real(dp), intent(in) :: peak, s(:)
-         real(dp), intent(out) :: r(:), drds(:)
-         type(egw_error), allocatable, intent(out) :: error
-         type(loading_history) :: history
-         type(solve_result) :: res, top
-         real(dp) :: span
-         integer :: i
-         call load_history(params, opts, peak, history, top, error)
-         if (allocated(error)) return
-         span = peak - loading%cutoff
-         do i = 1, size(s)
-            if (s(i) >= 1.0_dp) then
-               res = top
-            else
-               call solve_unload(history, loading%cutoff + s(i)*span, res, error)
-               if (allocated(error)) return
-            end if
-            r(i) = 0.0_dp
-            drds(i) = 0.0_dp
-            if (top%force > 0.0_dp) then
-               r(i) = res%force/top%force
-               drds(i) = res%stiffness*span/top%force
-            end if
-         end do
-      end subroutine solved_ratios
-   end subroutine build_hysteresis
-
-   !> The adaptive build on a given loading table with unloading ratios from sampler
-   !> (build_hysteresis passes the solver; tests pass an analytic family). rel_tol is
-   !> the loading table's.
-   subroutine build_hysteresis_with(loading, sampler, table, error)
-      type(force_table), intent(in) :: loading
-      procedure(hysteresis_sampler) :: sampler
-      type(hysteresis_table), intent(inout) :: table   !< untouched on error
-      type(egw_error), allocatable, intent(out) :: error
-      real(dp), allocatable :: s(:), peak(:), r(:, :), dr(:, :), sm(:), rm(:, :), drm(:, :)
-      real(dp), allocatable :: pm(:), rp(:, :), drp(:, :)
-      logical, allocatable :: split(:)
-      real(dp) :: tol, lo, err, max_err, ri, di, w
-      integer :: round, i, j, n_s, n_p
-      type(hysteresis_table) :: t
-
-      tol = 0.5_dp*loading%rel_tol
-      lo = loading%cutoff
-      ! initial peaks: the loading table's nodes above the cut-off (they follow the force)
-      peak = loading%delta(2:)
-      s = [(real(i, dp)/8, i=0, 8)]
-      call sample_grid(sampler, peak, s, r, dr, error)
+      if (.not. (rel_tol >= 1.0e-8_dp .and. rel_tol <= 0.1_dp)) then
+         call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
+            & ": must lie in [1e-8, 0.1]")
+         return
+      end if
+      if (ieee_is_nan(delta_min) .or. .not. (delta_max > delta_min .and. &
+         & delta_max < huge(1.0_dp))) then
+         call fatal_error(error, egw_invalid_argument, "delta_min, delta_max = "// &
+            & format_real(delta_min)//", "//format_real(delta_max)// &
+            & ": need finite delta_min < delta_max")
+         return
+      end if
+      call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, error)
       if (allocated(error)) return
-      max_err = 0.0_dp
-
-      do round = 1, max_rounds
-         n_s = size(s)
-         n_p = size(peak)
-         if (round == max_rounds .or. n_s > max_s .or. n_p > max_peaks) then
-            call fatal_error(error, egw_not_converged, "rel_tol = "// &
-               & format_real(loading%rel_tol)//": hysteresis table did not converge "// &
-               & "within the node limit")
-            return
-         end if
-         ! 1. unloading coordinate: midpoints of every s interval at every peak
-         sm = 0.5_dp*(s(1:n_s - 1) + s(2:n_s))
-         call sample_grid(sampler, peak, sm, rm, drm, error)
-         if (allocated(error)) return
-         allocate (split(n_s - 1))
+      table%params = params
+      table%rel_tol = rel_tol
+      table%delta_max = delta_max
+      ! delta_max grid: from the loading cut-off (nothing to unload below) to delta_max
+      n = 9
+      allocate (m(n))
+      m = table%loading%cutoff + (delta_max - table%loading%cutoff)*[(real(j, dp), j = 0, n - 1)] &
+         & /real(n - 1, dp)
+      allocate (curves(n))
+      call build_curves(table, options, m, curves, error)
+      if (allocated(error)) return
+      ! refine the delta_max grid where a curve at the midpoint differs from the
+      ! interpolation of its neighbours (intervals already checked are not checked again)
+      allocate (checked(n - 1))
+      checked = .false.
+      do pass = 1, 20
+         ! the midpoint curves of the unchecked intervals, built in parallel
+         idx = pack([(j, j = 1, size(m) - 1)], .not. checked)
+         allocate (split(size(m) - 1), mid_curves(size(idx)))
          split = .false.
-         do j = 1, n_p
-            do i = 1, n_s - 1
-               call hermite(s(i), s(i + 1), r(i, j), r(i + 1, j), dr(i, j), dr(i + 1, j), &
-                  & sm(i), ri, di)
-               err = abs(ri - rm(i, j))
-               max_err = max(max_err, err)
-               split(i) = split(i) .or. err > tol
-            end do
-         end do
-         if (any(split)) then
-            call insert_s(s, r, dr, sm, rm, drm, split)
-            deallocate (split)
-            cycle
-         end if
-         deallocate (split)
-         ! 2. peaks: a column midway between neighbouring peaks, against the linear
-         !    combination of its neighbours at the s nodes and the s midpoints
-         pm = 0.5_dp*(peak(1:n_p - 1) + peak(2:n_p))
-         call sample_grid(sampler, pm, s, rp, drp, error)
+         call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), mid_curves, error)
          if (allocated(error)) return
-         allocate (split(n_p - 1))
-         split = .false.
-         do j = 1, n_p - 1
-            w = 0.5_dp
-            do i = 1, n_s
-               err = abs((1 - w)*r(i, j) + w*r(i, j + 1) - rp(i, j))
-               max_err = max(max_err, err)
-               split(j) = split(j) .or. err > tol
-            end do
+         do i = 1, size(idx)
+            j = idx(i)
+            err_mid = curve_mismatch(table, curves(j), curves(j + 1), m(j), m(j + 1), &
+               & mid_curves(i), 0.5_dp*(m(j) + m(j + 1)))
+            split(j) = err_mid > rel_tol
+            if (.not. split(j)) table%max_error = max(table%max_error, err_mid)
          end do
          if (.not. any(split)) exit
-         call insert_peaks(peak, r, dr, pm, rp, drp, split)
-         deallocate (split)
+         if (size(m) + count(split) > max_m_nodes) then
+            call fatal_error(error, egw_not_converged, "hysteresis table: more than "// &
+               & format_real(real(max_m_nodes, dp))//" delta_max nodes needed for rel_tol = " &
+               & //format_real(rel_tol))
+            return
+         end if
+         allocate (m_new(size(m) + count(split)), merged(size(m) + count(split)), &
+            & checked_new(size(m) + count(split) - 1))
+         k = 0
+         do j = 1, size(m)
+            k = k + 1
+            m_new(k) = m(j)
+            call move_curve(curves(j), merged(k))
+            if (j < size(m)) then
+               if (split(j)) then
+                  checked_new(k) = .false.
+                  k = k + 1
+                  m_new(k) = 0.5_dp*(m(j) + m(j + 1))
+                  ! the midpoint's curve was built for the check: it becomes a node
+                  call move_curve(mid_curves(findloc(idx, j, dim=1)), merged(k))
+                  checked_new(k) = .false.
+               else
+                  checked_new(k) = .true.
+               end if
+            end if
+         end do
+         call move_alloc(m_new, m)
+         call move_alloc(merged, curves)
+         call move_alloc(checked_new, checked)
+         deallocate (split, mid_curves)
       end do
-      t%loading = loading
-      t%rel_tol = loading%rel_tol
-      t%cutoff = lo
-      t%delta_max = loading%delta_max
-      t%max_unload_error = max_err
-      call move_alloc(s, t%s)
-      call move_alloc(peak, t%peak)
-      call move_alloc(r, t%ratio)
-      call move_alloc(dr, t%dratio)
-      table = t
-   end subroutine build_hysteresis_with
+      call move_alloc(m, table%m)
+      call move_alloc(curves, table%curves)
+   end subroutine build_hysteresis
 
-   !> Ratios at every (s, peak) pair; OpenMP over peaks.
-   subroutine sample_grid(sampler, peak, s, r, dr, error)
-      procedure(hysteresis_sampler) :: sampler
-      real(dp), intent(in) :: peak(:), s(:)
-      real(dp), allocatable, intent(out) :: r(:, :), dr(:, :)
+   !> Force [force] and stiffness dP/ddelta [force/length] at overlap delta for a contact
+   !> whose history is delta_max_state (the largest overlap so far; -huge(1.0) for a new
+   !> contact), which is updated to max(state, delta). Loading (delta >= state) follows the
+   !> loading table; unloading and reloading below the state the unloading curve of the
+   !> state. A state above the table's delta_max uses the last curve and returns
+   !> egw_out_of_range (values written). NaN delta: egw_invalid_argument, nothing changed.
+   subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(inout) :: delta_max_state
+      real(dp), intent(out) :: force, stiffness
+      integer, intent(out) :: stat
+      real(dp) :: f_load, k_load, gap, slope, w, g1, s1, g2, s2, m
+      integer :: j
+      stat = 0
+      if (ieee_is_nan(delta)) then
+         stat = egw_invalid_argument
+         force = 0.0_dp
+         stiffness = 0.0_dp
+         return
+      end if
+      call table_eval(table%loading, delta, f_load, k_load)
+      if (.not. delta < delta_max_state) then
+         delta_max_state = delta
+         force = f_load
+         stiffness = k_load
+         if (delta > table%delta_max) stat = egw_out_of_range
+         return
+      end if
+      m = delta_max_state
+      if (m >= table%m(size(table%m))) then
+         j = size(table%m) - 1
+         w = 1.0_dp
+         if (m > table%delta_max) stat = egw_out_of_range
+      else if (m <= table%m(1)) then
+         j = 1
+         w = 0.0_dp
+      else
+         j = find_node(table%m, m)
+         w = (m - table%m(j))/(table%m(j + 1) - table%m(j))
+      end if
+      call curve_eval(table%curves(j), m - delta, g1, s1)
+      call curve_eval(table%curves(j + 1), m - delta, g2, s2)
+      gap = (1.0_dp - w)*g1 + w*g2
+      slope = (1.0_dp - w)*s1 + w*s2
+      force = f_load - gap
+      stiffness = k_load + slope
+      if (force <= 0.0_dp) then
+         force = 0.0_dp
+         stiffness = 0.0_dp
+      end if
+   end subroutine hysteresis_eval
+
+   ! ---------------------------------------------------------------------------------------
+
+   !> The unloading curves of the delta_max values m(:), in parallel (OpenMP; every curve
+   !> is independent: its own loading history and solves); the first error wins.
+   subroutine build_curves(table, options, m, curves, error)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(inout) :: curves(:)
       type(egw_error), allocatable, intent(out) :: error
-      type(egw_error), allocatable :: err_j
-      integer :: j, bad
-      allocate (r(size(s), size(peak)), dr(size(s), size(peak)))
-      bad = 0
-      !$omp parallel do schedule(dynamic) private(err_j) reduction(max:bad)
-      do j = 1, size(peak)
-         call sampler(peak(j), s, r(:, j), dr(:, j), err_j)
-         if (allocated(err_j)) bad = max(bad, j)
+      type(solver_options) :: serial
+      real(dp) :: worst(size(m))
+      integer :: stats(size(m)), j
+      character(len=256) :: messages(size(m))
+      serial = options
+      serial%n_threads = 1  ! the parallelism is over the curves
+      stats = 0
+      worst = 0.0_dp
+      !$omp parallel do schedule(dynamic) default(shared) private(j)
+      do j = 1, size(m)
+         call one_curve(j)
       end do
       !$omp end parallel do
-      if (bad > 0) call sampler(peak(bad), s, r(:, bad), dr(:, bad), error)
-   end subroutine sample_grid
-
-   !> Insert the midpoints sm(i) (rows rm, drm) where split(i).
-   pure subroutine insert_s(s, r, dr, sm, rm, drm, split)
-      real(dp), allocatable, intent(inout) :: s(:), r(:, :), dr(:, :)
-      real(dp), intent(in) :: sm(:), rm(:, :), drm(:, :)
-      logical, intent(in) :: split(:)
-      real(dp), allocatable :: s2(:), r2(:, :), d2(:, :)
-      integer :: i, k
-      k = size(s) + count(split)
-      allocate (s2(k), r2(k, size(r, 2)), d2(k, size(r, 2)))
-      k = 0
-      do i = 1, size(s)
-         k = k + 1
-         s2(k) = s(i)
-         r2(k, :) = r(i, :)
-         d2(k, :) = dr(i, :)
-         if (i < size(s)) then
-            if (split(i)) then
-               k = k + 1
-               s2(k) = sm(i)
-               r2(k, :) = rm(i, :)
-               d2(k, :) = drm(i, :)
-            end if
+      do j = 1, size(m)
+         if (stats(j) /= 0) then
+            call fatal_error(error, stats(j), trim(messages(j)))
+            return
          end if
       end do
-      call move_alloc(s2, s)
-      call move_alloc(r2, r)
-      call move_alloc(d2, dr)
-   end subroutine insert_s
-
-   !> Insert the middle peaks pm(j) (columns rp, drp) where split(j).
-   pure subroutine insert_peaks(peak, r, dr, pm, rp, drp, split)
-      real(dp), allocatable, intent(inout) :: peak(:), r(:, :), dr(:, :)
-      real(dp), intent(in) :: pm(:), rp(:, :), drp(:, :)
-      logical, intent(in) :: split(:)
-      real(dp), allocatable :: p2(:), r2(:, :), d2(:, :)
-      integer :: j, k
-      k = size(peak) + count(split)
-      allocate (p2(k), r2(size(r, 1), k), d2(size(r, 1), k))
-      k = 0
-      do j = 1, size(peak)
-         k = k + 1
-         p2(k) = peak(j)
-         r2(:, k) = r(:, j)
-         d2(:, k) = dr(:, j)
-         if (j < size(peak)) then
-            if (split(j)) then
-               k = k + 1
-               p2(k) = pm(j)
-               r2(:, k) = rp(:, j)
-               d2(:, k) = drp(:, j)
-            end if
+      table%max_error = max(table%max_error, maxval(worst))
+   contains
+      subroutine one_curve(j)
+         integer, intent(in) :: j
+         type(egw_error), allocatable :: err
+         call build_curve(table, serial, m(j), curves(j), worst(j), err)
+         if (allocated(err)) then
+            stats(j) = err%stat
+            messages(j) = err%message
          end if
-      end do
-      call move_alloc(p2, peak)
-      call move_alloc(r2, r)
-      call move_alloc(d2, dr)
-   end subroutine insert_peaks
+      end subroutine one_curve
+   end subroutine build_curves
 
-   !> Cubic Hermite value and slope at x in [xa, xb].
-   pure subroutine hermite(xa, xb, fa, fb, da, db, x, f, d)
-      real(dp), intent(in) :: xa, xb, fa, fb, da, db, x
-      real(dp), intent(out) :: f, d
-      real(dp) :: h, t, h00, h10, h01, h11
-      h = xb - xa
-      t = (x - xa)/h
+   !> The unloading curve of delta_max = m: xi nodes from 0 to m - cutoff, bisected until the
+   !> Hermite gap agrees with the solves at every midpoint to rel_tol P_load(m).
+   subroutine build_curve(table, options, m, curve, worst, error)
+      type(hysteresis_table), intent(in) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: m
+      type(unloading_curve), intent(out) :: curve
+      real(dp), intent(out) :: worst
+      type(egw_error), allocatable, intent(out) :: error
+      type(loading_history) :: hist
+      type(solve_result) :: res
+      real(dp) :: xi(max_xi_nodes), gap(max_xi_nodes), slope(max_xi_nodes), scale, span, &
+         & g_mid, s_mid, g_int, s_int, x_mid
+      integer :: n, i, k
+      logical :: refined
+      type(unloading_curve) :: probe
+      worst = 0.0_dp
+      span = m - table%loading%cutoff
+      call load_history(table%params, options, m, hist, res, error)
+      if (allocated(error)) return
+      scale = max(res%force, table%loading%reference_force*table%rel_tol)
+      n = 5
+      xi(1:n) = span*[0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
+      if (.not. span > 0.0_dp) then
+         allocate (curve%xi(1), curve%gap(1), curve%slope(1))
+         curve%xi = 0.0_dp
+         curve%gap = 0.0_dp
+         curve%slope = 0.0_dp
+         return
+      end if
+      do i = 1, n
+         call gap_at(xi(i), gap(i), slope(i))
+         if (allocated(error)) return
+      end do
+      do
+         refined = .false.
+         i = 1
+         do while (i < n)
+            x_mid = 0.5_dp*(xi(i) + xi(i + 1))
+            call gap_at(x_mid, g_mid, s_mid)
+            if (allocated(error)) return
+            probe%xi = xi(i:i + 1)
+            probe%gap = gap(i:i + 1)
+            probe%slope = slope(i:i + 1)
+            call curve_eval(probe, x_mid, g_int, s_int)
+            if (abs(g_int - g_mid) > table%rel_tol*scale) then
+               if (n == max_xi_nodes) then
+                  call fatal_error(error, egw_not_converged, "hysteresis table: an unloading"// &
+                     & " curve needs more than 400 nodes at delta_max = "//format_real(m))
+                  return
+               end if
+               do k = n, i + 1, -1
+                  xi(k + 1) = xi(k)
+                  gap(k + 1) = gap(k)
+                  slope(k + 1) = slope(k)
+               end do
+               xi(i + 1) = x_mid
+               gap(i + 1) = g_mid
+               slope(i + 1) = s_mid
+               n = n + 1
+               refined = .true.
+            else
+               worst = max(worst, abs(g_int - g_mid)/scale)
+            end if
+            i = i + 1
+         end do
+         if (.not. refined) exit
+      end do
+      curve%xi = xi(1:n)
+      curve%gap = gap(1:n)
+      curve%slope = slope(1:n)
+
+   contains
+
+      !> D(xi) = P_load(table) - P_unload(solve) and dD/dxi = k_unload - k_load at delta = m - xi
+      subroutine gap_at(x, g, s)
+         real(dp), intent(in) :: x
+         real(dp), intent(out) :: g, s
+         real(dp) :: f_load, k_load
+         g = 0.0_dp
+         s = 0.0_dp
+         if (.not. x > 0.0_dp) return
+         call table_eval(table%loading, m - x, f_load, k_load)
+         call solve_unload(hist, m - x, res, error)
+         if (allocated(error)) return
+         g = f_load - res%force
+         s = res%stiffness - k_load
+      end subroutine gap_at
+
+   end subroutine build_curve
+
+   !> Largest |D_interp - D_mid| at three xi of the midpoint curve, relative to its scale
+   !> (the loading force at the midpoint's turning point).
+   function curve_mismatch(table, c1, c2, m1, m2, mid, m_mid) result(err)
+      type(hysteresis_table), intent(in) :: table
+      type(unloading_curve), intent(in) :: c1, c2, mid
+      real(dp), intent(in) :: m1, m2, m_mid
+      real(dp), parameter :: probe_xi(3) = [0.05_dp, 0.3_dp, 0.7_dp]
+      real(dp) :: err, x, g1, s1, g2, s2, gm, sm, w, f, k, scale
+      integer :: i
+      call table_eval(table%loading, m_mid, f, k)
+      scale = max(f, table%loading%reference_force*table%rel_tol)
+      w = (m_mid - m1)/(m2 - m1)
+      err = 0.0_dp
+      do i = 1, 3
+         x = (m_mid - table%loading%cutoff)*probe_xi(i)
+         call curve_eval(c1, x, g1, s1)
+         call curve_eval(c2, x, g2, s2)
+         call curve_eval(mid, x, gm, sm)
+         err = max(err, abs((1.0_dp - w)*g1 + w*g2 - gm)/scale)
+      end do
+   end function curve_mismatch
+
+   !> Cubic Hermite gap and its xi-derivative at xi; 0 outside [0, last node].
+   pure subroutine curve_eval(curve, xi, gap, slope)
+      type(unloading_curve), intent(in) :: curve
+      real(dp), intent(in) :: xi
+      real(dp), intent(out) :: gap, slope
+      real(dp) :: h, t, h00, h10, h01, h11, d00, d10, d01, d11
+      integer :: i, n
+      n = size(curve%xi)
+      gap = 0.0_dp
+      slope = 0.0_dp
+      if (n < 2 .or. .not. xi > 0.0_dp .or. xi > curve%xi(n)) return
+      i = find_node(curve%xi, xi)
+      h = curve%xi(i + 1) - curve%xi(i)
+      t = (xi - curve%xi(i))/h
       h00 = (1 + 2*t)*(1 - t)**2
       h10 = t*(1 - t)**2
       h01 = t*t*(3 - 2*t)
       h11 = t*t*(t - 1)
-      f = h00*fa + h10*h*da + h01*fb + h11*h*db
-      d = (6*t*t - 6*t)*(fa - fb)/h + (3*t*t - 4*t + 1)*da + (3*t*t - 2*t)*db
-   end subroutine hermite
+      gap = h00*curve%gap(i) + h10*h*curve%slope(i) + h01*curve%gap(i + 1) &
+         & + h11*h*curve%slope(i + 1)
+      d00 = 6*t*(t - 1)/h
+      d10 = (1 - t)*(1 - 3*t)
+      d01 = -d00
+      d11 = t*(3*t - 2)
+      slope = d00*curve%gap(i) + d10*curve%slope(i) + d01*curve%gap(i + 1) &
+         & + d11*curve%slope(i + 1)
+   end subroutine curve_eval
 
-   !> Index i with x(i) <= v < x(i+1), clamped to 1 .. size(x) - 1 (bisection, no
-   !> allocation).
-   pure integer function interval(x, v) result(i)
+   !> i with x(i) <= v < x(i+1) (x increasing, x(1) <= v < x(n)), by bisection.
+   pure integer function find_node(x, v) result(i)
       real(dp), intent(in) :: x(:), v
       integer :: lo, hi, mid
       lo = 1
@@ -298,64 +397,14 @@ contains
          end if
       end do
       i = lo
-   end function interval
+   end function find_node
 
-   !> Force and stiffness at overlap delta with the history state = the largest overlap
-   !> so far (-huge or -inf for a new contact); state <- max(state, delta). delta >= the
-   !> old state: the loading curve; below it: the unloading curve of peak = state (0
-   !> below the cut-off, and where it has fallen to rel_tol*P_ref). Above the table's
-   !> delta_max the loading curve continues linearly and the last peak's ratios are used
-   !> (the C layer reports EGW_OUT_OF_RANGE). No allocation, read-only table.
-   pure subroutine hysteresis_eval(table, delta, state, force, stiffness)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: delta                !< overlap (> 0), separation (< 0)
-      real(dp), intent(inout) :: state             !< largest overlap so far
-      real(dp), intent(out) :: force              !< contact force
-      real(dp), intent(out) :: stiffness          !< dP/d(delta) at fixed history
-      real(dp) :: s, span, w, ra, rb, da, db, r, dr, p_top, k_top
-      integer :: i, j, np
-
-      if (.not. (delta < state)) then
-         state = delta
-         call table_eval(table%loading, delta, force, stiffness)
-         return
-      end if
-      force = 0.0_dp
-      stiffness = 0.0_dp
-      if (state <= table%cutoff .or. delta <= table%cutoff) return
-      span = state - table%cutoff
-      s = (delta - table%cutoff)/span
-      np = size(table%peak)
-      i = interval(table%s, s)
-      if (state <= table%peak(1) .or. np == 1) then
-         j = 1
-         w = 0.0_dp
-      else if (state >= table%peak(np)) then
-         j = np - 1
-         w = 1.0_dp
-      else
-         j = interval(table%peak, state)
-         w = (state - table%peak(j))/(table%peak(j + 1) - table%peak(j))
-      end if
-      call hermite(table%s(i), table%s(i + 1), table%ratio(i, j), table%ratio(i + 1, j), &
-         & table%dratio(i, j), table%dratio(i + 1, j), s, ra, da)
-      if (w > 0.0_dp) then
-         call hermite(table%s(i), table%s(i + 1), table%ratio(i, j + 1), &
-            & table%ratio(i + 1, j + 1), table%dratio(i, j + 1), table%dratio(i + 1, j + 1), &
-            & s, rb, db)
-         r = (1 - w)*ra + w*rb
-         dr = (1 - w)*da + w*db
-      else
-         r = ra
-         dr = da
-      end if
-      call table_eval(table%loading, state, p_top, k_top)
-      force = r*p_top
-      if (force <= table%rel_tol*table%loading%reference_force) then
-         force = 0.0_dp
-         return
-      end if
-      stiffness = max(0.0_dp, dr*p_top/span)
-   end subroutine hysteresis_eval
+   pure subroutine move_curve(from, to)
+      type(unloading_curve), intent(inout) :: from
+      type(unloading_curve), intent(out) :: to
+      call move_alloc(from%xi, to%xi)
+      call move_alloc(from%gap, to%gap)
+      call move_alloc(from%slope, to%slope)
+   end subroutine move_curve
 
 end module egw_hysteresis
