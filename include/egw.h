@@ -518,43 +518,6 @@ int egw_scene_choose(const egw_scene *s, const egw_options *o, egw_model_choice 
 int egw_scene_build(const egw_scene *s, const egw_options *o, egw_model_choice *choice,
                     egw_table *table, egw_universal *universal);
 
-/* ------------------------------------------------------------------------
- * Hysteresis tables (EP-GW loading, unloading and reloading) for DEM
- * ------------------------------------------------------------------------ */
-
-typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
-
-/* Build the hysteresis table of p over overlaps [delta_min, delta_max] [length] (delta < 0:
- * separation) and histories (largest overlaps) up to delta_max: the loading curve as
- * egw_table_build (same cut-off rule: force 0 below the cut-off delta_c), and the unloading
- * curves P(delta; delta_max_state) of egw_solve_unload at adaptively placed histories,
- * interpolated in s = (delta - delta_c)/(state - delta_c) (cubic Hermite with the solver's
- * stiffness) and linearly in the state, until solves midway between nodes in both
- * directions agree to rel_tol * P_load(state) (the scale of the curve the history selects;
- * rel_tol/2 per direction). OpenMP over histories; o may be NULL (defaults). Statuses:
- * EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (delta_max <= delta_min, rel_tol outside
- * [1e-10, 0.1], not finite), EGW_NOT_CONVERGED, EGW_NULL_POINTER (out). *out receives a handle
- * only on success; release it with egw_hysteresis_free. */
-int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta_min,
-                         double delta_max, double rel_tol, egw_hysteresis *out);
-
-/* Force [force] and stiffness dP/ddelta [force/length] at overlap delta [length] for a
- * contact whose history is *delta_max_state [length], the largest overlap so far (a new
- * contact starts from -INFINITY, or -HUGE_VAL: never loaded). *delta_max_state becomes
- * max(*delta_max_state, delta). delta >= the old state: the loading curve (as
- * egw_table_eval); below it: the unloading curve of that state, also on reloading; 0 below
- * the cut-off and where the unloading force has fallen to rel_tol * P_ref. The force is
- * continuous at delta = state. No allocation and no lock: h is only read, the caller owns
- * the state (one double per contact), safe in OpenMP loops. force and stiffness may be
- * NULL. Statuses: EGW_OUT_OF_RANGE when the state exceeds the table's delta_max (values
- * written: loading continued linearly, the last history's unloading shape),
- * EGW_INVALID_ARGUMENT (delta or state NaN; nothing written), EGW_NULL_POINTER. */
-int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
-                        double *force, double *stiffness);
-
-/* Release a hysteresis table; sets *h to NULL. NULL or *h == NULL is fine. */
-void egw_hysteresis_free(egw_hysteresis *h);
-
 #ifdef __cplusplus
 }
 #endif
