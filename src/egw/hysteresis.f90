@@ -388,13 +388,12 @@ contains
       integer :: lo, hi, mid
       lo = 1
       hi = size(x)
+      ! branch-free halving (conditional moves): the history and the overlap of DEM
+      ! contacts are unpredictable, and mispredicted branches dominated the evaluation
       do while (hi - lo > 1)
          mid = (lo + hi)/2
-         if (x(mid) <= v) then
-            lo = mid
-         else
-            hi = mid
-         end if
+         lo = merge(mid, lo, x(mid) <= v)
+         hi = merge(hi, mid, x(mid) <= v)
       end do
       i = lo
    end function find_node
