@@ -18,6 +18,7 @@
 !>                 5), universal 1e-4 build -> out/bench/speedup.csv, universal_speedup.csv
 !>   --universal-tol X  only the universal table at rel_tol X (2 threads)
 !>                 -> out/bench/universal_tol.csv
+!>   --hysteresis  EP-GW hysteresis table: build time (1e-3, 1e-4) and eval / Hertz force
 !>   --quick       fewer cases and shorter timings (a smoke run)
 !>   --out DIR     write the CSVs to DIR/ (default out/bench/)
 !>   --update-docs write the CSVs to doc/bench/, replacing the committed results that
@@ -32,6 +33,7 @@ program egw_bench
    use bench_fn, only: run_fn
    use bench_solver, only: run_solver, run_assembly, run_peer_cases
    use bench_tables, only: run_tables, run_universal, run_build_speedup
+   use bench_hysteresis, only: run_hysteresis
    use bench_unloading, only: run_unloading
    implicit none
 
@@ -41,7 +43,7 @@ program egw_bench
    real(dp) :: t_erfc, t_hertz, t_f32, t_ellipk, t_pg, t_pg_zmc
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
-   logical :: universal_1thread, any_section, ok, do_speedup, do_unloading
+   logical :: universal_1thread, any_section, ok, do_speedup, do_unloading, do_hysteresis
    real(dp) :: universal_tol
    character(len=512) :: arg, peer_file
    integer :: unit_speedup, unit_csv
@@ -73,6 +75,7 @@ program egw_bench
       call close_csv(unit_csv)
    end if
    if (do_kernels) call run_kernels()
+   if (do_hysteresis) call run_hysteresis()
    if (do_fn) then
       call open_csv("fn.csv", unit_csv)
       call run_fn(unit_csv)
@@ -103,6 +106,7 @@ contains
       integer :: k
       do_kernels = .false.; do_fn = .false.; do_solver = .false.; do_assembly = .false.
       do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
+      do_hysteresis = .false.
       do_unloading = .false.
       universal_tol = 0
       universal_1thread = .false.; peer_file = ""
@@ -120,6 +124,7 @@ contains
          case ("--universal"); do_universal = .true.
          case ("--universal-1thread"); do_universal = .true.; universal_1thread = .true.
          case ("--quick"); quick = .true.
+         case ("--hysteresis"); do_hysteresis = .true.
          case ("--speedup"); do_speedup = .true.
          case ("--unloading"); do_unloading = .true.
          case ("--universal-tol")
@@ -142,7 +147,7 @@ contains
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
-         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_unloading
+         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_hysteresis .or. do_unloading
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
          do_tables = .true.; do_universal = .true.; do_unloading = .true.
