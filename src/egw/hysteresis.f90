@@ -10,7 +10,7 @@
 !> in m at the same xi, and the force is P = max(0, P_load(delta) - P_load(m) g): g = 0 at
 !> xi = 0 for every m, so the force is continuous where unloading starts, and the loading
 !> table is used as it is. Both grids are refined
-!> until solves at the midpoints (xi midpoints of every curve; three xi of the curve of
+!> until solves at the midpoints (xi midpoints of every curve; nine xi of the curve of
 !> every m midpoint) agree with the table to rel_tol of the force at the turning point.
 !> Evaluation allocates nothing and changes only the caller's history.
 module egw_hysteresis
@@ -338,19 +338,20 @@ contains
 
    end subroutine build_curve
 
-   !> Largest |D_interp - D_mid| at three xi of the midpoint curve, relative to its scale
-   !> (the loading force at the midpoint's turning point).
+   !> Largest |g_interp - g_mid| at nine xi across the midpoint curve (gaps relative to the
+   !> turning-point force), denser near the turning point where the gap changes fastest.
    function curve_mismatch(table, c1, c2, m1, m2, mid, m_mid) result(err)
       type(hysteresis_table), intent(in) :: table
       type(unloading_curve), intent(in) :: c1, c2, mid
       real(dp), intent(in) :: m1, m2, m_mid
-      real(dp), parameter :: probe_xi(3) = [0.05_dp, 0.3_dp, 0.7_dp]
+      real(dp), parameter :: probe_xi(9) = [0.01_dp, 0.03_dp, 0.07_dp, 0.15_dp, 0.3_dp, 0.45_dp, &
+         & 0.6_dp, 0.75_dp, 0.9_dp]
       real(dp) :: err, x, g1, s1, g2, s2, gm, sm, w
       integer :: i
       ! (the curves hold gaps relative to the turning-point force: so is the mismatch)
       w = (m_mid - m1)/(m2 - m1)
       err = 0.0_dp
-      do i = 1, 3
+      do i = 1, size(probe_xi)
          x = (m_mid - table%loading%cutoff)*probe_xi(i)
          call curve_eval(c1, x, g1, s1)
          call curve_eval(c2, x, g2, s2)
