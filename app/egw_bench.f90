@@ -11,8 +11,6 @@
 !>   --universal   universal E-GW table (mu 0.1-100, delta/sigma -6..1e3): 1e-4 built with 1
 !>                 and 2 threads (speed-up), 1e-6 with 2 threads -> out/bench/universal.csv
 !>   --unloading   unloading solve vs loading solve at the same overlap (issue 10)
-!>   --hysteresis  hysteresis table build (2 threads) and eval / Hertz force (issue 10)
-!>                                                           -> out/bench/hysteresis.csv
 !>                                                           -> out/bench/unloading.csv
 !>   --universal-1thread  also build the 1e-6 universal table with 1 thread
 !>   --peer FILE   egw side of the peer comparison (tools/bench/peer_greenwood_tripp.py)
@@ -20,6 +18,7 @@
 !>                 5), universal 1e-4 build -> out/bench/speedup.csv, universal_speedup.csv
 !>   --universal-tol X  only the universal table at rel_tol X (2 threads)
 !>                 -> out/bench/universal_tol.csv
+!>   --hysteresis  EP-GW hysteresis table: build time (1e-3, 1e-4) and eval / Hertz force
 !>   --quick       fewer cases and shorter timings (a smoke run)
 !>   --out DIR     write the CSVs to DIR/ (default out/bench/)
 !>   --update-docs write the CSVs to doc/bench/, replacing the committed results that
@@ -34,8 +33,8 @@ program egw_bench
    use bench_fn, only: run_fn
    use bench_solver, only: run_solver, run_assembly, run_peer_cases
    use bench_tables, only: run_tables, run_universal, run_build_speedup
-   use bench_unloading, only: run_unloading
    use bench_hysteresis, only: run_hysteresis
+   use bench_unloading, only: run_unloading
    implicit none
 
    integer, parameter :: n = 4096        ! inputs per sweep (fit in L1/L2 cache)
@@ -76,6 +75,7 @@ program egw_bench
       call close_csv(unit_csv)
    end if
    if (do_kernels) call run_kernels()
+   if (do_hysteresis) call run_hysteresis()
    if (do_fn) then
       call open_csv("fn.csv", unit_csv)
       call run_fn(unit_csv)
@@ -83,7 +83,6 @@ program egw_bench
    end if
    if (do_solver) call run_solver(quick)
    if (do_unloading) call run_unloading(quick)
-   if (do_hysteresis) call run_hysteresis(quick)
    if (do_assembly .or. do_tables .or. do_universal) then
       ! one speed-up CSV for the sections that measure 1 thread against 2
       call open_csv("speedup.csv", unit_speedup, &
@@ -107,7 +106,8 @@ contains
       integer :: k
       do_kernels = .false.; do_fn = .false.; do_solver = .false.; do_assembly = .false.
       do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
-      do_unloading = .false.; do_hysteresis = .false.
+      do_hysteresis = .false.
+      do_unloading = .false.
       universal_tol = 0
       universal_1thread = .false.; peer_file = ""
       out_dir = "out/bench/"
@@ -124,9 +124,9 @@ contains
          case ("--universal"); do_universal = .true.
          case ("--universal-1thread"); do_universal = .true.; universal_1thread = .true.
          case ("--quick"); quick = .true.
+         case ("--hysteresis"); do_hysteresis = .true.
          case ("--speedup"); do_speedup = .true.
          case ("--unloading"); do_unloading = .true.
-         case ("--hysteresis"); do_hysteresis = .true.
          case ("--universal-tol")
             k = k + 1
             call get_command_argument(k, arg)
@@ -147,12 +147,10 @@ contains
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
-         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_unloading &
-         & .or. do_hysteresis
+         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_hysteresis .or. do_unloading
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
          do_tables = .true.; do_universal = .true.; do_unloading = .true.
-         do_hysteresis = .true.
       end if
    end subroutine parse_arguments
 

@@ -169,7 +169,7 @@ void egw_options_default(egw_options *o);
  * no force is ever returned from a failed solve). */
 int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
 
-/* Unloading (and reloading) after the largest overlap delta_max (EP-GW, DESIGN.md 8):
+/* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
  * delta_max, keeps the separation field d_max(r) of that solve and solves the contact with
  * the rough-flat unloading law p_G(d(r), d_max(r)) (the loading law wherever
@@ -182,7 +182,7 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
 int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, double delta_max,
                      egw_result *res);
 
-/* Coefficient of restitution e of a head-on impact (DESIGN.md 8): effective mass
+/* Coefficient of restitution e of a head-on impact (doc/theory.md 8): effective mass
  * m* = mass (1/m* = 1/m1 + 1/m2, > 0), approach speed velocity (> 0) from far apart;
  * e = sqrt(W_unload/W_load) with W_load = int_{-inf}^{delta_m} P_load ddelta = m* v^2/2
  * (defining the deepest overlap delta_m) and W_unload the same integral of the unloading

@@ -65,7 +65,7 @@ contains
 
    !> At delta_max halfway between table nodes and delta halfway between the xi nodes of
    !> the curves, the table's force against a solve at rel_tol 1e-8 (the build checked the
-   !> xi midpoints of every curve and three xi of every delta_max midpoint): within
+   !> xi midpoints of every curve and nine xi of every delta_max midpoint): within
    !> 2 rel_tol of the force at the turning point (the bilinear combination of two curves
    !> that each meet rel_tol).
    subroutine test_accuracy(error)

@@ -219,7 +219,7 @@ contains
 
    !> Every row of test/data/sphere_unload_reference.csv (tools/reference/
    !> sphere_unload_reference.py: independent Python solver and its own quadrature of the
-   !> DESIGN §8 law; estimated errors <= 1e-11): P_unload within 1e-6 relative (the promise
+   !> doc/theory.md §8 law; estimated errors <= 1e-11): P_unload within 1e-6 relative (the promise
    !> of rel_tol = 1e-6). dP/d(delta) is not what rel_tol controls: its integrand jumps where
    !> the law switches between the loading and the unloading branch (d = d_max), inside
    !> elements, so it converges only like the step squared; held to 1e-3 (observed 2e-4 at
@@ -388,7 +388,7 @@ contains
          & 0.5_dp*0.5_dp*0.1_dp**2, "Hertz work", rel=.true., thr=1.0e-14_dp)
    end subroutine test_e_elastic
 
-   !> Low speed, far apart (delta_m < -11 sigma, DESIGN §5): the sphere is rigid and
+   !> Low speed, far apart (delta_m < -11 sigma, doc/theory.md §5): the sphere is rigid and
    !> P = (4 pi/5) C R sigma**2.5 F_{5/2}(-delta/sigma), so W_load(delta_m) =
    !> (4 pi/5) C R sigma**3.5 F_{7/2}(h_m)/(7/2) in closed form (dF_{7/2}/dh = -(7/2)
    !> F_{5/2}). The turning point must satisfy it: m v**2/2 from the closed form at the

@@ -3,13 +3,14 @@
 !> the caller owns (the largest overlap so far; -huge for a contact that never touched).
 !>
 !> Layout: the loading curve is a 1-D force table (egw_table). Each node m_j of the
-!> delta_max grid carries its unloading curve as the hysteresis gap
-!> D_j(xi) = P_load(m_j - xi) - P_unload(m_j - xi; m_j), xi = m_j - delta >= 0, on cubic
-!> Hermite nodes in xi (slope dD/dxi = k_unload - k_load from the solver's stiffnesses).
-!> Between m nodes D is interpolated linearly in m at the same xi, and the force is
-!> P = max(0, P_load(delta) - D): D = 0 at xi = 0 for every m, so the force is continuous
-!> where unloading starts, and the loading table is used as it is. Both grids are refined
-!> until solves at the midpoints (xi midpoints of every curve; three xi of the curve of
+!> delta_max grid carries its unloading curve as the hysteresis gap relative to the force
+!> at the turning point, g_j(xi) = [P_load(m_j - xi) - P_unload(m_j - xi; m_j)]/P_load(m_j),
+!> xi = m_j - delta >= 0, on cubic Hermite nodes in xi (slopes from the solver's
+!> stiffnesses; the solves run at rel_tol/10). Between m nodes g is interpolated linearly
+!> in m at the same xi, and the force is P = max(0, P_load(delta) - P_load(m) g): g = 0 at
+!> xi = 0 for every m, so the force is continuous where unloading starts, and the loading
+!> table is used as it is. Both grids are refined
+!> until solves at the midpoints (xi midpoints of every curve; nine xi of the curve of
 !> every m midpoint) agree with the table to rel_tol of the force at the turning point.
 !> Evaluation allocates nothing and changes only the caller's history.
 module egw_hysteresis
@@ -158,7 +159,7 @@ contains
       real(dp), intent(inout) :: delta_max_state
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: f_load, k_load, gap, slope, w, g1, s1, g2, s2, m
+      real(dp) :: f_load, k_load, gap, slope, w, g1, s1, g2, s2, m, scale
       integer :: j
       stat = 0
       if (ieee_is_nan(delta)) then
@@ -189,8 +190,9 @@ contains
       end if
       call curve_eval(table%curves(j), m - delta, g1, s1)
       call curve_eval(table%curves(j + 1), m - delta, g2, s2)
-      gap = (1.0_dp - w)*g1 + w*g2
-      slope = (1.0_dp - w)*s1 + w*s2
+      scale = turning_force(table, m)
+      gap = scale*((1.0_dp - w)*g1 + w*g2)
+      slope = scale*((1.0_dp - w)*s1 + w*s2)
       force = f_load - gap
       stiffness = k_load + slope
       if (force <= 0.0_dp) then
@@ -215,6 +217,8 @@ contains
       character(len=256) :: messages(size(m))
       serial = options
       serial%n_threads = 1  ! the parallelism is over the curves
+      ! the unloading solves run a decade finer than the table's tolerance
+      serial%rel_tol = table%rel_tol/10.0_dp
       stats = 0
       worst = 0.0_dp
       !$omp parallel do schedule(dynamic) default(shared) private(j)
@@ -261,7 +265,7 @@ contains
       span = m - table%loading%cutoff
       call load_history(table%params, options, m, hist, res, error)
       if (allocated(error)) return
-      scale = max(res%force, table%loading%reference_force*table%rel_tol)
+      scale = turning_force(table, m)
       n = 5
       xi(1:n) = span*[0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
       if (.not. span > 0.0_dp) then
@@ -309,9 +313,11 @@ contains
          end do
          if (.not. refined) exit
       end do
+      ! stored relative to the force at the turning point: the gaps of neighbouring
+      ! delta_max then differ smoothly also where forces change by orders of magnitude
       curve%xi = xi(1:n)
-      curve%gap = gap(1:n)
-      curve%slope = slope(1:n)
+      curve%gap = gap(1:n)/scale
+      curve%slope = slope(1:n)/scale
 
    contains
 
@@ -332,27 +338,37 @@ contains
 
    end subroutine build_curve
 
-   !> Largest |D_interp - D_mid| at three xi of the midpoint curve, relative to its scale
-   !> (the loading force at the midpoint's turning point).
+   !> Largest |g_interp - g_mid| at nine xi across the midpoint curve (gaps relative to the
+   !> turning-point force), denser near the turning point where the gap changes fastest.
    function curve_mismatch(table, c1, c2, m1, m2, mid, m_mid) result(err)
       type(hysteresis_table), intent(in) :: table
       type(unloading_curve), intent(in) :: c1, c2, mid
       real(dp), intent(in) :: m1, m2, m_mid
-      real(dp), parameter :: probe_xi(3) = [0.05_dp, 0.3_dp, 0.7_dp]
-      real(dp) :: err, x, g1, s1, g2, s2, gm, sm, w, f, k, scale
+      real(dp), parameter :: probe_xi(9) = [0.01_dp, 0.03_dp, 0.07_dp, 0.15_dp, 0.3_dp, 0.45_dp, &
+         & 0.6_dp, 0.75_dp, 0.9_dp]
+      real(dp) :: err, x, g1, s1, g2, s2, gm, sm, w
       integer :: i
-      call table_eval(table%loading, m_mid, f, k)
-      scale = max(f, table%loading%reference_force*table%rel_tol)
+      ! (the curves hold gaps relative to the turning-point force: so is the mismatch)
       w = (m_mid - m1)/(m2 - m1)
       err = 0.0_dp
-      do i = 1, 3
+      do i = 1, size(probe_xi)
          x = (m_mid - table%loading%cutoff)*probe_xi(i)
          call curve_eval(c1, x, g1, s1)
          call curve_eval(c2, x, g2, s2)
          call curve_eval(mid, x, gm, sm)
-         err = max(err, abs((1.0_dp - w)*g1 + w*g2 - gm)/scale)
+         err = max(err, abs((1.0_dp - w)*g1 + w*g2 - gm))
       end do
    end function curve_mismatch
+
+   !> The force at the turning point delta_max = m from the loading table, floored at the
+   !> cut-off's force (the scale of the stored gaps and of the tolerance).
+   pure real(dp) function turning_force(table, m) result(f)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m
+      real(dp) :: k
+      call table_eval(table%loading, m, f, k)
+      f = max(f, table%loading%reference_force*table%rel_tol)
+   end function turning_force
 
    !> Cubic Hermite gap and its xi-derivative at xi; 0 outside [0, last node].
    pure subroutine curve_eval(curve, xi, gap, slope)

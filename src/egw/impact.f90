@@ -1,5 +1,5 @@
 !> Coefficient of restitution and dissipated energy of a head-on impact of rough spheres
-!> (DESIGN.md §8, issue 10 item 5): effective mass m*, approach speed v from far apart,
+!> (doc/theory.md §8, issue 10 item 5): effective mass m*, approach speed v from far apart,
 !>
 !>   W_load = int_{-inf}^{delta_m} P_load d(delta) = m* v**2/2   (defines delta_m),
 !>   W_unload = int_{-inf}^{delta_m} P_unload(delta; delta_m) d(delta),

@@ -22,7 +22,7 @@
 !> 1 % of the tolerance. Levels of decreasing step, each warm-started from the previous,
 !> until the Richardson estimate from the last two (plus the tail) is below rel_tol/2.
 !>
-!> Unloading (DESIGN §8, issue 10 item 3): a loading_history keeps the separation field
+!> Unloading (doc/theory.md §8, issue 10 item 3): a loading_history keeps the separation field
 !> d_max(r) of the solve at delta_max (its mesh and nodal w_G); an unloading solve at
 !> delta <= delta_max is the same problem with the law p_G = scale Z_u(d/sigma, d_max/sigma)
 !> at fixed d_max (egw_unloading), on the same meshes with the same Newton, error estimate
@@ -318,7 +318,7 @@ contains
    end subroutine move_history
 
    !> Unloading/reloading solve at overlap delta after loading to history%delta_max:
-   !> delta < delta_max solves DESIGN §5 with the unloading law p_G = C sigma**1.5
+   !> delta < delta_max solves doc/theory.md §5 with the unloading law p_G = C sigma**1.5
    !> Z_u(d/sigma, d_max/sigma) (the loading law wherever d(r) < d_max(r)); delta =
    !> delta_max returns the history's loading solve; delta > delta_max is the loading
    !> solve (the curve has left the history: load a new one). Same meshes, Newton, error
@@ -931,7 +931,7 @@ contains
       out = [edge(0:k - 1), r, edge(k:n)]
    end function with_edge
 
-   !> Dimensionless unloading law Z_u(h, h_min) and dZ_u/dh at fixed h_min (DESIGN §8).
+   !> Dimensionless unloading law Z_u(h, h_min) and dZ_u/dh at fixed h_min (doc/theory.md §8).
    elemental subroutine unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
       real(dp), intent(in) :: h, h_min, psi, hardness_coeff, plastic_ratio
       real(dp), intent(out) :: p, dpdh
