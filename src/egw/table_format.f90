@@ -822,6 +822,9 @@ contains
                & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
                & fmt(t%params%mu)//", psi = "//fmt(t%params%psi)//", K = "// &
                & fmt(t%params%hardness_coeff)//", rho_p = "//fmt(t%params%plastic_ratio)
+            if (t%params%model == model_epgw) write (unit, '(a)') "# EP-GW: the LOADING "// &
+               & "curve only (pair_style table is a function of r alone: no unloading "// &
+               & "hysteresis, restitution 1; egw_hysteresis_* carries the dissipation)"
             write (unit, '(a)') "# r = R1 + R2 - delta with "//note
             write (unit, '(a)') "# force = -dE/dr = P(delta) >= 0 (repulsive), zero for r > "// &
                & fmt(rhi)//" (pair cutoff); energy = int of P from the cut-off"
@@ -928,6 +931,8 @@ contains
          & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
          & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
          & fmt(t%params%mu)
+      if (t%params%model == model_epgw) write (unit, '(a)') "** EP-GW: the LOADING curve "// &
+         & "only (a pressure-overclosure curve has no history: no unloading hysteresis)"
       if (shifted) then
          write (unit, '(a)') "** node-to-surface contact: FORCE per node against "// &
             & "overclosure = delta - delta_c (shifted: overlap delta = overclosure + "// &
