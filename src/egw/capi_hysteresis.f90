@@ -13,7 +13,7 @@ module egw_capi_hysteresis
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_capi, only: settle, require, read_params, read_options, put, from_params, &
-      & egw_params_c
+      & egw_params_c, int_str
    implicit none
    private
 
@@ -109,6 +109,54 @@ contains
          stat = settle(error)
       end if
    end function egw_hysteresis_eval
+
+   !> C: egw_hysteresis_eval_array: n independent contacts in one call.
+   function egw_hysteresis_eval_array(hp, n, delta, state, force, stiffness) result(stat) &
+      & bind(C, name="egw_hysteresis_eval_array")
+      type(c_ptr), value, intent(in) :: hp
+      integer(c_int), value, intent(in) :: n
+      real(c_double), intent(in) :: delta(*)
+      real(c_double), intent(inout) :: state(*)
+      type(c_ptr), value, intent(in) :: force, stiffness
+      integer(c_int) :: stat
+      type(hysteresis_table), pointer :: h
+      real(c_double), pointer :: f(:), k(:)
+      type(egw_error), allocatable :: error
+      real(dp) :: fi, ki
+      integer :: i, st, first_out
+      stat = require(hp, "h")
+      if (stat /= egw_ok) return
+      if (n < 0) then
+         call fatal_error(error, egw_invalid_argument, "n = "//int_str(int(n))//": must be >= 0")
+         stat = settle(error)
+         return
+      end if
+      do i = 1, n
+         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i))) then
+            call fatal_error(error, egw_invalid_argument, "delta["//int_str(i - 1)// &
+               & "] or delta_max_state["//int_str(i - 1)//"] = NaN: must be a number")
+            stat = settle(error)
+            return
+         end if
+      end do
+      call c_f_pointer(hp, h)
+      nullify (f, k)
+      if (c_associated(force)) call c_f_pointer(force, f, [n])
+      if (c_associated(stiffness)) call c_f_pointer(stiffness, k, [n])
+      first_out = 0
+      do i = 1, n
+         call hysteresis_eval(h, delta(i), state(i), fi, ki, st)
+         if (associated(f)) f(i) = fi
+         if (associated(k)) k(i) = ki
+         if (st /= egw_ok .and. first_out == 0) first_out = i
+      end do
+      if (first_out > 0) then
+         call fatal_error(error, egw_out_of_range, "delta["//int_str(first_out - 1)// &
+            & "] or its state above the table's delta_max = "//format_real(h%delta_max)// &
+            & " (values extrapolated)")
+         stat = settle(error)
+      end if
+   end function egw_hysteresis_eval_array
 
    !> C: egw_hysteresis_free: release a table; sets *h to NULL (NULL is fine).
    subroutine egw_hysteresis_free(hp) bind(C, name="egw_hysteresis_free")
