@@ -23,7 +23,7 @@ module egw_hysteresis
    use egw_params, only: contact_params, validate_params, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload
-   use egw_table, only: force_table, build_table, table_eval
+   use egw_table, only: force_table, build_table, table_eval, table_progress
    implicit none
    private
 
@@ -77,7 +77,8 @@ contains
    !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
    !> (relative to the force at the turning point). Errors: invalid params or range,
    !> solves that fail (egw_not_converged), node limits reached.
-   subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error)
+   subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error, &
+      & progress)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_min      !< smallest overlap of interest (< 0: separation)
@@ -85,6 +86,9 @@ contains
       real(dp), intent(in) :: rel_tol        !< tolerance, in [1e-8, 0.1]
       type(hysteresis_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
+      !> called with (unloading curves built, built + known pending) from the serial part
+      !> of the build (the loading table's own solves are not counted)
+      procedure(table_progress), optional :: progress
       type(unloading_curve), allocatable :: curves(:)
       real(dp), allocatable :: m(:)
       integer :: j, n
@@ -118,9 +122,10 @@ contains
       m = table%loading%cutoff + (delta_max - table%loading%cutoff)* &
          & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       allocate (curves(n))
+      if (present(progress)) call progress(0, 2*n - 1)
       call build_curves(table, options, m, curves, error)
       if (allocated(error)) return
-      call refine_m(table, options, m, curves, error)
+      call refine_m(table, options, m, curves, error, progress)
       if (allocated(error)) return
       call resample(table, m, curves)
       call hysteresis_prepare(table)
@@ -227,12 +232,13 @@ contains
    !> stencil's curves meets the midpoint's own curve at every node of that curve within
    !> rel_tol. Midpoint curves are kept until their interval is split (then they become
    !> nodes) and rechecked when the stencil changed: only new midpoints cost solves.
-   subroutine refine_m(table, options, m, curves, error)
+   subroutine refine_m(table, options, m, curves, error, progress)
       type(hysteresis_table), intent(inout) :: table
       type(solver_options), intent(in) :: options
       real(dp), allocatable, intent(inout) :: m(:)
       type(unloading_curve), allocatable, intent(inout) :: curves(:)
       type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
       type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
       real(dp), allocatable :: new_m(:), err_mid(:)
       logical, allocatable :: have_mid(:), new_have(:)
@@ -257,6 +263,8 @@ contains
             err_mid(j) = stencil_mismatch(m, curves, j, mids(j))
          end do
          n_split = count(err_mid > table%rel_tol)
+         ! built: the nodes' curves and the kept midpoints'; pending: two per split
+         if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
             table%max_error = max(table%max_error, maxval(err_mid))
             return
