@@ -68,11 +68,11 @@ contains
       end if
    end subroutine build
 
-   !> At delta_max halfway between table nodes and delta halfway between the xi nodes of
-   !> the curves, the table's force against a solve at rel_tol 1e-8 (the build checked the
-   !> xi midpoints of every curve and nine xi of every delta_max midpoint): within
-   !> 2 rel_tol of the force at the turning point (the bilinear combination of two curves
-   !> that each meet rel_tol).
+   !> At delta_max halfway between table nodes and five overlaps across each curve, the
+   !> table's force against a solve at rel_tol 1e-7 (10^4 times finer than the table; the
+   !> unloading solver does not always reach 1e-8 on its finest mesh): within 2 rel_tol of
+   !> the force at the turning point (the build checks the whole table error at the
+   !> midpoint curves' nodes against rel_tol; 2 allows for points between those checks).
    subroutine test_accuracy(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t
@@ -84,7 +84,7 @@ contains
       integer :: j, i, stat
       call build(ep, t, error)
       if (allocated(error)) return
-      fine%rel_tol = 1.0e-8_dp
+      fine%rel_tol = 1.0e-7_dp
       worst = 0.0_dp
       do j = 2, size(t%m) - 1, max(1, (size(t%m) - 2)/4)
          m = 0.5_dp*(t%m(j) + t%m(j + 1))

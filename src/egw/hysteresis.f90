@@ -3,18 +3,22 @@
 !> the caller owns (the largest overlap so far; -huge for a contact that never touched).
 !>
 !> Layout: the loading curve is a 1-D force table (egw_table). Below a turning point
-!> m = delta_max the force is P = P_load(m) r(s, m), with s = (m - delta)/(m - delta_c) in
-!> [0, 1] (delta_c the loading cut-off; force 0 below it) and r the unloading force relative
-!> to the force at the turning point: r(0, m) = 1, so the force is continuous where
-!> unloading starts and the loading table is used as it is. Each node m_j of the delta_max
-!> grid carries r(., m_j) as a cubic Hermite curve in s (slopes from the solver's
-!> stiffnesses, solves at rel_tol/10, s bisected until the curve meets the solves at every
-!> midpoint); between nodes r is the cubic Lagrange combination of four neighbouring curves
-!> at the same s, and the m grid is bisected until the combination meets the midpoint's
-!> curve at all its nodes. Every curve's cubics are then resampled onto the union of the
-!> s nodes (exactly: the union refines every curve's own nodes), so that an evaluation
-!> needs one lookup in s and one in m, served by uniform buckets: no search, no
-!> allocation, only the caller's history changes.
+!> m = delta_max the force is P = P_load(m) r(s, m) with s = (m - delta)/(s_max L(m)) and
+!> L(m) = 1.5 P_load(m)/K_unload(m): for Hertzian unloading L is m minus the residual
+!> overlap, and in the separated tail 1.5 times the force's decay length, so r depends
+!> little on m at fixed s (the edge where the force vanishes stays put) and few delta_max
+!> nodes serve. r(0, m) = 1: the force is continuous where unloading starts and the
+!> loading table is used as it is; the force is 0 below the loading cut-off delta_c.
+!> Each node m_j carries r(., m_j) as a cubic Hermite curve in s (slopes from the solver's
+!> stiffnesses, solves at rel_tol/10, s bisected until value and slope at every midpoint
+!> meet the solves to rel_tol/4); between nodes r and L are cubic Lagrange combinations
+!> of four neighbouring curves, and the m grid is bisected until that combination meets
+!> the midpoint's curve at all its nodes to rel_tol (the table's whole error there).
+!> Every curve's cubics are then resampled onto the union of the s nodes (exactly: the
+!> union refines every curve's own nodes), so that an evaluation needs one lookup in s and
+!> one in m, served by uniform buckets: no search, no allocation, only the caller's
+!> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
+!> retraces the loading table exactly.
 module egw_hysteresis
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
@@ -34,9 +38,12 @@ module egw_hysteresis
    !> Finest bucket level (2**14 buckets): the grids are dyadic, so buckets at the finest
    !> level hold at most one node and the forward scan takes at most one step.
    integer, parameter :: max_bucket_level = 14
+   !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
+   real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
    !> The unloading curve of one delta_max node during the build: r and dr/ds at nodes s.
    type :: unloading_curve
+      real(dp) :: length = 0.0_dp   !< L(m) = 1.5 P_load(m)/K_unload(m)
       real(dp), allocatable :: s(:), ratio(:), slope(:)
    end type unloading_curve
 
@@ -59,6 +66,10 @@ module egw_hysteresis
       !> loading table serves loading and unloading alike (no spurious hysteresis)
       logical :: reversible = .false.
       real(dp), allocatable :: m(:)            !< delta_max nodes, increasing (n_m >= 4)
+      !> L(m_j) = 1.5 P_load(m_j)/K_unload(m_j): the unloading length of a Hertzian
+      !> contact (m - residual overlap), the scale of s
+      real(dp), allocatable :: length(:)
+      real(dp) :: s_max = 0.0_dp               !< s = (m - delta)/(s_max L(m)) lies in [0, 1]
       real(dp), allocatable :: s(:)            !< s nodes of every curve, 0 .. 1 (n_s)
       !> r(s, m_j) at the s nodes and dr/ds there: (n_s, n_m) (the stored table)
       real(dp), allocatable :: ratio(:, :), slope(:, :)
@@ -123,6 +134,11 @@ contains
          & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       allocate (curves(n))
       if (present(progress)) call progress(0, 2*n - 1)
+      ! the s range: twice the largest (m - delta_c)/L of the first nodes, so that every
+      ! curve reaches the cut-off
+      call unloading_lengths(table, options, m, curves, error)
+      if (allocated(error)) return
+      table%s_max = 2*maxval((m - table%loading%cutoff)/curves%length)
       call build_curves(table, options, m, curves, error)
       if (allocated(error)) return
       call refine_m(table, options, m, curves, error, progress)
@@ -159,11 +175,9 @@ contains
          return
       end if
       m = delta_max_state
-      span = m - table%loading%cutoff
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       if (m > table%delta_max) stat = egw_out_of_range
       call table_eval(table%loading, m, f_m, k_m)
-      s = (m - delta)/span
       n_m = size(table%m)
       ! the Lagrange stencil of the m interval (clamped at the ends of the grid)
       j = locate(table%m_lookup, table%m, min(m, table%delta_max))
@@ -174,6 +188,9 @@ contains
       w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
       w(4) = d(1)*d(2)*d(3)*table%lagrange(4, j)
       if (m > table%delta_max) w = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
+      span = table%s_max*(w(1)*table%length(first) + w(2)*table%length(first + 1) + &
+         & w(3)*table%length(first + 2) + w(4)*table%length(first + 3))
+      s = min((m - delta)/span, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       t = (s - table%s(i))*table%inv_ds(i)
       c = 0.0_dp
@@ -310,7 +327,7 @@ contains
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:), mid
       integer, intent(in) :: j
-      real(dp) :: x, w(4), r, dr, v
+      real(dp) :: x, w(4), r, dr, v, s, length
       integer :: first, k, l, i
       first = min(max(j - 1, 1), size(m) - 3)
       x = 0.5_dp*(m(j) + m(j + 1))
@@ -320,16 +337,72 @@ contains
             if (l /= k) w(k) = w(k)*(x - m(first + l - 1))/(m(first + k - 1) - m(first + l - 1))
          end do
       end do
+      ! the table's s of the midpoint curve's delta: with the interpolated L(m)
+      length = sum(w*curves(first:first + 3)%length)
       err = 0.0_dp
       do i = 1, size(mid%s)
+         s = min(mid%s(i)*mid%length/length, 1.0_dp)
          v = 0.0_dp
          do k = 1, 4
-            call curve_eval(curves(first + k - 1), mid%s(i), r, dr)
+            call curve_eval(curves(first + k - 1), s, r, dr)
             v = v + w(k)*r
          end do
          err = max(err, abs(v - mid%ratio(i)))
       end do
    end function stencil_mismatch
+
+   !> L(m) of the curves at m(:) (a loading and an unloading solve each, in parallel).
+   subroutine unloading_lengths(table, options, m, curves, error)
+      type(hysteresis_table), intent(in) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(inout) :: curves(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: serial
+      integer :: stats(size(m)), j
+      character(len=256) :: messages(size(m))
+      serial = options
+      serial%n_threads = 1
+      serial%rel_tol = min(options%rel_tol, table%rel_tol/10.0_dp)
+      stats = 0
+      !$omp parallel do schedule(dynamic) default(shared) private(j)
+      do j = 1, size(m)
+         call one_length(j)
+      end do
+      !$omp end parallel do
+      do j = 1, size(m)
+         if (stats(j) /= 0) then
+            call fatal_error(error, stats(j), trim(messages(j)))
+            return
+         end if
+      end do
+   contains
+      subroutine one_length(j)
+         integer, intent(in) :: j
+         type(egw_error), allocatable :: err
+         type(loading_history) :: hist
+         type(solve_result) :: top, res
+         call load_history(table%params, serial, m(j), hist, top, err)
+         if (.not. allocated(err)) call solve_unload(hist, m(j), res, err)
+         if (allocated(err)) then
+            stats(j) = err%stat
+            messages(j) = err%message
+            return
+         end if
+         curves(j)%length = unloading_length(top%force, res%stiffness, table%params%sigma)
+      end subroutine one_length
+   end subroutine unloading_lengths
+
+   !> L = 1.5 P/K_unload: m minus the residual overlap of Hertzian unloading
+   !> P (1 - (m - delta)/L)^{3/2}, and 1.5 times the decay length of the separated tail
+   !> (P ~ exp(-(m - delta) K/P)): r(s) changes little with m at fixed s = (m - delta)/L.
+   !> sigma where the force has underflowed.
+   pure real(dp) function unloading_length(force, stiffness, sigma) result(length)
+      real(dp), intent(in) :: force, stiffness, sigma
+      length = sigma
+      if (force > 0.0_dp .and. stiffness > 0.0_dp) length = 1.5_dp*force/stiffness
+      if (.not. (length > 0.0_dp .and. length < huge(1.0_dp))) length = sigma
+   end function unloading_length
 
    !> The unloading curves of the delta_max values m(:), in parallel (OpenMP; every curve
    !> is independent: its own loading history and solves); the first error wins.
@@ -391,18 +464,14 @@ contains
       logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
       worst = 0.0_dp
-      span = m - table%loading%cutoff
-      if (.not. span > 0.0_dp) then
-         ! at the cut-off every delta below m is below the cut-off: the limit r = 1
-         curve%s = [0.0_dp, 1.0_dp]
-         curve%ratio = [1.0_dp, 1.0_dp]
-         curve%slope = [0.0_dp, 0.0_dp]
-         return
-      end if
       call load_history(table%params, options, m, hist, res, error)
       if (allocated(error)) return
       scale = res%force
       if (.not. scale > 0.0_dp) scale = table%loading%reference_force*table%rel_tol
+      call solve_unload(hist, m, res, error)
+      if (allocated(error)) return
+      curve%length = unloading_length(scale, res%stiffness, table%params%sigma)
+      span = table%s_max*curve%length
       n = 5
       s(1:n) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
       do i = 1, n
@@ -460,6 +529,7 @@ contains
    contains
 
       !> r = P_unload/P_load(m) and dr/ds = -K_unload span/P_load(m) at delta = m - s span
+      !> (below the cut-off too: the curve is a neighbour of others in the m direction)
       !> (r = 1 at s = 0 exactly: the turning point is the loading solve)
       subroutine ratio_at(x, r, dr)
          real(dp), intent(in) :: x
@@ -470,6 +540,10 @@ contains
          if (allocated(error)) return
          if (x > 0.0_dp) r = res%force/scale
          dr = -res%stiffness*span/scale
+         ! far below the cut-off the force underflows: no subnormal numbers in the table
+         ! (they would slow every evaluation that touches them by two orders)
+         if (abs(r) < tiny_ratio) r = 0.0_dp
+         if (abs(dr) < tiny_ratio) dr = 0.0_dp
       end subroutine ratio_at
 
    end subroutine build_curve
@@ -492,6 +566,7 @@ contains
          end if
       end do
       table%m = m
+      table%length = curves%length
       table%s = all_s(1:n)
       allocate (table%ratio(n, size(m)), table%slope(n, size(m)))
       do j = 1, size(m)
@@ -594,6 +669,7 @@ contains
    pure subroutine move_curve(from, to)
       type(unloading_curve), intent(inout) :: from
       type(unloading_curve), intent(out) :: to
+      to%length = from%length
       call move_alloc(from%s, to%s)
       call move_alloc(from%ratio, to%ratio)
       call move_alloc(from%slope, to%slope)

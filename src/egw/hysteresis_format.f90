@@ -22,9 +22,9 @@ module egw_hysteresis_format
    character(len=8), parameter :: magic = "EGWHYST1"
    integer(int32), parameter :: hysteresis_version = 1
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
-   !> Fixed part of a binary file before the arrays: magic, 9 int32, 17 float64.
-   integer, parameter :: header_bytes = 8 + 4*9 + 8*17
-   character(len=*), parameter :: csv_columns = "delta_max,s,ratio,dratio_ds"
+   !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
+   integer, parameter :: header_bytes = 8 + 4*9 + 8*18
+   character(len=*), parameter :: csv_columns = "delta_max,length,s,ratio,dratio_ds"
    character(len=*), parameter :: csv_title = "# egw hysteresis table, CSV format 1"
    character(len=*), parameter :: real_fmt = "(es25.17e3)"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
@@ -100,7 +100,7 @@ contains
          n_m = size(table%m)
          n_s = size(table%s)
       end if
-      allocate (character(len=header_bytes + 8*(5*n_load + n_m + n_s + 2*n_m*n_s) + 4) :: buf)
+      allocate (character(len=header_bytes + 8*(5*n_load + 2*n_m + n_s + 2*n_m*n_s) + 4) :: buf)
       buf(1:8) = magic
       pos = 9
       call put_i32(buf, pos, [hysteresis_version, byte_order_mark, &
@@ -108,7 +108,7 @@ contains
          & merge(1_int32, 0_int32, table%reversible), int(n_load, int32), &
          & int(table%loading%n_log, int32), int(n_m, int32), int(n_s, int32)])
       call put_f64(buf, pos, params_array(table%params))
-      call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error])
+      call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
       call put_f64(buf, pos, loading_meta(table%loading))
       call put_f64(buf, pos, table%loading%delta)
       call put_f64(buf, pos, table%loading%force)
@@ -117,6 +117,7 @@ contains
       call put_f64(buf, pos, table%loading%contact_radius)
       if (.not. table%reversible) then
          call put_f64(buf, pos, table%m)
+         call put_f64(buf, pos, table%length)
          call put_f64(buf, pos, table%s)
          call put_f64(buf, pos, reshape(table%ratio, [n_m*n_s]))
          call put_f64(buf, pos, reshape(table%slope, [n_m*n_s]))
@@ -140,7 +141,7 @@ contains
       integer(int32) :: head(9), stored(1)
       integer(int64) :: expected
       integer :: pos, n_load, n_m, n_s
-      real(dp) :: p(7), meta(3), lmeta(7)
+      real(dp) :: p(7), meta(4), lmeta(7)
       if (len(bytes) < header_bytes + 4) then
          call bad(error, path, "truncated: "//int_str(len(bytes))//" bytes")
          return
@@ -171,7 +172,7 @@ contains
          call bad(error, path, "node counts out of range")
          return
       end if
-      expected = header_bytes + 8_int64*(5*int(n_load, int64) + n_m + n_s + &
+      expected = header_bytes + 8_int64*(5*int(n_load, int64) + 2*n_m + n_s + &
          & 2*int(n_m, int64)*n_s) + 4
       if (len(bytes, int64) /= expected) then
          call bad(error, path, "node counts do not match the file size "// &
@@ -186,6 +187,7 @@ contains
       table%rel_tol = meta(1)
       table%delta_max = meta(2)
       table%max_error = meta(3)
+      table%s_max = meta(4)
       table%loading%params = table%params
       table%loading%n_log = head(7)
       call set_loading_meta(table%loading, lmeta)
@@ -197,8 +199,10 @@ contains
       call get_f64(bytes, pos, table%loading%stiffness)
       call get_f64(bytes, pos, table%loading%energy)
       call get_f64(bytes, pos, table%loading%contact_radius)
-      allocate (table%m(n_m), table%s(n_s), table%ratio(n_s, n_m), table%slope(n_s, n_m))
+      allocate (table%m(n_m), table%length(n_m), table%s(n_s), table%ratio(n_s, n_m), &
+         & table%slope(n_s, n_m))
       call get_f64(bytes, pos, table%m)
+      call get_f64(bytes, pos, table%length)
       call get_f64(bytes, pos, table%s)
       call get_matrix(bytes, pos, table%ratio)
       call get_matrix(bytes, pos, table%slope)
@@ -230,8 +234,8 @@ contains
          call add_reals(head, ["radius        ", "modulus       ", "sigma         ", &
             & "mu            ", "psi           ", "hardness_coeff", "plastic_ratio "], &
             & params_array(table%params))
-         call add_reals(head, ["rel_tol  ", "delta_max", "max_error"], &
-            & [table%rel_tol, table%delta_max, table%max_error])
+         call add_reals(head, ["rel_tol  ", "delta_max", "max_error", "s_max    "], &
+            & [table%rel_tol, table%delta_max, table%max_error, table%s_max])
          head = head//"# reversible = "//int_str(merge(1, 0, table%reversible))// &
             & new_line("a")//"# n_delta_max = "//int_str(n_m)//new_line("a")//"# n_s = "// &
             & int_str(n_s)//new_line("a")
@@ -245,8 +249,8 @@ contains
             & "stiffness [modulus*length]; energy [modulus*length^3]; s, ratio [1]"// &
             & new_line("a")// &
             & "# rows: unloading force = P_load(delta_max)*ratio at s = (delta_max - delta)/"// &
-            & "(delta_max - loading.cutoff), cubic Hermite in s (slope dratio_ds), cubic "// &
-            & "Lagrange in delta_max over four neighbouring curves (doc/formats.md)"// &
+            & "(s_max*length), cubic Hermite in s (slope dratio_ds), cubic Lagrange in "// &
+            & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
             & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
          call open_temporary(path, unit, tmp, error, binary=.true.)
          if (allocated(error)) return
@@ -259,8 +263,8 @@ contains
       end associate
       do j = 1, n_m
          do i = 1, n_s
-            call put_line(csv_row([table%m(j), table%s(i), table%ratio(i, j), &
-               & table%slope(i, j)]))
+            call put_line(csv_row([table%m(j), table%length(j), table%s(i), &
+               & table%ratio(i, j), table%slope(i, j)]))
          end do
       end do
       call put_line("# end of table, "//int_str(n_m*n_s)//" rows")
@@ -338,6 +342,7 @@ contains
             case ("rel_tol"); call get_real(value, table%rel_tol, ios)
             case ("delta_max"); call get_real(value, table%delta_max, ios)
             case ("max_error"); call get_real(value, table%max_error, ios)
+            case ("s_max"); call get_real(value, table%s_max, ios)
             case ("reversible"); read (value, *, iostat=ios) rev
             case ("n_delta_max"); read (value, *, iostat=ios) n_m
             case ("n_s"); read (value, *, iostat=ios) n_s
@@ -387,26 +392,28 @@ contains
                      & "n_delta_max and n_s")
                   return
                end if
-               allocate (table%m(n_m), table%s(n_s), table%ratio(n_s, n_m), &
-                  & table%slope(n_s, n_m))
+               allocate (table%m(n_m), table%length(n_m), table%s(n_s), &
+                  & table%ratio(n_s, n_m), table%slope(n_s, n_m))
             end if
             k_row = k_row + 1
-            read (text(start:eol), *, iostat=ios) v(1:4)
+            read (text(start:eol), *, iostat=ios) v(1:5)
             if (ios /= 0 .or. k_row > n_m*n_s) then
-               call bad(error, path, "line "//int_str(line)//": not a row of 4 numbers, "// &
+               call bad(error, path, "line "//int_str(line)//": not a row of 5 numbers, "// &
                   & "or more rows than n_delta_max*n_s")
                return
             end if
             associate (j => (k_row - 1)/n_s + 1, i => mod(k_row - 1, n_s) + 1)
                if (i == 1) table%m(j) = v(1)
-               if (j == 1) table%s(i) = v(2)
-               if (v(1) /= table%m(j) .or. v(2) /= table%s(i)) then
-                  call bad(error, path, "line "//int_str(line)//": delta_max or s differs "// &
-                     & "from the grid of the rows before")
+               if (i == 1) table%length(j) = v(2)
+               if (j == 1) table%s(i) = v(3)
+               if (v(1) /= table%m(j) .or. v(2) /= table%length(j) .or. &
+                  & v(3) /= table%s(i)) then
+                  call bad(error, path, "line "//int_str(line)//": delta_max, length or s "// &
+                     & "differs from the grid of the rows before")
                   return
                end if
-               table%ratio(i, j) = v(3)
-               table%slope(i, j) = v(4)
+               table%ratio(i, j) = v(4)
+               table%slope(i, j) = v(5)
             end associate
          end if
          start = eol + 2
@@ -416,8 +423,8 @@ contains
          call bad(error, path, "metadata or loading nodes incomplete")
          return
       end if
-      if (.not. allocated(table%m)) allocate (table%m(0), table%s(0), table%ratio(0, 0), &
-         & table%slope(0, 0))
+      if (.not. allocated(table%m)) allocate (table%m(0), table%length(0), table%s(0), &
+         & table%ratio(0, 0), table%slope(0, 0))
       if (k_row /= size(table%m)*size(table%s)) then
          call bad(error, path, int_str(k_row)//" rows, n_delta_max*n_s = "// &
             & int_str(size(table%m)*size(table%s)))
@@ -496,8 +503,13 @@ contains
          return
       end if
       if (.not. (all(ieee_is_finite(t%m)) .and. all(ieee_is_finite(t%s)) .and. &
-         & all(ieee_is_finite(t%ratio)) .and. all(ieee_is_finite(t%slope)))) then
+         & all(ieee_is_finite(t%ratio)) .and. all(ieee_is_finite(t%slope)) .and. &
+         & all(ieee_is_finite(t%length)) .and. ieee_is_finite(t%s_max))) then
          call bad(error, path, "unloading data: a value is not finite")
+         return
+      end if
+      if (any(t%length <= 0.0_dp) .or. .not. t%s_max > 0.0_dp) then
+         call bad(error, path, "unloading data: length and s_max must be > 0")
          return
       end if
       if (any(t%m(2:n_m) <= t%m(1:n_m - 1)) .or. t%m(1) /= t%loading%cutoff .or. &
