@@ -1,11 +1,14 @@
-!> egw-bench --hysteresis: the EP-GW hysteresis table's build time (2 threads, rel_tol 1e-4
-!> and 1e-3, delta in [-3, 30] sigma) and its evaluation cost as a ratio to the Hertz force,
-!> timed interleaved round by round in one run (issue 10's bench items).
+!> egw-bench --hysteresis: the EP-GW hysteresis table's build time (2 threads, rel_tol 1e-3
+!> and 1e-4, delta in [-3, 30] sigma), its error against unloading solves at rel_tol 1e-7
+!> between its nodes, and its evaluation cost as a ratio to the Hertz force, timed
+!> interleaved round by round in one run (issue 10's bench items). Rows go to
+!> out/bench/hysteresis.csv (doc/bench/ with --update-docs) for the speed-accuracy chart.
 module bench_hysteresis
    use, intrinsic :: iso_fortran_env, only: output_unit, int64
-   use egw, only: dp, contact_params, model_epgw, solver_options, egw_error, hertz_force, &
-      & hysteresis_table, build_hysteresis, hysteresis_eval
-   use bench_common, only: frac
+   use egw, only: dp, contact_params, model_epgw, solver_options, solve_result, egw_error, &
+      & hertz_force, hysteresis_table, build_hysteresis, hysteresis_eval, &
+      & solve_contact_unload, solve_contact
+   use bench_common, only: frac, open_csv, write_row, close_csv, fmt_e
    implicit none
    private
    public :: run_hysteresis
@@ -18,64 +21,112 @@ contains
       type(hysteresis_table) :: t
       type(egw_error), allocatable :: err
       integer, parameter :: n = 4096, rounds = 11, sweeps = 200
-      real(dp) :: delta(n), state(n), tols(2), sink, f, k, m, t_h, t_y, best_h, best_y
+      real(dp) :: delta(n), state(n), tols(2), sink, f, k, m, t_h, t_y, best_h, best_y, &
+         & build_s, max_err
       integer(int64) :: c0, c1, rate
-      integer :: i, r, s, stat, it
+      integer :: i, r, s, stat, it, unit
       p = contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
          & mu=4.0_dp, psi=2.0_dp, hardness_coeff=0.6_dp, plastic_ratio=54.0_dp)
       tols = [1.0e-3_dp, 1.0e-4_dp]
       write (output_unit, '(/a)') "== hysteresis table (EP-GW, psi = 2, mu = 4; delta in "// &
          & "[-3, 30] sigma; OpenMP over the delta_max nodes)"
-      do it = 1, 2
-         call system_clock(c0, rate)
-         call build_hysteresis(p, opts, -3.0_dp, 30.0_dp, tols(it), t, err)
-         call system_clock(c1)
-         if (allocated(err)) then
-            write (output_unit, '(a)') "  build failed: "//err%message
-            return
-         end if
-         write (output_unit, '(a,es8.1,a,f8.2,a,i0,a,es9.2)') "  build rel_tol ", tols(it), &
-            & ": ", real(c1 - c0, dp)/real(rate, dp), " s, ", size(t%m), &
-            & " delta_max nodes, max error at checks ", t%max_error
-         write (output_unit, '(a,i0,a,f8.2,a)') "    s nodes ", size(t%s), ", evaluation data ", &
-            & real(storage_size(t%coef)/8*size(t%coef), dp)/2.0_dp**20, " MiB"
-         write (output_unit, '(10f8.3)') t%m
-      end do
       ! contacts in all states: loading and unloading from delta_max within the range
       do i = 1, n
          state(i) = -3.0_dp + 33.0_dp*frac(0.7548776662466927_dp*i)
          delta(i) = state(i) - (state(i) + 3.0_dp)*frac(0.5698402909980532_dp*i)
          if (mod(i, 4) == 0) delta(i) = state(i) + 0.1_dp  ! a quarter loading
       end do
-      best_h = huge(1.0_dp)
-      best_y = huge(1.0_dp)
-      sink = 0
-      do r = 1, rounds
+      call open_csv("hysteresis.csv", unit)
+      do it = 1, 2
          call system_clock(c0, rate)
-         do s = 1, sweeps
-            do i = 1, n
-               sink = sink + hertz_force(abs(delta(i)), 1.0_dp, 1.0_dp)
-            end do
-         end do
+         call build_hysteresis(p, opts, -3.0_dp, 30.0_dp, tols(it), t, err)
          call system_clock(c1)
-         t_h = real(c1 - c0, dp)/real(rate, dp)/(sweeps*n)*1.0e9_dp
-         call system_clock(c0, rate)
-         do s = 1, sweeps
-            do i = 1, n
-               m = state(i)
-               call hysteresis_eval(t, delta(i), m, f, k, stat)
-               sink = sink + f
+         if (allocated(err)) then
+            write (output_unit, '(a)') "  build failed: "//err%message
+            call close_csv(unit)
+            return
+         end if
+         build_s = real(c1 - c0, dp)/real(rate, dp)
+         write (output_unit, '(a,es8.1,a,f8.2,a,i0,a,i0,a,es9.2)') "  build rel_tol ", &
+            & tols(it), ": ", build_s, " s, ", size(t%m), " delta_max nodes x ", size(t%s), &
+            & " s nodes, max error at checks ", t%max_error
+         max_err = table_error(t, p)
+         best_h = huge(1.0_dp)
+         best_y = huge(1.0_dp)
+         sink = 0
+         do r = 1, rounds
+            call system_clock(c0, rate)
+            do s = 1, sweeps
+               do i = 1, n
+                  sink = sink + hertz_force(abs(delta(i)), 1.0_dp, 1.0_dp)
+               end do
             end do
+            call system_clock(c1)
+            t_h = real(c1 - c0, dp)/real(rate, dp)/(sweeps*n)
+            call system_clock(c0, rate)
+            do s = 1, sweeps
+               do i = 1, n
+                  m = state(i)
+                  call hysteresis_eval(t, delta(i), m, f, k, stat)
+                  sink = sink + f
+               end do
+            end do
+            call system_clock(c1)
+            t_y = real(c1 - c0, dp)/real(rate, dp)/(sweeps*n)
+            best_h = min(best_h, t_h)
+            best_y = min(best_y, t_y)
          end do
-         call system_clock(c1)
-         t_y = real(c1 - c0, dp)/real(rate, dp)/(sweeps*n)*1.0e9_dp
-         best_h = min(best_h, t_h)
-         best_y = min(best_y, t_y)
+         write (output_unit, '(a,f7.2,a,f7.2,a,f6.2,a,es9.2)') "  eval: ", best_y*1e9, &
+            & " ns/call (F and K), Hertz force ", best_h*1e9, " ns/call: ratio ", &
+            & best_y/best_h, " (goal <= 3); max error vs solves ", max_err
+         call write_row(unit, "hysteresis", "hysteresis table", "EP-GW psi=2 mu=4 mix", &
+            & "rel_tol="//trim(fmt_e(tols(it))), best_y, max_err, &
+            & "solve_contact_unload rel_tol=1e-7", 0, "build_s="//fmt_e(build_s)// &
+            & " hertz_s="//fmt_e(best_h)//" n_m="//itoa(size(t%m))//" n_s="// &
+            & itoa(size(t%s)))
+         write (output_unit, '(a,es10.3)') "  (checksum, ignore) ", sink
       end do
-      write (output_unit, '(a,f7.2,a,f7.2,a,f6.2,a)') "  eval (rel_tol 1e-4 table): ", &
-         & best_y, " ns/call, Hertz force ", best_h, " ns/call: ratio ", best_y/best_h, &
-         & " (goal <= 3)"
-      write (output_unit, '(a,es10.3)') "  (checksum, ignore) ", sink
+      call close_csv(unit)
    end subroutine run_hysteresis
+
+   !> Largest |P_table - P_solve| relative to the force at the turning point, over five
+   !> delta_max between nodes and six overlaps on each of their unloading curves (solves at
+   !> rel_tol 1e-7, independent of the table's nodes).
+   real(dp) function table_error(t, p) result(worst)
+      type(hysteresis_table), intent(in) :: t
+      type(contact_params), intent(in) :: p
+      real(dp), parameter :: m_at(5) = [-1.3_dp, 0.7_dp, 3.1_dp, 11.9_dp, 27.3_dp], &
+         & s_at(6) = [0.013_dp, 0.09_dp, 0.27_dp, 0.46_dp, 0.71_dp, 0.93_dp]
+      type(solver_options) :: fine
+      type(solve_result) :: top, res
+      type(egw_error), allocatable :: err
+      real(dp) :: d, f, k, state
+      integer :: i, j, stat, n_checked
+      fine%rel_tol = 1.0e-7_dp
+      worst = 0.0_dp
+      n_checked = 0
+      do j = 1, size(m_at)
+         call solve_contact(p, fine, m_at(j), top, err)
+         if (allocated(err)) cycle
+         do i = 1, size(s_at)
+            d = m_at(j) - (m_at(j) - t%loading%cutoff)*s_at(i)
+            call solve_contact_unload(p, fine, d, m_at(j), res, err)
+            if (allocated(err)) cycle
+            state = m_at(j)
+            call hysteresis_eval(t, d, state, f, k, stat)
+            worst = max(worst, abs(f - res%force)/top%force)
+            n_checked = n_checked + 1
+         end do
+      end do
+      if (n_checked < 20) worst = -1.0_dp   ! too few reference solves: no error reported
+   end function table_error
+
+   pure function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=12) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
 
 end module bench_hysteresis

@@ -2,7 +2,7 @@
 """Speed-accuracy chart of every egw method (issue 5 item 1) -> doc/bench/speed_accuracy.png.
 
 Reads the CSVs written by one run of egw-bench (doc/bench/fn.csv, solver.csv, tables.csv,
-universal.csv; common columns section,method,case,setting,time_s,rel_err,...) and, if
+universal.csv, unloading.csv, hysteresis.csv; common columns section,method,case,setting,time_s,rel_err,...) and, if
 present, doc/bench/peer.csv from tools/bench/peer_greenwood_tripp.py. Draws log10(error)
 against log10(time per evaluation) with one panel per kind of evaluation (they differ by
 up to 9 orders of magnitude in time and answer different questions):
@@ -118,17 +118,23 @@ def main():
                        max(float(r["peer_rel_err"]), FLOOR), "classic-GW"))
         solver.append(("egw GW rel_tol=1e-6 (peer cases)", float(r["egw_time_s"]),
                        max(float(r["egw_rel_err"]), FLOOR), "classic-GW"))
+    # EP-GW unloading solves (egw-bench --unloading) against their independent references
+    solver += [("EP-GW unloading (solve_unload)",) + pt[1:]
+               for pt in points(read("unloading.csv")) if pt[0] == "solve_unload"]
     solver = by_configuration(solver)
     table_rows = read("tables.csv")
     hertz = {r["case"]: float(r["time_s"]) for r in table_rows
              if r["method"] == "hertz closed form"}
     tables = points([r for r in table_rows if r["section"] == "table"]) + \
-        points(read("universal.csv"))
+        points(read("universal.csv")) + \
+        [("EP-GW hysteresis table (unloading mix)",) + pt[1:]
+         for pt in points(read("hysteresis.csv"))]
     fig, axes = plt.subplots(1, 3, figsize=(17, 5.5))
     panel(axes[0], fn, "(a) F_3/2(h) evaluation paths", "max relative error of F_3/2")
     panel(axes[1], solver, "(b) one force point, full solve: mean time, worst error\n"
           "over the GW, E-GW, EP-GW cases (n_threads = 1)")
-    panel(axes[2], tables, "(c) force from tables (E-GW, DEM collision mix)")
+    panel(axes[2], tables, "(c) force from tables (E-GW, DEM collision mix;\n"
+          "EP-GW hysteresis: loading/unloading mix)")
     for case, t in hertz.items():
         axes[2].axvline(t, color="grey", ls="--" if case == "F only" else ":", lw=1)
         axes[2].text(t, axes[2].get_ylim()[1], " Hertz " + case, rotation=90, va="top",
