@@ -6,13 +6,18 @@ ARGS ?=
 VENV ?= .venv
 FPM := $(VENV)/bin/fpm
 export VENV
+PY_STAMP := $(VENV)/.egw-python-installed
+PY_SOURCES := $(wildcard src/*.f90 src/egw/*.f90 include/*.h CMakeLists.txt cmake/* \
+	python/setup.py python/pyproject.toml python/src/egw/*.py)
 
 .PHONY: run test bench setup clean python docs
 run: setup
 	@$(FPM) run egw-table $(FPM_FLAGS) -- $(ARGS)
 
-# fpm test, then the Python and LAMMPS suites where installed; ends "total: N passed, N failed"
-test: setup
+# fpm test, the Python package's tests (the package is installed into the venv first, and
+# again whenever the library or the package changed), then the LAMMPS suite where built;
+# ends "total: N passed, N failed"
+test: setup $(PY_STAMP)
 	@OMP_NUM_THREADS=$${OMP_NUM_THREADS:-2} FPM="$(FPM)" FPM_FLAGS="$(FPM_FLAGS)" \
 		sh tools/run_tests.sh
 
@@ -22,9 +27,9 @@ bench: setup
 setup:
 	@sh tools/setup.sh
 
-# The Python package (python/) in the project venv, with numpy, pandas and pytest.
-python: setup
-	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check numpy pandas pytest ./python
+# The Python package (python/) in the project venv, with numpy, pandas and pytest; rebuilt
+# (libegw bundled, compiled with CMake from PyPI) when a source it is made of is newer.
+python: setup $(PY_STAMP)
 	@echo "python: egw $$($(VENV)/bin/python -c 'import egw; print(egw.version())') in $(VENV)/ ($(VENV)/bin/python, $(VENV)/bin/egw-topo)"
 
 # API reference from the sources' !> comments (FORD, from PyPI, into the project venv).
@@ -35,3 +40,8 @@ docs: setup
 
 clean:
 	rm -rf build
+
+$(PY_STAMP): $(PY_SOURCES) | setup
+	@echo "python: installing the egw package into $(VENV)/ (libegw compiled with CMake) ..." >&2
+	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check numpy pandas pytest ./python
+	@touch $@

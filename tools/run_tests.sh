@@ -1,7 +1,7 @@
 #!/bin/sh
 # The README's test command (`make test`) runs this: the Fortran and C suites (fpm test),
-# then, when the project venv has them, the Python package's tests (pytest, after
-# `make python`) and the LAMMPS plugin's tests (after `make lammps`). Each suite prints its
+# then, when the project venv has them, the Python package's tests (pytest; `make test`
+# installs the package first) and the LAMMPS plugin's tests (after `make lammps`). Each suite prints its
 # own results; the last line adds them up as "total: N passed, N failed" (a suite that
 # crashes counts as one failure). Exit status 0 only if every suite that ran passed.
 # Environment: FPM (fpm command), FPM_FLAGS, VENV (default .venv).
