@@ -190,6 +190,7 @@ contains
       if (m > table%delta_max) w = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
       span = table%s_max*(w(1)*table%length(first) + w(2)*table%length(first + 1) + &
          & w(3)*table%length(first + 2) + w(4)*table%length(first + 3))
+      if (.not. span > 0.0_dp) span = table%s_max*table%length(j)   ! (L is smooth and > 0)
       s = min((m - delta)/span, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       t = (s - table%s(i))*table%inv_ds(i)
