@@ -14,7 +14,7 @@ module egw_table_format
       & egw_unsupported, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_name, model_epgw
    use egw_version, only: egw_version_string, egw_version_number
-   use egw_io, only: open_temporary, commit_temporary, discard_temporary
+   use egw_io, only: write_file, read_file, text_buffer
    use egw_asperity, only: flat_pressure
    use egw_table, only: force_table, table_prepare, table_eval, table_energy
    use egw_table_universal, only: universal_table, universal_slice_params, &
@@ -104,7 +104,7 @@ contains
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: bytes
-      call read_bytes(path, bytes, error)
+      call read_file(path, bytes, error)
       if (allocated(error)) return
       if (len(bytes) >= 8) then
          if (bytes(1:8) == magic_table) then
@@ -152,7 +152,7 @@ contains
       type(universal_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: bytes
-      call read_bytes(path, bytes, error)
+      call read_file(path, bytes, error)
       if (allocated(error)) return
       if (len(bytes) >= 8) then
          if (bytes(1:8) == magic_universal) then
@@ -176,67 +176,62 @@ contains
       type(force_table), intent(in) :: table
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, i
-      character(len=:), allocatable :: tmp
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
+      integer :: i
+      type(text_buffer) :: out
       ! the column header first and the metadata as '#' lines: pandas.read_csv(path,
       ! comment="#"), numpy.loadtxt(path, delimiter=",", skiprows=1) and
       ! numpy.genfromtxt(path, delimiter=",", names=True) read it as it is
-      write (unit, '(a)') csv_columns_table
-      write (unit, '(a)') "# egw force table, CSV format 2"
-      write (unit, '(a)') "# egw_version = "//egw_version_string
-      call write_params_csv(unit, table%params)
-      call write_table_meta_csv(unit, "", table)
-      write (unit, '(a)') "# units = consistent set of the parameters: delta, "// &
+      call out%add(csv_columns_table)
+      call out%add("# egw force table, CSV format 2")
+      call out%add("# egw_version = "//egw_version_string)
+      call write_params_csv(out, table%params)
+      call write_table_meta_csv(out, "", table)
+      call out%add("# units = consistent set of the parameters: delta, "// &
          & "contact_radius [length]; force [modulus*length^2]; stiffness [modulus*length]; "// &
-         & "energy [modulus*length^3]"
-      write (unit, '(a)') "# interpolation = cubic Hermite in delta with stiffness as slope; "// &
+         & "energy [modulus*length^3]")
+      call out%add("# interpolation = cubic Hermite in delta with stiffness as slope; "// &
          & "ln(force) in intervals 1..n_log; force = 0 below cutoff; energy = int of force "// &
-         & "from cutoff"
+         & "from cutoff")
       do i = 1, size(table%delta)
          if (.not. row_ok([table%delta(i), table%force(i), table%stiffness(i), &
             & table%energy(i), table%contact_radius(i)])) then
-            call discard_temporary(unit, tmp)
             call fatal_error(error, egw_invalid_argument, "table: node "//int_str(i)// &
                & " is not finite; nothing written")
             return
          end if
-         write (unit, '(a)') csv_row([table%delta(i), table%force(i), table%stiffness(i), &
-            & table%energy(i), table%contact_radius(i)])
+         call out%add(csv_row([table%delta(i), table%force(i), table%stiffness(i), &
+            & table%energy(i), table%contact_radius(i)]))
       end do
-      write (unit, '(a)') "# end of table, "//int_str(size(table%delta))//" rows"
-      call commit_temporary(unit, tmp, path, error)
+      call out%add("# end of table, "//int_str(size(table%delta))//" rows")
+      call write_file(path, out%content(), error)
    end subroutine write_table_csv
 
    subroutine write_universal_csv(table, path, error)
       type(universal_table), intent(in) :: table
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, i, j, nrows
-      character(len=:), allocatable :: tmp
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
-      write (unit, '(a)') csv_columns_universal  ! first: see write_table_csv
-      write (unit, '(a)') "# egw universal table, CSV format 2"
-      write (unit, '(a)') "# egw_version = "//egw_version_string
-      write (unit, '(a)') "# model = "//int_str(table%model)//" ("//model_name(table%model)//")"
-      call kv(unit, "psi", table%psi)
-      call kv(unit, "hardness_coeff", table%hardness_coeff)
-      call kv(unit, "plastic_ratio", table%plastic_ratio)
-      call kv(unit, "rel_tol", table%rel_tol)
-      call kv(unit, "x_cut", table%x_cut)
-      call kv(unit, "x_max", table%x_max)
-      call kv(unit, "mu_min", table%mu_min)
-      call kv(unit, "mu_max", table%mu_max)
-      call kv(unit, "max_mu_error", table%max_mu_error)
-      write (unit, '(a)') "# n_mu = "//int_str(table%n_mu)
-      write (unit, '(a)') "# units = dimensionless: x = delta/sigma; p = P/(E sqrt(R) "// &
+      integer :: i, j, nrows
+      type(text_buffer) :: out
+      call out%add(csv_columns_universal)  ! first: see write_table_csv
+      call out%add("# egw universal table, CSV format 2")
+      call out%add("# egw_version = "//egw_version_string)
+      call out%add("# model = "//int_str(table%model)//" ("//model_name(table%model)//")")
+      call kv(out, "psi", table%psi)
+      call kv(out, "hardness_coeff", table%hardness_coeff)
+      call kv(out, "plastic_ratio", table%plastic_ratio)
+      call kv(out, "rel_tol", table%rel_tol)
+      call kv(out, "x_cut", table%x_cut)
+      call kv(out, "x_max", table%x_max)
+      call kv(out, "mu_min", table%mu_min)
+      call kv(out, "mu_max", table%mu_max)
+      call kv(out, "max_mu_error", table%max_mu_error)
+      call out%add("# n_mu = "//int_str(table%n_mu))
+      call out%add("# units = dimensionless: x = delta/sigma; p = P/(E sqrt(R) "// &
          & "sigma^1.5); dp_dx; energy = W/(E sqrt(R) sigma^2.5); contact_radius = "// &
-         & "a/sqrt(R sigma); mu_j = mu_min (mu_max/mu_min)^((j-1)/(n_mu-1))"
+         & "a/sqrt(R sigma); mu_j = mu_min (mu_max/mu_min)^((j-1)/(n_mu-1))")
       do j = 1, table%n_mu
-         call kv(unit, "slice."//int_str(j)//".mu", table%slices(j)%params%mu)
-         call write_table_meta_csv(unit, "slice."//int_str(j)//".", table%slices(j))
+         call kv(out, "slice."//int_str(j)//".mu", table%slices(j)%params%mu)
+         call write_table_meta_csv(out, "slice."//int_str(j)//".", table%slices(j))
       end do
       nrows = 0
       do j = 1, table%n_mu
@@ -244,47 +239,46 @@ contains
             do i = 1, size(s%delta)
                if (.not. row_ok([s%delta(i), s%force(i), s%stiffness(i), s%energy(i), &
                   & s%contact_radius(i)])) then
-                  call discard_temporary(unit, tmp)
                   call fatal_error(error, egw_invalid_argument, "table: slice "// &
                      & int_str(j)//" node "//int_str(i)//" is not finite; nothing written")
                   return
                end if
-               write (unit, '(a)') int_str(j)//","//csv_row([s%delta(i), s%force(i), &
-                  & s%stiffness(i), s%energy(i), s%contact_radius(i)])
+               call out%add(int_str(j)//","//csv_row([s%delta(i), s%force(i), &
+                  & s%stiffness(i), s%energy(i), s%contact_radius(i)]))
                nrows = nrows + 1
             end do
          end associate
       end do
-      write (unit, '(a)') "# end of table, "//int_str(nrows)//" rows"
-      call commit_temporary(unit, tmp, path, error)
+      call out%add("# end of table, "//int_str(nrows)//" rows")
+      call write_file(path, out%content(), error)
    end subroutine write_universal_csv
 
-   subroutine write_params_csv(unit, p)
-      integer, intent(in) :: unit
+   subroutine write_params_csv(out, p)
+      type(text_buffer), intent(inout) :: out
       type(contact_params), intent(in) :: p
-      write (unit, '(a)') "# model = "//int_str(p%model)//" ("//model_name(p%model)//")"
-      call kv(unit, "radius", p%radius)
-      call kv(unit, "modulus", p%modulus)
-      call kv(unit, "sigma", p%sigma)
-      call kv(unit, "mu", p%mu)
-      call kv(unit, "psi", p%psi)
-      call kv(unit, "hardness_coeff", p%hardness_coeff)
-      call kv(unit, "plastic_ratio", p%plastic_ratio)
+      call out%add("# model = "//int_str(p%model)//" ("//model_name(p%model)//")")
+      call kv(out, "radius", p%radius)
+      call kv(out, "modulus", p%modulus)
+      call kv(out, "sigma", p%sigma)
+      call kv(out, "mu", p%mu)
+      call kv(out, "psi", p%psi)
+      call kv(out, "hardness_coeff", p%hardness_coeff)
+      call kv(out, "plastic_ratio", p%plastic_ratio)
    end subroutine write_params_csv
 
-   subroutine write_table_meta_csv(unit, prefix, t)
-      integer, intent(in) :: unit
+   subroutine write_table_meta_csv(out, prefix, t)
+      type(text_buffer), intent(inout) :: out
       character(len=*), intent(in) :: prefix
       type(force_table), intent(in) :: t
-      call kv(unit, prefix//"rel_tol", t%rel_tol)
-      call kv(unit, prefix//"cutoff", t%cutoff)
-      call kv(unit, prefix//"delta_max", t%delta_max)
-      call kv(unit, prefix//"reference_force", t%reference_force)
-      call kv(unit, prefix//"max_force_error", t%max_force_error)
-      call kv(unit, prefix//"max_stiffness_error", t%max_stiffness_error)
-      call kv(unit, prefix//"radius_sum", t%radius_sum)
-      write (unit, '(a)') "# "//prefix//"n_nodes = "//int_str(size(t%delta))
-      write (unit, '(a)') "# "//prefix//"n_log = "//int_str(t%n_log)
+      call kv(out, prefix//"rel_tol", t%rel_tol)
+      call kv(out, prefix//"cutoff", t%cutoff)
+      call kv(out, prefix//"delta_max", t%delta_max)
+      call kv(out, prefix//"reference_force", t%reference_force)
+      call kv(out, prefix//"max_force_error", t%max_force_error)
+      call kv(out, prefix//"max_stiffness_error", t%max_stiffness_error)
+      call kv(out, prefix//"radius_sum", t%radius_sum)
+      call out%add("# "//prefix//"n_nodes = "//int_str(size(t%delta)))
+      call out%add("# "//prefix//"n_log = "//int_str(t%n_log))
    end subroutine write_table_meta_csv
 
    subroutine parse_table_csv(path, text, table, error)
@@ -567,18 +561,8 @@ contains
       character(len=*), intent(inout) :: buf
       integer, intent(inout) :: pos
       type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, ios
-      character(len=:), allocatable :: tmp
       call put_i32(buf, pos, checksum_i32(fnv1a32(buf(1:pos - 1))))
-      call open_temporary(path, unit, tmp, error, binary=.true.)
-      if (allocated(error)) return
-      write (unit, iostat=ios) buf
-      if (ios /= 0) then
-         call discard_temporary(unit, tmp)
-         call fatal_error(error, egw_io_error, "path = "//path//": write failed")
-         return
-      end if
-      call commit_temporary(unit, tmp, path, error)
+      call write_file(path, buf(1:pos - 1), error)
    end subroutine write_checked
 
    subroutine parse_table_binary(path, bytes, table, error)
@@ -769,8 +753,8 @@ contains
       !> the force continues linearly with the end stiffness, as table_eval does); LAMMPS
       !> stops with "Pair distance < table inner cutoff" at deeper overlaps
       real(dp), intent(in), optional :: delta_reach
-      integer :: unit, s, i, n
-      character(len=:), allocatable :: tmp
+      integer :: s, i, n
+      type(text_buffer) :: out
       real(dp) :: rsum, rlo, rhi, r, d, f, k, e, reach
       character(len=:), allocatable :: note
 
@@ -789,18 +773,16 @@ contains
             return
          end if
       end if
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
       if (present(units)) then
-         write (unit, '(a)') "# DATE: "//egw_version_string//" UNITS: "//trim(units)// &
-            & " CONTRIBUTOR: egw"
+         call out%add("# DATE: "//egw_version_string//" UNITS: "//trim(units)// &
+            & " CONTRIBUTOR: egw")
       else
          ! lowercase on purpose: an uppercase UNITS: tag is a unit style for LAMMPS
-         write (unit, '(a)') "# egw tables, units: those of the egw parameters (force = "// &
-            & "modulus*length^2, energy = force*length)"
+         call out%add("# egw tables, units: those of the egw parameters (force = "// &
+            & "modulus*length^2, energy = force*length)")
       end if
-      write (unit, '(a)') "# egw "//egw_version_string//" contact force tables for "// &
-         & "pair_style table (linear or spline, N >= the section's N)"
+      call out%add("# egw "//egw_version_string//" contact force tables for "// &
+         & "pair_style table (linear or spline, N >= the section's N)")
       do s = 1, size(tables)
          associate (t => tables(s))
             if (t%radius_sum > 0.0_dp) then
@@ -816,38 +798,37 @@ contains
             rlo = rsum - reach
             rhi = rsum - t%cutoff
             n = lammps_points(t, rsum, rlo, rhi)
-            write (unit, '(a)') ""
-            write (unit, '(a)') "# section EGW_"//int_str(s)//": model "// &
+            call out%add("")
+            call out%add("# section EGW_"//int_str(s)//": model "// &
                & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
                & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
                & fmt(t%params%mu)//", psi = "//fmt(t%params%psi)//", K = "// &
-               & fmt(t%params%hardness_coeff)//", rho_p = "//fmt(t%params%plastic_ratio)
-            if (t%params%model == model_epgw) write (unit, '(a)') "# EP-GW: the LOADING "// &
+               & fmt(t%params%hardness_coeff)//", rho_p = "//fmt(t%params%plastic_ratio))
+            if (t%params%model == model_epgw) call out%add("# EP-GW: the LOADING "// &
                & "curve only (pair_style table is a function of r alone: no unloading "// &
-               & "hysteresis, restitution 1; egw_hysteresis_* carries the dissipation)"
-            write (unit, '(a)') "# r = R1 + R2 - delta with "//note
-            write (unit, '(a)') "# force = -dE/dr = P(delta) >= 0 (repulsive), zero for r > "// &
-               & fmt(rhi)//" (pair cutoff); energy = int of P from the cut-off"
-            write (unit, '(a)') "# rel_tol = "//fmt(t%rel_tol)//" relative to P_ref = "// &
-               & fmt(t%reference_force)
-            write (unit, '(a)') "# ends: r > "//fmt(rhi)//" (delta < cutoff): no force; r < "// &
+               & "hysteresis, restitution 1; egw_hysteresis_* carries the dissipation)")
+            call out%add("# r = R1 + R2 - delta with "//note)
+            call out%add("# force = -dE/dr = P(delta) >= 0 (repulsive), zero for r > "// &
+               & fmt(rhi)//" (pair cutoff); energy = int of P from the cut-off")
+            call out%add("# rel_tol = "//fmt(t%rel_tol)//" relative to P_ref = "// &
+               & fmt(t%reference_force))
+            call out%add("# ends: r > "//fmt(rhi)//" (delta < cutoff): no force; r < "// &
                & fmt(rlo)//" (delta > "//fmt(reach)//"): LAMMPS stops with 'Pair distance "// &
-               & "< table inner cutoff'"
-            if (reach > t%delta_max) write (unit, '(a)') "# delta in ("// &
+               & "< table inner cutoff'")
+            if (reach > t%delta_max) call out%add("# delta in ("// &
                & fmt(t%delta_max)//", "//fmt(reach)//"]: beyond the table's delta_max, "// &
-               & "force continued linearly with the end stiffness"
-            if (t%params%model == model_epgw .and. t%params%psi > 0.0_dp) write (unit, '(a)') &
+               & "force continued linearly with the end stiffness")
+            if (t%params%model == model_epgw .and. t%params%psi > 0.0_dp) call out%add(&
                & "# EP-GW: loading curve only (pair_style table has no history: no "// &
-               & "unloading hysteresis, no plastic dissipation)"
+               & "unloading hysteresis, no plastic dissipation)")
             if (rlo <= 0.0_dp) then
-               call discard_temporary(unit, tmp)
                call fatal_error(error, egw_invalid_argument, "delta_max = "// &
                   & format_real(reach)//": r = R1 + R2 - delta_max must be > 0")
                return
             end if
-            write (unit, '(a)') "EGW_"//int_str(s)
-            write (unit, '(a)') "N "//int_str(n)//" R "//fmt(rlo)//" "//fmt(rhi)
-            write (unit, '(a)') ""
+            call out%add("EGW_"//int_str(s))
+            call out%add("N "//int_str(n)//" R "//fmt(rlo)//" "//fmt(rhi))
+            call out%add("")
             do i = 1, n
                r = rlo + (rhi - rlo)*(i - 1)/(n - 1)
                d = rsum - r
@@ -855,16 +836,15 @@ contains
                call table_eval(t, d, f, k)
                e = table_energy(t, d)
                if (.not. row_ok([r, e, f])) then
-                  call discard_temporary(unit, tmp)
                   call fatal_error(error, egw_invalid_argument, "tables("//int_str(s)// &
                      & "): not finite at delta = "//format_real(d)//"; nothing written")
                   return
                end if
-               write (unit, '(a)') int_str(i)//" "//fmt(r)//" "//fmt(e)//" "//fmt(f)
+               call out%add(int_str(i)//" "//fmt(r)//" "//fmt(e)//" "//fmt(f))
             end do
          end associate
       end do
-      call commit_temporary(unit, tmp, path, error)
+      call write_file(path, out%content(), error)
    end subroutine write_lammps
 
    !> Points of a LAMMPS section: doubled until the midpoint linear-interpolation error
@@ -908,8 +888,7 @@ contains
       real(dp), intent(out), optional :: max_error
       real(dp), allocatable :: x(:), y(:)
       real(dp) :: achieved, origin
-      integer :: unit
-      character(len=:), allocatable :: tmp
+      type(text_buffer) :: out
       type(sampler) :: smp
       logical :: shifted
       shifted = .false.
@@ -925,26 +904,24 @@ contains
       y(1) = 0.0_dp
       origin = 0.0_dp
       if (shifted) origin = t%cutoff
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
-      write (unit, '(a)') "** egw "//egw_version_string//": rough-sphere contact, model "// &
+      call out%add("** egw "//egw_version_string//": rough-sphere contact, model "// &
          & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
          & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
-         & fmt(t%params%mu)
-      if (t%params%model == model_epgw) write (unit, '(a)') "** EP-GW: the LOADING curve "// &
-         & "only (a pressure-overclosure curve has no history: no unloading hysteresis)"
+         & fmt(t%params%mu))
+      if (t%params%model == model_epgw) call out%add("** EP-GW: the LOADING curve "// &
+         & "only (a pressure-overclosure curve has no history: no unloading hysteresis)")
       if (shifted) then
-         write (unit, '(a)') "** node-to-surface contact: FORCE per node against "// &
+         call out%add("** node-to-surface contact: FORCE per node against "// &
             & "overclosure = delta - delta_c (shifted: overlap delta = overclosure + "// &
-            & fmt(t%cutoff)//"); force 0 below overclosure 0"
+            & fmt(t%cutoff)//"); force 0 below overclosure 0")
       else
-         write (unit, '(a)') "** node-to-surface contact: FORCE per node against "// &
-            & "overclosure (= overlap delta); force 0 below overclosure "//fmt(t%cutoff)
+         call out%add("** node-to-surface contact: FORCE per node against "// &
+            & "overclosure (= overlap delta); force 0 below overclosure "//fmt(t%cutoff))
       end if
-      call write_error_comment(unit, t%rel_tol, achieved, size(x))
-      call write_pairs(unit, tmp, x - origin, y, error)
+      call write_error_comment(out, t%rel_tol, achieved, size(x))
+      call write_pairs(out, x - origin, y, error)
       if (allocated(error)) return
-      call commit_temporary(unit, tmp, path, error)
+      call write_file(path, out%content(), error)
    end subroutine write_calculix_sphere
 
    !> Rough flat: nominal pressure p_G(d) (egw_asperity) against overclosure = -d, from
@@ -963,8 +940,8 @@ contains
       real(dp), intent(out), optional :: max_error
       real(dp), allocatable :: x(:), y(:)
       real(dp) :: p0, dp0, pc, d_c, step, achieved, origin
-      integer :: unit, it
-      character(len=:), allocatable :: tmp
+      integer :: it
+      type(text_buffer) :: out
       type(sampler) :: smp
       logical :: shifted
 
@@ -1009,52 +986,49 @@ contains
       y(1) = 0.0_dp
       origin = 0.0_dp
       if (shifted) origin = -d_c
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
-      write (unit, '(a)') "** egw "//egw_version_string//": rough flat, GW nominal "// &
+      call out%add("** egw "//egw_version_string//": rough flat, GW nominal "// &
          & "pressure p_G (doc/theory.md section 3), model "//model_name(params%model)// &
          & ", E = "//fmt(params%modulus)//", sigma = "//fmt(params%sigma)//", mu = "// &
-         & fmt(params%mu)//", R = "//fmt(params%radius)//", psi = "//fmt(params%psi)
+         & fmt(params%mu)//", R = "//fmt(params%radius)//", psi = "//fmt(params%psi))
       if (shifted) then
-         write (unit, '(a)') "** PRESSURE against overclosure = d_c - separation of the "// &
+         call out%add("** PRESSURE against overclosure = d_c - separation of the "// &
             & "summit base plane, d_c = "//fmt(d_c)//" (shifted); pressure 0 for "// &
-            & "overclosure < 0"
+            & "overclosure < 0")
       else
-         write (unit, '(a)') "** PRESSURE against overclosure = -separation of the summit "// &
-            & "base plane; pressure 0 for overclosure < "//fmt(-d_c)
+         call out%add("** PRESSURE against overclosure = -separation of the summit "// &
+            & "base plane; pressure 0 for overclosure < "//fmt(-d_c))
       end if
-      call write_error_comment(unit, rel_tol, achieved, size(x))
-      call write_pairs(unit, tmp, x - origin, y, error)
+      call write_error_comment(out, rel_tol, achieved, size(x))
+      call write_pairs(out, x - origin, y, error)
       if (allocated(error)) return
-      call commit_temporary(unit, tmp, path, error)
+      call write_file(path, out%content(), error)
    end subroutine write_calculix_flat
 
    !> Header lines on the interpolation error achieved (and a warning if above rel_tol).
-   subroutine write_error_comment(unit, rel_tol, achieved, n)
-      integer, intent(in) :: unit, n
+   subroutine write_error_comment(out, rel_tol, achieved, n)
+      type(text_buffer), intent(inout) :: out
+      integer, intent(in) :: n
       real(dp), intent(in) :: rel_tol, achieved
-      write (unit, '(a)') "** linear interpolation between pairs within rel_tol = "// &
+      call out%add("** linear interpolation between pairs within rel_tol = "// &
          & fmt(rel_tol)//" requested; max error achieved = "//fmt(achieved)// &
-         & " (relative to max(|value|, rel_tol*reference)); "//int_str(n)//" pairs"
-      if (achieved > rel_tol) write (unit, '(a)') "** WARNING: rel_tol not met within "// &
-         & "CalculiX's limit of "//int_str(calculix_max_pairs)//" pairs per curve"
+         & " (relative to max(|value|, rel_tol*reference)); "//int_str(n)//" pairs")
+      if (achieved > rel_tol) call out%add("** WARNING: rel_tol not met within "// &
+         & "CalculiX's limit of "//int_str(calculix_max_pairs)//" pairs per curve")
    end subroutine write_error_comment
 
-   subroutine write_pairs(unit, tmp, x, y, error)
-      integer, intent(in) :: unit
-      character(len=*), intent(in) :: tmp
+   subroutine write_pairs(out, x, y, error)
+      type(text_buffer), intent(inout) :: out
       real(dp), intent(in) :: x(:), y(:)
       type(egw_error), allocatable, intent(out) :: error
       integer :: i
-      write (unit, '(a)') "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR"
+      call out%add("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR")
       do i = 1, size(x)
          if (.not. row_ok([x(i), y(i)])) then
-            call discard_temporary(unit, tmp)
             call fatal_error(error, egw_invalid_argument, "value at overclosure "// &
                & format_real(x(i))//" is not finite; nothing written")
             return
          end if
-         write (unit, '(a)') fmt20(y(i))//", "//fmt20(x(i))
+         call out%add(fmt20(y(i))//", "//fmt20(x(i)))
       end do
    end subroutine write_pairs
 
@@ -1463,33 +1437,6 @@ contains
       call move_alloc(i2, idx)
    end subroutine grow
 
-   !> Whole file as bytes (stream access).
-   subroutine read_bytes(path, bytes, error)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable, intent(out) :: bytes
-      type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, ios
-      integer(int64) :: nbytes
-      character(len=256) :: msg
-      open (newunit=unit, file=path, status="old", action="read", form="unformatted", &
-         & access="stream", iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("// &
-            & trim(msg)//")")
-         return
-      end if
-      inquire (unit=unit, size=nbytes)
-      if (nbytes < 0 .or. nbytes > huge(1)) then
-         close (unit)
-         call fatal_error(error, egw_bad_file, "path = "//path//": size unknown or too large")
-         return
-      end if
-      allocate (character(len=int(nbytes)) :: bytes)
-      if (nbytes > 0) read (unit, iostat=ios) bytes
-      close (unit)
-      if (ios /= 0) call fatal_error(error, egw_io_error, "path = "//path//": read failed")
-   end subroutine read_bytes
-
    subroutine move_table(from, to)
       type(force_table), intent(inout) :: from
       type(force_table), intent(out) :: to
@@ -1560,11 +1507,11 @@ contains
       call fatal_error(error, egw_bad_file, "path = "//path//": "//what)
    end subroutine bad
 
-   subroutine kv(unit, key, x)
-      integer, intent(in) :: unit
+   subroutine kv(out, key, x)
+      type(text_buffer), intent(inout) :: out
       character(len=*), intent(in) :: key
       real(dp), intent(in) :: x
-      write (unit, '(a)') "# "//key//" = "//fmt(x)
+      call out%add("# "//key//" = "//fmt(x))
    end subroutine kv
 
    pure logical function row_ok(v)
