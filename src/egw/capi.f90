@@ -22,6 +22,7 @@ module egw_capi
    ! gfortran 12 resolves their procedures to a bind(C) routine whose label equals the
    ! module name)
    use egw_smooth_sphere, only: hertz_contact
+   use egw_text, only: int_text, int_text_len
    implicit none
    private
 
@@ -420,10 +421,8 @@ contains
    !> Decimal text of an integer, for messages.
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
 

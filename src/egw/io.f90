@@ -13,6 +13,7 @@ module egw_io
       & c_long, c_int64_t, c_associated, c_null_ptr, c_loc, c_f_pointer
    use, intrinsic :: iso_fortran_env, only: int64
    use egw_status, only: egw_error, egw_io_error, fatal_error
+   use egw_text, only: int_text, int_text_len
    implicit none
    private
 
@@ -26,7 +27,7 @@ module egw_io
       integer :: n = 0
    contains
       procedure :: add => text_add
-      procedure :: content => text_content
+      procedure :: write => text_write
    end type text_buffer
 
    !> struct rlimit of getrlimit(2) (rlim_t is an unsigned long on Linux).
@@ -151,8 +152,8 @@ contains
       limit = file_size_limit()
       if (limit >= 0 .and. len(bytes, int64) > limit) then
          call fatal_error(error, egw_io_error, "path = "//path//": the file needs "// &
-            & i64_str(len(bytes, int64))//" bytes, above the file size limit of "// &
-            & i64_str(limit)//" bytes (ulimit -f); nothing written")
+            & int_text(len(bytes, int64))//" bytes, above the file size limit of "// &
+            & int_text(limit)//" bytes (ulimit -f); nothing written")
          return
       end if
       call create_temporary(path, fp, tmp, why)
@@ -164,15 +165,15 @@ contains
       why = ""
       if (len(bytes) > 0) then
          if (c_fwrite(c_loc(bytes), 1_c_size_t, int(len(bytes), c_size_t), fp) /= &
-            & int(len(bytes), c_size_t)) why = "write: "//system_reason()
+            & int(len(bytes), c_size_t)) call failed("write", why)
       end if
       if (len(why) == 0) then
-         if (c_fflush(fp) /= 0) why = "flush: "//system_reason()
+         if (c_fflush(fp) /= 0) call failed("flush", why)
       end if
       if (len(why) == 0) then
-         if (c_fsync(c_fileno(fp)) /= 0) why = "fsync: "//system_reason()
+         if (c_fsync(c_fileno(fp)) /= 0) call failed("fsync", why)
       end if
-      if (c_fclose(fp) /= 0 .and. len(why) == 0) why = "close: "//system_reason()
+      if (c_fclose(fp) /= 0 .and. len(why) == 0) call failed("close", why)
       if (len(why) > 0) then
          call remove_file(tmp)
          call fatal_error(error, egw_io_error, "path = "//path//": writing failed ("// &
@@ -198,8 +199,8 @@ contains
       end if
       fp = c_fopen(path//c_null_char, "rb"//c_null_char)
       if (.not. c_associated(fp)) then
-         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("// &
-            & system_reason()//")")
+         call system_reason(why)
+         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("//why//")")
          return
       end if
       why = ""
@@ -208,17 +209,17 @@ contains
       if (size < 0) then
          why = "not a regular file, or its size is unknown"
       else if (size > huge(1)) then
-         why = "larger than "//i64_str(int(huge(1), int64))//" bytes"
+         why = "larger than "//int_text(int(huge(1), int64))//" bytes"
       else if (c_fseek(fp, 0_c_long, seek_set) /= 0) then
-         why = "seek: "//system_reason()
+         call failed("seek", why)
       else
          allocate (character(len=int(size)) :: bytes)
          if (size > 0) then
             got = c_fread(c_loc(bytes), 1_c_size_t, int(size, c_size_t), fp)
-            if (got /= int(size, c_size_t)) why = "read: "//system_reason()
+            if (got /= int(size, c_size_t)) call failed("read", why)
          end if
       end if
-      if (c_fclose(fp) /= 0 .and. len(why) == 0) why = "close: "//system_reason()
+      if (c_fclose(fp) /= 0 .and. len(why) == 0) call failed("close", why)
       if (len(why) > 0) then
          if (allocated(bytes)) deallocate (bytes)
          call fatal_error(error, egw_io_error, "path = "//path//": cannot read ("// &
@@ -230,9 +231,11 @@ contains
    subroutine rename_file(from, path, error)
       character(len=*), intent(in) :: from, path
       type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: why
       if (c_rename(from//c_null_char, path//c_null_char) /= 0) then
+         call system_reason(why)
          call fatal_error(error, egw_io_error, "path = "//path//": cannot rename "// &
-            & from//" onto it ("//system_reason()//")")
+            & from//" onto it ("//why//")")
       end if
    end subroutine rename_file
 
@@ -273,16 +276,17 @@ contains
       self%n = need
    end subroutine text_add
 
-   !> The text added so far.
-   pure function text_content(self) result(text)
+   !> Write the text added so far to path (write_file: atomic, every step checked).
+   subroutine text_write(self, path, error)
       class(text_buffer), intent(in) :: self
-      character(len=:), allocatable :: text
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
       if (allocated(self%text)) then
-         text = self%text(1:self%n)
+         call write_file(path, self%text(1:self%n), error)
       else
-         text = ""
+         call write_file(path, "", error)
       end if
-   end function text_content
+   end subroutine text_write
 
    ! ============================================================ Fortran units
 
@@ -366,17 +370,17 @@ contains
       fp = c_null_ptr
       why = ""
       do attempt = 0, 7
-         tmp = path//".egw-tmp-"//i64_str(int(c_getpid(), int64))//"-"// &
-            & hex_str(address)//"-"//i64_str(int(attempt, int64))
+         tmp = path//".egw-tmp-"//int_text(int(c_getpid(), int64))//"-"// &
+            & int_text(address)//"-"//int_text(attempt)
          fp = c_fopen(tmp//c_null_char, "wbx"//c_null_char)
          if (c_associated(fp)) return
-         why = system_reason()
+         call system_reason(why)
       end do
    end subroutine create_temporary
 
    !> The text of errno (strerror) and its number.
-   function system_reason() result(text)
-      character(len=:), allocatable :: text
+   subroutine system_reason(text)
+      character(len=:), allocatable, intent(out) :: text
       integer(c_int), pointer :: errno
       integer(c_int) :: code
       type(c_ptr) :: msg
@@ -392,23 +396,16 @@ contains
       do i = 1, n
          text(i:i) = chars(i)
       end do
-      text = text//", errno "//i64_str(int(code, int64))
-   end function system_reason
+      text = text//", errno "//int_text(int(code))
+   end subroutine system_reason
 
-   pure function i64_str(i) result(str)
-      integer(int64), intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=24) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
-   end function i64_str
-
-   pure function hex_str(i) result(str)
-      integer(c_int64_t), intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=24) :: buf
-      write (buf, '(z0)') i
-      str = trim(buf)
-   end function hex_str
+   !> why = what//": "//errno's text.
+   subroutine failed(what, why)
+      character(len=*), intent(in) :: what
+      character(len=:), allocatable, intent(inout) :: why
+      character(len=:), allocatable :: reason
+      call system_reason(reason)
+      why = what//": "//reason
+   end subroutine failed
 
 end module egw_io

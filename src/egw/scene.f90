@@ -14,6 +14,7 @@ module egw_scene
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options
    use egw_table, only: force_table, build_table, table_set_radii, table_progress
    use egw_table_universal, only: universal_table, build_universal
+   use egw_text, only: int_text, int_text_len, real_text, real_text_len
    implicit none
    private
 
@@ -1034,18 +1035,14 @@ contains
    !> Short form of a number for messages (4 significant digits).
    pure function num(x) result(str)
       real(dp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(es11.4)') x
-      str = trim(adjustl(buf))
+      character(len=real_text_len(x, 4, 2)) :: str  ! not deferred: see egw_text
+      str = real_text(x, 4, 2)  ! as ES11.4, without an internal WRITE (egw_text)
    end function num
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
 end module egw_scene

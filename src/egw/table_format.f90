@@ -19,6 +19,7 @@ module egw_table_format
    use egw_table, only: force_table, table_prepare, table_eval, table_energy
    use egw_table_universal, only: universal_table, universal_slice_params, &
       & universal_nodes_shared, move_universal
+   use egw_text, only: int_text, int_text_len, real_text, real_text_len, parse_real, parse_int
    implicit none
    private
 
@@ -44,10 +45,10 @@ module egw_table_format
       & "delta,force,stiffness,energy,contact_radius"
    character(len=*), parameter :: csv_columns_universal = &
       & "mu_index,x,p,dp_dx,energy,contact_radius"
-   character(len=*), parameter :: real_fmt = "(es25.17e3)"
-   !> CalculiX reads only the first 20 characters of a field: 13 significant digits
-   !> (relative rounding <= 5e-13, below every rel_tol a curve can be asked for).
-   character(len=*), parameter :: calculix_fmt = "(es20.12e3)"
+   ! numbers are written as ES25.17E3 (17 decimals: every double reads back bit for bit)
+   ! CalculiX reads only the first 20 characters of a field: numbers as ES20.12E3, 13
+   ! significant digits (relative rounding <= 5e-13, below every rel_tol a curve can be
+   ! asked for)
    !> CalculiX 2.20 keeps at most 200 pairs of a tabular curve (silently wrong beyond).
    integer, parameter, public :: calculix_max_pairs = 200
 
@@ -203,7 +204,7 @@ contains
             & table%energy(i), table%contact_radius(i)]))
       end do
       call out%add("# end of table, "//int_str(size(table%delta))//" rows")
-      call write_file(path, out%content(), error)
+      call out%write(path, error)
    end subroutine write_table_csv
 
    subroutine write_universal_csv(table, path, error)
@@ -250,7 +251,7 @@ contains
          end associate
       end do
       call out%add("# end of table, "//int_str(nrows)//" rows")
-      call write_file(path, out%content(), error)
+      call out%write(path, error)
    end subroutine write_universal_csv
 
    subroutine write_params_csv(out, p)
@@ -392,8 +393,8 @@ contains
       real(dp), allocatable, intent(out) :: rows(:, :)
       integer, allocatable, intent(out) :: idx(:)
       type(egw_error), allocatable, intent(out) :: error
-      integer :: pos, eol, nrow, ios, line_no, eq, cap, n_end
-      logical :: in_data, ended, indexed
+      integer :: pos, eol, nrow, line_no, eq, cap, n_end
+      logical :: in_data, ended, indexed, ok
       character(len=:), allocatable :: line
       real(dp) :: vals(ncol)
       integer :: j
@@ -427,8 +428,8 @@ contains
             cycle
          end if
          if (starts_with(line, "# end of table,")) then
-            read (line(16:), *, iostat=ios) n_end
-            if (ios /= 0 .or. n_end /= nrow .or. .not. in_data) then
+            call parse_int(first_token(line(16:)), n_end, ok)
+            if (.not. ok .or. n_end /= nrow .or. .not. in_data) then
                call bad(error, path, "line "//int_str(line_no)//": end line does not match "// &
                   & int_str(nrow)//" data rows")
                return
@@ -450,13 +451,8 @@ contains
             end if
             in_data = .true.
          else
-            if (indexed) then
-               read (line, *, iostat=ios) j, vals
-            else
-               j = 0
-               read (line, *, iostat=ios) vals
-            end if
-            if (ios /= 0) then
+            call split_row(line, indexed, j, vals, ok)
+            if (.not. ok) then
                call bad(error, path, "line "//int_str(line_no)//": cannot read "// &
                   & int_str(ncol)//" numbers")
                return
@@ -844,7 +840,7 @@ contains
             end do
          end associate
       end do
-      call write_file(path, out%content(), error)
+      call out%write(path, error)
    end subroutine write_lammps
 
    !> Points of a LAMMPS section: doubled until the midpoint linear-interpolation error
@@ -921,7 +917,7 @@ contains
       call write_error_comment(out, t%rel_tol, achieved, size(x))
       call write_pairs(out, x - origin, y, error)
       if (allocated(error)) return
-      call write_file(path, out%content(), error)
+      call out%write(path, error)
    end subroutine write_calculix_sphere
 
    !> Rough flat: nominal pressure p_G(d) (egw_asperity) against overclosure = -d, from
@@ -1001,7 +997,7 @@ contains
       call write_error_comment(out, rel_tol, achieved, size(x))
       call write_pairs(out, x - origin, y, error)
       if (allocated(error)) return
-      call write_file(path, out%content(), error)
+      call out%write(path, error)
    end subroutine write_calculix_flat
 
    !> Header lines on the interpolation error achieved (and a warning if above rel_tol).
@@ -1367,15 +1363,16 @@ contains
       type(header_dict), intent(in) :: dict
       real(dp), intent(out) :: x
       type(egw_error), allocatable, intent(out) :: error
-      integer :: i, ios
+      integer :: i
+      logical :: ok
       i = dict_find(dict, key)
       x = 0.0_dp
       if (i == 0) then
          call bad(error, path, "header key '"//key//"' missing")
          return
       end if
-      read (dict%values(i), *, iostat=ios) x
-      if (ios /= 0 .or. .not. ieee_is_finite(x)) then
+      call parse_real(first_token(dict%values(i)), x, ok)
+      if (.not. ok .or. .not. ieee_is_finite(x)) then
          call bad(error, path, "header key '"//key//"' = '"//trim(dict%values(i))// &
             & "' is not a finite number")
       end if
@@ -1386,15 +1383,16 @@ contains
       type(header_dict), intent(in) :: dict
       integer, intent(out) :: k
       type(egw_error), allocatable, intent(out) :: error
-      integer :: i, ios
+      integer :: i
+      logical :: ok
       i = dict_find(dict, key)
       k = 0
       if (i == 0) then
          call bad(error, path, "header key '"//key//"' missing")
          return
       end if
-      read (dict%values(i), *, iostat=ios) k
-      if (ios /= 0) call bad(error, path, "header key '"//key//"' = '"// &
+      call parse_int(first_token(dict%values(i)), k, ok)
+      if (.not. ok) call bad(error, path, "header key '"//key//"' = '"// &
          & trim(dict%values(i))//"' is not an integer")
    end subroutine get_int
 
@@ -1522,30 +1520,88 @@ contains
    !> 17 significant digits: every double reads back bit-for-bit.
    pure function fmt(x) result(str)
       real(dp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=32) :: buf
-      write (buf, real_fmt) x
-      str = trim(adjustl(buf))
+      character(len=real_text_len(x, 17, 3)) :: str  ! not deferred: see egw_text
+      str = real_text(x, 17, 3)  ! ES25.17E3
    end function fmt
 
    !> 20 characters at most (CalculiX fields), 13 significant digits.
    pure function fmt20(x) result(str)
       real(dp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=20) :: buf
-      write (buf, calculix_fmt) x
-      str = trim(adjustl(buf))
+      character(len=real_text_len(x, 12, 3)) :: str
+      str = real_text(x, 12, 3)  ! ES20.12E3
    end function fmt20
+
+   pure integer function csv_row_len(v) result(n)
+      real(dp), intent(in) :: v(:)
+      integer :: i
+      n = size(v) - 1
+      do i = 1, size(v)
+         n = n + real_text_len(v(i), 17, 3)
+      end do
+   end function csv_row_len
 
    pure function csv_row(v) result(str)
       real(dp), intent(in) :: v(:)
-      character(len=:), allocatable :: str
-      integer :: i
-      str = fmt(v(1))
-      do i = 2, size(v)
-         str = str//","//fmt(v(i))
+      character(len=csv_row_len(v)) :: str  ! not deferred: see egw_text
+      integer :: i, pos, n
+      pos = 0
+      do i = 1, size(v)
+         if (i > 1) then
+            str(pos + 1:pos + 1) = ","
+            pos = pos + 1
+         end if
+         n = real_text_len(v(i), 17, 3)
+         str(pos + 1:pos + n) = real_text(v(i), 17, 3)
+         pos = pos + n
       end do
    end function csv_row
+
+   pure integer function first_token_len(text) result(n)
+      character(len=*), intent(in) :: text
+      n = index(trim(adjustl(text))//" ", " ") - 1
+   end function first_token_len
+
+   !> The text up to the first blank (after leading blanks).
+   pure function first_token(text) result(token)
+      character(len=*), intent(in) :: text
+      character(len=first_token_len(text)) :: token  ! not deferred: see egw_text
+      token = adjustl(text)
+   end function first_token
+
+   !> A data row: an integer index (if indexed) and size(vals) reals, separated by
+   !> commas; blanks around fields allowed, nothing else.
+   pure subroutine split_row(line, indexed, j, vals, ok)
+      character(len=*), intent(in) :: line
+      logical, intent(in) :: indexed
+      integer, intent(out) :: j
+      real(dp), intent(out) :: vals(:)
+      logical, intent(out) :: ok
+      integer :: start, comma, k, nfield
+      j = 0
+      vals = 0.0_dp
+      nfield = size(vals)
+      if (indexed) nfield = nfield + 1
+      start = 1
+      do k = 1, nfield
+         comma = index(line(start:), ",")
+         if (k < nfield) then
+            ok = comma > 0
+            if (.not. ok) return
+            comma = start + comma - 1
+         else
+            ok = comma == 0
+            if (.not. ok) return
+            comma = len(line) + 1
+         end if
+         if (indexed .and. k == 1) then
+            call parse_int(line(start:comma - 1), j, ok)
+         else
+            call parse_real(line(start:comma - 1), vals(k - merge(1, 0, indexed)), ok)
+         end if
+         if (.not. ok) return
+         start = comma + 1
+      end do
+   end subroutine split_row
 
    pure logical function starts_with(str, prefix)
       character(len=*), intent(in) :: str, prefix
@@ -1555,10 +1611,8 @@ contains
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
 end module egw_table_format
