@@ -23,6 +23,7 @@ module egw_capi
    ! module name)
    use egw_smooth_sphere, only: hertz_contact
    use egw_text, only: int_text, int_text_len
+   use egw_capi_utils, only: copy_to_c
    implicit none
    private
 
@@ -34,7 +35,8 @@ module egw_capi
 
    !> Last error message of this thread: the only mutable state of egw, kept per thread
    !> so that concurrent callers never see each other's messages.
-   character(len=1024), save :: last_message = ""
+   !> (16384 characters: a message naming a path of PATH_MAX = 4096 bytes fits whole.)
+   character(len=16384), save :: last_message = ""
    !$omp threadprivate(last_message)
 
    !> Mirror of the C struct egw_options.
@@ -525,29 +527,5 @@ contains
       call c_f_pointer(ptr, target)
       target = x
    end subroutine put
-
-   !> Copy a Fortran string into a C buffer of buflen bytes, NUL-terminated, truncated.
-   integer(c_int) function copy_to_c(str, buf, buflen) result(stat)
-      character(len=*), intent(in) :: str
-      type(c_ptr), intent(in) :: buf
-      integer(c_int), intent(in) :: buflen
-      character(kind=c_char), pointer :: chars(:)
-      integer :: i, n
-      stat = egw_ok
-      if (.not. c_associated(buf)) then
-         stat = egw_null_pointer
-         return
-      end if
-      if (buflen < 1) then
-         stat = egw_invalid_argument
-         return
-      end if
-      call c_f_pointer(buf, chars, [buflen])
-      n = min(len(str), int(buflen) - 1)
-      do i = 1, n
-         chars(i) = str(i:i)
-      end do
-      chars(n + 1) = c_null_char
-   end function copy_to_c
 
 end module egw_capi

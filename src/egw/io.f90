@@ -17,7 +17,8 @@ module egw_io
    implicit none
    private
 
-   public :: write_file, read_file, rename_file, remove_file, text_buffer, file_size_limit
+   public :: write_file, write_stream, read_file, rename_file, remove_file, text_buffer, &
+      & file_size_limit
    ! Fortran-unit variants (kept for callers that write through a unit; prefer write_file)
    public :: open_temporary, commit_temporary, discard_temporary
 
@@ -126,6 +127,8 @@ module egw_io
    end interface
 
    integer(c_int), parameter :: seek_end = 2, seek_set = 0
+   !> errno values (Linux) of an fsync that the file type does not support.
+   integer(c_int), parameter :: errno_einval = 22, errno_erofs = 30, errno_enotsup = 95
 
 contains
 
@@ -162,18 +165,7 @@ contains
             & "temporary file "//tmp//" ("//why//"); nothing written")
          return
       end if
-      why = ""
-      if (len(bytes) > 0) then
-         if (c_fwrite(c_loc(bytes), 1_c_size_t, int(len(bytes), c_size_t), fp) /= &
-            & int(len(bytes), c_size_t)) call failed("write", why)
-      end if
-      if (len(why) == 0) then
-         if (c_fflush(fp) /= 0) call failed("flush", why)
-      end if
-      if (len(why) == 0) then
-         if (c_fsync(c_fileno(fp)) /= 0) call failed("fsync", why)
-      end if
-      if (c_fclose(fp) /= 0 .and. len(why) == 0) call failed("close", why)
+      call write_and_close(fp, bytes, why)
       if (len(why) > 0) then
          call remove_file(tmp)
          call fatal_error(error, egw_io_error, "path = "//path//": writing failed ("// &
@@ -183,6 +175,51 @@ contains
       call rename_file(tmp, path, error)
       if (allocated(error)) call remove_file(tmp)
    end subroutine write_file
+
+   !> Write bytes into the file or device at path in place (no temporary file, no
+   !> rename: for devices and pipes, or where atomicity is not wanted), with the checks
+   !> of write_file: egw_io_error with the system's reason if any step fails.
+   subroutine write_stream(path, bytes, error)
+      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: bytes
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: why
+      type(c_ptr) :: fp
+      fp = c_fopen(path//c_null_char, "wb"//c_null_char)
+      if (.not. c_associated(fp)) then
+         call system_reason(why)
+         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("//why//")")
+         return
+      end if
+      call write_and_close(fp, bytes, why)
+      if (len(why) > 0) call fatal_error(error, egw_io_error, "path = "//path// &
+         & ": writing failed ("//why//")")
+   end subroutine write_stream
+
+   !> fwrite, fflush, fsync and fclose, each checked; why: "" or what failed and why.
+   !> fsync refused by a device or pipe (EINVAL, EROFS, ENOTSUP) is not a failure.
+   subroutine write_and_close(fp, bytes, why)
+      type(c_ptr), intent(in) :: fp
+      character(len=*), intent(in), target :: bytes
+      character(len=:), allocatable, intent(out) :: why
+      integer(c_int), pointer :: errno
+      why = ""
+      if (len(bytes) > 0) then
+         if (c_fwrite(c_loc(bytes), 1_c_size_t, int(len(bytes), c_size_t), fp) /= &
+            & int(len(bytes), c_size_t)) call failed("write", why)
+      end if
+      if (len(why) == 0) then
+         if (c_fflush(fp) /= 0) call failed("flush", why)
+      end if
+      if (len(why) == 0) then
+         if (c_fsync(c_fileno(fp)) /= 0) then
+            call c_f_pointer(c_errno_location(), errno)
+            if (all(errno /= [errno_einval, errno_erofs, errno_enotsup])) &
+               & call failed("fsync", why)
+         end if
+      end if
+      if (c_fclose(fp) /= 0 .and. len(why) == 0) call failed("close", why)
+   end subroutine write_and_close
 
    !> The whole file at path as bytes. egw_io_error if it cannot be opened or read.
    subroutine read_file(path, bytes, error)
