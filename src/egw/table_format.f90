@@ -183,7 +183,7 @@ contains
       ! comment="#"), numpy.loadtxt(path, delimiter=",", skiprows=1) and
       ! numpy.genfromtxt(path, delimiter=",", names=True) read it as it is
       call out%add(csv_columns_table)
-      call out%add("# egw force table, CSV format 2")
+      call out%add("# egw force table, CSV format 3")
       call out%add("# egw_version = "//egw_version_string)
       call write_params_csv(out, table%params)
       call write_table_meta_csv(out, "", table)
@@ -204,6 +204,7 @@ contains
             & table%energy(i), table%contact_radius(i)]))
       end do
       call out%add("# end of table, "//int_str(size(table%delta))//" rows")
+      call add_checksum(out)
       call out%write(path, error)
    end subroutine write_table_csv
 
@@ -214,7 +215,7 @@ contains
       integer :: i, j, nrows
       type(text_buffer) :: out
       call out%add(csv_columns_universal)  ! first: see write_table_csv
-      call out%add("# egw universal table, CSV format 2")
+      call out%add("# egw universal table, CSV format 3")
       call out%add("# egw_version = "//egw_version_string)
       call out%add("# model = "//int_str(table%model)//" ("//model_name(table%model)//")")
       call kv(out, "psi", table%psi)
@@ -251,6 +252,7 @@ contains
          end associate
       end do
       call out%add("# end of table, "//int_str(nrows)//" rows")
+      call add_checksum(out)
       call out%write(path, error)
    end subroutine write_universal_csv
 
@@ -292,7 +294,8 @@ contains
       integer, allocatable :: idx(:)
       integer :: n
 
-      call parse_csv(path, text, 5, csv_columns_table, dict, rows, idx, error)
+      call parse_csv(path, text, 5, csv_columns_table, dict, rows, idx, error, &
+         & t%checksum_missing)
       if (allocated(error)) return
       call get_params(path, dict, t%params, error)
       if (allocated(error)) return
@@ -321,9 +324,10 @@ contains
       integer :: j, n, first
       real(dp) :: mu
       character(len=:), allocatable :: prefix
+      logical :: missing
 
       call parse_csv(path, text, 5, csv_columns_universal, dict, rows, &
-         & idx, error)
+         & idx, error, missing)
       if (allocated(error)) return
       call get_int(path, dict, "model", u%model, error)
       if (.not. allocated(error)) call get_real(path, dict, "psi", u%psi, error)
@@ -385,9 +389,13 @@ contains
    !> Split a CSV file into its "# key = value" header, check the column header line,
    !> read ncol reals per data row (after an integer index when the columns start with
    !> "mu_index") and require the "# end of table, N rows" trailer (so that a file cut
-   !> inside its last number is detected).
-   subroutine parse_csv(path, text, ncol, columns, dict, rows, idx, error)
-      character(len=*), intent(in) :: path, text, columns
+   !> inside its last number is detected). A last line "# fnv1a32 = ..." (CSV format
+   !> 3) must match the checksum of the bytes above it; checksum_missing tells whether
+   !> it was absent (a format 1 or 2 file, or a hand-edited one).
+   subroutine parse_csv(path, file_text, ncol, columns, dict, rows, idx, error, &
+      & checksum_missing)
+      character(len=*), intent(in) :: path, file_text, columns
+      logical, intent(out) :: checksum_missing
       integer, intent(in) :: ncol
       type(header_dict), intent(out) :: dict
       real(dp), allocatable, intent(out) :: rows(:, :)
@@ -397,8 +405,11 @@ contains
       logical :: in_data, ended, indexed, ok
       character(len=:), allocatable :: line
       real(dp) :: vals(ncol)
-      integer :: j
+      integer :: j, body
 
+      call split_checksum(path, file_text, body, checksum_missing, error)
+      if (allocated(error)) return
+      associate (text => file_text(1:body))
       indexed = starts_with(columns, "mu_index")
       cap = 1024
       allocate (rows(ncol, cap), idx(cap), dict%keys(64), dict%values(64))
@@ -472,7 +483,52 @@ contains
       end if
       rows = rows(:, 1:nrow)
       idx = idx(1:nrow)
+      end associate
    end subroutine parse_csv
+
+   !> The checksum line of a CSV file: body = the bytes before it (all of text if
+   !> there is none, then missing = true); a checksum that does not match is an error.
+   subroutine split_checksum(path, text, body, missing, error)
+      character(len=*), intent(in) :: path, text
+      integer, intent(out) :: body
+      logical, intent(out) :: missing
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), parameter :: key = "# fnv1a32 = "
+      integer :: start
+      body = len(text)
+      missing = .true.
+      if (len(text) < 2) return
+      if (text(len(text):len(text)) /= new_line("a")) return
+      start = index(text(1:len(text) - 1), new_line("a"), back=.true.) + 1
+      if (.not. starts_with(text(start:), key)) return
+      missing = .false.
+      body = start - 1
+      if (first_token(text(start + len(key):len(text) - 1)) /= &
+         & hex8(fnv1a32(text(1:body)))) then
+         call bad(error, path, "checksum mismatch: the file was changed after egw wrote "// &
+            & "it (corrupted, or edited by hand: an edited file is read, unchecked, once "// &
+            & "its '# fnv1a32' line is deleted)")
+      end if
+   end subroutine split_checksum
+
+   !> Append the checksum line of CSV format 3: the FNV-1a hash of all bytes above it.
+   subroutine add_checksum(out)
+      type(text_buffer), intent(inout) :: out
+      call out%add("# fnv1a32 = "//hex8(fnv1a32(out%text(1:out%n)))// &
+         & " (checksum of the bytes above this line)")
+   end subroutine add_checksum
+
+   !> The low 32 bits of h as 8 lowercase hexadecimal digits.
+   pure function hex8(h) result(str)
+      integer(int64), intent(in) :: h
+      character(len=8) :: str
+      character(len=*), parameter :: symbols = "0123456789abcdef"
+      integer :: i, d
+      do i = 1, 8
+         d = int(iand(ishft(h, -4*(8 - i)), 15_int64))
+         str(i:i) = symbols(d + 1:d + 1)
+      end do
+   end function hex8
 
    ! =========================================================== binary
 
@@ -1209,7 +1265,10 @@ contains
 
    ! =========================================================== checks and helpers
 
-   !> Everything a reader must verify before handing over a table.
+   !> Everything a reader must verify before handing over a table: finite numbers;
+   !> metadata in range; nodes strictly increasing from the cut-off; force, stiffness,
+   !> energy and contact radius >= 0; force and energy non-decreasing in the overlap
+   !> (the loading curve of every model rises: a dip is a corrupted or edited file).
    subroutine check_table(path, where, t, error)
       character(len=*), intent(in) :: path, where
       type(force_table), intent(in) :: t
@@ -1220,6 +1279,8 @@ contains
          call bad(error, path, where//"fewer than 2 nodes")
          return
       end if
+      call check_meta(path, where, t, error)
+      if (allocated(error)) return
       do i = 1, n
          if (.not. row_ok([t%delta(i), t%force(i), t%stiffness(i), t%energy(i), &
             & t%contact_radius(i)])) then
@@ -1227,7 +1288,34 @@ contains
             return
          end if
          if (t%force(i) < 0.0_dp) then
-            call bad(error, path, where//"node "//int_str(i)//": negative force")
+            call bad(error, path, where//"node "//int_str(i)//": negative force "// &
+               & format_real(t%force(i)))
+            return
+         end if
+         if (t%stiffness(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative stiffness "// &
+               & format_real(t%stiffness(i)))
+            return
+         end if
+         if (t%energy(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative energy "// &
+               & format_real(t%energy(i)))
+            return
+         end if
+         if (t%contact_radius(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative contact "// &
+               & "radius "//format_real(t%contact_radius(i)))
+            return
+         end if
+         if (i == 1) cycle
+         if (t%force(i) < t%force(i - 1)) then
+            call bad(error, path, where//"node "//int_str(i)//": force "// &
+               & format_real(t%force(i))//" below the previous node's "// &
+               & format_real(t%force(i - 1))//" (the force must not decrease)")
+            return
+         end if
+         if (t%energy(i) < t%energy(i - 1)) then
+            call bad(error, path, where//"node "//int_str(i)//": energy decreases")
             return
          end if
       end do
@@ -1251,12 +1339,45 @@ contains
       end if
    end subroutine check_table
 
+   !> The metadata of a table: finite, rel_tol in (0, 0.1], P_ref > 0, errors and
+   !> R1 + R2 >= 0.
+   subroutine check_meta(path, where, t, error)
+      character(len=*), intent(in) :: path, where
+      type(force_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. (t%rel_tol > 0.0_dp .and. t%rel_tol <= 0.1_dp)) then
+         call bad(error, path, where//"rel_tol = "//format_real(t%rel_tol)// &
+            & ": must lie in (0, 0.1]")
+      else if (.not. (ieee_is_finite(t%reference_force) .and. t%reference_force > 0)) then
+         call bad(error, path, where//"reference_force = "// &
+            & format_real(t%reference_force)//": must be finite and > 0")
+      else if (.not. (ieee_is_finite(t%max_force_error) .and. t%max_force_error >= 0 &
+         & .and. ieee_is_finite(t%max_stiffness_error) .and. t%max_stiffness_error >= 0)) &
+         & then
+         call bad(error, path, where//"max_force_error = "// &
+            & format_real(t%max_force_error)//", max_stiffness_error = "// &
+            & format_real(t%max_stiffness_error)//": must be finite and >= 0")
+      else if (.not. (ieee_is_finite(t%radius_sum) .and. t%radius_sum >= 0)) then
+         call bad(error, path, where//"radius_sum = "//format_real(t%radius_sum)// &
+            & ": must be finite and >= 0 (0: not set)")
+      end if
+   end subroutine check_meta
+
    subroutine check_universal_header(path, u, error)
       character(len=*), intent(in) :: path
       type(universal_table), intent(in) :: u
       type(egw_error), allocatable, intent(out) :: error
       if (u%n_mu < 4 .or. u%n_mu > 100000) then
          call bad(error, path, "n_mu = "//int_str(u%n_mu)//": need at least 4")
+      else if (.not. (u%rel_tol > 0.0_dp .and. u%rel_tol <= 0.1_dp)) then
+         call bad(error, path, "rel_tol = "//format_real(u%rel_tol)//": must lie in (0, 0.1]")
+      else if (.not. (ieee_is_finite(u%max_mu_error) .and. u%max_mu_error >= 0)) then
+         call bad(error, path, "max_mu_error = "//format_real(u%max_mu_error)// &
+            & ": must be finite and >= 0")
+      else if (.not. (ieee_is_finite(u%x_cut) .and. ieee_is_finite(u%x_max) .and. &
+         & u%x_cut < u%x_max)) then
+         call bad(error, path, "x_cut = "//format_real(u%x_cut)//", x_max = "// &
+            & format_real(u%x_max)//": need finite x_cut < x_max")
       else if (.not. (ieee_is_finite(u%mu_min) .and. u%mu_min > 0.0_dp .and. &
          & ieee_is_finite(u%mu_max) .and. u%mu_max > u%mu_min)) then
          call bad(error, path, "mu range ["//format_real(u%mu_min)//", "// &
@@ -1447,6 +1568,7 @@ contains
       to%max_stiffness_error = from%max_stiffness_error
       to%radius_sum = from%radius_sum
       to%n_log = from%n_log
+      to%checksum_missing = from%checksum_missing
       to%n_bucket = from%n_bucket
       to%bucket_scale = from%bucket_scale
       to%bucket_origin = from%bucket_origin
