@@ -235,6 +235,10 @@ typedef struct {
   double rel_tol;             /* requested interpolation tolerance */
   double max_force_error;     /* measured max |P_table/P_solve - 1| at check solves */
   double max_stiffness_error; /* same for the stiffness (reported, not enforced) */
+  int    checksum_missing;    /* warning: 1 if read from a CSV file without its checksum
+                               * line (written before CSV format 3, or edited by hand):
+                               * only the reader's sanity checks vouch for the numbers;
+                               * 0 for built tables and checksummed files */
 } egw_table_info;
 
 /* Build the table of p over at least [delta_min, delta_max] with interpolation error

@@ -28,6 +28,7 @@ module egw_capi_table
       integer(c_int) :: model, n_nodes
       real(c_double) :: cutoff, delta_max, reference_force, rel_tol, max_force_error, &
          & max_stiffness_error
+      integer(c_int) :: checksum_missing
    end type egw_table_info_c
 
    public :: egw_table_info_c
@@ -164,7 +165,8 @@ contains
       ci = egw_table_info_c(model=int(t%params%model, c_int), &
          & n_nodes=int(size(t%delta), c_int), cutoff=t%cutoff, delta_max=t%delta_max, &
          & reference_force=t%reference_force, rel_tol=t%rel_tol, &
-         & max_force_error=t%max_force_error, max_stiffness_error=t%max_stiffness_error)
+         & max_force_error=t%max_force_error, max_stiffness_error=t%max_stiffness_error, &
+         & checksum_missing=merge(1_c_int, 0_c_int, t%checksum_missing))
    end function egw_table_get_info
 
    !> C: egw_table_set_radii (R1, R2 consistent with the table's R).

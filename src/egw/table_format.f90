@@ -503,8 +503,8 @@ contains
       if (.not. starts_with(text(start:), key)) return
       missing = .false.
       body = start - 1
-      if (first_token(text(start + len(key):len(text) - 1)) /= &
-         & hex8(fnv1a32(text(1:body)))) then
+      ! the whole line, so that no byte of the file escapes the check
+      if (text(start:len(text) - 1) /= checksum_line(text(1:body))) then
          call bad(error, path, "checksum mismatch: the file was changed after egw wrote "// &
             & "it (corrupted, or edited by hand: an edited file is read, unchecked, once "// &
             & "its '# fnv1a32' line is deleted)")
@@ -514,9 +514,14 @@ contains
    !> Append the checksum line of CSV format 3: the FNV-1a hash of all bytes above it.
    subroutine add_checksum(out)
       type(text_buffer), intent(inout) :: out
-      call out%add("# fnv1a32 = "//hex8(fnv1a32(out%text(1:out%n)))// &
-         & " (checksum of the bytes above this line)")
+      call out%add(checksum_line(out%text(1:out%n)))
    end subroutine add_checksum
+
+   pure function checksum_line(above) result(line)
+      character(len=*), intent(in) :: above
+      character(len=60) :: line
+      line = "# fnv1a32 = "//hex8(fnv1a32(above))//" (checksum of the bytes above this line)"
+   end function checksum_line
 
    !> The low 32 bits of h as 8 lowercase hexadecimal digits.
    pure function hex8(h) result(str)
