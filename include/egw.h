@@ -14,7 +14,7 @@
  *     egw_last_error() returns a message naming the offending argument.
  *   - All functions are thread-safe: they keep no shared state (the last-error
  *     message is per thread), and any number of threads may write and read files at
- *     once (egw does no Fortran I/O on those paths: tested with 16 threads).
+ *     once (tested with 16 threads).
  *   - String arguments (paths) are read to their NUL, whatever their length.
  */
 #ifndef EGW_H

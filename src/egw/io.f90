@@ -4,10 +4,10 @@
 !> target (rename(2) is atomic within a file system), so a full disk, a file-size
 !> limit or an I/O error leaves an existing file untouched and no temporary behind.
 !>
-!> Why C stdio and not Fortran units: libgfortran's OPEN/CLOSE race with internal
-!> WRITEs running in other threads (number formatting then yields blanks), so egw's
-!> files never go through Fortran units; internal I/O alone is thread-safe. The libc
-!> functions are reached through interface blocks (system calls, not part of the C API).
+!> Why C stdio and not Fortran units: the system's reason for a failure (strerror of
+!> errno: "No space left on device"), fsync before the rename, and an exclusive create
+!> ("x") of a temporary file of this writer's own. The libc functions are reached
+!> through interface blocks (system calls, not part of the C API).
 module egw_io
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_ptr, c_size_t, &
       & c_long, c_int64_t, c_associated, c_null_ptr, c_loc, c_f_pointer
@@ -329,8 +329,8 @@ contains
 
    !> Open a fresh temporary file for path; tmp_path receives its name.
    !> binary (default false): unformatted stream access, for byte-exact binary formats.
-   !> Fortran units race with internal I/O in other threads (see the module comment):
-   !> prefer write_file, which needs no unit.
+   !> Prefer write_file: this temporary's name is not unique to the writer (two threads
+   !> writing the same path share it) and a unit gives no fsync.
    subroutine open_temporary(path, unit, tmp_path, error, binary)
       character(len=*), intent(in) :: path
       integer, intent(out) :: unit

@@ -1,15 +1,18 @@
-!> Decimal text of integers and doubles, both ways, without Fortran I/O: libgfortran's
-!> internal READ/WRITE is not safe when threads use it at the same time (gfortran 12
-!> writes blank fields or corrupts the heap), and egw promises thread-safe calls.
-!> Doubles are converted exactly: the binary value is expanded into a big decimal
+!> Decimal text of integers and doubles, both ways, in plain Fortran (no internal I/O):
+!> the results' lengths are known before the call (see below), and the reader is
+!> stricter than a list-directed READ (one number per field, no null values, no
+!> separators or repeat counts). Doubles are converted exactly: the binary value is expanded into a big decimal
 !> integer and rounded half-to-even (what glibc's printf and gfortran's ES edit
 !> descriptor do), and text is read to the nearest double by an exact comparison
 !> with the halfway points (so 17 significant digits read back bit for bit).
 !>
 !> The functions' results have lengths given by specification functions (int_text_len,
 !> real_text_len), not deferred lengths: gfortran 12 keeps the length of a deferred-
-!> length function result in a static variable of the caller, which threads calling
-!> the same line at once overwrite (wrong lengths, blank fields, heap corruption).
+!> length (character(len=:), allocatable) function result in a static variable of the
+!> caller, which threads running the same line at once overwrite (wrong lengths, blank
+!> CSV fields, garbled messages, heap corruption). egw's functions returning text all
+!> follow this rule; text of unknown length comes from subroutines with a deferred-
+!> length intent(out) argument, which are safe.
 module egw_text
    use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
