@@ -1,5 +1,5 @@
 !> Runs the C tests of file output and input (test/capi_io_checks.c) as a test-drive
-!> suite: 16 threads writing and rereading, failed writes, long paths.
+!> suite: 16 threads writing and rereading, failed writes, long paths, a full tmpfs.
 module test_capi_io
    use, intrinsic :: iso_c_binding, only: c_int
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
@@ -17,6 +17,9 @@ module test_capi_io
       integer(c_int) function c_long_paths() bind(C, name="egw_capi_test_io_long_paths")
          import :: c_int
       end function c_long_paths
+      integer(c_int) function c_full_disk() bind(C, name="egw_capi_test_io_full_disk")
+         import :: c_int
+      end function c_full_disk
    end interface
 
 contains
@@ -26,7 +29,8 @@ contains
       testsuite = [ &
          & new_unittest("16 threads write and reread tables", t_threads), &
          & new_unittest("failed writes keep the old file", t_failures), &
-         & new_unittest("paths beyond 4096 bytes", t_long_paths) &
+         & new_unittest("paths beyond 4096 bytes", t_long_paths), &
+         & new_unittest("full tmpfs, four formats (root)", t_full_disk) &
          & ]
    end subroutine collect_capi_io
 
@@ -50,5 +54,10 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_long_paths())
    end subroutine t_long_paths
+
+   subroutine t_full_disk(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_full_disk())
+   end subroutine t_full_disk
 
 end module test_capi_io
