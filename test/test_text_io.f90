@@ -24,7 +24,8 @@ contains
          & new_unittest("special values and bad text", test_special), &
          & new_unittest("integers", test_integers), &
          & new_unittest("full device: EGW_IO_ERROR", test_full_device), &
-         & new_unittest("write_file onto a directory", test_directory) &
+         & new_unittest("write_file onto a directory", test_directory), &
+         & new_unittest("no deferred-length function results", test_no_deferred) &
          & ]
    end subroutine collect_text_io
 
@@ -188,5 +189,95 @@ contains
       call check(error, .not. allocated(e) .and. bytes == "two"//new_line("a")//"lines"// &
          & new_line("a"), "read_file does not give back what was written")
    end subroutine test_directory
+
+   !> No function in src/ returns character(len=:), allocatable: gfortran 12 keeps the
+   !> length of such a result in a static variable of the caller, so threads calling
+   !> the same line at once corrupt text and the heap (egw_text explains the remedy).
+   subroutine test_no_deferred(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(egw_error), allocatable :: e
+      character(len=:), allocatable :: list, text, offenders
+      integer :: stat, start, eol
+      call execute_command_line("mkdir -p build && ls src/*.f90 src/egw/*.f90 "// &
+         & "> build/test_text_io_sources.txt", exitstat=stat)
+      call read_file("build/test_text_io_sources.txt", list, e)
+      call check(error, stat == 0 .and. .not. allocated(e), "cannot list src/*.f90")
+      if (allocated(error)) return
+      offenders = ""
+      start = 1
+      do while (start < len(list))
+         eol = index(list(start:), new_line("a")) + start - 1
+         if (eol < start) eol = len(list) + 1
+         call read_file(list(start:eol - 1), text, e)
+         if (.not. allocated(e)) call scan_functions(list(start:eol - 1), text, offenders)
+         start = eol + 1
+      end do
+      call check(error, len(offenders) == 0, "deferred-length function results:"//offenders)
+   end subroutine test_no_deferred
+
+   !> Append "file:function" for each function of text whose result is declared
+   !> character(len=:), allocatable.
+   subroutine scan_functions(path, text, offenders)
+      character(len=*), intent(in) :: path, text
+      character(len=:), allocatable, intent(inout) :: offenders
+      character(len=:), allocatable :: lower, name, res
+      integer :: at, open_paren, body_end, k, r, decl, eol
+      lower = text
+      do k = 1, len(lower)
+         if (lower(k:k) >= "A" .and. lower(k:k) <= "Z") lower(k:k) = achar(iachar(lower(k:k)) + 32)
+      end do
+      at = 1
+      do
+         k = index(lower(at:), "function ")
+         if (k == 0) exit
+         at = at + k - 1 + len("function ")
+         ! a declaration, not "end function" or a comment
+         eol = index(lower(1:at), new_line("a"), back=.true.)
+         if (index(lower(eol + 1:at), "end") > 0 .or. index(lower(eol + 1:at), "!") > 0) cycle
+         open_paren = index(lower(at:), "(") + at - 1
+         if (open_paren < at) exit
+         name = trim(adjustl(lower(at:open_paren - 1)))
+         if (len(name) == 0 .or. verify(name, "abcdefghijklmnopqrstuvwxyz0123456789_") /= 0) &
+            & cycle
+         body_end = index(lower(at:), "end function") + at - 1
+         if (body_end < at) exit
+         res = name
+         eol = index(lower(at:), new_line("a")) + at - 1
+         r = index(lower(at:eol), "result(")
+         if (r > 0) res = lower(at + r + 6:at + r + 5 + index(lower(at + r + 6:eol), ")") - 1)
+         decl = at
+         do
+            k = index(lower(decl:body_end), "character(len=:), allocatable")
+            if (k == 0) exit
+            decl = decl + k - 1
+            eol = index(lower(decl:), new_line("a")) + decl - 1
+            if (has_word(lower(index(lower(decl:eol), "::") + decl + 1:eol), res) .and. &
+               & index(lower(decl:eol), "intent") == 0) then
+               offenders = offenders//" "//path//":"//name
+               exit
+            end if
+            decl = eol
+         end do
+      end do
+   end subroutine scan_functions
+
+   pure logical function has_word(text, word)
+      character(len=*), intent(in) :: text, word
+      character(len=*), parameter :: ident = "abcdefghijklmnopqrstuvwxyz0123456789_"
+      integer :: k, at
+      has_word = .false.
+      at = 1
+      do
+         k = index(text(at:), word)
+         if (k == 0) return
+         k = at + k - 1
+         has_word = .true.
+         if (k > 1) has_word = index(ident, text(k - 1:k - 1)) == 0
+         if (has_word .and. k + len(word) <= len(text)) &
+            & has_word = index(ident, text(k + len(word):k + len(word))) == 0
+         if (has_word) return
+         at = k + 1
+      end do
+   end function has_word
 
 end module test_text_io
