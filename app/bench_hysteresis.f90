@@ -18,7 +18,7 @@ contains
       type(hysteresis_table) :: t
       type(egw_error), allocatable :: err
       integer, parameter :: n = 4096, rounds = 11, sweeps = 200
-      real(dp) :: delta(n), state(n), tols(2), sink, f, k, t_h, t_y, best_h, best_y
+      real(dp) :: delta(n), state(n), tols(2), sink, f, k, m, t_h, t_y, best_h, best_y
       integer(int64) :: c0, c1, rate
       integer :: i, r, s, stat, it
       p = contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
@@ -37,6 +37,9 @@ contains
          write (output_unit, '(a,es8.1,a,f8.2,a,i0,a,es9.2)') "  build rel_tol ", tols(it), &
             & ": ", real(c1 - c0, dp)/real(rate, dp), " s, ", size(t%m), &
             & " delta_max nodes, max error at checks ", t%max_error
+         write (output_unit, '(a,i0,a,f8.2,a)') "    s nodes ", size(t%s), ", evaluation data ", &
+            & real(storage_size(t%coef)/8*size(t%coef), dp)/2.0_dp**20, " MiB"
+         write (output_unit, '(10f8.3)') t%m
       end do
       ! contacts in all states: loading and unloading from delta_max within the range
       do i = 1, n
@@ -59,8 +62,8 @@ contains
          call system_clock(c0, rate)
          do s = 1, sweeps
             do i = 1, n
-               f = state(i)
-               call hysteresis_eval(t, delta(i), f, f, k, stat)
+               m = state(i)
+               call hysteresis_eval(t, delta(i), m, f, k, stat)
                sink = sink + f
             end do
          end do

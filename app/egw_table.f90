@@ -13,7 +13,7 @@ program egw_table_app
       & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw, &
-      & text_buffer, remove_file
+      & text_buffer, remove_file, hysteresis_table, build_hysteresis, write_hysteresis
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
@@ -35,6 +35,9 @@ program egw_table_app
    !> deepest overlap the LAMMPS sections reach (0: default, twice the scene's delta_max)
    real(dp) :: lammps_reach = 0.0_dp
    logical :: lammps_written = .false.
+   !> EP-GW hysteresis tables written (one per parameter set), or why none
+   integer :: n_hysteresis = 0
+   character(len=:), allocatable :: hysteresis_note
 
    call system_clock(t0, rate)
    out_dir = "out"
@@ -136,7 +139,9 @@ program egw_table_app
    write (output_unit, '(a)') "  why: "//choice%reason
 
    n_written = 0
-   allocate (character(len=1024) :: written(10))
+   ! every output: at most 10 tables and curves, and a hysteresis table in two formats
+   ! per parameter set
+   allocate (character(len=1024) :: written(10 + 2*max_types*(max_types + 1)/2))
    if (.not. choose_only .and. choice%kind /= choice_hertz) then
       call progress("building the "//choice_name(choice%kind)//" at tol = "// &
          & num(input%tol)//" (full solves, OpenMP over points) ...")
@@ -210,11 +215,60 @@ contains
             written(n_written) = out_dir//"/scene_pairs.lammps"
          end if
       end select
+      call put_hysteresis()
       do i = 1, n_written
          call rename_file(trim(written(i))//".part", trim(written(i)), error)
          if (allocated(error)) call fail_write(error%message)
       end do
    end subroutine write_all
+
+   !> EP-GW with plastic summits: the hysteresis table (loading, unloading, reloading) of
+   !> every parameter set in the wanted egw formats, built to the scene's tolerance, for
+   !> DEM codes that carry a per-contact history. A continuous radius or sigma range has
+   !> no finite set of them (only discrete particle types do).
+   subroutine put_hysteresis()
+      type(hysteresis_table) :: h
+      character(len=:), allocatable :: base
+      integer :: i, n_sets
+      if (.not. (input%model == model_epgw .and. input%psi > 0.0_dp)) return
+      if (.not. (want(format_csv) .or. want(format_binary))) return
+      if (tables%kind == choice_universal .and. input%n_types == 0) then
+         hysteresis_note = "not written: a radius or sigma range has no finite set of "// &
+            & "parameter sets (list the particle types with --radii, or build one with "// &
+            & "egw_hysteresis_build)"
+         return
+      end if
+      n_sets = size(scene%sets)
+      do i = 1, n_sets
+         call progress("building the EP-GW hysteresis table of parameter set "// &
+            & int_str(i)//" at tol = "//num(input%tol)//" ...")
+         if (quiet) then
+            call build_hysteresis(scene%sets(i), options, scene%delta_min(i), &
+               & scene%delta_max(i), input%tol, h, error)
+         else
+            call bar_start("hysteresis", stderr_is_terminal(), "unloading curves")
+            call build_hysteresis(scene%sets(i), options, scene%delta_min(i), &
+               & scene%delta_max(i), input%tol, h, error, bar_update)
+            call bar_finish()
+         end if
+         if (allocated(error)) call fail_write("hysteresis table: "//error%message)
+         base = out_dir//"/scene_hysteresis"
+         if (n_sets > 1) base = base//"_"//int_str(i)
+         if (want(format_csv)) call put_hysteresis_file(h, base//".csv", format_csv)
+         if (want(format_binary)) call put_hysteresis_file(h, base//".bin", format_binary)
+         n_hysteresis = n_hysteresis + 1
+      end do
+   end subroutine put_hysteresis
+
+   subroutine put_hysteresis_file(h, path, format)
+      type(hysteresis_table), intent(in) :: h
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: format
+      call write_hysteresis(h, path//".part", format, error)
+      if (allocated(error)) call fail_write(error%message)
+      n_written = n_written + 1
+      written(n_written) = path
+   end subroutine put_hysteresis_file
 
    subroutine put(path, format)
       character(len=*), intent(in) :: path
@@ -389,6 +443,12 @@ contains
          & (want(format_lammps) .or. want(format_calculix))) write (output_unit, '(a)') &
          & "  WARNING           EP-GW: the LAMMPS and CalculiX files carry the loading"// &
          & " curve only (no unloading hysteresis, no plastic dissipation)"
+      if (n_hysteresis > 0) write (output_unit, '(a)') "  hysteresis        "// &
+         & int_str(n_hysteresis)//" EP-GW table(s) scene_hysteresis*: loading, unloading"// &
+         & " and reloading over (delta, delta_max) for a per-contact history"// &
+         & " (egw_hysteresis_read, egw_hysteresis_eval)"
+      if (allocated(hysteresis_note)) write (output_unit, '(a)') &
+         & "  hysteresis        "//hysteresis_note
       if (lammps_written) then
          write (output_unit, '(a)') "  LAMMPS reach      delta <= "//num(lammps_reach)// &
             & " (--lammps-delta-max; default 2 x delta_max): deeper overlaps stop LAMMPS"// &

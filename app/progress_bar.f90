@@ -17,6 +17,8 @@ module egw_progress_bar
    real, parameter :: min_interval = 0.1, log_interval = 5.0
 
    character(len=:), allocatable :: label
+   !> what the counts count ("solves" unless bar_start says otherwise)
+   character(len=:), allocatable :: unit_name
    integer :: last_done = 0, last_total = 0, last_len = 0
    integer(int64) :: last_draw = 0, clock_rate = 1
    logical :: active = .false., drawn = .false., stale = .false., plain = .false.
@@ -25,11 +27,14 @@ contains
 
    !> Start a bar named name (drawn at the first update). terminal: stderr is a terminal
    !> (a bar redrawn in place); otherwise plain progress lines, one every log_interval s.
-   subroutine bar_start(name, terminal)
+   subroutine bar_start(name, terminal, counts)
       character(len=*), intent(in) :: name
       logical, intent(in) :: terminal
+      character(len=*), intent(in), optional :: counts
       plain = .not. terminal
       label = name
+      unit_name = "solves"
+      if (present(counts)) unit_name = counts
       last_done = 0
       last_total = 0
       last_len = 0
@@ -81,7 +86,7 @@ contains
       write (pct, '(i3,a)') percent, "%"
       write (solves, '(i0)') last_done
       line = "  "//label//" ["//repeat("#", filled)//repeat(".", bar_width - filled)// &
-         & "] "//trim(pct)//"  ("//trim(solves)//" solves)"
+         & "] "//trim(pct)//"  ("//trim(solves)//" "//unit_name//")"
       ! blank out what is left of a longer previous line
       if (len(line) < last_len) line = line//repeat(" ", last_len - len(line))
       last_len = len(line)

@@ -437,8 +437,48 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
 int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
                         double *force, double *stiffness);
 
+/* egw_hysteresis_eval for n independent contacts in one call: delta[i] with history
+ * delta_max_state[i] (updated), force[i], stiffness[i] (either may be NULL). A NaN overlap
+ * or state refuses the call (EGW_INVALID_ARGUMENT naming its index) before anything
+ * changes; EGW_OUT_OF_RANGE names the first contact beyond the table (all values
+ * written). n = 0 does nothing; n < 0: EGW_INVALID_ARGUMENT. For callers that pay per
+ * call (Python, scripting languages). */
+int egw_hysteresis_eval_array(egw_hysteresis h, int n, const double *delta,
+                              double *delta_max_state, double *force, double *stiffness);
+
 /* Release a hysteresis table; sets *h to NULL. NULL or *h == NULL is fine. */
 void egw_hysteresis_free(egw_hysteresis *h);
+
+/* Write h to path (NUL-terminated) atomically (temporary file, then rename: a failed write
+ * leaves an existing file intact). format: EGW_FORMAT_CSV (unloading data as rows
+ * delta_max,s,ratio,dratio_ds; loading curve and metadata as '#' lines; a checksum line
+ * last) or EGW_FORMAT_BINARY (versioned, checksummed); doc/formats.md section 6.
+ * Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (other formats), EGW_NULL_POINTER. */
+int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
+
+/* Read a hysteresis table written by egw_hysteresis_write (CSV or binary, recognised from
+ * the file's start). *out receives a handle only for a file that passed every check
+ * (checksum; finite values; loading force >= 0 and non-decreasing, stiffness >= 0;
+ * increasing grids; ratios 1 at the turning point and within [0, 1]).
+ * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),
+ * EGW_NULL_POINTER. */
+int egw_hysteresis_read(const char *path, egw_hysteresis *out);
+
+typedef struct {
+  int    model;        /* EGW_MODEL_* of the parameters */
+  int    reversible;   /* 1: no plastic summits, unloading retraces the loading table */
+  int    n_delta_max;  /* delta_max nodes (0 when reversible) */
+  int    n_s;          /* nodes in s of every unloading curve (0 when reversible) */
+  int    n_loading;    /* nodes of the loading table */
+  double cutoff;       /* delta_c: force 0 below [length] */
+  double delta_max;    /* last delta_max node [length] */
+  double rel_tol;      /* requested tolerance, relative to the force at the turning point */
+  double max_error;    /* largest mismatch found at the build's check solves */
+  egw_params params;   /* the parameters the table was built for */
+} egw_hysteresis_info;
+
+/* Facts about h into *info. EGW_NULL_POINTER. */
+int egw_hysteresis_get_info(egw_hysteresis h, egw_hysteresis_info *info);
 
 /* ------------------------------------------------------------------------
  * Scenes and the model choice. Units: any consistent set (SI suggested).

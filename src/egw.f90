@@ -10,6 +10,7 @@ module egw
    use egw_asperity
    use egw_unloading
    use egw_hysteresis
+   use egw_hysteresis_format
    use egw_smooth_sphere
    use egw_halfspace
    use egw_rough_sphere

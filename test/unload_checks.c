@@ -123,6 +123,37 @@ int egw_capi_test_hysteresis(void) {
   HCHECK(egw_hysteresis_eval(h, 5.0, &state, &f, &k) == EGW_OUT_OF_RANGE && state == 5.0);
   HCHECK(egw_hysteresis_eval(NULL, 1.0, &state, &f, &k) == EGW_NULL_POINTER);
   HCHECK(egw_hysteresis_eval(h, 1.0, NULL, &f, &k) == EGW_NULL_POINTER);
+  {
+    /* write, read back: the same force at an unloading point (exact: 17 digits / raw
+     * bytes), the info of both, refusals */
+    egw_hysteresis back = NULL;
+    egw_hysteresis_info info, info2;
+    double s1 = 3.0, s2 = 3.0, f1, f2;
+    HCHECK(egw_hysteresis_write(h, "build/capi_hyst.csv", EGW_FORMAT_CSV) == EGW_OK);
+    HCHECK(egw_hysteresis_read("build/capi_hyst.csv", &back) == EGW_OK && back != NULL);
+    if (back != NULL) {
+      HCHECK(egw_hysteresis_eval(h, 1.5, &s1, &f1, NULL) == EGW_OK);
+      HCHECK(egw_hysteresis_eval(back, 1.5, &s2, &f2, NULL) == EGW_OK && f1 == f2);
+      HCHECK(egw_hysteresis_get_info(h, &info) == EGW_OK);
+      HCHECK(egw_hysteresis_get_info(back, &info2) == EGW_OK);
+      HCHECK(info.model == EGW_MODEL_EPGW && info.reversible == 0 && info.n_delta_max >= 4 &&
+             info.n_s >= 2 && info.delta_max == 4.0 && info.rel_tol == 1e-3 &&
+             info.cutoff < -2.0 && info.params.psi == 2.0);
+      HCHECK(info2.n_delta_max == info.n_delta_max && info2.n_s == info.n_s &&
+             info2.max_error == info.max_error && info2.cutoff == info.cutoff);
+      egw_hysteresis_free(&back);
+    }
+    HCHECK(egw_hysteresis_write(h, "build/capi_hyst.bin", EGW_FORMAT_BINARY) == EGW_OK);
+    HCHECK(egw_hysteresis_read("build/capi_hyst.bin", &back) == EGW_OK && back != NULL);
+    egw_hysteresis_free(&back);
+    HCHECK(egw_hysteresis_write(h, "build/capi_hyst.x", EGW_FORMAT_LAMMPS) ==
+           EGW_INVALID_ARGUMENT);
+    HCHECK(egw_hysteresis_write(NULL, "build/capi_hyst.x", EGW_FORMAT_CSV) == EGW_NULL_POINTER);
+    HCHECK(egw_hysteresis_write(h, NULL, EGW_FORMAT_CSV) == EGW_NULL_POINTER);
+    HCHECK(egw_hysteresis_read("build/no_such_file", &back) == EGW_IO_ERROR && back == NULL);
+    HCHECK(egw_hysteresis_read("build/capi_hyst.csv", NULL) == EGW_NULL_POINTER);
+    HCHECK(egw_hysteresis_get_info(h, NULL) == EGW_NULL_POINTER);
+  }
   egw_hysteresis_free(&h);
   HCHECK(h == NULL);
   egw_hysteresis_free(&h); /* NULL handle: nothing */

@@ -2,7 +2,7 @@
 !> hysteresis_table (c_loc of an allocated object, released by egw_hysteresis_free).
 module egw_capi_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_associated, &
-      & c_f_pointer, c_loc
+      & c_f_pointer, c_loc, c_char, c_size_t
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_out_of_range, &
@@ -11,9 +11,29 @@ module egw_capi_hysteresis
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval
-   use egw_capi, only: settle, require, read_params, read_options, put
+   use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
+   use egw_capi, only: settle, require, read_params, read_options, put, from_params, &
+      & egw_params_c, int_str
    implicit none
    private
+
+   !> C: egw_hysteresis_info (include/egw.h).
+   type, bind(C) :: egw_hysteresis_info_c
+      integer(c_int) :: model, reversible, n_delta_max, n_s, n_loading
+      real(c_double) :: cutoff, delta_max, rel_tol, max_error
+      type(egw_params_c) :: params
+   end type egw_hysteresis_info_c
+
+   interface
+      !> strlen of libc: the length of a NUL-terminated C string.
+      pure function c_strlen(s) result(n) bind(C, name="strlen")
+         import :: c_ptr, c_size_t
+         type(c_ptr), value, intent(in) :: s
+         integer(c_size_t) :: n
+      end function c_strlen
+   end interface
+
+   public :: egw_hysteresis_info_c
 
 contains
 
@@ -90,6 +110,54 @@ contains
       end if
    end function egw_hysteresis_eval
 
+   !> C: egw_hysteresis_eval_array: n independent contacts in one call.
+   function egw_hysteresis_eval_array(hp, n, delta, state, force, stiffness) result(stat) &
+      & bind(C, name="egw_hysteresis_eval_array")
+      type(c_ptr), value, intent(in) :: hp
+      integer(c_int), value, intent(in) :: n
+      real(c_double), intent(in) :: delta(*)
+      real(c_double), intent(inout) :: state(*)
+      type(c_ptr), value, intent(in) :: force, stiffness
+      integer(c_int) :: stat
+      type(hysteresis_table), pointer :: h
+      real(c_double), pointer :: f(:), k(:)
+      type(egw_error), allocatable :: error
+      real(dp) :: fi, ki
+      integer :: i, st, first_out
+      stat = require(hp, "h")
+      if (stat /= egw_ok) return
+      if (n < 0) then
+         call fatal_error(error, egw_invalid_argument, "n = "//int_str(int(n))//": must be >= 0")
+         stat = settle(error)
+         return
+      end if
+      do i = 1, n
+         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i))) then
+            call fatal_error(error, egw_invalid_argument, "delta["//int_str(i - 1)// &
+               & "] or delta_max_state["//int_str(i - 1)//"] = NaN: must be a number")
+            stat = settle(error)
+            return
+         end if
+      end do
+      call c_f_pointer(hp, h)
+      nullify (f, k)
+      if (c_associated(force)) call c_f_pointer(force, f, [n])
+      if (c_associated(stiffness)) call c_f_pointer(stiffness, k, [n])
+      first_out = 0
+      do i = 1, n
+         call hysteresis_eval(h, delta(i), state(i), fi, ki, st)
+         if (associated(f)) f(i) = fi
+         if (associated(k)) k(i) = ki
+         if (st /= egw_ok .and. first_out == 0) first_out = i
+      end do
+      if (first_out > 0) then
+         call fatal_error(error, egw_out_of_range, "delta["//int_str(first_out - 1)// &
+            & "] or its state above the table's delta_max = "//format_real(h%delta_max)// &
+            & " (values extrapolated)")
+         stat = settle(error)
+      end if
+   end function egw_hysteresis_eval_array
+
    !> C: egw_hysteresis_free: release a table; sets *h to NULL (NULL is fine).
    subroutine egw_hysteresis_free(hp) bind(C, name="egw_hysteresis_free")
       type(c_ptr), value, intent(in) :: hp
@@ -102,5 +170,98 @@ contains
       deallocate (h)
       handle = c_null_ptr
    end subroutine egw_hysteresis_free
+
+   !> C: egw_hysteresis_write: CSV or binary, atomically.
+   function egw_hysteresis_write(hp, path, format) result(stat) &
+      & bind(C, name="egw_hysteresis_write")
+      type(c_ptr), value, intent(in) :: hp, path
+      integer(c_int), value, intent(in) :: format
+      integer(c_int) :: stat
+      type(hysteresis_table), pointer :: h
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      stat = require(hp, "h")
+      if (stat == egw_ok) stat = c_path(path, fpath)
+      if (stat /= egw_ok) return
+      call c_f_pointer(hp, h)
+      call write_hysteresis(h, fpath, int(format), error)
+      stat = settle(error)
+   end function egw_hysteresis_write
+
+   !> C: egw_hysteresis_read: a handle only for a file that passed every check.
+   function egw_hysteresis_read(path, out) result(stat) bind(C, name="egw_hysteresis_read")
+      type(c_ptr), value, intent(in) :: path, out
+      integer(c_int) :: stat
+      character(len=:), allocatable :: fpath
+      type(hysteresis_table), pointer :: h
+      type(c_ptr), pointer :: handle
+      type(egw_error), allocatable :: error
+      integer :: alloc_stat
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = c_path(path, fpath)
+      if (stat /= egw_ok) return
+      allocate (h, stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call fatal_error(error, egw_out_of_memory, "hysteresis table: out of memory")
+         stat = settle(error)
+         return
+      end if
+      call read_hysteresis(fpath, h, error)
+      stat = settle(error)
+      if (stat /= egw_ok) then
+         deallocate (h)
+         return
+      end if
+      call c_f_pointer(out, handle)
+      handle = c_loc(h)
+   end function egw_hysteresis_read
+
+   !> C: egw_hysteresis_get_info.
+   function egw_hysteresis_get_info(hp, info) result(stat) &
+      & bind(C, name="egw_hysteresis_get_info")
+      type(c_ptr), value, intent(in) :: hp, info
+      integer(c_int) :: stat
+      type(hysteresis_table), pointer :: h
+      type(egw_hysteresis_info_c), pointer :: out
+      stat = require(hp, "h")
+      if (stat == egw_ok) stat = require(info, "info")
+      if (stat /= egw_ok) return
+      call c_f_pointer(hp, h)
+      call c_f_pointer(info, out)
+      out%model = int(h%params%model, c_int)
+      out%reversible = merge(1_c_int, 0_c_int, h%reversible)
+      out%n_delta_max = 0
+      out%n_s = 0
+      if (allocated(h%m)) out%n_delta_max = int(size(h%m), c_int)
+      if (allocated(h%s)) out%n_s = int(size(h%s), c_int)
+      out%n_loading = int(size(h%loading%delta), c_int)
+      out%cutoff = h%loading%cutoff
+      out%delta_max = h%delta_max
+      out%rel_tol = h%rel_tol
+      out%max_error = h%max_error
+      out%params = from_params(h%params)
+   end function egw_hysteresis_get_info
+
+   !> A NUL-terminated C path as a Fortran string (any length; NULL and "" refused).
+   integer(c_int) function c_path(path, fpath) result(stat)
+      type(c_ptr), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: fpath
+      character(kind=c_char), pointer :: chars(:)
+      type(egw_error), allocatable :: error
+      integer :: n, i
+      stat = require(path, "path")
+      if (stat /= egw_ok) return
+      n = int(c_strlen(path))
+      if (n == 0) then
+         call fatal_error(error, egw_invalid_argument, "path: empty")
+         stat = settle(error)
+         return
+      end if
+      call c_f_pointer(path, chars, [n])
+      allocate (character(len=n) :: fpath)
+      do i = 1, n
+         fpath(i:i) = chars(i)
+      end do
+   end function c_path
 
 end module egw_capi_hysteresis

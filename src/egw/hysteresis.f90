@@ -2,38 +2,58 @@
 !> the force of one parameter set over (delta, delta_max), with a per-contact history that
 !> the caller owns (the largest overlap so far; -huge for a contact that never touched).
 !>
-!> Layout: the loading curve is a 1-D force table (egw_table). Each node m_j of the
-!> delta_max grid carries its unloading curve as the hysteresis gap relative to the force
-!> at the turning point, g_j(xi) = [P_load(m_j - xi) - P_unload(m_j - xi; m_j)]/P_load(m_j),
-!> xi = m_j - delta >= 0, on cubic Hermite nodes in xi (slopes from the solver's
-!> stiffnesses; the solves run at rel_tol/10). Between m nodes g is interpolated linearly
-!> in m at the same xi, and the force is P = max(0, P_load(delta) - P_load(m) g): g = 0 at
-!> xi = 0 for every m, so the force is continuous where unloading starts, and the loading
-!> table is used as it is. Both grids are refined
-!> until solves at the midpoints (xi midpoints of every curve; nine xi of the curve of
-!> every m midpoint) agree with the table to rel_tol of the force at the turning point.
-!> Evaluation allocates nothing and changes only the caller's history.
+!> Layout: the loading curve is a 1-D force table (egw_table). Below a turning point
+!> m = delta_max the force is P = P_load(m) r(s, m) with s = (m - delta)/(s_max L(m)) and
+!> L(m) = 1.5 P_load(m)/K_unload(m): for Hertzian unloading L is m minus the residual
+!> overlap, and in the separated tail 1.5 times the force's decay length, so r depends
+!> little on m at fixed s (the edge where the force vanishes stays put) and few delta_max
+!> nodes serve. r(0, m) = 1: the force is continuous where unloading starts and the
+!> loading table is used as it is; the force is 0 below the loading cut-off delta_c.
+!> Each node m_j carries r(., m_j) as a cubic Hermite curve in s (slopes from the solver's
+!> stiffnesses, solves at rel_tol/10, s bisected until value and slope at every midpoint
+!> meet the solves to rel_tol/4); between nodes r and L are cubic Lagrange combinations
+!> of four neighbouring curves, and the m grid is bisected until that combination meets
+!> the midpoint's curve at all its nodes to rel_tol (the table's whole error there).
+!> Every curve's cubics are then resampled onto the union of the s nodes (exactly: the
+!> union refines every curve's own nodes), so that an evaluation needs one lookup in s and
+!> one in m, served by uniform buckets: no search, no allocation, only the caller's
+!> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
+!> retraces the loading table exactly.
 module egw_hysteresis
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_not_converged, egw_out_of_range, fatal_error, format_real
+   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
+      & egw_out_of_range, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload
-   use egw_table, only: force_table, build_table, table_eval
+   use egw_table, only: force_table, build_table, table_eval, table_progress
    implicit none
    private
 
-   public :: hysteresis_table, build_hysteresis, hysteresis_eval
+   public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_prepare
 
-   !> Nodes in xi of one unloading curve (at most), and of the delta_max grid.
-   integer, parameter :: max_xi_nodes = 400, max_m_nodes = 400
+   !> Most nodes in s of one unloading curve, and of the delta_max grid.
+   integer, parameter :: max_s_nodes = 400, max_m_nodes = 400
+   !> Finest bucket level (2**14 buckets): the grids are dyadic, so buckets at the finest
+   !> level hold at most one node and the forward scan takes at most one step.
+   integer, parameter :: max_bucket_level = 14
+   !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
+   real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
-   !> The unloading curve of one delta_max node: the gap D(xi) and dD/dxi at nodes xi.
+   !> The unloading curve of one delta_max node during the build: r and dr/ds at nodes s.
    type :: unloading_curve
-      real(dp), allocatable :: xi(:), gap(:), slope(:)
+      real(dp) :: length = 0.0_dp   !< L(m) = 1.5 P_load(m)/K_unload(m)
+      real(dp), allocatable :: s(:), ratio(:), slope(:)
    end type unloading_curve
+
+   !> Uniform buckets over [origin, origin + 1/scale]: bucket b holds the interval that
+   !> contains the bucket's start.
+   type, public :: grid_lookup
+      real(dp) :: origin = 0.0_dp, scale = 0.0_dp
+      integer :: n_bucket = 0
+      integer, allocatable :: bucket(:)     !< (0:n_bucket)
+   end type grid_lookup
 
    !> A hysteresis table of one parameter set (build_hysteresis).
    type :: hysteresis_table
@@ -42,8 +62,25 @@ module egw_hysteresis
       real(dp) :: delta_max = 0.0_dp           !< last delta_max node (table range)
       real(dp) :: max_error = 0.0_dp           !< largest mismatch found at check solves
       type(force_table) :: loading             !< the loading curve
-      real(dp), allocatable :: m(:)            !< delta_max nodes, increasing
-      type(unloading_curve), allocatable :: curves(:)  !< one per delta_max node
+      !> no plastic summits (not EP-GW, psi = 0 or sigma = 0): no unloading curves, the
+      !> loading table serves loading and unloading alike (no spurious hysteresis)
+      logical :: reversible = .false.
+      real(dp), allocatable :: m(:)            !< delta_max nodes, increasing (n_m >= 4)
+      !> L(m_j) = 1.5 P_load(m_j)/K_unload(m_j): the unloading length of a Hertzian
+      !> contact (m - residual overlap), the scale of s
+      real(dp), allocatable :: length(:)
+      real(dp) :: s_max = 0.0_dp               !< s = (m - delta)/(s_max L(m)) lies in [0, 1]
+      real(dp), allocatable :: s(:)            !< s nodes of every curve, 0 .. 1 (n_s)
+      !> r(s, m_j) at the s nodes and dr/ds there: (n_s, n_m) (the stored table)
+      real(dp), allocatable :: ratio(:, :), slope(:, :)
+      ! evaluation data (hysteresis_prepare)
+      !> (4, n_m, n_s - 1): the cubic in t = (s - s_i)/(s_{i+1} - s_i) of curve j on
+      !> interval i (the four curves of a Lagrange stencil share two cache lines)
+      real(dp), allocatable :: coef(:, :, :)
+      real(dp), allocatable :: inv_ds(:)       !< 1/(s_{i+1} - s_i)
+      !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
+      real(dp), allocatable :: lagrange(:, :)
+      type(grid_lookup) :: m_lookup, s_lookup
    end type hysteresis_table
 
 contains
@@ -51,7 +88,8 @@ contains
    !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
    !> (relative to the force at the turning point). Errors: invalid params or range,
    !> solves that fail (egw_not_converged), node limits reached.
-   subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error)
+   subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error, &
+      & progress)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_min      !< smallest overlap of interest (< 0: separation)
@@ -59,12 +97,12 @@ contains
       real(dp), intent(in) :: rel_tol        !< tolerance, in [1e-8, 0.1]
       type(hysteresis_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
-      type(unloading_curve), allocatable :: curves(:), merged(:), mid_curves(:)
-      real(dp), allocatable :: m(:), m_new(:)
-      real(dp) :: err_mid
-      integer, allocatable :: idx(:)
-      integer :: j, n, k, pass, i
-      logical, allocatable :: split(:), checked(:), checked_new(:)
+      !> called with (unloading curves built, built + known pending) from the serial part
+      !> of the build (the loading table's own solves are not counted)
+      procedure(table_progress), optional :: progress
+      type(unloading_curve), allocatable :: curves(:)
+      real(dp), allocatable :: m(:)
+      integer :: j, n
 
       call validate_params(params, error)
       if (allocated(error)) return
@@ -85,66 +123,28 @@ contains
       table%params = params
       table%rel_tol = rel_tol
       table%delta_max = delta_max
-      ! delta_max grid: from the loading cut-off (nothing to unload below) to delta_max
+      ! elastic summits (or none): unloading retraces the loading table exactly
+      table%reversible = params%model /= model_epgw .or. params%psi == 0.0_dp .or. &
+         & params%sigma == 0.0_dp
+      if (table%reversible) return
+      ! delta_max grid: from the loading cut-off (nothing to unload below) to delta_max,
+      ! dyadic (bisection keeps it so: the m buckets rely on it)
       n = 9
-      allocate (m(n))
-      m = table%loading%cutoff + (delta_max - table%loading%cutoff)*[(real(j, dp), j = 0, n - 1)] &
-         & /real(n - 1, dp)
+      m = table%loading%cutoff + (delta_max - table%loading%cutoff)* &
+         & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       allocate (curves(n))
+      if (present(progress)) call progress(0, 2*n - 1)
+      ! the s range: twice the largest (m - delta_c)/L of the first nodes, so that every
+      ! curve reaches the cut-off
+      call unloading_lengths(table, options, m, curves, error)
+      if (allocated(error)) return
+      table%s_max = 2*maxval((m - table%loading%cutoff)/curves%length)
       call build_curves(table, options, m, curves, error)
       if (allocated(error)) return
-      ! refine the delta_max grid where a curve at the midpoint differs from the
-      ! interpolation of its neighbours (intervals already checked are not checked again)
-      allocate (checked(n - 1))
-      checked = .false.
-      do pass = 1, 20
-         ! the midpoint curves of the unchecked intervals, built in parallel
-         idx = pack([(j, j = 1, size(m) - 1)], .not. checked)
-         allocate (split(size(m) - 1), mid_curves(size(idx)))
-         split = .false.
-         call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), mid_curves, error)
-         if (allocated(error)) return
-         do i = 1, size(idx)
-            j = idx(i)
-            err_mid = curve_mismatch(table, curves(j), curves(j + 1), m(j), m(j + 1), &
-               & mid_curves(i), 0.5_dp*(m(j) + m(j + 1)))
-            split(j) = err_mid > rel_tol
-            if (.not. split(j)) table%max_error = max(table%max_error, err_mid)
-         end do
-         if (.not. any(split)) exit
-         if (size(m) + count(split) > max_m_nodes) then
-            call fatal_error(error, egw_not_converged, "hysteresis table: more than "// &
-               & format_real(real(max_m_nodes, dp))//" delta_max nodes needed for rel_tol = " &
-               & //format_real(rel_tol))
-            return
-         end if
-         allocate (m_new(size(m) + count(split)), merged(size(m) + count(split)), &
-            & checked_new(size(m) + count(split) - 1))
-         k = 0
-         do j = 1, size(m)
-            k = k + 1
-            m_new(k) = m(j)
-            call move_curve(curves(j), merged(k))
-            if (j < size(m)) then
-               if (split(j)) then
-                  checked_new(k) = .false.
-                  k = k + 1
-                  m_new(k) = 0.5_dp*(m(j) + m(j + 1))
-                  ! the midpoint's curve was built for the check: it becomes a node
-                  call move_curve(mid_curves(findloc(idx, j, dim=1)), merged(k))
-                  checked_new(k) = .false.
-               else
-                  checked_new(k) = .true.
-               end if
-            end if
-         end do
-         call move_alloc(m_new, m)
-         call move_alloc(merged, curves)
-         call move_alloc(checked_new, checked)
-         deallocate (split, mid_curves)
-      end do
-      call move_alloc(m, table%m)
-      call move_alloc(curves, table%curves)
+      call refine_m(table, options, m, curves, error, progress)
+      if (allocated(error)) return
+      call resample(table, m, curves)
+      call hysteresis_prepare(table)
    end subroutine build_hysteresis
 
    !> Force [force] and stiffness dP/ddelta [force/length] at overlap delta for a contact
@@ -153,55 +153,256 @@ contains
    !> loading table; unloading and reloading below the state the unloading curve of the
    !> state. A state above the table's delta_max uses the last curve and returns
    !> egw_out_of_range (values written). NaN delta: egw_invalid_argument, nothing changed.
-   subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat)
+   pure subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: delta
       real(dp), intent(inout) :: delta_max_state
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: f_load, k_load, gap, slope, w, g1, s1, g2, s2, m, scale
-      integer :: j
+      real(dp) :: m, span, s, t, f_m, k_m, w(4), d(4), r, dr, c(4)
+      integer :: i, j, first, n_m, k
       stat = 0
+      force = 0.0_dp
+      stiffness = 0.0_dp
       if (ieee_is_nan(delta)) then
          stat = egw_invalid_argument
-         force = 0.0_dp
-         stiffness = 0.0_dp
          return
       end if
-      call table_eval(table%loading, delta, f_load, k_load)
-      if (.not. delta < delta_max_state) then
-         delta_max_state = delta
-         force = f_load
-         stiffness = k_load
+      if (.not. delta < delta_max_state .or. table%reversible) then
+         delta_max_state = max(delta_max_state, delta)
+         call table_eval(table%loading, delta, force, stiffness)
          if (delta > table%delta_max) stat = egw_out_of_range
          return
       end if
       m = delta_max_state
-      if (m >= table%m(size(table%m))) then
-         j = size(table%m) - 1
-         w = 1.0_dp
-         if (m > table%delta_max) stat = egw_out_of_range
-      else if (m <= table%m(1)) then
-         j = 1
-         w = 0.0_dp
-      else
-         j = find_node(table%m, m)
-         w = (m - table%m(j))/(table%m(j + 1) - table%m(j))
-      end if
-      call curve_eval(table%curves(j), m - delta, g1, s1)
-      call curve_eval(table%curves(j + 1), m - delta, g2, s2)
-      scale = turning_force(table, m)
-      gap = scale*((1.0_dp - w)*g1 + w*g2)
-      slope = scale*((1.0_dp - w)*s1 + w*s2)
-      force = f_load - gap
-      stiffness = k_load + slope
-      if (force <= 0.0_dp) then
+      if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
+      if (m > table%delta_max) stat = egw_out_of_range
+      call table_eval(table%loading, m, f_m, k_m)
+      n_m = size(table%m)
+      ! the Lagrange stencil of the m interval (clamped at the ends of the grid)
+      j = locate(table%m_lookup, table%m, min(m, table%delta_max))
+      first = min(max(j - 1, 1), n_m - 3)
+      d = m - table%m(first:first + 3)
+      w(1) = d(2)*d(3)*d(4)*table%lagrange(1, j)
+      w(2) = d(1)*d(3)*d(4)*table%lagrange(2, j)
+      w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
+      w(4) = d(1)*d(2)*d(3)*table%lagrange(4, j)
+      if (m > table%delta_max) w = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
+      span = table%s_max*(w(1)*table%length(first) + w(2)*table%length(first + 1) + &
+         & w(3)*table%length(first + 2) + w(4)*table%length(first + 3))
+      s = min((m - delta)/span, 1.0_dp)
+      i = locate(table%s_lookup, table%s, s)
+      t = (s - table%s(i))*table%inv_ds(i)
+      c = 0.0_dp
+      do k = 1, 4
+         c = c + w(k)*table%coef(:, first + k - 1, i)
+      end do
+      r = c(1) + t*(c(2) + t*(c(3) + t*c(4)))
+      dr = (c(2) + t*(2*c(3) + t*3*c(4)))*table%inv_ds(i)
+      force = f_m*r
+      stiffness = -f_m*dr/span
+      if (.not. force > 0.0_dp) then
          force = 0.0_dp
          stiffness = 0.0_dp
       end if
    end subroutine hysteresis_eval
 
+   !> Derive the evaluation data (cubics on the union s grid, Lagrange denominators,
+   !> lookup buckets) from the stored nodes; called by the build and by readers.
+   pure subroutine hysteresis_prepare(table)
+      type(hysteresis_table), intent(inout) :: table
+      integer :: n_s, n_m, i, j, first, k, l
+      real(dp) :: h
+      n_s = size(table%s)
+      n_m = size(table%m)
+      if (allocated(table%coef)) deallocate (table%coef)
+      if (allocated(table%inv_ds)) deallocate (table%inv_ds)
+      if (allocated(table%lagrange)) deallocate (table%lagrange)
+      allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))
+      do i = 1, n_s - 1
+         h = table%s(i + 1) - table%s(i)
+         table%inv_ds(i) = 1.0_dp/h
+         do j = 1, n_m
+            associate (r0 => table%ratio(i, j), r1 => table%ratio(i + 1, j), &
+               & d0 => h*table%slope(i, j), d1 => h*table%slope(i + 1, j))
+               table%coef(:, j, i) = [r0, d0, 3*(r1 - r0) - 2*d0 - d1, 2*(r0 - r1) + d0 + d1]
+            end associate
+         end do
+      end do
+      do j = 1, n_m - 1
+         first = min(max(j - 1, 1), n_m - 3)
+         do k = 1, 4
+            h = 1.0_dp
+            do l = 1, 4
+               if (l /= k) h = h*(table%m(first + k - 1) - table%m(first + l - 1))
+            end do
+            table%lagrange(k, j) = 1.0_dp/h
+         end do
+      end do
+      call make_lookup(table%m, table%m_lookup)
+      call make_lookup(table%s, table%s_lookup)
+   end subroutine hysteresis_prepare
+
    ! ---------------------------------------------------------------------------------------
+
+   !> Bisect the delta_max intervals until, for each, the Lagrange combination of its
+   !> stencil's curves meets the midpoint's own curve at every node of that curve within
+   !> rel_tol. Midpoint curves are kept until their interval is split (then they become
+   !> nodes) and rechecked when the stencil changed: only new midpoints cost solves.
+   subroutine refine_m(table, options, m, curves, error, progress)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), allocatable, intent(inout) :: m(:)
+      type(unloading_curve), allocatable, intent(inout) :: curves(:)
+      type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
+      type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
+      real(dp), allocatable :: new_m(:), err_mid(:)
+      logical, allocatable :: have_mid(:), new_have(:)
+      integer, allocatable :: idx(:)
+      integer :: pass, j, k, n_split
+      allocate (mids(size(m) - 1), have_mid(size(m) - 1))
+      have_mid = .false.
+      do pass = 1, 30
+         idx = pack([(j, j = 1, size(m) - 1)], .not. have_mid)
+         if (size(idx) > 0) then
+            allocate (built(size(idx)))
+            call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), built, error)
+            if (allocated(error)) return
+            do k = 1, size(idx)
+               call move_curve(built(k), mids(idx(k)))
+            end do
+            deallocate (built)
+            have_mid = .true.
+         end if
+         allocate (err_mid(size(m) - 1))
+         do j = 1, size(m) - 1
+            err_mid(j) = stencil_mismatch(m, curves, j, mids(j))
+         end do
+         n_split = count(err_mid > table%rel_tol)
+         ! built: the nodes' curves and the kept midpoints'; pending: two per split
+         if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
+         if (n_split == 0) then
+            table%max_error = max(table%max_error, maxval(err_mid))
+            return
+         end if
+         if (size(m) + n_split > max_m_nodes) then
+            call fatal_error(error, egw_not_converged, "hysteresis table: more than "// &
+               & format_real(real(max_m_nodes, dp))//" delta_max nodes needed for rel_tol = " &
+               & //format_real(table%rel_tol))
+            return
+         end if
+         allocate (new_m(size(m) + n_split), new_curves(size(m) + n_split), &
+            & new_mids(size(m) + n_split - 1), new_have(size(m) + n_split - 1))
+         new_have = .false.
+         k = 0
+         do j = 1, size(m)
+            k = k + 1
+            new_m(k) = m(j)
+            call move_curve(curves(j), new_curves(k))
+            if (j == size(m)) exit
+            if (err_mid(j) > table%rel_tol) then
+               k = k + 1
+               new_m(k) = 0.5_dp*(m(j) + m(j + 1))
+               call move_curve(mids(j), new_curves(k))
+            else
+               call move_curve(mids(j), new_mids(k))
+               new_have(k) = .true.
+            end if
+         end do
+         call move_alloc(new_m, m)
+         call move_alloc(new_curves, curves)
+         call move_alloc(new_mids, mids)
+         call move_alloc(new_have, have_mid)
+         deallocate (err_mid)
+      end do
+      call fatal_error(error, egw_not_converged, "hysteresis table: delta_max grid not "// &
+         & "settled after 30 bisections for rel_tol = "//format_real(table%rel_tol))
+   end subroutine refine_m
+
+   !> Largest |r_stencil - r_mid| of interval j over the nodes of the midpoint curve (solves):
+   !> the table's whole error there, its interpolation in s included (the curves are built
+   !> to rel_tol/4, so that what remains is mostly the error in m, which bisection removes).
+   pure real(dp) function stencil_mismatch(m, curves, j, mid) result(err)
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(in) :: curves(:), mid
+      integer, intent(in) :: j
+      real(dp) :: x, w(4), r, dr, v, s, length
+      integer :: first, k, l, i
+      first = min(max(j - 1, 1), size(m) - 3)
+      x = 0.5_dp*(m(j) + m(j + 1))
+      do k = 1, 4
+         w(k) = 1.0_dp
+         do l = 1, 4
+            if (l /= k) w(k) = w(k)*(x - m(first + l - 1))/(m(first + k - 1) - m(first + l - 1))
+         end do
+      end do
+      ! the table's s of the midpoint curve's delta: with the interpolated L(m)
+      length = sum(w*curves(first:first + 3)%length)
+      err = 0.0_dp
+      do i = 1, size(mid%s)
+         s = min(mid%s(i)*mid%length/length, 1.0_dp)
+         v = 0.0_dp
+         do k = 1, 4
+            call curve_eval(curves(first + k - 1), s, r, dr)
+            v = v + w(k)*r
+         end do
+         err = max(err, abs(v - mid%ratio(i)))
+      end do
+   end function stencil_mismatch
+
+   !> L(m) of the curves at m(:) (a loading and an unloading solve each, in parallel).
+   subroutine unloading_lengths(table, options, m, curves, error)
+      type(hysteresis_table), intent(in) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(inout) :: curves(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: serial
+      integer :: stats(size(m)), j
+      character(len=256) :: messages(size(m))
+      serial = options
+      serial%n_threads = 1
+      serial%rel_tol = min(options%rel_tol, table%rel_tol/10.0_dp)
+      stats = 0
+      !$omp parallel do schedule(dynamic) default(shared) private(j)
+      do j = 1, size(m)
+         call one_length(j)
+      end do
+      !$omp end parallel do
+      do j = 1, size(m)
+         if (stats(j) /= 0) then
+            call fatal_error(error, stats(j), trim(messages(j)))
+            return
+         end if
+      end do
+   contains
+      subroutine one_length(j)
+         integer, intent(in) :: j
+         type(egw_error), allocatable :: err
+         type(loading_history) :: hist
+         type(solve_result) :: top, res
+         call load_history(table%params, serial, m(j), hist, top, err)
+         if (.not. allocated(err)) call solve_unload(hist, m(j), res, err)
+         if (allocated(err)) then
+            stats(j) = err%stat
+            messages(j) = err%message
+            return
+         end if
+         curves(j)%length = unloading_length(top%force, res%stiffness, table%params%sigma)
+      end subroutine one_length
+   end subroutine unloading_lengths
+
+   !> L = 1.5 P/K_unload: m minus the residual overlap of Hertzian unloading
+   !> P (1 - (m - delta)/L)^{3/2}, and 1.5 times the decay length of the separated tail
+   !> (P ~ exp(-(m - delta) K/P)): r(s) changes little with m at fixed s = (m - delta)/L.
+   !> sigma where the force has underflowed.
+   pure real(dp) function unloading_length(force, stiffness, sigma) result(length)
+      real(dp), intent(in) :: force, stiffness, sigma
+      length = sigma
+      if (force > 0.0_dp .and. stiffness > 0.0_dp) length = 1.5_dp*force/stiffness
+      if (.not. (length > 0.0_dp .and. length < huge(1.0_dp))) length = sigma
+   end function unloading_length
 
    !> The unloading curves of the delta_max values m(:), in parallel (OpenMP; every curve
    !> is independent: its own loading history and solves); the first error wins.
@@ -218,7 +419,7 @@ contains
       serial = options
       serial%n_threads = 1  ! the parallelism is over the curves
       ! the unloading solves run a decade finer than the table's tolerance
-      serial%rel_tol = table%rel_tol/10.0_dp
+      serial%rel_tol = min(options%rel_tol, table%rel_tol/10.0_dp)
       stats = 0
       worst = 0.0_dp
       !$omp parallel do schedule(dynamic) default(shared) private(j)
@@ -245,8 +446,9 @@ contains
       end subroutine one_curve
    end subroutine build_curves
 
-   !> The unloading curve of delta_max = m: xi nodes from 0 to m - cutoff, bisected until the
-   !> Hermite gap agrees with the solves at every midpoint to rel_tol P_load(m).
+   !> The unloading curve of delta_max = m: s nodes 0, 1/16, 1/4, 1/2, 1, bisected until the
+   !> Hermite curve agrees with the solves at every midpoint to rel_tol/4 (an interval that
+   !> passed is not solved again).
    subroutine build_curve(table, options, m, curve, worst, error)
       type(hysteresis_table), intent(in) :: table
       type(solver_options), intent(in) :: options
@@ -256,169 +458,220 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(loading_history) :: hist
       type(solve_result) :: res
-      real(dp) :: xi(max_xi_nodes), gap(max_xi_nodes), slope(max_xi_nodes), scale, span, &
-         & g_mid, s_mid, g_int, s_int, x_mid
-      integer :: n, i, k
-      logical :: refined
+      real(dp) :: s(max_s_nodes), ratio(max_s_nodes), slope(max_s_nodes), span, scale, &
+         & r_mid, d_mid, r_int, d_int, s_mid, err
+      integer :: n, i
+      logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
       worst = 0.0_dp
-      span = m - table%loading%cutoff
       call load_history(table%params, options, m, hist, res, error)
       if (allocated(error)) return
-      scale = turning_force(table, m)
+      scale = res%force
+      if (.not. scale > 0.0_dp) scale = table%loading%reference_force*table%rel_tol
+      call solve_unload(hist, m, res, error)
+      if (allocated(error)) return
+      curve%length = unloading_length(scale, res%stiffness, table%params%sigma)
+      span = table%s_max*curve%length
       n = 5
-      xi(1:n) = span*[0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
-      if (.not. span > 0.0_dp) then
-         allocate (curve%xi(1), curve%gap(1), curve%slope(1))
-         curve%xi = 0.0_dp
-         curve%gap = 0.0_dp
-         curve%slope = 0.0_dp
-         return
-      end if
+      s(1:n) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
       do i = 1, n
-         call gap_at(xi(i), gap(i), slope(i))
+         call ratio_at(s(i), ratio(i), slope(i))
          if (allocated(error)) return
       end do
+      checked(1:n - 1) = .false.
       do
          refined = .false.
          i = 1
          do while (i < n)
-            x_mid = 0.5_dp*(xi(i) + xi(i + 1))
-            call gap_at(x_mid, g_mid, s_mid)
+            if (checked(i)) then
+               i = i + 1
+               cycle
+            end if
+            s_mid = 0.5_dp*(s(i) + s(i + 1))
+            call ratio_at(s_mid, r_mid, d_mid)
             if (allocated(error)) return
-            probe%xi = xi(i:i + 1)
-            probe%gap = gap(i:i + 1)
+            probe%s = s(i:i + 1)
+            probe%ratio = ratio(i:i + 1)
             probe%slope = slope(i:i + 1)
-            call curve_eval(probe, x_mid, g_int, s_int)
-            if (abs(g_int - g_mid) > table%rel_tol*scale) then
-               if (n == max_xi_nodes) then
+            call curve_eval(probe, s_mid, r_int, d_int)
+            ! the slope's mismatch too: a midpoint value can agree by chance where the
+            ! curve bends (near the residual overlap) while a quarter point does not
+            err = max(abs(r_int - r_mid), 0.25_dp*(s(i + 1) - s(i))*abs(d_int - d_mid))
+            if (err > 0.25_dp*table%rel_tol) then
+               if (n == max_s_nodes) then
                   call fatal_error(error, egw_not_converged, "hysteresis table: an unloading"// &
                      & " curve needs more than 400 nodes at delta_max = "//format_real(m))
                   return
                end if
-               do k = n, i + 1, -1
-                  xi(k + 1) = xi(k)
-                  gap(k + 1) = gap(k)
-                  slope(k + 1) = slope(k)
-               end do
-               xi(i + 1) = x_mid
-               gap(i + 1) = g_mid
-               slope(i + 1) = s_mid
+               s(i + 2:n + 1) = s(i + 1:n)
+               ratio(i + 2:n + 1) = ratio(i + 1:n)
+               slope(i + 2:n + 1) = slope(i + 1:n)
+               checked(i + 2:n) = checked(i + 1:n - 1)
+               checked(i:i + 1) = .false.
+               s(i + 1) = s_mid
+               ratio(i + 1) = r_mid
+               slope(i + 1) = d_mid
                n = n + 1
                refined = .true.
+               i = i + 1   ! the new left half is checked in the next sweep
             else
-               worst = max(worst, abs(g_int - g_mid)/scale)
+               checked(i) = .true.
+               worst = max(worst, err)
             end if
             i = i + 1
          end do
          if (.not. refined) exit
       end do
-      ! stored relative to the force at the turning point: the gaps of neighbouring
-      ! delta_max then differ smoothly also where forces change by orders of magnitude
-      curve%xi = xi(1:n)
-      curve%gap = gap(1:n)/scale
-      curve%slope = slope(1:n)/scale
+      curve%s = s(1:n)
+      curve%ratio = ratio(1:n)
+      curve%slope = slope(1:n)
 
    contains
 
-      !> D(xi) = P_load(table) - P_unload(solve) and dD/dxi = k_unload - k_load at delta = m - xi
-      subroutine gap_at(x, g, s)
+      !> r = P_unload/P_load(m) and dr/ds = -K_unload span/P_load(m) at delta = m - s span
+      !> (below the cut-off too: the curve is a neighbour of others in the m direction)
+      !> (r = 1 at s = 0 exactly: the turning point is the loading solve)
+      subroutine ratio_at(x, r, dr)
          real(dp), intent(in) :: x
-         real(dp), intent(out) :: g, s
-         real(dp) :: f_load, k_load
-         g = 0.0_dp
-         s = 0.0_dp
-         if (.not. x > 0.0_dp) return
-         call table_eval(table%loading, m - x, f_load, k_load)
-         call solve_unload(hist, m - x, res, error)
+         real(dp), intent(out) :: r, dr
+         r = 1.0_dp
+         dr = 0.0_dp
+         call solve_unload(hist, m - x*span, res, error)
          if (allocated(error)) return
-         g = f_load - res%force
-         s = res%stiffness - k_load
-      end subroutine gap_at
+         if (x > 0.0_dp) r = res%force/scale
+         dr = -res%stiffness*span/scale
+         ! far below the cut-off the force underflows: no subnormal numbers in the table
+         ! (they would slow every evaluation that touches them by two orders)
+         if (abs(r) < tiny_ratio) r = 0.0_dp
+         if (abs(dr) < tiny_ratio) dr = 0.0_dp
+      end subroutine ratio_at
 
    end subroutine build_curve
 
-   !> Largest |g_interp - g_mid| at nine xi across the midpoint curve (gaps relative to the
-   !> turning-point force), denser near the turning point where the gap changes fastest.
-   function curve_mismatch(table, c1, c2, m1, m2, mid, m_mid) result(err)
-      type(hysteresis_table), intent(in) :: table
-      type(unloading_curve), intent(in) :: c1, c2, mid
-      real(dp), intent(in) :: m1, m2, m_mid
-      real(dp), parameter :: probe_xi(9) = [0.01_dp, 0.03_dp, 0.07_dp, 0.15_dp, 0.3_dp, 0.45_dp, &
-         & 0.6_dp, 0.75_dp, 0.9_dp]
-      real(dp) :: err, x, g1, s1, g2, s2, gm, sm, w
-      integer :: i
-      ! (the curves hold gaps relative to the turning-point force: so is the mismatch)
-      w = (m_mid - m1)/(m2 - m1)
-      err = 0.0_dp
-      do i = 1, size(probe_xi)
-         x = (m_mid - table%loading%cutoff)*probe_xi(i)
-         call curve_eval(c1, x, g1, s1)
-         call curve_eval(c2, x, g2, s2)
-         call curve_eval(mid, x, gm, sm)
-         err = max(err, abs((1.0_dp - w)*g1 + w*g2 - gm))
+   !> Put every curve on the union of their s nodes: the union refines each curve's own
+   !> nodes, so the Hermite data there reproduce each curve's cubics exactly.
+   pure subroutine resample(table, m, curves)
+      type(hysteresis_table), intent(inout) :: table
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(in) :: curves(:)
+      real(dp), allocatable :: all_s(:)
+      integer :: j, i, n
+      all_s = [(curves(j)%s, j = 1, size(curves))]
+      call sort(all_s)
+      n = 1
+      do i = 2, size(all_s)
+         if (all_s(i) > all_s(n)) then
+            n = n + 1
+            all_s(n) = all_s(i)
+         end if
       end do
-   end function curve_mismatch
+      table%m = m
+      table%length = curves%length
+      table%s = all_s(1:n)
+      allocate (table%ratio(n, size(m)), table%slope(n, size(m)))
+      do j = 1, size(m)
+         do i = 1, n
+            call curve_eval(curves(j), table%s(i), table%ratio(i, j), table%slope(i, j))
+         end do
+      end do
+   end subroutine resample
 
-   !> The force at the turning point delta_max = m from the loading table, floored at the
-   !> cut-off's force (the scale of the stored gaps and of the tolerance).
-   pure real(dp) function turning_force(table, m) result(f)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: m
-      real(dp) :: k
-      call table_eval(table%loading, m, f, k)
-      f = max(f, table%loading%reference_force*table%rel_tol)
-   end function turning_force
-
-   !> Cubic Hermite gap and its xi-derivative at xi; 0 outside [0, last node].
-   pure subroutine curve_eval(curve, xi, gap, slope)
+   !> Cubic Hermite r and dr/ds of a curve at s in [0, 1].
+   pure subroutine curve_eval(curve, s, r, dr)
       type(unloading_curve), intent(in) :: curve
-      real(dp), intent(in) :: xi
-      real(dp), intent(out) :: gap, slope
-      real(dp) :: h, t, h00, h10, h01, h11, d00, d10, d01, d11
-      integer :: i, n
-      n = size(curve%xi)
-      gap = 0.0_dp
-      slope = 0.0_dp
-      if (n < 2 .or. .not. xi > 0.0_dp .or. xi > curve%xi(n)) return
-      i = find_node(curve%xi, xi)
-      h = curve%xi(i + 1) - curve%xi(i)
-      t = (xi - curve%xi(i))/h
+      real(dp), intent(in) :: s
+      real(dp), intent(out) :: r, dr
+      real(dp) :: h, t, h00, h10, h01, h11
+      integer :: i, lo, hi, mid
+      lo = 1
+      hi = size(curve%s)
+      do while (hi - lo > 1)
+         mid = (lo + hi)/2
+         if (curve%s(mid) <= s) then
+            lo = mid
+         else
+            hi = mid
+         end if
+      end do
+      i = lo
+      h = curve%s(i + 1) - curve%s(i)
+      t = min(max((s - curve%s(i))/h, 0.0_dp), 1.0_dp)
       h00 = (1 + 2*t)*(1 - t)**2
       h10 = t*(1 - t)**2
       h01 = t*t*(3 - 2*t)
       h11 = t*t*(t - 1)
-      gap = h00*curve%gap(i) + h10*h*curve%slope(i) + h01*curve%gap(i + 1) &
+      r = h00*curve%ratio(i) + h10*h*curve%slope(i) + h01*curve%ratio(i + 1) &
          & + h11*h*curve%slope(i + 1)
-      d00 = 6*t*(t - 1)/h
-      d10 = (1 - t)*(1 - 3*t)
-      d01 = -d00
-      d11 = t*(3*t - 2)
-      slope = d00*curve%gap(i) + d10*curve%slope(i) + d01*curve%gap(i + 1) &
-         & + d11*curve%slope(i + 1)
+      dr = 6*t*(t - 1)/h*(curve%ratio(i) - curve%ratio(i + 1)) &
+         & + (1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1)
    end subroutine curve_eval
 
-   !> i with x(i) <= v < x(i+1) (x increasing, x(1) <= v < x(n)), by bisection.
-   pure integer function find_node(x, v) result(i)
-      real(dp), intent(in) :: x(:), v
-      integer :: lo, hi, mid
-      lo = 1
-      hi = size(x)
-      ! branch-free halving (conditional moves): the history and the overlap of DEM
-      ! contacts are unpredictable, and mispredicted branches dominated the evaluation
-      do while (hi - lo > 1)
-         mid = (lo + hi)/2
-         lo = merge(mid, lo, x(mid) <= v)
-         hi = merge(hi, mid, x(mid) <= v)
+   !> Buckets over the nodes x (increasing): as many as the finest dyadic spacing needs,
+   !> capped at 2**max_bucket_level.
+   pure subroutine make_lookup(x, lookup)
+      real(dp), intent(in) :: x(:)
+      type(grid_lookup), intent(out) :: lookup
+      real(dp) :: width, finest, xb
+      integer :: n, b, i, level
+      n = size(x)
+      width = x(n) - x(1)
+      finest = minval(x(2:n) - x(1:n - 1))
+      level = 3
+      do while (level < max_bucket_level .and. width/2.0_dp**level > 0.75_dp*finest)
+         level = level + 1
       end do
-      i = lo
-   end function find_node
+      lookup%n_bucket = 2**level
+      lookup%origin = x(1)
+      lookup%scale = lookup%n_bucket/width
+      allocate (lookup%bucket(0:lookup%n_bucket))
+      i = 1
+      do b = 0, lookup%n_bucket
+         xb = lookup%origin + b/lookup%scale
+         do while (i < n - 1 .and. x(i + 1) <= xb)
+            i = i + 1
+         end do
+         lookup%bucket(b) = i
+      end do
+   end subroutine make_lookup
+
+   !> i with x(i) <= v < x(i+1), clamped to [1, n-1]: the bucket's interval, then a short
+   !> forward scan (at most one step where the buckets are as fine as the grid).
+   pure integer function locate(lookup, x, v) result(i)
+      type(grid_lookup), intent(in) :: lookup
+      real(dp), intent(in) :: x(:), v
+      integer :: b, n
+      n = size(x)
+      b = min(max(int((v - lookup%origin)*lookup%scale), 0), lookup%n_bucket)
+      i = lookup%bucket(b)
+      do while (i < n - 1)
+         if (x(i + 1) > v) exit
+         i = i + 1
+      end do
+   end function locate
+
+   !> Sort increasing (insertion sort: a few thousand values, once per build).
+   pure subroutine sort(x)
+      real(dp), intent(inout) :: x(:)
+      real(dp) :: v
+      integer :: i, k
+      do i = 2, size(x)
+         v = x(i)
+         k = i - 1
+         do while (k >= 1)
+            if (x(k) <= v) exit
+            x(k + 1) = x(k)
+            k = k - 1
+         end do
+         x(k + 1) = v
+      end do
+   end subroutine sort
 
    pure subroutine move_curve(from, to)
       type(unloading_curve), intent(inout) :: from
       type(unloading_curve), intent(out) :: to
-      call move_alloc(from%xi, to%xi)
-      call move_alloc(from%gap, to%gap)
+      to%length = from%length
+      call move_alloc(from%s, to%s)
+      call move_alloc(from%ratio, to%ratio)
       call move_alloc(from%slope, to%slope)
    end subroutine move_curve
 

@@ -65,6 +65,24 @@ if grep -v "^egw-table: " "$work/stderr" | grep -q .; then
 fi
 grep -q "building" "$work/stderr" || fail "no progress line in the log"
 [ -s "$work/log/scene_table.csv" ] || fail "build: no scene_table.csv"
+# EP-GW with plastic summits: the hysteresis tables beside the loading table, in the
+# formats asked for, the summary saying so and the LAMMPS/CalculiX files' loading-only note
+"$exe" --out "$work/ep" --model EP-GW --psi 2 --formats csv,binary,lammps --tol 1e-2 \
+  >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 0 ] || fail "EP-GW: exit status $rc: $(cat "$work/stderr")"
+for f in scene_hysteresis.csv scene_hysteresis.bin; do
+  [ -s "$work/ep/$f" ] || fail "EP-GW: no $f"
+done
+head -2 "$work/ep/scene_hysteresis.csv" | grep -q "^# egw hysteresis table" ||
+  fail "EP-GW: scene_hysteresis.csv has no egw header"
+grep -q "^# checksum = " "$work/ep/scene_hysteresis.csv" || fail "EP-GW: CSV without checksum"
+grep -q "hysteresis  *1 EP-GW table" "$work/stdout" || fail "EP-GW: summary lacks the hysteresis line"
+grep -q "loading curve only" "$work/stdout" || fail "EP-GW: summary lacks the loading-only note"
+grep -q "loading curve only" "$work/ep/scene_table.lammps" ||
+  fail "EP-GW: LAMMPS file lacks the loading-only note"
+if ls "$work/ep" | grep -q "part$"; then fail "EP-GW: .part files left"; fi
+
 # on a terminal (a pseudo-terminal from util-linux's script, where available): the bar,
 # redrawn in place
 if command -v script >/dev/null 2>&1; then

@@ -14,7 +14,7 @@ from .core import (EgwError, FileError, InvalidArgumentError, NotConvergedError,
                    flat_pressure, flat_pressure_unload, gauss_integral, hertz, last_error,
                    mu_from_summits, profile, restitution, solve, solve_unload, version)
 from .scene import ModelChoice, Scene, build, choose
-from .tables import HysteresisTable, Table, TableInfo, UniversalTable
+from .tables import HysteresisInfo, HysteresisTable, Table, TableInfo, UniversalTable
 from . import topography
 from .topography import psi_from_hardness
 
@@ -24,5 +24,5 @@ __all__ = ["EgwError", "FileError", "InvalidArgumentError", "NotConvergedError",
            "OutOfRangeWarning", "Params", "Restitution", "SolveResult", "ellipe", "ellipk",
            "flat_pressure", "flat_pressure_unload", "gauss_integral", "hertz", "last_error",
            "mu_from_summits", "profile", "restitution", "solve", "solve_unload", "version",
-           "ModelChoice", "Scene", "build", "choose", "HysteresisTable", "Table",
+           "ModelChoice", "Scene", "build", "choose", "HysteresisInfo", "HysteresisTable", "Table",
            "TableInfo", "UniversalTable", "topography", "psi_from_hardness"]

@@ -68,6 +68,13 @@ class TableInfo(ctypes.Structure):
 _TYPES = c_double * SCENE_MAX_TYPES
 
 
+class HysteresisInfo(ctypes.Structure):
+    _fields_ = [("model", c_int), ("reversible", c_int), ("n_delta_max", c_int),
+                ("n_s", c_int), ("n_loading", c_int), ("cutoff", c_double),
+                ("delta_max", c_double), ("rel_tol", c_double), ("max_error", c_double),
+                ("params", Params)]
+
+
 class Scene(ctypes.Structure):
     _fields_ = [("model", c_int), ("n_types", c_int), ("radius", _TYPES),
                 ("radius_min", c_double), ("radius_max", c_double), ("modulus", _TYPES),
@@ -133,6 +140,8 @@ _SIGNATURES = {
     "egw_hysteresis_build": (c_int, [_P, _O, c_double, c_double, c_double,
                                      POINTER(c_void_p)]),
     "egw_hysteresis_eval": (c_int, [c_void_p, c_double, _dp, _dp, _dp]),
+    "egw_hysteresis_eval_array": (c_int, [c_void_p, c_int, _dp, _dp, _dp, _dp]),
+    "egw_hysteresis_get_info": (c_int, [c_void_p, POINTER(HysteresisInfo)]),
     "egw_hysteresis_write": (c_int, [c_void_p, c_char_p, c_int]),
     "egw_hysteresis_read": (c_int, [c_char_p, POINTER(c_void_p)]),
     "egw_hysteresis_free": (None, [POINTER(c_void_p)]),

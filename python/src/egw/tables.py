@@ -186,6 +186,23 @@ class UniversalTable(_Handle):
         return Table(h)
 
 
+@dataclass(frozen=True)
+class HysteresisInfo:
+    """egw_hysteresis_info: model; reversible (no plastic summits: unloading retraces
+    loading); n_delta_max and n_s (grid sizes, 0 when reversible); n_loading (nodes of the
+    loading table); cutoff (force 0 below) and delta_max [length]; rel_tol and max_error
+    (relative to the force at the turning point)."""
+    model: int
+    reversible: bool
+    n_delta_max: int
+    n_s: int
+    n_loading: int
+    cutoff: float
+    delta_max: float
+    rel_tol: float
+    max_error: float
+
+
 class HysteresisTable(_Handle):
     """EP-GW loading/unloading/reloading force over (delta, delta_max) for one parameter
     set (egw_hysteresis_build). The history (the largest overlap so far) belongs to the
@@ -213,23 +230,41 @@ class HysteresisTable(_Handle):
         _require("egw_hysteresis_write")
         check(lib.egw_hysteresis_write(self._ptr, _path(path), _format(format)))
 
+    def info(self) -> "HysteresisInfo":
+        """Facts about the table (egw_hysteresis_get_info)."""
+        _require("egw_hysteresis_get_info")
+        c = _capi.HysteresisInfo()
+        check(lib.egw_hysteresis_get_info(self._ptr, ctypes.byref(c)))
+        return HysteresisInfo(model=c.model, reversible=bool(c.reversible),
+                              n_delta_max=c.n_delta_max, n_s=c.n_s, n_loading=c.n_loading,
+                              cutoff=c.cutoff, delta_max=c.delta_max, rel_tol=c.rel_tol,
+                              max_error=c.max_error)
+
     def eval(self, delta: ArrayLike, state: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
         """(force, stiffness) at delta for contacts whose histories are `state` (a float
-        array of the same shape, updated in place to max(state, delta))."""
+        array of the same shape, updated in place to max(state, delta)): one C call for
+        the whole array (egw_hysteresis_eval_array), every element its own contact."""
         d = _array(delta)
         if not (isinstance(state, np.ndarray) and state.dtype == np.float64
                 and state.shape == d.shape and state.flags.c_contiguous):
             raise TypeError("state must be a C-contiguous float64 array shaped like delta")
         force = np.empty(d.shape)
         stiffness = np.empty(d.shape)
-        ff, kf, sf, df = (a.reshape(-1) for a in (force, stiffness, state, d))
-        s, f, k = ctypes.c_double(), ctypes.c_double(), ctypes.c_double()
-        for i in range(df.size):
-            s.value = sf[i]
-            check(lib.egw_hysteresis_eval(self._ptr, float(df[i]), ctypes.byref(s),
-                                          ctypes.byref(f), ctypes.byref(k)),
-                  allow_out_of_range=True)
-            sf[i], ff[i], kf[i] = s.value, f.value, k.value
+        if d.size:
+            if _capi.has("egw_hysteresis_eval_array"):
+                check(lib.egw_hysteresis_eval_array(self._ptr, d.size, _double_ptr(d),
+                                                    _double_ptr(state), _double_ptr(force),
+                                                    _double_ptr(stiffness)),
+                      allow_out_of_range=True)
+            else:  # an older libegw: one call per contact
+                ff, kf, sf, df = (a.reshape(-1) for a in (force, stiffness, state, d))
+                s, f, k = ctypes.c_double(), ctypes.c_double(), ctypes.c_double()
+                for i in range(df.size):
+                    s.value = sf[i]
+                    check(lib.egw_hysteresis_eval(self._ptr, float(df[i]), ctypes.byref(s),
+                                                  ctypes.byref(f), ctypes.byref(k)),
+                          allow_out_of_range=True)
+                    sf[i], ff[i], kf[i] = s.value, f.value, k.value
         return force, stiffness
 
     @staticmethod
@@ -238,5 +273,6 @@ class HysteresisTable(_Handle):
         return np.full(shape, -np.inf)
 
 
-__all__ = ["Table", "TableInfo", "UniversalTable", "HysteresisTable", "FORMATS",
+__all__ = ["Table", "TableInfo", "UniversalTable", "HysteresisTable", "HysteresisInfo",
+           "FORMATS",
            "OUT_OF_RANGE"]

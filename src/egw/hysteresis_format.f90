@@ -1,0 +1,712 @@
+!> Writers and readers of hysteresis tables (doc/formats.md §6): egw CSV (the unloading
+!> data as rows, the loading curve and metadata as '#' lines, a checksum line last) and the
+!> versioned egw binary format (FNV-1a checksum). Writes are atomic (egw_io); a reader
+!> checks the whole file, and what a table must satisfy, before it hands one over.
+module egw_hysteresis_format
+   use, intrinsic :: iso_fortran_env, only: int32, int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_bad_file, egw_io_error, egw_invalid_argument, &
+      & fatal_error
+   use egw_params, only: contact_params, validate_params, model_name
+   use egw_version, only: egw_version_string, egw_version_number
+   use egw_io, only: write_file, read_file, text_buffer
+   use egw_text, only: int_text, int_text_len, real_text, real_text_len
+   use egw_table, only: force_table, table_prepare
+   use egw_table_format, only: format_csv, format_binary, fnv1a32
+   use egw_hysteresis, only: hysteresis_table, hysteresis_prepare
+   implicit none
+   private
+
+   public :: write_hysteresis, read_hysteresis
+
+   character(len=8), parameter :: magic = "EGWHYST1"
+   integer(int32), parameter :: hysteresis_version = 1
+   integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
+   !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
+   integer, parameter :: header_bytes = 8 + 4*9 + 8*18
+   character(len=*), parameter :: csv_columns = "delta_max,length,s,ratio,dratio_ds"
+   character(len=*), parameter :: csv_title = "# egw hysteresis table, CSV format 1"
+   !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
+   integer, parameter :: max_rows = 10000000
+   integer(int64), parameter :: fnv_basis = 2166136261_int64, fnv_mask = int(z'FFFFFFFF', int64)
+
+contains
+
+   !> Write a hysteresis table to path in format_csv or format_binary (egw_table_format's
+   !> constants). Errors: egw_invalid_argument (unknown format, a table not built),
+   !> egw_io_error (nothing replaced then).
+   subroutine write_hysteresis(table, path, format, error)
+      type(hysteresis_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: format
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. allocated(table%loading%delta)) then
+         call fatal_error(error, egw_invalid_argument, "table: not built or read")
+         return
+      end if
+      select case (format)
+      case (format_csv)
+         call write_csv(table, path, error)
+      case (format_binary)
+         call write_binary(table, path, error)
+      case default
+         call fatal_error(error, egw_invalid_argument, "format = "//int_str(format)// &
+            & ": hysteresis tables are written as 0 (CSV) or 1 (binary)")
+      end select
+   end subroutine write_hysteresis
+
+   !> Read a hysteresis table written by write_hysteresis (CSV or binary, recognised from
+   !> the file's start). A file that is truncated, corrupted or inconsistent gives
+   !> egw_bad_file with what is wrong, and table is left empty.
+   subroutine read_hysteresis(path, table, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: bytes
+      call read_bytes(path, bytes, error)
+      if (allocated(error)) return
+      if (starts_with(bytes, magic)) then
+         call parse_binary(path, bytes, table, error)
+      else if (starts_with(bytes, csv_columns//new_line("a")//csv_title)) then
+         call parse_csv(path, bytes, table, error)
+      else
+         call fatal_error(error, egw_bad_file, "path = "//path//": not an egw hysteresis "// &
+            & "table (neither binary magic "//magic//" nor its CSV header)")
+         return
+      end if
+      if (allocated(error)) return
+      call check_hysteresis(path, table, error)
+      if (allocated(error)) then
+         call clear(table)
+         return
+      end if
+      call table_prepare(table%loading)
+      if (.not. table%reversible) call hysteresis_prepare(table)
+   end subroutine read_hysteresis
+
+   ! ---------------------------------------------------------------------------- binary
+
+   subroutine write_binary(table, path, error)
+      type(hysteresis_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: buf, tmp
+      integer :: pos, n_load, n_m, n_s, unit, ios
+      n_load = size(table%loading%delta)
+      n_m = 0
+      n_s = 0
+      if (.not. table%reversible) then
+         n_m = size(table%m)
+         n_s = size(table%s)
+      end if
+      allocate (character(len=header_bytes + 8*(5*n_load + 2*n_m + n_s + 2*n_m*n_s) + 4) :: buf)
+      buf(1:8) = magic
+      pos = 9
+      call put_i32(buf, pos, [hysteresis_version, byte_order_mark, &
+         & int(egw_version_number, int32), int(table%params%model, int32), &
+         & merge(1_int32, 0_int32, table%reversible), int(n_load, int32), &
+         & int(table%loading%n_log, int32), int(n_m, int32), int(n_s, int32)])
+      call put_f64(buf, pos, params_array(table%params))
+      call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
+      call put_f64(buf, pos, loading_meta(table%loading))
+      call put_f64(buf, pos, table%loading%delta)
+      call put_f64(buf, pos, table%loading%force)
+      call put_f64(buf, pos, table%loading%stiffness)
+      call put_f64(buf, pos, table%loading%energy)
+      call put_f64(buf, pos, table%loading%contact_radius)
+      if (.not. table%reversible) then
+         call put_f64(buf, pos, table%m)
+         call put_f64(buf, pos, table%length)
+         call put_f64(buf, pos, table%s)
+         call put_f64(buf, pos, reshape(table%ratio, [n_m*n_s]))
+         call put_f64(buf, pos, reshape(table%slope, [n_m*n_s]))
+      end if
+      call put_i32(buf, pos, [checksum_i32(fnv1a32(buf(1:pos - 1)))])
+      ! atomic, every step checked, ulimit -f refused before writing (egw_io)
+      call write_file(path, buf(1:pos - 1), error)
+   end subroutine write_binary
+
+   subroutine parse_binary(path, bytes, table, error)
+      character(len=*), intent(in) :: path, bytes
+      type(hysteresis_table), intent(inout) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      integer(int32) :: head(9), stored(1)
+      integer(int64) :: expected
+      integer :: pos, n_load, n_m, n_s
+      real(dp) :: p(7), meta(4), lmeta(7)
+      if (len(bytes) < header_bytes + 4) then
+         call bad(error, path, "truncated: "//int_str(len(bytes))//" bytes")
+         return
+      end if
+      pos = len(bytes) - 3
+      call get_i32(bytes, pos, stored)
+      if (stored(1) /= checksum_i32(fnv1a32(bytes(1:len(bytes) - 4)))) then
+         call bad(error, path, "checksum mismatch: file is corrupted or truncated")
+         return
+      end if
+      pos = 9
+      call get_i32(bytes, pos, head)
+      if (head(2) /= byte_order_mark) then
+         call bad(error, path, "byte order mark: written on a machine of the other "// &
+            & "endianness, or corrupted")
+         return
+      end if
+      if (head(1) /= hysteresis_version) then
+         call bad(error, path, "format version "//int_str(int(head(1)))//" is not "// &
+            & "supported (this egw reads version "//int_str(int(hysteresis_version))//")")
+         return
+      end if
+      n_load = head(6)
+      n_m = head(8)
+      n_s = head(9)
+      if (n_load < 2 .or. n_load > max_rows .or. n_m < 0 .or. n_m > max_rows .or. &
+         & n_s < 0 .or. n_s > max_rows) then
+         call bad(error, path, "node counts out of range")
+         return
+      end if
+      expected = header_bytes + 8_int64*(5*int(n_load, int64) + 2*n_m + n_s + &
+         & 2*int(n_m, int64)*n_s) + 4
+      if (len(bytes, int64) /= expected) then
+         call bad(error, path, "node counts do not match the file size "// &
+            & int_str(len(bytes)))
+         return
+      end if
+      call get_f64(bytes, pos, p)
+      call get_f64(bytes, pos, meta)
+      call get_f64(bytes, pos, lmeta)
+      table%params = params_from(int(head(4)), p)
+      table%reversible = head(5) /= 0
+      table%rel_tol = meta(1)
+      table%delta_max = meta(2)
+      table%max_error = meta(3)
+      table%s_max = meta(4)
+      table%loading%params = table%params
+      table%loading%n_log = head(7)
+      call set_loading_meta(table%loading, lmeta)
+      allocate (table%loading%delta(n_load), table%loading%force(n_load), &
+         & table%loading%stiffness(n_load), table%loading%energy(n_load), &
+         & table%loading%contact_radius(n_load))
+      call get_f64(bytes, pos, table%loading%delta)
+      call get_f64(bytes, pos, table%loading%force)
+      call get_f64(bytes, pos, table%loading%stiffness)
+      call get_f64(bytes, pos, table%loading%energy)
+      call get_f64(bytes, pos, table%loading%contact_radius)
+      allocate (table%m(n_m), table%length(n_m), table%s(n_s), table%ratio(n_s, n_m), &
+         & table%slope(n_s, n_m))
+      call get_f64(bytes, pos, table%m)
+      call get_f64(bytes, pos, table%length)
+      call get_f64(bytes, pos, table%s)
+      call get_matrix(bytes, pos, table%ratio)
+      call get_matrix(bytes, pos, table%slope)
+   end subroutine parse_binary
+
+   ! ---------------------------------------------------------------------------- CSV
+
+   subroutine write_csv(table, path, error)
+      type(hysteresis_table), intent(in) :: table
+      character(len=*), intent(in) :: path
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: head
+      integer :: i, j, n_m, n_s
+      integer(int64) :: hash
+      type(text_buffer) :: out
+      n_m = 0
+      n_s = 0
+      if (.not. table%reversible) then
+         n_m = size(table%m)
+         n_s = size(table%s)
+      end if
+      associate (l => table%loading)
+         ! the column header first and the metadata as '#' lines, as the 1-D tables:
+         ! pandas.read_csv(path, comment="#") reads the unloading rows as they are
+         head = csv_columns//new_line("a")//csv_title//new_line("a")// &
+            & "# egw_version = "//egw_version_string//new_line("a")// &
+            & "# model = "//int_str(table%params%model)//" ("// &
+            & model_name(table%params%model)//")"//new_line("a")
+         call add_reals(head, ["radius        ", "modulus       ", "sigma         ", &
+            & "mu            ", "psi           ", "hardness_coeff", "plastic_ratio "], &
+            & params_array(table%params))
+         call add_reals(head, ["rel_tol  ", "delta_max", "max_error", "s_max    "], &
+            & [table%rel_tol, table%delta_max, table%max_error, table%s_max])
+         head = head//"# reversible = "//int_str(merge(1, 0, table%reversible))// &
+            & new_line("a")//"# n_delta_max = "//int_str(n_m)//new_line("a")//"# n_s = "// &
+            & int_str(n_s)//new_line("a")
+         call add_reals(head, ["loading.rel_tol            ", "loading.cutoff             ", &
+            & "loading.delta_max          ", "loading.reference_force    ", &
+            & "loading.max_force_error    ", "loading.max_stiffness_error", &
+            & "loading.radius_sum         "], loading_meta(l))
+         head = head//"# loading.n_nodes = "//int_str(size(l%delta))//new_line("a")// &
+            & "# loading.n_log = "//int_str(l%n_log)//new_line("a")// &
+            & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
+            & "stiffness [modulus*length]; energy [modulus*length^3]; s, ratio [1]"// &
+            & new_line("a")// &
+            & "# rows: unloading force = P_load(delta_max)*ratio at s = (delta_max - delta)/"// &
+            & "(s_max*length), cubic Hermite in s (slope dratio_ds), cubic Lagrange in "// &
+            & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
+            & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
+         hash = fnv_basis
+         call put_line(head)
+         do i = 1, size(l%delta)
+            call put_line("# loading = "//csv_row([l%delta(i), l%force(i), l%stiffness(i), &
+               & l%energy(i), l%contact_radius(i)]))
+         end do
+      end associate
+      do j = 1, n_m
+         do i = 1, n_s
+            call put_line(csv_row([table%m(j), table%length(j), table%s(i), &
+               & table%ratio(i, j), table%slope(i, j)]))
+         end do
+      end do
+      call put_line("# end of table, "//int_str(n_m*n_s)//" rows")
+      ! the checksum of every byte before its line (read back by read_hysteresis)
+      call put_line("# checksum = "//int_str(int(checksum_i32(hash))))
+      ! built in memory, then written atomically with every step checked (egw_io)
+      call out%write(path, error)
+   contains
+      subroutine put_line(line)
+         character(len=*), intent(in) :: line
+         hash = fnv1a32_update(hash, line//new_line("a"))
+         call out%add(line)
+      end subroutine put_line
+   end subroutine write_csv
+
+   subroutine parse_csv(path, text, table, error)
+      character(len=*), intent(in) :: path, text
+      type(hysteresis_table), intent(inout) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: start, eol, ios, n_load, n_m, n_s, k_load, k_row, model, rev, n_log, line
+      integer :: sum_at
+      real(dp) :: v(5), p(7), lmeta(7)
+      character(len=:), allocatable :: key, value
+      logical :: have_sum
+      ! the checksum line covers every byte before it
+      sum_at = index(text, new_line("a")//"# checksum = ", back=.true.)
+      have_sum = sum_at > 0
+      if (.not. have_sum) then
+         call bad(error, path, "no checksum line (a hysteresis CSV must be written by egw)")
+         return
+      end if
+      read (text(sum_at + 14:), *, iostat=ios) k_row
+      if (ios /= 0 .or. k_row /= checksum_i32(fnv1a32(text(1:sum_at)))) then
+         call bad(error, path, "checksum mismatch: file is corrupted or was edited")
+         return
+      end if
+      n_load = -1
+      n_m = -1
+      n_s = -1
+      model = -1
+      rev = -1
+      n_log = -1
+      p = -huge(1.0_dp)
+      lmeta = -huge(1.0_dp)
+      k_load = 0
+      k_row = 0
+      line = 0
+      start = 1
+      do while (start <= sum_at)
+         eol = index(text(start:), new_line("a"))
+         if (eol == 0) exit
+         eol = start + eol - 2
+         line = line + 1
+         if (line == 1 .or. eol < start) then
+            start = eol + 2
+            cycle
+         end if
+         if (text(start:start) == "#") then
+            call split_key(text(start:eol), key, value)
+            select case (key)
+            case ("model")
+               read (value, *, iostat=ios) model
+            case ("radius"); call get_real(value, p(1), ios)
+            case ("modulus"); call get_real(value, p(2), ios)
+            case ("sigma"); call get_real(value, p(3), ios)
+            case ("mu"); call get_real(value, p(4), ios)
+            case ("psi"); call get_real(value, p(5), ios)
+            case ("hardness_coeff"); call get_real(value, p(6), ios)
+            case ("plastic_ratio"); call get_real(value, p(7), ios)
+            case ("rel_tol"); call get_real(value, table%rel_tol, ios)
+            case ("delta_max"); call get_real(value, table%delta_max, ios)
+            case ("max_error"); call get_real(value, table%max_error, ios)
+            case ("s_max"); call get_real(value, table%s_max, ios)
+            case ("reversible"); read (value, *, iostat=ios) rev
+            case ("n_delta_max"); read (value, *, iostat=ios) n_m
+            case ("n_s"); read (value, *, iostat=ios) n_s
+            case ("loading.rel_tol"); call get_real(value, lmeta(1), ios)
+            case ("loading.cutoff"); call get_real(value, lmeta(2), ios)
+            case ("loading.delta_max"); call get_real(value, lmeta(3), ios)
+            case ("loading.reference_force"); call get_real(value, lmeta(4), ios)
+            case ("loading.max_force_error"); call get_real(value, lmeta(5), ios)
+            case ("loading.max_stiffness_error"); call get_real(value, lmeta(6), ios)
+            case ("loading.radius_sum"); call get_real(value, lmeta(7), ios)
+            case ("loading.n_log"); read (value, *, iostat=ios) n_log
+            case ("loading.n_nodes")
+               read (value, *, iostat=ios) n_load
+               if (ios == 0 .and. n_load >= 2 .and. n_load <= max_rows) allocate ( &
+                  & table%loading%delta(n_load), table%loading%force(n_load), &
+                  & table%loading%stiffness(n_load), table%loading%energy(n_load), &
+                  & table%loading%contact_radius(n_load))
+            case ("loading")
+               k_load = k_load + 1
+               if (.not. allocated(table%loading%delta)) then
+                  call bad(error, path, "line "//int_str(line)//": loading node before "// &
+                     & "loading.n_nodes")
+                  return
+               end if
+               if (k_load > n_load) then
+                  call bad(error, path, "more loading nodes than loading.n_nodes")
+                  return
+               end if
+               read (value, *, iostat=ios) v
+               table%loading%delta(k_load) = v(1)
+               table%loading%force(k_load) = v(2)
+               table%loading%stiffness(k_load) = v(3)
+               table%loading%energy(k_load) = v(4)
+               table%loading%contact_radius(k_load) = v(5)
+            case default
+               ios = 0
+            end select
+            if (ios /= 0) then
+               call bad(error, path, "line "//int_str(line)//": cannot read '"//key//"'")
+               return
+            end if
+         else
+            if (.not. allocated(table%m)) then
+               if (n_m < 0 .or. n_s < 0 .or. n_m > max_rows .or. n_s > max_rows .or. &
+                  & int(n_m, int64)*n_s > max_rows) then
+                  call bad(error, path, "line "//int_str(line)//": row before valid "// &
+                     & "n_delta_max and n_s")
+                  return
+               end if
+               allocate (table%m(n_m), table%length(n_m), table%s(n_s), &
+                  & table%ratio(n_s, n_m), table%slope(n_s, n_m))
+            end if
+            k_row = k_row + 1
+            read (text(start:eol), *, iostat=ios) v(1:5)
+            if (ios /= 0 .or. k_row > n_m*n_s) then
+               call bad(error, path, "line "//int_str(line)//": not a row of 5 numbers, "// &
+                  & "or more rows than n_delta_max*n_s")
+               return
+            end if
+            associate (j => (k_row - 1)/n_s + 1, i => mod(k_row - 1, n_s) + 1)
+               if (i == 1) table%m(j) = v(1)
+               if (i == 1) table%length(j) = v(2)
+               if (j == 1) table%s(i) = v(3)
+               if (v(1) /= table%m(j) .or. v(2) /= table%length(j) .or. &
+                  & v(3) /= table%s(i)) then
+                  call bad(error, path, "line "//int_str(line)//": delta_max, length or s "// &
+                     & "differs from the grid of the rows before")
+                  return
+               end if
+               table%ratio(i, j) = v(4)
+               table%slope(i, j) = v(5)
+            end associate
+         end if
+         start = eol + 2
+      end do
+      if (model < 0 .or. rev < 0 .or. n_log < 0 .or. n_load < 2 .or. k_load /= n_load .or. &
+         & any(p == -huge(1.0_dp)) .or. any(lmeta == -huge(1.0_dp))) then
+         call bad(error, path, "metadata or loading nodes incomplete")
+         return
+      end if
+      if (.not. allocated(table%m)) allocate (table%m(0), table%length(0), table%s(0), &
+         & table%ratio(0, 0), table%slope(0, 0))
+      if (k_row /= size(table%m)*size(table%s)) then
+         call bad(error, path, int_str(k_row)//" rows, n_delta_max*n_s = "// &
+            & int_str(size(table%m)*size(table%s)))
+         return
+      end if
+      table%params = params_from(model, p)
+      table%reversible = rev /= 0
+      table%loading%params = table%params
+      table%loading%n_log = n_log
+      call set_loading_meta(table%loading, lmeta)
+   end subroutine parse_csv
+
+   ! ---------------------------------------------------------------------------- checks
+
+   !> What a hysteresis table must satisfy to be evaluated: valid parameters, a sane
+   !> loading curve (finite; increasing nodes; force >= 0 and non-decreasing; stiffness
+   !> >= 0) and unloading grid (m from the cut-off to delta_max, s from 0 to 1, both
+   !> increasing; ratio finite, 1 at s = 0 and within [0, 1] up to rel_tol).
+   subroutine check_hysteresis(path, t, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: n, n_m, n_s
+      call validate_params(t%params, error)
+      if (allocated(error)) then
+         call bad(error, path, "stored parameters invalid: "//error%message)
+         return
+      end if
+      if (.not. (t%rel_tol >= 1.0e-8_dp .and. t%rel_tol <= 0.1_dp) .or. &
+         & .not. (t%max_error >= 0.0_dp .and. t%max_error < huge(1.0_dp))) then
+         call bad(error, path, "rel_tol or max_error out of range")
+         return
+      end if
+      associate (l => t%loading)
+         n = size(l%delta)
+         if (.not. (all(ieee_is_finite(l%delta)) .and. all(ieee_is_finite(l%force)) .and. &
+            & all(ieee_is_finite(l%stiffness)) .and. all(ieee_is_finite(l%energy)) .and. &
+            & all(ieee_is_finite(l%contact_radius)) .and. &
+            & all(ieee_is_finite([l%rel_tol, l%reference_force, l%max_force_error, &
+            & l%max_stiffness_error, l%radius_sum])))) then
+            call bad(error, path, "loading curve: a value is not finite")
+            return
+         end if
+         if (any(l%delta(2:n) <= l%delta(1:n - 1)) .or. l%cutoff /= l%delta(1) .or. &
+            & l%delta_max /= l%delta(n) .or. t%delta_max /= l%delta(n)) then
+            call bad(error, path, "loading curve: nodes not increasing, or cutoff/delta_max "// &
+               & "disagree with them")
+            return
+         end if
+         if (any(l%force < 0.0_dp) .or. any(l%force(2:n) < l%force(1:n - 1)) .or. &
+            & any(l%stiffness < 0.0_dp) .or. any(l%energy < 0.0_dp) .or. &
+            & any(l%contact_radius < 0.0_dp) .or. .not. l%reference_force > 0.0_dp) then
+            call bad(error, path, "loading curve: force, stiffness, energy or contact radius "// &
+               & "negative, or force decreasing")
+            return
+         end if
+         if (l%n_log < 0 .or. l%n_log > n - 1 .or. l%rel_tol /= t%rel_tol) then
+            call bad(error, path, "loading curve: n_log or rel_tol out of range")
+            return
+         end if
+         if (l%n_log > 0) then
+            if (any(l%force(1:l%n_log + 1) <= 0.0_dp)) then
+               call bad(error, path, "loading curve: log-space interval with a zero force")
+               return
+            end if
+         end if
+      end associate
+      n_m = size(t%m)
+      n_s = size(t%s)
+      if (t%reversible) then
+         if (n_m /= 0 .or. n_s /= 0) call bad(error, path, "a reversible table has no curves")
+         return
+      end if
+      if (n_m < 4 .or. n_s < 2) then
+         call bad(error, path, "fewer than 4 delta_max nodes or 2 s nodes")
+         return
+      end if
+      if (.not. (all(ieee_is_finite(t%m)) .and. all(ieee_is_finite(t%s)) .and. &
+         & all(ieee_is_finite(t%ratio)) .and. all(ieee_is_finite(t%slope)) .and. &
+         & all(ieee_is_finite(t%length)) .and. ieee_is_finite(t%s_max))) then
+         call bad(error, path, "unloading data: a value is not finite")
+         return
+      end if
+      if (any(t%length <= 0.0_dp) .or. .not. t%s_max > 0.0_dp) then
+         call bad(error, path, "unloading data: length and s_max must be > 0")
+         return
+      end if
+      if (any(t%m(2:n_m) <= t%m(1:n_m - 1)) .or. t%m(1) /= t%loading%cutoff .or. &
+         & t%m(n_m) /= t%delta_max .or. any(t%s(2:n_s) <= t%s(1:n_s - 1)) .or. &
+         & t%s(1) /= 0.0_dp .or. t%s(n_s) /= 1.0_dp) then
+         call bad(error, path, "unloading grid: delta_max from the cut-off to delta_max "// &
+            & "and s from 0 to 1 must increase")
+         return
+      end if
+      if (any(t%ratio(1, :) /= 1.0_dp) .or. any(t%ratio < -t%rel_tol) .or. &
+         & any(t%ratio > 1.0_dp + t%rel_tol)) then
+         call bad(error, path, "unloading data: ratio must be 1 at s = 0 and within [0, 1]")
+         return
+      end if
+   end subroutine check_hysteresis
+
+   ! ---------------------------------------------------------------------------- helpers
+
+   pure function params_array(p) result(a)
+      type(contact_params), intent(in) :: p
+      real(dp) :: a(7)
+      a = [p%radius, p%modulus, p%sigma, p%mu, p%psi, p%hardness_coeff, p%plastic_ratio]
+   end function params_array
+
+   pure function params_from(model, a) result(p)
+      integer, intent(in) :: model
+      real(dp), intent(in) :: a(7)
+      type(contact_params) :: p
+      p = contact_params(model=model, radius=a(1), modulus=a(2), sigma=a(3), mu=a(4), &
+         & psi=a(5), hardness_coeff=a(6), plastic_ratio=a(7))
+   end function params_from
+
+   pure function loading_meta(l) result(a)
+      type(force_table), intent(in) :: l
+      real(dp) :: a(7)
+      a = [l%rel_tol, l%cutoff, l%delta_max, l%reference_force, l%max_force_error, &
+         & l%max_stiffness_error, l%radius_sum]
+   end function loading_meta
+
+   pure subroutine set_loading_meta(l, a)
+      type(force_table), intent(inout) :: l
+      real(dp), intent(in) :: a(7)
+      l%rel_tol = a(1)
+      l%cutoff = a(2)
+      l%delta_max = a(3)
+      l%reference_force = a(4)
+      l%max_force_error = a(5)
+      l%max_stiffness_error = a(6)
+      l%radius_sum = a(7)
+   end subroutine set_loading_meta
+
+   subroutine clear(t)
+      type(hysteresis_table), intent(out) :: t
+   end subroutine clear
+
+   subroutine read_bytes(path, bytes, error)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: bytes
+      type(egw_error), allocatable, intent(out) :: error
+      call read_file(path, bytes, error)
+   end subroutine read_bytes
+
+   pure subroutine put_i32(buf, pos, v)
+      character(len=*), intent(inout) :: buf
+      integer, intent(inout) :: pos
+      integer(int32), intent(in) :: v(:)
+      buf(pos:pos + 4*size(v) - 1) = transfer(v, buf(pos:pos + 4*size(v) - 1))
+      pos = pos + 4*size(v)
+   end subroutine put_i32
+
+   pure subroutine get_i32(buf, pos, v)
+      character(len=*), intent(in) :: buf
+      integer, intent(inout) :: pos
+      integer(int32), intent(out) :: v(:)
+      v = transfer(buf(pos:pos + 4*size(v) - 1), v, size(v))
+      pos = pos + 4*size(v)
+   end subroutine get_i32
+
+   pure subroutine put_f64(buf, pos, v)
+      character(len=*), intent(inout) :: buf
+      integer, intent(inout) :: pos
+      real(dp), intent(in) :: v(:)
+      if (size(v) == 0) return
+      buf(pos:pos + 8*size(v) - 1) = transfer(v, buf(pos:pos + 8*size(v) - 1))
+      pos = pos + 8*size(v)
+   end subroutine put_f64
+
+   pure subroutine get_f64(buf, pos, v)
+      character(len=*), intent(in) :: buf
+      integer, intent(inout) :: pos
+      real(dp), intent(out) :: v(:)
+      if (size(v) == 0) return
+      v = transfer(buf(pos:pos + 8*size(v) - 1), v, size(v))
+      pos = pos + 8*size(v)
+   end subroutine get_f64
+
+   pure subroutine get_matrix(buf, pos, a)
+      character(len=*), intent(in) :: buf
+      integer, intent(inout) :: pos
+      real(dp), intent(out) :: a(:, :)
+      real(dp) :: flat(size(a))
+      call get_f64(buf, pos, flat)
+      a = reshape(flat, shape(a))
+   end subroutine get_matrix
+
+   !> The unsigned 32-bit checksum as the int32 with the same bits.
+   pure integer(int32) function checksum_i32(h)
+      integer(int64), intent(in) :: h
+      if (h >= 2147483648_int64) then
+         checksum_i32 = int(h - 4294967296_int64, int32)
+      else
+         checksum_i32 = int(h, int32)
+      end if
+   end function checksum_i32
+
+   !> FNV-1a 32-bit hash (egw_table_format's fnv1a32) continued over more bytes, for a
+   !> file written line by line.
+   pure function fnv1a32_update(h0, bytes) result(h)
+      integer(int64), intent(in) :: h0
+      character(len=*), intent(in) :: bytes
+      integer(int64) :: h
+      integer :: i
+      h = h0
+      do i = 1, len(bytes)
+         h = iand(ieor(h, int(ichar(bytes(i:i)), int64))*16777619_int64, fnv_mask)
+      end do
+   end function fnv1a32_update
+
+   !> "# key = value" -> key, value (key "" for other comment lines).
+   subroutine split_key(line, key, value)
+      character(len=*), intent(in) :: line
+      character(len=:), allocatable, intent(out) :: key, value
+      integer :: eq
+      eq = index(line, " = ")
+      if (eq < 3) then
+         key = ""
+         value = ""
+         return
+      end if
+      key = trim(adjustl(line(2:eq - 1)))
+      value = trim(adjustl(line(eq + 3:)))
+   end subroutine split_key
+
+   subroutine get_real(value, x, ios)
+      character(len=*), intent(in) :: value
+      real(dp), intent(out) :: x
+      integer, intent(out) :: ios
+      read (value, *, iostat=ios) x
+   end subroutine get_real
+
+   subroutine add_reals(text, keys, values)
+      character(len=:), allocatable, intent(inout) :: text
+      character(len=*), intent(in) :: keys(:)
+      real(dp), intent(in) :: values(:)
+      integer :: i
+      do i = 1, size(keys)
+         text = text//"# "//trim(keys(i))//" = "//fmt(values(i))//new_line("a")
+      end do
+   end subroutine add_reals
+
+   ! (results of lengths known before the call, not deferred: gfortran 12 keeps a
+   ! deferred result length in a static variable, which threads share; see egw_text)
+   pure integer function csv_row_len(v) result(n)
+      real(dp), intent(in) :: v(:)
+      integer :: i
+      n = size(v) - 1
+      do i = 1, size(v)
+         n = n + real_text_len(v(i), 17, 3)
+      end do
+   end function csv_row_len
+
+   pure function csv_row(v) result(str)
+      real(dp), intent(in) :: v(:)
+      character(len=csv_row_len(v)) :: str
+      integer :: i, pos, n
+      pos = 0
+      do i = 1, size(v)
+         if (i > 1) then
+            str(pos + 1:pos + 1) = ","
+            pos = pos + 1
+         end if
+         n = real_text_len(v(i), 17, 3)
+         str(pos + 1:pos + n) = real_text(v(i), 17, 3)
+         pos = pos + n
+      end do
+   end function csv_row
+
+   !> 17 significant digits (ES25.17E3): every double reads back bit-for-bit.
+   pure function fmt(x) result(str)
+      real(dp), intent(in) :: x
+      character(len=real_text_len(x, 17, 3)) :: str
+      str = real_text(x, 17, 3)
+   end function fmt
+
+   subroutine bad(error, path, what)
+      type(egw_error), allocatable, intent(inout) :: error
+      character(len=*), intent(in) :: path, what
+      if (allocated(error)) deallocate (error)
+      call fatal_error(error, egw_bad_file, "path = "//path//": "//what)
+   end subroutine bad
+
+   pure logical function starts_with(str, prefix)
+      character(len=*), intent(in) :: str, prefix
+      starts_with = .false.
+      if (len(str) >= len(prefix)) starts_with = str(1:len(prefix)) == prefix
+   end function starts_with
+
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i
+      character(len=int_text_len(i)) :: str
+      str = int_text(i)
+   end function int_str
+
+end module egw_hysteresis_format
