@@ -286,7 +286,8 @@ int egw_capi_test_io_full_disk(void) {
 /* Paths are read from C at their full length (strlen), never cut: a path of 3900
  * bytes (nested directories) works; one of 5000 bytes (beyond Linux's PATH_MAX of
  * 4096) is refused with EGW_IO_ERROR and a message that names the whole path (its
- * last characters included), by the table writer and reader and the scene reader. */
+ * last characters included), by the table writer and reader, the scene reader and the
+ * hysteresis reader. */
 int egw_capi_test_io_long_paths(void) {
   egw_table t, r = NULL;
   static char path[6000];
@@ -324,8 +325,11 @@ int egw_capi_test_io_long_paths(void) {
   CHECK(strstr(last_message(), "_END_OF_THE_PATH.csv") != NULL);
   {
     egw_scene s;
+    egw_hysteresis h = NULL;
     egw_scene_default(&s);
     CHECK(egw_scene_read(path, &s) == EGW_IO_ERROR);
+    CHECK(strstr(last_message(), "_END_OF_THE_PATH.csv") != NULL);
+    CHECK(egw_hysteresis_read(path, &h) == EGW_IO_ERROR && h == NULL);
     CHECK(strstr(last_message(), "_END_OF_THE_PATH.csv") != NULL);
   }
   /* the units string of the LAMMPS writer goes through the same reader */
