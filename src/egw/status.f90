@@ -26,7 +26,7 @@ module egw_status
       character(len=:), allocatable :: message
    end type egw_error
 
-   public :: status_message, fatal_error, format_real
+   public :: status_message, fatal_error, format_real, format_real_len
 
 contains
 
