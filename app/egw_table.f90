@@ -13,7 +13,7 @@ program egw_table_app
       & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw, &
-      & hysteresis_table, build_hysteresis, write_hysteresis
+      & text_buffer, remove_file, hysteresis_table, build_hysteresis, write_hysteresis
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
@@ -307,69 +307,72 @@ contains
       integer, parameter :: n = 201
       character(len=:), allocatable :: path
       real(dp) :: x, lo, hi, pg, dpg
-      integer :: u, i, ios
+      integer :: i
+      type(text_buffer) :: out
+      character(len=128) :: line
       path = out_dir//"/hertz_force.csv"
-      open (newunit=u, file=path//".part", status="replace", action="write", iostat=ios)
-      if (ios /= 0) call fail_write("cannot create "//path//".part")
-      n_written = n_written + 1
-      written(n_written) = path
       ! column header first, metadata as '#' lines (read as is by pandas.read_csv(path,
       ! comment="#") and numpy.loadtxt(path, delimiter=",", skiprows=1))
-      write (u, '(a)') "delta,force,stiffness,contact_radius"
-      call curve_header(u, p, "Hertz force-overlap curve of the smooth spheres (doc/theory.md §5)")
+      call out%add("delta,force,stiffness,contact_radius")
+      call curve_header(out, p, "Hertz force-overlap curve of the smooth spheres (doc/theory.md §5)")
       hi = max(delta_hi, 0.0_dp)
       do i = 0, n - 1
          x = hi*real(i, dp)/real(n - 1, dp)
-         write (u, '(3(g0.17,","),g0.17)') x, hertz_force(x, p%radius, p%modulus), &
+         write (line, '(3(g0.17,","),g0.17)') x, hertz_force(x, p%radius, p%modulus), &
             & hertz_stiffness(x, p%radius, p%modulus), hertz_contact_radius(x, p%radius)
+         call out%add(trim(line))
       end do
-      close (u)
+      call put_text(out, path)
       if (p%sigma <= 0.0_dp) return
       path = out_dir//"/rough_flat_pressure.csv"
-      open (newunit=u, file=path//".part", status="replace", action="write", iostat=ios)
-      if (ios /= 0) call fail_write("cannot create "//path//".part")
-      n_written = n_written + 1
-      written(n_written) = path
-      write (u, '(a)') "separation,pressure,dpressure_dseparation"
-      call curve_header(u, p, "rough-flat pressure-separation law p_G(d) and dp_G/dd "// &
+      out = text_buffer()
+      call out%add("separation,pressure,dpressure_dseparation")
+      call curve_header(out, p, "rough-flat pressure-separation law p_G(d) and dp_G/dd "// &
          & "(doc/theory.md §3); separation d = -overlap")
       lo = -max(delta_hi, 4.0_dp*p%sigma)
       hi = max(-delta_lo, 6.0_dp*p%sigma)
       do i = 0, n - 1
          x = lo + (hi - lo)*real(i, dp)/real(n - 1, dp)
          call flat_pressure(p, x, pg, dpg, error)
-         if (allocated(error)) then
-            close (u)
-            call fail_write(error%message)
-         end if
-         write (u, '(2(g0.17,","),g0.17)') x, pg, dpg
+         if (allocated(error)) call fail_write(error%message)
+         write (line, '(2(g0.17,","),g0.17)') x, pg, dpg
+         call out%add(trim(line))
       end do
-      close (u)
+      call put_text(out, path)
    end subroutine put_curves
 
-   subroutine curve_header(u, p, title)
-      integer, intent(in) :: u
+   !> Write a text as path//".part" (atomically, every write checked: egw_io).
+   subroutine put_text(out, path)
+      type(text_buffer), intent(in) :: out
+      character(len=*), intent(in) :: path
+      call out%write(path//".part", error)
+      if (allocated(error)) call fail_write(error%message)
+      n_written = n_written + 1
+      written(n_written) = path
+   end subroutine put_text
+
+   subroutine curve_header(out, p, title)
+      type(text_buffer), intent(inout) :: out
       type(contact_params), intent(in) :: p
       character(len=*), intent(in) :: title
-      write (u, '(a)') "# egw "//egw_version_string//": "//title
-      write (u, '(a)') "# units: those of the scene (SI suggested: m, Pa, N)"
-      write (u, '(a)') "# model = "//model_name(p%model)
-      write (u, '(a)') "# radius = "//format_real(p%radius)
-      write (u, '(a)') "# modulus = "//format_real(p%modulus)
-      write (u, '(a)') "# sigma = "//format_real(p%sigma)
-      write (u, '(a)') "# mu = "//format_real(p%mu)
-      write (u, '(a)') "# psi = "//format_real(p%psi)
-      write (u, '(a)') "# hardness_coeff = "//format_real(p%hardness_coeff)
-      write (u, '(a)') "# plastic_ratio = "//format_real(p%plastic_ratio)
+      call out%add("# egw "//egw_version_string//": "//title)
+      call out%add("# units: those of the scene (SI suggested: m, Pa, N)")
+      call out%add("# model = "//model_name(p%model))
+      call out%add("# radius = "//format_real(p%radius))
+      call out%add("# modulus = "//format_real(p%modulus))
+      call out%add("# sigma = "//format_real(p%sigma))
+      call out%add("# mu = "//format_real(p%mu))
+      call out%add("# psi = "//format_real(p%psi))
+      call out%add("# hardness_coeff = "//format_real(p%hardness_coeff))
+      call out%add("# plastic_ratio = "//format_real(p%plastic_ratio))
    end subroutine curve_header
 
-   !> Remove the '.part' files written so far, then stop with the message.
+   !> Remove the '.part' files written so far, then stop with the message (exit status 2).
    subroutine fail_write(message)
       character(len=*), intent(in) :: message
-      integer :: i, u, stat
+      integer :: i
       do i = 1, n_written
-         open (newunit=u, file=trim(written(i))//".part", status="old", iostat=stat)
-         if (stat == 0) close (u, status="delete")
+         call remove_file(trim(written(i))//".part")
       end do
       call die(message//" (no files written)")
    end subroutine fail_write

@@ -13,7 +13,9 @@
  *     otherwise; it never aborts. On failure, outputs are left unchanged and
  *     egw_last_error() returns a message naming the offending argument.
  *   - All functions are thread-safe: they keep no shared state (the last-error
- *     message is per thread).
+ *     message is per thread), and any number of threads may write and read files at
+ *     once (tested with 16 threads).
+ *   - String arguments (paths) are read to their NUL, whatever their length.
  */
 #ifndef EGW_H
 #define EGW_H
@@ -235,6 +237,10 @@ typedef struct {
   double rel_tol;             /* requested interpolation tolerance */
   double max_force_error;     /* measured max |P_table/P_solve - 1| at check solves */
   double max_stiffness_error; /* same for the stiffness (reported, not enforced) */
+  int    checksum_missing;    /* warning: 1 if read from a CSV file without its checksum
+                               * line (written before CSV format 3, or edited by hand):
+                               * only the reader's sanity checks vouch for the numbers;
+                               * 0 for built tables and checksummed files */
 } egw_table_info;
 
 /* Build the table of p over at least [delta_min, delta_max] with interpolation error
@@ -279,8 +285,12 @@ int egw_table_get_info(egw_table t, egw_table_info *info);
  * two equal spheres R1 = R2 = 2R, and says so. */
 int egw_table_set_radii(egw_table t, double radius1, double radius2);
 
-/* Write t to path (NUL-terminated) atomically (temporary file, then rename: a failed
- * write leaves an existing file intact). format: EGW_FORMAT_CSV, EGW_FORMAT_BINARY,
+/* Write t to path (NUL-terminated, any length) atomically: a temporary file beside path
+ * is written, flushed, synced and closed, each step checked, then renamed over path; a
+ * failed write (full disk, quota, I/O error, a directory in the way, a file-size limit
+ * (ulimit -f: refused before writing)) returns EGW_IO_ERROR naming path and the system's
+ * reason, removes the temporary file and leaves an existing file intact (doc/formats.md).
+ * format: EGW_FORMAT_CSV, EGW_FORMAT_BINARY,
  * EGW_FORMAT_LAMMPS (one pair_style table section, keyword EGW_1), EGW_FORMAT_CALCULIX
  * (*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR: force per node against overlap, for
  * node-to-surface contact; at most EGW_CALCULIX_MAX_PAIRS pairs, see
@@ -294,9 +304,12 @@ int egw_table_write(egw_table t, const char *path, int format);
 int egw_tables_write_lammps(int n, const egw_table *tables, const char *path);
 
 /* Read an egw CSV or binary table (format recognised from the file's start). A
- * truncated, corrupted (checksum), wrong-version or inconsistent file gives EGW_BAD_FILE
- * with a message saying what is wrong, and no table. EGW_IO_ERROR if it cannot be
- * opened. *out receives a handle only on success. */
+ * truncated, corrupted (checksum), wrong-version or inconsistent file, or one whose
+ * numbers do not make a table (not finite; negative force, stiffness, energy or contact
+ * radius; a force that decreases with the overlap; metadata out of range: doc/formats.md)
+ * gives EGW_BAD_FILE with a message saying what is wrong, and no table. A CSV file
+ * without its checksum line (hand-edited) is read, with info.checksum_missing = 1.
+ * EGW_IO_ERROR if it cannot be opened. *out receives a handle only on success. */
 int egw_table_read(const char *path, egw_table *out);
 
 /* Release a table; sets *t to NULL. NULL or *t == NULL is fine. */

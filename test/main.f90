@@ -15,6 +15,8 @@ program tester
    use test_table_format, only: collect_table_format
    use test_capi, only: collect_capi
    use test_capi_table, only: collect_capi_table
+   use test_capi_io, only: collect_capi_io
+   use test_text_io, only: collect_text_io
    use test_scene, only: collect_scene
    use test_capi_scene, only: collect_capi_scene
    use test_stability, only: collect_stability
@@ -40,6 +42,8 @@ program tester
       & new_testsuite("table_format", collect_table_format), &
       & new_testsuite("capi", collect_capi), &
       & new_testsuite("capi_table", collect_capi_table), &
+      & new_testsuite("capi_io", collect_capi_io), &
+      & new_testsuite("text_io", collect_text_io), &
       & new_testsuite("scene", collect_scene), &
       & new_testsuite("capi_scene", collect_capi_scene), &
       & new_testsuite("stability", collect_stability), &

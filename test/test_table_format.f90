@@ -3,7 +3,7 @@
 !> CalculiX exports parsed back by small readers written here.
 module test_table_format
    use, intrinsic :: iso_fortran_env, only: int32, int64
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_bad_file, egw_io_error, egw_invalid_argument, &
@@ -34,6 +34,9 @@ contains
          & new_unittest("binary corrupted", test_binary_corrupted), &
          & new_unittest("binary wrong version", test_binary_version), &
          & new_unittest("csv truncated or corrupted", test_csv_bad), &
+         & new_unittest("csv checksum: bit flips, no line", test_csv_checksum), &
+         & new_unittest("csv sanity on read", test_csv_sanity), &
+         & new_unittest("binary sanity on read", test_binary_sanity), &
          & new_unittest("atomic writes", test_atomic), &
          & new_unittest("lammps export", test_lammps), &
          & new_unittest("lammps export, rough table", test_lammps_rough), &
@@ -333,6 +336,15 @@ contains
       call check(error, .not. allocated(err), "write failed")
       if (allocated(error)) return
       call slurp(dir//"/good.csv", b)
+      ! any change under the checksum line (here a digit of the last row) is caught
+      p = index(b, "# end of table") - 5
+      c = b
+      c(p:p) = merge("1", "2", c(p:p) /= "1")
+      call spit(dir//"/edited.csv", c)
+      call expect_bad(error, dir//"/edited.csv", "checksum mismatch")
+      if (allocated(error)) return
+      ! the other checks, on files without their checksum line (as edited by hand)
+      b = b(1:index(b, "# fnv1a32") - 1)
       ! cut inside the last number of the last row: the end line is missing
       p = index(b, "# end of table") - 5
       call spit(dir//"/cut.csv", b(1:p))
@@ -358,6 +370,162 @@ contains
       call spit(dir//"/key.csv", c)
       call expect_bad(error, dir//"/key.csv", "rel_tol")
    end subroutine test_csv_bad
+
+   !> Every single-bit flip of a checksummed CSV file is refused (1000 of them, spread
+   !> over the file); without its checksum line the file is still read, bit-identical,
+   !> and flagged checksum_missing; a written or built table is not flagged.
+   subroutine test_csv_checksum(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t, back
+      type(egw_error), allocatable :: err
+      character(len=:), allocatable :: b, c
+      integer :: i, pos, bit, accepted
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call write_table(t, dir//"/sum.csv", format_csv, err)
+      call slurp(dir//"/sum.csv", b)
+      accepted = 0
+      do i = 1, 1000
+         pos = 1 + mod(7919*i, len(b))
+         bit = mod(i, 7)
+         c = b
+         c(pos:pos) = achar(ieor(iachar(c(pos:pos)), 2**bit))
+         call spit(dir//"/flip.csv", c)
+         call read_table(dir//"/flip.csv", back, err)
+         if (.not. allocated(err)) accepted = accepted + 1
+      end do
+      call check(error, accepted, 0, "bit flips accepted")
+      if (allocated(error)) return
+      call read_table(dir//"/sum.csv", back, err)
+      call check(error, .not. allocated(err) .and. .not. back%checksum_missing, &
+         & "a checksummed file is flagged or refused")
+      if (allocated(error)) return
+      call spit(dir//"/nosum.csv", b(1:index(b, "# fnv1a32") - 1))
+      call read_table(dir//"/nosum.csv", back, err)
+      call check(error, .not. allocated(err), "a file without checksum line is refused")
+      if (allocated(error)) return
+      call check(error, back%checksum_missing, "a file without checksum line is not flagged")
+      if (allocated(error)) return
+      call check(error, all(back%force == t%force) .and. all(back%stiffness == t%stiffness), &
+         & "a file without checksum line reads different numbers")
+      if (allocated(error)) return
+      call check(error, .not. t%checksum_missing, "a built table is flagged")
+   end subroutine test_csv_checksum
+
+   !> Hand-edited CSV files (no checksum line) with insane values are refused, naming
+   !> what is wrong: a negative force, a negative stiffness, a force spike (1e300, the
+   !> next node then lies below it), an infinite stiffness, NaN or out-of-range metadata.
+   subroutine test_csv_sanity(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      character(len=:), allocatable :: b
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call write_table(t, dir//"/sane.csv", format_csv, err)
+      call slurp(dir//"/sane.csv", b)
+      b = b(1:index(b, "# fnv1a32") - 1)
+      call edited_row(error, b, 5, 2, "-1.0E-003", "negative force")
+      if (allocated(error)) return
+      call edited_row(error, b, 5, 3, "-1.0E+010", "negative stiffness")
+      if (allocated(error)) return
+      call edited_row(error, b, 5, 2, "1.0E+300", "must not decrease")
+      if (allocated(error)) return
+      call edited_row(error, b, 5, 3, "Infinity", "not finite")
+      if (allocated(error)) return
+      call edited_row(error, b, 5, 4, "-2.0E-012", "negative energy")
+      if (allocated(error)) return
+      call edited_row(error, b, 5, 5, "-1.0E-003", "negative contact radius")
+      if (allocated(error)) return
+      call edited_row(error, b, 5, 1, "1.0E+000", "strictly increasing")
+      if (allocated(error)) return
+      call edited_key(error, b, "rel_tol", "NaN", "not a finite number")
+      if (allocated(error)) return
+      call edited_key(error, b, "rel_tol", "0.5", "must lie in (0, 0.1]")
+      if (allocated(error)) return
+      call edited_key(error, b, "reference_force", "-1.0", "reference_force")
+      if (allocated(error)) return
+      call edited_key(error, b, "max_force_error", "-1.0", "max_force_error")
+   end subroutine test_csv_sanity
+
+   !> Data row `row` of CSV text b with field `field` replaced by value: refused, the
+   !> message mentioning what.
+   subroutine edited_row(error, b, row, field, value, what)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: b, value, what
+      integer, intent(in) :: row, field
+      character(len=:), allocatable :: c, line
+      integer :: start, stop, i, f0, f1
+      start = index(b, "# interpolation")
+      start = start + index(b(start:), new_line("a"))
+      do i = 2, row
+         start = start + index(b(start:), new_line("a"))
+      end do
+      stop = start + index(b(start:), new_line("a")) - 2
+      line = b(start:stop)//","
+      f0 = 1
+      do i = 2, field
+         f0 = f0 + index(line(f0:), ",")
+      end do
+      f1 = f0 + index(line(f0:), ",") - 2
+      line = line(1:f0 - 1)//value//line(f1 + 1:len(line) - 1)
+      c = b(1:start - 1)//line//b(stop + 1:)
+      call spit(dir//"/edited_row.csv", c)
+      call expect_bad(error, dir//"/edited_row.csv", what)
+   end subroutine edited_row
+
+   subroutine edited_key(error, b, key, value, what)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: b, key, value, what
+      integer :: start, stop
+      start = index(b, "# "//key//" = ")
+      stop = start + index(b(start:), new_line("a")) - 2
+      call spit(dir//"/edited_key.csv", b(1:start - 1)//"# "//key//" = "//value// &
+         & b(stop + 1:))
+      call expect_bad(error, dir//"/edited_key.csv", what)
+   end subroutine edited_key
+
+   !> Binary files with a valid checksum but insane numbers are refused: a negative
+   !> force, an infinite stiffness, a NaN rel_tol, a negative energy or contact radius.
+   subroutine test_binary_sanity(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=:), allocatable :: b
+      integer :: n
+      call good_binary(error, b)
+      if (allocated(error)) return
+      n = (len(b) - 144 - 4)/40
+      ! layout (doc/formats.md): 144 header bytes (rel_tol at byte 89), then the arrays
+      ! delta, force, stiffness, energy, contact_radius of n doubles each
+      call patched(error, b, 145 + 8*n + 8*(n/2), -1.0_dp, "negative force")
+      if (allocated(error)) return
+      call patched(error, b, 145 + 16*n + 8*(n/2), ieee_value(1.0_dp, ieee_positive_inf), &
+         & "not finite")
+      if (allocated(error)) return
+      call patched(error, b, 89, ieee_value(1.0_dp, ieee_quiet_nan), "rel_tol")
+      if (allocated(error)) return
+      call patched(error, b, 145 + 24*n + 8*(n/2), -1.0_dp, "negative energy")
+      if (allocated(error)) return
+      call patched(error, b, 145 + 32*n + 8*(n/2), -1.0_dp, "negative contact radius")
+   end subroutine test_binary_sanity
+
+   !> b with the double at byte pos set to x and the checksum recomputed: refused.
+   subroutine patched(error, b, pos, x, what)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: b, what
+      integer, intent(in) :: pos
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: c
+      integer(int64) :: h
+      integer(int32) :: sum32
+      c = b
+      c(pos:pos + 7) = transfer(x, c(pos:pos + 7))
+      h = fnv1a32(c(1:len(c) - 4))
+      if (h >= 2147483648_int64) h = h - 4294967296_int64
+      sum32 = int(h, int32)
+      c(len(c) - 3:) = transfer(sum32, c(1:4))
+      call spit(dir//"/patched.egwt", c)
+      call expect_bad(error, dir//"/patched.egwt", what)
+   end subroutine patched
 
    !> A write that fails halfway (a NaN found while writing rows) or cannot start (no such
    !> directory) leaves the existing file byte-for-byte intact and no temporary behind.

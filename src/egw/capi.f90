@@ -22,6 +22,8 @@ module egw_capi
    ! gfortran 12 resolves their procedures to a bind(C) routine whose label equals the
    ! module name)
    use egw_smooth_sphere, only: hertz_contact
+   use egw_text, only: int_text, int_text_len
+   use egw_capi_utils, only: copy_to_c
    implicit none
    private
 
@@ -33,7 +35,8 @@ module egw_capi
 
    !> Last error message of this thread: the only mutable state of egw, kept per thread
    !> so that concurrent callers never see each other's messages.
-   character(len=1024), save :: last_message = ""
+   !> (16384 characters: a message naming a path of PATH_MAX = 4096 bytes fits whole.)
+   character(len=16384), save :: last_message = ""
    !$omp threadprivate(last_message)
 
    !> Mirror of the C struct egw_options.
@@ -420,10 +423,8 @@ contains
    !> Decimal text of an integer, for messages.
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
 
@@ -526,29 +527,5 @@ contains
       call c_f_pointer(ptr, target)
       target = x
    end subroutine put
-
-   !> Copy a Fortran string into a C buffer of buflen bytes, NUL-terminated, truncated.
-   integer(c_int) function copy_to_c(str, buf, buflen) result(stat)
-      character(len=*), intent(in) :: str
-      type(c_ptr), intent(in) :: buf
-      integer(c_int), intent(in) :: buflen
-      character(kind=c_char), pointer :: chars(:)
-      integer :: i, n
-      stat = egw_ok
-      if (.not. c_associated(buf)) then
-         stat = egw_null_pointer
-         return
-      end if
-      if (buflen < 1) then
-         stat = egw_invalid_argument
-         return
-      end if
-      call c_f_pointer(buf, chars, [buflen])
-      n = min(len(str), int(buflen) - 1)
-      do i = 1, n
-         chars(i) = str(i:i)
-      end do
-      chars(n + 1) = c_null_char
-   end function copy_to_c
 
 end module egw_capi

@@ -2,7 +2,7 @@
 !> hysteresis_table (c_loc of an allocated object, released by egw_hysteresis_free).
 module egw_capi_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_associated, &
-      & c_f_pointer, c_loc, c_char, c_size_t
+      & c_f_pointer, c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_out_of_range, &
@@ -14,6 +14,7 @@ module egw_capi_hysteresis
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_capi, only: settle, require, read_params, read_options, put, from_params, &
       & egw_params_c, int_str
+   use egw_capi_utils, only: c_string
    implicit none
    private
 
@@ -23,15 +24,6 @@ module egw_capi_hysteresis
       real(c_double) :: cutoff, delta_max, rel_tol, max_error
       type(egw_params_c) :: params
    end type egw_hysteresis_info_c
-
-   interface
-      !> strlen of libc: the length of a NUL-terminated C string.
-      pure function c_strlen(s) result(n) bind(C, name="strlen")
-         import :: c_ptr, c_size_t
-         type(c_ptr), value, intent(in) :: s
-         integer(c_size_t) :: n
-      end function c_strlen
-   end interface
 
    public :: egw_hysteresis_info_c
 
@@ -246,22 +238,14 @@ contains
    integer(c_int) function c_path(path, fpath) result(stat)
       type(c_ptr), intent(in) :: path
       character(len=:), allocatable, intent(out) :: fpath
-      character(kind=c_char), pointer :: chars(:)
       type(egw_error), allocatable :: error
-      integer :: n, i
       stat = require(path, "path")
       if (stat /= egw_ok) return
-      n = int(c_strlen(path))
-      if (n == 0) then
+      call c_string(path, fpath)  ! the one reader of C strings (egw_capi_utils)
+      if (len(fpath) == 0) then
          call fatal_error(error, egw_invalid_argument, "path: empty")
          stat = settle(error)
-         return
       end if
-      call c_f_pointer(path, chars, [n])
-      allocate (character(len=n) :: fpath)
-      do i = 1, n
-         fpath(i:i) = chars(i)
-      end do
    end function c_path
 
 end module egw_capi_hysteresis

@@ -3,8 +3,8 @@
 !> as egw_table / egw_universal handles (released by egw_table_free /
 !> egw_universal_free). Errors go through egw_capi's per-thread last-error message.
 module egw_capi_scene
-   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_ptr, &
-      & c_null_char, c_associated, c_f_pointer, c_loc
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
+      & c_associated, c_f_pointer, c_loc
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok
    use egw_rough_sphere, only: solver_options
@@ -14,6 +14,7 @@ module egw_capi_scene
       & default_scene_input, read_scene_file, validate_scene_input, resolve_scene, &
       & choose_model, build_scene_tables, choice_table, choice_universal
    use egw_capi, only: settle, require, read_options
+   use egw_capi_utils, only: c_string, copy_to_c
    implicit none
    private
 
@@ -73,7 +74,7 @@ contains
       if (stat /= egw_ok) return
       call c_f_pointer(s, cs)
       input = from_c(cs)
-      fpath = c_string(path)
+      call c_string(path, fpath)  ! its full length (egw_capi_utils)
       call read_scene_file(fpath, input, error)
       stat = settle(error)
       if (stat == egw_ok) cs = to_c(input)
@@ -100,7 +101,8 @@ contains
       if (stat /= egw_ok) return
       call c_f_pointer(choice, cc)
       cc = choice_to_c(mc)
-      call copy_reason(mc%reason, reason, reason_len)
+      if (c_associated(reason) .and. reason_len >= 1) &
+         & stat = copy_to_c(mc%reason, reason, reason_len)
    end function egw_scene_choose
 
    !> C: egw_scene_build: choose, then build the chosen tables; *table receives a handle
@@ -237,39 +239,5 @@ contains
       cc%x_min = mc%x_min
       cc%x_max = mc%x_max
    end function choice_to_c
-
-   !> A NUL-terminated C string as a Fortran string.
-   function c_string(ptr) result(str)
-      type(c_ptr), intent(in) :: ptr
-      character(len=:), allocatable :: str
-      character(kind=c_char), pointer :: chars(:)
-      integer :: n, i
-      integer, parameter :: max_len = 4096
-      call c_f_pointer(ptr, chars, [max_len])
-      n = 0
-      do while (n < max_len)
-         if (chars(n + 1) == c_null_char) exit
-         n = n + 1
-      end do
-      allocate (character(len=n) :: str)
-      do i = 1, n
-         str(i:i) = chars(i)
-      end do
-   end function c_string
-
-   subroutine copy_reason(text, buf, buflen)
-      character(len=*), intent(in) :: text
-      type(c_ptr), intent(in) :: buf
-      integer(c_int), intent(in) :: buflen
-      character(kind=c_char), pointer :: chars(:)
-      integer :: i, n
-      if (.not. c_associated(buf) .or. buflen < 1) return
-      call c_f_pointer(buf, chars, [buflen])
-      n = min(len(text), int(buflen) - 1)
-      do i = 1, n
-         chars(i) = text(i:i)
-      end do
-      chars(n + 1) = c_null_char
-   end subroutine copy_reason
 
 end module egw_capi_scene

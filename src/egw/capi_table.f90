@@ -3,8 +3,8 @@
 !> egw_universal_free), build, evaluation, file output and input. Errors go through
 !> egw_capi's per-thread last-error message (settle, require).
 module egw_capi_table
-   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_ptr, &
-      & c_associated, c_f_pointer, c_loc, c_size_t
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
+      & c_associated, c_f_pointer, c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_invalid_parameter, &
@@ -19,6 +19,7 @@ module egw_capi_table
       & write_calculix_flat, write_lammps, write_calculix_sphere
    use egw_capi, only: egw_params_c, egw_options_c, settle, require, read_params, &
       & read_options, put, int_str
+   use egw_capi_utils, only: c_string
    implicit none
    private
 
@@ -27,16 +28,8 @@ module egw_capi_table
       integer(c_int) :: model, n_nodes
       real(c_double) :: cutoff, delta_max, reference_force, rel_tol, max_force_error, &
          & max_stiffness_error
+      integer(c_int) :: checksum_missing
    end type egw_table_info_c
-
-   interface
-      !> strlen of libc: the length of a NUL-terminated C string.
-      pure function c_strlen(s) result(n) bind(C, name="strlen")
-         import :: c_ptr, c_size_t
-         type(c_ptr), value, intent(in) :: s
-         integer(c_size_t) :: n
-      end function c_strlen
-   end interface
 
    public :: egw_table_info_c
 
@@ -172,7 +165,8 @@ contains
       ci = egw_table_info_c(model=int(t%params%model, c_int), &
          & n_nodes=int(size(t%delta), c_int), cutoff=t%cutoff, delta_max=t%delta_max, &
          & reference_force=t%reference_force, rel_tol=t%rel_tol, &
-         & max_force_error=t%max_force_error, max_stiffness_error=t%max_stiffness_error)
+         & max_force_error=t%max_force_error, max_stiffness_error=t%max_stiffness_error, &
+         & checksum_missing=merge(1_c_int, 0_c_int, t%checksum_missing))
    end function egw_table_get_info
 
    !> C: egw_table_set_radii (R1, R2 consistent with the table's R).
@@ -344,8 +338,7 @@ contains
       end if
       stat = require(tables, "tables")
       if (stat == egw_ok) stat = get_path(path, fpath)
-      if (stat == egw_ok) stat = require(units, "units")
-      if (stat == egw_ok) stat = get_path(units, funits)
+      if (stat == egw_ok) stat = get_path(units, funits, "units")
       if (stat /= egw_ok) return
       call c_f_pointer(tables, handles, [n])
       allocate (copies(n))
@@ -556,24 +549,19 @@ contains
       if (.not. allocated(u%slices)) stat = invalid("u: not a built or read table")
    end function get_universal
 
-   !> A NUL-terminated C path as a Fortran string.
-   integer(c_int) function get_path(path, fpath) result(stat)
+   !> A NUL-terminated C string argument (a path, or the argument called name) as a
+   !> Fortran string of its full length (egw_capi_utils); NULL and "" are refused.
+   integer(c_int) function get_path(path, fpath, name) result(stat)
       type(c_ptr), intent(in) :: path
       character(len=:), allocatable, intent(out) :: fpath
-      character(kind=c_char), pointer :: chars(:)
-      integer :: n, i
-      stat = require(path, "path")
+      character(len=*), intent(in), optional :: name
+      character(len=:), allocatable :: label
+      label = "path"
+      if (present(name)) label = name
+      stat = require(path, label)
       if (stat /= egw_ok) return
-      n = int(c_strlen(path))
-      if (n == 0) then
-         stat = invalid("path: empty")
-         return
-      end if
-      call c_f_pointer(path, chars, [n])
-      allocate (character(len=n) :: fpath)
-      do i = 1, n
-         fpath(i:i) = chars(i)
-      end do
+      call c_string(path, fpath)
+      if (len(fpath) == 0) stat = invalid(label//": empty")
    end function get_path
 
    integer(c_int) function out_of_range(t, delta) result(stat)

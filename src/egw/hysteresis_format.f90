@@ -10,7 +10,8 @@ module egw_hysteresis_format
       & fatal_error
    use egw_params, only: contact_params, validate_params, model_name
    use egw_version, only: egw_version_string, egw_version_number
-   use egw_io, only: open_temporary, commit_temporary, discard_temporary
+   use egw_io, only: write_file, read_file, text_buffer
+   use egw_text, only: int_text, int_text_len, real_text, real_text_len
    use egw_table, only: force_table, table_prepare
    use egw_table_format, only: format_csv, format_binary, fnv1a32
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare
@@ -26,7 +27,6 @@ module egw_hysteresis_format
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
    character(len=*), parameter :: csv_columns = "delta_max,length,s,ratio,dratio_ds"
    character(len=*), parameter :: csv_title = "# egw hysteresis table, CSV format 1"
-   character(len=*), parameter :: real_fmt = "(es25.17e3)"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
    integer(int64), parameter :: fnv_basis = 2166136261_int64, fnv_mask = int(z'FFFFFFFF', int64)
@@ -123,15 +123,8 @@ contains
          call put_f64(buf, pos, reshape(table%slope, [n_m*n_s]))
       end if
       call put_i32(buf, pos, [checksum_i32(fnv1a32(buf(1:pos - 1)))])
-      call open_temporary(path, unit, tmp, error, binary=.true.)
-      if (allocated(error)) return
-      write (unit, iostat=ios) buf
-      if (ios /= 0) then
-         call discard_temporary(unit, tmp)
-         call fatal_error(error, egw_io_error, "path = "//path//": write failed")
-         return
-      end if
-      call commit_temporary(unit, tmp, path, error)
+      ! atomic, every step checked, ulimit -f refused before writing (egw_io)
+      call write_file(path, buf(1:pos - 1), error)
    end subroutine write_binary
 
    subroutine parse_binary(path, bytes, table, error)
@@ -214,10 +207,10 @@ contains
       type(hysteresis_table), intent(in) :: table
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
-      character(len=:), allocatable :: head, tmp
-      integer :: i, j, n_m, n_s, unit, ios
+      character(len=:), allocatable :: head
+      integer :: i, j, n_m, n_s
       integer(int64) :: hash
-      ios = 0
+      type(text_buffer) :: out
       n_m = 0
       n_s = 0
       if (.not. table%reversible) then
@@ -252,8 +245,6 @@ contains
             & "(s_max*length), cubic Hermite in s (slope dratio_ds), cubic Lagrange in "// &
             & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
             & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
-         call open_temporary(path, unit, tmp, error, binary=.true.)
-         if (allocated(error)) return
          hash = fnv_basis
          call put_line(head)
          do i = 1, size(l%delta)
@@ -270,18 +261,13 @@ contains
       call put_line("# end of table, "//int_str(n_m*n_s)//" rows")
       ! the checksum of every byte before its line (read back by read_hysteresis)
       call put_line("# checksum = "//int_str(int(checksum_i32(hash))))
-      if (ios /= 0) then
-         call discard_temporary(unit, tmp)
-         call fatal_error(error, egw_io_error, "path = "//path//": write failed")
-         return
-      end if
-      call commit_temporary(unit, tmp, path, error)
+      ! built in memory, then written atomically with every step checked (egw_io)
+      call out%write(path, error)
    contains
       subroutine put_line(line)
          character(len=*), intent(in) :: line
-         if (ios /= 0) return
          hash = fnv1a32_update(hash, line//new_line("a"))
-         write (unit, iostat=ios) line//new_line("a")
+         call out%add(line)
       end subroutine put_line
    end subroutine write_csv
 
@@ -569,27 +555,7 @@ contains
       character(len=*), intent(in) :: path
       character(len=:), allocatable, intent(out) :: bytes
       type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, ios
-      integer(int64) :: nbytes
-      character(len=256) :: msg
-      open (newunit=unit, file=path, status="old", action="read", form="unformatted", &
-         & access="stream", iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("// &
-            & trim(msg)//")")
-         return
-      end if
-      inquire (unit=unit, size=nbytes)
-      if (nbytes < 0 .or. nbytes > huge(1)) then
-         close (unit)
-         call fatal_error(error, egw_bad_file, "path = "//path//": size unknown or too large")
-         return
-      end if
-      allocate (character(len=int(nbytes)) :: bytes)
-      ios = 0
-      if (nbytes > 0) read (unit, iostat=ios) bytes
-      close (unit)
-      if (ios /= 0) call fatal_error(error, egw_io_error, "path = "//path//": read failed")
+      call read_file(path, bytes, error)
    end subroutine read_bytes
 
    pure subroutine put_i32(buf, pos, v)
@@ -690,23 +656,38 @@ contains
       end do
    end subroutine add_reals
 
+   ! (results of lengths known before the call, not deferred: gfortran 12 keeps a
+   ! deferred result length in a static variable, which threads share; see egw_text)
+   pure integer function csv_row_len(v) result(n)
+      real(dp), intent(in) :: v(:)
+      integer :: i
+      n = size(v) - 1
+      do i = 1, size(v)
+         n = n + real_text_len(v(i), 17, 3)
+      end do
+   end function csv_row_len
+
    pure function csv_row(v) result(str)
       real(dp), intent(in) :: v(:)
-      character(len=:), allocatable :: str
-      integer :: i
-      str = fmt(v(1))
-      do i = 2, size(v)
-         str = str//","//fmt(v(i))
+      character(len=csv_row_len(v)) :: str
+      integer :: i, pos, n
+      pos = 0
+      do i = 1, size(v)
+         if (i > 1) then
+            str(pos + 1:pos + 1) = ","
+            pos = pos + 1
+         end if
+         n = real_text_len(v(i), 17, 3)
+         str(pos + 1:pos + n) = real_text(v(i), 17, 3)
+         pos = pos + n
       end do
    end function csv_row
 
-   !> 17 significant digits: every double reads back bit-for-bit.
+   !> 17 significant digits (ES25.17E3): every double reads back bit-for-bit.
    pure function fmt(x) result(str)
       real(dp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=32) :: buf
-      write (buf, real_fmt) x
-      str = trim(adjustl(buf))
+      character(len=real_text_len(x, 17, 3)) :: str
+      str = real_text(x, 17, 3)
    end function fmt
 
    subroutine bad(error, path, what)
@@ -724,10 +705,8 @@ contains
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str
+      str = int_text(i)
    end function int_str
 
 end module egw_hysteresis_format

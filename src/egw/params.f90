@@ -4,6 +4,7 @@ module egw_params
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_parameter, fatal_error, format_real
+   use egw_text, only: int_text, int_text_len
    implicit none
    private
 
@@ -96,10 +97,9 @@ contains
       c = params%mu*params%modulus/(2.0_dp*params%sigma*sqrt(2.0_dp*params%radius))
    end function rough_flat_coefficient
 
-   !> Name of a model, for messages and file headers.
-   pure function model_name(model) result(name)
+   pure function model_label(model) result(name)
       integer, intent(in) :: model
-      character(len=:), allocatable :: name
+      character(len=8) :: name
       select case (model)
       case (model_hertz); name = "Hertz"
       case (model_gw);    name = "GW"
@@ -107,6 +107,14 @@ contains
       case (model_epgw);  name = "EP-GW"
       case default;       name = "unknown"
       end select
+   end function model_label
+
+   !> Name of a model, for messages and file headers.
+   pure function model_name(model) result(name)
+      integer, intent(in) :: model
+      ! not a deferred length: gfortran 12 keeps those in a static variable (egw_text)
+      character(len=len_trim(model_label(model))) :: name
+      name = model_label(model)
    end function model_name
 
    elemental logical function positive_finite(x)
@@ -123,10 +131,8 @@ contains
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
 end module egw_params

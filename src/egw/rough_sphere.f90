@@ -42,6 +42,7 @@ module egw_rough_sphere
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
       & assemble_influence, influence_row, interpolate_nodal
    use egw_lapack, only: dgetf2, dgetrs
+   use egw_text, only: int_text, int_text_len
    implicit none
    private
 
@@ -1455,10 +1456,8 @@ contains
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
 end module egw_rough_sphere

@@ -14,6 +14,7 @@ module egw_scene
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options
    use egw_table, only: force_table, build_table, table_set_radii, table_progress
    use egw_table_universal, only: universal_table, build_universal
+   use egw_text, only: int_text, int_text_len, real_text, real_text_len
    implicit none
    private
 
@@ -167,16 +168,23 @@ contains
       end select
    end subroutine model_from_name
 
-   !> Name of a choice for messages.
-   pure function choice_name(kind) result(name)
+   pure function choice_label(kind) result(name)
       integer, intent(in) :: kind
-      character(len=:), allocatable :: name
+      character(len=24) :: name
       select case (kind)
       case (choice_hertz); name = "Hertz closed form"
       case (choice_table); name = "1-D table"
       case (choice_universal); name = "universal 2-D table"
       case default; name = "unknown"
       end select
+   end function choice_label
+
+   !> Name of a choice for messages.
+   pure function choice_name(kind) result(name)
+      integer, intent(in) :: kind
+      ! not a deferred length: gfortran 12 keeps those in a static variable (egw_text)
+      character(len=len_trim(choice_label(kind))) :: name
+      name = choice_label(kind)
    end function choice_name
 
    !> Read the namelist group &scene of a file into input: the variables given replace
@@ -770,7 +778,7 @@ contains
 
    pure function hertz_measure(choice) result(str)
       type(model_choice), intent(in) :: choice
-      character(len=:), allocatable :: str
+      character(len=merge(16, 11, choice%hertz_relative_to_max)) :: str  ! not deferred
       if (choice%hertz_relative_to_max) then
          str = " of P(delta_max)"
       else
@@ -1013,9 +1021,10 @@ contains
    pure function delta_name(s, which) result(name)
       type(scene_input), intent(in) :: s
       character(len=*), intent(in) :: which
-      character(len=:), allocatable :: name
+      ! not a deferred length: gfortran 12 keeps those in a static variable (egw_text)
+      character(len=6 + len(which) + merge(6, 0, s%delta_in_sigma == 1)) :: name
       name = "delta_"//which
-      if (s%delta_in_sigma == 1) name = name//"_sigma"
+      if (s%delta_in_sigma == 1) name = "delta_"//which//"_sigma"
    end function delta_name
 
    elemental logical function positive(x)
@@ -1034,18 +1043,14 @@ contains
    !> Short form of a number for messages (4 significant digits).
    pure function num(x) result(str)
       real(dp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(es11.4)') x
-      str = trim(adjustl(buf))
+      character(len=real_text_len(x, 4, 2)) :: str  ! not deferred: see egw_text
+      str = real_text(x, 4, 2)  ! as ES11.4, without an internal WRITE (egw_text)
    end function num
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
 end module egw_scene

@@ -4,6 +4,7 @@
 module egw_status
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
+   use egw_text, only: real_text, real_text_len
    implicit none
    private
 
@@ -25,14 +26,13 @@ module egw_status
       character(len=:), allocatable :: message
    end type egw_error
 
-   public :: status_message, fatal_error, format_real
+   public :: status_message, fatal_error, format_real, format_real_len
 
 contains
 
-   !> Generic one-line description of a status code.
-   pure function status_message(stat) result(msg)
+   pure function status_text(stat) result(msg)
       integer, intent(in) :: stat
-      character(len=:), allocatable :: msg
+      character(len=64) :: msg
       select case (stat)
       case (egw_ok);                msg = "success"
       case (egw_invalid_argument);  msg = "invalid argument"
@@ -46,6 +46,13 @@ contains
       case (egw_unsupported);       msg = "unsupported request"
       case default;                 msg = "unknown status code"
       end select
+   end function status_text
+
+   !> Generic one-line description of a status code.
+   pure function status_message(stat) result(msg)
+      integer, intent(in) :: stat
+      character(len=len_trim(status_text(stat))) :: msg  ! not deferred: see format_real
+      msg = status_text(stat)
    end function status_message
 
    !> Allocate and fill an error; the message is prefixed by nothing so callers
@@ -59,11 +66,23 @@ contains
       error%message = message
    end subroutine fatal_error
 
+   pure integer function format_real_len(x) result(n)
+      real(dp), intent(in) :: x
+      if (ieee_is_nan(x)) then
+         n = 3
+      else if (abs(x) > huge(x)) then
+         n = 4
+      else
+         n = real_text_len(x, 15, 3)
+      end if
+   end function format_real_len
+
    !> Shortest readable form of a real for messages (NaN and Inf spelled out).
+   !> (The result's length comes from a specification function, not a deferred length:
+   !> see egw_text on gfortran's static lengths of deferred-length results.)
    pure function format_real(x) result(str)
       real(dp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=32) :: buf
+      character(len=format_real_len(x)) :: str
       if (ieee_is_nan(x)) then
          str = "NaN"
       else if (x > huge(x)) then
@@ -71,8 +90,7 @@ contains
       else if (x < -huge(x)) then
          str = "-Inf"
       else
-         write (buf, '(es23.15e3)') x
-         str = trim(adjustl(buf))
+         str = real_text(x, 15, 3)  ! as ES23.15E3, without an internal WRITE (egw_text)
       end if
    end function format_real
 

@@ -65,6 +65,9 @@ module egw_table
       real(dp) :: max_stiffness_error = 0.0_dp    !< same for the stiffness (not enforced)
       real(dp) :: radius_sum = 0.0_dp             !< R1 + R2 if known, 0 otherwise
       integer :: n_log = 0                        !< intervals 1..n_log interpolate ln P
+      !> read from a CSV file without its checksum line (hand-edited?): only the sanity
+      !> checks of the reader vouch for its numbers
+      logical :: checksum_missing = .false.
       real(dp), allocatable :: delta(:)           !< overlap at the nodes
       real(dp), allocatable :: force(:)           !< solver force P at the nodes
       real(dp), allocatable :: stiffness(:)       !< solver stiffness dP/ddelta

@@ -14,11 +14,12 @@ module egw_table_format
       & egw_unsupported, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_name, model_epgw
    use egw_version, only: egw_version_string, egw_version_number
-   use egw_io, only: open_temporary, commit_temporary, discard_temporary
+   use egw_io, only: write_file, read_file, text_buffer
    use egw_asperity, only: flat_pressure
    use egw_table, only: force_table, table_prepare, table_eval, table_energy
    use egw_table_universal, only: universal_table, universal_slice_params, &
       & universal_nodes_shared, move_universal
+   use egw_text, only: int_text, int_text_len, real_text, real_text_len, parse_real, parse_int
    implicit none
    private
 
@@ -44,10 +45,10 @@ module egw_table_format
       & "delta,force,stiffness,energy,contact_radius"
    character(len=*), parameter :: csv_columns_universal = &
       & "mu_index,x,p,dp_dx,energy,contact_radius"
-   character(len=*), parameter :: real_fmt = "(es25.17e3)"
-   !> CalculiX reads only the first 20 characters of a field: 13 significant digits
-   !> (relative rounding <= 5e-13, below every rel_tol a curve can be asked for).
-   character(len=*), parameter :: calculix_fmt = "(es20.12e3)"
+   ! numbers are written as ES25.17E3 (17 decimals: every double reads back bit for bit)
+   ! CalculiX reads only the first 20 characters of a field: numbers as ES20.12E3, 13
+   ! significant digits (relative rounding <= 5e-13, below every rel_tol a curve can be
+   ! asked for)
    !> CalculiX 2.20 keeps at most 200 pairs of a tabular curve (silently wrong beyond).
    integer, parameter, public :: calculix_max_pairs = 200
 
@@ -104,7 +105,7 @@ contains
       type(force_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: bytes
-      call read_bytes(path, bytes, error)
+      call read_file(path, bytes, error)
       if (allocated(error)) return
       if (len(bytes) >= 8) then
          if (bytes(1:8) == magic_table) then
@@ -152,7 +153,7 @@ contains
       type(universal_table), intent(out) :: table
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: bytes
-      call read_bytes(path, bytes, error)
+      call read_file(path, bytes, error)
       if (allocated(error)) return
       if (len(bytes) >= 8) then
          if (bytes(1:8) == magic_universal) then
@@ -176,67 +177,63 @@ contains
       type(force_table), intent(in) :: table
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, i
-      character(len=:), allocatable :: tmp
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
+      integer :: i
+      type(text_buffer) :: out
       ! the column header first and the metadata as '#' lines: pandas.read_csv(path,
       ! comment="#"), numpy.loadtxt(path, delimiter=",", skiprows=1) and
       ! numpy.genfromtxt(path, delimiter=",", names=True) read it as it is
-      write (unit, '(a)') csv_columns_table
-      write (unit, '(a)') "# egw force table, CSV format 2"
-      write (unit, '(a)') "# egw_version = "//egw_version_string
-      call write_params_csv(unit, table%params)
-      call write_table_meta_csv(unit, "", table)
-      write (unit, '(a)') "# units = consistent set of the parameters: delta, "// &
+      call out%add(csv_columns_table)
+      call out%add("# egw force table, CSV format 3")
+      call out%add("# egw_version = "//egw_version_string)
+      call write_params_csv(out, table%params)
+      call write_table_meta_csv(out, "", table)
+      call out%add("# units = consistent set of the parameters: delta, "// &
          & "contact_radius [length]; force [modulus*length^2]; stiffness [modulus*length]; "// &
-         & "energy [modulus*length^3]"
-      write (unit, '(a)') "# interpolation = cubic Hermite in delta with stiffness as slope; "// &
+         & "energy [modulus*length^3]")
+      call out%add("# interpolation = cubic Hermite in delta with stiffness as slope; "// &
          & "ln(force) in intervals 1..n_log; force = 0 below cutoff; energy = int of force "// &
-         & "from cutoff"
+         & "from cutoff")
       do i = 1, size(table%delta)
          if (.not. row_ok([table%delta(i), table%force(i), table%stiffness(i), &
             & table%energy(i), table%contact_radius(i)])) then
-            call discard_temporary(unit, tmp)
             call fatal_error(error, egw_invalid_argument, "table: node "//int_str(i)// &
                & " is not finite; nothing written")
             return
          end if
-         write (unit, '(a)') csv_row([table%delta(i), table%force(i), table%stiffness(i), &
-            & table%energy(i), table%contact_radius(i)])
+         call out%add(csv_row([table%delta(i), table%force(i), table%stiffness(i), &
+            & table%energy(i), table%contact_radius(i)]))
       end do
-      write (unit, '(a)') "# end of table, "//int_str(size(table%delta))//" rows"
-      call commit_temporary(unit, tmp, path, error)
+      call out%add("# end of table, "//int_str(size(table%delta))//" rows")
+      call add_checksum(out)
+      call out%write(path, error)
    end subroutine write_table_csv
 
    subroutine write_universal_csv(table, path, error)
       type(universal_table), intent(in) :: table
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, i, j, nrows
-      character(len=:), allocatable :: tmp
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
-      write (unit, '(a)') csv_columns_universal  ! first: see write_table_csv
-      write (unit, '(a)') "# egw universal table, CSV format 2"
-      write (unit, '(a)') "# egw_version = "//egw_version_string
-      write (unit, '(a)') "# model = "//int_str(table%model)//" ("//model_name(table%model)//")"
-      call kv(unit, "psi", table%psi)
-      call kv(unit, "hardness_coeff", table%hardness_coeff)
-      call kv(unit, "plastic_ratio", table%plastic_ratio)
-      call kv(unit, "rel_tol", table%rel_tol)
-      call kv(unit, "x_cut", table%x_cut)
-      call kv(unit, "x_max", table%x_max)
-      call kv(unit, "mu_min", table%mu_min)
-      call kv(unit, "mu_max", table%mu_max)
-      call kv(unit, "max_mu_error", table%max_mu_error)
-      write (unit, '(a)') "# n_mu = "//int_str(table%n_mu)
-      write (unit, '(a)') "# units = dimensionless: x = delta/sigma; p = P/(E sqrt(R) "// &
+      integer :: i, j, nrows
+      type(text_buffer) :: out
+      call out%add(csv_columns_universal)  ! first: see write_table_csv
+      call out%add("# egw universal table, CSV format 3")
+      call out%add("# egw_version = "//egw_version_string)
+      call out%add("# model = "//int_str(table%model)//" ("//model_name(table%model)//")")
+      call kv(out, "psi", table%psi)
+      call kv(out, "hardness_coeff", table%hardness_coeff)
+      call kv(out, "plastic_ratio", table%plastic_ratio)
+      call kv(out, "rel_tol", table%rel_tol)
+      call kv(out, "x_cut", table%x_cut)
+      call kv(out, "x_max", table%x_max)
+      call kv(out, "mu_min", table%mu_min)
+      call kv(out, "mu_max", table%mu_max)
+      call kv(out, "max_mu_error", table%max_mu_error)
+      call out%add("# n_mu = "//int_str(table%n_mu))
+      call out%add("# units = dimensionless: x = delta/sigma; p = P/(E sqrt(R) "// &
          & "sigma^1.5); dp_dx; energy = W/(E sqrt(R) sigma^2.5); contact_radius = "// &
-         & "a/sqrt(R sigma); mu_j = mu_min (mu_max/mu_min)^((j-1)/(n_mu-1))"
+         & "a/sqrt(R sigma); mu_j = mu_min (mu_max/mu_min)^((j-1)/(n_mu-1))")
       do j = 1, table%n_mu
-         call kv(unit, "slice."//int_str(j)//".mu", table%slices(j)%params%mu)
-         call write_table_meta_csv(unit, "slice."//int_str(j)//".", table%slices(j))
+         call kv(out, "slice."//int_str(j)//".mu", table%slices(j)%params%mu)
+         call write_table_meta_csv(out, "slice."//int_str(j)//".", table%slices(j))
       end do
       nrows = 0
       do j = 1, table%n_mu
@@ -244,47 +241,47 @@ contains
             do i = 1, size(s%delta)
                if (.not. row_ok([s%delta(i), s%force(i), s%stiffness(i), s%energy(i), &
                   & s%contact_radius(i)])) then
-                  call discard_temporary(unit, tmp)
                   call fatal_error(error, egw_invalid_argument, "table: slice "// &
                      & int_str(j)//" node "//int_str(i)//" is not finite; nothing written")
                   return
                end if
-               write (unit, '(a)') int_str(j)//","//csv_row([s%delta(i), s%force(i), &
-                  & s%stiffness(i), s%energy(i), s%contact_radius(i)])
+               call out%add(int_str(j)//","//csv_row([s%delta(i), s%force(i), &
+                  & s%stiffness(i), s%energy(i), s%contact_radius(i)]))
                nrows = nrows + 1
             end do
          end associate
       end do
-      write (unit, '(a)') "# end of table, "//int_str(nrows)//" rows"
-      call commit_temporary(unit, tmp, path, error)
+      call out%add("# end of table, "//int_str(nrows)//" rows")
+      call add_checksum(out)
+      call out%write(path, error)
    end subroutine write_universal_csv
 
-   subroutine write_params_csv(unit, p)
-      integer, intent(in) :: unit
+   subroutine write_params_csv(out, p)
+      type(text_buffer), intent(inout) :: out
       type(contact_params), intent(in) :: p
-      write (unit, '(a)') "# model = "//int_str(p%model)//" ("//model_name(p%model)//")"
-      call kv(unit, "radius", p%radius)
-      call kv(unit, "modulus", p%modulus)
-      call kv(unit, "sigma", p%sigma)
-      call kv(unit, "mu", p%mu)
-      call kv(unit, "psi", p%psi)
-      call kv(unit, "hardness_coeff", p%hardness_coeff)
-      call kv(unit, "plastic_ratio", p%plastic_ratio)
+      call out%add("# model = "//int_str(p%model)//" ("//model_name(p%model)//")")
+      call kv(out, "radius", p%radius)
+      call kv(out, "modulus", p%modulus)
+      call kv(out, "sigma", p%sigma)
+      call kv(out, "mu", p%mu)
+      call kv(out, "psi", p%psi)
+      call kv(out, "hardness_coeff", p%hardness_coeff)
+      call kv(out, "plastic_ratio", p%plastic_ratio)
    end subroutine write_params_csv
 
-   subroutine write_table_meta_csv(unit, prefix, t)
-      integer, intent(in) :: unit
+   subroutine write_table_meta_csv(out, prefix, t)
+      type(text_buffer), intent(inout) :: out
       character(len=*), intent(in) :: prefix
       type(force_table), intent(in) :: t
-      call kv(unit, prefix//"rel_tol", t%rel_tol)
-      call kv(unit, prefix//"cutoff", t%cutoff)
-      call kv(unit, prefix//"delta_max", t%delta_max)
-      call kv(unit, prefix//"reference_force", t%reference_force)
-      call kv(unit, prefix//"max_force_error", t%max_force_error)
-      call kv(unit, prefix//"max_stiffness_error", t%max_stiffness_error)
-      call kv(unit, prefix//"radius_sum", t%radius_sum)
-      write (unit, '(a)') "# "//prefix//"n_nodes = "//int_str(size(t%delta))
-      write (unit, '(a)') "# "//prefix//"n_log = "//int_str(t%n_log)
+      call kv(out, prefix//"rel_tol", t%rel_tol)
+      call kv(out, prefix//"cutoff", t%cutoff)
+      call kv(out, prefix//"delta_max", t%delta_max)
+      call kv(out, prefix//"reference_force", t%reference_force)
+      call kv(out, prefix//"max_force_error", t%max_force_error)
+      call kv(out, prefix//"max_stiffness_error", t%max_stiffness_error)
+      call kv(out, prefix//"radius_sum", t%radius_sum)
+      call out%add("# "//prefix//"n_nodes = "//int_str(size(t%delta)))
+      call out%add("# "//prefix//"n_log = "//int_str(t%n_log))
    end subroutine write_table_meta_csv
 
    subroutine parse_table_csv(path, text, table, error)
@@ -297,7 +294,8 @@ contains
       integer, allocatable :: idx(:)
       integer :: n
 
-      call parse_csv(path, text, 5, csv_columns_table, dict, rows, idx, error)
+      call parse_csv(path, text, 5, csv_columns_table, dict, rows, idx, error, &
+         & t%checksum_missing)
       if (allocated(error)) return
       call get_params(path, dict, t%params, error)
       if (allocated(error)) return
@@ -326,9 +324,10 @@ contains
       integer :: j, n, first
       real(dp) :: mu
       character(len=:), allocatable :: prefix
+      logical :: missing
 
       call parse_csv(path, text, 5, csv_columns_universal, dict, rows, &
-         & idx, error)
+         & idx, error, missing)
       if (allocated(error)) return
       call get_int(path, dict, "model", u%model, error)
       if (.not. allocated(error)) call get_real(path, dict, "psi", u%psi, error)
@@ -390,20 +389,27 @@ contains
    !> Split a CSV file into its "# key = value" header, check the column header line,
    !> read ncol reals per data row (after an integer index when the columns start with
    !> "mu_index") and require the "# end of table, N rows" trailer (so that a file cut
-   !> inside its last number is detected).
-   subroutine parse_csv(path, text, ncol, columns, dict, rows, idx, error)
-      character(len=*), intent(in) :: path, text, columns
+   !> inside its last number is detected). A last line "# fnv1a32 = ..." (CSV format
+   !> 3) must match the checksum of the bytes above it; checksum_missing tells whether
+   !> it was absent (a format 1 or 2 file, or a hand-edited one).
+   subroutine parse_csv(path, file_text, ncol, columns, dict, rows, idx, error, &
+      & checksum_missing)
+      character(len=*), intent(in) :: path, file_text, columns
+      logical, intent(out) :: checksum_missing
       integer, intent(in) :: ncol
       type(header_dict), intent(out) :: dict
       real(dp), allocatable, intent(out) :: rows(:, :)
       integer, allocatable, intent(out) :: idx(:)
       type(egw_error), allocatable, intent(out) :: error
-      integer :: pos, eol, nrow, ios, line_no, eq, cap, n_end
-      logical :: in_data, ended, indexed
+      integer :: pos, eol, nrow, line_no, eq, cap, n_end
+      logical :: in_data, ended, indexed, ok
       character(len=:), allocatable :: line
       real(dp) :: vals(ncol)
-      integer :: j
+      integer :: j, body
 
+      call split_checksum(path, file_text, body, checksum_missing, error)
+      if (allocated(error)) return
+      associate (text => file_text(1:body))
       indexed = starts_with(columns, "mu_index")
       cap = 1024
       allocate (rows(ncol, cap), idx(cap), dict%keys(64), dict%values(64))
@@ -433,8 +439,8 @@ contains
             cycle
          end if
          if (starts_with(line, "# end of table,")) then
-            read (line(16:), *, iostat=ios) n_end
-            if (ios /= 0 .or. n_end /= nrow .or. .not. in_data) then
+            call parse_int(first_token(line(16:)), n_end, ok)
+            if (.not. ok .or. n_end /= nrow .or. .not. in_data) then
                call bad(error, path, "line "//int_str(line_no)//": end line does not match "// &
                   & int_str(nrow)//" data rows")
                return
@@ -456,13 +462,8 @@ contains
             end if
             in_data = .true.
          else
-            if (indexed) then
-               read (line, *, iostat=ios) j, vals
-            else
-               j = 0
-               read (line, *, iostat=ios) vals
-            end if
-            if (ios /= 0) then
+            call split_row(line, indexed, j, vals, ok)
+            if (.not. ok) then
                call bad(error, path, "line "//int_str(line_no)//": cannot read "// &
                   & int_str(ncol)//" numbers")
                return
@@ -482,7 +483,57 @@ contains
       end if
       rows = rows(:, 1:nrow)
       idx = idx(1:nrow)
+      end associate
    end subroutine parse_csv
+
+   !> The checksum line of a CSV file: body = the bytes before it (all of text if
+   !> there is none, then missing = true); a checksum that does not match is an error.
+   subroutine split_checksum(path, text, body, missing, error)
+      character(len=*), intent(in) :: path, text
+      integer, intent(out) :: body
+      logical, intent(out) :: missing
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), parameter :: key = "# fnv1a32 = "
+      integer :: start
+      body = len(text)
+      missing = .true.
+      if (len(text) < 2) return
+      if (text(len(text):len(text)) /= new_line("a")) return
+      start = index(text(1:len(text) - 1), new_line("a"), back=.true.) + 1
+      if (.not. starts_with(text(start:), key)) return
+      missing = .false.
+      body = start - 1
+      ! the whole line, so that no byte of the file escapes the check
+      if (text(start:len(text) - 1) /= checksum_line(text(1:body))) then
+         call bad(error, path, "checksum mismatch: the file was changed after egw wrote "// &
+            & "it (corrupted, or edited by hand: an edited file is read, unchecked, once "// &
+            & "its '# fnv1a32' line is deleted)")
+      end if
+   end subroutine split_checksum
+
+   !> Append the checksum line of CSV format 3: the FNV-1a hash of all bytes above it.
+   subroutine add_checksum(out)
+      type(text_buffer), intent(inout) :: out
+      call out%add(checksum_line(out%text(1:out%n)))
+   end subroutine add_checksum
+
+   pure function checksum_line(above) result(line)
+      character(len=*), intent(in) :: above
+      character(len=60) :: line
+      line = "# fnv1a32 = "//hex8(fnv1a32(above))//" (checksum of the bytes above this line)"
+   end function checksum_line
+
+   !> The low 32 bits of h as 8 lowercase hexadecimal digits.
+   pure function hex8(h) result(str)
+      integer(int64), intent(in) :: h
+      character(len=8) :: str
+      character(len=*), parameter :: symbols = "0123456789abcdef"
+      integer :: i, d
+      do i = 1, 8
+         d = int(iand(ishft(h, -4*(8 - i)), 15_int64))
+         str(i:i) = symbols(d + 1:d + 1)
+      end do
+   end function hex8
 
    ! =========================================================== binary
 
@@ -567,18 +618,8 @@ contains
       character(len=*), intent(inout) :: buf
       integer, intent(inout) :: pos
       type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, ios
-      character(len=:), allocatable :: tmp
       call put_i32(buf, pos, checksum_i32(fnv1a32(buf(1:pos - 1))))
-      call open_temporary(path, unit, tmp, error, binary=.true.)
-      if (allocated(error)) return
-      write (unit, iostat=ios) buf
-      if (ios /= 0) then
-         call discard_temporary(unit, tmp)
-         call fatal_error(error, egw_io_error, "path = "//path//": write failed")
-         return
-      end if
-      call commit_temporary(unit, tmp, path, error)
+      call write_file(path, buf(1:pos - 1), error)
    end subroutine write_checked
 
    subroutine parse_table_binary(path, bytes, table, error)
@@ -769,8 +810,8 @@ contains
       !> the force continues linearly with the end stiffness, as table_eval does); LAMMPS
       !> stops with "Pair distance < table inner cutoff" at deeper overlaps
       real(dp), intent(in), optional :: delta_reach
-      integer :: unit, s, i, n
-      character(len=:), allocatable :: tmp
+      integer :: s, i, n
+      type(text_buffer) :: out
       real(dp) :: rsum, rlo, rhi, r, d, f, k, e, reach
       character(len=:), allocatable :: note
 
@@ -789,18 +830,16 @@ contains
             return
          end if
       end if
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
       if (present(units)) then
-         write (unit, '(a)') "# DATE: "//egw_version_string//" UNITS: "//trim(units)// &
-            & " CONTRIBUTOR: egw"
+         call out%add("# DATE: "//egw_version_string//" UNITS: "//trim(units)// &
+            & " CONTRIBUTOR: egw")
       else
          ! lowercase on purpose: an uppercase UNITS: tag is a unit style for LAMMPS
-         write (unit, '(a)') "# egw tables, units: those of the egw parameters (force = "// &
-            & "modulus*length^2, energy = force*length)"
+         call out%add("# egw tables, units: those of the egw parameters (force = "// &
+            & "modulus*length^2, energy = force*length)")
       end if
-      write (unit, '(a)') "# egw "//egw_version_string//" contact force tables for "// &
-         & "pair_style table (linear or spline, N >= the section's N)"
+      call out%add("# egw "//egw_version_string//" contact force tables for "// &
+         & "pair_style table (linear or spline, N >= the section's N)")
       do s = 1, size(tables)
          associate (t => tables(s))
             if (t%radius_sum > 0.0_dp) then
@@ -816,38 +855,37 @@ contains
             rlo = rsum - reach
             rhi = rsum - t%cutoff
             n = lammps_points(t, rsum, rlo, rhi)
-            write (unit, '(a)') ""
-            write (unit, '(a)') "# section EGW_"//int_str(s)//": model "// &
+            call out%add("")
+            call out%add("# section EGW_"//int_str(s)//": model "// &
                & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
                & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
                & fmt(t%params%mu)//", psi = "//fmt(t%params%psi)//", K = "// &
-               & fmt(t%params%hardness_coeff)//", rho_p = "//fmt(t%params%plastic_ratio)
-            if (t%params%model == model_epgw) write (unit, '(a)') "# EP-GW: the LOADING "// &
+               & fmt(t%params%hardness_coeff)//", rho_p = "//fmt(t%params%plastic_ratio))
+            if (t%params%model == model_epgw) call out%add("# EP-GW: the LOADING "// &
                & "curve only (pair_style table is a function of r alone: no unloading "// &
-               & "hysteresis, restitution 1; egw_hysteresis_* carries the dissipation)"
-            write (unit, '(a)') "# r = R1 + R2 - delta with "//note
-            write (unit, '(a)') "# force = -dE/dr = P(delta) >= 0 (repulsive), zero for r > "// &
-               & fmt(rhi)//" (pair cutoff); energy = int of P from the cut-off"
-            write (unit, '(a)') "# rel_tol = "//fmt(t%rel_tol)//" relative to P_ref = "// &
-               & fmt(t%reference_force)
-            write (unit, '(a)') "# ends: r > "//fmt(rhi)//" (delta < cutoff): no force; r < "// &
+               & "hysteresis, restitution 1; egw_hysteresis_* carries the dissipation)")
+            call out%add("# r = R1 + R2 - delta with "//note)
+            call out%add("# force = -dE/dr = P(delta) >= 0 (repulsive), zero for r > "// &
+               & fmt(rhi)//" (pair cutoff); energy = int of P from the cut-off")
+            call out%add("# rel_tol = "//fmt(t%rel_tol)//" relative to P_ref = "// &
+               & fmt(t%reference_force))
+            call out%add("# ends: r > "//fmt(rhi)//" (delta < cutoff): no force; r < "// &
                & fmt(rlo)//" (delta > "//fmt(reach)//"): LAMMPS stops with 'Pair distance "// &
-               & "< table inner cutoff'"
-            if (reach > t%delta_max) write (unit, '(a)') "# delta in ("// &
+               & "< table inner cutoff'")
+            if (reach > t%delta_max) call out%add("# delta in ("// &
                & fmt(t%delta_max)//", "//fmt(reach)//"]: beyond the table's delta_max, "// &
-               & "force continued linearly with the end stiffness"
-            if (t%params%model == model_epgw .and. t%params%psi > 0.0_dp) write (unit, '(a)') &
+               & "force continued linearly with the end stiffness")
+            if (t%params%model == model_epgw .and. t%params%psi > 0.0_dp) call out%add(&
                & "# EP-GW: loading curve only (pair_style table has no history: no "// &
-               & "unloading hysteresis, no plastic dissipation)"
+               & "unloading hysteresis, no plastic dissipation)")
             if (rlo <= 0.0_dp) then
-               call discard_temporary(unit, tmp)
                call fatal_error(error, egw_invalid_argument, "delta_max = "// &
                   & format_real(reach)//": r = R1 + R2 - delta_max must be > 0")
                return
             end if
-            write (unit, '(a)') "EGW_"//int_str(s)
-            write (unit, '(a)') "N "//int_str(n)//" R "//fmt(rlo)//" "//fmt(rhi)
-            write (unit, '(a)') ""
+            call out%add("EGW_"//int_str(s))
+            call out%add("N "//int_str(n)//" R "//fmt(rlo)//" "//fmt(rhi))
+            call out%add("")
             do i = 1, n
                r = rlo + (rhi - rlo)*(i - 1)/(n - 1)
                d = rsum - r
@@ -855,16 +893,15 @@ contains
                call table_eval(t, d, f, k)
                e = table_energy(t, d)
                if (.not. row_ok([r, e, f])) then
-                  call discard_temporary(unit, tmp)
                   call fatal_error(error, egw_invalid_argument, "tables("//int_str(s)// &
                      & "): not finite at delta = "//format_real(d)//"; nothing written")
                   return
                end if
-               write (unit, '(a)') int_str(i)//" "//fmt(r)//" "//fmt(e)//" "//fmt(f)
+               call out%add(int_str(i)//" "//fmt(r)//" "//fmt(e)//" "//fmt(f))
             end do
          end associate
       end do
-      call commit_temporary(unit, tmp, path, error)
+      call out%write(path, error)
    end subroutine write_lammps
 
    !> Points of a LAMMPS section: doubled until the midpoint linear-interpolation error
@@ -908,8 +945,7 @@ contains
       real(dp), intent(out), optional :: max_error
       real(dp), allocatable :: x(:), y(:)
       real(dp) :: achieved, origin
-      integer :: unit
-      character(len=:), allocatable :: tmp
+      type(text_buffer) :: out
       type(sampler) :: smp
       logical :: shifted
       shifted = .false.
@@ -925,26 +961,24 @@ contains
       y(1) = 0.0_dp
       origin = 0.0_dp
       if (shifted) origin = t%cutoff
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
-      write (unit, '(a)') "** egw "//egw_version_string//": rough-sphere contact, model "// &
+      call out%add("** egw "//egw_version_string//": rough-sphere contact, model "// &
          & model_name(t%params%model)//", R = "//fmt(t%params%radius)//", E = "// &
          & fmt(t%params%modulus)//", sigma = "//fmt(t%params%sigma)//", mu = "// &
-         & fmt(t%params%mu)
-      if (t%params%model == model_epgw) write (unit, '(a)') "** EP-GW: the LOADING curve "// &
-         & "only (a pressure-overclosure curve has no history: no unloading hysteresis)"
+         & fmt(t%params%mu))
+      if (t%params%model == model_epgw) call out%add("** EP-GW: the LOADING curve "// &
+         & "only (a pressure-overclosure curve has no history: no unloading hysteresis)")
       if (shifted) then
-         write (unit, '(a)') "** node-to-surface contact: FORCE per node against "// &
+         call out%add("** node-to-surface contact: FORCE per node against "// &
             & "overclosure = delta - delta_c (shifted: overlap delta = overclosure + "// &
-            & fmt(t%cutoff)//"); force 0 below overclosure 0"
+            & fmt(t%cutoff)//"); force 0 below overclosure 0")
       else
-         write (unit, '(a)') "** node-to-surface contact: FORCE per node against "// &
-            & "overclosure (= overlap delta); force 0 below overclosure "//fmt(t%cutoff)
+         call out%add("** node-to-surface contact: FORCE per node against "// &
+            & "overclosure (= overlap delta); force 0 below overclosure "//fmt(t%cutoff))
       end if
-      call write_error_comment(unit, t%rel_tol, achieved, size(x))
-      call write_pairs(unit, tmp, x - origin, y, error)
+      call write_error_comment(out, t%rel_tol, achieved, size(x))
+      call write_pairs(out, x - origin, y, error)
       if (allocated(error)) return
-      call commit_temporary(unit, tmp, path, error)
+      call out%write(path, error)
    end subroutine write_calculix_sphere
 
    !> Rough flat: nominal pressure p_G(d) (egw_asperity) against overclosure = -d, from
@@ -963,8 +997,8 @@ contains
       real(dp), intent(out), optional :: max_error
       real(dp), allocatable :: x(:), y(:)
       real(dp) :: p0, dp0, pc, d_c, step, achieved, origin
-      integer :: unit, it
-      character(len=:), allocatable :: tmp
+      integer :: it
+      type(text_buffer) :: out
       type(sampler) :: smp
       logical :: shifted
 
@@ -1009,52 +1043,49 @@ contains
       y(1) = 0.0_dp
       origin = 0.0_dp
       if (shifted) origin = -d_c
-      call open_temporary(path, unit, tmp, error)
-      if (allocated(error)) return
-      write (unit, '(a)') "** egw "//egw_version_string//": rough flat, GW nominal "// &
+      call out%add("** egw "//egw_version_string//": rough flat, GW nominal "// &
          & "pressure p_G (doc/theory.md section 3), model "//model_name(params%model)// &
          & ", E = "//fmt(params%modulus)//", sigma = "//fmt(params%sigma)//", mu = "// &
-         & fmt(params%mu)//", R = "//fmt(params%radius)//", psi = "//fmt(params%psi)
+         & fmt(params%mu)//", R = "//fmt(params%radius)//", psi = "//fmt(params%psi))
       if (shifted) then
-         write (unit, '(a)') "** PRESSURE against overclosure = d_c - separation of the "// &
+         call out%add("** PRESSURE against overclosure = d_c - separation of the "// &
             & "summit base plane, d_c = "//fmt(d_c)//" (shifted); pressure 0 for "// &
-            & "overclosure < 0"
+            & "overclosure < 0")
       else
-         write (unit, '(a)') "** PRESSURE against overclosure = -separation of the summit "// &
-            & "base plane; pressure 0 for overclosure < "//fmt(-d_c)
+         call out%add("** PRESSURE against overclosure = -separation of the summit "// &
+            & "base plane; pressure 0 for overclosure < "//fmt(-d_c))
       end if
-      call write_error_comment(unit, rel_tol, achieved, size(x))
-      call write_pairs(unit, tmp, x - origin, y, error)
+      call write_error_comment(out, rel_tol, achieved, size(x))
+      call write_pairs(out, x - origin, y, error)
       if (allocated(error)) return
-      call commit_temporary(unit, tmp, path, error)
+      call out%write(path, error)
    end subroutine write_calculix_flat
 
    !> Header lines on the interpolation error achieved (and a warning if above rel_tol).
-   subroutine write_error_comment(unit, rel_tol, achieved, n)
-      integer, intent(in) :: unit, n
+   subroutine write_error_comment(out, rel_tol, achieved, n)
+      type(text_buffer), intent(inout) :: out
+      integer, intent(in) :: n
       real(dp), intent(in) :: rel_tol, achieved
-      write (unit, '(a)') "** linear interpolation between pairs within rel_tol = "// &
+      call out%add("** linear interpolation between pairs within rel_tol = "// &
          & fmt(rel_tol)//" requested; max error achieved = "//fmt(achieved)// &
-         & " (relative to max(|value|, rel_tol*reference)); "//int_str(n)//" pairs"
-      if (achieved > rel_tol) write (unit, '(a)') "** WARNING: rel_tol not met within "// &
-         & "CalculiX's limit of "//int_str(calculix_max_pairs)//" pairs per curve"
+         & " (relative to max(|value|, rel_tol*reference)); "//int_str(n)//" pairs")
+      if (achieved > rel_tol) call out%add("** WARNING: rel_tol not met within "// &
+         & "CalculiX's limit of "//int_str(calculix_max_pairs)//" pairs per curve")
    end subroutine write_error_comment
 
-   subroutine write_pairs(unit, tmp, x, y, error)
-      integer, intent(in) :: unit
-      character(len=*), intent(in) :: tmp
+   subroutine write_pairs(out, x, y, error)
+      type(text_buffer), intent(inout) :: out
       real(dp), intent(in) :: x(:), y(:)
       type(egw_error), allocatable, intent(out) :: error
       integer :: i
-      write (unit, '(a)') "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR"
+      call out%add("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR")
       do i = 1, size(x)
          if (.not. row_ok([x(i), y(i)])) then
-            call discard_temporary(unit, tmp)
             call fatal_error(error, egw_invalid_argument, "value at overclosure "// &
                & format_real(x(i))//" is not finite; nothing written")
             return
          end if
-         write (unit, '(a)') fmt20(y(i))//", "//fmt20(x(i))
+         call out%add(fmt20(y(i))//", "//fmt20(x(i)))
       end do
    end subroutine write_pairs
 
@@ -1239,7 +1270,10 @@ contains
 
    ! =========================================================== checks and helpers
 
-   !> Everything a reader must verify before handing over a table.
+   !> Everything a reader must verify before handing over a table: finite numbers;
+   !> metadata in range; nodes strictly increasing from the cut-off; force, stiffness,
+   !> energy and contact radius >= 0; force and energy non-decreasing in the overlap
+   !> (the loading curve of every model rises: a dip is a corrupted or edited file).
    subroutine check_table(path, where, t, error)
       character(len=*), intent(in) :: path, where
       type(force_table), intent(in) :: t
@@ -1250,6 +1284,8 @@ contains
          call bad(error, path, where//"fewer than 2 nodes")
          return
       end if
+      call check_meta(path, where, t, error)
+      if (allocated(error)) return
       do i = 1, n
          if (.not. row_ok([t%delta(i), t%force(i), t%stiffness(i), t%energy(i), &
             & t%contact_radius(i)])) then
@@ -1257,7 +1293,34 @@ contains
             return
          end if
          if (t%force(i) < 0.0_dp) then
-            call bad(error, path, where//"node "//int_str(i)//": negative force")
+            call bad(error, path, where//"node "//int_str(i)//": negative force "// &
+               & format_real(t%force(i)))
+            return
+         end if
+         if (t%stiffness(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative stiffness "// &
+               & format_real(t%stiffness(i)))
+            return
+         end if
+         if (t%energy(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative energy "// &
+               & format_real(t%energy(i)))
+            return
+         end if
+         if (t%contact_radius(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative contact "// &
+               & "radius "//format_real(t%contact_radius(i)))
+            return
+         end if
+         if (i == 1) cycle
+         if (t%force(i) < t%force(i - 1)) then
+            call bad(error, path, where//"node "//int_str(i)//": force "// &
+               & format_real(t%force(i))//" below the previous node's "// &
+               & format_real(t%force(i - 1))//" (the force must not decrease)")
+            return
+         end if
+         if (t%energy(i) < t%energy(i - 1)) then
+            call bad(error, path, where//"node "//int_str(i)//": energy decreases")
             return
          end if
       end do
@@ -1281,12 +1344,45 @@ contains
       end if
    end subroutine check_table
 
+   !> The metadata of a table: finite, rel_tol in (0, 0.1], P_ref > 0, errors and
+   !> R1 + R2 >= 0.
+   subroutine check_meta(path, where, t, error)
+      character(len=*), intent(in) :: path, where
+      type(force_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. (t%rel_tol > 0.0_dp .and. t%rel_tol <= 0.1_dp)) then
+         call bad(error, path, where//"rel_tol = "//format_real(t%rel_tol)// &
+            & ": must lie in (0, 0.1]")
+      else if (.not. (ieee_is_finite(t%reference_force) .and. t%reference_force > 0)) then
+         call bad(error, path, where//"reference_force = "// &
+            & format_real(t%reference_force)//": must be finite and > 0")
+      else if (.not. (ieee_is_finite(t%max_force_error) .and. t%max_force_error >= 0 &
+         & .and. ieee_is_finite(t%max_stiffness_error) .and. t%max_stiffness_error >= 0)) &
+         & then
+         call bad(error, path, where//"max_force_error = "// &
+            & format_real(t%max_force_error)//", max_stiffness_error = "// &
+            & format_real(t%max_stiffness_error)//": must be finite and >= 0")
+      else if (.not. (ieee_is_finite(t%radius_sum) .and. t%radius_sum >= 0)) then
+         call bad(error, path, where//"radius_sum = "//format_real(t%radius_sum)// &
+            & ": must be finite and >= 0 (0: not set)")
+      end if
+   end subroutine check_meta
+
    subroutine check_universal_header(path, u, error)
       character(len=*), intent(in) :: path
       type(universal_table), intent(in) :: u
       type(egw_error), allocatable, intent(out) :: error
       if (u%n_mu < 4 .or. u%n_mu > 100000) then
          call bad(error, path, "n_mu = "//int_str(u%n_mu)//": need at least 4")
+      else if (.not. (u%rel_tol > 0.0_dp .and. u%rel_tol <= 0.1_dp)) then
+         call bad(error, path, "rel_tol = "//format_real(u%rel_tol)//": must lie in (0, 0.1]")
+      else if (.not. (ieee_is_finite(u%max_mu_error) .and. u%max_mu_error >= 0)) then
+         call bad(error, path, "max_mu_error = "//format_real(u%max_mu_error)// &
+            & ": must be finite and >= 0")
+      else if (.not. (ieee_is_finite(u%x_cut) .and. ieee_is_finite(u%x_max) .and. &
+         & u%x_cut < u%x_max)) then
+         call bad(error, path, "x_cut = "//format_real(u%x_cut)//", x_max = "// &
+            & format_real(u%x_max)//": need finite x_cut < x_max")
       else if (.not. (ieee_is_finite(u%mu_min) .and. u%mu_min > 0.0_dp .and. &
          & ieee_is_finite(u%mu_max) .and. u%mu_max > u%mu_min)) then
          call bad(error, path, "mu range ["//format_real(u%mu_min)//", "// &
@@ -1393,15 +1489,16 @@ contains
       type(header_dict), intent(in) :: dict
       real(dp), intent(out) :: x
       type(egw_error), allocatable, intent(out) :: error
-      integer :: i, ios
+      integer :: i
+      logical :: ok
       i = dict_find(dict, key)
       x = 0.0_dp
       if (i == 0) then
          call bad(error, path, "header key '"//key//"' missing")
          return
       end if
-      read (dict%values(i), *, iostat=ios) x
-      if (ios /= 0 .or. .not. ieee_is_finite(x)) then
+      call parse_real(first_token(dict%values(i)), x, ok)
+      if (.not. ok .or. .not. ieee_is_finite(x)) then
          call bad(error, path, "header key '"//key//"' = '"//trim(dict%values(i))// &
             & "' is not a finite number")
       end if
@@ -1412,15 +1509,16 @@ contains
       type(header_dict), intent(in) :: dict
       integer, intent(out) :: k
       type(egw_error), allocatable, intent(out) :: error
-      integer :: i, ios
+      integer :: i
+      logical :: ok
       i = dict_find(dict, key)
       k = 0
       if (i == 0) then
          call bad(error, path, "header key '"//key//"' missing")
          return
       end if
-      read (dict%values(i), *, iostat=ios) k
-      if (ios /= 0) call bad(error, path, "header key '"//key//"' = '"// &
+      call parse_int(first_token(dict%values(i)), k, ok)
+      if (.not. ok) call bad(error, path, "header key '"//key//"' = '"// &
          & trim(dict%values(i))//"' is not an integer")
    end subroutine get_int
 
@@ -1463,33 +1561,6 @@ contains
       call move_alloc(i2, idx)
    end subroutine grow
 
-   !> Whole file as bytes (stream access).
-   subroutine read_bytes(path, bytes, error)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable, intent(out) :: bytes
-      type(egw_error), allocatable, intent(out) :: error
-      integer :: unit, ios
-      integer(int64) :: nbytes
-      character(len=256) :: msg
-      open (newunit=unit, file=path, status="old", action="read", form="unformatted", &
-         & access="stream", iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("// &
-            & trim(msg)//")")
-         return
-      end if
-      inquire (unit=unit, size=nbytes)
-      if (nbytes < 0 .or. nbytes > huge(1)) then
-         close (unit)
-         call fatal_error(error, egw_bad_file, "path = "//path//": size unknown or too large")
-         return
-      end if
-      allocate (character(len=int(nbytes)) :: bytes)
-      if (nbytes > 0) read (unit, iostat=ios) bytes
-      close (unit)
-      if (ios /= 0) call fatal_error(error, egw_io_error, "path = "//path//": read failed")
-   end subroutine read_bytes
-
    subroutine move_table(from, to)
       type(force_table), intent(inout) :: from
       type(force_table), intent(out) :: to
@@ -1502,6 +1573,7 @@ contains
       to%max_stiffness_error = from%max_stiffness_error
       to%radius_sum = from%radius_sum
       to%n_log = from%n_log
+      to%checksum_missing = from%checksum_missing
       to%n_bucket = from%n_bucket
       to%bucket_scale = from%bucket_scale
       to%bucket_origin = from%bucket_origin
@@ -1560,11 +1632,11 @@ contains
       call fatal_error(error, egw_bad_file, "path = "//path//": "//what)
    end subroutine bad
 
-   subroutine kv(unit, key, x)
-      integer, intent(in) :: unit
+   subroutine kv(out, key, x)
+      type(text_buffer), intent(inout) :: out
       character(len=*), intent(in) :: key
       real(dp), intent(in) :: x
-      write (unit, '(a)') "# "//key//" = "//fmt(x)
+      call out%add("# "//key//" = "//fmt(x))
    end subroutine kv
 
    pure logical function row_ok(v)
@@ -1575,30 +1647,88 @@ contains
    !> 17 significant digits: every double reads back bit-for-bit.
    pure function fmt(x) result(str)
       real(dp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=32) :: buf
-      write (buf, real_fmt) x
-      str = trim(adjustl(buf))
+      character(len=real_text_len(x, 17, 3)) :: str  ! not deferred: see egw_text
+      str = real_text(x, 17, 3)  ! ES25.17E3
    end function fmt
 
    !> 20 characters at most (CalculiX fields), 13 significant digits.
    pure function fmt20(x) result(str)
       real(dp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=20) :: buf
-      write (buf, calculix_fmt) x
-      str = trim(adjustl(buf))
+      character(len=real_text_len(x, 12, 3)) :: str
+      str = real_text(x, 12, 3)  ! ES20.12E3
    end function fmt20
+
+   pure integer function csv_row_len(v) result(n)
+      real(dp), intent(in) :: v(:)
+      integer :: i
+      n = size(v) - 1
+      do i = 1, size(v)
+         n = n + real_text_len(v(i), 17, 3)
+      end do
+   end function csv_row_len
 
    pure function csv_row(v) result(str)
       real(dp), intent(in) :: v(:)
-      character(len=:), allocatable :: str
-      integer :: i
-      str = fmt(v(1))
-      do i = 2, size(v)
-         str = str//","//fmt(v(i))
+      character(len=csv_row_len(v)) :: str  ! not deferred: see egw_text
+      integer :: i, pos, n
+      pos = 0
+      do i = 1, size(v)
+         if (i > 1) then
+            str(pos + 1:pos + 1) = ","
+            pos = pos + 1
+         end if
+         n = real_text_len(v(i), 17, 3)
+         str(pos + 1:pos + n) = real_text(v(i), 17, 3)
+         pos = pos + n
       end do
    end function csv_row
+
+   pure integer function first_token_len(text) result(n)
+      character(len=*), intent(in) :: text
+      n = index(trim(adjustl(text))//" ", " ") - 1
+   end function first_token_len
+
+   !> The text up to the first blank (after leading blanks).
+   pure function first_token(text) result(token)
+      character(len=*), intent(in) :: text
+      character(len=first_token_len(text)) :: token  ! not deferred: see egw_text
+      token = adjustl(text)
+   end function first_token
+
+   !> A data row: an integer index (if indexed) and size(vals) reals, separated by
+   !> commas; blanks around fields allowed, nothing else.
+   pure subroutine split_row(line, indexed, j, vals, ok)
+      character(len=*), intent(in) :: line
+      logical, intent(in) :: indexed
+      integer, intent(out) :: j
+      real(dp), intent(out) :: vals(:)
+      logical, intent(out) :: ok
+      integer :: start, comma, k, nfield
+      j = 0
+      vals = 0.0_dp
+      nfield = size(vals)
+      if (indexed) nfield = nfield + 1
+      start = 1
+      do k = 1, nfield
+         comma = index(line(start:), ",")
+         if (k < nfield) then
+            ok = comma > 0
+            if (.not. ok) return
+            comma = start + comma - 1
+         else
+            ok = comma == 0
+            if (.not. ok) return
+            comma = len(line) + 1
+         end if
+         if (indexed .and. k == 1) then
+            call parse_int(line(start:comma - 1), j, ok)
+         else
+            call parse_real(line(start:comma - 1), vals(k - merge(1, 0, indexed)), ok)
+         end if
+         if (.not. ok) return
+         start = comma + 1
+      end do
+   end subroutine split_row
 
    pure logical function starts_with(str, prefix)
       character(len=*), intent(in) :: str, prefix
@@ -1608,10 +1738,8 @@ contains
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
 end module egw_table_format

@@ -22,6 +22,7 @@ module egw_table_universal
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
       & table_interval, table_prepare, table_eval, table_progress
+   use egw_text, only: int_text, int_text_len
    implicit none
    private
 
@@ -493,10 +494,8 @@ contains
 
    pure function int_str(i) result(str)
       integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
    end function int_str
 
    pure function grid(mu_min, mu_max, n) result(mus)

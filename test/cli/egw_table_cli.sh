@@ -7,7 +7,7 @@
 exe=$1
 [ -x "$exe" ] || { echo "    egw-table not found at '$exe'"; exit 1; }
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+trap 'umount "$work/full" 2>/dev/null; rm -rf "$work"' EXIT
 fails=0
 fail() { echo "    CLI check failed: $*"; fails=$((fails + 1)); }
 
@@ -39,6 +39,13 @@ printf '&scene\n  no_such_variable = 1\n/\n' >"$work/bad.nml"
 refuse bad_scene_variable "bad.nml" "$work/bad.nml"
 printf '&scene\n  radius = -1.0\n/\n' >"$work/neg.nml"
 refuse bad_scene_value "radius" "$work/neg.nml"
+# the scene-file path refuses in one line too: a directory, an empty file, binary junk
+mkdir -p "$work/scene_dir"
+refuse scene_is_directory "scene_dir" "$work/scene_dir"
+: >"$work/empty.nml"
+refuse empty_scene "empty.nml" "$work/empty.nml"
+printf 'PK\003\004\377\376&scene \001\002 = /\n\000\000' >"$work/junk.nml"
+refuse junk_scene "junk.nml" "$work/junk.nml"
 
 # smooth spheres: sigma = 0 is the Hertz model, not an error
 "$exe" --sigma 0 --quiet --out "$work/smooth" >"$work/stdout" 2>"$work/stderr"
@@ -86,6 +93,43 @@ if command -v script >/dev/null 2>&1; then
   grep -q "$(printf '\r')  building \[" "$work/tty.log" || fail "no progress bar on a terminal"
 else
   echo "    (script(1) missing: the terminal bar is not checked)"
+fi
+
+# failed writes (issue 13): a file-size limit (ulimit -f) below the files' sizes, and
+# (as root, where a small tmpfs can be mounted) a full file system: exit status 2, one
+# line naming the reason, the files of an earlier run unchanged, no temporary or .part
+# file left behind
+good="$work/good"
+"$exe" --out "$good" --formats csv,binary --tol 1e-3 -q >/dev/null 2>&1 ||
+  fail "build for the failed-write checks: exit status $?"
+(cd "$good" && cksum ./* >"$work/good.sum")
+# failed_write NAME EXPECTED_SUBSTRING DIR [ulimit -f BLOCKS]
+failed_write() {
+  name=$1 expect=$2 dir=$3 blocks=$4
+  if [ -n "$blocks" ]; then
+    (ulimit -f "$blocks" && exec "$exe" --out "$dir" --formats csv,binary --tol 1e-3 -q) \
+      >"$work/stdout" 2>"$work/stderr"
+  else
+    "$exe" --out "$dir" --formats csv,binary --tol 1e-3 -q >"$work/stdout" 2>"$work/stderr"
+  fi
+  rc=$?
+  [ "$rc" -eq 2 ] || fail "$name: exit status $rc, expected 2"
+  [ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "$name: stderr is not one line: $(cat "$work/stderr")"
+  grep -qF -- "$expect" "$work/stderr" || fail "$name: stderr lacks '$expect': $(cat "$work/stderr")"
+  (cd "$dir" && cksum ./* | cmp -s - "$work/good.sum") || fail "$name: earlier files changed"
+  if ls -a "$dir" | grep -qE 'egw-tmp|\.part$'; then fail "$name: left $(ls -a "$dir")"; fi
+}
+cp -r "$good" "$work/limited"
+failed_write ulimit "ulimit -f" "$work/limited" 4
+if [ "$(id -u)" -eq 0 ] && mkdir -p "$work/full" &&
+  mount -t tmpfs -o size=64k tmpfs "$work/full" 2>/dev/null; then
+  cp -r "$good" "$work/full/out"
+  # fill the file system up (dd stops at ENOSPC)
+  dd if=/dev/zero of="$work/full/filler" bs=1k count=64 2>/dev/null
+  failed_write full_disk "No space left on device" "$work/full/out"
+  umount "$work/full"
+else
+  echo "    (not root or no tmpfs mount: the full-disk check is skipped; ulimit -f checked)"
 fi
 echo "    $fails CLI check(s) failed"
 exit "$fails"

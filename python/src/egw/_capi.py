@@ -62,7 +62,7 @@ class TableInfo(ctypes.Structure):
     _fields_ = [("model", c_int), ("n_nodes", c_int), ("cutoff", c_double),
                 ("delta_max", c_double), ("reference_force", c_double),
                 ("rel_tol", c_double), ("max_force_error", c_double),
-                ("max_stiffness_error", c_double)]
+                ("max_stiffness_error", c_double), ("checksum_missing", c_int)]
 
 
 _TYPES = c_double * SCENE_MAX_TYPES

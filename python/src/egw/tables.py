@@ -68,7 +68,8 @@ class _Handle:
 @dataclass
 class TableInfo:
     """egw_table_info: model, n_nodes, cutoff (force 0 below) [length], delta_max (last
-    node) [length], reference_force, rel_tol, max_force_error, max_stiffness_error."""
+    node) [length], reference_force, rel_tol, max_force_error, max_stiffness_error,
+    checksum_missing (1: read from a CSV file without its checksum line)."""
     model: int
     n_nodes: int
     cutoff: float
@@ -77,6 +78,7 @@ class TableInfo:
     rel_tol: float
     max_force_error: float
     max_stiffness_error: float
+    checksum_missing: int
 
 
 class Table(_Handle):
