@@ -14,6 +14,7 @@ module test_hysteresis
    use egw_impact, only: restitution
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
    use, intrinsic :: iso_c_binding, only: c_int
+   use, intrinsic :: iso_fortran_env, only: int64
    implicit none
    private
    public :: collect_hysteresis
@@ -273,9 +274,9 @@ contains
       at = index(bytes, "# loading = ")
       at = at + index(bytes(at:), ",")
       bytes = bytes(1:at - 1)//"-"//bytes(at:)
-      at = index(bytes, new_line("a")//"# checksum = ", back=.true.)
-      bytes = bytes(1:at)//"# checksum = "//to_string(int(checksum_of(bytes(1:at))))// &
-         & new_line("a")
+      at = index(bytes, new_line("a")//"# fnv1a32 = ", back=.true.)
+      bytes = bytes(1:at)//"# fnv1a32 = "//hex8(checksum_of(bytes(1:at)))// &
+         & " (checksum of the bytes above this line)"//new_line("a")
       call spill("build/hyst_bad.csv", bytes)
       call read_hysteresis("build/hyst_bad.csv", back, err)
       call check(error, allocated(err), "negative loading force refused")
@@ -293,19 +294,33 @@ contains
       call check(error, allocated(err), "not a hysteresis table")
    end subroutine test_bad_files
 
-   !> FNV-1a 32 (doc/formats.md) as the signed int32 the CSV carries.
-   integer function checksum_of(bytes) result(c)
-      use, intrinsic :: iso_fortran_env, only: int64
+   !> FNV-1a 32 (doc/formats.md), written here from its definition.
+   integer(int64) function checksum_of(bytes) result(h)
       character(len=*), intent(in) :: bytes
-      integer(int64) :: h
       integer :: i
       h = 2166136261_int64
       do i = 1, len(bytes)
          h = iand(ieor(h, int(iachar(bytes(i:i)), int64))*16777619_int64, 4294967295_int64)
       end do
-      if (h >= 2147483648_int64) h = h - 4294967296_int64
-      c = int(h)
    end function checksum_of
+
+   !> 8 lowercase hexadecimal digits of a 32-bit value.
+   function hex8(h) result(s)
+      integer(int64), intent(in) :: h
+      character(len=8) :: s
+      write (s, '(z8.8)') h
+      s = lower(s)
+   end function hex8
+
+   pure function lower(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: t
+      integer :: i
+      t = s
+      do i = 1, len(s)
+         if (s(i:i) >= "A" .and. s(i:i) <= "F") t(i:i) = achar(iachar(s(i:i)) + 32)
+      end do
+   end function lower
 
    subroutine slurp(path, bytes)
       character(len=*), intent(in) :: path

@@ -13,7 +13,7 @@ module egw_hysteresis_format
    use egw_io, only: write_file, read_file, text_buffer
    use egw_text, only: int_text, int_text_len, real_text, real_text_len
    use egw_table, only: force_table, table_prepare
-   use egw_table_format, only: format_csv, format_binary, fnv1a32
+   use egw_table_format, only: format_csv, format_binary, fnv1a32, split_checksum, checksum_line
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare
    implicit none
    private
@@ -29,7 +29,6 @@ module egw_hysteresis_format
    character(len=*), parameter :: csv_title = "# egw hysteresis table, CSV format 1"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
-   integer(int64), parameter :: fnv_basis = 2166136261_int64, fnv_mask = int(z'FFFFFFFF', int64)
 
 contains
 
@@ -209,7 +208,6 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: head
       integer :: i, j, n_m, n_s
-      integer(int64) :: hash
       type(text_buffer) :: out
       n_m = 0
       n_s = 0
@@ -245,7 +243,6 @@ contains
             & "(s_max*length), cubic Hermite in s (slope dratio_ds), cubic Lagrange in "// &
             & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
             & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
-         hash = fnv_basis
          call put_line(head)
          do i = 1, size(l%delta)
             call put_line("# loading = "//csv_row([l%delta(i), l%force(i), l%stiffness(i), &
@@ -259,14 +256,13 @@ contains
          end do
       end do
       call put_line("# end of table, "//int_str(n_m*n_s)//" rows")
-      ! the checksum of every byte before its line (read back by read_hysteresis)
-      call put_line("# checksum = "//int_str(int(checksum_i32(hash))))
+      ! the checksum line of the force tables' CSV (read back by read_hysteresis)
+      call out%add(checksum_line(out%text(1:out%n)))
       ! built in memory, then written atomically with every step checked (egw_io)
       call out%write(path, error)
    contains
       subroutine put_line(line)
          character(len=*), intent(in) :: line
-         hash = fnv1a32_update(hash, line//new_line("a"))
          call out%add(line)
       end subroutine put_line
    end subroutine write_csv
@@ -279,17 +275,14 @@ contains
       integer :: sum_at
       real(dp) :: v(5), p(7), lmeta(7)
       character(len=:), allocatable :: key, value
-      logical :: have_sum
-      ! the checksum line covers every byte before it
-      sum_at = index(text, new_line("a")//"# checksum = ", back=.true.)
-      have_sum = sum_at > 0
-      if (.not. have_sum) then
-         call bad(error, path, "no checksum line (a hysteresis CSV must be written by egw)")
-         return
-      end if
-      read (text(sum_at + 14:), *, iostat=ios) k_row
-      if (ios /= 0 .or. k_row /= checksum_i32(fnv1a32(text(1:sum_at)))) then
-         call bad(error, path, "checksum mismatch: file is corrupted or was edited")
+      logical :: missing
+      ! the checksum line covers every byte before it; unlike a force table, a hysteresis
+      ! table without one is refused (nobody edits its grid by hand)
+      call split_checksum(path, text, sum_at, missing, error)
+      if (allocated(error)) return
+      if (missing) then
+         call bad(error, path, "no '# fnv1a32' checksum line (a hysteresis CSV must be "// &
+            & "written by egw)")
          return
       end if
       n_load = -1
@@ -611,18 +604,6 @@ contains
       end if
    end function checksum_i32
 
-   !> FNV-1a 32-bit hash (egw_table_format's fnv1a32) continued over more bytes, for a
-   !> file written line by line.
-   pure function fnv1a32_update(h0, bytes) result(h)
-      integer(int64), intent(in) :: h0
-      character(len=*), intent(in) :: bytes
-      integer(int64) :: h
-      integer :: i
-      h = h0
-      do i = 1, len(bytes)
-         h = iand(ieor(h, int(ichar(bytes(i:i)), int64))*16777619_int64, fnv_mask)
-      end do
-   end function fnv1a32_update
 
    !> "# key = value" -> key, value (key "" for other comment lines).
    subroutine split_key(line, key, value)

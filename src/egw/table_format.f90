@@ -23,6 +23,7 @@ module egw_table_format
    implicit none
    private
 
+   public :: split_checksum, checksum_line
    public :: write_table, read_table, write_universal, read_universal, write_lammps, &
       & write_calculix_flat, write_calculix_sphere, fnv1a32
 

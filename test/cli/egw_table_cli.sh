@@ -76,7 +76,7 @@ for f in scene_hysteresis.csv scene_hysteresis.bin; do
 done
 head -2 "$work/ep/scene_hysteresis.csv" | grep -q "^# egw hysteresis table" ||
   fail "EP-GW: scene_hysteresis.csv has no egw header"
-grep -q "^# checksum = " "$work/ep/scene_hysteresis.csv" || fail "EP-GW: CSV without checksum"
+grep -q "^# fnv1a32 = " "$work/ep/scene_hysteresis.csv" || fail "EP-GW: CSV without checksum"
 grep -q "hysteresis  *1 EP-GW table" "$work/stdout" || fail "EP-GW: summary lacks the hysteresis line"
 grep -q "loading curve only" "$work/stdout" || fail "EP-GW: summary lacks the loading-only note"
 grep -q "loading curve only" "$work/ep/scene_table.lammps" ||
