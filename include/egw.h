@@ -142,11 +142,11 @@ enum {
 };
 
 typedef struct {
-  int    n_radial;   /* mesh nodes; 0 = chosen from rel_tol */
+  int    n_radial;   /* mesh nodes; 0 = chosen from rel_tol, else 8 .. 4097 */
   double rel_tol;    /* target relative accuracy of the force (default 1e-6) */
   int    max_iter;   /* 0 = default */
   int    method;     /* EGW_METHOD_AUTO=0, EGW_METHOD_NEWTON=1, EGW_METHOD_PICARD=2 */
-  int    n_threads;  /* 0 = OpenMP default */
+  int    n_threads;  /* 0 = OpenMP default; capped to the processor count */
 } egw_options;
 
 typedef struct {
@@ -164,9 +164,11 @@ void egw_options_default(egw_options *o);
  * force: total normal force P (>= 0); stiffness: dP/ddelta by implicit differentiation;
  * contact_radius: effective a* = (3 pi/4) int r p dr / int p dr (= a for Hertz);
  * max_pressure: max of the total pressure. Works for every model (Hertz exactly).
- * o may be NULL (defaults). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (delta
- * not finite, bad options), EGW_NULL_POINTER, EGW_NOT_CONVERGED (res is then zeroed:
- * no force is ever returned from a failed solve). */
+ * o may be NULL (defaults). Statuses: EGW_INVALID_PARAMETER (also parameters outside the
+ * ranges the numerics represent, doc/parameters.md "Valid ranges"), EGW_INVALID_ARGUMENT
+ * (delta not finite, delta/sigma > 1e15 for rough spheres, a Hertz force beyond the
+ * doubles, bad options), EGW_NULL_POINTER, EGW_NOT_CONVERGED (also a mesh above 4097
+ * nodes), EGW_OUT_OF_MEMORY; res is left untouched on any failure. */
 int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):

@@ -288,9 +288,8 @@ contains
       if (stat /= egw_ok) return
       call solve_contact(params, options, delta, result, error)
       stat = settle(error)
-      ! a solve that failed returns a zeroed result, never a force (egw.h)
-      if (stat /= egw_ok) result = solve_result()
-      call put_result(res, result)
+      ! res untouched on any failure (egw.h)
+      if (stat == egw_ok) call put_result(res, result)
    end function egw_solve
 
    function egw_solve_unload(p, o, delta, delta_max, res) result(stat) &

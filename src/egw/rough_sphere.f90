@@ -31,10 +31,10 @@
 module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi, sqrt2
-   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
-      & format_real
+   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
+      & egw_out_of_memory, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw
+      & model_epgw, check_scaled_overlap
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_asperity, only: rough_flat_law
@@ -92,6 +92,11 @@ module egw_rough_sphere
    integer, parameter :: profile_levels = 4
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
+   !> Largest mesh (nodes) of a solve: its dense influence matrix (nodes x 1.5 nodes) and
+   !> Jacobian take ~0.5 GB and an LU ~10 s; the automatic meshes of the solver's range
+   !> (delta/sigma up to 1e15, rel_tol down to 1e-10) stay well below. Bounds every solve's
+   !> time and memory (n_radial larger: egw_invalid_argument).
+   integer, parameter, public :: max_mesh_nodes = 4097
    !> Scaled force below which a solve returns 0 (as negligible() does before solving).
    real(dp), parameter :: tiny_force = 1.0e-250_dp
 
@@ -158,9 +163,10 @@ contains
    pure subroutine validate_options(options, error)
       type(solver_options), intent(in) :: options
       type(egw_error), allocatable, intent(out) :: error
-      if (options%n_radial /= 0 .and. options%n_radial < 8) then
+      if (options%n_radial /= 0 .and. (options%n_radial < 8 .or. &
+         & options%n_radial > max_mesh_nodes)) then
          call fatal_error(error, egw_invalid_argument, "n_radial = "//int_str(options%n_radial) &
-            & //": must be 0 (automatic) or >= 8")
+            & //": must be 0 (automatic) or lie in [8, "//int_str(max_mesh_nodes)//"]")
       else if (.not. ieee_is_finite(options%rel_tol) .or. .not. options%rel_tol >= 1.0e-10_dp &
          & .or. options%rel_tol > 0.1_dp) then
          call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(options%rel_tol) &
@@ -250,6 +256,13 @@ contains
       res%est_rel_err = est
       res%residual = sol%residual
       res%iterations = sol%iterations
+      if (.not. all(ieee_is_finite([res%force, res%stiffness, res%contact_radius, &
+         & res%max_pressure, res%est_rel_err, res%residual]))) then
+         ! a safety net: validate_params keeps the scales normal, so this is a solver bug
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): the solve gave a non-finite force, stiffness or radius")
+         return
+      end if
       result = res
    end subroutine solve_rough
 
@@ -276,6 +289,9 @@ contains
             & //": the largest overlap must be finite")
          return
       end if
+      if (params%model /= model_hertz) call check_scaled_overlap("delta_max", delta_max, &
+         & params%sigma, error)
+      if (allocated(error)) return
       hist%params = params
       hist%options = options
       hist%delta_max = delta_max
@@ -604,6 +620,14 @@ contains
       if (.not. ieee_is_finite(delta)) then
          call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
             & //": the overlap must be finite")
+         return
+      end if
+      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
+         if (.not. ieee_is_finite(hertz_force(delta, params%radius, params%modulus))) &
+            & call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the Hertz force (4/3) E sqrt(R) delta**1.5 exceeds the largest double")
+      else
+         call check_scaled_overlap("delta", delta, params%sigma, error)
       end if
    end subroutine check_input
 
@@ -614,6 +638,10 @@ contains
       type(scaled_problem) :: prob
       prob%model = params%model
       prob%delta = delta/params%sigma
+      ! A subnormal delta/sigma is 0 to the solver's precision (the Hertz part, ~x**1.5,
+      ! underflows), and its Hertz edge at sqrt(x) would put elements of subnormal size
+      ! into the mesh: solve at 0 (continuous: at x = 1e-300 the force equals P(0)).
+      if (abs(prob%delta) < tiny(1.0_dp)) prob%delta = 0.0_dp
       prob%a = sqrt(max(prob%delta, 0.0_dp))
       prob%extended = params%model /= model_gw .and. prob%delta > 0.0_dp
       prob%scale = params%mu/(2.0_dp*sqrt2)
@@ -1045,14 +1073,27 @@ contains
       type(discrete_solution), intent(out) :: sol
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
-      integer :: n, ng, max_iter, i
+      integer :: n, ng, max_iter, i, stat
       real(dp) :: kappa, rn
 
+      if ((size(edges) - 1)*deflection_degree + 1 > max_mesh_nodes) then
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): the mesh would need " &
+            & //int_str((size(edges) - 1)*deflection_degree + 1)//" nodes, more than " &
+            & //int_str(max_mesh_nodes))
+         return
+      end if
       call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
-      allocate (sol%infl(n, ng))
-      call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads)
+      allocate (sol%infl(n, ng), stat=stat)
+      if (stat == 0) call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, &
+         & options%n_threads, stat)
+      if (stat /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the influence matrix of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
       sol%base = base_gap(prob, sol%mesh%gauss_r)
       sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
       if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
@@ -1108,7 +1149,12 @@ contains
       integer :: n, info, sweep
       logical :: refined
       n = size(sol%w)
-      allocate (jac(n, n), x(n, 1), corr(n, 1))
+      allocate (jac(n, n), x(n, 1), corr(n, 1), stat=info)
+      if (info /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
       call evaluate(prob, sol)
       call jacobian(sol, jac)
       rhs = matmul(sol%infl, sol%dpdh*sol%dbase)
@@ -1293,7 +1339,12 @@ contains
       logical :: factored, have_lu, converged
 
       n = size(sol%w)
-      allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n))
+      allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n), stat=info)
+      if (info /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
       call evaluate(prob, sol)
       call residual(sol, res, norm)
       factored = .false.

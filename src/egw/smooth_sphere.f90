@@ -24,17 +24,29 @@ contains
    !> Contact radius a = sqrt(R delta) (eq. 13); 0 for delta <= 0.
    elemental real(dp) function hertz_contact_radius(delta, radius) result(a)
       real(dp), intent(in) :: delta, radius
+      real(dp) :: rd
       if (delta > 0.0_dp) then
-         a = sqrt(radius*delta)
+         rd = radius*delta
+         if (rd >= tiny(1.0_dp) .and. rd <= huge(1.0_dp)) then
+            a = sqrt(rd)
+         else
+            ! R delta would underflow or overflow where a itself is representable
+            a = sqrt(radius)*sqrt(delta)
+         end if
       else
          a = 0.0_dp
       end if
    end function hertz_contact_radius
 
    !> Force P_H = (4/3) E sqrt(R) delta**(3/2) = (4/3) E a delta (eq. 16); 0 for delta <= 0.
+   !> +Inf when the force itself exceeds the doubles (never from an intermediate overflow).
    elemental real(dp) function hertz_force(delta, radius, modulus) result(force)
       real(dp), intent(in) :: delta, radius, modulus
-      force = (4.0_dp/3.0_dp)*modulus*hertz_contact_radius(delta, radius)*max(delta, 0.0_dp)
+      real(dp) :: a
+      a = hertz_contact_radius(delta, radius)
+      force = (4.0_dp/3.0_dp)*modulus*a*max(delta, 0.0_dp)
+      if (delta > 0.0_dp .and. .not. (force >= tiny(1.0_dp) .and. force <= huge(1.0_dp))) &
+         & force = product3(4.0_dp/3.0_dp*modulus, a, delta)
    end function hertz_force
 
    !> Stiffness dP_H/d delta = 2 E a; 0 for delta <= 0.
@@ -42,6 +54,14 @@ contains
       real(dp), intent(in) :: delta, radius, modulus
       stiffness = 2.0_dp*modulus*hertz_contact_radius(delta, radius)
    end function hertz_stiffness
+
+   !> x y z of positive normal doubles without intermediate overflow or underflow: the
+   !> significands multiply in [1/8, 1), the exponents add, and scale() rounds once more
+   !> (to a subnormal, 0 or +Inf only if the product itself is out of range).
+   elemental real(dp) function product3(x, y, z) result(p)
+      real(dp), intent(in) :: x, y, z
+      p = scale(fraction(x)*fraction(y)*fraction(z), exponent(x) + exponent(y) + exponent(z))
+   end function product3
 
    !> Elastic energy stored at overlap delta, the integral of P_H from 0 to delta:
    !> (8/15) E sqrt(R) delta**(5/2); 0 for delta <= 0.
@@ -145,6 +165,14 @@ contains
       force = hertz_force(delta, params%radius, params%modulus)
       stiffness = hertz_stiffness(delta, params%radius, params%modulus)
       contact_radius = hertz_contact_radius(delta, params%radius)
+      if (.not. (ieee_is_finite(force) .and. ieee_is_finite(stiffness))) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the Hertz force (4/3) E sqrt(R) delta**1.5 or stiffness 2 E sqrt(R delta)" &
+            & //" exceeds the largest double")
+         force = ieee_value(1.0_dp, ieee_quiet_nan)
+         stiffness = force
+         contact_radius = force
+      end if
    end subroutine hertz_contact
 
    !> (u - atan u)/u**3 for 0 <= u <= 1 without cancellation: the alternating series

@@ -778,7 +778,7 @@ static int r_scene_read(void) {
   FILE *f = fopen(out_path("scene.nml"), "w");
   if (!f) _exit(3);
   fprintf(f, "&scene\n model = 'E-GW', sigma_min = 1e-6, sigma_max = 1e-6,\n"
-             " delta_min = -2, delta_max = %.17g, delta_in_sigma = 1, tol = %.17g\n/\n",
+             " delta_min_sigma = -2, delta_max_sigma = %.17g, tol = %.17g\n/\n",
           D(1, 20.0), D(2, 1e-3));
   fclose(f);
   egw_scene_default(&s);
