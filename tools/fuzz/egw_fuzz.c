@@ -418,7 +418,7 @@ static int r_restitution(void) {
   st = egw_restitution_energy(P(8, &p), P(14, &o), D(15, 1e-3), D(16, 1e-2), P(17, &v[0]),
                               P(18, &v[1]), P(19, &v[2]));
   out_doubles(st, 0, "e, w_load, w_dissipated", v, 3, sizeof v);
-  sane(st, !(v[0] > 0 && v[0] <= 1) ? 0 : 1, "e outside (0, 1]", v[0]);
+  sane(st, cur->slot == 17 || (v[0] > 0 && v[0] <= 1), "e outside (0, 1]", v[0]);
   return st;
 }
 
@@ -545,12 +545,13 @@ static int r_table_write(void) {
 static int r_tables_lammps(void) {
   egw_table t[2];
   int st;
+  int n = I(0, 2);
+  if (n > 2) n = 2; /* a count above the array's length is the caller's lie (UB in C) */
   t[0] = base_table();
   t[1] = base_table();
-  st = egw_tables_write_lammps(I(0, 2), P(1, t), S(2, out_path("w.table")));
+  st = egw_tables_write_lammps(n, P(1, t), S(2, out_path("w.table")));
   if (st == EGW_OK)
-    st = egw_tables_write_lammps_units(I(0, 2), P(1, t), S(2, out_path("u.table")),
-                                       S(3, "si"));
+    st = egw_tables_write_lammps_units(n, P(1, t), S(2, out_path("u.table")), S(3, "si"));
   egw_table_free(&t[0]);
   egw_table_free(&t[1]);
   return st;
@@ -1020,14 +1021,14 @@ int main(int argc, char **argv) {
   }
 
   /* the cases: each function's valid call, then one slot at a time over its values;
-   * the short mode keeps every 5th case of the heavy (solving) functions */
+   * the short mode keeps every 4th case (every 9th of the solving functions) */
   for (int f = 0; f < N_FUNCTIONS; f++) {
     int k = 0;
     if (only && !strstr(functions[f].name, only)) continue;
     for (int s = -1; s < functions[f].n_slots; s++) {
       int nv = s < 0 ? 1 : n_values(functions[f].slots[s].kind);
       for (int v = 0; v < nv; v++, k++) {
-        if (short_mode && functions[f].heavy && s >= 0 && (k % 5) != 0) continue;
+        if (short_mode && s >= 0 && (k % (functions[f].heavy ? 9 : 4)) != 0) continue;
         if (n_jobs == cap) {
           cap = cap ? 2 * cap : 256;
           list = cap == 256 ? malloc(cap * sizeof *list) : realloc(list, cap * sizeof *list);
