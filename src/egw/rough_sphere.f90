@@ -556,7 +556,17 @@ contains
       ! in contact: 2e-4 of the peak at rel_tol 1e-6). Solve again at rel_tol/10 until
       ! the profile changes by at most rel_tol of its peak (pressure) and of the largest
       ! deflection: the finer of the two is then the answer.
-      rs_all = [0.0_dp, r/sqrt(params%radius*params%sigma)]
+      rs_all = [0.0_dp, r/(sqrt(params%radius)*sqrt(params%sigma))]
+      do i = 2, size(rs_all)
+         if (.not. ieee_is_finite(rs_all(i))) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
+               & //format_real(r(i - 1))//": r/sqrt(R sigma) exceeds the largest double")
+            return
+         end if
+         ! the fields are even and smooth in r: below 1e-150 of the scaled length they
+         ! equal their value at 0 to rounding (and the kernels' 1/r would overflow)
+         if (rs_all(i) < 1.0e-150_dp) rs_all(i) = 0.0_dp
+      end do
       allocate (p_prev(size(rs_all)), w_prev(size(rs_all)), p_new(size(rs_all)), &
          & w_new(size(rs_all)))
       level_options = options

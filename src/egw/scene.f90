@@ -879,15 +879,18 @@ contains
       end do
    end subroutine scene_hertz_error
 
-   !> Positive overlaps sampled by the Hertz check of set s: [delta_min, delta_max] when
-   !> delta_min > 0, else [min(sigma/100, delta_max/10), delta_max].
+   !> Positive overlaps sampled by the Hertz check of set s: [max(delta_min, 1e-12 sigma),
+   !> delta_max] when delta_min > 0, else [min(sigma/100, delta_max/10), delta_max].
    pure subroutine sample_range(scene, s, lo, hi)
       type(contact_scene), intent(in) :: scene
       integer, intent(in) :: s
       real(dp), intent(out) :: lo, hi
       hi = scene%delta_max(s)
       if (scene%delta_min(s) > 0.0_dp) then
-         lo = scene%delta_min(s)
+         ! below 1e-12 sigma the rough force is P(0) to ~1e-18 and the Hertz force ~1e-18
+         ! of it: the Hertz error is that at 1e-12 sigma (bounds the samples: a
+         ! delta_min = 1e-300 would ask for 1200 solves)
+         lo = min(hi, max(scene%delta_min(s), 1.0e-12_dp*scene%sets(s)%sigma))
       else
          lo = min(0.01_dp*scene%sets(s)%sigma, 0.1_dp*hi)
       end if

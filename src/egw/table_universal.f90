@@ -18,7 +18,7 @@ module egw_table_universal
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_not_converged, egw_out_of_range, fatal_error, format_real
-   use egw_params, only: contact_params, validate_params
+   use egw_params, only: contact_params, validate_params, overlap_ratio_max
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
       & table_interval, table_prepare, table_eval, table_progress
@@ -93,6 +93,21 @@ contains
       call validate_params(universal_slice_params(model, psi, hardness_coeff, &
          & plastic_ratio, mu_min), error)
       if (allocated(error)) return
+      call validate_params(universal_slice_params(model, psi, hardness_coeff, &
+         & plastic_ratio, mu_max), error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(x_min)) then
+         call fatal_error(error, egw_invalid_argument, "x_min = "//format_real(x_min)// &
+            & ": must be finite")
+         return
+      end if
+      if (.not. (ieee_is_finite(x_max) .and. x_max > x_min .and. &
+         & x_max <= overlap_ratio_max)) then
+         call fatal_error(error, egw_invalid_argument, "x_max = "//format_real(x_max)// &
+            & ": must be > x_min and <= "//format_real(overlap_ratio_max)// &
+            & " (the solver's range of delta/sigma)")
+         return
+      end if
       opts = options
       opts%n_threads = 1
       opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
