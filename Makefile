@@ -7,7 +7,7 @@ VENV ?= .venv
 FPM := $(VENV)/bin/fpm
 export VENV
 
-.PHONY: run test bench setup clean python docs
+.PHONY: run test bench setup clean python docs fuzz
 run: setup
 	@$(FPM) run egw-table $(FPM_FLAGS) -- $(ARGS)
 
@@ -35,3 +35,12 @@ docs: setup
 
 clean:
 	rm -rf build
+
+# The C API fuzz harness in full (tools/fuzz/egw_fuzz.c, doc/fuzz.md): ~4000 forked calls
+# with NaN, Inf, 0, +-1e300, 1e-300, subnormals and extreme integers; prints the counts
+# tried / refused / accepted / silent / clobbered / crashed / hung (a few minutes).
+# FUZZ_ARGS: e.g. "-j 4 -t 20" or "-f egw_solve -v".
+FUZZ_ARGS ?=
+fuzz: setup
+	@$(FPM) build $(FPM_FLAGS) >/dev/null
+	@$(FPM) run egw-fuzz $(FPM_FLAGS) -- $(FUZZ_ARGS)

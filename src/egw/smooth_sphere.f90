@@ -42,11 +42,14 @@ contains
    !> +Inf when the force itself exceeds the doubles (never from an intermediate overflow).
    elemental real(dp) function hertz_force(delta, radius, modulus) result(force)
       real(dp), intent(in) :: delta, radius, modulus
-      real(dp) :: a
+      real(dp) :: a, t
       a = hertz_contact_radius(delta, radius)
-      force = (4.0_dp/3.0_dp)*modulus*a*max(delta, 0.0_dp)
-      if (delta > 0.0_dp .and. .not. (force >= tiny(1.0_dp) .and. force <= huge(1.0_dp))) &
-         & force = product3(4.0_dp/3.0_dp*modulus, a, delta)
+      t = (4.0_dp/3.0_dp)*modulus*a
+      force = t*max(delta, 0.0_dp)
+      ! a subnormal or infinite intermediate (or result): redo without losing digits
+      if (delta > 0.0_dp .and. .not. (t >= tiny(1.0_dp) .and. t <= huge(1.0_dp) .and. &
+         & force >= tiny(1.0_dp) .and. force <= huge(1.0_dp))) &
+         & force = product4(4.0_dp/3.0_dp, modulus, a, delta)
    end function hertz_force
 
    !> Stiffness dP_H/d delta = 2 E a; 0 for delta <= 0.
@@ -55,13 +58,14 @@ contains
       stiffness = 2.0_dp*modulus*hertz_contact_radius(delta, radius)
    end function hertz_stiffness
 
-   !> x y z of positive normal doubles without intermediate overflow or underflow: the
-   !> significands multiply in [1/8, 1), the exponents add, and scale() rounds once more
+   !> w x y z of positive doubles without intermediate overflow or underflow: the
+   !> significands multiply in [1/16, 1), the exponents add, and scale() rounds once more
    !> (to a subnormal, 0 or +Inf only if the product itself is out of range).
-   elemental real(dp) function product3(x, y, z) result(p)
-      real(dp), intent(in) :: x, y, z
-      p = scale(fraction(x)*fraction(y)*fraction(z), exponent(x) + exponent(y) + exponent(z))
-   end function product3
+   elemental real(dp) function product4(w, x, y, z) result(p)
+      real(dp), intent(in) :: w, x, y, z
+      p = scale(fraction(w)*fraction(x)*fraction(y)*fraction(z), &
+         & exponent(w) + exponent(x) + exponent(y) + exponent(z))
+   end function product4
 
    !> Elastic energy stored at overlap delta, the integral of P_H from 0 to delta:
    !> (8/15) E sqrt(R) delta**(5/2); 0 for delta <= 0.
