@@ -181,6 +181,22 @@ int egw_input_test_solve(void) {
   p.psi = 1.0;
   CHECK(egw_solve(&p, &o, 0.0, &r0) == EGW_OK);
   CHECK(egw_solve(&p, &o, 4.9e-324, &r) == EGW_OK && close_rel(r.force, r0.force, 1e-15));
+  /* scale invariance at the edges of the doubles: P = E sqrt(R) sigma^1.5 p(delta/sigma),
+   * k = E sqrt(R sigma) p'(delta/sigma) exactly (the scaled problems are identical; only
+   * the unit's few roundings differ: 1e-14). sigma^1.5 = 1e-450 alone underflows, the
+   * force unit 2.2e-152 does not (it used to give a force of 0) */
+  {
+    egw_params unit = rough(EGW_MODEL_EGW), big = rough(EGW_MODEL_EGW);
+    unit.sigma = 1.0;
+    big.radius = 5e-4;
+    big.modulus = 1e300;
+    big.sigma = 1e-300;
+    CHECK(egw_solve(&unit, &o, 2.0, &r0) == EGW_OK);
+    CHECK(egw_solve(&big, &o, 2e-300, &r) == EGW_OK);
+    CHECK(close_rel(r.force, r0.force * (1e300 * sqrt(5e-4) * 1e-300 * 1e-150), 1e-14));
+    CHECK(close_rel(r.stiffness, r0.stiffness * (1e300 * sqrt(5e-4) * 1e-150), 1e-14));
+    CHECK(close_rel(r.contact_radius, r0.contact_radius * sqrt(5e-4) * 1e-150, 1e-14));
+  }
   p = rough(EGW_MODEL_EGW);
   /* refusals leave *res untouched (egw.h conventions) */
   r = sentinel;

@@ -26,7 +26,8 @@ module egw_params
    end type contact_params
 
    public :: validate_params, model_name, mu_from_summits, psi_from_hardness, &
-      & rough_flat_coefficient, check_scaled_overlap, range_str
+      & rough_flat_coefficient, check_scaled_overlap, range_str, product4, length_unit, &
+      & pressure_unit, force_unit, stiffness_unit
 
    !> What the numerics represent (doc/parameters.md "Valid ranges"): every positive field
    !> a normal double (no subnormals: they carry fewer digits and their reciprocals
@@ -155,6 +156,52 @@ contains
          & //" sigma = "//format_real(overlap_ratio_max*sigma) &
          & //" (the solver's range of delta/sigma)")
    end subroutine check_scaled_overlap
+
+   !> w x y z of positive doubles without intermediate overflow or underflow: the
+   !> significands multiply in [1/16, 1), the exponents add, and scale() rounds once more
+   !> (to a subnormal, 0 or +Inf only if the product itself is out of range).
+   elemental real(dp) function product4(w, x, y, z) result(p)
+      real(dp), intent(in) :: w, x, y, z
+      p = scale(fraction(w)*fraction(x)*fraction(y)*fraction(z), &
+         & exponent(w) + exponent(x) + exponent(y) + exponent(z))
+   end function product4
+
+   !> The units of the rough solver's scaled variables (doc/theory.md section 5) for
+   !> validated params with sigma > 0: length sqrt(R sigma), pressure E sqrt(sigma/R),
+   !> force E sqrt(R) sigma**1.5, stiffness E sqrt(R sigma). The plain expression where its
+   !> intermediates stay normal (bit for bit as before), else product4 (sigma**1.5 alone
+   !> underflows at sigma = 1e-300 while the force unit E sqrt(R) sigma**1.5 need not).
+   elemental real(dp) function length_unit(params) result(u)
+      type(contact_params), intent(in) :: params
+      u = sqrt(params%radius*params%sigma)
+      if (.not. normal(u) .or. .not. normal(params%radius*params%sigma)) &
+         & u = sqrt(params%radius)*sqrt(params%sigma)
+   end function length_unit
+
+   elemental real(dp) function pressure_unit(params) result(u)
+      type(contact_params), intent(in) :: params
+      u = params%modulus*sqrt(params%sigma/params%radius)
+      if (.not. normal(u) .or. .not. normal(params%sigma/params%radius)) &
+         & u = product4(params%modulus, sqrt(params%sigma), 1.0_dp/sqrt(params%radius), 1.0_dp)
+   end function pressure_unit
+
+   elemental real(dp) function force_unit(params) result(u)
+      type(contact_params), intent(in) :: params
+      u = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
+      if (.not. normal(u) .or. .not. normal(params%sigma**1.5_dp) .or. &
+         & .not. normal(params%modulus*sqrt(params%radius))) &
+         & u = product4(params%modulus, sqrt(params%radius), params%sigma, sqrt(params%sigma))
+   end function force_unit
+
+   elemental real(dp) function stiffness_unit(params) result(u)
+      type(contact_params), intent(in) :: params
+      u = product4(params%modulus, sqrt(params%radius), sqrt(params%sigma), 1.0_dp)
+   end function stiffness_unit
+
+   elemental logical function normal(x)
+      real(dp), intent(in) :: x
+      normal = abs(x) >= tiny(1.0_dp) .and. abs(x) <= huge(1.0_dp)
+   end function normal
 
    !> "[lo, hi]" for messages.
    pure function range_str(lo, hi) result(str)

@@ -34,7 +34,7 @@ module egw_rough_sphere
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
       & egw_out_of_memory, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw, check_scaled_overlap
+      & model_epgw, check_scaled_overlap, length_unit, pressure_unit, force_unit, stiffness_unit
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_asperity, only: rough_flat_law
@@ -245,14 +245,18 @@ contains
       call differentiate(prob, sol, error)
       if (allocated(error)) return
 
-      force_scale = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
+      force_scale = force_unit(params)
       res%force = force_scale*(smooth_force(prob) + sol%force)
-      res%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
-      res%contact_radius = sqrt(params%radius*params%sigma)*effective_radius(prob, sol)
+      if (normal(force_scale/params%sigma)) then
+         res%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
+      else
+         res%stiffness = stiffness_unit(params)*(smooth_stiffness(prob) + sol%dforce)
+      end if
+      res%contact_radius = length_unit(params)*effective_radius(prob, sol)
       pmax = max(total_pressure(prob, sol, 0.0_dp), maxval(sol%p))
       if (prob%extended) pmax = max(pmax, &
          & maxval(hertz_pressure(sol%mesh%gauss_r, prob%delta, 1.0_dp, 1.0_dp) + sol%p))
-      res%max_pressure = params%modulus*sqrt(params%sigma/params%radius)*pmax
+      res%max_pressure = pressure_unit(params)*pmax
       res%est_rel_err = est
       res%residual = sol%residual
       res%iterations = sol%iterations
@@ -457,7 +461,7 @@ contains
       prob = scaled(history%params, delta)
       allocate (prob%closest)
       prob%closest = history%closest
-      length = sqrt(history%params%radius*history%params%sigma)
+      length = length_unit(history%params)
       rs = r/length
       if (negligible(prob)) then
          gap = base_gap(prob, rs)
@@ -474,7 +478,7 @@ contains
       gap_min = closest_gap(prob%closest, rs)
       if (.not. negligible(prob)) call unload_law(gap, gap_min, prob%psi, prob%hardness, &
          & prob%plastic_ratio, f, dfdh)
-      c = history%params%modulus*sqrt(history%params%sigma/history%params%radius)
+      c = pressure_unit(history%params)
       pressure = c*prob%scale*f
       separation = history%params%sigma*gap
       separation_min = history%params%sigma*gap_min
@@ -556,7 +560,7 @@ contains
       ! in contact: 2e-4 of the peak at rel_tol 1e-6). Solve again at rel_tol/10 until
       ! the profile changes by at most rel_tol of its peak (pressure) and of the largest
       ! deflection: the finer of the two is then the answer.
-      rs_all = [0.0_dp, r/(sqrt(params%radius)*sqrt(params%sigma))]
+      rs_all = [0.0_dp, r/length_unit(params)]
       do i = 2, size(rs_all)
          if (.not. ieee_is_finite(rs_all(i))) then
             call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
@@ -590,7 +594,7 @@ contains
             & "not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
          return
       end if
-      pressure = p_new(2:)*params%modulus*sqrt(params%sigma/params%radius)
+      pressure = p_new(2:)*pressure_unit(params)
       deflection = w_new(2:)*params%sigma
    end subroutine contact_profile
 
@@ -660,6 +664,11 @@ contains
       prob%hardness = params%hardness_coeff
       prob%plastic_ratio = params%plastic_ratio
    end function scaled
+
+   elemental logical function normal(x)
+      real(dp), intent(in) :: x
+      normal = abs(x) >= tiny(1.0_dp) .and. abs(x) <= huge(1.0_dp)
+   end function normal
 
    !> True when the spheres are so far apart that the summit pressure underflows.
    elemental logical function negligible(prob)

@@ -9,7 +9,7 @@ module egw_scene
       & egw_io_error, egw_bad_file, egw_not_converged, egw_unsupported, fatal_error, &
       & format_real
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw, model_name, mu_from_summits
+      & model_epgw, model_name, mu_from_summits, check_scaled_overlap
    use egw_smooth_sphere, only: hertz_force
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options
    use egw_table, only: force_table, build_table, table_set_radii, table_progress
@@ -649,6 +649,9 @@ contains
       do i = 1, n
          do j = i, n
             r = radii(i)*radii(j)/(radii(i) + radii(j))
+            ! the product over- or underflows where R itself is a double (radii 1e+-200)
+            if (.not. (r >= tiny(1.0_dp) .and. r <= huge(1.0_dp))) &
+               & r = 1.0_dp/(1.0_dp/radii(i) + 1.0_dp/radii(j))
             if (input%effective_modulus > 0.0_dp) then
                e_star = input%effective_modulus
             else
@@ -697,6 +700,13 @@ contains
          else
             scene%delta_min(is) = input%delta_min
             scene%delta_max(is) = input%delta_max
+         end if
+         ! the solver's range (doc/parameters.md section 5), named before any solve
+         if (scene%sets(is)%model /= model_hertz) call check_scaled_overlap("delta_max", &
+            & scene%delta_max(is), scene%sets(is)%sigma, error)
+         if (allocated(error)) then
+            error%message = "parameter set "//int_str(is)//": "//error%message
+            return
          end if
       end do
    end subroutine resolve_scene

@@ -12,7 +12,7 @@ module egw_smooth_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real
-   use egw_params, only: contact_params, validate_params
+   use egw_params, only: contact_params, validate_params, product4
    implicit none
    private
 
@@ -58,14 +58,6 @@ contains
       stiffness = 2.0_dp*modulus*hertz_contact_radius(delta, radius)
    end function hertz_stiffness
 
-   !> w x y z of positive doubles without intermediate overflow or underflow: the
-   !> significands multiply in [1/16, 1), the exponents add, and scale() rounds once more
-   !> (to a subnormal, 0 or +Inf only if the product itself is out of range).
-   elemental real(dp) function product4(w, x, y, z) result(p)
-      real(dp), intent(in) :: w, x, y, z
-      p = scale(fraction(w)*fraction(x)*fraction(y)*fraction(z), &
-         & exponent(w) + exponent(x) + exponent(y) + exponent(z))
-   end function product4
 
    !> Elastic energy stored at overlap delta, the integral of P_H from 0 to delta:
    !> (8/15) E sqrt(R) delta**(5/2); 0 for delta <= 0.
