@@ -198,7 +198,8 @@ int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, do
  * curve from delta_m, to about o->rel_tol. 0 < e <= 1; e = 1 for elastic summits (GW, E-GW,
  * psi = 0; exactly for Hertz and sigma = 0). Units: any consistent set (SI: kg, m/s).
  * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (mass or velocity not finite and
- * > 0, bad options), EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed); e is
+ * > 0, bad options; rough spheres: m* v^2/2 outside [1e-150, 3.4e37] E sqrt(R) sigma^2.5,
+ * where the deepest overlap leaves the solver's range, doc/parameters.md section 5), EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed); e is
  * left untouched on any failure. */
 int egw_restitution(const egw_params *p, const egw_options *o, double mass, double velocity,
                     double *e);

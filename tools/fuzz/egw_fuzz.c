@@ -14,6 +14,7 @@
  *
  * Usage: egw-fuzz [--short] [-j jobs] [-t seconds] [-v] [-f function]
  *   --short  a few hundred cases (the test suite's mode); default: every case
+ *   -t       time limit of a case (default 10 s; 3 times that for the functions that solve)
  * Exit status 0 when no case is silent, clobbered, crashed or hung; 1 otherwise; 2 on a
  * usage or set-up error. doc/fuzz.md describes the harness. */
 #define _POSIX_C_SOURCE 200809L
@@ -40,9 +41,15 @@
 enum { K_DBL, K_INT, K_PTR, K_STR };
 
 static const double dvals_full[] = {NAN, INFINITY, -INFINITY, 0.0, -0.0, 1e300, -1e300,
-                                    1e-300, -1e-300, 4.9e-324, 1e-310, DBL_MAX};
+                                    1e-300, -1e-300, 4.9e-324, 1e-310, DBL_MAX,
+                                    1e-200, 1e-100, 1e100, 1e200};
 static const char *dnames_full[] = {"NaN", "+Inf", "-Inf", "0", "-0", "1e300", "-1e300",
-                                    "1e-300", "-1e-300", "4.9e-324", "1e-310", "DBL_MAX"};
+                                    "1e-300", "-1e-300", "4.9e-324", "1e-310", "DBL_MAX",
+                                    "1e-200", "1e-100", "1e100", "1e200"};
+/* pairs of the scale fields R, E, sigma, mu (full mode): both at once at these values */
+static const double pvals[] = {1e-200, 1e-100, 1e100, 1e200};
+static const char *pnames[] = {"1e-200", "1e-100", "1e100", "1e200"};
+enum { N_PAIR_VALUES = 4 };
 static const double dvals_short[] = {NAN, INFINITY, -INFINITY, 0.0, 1e300, -1e300, 1e-300,
                                      4.9e-324};
 static const char *dnames_short[] = {"NaN", "+Inf", "-Inf", "0", "1e300", "-1e300",
@@ -83,6 +90,7 @@ static const char *value_name(int kind, int v) {
 typedef struct {
   int slot;  /* fuzzed slot, -1: the valid base call */
   int value; /* index into the slot kind's values */
+  int slot2, value2; /* a second fuzzed slot (pairs of params scale fields), else -1 */
   /* results, filled in the child */
   int status;
   int silent, clobbered;
@@ -92,6 +100,11 @@ typedef struct {
 static fz_case *cur;
 
 static double D(int slot, double base) {
+  if (cur->slot2 >= 0) {
+    if (slot == cur->slot) return pvals[cur->value];
+    if (slot == cur->slot2) return pvals[cur->value2];
+    return base;
+  }
   if (cur->slot != slot) return base;
   return short_mode ? dvals_short[cur->value] : dvals_full[cur->value];
 }
@@ -918,7 +931,7 @@ static const char *class_names[] = {"refused", "accepted", "silent", "clobbered"
                                     "hung"};
 
 typedef struct {
-  int function, slot, value;
+  int function, slot, value, slot2, value2;
 } job;
 
 static double now(void) {
@@ -931,6 +944,9 @@ static void describe(const job *j, char *buf, size_t n) {
   const fz_function *f = &functions[j->function];
   if (j->slot < 0)
     snprintf(buf, n, "%s (valid base call)", f->name);
+  else if (j->slot2 >= 0)
+    snprintf(buf, n, "%s %s = %s, %s = %s", f->name, f->slots[j->slot].name, pnames[j->value],
+             f->slots[j->slot2].name, pnames[j->value2]);
   else
     snprintf(buf, n, "%s %s = %s", f->name, f->slots[j->slot].name,
              value_name(f->slots[j->slot].kind, j->value));
@@ -942,8 +958,12 @@ static void child(const job *j, int fd, int limit) {
   memset(&c, 0, sizeof c);
   c.slot = j->slot;
   c.value = j->value;
+  c.slot2 = j->slot2;
+  c.value2 = j->value2;
   cur = &c;
-  alarm((unsigned)limit);
+  /* the solving functions get 3 limits: a valid call may take seconds on a loaded machine
+   * (egw_restitution at the default rel_tol 1e-6: ~6 s alone) */
+  alarm((unsigned)(functions[j->function].heavy ? 3 * limit : limit));
   c.status = functions[j->function].run();
   if (c.status != EGW_OK && !c.detail[0]) egw_last_error(c.detail, (int)sizeof c.detail);
   if (write(fd, &c, sizeof c) != (ssize_t)sizeof c) _exit(4);
@@ -1034,8 +1054,23 @@ int main(int argc, char **argv) {
           list = cap == 256 ? malloc(cap * sizeof *list) : realloc(list, cap * sizeof *list);
           if (!list) return 2;
         }
-        list[n_jobs++] = (job){f, s, v};
+        list[n_jobs++] = (job){f, s, v, -1, -1};
       }
+    }
+    /* full mode: pairs of R, E, sigma, mu (slots 1..4 of functions whose first slots are
+     * the params fields) at the normal extremes: valid one at a time, maybe not together */
+    if (!short_mode && functions[f].n_slots > 4 && strcmp(functions[f].slots[1].name, "p.radius") == 0) {
+      for (int a = 1; a <= 4; a++)
+        for (int b = a + 1; b <= 4; b++)
+          for (int va = 0; va < N_PAIR_VALUES; va++)
+            for (int vb = 0; vb < N_PAIR_VALUES; vb++) {
+              if (n_jobs == cap) {
+                cap *= 2;
+                list = realloc(list, cap * sizeof *list);
+                if (!list) return 2;
+              }
+              list[n_jobs++] = (job){f, a, va, b, vb};
+            }
     }
   }
 
@@ -1084,7 +1119,8 @@ int main(int argc, char **argv) {
         describe(&list[which[slot]], desc, sizeof desc);
         if (WIFSIGNALED(ws) && WTERMSIG(ws) == SIGALRM) {
           cls = C_HUNG;
-          snprintf(why, sizeof why, "no answer within %d s", limit);
+          snprintf(why, sizeof why, "no answer within %d s",
+                   functions[list[which[slot]].function].heavy ? 3 * limit : limit);
         } else if (WIFSIGNALED(ws)) {
           cls = C_CRASHED;
           snprintf(why, sizeof why, "signal %d (%s)", WTERMSIG(ws), strsignal(WTERMSIG(ws)));
