@@ -36,8 +36,9 @@ docs: setup
 clean:
 	rm -rf build
 
-# The C API fuzz harness in full (tools/fuzz/egw_fuzz.c, doc/fuzz.md): ~4000 forked calls
-# with NaN, Inf, 0, +-1e300, 1e-300, subnormals and extreme integers; prints the counts
+# The C API fuzz harness in full (tools/fuzz/egw_fuzz.c, doc/fuzz.md): ~6600 forked calls
+# with NaN, Inf, 0, +-1e300, 1e-300, subnormals and extreme integers (and pairs of
+# extreme scales); prints the counts
 # tried / refused / accepted / silent / clobbered / crashed / hung (a few minutes).
 # FUZZ_ARGS: e.g. "-j 4 -t 20" or "-f egw_solve -v".
 FUZZ_ARGS ?=

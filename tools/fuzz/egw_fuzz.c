@@ -224,10 +224,14 @@ static egw_universal base_universal(void) {
   }
   return u;
 }
+/* a file of this child (concurrent children never share a path: two writers of one path
+ * share its temporary file name, which egw's atomic write does not guard against) */
 static char *out_path(const char *name) {
-  static char path[400];
-  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-  return path;
+  static char path[8][400];
+  static int next;
+  char *p = path[next++ % 8];
+  snprintf(p, sizeof path[0], "%s/%ld-%s", tmpdir, (long)getpid(), name);
+  return p;
 }
 
 /* ------------------------------------------------------------------ the functions */
