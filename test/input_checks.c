@@ -197,6 +197,18 @@ int egw_input_test_solve(void) {
     CHECK(close_rel(r.stiffness, r0.stiffness * (1e300 * sqrt(5e-4) * 1e-150), 1e-14));
     CHECK(close_rel(r.contact_radius, r0.contact_radius * sqrt(5e-4) * 1e-150, 1e-14));
   }
+  /* Hertz through egw_solve: p0 = (2/pi) E sqrt(delta/R) = 6.4e294 although 2E/(pi R)
+   * alone overflows (it used to return max_pressure = +Inf with EGW_OK) */
+  {
+    egw_params h;
+    egw_params_default(&h);
+    h.model = EGW_MODEL_HERTZ;
+    h.modulus = 1e300;
+    h.radius = 1e-10;
+    CHECK(egw_solve(&h, &o, 1e-20, &r) == EGW_OK);
+    CHECK(close_rel(r.max_pressure, 2.0 / M_PI * 1e300 * 1e-5, 1e-15));
+    CHECK(close_rel(r.force, 4.0 / 3.0 * 1e300 * 1e-5 * 1e-30, 1e-15));
+  }
   p = rough(EGW_MODEL_EGW);
   /* refusals leave *res untouched (egw.h conventions) */
   r = sentinel;

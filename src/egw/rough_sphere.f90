@@ -34,7 +34,8 @@ module egw_rough_sphere
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
       & egw_out_of_memory, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw, check_scaled_overlap, length_unit, pressure_unit, force_unit, stiffness_unit
+      & model_epgw, check_scaled_overlap, length_unit, pressure_unit, force_unit, stiffness_unit, &
+      & product4
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_asperity, only: rough_flat_law
@@ -205,7 +206,13 @@ contains
          result%stiffness = hertz_stiffness(delta, params%radius, params%modulus)
          result%contact_radius = hertz_contact_radius(delta, params%radius)
          result%max_pressure = hertz_pressure(0.0_dp, delta, params%radius, params%modulus)
+         ! p0 = (2/pi) E sqrt(delta/R): 2E/(pi R) alone may overflow where p0 does not
+         if (delta > 0.0_dp .and. .not. normal(result%max_pressure)) result%max_pressure = &
+            & product4(2.0_dp/pi, params%modulus, sqrt(delta), 1.0_dp/sqrt(params%radius))
          result%method_used = options%method
+         if (.not. ieee_is_finite(result%max_pressure)) call fatal_error(error, &
+            & egw_invalid_argument, "delta = "//format_real(delta)//": the Hertz peak " &
+            & //"pressure (2/pi) E sqrt(delta/R) exceeds the largest double")
          return
       end if
 
@@ -547,6 +554,9 @@ contains
       if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
          pressure = hertz_pressure(r, delta, params%radius, params%modulus)
          deflection = hertz_deflection(r, delta, params%radius)
+         if (.not. all(ieee_is_finite(pressure) .and. ieee_is_finite(deflection))) &
+            & call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the Hertz pressure or deflection at r exceeds the largest double")
          return
       end if
 
@@ -637,9 +647,11 @@ contains
          return
       end if
       if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
-         if (.not. ieee_is_finite(hertz_force(delta, params%radius, params%modulus))) &
+         if (.not. (ieee_is_finite(hertz_force(delta, params%radius, params%modulus)) .and. &
+            & ieee_is_finite(hertz_stiffness(delta, params%radius, params%modulus)))) &
             & call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
-            & //": the Hertz force (4/3) E sqrt(R) delta**1.5 exceeds the largest double")
+            & //": the Hertz force (4/3) E sqrt(R) delta**1.5 or stiffness 2 E sqrt(R delta)" &
+            & //" exceeds the largest double")
       else
          call check_scaled_overlap("delta", delta, params%sigma, error)
       end if
