@@ -1008,12 +1008,12 @@ static void remove_tree(const char *dir) {
 int main(int argc, char **argv) {
   int jobs = 2, limit = 10, verbose = 0;
   const char *only = NULL;
-  job *list;
+  job *list = NULL;
   int n_jobs = 0, cap = 0;
   long counts[C_KINDS] = {0};
   int bad = 0;
   double t0 = now(), slowest = 0.0;
-  char slowest_name[300] = "";
+  char slowest_name[400] = "";
 
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "--short") == 0) short_mode = 1;
@@ -1055,7 +1055,7 @@ int main(int argc, char **argv) {
         if (short_mode && s >= 0 && (k % (functions[f].heavy ? 9 : 4)) != 0) continue;
         if (n_jobs == cap) {
           cap = cap ? 2 * cap : 256;
-          list = cap == 256 ? malloc(cap * sizeof *list) : realloc(list, cap * sizeof *list);
+          list = realloc(list, cap * sizeof *list);
           if (!list) return 2;
         }
         list[n_jobs++] = (job){f, s, v, -1, -1};
