@@ -436,6 +436,13 @@ static int r_restitution(void) {
                               P(18, &v[1]), P(19, &v[2]));
   out_doubles(st, 0, "e, w_load, w_dissipated", v, 3, sizeof v);
   sane(st, cur->slot == 17 || (v[0] > 0 && v[0] <= 1), "e outside (0, 1]", v[0]);
+  if (st == EGW_OK) { /* the plain form: the same coefficient */
+    double e;
+    sentinel(&e, sizeof e);
+    st = egw_restitution(P(8, &p), P(14, &o), D(15, 1e-3), D(16, 1e-2), P(17, &e));
+    out_doubles(st, 0, "e", &e, 1, sizeof e);
+    sane(st, e == v[0] || cur->slot == 17, "egw_restitution differs from _energy", e);
+  }
   return st;
 }
 
@@ -856,7 +863,7 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"delta", K_DBL},
       {"delta_max", K_DBL}, {"res", K_PTR}},
      r_solve_unload, 1},
-    {"egw_restitution_energy", 20,
+    {"egw_restitution(_energy)", 20,
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass", K_DBL},
       {"velocity", K_DBL}, {"e", K_PTR}, {"w_load", K_PTR}, {"w_dissipated", K_PTR}},
      r_restitution, 1},
