@@ -37,13 +37,15 @@ module egw_params
    !> dimensionless parameters in the ranges below, where the scaled law and its
    !> Jacobian stay normal doubles.
    real(dp), parameter, public :: scale_margin = 1.0e-30_dp
-   !> Greenwood-Tripp mu: the Jacobian of the rough-flat law grows like mu/K (EP-GW);
-   !> 1e20 keeps its ratio to the elastic part within 1/eps**1.25 (Newton still contracts).
+   !> Greenwood-Tripp mu: the rough-flat law's Jacobian grows like mu (mu/K for EP-GW)
+   !> against the elastic part; a measured bound, not a derived one: EP-GW solves converge
+   !> at mu = 1e20 and ran for minutes at 1e50 (E-GW and GW were fine to 1e300).
    real(dp), parameter, public :: mu_min = 1.0e-20_dp, mu_max = 1.0e20_dp
    !> Plasticity index: e = 1/psi**2 and q = rho_p e (the scaled yield and plastic onsets)
    !> and their 3/2 powers must be normal doubles.
    real(dp), parameter, public :: psi_min = 1.0e-50_dp, psi_max = 1.0e50_dp
-   !> ZMC K: the law's plastic coefficient sqrt(e)/K, limited like mu.
+   !> ZMC K: the law's plastic coefficient sqrt(e)/K, limited like mu (measured: K = 1e-20
+   !> converges, 1e-50 no longer does, 1e-100 ran for minutes).
    real(dp), parameter, public :: hardness_coeff_min = 1.0e-20_dp
    real(dp), parameter, public :: plastic_ratio_max = 1.0e50_dp
    !> Scaled overlap delta/sigma: the Hertz edge layer of relative width (delta/sigma)**(-2/3)
