@@ -10,7 +10,7 @@ PY_STAMP := $(VENV)/.egw-python-installed
 PY_SOURCES := $(wildcard src/*.f90 src/egw/*.f90 include/*.h CMakeLists.txt cmake/* \
 	python/setup.py python/pyproject.toml python/src/egw/*.py)
 
-.PHONY: run test bench setup clean python docs
+.PHONY: run test bench setup clean python docs fuzz
 run: setup
 	@$(FPM) run egw-table $(FPM_FLAGS) -- $(ARGS)
 
@@ -45,3 +45,13 @@ $(PY_STAMP): $(PY_SOURCES) | setup
 	@echo "python: installing the egw package into $(VENV)/ (libegw compiled with CMake) ..." >&2
 	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check numpy pandas pytest ./python
 	@touch $@
+
+# The C API fuzz harness in full (tools/fuzz/egw_fuzz.c, doc/fuzz.md): ~6600 forked calls
+# with NaN, Inf, 0, +-1e300, 1e-300, subnormals and extreme integers (and pairs of
+# extreme scales); prints the counts
+# tried / refused / accepted / silent / clobbered / crashed / hung (a few minutes).
+# FUZZ_ARGS: e.g. "-j 4 -t 20" or "-f egw_solve -v".
+FUZZ_ARGS ?=
+fuzz: setup
+	@$(FPM) build $(FPM_FLAGS) >/dev/null
+	@$(FPM) run egw-fuzz $(FPM_FLAGS) -- $(FUZZ_ARGS)

@@ -77,7 +77,11 @@ int egw_last_error(char *buf, int buflen);
 /* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54. */
 void egw_params_default(egw_params *p);
 
-/* Validate every field of p. EGW_INVALID_PARAMETER names the field; EGW_NULL_POINTER. */
+/* Validate every field of p, including the ranges the numerics represent (normal doubles;
+ * for sigma > 0 the scales sqrt(R sigma), E sqrt(sigma/R), E sqrt(R) sigma^1.5 within
+ * 1e+-278, mu in [1e-20, 1e20]; psi 0 or in [1e-50, 1e50]; K >= 1e-20; rho_p <= 1e50:
+ * doc/parameters.md section 5). EGW_INVALID_PARAMETER names the field and its valid
+ * range; EGW_NULL_POINTER. */
 int egw_params_validate(const egw_params *p);
 
 /* mu = (8/3) eta sigma sqrt(2 R beta) from summit density eta (per unit area), summit
@@ -94,8 +98,9 @@ int egw_psi_from_hardness(double modulus, double hardness, double hardness_coeff
                           double sigma, double summit_radius, double *psi);
 
 /* F_n(h) = int_h^inf (s-h)^n phi(s) ds, phi the standard normal density (doc/theory.md
- * section 2). n >= 0, h any non-NaN value (F_n(+inf) = 0). Relative error <= 1e-14 for
- * n in {0, 1/2, 1, 3/2, 5/2}, <= 1e-12 otherwise. EGW_INVALID_ARGUMENT for NaN or n < 0. */
+ * section 2). 0 <= n <= 150, h any non-NaN value (F_n(+inf) = 0). Relative error <= 1e-14
+ * for n in {0, 1/2, 1, 3/2, 5/2}, <= 1e-12 otherwise. EGW_INVALID_ARGUMENT for NaN, n
+ * outside [0, 150], or a value beyond the doubles (F_n(-inf) = +inf for n > 0). */
 int egw_gauss_integral(double n, double h, double *value);
 
 /* dF_n/dh = -n F_{n-1}(h) (-phi(h) for n = 0). Same domain and statuses. */
@@ -109,7 +114,8 @@ int egw_ellipe(double k, double *value);
 /* Nominal pressure p_G(d) of the rough flat at separation d of the summit base plane
  * from a rigid smooth surface (doc/theory.md section 3): elastic asperities, or ZMC
  * asperities when p->model == EGW_MODEL_EPGW and p->psi > 0. Needs p->sigma > 0.
- * Units of p->modulus. egw_flat_pressure_deriv also returns dp_G/dd (<= 0). */
+ * Units of p->modulus. egw_flat_pressure_deriv also returns dp_G/dd (<= 0). A separation
+ * so deep that the pressure exceeds the doubles: EGW_INVALID_ARGUMENT. */
 int egw_flat_pressure(const egw_params *p, double separation, double *pressure);
 int egw_flat_pressure_deriv(const egw_params *p, double separation, double *pressure,
                             double *dpressure);
@@ -128,7 +134,8 @@ int egw_flat_pressure_unload(const egw_params *p, double separation, double sepa
 
 /* Hertz contact of smooth spheres (sigma ignored): force (4/3) E sqrt(R) delta^1.5,
  * stiffness dP/ddelta = 2 E a, contact radius a = sqrt(R delta); all 0 for delta <= 0.
- * Outputs other than NULL are written. EGW_INVALID_ARGUMENT for NaN/inf delta. */
+ * Outputs other than NULL are written. EGW_INVALID_ARGUMENT for NaN/inf delta or a force
+ * or stiffness beyond the doubles. */
 int egw_hertz(const egw_params *p, double delta, double *force, double *stiffness,
               double *contact_radius);
 
@@ -144,11 +151,11 @@ enum {
 };
 
 typedef struct {
-  int    n_radial;   /* mesh nodes; 0 = chosen from rel_tol */
+  int    n_radial;   /* mesh nodes; 0 = chosen from rel_tol, else 8 .. 4097 */
   double rel_tol;    /* target relative accuracy of the force (default 1e-6) */
   int    max_iter;   /* 0 = default */
   int    method;     /* EGW_METHOD_AUTO=0, EGW_METHOD_NEWTON=1, EGW_METHOD_PICARD=2 */
-  int    n_threads;  /* 0 = OpenMP default */
+  int    n_threads;  /* 0 = OpenMP default; capped to the processor count */
 } egw_options;
 
 typedef struct {
@@ -166,9 +173,11 @@ void egw_options_default(egw_options *o);
  * force: total normal force P (>= 0); stiffness: dP/ddelta by implicit differentiation;
  * contact_radius: effective a* = (3 pi/4) int r p dr / int p dr (= a for Hertz);
  * max_pressure: max of the total pressure. Works for every model (Hertz exactly).
- * o may be NULL (defaults). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (delta
- * not finite, bad options), EGW_NULL_POINTER, EGW_NOT_CONVERGED (res is then zeroed:
- * no force is ever returned from a failed solve). */
+ * o may be NULL (defaults). Statuses: EGW_INVALID_PARAMETER (also parameters outside the
+ * ranges the numerics represent, doc/parameters.md "Valid ranges"), EGW_INVALID_ARGUMENT
+ * (delta not finite, delta/sigma > 1e15 for rough spheres, a Hertz force beyond the
+ * doubles, bad options), EGW_NULL_POINTER, EGW_NOT_CONVERGED (also a mesh above 4097
+ * nodes), EGW_OUT_OF_MEMORY; res is left untouched on any failure. */
 int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
@@ -191,7 +200,8 @@ int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, do
  * curve from delta_m, to about o->rel_tol. 0 < e <= 1; e = 1 for elastic summits (GW, E-GW,
  * psi = 0; exactly for Hertz and sigma = 0). Units: any consistent set (SI: kg, m/s).
  * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (mass or velocity not finite and
- * > 0, bad options), EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed); e is
+ * > 0, bad options; rough spheres: m* v^2/2 outside [1e-150, 3.4e37] E sqrt(R) sigma^2.5,
+ * where the deepest overlap leaves the solver's range, doc/parameters.md section 5), EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed); e is
  * left untouched on any failure. */
 int egw_restitution(const egw_params *p, const egw_options *o, double mass, double velocity,
                     double *e);
@@ -258,12 +268,14 @@ int egw_table_build(const egw_params *p, const egw_options *o, double delta_min,
  * the cut-off. Above delta_max the force continues linearly with the stiffness at
  * delta_max (C1, below a convex force law) and EGW_OUT_OF_RANGE is returned WITH the
  * outputs written (the one exception to "outputs unchanged on failure"). NULL outputs
- * are skipped. EGW_INVALID_ARGUMENT for NaN delta; EGW_NULL_POINTER for t. */
+ * are skipped. EGW_INVALID_ARGUMENT for NaN delta, and (nothing written) for delta = +inf
+ * or a continuation beyond the doubles; EGW_NULL_POINTER for t. */
 int egw_table_eval(egw_table t, double delta, double *force, double *stiffness);
 
 /* egw_table_eval at the n overlaps delta[0..n-1] in one call: force[i], stiffness[i]
  * (either may be NULL). A NaN overlap refuses the call (EGW_INVALID_ARGUMENT naming its
- * index) before anything is written; overlaps above delta_max are extrapolated as by
+ * index) before anything is written, as does one whose continuation is not a double (+inf);
+ * delta NULL with n > 0: EGW_NULL_POINTER; overlaps above delta_max are extrapolated as by
  * egw_table_eval and EGW_OUT_OF_RANGE names the first of them (all values written).
  * n = 0 does nothing; n < 0: EGW_INVALID_ARGUMENT. For callers that pay per call
  * (Python, scripting languages): the cost per point is that of egw_table_eval. */

@@ -24,6 +24,7 @@ program tester
    use test_cli, only: collect_cli
    use test_hysteresis, only: collect_hysteresis
    use test_unload_sphere, only: collect_unload_sphere
+   use test_input, only: collect_input
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -50,7 +51,8 @@ program tester
       & new_testsuite("unloading", collect_unloading), &
       & new_testsuite("cli", collect_cli), &
       & new_testsuite("unload_sphere", collect_unload_sphere), &
-      & new_testsuite("hysteresis", collect_hysteresis) &
+      & new_testsuite("hysteresis", collect_hysteresis), &
+      & new_testsuite("input", collect_input) &
       & ]
 
    stat = 0

@@ -2,18 +2,18 @@
 !> nominal pressure of a rough flat on a smooth rigid flat, p_G(d) (eqs. 8, 9, 44;
 !> doc/theory.md §3), which is also the pressure-overclosure law an FE code wants.
 module egw_asperity
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    ! The kind is imported as wp because the rough-flat law's derivative argument is dp.
    use egw_kinds, only: wp => dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, fatal_error, &
       & format_real
-   use egw_params, only: contact_params, validate_params, rough_flat_coefficient, model_epgw
+   use egw_params, only: contact_params, validate_params, model_epgw
    use egw_gauss, only: gauss_f32, gauss_f12, zmc_flat_integral
    implicit none
    private
 
    public :: hertz_asperity_force, zmc_asperity_force, rough_flat_law, flat_pressure
-   public :: check_flat_input, flat_psi
+   public :: check_flat_input, flat_psi, flat_scaled_to_units
 
 contains
 
@@ -102,7 +102,7 @@ contains
       real(wp), intent(out) :: pressure    !< p_G(d)
       real(wp), intent(out) :: dpressure   !< dp_G/dd (<= 0)
       type(egw_error), allocatable, intent(out) :: error
-      real(wp) :: c, sigma, p, dpdh, psi
+      real(wp) :: sigma, p, dpdh, psi
       pressure = 0.0_wp
       dpressure = 0.0_wp
       call check_flat_input(params, separation, error)
@@ -111,10 +111,28 @@ contains
       psi = flat_psi(params)
       call rough_flat_law(separation/sigma, psi, params%hardness_coeff, params%plastic_ratio, &
          & p, dpdh)
-      c = rough_flat_coefficient(params)
-      pressure = c*sigma*sqrt(sigma)*p
-      dpressure = c*sqrt(sigma)*dpdh
+      call flat_scaled_to_units(params, separation, p, dpdh, pressure, dpressure, error)
    end subroutine flat_pressure
+
+   !> p_G = C sigma^(3/2) p and dp_G/dd = C sigma^(1/2) dp/dh with C sigma^(3/2) =
+   !> (mu/(2 sqrt 2)) E sqrt(sigma/R), formed from the scales validate_params keeps normal
+   !> (C alone may overflow). A pressure beyond the doubles (deep overlap, d/sigma ->
+   !> -Inf) is refused: egw_invalid_argument naming the separation.
+   pure subroutine flat_scaled_to_units(params, separation, p, dpdh, pressure, dpressure, error)
+      type(contact_params), intent(in) :: params
+      real(wp), intent(in) :: separation, p, dpdh
+      real(wp), intent(out) :: pressure, dpressure
+      type(egw_error), allocatable, intent(out) :: error
+      real(wp) :: scale
+      scale = params%mu/(2.0_wp*sqrt(2.0_wp))*params%modulus
+      pressure = scale*(sqrt(params%sigma)/sqrt(params%radius))*p
+      dpressure = scale/(sqrt(params%sigma)*sqrt(params%radius))*dpdh
+      if (.not. (ieee_is_finite(pressure) .and. ieee_is_finite(dpressure))) then
+         call fatal_error(error, egw_invalid_argument, "separation = "// &
+            & format_real(separation)//": the pressure there overflows (deeper than the " &
+            & //"doubles reach; separation/sigma = "//format_real(separation/params%sigma)//")")
+      end if
+   end subroutine flat_scaled_to_units
 
    !> The checks of the rough-flat laws' input (flat_pressure, flat_pressure_unload): valid
    !> params, sigma > 0 (a flat needs roughness), a separation that is a number.

@@ -105,13 +105,22 @@ contains
       real(c_double), value, intent(in) :: summit_density, summit_radius, sigma, radius
       type(c_ptr), value, intent(in) :: mu
       integer(c_int) :: stat
+      real(dp) :: value
       stat = check_nonneg("summit_density", summit_density)
       if (stat == egw_ok) stat = check_nonneg("summit_radius", summit_radius)
       if (stat == egw_ok) stat = check_nonneg("sigma", sigma)
       if (stat == egw_ok) stat = check_nonneg("radius", radius)
       if (stat == egw_ok) stat = require(mu, "mu")
       if (stat /= egw_ok) return
-      call put(mu, mu_from_summits(summit_density, summit_radius, sigma, radius))
+      value = mu_from_summits(summit_density, summit_radius, sigma, radius)
+      if (.not. ieee_is_finite(value)) then
+         stat = egw_invalid_argument
+         last_message = "mu = (8/3) eta sigma sqrt(2 R beta) exceeds the largest double: " &
+            & //"summit_density = "//format_real(summit_density)//", sigma = " &
+            & //format_real(sigma)
+         return
+      end if
+      call put(mu, value)
    end function egw_mu_from_summits
 
    !> C: egw_psi_from_hardness (include/egw.h).
@@ -291,9 +300,8 @@ contains
       if (stat /= egw_ok) return
       call solve_contact(params, options, delta, result, error)
       stat = settle(error)
-      ! a solve that failed returns a zeroed result, never a force (egw.h)
-      if (stat /= egw_ok) result = solve_result()
-      call put_result(res, result)
+      ! res untouched on any failure (egw.h)
+      if (stat == egw_ok) call put_result(res, result)
    end function egw_solve
 
    function egw_solve_unload(p, o, delta, delta_max, res) result(stat) &

@@ -3,7 +3,7 @@
 module egw_capi_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_associated, &
       & c_f_pointer, c_loc
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_out_of_range, &
       & egw_out_of_memory, &
@@ -90,6 +90,12 @@ contains
       end if
       m = s
       call hysteresis_eval(h, delta, m, f, k, st)
+      if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then  ! input guard (issue 13)
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
+            & ", delta_max_state = "//format_real(s)//": the force there exceeds the doubles")
+         stat = settle(error)
+         return
+      end if
       s = m
       call put(force, f)
       call put(stiffness, k)

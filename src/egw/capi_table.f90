@@ -5,10 +5,10 @@
 module egw_capi_table
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_out_of_range, egw_null_pointer, fatal_error, format_real
+      & egw_out_of_range, egw_null_pointer, egw_out_of_memory, fatal_error, format_real
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, build_table, table_eval, table_covers, table_energy, &
@@ -83,25 +83,32 @@ contains
       end if
       call c_f_pointer(h, t)
       call table_eval(t, delta, f, k)
+      stat = egw_ok
+      if (delta > t%delta_max) then
+         ! the linear continuation: +Inf or far enough to overflow is refused, untouched
+         if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then
+            stat = beyond(t, delta)
+            return
+         end if
+         stat = out_of_range(t, delta)
+      end if
       call put(force, f)
       call put(stiffness, k)
-      stat = egw_ok
-      if (delta > t%delta_max) stat = out_of_range(t, delta)
    end function egw_table_eval
 
    !> C: egw_table_eval_array: egw_table_eval at n overlaps in one call (for callers such
    !> as Python/numpy that pay a high price per call). NaN refuses the whole call before
    !> any output is written; above delta_max the values are written and EGW_OUT_OF_RANGE
    !> names the first such overlap.
-   function egw_table_eval_array(h, n, delta, force, stiffness) result(stat) &
+   function egw_table_eval_array(h, n, delta_ptr, force, stiffness) result(stat) &
       & bind(C, name="egw_table_eval_array")
       type(c_ptr), value, intent(in) :: h
       integer(c_int), value, intent(in) :: n
-      real(c_double), intent(in) :: delta(*)
+      type(c_ptr), value, intent(in) :: delta_ptr
       type(c_ptr), value, intent(in) :: force, stiffness
       integer(c_int) :: stat
       type(force_table), pointer :: t
-      real(c_double), pointer :: f(:), k(:)
+      real(c_double), pointer :: f(:), k(:), delta(:)
       real(dp) :: fi, ki
       integer :: i, first_out
       stat = get_table(h, t)
@@ -111,10 +118,20 @@ contains
          return
       end if
       if (n == 0) return
+      stat = require(delta_ptr, "delta")
+      if (stat /= egw_ok) return
+      call c_f_pointer(delta_ptr, delta, [n])
       do i = 1, n
          if (ieee_is_nan(delta(i))) then
             stat = invalid("delta["//int_str(i - 1)//"] = NaN: must be a number")
             return
+         end if
+         if (delta(i) > t%delta_max) then
+            call table_eval(t, delta(i), fi, ki)
+            if (.not. (ieee_is_finite(fi) .and. ieee_is_finite(ki))) then
+               stat = beyond(t, delta(i), "delta["//int_str(i - 1)//"]")
+               return
+            end if
          end if
       end do
       nullify (f, k)
@@ -137,7 +154,7 @@ contains
       real(c_double), value, intent(in) :: delta
       integer(c_int) :: stat
       type(force_table), pointer :: t
-      real(dp) :: f, k
+      real(dp) :: f, k, e, a
       stat = get_table(h, t)
       if (stat /= egw_ok) return
       if (ieee_is_nan(delta)) then
@@ -145,10 +162,17 @@ contains
          return
       end if
       call table_eval(t, delta, f, k)
+      e = table_energy(t, delta)
+      a = table_contact_radius(t, delta)
+      if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k) .and. ieee_is_finite(e) .and. &
+         & ieee_is_finite(a))) then
+         stat = beyond(t, delta)
+         return
+      end if
       call put(force, f)
       call put(stiffness, k)
-      call put(energy, table_energy(t, delta))
-      call put(contact_radius, table_contact_radius(t, delta))
+      call put(energy, e)
+      call put(contact_radius, a)
       if (.not. table_covers(t, delta)) stat = out_of_range(t, delta)
    end function egw_table_eval_all
 
@@ -253,7 +277,12 @@ contains
       if (stat == egw_ok) stat = get_path(path, fpath)
       if (stat /= egw_ok) return
       call c_f_pointer(tables, handles, [n])
-      allocate (copies(n))
+      allocate (copies(n), stat=i)
+      if (i /= 0) then
+         stat = egw_out_of_memory
+         call record("n = "//int_str(int(n))//": no memory for that many tables")
+         return
+      end if
       do i = 1, n
          stat = get_table(handles(i), t)
          if (stat /= egw_ok) return
@@ -341,7 +370,12 @@ contains
       if (stat == egw_ok) stat = get_path(units, funits, "units")
       if (stat /= egw_ok) return
       call c_f_pointer(tables, handles, [n])
-      allocate (copies(n))
+      allocate (copies(n), stat=i)
+      if (i /= 0) then
+         stat = egw_out_of_memory
+         call record("n = "//int_str(int(n))//": no memory for that many tables")
+         return
+      end if
       do i = 1, n
          stat = get_table(handles(i), t)
          if (stat /= egw_ok) return
@@ -421,6 +455,15 @@ contains
          stat = egw_out_of_range
          call record("mu = "//format_real(cp%mu)//": outside the table's ["// &
             & format_real(u%mu_min)//", "//format_real(u%mu_max)//"]")
+         return
+      end if
+      if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then
+         ! Inf R, E or sigma, or a force beyond the doubles: refused, outputs untouched
+         stat = egw_invalid_parameter
+         call record("sigma = "//format_real(cp%sigma)//", radius = "//format_real(cp%radius) &
+            & //", modulus = "//format_real(cp%modulus)//", delta = "//format_real(delta) &
+            & //": the force E sqrt(R) sigma**1.5 p(delta/sigma) exceeds the largest double" &
+            & //" (R, E, sigma must be finite)")
          return
       end if
       call put(force, f)
@@ -571,6 +614,19 @@ contains
       call record("delta = "//format_real(delta)//": above the table's delta_max = "// &
          & format_real(t%delta_max)//" (values extrapolated linearly)")
    end function out_of_range
+
+   !> An overlap whose linear continuation above delta_max leaves the doubles (+Inf, or
+   !> ~1e300): refused, outputs untouched.
+   integer(c_int) function beyond(t, delta, name) result(stat)
+      type(force_table), intent(in) :: t
+      real(dp), intent(in) :: delta
+      character(len=*), intent(in), optional :: name
+      character(len=:), allocatable :: label
+      label = "delta"
+      if (present(name)) label = name
+      stat = invalid(label//" = "//format_real(delta)//": the continuation above the table's" &
+         & //" delta_max = "//format_real(t%delta_max)//" exceeds the largest double")
+   end function beyond
 
    integer(c_int) function invalid(message) result(stat)
       character(len=*), intent(in) :: message

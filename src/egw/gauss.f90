@@ -5,7 +5,7 @@
 !> composite 16-point Gauss-Legendre rule whose panels are placed from the Gaussian peak
 !> (a deterministic rule, no error estimates, no adaptivity).
 module egw_gauss
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use egw_kinds, only: dp, inv_sqrt2pi
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real
    use egw_gauss_fits, only: fit_pos, fit_neg, fit_deg_pos, fit_deg_neg, fit_pos_breaks, &
@@ -45,6 +45,12 @@ module egw_gauss
    !> one panel (ratio limited to e^(6/p) - 1).
    real(dp), parameter :: power_span = 6.0_dp
    integer, parameter :: max_panels = 200
+   !> Largest order of the checked F_n (get_gauss_integral): the quadrature's intermediates
+   !> grow like Gamma((n+1)/2) and overflow past n ~ 170 (F_150(0) ~ 3e130, tested to 1e-13).
+   real(dp), parameter, public :: max_order = 150.0_dp
+   !> Below this order dF_n/dh = -n F_{n-1}(h) loses ~1e-17/n relatively (n - 1 rounds):
+   !> small_order_deriv takes over.
+   real(dp), parameter :: small_order = 1.0e-4_dp
 
    !> 16-point Gauss-Legendre nodes (positive half) and weights on [-1, 1].
    real(dp), parameter :: gl_x(8) = [0.095012509837637440185_dp, 0.28160355077925891323_dp, &
@@ -97,10 +103,48 @@ contains
       real(dp), intent(in) :: n, h
       if (same(n, 0.0_dp)) then
          df = -normal_density(h)
+      else if (n < small_order) then
+         df = -small_order_deriv(n, h)
       else
          df = -n*gauss_integral(n - 1.0_dp, h)
       end if
    end function gauss_integral_deriv
+
+   !> n F_{n-1}(h) for 0 < n < small_order, where F_{n-1} nears its pole at order -1 and
+   !> n - 1 keeps only log10(n/eps) digits of n (relative error ~1e-17/n). With
+   !> n int_0^1 t^(n-1) dt = 1:
+   !>   n F_{n-1}(h) = phi(h) + n [int_0^1 t^(n-1) (phi(h+t) - phi(h)) dt
+   !>                              + int_1^inf t^(n-1) phi(h+t) dt],
+   !> two smooth O(1) integrals needed to ~1e-12/(n ...) only: 16-point Gauss-Legendre on
+   !> [0, 1] and on panels of width 1 over the Gaussian's support t in h+t in [-40, 40].
+   elemental real(dp) function small_order_deriv(n, h) result(v)
+      real(dp), intent(in) :: n, h
+      real(dp) :: a, b, t, lo, hi, ph
+      integer :: i, k, panels
+      if (h < -1.0e8_dp) then
+         ! every summit above h: F_m(h) = |h|**m (1 + m(m-1)/(2 h**2) + ...), exact here
+         v = n*(-h)**(n - 1.0_dp)
+         return
+      end if
+      ph = normal_density(h)
+      a = 0.0_dp
+      do i = 1, 16
+         t = 0.5_dp*gl_u(i)
+         a = a + 0.5_dp*gl_w16(i)*t**(n - 1.0_dp)*(normal_density(h + t) - ph)
+      end do
+      b = 0.0_dp
+      lo = max(1.0_dp, -h - 40.0_dp)
+      hi = max(1.0_dp, -h + 40.0_dp)
+      panels = ceiling(hi - lo)
+      do k = 0, panels - 1
+         do i = 1, 16
+            t = lo + (real(k, dp) + 0.5_dp*gl_u(i))*(hi - lo)/real(panels, dp)
+            b = b + 0.5_dp*gl_w16(i)*(hi - lo)/real(panels, dp)*t**(n - 1.0_dp) &
+               & *normal_density(h + t)
+         end do
+      end do
+      v = ph + n*(a + b)
+   end function small_order_deriv
 
    !> Checked F_n(h): NaN h, NaN n or n < 0 give egw_invalid_argument naming the argument.
    pure subroutine get_gauss_integral(n, h, value, error)
@@ -112,6 +156,7 @@ contains
       call check_gauss_args(n, h, error)
       if (allocated(error)) return
       value = gauss_integral(n, h)
+      call check_gauss_value(n, h, value, error)
    end subroutine get_gauss_integral
 
    !> dF_n/dh with the checks of get_gauss_integral.
@@ -124,14 +169,26 @@ contains
       call check_gauss_args(n, h, error)
       if (allocated(error)) return
       value = gauss_integral_deriv(n, h)
+      call check_gauss_value(n, h, value, error)
    end subroutine get_gauss_integral_deriv
+
+   !> A value beyond the doubles (F_n(h) ~ |h|**n for h -> -Inf) is refused.
+   pure subroutine check_gauss_value(n, h, value, error)
+      real(dp), intent(in) :: n, h, value
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. ieee_is_finite(value)) call fatal_error(error, egw_invalid_argument, "h = " &
+         & //format_real(h)//": F_n(h) or its derivative exceeds the largest double at n = " &
+         & //format_real(n))
+   end subroutine check_gauss_value
 
    pure subroutine check_gauss_args(n, h, error)
       real(dp), intent(in) :: n, h
       type(egw_error), allocatable, intent(out) :: error
-      if (ieee_is_nan(n) .or. n < 0.0_dp) then
+      if (ieee_is_nan(n) .or. n < 0.0_dp .or. n > max_order) then
          call fatal_error(error, egw_invalid_argument, "n = "//format_real(n)// &
-            & ": the order of the Gaussian integral must be a number >= 0")
+            & ": the order of the Gaussian integral must lie in [0, "// &
+            & format_real(max_order)//"] (Gamma((n+1)/2)-sized intermediates overflow" &
+            & //" beyond n ~ 170)")
       else if (ieee_is_nan(h)) then
          call fatal_error(error, egw_invalid_argument, "h = "//format_real(h)// &
             & ": the lower limit of the Gaussian integral must not be NaN")

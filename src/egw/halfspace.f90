@@ -23,6 +23,7 @@
 !>   kernel is never sampled near its singularity. The rule sizes were chosen so that the
 !>   uniform-disc test (exact pressure representation) holds to 1e-15.
 module egw_halfspace
+   !$ use omp_lib, only: omp_get_num_procs
    use egw_kinds, only: dp, pi
    use egw_ellip, only: ellipk_comp_fast, ellipk_log_split
    implicit none
@@ -386,16 +387,28 @@ contains
    !> n_threads = 0 leaves the team size to OpenMP. Each thread fills whole columns of a
    !> transposed buffer (contiguous, no cache line shared between threads), transposed
    !> after the parallel region.
-   subroutine assemble_influence(mesh, r, infl, n_threads)
+   !> n_threads above the processor count is capped to it (more threads than processors
+   !> only cost; libgomp aborts when it cannot create them). stat (optional): nonzero if
+   !> the buffer could not be allocated (infl then unset), else the buffer's failure stops.
+   subroutine assemble_influence(mesh, r, infl, n_threads, stat)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: r(:)
       real(dp), intent(out) :: infl(:, :)   !< (size(r), n_elem*n_gauss)
       integer, intent(in) :: n_threads
-      integer :: i
+      integer, intent(out), optional :: stat
+      integer :: i, threads, ios
       real(dp), allocatable :: rows(:, :)
-      allocate (rows(mesh%n_elem*mesh%n_gauss, size(r)))
-      if (n_threads > 0) then
-         !$omp parallel do schedule(dynamic, 4) num_threads(n_threads)
+      if (present(stat)) then
+         allocate (rows(mesh%n_elem*mesh%n_gauss, size(r)), stat=ios)
+         stat = ios
+         if (ios /= 0) return
+      else
+         allocate (rows(mesh%n_elem*mesh%n_gauss, size(r)))
+      end if
+      threads = n_threads
+      !$ threads = min(n_threads, omp_get_num_procs())
+      if (threads > 0) then
+         !$omp parallel do schedule(dynamic, 4) num_threads(threads)
          do i = 1, size(r)
             call influence_row(mesh, r(i), rows(:, i))
          end do

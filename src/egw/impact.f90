@@ -17,7 +17,7 @@ module egw_impact
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
       & format_real
-   use egw_params, only: contact_params, model_hertz, validate_params
+   use egw_params, only: contact_params, model_hertz, validate_params, overlap_ratio_max
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
       & loading_history, load_history, solve_unload
    implicit none
@@ -27,6 +27,8 @@ module egw_impact
 
    !> Depth of the interval bisection, and steps allowed to find delta_lo and delta_m.
    integer, parameter :: max_depth = 24, max_steps = 400
+   !> Smallest impact energy in units of E sqrt(R) sigma**2.5 (see check).
+   real(dp), parameter :: min_scaled_energy = 1.0e-150_dp
 
    !> One force curve: loading (history not loaded) or unloading from a history.
    type :: force_curve
@@ -110,6 +112,7 @@ contains
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: mass, velocity
       type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: log_energy
       call validate_params(params, error)
       if (allocated(error)) return
       call validate_options(options, error)
@@ -123,6 +126,25 @@ contains
       else if (.not. ieee_is_finite(0.5_dp*mass*velocity**2)) then
          call fatal_error(error, egw_invalid_argument, "mass, velocity = "//format_real(mass) &
             & //", "//format_real(velocity)//": the kinetic energy overflows")
+      else if (params%model /= model_hertz .and. params%sigma > 0.0_dp) then
+         ! The scaled impact energy m v**2/2 / (E sqrt(R) sigma**2.5) (in logarithms: the
+         ! energy unit itself may not be a double) must lie where the solver works: at most
+         ! twice the Hertz work (8/15) x**2.5 to the deepest overlap x = delta/sigma = 1e15
+         ! (E-GW and EP-GW add to it; classic GW has approached it long before), at least
+         ! 1e-150 (the turning point then lies where the force is still ~1e100 above the
+         ! solver's underflow cut of 1e-250; at 1e-250 it is lost). Refused at once rather
+         ! than marching ~100 solves to the limit, or integrating subnormal forces.
+         log_energy = log(0.5_dp*mass) + 2.0_dp*log(velocity) - (log(params%modulus) &
+            & + 0.5_dp*log(params%radius) + 2.5_dp*log(params%sigma))
+         if (log_energy > log(2.0_dp*8.0_dp/15.0_dp) + 2.5_dp*log(overlap_ratio_max) .or. &
+            & log_energy < log(min_scaled_energy)) then
+            call fatal_error(error, egw_invalid_argument, "mass, velocity = " &
+               & //format_real(mass)//", "//format_real(velocity)//": the impact energy " &
+               & //"m v**2/2 in units of E sqrt(R) sigma**2.5, exp("//format_real(log_energy) &
+               & //"), must lie in ["//format_real(min_scaled_energy)//", " &
+               & //format_real(2.0_dp*8.0_dp/15.0_dp*overlap_ratio_max**2.5_dp) &
+               & //"] (the deepest overlap within the solver's range)")
+         end if
       end if
    end subroutine check
 

@@ -3,7 +3,8 @@
 module egw_params
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp, pi
-   use egw_status, only: egw_error, egw_invalid_parameter, fatal_error, format_real
+   use egw_status, only: egw_error, egw_invalid_parameter, egw_invalid_argument, fatal_error, &
+      & format_real, format_real_len
    use egw_text, only: int_text, int_text_len
    implicit none
    private
@@ -26,7 +27,31 @@ module egw_params
    end type contact_params
 
    public :: validate_params, model_name, mu_from_summits, psi_from_hardness, &
-      & rough_flat_coefficient
+      & rough_flat_coefficient, check_scaled_overlap, range_str, product4, length_unit, &
+      & pressure_unit, force_unit, stiffness_unit
+
+   !> What the numerics represent (doc/parameters.md "Valid ranges"): every positive field
+   !> a normal double (no subnormals: they carry fewer digits and their reciprocals
+   !> overflow); for rough spheres (sigma > 0) the scales of the solver's variables
+   !> (length sqrt(R sigma), pressure E sqrt(sigma/R), force E sqrt(R) sigma**1.5)
+   !> normal doubles with scale_margin decades to spare for the scaled solution, and the
+   !> dimensionless parameters in the ranges below, where the scaled law and its
+   !> Jacobian stay normal doubles.
+   real(dp), parameter, public :: scale_margin = 1.0e-30_dp
+   !> Greenwood-Tripp mu: the rough-flat law's Jacobian grows like mu (mu/K for EP-GW)
+   !> against the elastic part; a measured bound, not a derived one: EP-GW solves converge
+   !> at mu = 1e20 and ran for minutes at 1e50 (E-GW and GW were fine to 1e300).
+   real(dp), parameter, public :: mu_min = 1.0e-20_dp, mu_max = 1.0e20_dp
+   !> Plasticity index: e = 1/psi**2 and q = rho_p e (the scaled yield and plastic onsets)
+   !> and their 3/2 powers must be normal doubles.
+   real(dp), parameter, public :: psi_min = 1.0e-50_dp, psi_max = 1.0e50_dp
+   !> ZMC K: the law's plastic coefficient sqrt(e)/K, limited like mu (measured: K = 1e-20
+   !> converges, 1e-50 no longer does, 1e-100 ran for minutes).
+   real(dp), parameter, public :: hardness_coeff_min = 1.0e-20_dp
+   real(dp), parameter, public :: plastic_ratio_max = 1.0e50_dp
+   !> Scaled overlap delta/sigma: the Hertz edge layer of relative width (delta/sigma)**(-2/3)
+   !> must hold many doubles (1e15: 1e-10 of the contact radius, 6 digits inside it).
+   real(dp), parameter, public :: overlap_ratio_max = 1.0e15_dp
 
 contains
 
@@ -64,7 +89,130 @@ contains
       if (.not. ieee_is_finite(params%plastic_ratio) .or. .not. params%plastic_ratio > 1.0_dp) then
          call bad(error, "plastic_ratio", params%plastic_ratio, "must be finite and > 1"); return
       end if
+      call check_ranges(params, error)
    end subroutine validate_params
+
+   !> The ranges the numerics represent (see scale_margin above; doc/parameters.md).
+   pure subroutine check_ranges(params, error)
+      type(contact_params), intent(in) :: params
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: lr, le, ls
+      if (params%radius < tiny(1.0_dp)) then
+         call bad(error, "radius", params%radius, "must be a normal double >= " &
+            & //format_real(tiny(1.0_dp))//" (subnormal)"); return
+      end if
+      if (params%modulus < tiny(1.0_dp)) then
+         call bad(error, "modulus", params%modulus, "must be a normal double >= " &
+            & //format_real(tiny(1.0_dp))//" (subnormal)"); return
+      end if
+      if (params%sigma > 0.0_dp .and. params%sigma < tiny(1.0_dp)) then
+         call bad(error, "sigma", params%sigma, "must be 0 or a normal double >= " &
+            & //format_real(tiny(1.0_dp))//" (subnormal)"); return
+      end if
+      if (params%sigma > 0.0_dp) then
+         if (params%mu < mu_min .or. params%mu > mu_max) then
+            call bad(error, "mu", params%mu, "must lie in "//range_str(mu_min, mu_max) &
+               & //" (where the rough-flat law and its Jacobian stay normal doubles)"); return
+         end if
+         ! the scales of the solver's variables, in logarithms (no overflow on the way)
+         lr = log(params%radius)
+         le = log(params%modulus)
+         ls = log(params%sigma)
+         if (.not. (in_scale(0.5_dp*(lr + ls)) .and. in_scale(le + 0.5_dp*(ls - lr)) .and. &
+            & in_scale(le + 0.5_dp*lr + 1.5_dp*ls) .and. in_scale(le + 0.5_dp*(lr + ls)))) then
+            call bad(error, "sigma", params%sigma, "with radius = "//format_real(params%radius) &
+               & //" and modulus = "//format_real(params%modulus)//": the scales sqrt(R sigma)" &
+               & //", E sqrt(sigma/R), E sqrt(R) sigma**1.5 must lie in " &
+               & //range_str(tiny(1.0_dp)/scale_margin, huge(1.0_dp)*scale_margin)); return
+         end if
+      end if
+      if (params%psi > 0.0_dp .and. (params%psi < psi_min .or. params%psi > psi_max)) then
+         call bad(error, "psi", params%psi, "must be 0 or lie in "//range_str(psi_min, psi_max) &
+            & //" (1/psi**2 and rho_p/psi**2 normal doubles)"); return
+      end if
+      if (params%hardness_coeff < hardness_coeff_min) then
+         call bad(error, "hardness_coeff", params%hardness_coeff, "K must lie in [" &
+            & //format_real(hardness_coeff_min)//", 1)"); return
+      end if
+      if (params%plastic_ratio > plastic_ratio_max) then
+         call bad(error, "plastic_ratio", params%plastic_ratio, "must lie in (1, " &
+            & //format_real(plastic_ratio_max)//"]"); return
+      end if
+   end subroutine check_ranges
+
+   !> ln(x) of a scale x that is a normal double with scale_margin to spare both ways.
+   elemental logical function in_scale(log_x)
+      real(dp), intent(in) :: log_x
+      in_scale = log_x >= log(tiny(1.0_dp)/scale_margin) .and. log_x <= log(huge(1.0_dp)*scale_margin)
+   end function in_scale
+
+   !> The scaled overlap delta/sigma of a rough contact (sigma > 0) within what the solver
+   !> resolves: |delta/sigma| <= overlap_ratio_max on the overlap side (any separation is
+   !> fine: far apart the force is 0). name names the argument in the message.
+   pure subroutine check_scaled_overlap(name, delta, sigma, error)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: delta, sigma
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. sigma > 0.0_dp) return
+      if (delta > overlap_ratio_max*sigma) call fatal_error(error, egw_invalid_argument, &
+         & name//" = "//format_real(delta)//": must be <= "//format_real(overlap_ratio_max) &
+         & //" sigma = "//format_real(overlap_ratio_max*sigma) &
+         & //" (the solver's range of delta/sigma)")
+   end subroutine check_scaled_overlap
+
+   !> w x y z of positive doubles without intermediate overflow or underflow: the
+   !> significands multiply in [1/16, 1), the exponents add, and scale() rounds once more
+   !> (to a subnormal, 0 or +Inf only if the product itself is out of range).
+   elemental real(dp) function product4(w, x, y, z) result(p)
+      real(dp), intent(in) :: w, x, y, z
+      p = scale(fraction(w)*fraction(x)*fraction(y)*fraction(z), &
+         & exponent(w) + exponent(x) + exponent(y) + exponent(z))
+   end function product4
+
+   !> The units of the rough solver's scaled variables (doc/theory.md section 5) for
+   !> validated params with sigma > 0: length sqrt(R sigma), pressure E sqrt(sigma/R),
+   !> force E sqrt(R) sigma**1.5, stiffness E sqrt(R sigma). The plain expression where its
+   !> intermediates stay normal (bit for bit as before), else product4 (sigma**1.5 alone
+   !> underflows at sigma = 1e-300 while the force unit E sqrt(R) sigma**1.5 need not).
+   elemental real(dp) function length_unit(params) result(u)
+      type(contact_params), intent(in) :: params
+      u = sqrt(params%radius*params%sigma)
+      if (.not. normal(u) .or. .not. normal(params%radius*params%sigma)) &
+         & u = sqrt(params%radius)*sqrt(params%sigma)
+   end function length_unit
+
+   elemental real(dp) function pressure_unit(params) result(u)
+      type(contact_params), intent(in) :: params
+      u = params%modulus*sqrt(params%sigma/params%radius)
+      if (.not. normal(u) .or. .not. normal(params%sigma/params%radius)) &
+         & u = product4(params%modulus, sqrt(params%sigma), 1.0_dp/sqrt(params%radius), 1.0_dp)
+   end function pressure_unit
+
+   elemental real(dp) function force_unit(params) result(u)
+      type(contact_params), intent(in) :: params
+      u = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
+      if (.not. normal(u) .or. .not. normal(params%sigma**1.5_dp) .or. &
+         & .not. normal(params%modulus*sqrt(params%radius))) &
+         & u = product4(params%modulus, sqrt(params%radius), params%sigma, sqrt(params%sigma))
+   end function force_unit
+
+   elemental real(dp) function stiffness_unit(params) result(u)
+      type(contact_params), intent(in) :: params
+      u = product4(params%modulus, sqrt(params%radius), sqrt(params%sigma), 1.0_dp)
+   end function stiffness_unit
+
+   elemental logical function normal(x)
+      real(dp), intent(in) :: x
+      normal = abs(x) >= tiny(1.0_dp) .and. abs(x) <= huge(1.0_dp)
+   end function normal
+
+   !> "[lo, hi]" for messages.
+   pure function range_str(lo, hi) result(str)
+      real(dp), intent(in) :: lo, hi
+      ! a length from a specification function, not a deferred one (egw_text: threads)
+      character(len=format_real_len(lo) + format_real_len(hi) + 4) :: str
+      str = "["//format_real(lo)//", "//format_real(hi)//"]"
+   end function range_str
 
    !> Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta) from the summit density eta
    !> (per unit area), summit radius beta, roughness sigma and equivalent radius R.

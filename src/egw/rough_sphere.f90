@@ -31,10 +31,11 @@
 module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi, sqrt2
-   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
-      & format_real
+   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
+      & egw_out_of_memory, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw
+      & model_epgw, check_scaled_overlap, length_unit, pressure_unit, force_unit, stiffness_unit, &
+      & product4
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_asperity, only: rough_flat_law
@@ -93,6 +94,11 @@ module egw_rough_sphere
    integer, parameter :: profile_levels = 4
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
+   !> Largest mesh (nodes) of a solve: its dense influence matrix (nodes x 1.5 nodes) and
+   !> Jacobian take ~0.5 GB and an LU ~10 s; the automatic meshes of the solver's range
+   !> (delta/sigma up to 1e15, rel_tol down to 1e-10) stay well below. Bounds every solve's
+   !> time and memory (n_radial larger: egw_invalid_argument).
+   integer, parameter, public :: max_mesh_nodes = 4097
    !> Scaled force below which a solve returns 0 (as negligible() does before solving).
    real(dp), parameter :: tiny_force = 1.0e-250_dp
 
@@ -159,9 +165,10 @@ contains
    pure subroutine validate_options(options, error)
       type(solver_options), intent(in) :: options
       type(egw_error), allocatable, intent(out) :: error
-      if (options%n_radial /= 0 .and. options%n_radial < 8) then
+      if (options%n_radial /= 0 .and. (options%n_radial < 8 .or. &
+         & options%n_radial > max_mesh_nodes)) then
          call fatal_error(error, egw_invalid_argument, "n_radial = "//int_str(options%n_radial) &
-            & //": must be 0 (automatic) or >= 8")
+            & //": must be 0 (automatic) or lie in [8, "//int_str(max_mesh_nodes)//"]")
       else if (.not. ieee_is_finite(options%rel_tol) .or. .not. options%rel_tol >= 1.0e-10_dp &
          & .or. options%rel_tol > 0.1_dp) then
          call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(options%rel_tol) &
@@ -200,7 +207,13 @@ contains
          result%stiffness = hertz_stiffness(delta, params%radius, params%modulus)
          result%contact_radius = hertz_contact_radius(delta, params%radius)
          result%max_pressure = hertz_pressure(0.0_dp, delta, params%radius, params%modulus)
+         ! p0 = (2/pi) E sqrt(delta/R): 2E/(pi R) alone may overflow where p0 does not
+         if (delta > 0.0_dp .and. .not. normal(result%max_pressure)) result%max_pressure = &
+            & product4(2.0_dp/pi, params%modulus, sqrt(delta), 1.0_dp/sqrt(params%radius))
          result%method_used = options%method
+         if (.not. ieee_is_finite(result%max_pressure)) call fatal_error(error, &
+            & egw_invalid_argument, "delta = "//format_real(delta)//": the Hertz peak " &
+            & //"pressure (2/pi) E sqrt(delta/R) exceeds the largest double")
          return
       end if
 
@@ -240,17 +253,28 @@ contains
       call differentiate(prob, sol, error)
       if (allocated(error)) return
 
-      force_scale = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
+      force_scale = force_unit(params)
       res%force = force_scale*(smooth_force(prob) + sol%force)
-      res%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
-      res%contact_radius = sqrt(params%radius*params%sigma)*effective_radius(prob, sol)
+      if (normal(force_scale/params%sigma)) then
+         res%stiffness = force_scale/params%sigma*(smooth_stiffness(prob) + sol%dforce)
+      else
+         res%stiffness = stiffness_unit(params)*(smooth_stiffness(prob) + sol%dforce)
+      end if
+      res%contact_radius = length_unit(params)*effective_radius(prob, sol)
       pmax = max(total_pressure(prob, sol, 0.0_dp), maxval(sol%p))
       if (prob%extended) pmax = max(pmax, &
          & maxval(hertz_pressure(sol%mesh%gauss_r, prob%delta, 1.0_dp, 1.0_dp) + sol%p))
-      res%max_pressure = params%modulus*sqrt(params%sigma/params%radius)*pmax
+      res%max_pressure = pressure_unit(params)*pmax
       res%est_rel_err = est
       res%residual = sol%residual
       res%iterations = sol%iterations
+      if (.not. all(ieee_is_finite([res%force, res%stiffness, res%contact_radius, &
+         & res%max_pressure, res%est_rel_err, res%residual]))) then
+         ! a safety net: validate_params keeps the scales normal, so this is a solver bug
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): the solve gave a non-finite force, stiffness or radius")
+         return
+      end if
       result = res
    end subroutine solve_rough
 
@@ -277,6 +301,9 @@ contains
             & //": the largest overlap must be finite")
          return
       end if
+      if (params%model /= model_hertz) call check_scaled_overlap("delta_max", delta_max, &
+         & params%sigma, error)
+      if (allocated(error)) return
       hist%params = params
       hist%options = options
       hist%delta_max = delta_max
@@ -442,7 +469,7 @@ contains
       prob = scaled(history%params, delta)
       allocate (prob%closest)
       prob%closest = history%closest
-      length = sqrt(history%params%radius*history%params%sigma)
+      length = length_unit(history%params)
       rs = r/length
       if (negligible(prob)) then
          gap = base_gap(prob, rs)
@@ -459,7 +486,7 @@ contains
       gap_min = closest_gap(prob%closest, rs)
       if (.not. negligible(prob)) call unload_law(gap, gap_min, prob%psi, prob%hardness, &
          & prob%plastic_ratio, f, dfdh)
-      c = history%params%modulus*sqrt(history%params%sigma/history%params%radius)
+      c = pressure_unit(history%params)
       pressure = c*prob%scale*f
       separation = history%params%sigma*gap
       separation_min = history%params%sigma*gap_min
@@ -528,6 +555,9 @@ contains
       if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
          pressure = hertz_pressure(r, delta, params%radius, params%modulus)
          deflection = hertz_deflection(r, delta, params%radius)
+         if (.not. all(ieee_is_finite(pressure) .and. ieee_is_finite(deflection))) &
+            & call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the Hertz pressure or deflection at r exceeds the largest double")
          return
       end if
 
@@ -541,7 +571,17 @@ contains
       ! in contact: 2e-4 of the peak at rel_tol 1e-6). Solve again at rel_tol/10 until
       ! the profile changes by at most rel_tol of its peak (pressure) and of the largest
       ! deflection: the finer of the two is then the answer.
-      rs_all = [0.0_dp, r/sqrt(params%radius*params%sigma)]
+      rs_all = [0.0_dp, r/length_unit(params)]
+      do i = 2, size(rs_all)
+         if (.not. ieee_is_finite(rs_all(i))) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
+               & //format_real(r(i - 1))//": r/sqrt(R sigma) exceeds the largest double")
+            return
+         end if
+         ! the fields are even and smooth in r: below 1e-150 of the scaled length they
+         ! equal their value at 0 to rounding (and the kernels' 1/r would overflow)
+         if (rs_all(i) < 1.0e-150_dp) rs_all(i) = 0.0_dp
+      end do
       allocate (p_prev(size(rs_all)), w_prev(size(rs_all)), p_new(size(rs_all)), &
          & w_new(size(rs_all)))
       level_options = options
@@ -565,7 +605,7 @@ contains
             & "not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
          return
       end if
-      pressure = p_new(2:)*params%modulus*sqrt(params%sigma/params%radius)
+      pressure = p_new(2:)*pressure_unit(params)
       deflection = w_new(2:)*params%sigma
    end subroutine contact_profile
 
@@ -605,6 +645,16 @@ contains
       if (.not. ieee_is_finite(delta)) then
          call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
             & //": the overlap must be finite")
+         return
+      end if
+      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
+         if (.not. (ieee_is_finite(hertz_force(delta, params%radius, params%modulus)) .and. &
+            & ieee_is_finite(hertz_stiffness(delta, params%radius, params%modulus)))) &
+            & call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the Hertz force (4/3) E sqrt(R) delta**1.5 or stiffness 2 E sqrt(R delta)" &
+            & //" exceeds the largest double")
+      else
+         call check_scaled_overlap("delta", delta, params%sigma, error)
       end if
    end subroutine check_input
 
@@ -615,6 +665,10 @@ contains
       type(scaled_problem) :: prob
       prob%model = params%model
       prob%delta = delta/params%sigma
+      ! A subnormal delta/sigma is 0 to the solver's precision (the Hertz part, ~x**1.5,
+      ! underflows), and its Hertz edge at sqrt(x) would put elements of subnormal size
+      ! into the mesh: solve at 0 (continuous: at x = 1e-300 the force equals P(0)).
+      if (abs(prob%delta) < tiny(1.0_dp)) prob%delta = 0.0_dp
       prob%a = sqrt(max(prob%delta, 0.0_dp))
       prob%extended = params%model /= model_gw .and. prob%delta > 0.0_dp
       prob%scale = params%mu/(2.0_dp*sqrt2)
@@ -623,6 +677,11 @@ contains
       prob%hardness = params%hardness_coeff
       prob%plastic_ratio = params%plastic_ratio
    end function scaled
+
+   elemental logical function normal(x)
+      real(dp), intent(in) :: x
+      normal = abs(x) >= tiny(1.0_dp) .and. abs(x) <= huge(1.0_dp)
+   end function normal
 
    !> True when the spheres are so far apart that the summit pressure underflows.
    elemental logical function negligible(prob)
@@ -1046,14 +1105,27 @@ contains
       type(discrete_solution), intent(out) :: sol
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
-      integer :: n, ng, max_iter, i
+      integer :: n, ng, max_iter, i, stat
       real(dp) :: kappa, rn
 
+      if ((size(edges) - 1)*deflection_degree + 1 > max_mesh_nodes) then
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): the mesh would need " &
+            & //int_str((size(edges) - 1)*deflection_degree + 1)//" nodes, more than " &
+            & //int_str(max_mesh_nodes))
+         return
+      end if
       call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
-      allocate (sol%infl(n, ng))
-      call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads)
+      allocate (sol%infl(n, ng), stat=stat)
+      if (stat == 0) call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, &
+         & options%n_threads, stat)
+      if (stat /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the influence matrix of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
       sol%base = base_gap(prob, sol%mesh%gauss_r)
       sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
       if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
@@ -1109,7 +1181,12 @@ contains
       integer :: n, info, sweep
       logical :: refined
       n = size(sol%w)
-      allocate (jac(n, n), x(n, 1), corr(n, 1))
+      allocate (jac(n, n), x(n, 1), corr(n, 1), stat=info)
+      if (info /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
       call evaluate(prob, sol)
       call jacobian(sol, jac)
       rhs = matmul(sol%infl, sol%dpdh*sol%dbase)
@@ -1294,7 +1371,12 @@ contains
       logical :: factored, have_lu, converged
 
       n = size(sol%w)
-      allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n))
+      allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n), stat=info)
+      if (info /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
       call evaluate(prob, sol)
       call residual(sol, res, norm)
       factored = .false.

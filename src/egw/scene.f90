@@ -9,7 +9,7 @@ module egw_scene
       & egw_io_error, egw_bad_file, egw_not_converged, egw_unsupported, fatal_error, &
       & format_real
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw, model_name, mu_from_summits
+      & model_epgw, model_name, mu_from_summits, check_scaled_overlap
    use egw_smooth_sphere, only: hertz_force
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options
    use egw_table, only: force_table, build_table, table_set_radii, table_progress
@@ -657,6 +657,9 @@ contains
       do i = 1, n
          do j = i, n
             r = radii(i)*radii(j)/(radii(i) + radii(j))
+            ! the product over- or underflows where R itself is a double (radii 1e+-200)
+            if (.not. (r >= tiny(1.0_dp) .and. r <= huge(1.0_dp))) &
+               & r = 1.0_dp/(1.0_dp/radii(i) + 1.0_dp/radii(j))
             if (input%effective_modulus > 0.0_dp) then
                e_star = input%effective_modulus
             else
@@ -705,6 +708,13 @@ contains
          else
             scene%delta_min(is) = input%delta_min
             scene%delta_max(is) = input%delta_max
+         end if
+         ! the solver's range (doc/parameters.md section 5), named before any solve
+         if (scene%sets(is)%model /= model_hertz) call check_scaled_overlap("delta_max", &
+            & scene%delta_max(is), scene%sets(is)%sigma, error)
+         if (allocated(error)) then
+            error%message = "parameter set "//int_str(is)//": "//error%message
+            return
          end if
       end do
    end subroutine resolve_scene
@@ -887,15 +897,18 @@ contains
       end do
    end subroutine scene_hertz_error
 
-   !> Positive overlaps sampled by the Hertz check of set s: [delta_min, delta_max] when
-   !> delta_min > 0, else [min(sigma/100, delta_max/10), delta_max].
+   !> Positive overlaps sampled by the Hertz check of set s: [max(delta_min, 1e-12 sigma),
+   !> delta_max] when delta_min > 0, else [min(sigma/100, delta_max/10), delta_max].
    pure subroutine sample_range(scene, s, lo, hi)
       type(contact_scene), intent(in) :: scene
       integer, intent(in) :: s
       real(dp), intent(out) :: lo, hi
       hi = scene%delta_max(s)
       if (scene%delta_min(s) > 0.0_dp) then
-         lo = scene%delta_min(s)
+         ! below 1e-12 sigma the rough force is P(0) to ~1e-18 and the Hertz force ~1e-18
+         ! of it: the Hertz error is that at 1e-12 sigma (bounds the samples: a
+         ! delta_min = 1e-300 would ask for 1200 solves)
+         lo = min(hi, max(scene%delta_min(s), 1.0e-12_dp*scene%sets(s)%sigma))
       else
          lo = min(0.01_dp*scene%sets(s)%sigma, 0.1_dp*hi)
       end if

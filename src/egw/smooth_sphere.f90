@@ -12,7 +12,7 @@ module egw_smooth_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real
-   use egw_params, only: contact_params, validate_params
+   use egw_params, only: contact_params, validate_params, product4
    implicit none
    private
 
@@ -24,17 +24,32 @@ contains
    !> Contact radius a = sqrt(R delta) (eq. 13); 0 for delta <= 0.
    elemental real(dp) function hertz_contact_radius(delta, radius) result(a)
       real(dp), intent(in) :: delta, radius
+      real(dp) :: rd
       if (delta > 0.0_dp) then
-         a = sqrt(radius*delta)
+         rd = radius*delta
+         if (rd >= tiny(1.0_dp) .and. rd <= huge(1.0_dp)) then
+            a = sqrt(rd)
+         else
+            ! R delta would underflow or overflow where a itself is representable
+            a = sqrt(radius)*sqrt(delta)
+         end if
       else
          a = 0.0_dp
       end if
    end function hertz_contact_radius
 
    !> Force P_H = (4/3) E sqrt(R) delta**(3/2) = (4/3) E a delta (eq. 16); 0 for delta <= 0.
+   !> +Inf when the force itself exceeds the doubles (never from an intermediate overflow).
    elemental real(dp) function hertz_force(delta, radius, modulus) result(force)
       real(dp), intent(in) :: delta, radius, modulus
-      force = (4.0_dp/3.0_dp)*modulus*hertz_contact_radius(delta, radius)*max(delta, 0.0_dp)
+      real(dp) :: a, t
+      a = hertz_contact_radius(delta, radius)
+      t = (4.0_dp/3.0_dp)*modulus*a
+      force = t*max(delta, 0.0_dp)
+      ! a subnormal or infinite intermediate (or result): redo without losing digits
+      if (delta > 0.0_dp .and. .not. (t >= tiny(1.0_dp) .and. t <= huge(1.0_dp) .and. &
+         & force >= tiny(1.0_dp) .and. force <= huge(1.0_dp))) &
+         & force = product4(4.0_dp/3.0_dp, modulus, a, delta)
    end function hertz_force
 
    !> Stiffness dP_H/d delta = 2 E a; 0 for delta <= 0.
@@ -42,6 +57,7 @@ contains
       real(dp), intent(in) :: delta, radius, modulus
       stiffness = 2.0_dp*modulus*hertz_contact_radius(delta, radius)
    end function hertz_stiffness
+
 
    !> Elastic energy stored at overlap delta, the integral of P_H from 0 to delta:
    !> (8/15) E sqrt(R) delta**(5/2); 0 for delta <= 0.
@@ -145,6 +161,14 @@ contains
       force = hertz_force(delta, params%radius, params%modulus)
       stiffness = hertz_stiffness(delta, params%radius, params%modulus)
       contact_radius = hertz_contact_radius(delta, params%radius)
+      if (.not. (ieee_is_finite(force) .and. ieee_is_finite(stiffness))) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the Hertz force (4/3) E sqrt(R) delta**1.5 or stiffness 2 E sqrt(R delta)" &
+            & //" exceeds the largest double")
+         force = ieee_value(1.0_dp, ieee_quiet_nan)
+         stiffness = force
+         contact_radius = force
+      end if
    end subroutine hertz_contact
 
    !> (u - atan u)/u**3 for 0 <= u <= 1 without cancellation: the alternating series

@@ -25,8 +25,9 @@ module egw_table
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
       & format_real
-   use egw_params, only: contact_params, validate_params, model_hertz
+   use egw_params, only: contact_params, validate_params, model_hertz, check_scaled_overlap
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
+   use egw_smooth_sphere, only: hertz_force, hertz_stiffness
    implicit none
    private
 
@@ -1047,6 +1048,13 @@ contains
       else if (.not. is_rough(params) .and. .not. delta_max > 0.0_dp) then
          call fatal_error(error, egw_invalid_argument, "delta_max = "// &
             & format_real(delta_max)//": smooth spheres need delta_max > 0")
+      else if (is_rough(params)) then
+         call check_scaled_overlap("delta_max", delta_max, params%sigma, error)
+      else if (.not. (ieee_is_finite(hertz_force(delta_max, params%radius, params%modulus)) &
+         & .and. ieee_is_finite(hertz_stiffness(delta_max, params%radius, params%modulus)))) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the Hertz force (4/3) E sqrt(R) delta**1.5 or stiffness exceeds the " &
+            & //"largest double")
       end if
    end subroutine check_request
 

@@ -18,7 +18,8 @@ module egw_table_universal
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_not_converged, egw_out_of_range, fatal_error, format_real
-   use egw_params, only: contact_params, validate_params
+   use egw_params, only: contact_params, validate_params, overlap_ratio_max, product4, &
+      & force_unit, stiffness_unit, length_unit
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
       & table_interval, table_prepare, table_eval, table_progress
@@ -94,6 +95,21 @@ contains
       call validate_params(universal_slice_params(model, psi, hardness_coeff, &
          & plastic_ratio, mu_min), error)
       if (allocated(error)) return
+      call validate_params(universal_slice_params(model, psi, hardness_coeff, &
+         & plastic_ratio, mu_max), error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(x_min)) then
+         call fatal_error(error, egw_invalid_argument, "x_min = "//format_real(x_min)// &
+            & ": must be finite")
+         return
+      end if
+      if (.not. (ieee_is_finite(x_max) .and. x_max > x_min .and. &
+         & x_max <= overlap_ratio_max)) then
+         call fatal_error(error, egw_invalid_argument, "x_max = "//format_real(x_max)// &
+            & ": must be > x_min and <= "//format_real(overlap_ratio_max)// &
+            & " (the solver's range of delta/sigma)")
+         return
+      end if
       opts = options
       opts%n_threads = 1
       opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
@@ -242,7 +258,16 @@ contains
       if (.not. x > u%x_cut) return
       if (x > u%x_max) stat = egw_out_of_range
       call mu_stencil(u, mu, j0, w)
-      scale = modulus*sqrt(radius)*sigma*sqrt(sigma)
+      scale = modulus*sqrt(radius)
+      ! (sqrt(sigma) >= 1.5e-154 for a normal sigma: only the first two factors can leave
+      ! the normal range on the way; redo those products without losing digits)
+      if (scale >= tiny(1.0_dp) .and. scale <= huge(1.0_dp)) then
+         scale = scale*sigma*sqrt(sigma)
+         if (.not. scale >= tiny(1.0_dp)) scale = product4(modulus, sqrt(radius), sigma, &
+            & sqrt(sigma))
+      else
+         scale = product4(modulus, sqrt(radius), sigma, sqrt(sigma))
+      end if
       n = size(u%slices(1)%delta)
       if (x < u%x_max) then
          ! one lookup for all slices (shared nodes), then one cubic of the combination
@@ -388,7 +413,7 @@ contains
          return
       end if
       call mu_stencil(u, params%mu, j0, w)
-      scale = params%modulus*sqrt(params%radius)*params%sigma*sqrt(params%sigma)
+      scale = force_unit(params)
       n = size(u%slices(1)%delta)
       if (present(delta_max)) then
          if (.not. (ieee_is_finite(delta_max) .and. delta_max > params%sigma*u%x_cut)) then
@@ -417,8 +442,8 @@ contains
          end do
          table%delta(i) = params%sigma*u%slices(1)%delta(i)
          table%force(i) = scale*p
-         table%stiffness(i) = scale*dp_dx/params%sigma
-         table%contact_radius(i) = sqrt(params%radius*params%sigma)*max(a, 0.0_dp)
+         table%stiffness(i) = stiffness_unit(params)*dp_dx
+         table%contact_radius(i) = length_unit(params)*max(a, 0.0_dp)
       end do
       if (.not. all(ieee_is_finite(table%force) .and. table%force > 0.0_dp .and. &
          & ieee_is_finite(table%stiffness))) then

@@ -21,8 +21,8 @@ module egw_unloading
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real
-   use egw_params, only: contact_params, rough_flat_coefficient
-   use egw_asperity, only: rough_flat_law, check_flat_input, flat_psi
+   use egw_params, only: contact_params
+   use egw_asperity, only: rough_flat_law, check_flat_input, flat_psi, flat_scaled_to_units
    use egw_gauss, only: shifted_density, gl_x, gl_w
    implicit none
    private
@@ -163,7 +163,7 @@ contains
       real(dp), intent(inout) :: pressure     !< p_G,u
       real(dp), intent(inout) :: dpressure    !< dp_G,u/dd (<= 0)
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: c, sigma, p, dpdh, psi
+      real(dp) :: sigma, p, dpdh, psi, pu, dpu
       call check_flat_input(params, separation, error)
       if (allocated(error)) return
       if (.not. ieee_is_finite(separation_min)) then
@@ -175,9 +175,10 @@ contains
       psi = flat_psi(params)
       call rough_flat_unload_law(separation/sigma, separation_min/sigma, psi, &
          & params%hardness_coeff, params%plastic_ratio, p, dpdh)
-      c = rough_flat_coefficient(params)
-      pressure = c*sigma*sqrt(sigma)*p
-      dpressure = c*sqrt(sigma)*dpdh
+      call flat_scaled_to_units(params, separation, p, dpdh, pu, dpu, error)
+      if (allocated(error)) return
+      pressure = pu
+      dpressure = dpu
    end subroutine flat_pressure_unload
 
    ! ---------------------------------------------------------------------------------------
