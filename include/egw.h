@@ -451,8 +451,9 @@ int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
 
 /* egw_hysteresis_eval for n independent contacts in one call: delta[i] with history
  * delta_max_state[i] (updated), force[i], stiffness[i] (either may be NULL). A NaN overlap
- * or state refuses the call (EGW_INVALID_ARGUMENT naming its index) before anything
- * changes; EGW_OUT_OF_RANGE names the first contact beyond the table (all values
+ * or state, or one so large that the force would leave the doubles, refuses the call
+ * (EGW_INVALID_ARGUMENT naming its index) before anything changes; NULL delta or
+ * delta_max_state (n > 0): EGW_NULL_POINTER; EGW_OUT_OF_RANGE names the first contact beyond the table (all values
  * written). n = 0 does nothing; n < 0: EGW_INVALID_ARGUMENT. For callers that pay per
  * call (Python, scripting languages). */
 int egw_hysteresis_eval_array(egw_hysteresis h, int n, const double *delta,

@@ -108,19 +108,19 @@ contains
       end if
    end function egw_hysteresis_eval
 
-   !> C: egw_hysteresis_eval_array: n independent contacts in one call.
-   function egw_hysteresis_eval_array(hp, n, delta, state, force, stiffness) result(stat) &
-      & bind(C, name="egw_hysteresis_eval_array")
+   !> C: egw_hysteresis_eval_array: n independent contacts in one call. Every input is
+   !> checked before anything is written: overlaps and states must be numbers, and at most
+   !> where the loading table's linear continuation stays well inside the doubles.
+   function egw_hysteresis_eval_array(hp, n, delta_p, state_p, force, stiffness) &
+      & result(stat) bind(C, name="egw_hysteresis_eval_array")
       type(c_ptr), value, intent(in) :: hp
       integer(c_int), value, intent(in) :: n
-      real(c_double), intent(in) :: delta(*)
-      real(c_double), intent(inout) :: state(*)
-      type(c_ptr), value, intent(in) :: force, stiffness
+      type(c_ptr), value, intent(in) :: delta_p, state_p, force, stiffness
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
-      real(c_double), pointer :: f(:), k(:)
+      real(c_double), pointer :: delta(:), state(:), f(:), k(:)
       type(egw_error), allocatable :: error
-      real(dp) :: fi, ki
+      real(dp) :: fi, ki, reach
       integer :: i, st, first_out
       stat = require(hp, "h")
       if (stat /= egw_ok) return
@@ -129,15 +129,28 @@ contains
          stat = settle(error)
          return
       end if
+      if (n == 0) return
+      stat = require(delta_p, "delta")
+      if (stat == egw_ok) stat = require(state_p, "delta_max_state")
+      if (stat /= egw_ok) return
+      call c_f_pointer(hp, h)
+      call c_f_pointer(delta_p, delta, [n])
+      call c_f_pointer(state_p, state, [n])
+      associate (l => h%loading)
+         reach = l%delta_max + 0.25_dp*huge(1.0_dp)/max(1.0_dp, l%force(size(l%force)), &
+            & l%stiffness(size(l%stiffness)))
+      end associate
       do i = 1, n
-         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i))) then
+         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > reach .or. &
+            & state(i) > reach) then
             call fatal_error(error, egw_invalid_argument, "delta["//int_str(i - 1)// &
-               & "] or delta_max_state["//int_str(i - 1)//"] = NaN: must be a number")
+               & "] = "//format_real(delta(i))//", delta_max_state["//int_str(i - 1)// &
+               & "] = "//format_real(state(i))//": must be numbers <= "//format_real(reach)// &
+               & " (the force there exceeds the doubles)")
             stat = settle(error)
             return
          end if
       end do
-      call c_f_pointer(hp, h)
       nullify (f, k)
       if (c_associated(force)) call c_f_pointer(force, f, [n])
       if (c_associated(stiffness)) call c_f_pointer(stiffness, k, [n])

@@ -699,6 +699,54 @@ static int r_hysteresis_eval(void) {
   return st;
 }
 
+static int r_hysteresis_eval_array(void) {
+  egw_params p = params_at(100, EGW_MODEL_EPGW, 0.5); /* slots >= 100: never fuzzed */
+  egw_options o = options_at(100, 1e-3);
+  egw_hysteresis h = NULL;
+  double d[3] = {2e-3, D(2, 2.5e-3), -1e-3}, state[3] = {3e-3, D(1, 3e-3), 3e-3};
+  double state0[3], f[3], k[3];
+  int n = I(3, 3), st;
+  if (n > 3) n = 3;
+  if (egw_hysteresis_build(&p, &o, -1e-3, 4e-3, 5e-2, &h) != EGW_OK) _exit(3);
+  memcpy(state0, state, sizeof state);
+  sentinel(f, sizeof f);
+  sentinel(k, sizeof k);
+  st = egw_hysteresis_eval_array(P(0, h), n, P(4, d), P(5, state), P(6, f), P(7, k));
+  out_doubles(st, EGW_OUT_OF_RANGE, "force", f, n > 0 ? n : 0, sizeof f);
+  out_doubles(st, EGW_OUT_OF_RANGE, "stiffness", k, n > 0 ? n : 0, sizeof k);
+  if (st != EGW_OK && st != EGW_OUT_OF_RANGE && memcmp(state0, state, sizeof state) != 0) {
+    cur->clobbered = 1;
+    note(" changed on refusal", "delta_max_state", state[0]);
+  }
+  egw_hysteresis_free(&h);
+  return st;
+}
+
+static int r_hysteresis_io(void) {
+  egw_params p = params_at(100, EGW_MODEL_EPGW, 0.5);
+  egw_options o = options_at(100, 1e-3);
+  egw_hysteresis h = NULL, back;
+  egw_hysteresis_info info;
+  int st, st2;
+  if (egw_hysteresis_build(&p, &o, -1e-3, 4e-3, 5e-2, &h) != EGW_OK) _exit(3);
+  sentinel(&info, sizeof info);
+  st2 = egw_hysteresis_get_info(P(0, h), P(4, &info));
+  out_untouched(st2, "info", &info, sizeof info);
+  if (st2 == EGW_OK) {
+    double v[4] = {info.cutoff, info.delta_max, info.rel_tol, info.max_error};
+    out_doubles(st2, 0, "info", v, 4, sizeof v);
+  }
+  st = egw_hysteresis_write(P(0, h), S(1, out_path("h.csv")), I(2, EGW_FORMAT_CSV));
+  sentinel(&back, sizeof back);
+  if (st == EGW_OK) {
+    st = egw_hysteresis_read(S(1, out_path("h.csv")), P(3, &back));
+    out_untouched(st, "*out", &back, sizeof back);
+    if (st == EGW_OK) egw_hysteresis_free(&back);
+  }
+  egw_hysteresis_free(&h);
+  return st != EGW_OK ? st : st2;
+}
+
 /* scene slots: 0 model, 1 n_types, 2 radius[0], 3 radius[1], 4 radius_min, 5 radius_max,
  * 6 modulus[0], 7 poisson[0], 8 effective_modulus, 9 sigma_min, 10 sigma_max, 11 mu,
  * 12 summit_density, 13 summit_radius, 14 psi, 15 K, 16 rho_p, 17 delta_min,
@@ -921,6 +969,13 @@ static fz_function functions[] = {
      {{"h", K_PTR}, {"*state", K_DBL}, {"delta", K_DBL}, {"state", K_PTR}, {"force", K_PTR},
       {"stiffness", K_PTR}},
      r_hysteresis_eval, 1},
+    {"egw_hysteresis_eval_array", 8,
+     {{"h", K_PTR}, {"*state[1]", K_DBL}, {"delta[1]", K_DBL}, {"n", K_INT}, {"delta", K_PTR},
+      {"state", K_PTR}, {"force", K_PTR}, {"stiffness", K_PTR}},
+     r_hysteresis_eval_array, 1},
+    {"egw_hysteresis_write/read/get_info", 5,
+     {{"h", K_PTR}, {"path", K_STR}, {"format", K_INT}, {"out", K_PTR}, {"info", K_PTR}},
+     r_hysteresis_io, 1},
     {"egw_scene_validate", 22, {SCENE_SLOTS, {"s", K_PTR}}, r_scene_validate, 0},
     {"egw_scene_choose", 31,
      {SCENE_SLOTS, OPTION_SLOTS, {"s", K_PTR}, {"o", K_PTR}, {"choice", K_PTR},
