@@ -42,6 +42,12 @@ if [ ! -f "$OUT/egwplugin.so" ] || [ -n "$(find $SRC/*.cpp $SRC/*.h include/egw.
   mv "$OUT/egwplugin.so.tmp" "$OUT/egwplugin.so"
 fi
 
+# the library's restitution, the reference of the examples and tests
+if [ ! -x "$OUT/egw-restitution" ] || [ -n "$(find $SRC/tools/egw_restitution.c "$OUT/egw-cmake/libegw.a" -newer "$OUT/egw-restitution" | head -n 1)" ]; then
+  ${CC:-gcc} -O2 -Iinclude $SRC/tools/egw_restitution.c -o "$OUT/egw-restitution" \
+    "$OUT/egw-cmake/libegw.a" -lgfortran -lgomp -llapack -lblas -lm
+fi
+
 # the runner: build/lammps/lmp [-np N] -in deck.in [LAMMPS options]
 cat >"$OUT/lmp.tmp" <<RUNNER
 #!/bin/sh
