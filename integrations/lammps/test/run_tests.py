@@ -161,42 +161,74 @@ def test_sigma_to_zero_vs_granular():
     return ok, f"egw e = {e1:.6f}, granular e = {e2:.6f} (|diff| < 1e-3)"
 
 
-PILE_E = 1e7    # soft beads: t_c ~ 1e-4 s, so the pile settles in a few thousand steps
+PILE_E = 1e7    # soft beads: t_c ~ 0.2 ms, so a pile settles in tens of thousands of steps
 
 
-def pile(pstyle, c11, c22, np=1, newton="on", nrun=6000):
-    return lmp("pile.in", np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=2e-6,
-               nrun=nrun, newton=newton, thermo=1000, seed=4821, Ewall=PILE_E)
+def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
+    return lmp(deck, np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=5e-6,
+               nrun=nrun, newton=newton, thermo=10000, seed=seed, Ewall=PILE_E)
+
+
+def test_column_vs_granular():
+    """A column of 8 beads (two types, 2 and 1.6 mm) dropped on the floor, damping 0.5,
+    friction 0.5: forces stay on the axis, so the dynamics is not chaotic and the settled
+    column must equal pair_style granular's: sigma = 0 to 1e-12 (round-off), and E-GW with
+    sigma = 1 nm per bead (overlaps ~10 um here) to 1e-5 of the mean height."""
+    c = f"E {PILE_E} nu {NU} sigma 0 damping 0.5 friction 0.5"
+    g = granular(e=0.5, mut=0.5, Ey=PILE_E)
+    r0 = pile("granular", g, g, nrun=40000, deck="column.in")
+    r1 = pile("egw E-GW 1e-4", c, c, nrun=40000, deck="column.in")
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-9 mu 4 damping 0.5 friction 0.5"
+    r2 = pile("egw E-GW 1e-4", c2, c2, nrun=40000, deck="column.in")
+    a, b, s = result(r0[1]), result(r1[1]), result(r2[1])
+    d1 = max(abs(b[1] / a[1] - 1), abs(b[2] / a[2] - 1))
+    d2 = max(abs(s[1] / a[1] - 1), abs(s[2] / a[2] - 1))
+    ok = r0[0] == 0 and r1[0] == 0 and r2[0] == 0 and d1 < 1e-12 and d2 < 1e-5
+    return ok, f"mean z {a[1]:.9g} (granular), sigma 0: rel. diff {d1:.1e} (< 1e-12), sigma 1 nm: {d2:.1e} (< 1e-5)"
 
 
 def test_pile_vs_granular():
-    """The pile (72 beads of 2 and 1.6 mm, two types) with sigma = 0, damping 0.5 and
-    friction 0.5 settles to the same mean height as with pair_style granular (trajectories
-    of a pile are chaotic, so the settled state is compared: mean height within 1%)."""
+    """The polydisperse pile (72 beads of 2 and 1.6 mm, two types, damping 0.5, friction 0.5,
+    sigma = 0) against pair_style granular: a pile is chaotic (round-off differences in the
+    force sums grow), so the settled mean height is compared over 4 seeds: the means agree
+    within 3 standard errors of the difference."""
     c = f"E {PILE_E} nu {NU} sigma 0 damping 0.5 friction 0.5"
-    rc1, out1 = pile("egw E-GW 1e-4", c, c)
     g = granular(e=0.5, mut=0.5, Ey=PILE_E)
-    rc2, out2 = pile("granular", g, g)
-    a, b = result(out1), result(out2)
-    ok = rc1 == 0 and rc2 == 0 and abs(a[1] / b[1] - 1) < 0.01 and a[0] < 1e-6 * 1 + 1e-3
-    return ok, f"mean z: egw {a[1]:.6g}, granular {b[1]:.6g}; KE {a[0]:.3g} / {b[0]:.3g}"
+    ze, zg = [], []
+    for seed in (11, 12, 13, 14):
+        rc1, o1 = pile("egw E-GW 1e-4", c, c, seed=seed)
+        rc2, o2 = pile("granular", g, g, seed=seed)
+        if rc1 or rc2:
+            return False, f"run failed (seed {seed})"
+        ze.append(result(o1)[1]), zg.append(result(o2)[1])
+    n = len(ze)
+    me, mg = sum(ze) / n, sum(zg) / n
+    var = lambda z, m: sum((x - m) ** 2 for x in z) / (n - 1)
+    se = math.sqrt(var(ze, me) / n + var(zg, mg) / n)
+    ok = abs(me - mg) < 3 * se and abs(me / mg - 1) < 0.05
+    return ok, f"mean height egw {me:.6g}, granular {mg:.6g}, |diff| {abs(me - mg):.2g} < 3 x {se:.2g}"
 
 
 def test_ranks_agree():
-    """The pile with rough E-GW contacts, damping and friction on 1 rank, 2 ranks, and 2
-    ranks with newton off: after 2000 steps (collisions across the rank boundary, histories
-    handed over) the mean height and kinetic energy agree to 1e-6 (only the order of force
-    sums differs)."""
+    """The column with rough E-GW contacts (two types, sigma 2 and 1 um, damping) on
+    1 rank, 2 ranks (the column cut across, contacts and their histories handed between
+    ranks) and 2 ranks with newton off: the same settled column to 1e-10 (only the order of
+    force sums differs; the column is not chaotic). Then the chaotic pile with friction on
+    1 and 2 ranks after 2000 steps (before round-off grows): the same to 1e-6."""
     c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 friction 0.5"
     c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 damping 0.6 friction 0.4"
-    runs = [pile("egw E-GW 1e-4", c1, c2, np=n, newton=nw, nrun=2000)
+    runs = [pile("egw E-GW 1e-4", c1, c2, np=n, newton=nw, nrun=30000, deck="column.in")
             for n, nw in ((1, "on"), (2, "on"), (2, "off"))]
-    res = [result(o) for rc, o in runs]
     ok = all(rc == 0 for rc, o in runs)
-    dz = max(abs(r[1] / res[0][1] - 1) for r in res)
-    dk = max(abs(r[0] - res[0][0]) for r in res) / max(res[0][0], 1e-30)
-    ok = ok and dz < 1e-6 and dk < 1e-6
-    return ok, f"mean z {[r[1] for r in res]}, rel. KE diff {dk:.1e} (< 1e-6)"
+    res = [result(o) for rc, o in runs] if ok else []
+    dz = max(abs(r[1] / res[0][1] - 1) for r in res) if ok else 1
+    piles = [pile("egw E-GW 1e-4", c1, c2, np=n, newton=nw, nrun=2000)
+             for n, nw in ((1, "on"), (2, "on"), (2, "off"))]
+    ok = ok and all(rc == 0 for rc, o in piles)
+    pres = [result(o) for rc, o in piles] if ok else []
+    dp = max(max(abs(r[1] / pres[0][1] - 1), abs(r[0] / pres[0][0] - 1)) for r in pres) if ok else 1
+    ok = ok and dz < 1e-10 and dp < 1e-6
+    return ok, f"column: rel. diff {dz:.1e} (< 1e-10); pile after 2000 steps: {dp:.1e} (< 1e-6)"
 
 
 def test_restart_keeps_history():
@@ -250,7 +282,7 @@ def test_bad_coeff():
 
 TESTS = [test_energy_elastic, test_epgw_restitution, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
-         test_pile_vs_granular, test_ranks_agree, test_restart_keeps_history, test_bad_coeff]
+         test_column_vs_granular, test_pile_vs_granular, test_ranks_agree, test_restart_keeps_history, test_bad_coeff]
 
 
 def main():
