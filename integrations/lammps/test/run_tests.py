@@ -120,6 +120,25 @@ def test_epgw_restitution():
     return ok, f"e = {e:.6f}, egw_restitution = {ref:.6f}, |diff| = {abs(e - ref):.2e} (< 5e-3)"
 
 
+def test_summit_data_restitution():
+    """mu from the summit data (eta = 1e10 /m^2, beta = 10 um, sigma 0.5 um per bead:
+    mu = (8/3) eta sigma sqrt(2 R beta) of the contact): E-GW (universal table) rebounds
+    elastically (e to 5e-5, the Verlet bound above) and EP-GW (hysteresis tables at nodes in
+    ln mu, 4-point interpolation) gives egw_restitution's e at that mu to 5e-3 (the
+    hysteresis tables' 1e-3, as above)."""
+    sigma = math.sqrt(2) * 0.5e-6
+    eta, beta = 1e10, 1e-5
+    mu = 8 / 3 * eta * sigma * math.sqrt(2 * R_STAR * beta)
+    c = f"E {E} nu {NU} sigma 0.5e-6 summit_density {eta} summit_radius {beta}"
+    rc1, out1 = collision("egw E-GW 1e-4", c)
+    rc2, out2 = collision("egw EP-GW 1e-3", c + " psi 1")
+    e1, e2 = restitution_of(out1), restitution_of(out2)
+    ref = reference_e(3, sigma, mu, 1.0)
+    ok = rc1 == 0 and rc2 == 0 and abs(e1 - 1) < 5e-5 and abs(e2 - ref) < 5e-3
+    return ok, (f"mu = {mu:.4g}: E-GW e = {e1:.7f}; EP-GW e = {e2:.6f}, egw_restitution = "
+                f"{ref:.6f} (|diff| {abs(e2 - ref):.1e} < 5e-3)")
+
+
 def test_hertz_damping_vs_granular():
     """Smooth spheres (sigma = 0) with damping e = 0.8: the same rebound as pair_style
     granular hertz/material + coeff_restitution (same formula: 1e-9 is round-off over the
@@ -280,7 +299,7 @@ def test_bad_coeff():
         "; " + "; ".join(bad) if bad else "")
 
 
-TESTS = [test_energy_elastic, test_epgw_restitution, test_hertz_damping_vs_granular,
+TESTS = [test_energy_elastic, test_epgw_restitution, test_summit_data_restitution, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_column_vs_granular, test_pile_vs_granular, test_ranks_agree, test_restart_keeps_history, test_bad_coeff]
 
