@@ -43,4 +43,4 @@ lammps: setup
 
 # pair_style egw against pair_style granular on the pour deck (doc/benchmarks.md)
 bench-lammps: lammps
-	@sh integrations/lammps/bench/run.sh
+	@python3 integrations/lammps/bench/bench.py

@@ -63,6 +63,7 @@ fi
 export LAMMPS_PLUGIN_PATH="$OUT\${LAMMPS_PLUGIN_PATH:+:\$LAMMPS_PLUGIN_PATH}"
 export LD_LIBRARY_PATH="$VENV/lib\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
 export OMP_NUM_THREADS=\${OMP_NUM_THREADS:-1}
+export EGW_LAMMPS_BIN="$OUT"    # egw-restitution, for the examples
 exec "$VENV/bin/mpiexec" -np "\$np" "$SP/lammps/lmp" "\$@"
 RUNNER
 chmod +x "$OUT/lmp.tmp"

@@ -81,12 +81,17 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   fix_history = nullptr;
   freeze_group_bit = 0;
   tables_ready = false;
+  // compute pair egw: the number of active contacts (delta above the rough tail's cut-off)
+  nextra = 1;
+  pvector = new double[1];
+  pvector[0] = 0.0;
   // a placeholder that keeps the history fix's place in the fix list (as pair granular)
   modify->add_fix("NEIGH_HISTORY_EGW_DUMMY all DUMMY");
 }
 
 PairEGW::~PairEGW()
 {
+  delete[] pvector;
   if (modify->find_fix("NEIGH_HISTORY_EGW") >= 0) modify->delete_fix("NEIGH_HISTORY_EGW");
   if (modify->find_fix("NEIGH_HISTORY_EGW_DUMMY") >= 0)
     modify->delete_fix("NEIGH_HISTORY_EGW_DUMMY");
@@ -621,6 +626,7 @@ void PairEGW::compute(int eflag, int vflag)
 
   int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+  int ncontact = 0;
 
   for (int ii = 0; ii < inum; ii++) {
     int i = ilist[ii];
@@ -656,6 +662,7 @@ void PairEGW::compute(int eflag, int vflag)
       }
       double Fn, S, U;
       normal(L, delta, R, &hist[0], Fn, S, U, eflag);
+      ncontact++;
 
       // relative velocity at the contact
       double vrx = v[i][0] - v[j][0], vry = v[i][1] - v[j][1], vrz = v[i][2] - v[j][2];
@@ -718,6 +725,7 @@ void PairEGW::compute(int eflag, int vflag)
       if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, U, 0.0, fx, fy, fz, dx, dy, dz);
     }
   }
+  pvector[0] = ncontact;
 }
 
 /* the partner's copy: delta_max as is, the tangential displacement negated */
