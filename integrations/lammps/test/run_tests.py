@@ -210,6 +210,19 @@ def test_column_vs_granular():
     return ok, f"mean z {a[1]:.9g}, pressure {a[3]:.6g} (granular), sigma 0: rel. diff {d1:.1e} (< 1e-12), pressure {dp:.1e} (< 1e-9), sigma 1 nm: {d2:.1e} (< 1e-5)"
 
 
+def test_peratom_energy_virial():
+    """The column with rough E-GW contacts on 2 ranks (contacts across the cut): the
+    per-atom energies (compute pe/atom) add up to the global pair energy and the per-atom
+    stresses (compute stress/atom, with the wall's) to the pressure, to 1e-10; the energy
+    is the elastic energy of the 1-D table (> 0)."""
+    c = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 friction 0.5"
+    rc, out = pile("egw E-GW 1e-4", c, c, np=2, nrun=20000, deck="column_peratom.in")
+    pe, pes, p, pp = result(out)
+    d = max(abs(pes / pe - 1), abs(pp / p - 1))
+    ok = rc == 0 and pe > 0 and d < 1e-10
+    return ok, f"pe {pe:.6g} = sum {pes:.6g}, press {p:.6g} = from stress/atom {pp:.6g} (rel. {d:.1e} < 1e-10)"
+
+
 def test_pile_vs_granular():
     """The polydisperse pile (72 beads of 2 and 1.6 mm, two types, damping 0.5, friction 0.5,
     sigma = 0) against pair_style granular: a pile is chaotic (round-off differences in the
@@ -305,7 +318,7 @@ def test_bad_coeff():
 
 TESTS = [test_energy_elastic, test_epgw_restitution, test_summit_data_restitution, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
-         test_column_vs_granular, test_pile_vs_granular, test_ranks_agree, test_restart_keeps_history, test_bad_coeff]
+         test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree, test_restart_keeps_history, test_bad_coeff]
 
 
 def main():
