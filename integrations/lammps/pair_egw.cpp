@@ -33,7 +33,8 @@ namespace {
 
 enum { KIND_HERTZ = 0, KIND_TABLE, KIND_UNIVERSAL, KIND_HYST, KIND_HYST_MU };
 const char *kind_name[] = {"Hertz (closed form)", "1-D table in delta/sigma",
-                           "universal table (R-dependent mu)", "hysteresis table",
+                           "1-D slices of a universal table, linear in ln mu (R-dependent mu)",
+                           "hysteresis table",
                            "hysteresis tables over ln mu"};
 constexpr int NHIST = 4;    // delta_max, tangential displacement (3)
 constexpr double TWO_ROOT_FIVE_SIXTHS = 1.82574185835055380345;    // 2 sqrt(5/6)
@@ -61,6 +62,8 @@ void EgwLaw::release()
   egw_universal_free(&universal);
   for (auto &h : hyst) egw_hysteresis_free(&h);
   hyst.clear();
+  for (auto &t : slices) egw_table_free(&t);
+  slices.clear();
   lnmu.clear();
 }
 
@@ -316,6 +319,8 @@ void PairEGW::make_law(int i, int j)
       old.kind == L.kind && built_rhi[i][j] > 0;
   if (same) {
     L.table = old.table, L.universal = old.universal, L.hyst = old.hyst, L.lnmu = old.lnmu;
+    L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h;
+    old.slices.clear();
     L.xc = old.xc, L.tail = old.tail, L.mu_lo = old.mu_lo, L.mu_hi = old.mu_hi;
     L.interp_error = old.interp_error;
     old.table = nullptr, old.universal = nullptr, old.hyst.clear();
@@ -371,20 +376,55 @@ void PairEGW::build_tables(int i, int j, double R_lo, double R_hi)
     egw_table_get_info(L.table, &in);
     L.xc = in.cutoff;
   } else if (L.kind == KIND_UNIVERSAL) {
+    // the universal table at TOL/2, cut into 1-D slices (no solves) at nodes in ln mu; a
+    // contact interpolates its two neighbouring slices linearly in ln mu, with the nodes
+    // refined until that agrees with the universal table to TOL/2 at every midpoint
     L.mu_lo = L.mu * std::sqrt(R_lo) / 1.02, L.mu_hi = L.mu * std::sqrt(R_hi) * 1.02;
-    if (egw_universal_build(&L.prm, &o, L.mu_lo, L.mu_hi, 0.0, xmax, tol, &L.universal))
+    if (egw_universal_build(&L.prm, &o, L.mu_lo, L.mu_hi, 0.0, xmax, 0.5 * tol, &L.universal))
       egw_fail(what);
-    L.xc = 0.0;
-    for (double m : {L.mu_lo, L.mu_hi}) {
+    auto slice_at = [&](double m) {
       egw_params p = L.prm;
       p.mu = m;
       egw_table s = nullptr;
       if (egw_universal_slice(L.universal, &p, &s)) egw_fail(what);
+      return s;
+    };
+    L.xc = 0.0;
+    for (double m : {L.mu_lo, L.mu_hi}) {
+      egw_table s = slice_at(m);
       egw_table_info in;
       egw_table_get_info(s, &in);
       L.xc = std::min(L.xc, in.cutoff);
       egw_table_free(&s);
     }
+    std::vector<double> xs;
+    for (int k = 0; k <= 40; k++) xs.push_back(L.xc * (1.0 - k / 40.0));
+    for (int k = 1; k <= 80; k++) xs.push_back(1e-3 * std::pow(xmax / 1e-3, k / 80.0));
+    double a = std::log(L.mu_lo), b = std::log(L.mu_hi);
+    for (int n = 3;; n = 2 * n - 1) {
+      for (auto &t : L.slices) egw_table_free(&t);
+      L.slices.clear();
+      double h = (b - a) / (n - 1);
+      for (int k = 0; k < n; k++) L.slices.push_back(slice_at(std::exp(a + k * h)));
+      L.lnmu0 = a, L.inv_h = 1.0 / h;
+      double err = 0.0;
+      for (int k = 0; k + 1 < n; k++) {
+        egw_params p = L.prm;
+        p.mu = std::exp(a + (k + 0.5) * h);
+        double pref = 0, dum;
+        egw_universal_eval(L.universal, &p, 0.0, &pref, &dum);
+        for (double x : xs) {
+          double pu, p0, p1;
+          egw_universal_eval(L.universal, &p, x, &pu, &dum);
+          egw_table_eval(L.slices[k], x, &p0, &dum);
+          egw_table_eval(L.slices[k + 1], x, &p1, &dum);
+          err = std::max(err, std::fabs(0.5 * (p0 + p1) - pu) / std::max(pu, pref));
+        }
+      }
+      L.interp_error = err;
+      if (err <= 0.5 * tol || n > 1000) break;
+    }
+    egw_universal_free(&L.universal);
   } else {
     // EP-GW: one hysteresis table (mu given) or tables at nodes in ln mu (summit data)
     auto cutoff_of = [&](double m) {
@@ -462,6 +502,9 @@ void PairEGW::build_tables(int i, int j, double R_lo, double R_hi)
     if (L.kind == KIND_HYST_MU)
       extra += fmt::format(", {} mu nodes, measured ln-mu interpolation error {:.2g} of the "
                            "turning-point force", L.lnmu.size(), L.interp_error);
+    if (L.kind == KIND_UNIVERSAL)
+      extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
+                           "(universal table built to TOL/2)", L.slices.size(), L.interp_error);
     utils::logmesg(lmp, "pair egw: types {} {}: {}, E* = {:.6g}, sigma = {:.6g}, tail = {:.6g}{}\n",
                    i, j, kind_name[L.kind], L.E_star, L.sigma, L.tail, extra);
   }
@@ -554,14 +597,26 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *dmax, dou
       break;
     }
     case KIND_UNIVERSAL: {
-      L.prm.radius = R, L.prm.modulus = L.E_star, L.prm.sigma = L.sigma;
-      L.prm.mu = L.mu * std::sqrt(R);
-      st = egw_universal_eval(L.universal, &L.prm, delta, &F, &S);
-      U = 0.0;
-      if (st == EGW_OUT_OF_RANGE && !(L.prm.mu >= L.mu_lo && L.prm.mu <= L.mu_hi))
+      double mu = L.mu * std::sqrt(R);
+      if (!(mu >= L.mu_lo && mu <= L.mu_hi))
         error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
                           "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
-                   R, L.prm.mu, L.mu_lo, L.mu_hi);
+                   R, mu, L.mu_lo, L.mu_hi);
+      double t = (std::log(mu) - L.lnmu0) * L.inv_h;
+      int n = (int) L.slices.size();
+      int k = std::max(0, std::min(n - 2, (int) t));
+      double w = t - k;
+      double x = delta * L.inv_sigma, p0, p1, d0, d1, u0 = 0, u1 = 0, ac;
+      if (want_energy) {
+        st = egw_table_eval_all(L.slices[k], x, &p0, &d0, &u0, &ac);
+        egw_table_eval_all(L.slices[k + 1], x, &p1, &d1, &u1, &ac);
+      } else {
+        st = egw_table_eval(L.slices[k], x, &p0, &d0);
+        egw_table_eval(L.slices[k + 1], x, &p1, &d1);
+      }
+      F = sr * L.s15 * (p0 + w * (p1 - p0));
+      S = sr * L.s05 * (d0 + w * (d1 - d0));
+      U = sr * L.s25 * (u0 + w * (u1 - u0));
       break;
     }
     case KIND_HYST: {

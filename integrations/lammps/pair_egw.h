@@ -34,6 +34,8 @@ struct EgwLaw {
   egw_table table = nullptr;
   egw_universal universal = nullptr;
   std::vector<egw_hysteresis> hyst;
+  std::vector<egw_table> slices;   // 1-D slices of universal at nodes in ln mu (summit data)
+  double lnmu0 = 0, inv_h = 0;     // first node, 1 / node spacing
   std::vector<double> lnmu;        // nodes of hyst in ln mu (summit data)
   egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)
   void release();

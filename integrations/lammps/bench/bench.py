@@ -3,8 +3,10 @@
 of two materials, 20000 steps) with pair_style egw against the same deck with
 pair_style granular hertz/material + mindlin, on 1 and 2 ranks. Prints a Markdown table
 (loop time, pair time, contacts, ns per contact per step, ratio to granular) for
-doc/benchmarks.md, and writes it as CSV to build/lammps/bench.csv.
-Usage: bench.py [NRUN]"""
+doc/benchmarks.md, and writes it as CSV to build/lammps/bench.csv. Each case runs REPEAT
+times (default 3, interleaved) and keeps its fastest run: the machine is shared, and the
+minimum is the figure least disturbed by other processes.
+Usage: bench.py [NRUN [REPEAT]]"""
 import os
 import re
 import subprocess
@@ -17,6 +19,7 @@ ROOT = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
 LMP = os.path.join(ROOT, "build", "lammps", "lmp")
 DECK = os.path.join(ROOT, "integrations", "lammps", "examples", "pour.in")
 NRUN = int(sys.argv[1]) if len(sys.argv) > 1 else 20000
+REPEAT = int(sys.argv[2]) if len(sys.argv) > 2 else 3
 
 CASES = [("granular hertz/material + mindlin", "granular", "E-GW", 1),
          ("egw E-GW (universal table, mu from summits)", "egw", "E-GW", 1),
@@ -43,15 +46,18 @@ def run(law, model, np):
 
 
 def main():
-    rows = []
-    for name, law, model, np in CASES:
-        r = run(law, model, np)
-        r.update(name=name, law=law, model=model, np=np)
-        rows.append(r)
-        print(f"  {name}, {np} rank(s): loop {r['loop']:.2f} s", file=sys.stderr, flush=True)
+    best = {}
+    for rep in range(REPEAT):
+        for k, (name, law, model, np) in enumerate(CASES):
+            r = run(law, model, np)
+            r.update(name=name, law=law, model=model, np=np)
+            print(f"  {name}, {np} rank(s): loop {r['loop']:.2f} s", file=sys.stderr, flush=True)
+            if k not in best or r["loop"] < best[k]["loop"]:
+                best[k] = r
+    rows = [best[k] for k in range(len(CASES))]
     ref = {np: r for r in rows for n2 in [r["np"]] if r["law"] == "granular" for np in [n2]}
     one = {(r["law"], r["model"]): r for r in rows if r["np"] == 1}
-    print(f"| deck: pour.in, {rows[0]['atoms']} grains, {NRUN} steps | ranks | loop [s] | "
+    print(f"| deck: pour.in, {rows[0]['atoms']} grains, {NRUN} steps, best of {REPEAT} | ranks | loop [s] | "
           "pair [s] | mean contacts | pair ns / contact / step | loop / granular | "
           "speed-up 1 -> 2 ranks | setup (tables) [s] |")
     print("|---|---|---|---|---|---|---|---|---|")

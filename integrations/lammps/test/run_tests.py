@@ -59,11 +59,12 @@ def thermo(out):
 
 
 def collision(pstyle, pcoeff, yoff=0.0, wz=0.0, nrun=6000, np=1, newton="on", thermo_every=1000,
-              n1=None, restart=0, rfile="restart.bin"):
+              n1=None, restart=0, rfile="restart.bin", r2=RAD):
     n1 = nrun // 2 if n1 is None else n1
     # the beads start 20 um apart along the line they first touch on (~2500 steps)
-    x0 = (math.sqrt((2 * RAD) ** 2 - yoff ** 2) + 2e-5) / 2
+    x0 = (math.sqrt((RAD + r2) ** 2 - yoff ** 2) + 2e-5) / 2
     return lmp("collision.in", np=np, pstyle=pstyle, pcoeff=pcoeff, v=V, x0=x0, yoff=yoff, wz=wz,
+               d2=2 * r2,
                dt=DT, n1=n1, n2=nrun - n1, newton=newton, thermo=thermo_every,
                restart=restart, rfile=rfile)
 
@@ -73,9 +74,9 @@ def restitution_of(out):
     return (vx2 - vx1) / (2 * V)
 
 
-def reference_e(model, sigma, mu, psi, tol=1e-6):
-    p = subprocess.run([REST, str(model), repr(E_STAR), repr(R_STAR), repr(sigma), repr(mu),
-                        repr(psi), "0.6", "54", repr(M_STAR), repr(2 * V), repr(tol)],
+def reference_e(model, sigma, mu, psi, tol=1e-6, R=R_STAR, m=M_STAR):
+    p = subprocess.run([REST, str(model), repr(E_STAR), repr(R), repr(sigma), repr(mu),
+                        repr(psi), "0.6", "54", repr(m), repr(2 * V), repr(tol)],
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode:
         raise RuntimeError(p.stdout)
@@ -125,18 +126,43 @@ def test_summit_data_restitution():
     mu = (8/3) eta sigma sqrt(2 R beta) of the contact): E-GW (universal table) rebounds
     elastically (e to 5e-5, the Verlet bound above) and EP-GW (hysteresis tables at nodes in
     ln mu, 4-point interpolation) gives egw_restitution's e at that mu to 5e-3 (the
-    hysteresis tables' 1e-3, as above)."""
+    hysteresis tables' 1e-3, as above). The E-GW slices carry the elastic energy: kinetic +
+    elastic energy constant to 5e-5 (the Verlet bound)."""
     sigma = math.sqrt(2) * 0.5e-6
     eta, beta = 1e10, 1e-5
     mu = 8 / 3 * eta * sigma * math.sqrt(2 * R_STAR * beta)
     c = f"E {E} nu {NU} sigma 0.5e-6 summit_density {eta} summit_radius {beta}"
-    rc1, out1 = collision("egw E-GW 1e-4", c)
+    rc1, out1 = collision("egw E-GW 1e-4", c, thermo_every=10)
     rc2, out2 = collision("egw EP-GW 1e-3", c + " psi 1")
     e1, e2 = restitution_of(out1), restitution_of(out2)
+    rows = thermo(out1)
+    drift = max(abs(r[3] / rows[0][3] - 1) for r in rows)
     ref = reference_e(3, sigma, mu, 1.0)
-    ok = rc1 == 0 and rc2 == 0 and abs(e1 - 1) < 5e-5 and abs(e2 - ref) < 5e-3
-    return ok, (f"mu = {mu:.4g}: E-GW e = {e1:.7f}; EP-GW e = {e2:.6f}, egw_restitution = "
+    ok = (rc1 == 0 and rc2 == 0 and abs(e1 - 1) < 5e-5 and drift < 5e-5 and
+          max(r[2] for r in rows) > 0.5 * rows[0][3] and abs(e2 - ref) < 5e-3)
+    return ok, (f"mu = {mu:.4g}: E-GW e = {e1:.7f}, energy drift {drift:.1e}; EP-GW e = {e2:.6f}, egw_restitution = "
                 f"{ref:.6f} (|diff| {abs(e2 - ref):.1e} < 5e-3)")
+
+
+def test_unequal_radii_summit():
+    """Beads of 1 and 0.5 mm (one type, so one law over the type's radius range) with mu
+    from the summit data: the contact's R = 1/3 mm and mu = (8/3) eta sigma sqrt(2 R beta)
+    are its own (no bucketing). EP-GW e against egw_restitution for that R, mu and
+    m* = m1 m2/(m1 + m2), to 5e-3 (tables at 1e-3); E-GW e = 1 to 5e-5."""
+    sigma = math.sqrt(2) * 0.5e-6
+    eta, beta, r2 = 1e10, 1e-5, 0.5e-3
+    R = RAD * r2 / (RAD + r2)
+    m1, m2 = (RHO * 4 / 3 * math.pi * r ** 3 for r in (RAD, r2))
+    mu = 8 / 3 * eta * sigma * math.sqrt(2 * R * beta)
+    c = f"E {E} nu {NU} sigma 0.5e-6 summit_density {eta} summit_radius {beta}"
+    rc1, out1 = collision("egw E-GW 1e-4", c, r2=r2)
+    rc2, out2 = collision("egw EP-GW 1e-3", c + " psi 1", r2=r2)
+    # momentum: e from the relative velocity
+    e1, e2 = restitution_of(out1), restitution_of(out2)
+    ref = reference_e(3, sigma, mu, 1.0, R=R, m=m1 * m2 / (m1 + m2))
+    ok = rc1 == 0 and rc2 == 0 and abs(e1 - 1) < 5e-5 and abs(e2 - ref) < 5e-3
+    return ok, (f"R = {R:.4g}, mu = {mu:.4g}: E-GW e = {e1:.7f}; EP-GW e = {e2:.6f}, "
+                f"egw_restitution = {ref:.6f} (|diff| {abs(e2 - ref):.1e} < 5e-3)")
 
 
 def test_hertz_damping_vs_granular():
@@ -316,7 +342,7 @@ def test_bad_coeff():
         "; " + "; ".join(bad) if bad else "")
 
 
-TESTS = [test_energy_elastic, test_epgw_restitution, test_summit_data_restitution, test_hertz_damping_vs_granular,
+TESTS = [test_energy_elastic, test_epgw_restitution, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree, test_restart_keeps_history, test_bad_coeff]
 
