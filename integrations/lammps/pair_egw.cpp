@@ -35,7 +35,7 @@ enum { KIND_HERTZ = 0, KIND_TABLE, KIND_UNIVERSAL, KIND_HYST, KIND_HYST_MU };
 const char *kind_name[] = {"Hertz (closed form)", "1-D table in delta/sigma",
                            "1-D slices of a universal table, linear in ln mu (R-dependent mu)",
                            "hysteresis table",
-                           "hysteresis tables over ln mu"};
+                           "hysteresis tables at nodes in ln mu, linear in ln mu"};
 constexpr int NHIST = 4;    // delta_max, tangential displacement (3)
 constexpr double TWO_ROOT_FIVE_SIXTHS = 1.82574185835055380345;    // 2 sqrt(5/6)
 
@@ -448,48 +448,50 @@ void PairEGW::build_tables(int i, int j, double R_lo, double R_hi)
       L.xc = cutoff_of(L.mu);
       L.hyst.push_back(hyst_at(L.mu, L.xc));
     } else {
+      // tables at nodes equally spaced in ln mu, linear interpolation between neighbours;
+      // the nodes are doubled until a table built at every interval's midpoint agrees
+      // with the interpolation to TOL of the force at the turning point
       L.mu_lo = L.mu * std::sqrt(R_lo) / 1.02, L.mu_hi = L.mu * std::sqrt(R_hi) * 1.02;
       L.xc = std::min(cutoff_of(L.mu_lo), cutoff_of(L.mu_hi));
       double a = std::log(L.mu_lo), b = std::log(L.mu_hi);
-      for (double h = 0.5;; h *= 0.5) {
-        for (auto &t : L.hyst) egw_hysteresis_free(&t);
-        L.hyst.clear(), L.lnmu.clear();
-        int n = std::max(4, (int) std::ceil((b - a) / h) + 1);
-        double c = 0.5 * (a + b), lo = c - 0.5 * (n - 1) * h;
-        for (int k = 0; k < n; k++) {
-          L.lnmu.push_back(lo + k * h);
-          L.hyst.push_back(hyst_at(std::exp(lo + k * h), L.xc));
-        }
-        // check: the middle of a central interval against a table built there
-        int k = (n - 1) / 2;
-        double lm = 0.5 * (L.lnmu[k] + L.lnmu[k + 1]);
-        egw_hysteresis ref = hyst_at(std::exp(lm), L.xc);
+      L.hyst = {hyst_at(L.mu_lo, L.xc), hyst_at(L.mu_hi, L.xc)};
+      for (;;) {
+        int n = (int) L.hyst.size();
+        double h = (b - a) / (n - 1);
+        std::vector<egw_hysteresis> mid;
         double err = 0.0;
-        for (double xt : {0.2 * xmax, 0.5 * xmax, 2.0, 10.0})
-          for (double f : {1.0, 0.95, 0.8, 0.5, 0.2, 0.0}) {
-            if (xt > xmax) continue;
-            double x = L.xc + f * (xt - L.xc);
-            double s0 = -HUGE_VAL, pr = 0, pt = 0, dum;
-            egw_hysteresis_eval(ref, xt, &s0, &pt, &dum);
-            egw_hysteresis_eval(ref, x, &s0, &pr, &dum);
-            // interpolated, as compute() does it
-            double pi = 0;
-            for (int m = 0; m < 4; m++) {
-              int km = k - 1 + m;
-              double w = 1.0;
-              for (int q = 0; q < 4; q++)
-                if (q != m) w *= (lm - L.lnmu[k - 1 + q]) / (L.lnmu[km] - L.lnmu[k - 1 + q]);
-              double s = -HUGE_VAL, pm, dm;
-              egw_hysteresis_eval(L.hyst[km], xt, &s, &pm, &dm);
-              egw_hysteresis_eval(L.hyst[km], x, &s, &pm, &dm);
-              pi += w * pm;
+        for (int k = 0; k + 1 < n; k++) {
+          mid.push_back(hyst_at(std::exp(a + (k + 0.5) * h), L.xc));
+          for (double xt : {2.0, 10.0, 0.2 * xmax, 0.5 * xmax})
+            for (double f : {1.0, 0.95, 0.8, 0.5, 0.2, 0.0}) {
+              if (xt > xmax) continue;
+              double x = L.xc + f * (xt - L.xc), pt = 0, pr = 0, pl = 0, dum;
+              double s = -HUGE_VAL;
+              egw_hysteresis_eval(mid.back(), xt, &s, &pt, &dum);
+              egw_hysteresis_eval(mid.back(), x, &s, &pr, &dum);
+              for (int m = k; m <= k + 1; m++) {
+                double sm = -HUGE_VAL, pm;
+                egw_hysteresis_eval(L.hyst[m], xt, &sm, &pm, &dum);
+                egw_hysteresis_eval(L.hyst[m], x, &sm, &pm, &dum);
+                pl += 0.5 * pm;
+              }
+              if (pt > 0) err = std::max(err, std::fabs(pl - pr) / pt);
             }
-            if (pt > 0) err = std::max(err, std::fabs(pi - pr) / pt);
-          }
-        egw_hysteresis_free(&ref);
+        }
         L.interp_error = err;
-        if (err <= tol || h < 0.1) break;
+        if (err <= tol || n > 64) {
+          for (auto &t : mid) egw_hysteresis_free(&t);
+          break;
+        }
+        std::vector<egw_hysteresis> merged;
+        for (int k = 0; k < n; k++) {
+          merged.push_back(L.hyst[k]);
+          if (k + 1 < n) merged.push_back(mid[k]);
+        }
+        L.hyst = merged;
       }
+      L.lnmu0 = a, L.inv_h = (L.hyst.size() - 1) / (b - a);
+      for (size_t k = 0; k < L.hyst.size(); k++) L.lnmu.push_back(a + k / L.inv_h);
     }
   }
   L.tail = -L.xc * L.sigma;
@@ -634,24 +636,18 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *dmax, dou
         error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
                           "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
                    R, mu, L.mu_lo, L.mu_hi);
-      double lm = std::log(mu);
-      int n = (int) L.lnmu.size();
-      double h = L.lnmu[1] - L.lnmu[0];
-      int k = (int) std::floor((lm - L.lnmu[0]) / h);
-      k = std::max(1, std::min(n - 3, k));
-      double p = 0, dp = 0, snew = s0;
-      for (int m = 0; m < 4; m++) {
-        int km = k - 1 + m;
-        double w = 1.0;
-        for (int q = 0; q < 4; q++)
-          if (q != m) w *= (lm - L.lnmu[k - 1 + q]) / (L.lnmu[km] - L.lnmu[k - 1 + q]);
-        double s = s0, pm, dm;
-        int stm = egw_hysteresis_eval(L.hyst[km], x, &s, &pm, &dm);
-        if (stm != EGW_OK && stm != EGW_OUT_OF_RANGE) st = stm;
-        p += w * pm, dp += w * dm, snew = s;
-      }
-      *dmax = snew * L.sigma;
-      F = sr * L.s15 * p, S = sr * L.s05 * dp, U = 0.0;
+      double t = (std::log(mu) - L.lnmu0) * L.inv_h;
+      int n = (int) L.hyst.size();
+      int k = std::max(0, std::min(n - 2, (int) t));
+      double w = t - k;
+      double s1 = s0, s2 = s0, p0, p1, d0, d1;
+      st = egw_hysteresis_eval(L.hyst[k], x, &s1, &p0, &d0);
+      int st2 = egw_hysteresis_eval(L.hyst[k + 1], x, &s2, &p1, &d1);
+      if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
+      *dmax = s1 * L.sigma;
+      F = sr * L.s15 * (p0 + w * (p1 - p0));
+      S = sr * L.s05 * (d0 + w * (d1 - d0));
+      U = 0.0;
       break;
     }
   }
