@@ -21,11 +21,13 @@ DECK = os.path.join(ROOT, "integrations", "lammps", "examples", "pour.in")
 NRUN = int(sys.argv[1]) if len(sys.argv) > 1 else 20000
 REPEAT = int(sys.argv[2]) if len(sys.argv) > 2 else 3
 
+EGW = "egw E-GW (mu from summits: 2 slices, linear in ln mu)"
+EPGW = "egw EP-GW (mu from summits: 2 hysteresis tables, delta_max history)"
 CASES = [("granular hertz/material + mindlin", "granular", "E-GW", 1),
-         ("egw E-GW (universal table, mu from summits)", "egw", "E-GW", 1),
-         ("egw EP-GW (hysteresis tables over ln mu, delta_max history)", "egw", "EP-GW", 1),
+         (EGW, "egw", "E-GW", 1),
+         (EPGW, "egw", "EP-GW", 1),
          ("granular hertz/material + mindlin", "granular", "E-GW", 2),
-         ("egw E-GW (universal table, mu from summits)", "egw", "E-GW", 2)]
+         (EGW, "egw", "E-GW", 2)]
 
 
 def run(law, model, np):
