@@ -84,6 +84,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   fix_history = nullptr;
   freeze_group_bit = 0;
   tables_ready = false;
+  warned_range = false;
   // compute pair egw: the number of active contacts (delta above the rough tail's cut-off)
   nextra = 1;
   pvector = new double[1];
@@ -650,6 +651,12 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *dmax, dou
       U = 0.0;
       break;
     }
+  }
+  if (st == EGW_OUT_OF_RANGE && !warned_range) {
+    warned_range = true;
+    error->warning(FLERR, "Pair egw: overlap {} (R = {}) beyond the tables' reach: force "
+                          "continued linearly; raise 'overlap_max' in pair_style egw",
+                   delta, R);
   }
   if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
     char buf[512];

@@ -64,6 +64,7 @@ class PairEGW : public Pair {
   class Fix *fix_history;
   int freeze_group_bit;
   bool tables_ready;
+  bool warned_range;    // one warning per rank for overlaps beyond the tables
 
   // per type (index 1..ntypes): own coefficients as given with pair_coeff I I
   struct Coeff {

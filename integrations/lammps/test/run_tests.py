@@ -272,25 +272,28 @@ def test_pile_vs_granular():
 
 
 def test_ranks_agree():
-    """The column with rough E-GW contacts (two types, sigma 2 and 1 um, damping) on
-    1 rank, 2 ranks (the column cut across, contacts and their histories handed between
-    ranks) and 2 ranks with newton off: the same settled column to 1e-10 (only the order of
-    force sums differs; the column is not chaotic). Then the chaotic pile with friction on
-    1 and 2 ranks after 2000 steps (before round-off grows): the same to 1e-6."""
-    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 friction 0.5"
-    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 damping 0.6 friction 0.4"
-    runs = [pile("egw E-GW 1e-4", c1, c2, np=n, newton=nw, nrun=30000, deck="column.in")
-            for n, nw in ((1, "on"), (2, "on"), (2, "off"))]
+    """The column with rough EP-GW contacts (two types, sigma 2 and 1 um, psi 0.5 and 0.3,
+    damping: delta_max histories) on 1 rank, 2 ranks (the box cut at z = 10 mm, across the
+    settled column: contacts and their histories handed between ranks), 2 ranks with newton
+    off: the same settled column to 1e-10 (only the order of force sums differs;
+    the column is not chaotic). Then the chaotic E-GW pile with friction on 1 and 2 ranks
+    (newton on and off) after 2000 steps (before round-off grows): the same to 1e-6."""
+    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 psi 0.5 damping 0.5 friction 0.5"
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 psi 0.3 damping 0.6 friction 0.4"
+    layouts = ((1, "on"), (2, "on"), (2, "off"))    # 3+ ranks oversubscribe a 2-core CI
+    runs = [pile("egw EP-GW 1e-3", c1, c2, np=n, newton=nw, nrun=30000, deck="column.in")
+            for n, nw in layouts]
     ok = all(rc == 0 for rc, o in runs)
     res = [result(o) for rc, o in runs] if ok else []
     dz = max(abs(r[1] / res[0][1] - 1) for r in res) if ok else 1
-    piles = [pile("egw E-GW 1e-4", c1, c2, np=n, newton=nw, nrun=2000)
-             for n, nw in ((1, "on"), (2, "on"), (2, "off"))]
+    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 friction 0.5"
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 damping 0.6 friction 0.4"
+    piles = [pile("egw E-GW 1e-4", c1, c2, np=n, newton=nw, nrun=2000) for n, nw in layouts]
     ok = ok and all(rc == 0 for rc, o in piles)
     pres = [result(o) for rc, o in piles] if ok else []
     dp = max(max(abs(r[1] / pres[0][1] - 1), abs(r[0] / pres[0][0] - 1)) for r in pres) if ok else 1
     ok = ok and dz < 1e-10 and dp < 1e-6
-    return ok, f"column: rel. diff {dz:.1e} (< 1e-10); pile after 2000 steps: {dp:.1e} (< 1e-6)"
+    return ok, f"EP-GW column: rel. diff {dz:.1e} (< 1e-10); E-GW pile after 2000 steps: {dp:.1e} (< 1e-6)"
 
 
 def test_restart_keeps_history():
@@ -311,7 +314,7 @@ def test_restart_keeps_history():
 
 
 def test_bad_coeff():
-    """Bad pair_coeff / pair_style input: a LAMMPS ERROR naming the keyword, a non-zero
+    """Bad pair_coeff / pair_style input (18 cases): a LAMMPS ERROR naming the keyword, a non-zero
     exit, never a crash."""
     base = f"E {E} nu {NU}"
     cases = [
@@ -330,6 +333,9 @@ def test_bad_coeff():
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 plastic_ratio 0.5", "plastic_ratio"),
         ("egw Foo 1e-4", f"{base} sigma 1e-6 mu 4", "MODEL"),
         ("egw E-GW 2", f"{base} sigma 1e-6 mu 4", "TOL"),
+        ("egw E-GW 1e-4 overlap_max -1", f"{base} sigma 1e-6 mu 4", "overlap_max"),
+        ("egw E-GW 1e-4 rmin", f"{base} sigma 1e-6 mu 4", "rmin"),
+        ("egw E-GW 1e-4 speed 3", f"{base} sigma 1e-6 mu 4", "speed"),
     ]
     bad = []
     for ps, pc, key in cases:
