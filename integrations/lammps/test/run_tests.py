@@ -59,12 +59,12 @@ def thermo(out):
 
 
 def collision(pstyle, pcoeff, yoff=0.0, wz=0.0, nrun=6000, np=1, newton="on", thermo_every=1000,
-              n1=None, restart=0, rfile="restart.bin", r2=RAD):
+              n1=None, restart=0, rfile="restart.bin", r2=RAD, check="yes"):
     n1 = nrun // 2 if n1 is None else n1
     # the beads start 20 um apart along the line they first touch on (~2500 steps)
     x0 = (math.sqrt((RAD + r2) ** 2 - yoff ** 2) + 2e-5) / 2
     return lmp("collision.in", np=np, pstyle=pstyle, pcoeff=pcoeff, v=V, x0=x0, yoff=yoff, wz=wz,
-               d2=2 * r2,
+               d2=2 * r2, check=check,
                dt=DT, n1=n1, n2=nrun - n1, newton=newton, thermo=thermo_every,
                restart=restart, rfile=rfile)
 
@@ -296,6 +296,23 @@ def test_ranks_agree():
     return ok, f"EP-GW column: rel. diff {dz:.1e} (< 1e-10); E-GW pile after 2000 steps: {dp:.1e} (< 1e-6)"
 
 
+def test_reneighbor_keeps_history():
+    """EP-GW with friction, oblique: neighbor lists rebuilt every step (neigh_modify check
+    no: every contact's history goes through the fix's pre_exchange / post_neighbor at
+    every step) against rebuilt only when atoms moved half the skin (never during the
+    contact): the same end state to 1e-12 of the speed (delta_max and the tangential
+    displacement survive reneighboring)."""
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.9 friction 0.3"
+    rc1, out1 = collision("egw EP-GW 1e-3", c, yoff=0.0005, wz=30.0, check="yes")
+    rc2, out2 = collision("egw EP-GW 1e-3", c, yoff=0.0005, wz=30.0, check="no")
+    a, b = result(out1), result(out2)
+    builds = [int(x) for x in re.findall(r"Neighbor list builds = (\d+)", out2)]
+    d = max(abs(x - y) for x, y in zip(a, b)) / V
+    ok = rc1 == 0 and rc2 == 0 and d < 1e-12 and sum(builds) > 1000 and abs(a[1]) > 1e-3 * V
+    few = sum(int(x) for x in re.findall(r"Neighbor list builds = (\d+)", out1))
+    return ok, f"{sum(builds)} rebuilds vs {few}: max |dv|/v = {d:.1e} (< 1e-12)"
+
+
 def test_restart_keeps_history():
     """EP-GW with friction, oblique: a run split by write_restart in mid contact
     (unloading, tangential spring loaded) and continued from the file by read_restart
@@ -350,7 +367,8 @@ def test_bad_coeff():
 
 TESTS = [test_energy_elastic, test_epgw_restitution, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
-         test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree, test_restart_keeps_history, test_bad_coeff]
+         test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
+         test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff]
 
 
 def main():
