@@ -85,6 +85,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   freeze_group_bit = 0;
   tables_ready = false;
   warned_range = false;
+  built_model = -1, built_tol = built_overlap = 0.0;
   // compute pair egw: the number of active contacts (delta above the rough tail's cut-off)
   nextra = 1;
   pvector = new double[1];
@@ -317,7 +318,7 @@ void PairEGW::make_law(int i, int j)
   EgwLaw &old = law[i][j];
   bool same = old.E_star == L.E_star && old.sigma == L.sigma && old.mu_mode == L.mu_mode &&
       old.mu == L.mu && old.psi == L.psi && old.K == L.K && old.rho == L.rho &&
-      old.kind == L.kind && built_rhi[i][j] > 0;
+      old.kind == L.kind && old.prm.model == L.prm.model && built_rhi[i][j] > 0;
   if (same) {
     L.table = old.table, L.universal = old.universal, L.hyst = old.hyst, L.lnmu = old.lnmu;
     L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h;
@@ -536,6 +537,11 @@ void PairEGW::init_style()
   freeze_group_bit = 0;
   for (auto f : modify->get_fix_by_style("^freeze")) freeze_group_bit |= f->groupbit;
 
+  // a new MODEL, TOL or overlap_max (pair_style egw given again) rebuilds every table
+  if (model != built_model || tol != built_tol || overlap_max != built_overlap) {
+    for (auto &row : built_rhi) std::fill(row.begin(), row.end(), 0.0);
+    built_model = model, built_tol = tol, built_overlap = overlap_max;
+  }
   type_radii();
   int n = atom->ntypes;
   for (int i = 1; i <= n; i++)

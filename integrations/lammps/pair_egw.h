@@ -64,7 +64,9 @@ class PairEGW : public Pair {
   class Fix *fix_history;
   int freeze_group_bit;
   bool tables_ready;
-  bool warned_range;    // one warning per rank for overlaps beyond the tables
+  bool warned_range;
+  int built_model;                           // settings the tables were built with
+  double built_tol, built_overlap;    // one warning per rank for overlaps beyond the tables
 
   // per type (index 1..ntypes): own coefficients as given with pair_coeff I I
   struct Coeff {
