@@ -196,14 +196,24 @@ def test_oblique_friction_vs_granular():
 
 
 def test_sigma_to_zero_vs_granular():
-    """E-GW with sigma = 1 nm per bead (rough tail ~3 nm against a 1.3 um overlap) and
-    damping 0.8: the rebound of pair_style granular hertz/material within 1e-3 (the rough
-    layer changes the force by O(sigma/delta) ~ 1e-3)."""
+    """E-GW with sigma = 1 nm per bead (rough tail ~3 nm against a 1.3 um overlap), damping
+    0.8: the rebound of pair_style granular hertz/material within 1e-3 (the rough layer
+    changes the force by O(sigma/delta) ~ 1e-3); and the oblique, spinning collision with
+    damping 0.7 and friction 0.3 (mindlin): velocities and spins within 5e-3 of the speed
+    (the tangential spring also loads over the rough tail, |delta_c|/delta_max ~ 3e-3)."""
     rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} sigma 1e-9 mu 4 damping 0.8")
     rc2, out2 = collision("granular", granular(e=0.8))
     e1, e2 = restitution_of(out1), restitution_of(out2)
-    ok = rc1 == 0 and rc2 == 0 and abs(e1 - e2) < 1e-3
-    return ok, f"egw e = {e1:.6f}, granular e = {e2:.6f} (|diff| < 1e-3)"
+    c = f"E {E} nu {NU} sigma 1e-9 mu 4 damping 0.7 friction 0.3"
+    rc3, out3 = collision("egw E-GW 1e-4", c, yoff=0.0008, wz=60.0)
+    rc4, out4 = collision("granular", granular(e=0.7, mut=0.3), yoff=0.0008, wz=60.0)
+    a, b = result(out3), result(out4)
+    dv = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
+    dw = max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD)
+    ok = (rc1 == 0 and rc2 == 0 and rc3 == 0 and rc4 == 0 and abs(e1 - e2) < 1e-3 and
+          dv < 5e-3 and dw < 5e-3)
+    return ok, (f"head-on: egw e = {e1:.6f}, granular e = {e2:.6f} (|diff| < 1e-3); oblique "
+                f"with friction: max |dv|/v = {dv:.1e}, |dw| R/v = {dw:.1e} (< 5e-3)")
 
 
 PILE_E = 1e7    # soft beads: t_c ~ 0.2 ms, so a pile settles in tens of thousands of steps
