@@ -36,7 +36,9 @@ const char *kind_name[] = {"Hertz (closed form)", "1-D table in delta/sigma",
                            "1-D slices of a universal table, linear in ln mu (R-dependent mu)",
                            "hysteresis table",
                            "hysteresis tables at nodes in ln mu, linear in ln mu"};
-constexpr int NHIST = 4;    // delta_max, tangential displacement (3)
+// per contact: delta_max, tangential displacement (3), and the contact's R with its
+// position t in the ln-mu nodes (summit data: mu depends on R only, so t is computed once)
+constexpr int NHIST = 6;
 constexpr double TWO_ROOT_FIVE_SIXTHS = 1.82574185835055380345;    // 2 sqrt(5/6)
 
 /* The leading public members of LAMMPS's FixNeighHistory (fix_neigh_history.h, not
@@ -581,9 +583,24 @@ double PairEGW::init_one(int i, int j)
 
 /* ---------------------------------------------------------------------- */
 
-inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *dmax, double &F,
+/* the position of the contact's mu = mu(R) in the ln-mu nodes of L, cached in hist[4..5] */
+inline double PairEGW::mu_position(EgwLaw &L, double R, double *hist)
+{
+  if (hist[4] == R) return hist[5];
+  double mu = L.mu * std::sqrt(R);
+  if (!(mu >= L.mu_lo && mu <= L.mu_hi))
+    error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
+                      "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
+               R, mu, L.mu_lo, L.mu_hi);
+  hist[4] = R;
+  hist[5] = (std::log(mu) - L.lnmu0) * L.inv_h;
+  return hist[5];
+}
+
+inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, double &F,
                             double &S, double &U, int want_energy)
 {
+  double *dmax = &hist[0];
   int st = EGW_OK;
   double sr = L.E_star * std::sqrt(R);
   switch (L.kind) {
@@ -606,12 +623,7 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *dmax, dou
       break;
     }
     case KIND_UNIVERSAL: {
-      double mu = L.mu * std::sqrt(R);
-      if (!(mu >= L.mu_lo && mu <= L.mu_hi))
-        error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
-                          "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
-                   R, mu, L.mu_lo, L.mu_hi);
-      double t = (std::log(mu) - L.lnmu0) * L.inv_h;
+      double t = mu_position(L, R, hist);
       int n = (int) L.slices.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
@@ -638,12 +650,7 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *dmax, dou
     }
     case KIND_HYST_MU: {
       double x = delta * L.inv_sigma, s0 = *dmax == -HUGE_VAL ? *dmax : *dmax * L.inv_sigma;
-      double mu = L.mu * std::sqrt(R);
-      if (!(mu >= L.mu_lo && mu <= L.mu_hi))
-        error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
-                          "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
-                   R, mu, L.mu_lo, L.mu_hi);
-      double t = (std::log(mu) - L.lnmu0) * L.inv_h;
+      double t = mu_position(L, R, hist);
       int n = (int) L.hyst.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
@@ -712,7 +719,7 @@ void PairEGW::compute(int eflag, int vflag)
       double *hist = &allhist[NHIST * jj];
       if (rsq >= reach * reach) {
         touch[jj] = 0;
-        hist[0] = hist[1] = hist[2] = hist[3] = 0.0;
+        for (int k = 0; k < NHIST; k++) hist[k] = 0.0;
         continue;
       }
       double r = std::sqrt(rsq), rinv = 1.0 / r;
@@ -722,10 +729,10 @@ void PairEGW::compute(int eflag, int vflag)
       if (!touch[jj]) {
         touch[jj] = 1;
         hist[0] = -HUGE_VAL;
-        hist[1] = hist[2] = hist[3] = 0.0;
+        for (int k = 1; k < NHIST; k++) hist[k] = 0.0;
       }
       double Fn, S, U;
-      normal(L, delta, R, &hist[0], Fn, S, U, eflag);
+      normal(L, delta, R, hist, Fn, S, U, eflag);
       ncontact++;
 
       // relative velocity at the contact
@@ -796,7 +803,9 @@ void PairEGW::compute(int eflag, int vflag)
 void PairEGW::transfer_history(double *source, double *target, int, int)
 {
   target[0] = source[0];
-  for (int k = 1; k < NHIST; k++) target[k] = -source[k];
+  for (int k = 1; k < 4; k++) target[k] = -source[k];
+  target[4] = source[4];
+  target[5] = source[5];
 }
 
 double PairEGW::memory_usage()

@@ -86,7 +86,8 @@ class PairEGW : public Pair {
   void build_tables(int, int, double, double);
   void type_radii();
   void egw_fail(const std::string &what);
-  inline void normal(EgwLaw &, double delta, double R, double *dmax, double &F, double &S,
+  inline double mu_position(EgwLaw &, double R, double *hist);
+  inline void normal(EgwLaw &, double delta, double R, double *hist, double &F, double &S,
                      double &U, int want_energy);
 };
 
