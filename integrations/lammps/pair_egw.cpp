@@ -37,8 +37,9 @@ const char *kind_name[] = {"Hertz (closed form)", "1-D table in delta/sigma",
                            "hysteresis table",
                            "hysteresis tables at nodes in ln mu, linear in ln mu"};
 // per contact: delta_max, tangential displacement (3), and the contact's R with its
-// position t in the ln-mu nodes (summit data: mu depends on R only, so t is computed once)
-constexpr int NHIST = 6;
+// position t in the ln-mu nodes and the nodes' fingerprint (summit data: mu depends on R
+// only, so t is computed once per contact and set of tables)
+constexpr int NHIST = 7;
 constexpr double TWO_ROOT_FIVE_SIXTHS = 1.82574185835055380345;    // 2 sqrt(5/6)
 
 /* The leading public members of LAMMPS's FixNeighHistory (fix_neigh_history.h, not
@@ -583,10 +584,11 @@ double PairEGW::init_one(int i, int j)
 
 /* ---------------------------------------------------------------------- */
 
-/* the position of the contact's mu = mu(R) in the ln-mu nodes of L, cached in hist[4..5] */
+/* the position of the contact's mu = mu(R) in the ln-mu nodes of L, cached in hist[4..6] */
 inline double PairEGW::mu_position(EgwLaw &L, double R, double *hist)
 {
-  if (hist[4] == R) return hist[5];
+  double print = L.lnmu0 + L.inv_h;    // changes when the tables are rebuilt for a new range
+  if (hist[4] == R && hist[6] == print) return hist[5];
   double mu = L.mu * std::sqrt(R);
   if (!(mu >= L.mu_lo && mu <= L.mu_hi))
     error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
@@ -594,6 +596,7 @@ inline double PairEGW::mu_position(EgwLaw &L, double R, double *hist)
                R, mu, L.mu_lo, L.mu_hi);
   hist[4] = R;
   hist[5] = (std::log(mu) - L.lnmu0) * L.inv_h;
+  hist[6] = print;
   return hist[5];
 }
 
@@ -804,8 +807,7 @@ void PairEGW::transfer_history(double *source, double *target, int, int)
 {
   target[0] = source[0];
   for (int k = 1; k < 4; k++) target[k] = -source[k];
-  target[4] = source[4];
-  target[5] = source[5];
+  for (int k = 4; k < NHIST; k++) target[k] = source[k];
 }
 
 double PairEGW::memory_usage()
