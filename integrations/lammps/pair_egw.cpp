@@ -700,7 +700,7 @@ void PairEGW::compute(int eflag, int vflag)
 
   int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
-  int ncontact = 0;
+  double ncontact = 0.0;    // a pair with a ghost under newton off is counted by both ranks
 
   for (int ii = 0; ii < inum; ii++) {
     int i = ilist[ii];
@@ -736,7 +736,7 @@ void PairEGW::compute(int eflag, int vflag)
       }
       double Fn, S, U;
       normal(L, delta, R, hist, Fn, S, U, eflag);
-      ncontact++;
+      ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
       // relative velocity at the contact
       double vrx = v[i][0] - v[j][0], vry = v[i][1] - v[j][1], vrz = v[i][2] - v[j][2];
