@@ -25,6 +25,7 @@ contains
          & build_s, max_err
       integer(int64) :: c0, c1, rate
       integer :: i, r, s, stat, it, unit
+      character(len=8) :: label
       p = contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
          & mu=4.0_dp, psi=2.0_dp, hardness_coeff=0.6_dp, plastic_ratio=54.0_dp)
       tols = [1.0e-3_dp, 1.0e-4_dp]
@@ -79,8 +80,9 @@ contains
          write (output_unit, '(a,f7.2,a,f7.2,a,f6.2,a,es9.2)') "  eval: ", best_y*1e9, &
             & " ns/call (F and K), Hertz force ", best_h*1e9, " ns/call: ratio ", &
             & best_y/best_h, " (goal <= 3); max error vs solves ", max_err
+         write (label, '(es7.1)') tols(it)
          call write_row(unit, "hysteresis", "hysteresis table", "EP-GW psi=2 mu=4 mix", &
-            & "rel_tol="//trim(fmt_e(tols(it))), best_y, max_err, &
+            & "rel_tol="//trim(label), best_y, max_err, &
             & "solve_contact_unload rel_tol=1e-7", 0, "build_s="//fmt_e(build_s)// &
             & " hertz_s="//fmt_e(best_h)//" n_m="//itoa(size(t%m))//" n_s="// &
             & itoa(size(t%s)))
