@@ -90,8 +90,8 @@ contains
       type(hysteresis_table), intent(in) :: table
       character(len=*), intent(in) :: path
       type(egw_error), allocatable, intent(out) :: error
-      character(len=:), allocatable :: buf, tmp
-      integer :: pos, n_load, n_m, n_s, unit, ios
+      character(len=:), allocatable :: buf
+      integer :: pos, n_load, n_m, n_s
       n_load = size(table%loading%delta)
       n_m = 0
       n_s = 0
