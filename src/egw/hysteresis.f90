@@ -3,15 +3,18 @@
 !> the caller owns (the largest overlap so far; -huge for a contact that never touched).
 !>
 !> Layout: the loading curve is a 1-D force table (egw_table). Below a turning point
-!> m = delta_max the force is P = P_load(m) r(s, m) with s = (m - delta)/(s_max L(m)) and
-!> L(m) = 1.5 P_load(m)/K_unload(m): for Hertzian unloading L is m minus the residual
-!> overlap, and in the separated tail 1.5 times the force's decay length, so r depends
-!> little on m at fixed s (the edge where the force vanishes stays put) and few delta_max
-!> nodes serve. r(0, m) = 1: the force is continuous where unloading starts and the
-!> loading table is used as it is; the force is 0 below the loading cut-off delta_c.
-!> Each node m_j carries r(., m_j) as a cubic Hermite curve in s (slopes from the solver's
+!> m = delta_max the force is P = P_load(delta) - P_load(m) g(s, m): g is the hysteresis
+!> gap relative to the force at the turning point, at s = (m - delta)/(s_max L(m)) with
+!> L(m) = 1.5 P_load(m)/K_unload(m). For Hertzian unloading L is m minus the residual
+!> overlap, and in the separated tail 1.5 times the force's decay length, so g depends
+!> little on m at fixed s (the edge where the unloading force vanishes stays put); and
+!> the gap, not the unloading force, is stored, so that tables of weakly plastic contacts
+!> (g nearly 0) need few nodes. g(0, m) = 0: the force is continuous where unloading
+!> starts and the loading table is used as it is; the force is 0 below the loading
+!> cut-off delta_c (the gap is taken to the table continued smoothly below it).
+!> Each node m_j carries g(., m_j) as a cubic Hermite curve in s (slopes from the solver's
 !> stiffnesses, solves at rel_tol/10, s bisected until value and slope at every midpoint
-!> meet the solves to rel_tol/4); between nodes r and L are cubic Lagrange combinations
+!> meet the solves to rel_tol/4); between nodes g and L are cubic Lagrange combinations
 !> of four neighbouring curves, and the m grid is bisected until that combination meets
 !> the midpoint's curve at all its nodes to rel_tol (the table's whole error there).
 !> Every curve's cubics are then resampled onto the union of the s nodes (exactly: the
@@ -41,10 +44,10 @@ module egw_hysteresis
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
-   !> The unloading curve of one delta_max node during the build: r and dr/ds at nodes s.
+   !> The unloading curve of one delta_max node during the build: g and dg/ds at nodes s.
    type :: unloading_curve
       real(dp) :: length = 0.0_dp   !< L(m) = 1.5 P_load(m)/K_unload(m)
-      real(dp), allocatable :: s(:), ratio(:), slope(:)
+      real(dp), allocatable :: s(:), gap(:), slope(:)
    end type unloading_curve
 
    !> Uniform buckets over [origin, origin + 1/scale]: bucket b holds the interval that
@@ -71,8 +74,8 @@ module egw_hysteresis
       real(dp), allocatable :: length(:)
       real(dp) :: s_max = 0.0_dp               !< s = (m - delta)/(s_max L(m)) lies in [0, 1]
       real(dp), allocatable :: s(:)            !< s nodes of every curve, 0 .. 1 (n_s)
-      !> r(s, m_j) at the s nodes and dr/ds there: (n_s, n_m) (the stored table)
-      real(dp), allocatable :: ratio(:, :), slope(:, :)
+      !> g(s, m_j) at the s nodes and dg/ds there: (n_s, n_m) (the stored table)
+      real(dp), allocatable :: gap(:, :), slope(:, :)
       ! evaluation data (hysteresis_prepare)
       !> (4, n_m, n_s - 1): the cubic in t = (s - s_i)/(s_{i+1} - s_i) of curve j on
       !> interval i (the four curves of a Lagrange stencil share two cache lines)
@@ -159,7 +162,7 @@ contains
       real(dp), intent(inout) :: delta_max_state
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: m, span, s, t, f_m, k_m, w(4), d(4), r, dr, c(4)
+      real(dp) :: m, span, s, t, f_m, k_m, w(4), d(4), g, dg, c(4), f_d, k_d
       integer :: i, j, first, n_m, k
       stat = 0
       force = 0.0_dp
@@ -198,10 +201,11 @@ contains
       do k = 1, 4
          c = c + w(k)*table%coef(:, first + k - 1, i)
       end do
-      r = c(1) + t*(c(2) + t*(c(3) + t*c(4)))
-      dr = (c(2) + t*(2*c(3) + t*3*c(4)))*table%inv_ds(i)
-      force = f_m*r
-      stiffness = -f_m*dr/span
+      g = c(1) + t*(c(2) + t*(c(3) + t*c(4)))
+      dg = (c(2) + t*(2*c(3) + t*3*c(4)))*table%inv_ds(i)
+      call table_eval(table%loading, delta, f_d, k_d)
+      force = f_d - f_m*g
+      stiffness = k_d + f_m*dg/span
       if (.not. force > 0.0_dp) then
          force = 0.0_dp
          stiffness = 0.0_dp
@@ -224,7 +228,7 @@ contains
          h = table%s(i + 1) - table%s(i)
          table%inv_ds(i) = 1.0_dp/h
          do j = 1, n_m
-            associate (r0 => table%ratio(i, j), r1 => table%ratio(i + 1, j), &
+            associate (r0 => table%gap(i, j), r1 => table%gap(i + 1, j), &
                & d0 => h*table%slope(i, j), d1 => h*table%slope(i + 1, j))
                table%coef(:, j, i) = [r0, d0, 3*(r1 - r0) - 2*d0 - d1, 2*(r0 - r1) + d0 + d1]
             end associate
@@ -348,9 +352,26 @@ contains
             call curve_eval(curves(first + k - 1), s, r, dr)
             v = v + w(k)*r
          end do
-         err = max(err, abs(v - mid%ratio(i)))
+         err = max(err, abs(v - mid%gap(i)))
       end do
    end function stencil_mismatch
+
+   !> The loading table's force and stiffness, continued below its cut-off delta_c (where
+   !> the table says 0) by P_c exp((delta - delta_c) K_c/P_c): C1 at the cut-off, so that
+   !> the gap to it is smooth where the unloading curves cross the cut-off.
+   pure subroutine loading_extended(loading, delta, force, stiffness)
+      type(force_table), intent(in) :: loading
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: rate
+      if (delta >= loading%cutoff .or. .not. loading%force(1) > 0.0_dp) then
+         call table_eval(loading, delta, force, stiffness)
+         return
+      end if
+      rate = loading%stiffness(1)/loading%force(1)
+      force = loading%force(1)*exp((delta - loading%cutoff)*rate)
+      stiffness = force*rate
+   end subroutine loading_extended
 
    !> L(m) of the curves at m(:) (a loading and an unloading solve each, in parallel).
    subroutine unloading_lengths(table, options, m, curves, error)
@@ -459,24 +480,32 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(loading_history) :: hist
       type(solve_result) :: res
-      real(dp) :: s(max_s_nodes), ratio(max_s_nodes), slope(max_s_nodes), span, scale, &
-         & r_mid, d_mid, r_int, d_int, s_mid, err
+      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), span, scale, &
+         & r_mid, d_mid, r_int, d_int, s_mid, err, f_turn, k_turn, c_turn
       integer :: n, i
       logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
       worst = 0.0_dp
       call load_history(table%params, options, m, hist, res, error)
       if (allocated(error)) return
-      scale = res%force
+      f_turn = res%force
+      ! gaps relative to the loading table's force at the turning point (what the
+      ! evaluation multiplies them by)
+      call table_eval(table%loading, m, scale, k_turn)
       if (.not. scale > 0.0_dp) scale = table%loading%reference_force*table%rel_tol
+      ! the loading reference scaled to the solve's force at the turning point, so that the
+      ! gap vanishes there continuously (the table's own error, <= rel_tol of the force,
+      ! would otherwise be a jump that no refinement in s removes)
+      c_turn = 1.0_dp
+      if (f_turn > 0.0_dp .and. scale > 0.0_dp) c_turn = f_turn/scale
       call solve_unload(hist, m, res, error)
       if (allocated(error)) return
-      curve%length = unloading_length(scale, res%stiffness, table%params%sigma)
+      curve%length = unloading_length(f_turn, res%stiffness, table%params%sigma)
       span = table%s_max*curve%length
       n = 5
       s(1:n) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
       do i = 1, n
-         call ratio_at(s(i), ratio(i), slope(i))
+         call gap_at(s(i), gap(i), slope(i))
          if (allocated(error)) return
       end do
       checked(1:n - 1) = .false.
@@ -489,10 +518,10 @@ contains
                cycle
             end if
             s_mid = 0.5_dp*(s(i) + s(i + 1))
-            call ratio_at(s_mid, r_mid, d_mid)
+            call gap_at(s_mid, r_mid, d_mid)
             if (allocated(error)) return
             probe%s = s(i:i + 1)
-            probe%ratio = ratio(i:i + 1)
+            probe%gap = gap(i:i + 1)
             probe%slope = slope(i:i + 1)
             call curve_eval(probe, s_mid, r_int, d_int)
             ! the slope's mismatch too: a midpoint value can agree by chance where the
@@ -505,12 +534,12 @@ contains
                   return
                end if
                s(i + 2:n + 1) = s(i + 1:n)
-               ratio(i + 2:n + 1) = ratio(i + 1:n)
+               gap(i + 2:n + 1) = gap(i + 1:n)
                slope(i + 2:n + 1) = slope(i + 1:n)
                checked(i + 2:n) = checked(i + 1:n - 1)
                checked(i:i + 1) = .false.
                s(i + 1) = s_mid
-               ratio(i + 1) = r_mid
+               gap(i + 1) = r_mid
                slope(i + 1) = d_mid
                n = n + 1
                refined = .true.
@@ -524,28 +553,32 @@ contains
          if (.not. refined) exit
       end do
       curve%s = s(1:n)
-      curve%ratio = ratio(1:n)
+      curve%gap = gap(1:n)
       curve%slope = slope(1:n)
 
    contains
 
-      !> r = P_unload/P_load(m) and dr/ds = -K_unload span/P_load(m) at delta = m - s span
-      !> (below the cut-off too: the curve is a neighbour of others in the m direction)
-      !> (r = 1 at s = 0 exactly: the turning point is the loading solve)
-      subroutine ratio_at(x, r, dr)
+      !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
+      !> delta = m - s span, P_ext the loading table continued below its cut-off (below
+      !> the cut-off too: the curve is a neighbour of others in the m direction), c the
+      !> solve's force at m over the table's; g = 0 at the turning point, so that the force
+      !> is continuous there
+      subroutine gap_at(x, g, dg)
          real(dp), intent(in) :: x
-         real(dp), intent(out) :: r, dr
-         r = 1.0_dp
-         dr = 0.0_dp
+         real(dp), intent(out) :: g, dg
+         real(dp) :: p_ext, k_ext
+         g = 0.0_dp
+         dg = 0.0_dp
          call solve_unload(hist, m - x*span, res, error)
          if (allocated(error)) return
-         if (x > 0.0_dp) r = res%force/scale
-         dr = -res%stiffness*span/scale
-         ! far below the cut-off the force underflows: no subnormal numbers in the table
+         call loading_extended(table%loading, m - x*span, p_ext, k_ext)
+         if (x > 0.0_dp) g = (c_turn*p_ext - res%force)/scale
+         dg = (res%stiffness - c_turn*k_ext)*span/scale
+         ! far below the cut-off the forces underflow: no subnormal numbers in the table
          ! (they would slow every evaluation that touches them by two orders)
-         if (abs(r) < tiny_ratio) r = 0.0_dp
-         if (abs(dr) < tiny_ratio) dr = 0.0_dp
-      end subroutine ratio_at
+         if (abs(g) < tiny_ratio) g = 0.0_dp
+         if (abs(dg) < tiny_ratio) dg = 0.0_dp
+      end subroutine gap_at
 
    end subroutine build_curve
 
@@ -569,10 +602,10 @@ contains
       table%m = m
       table%length = curves%length
       table%s = all_s(1:n)
-      allocate (table%ratio(n, size(m)), table%slope(n, size(m)))
+      allocate (table%gap(n, size(m)), table%slope(n, size(m)))
       do j = 1, size(m)
          do i = 1, n
-            call curve_eval(curves(j), table%s(i), table%ratio(i, j), table%slope(i, j))
+            call curve_eval(curves(j), table%s(i), table%gap(i, j), table%slope(i, j))
          end do
       end do
    end subroutine resample
@@ -601,9 +634,9 @@ contains
       h10 = t*(1 - t)**2
       h01 = t*t*(3 - 2*t)
       h11 = t*t*(t - 1)
-      r = h00*curve%ratio(i) + h10*h*curve%slope(i) + h01*curve%ratio(i + 1) &
+      r = h00*curve%gap(i) + h10*h*curve%slope(i) + h01*curve%gap(i + 1) &
          & + h11*h*curve%slope(i + 1)
-      dr = 6*t*(t - 1)/h*(curve%ratio(i) - curve%ratio(i + 1)) &
+      dr = 6*t*(t - 1)/h*(curve%gap(i) - curve%gap(i + 1)) &
          & + (1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1)
    end subroutine curve_eval
 
@@ -672,7 +705,7 @@ contains
       type(unloading_curve), intent(out) :: to
       to%length = from%length
       call move_alloc(from%s, to%s)
-      call move_alloc(from%ratio, to%ratio)
+      call move_alloc(from%gap, to%gap)
       call move_alloc(from%slope, to%slope)
    end subroutine move_curve
 

@@ -25,7 +25,7 @@ module egw_hysteresis_format
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
    !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
-   character(len=*), parameter :: csv_columns = "delta_max,length,s,ratio,dratio_ds"
+   character(len=*), parameter :: csv_columns = "delta_max,length,s,gap,dgap_ds"
    character(len=*), parameter :: csv_title = "# egw hysteresis table, CSV format 1"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
@@ -118,7 +118,7 @@ contains
          call put_f64(buf, pos, table%m)
          call put_f64(buf, pos, table%length)
          call put_f64(buf, pos, table%s)
-         call put_f64(buf, pos, reshape(table%ratio, [n_m*n_s]))
+         call put_f64(buf, pos, reshape(table%gap, [n_m*n_s]))
          call put_f64(buf, pos, reshape(table%slope, [n_m*n_s]))
       end if
       call put_i32(buf, pos, [checksum_i32(fnv1a32(buf(1:pos - 1)))])
@@ -191,12 +191,12 @@ contains
       call get_f64(bytes, pos, table%loading%stiffness)
       call get_f64(bytes, pos, table%loading%energy)
       call get_f64(bytes, pos, table%loading%contact_radius)
-      allocate (table%m(n_m), table%length(n_m), table%s(n_s), table%ratio(n_s, n_m), &
+      allocate (table%m(n_m), table%length(n_m), table%s(n_s), table%gap(n_s, n_m), &
          & table%slope(n_s, n_m))
       call get_f64(bytes, pos, table%m)
       call get_f64(bytes, pos, table%length)
       call get_f64(bytes, pos, table%s)
-      call get_matrix(bytes, pos, table%ratio)
+      call get_matrix(bytes, pos, table%gap)
       call get_matrix(bytes, pos, table%slope)
    end subroutine parse_binary
 
@@ -237,10 +237,10 @@ contains
          head = head//"# loading.n_nodes = "//int_str(size(l%delta))//new_line("a")// &
             & "# loading.n_log = "//int_str(l%n_log)//new_line("a")// &
             & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
-            & "stiffness [modulus*length]; energy [modulus*length^3]; s, ratio [1]"// &
+            & "stiffness [modulus*length]; energy [modulus*length^3]; s, gap [1]"// &
             & new_line("a")// &
-            & "# rows: unloading force = P_load(delta_max)*ratio at s = (delta_max - delta)/"// &
-            & "(s_max*length), cubic Hermite in s (slope dratio_ds), cubic Lagrange in "// &
+            & "# rows: unloading force = P_load(delta) - P_load(delta_max)*gap at s = "// &
+            & "(delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), cubic Lagrange in "// &
             & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
             & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
          call put_line(head)
@@ -252,7 +252,7 @@ contains
       do j = 1, n_m
          do i = 1, n_s
             call put_line(csv_row([table%m(j), table%length(j), table%s(i), &
-               & table%ratio(i, j), table%slope(i, j)]))
+               & table%gap(i, j), table%slope(i, j)]))
          end do
       end do
       call put_line("# end of table, "//int_str(n_m*n_s)//" rows")
@@ -372,7 +372,7 @@ contains
                   return
                end if
                allocate (table%m(n_m), table%length(n_m), table%s(n_s), &
-                  & table%ratio(n_s, n_m), table%slope(n_s, n_m))
+                  & table%gap(n_s, n_m), table%slope(n_s, n_m))
             end if
             k_row = k_row + 1
             read (text(start:eol), *, iostat=ios) v(1:5)
@@ -391,7 +391,7 @@ contains
                      & "differs from the grid of the rows before")
                   return
                end if
-               table%ratio(i, j) = v(4)
+               table%gap(i, j) = v(4)
                table%slope(i, j) = v(5)
             end associate
          end if
@@ -403,7 +403,7 @@ contains
          return
       end if
       if (.not. allocated(table%m)) allocate (table%m(0), table%length(0), table%s(0), &
-         & table%ratio(0, 0), table%slope(0, 0))
+         & table%gap(0, 0), table%slope(0, 0))
       if (k_row /= size(table%m)*size(table%s)) then
          call bad(error, path, int_str(k_row)//" rows, n_delta_max*n_s = "// &
             & int_str(size(table%m)*size(table%s)))
@@ -421,7 +421,7 @@ contains
    !> What a hysteresis table must satisfy to be evaluated: valid parameters, a sane
    !> loading curve (finite; increasing nodes; force >= 0 and non-decreasing; stiffness
    !> >= 0) and unloading grid (m from the cut-off to delta_max, s from 0 to 1, both
-   !> increasing; ratio finite, 1 at s = 0 and within [0, 1] up to rel_tol).
+   !> increasing; gap finite, 0 at s = 0 and within [0, 1] up to the tables' errors).
    subroutine check_hysteresis(path, t, error)
       character(len=*), intent(in) :: path
       type(hysteresis_table), intent(in) :: t
@@ -482,7 +482,7 @@ contains
          return
       end if
       if (.not. (all(ieee_is_finite(t%m)) .and. all(ieee_is_finite(t%s)) .and. &
-         & all(ieee_is_finite(t%ratio)) .and. all(ieee_is_finite(t%slope)) .and. &
+         & all(ieee_is_finite(t%gap)) .and. all(ieee_is_finite(t%slope)) .and. &
          & all(ieee_is_finite(t%length)) .and. ieee_is_finite(t%s_max))) then
          call bad(error, path, "unloading data: a value is not finite")
          return
@@ -498,9 +498,11 @@ contains
             & "and s from 0 to 1 must increase")
          return
       end if
-      if (any(t%ratio(1, :) /= 1.0_dp) .or. any(t%ratio < -t%rel_tol) .or. &
-         & any(t%ratio > 1.0_dp + t%rel_tol)) then
-         call bad(error, path, "unloading data: ratio must be 1 at s = 0 and within [0, 1]")
+      ! the gap is relative to the turning-point force: within [0, 1] up to the tables'
+      ! own errors
+      if (any(t%gap(1, :) /= 0.0_dp) .or. any(t%gap < -10*t%rel_tol) .or. &
+         & any(t%gap > 1.0_dp + 10*t%rel_tol)) then
+         call bad(error, path, "unloading data: gap must be 0 at s = 0 and within [0, 1]")
          return
       end if
    end subroutine check_hysteresis
