@@ -14,7 +14,7 @@
 !> cut-off delta_c (the gap is taken to the table continued smoothly below it).
 !> Each node m_j carries g(., m_j) as a cubic Hermite curve in s (slopes from the solver's
 !> stiffnesses, solves at rel_tol/10, s bisected until value and slope at every midpoint
-!> meet the solves to rel_tol/4); between nodes g and L are cubic Lagrange combinations
+!> meet the solves to rel_tol/4); between nodes g and 1/L are cubic Lagrange combinations
 !> of four neighbouring curves, and the m grid is bisected until that combination meets
 !> the midpoint's curve at all its nodes to rel_tol (the table's whole error there).
 !> Every curve's cubics are then resampled onto the union of the s nodes (exactly: the
@@ -72,6 +72,7 @@ module egw_hysteresis
       !> L(m_j) = 1.5 P_load(m_j)/K_unload(m_j): the unloading length of a Hertzian
       !> contact (m - residual overlap), the scale of s
       real(dp), allocatable :: length(:)
+      real(dp), allocatable :: inv_span(:)     !< 1/(s_max L(m_j)) (hysteresis_prepare)
       real(dp) :: s_max = 0.0_dp               !< s = (m - delta)/(s_max L(m)) lies in [0, 1]
       real(dp), allocatable :: s(:)            !< s nodes of every curve, 0 .. 1 (n_s)
       !> g(s, m_j) at the s nodes and dg/ds there: (n_s, n_m) (the stored table)
@@ -162,8 +163,8 @@ contains
       real(dp), intent(inout) :: delta_max_state
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: m, span, s, t, f_m, k_m, w(4), d(4), g, dg, c(4), f_d, k_d
-      integer :: i, j, first, n_m, k
+      real(dp) :: m, inv_span, s, t, f_m, k_m, w(4), d(4), g, dg, c(4), f_d, k_d
+      integer :: i, j, first, n_m
       stat = 0
       force = 0.0_dp
       stiffness = 0.0_dp
@@ -191,21 +192,25 @@ contains
       w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
       w(4) = d(1)*d(2)*d(3)*table%lagrange(4, j)
       if (m > table%delta_max) w = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
-      span = table%s_max*(w(1)*table%length(first) + w(2)*table%length(first + 1) + &
-         & w(3)*table%length(first + 2) + w(4)*table%length(first + 3))
-      if (.not. span > 0.0_dp) span = table%s_max*table%length(j)   ! (L is smooth and > 0)
-      s = min((m - delta)/span, 1.0_dp)
+      ! 1/(s_max L) interpolated (no division on the hot path; smooth and > 0 as L)
+      inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
+         & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
+      if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
+      s = min((m - delta)*inv_span, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       t = (s - table%s(i))*table%inv_ds(i)
-      c = 0.0_dp
-      do k = 1, 4
-         c = c + w(k)*table%coef(:, first + k - 1, i)
-      end do
+      ! the four curves' cubics on interval i: 16 contiguous numbers
+      associate (cf => table%coef(:, first:first + 3, i))
+         c(1) = w(1)*cf(1, 1) + w(2)*cf(1, 2) + w(3)*cf(1, 3) + w(4)*cf(1, 4)
+         c(2) = w(1)*cf(2, 1) + w(2)*cf(2, 2) + w(3)*cf(2, 3) + w(4)*cf(2, 4)
+         c(3) = w(1)*cf(3, 1) + w(2)*cf(3, 2) + w(3)*cf(3, 3) + w(4)*cf(3, 4)
+         c(4) = w(1)*cf(4, 1) + w(2)*cf(4, 2) + w(3)*cf(4, 3) + w(4)*cf(4, 4)
+      end associate
       g = c(1) + t*(c(2) + t*(c(3) + t*c(4)))
       dg = (c(2) + t*(2*c(3) + t*3*c(4)))*table%inv_ds(i)
       call table_eval(table%loading, delta, f_d, k_d)
       force = f_d - f_m*g
-      stiffness = k_d + f_m*dg/span
+      stiffness = k_d + f_m*dg*inv_span
       if (.not. force > 0.0_dp) then
          force = 0.0_dp
          stiffness = 0.0_dp
@@ -223,6 +228,7 @@ contains
       if (allocated(table%coef)) deallocate (table%coef)
       if (allocated(table%inv_ds)) deallocate (table%inv_ds)
       if (allocated(table%lagrange)) deallocate (table%lagrange)
+      table%inv_span = 1.0_dp/(table%s_max*table%length)
       allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))
       do i = 1, n_s - 1
          h = table%s(i + 1) - table%s(i)
@@ -343,7 +349,8 @@ contains
          end do
       end do
       ! the table's s of the midpoint curve's delta: with the interpolated L(m)
-      length = sum(w*curves(first:first + 3)%length)
+      ! as the evaluation: 1/L interpolated
+      length = 1.0_dp/sum(w/curves(first:first + 3)%length)
       err = 0.0_dp
       do i = 1, size(mid%s)
          s = min(mid%s(i)*mid%length/length, 1.0_dp)
