@@ -595,17 +595,14 @@ contains
       type(hysteresis_table), intent(inout) :: table
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:)
-      real(dp), allocatable :: all_s(:)
+      real(dp), allocatable :: all_s(:), union(:)
       integer :: j, i, n
-      all_s = [(curves(j)%s, j = 1, size(curves))]
-      call sort(all_s)
-      n = 1
-      do i = 2, size(all_s)
-         if (all_s(i) > all_s(n)) then
-            n = n + 1
-            all_s(n) = all_s(i)
-         end if
+      all_s = curves(1)%s
+      do j = 2, size(curves)
+         call merge_nodes(all_s, curves(j)%s, union)
+         call move_alloc(union, all_s)
       end do
+      n = size(all_s)
       table%m = m
       table%length = curves%length
       table%s = all_s(1:n)
@@ -690,22 +687,34 @@ contains
       end do
    end function locate
 
-   !> Sort increasing (insertion sort: a few thousand values, once per build).
-   pure subroutine sort(x)
-      real(dp), intent(inout) :: x(:)
-      real(dp) :: v
-      integer :: i, k
-      do i = 2, size(x)
-         v = x(i)
-         k = i - 1
-         do while (k >= 1)
-            if (x(k) <= v) exit
-            x(k + 1) = x(k)
-            k = k - 1
-         end do
-         x(k + 1) = v
+   !> c = the union of the increasing node lists a and b, increasing, each value once.
+   pure subroutine merge_nodes(a, b, c)
+      real(dp), intent(in) :: a(:), b(:)
+      real(dp), allocatable, intent(out) :: c(:)
+      real(dp) :: work(size(a) + size(b)), next
+      integer :: i, j, n
+      i = 1
+      j = 1
+      n = 0
+      do while (i <= size(a) .or. j <= size(b))
+         if (j > size(b)) then
+            next = a(i)
+         else if (i > size(a)) then
+            next = b(j)
+         else
+            next = min(a(i), b(j))
+         end if
+         n = n + 1
+         work(n) = next
+         if (i <= size(a)) then
+            if (a(i) == next) i = i + 1
+         end if
+         if (j <= size(b)) then
+            if (b(j) == next) j = j + 1
+         end if
       end do
-   end subroutine sort
+      c = work(1:n)
+   end subroutine merge_nodes
 
    pure subroutine move_curve(from, to)
       type(unloading_curve), intent(inout) :: from

@@ -93,12 +93,7 @@ contains
       character(len=:), allocatable :: buf
       integer :: pos, n_load, n_m, n_s
       n_load = size(table%loading%delta)
-      n_m = 0
-      n_s = 0
-      if (.not. table%reversible) then
-         n_m = size(table%m)
-         n_s = size(table%s)
-      end if
+      call grid_sizes(table, n_m, n_s)
       allocate (character(len=header_bytes + 8*(5*n_load + 2*n_m + n_s + 2*n_m*n_s) + 4) :: buf)
       buf(1:8) = magic
       pos = 9
@@ -209,12 +204,7 @@ contains
       character(len=:), allocatable :: head
       integer :: i, j, n_m, n_s
       type(text_buffer) :: out
-      n_m = 0
-      n_s = 0
-      if (.not. table%reversible) then
-         n_m = size(table%m)
-         n_s = size(table%s)
-      end if
+      call grid_sizes(table, n_m, n_s)
       associate (l => table%loading)
          ! the column header first and the metadata as '#' lines, as the 1-D tables:
          ! pandas.read_csv(path, comment="#") reads the unloading rows as they are
@@ -508,6 +498,17 @@ contains
    end subroutine check_hysteresis
 
    ! ---------------------------------------------------------------------------- helpers
+
+   !> delta_max nodes and s nodes of the stored curves (0, 0 for a reversible table).
+   pure subroutine grid_sizes(table, n_m, n_s)
+      type(hysteresis_table), intent(in) :: table
+      integer, intent(out) :: n_m, n_s
+      n_m = 0
+      n_s = 0
+      if (table%reversible) return
+      n_m = size(table%m)
+      n_s = size(table%s)
+   end subroutine grid_sizes
 
    pure function params_array(p) result(a)
       type(contact_params), intent(in) :: p
