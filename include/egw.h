@@ -449,6 +449,27 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
 int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
                         double *force, double *stiffness);
 
+/* Doubles of a contact's state for egw_hysteresis_eval_state. */
+#define EGW_HYSTERESIS_STATE_SIZE 12
+
+/* egw_hysteresis_eval with a larger per-contact state that the caller owns and keeps with
+ * the contact (EGW_HYSTERESIS_STATE_SIZE doubles, no allocation, no lock): state[0] is the
+ * history (the largest overlap so far, as *delta_max_state above), state[1..11] a cache
+ * that this call fills: the turning point's data, so that a contact unloading or
+ * reloading below the same turning point skips its lookup (DEM: most calls), and the
+ * intervals last found, tried first by the next call (a contact moves little). Same values and
+ * statuses as egw_hysteresis_eval. Start a contact with egw_hysteresis_state_init; a
+ * state may be copied with its contact (restarts, migration between ranks): its cache is
+ * used only with a table of the same data and the same state[0], and recomputed
+ * otherwise. EGW_INVALID_ARGUMENT for NaN delta or state[0] (nothing changed);
+ * EGW_NULL_POINTER for h or state. */
+int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
+                              double state[EGW_HYSTERESIS_STATE_SIZE], double *force,
+                              double *stiffness);
+
+/* A new contact's state: state[0] = -HUGE_VAL, the cache empty. NULL is ignored. */
+void egw_hysteresis_state_init(double state[EGW_HYSTERESIS_STATE_SIZE]);
+
 /* egw_hysteresis_eval for n independent contacts in one call: delta[i] with history
  * delta_max_state[i] (updated), force[i], stiffness[i] (either may be NULL). A NaN overlap
  * or state, or one so large that the force would leave the doubles, refuses the call

@@ -7,7 +7,8 @@ module test_hysteresis
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & solve_contact_unload
    use egw_table, only: table_eval
-   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
+      & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary, format_lammps
    use egw_status, only: egw_bad_file, egw_io_error
@@ -42,6 +43,7 @@ contains
          & new_unittest("DEM loop restitution = restitution to 1e-4", test_dem_restitution), &
          & new_unittest("table within rel_tol of solves between nodes", test_accuracy), &
          & new_unittest("history: load, unload, reload, new contact", test_history), &
+         & new_unittest("state with cached turning point = plain history", test_state), &
          & new_unittest("elastic summits: no hysteresis", test_reversible), &
          & new_unittest("bad input", test_bad_input), &
          & new_unittest("write/read CSV and binary: same values", test_round_trip), &
@@ -139,6 +141,84 @@ contains
       call hysteresis_eval(t, 7.0_dp, state, f, k, stat)
       call check(error, stat, egw_out_of_range, "beyond delta_max: out of range")
    end subroutine test_history
+
+   !> hysteresis_eval_state against hysteresis_eval over 2000 contacts' random walks
+   !> (loading, unloading, reloading, states beyond the table) and one slowly moving
+   !> contact (where the interval hints are used): the cache holds the numbers
+   !> the plain evaluation computes, so values, statuses and histories must be identical;
+   !> a state carried over to the read-back table (same data: same tag) keeps its cache
+   !> and gives the same values; one carried to another table is recomputed.
+   subroutine test_state(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t, back, other
+      type(contact_params) :: p
+      type(egw_error), allocatable :: err
+      real(dp) :: state(hysteresis_state_size), copy(hysteresis_state_size), plain, d, &
+         & f, k, f2, k2
+      integer :: i, step, stat, stat2, mismatches
+      call build(ep, t, error)
+      if (allocated(error)) return
+      mismatches = 0
+      do i = 1, 2000
+         call hysteresis_state_init(state)
+         plain = state(1)
+         do step = 1, 12
+            ! overlaps over [-2.5, 6.5]: below the cut-off to past the table's delta_max = 6
+            d = -2.5_dp + 9.0_dp*modulo(0.7548777_dp*(i + 37*step) + 0.3_dp*step, 1.0_dp)
+            call hysteresis_eval_state(t, d, state, f, k, stat)
+            call hysteresis_eval(t, d, plain, f2, k2, stat2)
+            if (f /= f2 .or. k /= k2 .or. stat /= stat2 .or. state(1) /= plain) &
+               & mismatches = mismatches + 1
+         end do
+      end do
+      call check(error, mismatches, 0, "evaluations where the cached state differs")
+      if (allocated(error)) return
+      ! a DEM-like contact: small steps (the interval hints hit), oscillating with a slowly
+      ! growing amplitude (unloading, reloading, loading past the turning point)
+      call hysteresis_state_init(state)
+      plain = state(1)
+      do step = 1, 20000
+         d = 2.0_dp + (1.0_dp + 1.5e-4_dp*step)*sin(2.0e-3_dp*step)
+         call hysteresis_eval_state(t, d, state, f, k, stat)
+         call hysteresis_eval(t, d, plain, f2, k2, stat2)
+         if (f /= f2 .or. k /= k2 .or. stat /= stat2 .or. state(1) /= plain) &
+            & mismatches = mismatches + 1
+      end do
+      call check(error, mismatches, 0, "steps of a slowly moving contact where they differ")
+      if (allocated(error)) return
+      call write_hysteresis(t, "build/hyst_state.csv", format_csv, err)
+      if (.not. allocated(err)) call read_hysteresis("build/hyst_state.csv", back, err)
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      call check(error, back%tag == t%tag .and. t%tag >= 1.0_dp, "same data, same tag")
+      if (allocated(error)) return
+      call hysteresis_state_init(state)
+      call hysteresis_eval_state(t, 4.0_dp, state, f, k, stat)
+      call hysteresis_eval_state(t, 2.0_dp, state, f, k, stat)
+      copy = state
+      call hysteresis_eval_state(back, 1.0_dp, copy, f, k, stat)
+      call check(error, all(copy(2:10) == state(2:10)), "the read-back table keeps the cache")
+      if (allocated(error)) return
+      plain = 4.0_dp
+      call hysteresis_eval(back, 1.0_dp, plain, f2, k2, stat2)
+      call check(error, f == f2 .and. k == k2, "and the cache gives its values")
+      if (allocated(error)) return
+      p = ep
+      p%psi = 1.0_dp
+      call build_hysteresis(p, solver_options(), -2.0_dp, 6.0_dp, tol, other, err)
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      copy = state
+      call hysteresis_eval_state(other, 1.0_dp, copy, f, k, stat)
+      plain = 4.0_dp
+      call hysteresis_eval(other, 1.0_dp, plain, f2, k2, stat2)
+      call check(error, f == f2 .and. k == k2 .and. copy(3) == other%tag, &
+         & "another table recomputes the cache")
+   end subroutine test_state
 
    !> E-GW (elastic summits): unloading follows loading, to the table's tolerance.
    subroutine test_reversible(error)

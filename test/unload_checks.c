@@ -124,6 +124,48 @@ int egw_capi_test_hysteresis(void) {
   HCHECK(egw_hysteresis_eval(NULL, 1.0, &state, &f, &k) == EGW_NULL_POINTER);
   HCHECK(egw_hysteresis_eval(h, 1.0, NULL, &f, &k) == EGW_NULL_POINTER);
   {
+    /* egw_hysteresis_eval_state against egw_hysteresis_eval on one contact's path (load,
+     * unload, reload, load further, unload): the cache holds the numbers the plain call
+     * computes, so the values must be identical, and state[0] the plain history. A state
+     * whose cache belongs to another turning point, or is garbage with a foreign tag, gives
+     * the same values again (recomputed, never trusted). */
+    const double path[] = {-1.0, 1.0, 2.5, 1.2, 0.3, -0.5, 1.8, 2.5, 3.2, 2.0, 0.9, 3.9};
+    double st[EGW_HYSTERESIS_STATE_SIZE], plain = -HUGE_VAL, fs, ks, fp, kp;
+    int same = 1;
+    egw_hysteresis_state_init(st);
+    HCHECK(st[0] == -HUGE_VAL);
+    for (size_t i = 0; i < sizeof path / sizeof path[0]; i++) {
+      int a = egw_hysteresis_eval_state(h, path[i], st, &fs, &ks);
+      int b = egw_hysteresis_eval(h, path[i], &plain, &fp, &kp);
+      same = same && a == b && fs == fp && ks == kp && st[0] == plain;
+    }
+    HCHECK(same);
+    {
+      double garbage[EGW_HYSTERESIS_STATE_SIZE];
+      for (int i = 0; i < EGW_HYSTERESIS_STATE_SIZE; i++) garbage[i] = 1e300 * (i + 1);
+      garbage[0] = 3.0;
+      garbage[1] = 3.0;   /* the right turning point but not this table's tag */
+      plain = 3.0;
+      HCHECK(egw_hysteresis_eval_state(h, 1.0, garbage, &fs, &ks) == EGW_OK);
+      HCHECK(egw_hysteresis_eval(h, 1.0, &plain, &fp, &kp) == EGW_OK && fs == fp && ks == kp);
+      st[0] = 3.5;        /* a copied state moved on: its cache was for 3.9 */
+      plain = 3.5;
+      HCHECK(egw_hysteresis_eval_state(h, 1.0, st, &fs, &ks) == EGW_OK);
+      HCHECK(egw_hysteresis_eval(h, 1.0, &plain, &fp, &kp) == EGW_OK && fs == fp && ks == kp);
+    }
+    f = 7.0;
+    HCHECK(egw_hysteresis_eval_state(h, NAN, st, &f, &k) == EGW_INVALID_ARGUMENT && f == 7.0);
+    nf += !last_error_names("delta");
+    st[0] = NAN;
+    HCHECK(egw_hysteresis_eval_state(h, 1.0, st, &f, &k) == EGW_INVALID_ARGUMENT && f == 7.0);
+    nf += !last_error_names("state");
+    HCHECK(egw_hysteresis_eval_state(NULL, 1.0, st, &f, &k) == EGW_NULL_POINTER);
+    HCHECK(egw_hysteresis_eval_state(h, 1.0, NULL, &f, &k) == EGW_NULL_POINTER);
+    egw_hysteresis_state_init(NULL); /* ignored */
+    egw_hysteresis_state_init(st);
+    HCHECK(egw_hysteresis_eval_state(h, 5.0, st, &f, &k) == EGW_OUT_OF_RANGE && st[0] == 5.0);
+  }
+  {
     /* write, read back: the same force at an unloading point (exact: 17 digits / raw
      * bytes), the info of both, refusals */
     egw_hysteresis back = NULL;

@@ -39,7 +39,11 @@ const char *kind_name[] = {"Hertz (closed form)", "1-D table in delta/sigma",
 // per contact: delta_max, tangential displacement (3), and the contact's R with its
 // position t in the ln-mu nodes and the nodes' fingerprint (summit data: mu depends on R
 // only, so t is computed once per contact and set of tables)
-constexpr int NHIST = 7;
+// EP-GW adds two hysteresis states (egw_hysteresis_eval_state: the largest overlap in
+// table units and the cache of its turning point), one per table of the ln-mu pair
+constexpr int NHIST_BASE = 7;
+constexpr int HYST_A = NHIST_BASE, HYST_B = NHIST_BASE + EGW_HYSTERESIS_STATE_SIZE;
+constexpr int NHIST_EPGW = NHIST_BASE + 2 * EGW_HYSTERESIS_STATE_SIZE;
 constexpr double TWO_ROOT_FIVE_SIXTHS = 1.82574185835055380345;    // 2 sqrt(5/6)
 
 /* The leading public members of LAMMPS's FixNeighHistory (fix_neigh_history.h, not
@@ -81,6 +85,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   beyond_contact = 1;                 // the rough tail acts before the spheres touch
   nondefault_history_transfer = 1;    // delta_max is not negated for the partner's copy
   model = EGW_MODEL_EGW;
+  nhist = NHIST_BASE;
   tol = 1e-4;
   rmin_user = rmax_user = 0.0;
   overlap_max = 0.05;
@@ -528,9 +533,19 @@ void PairEGW::init_style()
   // list (not a size list, whose reach is r < R_i + R_j + skin) is used
   neighbor->add_request(this, NeighConst::REQ_HISTORY);
 
+  // pair_style egw given again with another model: the histories' size changes
+  int want = model == EGW_MODEL_EPGW ? NHIST_EPGW : NHIST_BASE;
+  if (fix_history != nullptr && want != nhist) {
+    modify->delete_fix("NEIGH_HISTORY_EGW");
+    fix_history = nullptr;
+  }
+  nhist = want;
   if (fix_history == nullptr) {
-    fix_history = modify->replace_fix("NEIGH_HISTORY_EGW_DUMMY",
-                                      fmt::format("NEIGH_HISTORY_EGW all NEIGH_HISTORY {}", NHIST), 1);
+    auto cmd = fmt::format("NEIGH_HISTORY_EGW all NEIGH_HISTORY {}", nhist);
+    if (modify->get_fix_by_id("NEIGH_HISTORY_EGW_DUMMY"))
+      fix_history = modify->replace_fix("NEIGH_HISTORY_EGW_DUMMY", cmd, 1);
+    else
+      fix_history = modify->add_fix(cmd, 1);
     auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
     if (view->use_bit_flag != 1 || view->nlocal_neigh < 0 || view->nall_neigh < 0)
       error->all(FLERR, "Pair egw: this LAMMPS's fix NEIGH_HISTORY has an unexpected layout");
@@ -644,24 +659,24 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
       break;
     }
     case KIND_HYST: {
-      double x = delta * L.inv_sigma, s = *dmax == -HUGE_VAL ? *dmax : *dmax * L.inv_sigma;
-      double p, dp;
-      st = egw_hysteresis_eval(L.hyst[0], x, &s, &p, &dp);
-      *dmax = s * L.sigma;
+      // the state (table units) with its turning point's cache lives in hist[HYST_A..]
+      double x = delta * L.inv_sigma, p, dp;
+      st = egw_hysteresis_eval_state(L.hyst[0], x, &hist[HYST_A], &p, &dp);
+      *dmax = hist[HYST_A] * L.sigma;
       F = sr * L.s15 * p, S = sr * L.s05 * dp, U = 0.0;
       break;
     }
     case KIND_HYST_MU: {
-      double x = delta * L.inv_sigma, s0 = *dmax == -HUGE_VAL ? *dmax : *dmax * L.inv_sigma;
+      double x = delta * L.inv_sigma;
       double t = mu_position(L, R, hist);
       int n = (int) L.hyst.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
-      double s1 = s0, s2 = s0, p0, p1, d0, d1;
-      st = egw_hysteresis_eval(L.hyst[k], x, &s1, &p0, &d0);
-      int st2 = egw_hysteresis_eval(L.hyst[k + 1], x, &s2, &p1, &d1);
+      double p0, p1, d0, d1;
+      st = egw_hysteresis_eval_state(L.hyst[k], x, &hist[HYST_A], &p0, &d0);
+      int st2 = egw_hysteresis_eval_state(L.hyst[k + 1], x, &hist[HYST_B], &p1, &d1);
       if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
-      *dmax = s1 * L.sigma;
+      *dmax = hist[HYST_A] * L.sigma;
       F = sr * L.s15 * (p0 + w * (p1 - p0));
       S = sr * L.s05 * (d0 + w * (d1 - d0));
       U = 0.0;
@@ -719,10 +734,10 @@ void PairEGW::compute(int eflag, int vflag)
       double rsq = dx * dx + dy * dy + dz * dz;
       double radj = radius[j];
       double reach = radi + radj + L.tail;
-      double *hist = &allhist[NHIST * jj];
+      double *hist = &allhist[nhist * jj];
       if (rsq >= reach * reach) {
         touch[jj] = 0;
-        for (int k = 0; k < NHIST; k++) hist[k] = 0.0;
+        for (int k = 0; k < nhist; k++) hist[k] = 0.0;
         continue;
       }
       double r = std::sqrt(rsq), rinv = 1.0 / r;
@@ -732,7 +747,11 @@ void PairEGW::compute(int eflag, int vflag)
       if (!touch[jj]) {
         touch[jj] = 1;
         hist[0] = -HUGE_VAL;
-        for (int k = 1; k < NHIST; k++) hist[k] = 0.0;
+        for (int k = 1; k < nhist; k++) hist[k] = 0.0;
+        if (nhist == NHIST_EPGW) {
+          egw_hysteresis_state_init(&hist[HYST_A]);
+          egw_hysteresis_state_init(&hist[HYST_B]);
+        }
       }
       double Fn, S, U;
       normal(L, delta, R, hist, Fn, S, U, eflag);
@@ -807,7 +826,7 @@ void PairEGW::transfer_history(double *source, double *target, int, int)
 {
   target[0] = source[0];
   for (int k = 1; k < 4; k++) target[k] = -source[k];
-  for (int k = 4; k < NHIST; k++) target[k] = source[k];
+  for (int k = 4; k < nhist; k++) target[k] = source[k];
 }
 
 double PairEGW::memory_usage()

@@ -59,6 +59,7 @@ class PairEGW : public Pair {
 
  protected:
   int model;            // EGW_MODEL_*
+  int nhist;            // doubles of history per contact (NHIST_* in pair_egw.cpp)
   double tol;           // table tolerance
   double rmin_user, rmax_user, overlap_max;
   class Fix *fix_history;

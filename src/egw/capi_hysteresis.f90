@@ -3,14 +3,16 @@
 module egw_capi_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_associated, &
       & c_f_pointer, c_loc
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
+      & ieee_negative_inf
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_out_of_range, &
       & egw_out_of_memory, &
       & fatal_error, format_real
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
-   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
+      & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_capi, only: settle, require, read_params, read_options, put, from_params, &
       & egw_params_c, int_str
@@ -108,6 +110,73 @@ contains
       end if
    end function egw_hysteresis_eval
 
+   !> C: egw_hysteresis_eval_state: egw_hysteresis_eval with the turning point's data kept
+   !> in the caller's state (EGW_HYSTERESIS_STATE_SIZE doubles; state[0] the history).
+   function egw_hysteresis_eval_state(hp, delta, state_p, force, stiffness) result(stat) &
+      & bind(C, name="egw_hysteresis_eval_state")
+      type(c_ptr), value, intent(in) :: hp, state_p, force, stiffness
+      real(c_double), value, intent(in) :: delta
+      integer(c_int) :: stat
+      type(hysteresis_table), pointer :: h
+      real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
+      type(egw_error), allocatable :: error
+      real(dp) :: f, k, kept
+      integer :: st
+      if (.not. (c_associated(hp) .and. c_associated(state_p))) then
+         stat = require(hp, "h")
+         if (stat == egw_ok) stat = require(state_p, "state")
+         return
+      end if
+      if (ieee_is_nan(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = NaN: must be a number")
+         stat = settle(error)
+         return
+      end if
+      call c_f_pointer(hp, h)
+      call c_f_pointer(state_p, state, [hysteresis_state_size])
+      if (ieee_is_nan(state(1))) then
+         call fatal_error(error, egw_invalid_argument, "state[0] = NaN: a new contact "// &
+            & "starts from egw_hysteresis_state_init (state[0] = -HUGE_VAL)")
+         stat = settle(error)
+         return
+      end if
+      if (delta > reach(h) .or. state(1) > reach(h)) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
+            & ", state[0] = "//format_real(state(1))//": must be <= "// &
+            & format_real(reach(h))//" (the force there exceeds the doubles)")
+         stat = settle(error)
+         return
+      end if
+      kept = state(1)
+      call hysteresis_eval_state(h, delta, state, f, k, st)
+      if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then  ! input guard (issue 13)
+         state(1) = kept
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
+            & ", state[0] = "//format_real(kept)//": the force there exceeds the doubles")
+         stat = settle(error)
+         return
+      end if
+      call put(force, f)
+      call put(stiffness, k)
+      stat = int(st, c_int)
+      if (stat == egw_out_of_range) then
+         call fatal_error(error, egw_out_of_range, "state[0] = "//format_real(state(1))// &
+            & ": above the table's delta_max = "//format_real(h%delta_max)// &
+            & " (values extrapolated)")
+         stat = settle(error)
+      end if
+   end function egw_hysteresis_eval_state
+
+   !> C: egw_hysteresis_state_init: a new contact's state (state[0] = -HUGE_VAL, no cache).
+   subroutine egw_hysteresis_state_init(state_p) bind(C, name="egw_hysteresis_state_init")
+      type(c_ptr), value, intent(in) :: state_p
+      real(c_double), pointer :: state(:)
+      if (.not. c_associated(state_p)) return
+      call c_f_pointer(state_p, state, [hysteresis_state_size])
+      call hysteresis_state_init(state)
+      state(1) = ieee_value(state(1), ieee_negative_inf)   ! C's -HUGE_VAL
+   end subroutine egw_hysteresis_state_init
+
    !> C: egw_hysteresis_eval_array: n independent contacts in one call. Every input is
    !> checked before anything is written: overlaps and states must be numbers, and at most
    !> where the loading table's linear continuation stays well inside the doubles.
@@ -120,7 +189,7 @@ contains
       type(hysteresis_table), pointer :: h
       real(c_double), pointer :: delta(:), state(:), f(:), k(:)
       type(egw_error), allocatable :: error
-      real(dp) :: fi, ki, reach
+      real(dp) :: fi, ki
       integer :: i, st, first_out
       stat = require(hp, "h")
       if (stat /= egw_ok) return
@@ -136,16 +205,13 @@ contains
       call c_f_pointer(hp, h)
       call c_f_pointer(delta_p, delta, [n])
       call c_f_pointer(state_p, state, [n])
-      associate (l => h%loading)
-         reach = l%delta_max + 0.25_dp*huge(1.0_dp)/max(1.0_dp, l%force(size(l%force)), &
-            & l%stiffness(size(l%stiffness)))
-      end associate
       do i = 1, n
-         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > reach .or. &
-            & state(i) > reach) then
+         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > reach(h) .or. &
+            & state(i) > reach(h)) then
             call fatal_error(error, egw_invalid_argument, "delta["//int_str(i - 1)// &
                & "] = "//format_real(delta(i))//", delta_max_state["//int_str(i - 1)// &
-               & "] = "//format_real(state(i))//": must be numbers <= "//format_real(reach)// &
+               & "] = "//format_real(state(i))//": must be numbers <= "// &
+               & format_real(reach(h))// &
                & " (the force there exceeds the doubles)")
             stat = settle(error)
             return
@@ -168,6 +234,16 @@ contains
          stat = settle(error)
       end if
    end function egw_hysteresis_eval_array
+
+   !> The largest overlap (or state) whose force stays well inside the doubles: the
+   !> loading table's linear continuation beyond its delta_max reaches huge/4 there.
+   pure real(dp) function reach(h)
+      type(hysteresis_table), intent(in) :: h
+      associate (l => h%loading)
+         reach = l%delta_max + 0.25_dp*huge(1.0_dp)/max(1.0_dp, l%force(size(l%force)), &
+            & l%stiffness(size(l%stiffness)))
+      end associate
+   end function reach
 
    !> C: egw_hysteresis_free: release a table; sets *h to NULL (NULL is fine).
    subroutine egw_hysteresis_free(hp) bind(C, name="egw_hysteresis_free")

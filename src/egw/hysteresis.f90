@@ -24,17 +24,27 @@
 !> retraces the loading table exactly.
 module egw_hysteresis
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use, intrinsic :: iso_fortran_env, only: int64
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
       & egw_out_of_range, fatal_error, format_real
    use egw_params, only: contact_params, validate_params, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload
-   use egw_table, only: force_table, build_table, table_eval, table_progress
+   use egw_table, only: force_table, build_table, table_eval, table_eval_hinted, &
+      & table_progress
    implicit none
    private
 
-   public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_prepare
+   public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_eval_state, &
+      & hysteresis_state_init, hysteresis_prepare
+
+   !> Doubles of a contact's state for hysteresis_eval_state: the largest overlap so far,
+   !> then what the unloading branch needs of that turning point (kept while it stays):
+   !> (2) the turning point they belong to, (3) the table's tag, (4) the Lagrange stencil,
+   !> (5) 1/(s_max L), (6) P_load, (7:10) the Lagrange weights; and the last intervals
+   !> found, (11) in s and (12) in the loading table, tried first by the next call.
+   integer, parameter, public :: hysteresis_state_size = 12
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
    integer, parameter :: max_s_nodes = 400, max_m_nodes = 400
@@ -85,6 +95,9 @@ module egw_hysteresis
       !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
       real(dp), allocatable :: lagrange(:, :)
       type(grid_lookup) :: m_lookup, s_lookup
+      !> an integer in [1, 2**52) hashed from the stored data: a state's cached turning
+      !> point is used only by a table with the same data (hysteresis_eval_state)
+      real(dp) :: tag = 0.0_dp
    end type hysteresis_table
 
 contains
@@ -163,8 +176,8 @@ contains
       real(dp), intent(inout) :: delta_max_state
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: m, inv_span, s, t, f_m, k_m, w(4), d(4), g, dg, c(4), f_d, k_d
-      integer :: i, j, first, n_m
+      real(dp) :: w(4), inv_span, f_m
+      integer :: first, s_hint, d_hint
       stat = 0
       force = 0.0_dp
       stiffness = 0.0_dp
@@ -178,12 +191,86 @@ contains
          if (delta > table%delta_max) stat = egw_out_of_range
          return
       end if
-      m = delta_max_state
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
-      if (m > table%delta_max) stat = egw_out_of_range
+      if (delta_max_state > table%delta_max) stat = egw_out_of_range
+      call turning_point(table, delta_max_state, first, w, inv_span, f_m)
+      s_hint = 0
+      d_hint = 0
+      call unload_branch(table, first, w, inv_span, f_m, delta_max_state, delta, force, &
+         & stiffness, s_hint, d_hint)
+   end subroutine hysteresis_eval
+
+   !> hysteresis_eval with a state that also keeps what the unloading branch needs of the
+   !> turning point (hysteresis_state_size doubles; state(1) is delta_max_state, the rest a
+   !> cache that this routine fills): while a contact unloads or reloads below the same
+   !> turning point, only the overlap's own lookups remain. Same values and statuses as
+   !> hysteresis_eval. A state from another table (or its cache garbled) is recomputed,
+   !> never trusted: the cache is used only when it names this table's tag and the state's
+   !> turning point.
+   pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(inout) :: state(hysteresis_state_size)
+      real(dp), intent(out) :: force, stiffness
+      integer, intent(out) :: stat
+      real(dp) :: w(4), inv_span, f_m
+      integer :: first, s_hint, d_hint
+      stat = 0
+      force = 0.0_dp
+      stiffness = 0.0_dp
+      if (ieee_is_nan(delta)) then
+         stat = egw_invalid_argument
+         return
+      end if
+      ! the hints: any garbage is a miss (checked against the grid before use)
+      d_hint = 0
+      if (abs(state(12)) < 1.0e9_dp) d_hint = int(state(12))
+      if (.not. delta < state(1) .or. table%reversible) then
+         state(1) = max(state(1), delta)
+         call table_eval_hinted(table%loading, delta, d_hint, force, stiffness)
+         state(12) = d_hint
+         if (delta > table%delta_max) stat = egw_out_of_range
+         return
+      end if
+      if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
+      if (state(1) > table%delta_max) stat = egw_out_of_range
+      if (state(2) == state(1) .and. state(3) == table%tag .and. state(4) >= 1.0_dp .and. &
+         & state(4) <= size(table%m) - 3) then
+         first = int(state(4))
+         inv_span = state(5)
+         f_m = state(6)
+         w = state(7:10)
+      else
+         call turning_point(table, state(1), first, w, inv_span, f_m)
+         state(2:10) = [state(1), table%tag, real(first, dp), inv_span, f_m, w]
+      end if
+      s_hint = 0
+      if (abs(state(11)) < 1.0e9_dp) s_hint = int(state(11))
+      call unload_branch(table, first, w, inv_span, f_m, state(1), delta, force, stiffness, &
+         & s_hint, d_hint)
+      state(11) = s_hint
+      state(12) = d_hint
+   end subroutine hysteresis_eval_state
+
+   !> A new contact's state for hysteresis_eval_state: never touched (-huge), no cache.
+   pure subroutine hysteresis_state_init(state)
+      real(dp), intent(out) :: state(hysteresis_state_size)
+      state = 0.0_dp
+      state(1) = -huge(1.0_dp)
+   end subroutine hysteresis_state_init
+
+   !> What the unloading branch needs of the turning point m: the Lagrange stencil of the
+   !> m interval (clamped at the ends of the grid; the last curve above the table), its
+   !> weights, 1/(s_max L) interpolated with them and the loading force P_load(m).
+   pure subroutine turning_point(table, m, first, w, inv_span, f_m)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m
+      integer, intent(out) :: first
+      real(dp), intent(out) :: w(4), inv_span, f_m
+      real(dp) :: d(4), k_m
+      integer :: j, n_m
       call table_eval(table%loading, m, f_m, k_m)
       n_m = size(table%m)
-      ! the Lagrange stencil of the m interval (clamped at the ends of the grid)
       j = locate(table%m_lookup, table%m, min(m, table%delta_max))
       first = min(max(j - 1, 1), n_m - 3)
       d = m - table%m(first:first + 3)
@@ -196,8 +283,29 @@ contains
       inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
          & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
       if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
+   end subroutine turning_point
+
+   !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
+   !> described by (first, w, inv_span, f_m): P_load(delta) - P_load(m) g(s, m), 0 where
+   !> that is not positive.
+   pure subroutine unload_branch(table, first, w, inv_span, f_m, m, delta, force, stiffness, &
+      & s_hint, d_hint)
+      type(hysteresis_table), intent(in) :: table
+      integer, intent(in) :: first
+      real(dp), intent(in) :: w(4), inv_span, f_m, m, delta
+      real(dp), intent(out) :: force, stiffness
+      !> guesses of the intervals in s and in the loading table (0: none), updated
+      integer, intent(inout) :: s_hint, d_hint
+      real(dp) :: s, t, g, dg, c(4), f_d, k_d
+      integer :: i
       s = min((m - delta)*inv_span, 1.0_dp)
-      i = locate(table%s_lookup, table%s, s)
+      i = s_hint
+      if (i < 1 .or. i >= size(table%s)) then
+         i = locate(table%s_lookup, table%s, s)
+      else if (.not. (table%s(i) <= s .and. s < table%s(i + 1))) then
+         i = locate(table%s_lookup, table%s, s)
+      end if
+      s_hint = i
       t = (s - table%s(i))*table%inv_ds(i)
       ! the four curves' cubics on interval i: 16 contiguous numbers
       associate (cf => table%coef(:, first:first + 3, i))
@@ -208,14 +316,14 @@ contains
       end associate
       g = c(1) + t*(c(2) + t*(c(3) + t*c(4)))
       dg = (c(2) + t*(2*c(3) + t*3*c(4)))*table%inv_ds(i)
-      call table_eval(table%loading, delta, f_d, k_d)
+      call table_eval_hinted(table%loading, delta, d_hint, f_d, k_d)
       force = f_d - f_m*g
       stiffness = k_d + f_m*dg*inv_span
       if (.not. force > 0.0_dp) then
          force = 0.0_dp
          stiffness = 0.0_dp
       end if
-   end subroutine hysteresis_eval
+   end subroutine unload_branch
 
    !> Derive the evaluation data (cubics on the union s grid, Lagrange denominators,
    !> lookup buckets) from the stored nodes; called by the build and by readers.
@@ -252,7 +360,37 @@ contains
       end do
       call make_lookup(table%m, table%m_lookup)
       call make_lookup(table%s, table%s_lookup)
+      table%tag = data_tag(table)
    end subroutine hysteresis_prepare
+
+   !> FNV-1a (64-bit, word by word) of the stored data and the loading table's nodes,
+   !> folded into an integer in [1, 2**52) held exactly by a double.
+   pure real(dp) function data_tag(table) result(tag)
+      type(hysteresis_table), intent(in) :: table
+      integer(int64), parameter :: mask = 2_int64**52 - 1
+      integer(int64) :: h
+      h = -3750763034362895579_int64   ! the FNV offset basis 14695981039346656037
+      call mix(h, [table%s_max, table%rel_tol, table%delta_max])
+      call mix(h, table%m)
+      call mix(h, table%length)
+      call mix(h, table%s)
+      call mix(h, reshape(table%gap, [size(table%gap)]))
+      call mix(h, reshape(table%slope, [size(table%slope)]))
+      call mix(h, table%loading%delta)
+      call mix(h, table%loading%force)
+      call mix(h, table%loading%stiffness)
+      tag = real(1_int64 + mod(iand(h, mask), mask), dp)
+   contains
+      pure subroutine mix(h, x)
+         integer(int64), intent(inout) :: h
+         real(dp), intent(in) :: x(:)
+         integer(int64), parameter :: prime = 1099511628211_int64
+         integer :: i
+         do i = 1, size(x)
+            h = ieor(h, transfer(x(i), h))*prime   ! wraps modulo 2**64 (two's complement)
+         end do
+      end subroutine mix
+   end function data_tag
 
    ! ---------------------------------------------------------------------------------------
 

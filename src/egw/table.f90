@@ -32,7 +32,8 @@ module egw_table
    private
 
    public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, &
-      & table_eval, table_eval_log, table_eval_all, table_covers, table_energy, &
+      & table_eval, table_eval_hinted, table_eval_log, table_eval_all, table_covers, &
+      & table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff
 
    public :: table_progress
@@ -549,16 +550,42 @@ contains
       end if
    end subroutine table_eval
 
+   !> table_eval with the caller's guess of the interval (hint, updated; 0 or anything
+   !> else is a miss): where successive calls move little (a DEM contact), the interval is
+   !> checked instead of looked up (the buckets are a cache miss away). Same values as
+   !> table_eval: the interval holding delta is unique.
+   pure subroutine table_eval_hinted(table, delta, hint, force, stiffness)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      integer, intent(inout) :: hint
+      real(dp), intent(out) :: force, stiffness
+      if (delta > table%cutoff .and. delta < table%delta_max .and. hint >= 1 .and. &
+         & hint < size(table%seg, 2)) then
+         if (table%seg(0, hint) <= delta .and. delta < table%seg(0, hint + 1)) then
+            call segment_eval(table%seg, table%n_log, size(table%seg, 2), hint, delta, &
+               & force, stiffness)
+            return
+         end if
+      end if
+      if (delta > table%cutoff .and. delta < table%delta_max) then
+         call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
+            & table%bucket_scale, table%n_log, size(table%seg, 2), delta, force, stiffness, &
+            & hint)
+      else
+         call table_eval(table, delta, force, stiffness)
+      end if
+   end subroutine table_eval_hinted
+
    !> Evaluation on plain explicit-shape arrays: the same lookup and cubic through the
    !> table's allocatable components costs ~1.6x as much (descriptor loads and index
    !> arithmetic on the critical path of a latency-bound evaluation).
    pure subroutine eval_kernel(seg, bucket, n_bucket, origin, scale, n_log, n, delta, force, &
-      & stiffness)
+      & stiffness, found)
       integer, intent(in) :: n_bucket, bucket(0:n_bucket + 1), n_log, n
       real(dp), intent(in) :: seg(0:4, n), origin, scale, delta
       real(dp), intent(out) :: force, stiffness
+      integer, intent(out), optional :: found   !< the interval of delta
       integer :: i, b, hi, mid
-      real(dp) :: t, t2, v, d
       b = min(max(int((delta - origin)*scale), 0), n_bucket)
       i = bucket(b)
       if (i < 0) then
@@ -578,6 +605,16 @@ contains
       do while (delta >= seg(0, i + 1))
          i = i + 1
       end do
+      if (present(found)) found = i
+      call segment_eval(seg, n_log, n, i, delta, force, stiffness)
+   end subroutine eval_kernel
+
+   !> The cubic of interval i at delta (of ln P for i <= n_log).
+   pure subroutine segment_eval(seg, n_log, n, i, delta, force, stiffness)
+      integer, intent(in) :: n_log, n, i
+      real(dp), intent(in) :: seg(0:4, n), delta
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: t, t2, v, d
       t = delta - seg(0, i)
       ! Estrin's scheme: shorter dependency chains than Horner
       t2 = t*t
@@ -590,7 +627,7 @@ contains
          force = exp(v)
          stiffness = force*d
       end if
-   end subroutine eval_kernel
+   end subroutine segment_eval
 
    !> ln P and d ln P/ddelta at delta in (cutoff, delta_max) (used by the universal table
    !> to interpolate across mu in log space without an exp per slice).

@@ -699,6 +699,38 @@ static int r_hysteresis_eval(void) {
   return st;
 }
 
+/* the state API: state[0] and every cache entry fuzzed (garbage caches must be ignored) */
+static int r_hysteresis_eval_state(void) {
+  egw_params p = params_at(100, EGW_MODEL_EPGW, 0.5); /* slots >= 100: never fuzzed */
+  egw_options o = options_at(100, 1e-3);
+  egw_hysteresis h = NULL;
+  double state[EGW_HYSTERESIS_STATE_SIZE], v[2], m0;
+  int st;
+  if (egw_hysteresis_build(&p, &o, -1e-3, 4e-3, 5e-2, &h) != EGW_OK) _exit(3);
+  egw_hysteresis_state_init(state);
+  state[0] = 3e-3;
+  egw_hysteresis_eval_state(h, 2e-3, state, &v[0], &v[1]); /* a valid cache ... */
+  for (int i = 1; i < EGW_HYSTERESIS_STATE_SIZE; i++)      /* ... or garbage */
+    state[i] = D(3, state[i]);
+  state[0] = D(1, 3e-3);
+  m0 = state[0];
+  sentinel(v, sizeof v);
+  st = egw_hysteresis_eval_state(P(0, h), D(2, 2e-3), P(4, state), P(5, &v[0]), P(6, &v[1]));
+  out_doubles(st, EGW_OUT_OF_RANGE, "force, stiffness", v, 2, sizeof v);
+  sane(st, v[0] >= 0, "negative hysteresis force", v[0]);
+  if (st != EGW_OK && st != EGW_OUT_OF_RANGE && memcmp(&m0, &state[0], sizeof m0) != 0) {
+    cur->clobbered = 1;
+    note(" changed on refusal", "state[0]", state[0]);
+  }
+  if (st == EGW_OK && !isfinite(state[0])) {
+    cur->silent = 1;
+    note(" not finite", "state[0]", state[0]);
+  }
+  egw_hysteresis_state_init(P(4, state));
+  egw_hysteresis_free(&h);
+  return st;
+}
+
 static int r_hysteresis_eval_array(void) {
   egw_params p = params_at(100, EGW_MODEL_EPGW, 0.5); /* slots >= 100: never fuzzed */
   egw_options o = options_at(100, 1e-3);
@@ -969,6 +1001,10 @@ static fz_function functions[] = {
      {{"h", K_PTR}, {"*state", K_DBL}, {"delta", K_DBL}, {"state", K_PTR}, {"force", K_PTR},
       {"stiffness", K_PTR}},
      r_hysteresis_eval, 1},
+    {"egw_hysteresis_eval_state", 7,
+     {{"h", K_PTR}, {"state[0]", K_DBL}, {"delta", K_DBL}, {"state[1..]", K_DBL},
+      {"state", K_PTR}, {"force", K_PTR}, {"stiffness", K_PTR}},
+     r_hysteresis_eval_state, 1},
     {"egw_hysteresis_eval_array", 8,
      {{"h", K_PTR}, {"*state[1]", K_DBL}, {"delta[1]", K_DBL}, {"n", K_INT}, {"delta", K_PTR},
       {"state", K_PTR}, {"force", K_PTR}, {"stiffness", K_PTR}},
