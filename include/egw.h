@@ -467,6 +467,17 @@ int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
                               double state[EGW_HYSTERESIS_STATE_SIZE], double *force,
                               double *stiffness);
 
+/* Elastic energy [force*length] that a contact at overlap delta returns if it separates
+ * now: the integral of its unloading curve (turning point max(delta_max_state, delta))
+ * from the loading cut-off to delta. On the loading curve it is the part of the loading
+ * work that comes back; the rest is dissipated when the contact unloads (a DEM code's
+ * kinetic + this energy falls while contacts load and stays while they unload or reload).
+ * Reversible tables: the loading curve's energy. The state is not changed.
+ * EGW_OUT_OF_RANGE above the table's delta_max (value written); EGW_INVALID_ARGUMENT for
+ * NaN or overflowing input; EGW_NULL_POINTER for h or energy. */
+int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,
+                          double *energy);
+
 /* A new contact's state: state[0] = -HUGE_VAL, the cache empty. NULL is ignored. */
 void egw_hysteresis_state_init(double state[EGW_HYSTERESIS_STATE_SIZE]);
 

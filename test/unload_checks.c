@@ -166,6 +166,30 @@ int egw_capi_test_hysteresis(void) {
     HCHECK(egw_hysteresis_eval_state(h, 5.0, st, &f, &k) == EGW_OUT_OF_RANGE && st[0] == 5.0);
   }
   {
+    /* egw_hysteresis_energy: the energy returned grows with delta below a turning point
+     * and with the turning point; the table's force integrated by the trapezoid rule from
+     * 2 to 3 below m = 3 (2000 steps: the force is smooth there, error ~1e-7 relative)
+     * equals the energy's difference; 0 below the cut-off; refusals. */
+    double u2, u3, u3b, sum = 0.0, fa, fb, u = 9.0;
+    HCHECK(egw_hysteresis_energy(h, 2.0, 3.0, &u2) == EGW_OK);
+    HCHECK(egw_hysteresis_energy(h, 3.0, 3.0, &u3) == EGW_OK);
+    HCHECK(egw_hysteresis_energy(h, 3.0, -HUGE_VAL, &u3b) == EGW_OK && u3b == u3);
+    HCHECK(u2 > 0.0 && u3 > u2);
+    for (int i = 0; i < 2000; i++) {
+      double a = 2.0 + i / 2000.0, b = 2.0 + (i + 1) / 2000.0, s1 = 3.0, s2 = 3.0;
+      egw_hysteresis_eval(h, a, &s1, &fa, NULL);
+      egw_hysteresis_eval(h, b, &s2, &fb, NULL);
+      sum += 0.5 * (fa + fb) / 2000.0;
+    }
+    HCHECK(fabs((u3 - u2) - sum) <= 1e-6 * sum);
+    HCHECK(egw_hysteresis_energy(h, -10.0, 3.0, &u) == EGW_OK && u == 0.0);
+    u = 9.0;
+    HCHECK(egw_hysteresis_energy(h, NAN, 3.0, &u) == EGW_INVALID_ARGUMENT && u == 9.0);
+    HCHECK(egw_hysteresis_energy(h, 1.0, NAN, &u) == EGW_INVALID_ARGUMENT && u == 9.0);
+    HCHECK(egw_hysteresis_energy(NULL, 1.0, 3.0, &u) == EGW_NULL_POINTER);
+    HCHECK(egw_hysteresis_energy(h, 1.0, 3.0, NULL) == EGW_NULL_POINTER);
+  }
+  {
     /* write, read back: the same force at an unloading point (exact: 17 digits / raw
      * bytes), the info of both, refusals */
     egw_hysteresis back = NULL;

@@ -78,7 +78,10 @@ void EgwLaw::release()
 
 PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
 {
-  single_enable = 0;
+  single_enable = 1;
+  // single(): normal force (elastic), normal damping force, stiffness, overlap, delta_max
+  single_extra = 5;
+  svector = new double[single_extra];
   no_virial_fdotr_compute = 1;
   restartinfo = 1;
   finitecutflag = 1;
@@ -105,6 +108,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
 PairEGW::~PairEGW()
 {
   delete[] pvector;
+  delete[] svector;
   if (modify->find_fix("NEIGH_HISTORY_EGW") >= 0) modify->delete_fix("NEIGH_HISTORY_EGW");
   if (modify->find_fix("NEIGH_HISTORY_EGW_DUMMY") >= 0)
     modify->delete_fix("NEIGH_HISTORY_EGW_DUMMY");
@@ -663,7 +667,11 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
       double x = delta * L.inv_sigma, p, dp;
       st = egw_hysteresis_eval_state(L.hyst[0], x, &hist[HYST_A], &p, &dp);
       *dmax = hist[HYST_A] * L.sigma;
-      F = sr * L.s15 * p, S = sr * L.s05 * dp, U = 0.0;
+      // the energy the contact returns if it separates now (the rest of its loading work
+      // is dissipated): kinetic + this falls while contacts load, stays while they unload
+      double u = 0.0;
+      if (want_energy) egw_hysteresis_energy(L.hyst[0], x, hist[HYST_A], &u);
+      F = sr * L.s15 * p, S = sr * L.s05 * dp, U = sr * L.s25 * u;
       break;
     }
     case KIND_HYST_MU: {
@@ -677,9 +685,14 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
       int st2 = egw_hysteresis_eval_state(L.hyst[k + 1], x, &hist[HYST_B], &p1, &d1);
       if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
       *dmax = hist[HYST_A] * L.sigma;
+      double u0 = 0.0, u1 = 0.0;
+      if (want_energy) {
+        egw_hysteresis_energy(L.hyst[k], x, hist[HYST_A], &u0);
+        egw_hysteresis_energy(L.hyst[k + 1], x, hist[HYST_B], &u1);
+      }
       F = sr * L.s15 * (p0 + w * (p1 - p0));
       S = sr * L.s05 * (d0 + w * (d1 - d0));
-      U = 0.0;
+      U = sr * L.s25 * (u0 + w * (u1 - u0));
       break;
     }
   }
@@ -819,6 +832,79 @@ void PairEGW::compute(int eflag, int vflag)
     }
   }
   pvector[0] = ncontact;
+}
+
+/* One pair's normal force for compute pair/local (and the like): the contact's history as
+ * compute() keeps it (found in i's or j's neighbor list; a pair not in contact has none),
+ * evaluated on a copy, so that nothing changes. Returns the tallied energy; fforce is the
+ * normal force (elastic + damping, no friction) over r. svector: elastic normal force,
+ * damping force, stiffness dP/ddelta, overlap delta, delta_max (-inf: never touched). */
+double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*factor_coul*/,
+                       double /*factor_lj*/, double &fforce)
+{
+  fforce = 0.0;
+  for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
+  svector[4] = -HUGE_VAL;
+  int nall = atom->nlocal + atom->nghost;
+  if (!atom->radius_flag || i < 0 || j < 0 || i >= nall || j >= nall || !tables_ready)
+    error->one(FLERR, "Pair egw: single() needs two atoms of a run in progress (compute "
+                      "pair/local); pair_write is not supported");
+  int a = std::min(itype, jtype), b = std::max(itype, jtype);
+  EgwLaw &L = law[a][b];
+  double radi = atom->radius[i], radj = atom->radius[j];
+  double r = std::sqrt(rsq);
+  double delta = radi + radj - r;
+  if (!(r > 0) || delta <= -L.tail) return 0.0;
+  double R = radi * radj / (radi + radj);
+
+  double hist[NHIST_EPGW];
+  for (int k = 0; k < NHIST_EPGW; k++) hist[k] = 0.0;
+  hist[0] = -HUGE_VAL;
+  if (nhist == NHIST_EPGW) {
+    egw_hysteresis_state_init(&hist[HYST_A]);
+    egw_hysteresis_state_init(&hist[HYST_B]);
+  }
+  auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
+  if (view && list) {
+    bool found = false;
+    for (int side = 0; side < 2 && !found; side++) {
+      int p = side ? j : i, q = side ? i : j;
+      if (p >= atom->nlocal) continue;    // ghosts' list entries are not kept
+      int *jlist = list->firstneigh[p];
+      int jnum = list->numneigh[p];
+      if (jlist == nullptr || view->firstflag[p] == nullptr) continue;
+      for (int jj = 0; jj < jnum; jj++) {
+        if ((jlist[jj] & NEIGHMASK) != q) continue;
+        if (view->firstflag[p][jj]) {
+          const double *h = &view->firstvalue[p][nhist * jj];
+          for (int k = 0; k < nhist; k++) hist[k] = h[k];
+        }
+        found = true;
+        break;
+      }
+    }
+  }
+  double Fn, S, U;
+  normal(L, delta, R, hist, Fn, S, U, 1);
+  double Fdamp = 0.0;
+  if (L.damp > 0 && S > 0) {
+    double **x = atom->x, **v = atom->v;
+    double nx = (x[i][0] - x[j][0]) / r, ny = (x[i][1] - x[j][1]) / r,
+           nz = (x[i][2] - x[j][2]) / r;
+    double vnn = (v[i][0] - v[j][0]) * nx + (v[i][1] - v[j][1]) * ny + (v[i][2] - v[j][2]) * nz;
+    double mi = atom->rmass[i], mj = atom->rmass[j];
+    double meff = mi * mj / (mi + mj);
+    if (atom->mask[i] & freeze_group_bit) meff = mj;
+    if (atom->mask[j] & freeze_group_bit) meff = mi;
+    Fdamp = -L.damp * std::sqrt(meff * S) * vnn;
+  }
+  fforce = (Fn + Fdamp) / r;
+  svector[0] = Fn;
+  svector[1] = Fdamp;
+  svector[2] = S;
+  svector[3] = delta;
+  svector[4] = hist[0];
+  return U;
 }
 
 /* the partner's copy: delta_max as is, the tangential displacement negated */

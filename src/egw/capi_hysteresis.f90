@@ -12,7 +12,8 @@ module egw_capi_hysteresis
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
-      & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size
+      & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
+      & hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_capi, only: settle, require, read_params, read_options, put, from_params, &
       & egw_params_c, int_str
@@ -166,6 +167,45 @@ contains
          stat = settle(error)
       end if
    end function egw_hysteresis_eval_state
+
+   !> C: egw_hysteresis_energy: the elastic energy a contact returns if it separates now.
+   function egw_hysteresis_energy(hp, delta, state, energy) result(stat) &
+      & bind(C, name="egw_hysteresis_energy")
+      type(c_ptr), value, intent(in) :: hp, energy
+      real(c_double), value, intent(in) :: delta, state
+      integer(c_int) :: stat
+      type(hysteresis_table), pointer :: h
+      type(egw_error), allocatable :: error
+      real(dp) :: u
+      integer :: st
+      stat = require(hp, "h")
+      if (stat == egw_ok) stat = require(energy, "energy")
+      if (stat /= egw_ok) return
+      call c_f_pointer(hp, h)
+      if (ieee_is_nan(delta) .or. ieee_is_nan(state) .or. delta > reach(h) .or. &
+         & state > reach(h)) then
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
+            & ", delta_max_state = "//format_real(state)//": must be numbers <= "// &
+            & format_real(reach(h))//" (the force there exceeds the doubles)")
+         stat = settle(error)
+         return
+      end if
+      call hysteresis_energy(h, delta, state, u, st)
+      if (.not. ieee_is_finite(u)) then   ! input guard (issue 13)
+         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
+            & ": the energy there exceeds the doubles")
+         stat = settle(error)
+         return
+      end if
+      call put(energy, u)
+      stat = int(st, c_int)
+      if (stat == egw_out_of_range) then
+         call fatal_error(error, egw_out_of_range, "max(delta, delta_max_state) = "// &
+            & format_real(max(delta, state))//": above the table's delta_max = "// &
+            & format_real(h%delta_max)//" (values extrapolated)")
+         stat = settle(error)
+      end if
+   end function egw_hysteresis_energy
 
    !> C: egw_hysteresis_state_init: a new contact's state (state[0] = -HUGE_VAL, no cache).
    subroutine egw_hysteresis_state_init(state_p) bind(C, name="egw_hysteresis_state_init")

@@ -32,12 +32,12 @@ module egw_hysteresis
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload
    use egw_table, only: force_table, build_table, table_eval, table_eval_hinted, &
-      & table_progress
+      & table_energy, table_progress
    implicit none
    private
 
    public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_eval_state, &
-      & hysteresis_state_init, hysteresis_prepare
+      & hysteresis_state_init, hysteresis_energy, hysteresis_prepare
 
    !> Doubles of a contact's state for hysteresis_eval_state: the largest overlap so far,
    !> then what the unloading branch needs of that turning point (kept while it stays):
@@ -92,6 +92,8 @@ module egw_hysteresis
       !> interval i (the four curves of a Lagrange stencil share two cache lines)
       real(dp), allocatable :: coef(:, :, :)
       real(dp), allocatable :: inv_ds(:)       !< 1/(s_{i+1} - s_i)
+      !> (n_m, n_s): int_0^{s_i} g(s, m_j) ds of each curve's cubics (hysteresis_energy)
+      real(dp), allocatable :: gap_integral(:, :)
       !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
       real(dp), allocatable :: lagrange(:, :)
       type(grid_lookup) :: m_lookup, s_lookup
@@ -252,6 +254,58 @@ contains
       state(12) = d_hint
    end subroutine hysteresis_eval_state
 
+   !> Elastic energy [force*length] that a contact at overlap delta returns if it
+   !> separates now: the integral of its unloading curve from the loading cut-off to delta,
+   !> int_{delta_c}^{delta} P_unload(x; m) dx with m = max(delta_max_state, delta) (of the
+   !> table's force before its clip at 0). On the loading curve (delta = m) it is the part
+   !> of the loading work that comes back; what the turning point leaves behind is
+   !> dissipated. Reversible tables: the loading table's energy. The state is not changed.
+   !> Statuses as hysteresis_eval.
+   pure subroutine hysteresis_energy(table, delta, delta_max_state, energy, stat)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta, delta_max_state
+      real(dp), intent(out) :: energy
+      integer, intent(out) :: stat
+      real(dp) :: m, w(4), inv_span, f_m
+      integer :: first
+      stat = 0
+      energy = 0.0_dp
+      if (ieee_is_nan(delta) .or. ieee_is_nan(delta_max_state)) then
+         stat = egw_invalid_argument
+         return
+      end if
+      m = max(delta_max_state, delta)
+      if (m > table%delta_max) stat = egw_out_of_range
+      if (.not. delta > table%loading%cutoff) return
+      energy = table_energy(table%loading, delta)
+      if (table%reversible) return
+      call turning_point(table, m, first, w, inv_span, f_m)
+      ! int g(s(x)) dx over (delta_c, delta) with s = (m - x)/(s_max L): (1/(s_max L)) times
+      ! the integral of g over s from s(delta) to s(delta_c)
+      energy = energy - f_m/inv_span*(gap_primitive((m - table%loading%cutoff)*inv_span) - &
+         & gap_primitive((m - delta)*inv_span))
+   contains
+      !> int_0^s g(s', m) ds' (g held at its value at s = 1 beyond, as the evaluation)
+      pure real(dp) function gap_primitive(s) result(total)
+         real(dp), intent(in) :: s
+         real(dp) :: t, h, x
+         integer :: i, k
+         x = min(s, 1.0_dp)
+         i = locate(table%s_lookup, table%s, x)
+         h = table%s(i + 1) - table%s(i)
+         t = (x - table%s(i))/h
+         total = 0.0_dp
+         do k = 1, 4
+            associate (c => table%coef(:, first + k - 1, i))
+               total = total + w(k)*(table%gap_integral(first + k - 1, i) + h*t*(c(1) + &
+                  & t*(c(2)/2 + t*(c(3)/3 + t*c(4)/4))))
+            end associate
+         end do
+         if (s > 1.0_dp) total = total + (s - 1.0_dp)*dot_product(w, &
+            & table%gap(size(table%s), first:first + 3))
+      end function gap_primitive
+   end subroutine hysteresis_energy
+
    !> A new contact's state for hysteresis_eval_state: never touched (-huge), no cache.
    pure subroutine hysteresis_state_init(state)
       real(dp), intent(out) :: state(hysteresis_state_size)
@@ -336,6 +390,7 @@ contains
       if (allocated(table%coef)) deallocate (table%coef)
       if (allocated(table%inv_ds)) deallocate (table%inv_ds)
       if (allocated(table%lagrange)) deallocate (table%lagrange)
+      if (allocated(table%gap_integral)) deallocate (table%gap_integral)
       table%inv_span = 1.0_dp/(table%s_max*table%length)
       allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))
       do i = 1, n_s - 1
@@ -347,6 +402,14 @@ contains
                table%coef(:, j, i) = [r0, d0, 3*(r1 - r0) - 2*d0 - d1, 2*(r0 - r1) + d0 + d1]
             end associate
          end do
+      end do
+      ! the curves' integrals from s = 0 to every node (exact for the Hermite cubics)
+      allocate (table%gap_integral(n_m, n_s))
+      table%gap_integral(:, 1) = 0.0_dp
+      do i = 1, n_s - 1
+         table%gap_integral(:, i + 1) = table%gap_integral(:, i) + (table%s(i + 1) - &
+            & table%s(i))*(table%coef(1, :, i) + table%coef(2, :, i)/2 + &
+            & table%coef(3, :, i)/3 + table%coef(4, :, i)/4)
       end do
       do j = 1, n_m - 1
          first = min(max(j - 1, 1), n_m - 3)

@@ -731,6 +731,21 @@ static int r_hysteresis_eval_state(void) {
   return st;
 }
 
+static int r_hysteresis_energy(void) {
+  egw_params p = params_at(100, EGW_MODEL_EPGW, 0.5); /* slots >= 100: never fuzzed */
+  egw_options o = options_at(100, 1e-3);
+  egw_hysteresis h = NULL;
+  double u;
+  int st;
+  if (egw_hysteresis_build(&p, &o, -1e-3, 4e-3, 5e-2, &h) != EGW_OK) _exit(3);
+  sentinel(&u, sizeof u);
+  st = egw_hysteresis_energy(P(0, h), D(2, 2e-3), D(1, 3e-3), P(3, &u));
+  out_doubles(st, EGW_OUT_OF_RANGE, "energy", &u, 1, sizeof u);
+  sane(st, u >= 0, "negative energy", u);
+  egw_hysteresis_free(&h);
+  return st;
+}
+
 static int r_hysteresis_eval_array(void) {
   egw_params p = params_at(100, EGW_MODEL_EPGW, 0.5); /* slots >= 100: never fuzzed */
   egw_options o = options_at(100, 1e-3);
@@ -1005,6 +1020,9 @@ static fz_function functions[] = {
      {{"h", K_PTR}, {"state[0]", K_DBL}, {"delta", K_DBL}, {"state[1..]", K_DBL},
       {"state", K_PTR}, {"force", K_PTR}, {"stiffness", K_PTR}},
      r_hysteresis_eval_state, 1},
+    {"egw_hysteresis_energy", 4,
+     {{"h", K_PTR}, {"delta_max_state", K_DBL}, {"delta", K_DBL}, {"energy", K_PTR}},
+     r_hysteresis_energy, 1},
     {"egw_hysteresis_eval_array", 8,
      {{"h", K_PTR}, {"*state[1]", K_DBL}, {"delta[1]", K_DBL}, {"n", K_INT}, {"delta", K_PTR},
       {"state", K_PTR}, {"force", K_PTR}, {"stiffness", K_PTR}},

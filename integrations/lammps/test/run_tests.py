@@ -59,14 +59,14 @@ def thermo(out):
 
 
 def collision(pstyle, pcoeff, yoff=0.0, wz=0.0, nrun=6000, np=1, newton="on", thermo_every=1000,
-              n1=None, restart=0, rfile="restart.bin", r2=RAD, check="yes"):
+              n1=None, restart=0, rfile="restart.bin", r2=RAD, check="yes", pairlocal=0):
     n1 = nrun // 2 if n1 is None else n1
     # the beads start 20 um apart along the line they first touch on (~2500 steps)
     x0 = (math.sqrt((RAD + r2) ** 2 - yoff ** 2) + 2e-5) / 2
     return lmp("collision.in", np=np, pstyle=pstyle, pcoeff=pcoeff, v=V, x0=x0, yoff=yoff, wz=wz,
                d2=2 * r2, check=check,
                dt=DT, n1=n1, n2=nrun - n1, newton=newton, thermo=thermo_every,
-               restart=restart, rfile=rfile)
+               restart=restart, rfile=rfile, pairlocal=pairlocal)
 
 
 def restitution_of(out):
@@ -119,6 +119,55 @@ def test_epgw_restitution():
     ref = reference_e(3, sigma, 4.0, 1.0)
     ok = rc == 0 and abs(e - ref) < 5e-3 and ref < 0.99
     return ok, f"e = {e:.6f}, egw_restitution = {ref:.6f}, |diff| = {abs(e - ref):.2e} (< 5e-3)"
+
+
+def test_energy_epgw():
+    """EP-GW, no damping, mu given and from summit data: the tallied energy is what a contact
+    returns if it separates now (egw_hysteresis_energy), so kinetic + that energy falls
+    while the contact loads (never rises by more than the Verlet noise, 5e-5 of E0, as in
+    energy_elastic), stays constant while it unloads (after the deepest point: 5e-5), and
+    ends at the kinetic energy of the rebound: E_end/E0 = e^2 (1e-4)."""
+    out_all = []
+    for c in ("mu 4 psi 1", "summit_density 1e10 summit_radius 1e-5 psi 1"):
+        rc, out = collision("egw EP-GW 1e-3", f"E {E} nu {NU} sigma 0.5e-6 {c}",
+                            thermo_every=10)
+        rows = thermo(out)
+        e0 = rows[0][3]
+        rise = max((b[3] - a[3]) / e0 for a, b in zip(rows, rows[1:]))
+        deepest = max(range(len(rows)), key=lambda i: rows[i][2])
+        # from two rows (20 steps) past the deepest sampled row: the turning point itself
+        # lies within a sampling interval of it, and the energy still falls until then
+        after = [r[3] for r in rows[deepest + 2:]]
+        drift = (max(after) - min(after)) / e0
+        e = restitution_of(out)
+        end = rows[-1][3] / e0
+        ok = (rc == 0 and rise < 5e-5 and drift < 5e-5 and abs(end - e * e) < 1e-4 and
+              rows[deepest][2] > 0.2 * e0 and e < 0.99)
+        out_all.append((ok, f"{c.split()[0]}: largest rise {rise:.1e}, unloading drift {drift:.1e} "
+                            f"(< 5e-5), E_end/E0 {end:.6f} vs e^2 {e * e:.6f}"))
+    return all(o for o, _ in out_all), "; ".join(m for _, m in out_all)
+
+
+def test_single_pair_local():
+    """compute pair/local (pair->single()) during an EP-GW collision with summit data (two
+    hysteresis tables and the contact's history): at the mid-contact step, its force equals
+    the x force on atom 1 (head-on, no damping or friction: the pair's normal force is all
+    of it; 1e-12), its parts add up (elastic + damping), the stiffness is positive and the
+    contact unloads (delta < delta_max from the history: the rough beads touch through
+    their summits only, delta < 0)."""
+    # step 2600: just past the deepest point (~2580), unloading below delta_max
+    rc, out = collision("egw EP-GW 1e-3", f"E {E} nu {NU} sigma 0.5e-6 summit_density 1e10 "
+                        "summit_radius 1e-5 psi 1", pairlocal=1, thermo_every=2600, n1=2600)
+    m = re.search(r"MID (\S+) (\S+)", out)
+    pl = re.search(r"^PAIRLOCAL (.*)$", out, re.M)
+    if rc != 0 or not pl or not m:
+        return False, "run failed or no PAIRLOCAL line:\n" + out[-1500:]
+    force, p1, p2, p3, delta, dmax = [float(x) for x in pl.group(1).split()]
+    fx = float(m.group(1))
+    ok = (abs(abs(force) - abs(fx)) <= 1e-12 * abs(fx) and force > 0 and
+          abs(p1 + p2 - force) <= 1e-12 * force and p3 > 0 and delta < dmax)
+    return ok, (f"pair/local force {force:.12g}, fx[1] {fx:.12g}; elastic {p1:.6g} + damping "
+                f"{p2:.3g}; stiffness {p3:.4g}; delta {delta:.4g} < delta_max {dmax:.4g}")
 
 
 def test_summit_data_restitution():
@@ -379,7 +428,7 @@ def test_bad_coeff():
         "; " + "; ".join(bad) if bad else "")
 
 
-TESTS = [test_energy_elastic, test_epgw_restitution, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
+TESTS = [test_energy_elastic, test_epgw_restitution, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff]
