@@ -450,14 +450,15 @@ int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
                         double *force, double *stiffness);
 
 /* Doubles of a contact's state for egw_hysteresis_eval_state. */
-#define EGW_HYSTERESIS_STATE_SIZE 12
+#define EGW_HYSTERESIS_STATE_SIZE 24
 
 /* egw_hysteresis_eval with a larger per-contact state that the caller owns and keeps with
  * the contact (EGW_HYSTERESIS_STATE_SIZE doubles, no allocation, no lock): state[0] is the
- * history (the largest overlap so far, as *delta_max_state above), state[1..11] a cache
- * that this call fills: the turning point's data, so that a contact unloading or
- * reloading below the same turning point skips its lookup (DEM: most calls), and the
- * intervals last found, tried first by the next call (a contact moves little). Same values and
+ * history (the largest overlap so far, as *delta_max_state above), state[1..23] caches
+ * that this call fills: the turning point's data and the table intervals last used with
+ * their cubics, so that a contact that stays below the same turning point and inside the
+ * same intervals (most DEM steps: a contact moves little) reads nothing but its state.
+ * Same values and
  * statuses as egw_hysteresis_eval. Start a contact with egw_hysteresis_state_init; a
  * state may be copied with its contact (restarts, migration between ranks): its cache is
  * used only with a table of the same data and the same state[0], and recomputed

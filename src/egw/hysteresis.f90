@@ -23,7 +23,7 @@
 !> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
 !> retraces the loading table exactly.
 module egw_hysteresis
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_value, ieee_quiet_nan
    use, intrinsic :: iso_fortran_env, only: int64
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
@@ -31,7 +31,7 @@ module egw_hysteresis
    use egw_params, only: contact_params, validate_params, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload
-   use egw_table, only: force_table, build_table, table_eval, table_eval_hinted, &
+   use egw_table, only: force_table, build_table, table_eval, table_eval_cached, &
       & table_energy, table_progress
    implicit none
    private
@@ -39,12 +39,14 @@ module egw_hysteresis
    public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_eval_state, &
       & hysteresis_state_init, hysteresis_energy, hysteresis_prepare
 
-   !> Doubles of a contact's state for hysteresis_eval_state: the largest overlap so far,
-   !> then what the unloading branch needs of that turning point (kept while it stays):
-   !> (2) the turning point they belong to, (3) the table's tag, (4) the Lagrange stencil,
-   !> (5) 1/(s_max L), (6) P_load, (7:10) the Lagrange weights; and the last intervals
-   !> found, (11) in s and (12) in the loading table, tried first by the next call.
-   integer, parameter, public :: hysteresis_state_size = 12
+   !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
+   !> then caches that name the table (3, its tag): of the turning point (2, the m they
+   !> belong to): (4) the Lagrange stencil, (5) 1/(s_max L), (6) P_load, (7:10) the weights;
+   !> of the s interval last used below it: (11:12) its ends, (13) 1/width, (14:17) the
+   !> combined cubic of g; of the loading table's interval last used: (18:19) its ends,
+   !> (20:23) its cubic, (24) 1 where that is ln P. A contact that stays inside its intervals
+   !> (most DEM steps) touches nothing but its state.
+   integer, parameter, public :: hysteresis_state_size = 24
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
    integer, parameter :: max_s_nodes = 400, max_m_nodes = 400
@@ -179,7 +181,7 @@ contains
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
       real(dp) :: w(4), inv_span, f_m
-      integer :: first, s_hint, d_hint
+      integer :: first
       stat = 0
       force = 0.0_dp
       stiffness = 0.0_dp
@@ -196,10 +198,8 @@ contains
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       if (delta_max_state > table%delta_max) stat = egw_out_of_range
       call turning_point(table, delta_max_state, first, w, inv_span, f_m)
-      s_hint = 0
-      d_hint = 0
       call unload_branch(table, first, w, inv_span, f_m, delta_max_state, delta, force, &
-         & stiffness, s_hint, d_hint)
+         & stiffness)
    end subroutine hysteresis_eval
 
    !> hysteresis_eval with a state that also keeps what the unloading branch needs of the
@@ -215,8 +215,8 @@ contains
       real(dp), intent(inout) :: state(hysteresis_state_size)
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: w(4), inv_span, f_m
-      integer :: first, s_hint, d_hint
+      real(dp) :: w(4), s, t, g, dg, f_d, k_d
+      integer :: first, i, k
       stat = 0
       force = 0.0_dp
       stiffness = 0.0_dp
@@ -224,35 +224,55 @@ contains
          stat = egw_invalid_argument
          return
       end if
-      ! the hints: any garbage is a miss (checked against the grid before use)
-      d_hint = 0
-      if (abs(state(12)) < 1.0e9_dp) d_hint = int(state(12))
+      if (.not. state(3) == table%tag) then
+         ! another table's (or no) caches: none is used
+         state(2) = ieee_value(1.0_dp, ieee_quiet_nan)
+         state(11:12) = state(2)
+         state(18:19) = state(2)
+         state(3) = table%tag
+      end if
       if (.not. delta < state(1) .or. table%reversible) then
          state(1) = max(state(1), delta)
-         call table_eval_hinted(table%loading, delta, d_hint, force, stiffness)
-         state(12) = d_hint
+         call table_eval_cached(table%loading, delta, state(18:24), force, stiffness)
          if (delta > table%delta_max) stat = egw_out_of_range
          return
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       if (state(1) > table%delta_max) stat = egw_out_of_range
-      if (state(2) == state(1) .and. state(3) == table%tag .and. state(4) >= 1.0_dp .and. &
-         & state(4) <= size(table%m) - 3) then
-         first = int(state(4))
-         inv_span = state(5)
-         f_m = state(6)
-         w = state(7:10)
-      else
-         call turning_point(table, state(1), first, w, inv_span, f_m)
-         state(2:10) = [state(1), table%tag, real(first, dp), inv_span, f_m, w]
+      if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
+         & state(4) <= size(table%m) - 3)) then
+         call turning_point(table, state(1), first, w, state(5), state(6))
+         state(2) = state(1)
+         state(4) = real(first, dp)
+         state(7:10) = w
+         state(11:12) = ieee_value(1.0_dp, ieee_quiet_nan)
       end if
-      s_hint = 0
-      if (abs(state(11)) < 1.0e9_dp) s_hint = int(state(11))
-      call unload_branch(table, first, w, inv_span, f_m, state(1), delta, force, stiffness, &
-         & s_hint, d_hint)
-      state(11) = s_hint
-      state(12) = d_hint
+      s = min((state(1) - delta)*state(5), 1.0_dp)
+      if (.not. (state(11) <= s .and. s < state(12))) then
+         ! the s interval (locate's clamp at s = 1 has no cached interval: looked up)
+         i = locate(table%s_lookup, table%s, s)
+         first = int(state(4))
+         state(11) = table%s(i)
+         state(12) = table%s(i + 1)
+         state(13) = table%inv_ds(i)
+         associate (cf => table%coef(:, first:first + 3, i))
+            do k = 1, 4
+               state(13 + k) = state(7)*cf(k, 1) + state(8)*cf(k, 2) + state(9)*cf(k, 3) + &
+                  & state(10)*cf(k, 4)
+            end do
+         end associate
+      end if
+      t = (s - state(11))*state(13)
+      call gap_cubic(state(14:17), t, state(13), g, dg)
+      call table_eval_cached(table%loading, delta, state(18:24), f_d, k_d)
+      force = f_d - state(6)*g
+      stiffness = k_d + state(6)*dg*state(5)
+      if (.not. force > 0.0_dp) then
+         force = 0.0_dp
+         stiffness = 0.0_dp
+      end if
    end subroutine hysteresis_eval_state
+
 
    !> Elastic energy [force*length] that a contact at overlap delta returns if it
    !> separates now: the integral of its unloading curve from the loading cut-off to delta,
@@ -313,6 +333,18 @@ contains
       state(1) = -huge(1.0_dp)
    end subroutine hysteresis_state_init
 
+   !> g and dg/ds of the cubic c in t = (s - s_i)/(s_{i+1} - s_i) (inv_ds = the 1/width);
+   !> Estrin's scheme: shorter dependency chains than Horner. The one evaluation of both
+   !> paths (hysteresis_eval, hysteresis_eval_state): their values agree bit for bit.
+   pure subroutine gap_cubic(c, t, inv_ds, g, dg)
+      real(dp), intent(in) :: c(4), t, inv_ds
+      real(dp), intent(out) :: g, dg
+      real(dp) :: t2
+      t2 = t*t
+      g = (c(1) + t*c(2)) + t2*(c(3) + t*c(4))
+      dg = ((c(2) + 2*t*c(3)) + 3*t2*c(4))*inv_ds
+   end subroutine gap_cubic
+
    !> What the unloading branch needs of the turning point m: the Lagrange stencil of the
    !> m interval (clamped at the ends of the grid; the last curve above the table), its
    !> weights, 1/(s_max L) interpolated with them and the loading force P_load(m).
@@ -342,35 +374,26 @@ contains
    !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
    !> described by (first, w, inv_span, f_m): P_load(delta) - P_load(m) g(s, m), 0 where
    !> that is not positive.
-   pure subroutine unload_branch(table, first, w, inv_span, f_m, m, delta, force, stiffness, &
-      & s_hint, d_hint)
+   pure subroutine unload_branch(table, first, w, inv_span, f_m, m, delta, force, stiffness)
       type(hysteresis_table), intent(in) :: table
       integer, intent(in) :: first
       real(dp), intent(in) :: w(4), inv_span, f_m, m, delta
       real(dp), intent(out) :: force, stiffness
-      !> guesses of the intervals in s and in the loading table (0: none), updated
-      integer, intent(inout) :: s_hint, d_hint
       real(dp) :: s, t, g, dg, c(4), f_d, k_d
       integer :: i
       s = min((m - delta)*inv_span, 1.0_dp)
-      i = s_hint
-      if (i < 1 .or. i >= size(table%s)) then
-         i = locate(table%s_lookup, table%s, s)
-      else if (.not. (table%s(i) <= s .and. s < table%s(i + 1))) then
-         i = locate(table%s_lookup, table%s, s)
-      end if
-      s_hint = i
+      i = locate(table%s_lookup, table%s, s)
       t = (s - table%s(i))*table%inv_ds(i)
-      ! the four curves' cubics on interval i: 16 contiguous numbers
+      ! the four curves' cubics on interval i: 16 contiguous numbers (hysteresis_eval_state
+      ! combines them in the same order: the same values)
       associate (cf => table%coef(:, first:first + 3, i))
          c(1) = w(1)*cf(1, 1) + w(2)*cf(1, 2) + w(3)*cf(1, 3) + w(4)*cf(1, 4)
          c(2) = w(1)*cf(2, 1) + w(2)*cf(2, 2) + w(3)*cf(2, 3) + w(4)*cf(2, 4)
          c(3) = w(1)*cf(3, 1) + w(2)*cf(3, 2) + w(3)*cf(3, 3) + w(4)*cf(3, 4)
          c(4) = w(1)*cf(4, 1) + w(2)*cf(4, 2) + w(3)*cf(4, 3) + w(4)*cf(4, 4)
       end associate
-      g = c(1) + t*(c(2) + t*(c(3) + t*c(4)))
-      dg = (c(2) + t*(2*c(3) + t*3*c(4)))*table%inv_ds(i)
-      call table_eval_hinted(table%loading, delta, d_hint, f_d, k_d)
+      call gap_cubic(c, t, table%inv_ds(i), g, dg)
+      call table_eval(table%loading, delta, f_d, k_d)
       force = f_d - f_m*g
       stiffness = k_d + f_m*dg*inv_span
       if (.not. force > 0.0_dp) then

@@ -21,7 +21,7 @@
 !> better than ~1e-4 (the bulk contact patch is far below the mesh), which drove builds
 !> with the 10 rel_tol check below rel_tol ~ 5e-6 into the node limit.
 module egw_table
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
       & format_real
@@ -32,8 +32,9 @@ module egw_table
    private
 
    public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, &
-      & table_eval, table_eval_hinted, table_eval_log, table_eval_all, table_covers, &
-      & table_energy, &
+      & table_eval, table_eval_cached, table_segment, segment_force, table_eval_log, &
+      & table_eval_all, &
+      & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff
 
    public :: table_progress
@@ -550,42 +551,88 @@ contains
       end if
    end subroutine table_eval
 
-   !> table_eval with the caller's guess of the interval (hint, updated; 0 or anything
-   !> else is a miss): where successive calls move little (a DEM contact), the interval is
-   !> checked instead of looked up (the buckets are a cache miss away). Same values as
-   !> table_eval: the interval holding delta is unique.
-   pure subroutine table_eval_hinted(table, delta, hint, force, stiffness)
+   !> table_eval through the caller's copy seg of the interval last used (table_segment's
+   !> layout; anything else, e.g. NaN ends, is a miss), refilled when delta leaves it: the
+   !> values of table_eval, without the lookup while delta stays inside (a DEM contact).
+   pure subroutine table_eval_cached(table, delta, seg, force, stiffness)
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
-      integer, intent(inout) :: hint
+      real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: force, stiffness
-      if (delta > table%cutoff .and. delta < table%delta_max .and. hint >= 1 .and. &
-         & hint < size(table%seg, 2)) then
-         if (table%seg(0, hint) <= delta .and. delta < table%seg(0, hint + 1)) then
-            call segment_eval(table%seg, table%n_log, size(table%seg, 2), hint, delta, &
-               & force, stiffness)
+      logical :: found
+      if (.not. (seg(1) <= delta .and. delta < seg(2) .and. delta > table%cutoff)) then
+         call table_segment(table, delta, seg, found)
+         if (.not. found) then
+            seg(1:2) = ieee_value(1.0_dp, ieee_quiet_nan)
+            call table_eval(table, delta, force, stiffness)
             return
          end if
       end if
-      if (delta > table%cutoff .and. delta < table%delta_max) then
-         call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
-            & table%bucket_scale, table%n_log, size(table%seg, 2), delta, force, stiffness, &
-            & hint)
+      call segment_force(seg(3:6), seg(7) > 0.0_dp, delta - seg(1), force, stiffness)
+   end subroutine table_eval_cached
+
+   !> The interval of the table that holds delta, for a caller that keeps it while delta
+   !> stays inside (a DEM contact): seg = [lo, hi, c1, c2, c3, c4, log] with lo <= delta <
+   !> hi, the cubic in delta - lo and log = 1 where it is ln P; segment_force evaluates it
+   !> exactly as table_eval does for lo <= delta < hi and delta > cutoff (the cut-off
+   !> itself has its own value). found = .false. outside (cut-off, delta_max), where
+   !> table_eval has no interval.
+   pure subroutine table_segment(table, delta, seg, found)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: seg(7)
+      logical, intent(out) :: found
+      integer :: i
+      seg = 0.0_dp
+      found = delta > table%cutoff .and. delta < table%delta_max
+      if (.not. found) return
+      i = kernel_locate(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
+         & table%bucket_scale, size(table%seg, 2), delta)
+      seg(1) = table%seg(0, i)
+      seg(2) = table%seg(0, i + 1)
+      seg(3:6) = table%seg(1:4, i)
+      if (i <= table%n_log) seg(7) = 1.0_dp
+   end subroutine table_segment
+
+   !> Force and stiffness of a cubic c(1:4) in t = delta - (interval start) (of ln P when
+   !> is_log): the one evaluation of every table interval.
+   pure subroutine segment_force(c, is_log, t, force, stiffness)
+      real(dp), intent(in) :: c(4), t
+      logical, intent(in) :: is_log
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: t2, v, d
+      ! Estrin's scheme: shorter dependency chains than Horner
+      t2 = t*t
+      v = (c(1) + t*c(2)) + t2*(c(3) + t*c(4))
+      d = (c(2) + 2*t*c(3)) + 3*t2*c(4)
+      if (is_log) then
+         force = exp(v)
+         stiffness = force*d
       else
-         call table_eval(table, delta, force, stiffness)
+         force = v
+         stiffness = d
       end if
-   end subroutine table_eval_hinted
+   end subroutine segment_force
 
    !> Evaluation on plain explicit-shape arrays: the same lookup and cubic through the
    !> table's allocatable components costs ~1.6x as much (descriptor loads and index
    !> arithmetic on the critical path of a latency-bound evaluation).
    pure subroutine eval_kernel(seg, bucket, n_bucket, origin, scale, n_log, n, delta, force, &
-      & stiffness, found)
+      & stiffness)
       integer, intent(in) :: n_bucket, bucket(0:n_bucket + 1), n_log, n
       real(dp), intent(in) :: seg(0:4, n), origin, scale, delta
       real(dp), intent(out) :: force, stiffness
-      integer, intent(out), optional :: found   !< the interval of delta
-      integer :: i, b, hi, mid
+      integer :: i
+      i = kernel_locate(seg, bucket, n_bucket, origin, scale, n, delta)
+      call segment_force(seg(1:4, i), i <= n_log, delta - seg(0, i), force, stiffness)
+   end subroutine eval_kernel
+
+   !> The interval i of delta in (seg(0, 1), seg(0, n)): seg(0, i) <= delta < seg(0, i+1).
+   pure integer function kernel_locate(seg, bucket, n_bucket, origin, scale, n, delta) &
+      & result(i)
+      integer, intent(in) :: n_bucket, bucket(0:n_bucket + 1), n
+      real(dp), intent(in) :: seg(0:4, n), origin, scale, delta
+      integer :: b, hi, mid
       b = min(max(int((delta - origin)*scale), 0), n_bucket)
       i = bucket(b)
       if (i < 0) then
@@ -605,29 +652,7 @@ contains
       do while (delta >= seg(0, i + 1))
          i = i + 1
       end do
-      if (present(found)) found = i
-      call segment_eval(seg, n_log, n, i, delta, force, stiffness)
-   end subroutine eval_kernel
-
-   !> The cubic of interval i at delta (of ln P for i <= n_log).
-   pure subroutine segment_eval(seg, n_log, n, i, delta, force, stiffness)
-      integer, intent(in) :: n_log, n, i
-      real(dp), intent(in) :: seg(0:4, n), delta
-      real(dp), intent(out) :: force, stiffness
-      real(dp) :: t, t2, v, d
-      t = delta - seg(0, i)
-      ! Estrin's scheme: shorter dependency chains than Horner
-      t2 = t*t
-      v = (seg(1, i) + t*seg(2, i)) + t2*(seg(3, i) + t*seg(4, i))
-      d = (seg(2, i) + 2*t*seg(3, i)) + 3*t2*seg(4, i)
-      if (i > n_log) then
-         force = v
-         stiffness = d
-      else
-         force = exp(v)
-         stiffness = force*d
-      end if
-   end subroutine segment_eval
+   end function kernel_locate
 
    !> ln P and d ln P/ddelta at delta in (cutoff, delta_max) (used by the universal table
    !> to interpolate across mu in log space without an exp per slice).
