@@ -220,6 +220,25 @@ contains
       call hysteresis_eval(other, 1.0_dp, plain, f2, k2, stat2)
       call check(error, f == f2 .and. k == k2 .and. copy(3) == other%tag, &
          & "another table recomputes the cache")
+      if (allocated(error)) return
+      ! reversible (E-GW) tables carry tags too: a state from one is not trusted by another
+      p = ep
+      p%model = model_egw
+      call build_hysteresis(p, solver_options(), -2.0_dp, 6.0_dp, tol, back, err)
+      p%mu = 2.0_dp
+      if (.not. allocated(err)) call build_hysteresis(p, solver_options(), -2.0_dp, 6.0_dp, &
+         & tol, other, err)
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      call hysteresis_state_init(state)
+      call hysteresis_eval_state(back, 2.0_dp, state, f, k, stat)
+      call hysteresis_eval_state(other, 2.0_dp, state, f, k, stat)
+      plain = -huge(1.0_dp)
+      call hysteresis_eval(other, 2.0_dp, plain, f2, k2, stat2)
+      call check(error, f == f2 .and. k == k2 .and. back%tag /= other%tag .and. &
+         & back%tag >= 1.0_dp, "reversible tables: own tags, the other's cache not used")
    end subroutine test_state
 
    !> hysteresis_energy (from the curves' exact integrals) against the table's own force

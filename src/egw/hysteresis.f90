@@ -147,7 +147,10 @@ contains
       ! elastic summits (or none): unloading retraces the loading table exactly
       table%reversible = params%model /= model_epgw .or. params%psi == 0.0_dp .or. &
          & params%sigma == 0.0_dp
-      if (table%reversible) return
+      if (table%reversible) then
+         call hysteresis_prepare(table)   ! the tag only
+         return
+      end if
       ! delta_max grid: from the loading cut-off (nothing to unload below) to delta_max,
       ! dyadic (bisection keeps it so: the m buckets rely on it)
       n = 9
@@ -202,13 +205,14 @@ contains
          & stiffness)
    end subroutine hysteresis_eval
 
-   !> hysteresis_eval with a state that also keeps what the unloading branch needs of the
-   !> turning point (hysteresis_state_size doubles; state(1) is delta_max_state, the rest a
-   !> cache that this routine fills): while a contact unloads or reloads below the same
-   !> turning point, only the overlap's own lookups remain. Same values and statuses as
-   !> hysteresis_eval. A state from another table (or its cache garbled) is recomputed,
-   !> never trusted: the cache is used only when it names this table's tag and the state's
-   !> turning point.
+   !> hysteresis_eval with a state that also keeps what the evaluation needs of the turning
+   !> point and of the intervals last used (hysteresis_state_size doubles; state(1) is
+   !> delta_max_state, the rest caches that this routine fills): a contact that stays below
+   !> the same turning point and inside the same intervals reads only its state. Same
+   !> values and statuses as hysteresis_eval (the same arithmetic on the same numbers). A
+   !> state from another table, or garbled, is refilled, never trusted: the caches are used
+   !> only when they name this table's tag, the state's turning point and an interval that
+   !> holds the overlap.
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: delta
@@ -272,7 +276,6 @@ contains
          stiffness = 0.0_dp
       end if
    end subroutine hysteresis_eval_state
-
 
    !> Elastic energy [force*length] that a contact at overlap delta returns if it
    !> separates now: the integral of its unloading curve from the loading cut-off to delta,
@@ -403,11 +406,14 @@ contains
    end subroutine unload_branch
 
    !> Derive the evaluation data (cubics on the union s grid, Lagrange denominators,
-   !> lookup buckets) from the stored nodes; called by the build and by readers.
+   !> lookup buckets, the curves' integrals, the data tag; reversible tables: the tag
+   !> only) from the stored nodes; called by the build and by readers.
    pure subroutine hysteresis_prepare(table)
       type(hysteresis_table), intent(inout) :: table
       integer :: n_s, n_m, i, j, first, k, l
       real(dp) :: h
+      table%tag = data_tag(table)
+      if (table%reversible) return   ! no curves: the loading table serves
       n_s = size(table%s)
       n_m = size(table%m)
       if (allocated(table%coef)) deallocate (table%coef)
@@ -446,7 +452,6 @@ contains
       end do
       call make_lookup(table%m, table%m_lookup)
       call make_lookup(table%s, table%s_lookup)
-      table%tag = data_tag(table)
    end subroutine hysteresis_prepare
 
    !> FNV-1a (64-bit, word by word) of the stored data and the loading table's nodes,
@@ -457,11 +462,13 @@ contains
       integer(int64) :: h
       h = -3750763034362895579_int64   ! the FNV offset basis 14695981039346656037
       call mix(h, [table%s_max, table%rel_tol, table%delta_max])
-      call mix(h, table%m)
-      call mix(h, table%length)
-      call mix(h, table%s)
-      call mix(h, reshape(table%gap, [size(table%gap)]))
-      call mix(h, reshape(table%slope, [size(table%slope)]))
+      if (.not. table%reversible) then
+         call mix(h, table%m)
+         call mix(h, table%length)
+         call mix(h, table%s)
+         call mix(h, reshape(table%gap, [size(table%gap)]))
+         call mix(h, reshape(table%slope, [size(table%slope)]))
+      end if
       call mix(h, table%loading%delta)
       call mix(h, table%loading%force)
       call mix(h, table%loading%stiffness)

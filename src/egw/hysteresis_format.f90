@@ -81,7 +81,7 @@ contains
          return
       end if
       call table_prepare(table%loading)
-      if (.not. table%reversible) call hysteresis_prepare(table)
+      call hysteresis_prepare(table)
    end subroutine read_hysteresis
 
    ! ---------------------------------------------------------------------------- binary
