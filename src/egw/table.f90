@@ -32,7 +32,7 @@ module egw_table
    private
 
    public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, &
-      & table_eval, table_eval_cached, table_segment, segment_force, table_eval_log, &
+      & table_eval, table_eval_cached, table_segment, table_eval_log, &
       & table_eval_all, &
       & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff
@@ -559,6 +559,7 @@ contains
       real(dp), intent(in) :: delta
       real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: force, stiffness
+      real(dp) :: t, t2, v, d
       logical :: found
       if (.not. (seg(1) <= delta .and. delta < seg(2) .and. delta > table%cutoff)) then
          call table_segment(table, delta, seg, found)
@@ -568,13 +569,24 @@ contains
             return
          end if
       end if
-      call segment_force(seg(3:6), seg(7) > 0.0_dp, delta - seg(1), force, stiffness)
+      ! eval_kernel's arithmetic on the copied interval: the same values
+      t = delta - seg(1)
+      t2 = t*t
+      v = (seg(3) + t*seg(4)) + t2*(seg(5) + t*seg(6))
+      d = (seg(4) + 2*t*seg(5)) + 3*t2*seg(6)
+      if (seg(7) > 0.0_dp) then
+         force = exp(v)
+         stiffness = force*d
+      else
+         force = v
+         stiffness = d
+      end if
    end subroutine table_eval_cached
 
    !> The interval of the table that holds delta, for a caller that keeps it while delta
    !> stays inside (a DEM contact): seg = [lo, hi, c1, c2, c3, c4, log] with lo <= delta <
-   !> hi, the cubic in delta - lo and log = 1 where it is ln P; segment_force evaluates it
-   !> exactly as table_eval does for lo <= delta < hi and delta > cutoff (the cut-off
+   !> hi, the cubic in delta - lo and log = 1 where it is ln P; table_eval_cached evaluates
+   !> it exactly as table_eval does for lo <= delta < hi and delta > cutoff (the cut-off
    !> itself has its own value). found = .false. outside (cut-off, delta_max), where
    !> table_eval has no interval.
    pure subroutine table_segment(table, delta, seg, found)
@@ -594,26 +606,6 @@ contains
       if (i <= table%n_log) seg(7) = 1.0_dp
    end subroutine table_segment
 
-   !> Force and stiffness of a cubic c(1:4) in t = delta - (interval start) (of ln P when
-   !> is_log): the one evaluation of every table interval.
-   pure subroutine segment_force(c, is_log, t, force, stiffness)
-      real(dp), intent(in) :: c(4), t
-      logical, intent(in) :: is_log
-      real(dp), intent(out) :: force, stiffness
-      real(dp) :: t2, v, d
-      ! Estrin's scheme: shorter dependency chains than Horner
-      t2 = t*t
-      v = (c(1) + t*c(2)) + t2*(c(3) + t*c(4))
-      d = (c(2) + 2*t*c(3)) + 3*t2*c(4)
-      if (is_log) then
-         force = exp(v)
-         stiffness = force*d
-      else
-         force = v
-         stiffness = d
-      end if
-   end subroutine segment_force
-
    !> Evaluation on plain explicit-shape arrays: the same lookup and cubic through the
    !> table's allocatable components costs ~1.6x as much (descriptor loads and index
    !> arithmetic on the critical path of a latency-bound evaluation).
@@ -623,8 +615,21 @@ contains
       real(dp), intent(in) :: seg(0:4, n), origin, scale, delta
       real(dp), intent(out) :: force, stiffness
       integer :: i
+      real(dp) :: t, t2, v, d
       i = kernel_locate(seg, bucket, n_bucket, origin, scale, n, delta)
-      call segment_force(seg(1:4, i), i <= n_log, delta - seg(0, i), force, stiffness)
+      ! the cubic (Estrin's scheme: shorter dependency chains than Horner); written out
+      ! again in table_eval_cached, which must agree bit for bit (test hysteresis)
+      t = delta - seg(0, i)
+      t2 = t*t
+      v = (seg(1, i) + t*seg(2, i)) + t2*(seg(3, i) + t*seg(4, i))
+      d = (seg(2, i) + 2*t*seg(3, i)) + 3*t2*seg(4, i)
+      if (i <= n_log) then
+         force = exp(v)
+         stiffness = force*d
+      else
+         force = v
+         stiffness = d
+      end if
    end subroutine eval_kernel
 
    !> The interval i of delta in (seg(0, 1), seg(0, n)): seg(0, i) <= delta < seg(0, i+1).
