@@ -141,6 +141,7 @@ _SIGNATURES = {
                                      POINTER(c_void_p)]),
     "egw_hysteresis_eval": (c_int, [c_void_p, c_double, _dp, _dp, _dp]),
     "egw_hysteresis_eval_array": (c_int, [c_void_p, c_int, _dp, _dp, _dp, _dp]),
+    "egw_hysteresis_energy": (c_int, [c_void_p, c_double, c_double, _dp]),
     "egw_hysteresis_get_info": (c_int, [c_void_p, POINTER(HysteresisInfo)]),
     "egw_hysteresis_write": (c_int, [c_void_p, c_char_p, c_int]),
     "egw_hysteresis_read": (c_int, [c_char_p, POINTER(c_void_p)]),

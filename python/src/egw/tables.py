@@ -267,6 +267,21 @@ class HysteresisTable(_Handle):
                     sf[i], ff[i], kf[i] = s.value, f.value, k.value
         return force, stiffness
 
+    def energy(self, delta: ArrayLike, state: ArrayLike) -> np.ndarray:
+        """The elastic energy each contact returns if it separates now
+        (egw_hysteresis_energy): the integral of its unloading curve, turning point
+        max(state, delta), from the cut-off to delta. `state` is read, not changed."""
+        d = _array(delta)
+        s = np.broadcast_to(np.asarray(state, dtype=np.float64), d.shape)
+        out = np.empty(d.shape)
+        u = ctypes.c_double()
+        of, df, sf = out.reshape(-1), d.reshape(-1), s.reshape(-1)
+        for i in range(df.size):
+            check(lib.egw_hysteresis_energy(self._ptr, float(df[i]), float(sf[i]),
+                                            ctypes.byref(u)), allow_out_of_range=True)
+            of[i] = u.value
+        return out
+
     @staticmethod
     def new_state(shape=()) -> np.ndarray:
         """Histories of contacts that never touched (-inf)."""
