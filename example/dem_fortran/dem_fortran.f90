@@ -5,7 +5,9 @@
 !>    is 1, and the max overlap is where the table's elastic energy equals the initial
 !>    kinetic energy of the relative motion.
 !> 3. Elasto-plastic (EP-GW, sigma = 0.5 um, mu = 4, psi = 1): the same loop on a hysteresis
-!>    table (hysteresis_eval; the contact's history is one real) dissipates energy; its
+!>    table (hysteresis_eval_state: the contact's state keeps its history and what the next
+!>    step can reuse; hysteresis_eval with one real gives the same values, slower)
+!>    dissipates energy; its
 !>    restitution is printed next to the library's (restitution), agreeing to 1e-4 (the
 !>    table's rel_tol 1e-4 of the force at the turning point bounds the energies to a few
 !>    1e-5; the loop starts at the table's cut-off, below which no force acts).
@@ -16,7 +18,8 @@ program dem_fortran
    use egw_params, only: contact_params, model_hertz, model_egw
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, build_table, table_eval, table_energy
-   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval_state, &
+      & hysteresis_state_init, hysteresis_state_size
    use egw_impact, only: restitution
    use egw_params, only: model_epgw
    implicit none
@@ -141,23 +144,24 @@ contains
    subroutine impact(hyst, d_max, restitution)
       type(hysteresis_table), intent(in) :: hyst
       real(dp), intent(out) :: d_max, restitution
-      real(dp) :: d, d0, d_old, v, f, k, dt
+      real(dp) :: d, d0, d_old, v, f, k, dt, state(hysteresis_state_size)
       integer :: stat
-      d_max = -huge(1.0_dp)
+      call hysteresis_state_init(state)   ! a new contact
       d0 = hyst%loading%cutoff
       d = d0
       v = v0
       dt = (m_eff/(2*p%modulus*sqrt(p%radius*delta_h_guess())))**0.5_dp*pi/5000
-      call hysteresis_eval(hyst, d, d_max, f, k, stat)
+      call hysteresis_eval_state(hyst, d, state, f, k, stat)
       do
          d_old = d
          v = v - dt/2*f/m_eff
          d = d + dt*v
-         call hysteresis_eval(hyst, d, d_max, f, k, stat)
+         call hysteresis_eval_state(hyst, d, state, f, k, stat)
          v = v - dt/2*f/m_eff
          if (d < d0 .and. d < d_old) exit
       end do
       restitution = -v/v0
+      d_max = state(1)
    end subroutine impact
 
    !> Hertz overlap scale, only to choose the time step
