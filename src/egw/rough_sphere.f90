@@ -39,7 +39,7 @@ module egw_rough_sphere
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_asperity, only: rough_flat_law
-   use egw_unloading, only: rough_flat_unload_law
+   use egw_unloading, only: unloading_law, unloading_law_of, unloading_pressure
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
       & assemble_influence, influence_row, interpolate_nodal
    use egw_lapack, only: dgetf2, dgetrs
@@ -122,6 +122,8 @@ module egw_rough_sphere
       real(dp) :: psi = 0.0_dp, hardness = 0.6_dp, plastic_ratio = 54.0_dp
       !> Unloading: the closest approach so far (allocated), else the loading law.
       type(separation_field), allocatable :: closest
+      !> Unloading: Z_u of psi, K, rho_p prepared once per solve (unloading_law_of).
+      type(unloading_law) :: unload
       !> Unloading: radii where d crosses d_max (the law switches branch), element edges.
       real(dp), allocatable :: branch(:)
    end type scaled_problem
@@ -390,6 +392,7 @@ contains
       end if
       allocate (prob%closest)
       prob%closest = history%closest
+      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
       call solve_rough(history%params, history%options, prob, sol, result, error)
    end subroutine solve_unload
 
@@ -469,6 +472,7 @@ contains
       prob = scaled(history%params, delta)
       allocate (prob%closest)
       prob%closest = history%closest
+      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
       length = length_unit(history%params)
       rs = r/length
       if (negligible(prob)) then
@@ -484,8 +488,7 @@ contains
          end do
       end if
       gap_min = closest_gap(prob%closest, rs)
-      if (.not. negligible(prob)) call unload_law(gap, gap_min, prob%psi, prob%hardness, &
-         & prob%plastic_ratio, f, dfdh)
+      if (.not. negligible(prob)) call unloading_pressure(prob%unload, gap, gap_min, f, dfdh)
       c = pressure_unit(history%params)
       pressure = c*prob%scale*f
       separation = history%params%sigma*gap
@@ -991,13 +994,6 @@ contains
       out = [edge(0:k - 1), r, edge(k:n)]
    end function with_edge
 
-   !> Dimensionless unloading law Z_u(h, h_min) and dZ_u/dh at fixed h_min (doc/theory.md §8).
-   elemental subroutine unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
-      real(dp), intent(in) :: h, h_min, psi, hardness_coeff, plastic_ratio
-      real(dp), intent(out) :: p, dpdh
-      call rough_flat_unload_law(h, h_min, psi, hardness_coeff, plastic_ratio, p, dpdh)
-   end subroutine unload_law
-
    !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
    !> Outside the Hertz edge the gap grows like (4/3)(a**2/pi)(2 s/a)**1.5 (s = r - a), so
    !> it reaches one sigma at s_b = (a/2)(3 pi/(4 a**2))**(2/3): the boundary layer whose
@@ -1310,8 +1306,7 @@ contains
       sol%gap = sol%base + gauss_values(sol%mesh, sol%w)
       allocate (f(size(sol%gap)), dfdh(size(sol%gap)))
       if (allocated(sol%gap_min)) then
-         call unload_law(sol%gap, sol%gap_min, prob%psi, prob%hardness, prob%plastic_ratio, &
-            & f, dfdh)
+         call unloading_pressure(prob%unload, sol%gap, sol%gap_min, f, dfdh)
       else
          call rough_flat_law(sol%gap, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
       end if
@@ -1512,8 +1507,8 @@ contains
       call influence_row(sol%mesh, r, row)
       if (allocated(prob%closest)) then
          gap_min = closest_gap(prob%closest, [r])
-         call unload_law(base_gap(prob, r) + dot_product(row, sol%p), gap_min(1), prob%psi, &
-            & prob%hardness, prob%plastic_ratio, f, dfdh)
+         call unloading_pressure(prob%unload, base_gap(prob, r) + dot_product(row, sol%p), &
+            & gap_min(1), f, dfdh)
       else
          call rough_flat_law(base_gap(prob, r) + dot_product(row, sol%p), prob%psi, &
             & prob%hardness, prob%plastic_ratio, f, dfdh)
