@@ -29,7 +29,7 @@ module egw_unloading
 
    public :: asperity_load_force, asperity_contact_area, asperity_residual_interference, &
       & asperity_unload_force, rough_flat_unload_law, flat_pressure_unload
-   public :: unloading_law, unloading_law_of, unloading_pressure
+   public :: unloading_law, unloading_law_of, unloading_pressure, unloading_kinks
 
    !> Gaussian factor kept down to e^-loss_max (2e-16) of its largest value on the domain,
    !> plus the growth of f^ (at most (t_hi/t_lo)^(3/2), a few e-folds) on top.
@@ -181,6 +181,22 @@ contains
       call clamp_switches(law%zmc, 0.0_dp, huge(1.0_dp), law%sw, law%n_sw)
       law%r_q = recovery(law%zmc, law%zmc%q)
    end function unloading_law_of
+
+   !> The Delta = h - h_min > 0 at which Z_u(h, h_min) is less smooth in h: where the
+   !> contact edge t* = D^-1(Delta) crosses a kink of the recovery D (t = e, q and the
+   !> switches between complete and partial recovery), i.e. Delta = D(e) = e, D(q) =
+   !> min(q, r(q)) and D(switch) = switch. There d^2 Z_u/dh^2 jumps (D' jumps under the
+   !> integral's edge), which costs a sphere solve's element holding one its order, as
+   !> Delta = 0 (the branch) does for dZ_u/dh. Empty for elastic summits.
+   pure function unloading_kinks(law) result(deltas)
+      type(unloading_law), intent(in) :: law
+      real(dp), allocatable :: deltas(:)
+      if (.not. law%plastic) then
+         allocate (deltas(0))
+         return
+      end if
+      deltas = [law%zmc%e, min(law%zmc%q, law%r_q), law%sw(:law%n_sw)]
+   end function unloading_kinks
 
    !> Z_u(h, h_min) and dZ_u/dh of a prepared law: the same values as rough_flat_unload_law
    !> with the law's parameters.
