@@ -185,9 +185,11 @@ contains
    !> The Delta = h - h_min > 0 at which Z_u(h, h_min) is less smooth in h: where the
    !> contact edge t* = D^-1(Delta) crosses a kink of the recovery D (t = e, q and the
    !> switches between complete and partial recovery), i.e. Delta = D(e) = e, D(q) =
-   !> min(q, r(q)) and D(switch) = switch. There d^2 Z_u/dh^2 jumps (D' jumps under the
-   !> integral's edge), which costs a sphere solve's element holding one its order, as
-   !> Delta = 0 (the branch) does for dZ_u/dh. Empty for elastic summits.
+   !> min(q, r(q)) and D(switch) = switch. Where D' jumps there (at e when the recovery is
+   !> partial just above it, at q, at the switches), d^2 Z_u/dh^2 jumps with it (under the
+   !> integral's edge; a kink of f^ alone is weaker): small jumps (~0.5 %), but one inside a
+   !> sphere solve's element costs it its order (seen: errors 10x the Richardson estimate),
+   !> as Delta = 0 (the branch) does for dZ_u/dh. Empty for elastic summits.
    pure function unloading_kinks(law) result(deltas)
       type(unloading_law), intent(in) :: law
       real(dp), allocatable :: deltas(:)
