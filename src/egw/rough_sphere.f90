@@ -27,7 +27,9 @@
 !> delta <= delta_max is the same problem with the law p_G = scale Z_u(d/sigma, d_max/sigma)
 !> at fixed d_max (egw_unloading), on the same meshes with the same Newton, error estimate
 !> and stiffness (h_min does not depend on delta or w, so the Jacobian and the implicit
-!> derivative keep their form).
+!> derivative keep their form); the meshes also get element edges where p(r) is less smooth
+!> (solve_scaled), Newton takes no chord steps, and Z_u's law-only work is done once
+!> (unloading_law_of).
 module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi, sqrt2
@@ -772,8 +774,13 @@ contains
       if (allocated(prob%closest)) then
          ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
          ! (dp/dh jumps), which costs an element holding it its order (and the Richardson
-         ! estimate its meaning). The crossings, from a solve on a mesh of twice the step
-         ! (a quarter of a level's cost), become element edges of every level.
+         ! estimate its meaning); so do, more weakly (d2p/dh2 jumps), the radii where
+         ! d - d_max crosses a kink of Z_u in Delta (unloading_kinks). Without those (seen:
+         ! errors 10-35x the estimate) or with one edge off its kink, both levels carry the
+         ! same kink error, which their difference cannot see. The crossings, from a solve
+         ! on a mesh of twice the step (a quarter of a level's cost), become element edges
+         ! of every level. (Three times the step was cheaper, but placed an edge far enough
+         ! off to leave an error of 4.8e-7 under an estimate of 3e-9.)
          ! That solve only places edges and starts the next: Newton stops at a residual of
          ! 1e-6, whose error in the gap is below that mesh's own (the next level starts
          ! from an interpolation error of 1e-4..1e-6 anyway): one evaluation of Z_u over the
