@@ -128,6 +128,9 @@ module egw_rough_sphere
       type(unloading_law) :: unload
       !> Unloading: radii where d crosses d_max (the law switches branch), element edges.
       real(dp), allocatable :: branch(:)
+      !> Unloading: an element edge at the loading Hertz edge sqrt(delta_max) (the onset of
+      !> d_max); dropped where the locating solve's pressure there is negligible.
+      logical :: amax_edge = .true.
       !> Scaled residual at which Newton stops (looser only for the unloading's locating
       !> solve, see solve_scaled).
       real(dp) :: residual_tol = 1.0e-11_dp
@@ -799,7 +802,14 @@ contains
             call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
                & outer, coarse, error)
          else
-            prob%branch = branch_radii(prob, first, [0.0_dp, unloading_kinks(prob%unload)])
+            ! Edges only where the pressure is not negligible: a kink where r p is below
+            ! 1e-4 rel_tol of its peak cannot move the force by rel_tol even if its elements
+            ! were wholly wrong, and such edges (seen: r p at 1e-45 of the peak, in the far
+            ! tail) cost a level of elements 4 nodes each.
+            prob%branch = branch_radii(prob, first, [0.0_dp, unloading_kinks(prob%unload)], &
+               & 1.0e-4_dp*options%rel_tol)
+            if (prob%closest%extended) prob%amax_edge = .not. negligible_at(first, &
+               & sqrt(prob%closest%delta), 1.0e-4_dp*options%rel_tol)
             call solve_with_tail(prob, options, method_used, layered, focus, width, step_prev, &
                & outer, coarse, error, first)
          end if
@@ -936,7 +946,8 @@ contains
             ! (as for the kinks) made the elements beside it uneven and cost accuracy (delta
             ! 0.5, delta_max 1, psi 10: error 7e-8 -> 2e-7, one level more); it keeps the
             ! insertion unless within a tenth of an element of an edge.
-            if (prob%closest%extended) edges = with_edge(edges, sqrt(prob%closest%delta))
+            if (prob%closest%extended .and. prob%amax_edge) edges = with_edge(edges, &
+               & sqrt(prob%closest%delta))
             if (allocated(prob%branch)) edges = with_kink_edges(edges, prob%branch, focus)
          end if
          call solve_mesh(prob, options, method, edges, sol, error, guess)
@@ -974,10 +985,11 @@ contains
    !> field (nodal interpolation of w, the history's d_max): an edge placed off the kink by
    !> the linear interpolation's error (~ spacing^2 x curvature) left both levels with the
    !> same error, which their difference (the Richardson estimate) cannot see.
-   pure function branch_radii(prob, sol, levels) result(radii)
+   pure function branch_radii(prob, sol, levels, negligible_weight) result(radii)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(in) :: sol
       real(dp), intent(in) :: levels(:)
+      real(dp), intent(in) :: negligible_weight  !< skip radii where negligible_at says so
       real(dp), allocatable :: radii(:)
       real(dp) :: f0, f1, lo, hi, mid, f_lo, f_mid
       integer :: g, k, i
@@ -987,6 +999,8 @@ contains
             f0 = sol%gap(g) - sol%gap_min(g) - levels(k)
             f1 = sol%gap(g + 1) - sol%gap_min(g + 1) - levels(k)
             if ((f0 < 0.0_dp .eqv. f1 < 0.0_dp) .or. size(radii) >= 16) cycle
+            if (negligible_at(sol, 0.5_dp*(sol%mesh%gauss_r(g) + sol%mesh%gauss_r(g + 1)), &
+               & negligible_weight)) cycle
             lo = sol%mesh%gauss_r(g)
             hi = sol%mesh%gauss_r(g + 1)
             mid = lo + f0/(f0 - f1)*(hi - lo)
@@ -1016,6 +1030,25 @@ contains
          excess = base_gap(prob, r) + interpolate_nodal(sol%mesh, sol%w, r) - gm(1) - levels(k)
       end function excess
    end function branch_radii
+
+   !> True when r p(r) of a solution, at the two Gauss points around r (or the last one),
+   !> is at most weight times its largest value over the mesh.
+   pure logical function negligible_at(sol, r, weight)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: r, weight
+      real(dp) :: peak, local
+      integer :: g, ng
+      ng = size(sol%p)
+      peak = maxval(abs(sol%p*sol%mesh%gauss_r))
+      g = 1
+      do while (g < ng)
+         if (sol%mesh%gauss_r(g + 1) >= r) exit
+         g = g + 1
+      end do
+      local = abs(sol%p(g)*sol%mesh%gauss_r(g))
+      if (g < ng) local = max(local, abs(sol%p(g + 1)*sol%mesh%gauss_r(g + 1)))
+      negligible_at = local <= weight*peak
+   end function negligible_at
 
    !> Geometric layers on both sides of the focus (the Hertz edge of the extended models),
    !> where the pressure has its one-sided (r - a)**1.5 onset: a polynomial on an element
