@@ -752,11 +752,11 @@ contains
       prob = problem
       method_used = options%method
       if (method_used == method_auto) method_used = method_newton
-      ! Unloading: the law's kink at d = d_max makes Newton superlinear, not quadratic, so
-      ! about half the levels ended one step short of 1e-11 (at 2e-11..5e-11), and paid an
-      ! evaluation of Z_u over the mesh and an LU for it. A scaled residual of 1e-4 rel_tol
-      ! (at most 1e-10, 1e-11 from rel_tol 1e-7 down) moves the force by ~1e-4 rel_tol times
-      ! the Jacobian's condition, far inside the tolerance and the Richardson margin.
+      ! Unloading: Newton to a scaled residual of 1e-4 rel_tol (at most 1e-10, 1e-11 from
+      ! rel_tol 1e-7 down), which moves the force by ~1e-4 rel_tol times the Jacobian's
+      ! condition, far inside the tolerance and the Richardson margin; a level whose last
+      ! step lands between 1e-11 and that (seen: 2.8e-11, 4.0e-11 on the reference cases)
+      ! is spared an evaluation of Z_u over the mesh and an LU.
       if (allocated(prob%closest)) prob%residual_tol = &
          & max(prob%residual_tol, min(1.0e-10_dp, 1.0e-4_dp*options%rel_tol))
       call mesh_geometry(prob, options%rel_tol, focus, width, outer)
@@ -1071,13 +1071,8 @@ contains
          & (focus + right*focus_ratio**i, i=focus_layers, 1, -1), edge(k + 1:n)]
    end function focus_refined
 
-   !> edge with each of the radii r (kinks of the unloading pressure) made an element edge:
-   !> the edge nearest r is moved onto it when that is at most a tenth of both elements
-   !> beside it away (and is not 0, the outer radius, the focus or an edge placed for an
-   !> earlier r), else r is inserted (the element holding it split in two). Formerly an r
-   !> within a tenth of an element of an edge was skipped, which left the kink inside the
-   !> element on one level and not on the other: the Richardson estimate then measured
-   !> the kink, not the discretisation (seen: 3.8e-7 for an error of 2e-9).
+   !> edge with r added as an element edge (the element holding r split in two) unless r
+   !> is outside (0, outer) or within a tenth of its element's length of an edge already.
    pure function with_edge(edge, r) result(out)
       real(dp), intent(in) :: edge(0:), r
       real(dp), allocatable :: out(:)
@@ -1093,6 +1088,13 @@ contains
       out = [edge(0:k - 1), r, edge(k:n)]
    end function with_edge
 
+   !> edge with each of the radii r (kinks of the unloading pressure) made an element edge:
+   !> the edge nearest r is moved onto it when that is at most a tenth of both elements
+   !> beside it away (and is not 0, the outer radius, the focus or an edge placed for an
+   !> earlier r), else r is inserted (the element holding it split in two). Formerly an r
+   !> within a tenth of an element of an edge was skipped, which left the kink inside the
+   !> element on one level and not on the other: the Richardson estimate then measured
+   !> the kink, not the discretisation (seen: 3.8e-7 for an error of 2e-9).
    pure function with_kink_edges(edge, radii, focus) result(out)
       real(dp), intent(in) :: edge(:), radii(:), focus
       real(dp), allocatable :: out(:)   ! indices 1..m (the edges' 0..n)
@@ -1480,8 +1482,9 @@ contains
    end subroutine jacobian
 
    !> Newton with backtracking (Armijo on |F|_2). Converged when the scaled residual is
-   !> below 1e-11 (the rounding floor of H p is ~1e-12 for w ~ 1e6), or the step is at
-   !> rounding level with a residual below 1e-9.
+   !> below prob%residual_tol: 1e-11 (the rounding floor of H p is ~1e-12 for w ~ 1e6;
+   !> looser for unloading, see solve_scaled), or the step is at rounding level with a
+   !> residual below 1e-9.
    !> The LU factors are kept once Newton is in its quadratic regime (the last full step
    !> cut |F|_2 at least chord_start-fold): a full step with the old factors (chord step) is
    !> accepted when it cuts |F|_2 at least chord_gain-fold, else the Jacobian is refactored
