@@ -8,7 +8,8 @@ module test_unloading
    use egw_asperity, only: rough_flat_law
    use egw_unloading, only: asperity_load_force, asperity_contact_area, &
       & asperity_residual_interference, asperity_unload_force, rough_flat_unload_law, &
-      & flat_pressure_unload
+      & flat_pressure_unload, unloading_law, unloading_law_of, unloading_pressure, &
+      & unloading_kinks
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
    implicit none
    private
@@ -25,6 +26,7 @@ contains
          & new_unittest("Z_u(h, h) = Z(h), Z_u <= Z, monotone", test_identities), &
          & new_unittest("Z_u continuous at the kinks", test_continuity), &
          & new_unittest("dZ_u/dh against differences", test_derivative), &
+         & new_unittest("prepared law: same Z_u, its kinks in Delta", test_prepared_law), &
          & new_unittest("flat_pressure_unload: units and bad input", test_dimensional) &
          & ]
    end subroutine collect_unloading
@@ -192,6 +194,74 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_derivative
+
+   !> A law prepared once (unloading_law_of, as the sphere solver uses it) gives the values of
+   !> rough_flat_unload_law bit for bit, on both branches. Its kinks in Delta are e = 1/psi^2,
+   !> min(q, r(q)) with r(q) = sqrt(e)/K sqrt(2 q) (ZMC beyond q: f^ = 2 c u, A^ = 2u) and
+   !> the switches of the recovery, where the residual interference (asperity_residual_
+   !> interference, an independent path) turns from 0 to positive or back: checked on both
+   !> sides at 1e-9 relative (K = 0.3: r(t) - t changes sign inside (e, q)). And d^2 Z_u/dh^2
+   !> does jump there: at K = 0.6 the recovery is partial just above e (r'(e) = 1/2 + (1 -
+   !> K)/(K ln rho_p) = 0.67 < 1), so D' jumps under the integral's edge at Delta = e; second
+   !> differences (step 1e-4) 3e-4 either side of e differ by 4.6e-3 relative, against
+   !> 2.2e-4 for the same pair at Delta = e/2 (bounds 2e-3 and 1e-3). A kink inside an
+   !> element costs the sphere solver its order: those radii become element edges.
+   subroutine test_prepared_law(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: psi = 2.0_dp, rho = 54.0_dp, h_min = -0.5_dp
+      type(unloading_law) :: law
+      real(dp), allocatable :: kinks(:)
+      real(dp) :: p, dp_, pr, dpr, e, q, s, lo, hi, k, jump(2)
+      integer :: i
+      k = 0.3_dp
+      law = unloading_law_of(psi, k, rho)
+      do i = 0, 30
+         call unloading_pressure(law, h_min - 1.0_dp + 0.1_dp*i, h_min, p, dp_)
+         call rough_flat_unload_law(h_min - 1.0_dp + 0.1_dp*i, h_min, psi, k, rho, pr, dpr)
+         call check(error, p == pr .and. dp_ == dpr, "prepared law at step "//to_string(i))
+         if (allocated(error)) return
+      end do
+      e = 1.0_dp/psi**2
+      q = rho*e
+      kinks = unloading_kinks(law)
+      call check(error, size(kinks) >= 3, to_string(size(kinks))//" kinks: e, D(q) and a switch")
+      if (allocated(error)) return
+      call check(error, kinks(1), e, "kink at Delta = e", rel=.true., thr=1.0e-15_dp)
+      if (allocated(error)) return
+      call check(error, kinks(2), min(q, sqrt(e)/k*sqrt(2.0_dp*q)), "kink at D(q)", &
+         & rel=.true., thr=1.0e-14_dp)
+      if (allocated(error)) return
+      do i = 3, size(kinks)
+         s = kinks(i)
+         lo = asperity_residual_interference(s*(1.0_dp - 1.0e-9_dp), psi, k, rho)
+         hi = asperity_residual_interference(s*(1.0_dp + 1.0e-9_dp), psi, k, rho)
+         call check(error, (lo == 0.0_dp) .neqv. (hi == 0.0_dp), "switch "//to_string(i - 2) &
+            & //" at "//format_real(s)//": u_r "//format_real(lo)//", "//format_real(hi))
+         if (allocated(error)) return
+      end do
+      k = 0.6_dp
+      jump(1) = d2_change(e)
+      jump(2) = d2_change(0.5_dp*e)
+      call check(error, jump(1) > 2.0e-3_dp .and. jump(2) < 1.0e-3_dp, "d2Z_u/dh2 change " &
+         & //"across Delta = e: "//format_real(jump(1))//", across e/2: "//format_real(jump(2)))
+   contains
+      !> relative change of the second difference of Z_u (step 1e-4) from 3e-4 below to
+      !> 3e-4 above Delta = x
+      real(dp) function d2_change(x) result(c)
+         real(dp), intent(in) :: x
+         real(dp), parameter :: step = 1.0e-4_dp
+         real(dp) :: z(-1:1), dz, d2(2)
+         integer :: i, j
+         do j = 1, 2
+            do i = -1, 1
+               call rough_flat_unload_law(h_min + x + (2*j - 3)*3.0_dp*step + i*step, &
+                  & h_min, psi, k, rho, z(i), dz)
+            end do
+            d2(j) = (z(1) - 2.0_dp*z(0) + z(-1))/step**2
+         end do
+         c = abs(d2(2)/d2(1) - 1.0_dp)
+      end function d2_change
+   end subroutine test_prepared_law
 
    !> p_G,u = C sigma^(3/2) Z_u with C = mu E/(2 sigma sqrt(2R)); bad input gives a status
    !> naming the argument and leaves the outputs as they were.
