@@ -128,11 +128,11 @@ contains
             & "solve_contact_unload rel_tol=1e-7", 0, "build_s="//fmt_e(build_s)// &
             & " hertz_s="//fmt_e(best_h)//" n_m="//itoa(size(t%m))//" n_s="// &
             & itoa(size(t%s)))
-         call write_row(unit, "hysteresis", "hysteresis table, state", &
+         call write_row(unit, "hysteresis", "hysteresis table state", &
             & "EP-GW psi=2 mu=4 mix", "rel_tol="//trim(label), best_c, max_err, &
             & "solve_contact_unload rel_tol=1e-7", 0, "hysteresis_eval_state at rest "// &
             & "hertz_s="//fmt_e(best_h))
-         call write_row(unit, "hysteresis", "hysteresis table, state, moving", &
+         call write_row(unit, "hysteresis", "hysteresis table state moving", &
             & "EP-GW psi=2 mu=4 mix", "rel_tol="//trim(label), best_w, max_err, &
             & "solve_contact_unload rel_tol=1e-7", 0, "hysteresis_eval_state DEM-like "// &
             & "hertz_s="//fmt_e(best_h))
