@@ -824,7 +824,8 @@ contains
                ! Only a mesh that shrinks by half: a slight trim gains little and moves the
                ! edges, which can cost a level (seen: outer 3.59 -> 3.36 at delta 0.5 after
                ! delta_max 1, psi 10, a third level).
-               if (trimmed <= 0.5_dp*outer) then
+               ! (trimmed is 0 where the pressure is 0 throughout: nothing to trim to.)
+               if (trimmed > 0.0_dp .and. trimmed <= 0.5_dp*outer) then
                   ! At the centre focus the grading width must fit inside the trimmed mesh.
                   if (focus == 0.0_dp) width = min(width, 0.5_dp*trimmed)
                   outer = max(trimmed, focus + 2.0_dp*width)
