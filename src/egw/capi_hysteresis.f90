@@ -121,7 +121,7 @@ contains
       type(hysteresis_table), pointer :: h
       real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
       type(egw_error), allocatable :: error
-      real(dp) :: f, k, kept
+      real(dp) :: f, k, kept, limit
       integer :: st
       if (.not. (c_associated(hp) .and. c_associated(state_p))) then
          stat = require(hp, "h")
@@ -141,10 +141,11 @@ contains
          stat = settle(error)
          return
       end if
-      if (delta > reach(h) .or. state(1) > reach(h)) then
+      limit = reach(h)   ! once: a division, on the DEM hot path
+      if (delta > limit .or. state(1) > limit) then
          call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
             & ", state[0] = "//format_real(state(1))//": must be <= "// &
-            & format_real(reach(h))//" (the force there exceeds the doubles)")
+            & format_real(limit)//" (the force there exceeds the doubles)")
          stat = settle(error)
          return
       end if
@@ -229,7 +230,7 @@ contains
       type(hysteresis_table), pointer :: h
       real(c_double), pointer :: delta(:), state(:), f(:), k(:)
       type(egw_error), allocatable :: error
-      real(dp) :: fi, ki
+      real(dp) :: fi, ki, limit
       integer :: i, st, first_out
       stat = require(hp, "h")
       if (stat /= egw_ok) return
@@ -245,13 +246,14 @@ contains
       call c_f_pointer(hp, h)
       call c_f_pointer(delta_p, delta, [n])
       call c_f_pointer(state_p, state, [n])
+      limit = reach(h)
       do i = 1, n
-         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > reach(h) .or. &
-            & state(i) > reach(h)) then
+         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > limit .or. &
+            & state(i) > limit) then
             call fatal_error(error, egw_invalid_argument, "delta["//int_str(i - 1)// &
                & "] = "//format_real(delta(i))//", delta_max_state["//int_str(i - 1)// &
                & "] = "//format_real(state(i))//": must be numbers <= "// &
-               & format_real(reach(h))// &
+               & format_real(limit)// &
                & " (the force there exceeds the doubles)")
             stat = settle(error)
             return
