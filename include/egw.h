@@ -455,14 +455,14 @@ int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
 /* egw_hysteresis_eval with a larger per-contact state that the caller owns and keeps with
  * the contact (EGW_HYSTERESIS_STATE_SIZE doubles, no allocation, no lock): state[0] is the
  * history (the largest overlap so far, as *delta_max_state above), state[1..23] caches
- * that this call fills: the turning point's data and the table intervals last used with
- * their cubics, so that a contact that stays below the same turning point and inside the
- * same intervals (most DEM steps: a contact moves little) reads nothing but its state.
- * Same values and
- * statuses as egw_hysteresis_eval. Start a contact with egw_hysteresis_state_init; a
- * state may be copied with its contact (restarts, migration between ranks): its cache is
- * used only with a table of the same data and the same state[0], and recomputed
- * otherwise. EGW_INVALID_ARGUMENT for NaN delta or state[0] (nothing changed);
+ * that this call fills: the turning point's data and the piece of its unloading curve
+ * last used as one cubic in delta, so that a contact that stays below the same turning
+ * point and inside the same piece (most DEM steps: a contact moves little) reads nothing
+ * but its state. The values of egw_hysteresis_eval to rounding (1e-12 of the loading
+ * force at the turning point), the same statuses and history. Start a contact with
+ * egw_hysteresis_state_init; a state may be copied with its contact (restarts, migration
+ * between ranks): its cache is used only with a table of the same data and the same
+ * state[0], and recomputed otherwise. EGW_INVALID_ARGUMENT for NaN delta or state[0] (nothing changed);
  * EGW_NULL_POINTER for h or state. */
 int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
                               double state[EGW_HYSTERESIS_STATE_SIZE], double *force,
@@ -486,9 +486,9 @@ void egw_hysteresis_state_init(double state[EGW_HYSTERESIS_STATE_SIZE]);
  * delta_max_state[i] (updated), force[i], stiffness[i] (either may be NULL). A NaN overlap
  * or state, or one so large that the force would leave the doubles, refuses the call
  * (EGW_INVALID_ARGUMENT naming its index) before anything changes; NULL delta or
- * delta_max_state (n > 0): EGW_NULL_POINTER; EGW_OUT_OF_RANGE names the first contact beyond the table (all values
- * written). n = 0 does nothing; n < 0: EGW_INVALID_ARGUMENT. For callers that pay per
- * call (Python, scripting languages). */
+ * delta_max_state (n > 0): EGW_NULL_POINTER; EGW_OUT_OF_RANGE names the first contact
+ * beyond the table (all values written). n = 0 does nothing; n < 0: EGW_INVALID_ARGUMENT.
+ * For callers that pay per call (Python, scripting languages). */
 int egw_hysteresis_eval_array(egw_hysteresis h, int n, const double *delta,
                               double *delta_max_state, double *force, double *stiffness);
 

@@ -32,7 +32,7 @@ module egw_hysteresis
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload
    use egw_table, only: force_table, build_table, table_eval, table_eval_cached, &
-      & table_energy, table_progress
+      & table_segment, table_energy, table_progress
    implicit none
    private
 
@@ -42,10 +42,11 @@ module egw_hysteresis
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
    !> belong to): (4) the Lagrange stencil, (5) 1/(s_max L), (6) P_load, (7:10) the weights;
-   !> of the s interval last used below it: (11:12) its ends, (13) 1/width, (14:17) the
-   !> combined cubic of g; of the loading table's interval last used: (18:19) its ends,
-   !> (20:23) its cubic, (24) 1 where that is ln P. A contact that stays inside its intervals
-   !> (most DEM steps) touches nothing but its state.
+   !> of the piece of its unloading curve last used (make_piece): (11:12) its open ends,
+   !> (13) 1 where its loading part is ln P, (14:17) its cubic in delta; of the loading
+   !> table's interval last used: (18:19) its ends, (20:23) its cubic, (24) 1 where that is
+   !> ln P. A contact that stays inside its piece (most DEM steps) touches nothing but its
+   !> state.
    integer, parameter, public :: hysteresis_state_size = 24
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -183,8 +184,8 @@ contains
       real(dp), intent(inout) :: delta_max_state
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: w(4), inv_span, f_m
-      integer :: first
+      real(dp) :: w(4), inv_span, f_m, c(4)
+      integer :: first, i
       stat = 0
       force = 0.0_dp
       stiffness = 0.0_dp
@@ -201,27 +202,39 @@ contains
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       if (delta_max_state > table%delta_max) stat = egw_out_of_range
       call turning_point(table, delta_max_state, first, w, inv_span, f_m)
-      call unload_branch(table, first, w, inv_span, f_m, delta_max_state, delta, force, &
-         & stiffness)
+      i = locate(table%s_lookup, table%s, min((delta_max_state - delta)*inv_span, 1.0_dp))
+      call gap_combination(table, first, w, i, c)
+      call unload_branch(table, c, i, f_m, inv_span, delta_max_state, delta, force, stiffness)
    end subroutine hysteresis_eval
 
    !> hysteresis_eval with a state that also keeps what the evaluation needs of the turning
-   !> point and of the intervals last used (hysteresis_state_size doubles; state(1) is
-   !> delta_max_state, the rest caches that this routine fills): a contact that stays below
-   !> the same turning point and inside the same intervals reads only its state. Same
-   !> values and statuses as hysteresis_eval (the same arithmetic on the same numbers). A
-   !> state from another table, or garbled, is refilled, never trusted: the caches are used
-   !> only when they name this table's tag, the state's turning point and an interval that
-   !> holds the overlap.
+   !> point and of the piece of its unloading curve last used (hysteresis_state_size
+   !> doubles; state(1) is delta_max_state, the rest caches that this routine fills): a
+   !> contact that stays below the same turning point and inside the same piece evaluates
+   !> one cubic (and an exp in the loading table's ln P tail), reading only its state. A
+   !> piece is hysteresis_eval's unloading force where its s interval and loading interval
+   !> do not change, written out as a cubic in delta: the same values to rounding (test
+   !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
+   !> histories. A state from another table, or garbled, is refilled, never trusted: the
+   !> caches are used only when they name this table's tag and the state's turning point.
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: delta
       real(dp), intent(inout) :: state(hysteresis_state_size)
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: w(4), s, t, g, dg, f_d, k_d
-      integer :: first, i, k
+      real(dp) :: w(4), g(4)
+      integer :: first, i
+      logical :: found
       stat = 0
+      ! inside the cached piece (below the turning point, above the cut-off; NaN fails
+      ! the tests): most DEM steps
+      if (state(3) == table%tag .and. state(2) == state(1) .and. state(11) < delta .and. &
+         & delta < state(12)) then
+         call piece_force(state(11:17), state(18:24), delta, force, stiffness)
+         if (state(1) > table%delta_max) stat = egw_out_of_range
+         return
+      end if
       force = 0.0_dp
       stiffness = 0.0_dp
       if (ieee_is_nan(delta)) then
@@ -231,10 +244,11 @@ contains
       if (.not. state(3) == table%tag) then
          ! another table's (or no) caches: none is used
          state(2) = ieee_value(1.0_dp, ieee_quiet_nan)
-         state(11:12) = state(2)
          state(18:19) = state(2)
          state(3) = table%tag
       end if
+      ! no piece unless one is made below (the loading interval may change)
+      state(11:12) = ieee_value(1.0_dp, ieee_quiet_nan)
       if (.not. delta < state(1) .or. table%reversible) then
          state(1) = max(state(1), delta)
          call table_eval_cached(table%loading, delta, state(18:24), force, stiffness)
@@ -249,33 +263,94 @@ contains
          state(2) = state(1)
          state(4) = real(first, dp)
          state(7:10) = w
-         state(11:12) = ieee_value(1.0_dp, ieee_quiet_nan)
       end if
-      s = min((state(1) - delta)*state(5), 1.0_dp)
-      if (.not. (state(11) <= s .and. s < state(12))) then
-         ! the s interval (locate's clamp at s = 1 has no cached interval: looked up)
-         i = locate(table%s_lookup, table%s, s)
-         first = int(state(4))
-         state(11) = table%s(i)
-         state(12) = table%s(i + 1)
-         state(13) = table%inv_ds(i)
-         associate (cf => table%coef(:, first:first + 3, i))
-            do k = 1, 4
-               state(13 + k) = state(7)*cf(k, 1) + state(8)*cf(k, 2) + state(9)*cf(k, 3) + &
-                  & state(10)*cf(k, 4)
-            end do
-         end associate
+      ! hysteresis_eval's unloading branch from the cached turning point, and the piece
+      first = int(state(4))
+      i = locate(table%s_lookup, table%s, min((state(1) - delta)*state(5), 1.0_dp))
+      call gap_combination(table, first, state(7:10), i, g)
+      call make_piece(table, g, i, state(1), delta, state(5), state(6), state(18:24), &
+         & state(11:17), found)
+      if (found) then
+         call piece_force(state(11:17), state(18:24), delta, force, stiffness)
+      else
+         call unload_branch(table, g, i, state(6), state(5), state(1), delta, force, &
+            & stiffness)
       end if
-      t = (s - state(11))*state(13)
-      call gap_cubic(state(14:17), t, state(13), g, dg)
-      call table_eval_cached(table%loading, delta, state(18:24), f_d, k_d)
-      force = f_d - state(6)*g
-      stiffness = k_d + state(6)*dg*state(5)
+   end subroutine hysteresis_eval_state
+
+   !> The force and stiffness at delta inside piece (make_piece), with the loading
+   !> interval seg it was made with: its cubic, plus exp of seg's ln P cubic where the
+   !> piece says so; 0 where the force is not positive.
+   pure subroutine piece_force(piece, seg, delta, force, stiffness)
+      real(dp), intent(in) :: piece(7), seg(7), delta
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: x, x2, v, dv
+      x = delta - piece(1)
+      x2 = x*x
+      force = (piece(4) + x*piece(5)) + x2*(piece(6) + x*piece(7))
+      stiffness = (piece(5) + 2*x*piece(6)) + 3*x2*piece(7)
+      if (piece(3) > 0.0_dp) then
+         x = delta - seg(1)
+         x2 = x*x
+         v = exp((seg(3) + x*seg(4)) + x2*(seg(5) + x*seg(6)))
+         dv = (seg(4) + 2*x*seg(5)) + 3*x2*seg(6)
+         force = force + v
+         stiffness = stiffness + v*dv
+      end if
       if (.not. force > 0.0_dp) then
          force = 0.0_dp
          stiffness = 0.0_dp
       end if
-   end subroutine hysteresis_eval_state
+   end subroutine piece_force
+
+   !> The piece of the unloading curve of turning point m (P_load(m) = f_m, 1/(s_max L) =
+   !> iota) around delta for a state: the overlaps (lo, hi) where s stays in interval i
+   !> (gap cubic g) and the loading table in its interval around delta (seg, refilled),
+   !> with the force there as a cubic in delta - lo: piece = [lo, hi, log, c1..c4]; where
+   !> the loading interval is ln P (log = 1) the cubic is the gap part only and the caller
+   !> adds exp(ln P). No piece (NaN ends) at the clamp s = 1 or outside the loading
+   !> table's intervals.
+   pure subroutine make_piece(table, g, i, m, delta, iota, f_m, seg, piece, found)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: g(4), m, delta, iota, f_m
+      integer, intent(in) :: i
+      real(dp), intent(inout) :: seg(7)
+      real(dp), intent(out) :: piece(7)
+      logical, intent(out) :: found
+      real(dp) :: lo, hi, t0, alpha, d
+      logical :: inside
+      piece = ieee_value(1.0_dp, ieee_quiet_nan)
+      found = .false.
+      if (.not. (m - delta)*iota < 1.0_dp) return   ! the clamp: g held
+      if (.not. (seg(1) <= delta .and. delta < seg(2))) then
+         call table_segment(table%loading, delta, seg, inside)   ! the interval around delta
+         if (.not. inside) return
+      end if
+      ! s = (m - delta) iota in [s_i, s_{i+1}): delta in (m - s_{i+1}/iota, m - s_i/iota];
+      ! the piece is open below (the cut-off itself has no force)
+      lo = max(m - table%s(i + 1)/iota, seg(1), table%loading%cutoff)
+      hi = min(m - table%s(i)/iota, seg(2))
+      if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
+      ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo
+      t0 = ((m - lo)*iota - table%s(i))*table%inv_ds(i)
+      alpha = -iota*table%inv_ds(i)
+      piece(4) = -f_m*(g(1) + t0*(g(2) + t0*(g(3) + t0*g(4))))
+      piece(5) = -f_m*alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
+      piece(6) = -f_m*alpha**2*(g(3) + 3*t0*g(4))
+      piece(7) = -f_m*alpha**3*g(4)
+      piece(3) = seg(7)
+      if (.not. seg(7) > 0.0_dp) then
+         ! the loading cubic in delta - seg(1), moved to delta - lo
+         d = lo - seg(1)
+         piece(4) = piece(4) + (seg(3) + d*(seg(4) + d*(seg(5) + d*seg(6))))
+         piece(5) = piece(5) + (seg(4) + d*(2*seg(5) + 3*d*seg(6)))
+         piece(6) = piece(6) + (seg(5) + 3*d*seg(6))
+         piece(7) = piece(7) + seg(6)
+      end if
+      piece(1) = lo
+      piece(2) = hi
+      found = .true.
+   end subroutine make_piece
 
    !> Elastic energy [force*length] that a contact at overlap delta returns if it
    !> separates now: the integral of its unloading curve from the loading cut-off to delta,
@@ -337,8 +412,7 @@ contains
    end subroutine hysteresis_state_init
 
    !> g and dg/ds of the cubic c in t = (s - s_i)/(s_{i+1} - s_i) (inv_ds = the 1/width);
-   !> Estrin's scheme: shorter dependency chains than Horner. The one evaluation of both
-   !> paths (hysteresis_eval, hysteresis_eval_state): their values agree bit for bit.
+   !> Estrin's scheme: shorter dependency chains than Horner.
    pure subroutine gap_cubic(c, t, inv_ds, g, dg)
       real(dp), intent(in) :: c(4), t, inv_ds
       real(dp), intent(out) :: g, dg
@@ -374,28 +448,32 @@ contains
       if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
    end subroutine turning_point
 
-   !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
-   !> described by (first, w, inv_span, f_m): P_load(delta) - P_load(m) g(s, m), 0 where
-   !> that is not positive.
-   pure subroutine unload_branch(table, first, w, inv_span, f_m, m, delta, force, stiffness)
+   !> The gap cubic g(t) of the turning point (stencil first, weights w) on s interval i:
+   !> the four curves' cubics (16 contiguous numbers) combined.
+   pure subroutine gap_combination(table, first, w, i, c)
       type(hysteresis_table), intent(in) :: table
-      integer, intent(in) :: first
-      real(dp), intent(in) :: w(4), inv_span, f_m, m, delta
-      real(dp), intent(out) :: force, stiffness
-      real(dp) :: s, t, g, dg, c(4), f_d, k_d
-      integer :: i
-      s = min((m - delta)*inv_span, 1.0_dp)
-      i = locate(table%s_lookup, table%s, s)
-      t = (s - table%s(i))*table%inv_ds(i)
-      ! the four curves' cubics on interval i: 16 contiguous numbers (hysteresis_eval_state
-      ! combines them in the same order: the same values)
+      integer, intent(in) :: first, i
+      real(dp), intent(in) :: w(4)
+      real(dp), intent(out) :: c(4)
       associate (cf => table%coef(:, first:first + 3, i))
          c(1) = w(1)*cf(1, 1) + w(2)*cf(1, 2) + w(3)*cf(1, 3) + w(4)*cf(1, 4)
          c(2) = w(1)*cf(2, 1) + w(2)*cf(2, 2) + w(3)*cf(2, 3) + w(4)*cf(2, 4)
          c(3) = w(1)*cf(3, 1) + w(2)*cf(3, 2) + w(3)*cf(3, 3) + w(4)*cf(3, 4)
          c(4) = w(1)*cf(4, 1) + w(2)*cf(4, 2) + w(3)*cf(4, 3) + w(4)*cf(4, 4)
       end associate
-      call gap_cubic(c, t, table%inv_ds(i), g, dg)
+   end subroutine gap_combination
+
+   !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
+   !> (P_load(m) = f_m, 1/(s_max L) = inv_span) from its gap cubic c on s interval i:
+   !> P_load(delta) - P_load(m) g(s, m), 0 where that is not positive.
+   pure subroutine unload_branch(table, c, i, f_m, inv_span, m, delta, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: c(4), f_m, inv_span, m, delta
+      integer, intent(in) :: i
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: s, g, dg, f_d, k_d
+      s = min((m - delta)*inv_span, 1.0_dp)
+      call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
       call table_eval(table%loading, delta, f_d, k_d)
       force = f_d - f_m*g
       stiffness = k_d + f_m*dg*inv_span
