@@ -42,11 +42,11 @@ module egw_hysteresis
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
    !> belong to): (4) the Lagrange stencil, (5) 1/(s_max L), (6) P_load, (7:10) the weights;
-   !> of the piece of its unloading curve last used (make_piece): (11:12) its open ends,
-   !> (13) 1 where its loading part is ln P, (14:17) its cubic in delta; of the loading
-   !> table's interval last used: (18:19) its ends, (20:23) its cubic, (24) 1 where that is
-   !> ln P. A contact that stays inside its piece (most DEM steps) touches nothing but its
-   !> state.
+   !> (13) s_max L; of the piece of its unloading curve last used (make_piece): (11:12) its
+   !> open ends, (14:17) its cubic in delta; of the loading table's interval last used
+   !> (the piece's, while there is one): (18:19) its ends, (20:23) its cubic, (24) 1 where
+   !> that is ln P (then the piece's cubic is the gap part). A contact that stays inside
+   !> its piece (most DEM steps) touches nothing but its state.
    integer, parameter, public :: hysteresis_state_size = 24
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -231,7 +231,7 @@ contains
       ! the tests): most DEM steps
       if (state(3) == table%tag .and. state(2) == state(1) .and. state(11) < delta .and. &
          & delta < state(12)) then
-         call piece_force(state(11:17), state(18:24), delta, force, stiffness)
+         call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
          if (state(1) > table%delta_max) stat = egw_out_of_range
          return
       end if
@@ -263,33 +263,34 @@ contains
          state(2) = state(1)
          state(4) = real(first, dp)
          state(7:10) = w
+         state(13) = 1.0_dp/state(5)
       end if
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
       i = locate(table%s_lookup, table%s, min((state(1) - delta)*state(5), 1.0_dp))
       call gap_combination(table, first, state(7:10), i, g)
-      call make_piece(table, g, i, state(1), delta, state(5), state(6), state(18:24), &
-         & state(11:17), found)
+      call make_piece(table, g, i, state(1), delta, state(5), state(6), state(13), &
+         & state(18:24), state(11:12), state(14:17), found)
       if (found) then
-         call piece_force(state(11:17), state(18:24), delta, force, stiffness)
+         call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
       else
          call unload_branch(table, g, i, state(6), state(5), state(1), delta, force, &
             & stiffness)
       end if
    end subroutine hysteresis_eval_state
 
-   !> The force and stiffness at delta inside piece (make_piece), with the loading
-   !> interval seg it was made with: its cubic, plus exp of seg's ln P cubic where the
-   !> piece says so; 0 where the force is not positive.
-   pure subroutine piece_force(piece, seg, delta, force, stiffness)
-      real(dp), intent(in) :: piece(7), seg(7), delta
+   !> The force and stiffness at delta inside a piece (make_piece: start lo, cubic c),
+   !> with the loading interval seg it was made with: the cubic, plus exp of seg's cubic
+   !> where that is ln P; 0 where the force is not positive.
+   pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
+      real(dp), intent(in) :: lo, c(4), seg(7), delta
       real(dp), intent(out) :: force, stiffness
       real(dp) :: x, x2, v, dv
-      x = delta - piece(1)
+      x = delta - lo
       x2 = x*x
-      force = (piece(4) + x*piece(5)) + x2*(piece(6) + x*piece(7))
-      stiffness = (piece(5) + 2*x*piece(6)) + 3*x2*piece(7)
-      if (piece(3) > 0.0_dp) then
+      force = (c(1) + x*c(2)) + x2*(c(3) + x*c(4))
+      stiffness = (c(2) + 2*x*c(3)) + 3*x2*c(4)
+      if (seg(7) > 0.0_dp) then
          x = delta - seg(1)
          x2 = x*x
          v = exp((seg(3) + x*seg(4)) + x2*(seg(5) + x*seg(6)))
@@ -304,22 +305,23 @@ contains
    end subroutine piece_force
 
    !> The piece of the unloading curve of turning point m (P_load(m) = f_m, 1/(s_max L) =
-   !> iota) around delta for a state: the overlaps (lo, hi) where s stays in interval i
-   !> (gap cubic g) and the loading table in its interval around delta (seg, refilled),
-   !> with the force there as a cubic in delta - lo: piece = [lo, hi, log, c1..c4]; where
-   !> the loading interval is ln P (log = 1) the cubic is the gap part only and the caller
-   !> adds exp(ln P). No piece (NaN ends) at the clamp s = 1 or outside the loading
-   !> table's intervals.
-   pure subroutine make_piece(table, g, i, m, delta, iota, f_m, seg, piece, found)
+   !> iota, its inverse span) around delta for a state: the overlaps ends = (lo, hi) where
+   !> s stays in interval i (gap cubic g) and the loading table in its interval around
+   !> delta (seg, refilled), with the force there as the cubic c in delta - lo; where the
+   !> loading interval is ln P (seg(7) = 1) c is the gap part only and piece_force adds
+   !> exp(ln P). No piece (found false, NaN ends) at the clamp s = 1 or outside the
+   !> loading table's intervals.
+   pure subroutine make_piece(table, g, i, m, delta, iota, f_m, span, seg, ends, c, found)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: g(4), m, delta, iota, f_m
+      real(dp), intent(in) :: g(4), m, delta, iota, f_m, span
       integer, intent(in) :: i
       real(dp), intent(inout) :: seg(7)
-      real(dp), intent(out) :: piece(7)
+      real(dp), intent(out) :: ends(2), c(4)
       logical, intent(out) :: found
       real(dp) :: lo, hi, t0, alpha, d
       logical :: inside
-      piece = ieee_value(1.0_dp, ieee_quiet_nan)
+      ends = ieee_value(1.0_dp, ieee_quiet_nan)
+      c = 0.0_dp
       found = .false.
       if (.not. (m - delta)*iota < 1.0_dp) return   ! the clamp: g held
       if (.not. (seg(1) <= delta .and. delta < seg(2))) then
@@ -328,27 +330,25 @@ contains
       end if
       ! s = (m - delta) iota in [s_i, s_{i+1}): delta in (m - s_{i+1}/iota, m - s_i/iota];
       ! the piece is open below (the cut-off itself has no force)
-      lo = max(m - table%s(i + 1)/iota, seg(1), table%loading%cutoff)
-      hi = min(m - table%s(i)/iota, seg(2))
+      lo = max(m - table%s(i + 1)*span, seg(1), table%loading%cutoff)
+      hi = min(m - table%s(i)*span, seg(2))
       if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
       ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo
       t0 = ((m - lo)*iota - table%s(i))*table%inv_ds(i)
       alpha = -iota*table%inv_ds(i)
-      piece(4) = -f_m*(g(1) + t0*(g(2) + t0*(g(3) + t0*g(4))))
-      piece(5) = -f_m*alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
-      piece(6) = -f_m*alpha**2*(g(3) + 3*t0*g(4))
-      piece(7) = -f_m*alpha**3*g(4)
-      piece(3) = seg(7)
+      c(1) = -f_m*(g(1) + t0*(g(2) + t0*(g(3) + t0*g(4))))
+      c(2) = -f_m*alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
+      c(3) = -f_m*alpha**2*(g(3) + 3*t0*g(4))
+      c(4) = -f_m*alpha**3*g(4)
       if (.not. seg(7) > 0.0_dp) then
          ! the loading cubic in delta - seg(1), moved to delta - lo
          d = lo - seg(1)
-         piece(4) = piece(4) + (seg(3) + d*(seg(4) + d*(seg(5) + d*seg(6))))
-         piece(5) = piece(5) + (seg(4) + d*(2*seg(5) + 3*d*seg(6)))
-         piece(6) = piece(6) + (seg(5) + 3*d*seg(6))
-         piece(7) = piece(7) + seg(6)
+         c(1) = c(1) + (seg(3) + d*(seg(4) + d*(seg(5) + d*seg(6))))
+         c(2) = c(2) + (seg(4) + d*(2*seg(5) + 3*d*seg(6)))
+         c(3) = c(3) + (seg(5) + 3*d*seg(6))
+         c(4) = c(4) + seg(6)
       end if
-      piece(1) = lo
-      piece(2) = hi
+      ends = [lo, hi]
       found = .true.
    end subroutine make_piece
 
