@@ -14,6 +14,7 @@ program egw_table_app
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw, &
       & text_buffer, remove_file, hysteresis_table, build_hysteresis, write_hysteresis
+   use egw_status, only: int_str
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
@@ -651,13 +652,5 @@ contains
       write (buf, '(es11.4)') x
       str = trim(adjustl(buf))
    end function num
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
-   end function int_str
 
 end program egw_table_app

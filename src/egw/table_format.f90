@@ -11,7 +11,7 @@ module egw_table_format
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_bad_file, egw_io_error, egw_invalid_argument, &
       & egw_invalid_parameter, &
-      & egw_unsupported, fatal_error, format_real
+      & egw_unsupported, fatal_error, format_real, int_str, bad => bad_file_error
    use egw_params, only: contact_params, validate_params, model_name, model_epgw
    use egw_version, only: egw_version_string, egw_version_number
    use egw_io, only: write_file, read_file, text_buffer
@@ -19,7 +19,7 @@ module egw_table_format
    use egw_table, only: force_table, table_prepare, table_eval, table_energy
    use egw_table_universal, only: universal_table, universal_slice_params, &
       & universal_nodes_shared, move_universal
-   use egw_text, only: int_text, int_text_len, real_text, real_text_len, parse_real, parse_int
+   use egw_text, only: real_text, real_text_len, parse_real, parse_int
    implicit none
    private
 
@@ -1626,13 +1626,6 @@ contains
       pos = pos + nb
    end subroutine get_f64
 
-   subroutine bad(error, path, what)
-      type(egw_error), allocatable, intent(inout) :: error
-      character(len=*), intent(in) :: path, what
-      if (allocated(error)) deallocate (error)
-      call fatal_error(error, egw_bad_file, "path = "//path//": "//what)
-   end subroutine bad
-
    subroutine kv(out, key, x)
       type(text_buffer), intent(inout) :: out
       character(len=*), intent(in) :: key
@@ -1736,11 +1729,5 @@ contains
       starts_with = .false.
       if (len(str) >= len(prefix)) starts_with = str(1:len(prefix)) == prefix
    end function starts_with
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
-      str = int_text(i)
-   end function int_str
 
 end module egw_table_format
