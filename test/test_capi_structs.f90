@@ -7,7 +7,7 @@
 !> size shows as a sizeof or a field mismatch.
 module test_capi_structs
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_size_t, c_sizeof, &
-      & c_associated, c_f_pointer
+      & c_associated, c_f_pointer, c_int8_t
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_status, only: egw_ok, egw_invalid_argument, egw_invalid_parameter, &
       & egw_not_converged, egw_io_error, egw_bad_file, egw_out_of_memory, egw_null_pointer, &
@@ -99,54 +99,43 @@ contains
       integer(c_int), value, intent(in) :: which
       type(c_ptr), value, intent(in) :: out
       type(egw_params_c) :: params
-      type(egw_params_c), pointer :: p_params
       type(egw_options_c) :: options
-      type(egw_options_c), pointer :: p_options
       type(egw_result_c) :: result
-      type(egw_result_c), pointer :: p_result
       type(egw_table_info_c) :: table_info
-      type(egw_table_info_c), pointer :: p_table_info
       type(egw_hysteresis_info_c) :: hysteresis_info
-      type(egw_hysteresis_info_c), pointer :: p_hysteresis_info
       type(egw_scene_c) :: scene
-      type(egw_scene_c), pointer :: p_scene
       type(egw_model_choice_c) :: choice
-      type(egw_model_choice_c), pointer :: p_choice
+      integer(c_int8_t), parameter :: byte(1) = 0_c_int8_t  ! transfer's mold
       size = 0
       select case (which)
       case (0)
          params = ref_params(0)
          size = c_sizeof(params)
-         if (c_associated(out)) call c_f_pointer(out, p_params)
-         if (c_associated(out)) p_params = params
+         call store(out, transfer(params, byte))
       case (1)
          options = egw_options_c(n_radial=1, rel_tol=2.25_c_double, max_iter=3, method=4, &
             & n_threads=5)
          size = c_sizeof(options)
-         if (c_associated(out)) call c_f_pointer(out, p_options)
-         if (c_associated(out)) p_options = options
+         call store(out, transfer(options, byte))
       case (2)
          result = egw_result_c(force=1.25_c_double, stiffness=2.25_c_double, &
             & contact_radius=3.25_c_double, max_pressure=4.25_c_double, &
             & est_rel_err=5.25_c_double, residual=6.25_c_double, iterations=7, method_used=8)
          size = c_sizeof(result)
-         if (c_associated(out)) call c_f_pointer(out, p_result)
-         if (c_associated(out)) p_result = result
+         call store(out, transfer(result, byte))
       case (3)
          table_info = egw_table_info_c(model=1, n_nodes=2, cutoff=3.25_c_double, &
             & delta_max=4.25_c_double, reference_force=5.25_c_double, rel_tol=6.25_c_double, &
             & max_force_error=7.25_c_double, max_stiffness_error=8.25_c_double, &
             & checksum_missing=9)
          size = c_sizeof(table_info)
-         if (c_associated(out)) call c_f_pointer(out, p_table_info)
-         if (c_associated(out)) p_table_info = table_info
+         call store(out, transfer(table_info, byte))
       case (4)
          hysteresis_info = egw_hysteresis_info_c(model=1, reversible=2, n_delta_max=3, n_s=4, &
             & n_loading=5, cutoff=6.25_c_double, delta_max=7.25_c_double, &
             & rel_tol=8.25_c_double, max_error=9.25_c_double, params=ref_params(10))
          size = c_sizeof(hysteresis_info)
-         if (c_associated(out)) call c_f_pointer(out, p_hysteresis_info)
-         if (c_associated(out)) p_hysteresis_info = hysteresis_info
+         call store(out, transfer(hysteresis_info, byte))
       case (5)
          scene = egw_scene_c(model=1, n_types=2, radius=array(3), radius_min=4.25_c_double, &
             & radius_max=5.25_c_double, modulus=array(6), poisson=array(7), &
@@ -157,18 +146,26 @@ contains
             & delta_min=17.25_c_double, delta_max=18.25_c_double, delta_in_sigma=19, &
             & tol=20.25_c_double)
          size = c_sizeof(scene)
-         if (c_associated(out)) call c_f_pointer(out, p_scene)
-         if (c_associated(out)) p_scene = scene
+         call store(out, transfer(scene, byte))
       case (6)
          choice = egw_model_choice_c(kind=1, n_sets=2, n_solves=3, hertz_relative_to_max=4, &
             & n_nodes=5, error_bound=6.25_c_double, hertz_error=7.25_c_double, &
             & measured_error=8.25_c_double, mu_min=9.25_c_double, mu_max=10.25_c_double, &
             & x_min=11.25_c_double, x_max=12.25_c_double)
          size = c_sizeof(choice)
-         if (c_associated(out)) call c_f_pointer(out, p_choice)
-         if (c_associated(out)) p_choice = choice
+         call store(out, transfer(choice, byte))
       end select
    end function fortran_struct
+
+   !> Copy the bytes of a reference value to out (nothing when NULL).
+   subroutine store(out, bytes)
+      type(c_ptr), intent(in) :: out
+      integer(c_int8_t), intent(in) :: bytes(:)
+      integer(c_int8_t), pointer :: target(:)
+      if (.not. c_associated(out)) return
+      call c_f_pointer(out, target, [size(bytes)])
+      target = bytes
+   end subroutine store
 
    !> The reference egw_params, its field k holding shift + k (+ 0.25 for a double).
    pure function ref_params(shift) result(p)
