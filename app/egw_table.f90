@@ -5,7 +5,7 @@
 !> Parsing and printing only; the logic lives in src/egw/scene.f90.
 program egw_table_app
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
-   use egw, only: dp, egw_version_string, egw_error, format_real, model_name, &
+   use egw_all, only: dp, egw_version_string, egw_error, format_real, int_str, model_name, &
       & scene_input, scene_overrides, contact_scene, model_choice, scene_tables, &
       & default_scene_input, read_scene_file, apply_scene_overrides, resolve_scene, &
       & choose_model, build_scene_tables, choice_name, choice_hertz, choice_table, &
@@ -14,7 +14,6 @@ program egw_table_app
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw, &
       & text_buffer, remove_file, hysteresis_table, build_hysteresis, write_hysteresis
-   use egw_status, only: int_str
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none

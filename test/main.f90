@@ -26,6 +26,7 @@ program tester
    use test_hysteresis, only: collect_hysteresis
    use test_unload_sphere, only: collect_unload_sphere
    use test_input, only: collect_input
+   use test_facade, only: collect_facade
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -54,7 +55,8 @@ program tester
       & new_testsuite("cli", collect_cli), &
       & new_testsuite("unload_sphere", collect_unload_sphere), &
       & new_testsuite("hysteresis", collect_hysteresis), &
-      & new_testsuite("input", collect_input) &
+      & new_testsuite("input", collect_input), &
+      & new_testsuite("facade", collect_facade) &
       & ]
 
    stat = 0
