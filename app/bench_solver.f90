@@ -5,7 +5,7 @@
 module bench_solver
    use, intrinsic :: iso_fortran_env, only: output_unit
    use omp_lib, only: omp_set_num_threads
-   use egw, only: dp, contact_params, solver_options, solve_result, solve_contact, egw_error, &
+   use egw_all, only: dp, contact_params, solver_options, solve_result, solve_contact, egw_error, &
       & model_gw, model_egw, model_epgw, method_newton, method_picard, radial_mesh, &
       & build_mesh, graded_edges, assemble_influence
    use bench_common, only: wall, open_csv, write_row, close_csv, reference_force, fmt_e, &

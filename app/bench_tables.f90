@@ -5,7 +5,7 @@
 module bench_tables
    use, intrinsic :: iso_fortran_env, only: output_unit
    use omp_lib, only: omp_set_num_threads
-   use egw, only: dp, contact_params, solver_options, solve_result, solve_contact, egw_error, &
+   use egw_all, only: dp, contact_params, solver_options, solve_result, solve_contact, egw_error, &
       & model_hertz, model_egw, force_table, build_table, table_eval, table_interval, &
       & universal_table, build_universal, universal_eval, universal_slice, hertz_force, &
       & hertz_stiffness

@@ -5,7 +5,7 @@
 !> Parsing and printing only; the logic lives in src/egw/scene.f90.
 program egw_table_app
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
-   use egw, only: dp, egw_version_string, egw_error, format_real, model_name, &
+   use egw_all, only: dp, egw_version_string, egw_error, format_real, int_str, model_name, &
       & scene_input, scene_overrides, contact_scene, model_choice, scene_tables, &
       & default_scene_input, read_scene_file, apply_scene_overrides, resolve_scene, &
       & choose_model, build_scene_tables, choice_name, choice_hertz, choice_table, &
@@ -651,13 +651,5 @@ contains
       write (buf, '(es11.4)') x
       str = trim(adjustl(buf))
    end function num
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      str = trim(buf)
-   end function int_str
 
 end program egw_table_app

@@ -14,6 +14,7 @@ program tester
    use test_table, only: collect_table
    use test_table_format, only: collect_table_format
    use test_capi, only: collect_capi
+   use test_capi_structs, only: collect_capi_structs
    use test_capi_table, only: collect_capi_table
    use test_capi_io, only: collect_capi_io
    use test_text_io, only: collect_text_io
@@ -25,6 +26,7 @@ program tester
    use test_hysteresis, only: collect_hysteresis
    use test_unload_sphere, only: collect_unload_sphere
    use test_input, only: collect_input
+   use test_facade, only: collect_facade
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -42,6 +44,7 @@ program tester
       & new_testsuite("table", collect_table), &
       & new_testsuite("table_format", collect_table_format), &
       & new_testsuite("capi", collect_capi), &
+      & new_testsuite("capi_structs", collect_capi_structs), &
       & new_testsuite("capi_table", collect_capi_table), &
       & new_testsuite("capi_io", collect_capi_io), &
       & new_testsuite("text_io", collect_text_io), &
@@ -52,7 +55,8 @@ program tester
       & new_testsuite("cli", collect_cli), &
       & new_testsuite("unload_sphere", collect_unload_sphere), &
       & new_testsuite("hysteresis", collect_hysteresis), &
-      & new_testsuite("input", collect_input) &
+      & new_testsuite("input", collect_input), &
+      & new_testsuite("facade", collect_facade) &
       & ]
 
    stat = 0

@@ -5,7 +5,7 @@ module test_asperity
       & ieee_negative_inf, ieee_is_nan
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
    use egw_kinds, only: pi
-   use egw, only: dp, hertz_asperity_force, zmc_asperity_force, rough_flat_law, &
+   use egw_all, only: dp, hertz_asperity_force, zmc_asperity_force, rough_flat_law, &
       & flat_pressure, contact_params, model_egw, model_epgw, egw_error, &
       & egw_invalid_argument, egw_invalid_parameter, gauss_f32, gauss_f12
    use ref_gauss, only: ref_fn, ref_zmc

@@ -5,7 +5,7 @@ module test_ellip
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
    use egw_kinds, only: pi
-   use egw, only: dp, egw_error, egw_invalid_argument, ellipk, ellipe, ellipk_comp, &
+   use egw_all, only: dp, egw_error, egw_invalid_argument, ellipk, ellipe, ellipk_comp, &
       & ellipe_comp, get_ellipk, get_ellipe, ellipk_log_split, ellipk_comp_fast
    use ref_ellip, only: k_arg, k_ellipk, k_ellipe, kc_arg, kc_ellipk, kc_ellipe, kc_kreg, &
       & kc_klog

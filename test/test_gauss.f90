@@ -4,7 +4,7 @@ module test_gauss
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
       & ieee_negative_inf, ieee_is_nan, ieee_is_finite
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
-   use egw, only: dp, gauss_integral, gauss_integral_deriv, get_gauss_integral, gauss_f0, &
+   use egw_all, only: dp, gauss_integral, gauss_integral_deriv, get_gauss_integral, gauss_f0, &
       & gauss_f12, gauss_f1, gauss_f32, gauss_f52, gauss_fm12, normal_density, zmc_integrals, &
       & egw_error, egw_invalid_argument
    use ref_gauss, only: ref_fn, ref_zmc

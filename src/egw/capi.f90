@@ -7,7 +7,7 @@ module egw_capi
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
-      & status_message, format_real
+      & status_message, format_real, int_str
    use egw_params, only: contact_params, validate_params, mu_from_summits, &
       & psi_from_hardness
    use egw_version, only: egw_version_number
@@ -22,39 +22,11 @@ module egw_capi
    ! gfortran 12 resolves their procedures to a bind(C) routine whose label equals the
    ! module name)
    use egw_smooth_sphere, only: hertz_contact
-   use egw_text, only: int_text, int_text_len
-   use egw_capi_utils, only: copy_to_c
+   use egw_capi_utils, only: copy_to_c, copy_last_error, settle, require, invalid, &
+      & check_nonneg, check_positive, put, egw_params_c, egw_options_c, egw_result_c, &
+      & from_params, read_params, read_options, put_result
    implicit none
    private
-
-   !> Mirror of the C struct egw_params.
-   type, bind(C) :: egw_params_c
-      integer(c_int) :: model
-      real(c_double) :: radius, modulus, sigma, mu, psi, hardness_coeff, plastic_ratio
-   end type egw_params_c
-
-   !> Last error message of this thread: the only mutable state of egw, kept per thread
-   !> so that concurrent callers never see each other's messages.
-   !> (16384 characters: a message naming a path of PATH_MAX = 4096 bytes fits whole.)
-   character(len=16384), save :: last_message = ""
-   !$omp threadprivate(last_message)
-
-   !> Mirror of the C struct egw_options.
-   type, bind(C) :: egw_options_c
-      integer(c_int) :: n_radial
-      real(c_double) :: rel_tol
-      integer(c_int) :: max_iter, method, n_threads
-   end type egw_options_c
-
-   !> Mirror of the C struct egw_result.
-   type, bind(C) :: egw_result_c
-      real(c_double) :: force, stiffness, contact_radius, max_pressure, est_rel_err, residual
-      integer(c_int) :: iterations, method_used
-   end type egw_result_c
-
-   public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params
-   ! shared with the table bindings (egw_capi_table): error bookkeeping and conversions
-   public :: settle, require, read_params, read_options, put, int_str
 
 contains
 
@@ -79,7 +51,7 @@ contains
       type(c_ptr), value, intent(in) :: buf
       integer(c_int), value, intent(in) :: buflen
       integer(c_int) :: stat
-      stat = copy_to_c(trim(last_message), buf, buflen)
+      stat = copy_last_error(buf, buflen)
    end function egw_last_error
 
    !> C: egw_params_default: fill an egw_params with the defaults.
@@ -114,10 +86,9 @@ contains
       if (stat /= egw_ok) return
       value = mu_from_summits(summit_density, summit_radius, sigma, radius)
       if (.not. ieee_is_finite(value)) then
-         stat = egw_invalid_argument
-         last_message = "mu = (8/3) eta sigma sqrt(2 R beta) exceeds the largest double: " &
+         stat = invalid("mu = (8/3) eta sigma sqrt(2 R beta) exceeds the largest double: " &
             & //"summit_density = "//format_real(summit_density)//", sigma = " &
-            & //format_real(sigma)
+            & //format_real(sigma))
          return
       end if
       call put(mu, value)
@@ -137,17 +108,16 @@ contains
       if (stat == egw_ok) stat = check_positive("summit_radius", summit_radius)
       if (stat == egw_ok .and. .not. (hardness_coeff > 0.0_dp .and. hardness_coeff < 1.0_dp)) &
          & then
-         stat = egw_invalid_argument
-         last_message = "hardness_coeff = "//format_real(hardness_coeff)//": K must lie in (0, 1)"
+         stat = invalid("hardness_coeff = "//format_real(hardness_coeff)// &
+            & ": K must lie in (0, 1)")
       end if
       if (stat == egw_ok) stat = require(psi, "psi")
       if (stat /= egw_ok) return
       value = psi_from_hardness(modulus, hardness, hardness_coeff, sigma, summit_radius)
       if (.not. ieee_is_finite(value)) then
-         stat = egw_invalid_argument
-         last_message = "psi = E/(K H) sqrt(sigma/beta) overflows: modulus/hardness = "// &
+         stat = invalid("psi = E/(K H) sqrt(sigma/beta) overflows: modulus/hardness = "// &
             & format_real(modulus/hardness)//", sigma/summit_radius = "// &
-            & format_real(sigma/summit_radius)
+            & format_real(sigma/summit_radius))
          return
       end if
       call put(psi, value)
@@ -354,8 +324,7 @@ contains
       real(dp), allocatable :: pr(:), w(:)
       type(egw_error), allocatable :: error
       if (n < 0) then
-         stat = egw_invalid_argument
-         last_message = "n = "//int_str(int(n))//": must be >= 0"
+         stat = invalid("n = "//int_str(int(n))//": must be >= 0")
          return
       end if
       stat = read_params(p, params)
@@ -402,40 +371,6 @@ contains
       call put(w_dissipated, dissipated)
    end function restitution_c
 
-   !> Store a solve_result at a C egw_result* (not NULL).
-   subroutine put_result(res, result)
-      type(c_ptr), intent(in) :: res
-      type(solve_result), intent(in) :: result
-      type(egw_result_c), pointer :: cres
-      call c_f_pointer(res, cres)
-      cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
-         & contact_radius=result%contact_radius, max_pressure=result%max_pressure, &
-         & est_rel_err=result%est_rel_err, residual=result%residual, &
-         & iterations=int(result%iterations, c_int), method_used=int(result%method_used, c_int))
-   end subroutine put_result
-
-   !> Options from a nullable const egw_options* (NULL: defaults); checked by the solver.
-   subroutine read_options(o, options)
-      type(c_ptr), intent(in) :: o
-      type(solver_options), intent(out) :: options
-      type(egw_options_c), pointer :: co
-      if (.not. c_associated(o)) return
-      call c_f_pointer(o, co)
-      options%n_radial = int(co%n_radial)
-      options%rel_tol = co%rel_tol
-      options%max_iter = int(co%max_iter)
-      options%method = int(co%method)
-      options%n_threads = int(co%n_threads)
-   end subroutine read_options
-
-   !> Decimal text of an integer, for messages.
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
-      str = int_text(i)
-   end function int_str
-
-
    integer(c_int) function flat_pressure_c(p, separation, pressure, dpressure, want_deriv) &
       & result(stat)
       type(c_ptr), intent(in) :: p, pressure, dpressure
@@ -452,88 +387,5 @@ contains
       call put(pressure, pg)
       if (want_deriv) call put(dpressure, dpg)
    end function flat_pressure_c
-
-   !> Convert the C struct to the Fortran type.
-   pure function to_params(cp) result(params)
-      type(egw_params_c), intent(in) :: cp
-      type(contact_params) :: params
-      params = contact_params(model=int(cp%model), radius=cp%radius, modulus=cp%modulus, &
-         & sigma=cp%sigma, mu=cp%mu, psi=cp%psi, hardness_coeff=cp%hardness_coeff, &
-         & plastic_ratio=cp%plastic_ratio)
-   end function to_params
-
-   !> The C struct egw_params of Fortran contact_params (field by field).
-   pure function from_params(params) result(cp)
-      type(contact_params), intent(in) :: params
-      type(egw_params_c) :: cp
-      cp = egw_params_c(model=int(params%model, c_int), radius=params%radius, &
-         & modulus=params%modulus, sigma=params%sigma, mu=params%mu, psi=params%psi, &
-         & hardness_coeff=params%hardness_coeff, plastic_ratio=params%plastic_ratio)
-   end function from_params
-
-   !> Read and validate a const egw_params*.
-   integer(c_int) function read_params(p, params) result(stat)
-      type(c_ptr), intent(in) :: p
-      type(contact_params), intent(out) :: params
-      type(egw_params_c), pointer :: cp
-      type(egw_error), allocatable :: error
-      stat = require(p, "p")
-      if (stat /= egw_ok) return
-      call c_f_pointer(p, cp)
-      params = to_params(cp)
-      call validate_params(params, error)
-      stat = settle(error)
-   end function read_params
-
-   !> Status of an error (recording its message), EGW_OK when none.
-   integer(c_int) function settle(error) result(stat)
-      type(egw_error), allocatable, intent(in) :: error
-      stat = egw_ok
-      if (.not. allocated(error)) return
-      stat = int(error%stat, c_int)
-      if (allocated(error%message)) then
-         last_message = error%message
-      else
-         last_message = status_message(error%stat)
-      end if
-   end function settle
-
-   !> EGW_OK if ptr is not NULL, else EGW_NULL_POINTER with a message naming the argument.
-   integer(c_int) function require(ptr, name) result(stat)
-      type(c_ptr), intent(in) :: ptr
-      character(len=*), intent(in) :: name
-      stat = egw_ok
-      if (c_associated(ptr)) return
-      stat = egw_null_pointer
-      last_message = name//": NULL pointer"
-   end function require
-
-   integer(c_int) function check_nonneg(name, x) result(stat)
-      character(len=*), intent(in) :: name
-      real(dp), intent(in) :: x
-      stat = egw_ok
-      if (ieee_is_finite(x) .and. x >= 0.0_dp) return
-      stat = egw_invalid_argument
-      last_message = name//" = "//format_real(x)//": must be finite and >= 0"
-   end function check_nonneg
-
-   integer(c_int) function check_positive(name, x) result(stat)
-      character(len=*), intent(in) :: name
-      real(dp), intent(in) :: x
-      stat = egw_ok
-      if (ieee_is_finite(x) .and. x > 0.0_dp) return
-      stat = egw_invalid_argument
-      last_message = name//" = "//format_real(x)//": must be finite and > 0"
-   end function check_positive
-
-   !> Store x at a C double* (NULL: nothing wanted).
-   subroutine put(ptr, x)
-      type(c_ptr), intent(in) :: ptr
-      real(dp), intent(in) :: x
-      real(c_double), pointer :: target
-      if (.not. c_associated(ptr)) return
-      call c_f_pointer(ptr, target)
-      target = x
-   end subroutine put
 
 end module egw_capi

@@ -8,16 +8,15 @@ module egw_capi_hysteresis
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_out_of_range, &
       & egw_out_of_memory, &
-      & fatal_error, format_real
+      & fatal_error, format_real, int_str
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
-   use egw_capi, only: settle, require, read_params, read_options, put, from_params, &
-      & egw_params_c, int_str
-   use egw_capi_utils, only: c_string
+   use egw_capi_utils, only: settle, require, read_params, read_options, put, from_params, &
+      & egw_params_c, c_path
    implicit none
    private
 
@@ -370,19 +369,5 @@ contains
       out%max_error = h%max_error
       out%params = from_params(h%params)
    end function egw_hysteresis_get_info
-
-   !> A NUL-terminated C path as a Fortran string (any length; NULL and "" refused).
-   integer(c_int) function c_path(path, fpath) result(stat)
-      type(c_ptr), intent(in) :: path
-      character(len=:), allocatable, intent(out) :: fpath
-      type(egw_error), allocatable :: error
-      stat = require(path, "path")
-      if (stat /= egw_ok) return
-      call c_string(path, fpath)  ! the one reader of C strings (egw_capi_utils)
-      if (len(fpath) == 0) then
-         call fatal_error(error, egw_invalid_argument, "path: empty")
-         stat = settle(error)
-      end if
-   end function c_path
 
 end module egw_capi_hysteresis

@@ -13,8 +13,7 @@ module egw_capi_scene
    use egw_scene, only: scene_input, contact_scene, model_choice, scene_tables, max_types, &
       & default_scene_input, read_scene_file, validate_scene_input, resolve_scene, &
       & choose_model, build_scene_tables, choice_table, choice_universal
-   use egw_capi, only: settle, require, read_options
-   use egw_capi_utils, only: c_string, copy_to_c
+   use egw_capi_utils, only: settle, require, read_options, c_string, copy_to_c
    implicit none
    private
 

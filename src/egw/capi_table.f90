@@ -1,14 +1,14 @@
 !> C API of the force tables (include/egw.h): opaque handles to Fortran table
 !> objects (c_loc of an allocated object, released by egw_table_free /
 !> egw_universal_free), build, evaluation, file output and input. Errors go through
-!> egw_capi's per-thread last-error message (settle, require).
+!> egw_capi_utils' per-thread last-error message (settle, require, invalid).
 module egw_capi_table
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_out_of_range, egw_null_pointer, egw_out_of_memory, fatal_error, format_real
+      & egw_out_of_range, egw_null_pointer, egw_out_of_memory, fatal_error, format_real, int_str
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, build_table, table_eval, table_covers, table_energy, &
@@ -17,9 +17,8 @@ module egw_capi_table
       & universal_slice
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
       & write_calculix_flat, write_lammps, write_calculix_sphere
-   use egw_capi, only: egw_params_c, egw_options_c, settle, require, read_params, &
-      & read_options, put, int_str
-   use egw_capi_utils, only: c_string
+   use egw_capi_utils, only: egw_params_c, egw_options_c, settle, require, read_params, &
+      & read_options, put, c_path, invalid, record
    implicit none
    private
 
@@ -216,7 +215,7 @@ contains
       character(len=:), allocatable :: fpath
       type(egw_error), allocatable :: error
       stat = get_table(h, t)
-      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       call write_table(t, fpath, int(format), error)
       stat = settle(error)
@@ -231,7 +230,7 @@ contains
       type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
       stat = require(out, "out")
-      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       allocate (t)
       call read_table(fpath, t, error)
@@ -274,7 +273,7 @@ contains
          return
       end if
       stat = require(tables, "tables")
-      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       call c_f_pointer(tables, handles, [n])
       allocate (copies(n), stat=i)
@@ -302,7 +301,7 @@ contains
       character(len=:), allocatable :: fpath
       type(egw_error), allocatable :: error
       stat = read_params(p, params)
-      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       call write_calculix_flat(params, overclosure_max, rel_tol, fpath, error)
       stat = settle(error)
@@ -320,7 +319,7 @@ contains
       type(egw_error), allocatable :: error
       real(dp) :: achieved
       stat = get_table(h, t)
-      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       call write_calculix_sphere(t, fpath, error, shift=shift /= 0, max_error=achieved)
       stat = settle(error)
@@ -340,7 +339,7 @@ contains
       type(egw_error), allocatable :: error
       real(dp) :: achieved
       stat = read_params(p, params)
-      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       call write_calculix_flat(params, overclosure_max, rel_tol, fpath, error, &
          & shift=shift /= 0, max_error=achieved)
@@ -366,8 +365,8 @@ contains
          return
       end if
       stat = require(tables, "tables")
-      if (stat == egw_ok) stat = get_path(path, fpath)
-      if (stat == egw_ok) stat = get_path(units, funits, "units")
+      if (stat == egw_ok) stat = c_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(units, funits, "units")
       if (stat /= egw_ok) return
       call c_f_pointer(tables, handles, [n])
       allocate (copies(n), stat=i)
@@ -529,7 +528,7 @@ contains
       character(len=:), allocatable :: fpath
       type(egw_error), allocatable :: error
       stat = get_universal(h, u)
-      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       call write_universal(u, fpath, int(format), error)
       stat = settle(error)
@@ -544,7 +543,7 @@ contains
       type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
       stat = require(out, "out")
-      if (stat == egw_ok) stat = get_path(path, fpath)
+      if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       allocate (u)
       call read_universal(fpath, u, error)
@@ -592,21 +591,6 @@ contains
       if (.not. allocated(u%slices)) stat = invalid("u: not a built or read table")
    end function get_universal
 
-   !> A NUL-terminated C string argument (a path, or the argument called name) as a
-   !> Fortran string of its full length (egw_capi_utils); NULL and "" are refused.
-   integer(c_int) function get_path(path, fpath, name) result(stat)
-      type(c_ptr), intent(in) :: path
-      character(len=:), allocatable, intent(out) :: fpath
-      character(len=*), intent(in), optional :: name
-      character(len=:), allocatable :: label
-      label = "path"
-      if (present(name)) label = name
-      stat = require(path, label)
-      if (stat /= egw_ok) return
-      call c_string(path, fpath)
-      if (len(fpath) == 0) stat = invalid(label//": empty")
-   end function get_path
-
    integer(c_int) function out_of_range(t, delta) result(stat)
       type(force_table), intent(in) :: t
       real(dp), intent(in) :: delta
@@ -627,20 +611,5 @@ contains
       stat = invalid(label//" = "//format_real(delta)//": the continuation above the table's" &
          & //" delta_max = "//format_real(t%delta_max)//" exceeds the largest double")
    end function beyond
-
-   integer(c_int) function invalid(message) result(stat)
-      character(len=*), intent(in) :: message
-      stat = egw_invalid_argument
-      call record(message)
-   end function invalid
-
-   !> Store a message as this thread's last error (through egw_capi's settle).
-   subroutine record(message)
-      character(len=*), intent(in) :: message
-      type(egw_error), allocatable :: error
-      integer(c_int) :: ignored
-      call fatal_error(error, egw_invalid_argument, message)
-      ignored = settle(error)
-   end subroutine record
 
 end module egw_capi_table

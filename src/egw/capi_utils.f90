@@ -1,15 +1,50 @@
-!> Strings across the C API (include/egw.h), in one place: every C string argument
-!> is read by c_string (its full strlen length: no silent truncation, whatever its
-!> length) and every message is copied out by copy_to_c. The capi*.f90 modules hold
+!> What the C API's entry points (capi*.f90, include/egw.h) share, in one place: the
+!> per-thread last-error message (settle, require, invalid), the C mirrors of egw_params,
+!> egw_options and egw_result with their conversions, and strings: every C string argument
+!> is read by c_string or c_path (its full strlen length: no silent truncation, whatever
+!> its length) and every message is copied out by copy_to_c. The capi*.f90 modules hold
 !> the entry points.
 module egw_capi_utils
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_ptr, c_size_t, c_null_char, &
-      & c_associated, c_f_pointer
-   use egw_status, only: egw_ok, egw_invalid_argument, egw_null_pointer
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_size_t, &
+      & c_null_char, c_associated, c_f_pointer
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
+      & status_message, format_real, fatal_error
+   use egw_params, only: contact_params, validate_params
+   use egw_rough_sphere, only: solver_options, solve_result
    implicit none
    private
 
-   public :: c_string, copy_to_c
+   public :: c_string, c_path, copy_to_c, copy_last_error
+   public :: settle, require, invalid, record, check_nonneg, check_positive, put
+   public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params, read_params, &
+      & read_options, put_result
+
+   !> Mirror of the C struct egw_params.
+   type, bind(C) :: egw_params_c
+      integer(c_int) :: model
+      real(c_double) :: radius, modulus, sigma, mu, psi, hardness_coeff, plastic_ratio
+   end type egw_params_c
+
+   !> Last error message of this thread: the only mutable state of egw, kept per thread
+   !> so that concurrent callers never see each other's messages.
+   !> (16384 characters: a message naming a path of PATH_MAX = 4096 bytes fits whole.)
+   character(len=16384), save :: last_message = ""
+   !$omp threadprivate(last_message)
+
+   !> Mirror of the C struct egw_options.
+   type, bind(C) :: egw_options_c
+      integer(c_int) :: n_radial
+      real(c_double) :: rel_tol
+      integer(c_int) :: max_iter, method, n_threads
+   end type egw_options_c
+
+   !> Mirror of the C struct egw_result.
+   type, bind(C) :: egw_result_c
+      real(c_double) :: force, stiffness, contact_radius, max_pressure, est_rel_err, residual
+      integer(c_int) :: iterations, method_used
+   end type egw_result_c
 
    interface
       !> strlen of libc: the length of a NUL-terminated C string.
@@ -66,5 +101,150 @@ contains
       end do
       chars(n + 1) = c_null_char
    end function copy_to_c
+
+   !> Convert the C struct to the Fortran type.
+   pure function to_params(cp) result(params)
+      type(egw_params_c), intent(in) :: cp
+      type(contact_params) :: params
+      params = contact_params(model=int(cp%model), radius=cp%radius, modulus=cp%modulus, &
+         & sigma=cp%sigma, mu=cp%mu, psi=cp%psi, hardness_coeff=cp%hardness_coeff, &
+         & plastic_ratio=cp%plastic_ratio)
+   end function to_params
+
+   !> The C struct egw_params of Fortran contact_params (field by field).
+   pure function from_params(params) result(cp)
+      type(contact_params), intent(in) :: params
+      type(egw_params_c) :: cp
+      cp = egw_params_c(model=int(params%model, c_int), radius=params%radius, &
+         & modulus=params%modulus, sigma=params%sigma, mu=params%mu, psi=params%psi, &
+         & hardness_coeff=params%hardness_coeff, plastic_ratio=params%plastic_ratio)
+   end function from_params
+
+   !> Read and validate a const egw_params*.
+   integer(c_int) function read_params(p, params) result(stat)
+      type(c_ptr), intent(in) :: p
+      type(contact_params), intent(out) :: params
+      type(egw_params_c), pointer :: cp
+      type(egw_error), allocatable :: error
+      stat = require(p, "p")
+      if (stat /= egw_ok) return
+      call c_f_pointer(p, cp)
+      params = to_params(cp)
+      call validate_params(params, error)
+      stat = settle(error)
+   end function read_params
+
+   !> Options from a nullable const egw_options* (NULL: defaults); checked by the solver.
+   subroutine read_options(o, options)
+      type(c_ptr), intent(in) :: o
+      type(solver_options), intent(out) :: options
+      type(egw_options_c), pointer :: co
+      if (.not. c_associated(o)) return
+      call c_f_pointer(o, co)
+      options%n_radial = int(co%n_radial)
+      options%rel_tol = co%rel_tol
+      options%max_iter = int(co%max_iter)
+      options%method = int(co%method)
+      options%n_threads = int(co%n_threads)
+   end subroutine read_options
+
+   !> Store a solve_result at a C egw_result* (not NULL).
+   subroutine put_result(res, result)
+      type(c_ptr), intent(in) :: res
+      type(solve_result), intent(in) :: result
+      type(egw_result_c), pointer :: cres
+      call c_f_pointer(res, cres)
+      cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
+         & contact_radius=result%contact_radius, max_pressure=result%max_pressure, &
+         & est_rel_err=result%est_rel_err, residual=result%residual, &
+         & iterations=int(result%iterations, c_int), method_used=int(result%method_used, c_int))
+   end subroutine put_result
+
+   !> Status of an error (recording its message), EGW_OK when none.
+   integer(c_int) function settle(error) result(stat)
+      type(egw_error), allocatable, intent(in) :: error
+      stat = egw_ok
+      if (.not. allocated(error)) return
+      stat = int(error%stat, c_int)
+      if (allocated(error%message)) then
+         last_message = error%message
+      else
+         last_message = status_message(error%stat)
+      end if
+   end function settle
+
+   !> EGW_OK if ptr is not NULL, else EGW_NULL_POINTER with a message naming the argument.
+   integer(c_int) function require(ptr, name) result(stat)
+      type(c_ptr), intent(in) :: ptr
+      character(len=*), intent(in) :: name
+      stat = egw_ok
+      if (c_associated(ptr)) return
+      stat = egw_null_pointer
+      last_message = name//": NULL pointer"
+   end function require
+
+   integer(c_int) function check_nonneg(name, x) result(stat)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: x
+      stat = egw_ok
+      if (ieee_is_finite(x) .and. x >= 0.0_dp) return
+      stat = egw_invalid_argument
+      last_message = name//" = "//format_real(x)//": must be finite and >= 0"
+   end function check_nonneg
+
+   integer(c_int) function check_positive(name, x) result(stat)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: x
+      stat = egw_ok
+      if (ieee_is_finite(x) .and. x > 0.0_dp) return
+      stat = egw_invalid_argument
+      last_message = name//" = "//format_real(x)//": must be finite and > 0"
+   end function check_positive
+
+   !> Store x at a C double* (NULL: nothing wanted).
+   subroutine put(ptr, x)
+      type(c_ptr), intent(in) :: ptr
+      real(dp), intent(in) :: x
+      real(c_double), pointer :: target
+      if (.not. c_associated(ptr)) return
+      call c_f_pointer(ptr, target)
+      target = x
+   end subroutine put
+
+   !> EGW_INVALID_ARGUMENT, recording message as this thread's last error.
+   integer(c_int) function invalid(message) result(stat)
+      character(len=*), intent(in) :: message  !< the message, naming the argument
+      stat = egw_invalid_argument
+      call record(message)
+   end function invalid
+
+   !> Store message as this thread's last error (the caller sets the status).
+   subroutine record(message)
+      character(len=*), intent(in) :: message  !< the message, naming the argument
+      last_message = message
+   end subroutine record
+
+   !> Copy this thread's last error message into a C buffer (as copy_to_c).
+   integer(c_int) function copy_last_error(buf, buflen) result(stat)
+      type(c_ptr), intent(in) :: buf         !< char* of buflen bytes
+      integer(c_int), intent(in) :: buflen   !< its size in bytes
+      stat = copy_to_c(trim(last_message), buf, buflen)
+   end function copy_last_error
+
+   !> A NUL-terminated C string argument (a path, or the argument called name) as a
+   !> Fortran string of its full length; NULL (EGW_NULL_POINTER) and "" (EGW_INVALID_ARGUMENT)
+   !> are refused with a message naming the argument.
+   integer(c_int) function c_path(path, fpath, name) result(stat)
+      type(c_ptr), intent(in) :: path                        !< const char*
+      character(len=:), allocatable, intent(out) :: fpath    !< its text
+      character(len=*), intent(in), optional :: name         !< its name (default "path")
+      character(len=:), allocatable :: label
+      label = "path"
+      if (present(name)) label = name
+      stat = require(path, label)
+      if (stat /= egw_ok) return
+      call c_string(path, fpath)
+      if (len(fpath) == 0) stat = invalid(label//": empty")
+   end function c_path
 
 end module egw_capi_utils

@@ -7,11 +7,11 @@ module egw_hysteresis_format
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_bad_file, egw_io_error, egw_invalid_argument, &
-      & fatal_error
+      & fatal_error, int_str, bad => bad_file_error
    use egw_params, only: contact_params, validate_params, model_name
    use egw_version, only: egw_version_string, egw_version_number
    use egw_io, only: write_file, read_file, text_buffer
-   use egw_text, only: int_text, int_text_len, real_text, real_text_len
+   use egw_text, only: real_text, real_text_len
    use egw_table, only: force_table, table_prepare
    use egw_table_format, only: format_csv, format_binary, fnv1a32, split_checksum, checksum_line
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare
@@ -674,23 +674,10 @@ contains
       str = real_text(x, 17, 3)
    end function fmt
 
-   subroutine bad(error, path, what)
-      type(egw_error), allocatable, intent(inout) :: error
-      character(len=*), intent(in) :: path, what
-      if (allocated(error)) deallocate (error)
-      call fatal_error(error, egw_bad_file, "path = "//path//": "//what)
-   end subroutine bad
-
    pure logical function starts_with(str, prefix)
       character(len=*), intent(in) :: str, prefix
       starts_with = .false.
       if (len(str) >= len(prefix)) starts_with = str(1:len(prefix)) == prefix
    end function starts_with
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=int_text_len(i)) :: str
-      str = int_text(i)
-   end function int_str
 
 end module egw_hysteresis_format

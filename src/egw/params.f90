@@ -4,8 +4,7 @@ module egw_params
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_parameter, egw_invalid_argument, fatal_error, &
-      & format_real, format_real_len
-   use egw_text, only: int_text, int_text_len
+      & format_real, format_real_len, int_str, bad => parameter_error
    implicit none
    private
 
@@ -269,18 +268,5 @@ contains
       real(dp), intent(in) :: x
       positive_finite = ieee_is_finite(x) .and. x > 0.0_dp
    end function positive_finite
-
-   pure subroutine bad(error, name, value, reason)
-      type(egw_error), allocatable, intent(out) :: error
-      character(len=*), intent(in) :: name, reason
-      real(dp), intent(in) :: value
-      call fatal_error(error, egw_invalid_parameter, name//" = "//format_real(value)//": "//reason)
-   end subroutine bad
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
-      str = int_text(i)
-   end function int_str
 
 end module egw_params

@@ -7,14 +7,14 @@ module egw_scene
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_io_error, egw_bad_file, egw_not_converged, egw_unsupported, fatal_error, &
-      & format_real
+      & format_real, int_str, bad => parameter_error
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, model_name, mu_from_summits, check_scaled_overlap
    use egw_smooth_sphere, only: hertz_force
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options
    use egw_table, only: force_table, build_table, table_set_radii, table_progress
    use egw_table_universal, only: universal_table, build_universal
-   use egw_text, only: int_text, int_text_len, real_text, real_text_len
+   use egw_text, only: real_text, real_text_len
    implicit none
    private
 
@@ -1045,25 +1045,11 @@ contains
       positive = ieee_is_finite(x) .and. x > 0.0_dp
    end function positive
 
-   pure subroutine bad(error, name, value, reason)
-      type(egw_error), allocatable, intent(out) :: error
-      character(len=*), intent(in) :: name, reason
-      real(dp), intent(in) :: value
-      call fatal_error(error, egw_invalid_parameter, name//" = "//format_real(value)// &
-         & ": "//reason)
-   end subroutine bad
-
    !> Short form of a number for messages (4 significant digits).
    pure function num(x) result(str)
       real(dp), intent(in) :: x
       character(len=real_text_len(x, 4, 2)) :: str  ! not deferred: see egw_text
       str = real_text(x, 4, 2)  ! as ES11.4, without an internal WRITE (egw_text)
    end function num
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
-      str = int_text(i)
-   end function int_str
 
 end module egw_scene

@@ -4,7 +4,7 @@
 module egw_status
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
-   use egw_text, only: real_text, real_text_len
+   use egw_text, only: real_text, real_text_len, int_text, int_text_len
    implicit none
    private
 
@@ -26,7 +26,8 @@ module egw_status
       character(len=:), allocatable :: message
    end type egw_error
 
-   public :: status_message, fatal_error, format_real, format_real_len
+   public :: status_message, fatal_error, format_real, format_real_len, int_str
+   public :: parameter_error, bad_file_error
 
 contains
 
@@ -93,5 +94,31 @@ contains
          str = real_text(x, 15, 3)  ! as ES23.15E3, without an internal WRITE (egw_text)
       end if
    end function format_real
+
+   !> Decimal text of an integer, for messages.
+   pure function int_str(i) result(str)
+      integer, intent(in) :: i  !< the integer to spell
+      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
+      str = int_text(i)
+   end function int_str
+
+   !> EGW_INVALID_PARAMETER with the message "name = value: reason".
+   pure subroutine parameter_error(error, name, value, reason)
+      type(egw_error), allocatable, intent(out) :: error  !< the error set
+      character(len=*), intent(in) :: name    !< the parameter's name
+      real(dp), intent(in) :: value           !< its offending value
+      character(len=*), intent(in) :: reason  !< what it must be
+      call fatal_error(error, egw_invalid_parameter, name//" = "//format_real(value)// &
+         & ": "//reason)
+   end subroutine parameter_error
+
+   !> EGW_BAD_FILE with the message "path = path: what", replacing any earlier error.
+   pure subroutine bad_file_error(error, path, what)
+      type(egw_error), allocatable, intent(inout) :: error  !< the error set
+      character(len=*), intent(in) :: path  !< the file read
+      character(len=*), intent(in) :: what  !< what is wrong with it
+      if (allocated(error)) deallocate (error)
+      call fatal_error(error, egw_bad_file, "path = "//path//": "//what)
+   end subroutine bad_file_error
 
 end module egw_status

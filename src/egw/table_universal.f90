@@ -17,13 +17,12 @@ module egw_table_universal
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_not_converged, egw_out_of_range, fatal_error, format_real
+      & egw_not_converged, egw_out_of_range, fatal_error, format_real, int_str
    use egw_params, only: contact_params, validate_params, overlap_ratio_max, product4, &
       & force_unit, stiffness_unit, length_unit
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
       & table_interval, table_prepare, table_eval, table_progress
-   use egw_text, only: int_text, int_text_len
    implicit none
    private
 
@@ -516,12 +515,6 @@ contains
       w(2) = -t*(t - 1)*(t - 3)/2
       w(3) = t*(t - 1)*(t - 2)/6
    end subroutine mu_stencil
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
-      str = int_text(i)
-   end function int_str
 
    pure function grid(mu_min, mu_max, n) result(mus)
       real(dp), intent(in) :: mu_min, mu_max

@@ -1,0 +1,182 @@
+!> The checks every reader of egw_table_format runs before it hands over a table, and
+!> the small helpers the format submodules share (separate module procedures: gfortran
+!> drops private procedures of a module that only its submodules call).
+submodule (egw_table_format) egw_table_format_checks
+   implicit none
+
+contains
+
+   module procedure check_table
+      integer :: n, i
+      n = size(t%delta)
+      if (n < 2) then
+         call bad(error, path, where//"fewer than 2 nodes")
+         return
+      end if
+      call check_meta(path, where, t, error)
+      if (allocated(error)) return
+      do i = 1, n
+         if (.not. row_ok([t%delta(i), t%force(i), t%stiffness(i), t%energy(i), &
+            & t%contact_radius(i)])) then
+            call bad(error, path, where//"node "//int_str(i)//" is not finite")
+            return
+         end if
+         if (t%force(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative force "// &
+               & format_real(t%force(i)))
+            return
+         end if
+         if (t%stiffness(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative stiffness "// &
+               & format_real(t%stiffness(i)))
+            return
+         end if
+         if (t%energy(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative energy "// &
+               & format_real(t%energy(i)))
+            return
+         end if
+         if (t%contact_radius(i) < 0.0_dp) then
+            call bad(error, path, where//"node "//int_str(i)//": negative contact "// &
+               & "radius "//format_real(t%contact_radius(i)))
+            return
+         end if
+         if (i == 1) cycle
+         if (t%force(i) < t%force(i - 1)) then
+            call bad(error, path, where//"node "//int_str(i)//": force "// &
+               & format_real(t%force(i))//" below the previous node's "// &
+               & format_real(t%force(i - 1))//" (the force must not decrease)")
+            return
+         end if
+         if (t%energy(i) < t%energy(i - 1)) then
+            call bad(error, path, where//"node "//int_str(i)//": energy decreases")
+            return
+         end if
+      end do
+      if (any(t%delta(2:n) <= t%delta(1:n - 1))) then
+         call bad(error, path, where//"delta is not strictly increasing")
+         return
+      end if
+      if (t%n_log < 0 .or. t%n_log > n - 1) then
+         call bad(error, path, where//"n_log = "//int_str(t%n_log)//" out of range")
+         return
+      end if
+      if (t%n_log > 0) then
+         if (any(t%force(1:t%n_log + 1) <= 0.0_dp)) then
+            call bad(error, path, where//"log-space interval with a zero force")
+            return
+         end if
+      end if
+      if (t%cutoff /= t%delta(1) .or. t%delta_max /= t%delta(n)) then
+         call bad(error, path, where//"cutoff/delta_max disagree with the nodes")
+         return
+      end if
+   end procedure check_table
+
+   module procedure check_universal_header
+      if (u%n_mu < 4 .or. u%n_mu > 100000) then
+         call bad(error, path, "n_mu = "//int_str(u%n_mu)//": need at least 4")
+      else if (.not. (u%rel_tol > 0.0_dp .and. u%rel_tol <= 0.1_dp)) then
+         call bad(error, path, "rel_tol = "//format_real(u%rel_tol)//": must lie in (0, 0.1]")
+      else if (.not. (ieee_is_finite(u%max_mu_error) .and. u%max_mu_error >= 0)) then
+         call bad(error, path, "max_mu_error = "//format_real(u%max_mu_error)// &
+            & ": must be finite and >= 0")
+      else if (.not. (ieee_is_finite(u%x_cut) .and. ieee_is_finite(u%x_max) .and. &
+         & u%x_cut < u%x_max)) then
+         call bad(error, path, "x_cut = "//format_real(u%x_cut)//", x_max = "// &
+            & format_real(u%x_max)//": need finite x_cut < x_max")
+      else if (.not. (ieee_is_finite(u%mu_min) .and. u%mu_min > 0.0_dp .and. &
+         & ieee_is_finite(u%mu_max) .and. u%mu_max > u%mu_min)) then
+         call bad(error, path, "mu range ["//format_real(u%mu_min)//", "// &
+            & format_real(u%mu_max)//"] invalid")
+      else
+         call validate_params(universal_slice_params(u%model, u%psi, u%hardness_coeff, &
+            & u%plastic_ratio, u%mu_min), error)
+         if (allocated(error)) call bad(error, path, "stored parameters invalid: "// &
+            & error%message)
+      end if
+   end procedure check_universal_header
+
+   module procedure check_common_cutoff
+      integer :: j
+      do j = 1, u%n_mu
+         if (u%slices(j)%cutoff /= u%x_cut .or. u%slices(j)%delta_max /= u%x_max) then
+            call bad(error, path, "slice "//int_str(j)//": range differs from x_cut, x_max")
+            return
+         end if
+      end do
+   end procedure check_common_cutoff
+
+   module procedure slice_mu
+      if (j == 1) then
+         slice_mu = u%mu_min
+      else if (j == u%n_mu) then
+         slice_mu = u%mu_max
+      else
+         slice_mu = exp(log(u%mu_min) + (log(u%mu_max) - log(u%mu_min))*(j - 1)/(u%n_mu - 1))
+      end if
+   end procedure slice_mu
+
+   module procedure move_table
+      to%params = from%params
+      to%rel_tol = from%rel_tol
+      to%cutoff = from%cutoff
+      to%delta_max = from%delta_max
+      to%reference_force = from%reference_force
+      to%max_force_error = from%max_force_error
+      to%max_stiffness_error = from%max_stiffness_error
+      to%radius_sum = from%radius_sum
+      to%n_log = from%n_log
+      to%checksum_missing = from%checksum_missing
+      to%n_bucket = from%n_bucket
+      to%bucket_scale = from%bucket_scale
+      to%bucket_origin = from%bucket_origin
+      to%crowded = from%crowded
+      call move_alloc(from%delta, to%delta)
+      call move_alloc(from%force, to%force)
+      call move_alloc(from%stiffness, to%stiffness)
+      call move_alloc(from%energy, to%energy)
+      call move_alloc(from%contact_radius, to%contact_radius)
+      call move_alloc(from%seg, to%seg)
+      call move_alloc(from%radius_slope, to%radius_slope)
+      call move_alloc(from%bucket, to%bucket)
+   end procedure move_table
+
+   module procedure row_ok
+      row_ok = all(ieee_is_finite(v))
+   end procedure row_ok
+
+   module procedure fmt
+      str = real_text(x, 17, 3)  ! ES25.17E3
+   end procedure fmt
+
+   module procedure starts_with
+      starts_with = .false.
+      if (len(str) >= len(prefix)) starts_with = str(1:len(prefix)) == prefix
+   end procedure starts_with
+
+   !> The metadata of a table: finite, rel_tol in (0, 0.1], P_ref > 0, errors and
+   !> R1 + R2 >= 0.
+   subroutine check_meta(path, where, t, error)
+      character(len=*), intent(in) :: path, where
+      type(force_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. (t%rel_tol > 0.0_dp .and. t%rel_tol <= 0.1_dp)) then
+         call bad(error, path, where//"rel_tol = "//format_real(t%rel_tol)// &
+            & ": must lie in (0, 0.1]")
+      else if (.not. (ieee_is_finite(t%reference_force) .and. t%reference_force > 0)) then
+         call bad(error, path, where//"reference_force = "// &
+            & format_real(t%reference_force)//": must be finite and > 0")
+      else if (.not. (ieee_is_finite(t%max_force_error) .and. t%max_force_error >= 0 &
+         & .and. ieee_is_finite(t%max_stiffness_error) .and. t%max_stiffness_error >= 0)) &
+         & then
+         call bad(error, path, where//"max_force_error = "// &
+            & format_real(t%max_force_error)//", max_stiffness_error = "// &
+            & format_real(t%max_stiffness_error)//": must be finite and >= 0")
+      else if (.not. (ieee_is_finite(t%radius_sum) .and. t%radius_sum >= 0)) then
+         call bad(error, path, where//"radius_sum = "//format_real(t%radius_sum)// &
+            & ": must be finite and >= 0 (0: not set)")
+      end if
+   end subroutine check_meta
+
+end submodule egw_table_format_checks

@@ -1,0 +1,27 @@
+!> egw_all: every public name of every egw module (the constants of egw_kinds, the mesh,
+!> kernels and numerical helpers, the table internals, file helpers ...), for power users
+!> and the tests. Programs that only compute contacts `use egw` (src/egw.f90), whose
+!> shorter list does not collide with the names of a host code.
+module egw_all
+   use egw_kinds
+   use egw_version
+   use egw_status
+   use egw_params
+   use egw_gauss
+   use egw_ellip
+   use egw_asperity
+   use egw_unloading
+   use egw_hysteresis
+   use egw_hysteresis_format
+   use egw_smooth_sphere
+   use egw_halfspace
+   use egw_rough_sphere
+   use egw_impact
+   use egw_table
+   use egw_table_universal
+   use egw_table_format
+   use egw_scene
+   use egw_io
+   implicit none
+   public
+end module egw_all
