@@ -36,6 +36,7 @@ contains
          & new_unittest("P_unload < P_load, monotone, stiffer", test_below_loading), &
          & new_unittest("d < d_max locally takes the loading law", test_reloaded_core), &
          & new_unittest("independent reference (12 points)", test_reference), &
+         & new_unittest("reference at kinks, rel_tol 1e-6..1e-8 (psi 10)", test_reference_kinks), &
          & new_unittest("bad input is reported, outputs untouched", test_bad_input), &
          & new_unittest("one history shared by threads", test_threads), &
          & new_unittest("restitution: e = 1 for elastic summits", test_e_elastic), &
@@ -264,6 +265,69 @@ contains
       if (allocated(error)) return
       call check(error, rows, 12, "rows read from "//path)
    end subroutine test_reference
+
+   !> Every row of test/data/sphere_unload_reference_kinks.csv (psi = 10, mu = 4, K = 0.6,
+   !> delta in {-0.5, 0, 0.5, 1} sigma after delta_max = 2 sigma; tools/reference/
+   !> sphere_unload_reference.py generate --set kinks: the independent Python solver with
+   !> Z_u by a (48, 24) rule, estimated errors <= 1.2e-11 including the difference to a
+   !> (24, 20) rule) at rel_tol 1e-6, 1e-7 and 1e-8: P_unload within rel_tol (the reference
+   !> error is ~1e-3 of the tightest). There d - d_max crosses 0, e and D(q) of Z_u within
+   !> 0.02 sigma of each other; kink edges placed from the locating solve alone were
+   !> 2e-3 sigma off and left errors of 2e-7 at rel_tol 1e-7 (1.1e-6 at 1e-6 for delta 1) and
+   !> no convergence at 1e-8. dP/d(delta) (step-squared convergence, see test_reference):
+   !> 1e-3 at rel_tol 1e-6 (observed 7.9e-5), 2e-5 below (observed <= 4.5e-6; 1.5e-4 at
+   !> delta 0, rel_tol 1e-7 with the edges off their kinks).
+   subroutine test_reference_kinks(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: path = "test/data/sphere_unload_reference_kinks.csv"
+      real(dp), parameter :: tols(3) = [1.0e-6_dp, 1.0e-7_dp, 1.0e-8_dp]
+      character(len=512) :: line
+      character(len=8) :: model
+      real(dp) :: delta, delta_max, mu, psi, hardness, force, force_err, stiffness, &
+         & stiffness_err, force_max, dp_tol
+      type(solver_options) :: opts
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      integer :: unit, ios, rows, j
+      open (newunit=unit, file=path, status="old", action="read", iostat=ios)
+      if (ios /= 0) then
+         call test_failed(error, "cannot open "//path//" (run the tests from the project root)")
+         return
+      end if
+      rows = 0
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (line(1:1) == "#" .or. line(1:6) == "model,") cycle
+         read (line, *) model, delta, delta_max, mu, psi, hardness, force, force_err, &
+            & stiffness, stiffness_err, force_max
+         call check(error, force_err <= 1.0e-2_dp*minval(tols), trim(line) &
+            & //": reference error above 1e-2 of the tightest rel_tol")
+         if (allocated(error)) exit
+         rows = rows + 1
+         do j = 1, size(tols)
+            opts%rel_tol = tols(j)
+            call solve_contact_unload(epgw(psi, mu, hardness), opts, delta, delta_max, res, err)
+            if (allocated(err)) then
+               call test_failed(error, trim(line)//", rel_tol "//str(tols(j))//": " &
+                  & //err%message)
+               exit
+            end if
+            call check(error, res%force, force, trim(line)//", rel_tol "//str(tols(j)) &
+               & //": P", rel=.true., thr=tols(j))
+            if (allocated(error)) exit
+            dp_tol = 2.0e-5_dp
+            if (tols(j) >= 1.0e-6_dp) dp_tol = 1.0e-3_dp
+            call check(error, res%stiffness, stiffness, trim(line)//", rel_tol " &
+               & //str(tols(j))//": dP", rel=.true., thr=dp_tol)
+            if (allocated(error)) exit
+         end do
+         if (allocated(error)) exit
+      end do
+      close (unit)
+      if (allocated(error)) return
+      call check(error, rows, 4, "rows read from "//path)
+   end subroutine test_reference_kinks
 
    !> One history read by several OpenMP threads at once gives the serial results exactly
    !> (no shared mutable state: the solves are deterministic, so bitwise equality).
