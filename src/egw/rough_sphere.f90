@@ -34,7 +34,7 @@ module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi, sqrt2
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
-      & egw_out_of_memory, fatal_error, format_real
+      & egw_out_of_memory, fatal_error, format_real, int_str
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, check_scaled_overlap, length_unit, pressure_unit, force_unit, stiffness_unit, &
       & product4
@@ -45,7 +45,6 @@ module egw_rough_sphere
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
       & assemble_influence, influence_row, interpolate_nodal
    use egw_lapack, only: dgetf2, dgetrs
-   use egw_text, only: int_text, int_text_len
    implicit none
    private
 
@@ -1890,11 +1889,5 @@ contains
       stiffness = 0.0_dp
       if (prob%extended) stiffness = hertz_stiffness(prob%delta, 1.0_dp, 1.0_dp)
    end function smooth_stiffness
-
-   pure function int_str(i) result(str)
-      integer, intent(in) :: i
-      character(len=int_text_len(i)) :: str  ! not deferred, not a WRITE: see egw_text
-      str = int_text(i)
-   end function int_str
 
 end module egw_rough_sphere
