@@ -48,6 +48,8 @@ def run(law, model, np):
 
 
 def main():
+    if not os.access(LMP, os.X_OK):
+        sys.exit("bench: " + LMP + " not found: build the plugin and runner first (make lammps)")
     best = {}
     for rep in range(REPEAT):
         for k, (name, law, model, np) in enumerate(CASES):
