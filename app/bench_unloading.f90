@@ -11,7 +11,7 @@ module bench_unloading
    implicit none
    private
 
-   public :: run_unloading
+   public :: run_unloading, run_unloading_sweep
 
 contains
 
@@ -89,5 +89,85 @@ contains
          end do
       end function best
    end subroutine run_unloading
+
+   !> The accuracy sweep of solve_contact_unload (the C API's egw_solve_unload): EP-GW mu 4,
+   !> K 0.6, rho_p 54, psi 1, 2, 5, 10, delta_max 0.5, 1, 2, 5, 10 sigma, delta at 0.1..0.9
+   !> of the way from delta_max down to -2 sigma, at rel_tol 1e-6 and 1e-7, against
+   !> solve_unload at rel_tol 1e-9 (1e-8 where 1e-9 does not converge) from a history loaded
+   !> at 1e-10 (a consistency check of the same code, not independent: the independent
+   !> references are the test's 19 points). Prints the solves above rel_tol and, per
+   !> rel_tol, the count, the worst error and the worst error/estimate where the error
+   !> exceeds rel_tol/10 (how far the estimate can be too low).
+   subroutine run_unloading_sweep()
+      real(dp), parameter :: psis(4) = [1.0_dp, 2.0_dp, 5.0_dp, 10.0_dp], &
+         & tops(5) = [0.5_dp, 1.0_dp, 2.0_dp, 5.0_dp, 10.0_dp], &
+         & fractions(5) = [0.1_dp, 0.3_dp, 0.5_dp, 0.7_dp, 0.9_dp]
+      type(contact_params) :: p
+      type(solver_options) :: opts
+      type(loading_history) :: reference_history
+      type(solve_result) :: res, ref, loaded
+      type(egw_error), allocatable :: error
+      real(dp) :: tol, delta, e, worst, worst_ratio
+      integer :: k, a, b, c, n, n_over, n_failed
+      write (output_unit, '(/a)') "== unloading accuracy sweep (solve_contact_unload against "// &
+         & "rel_tol 1e-9 solves on 1e-10 histories; EP-GW mu 4, K 0.6)"
+      do k = 6, 7
+         tol = 10.0_dp**(-k)
+         n = 0
+         n_over = 0
+         n_failed = 0
+         worst = 0.0_dp
+         worst_ratio = 0.0_dp
+         do a = 1, size(psis)
+            p = contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, &
+               & sigma=1.0_dp, mu=4.0_dp, psi=psis(a), hardness_coeff=0.6_dp, &
+               & plastic_ratio=54.0_dp)
+            do b = 1, size(tops)
+               opts%rel_tol = 1.0e-10_dp
+               call load_history(p, opts, tops(b), reference_history, loaded, error)
+               if (allocated(error)) then
+                  deallocate (error)
+                  cycle
+               end if
+               do c = 1, size(fractions)
+                  delta = tops(b) - fractions(c)*(tops(b) + 2.0_dp)
+                  reference_history%options%rel_tol = 1.0e-9_dp
+                  call solve_unload(reference_history, delta, ref, error)
+                  if (allocated(error)) then
+                     deallocate (error)
+                     reference_history%options%rel_tol = 1.0e-8_dp
+                     call solve_unload(reference_history, delta, ref, error)
+                     if (allocated(error)) then
+                        deallocate (error)
+                        cycle
+                     end if
+                  end if
+                  if (.not. ref%force > 1.0e-12_dp) cycle   ! rounding noise relative
+                  opts%rel_tol = tol
+                  call solve_contact_unload(p, opts, delta, tops(b), res, error)
+                  n = n + 1
+                  if (allocated(error)) then
+                     n_failed = n_failed + 1
+                     deallocate (error)
+                     cycle
+                  end if
+                  e = abs(res%force/ref%force - 1.0_dp)
+                  worst = max(worst, e)
+                  if (e > 0.1_dp*tol) worst_ratio = max(worst_ratio, e/max(res%est_rel_err, &
+                     & tiny(1.0_dp)))
+                  if (e > tol) then
+                     n_over = n_over + 1
+                     write (output_unit, '(a,3f7.2,2es10.2)') "  above rel_tol: psi, "// &
+                        & "delta_max, delta, error, estimate", psis(a), tops(b), delta, e, &
+                        & res%est_rel_err
+                  end if
+               end do
+            end do
+         end do
+         write (output_unit, '(a,es8.1,a,i0,a,i0,a,i0,a,es9.2,a,f8.1)') "  rel_tol ", tol, &
+            & ": ", n, " solves, ", n_over, " above rel_tol, ", n_failed, &
+            & " not converged; worst error ", worst, ", worst error/estimate ", worst_ratio
+      end do
+   end subroutine run_unloading_sweep
 
 end module bench_unloading

@@ -12,6 +12,9 @@
 !>                 and 2 threads (speed-up), 1e-6 with 2 threads -> out/bench/universal.csv
 !>   --unloading   unloading solve vs loading solve at the same overlap (issue 10)
 !>                                                           -> out/bench/unloading.csv
+!>   --unloading-sweep  accuracy of solve_contact_unload on 100 cases (92 with a force above
+!>                 1e-12) at rel_tol 1e-6, 1e-7
+!>                 (not in the default set; ~20 s)
 !>   --universal-1thread  also build the 1e-6 universal table with 1 thread
 !>   --peer FILE   egw side of the peer comparison (tools/bench/peer_greenwood_tripp.py)
 !>   --speedup     only the 1-vs-2-thread measurements: assembly, 1-D table build (best of
@@ -34,7 +37,7 @@ program egw_bench
    use bench_solver, only: run_solver, run_assembly, run_peer_cases
    use bench_tables, only: run_tables, run_universal, run_build_speedup
    use bench_hysteresis, only: run_hysteresis
-   use bench_unloading, only: run_unloading
+   use bench_unloading, only: run_unloading, run_unloading_sweep
    implicit none
 
    integer, parameter :: n = 4096        ! inputs per sweep (fit in L1/L2 cache)
@@ -43,7 +46,8 @@ program egw_bench
    real(dp) :: t_erfc, t_hertz, t_f32, t_ellipk, t_pg, t_pg_zmc
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
-   logical :: universal_1thread, any_section, ok, do_speedup, do_unloading, do_hysteresis
+   logical :: universal_1thread, any_section, ok, do_speedup, do_unloading, do_hysteresis, &
+      & do_sweep
    real(dp) :: universal_tol
    character(len=512) :: arg, peer_file
    integer :: unit_speedup, unit_csv
@@ -83,6 +87,7 @@ program egw_bench
    end if
    if (do_solver) call run_solver(quick)
    if (do_unloading) call run_unloading(quick)
+   if (do_sweep) call run_unloading_sweep()
    if (do_assembly .or. do_tables .or. do_universal) then
       ! one speed-up CSV for the sections that measure 1 thread against 2
       call open_csv("speedup.csv", unit_speedup, &
@@ -108,6 +113,7 @@ contains
       do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
       do_hysteresis = .false.
       do_unloading = .false.
+      do_sweep = .false.
       universal_tol = 0
       universal_1thread = .false.; peer_file = ""
       out_dir = "out/bench/"
@@ -127,6 +133,7 @@ contains
          case ("--hysteresis"); do_hysteresis = .true.
          case ("--speedup"); do_speedup = .true.
          case ("--unloading"); do_unloading = .true.
+         case ("--unloading-sweep"); do_sweep = .true.
          case ("--universal-tol")
             k = k + 1
             call get_command_argument(k, arg)
@@ -147,7 +154,8 @@ contains
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
-         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_hysteresis .or. do_unloading
+         & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_hysteresis &
+         & .or. do_unloading .or. do_sweep
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
          do_tables = .true.; do_universal = .true.; do_unloading = .true.
