@@ -2,7 +2,8 @@
 !> history loaded once, as a sweep or a hysteresis table uses it) against the loading solve
 !> at the same overlap (goal <= 1.5), and of the one-shot solve_contact_unload (loading to
 !> delta_max included); with the error of the unloading solve against the independent
-!> references of test/data/sphere_unload_reference.csv. Rows go to out/bench/unloading.csv (doc/bench/ with --update-docs).
+!> references of test/data/sphere_unload_reference.csv. Rows go to out/bench/unloading.csv
+!> (doc/bench/ with --update-docs).
 module bench_unloading
    use, intrinsic :: iso_fortran_env, only: output_unit
    use egw, only: dp, contact_params, solver_options, solve_result, solve_contact, egw_error, &
