@@ -32,7 +32,7 @@ module egw_hysteresis
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload
    use egw_table, only: force_table, build_table, table_eval, table_eval_cached, &
-      & table_segment, table_energy, table_progress
+      & table_segment, segment_eval, table_energy, table_progress
    implicit none
    private
 
@@ -184,7 +184,7 @@ contains
       real(dp), intent(inout) :: delta_max_state
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: w(4), inv_span, f_m, c(4)
+      real(dp) :: w(4), inv_span, f_m, c(4), s
       integer :: first, i
       stat = 0
       force = 0.0_dp
@@ -202,9 +202,10 @@ contains
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       if (delta_max_state > table%delta_max) stat = egw_out_of_range
       call turning_point(table, delta_max_state, first, w, inv_span, f_m)
-      i = locate(table%s_lookup, table%s, min((delta_max_state - delta)*inv_span, 1.0_dp))
+      s = min((delta_max_state - delta)*inv_span, 1.0_dp)
+      i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, first, w, i, c)
-      call unload_branch(table, c, i, f_m, inv_span, delta_max_state, delta, force, stiffness)
+      call unload_branch(table, c, i, s, f_m, inv_span, delta, force, stiffness)
    end subroutine hysteresis_eval
 
    !> hysteresis_eval with a state that also keeps what the evaluation needs of the turning
@@ -223,7 +224,7 @@ contains
       real(dp), intent(inout) :: state(hysteresis_state_size)
       real(dp), intent(out) :: force, stiffness
       integer, intent(out) :: stat
-      real(dp) :: w(4), g(4)
+      real(dp) :: w(4), g(4), s
       integer :: first, i
       logical :: found
       stat = 0
@@ -267,15 +268,15 @@ contains
       end if
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
-      i = locate(table%s_lookup, table%s, min((state(1) - delta)*state(5), 1.0_dp))
+      s = min((state(1) - delta)*state(5), 1.0_dp)
+      i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, first, state(7:10), i, g)
-      call make_piece(table, g, i, state(1), delta, state(5), state(6), state(13), &
+      call make_piece(table, g, i, s, state(1), delta, state(5), state(6), state(13), &
          & state(18:24), state(11:12), state(14:17), found)
       if (found) then
          call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
       else
-         call unload_branch(table, g, i, state(6), state(5), state(1), delta, force, &
-            & stiffness)
+         call unload_branch(table, g, i, s, state(6), state(5), delta, force, stiffness)
       end if
    end subroutine hysteresis_eval_state
 
@@ -285,18 +286,15 @@ contains
    pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
       real(dp), intent(in) :: lo, c(4), seg(7), delta
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: x, x2, v, dv
+      real(dp) :: x, x2, p, k
       x = delta - lo
       x2 = x*x
       force = (c(1) + x*c(2)) + x2*(c(3) + x*c(4))
       stiffness = (c(2) + 2*x*c(3)) + 3*x2*c(4)
       if (seg(7) > 0.0_dp) then
-         x = delta - seg(1)
-         x2 = x*x
-         v = exp((seg(3) + x*seg(4)) + x2*(seg(5) + x*seg(6)))
-         dv = (seg(4) + 2*x*seg(5)) + 3*x2*seg(6)
-         force = force + v
-         stiffness = stiffness + v*dv
+         call segment_eval(seg, delta, p, k)
+         force = force + p
+         stiffness = stiffness + k
       end if
       if (.not. force > 0.0_dp) then
          force = 0.0_dp
@@ -306,14 +304,15 @@ contains
 
    !> The piece of the unloading curve of turning point m (P_load(m) = f_m, 1/(s_max L) =
    !> iota, its inverse span) around delta for a state: the overlaps ends = (lo, hi) where
-   !> s stays in interval i (gap cubic g) and the loading table in its interval around
+   !> s (its value at delta, clamped at 1) stays in interval i (gap cubic g) and the loading table in its interval around
    !> delta (seg, refilled), with the force there as the cubic c in delta - lo; where the
    !> loading interval is ln P (seg(7) = 1) c is the gap part only and piece_force adds
    !> exp(ln P). No piece (found false, NaN ends) at the clamp s = 1 or outside the
    !> loading table's intervals.
-   pure subroutine make_piece(table, g, i, m, delta, iota, f_m, span, seg, ends, c, found)
+   pure subroutine make_piece(table, g, i, s, m, delta, iota, f_m, span, seg, ends, c, &
+      & found)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: g(4), m, delta, iota, f_m, span
+      real(dp), intent(in) :: g(4), s, m, delta, iota, f_m, span
       integer, intent(in) :: i
       real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: ends(2), c(4)
@@ -323,7 +322,7 @@ contains
       ends = ieee_value(1.0_dp, ieee_quiet_nan)
       c = 0.0_dp
       found = .false.
-      if (.not. (m - delta)*iota < 1.0_dp) return   ! the clamp: g held
+      if (.not. s < 1.0_dp) return   ! the clamp: g held
       if (.not. (seg(1) <= delta .and. delta < seg(2))) then
          call table_segment(table%loading, delta, seg, inside)   ! the interval around delta
          if (.not. inside) return
@@ -464,15 +463,15 @@ contains
    end subroutine gap_combination
 
    !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
-   !> (P_load(m) = f_m, 1/(s_max L) = inv_span) from its gap cubic c on s interval i:
-   !> P_load(delta) - P_load(m) g(s, m), 0 where that is not positive.
-   pure subroutine unload_branch(table, c, i, f_m, inv_span, m, delta, force, stiffness)
+   !> (P_load(m) = f_m, 1/(s_max L) = inv_span) from its gap cubic c on s interval i, at
+   !> s = min((m - delta) inv_span, 1): P_load(delta) - P_load(m) g(s, m), 0 where that is
+   !> not positive.
+   pure subroutine unload_branch(table, c, i, s, f_m, inv_span, delta, force, stiffness)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: c(4), f_m, inv_span, m, delta
+      real(dp), intent(in) :: c(4), s, f_m, inv_span, delta
       integer, intent(in) :: i
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: s, g, dg, f_d, k_d
-      s = min((m - delta)*inv_span, 1.0_dp)
+      real(dp) :: g, dg, f_d, k_d
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
       call table_eval(table%loading, delta, f_d, k_d)
       force = f_d - f_m*g

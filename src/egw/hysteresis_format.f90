@@ -11,8 +11,8 @@ module egw_hysteresis_format
    use egw_params, only: contact_params, validate_params, model_name
    use egw_version, only: egw_version_string, egw_version_number
    use egw_io, only: write_file, read_file, text_buffer
-   use egw_text, only: real_text, real_text_len
-   use egw_table, only: force_table, table_prepare
+   use egw_text, only: real_text, real_text_len, csv_row
+   use egw_table, only: force_table, table_prepare, table_meta, set_table_meta
    use egw_table_format, only: format_csv, format_binary, fnv1a32, split_checksum, checksum_line
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare
    implicit none
@@ -103,7 +103,7 @@ contains
          & int(table%loading%n_log, int32), int(n_m, int32), int(n_s, int32)])
       call put_f64(buf, pos, params_array(table%params))
       call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
-      call put_f64(buf, pos, loading_meta(table%loading))
+      call put_f64(buf, pos, table_meta(table%loading))
       call put_f64(buf, pos, table%loading%delta)
       call put_f64(buf, pos, table%loading%force)
       call put_f64(buf, pos, table%loading%stiffness)
@@ -177,7 +177,7 @@ contains
       table%s_max = meta(4)
       table%loading%params = table%params
       table%loading%n_log = head(7)
-      call set_loading_meta(table%loading, lmeta)
+      call set_table_meta(table%loading, lmeta)
       allocate (table%loading%delta(n_load), table%loading%force(n_load), &
          & table%loading%stiffness(n_load), table%loading%energy(n_load), &
          & table%loading%contact_radius(n_load))
@@ -223,7 +223,7 @@ contains
          call add_reals(head, ["loading.rel_tol            ", "loading.cutoff             ", &
             & "loading.delta_max          ", "loading.reference_force    ", &
             & "loading.max_force_error    ", "loading.max_stiffness_error", &
-            & "loading.radius_sum         "], loading_meta(l))
+            & "loading.radius_sum         "], table_meta(l))
          head = head//"# loading.n_nodes = "//int_str(size(l%delta))//new_line("a")// &
             & "# loading.n_log = "//int_str(l%n_log)//new_line("a")// &
             & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
@@ -403,7 +403,7 @@ contains
       table%reversible = rev /= 0
       table%loading%params = table%params
       table%loading%n_log = n_log
-      call set_loading_meta(table%loading, lmeta)
+      call set_table_meta(table%loading, lmeta)
    end subroutine parse_csv
 
    ! ---------------------------------------------------------------------------- checks
@@ -524,25 +524,6 @@ contains
          & psi=a(5), hardness_coeff=a(6), plastic_ratio=a(7))
    end function params_from
 
-   pure function loading_meta(l) result(a)
-      type(force_table), intent(in) :: l
-      real(dp) :: a(7)
-      a = [l%rel_tol, l%cutoff, l%delta_max, l%reference_force, l%max_force_error, &
-         & l%max_stiffness_error, l%radius_sum]
-   end function loading_meta
-
-   pure subroutine set_loading_meta(l, a)
-      type(force_table), intent(inout) :: l
-      real(dp), intent(in) :: a(7)
-      l%rel_tol = a(1)
-      l%cutoff = a(2)
-      l%delta_max = a(3)
-      l%reference_force = a(4)
-      l%max_force_error = a(5)
-      l%max_stiffness_error = a(6)
-      l%radius_sum = a(7)
-   end subroutine set_loading_meta
-
    subroutine clear(t)
       type(hysteresis_table), intent(out) :: t
    end subroutine clear
@@ -642,30 +623,7 @@ contains
 
    ! (results of lengths known before the call, not deferred: gfortran 12 keeps a
    ! deferred result length in a static variable, which threads share; see egw_text)
-   pure integer function csv_row_len(v) result(n)
-      real(dp), intent(in) :: v(:)
-      integer :: i
-      n = size(v) - 1
-      do i = 1, size(v)
-         n = n + real_text_len(v(i), 17, 3)
-      end do
-   end function csv_row_len
 
-   pure function csv_row(v) result(str)
-      real(dp), intent(in) :: v(:)
-      character(len=csv_row_len(v)) :: str
-      integer :: i, pos, n
-      pos = 0
-      do i = 1, size(v)
-         if (i > 1) then
-            str(pos + 1:pos + 1) = ","
-            pos = pos + 1
-         end if
-         n = real_text_len(v(i), 17, 3)
-         str(pos + 1:pos + n) = real_text(v(i), 17, 3)
-         pos = pos + n
-      end do
-   end function csv_row
 
    !> 17 significant digits (ES25.17E3): every double reads back bit-for-bit.
    pure function fmt(x) result(str)

@@ -32,10 +32,11 @@ module egw_table
    private
 
    public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, &
-      & table_eval, table_eval_cached, table_segment, table_eval_log, &
+      & table_eval, table_eval_cached, table_segment, segment_eval, table_eval_log, &
       & table_eval_all, &
       & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff
+   public :: table_meta, set_table_meta
 
    public :: table_progress
 
@@ -101,6 +102,28 @@ module egw_table
       & 0.3137066458778873_dp, 0.2223810344533745_dp, 0.1012285362903763_dp]
 
 contains
+
+   !> A table's scalars as the files store them, in this order: rel_tol, cutoff,
+   !> delta_max, reference_force, max_force_error, max_stiffness_error, radius_sum.
+   pure function table_meta(t) result(a)
+      type(force_table), intent(in) :: t  !< the table
+      real(dp) :: a(7)
+      a = [t%rel_tol, t%cutoff, t%delta_max, t%reference_force, t%max_force_error, &
+         & t%max_stiffness_error, t%radius_sum]
+   end function table_meta
+
+   !> The scalars of table_meta back into t.
+   pure subroutine set_table_meta(t, a)
+      type(force_table), intent(inout) :: t  !< the table
+      real(dp), intent(in) :: a(7)           !< table_meta's values
+      t%rel_tol = a(1)
+      t%cutoff = a(2)
+      t%delta_max = a(3)
+      t%reference_force = a(4)
+      t%max_force_error = a(5)
+      t%max_stiffness_error = a(6)
+      t%radius_sum = a(7)
+   end subroutine set_table_meta
 
    !> Build a table over [delta_min, delta_max] with interpolation error <= rel_tol.
    !> The table starts at the cut-off delta_c where P = rel_tol*P_ref (below delta_min
@@ -559,7 +582,6 @@ contains
       real(dp), intent(in) :: delta
       real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: t, t2, v, d
       logical :: found
       if (.not. (seg(1) <= delta .and. delta < seg(2) .and. delta > table%cutoff)) then
          call table_segment(table, delta, seg, found)
@@ -569,7 +591,15 @@ contains
             return
          end if
       end if
-      ! eval_kernel's arithmetic on the copied interval: the same values
+      call segment_eval(seg, delta, force, stiffness)
+   end subroutine table_eval_cached
+
+   !> Force and stiffness at delta from an interval seg of table_segment's layout:
+   !> eval_kernel's arithmetic on the copied interval (the same values).
+   pure subroutine segment_eval(seg, delta, force, stiffness)
+      real(dp), intent(in) :: seg(7), delta
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: t, t2, v, d
       t = delta - seg(1)
       t2 = t*t
       v = (seg(3) + t*seg(4)) + t2*(seg(5) + t*seg(6))
@@ -581,7 +611,7 @@ contains
          force = v
          stiffness = d
       end if
-   end subroutine table_eval_cached
+   end subroutine segment_eval
 
    !> The interval of the table that holds delta, for a caller that keeps it while delta
    !> stays inside (a DEM contact): seg = [lo, hi, c1, c2, c3, c4, log] with lo <= delta <
@@ -618,7 +648,7 @@ contains
       real(dp) :: t, t2, v, d
       i = kernel_locate(seg, bucket, n_bucket, origin, scale, n, delta)
       ! the cubic (Estrin's scheme: shorter dependency chains than Horner); written out
-      ! again in table_eval_cached, which must agree bit for bit (test hysteresis)
+      ! again in segment_eval (a copied interval), which must give the same values
       t = delta - seg(0, i)
       t2 = t*t
       v = (seg(1, i) + t*seg(2, i)) + t2*(seg(3, i) + t*seg(4, i))

@@ -18,10 +18,11 @@ module egw_table_format
    use egw_version, only: egw_version_string, egw_version_number
    use egw_io, only: write_file, read_file, text_buffer
    use egw_asperity, only: flat_pressure
-   use egw_table, only: force_table, table_prepare, table_eval, table_energy
+   use egw_table, only: force_table, table_prepare, table_eval, table_energy, table_meta, &
+      & set_table_meta
    use egw_table_universal, only: universal_table, universal_slice_params, &
       & universal_nodes_shared, move_universal
-   use egw_text, only: real_text, real_text_len, parse_real, parse_int
+   use egw_text, only: real_text, real_text_len, parse_real, parse_int, csv_row
    implicit none
    private
 

@@ -33,9 +33,7 @@ contains
       call put_f64(buf, pos, [table%params%radius, table%params%modulus, table%params%sigma, &
          & table%params%mu, table%params%psi, table%params%hardness_coeff, &
          & table%params%plastic_ratio])
-      call put_f64(buf, pos, [table%rel_tol, table%cutoff, table%delta_max, &
-         & table%reference_force, table%max_force_error, table%max_stiffness_error, &
-         & table%radius_sum])
+      call put_f64(buf, pos, table_meta(table))
       call put_f64(buf, pos, table%delta)
       call put_f64(buf, pos, table%force)
       call put_f64(buf, pos, table%stiffness)
@@ -101,7 +99,7 @@ contains
       call get_f64(bytes, pos, meta)
       t%params = contact_params(model=int(model), radius=p(1), modulus=p(2), sigma=p(3), &
          & mu=p(4), psi=p(5), hardness_coeff=p(6), plastic_ratio=p(7))
-      call set_meta(t, meta)
+      call set_table_meta(t, meta)
       allocate (t%delta(n), t%force(n), t%stiffness(n), t%energy(n), t%contact_radius(n))
       call get_f64(bytes, pos, t%delta)
       call get_f64(bytes, pos, t%force)
@@ -150,7 +148,7 @@ contains
             return
          end if
          associate (s => u%slices(j))
-            call set_meta(s, [meta(1:6), 0.0_dp])
+            call set_table_meta(s, [meta(1:6), 0.0_dp])
             s%params = universal_slice_params(u%model, u%psi, u%hardness_coeff, &
                & u%plastic_ratio, meta(7))
             allocate (s%delta(n), s%force(n), s%stiffness(n), s%energy(n), s%contact_radius(n))
@@ -234,18 +232,6 @@ contains
          checksum_i32 = int(h, int32)
       end if
    end function checksum_i32
-
-   pure subroutine set_meta(t, meta)
-      type(force_table), intent(inout) :: t
-      real(dp), intent(in) :: meta(7)
-      t%rel_tol = meta(1)
-      t%cutoff = meta(2)
-      t%delta_max = meta(3)
-      t%reference_force = meta(4)
-      t%max_force_error = meta(5)
-      t%max_stiffness_error = meta(6)
-      t%radius_sum = meta(7)
-   end subroutine set_meta
 
    pure subroutine put_i32(buf, pos, v)
       character(len=*), intent(inout) :: buf

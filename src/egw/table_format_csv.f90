@@ -456,30 +456,7 @@ contains
       call out%add("# "//key//" = "//fmt(x))
    end subroutine kv
 
-   pure integer function csv_row_len(v) result(n)
-      real(dp), intent(in) :: v(:)
-      integer :: i
-      n = size(v) - 1
-      do i = 1, size(v)
-         n = n + real_text_len(v(i), 17, 3)
-      end do
-   end function csv_row_len
 
-   pure function csv_row(v) result(str)
-      real(dp), intent(in) :: v(:)
-      character(len=csv_row_len(v)) :: str  ! not deferred: see egw_text
-      integer :: i, pos, n
-      pos = 0
-      do i = 1, size(v)
-         if (i > 1) then
-            str(pos + 1:pos + 1) = ","
-            pos = pos + 1
-         end if
-         n = real_text_len(v(i), 17, 3)
-         str(pos + 1:pos + n) = real_text(v(i), 17, 3)
-         pos = pos + n
-      end do
-   end function csv_row
 
    pure integer function first_token_len(text) result(n)
       character(len=*), intent(in) :: text

@@ -22,6 +22,7 @@ module egw_text
    private
 
    public :: int_text, real_text, parse_real, parse_int, int_text_len, real_text_len
+   public :: csv_row, csv_row_len
 
    interface int_text
       module procedure int_text_32, int_text_64
@@ -542,5 +543,33 @@ contains
          if (s(i:i) >= "A" .and. s(i:i) <= "Z") t(i:i) = achar(iachar(s(i:i)) + 32)
       end do
    end function to_lower
+
+   !> Length of csv_row(v).
+   pure integer function csv_row_len(v) result(n)
+      real(dp), intent(in) :: v(:)  !< the row's values
+      integer :: i
+      n = size(v) - 1
+      do i = 1, size(v)
+         n = n + real_text_len(v(i), 17, 3)
+      end do
+   end function csv_row_len
+
+   !> The values v as one CSV row, 17 significant digits each (every double reads back bit
+   !> for bit), separated by commas.
+   pure function csv_row(v) result(str)
+      real(dp), intent(in) :: v(:)  !< the row's values
+      character(len=csv_row_len(v)) :: str  ! not deferred: see above
+      integer :: i, pos, n
+      pos = 0
+      do i = 1, size(v)
+         if (i > 1) then
+            str(pos + 1:pos + 1) = ","
+            pos = pos + 1
+         end if
+         n = real_text_len(v(i), 17, 3)
+         str(pos + 1:pos + n) = real_text(v(i), 17, 3)
+         pos = pos + n
+      end do
+   end function csv_row
 
 end module egw_text
