@@ -187,10 +187,12 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * d(r) < d_max(r)); delta = delta_max gives the loading solve at delta_max exactly.
  * force = P_Hertz(delta) + P_G (E-GW/EP-GW; classic GW P_G only); stiffness dP/ddelta on
  * the unloading curve (fixed history); elastic summits (GW, E-GW, psi = 0) are reversible.
- * Each call solves the loading problem again, at 1e-3 of rel_tol (at least 1e-10: the
+ * The loading solve at delta_max is done at 1e-4 of rel_tol (at least 1e-10: the
  * unloading force can be far below the loading force, and the field it was loaded with is
- * not in the unloading solve's error estimate): for many overlaps after one delta_max use
- * the Fortran load_history (as tightly)/solve_unload. Statuses: as egw_solve, and EGW_INVALID_ARGUMENT
+ * not in the unloading solve's error estimate) and kept for the next call on the same
+ * thread: calls with the same p, o and delta_max (a sweep of the unloading curve) load it
+ * once, one unloading solve each after the first (results identical either way; each
+ * thread keeps its own, no lock). Statuses: as egw_solve, and EGW_INVALID_ARGUMENT
  * naming delta_max when it is not finite; res is left untouched on any failure. */
 int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, double delta_max,
                      egw_result *res);

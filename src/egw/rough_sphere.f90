@@ -156,6 +156,21 @@ module egw_rough_sphere
       type(separation_field), private :: closest
    end type loading_history
 
+   !> The history solve_contact_unload loaded last on this thread, with the inputs it was
+   !> loaded from: a sweep of overlaps after one delta_max (egw_solve_unload in a loop)
+   !> loads it once. A history is a function of those inputs alone, so the results are
+   !> those of a fresh load, bit for bit. threadprivate: each thread (OpenMP or the
+   !> caller's own) keeps its own, in thread-local storage: no lock, no sharing.
+   type :: history_cache
+      logical :: valid = .false.
+      type(contact_params) :: params
+      type(solver_options) :: options
+      real(dp) :: delta_max = 0.0_dp
+      type(loading_history) :: history
+   end type history_cache
+   type(history_cache), save :: last_history
+   !$omp threadprivate(last_history)
+
    !> A converged discrete solution and what is derived from it (scaled units, rough part).
    type :: discrete_solution
       type(radial_mesh) :: mesh
@@ -410,10 +425,11 @@ contains
 
    !> One unloading solve from scratch: load to delta_max, then solve_unload at delta
    !> (delta >= delta_max: just the loading solve at delta). The history is loaded at
-   !> 1e-3 rel_tol (at least 1e-10): the unloading solve's estimate cannot see its error.
-   !> For many overlaps after one delta_max use load_history once (as tightly) and
-   !> solve_unload for each. Errors as load_history and solve_unload; result untouched on
-   !> error.
+   !> 1e-4 rel_tol (at least 1e-10): the unloading solve's estimate cannot see its error.
+   !> The last history is kept per thread (history_cache): calls with the same params,
+   !> options and delta_max load it once, with the same results. For several turning
+   !> points at once use load_history (as tightly) and solve_unload. Errors as
+   !> load_history and solve_unload; result untouched on error.
    subroutine solve_contact_unload(params, options, delta, delta_max, result, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
@@ -421,7 +437,6 @@ contains
       real(dp), intent(in) :: delta_max    !< largest overlap reached before
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
-      type(loading_history) :: history
       type(solve_result) :: loaded, res
       type(solver_options) :: tight
 
@@ -439,24 +454,33 @@ contains
          if (.not. allocated(error)) result = res
          return
       end if
-      ! The history at a thousandth of rel_tol (at least 1e-10): the unloading force below
-      ! a separated or far-unloaded contact can be 1e-3..1e-12 of the loading force, and the
-      ! field d_max(r) it was loaded with is shared by both of the unloading solve's
-      ! levels, so its error is not in their estimate. Loaded at rel_tol, psi 10, delta
-      ! -0.8 sigma after delta_max 10 sigma (mu 4) was 6.0e-7 off the independent
-      ! reference at every unloading rel_tol down to 1e-9; at 1e-10, 4e-10 (also psi 10,
-      ! delta_max 2: 1.0e-7 -> 4e-10; psi 5, delta -1.6 after 2: 1.9e-7 -> 2e-10). Where
-      ! that history does not converge, the one at rel_tol.
-      tight = options
-      tight%rel_tol = max(1.0e-10_dp, 1.0e-3_dp*options%rel_tol)
-      call load_history(params, tight, delta_max, history, loaded, error)
-      if (allocated(error)) then
-         if (error%stat /= egw_not_converged) return
-         call load_history(params, options, delta_max, history, loaded, error)
-         if (allocated(error)) return
+      if (.not. cached(last_history, params, options, delta_max)) then
+         ! The history at 1e-4 of rel_tol (at least 1e-10): the unloading force below a
+         ! separated or far-unloaded contact can be 1e-3..1e-20 of the loading force, and
+         ! the field d_max(r) it was loaded with is shared by both of the unloading solve's
+         ! levels, so its error is not in their estimate; nor is it bounded by the loading
+         ! force's estimate. psi 10, delta -0.8 sigma after delta_max 10 sigma (mu 4):
+         ! 6.0e-7 off the independent reference with histories at 1e-7..1e-9 (at every
+         ! unloading rel_tol), 4e-10 at 1e-10; delta -1.0: 5.8e-7 at 1e-9 (also psi 10,
+         ! delta_max 2: 1.0e-7 -> 4e-10; psi 5, delta -1.6 after 2: 1.9e-7 -> 2e-10).
+         ! Where that history does not converge, the one at rel_tol.
+         last_history%valid = .false.
+         tight = options
+         tight%rel_tol = max(1.0e-10_dp, 1.0e-4_dp*options%rel_tol)
+         call load_history(params, tight, delta_max, last_history%history, loaded, error)
+         if (allocated(error)) then
+            if (error%stat /= egw_not_converged) return
+            deallocate (error)
+            call load_history(params, options, delta_max, last_history%history, loaded, error)
+            if (allocated(error)) return
+         end if
+         last_history%valid = .true.
+         last_history%params = params
+         last_history%options = options
+         last_history%delta_max = delta_max
       end if
-      history%options = options
-      call solve_unload(history, delta, result, error)
+      last_history%history%options = options
+      call solve_unload(last_history%history, delta, result, error)
    end subroutine solve_contact_unload
 
    !> Rough (asperity) pressure p_G, separation d and closest-approach separation d_max
@@ -526,6 +550,26 @@ contains
       separation = history%params%sigma*gap
       separation_min = history%params%sigma*gap_min
    end subroutine unload_profile
+
+   !> Whether cache holds the history of exactly these inputs (every field equal).
+   pure logical function cached(cache, params, options, delta_max)
+      type(history_cache), intent(in) :: cache
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max
+      cached = .false.
+      if (.not. cache%valid) return
+      associate (p => cache%params, o => cache%options)
+         cached = p%model == params%model .and. p%radius == params%radius .and. &
+            & p%modulus == params%modulus .and. p%sigma == params%sigma .and. &
+            & p%mu == params%mu .and. p%psi == params%psi .and. &
+            & p%hardness_coeff == params%hardness_coeff .and. &
+            & p%plastic_ratio == params%plastic_ratio .and. &
+            & o%n_radial == options%n_radial .and. o%rel_tol == options%rel_tol .and. &
+            & o%max_iter == options%max_iter .and. o%method == options%method .and. &
+            & o%n_threads == options%n_threads .and. cache%delta_max == delta_max
+      end associate
+   end function cached
 
    !> Gap at the closest approach, d_max(r)/sigma, at scaled radii r >= 0.
    pure function closest_gap(field, r) result(gap)

@@ -246,12 +246,14 @@ KINK_POINTS = (
 
 # Separated contacts far below their turning point (the force 3e-5..1e-12 of the loading
 # force at delta_max): the field d_max(r) of a history loaded at the unloading solve's
-# rel_tol left errors of 1e-7..6e-7 at every unloading rel_tol (doc/benchmarks.md).
+# rel_tol left errors of 1e-7..6e-7 at every unloading rel_tol (doc/benchmarks.md);
+# delta -1 after 10 (5e-9 of it): 5.8e-7 with a history at 1e-9, 1.3e-8 at 1e-10.
 # test/data/sphere_unload_reference_tail.csv.
 TAIL_POINTS = (
     ("EPGW", -0.8, 10.0, 4.0, 10.0, 0.6),
     ("EPGW", -0.8, 2.0, 4.0, 10.0, 0.6),
     ("EPGW", -1.6, 2.0, 4.0, 5.0, 0.6),
+    ("EPGW", -1.0, 10.0, 4.0, 10.0, 0.6),
 )
 
 HEADER = """\
