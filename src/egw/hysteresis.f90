@@ -95,6 +95,10 @@ module egw_hysteresis
       !> interval i (the four curves of a Lagrange stencil share two cache lines)
       real(dp), allocatable :: coef(:, :, :)
       real(dp), allocatable :: inv_ds(:)       !< 1/(s_{i+1} - s_i)
+      !> (n_m - 3, n_s - 1): the first and last s interval of the run around interval i
+      !> on which the four curves of stencil first are each one cubic (the union nodes
+      !> inside it are none of theirs): a state's piece spans the run
+      integer, allocatable :: run_first(:, :), run_last(:, :)
       !> (n_m, n_s): int_0^{s_i} g(s, m_j) ds of each curve's cubics (hysteresis_energy)
       real(dp), allocatable :: gap_integral(:, :)
       !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
@@ -271,8 +275,8 @@ contains
       s = min((state(1) - delta)*state(5), 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, first, state(7:10), i, g)
-      call make_piece(table, g, i, s, state(1), delta, state(5), state(6), state(13), &
-         & state(18:24), state(11:12), state(14:17), found)
+      call make_piece(table, g, first, i, s, state(1), delta, state(5), state(6), &
+         & state(13), state(18:24), state(11:12), state(14:17), found)
       if (found) then
          call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
       else
@@ -309,11 +313,11 @@ contains
    !> loading interval is ln P (seg(7) = 1) c is the gap part only and piece_force adds
    !> exp(ln P). No piece (found false, NaN ends) at the clamp s = 1 or outside the
    !> loading table's intervals.
-   pure subroutine make_piece(table, g, i, s, m, delta, iota, f_m, span, seg, ends, c, &
-      & found)
+   pure subroutine make_piece(table, g, first, i, s, m, delta, iota, f_m, span, seg, ends, &
+      & c, found)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: g(4), s, m, delta, iota, f_m, span
-      integer, intent(in) :: i
+      integer, intent(in) :: first, i
       real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: ends(2), c(4)
       logical, intent(out) :: found
@@ -329,8 +333,8 @@ contains
       end if
       ! s = (m - delta) iota in [s_i, s_{i+1}): delta in (m - s_{i+1}/iota, m - s_i/iota];
       ! the piece is open below (the cut-off itself has no force)
-      lo = max(m - table%s(i + 1)*span, seg(1), table%loading%cutoff)
-      hi = min(m - table%s(i)*span, seg(2))
+      lo = max(m - table%s(table%run_last(first, i) + 1)*span, seg(1), table%loading%cutoff)
+      hi = min(m - table%s(table%run_first(first, i))*span, seg(2))
       if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
       ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo
       t0 = ((m - lo)*iota - table%s(i))*table%inv_ds(i)
@@ -497,6 +501,8 @@ contains
       if (allocated(table%inv_ds)) deallocate (table%inv_ds)
       if (allocated(table%lagrange)) deallocate (table%lagrange)
       if (allocated(table%gap_integral)) deallocate (table%gap_integral)
+      if (allocated(table%run_first)) deallocate (table%run_first)
+      if (allocated(table%run_last)) deallocate (table%run_last)
       table%inv_span = 1.0_dp/(table%s_max*table%length)
       allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))
       do i = 1, n_s - 1
@@ -529,7 +535,52 @@ contains
       end do
       call make_lookup(table%m, table%m_lookup)
       call make_lookup(table%s, table%s_lookup)
+      call make_runs(table)
    end subroutine hysteresis_prepare
+
+   !> run_first/run_last: for each stencil, the runs of s intervals joined by union nodes
+   !> that are none of its four curves' own nodes. Such a node is where a curve's cubics
+   !> on both sides are one polynomial (the union grid resamples them exactly): their
+   !> second and third derivatives agree there to rounding (1e-12 of g, at most ~1).
+   pure subroutine make_runs(table)
+      type(hysteresis_table), intent(inout) :: table
+      real(dp), parameter :: same = 1.0e-12_dp
+      logical :: joined(size(table%m), size(table%s))
+      integer :: n_s, n_m, i, j, first, k
+      real(dp) :: r
+      n_s = size(table%s)
+      n_m = size(table%m)
+      joined = .false.
+      do i = 2, n_s - 1
+         r = (table%s(i + 1) - table%s(i))/(table%s(i) - table%s(i - 1))
+         do j = 1, n_m
+            associate (a => table%coef(:, j, i - 1), b => table%coef(:, j, i))
+               ! second and third derivatives times the right width's powers, in units of g
+               joined(j, i) = abs((2*a(3) + 6*a(4))*r**2 - 2*b(3)) <= same .and. &
+                  & abs(6*a(4)*r**3 - 6*b(4)) <= same
+            end associate
+         end do
+      end do
+      allocate (table%run_first(max(n_m - 3, 1), n_s - 1), &
+         & table%run_last(max(n_m - 3, 1), n_s - 1))
+      do first = 1, max(n_m - 3, 1)
+         k = 1
+         do i = 1, n_s - 1
+            ! a union node that is one of the stencil's curves' own starts a new run
+            if (i > 1) then
+               if (.not. all(joined(first:min(first + 3, n_m), i))) k = i
+            end if
+            table%run_first(first, i) = k
+         end do
+         k = n_s - 1
+         do i = n_s - 1, 1, -1
+            if (i < n_s - 1) then
+               if (.not. all(joined(first:min(first + 3, n_m), i + 1))) k = i
+            end if
+            table%run_last(first, i) = k
+         end do
+      end do
+   end subroutine make_runs
 
    !> FNV-1a (64-bit, word by word) of the stored data and the loading table's nodes,
    !> folded into an integer in [1, 2**52) held exactly by a double.
