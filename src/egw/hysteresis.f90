@@ -217,8 +217,9 @@ contains
    !> doubles; state(1) is delta_max_state, the rest caches that this routine fills): a
    !> contact that stays below the same turning point and inside the same piece evaluates
    !> one cubic (and an exp in the loading table's ln P tail), reading only its state. A
-   !> piece is hysteresis_eval's unloading force where its s interval and loading interval
-   !> do not change, written out as a cubic in delta: the same values to rounding (test
+   !> piece is hysteresis_eval's unloading force where its run of s intervals (make_runs)
+   !> and loading interval do not change, written out as a cubic in delta: the same values
+   !> to rounding (test
    !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
    !> histories. A state from another table, or garbled, is refilled, never trusted: the
    !> caches are used only when they name this table's tag and the state's turning point.
@@ -307,8 +308,10 @@ contains
    end subroutine piece_force
 
    !> The piece of the unloading curve of turning point m (P_load(m) = f_m, 1/(s_max L) =
-   !> iota, its inverse span) around delta for a state: the overlaps ends = (lo, hi) where
-   !> s (its value at delta, clamped at 1) stays in interval i (gap cubic g) and the loading table in its interval around
+   !> iota, its inverse span; stencil first) around delta for a state: the overlaps
+   !> ends = (lo, hi) where s (its value at delta, clamped at 1) stays in the run of s
+   !> intervals around i on which the stencil's curves are one cubic each (g, the gap
+   !> cubic of interval i, holds on all of it) and the loading table in its interval around
    !> delta (seg, refilled), with the force there as the cubic c in delta - lo; where the
    !> loading interval is ln P (seg(7) = 1) c is the gap part only and piece_force adds
    !> exp(ln P). No piece (found false, NaN ends) at the clamp s = 1 or outside the
