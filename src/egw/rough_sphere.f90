@@ -1034,8 +1034,8 @@ contains
    end subroutine solve_scaled
 
    !> The relative discretisation error of the finer of two levels (forces fine, coarse,
-   !> step ratio) out of their difference: its Richardson fraction for force_order, or the
-   !> whole difference where the fraction is not trusted (conservative).
+   !> step ratio) out of their difference: its Richardson fraction for the order assumed,
+   !> or the whole difference where the fraction is not trusted (conservative).
    pure real(dp) function discretisation_error(fine, coarse, total, ratio, whole, order) &
       & result(e)
       real(dp), intent(in) :: fine, coarse, total, ratio, order

@@ -305,7 +305,8 @@ def solve(params: Params, delta: ArrayLike, options: Optional[Options] = None) -
 def solve_unload(params: Params, delta: ArrayLike, delta_max: ArrayLike,
                  options: Optional[Options] = None) -> SolveResult:
     """EP-GW unloading/reloading solve at delta after loading to delta_max (broadcast);
-    delta > delta_max is the loading solve."""
+    delta > delta_max is the loading solve. Consecutive points with the same delta_max
+    load it once (egw_solve_unload keeps the last history): sweep delta inside a delta_max."""
     _require("egw_solve_unload")
     p = _params(params)
     o = _options(options)
