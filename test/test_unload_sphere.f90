@@ -45,6 +45,7 @@ contains
          & new_unittest("restitution: rigid-sphere limit (closed form)", test_e_rigid), &
          & new_unittest("restitution: e falls as psi grows", test_e_psi), &
          & new_unittest("restitution: e(v) minimum at |delta_m| ~ sigma", test_e_minimum), &
+         & new_unittest("restitution: independent reference (e, delta_m, W)", test_e_reference), &
          & new_unittest("restitution: bad input", test_e_bad_input), &
          & new_unittest("C egw_solve_unload", t_c_unload), &
          & new_unittest("C egw_restitution, egw_restitution_energy", t_c_restitution) &
@@ -634,6 +635,74 @@ contains
       call check(error, e(1) > e(k) + 1.0e-2_dp .and. e(n) > e(k) + 1.0e-2_dp, &
          & "e must come back toward 1 at both ends")
    end subroutine test_e_minimum
+
+   !> Every row of test/data/restitution_reference.csv (tools/reference/
+   !> restitution_reference.py generate: W_load and W_unload integrated from the independent
+   !> Python solvers' P_load and P_unload by bisected Clenshaw-Curtis rules, their own
+   !> estimated errors in the file, ~1e-9 or below) at the row's v = sqrt(2 W_load) and unit
+   !> mass, at rel_tol 1e-6 and 1e-7: e within rel_tol (restitution's integrals are held to
+   !> a tenth of it; e halves their relative errors), the dissipated energy within rel_tol
+   !> of W_load, and delta_m within 2 rel_tol W_load/P_load(delta_m) (an error eps W_load
+   !> of the loading work moves the turning point by eps W_load/P_load there), each plus
+   !> the reference's own error. A turning point in contact (delta_m = 0.5 sigma, near the
+   !> minimum of e) and one apart (-sigma), psi 2, mu 4, K 0.6.
+   subroutine test_e_reference(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: path = "test/data/restitution_reference.csv"
+      character(len=512) :: line
+      character(len=8) :: model
+      real(dp) :: delta_m_ref, mu, psi, hardness, w_load, w_load_err, w_unload, &
+         & w_unload_err, velocity, e_ref, e_err, e, dissipated, delta_m, tol
+      real(dp), parameter :: tols(2) = [1.0e-6_dp, 1.0e-7_dp]
+      type(solver_options) :: opts
+      type(solve_result) :: at_turn
+      type(egw_error), allocatable :: err
+      integer :: unit, ios, rows, j
+      open (newunit=unit, file=path, status="old", action="read", iostat=ios)
+      if (ios /= 0) then
+         call test_failed(error, "cannot open "//path//" (run the tests from the project root)")
+         return
+      end if
+      rows = 0
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (line(1:1) == "#" .or. line(1:6) == "model,") cycle
+         read (line, *) model, delta_m_ref, mu, psi, hardness, w_load, w_load_err, w_unload, &
+            & w_unload_err, velocity, e_ref, e_err
+         rows = rows + 1
+         call check(error, max(w_load_err, w_unload_err) <= 1.0e-2_dp*minval(tols), &
+            & trim(line)//": reference error above 1e-2 of the tightest rel_tol")
+         if (allocated(error)) exit
+         call solve_contact(epgw(psi, mu, hardness), opts, delta_m_ref, at_turn, err)
+         if (allocated(err)) call test_failed(error, err%message)
+         if (allocated(error)) exit
+         do j = 1, size(tols)
+            opts%rel_tol = tols(j)
+            call restitution(epgw(psi, mu, hardness), opts, 1.0_dp, velocity, e, dissipated, &
+               & err, max_overlap=delta_m)
+            if (allocated(err)) call test_failed(error, trim(line)//", rel_tol " &
+               & //str(tols(j))//": "//err%message)
+            if (allocated(error)) exit
+            call check(error, e, e_ref, trim(line)//", rel_tol "//str(tols(j))//": e", &
+               & rel=.true., thr=tols(j) + e_err)
+            if (allocated(error)) exit
+            tol = tols(j)*w_load + w_load*w_load_err + w_unload*w_unload_err
+            call check(error, abs(dissipated - (w_load - w_unload)) <= tol, trim(line) &
+               & //", rel_tol "//str(tols(j))//": dissipated "//str(dissipated) &
+               & //" against "//str(w_load - w_unload))
+            if (allocated(error)) exit
+            tol = (2*tols(j) + w_load_err)*w_load/at_turn%force
+            call check(error, abs(delta_m - delta_m_ref) <= tol, trim(line)//", rel_tol " &
+               & //str(tols(j))//": delta_m "//str(delta_m)//" against "//str(delta_m_ref))
+            if (allocated(error)) exit
+         end do
+         if (allocated(error)) exit
+      end do
+      close (unit)
+      if (allocated(error)) return
+      call check(error, rows, 2, "rows read from "//path)
+   end subroutine test_e_reference
 
    !> mass, velocity <= 0, NaN or Inf, and bad params: named statuses, outputs untouched.
    subroutine test_e_bad_input(error)
