@@ -11,7 +11,7 @@ independent Python solvers; nothing from the Fortran code), integrated by Clensh
 rules on panels: [-8, -4], [-4, -2], [-2, 0] in delta, and [0, delta_m] in x with
 delta = delta_m x^2 (the Hertz term's delta^{3/2} and the Hertz gap's sqrt(delta) become
 smooth in x), each bisected until its 17-point rule and the nested 9-point rule agree to
-1e-11. Below -8 sigma the loading force is below 1e-20 of W (Gaussian summit heights). The
+1e-11. Below -8 sigma the loading work is 4e-18 (rigid-sphere closed form), < 1e-16 of W. The
 error estimate of each integral is the sum of those differences plus the solvers' own
 estimates; e's estimate half their sum (e is a square root).
 
