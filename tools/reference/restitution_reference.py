@@ -16,8 +16,8 @@ error estimate of each integral is the sum of those differences plus the solvers
 estimates; e's estimate half their sum (e is a square root).
 
   python tools/reference/restitution_reference.py generate   # test/data/restitution_reference.csv
-                                                             # (~1 h on one core: the unloading
-                                                             # points near contact take 5-15 s each)
+
+takes ~1 h on one core (the unloading points near contact take 5-15 s each).
 """
 import argparse
 import math
