@@ -2,9 +2,9 @@
 !> history loaded once, as a sweep or a hysteresis table uses it) against the loading solve
 !> at the same overlap (goal <= 1.5), and of solve_contact_unload (egw_solve_unload):
 !> one-shot (loading to delta_max at 1e-4 rel_tol included) and in a sweep after one
-!> delta_max (its history kept, loaded once); with the error of the unloading solve against the independent
-!> references of test/data/sphere_unload_reference.csv. Rows go to out/bench/unloading.csv
-!> (doc/bench/ with --update-docs).
+!> delta_max (its history kept, loaded once); with the error of the unloading solve
+!> against the independent references of test/data/sphere_unload_reference.csv. Rows go to
+!> out/bench/unloading.csv (doc/bench/ with --update-docs).
 module bench_unloading
    use, intrinsic :: iso_fortran_env, only: output_unit
    use egw, only: dp, contact_params, solver_options, solve_result, solve_contact, egw_error, &
