@@ -13,6 +13,7 @@ module test_unload_sphere
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
       & load_history, solve_unload, solve_contact_unload, unload_profile
    use egw_impact, only: restitution
+   use data_rows, only: read_data_rows, row_length
    implicit none
    private
    public :: collect_unload_sphere
@@ -279,55 +280,48 @@ contains
       integer, intent(in) :: n_rows
       real(dp), intent(in) :: tols(:)
       real(dp), intent(in), optional :: min_tols(:)
-      character(len=512) :: line
+      character(len=row_length), allocatable :: rows(:)
       character(len=8) :: model
       real(dp) :: delta, delta_max, mu, psi, hardness, force, force_err, stiffness, &
          & stiffness_err, force_max, dp_tol
       type(solver_options) :: opts
       type(solve_result) :: res
       type(egw_error), allocatable :: err
-      integer :: unit, ios, rows, j
-      open (newunit=unit, file=path, status="old", action="read", iostat=ios)
-      if (ios /= 0) then
-         call test_failed(error, "cannot open "//path//" (run the tests from the project root)")
-         return
-      end if
-      rows = 0
-      do
-         read (unit, '(a)', iostat=ios) line
-         if (ios /= 0) exit
-         if (line(1:1) == "#" .or. line(1:6) == "model,") cycle
-         read (line, *) model, delta, delta_max, mu, psi, hardness, force, force_err, &
-            & stiffness, stiffness_err, force_max
-         call check(error, force_err <= 1.0e-2_dp*minval(tols), trim(line) &
-            & //": reference error above 1e-2 of the tightest rel_tol")
-         if (allocated(error)) exit
-         rows = rows + 1
-         do j = 1, size(tols)
-            if (present(min_tols)) then
-               if (tols(j) < min_tols(min(rows, size(min_tols)))) cycle
-            end if
-            opts%rel_tol = tols(j)
-            call solve_contact_unload(epgw(psi, mu, hardness), opts, delta, delta_max, res, err)
-            if (allocated(err)) then
-               call test_failed(error, trim(line)//", rel_tol "//str(tols(j))//": " &
-                  & //err%message)
-               exit
-            end if
-            call check(error, res%force, force, trim(line)//", rel_tol "//str(tols(j)) &
-               & //": P", rel=.true., thr=tols(j))
-            if (allocated(error)) exit
-            dp_tol = 2.0e-5_dp
-            if (tols(j) >= 1.0e-6_dp) dp_tol = 1.0e-3_dp
-            call check(error, res%stiffness, stiffness, trim(line)//", rel_tol " &
-               & //str(tols(j))//": dP", rel=.true., thr=dp_tol)
-            if (allocated(error)) exit
-         end do
-         if (allocated(error)) exit
-      end do
-      close (unit)
+      integer :: k, j
+      call read_data_rows(path, rows, error)
       if (allocated(error)) return
-      call check(error, rows, n_rows, "rows read from "//path)
+      call check(error, size(rows), n_rows, "rows read from "//path)
+      if (allocated(error)) return
+      do k = 1, size(rows)
+         associate (line => rows(k))
+            read (line, *) model, delta, delta_max, mu, psi, hardness, force, force_err, &
+               & stiffness, stiffness_err, force_max
+            call check(error, force_err <= 1.0e-2_dp*minval(tols), trim(line) &
+               & //": reference error above 1e-2 of the tightest rel_tol")
+            if (allocated(error)) return
+            do j = 1, size(tols)
+               if (present(min_tols)) then
+                  if (tols(j) < min_tols(min(k, size(min_tols)))) cycle
+               end if
+               opts%rel_tol = tols(j)
+               call solve_contact_unload(epgw(psi, mu, hardness), opts, delta, delta_max, &
+                  & res, err)
+               if (allocated(err)) then
+                  call test_failed(error, trim(line)//", rel_tol "//str(tols(j))//": " &
+                     & //err%message)
+                  return
+               end if
+               call check(error, res%force, force, trim(line)//", rel_tol "//str(tols(j)) &
+                  & //": P", rel=.true., thr=tols(j))
+               if (allocated(error)) return
+               dp_tol = 2.0e-5_dp
+               if (tols(j) >= 1.0e-6_dp) dp_tol = 1.0e-3_dp
+               call check(error, res%stiffness, stiffness, trim(line)//", rel_tol " &
+                  & //str(tols(j))//": dP", rel=.true., thr=dp_tol)
+               if (allocated(error)) return
+            end do
+         end associate
+      end do
    end subroutine check_reference_file
 
    !> One history read by several OpenMP threads at once gives the serial results exactly
@@ -649,7 +643,7 @@ contains
    subroutine test_e_reference(error)
       type(error_type), allocatable, intent(out) :: error
       character(len=*), parameter :: path = "test/data/restitution_reference.csv"
-      character(len=512) :: line
+      character(len=row_length), allocatable :: rows(:)
       character(len=8) :: model
       real(dp) :: delta_m_ref, mu, psi, hardness, w_load, w_load_err, w_unload, &
          & w_unload_err, velocity, e_ref, e_err, e, dissipated, delta_m, tol
@@ -657,53 +651,46 @@ contains
       type(solver_options) :: opts
       type(solve_result) :: at_turn
       type(egw_error), allocatable :: err
-      integer :: unit, ios, rows, j
-      open (newunit=unit, file=path, status="old", action="read", iostat=ios)
-      if (ios /= 0) then
-         call test_failed(error, "cannot open "//path//" (run the tests from the project root)")
-         return
-      end if
-      rows = 0
-      do
-         read (unit, '(a)', iostat=ios) line
-         if (ios /= 0) exit
-         if (line(1:1) == "#" .or. line(1:6) == "model,") cycle
-         read (line, *) model, delta_m_ref, mu, psi, hardness, w_load, w_load_err, w_unload, &
-            & w_unload_err, velocity, e_ref, e_err
-         rows = rows + 1
-         call check(error, max(w_load_err, w_unload_err) <= 1.0e-2_dp*minval(tols), &
-            & trim(line)//": reference error above 1e-2 of the tightest rel_tol")
-         if (allocated(error)) exit
-         call solve_contact(epgw(psi, mu, hardness), opts, delta_m_ref, at_turn, err)
-         if (allocated(err)) call test_failed(error, err%message)
-         if (allocated(error)) exit
-         do j = 1, size(tols)
-            opts%rel_tol = tols(j)
-            call restitution(epgw(psi, mu, hardness), opts, 1.0_dp, velocity, e, dissipated, &
-               & err, max_overlap=delta_m)
-            if (allocated(err)) call test_failed(error, trim(line)//", rel_tol " &
-               & //str(tols(j))//": "//err%message)
-            if (allocated(error)) exit
-            print '(a,f5.2,a,es8.1,a,es9.2)', "    e against the reference, delta_m = ", &
-               & delta_m_ref, " sigma, rel_tol ", tols(j), ": ", e/e_ref - 1.0_dp
-            call check(error, e, e_ref, trim(line)//", rel_tol "//str(tols(j))//": e", &
-               & rel=.true., thr=tols(j) + e_err)
-            if (allocated(error)) exit
-            tol = tols(j)*w_load + w_load*w_load_err + w_unload*w_unload_err
-            call check(error, abs(dissipated - (w_load - w_unload)) <= tol, trim(line) &
-               & //", rel_tol "//str(tols(j))//": dissipated "//str(dissipated) &
-               & //" against "//str(w_load - w_unload))
-            if (allocated(error)) exit
-            tol = (2*tols(j) + w_load_err)*w_load/at_turn%force
-            call check(error, abs(delta_m - delta_m_ref) <= tol, trim(line)//", rel_tol " &
-               & //str(tols(j))//": delta_m "//str(delta_m)//" against "//str(delta_m_ref))
-            if (allocated(error)) exit
-         end do
-         if (allocated(error)) exit
-      end do
-      close (unit)
+      integer :: k, j
+      call read_data_rows(path, rows, error)
       if (allocated(error)) return
-      call check(error, rows, 2, "rows read from "//path)
+      call check(error, size(rows), 2, "rows read from "//path)
+      if (allocated(error)) return
+      do k = 1, size(rows)
+         associate (line => rows(k))
+            read (line, *) model, delta_m_ref, mu, psi, hardness, w_load, w_load_err, &
+               & w_unload, w_unload_err, velocity, e_ref, e_err
+            call check(error, max(w_load_err, w_unload_err) <= 1.0e-2_dp*minval(tols), &
+               & trim(line)//": reference error above 1e-2 of the tightest rel_tol")
+            if (allocated(error)) return
+            call solve_contact(epgw(psi, mu, hardness), opts, delta_m_ref, at_turn, err)
+            if (allocated(err)) call test_failed(error, err%message)
+            if (allocated(error)) return
+            do j = 1, size(tols)
+               opts%rel_tol = tols(j)
+               call restitution(epgw(psi, mu, hardness), opts, 1.0_dp, velocity, e, &
+                  & dissipated, err, max_overlap=delta_m)
+               if (allocated(err)) call test_failed(error, trim(line)//", rel_tol " &
+                  & //str(tols(j))//": "//err%message)
+               if (allocated(error)) return
+               print '(a,f5.2,a,es8.1,a,es9.2)', "    e against the reference, delta_m = ", &
+                  & delta_m_ref, " sigma, rel_tol ", tols(j), ": ", e/e_ref - 1.0_dp
+               call check(error, e, e_ref, trim(line)//", rel_tol "//str(tols(j))//": e", &
+                  & rel=.true., thr=tols(j) + e_err)
+               if (allocated(error)) return
+               tol = tols(j)*w_load + w_load*w_load_err + w_unload*w_unload_err
+               call check(error, abs(dissipated - (w_load - w_unload)) <= tol, trim(line) &
+                  & //", rel_tol "//str(tols(j))//": dissipated "//str(dissipated) &
+                  & //" against "//str(w_load - w_unload))
+               if (allocated(error)) return
+               tol = (2*tols(j) + w_load_err)*w_load/at_turn%force
+               call check(error, abs(delta_m - delta_m_ref) <= tol, trim(line) &
+                  & //", rel_tol "//str(tols(j))//": delta_m "//str(delta_m)//" against " &
+                  & //str(delta_m_ref))
+               if (allocated(error)) return
+            end do
+         end associate
+      end do
    end subroutine test_e_reference
 
    !> mass, velocity <= 0, NaN or Inf, and bad params: named statuses, outputs untouched.
