@@ -13,7 +13,8 @@ module egw_hysteresis_format
    use egw_io, only: write_file, read_file, text_buffer
    use egw_text, only: real_text, real_text_len, csv_row
    use egw_table, only: force_table, table_prepare, table_meta, set_table_meta
-   use egw_table_format, only: format_csv, format_binary, fnv1a32, split_checksum, checksum_line
+   use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
+      & get_f64, split_checksum, checksum_line
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare
    implicit none
    private
@@ -551,24 +552,6 @@ contains
       pos = pos + 4*size(v)
    end subroutine get_i32
 
-   pure subroutine put_f64(buf, pos, v)
-      character(len=*), intent(inout) :: buf
-      integer, intent(inout) :: pos
-      real(dp), intent(in) :: v(:)
-      if (size(v) == 0) return
-      buf(pos:pos + 8*size(v) - 1) = transfer(v, buf(pos:pos + 8*size(v) - 1))
-      pos = pos + 8*size(v)
-   end subroutine put_f64
-
-   pure subroutine get_f64(buf, pos, v)
-      character(len=*), intent(in) :: buf
-      integer, intent(inout) :: pos
-      real(dp), intent(out) :: v(:)
-      if (size(v) == 0) return
-      v = transfer(buf(pos:pos + 8*size(v) - 1), v, size(v))
-      pos = pos + 8*size(v)
-   end subroutine get_f64
-
    pure subroutine get_matrix(buf, pos, a)
       character(len=*), intent(in) :: buf
       integer, intent(inout) :: pos
@@ -577,17 +560,6 @@ contains
       call get_f64(buf, pos, flat)
       a = reshape(flat, shape(a))
    end subroutine get_matrix
-
-   !> The unsigned 32-bit checksum as the int32 with the same bits.
-   pure integer(int32) function checksum_i32(h)
-      integer(int64), intent(in) :: h
-      if (h >= 2147483648_int64) then
-         checksum_i32 = int(h - 4294967296_int64, int32)
-      else
-         checksum_i32 = int(h, int32)
-      end if
-   end function checksum_i32
-
 
    !> "# key = value" -> key, value (key "" for other comment lines).
    subroutine split_key(line, key, value)

@@ -28,7 +28,8 @@ module egw_table_format
 
    public :: split_checksum, checksum_line
    public :: write_table, read_table, write_universal, read_universal, write_lammps, &
-      & write_calculix_flat, write_calculix_sphere, fnv1a32
+      & write_calculix_flat, write_calculix_sphere, fnv1a32, checksum_i32, &
+      & put_f64, get_f64
 
    integer, parameter, public :: format_csv = 0       !< egw CSV with metadata header
    integer, parameter, public :: format_binary = 1    !< egw binary, versioned, checksummed
@@ -181,11 +182,12 @@ module egw_table_format
          type(egw_error), allocatable, intent(out) :: error
       end subroutine check_universal_header
 
-      module subroutine check_common_cutoff(path, u, error)
+      !> Every slice of u spans [x_cut, x_max] on the same nodes and ln P intervals.
+      module subroutine check_universal_slices(path, u, error)
          character(len=*), intent(in) :: path
          type(universal_table), intent(in) :: u
          type(egw_error), allocatable, intent(out) :: error
-      end subroutine check_common_cutoff
+      end subroutine check_universal_slices
 
       !> mu of slice j of a universal table (geometric in mu; the ends exact).
       pure module real(dp) function slice_mu(u, j)
@@ -371,5 +373,40 @@ contains
          h = iand(h*16777619_int64, mask)
       end do
    end function fnv1a32
+
+   !> The unsigned 32-bit checksum as the int32 with the same bits.
+   pure integer(int32) function checksum_i32(h)
+      integer(int64), intent(in) :: h
+      if (h >= 2147483648_int64) then
+         checksum_i32 = int(h - 4294967296_int64, int32)
+      else
+         checksum_i32 = int(h, int32)
+      end if
+   end function checksum_i32
+
+   !> Append the doubles v to the binary buffer buf at pos (native byte order; the
+   !> formats' byte-order mark says which), advancing pos.
+   pure subroutine put_f64(buf, pos, v)
+      character(len=*), intent(inout) :: buf
+      integer, intent(inout) :: pos
+      real(dp), intent(in) :: v(:)
+      integer :: nb
+      nb = 8*size(v)
+      if (nb == 0) return
+      buf(pos:pos + nb - 1) = transfer(v, buf(pos:pos + nb - 1))
+      pos = pos + nb
+   end subroutine put_f64
+
+   !> Read size(v) doubles from buf at pos, advancing pos.
+   pure subroutine get_f64(buf, pos, v)
+      character(len=*), intent(in) :: buf
+      integer, intent(inout) :: pos
+      real(dp), intent(out) :: v(:)
+      integer :: nb
+      nb = 8*size(v)
+      if (nb == 0) return
+      v = transfer(buf(pos:pos + nb - 1), v, size(v))
+      pos = pos + nb
+   end subroutine get_f64
 
 end module egw_table_format

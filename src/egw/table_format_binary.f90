@@ -171,12 +171,8 @@ contains
          call bad(error, path, "file size does not match its slices")
          return
       end if
-      call check_common_cutoff(path, u, error)
+      call check_universal_slices(path, u, error)
       if (allocated(error)) return
-      if (.not. universal_nodes_shared(u)) then
-         call bad(error, path, "slices do not share their nodes or ln p intervals")
-         return
-      end if
       call move_universal(u, table)
    end procedure parse_universal_binary
 
@@ -223,16 +219,6 @@ contains
       end if
    end subroutine check_binary_frame
 
-   !> The unsigned 32-bit checksum as the int32 with the same bits.
-   pure integer(int32) function checksum_i32(h)
-      integer(int64), intent(in) :: h
-      if (h >= 2147483648_int64) then
-         checksum_i32 = int(h - 4294967296_int64, int32)
-      else
-         checksum_i32 = int(h, int32)
-      end if
-   end function checksum_i32
-
    pure subroutine put_i32(buf, pos, v)
       character(len=*), intent(inout) :: buf
       integer, intent(inout) :: pos
@@ -241,33 +227,11 @@ contains
       pos = pos + 4
    end subroutine put_i32
 
-   pure subroutine put_f64(buf, pos, v)
-      character(len=*), intent(inout) :: buf
-      integer, intent(inout) :: pos
-      real(dp), intent(in) :: v(:)
-      integer :: nb
-      nb = 8*size(v)
-      if (nb == 0) return
-      buf(pos:pos + nb - 1) = transfer(v, buf(pos:pos + nb - 1))
-      pos = pos + nb
-   end subroutine put_f64
-
    integer(int32) function get_i32(buf, pos) result(v)
       character(len=*), intent(in) :: buf
       integer, intent(inout) :: pos
       v = transfer(buf(pos:pos + 3), v)
       pos = pos + 4
    end function get_i32
-
-   pure subroutine get_f64(buf, pos, v)
-      character(len=*), intent(in) :: buf
-      integer, intent(inout) :: pos
-      real(dp), intent(out) :: v(:)
-      integer :: nb
-      nb = 8*size(v)
-      if (nb == 0) return
-      v = transfer(buf(pos:pos + nb - 1), v, size(v))
-      pos = pos + nb
-   end subroutine get_f64
 
 end submodule egw_table_format_binary

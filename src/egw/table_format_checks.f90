@@ -97,7 +97,7 @@ contains
       end if
    end procedure check_universal_header
 
-   module procedure check_common_cutoff
+   module procedure check_universal_slices
       integer :: j
       do j = 1, u%n_mu
          if (u%slices(j)%cutoff /= u%x_cut .or. u%slices(j)%delta_max /= u%x_max) then
@@ -105,7 +105,9 @@ contains
             return
          end if
       end do
-   end procedure check_common_cutoff
+      if (.not. universal_nodes_shared(u)) &
+         & call bad(error, path, "slices do not share their nodes or ln p intervals")
+   end procedure check_universal_slices
 
    module procedure slice_mu
       if (j == 1) then

@@ -177,12 +177,8 @@ contains
          call bad(error, path, "more data rows than the slices' n_nodes")
          return
       end if
-      call check_common_cutoff(path, u, error)
+      call check_universal_slices(path, u, error)
       if (allocated(error)) return
-      if (.not. universal_nodes_shared(u)) then
-         call bad(error, path, "slices do not share their nodes or ln p intervals")
-         return
-      end if
       call move_universal(u, table)
    end procedure parse_universal_csv
 
