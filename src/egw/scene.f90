@@ -5,16 +5,13 @@
 module egw_scene
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_io_error, egw_bad_file, egw_not_converged, egw_unsupported, fatal_error, &
-      & format_real, int_str, bad => parameter_error
+   use egw_status, only: egw_error, egw_invalid_parameter, egw_io_error, egw_bad_file, &
+      & egw_unsupported, fatal_error, format_real, int_str, bad => parameter_error
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw, model_name, mu_from_summits, check_scaled_overlap
-   use egw_smooth_sphere, only: hertz_force
-   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options
-   use egw_table, only: force_table, build_table, table_set_radii, table_progress
-   use egw_table_universal, only: universal_table, build_universal
-   use egw_text, only: real_text, real_text_len
+      & model_epgw, mu_from_summits, check_scaled_overlap
+   use egw_rough_sphere, only: solver_options
+   use egw_table, only: force_table, table_progress
+   use egw_table_universal, only: universal_table
    implicit none
    private
 
@@ -119,6 +116,72 @@ module egw_scene
    !> Hertz samples per decade of overlap (the Hertz error varies slowly and smoothly
    !> in ln delta: 4 per decade resolve its maximum to a few per cent of itself).
    integer, parameter :: samples_per_decade = 4
+
+   interface
+      !> The cheapest model that meets the scene's tolerance (doc/scenes.md):
+      !> 1. Hertz, exactly, for smooth spheres (model Hertz or sigma = 0);
+      !> 2. Hertz when the Hertz error measure (scene_hertz_error) is <= tol for every set;
+      !> 3. one 1-D table when the scene has a single parameter set (one pair, one sigma);
+      !> 4. the universal 2-D table otherwise (radius range, several types or materials,
+      !>    sigma range), over the scene's mu and delta/sigma ranges.
+      !> Full solves (options) are spent only on the Hertz check; tables are built by
+      !> build_scene_tables.
+      module subroutine choose_model(scene, options, choice, error)
+         type(contact_scene), intent(in) :: scene
+         type(solver_options), intent(in) :: options
+         type(model_choice), intent(out) :: choice
+         type(egw_error), allocatable, intent(out) :: error
+      end subroutine choose_model
+
+      !> The Hertz error measure of a scene, the maximum over its parameter sets of:
+      !> - delta_min > 0: max |P_Hertz(delta)/P(delta) - 1| over the overlaps (pointwise
+      !>   relative error, P from full solves);
+      !> - delta_min <= 0: max |P_Hertz(delta) - P(delta)| / P(delta_max) (relative to the
+      !>   scene's largest force): Hertz gives 0 for delta <= 0 where the rough force is not,
+      !>   and a pointwise relative error would be 1 there whatever the scene.
+      !> Sampled at delta = 0 (for delta_min <= 0: P increases with delta, so P(0) bounds
+      !> the missing force of all separations) and at 4 overlaps per decade from the
+      !> smallest positive overlap of interest (delta_min, or sigma/100) to delta_max, where
+      !> roughness matters most relative to Hertz at the small end. Solves in parallel at
+      !> rel_tol = min(options%rel_tol, tol/10).
+      module subroutine scene_hertz_error(scene, options, worst, n_solves, error)
+         type(contact_scene), intent(in) :: scene
+         type(solver_options), intent(in) :: options
+         real(dp), intent(out) :: worst
+         integer, intent(out) :: n_solves
+         type(egw_error), allocatable, intent(out) :: error
+      end subroutine scene_hertz_error
+
+      !> Build the tables of a choice at the scene's tolerance (nothing for Hertz): the 1-D
+      !> table over the set's overlap range (with the pair's particle radii recorded for
+      !> LAMMPS), or the universal table over the scene's mu range (widened to +-5 % when
+      !> mu is one value: the table needs a range) and delta/sigma range. measured_error is
+      !> the largest relative force error the builds measured at their check solves.
+      module subroutine build_scene_tables(scene, choice, options, tables, error, progress)
+         type(contact_scene), intent(in) :: scene
+         type(model_choice), intent(in) :: choice
+         type(solver_options), intent(in) :: options
+         type(scene_tables), intent(out) :: tables
+         type(egw_error), allocatable, intent(out) :: error
+         !> called as the build goes (see egw_table's table_progress; not called for Hertz)
+         procedure(table_progress), optional :: progress
+      end subroutine build_scene_tables
+
+      !> One 1-D table per particle-type pair (1,1), (1,2), .., (1,n), (2,2), .., (n,n) of a
+      !> scene with discrete types and one sigma (for LAMMPS, whose pair_style table needs
+      !> one section per type pair), each over its pair's overlap range at the scene's
+      !> tolerance with the pair's particle radii recorded; pairs with the same parameter
+      !> set share one build. egw_unsupported for a radius or sigma range (no finite set
+      !> of type pairs). The optional progress hook is passed to every build_table: one
+      !> sequence (done from 0 to total) per distinct parameter set, one set after another.
+      module subroutine build_pair_tables(scene, options, tables, error, progress)
+         type(contact_scene), intent(in) :: scene
+         type(solver_options), intent(in) :: options
+         type(force_table), allocatable, intent(out) :: tables(:)
+         type(egw_error), allocatable, intent(out) :: error
+         procedure(table_progress), optional :: progress
+      end subroutine build_pair_tables
+   end interface
 
 contains
 
@@ -719,300 +782,6 @@ contains
       end do
    end subroutine resolve_scene
 
-   !> The cheapest model that meets the scene's tolerance (doc/scenes.md):
-   !> 1. Hertz, exactly, for smooth spheres (model Hertz or sigma = 0);
-   !> 2. Hertz when the Hertz error measure (scene_hertz_error) is <= tol for every set;
-   !> 3. one 1-D table when the scene has a single parameter set (one pair, one sigma);
-   !> 4. the universal 2-D table otherwise (radius range, several types or materials,
-   !>    sigma range), over the scene's mu and delta/sigma ranges.
-   !> Full solves (options) are spent only on the Hertz check; tables are built by
-   !> build_scene_tables.
-   subroutine choose_model(scene, options, choice, error)
-      type(contact_scene), intent(in) :: scene
-      type(solver_options), intent(in) :: options
-      type(model_choice), intent(out) :: choice
-      type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: tol
-      integer :: ns
-
-      if (.not. allocated(scene%sets)) then
-         call fatal_error(error, egw_invalid_argument, "scene: not resolved (resolve_scene)")
-         return
-      end if
-      call validate_options(options, error)
-      if (allocated(error)) return
-      tol = scene%input%tol
-      ns = size(scene%sets)
-      choice%n_sets = ns
-      choice%mu_min = minval(scene%sets%mu)
-      choice%mu_max = maxval(scene%sets%mu)
-      if (all(scene%sets%sigma > 0.0_dp)) then
-         choice%x_min = minval(scene%delta_min/scene%sets%sigma)
-         choice%x_max = maxval(scene%delta_max/scene%sets%sigma)
-      end if
-      if (scene%input%model == model_hertz .or. scene%input%sigma_max == 0.0_dp) then
-         choice%kind = choice_hertz
-         choice%error_bound = 0.0_dp
-         choice%reason = "smooth spheres (model Hertz or sigma = 0): Hertz is exact"
-         return
-      end if
-
-      call scene_hertz_error(scene, options, choice%hertz_error, choice%n_solves, error)
-      if (allocated(error)) return
-      choice%hertz_relative_to_max = scene%input%delta_min <= 0.0_dp
-      if (choice%hertz_error <= tol) then
-         choice%kind = choice_hertz
-         choice%error_bound = choice%hertz_error
-         choice%reason = "roughness changes the force by at most "// &
-            & num(choice%hertz_error)//hertz_measure(choice)//" <= tol = "// &
-            & num(tol)
-      else if (ns == 1 .and. .not. scene%continuous) then
-         choice%kind = choice_table
-         choice%error_bound = tol
-         choice%reason = "roughness changes the force by up to "// &
-            & num(choice%hertz_error)//hertz_measure(choice)//" > tol; "// &
-            & "one parameter set: one 1-D table"
-      else
-         choice%kind = choice_universal
-         choice%error_bound = tol
-         choice%reason = "roughness changes the force by up to "// &
-            & num(choice%hertz_error)//hertz_measure(choice)//" > tol; "// &
-            & int_str(ns)//" parameter sets"//merge(" (radius range)", "               ", &
-            & scene%continuous)
-         choice%reason = trim(choice%reason)//": the universal table over mu in ["// &
-            & num(choice%mu_min)//", "//num(choice%mu_max)// &
-            & "], delta/sigma in ["//num(choice%x_min)//", "// &
-            & num(choice%x_max)//"]"
-      end if
-   end subroutine choose_model
-
-   pure function hertz_measure(choice) result(str)
-      type(model_choice), intent(in) :: choice
-      character(len=merge(16, 11, choice%hertz_relative_to_max)) :: str  ! not deferred
-      if (choice%hertz_relative_to_max) then
-         str = " of P(delta_max)"
-      else
-         str = " (relative)"
-      end if
-   end function hertz_measure
-
-   !> The Hertz error measure of a scene, the maximum over its parameter sets of:
-   !> - delta_min > 0: max |P_Hertz(delta)/P(delta) - 1| over the overlaps (pointwise
-   !>   relative error, P from full solves);
-   !> - delta_min <= 0: max |P_Hertz(delta) - P(delta)| / P(delta_max) (relative to the
-   !>   scene's largest force): Hertz gives 0 for delta <= 0 where the rough force is not,
-   !>   and a pointwise relative error would be 1 there whatever the scene.
-   !> Sampled at delta = 0 (for delta_min <= 0: P increases with delta, so P(0) bounds
-   !> the missing force of all separations) and at 4 overlaps per decade from the
-   !> smallest positive overlap of interest (delta_min, or sigma/100) to delta_max, where
-   !> roughness matters most relative to Hertz at the small end. Solves in parallel at
-   !> rel_tol = min(options%rel_tol, tol/10).
-   subroutine scene_hertz_error(scene, options, worst, n_solves, error)
-      type(contact_scene), intent(in) :: scene
-      type(solver_options), intent(in) :: options
-      real(dp), intent(out) :: worst
-      integer, intent(out) :: n_solves
-      type(egw_error), allocatable, intent(out) :: error
-      type(solver_options) :: opts
-      real(dp), allocatable :: deltas(:, :), force(:, :), p_ref(:)
-      integer, allocatable :: stat(:, :), n_pts(:)
-      integer :: ns, s, i, idx, np, nmax, i0
-      real(dp) :: lo, hi, e
-      type(solve_result) :: res
-      type(egw_error), allocatable :: err
-
-      worst = 0.0_dp
-      n_solves = 0
-      ns = size(scene%sets)
-      opts = options
-      opts%n_threads = 1
-      opts%rel_tol = min(options%rel_tol, 0.1_dp*scene%input%tol)
-      nmax = 0
-      allocate (n_pts(ns))
-      do s = 1, ns
-         n_pts(s) = 0
-         if (scene%delta_max(s) <= 0.0_dp) cycle  ! no overlap at all: see below
-         call sample_range(scene, s, lo, hi)
-         n_pts(s) = max(2, ceiling(samples_per_decade*log10(hi/lo)) + 1)
-         if (scene%delta_min(s) <= 0.0_dp) n_pts(s) = n_pts(s) + 1
-         nmax = max(nmax, n_pts(s))
-      end do
-      allocate (deltas(nmax, ns), force(nmax, ns), stat(nmax, ns), p_ref(ns))
-      deltas = 0.0_dp
-      force = 0.0_dp
-      stat = 0
-      do s = 1, ns
-         if (n_pts(s) == 0) cycle
-         call sample_range(scene, s, lo, hi)
-         ! geometric from lo to hi, after delta = 0 when the scene starts separated
-         i0 = merge(1, 0, scene%delta_min(s) <= 0.0_dp)
-         np = n_pts(s) - i0
-         do i = 1, np
-            deltas(i0 + i, s) = lo*(hi/lo)**(real(i - 1, dp)/real(np - 1, dp))
-         end do
-         deltas(n_pts(s), s) = hi
-         n_solves = n_solves + n_pts(s)
-      end do
-      !$omp parallel do schedule(dynamic) private(s, i, res, err)
-      do idx = 1, nmax*ns
-         i = mod(idx - 1, nmax) + 1
-         s = (idx - 1)/nmax + 1
-         if (i <= n_pts(s)) then
-            call solve_contact(scene%sets(s), opts, deltas(i, s), res, err)
-            force(i, s) = res%force
-            if (allocated(err)) stat(i, s) = err%stat
-         end if
-      end do
-      !$omp end parallel do
-      do s = 1, ns
-         if (n_pts(s) == 0) then
-            ! delta_max <= 0: Hertz gives no force at all where the rough force is
-            ! positive, an error of 1 in the measure relative to P(delta_max)
-            worst = max(worst, 1.0_dp)
-            cycle
-         end if
-         do i = 1, n_pts(s)
-            if (stat(i, s) /= 0 .or. .not. (ieee_is_finite(force(i, s)) .and. &
-               & force(i, s) >= 0.0_dp)) then
-               call fatal_error(error, egw_not_converged, "delta = "// &
-                  & format_real(deltas(i, s))//": full solve failed in the Hertz check "// &
-                  & "of parameter set "//int_str(s))
-               return
-            end if
-         end do
-         associate (p => scene%sets(s))
-            if (scene%delta_min(s) <= 0.0_dp) then
-               p_ref(s) = force(n_pts(s), s)
-               do i = 1, n_pts(s)
-                  e = abs(hertz_force(deltas(i, s), p%radius, p%modulus) - force(i, s))/p_ref(s)
-                  worst = max(worst, e)
-               end do
-            else
-               do i = 1, n_pts(s)
-                  e = abs(hertz_force(deltas(i, s), p%radius, p%modulus)/force(i, s) - 1.0_dp)
-                  worst = max(worst, e)
-               end do
-            end if
-         end associate
-      end do
-   end subroutine scene_hertz_error
-
-   !> Positive overlaps sampled by the Hertz check of set s: [max(delta_min, 1e-12 sigma),
-   !> delta_max] when delta_min > 0, else [min(sigma/100, delta_max/10), delta_max].
-   pure subroutine sample_range(scene, s, lo, hi)
-      type(contact_scene), intent(in) :: scene
-      integer, intent(in) :: s
-      real(dp), intent(out) :: lo, hi
-      hi = scene%delta_max(s)
-      if (scene%delta_min(s) > 0.0_dp) then
-         ! below 1e-12 sigma the rough force is P(0) to ~1e-18 and the Hertz force ~1e-18
-         ! of it: the Hertz error is that at 1e-12 sigma (bounds the samples: a
-         ! delta_min = 1e-300 would ask for 1200 solves)
-         lo = min(hi, max(scene%delta_min(s), 1.0e-12_dp*scene%sets(s)%sigma))
-      else
-         lo = min(0.01_dp*scene%sets(s)%sigma, 0.1_dp*hi)
-      end if
-   end subroutine sample_range
-
-   !> Build the tables of a choice at the scene's tolerance (nothing for Hertz): the 1-D
-   !> table over the set's overlap range (with the pair's particle radii recorded for
-   !> LAMMPS), or the universal table over the scene's mu range (widened to +-5 % when
-   !> mu is one value: the table needs a range) and delta/sigma range. measured_error is
-   !> the largest relative force error the builds measured at their check solves.
-   subroutine build_scene_tables(scene, choice, options, tables, error, progress)
-      type(contact_scene), intent(in) :: scene
-      type(model_choice), intent(in) :: choice
-      type(solver_options), intent(in) :: options
-      type(scene_tables), intent(out) :: tables
-      type(egw_error), allocatable, intent(out) :: error
-      !> called as the build goes (see egw_table's table_progress; not called for Hertz)
-      procedure(table_progress), optional :: progress
-      real(dp) :: mu_lo, mu_hi
-      integer :: j
-
-      tables%kind = choice%kind
-      select case (choice%kind)
-      case (choice_hertz)
-         tables%measured_error = choice%error_bound
-      case (choice_table)
-         call build_table(scene%sets(1), options, scene%delta_min(1), scene%delta_max(1), &
-            & scene%input%tol, tables%table, error, progress)
-         if (allocated(error)) return
-         call table_set_radii(tables%table, scene%radius1(1), scene%radius2(1), error)
-         if (allocated(error)) return
-         tables%measured_error = tables%table%max_force_error
-         tables%n_nodes = size(tables%table%delta)
-      case (choice_universal)
-         mu_lo = choice%mu_min
-         mu_hi = choice%mu_max
-         if (mu_hi <= mu_lo*(1.0_dp + 1.0e-12_dp)) then
-            mu_lo = mu_lo/1.05_dp
-            mu_hi = mu_hi*1.05_dp
-         end if
-         call build_universal(scene%input%model, scene%input%psi, &
-            & scene%input%hardness_coeff, scene%input%plastic_ratio, options, mu_lo, mu_hi, &
-            & choice%x_min, choice%x_max, scene%input%tol, tables%universal, error, &
-            & progress)
-         if (allocated(error)) return
-         tables%measured_error = tables%universal%max_mu_error
-         do j = 1, tables%universal%n_mu
-            tables%measured_error = max(tables%measured_error, &
-               & tables%universal%slices(j)%max_force_error)
-         end do
-         tables%n_nodes = tables%universal%n_mu*size(tables%universal%slices(1)%delta)
-      case default
-         call fatal_error(error, egw_invalid_argument, "choice%kind = "// &
-            & int_str(choice%kind)//": unknown")
-      end select
-   end subroutine build_scene_tables
-
-   !> One 1-D table per particle-type pair (1,1), (1,2), .., (1,n), (2,2), .., (n,n) of a
-   !> scene with discrete types and one sigma (for LAMMPS, whose pair_style table needs
-   !> one section per type pair), each over its pair's overlap range at the scene's
-   !> tolerance with the pair's particle radii recorded; pairs with the same parameter
-   !> set share one build. egw_unsupported for a radius or sigma range (no finite set
-   !> of type pairs). The optional progress hook is passed to every build_table: one
-   !> sequence (done from 0 to total) per distinct parameter set, one set after another.
-   subroutine build_pair_tables(scene, options, tables, error, progress)
-      type(contact_scene), intent(in) :: scene
-      type(solver_options), intent(in) :: options
-      type(force_table), allocatable, intent(out) :: tables(:)
-      type(egw_error), allocatable, intent(out) :: error
-      procedure(table_progress), optional :: progress
-      type(force_table), allocatable :: built(:)
-      integer :: s, i, j, k, n
-      if (.not. allocated(scene%sets)) then
-         call fatal_error(error, egw_invalid_argument, "scene: not resolved (resolve_scene)")
-         return
-      end if
-      if (scene%continuous .or. scene%input%sigma_min /= scene%input%sigma_max) then
-         call fatal_error(error, egw_unsupported, "scene: a radius or sigma range has no "// &
-            & "finite set of type pairs; per-pair tables need particle types and one sigma")
-         return
-      end if
-      allocate (built(size(scene%sets)))
-      do s = 1, size(scene%sets)
-         call build_table(scene%sets(s), options, scene%delta_min(s), scene%delta_max(s), &
-            & scene%input%tol, built(s), error, progress)
-         if (allocated(error)) then
-            error%message = "parameter set "//int_str(s)//": "//error%message
-            return
-         end if
-      end do
-      n = scene%input%n_types
-      allocate (tables(size(scene%pair_set)))
-      k = 0
-      do i = 1, n
-         do j = i, n
-            k = k + 1
-            tables(k) = built(scene%pair_set(k))
-            call table_set_radii(tables(k), scene%input%radius(i), scene%input%radius(j), &
-               & error)
-            if (allocated(error)) return
-         end do
-      end do
-   end subroutine build_pair_tables
-
    ! ------------------------------------------------------------------ helpers
 
    !> (1 - nu^2)/E of type i (types without a material of their own use type 1's).
@@ -1044,12 +813,5 @@ contains
       real(dp), intent(in) :: x
       positive = ieee_is_finite(x) .and. x > 0.0_dp
    end function positive
-
-   !> Short form of a number for messages (4 significant digits).
-   pure function num(x) result(str)
-      real(dp), intent(in) :: x
-      character(len=real_text_len(x, 4, 2)) :: str  ! not deferred: see egw_text
-      str = real_text(x, 4, 2)  ! as ES11.4, without an internal WRITE (egw_text)
-   end function num
 
 end module egw_scene

@@ -1,0 +1,516 @@
+!> The build of egw_hysteresis tables (src/egw/hysteresis.f90, whose interface block
+!> declares build_hysteresis): the delta_max grid, each node's unloading curve from
+!> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
+submodule (egw_hysteresis) egw_hysteresis_build
+   use egw_status, only: egw_not_converged, fatal_error, format_real
+   use egw_params, only: validate_params, model_epgw
+   use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload
+   use egw_table, only: build_table
+   implicit none
+
+   !> Most nodes in s of one unloading curve, and of the delta_max grid.
+   integer, parameter :: max_s_nodes = 400, max_m_nodes = 400
+   !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
+   real(dp), parameter :: tiny_ratio = 1.0e-100_dp
+
+   !> The unloading curve of one delta_max node during the build: g and dg/ds at nodes s.
+   type :: unloading_curve
+      real(dp) :: length = 0.0_dp   !< L(m) = 1.5 P_load(m)/K_unload(m)
+      real(dp), allocatable :: s(:), gap(:), slope(:)
+   end type unloading_curve
+
+contains
+
+   !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
+   !> (relative to the force at the turning point). Errors: invalid params or range,
+   !> solves that fail (egw_not_converged), node limits reached.
+   module subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, &
+      & error, progress)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol
+      type(hysteresis_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      ! a full header (not `module procedure`): gfortran 12 loses the interface of a
+      ! procedure dummy in a separate module procedure body
+      procedure(table_progress), optional :: progress
+      type(unloading_curve), allocatable :: curves(:)
+      real(dp), allocatable :: m(:)
+      integer :: j, n
+
+      call validate_params(params, error)
+      if (allocated(error)) return
+      if (.not. (rel_tol >= 1.0e-8_dp .and. rel_tol <= 0.1_dp)) then
+         call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
+            & ": must lie in [1e-8, 0.1]")
+         return
+      end if
+      if (ieee_is_nan(delta_min) .or. .not. (delta_max > delta_min .and. &
+         & delta_max < huge(1.0_dp))) then
+         call fatal_error(error, egw_invalid_argument, "delta_min, delta_max = "// &
+            & format_real(delta_min)//", "//format_real(delta_max)// &
+            & ": need finite delta_min < delta_max")
+         return
+      end if
+      call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, error)
+      if (allocated(error)) return
+      table%params = params
+      table%rel_tol = rel_tol
+      table%delta_max = delta_max
+      ! elastic summits (or none): unloading retraces the loading table exactly
+      table%reversible = params%model /= model_epgw .or. params%psi == 0.0_dp .or. &
+         & params%sigma == 0.0_dp
+      if (table%reversible) then
+         call hysteresis_prepare(table)   ! the tag only
+         return
+      end if
+      ! delta_max grid: from the loading cut-off (nothing to unload below) to delta_max,
+      ! dyadic (bisection keeps it so: the m buckets rely on it)
+      n = 9
+      m = table%loading%cutoff + (delta_max - table%loading%cutoff)* &
+         & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
+      allocate (curves(n))
+      if (present(progress)) call progress(0, 2*n - 1)
+      ! the s range: twice the largest (m - delta_c)/L of the first nodes, so that every
+      ! curve reaches the cut-off
+      call unloading_lengths(table, options, m, curves, error)
+      if (allocated(error)) return
+      table%s_max = 2*maxval((m - table%loading%cutoff)/curves%length)
+      call build_curves(table, options, m, curves, error)
+      if (allocated(error)) return
+      call refine_m(table, options, m, curves, error, progress)
+      if (allocated(error)) return
+      call resample(table, m, curves)
+      call hysteresis_prepare(table)
+   end subroutine build_hysteresis
+
+   ! ---------------------------------------------------------------------------------------
+
+   !> Bisect the delta_max intervals until, for each, the Lagrange combination of its
+   !> stencil's curves meets the midpoint's own curve at every node of that curve within
+   !> rel_tol. Midpoint curves are kept until their interval is split (then they become
+   !> nodes) and rechecked when the stencil changed: only new midpoints cost solves.
+   subroutine refine_m(table, options, m, curves, error, progress)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), allocatable, intent(inout) :: m(:)
+      type(unloading_curve), allocatable, intent(inout) :: curves(:)
+      type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
+      type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
+      real(dp), allocatable :: new_m(:), err_mid(:)
+      logical, allocatable :: have_mid(:), new_have(:)
+      integer, allocatable :: idx(:)
+      integer :: pass, j, k, n_split
+      allocate (mids(size(m) - 1), have_mid(size(m) - 1))
+      have_mid = .false.
+      do pass = 1, 30
+         idx = pack([(j, j = 1, size(m) - 1)], .not. have_mid)
+         if (size(idx) > 0) then
+            allocate (built(size(idx)))
+            call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), built, error)
+            if (allocated(error)) return
+            do k = 1, size(idx)
+               call move_curve(built(k), mids(idx(k)))
+            end do
+            deallocate (built)
+            have_mid = .true.
+         end if
+         allocate (err_mid(size(m) - 1))
+         do j = 1, size(m) - 1
+            err_mid(j) = stencil_mismatch(m, curves, j, mids(j))
+         end do
+         n_split = count(err_mid > table%rel_tol)
+         ! built: the nodes' curves and the kept midpoints'; pending: two per split
+         if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
+         if (n_split == 0) then
+            table%max_error = max(table%max_error, maxval(err_mid))
+            return
+         end if
+         if (size(m) + n_split > max_m_nodes) then
+            call fatal_error(error, egw_not_converged, "hysteresis table: more than "// &
+               & format_real(real(max_m_nodes, dp))//" delta_max nodes needed for rel_tol = " &
+               & //format_real(table%rel_tol))
+            return
+         end if
+         allocate (new_m(size(m) + n_split), new_curves(size(m) + n_split), &
+            & new_mids(size(m) + n_split - 1), new_have(size(m) + n_split - 1))
+         new_have = .false.
+         k = 0
+         do j = 1, size(m)
+            k = k + 1
+            new_m(k) = m(j)
+            call move_curve(curves(j), new_curves(k))
+            if (j == size(m)) exit
+            if (err_mid(j) > table%rel_tol) then
+               k = k + 1
+               new_m(k) = 0.5_dp*(m(j) + m(j + 1))
+               call move_curve(mids(j), new_curves(k))
+            else
+               call move_curve(mids(j), new_mids(k))
+               new_have(k) = .true.
+            end if
+         end do
+         call move_alloc(new_m, m)
+         call move_alloc(new_curves, curves)
+         call move_alloc(new_mids, mids)
+         call move_alloc(new_have, have_mid)
+         deallocate (err_mid)
+      end do
+      call fatal_error(error, egw_not_converged, "hysteresis table: delta_max grid not "// &
+         & "settled after 30 bisections for rel_tol = "//format_real(table%rel_tol))
+   end subroutine refine_m
+
+   !> Largest |r_stencil - r_mid| of interval j over the nodes of the midpoint curve (solves):
+   !> the table's whole error there, its interpolation in s included (the curves are built
+   !> to rel_tol/4, so that what remains is mostly the error in m, which bisection removes).
+   pure real(dp) function stencil_mismatch(m, curves, j, mid) result(err)
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(in) :: curves(:), mid
+      integer, intent(in) :: j
+      real(dp) :: x, w(4), r, dr, v, s, length
+      integer :: first, k, l, i
+      first = min(max(j - 1, 1), size(m) - 3)
+      x = 0.5_dp*(m(j) + m(j + 1))
+      do k = 1, 4
+         w(k) = 1.0_dp
+         do l = 1, 4
+            if (l /= k) w(k) = w(k)*(x - m(first + l - 1))/(m(first + k - 1) - m(first + l - 1))
+         end do
+      end do
+      ! the table's s of the midpoint curve's delta: with the interpolated L(m)
+      ! as the evaluation: 1/L interpolated
+      length = 1.0_dp/sum(w/curves(first:first + 3)%length)
+      err = 0.0_dp
+      do i = 1, size(mid%s)
+         s = min(mid%s(i)*mid%length/length, 1.0_dp)
+         v = 0.0_dp
+         do k = 1, 4
+            call curve_eval(curves(first + k - 1), s, r, dr)
+            v = v + w(k)*r
+         end do
+         err = max(err, abs(v - mid%gap(i)))
+      end do
+   end function stencil_mismatch
+
+   !> The loading table's force and stiffness, continued below its cut-off delta_c (where
+   !> the table says 0) by P_c exp((delta - delta_c) K_c/P_c): C1 at the cut-off, so that
+   !> the gap to it is smooth where the unloading curves cross the cut-off.
+   pure subroutine loading_extended(loading, delta, force, stiffness)
+      type(force_table), intent(in) :: loading
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: rate
+      if (delta >= loading%cutoff .or. .not. loading%force(1) > 0.0_dp) then
+         call table_eval(loading, delta, force, stiffness)
+         return
+      end if
+      rate = loading%stiffness(1)/loading%force(1)
+      force = loading%force(1)*exp((delta - loading%cutoff)*rate)
+      stiffness = force*rate
+   end subroutine loading_extended
+
+   !> L(m) of the curves at m(:) (a loading and an unloading solve each, in parallel).
+   subroutine unloading_lengths(table, options, m, curves, error)
+      type(hysteresis_table), intent(in) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(inout) :: curves(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: serial
+      integer :: stats(size(m)), j
+      character(len=256) :: messages(size(m))
+      serial = options
+      serial%n_threads = 1
+      serial%rel_tol = min(options%rel_tol, table%rel_tol/10.0_dp)
+      stats = 0
+      !$omp parallel do schedule(dynamic) default(shared) private(j)
+      do j = 1, size(m)
+         call one_length(j)
+      end do
+      !$omp end parallel do
+      do j = 1, size(m)
+         if (stats(j) /= 0) then
+            call fatal_error(error, stats(j), trim(messages(j)))
+            return
+         end if
+      end do
+   contains
+      subroutine one_length(j)
+         integer, intent(in) :: j
+         type(egw_error), allocatable :: err
+         type(loading_history) :: hist
+         type(solve_result) :: top, res
+         call load_history(table%params, serial, m(j), hist, top, err)
+         if (.not. allocated(err)) call solve_unload(hist, m(j), res, err)
+         if (allocated(err)) then
+            stats(j) = err%stat
+            messages(j) = err%message
+            return
+         end if
+         curves(j)%length = unloading_length(top%force, res%stiffness, table%params%sigma)
+      end subroutine one_length
+   end subroutine unloading_lengths
+
+   !> L = 1.5 P/K_unload: m minus the residual overlap of Hertzian unloading
+   !> P (1 - (m - delta)/L)^{3/2}, and 1.5 times the decay length of the separated tail
+   !> (P ~ exp(-(m - delta) K/P)): r(s) changes little with m at fixed s = (m - delta)/L.
+   !> sigma where the force has underflowed.
+   pure real(dp) function unloading_length(force, stiffness, sigma) result(length)
+      real(dp), intent(in) :: force, stiffness, sigma
+      length = sigma
+      if (force > 0.0_dp .and. stiffness > 0.0_dp) length = 1.5_dp*force/stiffness
+      if (.not. (length > 0.0_dp .and. length < huge(1.0_dp))) length = sigma
+   end function unloading_length
+
+   !> The unloading curves of the delta_max values m(:), in parallel (OpenMP; every curve
+   !> is independent: its own loading history and solves); the first error wins.
+   subroutine build_curves(table, options, m, curves, error)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(inout) :: curves(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(solver_options) :: serial
+      real(dp) :: worst(size(m))
+      integer :: stats(size(m)), j
+      character(len=256) :: messages(size(m))
+      serial = options
+      serial%n_threads = 1  ! the parallelism is over the curves
+      ! the unloading solves run a decade finer than the table's tolerance
+      serial%rel_tol = min(options%rel_tol, table%rel_tol/10.0_dp)
+      stats = 0
+      worst = 0.0_dp
+      !$omp parallel do schedule(dynamic) default(shared) private(j)
+      do j = 1, size(m)
+         call one_curve(j)
+      end do
+      !$omp end parallel do
+      do j = 1, size(m)
+         if (stats(j) /= 0) then
+            call fatal_error(error, stats(j), trim(messages(j)))
+            return
+         end if
+      end do
+      table%max_error = max(table%max_error, maxval(worst))
+   contains
+      subroutine one_curve(j)
+         integer, intent(in) :: j
+         type(egw_error), allocatable :: err
+         call build_curve(table, serial, m(j), curves(j), worst(j), err)
+         if (allocated(err)) then
+            stats(j) = err%stat
+            messages(j) = err%message
+         end if
+      end subroutine one_curve
+   end subroutine build_curves
+
+   !> The unloading curve of delta_max = m: s nodes 0, 1/16, 1/4, 1/2, 1, bisected until the
+   !> Hermite curve agrees with the solves at every midpoint to rel_tol/4 (an interval that
+   !> passed is not solved again).
+   subroutine build_curve(table, options, m, curve, worst, error)
+      type(hysteresis_table), intent(in) :: table
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: m
+      type(unloading_curve), intent(out) :: curve
+      real(dp), intent(out) :: worst
+      type(egw_error), allocatable, intent(out) :: error
+      type(loading_history) :: hist
+      type(solve_result) :: res
+      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), span, scale, &
+         & r_mid, d_mid, r_int, d_int, s_mid, err, f_turn, k_turn, c_turn
+      integer :: n, i
+      logical :: refined, checked(max_s_nodes)
+      type(unloading_curve) :: probe
+      worst = 0.0_dp
+      call load_history(table%params, options, m, hist, res, error)
+      if (allocated(error)) return
+      f_turn = res%force
+      ! gaps relative to the loading table's force at the turning point (what the
+      ! evaluation multiplies them by)
+      call table_eval(table%loading, m, scale, k_turn)
+      if (.not. scale > 0.0_dp) scale = table%loading%reference_force*table%rel_tol
+      ! the loading reference scaled to the solve's force at the turning point, so that the
+      ! gap vanishes there continuously (the table's own error, <= rel_tol of the force,
+      ! would otherwise be a jump that no refinement in s removes)
+      c_turn = 1.0_dp
+      if (f_turn > 0.0_dp .and. scale > 0.0_dp) c_turn = f_turn/scale
+      call solve_unload(hist, m, res, error)
+      if (allocated(error)) return
+      curve%length = unloading_length(f_turn, res%stiffness, table%params%sigma)
+      span = table%s_max*curve%length
+      n = 5
+      s(1:n) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
+      do i = 1, n
+         call gap_at(s(i), gap(i), slope(i))
+         if (allocated(error)) return
+      end do
+      checked(1:n - 1) = .false.
+      do
+         refined = .false.
+         i = 1
+         do while (i < n)
+            if (checked(i)) then
+               i = i + 1
+               cycle
+            end if
+            s_mid = 0.5_dp*(s(i) + s(i + 1))
+            call gap_at(s_mid, r_mid, d_mid)
+            if (allocated(error)) return
+            probe%s = s(i:i + 1)
+            probe%gap = gap(i:i + 1)
+            probe%slope = slope(i:i + 1)
+            call curve_eval(probe, s_mid, r_int, d_int)
+            ! the slope's mismatch too: a midpoint value can agree by chance where the
+            ! curve bends (near the residual overlap) while a quarter point does not
+            err = max(abs(r_int - r_mid), 0.25_dp*(s(i + 1) - s(i))*abs(d_int - d_mid))
+            if (err > 0.25_dp*table%rel_tol) then
+               if (n == max_s_nodes) then
+                  call fatal_error(error, egw_not_converged, "hysteresis table: an unloading"// &
+                     & " curve needs more than 400 nodes at delta_max = "//format_real(m))
+                  return
+               end if
+               s(i + 2:n + 1) = s(i + 1:n)
+               gap(i + 2:n + 1) = gap(i + 1:n)
+               slope(i + 2:n + 1) = slope(i + 1:n)
+               checked(i + 2:n) = checked(i + 1:n - 1)
+               checked(i:i + 1) = .false.
+               s(i + 1) = s_mid
+               gap(i + 1) = r_mid
+               slope(i + 1) = d_mid
+               n = n + 1
+               refined = .true.
+               i = i + 1   ! the new left half is checked in the next sweep
+            else
+               checked(i) = .true.
+               worst = max(worst, err)
+            end if
+            i = i + 1
+         end do
+         if (.not. refined) exit
+      end do
+      curve%s = s(1:n)
+      curve%gap = gap(1:n)
+      curve%slope = slope(1:n)
+
+   contains
+
+      !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
+      !> delta = m - s span, P_ext the loading table continued below its cut-off (below
+      !> the cut-off too: the curve is a neighbour of others in the m direction), c the
+      !> solve's force at m over the table's; g = 0 at the turning point, so that the force
+      !> is continuous there
+      subroutine gap_at(x, g, dg)
+         real(dp), intent(in) :: x
+         real(dp), intent(out) :: g, dg
+         real(dp) :: p_ext, k_ext
+         g = 0.0_dp
+         dg = 0.0_dp
+         call solve_unload(hist, m - x*span, res, error)
+         if (allocated(error)) return
+         call loading_extended(table%loading, m - x*span, p_ext, k_ext)
+         if (x > 0.0_dp) g = (c_turn*p_ext - res%force)/scale
+         dg = (res%stiffness - c_turn*k_ext)*span/scale
+         ! far below the cut-off the forces underflow: no subnormal numbers in the table
+         ! (they would slow every evaluation that touches them by two orders)
+         if (abs(g) < tiny_ratio) g = 0.0_dp
+         if (abs(dg) < tiny_ratio) dg = 0.0_dp
+      end subroutine gap_at
+
+   end subroutine build_curve
+
+   !> Put every curve on the union of their s nodes: the union refines each curve's own
+   !> nodes, so the Hermite data there reproduce each curve's cubics exactly.
+   pure subroutine resample(table, m, curves)
+      type(hysteresis_table), intent(inout) :: table
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(in) :: curves(:)
+      real(dp), allocatable :: all_s(:), union(:)
+      integer :: j, i, n
+      all_s = curves(1)%s
+      do j = 2, size(curves)
+         call merge_nodes(all_s, curves(j)%s, union)
+         call move_alloc(union, all_s)
+      end do
+      n = size(all_s)
+      table%m = m
+      table%length = curves%length
+      table%s = all_s(1:n)
+      allocate (table%gap(n, size(m)), table%slope(n, size(m)))
+      do j = 1, size(m)
+         do i = 1, n
+            call curve_eval(curves(j), table%s(i), table%gap(i, j), table%slope(i, j))
+         end do
+      end do
+   end subroutine resample
+
+   !> Cubic Hermite r and dr/ds of a curve at s in [0, 1].
+   pure subroutine curve_eval(curve, s, r, dr)
+      type(unloading_curve), intent(in) :: curve
+      real(dp), intent(in) :: s
+      real(dp), intent(out) :: r, dr
+      real(dp) :: h, t, h00, h10, h01, h11
+      integer :: i, lo, hi, mid
+      lo = 1
+      hi = size(curve%s)
+      do while (hi - lo > 1)
+         mid = (lo + hi)/2
+         if (curve%s(mid) <= s) then
+            lo = mid
+         else
+            hi = mid
+         end if
+      end do
+      i = lo
+      h = curve%s(i + 1) - curve%s(i)
+      t = min(max((s - curve%s(i))/h, 0.0_dp), 1.0_dp)
+      h00 = (1 + 2*t)*(1 - t)**2
+      h10 = t*(1 - t)**2
+      h01 = t*t*(3 - 2*t)
+      h11 = t*t*(t - 1)
+      r = h00*curve%gap(i) + h10*h*curve%slope(i) + h01*curve%gap(i + 1) &
+         & + h11*h*curve%slope(i + 1)
+      dr = 6*t*(t - 1)/h*(curve%gap(i) - curve%gap(i + 1)) &
+         & + (1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1)
+   end subroutine curve_eval
+
+
+   !> c = the union of the increasing node lists a and b, increasing, each value once.
+   pure subroutine merge_nodes(a, b, c)
+      real(dp), intent(in) :: a(:), b(:)
+      real(dp), allocatable, intent(out) :: c(:)
+      real(dp) :: work(size(a) + size(b)), next
+      integer :: i, j, n
+      i = 1
+      j = 1
+      n = 0
+      do while (i <= size(a) .or. j <= size(b))
+         if (j > size(b)) then
+            next = a(i)
+         else if (i > size(a)) then
+            next = b(j)
+         else
+            next = min(a(i), b(j))
+         end if
+         n = n + 1
+         work(n) = next
+         if (i <= size(a)) then
+            if (a(i) == next) i = i + 1
+         end if
+         if (j <= size(b)) then
+            if (b(j) == next) j = j + 1
+         end if
+      end do
+      c = work(1:n)
+   end subroutine merge_nodes
+
+   pure subroutine move_curve(from, to)
+      type(unloading_curve), intent(inout) :: from
+      type(unloading_curve), intent(out) :: to
+      to%length = from%length
+      call move_alloc(from%s, to%s)
+      call move_alloc(from%gap, to%gap)
+      call move_alloc(from%slope, to%slope)
+   end subroutine move_curve
+
+end submodule egw_hysteresis_build
