@@ -21,9 +21,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
 
 contains
 
-   !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
-   !> (relative to the force at the turning point). Errors: invalid params or range,
-   !> solves that fail (egw_not_converged), node limits reached.
+   ! build_hysteresis: interface and documentation in egw_hysteresis
    module subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, &
       & error, progress)
       type(contact_params), intent(in) :: params
