@@ -101,15 +101,16 @@ module egw_hysteresis
       !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
       !> (relative to the force at the turning point). Errors: invalid params or range,
       !> solves that fail (egw_not_converged), node limits reached.
-      module subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error, &
-         & progress)
-         type(contact_params), intent(in) :: params
+      module subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, &
+         & table, error, progress)
+         type(contact_params), intent(in) :: params   !< one parameter set (EP-GW dissipates)
+         !> solver options (the unloading solves use at most a tenth of rel_tol)
          type(solver_options), intent(in) :: options
          real(dp), intent(in) :: delta_min      !< smallest overlap of interest (< 0: separation)
          real(dp), intent(in) :: delta_max      !< largest overlap (and delta_max) tabulated
          real(dp), intent(in) :: rel_tol        !< tolerance, in [1e-8, 0.1]
-         type(hysteresis_table), intent(out) :: table
-         type(egw_error), allocatable, intent(out) :: error
+         type(hysteresis_table), intent(out) :: table   !< the table, empty on error
+         type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
          !> called with (unloading curves built, built + known pending) from the serial part
          !> of the build (the loading table's own solves are not counted)
          procedure(table_progress), optional :: progress
@@ -125,11 +126,13 @@ contains
    !> state. A state above the table's delta_max uses the last curve and returns
    !> egw_out_of_range (values written). NaN delta: egw_invalid_argument, nothing changed.
    pure subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: delta
+      type(hysteresis_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
+      !> the contact's history: its largest overlap so far [length]
       real(dp), intent(inout) :: delta_max_state
-      real(dp), intent(out) :: force, stiffness
-      integer, intent(out) :: stat
+      real(dp), intent(out) :: force       !< normal force [force], >= 0 (repulsive)
+      real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
+      integer, intent(out) :: stat         !< 0 or an egw status
       real(dp) :: w(4), inv_span, f_m, c(4), s
       integer :: first, i
       stat = 0
@@ -166,11 +169,13 @@ contains
    !> histories. A state from another table, or garbled, is refilled, never trusted: the
    !> caches are used only when they name this table's tag and the state's turning point.
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: delta
+      type(hysteresis_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
+      !> the contact's state (hysteresis_state_init): state(1) its largest overlap so far
       real(dp), intent(inout) :: state(hysteresis_state_size)
-      real(dp), intent(out) :: force, stiffness
-      integer, intent(out) :: stat
+      real(dp), intent(out) :: force       !< normal force [force], >= 0 (repulsive)
+      real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
+      integer, intent(out) :: stat         !< 0 or an egw status
       real(dp) :: w(4), g(4), s
       integer :: first, i
       logical :: found
@@ -308,10 +313,11 @@ contains
    !> dissipated. Reversible tables: the loading table's energy. The state is not changed.
    !> Statuses as hysteresis_eval.
    pure subroutine hysteresis_energy(table, delta, delta_max_state, energy, stat)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: delta, delta_max_state
-      real(dp), intent(out) :: energy
-      integer, intent(out) :: stat
+      type(hysteresis_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta             !< overlap [length]
+      real(dp), intent(in) :: delta_max_state   !< the contact's largest overlap so far
+      real(dp), intent(out) :: energy           !< [force*length], >= 0
+      integer, intent(out) :: stat              !< 0 or an egw status
       real(dp) :: m, w(4), inv_span, f_m
       integer :: first
       stat = 0
@@ -354,7 +360,7 @@ contains
 
    !> A new contact's state for hysteresis_eval_state: never touched (-huge), no cache.
    pure subroutine hysteresis_state_init(state)
-      real(dp), intent(out) :: state(hysteresis_state_size)
+      real(dp), intent(out) :: state(hysteresis_state_size)   !< the contact's new state
       state = 0.0_dp
       state(1) = -huge(1.0_dp)
    end subroutine hysteresis_state_init

@@ -37,10 +37,10 @@ contains
    !> constants). Errors: egw_invalid_argument (unknown format, a table not built),
    !> egw_io_error (nothing replaced then).
    subroutine write_hysteresis(table, path, format, error)
-      type(hysteresis_table), intent(in) :: table
-      character(len=*), intent(in) :: path
-      integer, intent(in) :: format
-      type(egw_error), allocatable, intent(out) :: error
+      type(hysteresis_table), intent(in) :: table   !< built or read
+      character(len=*), intent(in) :: path          !< file to write (replaced atomically)
+      integer, intent(in) :: format                 !< format_csv or format_binary
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       if (.not. allocated(table%loading%delta)) then
          call fatal_error(error, egw_invalid_argument, "table: not built or read")
          return
@@ -60,9 +60,9 @@ contains
    !> the file's start). A file that is truncated, corrupted or inconsistent gives
    !> egw_bad_file with what is wrong, and table is left empty.
    subroutine read_hysteresis(path, table, error)
-      character(len=*), intent(in) :: path
-      type(hysteresis_table), intent(out) :: table
-      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: path           !< a file of write_hysteresis
+      type(hysteresis_table), intent(out) :: table   !< the table, empty on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       character(len=:), allocatable :: bytes
       call read_bytes(path, bytes, error)
       if (allocated(error)) return
