@@ -97,11 +97,11 @@ contains
    !> validate_params), sigma = 0 (egw_invalid_parameter), NaN separation
    !> (egw_invalid_argument).
    pure subroutine flat_pressure(params, separation, pressure, dpressure, error)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< the rough flat (sigma > 0)
       real(wp), intent(in) :: separation   !< d, same length unit as sigma
       real(wp), intent(out) :: pressure    !< p_G(d)
       real(wp), intent(out) :: dpressure   !< dp_G/dd (<= 0)
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       real(wp) :: sigma, p, dpdh, psi
       pressure = 0.0_wp
       dpressure = 0.0_wp

@@ -150,8 +150,9 @@ contains
    !> K(k) with argument checking: k < 0, k >= 1 or NaN give egw_invalid_argument and a
    !> NaN value; otherwise value = ellipk(k) and error stays unallocated.
    pure subroutine get_ellipk(k, value, error)
-      real(dp), intent(in) :: k
-      real(dp), intent(out) :: value
+      real(dp), intent(in) :: k   !< modulus (not m = k**2), in [0, 1)
+      real(dp), intent(out) :: value   !< K(k); NaN on error
+      !> allocated for k outside [0, 1) or NaN
       type(egw_error), allocatable, intent(out) :: error
       call check_modulus(k, value, error)
       if (allocated(error)) return
@@ -161,8 +162,9 @@ contains
    !> E(k) with argument checking: k < 0, k >= 1 or NaN give egw_invalid_argument and a
    !> NaN value; otherwise value = ellipe(k) and error stays unallocated.
    pure subroutine get_ellipe(k, value, error)
-      real(dp), intent(in) :: k
-      real(dp), intent(out) :: value
+      real(dp), intent(in) :: k   !< modulus (not m = k**2), in [0, 1)
+      real(dp), intent(out) :: value   !< E(k); NaN on error
+      !> allocated for k outside [0, 1) or NaN
       type(egw_error), allocatable, intent(out) :: error
       call check_modulus(k, value, error)
       if (allocated(error)) return

@@ -150,8 +150,8 @@ contains
    pure subroutine get_gauss_integral(n, h, value, error)
       real(dp), intent(in) :: n  !< order, n >= 0
       real(dp), intent(in) :: h  !< lower limit (separation in units of sigma)
-      real(dp), intent(out) :: value
-      type(egw_error), allocatable, intent(out) :: error
+      real(dp), intent(out) :: value   !< F_n(h)
+      type(egw_error), allocatable, intent(out) :: error   !< allocated for invalid n or h
       value = 0.0_dp
       call check_gauss_args(n, h, error)
       if (allocated(error)) return
@@ -163,8 +163,8 @@ contains
    pure subroutine get_gauss_integral_deriv(n, h, value, error)
       real(dp), intent(in) :: n  !< order, n >= 0
       real(dp), intent(in) :: h  !< lower limit (separation in units of sigma)
-      real(dp), intent(out) :: value
-      type(egw_error), allocatable, intent(out) :: error
+      real(dp), intent(out) :: value   !< dF_n/dh
+      type(egw_error), allocatable, intent(out) :: error   !< allocated for invalid n or h
       value = 0.0_dp
       call check_gauss_args(n, h, error)
       if (allocated(error)) return

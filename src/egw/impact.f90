@@ -52,12 +52,13 @@ contains
    !> (egw_not_converged). e, dissipated and max_overlap are untouched on any error.
    subroutine restitution(params, options, mass, velocity, e, dissipated, error, max_overlap, &
          & work_load)
-      type(contact_params), intent(in) :: params
-      type(solver_options), intent(in) :: options
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< tolerance of the solves and integrals
       real(dp), intent(in) :: mass        !< effective mass m* > 0
       real(dp), intent(in) :: velocity    !< approach speed v > 0
       real(dp), intent(inout) :: e             !< coefficient of restitution, 0 < e <= 1
       real(dp), intent(inout) :: dissipated    !< W_load - W_unload (energy units)
+      !> allocated on failure (outputs untouched)
       type(egw_error), allocatable, intent(out) :: error
       real(dp), intent(inout), optional :: max_overlap  !< delta_m, the deepest overlap
       real(dp), intent(inout), optional :: work_load    !< W_load as integrated (~ m* v**2/2)

@@ -58,7 +58,8 @@ contains
    !> so that switching model never turns garbage into physics). On failure the message
    !> names the parameter and its value.
    pure subroutine validate_params(params, error)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< the parameters to check
+      !> allocated, naming the field, when one is invalid
       type(egw_error), allocatable, intent(out) :: error
 
       if (params%model < model_hertz .or. params%model > model_epgw) then
@@ -216,7 +217,10 @@ contains
    !> Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta) from the summit density eta
    !> (per unit area), summit radius beta, roughness sigma and equivalent radius R.
    elemental function mu_from_summits(summit_density, summit_radius, sigma, radius) result(mu)
-      real(dp), intent(in) :: summit_density, summit_radius, sigma, radius
+      real(dp), intent(in) :: summit_density   !< summits per unit area eta [1/length^2]
+      real(dp), intent(in) :: summit_radius   !< summit radius beta [length]
+      real(dp), intent(in) :: sigma   !< summit height deviation [length]
+      real(dp), intent(in) :: radius   !< equivalent sphere radius R [length]
       real(dp) :: mu
       mu = (8.0_dp/3.0_dp)*summit_density*sigma*sqrt(2.0_dp*radius*summit_radius)
    end function mu_from_summits
@@ -258,7 +262,7 @@ contains
 
    !> Name of a model, for messages and file headers.
    pure function model_name(model) result(name)
-      integer, intent(in) :: model
+      integer, intent(in) :: model   !< model_hertz, model_gw, model_egw or model_epgw
       ! not a deferred length: gfortran 12 keeps those in a static variable (egw_text)
       character(len=len_trim(model_label(model))) :: name
       name = model_label(model)

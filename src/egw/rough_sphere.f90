@@ -195,7 +195,8 @@ contains
 
    !> Check the options; the message names the offending field and its value.
    pure subroutine validate_options(options, error)
-      type(solver_options), intent(in) :: options
+      type(solver_options), intent(in) :: options   !< the options to check
+      !> allocated, naming the field, when one is invalid
       type(egw_error), allocatable, intent(out) :: error
       if (options%n_radial /= 0 .and. (options%n_radial < 8 .or. &
          & options%n_radial > max_mesh_nodes)) then
@@ -224,10 +225,13 @@ contains
    !> of about n_radial nodes. Fails with egw_not_converged rather than return a doubtful
    !> answer.
    subroutine solve_contact(params, options, delta, result, error)
+      !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
-      type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: delta
+      type(solver_options), intent(in) :: options   !< mesh, tolerance, method and threads
+      real(dp), intent(in) :: delta   !< overlap [length]: > 0 pressed together, < 0 apart
+      !> force [force] >= 0, stiffness [force/length], contact radius [length], ...
       type(solve_result), intent(out) :: result
+      !> allocated on failure (result is then not defined)
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -316,12 +320,14 @@ contains
    !> are left untouched on any error. A delta_max so far apart that the summit pressure
    !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
    subroutine load_history(params, options, delta_max, history, result, error)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< the contact
+      !> of the loading solve and of the unloading solves that follow
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_max              !< largest overlap reached
+      !> the contact's history; untouched on error
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(loading_history) :: hist
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -385,10 +391,10 @@ contains
    !> estimate, stiffness (dP/d(delta) at fixed history) and egw_not_converged contract
    !> as solve_contact. history is only read: thread-safe. result untouched on error.
    subroutine solve_unload(history, delta, result, error)
-      type(loading_history), intent(in) :: history
+      type(loading_history), intent(in) :: history   !< from load_history (only read)
       real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
-      type(solve_result), intent(inout) :: result
-      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
       type(solve_result) :: res
@@ -434,12 +440,13 @@ contains
    !> points at once use load_history (as tightly) and solve_unload. Errors as
    !> load_history and solve_unload; result untouched on error.
    subroutine solve_contact_unload(params, options, delta, delta_max, result, error)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< the contact
+      !> of the unloading solve (the history is loaded tighter)
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta        !< overlap of this solve
       real(dp), intent(in) :: delta_max    !< largest overlap reached before
-      type(solve_result), intent(inout) :: result
-      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(solve_result) :: loaded, res
       type(solver_options) :: tight
 
@@ -492,13 +499,13 @@ contains
    !> delta_max or a reversible history, d_max = d. Errors as solve_unload, and sizes or
    !> radii that do not fit (egw_invalid_argument); outputs untouched on error.
    subroutine unload_profile(history, delta, r, pressure, separation, separation_min, error)
-      type(loading_history), intent(in) :: history
-      real(dp), intent(in) :: delta
+      type(loading_history), intent(in) :: history   !< from load_history (only read)
+      real(dp), intent(in) :: delta   !< overlap [length] of the unloading solve
       real(dp), intent(in) :: r(:)                   !< radii, >= 0
       real(dp), intent(inout) :: pressure(:)         !< p_G at r
       real(dp), intent(inout) :: separation(:)       !< d at r
       real(dp), intent(inout) :: separation_min(:)   !< d_max at r
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
       real(dp), allocatable :: row(:), rs(:), gap(:), gap_min(:), f(:), dfdh(:)
@@ -604,13 +611,13 @@ contains
    !> within options%rel_tol of the peak pressure and of the largest deflection (re-solved
    !> at rel_tol/10 until the profile settles; egw_not_converged if it does not).
    subroutine contact_profile(params, options, delta, r, pressure, deflection, error)
-      type(contact_params), intent(in) :: params
-      type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: delta
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< tolerance of the solves
+      real(dp), intent(in) :: delta   !< overlap [length]: > 0 pressed together, < 0 apart
       real(dp), intent(in) :: r(:)             !< radii, >= 0
       real(dp), intent(out) :: pressure(:)     !< total pressure at r, size(r)
       real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
       type(solver_options) :: level_options

@@ -144,10 +144,12 @@ contains
    !> (other fields are validated but not used). Invalid params -> egw_invalid_parameter;
    !> NaN or infinite delta -> egw_invalid_argument naming delta. Outputs are NaN on error.
    pure subroutine hertz_contact(params, delta, force, stiffness, contact_radius, error)
-      type(contact_params), intent(in) :: params
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: force, stiffness, contact_radius
-      type(egw_error), allocatable, intent(out) :: error
+      type(contact_params), intent(in) :: params   !< R and E* are used
+      real(dp), intent(in) :: delta   !< overlap [length] (force 0 for delta <= 0)
+      real(dp), intent(out) :: force   !< (4/3) E* sqrt(R) delta^(3/2) [force]
+      real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
+      real(dp), intent(out) :: contact_radius   !< sqrt(R delta) [length]
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       force = ieee_value(1.0_dp, ieee_quiet_nan)
       stiffness = force
       contact_radius = force

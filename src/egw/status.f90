@@ -51,7 +51,7 @@ contains
 
    !> Generic one-line description of a status code.
    pure function status_message(stat) result(msg)
-      integer, intent(in) :: stat
+      integer, intent(in) :: stat   !< an egw status code
       character(len=len_trim(status_text(stat))) :: msg  ! not deferred: see format_real
       msg = status_text(stat)
    end function status_message

@@ -135,12 +135,14 @@ contains
    !> (its length is not known in advance).
    subroutine build_table(params, options, delta_min, delta_max, rel_tol, table, error, &
       & progress)
-      type(contact_params), intent(in) :: params
-      type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: delta_min, delta_max, rel_tol
-      type(force_table), intent(out) :: table
-      type(egw_error), allocatable, intent(out) :: error
-      procedure(table_progress), optional :: progress
+      type(contact_params), intent(in) :: params   !< one parameter set
+      type(solver_options), intent(in) :: options !< of the solves (rel_tol at most rel_tol/10)
+      real(dp), intent(in) :: delta_min   !< smallest overlap of interest [length] (< 0: apart)
+      real(dp), intent(in) :: delta_max   !< largest overlap tabulated [length]
+      real(dp), intent(in) :: rel_tol   !< interpolation tolerance of the force, relative
+      type(force_table), intent(out) :: table   !< the table; empty on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      procedure(table_progress), optional :: progress   !< optional hook (table_progress)
       type(solver_options) :: opts
       real(dp) :: cutoff, p_ref
       type(force_table) :: tables(1)
@@ -555,9 +557,10 @@ contains
    !> force is continued linearly with the stiffness at delta_max (C1, see table_covers).
    !> No allocation, no shared state: safe in OpenMP loops over contacts.
    pure subroutine table_eval(table, delta, force, stiffness)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: force, stiffness
+      type(force_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta   !< overlap [length]: > 0 pressed together, < 0 apart
+      real(dp), intent(out) :: force   !< normal force [force], >= 0 (repulsive)
+      real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
       if (delta > table%cutoff .and. delta < table%delta_max) then
          ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
          call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
@@ -721,16 +724,16 @@ contains
    !> True when delta lies in [cutoff, delta_max] or below the cut-off (force 0 is exact
    !> there by construction); false above delta_max (extrapolated) or for NaN.
    elemental logical function table_covers(table, delta)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
+      type(force_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta   !< overlap [length]
       table_covers = delta <= table%delta_max
    end function table_covers
 
    !> Elastic energy int_{delta_c}^{delta} P ddelta of the interpolant (0 below the
    !> cut-off; above delta_max, of the linear continuation).
    pure function table_energy(table, delta) result(energy)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
+      type(force_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta   !< overlap [length]
       real(dp) :: energy
       integer :: i, n
       real(dp) :: t
@@ -750,8 +753,8 @@ contains
    !> node values; 0 below the cut-off, constant above delta_max). Not part of the
    !> adaptive error control.
    pure function table_contact_radius(table, delta) result(radius)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
+      type(force_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta   !< overlap [length]
       real(dp) :: radius
       integer :: i, n
       real(dp) :: h, t, h00, h10, h01, h11
@@ -775,9 +778,12 @@ contains
 
    !> All four tabulated quantities at delta.
    pure subroutine table_eval_all(table, delta, force, stiffness, energy, contact_radius)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: force, stiffness, energy, contact_radius
+      type(force_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta   !< overlap [length]
+      real(dp), intent(out) :: force   !< normal force [force], >= 0
+      real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
+      real(dp), intent(out) :: energy   !< int P ddelta from the cut-off [force*length]
+      real(dp), intent(out) :: contact_radius   !< effective contact radius a* [length]
       call table_eval(table, delta, force, stiffness)
       energy = table_energy(table, delta)
       contact_radius = table_contact_radius(table, delta)
@@ -786,8 +792,10 @@ contains
    !> Record the particle radii R1, R2 of the pair (used by the LAMMPS writer for
    !> r = R1 + R2 - delta). They must reproduce the table's R: 1/R = 1/R1 + 1/R2.
    pure subroutine table_set_radii(table, radius1, radius2, error)
-      type(force_table), intent(inout) :: table
-      real(dp), intent(in) :: radius1, radius2
+      type(force_table), intent(inout) :: table   !< the table whose pair gets its radii
+      real(dp), intent(in) :: radius1   !< particle radius R1 [length], > 0
+      real(dp), intent(in) :: radius2   !< particle radius R2 [length], > 0
+      !> allocated when 1/R1 + 1/R2 is not the table's 1/R
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: r_eq
       if (.not. (ieee_is_finite(radius1) .and. radius1 > 0.0_dp)) then

@@ -123,9 +123,11 @@ module egw_table_format
       !> only when they are that style's force/length/energy units: it is then written as
       !> `# DATE: ... UNITS: <units>` and LAMMPS checks it against the input deck.
       module subroutine write_lammps(tables, path, error, units, delta_reach)
-         type(force_table), intent(in) :: tables(:)
-         character(len=*), intent(in) :: path
+         type(force_table), intent(in) :: tables(:)   !< one per type pair: sections EGW_1, ...
+         character(len=*), intent(in) :: path   !< file to write (replaced atomically)
+         !> allocated on failure (nothing replaced)
          type(egw_error), allocatable, intent(out) :: error
+         !> optional LAMMPS units style of the numbers ("si", "metal", ...), for the header
          character(len=*), intent(in), optional :: units
          !> deepest overlap the sections reach (>= each table's delta_max; beyond delta_max
          !> the force continues linearly with the end stiffness, as table_eval does); LAMMPS
@@ -142,11 +144,12 @@ module egw_table_format
       !> model's surfaces then stand for the spheres at overlap delta_c when they touch.
       !> max_error: the achieved error (as in the file's header).
       module subroutine write_calculix_sphere(t, path, error, shift, max_error)
-         type(force_table), intent(in), target :: t
-         character(len=*), intent(in) :: path
+         type(force_table), intent(in), target :: t   !< a sphere's force table
+         character(len=*), intent(in) :: path   !< file to write (replaced atomically)
+         !> allocated on failure (nothing replaced)
          type(egw_error), allocatable, intent(out) :: error
-         logical, intent(in), optional :: shift
-         real(dp), intent(out), optional :: max_error
+         logical, intent(in), optional :: shift   !< optional: overclosure from the cut-off delta_c
+         real(dp), intent(out), optional :: max_error   !< optional: the error achieved
       end subroutine write_calculix_sphere
 
       !> Rough flat: nominal pressure p_G(d) (egw_asperity) against overclosure = -d, from
@@ -157,12 +160,15 @@ module egw_table_format
       !> write_calculix_sphere for why CalculiX needs this). max_error: the achieved error.
       module subroutine write_calculix_flat(params, overclosure_max, rel_tol, path, error, &
          & shift, max_error)
-         type(contact_params), intent(in) :: params
-         real(dp), intent(in) :: overclosure_max, rel_tol
-         character(len=*), intent(in) :: path
+         type(contact_params), intent(in) :: params   !< the rough flat's parameters (sigma > 0)
+         real(dp), intent(in) :: overclosure_max   !< largest overclosure tabulated [length]
+         real(dp), intent(in) :: rel_tol   !< tolerance of the piecewise-linear curve
+         character(len=*), intent(in) :: path   !< file to write (replaced atomically)
+         !> allocated on failure (nothing replaced)
          type(egw_error), allocatable, intent(out) :: error
+         !> optional: overclosure from the first-contact separation
          logical, intent(in), optional :: shift
-         real(dp), intent(out), optional :: max_error
+         real(dp), intent(out), optional :: max_error   !< optional: the error achieved
       end subroutine write_calculix_flat
 
       ! (table_format_checks.f90) shared by the readers and writers
@@ -222,9 +228,10 @@ contains
    !> Write a table in one of the formats (format_csv, format_binary, format_lammps,
    !> format_calculix).
    subroutine write_table(table, path, format, error)
-      type(force_table), intent(in) :: table
-      character(len=*), intent(in) :: path
-      integer, intent(in) :: format
+      type(force_table), intent(in) :: table   !< built or read
+      character(len=*), intent(in) :: path   !< file to write (replaced atomically)
+      integer, intent(in) :: format   !< format_csv or format_binary
+      !> allocated on failure (nothing replaced)
       type(egw_error), allocatable, intent(out) :: error
       if (.not. allocated(table%delta)) then
          call fatal_error(error, egw_invalid_argument, "table: not built or read")
@@ -247,8 +254,9 @@ contains
 
    !> Read an egw CSV or binary table file (the format is recognised from its start).
    subroutine read_table(path, table, error)
-      character(len=*), intent(in) :: path
-      type(force_table), intent(out) :: table
+      character(len=*), intent(in) :: path   !< a file of write_table (CSV or binary)
+      type(force_table), intent(out) :: table   !< the table; empty on error
+      !> allocated on failure (egw_bad_file says what is wrong)
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: bytes
       call read_file(path, bytes, error)
@@ -271,9 +279,10 @@ contains
    !> Write a universal table (format_csv or format_binary; the DEM/FE formats need one
    !> parameter set: build or slice a 1-D table for them).
    subroutine write_universal(table, path, format, error)
-      type(universal_table), intent(in) :: table
-      character(len=*), intent(in) :: path
-      integer, intent(in) :: format
+      type(universal_table), intent(in) :: table   !< built or read
+      character(len=*), intent(in) :: path   !< file to write (replaced atomically)
+      integer, intent(in) :: format   !< format_csv or format_binary
+      !> allocated on failure (nothing replaced)
       type(egw_error), allocatable, intent(out) :: error
       if (.not. allocated(table%slices)) then
          call fatal_error(error, egw_invalid_argument, "table: not built or read")
@@ -295,9 +304,9 @@ contains
 
    !> Read an egw CSV or binary universal table.
    subroutine read_universal(path, table, error)
-      character(len=*), intent(in) :: path
-      type(universal_table), intent(out) :: table
-      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: path   !< a file of write_universal
+      type(universal_table), intent(out) :: table   !< the table; empty on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       character(len=:), allocatable :: bytes
       call read_file(path, bytes, error)
       if (allocated(error)) return

@@ -66,13 +66,19 @@ contains
    !> grows when a round rebuilds on a finer mu grid.
    subroutine build_universal(model, psi, hardness_coeff, plastic_ratio, options, mu_min, &
       & mu_max, x_min, x_max, rel_tol, table, error, progress)
-      integer, intent(in) :: model
-      real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio
-      type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: mu_min, mu_max, x_min, x_max, rel_tol
-      type(universal_table), intent(out) :: table
-      type(egw_error), allocatable, intent(out) :: error
-      procedure(table_progress), optional :: progress
+      integer, intent(in) :: model   !< model_gw, model_egw or model_epgw
+      real(dp), intent(in) :: psi   !< plasticity index (EP-GW; 0 elastic)
+      real(dp), intent(in) :: hardness_coeff   !< ZMC K, in (0, 1)
+      real(dp), intent(in) :: plastic_ratio   !< ZMC rho_p = delta_p/delta_ep, > 1
+      type(solver_options), intent(in) :: options   !< of the solves
+      real(dp), intent(in) :: mu_min   !< smallest mu tabulated
+      real(dp), intent(in) :: mu_max   !< largest mu tabulated (> mu_min)
+      real(dp), intent(in) :: x_min   !< smallest delta/sigma of interest
+      real(dp), intent(in) :: x_max   !< largest delta/sigma tabulated
+      real(dp), intent(in) :: rel_tol   !< interpolation tolerance of the force, relative
+      type(universal_table), intent(out) :: table   !< the table; empty on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      procedure(table_progress), optional :: progress   !< optional hook (table_progress)
       type(universal_table) :: u
       type(solver_options) :: opts
       type(contact_params), allocatable :: params(:)
@@ -239,10 +245,15 @@ contains
    !> x_max, as in the 1-D table, so that universal_slice reproduces it).
    !> Exactly 0 below the cut-off. No allocation; thread-safe.
    pure subroutine universal_eval(u, radius, modulus, sigma, mu, delta, force, stiffness, stat)
-      type(universal_table), intent(in) :: u
-      real(dp), intent(in) :: radius, modulus, sigma, mu, delta
-      real(dp), intent(out) :: force, stiffness
-      integer, intent(out) :: stat
+      type(universal_table), intent(in) :: u   !< built or read
+      real(dp), intent(in) :: radius   !< equivalent radius R [length]
+      real(dp), intent(in) :: modulus   !< effective modulus E* [force/length^2]
+      real(dp), intent(in) :: sigma   !< summit height deviation [length], > 0
+      real(dp), intent(in) :: mu   !< Greenwood-Tripp mu, in the table's range
+      real(dp), intent(in) :: delta   !< overlap [length]
+      real(dp), intent(out) :: force   !< normal force [force], >= 0
+      real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
+      integer, intent(out) :: stat   !< 0 or egw_out_of_range
       real(dp) :: x, t, w(0:3), v, dv, scale, c(0:3)
       integer :: j0, i, n
 
@@ -370,11 +381,12 @@ contains
    !> universal_eval); the universal table itself now interpolates P there, so the
    !> exact slice is already as fast.
    pure subroutine universal_slice(u, params, table, error, linear_contact, delta_max)
-      type(universal_table), intent(in) :: u
+      type(universal_table), intent(in) :: u   !< built or read
+      !> one contact within the table's model and mu range
       type(contact_params), intent(in) :: params
-      type(force_table), intent(out) :: table
-      type(egw_error), allocatable, intent(out) :: error
-      logical, intent(in), optional :: linear_contact
+      type(force_table), intent(out) :: table   !< its 1-D table; empty on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      logical, intent(in), optional :: linear_contact   !< ignored (compatibility)
       !> Largest overlap the caller will evaluate (optional): the slice keeps the nodes up
       !> to the first one at or above it, so its values below are unchanged and its lookup
       !> buckets are spent where the contacts are (a DEM mix over a table reaching
