@@ -250,7 +250,12 @@ contains
       real(dp), intent(in) :: e               !< delta_ep / sigma
       real(dp), intent(in) :: q               !< delta_p / sigma
       real(dp), intent(in) :: hardness_coeff  !< ZMC K
-      real(dp), intent(out) :: i_e, i_ep, i_p, di_e, di_ep, di_p
+      real(dp), intent(out) :: i_e   !< elastic part int_0^e
+      real(dp), intent(out) :: i_ep   !< elastic-plastic part int_e^q
+      real(dp), intent(out) :: i_p   !< fully plastic part int_q^inf
+      real(dp), intent(out) :: di_e   !< d i_e/dh
+      real(dp), intent(out) :: di_ep   !< d i_ep/dh
+      real(dp), intent(out) :: di_p   !< d i_p/dh
       real(dp) :: j_e, j_ep, m3, m4, f0, phi_e, phi_q, b1, b2
       ! Two exact forms of d/dh int_a^b g(x) phi(h+x) dx: under the integral sign,
       ! -int g(x) (h+x) phi(h+x) dx, which cancels when the Gaussian sits inside a long

@@ -142,8 +142,9 @@ contains
    !> before anything is written (writing it would raise SIGXFSZ, which kills the
    !> process and leaves the temporary file behind).
    subroutine write_file(path, bytes, error)
-      character(len=*), intent(in) :: path
-      character(len=*), intent(in), target :: bytes
+      character(len=*), intent(in) :: path   !< the file to replace atomically
+      character(len=*), intent(in), target :: bytes   !< its whole content
+      !> allocated on failure (path unchanged)
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: tmp, why
       type(c_ptr) :: fp
@@ -332,11 +333,11 @@ contains
    !> Prefer write_file: this temporary's name is not unique to the writer (two threads
    !> writing the same path share it) and a unit gives no fsync.
    subroutine open_temporary(path, unit, tmp_path, error, binary)
-      character(len=*), intent(in) :: path
-      integer, intent(out) :: unit
-      character(len=:), allocatable, intent(out) :: tmp_path
-      type(egw_error), allocatable, intent(out) :: error
-      logical, intent(in), optional :: binary
+      character(len=*), intent(in) :: path   !< the file the temporary will replace
+      integer, intent(out) :: unit   !< the open unit
+      character(len=:), allocatable, intent(out) :: tmp_path   !< the temporary's name
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      logical, intent(in), optional :: binary   !< optional, default false: unformatted stream
       integer :: ios
       character(len=256) :: msg
       logical :: stream
@@ -359,8 +360,10 @@ contains
    !> Flush and close the temporary file (both checked), then rename it over path; on
    !> failure the temporary file is removed.
    subroutine commit_temporary(unit, tmp_path, path, error)
-      integer, intent(in) :: unit
-      character(len=*), intent(in) :: tmp_path, path
+      integer, intent(in) :: unit   !< from open_temporary
+      character(len=*), intent(in) :: tmp_path   !< from open_temporary
+      character(len=*), intent(in) :: path   !< the file to replace
+      !> allocated on failure (path unchanged)
       type(egw_error), allocatable, intent(out) :: error
       integer :: ios
       character(len=256) :: msg
@@ -383,8 +386,8 @@ contains
 
    !> Abandon a temporary file (after a failure while writing it).
    subroutine discard_temporary(unit, tmp_path)
-      integer, intent(in) :: unit
-      character(len=*), intent(in) :: tmp_path
+      integer, intent(in) :: unit   !< from open_temporary
+      character(len=*), intent(in) :: tmp_path   !< from open_temporary
       integer :: ios
       close (unit, status="delete", iostat=ios)
       if (ios /= 0) call remove_file(tmp_path)

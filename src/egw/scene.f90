@@ -127,10 +127,10 @@ module egw_scene
       !> Full solves (options) are spent only on the Hertz check; tables are built by
       !> build_scene_tables.
       module subroutine choose_model(scene, options, choice, error)
-         type(contact_scene), intent(in) :: scene
-         type(solver_options), intent(in) :: options
-         type(model_choice), intent(out) :: choice
-         type(egw_error), allocatable, intent(out) :: error
+         type(contact_scene), intent(in) :: scene   !< resolved (resolve_scene)
+         type(solver_options), intent(in) :: options   !< of the Hertz check's solves
+         type(model_choice), intent(out) :: choice   !< the cheapest model meeting the tolerance
+         type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       end subroutine choose_model
 
       !> The Hertz error measure of a scene, the maximum over its parameter sets of:
@@ -158,11 +158,11 @@ module egw_scene
       !> mu is one value: the table needs a range) and delta/sigma range. measured_error is
       !> the largest relative force error the builds measured at their check solves.
       module subroutine build_scene_tables(scene, choice, options, tables, error, progress)
-         type(contact_scene), intent(in) :: scene
-         type(model_choice), intent(in) :: choice
-         type(solver_options), intent(in) :: options
-         type(scene_tables), intent(out) :: tables
-         type(egw_error), allocatable, intent(out) :: error
+         type(contact_scene), intent(in) :: scene   !< resolved (resolve_scene)
+         type(model_choice), intent(in) :: choice   !< from choose_model
+         type(solver_options), intent(in) :: options   !< of the builds' solves
+         type(scene_tables), intent(out) :: tables   !< the chosen tables (none for Hertz)
+         type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
          !> called as the build goes (see egw_table's table_progress; not called for Hertz)
          procedure(table_progress), optional :: progress
       end subroutine build_scene_tables
@@ -244,7 +244,7 @@ contains
 
    !> Name of a choice for messages.
    pure function choice_name(kind) result(name)
-      integer, intent(in) :: kind
+      integer, intent(in) :: kind   !< choice_hertz, choice_table or choice_universal
       ! not a deferred length: gfortran 12 keeps those in a static variable (egw_text)
       character(len=len_trim(choice_label(kind))) :: name
       name = choice_label(kind)
@@ -258,8 +258,10 @@ contains
    !> delta_min and delta_max or delta_min_sigma and delta_max_sigma, tol. The result is
    !> validated; on any error input is unchanged and the message names the variable.
    subroutine read_scene_file(path, input, error)
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !< a scene file (doc/scenes.md)
+      !> the variables given replace its own; unchanged on error
       type(scene_input), intent(inout) :: input
+      !> allocated on failure, naming the line
       type(egw_error), allocatable, intent(out) :: error
       type(scene_overrides) :: ov
       character(len=32) :: model
@@ -414,9 +416,9 @@ contains
    !> Replace the fields of input that ov gives (see scene_overrides), then validate.
    !> On any error input is unchanged and the message names the variable.
    pure subroutine apply_scene_overrides(input, ov, error)
-      type(scene_input), intent(inout) :: input
-      type(scene_overrides), intent(in) :: ov
-      type(egw_error), allocatable, intent(out) :: error
+      type(scene_input), intent(inout) :: input   !< the scene to change
+      type(scene_overrides), intent(in) :: ov !< the fields given replace those of input
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(scene_input) :: s
       integer :: n
 
@@ -564,7 +566,8 @@ contains
 
    !> Check a scene; the message names the first offending field and its value.
    pure subroutine validate_scene_input(s, error)
-      type(scene_input), intent(in) :: s
+      type(scene_input), intent(in) :: s   !< the scene to check
+      !> allocated, naming the entry, when one is invalid
       type(egw_error), allocatable, intent(out) :: error
       integer :: i
       if (s%model < model_hertz .or. s%model > model_epgw) then
@@ -690,9 +693,9 @@ contains
    !> 1/E* = (1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j; each at sigma_min and sigma_max (mu from
    !> the summits is increasing in R and sigma, so the ends bound it).
    pure subroutine resolve_scene(input, scene, error)
-      type(scene_input), intent(in) :: input
-      type(contact_scene), intent(out) :: scene
-      type(egw_error), allocatable, intent(out) :: error
+      type(scene_input), intent(in) :: input   !< a valid scene (validate_scene_input)
+      type(contact_scene), intent(out) :: scene   !< its parameter sets and pairs
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       real(dp) :: radii(max_types), e_star, r, sig(2)
       integer :: n, i, j, is, ns, nsig, np, match
       integer, allocatable :: pset(:)
