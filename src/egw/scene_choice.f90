@@ -14,11 +14,7 @@ submodule (egw_scene) egw_scene_choice
 contains
 
    ! choose_model: interface and documentation in egw_scene (src/egw/scene.f90)
-   module subroutine choose_model(scene, options, choice, error)
-      type(contact_scene), intent(in) :: scene
-      type(solver_options), intent(in) :: options
-      type(model_choice), intent(out) :: choice
-      type(egw_error), allocatable, intent(out) :: error
+   module procedure choose_model
       real(dp) :: tol
       integer :: ns
 
@@ -71,7 +67,7 @@ contains
             & "], delta/sigma in ["//num(choice%x_min)//", "// &
             & num(choice%x_max)//"]"
       end if
-   end subroutine choose_model
+   end procedure choose_model
 
    pure function hertz_measure(choice) result(str)
       type(model_choice), intent(in) :: choice
@@ -84,12 +80,7 @@ contains
    end function hertz_measure
 
    ! scene_hertz_error: interface and documentation in egw_scene (src/egw/scene.f90)
-   module subroutine scene_hertz_error(scene, options, worst, n_solves, error)
-      type(contact_scene), intent(in) :: scene
-      type(solver_options), intent(in) :: options
-      real(dp), intent(out) :: worst
-      integer, intent(out) :: n_solves
-      type(egw_error), allocatable, intent(out) :: error
+   module procedure scene_hertz_error
       type(solver_options) :: opts
       real(dp), allocatable :: deltas(:, :), force(:, :), p_ref(:)
       integer, allocatable :: stat(:, :), n_pts(:)
@@ -172,7 +163,7 @@ contains
             end if
          end associate
       end do
-   end subroutine scene_hertz_error
+   end procedure scene_hertz_error
 
    !> Positive overlaps sampled by the Hertz check of set s: [max(delta_min, 1e-12 sigma),
    !> delta_max] when delta_min > 0, else [min(sigma/100, delta_max/10), delta_max].
@@ -192,6 +183,8 @@ contains
    end subroutine sample_range
 
    ! build_scene_tables: interface and documentation in egw_scene (src/egw/scene.f90)
+   ! (a full header: gfortran 12 loses the interface of a procedure dummy in a
+   ! `module procedure` body)
    module subroutine build_scene_tables(scene, choice, options, tables, error, progress)
       type(contact_scene), intent(in) :: scene
       type(model_choice), intent(in) :: choice
@@ -240,6 +233,8 @@ contains
    end subroutine build_scene_tables
 
    ! build_pair_tables: interface and documentation in egw_scene (src/egw/scene.f90)
+   ! (a full header: gfortran 12 loses the interface of a procedure dummy in a
+   ! `module procedure` body)
    module subroutine build_pair_tables(scene, options, tables, error, progress)
       type(contact_scene), intent(in) :: scene
       type(solver_options), intent(in) :: options
