@@ -10,6 +10,8 @@ module bench_hysteresis
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & solve_contact_unload, solve_contact
    use bench_common, only: frac, open_csv, write_row, close_csv, fmt_e
+   use bench_floor, only: floor_grid, floor_grid_init, floor_state_only, floor_bilinear, &
+      & floor_linear_cubic, floor_bicubic
    implicit none
    private
    public :: run_hysteresis
@@ -137,9 +139,84 @@ contains
             & "solve_contact_unload rel_tol=1e-7", 0, "hysteresis_eval_state DEM-like "// &
             & "hertz_s="//fmt_e(best_h))
          write (output_unit, '(a,es10.3)') "  (checksum, ignore) ", sink
+         if (it == size(tols)) call time_floor(t, delta, state)
       end do
       call close_csv(unit)
    end subroutine run_hysteresis
+
+   !> The floor of a one-double evaluation (bench_floor's kernels on a uniform grid with as
+   !> many cells as table t, the same contacts), timed round by round with the Hertz force
+   !> and hysteresis_eval: ratios from one run.
+   subroutine time_floor(t, delta, state)
+      type(hysteresis_table), intent(in) :: t
+      real(dp), intent(in) :: delta(:), state(:)
+      integer, parameter :: rounds = 11, sweeps = 200, n_kernel = 6
+      character(len=*), parameter :: names(n_kernel) = [character(len=40) :: &
+         & "Hertz force", "hysteresis_eval", "floor: state update and call only", &
+         & "floor: one bilinear cell", "floor: one linear x cubic cell", &
+         & "floor: one bicubic cell"]
+      type(floor_grid) :: g
+      real(dp) :: best(n_kernel), sink, f, k, m, dt
+      integer(int64) :: c0, c1, rate
+      integer :: r, s, i, kernel, stat
+      call floor_grid_init(g, size(t%m) - 1, size(t%s) - 1, t%m(1), t%m(size(t%m)))
+      best = huge(1.0_dp)
+      sink = 0
+      do r = 1, rounds
+         do kernel = 1, n_kernel
+            call system_clock(c0, rate)
+            do s = 1, sweeps
+               select case (kernel)
+               case (1)
+                  do i = 1, size(delta)
+                     sink = sink + hertz_force(abs(delta(i)), 1.0_dp, 1.0_dp)
+                  end do
+               case (2)
+                  do i = 1, size(delta)
+                     m = state(i)
+                     call hysteresis_eval(t, delta(i), m, f, k, stat)
+                     sink = sink + f
+                  end do
+               case (3)
+                  do i = 1, size(delta)
+                     m = state(i)
+                     call floor_state_only(g, delta(i), m, f, k, stat)
+                     sink = sink + f
+                  end do
+               case (4)
+                  do i = 1, size(delta)
+                     m = state(i)
+                     call floor_bilinear(g, delta(i), m, f, k, stat)
+                     sink = sink + f
+                  end do
+               case (5)
+                  do i = 1, size(delta)
+                     m = state(i)
+                     call floor_linear_cubic(g, delta(i), m, f, k, stat)
+                     sink = sink + f
+                  end do
+               case (6)
+                  do i = 1, size(delta)
+                     m = state(i)
+                     call floor_bicubic(g, delta(i), m, f, k, stat)
+                     sink = sink + f
+                  end do
+               end select
+            end do
+            call system_clock(c1)
+            dt = real(c1 - c0, dp)/real(rate, dp)/(sweeps*size(delta))
+            best(kernel) = min(best(kernel), dt)
+         end do
+      end do
+      write (output_unit, '(a,i0,a,i0,a)') "  the floor of a one-double evaluation (bench_floor: "// &
+         & "uniform grid of ", g%n_m, " x ", g%n_s, " synthetic cells, no checks, the same "// &
+         & "contacts, best of 11 rounds):"
+      do kernel = 1, n_kernel
+         write (output_unit, '(4x,a,f7.2,a,f6.2)') names(kernel), best(kernel)*1e9, &
+            & " ns/call: ratio ", best(kernel)/best(1)
+      end do
+      write (output_unit, '(a,es10.3)') "  (checksum, ignore) ", sink
+   end subroutine time_floor
 
    !> Largest |P_table - P_solve| relative to the force at the turning point, over five
    !> delta_max between nodes and six overlaps on each of their unloading curves (solves at

@@ -22,6 +22,7 @@
 !>   --universal-tol X  only the universal table at rel_tol X (2 threads)
 !>                 -> out/bench/universal_tol.csv
 !>   --hysteresis  EP-GW hysteresis table: build time (1e-3, 1e-4) and eval / Hertz force
+!>                 (and the floor of a one-double evaluation: app/bench_floor.f90)
 !>   --quick       fewer cases and shorter timings (a smoke run)
 !>   --out DIR     write the CSVs to DIR/ (default out/bench/)
 !>   --update-docs write the CSVs to doc/bench/, replacing the committed results that
