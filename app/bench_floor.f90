@@ -4,7 +4,8 @@
 !> lookup. They say what any tabulated one-double evaluation costs at least as a ratio to
 !> the Hertz force on the same machine and build: the state update and the call alone, one
 !> bilinear cell, one cell linear in delta_max and cubic in s, one bicubic cell (a
-!> representation accurate to 1e-4 needs at least the last two; doc/benchmarks.md).
+!> representation accurate to 1e-4 in a few MB needs cubic cells in at least one
+!> direction; doc/benchmarks.md).
 !> Compiled apart from the timing loop, as the library is, so that no call is inlined.
 module bench_floor
    use egw, only: dp
