@@ -230,12 +230,12 @@ contains
    !> non-finite separation_min (egw_invalid_argument). Outputs unchanged on error.
    pure subroutine flat_pressure_unload(params, separation, separation_min, pressure, &
       & dpressure, error)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< the contact (sigma > 0)
       real(dp), intent(in) :: separation      !< d, same length unit as sigma
       real(dp), intent(in) :: separation_min  !< d_min, the closest approach so far
       real(dp), intent(inout) :: pressure     !< p_G,u
       real(dp), intent(inout) :: dpressure    !< dp_G,u/dd (<= 0)
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on bad input
       real(dp) :: sigma, p, dpdh, psi, pu, dpu
       call check_flat_input(params, separation, error)
       if (allocated(error)) return
