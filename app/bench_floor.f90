@@ -11,7 +11,7 @@ module bench_floor
    use egw, only: dp
    implicit none
    private
-   public :: floor_grid, floor_grid_init, floor_state_only, floor_bilinear, &
+   public :: floor_grid, floor_grid_init, floor_kernel, floor_state_only, floor_bilinear, &
       & floor_linear_cubic, floor_bicubic
 
    !> n_m x n_s cells over delta_max in [m0, m0 + n_m/m_scale], s = (m - delta)(a + b m)
@@ -21,6 +21,24 @@ module bench_floor
       real(dp) :: m0 = 0.0_dp, m_scale = 1.0_dp, a = 1.0_dp, b = 0.0_dp
       real(dp), allocatable :: cell(:, :, :)   !< (16, n_s, n_m): coefficients
    end type floor_grid
+
+   abstract interface
+      !> hysteresis_eval's argument list on a floor grid
+      pure subroutine kernel_call(g, delta, state, force, stiffness, stat)
+         import :: dp, floor_grid
+         type(floor_grid), intent(in) :: g
+         real(dp), intent(in) :: delta
+         real(dp), intent(inout) :: state
+         real(dp), intent(out) :: force, stiffness
+         integer, intent(out) :: stat
+      end subroutine kernel_call
+   end interface
+
+   !> One of the kernels below, called through a pointer (as the library's procedures, it
+   !> is never inlined into the timing loop)
+   type :: floor_kernel
+      procedure(kernel_call), pointer, nopass :: run => null()
+   end type floor_kernel
 
 contains
 

@@ -10,8 +10,8 @@ module bench_hysteresis
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & solve_contact_unload, solve_contact
    use bench_common, only: frac, open_csv, write_row, close_csv, fmt_e
-   use bench_floor, only: floor_grid, floor_grid_init, floor_state_only, floor_bilinear, &
-      & floor_linear_cubic, floor_bicubic
+   use bench_floor, only: floor_grid, floor_grid_init, floor_kernel, floor_state_only, &
+      & floor_bilinear, floor_linear_cubic, floor_bicubic
    implicit none
    private
    public :: run_hysteresis
@@ -156,10 +156,15 @@ contains
          & "floor: one bilinear cell", "floor: one linear x cubic cell", &
          & "floor: one bicubic cell"]
       type(floor_grid) :: g
+      type(floor_kernel) :: kernels(n_kernel)
       real(dp) :: best(n_kernel), sink, f, k, m, dt
       integer(int64) :: c0, c1, rate
       integer :: r, s, i, kernel, stat
       call floor_grid_init(g, size(t%m) - 1, size(t%s) - 1, t%m(1), t%m(size(t%m)))
+      kernels(3)%run => floor_state_only
+      kernels(4)%run => floor_bilinear
+      kernels(5)%run => floor_linear_cubic
+      kernels(6)%run => floor_bicubic
       best = huge(1.0_dp)
       sink = 0
       do r = 1, rounds
@@ -177,28 +182,10 @@ contains
                      call hysteresis_eval(t, delta(i), m, f, k, stat)
                      sink = sink + f
                   end do
-               case (3)
+               case default
                   do i = 1, size(delta)
                      m = state(i)
-                     call floor_state_only(g, delta(i), m, f, k, stat)
-                     sink = sink + f
-                  end do
-               case (4)
-                  do i = 1, size(delta)
-                     m = state(i)
-                     call floor_bilinear(g, delta(i), m, f, k, stat)
-                     sink = sink + f
-                  end do
-               case (5)
-                  do i = 1, size(delta)
-                     m = state(i)
-                     call floor_linear_cubic(g, delta(i), m, f, k, stat)
-                     sink = sink + f
-                  end do
-               case (6)
-                  do i = 1, size(delta)
-                     m = state(i)
-                     call floor_bicubic(g, delta(i), m, f, k, stat)
+                     call kernels(kernel)%run(g, delta(i), m, f, k, stat)
                      sink = sink + f
                   end do
                end select
