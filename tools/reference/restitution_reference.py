@@ -17,10 +17,13 @@ estimates; e's estimate half their sum (e is a square root).
 
   python tools/reference/restitution_reference.py generate   # test/data/restitution_reference.csv
 
-takes ~1 h on one core (the unloading points near contact take 5-15 s each).
+takes ~1 h a case on one core (the unloading points near contact take 5-20 s each);
+`--jobs N` evaluates each panel's points in N processes, `--cases K ...` regenerates those
+rows only (the file's other rows are kept), `--abs-tol` sets the panels' tolerance.
 """
 import argparse
 import math
+import multiprocessing
 import os
 import sys
 import time
@@ -34,6 +37,7 @@ import sphere_unload_reference as sur  # noqa: E402
 CASES = (
     ("EPGW", 0.5, 4.0, 2.0, 0.6),
     ("EPGW", -1.0, 4.0, 2.0, 0.6),
+    ("EPGW", 3.0, 4.0, 2.0, 0.6),   # a faster impact: e on its way back up
 )
 
 # Per-point solves: two levels of sphere_reference.solve (tolerances 1e-9, 1e-11); the
@@ -68,14 +72,26 @@ def point(prob):
     return p, e
 
 
-def integrate(f, label):
+# The integrand of the running integrate() call, for the worker processes (forked after it
+# is set, so that they inherit it with its loading history: nothing is pickled but numbers).
+_INTEGRAND = None
+
+
+def _evaluate(d):
+    return _INTEGRAND(d)
+
+
+def integrate(f, label, jobs=1, abs_tol=ABS_TOL):
     """int_{-8}^{0} f(delta) + int_0^{delta_m} via delta = delta_m x^2 (x in [0, 1]).
     Each panel by the 17-point CC rule, bisected until it agrees with its nested 9-point
     rule to ABS_TOL (the unloading force has kinks in delta where a loading-law region
     appears or vanishes: there the rules converge only algebraically); the estimate is the
     sum of the accepted panels' differences plus the solvers' own estimates."""
+    global _INTEGRAND
     x, w = cc_rule(N_CC)
     xc, wc = cc_rule(N_CC // 2)
+    _INTEGRAND = f
+    pool = multiprocessing.get_context("fork").Pool(jobs) if jobs > 1 else None
     total, err, solver_err = 0.0, 0.0, 0.0
     t0 = time.time()
     n_points = 0
@@ -88,21 +104,22 @@ def integrate(f, label):
     while stack:
         lo, hi, mapped, depth = stack.pop()
         t = lo + (hi - lo) * (x + 1.0) / 2.0
+        if mapped:
+            ds, jacs = f.delta_m * t * t, 2.0 * f.delta_m * t
+        else:
+            ds, jacs = t, np.ones_like(t)
+        todo = [d for d, jac in zip(ds, jacs) if jac != 0.0]
+        done = iter(pool.map(_evaluate, todo) if pool else map(f, todo))
         vals = np.empty_like(t)
         perr = 0.0
-        for i, ti in enumerate(t):
-            if mapped:
-                d = f.delta_m * ti * ti
-                jac = 2.0 * f.delta_m * ti
-            else:
-                d, jac = ti, 1.0
-            p, pe = f(d) if jac != 0.0 else (0.0, 0.0)
+        for i, jac in enumerate(jacs):
+            p, pe = next(done) if jac != 0.0 else (0.0, 0.0)
             n_points += 1
             vals[i] = p * jac
             perr += abs(pe * p * jac) * w[i] * (hi - lo) / 2.0
         fine = float(np.dot(w, vals)) * (hi - lo) / 2.0
         coarse = float(np.dot(wc, vals[::2])) * (hi - lo) / 2.0
-        if abs(fine - coarse) > ABS_TOL and depth < MAX_DEPTH:
+        if abs(fine - coarse) > abs_tol and depth < MAX_DEPTH:
             mid = 0.5 * (lo + hi)
             stack.append((mid, hi, mapped, depth + 1))
             stack.append((lo, mid, mapped, depth + 1))
@@ -113,6 +130,9 @@ def integrate(f, label):
         print("  %s [%.6g, %.6g]%s: %.16e (9-point %.1e off; %d points, %.0f s)"
               % (label, lo, hi, " (x^2)" if mapped else "", fine, abs(fine - coarse),
                  n_points, time.time() - t0), flush=True)
+    if pool:
+        pool.close()
+        pool.join()
     return total, (err + solver_err) / abs(total)
 
 
@@ -151,16 +171,34 @@ HEADER = """\
 """
 
 
-def generate(path, cases=None):
+def case_key(model, dm, mu, psi, K):
+    return "%s,%.10g,%.10g,%.10g,%.10g" % (model, dm, mu, psi, K)
+
+
+def generate(path, cases=None, jobs=1, abs_tol=ABS_TOL):
+    """Write a row per case of CASES to path (atomically). With cases (1-based rows of
+    CASES) only those are computed; the other cases' rows already in path are kept."""
+    kept = {}
+    if cases and os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                if line.startswith("#") or line.startswith("model,"):
+                    continue
+                fields = line.strip().split(",")
+                if len(fields) == 12:
+                    kept[",".join(fields[:5])] = line if line.endswith("\n") else line + "\n"
     lines = []
     for k, (model, dm, mu, psi, K) in enumerate(CASES):
+        key = case_key(model, dm, mu, psi, K)
         if cases and k + 1 not in cases:
+            if key in kept:
+                lines.append(kept[key])
             continue
-        w_load, e_load = integrate(Load(model, dm, mu, psi, K), "load")
-        w_unload, e_unload = integrate(Unload(model, dm, mu, psi, K), "unload")
+        w_load, e_load = integrate(Load(model, dm, mu, psi, K), "load", jobs, abs_tol)
+        w_unload, e_unload = integrate(Unload(model, dm, mu, psi, K), "unload", jobs, abs_tol)
         e = math.sqrt(w_unload / w_load)
-        lines.append("%s,%.10g,%.10g,%.10g,%.10g,%.16e,%.2e,%.16e,%.2e,%.16e,%.16e,%.2e\n"
-                     % (model, dm, mu, psi, K, w_load, e_load, w_unload, e_unload,
+        lines.append("%s,%.16e,%.2e,%.16e,%.2e,%.16e,%.16e,%.2e\n"
+                     % (key, w_load, e_load, w_unload, e_unload,
                         math.sqrt(2.0 * w_load), e, 0.5 * (e_load + e_unload)))
         print(lines[-1].strip(), flush=True)
     with open(path + ".tmp", "w") as f:
@@ -176,11 +214,15 @@ def main(argv=None):
     sub = ap.add_subparsers(dest="cmd", required=True)
     g = sub.add_parser("generate")
     g.add_argument("--out", default="test/data/restitution_reference.csv")
-    g.add_argument("--cases", type=int, nargs="*", help="only these rows of CASES (1-based)")
+    g.add_argument("--cases", type=int, nargs="*",
+                   help="only these rows of CASES (1-based); the file's other rows are kept")
+    g.add_argument("--jobs", type=int, default=1, help="processes per panel (default 1)")
+    g.add_argument("--abs-tol", type=float, default=ABS_TOL,
+                   help="a panel's 17- and 9-point rules agree to this (default %g)" % ABS_TOL)
     t = sub.add_parser("time", help="time one loading and one unloading point")
     args = ap.parse_args(argv)
     if args.cmd == "generate":
-        generate(args.out, args.cases)
+        generate(args.out, args.cases, args.jobs, args.abs_tol)
     else:
         model, dm, mu, psi, K = CASES[0]
         t0 = time.time()
