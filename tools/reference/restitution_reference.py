@@ -19,7 +19,7 @@ estimates; e's estimate half their sum (e is a square root).
 
 takes ~1 h a case on one core (the unloading points near contact take 5-20 s each);
 `--jobs N` evaluates each panel's points in N processes, `--cases K ...` regenerates those
-rows only (the file's other rows are kept), `--abs-tol` sets the panels' tolerance.
+rows only (the file's other rows are kept), `--abs-tol` overrides the cases' tolerances.
 """
 import argparse
 import math
@@ -33,11 +33,13 @@ import numpy as np  # noqa: E402
 import sphere_reference as sr  # noqa: E402
 import sphere_unload_reference as sur  # noqa: E402
 
-# model, delta_m/sigma, mu, psi, K (rho_p = 54): the minimum of e lies near delta_m ~ 0
+# model, delta_m/sigma, mu, psi, K (rho_p = 54), the panels' tolerance (absolute, W is of
+# order 0.01..10): the minimum of e lies near delta_m ~ 0; the third, a faster impact with e
+# on its way back up, at 1e-9 (1e-10 of its W ~ 14; 1e-11 would bisect its kinks for hours)
 CASES = (
-    ("EPGW", 0.5, 4.0, 2.0, 0.6),
-    ("EPGW", -1.0, 4.0, 2.0, 0.6),
-    ("EPGW", 3.0, 4.0, 2.0, 0.6),   # a faster impact: e on its way back up
+    ("EPGW", 0.5, 4.0, 2.0, 0.6, 1e-11),
+    ("EPGW", -1.0, 4.0, 2.0, 0.6, 1e-11),
+    ("EPGW", 3.0, 4.0, 2.0, 0.6, 1e-9),
 )
 
 # Per-point solves: two levels of sphere_reference.solve (tolerances 1e-9, 1e-11); the
@@ -45,7 +47,7 @@ CASES = (
 POINT_LEVELS = ((1e-9, 16, "std", 0.0), (1e-11, 16, "std", 0.0))
 PANELS = ((-8.0, -4.0), (-4.0, -2.0), (-2.0, 0.0))
 N_CC = 16   # intervals of the Clenshaw-Curtis rule (17 points; nested: 8 intervals)
-ABS_TOL = 1e-11   # a panel's 17- and 9-point rules agree to this (W is of order 0.01..10)
+ABS_TOL = 1e-11   # default of integrate(): a panel's 17- and 9-point rules agree to this
 MAX_DEPTH = 20
 
 
@@ -84,7 +86,7 @@ def _evaluate(d):
 def integrate(f, label, jobs=1, abs_tol=ABS_TOL):
     """int_{-8}^{0} f(delta) + int_0^{delta_m} via delta = delta_m x^2 (x in [0, 1]).
     Each panel by the 17-point CC rule, bisected until it agrees with its nested 9-point
-    rule to ABS_TOL (the unloading force has kinks in delta where a loading-law region
+    rule to abs_tol (the unloading force has kinks in delta where a loading-law region
     appears or vanishes: there the rules converge only algebraically); the estimate is the
     sum of the accepted panels' differences plus the solvers' own estimates."""
     global _INTEGRAND
@@ -175,9 +177,10 @@ def case_key(model, dm, mu, psi, K):
     return "%s,%.10g,%.10g,%.10g,%.10g" % (model, dm, mu, psi, K)
 
 
-def generate(path, cases=None, jobs=1, abs_tol=ABS_TOL):
+def generate(path, cases=None, jobs=1, abs_tol=None):
     """Write a row per case of CASES to path (atomically). With cases (1-based rows of
-    CASES) only those are computed; the other cases' rows already in path are kept."""
+    CASES) only those are computed; the other cases' rows already in path are kept.
+    abs_tol, if given, replaces every case's own panel tolerance."""
     kept = {}
     if cases and os.path.exists(path):
         with open(path) as f:
@@ -188,14 +191,15 @@ def generate(path, cases=None, jobs=1, abs_tol=ABS_TOL):
                 if len(fields) == 12:
                     kept[",".join(fields[:5])] = line if line.endswith("\n") else line + "\n"
     lines = []
-    for k, (model, dm, mu, psi, K) in enumerate(CASES):
+    for k, (model, dm, mu, psi, K, case_tol) in enumerate(CASES):
         key = case_key(model, dm, mu, psi, K)
+        tol = case_tol if abs_tol is None else abs_tol
         if cases and k + 1 not in cases:
             if key in kept:
                 lines.append(kept[key])
             continue
-        w_load, e_load = integrate(Load(model, dm, mu, psi, K), "load", jobs, abs_tol)
-        w_unload, e_unload = integrate(Unload(model, dm, mu, psi, K), "unload", jobs, abs_tol)
+        w_load, e_load = integrate(Load(model, dm, mu, psi, K), "load", jobs, tol)
+        w_unload, e_unload = integrate(Unload(model, dm, mu, psi, K), "unload", jobs, tol)
         e = math.sqrt(w_unload / w_load)
         lines.append("%s,%.16e,%.2e,%.16e,%.2e,%.16e,%.16e,%.2e\n"
                      % (key, w_load, e_load, w_unload, e_unload,
@@ -217,14 +221,14 @@ def main(argv=None):
     g.add_argument("--cases", type=int, nargs="*",
                    help="only these rows of CASES (1-based); the file's other rows are kept")
     g.add_argument("--jobs", type=int, default=1, help="processes per panel (default 1)")
-    g.add_argument("--abs-tol", type=float, default=ABS_TOL,
-                   help="a panel's 17- and 9-point rules agree to this (default %g)" % ABS_TOL)
+    g.add_argument("--abs-tol", type=float, default=None,
+                   help="a panel's 17- and 9-point rules agree to this (default: each case's)")
     t = sub.add_parser("time", help="time one loading and one unloading point")
     args = ap.parse_args(argv)
     if args.cmd == "generate":
         generate(args.out, args.cases, args.jobs, args.abs_tol)
     else:
-        model, dm, mu, psi, K = CASES[0]
+        model, dm, mu, psi, K, _ = CASES[0]
         t0 = time.time()
         print(Load(model, dm, mu, psi, K)(-1.0), "%.1f s" % (time.time() - t0))
         t0 = time.time()
