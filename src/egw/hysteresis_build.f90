@@ -218,21 +218,14 @@ contains
       type(solver_options) :: serial
       integer :: stats(size(m)), j
       character(len=256) :: messages(size(m))
-      serial = options
-      serial%n_threads = 1
-      serial%rel_tol = min(options%rel_tol, table%rel_tol/10.0_dp)
+      serial = curve_options(options, table%rel_tol)
       stats = 0
       !$omp parallel do schedule(dynamic) default(shared) private(j)
       do j = 1, size(m)
          call one_length(j)
       end do
       !$omp end parallel do
-      do j = 1, size(m)
-         if (stats(j) /= 0) then
-            call fatal_error(error, stats(j), trim(messages(j)))
-            return
-         end if
-      end do
+      call first_failure(stats, messages, error)
    contains
       subroutine one_length(j)
          integer, intent(in) :: j
@@ -249,6 +242,32 @@ contains
          curves(j)%length = unloading_length(top%force, res%stiffness, table%params%sigma)
       end subroutine one_length
    end subroutine unloading_lengths
+
+   !> The options of one curve's solves: serial (the parallelism is over the curves), and
+   !> a decade finer than the table's tolerance rel_tol.
+   pure function curve_options(options, rel_tol) result(serial)
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: rel_tol
+      type(solver_options) :: serial
+      serial = options
+      serial%n_threads = 1
+      serial%rel_tol = min(options%rel_tol, rel_tol/10.0_dp)
+   end function curve_options
+
+   !> The first failure of a parallel loop over curves (stats(j) /= 0, with its message) as
+   !> error: the lowest j wins, whatever the threads' order.
+   pure subroutine first_failure(stats, messages, error)
+      integer, intent(in) :: stats(:)
+      character(len=*), intent(in) :: messages(:)
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: j
+      do j = 1, size(stats)
+         if (stats(j) /= 0) then
+            call fatal_error(error, stats(j), trim(messages(j)))
+            return
+         end if
+      end do
+   end subroutine first_failure
 
    !> L = 1.5 P/K_unload: m minus the residual overlap of Hertzian unloading
    !> P (1 - (m - delta)/L)^{3/2}, and 1.5 times the decay length of the separated tail
@@ -273,10 +292,7 @@ contains
       real(dp) :: worst(size(m))
       integer :: stats(size(m)), j
       character(len=256) :: messages(size(m))
-      serial = options
-      serial%n_threads = 1  ! the parallelism is over the curves
-      ! the unloading solves run a decade finer than the table's tolerance
-      serial%rel_tol = min(options%rel_tol, table%rel_tol/10.0_dp)
+      serial = curve_options(options, table%rel_tol)
       stats = 0
       worst = 0.0_dp
       !$omp parallel do schedule(dynamic) default(shared) private(j)
@@ -284,12 +300,8 @@ contains
          call one_curve(j)
       end do
       !$omp end parallel do
-      do j = 1, size(m)
-         if (stats(j) /= 0) then
-            call fatal_error(error, stats(j), trim(messages(j)))
-            return
-         end if
-      end do
+      call first_failure(stats, messages, error)
+      if (allocated(error)) return
       table%max_error = max(table%max_error, maxval(worst))
    contains
       subroutine one_curve(j)
