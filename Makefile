@@ -7,7 +7,7 @@ VENV ?= .venv
 FPM := $(VENV)/bin/fpm
 export VENV
 PY_STAMP := $(VENV)/.egw-python-installed
-PY_SOURCES := $(wildcard src/*.f90 src/egw/*.f90 include/*.h CMakeLists.txt cmake/* \
+PY_SOURCES := $(wildcard src/*.f90 src/egw/*/*.f90 include/*.h CMakeLists.txt cmake/* \
 	python/setup.py python/pyproject.toml python/src/egw/*.py)
 
 .PHONY: run test bench setup clean python docs fuzz lammps bench-lammps

@@ -2,7 +2,7 @@
 !> command-line flags) goes in; egw_scene picks the cheapest model that meets the
 !> scene's force tolerance, builds its tables and this program writes them (the minimal
 !> set: none for Hertz, one 1-D table, or the universal table) and a summary.
-!> Parsing and printing only; the logic lives in src/egw/scene.f90.
+!> Parsing and printing only; the logic lives in src/egw/scene/scene.f90.
 program egw_table_app
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
    use egw_all, only: dp, egw_version_string, egw_error, format_real, int_str, model_name, &

@@ -1,5 +1,5 @@
 /* The structs and constants of include/egw.h against the Fortran mirrors (bind(C) types
- * of src/egw/capi*.f90 and the Fortran constants); test/test_capi_structs.f90 runs these
+ * of src/egw/capi/capi*.f90 and the Fortran constants); test/test_capi_structs.f90 runs these
  * checks and holds the Fortran half (egw_test_fortran_struct).
  *
  * Every struct is initialised here by position and in Fortran by component name with the

@@ -198,7 +198,7 @@ contains
       type(egw_error), allocatable :: e
       character(len=:), allocatable :: list, text, offenders
       integer :: stat, start, eol
-      call execute_command_line("mkdir -p build && ls src/*.f90 src/egw/*.f90 "// &
+      call execute_command_line("mkdir -p build && ls src/*.f90 src/egw/*/*.f90 "// &
          & "> build/test_text_io_sources.txt", exitstat=stat)
       call read_file("build/test_text_io_sources.txt", list, e)
       call check(error, stat == 0 .and. .not. allocated(e), "cannot list src/*.f90")

@@ -11,7 +11,7 @@ K = pi/(2 AGM(1, kc)) on 400 Chebyshev points in eta plus 60 points with eta fro
 Horner on a fine grid and prints the largest relative error against mpmath (about 1 ulp).
 
 Run from the repository root: python3 tools/reference/ellipk_fit.py > tools/reference/ellipk_fit.txt
-and paste the arrays into src/egw/ellip.f90.
+and paste the arrays into src/egw/kernels/ellip.f90.
 """
 import sys
 

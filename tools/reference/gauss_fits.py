@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generate src/egw/gauss_fits.f90: piecewise Chebyshev fits of the Gaussian asperity
+"""Generate src/egw/kernels/gauss_fits.f90: piecewise Chebyshev fits of the Gaussian asperity
 integrals F_n(h) = int_h^inf (s-h)^n phi(s) ds for n in {-1/2, 0, 1/2, 1, 3/2, 5/2}.
 
 h >= 0 : fit G_n(h) = F_n(h)/phi(h)  (smooth, ~ Gamma(n+1)/h^(n+1)); the caller multiplies

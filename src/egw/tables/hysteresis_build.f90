@@ -1,4 +1,4 @@
-!> The build of egw_hysteresis tables (src/egw/hysteresis.f90, whose interface block
+!> The build of egw_hysteresis tables (src/egw/tables/hysteresis.f90, whose interface block
 !> declares build_hysteresis): the delta_max grid, each node's unloading curve from
 !> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
 submodule (egw_hysteresis) egw_hysteresis_build

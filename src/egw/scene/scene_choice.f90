@@ -1,4 +1,4 @@
-!> Scenes, the choice and the builds (the module egw_scene in src/egw/scene.f90 holds the
+!> Scenes, the choice and the builds (the module egw_scene in src/egw/scene/scene.f90 holds the
 !> input, its validation and resolution, and declares these procedures): the cheapest
 !> model that meets a scene's tolerance, the Hertz check that decides it, and the
 !> builds of the chosen tables.
@@ -13,7 +13,7 @@ submodule (egw_scene) egw_scene_choice
 
 contains
 
-   ! choose_model: interface and documentation in egw_scene (src/egw/scene.f90)
+   ! choose_model: interface and documentation in egw_scene (src/egw/scene/scene.f90)
    module procedure choose_model
       real(dp) :: tol
       integer :: ns
@@ -79,7 +79,7 @@ contains
       end if
    end function hertz_measure
 
-   ! scene_hertz_error: interface and documentation in egw_scene (src/egw/scene.f90)
+   ! scene_hertz_error: interface and documentation in egw_scene (src/egw/scene/scene.f90)
    module procedure scene_hertz_error
       type(solver_options) :: opts
       real(dp), allocatable :: deltas(:, :), force(:, :), p_ref(:)
@@ -182,7 +182,7 @@ contains
       end if
    end subroutine sample_range
 
-   ! build_scene_tables: interface and documentation in egw_scene (src/egw/scene.f90)
+   ! build_scene_tables: interface and documentation in egw_scene (src/egw/scene/scene.f90)
    ! (a full header: gfortran 12 loses the interface of a procedure dummy in a
    ! `module procedure` body)
    module subroutine build_scene_tables(scene, choice, options, tables, error, progress)
@@ -232,7 +232,7 @@ contains
       end select
    end subroutine build_scene_tables
 
-   ! build_pair_tables: interface and documentation in egw_scene (src/egw/scene.f90)
+   ! build_pair_tables: interface and documentation in egw_scene (src/egw/scene/scene.f90)
    ! (a full header: gfortran 12 loses the interface of a procedure dummy in a
    ! `module procedure` body)
    module subroutine build_pair_tables(scene, options, tables, error, progress)

@@ -1,5 +1,5 @@
 !> egw binary: versioned, little-endian checked, FNV-1a checksummed (doc/formats.md).
-!> The binary submodule of egw_table_format (src/egw/table_format.f90), whose
+!> The binary submodule of egw_table_format (src/egw/formats/table_format.f90), whose
 !> interface block declares the entry points implemented here.
 submodule (egw_table_format) egw_table_format_binary
    implicit none

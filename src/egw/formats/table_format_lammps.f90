@@ -1,5 +1,5 @@
 !> LAMMPS `pair_style table` files (doc/formats.md).
-!> The LAMMPS submodule of egw_table_format (src/egw/table_format.f90), whose
+!> The LAMMPS submodule of egw_table_format (src/egw/formats/table_format.f90), whose
 !> interface block declares the entry points implemented here.
 submodule (egw_table_format) egw_table_format_lammps
    implicit none

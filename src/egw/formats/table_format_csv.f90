@@ -1,5 +1,5 @@
 !> egw CSV: the metadata header, the data rows and the checksum line (doc/formats.md).
-!> The CSV submodule of egw_table_format (src/egw/table_format.f90), whose
+!> The CSV submodule of egw_table_format (src/egw/formats/table_format.f90), whose
 !> interface block declares the entry points implemented here.
 submodule (egw_table_format) egw_table_format_csv
    implicit none

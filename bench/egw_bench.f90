@@ -22,7 +22,7 @@
 !>   --universal-tol X  only the universal table at rel_tol X (2 threads)
 !>                 -> out/bench/universal_tol.csv
 !>   --hysteresis  EP-GW hysteresis table: build time (1e-3, 1e-4) and eval / Hertz force
-!>                 (and the floor of a one-double evaluation: app/bench_floor.f90)
+!>                 (and the floor of a one-double evaluation: bench/bench_floor.f90)
 !>   --quick       fewer cases and shorter timings (a smoke run)
 !>   --out DIR     write the CSVs to DIR/ (default out/bench/)
 !>   --update-docs write the CSVs to doc/bench/, replacing the committed results that
@@ -30,7 +30,6 @@
 !> Run from the project root (reads test/data/sphere_reference.csv, writes out/bench/).
 program egw_bench
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
-   use egw_terminal, only: exit_process
    use omp_lib, only: omp_set_num_threads
    use egw, only: dp, gauss_integral, ellipk, rough_flat_law, hertz_force
    use bench_common, only: load_reference, open_csv, close_csv, frac, out_dir
@@ -150,8 +149,8 @@ contains
             call get_command_argument(k, peer_file)
          case default
             write (error_unit, '(a)') "egw-bench: unknown option "//trim(arg)// &
-               & " (see the header of app/egw_bench.f90)"
-            call exit_process(2)
+               & " (see the header of bench/egw_bench.f90)"
+            stop 2, quiet=.true.  ! exit status 2, no "STOP" line
          end select
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &

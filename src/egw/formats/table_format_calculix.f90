@@ -1,5 +1,5 @@
 !> CalculiX/Abaqus `*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR` curves (doc/formats.md).
-!> The CalculiX submodule of egw_table_format (src/egw/table_format.f90), whose
+!> The CalculiX submodule of egw_table_format (src/egw/formats/table_format.f90), whose
 !> interface block declares the entry points implemented here.
 submodule (egw_table_format) egw_table_format_calculix
    implicit none
