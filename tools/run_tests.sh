@@ -1,5 +1,6 @@
 #!/bin/sh
 # The README's test command (`make test`) runs this: the Fortran and C suites (fpm test),
+# the layer check of src/egw (tools/check_layers.py),
 # then, when the project venv has them, the Python package's tests (pytest; `make test`
 # installs the package first) and the LAMMPS plugin's tests (after `make lammps`). Each suite prints its
 # own results; the last line adds them up as "total: N passed, N failed" (a suite that
@@ -37,6 +38,9 @@ suite() {
 $FPM build $FPM_FLAGS >/dev/null 2>&1 || $FPM build $FPM_FLAGS || status=1
 # shellcheck disable=SC2086
 suite "Fortran and C suites (fpm test)" $FPM test $FPM_FLAGS
+
+# the use arrows between the layers of src/egw point one way (doc/architecture.md)
+suite "Layers of src/egw (tools/check_layers.py)" python3 tools/check_layers.py --self-test
 
 if [ -x "$VENV/bin/python" ] && "$VENV/bin/python" -c "import egw, pytest" 2>/dev/null; then
   suite "Python package (pytest python/tests)" \
