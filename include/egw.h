@@ -464,9 +464,12 @@ int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
  * point and inside the same piece (most DEM steps: a contact moves little) reads nothing
  * but its state. The values of egw_hysteresis_eval to rounding (1e-12 of the loading
  * force at the turning point), the same statuses and history. Start a contact with
- * egw_hysteresis_state_init; a state may be copied with its contact (restarts, migration
- * between ranks): its cache is used only with a table of the same data and the same
- * state[0], and recomputed otherwise. EGW_INVALID_ARGUMENT for NaN delta or state[0] (nothing changed);
+ * egw_hysteresis_state_init or with all zeros (as calloc'ed or zeroed contact arrays): both
+ * mean a new contact. A state may be copied with its contact (restarts, migration between
+ * ranks): it keeps its history with a table of the same data (a rebuild with the same
+ * parameters, tolerance and options, or the same file). A state that no call filled for
+ * this table (another table's, garbled) is a new contact: its history is reset, never read
+ * as a turning point. EGW_INVALID_ARGUMENT for NaN delta or state[0] (nothing changed);
  * EGW_NULL_POINTER for h or state. */
 int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
                               double state[EGW_HYSTERESIS_STATE_SIZE], double *force,
@@ -483,7 +486,8 @@ int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
 int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,
                           double *energy);
 
-/* A new contact's state: state[0] = -HUGE_VAL, the cache empty. NULL is ignored. */
+/* A new contact's state: state[0] = -HUGE_VAL, the cache empty (all zeros means the same
+ * to egw_hysteresis_eval_state). NULL is ignored. */
 void egw_hysteresis_state_init(double state[EGW_HYSTERESIS_STATE_SIZE]);
 
 /* egw_hysteresis_eval for n independent contacts in one call: delta[i] with history

@@ -217,11 +217,26 @@ contains
       end if
       copy = state
       call hysteresis_eval_state(other, 1.0_dp, copy, f, k, stat)
-      plain = 4.0_dp
+      plain = -huge(1.0_dp)
       call hysteresis_eval(other, 1.0_dp, plain, f2, k2, stat2)
-      call check(error, .not. differ(other, plain, f, k, f2, k2) .and. copy(3) == other%tag, &
-         & "another table recomputes the cache")
+      call check(error, .not. differ(other, plain, f, k, f2, k2) .and. copy(3) == other%tag &
+         & .and. copy(1) == 1.0_dp, "another table's state is a new contact (loads at 1)")
       if (allocated(error)) return
+      ! all zeros (a DEM code's zeroed contact arrays) is a new contact, not one loaded to
+      ! delta = 0: below 0 it loads on the loading curve, and its history becomes delta
+      do i = 1, 3
+         d = merge(-1.0_dp, merge(-0.3_dp, 2.0_dp, i == 2), i == 1)
+         copy = 0.0_dp
+         call hysteresis_eval_state(t, d, copy, f, k, stat)
+         call hysteresis_state_init(state)
+         call hysteresis_eval_state(t, d, state, f2, k2, stat2)
+         call check(error, f == f2 .and. k == k2 .and. stat == stat2 .and. &
+            & all(copy == state .or. (copy /= copy .and. state /= state)), &
+            & "an all-zero state is hysteresis_state_init's: same values, same state after")
+         if (allocated(error)) return
+         call check(error, copy(1) == d .and. f > 0.0_dp, "and it loads from there")
+         if (allocated(error)) return
+      end do
       ! reversible (E-GW) tables carry tags too: a state from one is not trusted by another
       p = ep
       p%model = model_egw

@@ -137,8 +137,8 @@ int egw_capi_test_hysteresis(void) {
      * unload, reload, load further, unload): the state's piece is the plain call's cubic
      * re-expanded, so the values agree to rounding (1e-12 of the loading force at the
      * turning point: test hysteresis says why), statuses and state[0] exactly. A state
-     * whose cache belongs to another turning point, or is garbage with a foreign tag, gives
-     * the same values again (recomputed, never trusted). */
+     * whose cache belongs to another turning point gives the same values again (recomputed,
+     * never trusted); garbage with a foreign tag, or all zeros, is a new contact. */
     const double path[] = {-1.0, 1.0, 2.5, 1.2, 0.3, -0.5, 1.8, 2.5, 3.2, 2.0, 0.9, 3.9};
     double st[EGW_HYSTERESIS_STATE_SIZE], plain = -HUGE_VAL, fs, ks, fp, kp;
     int same = 1;
@@ -154,11 +154,17 @@ int egw_capi_test_hysteresis(void) {
       double garbage[EGW_HYSTERESIS_STATE_SIZE];
       for (int i = 0; i < EGW_HYSTERESIS_STATE_SIZE; i++) garbage[i] = 1e300 * (i + 1);
       garbage[0] = 3.0;
-      garbage[1] = 3.0;   /* the right turning point but not this table's tag */
-      plain = 3.0;
+      garbage[1] = 3.0;   /* a turning point, but not this table's tag: a new contact */
+      plain = -HUGE_VAL;
       HCHECK(egw_hysteresis_eval_state(h, 1.0, garbage, &fs, &ks) == EGW_OK);
       HCHECK(egw_hysteresis_eval(h, 1.0, &plain, &fp, &kp) == EGW_OK &&
-             near_force(h, plain, fs, fp));
+             near_force(h, plain, fs, fp) && garbage[0] == 1.0);
+      /* all zeros (calloc'ed contact arrays) is a new contact too, not one loaded to 0 */
+      double zero[EGW_HYSTERESIS_STATE_SIZE] = {0};
+      plain = -HUGE_VAL;
+      HCHECK(egw_hysteresis_eval_state(h, -0.5, zero, &fs, &ks) == EGW_OK);
+      HCHECK(egw_hysteresis_eval(h, -0.5, &plain, &fp, &kp) == EGW_OK &&
+             near_force(h, plain, fs, fp) && zero[0] == -0.5 && fs > 0.0);
       st[0] = 3.5;        /* a copied state moved on: its cache was for 3.9 */
       plain = 3.5;
       HCHECK(egw_hysteresis_eval_state(h, 1.0, st, &fs, &ks) == EGW_OK);

@@ -166,8 +166,9 @@ contains
    !> and loading interval do not change, written out as a cubic in delta: the same values
    !> to rounding (test
    !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
-   !> histories. A state from another table, or garbled, is refilled, never trusted: the
-   !> caches are used only when they name this table's tag and the state's turning point.
+   !> histories. Only a state that this table filled is trusted (its tag, state(3)): any
+   !> other (all zero, as a DEM code's zeroed contact arrays; hysteresis_state_init's;
+   !> another table's; garbled) is a new contact, its history reset to -huge.
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat)
       type(hysteresis_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
@@ -195,7 +196,10 @@ contains
          return
       end if
       if (.not. state(3) == table%tag) then
-         ! another table's (or no) caches: none is used
+         ! a state this table did not fill (all zero as calloc'ed, from
+         ! hysteresis_state_init, another table's, garbled): a new contact, so that a
+         ! history it did not write never becomes a turning point
+         call hysteresis_state_init(state)
          state(2) = ieee_value(1.0_dp, ieee_quiet_nan)
          state(18:19) = state(2)
          state(3) = table%tag
