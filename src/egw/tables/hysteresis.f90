@@ -123,7 +123,9 @@ contains
    !> whose history is delta_max_state (the largest overlap so far; -huge(1.0) for a new
    !> contact), which is updated to max(state, delta). Loading (delta >= state) follows the
    !> loading table; unloading and reloading below the state the unloading curve of the
-   !> state. A state above the table's delta_max uses the last curve and returns
+   !> state, 0 below the loading table's cut-off (where the loading force is below 1e-12
+   !> of the reference force; a state at or below the cut-off unloads on the loading
+   !> curve's tail). A state above the table's delta_max uses the last curve and returns
    !> egw_out_of_range (values written). NaN delta: egw_invalid_argument, nothing changed.
    pure subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat)
       type(hysteresis_table), intent(in) :: table   !< built or read
@@ -142,7 +144,10 @@ contains
          stat = egw_invalid_argument
          return
       end if
-      if (.not. delta < delta_max_state .or. table%reversible) then
+      ! turning points at or below the cut-off (the lowest m node) unload on the loading
+      ! tail: their forces are below 1e-12 of the reference force
+      if (.not. delta < delta_max_state .or. table%reversible .or. &
+         & .not. delta_max_state > table%loading%cutoff) then
          delta_max_state = max(delta_max_state, delta)
          call table_eval(table%loading, delta, force, stiffness)
          if (delta > table%delta_max) stat = egw_out_of_range
@@ -206,7 +211,8 @@ contains
       end if
       ! no piece unless one is made below (the loading interval may change)
       state(11:12) = ieee_value(1.0_dp, ieee_quiet_nan)
-      if (.not. delta < state(1) .or. table%reversible) then
+      if (.not. delta < state(1) .or. table%reversible .or. &
+         & .not. state(1) > table%loading%cutoff) then
          state(1) = max(state(1), delta)
          call table_eval_cached(table%loading, delta, state(18:24), force, stiffness)
          if (delta > table%delta_max) stat = egw_out_of_range

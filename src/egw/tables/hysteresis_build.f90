@@ -67,6 +67,7 @@ contains
       n = 9
       m = table%loading%cutoff + (delta_max - table%loading%cutoff)* &
          & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
+      m(n) = delta_max   ! exactly (the readers check it): the sum above may round off
       allocate (curves(n))
       if (present(progress)) call progress(0, 2*n - 1)
       ! the s range: twice the largest (m - delta_c)/L of the first nodes, so that every

@@ -5,10 +5,13 @@
 !> Interpolation: cubic Hermite in delta with the solver's exact stiffness as the
 !> derivative (C1, exact at the nodes). In the separated tail (delta <= 0 for rough
 !> models, where P decays like a Gaussian in delta/sigma) the cubic interpolates ln P with
-!> derivative K/P, so the relative error stays bounded however small P gets. Below the
-!> cut-off delta_c, where P has fallen to rel_tol * P_ref, force and stiffness are exactly
-!> zero (the jump is <= rel_tol * P_ref). P_ref is the force at delta = min(0, delta_max)
-!> for rough models (first contact of the mean planes) and at delta_max for Hertz.
+!> derivative K/P, so the relative error stays bounded however small P gets. The nodes
+!> reach down to the cut-off delta_c, where P has fallen to tail_floor * P_ref for rough
+!> models (1e-12: every force above 1e-12 of P_ref is interpolated to rel_tol; P_ref is
+!> the force at delta = min(0, delta_max), the first contact of the mean planes) and to
+!> rel_tol * P_ref at delta_max for Hertz. Below delta_c the force follows the model's
+!> own tail (tail_force: the rigid-sphere law, doc/theory.md §9), above delta_max its
+!> deep-overlap asymptote (deep_force): no jump, no zero, C1 everywhere.
 !>
 !> Error control: the force at the midpoint of every interval against a solve. For
 !> smooth spheres the stiffness is checked too (10 rel_tol), because P ~ delta^(3/2)
@@ -28,6 +31,7 @@ module egw_table
    use egw_params, only: contact_params, validate_params, model_hertz, check_scaled_overlap
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
+   use egw_gauss, only: gauss_f32, gauss_f52
    implicit none
    private
 
@@ -36,6 +40,7 @@ module egw_table
       & table_eval_all, &
       & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff
+   public :: tail_force, deep_force
    public :: table_meta, set_table_meta
 
    public :: table_progress
@@ -56,13 +61,17 @@ module egw_table
    integer, parameter :: max_nodes = 20000, max_rounds = 200
    !> Most lookup buckets of a table (table_prepare): 64 kB.
    integer, parameter :: max_buckets = 16384
+   !> Rough models: the nodes reach down to where P = tail_floor * P_ref (the force at the
+   !> first contact of the mean planes), so that every force above 1e-12 of P(delta_max)
+   !> is interpolated to rel_tol; below, tail_force.
+   real(dp), parameter, public :: tail_floor = 1.0e-12_dp
 
    !> One-parameter-set force table. Arrays are the nodes (delta ascending); the
    !> evaluation data (seg, bucket) are derived from them by table_prepare.
    type, public :: force_table
       type(contact_params) :: params              !< parameters the table was built for
       real(dp) :: rel_tol = 0.0_dp                !< requested interpolation tolerance
-      real(dp) :: cutoff = 0.0_dp                 !< delta_c: first node, force 0 below
+      real(dp) :: cutoff = 0.0_dp                 !< delta_c: first node, tail_force below
       real(dp) :: delta_max = 0.0_dp              !< last node
       real(dp) :: reference_force = 0.0_dp        !< P_ref of the cut-off rule
       real(dp) :: max_force_error = 0.0_dp        !< max |P_table/P_solve - 1| at check points
@@ -266,6 +275,7 @@ contains
          return
       end if
       target = rel_tol*p_ref
+      if (is_rough(params)) target = min(rel_tol, tail_floor)*p_ref
       step = length_scale(params, delta_max)
       ! extend below delta_min until the force is small enough (Gaussian tail: a few sigma)
       it = 0
@@ -553,9 +563,10 @@ contains
       table_is_ready = allocated(table%seg) .and. allocated(table%bucket)
    end function table_is_ready
 
-   !> Force and stiffness at overlap delta: 0 below the cut-off; above delta_max the
-   !> force is continued linearly with the stiffness at delta_max (C1, see table_covers).
-   !> No allocation, no shared state: safe in OpenMP loops over contacts.
+   !> Force and stiffness at overlap delta: below the cut-off the model's tail (tail_force),
+   !> above delta_max its deep-overlap asymptote (deep_force; see table_covers), both C1
+   !> continuations of the interpolant. No allocation, no shared state: safe in OpenMP
+   !> loops over contacts.
    pure subroutine table_eval(table, delta, force, stiffness)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]: > 0 pressed together, < 0 apart
@@ -565,17 +576,89 @@ contains
          ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
          call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
             & table%bucket_scale, table%n_log, size(table%seg, 2), delta, force, stiffness)
-      else if (delta >= table%delta_max) then
-         stiffness = table%stiffness(size(table%stiffness))
-         force = table%force(size(table%force)) + stiffness*(delta - table%delta_max)
+      else
+         call table_beyond(table, delta, force, stiffness)
+      end if
+   end subroutine table_eval
+
+   !> table_eval outside (cutoff, delta_max): the node values at the ends, the tail below
+   !> the cut-off, the deep-overlap asymptote above delta_max.
+   pure subroutine table_beyond(table, delta, force, stiffness)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: force, stiffness
+      integer :: n
+      n = size(table%delta)
+      if (delta >= table%delta_max) then
+         call deep_force(table%delta_max, table%force(n), table%stiffness(n), delta, force, &
+            & stiffness)
       else if (delta == table%cutoff) then
          force = table%force(1)
          stiffness = table%stiffness(1)
+      else if (is_rough(table%params)) then
+         call tail_force(table%cutoff, table%force(1), table%stiffness(1), &
+            & table%params%sigma, delta, force, stiffness)
+      else if (delta > 0.0_dp .and. table%cutoff > 0.0_dp) then
+         ! Hertz below its cut-off: P = P_c (delta/delta_c)^(3/2), exact for Hertz
+         call deep_force(table%cutoff, table%force(1), 1.5_dp*table%force(1)/table%cutoff, &
+            & delta, force, stiffness)
       else
-         force = 0.0_dp
+         force = 0.0_dp   ! NaN fails every test above and lands here: the C layer refuses it
          stiffness = 0.0_dp
       end if
-   end subroutine table_eval
+   end subroutine table_beyond
+
+   !> The separated tail of a rough sphere below the cut-off delta_c (doc/theory.md §9).
+   !> Far apart the sphere barely deforms, so the force is that of a rigid sphere on the
+   !> rough flat, P = 2 pi R int_{-delta}^inf p_G(d) dd; with elastic Gaussian summits
+   !> (p_G proportional to F_{3/2}(d/sigma)) this is
+   !>   P = (2/5) pi sqrt(R/2) mu E* sigma^(3/2) F_{5/2}(-delta/sigma)
+   !> (solves agree to 2e-5 at -4 sigma, 2e-7 at -5 sigma, 5e-10 at -6 sigma for mu = 4).
+   !> Matched to the table's first node (p_c, k_c) in value and slope:
+   !>   P = p_c F_{5/2}(h)/F_{5/2}(h_c) exp(kappa (delta - delta_c)),  h = -delta/sigma,
+   !> kappa = k_c/p_c - (5/2) F_{3/2}(h_c)/(sigma F_{5/2}(h_c)) (0 for the rigid law;
+   !> for EP-GW it carries the yielding summits' slope): C1 at delta_c, 0 as delta -> -inf.
+   pure subroutine tail_force(delta_c, p_c, k_c, sigma, delta, force, stiffness)
+      real(dp), intent(in) :: delta_c   !< cut-off, the table's first node [length]
+      real(dp), intent(in) :: p_c, k_c  !< force and stiffness there
+      real(dp), intent(in) :: sigma     !< summit height deviation [length], > 0
+      real(dp), intent(in) :: delta     !< overlap [length], < delta_c
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: f52, f52_c, kappa, log_p
+      force = 0.0_dp
+      stiffness = 0.0_dp
+      f52_c = gauss_f52(-delta_c/sigma)
+      f52 = gauss_f52(-delta/sigma)
+      if (.not. (p_c > 0.0_dp .and. f52_c > 0.0_dp .and. f52 > 0.0_dp)) return
+      kappa = k_c/p_c - 2.5_dp*gauss_f32(-delta_c/sigma)/(sigma*f52_c)
+      log_p = log(p_c) + log(f52/f52_c) + kappa*(delta - delta_c)
+      if (.not. log_p > log(tiny(1.0_dp))) return
+      force = exp(min(log_p, log(p_c)))
+      stiffness = force*(2.5_dp*gauss_f32(-delta/sigma)/(sigma*f52) + kappa)
+   end subroutine tail_force
+
+   !> Deep overlaps above the last node d_e (force p_e, stiffness k_e): the Hertz form of
+   !> the model's asymptote, P = c (delta - delta_0)^(3/2), with c and delta_0 (the rough
+   !> layer's offset) fitted to p_e and k_e:
+   !>   P = p_e r^(3/2),  K = k_e r^(1/2),  r = 1 + (delta - d_e)/u_0,  u_0 = 1.5 p_e/k_e,
+   !> C1 and monotone; exact for Hertz (delta_0 = 0). Within 0.4 % of E-GW and EP-GW solves
+   !> up to 0.2 R from delta_max = 20 sigma (doc/theory.md §9). Where p_e or k_e is not
+   !> positive, the linear continuation.
+   pure subroutine deep_force(d_e, p_e, k_e, delta, force, stiffness)
+      real(dp), intent(in) :: d_e        !< last node [length]
+      real(dp), intent(in) :: p_e, k_e   !< force and stiffness there
+      real(dp), intent(in) :: delta      !< overlap [length], >= d_e
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: r
+      if (p_e > 0.0_dp .and. k_e > 0.0_dp) then
+         r = 1.0_dp + (delta - d_e)*k_e/(1.5_dp*p_e)
+         stiffness = k_e*sqrt(r)
+         force = p_e*r*sqrt(r)
+      else
+         stiffness = k_e
+         force = p_e + k_e*(delta - d_e)
+      end if
+   end subroutine deep_force
 
    !> table_eval through the caller's copy seg of the interval last used (table_segment's
    !> layout; anything else, e.g. NaN ends, is a miss), refilled when delta leaves it: the
@@ -703,9 +786,9 @@ contains
 
       n = size(table%delta)
       if (delta >= table%delta_max) then
-         v = table%force(n) + table%stiffness(n)*(delta - table%delta_max)
+         call deep_force(table%delta_max, table%force(n), table%stiffness(n), delta, v, d)
          log_force = log(v)
-         dlog_force = table%stiffness(n)/v
+         dlog_force = d/v
          return
       end if
       i = find_interval(table, max(delta, table%cutoff))
@@ -721,8 +804,9 @@ contains
       end if
    end subroutine table_eval_log
 
-   !> True when delta lies in [cutoff, delta_max] or below the cut-off (force 0 is exact
-   !> there by construction); false above delta_max (extrapolated) or for NaN.
+   !> True when delta lies in [cutoff, delta_max] or below the cut-off (the tail law holds
+   !> there); false above delta_max (the deep-overlap asymptote, not checked against solves
+   !> by the build) or for NaN.
    elemental logical function table_covers(table, delta)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]
@@ -730,19 +814,27 @@ contains
    end function table_covers
 
    !> Elastic energy int_{delta_c}^{delta} P ddelta of the interpolant (0 below the
-   !> cut-off; above delta_max, of the linear continuation).
+   !> cut-off, where the tail holds less than 1e-12 P_ref sigma; above delta_max, of the
+   !> deep-overlap asymptote).
    pure function table_energy(table, delta) result(energy)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]
       real(dp) :: energy
       integer :: i, n
-      real(dp) :: t
+      real(dp) :: t, u0, r
       n = size(table%delta)
       if (.not. delta > table%cutoff) then
          energy = 0.0_dp
       else if (delta >= table%delta_max) then
          t = delta - table%delta_max
-         energy = table%energy(n) + table%force(n)*t + 0.5_dp*table%stiffness(n)*t**2
+         if (table%force(n) > 0.0_dp .and. table%stiffness(n) > 0.0_dp) then
+            ! int of p_e r^(3/2) (deep_force): p_e u_0 (r^(5/2) - 1)/(5/2)
+            u0 = 1.5_dp*table%force(n)/table%stiffness(n)
+            r = 1.0_dp + t/u0
+            energy = table%energy(n) + table%force(n)*u0*(r*r*sqrt(r) - 1.0_dp)/2.5_dp
+         else
+            energy = table%energy(n) + table%force(n)*t + 0.5_dp*table%stiffness(n)*t**2
+         end if
       else
          i = find_interval(table, delta)
          energy = table%energy(i) + interval_integral(table, i, delta - table%delta(i))
@@ -750,8 +842,8 @@ contains
    end function table_energy
 
    !> Effective contact radius a* at delta (monotone cubic Hermite through the solver's
-   !> node values; 0 below the cut-off, constant above delta_max). Not part of the
-   !> adaptive error control.
+   !> node values; 0 below the cut-off; above delta_max it grows as sqrt(delta - delta_0),
+   !> Hertz's a with deep_force's offset). Not part of the adaptive error control.
    pure function table_contact_radius(table, delta) result(radius)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]
@@ -763,6 +855,8 @@ contains
          radius = 0.0_dp
       else if (delta >= table%delta_max) then
          radius = table%contact_radius(n)
+         if (table%force(n) > 0.0_dp .and. table%stiffness(n) > 0.0_dp) radius = radius* &
+            & sqrt(1.0_dp + (delta - table%delta_max)*table%stiffness(n)/(1.5_dp*table%force(n)))
       else
          i = find_interval(table, delta)
          h = table%delta(i + 1) - table%delta(i)

@@ -14,14 +14,15 @@
 !> size the h^4 law of the measured error asks for) until the whole interpolant agrees
 !> with solves at mid-grid mu (where the Lagrange error in mu peaks) to rel_tol.
 module egw_table_universal
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_not_converged, egw_out_of_range, fatal_error, format_real, int_str
    use egw_params, only: contact_params, validate_params, overlap_ratio_max, product4, &
       & force_unit, stiffness_unit, length_unit
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
-   use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
+   use egw_table, only: force_table, build_tables_shared, table_find_cutoff, tail_force, &
+      & deep_force, &
       & table_interval, table_prepare, table_eval, table_progress
    implicit none
    private
@@ -241,9 +242,9 @@ contains
    !> the last log interval (n_log, ending at the first p node) has its right end ln of
    !> the combined p and its cubic is formed from the combined nodal data (boundary_cubic).
    !> stat: 0; egw_out_of_range for mu outside [mu_min, mu_max] (force, stiffness 0)
-   !> or x above x_max (the interpolated force continued linearly with its stiffness at
-   !> x_max, as in the 1-D table, so that universal_slice reproduces it).
-   !> Exactly 0 below the cut-off. No allocation; thread-safe.
+   !> or x above x_max (the deep-overlap asymptote of the combined last node, deep_force,
+   !> as in the 1-D table, so that universal_slice reproduces it). Below the cut-off the
+   !> rough tail of the combined first node (tail_force). No allocation; thread-safe.
    pure subroutine universal_eval(u, radius, modulus, sigma, mu, delta, force, stiffness, stat)
       type(universal_table), intent(in) :: u   !< built or read
       real(dp), intent(in) :: radius   !< equivalent radius R [length]
@@ -265,7 +266,7 @@ contains
          return
       end if
       x = delta/sigma
-      if (.not. x > u%x_cut) return
+      if (ieee_is_nan(x)) return
       if (x > u%x_max) stat = egw_out_of_range
       call mu_stencil(u, mu, j0, w)
       scale = modulus*sqrt(radius)
@@ -279,7 +280,14 @@ contains
          scale = product4(modulus, sqrt(radius), sigma, sqrt(sigma))
       end if
       n = size(u%slices(1)%delta)
-      if (x < u%x_max) then
+      if (.not. x > u%x_cut) then
+         ! below the cut-off: the rough tail from the combined first node (tail_force in
+         ! x, sigma = 1: what universal_slice's table gives)
+         call combined_node(u, j0, w, 1, v, dv)
+         call tail_force(u%x_cut, v, dv, 1.0_dp, x, force, stiffness)
+         force = scale*force
+         stiffness = scale*stiffness/sigma
+      else if (x < u%x_max) then
          ! one lookup for all slices (shared nodes), then one cubic of the combination
          i = table_interval(u%slices(1), x)
          t = x - u%slices(1)%seg(0, i)
@@ -296,12 +304,12 @@ contains
             stiffness = scale*dv/sigma
          end if
       else
-         ! above x_max: the combined p and dp/dx at the last node, continued linearly in
-         ! p (a 1-D table's extrapolation: universal_slice gives the same)
+         ! above x_max: the combined p and dp/dx at the last node, continued by the
+         ! deep-overlap asymptote (deep_force in x: universal_slice's table gives the same)
          call combined_node(u, j0, w, n, v, dv)
-         force = scale*v
-         stiffness = scale*dv/sigma
-         force = force + stiffness*(delta - sigma*u%x_max)
+         call deep_force(u%x_max, v, dv, x, force, stiffness)
+         force = scale*force
+         stiffness = scale*stiffness/sigma
       end if
    end subroutine universal_eval
 
