@@ -222,12 +222,18 @@ contains
    end function check_finite
 
    !> EGW_OK unless x is NaN (EGW_INVALID_ARGUMENT naming it); Inf passes, the callee
-   !> judges it.
-   integer(c_int) function check_number(name, x) result(stat)
-      character(len=*), intent(in) :: name   !< the argument's name, e.g. "delta[3]"
+   !> judges it. (The name of an array element is built only on failure: array loops.)
+   integer(c_int) function check_number(name, x, index) result(stat)
+      character(len=*), intent(in) :: name     !< the argument's name in egw.h
       real(dp), intent(in) :: x
+      integer, intent(in), optional :: index   !< x is name[index] (C, from 0)
       stat = egw_ok
-      if (ieee_is_nan(x)) stat = invalid(name//" = NaN: must be a number")
+      if (.not. ieee_is_nan(x)) return
+      if (present(index)) then
+         stat = invalid(name//"["//int_str(index)//"] = NaN: must be a number")
+      else
+         stat = invalid(name//" = NaN: must be a number")
+      end if
    end function check_number
 
    !> EGW_OK if the array length n is >= 0, else EGW_INVALID_ARGUMENT.
