@@ -18,7 +18,8 @@ module egw_capi_table
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
       & write_calculix_flat, write_lammps, write_calculix_sphere
    use egw_capi_utils, only: egw_params_c, settle, require, invalid, failure, check_number, &
-      & check_count, read_params, read_contact, put, put_settled, put_handle, take_handle, c_path
+      & check_count, read_params, read_contact, put, put_settled, put_handle_settled, &
+      & take_handle, double_array, c_path
    implicit none
    private
 
@@ -51,12 +52,8 @@ contains
       if (stat /= egw_ok) return
       allocate (t)
       call build_table(params, options, delta_min, delta_max, rel_tol, t, error)
-      stat = settle(error)
-      if (stat == egw_ok) then
-         call put_handle(out, c_loc(t))
-      else
-         deallocate (t)   ! no handle on failure
-      end if
+      stat = put_handle_settled(out, c_loc(t), error)
+      if (stat /= egw_ok) deallocate (t)
    end function egw_table_build
 
    !> C: egw_table_eval; above delta_max returns EGW_OUT_OF_RANGE with values written.
@@ -118,9 +115,8 @@ contains
             end if
          end if
       end do
-      nullify (f, k)
-      if (c_associated(force)) call c_f_pointer(force, f, [n])
-      if (c_associated(stiffness)) call c_f_pointer(stiffness, k, [n])
+      f => double_array(force, n)
+      k => double_array(stiffness, n)
       first_out = 0
       do i = 1, n
          call table_eval(t, delta(i), fi, ki)
@@ -215,12 +211,8 @@ contains
       if (stat /= egw_ok) return
       allocate (t)
       call read_table(fpath, t, error)
-      stat = settle(error)
-      if (stat == egw_ok) then
-         call put_handle(out, c_loc(t))
-      else
-         deallocate (t)
-      end if
+      stat = put_handle_settled(out, c_loc(t), error)
+      if (stat /= egw_ok) deallocate (t)
    end function egw_table_read
 
    !> C: egw_table_free(egw_table *t): releases the table, sets *t = NULL.
@@ -325,12 +317,8 @@ contains
       allocate (u)
       call build_universal(params%model, params%psi, params%hardness_coeff, &
          & params%plastic_ratio, options, mu_min, mu_max, x_min, x_max, rel_tol, u, error)
-      stat = settle(error)
-      if (stat == egw_ok) then
-         call put_handle(out, c_loc(u))
-      else
-         deallocate (u)
-      end if
+      stat = put_handle_settled(out, c_loc(u), error)
+      if (stat /= egw_ok) deallocate (u)
    end function egw_universal_build
 
    !> C: egw_universal_eval (R, E, sigma, mu from p; model, psi, K, rho_p must match).
@@ -424,12 +412,8 @@ contains
       else
          call universal_slice(u, params, t, error)
       end if
-      stat = settle(error)
-      if (stat == egw_ok) then
-         call put_handle(out, c_loc(t))
-      else
-         deallocate (t)
-      end if
+      stat = put_handle_settled(out, c_loc(t), error)
+      if (stat /= egw_ok) deallocate (t)
    end function slice_c
 
    !> C: egw_universal_write (CSV or binary).
@@ -460,12 +444,8 @@ contains
       if (stat /= egw_ok) return
       allocate (u)
       call read_universal(fpath, u, error)
-      stat = settle(error)
-      if (stat == egw_ok) then
-         call put_handle(out, c_loc(u))
-      else
-         deallocate (u)
-      end if
+      stat = put_handle_settled(out, c_loc(u), error)
+      if (stat /= egw_ok) deallocate (u)
    end function egw_universal_read
 
    !> C: egw_universal_free(egw_universal *u): releases, sets *u = NULL.

@@ -20,7 +20,7 @@ module egw_capi_utils
    public :: c_string, c_path, copy_to_c, copy_last_error
    public :: settle, require, invalid, failure, record
    public :: check_nonneg, check_positive, check_number, check_count
-   public :: put, put_settled, put_handle, take_handle
+   public :: put, put_settled, put_handle_settled, take_handle, double_array
    public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params, read_params, &
       & read_options, read_contact, put_result
 
@@ -253,6 +253,15 @@ contains
       target = x
    end subroutine put
 
+   !> The n doubles at a nullable double* (NULL: not associated, nothing wanted there).
+   function double_array(ptr, n) result(array)
+      type(c_ptr), intent(in) :: ptr
+      integer(c_int), intent(in) :: n   !< the length, >= 0
+      real(c_double), pointer :: array(:)
+      array => null()
+      if (c_associated(ptr)) call c_f_pointer(ptr, array, [n])
+   end function double_array
+
    !> Status of a call's error (as settle); on success x stored at the nullable double*
    !> ptr (as put), on failure ptr untouched.
    integer(c_int) function put_settled(ptr, x, error) result(stat)
@@ -263,14 +272,19 @@ contains
       if (stat == egw_ok) call put(ptr, x)
    end function put_settled
 
-   !> Hand an object to C: store its address (c_loc) at *out, a handle* checked not NULL.
-   subroutine put_handle(out, object)
-      type(c_ptr), intent(in) :: out      !< egw_table*, egw_universal*, egw_hysteresis*
+   !> Status of the build or read that made an object (as settle); on success the object
+   !> is handed to C, its address stored at *out. On failure *out is untouched and the
+   !> caller releases the object (no handle to a half-made table).
+   integer(c_int) function put_handle_settled(out, object, error) result(stat)
+      type(c_ptr), intent(in) :: out      !< egw_table*, egw_universal*, ... (not NULL)
       type(c_ptr), intent(in) :: object   !< c_loc of the allocated object
+      type(egw_error), allocatable, intent(in) :: error
       type(c_ptr), pointer :: handle
+      stat = settle(error)
+      if (stat /= egw_ok) return
       call c_f_pointer(out, handle)
       handle = object
-   end subroutine put_handle
+   end function put_handle_settled
 
    !> Take a handle back from C for release: the address at *h, and *h set to NULL.
    !> NULL h or NULL *h gives c_null_ptr (nothing to release).
