@@ -176,7 +176,7 @@ contains
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       real(c_double), pointer :: delta(:), state(:), f(:), k(:)
-      real(dp) :: fi, ki, limit
+      real(dp) :: fi, ki
       integer :: i, st, first_out
       stat = get_table(hp, h)
       if (stat == egw_ok) stat = check_count(n)
@@ -186,17 +186,8 @@ contains
       if (stat /= egw_ok) return
       delta => double_array(delta_p, n)
       state => double_array(state_p, n)
-      limit = reach(h)
-      do i = 1, n
-         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > limit .or. &
-            & state(i) > limit) then
-            stat = invalid("delta["//int_str(i - 1)//"] = "//format_real(delta(i))// &
-               & ", delta_max_state["//int_str(i - 1)//"] = "//format_real(state(i))// &
-               & ": must be numbers <= "//format_real(limit)// &
-               & " (the force there exceeds the doubles)")
-            return
-         end if
-      end do
+      stat = check_histories(h, delta, state)
+      if (stat /= egw_ok) return
       f => double_array(force, n)
       k => double_array(stiffness, n)
       first_out = 0
@@ -299,6 +290,27 @@ contains
       allocate (h, stat=alloc_stat)
       if (alloc_stat /= 0) stat = failure(egw_out_of_memory, "hysteresis table: out of memory")
    end function new_table
+
+   !> EGW_OK if every overlap and its state are numbers <= reach(h), else
+   !> EGW_INVALID_ARGUMENT naming the first other pair (delta[i], delta_max_state[i]).
+   integer(c_int) function check_histories(h, delta, state) result(stat)
+      type(hysteresis_table), intent(in) :: h
+      real(dp), intent(in) :: delta(:), state(:)
+      real(dp) :: limit
+      integer :: i
+      stat = egw_ok
+      limit = reach(h)
+      do i = 1, size(delta)
+         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > limit .or. &
+            & state(i) > limit) then
+            stat = invalid("delta["//int_str(i - 1)//"] = "//format_real(delta(i))// &
+               & ", delta_max_state["//int_str(i - 1)//"] = "//format_real(state(i))// &
+               & ": must be numbers <= "//format_real(limit)// &
+               & " (the force there exceeds the doubles)")
+            return
+         end if
+      end do
+   end function check_histories
 
    !> EGW_OUT_OF_RANGE for a history x (called name) above the table's delta_max: the
    !> values are written, extrapolated.

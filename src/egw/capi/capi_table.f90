@@ -103,18 +103,9 @@ contains
       if (stat /= egw_ok .or. n == 0) return
       stat = require(delta_ptr, "delta")
       if (stat /= egw_ok) return
-      call c_f_pointer(delta_ptr, delta, [n])
-      do i = 1, n
-         stat = check_number("delta", delta(i), i - 1)
-         if (stat /= egw_ok) return
-         if (delta(i) > t%delta_max) then
-            call table_eval(t, delta(i), fi, ki)
-            if (.not. (ieee_is_finite(fi) .and. ieee_is_finite(ki))) then
-               stat = beyond(t, delta(i), "delta["//int_str(i - 1)//"]")
-               return
-            end if
-         end if
-      end do
+      delta => double_array(delta_ptr, n)
+      stat = check_overlaps(t, delta)
+      if (stat /= egw_ok) return
       f => double_array(force, n)
       k => double_array(stiffness, n)
       first_out = 0
@@ -519,6 +510,27 @@ contains
       call c_f_pointer(h, u)
       if (.not. allocated(u%slices)) stat = invalid("u: not a built or read table")
    end function get_universal
+
+   !> EGW_OK if every overlap is a number whose linear continuation above delta_max stays
+   !> inside the doubles, else EGW_INVALID_ARGUMENT naming the first other (delta[i]).
+   integer(c_int) function check_overlaps(t, delta) result(stat)
+      type(force_table), intent(in) :: t
+      real(dp), intent(in) :: delta(:)
+      real(dp) :: f, k
+      integer :: i
+      stat = egw_ok
+      do i = 1, size(delta)
+         stat = check_number("delta", delta(i), i - 1)
+         if (stat /= egw_ok) return
+         if (delta(i) > t%delta_max) then
+            call table_eval(t, delta(i), f, k)
+            if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then
+               stat = beyond(t, delta(i), "delta["//int_str(i - 1)//"]")
+               return
+            end if
+         end if
+      end do
+   end function check_overlaps
 
    !> EGW_OUT_OF_RANGE for an overlap above delta_max (values written, extrapolated).
    integer(c_int) function out_of_range(t, delta) result(stat)
