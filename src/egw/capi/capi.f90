@@ -7,8 +7,7 @@ module egw_capi
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, status_message, format_real
-   use egw_params, only: contact_params, validate_params, mu_from_summits, &
-      & psi_from_hardness
+   use egw_params, only: contact_params, mu_from_summits, psi_from_hardness
    use egw_version, only: egw_version_number
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
       & solve_contact_unload

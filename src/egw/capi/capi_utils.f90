@@ -18,7 +18,7 @@ module egw_capi_utils
    private
 
    public :: c_string, c_path, copy_to_c, copy_last_error
-   public :: settle, require, invalid, failure, record
+   public :: settle, require, invalid, failure
    public :: check_nonneg, check_positive, check_number, check_count
    public :: put, put_settled, put_handle_settled, take_handle, double_array
    public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params, read_params, &
@@ -310,14 +310,8 @@ contains
       integer, intent(in) :: code               !< an EGW_* status
       character(len=*), intent(in) :: message  !< the message, naming the argument
       stat = int(code, c_int)
-      call record(message)
-   end function failure
-
-   !> Store message as this thread's last error (the caller sets the status).
-   subroutine record(message)
-      character(len=*), intent(in) :: message  !< the message, naming the argument
       last_message = message
-   end subroutine record
+   end function failure
 
    !> Copy this thread's last error message into a C buffer (as copy_to_c).
    integer(c_int) function copy_last_error(buf, buflen) result(stat)
