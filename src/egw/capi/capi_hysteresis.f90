@@ -60,10 +60,14 @@ contains
       real(c_double), pointer :: s
       real(dp) :: f, k, m
       integer :: st
-      stat = get_table(hp, h)
-      if (stat == egw_ok) stat = require(state, "delta_max_state")
-      if (stat == egw_ok) stat = check_number("delta", delta)
-      if (stat /= egw_ok) return
+      ! good arguments pass an inline test, not the checks' calls (the hot path)
+      if (.not. (c_associated(hp) .and. c_associated(state)) .or. ieee_is_nan(delta)) then
+         stat = require(hp, "h")
+         if (stat == egw_ok) stat = require(state, "delta_max_state")
+         if (stat == egw_ok) stat = check_number("delta", delta)
+         return
+      end if
+      call c_f_pointer(hp, h)
       call c_f_pointer(state, s)
       if (ieee_is_nan(s)) then
          stat = invalid("delta_max_state = NaN: a new contact starts from -HUGE_VAL")
@@ -94,10 +98,14 @@ contains
       real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
       real(dp) :: f, k, kept, limit
       integer :: st
-      stat = get_table(hp, h)
-      if (stat == egw_ok) stat = require(state_p, "state")
-      if (stat == egw_ok) stat = check_number("delta", delta)
-      if (stat /= egw_ok) return
+      ! good arguments pass an inline test, not the checks' calls (the hot path)
+      if (.not. (c_associated(hp) .and. c_associated(state_p)) .or. ieee_is_nan(delta)) then
+         stat = require(hp, "h")
+         if (stat == egw_ok) stat = require(state_p, "state")
+         if (stat == egw_ok) stat = check_number("delta", delta)
+         return
+      end if
+      call c_f_pointer(hp, h)
       call c_f_pointer(state_p, state, [hysteresis_state_size])
       if (ieee_is_nan(state(1))) then
          stat = invalid("state[0] = NaN: a new contact starts from "// &

@@ -5,7 +5,7 @@
 module egw_capi_table
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, egw_out_of_range, &
       & egw_out_of_memory, format_real, int_str
@@ -65,10 +65,14 @@ contains
       type(force_table), pointer :: t
       real(dp) :: f, k
       ! lean: this is the per-contact hot path (a handle only comes from build or read,
-      ! so it always holds a prepared table: no get_table)
-      stat = require(h, "t")
-      if (stat == egw_ok) stat = check_number("delta", delta)
-      if (stat /= egw_ok) return
+      ! so it always holds a prepared table: no get_table), and good arguments pass an
+      ! inline test, not the checks' calls (~1 ns of ~8)
+      if (.not. c_associated(h) .or. ieee_is_nan(delta)) then
+         stat = require(h, "t")
+         if (stat == egw_ok) stat = check_number("delta", delta)
+         return
+      end if
+      stat = egw_ok
       call c_f_pointer(h, t)
       call table_eval(t, delta, f, k)
       if (delta > t%delta_max) then
