@@ -280,8 +280,8 @@ contains
 
    ! ---------------------------------------------------------------- helpers
 
-   !> The table of a handle egw_hysteresis (not NULL: a handle only comes from build or
-   !> read, so no further check on the hot path).
+   !> The table of a handle egw_hysteresis (not NULL; a handle only comes from build or
+   !> read, so there is nothing more to check).
    integer(c_int) function get_table(hp, h) result(stat)
       type(c_ptr), intent(in) :: hp
       type(hysteresis_table), pointer, intent(out) :: h
