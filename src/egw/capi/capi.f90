@@ -2,14 +2,12 @@
 !> Each entry point converts C arguments, calls the Fortran API, and turns an
 !> egw_error into a status code plus a per-thread last-error message.
 module egw_capi
-   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_null_char, &
-      & c_associated, c_f_pointer, c_null_ptr
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_associated, c_f_pointer, &
+      & c_null_ptr
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
-      & status_message, format_real, int_str
-   use egw_params, only: contact_params, validate_params, mu_from_summits, &
-      & psi_from_hardness
+   use egw_status, only: egw_error, egw_ok, status_message, format_real
+   use egw_params, only: contact_params, mu_from_summits, psi_from_hardness
    use egw_version, only: egw_version_number
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
       & solve_contact_unload
@@ -23,10 +21,27 @@ module egw_capi
    ! module name)
    use egw_smooth_sphere, only: hertz_contact
    use egw_capi_utils, only: copy_to_c, copy_last_error, settle, require, invalid, &
-      & check_nonneg, check_positive, put, egw_params_c, egw_options_c, egw_result_c, &
-      & from_params, read_params, read_options, put_result
+      & check_nonneg, check_positive, check_count, put, put_settled, egw_params_c, &
+      & egw_options_c, from_params, read_params, read_contact, put_result
    implicit none
    private
+
+   abstract interface
+      !> A special function of egw_gauss: value at order n and lower limit h.
+      pure subroutine of_order(n, h, value, error)
+         import :: dp, egw_error
+         real(dp), intent(in) :: n, h
+         real(dp), intent(out) :: value
+         type(egw_error), allocatable, intent(out) :: error
+      end subroutine of_order
+      !> A complete elliptic integral of egw_ellip: value at modulus k.
+      pure subroutine of_modulus(k, value, error)
+         import :: dp, egw_error
+         real(dp), intent(in) :: k
+         real(dp), intent(out) :: value
+         type(egw_error), allocatable, intent(out) :: error
+      end subroutine of_modulus
+   end interface
 
 contains
 
@@ -128,13 +143,7 @@ contains
       real(c_double), value, intent(in) :: n, h
       type(c_ptr), value, intent(in) :: value
       integer(c_int) :: stat
-      type(egw_error), allocatable :: error
-      real(dp) :: f
-      stat = require(value, "value")
-      if (stat /= egw_ok) return
-      call get_gauss_integral(n, h, f, error)
-      stat = settle(error)
-      if (stat == egw_ok) call put(value, f)
+      stat = order_c(get_gauss_integral, n, h, value)
    end function egw_gauss_integral
 
    !> C: egw_gauss_integral_deriv: dF_n/dh.
@@ -143,13 +152,7 @@ contains
       real(c_double), value, intent(in) :: n, h
       type(c_ptr), value, intent(in) :: value
       integer(c_int) :: stat
-      type(egw_error), allocatable :: error
-      real(dp) :: f
-      stat = require(value, "value")
-      if (stat /= egw_ok) return
-      call get_gauss_integral_deriv(n, h, f, error)
-      stat = settle(error)
-      if (stat == egw_ok) call put(value, f)
+      stat = order_c(get_gauss_integral_deriv, n, h, value)
    end function egw_gauss_integral_deriv
 
    !> C: egw_ellipk: K(k) of modulus k.
@@ -157,13 +160,7 @@ contains
       real(c_double), value, intent(in) :: k
       type(c_ptr), value, intent(in) :: value
       integer(c_int) :: stat
-      type(egw_error), allocatable :: error
-      real(dp) :: f
-      stat = require(value, "value")
-      if (stat /= egw_ok) return
-      call get_ellipk(k, f, error)
-      stat = settle(error)
-      if (stat == egw_ok) call put(value, f)
+      stat = modulus_c(get_ellipk, k, value)
    end function egw_ellipk
 
    !> C: egw_ellipe: E(k) of modulus k.
@@ -171,13 +168,7 @@ contains
       real(c_double), value, intent(in) :: k
       type(c_ptr), value, intent(in) :: value
       integer(c_int) :: stat
-      type(egw_error), allocatable :: error
-      real(dp) :: f
-      stat = require(value, "value")
-      if (stat /= egw_ok) return
-      call get_ellipe(k, f, error)
-      stat = settle(error)
-      if (stat == egw_ok) call put(value, f)
+      stat = modulus_c(get_ellipe, k, value)
    end function egw_ellipe
 
    !> C: egw_flat_pressure: p_G(d) of the rough flat.
@@ -260,39 +251,19 @@ contains
       type(c_ptr), value, intent(in) :: p, o, res
       real(c_double), value, intent(in) :: delta
       integer(c_int) :: stat
-      type(contact_params) :: params
-      type(solver_options) :: options
-      type(solve_result) :: result
-      type(egw_error), allocatable :: error
-      stat = require(res, "res")
-      if (stat == egw_ok) stat = read_params(p, params)
-      if (stat == egw_ok) call read_options(o, options)
-      if (stat /= egw_ok) return
-      call solve_contact(params, options, delta, result, error)
-      stat = settle(error)
-      ! res untouched on any failure (egw.h)
-      if (stat == egw_ok) call put_result(res, result)
+      stat = solve_c(p, o, delta, .false., 0.0_dp, res)
    end function egw_solve
 
+   !> C: egw_solve_unload: the unloading solve at delta after a maximum delta_max.
    function egw_solve_unload(p, o, delta, delta_max, res) result(stat) &
       & bind(C, name="egw_solve_unload")
       type(c_ptr), value, intent(in) :: p, o, res
       real(c_double), value, intent(in) :: delta, delta_max
       integer(c_int) :: stat
-      type(contact_params) :: params
-      type(solver_options) :: options
-      type(solve_result) :: result
-      type(egw_error), allocatable :: error
-      stat = require(res, "res")
-      if (stat == egw_ok) stat = read_params(p, params)
-      if (stat == egw_ok) call read_options(o, options)
-      if (stat /= egw_ok) return
-      call solve_contact_unload(params, options, delta, delta_max, result, error)
-      stat = settle(error)
-      ! res untouched on failure (egw.h)
-      if (stat == egw_ok) call put_result(res, result)
+      stat = solve_c(p, o, delta, .true., delta_max, res)
    end function egw_solve_unload
 
+   !> C: egw_restitution: the coefficient of restitution of an impact.
    function egw_restitution(p, o, mass, velocity, e) result(stat) &
       & bind(C, name="egw_restitution")
       type(c_ptr), value, intent(in) :: p, o, e
@@ -303,6 +274,7 @@ contains
       stat = restitution_c(p, o, mass, velocity, e, c_null_ptr, c_null_ptr)
    end function egw_restitution
 
+   !> C: egw_restitution_energy: the same with the work of loading and the dissipated energy.
    function egw_restitution_energy(p, o, mass, velocity, e, w_load, w_dissipated) &
       & result(stat) bind(C, name="egw_restitution_energy")
       type(c_ptr), value, intent(in) :: p, o, e, w_load, w_dissipated
@@ -323,16 +295,12 @@ contains
       real(c_double), pointer :: cr(:), cp(:), cw(:)
       real(dp), allocatable :: pr(:), w(:)
       type(egw_error), allocatable :: error
-      if (n < 0) then
-         stat = invalid("n = "//int_str(int(n))//": must be >= 0")
-         return
-      end if
-      stat = read_params(p, params)
+      stat = check_count(n)
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
       if (stat == egw_ok) stat = require(r, "r")
       if (stat == egw_ok) stat = require(pressure, "pressure")
       if (stat == egw_ok) stat = require(deflection, "deflection")
       if (stat /= egw_ok) return
-      call read_options(o, options)
       call c_f_pointer(r, cr, [n])
       call c_f_pointer(pressure, cp, [n])
       call c_f_pointer(deflection, cw, [n])
@@ -356,9 +324,8 @@ contains
       type(solver_options) :: options
       type(egw_error), allocatable :: error
       real(dp) :: coefficient, dissipated, work
-      stat = read_params(p, params)
+      stat = read_contact(p, o, params, options)
       if (stat /= egw_ok) return
-      call read_options(o, options)
       coefficient = 1.0_dp
       dissipated = 0.0_dp
       work = 0.0_dp
@@ -371,6 +338,8 @@ contains
       call put(w_dissipated, dissipated)
    end function restitution_c
 
+   !> Rough-flat pressure p_G at separation into pressure, and dp_G/dd into dpressure
+   !> when want_deriv (both not NULL then); outputs untouched on failure.
    integer(c_int) function flat_pressure_c(p, separation, pressure, dpressure, want_deriv) &
       & result(stat)
       type(c_ptr), intent(in) :: p, pressure, dpressure
@@ -387,5 +356,53 @@ contains
       call put(pressure, pg)
       if (want_deriv) call put(dpressure, dpg)
    end function flat_pressure_c
+
+   !> The loading (unloading = .false.) or unloading solve at delta, the result at res
+   !> (checked first; untouched on any failure, egw.h).
+   integer(c_int) function solve_c(p, o, delta, unloading, delta_max, res) result(stat)
+      type(c_ptr), intent(in) :: p, o, res
+      real(c_double), intent(in) :: delta, delta_max
+      logical, intent(in) :: unloading
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(solve_result) :: result
+      type(egw_error), allocatable :: error
+      stat = require(res, "res")
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat /= egw_ok) return
+      if (unloading) then
+         call solve_contact_unload(params, options, delta, delta_max, result, error)
+      else
+         call solve_contact(params, options, delta, result, error)
+      end if
+      stat = settle(error)
+      if (stat == egw_ok) call put_result(res, result)
+   end function solve_c
+
+   !> A function of order and limit (egw_gauss) into the double* value (checked first).
+   integer(c_int) function order_c(special, n, h, value) result(stat)
+      procedure(of_order) :: special
+      real(dp), intent(in) :: n, h
+      type(c_ptr), intent(in) :: value
+      type(egw_error), allocatable :: error
+      real(dp) :: f
+      stat = require(value, "value")
+      if (stat /= egw_ok) return
+      call special(n, h, f, error)
+      stat = put_settled(value, f, error)
+   end function order_c
+
+   !> A function of the modulus (egw_ellip) into the double* value (checked first).
+   integer(c_int) function modulus_c(special, k, value) result(stat)
+      procedure(of_modulus) :: special
+      real(dp), intent(in) :: k
+      type(c_ptr), intent(in) :: value
+      type(egw_error), allocatable :: error
+      real(dp) :: f
+      stat = require(value, "value")
+      if (stat /= egw_ok) return
+      call special(k, f, error)
+      stat = put_settled(value, f, error)
+   end function modulus_c
 
 end module egw_capi

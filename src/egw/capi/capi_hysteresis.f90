@@ -1,21 +1,21 @@
 !> C API of the EP-GW hysteresis tables (include/egw.h): an opaque handle to a Fortran
 !> hysteresis_table (c_loc of an allocated object, released by egw_hysteresis_free).
 module egw_capi_hysteresis
-   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_associated, &
-      & c_f_pointer, c_loc
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_associated, c_f_pointer, &
+      & c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
       & ieee_negative_inf
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_out_of_range, &
-      & egw_out_of_memory, &
-      & fatal_error, format_real, int_str
+   use egw_status, only: egw_error, egw_ok, egw_out_of_range, egw_out_of_memory, format_real, &
+      & int_str
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
-   use egw_capi_utils, only: settle, require, read_params, read_options, put, from_params, &
+   use egw_capi_utils, only: settle, require, invalid, failure, check_number, check_count, &
+      & read_contact, put, put_handle_settled, take_handle, double_array, from_params, &
       & egw_params_c, c_path
    implicit none
    private
@@ -40,27 +40,14 @@ contains
       type(contact_params) :: params
       type(solver_options) :: options
       type(hysteresis_table), pointer :: h
-      type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
-      integer :: alloc_stat
       stat = require(out, "out")
-      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat == egw_ok) stat = new_table(h)
       if (stat /= egw_ok) return
-      call read_options(o, options)
-      allocate (h, stat=alloc_stat)
-      if (alloc_stat /= 0) then
-         call fatal_error(error, egw_out_of_memory, "hysteresis table: out of memory")
-         stat = settle(error)
-         return
-      end if
       call build_hysteresis(params, options, delta_min, delta_max, rel_tol, h, error)
-      stat = settle(error)
-      if (stat /= egw_ok) then
-         deallocate (h)
-         return
-      end if
-      call c_f_pointer(out, handle)
-      handle = c_loc(h)
+      stat = put_handle_settled(out, c_loc(h), error)
+      if (stat /= egw_ok) deallocate (h)
    end function egw_hysteresis_build
 
    !> C: egw_hysteresis_eval: the per-contact hot path (no allocation, no lock).
@@ -71,43 +58,33 @@ contains
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       real(c_double), pointer :: s
-      type(egw_error), allocatable :: error
       real(dp) :: f, k, m
       integer :: st
-      stat = require(hp, "h")
-      if (stat == egw_ok) stat = require(state, "delta_max_state")
-      if (stat /= egw_ok) return
-      if (ieee_is_nan(delta)) then
-         call fatal_error(error, egw_invalid_argument, "delta = NaN: must be a number")
-         stat = settle(error)
+      ! good arguments pass an inline test, not the checks' calls (the hot path)
+      if (.not. (c_associated(hp) .and. c_associated(state)) .or. ieee_is_nan(delta)) then
+         stat = require(hp, "h")
+         if (stat == egw_ok) stat = require(state, "delta_max_state")
+         if (stat == egw_ok) stat = check_number("delta", delta)
          return
       end if
       call c_f_pointer(hp, h)
       call c_f_pointer(state, s)
       if (ieee_is_nan(s)) then
-         call fatal_error(error, egw_invalid_argument, "delta_max_state = NaN: a new "// &
-            & "contact starts from -HUGE_VAL")
-         stat = settle(error)
+         stat = invalid("delta_max_state = NaN: a new contact starts from -HUGE_VAL")
          return
       end if
       m = s
       call hysteresis_eval(h, delta, m, f, k, st)
       if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then  ! input guard (issue 13)
-         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
-            & ", delta_max_state = "//format_real(s)//": the force there exceeds the doubles")
-         stat = settle(error)
+         stat = invalid("delta = "//format_real(delta)//", delta_max_state = "// &
+            & format_real(s)//": the force there exceeds the doubles")
          return
       end if
       s = m
       call put(force, f)
       call put(stiffness, k)
       stat = int(st, c_int)
-      if (stat == egw_out_of_range) then
-         call fatal_error(error, egw_out_of_range, "delta_max_state = "//format_real(m)// &
-            & ": above the table's delta_max = "//format_real(h%delta_max)// &
-            & " (values extrapolated)")
-         stat = settle(error)
-      end if
+      if (stat == egw_out_of_range) stat = above_table(h, "delta_max_state", m)
    end function egw_hysteresis_eval
 
    !> C: egw_hysteresis_eval_state: egw_hysteresis_eval with the turning point's data kept
@@ -119,53 +96,41 @@ contains
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
-      type(egw_error), allocatable :: error
       real(dp) :: f, k, kept, limit
       integer :: st
-      if (.not. (c_associated(hp) .and. c_associated(state_p))) then
+      ! good arguments pass an inline test, not the checks' calls (the hot path)
+      if (.not. (c_associated(hp) .and. c_associated(state_p)) .or. ieee_is_nan(delta)) then
          stat = require(hp, "h")
          if (stat == egw_ok) stat = require(state_p, "state")
-         return
-      end if
-      if (ieee_is_nan(delta)) then
-         call fatal_error(error, egw_invalid_argument, "delta = NaN: must be a number")
-         stat = settle(error)
+         if (stat == egw_ok) stat = check_number("delta", delta)
          return
       end if
       call c_f_pointer(hp, h)
       call c_f_pointer(state_p, state, [hysteresis_state_size])
       if (ieee_is_nan(state(1))) then
-         call fatal_error(error, egw_invalid_argument, "state[0] = NaN: a new contact "// &
-            & "starts from egw_hysteresis_state_init (state[0] = -HUGE_VAL)")
-         stat = settle(error)
+         stat = invalid("state[0] = NaN: a new contact starts from "// &
+            & "egw_hysteresis_state_init (state[0] = -HUGE_VAL)")
          return
       end if
       limit = reach(h)   ! once: a division, on the DEM hot path
       if (delta > limit .or. state(1) > limit) then
-         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
-            & ", state[0] = "//format_real(state(1))//": must be <= "// &
-            & format_real(limit)//" (the force there exceeds the doubles)")
-         stat = settle(error)
+         stat = invalid("delta = "//format_real(delta)//", state[0] = "// &
+            & format_real(state(1))//": must be <= "//format_real(limit)// &
+            & " (the force there exceeds the doubles)")
          return
       end if
       kept = state(1)
       call hysteresis_eval_state(h, delta, state, f, k, st)
       if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then  ! input guard (issue 13)
          state(1) = kept
-         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
-            & ", state[0] = "//format_real(kept)//": the force there exceeds the doubles")
-         stat = settle(error)
+         stat = invalid("delta = "//format_real(delta)//", state[0] = "// &
+            & format_real(kept)//": the force there exceeds the doubles")
          return
       end if
       call put(force, f)
       call put(stiffness, k)
       stat = int(st, c_int)
-      if (stat == egw_out_of_range) then
-         call fatal_error(error, egw_out_of_range, "state[0] = "//format_real(state(1))// &
-            & ": above the table's delta_max = "//format_real(h%delta_max)// &
-            & " (values extrapolated)")
-         stat = settle(error)
-      end if
+      if (stat == egw_out_of_range) stat = above_table(h, "state[0]", state(1))
    end function egw_hysteresis_eval_state
 
    !> C: egw_hysteresis_energy: the elastic energy a contact returns if it separates now.
@@ -175,36 +140,27 @@ contains
       real(c_double), value, intent(in) :: delta, state
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
-      type(egw_error), allocatable :: error
       real(dp) :: u
       integer :: st
-      stat = require(hp, "h")
+      stat = get_table(hp, h)
       if (stat == egw_ok) stat = require(energy, "energy")
       if (stat /= egw_ok) return
-      call c_f_pointer(hp, h)
       if (ieee_is_nan(delta) .or. ieee_is_nan(state) .or. delta > reach(h) .or. &
          & state > reach(h)) then
-         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
-            & ", delta_max_state = "//format_real(state)//": must be numbers <= "// &
-            & format_real(reach(h))//" (the force there exceeds the doubles)")
-         stat = settle(error)
+         stat = invalid("delta = "//format_real(delta)//", delta_max_state = "// &
+            & format_real(state)//": must be numbers <= "//format_real(reach(h))// &
+            & " (the force there exceeds the doubles)")
          return
       end if
       call hysteresis_energy(h, delta, state, u, st)
       if (.not. ieee_is_finite(u)) then   ! input guard (issue 13)
-         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta)// &
-            & ": the energy there exceeds the doubles")
-         stat = settle(error)
+         stat = invalid("delta = "//format_real(delta)//": the energy there exceeds the doubles")
          return
       end if
       call put(energy, u)
       stat = int(st, c_int)
-      if (stat == egw_out_of_range) then
-         call fatal_error(error, egw_out_of_range, "max(delta, delta_max_state) = "// &
-            & format_real(max(delta, state))//": above the table's delta_max = "// &
-            & format_real(h%delta_max)//" (values extrapolated)")
-         stat = settle(error)
-      end if
+      if (stat == egw_out_of_range) &
+         & stat = above_table(h, "max(delta, delta_max_state)", max(delta, state))
    end function egw_hysteresis_energy
 
    !> C: egw_hysteresis_state_init: a new contact's state (state[0] = -HUGE_VAL, no cache).
@@ -228,39 +184,20 @@ contains
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       real(c_double), pointer :: delta(:), state(:), f(:), k(:)
-      type(egw_error), allocatable :: error
-      real(dp) :: fi, ki, limit
+      real(dp) :: fi, ki
       integer :: i, st, first_out
-      stat = require(hp, "h")
-      if (stat /= egw_ok) return
-      if (n < 0) then
-         call fatal_error(error, egw_invalid_argument, "n = "//int_str(int(n))//": must be >= 0")
-         stat = settle(error)
-         return
-      end if
-      if (n == 0) return
+      stat = get_table(hp, h)
+      if (stat == egw_ok) stat = check_count(n)
+      if (stat /= egw_ok .or. n == 0) return
       stat = require(delta_p, "delta")
       if (stat == egw_ok) stat = require(state_p, "delta_max_state")
       if (stat /= egw_ok) return
-      call c_f_pointer(hp, h)
-      call c_f_pointer(delta_p, delta, [n])
-      call c_f_pointer(state_p, state, [n])
-      limit = reach(h)
-      do i = 1, n
-         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > limit .or. &
-            & state(i) > limit) then
-            call fatal_error(error, egw_invalid_argument, "delta["//int_str(i - 1)// &
-               & "] = "//format_real(delta(i))//", delta_max_state["//int_str(i - 1)// &
-               & "] = "//format_real(state(i))//": must be numbers <= "// &
-               & format_real(limit)// &
-               & " (the force there exceeds the doubles)")
-            stat = settle(error)
-            return
-         end if
-      end do
-      nullify (f, k)
-      if (c_associated(force)) call c_f_pointer(force, f, [n])
-      if (c_associated(stiffness)) call c_f_pointer(stiffness, k, [n])
+      delta => double_array(delta_p, n)
+      state => double_array(state_p, n)
+      stat = check_histories(h, delta, state)
+      if (stat /= egw_ok) return
+      f => double_array(force, n)
+      k => double_array(stiffness, n)
       first_out = 0
       do i = 1, n
          call hysteresis_eval(h, delta(i), state(i), fi, ki, st)
@@ -268,35 +205,20 @@ contains
          if (associated(k)) k(i) = ki
          if (st /= egw_ok .and. first_out == 0) first_out = i
       end do
-      if (first_out > 0) then
-         call fatal_error(error, egw_out_of_range, "delta["//int_str(first_out - 1)// &
-            & "] or its state above the table's delta_max = "//format_real(h%delta_max)// &
-            & " (values extrapolated)")
-         stat = settle(error)
-      end if
+      if (first_out > 0) stat = failure(egw_out_of_range, "delta["//int_str(first_out - 1)// &
+         & "] or its state above the table's delta_max = "//format_real(h%delta_max)// &
+         & " (values extrapolated)")
    end function egw_hysteresis_eval_array
-
-   !> The largest overlap (or state) whose force stays well inside the doubles: the
-   !> loading table's linear continuation beyond its delta_max reaches huge/4 there.
-   pure real(dp) function reach(h)
-      type(hysteresis_table), intent(in) :: h
-      associate (l => h%loading)
-         reach = l%delta_max + 0.25_dp*huge(1.0_dp)/max(1.0_dp, l%force(size(l%force)), &
-            & l%stiffness(size(l%stiffness)))
-      end associate
-   end function reach
 
    !> C: egw_hysteresis_free: release a table; sets *h to NULL (NULL is fine).
    subroutine egw_hysteresis_free(hp) bind(C, name="egw_hysteresis_free")
       type(c_ptr), value, intent(in) :: hp
-      type(c_ptr), pointer :: handle
+      type(c_ptr) :: object
       type(hysteresis_table), pointer :: h
-      if (.not. c_associated(hp)) return
-      call c_f_pointer(hp, handle)
-      if (.not. c_associated(handle)) return
-      call c_f_pointer(handle, h)
+      object = take_handle(hp)
+      if (.not. c_associated(object)) return
+      call c_f_pointer(object, h)
       deallocate (h)
-      handle = c_null_ptr
    end subroutine egw_hysteresis_free
 
    !> C: egw_hysteresis_write: CSV or binary, atomically.
@@ -308,10 +230,9 @@ contains
       type(hysteresis_table), pointer :: h
       character(len=:), allocatable :: fpath
       type(egw_error), allocatable :: error
-      stat = require(hp, "h")
+      stat = get_table(hp, h)
       if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
-      call c_f_pointer(hp, h)
       call write_hysteresis(h, fpath, int(format), error)
       stat = settle(error)
    end function egw_hysteresis_write
@@ -322,26 +243,14 @@ contains
       integer(c_int) :: stat
       character(len=:), allocatable :: fpath
       type(hysteresis_table), pointer :: h
-      type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
-      integer :: alloc_stat
       stat = require(out, "out")
       if (stat == egw_ok) stat = c_path(path, fpath)
+      if (stat == egw_ok) stat = new_table(h)
       if (stat /= egw_ok) return
-      allocate (h, stat=alloc_stat)
-      if (alloc_stat /= 0) then
-         call fatal_error(error, egw_out_of_memory, "hysteresis table: out of memory")
-         stat = settle(error)
-         return
-      end if
       call read_hysteresis(fpath, h, error)
-      stat = settle(error)
-      if (stat /= egw_ok) then
-         deallocate (h)
-         return
-      end if
-      call c_f_pointer(out, handle)
-      handle = c_loc(h)
+      stat = put_handle_settled(out, c_loc(h), error)
+      if (stat /= egw_ok) deallocate (h)
    end function egw_hysteresis_read
 
    !> C: egw_hysteresis_get_info.
@@ -351,10 +260,9 @@ contains
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       type(egw_hysteresis_info_c), pointer :: out
-      stat = require(hp, "h")
+      stat = get_table(hp, h)
       if (stat == egw_ok) stat = require(info, "info")
       if (stat /= egw_ok) return
-      call c_f_pointer(hp, h)
       call c_f_pointer(info, out)
       out%model = int(h%params%model, c_int)
       out%reversible = merge(1_c_int, 0_c_int, h%reversible)
@@ -369,5 +277,67 @@ contains
       out%max_error = h%max_error
       out%params = from_params(h%params)
    end function egw_hysteresis_get_info
+
+   ! ---------------------------------------------------------------- helpers
+
+   !> The table of a handle egw_hysteresis (not NULL; a handle only comes from build or
+   !> read, so there is nothing more to check).
+   integer(c_int) function get_table(hp, h) result(stat)
+      type(c_ptr), intent(in) :: hp
+      type(hysteresis_table), pointer, intent(out) :: h
+      h => null()
+      stat = require(hp, "h")
+      if (stat == egw_ok) call c_f_pointer(hp, h)
+   end function get_table
+
+   !> A new, empty table at h, or EGW_OUT_OF_MEMORY (a fine table is large: no abort).
+   integer(c_int) function new_table(h) result(stat)
+      type(hysteresis_table), pointer, intent(out) :: h
+      integer :: alloc_stat
+      stat = egw_ok
+      allocate (h, stat=alloc_stat)
+      if (alloc_stat /= 0) stat = failure(egw_out_of_memory, "hysteresis table: out of memory")
+   end function new_table
+
+   !> EGW_OK if every overlap and its state are numbers <= reach(h), else
+   !> EGW_INVALID_ARGUMENT naming the first other pair (delta[i], delta_max_state[i]).
+   integer(c_int) function check_histories(h, delta, state) result(stat)
+      type(hysteresis_table), intent(in) :: h
+      real(dp), intent(in) :: delta(:), state(:)
+      real(dp) :: limit
+      integer :: i
+      stat = egw_ok
+      limit = reach(h)
+      do i = 1, size(delta)
+         if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > limit .or. &
+            & state(i) > limit) then
+            stat = invalid("delta["//int_str(i - 1)//"] = "//format_real(delta(i))// &
+               & ", delta_max_state["//int_str(i - 1)//"] = "//format_real(state(i))// &
+               & ": must be numbers <= "//format_real(limit)// &
+               & " (the force there exceeds the doubles)")
+            return
+         end if
+      end do
+   end function check_histories
+
+   !> EGW_OUT_OF_RANGE for a history x (called name) above the table's delta_max: the
+   !> values are written, extrapolated.
+   integer(c_int) function above_table(h, name, x) result(stat)
+      type(hysteresis_table), intent(in) :: h
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: x
+      stat = failure(egw_out_of_range, name//" = "//format_real(x)// &
+         & ": above the table's delta_max = "//format_real(h%delta_max)//" (values extrapolated)")
+   end function above_table
+
+   !> The largest overlap (or state) whose force stays well inside the doubles: the
+   !> loading table's linear continuation beyond its delta_max reaches huge/4 there.
+   pure real(dp) function reach(h)
+      type(hysteresis_table), intent(in) :: h
+      associate (l => h%loading)
+         reach = l%delta_max + 0.25_dp*huge(1.0_dp)/max(1.0_dp, l%force(size(l%force)), &
+            & l%stiffness(size(l%stiffness)))
+      end associate
+   end function reach
 
 end module egw_capi_hysteresis

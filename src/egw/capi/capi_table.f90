@@ -1,15 +1,15 @@
 !> C API of the force tables (include/egw.h): opaque handles to Fortran table
 !> objects (c_loc of an allocated object, released by egw_table_free /
 !> egw_universal_free), build, evaluation, file output and input. Errors go through
-!> egw_capi_utils' per-thread last-error message (settle, require, invalid).
+!> egw_capi_utils' per-thread last-error message and argument checks.
 module egw_capi_table
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_out_of_range, egw_null_pointer, egw_out_of_memory, fatal_error, format_real, int_str
-   use egw_params, only: contact_params, validate_params
+   use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, egw_out_of_range, &
+      & egw_out_of_memory, format_real, int_str
+   use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, build_table, table_eval, table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_is_ready
@@ -17,8 +17,9 @@ module egw_capi_table
       & universal_slice
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
       & write_calculix_flat, write_lammps, write_calculix_sphere
-   use egw_capi_utils, only: egw_params_c, egw_options_c, settle, require, read_params, &
-      & read_options, put, c_path, invalid, record
+   use egw_capi_utils, only: egw_params_c, settle, require, invalid, failure, check_number, &
+      & check_count, read_params, read_contact, put, put_settled, put_handle_settled, &
+      & take_handle, double_array, c_path
    implicit none
    private
 
@@ -45,21 +46,14 @@ contains
       type(contact_params) :: params
       type(solver_options) :: options
       type(force_table), pointer :: t
-      type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
       stat = require(out, "out")
-      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
       if (stat /= egw_ok) return
-      call read_options(o, options)
       allocate (t)
       call build_table(params, options, delta_min, delta_max, rel_tol, t, error)
-      stat = settle(error)
-      if (stat /= egw_ok) then
-         deallocate (t)
-         return
-      end if
-      call c_f_pointer(out, handle)
-      handle = c_loc(t)
+      stat = put_handle_settled(out, c_loc(t), error)
+      if (stat /= egw_ok) deallocate (t)
    end function egw_table_build
 
    !> C: egw_table_eval; above delta_max returns EGW_OUT_OF_RANGE with values written.
@@ -71,18 +65,16 @@ contains
       type(force_table), pointer :: t
       real(dp) :: f, k
       ! lean: this is the per-contact hot path (a handle only comes from build or read,
-      ! so it always holds a prepared table)
-      if (.not. c_associated(h)) then
+      ! so it always holds a prepared table: no get_table), and good arguments pass an
+      ! inline test, not the checks' calls (~1 ns of ~8)
+      if (.not. c_associated(h) .or. ieee_is_nan(delta)) then
          stat = require(h, "t")
+         if (stat == egw_ok) stat = check_number("delta", delta)
          return
       end if
-      if (ieee_is_nan(delta)) then
-         stat = invalid("delta = NaN: must be a number")
-         return
-      end if
+      stat = egw_ok
       call c_f_pointer(h, t)
       call table_eval(t, delta, f, k)
-      stat = egw_ok
       if (delta > t%delta_max) then
          ! the linear continuation: +Inf or far enough to overflow is refused, untouched
          if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then
@@ -111,31 +103,15 @@ contains
       real(dp) :: fi, ki
       integer :: i, first_out
       stat = get_table(h, t)
-      if (stat /= egw_ok) return
-      if (n < 0) then
-         stat = invalid("n = "//int_str(int(n))//": must be >= 0")
-         return
-      end if
-      if (n == 0) return
+      if (stat == egw_ok) stat = check_count(n)
+      if (stat /= egw_ok .or. n == 0) return
       stat = require(delta_ptr, "delta")
       if (stat /= egw_ok) return
-      call c_f_pointer(delta_ptr, delta, [n])
-      do i = 1, n
-         if (ieee_is_nan(delta(i))) then
-            stat = invalid("delta["//int_str(i - 1)//"] = NaN: must be a number")
-            return
-         end if
-         if (delta(i) > t%delta_max) then
-            call table_eval(t, delta(i), fi, ki)
-            if (.not. (ieee_is_finite(fi) .and. ieee_is_finite(ki))) then
-               stat = beyond(t, delta(i), "delta["//int_str(i - 1)//"]")
-               return
-            end if
-         end if
-      end do
-      nullify (f, k)
-      if (c_associated(force)) call c_f_pointer(force, f, [n])
-      if (c_associated(stiffness)) call c_f_pointer(stiffness, k, [n])
+      delta => double_array(delta_ptr, n)
+      stat = check_overlaps(t, delta)
+      if (stat /= egw_ok) return
+      f => double_array(force, n)
+      k => double_array(stiffness, n)
       first_out = 0
       do i = 1, n
          call table_eval(t, delta(i), fi, ki)
@@ -155,11 +131,8 @@ contains
       type(force_table), pointer :: t
       real(dp) :: f, k, e, a
       stat = get_table(h, t)
+      if (stat == egw_ok) stat = check_number("delta", delta)
       if (stat /= egw_ok) return
-      if (ieee_is_nan(delta)) then
-         stat = invalid("delta = NaN: must be a number")
-         return
-      end if
       call table_eval(t, delta, f, k)
       e = table_energy(t, delta)
       a = table_contact_radius(t, delta)
@@ -227,33 +200,25 @@ contains
       integer(c_int) :: stat
       character(len=:), allocatable :: fpath
       type(force_table), pointer :: t
-      type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
       stat = require(out, "out")
       if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       allocate (t)
       call read_table(fpath, t, error)
-      stat = settle(error)
-      if (stat /= egw_ok) then
-         deallocate (t)
-         return
-      end if
-      call c_f_pointer(out, handle)
-      handle = c_loc(t)
+      stat = put_handle_settled(out, c_loc(t), error)
+      if (stat /= egw_ok) deallocate (t)
    end function egw_table_read
 
    !> C: egw_table_free(egw_table *t): releases the table, sets *t = NULL.
    subroutine egw_table_free(h) bind(C, name="egw_table_free")
       type(c_ptr), value, intent(in) :: h
-      type(c_ptr), pointer :: handle
+      type(c_ptr) :: object
       type(force_table), pointer :: t
-      if (.not. c_associated(h)) return
-      call c_f_pointer(h, handle)
-      if (.not. c_associated(handle)) return
-      call c_f_pointer(handle, t)
+      object = take_handle(h)
+      if (.not. c_associated(object)) return
+      call c_f_pointer(object, t)
       deallocate (t)
-      handle = c_null_ptr
    end subroutine egw_table_free
 
    !> C: egw_tables_write_lammps: one pair_style table section (EGW_1..EGW_n) per table.
@@ -262,33 +227,7 @@ contains
       integer(c_int), value, intent(in) :: n
       type(c_ptr), value, intent(in) :: tables, path
       integer(c_int) :: stat
-      type(c_ptr), pointer :: handles(:)
-      type(force_table), allocatable :: copies(:)
-      type(force_table), pointer :: t
-      character(len=:), allocatable :: fpath
-      type(egw_error), allocatable :: error
-      integer :: i
-      if (n < 1) then
-         stat = invalid("n = "//int_str(int(n))//": need at least one table")
-         return
-      end if
-      stat = require(tables, "tables")
-      if (stat == egw_ok) stat = c_path(path, fpath)
-      if (stat /= egw_ok) return
-      call c_f_pointer(tables, handles, [n])
-      allocate (copies(n), stat=i)
-      if (i /= 0) then
-         stat = egw_out_of_memory
-         call record("n = "//int_str(int(n))//": no memory for that many tables")
-         return
-      end if
-      do i = 1, n
-         stat = get_table(handles(i), t)
-         if (stat /= egw_ok) return
-         copies(i) = t
-      end do
-      call write_lammps(copies, fpath, error)
-      stat = settle(error)
+      stat = lammps_c(n, tables, path, .false., c_null_ptr)
    end function egw_tables_write_lammps
 
    !> C: egw_write_flat_calculix (rough-flat p_G for CalculiX).
@@ -322,8 +261,7 @@ contains
       if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       call write_calculix_sphere(t, fpath, error, shift=shift /= 0, max_error=achieved)
-      stat = settle(error)
-      if (stat == egw_ok) call put(max_error, achieved)
+      stat = put_settled(max_error, achieved, error)
    end function egw_table_write_calculix
 
    !> C: egw_write_flat_calculix_shifted (rough flat; shift: overclosure from d_c;
@@ -343,8 +281,7 @@ contains
       if (stat /= egw_ok) return
       call write_calculix_flat(params, overclosure_max, rel_tol, fpath, error, &
          & shift=shift /= 0, max_error=achieved)
-      stat = settle(error)
-      if (stat == egw_ok) call put(max_error, achieved)
+      stat = put_settled(max_error, achieved, error)
    end function egw_write_flat_calculix_shifted
 
    !> C: egw_tables_write_lammps_units: as egw_tables_write_lammps with a LAMMPS units
@@ -354,34 +291,7 @@ contains
       integer(c_int), value, intent(in) :: n
       type(c_ptr), value, intent(in) :: tables, path, units
       integer(c_int) :: stat
-      type(c_ptr), pointer :: handles(:)
-      type(force_table), allocatable :: copies(:)
-      type(force_table), pointer :: t
-      character(len=:), allocatable :: fpath, funits
-      type(egw_error), allocatable :: error
-      integer :: i
-      if (n < 1) then
-         stat = invalid("n = "//int_str(int(n))//": need at least one table")
-         return
-      end if
-      stat = require(tables, "tables")
-      if (stat == egw_ok) stat = c_path(path, fpath)
-      if (stat == egw_ok) stat = c_path(units, funits, "units")
-      if (stat /= egw_ok) return
-      call c_f_pointer(tables, handles, [n])
-      allocate (copies(n), stat=i)
-      if (i /= 0) then
-         stat = egw_out_of_memory
-         call record("n = "//int_str(int(n))//": no memory for that many tables")
-         return
-      end if
-      do i = 1, n
-         stat = get_table(handles(i), t)
-         if (stat /= egw_ok) return
-         copies(i) = t
-      end do
-      call write_lammps(copies, fpath, error, units=funits)
-      stat = settle(error)
+      stat = lammps_c(n, tables, path, .true., units)
    end function egw_tables_write_lammps_units
 
    ! ------------------------------------------------------------ universal tables
@@ -395,22 +305,15 @@ contains
       type(contact_params) :: params
       type(solver_options) :: options
       type(universal_table), pointer :: u
-      type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
       stat = require(out, "out")
-      if (stat == egw_ok) stat = read_params(p, params)
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
       if (stat /= egw_ok) return
-      call read_options(o, options)
       allocate (u)
       call build_universal(params%model, params%psi, params%hardness_coeff, &
          & params%plastic_ratio, options, mu_min, mu_max, x_min, x_max, rel_tol, u, error)
-      stat = settle(error)
-      if (stat /= egw_ok) then
-         deallocate (u)
-         return
-      end if
-      call c_f_pointer(out, handle)
-      handle = c_loc(u)
+      stat = put_handle_settled(out, c_loc(u), error)
+      if (stat /= egw_ok) deallocate (u)
    end function egw_universal_build
 
    !> C: egw_universal_eval (R, E, sigma, mu from p; model, psi, K, rho_p must match).
@@ -439,39 +342,33 @@ contains
          return
       end if
       if (.not. (cp%sigma > 0.0_dp .and. cp%radius > 0.0_dp .and. cp%modulus > 0.0_dp)) then
-         stat = egw_invalid_parameter
-         call record("sigma = "//format_real(cp%sigma)//": universal tables need sigma, "// &
-            & "radius, modulus > 0")
+         stat = failure(egw_invalid_parameter, "sigma = "//format_real(cp%sigma)// &
+            & ": universal tables need sigma, radius, modulus > 0")
          return
       end if
-      if (ieee_is_nan(delta)) then
-         stat = invalid("delta = NaN: must be a number")
-         return
-      end if
+      stat = check_number("delta", delta)
+      if (stat /= egw_ok) return
       call universal_eval(u, cp%radius, cp%modulus, cp%sigma, cp%mu, delta, f, k, st)
       if (st /= egw_ok .and. .not. (cp%mu >= u%mu_min*(1 - 1.0e-12_dp) .and. &
          & cp%mu <= u%mu_max*(1 + 1.0e-12_dp))) then
-         stat = egw_out_of_range
-         call record("mu = "//format_real(cp%mu)//": outside the table's ["// &
-            & format_real(u%mu_min)//", "//format_real(u%mu_max)//"]")
+         stat = failure(egw_out_of_range, "mu = "//format_real(cp%mu)// &
+            & ": outside the table's ["//format_real(u%mu_min)//", "//format_real(u%mu_max)//"]")
          return
       end if
       if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then
          ! Inf R, E or sigma, or a force beyond the doubles: refused, outputs untouched
-         stat = egw_invalid_parameter
-         call record("sigma = "//format_real(cp%sigma)//", radius = "//format_real(cp%radius) &
-            & //", modulus = "//format_real(cp%modulus)//", delta = "//format_real(delta) &
+         stat = failure(egw_invalid_parameter, "sigma = "//format_real(cp%sigma)// &
+            & ", radius = "//format_real(cp%radius)//", modulus = "//format_real(cp%modulus) &
+            & //", delta = "//format_real(delta) &
             & //": the force E sqrt(R) sigma**1.5 p(delta/sigma) exceeds the largest double" &
             & //" (R, E, sigma must be finite)")
          return
       end if
       call put(force, f)
       call put(stiffness, k)
-      if (st /= egw_ok) then
-         stat = int(st, c_int)
-         call record("delta = "//format_real(delta)//": above the table's x_max*sigma = "// &
-            & format_real(u%x_max*cp%sigma)//" (values extrapolated)")
-      end if
+      if (st /= egw_ok) stat = failure(st, "delta = "//format_real(delta)// &
+         & ": above the table's x_max*sigma = "//format_real(u%x_max*cp%sigma)// &
+         & " (values extrapolated)")
    end function egw_universal_eval
 
    !> C: egw_universal_slice: the 1-D table of the contact p cut out of u.
@@ -490,6 +387,8 @@ contains
       stat = slice_c(h, p, out, .true., delta_max)
    end function egw_universal_slice_range
 
+   !> The 1-D table of the contact p cut out of the universal table h into *out; trimmed
+   !> to overlaps up to delta_max when trim.
    integer(c_int) function slice_c(h, p, out, trim, delta_max) result(stat)
       type(c_ptr), intent(in) :: h, p, out
       logical, intent(in) :: trim
@@ -497,7 +396,6 @@ contains
       type(universal_table), pointer :: u
       type(contact_params) :: params
       type(force_table), pointer :: t
-      type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
       stat = get_universal(h, u)
       if (stat == egw_ok) stat = require(out, "out")
@@ -509,13 +407,8 @@ contains
       else
          call universal_slice(u, params, t, error)
       end if
-      stat = settle(error)
-      if (stat /= egw_ok) then
-         deallocate (t)
-         return
-      end if
-      call c_f_pointer(out, handle)
-      handle = c_loc(t)
+      stat = put_handle_settled(out, c_loc(t), error)
+      if (stat /= egw_ok) deallocate (t)
    end function slice_c
 
    !> C: egw_universal_write (CSV or binary).
@@ -540,37 +433,67 @@ contains
       integer(c_int) :: stat
       character(len=:), allocatable :: fpath
       type(universal_table), pointer :: u
-      type(c_ptr), pointer :: handle
       type(egw_error), allocatable :: error
       stat = require(out, "out")
       if (stat == egw_ok) stat = c_path(path, fpath)
       if (stat /= egw_ok) return
       allocate (u)
       call read_universal(fpath, u, error)
-      stat = settle(error)
-      if (stat /= egw_ok) then
-         deallocate (u)
-         return
-      end if
-      call c_f_pointer(out, handle)
-      handle = c_loc(u)
+      stat = put_handle_settled(out, c_loc(u), error)
+      if (stat /= egw_ok) deallocate (u)
    end function egw_universal_read
 
    !> C: egw_universal_free(egw_universal *u): releases, sets *u = NULL.
    subroutine egw_universal_free(h) bind(C, name="egw_universal_free")
       type(c_ptr), value, intent(in) :: h
-      type(c_ptr), pointer :: handle
+      type(c_ptr) :: object
       type(universal_table), pointer :: u
-      if (.not. c_associated(h)) return
-      call c_f_pointer(h, handle)
-      if (.not. c_associated(handle)) return
-      call c_f_pointer(handle, u)
+      object = take_handle(h)
+      if (.not. c_associated(object)) return
+      call c_f_pointer(object, u)
       deallocate (u)
-      handle = c_null_ptr
    end subroutine egw_universal_free
 
    ! ------------------------------------------------------------ helpers
 
+   !> The LAMMPS file of n tables (egw_table*) at path; a UNITS: tag when with_units.
+   integer(c_int) function lammps_c(n, tables, path, with_units, units) result(stat)
+      integer(c_int), intent(in) :: n
+      type(c_ptr), intent(in) :: tables, path, units
+      logical, intent(in) :: with_units
+      type(c_ptr), pointer :: handles(:)
+      type(force_table), allocatable :: copies(:)
+      type(force_table), pointer :: t
+      character(len=:), allocatable :: fpath, funits
+      type(egw_error), allocatable :: error
+      integer :: i
+      stat = egw_ok
+      if (n < 1) stat = invalid("n = "//int_str(int(n))//": need at least one table")
+      if (stat == egw_ok) stat = require(tables, "tables")
+      if (stat == egw_ok) stat = c_path(path, fpath)
+      if (stat == egw_ok .and. with_units) stat = c_path(units, funits, "units")
+      if (stat /= egw_ok) return
+      call c_f_pointer(tables, handles, [n])
+      allocate (copies(n), stat=i)
+      if (i /= 0) then
+         stat = failure(egw_out_of_memory, "n = "//int_str(int(n))// &
+            & ": no memory for that many tables")
+         return
+      end if
+      do i = 1, n
+         stat = get_table(handles(i), t)
+         if (stat /= egw_ok) return
+         copies(i) = t
+      end do
+      if (with_units) then
+         call write_lammps(copies, fpath, error, units=funits)
+      else
+         call write_lammps(copies, fpath, error)
+      end if
+      stat = settle(error)
+   end function lammps_c
+
+   !> The table of a handle egw_table (not NULL, built or read), as get_universal.
    integer(c_int) function get_table(h, t) result(stat)
       type(c_ptr), intent(in) :: h
       type(force_table), pointer, intent(out) :: t
@@ -581,6 +504,7 @@ contains
       if (.not. table_is_ready(t)) stat = invalid("t: not a built or read table")
    end function get_table
 
+   !> The table of a handle egw_universal (not NULL, built or read).
    integer(c_int) function get_universal(h, u) result(stat)
       type(c_ptr), intent(in) :: h
       type(universal_table), pointer, intent(out) :: u
@@ -591,12 +515,34 @@ contains
       if (.not. allocated(u%slices)) stat = invalid("u: not a built or read table")
    end function get_universal
 
+   !> EGW_OK if every overlap is a number whose linear continuation above delta_max stays
+   !> inside the doubles, else EGW_INVALID_ARGUMENT naming the first other (delta[i]).
+   integer(c_int) function check_overlaps(t, delta) result(stat)
+      type(force_table), intent(in) :: t
+      real(dp), intent(in) :: delta(:)
+      real(dp) :: f, k
+      integer :: i
+      stat = egw_ok
+      do i = 1, size(delta)
+         stat = check_number("delta", delta(i), i - 1)
+         if (stat /= egw_ok) return
+         if (delta(i) > t%delta_max) then
+            call table_eval(t, delta(i), f, k)
+            if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then
+               stat = beyond(t, delta(i), "delta["//int_str(i - 1)//"]")
+               return
+            end if
+         end if
+      end do
+   end function check_overlaps
+
+   !> EGW_OUT_OF_RANGE for an overlap above delta_max (values written, extrapolated).
    integer(c_int) function out_of_range(t, delta) result(stat)
       type(force_table), intent(in) :: t
       real(dp), intent(in) :: delta
-      stat = egw_out_of_range
-      call record("delta = "//format_real(delta)//": above the table's delta_max = "// &
-         & format_real(t%delta_max)//" (values extrapolated linearly)")
+      stat = failure(egw_out_of_range, "delta = "//format_real(delta)// &
+         & ": above the table's delta_max = "//format_real(t%delta_max)// &
+         & " (values extrapolated linearly)")
    end function out_of_range
 
    !> An overlap whose linear continuation above delta_max leaves the doubles (+Inf, or

@@ -1,25 +1,28 @@
 !> What the C API's entry points (capi*.f90, include/egw.h) share, in one place: the
-!> per-thread last-error message (settle, require, invalid), the C mirrors of egw_params,
-!> egw_options and egw_result with their conversions, and strings: every C string argument
-!> is read by c_string or c_path (its full strlen length: no silent truncation, whatever
-!> its length) and every message is copied out by copy_to_c. The capi*.f90 modules hold
-!> the entry points.
+!> per-thread last-error message (settle, require, invalid, failure), the argument checks
+!> every entry makes (NULL, NaN, counts, ranges), handles in and out, the C mirrors of
+!> egw_params, egw_options and egw_result with their conversions, and strings: every C
+!> string argument is read by c_string or c_path (its full strlen length: no silent
+!> truncation, whatever its length) and every message is copied out by copy_to_c. The
+!> capi*.f90 modules hold the entry points, each as check arguments -> call -> copy out.
 module egw_capi_utils
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_size_t, &
-      & c_null_char, c_associated, c_f_pointer
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+      & c_null_char, c_null_ptr, c_associated, c_f_pointer
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
-      & status_message, format_real, fatal_error
+      & status_message, format_real, int_str
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options, solve_result
    implicit none
    private
 
    public :: c_string, c_path, copy_to_c, copy_last_error
-   public :: settle, require, invalid, record, check_nonneg, check_positive, put
+   public :: settle, require, invalid, failure
+   public :: check_nonneg, check_positive, check_number, check_count
+   public :: put, put_settled, put_handle_settled, take_handle, double_array
    public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params, read_params, &
-      & read_options, put_result
+      & read_options, read_contact, put_result
 
    !> Mirror of the C struct egw_params.
    type, bind(C) :: egw_params_c
@@ -148,6 +151,17 @@ contains
       options%n_threads = int(co%n_threads)
    end subroutine read_options
 
+   !> The inputs of a solve: validated params from p (read_params), options from the
+   !> nullable o (read_options, read only when p passed).
+   integer(c_int) function read_contact(p, o, params, options) result(stat)
+      type(c_ptr), intent(in) :: p   !< const egw_params*
+      type(c_ptr), intent(in) :: o   !< const egw_options* (NULL: defaults)
+      type(contact_params), intent(out) :: params
+      type(solver_options), intent(out) :: options
+      stat = read_params(p, params)
+      if (stat == egw_ok) call read_options(o, options)
+   end function read_contact
+
    !> Store a solve_result at a C egw_result* (not NULL).
    subroutine put_result(res, result)
       type(c_ptr), intent(in) :: res
@@ -183,23 +197,51 @@ contains
       last_message = name//": NULL pointer"
    end function require
 
+   !> EGW_OK if x is finite and >= 0, else EGW_INVALID_ARGUMENT naming it.
    integer(c_int) function check_nonneg(name, x) result(stat)
-      character(len=*), intent(in) :: name
+      character(len=*), intent(in) :: name   !< the argument's name in egw.h
       real(dp), intent(in) :: x
-      stat = egw_ok
-      if (ieee_is_finite(x) .and. x >= 0.0_dp) return
-      stat = egw_invalid_argument
-      last_message = name//" = "//format_real(x)//": must be finite and >= 0"
+      stat = check_finite(name, x, x >= 0.0_dp, ">= 0")
    end function check_nonneg
 
+   !> EGW_OK if x is finite and > 0, else EGW_INVALID_ARGUMENT naming it.
    integer(c_int) function check_positive(name, x) result(stat)
-      character(len=*), intent(in) :: name
+      character(len=*), intent(in) :: name   !< the argument's name in egw.h
       real(dp), intent(in) :: x
-      stat = egw_ok
-      if (ieee_is_finite(x) .and. x > 0.0_dp) return
-      stat = egw_invalid_argument
-      last_message = name//" = "//format_real(x)//": must be finite and > 0"
+      stat = check_finite(name, x, x > 0.0_dp, "> 0")
    end function check_positive
+
+   !> EGW_OK if x is finite and meets its bound (bound_met), else EGW_INVALID_ARGUMENT.
+   integer(c_int) function check_finite(name, x, bound_met, bound) result(stat)
+      character(len=*), intent(in) :: name, bound
+      real(dp), intent(in) :: x
+      logical, intent(in) :: bound_met
+      stat = egw_ok
+      if (ieee_is_finite(x) .and. bound_met) return
+      stat = invalid(name//" = "//format_real(x)//": must be finite and "//bound)
+   end function check_finite
+
+   !> EGW_OK unless x is NaN (EGW_INVALID_ARGUMENT naming it); Inf passes, the callee
+   !> judges it. (The name of an array element is built only on failure: array loops.)
+   integer(c_int) function check_number(name, x, index) result(stat)
+      character(len=*), intent(in) :: name     !< the argument's name in egw.h
+      real(dp), intent(in) :: x
+      integer, intent(in), optional :: index   !< x is name[index] (C, from 0)
+      stat = egw_ok
+      if (.not. ieee_is_nan(x)) return
+      if (present(index)) then
+         stat = invalid(name//"["//int_str(index)//"] = NaN: must be a number")
+      else
+         stat = invalid(name//" = NaN: must be a number")
+      end if
+   end function check_number
+
+   !> EGW_OK if the array length n is >= 0, else EGW_INVALID_ARGUMENT.
+   integer(c_int) function check_count(n) result(stat)
+      integer(c_int), intent(in) :: n   !< the argument called n in egw.h
+      stat = egw_ok
+      if (n < 0) stat = invalid("n = "//int_str(int(n))//": must be >= 0")
+   end function check_count
 
    !> Store x at a C double* (NULL: nothing wanted).
    subroutine put(ptr, x)
@@ -211,18 +253,65 @@ contains
       target = x
    end subroutine put
 
+   !> The n doubles at a nullable double* (NULL: not associated, nothing wanted there).
+   function double_array(ptr, n) result(array)
+      type(c_ptr), intent(in) :: ptr
+      integer(c_int), intent(in) :: n   !< the length, >= 0
+      real(c_double), pointer :: array(:)
+      array => null()
+      if (c_associated(ptr)) call c_f_pointer(ptr, array, [n])
+   end function double_array
+
+   !> Status of a call's error (as settle); on success x stored at the nullable double*
+   !> ptr (as put), on failure ptr untouched.
+   integer(c_int) function put_settled(ptr, x, error) result(stat)
+      type(c_ptr), intent(in) :: ptr   !< double* (NULL: not wanted)
+      real(dp), intent(in) :: x
+      type(egw_error), allocatable, intent(in) :: error
+      stat = settle(error)
+      if (stat == egw_ok) call put(ptr, x)
+   end function put_settled
+
+   !> Status of the build or read that made an object (as settle); on success the object
+   !> is handed to C, its address stored at *out. On failure *out is untouched and the
+   !> caller releases the object (no handle to a half-made table).
+   integer(c_int) function put_handle_settled(out, object, error) result(stat)
+      type(c_ptr), intent(in) :: out      !< egw_table*, egw_universal*, ... (not NULL)
+      type(c_ptr), intent(in) :: object   !< c_loc of the allocated object
+      type(egw_error), allocatable, intent(in) :: error
+      type(c_ptr), pointer :: handle
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      call c_f_pointer(out, handle)
+      handle = object
+   end function put_handle_settled
+
+   !> Take a handle back from C for release: the address at *h, and *h set to NULL.
+   !> NULL h or NULL *h gives c_null_ptr (nothing to release).
+   function take_handle(h) result(object)
+      type(c_ptr), intent(in) :: h   !< egw_table*, egw_universal*, egw_hysteresis*
+      type(c_ptr) :: object
+      type(c_ptr), pointer :: handle
+      object = c_null_ptr
+      if (.not. c_associated(h)) return
+      call c_f_pointer(h, handle)
+      object = handle
+      handle = c_null_ptr
+   end function take_handle
+
    !> EGW_INVALID_ARGUMENT, recording message as this thread's last error.
    integer(c_int) function invalid(message) result(stat)
       character(len=*), intent(in) :: message  !< the message, naming the argument
-      stat = egw_invalid_argument
-      call record(message)
+      stat = failure(egw_invalid_argument, message)
    end function invalid
 
-   !> Store message as this thread's last error (the caller sets the status).
-   subroutine record(message)
+   !> The status code, recording message as this thread's last error.
+   integer(c_int) function failure(code, message) result(stat)
+      integer, intent(in) :: code               !< an EGW_* status
       character(len=*), intent(in) :: message  !< the message, naming the argument
+      stat = int(code, c_int)
       last_message = message
-   end subroutine record
+   end function failure
 
    !> Copy this thread's last error message into a C buffer (as copy_to_c).
    integer(c_int) function copy_last_error(buf, buflen) result(stat)
