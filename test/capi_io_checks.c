@@ -224,7 +224,7 @@ int egw_capi_test_io_failures(void) {
 
 /* ---------------------------------------------------------------- full disk */
 
-/* The issue's scenario itself, where it can be staged: as root, a 256 KiB tmpfs is
+/* The issue's scenario itself, where it can be staged: as root, a 1 MiB tmpfs is
  * mounted, a good file of each of the four formats written to it, the rest of it filled
  * up; then every rewrite must return EGW_IO_ERROR ("No space left on device"), keep the
  * good file byte for byte and leave no temporary file. Not root, or no mount(8): the
@@ -245,7 +245,7 @@ int egw_capi_test_io_full_disk(void) {
   }
   mkdir("build", 0777);
   mkdir(mnt, 0777);
-  snprintf(cmd, sizeof cmd, "mount -t tmpfs -o size=256k tmpfs %s 2>/dev/null", mnt);
+  snprintf(cmd, sizeof cmd, "mount -t tmpfs -o size=1m tmpfs %s 2>/dev/null", mnt);
   if (system(cmd) != 0) {
     printf("    (no tmpfs mount possible: the full tmpfs check is skipped)\n");
     return 0;

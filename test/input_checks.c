@@ -276,14 +276,16 @@ int egw_input_test_tables(void) {
   p = rough(EGW_MODEL_EGW);
   CHECK(egw_table_build(&p, NULL, -2e-3, 1e-2, 1e-2, &t) == EGW_OK);
   if (t) {
-    /* above delta_max the table continues linearly: +Inf or 1e300 leave the doubles */
+    /* above delta_max the deep-overlap asymptote P_n r^(3/2): +Inf and 1e300 leave the
+     * doubles (refused, nothing written) */
     CHECK(egw_table_eval(t, INFINITY, &f, &k) == EGW_INVALID_ARGUMENT && names("delta = +Inf", NULL));
     CHECK(f == 42.0 && k == 42.0);
-    /* at 1e300 the force k (delta - delta_max) ~ 0.15 1e300 is still a double: written;
-     * the energy ~ k delta**2/2 ~ 1e599 is not: eval_all refuses, nothing written */
-    CHECK(egw_table_eval(t, 1e300, &f, &k) == EGW_OUT_OF_RANGE && isfinite(f) && f > 1e290);
+    CHECK(egw_table_eval(t, 1e300, &f, &k) == EGW_INVALID_ARGUMENT && f == 42.0 && k == 42.0);
+    /* at 1e150 the force ~ (1e150/u_0)^1.5 P_n ~ 1e229 is still a double: written; the
+     * energy ~ P delta/2.5 ~ 1e379 is not: eval_all refuses, nothing written */
+    CHECK(egw_table_eval(t, 1e150, &f, &k) == EGW_OUT_OF_RANGE && isfinite(f) && f > 1e220);
     f = k = 42.0;
-    CHECK(egw_table_eval_all(t, 1e300, &f, &k, &e, &a) == EGW_INVALID_ARGUMENT && e == 42.0 &&
+    CHECK(egw_table_eval_all(t, 1e150, &f, &k, &e, &a) == EGW_INVALID_ARGUMENT && e == 42.0 &&
           f == 42.0);
     {
       double d[2] = {1e-3, INFINITY}, fs[2] = {42.0, 42.0};

@@ -277,7 +277,11 @@ contains
 
    !> hysteresis_energy (from the curves' exact integrals) against the table's own force
    !> integrated numerically (composite Simpson, 20000 panels from the cut-off: the force is
-   !> C1 and piecewise cubic in s, so the quadrature error is ~1e-11 of the energy), on
+   !> C1 and piecewise cubic in s, so the quadrature error is ~1e-11 of the energy; the
+   !> energy integrates the interpolated unloading force also where, far down the tail,
+   !> it dips below 0 within the curves' tolerance and the evaluation returns 0: 2e-7 and
+   !> 2.2e-6 of the energy measured, 1e-5 allowed, against the 1e-3 table's own
+   !> tolerance; a wrong integral misses by that tolerance or more), on
    !> the unloading curve of m = 3 sigma and on the loading curve; and at the turning point
    !> of a head-on impact the energy returned over the loading work against the squared
    !> restitution coefficient from full solves (restitution, rel_tol 1e-7): the 1e-3
@@ -297,14 +301,14 @@ contains
       do i = 1, size(ends)
          call hysteresis_energy(t, ends(i), m, u, stat)
          numeric = simpson(m, ends(i))
-         call check(error, abs(u - numeric) <= 1.0e-9_dp*u_top, "unloading from 3 sigma "// &
+         call check(error, abs(u - numeric) <= 1.0e-5_dp*u_top, "unloading from 3 sigma "// &
             & "to "//format_real(ends(i))//": energy "//format_real(u)//", integral of the "// &
             & "force "//format_real(numeric))
          if (allocated(error)) return
       end do
       ! the loading curve: the energy returned grows as the turning point moves up
       call hysteresis_energy(t, 3.5_dp, 3.0_dp, u, stat)
-      call check(error, u, simpson(3.5_dp, 3.5_dp), rel=.true., thr=1.0e-9_dp, &
+      call check(error, u, simpson(3.5_dp, 3.5_dp), rel=.true., thr=1.0e-5_dp, &
          & more="energy at a new turning point (loading)")
       if (allocated(error)) return
       call check(error, u > u_top .and. stat == 0, "and it grows with the turning point")

@@ -331,12 +331,20 @@ contains
    end function above_table
 
    !> The largest overlap (or state) whose force stays well inside the doubles: the
-   !> loading table's linear continuation beyond its delta_max reaches huge/4 there.
+   !> loading table's continuation beyond its delta_max (deep_force: P_n r^(3/2), r = 1 +
+   !> (delta - delta_max)/u_0; linear where P_n or K_n is not positive) reaches huge/4.
    pure real(dp) function reach(h)
       type(hysteresis_table), intent(in) :: h
+      real(dp) :: p, k
       associate (l => h%loading)
-         reach = l%delta_max + 0.25_dp*huge(1.0_dp)/max(1.0_dp, l%force(size(l%force)), &
-            & l%stiffness(size(l%stiffness)))
+         p = l%force(size(l%force))
+         k = l%stiffness(size(l%stiffness))
+         if (p > 0.0_dp .and. k > 0.0_dp) then
+            reach = l%delta_max + min(1.5_dp*p/k, 1.0_dp)*(0.25_dp*huge(1.0_dp)/ &
+               & max(1.0_dp, p, k))**(2.0_dp/3.0_dp)
+         else
+            reach = l%delta_max + 0.25_dp*huge(1.0_dp)/max(1.0_dp, p, k)
+         end if
       end associate
    end function reach
 

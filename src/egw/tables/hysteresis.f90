@@ -159,7 +159,8 @@ contains
       s = min((delta_max_state - delta)*inv_span, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, first, w, i, c)
-      call unload_branch(table, c, i, s, f_m, inv_span, delta, force, stiffness)
+      call unload_branch(table, c, i, s, delta_max_state, f_m, inv_span, delta, force, &
+         & stiffness)
    end subroutine hysteresis_eval
 
    !> hysteresis_eval with a state that also keeps what the evaluation needs of the turning
@@ -238,7 +239,8 @@ contains
       if (found) then
          call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
       else
-         call unload_branch(table, g, i, s, state(6), state(5), delta, force, stiffness)
+         call unload_branch(table, g, i, s, state(1), state(6), state(5), delta, force, &
+            & stiffness)
       end if
    end subroutine hysteresis_eval_state
 
@@ -328,7 +330,7 @@ contains
       real(dp), intent(in) :: delta_max_state   !< the contact's largest overlap so far
       real(dp), intent(out) :: energy           !< [force*length], >= 0
       integer, intent(out) :: stat              !< 0 or an egw status
-      real(dp) :: m, w(4), inv_span, f_m
+      real(dp) :: m, w(4), inv_span, f_m, d_1, e_1, ratio
       integer :: first
       stat = 0
       energy = 0.0_dp
@@ -340,14 +342,23 @@ contains
       if (m > table%delta_max) stat = egw_out_of_range
       if (.not. delta > table%loading%cutoff) return
       energy = table_energy(table%loading, delta)
-      if (table%reversible) return
+      if (table%reversible .or. .not. m > table%loading%cutoff) return
       call turning_point(table, m, first, w, inv_span, f_m)
-      ! int g(s(x)) dx over (delta_c, delta) with s = (m - x)/(s_max L): (1/(s_max L)) times
-      ! the integral of g over s from s(delta) to s(delta_c)
-      energy = energy - f_m/inv_span*(gap_primitive((m - table%loading%cutoff)*inv_span) - &
+      ! below the span's end d_1 the force is ratio P_load (unload_branch), above it
+      ! P_load - f_m g(s): int g(s(x)) dx over (d_1, delta) with s = (m - x)/(s_max L) is
+      ! (1/(s_max L)) times the integral of g over s from s(delta) to 1
+      d_1 = m - 1.0_dp/inv_span
+      ratio = unload_tail_ratio(table, d_1, f_m, dot_product(w, &
+         & table%gap(size(table%s), first:first + 3)))
+      if (.not. delta > d_1) then
+         energy = ratio*energy
+         return
+      end if
+      e_1 = table_energy(table%loading, d_1)
+      energy = ratio*e_1 + (energy - e_1) - f_m/inv_span*(gap_primitive(1.0_dp) - &
          & gap_primitive((m - delta)*inv_span))
    contains
-      !> int_0^s g(s', m) ds' (g held at its value at s = 1 beyond, as the evaluation)
+      !> int_0^s g(s', m) ds', s <= 1
       pure real(dp) function gap_primitive(s) result(total)
          real(dp), intent(in) :: s
          real(dp) :: t, h, x
@@ -363,8 +374,6 @@ contains
                   & t*(c(2)/2 + t*(c(3)/3 + t*c(4)/4))))
             end associate
          end do
-         if (s > 1.0_dp) total = total + (s - 1.0_dp)*dot_product(w, &
-            & table%gap(size(table%s), first:first + 3))
       end function gap_primitive
    end subroutine hysteresis_energy
 
@@ -430,15 +439,23 @@ contains
    !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
    !> (P_load(m) = f_m, 1/(s_max L) = inv_span) from its gap cubic c on s interval i, at
    !> s = min((m - delta) inv_span, 1): P_load(delta) - P_load(m) g(s, m), 0 where that is
-   !> not positive.
-   pure subroutine unload_branch(table, c, i, s, f_m, inv_span, delta, force, stiffness)
+   !> not positive. Below the curve's span (s clamped at 1, where the loading force is
+   !> below rel_tol of P_ref) the unloading force keeps its ratio to the loading force at
+   !> the span's end (unload_tail_ratio): the loading tail, scaled.
+   pure subroutine unload_branch(table, c, i, s, m, f_m, inv_span, delta, force, stiffness)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: c(4), s, f_m, inv_span, delta
+      real(dp), intent(in) :: c(4), s, m, f_m, inv_span, delta
       integer, intent(in) :: i
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: g, dg, f_d, k_d
+      real(dp) :: g, dg, f_d, k_d, ratio
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
       call table_eval(table%loading, delta, f_d, k_d)
+      if (s >= 1.0_dp) then
+         ratio = unload_tail_ratio(table, m - 1.0_dp/inv_span, f_m, g)
+         force = ratio*f_d
+         stiffness = ratio*k_d
+         return
+      end if
       force = f_d - f_m*g
       stiffness = k_d + f_m*dg*inv_span
       if (.not. force > 0.0_dp) then
@@ -446,6 +463,18 @@ contains
          stiffness = 0.0_dp
       end if
    end subroutine unload_branch
+
+   !> The unloading force over the loading force at the end d_1 of a curve's span, where
+   !> its gap is g_1 (P_load(m) = f_m), in [0, 1]: below d_1 the unloading force is that
+   !> ratio of the loading tail (continuous at d_1 where the force there is positive).
+   pure real(dp) function unload_tail_ratio(table, d_1, f_m, g_1) result(ratio)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: d_1, f_m, g_1
+      real(dp) :: f_1, k_1
+      call table_eval(table%loading, d_1, f_1, k_1)
+      ratio = 0.0_dp
+      if (f_1 > 0.0_dp) ratio = min(max(1.0_dp - f_m*g_1/f_1, 0.0_dp), 1.0_dp)
+   end function unload_tail_ratio
 
    !> Derive the evaluation data (cubics on the union s grid, Lagrange denominators,
    !> lookup buckets, the curves' integrals, the data tag; reversible tables: the tag

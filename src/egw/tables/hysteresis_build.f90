@@ -62,19 +62,24 @@ contains
          call hysteresis_prepare(table)   ! the tag only
          return
       end if
-      ! delta_max grid: from the loading cut-off (nothing to unload below) to delta_max,
-      ! dyadic (bisection keeps it so: the m buckets rely on it)
+      ! delta_max grid: from the loading cut-off (1e-12 of P_ref: the slowest impacts turn
+      ! in the tail, where summits yield too) to delta_max, dyadic (bisection keeps it so:
+      ! the m buckets rely on it)
       n = 9
       m = table%loading%cutoff + (delta_max - table%loading%cutoff)* &
          & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       m(n) = delta_max   ! exactly (the readers check it): the sum above may round off
       allocate (curves(n))
       if (present(progress)) call progress(0, 2*n - 1)
-      ! the s range: twice the largest (m - delta_c)/L of the first nodes, so that every
-      ! curve reaches the cut-off
+      ! the s range: twice the largest (m - delta_u)/L of the first nodes, so that every
+      ! curve reaches delta_u, where the loading force is rel_tol of P_ref (below, an
+      ! unloading force is below the table's tolerance: the evaluation continues each
+      ! curve in proportion to the loading tail, and the s grid keeps its resolution
+      ! where the unloading forces are)
       call unloading_lengths(table, options, m, curves, error)
       if (allocated(error)) return
-      table%s_max = 2*maxval((m - table%loading%cutoff)/curves%length)
+      table%s_max = 2*maxval((m - unloading_floor(table%loading, table%rel_tol))/ &
+         & curves%length)
       call build_curves(table, options, m, curves, error)
       if (allocated(error)) return
       call refine_m(table, options, m, curves, error, progress)
@@ -192,22 +197,29 @@ contains
       end do
    end function stencil_mismatch
 
-   !> The loading table's force and stiffness, continued below its cut-off delta_c (where
-   !> the table says 0) by P_c exp((delta - delta_c) K_c/P_c): C1 at the cut-off, so that
-   !> the gap to it is smooth where the unloading curves cross the cut-off.
-   pure subroutine loading_extended(loading, delta, force, stiffness)
+   !> The overlap where the loading table's force falls to rel_tol of its reference force
+   !> (bisection on the monotone table; its cut-off if the force there is larger).
+   pure real(dp) function unloading_floor(loading, rel_tol) result(floor)
       type(force_table), intent(in) :: loading
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: force, stiffness
-      real(dp) :: rate
-      if (delta >= loading%cutoff .or. .not. loading%force(1) > 0.0_dp) then
-         call table_eval(loading, delta, force, stiffness)
-         return
-      end if
-      rate = loading%stiffness(1)/loading%force(1)
-      force = loading%force(1)*exp((delta - loading%cutoff)*rate)
-      stiffness = force*rate
-   end subroutine loading_extended
+      real(dp), intent(in) :: rel_tol
+      real(dp) :: lo, hi, mid, f, k
+      integer :: it
+      lo = loading%cutoff
+      hi = loading%delta_max
+      floor = lo
+      if (loading%force(1) >= rel_tol*loading%reference_force) return
+      do it = 1, 100
+         mid = 0.5_dp*(lo + hi)
+         if (.not. (mid > lo .and. mid < hi)) exit
+         call table_eval(loading, mid, f, k)
+         if (f < rel_tol*loading%reference_force) then
+            lo = mid
+         else
+            hi = mid
+         end if
+      end do
+      floor = lo
+   end function unloading_floor
 
    !> L(m) of the curves at m(:) (a loading and an unloading solve each, in parallel).
    subroutine unloading_lengths(table, options, m, curves, error)
@@ -407,7 +419,7 @@ contains
    contains
 
       !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
-      !> delta = m - s span, P_ext the loading table continued below its cut-off (below
+      !> delta = m - s span, P_ext the loading table with its tail below the cut-off (below
       !> the cut-off too: the curve is a neighbour of others in the m direction), c the
       !> solve's force at m over the table's; g = 0 at the turning point, so that the force
       !> is continuous there
@@ -419,7 +431,7 @@ contains
          dg = 0.0_dp
          call solve_unload(hist, m - x*span, res, error)
          if (allocated(error)) return
-         call loading_extended(table%loading, m - x*span, p_ext, k_ext)
+         call table_eval(table%loading, m - x*span, p_ext, k_ext)
          if (x > 0.0_dp) g = (c_turn*p_ext - res%force)/scale
          dg = (res%stiffness - c_turn*k_ext)*span/scale
          ! far below the cut-off the forces underflow: no subnormal numbers in the table

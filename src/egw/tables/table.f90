@@ -28,7 +28,8 @@ module egw_table
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
       & format_real
-   use egw_params, only: contact_params, validate_params, model_hertz, check_scaled_overlap
+   use egw_params, only: contact_params, validate_params, model_hertz, model_epgw, &
+      & check_scaled_overlap
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
    use egw_gauss, only: gauss_f32, gauss_f52
@@ -40,7 +41,7 @@ module egw_table
       & table_eval_all, &
       & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff
-   public :: tail_force, deep_force
+   public :: tail_force, deep_force, below_cutoff
    public :: table_meta, set_table_meta
 
    public :: table_progress
@@ -595,18 +596,31 @@ contains
       else if (delta == table%cutoff) then
          force = table%force(1)
          stiffness = table%stiffness(1)
-      else if (is_rough(table%params)) then
-         call tail_force(table%cutoff, table%force(1), table%stiffness(1), &
-            & table%params%sigma, delta, force, stiffness)
-      else if (delta > 0.0_dp .and. table%cutoff > 0.0_dp) then
-         ! Hertz below its cut-off: P = P_c (delta/delta_c)^(3/2), exact for Hertz
-         call deep_force(table%cutoff, table%force(1), 1.5_dp*table%force(1)/table%cutoff, &
-            & delta, force, stiffness)
       else
-         force = 0.0_dp   ! NaN fails every test above and lands here: the C layer refuses it
-         stiffness = 0.0_dp
+         call below_cutoff(table%params, table%cutoff, table%force(1), table%stiffness(1), &
+            & delta, force, stiffness)
       end if
    end subroutine table_beyond
+
+   !> The force below the cut-off delta_c of a table of params whose first node has force
+   !> p_c and stiffness k_c: rough models their tail (tail_force); Hertz P_c (delta/
+   !> delta_c)^(3/2), the closed form itself, and 0 apart. NaN gives 0 (the C layer refuses
+   !> it before). The universal table calls it with a slice's params (x = delta/sigma).
+   pure subroutine below_cutoff(params, delta_c, p_c, k_c, delta, force, stiffness)
+      type(contact_params), intent(in) :: params   !< the table's parameters
+      real(dp), intent(in) :: delta_c, p_c, k_c    !< first node: overlap, force, stiffness
+      real(dp), intent(in) :: delta                !< overlap [length], < delta_c
+      real(dp), intent(out) :: force, stiffness
+      if (is_rough(params)) then
+         call tail_force(delta_c, p_c, k_c, params%sigma, plastic_summits(params), delta, &
+            & force, stiffness)
+      else if (delta > 0.0_dp .and. delta_c > 0.0_dp) then
+         call deep_force(delta_c, p_c, 1.5_dp*p_c/delta_c, delta, force, stiffness)
+      else
+         force = 0.0_dp
+         stiffness = 0.0_dp
+      end if
+   end subroutine below_cutoff
 
    !> The separated tail of a rough sphere below the cut-off delta_c (doc/theory.md §9).
    !> Far apart the sphere barely deforms, so the force is that of a rigid sphere on the
@@ -614,14 +628,17 @@ contains
    !> (p_G proportional to F_{3/2}(d/sigma)) this is
    !>   P = (2/5) pi sqrt(R/2) mu E* sigma^(3/2) F_{5/2}(-delta/sigma)
    !> (solves agree to 2e-5 at -4 sigma, 2e-7 at -5 sigma, 5e-10 at -6 sigma for mu = 4).
-   !> Matched to the table's first node (p_c, k_c) in value and slope:
-   !>   P = p_c F_{5/2}(h)/F_{5/2}(h_c) exp(kappa (delta - delta_c)),  h = -delta/sigma,
-   !> kappa = k_c/p_c - (5/2) F_{3/2}(h_c)/(sigma F_{5/2}(h_c)) (0 for the rigid law;
-   !> for EP-GW it carries the yielding summits' slope): C1 at delta_c, 0 as delta -> -inf.
-   pure subroutine tail_force(delta_c, p_c, k_c, sigma, delta, force, stiffness)
+   !> Matched to the table's first node (p_c, k_c):
+   !>   P = p_c F_{5/2}(h)/F_{5/2}(h_c) exp(kappa (delta - delta_c)),  h = -delta/sigma.
+   !> Elastic summits: kappa = 0, the rigid-sphere law itself (its slope at delta_c meets
+   !> k_c to the solver's accuracy). Plastic summits (EP-GW, psi > 0), many of which yield
+   !> even far apart: kappa = k_c/p_c - (5/2) F_{3/2}(h_c)/(sigma F_{5/2}(h_c)) matches
+   !> the slope too. C1 at delta_c, 0 as delta -> -inf.
+   pure subroutine tail_force(delta_c, p_c, k_c, sigma, plastic, delta, force, stiffness)
       real(dp), intent(in) :: delta_c   !< cut-off, the table's first node [length]
       real(dp), intent(in) :: p_c, k_c  !< force and stiffness there
       real(dp), intent(in) :: sigma     !< summit height deviation [length], > 0
+      logical, intent(in) :: plastic    !< summits yield (EP-GW with psi > 0)
       real(dp), intent(in) :: delta     !< overlap [length], < delta_c
       real(dp), intent(out) :: force, stiffness
       real(dp) :: f52, f52_c, kappa, log_p
@@ -630,7 +647,8 @@ contains
       f52_c = gauss_f52(-delta_c/sigma)
       f52 = gauss_f52(-delta/sigma)
       if (.not. (p_c > 0.0_dp .and. f52_c > 0.0_dp .and. f52 > 0.0_dp)) return
-      kappa = k_c/p_c - 2.5_dp*gauss_f32(-delta_c/sigma)/(sigma*f52_c)
+      kappa = 0.0_dp
+      if (plastic) kappa = k_c/p_c - 2.5_dp*gauss_f32(-delta_c/sigma)/(sigma*f52_c)
       log_p = log(p_c) + log(f52/f52_c) + kappa*(delta - delta_c)
       if (.not. log_p > log(tiny(1.0_dp))) return
       force = exp(min(log_p, log(p_c)))
@@ -1265,6 +1283,12 @@ contains
       opts%n_threads = 1
       opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
    end function point_options
+
+   !> EP-GW with yielding summits (psi > 0): its tail carries their slope (tail_force).
+   pure logical function plastic_summits(params)
+      type(contact_params), intent(in) :: params
+      plastic_summits = params%model == model_epgw .and. params%psi > 0.0_dp
+   end function plastic_summits
 
    pure logical function is_rough(params)
       type(contact_params), intent(in) :: params

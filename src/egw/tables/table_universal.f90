@@ -21,8 +21,8 @@ module egw_table_universal
    use egw_params, only: contact_params, validate_params, overlap_ratio_max, product4, &
       & force_unit, stiffness_unit, length_unit
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
-   use egw_table, only: force_table, build_tables_shared, table_find_cutoff, tail_force, &
-      & deep_force, &
+   use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
+      & deep_force, below_cutoff, &
       & table_interval, table_prepare, table_eval, table_progress
    implicit none
    private
@@ -284,7 +284,7 @@ contains
          ! below the cut-off: the rough tail from the combined first node (tail_force in
          ! x, sigma = 1: what universal_slice's table gives)
          call combined_node(u, j0, w, 1, v, dv)
-         call tail_force(u%x_cut, v, dv, 1.0_dp, x, force, stiffness)
+         call below_cutoff(u%slices(1)%params, u%x_cut, v, dv, x, force, stiffness)
          force = scale*force
          stiffness = scale*stiffness/sigma
       else if (x < u%x_max) then
