@@ -31,6 +31,17 @@ module egw_hysteresis_format
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
 
+   !> What parse_csv has read so far, from line to line: the line number, grid sizes and
+   !> metadata (-1 and -huge: not read yet), the loading nodes and rows read, and the
+   !> numbers of the last of those (v).
+   type :: csv_reading
+      integer :: line = 0
+      integer :: n_load = -1, n_m = -1, n_s = -1, model = -1, rev = -1, n_log = -1
+      integer :: k_load = 0, k_row = 0
+      real(dp) :: p(7) = -huge(1.0_dp), lmeta(7) = -huge(1.0_dp)
+      real(dp) :: v(5)
+   end type csv_reading
+
 contains
 
    !> Write a hysteresis table to path in format_csv or format_binary (egw_table_format's
@@ -258,14 +269,15 @@ contains
       end subroutine put_line
    end subroutine write_csv
 
+   !> Read the CSV form (doc/formats.md §6): the checksum line, then line by line the
+   !> metadata and loading nodes ('#' lines, read_csv_meta) and the unloading rows
+   !> (read_csv_row), then whether all were there (finish_csv).
    subroutine parse_csv(path, text, table, error)
       character(len=*), intent(in) :: path, text
       type(hysteresis_table), intent(inout) :: table
       type(egw_error), allocatable, intent(out) :: error
-      integer :: start, eol, ios, n_load, n_m, n_s, k_load, k_row, model, rev, n_log, line
-      integer :: sum_at
-      real(dp) :: v(5), p(7), lmeta(7)
-      character(len=:), allocatable :: key, value
+      type(csv_reading) :: reading
+      integer :: start, eol, sum_at
       logical :: missing
       ! the checksum line covers every byte before it; unlike a force table, a hysteresis
       ! table without one is refused (nobody edits its grid by hand)
@@ -276,136 +288,178 @@ contains
             & "written by egw)")
          return
       end if
-      n_load = -1
-      n_m = -1
-      n_s = -1
-      model = -1
-      rev = -1
-      n_log = -1
-      p = -huge(1.0_dp)
-      lmeta = -huge(1.0_dp)
-      k_load = 0
-      k_row = 0
-      line = 0
       start = 1
       do while (start <= sum_at)
          eol = index(text(start:), new_line("a"))
          if (eol == 0) exit
          eol = start + eol - 2
-         line = line + 1
-         if (line == 1 .or. eol < start) then
+         reading%line = reading%line + 1
+         if (reading%line == 1 .or. eol < start) then
             start = eol + 2
             cycle
          end if
          if (text(start:start) == "#") then
-            call split_key(text(start:eol), key, value)
-            select case (key)
-            case ("model")
-               read (value, *, iostat=ios) model
-            case ("radius"); call get_real(value, p(1), ios)
-            case ("modulus"); call get_real(value, p(2), ios)
-            case ("sigma"); call get_real(value, p(3), ios)
-            case ("mu"); call get_real(value, p(4), ios)
-            case ("psi"); call get_real(value, p(5), ios)
-            case ("hardness_coeff"); call get_real(value, p(6), ios)
-            case ("plastic_ratio"); call get_real(value, p(7), ios)
-            case ("rel_tol"); call get_real(value, table%rel_tol, ios)
-            case ("delta_max"); call get_real(value, table%delta_max, ios)
-            case ("max_error"); call get_real(value, table%max_error, ios)
-            case ("s_max"); call get_real(value, table%s_max, ios)
-            case ("reversible"); read (value, *, iostat=ios) rev
-            case ("n_delta_max"); read (value, *, iostat=ios) n_m
-            case ("n_s"); read (value, *, iostat=ios) n_s
-            case ("loading.rel_tol"); call get_real(value, lmeta(1), ios)
-            case ("loading.cutoff"); call get_real(value, lmeta(2), ios)
-            case ("loading.delta_max"); call get_real(value, lmeta(3), ios)
-            case ("loading.reference_force"); call get_real(value, lmeta(4), ios)
-            case ("loading.max_force_error"); call get_real(value, lmeta(5), ios)
-            case ("loading.max_stiffness_error"); call get_real(value, lmeta(6), ios)
-            case ("loading.radius_sum"); call get_real(value, lmeta(7), ios)
-            case ("loading.n_log"); read (value, *, iostat=ios) n_log
-            case ("loading.n_nodes")
-               read (value, *, iostat=ios) n_load
-               if (ios == 0 .and. n_load >= 2 .and. n_load <= max_rows) allocate ( &
-                  & table%loading%delta(n_load), table%loading%force(n_load), &
-                  & table%loading%stiffness(n_load), table%loading%energy(n_load), &
-                  & table%loading%contact_radius(n_load))
-            case ("loading")
-               k_load = k_load + 1
-               if (.not. allocated(table%loading%delta)) then
-                  call bad(error, path, "line "//int_str(line)//": loading node before "// &
-                     & "loading.n_nodes")
-                  return
-               end if
-               if (k_load > n_load) then
-                  call bad(error, path, "more loading nodes than loading.n_nodes")
-                  return
-               end if
-               read (value, *, iostat=ios) v
-               table%loading%delta(k_load) = v(1)
-               table%loading%force(k_load) = v(2)
-               table%loading%stiffness(k_load) = v(3)
-               table%loading%energy(k_load) = v(4)
-               table%loading%contact_radius(k_load) = v(5)
-            case default
-               ios = 0
-            end select
-            if (ios /= 0) then
-               call bad(error, path, "line "//int_str(line)//": cannot read '"//key//"'")
-               return
-            end if
+            call read_csv_meta(path, text(start:eol), table, reading, error)
          else
-            if (.not. allocated(table%m)) then
-               if (n_m < 0 .or. n_s < 0 .or. n_m > max_rows .or. n_s > max_rows .or. &
-                  & int(n_m, int64)*n_s > max_rows) then
-                  call bad(error, path, "line "//int_str(line)//": row before valid "// &
-                     & "n_delta_max and n_s")
-                  return
-               end if
-               allocate (table%m(n_m), table%length(n_m), table%s(n_s), &
-                  & table%gap(n_s, n_m), table%slope(n_s, n_m))
-            end if
-            k_row = k_row + 1
-            read (text(start:eol), *, iostat=ios) v(1:5)
-            if (ios /= 0 .or. k_row > n_m*n_s) then
-               call bad(error, path, "line "//int_str(line)//": not a row of 5 numbers, "// &
-                  & "or more rows than n_delta_max*n_s")
-               return
-            end if
-            associate (j => (k_row - 1)/n_s + 1, i => mod(k_row - 1, n_s) + 1)
-               if (i == 1) table%m(j) = v(1)
-               if (i == 1) table%length(j) = v(2)
-               if (j == 1) table%s(i) = v(3)
-               if (v(1) /= table%m(j) .or. v(2) /= table%length(j) .or. &
-                  & v(3) /= table%s(i)) then
-                  call bad(error, path, "line "//int_str(line)//": delta_max, length or s "// &
-                     & "differs from the grid of the rows before")
-                  return
-               end if
-               table%gap(i, j) = v(4)
-               table%slope(i, j) = v(5)
-            end associate
+            call read_csv_row(path, text(start:eol), table, reading, error)
          end if
+         if (allocated(error)) return
          start = eol + 2
       end do
-      if (model < 0 .or. rev < 0 .or. n_log < 0 .or. n_load < 2 .or. k_load /= n_load .or. &
-         & any(p == -huge(1.0_dp)) .or. any(lmeta == -huge(1.0_dp))) then
+      call finish_csv(path, table, reading, error)
+   end subroutine parse_csv
+
+   !> One '#' line of a hysteresis CSV: a metadata value (model, parameters, grid sizes,
+   !> the loading table's metadata) or a loading node, into table and reading.
+   subroutine read_csv_meta(path, line, table, reading, error)
+      character(len=*), intent(in) :: path, line
+      type(hysteresis_table), intent(inout) :: table
+      type(csv_reading), intent(inout) :: reading
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: key, value
+      integer :: ios
+      call split_key(line, key, value)
+      associate (p => reading%p, lmeta => reading%lmeta, l => table%loading)
+         select case (key)
+         case ("model")
+            read (value, *, iostat=ios) reading%model
+         case ("radius"); call get_real(value, p(1), ios)
+         case ("modulus"); call get_real(value, p(2), ios)
+         case ("sigma"); call get_real(value, p(3), ios)
+         case ("mu"); call get_real(value, p(4), ios)
+         case ("psi"); call get_real(value, p(5), ios)
+         case ("hardness_coeff"); call get_real(value, p(6), ios)
+         case ("plastic_ratio"); call get_real(value, p(7), ios)
+         case ("rel_tol"); call get_real(value, table%rel_tol, ios)
+         case ("delta_max"); call get_real(value, table%delta_max, ios)
+         case ("max_error"); call get_real(value, table%max_error, ios)
+         case ("s_max"); call get_real(value, table%s_max, ios)
+         case ("reversible"); read (value, *, iostat=ios) reading%rev
+         case ("n_delta_max"); read (value, *, iostat=ios) reading%n_m
+         case ("n_s"); read (value, *, iostat=ios) reading%n_s
+         case ("loading.rel_tol"); call get_real(value, lmeta(1), ios)
+         case ("loading.cutoff"); call get_real(value, lmeta(2), ios)
+         case ("loading.delta_max"); call get_real(value, lmeta(3), ios)
+         case ("loading.reference_force"); call get_real(value, lmeta(4), ios)
+         case ("loading.max_force_error"); call get_real(value, lmeta(5), ios)
+         case ("loading.max_stiffness_error"); call get_real(value, lmeta(6), ios)
+         case ("loading.radius_sum"); call get_real(value, lmeta(7), ios)
+         case ("loading.n_log"); read (value, *, iostat=ios) reading%n_log
+         case ("loading.n_nodes")
+            read (value, *, iostat=ios) reading%n_load
+            if (ios == 0 .and. reading%n_load >= 2 .and. reading%n_load <= max_rows) &
+               & allocate (l%delta(reading%n_load), l%force(reading%n_load), &
+               & l%stiffness(reading%n_load), l%energy(reading%n_load), &
+               & l%contact_radius(reading%n_load))
+         case ("loading")
+            call read_loading_node(path, value, table, reading, ios, error)
+            if (allocated(error)) return
+         case default
+            ios = 0
+         end select
+      end associate
+      if (ios /= 0) then
+         call bad(error, path, "line "//int_str(reading%line)//": cannot read '"//key//"'")
+         return
+      end if
+   end subroutine read_csv_meta
+
+   !> A '# loading = ' line: the next node of the loading table (ios: of its numbers).
+   subroutine read_loading_node(path, value, table, reading, ios, error)
+      character(len=*), intent(in) :: path, value
+      type(hysteresis_table), intent(inout) :: table
+      type(csv_reading), intent(inout) :: reading
+      integer, intent(out) :: ios
+      type(egw_error), allocatable, intent(out) :: error
+      ios = 0
+      reading%k_load = reading%k_load + 1
+      if (.not. allocated(table%loading%delta)) then
+         call bad(error, path, "line "//int_str(reading%line)//": loading node before "// &
+            & "loading.n_nodes")
+         return
+      end if
+      if (reading%k_load > reading%n_load) then
+         call bad(error, path, "more loading nodes than loading.n_nodes")
+         return
+      end if
+      associate (v => reading%v, k => reading%k_load, l => table%loading)
+         read (value, *, iostat=ios) v
+         l%delta(k) = v(1)
+         l%force(k) = v(2)
+         l%stiffness(k) = v(3)
+         l%energy(k) = v(4)
+         l%contact_radius(k) = v(5)
+      end associate
+   end subroutine read_loading_node
+
+   !> One row of a hysteresis CSV: (delta_max, length, s, gap, dgap_ds) at the next point
+   !> of the unloading grid, which the rows must fill in order (doc/formats.md §6).
+   subroutine read_csv_row(path, line, table, reading, error)
+      character(len=*), intent(in) :: path, line
+      type(hysteresis_table), intent(inout) :: table
+      type(csv_reading), intent(inout) :: reading
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: ios
+      associate (n_m => reading%n_m, n_s => reading%n_s, v => reading%v)
+         if (.not. allocated(table%m)) then
+            if (n_m < 0 .or. n_s < 0 .or. n_m > max_rows .or. n_s > max_rows .or. &
+               & int(n_m, int64)*n_s > max_rows) then
+               call bad(error, path, "line "//int_str(reading%line)//": row before valid "// &
+                  & "n_delta_max and n_s")
+               return
+            end if
+            allocate (table%m(n_m), table%length(n_m), table%s(n_s), &
+               & table%gap(n_s, n_m), table%slope(n_s, n_m))
+         end if
+         reading%k_row = reading%k_row + 1
+         read (line, *, iostat=ios) v(1:5)
+         if (ios /= 0 .or. reading%k_row > n_m*n_s) then
+            call bad(error, path, "line "//int_str(reading%line)//": not a row of 5 "// &
+               & "numbers, or more rows than n_delta_max*n_s")
+            return
+         end if
+         associate (j => (reading%k_row - 1)/n_s + 1, i => mod(reading%k_row - 1, n_s) + 1)
+            if (i == 1) table%m(j) = v(1)
+            if (i == 1) table%length(j) = v(2)
+            if (j == 1) table%s(i) = v(3)
+            if (v(1) /= table%m(j) .or. v(2) /= table%length(j) .or. &
+               & v(3) /= table%s(i)) then
+               call bad(error, path, "line "//int_str(reading%line)//": delta_max, length "// &
+                  & "or s differs from the grid of the rows before")
+               return
+            end if
+            table%gap(i, j) = v(4)
+            table%slope(i, j) = v(5)
+         end associate
+      end associate
+   end subroutine read_csv_row
+
+   !> After the last line of a hysteresis CSV: every metadata value, loading node and row
+   !> present; the parameters and the loading table's metadata set from them.
+   subroutine finish_csv(path, table, reading, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(inout) :: table
+      type(csv_reading), intent(in) :: reading
+      type(egw_error), allocatable, intent(out) :: error
+      if (reading%model < 0 .or. reading%rev < 0 .or. reading%n_log < 0 .or. &
+         & reading%n_load < 2 .or. reading%k_load /= reading%n_load .or. &
+         & any(reading%p == -huge(1.0_dp)) .or. any(reading%lmeta == -huge(1.0_dp))) then
          call bad(error, path, "metadata or loading nodes incomplete")
          return
       end if
       if (.not. allocated(table%m)) allocate (table%m(0), table%length(0), table%s(0), &
          & table%gap(0, 0), table%slope(0, 0))
-      if (k_row /= size(table%m)*size(table%s)) then
-         call bad(error, path, int_str(k_row)//" rows, n_delta_max*n_s = "// &
+      if (reading%k_row /= size(table%m)*size(table%s)) then
+         call bad(error, path, int_str(reading%k_row)//" rows, n_delta_max*n_s = "// &
             & int_str(size(table%m)*size(table%s)))
          return
       end if
-      table%params = params_from(model, p)
-      table%reversible = rev /= 0
+      table%params = params_from(reading%model, reading%p)
+      table%reversible = reading%rev /= 0
       table%loading%params = table%params
-      table%loading%n_log = n_log
-      call set_table_meta(table%loading, lmeta)
-   end subroutine parse_csv
+      table%loading%n_log = reading%n_log
+      call set_table_meta(table%loading, reading%lmeta)
+   end subroutine finish_csv
 
    ! ---------------------------------------------------------------------------- checks
 

@@ -420,14 +420,38 @@ contains
       type(scene_overrides), intent(in) :: ov !< the fields given replace those of input
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(scene_input) :: s
-      integer :: n
 
       s = input
       if (len_trim(ov%model) > 0) then
          call model_from_name(ov%model, s%model, error)
          if (allocated(error)) return
       end if
-      ! radii: a list or a range
+      call override_radii(s, ov, error)
+      if (allocated(error)) return
+      call override_materials(s, ov, error)
+      if (allocated(error)) return
+      call override_roughness(s, ov, error)
+      if (allocated(error)) return
+      call override_summits(s, ov, error)
+      if (allocated(error)) return
+      if (given(ov%psi)) s%psi = ov%psi
+      if (given(ov%hardness_coeff)) s%hardness_coeff = ov%hardness_coeff
+      if (given(ov%plastic_ratio)) s%plastic_ratio = ov%plastic_ratio
+      call override_overlaps(s, ov, input%sigma_max, error)
+      if (allocated(error)) return
+      if (given(ov%tol)) s%tol = ov%tol
+
+      call validate_scene_input(s, error)
+      if (allocated(error)) return
+      input = s
+   end subroutine apply_scene_overrides
+
+   !> The particles of ov, if given: a list of the types' radii or a radius range.
+   pure subroutine override_radii(s, ov, error)
+      type(scene_input), intent(inout) :: s
+      type(scene_overrides), intent(in) :: ov
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: n
       n = count(given(ov%radius))
       if (n > 0 .and. .not. all(given(ov%radius(1:n)))) then
          call fatal_error(error, egw_invalid_parameter, "radius: give the types' radii "// &
@@ -454,7 +478,14 @@ contains
          s%radius_min = ov%radius_min
          s%radius_max = ov%radius_max
       end if
-      ! materials
+   end subroutine override_radii
+
+   !> The materials of ov, if given: E* of every pair, or E and nu per type (doc/theory.md
+   !> §1).
+   pure subroutine override_materials(s, ov, error)
+      type(scene_input), intent(inout) :: s
+      type(scene_overrides), intent(in) :: ov
+      type(egw_error), allocatable, intent(out) :: error
       if (given(ov%effective_modulus)) then
          if (any(given(ov%modulus)) .or. any(given(ov%poisson))) then
             call fatal_error(error, egw_invalid_parameter, "effective_modulus and "// &
@@ -467,7 +498,14 @@ contains
          where (given(ov%modulus)) s%modulus = ov%modulus
          where (given(ov%poisson)) s%poisson = ov%poisson
       end if
-      ! roughness
+   end subroutine override_materials
+
+   !> The roughness of ov, if given: the combined sigma of a pair (doc/theory.md §1), one
+   !> value or a range.
+   pure subroutine override_roughness(s, ov, error)
+      type(scene_input), intent(inout) :: s
+      type(scene_overrides), intent(in) :: ov
+      type(egw_error), allocatable, intent(out) :: error
       if (given(ov%sigma)) then
          if (given(ov%sigma_min) .or. given(ov%sigma_max)) then
             call fatal_error(error, egw_invalid_parameter, "sigma and sigma_min/sigma_max: "// &
@@ -489,6 +527,14 @@ contains
          s%sigma_min = ov%sigma_min
          s%sigma_max = ov%sigma_max
       end if
+   end subroutine override_roughness
+
+   !> The summits of ov, if given: the Greenwood-Tripp mu directly, or the summit density
+   !> and radius it follows from per pair (doc/theory.md §1).
+   pure subroutine override_summits(s, ov, error)
+      type(scene_input), intent(inout) :: s
+      type(scene_overrides), intent(in) :: ov
+      type(egw_error), allocatable, intent(out) :: error
       if (given(ov%mu)) then
          if (given(ov%summit_density) .or. given(ov%summit_radius)) then
             call fatal_error(error, egw_invalid_parameter, "mu and summit_density/"// &
@@ -508,10 +554,16 @@ contains
          s%summit_density = ov%summit_density
          s%summit_radius = ov%summit_radius
       end if
-      if (given(ov%psi)) s%psi = ov%psi
-      if (given(ov%hardness_coeff)) s%hardness_coeff = ov%hardness_coeff
-      if (given(ov%plastic_ratio)) s%plastic_ratio = ov%plastic_ratio
-      ! overlaps: both ends in one unit, or one end in the scene's current unit
+   end subroutine override_summits
+
+   !> The overlap range of ov, if given: both ends in one unit, or one end in the scene's
+   !> current unit. A scene made smooth keeps its range (in units of old_sigma_max, the
+   !> scene's sigma_max before the overrides).
+   pure subroutine override_overlaps(s, ov, old_sigma_max, error)
+      type(scene_input), intent(inout) :: s
+      type(scene_overrides), intent(in) :: ov
+      real(dp), intent(in) :: old_sigma_max
+      type(egw_error), allocatable, intent(out) :: error
       if (given(ov%delta_min_sigma) .or. given(ov%delta_max_sigma)) then
          if (given(ov%delta_min) .or. given(ov%delta_max)) then
             call fatal_error(error, egw_invalid_parameter, "delta_min/delta_max and "// &
@@ -524,20 +576,14 @@ contains
          ! a scene made smooth (sigma = 0) keeps its overlaps: a range in units of the
          ! old sigma becomes that range in length (the only unit left)
          if (s%delta_in_sigma == 1 .and. s%sigma_max == 0.0_dp .and. &
-            & input%sigma_max > 0.0_dp) then
-            s%delta_min = s%delta_min*input%sigma_max
-            s%delta_max = s%delta_max*input%sigma_max
+            & old_sigma_max > 0.0_dp) then
+            s%delta_min = s%delta_min*old_sigma_max
+            s%delta_max = s%delta_max*old_sigma_max
             s%delta_in_sigma = 0
          end if
          call set_range(s, ov%delta_min, ov%delta_max, 0, "delta_min", "delta_max", error)
       end if
-      if (allocated(error)) return
-      if (given(ov%tol)) s%tol = ov%tol
-
-      call validate_scene_input(s, error)
-      if (allocated(error)) return
-      input = s
-   end subroutine apply_scene_overrides
+   end subroutine override_overlaps
 
    !> Whether a scene_overrides value was given.
    elemental logical function given(x)
@@ -569,12 +615,33 @@ contains
       type(scene_input), intent(in) :: s   !< the scene to check
       !> allocated, naming the entry, when one is invalid
       type(egw_error), allocatable, intent(out) :: error
-      integer :: i
       if (s%model < model_hertz .or. s%model > model_epgw) then
          call fatal_error(error, egw_invalid_parameter, "model = "//int_str(s%model)// &
             & ": unknown (0 Hertz, 1 GW, 2 E-GW, 3 EP-GW)")
          return
       end if
+      call check_particles(s, error)
+      if (allocated(error)) return
+      call check_materials(s, error)
+      if (allocated(error)) return
+      call check_roughness(s, error)
+      if (allocated(error)) return
+      call check_summit_law(s, error)
+      if (allocated(error)) return
+      call check_overlaps(s, error)
+      if (allocated(error)) return
+      if (.not. (s%tol >= tol_min .and. s%tol <= tol_max)) then
+         call bad(error, "tol", s%tol, "must lie in ["//format_real(tol_min)//", "// &
+            & format_real(tol_max)//"]")
+         return
+      end if
+   end subroutine validate_scene_input
+
+   !> validate_scene_input: the particle types and their radii (a list or a range).
+   pure subroutine check_particles(s, error)
+      type(scene_input), intent(in) :: s
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i
       if (s%n_types < 0 .or. s%n_types > max_types) then
          call fatal_error(error, egw_invalid_parameter, "n_types = "//int_str(s%n_types)// &
             & ": must lie in [0, "//int_str(max_types)//"] (0: radius range)")
@@ -595,6 +662,13 @@ contains
             return
          end if
       end do
+   end subroutine check_particles
+
+   !> validate_scene_input: E* of every pair, or E and nu per type (doc/theory.md §1).
+   pure subroutine check_materials(s, error)
+      type(scene_input), intent(in) :: s
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i
       if (s%effective_modulus /= 0.0_dp) then
          if (.not. positive(s%effective_modulus)) then
             call bad(error, "effective_modulus", s%effective_modulus, &
@@ -621,6 +695,13 @@ contains
             return
          end if
       end if
+   end subroutine check_materials
+
+   !> validate_scene_input: the roughness (sigma range) and, for a rough model, mu or the
+   !> summits it follows from (doc/theory.md §1).
+   pure subroutine check_roughness(s, error)
+      type(scene_input), intent(in) :: s
+      type(egw_error), allocatable, intent(out) :: error
       if (.not. (ieee_is_finite(s%sigma_min) .and. s%sigma_min >= 0.0_dp)) then
          call bad(error, "sigma_min", s%sigma_min, "must be finite and >= 0"); return
       end if
@@ -650,6 +731,12 @@ contains
             end if
          end if
       end if
+   end subroutine check_roughness
+
+   !> validate_scene_input: psi and the ZMC constants K, rho_p (doc/theory.md §3).
+   pure subroutine check_summit_law(s, error)
+      type(scene_input), intent(in) :: s
+      type(egw_error), allocatable, intent(out) :: error
       if (.not. (ieee_is_finite(s%psi) .and. s%psi >= 0.0_dp)) then
          call bad(error, "psi", s%psi, "must be finite and >= 0"); return
       end if
@@ -659,6 +746,12 @@ contains
       if (.not. (ieee_is_finite(s%plastic_ratio) .and. s%plastic_ratio > 1.0_dp)) then
          call bad(error, "plastic_ratio", s%plastic_ratio, "must be finite and > 1"); return
       end if
+   end subroutine check_summit_law
+
+   !> validate_scene_input: the overlap range and its unit (length or sigma).
+   pure subroutine check_overlaps(s, error)
+      type(scene_input), intent(in) :: s
+      type(egw_error), allocatable, intent(out) :: error
       if (s%delta_in_sigma /= 0 .and. s%delta_in_sigma /= 1) then
          call fatal_error(error, egw_invalid_parameter, "delta_in_sigma = "// &
             & int_str(s%delta_in_sigma)//": must be 0 (length) or 1 (units of sigma)")
@@ -681,12 +774,7 @@ contains
          call bad(error, delta_name(s, "max"), s%delta_max, "smooth spheres need overlaps > 0")
          return
       end if
-      if (.not. (s%tol >= tol_min .and. s%tol <= tol_max)) then
-         call bad(error, "tol", s%tol, "must lie in ["//format_real(tol_min)//", "// &
-            & format_real(tol_max)//"]")
-         return
-      end if
-   end subroutine validate_scene_input
+   end subroutine check_overlaps
 
    !> Validate a scene and resolve it into the distinct parameter sets of its pairs.
    !> Pairs (i <= j) of types combine as 1/R = 1/R_i + 1/R_j and

@@ -337,9 +337,10 @@ contains
 
    !> Tables of several parameter sets (the mu slices of a universal table) on one
    !> common set of nodes: an interval is accepted only when the check passes for every
-   !> set. Solves run in parallel over all (node, set) pairs. A single set is the
-   !> ordinary 1-D build. n_solves: solves done before (counted on in place, for the
-   !> optional progress hook, which is called after every batch of solves).
+   !> set (check_midpoints; doc/theory.md §7 "Tables": intervals bisected until solves at
+   !> their midpoints agree). Solves run in parallel over all (node, set) pairs. A single
+   !> set is the ordinary 1-D build. n_solves: solves done before (counted on in place, for
+   !> the optional progress hook, which is called after every batch of solves).
    subroutine build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, &
       & tables, error, n_solves, progress)
       type(contact_params), intent(in) :: params(:)
@@ -354,13 +355,9 @@ contains
       real(dp), allocatable :: am(:, :), err_f(:), err_k(:)
       logical, allocatable :: accepted(:), split(:)
       integer, allocatable :: todo(:)
-      real(dp) :: fi, ki, ef, ek, k_tol
-      integer :: round, n, i, j, m, s, ns
-      logical :: rough, in_log, bad_interval, check_k
+      integer :: round, n, i, m, ns
 
       ns = size(params)
-      rough = is_rough(params(1))
-      check_k = .not. rough
       call initial_nodes(params(1), cutoff, delta_max, x)
       n = size(x)
       allocate (f(n, ns), k(n, ns), a(n, ns))
@@ -392,53 +389,93 @@ contains
          allocate (fm(m, ns), km(m, ns), am(m, ns), split(m))
          call solve_grid(params, opts, xm, fm, km, am, error)
          if (allocated(error)) return
-         do j = 1, m
-            i = todo(j)
-            in_log = log_all .or. (rough .and. x(i + 1) <= 0.0_dp)
-            split(j) = .false.
-            err_f(i) = 0.0_dp
-            err_k(i) = 0.0_dp
-            do s = 1, ns
-               call hermite_at(x(i), x(i + 1), f(i, s), f(i + 1, s), k(i, s), k(i + 1, s), &
-                  & in_log, xm(j), fi, ki)
-               ef = rel_diff(fi, fm(j, s))
-               ek = rel_diff(ki, km(j, s))
-               ! the stiffness check (10 rel_tol) catches the sqrt(delta) singularity of
-               ! the Hertz stiffness at delta = 0 that the force check misses; for smooth
-               ! data the midpoint derivative error of cubic Hermite vanishes to leading
-               ! order, so it adds no nodes there. Smooth spheres only: a rough sphere has
-               ! P(0) > 0, so its delta^(3/2) onset term shows in the force check, and
-               ! there the solver's stiffness just above delta = 0 (where the bulk
-               ! contact patch a ~ sqrt(R delta) is far below the mesh) is not the
-               ! derivative of its force to 1e-5: checking it made tables below
-               ! rel_tol ~ 5e-6 split towards 0 without end. Only the interval starting
-               ! at delta = 0 of a rough table is checked, to 1e-4 (its sqrt(delta)
-               ! stiffness term gave errors ~1e-3 there; 1e-4 is reached at ~1e-5 sigma
-               ! for mu = 4, where the solver's stiffness is still consistent to ~1e-6),
-               ! and not below 1e-6 sigma (small mu, where the bulk sqrt(delta) term
-               ! dominates K(0), would need intervals where it is not)
-               k_tol = huge(1.0_dp)
-               if (check_k) k_tol = 10*rel_tol
-               if (rough .and. x(i) == 0.0_dp .and. x(i + 1) > 1.0e-6_dp*params(s)%sigma) &
-                  & k_tol = max(10*rel_tol, 1.0e-4_dp)
-               bad_interval = ef > rel_tol .or. &
-                  & ek > k_tol + slope_roundoff(x(i), x(i + 1), f(i, s), f(i + 1, s), &
-                  & km(j, s), in_log) .or. &
-                  & .not. monotone_ok(x(i), x(i + 1), f(i, s), f(i + 1, s), k(i, s), &
-                  & k(i + 1, s), in_log)
-               split(j) = split(j) .or. bad_interval
-               err_f(i) = max(err_f(i), ef)
-               err_k(i) = max(err_k(i), ek)
-            end do
-         end do
+         call check_midpoints(params, rel_tol, log_all, x, f, k, todo, xm, fm, km, split, &
+            & err_f, err_k)
          call merge_nodes(x, f, k, a, accepted, err_f, err_k, todo, xm, fm, km, am, split)
          n = size(x)
          deallocate (fm, km, am, split)
          n_solves = n_solves + m*ns
          if (present(progress)) call progress(n_solves, n_solves + count(.not. accepted)*ns)
       end do
+      call store_shared_tables(params, rel_tol, p_ref, log_all, x, f, k, a, err_f, err_k, &
+         & tables)
+   end subroutine build_shared_nodes
 
-      do s = 1, ns
+   !> The check of a table's intervals (doc/theory.md §7 "Tables"): the cubic Hermite
+   !> interpolant of every set at the midpoints xm of the intervals todo against the solves
+   !> there (fm, km). split(j): interval todo(j) fails for some set (force off by more than
+   !> rel_tol, stiffness off, or not monotone); err_f, err_k: its largest errors.
+   pure subroutine check_midpoints(params, rel_tol, log_all, x, f, k, todo, xm, fm, km, &
+      & split, err_f, err_k)
+      type(contact_params), intent(in) :: params(:)
+      real(dp), intent(in) :: rel_tol
+      logical, intent(in) :: log_all
+      real(dp), intent(in) :: x(:), f(:, :), k(:, :)   !< nodes and their solves
+      integer, intent(in) :: todo(:)
+      real(dp), intent(in) :: xm(:), fm(:, :), km(:, :)   !< midpoints and their solves
+      logical, intent(out) :: split(:)
+      real(dp), intent(inout) :: err_f(:), err_k(:)
+      real(dp) :: fi, ki, ef, ek, k_tol
+      integer :: i, j, s
+      logical :: rough, in_log, bad_interval, check_k
+      rough = is_rough(params(1))
+      check_k = .not. rough
+      do j = 1, size(todo)
+         i = todo(j)
+         in_log = log_all .or. (rough .and. x(i + 1) <= 0.0_dp)
+         split(j) = .false.
+         err_f(i) = 0.0_dp
+         err_k(i) = 0.0_dp
+         do s = 1, size(params)
+            call hermite_at(x(i), x(i + 1), f(i, s), f(i + 1, s), k(i, s), k(i + 1, s), &
+               & in_log, xm(j), fi, ki)
+            ef = rel_diff(fi, fm(j, s))
+            ek = rel_diff(ki, km(j, s))
+            ! the stiffness check (10 rel_tol) catches the sqrt(delta) singularity of
+            ! the Hertz stiffness at delta = 0 that the force check misses; for smooth
+            ! data the midpoint derivative error of cubic Hermite vanishes to leading
+            ! order, so it adds no nodes there. Smooth spheres only: a rough sphere has
+            ! P(0) > 0, so its delta^(3/2) onset term shows in the force check, and
+            ! there the solver's stiffness just above delta = 0 (where the bulk
+            ! contact patch a ~ sqrt(R delta) is far below the mesh) is not the
+            ! derivative of its force to 1e-5: checking it made tables below
+            ! rel_tol ~ 5e-6 split towards 0 without end. Only the interval starting
+            ! at delta = 0 of a rough table is checked, to 1e-4 (its sqrt(delta)
+            ! stiffness term gave errors ~1e-3 there; 1e-4 is reached at ~1e-5 sigma
+            ! for mu = 4, where the solver's stiffness is still consistent to ~1e-6),
+            ! and not below 1e-6 sigma (small mu, where the bulk sqrt(delta) term
+            ! dominates K(0), would need intervals where it is not)
+            k_tol = huge(1.0_dp)
+            if (check_k) k_tol = 10*rel_tol
+            if (rough .and. x(i) == 0.0_dp .and. x(i + 1) > 1.0e-6_dp*params(s)%sigma) &
+               & k_tol = max(10*rel_tol, 1.0e-4_dp)
+            bad_interval = ef > rel_tol .or. &
+               & ek > k_tol + slope_roundoff(x(i), x(i + 1), f(i, s), f(i + 1, s), &
+               & km(j, s), in_log) .or. &
+               & .not. monotone_ok(x(i), x(i + 1), f(i, s), f(i + 1, s), k(i, s), &
+               & k(i + 1, s), in_log)
+            split(j) = split(j) .or. bad_interval
+            err_f(i) = max(err_f(i), ef)
+            err_k(i) = max(err_k(i), ek)
+         end do
+      end do
+   end subroutine check_midpoints
+
+   !> The finished tables of build_shared_nodes: every set's values at the common nodes x,
+   !> with the build's metadata (the largest midpoint errors, n_log), prepared for
+   !> evaluation.
+   pure subroutine store_shared_tables(params, rel_tol, p_ref, log_all, x, f, k, a, err_f, &
+      & err_k, tables)
+      type(contact_params), intent(in) :: params(:)
+      real(dp), intent(in) :: rel_tol, p_ref(:)
+      logical, intent(in) :: log_all
+      real(dp), intent(in) :: x(:), f(:, :), k(:, :), a(:, :), err_f(:), err_k(:)
+      type(force_table), intent(inout) :: tables(:)
+      integer :: n, s
+      logical :: rough
+      n = size(x)
+      rough = is_rough(params(1))
+      do s = 1, size(params)
          associate (table => tables(s))
             table%params = params(s)
             table%rel_tol = rel_tol
@@ -458,7 +495,7 @@ contains
             call table_prepare(table)
          end associate
       end do
-   end subroutine build_shared_nodes
+   end subroutine store_shared_tables
 
    !> Derive the evaluation data (coefficients, energy, lookup buckets) from the nodes.
    !> Called by the builder and by the readers; deterministic, so a table read back

@@ -82,12 +82,62 @@ contains
       procedure(table_progress), optional :: progress   !< optional hook (table_progress)
       type(universal_table) :: u
       type(solver_options) :: opts
-      type(contact_params), allocatable :: params(:)
-      real(dp), allocatable :: xc(:), mus(:), xs(:), pref(:)
-      real(dp) :: x_cut, worst
-      integer :: j, n0, n_solves, n_before
-      integer, allocatable :: stat(:)
+      real(dp), allocatable :: mus(:)
+      real(dp) :: worst
+      integer :: n_solves
 
+      call check_universal_request(model, psi, hardness_coeff, plastic_ratio, mu_min, &
+         & mu_max, x_min, x_max, error)
+      if (allocated(error)) return
+      opts = options
+      opts%n_threads = 1
+      opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
+
+      u%model = model
+      u%psi = psi
+      u%hardness_coeff = hardness_coeff
+      u%plastic_ratio = plastic_ratio
+      u%rel_tol = rel_tol
+      u%x_max = x_max
+      u%mu_min = mu_min
+      u%mu_max = mu_max
+      ! 4 nodes per decade to start (and at least 4 for the cubic stencil)
+      u%n_mu = max(4, ceiling(4*log10(mu_max/mu_min)) + 1)
+      mus = grid(mu_min, mu_max, u%n_mu)
+      call common_cutoff(u, mus, opts, x_min, error)
+      if (allocated(error)) return
+
+      n_solves = 0
+      do
+         call build_mu_grid(u, mus, opts, worst, n_solves, error, progress)
+         if (allocated(error)) return
+         u%max_mu_error = worst
+         if (worst <= rel_tol) exit
+         if (u%n_mu >= max_mu_nodes) then
+            call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
+               & ": mu interpolation error "//format_real(worst)//" with "// &
+               & "the maximum number of mu nodes")
+            return
+         end if
+         ! rebuild on a finer grid (shared nodes must be re-chosen for all slices). The
+         ! 4-point Lagrange error in ln mu falls like h^4: jump straight to the grid
+         ! that should bring it to 0.4 rel_tol (the slices' own x error is <= 0.5
+         ! rel_tol), with 10 % margin, instead of doubling (doubling built 13 + 25 + 49
+         ! + 97 slices where ~75 suffice for mu in [0.1, 100] at 1e-6)
+         u%n_mu = min(max_mu_nodes, max(u%n_mu + 2, 1 + ceiling(1.1_dp*(u%n_mu - 1)* &
+            & sqrt(sqrt(worst/(0.4_dp*rel_tol))))))
+         mus = grid(mu_min, mu_max, u%n_mu)
+      end do
+      call move_universal(u, table)
+   end subroutine build_universal
+
+   !> The arguments of build_universal that its solves cannot check: the mu range, the
+   !> summit laws at both ends of it, and the x range (the solver's, doc/theory.md §5).
+   subroutine check_universal_request(model, psi, hardness_coeff, plastic_ratio, mu_min, &
+      & mu_max, x_min, x_max, error)
+      integer, intent(in) :: model
+      real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio, mu_min, mu_max, x_min, x_max
+      type(egw_error), allocatable, intent(out) :: error
       if (.not. (ieee_is_finite(mu_min) .and. mu_min > 0.0_dp)) then
          call fatal_error(error, egw_invalid_argument, "mu_min = "//format_real(mu_min)// &
             & ": must be finite and > 0")
@@ -116,83 +166,73 @@ contains
             & " (the solver's range of delta/sigma)")
          return
       end if
-      opts = options
-      opts%n_threads = 1
-      opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
+   end subroutine check_universal_request
 
-      u%model = model
-      u%psi = psi
-      u%hardness_coeff = hardness_coeff
-      u%plastic_ratio = plastic_ratio
-      u%rel_tol = rel_tol
-      u%x_max = x_max
-      u%mu_min = mu_min
-      u%mu_max = mu_max
-      ! 4 nodes per decade to start (and at least 4 for the cubic stencil)
-      n0 = max(4, ceiling(4*log10(mu_max/mu_min)) + 1)
-      mus = grid(mu_min, mu_max, n0)
-      ! common cut-off: the lowest of the grid's own cut-offs
-      allocate (xc(n0), pref(n0), stat(n0))
+   !> The common cut-off u%x_cut (doc/theory.md §7 "Tables"): the lowest of the cut-offs of
+   !> the slices at mus (where the force has fallen to rel_tol of its reference), or x_min.
+   subroutine common_cutoff(u, mus, opts, x_min, error)
+      type(universal_table), intent(inout) :: u
+      real(dp), intent(in) :: mus(:)
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(in) :: x_min
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: xc(size(mus)), pref(size(mus))
+      integer :: stat(size(mus)), j
       ! the searches are serial chains of solves: run the mu nodes in parallel
       !$omp parallel do schedule(dynamic)
-      do j = 1, n0
-         call find_cutoff_quiet(universal_slice_params(model, psi, hardness_coeff, &
-            & plastic_ratio, mus(j)), opts, x_min, x_max, rel_tol, xc(j), pref(j), stat(j))
+      do j = 1, size(mus)
+         call find_cutoff_quiet(universal_slice_params(u%model, u%psi, u%hardness_coeff, &
+            & u%plastic_ratio, mus(j)), opts, x_min, u%x_max, u%rel_tol, xc(j), pref(j), &
+            & stat(j))
       end do
       !$omp end parallel do
-      do j = 1, n0
+      do j = 1, size(mus)
          if (stat(j) /= 0) then
             ! redo the first failure serially to recover its message
-            call table_find_cutoff(universal_slice_params(model, psi, hardness_coeff, &
-               & plastic_ratio, mus(j)), opts, x_min, x_max, rel_tol, xc(j), pref(j), error)
+            call table_find_cutoff(universal_slice_params(u%model, u%psi, u%hardness_coeff, &
+               & u%plastic_ratio, mus(j)), opts, x_min, u%x_max, u%rel_tol, xc(j), pref(j), &
+               & error)
             if (.not. allocated(error)) call fatal_error(error, stat(j), "mu = "// &
                & format_real(mus(j))//": cut-off search failed")
             return
          end if
       end do
-      x_cut = minval(xc)
-      u%x_cut = x_cut
+      u%x_cut = minval(xc)
+   end subroutine common_cutoff
 
-      u%n_mu = n0
-      n_solves = 0
-      do
-         ! all slices on one set of x nodes (one lookup serves all mu at evaluation)
-         n_before = n_solves  ! (not the same actual for solves_before and solves)
-         if (allocated(u%slices)) deallocate (u%slices)
-         allocate (u%slices(u%n_mu))
-         params = [(universal_slice_params(model, psi, hardness_coeff, plastic_ratio, &
-            & mus(j)), j=1, u%n_mu)]
-         ! log_space = .false.: ln p in the tail, p in the contact range (as build_table)
-         call build_tables_shared(params, opts, x_cut, x_max, 0.5_dp*rel_tol, .false., &
-            & u%slices, error, progress, n_before, n_solves)
-         if (allocated(error)) return
-         call universal_prepare(u)
-         ! check the mu interpolation at mid-grid mu against solves
-         xs = check_points(x_cut, x_max, u%slices(1)%delta)
-         call mid_grid_error(u, opts, xs, worst, error)
-         if (allocated(error)) return
-         ! the mu check: one solve per mid-grid mu and check point
-         n_solves = n_solves + (u%n_mu - 1)*size(xs)
-         if (present(progress)) call progress(n_solves, n_solves)
-         u%max_mu_error = worst
-         if (worst <= rel_tol) exit
-         if (u%n_mu >= max_mu_nodes) then
-            call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
-               & ": mu interpolation error "//format_real(worst)//" with "// &
-               & "the maximum number of mu nodes")
-            return
-         end if
-         ! rebuild on a finer grid (shared nodes must be re-chosen for all slices). The
-         ! 4-point Lagrange error in ln mu falls like h^4: jump straight to the grid
-         ! that should bring it to 0.4 rel_tol (the slices' own x error is <= 0.5
-         ! rel_tol), with 10 % margin, instead of doubling (doubling built 13 + 25 + 49
-         ! + 97 slices where ~75 suffice for mu in [0.1, 100] at 1e-6)
-         u%n_mu = min(max_mu_nodes, max(u%n_mu + 2, 1 + ceiling(1.1_dp*(u%n_mu - 1)* &
-            & sqrt(sqrt(worst/(0.4_dp*rel_tol))))))
-         mus = grid(mu_min, mu_max, u%n_mu)
-      end do
-      call move_universal(u, table)
-   end subroutine build_universal
+   !> One round of the universal table on the mu grid mus (doc/theory.md §7 "Tables"): the
+   !> slices on one set of x nodes, then the mu interpolation checked against solves at
+   !> mid-grid mu (worst: its largest relative error). n_solves counts the solves.
+   subroutine build_mu_grid(u, mus, opts, worst, n_solves, error, progress)
+      type(universal_table), intent(inout) :: u
+      real(dp), intent(in) :: mus(:)
+      type(solver_options), intent(in) :: opts
+      real(dp), intent(out) :: worst
+      integer, intent(inout) :: n_solves
+      type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
+      type(contact_params), allocatable :: params(:)
+      real(dp), allocatable :: xs(:)
+      integer :: j, n_before
+      ! all slices on one set of x nodes (one lookup serves all mu at evaluation)
+      n_before = n_solves  ! (not the same actual for solves_before and solves)
+      if (allocated(u%slices)) deallocate (u%slices)
+      allocate (u%slices(u%n_mu))
+      params = [(universal_slice_params(u%model, u%psi, u%hardness_coeff, u%plastic_ratio, &
+         & mus(j)), j=1, u%n_mu)]
+      ! log_space = .false.: ln p in the tail, p in the contact range (as build_table)
+      call build_tables_shared(params, opts, u%x_cut, u%x_max, 0.5_dp*u%rel_tol, .false., &
+         & u%slices, error, progress, n_before, n_solves)
+      if (allocated(error)) return
+      call universal_prepare(u)
+      ! check the mu interpolation at mid-grid mu against solves
+      xs = check_points(u%x_cut, u%x_max, u%slices(1)%delta)
+      call mid_grid_error(u, opts, xs, worst, error)
+      if (allocated(error)) return
+      ! the mu check: one solve per mid-grid mu and check point
+      n_solves = n_solves + (u%n_mu - 1)*size(xs)
+      if (present(progress)) call progress(n_solves, n_solves)
+   end subroutine build_mu_grid
 
    !> table_find_cutoff with the status only (for use inside a parallel loop).
    subroutine find_cutoff_quiet(params, opts, x_min, x_max, rel_tol, cutoff, p_ref, stat)
