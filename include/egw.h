@@ -217,6 +217,24 @@ int egw_restitution(const egw_params *p, const egw_options *o, double mass, doub
 int egw_restitution_energy(const egw_params *p, const egw_options *o, double mass,
                            double velocity, double *e, double *w_load, double *w_dissipated);
 
+/* egw_restitution with the deepest overlap delta_m of the impact [length] (> 0 pressed
+ * together, < 0 still apart: slow rough impacts turn in the separated tail). e or
+ * max_overlap may be NULL (not wanted). Statuses as egw_restitution_energy. */
+int egw_restitution_overlap(const egw_params *p, const egw_options *o, double mass,
+                            double velocity, double *e, double *max_overlap);
+
+/* The time step of a DEM loop (doc/theory.md 10): for a head-on impact of effective mass
+ * m* = mass at approach speed velocity (the fastest of the run: slower impacts are softer),
+ * *duration = the time its force spends above 1 % of its peak (loading and unloading)
+ * [time], and *time_step = the largest velocity-Verlet step whose error in the coefficient
+ * of restitution stays below tolerance (in (0, 0.1]): dt = sqrt(tolerance/0.06)/omega,
+ * omega^2 = K_max/m* with K_max the stiffest point of the impact (the unloading stiffness
+ * at delta_m), at most 0.5/omega. A table-driven loop adds the table's own error. Either
+ * output may be NULL. Statuses as egw_restitution, EGW_INVALID_ARGUMENT naming tolerance;
+ * outputs untouched on failure. */
+int egw_time_step(const egw_params *p, const egw_options *o, double mass, double velocity,
+                  double tolerance, double *duration, double *time_step);
+
 /* Total pressure p(r) and surface deflection w(r) of the solved contact at the n radii
  * r[0..n-1] (>= 0, any order) into pressure[] and deflection[], each pointwise within
  * o->rel_tol of the profile's peak (pressure) and of its largest deflection: the contact

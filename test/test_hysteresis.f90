@@ -25,6 +25,9 @@ module test_hysteresis
       integer(c_int) function c_hysteresis() bind(C, name="egw_capi_test_hysteresis")
          import :: c_int
       end function c_hysteresis
+      integer(c_int) function c_dem_loop() bind(C, name="egw_capi_test_dem_loop")
+         import :: c_int
+      end function c_dem_loop
    end interface
 
    !> Scaled EP-GW contact (R = E = sigma = 1): psi = 2 (delta_ep = sigma/4), mu = 4.
@@ -50,6 +53,7 @@ contains
          & new_unittest("bad input", test_bad_input), &
          & new_unittest("write/read CSV and binary: same values", test_round_trip), &
          & new_unittest("read refuses corrupted and insane files", test_bad_files), &
+         & new_unittest("C DEM loop, egw_time_step: e at 1e-4..10 m/s", t_c_dem_loop), &
          & new_unittest("C egw_hysteresis_build, _eval, _free", test_c_api) &
          & ]
    end subroutine collect_hysteresis
@@ -611,5 +615,12 @@ contains
          & format_real(-v)//", restitution "//format_real(e_ref)//", delta_m "// &
          & format_real(d_m))
    end subroutine test_dem_restitution
+
+   subroutine t_c_dem_loop(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer(c_int) :: nfail
+      nfail = c_dem_loop()
+      call check(error, int(nfail) == 0, to_string(int(nfail))//" C check(s) failed (see above)")
+   end subroutine t_c_dem_loop
 
 end module test_hysteresis

@@ -446,6 +446,35 @@ static int r_restitution(void) {
   return st;
 }
 
+static int r_restitution_overlap(void) {
+  egw_params p = params_at(0, EGW_MODEL_EPGW, 0.5);
+  egw_options o = options_at(9, 1e-2);
+  double v[2];
+  int st;
+  sentinel(v, sizeof v);
+  st = egw_restitution_overlap(P(8, &p), P(14, &o), D(15, 1e-3), D(16, 1e-2), P(17, &v[0]),
+                               P(18, &v[1]));
+  out_doubles(st, 0, "e, max_overlap", v, 2, sizeof v);
+  sane(st, cur->slot == 17 || (v[0] > 0 && v[0] <= 1), "e outside (0, 1]", v[0]);
+  sane(st, cur->slot == 18 || isfinite(v[1]), "max_overlap not finite", v[1]);
+  return st;
+}
+
+static int r_time_step(void) {
+  egw_params p = params_at(0, EGW_MODEL_EPGW, 0.5);
+  egw_options o = options_at(9, 1e-2);
+  double v[2];
+  int st;
+  sentinel(v, sizeof v);
+  st = egw_time_step(P(8, &p), P(14, &o), D(15, 1e-3), D(16, 1e-2), D(17, 1e-3), P(18, &v[0]),
+                     P(19, &v[1]));
+  out_doubles(st, 0, "duration, time_step", v, 2, sizeof v);
+  sane(st, cur->slot == 18 || v[0] > 0, "duration not > 0", v[0]);
+  sane(st, cur->slot == 19 || (v[1] > 0 && (cur->slot == 18 || v[1] < v[0])),
+       "time step not in (0, duration)", v[1]);
+  return st;
+}
+
 static int r_profile(void) {
   egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
   egw_options o = options_at(9, 1e-3);
@@ -962,6 +991,14 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass", K_DBL},
       {"velocity", K_DBL}, {"e", K_PTR}, {"w_load", K_PTR}, {"w_dissipated", K_PTR}},
      r_restitution, 1},
+    {"egw_restitution_overlap", 19,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass", K_DBL},
+      {"velocity", K_DBL}, {"e", K_PTR}, {"max_overlap", K_PTR}},
+     r_restitution_overlap, 1},
+    {"egw_time_step", 20,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass", K_DBL},
+      {"velocity", K_DBL}, {"tolerance", K_DBL}, {"duration", K_PTR}, {"time_step", K_PTR}},
+     r_time_step, 1},
     {"egw_profile", 21,
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"delta", K_DBL},
       {"n", K_INT}, {"r[1]", K_DBL}, {"r", K_PTR}, {"pressure", K_PTR}, {"deflection", K_PTR}},

@@ -11,7 +11,7 @@ module egw_capi
    use egw_version, only: egw_version_number
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
       & solve_contact_unload
-   use egw_impact, only: restitution
+   use egw_impact, only: restitution, time_step
    use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
    use egw_ellip, only: get_ellipk, get_ellipe
    use egw_asperity, only: flat_pressure
@@ -271,7 +271,7 @@ contains
       integer(c_int) :: stat
       stat = require(e, "e")
       if (stat /= egw_ok) return
-      stat = restitution_c(p, o, mass, velocity, e, c_null_ptr, c_null_ptr)
+      stat = restitution_c(p, o, mass, velocity, e, c_null_ptr, c_null_ptr, c_null_ptr)
    end function egw_restitution
 
    !> C: egw_restitution_energy: the same with the work of loading and the dissipated energy.
@@ -280,8 +280,38 @@ contains
       type(c_ptr), value, intent(in) :: p, o, e, w_load, w_dissipated
       real(c_double), value, intent(in) :: mass, velocity
       integer(c_int) :: stat
-      stat = restitution_c(p, o, mass, velocity, e, w_load, w_dissipated)
+      stat = restitution_c(p, o, mass, velocity, e, w_load, w_dissipated, c_null_ptr)
    end function egw_restitution_energy
+
+   !> C: egw_restitution_overlap: e and the deepest overlap delta_m of the impact.
+   function egw_restitution_overlap(p, o, mass, velocity, e, max_overlap) result(stat) &
+      & bind(C, name="egw_restitution_overlap")
+      type(c_ptr), value, intent(in) :: p, o, e, max_overlap
+      real(c_double), value, intent(in) :: mass, velocity
+      integer(c_int) :: stat
+      stat = restitution_c(p, o, mass, velocity, e, c_null_ptr, c_null_ptr, max_overlap)
+   end function egw_restitution_overlap
+
+   !> C: egw_time_step: the contact duration and the largest Verlet step for a tolerance.
+   function egw_time_step(p, o, mass, velocity, tolerance, duration, step) result(stat) &
+      & bind(C, name="egw_time_step")
+      type(c_ptr), value, intent(in) :: p, o, duration, step
+      real(c_double), value, intent(in) :: mass, velocity, tolerance
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(egw_error), allocatable :: error
+      real(dp) :: t_c, dt
+      stat = read_contact(p, o, params, options)
+      if (stat /= egw_ok) return
+      t_c = 0.0_dp
+      dt = 0.0_dp
+      call time_step(params, options, mass, velocity, tolerance, t_c, dt, error)
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      call put(duration, t_c)
+      call put(step, dt)
+   end function egw_time_step
 
    !> C: egw_profile: pressure and deflection of the solved contact at given radii.
    function egw_profile(p, o, delta, n, r, pressure, deflection) result(stat) &
@@ -316,26 +346,28 @@ contains
 
    !> Restitution with its energies into nullable double* (NULL: not wanted); all
    !> outputs untouched on failure.
-   integer(c_int) function restitution_c(p, o, mass, velocity, e, w_load, w_dissipated) &
-      & result(stat)
-      type(c_ptr), intent(in) :: p, o, e, w_load, w_dissipated
+   integer(c_int) function restitution_c(p, o, mass, velocity, e, w_load, w_dissipated, &
+      & max_overlap) result(stat)
+      type(c_ptr), intent(in) :: p, o, e, w_load, w_dissipated, max_overlap
       real(c_double), intent(in) :: mass, velocity
       type(contact_params) :: params
       type(solver_options) :: options
       type(egw_error), allocatable :: error
-      real(dp) :: coefficient, dissipated, work
+      real(dp) :: coefficient, dissipated, work, delta_m
       stat = read_contact(p, o, params, options)
       if (stat /= egw_ok) return
       coefficient = 1.0_dp
       dissipated = 0.0_dp
       work = 0.0_dp
+      delta_m = 0.0_dp
       call restitution(params, options, mass, velocity, coefficient, dissipated, error, &
-         & work_load=work)
+         & work_load=work, max_overlap=delta_m)
       stat = settle(error)
       if (stat /= egw_ok) return
       call put(e, coefficient)
       call put(w_load, work)
       call put(w_dissipated, dissipated)
+      call put(max_overlap, delta_m)
    end function restitution_c
 
    !> Rough-flat pressure p_G at separation into pressure, and dp_G/dd into dpressure

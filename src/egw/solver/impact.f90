@@ -23,7 +23,19 @@ module egw_impact
    implicit none
    private
 
-   public :: restitution
+   public :: restitution, time_step
+
+   !> Velocity Verlet's error in e over one impact, measured over glass and steel EP-GW
+   !> pairs from 1e-4 to 10 m/s (doc/theory.md §10): |delta e| <= verlet_error (omega dt)**2
+   !> with omega**2 = K_max/m*, the stiffest point of the impact.
+   real(dp), parameter :: verlet_error = 0.03_dp
+   !> Gauss-Legendre nodes and weights on [0, 1] (16 points) for the contact duration.
+   real(dp), parameter :: gl16_x(8) = [0.0052995325041750_dp, 0.0277124884633837_dp, &
+      & 0.0671843988060841_dp, 0.1222977958224985_dp, 0.1910618777986781_dp, &
+      & 0.2709916111713863_dp, 0.3591982246103705_dp, 0.4524937450811813_dp]
+   real(dp), parameter :: gl16_w(8) = [0.0135762297058770_dp, 0.0310735511116880_dp, &
+      & 0.0475792558412464_dp, 0.0623144856277670_dp, 0.0747979944082884_dp, &
+      & 0.0845782596975013_dp, 0.0913017075224618_dp, 0.0947253052275342_dp]
 
    !> Depth of the interval bisection, and steps allowed to find delta_lo and delta_m.
    integer, parameter :: max_depth = 24, max_steps = 400
@@ -339,5 +351,149 @@ contains
       h = b - a
       s = 0.5_dp*h*(pa + pb) + h*h/12.0_dp*(ka - kb)
    end function hermite_rule
+
+   !> The contact duration of a head-on impact (effective mass m*, approach speed v) and
+   !> the largest velocity-Verlet time step that keeps the integration's error in the
+   !> coefficient of restitution below tolerance (doc/theory.md §10):
+   !>   dt = sqrt(tolerance/(2 verlet_error))/omega,  omega**2 = K_max/m*,
+   !> K_max the stiffest point of the impact (the unloading stiffness at the deepest
+   !> overlap delta_m; the loading one for elastic contacts), capped at 0.5/omega. The
+   !> duration is the time the force spends above 1 % of its peak P(delta_m), loading and
+   !> unloading, from the solver's force curves (16-point Gauss rule in sqrt(delta_m -
+   !> delta)); a DEM step should resolve it too (dt is far below it for tolerance <= 1e-3).
+   !> For the fastest impact of a run: slower ones are softer. Errors as restitution, and
+   !> tolerance not in (0, 0.1] (egw_invalid_argument); outputs untouched on error.
+   subroutine time_step(params, options, mass, velocity, tolerance, duration, step, error)
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< tolerance of the solves
+      real(dp), intent(in) :: mass        !< effective mass m* > 0 [mass]
+      real(dp), intent(in) :: velocity    !< largest approach speed v > 0 [length/time]
+      real(dp), intent(in) :: tolerance   !< allowed error of e from the time step, (0, 0.1]
+      real(dp), intent(inout) :: duration   !< contact duration [time]
+      real(dp), intent(inout) :: step       !< largest Verlet time step [time]
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      type(loading_history) :: hist
+      type(solve_result) :: top, res
+      real(dp) :: e, dissipated, delta_m, k_max, omega, t_load, t_unload
+      if (.not. (tolerance > 0.0_dp .and. tolerance <= 0.1_dp)) then
+         call fatal_error(error, egw_invalid_argument, "tolerance = "// &
+            & format_real(tolerance)//": must lie in (0, 0.1]")
+         return
+      end if
+      call restitution(params, options, mass, velocity, e, dissipated, error, &
+         & max_overlap=delta_m)
+      if (allocated(error)) return
+      call load_history(params, options, delta_m, hist, top, error)
+      if (allocated(error)) return
+      call solve_unload(hist, delta_m, res, error)
+      if (allocated(error)) return
+      k_max = max(top%stiffness, res%stiffness)
+      if (.not. (k_max > 0.0_dp .and. top%force > 0.0_dp)) then
+         call fatal_error(error, egw_not_converged, "velocity = "//format_real(velocity)// &
+            & ": no contact stiffness at the deepest overlap "//format_real(delta_m))
+         return
+      end if
+      call half_time(hist, .false., mass, delta_m, top%force, top%stiffness, t_load, error)
+      if (allocated(error)) return
+      call half_time(hist, .true., mass, delta_m, top%force, res%stiffness, t_unload, error)
+      if (allocated(error)) return
+      omega = sqrt(k_max/mass)
+      step = min(sqrt(tolerance/(2*verlet_error)), 0.5_dp)/omega
+      duration = t_load + t_unload
+   end subroutine time_step
+
+   !> The time from the overlap where the force is 1 % of P(delta_m) to delta_m (loading)
+   !> or back (unloading): int dx/v(x), v(x)**2 = (2/m*) int_x^{delta_m} P, with x =
+   !> delta_m - u**2 (the 1/sqrt singularity at the turning point becomes regular) on 16
+   !> Gauss points in u; int_x^{delta_m} P cumulated over the sorted points by the Hermite
+   !> rule from the solves' force and stiffness.
+   subroutine half_time(hist, unloading, mass, delta_m, p_m, k_m, time, error)
+      type(loading_history), intent(in) :: hist
+      logical, intent(in) :: unloading
+      real(dp), intent(in) :: mass, delta_m
+      real(dp), intent(in) :: p_m, k_m   !< the curve's force and stiffness at delta_m
+      real(dp), intent(out) :: time
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: u_max, x(16), w(16), p(0:16), k(0:16), xs(0:16), work, v2
+      type(solve_result) :: res
+      integer :: i
+      time = 0.0_dp
+      call onset(hist, unloading, delta_m, p_m, k_m, u_max, error)
+      if (allocated(error)) return
+      ! u nodes increasing: x decreasing from delta_m
+      x(1:8) = gl16_x
+      x(9:16) = 1.0_dp - gl16_x(8:1:-1)
+      w(1:8) = gl16_w
+      w(9:16) = gl16_w(8:1:-1)
+      xs(0) = delta_m
+      p(0) = p_m
+      k(0) = k_m
+      do i = 1, 16
+         xs(i) = delta_m - (u_max*x(i))**2
+         call curve_point(hist, unloading, xs(i), res, error)
+         if (allocated(error)) return
+         p(i) = res%force
+         k(i) = res%stiffness
+      end do
+      work = 0.0_dp
+      do i = 1, 16
+         work = work + hermite_rule(xs(i), p(i), k(i), xs(i - 1), p(i - 1), k(i - 1))
+         v2 = 2*work/mass
+         if (.not. v2 > 0.0_dp) cycle   ! a zero-force stretch: v from the next points
+         time = time + w(i)*u_max*2*u_max*x(i)/sqrt(v2)
+      end do
+   end subroutine half_time
+
+   !> u_max = sqrt(delta_m - x_1) with the force at x_1 1 % of P(delta_m) (to 0.1 %): a
+   !> bracket widened from the Hertzian unloading length 1.5 P/K, then bisected.
+   subroutine onset(hist, unloading, delta_m, p_m, k_m, u_max, error)
+      type(loading_history), intent(in) :: hist
+      logical, intent(in) :: unloading
+      real(dp), intent(in) :: delta_m, p_m, k_m
+      real(dp), intent(out) :: u_max
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      real(dp) :: lo, hi, x, target, width
+      integer :: it
+      target = 0.01_dp*p_m
+      hi = delta_m
+      width = 1.5_dp*p_m/k_m
+      lo = delta_m - width
+      do it = 1, 60
+         call curve_point(hist, unloading, lo, res, error)
+         if (allocated(error)) return
+         if (res%force <= target) exit
+         hi = lo
+         width = 2*width
+         lo = delta_m - width
+      end do
+      x = 0.5_dp*(lo + hi)
+      do it = 1, 60
+         call curve_point(hist, unloading, x, res, error)
+         if (allocated(error)) return
+         if (res%force > target) then
+            hi = x
+         else
+            lo = x
+         end if
+         if (abs(res%force/target - 1.0_dp) < 1.0e-3_dp .or. hi - lo <= 1.0e-12_dp*width) exit
+         x = 0.5_dp*(lo + hi)
+      end do
+      u_max = sqrt(max(delta_m - x, 0.0_dp))
+   end subroutine onset
+
+   !> Force and stiffness at x on the loading curve, or on the unloading curve of hist.
+   subroutine curve_point(hist, unloading, x, res, error)
+      type(loading_history), intent(in) :: hist
+      logical, intent(in) :: unloading
+      real(dp), intent(in) :: x
+      type(solve_result), intent(inout) :: res
+      type(egw_error), allocatable, intent(out) :: error
+      if (unloading) then
+         call solve_unload(hist, x, res, error)
+      else
+         call solve_contact(hist%params, hist%options, x, res, error)
+      end if
+   end subroutine curve_point
 
 end module egw_impact

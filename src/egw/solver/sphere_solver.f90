@@ -550,17 +550,22 @@ contains
       real(dp), allocatable :: moved(:)
       real(dp) :: kink_err, total_again
       integer :: n_moved
+      type(discrete_solution) :: guess
 
       vanished = .false.
       kink_err = kink_offset_error(prob, sol, options%rel_tol, moved, n_moved)/total
       if (kink_err > 0.1_dp*options%rel_tol .and. options%n_radial == 0) then
          prob%branch = moved
          prob%n_branch = n_moved
+         ! each level restarts from its own solution: a copy, since the result (intent out)
+         ! may not be the guess too
+         guess = coarse
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step_prev, mesh%outer, coarse, error, coarse)
+            & mesh%step_prev, mesh%outer, coarse, error, guess)
          if (allocated(error)) return
+         guess = sol
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step, mesh%outer, sol, error, sol)
+            & mesh%step, mesh%outer, sol, error, guess)
          if (allocated(error)) return
          total_again = abs(smooth_force(prob) + sol%force)
          vanished = total_again < tiny_force
