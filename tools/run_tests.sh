@@ -10,7 +10,11 @@ VENV=${VENV:-.venv}
 FPM=${FPM:-$VENV/bin/fpm}
 FPM_FLAGS=${FPM_FLAGS:---profile release}
 log=$(mktemp)
-trap 'rm -f "$log" "$log.rc"' EXIT
+# the builds' on-disk cache (egw_cache) in a fresh directory of this run: no suite reads
+# an entry of an earlier run or writes under $HOME
+EGW_CACHE_DIR=$(mktemp -d)
+export EGW_CACHE_DIR
+trap 'rm -f "$log" "$log.rc"; rm -rf "$EGW_CACHE_DIR"' EXIT
 passed=0
 failed=0
 status=0

@@ -10,7 +10,8 @@ module egw_capi_hysteresis
       & int_str
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
-   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
+   use egw_cache, only: build_hysteresis_cached
+   use egw_hysteresis, only: hysteresis_table, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
@@ -45,7 +46,7 @@ contains
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
       if (stat == egw_ok) stat = new_table(h)
       if (stat /= egw_ok) return
-      call build_hysteresis(params, options, delta_min, delta_max, rel_tol, h, error)
+      call build_hysteresis_cached(params, options, delta_min, delta_max, rel_tol, h, error)
       stat = put_handle_settled(out, c_loc(h), error)
       if (stat /= egw_ok) deallocate (h)
    end function egw_hysteresis_build
