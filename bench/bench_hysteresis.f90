@@ -64,8 +64,9 @@ contains
          ! filled by the first sweep, kept with the contacts as a DEM code keeps them
          allocate (states(hysteresis_state_size, n), moving(hysteresis_state_size, n))
          do i = 1, n
+            ! loaded to its turning point state(i) (a state egw did not fill is a new contact)
             call hysteresis_state_init(states(:, i))
-            states(1, i) = state(i)
+            call hysteresis_eval_state(t, state(i), states(:, i), f, k, stat)
          end do
          moving = states
          ! DEM-like contacts: each overlap moves by up to 0.02 sigma from sweep to sweep
