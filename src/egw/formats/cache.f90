@@ -77,19 +77,18 @@ contains
       logical, intent(out), optional :: hit   !< true when read from the cache
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
-      if (present(hit)) hit = .false.
+      logical :: found
       call entry_path("table", [params_key(params), options_key(options), delta_min, &
          & delta_max, rel_tol], path)
+      found = .false.
       if (len(path) > 0) then
          call read_table(path, table, ignored)
-         if (.not. allocated(ignored)) then
-            if (same_params(table%params, params) .and. table%rel_tol == rel_tol .and. &
-               & table%delta_max == delta_max) then
-               if (present(hit)) hit = .true.
-               return
-            end if
-         end if
+         found = .not. allocated(ignored)
+         if (found) found = same_request(table%params, table%rel_tol, table%delta_max, &
+            & params, rel_tol, delta_max)
       end if
+      if (present(hit)) hit = found
+      if (found) return
       call build_table(params, options, delta_min, delta_max, rel_tol, table, error)
       if (allocated(error) .or. len(path) == 0) return
       call write_table(table, path, format_binary, ignored)
@@ -107,16 +106,16 @@ contains
       logical, intent(out), optional :: hit   !< true when read from the cache
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
-      if (present(hit)) hit = .false.
+      logical :: found
       call entry_path("universal", [real(model, dp), psi, hardness_coeff, plastic_ratio, &
          & options_key(options), mu_min, mu_max, x_min, x_max, rel_tol], path)
+      found = .false.
       if (len(path) > 0) then
          call read_universal(path, u, ignored)
-         if (.not. allocated(ignored)) then
-            if (present(hit)) hit = .true.
-            return
-         end if
+         found = .not. allocated(ignored)
       end if
+      if (present(hit)) hit = found
+      if (found) return
       call build_universal(model, psi, hardness_coeff, plastic_ratio, options, mu_min, &
          & mu_max, x_min, x_max, rel_tol, u, error)
       if (allocated(error) .or. len(path) == 0) return
@@ -137,19 +136,18 @@ contains
       logical, intent(out), optional :: hit   !< true when read from the cache
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
-      if (present(hit)) hit = .false.
+      logical :: found
       call entry_path("hysteresis", [params_key(params), options_key(options), delta_min, &
          & delta_max, rel_tol], path)
+      found = .false.
       if (len(path) > 0) then
          call read_hysteresis(path, table, ignored)
-         if (.not. allocated(ignored)) then
-            if (same_params(table%params, params) .and. table%rel_tol == rel_tol .and. &
-               & table%delta_max == delta_max) then
-               if (present(hit)) hit = .true.
-               return
-            end if
-         end if
+         found = .not. allocated(ignored)
+         if (found) found = same_request(table%params, table%rel_tol, table%delta_max, &
+            & params, rel_tol, delta_max)
       end if
+      if (present(hit)) hit = found
+      if (found) return
       call build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error, &
          & progress)
       if (allocated(error) .or. len(path) == 0) return
@@ -221,11 +219,14 @@ contains
       v = [real(o%n_radial, dp), o%rel_tol, real(o%max_iter, dp), real(o%method, dp)]
    end function options_key
 
-   !> The cached table's parameters are the requested ones, field by field.
-   pure logical function same_params(a, b)
+   !> A cached table (parameters a, tolerance, delta_max) is the one requested (b, ...),
+   !> field by field: the file's name is only a hash.
+   pure logical function same_request(a, a_rel_tol, a_delta_max, b, b_rel_tol, b_delta_max)
       type(contact_params), intent(in) :: a, b
-      same_params = all(params_key(a) == params_key(b))
-   end function same_params
+      real(dp), intent(in) :: a_rel_tol, a_delta_max, b_rel_tol, b_delta_max
+      same_request = all(params_key(a) == params_key(b)) .and. a_rel_tol == b_rel_tol .and. &
+         & a_delta_max == b_delta_max
+   end function same_request
 
    !> The value of an environment variable, "" when unset.
    subroutine environment(name, value)

@@ -69,9 +69,10 @@ contains
       m = table%loading%cutoff + (delta_max - table%loading%cutoff)* &
          & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       m(n) = delta_max   ! exactly (the readers check it): the sum above may round off
-      if (table%loading%cutoff < 0.0_dp .and. delta_max > 0.0_dp) then
+      if (table%loading%cutoff < 0.0_dp .and. delta_max > params%sigma) then
          ! a node at 0, where the smooth sphere's Hertz part sets in (m_breakpoint): five
-         ! nodes up to it and nine above, so that stencils need not straddle it
+         ! nodes up to it and nine above, so that stencils need not straddle it (where the
+         ! table reaches a sigma into contact: below, the onset is within its last node)
          m = [table%loading%cutoff*[(real(j, dp), j = 4, 1, -1)]/4.0_dp, &
             & delta_max*[(real(j, dp), j = 0, 8)]/8.0_dp]
          m(1) = table%loading%cutoff
