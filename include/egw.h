@@ -10,8 +10,9 @@
  *     plane: > 0 overlap, < 0 separation. Forces and pressures are positive
  *     in compression.
  *   - Every int function returns EGW_OK (0) on success and a non-zero status
- *     otherwise; it never aborts. On failure, outputs are left unchanged and
- *     egw_last_error() returns a message naming the offending argument.
+ *     otherwise (egw_last_error alone returns a length); it never aborts. On
+ *     failure, outputs are left unchanged and egw_last_error() gives a message
+ *     naming the offending argument.
  *   - All functions are thread-safe: they keep no shared state (the last-error
  *     message is per thread), and any number of threads may write and read files at
  *     once (tested with 16 threads).
@@ -71,7 +72,17 @@ int egw_get_version(void);
 int egw_status_message(int status, char *buf, int buflen);
 
 /* Detailed message of the last failing egw call on this thread (empty if none),
- * e.g. "sigma = -1.0E-003: must be finite and >= 0". Same returns as above. */
+ * e.g. "sigma = -1.0E-003: must be finite and >= 0", copied into buf (buflen bytes).
+ * Returns the bytes the whole message needs, strlen(message) + 1 (>= 1), in every case
+ * that is not an error:
+ *   - buflen >= that: the whole message and its NUL are written;
+ *   - 0 < buflen < that (truncation): the first buflen - 1 characters and a NUL are
+ *     written; a return value > buflen says so: allocate that many bytes and call again;
+ *   - buflen == 0 (buf may be NULL): nothing is written (a size query), e.g.
+ *       int n = egw_last_error(NULL, 0); char *msg = malloc(n); egw_last_error(msg, n);
+ * Errors return a negative value and write nothing: -EGW_NULL_POINTER (buf NULL with
+ * buflen > 0), -EGW_INVALID_ARGUMENT (buflen < 0). This call never changes the message.
+ * (Unlike the other int functions it never returns EGW_OK: test > 0, or <= buflen.) */
 int egw_last_error(char *buf, int buflen);
 
 /* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54. */
@@ -263,7 +274,8 @@ enum { EGW_FORMAT_CSV = 0, EGW_FORMAT_BINARY = 1, EGW_FORMAT_LAMMPS = 2, EGW_FOR
 typedef struct {
   int    model;               /* EGW_MODEL_* of the parameters */
   int    n_nodes;             /* interpolation nodes */
-  double cutoff;              /* delta_c: force and stiffness are 0 below [length] */
+  double cutoff;              /* delta_c: the first node [length]; below it the model's
+                               * separated tail (rough; Hertz its closed form), not 0 */
   double delta_max;           /* last node [length]; above it the table extrapolates */
   double reference_force;     /* P_ref of the cut-off rule [force] */
   double rel_tol;             /* requested interpolation tolerance */
@@ -542,8 +554,18 @@ typedef struct {
   int    n_delta_max;  /* delta_max nodes (0 when reversible) */
   int    n_s;          /* nodes in s of every unloading curve (0 when reversible) */
   int    n_loading;    /* nodes of the loading table */
-  double cutoff;       /* delta_c: force 0 below [length] */
+  double cutoff;       /* delta_c [length]: the loading table's first node, where the loading
+                        * force is 1e-12 of reference_force (rough models; Hertz: rel_tol of
+                        * it). Not a zero-force edge: below it the loading force follows the
+                        * table's continuation (egw_table_eval: the model's separated tail;
+                        * Hertz its closed form), and a contact whose
+                        * history is at or below it unloads on that tail (reversible there);
+                        * the unloading curve of a turning point above it ends at it (force 0
+                        * below, for unloading and reloading only) */
   double delta_max;    /* last delta_max node [length] */
+  double reference_force; /* P_ref [force] of the loading table's cut-off rule: the loading
+                           * force at min(0, delta_max) for rough models, at delta_max for
+                           * Hertz (egw_table_info.reference_force of the loading curve) */
   double rel_tol;      /* requested tolerance, relative to the force at the turning point */
   double max_error;    /* largest mismatch found at the build's check solves */
   egw_params params;   /* the parameters the table was built for */

@@ -15,7 +15,7 @@ static int close_rel(double a, double b, double tol) {
 }
 static int last_error_names(const char *name) {
   char buf[256];
-  if (egw_last_error(buf, (int)sizeof buf) != EGW_OK) return 0;
+  if (egw_last_error(buf, (int)sizeof buf) < 1) return 0;
   return strstr(buf, name) != NULL;
 }
 
@@ -224,7 +224,25 @@ int egw_capi_test_hysteresis(void) {
              info.n_s >= 2 && info.delta_max == 4.0 && info.rel_tol == 1e-3 &&
              info.cutoff < -2.0 && info.params.psi == 2.0);
       HCHECK(info2.n_delta_max == info.n_delta_max && info2.n_s == info.n_s &&
-             info2.max_error == info.max_error && info2.cutoff == info.cutoff);
+             info2.max_error == info.max_error && info2.cutoff == info.cutoff &&
+             info2.reference_force == info.reference_force);
+      {
+        /* reference_force is P_ref of the loading table, its force at min(0, delta_max) =
+         * 0, a node: a new contact loaded to 0 reads it to rounding (1e-13 relative). The
+         * cut-off is where the loading force has fallen to 1e-12 of it (the first node;
+         * 1e-11 allows the cut-off search's bracket); below it the force is the model's
+         * tail, positive and smaller, not 0. */
+        double sn = -HUGE_VAL, f0 = -1.0, fc = -1.0, fb = -1.0;
+        HCHECK(egw_hysteresis_eval(h, 0.0, &sn, &f0, NULL) == EGW_OK);
+        HCHECK(info.reference_force > 0.0 &&
+               fabs(f0 - info.reference_force) <= 1e-13 * info.reference_force);
+        sn = -HUGE_VAL;
+        HCHECK(egw_hysteresis_eval(h, info.cutoff, &sn, &fc, NULL) == EGW_OK);
+        HCHECK(fc > 0.0 && fc <= 1e-11 * info.reference_force);
+        sn = -HUGE_VAL;
+        HCHECK(egw_hysteresis_eval(h, info.cutoff - 0.1, &sn, &fb, NULL) == EGW_OK);
+        HCHECK(fb > 0.0 && fb < fc);
+      }
       egw_hysteresis_free(&back);
     }
     HCHECK(egw_hysteresis_write(h, "build/capi_hyst.bin", EGW_FORMAT_BINARY) == EGW_OK);

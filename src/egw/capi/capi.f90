@@ -61,12 +61,13 @@ contains
       stat = copy_to_c(status_message(int(status)), buf, buflen)
    end function egw_status_message
 
-   !> C: egw_last_error: this thread's message of the last failing call.
-   function egw_last_error(buf, buflen) result(stat) bind(C, name="egw_last_error")
+   !> C: egw_last_error: this thread's message of the last failing call; returns the
+   !> bytes it needs whole (length + 1), or minus a status (copy_last_error).
+   function egw_last_error(buf, buflen) result(needed) bind(C, name="egw_last_error")
       type(c_ptr), value, intent(in) :: buf
       integer(c_int), value, intent(in) :: buflen
-      integer(c_int) :: stat
-      stat = copy_last_error(buf, buflen)
+      integer(c_int) :: needed
+      needed = copy_last_error(buf, buflen)
    end function egw_last_error
 
    !> C: egw_params_default: fill an egw_params with the defaults.

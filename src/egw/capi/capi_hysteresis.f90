@@ -23,7 +23,7 @@ module egw_capi_hysteresis
    !> C: egw_hysteresis_info (include/egw.h).
    type, bind(C) :: egw_hysteresis_info_c
       integer(c_int) :: model, reversible, n_delta_max, n_s, n_loading
-      real(c_double) :: cutoff, delta_max, rel_tol, max_error
+      real(c_double) :: cutoff, delta_max, reference_force, rel_tol, max_error
       type(egw_params_c) :: params
    end type egw_hysteresis_info_c
 
@@ -273,6 +273,7 @@ contains
       out%n_loading = int(size(h%loading%delta), c_int)
       out%cutoff = h%loading%cutoff
       out%delta_max = h%delta_max
+      out%reference_force = h%loading%reference_force
       out%rel_tol = h%rel_tol
       out%max_error = h%max_error
       out%params = from_params(h%params)
