@@ -351,8 +351,10 @@ int egw_tables_write_lammps(int n, const egw_table *tables, const char *path);
 
 /* Read an egw CSV or binary table (format recognised from the file's start). A
  * truncated, corrupted (checksum), wrong-version or inconsistent file, or one whose
- * numbers do not make a table (not finite; negative force, stiffness, energy or contact
- * radius; a force that decreases with the overlap; metadata out of range: doc/formats.md)
+ * numbers do not make a table, even under a valid checksum (not finite; negative force,
+ * stiffness, energy or contact radius; a force that decreases with the overlap; a
+ * stiffness or an energy inconsistent with the forces between nodes; metadata out of
+ * range: doc/formats.md section 1, "Checks on read")
  * gives EGW_BAD_FILE with a message saying what is wrong, and no table. A CSV file
  * without its checksum line (hand-edited) is read, with info.checksum_missing = 1.
  * EGW_IO_ERROR if it cannot be opened. *out receives a handle only on success. */
@@ -542,8 +544,10 @@ int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
 
 /* Read a hysteresis table written by egw_hysteresis_write (CSV or binary, recognised from
  * the file's start). *out receives a handle only for a file that passed every check
- * (checksum; finite values; loading force >= 0 and non-decreasing, stiffness >= 0;
- * increasing grids; ratios 1 at the turning point and within [0, 1]).
+ * (checksum; finite values; the loading curve every check of egw_table_read, stiffness
+ * and energy consistent with its forces included; increasing grids; gaps 0 at the
+ * turning point and within [0, 1], with slopes that keep each curve near that range:
+ * doc/formats.md section 6).
  * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),
  * EGW_NULL_POINTER. */
 int egw_hysteresis_read(const char *path, egw_hysteresis *out);

@@ -834,8 +834,11 @@ static int r_hysteresis_io(void) {
   st2 = egw_hysteresis_get_info(P(0, h), P(4, &info));
   out_untouched(st2, "info", &info, sizeof info);
   if (st2 == EGW_OK) {
-    double v[4] = {info.cutoff, info.delta_max, info.rel_tol, info.max_error};
-    out_doubles(st2, 0, "info", v, 4, sizeof v);
+    double v[5] = {info.cutoff, info.delta_max, info.reference_force, info.rel_tol,
+                   info.max_error};
+    out_doubles(st2, 0, "info", v, 5, sizeof v);
+    sane(st2, info.reference_force > 0.0 && info.cutoff < info.delta_max,
+         "info.reference_force > 0, cutoff < delta_max", info.reference_force);
   }
   st = egw_hysteresis_write(P(0, h), S(1, out_path("h.csv")), I(2, EGW_FORMAT_CSV));
   sentinel(&back, sizeof back);
