@@ -216,8 +216,10 @@ int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, do
  * psi = 0; exactly for Hertz and sigma = 0). Units: any consistent set (SI: kg, m/s).
  * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (mass or velocity not finite and
  * > 0, bad options; rough spheres: m* v^2/2 outside [1e-150, 3.4e37] E sqrt(R) sigma^2.5,
- * where the deepest overlap leaves the solver's range, doc/parameters.md section 5), EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed); e is
- * left untouched on any failure. */
+ * where the deepest overlap leaves the solver's range, doc/parameters.md section 5),
+ * EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed: "restitution: rel_tol =
+ * <o->rel_tol> (the caller's) not reached: ..." with the estimate the solve reached);
+ * e is left untouched on any failure. */
 int egw_restitution(const egw_params *p, const egw_options *o, double mass, double velocity,
                     double *e);
 
@@ -294,7 +296,8 @@ typedef struct {
  * the force there still exceeds rel_tol * P_ref. *out receives a handle only on success.
  * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (range, rel_tol, smooth spheres
  * with delta_max <= 0), EGW_NOT_CONVERGED (a solve failed, or the node limit of 20000
- * was reached), EGW_NULL_POINTER. */
+ * was reached; the message quotes the caller's rel_tol, the solves' and what was
+ * reached), EGW_NULL_POINTER. */
 int egw_table_build(const egw_params *p, const egw_options *o, double delta_min,
                     double delta_max, double rel_tol, egw_table *out);
 
@@ -470,9 +473,16 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 
 /* Build for p (EP-GW for hysteresis; other models give reversible curves) over overlaps
  * [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL (defaults).
- * *out receives a handle only on success. Statuses: EGW_INVALID_PARAMETER,
- * EGW_INVALID_ARGUMENT (range, rel_tol), EGW_NOT_CONVERGED (a solve failed or a node
- * limit was reached), EGW_OUT_OF_MEMORY, EGW_NULL_POINTER. */
+ * *out receives a handle only on success. The curves are solved at min(o->rel_tol,
+ * rel_tol/10); before the build, a probe of 18 such solves (loading and unloading from
+ * delta_max and delta_max/2; milliseconds at the usual tolerances) fails at once where
+ * they cannot reach it, rather than after minutes of building (a probe that passes
+ * promises nothing: the build may still meet a failing solve). Every EGW_NOT_CONVERGED
+ * message starts "hysteresis table: rel_tol = <the caller's> ..." and says what the
+ * solves' tolerance was and what the failing solve reached (its error estimate, and
+ * the rel_tol it could meet). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT
+ * (range, rel_tol), EGW_NOT_CONVERGED (a solve failed or a node limit was reached),
+ * EGW_OUT_OF_MEMORY, EGW_NULL_POINTER. */
 int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta_min,
                          double delta_max, double rel_tol, egw_hysteresis *out);
 
