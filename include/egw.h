@@ -658,9 +658,10 @@ int egw_scene_validate(const egw_scene *s);
 
 /* Read the namelist group &scene of the file at path (NUL-terminated; variables in
  * doc/scenes.md): the values it gives replace those of *s, the result is validated;
- * *s is unchanged on failure. EGW_IO_ERROR (cannot open), EGW_BAD_FILE (no &scene,
- * unknown variable, unreadable value), EGW_INVALID_PARAMETER (a bad value, named),
- * EGW_NULL_POINTER. */
+ * *s is unchanged on failure. The file is read whole and parsed in memory: any number
+ * of threads may read the same file at once. EGW_IO_ERROR (cannot open or read),
+ * EGW_BAD_FILE (no &scene, unknown variable, unreadable value, control bytes of a
+ * binary file), EGW_INVALID_PARAMETER (a bad value, named), EGW_NULL_POINTER. */
 int egw_scene_read(const char *path, egw_scene *s);
 
 /* Choose the cheapest model meeting s->tol (full solves for the Hertz check only, in

@@ -81,7 +81,8 @@ int egw_capi_test_last_error(void) {
   CHECK(egw_last_error(NULL, 10) == -EGW_NULL_POINTER);
   memset(small, 'x', sizeof small);
   CHECK(egw_last_error(small, -1) == -EGW_INVALID_ARGUMENT && small[0] == 'x');
-  CHECK(egw_last_error(big, (int)sizeof big) == needed && strncmp(big, expect, strlen(expect)) == 0);
+  CHECK(egw_last_error(big, (int)sizeof big) == needed &&
+        strncmp(big, expect, strlen(expect)) == 0);
   /* a successful call does not clear it (the message is of the last FAILING call) */
   CHECK(egw_get_version() == EGW_VERSION && egw_last_error(NULL, 0) == needed);
   return failures;

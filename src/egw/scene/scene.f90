@@ -23,6 +23,14 @@ module egw_scene
    !> Most particle types (and materials) a scene lists.
    integer, parameter, public :: max_types = 8
 
+   !> The ASCII control characters a text file does not hold (all but tab 9, LF 10, form
+   !> feed 12 and CR 13; DEL 127).
+   character(len=*), parameter :: control_bytes = achar(0)//achar(1)//achar(2)// &
+      & achar(3)//achar(4)//achar(5)//achar(6)//achar(7)//achar(8)//achar(11)//achar(14)// &
+      & achar(15)//achar(16)//achar(17)//achar(18)//achar(19)//achar(20)//achar(21)// &
+      & achar(22)//achar(23)//achar(24)//achar(25)//achar(26)//achar(27)//achar(28)// &
+      & achar(29)//achar(30)//achar(31)//achar(127)
+
    integer, parameter, public :: choice_hertz = 0      !< Hertz closed form, no table
    integer, parameter, public :: choice_table = 1      !< one 1-D force table
    integer, parameter, public :: choice_universal = 2  !< the universal 2-D table
@@ -268,8 +276,18 @@ contains
       !> allocated on failure, naming the line
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: bytes, lines(:)
+      integer :: at
       call read_file(path, bytes, error)
       if (allocated(error)) return
+      ! a namelist is text: control bytes (but tab, CR, LF, form feed) mean another kind
+      ! of file, which gfortran's namelist parser of internal files would partly accept
+      at = scan(bytes, control_bytes)
+      if (at > 0) then
+         call fatal_error(error, egw_bad_file, "path = "//path//": not a text file (byte "// &
+            & int_str(at)//" is the control character "//int_str(iachar(bytes(at:at)))// &
+            & "): not a namelist &scene")
+         return
+      end if
       call split_lines(bytes, lines)
       call read_scene_lines(lines, input, error)
       if (allocated(error)) error%message = "path = "//path//": "//error%message
