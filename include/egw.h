@@ -261,10 +261,18 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * Force tables for DEM and FE codes.
  * A table is built from full solves with nodes placed adaptively until the cubic
  * Hermite interpolant (slope = the solver's stiffness; ln P in the separated tail)
- * agrees with solves between nodes to rel_tol. Below the cut-off delta_c, where the
- * force has fallen to rel_tol * P_ref, force and stiffness are exactly 0 (jump <=
- * rel_tol * P_ref). P_ref = P(min(0, delta_max)) for rough models, P(delta_max) for
- * Hertz. Evaluation allocates nothing and is thread-safe. File formats: doc/formats.md.
+ * agrees with solves between nodes to rel_tol. Rough models: the nodes reach down to the
+ * cut-off delta_c where the force has fallen to 1e-12 * P_ref (every larger force is
+ * interpolated to rel_tol), and below it the force follows the model's separated tail
+ * (the rigid-sphere law, C1, -> 0 as delta -> -inf; doc/theory.md 9). Hertz: the cut-off
+ * is where P = rel_tol * P_ref, and below it Hertz itself. Above delta_max every table
+ * follows the deep-overlap asymptote P_n r^(3/2), r = 1 + (delta - delta_max) K_n/(1.5
+ * P_n) (the Hertz form with the rough layer's offset, C1, increasing; within 1 % of
+ * E-GW and EP-GW solves up to 0.2 R). P_ref = P(min(0, delta_max)) for rough models,
+ * P(delta_max) for Hertz. Evaluation allocates nothing and is thread-safe. File formats:
+ * doc/formats.md. The builds go through an on-disk cache (EGW_CACHE_DIR, else
+ * $XDG_CACHE_HOME/egw or $HOME/.cache/egw; EGW_CACHE_DIR=off turns it off): a build done
+ * before with the same arguments is read back (checksummed, verified, rebuilt if corrupt). 
  * ------------------------------------------------------------------------ */
 
 typedef struct egw_table_s *egw_table;         /* opaque: one parameter set */
@@ -276,8 +284,7 @@ enum { EGW_FORMAT_CSV = 0, EGW_FORMAT_BINARY = 1, EGW_FORMAT_LAMMPS = 2, EGW_FOR
 typedef struct {
   int    model;               /* EGW_MODEL_* of the parameters */
   int    n_nodes;             /* interpolation nodes */
-  double cutoff;              /* delta_c: the first node [length]; below it the model's
-                               * separated tail (rough; Hertz its closed form), not 0 */
+  double cutoff;              /* delta_c: first node; the tail law below [length] */
   double delta_max;           /* last node [length]; above it the table extrapolates */
   double reference_force;     /* P_ref of the cut-off rule [force] */
   double rel_tol;             /* requested interpolation tolerance */
@@ -293,7 +300,8 @@ typedef struct {
  * <= rel_tol (1e-10 <= rel_tol <= 0.1). Points are solved in parallel (OpenMP; o's
  * n_threads is set to 1 inside, its rel_tol tightened to min(o->rel_tol, rel_tol/10));
  * o may be NULL (defaults). The table starts at the cut-off delta_c, below delta_min if
- * the force there still exceeds rel_tol * P_ref. *out receives a handle only on success.
+ * the force there still exceeds 1e-12 * P_ref (rel_tol * P_ref for Hertz). *out receives
+ * a handle only on success.
  * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (range, rel_tol, smooth spheres
  * with delta_max <= 0), EGW_NOT_CONVERGED (a solve failed, or the node limit of 20000
  * was reached; the message quotes the caller's rel_tol, the solves' and what was
@@ -301,12 +309,12 @@ typedef struct {
 int egw_table_build(const egw_params *p, const egw_options *o, double delta_min,
                     double delta_max, double rel_tol, egw_table *out);
 
-/* Force [force] and stiffness dP/ddelta [force/length] at overlap delta. Exactly 0 below
- * the cut-off. Above delta_max the force continues linearly with the stiffness at
- * delta_max (C1, below a convex force law) and EGW_OUT_OF_RANGE is returned WITH the
- * outputs written (the one exception to "outputs unchanged on failure"). NULL outputs
- * are skipped. EGW_INVALID_ARGUMENT for NaN delta, and (nothing written) for delta = +inf
- * or a continuation beyond the doubles; EGW_NULL_POINTER for t. */
+/* Force [force] and stiffness dP/ddelta [force/length] at overlap delta. Below the
+ * cut-off the tail law, above delta_max the deep-overlap asymptote (see above), and
+ * EGW_OUT_OF_RANGE is returned above delta_max WITH the outputs written (the one
+ * exception to "outputs unchanged on failure"). NULL outputs are skipped.
+ * EGW_INVALID_ARGUMENT for NaN delta, and (nothing written) for delta = +inf or a
+ * continuation beyond the doubles; EGW_NULL_POINTER for t. */
 int egw_table_eval(egw_table t, double delta, double *force, double *stiffness);
 
 /* egw_table_eval at the n overlaps delta[0..n-1] in one call: force[i], stiffness[i]
@@ -421,10 +429,11 @@ int egw_universal_build(const egw_params *p, const egw_options *o, double mu_min
 
 /* Force and stiffness of the contact p (R, E, sigma > 0, mu; model, psi, K, rho_p must
  * equal the table's, else EGW_INVALID_ARGUMENT) at overlap delta: P = E sqrt(R)
- * sigma^1.5 p(delta/sigma, mu). Exactly 0 below the cut-off. mu outside the table:
- * EGW_OUT_OF_RANGE, outputs unchanged. delta above x_max*sigma: EGW_OUT_OF_RANGE with
- * extrapolated outputs written (force continued linearly with the stiffness at
- * x_max*sigma, as a 1-D table). EGW_INVALID_PARAMETER for sigma, R or E <= 0. */
+ * sigma^1.5 p(delta/sigma, mu); below the cut-off the tail law of the combined first
+ * node. mu outside the table: EGW_OUT_OF_RANGE, outputs unchanged. delta above
+ * x_max*sigma: EGW_OUT_OF_RANGE with extrapolated outputs written (the deep-overlap
+ * asymptote of the combined last node, as a 1-D table). EGW_INVALID_PARAMETER for
+ * sigma, R or E <= 0. */
 int egw_universal_eval(egw_universal u, const egw_params *p, double delta, double *force,
                        double *stiffness);
 
@@ -432,8 +441,8 @@ int egw_universal_eval(egw_universal u, const egw_params *p, double delta, doubl
  * u's) cut out of u: egw_table_eval on it gives egw_universal_eval's force [force] and
  * stiffness [force/length] at every delta [length] to rounding (relative ~1e-14: the
  * 4 slices' nodal data, ln p, d ln p/dx in the tail and p, dp/dx in the contact range,
- * are combined once, as the evaluation combines their cubics), including the zero below
- * the cut-off and the linear continuation above x_max*sigma, at the cost of a 1-D table
+ * are combined once, as the evaluation combines their cubics), including the tail below
+ * the cut-off and the asymptote above x_max*sigma, at the cost of a 1-D table
  * (no log, no mu interpolation, no exp in the contact range). info:
  * rel_tol and max_force_error are u's; a* = sqrt(R sigma) a*(x) with the same weights.
  * *out receives a handle only on success; free it with egw_table_free. Statuses:
@@ -474,13 +483,13 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 /* Build for p (EP-GW for hysteresis; other models give reversible curves) over overlaps
  * [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL (defaults).
  * *out receives a handle only on success. The curves are solved at min(o->rel_tol,
- * rel_tol/10); before the build, a probe of 18 such solves (loading and unloading from
- * delta_max and delta_max/2; milliseconds at the usual tolerances) fails at once where
- * they cannot reach it, rather than after minutes of building (a probe that passes
- * promises nothing: the build may still meet a failing solve). Every EGW_NOT_CONVERGED
- * message starts "hysteresis table: rel_tol = <the caller's> ..." and says what the
- * solves' tolerance was and what the failing solve reached (its error estimate, and
- * the rel_tol it could meet). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT
+ * rel_tol/10); before a build (not on a cache hit), a probe of 18 such solves (loading
+ * and unloading from delta_max and delta_max/2; milliseconds at the usual tolerances)
+ * fails at once where they cannot reach it, rather than after minutes of building (a
+ * probe that passes promises nothing: the build may still meet a failing solve). Every
+ * EGW_NOT_CONVERGED message starts "hysteresis table: rel_tol = <the caller's> ..." and
+ * says what the solves' tolerance was and what the failing solve reached (its error
+ * estimate, and the rel_tol it could meet). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT
  * (range, rel_tol), EGW_NOT_CONVERGED (a solve failed or a node limit was reached),
  * EGW_OUT_OF_MEMORY, EGW_NULL_POINTER. */
 int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta_min,
@@ -489,7 +498,9 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
 /* Force [force] and stiffness dP/ddelta [force/length] at overlap delta for the contact
  * whose history is *delta_max_state, updated to max(*delta_max_state, delta). force or
  * stiffness may be NULL. A state above the table's delta_max: EGW_OUT_OF_RANGE with the
- * values written (the last unloading curve, the loading table extrapolated linearly).
+ * values written (the last unloading curve, the loading table's deep-overlap asymptote).
+ * Below the loading table's cut-off: its tail law (a turning point at or below it unloads
+ * on that tail too).
  * EGW_INVALID_ARGUMENT for NaN delta or a NaN state (nothing changed);
  * EGW_NULL_POINTER for h or delta_max_state. */
 int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,

@@ -40,6 +40,8 @@ module egw
       & default_scene_input, read_scene_file, apply_scene_overrides, validate_scene_input, &
       & resolve_scene, choose_model, build_scene_tables
    use egw_io, only: write_file, open_temporary, commit_temporary, discard_temporary
+   use egw_cache, only: cache_directory, build_table_cached, build_universal_cached, &
+      & build_hysteresis_cached
    implicit none
    public
 end module egw

@@ -22,6 +22,7 @@ module egw_all
    use egw_table_format
    use egw_scene
    use egw_io
+   use egw_cache
    implicit none
    public
 end module egw_all

@@ -27,6 +27,7 @@ program tester
    use test_unload_sphere, only: collect_unload_sphere
    use test_input, only: collect_input
    use test_facade, only: collect_facade
+   use test_cache, only: collect_cache
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -56,7 +57,8 @@ program tester
       & new_testsuite("unload_sphere", collect_unload_sphere), &
       & new_testsuite("hysteresis", collect_hysteresis), &
       & new_testsuite("input", collect_input), &
-      & new_testsuite("facade", collect_facade) &
+      & new_testsuite("facade", collect_facade), &
+      & new_testsuite("cache", collect_cache) &
       & ]
 
    stat = 0

@@ -10,7 +10,11 @@ VENV=${VENV:-.venv}
 FPM=${FPM:-$VENV/bin/fpm}
 FPM_FLAGS=${FPM_FLAGS:---profile release}
 log=$(mktemp)
-trap 'rm -f "$log" "$log.rc"' EXIT
+# the builds' on-disk cache (egw_cache) in a fresh directory of this run: no suite reads
+# an entry of an earlier run or writes under $HOME
+EGW_CACHE_DIR=$(mktemp -d)
+export EGW_CACHE_DIR
+trap 'rm -f "$log" "$log.rc"; rm -rf "$EGW_CACHE_DIR"' EXIT
 passed=0
 failed=0
 status=0
@@ -33,6 +37,12 @@ suite() {
   fi
 }
 
+# fpm 0.12 relinks a program only when its own sources change, not when the library
+# it links did (built by an earlier fpm call): drop the linked programs so that they are
+# linked again against the current library (seconds)
+find build -type f -perm -u+x \( -path 'build/gfortran_*/app/*' -o \
+  -path 'build/gfortran_*/test/*' -o -path 'build/gfortran_*/example/*' \) \
+  -exec rm -f {} + 2>/dev/null
 # the programs too: the cli suite runs the egw-table built beside the tester
 # shellcheck disable=SC2086
 $FPM build $FPM_FLAGS >/dev/null 2>&1 || $FPM build $FPM_FLAGS || status=1

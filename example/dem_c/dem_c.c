@@ -105,7 +105,7 @@ int main(void) {
   {
     egw_hysteresis h = NULL;
     egw_hysteresis_info hinfo;
-    double d, d0, d_old, v = V0, f, state[EGW_HYSTERESIS_STATE_SIZE], e_ref;
+    double d, d0, d_old, v = V0, f, state[EGW_HYSTERESIS_STATE_SIZE], e_ref, t_ep, dt_ep;
     p.model = EGW_MODEL_EPGW;
     p.sigma = 0.5e-6;
     p.psi = 1;
@@ -116,15 +116,22 @@ int main(void) {
       return 1;
     }
     egw_hysteresis_get_info(h, &hinfo);
-    d0 = d = hinfo.cutoff; /* no force below the cut-off: as from far apart */
+    /* the step for this impact: Verlet's error in e below 1e-5 (doc/theory.md 10) */
+    if (egw_time_step(&p, NULL, m, V0, 1e-5, &t_ep, &dt_ep) != EGW_OK) {
+      printf("egw_time_step failed\n");
+      return 1;
+    }
+    printf("EP-GW contact duration [s]: %.6e, time step [s]: %.6e\n", t_ep, dt_ep);
+    /* below the cut-off the force is under 1e-12 of the reference: as from far apart */
+    d0 = d = hinfo.cutoff;
     egw_hysteresis_state_init(state); /* a new contact */
     egw_hysteresis_eval_state(h, d, state, &f, NULL);
     do { /* velocity Verlet until the spheres are back where they started */
       d_old = d;
-      v -= dt / 2 * f / m;
-      d += dt * v;
+      v -= dt_ep / 2 * f / m;
+      d += dt_ep * v;
       egw_hysteresis_eval_state(h, d, state, &f, NULL);
-      v -= dt / 2 * f / m;
+      v -= dt_ep / 2 * f / m;
     } while (!(d < d0 && d < d_old));
     egw_hysteresis_free(&h);
     e = -v / V0;

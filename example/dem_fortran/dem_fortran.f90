@@ -20,7 +20,7 @@ program dem_fortran
    use egw_table, only: force_table, build_table, table_eval, table_energy
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval_state, &
       & hysteresis_state_init, hysteresis_state_size
-   use egw_impact, only: restitution
+   use egw_impact, only: restitution, time_step
    use egw_params, only: model_epgw
    implicit none
    real(dp), parameter :: r1 = 1.0e-3_dp, e_young = 70.0e9_dp, nu = 0.22_dp, rho = 2500
@@ -138,19 +138,27 @@ contains
       restitution = -v/v0
    end subroutine collide
 
-   !> Velocity Verlet on a hysteresis table from the table's cut-off (no force below it: the
-   !> approach from far apart changes nothing) until the spheres are back there: the
-   !> history (largest overlap) starts at -huge (never loaded).
+   !> Velocity Verlet on a hysteresis table from the table's cut-off (the tail below it holds
+   !> forces under 1e-12 of the reference: the approach from far apart changes nothing)
+   !> until the spheres are back there, with the step of time_step for an error in e below
+   !> 1e-5 (doc/theory.md 10): the history (largest overlap) starts at -huge (never loaded).
    subroutine impact(hyst, d_max, restitution)
       type(hysteresis_table), intent(in) :: hyst
       real(dp), intent(out) :: d_max, restitution
-      real(dp) :: d, d0, d_old, v, f, k, dt, state(hysteresis_state_size)
+      real(dp) :: d, d0, d_old, v, f, k, dt, duration, state(hysteresis_state_size)
+      type(egw_error), allocatable :: err
       integer :: stat
+      call time_step(hyst%params, solver_options(), m_eff, v0, 1.0e-5_dp, duration, dt, err)
+      if (allocated(err)) then
+         write (*, '(a)') "time_step failed: "//err%message
+         stop 1
+      end if
+      write (*, '(a,es13.6,a,es13.6)') "EP-GW contact duration [s]: ", duration, &
+         & ", time step [s]: ", dt
       call hysteresis_state_init(state)   ! a new contact
       d0 = hyst%loading%cutoff
       d = d0
       v = v0
-      dt = (m_eff/(2*p%modulus*sqrt(p%radius*delta_h_guess())))**0.5_dp*pi/5000
       call hysteresis_eval_state(hyst, d, state, f, k, stat)
       do
          d_old = d

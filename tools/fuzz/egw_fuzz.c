@@ -762,7 +762,7 @@ static int r_hysteresis_eval_state(void) {
   int st;
   if (egw_hysteresis_build(&p, &o, -1e-3, 4e-3, 5e-2, &h) != EGW_OK) _exit(3);
   egw_hysteresis_state_init(state);
-  state[0] = 3e-3;
+  egw_hysteresis_eval_state(h, 3e-3, state, &v[0], &v[1]); /* loaded to 3e-3, ... */
   egw_hysteresis_eval_state(h, 2e-3, state, &v[0], &v[1]); /* a valid cache ... */
   for (int i = 1; i < EGW_HYSTERESIS_STATE_SIZE; i++)      /* ... or garbage */
     state[i] = D(3, state[i]);
@@ -779,6 +779,11 @@ static int r_hysteresis_eval_state(void) {
   if (st == EGW_OK && !isfinite(state[0])) {
     cur->silent = 1;
     note(" not finite", "state[0]", state[0]);
+  }
+  if (st == EGW_OK && cur->slot == 3) { /* garbage caches: a new contact, never a wrong force */
+    double plain = -HUGE_VAL, f;
+    egw_hysteresis_eval(h, 2e-3, &plain, &f, NULL);
+    sane(st, v[0] == f, "a garbage state not read as a new contact", v[0]);
   }
   egw_hysteresis_state_init(P(4, state));
   egw_hysteresis_free(&h);

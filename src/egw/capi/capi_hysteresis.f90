@@ -10,11 +10,11 @@ module egw_capi_hysteresis
       & int_str, tolerance_context
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
-   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
+   use egw_cache, only: build_hysteresis_cached
+   use egw_hysteresis, only: hysteresis_table, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
-   use egw_tolerance_probe, only: probe_hysteresis_tolerance
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, check_count, &
       & read_contact, put, put_handle_settled, take_handle, double_array, from_params, &
       & egw_params_c, c_path
@@ -45,15 +45,9 @@ contains
       stat = require(out, "out")
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
       if (stat /= egw_ok) return
-      ! an unreachable rel_tol fails in seconds, not after the build's minutes
-      call probe_hysteresis_tolerance(params, options, delta_max, rel_tol, error)
-      if (allocated(error)) then
-         stat = settle(error)
-         return
-      end if
       stat = new_table(h)
       if (stat /= egw_ok) return
-      call build_hysteresis(params, options, delta_min, delta_max, rel_tol, h, error)
+      call build_hysteresis_cached(params, options, delta_min, delta_max, rel_tol, h, error)
       ! in the caller's terms (its curves are solved at a tenth of rel_tol)
       if (allocated(error)) call tolerance_context(error, "hysteresis table", rel_tol, &
          & min(options%rel_tol, 0.1_dp*rel_tol))

@@ -11,9 +11,10 @@ module egw_capi_table
       & egw_out_of_memory, format_real, int_str, tolerance_context
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
-   use egw_table, only: force_table, build_table, table_eval, table_covers, table_energy, &
+   use egw_cache, only: build_table_cached, build_universal_cached
+   use egw_table, only: force_table, table_eval, table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_is_ready
-   use egw_table_universal, only: universal_table, build_universal, universal_eval, &
+   use egw_table_universal, only: universal_table, universal_eval, &
       & universal_slice
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
       & write_calculix_flat, write_lammps, write_calculix_sphere
@@ -51,7 +52,7 @@ contains
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
       if (stat /= egw_ok) return
       allocate (t)
-      call build_table(params, options, delta_min, delta_max, rel_tol, t, error)
+      call build_table_cached(params, options, delta_min, delta_max, rel_tol, t, error)
       stat = put_handle_settled(out, c_loc(t), error)
       if (stat /= egw_ok) deallocate (t)
    end function egw_table_build
@@ -310,7 +311,7 @@ contains
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
       if (stat /= egw_ok) return
       allocate (u)
-      call build_universal(params%model, params%psi, params%hardness_coeff, &
+      call build_universal_cached(params%model, params%psi, params%hardness_coeff, &
          & params%plastic_ratio, options, mu_min, mu_max, x_min, x_max, rel_tol, u, error)
       ! in the caller's terms (its slices are solved at a tenth of rel_tol)
       if (allocated(error)) call tolerance_context(error, "universal table", rel_tol, &

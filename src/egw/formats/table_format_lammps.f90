@@ -71,7 +71,7 @@ contains
                & "< table inner cutoff'")
             if (reach > t%delta_max) call out%add("# delta in ("// &
                & fmt(t%delta_max)//", "//fmt(reach)//"]: beyond the table's delta_max, "// &
-               & "force continued linearly with the end stiffness")
+               & "the deep-overlap asymptote of egw's tables (doc/theory.md 9)")
             if (t%params%model == model_epgw .and. t%params%psi > 0.0_dp) call out%add(&
                & "# EP-GW: loading curve only (pair_style table has no history: no "// &
                & "unloading hysteresis, no plastic dissipation)")

@@ -35,7 +35,8 @@ module egw_hysteresis
    private
 
    public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_eval_state, &
-      & hysteresis_state_init, hysteresis_energy, hysteresis_prepare
+      & hysteresis_state_init, hysteresis_energy, hysteresis_prepare, m_breakpoint, &
+      & stencil_first, m_coordinate
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
@@ -95,6 +96,8 @@ module egw_hysteresis
       !> an integer in [1, 2**52) hashed from the stored data: a state's cached turning
       !> point is used only by a table with the same data (hysteresis_eval_state)
       real(dp) :: tag = 0.0_dp
+      !> index of the delta_max node at 0 where stencils stop (m_breakpoint; 0: none)
+      integer :: m_break = 0
    end type hysteresis_table
 
    interface
@@ -408,8 +411,8 @@ contains
       call table_eval(table%loading, m, f_m, k_m)
       n_m = size(table%m)
       j = locate(table%m_lookup, table%m, min(m, table%delta_max))
-      first = min(max(j - 1, 1), n_m - 3)
-      d = m - table%m(first:first + 3)
+      first = stencil_first(j, n_m, table%m_break)
+      d = m_coordinate(m, table%m_break) - m_coordinate(table%m(first:first + 3), table%m_break)
       w(1) = d(2)*d(3)*d(4)*table%lagrange(1, j)
       w(2) = d(1)*d(3)*d(4)*table%lagrange(2, j)
       w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
@@ -513,12 +516,14 @@ contains
             & table%s(i))*(table%coef(1, :, i) + table%coef(2, :, i)/2 + &
             & table%coef(3, :, i)/3 + table%coef(4, :, i)/4)
       end do
+      table%m_break = m_breakpoint(table%m)
       do j = 1, n_m - 1
-         first = min(max(j - 1, 1), n_m - 3)
+         first = stencil_first(j, n_m, table%m_break)
          do k = 1, 4
             h = 1.0_dp
             do l = 1, 4
-               if (l /= k) h = h*(table%m(first + k - 1) - table%m(first + l - 1))
+               if (l /= k) h = h*(m_coordinate(table%m(first + k - 1), table%m_break) - &
+                  & m_coordinate(table%m(first + l - 1), table%m_break))
             end do
             table%lagrange(k, j) = 1.0_dp/h
          end do
@@ -629,6 +634,44 @@ contains
          lookup%bucket(b) = i
       end do
    end subroutine make_lookup
+
+   !> The node of the delta_max grid m at exactly 0, where the smooth sphere of the
+   !> extended models first touches (its Hertz part grows as m^(3/2) from there: the curves
+   !> are not smooth across it), if there are 4 nodes on each side (it included); else 0.
+   pure integer function m_breakpoint(m) result(k)
+      real(dp), intent(in) :: m(:)
+      integer :: j
+      k = 0
+      do j = 4, size(m) - 3
+         if (m(j) == 0.0_dp) k = j
+      end do
+   end function m_breakpoint
+
+   !> The variable in which the curves are interpolated across delta_max: m itself, and
+   !> with a breakpoint at 0 (k_b > 0) sqrt(m) above it, in which the curves just above it
+   !> are smooth (the contact radius grows as sqrt(m)); no stencil mixes the two sides.
+   elemental real(dp) function m_coordinate(m, k_b) result(x)
+      real(dp), intent(in) :: m
+      integer, intent(in) :: k_b
+      x = m
+      if (k_b > 0 .and. m > 0.0_dp) x = sqrt(m)
+   end function m_coordinate
+
+   !> The first of the four delta_max nodes of the Lagrange stencil of interval j (m_j <=
+   !> m < m_{j+1}) of n_m nodes: centred, clamped at the grid's ends and, with a breakpoint
+   !> node k_b (m_breakpoint), on interval j's side of it (the cubic does not straddle the
+   !> onset of the Hertz part).
+   pure integer function stencil_first(j, n_m, k_b) result(first)
+      integer, intent(in) :: j, n_m, k_b
+      first = min(max(j - 1, 1), n_m - 3)
+      if (k_b > 0) then
+         if (j < k_b) then
+            first = min(first, k_b - 3)
+         else
+            first = max(first, k_b)
+         end if
+      end if
+   end function stencil_first
 
    !> i with x(i) <= v < x(i+1), clamped to [1, n-1]: the bucket's interval, then a short
    !> forward scan (at most one step where the buckets are as fine as the grid).

@@ -69,6 +69,15 @@ contains
       m = table%loading%cutoff + (delta_max - table%loading%cutoff)* &
          & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       m(n) = delta_max   ! exactly (the readers check it): the sum above may round off
+      if (table%loading%cutoff < 0.0_dp .and. delta_max > 0.0_dp) then
+         ! a node at 0, where the smooth sphere's Hertz part sets in (m_breakpoint): five
+         ! nodes up to it and nine above, so that stencils need not straddle it
+         m = [table%loading%cutoff*[(real(j, dp), j = 4, 1, -1)]/4.0_dp, &
+            & delta_max*[(real(j, dp), j = 0, 8)]/8.0_dp]
+         m(1) = table%loading%cutoff
+         m(size(m)) = delta_max
+         n = size(m)
+      end if
       allocate (curves(n))
       if (present(progress)) call progress(0, 2*n - 1)
       ! the s range: twice the largest (m - delta_u)/L of the first nodes, so that every
@@ -174,14 +183,16 @@ contains
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:), mid
       integer, intent(in) :: j
-      real(dp) :: x, w(4), r, dr, v, s, length
-      integer :: first, k, l, i
-      first = min(max(j - 1, 1), size(m) - 3)
-      x = 0.5_dp*(m(j) + m(j + 1))
+      real(dp) :: x, w(4), r, dr, v, s, length, xm(4)
+      integer :: first, k, l, i, k_b
+      k_b = m_breakpoint(m)
+      first = stencil_first(j, size(m), k_b)
+      x = m_coordinate(0.5_dp*(m(j) + m(j + 1)), k_b)
+      xm = m_coordinate(m(first:first + 3), k_b)
       do k = 1, 4
          w(k) = 1.0_dp
          do l = 1, 4
-            if (l /= k) w(k) = w(k)*(x - m(first + l - 1))/(m(first + k - 1) - m(first + l - 1))
+            if (l /= k) w(k) = w(k)*(x - xm(l))/(xm(k) - xm(l))
          end do
       end do
       ! the table's s of the midpoint curve's delta: with the interpolated L(m)

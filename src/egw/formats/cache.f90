@@ -1,0 +1,267 @@
+!> The on-disk cache of table builds: a build that was done once (same parameters, range,
+!> tolerance and solver options, same egw) is read back instead of solved again, so that
+!> a DEM or LAMMPS run that builds its tables at start-up pays for them once per machine.
+!> Entries are the tables' own checksummed binary files, written atomically (egw_io) under
+!> a name hashed from everything the build depends on; one that is missing, corrupt, or
+!> does not match the request field by field is ignored and rebuilt. The cache directory
+!> is EGW_CACHE_DIR, else $XDG_CACHE_HOME/egw, else $HOME/.cache/egw; EGW_CACHE_DIR=off
+!> turns it off. A cache that cannot be written costs nothing but the rebuild.
+module egw_cache
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+   use, intrinsic :: iso_fortran_env, only: int64
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error
+   use egw_version, only: egw_version_number
+   use egw_params, only: contact_params
+   use egw_rough_sphere, only: solver_options
+   use egw_table, only: force_table, build_table, table_progress
+   use egw_table_universal, only: universal_table, build_universal
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis
+   use egw_tolerance_probe, only: probe_hysteresis_tolerance
+   use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
+      & format_binary
+   use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
+   implicit none
+   private
+
+   public :: cache_directory, build_table_cached, build_universal_cached, &
+      & build_hysteresis_cached
+
+   !> Bumped whenever a build's algorithm changes what it produces, so that entries of an
+   !> earlier build (same parameters) are not taken for the new one.
+   integer, parameter, public :: cache_revision = 2
+
+   interface
+      !> mkdir(2) of the C library (0777 before the umask); -1 with errno EEXIST if it exists.
+      function c_mkdir(path, mode) result(stat) bind(C, name="mkdir")
+         import :: c_char, c_int
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: mode
+         integer(c_int) :: stat
+      end function c_mkdir
+   end interface
+
+contains
+
+   !> The cache directory (created if missing): EGW_CACHE_DIR, else $XDG_CACHE_HOME/egw,
+   !> else $HOME/.cache/egw. dir = "" when the cache is off (EGW_CACHE_DIR=off) or no
+   !> directory can be had.
+   subroutine cache_directory(dir)
+      character(len=:), allocatable, intent(out) :: dir   !< the directory, or ""
+      character(len=:), allocatable :: base
+      call environment("EGW_CACHE_DIR", dir)
+      if (dir == "off") then
+         dir = ""
+         return
+      end if
+      if (len(dir) == 0) then
+         call environment("XDG_CACHE_HOME", base)
+         if (len(base) == 0) then
+            call environment("HOME", base)
+            if (len(base) > 0) base = base//"/.cache"
+         end if
+         if (len(base) == 0) return
+         dir = base//"/egw"
+      end if
+      if (.not. make_directories(dir)) dir = ""
+   end subroutine cache_directory
+
+   !> build_table through the cache: the same table, read back when this build was done
+   !> before. hit reports which (optional).
+   subroutine build_table_cached(params, options, delta_min, delta_max, rel_tol, table, &
+      & error, hit)
+      type(contact_params), intent(in) :: params   !< one parameter set
+      type(solver_options), intent(in) :: options  !< of the solves
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol   !< as build_table
+      type(force_table), intent(out) :: table   !< the table; empty on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      logical, intent(out), optional :: hit   !< true when read from the cache
+      character(len=:), allocatable :: path
+      type(egw_error), allocatable :: ignored
+      if (present(hit)) hit = .false.
+      call entry_path("table", [params_key(params), options_key(options), delta_min, &
+         & delta_max, rel_tol], path)
+      if (len(path) > 0) then
+         call read_table(path, table, ignored)
+         if (.not. allocated(ignored)) then
+            if (same_params(table%params, params) .and. table%rel_tol == rel_tol .and. &
+               & table%delta_max == delta_max) then
+               if (present(hit)) hit = .true.
+               return
+            end if
+         end if
+      end if
+      call build_table(params, options, delta_min, delta_max, rel_tol, table, error)
+      if (allocated(error) .or. len(path) == 0) return
+      call write_table(table, path, format_binary, ignored)
+   end subroutine build_table_cached
+
+   !> build_universal through the cache (arguments as build_universal).
+   subroutine build_universal_cached(model, psi, hardness_coeff, plastic_ratio, options, &
+      & mu_min, mu_max, x_min, x_max, rel_tol, u, error, hit)
+      integer, intent(in) :: model   !< model of the slices
+      real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio   !< EP-GW parameters
+      type(solver_options), intent(in) :: options   !< of the solves
+      real(dp), intent(in) :: mu_min, mu_max, x_min, x_max, rel_tol   !< as build_universal
+      type(universal_table), intent(out) :: u   !< the table; empty on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      logical, intent(out), optional :: hit   !< true when read from the cache
+      character(len=:), allocatable :: path
+      type(egw_error), allocatable :: ignored
+      if (present(hit)) hit = .false.
+      call entry_path("universal", [real(model, dp), psi, hardness_coeff, plastic_ratio, &
+         & options_key(options), mu_min, mu_max, x_min, x_max, rel_tol], path)
+      if (len(path) > 0) then
+         call read_universal(path, u, ignored)
+         if (.not. allocated(ignored)) then
+            if (present(hit)) hit = .true.
+            return
+         end if
+      end if
+      call build_universal(model, psi, hardness_coeff, plastic_ratio, options, mu_min, &
+         & mu_max, x_min, x_max, rel_tol, u, error)
+      if (allocated(error) .or. len(path) == 0) return
+      call write_universal(u, path, format_binary, ignored)
+   end subroutine build_universal_cached
+
+   !> build_hysteresis through the cache: the same table, read back when this build was
+   !> done before (arguments as build_hysteresis; the progress hook is called by a build
+   !> only). hit reports which (optional). A build is preceded by
+   !> probe_hysteresis_tolerance: a rel_tol its solves cannot reach fails in seconds.
+   subroutine build_hysteresis_cached(params, options, delta_min, delta_max, rel_tol, &
+      & table, error, progress, hit)
+      type(contact_params), intent(in) :: params   !< one parameter set
+      type(solver_options), intent(in) :: options  !< of the solves
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol   !< as build_hysteresis
+      type(hysteresis_table), intent(out) :: table   !< the table; empty on error
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      procedure(table_progress), optional :: progress   !< as build_hysteresis
+      logical, intent(out), optional :: hit   !< true when read from the cache
+      character(len=:), allocatable :: path
+      type(egw_error), allocatable :: ignored
+      if (present(hit)) hit = .false.
+      call entry_path("hysteresis", [params_key(params), options_key(options), delta_min, &
+         & delta_max, rel_tol], path)
+      if (len(path) > 0) then
+         call read_hysteresis(path, table, ignored)
+         if (.not. allocated(ignored)) then
+            if (same_params(table%params, params) .and. table%rel_tol == rel_tol .and. &
+               & table%delta_max == delta_max) then
+               if (present(hit)) hit = .true.
+               return
+            end if
+         end if
+      end if
+      ! a miss: an unreachable rel_tol fails in seconds, not after the build's minutes
+      call probe_hysteresis_tolerance(params, options, delta_max, rel_tol, error)
+      if (allocated(error)) return
+      call build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error, &
+         & progress)
+      if (allocated(error) .or. len(path) == 0) return
+      call write_hysteresis(table, path, format_binary, ignored)
+   end subroutine build_hysteresis_cached
+
+   ! ---------------------------------------------------------------------------------------
+
+   !> The file of a cache entry: <dir>/<kind>-<16 hex digits of the key>.bin, "" when the
+   !> cache is off. The key hashes the kind, egw's version, cache_revision and values.
+   subroutine entry_path(kind, values, path)
+      character(len=*), intent(in) :: kind
+      real(dp), intent(in) :: values(:)
+      character(len=:), allocatable, intent(out) :: path
+      character(len=:), allocatable :: dir
+      integer(int64) :: h
+      integer :: i
+      call cache_directory(dir)
+      path = ""
+      if (len(dir) == 0) return
+      h = -3750763034362895579_int64   ! the FNV-1a 64 offset basis 14695981039346656037
+      do i = 1, len(kind)
+         call mix(h, int(iachar(kind(i:i)), int64))
+      end do
+      call mix(h, int(egw_version_number, int64))
+      call mix(h, int(cache_revision, int64))
+      do i = 1, size(values)
+         call mix(h, transfer(values(i), h))
+      end do
+      path = dir//"/"//kind//"-"//hex(h)//".bin"
+   end subroutine entry_path
+
+   !> One 64-bit word into an FNV-1a hash (byte by byte, wrapping modulo 2**64).
+   pure subroutine mix(h, word)
+      integer(int64), intent(inout) :: h
+      integer(int64), intent(in) :: word
+      integer(int64), parameter :: prime = 1099511628211_int64
+      integer :: k
+      do k = 0, 7
+         h = ieor(h, iand(shiftr(word, 8*k), 255_int64))*prime
+      end do
+   end subroutine mix
+
+   !> 16 lower-case hex digits of h.
+   pure function hex(h) result(text)
+      integer(int64), intent(in) :: h
+      character(len=16) :: text
+      character(len=16), parameter :: digits = "0123456789abcdef"
+      integer :: k, d
+      do k = 1, 16
+         d = int(iand(shiftr(h, 4*(16 - k)), 15_int64))
+         text(k:k) = digits(d + 1:d + 1)
+      end do
+   end function hex
+
+   !> The fields of params in a fixed order, for the key.
+   pure function params_key(p) result(v)
+      type(contact_params), intent(in) :: p
+      real(dp) :: v(8)
+      v = [real(p%model, dp), p%radius, p%modulus, p%sigma, p%mu, p%psi, p%hardness_coeff, &
+         & p%plastic_ratio]
+   end function params_key
+
+   !> The options that change a build's result (not the thread count: builds give the same
+   !> table on any number of threads).
+   pure function options_key(o) result(v)
+      type(solver_options), intent(in) :: o
+      real(dp) :: v(4)
+      v = [real(o%n_radial, dp), o%rel_tol, real(o%max_iter, dp), real(o%method, dp)]
+   end function options_key
+
+   !> The cached table's parameters are the requested ones, field by field.
+   pure logical function same_params(a, b)
+      type(contact_params), intent(in) :: a, b
+      same_params = all(params_key(a) == params_key(b))
+   end function same_params
+
+   !> The value of an environment variable, "" when unset.
+   subroutine environment(name, value)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable, intent(out) :: value
+      integer :: n, stat
+      call get_environment_variable(name, length=n, status=stat)
+      if (stat /= 0 .or. n == 0) then
+         value = ""
+         return
+      end if
+      allocate (character(len=n) :: value)
+      call get_environment_variable(name, value, status=stat)
+      if (stat /= 0) value = ""
+   end subroutine environment
+
+   !> mkdir -p: every missing directory of path; true when it exists at the end.
+   logical function make_directories(path) result(ok)
+      character(len=*), intent(in) :: path
+      integer :: k, stat
+      do k = 2, len(path)
+         if (path(k:k) == "/") stat = c_mkdir(path(:k - 1)//c_null_char, int(o'777', c_int))
+      end do
+      stat = c_mkdir(path//c_null_char, int(o'777', c_int))
+      ok = is_directory(path)
+   end function make_directories
+
+   !> Whether a directory can be listed (opened as path/.): exists and is a directory.
+   logical function is_directory(path)
+      character(len=*), intent(in) :: path
+      inquire (file=path//"/.", exist=is_directory)
+   end function is_directory
+
+end module egw_cache
