@@ -49,6 +49,11 @@ contains
       call check(error, index(e%message(2:), "hysteresis table:") == 0, "prefixed twice: "// &
          & e%message)
       if (allocated(error)) return
+      e%message = "hysteresis table: rel_tol = 1e-3 cannot be reached, found before the build"
+      call tolerance_context(e, "hysteresis table", 1.0e-3_dp, 1.0e-4_dp)
+      call check(error, e%message == "hysteresis table: rel_tol = 1e-3 cannot be reached, "// &
+         & "found before the build", "a job's own message prefixed: "//e%message)
+      if (allocated(error)) return
       e%stat = egw_invalid_argument
       e%message = "delta_max = NaN"
       call tolerance_context(e, "table", 1.0e-6_dp, 1.0e-7_dp)

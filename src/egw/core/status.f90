@@ -72,7 +72,8 @@ contains
    !> ran at solve_tol gets the prefix "<what>: rel_tol = <rel_tol> (the caller's) not
    !> reached (its solves at <solve_tol>): ", so that the inner message (which quotes the
    !> solve's own tolerance and the estimate it reached) does not read as a success.
-   !> Other errors, and one already prefixed, are left as they are.
+   !> Other errors, and one that already starts with "<what>: " (told by the job itself),
+   !> are left as they are.
    pure subroutine tolerance_context(error, what, rel_tol, solve_tol)
       type(egw_error), intent(inout) :: error   !< the job's error
       character(len=*), intent(in) :: what      !< the job, e.g. "hysteresis table"
@@ -82,7 +83,8 @@ contains
       if (error%stat /= egw_not_converged) return
       prefix = what//": rel_tol = "//format_real(rel_tol)//" (the caller's) not reached"
       if (.not. allocated(error%message)) error%message = ""
-      if (index(error%message, prefix) == 1) return
+      ! already told by the job itself (a message that starts with its name)
+      if (index(error%message, what//": ") == 1) return
       if (solve_tol /= rel_tol) prefix = prefix//" (its solves at "//format_real(solve_tol)//")"
       error%message = prefix//": "//error%message
    end subroutine tolerance_context
