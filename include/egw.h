@@ -10,8 +10,9 @@
  *     plane: > 0 overlap, < 0 separation. Forces and pressures are positive
  *     in compression.
  *   - Every int function returns EGW_OK (0) on success and a non-zero status
- *     otherwise; it never aborts. On failure, outputs are left unchanged and
- *     egw_last_error() returns a message naming the offending argument.
+ *     otherwise (egw_last_error alone returns a length); it never aborts. On
+ *     failure, outputs are left unchanged and egw_last_error() gives a message
+ *     naming the offending argument.
  *   - All functions are thread-safe: they keep no shared state (the last-error
  *     message is per thread), and any number of threads may write and read files at
  *     once (tested with 16 threads).
@@ -71,7 +72,17 @@ int egw_get_version(void);
 int egw_status_message(int status, char *buf, int buflen);
 
 /* Detailed message of the last failing egw call on this thread (empty if none),
- * e.g. "sigma = -1.0E-003: must be finite and >= 0". Same returns as above. */
+ * e.g. "sigma = -1.0E-003: must be finite and >= 0", copied into buf (buflen bytes).
+ * Returns the bytes the whole message needs, strlen(message) + 1 (>= 1), in every case
+ * that is not an error:
+ *   - buflen >= that: the whole message and its NUL are written;
+ *   - 0 < buflen < that (truncation): the first buflen - 1 characters and a NUL are
+ *     written; a return value > buflen says so: allocate that many bytes and call again;
+ *   - buflen == 0 (buf may be NULL): nothing is written (a size query), e.g.
+ *       int n = egw_last_error(NULL, 0); char *msg = malloc(n); egw_last_error(msg, n);
+ * Errors return a negative value and write nothing: -EGW_NULL_POINTER (buf NULL with
+ * buflen > 0), -EGW_INVALID_ARGUMENT (buflen < 0). This call never changes the message.
+ * (Unlike the other int functions it never returns EGW_OK: test > 0, or <= buflen.) */
 int egw_last_error(char *buf, int buflen);
 
 /* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54. */
@@ -205,8 +216,10 @@ int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, do
  * psi = 0; exactly for Hertz and sigma = 0). Units: any consistent set (SI: kg, m/s).
  * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (mass or velocity not finite and
  * > 0, bad options; rough spheres: m* v^2/2 outside [1e-150, 3.4e37] E sqrt(R) sigma^2.5,
- * where the deepest overlap leaves the solver's range, doc/parameters.md section 5), EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed); e is
- * left untouched on any failure. */
+ * where the deepest overlap leaves the solver's range, doc/parameters.md section 5),
+ * EGW_NULL_POINTER (p or e), EGW_NOT_CONVERGED (a solve failed: "restitution: rel_tol =
+ * <o->rel_tol> (the caller's) not reached: ..." with the estimate the solve reached);
+ * e is left untouched on any failure. */
 int egw_restitution(const egw_params *p, const egw_options *o, double mass, double velocity,
                     double *e);
 
@@ -291,7 +304,8 @@ typedef struct {
  * a handle only on success.
  * Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (range, rel_tol, smooth spheres
  * with delta_max <= 0), EGW_NOT_CONVERGED (a solve failed, or the node limit of 20000
- * was reached), EGW_NULL_POINTER. */
+ * was reached; the message quotes the caller's rel_tol, the solves' and what was
+ * reached), EGW_NULL_POINTER. */
 int egw_table_build(const egw_params *p, const egw_options *o, double delta_min,
                     double delta_max, double rel_tol, egw_table *out);
 
@@ -348,8 +362,10 @@ int egw_tables_write_lammps(int n, const egw_table *tables, const char *path);
 
 /* Read an egw CSV or binary table (format recognised from the file's start). A
  * truncated, corrupted (checksum), wrong-version or inconsistent file, or one whose
- * numbers do not make a table (not finite; negative force, stiffness, energy or contact
- * radius; a force that decreases with the overlap; metadata out of range: doc/formats.md)
+ * numbers do not make a table, even under a valid checksum (not finite; negative force,
+ * stiffness, energy or contact radius; a force that decreases with the overlap; a
+ * stiffness or an energy inconsistent with the forces between nodes; metadata out of
+ * range: doc/formats.md section 1, "Checks on read")
  * gives EGW_BAD_FILE with a message saying what is wrong, and no table. A CSV file
  * without its checksum line (hand-edited) is read, with info.checksum_missing = 1.
  * EGW_IO_ERROR if it cannot be opened. *out receives a handle only on success. */
@@ -466,9 +482,16 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 
 /* Build for p (EP-GW for hysteresis; other models give reversible curves) over overlaps
  * [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL (defaults).
- * *out receives a handle only on success. Statuses: EGW_INVALID_PARAMETER,
- * EGW_INVALID_ARGUMENT (range, rel_tol), EGW_NOT_CONVERGED (a solve failed or a node
- * limit was reached), EGW_OUT_OF_MEMORY, EGW_NULL_POINTER. */
+ * *out receives a handle only on success. The curves are solved at min(o->rel_tol,
+ * rel_tol/10); before a build (not on a cache hit), a probe of 18 such solves (loading
+ * and unloading from delta_max and delta_max/2; milliseconds at the usual tolerances)
+ * fails at once where they cannot reach it, rather than after minutes of building (a
+ * probe that passes promises nothing: the build may still meet a failing solve). Every
+ * EGW_NOT_CONVERGED message starts "hysteresis table: rel_tol = <the caller's> ..." and
+ * says what the solves' tolerance was and what the failing solve reached (its error
+ * estimate, and the rel_tol it could meet). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT
+ * (range, rel_tol), EGW_NOT_CONVERGED (a solve failed or a node limit was reached),
+ * EGW_OUT_OF_MEMORY, EGW_NULL_POINTER. */
 int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta_min,
                          double delta_max, double rel_tol, egw_hysteresis *out);
 
@@ -542,8 +565,10 @@ int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
 
 /* Read a hysteresis table written by egw_hysteresis_write (CSV or binary, recognised from
  * the file's start). *out receives a handle only for a file that passed every check
- * (checksum; finite values; loading force >= 0 and non-decreasing, stiffness >= 0;
- * increasing grids; ratios 1 at the turning point and within [0, 1]).
+ * (checksum; finite values; the loading curve every check of egw_table_read, stiffness
+ * and energy consistent with its forces included; increasing grids; gaps 0 at the
+ * turning point and within [0, 1], with slopes that keep each curve near that range:
+ * doc/formats.md section 6).
  * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),
  * EGW_NULL_POINTER. */
 int egw_hysteresis_read(const char *path, egw_hysteresis *out);
@@ -554,8 +579,18 @@ typedef struct {
   int    n_delta_max;  /* delta_max nodes (0 when reversible) */
   int    n_s;          /* nodes in s of every unloading curve (0 when reversible) */
   int    n_loading;    /* nodes of the loading table */
-  double cutoff;       /* delta_c: force 0 below [length] */
+  double cutoff;       /* delta_c [length]: the loading table's first node, where the loading
+                        * force is 1e-12 of reference_force (rough models; Hertz: rel_tol of
+                        * it). Not a zero-force edge: below it the loading force follows the
+                        * table's continuation (egw_table_eval: the model's separated tail;
+                        * Hertz its closed form), and a contact whose
+                        * history is at or below it unloads on that tail (reversible there);
+                        * the unloading curve of a turning point above it ends at it (force 0
+                        * below, for unloading and reloading only) */
   double delta_max;    /* last delta_max node [length] */
+  double reference_force; /* P_ref [force] of the loading table's cut-off rule: the loading
+                           * force at min(0, delta_max) for rough models, at delta_max for
+                           * Hertz (egw_table_info.reference_force of the loading curve) */
   double rel_tol;      /* requested tolerance, relative to the force at the turning point */
   double max_error;    /* largest mismatch found at the build's check solves */
   egw_params params;   /* the parameters the table was built for */
@@ -634,9 +669,10 @@ int egw_scene_validate(const egw_scene *s);
 
 /* Read the namelist group &scene of the file at path (NUL-terminated; variables in
  * doc/scenes.md): the values it gives replace those of *s, the result is validated;
- * *s is unchanged on failure. EGW_IO_ERROR (cannot open), EGW_BAD_FILE (no &scene,
- * unknown variable, unreadable value), EGW_INVALID_PARAMETER (a bad value, named),
- * EGW_NULL_POINTER. */
+ * *s is unchanged on failure. The file is read whole and parsed in memory: any number
+ * of threads may read the same file at once. EGW_IO_ERROR (cannot open or read),
+ * EGW_BAD_FILE (no &scene, unknown variable, unreadable value, control bytes of a
+ * binary file), EGW_INVALID_PARAMETER (a bad value, named), EGW_NULL_POINTER. */
 int egw_scene_read(const char *path, egw_scene *s);
 
 /* Choose the cheapest model meeting s->tol (full solves for the Hertz check only, in

@@ -18,7 +18,7 @@ static double p_hertz(double e, double r, double d) {
 }
 static int last_error_names(const char *name) {
   char buf[512];
-  if (egw_last_error(buf, (int)sizeof buf) != EGW_OK) return 0;
+  if (egw_last_error(buf, (int)sizeof buf) < 1) return 0;
   return strncmp(buf, name, strlen(name)) == 0;
 }
 /* Reader-side checks of a CalculiX curve, as CalculiX 2.20 reads it: every field of the

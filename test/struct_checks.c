@@ -71,10 +71,11 @@ static void check_table_info(void) {
 }
 
 static void check_hysteresis_info(void) {
-  const egw_hysteresis_info c = {1, 2, 3, 4, 5, 6.25, 7.25, 8.25, 9.25, PARAMS_REF(10)};
+  const egw_hysteresis_info c = {1, 2, 3, 4, 5, 6.25, 7.25, 8.25, 9.25, 10.25,
+                                 PARAMS_REF(11)};
   FETCH(egw_hysteresis_info, 4);
   SAME(model); SAME(reversible); SAME(n_delta_max); SAME(n_s); SAME(n_loading);
-  SAME(cutoff); SAME(delta_max); SAME(rel_tol); SAME(max_error);
+  SAME(cutoff); SAME(delta_max); SAME(reference_force); SAME(rel_tol); SAME(max_error);
   same_params(c.params, f_.params);
 }
 

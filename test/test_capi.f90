@@ -13,6 +13,9 @@ module test_capi
       integer(c_int) function c_status() bind(C, name="egw_capi_test_status_message")
          import :: c_int
       end function
+      integer(c_int) function c_last_error() bind(C, name="egw_capi_test_last_error")
+         import :: c_int
+      end function
       integer(c_int) function c_params() bind(C, name="egw_capi_test_params")
          import :: c_int
       end function
@@ -43,6 +46,7 @@ contains
       testsuite = [ &
          & new_unittest("version", t_version), &
          & new_unittest("status messages", t_status), &
+         & new_unittest("last error: length needed, truncation, query", t_last_error), &
          & new_unittest("params defaults and validation", t_params), &
          & new_unittest("gauss integral", t_gauss), &
          & new_unittest("elliptic integrals", t_ellip), &
@@ -66,6 +70,10 @@ contains
    subroutine t_status(error)
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_status())
+   end subroutine
+   subroutine t_last_error(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_last_error())
    end subroutine
    subroutine t_params(error)
       type(error_type), allocatable, intent(out) :: error

@@ -10,6 +10,9 @@ module test_capi_scene
       integer(c_int) function c_read() bind(C, name="egw_capi_test_scene_read")
          import :: c_int
       end function c_read
+      integer(c_int) function c_threads() bind(C, name="egw_capi_test_scene_threads")
+         import :: c_int
+      end function c_threads
       integer(c_int) function c_hertz() bind(C, name="egw_capi_test_scene_hertz")
          import :: c_int
       end function c_hertz
@@ -24,6 +27,7 @@ contains
       type(unittest_type), allocatable, intent(out) :: testsuite(:)
       testsuite = [ &
          & new_unittest("default, validate, read", t_read), &
+         & new_unittest("one file read by 8 threads 2400 times", t_threads), &
          & new_unittest("Hertz choice and bound", t_hertz), &
          & new_unittest("table choice and build", t_table) &
          & ]
@@ -39,6 +43,11 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_read())
    end subroutine t_read
+
+   subroutine t_threads(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_threads())
+   end subroutine t_threads
 
    subroutine t_hertz(error)
       type(error_type), allocatable, intent(out) :: error

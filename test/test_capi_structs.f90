@@ -133,7 +133,8 @@ contains
       case (4)
          hysteresis_info = egw_hysteresis_info_c(model=1, reversible=2, n_delta_max=3, n_s=4, &
             & n_loading=5, cutoff=6.25_c_double, delta_max=7.25_c_double, &
-            & rel_tol=8.25_c_double, max_error=9.25_c_double, params=ref_params(10))
+            & reference_force=8.25_c_double, rel_tol=9.25_c_double, max_error=10.25_c_double, &
+            & params=ref_params(11))
          size = c_sizeof(hysteresis_info)
          call store(out, transfer(hysteresis_info, byte))
       case (5)

@@ -8,12 +8,14 @@ module test_table_format
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_bad_file, egw_io_error, egw_invalid_argument, &
       & egw_unsupported, format_real
-   use egw_params, only: contact_params, model_hertz, model_egw
+   use egw_params, only: contact_params, model_hertz, model_egw, model_epgw
    use egw_rough_sphere, only: solver_options
    use egw_asperity, only: flat_pressure
    use egw_table
    use egw_table_universal
    use egw_table_format
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis
+   use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    implicit none
    private
    public :: collect_table_format
@@ -37,6 +39,7 @@ contains
          & new_unittest("csv checksum: bit flips, no line", test_csv_checksum), &
          & new_unittest("csv sanity on read", test_csv_sanity), &
          & new_unittest("binary sanity on read", test_binary_sanity), &
+         & new_unittest("crafted values with a valid checksum", test_crafted_values), &
          & new_unittest("atomic writes", test_atomic), &
          & new_unittest("lammps export", test_lammps), &
          & new_unittest("lammps export, rough table", test_lammps_rough), &
@@ -507,6 +510,105 @@ contains
       if (allocated(error)) return
       call patched(error, b, 145 + 32*n + 8*(n/2), -1.0_dp, "negative contact radius")
    end subroutine test_binary_sanity
+
+   !> Files whose checksum is valid (written by the writer itself, which computes it) but
+   !> whose values break what a table must satisfy are refused, naming what is wrong
+   !> (issue 22: a universal slice with stiffness 1e300 evaluated to a force of -2.4e297
+   !> with status OK): a stiffness far above the force differences (1-D, universal slice,
+   !> a hysteresis loading curve in its ln P tail), energies that do not integrate the
+   !> forces, a hysteresis gap slope that would carry a curve far outside [0, 1]. Built
+   !> tables keep end slopes within 1.43 times the secant's (measured, bound 10) and gap
+   !> rises within 0.36 (bound 2): exact refusals, no tolerance involved.
+   subroutine test_crafted_values(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: good, t
+      type(universal_table) :: u
+      type(hysteresis_table) :: h, hc
+      type(egw_error), allocatable :: err
+      integer :: n, fmt_id
+      character(len=*), parameter :: ext(0:1) = [".csv ", ".egwt"]
+      call hertz_table(good, error)
+      if (allocated(error)) return
+      n = size(good%delta)
+      do fmt_id = format_csv, format_binary
+         t = good
+         t%stiffness(n/2) = 1.0e300_dp
+         call crafted(t, "stiff"//trim(ext(fmt_id)), fmt_id, "inconsistent with the forces")
+         if (allocated(error)) return
+         t = good
+         t%energy(n/2) = t%energy(n/2 + 1)   ! non-decreasing, but not the forces' integral
+         call crafted(t, "energy"//trim(ext(fmt_id)), fmt_id, "energy rise")
+         if (allocated(error)) return
+         t = good
+         t%energy = t%energy + 1.0_dp
+         call crafted(t, "energy1"//trim(ext(fmt_id)), fmt_id, "energy at the cut-off")
+         if (allocated(error)) return
+      end do
+      ! a universal slice
+      call build_universal(model_hertz, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 1.0_dp, &
+         & 2.0_dp, -1.0_dp, 10.0_dp, 1e-4_dp, u, err)
+      call check(error, .not. allocated(err), "universal build")
+      if (allocated(error)) return
+      n = size(u%slices(2)%delta)
+      u%slices(2)%stiffness(n/2) = 1.0e300_dp
+      call write_universal(u, dir//"/crafted.egwu", format_binary, err)
+      call check(error, .not. allocated(err), "crafted universal write")
+      if (allocated(error)) return
+      block
+         type(universal_table) :: back
+         call read_universal(dir//"/crafted.egwu", back, err)
+         call check(error, allocated(err), "crafted universal slice accepted")
+         if (allocated(error)) return
+         call check(error, err%stat == egw_bad_file .and. index(err%message, "slice 2: ") &
+            & > 0 .and. index(err%message, "stiffness") > 0, "message: "//err%message)
+         if (allocated(error)) return
+      end block
+      ! a hysteresis table: its loading curve in the ln P tail (interval 1), a gap slope
+      call build_hysteresis(contact_params(model=model_epgw, sigma=1.0_dp, mu=4.0_dp, &
+         & psi=2.0_dp), solver_options(), -2.0_dp, 4.0_dp, 1.0e-2_dp, h, err)
+      call check(error, .not. allocated(err), "hysteresis build")
+      if (allocated(error)) return
+      call check(error, h%loading%n_log > 0, "the loading curve has ln P intervals")
+      if (allocated(error)) return
+      hc = h
+      hc%loading%stiffness(2) = 1.0e300_dp
+      call crafted_hysteresis(hc, "loading curve: nodes 1, 2")
+      if (allocated(error)) return
+      hc = h
+      hc%slope(2, 2) = 1.0e300_dp
+      call crafted_hysteresis(hc, "slope")
+   contains
+      !> t written (the writer's checksum) as name in format fmt_id: refused, naming what.
+      subroutine crafted(t, name, fmt_id, what)
+         type(force_table), intent(in) :: t   !< its nodes (the writer reads only these)
+         character(len=*), intent(in) :: name, what
+         integer, intent(in) :: fmt_id
+         call write_table(t, dir//"/crafted_"//name, fmt_id, err)
+         if (allocated(err)) then
+            call check(error, .false., "crafted write "//name//": "//err%message)
+            return
+         end if
+         call expect_bad(error, dir//"/crafted_"//name, what)
+      end subroutine crafted
+      !> hc written as CSV and binary: both refused, naming what.
+      subroutine crafted_hysteresis(hc, what)
+         type(hysteresis_table), intent(in) :: hc
+         character(len=*), intent(in) :: what
+         type(hysteresis_table) :: back
+         integer :: f
+         do f = format_csv, format_binary
+            call write_hysteresis(hc, dir//"/crafted_hyst"//trim(ext(f)), f, err)
+            call check(error, .not. allocated(err), "crafted hysteresis write")
+            if (allocated(error)) return
+            call read_hysteresis(dir//"/crafted_hyst"//trim(ext(f)), back, err)
+            call check(error, allocated(err), "crafted hysteresis accepted ("//what//")")
+            if (allocated(error)) return
+            call check(error, err%stat == egw_bad_file .and. index(err%message, what) > 0, &
+               & "message '"//err%message//"' should mention '"//what//"'")
+            if (allocated(error)) return
+         end do
+      end subroutine crafted_hysteresis
+   end subroutine test_crafted_values
 
    !> b with the double at byte pos set to x and the checksum recomputed: refused.
    subroutine patched(error, b, pos, x, what)

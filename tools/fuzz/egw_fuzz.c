@@ -258,16 +258,41 @@ static int r_status_message(void) {
   return st;
 }
 
+/* egw_last_error returns the bytes its message needs (>= 1; a size query when buflen is
+ * 0) or minus a status: mapped to EGW_OK / the status here. A message is first made by
+ * a refused call, so that truncation at the fuzzed buflen is exercised. */
 static int r_last_error(void) {
-  char buf[64];
-  int st;
+  char buf[4096]; /* above every message (a huge buflen must not overrun it); base 16 truncates */
+  int n, len = I(1, 16);
+  egw_params bad;
+  egw_params_default(&bad);
+  bad.sigma = -1.0;
+  (void)egw_params_validate(&bad);
   sentinel(buf, sizeof buf);
-  st = egw_last_error(P(0, buf), I(1, (int)sizeof buf));
-  if (st == EGW_OK && memchr(buf, 0, sizeof buf) == NULL) {
+  n = egw_last_error(P(0, buf), len);
+  if (n == 0) { /* no documented value */
     cur->silent = 1;
-    note("", "buf not NUL-terminated", 0.0);
+    note("", "returned 0", 0.0);
+    return EGW_OK;
   }
-  return st;
+  if (n < 0) {
+    out_untouched(-n, "buf", buf, sizeof buf);
+    return -n;
+  }
+  if (len > 0 && len <= (int)sizeof buf) {
+    const char *nul = memchr(buf, 0, sizeof buf);
+    if (nul == NULL) {
+      cur->silent = 1;
+      note("", "buf not NUL-terminated", 0.0);
+    } else if ((int)(nul - buf) != (n <= len ? n - 1 : len - 1)) {
+      cur->silent = 1;
+      note("", "returned length does not match the copy", (double)n);
+    }
+  } else if (len == 0 && !is_sentinel(buf, sizeof buf)) {
+    cur->silent = 1;
+    note("", "size query wrote to buf", (double)n);
+  }
+  return EGW_OK;
 }
 
 static int r_params(void) {
@@ -814,8 +839,11 @@ static int r_hysteresis_io(void) {
   st2 = egw_hysteresis_get_info(P(0, h), P(4, &info));
   out_untouched(st2, "info", &info, sizeof info);
   if (st2 == EGW_OK) {
-    double v[4] = {info.cutoff, info.delta_max, info.rel_tol, info.max_error};
-    out_doubles(st2, 0, "info", v, 4, sizeof v);
+    double v[5] = {info.cutoff, info.delta_max, info.reference_force, info.rel_tol,
+                   info.max_error};
+    out_doubles(st2, 0, "info", v, 5, sizeof v);
+    sane(st2, info.reference_force > 0.0 && info.cutoff < info.delta_max,
+         "info.reference_force > 0, cutoff < delta_max", info.reference_force);
   }
   st = egw_hysteresis_write(P(0, h), S(1, out_path("h.csv")), I(2, EGW_FORMAT_CSV));
   sentinel(&back, sizeof back);

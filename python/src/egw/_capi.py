@@ -71,8 +71,8 @@ _TYPES = c_double * SCENE_MAX_TYPES
 class HysteresisInfo(ctypes.Structure):
     _fields_ = [("model", c_int), ("reversible", c_int), ("n_delta_max", c_int),
                 ("n_s", c_int), ("n_loading", c_int), ("cutoff", c_double),
-                ("delta_max", c_double), ("rel_tol", c_double), ("max_error", c_double),
-                ("params", Params)]
+                ("delta_max", c_double), ("reference_force", c_double),
+                ("rel_tol", c_double), ("max_error", c_double), ("params", Params)]
 
 
 class Scene(ctypes.Structure):

@@ -66,7 +66,12 @@ def _status_name(status: int) -> str:
 
 def last_error() -> str:
     """egw's message of the last failing call on this thread."""
-    buf = ctypes.create_string_buffer(1024)
+    # egw_last_error returns the bytes the whole message needs (length + 1): a size
+    # query first, then a buffer of that size (no truncation, whatever its length)
+    needed = lib.egw_last_error(None, 0)
+    if needed < 1:
+        return ""
+    buf = ctypes.create_string_buffer(needed)
     lib.egw_last_error(buf, len(buf))
     return buf.value.decode("utf-8", "replace")
 

@@ -6,7 +6,7 @@ module egw_capi
       & c_null_ptr
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok, status_message, format_real
+   use egw_status, only: egw_error, egw_ok, status_message, format_real, tolerance_context
    use egw_params, only: contact_params, mu_from_summits, psi_from_hardness
    use egw_version, only: egw_version_number
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
@@ -61,12 +61,13 @@ contains
       stat = copy_to_c(status_message(int(status)), buf, buflen)
    end function egw_status_message
 
-   !> C: egw_last_error: this thread's message of the last failing call.
-   function egw_last_error(buf, buflen) result(stat) bind(C, name="egw_last_error")
+   !> C: egw_last_error: this thread's message of the last failing call; returns the
+   !> bytes it needs whole (length + 1), or minus a status (copy_last_error).
+   function egw_last_error(buf, buflen) result(needed) bind(C, name="egw_last_error")
       type(c_ptr), value, intent(in) :: buf
       integer(c_int), value, intent(in) :: buflen
-      integer(c_int) :: stat
-      stat = copy_last_error(buf, buflen)
+      integer(c_int) :: needed
+      needed = copy_last_error(buf, buflen)
    end function egw_last_error
 
    !> C: egw_params_default: fill an egw_params with the defaults.
@@ -307,6 +308,8 @@ contains
       t_c = 0.0_dp
       dt = 0.0_dp
       call time_step(params, options, mass, velocity, tolerance, t_c, dt, error)
+      if (allocated(error)) call tolerance_context(error, "time step (its restitution)", &
+         & options%rel_tol, options%rel_tol)
       stat = settle(error)
       if (stat /= egw_ok) return
       call put(duration, t_c)
@@ -362,6 +365,8 @@ contains
       delta_m = 0.0_dp
       call restitution(params, options, mass, velocity, coefficient, dissipated, error, &
          & work_load=work, max_overlap=delta_m)
+      if (allocated(error)) call tolerance_context(error, "restitution", options%rel_tol, &
+         & options%rel_tol)
       stat = settle(error)
       if (stat /= egw_ok) return
       call put(e, coefficient)

@@ -7,7 +7,7 @@ module egw_capi_hysteresis
       & ieee_negative_inf
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_out_of_range, egw_out_of_memory, format_real, &
-      & int_str
+      & int_str, tolerance_context
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_cache, only: build_hysteresis_cached
@@ -24,7 +24,7 @@ module egw_capi_hysteresis
    !> C: egw_hysteresis_info (include/egw.h).
    type, bind(C) :: egw_hysteresis_info_c
       integer(c_int) :: model, reversible, n_delta_max, n_s, n_loading
-      real(c_double) :: cutoff, delta_max, rel_tol, max_error
+      real(c_double) :: cutoff, delta_max, reference_force, rel_tol, max_error
       type(egw_params_c) :: params
    end type egw_hysteresis_info_c
 
@@ -44,9 +44,13 @@ contains
       type(egw_error), allocatable :: error
       stat = require(out, "out")
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
-      if (stat == egw_ok) stat = new_table(h)
+      if (stat /= egw_ok) return
+      stat = new_table(h)
       if (stat /= egw_ok) return
       call build_hysteresis_cached(params, options, delta_min, delta_max, rel_tol, h, error)
+      ! in the caller's terms (its curves are solved at a tenth of rel_tol)
+      if (allocated(error)) call tolerance_context(error, "hysteresis table", rel_tol, &
+         & min(options%rel_tol, 0.1_dp*rel_tol))
       stat = put_handle_settled(out, c_loc(h), error)
       if (stat /= egw_ok) deallocate (h)
    end function egw_hysteresis_build
@@ -274,6 +278,7 @@ contains
       out%n_loading = int(size(h%loading%delta), c_int)
       out%cutoff = h%loading%cutoff
       out%delta_max = h%delta_max
+      out%reference_force = h%loading%reference_force
       out%rel_tol = h%rel_tol
       out%max_error = h%max_error
       out%params = from_params(h%params)

@@ -8,7 +8,7 @@ module egw_capi_table
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, egw_out_of_range, &
-      & egw_out_of_memory, format_real, int_str
+      & egw_out_of_memory, format_real, int_str, tolerance_context
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_cache, only: build_table_cached, build_universal_cached
@@ -313,6 +313,9 @@ contains
       allocate (u)
       call build_universal_cached(params%model, params%psi, params%hardness_coeff, &
          & params%plastic_ratio, options, mu_min, mu_max, x_min, x_max, rel_tol, u, error)
+      ! in the caller's terms (its slices are solved at a tenth of rel_tol)
+      if (allocated(error)) call tolerance_context(error, "universal table", rel_tol, &
+         & min(options%rel_tol, 0.1_dp*rel_tol))
       stat = put_handle_settled(out, c_loc(u), error)
       if (stat /= egw_ok) deallocate (u)
    end function egw_universal_build

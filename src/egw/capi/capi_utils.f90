@@ -313,11 +313,27 @@ contains
       last_message = message
    end function failure
 
-   !> Copy this thread's last error message into a C buffer (as copy_to_c).
-   integer(c_int) function copy_last_error(buf, buflen) result(stat)
-      type(c_ptr), intent(in) :: buf         !< char* of buflen bytes
+   !> Copy this thread's last error message into a C buffer and return the bytes it needs
+   !> whole (its length + 1 for the NUL; >= 1): buflen >= that copies it whole, 0 < buflen
+   !> < that copies its first buflen - 1 characters and the NUL (the return value above
+   !> buflen tells the caller to allocate that many and call again), buflen = 0 (buf may
+   !> then be NULL) writes nothing (a size query). -EGW_NULL_POINTER for buf NULL with
+   !> buflen > 0, -EGW_INVALID_ARGUMENT for buflen < 0: nothing written, and the last
+   !> error is kept (this call never records one).
+   integer(c_int) function copy_last_error(buf, buflen) result(needed)
+      type(c_ptr), intent(in) :: buf         !< char* of buflen bytes, or NULL
       integer(c_int), intent(in) :: buflen   !< its size in bytes
-      stat = copy_to_c(trim(last_message), buf, buflen)
+      integer(c_int) :: stat
+      if (buflen < 0) then
+         needed = -int(egw_invalid_argument, c_int)
+         return
+      end if
+      if (buflen > 0 .and. .not. c_associated(buf)) then
+         needed = -int(egw_null_pointer, c_int)
+         return
+      end if
+      needed = int(len_trim(last_message) + 1, c_int)
+      if (buflen > 0) stat = copy_to_c(trim(last_message), buf, buflen)
    end function copy_last_error
 
    !> A NUL-terminated C string argument (a path, or the argument called name) as a

@@ -27,7 +27,7 @@ module egw_status
    end type egw_error
 
    public :: status_message, fatal_error, format_real, format_real_len, int_str
-   public :: parameter_error, bad_file_error
+   public :: parameter_error, bad_file_error, tolerance_context
 
 contains
 
@@ -66,6 +66,28 @@ contains
       error%stat = stat
       error%message = message
    end subroutine fatal_error
+
+   !> A tolerance that was not reached, told in the caller's terms: a not-converged
+   !> error of a job asked for rel_tol (a table build, a restitution) whose inner solves
+   !> ran at solve_tol gets the prefix "<what>: rel_tol = <rel_tol> (the caller's) not
+   !> reached (its solves at <solve_tol>): ", so that the inner message (which quotes the
+   !> solve's own tolerance and the estimate it reached) does not read as a success.
+   !> Other errors, and one that already starts with "<what>: " (told by the job itself),
+   !> are left as they are.
+   pure subroutine tolerance_context(error, what, rel_tol, solve_tol)
+      type(egw_error), intent(inout) :: error   !< the job's error
+      character(len=*), intent(in) :: what      !< the job, e.g. "hysteresis table"
+      real(dp), intent(in) :: rel_tol           !< the caller's tolerance
+      real(dp), intent(in) :: solve_tol         !< that of its solves
+      character(len=:), allocatable :: prefix
+      if (error%stat /= egw_not_converged) return
+      prefix = what//": rel_tol = "//format_real(rel_tol)//" (the caller's) not reached"
+      if (.not. allocated(error%message)) error%message = ""
+      ! already told by the job itself (a message that starts with its name)
+      if (index(error%message, what//": ") == 1) return
+      if (solve_tol /= rel_tol) prefix = prefix//" (its solves at "//format_real(solve_tol)//")"
+      error%message = prefix//": "//error%message
+   end subroutine tolerance_context
 
    pure integer function format_real_len(x) result(n)
       real(dp), intent(in) :: x

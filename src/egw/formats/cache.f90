@@ -17,6 +17,7 @@ module egw_cache
    use egw_table, only: force_table, build_table, table_progress
    use egw_table_universal, only: universal_table, build_universal
    use egw_hysteresis, only: hysteresis_table, build_hysteresis
+   use egw_tolerance_probe, only: probe_hysteresis_tolerance
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
       & format_binary
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
@@ -124,7 +125,8 @@ contains
 
    !> build_hysteresis through the cache: the same table, read back when this build was
    !> done before (arguments as build_hysteresis; the progress hook is called by a build
-   !> only). hit reports which (optional).
+   !> only). hit reports which (optional). A build is preceded by
+   !> probe_hysteresis_tolerance: a rel_tol its solves cannot reach fails in seconds.
    subroutine build_hysteresis_cached(params, options, delta_min, delta_max, rel_tol, &
       & table, error, progress, hit)
       type(contact_params), intent(in) :: params   !< one parameter set
@@ -148,6 +150,9 @@ contains
       end if
       if (present(hit)) hit = found
       if (found) return
+      ! a miss: an unreachable rel_tol fails in seconds, not after the build's minutes
+      call probe_hysteresis_tolerance(params, options, delta_max, rel_tol, error)
+      if (allocated(error)) return
       call build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error, &
          & progress)
       if (allocated(error) .or. len(path) == 0) return

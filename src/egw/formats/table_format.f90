@@ -29,7 +29,7 @@ module egw_table_format
    public :: split_checksum, checksum_line
    public :: write_table, read_table, write_universal, read_universal, write_lammps, &
       & write_calculix_flat, write_calculix_sphere, fnv1a32, checksum_i32, &
-      & put_f64, get_f64
+      & put_f64, get_f64, check_table
 
    integer, parameter, public :: format_csv = 0       !< egw CSV with metadata header
    integer, parameter, public :: format_binary = 1    !< egw binary, versioned, checksummed

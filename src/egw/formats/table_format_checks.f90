@@ -71,6 +71,15 @@ contains
          call bad(error, path, where//"cutoff/delta_max disagree with the nodes")
          return
       end if
+      if (t%energy(1) /= 0.0_dp) then
+         call bad(error, path, where//"energy at the cut-off "//format_real(t%energy(1))// &
+            & ": must be 0 (it is the integral from the cut-off)")
+         return
+      end if
+      do i = 1, n - 1
+         call check_interval(path, where, t, i, error)
+         if (allocated(error)) return
+      end do
    end procedure check_table
 
    module procedure check_universal_header
@@ -156,6 +165,69 @@ contains
       starts_with = .false.
       if (len(str) >= len(prefix)) starts_with = str(1:len(prefix)) == prefix
    end procedure starts_with
+
+   !> What interval i of a table must satisfy beyond the signs of its nodes, so that no
+   !> checksummed but crafted (or mis-built) file evaluates to nonsense: its end slopes
+   !> (d = K, or K/P where the interval interpolates ln P) at most slope_bound times the
+   !> secant's, so that the cubic stays within (slope_bound - 1)/4 of the secant's rise
+   !> of the chord (the builder keeps alpha^2 + beta^2 <= 9, Fritsch-Carlson: a bound
+   !> 10 is generous); where the data differ by round-off only, the rise the slopes give
+   !> over the interval at most 1e-6 of the force; and the energy rise the integral of
+   !> such a cubic can have: between h (P_0 - dP) and h (P_1 + dP) (ln P intervals:
+   !> h P_0 exp(-2.25 d ln P) and h P_1 exp(2.25 d ln P)), up to the rounding of W.
+   subroutine check_interval(path, where, t, i, error)
+      character(len=*), intent(in) :: path, where
+      type(force_table), intent(in) :: t
+      integer, intent(in) :: i
+      type(egw_error), allocatable, intent(out) :: error
+      !> largest end slope over the secant slope (alpha, beta) a reader accepts
+      real(dp), parameter :: slope_bound = 10.0_dp
+      real(dp) :: h, p0, p1, d0, d1, rise, w_lo, w_hi, w_rise, slack, spread
+      logical :: in_log
+      in_log = i <= t%n_log
+      h = t%delta(i + 1) - t%delta(i)
+      p0 = t%force(i)
+      p1 = t%force(i + 1)
+      if (in_log) then
+         rise = log(p1) - log(p0)
+         d0 = h*t%stiffness(i)/p0
+         d1 = h*t%stiffness(i + 1)/p1
+      else
+         rise = p1 - p0
+         d0 = h*t%stiffness(i)
+         d1 = h*t%stiffness(i + 1)
+      end if
+      if (p1 - p0 <= 1.0e3_dp*epsilon(1.0_dp)*p1) then
+         ! round-off apart: no secant to compare with; the slopes may not move the force
+         if (max(d0, d1) > merge(1.0e-6_dp, 1.0e-6_dp*p1, in_log)) then
+            call bad(error, path, where//"nodes "//int_str(i)//", "//int_str(i + 1)// &
+               & ": equal forces "//format_real(p1)//" with stiffness "// &
+               & format_real(max(t%stiffness(i), t%stiffness(i + 1))))
+            return
+         end if
+      else if (max(d0, d1) > slope_bound*rise) then
+         call bad(error, path, where//"nodes "//int_str(i)//", "//int_str(i + 1)// &
+            & ": stiffness "//format_real(max(t%stiffness(i), t%stiffness(i + 1)))// &
+            & " inconsistent with the forces "//format_real(p0)//", "//format_real(p1)// &
+            & " (end slopes more than "//format_real(slope_bound)//" times the secant's)")
+         return
+      end if
+      if (in_log) then
+         spread = exp(min(2.25_dp*rise, 700.0_dp))
+         w_lo = h*p0/spread
+         w_hi = h*p1*spread
+      else
+         w_lo = h*(p0 - rise)
+         w_hi = h*(p1 + rise)
+      end if
+      w_rise = t%energy(i + 1) - t%energy(i)
+      slack = 1.0e-9_dp*w_hi + 64*epsilon(1.0_dp)*abs(t%energy(i + 1))
+      if (w_rise < w_lo - slack .or. w_rise > w_hi + slack) then
+         call bad(error, path, where//"nodes "//int_str(i)//", "//int_str(i + 1)// &
+            & ": energy rise "//format_real(w_rise)//" inconsistent with the forces "// &
+            & format_real(p0)//", "//format_real(p1)//" over "//format_real(h))
+      end if
+   end subroutine check_interval
 
    !> The metadata of a table: finite, rel_tol in (0, 0.1], P_ref > 0, errors and
    !> R1 + R2 >= 0.

@@ -5,13 +5,14 @@
 module egw_scene
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_parameter, egw_io_error, egw_bad_file, &
+   use egw_status, only: egw_error, egw_invalid_parameter, egw_bad_file, &
       & egw_unsupported, fatal_error, format_real, int_str, bad => parameter_error
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, mu_from_summits, check_scaled_overlap
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, table_progress
    use egw_table_universal, only: universal_table
+   use egw_io, only: read_file
    implicit none
    private
 
@@ -21,6 +22,14 @@ module egw_scene
 
    !> Most particle types (and materials) a scene lists.
    integer, parameter, public :: max_types = 8
+
+   !> The ASCII control characters a text file does not hold (all but tab 9, LF 10, form
+   !> feed 12 and CR 13; DEL 127).
+   character(len=*), parameter :: control_bytes = achar(0)//achar(1)//achar(2)// &
+      & achar(3)//achar(4)//achar(5)//achar(6)//achar(7)//achar(8)//achar(11)//achar(14)// &
+      & achar(15)//achar(16)//achar(17)//achar(18)//achar(19)//achar(20)//achar(21)// &
+      & achar(22)//achar(23)//achar(24)//achar(25)//achar(26)//achar(27)//achar(28)// &
+      & achar(29)//achar(30)//achar(31)//achar(127)
 
    integer, parameter, public :: choice_hertz = 0      !< Hertz closed form, no table
    integer, parameter, public :: choice_table = 1      !< one 1-D force table
@@ -257,11 +266,83 @@ contains
    !> sigma_max, mu or summit_density and summit_radius, psi, K, plastic_ratio,
    !> delta_min and delta_max or delta_min_sigma and delta_max_sigma, tol. The result is
    !> validated; on any error input is unchanged and the message names the variable.
+   !> Thread-safe, also on one file from many threads at once: the file is read whole
+   !> through C stdio (egw_io) and the namelist parsed from memory (a Fortran open of a
+   !> file another thread has open fails: "File already opened in another unit").
    subroutine read_scene_file(path, input, error)
       character(len=*), intent(in) :: path   !< a scene file (doc/scenes.md)
       !> the variables given replace its own; unchanged on error
       type(scene_input), intent(inout) :: input
       !> allocated on failure, naming the line
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: bytes, lines(:)
+      integer :: at
+      call read_file(path, bytes, error)
+      if (allocated(error)) return
+      ! a namelist is text: control bytes (but tab, CR, LF, form feed) mean another kind
+      ! of file, which gfortran's namelist parser of internal files would partly accept
+      at = scan(bytes, control_bytes)
+      if (at > 0) then
+         call fatal_error(error, egw_bad_file, "path = "//path//": not a text file (byte "// &
+            & int_str(at)//" is the control character "//int_str(iachar(bytes(at:at)))// &
+            & "): not a namelist &scene")
+         return
+      end if
+      call split_lines(bytes, lines)
+      call read_scene_lines(lines, input, error)
+      if (allocated(error)) error%message = "path = "//path//": "//error%message
+   end subroutine read_scene_file
+
+   !> The lines of a text (LF or CRLF ends; at least one, blank for an empty text) as the
+   !> records of an internal file, blank-padded to the longest.
+   pure subroutine split_lines(text, lines)
+      character(len=*), intent(in) :: text
+      character(len=:), allocatable, intent(out) :: lines(:)
+      integer :: n, i, first, last, width, k
+      n = 1
+      width = 0
+      first = 1
+      do i = 1, len(text) + 1
+         if (i <= len(text)) then
+            if (text(i:i) /= achar(10)) cycle
+         end if
+         width = max(width, line_end(i) - first + 1)
+         if (i <= len(text)) n = n + 1
+         first = i + 1
+      end do
+      if (len(text) > 0) then
+         if (text(len(text):) == achar(10)) n = n - 1   ! a final LF ends, not starts, a line
+      end if
+      allocate (character(len=max(width, 1)) :: lines(max(n, 1)))
+      lines = ""
+      k = 0
+      first = 1
+      do i = 1, len(text) + 1
+         if (i <= len(text)) then
+            if (text(i:i) /= achar(10)) cycle
+         end if
+         k = k + 1
+         if (k > size(lines)) exit
+         last = line_end(i)
+         if (last >= first) lines(k) = text(first:last)
+         first = i + 1
+      end do
+   contains
+      !> The last character of the line that ends before position i (a CR dropped).
+      pure integer function line_end(i) result(last)
+         integer, intent(in) :: i
+         last = i - 1
+         if (last >= 1) then
+            if (text(last:last) == achar(13)) last = last - 1
+         end if
+      end function line_end
+   end subroutine split_lines
+
+   !> read_scene_file on the file's lines (the records of an internal file); the message
+   !> of an error does not name the file (the caller adds it).
+   subroutine read_scene_lines(lines, input, error)
+      character(len=*), intent(in) :: lines(:)   !< the file's lines
+      type(scene_input), intent(inout) :: input  !< as read_scene_file
       type(egw_error), allocatable, intent(out) :: error
       type(scene_overrides) :: ov
       character(len=32) :: model
@@ -272,7 +353,7 @@ contains
       namelist /scene/ model, radius, radius_min, radius_max, modulus, poisson, &
          & effective_modulus, sigma, sigma_min, sigma_max, mu, summit_density, summit_radius, &
          & psi, k, plastic_ratio, delta_min, delta_max, delta_min_sigma, delta_max_sigma, tol
-      integer :: unit, stat
+      integer :: stat
       character(len=512) :: msg
 
       model = ov%model
@@ -285,21 +366,17 @@ contains
       delta_min_sigma = ov%delta_min_sigma; delta_max_sigma = ov%delta_max_sigma
       tol = ov%tol
 
-      open (newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=msg)
-      if (stat /= 0) then
-         call fatal_error(error, egw_io_error, "path = "//path//": "//trim(msg))
-         return
-      end if
-      read (unit, nml=scene, iostat=stat, iomsg=msg)
+      msg = ""
+      ! gfortran 12 reads an internal file without the group as a success: look first
+      stat = 0
+      if (.not. any(has_group(lines))) stat = -1
+      if (stat == 0) read (lines, nml=scene, iostat=stat, iomsg=msg)
       if (stat /= 0) then
          ! gfortran reports most malformed groups as end of file: find the entry at fault
-         rewind (unit)
-         call diagnose(unit, msg)
-         close (unit)
-         call fatal_error(error, egw_bad_file, "path = "//path//": "//trim(msg))
+         call diagnose(msg)
+         call fatal_error(error, egw_bad_file, trim(msg))
          return
       end if
-      close (unit)
       ov = scene_overrides(model=model, radius=radius, radius_min=radius_min, &
          & radius_max=radius_max, modulus=modulus, poisson=poisson, &
          & effective_modulus=effective_modulus, sigma=sigma, sigma_min=sigma_min, &
@@ -308,25 +385,22 @@ contains
          & plastic_ratio=plastic_ratio, delta_min=delta_min, delta_max=delta_max, &
          & delta_min_sigma=delta_min_sigma, delta_max_sigma=delta_max_sigma, tol=tol)
       call apply_scene_overrides(input, ov, error)
-      if (allocated(error)) error%message = "path = "//path//": "//error%message
 
    contains
 
       !> Why the group could not be read: no group, no closing '/', or the first entry
       !> (a line starting "name =" with its continuation lines) that fails on its own.
-      subroutine diagnose(unit, why)
-         integer, intent(in) :: unit
+      subroutine diagnose(why)
          character(len=*), intent(inout) :: why
          character(len=:), allocatable :: line, entry, lower
          character(len=512) :: entry_msg
          logical :: in_group, closed
-         integer :: ios, at
+         integer :: at, i
          in_group = .false.
          closed = .false.
          entry = ""
-         do
-            call read_line(unit, line, ios)
-            if (ios /= 0) exit
+         do i = 1, size(lines)
+            line = trim(lines(i))
             at = index(line, "!")
             if (at > 0) line = line(:at - 1)
             if (.not. in_group) then
@@ -368,7 +442,23 @@ contains
          entry_ok = ios == 0
       end function entry_ok
 
-   end subroutine read_scene_file
+   end subroutine read_scene_lines
+
+   !> Whether a line (its part before a comment '!') opens the group &scene (any case).
+   elemental logical function has_group(line)
+      character(len=*), intent(in) :: line
+      character(len=len(line)) :: lower
+      integer :: at, next
+      lower = to_lower(line)
+      at = index(lower, "!")
+      if (at > 0) lower(at:) = ""
+      at = index(lower, "&scene")
+      has_group = at > 0
+      if (.not. has_group) return
+      next = at + 6
+      if (next <= len(lower)) has_group = verify(lower(next:next), &
+         & "abcdefghijklmnopqrstuvwxyz0123456789_") > 0
+   end function has_group
 
    !> Whether a namelist line starts an entry: a name (optionally indexed) then '='.
    pure logical function starts_entry(line)
@@ -386,22 +476,6 @@ contains
       end do
       starts_entry = len_trim(line(:eq - 1)) > 0
    end function starts_entry
-
-   !> One line of a formatted file, any length.
-   subroutine read_line(unit, line, ios)
-      integer, intent(in) :: unit
-      character(len=:), allocatable, intent(out) :: line
-      integer, intent(out) :: ios
-      character(len=256) :: chunk
-      integer :: n
-      line = ""
-      do
-         read (unit, '(a)', advance="no", iostat=ios, size=n) chunk
-         line = line//chunk(:n)
-         if (ios /= 0) exit
-      end do
-      if (is_iostat_eor(ios)) ios = 0
-   end subroutine read_line
 
    pure function to_lower(str) result(lower)
       character(len=*), intent(in) :: str

@@ -527,7 +527,10 @@ contains
          coarse = sol
       end do
       call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(options%rel_tol) &
-         & //": force error estimate "//format_real(est)//" not reached on the finest mesh")
+         & //" not reached: the finest mesh's force error estimate is "//format_real(est) &
+         & //", above rel_tol/2 = "//format_real(0.5_dp*options%rel_tol) &
+         & //" (half: a margin for the estimate); this solve reaches rel_tol >= " &
+         & //format_real(2.0_dp*est))
    end subroutine refine_levels
 
    !> Unloading (doc/theory.md §8): adds to est what the kink edges still miss by (both

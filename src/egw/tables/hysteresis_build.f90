@@ -142,9 +142,10 @@ contains
             return
          end if
          if (size(m) + n_split > max_m_nodes) then
-            call fatal_error(error, egw_not_converged, "hysteresis table: more than "// &
-               & format_real(real(max_m_nodes, dp))//" delta_max nodes needed for rel_tol = " &
-               & //format_real(table%rel_tol))
+            call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
+               & format_real(table%rel_tol)//" not reached: more than "// &
+               & format_real(real(max_m_nodes, dp))//" delta_max nodes needed, the largest "// &
+               & "mismatch between them still "//format_real(maxval(err_mid)))
             return
          end if
          allocate (new_m(size(m) + n_split), new_curves(size(m) + n_split), &
@@ -171,8 +172,9 @@ contains
          call move_alloc(new_have, have_mid)
          deallocate (err_mid)
       end do
-      call fatal_error(error, egw_not_converged, "hysteresis table: delta_max grid not "// &
-         & "settled after 30 bisections for rel_tol = "//format_real(table%rel_tol))
+      call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
+         & format_real(table%rel_tol)//" not reached: the delta_max grid did not settle "// &
+         & "after 30 bisections")
    end subroutine refine_m
 
    !> Largest |r_stencil - r_mid| of interval j over the nodes of the midpoint curve (solves):
@@ -401,8 +403,10 @@ contains
             err = max(abs(r_int - r_mid), 0.25_dp*(s(i + 1) - s(i))*abs(d_int - d_mid))
             if (err > 0.25_dp*table%rel_tol) then
                if (n == max_s_nodes) then
-                  call fatal_error(error, egw_not_converged, "hysteresis table: an unloading"// &
-                     & " curve needs more than 400 nodes at delta_max = "//format_real(m))
+                  call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
+                     & format_real(table%rel_tol)//" not reached: the unloading curve at "// &
+                     & "delta_max = "//format_real(m)//" needs more than 400 nodes for "// &
+                     & "rel_tol/4, its mismatch still "//format_real(err))
                   return
                end if
                s(i + 2:n + 1) = s(i + 1:n)

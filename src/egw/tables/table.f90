@@ -27,7 +27,7 @@ module egw_table
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
-      & format_real
+      & format_real, int_str, tolerance_context
    use egw_params, only: contact_params, validate_params, model_hertz, model_epgw, &
       & check_scaled_overlap
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
@@ -163,10 +163,12 @@ contains
       opts = point_options(options, rel_tol)
       call find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, n_solves, &
          & error)
-      if (allocated(error)) return
-      call build_shared_nodes([params], opts, cutoff, delta_max, rel_tol, [p_ref], .false., &
-         & tables, error, n_solves, progress)
-      if (allocated(error)) return
+      if (.not. allocated(error)) call build_shared_nodes([params], opts, cutoff, delta_max, &
+         & rel_tol, [p_ref], .false., tables, error, n_solves, progress)
+      if (allocated(error)) then
+         call tolerance_context(error, "table", rel_tol, opts%rel_tol)   ! the caller's terms
+         return
+      end if
       table = tables(1)
    end subroutine build_table
 
@@ -377,13 +379,17 @@ contains
          if (m == 0) exit
          if (n + m > max_nodes .or. round == max_rounds) then
             call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
-               & ": table did not converge within the node limit (solver noise above rel_tol?)")
+               & " not reached: "//int_str(n)//" nodes and the largest interpolation error "// &
+               & "at the check solves is still "//format_real(maxval(err_f))// &
+               & " (node limit; the solver's noise at "//format_real(opts%rel_tol)// &
+               & " above rel_tol?)")
             return
          end if
          xm = 0.5_dp*(x(todo) + x(todo + 1))
          if (any(xm <= x(todo) .or. xm >= x(todo + 1))) then
             call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
-               & ": node spacing reached round-off before the tolerance was met")
+               & " not reached: the node spacing reached round-off with the largest "// &
+               & "interpolation error at the check solves still "//format_real(maxval(err_f)))
             return
          end if
          allocate (fm(m, ns), km(m, ns), am(m, ns), split(m))

@@ -115,8 +115,8 @@ contains
          if (worst <= rel_tol) exit
          if (u%n_mu >= max_mu_nodes) then
             call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(rel_tol)// &
-               & ": mu interpolation error "//format_real(worst)//" with "// &
-               & "the maximum number of mu nodes")
+               & " not reached: the mu interpolation error is still "//format_real(worst)// &
+               & " with the maximum number of mu nodes ("//int_str(u%n_mu)//")")
             return
          end if
          ! rebuild on a finer grid (shared nodes must be re-chosen for all slices). The
