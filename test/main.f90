@@ -27,6 +27,7 @@ program tester
    use test_unload_sphere, only: collect_unload_sphere
    use test_input, only: collect_input
    use test_facade, only: collect_facade
+   use test_capi_array, only: collect_capi_array
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -56,7 +57,8 @@ program tester
       & new_testsuite("unload_sphere", collect_unload_sphere), &
       & new_testsuite("hysteresis", collect_hysteresis), &
       & new_testsuite("input", collect_input), &
-      & new_testsuite("facade", collect_facade) &
+      & new_testsuite("facade", collect_facade), &
+      & new_testsuite("capi_array", collect_capi_array) &
       & ]
 
    stat = 0
