@@ -89,6 +89,28 @@ class Table(_Handle):
     @classmethod
     def build(cls, params: Params, delta_min: float, delta_max: float,
               rel_tol: float = 1e-6, options: Optional[Options] = None) -> "Table":
+        """Build the force table of one contact from full solves (egw_table_build).
+
+        Parameters
+        ----------
+        params : Params
+            Scalar fields.
+        delta_min, delta_max : float
+            Overlap range [length] (delta > 0 pressed together, < 0 apart, from the mean
+            summit plane); the table starts at the cut-off if that lies lower.
+        rel_tol : float
+            Interpolation tolerance against solves between nodes (relative).
+        options : Options, optional
+            Solver options (threads of the solves).
+
+        Returns
+        -------
+        Table
+
+        Raises
+        ------
+        InvalidArgumentError, NotConvergedError
+        """
         p = _params(params)
         h = ctypes.c_void_p()
         check(lib.egw_table_build(ctypes.byref(p), _options(options), float(delta_min),
@@ -108,6 +130,7 @@ class Table(_Handle):
 
     @property
     def info(self) -> TableInfo:
+        """Facts about the table (egw_table_get_info): cut-off, range, errors."""
         c = _capi.TableInfo()
         check(lib.egw_table_get_info(self._ptr, ctypes.byref(c)))
         return TableInfo(*(getattr(c, f) for f, _ in c._fields_))
@@ -141,6 +164,29 @@ class UniversalTable(_Handle):
     def build(cls, params: Params, mu_min: float, mu_max: float, x_min: float,
               x_max: float, rel_tol: float = 1e-6,
               options: Optional[Options] = None) -> "UniversalTable":
+        """Build the universal table of a model over mu and x = delta/sigma
+        (egw_universal_build): P/(E sqrt(R) sigma^1.5) for every R, E*, sigma.
+
+        Parameters
+        ----------
+        params : Params
+            The model (and psi, K, rho_p for EP-GW); R, E*, sigma, mu are scaled out.
+        mu_min, mu_max : float
+            Range of mu (> 0).
+        x_min, x_max : float
+            Range of delta/sigma.
+        rel_tol : float
+            Interpolation tolerance (relative).
+        options : Options, optional
+
+        Returns
+        -------
+        UniversalTable
+
+        Raises
+        ------
+        InvalidArgumentError, NotConvergedError
+        """
         p = _params(params)
         h = ctypes.c_void_p()
         check(lib.egw_universal_build(ctypes.byref(p), _options(options), float(mu_min),
@@ -150,11 +196,19 @@ class UniversalTable(_Handle):
 
     @classmethod
     def read(cls, path: PathLike) -> "UniversalTable":
+        """Read a universal table written by :meth:`write` (FileError if unreadable)."""
         h = ctypes.c_void_p()
         check(lib.egw_universal_read(_path(path), ctypes.byref(h)))
         return cls(h)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
+        """Write atomically ('binary' or 'csv', doc/formats.md).
+
+        Raises
+        ------
+        FileError
+            The file cannot be written.
+        """
         check(lib.egw_universal_write(self._ptr, _path(path), _format(format)))
 
     def eval(self, params: Params, delta: ArrayLike) -> Tuple[ArrayLike, ArrayLike]:
@@ -212,6 +266,26 @@ class HysteresisTable(_Handle):
     @classmethod
     def build(cls, params: Params, delta_min: float, delta_max: float,
               rel_tol: float = 1e-4, options: Optional[Options] = None) -> "HysteresisTable":
+        """Build the EP-GW loading/unloading table of one contact (egw_hysteresis_build).
+
+        Parameters
+        ----------
+        params : Params
+            Scalar fields, model EP-GW (other models give a reversible table).
+        delta_min, delta_max : float
+            Overlap range [length], sign as in :func:`egw.solve`.
+        rel_tol : float
+            Interpolation tolerance (relative).
+        options : Options, optional
+
+        Returns
+        -------
+        HysteresisTable
+
+        Raises
+        ------
+        InvalidArgumentError, NotConvergedError
+        """
         _require("egw_hysteresis_build")
         p = _params(params)
         h = ctypes.c_void_p()
@@ -221,12 +295,20 @@ class HysteresisTable(_Handle):
 
     @classmethod
     def read(cls, path: PathLike) -> "HysteresisTable":
+        """Read a hysteresis table written by :meth:`write` (FileError if unreadable)."""
         _require("egw_hysteresis_read")
         h = ctypes.c_void_p()
         check(lib.egw_hysteresis_read(_path(path), ctypes.byref(h)))
         return cls(h)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
+        """Write atomically ('binary' or 'csv', doc/formats.md).
+
+        Raises
+        ------
+        FileError
+            The file cannot be written.
+        """
         _require("egw_hysteresis_write")
         check(lib.egw_hysteresis_write(self._ptr, _path(path), _format(format)))
 

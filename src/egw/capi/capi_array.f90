@@ -64,6 +64,8 @@ module egw_capi_array
       integer :: delta_stride = 0
       real(c_double), pointer :: force(:) => null(), stiffness(:) => null(), &
          & contact_radius(:) => null()
+      !> points already done by hertz_shared (allocated only by it)
+      logical, allocatable :: done(:)
    contains
       procedure :: run => hertz_run
       procedure :: fail => hertz_fail
@@ -134,6 +136,13 @@ contains
       task%force => double_array(force, n)
       task%stiffness => double_array(stiffness, n)
       task%contact_radius => double_array(contact_radius, n)
+      if (p_stride == 0) then
+         call hertz_shared(task, int(n))
+         if (all(task%done)) then
+            call put_int(n_failed, 0)
+            return
+         end if
+      end if
       stat = run_points(task, int(n), flags, n_failed, 0)
    end function egw_hertz_array
 
@@ -261,6 +270,9 @@ contains
       type(contact_params), intent(in) :: params
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: delta, f, k
+      if (allocated(self%done)) then
+         if (self%done(i + 1)) return
+      end if
       delta = self%delta(1 + i*self%delta_stride)
       if (.not. ieee_is_finite(delta)) then
          call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
@@ -279,6 +291,48 @@ contains
       if (associated(self%contact_radius)) self%contact_radius(i + 1) = &
          & hertz_contact_radius(delta, params%radius)
    end subroutine hertz_run
+
+   !> The common case of one R and E* (validated): points whose every intermediate is a
+   !> normal double are done here in a tight loop, with the operations of hertz_force,
+   !> hertz_stiffness and hertz_contact_radius in their order (the same values bit for
+   !> bit); the others are left to hertz_run, which is run after (overwriting nothing
+   !> here: a point done here is computed again identically there only when it was not).
+   subroutine hertz_shared(task, n)
+      type(hertz_task), intent(inout) :: task
+      integer, intent(in) :: n
+      real(dp) :: radius, c_force, c_stiffness, d, rd, a, t, f
+      integer :: i
+      logical :: want_f, want_k, want_a
+      radius = task%params%shared%radius
+      c_force = (4.0_dp/3.0_dp)*task%params%shared%modulus
+      c_stiffness = 2.0_dp*task%params%shared%modulus
+      want_f = associated(task%force)
+      want_k = associated(task%stiffness)
+      want_a = associated(task%contact_radius)
+      allocate (task%done(n))
+      do i = 1, n
+         d = task%delta(1 + (i - 1)*task%delta_stride)
+         task%done(i) = .false.
+         if (d > 0.0_dp .and. d <= huge(d)) then
+            rd = radius*d
+            if (.not. (rd >= tiny(rd) .and. rd <= huge(rd))) cycle
+            a = sqrt(rd)
+            t = c_force*a
+            f = t*d
+            if (.not. (t >= tiny(t) .and. t <= huge(t) .and. f >= tiny(f) .and. &
+               & f <= huge(f) .and. c_stiffness*a <= huge(a))) cycle
+         else if (d <= 0.0_dp .and. d >= -huge(d)) then
+            a = 0.0_dp
+            f = 0.0_dp
+         else
+            cycle
+         end if
+         if (want_f) task%force(i) = f
+         if (want_k) task%stiffness(i) = c_stiffness*a
+         if (want_a) task%contact_radius(i) = a
+         task%done(i) = .true.
+      end do
+   end subroutine hertz_shared
 
    subroutine hertz_fail(self, i)
       class(hertz_task), intent(in) :: self
