@@ -18,7 +18,7 @@ from .core import (EgwError, FileError, IgnoredParameterWarning, InvalidArgument
 from .scene import ModelChoice, Scene, build, choose
 from .tables import HysteresisInfo, HysteresisTable, Table, TableInfo, UniversalTable
 from . import topography
-from .topography import psi_from_hardness
+from .topography import contact_from_topography, psi_from_hardness
 
 __version__ = "0.1.0"
 
@@ -29,4 +29,4 @@ __all__ = ["EgwError", "FileError", "InvalidArgumentError", "NotConvergedError",
            "ModelChoice", "Scene", "build", "choose", "HysteresisInfo", "HysteresisTable", "Table",
            "TableInfo", "UniversalTable", "topography", "psi_from_hardness",
            "IgnoredParameterWarning", "PointFailedWarning", "TimeStep", "effective_modulus",
-           "errstate", "time_step"]
+           "errstate", "time_step", "contact_from_topography"]
