@@ -315,8 +315,11 @@ DEFAULTS = {"detrend": {True: "mean", False: "plane"},
             "derivatives": {True: "fft", False: "difference"}}
 #: the summit-identification and spectral estimates are compared at this relative gap
 AGREEMENT_TOL = 0.10
-#: fewer pixels per summit than this: 8-neighbour identification is limited by sampling
-PIXELS_PER_SUMMIT_MIN = 20.0
+#: a curvature wavelength 2 pi sqrt(m2/m4) under this many pixels: 8-neighbour summit
+#: identification is limited by the sampling
+PIXELS_PER_WAVELENGTH_MIN = 20.0
+#: fewer summits than this: their averages carry more than 5 % statistical error
+SUMMITS_STATISTICS_MIN = 400
 
 
 def default_detrend(periodic: bool) -> str:
@@ -360,6 +363,8 @@ def _from_surface_topography(top: Any, unit: Optional[str],
         raise ValueError(f"mixed units: the topography is in {top_unit!r}, unit = {unit!r} "
                          "was given: convert the topography (top.to_unit(...)) instead")
     unit = top_unit if top_unit is not None else unit
+    if unit is None:
+        raise ValueError("the topography has no unit: give unit= (or make it with unit=...)")
     _check_unit(unit)
     nx, ny = top.nb_grid_pts
     sx, sy = top.physical_sizes
@@ -519,22 +524,33 @@ class TopographyReport:
                 "reason": self.reason, "warnings": list(self.warnings)}
 
 
-def _trust(hm: HeightMap, summits: SummitStatistics, spectral: SummitStatistics,
-           alpha: float) -> Tuple[str, str]:
-    pixels_per_summit = 1.0 / (summits.summit_density * hm.dx * hm.dy)
+def _trust(hm: HeightMap, summits: SummitStatistics, moments: Moments) -> Tuple[str, str]:
+    """Which estimate to trust, and why: McCool's formulas need alpha >> 1 and an
+    isotropic surface; 8-neighbour identification needs the curvature wavelength
+    2 pi sqrt(m2/m4) well sampled and enough summits for its averages."""
+    alpha = moments.alpha
+    wavelength = 2 * math.pi * math.sqrt(moments.m2 / moments.m4) / math.sqrt(hm.dx * hm.dy)
+    n = summits.n_summits or 0
+    (m2x, m2y) = moments.m2_xy
     if alpha < ALPHA_WARN:
-        return "summits", (f"bandwidth alpha = {alpha:.3g} < {ALPHA_WARN}: McCool's "
-                           "formulas assume alpha >> 1 (a broad spectrum of summits); the "
-                           "summits found on the map are the direct estimate")
-    if pixels_per_summit < PIXELS_PER_SUMMIT_MIN:
-        return "spectral", (f"sampling: {pixels_per_summit:.3g} pixels per summit "
-                            f"(< {PIXELS_PER_SUMMIT_MIN:g}): 8-neighbour identification "
-                            "merges and misses summits at this pixel size; the spectral "
+        return "summits", (f"bandwidth: alpha = {alpha:.3g} < {ALPHA_WARN}, and McCool's "
+                           "formulas assume alpha >> 1; the summits found on the map are the "
+                           "direct estimate")
+    if wavelength < PIXELS_PER_WAVELENGTH_MIN:
+        return "spectral", (f"sampling: the curvature wavelength 2 pi sqrt(m2/m4) spans "
+                            f"{wavelength:.3g} pixels (< {PIXELS_PER_WAVELENGTH_MIN:g}), so "
+                            "8-neighbour identification merges and misses summits; the "
                             "moments count every resolved wavelength (both depend on the "
                             "pixel size: sample finer if you can)")
-    return "summits", (f"{pixels_per_summit:.3g} pixels per summit and alpha = {alpha:.3g}: "
-                       "the summits are resolved, and their direct statistics need no "
-                       "Gaussian, isotropic surface (McCool's formulas do)")
+    if n < SUMMITS_STATISTICS_MIN:
+        return "spectral", (f"statistics: {n} summits carry a {100 / math.sqrt(max(n, 1)):.0f}"
+                            " % error; the moments average over every pixel")
+    if max(m2x, m2y) > 1.5 * min(m2x, m2y):
+        return "summits", ("anisotropy: McCool's formulas assume an isotropic surface; the "
+                           "summits found are the direct estimate")
+    return "summits", (f"the summits are resolved ({wavelength:.3g} pixels per curvature "
+                       f"wavelength, {n} summits, alpha = {alpha:.3g}) and their direct "
+                       "statistics need no Gaussian isotropic surface")
 
 
 def analyse(source: Any, pixel_size=None, unit: Optional[str] = None, *,
@@ -572,7 +588,7 @@ def analyse(source: Any, pixel_size=None, unit: Optional[str] = None, *,
     gaps = {"summit_density": summits.summit_density / spectral.summit_density - 1.0,
             "summit_radius": summits.summit_radius / spectral.summit_radius - 1.0,
             "sigma_summits": summits.sigma_summits / spectral.sigma_summits - 1.0}
-    trust, reason = _trust(hm, summits, spectral, moments.alpha)
+    trust, reason = _trust(hm, summits, moments)
     notes = list(summits.warnings) + list(spectral.warnings)
     worst = max(gaps, key=lambda k: abs(gaps[k]))
     if abs(gaps[worst]) > AGREEMENT_TOL:
