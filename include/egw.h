@@ -708,6 +708,15 @@ int egw_time_step_array(const egw_params *p, int p_stride, const egw_options *o,
                         int velocity_stride, double tolerance, double *duration,
                         double *time_step, int flags, int *n_failed);
 
+/* egw_universal_eval at n points: the contacts p (stride p_stride; each evaluated as the
+ * scalar call checks it) at overlaps delta; force and stiffness may be NULL. A point with
+ * mu outside the table gets NaN, a point above x_max*sigma the extrapolated values: the
+ * call then returns EGW_OUT_OF_RANGE (all points written, message says so). Other
+ * failures follow flags. */
+int egw_universal_eval_array(egw_universal u, const egw_params *p, int p_stride, int n,
+                             const double *delta, int delta_stride, double *force,
+                             double *stiffness, int flags, int *n_failed);
+
 #ifdef __cplusplus
 }
 #endif

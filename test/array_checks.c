@@ -157,3 +157,33 @@ int egw_capi_test_array_impact(void) {
   CHECK(last_error_starts("point 1: "));
   return failures;
 }
+
+int egw_capi_test_array_universal(void) {
+  egw_params p = rough(EGW_MODEL_EGW), c[3];
+  egw_universal u = NULL;
+  double d[3] = {-1e-6, 1e-6, 3e-6}, f[3], k[3];
+  int nf = -1;
+  failures = 0;
+  CHECK(egw_universal_build(&p, NULL, 2.0, 6.0, -2.0, 10.0, 1e-3, &u) == EGW_OK && u != NULL);
+  if (u == NULL) return failures;
+  for (int i = 0; i < 3; i++) { c[i] = p; c[i].mu = 2.5 + i; c[i].radius = 1e-4 * (i + 1); }
+  CHECK(egw_universal_eval_array(u, c, 1, 3, d, 1, f, k, EGW_ARRAY_RAISE, &nf) == EGW_OK);
+  CHECK(nf == 0);
+  for (int i = 0; i < 3; i++) {
+    double fs, ks;
+    CHECK(egw_universal_eval(u, &c[i], d[i], &fs, &ks) == EGW_OK);
+    CHECK(f[i] == fs && k[i] == ks);
+  }
+  /* mu outside the table: NaN there and EGW_OUT_OF_RANGE; a NaN overlap: refused */
+  c[1].mu = 50.0;
+  CHECK(egw_universal_eval_array(u, c, 1, 3, d, 1, f, k, EGW_ARRAY_RAISE, &nf) == EGW_OUT_OF_RANGE);
+  CHECK(isnan(f[1]) && f[2] > 0.0);
+  c[1].mu = 3.0; d[2] = NAN;
+  CHECK(egw_universal_eval_array(u, c, 1, 3, d, 1, f, k, EGW_ARRAY_RAISE, NULL) == EGW_INVALID_ARGUMENT);
+  CHECK(last_error_starts("point 2: delta"));
+  CHECK(egw_universal_eval_array(u, c, 1, 3, d, 1, f, k, EGW_ARRAY_NAN, &nf) == EGW_OK);
+  CHECK(nf == 1 && isnan(f[2]));
+  CHECK(egw_universal_eval_array(NULL, c, 1, 3, d, 1, f, k, 0, NULL) == EGW_NULL_POINTER);
+  egw_universal_free(&u);
+  return failures;
+}

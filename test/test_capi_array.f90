@@ -19,6 +19,9 @@ module test_capi_array
       integer(c_int) function c_impact() bind(C, name="egw_capi_test_array_impact")
          import :: c_int
       end function c_impact
+      integer(c_int) function c_universal() bind(C, name="egw_capi_test_array_universal")
+         import :: c_int
+      end function c_universal
    end interface
 
 contains
@@ -29,7 +32,8 @@ contains
          & new_unittest("hertz", t_hertz), &
          & new_unittest("flat pressure and gauss", t_flat), &
          & new_unittest("solves over threads", t_solve), &
-         & new_unittest("restitution and time step", t_impact) &
+         & new_unittest("restitution and time step", t_impact), &
+         & new_unittest("universal table", t_universal) &
          & ]
    end subroutine collect_capi_array
 
@@ -58,5 +62,10 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_impact())
    end subroutine t_impact
+
+   subroutine t_universal(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_universal())
+   end subroutine t_universal
 
 end module test_capi_array

@@ -730,6 +730,19 @@ static int r_universal_eval(void) {
   return st;
 }
 
+static int r_universal_eval_array(void) {
+  egw_universal u = base_universal();
+  egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
+  double d[2] = {D(11, 3e-3), 1e-3}, f[2], k[2];
+  int n = clamp_count(I(10, 2), 2), st;
+  sentinel(f, sizeof f);
+  st = egw_universal_eval_array(P(8, u), P(9, &p), 0, n, d, 1, P(12, f), P(13, k),
+                                I(14, EGW_ARRAY_RAISE), NULL);
+  if (cur->slot != 12 && cur->slot != 14) array_out(st, "force", f, n > 0 ? n : 0);
+  egw_universal_free(&u);
+  return st;
+}
+
 static int r_universal_slice(void) {
   egw_universal u = base_universal();
   egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
@@ -1134,6 +1147,10 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"u", K_PTR}, {"p", K_PTR}, {"delta", K_DBL}, {"force", K_PTR},
       {"stiffness", K_PTR}},
      r_universal_eval, 0},
+    {"egw_universal_eval_array", 15,
+     {PARAM_SLOTS("p."), {"u", K_PTR}, {"p", K_PTR}, {"n", K_INT}, {"delta[0]", K_DBL},
+      {"force", K_PTR}, {"stiffness", K_PTR}, {"flags", K_INT}},
+     r_universal_eval_array, 0},
     {"egw_universal_slice(_range)", 12,
      {PARAM_SLOTS("p."), {"u", K_PTR}, {"p", K_PTR}, {"delta_max", K_DBL}, {"out", K_PTR}},
      r_universal_slice, 0},

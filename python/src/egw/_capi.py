@@ -166,6 +166,8 @@ _SIGNATURES = {
                                 POINTER(Result), c_int, _ip]),
     "egw_restitution_array": (c_int, [_P, c_int, _O, c_int, _dp, c_int, _dp, c_int, _dp, _dp,
                                       _dp, _dp, c_int, _ip]),
+    "egw_universal_eval_array": (c_int, [c_void_p, _P, c_int, c_int, _dp, c_int, _dp, _dp,
+                                         c_int, _ip]),
     "egw_time_step_array": (c_int, [_P, c_int, _O, c_int, _dp, c_int, _dp, c_int, c_double,
                                     _dp, _dp, c_int, _ip]),
 }

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import warnings
 from dataclasses import dataclass
 from typing import Optional, Tuple, Union
 
@@ -14,8 +15,9 @@ import numpy as np
 
 from . import _capi
 from ._capi import lib
-from .core import (ArrayLike, OUT_OF_RANGE, Options, Params, _array, _double_ptr,
-                   _options, _params, _require, _scalar_or_array, check)
+from .core import (_FAILED, OK, OUT_OF_RANGE, ArrayLike, FloatOrArray, Options, Params,
+                   PointFailedWarning, _array, _Batch, _double_ptr, _options, _params,
+                   _require, _scalar_or_array, check)
 
 FORMATS = {"csv": 0, "binary": 1, "lammps": 2, "calculix": 3}
 PathLike = Union[str, os.PathLike]
@@ -211,21 +213,52 @@ class UniversalTable(_Handle):
         """
         check(lib.egw_universal_write(self._ptr, _path(path), _format(format)))
 
-    def eval(self, params: Params, delta: ArrayLike) -> Tuple[ArrayLike, ArrayLike]:
-        """(force, stiffness) of the contact `params` (its R, E, sigma, mu) at delta."""
-        p = _params(params)
-        d = _array(delta)
-        flat = d.reshape(-1)
-        force = np.empty(d.shape)
-        stiffness = np.empty(d.shape)
-        f, k = ctypes.c_double(), ctypes.c_double()
-        ff, kf = force.reshape(-1), stiffness.reshape(-1)
-        for i in range(flat.size):
-            check(lib.egw_universal_eval(self._ptr, ctypes.byref(p), float(flat[i]),
-                                         ctypes.byref(f), ctypes.byref(k)),
-                  allow_out_of_range=True)
-            ff[i], kf[i] = f.value, k.value
-        return _scalar_or_array(d.shape, force, stiffness)
+    def eval(self, params: Params, delta: ArrayLike) -> Tuple[FloatOrArray, FloatOrArray]:
+        """Force and stiffness of contacts read from the table, in one C call.
+
+        Parameters
+        ----------
+        params : Params
+            The contacts: R, E*, sigma (> 0), mu may be arrays (broadcast with delta);
+            model, psi, K, rho_p must equal the table's.
+        delta : float or array
+            Overlap [length] (> 0 pressed together, < 0 apart, from the mean summit plane).
+
+        Returns
+        -------
+        force, stiffness : float or ndarray
+            Of the broadcast shape.
+
+        Warns
+        -----
+        OutOfRangeWarning
+            Points above x_max*sigma (extrapolated linearly) or with mu outside the table
+            (NaN there).
+
+        Raises
+        ------
+        InvalidArgumentError
+            A NaN overlap (named with its index), or parameters that do not match the table.
+        """
+        b = _Batch(params, delta=delta)
+        force, stiffness = b.out(2)
+        pd, sd = b.inputs["delta"]
+        if not _capi.has("egw_universal_eval_array"):
+            raise NotImplementedError("the loaded libegw has no egw_universal_eval_array")
+        mode = _FAILED.get()
+        n_failed = ctypes.c_int(0)
+        status = lib.egw_universal_eval_array(self._ptr, b.params[0], b.params[1], b.n, pd,
+                                              sd, _double_ptr(force), _double_ptr(stiffness),
+                                              0 if mode == "raise" else 1,
+                                              ctypes.byref(n_failed))
+        if status not in (OK, OUT_OF_RANGE):
+            b._raise(status)
+        if status == OUT_OF_RANGE:
+            check(status, allow_out_of_range=True)
+        if mode == "warn" and n_failed.value:
+            warnings.warn(f"{n_failed.value} of {b.n} points failed and are NaN",
+                          PointFailedWarning, stacklevel=2)
+        return _scalar_or_array(b.shape, force, stiffness)
 
     def slice(self, params: Params, delta_max: Optional[float] = None) -> Table:
         """The 1-D table of one contact cut out of the universal table (no solves); with

@@ -4,12 +4,13 @@
 !> message naming its index (EGW_ARRAY_RAISE) or gets NaN outputs (EGW_ARRAY_NAN). Solves
 !> and impacts run their points over OpenMP threads, each solve single-threaded inside.
 module egw_capi_array
-   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_associated, c_f_pointer
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_associated, c_f_pointer, &
+      & c_loc, c_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    !$ use omp_lib, only: omp_get_max_threads, omp_get_num_procs
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok, egw_invalid_argument, fatal_error, format_real, &
-      & int_str
+   use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_out_of_range, &
+      & fatal_error, format_real, int_str
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_unload
    use egw_impact, only: restitution, time_step
@@ -18,7 +19,7 @@ module egw_capi_array
    use egw_unloading, only: flat_pressure_unload
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness, hertz_contact_radius
    use egw_capi_utils, only: settle, require, invalid, failure, check_count, double_array, &
-      & egw_params_c, egw_result_c, to_params, read_options
+      & egw_params_c, egw_result_c, to_params, read_options, copy_last_error
    implicit none
    private
 
@@ -118,9 +119,66 @@ module egw_capi_array
       procedure :: fail => impact_fail
    end type impact_task
 
+   interface
+      !> The scalar C entry of capi_table.f90 (its module keeps it private): the array form
+      !> calls it per point, so the two agree by construction.
+      function universal_eval_c(h, p, delta, force, stiffness) result(stat) &
+         & bind(C, name="egw_universal_eval")
+         import :: c_ptr, c_double, c_int
+         type(c_ptr), value, intent(in) :: h, p, force, stiffness
+         real(c_double), value, intent(in) :: delta
+         integer(c_int) :: stat
+      end function universal_eval_c
+   end interface
+
 contains
 
    ! ------------------------------------------------------------ entry points
+
+   !> C: egw_universal_eval_array (include/egw.h).
+   function egw_universal_eval_array(u, p, p_stride, n, delta, delta_stride, force, &
+      & stiffness, flags, n_failed) result(stat) bind(C, name="egw_universal_eval_array")
+      type(c_ptr), value, intent(in) :: u, p, delta, force, stiffness, n_failed
+      integer(c_int), value, intent(in) :: p_stride, n, delta_stride, flags
+      integer(c_int) :: stat
+      real(c_double), pointer :: d(:), f(:), k(:)
+      type(egw_params_c), pointer :: cp(:)
+      real(c_double), target :: fi, ki
+      integer :: i, failed, ds
+      logical :: outside
+      stat = check_count(n)
+      if (stat == egw_ok) stat = check_flags(flags)
+      if (stat == egw_ok) stat = check_stride("p_stride", p_stride)
+      if (stat == egw_ok) stat = require(u, "u")
+      if (stat == egw_ok) stat = require(p, "p")
+      if (stat == egw_ok) stat = open_input(delta, "delta", delta_stride, n, d, ds)
+      if (stat /= egw_ok) return
+      call c_f_pointer(p, cp, [extent(n, p_stride)])
+      f => double_array(force, n)
+      k => double_array(stiffness, n)
+      failed = 0
+      outside = .false.
+      do i = 0, n - 1
+         fi = ieee_value(1.0_dp, ieee_quiet_nan)
+         ki = fi
+         stat = universal_eval_c(u, c_loc(cp(1 + i*p_stride)), d(1 + i*ds), c_loc(fi), &
+            & c_loc(ki))
+         if (stat == egw_out_of_range) outside = .true.
+         if (stat /= egw_ok .and. stat /= egw_out_of_range) then
+            if (flags == array_raise) then
+               stat = failure(int(stat), "point "//int_str(i)//": "//last_error_text())
+               return
+            end if
+            failed = failed + 1
+         end if
+         if (associated(f)) f(i + 1) = fi
+         if (associated(k)) k(i + 1) = ki
+      end do
+      call put_int(n_failed, failed)
+      stat = egw_ok
+      if (outside) stat = failure(egw_out_of_range, "some points lie outside the table " &
+         & //"(extrapolated above x_max, NaN where mu is outside it)")
+   end function egw_universal_eval_array
 
    !> C: egw_hertz_array (include/egw.h).
    function egw_hertz_array(p, p_stride, n, delta, delta_stride, force, stiffness, &
@@ -663,6 +721,23 @@ contains
       integer, intent(in) :: i
       if (associated(x)) x(i + 1) = ieee_value(1.0_dp, ieee_quiet_nan)
    end subroutine put_nan
+
+   !> This thread's last error message (as egw_last_error).
+   function last_error_text() result(text)
+      character(len=:), allocatable :: text
+      character(kind=c_char, len=1), target :: buf(1024)
+      integer :: i, stat, n
+      stat = copy_last_error(c_loc(buf), int(size(buf), c_int))
+      n = 0
+      do i = 1, size(buf)
+         if (buf(i) == achar(0)) exit
+         n = i
+      end do
+      allocate (character(len=n) :: text)
+      do i = 1, n
+         text(i:i) = buf(i)
+      end do
+   end function last_error_text
 
    subroutine put_int(ptr, k)
       type(c_ptr), intent(in) :: ptr
