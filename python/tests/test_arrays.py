@@ -162,8 +162,11 @@ def test_effective_modulus_and_mu_from_summits_arrays():
 
 
 def _public_objects():
-    for name in egw.__all__:
-        obj = getattr(egw, name)
+    names = [(n, getattr(egw, n)) for n in egw.__all__]
+    names += [(f"topography.{n}", v) for n, v in vars(egw.topography).items()
+              if not n.startswith("_") and callable(v)
+              and getattr(v, "__module__", None) == "egw.topography"]
+    for name, obj in names:
         yield name, obj
         if isinstance(obj, type):
             for attr, member in vars(obj).items():

@@ -228,3 +228,10 @@ def test_contact_from_topography_one_call():
     assert egw.flat_pressure(flat, 1e-7) == pytest.approx(egw.flat_pressure(other, 1e-7),
                                                           rel=1e-14)
     assert frep.radius is None and any("flat" in n for n in frep.notes)
+
+
+def test_worked_example_of_doc_parameters_runs_through_contact_from_topography(repo):
+    out = subprocess.run([sys.executable, os.path.join(repo, "tools", "worked_example.py")],
+                         check=True, capture_output=True, text=True).stdout
+    # doc/parameters.md section 4: mu = 4.87, psi = 1.99, 15.26 N at 5 sigma
+    assert "mu = 4.866, psi = 1.994" in out and "1.5260e+01 N" in out

@@ -35,10 +35,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .core import check, mu_from_summits
-
-if False:  # typing only
-    from .core import Params  # noqa: F401
+from .core import Params, check, effective_modulus, mu_from_summits
 
 #: below this bandwidth parameter McCool's summit statistics are poor (sigma_s^2 loses
 #: more than 10 % against m0: 0.8968/alpha > 0.1) — GW's isolated-summit picture is
@@ -622,7 +619,7 @@ class ContactReport:
     surfaces : the TopographyReport of each map analysed (empty for moments).
     notes : warnings and assumptions.
     """
-    params: "Params"
+    params: Params
     estimate: str
     reason: str
     summit_density: float
@@ -641,7 +638,7 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
                             nu2: Optional[float] = None, model: str = "E-GW",
                             hardness: Optional[float] = None, hardness_coeff: float = 0.6,
                             pixel_size=None, unit: Optional[str] = None,
-                            estimate: str = "auto") -> Tuple["Params", ContactReport]:
+                            estimate: str = "auto") -> Tuple[Params, ContactReport]:
     """From one or two measured surfaces to the Params of their contact, in one call.
 
     Parameters
@@ -679,7 +676,6 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
     ValueError
         Missing units, NaN pixels, maps on different grids, EP-GW without hardness.
     """
-    from .core import Params, effective_modulus
     if model not in ("GW", "E-GW", "EP-GW"):
         raise ValueError(f"model = {model!r}: a rough contact needs 'GW', 'E-GW' or 'EP-GW'")
     if model == "EP-GW" and hardness is None:
