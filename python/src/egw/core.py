@@ -186,8 +186,9 @@ def _number_array(name: str, value) -> np.ndarray:
     """value as float64 (a scalar as 0-d); strings, None, booleans and complex refused."""
     raw = np.asarray(value)
     if raw.dtype.kind not in "iuf":
+        got = raw.dtype if raw.dtype.kind != "O" else type(value).__name__
         raise TypeError(f"{name} = {value!r}: must be a real number or an array of real "
-                        f"numbers (got {raw.dtype if raw.dtype.kind != 'O' else type(value).__name__})")
+                        f"numbers (got {got})")
     return np.asarray(raw, dtype=np.float64)
 
 

@@ -144,6 +144,7 @@ contains
       real(c_double), pointer :: d(:), f(:), k(:)
       type(egw_params_c), pointer :: cp(:)
       real(c_double), target :: fi, ki
+      character(len=:), allocatable :: message
       integer :: i, failed, ds
       logical :: outside
       stat = check_count(n)
@@ -166,7 +167,8 @@ contains
          if (stat == egw_out_of_range) outside = .true.
          if (stat /= egw_ok .and. stat /= egw_out_of_range) then
             if (flags == array_raise) then
-               stat = failure(int(stat), "point "//int_str(i)//": "//last_error_text())
+               call last_error_text(message)
+               stat = failure(int(stat), "point "//int_str(i)//": "//message)
                return
             end if
             failed = failed + 1
@@ -722,9 +724,10 @@ contains
       if (associated(x)) x(i + 1) = ieee_value(1.0_dp, ieee_quiet_nan)
    end subroutine put_nan
 
-   !> This thread's last error message (as egw_last_error).
-   function last_error_text() result(text)
-      character(len=:), allocatable :: text
+   !> This thread's last error message (as egw_last_error). (A subroutine: gfortran 12
+   !> keeps a deferred-length function result's length in a static variable; egw_text.)
+   subroutine last_error_text(text)
+      character(len=:), allocatable, intent(out) :: text
       character(kind=c_char, len=1), target :: buf(1024)
       integer :: i, stat, n
       stat = copy_last_error(c_loc(buf), int(size(buf), c_int))
@@ -737,7 +740,7 @@ contains
       do i = 1, n
          text(i:i) = buf(i)
       end do
-   end function last_error_text
+   end subroutine last_error_text
 
    subroutine put_int(ptr, k)
       type(c_ptr), intent(in) :: ptr
