@@ -137,9 +137,24 @@ class Table(_Handle):
         check(lib.egw_table_get_info(self._ptr, ctypes.byref(c)))
         return TableInfo(*(getattr(c, f) for f, _ in c._fields_))
 
-    def eval(self, delta: ArrayLike) -> Tuple[ArrayLike, ArrayLike]:
-        """(force, stiffness) at delta: one C call for the whole array. Above the last
-        node the values are extrapolated linearly and an OutOfRangeWarning is issued."""
+    def eval(self, delta: ArrayLike) -> Tuple[FloatOrArray, FloatOrArray]:
+        """Force and stiffness at overlaps delta, one C call for the whole array.
+
+        Parameters
+        ----------
+        delta : float or array
+            Overlap [length] (> 0 pressed together, < 0 apart, from the mean summit plane).
+
+        Returns
+        -------
+        force, stiffness : float or ndarray
+            Of delta's shape [force], [force/length].
+
+        Warns
+        -----
+        OutOfRangeWarning
+            Above the last node (values extrapolated linearly with the last stiffness).
+        """
         d = _array(delta)
         force = np.empty_like(d)
         stiffness = np.empty_like(d)
