@@ -38,11 +38,13 @@ setup:
 python: setup $(PY_STAMP)
 	@echo "python: egw $$($(VENV)/bin/python -c 'import egw; print(egw.version())') in $(VENV)/ ($(VENV)/bin/python, $(VENV)/bin/egw-topo)"
 
-# API reference from the sources' !> comments (FORD, from PyPI, into the project venv).
-docs: setup
-	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "ford>=7"
+# API reference from the sources' !> comments (FORD, from PyPI, into the project venv), and
+# the Python package's from its numpy-style docstrings (pdoc, from PyPI).
+docs: setup $(PY_STAMP)
+	@$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "ford>=7" "pdoc>=14"
 	@$(VENV)/bin/ford --quiet ford.md
-	@echo "docs: build/doc/index.html"
+	@$(VENV)/bin/pdoc --docformat numpy -o build/doc/python egw
+	@echo "docs: build/doc/index.html (Fortran, C), build/doc/python/index.html (Python)"
 
 clean:
 	rm -rf build

@@ -691,6 +691,80 @@ int egw_scene_choose(const egw_scene *s, const egw_options *o, egw_model_choice 
 int egw_scene_build(const egw_scene *s, const egw_options *o, egw_model_choice *choice,
                     egw_table *table, egw_universal *universal);
 
+/* ======================================================================== Array kernels
+ * (src/egw/capi/capi_array.f90) One call evaluates n points. Every input is read with its
+ * own stride in elements: 0 = one value shared by all points, 1 = one value per point
+ * (larger strides skip elements); the parameters too (p_stride 0: *p for every point,
+ * validated once before any point; 1: p[i] for point i, validated with it). Outputs are
+ * contiguous arrays of n (NULL where an output is documented as optional: not wanted).
+ * flags: EGW_ARRAY_RAISE stops at a failing point and returns its status, the message
+ * (egw_last_error) prefixed "point i: " with i its index from 0 (the lowest failing index
+ * among the points tried; outputs of points already done are written, the failed one is
+ * NaN); EGW_ARRAY_NAN gives a failing point NaN outputs (egw_result: NaN and iterations
+ * = -1), goes on, stores the number of failed points at *n_failed (may be NULL) and
+ * returns EGW_OK. Common statuses (whatever flags): EGW_INVALID_ARGUMENT (n < 0, a negative
+ * stride, unknown flags, o->n_threads < 0), EGW_NULL_POINTER (p or an input or res is
+ * NULL), EGW_INVALID_PARAMETER (a shared *p invalid). Inputs and outputs must not overlap.
+ * n is an int: split larger arrays. Thread safe as the scalar calls. */
+#define EGW_ARRAY_RAISE 0
+#define EGW_ARRAY_NAN 1
+
+/* egw_hertz at n overlaps delta (stride delta_stride); force, stiffness, contact_radius may
+ * be NULL. A point fails for a non-finite delta or an overflowing force. */
+int egw_hertz_array(const egw_params *p, int p_stride, int n, const double *delta,
+                    int delta_stride, double *force, double *stiffness,
+                    double *contact_radius, int flags, int *n_failed);
+
+/* egw_flat_pressure_deriv at n separations: pressure and dpressure (either may be NULL). */
+int egw_flat_pressure_array(const egw_params *p, int p_stride, int n,
+                            const double *separation, int separation_stride,
+                            double *pressure, double *dpressure, int flags, int *n_failed);
+
+/* egw_flat_pressure_unload at n points (separation, separation_min). */
+int egw_flat_pressure_unload_array(const egw_params *p, int p_stride, int n,
+                                   const double *separation, int separation_stride,
+                                   const double *separation_min, int separation_min_stride,
+                                   double *pressure, double *dpressure, int flags,
+                                   int *n_failed);
+
+/* egw_gauss_integral (value) and egw_gauss_integral_deriv (derivative) at n points of
+ * order and h; either output may be NULL. */
+int egw_gauss_integral_array(int n, const double *order, int order_stride, const double *h,
+                             int h_stride, double *value, double *derivative, int flags,
+                             int *n_failed);
+
+/* egw_solve at n overlaps delta, or egw_solve_unload when delta_max is not NULL; the
+ * results in res[0..n-1] (not NULL). The points run over o->n_threads OpenMP threads
+ * (o NULL or n_threads 0: the OpenMP default), each solve single-threaded inside; results
+ * equal the scalar calls' whatever the thread count. */
+int egw_solve_array(const egw_params *p, int p_stride, const egw_options *o, int n,
+                    const double *delta, int delta_stride, const double *delta_max,
+                    int delta_max_stride, egw_result *res, int flags, int *n_failed);
+
+/* egw_restitution_energy and egw_restitution_overlap at n impacts (mass, velocity): e,
+ * w_load, w_dissipated, max_overlap (each may be NULL); threads as egw_solve_array. */
+int egw_restitution_array(const egw_params *p, int p_stride, const egw_options *o, int n,
+                          const double *mass, int mass_stride, const double *velocity,
+                          int velocity_stride, double *e, double *w_load,
+                          double *w_dissipated, double *max_overlap, int flags,
+                          int *n_failed);
+
+/* egw_time_step at n impacts (mass, velocity) with one tolerance: duration and time_step
+ * (each may be NULL); threads as egw_solve_array. */
+int egw_time_step_array(const egw_params *p, int p_stride, const egw_options *o, int n,
+                        const double *mass, int mass_stride, const double *velocity,
+                        int velocity_stride, double tolerance, double *duration,
+                        double *time_step, int flags, int *n_failed);
+
+/* egw_universal_eval at n points: the contacts p (stride p_stride; each evaluated as the
+ * scalar call checks it) at overlaps delta; force and stiffness may be NULL. A point with
+ * mu outside the table gets NaN, a point above x_max*sigma the extrapolated values: the
+ * call then returns EGW_OUT_OF_RANGE (all points written, message says so). Other
+ * failures follow flags. */
+int egw_universal_eval_array(egw_universal u, const egw_params *p, int p_stride, int n,
+                             const double *delta, int delta_stride, double *force,
+                             double *stiffness, int flags, int *n_failed);
+
 #ifdef __cplusplus
 }
 #endif

@@ -28,6 +28,7 @@ program tester
    use test_input, only: collect_input
    use test_facade, only: collect_facade
    use test_cache, only: collect_cache
+   use test_capi_array, only: collect_capi_array
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -58,6 +59,7 @@ program tester
       & new_testsuite("hysteresis", collect_hysteresis), &
       & new_testsuite("input", collect_input), &
       & new_testsuite("facade", collect_facade), &
+      & new_testsuite("capi_array", collect_capi_array), &
       & new_testsuite("cache", collect_cache) &
       & ]
 

@@ -16,7 +16,6 @@ both = one + one  # the sum surface of two independent surfaces: the moments add
 E, nu, H, K = 210e9, 0.3, 7.0e9, 0.6
 R1 = R2 = 5e-3
 R = R1 * R2 / (R1 + R2)
-E_star = 1 / ((1 - nu ** 2) / E + (1 - nu ** 2) / E)
 
 print(f"one surface: alpha = {one.alpha:.3g}")
 for label, m in (("one surface", one), ("sum surface", both)):
@@ -28,16 +27,19 @@ for label, m in (("one surface", one), ("sum surface", both)):
           f"mean summit height y_s = {s.mean_summit_height:.4g} m")
     for w in s.warnings:
         print(f"  WARNING: {w}")
+# the contact in one call: sigma, mu, psi of the pair and E* from E and nu
+p, report = egw.contact_from_topography(one, one, radius=R, E1=E, nu1=nu, E2=E, nu2=nu,
+                                        model="EP-GW", hardness=H, hardness_coeff=K)
 s = topo.mccool(both)
-mu = egw.mu_from_summits(s.summit_density, s.summit_radius, s.sigma_summits, R)
-psi = egw.psi_from_hardness(E_star, H, s.sigma_summits, s.summit_radius, K)
+assert p.sigma == s.sigma_summits and report.y_s == s.mean_summit_height
+E_star = p.modulus
 print(f"R = {R:.4g} m, E* = {E_star:.4g} Pa")
-print(f"mu = {mu:.4g}, psi = {psi:.4g} (K = {K}, H = {H:.3g} Pa); "
+print(f"mu = {p.mu:.4g}, psi = {p.psi:.4g} (K = {K}, H = {H:.3g} Pa); "
       f"GW plasticity index (E*/H) sqrt(sigma/beta) = "
-      f"{E_star / H * math.sqrt(s.sigma_summits / s.summit_radius):.4g}")
-p = egw.Params(model="EP-GW", radius=R, modulus=E_star, sigma=s.sigma_summits, mu=mu,
-               psi=psi, hardness_coeff=K)
-for d in (0.0, 5 * s.sigma_summits, 20 * s.sigma_summits):
+      f"{E_star / H * math.sqrt(p.sigma / report.summit_radius):.4g}; "
+      f"y_s = {report.y_s:.4g} m ({report.estimate}: {report.reason})")
+hertz = p.replace(model="Hertz", psi=0.0)
+for d in (0.0, 5 * p.sigma, 20 * p.sigma):
     r = egw.solve(p, d)
-    f_h = egw.hertz(p.replace(model="Hertz"), d)[0]
+    f_h = egw.hertz(hertz, d)[0]
     print(f"delta = {d:.3e} m: EP-GW force {r.force:.4e} N (Hertz {f_h:.4e} N)")

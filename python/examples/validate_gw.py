@@ -71,6 +71,23 @@ def bem_forces(heights, size, radius, modulus, overlaps):
     return np.array(forces)
 
 
+def per_realisation_ratios(summit_stats, f_runs, overlaps, radius, modulus):
+    """egw / BEM of each realisation with its OWN summit parameters (the question a user
+    with one measured surface asks), at the same overlaps with the mean plane."""
+    ratios = {}
+    for model in ("GW", "E-GW"):
+        rows = []
+        for s, f_bem in zip(summit_stats, f_runs):
+            mu = egw.mu_from_summits(s.summit_density, s.summit_radius, s.sigma_summits,
+                                     radius)
+            p = egw.Params(model=model, radius=radius, modulus=modulus,
+                           sigma=s.sigma_summits, mu=mu)
+            f = egw.solve(p, overlaps + s.mean_summit_height, egw.Options(rel_tol=1e-6)).force
+            rows.append(f / f_bem)
+        ratios[model] = np.array(rows)
+    return ratios
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--grid", type=int, default=512, help="BEM grid points per side")
@@ -137,6 +154,7 @@ def main(argv=None):
             delta = overlaps + s["mean_summit_height"]
             curves[f"{model} ({label})"] = egw.solve(p, delta, egw.Options(rel_tol=1e-6)).force
     t_egw = time.time() - t0
+    ratios = per_realisation_ratios(stats["summits"], f_runs, overlaps, radius, modulus)
     hertz = egw.hertz(egw.Params(model="Hertz", radius=radius, modulus=modulus), overlaps)[0]
 
     os.makedirs(os.path.dirname(args.out) or ".", exist_ok=True)
@@ -151,6 +169,23 @@ def main(argv=None):
             w.writerow([f"{d:.6e}", f"{d / sigma:.3f}", f"{f_bem[i]:.6e}",
                         f"{f_runs[:, i].min():.6e}", f"{f_runs[:, i].max():.6e}"]
                        + [f"{curves[k][i]:.6e}" for k in names] + [f"{hertz[i]:.6e}"])
+    if len(seeds) > 1:
+        with open(args.out + "_ratios.csv", "w", newline="") as f:
+            f.write(f"# egw / BEM per realisation (each with its own summit parameters), "
+                    f"{len(seeds)} seeds from {args.seed}, {n}^2 BEM grid\n")
+            w = csv.writer(f)
+            w.writerow(["delta_m_over_sigma"] + [f"{m}_{q}" for m in ratios
+                                                 for q in ("mean", "std", "min", "max")])
+            for i, d in enumerate(overlaps):
+                w.writerow([f"{d / sigma:.3f}"] + [f"{v:.4f}" for m in ratios for v in (
+                    ratios[m][:, i].mean(), ratios[m][:, i].std(ddof=1),
+                    ratios[m][:, i].min(), ratios[m][:, i].max())])
+        print(f"\negw / BEM per realisation (own parameters), mean ± std [min, max] over "
+              f"{len(seeds)}:")
+        for i, d in enumerate(overlaps):
+            print(f"  {d / sigma:6.2f} " + "   ".join(
+                f"{m} {ratios[m][:, i].mean():.3f} ± {ratios[m][:, i].std(ddof=1):.3f} "
+                f"[{ratios[m][:, i].min():.3f}, {ratios[m][:, i].max():.3f}]" for m in ratios))
     print(f"\nforce / BEM force (BEM {t_bem:.0f} s, egw {t_egw:.2f} s for {len(names)} curves):")
     print("  delta_m/sigma " + " ".join(f"{k:>18s}" for k in names))
     for i, d in enumerate(overlaps):

@@ -31,8 +31,13 @@ def test_array_eval_equals_pointwise_eval(table):
     for i in range(0, 101, 10):
         fi, ki = table.eval(float(d[i]))
         assert fi == f[i] and ki == k[i]
-    below = table.info.cutoff * (1 + 1e-9)  # cut-off < 0: just below it
-    assert table.eval(below) == (0.0, 0.0)  # below the cut-off: exactly zero
+    info = table.info
+    below = info.cutoff * (1 + 1e-9)  # cut-off < 0: just below it
+    # below the cut-off the model's tail (since c071800, no longer exactly zero): a force
+    # under rel_tol * P_ref, falling further out
+    f_below, _ = table.eval(below)
+    assert 0.0 <= f_below <= info.rel_tol * info.reference_force
+    assert table.eval(2 * info.cutoff)[0] < f_below
 
 
 def test_above_range_warns_and_extrapolates(table):
@@ -128,3 +133,19 @@ def test_hysteresis_table_files_and_info(tmp_path):
         egw.HysteresisTable.read(bad)
     with pytest.raises(egw.EgwError):
         egw.HysteresisTable.read(tmp_path / "missing")
+
+
+def test_universal_eval_broadcasts_params_in_one_call():
+    u = egw.UniversalTable.build(egw.Params(model="E-GW"), 2.0, 8.0, -3.0, 20.0, 1e-3)
+    p = P.replace(mu=np.array([3.0, 5.0]), radius=np.array([[1e-4], [5e-4], [1e-3]]))
+    d = 2e-6
+    f, k = u.eval(p, d)
+    assert f.shape == k.shape == (3, 2)
+    for i, j in np.ndindex(f.shape):
+        q = P.replace(mu=float(p.mu[j]), radius=float(p.radius[i, 0]))
+        assert u.eval(q, d) == (f[i, j], k[i, j])
+    with pytest.warns(egw.OutOfRangeWarning):
+        f, _ = u.eval(P.replace(mu=np.array([5.0, 50.0])), d)
+    assert np.isnan(f[1]) and f[0] > 0
+    with pytest.raises(egw.InvalidArgumentError, match="index 1: delta"):
+        u.eval(P.replace(mu=5.0), [1e-6, float("nan")])

@@ -118,7 +118,8 @@ def test_egw_topo_command(tmp_path):
     np.save(tmp_path / "s.npy", surface.heights)
     command = os.path.join(os.path.dirname(sys.executable), "egw-topo")  # the entry point
     run = subprocess.run([command, str(tmp_path / "s.npy"),
-                          "--pixel-size", "1e-6", "--radius", "5e-4", "--modulus", "1e11",
+                          "--pixel-size", "1e-6", "--unit", "m", "--radius", "5e-4",
+                          "--modulus", "1e11",
                           "--hardness", "2e9"], capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert "summit density" in run.stdout and "mu (R = 0.0005)" in run.stdout

@@ -500,6 +500,76 @@ static int r_time_step(void) {
   return st;
 }
 
+/* array kernels (capi_array.f90): n and strides clamped to the arrays' sizes (beyond them
+ * is the caller's undefined behaviour); outputs may be partly written on refusal
+ * (egw.h), so only finiteness on success is checked */
+static int clamp_count(int n, int max) { return n > max ? max : n; }
+static int clamp_stride(int s) { return s > 1 ? 1 : s; }
+static void array_out(int st, const char *name, const double *x, int n) {
+  if (st != EGW_OK) return;
+  for (int i = 0; i < n; i++)
+    if (!isfinite(x[i])) {
+      cur->silent = 1;
+      note(" not finite", name, x[i]);
+    }
+}
+static int r_hertz_array(void) {
+  egw_params p = params_at(0, EGW_MODEL_HERTZ, 0.0);
+  double d[3] = {-1e-3, D(11, 1e-3), 2e-3}, f[3], k[3], a[3];
+  int n = clamp_count(I(10, 3), 3), nf = 0, st;
+  sentinel(f, sizeof f);
+  st = egw_hertz_array(P(8, &p), clamp_stride(I(9, 0)), n, P(12, d), clamp_stride(I(13, 1)),
+                       P(14, f), P(15, k), P(16, a), I(17, EGW_ARRAY_RAISE), P(18, &nf));
+  if (cur->slot != 14 && cur->slot != 17) array_out(st, "force", f, n > 0 ? n : 0);
+  return st;
+}
+static int r_flat_pressure_array(void) {
+  egw_params p = params_at(0, EGW_MODEL_EPGW, 0.5);
+  double d[3] = {-1e-3, D(11, 1e-3), 2e-3}, dm[1] = {D(14, 0.0)}, pr[3], dp[3];
+  int n = clamp_count(I(10, 3), 3), st;
+  sentinel(pr, sizeof pr);
+  st = egw_flat_pressure_unload_array(P(8, &p), clamp_stride(I(9, 0)), n, P(12, d),
+                                      clamp_stride(I(13, 1)), P(15, dm), 0, P(16, pr),
+                                      P(17, dp), I(18, EGW_ARRAY_RAISE), NULL);
+  if (cur->slot != 16 && cur->slot != 18) array_out(st, "pressure", pr, n > 0 ? n : 0);
+  return st;
+}
+static int r_solve_array(void) {
+  egw_params p = params_at(0, EGW_MODEL_EPGW, 0.5);
+  egw_options o = options_at(9, 1e-3);
+  double d[2] = {D(15, 2e-3), 1e-3}, dm[1] = {D(16, 4e-3)};
+  egw_result r[2];
+  int n = clamp_count(I(17, 2), 2), st;
+  sentinel(r, sizeof r);
+  st = egw_solve_array(P(8, &p), 0, P(14, &o), n, d, 1, P(18, dm), 0, P(19, r),
+                       I(20, EGW_ARRAY_RAISE), NULL);
+  if (cur->slot != 20)
+    for (int i = 0; i < (n > 0 ? n : 0); i++) array_out(st, "res.force", &r[i].force, 1);
+  return st;
+}
+static int r_restitution_array(void) {
+  egw_params p = params_at(0, EGW_MODEL_EPGW, 0.5);
+  egw_options o = options_at(9, 1e-2);
+  double m[1] = {D(15, 1e-3)}, v[2] = {D(16, 1e-2), 2e-2}, e[2], dm[2];
+  int n = clamp_count(I(17, 2), 2), st;
+  sentinel(e, sizeof e);
+  st = egw_restitution_array(P(8, &p), 0, P(14, &o), n, P(18, m), 0, v, 1, P(19, e), NULL,
+                             NULL, dm, I(20, EGW_ARRAY_RAISE), NULL);
+  if (cur->slot != 19 && cur->slot != 20) array_out(st, "e", e, n > 0 ? n : 0);
+  return st;
+}
+static int r_time_step_array(void) {
+  egw_params p = params_at(0, EGW_MODEL_EPGW, 0.5);
+  egw_options o = options_at(9, 1e-2);
+  double m[1] = {D(15, 1e-3)}, v[1] = {D(16, 1e-2)}, tc[1], dt[1];
+  int st;
+  sentinel(dt, sizeof dt);
+  st = egw_time_step_array(P(8, &p), 0, P(14, &o), 1, m, 0, v, 0, D(17, 1e-3), tc, P(18, dt),
+                           I(19, EGW_ARRAY_RAISE), NULL);
+  if (cur->slot != 18 && cur->slot != 19) array_out(st, "time_step", dt, 1);
+  return st;
+}
+
 static int r_profile(void) {
   egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
   egw_options o = options_at(9, 1e-3);
@@ -681,6 +751,19 @@ static int r_universal_eval(void) {
   st = egw_universal_eval(P(8, u), P(9, &p), D(10, 3e-3), P(11, &v[0]), P(12, &v[1]));
   out_doubles(st, EGW_OUT_OF_RANGE, "force, stiffness", v, 2, sizeof v);
   sane(st, v[0] >= 0 && v[1] >= 0, "negative universal output", v[0]);
+  egw_universal_free(&u);
+  return st;
+}
+
+static int r_universal_eval_array(void) {
+  egw_universal u = base_universal();
+  egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
+  double d[2] = {D(11, 3e-3), 1e-3}, f[2], k[2];
+  int n = clamp_count(I(10, 2), 2), st;
+  sentinel(f, sizeof f);
+  st = egw_universal_eval_array(P(8, u), P(9, &p), 0, n, d, 1, P(12, f), P(13, k),
+                                I(14, EGW_ARRAY_RAISE), NULL);
+  if (cur->slot != 12 && cur->slot != 14) array_out(st, "force", f, n > 0 ? n : 0);
   egw_universal_free(&u);
   return st;
 }
@@ -1032,6 +1115,30 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass", K_DBL},
       {"velocity", K_DBL}, {"tolerance", K_DBL}, {"duration", K_PTR}, {"time_step", K_PTR}},
      r_time_step, 1},
+    {"egw_hertz_array", 19,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, {"p_stride", K_INT}, {"n", K_INT}, {"delta[1]", K_DBL},
+      {"delta", K_PTR}, {"delta_stride", K_INT}, {"force", K_PTR}, {"stiffness", K_PTR},
+      {"contact_radius", K_PTR}, {"flags", K_INT}, {"n_failed", K_PTR}},
+     r_hertz_array, 0},
+    {"egw_flat_pressure_unload_array", 19,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, {"p_stride", K_INT}, {"n", K_INT},
+      {"separation[1]", K_DBL}, {"separation", K_PTR}, {"separation_stride", K_INT},
+      {"separation_min[0]", K_DBL}, {"separation_min", K_PTR}, {"pressure", K_PTR},
+      {"dpressure", K_PTR}, {"flags", K_INT}},
+     r_flat_pressure_array, 0},
+    {"egw_solve_array (unload)", 21,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"delta[0]", K_DBL},
+      {"delta_max[0]", K_DBL}, {"n", K_INT}, {"delta_max", K_PTR}, {"res", K_PTR},
+      {"flags", K_INT}},
+     r_solve_array, 1},
+    {"egw_restitution_array", 21,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass[0]", K_DBL},
+      {"velocity[0]", K_DBL}, {"n", K_INT}, {"mass", K_PTR}, {"e", K_PTR}, {"flags", K_INT}},
+     r_restitution_array, 1},
+    {"egw_time_step_array", 20,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass[0]", K_DBL},
+      {"velocity[0]", K_DBL}, {"tolerance", K_DBL}, {"time_step", K_PTR}, {"flags", K_INT}},
+     r_time_step_array, 1},
     {"egw_profile", 21,
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"delta", K_DBL},
       {"n", K_INT}, {"r[1]", K_DBL}, {"r", K_PTR}, {"pressure", K_PTR}, {"deflection", K_PTR}},
@@ -1073,6 +1180,10 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"u", K_PTR}, {"p", K_PTR}, {"delta", K_DBL}, {"force", K_PTR},
       {"stiffness", K_PTR}},
      r_universal_eval, 0},
+    {"egw_universal_eval_array", 15,
+     {PARAM_SLOTS("p."), {"u", K_PTR}, {"p", K_PTR}, {"n", K_INT}, {"delta[0]", K_DBL},
+      {"force", K_PTR}, {"stiffness", K_PTR}, {"flags", K_INT}},
+     r_universal_eval_array, 0},
     {"egw_universal_slice(_range)", 12,
      {PARAM_SLOTS("p."), {"u", K_PTR}, {"p", K_PTR}, {"delta_max", K_DBL}, {"out", K_PTR}},
      r_universal_slice, 0},

@@ -95,6 +95,7 @@ class ModelChoice(ctypes.Structure):
 
 
 _dp = POINTER(c_double)
+_ip = POINTER(c_int)
 _P, _O = POINTER(Params), POINTER(Options)
 
 # name: (restype, argtypes)
@@ -152,6 +153,23 @@ _SIGNATURES = {
     "egw_scene_choose": (c_int, [POINTER(Scene), _O, POINTER(ModelChoice), c_char_p, c_int]),
     "egw_scene_build": (c_int, [POINTER(Scene), _O, POINTER(ModelChoice), POINTER(c_void_p),
                                 POINTER(c_void_p)]),
+    "egw_restitution_overlap": (c_int, [_P, _O, c_double, c_double, _dp, _dp]),
+    "egw_time_step": (c_int, [_P, _O, c_double, c_double, c_double, _dp, _dp]),
+    # array kernels (egw.h "Array kernels"): a stride after every input
+    "egw_hertz_array": (c_int, [_P, c_int, c_int, _dp, c_int, _dp, _dp, _dp, c_int, _ip]),
+    "egw_flat_pressure_array": (c_int, [_P, c_int, c_int, _dp, c_int, _dp, _dp, c_int, _ip]),
+    "egw_flat_pressure_unload_array": (c_int, [_P, c_int, c_int, _dp, c_int, _dp, c_int, _dp,
+                                               _dp, c_int, _ip]),
+    "egw_gauss_integral_array": (c_int, [c_int, _dp, c_int, _dp, c_int, _dp, _dp, c_int,
+                                         _ip]),
+    "egw_solve_array": (c_int, [_P, c_int, _O, c_int, _dp, c_int, _dp, c_int,
+                                POINTER(Result), c_int, _ip]),
+    "egw_restitution_array": (c_int, [_P, c_int, _O, c_int, _dp, c_int, _dp, c_int, _dp, _dp,
+                                      _dp, _dp, c_int, _ip]),
+    "egw_universal_eval_array": (c_int, [c_void_p, _P, c_int, c_int, _dp, c_int, _dp, _dp,
+                                         c_int, _ip]),
+    "egw_time_step_array": (c_int, [_P, c_int, _O, c_int, _dp, c_int, _dp, c_int, c_double,
+                                    _dp, _dp, c_int, _ip]),
 }
 
 for _name, (_res, _args) in _SIGNATURES.items():

@@ -8,18 +8,25 @@ in compression.
 """
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import ctypes
 import dataclasses
+import re
 import warnings
 from dataclasses import dataclass
-from typing import Optional, Tuple, Union
+from typing import Iterator, Optional, Tuple, Union
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import _capi
 from ._capi import lib
 
+#: what the functions take: a number, a sequence of numbers or an array
 ArrayLike = Union[float, np.ndarray, list, tuple]
+#: what they return: a float for scalar inputs, an array of the broadcast shape otherwise
+FloatOrArray = Union[float, NDArray[np.float64]]
 
 #: Status codes (include/egw.h).
 OK, INVALID_ARGUMENT, INVALID_PARAMETER, NOT_CONVERGED = 0, 1, 2, 3
@@ -76,24 +83,46 @@ def last_error() -> str:
     return buf.value.decode("utf-8", "replace")
 
 
+def _exception(status: int, message: str) -> Exception:
+    """The exception of a non-zero egw status with egw's message."""
+    if status in (INVALID_ARGUMENT, INVALID_PARAMETER):
+        return InvalidArgumentError(status, message)
+    if status == NOT_CONVERGED:
+        return NotConvergedError(status, message)
+    if status in (IO_ERROR, BAD_FILE):
+        return FileError(status, message)
+    if status == OUT_OF_MEMORY:
+        return MemoryError(message)
+    return EgwError(status, message)
+
+
 def check(status: int, allow_out_of_range: bool = False) -> int:
-    """Raise the exception of a non-zero egw status; EGW_OUT_OF_RANGE becomes an
-    OutOfRangeWarning when allow_out_of_range (values were written)."""
+    """Raise the exception of a non-zero egw status.
+
+    Parameters
+    ----------
+    status : int
+        An EGW_* status returned by the library.
+    allow_out_of_range : bool
+        EGW_OUT_OF_RANGE becomes an :class:`OutOfRangeWarning` (values were written).
+
+    Returns
+    -------
+    int
+        The status (OK, or OUT_OF_RANGE when allowed).
+
+    Raises
+    ------
+    InvalidArgumentError, NotConvergedError, FileError, MemoryError, EgwError
+        By status, with egw's last error message.
+    """
     if status == OK:
         return status
     message = last_error()
     if status == OUT_OF_RANGE and allow_out_of_range:
         warnings.warn(message, OutOfRangeWarning, stacklevel=3)
         return status
-    if status in (INVALID_ARGUMENT, INVALID_PARAMETER):
-        raise InvalidArgumentError(status, message)
-    if status == NOT_CONVERGED:
-        raise NotConvergedError(status, message)
-    if status in (IO_ERROR, BAD_FILE):
-        raise FileError(status, message)
-    if status == OUT_OF_MEMORY:
-        raise MemoryError(message)
-    raise EgwError(status, message)
+    raise _exception(status, message)
 
 
 def version() -> str:
@@ -102,49 +131,258 @@ def version() -> str:
     return f"{v // 10000}.{v // 100 % 100}.{v % 100}"
 
 
-@dataclass
-class Params:
-    """Parameters of one contact; the fields and defaults of the C struct egw_params
-    (egw_params_default): E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, rho_p = 54.
+#: How a failing point of an array call is reported (see `errstate`).
+_FAILED = contextvars.ContextVar("egw_failed", default="raise")
+_FAILED_MODES = ("raise", "nan", "warn")
 
-    model: 'Hertz', 'GW', 'E-GW', 'EP-GW' (or 0..3); radius: equivalent radius R;
-    modulus: effective modulus E*; sigma: std of summit heights (0 = smooth);
-    mu: Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta); psi: plasticity index of the
-    paper (0 = elastic asperities); hardness_coeff: ZMC K in (0, 1); plastic_ratio: rho_p.
+
+class PointFailedWarning(UserWarning):
+    """Points of an array call failed and were returned as NaN (``errstate(failed="warn")``)."""
+
+
+@contextlib.contextmanager
+def errstate(failed: str = "raise") -> Iterator[None]:
+    """How array calls report a failing point (a NaN input, a refused value, a solve that
+    did not converge), like :func:`numpy.errstate`.
+
+    Parameters
+    ----------
+    failed : {"raise", "nan", "warn"}
+        ``"raise"`` (default): the call raises the point's exception, its message naming
+        the point's index. ``"nan"``: the point's outputs are NaN, silently. ``"warn"``: NaN
+        and one :class:`PointFailedWarning` with the number of failed points.
+
+    Raises
+    ------
+    ValueError
+        For another mode.
+
+    Examples
+    --------
+    >>> with egw.errstate(failed="nan"):
+    ...     f, k, a = egw.hertz(p, [1e-6, float("nan")])   # f[1] is NaN
+    """
+    if failed not in _FAILED_MODES:
+        raise ValueError(f"failed = {failed!r}: must be one of {_FAILED_MODES}")
+    token = _FAILED.set(failed)
+    try:
+        yield
+    finally:
+        _FAILED.reset(token)
+
+
+class IgnoredParameterWarning(UserWarning):
+    """A parameter was given that the chosen model does not use (psi > 0 outside EP-GW)."""
+
+
+_FIELDS = ("radius", "modulus", "sigma", "mu", "psi", "hardness_coeff", "plastic_ratio")
+#: numpy layout of the C struct egw_params (int model, 7 doubles, C alignment).
+PARAMS_DTYPE = np.dtype([("model", np.int32)] + [(f, np.float64) for f in _FIELDS],
+                        align=True)
+assert PARAMS_DTYPE.itemsize == ctypes.sizeof(_capi.Params)
+#: numpy layout of the C struct egw_result.
+RESULT_DTYPE = np.dtype([(f, np.float64) for f in ("force", "stiffness", "contact_radius",
+                                                   "max_pressure", "est_rel_err", "residual")]
+                        + [("iterations", np.int32), ("method_used", np.int32)], align=True)
+assert RESULT_DTYPE.itemsize == ctypes.sizeof(_capi.Result)
+
+
+def _number_array(name: str, value) -> np.ndarray:
+    """value as float64 (a scalar as 0-d); strings, None, booleans and complex refused."""
+    raw = np.asarray(value)
+    if raw.dtype.kind not in "iuf":
+        got = raw.dtype if raw.dtype.kind != "O" else type(value).__name__
+        raise TypeError(f"{name} = {value!r}: must be a real number or an array of real "
+                        f"numbers (got {got})")
+    return np.asarray(raw, dtype=np.float64)
+
+
+# (field, lower bound, strict, bound text): the checks egw_params_validate makes first
+_BOUNDS = {"radius": (0.0, True), "modulus": (0.0, True), "sigma": (0.0, False),
+           "mu": (0.0, True), "psi": (0.0, False), "plastic_ratio": (1.0, True)}
+
+
+@dataclass(eq=False)
+class Params:
+    """Parameters of a contact: the fields and defaults of the C struct egw_params.
+
+    Every numeric field is a float or an array; arrays broadcast against each other and
+    against the overlaps of the functions that take them (numpy rules), so one call
+    evaluates many contacts. The parameters are checked here, at construction (and by
+    :meth:`replace`): a wrong type raises TypeError, a value out of range
+    :class:`InvalidArgumentError` naming the field.
+
+    Parameters
+    ----------
+    model : {"Hertz", "GW", "E-GW", "EP-GW"} or int 0..3
+        Contact model (default "E-GW").
+    radius : float or array, > 0
+        Equivalent radius R = R1 R2/(R1 + R2) [length] (default 1).
+    modulus : float or array, > 0
+        Effective modulus E*, 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 [pressure]
+        (default 1; see :func:`effective_modulus`).
+    sigma : float or array, >= 0
+        Standard deviation of the summit heights of the pair [length]; 0 = smooth (Hertz).
+    mu : float or array, > 0 when sigma > 0
+        Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta) (dimensionless; default 1).
+    psi : float or array, >= 0
+        Plasticity index of the summits; used by EP-GW only (a psi > 0 with another model
+        warns :class:`IgnoredParameterWarning`).
+    hardness_coeff : float or array in (0, 1)
+        ZMC coefficient K (H = K x hardness at the onset of yield; default 0.6).
+    plastic_ratio : float or array, > 1
+        rho_p, fully plastic over initial yield interference (default 54).
+
+    Raises
+    ------
+    TypeError
+        A field is not a real number or array of them (e.g. ``radius="1e-3"``), or model is
+        not a str or int.
+    InvalidArgumentError
+        An unknown model or a value out of its range (also a ValueError).
+
+    Notes
+    -----
+    The overlap delta of every function is that of the undeformed sphere with the mean
+    summit plane: delta > 0 pressed together, delta < 0 apart. Units are any consistent
+    set (SI: m, Pa, N).
     """
     model: Union[str, int] = "E-GW"
-    radius: float = 1.0
-    modulus: float = 1.0
-    sigma: float = 0.0
-    mu: float = 1.0
-    psi: float = 0.0
-    hardness_coeff: float = 0.6
-    plastic_ratio: float = 54.0
+    radius: FloatOrArray = 1.0
+    modulus: FloatOrArray = 1.0
+    sigma: FloatOrArray = 0.0
+    mu: FloatOrArray = 1.0
+    psi: FloatOrArray = 0.0
+    hardness_coeff: FloatOrArray = 0.6
+    plastic_ratio: FloatOrArray = 54.0
+
+    def __post_init__(self) -> None:
+        self.model = _model_name(self.model)
+        scalar = True
+        for name in _FIELDS:
+            a = _number_array(name, getattr(self, name))
+            if a.ndim == 0:
+                setattr(self, name, float(a))
+            else:
+                a = a.copy()
+                a.setflags(write=False)
+                setattr(self, name, a)
+                scalar = False
+        try:
+            self.shape = np.broadcast_shapes(*(np.shape(getattr(self, f)) for f in _FIELDS))
+        except ValueError as exc:
+            raise InvalidArgumentError(INVALID_PARAMETER, "the array fields of Params do "
+                                       f"not broadcast together: {exc}") from None
+        self._check_bounds()
+        if scalar:
+            check(lib.egw_params_validate(ctypes.byref(self.to_c())))
+        if self.model != "EP-GW" and np.any(np.asarray(self.psi) > 0):
+            warnings.warn(f"psi = {self.psi}: the plasticity index is used by EP-GW only; "
+                          f"model {self.model!r} ignores it", IgnoredParameterWarning,
+                          stacklevel=3)
+
+    def _check_bounds(self) -> None:
+        for name, (low, strict) in _BOUNDS.items():
+            a = np.asarray(getattr(self, name))
+            bad = ~np.isfinite(a) | ((a <= low) if strict else (a < low))
+            if name == "mu":  # mu is needed only where sigma > 0
+                a, rough = np.broadcast_arrays(a, np.asarray(self.sigma) > 0)
+                bad = np.broadcast_to(bad, a.shape) & rough
+            if np.any(bad):
+                value = float(a[bad].flat[0]) if a.ndim else float(a)
+                rel = ">" if strict else ">="
+                raise InvalidArgumentError(
+                    INVALID_PARAMETER, f"{name} = {value!r}: must be finite and {rel} {low:g}")
+        k = np.asarray(self.hardness_coeff)
+        bad = ~((k > 0) & (k < 1))
+        if np.any(bad):
+            value = k[bad].flat[0] if k.ndim else float(k)
+            raise InvalidArgumentError(
+                INVALID_PARAMETER, f"hardness_coeff = {value!r}: K must lie in (0, 1)")
+
+    @property
+    def is_scalar(self) -> bool:
+        """True when every field is a single number (one contact)."""
+        return self.shape == ()
 
     def to_c(self) -> _capi.Params:
-        model = self.model
-        if isinstance(model, str):
-            if model not in MODELS:
-                raise InvalidArgumentError(
-                    INVALID_PARAMETER, f"model = {model!r}: must be one of {list(MODELS)}")
-            model = MODELS[model]
-        c = _capi.Params(int(model), *(float(getattr(self, f.name))
-                                       for f in dataclasses.fields(self)[1:]))
-        return c
+        """The C struct egw_params of a scalar Params (TypeError for array fields)."""
+        if not self.is_scalar:
+            raise TypeError("Params with array fields has no single C egw_params: "
+                            "use the array functions (hertz, solve, ...)")
+        return _capi.Params(MODELS[self.model], *(float(getattr(self, f)) for f in _FIELDS))
+
+    def to_struct_array(self, shape: Tuple[int, ...]) -> np.ndarray:
+        """The parameters broadcast to shape, as a flat array of the C struct egw_params."""
+        n = int(np.prod(shape, dtype=np.int64))
+        block = np.empty(n, dtype=PARAMS_DTYPE)
+        block["model"] = MODELS[self.model]
+        for name in _FIELDS:
+            block[name] = np.broadcast_to(getattr(self, name), shape).reshape(-1)
+        return block
 
     def validate(self) -> None:
-        """Raise InvalidArgumentError naming the first invalid field."""
-        check(lib.egw_params_validate(ctypes.byref(self.to_c())))
+        """Check every parameter set with the library (egw_params_validate, which also
+        checks the ranges the numerics represent).
+
+        Raises
+        ------
+        InvalidArgumentError
+            Naming the first invalid field (and the index for array fields).
+        """
+        if self.is_scalar:
+            check(lib.egw_params_validate(ctypes.byref(self.to_c())))
+            return
+        block = self.to_struct_array(self.shape)
+        for i in range(block.size):
+            status = lib.egw_params_validate(block[i:].ctypes.data_as(_P_PARAMS))
+            if status != OK:
+                idx = np.unravel_index(i, self.shape)
+                raise InvalidArgumentError(status, f"index {idx}: {last_error()}")
 
     def replace(self, **changes) -> "Params":
+        """A copy with the given fields changed (checked as at construction)."""
         return dataclasses.replace(self, **changes)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Params):
+            return NotImplemented
+        return self.model == other.model and all(
+            np.array_equal(getattr(self, f), getattr(other, f)) for f in _FIELDS)
+
+
+def _model_name(model) -> str:
+    if isinstance(model, (bool, np.bool_)) or not isinstance(model, (str, int, np.integer)):
+        raise TypeError(f"model = {model!r}: must be one of {list(MODELS)} or 0..3")
+    if isinstance(model, str):
+        if model not in MODELS:
+            raise InvalidArgumentError(
+                INVALID_PARAMETER, f"model = {model!r}: must be one of {list(MODELS)}")
+        return model
+    names = {v: k for k, v in MODELS.items()}
+    if int(model) not in names:
+        raise InvalidArgumentError(INVALID_PARAMETER,
+                                   f"model = {model}: must be 0..3 ({list(MODELS)})")
+    return names[int(model)]
 
 
 @dataclass
 class Options:
-    """Solver options (C struct egw_options): n_radial (0 = from rel_tol), rel_tol,
-    max_iter (0 = default), method ('auto', 'newton', 'picard' or 0..2), n_threads
-    (0 = OpenMP default)."""
+    """Solver options (C struct egw_options).
+
+    Parameters
+    ----------
+    n_radial : int
+        Radial nodes of the mesh; 0 = chosen from rel_tol.
+    rel_tol : float
+        Relative tolerance of the force (default 1e-6).
+    max_iter : int
+        Nonlinear iterations; 0 = the library's default.
+    method : {"auto", "newton", "picard"} or 0..2
+    n_threads : int
+        OpenMP threads; 0 = the OpenMP default. A single solve threads its assembly; an
+        array of solves runs its points over the threads, each solve single-threaded.
+    """
     n_radial: int = 0
     rel_tol: float = 1e-6
     max_iter: int = 0
@@ -152,25 +390,38 @@ class Options:
     n_threads: int = 0
 
     def to_c(self) -> _capi.Options:
-        method = METHODS[self.method] if isinstance(self.method, str) else int(self.method)
+        """The C struct egw_options."""
+        if isinstance(self.method, str):
+            if self.method not in METHODS:
+                raise InvalidArgumentError(INVALID_ARGUMENT, f"method = {self.method!r}: "
+                                           f"must be one of {list(METHODS)}")
+            method = METHODS[self.method]
+        else:
+            method = int(self.method)
         return _capi.Options(int(self.n_radial), float(self.rel_tol), int(self.max_iter),
                              method, int(self.n_threads))
 
 
+_P_PARAMS = ctypes.POINTER(_capi.Params)
+
+
 def _params(params: Params) -> ctypes.Structure:
+    """The C struct of a scalar Params (TypeError for anything else)."""
     if not isinstance(params, Params):
-        raise TypeError("params must be an egw.Params")
+        raise TypeError(f"params must be an egw.Params, not {type(params).__name__}")
     return params.to_c()
 
 
 def _options(options: Optional[Options]):
     """A pointer to the C options, or None (NULL: the library's defaults)."""
+    if options is not None and not isinstance(options, Options):
+        raise TypeError(f"options must be an egw.Options or None, not {type(options).__name__}")
     return None if options is None else ctypes.byref(options.to_c())
 
 
-def _array(x: ArrayLike) -> np.ndarray:
+def _array(x: ArrayLike, name: str = "value") -> np.ndarray:
     # np.ascontiguousarray would turn a scalar into shape (1,): keep 0-d as 0-d
-    return np.require(np.asarray(x, dtype=np.float64), requirements="C")
+    return np.require(_number_array(name, x), requirements="C")
 
 
 def _double_ptr(a: np.ndarray):
@@ -197,135 +448,459 @@ def _loop(shape, n_out, call):
     return outs
 
 
-def mu_from_summits(summit_density: float, summit_radius: float, sigma: float,
-                    radius: float) -> float:
-    """mu = (8/3) eta sigma sqrt(2 R beta) from summit density eta [1/length^2], summit
-    radius beta, roughness sigma and equivalent radius R."""
+_INT_MAX = 2 ** 31 - 1
+_POINT = re.compile(r"^point (\d+): ")
+
+
+class _Batch:
+    """The arguments of one array call: the broadcast shape of the parameters and the
+    inputs, each input as (pointer, stride) (stride 0: one value for all points), the
+    parameters as (pointer, stride), and the references that keep the buffers alive."""
+
+    def __init__(self, params: Optional[Params], **inputs):
+        if params is not None and not isinstance(params, Params):
+            raise TypeError(f"params must be an egw.Params, not {type(params).__name__}")
+        arrays = {name: _number_array(name, x) for name, x in inputs.items()}
+        shapes = [a.shape for a in arrays.values()]
+        if params is not None:
+            shapes.append(params.shape)
+        try:
+            self.shape = np.broadcast_shapes(*shapes)
+        except ValueError as exc:
+            raise ValueError(f"{', '.join(list(inputs) + ['params'])} do not broadcast "
+                             f"together: {exc}") from None
+        self.n = int(np.prod(self.shape, dtype=np.int64))
+        if self.n > _INT_MAX:
+            raise ValueError(f"{self.n} points: an array call takes at most {_INT_MAX}")
+        self._keep = []
+        self.inputs = {name: self._input(a) for name, a in arrays.items()}
+        if params is not None:
+            if params.is_scalar:
+                c = params.to_c()
+                self._keep.append(c)
+                self.params = (ctypes.cast(ctypes.byref(c), _P_PARAMS), 0)
+            else:
+                block = params.to_struct_array(self.shape)
+                self._keep.append(block)
+                self.params = (block.ctypes.data_as(_P_PARAMS), 1)
+
+    def _input(self, a: np.ndarray):
+        if a.size == 1:
+            buf = np.array([a.reshape(())], dtype=np.float64)
+            stride = 0
+        else:
+            buf = np.ascontiguousarray(np.broadcast_to(a, self.shape), dtype=np.float64)
+            stride = 1
+        self._keep.append(buf)
+        return _double_ptr(buf), stride
+
+    def out(self, k: int = 1):
+        arrays = [np.empty(self.shape, dtype=np.float64) for _ in range(k)]
+        return arrays
+
+    def run(self, call) -> None:
+        """call(flags, n_failed_ptr) -> status; raises or warns as errstate says."""
+        mode = _FAILED.get()
+        n_failed = ctypes.c_int(0)
+        status = call(0 if mode == "raise" else 1, ctypes.byref(n_failed))
+        if status != OK:
+            self._raise(status)
+        if mode == "warn" and n_failed.value:
+            warnings.warn(f"{n_failed.value} of {self.n} points failed and are NaN",
+                          PointFailedWarning, stacklevel=3)
+
+    def _raise(self, status: int) -> None:
+        message = last_error()
+        m = _POINT.match(message)
+        if m and self.shape != ():
+            index = tuple(int(i) for i in np.unravel_index(int(m.group(1)), self.shape))
+            if len(index) == 1:
+                index = index[0]
+            message = f"index {index}: " + message[m.end():]
+        elif m:
+            message = message[m.end():]
+        raise _exception(status, message)
+
+
+def _arr(*arrays: np.ndarray):
+    return [None if a is None else _double_ptr(a) for a in arrays]
+
+
+def mu_from_summits(summit_density: ArrayLike, summit_radius: ArrayLike, sigma: ArrayLike,
+                    radius: ArrayLike) -> FloatOrArray:
+    """Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta), elementwise with broadcasting.
+
+    Parameters
+    ----------
+    summit_density : float or array, >= 0
+        eta, summits per unit area [1/length^2].
+    summit_radius : float or array, >= 0
+        beta, mean radius of curvature of the summits [length].
+    sigma : float or array, >= 0
+        Standard deviation of the summit heights [length].
+    radius : float or array, >= 0
+        Equivalent radius R of the spheres [length].
+
+    Returns
+    -------
+    float or ndarray
+        mu (dimensionless), of the broadcast shape (a float for scalar inputs).
+
+    Raises
+    ------
+    InvalidArgumentError
+        A negative or non-finite input (named), or an overflowing mu.
+    """
+    b = _Batch(None, summit_density=summit_density, summit_radius=summit_radius,
+               sigma=sigma, radius=radius)
+    flat = [np.broadcast_to(_number_array(k, v), b.shape).reshape(-1) for k, v in
+            (("summit_density", summit_density), ("summit_radius", summit_radius),
+             ("sigma", sigma), ("radius", radius))]
+    out = np.empty(b.n)
     mu = ctypes.c_double()
-    check(lib.egw_mu_from_summits(float(summit_density), float(summit_radius), float(sigma),
-                                  float(radius), ctypes.byref(mu)))
-    return mu.value
+    for i in range(b.n):
+        check(lib.egw_mu_from_summits(float(flat[0][i]), float(flat[1][i]),
+                                      float(flat[2][i]), float(flat[3][i]), ctypes.byref(mu)))
+        out[i] = mu.value
+    return _scalar_or_array(b.shape, out.reshape(b.shape))
 
 
-def gauss_integral(n: float, h: ArrayLike, derivative: bool = False) -> ArrayLike:
-    """F_n(h) = int_h^inf (s - h)^n phi(s) ds (or dF_n/dh), elementwise over h."""
-    h = _array(h)
-    fn = lib.egw_gauss_integral_deriv if derivative else lib.egw_gauss_integral
-    flat = h.reshape(-1)
-    (out,) = _loop(h.shape, 1, lambda i, r: check(fn(float(n), float(flat[i]), r)))
-    return _scalar_or_array(h.shape, out)
+def effective_modulus(E1: ArrayLike, nu1: ArrayLike, E2: Optional[ArrayLike] = None,
+                      nu2: Optional[ArrayLike] = None) -> FloatOrArray:
+    """Effective modulus E* of two elastic bodies, 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
+
+    Parameters
+    ----------
+    E1, nu1 : float or array
+        Young's modulus [pressure] (> 0) and Poisson's ratio (in (-1, 0.5]) of body 1.
+    E2, nu2 : float or array, optional
+        The same for body 2; omitted: the same material as body 1.
+
+    Returns
+    -------
+    float or ndarray
+        E* [pressure], broadcast.
+
+    Raises
+    ------
+    InvalidArgumentError
+        A modulus not finite and > 0, or a Poisson ratio outside (-1, 0.5].
+    """
+    E2 = E1 if E2 is None else E2
+    nu2 = nu1 if nu2 is None else nu2
+    vals = {k: _number_array(k, v) for k, v in (("E1", E1), ("nu1", nu1), ("E2", E2),
+                                                 ("nu2", nu2))}
+    for k in ("E1", "E2"):
+        if np.any(~np.isfinite(vals[k]) | (vals[k] <= 0)):
+            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {vals[k]}: must be finite "
+                                       "and > 0")
+    for k in ("nu1", "nu2"):
+        if np.any(~((vals[k] > -1) & (vals[k] <= 0.5))):
+            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {vals[k]}: Poisson's ratio "
+                                       "must lie in (-1, 0.5]")
+    e = 1.0 / ((1 - vals["nu1"] ** 2) / vals["E1"] + (1 - vals["nu2"] ** 2) / vals["E2"])
+    return float(e) if np.ndim(e) == 0 else e
 
 
-def ellipk(k: ArrayLike) -> ArrayLike:
-    """Complete elliptic integral of the first kind K(k) of MODULUS k, 0 <= k < 1."""
-    k = _array(k)
+def gauss_integral(n: ArrayLike, h: ArrayLike, derivative: bool = False) -> FloatOrArray:
+    """F_n(h) = int_h^inf (s - h)^n phi(s) ds of the standard Gaussian phi, or dF_n/dh.
+
+    Parameters
+    ----------
+    n : float or array, >= 0
+        Order (broadcast with h).
+    h : float or array
+        Lower limit (a separation in units of sigma).
+    derivative : bool
+        Return dF_n/dh instead of F_n.
+
+    Returns
+    -------
+    float or ndarray
+        Of the broadcast shape; one C call (egw_gauss_integral_array).
+
+    Raises
+    ------
+    InvalidArgumentError
+        A negative order or NaN limit (the message names the index).
+    """
+    b = _Batch(None, order=n, h=h)
+    (out,) = b.out(1)
+    value, deriv = (None, out) if derivative else (out, None)
+    (po, so), (ph, sh) = b.inputs["order"], b.inputs["h"]
+    b.run(lambda flags, nf: lib.egw_gauss_integral_array(
+        b.n, po, so, ph, sh, *_arr(value, deriv), flags, nf))
+    return _scalar_or_array(b.shape, out)
+
+
+def ellipk(k: ArrayLike) -> FloatOrArray:
+    """Complete elliptic integral of the first kind K(k) of MODULUS k, 0 <= k < 1,
+    elementwise (float for a scalar)."""
+    k = _array(k, "k")
     flat = k.reshape(-1)
     (out,) = _loop(k.shape, 1, lambda i, r: check(lib.egw_ellipk(float(flat[i]), r)))
     return _scalar_or_array(k.shape, out)
 
 
-def ellipe(k: ArrayLike) -> ArrayLike:
-    """Complete elliptic integral of the second kind E(k) of MODULUS k, 0 <= k < 1."""
-    k = _array(k)
+def ellipe(k: ArrayLike) -> FloatOrArray:
+    """Complete elliptic integral of the second kind E(k) of MODULUS k, 0 <= k < 1,
+    elementwise (float for a scalar)."""
+    k = _array(k, "k")
     flat = k.reshape(-1)
     (out,) = _loop(k.shape, 1, lambda i, r: check(lib.egw_ellipe(float(flat[i]), r)))
     return _scalar_or_array(k.shape, out)
 
 
-def hertz(params: Params, delta: ArrayLike) -> Tuple[ArrayLike, ArrayLike, ArrayLike]:
-    """Hertz contact of smooth spheres: (force, stiffness, contact_radius) at delta."""
-    p = _params(params)
-    d = _array(delta)
-    flat = d.reshape(-1)
-    outs = _loop(d.shape, 3, lambda i, f, k, a: check(
-        lib.egw_hertz(ctypes.byref(p), float(flat[i]), f, k, a)))
-    return _scalar_or_array(d.shape, *outs)
+def hertz(params: Params, delta: ArrayLike) -> Tuple[FloatOrArray, FloatOrArray, FloatOrArray]:
+    """Hertz contact of smooth elastic spheres (R and E* of params; other fields unused).
+
+    Parameters
+    ----------
+    params : Params
+        Scalar or array fields, broadcast with delta.
+    delta : float or array
+        Overlap [length]: > 0 pressed together, <= 0 apart (force 0).
+
+    Returns
+    -------
+    force, stiffness, contact_radius : float or ndarray
+        (4/3) E* sqrt(R) delta^1.5 [force], dP/ddelta = 2 E* a [force/length] and
+        a = sqrt(R delta) [length], of the broadcast shape; one C call.
+
+    Raises
+    ------
+    InvalidArgumentError
+        A NaN or infinite delta (the message names its index) or an overflowing force;
+        under ``errstate(failed="nan")`` such points are NaN instead.
+    """
+    b = _Batch(params, delta=delta)
+    force, stiffness, radius = b.out(3)
+    (pd, sd) = b.inputs["delta"]
+    b.run(lambda flags, nf: lib.egw_hertz_array(
+        b.params[0], b.params[1], b.n, pd, sd, *_arr(force, stiffness, radius), flags, nf))
+    return _scalar_or_array(b.shape, force, stiffness, radius)
 
 
 def flat_pressure(params: Params, separation: ArrayLike, derivative: bool = False):
-    """Nominal pressure p_G(d) of the rough flat at separation d (and dp_G/dd when
-    derivative=True, returned as a second value)."""
-    p = _params(params)
-    d = _array(separation)
-    flat = d.reshape(-1)
-    outs = _loop(d.shape, 2, lambda i, pr, dp: check(
-        lib.egw_flat_pressure_deriv(ctypes.byref(p), float(flat[i]), pr, dp)))
-    return _scalar_or_array(d.shape, *(outs if derivative else outs[:1]))
+    """Nominal pressure p_G(d) of a rough flat on a smooth rigid-backed half-space.
+
+    Parameters
+    ----------
+    params : Params
+        Needs sigma > 0, mu and E* (R only enters through mu; a flat has no R of its own:
+        give the mu of the surface, e.g. from :func:`egw.contact_from_topography`).
+    separation : float or array
+        d, the distance of the flat's reference plane (mean summit plane) from the
+        counter-face [length]; < 0 means pressed in.
+    derivative : bool
+        Also return dp_G/dd (<= 0).
+
+    Returns
+    -------
+    pressure : float or ndarray
+        p_G(d) [pressure], broadcast shape; one C call.
+    dpressure : float or ndarray
+        dp_G/dd, only when derivative=True.
+
+    Raises
+    ------
+    InvalidArgumentError
+        sigma = 0, or a NaN separation (named with its index).
+    """
+    b = _Batch(params, separation=separation)
+    pressure, dpressure = b.out(2)
+    (ps, ss) = b.inputs["separation"]
+    b.run(lambda flags, nf: lib.egw_flat_pressure_array(
+        b.params[0], b.params[1], b.n, ps, ss, *_arr(pressure, dpressure), flags, nf))
+    return _scalar_or_array(b.shape, *((pressure, dpressure) if derivative else (pressure,)))
 
 
 def flat_pressure_unload(params: Params, separation: ArrayLike, separation_min: ArrayLike,
                          derivative: bool = False):
-    """EP-GW rough flat on unloading/reloading: p_G,u(d, d_min) after the closest approach
-    d_min (broadcast together); dp/dd as a second value when derivative=True."""
-    _require("egw_flat_pressure_unload")
-    p = _params(params)
-    d, dm = np.broadcast_arrays(_array(separation),
-                                _array(separation_min))
-    fd, fm = d.reshape(-1), dm.reshape(-1)
-    outs = _loop(d.shape, 2, lambda i, pr, dp: check(lib.egw_flat_pressure_unload(
-        ctypes.byref(p), float(fd[i]), float(fm[i]), pr, dp)))
-    return _scalar_or_array(d.shape, *(outs if derivative else outs[:1]))
+    """EP-GW rough flat on unloading/reloading: p_G,u(d, d_min) after the closest approach.
+
+    Parameters
+    ----------
+    params : Params
+        As :func:`flat_pressure` (psi > 0 for plastic summits).
+    separation, separation_min : float or array
+        d and the closest approach d_min so far [length], broadcast; d <= d_min is the
+        loading law.
+    derivative : bool
+        Also return dp/dd.
+
+    Returns
+    -------
+    pressure[, dpressure] : float or ndarray
+
+    Raises
+    ------
+    InvalidArgumentError
+        A NaN or infinite separation_min, or as :func:`flat_pressure`.
+    """
+    _require("egw_flat_pressure_unload_array")
+    b = _Batch(params, separation=separation, separation_min=separation_min)
+    pressure, dpressure = b.out(2)
+    (ps, ss), (pm, sm) = b.inputs["separation"], b.inputs["separation_min"]
+    b.run(lambda flags, nf: lib.egw_flat_pressure_unload_array(
+        b.params[0], b.params[1], b.n, ps, ss, pm, sm, *_arr(pressure, dpressure), flags, nf))
+    return _scalar_or_array(b.shape, *((pressure, dpressure) if derivative else (pressure,)))
 
 
 @dataclass
 class SolveResult:
-    """Arrays (or floats) of egw_result: force, stiffness dP/ddelta, effective contact
-    radius a*, max_pressure, est_rel_err (estimated relative error of the force) and the
-    nonlinear iterations of the final solve."""
-    force: ArrayLike
-    stiffness: ArrayLike
-    contact_radius: ArrayLike
-    max_pressure: ArrayLike
-    est_rel_err: ArrayLike
-    iterations: ArrayLike
+    """Results of solves (floats for one point, arrays of the broadcast shape otherwise).
+
+    Attributes
+    ----------
+    force : total force P [force], >= 0 (compression positive).
+    stiffness : dP/ddelta [force/length].
+    contact_radius : effective contact radius a* [length].
+    max_pressure : largest pressure of the profile [pressure].
+    est_rel_err : estimated relative error of the force.
+    iterations : nonlinear iterations of the final solve (-1 for a failed point under
+        ``errstate(failed="nan")``).
+    """
+    force: FloatOrArray
+    stiffness: FloatOrArray
+    contact_radius: FloatOrArray
+    max_pressure: FloatOrArray
+    est_rel_err: FloatOrArray
+    iterations: Union[int, NDArray[np.int32]]
 
 
-def _solve_loop(shape, call) -> SolveResult:
-    n = int(np.prod(shape, dtype=np.int64))
-    fields = ("force", "stiffness", "contact_radius", "max_pressure", "est_rel_err")
-    out = {f: np.empty(n) for f in fields}
-    iters = np.empty(n, dtype=np.int64)
+_RESULT_FIELDS = ("force", "stiffness", "contact_radius", "max_pressure", "est_rel_err")
+
+
+def _solve_result(b: "_Batch", res: np.ndarray) -> SolveResult:
+    if b.shape == ():
+        return SolveResult(**{f: float(res[f][0]) for f in _RESULT_FIELDS},
+                           iterations=int(res["iterations"][0]))
+    return SolveResult(**{f: np.ascontiguousarray(res[f]).reshape(b.shape)
+                          for f in _RESULT_FIELDS},
+                       iterations=np.ascontiguousarray(res["iterations"]).reshape(b.shape))
+
+
+def _solve(params, delta, delta_max, options) -> SolveResult:
+    inputs = {"delta": delta} if delta_max is None else {"delta": delta,
+                                                          "delta_max": delta_max}
+    b = _Batch(params, **inputs)
+    res = np.empty(b.n, dtype=RESULT_DTYPE)
+    o = _options(options)
+    pd, sd = b.inputs["delta"]
+    pm, sm = b.inputs.get("delta_max", (None, 0))
+    b.run(lambda flags, nf: lib.egw_solve_array(
+        b.params[0], b.params[1], o, b.n, pd, sd, pm, sm,
+        res.ctypes.data_as(ctypes.POINTER(_capi.Result)), flags, nf))
+    return _solve_result(b, res)
+
+
+def _single(params, delta, delta_max, options) -> Optional[SolveResult]:
+    """One point: the scalar C call, whose solve threads its assembly (None otherwise)."""
+    if not (isinstance(params, Params) and params.is_scalar):
+        return None
+    d = _number_array("delta", delta)
+    dm = None if delta_max is None else _number_array("delta_max", delta_max)
+    if d.ndim or (dm is not None and dm.ndim):
+        return None
     res = _capi.Result()
-    for i in range(n):
-        check(call(i, ctypes.byref(res)))
-        for f in fields:
-            out[f][i] = getattr(res, f)
-        iters[i] = res.iterations
-    if shape == ():
-        return SolveResult(**{f: float(out[f][0]) for f in fields}, iterations=int(iters[0]))
-    return SolveResult(**{f: out[f].reshape(shape) for f in fields},
-                       iterations=iters.reshape(shape))
+    p, o = params.to_c(), _options(options)
+    if dm is None:
+        status = lib.egw_solve(ctypes.byref(p), o, float(d), ctypes.byref(res))
+    else:
+        status = lib.egw_solve_unload(ctypes.byref(p), o, float(d), float(dm),
+                                      ctypes.byref(res))
+    if status != OK and _FAILED.get() != "raise":
+        if _FAILED.get() == "warn":
+            warnings.warn("1 of 1 points failed and is NaN", PointFailedWarning, stacklevel=3)
+        nan = float("nan")
+        return SolveResult(nan, nan, nan, nan, nan, -1)
+    check(status)
+    return SolveResult(res.force, res.stiffness, res.contact_radius, res.max_pressure,
+                       res.est_rel_err, res.iterations)
 
 
 def solve(params: Params, delta: ArrayLike, options: Optional[Options] = None) -> SolveResult:
-    """Full rough-sphere solve (elliptic-kernel half-space) at each overlap delta."""
-    p = _params(params)
-    o = _options(options)
-    d = _array(delta)
-    flat = d.reshape(-1)
-    return _solve_loop(d.shape, lambda i, r: lib.egw_solve(ctypes.byref(p), o,
-                                                           float(flat[i]), r))
+    """Full rough-sphere solve (axisymmetric elastic half-space with the model's summit
+    layer) at each overlap.
+
+    Parameters
+    ----------
+    params : Params
+        Any model; array fields broadcast with delta (many contacts in one call).
+    delta : float or array
+        Overlap of the undeformed sphere with the mean summit plane [length]: > 0 pressed
+        together, < 0 apart (rough models carry force there).
+    options : Options, optional
+        Tolerance and threads. An array runs its points over ``options.n_threads`` OpenMP
+        threads (0: the OpenMP default), each solve single-threaded; one point threads
+        its own assembly. Results do not depend on the thread count.
+
+    Returns
+    -------
+    SolveResult
+        Floats for scalar inputs, arrays of the broadcast shape otherwise.
+
+    Raises
+    ------
+    TypeError
+        delta is None, a string or not real (e.g. ``solve(p, None)``).
+    InvalidArgumentError
+        A NaN overlap or bad options (the message names the index).
+    NotConvergedError
+        A solve did not reach its tolerance.
+    """
+    single = _single(params, delta, None, options)
+    return single if single is not None else _solve(params, delta, None, options)
 
 
 def solve_unload(params: Params, delta: ArrayLike, delta_max: ArrayLike,
                  options: Optional[Options] = None) -> SolveResult:
-    """EP-GW unloading/reloading solve at delta after loading to delta_max (broadcast);
-    delta > delta_max is the loading solve. Consecutive points with the same delta_max
-    load it once (egw_solve_unload keeps the last history): sweep delta inside a delta_max."""
+    """EP-GW unloading/reloading solve at delta after loading to delta_max.
+
+    Parameters
+    ----------
+    params : Params
+    delta, delta_max : float or array
+        Overlap and the deepest overlap reached before [length], broadcast;
+        delta >= delta_max is the loading solve.
+    options : Options, optional
+        As :func:`solve`.
+
+    Returns
+    -------
+    SolveResult
+
+    Raises
+    ------
+    InvalidArgumentError, NotConvergedError
+        As :func:`solve`.
+    """
     _require("egw_solve_unload")
-    p = _params(params)
-    o = _options(options)
-    d, dm = np.broadcast_arrays(_array(delta), _array(delta_max))
-    fd, fm = d.reshape(-1), dm.reshape(-1)
-    return _solve_loop(d.shape, lambda i, r: lib.egw_solve_unload(
-        ctypes.byref(p), o, float(fd[i]), float(fm[i]), r))
+    single = _single(params, delta, delta_max, options)
+    return single if single is not None else _solve(params, delta, delta_max, options)
 
 
 def profile(params: Params, delta: float, r: ArrayLike,
-            options: Optional[Options] = None) -> Tuple[np.ndarray, np.ndarray]:
-    """Total pressure p(r) and surface deflection w(r) of the solved contact at delta."""
+            options: Optional[Options] = None) -> Tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Total pressure p(r) and surface deflection w(r) of the solved contact at delta.
+
+    Parameters
+    ----------
+    params : Params
+        Scalar fields.
+    delta : float
+        Overlap [length] (sign as in :func:`solve`).
+    r : array
+        Radii >= 0 [length], any order.
+
+    Returns
+    -------
+    pressure, deflection : ndarray
+        Flat arrays of len(r) [pressure], [length].
+    """
     p = _params(params)
-    radii = _array(r).reshape(-1).copy()
+    radii = _array(r, "r").reshape(-1).copy()
     pressure = np.empty_like(radii)
     deflection = np.empty_like(radii)
     check(lib.egw_profile(ctypes.byref(p), _options(options), float(delta), radii.size,
@@ -335,31 +910,106 @@ def profile(params: Params, delta: float, r: ArrayLike,
 
 @dataclass
 class Restitution:
-    """Head-on impact: coefficient of restitution e, work of the loading curve up to the
-    maximum overlap (= m* v^2/2) and the energy dissipated (W_load - W_unload)."""
-    e: float
-    work_load: float
-    dissipated: float
+    """A head-on impact (floats for one impact, arrays of the broadcast shape otherwise).
+
+    Attributes
+    ----------
+    e : coefficient of restitution, 0 < e <= 1.
+    work_load : work of the loading curve up to the deepest overlap (= m* v^2/2) [energy].
+    dissipated : W_load - W_unload [energy].
+    max_overlap : the deepest overlap delta_m [length] (> 0 pressed together, < 0 still
+        apart: slow rough impacts turn in the separated tail).
+    """
+    e: FloatOrArray
+    work_load: FloatOrArray
+    dissipated: FloatOrArray
+    max_overlap: FloatOrArray = float("nan")
 
 
-def restitution(params: Params, mass: float, velocity: float,
+def restitution(params: Params, mass: ArrayLike, velocity: ArrayLike,
                 options: Optional[Options] = None) -> Restitution:
-    """Coefficient of restitution of a head-on impact of effective mass m* at approach
-    speed v from far apart (e = sqrt(W_unload/W_load))."""
-    p = _params(params)
+    """Coefficient of restitution of head-on impacts, e = sqrt(W_unload/W_load).
+
+    Parameters
+    ----------
+    params : Params
+        The contact (array fields broadcast).
+    mass : float or array, > 0
+        Effective mass m*, 1/m* = 1/m1 + 1/m2 [mass].
+    velocity : float or array, > 0
+        Approach speed from far apart [length/time].
+    options : Options, optional
+        Tolerance; arrays run over ``options.n_threads`` threads.
+
+    Returns
+    -------
+    Restitution
+        e, work_load, dissipated and max_overlap; one C call (egw_restitution_array).
+
+    Raises
+    ------
+    InvalidArgumentError
+        mass or velocity not finite and > 0 (named with its index).
+    NotConvergedError
+        A solve failed.
+    """
+    b = _Batch(params, mass=mass, velocity=velocity)
+    e, w_load, w_diss, delta_m = b.out(4)
     o = _options(options)
-    e = ctypes.c_double()
-    if _capi.has("egw_restitution_energy"):
-        w_load, w_diss = ctypes.c_double(), ctypes.c_double()
-        check(lib.egw_restitution_energy(ctypes.byref(p), o, float(mass), float(velocity),
-                                         ctypes.byref(e), ctypes.byref(w_load),
-                                         ctypes.byref(w_diss)))
-        return Restitution(e.value, w_load.value, w_diss.value)
-    _require("egw_restitution")
-    check(lib.egw_restitution(ctypes.byref(p), o, float(mass), float(velocity),
-                              ctypes.byref(e)))
-    work = 0.5 * float(mass) * float(velocity) ** 2
-    return Restitution(e.value, work, work * (1.0 - e.value ** 2))
+    (pm, sm), (pv, sv) = b.inputs["mass"], b.inputs["velocity"]
+    b.run(lambda flags, nf: lib.egw_restitution_array(
+        b.params[0], b.params[1], o, b.n, pm, sm, pv, sv, *_arr(e, w_load, w_diss, delta_m),
+        flags, nf))
+    return Restitution(*_scalar_or_array(b.shape, e, w_load, w_diss, delta_m))
+
+
+@dataclass
+class TimeStep:
+    """The time scales of an impact (floats, or arrays of the broadcast shape).
+
+    Attributes
+    ----------
+    duration : time the force spends above 1 % of its peak [time].
+    step : largest velocity-Verlet step whose error in e stays below the tolerance [time].
+    """
+    duration: FloatOrArray
+    step: FloatOrArray
+
+
+def time_step(params: Params, mass: ArrayLike, velocity: ArrayLike, tolerance: float = 1e-3,
+              options: Optional[Options] = None) -> TimeStep:
+    """The time step of a DEM loop for head-on impacts (egw_time_step).
+
+    Parameters
+    ----------
+    params : Params
+    mass : float or array, > 0
+        Effective mass m* [mass].
+    velocity : float or array, > 0
+        The fastest approach speed of the run [length/time] (slower impacts are softer).
+    tolerance : float in (0, 0.1]
+        Allowed error of the coefficient of restitution from the time step.
+    options : Options, optional
+
+    Returns
+    -------
+    TimeStep
+        duration and step; a table-driven loop adds the table's own error.
+
+    Raises
+    ------
+    InvalidArgumentError
+        mass, velocity or tolerance out of range (named).
+    """
+    b = _Batch(params, mass=mass, velocity=velocity)
+    duration, step = b.out(2)
+    o = _options(options)
+    (pm, sm), (pv, sv) = b.inputs["mass"], b.inputs["velocity"]
+    tol = float(_number_array("tolerance", tolerance))
+    b.run(lambda flags, nf: lib.egw_time_step_array(
+        b.params[0], b.params[1], o, b.n, pm, sm, pv, sv, tol, *_arr(duration, step),
+        flags, nf))
+    return TimeStep(*_scalar_or_array(b.shape, duration, step))
 
 
 def _require(name: str) -> None:
@@ -368,7 +1018,9 @@ def _require(name: str) -> None:
 
 
 __all__ = ["EgwError", "InvalidArgumentError", "NotConvergedError", "FileError",
-           "OutOfRangeWarning", "Params", "Options", "SolveResult", "Restitution",
-           "version", "last_error", "check", "mu_from_summits", "gauss_integral",
+           "OutOfRangeWarning", "PointFailedWarning", "IgnoredParameterWarning", "Params",
+           "Options", "SolveResult", "Restitution", "TimeStep", "version", "last_error",
+           "check", "errstate", "mu_from_summits", "effective_modulus", "gauss_integral",
            "ellipk", "ellipe", "hertz", "flat_pressure", "flat_pressure_unload", "solve",
-           "solve_unload", "profile", "restitution", "MODELS"]
+           "solve_unload", "profile", "restitution", "time_step", "MODELS", "PARAMS_DTYPE",
+           "RESULT_DTYPE"]

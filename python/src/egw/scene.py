@@ -55,6 +55,7 @@ class Scene:
 
     @classmethod
     def from_c(cls, c: _capi.Scene) -> "Scene":
+        """The Scene of a C struct egw_scene."""
         n = c.n_types
         model = {v: k for k, v in MODELS.items()}.get(c.model, c.model)
         return cls(model=model, radius=list(c.radius[:n]), radius_min=c.radius_min,
@@ -67,6 +68,8 @@ class Scene:
                    delta_max=c.delta_max, delta_in_sigma=bool(c.delta_in_sigma), tol=c.tol)
 
     def to_c(self) -> _capi.Scene:
+        """The C struct egw_scene (InvalidArgumentError for an unknown model or more than
+        SCENE_MAX_TYPES particle types)."""
         model = MODELS.get(self.model, self.model) if isinstance(self.model, str) else self.model
         if isinstance(model, str):
             raise InvalidArgumentError(INVALID_PARAMETER,
@@ -90,6 +93,13 @@ class Scene:
         return c
 
     def validate(self) -> None:
+        """Check the scene with the library (egw_scene_validate).
+
+        Raises
+        ------
+        InvalidArgumentError
+            Naming the first invalid field.
+        """
         check(lib.egw_scene_validate(ctypes.byref(self.to_c())))
 
 
@@ -109,6 +119,7 @@ class ModelChoice:
 
     @classmethod
     def from_c(cls, c: _capi.ModelChoice, reason: str) -> "ModelChoice":
+        """The ModelChoice of a C struct egw_model_choice and its reason text."""
         return cls(CHOICES.get(c.kind, str(c.kind)), reason, c.n_sets, c.n_solves, c.n_nodes,
                    c.error_bound, c.hertz_error, c.measured_error, (c.mu_min, c.mu_max),
                    (c.x_min, c.x_max))

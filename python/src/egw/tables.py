@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import warnings
 from dataclasses import dataclass
 from typing import Optional, Tuple, Union
 
@@ -14,8 +15,9 @@ import numpy as np
 
 from . import _capi
 from ._capi import lib
-from .core import (ArrayLike, OUT_OF_RANGE, Options, Params, _array, _double_ptr,
-                   _options, _params, _require, _scalar_or_array, check)
+from .core import (_FAILED, OK, OUT_OF_RANGE, ArrayLike, FloatOrArray, Options, Params,
+                   PointFailedWarning, _array, _Batch, _double_ptr, _options, _params,
+                   _require, _scalar_or_array, check)
 
 FORMATS = {"csv": 0, "binary": 1, "lammps": 2, "calculix": 3}
 PathLike = Union[str, os.PathLike]
@@ -89,6 +91,28 @@ class Table(_Handle):
     @classmethod
     def build(cls, params: Params, delta_min: float, delta_max: float,
               rel_tol: float = 1e-6, options: Optional[Options] = None) -> "Table":
+        """Build the force table of one contact from full solves (egw_table_build).
+
+        Parameters
+        ----------
+        params : Params
+            Scalar fields.
+        delta_min, delta_max : float
+            Overlap range [length] (delta > 0 pressed together, < 0 apart, from the mean
+            summit plane); the table starts at the cut-off if that lies lower.
+        rel_tol : float
+            Interpolation tolerance against solves between nodes (relative).
+        options : Options, optional
+            Solver options (threads of the solves).
+
+        Returns
+        -------
+        Table
+
+        Raises
+        ------
+        InvalidArgumentError, NotConvergedError
+        """
         p = _params(params)
         h = ctypes.c_void_p()
         check(lib.egw_table_build(ctypes.byref(p), _options(options), float(delta_min),
@@ -108,13 +132,29 @@ class Table(_Handle):
 
     @property
     def info(self) -> TableInfo:
+        """Facts about the table (egw_table_get_info): cut-off, range, errors."""
         c = _capi.TableInfo()
         check(lib.egw_table_get_info(self._ptr, ctypes.byref(c)))
         return TableInfo(*(getattr(c, f) for f, _ in c._fields_))
 
-    def eval(self, delta: ArrayLike) -> Tuple[ArrayLike, ArrayLike]:
-        """(force, stiffness) at delta: one C call for the whole array. Above the last
-        node the values are extrapolated linearly and an OutOfRangeWarning is issued."""
+    def eval(self, delta: ArrayLike) -> Tuple[FloatOrArray, FloatOrArray]:
+        """Force and stiffness at overlaps delta, one C call for the whole array.
+
+        Parameters
+        ----------
+        delta : float or array
+            Overlap [length] (> 0 pressed together, < 0 apart, from the mean summit plane).
+
+        Returns
+        -------
+        force, stiffness : float or ndarray
+            Of delta's shape [force], [force/length].
+
+        Warns
+        -----
+        OutOfRangeWarning
+            Above the last node (values extrapolated linearly with the last stiffness).
+        """
         d = _array(delta)
         force = np.empty_like(d)
         stiffness = np.empty_like(d)
@@ -141,6 +181,29 @@ class UniversalTable(_Handle):
     def build(cls, params: Params, mu_min: float, mu_max: float, x_min: float,
               x_max: float, rel_tol: float = 1e-6,
               options: Optional[Options] = None) -> "UniversalTable":
+        """Build the universal table of a model over mu and x = delta/sigma
+        (egw_universal_build): P/(E sqrt(R) sigma^1.5) for every R, E*, sigma.
+
+        Parameters
+        ----------
+        params : Params
+            The model (and psi, K, rho_p for EP-GW); R, E*, sigma, mu are scaled out.
+        mu_min, mu_max : float
+            Range of mu (> 0).
+        x_min, x_max : float
+            Range of delta/sigma.
+        rel_tol : float
+            Interpolation tolerance (relative).
+        options : Options, optional
+
+        Returns
+        -------
+        UniversalTable
+
+        Raises
+        ------
+        InvalidArgumentError, NotConvergedError
+        """
         p = _params(params)
         h = ctypes.c_void_p()
         check(lib.egw_universal_build(ctypes.byref(p), _options(options), float(mu_min),
@@ -150,28 +213,67 @@ class UniversalTable(_Handle):
 
     @classmethod
     def read(cls, path: PathLike) -> "UniversalTable":
+        """Read a universal table written by :meth:`write` (FileError if unreadable)."""
         h = ctypes.c_void_p()
         check(lib.egw_universal_read(_path(path), ctypes.byref(h)))
         return cls(h)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
+        """Write atomically ('binary' or 'csv', doc/formats.md).
+
+        Raises
+        ------
+        FileError
+            The file cannot be written.
+        """
         check(lib.egw_universal_write(self._ptr, _path(path), _format(format)))
 
-    def eval(self, params: Params, delta: ArrayLike) -> Tuple[ArrayLike, ArrayLike]:
-        """(force, stiffness) of the contact `params` (its R, E, sigma, mu) at delta."""
-        p = _params(params)
-        d = _array(delta)
-        flat = d.reshape(-1)
-        force = np.empty(d.shape)
-        stiffness = np.empty(d.shape)
-        f, k = ctypes.c_double(), ctypes.c_double()
-        ff, kf = force.reshape(-1), stiffness.reshape(-1)
-        for i in range(flat.size):
-            check(lib.egw_universal_eval(self._ptr, ctypes.byref(p), float(flat[i]),
-                                         ctypes.byref(f), ctypes.byref(k)),
-                  allow_out_of_range=True)
-            ff[i], kf[i] = f.value, k.value
-        return _scalar_or_array(d.shape, force, stiffness)
+    def eval(self, params: Params, delta: ArrayLike) -> Tuple[FloatOrArray, FloatOrArray]:
+        """Force and stiffness of contacts read from the table, in one C call.
+
+        Parameters
+        ----------
+        params : Params
+            The contacts: R, E*, sigma (> 0), mu may be arrays (broadcast with delta);
+            model, psi, K, rho_p must equal the table's.
+        delta : float or array
+            Overlap [length] (> 0 pressed together, < 0 apart, from the mean summit plane).
+
+        Returns
+        -------
+        force, stiffness : float or ndarray
+            Of the broadcast shape.
+
+        Warns
+        -----
+        OutOfRangeWarning
+            Points above x_max*sigma (extrapolated linearly) or with mu outside the table
+            (NaN there).
+
+        Raises
+        ------
+        InvalidArgumentError
+            A NaN overlap (named with its index), or parameters that do not match the table.
+        """
+        b = _Batch(params, delta=delta)
+        force, stiffness = b.out(2)
+        pd, sd = b.inputs["delta"]
+        if not _capi.has("egw_universal_eval_array"):
+            raise NotImplementedError("the loaded libegw has no egw_universal_eval_array")
+        mode = _FAILED.get()
+        n_failed = ctypes.c_int(0)
+        status = lib.egw_universal_eval_array(self._ptr, b.params[0], b.params[1], b.n, pd,
+                                              sd, _double_ptr(force), _double_ptr(stiffness),
+                                              0 if mode == "raise" else 1,
+                                              ctypes.byref(n_failed))
+        if status not in (OK, OUT_OF_RANGE):
+            b._raise(status)
+        if status == OUT_OF_RANGE:
+            check(status, allow_out_of_range=True)
+        if mode == "warn" and n_failed.value:
+            warnings.warn(f"{n_failed.value} of {b.n} points failed and are NaN",
+                          PointFailedWarning, stacklevel=2)
+        return _scalar_or_array(b.shape, force, stiffness)
 
     def slice(self, params: Params, delta_max: Optional[float] = None) -> Table:
         """The 1-D table of one contact cut out of the universal table (no solves); with
@@ -212,6 +314,26 @@ class HysteresisTable(_Handle):
     @classmethod
     def build(cls, params: Params, delta_min: float, delta_max: float,
               rel_tol: float = 1e-4, options: Optional[Options] = None) -> "HysteresisTable":
+        """Build the EP-GW loading/unloading table of one contact (egw_hysteresis_build).
+
+        Parameters
+        ----------
+        params : Params
+            Scalar fields, model EP-GW (other models give a reversible table).
+        delta_min, delta_max : float
+            Overlap range [length], sign as in :func:`egw.solve`.
+        rel_tol : float
+            Interpolation tolerance (relative).
+        options : Options, optional
+
+        Returns
+        -------
+        HysteresisTable
+
+        Raises
+        ------
+        InvalidArgumentError, NotConvergedError
+        """
         _require("egw_hysteresis_build")
         p = _params(params)
         h = ctypes.c_void_p()
@@ -221,12 +343,20 @@ class HysteresisTable(_Handle):
 
     @classmethod
     def read(cls, path: PathLike) -> "HysteresisTable":
+        """Read a hysteresis table written by :meth:`write` (FileError if unreadable)."""
         _require("egw_hysteresis_read")
         h = ctypes.c_void_p()
         check(lib.egw_hysteresis_read(_path(path), ctypes.byref(h)))
         return cls(h)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
+        """Write atomically ('binary' or 'csv', doc/formats.md).
+
+        Raises
+        ------
+        FileError
+            The file cannot be written.
+        """
         _require("egw_hysteresis_write")
         check(lib.egw_hysteresis_write(self._ptr, _path(path), _format(format)))
 

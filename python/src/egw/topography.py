@@ -23,17 +23,19 @@ from __future__ import annotations
 
 import argparse
 import ctypes
+import dataclasses
+import json
 import math
 import os
 import sys
 import warnings
 from dataclasses import dataclass, field
-from typing import List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from ._capi import lib
-from .core import check, mu_from_summits
+from .core import Params, check, effective_modulus, mu_from_summits
 
 #: below this bandwidth parameter McCool's summit statistics are poor (sigma_s^2 loses
 #: more than 10 % against m0: 0.8968/alpha > 0.1) — GW's isolated-summit picture is
@@ -47,16 +49,44 @@ class TopographyWarning(UserWarning):
     """GW's assumptions are poor for this surface (small alpha, few summits)."""
 
 
+#: length units a map may carry, in metres
+LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9,
+                "pm": 1e-12, "A": 1e-10, "Å": 1e-10, "cm": 1e-2, "km": 1e3}
+
+
 @dataclass
 class HeightMap:
-    """Heights z[i, j] (rows along y, columns along x) on a grid of pixel size
-    (dx, dy) [length]."""
+    """A height map: heights z[i, j] (rows along y, columns along x) on a grid of pixel
+    size (dx, dy).
+
+    Attributes
+    ----------
+    heights : ndarray, shape (ny, nx)
+        Heights [unit].
+    dx, dy : float
+        Pixel sizes [unit], > 0.
+    unit : str or None
+        The length unit of the heights AND the pixel sizes (a key of LENGTH_UNITS);
+        None = unknown (the contact functions refuse such a map).
+    periodic : bool
+        The map is one period of a periodic surface (detrended by its mean only, FFT
+        derivatives, summits found across the edges).
+    """
     heights: np.ndarray
     dx: float
     dy: float
+    unit: Optional[str] = None
+    periodic: bool = False
+
+    def to_metres(self) -> "HeightMap":
+        """The same map in metres (ValueError when the unit is unknown)."""
+        factor = _unit_factor(self.unit)
+        return HeightMap(self.heights * factor, self.dx * factor, self.dy * factor, "m",
+                         self.periodic)
 
     @property
     def area(self) -> float:
+        """Area of the map [unit^2]."""
         ny, nx = self.heights.shape
         return nx * self.dx * ny * self.dy
 
@@ -73,6 +103,7 @@ class Moments:
 
     @property
     def alpha(self) -> float:
+        """Nayak's bandwidth parameter alpha = m0 m4/m2^2."""
         return self.m0 * self.m4 / self.m2 ** 2
 
     def __add__(self, other: "Moments") -> "Moments":
@@ -98,9 +129,12 @@ class SummitStatistics:
     warnings: List[str] = field(default_factory=list)
 
 
-def read_height_map(path: str, pixel_size: float | Tuple[float, float] = 1.0) -> HeightMap:
+def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1.0,
+                    unit: Optional[str] = None, periodic: bool = False) -> HeightMap:
     """Read a height map: `.npy` (numpy), `.csv` (comma-separated rows) or a plain-text
-    matrix (whitespace-separated rows); '#' lines are comments. pixel_size: dx or (dx, dy)."""
+    matrix (whitespace-separated rows); '#' lines are comments. pixel_size: dx or (dx, dy),
+    in the unit of the heights (unit: recorded on the map; None = unknown). NaN pixels
+    are refused. Instrument formats: :func:`height_map` (through SurfaceTopography)."""
     ext = os.path.splitext(path)[1].lower()
     if ext == ".npy":
         z = np.load(path, allow_pickle=False)
@@ -116,21 +150,27 @@ def read_height_map(path: str, pixel_size: float | Tuple[float, float] = 1.0) ->
     dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
     if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
         raise ValueError(f"pixel_size = {pixel_size}: must be finite and > 0")
-    return HeightMap(z, float(dx), float(dy))
+    _check_unit(unit)
+    return HeightMap(z, float(dx), float(dy), unit, bool(periodic))
 
 
-def detrend(surface: HeightMap, mode: str = "plane") -> HeightMap:
-    """Remove the mean ('mean') or the least-squares plane ('plane') of the heights."""
+def detrend(surface: HeightMap, mode: Optional[str] = None) -> HeightMap:
+    """Remove the mean ('mean') or the least-squares plane ('plane') of the heights.
+
+    mode None (default): 'mean' for a periodic map (a plane would break its periodicity
+    and inflate the spectral moments), 'plane' otherwise. The shared default of the CLI
+    and Python (see DEFAULTS)."""
+    mode = mode or default_detrend(surface.periodic)
     z = surface.heights
     if mode == "mean":
-        return HeightMap(z - z.mean(), surface.dx, surface.dy)
+        return dataclasses.replace(surface, heights=z - z.mean())
     if mode != "plane":
         raise ValueError(f"mode = {mode!r}: must be 'plane' or 'mean'")
     ny, nx = z.shape
     y, x = np.mgrid[0:ny, 0:nx]
     a = np.column_stack([np.ones(z.size), x.ravel(), y.ravel()])
     coef, *_ = np.linalg.lstsq(a, z.ravel(), rcond=None)
-    return HeightMap(z - (a @ coef).reshape(z.shape), surface.dx, surface.dy)
+    return dataclasses.replace(surface, heights=z - (a @ coef).reshape(z.shape))
 
 
 def _derivatives(surface: HeightMap, method: str):
@@ -164,9 +204,13 @@ def _derivatives(surface: HeightMap, method: str):
     raise ValueError(f"method = {method!r}: must be 'fft' or 'difference'")
 
 
-def spectral_moments(surface: HeightMap, method: str = "fft") -> Moments:
+def spectral_moments(surface: HeightMap, method: Optional[str] = None) -> Moments:
     """Profile moments m0, m2, m4 of a (detrended) height map, averaged over the x and y
-    directions (for an isotropic surface they are the profile moments in any direction)."""
+    directions (for an isotropic surface they are the profile moments in any direction).
+
+    method: 'fft' (exact for a periodic band-limited map) or 'difference' (central
+    differences, any map); None: 'fft' for a periodic map, else 'difference' (DEFAULTS)."""
+    method = method or default_derivatives(surface.periodic)
     z = surface.heights
     zx, zy, zxx, zyy = _derivatives(surface, method)
     m0 = float(np.mean((z - z.mean()) ** 2))
@@ -246,7 +290,10 @@ def sum_surface(a: HeightMap, b: HeightMap) -> HeightMap:
     surface against a smooth one; its moments are the sums for independent surfaces)."""
     if a.heights.shape != b.heights.shape or (a.dx, a.dy) != (b.dx, b.dy):
         raise ValueError("sum_surface: the two maps need the same shape and pixel size")
-    return HeightMap(a.heights + b.heights, a.dx, a.dy)
+    if a.unit != b.unit:
+        raise ValueError(f"sum_surface: the maps are in {a.unit!r} and {b.unit!r}: "
+                         "convert one (HeightMap.to_metres)")
+    return HeightMap(a.heights + b.heights, a.dx, a.dy, a.unit, a.periodic and b.periodic)
 
 
 def psi_from_hardness(modulus: float, hardness: float, sigma: float, summit_radius: float,
@@ -258,12 +305,434 @@ def psi_from_hardness(modulus: float, hardness: float, sigma: float, summit_radi
     return psi.value
 
 
-def _report(stats: SummitStatistics, radius, modulus, hardness, k) -> List[str]:
+#: The one set of defaults of egw-topo and of the Python functions: periodic maps are
+#: detrended by their mean and differentiated by FFT; other maps lose their best-fit plane
+#: and use central differences.
+DEFAULTS = {"detrend": {True: "mean", False: "plane"},
+            "derivatives": {True: "fft", False: "difference"}}
+#: the summit-identification and spectral estimates are compared at this relative gap
+AGREEMENT_TOL = 0.10
+#: a curvature wavelength 2 pi sqrt(m2/m4) under this many pixels: 8-neighbour summit
+#: identification is limited by the sampling
+PIXELS_PER_WAVELENGTH_MIN = 20.0
+#: fewer summits than this: their averages carry more than 5 % statistical error
+SUMMITS_STATISTICS_MIN = 400
+
+
+def default_detrend(periodic: bool) -> str:
+    """'mean' for a periodic map, 'plane' otherwise (DEFAULTS)."""
+    return DEFAULTS["detrend"][bool(periodic)]
+
+
+def default_derivatives(periodic: bool) -> str:
+    """'fft' for a periodic map, 'difference' otherwise (DEFAULTS)."""
+    return DEFAULTS["derivatives"][bool(periodic)]
+
+
+def _check_unit(unit: Optional[str]) -> None:
+    if unit is not None and unit not in LENGTH_UNITS:
+        raise ValueError(f"unit = {unit!r}: must be one of {sorted(set(LENGTH_UNITS))}")
+
+
+def _unit_factor(unit: Optional[str]) -> float:
+    if unit is None:
+        raise ValueError("the height map has no unit: give unit= (the length unit of the "
+                         f"heights and pixel sizes, one of {sorted(set(LENGTH_UNITS))})")
+    _check_unit(unit)
+    return LENGTH_UNITS[unit]
+
+
+def _is_surface_topography(source: Any) -> bool:
+    return hasattr(source, "heights") and hasattr(source, "physical_sizes") and \
+        hasattr(source, "nb_grid_pts")
+
+
+def _from_surface_topography(top: Any, unit: Optional[str],
+                             periodic: Optional[bool]) -> HeightMap:
+    if getattr(top, "dim", 2) != 2:
+        raise ValueError(f"a SurfaceTopography of dimension {top.dim}: egw needs an areal "
+                         "(2-D) map")
+    if getattr(top, "has_undefined_data", False):
+        raise ValueError("the topography has undefined (NaN) pixels: fill them "
+                         "(top.interpolate_undefined_data()) or crop them first")
+    top_unit = getattr(top, "unit", None)
+    if top_unit is not None and unit is not None and top_unit != unit:
+        raise ValueError(f"mixed units: the topography is in {top_unit!r}, unit = {unit!r} "
+                         "was given: convert the topography (top.to_unit(...)) instead")
+    unit = top_unit if top_unit is not None else unit
+    if unit is None:
+        raise ValueError("the topography has no unit: give unit= (or make it with unit=...)")
+    _check_unit(unit)
+    nx, ny = top.nb_grid_pts
+    sx, sy = top.physical_sizes
+    heights = np.asarray(top.heights(), dtype=np.float64).T  # ST: [x, y]; egw: [y, x]
+    if periodic is None:
+        periodic = bool(getattr(top, "is_periodic", False))
+    return _checked_map(heights, (sx / nx, sy / ny), unit, periodic, "the topography")
+
+
+def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic: bool,
+                 what: str) -> HeightMap:
+    z = np.asarray(heights, dtype=np.float64)
+    if z.ndim != 2 or min(z.shape) < 3:
+        raise ValueError(f"{what}: a height map must be a 2-D matrix of at least 3 x 3 "
+                         f"values (got shape {z.shape})")
+    bad = np.count_nonzero(~np.isfinite(z))
+    if bad:
+        raise ValueError(f"{what}: {bad} NaN or infinite pixels: fill or crop missing "
+                         "data first (summits and moments are undefined next to them)")
+    if pixel_size is None:
+        raise ValueError(f"{what}: give pixel_size (dx or (dx, dy), in the unit of the "
+                         "heights)")
+    dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
+    if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
+        raise ValueError(f"pixel_size = {pixel_size}: must be finite and > 0")
+    _check_unit(unit)
+    return HeightMap(z, float(dx), float(dy), unit, bool(periodic))
+
+
+def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] = None,
+               unit: Optional[str] = None, *, height_unit: Optional[str] = None,
+               periodic: Optional[bool] = None) -> HeightMap:
+    """A HeightMap from a numpy array, a SurfaceTopography topography, a HeightMap or a
+    file, with its units explicit.
+
+    Parameters
+    ----------
+    source : ndarray (ny, nx), SurfaceTopography topography, HeightMap or path
+        A path ending .npy, .csv or .txt is read by :func:`read_height_map`; any other
+        file (x3p, datx, opd, gwy, sur, ...) by SurfaceTopography
+        (``pip install egw[topography]``), which records its units.
+    pixel_size : float or (dx, dy)
+        For arrays and plain files: in the unit of the heights.
+    unit : str
+        Length unit of the heights and pixel sizes ('m', 'mm', 'um', 'nm', ...);
+        required for arrays and plain files (the map refuses to guess).
+    height_unit : str, optional
+        The heights' unit when it must be stated apart: refused unless equal to unit
+        (heights in nm on pixels in um are a classic silent error).
+    periodic : bool, optional
+        Whether the map is periodic (default: SurfaceTopography's is_periodic, else
+        False).
+
+    Returns
+    -------
+    HeightMap
+
+    Raises
+    ------
+    ValueError
+        NaN pixels, a missing or unknown unit, mixed units, a bad pixel size or shape.
+    ImportError
+        An instrument format without SurfaceTopography installed.
+    """
+    if height_unit is not None and height_unit != unit:
+        raise ValueError(f"mixed units: heights in {height_unit!r}, pixel size in "
+                         f"{unit!r}: give both in one unit (scale the heights by "
+                         f"{_unit_factor(height_unit) / _unit_factor(unit):g})")
+    if isinstance(source, HeightMap):
+        if unit is not None and source.unit is not None and unit != source.unit:
+            raise ValueError(f"mixed units: the map is in {source.unit!r}, unit = {unit!r}")
+        return dataclasses.replace(source, unit=source.unit or unit,
+                                   periodic=source.periodic if periodic is None
+                                   else bool(periodic))
+    if _is_surface_topography(source):
+        return _from_surface_topography(source, unit, periodic)
+    if isinstance(source, (str, os.PathLike)):
+        path = os.fspath(source)
+        if os.path.splitext(path)[1].lower() in (".npy", ".csv", ".txt", ".dat", ""):
+            if unit is None:
+                raise ValueError(f"{path}: a plain height map carries no unit: give unit= "
+                                 "(CLI: --unit)")
+            hm = read_height_map(path, 1.0 if pixel_size is None else pixel_size, unit,
+                                 bool(periodic))
+            if pixel_size is None:
+                raise ValueError(f"{path}: give pixel_size (CLI: --pixel-size)")
+            return hm
+        try:
+            import SurfaceTopography as st  # noqa: N813 (the package's own name)
+        except ImportError:
+            raise ImportError(f"{path}: instrument formats are read by SurfaceTopography: "
+                              "pip install 'egw[topography]'") from None
+        reader = st.open_topography(path)
+        kwargs = {}
+        if pixel_size is not None:
+            dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
+            nx, ny = reader.channels[0].nb_grid_pts
+            kwargs["physical_sizes"] = (dx * nx, dy * ny)
+        if unit is not None and reader.channels[0].unit is None:
+            kwargs["unit"] = unit
+        return _from_surface_topography(reader.topography(**kwargs), unit, periodic)
+    if unit is None:
+        raise ValueError("a height array carries no unit: give unit= (the length unit of "
+                         "the heights and pixel sizes)")
+    return _checked_map(source, pixel_size, unit, bool(periodic), "the height array")
+
+
+@dataclass
+class TopographyReport:
+    """Both estimates of a height map's GW statistics, and which to trust.
+
+    Attributes
+    ----------
+    shape : (ny, nx)
+    unit : the map's length unit (the statistics are in it).
+    periodic : bool
+    detrend, derivatives : the methods used.
+    summits : SummitStatistics from 8-neighbour summit identification.
+    spectral : SummitStatistics from the spectral moments (McCool/Nayak).
+    moments : the Moments.
+    disagreement : relative gaps |summits/spectral - 1| of eta, beta, sigma_s.
+    trust : 'summits' or 'spectral'; reason : why.
+    warnings : every warning (also issued as TopographyWarning).
+    """
+    shape: Tuple[int, int]
+    unit: Optional[str]
+    periodic: bool
+    detrend: str
+    derivatives: str
+    summits: SummitStatistics
+    spectral: SummitStatistics
+    moments: Moments
+    disagreement: Dict[str, float]
+    trust: str
+    reason: str
+    warnings: List[str] = field(default_factory=list)
+
+    @property
+    def recommended(self) -> SummitStatistics:
+        """The estimate to use (summits or spectral, see reason)."""
+        return self.summits if self.trust == "summits" else self.spectral
+
+    def to_dict(self) -> Dict[str, Any]:
+        """A JSON-ready dictionary (numbers in the map's unit)."""
+        def stats(s: SummitStatistics) -> Dict[str, Any]:
+            return {"summit_density": s.summit_density, "summit_radius": s.summit_radius,
+                    "sigma_summits": s.sigma_summits, "sigma_surface": s.sigma_surface,
+                    "y_s": s.mean_summit_height, "n_summits": s.n_summits,
+                    "alpha": s.alpha, "warnings": list(s.warnings)}
+        return {"shape": list(self.shape), "unit": self.unit, "periodic": self.periodic,
+                "detrend": self.detrend, "derivatives": self.derivatives,
+                "moments": {"m0": self.moments.m0, "m2": self.moments.m2,
+                            "m4": self.moments.m4, "m2_xy": list(self.moments.m2_xy),
+                            "m4_xy": list(self.moments.m4_xy), "alpha": self.moments.alpha},
+                "summits": stats(self.summits), "spectral": stats(self.spectral),
+                "disagreement": self.disagreement, "trust": self.trust,
+                "reason": self.reason, "warnings": list(self.warnings)}
+
+
+def _trust(hm: HeightMap, summits: SummitStatistics, moments: Moments) -> Tuple[str, str]:
+    """Which estimate to trust, and why: McCool's formulas need alpha >> 1 and an
+    isotropic surface; 8-neighbour identification needs the curvature wavelength
+    2 pi sqrt(m2/m4) well sampled and enough summits for its averages."""
+    alpha = moments.alpha
+    wavelength = 2 * math.pi * math.sqrt(moments.m2 / moments.m4) / math.sqrt(hm.dx * hm.dy)
+    n = summits.n_summits or 0
+    (m2x, m2y) = moments.m2_xy
+    if alpha < ALPHA_WARN:
+        return "summits", (f"bandwidth: alpha = {alpha:.3g} < {ALPHA_WARN}, and McCool's "
+                           "formulas assume alpha >> 1; the summits found on the map are the "
+                           "direct estimate")
+    if wavelength < PIXELS_PER_WAVELENGTH_MIN:
+        return "spectral", (f"sampling: the curvature wavelength 2 pi sqrt(m2/m4) spans "
+                            f"{wavelength:.3g} pixels (< {PIXELS_PER_WAVELENGTH_MIN:g}), so "
+                            "8-neighbour identification merges and misses summits; the "
+                            "moments count every resolved wavelength (both depend on the "
+                            "pixel size: sample finer if you can)")
+    if n < SUMMITS_STATISTICS_MIN:
+        return "spectral", (f"statistics: {n} summits carry a {100 / math.sqrt(max(n, 1)):.0f}"
+                            " % error; the moments average over every pixel")
+    if max(m2x, m2y) > 1.5 * min(m2x, m2y):
+        return "summits", ("anisotropy: McCool's formulas assume an isotropic surface; the "
+                           "summits found are the direct estimate")
+    return "summits", (f"the summits are resolved ({wavelength:.3g} pixels per curvature "
+                       f"wavelength, {n} summits, alpha = {alpha:.3g}) and their direct "
+                       "statistics need no Gaussian isotropic surface")
+
+
+def analyse(source: Any, pixel_size=None, unit: Optional[str] = None, *,
+            periodic: Optional[bool] = None, detrend_mode: Optional[str] = None,
+            derivatives: Optional[str] = None) -> TopographyReport:
+    """GW statistics of a height map both ways, compared (the analysis of egw-topo).
+
+    Parameters
+    ----------
+    source, pixel_size, unit, periodic
+        As :func:`height_map`.
+    detrend_mode : {'mean', 'plane'}, optional
+        Default: 'mean' for periodic maps, 'plane' otherwise (DEFAULTS).
+    derivatives : {'fft', 'difference'}, optional
+        Default: 'fft' for periodic maps, 'difference' otherwise (DEFAULTS).
+
+    Returns
+    -------
+    TopographyReport
+        Numbers in the map's unit. When the two estimates of eta, beta or sigma_s differ
+        by more than 10 % a TopographyWarning says which to trust and why.
+
+    Raises
+    ------
+    ValueError
+        As :func:`height_map`, or a map with fewer than 2 summits.
+    """
+    hm = height_map(source, pixel_size, unit, periodic=periodic)
+    detrend_mode = detrend_mode or default_detrend(hm.periodic)
+    derivatives = derivatives or default_derivatives(hm.periodic)
+    hm = detrend(hm, detrend_mode)
+    moments = spectral_moments(hm, derivatives)
+    spectral = mccool(moments)
+    summits = summit_statistics(hm, hm.periodic)
+    gaps = {"summit_density": summits.summit_density / spectral.summit_density - 1.0,
+            "summit_radius": summits.summit_radius / spectral.summit_radius - 1.0,
+            "sigma_summits": summits.sigma_summits / spectral.sigma_summits - 1.0}
+    trust, reason = _trust(hm, summits, moments)
+    notes = list(summits.warnings) + list(spectral.warnings)
+    worst = max(gaps, key=lambda k: abs(gaps[k]))
+    if abs(gaps[worst]) > AGREEMENT_TOL:
+        notes.append(f"summit identification and spectral estimates disagree: {worst} "
+                     f"differs by {100 * gaps[worst]:+.0f} % (> {100 * AGREEMENT_TOL:.0f} %); "
+                     f"trust the {trust} estimate: {reason}")
+    (m2x, m2y), (m4x, m4y) = moments.m2_xy, moments.m4_xy
+    if max(m2x, m2y) > 1.5 * min(m2x, m2y):
+        notes.append(f"anisotropic: m2 along x and y differ ({m2x:.3g}, {m2y:.3g}); GW's "
+                     "isotropic formulas use their mean")
+    for note in notes:
+        warnings.warn(note, TopographyWarning, stacklevel=2)
+    return TopographyReport(hm.heights.shape, hm.unit, hm.periodic, detrend_mode,
+                            derivatives, summits, spectral, moments,
+                            {k: float(abs(v)) for k, v in gaps.items()}, trust, reason,
+                            notes)
+
+
+@dataclass
+class ContactReport:
+    """How contact_from_topography got its Params.
+
+    Attributes
+    ----------
+    params : the Params returned.
+    estimate : 'summits' or 'spectral', the statistics used; reason : why.
+    summit_density, summit_radius, sigma, y_s, sigma_surface : the combined surface's
+        statistics [SI: 1/m^2, m]; y_s is the mean summit plane above the mean plane
+        (convert an overlap measured from the mean planes with delta = delta_mean - y_s).
+    effective_modulus : E* [Pa]; radius : R [m] (None for a flat).
+    surfaces : the TopographyReport of each map analysed (empty for moments).
+    notes : warnings and assumptions.
+    """
+    params: Params
+    estimate: str
+    reason: str
+    summit_density: float
+    summit_radius: float
+    sigma: float
+    y_s: float
+    sigma_surface: float
+    effective_modulus: float
+    radius: Optional[float]
+    surfaces: List[TopographyReport] = field(default_factory=list)
+    notes: List[str] = field(default_factory=list)
+
+
+def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[float],
+                            E1: float, nu1: float, E2: Optional[float] = None,
+                            nu2: Optional[float] = None, model: str = "E-GW",
+                            hardness: Optional[float] = None, hardness_coeff: float = 0.6,
+                            pixel_size=None, unit: Optional[str] = None,
+                            estimate: str = "auto") -> Tuple[Params, ContactReport]:
+    """From one or two measured surfaces to the Params of their contact, in one call.
+
+    Parameters
+    ----------
+    top1, top2 : height map source or Moments
+        Anything :func:`height_map` takes (numpy array with pixel_size and unit,
+        SurfaceTopography topography, HeightMap, file), or the profile Moments of a
+        surface in metres. top2 None: a smooth counter-face. Two maps: their sum surface
+        (same grid); two Moments: their sum (independent surfaces).
+    radius : float or None
+        Equivalent radius R = R1 R2/(R1 + R2) [m]; None for a flat (mu is then computed
+        for R = 1 m: flat_pressure depends on mu/sqrt(R) only, so R cancels).
+    E1, nu1, E2, nu2 : float
+        Young's moduli [Pa] and Poisson's ratios (E2, nu2 default to body 1's).
+    model : {'GW', 'E-GW', 'EP-GW'}
+    hardness : float, optional
+        Hardness of the softer body [Pa]; needed for EP-GW (psi from it).
+    hardness_coeff : float
+        ZMC K.
+    pixel_size, unit :
+        For numpy arrays and plain files (as :func:`height_map`).
+    estimate : {'auto', 'summits', 'spectral'}
+        Which statistics of a map to use: 'auto' follows the report's advice.
+
+    Returns
+    -------
+    params : Params
+        model, R (1 for a flat), E*, sigma (summit heights of the combined surface), mu,
+        psi (EP-GW), in SI units.
+    report : ContactReport
+        The statistics used (with y_s) and the estimates of each map.
+
+    Raises
+    ------
+    ValueError
+        Missing units, NaN pixels, maps on different grids, EP-GW without hardness.
+    """
+    if model not in ("GW", "E-GW", "EP-GW"):
+        raise ValueError(f"model = {model!r}: a rough contact needs 'GW', 'E-GW' or 'EP-GW'")
+    if model == "EP-GW" and hardness is None:
+        raise ValueError("model EP-GW needs hardness= (psi follows from it)")
+    if estimate not in ("auto", "summits", "spectral"):
+        raise ValueError(f"estimate = {estimate!r}: 'auto', 'summits' or 'spectral'")
+    notes: List[str] = []
+    surfaces: List[TopographyReport] = []
+    if isinstance(top1, Moments):
+        if top2 is not None and not isinstance(top2, Moments):
+            raise ValueError("give two Moments or two maps, not one of each")
+        moments = top1 if top2 is None else top1 + top2
+        stats = mccool(moments)
+        chosen, reason = "spectral", "profile moments given: McCool's formulas"
+        notes += stats.warnings
+    else:
+        maps = [height_map(t, pixel_size, unit).to_metres() for t in (top1, top2)
+                if t is not None]
+        surface = maps[0] if len(maps) == 1 else sum_surface(*maps)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            rep = analyse(surface)
+        for w in caught:
+            warnings.warn(w.message, w.category, stacklevel=2)
+        surfaces.append(rep)
+        chosen = rep.trust if estimate == "auto" else estimate
+        reason = rep.reason if estimate == "auto" else "asked for"
+        stats = rep.summits if chosen == "summits" else rep.spectral
+        notes += rep.warnings
+    e_star = effective_modulus(E1, nu1, E2, nu2)
+    r_mu = 1.0 if radius is None else float(radius)
+    if radius is None:
+        notes.append("radius None: a flat; mu computed for R = 1 m (flat_pressure depends "
+                     "on mu/sqrt(R) only)")
+    mu = mu_from_summits(stats.summit_density, stats.summit_radius, stats.sigma_summits,
+                         r_mu)
+    psi = 0.0
+    if model == "EP-GW":
+        psi = psi_from_hardness(e_star, hardness, stats.sigma_summits, stats.summit_radius,
+                                hardness_coeff)
+    params = Params(model=model, radius=r_mu, modulus=e_star, sigma=stats.sigma_summits,
+                    mu=mu, psi=psi, hardness_coeff=hardness_coeff)
+    report = ContactReport(params, chosen, reason, stats.summit_density, stats.summit_radius,
+                           stats.sigma_summits, stats.mean_summit_height,
+                           stats.sigma_surface, e_star, radius, surfaces, notes)
+    return params, report
+
+
+def _report(stats: SummitStatistics, radius, modulus, hardness, k, unit) -> List[str]:
+    u = f" {unit}" if unit else ""
     lines = [f"{stats.method}:",
-             f"  summit density eta     {stats.summit_density:.6g} per unit area",
-             f"  summit radius beta     {stats.summit_radius:.6g}",
-             f"  summit height std      {stats.sigma_summits:.6g}",
-             f"  surface rms height     {stats.sigma_surface:.6g}"]
+             f"  summit density eta     {stats.summit_density:.6g} per{u}^2",
+             f"  summit radius beta     {stats.summit_radius:.6g}{u}",
+             f"  summit height std      {stats.sigma_summits:.6g}{u}",
+             f"  surface rms height     {stats.sigma_surface:.6g}{u}",
+             f"  y_s (mean summit plane above the mean plane)  "
+             f"{stats.mean_summit_height:.6g}{u}"]
     if stats.n_summits is not None:
         lines.append(f"  summits found          {stats.n_summits}")
     if stats.alpha is not None:
@@ -275,43 +744,74 @@ def _report(stats: SummitStatistics, radius, modulus, hardness, k) -> List[str]:
     if modulus is not None and hardness is not None:
         psi = psi_from_hardness(modulus, hardness, stats.sigma_summits, stats.summit_radius, k)
         lines.append(f"  psi (E* = {modulus:g}, H = {hardness:g}, K = {k:g})  {psi:.6g}")
-    lines += [f"  WARNING: {w}" for w in stats.warnings]
     return lines
+
+
+def _pixel_size(text: str) -> Tuple[float, float]:
+    parts = text.replace(",", " ").split()
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: dx or dx,dy (numbers)") from None
+    if len(values) not in (1, 2):
+        raise argparse.ArgumentTypeError(f"{text!r}: dx or dx,dy")
+    return (values[0], values[-1])
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """egw-topo: GW parameters of one height map, or of the sum surface of two."""
     ap = argparse.ArgumentParser(
-        prog="egw-topo", description="Greenwood-Williamson parameters (sigma, eta, beta) of "
-        "a measured height map, by summit identification and by spectral moments.")
-    ap.add_argument("maps", nargs="+", help="height map(s): .npy, .csv or a text matrix; "
-                    "two maps: their sum surface")
-    ap.add_argument("--pixel-size", type=float, nargs="+", required=True, metavar="D",
-                    help="pixel size dx [dy] in the length unit of the heights")
-    ap.add_argument("--radius", type=float, help="equivalent sphere radius R: print mu")
+        prog="egw-topo", description="Greenwood-Williamson parameters (sigma, eta, beta, "
+        "y_s) of a measured height map, by summit identification and by spectral moments, "
+        "with which to trust. Options may come in any order.")
+    ap.add_argument("maps", nargs="+", help="height map(s): .npy, .csv or a text matrix "
+                    "(with --pixel-size and --unit), or an instrument file SurfaceTopography "
+                    "reads (x3p, datx, opd, gwy, ...); two maps: their sum surface")
+    ap.add_argument("--pixel-size", type=_pixel_size, metavar="D",
+                    help="pixel size dx or dx,dy in the unit of the heights")
+    ap.add_argument("--unit", help="length unit of the heights and pixel size (m, mm, um, "
+                    "nm, ...); required for plain maps")
+    ap.add_argument("--radius", type=float, help="equivalent sphere radius R (in --unit): "
+                    "print mu")
     ap.add_argument("--modulus", type=float, help="effective modulus E*: with --hardness, psi")
     ap.add_argument("--hardness", type=float, help="hardness H (units of --modulus)")
     ap.add_argument("--K", type=float, default=0.6, help="ZMC hardness coefficient (0.6)")
-    ap.add_argument("--derivatives", choices=["difference", "fft"], default="difference",
-                    help="derivatives for the moments: central differences (default, any "
-                    "map) or FFT (periodic maps)")
-    ap.add_argument("--periodic", action="store_true", help="the map is periodic")
+    ap.add_argument("--derivatives", choices=["difference", "fft"], default=None,
+                    help="derivatives for the moments (default: fft for periodic maps, "
+                    "central differences otherwise)")
+    ap.add_argument("--detrend", choices=["mean", "plane"], default=None,
+                    help="default: mean for periodic maps, plane otherwise")
+    ap.add_argument("--periodic", action="store_true", default=None,
+                    help="the map is periodic")
+    ap.add_argument("--json", metavar="PATH", help="also write the report as JSON to PATH "
+                    "('-': standard output, instead of the text)")
     args = ap.parse_args(argv)
     try:
         if len(args.maps) > 2:
             raise ValueError("give one height map, or two for their sum surface")
-        if len(args.pixel_size) > 2:
-            raise ValueError("--pixel-size takes dx or dx dy")
-        pixel = tuple(args.pixel_size) if len(args.pixel_size) == 2 else args.pixel_size[0]
-        maps = [detrend(read_height_map(m, pixel)) for m in args.maps]
+        maps = [height_map(m, args.pixel_size, args.unit, periodic=args.periodic)
+                for m in args.maps]
         surface = maps[0] if len(maps) == 1 else sum_surface(*maps)
-        spectral = mccool(spectral_moments(surface, args.derivatives))
-        summits = summit_statistics(surface, args.periodic)
-        print(f"egw-topo: {' + '.join(args.maps)}, {surface.heights.shape[1]} x "
-              f"{surface.heights.shape[0]} pixels")
-        for stats in (summits, spectral):
-            print("\n".join(_report(stats, args.radius, args.modulus, args.hardness, args.K)))
-    except (ValueError, OSError) as exc:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            rep = analyse(surface, detrend_mode=args.detrend, derivatives=args.derivatives)
+        lines = [f"egw-topo: {' + '.join(args.maps)}, {rep.shape[1]} x {rep.shape[0]} "
+                 f"pixels, unit {rep.unit}, {'periodic' if rep.periodic else 'not periodic'}"
+                 f" (detrend {rep.detrend}, derivatives {rep.derivatives})"]
+        for stats in (rep.summits, rep.spectral):
+            lines += _report(stats, args.radius, args.modulus, args.hardness, args.K,
+                             rep.unit)
+        lines.append(f"trust: {rep.trust} ({rep.reason})")
+        lines += [f"WARNING: {w.message}" for w in caught]
+        data = rep.to_dict()
+        if args.json == "-":
+            print(json.dumps(data, indent=2))
+        else:
+            print("\n".join(lines))
+            if args.json:
+                with open(args.json, "w") as f:
+                    json.dump(data, f, indent=2)
+    except (ValueError, OSError, ImportError) as exc:
         print(f"egw-topo: {exc}", file=sys.stderr)
         return 2
     return 0
