@@ -69,8 +69,9 @@ class _Handle:
 
 @dataclass
 class TableInfo:
-    """egw_table_info: model, n_nodes, cutoff (force 0 below) [length], delta_max (last
-    node) [length], reference_force, rel_tol, max_force_error, max_stiffness_error,
+    """egw_table_info: model, n_nodes, cutoff (first node; the tail law below) [length],
+    delta_max (last node; the deep-overlap asymptote above) [length], reference_force,
+    rel_tol, max_force_error, max_stiffness_error,
     checksum_missing (1: read from a CSV file without its checksum line)."""
     model: int
     n_nodes: int
@@ -292,8 +293,10 @@ class UniversalTable(_Handle):
 class HysteresisInfo:
     """egw_hysteresis_info: model; reversible (no plastic summits: unloading retraces
     loading); n_delta_max and n_s (grid sizes, 0 when reversible); n_loading (nodes of the
-    loading table); cutoff (force 0 below) and delta_max [length]; rel_tol and max_error
-    (relative to the force at the turning point)."""
+    loading table); cutoff (the loading table's first node, its tail law below: forces
+    under 1e-12 of reference_force) and delta_max [length]; reference_force (P_ref of the
+    loading table) [force]; rel_tol and max_error (relative to the force at the turning
+    point)."""
     model: int
     reversible: bool
     n_delta_max: int
@@ -301,6 +304,7 @@ class HysteresisInfo:
     n_loading: int
     cutoff: float
     delta_max: float
+    reference_force: float
     rel_tol: float
     max_error: float
 
@@ -367,7 +371,8 @@ class HysteresisTable(_Handle):
         check(lib.egw_hysteresis_get_info(self._ptr, ctypes.byref(c)))
         return HysteresisInfo(model=c.model, reversible=bool(c.reversible),
                               n_delta_max=c.n_delta_max, n_s=c.n_s, n_loading=c.n_loading,
-                              cutoff=c.cutoff, delta_max=c.delta_max, rel_tol=c.rel_tol,
+                              cutoff=c.cutoff, delta_max=c.delta_max,
+                              reference_force=c.reference_force, rel_tol=c.rel_tol,
                               max_error=c.max_error)
 
     def eval(self, delta: ArrayLike, state: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:

@@ -10,8 +10,9 @@
 !> little on m at fixed s (the edge where the unloading force vanishes stays put); and
 !> the gap, not the unloading force, is stored, so that tables of weakly plastic contacts
 !> (g nearly 0) need few nodes. g(0, m) = 0: the force is continuous where unloading
-!> starts and the loading table is used as it is; the force is 0 below the loading
-!> cut-off delta_c (the gap is taken to the table continued smoothly below it).
+!> starts and the loading table is used as it is. Below each curve's span the unloading
+!> force keeps its ratio to the loading tail (unload_branch), and below the loading
+!> table's cut-off delta_c it is 0 (the gap is taken to the loading tail below it).
 !> Each node m_j carries g(., m_j) as a cubic Hermite curve in s (slopes from the solver's
 !> stiffnesses, solves at rel_tol/10, s bisected until value and slope at every midpoint
 !> meet the solves to rel_tol/4); between nodes g and 1/L are cubic Lagrange combinations

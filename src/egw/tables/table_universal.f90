@@ -40,7 +40,7 @@ module egw_table_universal
       integer :: model = 0
       real(dp) :: psi = 0.0_dp, hardness_coeff = 0.6_dp, plastic_ratio = 54.0_dp
       real(dp) :: rel_tol = 0.0_dp
-      real(dp) :: x_cut = 0.0_dp          !< common cut-off in x: p = 0 below
+      real(dp) :: x_cut = 0.0_dp          !< common cut-off in x: the tail law below
       real(dp) :: x_max = 0.0_dp          !< upper end in x
       real(dp) :: mu_min = 0.0_dp, mu_max = 0.0_dp
       integer :: n_mu = 0                  !< mu_j = mu_min (mu_max/mu_min)^((j-1)/(n_mu-1))
