@@ -59,7 +59,7 @@ class FileError(EgwError, OSError):
 
 
 class OutOfRangeWarning(UserWarning):
-    """A table was evaluated above its last node (values extrapolated linearly)."""
+    """A table was evaluated above its last node (values from its deep-overlap asymptote)."""
 
 
 def _status_name(status: int) -> str:
