@@ -5,6 +5,7 @@
 
 #include "egw.h"
 #include "egw_history.h"
+#include "egw_submodels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,8 +27,9 @@ struct EgwLaw {
   int mu_mode = 0;                 // 0 none (smooth), 1 mu given, 2 from summit data
   double mu = 0, eta = 0, beta = 0;
   double psi = 0, K = 0.6, rho = 54;
-  double e = 1, damp = 0;          // restitution e; damp = 2 sqrt(5/6) beta(e)
-  double mu_t = 0;                 // Coulomb friction coefficient (0: no friction)
+  EgwSubmodels::Params sub;        // damping, tangential, rolling, twisting, heat
+  double damp = 0;                 // the damping model's factor (damping_factor)
+  double kt = 0;                   // tangential k_t (mindlin NULL: 8 G*)
   // evaluation
   int kind = HERTZ;
   double xc = 0;                   // cut-off delta_c/sigma (<= 0)

@@ -40,8 +40,9 @@ using namespace EgwHistory;
 PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
 {
   single_enable = 1;
-  // single(): normal force (elastic), normal damping force, stiffness, overlap, delta_max
-  single_extra = 5;
+  // single(): granular's 12 (tangential force, rolling, twisting, x_i - x_j), then egw's
+  // overlap, delta_max, stiffness, elastic and damping normal force
+  single_extra = 17;
   svector = new double[single_extra];
   no_virial_fdotr_compute = 1;
   restartinfo = 1;
@@ -50,6 +51,8 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   nondefault_history_transfer = 1;    // delta_max is not negated for the partner's copy
   model = EGW_MODEL_EGW;
   nhist = NHIST_BASE;
+  hist_sub = -1;
+  heat_any = false;
   tol = 1e-4;
   rmin_user = rmax_user = 0.0;
   overlap_max = 0.05;
@@ -154,8 +157,26 @@ void PairEGW::init_style()
   // list (not a size list, whose reach is r < R_i + R_j + skin) is used
   neighbor->add_request(this, NeighConst::REQ_HISTORY);
 
-  // pair_style egw given again with another model: the histories' size changes
-  int want = model == EGW_MODEL_EPGW ? NHIST_EPGW : NHIST_BASE;
+  // the histories: the normal law's, then the sub-models' if any type pair needs them
+  // (pair_style or pair_coeff given again with another size: every history starts afresh)
+  int ntypes = atom->ntypes;
+  bool extra = false;
+  heat_any = false;
+  for (int i = 1; i <= ntypes; i++)
+    for (int j = i; j <= ntypes; j++)
+      if (pcoeff[i][j].set) {
+        extra = extra || pcoeff[i][j].sub.needs_extra_history();
+        heat_any = heat_any || pcoeff[i][j].sub.heat != EgwSubmodels::HEAT_NONE;
+      }
+  int core = model == EGW_MODEL_EPGW ? NHIST_EPGW : NHIST_BASE;
+  hist_sub = extra ? core : -1;
+  int want = core + (extra ? EgwSubmodels::NHIST_SUB : 0);
+  if (heat_any && (!atom->temperature_flag || !atom->heatflow_flag))
+    error->all(FLERR, "Pair egw: a heat model needs atoms with temperature and heatflow "
+                      "(atom_style sphere/temp, or fix property/atom temperature heatflow)");
+  if (!heat_any && !modify->get_fix_by_style("^heat/flow").empty())
+    error->all(FLERR, "Pair egw: fix heat/flow needs a heat model in pair_coeff (heat area "
+                      "h_s or heat radius k_s): without one no heat flows between contacts");
   if (fix_history != nullptr && want != nhist) {
     modify->delete_fix("NEIGH_HISTORY_EGW");
     fix_history = nullptr;
@@ -214,6 +235,12 @@ double PairEGW::init_one(int i, int j)
   const EgwLaw &L = law[a][b];
   if (i != j) law[j][i] = EgwLaw();    // unused: compute() reads law[min][max]
   double cut = rad_max[i] + rad_max[j] + L.tail;
+  if (!(rad_max[i] > 0) || !(rad_max[j] > 0)) {
+    // a type with no radius yet has no contacts; the cut-off still reaches as far as the
+    // largest type's own, so that pair_write calls single(), which says why it cannot write
+    double big = *std::max_element(rad_max.begin(), rad_max.end());
+    cut = 2.0 * big + L.tail;
+  }
   if (!(cut > 0)) cut = 2.0 * L.tail + 1e-300;
   return cut;
 }
@@ -244,6 +271,76 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
   }
 }
 
+namespace {
+/* what the sub-models add to a contact's elastic normal force */
+struct ContactForces {
+  double Fdamp = 0, Fntot = 0;
+  double fs[3] = {0, 0, 0};    // tangential force on i
+  double fr[3] = {0, 0, 0};    // rolling resistance (its torque on i: R n x fr)
+  double Mtw = 0;              // twisting torque on i about n
+  double ti[3] = {0, 0, 0}, tj[3] = {0, 0, 0};    // torques on i and j
+  double dq = 0;               // heat into i
+};
+
+/* granular's sequence for one contact: damping, F_n0 = |F_n|, tangential, rolling,
+ * twisting, heat.  vr = v_i - v_j, wi/wj the spins, a = S/(2 E*) egw's contact radius;
+ * sub: the sub-models' history (nullptr when no pair needs it). */
+inline void contact_submodels(const EgwLaw &L, double Fn, double S, double delta, double R,
+                              double radi, double radj, const double *n, const double *vr,
+                              const double *wi, const double *wj, double meff, double *hist,
+                              double *sub, bool update, double dt, double Ti, double Tj,
+                              ContactForces &c)
+{
+  using namespace EgwSubmodels;
+  const Params &P = L.sub;
+  const double a = S > 0 ? 0.5 * S / L.E_star : 0.0;
+  double vnn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
+  double eta_n = L.damp > 0 ? damping_eta(P.damping, L.damp, meff, S, a) : 0.0;
+  c.Fdamp = -eta_n * vnn;
+  c.Fntot = Fn + c.Fdamp;
+  if (P.limit_damping && c.Fntot < 0.0) c.Fntot = 0.0;
+  const double Fncrit = std::fabs(c.Fntot);
+  if (P.tangential != TANG_NONE) {
+    double w[3] = {radi * wi[0] + radj * wj[0], radi * wi[1] + radj * wj[1],
+                   radi * wi[2] + radj * wj[2]};
+    const double vt[3] = {vr[0] - vnn * n[0] - (w[1] * n[2] - w[2] * n[1]),
+                          vr[1] - vnn * n[1] - (w[2] * n[0] - w[0] * n[2]),
+                          vr[2] - vnn * n[2] - (w[0] * n[1] - w[1] * n[0])};
+    double k = P.tangential == TANG_LINEAR_HISTORY ? L.kt : L.kt * a;
+    double *a_prev = (P.tangential == TANG_MINDLIN_RESCALE ||
+                      P.tangential == TANG_MINDLIN_RESCALE_FORCE) ? &sub[SUB_A_PREV] : nullptr;
+    tangential_force(P.tangential, k, P.xt * eta_n, P.mu_t * Fncrit, a, n, vt,
+                     &hist[EgwHistory::SHEAR], a_prev, update, dt, c.fs);
+    // torques: - (n x fs) times the distance from each centre to the contact plane
+    double t[3] = {n[1] * c.fs[2] - n[2] * c.fs[1], n[2] * c.fs[0] - n[0] * c.fs[2],
+                   n[0] * c.fs[1] - n[1] * c.fs[0]};
+    double di = radi - 0.5 * delta, dj = radj - 0.5 * delta;
+    for (int d = 0; d < 3; d++) c.ti[d] = -di * t[d], c.tj[d] = -dj * t[d];
+  }
+  if (P.rolling == ROLL_NONE && P.twisting == TWIST_NONE && P.heat == HEAT_NONE) return;
+  double rel[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
+  if (P.rolling == ROLL_SDS) {
+    const double vrl[3] = {R * (rel[1] * n[2] - rel[2] * n[1]), R * (rel[2] * n[0] - rel[0] * n[2]),
+                           R * (rel[0] * n[1] - rel[1] * n[0])};
+    rolling_sds(P.kr, P.gr, P.mur * Fncrit, n, vrl, &sub[SUB_ROLL], update, dt, c.fr);
+    double tr[3] = {R * (n[1] * c.fr[2] - n[2] * c.fr[1]), R * (n[2] * c.fr[0] - n[0] * c.fr[2]),
+                    R * (n[0] * c.fr[1] - n[1] * c.fr[0])};
+    for (int d = 0; d < 3; d++) c.ti[d] += tr[d], c.tj[d] -= tr[d];
+  }
+  if (P.twisting != TWIST_NONE) {
+    double magtwist = rel[0] * n[0] + rel[1] * n[1] + rel[2] * n[2];
+    double k, g, mu;
+    if (P.twisting == TWIST_MARSHALL) {    // Marshall's eq. 32, from the tangential model
+      k = 0.5 * L.kt * a * a, g = 0.5 * P.xt * eta_n * a * a, mu = 2.0 / 3.0 * P.mu_t * a;
+    } else
+      k = P.ktw, g = P.gtw, mu = P.mutw;
+    c.Mtw = twisting_torque(k, g, mu * Fncrit, magtwist, &sub[SUB_TWIST], update, dt);
+    for (int d = 0; d < 3; d++) c.ti[d] += c.Mtw * n[d], c.tj[d] -= c.Mtw * n[d];
+  }
+  if (P.heat != HEAT_NONE) c.dq = heat_flow(P.heat, P.heat_coeff, a, Ti, Tj);
+}
+}    // namespace
+
 void PairEGW::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -256,6 +353,7 @@ void PairEGW::compute(int eflag, int vflag)
   int *type = atom->type, *mask = atom->mask;
   int nlocal = atom->nlocal;
   int newton_pair = force->newton_pair;
+  double *temperature = atom->temperature, *heatflow = atom->heatflow;
 
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
   int **firsttouch = view->firstflag;
@@ -300,39 +398,25 @@ void PairEGW::compute(int eflag, int vflag)
       normal(L, delta, R, hist, Fn, S, U, eflag);
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
-      // relative velocity at the contact
-      double vrx = v[i][0] - v[j][0], vry = v[i][1] - v[j][1], vrz = v[i][2] - v[j][2];
-      double vnn = vrx * nx + vry * ny + vrz * nz;
-      double Fntot = Fn;
-      if (L.damp > 0 && S > 0) {
-        double mi = rmass[i], mj = rmass[j];
-        double meff = mi * mj / (mi + mj);
-        if (mask[i] & freeze_group_bit) meff = mj;
-        if (mask[j] & freeze_group_bit) meff = mi;
-        Fntot += EgwSubmodels::damping_force(L.damp, meff, S, vnn);
-      }
-      double fs[3] = {0.0, 0.0, 0.0};
-      if (L.mu_t > 0) {
-        double wx = radi * omega[i][0] + radj * omega[j][0];
-        double wy = radi * omega[i][1] + radj * omega[j][1];
-        double wz = radi * omega[i][2] + radj * omega[j][2];
-        const double n[3] = {nx, ny, nz};
-        const double vt[3] = {vrx - vnn * nx - (wy * nz - wz * ny),
-                              vry - vnn * ny - (wz * nx - wx * nz),
-                              vrz - vnn * nz - (wx * ny - wy * nx)};
-        EgwSubmodels::mindlin(L.G_star, L.E_star, L.mu_t, S, Fntot, n, vt, &hist[SHEAR],
-                              history_update, dt, fs);
-      }
-      double fsx = fs[0], fsy = fs[1], fsz = fs[2];
-      double fx = Fntot * nx + fsx, fy = Fntot * ny + fsy, fz = Fntot * nz + fsz;
+      double mi = rmass[i], mj = rmass[j];
+      double meff = mi * mj / (mi + mj);
+      if (mask[i] & freeze_group_bit) meff = mj;
+      if (mask[j] & freeze_group_bit) meff = mi;
+      const double n[3] = {nx, ny, nz};
+      const double vr[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
+      ContactForces c;
+      contact_submodels(L, Fn, S, delta, R, radi, radj, n, vr, omega[i], omega[j], meff, hist,
+                        hist_sub >= 0 ? &hist[hist_sub] : nullptr, history_update, dt,
+                        heat_any ? temperature[i] : 0.0, heat_any ? temperature[j] : 0.0, c);
+      double fx = c.Fntot * nx + c.fs[0], fy = c.Fntot * ny + c.fs[1],
+             fz = c.Fntot * nz + c.fs[2];
       f[i][0] += fx, f[i][1] += fy, f[i][2] += fz;
-      // torques: - (n x fs) times the distance from each centre to the contact plane
-      double tx = ny * fsz - nz * fsy, ty = nz * fsx - nx * fsz, tz = nx * fsy - ny * fsx;
-      double di = radi - 0.5 * delta, dj = radj - 0.5 * delta;
-      torque[i][0] -= di * tx, torque[i][1] -= di * ty, torque[i][2] -= di * tz;
+      torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
+      if (heat_any) heatflow[i] += c.dq;
       if (newton_pair || j < nlocal) {
         f[j][0] -= fx, f[j][1] -= fy, f[j][2] -= fz;
-        torque[j][0] -= dj * tx, torque[j][1] -= dj * ty, torque[j][2] -= dj * tz;
+        torque[j][0] += c.tj[0], torque[j][1] += c.tj[1], torque[j][2] += c.tj[2];
+        if (heat_any) heatflow[j] -= c.dq;
       }
       if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, U, 0.0, fx, fy, fz, dx, dy, dz);
     }
@@ -341,33 +425,50 @@ void PairEGW::compute(int eflag, int vflag)
 }
 
 
-/* One pair's normal force for compute pair/local (and the like): the contact's history as
- * compute() keeps it (found in i's or j's neighbor list; a pair not in contact has none),
- * evaluated on a copy, so that nothing changes. Returns the tallied energy; fforce is the
- * normal force (elastic + damping, no friction) over r. svector: elastic normal force,
- * damping force, stiffness dP/ddelta, overlap delta, delta_max (-inf: never touched). */
+/* One pair's force for compute pair/local and pair_write.  compute pair/local (during a
+ * run): the two atoms' radii and the contact's history as compute() keeps it (found in i's
+ * or j's neighbor list; a pair not in contact has none), evaluated on a copy, so that
+ * nothing changes.  pair_write (no run in progress): each type's largest radius (atoms and
+ * fix pour/deposit), a contact loaded for the first time, at rest.  Returns the tallied
+ * energy; fforce is the normal force (elastic + damping) over r.  svector: granular's 12
+ * (tangential force on i (3) and its magnitude, rolling resistance (3) and its magnitude,
+ * twisting torque, x_i - x_j (3)), then egw's: overlap delta, delta_max (-inf: never
+ * touched), stiffness dP/ddelta, elastic and damping normal force. */
 double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*factor_coul*/,
                        double /*factor_lj*/, double &fforce)
 {
   fforce = 0.0;
   for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
-  svector[4] = -HUGE_VAL;
-  int nall = atom->nlocal + atom->nghost;
-  if (!atom->radius_flag || i < 0 || j < 0 || i >= nall || j >= nall || !tables_ready)
-    error->one(FLERR, "Pair egw: single() needs two atoms of a run in progress (compute "
-                      "pair/local); pair_write is not supported");
+  svector[13] = -HUGE_VAL;
+  if (!tables_ready || !allocated)
+    error->all(FLERR, "Pair egw: single() before the tables are built (pair_write and compute "
+                      "pair/local need pair_coeff for every type pair and atoms or rmin/rmax)");
   int a = std::min(itype, jtype), b = std::max(itype, jtype);
   EgwLaw &L = law[a][b];
-  double radi = atom->radius[i], radj = atom->radius[j];
+  const bool writing = update->whichflag == 0;    // pair_write: no atoms involved
+  double radi, radj;
+  int nall = atom->nlocal + atom->nghost;
+  if (writing) {
+    radi = rad_max[itype], radj = rad_max[jtype];
+    if (!(radi > 0) || !(radj > 0))
+      error->all(FLERR, "Pair egw: pair_write for types {} {}: a type without atoms or a fix "
+                        "pour/deposit has no radius (pair_write uses each type's largest)",
+                 itype, jtype);
+  } else {
+    if (!atom->radius_flag || i < 0 || j < 0 || i >= nall || j >= nall)
+      error->one(FLERR, "Pair egw: single() needs two atoms of the run (compute pair/local)");
+    radi = atom->radius[i], radj = atom->radius[j];
+  }
   double r = std::sqrt(rsq);
   double delta = radi + radj - r;
   if (!(r > 0) || delta <= -L.tail) return 0.0;
   double R = radi * radj / (radi + radj);
 
-  double hist[NHIST_EPGW];
+  double hist[NHIST_EPGW + EgwSubmodels::NHIST_SUB];
   EgwHistory::start(hist, NHIST_EPGW);
+  for (int k = NHIST_EPGW; k < NHIST_EPGW + EgwSubmodels::NHIST_SUB; k++) hist[k] = 0.0;
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
-  if (view && list) {
+  if (!writing && view && view->firstflag && list && list->firstneigh) {
     bool found = false;
     for (int side = 0; side < 2 && !found; side++) {
       int p = side ? j : i, q = side ? i : j;
@@ -380,6 +481,8 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
         if (view->firstflag[p][jj]) {
           const double *h = &view->firstvalue[p][nhist * jj];
           for (int k = 0; k < nhist; k++) hist[k] = h[k];
+          // seen from j, the partner's copy (displacements negated)
+          if (side) EgwHistory::transfer(h, hist, nhist);
         }
         found = true;
         break;
@@ -388,24 +491,37 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   }
   double Fn, S, U;
   normal(L, delta, R, hist, Fn, S, U, 1);
-  double Fdamp = 0.0;
-  if (L.damp > 0 && S > 0) {
+  double dx[3] = {0.0, 0.0, r}, n[3] = {0.0, 0.0, 1.0}, vr[3] = {0, 0, 0};
+  double wi[3] = {0, 0, 0}, wj[3] = {0, 0, 0}, meff = 1.0, Ti = 0, Tj = 0;
+  if (!writing) {
     double **x = atom->x, **v = atom->v;
-    double nx = (x[i][0] - x[j][0]) / r, ny = (x[i][1] - x[j][1]) / r,
-           nz = (x[i][2] - x[j][2]) / r;
-    double vnn = (v[i][0] - v[j][0]) * nx + (v[i][1] - v[j][1]) * ny + (v[i][2] - v[j][2]) * nz;
+    for (int d = 0; d < 3; d++) {
+      dx[d] = x[i][d] - x[j][d], n[d] = dx[d] / r, vr[d] = v[i][d] - v[j][d];
+      wi[d] = atom->omega[i][d], wj[d] = atom->omega[j][d];
+    }
     double mi = atom->rmass[i], mj = atom->rmass[j];
-    double meff = mi * mj / (mi + mj);
+    meff = mi * mj / (mi + mj);
     if (atom->mask[i] & freeze_group_bit) meff = mj;
     if (atom->mask[j] & freeze_group_bit) meff = mi;
-    Fdamp = EgwSubmodels::damping_force(L.damp, meff, S, vnn);
+    if (heat_any) Ti = atom->temperature[i], Tj = atom->temperature[j];
   }
-  fforce = (Fn + Fdamp) / r;
-  svector[0] = Fn;
-  svector[1] = Fdamp;
-  svector[2] = S;
-  svector[3] = delta;
-  svector[4] = hist[0];
+  int sub = hist_sub >= 0 ? NHIST_EPGW : -1;
+  if (sub >= 0 && hist_sub != NHIST_EPGW)    // the sub-models' history after a shorter core
+    for (int k = 0; k < EgwSubmodels::NHIST_SUB; k++) hist[NHIST_EPGW + k] = hist[hist_sub + k];
+  ContactForces c;
+  contact_submodels(L, Fn, S, delta, R, radi, radj, n, vr, wi, wj, meff, hist,
+                    sub >= 0 ? &hist[sub] : nullptr, false, 0.0, Ti, Tj, c);
+  fforce = c.Fntot / r;
+  for (int d = 0; d < 3; d++) svector[d] = c.fs[d], svector[4 + d] = c.fr[d];
+  svector[3] = EgwSubmodels::len3(c.fs);
+  svector[7] = EgwSubmodels::len3(c.fr);
+  svector[8] = c.Mtw;
+  for (int d = 0; d < 3; d++) svector[9 + d] = dx[d];
+  svector[12] = delta;
+  svector[13] = hist[EgwHistory::DELTA_MAX];
+  svector[14] = S;
+  svector[15] = Fn;
+  svector[16] = c.Fdamp;
   return U;
 }
 

@@ -37,6 +37,8 @@ class PairEGW : public Pair {
  protected:
   int model;            // EGW_MODEL_*
   int nhist;            // doubles of history per contact (egw_history.h)
+  int hist_sub;         // where the sub-models' history starts (-1: none)
+  bool heat_any;        // some type pair has a heat model
   double tol;           // table tolerance
   double rmin_user, rmax_user, overlap_max;
   class Fix *fix_history;
@@ -51,7 +53,8 @@ class PairEGW : public Pair {
     int set = 0;
     double E = 0, nu = 0, sigma = 0, mu = 0, eta = 0, beta = 0;
     int mu_mode = 0;
-    double psi = 0, K = 0.6, rho = 54, e = 1, mu_t = 0;
+    double psi = 0, K = 0.6, rho = 54;
+    EgwSubmodels::Params sub;       // damping, tangential, rolling, twisting, heat
   };
   std::vector<std::vector<Coeff>> pcoeff;    // [i][j], explicit pair_coeff I J
   std::vector<std::vector<EgwLaw>> law;      // [i][j] = [j][i]
@@ -61,6 +64,8 @@ class PairEGW : public Pair {
   void allocate();
   void parse_coeff(int, char **, Coeff &);
   void make_law(int, int);
+  EgwSubmodels::Params mix_submodels(int, int, const EgwSubmodels::Params &,
+                                     const EgwSubmodels::Params &);
   void build_tables(int, int, double, double);
   void type_radii();
   void egw_fail(const std::string &what);

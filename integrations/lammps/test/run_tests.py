@@ -59,14 +59,15 @@ def thermo(out):
 
 
 def collision(pstyle, pcoeff, yoff=0.0, wz=0.0, nrun=6000, np=1, newton="on", thermo_every=1000,
-              n1=None, restart=0, rfile="restart.bin", r2=RAD, check="yes", pairlocal=0):
+              n1=None, restart=0, rfile="restart.bin", r2=RAD, check="yes", pairlocal=0, wx=0.0,
+              gap=2e-5):
     n1 = nrun // 2 if n1 is None else n1
-    # the beads start 20 um apart along the line they first touch on (~2500 steps)
-    x0 = (math.sqrt((RAD + r2) ** 2 - yoff ** 2) + 2e-5) / 2
+    # the beads start gap (20 um) apart along the line they first touch on (~2500 steps)
+    x0 = (math.sqrt((RAD + r2) ** 2 - yoff ** 2) + gap) / 2
     return lmp("collision.in", np=np, pstyle=pstyle, pcoeff=pcoeff, v=V, x0=x0, yoff=yoff, wz=wz,
                d2=2 * r2, check=check,
                dt=DT, n1=n1, n2=nrun - n1, newton=newton, thermo=thermo_every,
-               restart=restart, rfile=rfile, pairlocal=pairlocal)
+               restart=restart, rfile=rfile, pairlocal=pairlocal, wx=wx)
 
 
 def restitution_of(out):
@@ -268,6 +269,161 @@ def test_sigma_to_zero_vs_granular():
 PILE_E = 1e7    # soft beads: t_c ~ 0.2 ms, so a pile settles in tens of thousands of steps
 
 
+# granular's sub-models, each with its own numbers (SI; the collision's m* = 5.2e-6 kg,
+# normal stiffness ~1e6 N/m, contact radius ~2e-5 m): damping MODEL value, tangential ...
+SUBMODEL_CASES = [
+    # (damping model, damping value, tangential, rolling, twisting)
+    ("coeff_restitution", 0.7, "mindlin NULL 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("velocity", 0.5, "mindlin NULL 0.5 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("mass_velocity", 1e5, "mindlin NULL 0.5 0.3", "", "sds 1e-4 1e-8 1e-4"),
+    ("viscoelastic", 5e9, "mindlin NULL 0.5 0.3", "sds 1e5 0.05 0.2", ""),
+    ("tsuji", 0.7, "mindlin NULL 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("tsuji", 0.7, "linear_nohistory 1.0 0.3", "", ""),
+    ("coeff_restitution", 0.7, "linear_history 1e6 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("coeff_restitution", 0.7, "mindlin 5e10 1.0 0.3", "", "sds 1e-4 1e-8 1e-4"),
+    ("coeff_restitution", 0.7, "mindlin_rescale NULL 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("coeff_restitution", 0.7, "mindlin/force NULL 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("velocity", 0.5, "mindlin_rescale/force NULL 0.5 0.3", "sds 1e5 0.05 0.2",
+     "sds 1e-4 1e-8 1e-4"),
+]
+
+
+def submodel_words(damp, value, tang, roll, twist):
+    w = f"tangential {tang}"
+    if roll:
+        w += f" rolling {roll}"
+    if twist:
+        w += f" twisting {twist}"
+    return w + f" damping {damp}"
+
+
+def test_submodels_vs_granular():
+    """Every damping and tangential model of pair granular, with rolling sds and twisting
+    marshall/sds, in an oblique collision with spin about the normal and across it (the
+    beads roll, twist and slide): E-GW at sigma = 1e-16 per bead and table TOL 1e-6 (the
+    rough tail is 1e-15 m against a 1 um overlap, so egw's force is Hertz's to the table's
+    1e-6; measured 1e-9 at TOL 1e-7, ~1e-6 at 1e-4) against pair_style granular
+    hertz/material with the same sub-models: velocities and spins (times R) after the
+    contact within 1e-6 of the approach speed (the issue's bound; the sigma = 0 closed form
+    agrees to round-off, 1e-15)."""
+    worst, msgs = 0.0, []
+    for damp, value, tang, roll, twist in SUBMODEL_CASES:
+        words = submodel_words(damp, value, tang, roll, twist)
+        c_egw = f"E {E} nu {NU} sigma 1e-16 mu 4 damping {value} " + words
+        c_gran = f"hertz/material {E} {value} {NU} " + words
+        # a gap whose closing does not end on a step: a rough contact's first step then
+        # falls inside its 1e-15 m tail only as rarely as granular's falls on delta = 0
+        kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5)
+        rc1, out1 = collision("egw E-GW 1e-6", c_egw, **kw)
+        rc2, out2 = collision("granular", c_gran, **kw)
+        if rc1 != 0 or rc2 != 0:
+            err = [l for l in (out1 + out2).splitlines() if "ERROR" in l]
+            return False, f"{words}: rc {rc1} {rc2} {err[:1]}"
+        a, b = result(out1), result(out2)
+        dv = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
+        dw = max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD)
+        worst = max(worst, dv, dw)
+        if not (dv < 1e-6 and dw < 1e-6):
+            msgs.append(f"{damp} + {tang} + {roll or '-'} + {twist or '-'}: dv {dv:.1e} dw {dw:.1e}")
+    return not msgs, (f"{len(SUBMODEL_CASES)} combinations, worst |dv|/v, |dw| R/v = {worst:.1e} "
+                      f"(< 1e-6)" + ("; " + "; ".join(msgs) if msgs else ""))
+
+
+def test_pair_local_granular_columns():
+    """compute pair/local p1..p12 in the middle of an oblique, spinning, twisting collision
+    with tangential mindlin, rolling sds and twisting marshall (sigma = 0, Hertz closed form)
+    against pair_style granular's own p1..p12 (tangential force on i and its magnitude,
+    rolling resistance and its magnitude, twisting torque, x_i - x_j): equal to 1e-9 of each
+    group's magnitude (the same contact, the same formulas; round-off is 1e-15).  If the two
+    lists hold the pair in opposite order, the vectors that change sign with it are compared
+    with that sign (tangential force, x_i - x_j)."""
+    words = "tangential mindlin NULL 1.0 0.3 rolling sds 1e5 0.05 0.2 twisting marshall " \
+            "damping coeff_restitution"
+    kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5, pairlocal=2, thermo_every=2600,
+              n1=2600)
+    rc1, out1 = collision("egw Hertz 1e-4", f"E {E} nu {NU} sigma 0 damping 0.7 " + words, **kw)
+    rc2, out2 = collision("granular", f"hertz/material {E} 0.7 {NU} " + words, **kw)
+    got = []
+    for out in (out1, out2):
+        m = re.search(r"^PAIRLOCAL12 (.*)$", out, re.M)
+        if not m:
+            return False, "no PAIRLOCAL12 line: " + " ".join(
+                l for l in out.splitlines() if "ERROR" in l)
+        got.append([float(x) for x in m.group(1).split()])
+    a, b = got
+    flip = -1.0 if a[9] * b[9] < 0 else 1.0
+    sign = [flip] * 3 + [1.0] * 6 + [flip] * 3
+    groups = [(0, 4), (4, 8), (8, 9), (9, 12)]
+    errs = []
+    for lo, hi in groups:
+        scale = max(abs(x) for x in b[lo:hi])
+        errs.append(max(abs(sign[k] * a[k] - b[k]) for k in range(lo, hi)) / max(scale, 1e-300))
+    nonzero = all(max(abs(x) for x in b[lo:hi]) > 0 for lo, hi in groups)
+    ok = rc1 == 0 and rc2 == 0 and max(errs) < 1e-9 and nonzero
+    return ok, (f"|fs| {a[3]:.6g} vs {b[3]:.6g}, |fr| {a[7]:.6g} vs {b[7]:.6g}, twist "
+                f"{a[8]:.6g} vs {b[8]:.6g}; worst relative difference {max(errs):.1e} (< 1e-9)")
+
+
+def heat_run(pstyle, pcoeff, heatfix=1):
+    return lmp("heat.in", pstyle=pstyle, pcoeff=pcoeff, heatfix=heatfix)
+
+
+def test_heat_vs_granular():
+    """Heat through a held contact (2 um overlap, 300 K against 200 K, fix heat/flow, 2000
+    steps of 1 ms): heat radius k_s (Q = 2 k_s a dT) and heat area h_s (Q = h_s pi a^2 dT)
+    with egw's contact radius a = S/(2 E*), E-GW at sigma = 1e-16 and TOL 1e-8, against pair
+    granular hertz/material's a = sqrt(R delta): the temperature change within 1e-6 (a
+    follows the table's stiffness, measured 1.6e-7 off at TOL 1e-8, 1e-5 at 1e-6)."""
+    msgs, ok = [], True
+    for model, coeff in (("radius", 1.2), ("area", 1e5)):
+        rc1, o1 = heat_run("egw E-GW 1e-8", f"E {E} nu {NU} sigma 1e-16 mu 4 heat {model} {coeff}")
+        rc2, o2 = heat_run("granular", f"hertz/material {E} 1.0 {NU} tangential linear_nohistory "
+                                       f"0 0 heat {model} {coeff}")
+        a, b = result(o1), result(o2)
+        d1, d2 = 300.0 - a[0], 300.0 - b[0]
+        rel = abs(d1 - d2) / d2
+        ok = ok and rc1 == 0 and rc2 == 0 and rel < 1e-6 and d2 > 1.0
+        msgs.append(f"{model}: dT {d1:.9g} vs {d2:.9g} (rel. {rel:.1e})")
+    return ok, "; ".join(msgs) + " (< 1e-6)"
+
+
+def test_heat_flow_needs_model():
+    """fix heat/flow with pair egw and no heat model: a LAMMPS ERROR that names the heat
+    keyword (granular's users would otherwise see no heat flow, silently)."""
+    rc, out = heat_run("egw E-GW 1e-4", f"E {E} nu {NU} sigma 1e-6 mu 4")
+    err = [l for l in out.splitlines() if "ERROR" in l]
+    ok = rc != 0 and err and "heat" in err[0] and "heat/flow" in err[0]
+    return ok, err[0] if err else f"rc {rc}, no ERROR"
+
+
+def test_pair_write():
+    """pair_write 1 2 before any run (the issue saw a segmentation fault): with sigma = 0 the
+    written force and energy are Hertz's closed form for R = R_1 R_2/(R_1 + R_2) from the
+    types' radii (1 and 0.5 mm), F = 4/3 E* sqrt(R) delta^3/2, U = 2/5 F delta (1e-10: the
+    table file's 15 digits); a type without atoms: an ERROR naming pair_write."""
+    f = os.path.join(TMP, "pw.table")
+    rc, out = lmp("pairwrite.in", pstyle="egw Hertz 1e-4", pcoeff=f"E {E} nu {NU} sigma 0",
+                  file=f)
+    if rc != 0 or not os.path.exists(f):
+        return False, "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    R = 1e-3 * 0.5e-3 / 1.5e-3
+    worst = 0.0
+    rows = [l.split() for l in open(f) if re.match(r"^\s+\d+\s", l)]
+    for row in rows:
+        r, u, fr = float(row[1]), float(row[2]), float(row[3])
+        d = 1.5e-3 - r
+        F = 4.0 / 3.0 * E_STAR * math.sqrt(R) * d ** 1.5
+        worst = max(worst, abs(fr - F) / F, abs(u - 0.4 * F * d) / (0.4 * F * d))
+    rc2, out2 = lmp("pairwrite.in", pstyle="egw Hertz 1e-4", pcoeff=f"E {E} nu {NU} sigma 0",
+                    file=f + "2", ntype2=0)
+    err = [l for l in out2.splitlines() if "ERROR" in l]
+    crashed = re.search(r"Segmentation|signal|core dumped", out2)
+    refused = rc2 != 0 and err and "pair_write" in err[0] and not crashed
+    ok = len(rows) == 20 and worst < 1e-10 and refused
+    return ok, (f"{len(rows)} rows, worst relative difference from Hertz {worst:.1e} (< 1e-10); "
+                f"no type-2 atoms: {err[0] if err else 'no ERROR'}")
+
+
 def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
     return lmp(deck, np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=5e-6,
                nrun=nrun, newton=newton, thermo=10000, seed=seed, Ewall=PILE_E)
@@ -394,8 +550,8 @@ def test_restart_keeps_history():
 
 
 def test_bad_coeff():
-    """Bad pair_coeff / pair_style input (18 cases): a LAMMPS ERROR naming the keyword, a non-zero
-    exit, never a crash."""
+    """Bad pair_coeff / pair_style input (35 cases, granular's sub-model syntax among them): a
+    LAMMPS ERROR naming the keyword, a non-zero exit, never a crash."""
     base = f"E {E} nu {NU}"
     cases = [
         ("egw E-GW 1e-4", f"E -1 nu {NU} sigma 1e-6 mu 4", "E"),
@@ -416,6 +572,27 @@ def test_bad_coeff():
         ("egw E-GW 1e-4 overlap_max -1", f"{base} sigma 1e-6 mu 4", "overlap_max"),
         ("egw E-GW 1e-4 rmin", f"{base} sigma 1e-6 mu 4", "rmin"),
         ("egw E-GW 1e-4 speed 3", f"{base} sigma 1e-6 mu 4", "speed"),
+        # granular's sub-models: names, counts, ranges; granular's own normal model
+        ("egw E-GW 1e-4", f"hertz/material {E} 0.8 {NU}", "hertz/material"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping foo", "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping tsuji damping 1.5", "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping velocity damping -1", "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential", "tangential"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential spring 1 2 3", "tangential"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential mindlin NULL 1.0", "tangential"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential linear_history NULL 1 0.5",
+         "k_t"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential mindlin NULL -1 0.5", "x_t"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential mindlin NULL 1 0.5 rolling sds 1 2",
+         "rolling"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential mindlin NULL 1 0.5 rolling cdt",
+         "rolling"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 rolling sds 0 1 1", "k_r"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 twisting marshall", "twisting marshall"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 twisting sds 1 1", "twisting"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat conduction 1", "heat"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat area nan", "h_s"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat radius 1", "heat"),
     ]
     bad = []
     for ps, pc, key in cases:
@@ -430,6 +607,8 @@ def test_bad_coeff():
 
 TESTS = [test_energy_elastic, test_epgw_restitution, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
+         test_submodels_vs_granular, test_pair_local_granular_columns, test_heat_vs_granular,
+         test_heat_flow_needs_model, test_pair_write,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff]
 
