@@ -30,6 +30,10 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, int
   if (n_threads > 0) o.n_threads = n_threads;
   double xmax = 30.0;
   if (sigma > 0) xmax = std::max(30.0, overlap_max * R_hi / sigma);
+  // hysteresis tables reaching much beyond 140 sigma unload wrongly (measured: e = 0.9998
+  // instead of 0.948 for a reach of 280 sigma, right to 1e-4 at 140): capped there
+  capped = (kind == HYST || kind == HYST_MU) && xmax > HYST_X_MAX;
+  if (capped) xmax = HYST_X_MAX;
   if (kind == HERTZ) {
     xc = 0, tail = 0;
   } else if (kind == TABLE) {
@@ -157,6 +161,7 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, int
     }
   }
   tail = -xc * sigma;
+  reach = kind == HERTZ ? HUGE_VAL : xmax * sigma;
 }
 
 std::string EgwLaw::describe(double R_lo, double R_hi) const
@@ -171,6 +176,10 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
   if (kind == UNIVERSAL)
     extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
                          "(universal table built to TOL/2)", slices.size(), interp_error);
-  return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, tail = {:.6g}{}", egw_law_kind_name[kind],
-                     E_star, sigma, tail, extra);
+  return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, tail = {:.6g} (the tables' cut-off: "
+                     "force 0 below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
+                     tail, reach, extra) +
+      (capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it are not reliable)",
+                            HYST_X_MAX)
+              : std::string());
 }

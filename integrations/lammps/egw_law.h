@@ -34,6 +34,9 @@ struct EgwLaw {
   int kind = HERTZ;
   double xc = 0;                   // cut-off delta_c/sigma (<= 0)
   double tail = 0;                 // -delta_c [length]
+  double reach = 0;                // the tables' largest overlap [length] (inf: Hertz)
+  bool capped = false;             // reach capped at HYST_X_MAX sigma (hysteresis)
+  static constexpr double HYST_X_MAX = 140.0;
   double s05 = 0, s15 = 0, s25 = 0, inv_sigma = 0;
   double mu_lo = 0, mu_hi = 0;     // mu range of the tables (summit data)
   double interp_error = 0;         // measured ln-mu interpolation error (summit data)

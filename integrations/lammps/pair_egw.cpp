@@ -55,7 +55,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   heat_any = false;
   tol = 1e-4;
   rmin_user = rmax_user = 0.0;
-  overlap_max = 0.05;
+  overlap_max = 1.0;    // granular decks reach 0.57 R in a pour
   fix_history = nullptr;
   freeze_group_bit = 0;
   tables_ready = false;
@@ -127,10 +127,18 @@ void PairEGW::type_radii()
       }
   MPI_Allreduce(mx.data(), rad_max.data(), n + 1, MPI_DOUBLE, MPI_MAX, world);
   MPI_Allreduce(mn.data(), rad_min.data(), n + 1, MPI_DOUBLE, MPI_MIN, world);
+  // rmin/rmax given: they are the range (an atom or insertion outside it is an error)
   for (int t = 1; t <= n; t++) {
-    if (rmax_user > 0) rad_max[t] = std::max(rad_max[t], rmax_user);
+    if (rmax_user > 0 && rad_max[t] > rmax_user)
+      error->all(FLERR, "Pair egw: type {} has radius {} above rmax = {} (pair_style egw ... "
+                        "rmax; atoms and fix pour/deposit insertions count)", t, rad_max[t],
+                 rmax_user);
+    if (rmin_user > 0 && rad_min[t] != HUGE_VAL && rad_min[t] < rmin_user)
+      error->all(FLERR, "Pair egw: type {} has radius {} below rmin = {} (pair_style egw ... "
+                        "rmin)", t, rad_min[t], rmin_user);
+    if (rmax_user > 0) rad_max[t] = rmax_user;
     if (rad_min[t] == HUGE_VAL || rad_min[t] > rad_max[t]) rad_min[t] = 0.5 * rad_max[t];
-    if (rmin_user > 0) rad_min[t] = std::min(rad_min[t], rmin_user);
+    if (rmin_user > 0) rad_min[t] = rmin_user;
   }
 }
 
@@ -260,9 +268,11 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
                R, L.mu_at(R), L.mu_lo, L.mu_hi);
   if (st == EGW_OUT_OF_RANGE && !warned_range) {
     warned_range = true;
-    error->warning(FLERR, "Pair egw: overlap {} (R = {}) beyond the tables' reach: force "
-                          "continued linearly; raise 'overlap_max' in pair_style egw",
-                   delta, R);
+    error->warning(FLERR, "Pair egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the tables' "
+                          "reach {:.6g} (overlap_max = {} of the type pair's largest R): force "
+                          "from egw's extrapolation above its last node; raise 'overlap_max' "
+                          "in pair_style egw (warned once)", delta, delta / R, R, L.reach,
+                   overlap_max);
   }
   if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
     char buf[512];

@@ -424,6 +424,51 @@ def test_pair_write():
                 f"no type-2 atoms: {err[0] if err else 'no ERROR'}")
 
 
+def test_overlap_beyond_tables():
+    """An impact deeper than the tables reach (E-GW, sigma = 10 nm, overlap_max 1e-4: the
+    reach is 30 sigma = 0.42 um against a 1.3 um overlap): one WARNING naming the overlap in
+    units of R, the reach and overlap_max, the run completes without NaN, and e = 1 within
+    1e-3 (no damping; egw's continuation above the last node is conservative)."""
+    rc, out = collision("egw E-GW 1e-4 overlap_max 1e-4", f"E {E} nu {NU} sigma 1e-8 mu 4")
+    warns = [l for l in out.splitlines() if "WARNING" in l and "overlap_max" in l]
+    e = restitution_of(out) if rc == 0 else float("nan")
+    ok = (rc == 0 and len(warns) == 1 and " R " in warns[0] and "reach" in warns[0]
+          and not re.search(r"\bnan\b", out, re.I) and abs(e - 1) < 1e-3)
+    return ok, f"{len(warns)} warning(s): {warns[0][:160] if warns else '-'}; e = {e:.6f}"
+
+
+def test_rmin_rmax_strict():
+    """rmin/rmax are the radius range: beads of 1 mm with rmax 0.8 mm, or rmin 1.2 mm, stop
+    the run with an ERROR naming rmax (rmin) and the radius (the issue saw them widened
+    silently); a range that holds them runs."""
+    c = f"E {E} nu {NU} sigma 0.5e-6 summit_density 1e10 summit_radius 1e-5"
+    msgs, ok = [], True
+    for extra, key in (("rmax 0.8e-3", "rmax"), ("rmin 1.2e-3", "rmin")):
+        rc, out = collision(f"egw E-GW 1e-4 {extra}", c, nrun=0)
+        err = [l for l in out.splitlines() if "ERROR" in l]
+        good = rc != 0 and err and key in err[0] and "0.001" in err[0]
+        ok = ok and bool(good)
+        msgs.append(err[0][:120] if err else f"{key}: rc {rc}, no ERROR")
+    rc, out = collision("egw E-GW 1e-4 rmin 0.5e-3 rmax 2e-3", c, nrun=0)
+    ok = ok and rc == 0
+    return ok, "; ".join(msgs) + f"; [0.5, 2] mm: rc {rc}"
+
+
+def test_pour_uses_both_ranks():
+    """The README's `-np 2` pour (200 grains, 6000 steps): LAMMPS's per-rank atom count has a
+    minimum above zero (the issue saw all 800 grains on one rank) and no ERROR."""
+    args = [LMP, "-np", "2", "-in", os.path.join(ROOT, "integrations", "lammps", "examples",
+                                                   "pour.in"), "-log", "none", "-nocite",
+            "-var", "n", "100", "-var", "nrun", "6000"]
+    p = subprocess.run(args, cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=600)
+    m = re.search(r"Nlocal:\s+(\S+) ave\s+(\S+) max\s+(\S+) min", p.stdout)
+    err = [l for l in p.stdout.splitlines() if "ERROR" in l]
+    ok = p.returncode == 0 and m and float(m.group(3)) > 0 and not err
+    return ok, (f"Nlocal ave {m.group(1)} max {m.group(2)} min {m.group(3)}" if m else "no Nlocal") + (
+        f"; {err[0]}" if err else "")
+
+
 def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
     return lmp(deck, np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=5e-6,
                nrun=nrun, newton=newton, thermo=10000, seed=seed, Ewall=PILE_E)
@@ -608,7 +653,8 @@ def test_bad_coeff():
 TESTS = [test_energy_elastic, test_epgw_restitution, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_submodels_vs_granular, test_pair_local_granular_columns, test_heat_vs_granular,
-         test_heat_flow_needs_model, test_pair_write,
+         test_heat_flow_needs_model, test_pair_write, test_overlap_beyond_tables,
+         test_rmin_rmax_strict, test_pour_uses_both_ranks,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff]
 
