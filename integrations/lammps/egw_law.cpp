@@ -10,6 +10,55 @@ const char *LAMMPS_NS::egw_law_kind_name[] = {
     "1-D slices of a universal table, linear in ln mu (R-dependent mu)", "hysteresis table",
     "hysteresis tables at nodes in ln mu, linear in ln mu"};
 
+void EgwLaw::like(const EgwCoeff &c)
+{
+  E_star = c.E / (2.0 * (1.0 - c.nu * c.nu));
+  double G = c.E / (2.0 * (1.0 + c.nu));
+  G_star = G / (2.0 * (2.0 - c.nu));
+  sigma = std::sqrt(2.0) * c.sigma;
+  mu_mode = c.mu_mode, mu = c.mu, eta = c.eta, beta = c.beta;
+  psi = c.psi, K = c.K, rho = c.rho, sub = c.sub;
+}
+
+bool EgwLaw::combine(const EgwCoeff &a, const EgwCoeff &b)
+{
+  E_star = 1.0 / ((1 - a.nu * a.nu) / a.E + (1 - b.nu * b.nu) / b.E);
+  double Ga = a.E / (2 * (1 + a.nu)), Gb = b.E / (2 * (1 + b.nu));
+  G_star = 1.0 / ((2 - a.nu) / Ga + (2 - b.nu) / Gb);
+  sigma = std::sqrt(a.sigma * a.sigma + b.sigma * b.sigma);
+  if (a.mu_mode != b.mu_mode && a.sigma > 0 && b.sigma > 0) return false;
+  mu_mode = a.sigma > 0 ? a.mu_mode : b.mu_mode;
+  const EgwCoeff &r = a.sigma > 0 ? a : b;
+  if (a.sigma > 0 && b.sigma > 0) {
+    mu = std::sqrt(a.mu * b.mu);
+    eta = std::sqrt(a.eta * b.eta);
+    beta = std::sqrt(a.beta * b.beta);
+  } else {
+    mu = r.mu, eta = r.eta, beta = r.beta;
+  }
+  psi = 0.5 * (a.psi + b.psi), K = 0.5 * (a.K + b.K), rho = 0.5 * (a.rho + b.rho);
+  return true;
+}
+
+void EgwLaw::setup(int model)
+{
+  damp = EgwSubmodels::damping_factor(sub.damping, sub.damp_value);
+  kt = sub.kt_null ? 8.0 * G_star : sub.kt;
+  if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = HERTZ;
+  else if (model == EGW_MODEL_EPGW && psi > 0) kind = mu_mode == 1 ? HYST : HYST_MU;
+  else kind = mu_mode == 1 ? TABLE : UNIVERSAL;
+  egw_params_default(&prm);
+  prm.model = (model == EGW_MODEL_EPGW && psi == 0) ? EGW_MODEL_EGW : model;
+  prm.radius = 1, prm.modulus = 1, prm.sigma = sigma > 0 ? 1 : 0;
+  prm.mu = mu_mode == 1 ? mu : 1.0;
+  prm.psi = psi, prm.hardness_coeff = K, prm.plastic_ratio = rho;
+  if (sigma > 0) {
+    s05 = std::sqrt(sigma), s15 = sigma * s05, s25 = s15 * sigma;
+    inv_sigma = 1.0 / sigma;
+  }
+  if (mu_mode == 2) mu = 8.0 / 3.0 * eta * sigma * std::sqrt(2.0 * beta);    // x sqrt(R)
+}
+
 void EgwLaw::release()
 {
   egw_table_free(&table);

@@ -15,6 +15,16 @@
 
 namespace LAMMPS_NS {
 
+/* One body's coefficients as given with pair_coeff (or a wall fix): its material, surface
+ * and the contact's sub-models (plain data: written to restart files). */
+struct EgwCoeff {
+  int set = 0;
+  double E = 0, nu = 0, sigma = 0, mu = 0, eta = 0, beta = 0;
+  int mu_mode = 0;
+  double psi = 0, K = 0.6, rho = 54;
+  EgwSubmodels::Params sub;       // damping, tangential, rolling, twisting, heat
+};
+
 /* The contact law of one particle-type pair: parameters and the egw tables that evaluate
  * it.  Tables are normalised (R = E* = sigma = 1, x = delta/sigma) unless stated. */
 struct EgwLaw {
@@ -49,6 +59,13 @@ struct EgwLaw {
   egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)
 
   void release();
+  /* the coefficients of two unlike bodies combined (E*, G*, sigma, mu as two types mix);
+   * false when they give mu in different ways (mu vs summit data) */
+  bool combine(const EgwCoeff &a, const EgwCoeff &b);
+  /* the coefficients of one body against itself (like types) */
+  void like(const EgwCoeff &c);
+  /* the evaluation for egw model `model` from the coefficients (kind, scales, prm) */
+  void setup(int model);
   /* the tables for equivalent radii in [R_lo, R_hi] up to overlap_max R_hi (n_threads 0:
    * egw's default); an egw call that fails calls fail() (which reports egw_last_error) */
   void build(double R_lo, double R_hi, double tol, double overlap_max, int n_threads,

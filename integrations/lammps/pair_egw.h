@@ -34,6 +34,16 @@ class PairEGW : public Pair {
   void transfer_history(double *, double *, int, int) override;
   double memory_usage() override;
 
+ public:
+  /* a type's own coefficients (pair_coeff I I); nullptr if not set (the wall fix reads them) */
+  const EgwCoeff *type_coeff(int t) const
+  {
+    return (allocated && t >= 1 && t < (int) pcoeff.size() && pcoeff[t][t].set) ? &pcoeff[t][t]
+                                                                               : nullptr;
+  }
+  double type_radius_max(int t) const { return t < (int) rad_max.size() ? rad_max[t] : 0.0; }
+  double type_radius_min(int t) const { return t < (int) rad_min.size() ? rad_min[t] : 0.0; }
+
  protected:
   int model;            // EGW_MODEL_*
   int nhist;            // doubles of history per contact (egw_history.h)
@@ -49,13 +59,7 @@ class PairEGW : public Pair {
   double built_tol, built_overlap;    // one warning per rank for overlaps beyond the tables
 
   // per type (index 1..ntypes): own coefficients as given with pair_coeff I I
-  struct Coeff {
-    int set = 0;
-    double E = 0, nu = 0, sigma = 0, mu = 0, eta = 0, beta = 0;
-    int mu_mode = 0;
-    double psi = 0, K = 0.6, rho = 54;
-    EgwSubmodels::Params sub;       // damping, tangential, rolling, twisting, heat
-  };
+  using Coeff = EgwCoeff;
   std::vector<std::vector<Coeff>> pcoeff;    // [i][j], explicit pair_coeff I J
   std::vector<std::vector<EgwLaw>> law;      // [i][j] = [j][i]
   std::vector<double> rad_max, rad_min;      // per type, for cut-offs and table ranges

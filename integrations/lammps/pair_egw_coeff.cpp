@@ -317,55 +317,17 @@ EgwSubmodels::Params PairEGW::mix_submodels(int i, int j, const EgwSubmodels::Pa
 void PairEGW::make_law(int i, int j)
 {
   EgwLaw L;
-  auto like = [&](const Coeff &c, double &Es, double &Gs) {
-    Es = c.E / (2.0 * (1.0 - c.nu * c.nu));
-    double G = c.E / (2.0 * (1.0 + c.nu));
-    Gs = G / (2.0 * (2.0 - c.nu));
-  };
   if (pcoeff[i][j].set) {
-    const Coeff &c = pcoeff[i][j];
-    like(c, L.E_star, L.G_star);
-    L.sigma = std::sqrt(2.0) * c.sigma;
-    L.mu_mode = c.mu_mode, L.mu = c.mu, L.eta = c.eta, L.beta = c.beta;
-    L.psi = c.psi, L.K = c.K, L.rho = c.rho, L.sub = c.sub;
+    L.like(pcoeff[i][j]);
   } else {
     const Coeff &a = pcoeff[i][i], &b = pcoeff[j][j];
     if (!a.set || !b.set) error->all(FLERR, "Pair egw: coefficients of types {} {} not set", i, j);
-    L.E_star = 1.0 / ((1 - a.nu * a.nu) / a.E + (1 - b.nu * b.nu) / b.E);
-    double Ga = a.E / (2 * (1 + a.nu)), Gb = b.E / (2 * (1 + b.nu));
-    L.G_star = 1.0 / ((2 - a.nu) / Ga + (2 - b.nu) / Gb);
-    L.sigma = std::sqrt(a.sigma * a.sigma + b.sigma * b.sigma);
-    if (a.mu_mode != b.mu_mode && a.sigma > 0 && b.sigma > 0)
+    if (!L.combine(a, b))
       error->all(FLERR, "Pair egw: types {} and {} give mu in different ways (mu vs "
                         "summit_density/summit_radius): set pair_coeff {} {} explicitly", i, j, i, j);
-    L.mu_mode = a.sigma > 0 ? a.mu_mode : b.mu_mode;
-    const Coeff &r = a.sigma > 0 ? a : b;
-    if (a.sigma > 0 && b.sigma > 0) {
-      L.mu = std::sqrt(a.mu * b.mu);
-      L.eta = std::sqrt(a.eta * b.eta);
-      L.beta = std::sqrt(a.beta * b.beta);
-    } else {
-      L.mu = r.mu, L.eta = r.eta, L.beta = r.beta;
-    }
-    L.psi = 0.5 * (a.psi + b.psi), L.K = 0.5 * (a.K + b.K), L.rho = 0.5 * (a.rho + b.rho);
     L.sub = mix_submodels(i, j, a.sub, b.sub);
   }
-  L.damp = EgwSubmodels::damping_factor(L.sub.damping, L.sub.damp_value);
-  L.kt = L.sub.kt_null ? 8.0 * L.G_star : L.sub.kt;
-  if (model == EGW_MODEL_HERTZ || L.sigma == 0.0) L.kind = EgwLaw::HERTZ;
-  else if (model == EGW_MODEL_EPGW && L.psi > 0)
-    L.kind = L.mu_mode == 1 ? EgwLaw::HYST : EgwLaw::HYST_MU;
-  else L.kind = L.mu_mode == 1 ? EgwLaw::TABLE : EgwLaw::UNIVERSAL;
-  egw_params_default(&L.prm);
-  L.prm.model = (model == EGW_MODEL_EPGW && L.psi == 0) ? EGW_MODEL_EGW : model;
-  L.prm.radius = 1, L.prm.modulus = 1, L.prm.sigma = L.sigma > 0 ? 1 : 0;
-  L.prm.mu = L.mu_mode == 1 ? L.mu : 1.0;
-  L.prm.psi = L.psi, L.prm.hardness_coeff = L.K, L.prm.plastic_ratio = L.rho;
-  if (L.sigma > 0) {
-    L.s05 = std::sqrt(L.sigma), L.s15 = L.sigma * L.s05, L.s25 = L.s15 * L.sigma;
-    L.inv_sigma = 1.0 / L.sigma;
-  }
-  if (L.mu_mode == 2) L.mu = 8.0 / 3.0 * L.eta * L.sigma * std::sqrt(2.0 * L.beta);    // x sqrt(R)
+  L.setup(model);
   // keep the tables of an unchanged law
   EgwLaw &old = law[i][j];
   bool same = old.E_star == L.E_star && old.sigma == L.sigma && old.mu_mode == L.mu_mode &&
