@@ -56,4 +56,8 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.info = "egw rough contact walls (xplane, yplane, zplane, zcylinder)";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &wall_egw_creator;
   (*reg)(&plugin, lmp);
+
+  plugin.name = "wall/egw/region";
+  plugin.info = "egw rough contact walls: the surfaces of a region";
+  (*reg)(&plugin, lmp);
 }

@@ -19,6 +19,8 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
+#include "region.h"
 #include "error.h"
 #include "force.h"
 #include "memory.h"
@@ -32,7 +34,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), history(nullptr), pair(nullptr)
+    Fix(lmp, narg, arg), region(nullptr), history(nullptr), pair(nullptr)
 {
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Fix wall/egw requires atom_style sphere");
@@ -40,12 +42,25 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
   wallstyle = -1, axis = 2, lo = hi = cylradius = 0.0, have_lo = have_hi = false;
   wiggle = wshear = 0, wdim = 0, amplitude = period = omega = vshear = 0.0;
   built_model = -1, warned_range = false;
-  parse(narg, arg);
+  tmax = 1;
+  if (std::string(arg[2]) == "wall/egw/region") {
+    // fix ID group wall/egw/region MODEL TOL <keywords> region-ID
+    if (narg < 6) error->all(FLERR, "Fix wall/egw/region: expected 'fix ID group wall/egw/region "
+                                    "MODEL TOL <wall keywords> region-ID'");
+    region_id = arg[narg - 1];
+    region = domain->get_region_by_id(region_id);
+    if (!region) error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
+    wallstyle = REGION;
+    tmax = std::max(1, region->tmax);
+    parse(narg - 1, arg);
+  } else
+    parse(narg, arg);
   time_origin = update->ntimestep;
 
   int core = model == EGW_MODEL_EPGW ? EgwHistory::NHIST_EPGW : EgwHistory::NHIST_BASE;
   hist_sub = wall.sub.needs_extra_history() ? core : -1;
   nhist = core + (hist_sub >= 0 ? EgwSubmodels::NHIST_SUB : 0);
+  stride = wallstyle == REGION ? 1 + tmax * (1 + nhist) : nhist;
 
   restart_peratom = 1;
   create_attribute = 1;
@@ -53,7 +68,7 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
   for (int i = 0; i < atom->nlocal; i++)
-    for (int k = 0; k < nhist; k++) history[i][k] = 0.0;
+    for (int k = 0; k < stride; k++) history[i][k] = 0.0;
 }
 
 FixWallEGW::~FixWallEGW()
@@ -149,6 +164,10 @@ void FixWallEGW::parse(int narg, char **arg)
   (void) havesig;
   wall.set = 1;
 
+  if (wallstyle == REGION) {
+    if (i < narg) error->all(FLERR, "{}: unknown keyword '{}'", who, arg[i]);
+    return;
+  }
   if (i >= narg) error->all(FLERR, "{}: missing wall style (xplane, yplane, zplane, zcylinder)", who);
   std::string style = arg[i];
   if (style == "zcylinder") {
@@ -247,6 +266,10 @@ void FixWallEGW::build_law(int t)
 
 void FixWallEGW::init()
 {
+  if (wallstyle == REGION) {
+    region = domain->get_region_by_id(region_id);
+    if (!region) error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
+  }
   pair = dynamic_cast<PairEGW *>(force->pair_match("egw", 1));
   if (!pair)
     error->all(FLERR, "Fix wall/egw needs pair_style egw (the particle types' coefficients)");
@@ -268,6 +291,10 @@ void FixWallEGW::setup(int vflag)
 
 void FixWallEGW::post_force(int /*vflag*/)
 {
+  if (wallstyle == REGION) {
+    post_force_region();
+    return;
+  }
   const bool update_history = update->setupflag == 0;
   const double dt = update->dt;
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega_a = atom->omega;
@@ -343,45 +370,129 @@ void FixWallEGW::post_force(int /*vflag*/)
   }
 }
 
+/* The region's surfaces: each atom inside the region keeps up to tmax contacts, each
+ * with the id of its wall (the region's iwall) and its history; per atom: [0] the number
+ * of contacts, then per slot the wall id + 1 and the history.  Flat faces and curved
+ * ones alike are flat contacts of radius R_i (the region's curvature is not used). */
+void FixWallEGW::post_force_region()
+{
+  const bool update_history = update->setupflag == 0;
+  const double dt = update->dt;
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega_a = atom->omega;
+  double **torque = atom->torque, *radius = atom->radius, *rmass = atom->rmass;
+  int *mask = atom->mask, *type = atom->type, nlocal = atom->nlocal;
+  if (region->dynamic_check()) region->prematch();
+  bool moving = region->moveflag || region->rotateflag;
+  if (moving) region->set_velocity();
+  const double zero[3] = {0.0, 0.0, 0.0};
+  std::vector<double> keep((size_t) tmax * (1 + nhist));
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *h = history[i];
+    if (!region->match(x[i][0], x[i][1], x[i][2])) {
+      for (int k = 0; k < stride; k++) h[k] = 0.0;
+      continue;
+    }
+    EgwLaw &L = law[type[i]];
+    double radi = radius[i];
+    int nc = region->surface(x[i][0], x[i][1], x[i][2], radi + L.tail);
+    int nold = (int) h[0], nnew = 0;
+    std::fill(keep.begin(), keep.end(), 0.0);
+    for (int m = 0; m < nc && nnew < tmax; m++) {
+      double r = region->contact[m].r;
+      double delta = radi - r;
+      if (!(delta > -L.tail) || !(r > 0)) continue;
+      if (!(built_rhi[type[i]] > 0))
+        error->one(FLERR, "Fix wall/egw/region: an atom of type {} touches the region but the "
+                          "type has no pair_coeff in pair_style egw", type[i]);
+      double wid = region->contact[m].iwall + 1.0;
+      double *slot = &keep[(size_t) nnew * (1 + nhist)];
+      slot[0] = wid;
+      for (int s = 0; s < nold; s++) {    // this wall's history from the last step
+        const double *old = &h[1 + s * (1 + nhist)];
+        if (old[0] == wid) {
+          for (int k = 0; k < nhist; k++) slot[1 + k] = old[1 + k];
+          break;
+        }
+      }
+      double *hist = &slot[1];
+      double n[3] = {region->contact[m].delx / r, region->contact[m].dely / r,
+                     region->contact[m].delz / r};
+      double R = radi, Fn, S, U;
+      int st = L.eval(delta, R, hist, Fn, S, U, 0);
+      if (st == EgwLaw::MU_OUTSIDE)
+        error->one(FLERR, "Fix wall/egw/region: contact with R = {} has mu = {} outside the "
+                          "tables' [{}, {}]: widen pair_style egw ... rmin/rmax", R, L.mu_at(R),
+                   L.mu_lo, L.mu_hi);
+      if (st == EGW_OUT_OF_RANGE && !warned_range) {
+        warned_range = true;
+        error->warning(FLERR, "Fix wall/egw/region: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond "
+                              "the tables' reach {:.6g} (overlap_max = {}): force from egw's "
+                              "extrapolation (warned once)", delta, delta / R, R, L.reach,
+                       overlap_max);
+      }
+      if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
+        char buf[512];
+        egw_last_error(buf, sizeof(buf));
+        error->one(FLERR, "Fix wall/egw/region: evaluation failed at overlap {}: {}", delta, buf);
+      }
+      double vwall[3] = {0.0, 0.0, 0.0};
+      if (moving) region->velocity_contact(vwall, x[i], m);
+      const double vr[3] = {v[i][0] - vwall[0], v[i][1] - vwall[1], v[i][2] - vwall[2]};
+      ContactForces c;
+      contact_submodels(L, Fn, S, R, radi, 0.0, radi, 0.0, n, vr, omega_a[i], zero, rmass[i],
+                        hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt, 0.0,
+                        0.0, c);
+      f[i][0] += c.Fntot * n[0] + c.fs[0];
+      f[i][1] += c.Fntot * n[1] + c.fs[1];
+      f[i][2] += c.Fntot * n[2] + c.fs[2];
+      torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
+      nnew++;
+    }
+    h[0] = nnew;
+    for (size_t k = 0; k < keep.size(); k++) h[1 + k] = keep[k];
+  }
+}
+
 /* ---------------------------------------------------------------------- per-atom history */
 
 double FixWallEGW::memory_usage()
 {
-  return (double) atom->nmax * nhist * sizeof(double);
+  return (double) atom->nmax * stride * sizeof(double);
 }
 
 void FixWallEGW::grow_arrays(int nmax)
 {
-  memory->grow(history, nmax, nhist, "fix_wall_egw:history");
+  memory->grow(history, nmax, stride, "fix_wall_egw:history");
 }
 
 void FixWallEGW::copy_arrays(int i, int j, int /*delflag*/)
 {
-  for (int k = 0; k < nhist; k++) history[j][k] = history[i][k];
+  for (int k = 0; k < stride; k++) history[j][k] = history[i][k];
 }
 
 void FixWallEGW::set_arrays(int i)
 {
-  for (int k = 0; k < nhist; k++) history[i][k] = 0.0;
+  for (int k = 0; k < stride; k++) history[i][k] = 0.0;
 }
 
 int FixWallEGW::pack_exchange(int i, double *buf)
 {
-  for (int k = 0; k < nhist; k++) buf[k] = history[i][k];
-  return nhist;
+  for (int k = 0; k < stride; k++) buf[k] = history[i][k];
+  return stride;
 }
 
 int FixWallEGW::unpack_exchange(int nlocal, double *buf)
 {
-  for (int k = 0; k < nhist; k++) history[nlocal][k] = buf[k];
-  return nhist;
+  for (int k = 0; k < stride; k++) history[nlocal][k] = buf[k];
+  return stride;
 }
 
 int FixWallEGW::pack_restart(int i, double *buf)
 {
-  buf[0] = nhist + 1;
-  for (int k = 0; k < nhist; k++) buf[k + 1] = history[i][k];
-  return nhist + 1;
+  buf[0] = stride + 1;
+  for (int k = 0; k < stride; k++) buf[k + 1] = history[i][k];
+  return stride + 1;
 }
 
 void FixWallEGW::unpack_restart(int nlocal, int nth)
@@ -391,15 +502,15 @@ void FixWallEGW::unpack_restart(int nlocal, int nth)
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
   int size = static_cast<int>(extra[nlocal][m]) - 1;
   m++;
-  for (int k = 0; k < nhist; k++) history[nlocal][k] = k < size ? extra[nlocal][m + k] : 0.0;
+  for (int k = 0; k < stride; k++) history[nlocal][k] = k < size ? extra[nlocal][m + k] : 0.0;
 }
 
 int FixWallEGW::size_restart(int /*nlocal*/)
 {
-  return nhist + 1;
+  return stride + 1;
 }
 
 int FixWallEGW::maxsize_restart()
 {
-  return nhist + 1;
+  return stride + 1;
 }

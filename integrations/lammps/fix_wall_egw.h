@@ -33,7 +33,7 @@ class FixWallEGW : public Fix {
   int maxsize_restart() override;
 
  protected:
-  enum { XPLANE = 0, YPLANE, ZPLANE, ZCYLINDER };
+  enum { XPLANE = 0, YPLANE, ZPLANE, ZCYLINDER, REGION };
   int model;                       // EGW_MODEL_*
   double tol, overlap_max;
   EgwCoeff wall;                   // the wall's material, surface and sub-models
@@ -44,7 +44,12 @@ class FixWallEGW : public Fix {
   double amplitude, period, omega, vshear;
   bigint time_origin;
   int nhist, hist_sub;
-  double **history;                // per atom: the contact with the wall (0: none)
+  class Region *region;            // wall/egw/region: the region's surfaces
+  std::string region_id;
+  int tmax;                        // contacts an atom may have at once (1 for planes)
+  int stride;                      // doubles per atom: planes nhist; region 1 + tmax (1 + nhist)
+  double **history;                // per atom: its wall contacts' histories (0: none)
+  void post_force_region();
   std::vector<EgwLaw> law;         // per particle type
   std::vector<double> built_rlo, built_rhi;
   int built_model;
