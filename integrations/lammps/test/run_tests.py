@@ -643,6 +643,27 @@ def test_drum_example():
                 f"(|diff| {dz:.1e} of the radius < 2e-2)")
 
 
+def test_submodels_ranks_agree():
+    """EP-GW with mindlin_rescale + tangential damping, rolling sds and twisting marshall (all
+    sub-model histories) in the oblique, spinning, twisting collision on 1 rank, on 2 ranks
+    (one bead each) and on 2 ranks with newton off (each rank keeps its own copy of the
+    contact's history, the partner's through transfer_history): the same velocities and spins
+    to 1e-12."""
+    w = ("tangential mindlin_rescale NULL 1.0 0.3 rolling sds 1e5 0.05 0.2 twisting marshall "
+         "damping coeff_restitution")
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.7 " + w
+    kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5)
+    res = []
+    for np, newton in ((1, "on"), (2, "on"), (2, "off")):
+        rc, out = collision("egw EP-GW 1e-3", c, np=np, newton=newton, **kw)
+        if rc:
+            return False, f"{np} ranks newton {newton}: rc {rc}"
+        res.append(result(out))
+    scale = [V] * 4 + [V / RAD] * 2
+    d = max(abs(x - y) / s for r in res[1:] for x, y, s in zip(res[0], r, scale))
+    return d < 1e-12, f"max difference {d:.1e} of the speed (< 1e-12)"
+
+
 def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
     return lmp(deck, np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=5e-6,
                nrun=nrun, newton=newton, thermo=10000, seed=seed, Ewall=PILE_E)
@@ -826,7 +847,7 @@ def test_bad_coeff():
 
 TESTS = [test_energy_elastic, test_epgw_restitution, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
-         test_submodels_vs_granular, test_pair_local_granular_columns, test_heat_vs_granular,
+         test_submodels_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
          test_heat_flow_needs_model, test_pair_write, test_overlap_beyond_tables,
          test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution,
          test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
