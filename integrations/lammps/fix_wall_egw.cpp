@@ -168,7 +168,8 @@ void FixWallEGW::parse(int narg, char **arg)
     if (i < narg) error->all(FLERR, "{}: unknown keyword '{}'", who, arg[i]);
     return;
   }
-  if (i >= narg) error->all(FLERR, "{}: missing wall style (xplane, yplane, zplane, zcylinder)", who);
+  if (i >= narg)
+    error->all(FLERR, "{}: missing wall style (xplane, yplane, zplane, zcylinder)", who);
   std::string style = arg[i];
   if (style == "zcylinder") {
     wallstyle = ZCYLINDER, axis = 2;
@@ -237,7 +238,8 @@ void FixWallEGW::egw_fail(const std::string &what)
 void FixWallEGW::build_law(int t)
 {
   const EgwCoeff *c = pair->type_coeff(t);
-  if (!c) error->all(FLERR, "Fix wall/egw: type {} has no pair_coeff {} {} in pair_style egw", t, t, t);
+  if (!c)
+    error->all(FLERR, "Fix wall/egw: type {} has no pair_coeff {} {} in pair_style egw", t, t, t);
   if (model != EGW_MODEL_HERTZ && c->sigma + wall.sigma > 0 && c->mu_mode == 0 && wall.mu_mode == 0)
     error->all(FLERR, "Fix wall/egw: type {} and the wall are rough but neither gives mu or "
                       "summit data", t);

@@ -224,7 +224,8 @@ void PairEGW::init_style()
       bool needs_r = L.kind == EgwLaw::UNIVERSAL || L.kind == EgwLaw::HYST_MU;
       if (needs_r && !(R_hi > 0))
         error->all(FLERR, "Pair egw: types {} {}: no atoms and no fix pour/deposit give their "
-                          "radii (needed for mu from summit data): add 'rmin R rmax R' to pair_style",
+                          "radii (needed for mu from summit data): add 'rmin R rmax R' to "
+                          "pair_style",
                    i, j);
       if (!(R_hi > 0)) R_hi = R_lo = 1.0 / std::max(L.inv_sigma, 1e-300);
       if (R_lo > R_hi) R_lo = R_hi;

@@ -324,7 +324,8 @@ void PairEGW::make_law(int i, int j)
     if (!a.set || !b.set) error->all(FLERR, "Pair egw: coefficients of types {} {} not set", i, j);
     if (!L.combine(a, b))
       error->all(FLERR, "Pair egw: types {} and {} give mu in different ways (mu vs "
-                        "summit_density/summit_radius): set pair_coeff {} {} explicitly", i, j, i, j);
+                        "summit_density/summit_radius): set pair_coeff {} {} explicitly",
+                 i, j, i, j);
     L.sub = mix_submodels(i, j, a.sub, b.sub);
   }
   L.setup(model);
