@@ -1,7 +1,8 @@
 /* fix wall/egw: walls with egw's rough contact law.
  *
  *   fix ID group wall/egw MODEL TOL E v nu v [sigma v] [mu v | summit_density v
- *       summit_radius v] [psi v] [K v] [plastic_ratio v] [overlap_max F] [<sub-models>]
+ *       summit_radius v] [psi v] [K v] [plastic_ratio v] [overlap_max F] [temperature T]
+ *       [<sub-models>]
  *       xplane|yplane|zplane lo hi | zcylinder radius [wiggle dim A period] [shear dim v]
  *
  * A wall contact is the contact of the particle's type (its pair_coeff I I in pair_style
@@ -42,6 +43,7 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
   wallstyle = -1, axis = 2, lo = hi = cylradius = 0.0, have_lo = have_hi = false;
   wiggle = wshear = 0, wdim = 0, amplitude = period = omega = vshear = 0.0;
   built_model = -1, warned_range = false;
+  wall_temperature = 0.0, have_temperature = false;
   tmax = 1;
   if (std::string(arg[2]) == "wall/egw/region") {
     // fix ID group wall/egw/region MODEL TOL <keywords> region-ID
@@ -142,6 +144,8 @@ void FixWallEGW::parse(int narg, char **arg)
     } else if (key == "plastic_ratio") {
       if (x <= 1) bad("must be > 1");
       wall.rho = x;
+    } else if (key == "temperature") {
+      wall_temperature = x, have_temperature = true;
     } else if (key == "overlap_max") {
       if (x <= 0) bad("must be > 0");
       overlap_max = x;
@@ -161,6 +165,8 @@ void FixWallEGW::parse(int narg, char **arg)
                haveeta ? "summit_density" : "summit_radius",
                haveeta ? "summit_radius" : "summit_density");
   wall.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
+  if (wall.sub.heat != EgwSubmodels::HEAT_NONE && !have_temperature)
+    error->all(FLERR, "{}: a heat model needs the wall's 'temperature T'", who);
   (void) havesig;
   wall.set = 1;
 
@@ -284,6 +290,9 @@ void FixWallEGW::init()
   for (int t = 1; t <= n; t++)
     if (pair->type_coeff(t)) build_law(t);
   built_model = model;
+  if (wall.sub.heat != EgwSubmodels::HEAT_NONE && (!atom->temperature_flag || !atom->heatflow_flag))
+    error->all(FLERR, "Fix wall/egw: a heat model needs atoms with temperature and heatflow "
+                      "(fix property/atom temperature heatflow)");
 }
 
 void FixWallEGW::setup(int vflag)
@@ -315,6 +324,7 @@ void FixWallEGW::post_force(int /*vflag*/)
     vwall[wdim] = vshear;
 
   const double zero[3] = {0.0, 0.0, 0.0};
+  const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     EgwLaw &L = law[type[i]];
@@ -363,8 +373,9 @@ void FixWallEGW::post_force(int /*vflag*/)
     const double vr[3] = {v[i][0] - vwall[0], v[i][1] - vwall[1], v[i][2] - vwall[2]};
     ContactForces c;
     contact_submodels(L, Fn, S, R, radi, 0.0, radi, 0.0, n, vr, omega_a[i], zero, rmass[i],
-                      hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt, 0.0,
-                      0.0, c);
+                      hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt,
+                      heat ? atom->temperature[i] : 0.0, wall_temperature, c);
+    if (heat) atom->heatflow[i] += c.dq;
     f[i][0] += c.Fntot * n[0] + c.fs[0];
     f[i][1] += c.Fntot * n[1] + c.fs[1];
     f[i][2] += c.Fntot * n[2] + c.fs[2];
@@ -387,6 +398,7 @@ void FixWallEGW::post_force_region()
   bool moving = region->moveflag || region->rotateflag;
   if (moving) region->set_velocity();
   const double zero[3] = {0.0, 0.0, 0.0};
+  const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;
   std::vector<double> keep((size_t) tmax * (1 + nhist));
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -443,8 +455,9 @@ void FixWallEGW::post_force_region()
       const double vr[3] = {v[i][0] - vwall[0], v[i][1] - vwall[1], v[i][2] - vwall[2]};
       ContactForces c;
       contact_submodels(L, Fn, S, R, radi, 0.0, radi, 0.0, n, vr, omega_a[i], zero, rmass[i],
-                        hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt, 0.0,
-                        0.0, c);
+                        hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt,
+                        heat ? atom->temperature[i] : 0.0, wall_temperature, c);
+      if (heat) atom->heatflow[i] += c.dq;
       f[i][0] += c.Fntot * n[0] + c.fs[0];
       f[i][1] += c.Fntot * n[1] + c.fs[1];
       f[i][2] += c.Fntot * n[2] + c.fs[2];

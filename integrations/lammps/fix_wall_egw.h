@@ -31,6 +31,8 @@ class FixWallEGW : public Fix {
   void unpack_restart(int, int) override;
   int size_restart(int) override;
   int maxsize_restart() override;
+  /* the wall exchanges heat with the atoms (a heat model) */
+  bool has_heat() const { return wall.sub.heat != EgwSubmodels::HEAT_NONE; }
 
  protected:
   enum { XPLANE = 0, YPLANE, ZPLANE, ZCYLINDER, REGION };
@@ -43,6 +45,8 @@ class FixWallEGW : public Fix {
   int wiggle, wshear, wdim;        // wiggle/shear along wdim
   double amplitude, period, omega, vshear;
   bigint time_origin;
+  double wall_temperature;         // heat models: the wall's temperature
+  bool have_temperature;
   int nhist, hist_sub;
   class Region *region;            // wall/egw/region: the region's surfaces
   std::string region_id;

@@ -16,6 +16,7 @@
 #include "egw_history.h"
 #include "egw_contact.h"
 #include "egw_submodels.h"
+#include "fix_wall_egw.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -183,9 +184,15 @@ void PairEGW::init_style()
   if (heat_any && (!atom->temperature_flag || !atom->heatflow_flag))
     error->all(FLERR, "Pair egw: a heat model needs atoms with temperature and heatflow "
                       "(atom_style sphere/temp, or fix property/atom temperature heatflow)");
-  if (!heat_any && !modify->get_fix_by_style("^heat/flow").empty())
-    error->all(FLERR, "Pair egw: fix heat/flow needs a heat model in pair_coeff (heat area "
-                      "h_s or heat radius k_s): without one no heat flows between contacts");
+  bool wall_heat = false;
+  for (auto f : modify->get_fix_by_style("^wall/egw")) {
+    auto w = dynamic_cast<FixWallEGW *>(f);
+    wall_heat = wall_heat || (w && w->has_heat());
+  }
+  if (!heat_any && !wall_heat && !modify->get_fix_by_style("^heat/flow").empty())
+    error->all(FLERR, "Pair egw: fix heat/flow needs a heat model in pair_coeff or a fix "
+                      "wall/egw (heat area h_s or heat radius k_s): without one no heat flows "
+                      "between contacts");
   if (fix_history != nullptr && want != nhist) {
     modify->delete_fix("NEIGH_HISTORY_EGW");
     fix_history = nullptr;

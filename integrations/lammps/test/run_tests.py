@@ -664,6 +664,25 @@ def test_submodels_ranks_agree():
     return d < 1e-12, f"max difference {d:.1e} of the speed (< 1e-12)"
 
 
+def test_wall_heat_vs_wall_gran():
+    """Heat from a bead held 2 um into a wall at 200 K (bead at 300 K, heat area, fix
+    heat/flow, 2000 steps of 1 ms): fix wall/egw E-GW at sigma = 1e-16 (TOL 1e-8) with its
+    contact radius a = S/(2 E*), against fix wall/gran granular hertz/material with a =
+    sqrt(R delta): the temperature change within 1e-6 (measured 1.6e-7)."""
+    g = "tangential linear_nohistory 0 0 heat area 1e5"
+    rc1, o1 = lmp("heatwall.in", pstyle="egw E-GW 1e-8", pcoeff=f"E {E} nu {NU} sigma 1e-16 mu 4",
+                  wallfix=f"wall/egw E-GW 1e-8 E {E} nu {NU} sigma 1e-16 mu 4 heat area 1e5 "
+                          "temperature 200 zplane 0 NULL")
+    rc2, o2 = lmp("heatwall.in", pstyle="granular", pcoeff=f"hertz/material {E} 1.0 {NU} {g}",
+                  wallfix=f"wall/gran granular hertz/material {E} 1.0 {NU} {g} zplane 0 NULL "
+                          "temperature 200")
+    if rc1 or rc2:
+        return False, " ".join(l for l in (o1 + o2).splitlines() if "ERROR" in l)
+    d1, d2 = 300 - result(o1)[0], 300 - result(o2)[0]
+    rel = abs(d1 - d2) / d2
+    return rel < 1e-6 and d2 > 1, f"dT {d1:.9g} vs {d2:.9g} (rel. {rel:.1e} < 1e-6)"
+
+
 def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
     return lmp(deck, np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=5e-6,
                nrun=nrun, newton=newton, thermo=10000, seed=seed, Ewall=PILE_E)
@@ -852,6 +871,7 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_energy_epgw, test_sing
          test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution,
          test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
          test_bad_wall, test_wall_region, test_drum_example,
+         test_wall_heat_vs_wall_gran,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff]
 
