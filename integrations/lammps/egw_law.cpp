@@ -1,0 +1,234 @@
+/* pair_style egw: building the tables of a type pair's normal law (egw_law.h). */
+#include "egw_law.h"
+
+#include "fmt/format.h"
+
+using namespace LAMMPS_NS;
+
+const char *LAMMPS_NS::egw_law_kind_name[] = {
+    "Hertz (closed form)", "1-D table in delta/sigma",
+    "1-D slices of a universal table, linear in ln mu (R-dependent mu)", "hysteresis table",
+    "hysteresis tables at nodes in ln mu, linear in ln mu"};
+
+void EgwLaw::like(const EgwCoeff &c)
+{
+  E_star = c.E / (2.0 * (1.0 - c.nu * c.nu));
+  double G = c.E / (2.0 * (1.0 + c.nu));
+  G_star = G / (2.0 * (2.0 - c.nu));
+  sigma = std::sqrt(2.0) * c.sigma;
+  mu_mode = c.mu_mode, mu = c.mu, eta = c.eta, beta = c.beta;
+  psi = c.psi, K = c.K, rho = c.rho, sub = c.sub;
+}
+
+bool EgwLaw::combine(const EgwCoeff &a, const EgwCoeff &b)
+{
+  E_star = 1.0 / ((1 - a.nu * a.nu) / a.E + (1 - b.nu * b.nu) / b.E);
+  double Ga = a.E / (2 * (1 + a.nu)), Gb = b.E / (2 * (1 + b.nu));
+  G_star = 1.0 / ((2 - a.nu) / Ga + (2 - b.nu) / Gb);
+  sigma = std::sqrt(a.sigma * a.sigma + b.sigma * b.sigma);
+  if (a.mu_mode != b.mu_mode && a.sigma > 0 && b.sigma > 0) return false;
+  mu_mode = a.sigma > 0 ? a.mu_mode : b.mu_mode;
+  const EgwCoeff &r = a.sigma > 0 ? a : b;
+  if (a.sigma > 0 && b.sigma > 0) {
+    mu = std::sqrt(a.mu * b.mu);
+    eta = std::sqrt(a.eta * b.eta);
+    beta = std::sqrt(a.beta * b.beta);
+  } else {
+    mu = r.mu, eta = r.eta, beta = r.beta;
+  }
+  psi = 0.5 * (a.psi + b.psi), K = 0.5 * (a.K + b.K), rho = 0.5 * (a.rho + b.rho);
+  return true;
+}
+
+void EgwLaw::setup(int model)
+{
+  damp = EgwSubmodels::damping_factor(sub.damping, sub.damp_value);
+  kt = sub.kt_null ? 8.0 * G_star : sub.kt;
+  if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = HERTZ;
+  else if (model == EGW_MODEL_EPGW && psi > 0) kind = mu_mode == 1 ? HYST : HYST_MU;
+  else kind = mu_mode == 1 ? TABLE : UNIVERSAL;
+  egw_params_default(&prm);
+  prm.model = (model == EGW_MODEL_EPGW && psi == 0) ? EGW_MODEL_EGW : model;
+  prm.radius = 1, prm.modulus = 1, prm.sigma = sigma > 0 ? 1 : 0;
+  prm.mu = mu_mode == 1 ? mu : 1.0;
+  prm.psi = psi, prm.hardness_coeff = K, prm.plastic_ratio = rho;
+  if (sigma > 0) {
+    s05 = std::sqrt(sigma), s15 = sigma * s05, s25 = s15 * sigma;
+    inv_sigma = 1.0 / sigma;
+  }
+  if (mu_mode == 2) mu = 8.0 / 3.0 * eta * sigma * std::sqrt(2.0 * beta);    // x sqrt(R)
+}
+
+void EgwLaw::release()
+{
+  egw_table_free(&table);
+  egw_universal_free(&universal);
+  for (auto &h : hyst) egw_hysteresis_free(&h);
+  hyst.clear();
+  for (auto &t : slices) egw_table_free(&t);
+  slices.clear();
+  lnmu.clear();
+}
+
+void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, int n_threads,
+                   const std::function<void()> &fail)
+{
+  release();
+  egw_options o;
+  egw_options_default(&o);
+  if (n_threads > 0) o.n_threads = n_threads;
+  double xmax = 30.0;
+  if (sigma > 0) xmax = std::max(30.0, overlap_max * R_hi / sigma);
+  // hysteresis tables reaching much beyond 140 sigma unload wrongly (measured: e = 0.9998
+  // instead of 0.948 for a reach of 280 sigma, right to 1e-4 at 140): capped there
+  capped = (kind == HYST || kind == HYST_MU) && xmax > HYST_X_MAX;
+  if (capped) xmax = HYST_X_MAX;
+  if (kind == HERTZ) {
+    xc = 0, tail = 0;
+  } else if (kind == TABLE) {
+    if (egw_table_build(&prm, &o, 0.0, xmax, tol, &table)) fail();
+    egw_table_info in;
+    egw_table_get_info(table, &in);
+    xc = in.cutoff;
+  } else if (kind == UNIVERSAL) {
+    // the universal table at TOL/2, cut into 1-D slices (no solves) at nodes in ln mu; a
+    // contact interpolates its two neighbouring slices linearly in ln mu, with the nodes
+    // refined until that agrees with the universal table to TOL/2 at every midpoint
+    mu_lo = mu * std::sqrt(R_lo) / 1.02, mu_hi = mu * std::sqrt(R_hi) * 1.02;
+    if (egw_universal_build(&prm, &o, mu_lo, mu_hi, 0.0, xmax, 0.5 * tol, &universal))
+      fail();
+    auto slice_at = [&](double m) {
+      egw_params p = prm;
+      p.mu = m;
+      egw_table s = nullptr;
+      if (egw_universal_slice(universal, &p, &s)) fail();
+      return s;
+    };
+    xc = 0.0;
+    for (double m : {mu_lo, mu_hi}) {
+      egw_table s = slice_at(m);
+      egw_table_info in;
+      egw_table_get_info(s, &in);
+      xc = std::min(xc, in.cutoff);
+      egw_table_free(&s);
+    }
+    std::vector<double> xs;
+    for (int k = 0; k <= 40; k++) xs.push_back(xc * (1.0 - k / 40.0));
+    for (int k = 1; k <= 80; k++) xs.push_back(1e-3 * std::pow(xmax / 1e-3, k / 80.0));
+    double a = std::log(mu_lo), b = std::log(mu_hi);
+    for (int n = 3;; n = 2 * n - 1) {
+      for (auto &t : slices) egw_table_free(&t);
+      slices.clear();
+      double h = (b - a) / (n - 1);
+      for (int k = 0; k < n; k++) slices.push_back(slice_at(std::exp(a + k * h)));
+      lnmu0 = a, inv_h = 1.0 / h;
+      double err = 0.0;
+      for (int k = 0; k + 1 < n; k++) {
+        egw_params p = prm;
+        p.mu = std::exp(a + (k + 0.5) * h);
+        double pref = 0, dum;
+        egw_universal_eval(universal, &p, 0.0, &pref, &dum);
+        for (double x : xs) {
+          double pu, p0, p1;
+          egw_universal_eval(universal, &p, x, &pu, &dum);
+          egw_table_eval(slices[k], x, &p0, &dum);
+          egw_table_eval(slices[k + 1], x, &p1, &dum);
+          err = std::max(err, std::fabs(0.5 * (p0 + p1) - pu) / std::max(pu, pref));
+        }
+      }
+      interp_error = err;
+      if (err <= 0.5 * tol || n > 1000) break;
+    }
+    egw_universal_free(&universal);
+  } else {
+    // EP-GW: one hysteresis table (mu given) or tables at nodes in ln mu (summit data)
+    auto cutoff_of = [&](double m) {
+      egw_params p = prm;
+      p.mu = m;
+      egw_table t = nullptr;
+      if (egw_table_build(&p, &o, 0.0, xmax, tol, &t)) fail();
+      egw_table_info in;
+      egw_table_get_info(t, &in);
+      egw_table_free(&t);
+      return in.cutoff;
+    };
+    auto hyst_at = [&](double m, double xc) {
+      egw_params p = prm;
+      p.mu = m;
+      egw_hysteresis h = nullptr;
+      if (egw_hysteresis_build(&p, &o, xc, xmax, tol, &h)) fail();
+      return h;
+    };
+    if (kind == HYST) {
+      xc = cutoff_of(mu);
+      hyst.push_back(hyst_at(mu, xc));
+    } else {
+      // tables at nodes equally spaced in ln mu, linear interpolation between neighbours;
+      // the nodes are doubled until a table built at every interval's midpoint agrees
+      // with the interpolation to TOL of the force at the turning point
+      mu_lo = mu * std::sqrt(R_lo) / 1.02, mu_hi = mu * std::sqrt(R_hi) * 1.02;
+      xc = std::min(cutoff_of(mu_lo), cutoff_of(mu_hi));
+      double a = std::log(mu_lo), b = std::log(mu_hi);
+      hyst = {hyst_at(mu_lo, xc), hyst_at(mu_hi, xc)};
+      for (;;) {
+        int n = (int) hyst.size();
+        double h = (b - a) / (n - 1);
+        std::vector<egw_hysteresis> mid;
+        double err = 0.0;
+        for (int k = 0; k + 1 < n; k++) {
+          mid.push_back(hyst_at(std::exp(a + (k + 0.5) * h), xc));
+          for (double xt : {2.0, 10.0, 0.2 * xmax, 0.5 * xmax})
+            for (double f : {1.0, 0.95, 0.8, 0.5, 0.2, 0.0}) {
+              if (xt > xmax) continue;
+              double x = xc + f * (xt - xc), pt = 0, pr = 0, pl = 0, dum;
+              double s = -HUGE_VAL;
+              egw_hysteresis_eval(mid.back(), xt, &s, &pt, &dum);
+              egw_hysteresis_eval(mid.back(), x, &s, &pr, &dum);
+              for (int m = k; m <= k + 1; m++) {
+                double sm = -HUGE_VAL, pm;
+                egw_hysteresis_eval(hyst[m], xt, &sm, &pm, &dum);
+                egw_hysteresis_eval(hyst[m], x, &sm, &pm, &dum);
+                pl += 0.5 * pm;
+              }
+              if (pt > 0) err = std::max(err, std::fabs(pl - pr) / pt);
+            }
+        }
+        interp_error = err;
+        if (err <= tol || n > 64) {
+          for (auto &t : mid) egw_hysteresis_free(&t);
+          break;
+        }
+        std::vector<egw_hysteresis> merged;
+        for (int k = 0; k < n; k++) {
+          merged.push_back(hyst[k]);
+          if (k + 1 < n) merged.push_back(mid[k]);
+        }
+        hyst = merged;
+      }
+      lnmu0 = a, inv_h = (hyst.size() - 1) / (b - a);
+      for (size_t k = 0; k < hyst.size(); k++) lnmu.push_back(a + k / inv_h);
+    }
+  }
+  tail = -xc * sigma;
+  reach = kind == HERTZ ? HUGE_VAL : xmax * sigma;
+}
+
+std::string EgwLaw::describe(double R_lo, double R_hi) const
+{
+  std::string extra;
+  if (kind == UNIVERSAL || kind == HYST_MU)
+    extra = fmt::format(", mu in [{:.4g}, {:.4g}] for R in [{:.4g}, {:.4g}]", mu_lo, mu_hi,
+                        R_lo, R_hi);
+  if (kind == HYST_MU)
+    extra += fmt::format(", {} mu nodes, measured ln-mu interpolation error {:.2g} of the "
+                         "turning-point force", lnmu.size(), interp_error);
+  if (kind == UNIVERSAL)
+    extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
+                         "(universal table built to TOL/2)", slices.size(), interp_error);
+  return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, tail = {:.6g} (the tables' cut-off: "
+                     "force 0 below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
+                     tail, reach, extra) +
+      (capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it are not reliable)",
+                            HYST_X_MAX)
+              : std::string());
+}

@@ -1,0 +1,190 @@
+/* pair_style egw: the normal contact law of one particle-type pair, its parameters and the
+ * egw tables that evaluate it (built once per run, scaled per contact by R, E*, sigma). */
+#ifndef EGW_LAMMPS_LAW_H
+#define EGW_LAMMPS_LAW_H
+
+#include "egw.h"
+#include "egw_history.h"
+#include "egw_submodels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+/* One body's coefficients as given with pair_coeff (or a wall fix): its material, surface
+ * and the contact's sub-models (plain data: written to restart files). */
+struct EgwCoeff {
+  int set = 0;
+  double E = 0, nu = 0, sigma = 0, mu = 0, eta = 0, beta = 0;
+  int mu_mode = 0;
+  double psi = 0, K = 0.6, rho = 54;
+  EgwSubmodels::Params sub;       // damping, tangential, rolling, twisting, heat
+};
+
+/* The contact law of one particle-type pair: parameters and the egw tables that evaluate
+ * it.  Tables are normalised (R = E* = sigma = 1, x = delta/sigma) unless stated. */
+struct EgwLaw {
+  enum Kind { HERTZ = 0, TABLE, UNIVERSAL, HYST, HYST_MU };
+  // eval()'s status beyond egw's: the contact's mu lies outside the tables' range
+  static constexpr int MU_OUTSIDE = -1000;
+
+  // the coefficients as given or mixed
+  double E_star = 0, G_star = 0, sigma = 0;
+  int mu_mode = 0;                 // 0 none (smooth), 1 mu given, 2 from summit data
+  double mu = 0, eta = 0, beta = 0;
+  double psi = 0, K = 0.6, rho = 54;
+  EgwSubmodels::Params sub;        // damping, tangential, rolling, twisting, heat
+  double damp = 0;                 // the damping model's factor (damping_factor)
+  double kt = 0;                   // tangential k_t (mindlin NULL: 8 G*)
+  // evaluation
+  int kind = HERTZ;
+  double xc = 0;                   // cut-off delta_c/sigma (<= 0)
+  double tail = 0;                 // -delta_c [length]
+  double reach = 0;                // the tables' largest overlap [length] (inf: Hertz)
+  bool capped = false;             // reach capped at HYST_X_MAX sigma (hysteresis)
+  static constexpr double HYST_X_MAX = 140.0;
+  double s05 = 0, s15 = 0, s25 = 0, inv_sigma = 0;
+  double mu_lo = 0, mu_hi = 0;     // mu range of the tables (summit data)
+  double interp_error = 0;         // measured ln-mu interpolation error (summit data)
+  egw_table table = nullptr;
+  egw_universal universal = nullptr;
+  std::vector<egw_hysteresis> hyst;
+  std::vector<egw_table> slices;   // 1-D slices of universal at nodes in ln mu (summit data)
+  double lnmu0 = 0, inv_h = 0;     // first node, 1 / node spacing
+  std::vector<double> lnmu;        // nodes of hyst in ln mu (summit data)
+  egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)
+
+  void release();
+  /* the coefficients of two unlike bodies combined (E*, G*, sigma, mu as two types mix);
+   * false when they give mu in different ways (mu vs summit data) */
+  bool combine(const EgwCoeff &a, const EgwCoeff &b);
+  /* the coefficients of one body against itself (like types) */
+  void like(const EgwCoeff &c);
+  /* the evaluation for egw model `model` from the coefficients (kind, scales, prm) */
+  void setup(int model);
+  /* the tables for equivalent radii in [R_lo, R_hi] up to overlap_max R_hi (n_threads 0:
+   * egw's default); an egw call that fails calls fail() (which reports egw_last_error) */
+  void build(double R_lo, double R_hi, double tol, double overlap_max, int n_threads,
+             const std::function<void()> &fail);
+  /* what was built, for the log */
+  std::string describe(double R_lo, double R_hi) const;
+  /* the contact's mu at R (summit data) */
+  double mu_at(double R) const { return mu * std::sqrt(R); }
+  inline int mu_position(double R, double *hist, double &t) const;
+  /* elastic normal force F, stiffness S = dF/ddelta and (want_energy) the energy U at
+   * overlap delta of a contact of radius R with history hist; egw's status (EGW_OK,
+   * EGW_OUT_OF_RANGE beyond the tables, ...) or MU_OUTSIDE */
+  inline int eval(double delta, double R, double *hist, double &F, double &S, double &U,
+                  int want_energy) const;
+};
+
+extern const char *egw_law_kind_name[];
+
+/* the position t of the contact's mu = mu(R) in the ln-mu nodes, cached in the history */
+inline int EgwLaw::mu_position(double R, double *hist, double &t) const
+{
+  using namespace EgwHistory;
+  double print = lnmu0 + inv_h;    // changes when the tables are rebuilt for a new range
+  if (hist[MU_R] == R && hist[MU_PRINT] == print) {
+    t = hist[MU_T];
+    return EGW_OK;
+  }
+  double m = mu_at(R);
+  if (!(m >= mu_lo && m <= mu_hi)) return MU_OUTSIDE;
+  hist[MU_R] = R;
+  hist[MU_T] = (std::log(m) - lnmu0) * inv_h;
+  hist[MU_PRINT] = print;
+  t = hist[MU_T];
+  return EGW_OK;
+}
+
+inline int EgwLaw::eval(double delta, double R, double *hist, double &F, double &S,
+                        double &U, int want_energy) const
+{
+  using namespace EgwHistory;
+  double *dmax = &hist[DELTA_MAX];
+  int st = EGW_OK;
+  double sr = E_star * std::sqrt(R);
+  switch (kind) {
+    case HERTZ: {
+      if (delta > 0) {
+        double a = std::sqrt(R * delta);
+        F = 4.0 / 3.0 * E_star * a * delta;
+        S = 2.0 * E_star * a;
+        U = 0.4 * F * delta;
+      } else
+        F = S = U = 0.0;
+      return EGW_OK;
+    }
+    case TABLE: {
+      double p, dp, u = 0, ac;
+      double x = delta * inv_sigma;
+      if (want_energy) st = egw_table_eval_all(table, x, &p, &dp, &u, &ac);
+      else st = egw_table_eval(table, x, &p, &dp);
+      F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
+      break;
+    }
+    case UNIVERSAL: {
+      double t;
+      if (mu_position(R, hist, t) != EGW_OK) return MU_OUTSIDE;
+      int n = (int) slices.size();
+      int k = std::max(0, std::min(n - 2, (int) t));
+      double w = t - k;
+      double x = delta * inv_sigma, p0, p1, d0, d1, u0 = 0, u1 = 0, ac;
+      if (want_energy) {
+        st = egw_table_eval_all(slices[k], x, &p0, &d0, &u0, &ac);
+        egw_table_eval_all(slices[k + 1], x, &p1, &d1, &u1, &ac);
+      } else {
+        st = egw_table_eval(slices[k], x, &p0, &d0);
+        egw_table_eval(slices[k + 1], x, &p1, &d1);
+      }
+      F = sr * s15 * (p0 + w * (p1 - p0));
+      S = sr * s05 * (d0 + w * (d1 - d0));
+      U = sr * s25 * (u0 + w * (u1 - u0));
+      break;
+    }
+    case HYST: {
+      // the state (table units) with its turning point's cache lives in hist[HYST_A..]
+      double x = delta * inv_sigma, p, dp;
+      st = egw_hysteresis_eval_state(hyst[0], x, &hist[HYST_A], &p, &dp);
+      *dmax = hist[HYST_A] * sigma;
+      // the energy the contact returns if it separates now (the rest of its loading work
+      // is dissipated): kinetic + this falls while contacts load, stays while they unload
+      double u = 0.0;
+      if (want_energy) egw_hysteresis_energy(hyst[0], x, hist[HYST_A], &u);
+      F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
+      break;
+    }
+    case HYST_MU: {
+      double x = delta * inv_sigma;
+      double t;
+      if (mu_position(R, hist, t) != EGW_OK) return MU_OUTSIDE;
+      int n = (int) hyst.size();
+      int k = std::max(0, std::min(n - 2, (int) t));
+      double w = t - k;
+      double p0, p1, d0, d1;
+      st = egw_hysteresis_eval_state(hyst[k], x, &hist[HYST_A], &p0, &d0);
+      int st2 = egw_hysteresis_eval_state(hyst[k + 1], x, &hist[HYST_B], &p1, &d1);
+      if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
+      *dmax = hist[HYST_A] * sigma;
+      double u0 = 0.0, u1 = 0.0;
+      if (want_energy) {
+        egw_hysteresis_energy(hyst[k], x, hist[HYST_A], &u0);
+        egw_hysteresis_energy(hyst[k + 1], x, hist[HYST_B], &u1);
+      }
+      F = sr * s15 * (p0 + w * (p1 - p0));
+      S = sr * s05 * (d0 + w * (d1 - d0));
+      U = sr * s25 * (u0 + w * (u1 - u0));
+      break;
+    }
+  }
+  return st;
+}
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,531 @@
+/* fix wall/egw: walls with egw's rough contact law.
+ *
+ *   fix ID group wall/egw MODEL TOL E v nu v [sigma v] [mu v | summit_density v
+ *       summit_radius v] [psi v] [K v] [plastic_ratio v] [overlap_max F] [temperature T]
+ *       [<sub-models>]
+ *       xplane|yplane|zplane lo hi | zcylinder radius [wiggle dim A period] [shear dim v]
+ *
+ * A wall contact is the contact of the particle's type (its pair_coeff I I in pair_style
+ * egw) with the wall's own material and surface, combined as two types combine (E*, G*
+ * from both bodies, sigma = sqrt(sigma_i^2 + sigma_wall^2), mu as in mixing), with R = R_i
+ * (a flat wall is a sphere of infinite radius) and m* = m_i; the wall's sub-models (damping,
+ * tangential, rolling, twisting) are the fix's own.  History per atom (one wall contact at
+ * a time, as fix wall/gran), kept through exchange and restart. */
+#include "fix_wall_egw.h"
+
+#include "egw_contact.h"
+#include "egw_history.h"
+#include "egw_submodels_parse.h"
+#include "pair_egw.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "region.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), region(nullptr), history(nullptr), pair(nullptr)
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "Fix wall/egw requires atom_style sphere");
+  model = EGW_MODEL_EGW, tol = 1e-4, overlap_max = 1.0;
+  wallstyle = -1, axis = 2, lo = hi = cylradius = 0.0, have_lo = have_hi = false;
+  wiggle = wshear = 0, wdim = 0, amplitude = period = omega = vshear = 0.0;
+  built_model = -1, warned_range = false;
+  wall_temperature = 0.0, have_temperature = false;
+  tmax = 1;
+  if (std::string(arg[2]) == "wall/egw/region") {
+    // fix ID group wall/egw/region MODEL TOL <keywords> region-ID
+    if (narg < 6) error->all(FLERR, "Fix wall/egw/region: expected 'fix ID group wall/egw/region "
+                                    "MODEL TOL <wall keywords> region-ID'");
+    region_id = arg[narg - 1];
+    region = domain->get_region_by_id(region_id);
+    if (!region) error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
+    wallstyle = REGION;
+    tmax = std::max(1, region->tmax);
+    parse(narg - 1, arg);
+  } else
+    parse(narg, arg);
+  time_origin = update->ntimestep;
+
+  int core = model == EGW_MODEL_EPGW ? EgwHistory::NHIST_EPGW : EgwHistory::NHIST_BASE;
+  hist_sub = wall.sub.needs_extra_history() ? core : -1;
+  nhist = core + (hist_sub >= 0 ? EgwSubmodels::NHIST_SUB : 0);
+  stride = wallstyle == REGION ? 1 + tmax * (1 + nhist) : nhist;
+
+  restart_peratom = 1;
+  create_attribute = 1;
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = 0; k < stride; k++) history[i][k] = 0.0;
+}
+
+FixWallEGW::~FixWallEGW()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(history);
+  for (auto &l : law) l.release();
+}
+
+/* MODEL TOL, the wall's keywords and sub-models, the wall style and its options */
+void FixWallEGW::parse(int narg, char **arg)
+{
+  const char *who = "Fix wall/egw";
+  if (narg < 5) error->all(FLERR, "{}: expected 'fix ID group wall/egw MODEL TOL <wall keywords> "
+                                  "wallstyle args'", who);
+  std::string m = arg[3];
+  if (m == "Hertz" || m == "hertz") model = EGW_MODEL_HERTZ;
+  else if (m == "GW" || m == "gw") model = EGW_MODEL_GW;
+  else if (m == "E-GW" || m == "e-gw" || m == "EGW") model = EGW_MODEL_EGW;
+  else if (m == "EP-GW" || m == "ep-gw" || m == "EPGW") model = EGW_MODEL_EPGW;
+  else error->all(FLERR, "{}: MODEL = '{}': must be Hertz, GW, E-GW or EP-GW", who, m);
+  double v;
+  if (!egw_parse_number(arg[4], v) || v < 1e-8 || v > 0.1)
+    error->all(FLERR, "{}: TOL = '{}': must be a number in [1e-8, 0.1]", who, arg[4]);
+  tol = v;
+  bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
+       havebeta = false;
+  int i = 5;
+  auto number = [&](const std::string &key, int k) {
+    if (k >= narg) error->all(FLERR, "{}: keyword '{}' needs a value", who, key);
+    double x;
+    if (!egw_parse_number(arg[k], x))
+      error->all(FLERR, "{}: {} = '{}': not a finite number", who, key, arg[k]);
+    return x;
+  };
+  while (i < narg) {
+    std::string key = arg[i];
+    if (key == "xplane" || key == "yplane" || key == "zplane" || key == "zcylinder") break;
+    int next = egw_submodels_parse(error, who, narg, arg, i, wall.sub);
+    if (next > 0) {
+      i = next;
+      continue;
+    }
+    double x = number(key, i + 1);
+    auto bad = [&](const char *rule) { error->all(FLERR, "{}: {} = {}: {}", who, key, x, rule); };
+    if (key == "E") {
+      if (x <= 0) bad("must be > 0");
+      wall.E = x, haveE = true;
+    } else if (key == "nu") {
+      if (x <= -1.0 || x > 0.5) bad("must be in (-1, 0.5]");
+      wall.nu = x, havenu = true;
+    } else if (key == "sigma") {
+      if (x < 0) bad("must be >= 0");
+      wall.sigma = x, havesig = true;
+    } else if (key == "mu") {
+      if (x <= 0) bad("must be > 0");
+      wall.mu = x, havemu = true;
+    } else if (key == "summit_density") {
+      if (x <= 0) bad("must be > 0");
+      wall.eta = x, haveeta = true;
+    } else if (key == "summit_radius") {
+      if (x <= 0) bad("must be > 0");
+      wall.beta = x, havebeta = true;
+    } else if (key == "psi") {
+      if (x < 0) bad("must be >= 0");
+      wall.psi = x;
+    } else if (key == "K") {
+      if (x <= 0 || x >= 1) bad("must be in (0, 1)");
+      wall.K = x;
+    } else if (key == "plastic_ratio") {
+      if (x <= 1) bad("must be > 1");
+      wall.rho = x;
+    } else if (key == "temperature") {
+      wall_temperature = x, have_temperature = true;
+    } else if (key == "overlap_max") {
+      if (x <= 0) bad("must be > 0");
+      overlap_max = x;
+    } else
+      error->all(FLERR, "{}: unknown keyword '{}' (or a missing wall style xplane, yplane, "
+                        "zplane, zcylinder)", who, key);
+    i += 2;
+  }
+  egw_submodels_check(error, who, wall.sub);
+  if (!haveE) error->all(FLERR, "{}: keyword 'E' (the wall's Young's modulus) is required", who);
+  if (!havenu) error->all(FLERR, "{}: keyword 'nu' (the wall's Poisson ratio) is required", who);
+  if (havemu && (haveeta || havebeta))
+    error->all(FLERR, "{}: give either 'mu' or 'summit_density' and 'summit_radius', not both",
+               who);
+  if (haveeta != havebeta)
+    error->all(FLERR, "{}: keyword '{}' needs '{}'", who,
+               haveeta ? "summit_density" : "summit_radius",
+               haveeta ? "summit_radius" : "summit_density");
+  wall.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
+  if (wall.sub.heat != EgwSubmodels::HEAT_NONE && !have_temperature)
+    error->all(FLERR, "{}: a heat model needs the wall's 'temperature T'", who);
+  (void) havesig;
+  wall.set = 1;
+
+  if (wallstyle == REGION) {
+    if (i < narg) error->all(FLERR, "{}: unknown keyword '{}'", who, arg[i]);
+    return;
+  }
+  if (i >= narg)
+    error->all(FLERR, "{}: missing wall style (xplane, yplane, zplane, zcylinder)", who);
+  std::string style = arg[i];
+  if (style == "zcylinder") {
+    wallstyle = ZCYLINDER, axis = 2;
+    cylradius = number("zcylinder radius", i + 1);
+    if (cylradius <= 0) error->all(FLERR, "{}: zcylinder radius = {}: must be > 0", who, cylradius);
+    i += 2;
+  } else {
+    wallstyle = style == "xplane" ? XPLANE : style == "yplane" ? YPLANE : ZPLANE;
+    axis = wallstyle;
+    if (i + 2 >= narg) error->all(FLERR, "{}: '{}' needs lo and hi (a number or NULL)", who, style);
+    if (std::string(arg[i + 1]) != "NULL") lo = number(style + " lo", i + 1), have_lo = true;
+    if (std::string(arg[i + 2]) != "NULL") hi = number(style + " hi", i + 2), have_hi = true;
+    if (!have_lo && !have_hi) error->all(FLERR, "{}: '{}' with both lo and hi NULL", who, style);
+    if (have_lo && have_hi && lo >= hi) error->all(FLERR, "{}: {} lo >= hi", who, style);
+    i += 3;
+  }
+  while (i < narg) {
+    std::string key = arg[i];
+    auto dim_of = [&](int k) {
+      if (k >= narg) error->all(FLERR, "{}: '{}' needs a dimension x, y or z", who, key);
+      std::string d = arg[k];
+      if (d == "x") return 0;
+      if (d == "y") return 1;
+      if (d == "z") return 2;
+      error->all(FLERR, "{}: {} dimension '{}': must be x, y or z", who, key, d);
+      return 0;
+    };
+    if (key == "wiggle") {
+      wdim = dim_of(i + 1);
+      amplitude = number("wiggle amplitude", i + 2);
+      period = number("wiggle period", i + 3);
+      if (period <= 0) error->all(FLERR, "{}: wiggle period = {}: must be > 0", who, period);
+      if (wallstyle != ZCYLINDER && wdim != axis)
+        error->all(FLERR, "{}: a plane wiggles along its normal ({})", who, "xyz"[axis]);
+      if (wallstyle == ZCYLINDER && wdim != 2)
+        error->all(FLERR, "{}: a zcylinder wiggles along z", who);
+      wiggle = 1, omega = 2.0 * M_PI / period;
+      i += 4;
+    } else if (key == "shear") {
+      wdim = dim_of(i + 1);
+      vshear = number("shear velocity", i + 2);
+      if (wallstyle != ZCYLINDER && wdim == axis)
+        error->all(FLERR, "{}: a plane shears along its own plane", who);
+      wshear = 1;
+      i += 3;
+    } else
+      error->all(FLERR, "{}: unknown keyword '{}' after the wall style (wiggle, shear)", who, key);
+  }
+  if (wiggle && wshear) error->all(FLERR, "{}: wiggle and shear together", who);
+}
+
+int FixWallEGW::setmask()
+{
+  return POST_FORCE | POST_FORCE_RESPA | MIN_POST_FORCE;
+}
+
+void FixWallEGW::egw_fail(const std::string &what)
+{
+  char buf[512];
+  egw_last_error(buf, sizeof(buf));
+  error->all(FLERR, "Fix wall/egw: {}: {}", what, buf);
+}
+
+/* the law of the wall against particle type t: both bodies' coefficients combined, the
+ * fix's sub-models, tables for R = R_i over the type's radii */
+void FixWallEGW::build_law(int t)
+{
+  const EgwCoeff *c = pair->type_coeff(t);
+  if (!c)
+    error->all(FLERR, "Fix wall/egw: type {} has no pair_coeff {} {} in pair_style egw", t, t, t);
+  if (model != EGW_MODEL_HERTZ && c->sigma + wall.sigma > 0 && c->mu_mode == 0 && wall.mu_mode == 0)
+    error->all(FLERR, "Fix wall/egw: type {} and the wall are rough but neither gives mu or "
+                      "summit data", t);
+  EgwLaw L;
+  if (!L.combine(*c, wall))
+    error->all(FLERR, "Fix wall/egw: type {} and the wall give mu in different ways (mu vs "
+                      "summit_density/summit_radius)", t);
+  L.sub = wall.sub;
+  L.setup(model);
+  double rhi = pair->type_radius_max(t), rlo = pair->type_radius_min(t);
+  if (!(rhi > 0)) rhi = rlo = 1.0 / std::max(L.inv_sigma, 1e-300);
+  if (rlo > rhi || !(rlo > 0)) rlo = 0.5 * rhi;
+  if (rlo == rhi) rlo = rhi / 1.05;
+  bool covered = built_rhi[t] > 0 && rlo >= built_rlo[t] && rhi <= built_rhi[t] &&
+      law[t].kind == L.kind && law[t].E_star == L.E_star && law[t].sigma == L.sigma &&
+      built_model == model;
+  if (covered) return;
+  law[t].release();
+  law[t] = L;
+  std::string what = fmt::format("tables of type {} against the wall", t);
+  law[t].build(rlo, rhi, tol, overlap_max, comm->nprocs > 1 ? 1 : 0, [&]() { egw_fail(what); });
+  built_rlo[t] = rlo, built_rhi[t] = rhi;
+  if (comm->me == 0)
+    utils::logmesg(lmp, "fix wall/egw {}: type {}: {}\n", id, t, law[t].describe(rlo, rhi));
+}
+
+void FixWallEGW::init()
+{
+  if (wallstyle == REGION) {
+    region = domain->get_region_by_id(region_id);
+    if (!region) error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
+  }
+  pair = dynamic_cast<PairEGW *>(force->pair_match("egw", 1));
+  if (!pair)
+    error->all(FLERR, "Fix wall/egw needs pair_style egw (the particle types' coefficients)");
+  int n = atom->ntypes;
+  if ((int) law.size() != n + 1) {
+    for (auto &l : law) l.release();
+    law.assign(n + 1, EgwLaw());
+    built_rlo.assign(n + 1, 0.0), built_rhi.assign(n + 1, 0.0);
+  }
+  for (int t = 1; t <= n; t++)
+    if (pair->type_coeff(t)) build_law(t);
+  built_model = model;
+  if (wall.sub.heat != EgwSubmodels::HEAT_NONE && (!atom->temperature_flag || !atom->heatflow_flag))
+    error->all(FLERR, "Fix wall/egw: a heat model needs atoms with temperature and heatflow "
+                      "(fix property/atom temperature heatflow)");
+}
+
+void FixWallEGW::setup(int vflag)
+{
+  post_force(vflag);
+}
+
+void FixWallEGW::post_force(int /*vflag*/)
+{
+  if (wallstyle == REGION) {
+    post_force_region();
+    return;
+  }
+  const bool update_history = update->setupflag == 0;
+  const double dt = update->dt;
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega_a = atom->omega;
+  double **torque = atom->torque, *radius = atom->radius, *rmass = atom->rmass;
+  int *mask = atom->mask, *type = atom->type, nlocal = atom->nlocal;
+
+  // the wall's position and velocity (wiggle along the normal, shear in its plane)
+  double t = (update->ntimestep - time_origin) * dt;
+  double wlo = lo, whi = hi, vwall[3] = {0.0, 0.0, 0.0};
+  if (wiggle) {
+    double s = amplitude * std::sin(omega * t);
+    if (have_lo) wlo = lo + s;
+    if (have_hi) whi = hi + s;
+    vwall[wdim] = amplitude * omega * std::cos(omega * t);
+  } else if (wshear)
+    vwall[wdim] = vshear;
+
+  const double zero[3] = {0.0, 0.0, 0.0};
+  const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    EgwLaw &L = law[type[i]];
+    double *hist = history[i];
+    double radi = radius[i];
+    // the distance from the centre to the wall and the normal from the wall to the centre
+    double dist, n[3] = {0.0, 0.0, 0.0};
+    if (wallstyle == ZCYLINDER) {
+      double rxy = std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]);
+      dist = cylradius - rxy;
+      if (rxy > 0) n[0] = -x[i][0] / rxy, n[1] = -x[i][1] / rxy;
+      else n[0] = 1.0;
+    } else {
+      double dlo = have_lo ? x[i][axis] - wlo : HUGE_VAL;
+      double dhi = have_hi ? whi - x[i][axis] : HUGE_VAL;
+      if (dlo <= dhi) dist = dlo, n[axis] = 1.0;
+      else dist = dhi, n[axis] = -1.0;
+    }
+    double delta = radi - dist;
+    if (!(delta > -L.tail)) {
+      for (int k = 0; k < nhist; k++) hist[k] = 0.0;
+      continue;
+    }
+    if (!(built_rhi[type[i]] > 0))
+      error->one(FLERR, "Fix wall/egw: an atom of type {} touches the wall but the type has no "
+                        "pair_coeff in pair_style egw", type[i]);
+    double R = radi;
+    double Fn, S, U;
+    int st = L.eval(delta, R, hist, Fn, S, U, 0);
+    if (st == EgwLaw::MU_OUTSIDE)
+      error->one(FLERR, "Fix wall/egw: contact with R = {} has mu = {} outside the tables' "
+                        "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
+                 R, L.mu_at(R), L.mu_lo, L.mu_hi);
+    if (st == EGW_OUT_OF_RANGE && !warned_range) {
+      warned_range = true;
+      error->warning(FLERR, "Fix wall/egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the "
+                            "tables' reach {:.6g} (overlap_max = {}): force from egw's "
+                            "extrapolation above its last node; raise 'overlap_max' (warned "
+                            "once)", delta, delta / R, R, L.reach, overlap_max);
+    }
+    if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
+      char buf[512];
+      egw_last_error(buf, sizeof(buf));
+      error->one(FLERR, "Fix wall/egw: evaluation failed at overlap {}: {}", delta, buf);
+    }
+    const double vr[3] = {v[i][0] - vwall[0], v[i][1] - vwall[1], v[i][2] - vwall[2]};
+    ContactForces c;
+    contact_submodels(L, Fn, S, R, radi, 0.0, radi, 0.0, n, vr, omega_a[i], zero, rmass[i],
+                      hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt,
+                      heat ? atom->temperature[i] : 0.0, wall_temperature, c);
+    if (heat) atom->heatflow[i] += c.dq;
+    f[i][0] += c.Fntot * n[0] + c.fs[0];
+    f[i][1] += c.Fntot * n[1] + c.fs[1];
+    f[i][2] += c.Fntot * n[2] + c.fs[2];
+    torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
+  }
+}
+
+/* The region's surfaces: each atom inside the region keeps up to tmax contacts, each
+ * with the id of its wall (the region's iwall) and its history; per atom: [0] the number
+ * of contacts, then per slot the wall id + 1 and the history.  Flat faces and curved
+ * ones alike are flat contacts of radius R_i (the region's curvature is not used). */
+void FixWallEGW::post_force_region()
+{
+  const bool update_history = update->setupflag == 0;
+  const double dt = update->dt;
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega_a = atom->omega;
+  double **torque = atom->torque, *radius = atom->radius, *rmass = atom->rmass;
+  int *mask = atom->mask, *type = atom->type, nlocal = atom->nlocal;
+  if (region->dynamic_check()) region->prematch();
+  bool moving = region->moveflag || region->rotateflag;
+  if (moving) region->set_velocity();
+  const double zero[3] = {0.0, 0.0, 0.0};
+  const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;
+  std::vector<double> keep((size_t) tmax * (1 + nhist));
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *h = history[i];
+    if (!region->match(x[i][0], x[i][1], x[i][2])) {
+      for (int k = 0; k < stride; k++) h[k] = 0.0;
+      continue;
+    }
+    EgwLaw &L = law[type[i]];
+    double radi = radius[i];
+    int nc = region->surface(x[i][0], x[i][1], x[i][2], radi + L.tail);
+    int nold = (int) h[0], nnew = 0;
+    std::fill(keep.begin(), keep.end(), 0.0);
+    for (int m = 0; m < nc && nnew < tmax; m++) {
+      double r = region->contact[m].r;
+      double delta = radi - r;
+      if (!(delta > -L.tail) || !(r > 0)) continue;
+      if (!(built_rhi[type[i]] > 0))
+        error->one(FLERR, "Fix wall/egw/region: an atom of type {} touches the region but the "
+                          "type has no pair_coeff in pair_style egw", type[i]);
+      double wid = region->contact[m].iwall + 1.0;
+      double *slot = &keep[(size_t) nnew * (1 + nhist)];
+      slot[0] = wid;
+      for (int s = 0; s < nold; s++) {    // this wall's history from the last step
+        const double *old = &h[1 + s * (1 + nhist)];
+        if (old[0] == wid) {
+          for (int k = 0; k < nhist; k++) slot[1 + k] = old[1 + k];
+          break;
+        }
+      }
+      double *hist = &slot[1];
+      double n[3] = {region->contact[m].delx / r, region->contact[m].dely / r,
+                     region->contact[m].delz / r};
+      double R = radi, Fn, S, U;
+      int st = L.eval(delta, R, hist, Fn, S, U, 0);
+      if (st == EgwLaw::MU_OUTSIDE)
+        error->one(FLERR, "Fix wall/egw/region: contact with R = {} has mu = {} outside the "
+                          "tables' [{}, {}]: widen pair_style egw ... rmin/rmax", R, L.mu_at(R),
+                   L.mu_lo, L.mu_hi);
+      if (st == EGW_OUT_OF_RANGE && !warned_range) {
+        warned_range = true;
+        error->warning(FLERR, "Fix wall/egw/region: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond "
+                              "the tables' reach {:.6g} (overlap_max = {}): force from egw's "
+                              "extrapolation (warned once)", delta, delta / R, R, L.reach,
+                       overlap_max);
+      }
+      if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
+        char buf[512];
+        egw_last_error(buf, sizeof(buf));
+        error->one(FLERR, "Fix wall/egw/region: evaluation failed at overlap {}: {}", delta, buf);
+      }
+      double vwall[3] = {0.0, 0.0, 0.0};
+      if (moving) region->velocity_contact(vwall, x[i], m);
+      const double vr[3] = {v[i][0] - vwall[0], v[i][1] - vwall[1], v[i][2] - vwall[2]};
+      ContactForces c;
+      contact_submodels(L, Fn, S, R, radi, 0.0, radi, 0.0, n, vr, omega_a[i], zero, rmass[i],
+                        hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt,
+                        heat ? atom->temperature[i] : 0.0, wall_temperature, c);
+      if (heat) atom->heatflow[i] += c.dq;
+      f[i][0] += c.Fntot * n[0] + c.fs[0];
+      f[i][1] += c.Fntot * n[1] + c.fs[1];
+      f[i][2] += c.Fntot * n[2] + c.fs[2];
+      torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
+      nnew++;
+    }
+    h[0] = nnew;
+    for (size_t k = 0; k < keep.size(); k++) h[1 + k] = keep[k];
+  }
+}
+
+/* ---------------------------------------------------------------------- per-atom history */
+
+double FixWallEGW::memory_usage()
+{
+  return (double) atom->nmax * stride * sizeof(double);
+}
+
+void FixWallEGW::grow_arrays(int nmax)
+{
+  memory->grow(history, nmax, stride, "fix_wall_egw:history");
+}
+
+void FixWallEGW::copy_arrays(int i, int j, int /*delflag*/)
+{
+  for (int k = 0; k < stride; k++) history[j][k] = history[i][k];
+}
+
+void FixWallEGW::set_arrays(int i)
+{
+  for (int k = 0; k < stride; k++) history[i][k] = 0.0;
+}
+
+int FixWallEGW::pack_exchange(int i, double *buf)
+{
+  for (int k = 0; k < stride; k++) buf[k] = history[i][k];
+  return stride;
+}
+
+int FixWallEGW::unpack_exchange(int nlocal, double *buf)
+{
+  for (int k = 0; k < stride; k++) history[nlocal][k] = buf[k];
+  return stride;
+}
+
+int FixWallEGW::pack_restart(int i, double *buf)
+{
+  buf[0] = stride + 1;
+  for (int k = 0; k < stride; k++) buf[k + 1] = history[i][k];
+  return stride + 1;
+}
+
+void FixWallEGW::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  int size = static_cast<int>(extra[nlocal][m]) - 1;
+  m++;
+  for (int k = 0; k < stride; k++) history[nlocal][k] = k < size ? extra[nlocal][m + k] : 0.0;
+}
+
+int FixWallEGW::size_restart(int /*nlocal*/)
+{
+  return stride + 1;
+}
+
+int FixWallEGW::maxsize_restart()
+{
+  return stride + 1;
+}

@@ -1,0 +1,70 @@
+/* fix wall/egw: flat and cylindrical walls with egw's rough contact law (the wall's own
+ * material and surface combined with the particle type's as two types combine) and pair
+ * granular's sub-models; per-atom contact histories that migrate and go into restarts.
+ * See integrations/lammps/README.md. */
+#ifndef EGW_LAMMPS_FIX_WALL_EGW_H
+#define EGW_LAMMPS_FIX_WALL_EGW_H
+
+#include "fix.h"
+
+#include "egw_law.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixWallEGW : public Fix {
+ public:
+  FixWallEGW(class LAMMPS *, int, char **);
+  ~FixWallEGW() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void post_force(int) override;
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  /* the wall exchanges heat with the atoms (a heat model) */
+  bool has_heat() const { return wall.sub.heat != EgwSubmodels::HEAT_NONE; }
+
+ protected:
+  enum { XPLANE = 0, YPLANE, ZPLANE, ZCYLINDER, REGION };
+  int model;                       // EGW_MODEL_*
+  double tol, overlap_max;
+  EgwCoeff wall;                   // the wall's material, surface and sub-models
+  int wallstyle, axis;             // axis: 0, 1, 2 (the plane's normal; z for the cylinder)
+  double lo, hi, cylradius;
+  bool have_lo, have_hi;
+  int wiggle, wshear, wdim;        // wiggle/shear along wdim
+  double amplitude, period, omega, vshear;
+  bigint time_origin;
+  double wall_temperature;         // heat models: the wall's temperature
+  bool have_temperature;
+  int nhist, hist_sub;
+  class Region *region;            // wall/egw/region: the region's surfaces
+  std::string region_id;
+  int tmax;                        // contacts an atom may have at once (1 for planes)
+  int stride;                      // doubles per atom: planes nhist; region 1 + tmax (1 + nhist)
+  double **history;                // per atom: its wall contacts' histories (0: none)
+  void post_force_region();
+  std::vector<EgwLaw> law;         // per particle type
+  std::vector<double> built_rlo, built_rhi;
+  int built_model;
+  bool warned_range;
+  class PairEGW *pair;
+
+  void parse(int, char **);
+  void build_law(int type);
+  void egw_fail(const std::string &);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

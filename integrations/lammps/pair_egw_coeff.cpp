@@ -1,0 +1,350 @@
+/* pair_style egw: its settings (pair_style egw MODEL TOL ...), each type's coefficients
+ * (pair_coeff) and the law of a type pair mixed from them. */
+#include "pair_egw.h"
+#include "egw_submodels.h"
+#include "egw_submodels_parse.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "utils.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+namespace {
+const char *model_names[] = {"Hertz", "GW", "E-GW", "EP-GW"};
+}
+
+bool LAMMPS_NS::egw_parse_number(const char *s, double &v)
+{
+  char *end = nullptr;
+  v = strtod(s, &end);
+  return end != s && *end == '\0' && std::isfinite(v);
+}
+
+void PairEGW::settings(int narg, char **arg)
+{
+  if (narg < 2) error->all(FLERR, "Pair style egw: expected 'pair_style egw MODEL TOL ...'");
+  std::string m = arg[0];
+  if (m == "Hertz" || m == "hertz") model = EGW_MODEL_HERTZ;
+  else if (m == "GW" || m == "gw") model = EGW_MODEL_GW;
+  else if (m == "E-GW" || m == "e-gw" || m == "EGW") model = EGW_MODEL_EGW;
+  else if (m == "EP-GW" || m == "ep-gw" || m == "EPGW") model = EGW_MODEL_EPGW;
+  else error->all(FLERR, "Pair style egw: MODEL = '{}': must be Hertz, GW, E-GW or EP-GW", m);
+  double v;
+  if (!egw_parse_number(arg[1], v) || v < 1e-8 || v > 0.1)
+    error->all(FLERR, "Pair style egw: TOL = '{}': must be a number in [1e-8, 0.1]", arg[1]);
+  tol = v;
+  for (int i = 2; i < narg; i += 2) {
+    std::string key = arg[i];
+    if (i + 1 >= narg) error->all(FLERR, "Pair style egw: keyword '{}' needs a value", key);
+    if (!egw_parse_number(arg[i + 1], v) || v <= 0.0)
+      error->all(FLERR, "Pair style egw: {} = '{}': must be a number > 0", key, arg[i + 1]);
+    if (key == "rmin") rmin_user = v;
+    else if (key == "rmax") rmax_user = v;
+    else if (key == "overlap_max") overlap_max = v;
+    else error->all(FLERR, "Pair style egw: unknown keyword '{}'", key);
+  }
+  if (rmin_user > 0 && rmax_user > 0 && rmin_user > rmax_user)
+    error->all(FLERR, "Pair style egw: rmin > rmax");
+  tables_ready = false;
+}
+
+/* one of granular's sub-model keywords at arg[i] (damping, tangential, rolling,
+ * twisting, heat, limit_damping, and egw's friction): read into p, return the index after
+ * it; -1 if arg[i] is none of them.  who: "Pair coeff egw" or the wall fix's name. */
+int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char **arg, int i,
+                       EgwSubmodels::Params &p)
+{
+  using namespace EgwSubmodels;
+  std::string key = arg[i];
+  auto need = [&](int n, const char *syntax) {
+    if (i + n >= narg)
+      error->all(FLERR, "{}: '{}' needs {} value(s): {} {}", who, key, n, key, syntax);
+  };
+  auto num = [&](int k, const char *name, double lo, bool lo_open, double hi, bool hi_open) {
+    double v;
+    const char *s = arg[k];
+    if (!egw_parse_number(s, v))
+      error->all(FLERR, "{}: {} {} = '{}': not a finite number", who, key, name, s);
+    bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+    if (!ok)
+      error->all(FLERR, "{}: {} {} = {}: must be in {}{}, {}{}", who, key, name, s,
+                 lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+    return v;
+  };
+  const double inf = HUGE_VAL;
+  if (key == "limit_damping") {
+    p.limit_damping = 1;
+    return i + 1;
+  }
+  if (key == "damping") {
+    need(1, "<value> or velocity|mass_velocity|viscoelastic|tsuji|coeff_restitution");
+    std::string m = arg[i + 1];
+    if (m == "velocity") p.damping = DAMP_VELOCITY;
+    else if (m == "mass_velocity") p.damping = DAMP_MASS_VELOCITY;
+    else if (m == "viscoelastic") p.damping = DAMP_VISCOELASTIC;
+    else if (m == "tsuji") p.damping = DAMP_TSUJI;
+    else if (m == "coeff_restitution") p.damping = DAMP_COEFF_RESTITUTION;
+    else {
+      double v;
+      if (!egw_parse_number(arg[i + 1], v))
+        error->all(FLERR, "{}: damping '{}': neither a number nor velocity, mass_velocity, "
+                          "viscoelastic, tsuji or coeff_restitution", who, m);
+      p.damp_value = v, p.damp_value_set = 1;
+    }
+    return i + 2;
+  }
+  if (key == "friction") {
+    need(1, "mu_t");
+    p.tangential = TANG_MINDLIN, p.kt_null = 1, p.xt = 0.0;
+    p.mu_t = num(i + 1, "mu_t", 0, false, inf, true);
+    return i + 2;
+  }
+  if (key == "tangential") {
+    need(1, "MODEL args (linear_nohistory x_t mu_t | linear_history k_t x_t mu_t | "
+            "mindlin[_rescale][/force] k_t|NULL x_t mu_t)");
+    std::string m = arg[i + 1];
+    if (m == "linear_nohistory") {
+      need(3, "linear_nohistory x_t mu_t");
+      p.tangential = TANG_LINEAR_NOHISTORY;
+      p.xt = num(i + 2, "x_t", 0, false, inf, true);
+      p.mu_t = num(i + 3, "mu_t", 0, false, inf, true);
+      return i + 4;
+    }
+    int t = m == "linear_history" ? TANG_LINEAR_HISTORY
+        : m == "mindlin" ? TANG_MINDLIN
+        : m == "mindlin_rescale" ? TANG_MINDLIN_RESCALE
+        : m == "mindlin/force" ? TANG_MINDLIN_FORCE
+        : m == "mindlin_rescale/force" ? TANG_MINDLIN_RESCALE_FORCE : -1;
+    if (t < 0)
+      error->all(FLERR, "{}: tangential model '{}': must be linear_nohistory, linear_history, "
+                        "mindlin, mindlin_rescale, mindlin/force or mindlin_rescale/force",
+                 who, m);
+    need(4, (m + " k_t x_t mu_t").c_str());
+    p.tangential = t;
+    if (t != TANG_LINEAR_HISTORY && std::string(arg[i + 2]) == "NULL") p.kt_null = 1;
+    else p.kt_null = 0, p.kt = num(i + 2, "k_t", 0, true, inf, true);
+    p.xt = num(i + 3, "x_t", 0, false, inf, true);
+    p.mu_t = num(i + 4, "mu_t", 0, false, inf, true);
+    return i + 5;
+  }
+  if (key == "rolling") {
+    need(1, "sds k_r gamma_r mu_r");
+    if (std::string(arg[i + 1]) != "sds")
+      error->all(FLERR, "{}: rolling model '{}': must be sds", who, arg[i + 1]);
+    need(4, "sds k_r gamma_r mu_r");
+    p.rolling = ROLL_SDS;
+    p.kr = num(i + 2, "k_r", 0, true, inf, true);
+    p.gr = num(i + 3, "gamma_r", 0, false, inf, true);
+    p.mur = num(i + 4, "mu_r", 0, false, inf, true);
+    return i + 5;
+  }
+  if (key == "twisting") {
+    need(1, "marshall | sds k_tw gamma_tw mu_tw");
+    std::string m = arg[i + 1];
+    if (m == "marshall") {
+      p.twisting = TWIST_MARSHALL;
+      return i + 2;
+    }
+    if (m != "sds") error->all(FLERR, "{}: twisting model '{}': must be marshall or sds", who, m);
+    need(4, "sds k_tw gamma_tw mu_tw");
+    p.twisting = TWIST_SDS;
+    p.ktw = num(i + 2, "k_tw", 0, true, inf, true);
+    p.gtw = num(i + 3, "gamma_tw", 0, false, inf, true);
+    p.mutw = num(i + 4, "mu_tw", 0, false, inf, true);
+    return i + 5;
+  }
+  if (key == "heat") {
+    need(2, "area h_s | radius k_s");
+    std::string m = arg[i + 1];
+    if (m == "area") p.heat = HEAT_AREA;
+    else if (m == "radius") p.heat = HEAT_RADIUS;
+    else error->all(FLERR, "{}: heat model '{}': must be area or radius", who, m);
+    p.heat_coeff = num(i + 2, m == "area" ? "h_s" : "k_s", 0, false, inf, true);
+    return i + 3;
+  }
+  return -1;
+}
+
+/* the damping value's range once the model is known */
+void LAMMPS_NS::egw_submodels_check(Error *error, const char *who, EgwSubmodels::Params &p)
+{
+  using namespace EgwSubmodels;
+  bool restitution = p.damping == DAMP_TSUJI || p.damping == DAMP_COEFF_RESTITUTION;
+  if (!p.damp_value_set) p.damp_value = restitution ? 1.0 : 0.0;
+  double v = p.damp_value;
+  if (restitution && !(v > 0 && v <= 1))
+    error->all(FLERR, "{}: damping = {}: the restitution coefficient must be in (0, 1]", who, v);
+  if (!restitution && !(v >= 0))
+    error->all(FLERR, "{}: damping = {}: eta_n0 must be >= 0", who, v);
+  if (p.twisting == TWIST_MARSHALL && !p.tangential_history())
+    error->all(FLERR, "{}: twisting marshall needs a tangential model with history "
+                      "(linear_history or mindlin*)", who);
+}
+
+void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
+{
+  bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
+       havebeta = false;
+  c = Coeff();
+  static const char *granular_normal[] = {"hooke", "hertz", "hertz/material", "dmt", "jkr",
+                                          "mdr"};
+  for (int i = 2; i < narg;) {
+    std::string key = arg[i];
+    for (const char *g : granular_normal)
+      if (key == g)
+        error->all(FLERR, "Pair coeff egw: '{}' is pair granular's normal model; egw's normal "
+                          "law takes keywords: E v nu v sigma v mu v ... (damping, tangential, "
+                          "rolling, twisting and heat as in granular)", key);
+    int next = egw_submodels_parse(error, "Pair coeff egw", narg, arg, i, c.sub);
+    if (next > 0) {
+      i = next;
+      continue;
+    }
+    if (i + 1 >= narg) error->all(FLERR, "Pair coeff egw: keyword '{}' needs a value", key);
+    double v;
+    if (!egw_parse_number(arg[i + 1], v))
+      error->all(FLERR, "Pair coeff egw: {} = '{}': not a finite number", key, arg[i + 1]);
+    auto bad = [&](const char *rule) {
+      error->all(FLERR, "Pair coeff egw: {} = {}: {}", key, arg[i + 1], rule);
+    };
+    if (key == "E") {
+      if (v <= 0) bad("must be > 0");
+      c.E = v, haveE = true;
+    } else if (key == "nu") {
+      if (v <= -1.0 || v > 0.5) bad("must be in (-1, 0.5]");
+      c.nu = v, havenu = true;
+    } else if (key == "sigma") {
+      if (v < 0) bad("must be >= 0");
+      c.sigma = v, havesig = true;
+    } else if (key == "mu") {
+      if (v <= 0) bad("must be > 0");
+      c.mu = v, havemu = true;
+    } else if (key == "summit_density") {
+      if (v <= 0) bad("must be > 0");
+      c.eta = v, haveeta = true;
+    } else if (key == "summit_radius") {
+      if (v <= 0) bad("must be > 0");
+      c.beta = v, havebeta = true;
+    } else if (key == "psi") {
+      if (v < 0) bad("must be >= 0");
+      c.psi = v;
+    } else if (key == "K") {
+      if (v <= 0 || v >= 1) bad("must be in (0, 1)");
+      c.K = v;
+    } else if (key == "plastic_ratio") {
+      if (v <= 1) bad("must be > 1");
+      c.rho = v;
+    } else
+      error->all(FLERR, "Pair coeff egw: unknown keyword '{}'", key);
+    i += 2;
+  }
+  egw_submodels_check(error, "Pair coeff egw", c.sub);
+  if (!haveE) error->all(FLERR, "Pair coeff egw: keyword 'E' is required");
+  if (!havenu) error->all(FLERR, "Pair coeff egw: keyword 'nu' is required");
+  if (!havesig && model != EGW_MODEL_HERTZ)
+    error->all(FLERR, "Pair coeff egw: keyword 'sigma' is required for model {}",
+               model_names[model]);
+  if (havemu && (haveeta || havebeta))
+    error->all(FLERR, "Pair coeff egw: give either 'mu' or 'summit_density' and "
+                      "'summit_radius', not both");
+  if (haveeta != havebeta)
+    error->all(FLERR, "Pair coeff egw: keyword '{}' needs '{}'",
+               haveeta ? "summit_density" : "summit_radius",
+               haveeta ? "summit_radius" : "summit_density");
+  c.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
+  if (model != EGW_MODEL_HERTZ && c.sigma > 0 && c.mu_mode == 0)
+    error->all(FLERR, "Pair coeff egw: keyword 'mu' (or 'summit_density' and "
+                      "'summit_radius') is required when sigma > 0");
+  c.set = 1;
+}
+
+void PairEGW::coeff(int narg, char **arg)
+{
+  if (narg < 2) error->all(FLERR, "Pair coeff egw: expected 'pair_coeff I J E v nu v ...'");
+  if (!allocated) allocate();
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  Coeff c;
+  parse_coeff(narg, arg, c);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = std::max(jlo, i); j <= jhi; j++) {
+      pcoeff[i][j] = c;
+      setflag[i][j] = 1;
+      built_rhi[i][j] = 0.0;    // rebuild
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "Pair coeff egw: incorrect args for pair coefficients");
+  tables_ready = false;
+}
+
+/* the sub-models of unlike types without their own pair_coeff: the same models in both,
+ * their numbers geometric means (as e and mu_t always were) */
+EgwSubmodels::Params PairEGW::mix_submodels(int i, int j, const EgwSubmodels::Params &a,
+                                            const EgwSubmodels::Params &b)
+{
+  auto differ = [&](const char *what) {
+    error->all(FLERR, "Pair egw: types {} and {} have different {} models: set pair_coeff {} {} "
+                      "explicitly", i, j, what, i, j);
+  };
+  if (a.damping != b.damping) differ("damping");
+  if (a.tangential != b.tangential || a.kt_null != b.kt_null) differ("tangential");
+  if (a.rolling != b.rolling) differ("rolling");
+  if (a.twisting != b.twisting) differ("twisting");
+  if (a.heat != b.heat) differ("heat");
+  auto g = [](double x, double y) { return std::sqrt(x * y); };
+  EgwSubmodels::Params m = a;
+  m.damp_value = g(a.damp_value, b.damp_value);
+  m.limit_damping = a.limit_damping || b.limit_damping;
+  m.kt = g(a.kt, b.kt), m.xt = g(a.xt, b.xt), m.mu_t = g(a.mu_t, b.mu_t);
+  m.kr = g(a.kr, b.kr), m.gr = g(a.gr, b.gr), m.mur = g(a.mur, b.mur);
+  m.ktw = g(a.ktw, b.ktw), m.gtw = g(a.gtw, b.gtw), m.mutw = g(a.mutw, b.mutw);
+  m.heat_coeff = g(a.heat_coeff, b.heat_coeff);
+  return m;
+}
+
+/* the law of pair (i, j), i <= j: explicit coefficients as for like types, else mixed */
+void PairEGW::make_law(int i, int j)
+{
+  EgwLaw L;
+  if (pcoeff[i][j].set) {
+    L.like(pcoeff[i][j]);
+  } else {
+    const Coeff &a = pcoeff[i][i], &b = pcoeff[j][j];
+    if (!a.set || !b.set) error->all(FLERR, "Pair egw: coefficients of types {} {} not set", i, j);
+    if (!L.combine(a, b))
+      error->all(FLERR, "Pair egw: types {} and {} give mu in different ways (mu vs "
+                        "summit_density/summit_radius): set pair_coeff {} {} explicitly",
+                 i, j, i, j);
+    L.sub = mix_submodels(i, j, a.sub, b.sub);
+  }
+  L.setup(model);
+  // keep the tables of an unchanged law
+  EgwLaw &old = law[i][j];
+  bool same = old.E_star == L.E_star && old.sigma == L.sigma && old.mu_mode == L.mu_mode &&
+      old.mu == L.mu && old.psi == L.psi && old.K == L.K && old.rho == L.rho &&
+      old.kind == L.kind && old.prm.model == L.prm.model && built_rhi[i][j] > 0;
+  if (same) {
+    L.table = old.table, L.universal = old.universal, L.hyst = old.hyst, L.lnmu = old.lnmu;
+    L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h;
+    old.slices.clear();
+    L.xc = old.xc, L.tail = old.tail, L.reach = old.reach, L.capped = old.capped;
+    L.mu_lo = old.mu_lo, L.mu_hi = old.mu_hi;
+    L.interp_error = old.interp_error;
+    old.table = nullptr, old.universal = nullptr, old.hyst.clear();
+  } else {
+    old.release();
+    built_rhi[i][j] = 0.0;
+  }
+  law[i][j] = L;
+}
