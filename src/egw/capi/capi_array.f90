@@ -5,7 +5,7 @@
 !> and impacts run their points over OpenMP threads, each solve single-threaded inside.
 module egw_capi_array
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_associated, c_f_pointer, &
-      & c_loc, c_char
+      & c_loc, c_char, c_null_ptr
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    !$ use omp_lib, only: omp_get_max_threads, omp_get_num_procs
    use egw_kinds, only: dp
@@ -289,16 +289,8 @@ contains
          & max_overlap, n_failed
       integer(c_int), value, intent(in) :: p_stride, n, mass_stride, velocity_stride, flags
       integer(c_int) :: stat
-      type(impact_task) :: task
-      integer :: threads
-      stat = open_impact(p, p_stride, o, n, mass, mass_stride, velocity, velocity_stride, &
-         & flags, task, threads)
-      if (stat /= egw_ok) return
-      task%e => double_array(e, n)
-      task%w_load => double_array(w_load, n)
-      task%w_dissipated => double_array(w_dissipated, n)
-      task%max_overlap => double_array(max_overlap, n)
-      stat = run_points(task, int(n), flags, n_failed, threads)
+      stat = impact_points(p, p_stride, o, n, mass, mass_stride, velocity, velocity_stride, &
+         & flags, n_failed, [e, w_load, w_dissipated, max_overlap], .false., 0.0_dp)
    end function egw_restitution_array
 
    !> C: egw_time_step_array (include/egw.h).
@@ -309,16 +301,8 @@ contains
       integer(c_int), value, intent(in) :: p_stride, n, mass_stride, velocity_stride, flags
       real(c_double), value, intent(in) :: tolerance
       integer(c_int) :: stat
-      type(impact_task) :: task
-      integer :: threads
-      stat = open_impact(p, p_stride, o, n, mass, mass_stride, velocity, velocity_stride, &
-         & flags, task, threads)
-      if (stat /= egw_ok) return
-      task%want_time_step = .true.
-      task%tolerance = tolerance
-      task%duration => double_array(duration, n)
-      task%step => double_array(step, n)
-      stat = run_points(task, int(n), flags, n_failed, threads)
+      stat = impact_points(p, p_stride, o, n, mass, mass_stride, velocity, velocity_stride, &
+         & flags, n_failed, [duration, step, c_null_ptr, c_null_ptr], .true., tolerance)
    end function egw_time_step_array
 
    ! ------------------------------------------------------------ the points
@@ -644,13 +628,17 @@ contains
       stat = settle(error)
    end function open_common
 
-   !> The inputs of an impact array (restitution, time step) and its threads.
-   integer(c_int) function open_impact(p, p_stride, o, n, mass, mass_stride, velocity, &
-      & velocity_stride, flags, task, threads) result(stat)
-      type(c_ptr), intent(in) :: p, o, mass, velocity
+   !> An impact array (restitution, or with want_time_step the time step for tolerance):
+   !> its inputs checked, its outputs (e, w_load, w_dissipated, max_overlap; or duration,
+   !> step) taken, its points run over the threads.
+   integer(c_int) function impact_points(p, p_stride, o, n, mass, mass_stride, velocity, &
+      & velocity_stride, flags, n_failed, outputs, want_time_step, tolerance) result(stat)
+      type(c_ptr), intent(in) :: p, o, mass, velocity, n_failed, outputs(4)
       integer(c_int), intent(in) :: p_stride, n, mass_stride, velocity_stride, flags
-      type(impact_task), intent(inout) :: task
-      integer, intent(out) :: threads
+      logical, intent(in) :: want_time_step
+      real(dp), intent(in) :: tolerance
+      type(impact_task) :: task
+      integer :: threads
       threads = 0
       stat = open_common(n, flags, p, p_stride, task%params)
       if (stat == egw_ok) stat = open_input(mass, "mass", mass_stride, n, task%mass, &
@@ -658,7 +646,20 @@ contains
       if (stat == egw_ok) stat = open_input(velocity, "velocity", velocity_stride, n, &
          & task%velocity, task%velocity_stride)
       if (stat == egw_ok) stat = open_options(o, task%options, threads)
-   end function open_impact
+      if (stat /= egw_ok) return
+      task%want_time_step = want_time_step
+      if (want_time_step) then
+         task%tolerance = tolerance
+         task%duration => double_array(outputs(1), n)
+         task%step => double_array(outputs(2), n)
+      else
+         task%e => double_array(outputs(1), n)
+         task%w_load => double_array(outputs(2), n)
+         task%w_dissipated => double_array(outputs(3), n)
+         task%max_overlap => double_array(outputs(4), n)
+      end if
+      stat = run_points(task, int(n), flags, n_failed, threads)
+   end function impact_points
 
    !> Options from the nullable o; the points' thread count from its n_threads (0: OpenMP
    !> default; at most the processors: libgomp aborts when it cannot create a team), each
