@@ -11,6 +11,7 @@ module egw_all
    use egw_ellip
    use egw_asperity
    use egw_unloading
+   use egw_table_ends
    use egw_hysteresis
    use egw_hysteresis_format
    use egw_smooth_sphere

@@ -84,9 +84,9 @@ contains
       found = .false.
       if (len(path) > 0) then
          call read_table(path, table, ignored)
-         found = .not. allocated(ignored)
-         if (found) found = same_request(table%params, table%rel_tol, table%delta_max, &
-            & params, rel_tol, delta_max)
+         ! (an empty table after a failed read compares as unlike any request)
+         found = same_request(table%params, table%rel_tol, table%delta_max, params, &
+            & rel_tol, delta_max) .and. .not. allocated(ignored)
       end if
       if (present(hit)) hit = found
       if (found) return
@@ -144,9 +144,9 @@ contains
       found = .false.
       if (len(path) > 0) then
          call read_hysteresis(path, table, ignored)
-         found = .not. allocated(ignored)
-         if (found) found = same_request(table%params, table%rel_tol, table%delta_max, &
-            & params, rel_tol, delta_max)
+         ! (an empty table after a failed read compares as unlike any request)
+         found = same_request(table%params, table%rel_tol, table%delta_max, params, &
+            & rel_tol, delta_max) .and. .not. allocated(ignored)
       end if
       if (present(hit)) hit = found
       if (found) return

@@ -21,8 +21,9 @@ module egw_table_universal
    use egw_params, only: contact_params, validate_params, overlap_ratio_max, product4, &
       & force_unit, stiffness_unit, length_unit
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
+   use egw_table_ends, only: deep_force
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
-      & deep_force, below_cutoff, &
+      & below_cutoff, &
       & table_interval, table_prepare, table_eval, table_progress
    implicit none
    private
