@@ -20,7 +20,7 @@ module egw_io
    public :: write_file, write_stream, read_file, rename_file, remove_file, text_buffer, &
       & file_size_limit
    ! Fortran-unit variants (kept for callers that write through a unit; prefer write_file)
-   public :: open_temporary, commit_temporary, discard_temporary
+   public :: open_temporary, commit_temporary, discard_temporary, make_directories
 
    !> A file's text built line by line in memory (capacity doubles as it grows).
    type :: text_buffer
@@ -50,6 +50,12 @@ module egw_io
          character(kind=c_char), intent(in) :: path(*)
          integer(c_int) :: stat
       end function c_remove
+      function c_mkdir(path, mode) result(stat) bind(C, name="mkdir")
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: mode
+         integer(c_int) :: stat
+      end function c_mkdir
       function c_fopen(path, mode) result(fp) bind(C, name="fopen")
          import :: c_ptr, c_char
          character(kind=c_char), intent(in) :: path(*), mode(*)
@@ -283,6 +289,19 @@ contains
       integer(c_int) :: ignored
       ignored = c_remove(path//c_null_char)
    end subroutine remove_file
+
+   !> mkdir -p: every missing directory of path (0777 before the umask); true when path is
+   !> a directory at the end (whoever made it: concurrent callers are fine).
+   logical function make_directories(path) result(ok)
+      character(len=*), intent(in) :: path   !< the directory
+      integer :: k
+      integer(c_int) :: ignored
+      do k = 2, len(path)
+         if (path(k:k) == "/") ignored = c_mkdir(path(:k - 1)//c_null_char, int(o'777', c_int))
+      end do
+      ignored = c_mkdir(path//c_null_char, int(o'777', c_int))
+      inquire (file=path//"/.", exist=ok)
+   end function make_directories
 
    !> The soft file-size limit of this process in bytes (ulimit -f), -1 if unlimited.
    function file_size_limit() result(limit)

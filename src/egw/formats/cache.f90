@@ -7,11 +7,11 @@
 !> is EGW_CACHE_DIR, else $XDG_CACHE_HOME/egw, else $HOME/.cache/egw; EGW_CACHE_DIR=off
 !> turns it off. A cache that cannot be written costs nothing but the rebuild.
 module egw_cache
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
    use, intrinsic :: iso_fortran_env, only: int64
    use egw_kinds, only: dp
    use egw_status, only: egw_error
    use egw_version, only: egw_version_number
+   use egw_io, only: make_directories
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, build_table, table_progress
@@ -31,15 +31,6 @@ module egw_cache
    !> earlier build (same parameters) are not taken for the new one.
    integer, parameter, public :: cache_revision = 2
 
-   interface
-      !> mkdir(2) of the C library (0777 before the umask); -1 with errno EEXIST if it exists.
-      function c_mkdir(path, mode) result(stat) bind(C, name="mkdir")
-         import :: c_char, c_int
-         character(kind=c_char), intent(in) :: path(*)
-         integer(c_int), value :: mode
-         integer(c_int) :: stat
-      end function c_mkdir
-   end interface
 
 contains
 
@@ -247,22 +238,5 @@ contains
       call get_environment_variable(name, value, status=stat)
       if (stat /= 0) value = ""
    end subroutine environment
-
-   !> mkdir -p: every missing directory of path; true when it exists at the end.
-   logical function make_directories(path) result(ok)
-      character(len=*), intent(in) :: path
-      integer :: k, stat
-      do k = 2, len(path)
-         if (path(k:k) == "/") stat = c_mkdir(path(:k - 1)//c_null_char, int(o'777', c_int))
-      end do
-      stat = c_mkdir(path//c_null_char, int(o'777', c_int))
-      ok = is_directory(path)
-   end function make_directories
-
-   !> Whether a directory can be listed (opened as path/.): exists and is a directory.
-   logical function is_directory(path)
-      character(len=*), intent(in) :: path
-      inquire (file=path//"/.", exist=is_directory)
-   end function is_directory
 
 end module egw_cache
