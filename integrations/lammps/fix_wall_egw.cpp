@@ -4,13 +4,16 @@
  *       summit_radius v] [psi v] [K v] [plastic_ratio v] [overlap_max F] [temperature T]
  *       [<sub-models>]
  *       xplane|yplane|zplane lo hi | zcylinder radius [wiggle dim A period] [shear dim v]
+ *       [contacts]
+ *   fix ID group wall/egw/region MODEL TOL <the same keywords> region-ID [contacts]
  *
  * A wall contact is the contact of the particle's type (its pair_coeff I I in pair_style
  * egw) with the wall's own material and surface, combined as two types combine (E*, G*
- * from both bodies, sigma = sqrt(sigma_i^2 + sigma_wall^2), mu as in mixing), with R = R_i
- * (a flat wall is a sphere of infinite radius) and m* = m_i; the wall's sub-models (damping,
- * tangential, rolling, twisting) are the fix's own.  History per atom (one wall contact at
- * a time, as fix wall/gran), kept through exchange and restart. */
+ * from both bodies, sigma = sqrt(sigma_i^2 + sigma_wall^2), mu as in mixing), with m* = m_i
+ * and R = R_i rc/(R_i + rc) from the wall's radius of curvature rc at the contact (R_i for
+ * a flat wall, a sphere of infinite radius), as fix wall/gran; the wall's sub-models
+ * (damping, tangential, rolling, twisting, heat) are the fix's own.  History per atom (one
+ * contact per plane wall, one per region face), kept through exchange and restart. */
 #include "fix_wall_egw.h"
 
 #include "egw_contact.h"

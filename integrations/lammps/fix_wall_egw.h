@@ -1,6 +1,7 @@
-/* fix wall/egw: flat and cylindrical walls with egw's rough contact law (the wall's own
- * material and surface combined with the particle type's as two types combine) and pair
- * granular's sub-models; per-atom contact histories that migrate and go into restarts.
+/* fix wall/egw[/region]: flat, cylindrical and region walls (their curvature as in fix
+ * wall/gran) with egw's rough contact law (the wall's own material and surface combined
+ * with the particle type's as two types combine) and pair granular's sub-models; per-atom
+ * contact histories that migrate and go into restarts; fix wall/gran's 'contacts' array.
  * See integrations/lammps/README.md. */
 #ifndef EGW_LAMMPS_FIX_WALL_EGW_H
 #define EGW_LAMMPS_FIX_WALL_EGW_H
