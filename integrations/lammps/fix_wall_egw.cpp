@@ -319,6 +319,8 @@ void FixWallEGW::init()
     built_rlo.assign(n + 1, 0.0), built_rhi.assign(n + 1, 0.0);
     need_rlo.assign(n + 1, 0.0), need_rhi.assign(n + 1, 0.0);
   }
+  // a curved region with summit data: the R the atoms meet, before the first build
+  if (wallstyle == REGION) region_cover_radii(true);
   for (int t = 1; t <= n; t++)
     if (pair->type_coeff(t)) build_law(t);
   built_model = model;
@@ -329,7 +331,7 @@ void FixWallEGW::init()
 
 void FixWallEGW::setup(int vflag)
 {
-  if (wallstyle == REGION) region_cover_radii();
+  if (wallstyle == REGION) region_cover_radii(false);
   post_force(vflag);
 }
 
@@ -338,13 +340,19 @@ void FixWallEGW::setup(int vflag)
  * meet.  Collective: at set-up and at every reneighboring (all ranks at the same step)
  * each atom's region contacts within its reach + the neighbor skin (what it can touch
  * before the next reneighboring) are found, the ranges reduced over ranks, and a type's
- * tables rebuilt (5 % wider) when they do not cover its range. */
-void FixWallEGW::region_cover_radii()
+ * tables rebuilt (5 % wider) when they do not cover its range.  before_build (init(),
+ * the tables not built yet): the ranges only, for the first build. */
+void FixWallEGW::region_cover_radii(bool before_build)
 {
   int n = atom->ntypes;
   bool any = false;
-  for (int t = 1; t <= n; t++)
-    any = any || law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU;
+  for (int t = 1; t <= n; t++) {
+    if (before_build) {
+      const EgwCoeff *c = pair->type_coeff(t);
+      any = any || wall.mu_mode == 2 || (c && c->mu_mode == 2);
+    } else
+      any = any || law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU;
+  }
   if (!any) return;
   std::vector<double> lo(n + 1, HUGE_VAL), hi(n + 1, 0.0);
   double **x = atom->x, *radius = atom->radius;
@@ -363,6 +371,10 @@ void FixWallEGW::region_cover_radii()
   MPI_Allreduce(lo.data(), glo.data(), n + 1, MPI_DOUBLE, MPI_MIN, world);
   MPI_Allreduce(hi.data(), ghi.data(), n + 1, MPI_DOUBLE, MPI_MAX, world);
   for (int t = 1; t <= n; t++) {
+    if (before_build) {
+      if (ghi[t] > 0) need_rlo[t] = glo[t] / 1.05, need_rhi[t] = ghi[t] * 1.05;
+      continue;
+    }
     if (!(ghi[t] > 0) || !(law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU))
       continue;
     if (glo[t] >= built_rlo[t] && ghi[t] <= built_rhi[t]) continue;
@@ -487,7 +499,7 @@ void FixWallEGW::post_force_region()
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega_a = atom->omega;
   double **torque = atom->torque, *radius = atom->radius, *rmass = atom->rmass;
   int *mask = atom->mask, *type = atom->type, nlocal = atom->nlocal;
-  if (update->setupflag == 0 && neighbor->ago == 0) region_cover_radii();
+  if (update->setupflag == 0 && neighbor->ago == 0) region_cover_radii(false);
   if (region->dynamic_check()) region->prematch();
   bool moving = region->dynamic_check();
   if (moving) region->set_velocity();

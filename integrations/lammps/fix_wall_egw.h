@@ -63,7 +63,7 @@ class FixWallEGW : public Fix {
   // the radii R_eff (over the region's curvatures) the tables must cover (summit data)
   std::vector<double> need_rlo, need_rhi;
   double effective_radius(double radi, double rc) const;
-  void region_cover_radii();
+  void region_cover_radii(bool before_build);
   std::vector<EgwLaw> law;         // per particle type
   std::vector<double> built_rlo, built_rhi;
   int built_model;
