@@ -574,7 +574,7 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (10 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    """Bad fix wall/egw input (12 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
     never a crash or hang."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
@@ -588,6 +588,8 @@ def test_bad_wall():
         (f"wall/egw Foo 1e-4 {c} zplane 0 NULL", "MODEL"),
         (f"wall/egw E-GW 1e-4 {c} tangential mindlin NULL 1 zplane 0 NULL", "tangential"),
         (f"wall/egw E-GW 1e-4 {c} damping tsuji damping 2 zplane 0 NULL", "damping"),
+        (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL contacts 3", "'3'"),
+        (f"wall/egw/region E-GW 1e-4 {c} nowhere contacts", "nowhere"),
     ]
     bad = []
     for wall, key in cases:
