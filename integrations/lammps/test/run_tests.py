@@ -796,8 +796,8 @@ def test_wall_contacts_vs_wall_gran():
 # contacts (measured: first departures beyond 1e-9 at 10100, 3900, 3300 and beyond 1e-6
 # at 10400, 4400, 3800; the first floor contacts come at ~4300, ~3000 and from the start).
 GRANULAR_DECKS = [("flatwall", (4213, 1234, 999), 9000),
-                  ("box", (7351, 1234, 999, 2024, 31337), 3800),
-                  ("drum", (3371, 1234, 999), 3000)]
+                  ("box", (7351, 1234, 999, 2024, 31337, 4242, 777), 3800),
+                  ("drum", (3371, 1234, 999, 2024, 31337), 3000)]
 
 
 def deck_run(deck, np=1, **var):
@@ -834,11 +834,12 @@ def test_granular_decks():
     gravity turned, the drum rotated; fix balance) exercise, each with egw for particles
     AND walls (E-GW, sigma = 1e-16) and with granular:
     - every run ends (FINAL), no ERROR, no NaN;
-    - the kinetic energy averaged over the run, then over the pour seeds (3; 5 for the
-      box, whose tumbles spread most), within 2 % of
+    - the kinetic energy averaged over the run, then over the pour seeds (flat wall 3,
+      drum 5, box 7: the box's tumbles spread most), within 2 % of
       granular's (a single pile or tumble is chaotic: round-off-sized differences, here
-      egw's table at TOL 1e-4 against Hertz, grow, and single runs spread by ~4 % between
-      seeds; the seed mean is the statistic);
+      egw's table at TOL 1e-4 against Hertz, grow, and single runs spread by up to 3 %
+      between seeds, the standard error of the means ~1 %; the seed mean is the
+      statistic);
     - 1 and 2 ranks: the KE rows agree to 1e-6 through a stated step after the first wall
       and pair contacts (MPI reorders force sums; that round-off, 1e-16 at first, grows
       chaotically, so exact agreement is not expected and later rows do differ; a contact
