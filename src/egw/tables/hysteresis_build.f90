@@ -438,16 +438,26 @@ contains
       !> delta = m - s span, P_ext the loading table with its tail below the cut-off (below
       !> the cut-off too: the curve is a neighbour of others in the m direction), c the
       !> solve's force at m over the table's; g = 0 at the turning point, so that the force
-      !> is continuous there
+      !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
       subroutine gap_at(x, g, dg)
          real(dp), intent(in) :: x
          real(dp), intent(out) :: g, dg
-         real(dp) :: p_ext, k_ext
+         real(dp) :: p_ext, k_ext, x_solve
          g = 0.0_dp
          dg = 0.0_dp
-         call solve_unload(hist, m - x*span, res, error)
+         ! At s = 0 solve_unload returns the loading solve, whose stiffness is the loading
+         ! branch's; unloading leaves the turning point stiffer (mu 4, psi 2, m = sigma:
+         ! 2.740 against 2.539), so a slope of ~0 there made the first interval's cubic
+         ! wrong and the bisection halve it down to s ~ 6e-5 (10 nodes, 20 solves a
+         ! curve). The slope at s = 1e-4 instead: g is smooth there (g/s linear in s from
+         ! 0.5 down to 1e-6 sigma), the difference is ~1e-4 g'' and the checks below see
+         ! what remains. (Nearer than ~1e-7 sigma to m an unloading solve's stiffness is
+         ! off: d - d_max is then below the error of the interpolated d_max field.)
+         x_solve = x
+         if (x == 0.0_dp) x_solve = 1.0e-4_dp
+         call solve_unload(hist, m - x_solve*span, res, error)
          if (allocated(error)) return
-         call table_eval(table%loading, m - x*span, p_ext, k_ext)
+         call table_eval(table%loading, m - x_solve*span, p_ext, k_ext)
          if (x > 0.0_dp) g = (c_turn*p_ext - res%force)/scale
          dg = (res%stiffness - c_turn*k_ext)*span/scale
          ! far below the cut-off the forces underflow: no subnormal numbers in the table
