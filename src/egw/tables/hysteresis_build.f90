@@ -6,6 +6,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_params, only: validate_params, model_epgw
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload
    use egw_table, only: build_table
+   use egw_tolerance_probe, only: hysteresis_solve_tol
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -270,15 +271,15 @@ contains
       end subroutine one_length
    end subroutine unloading_lengths
 
-   !> The options of one curve's solves: serial (the parallelism is over the curves), and
-   !> a decade finer than the table's tolerance rel_tol.
+   !> The options of one curve's solves: serial (the parallelism is over the curves), at
+   !> hysteresis_solve_tol (a decade finer than the table's tolerance rel_tol).
    pure function curve_options(options, rel_tol) result(serial)
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: rel_tol
       type(solver_options) :: serial
       serial = options
       serial%n_threads = 1
-      serial%rel_tol = min(options%rel_tol, rel_tol/10.0_dp)
+      serial%rel_tol = hysteresis_solve_tol(options, rel_tol)
    end function curve_options
 
    !> The first failure of a parallel loop over curves (stats(j) /= 0, with its message) as
