@@ -58,6 +58,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   tol = 1e-4;
   rmin_user = rmax_user = 0.0;
   overlap_max = 1.0;    // granular decks reach 0.57 R in a pour
+  tail_energy = 0.0;    // contacts reach the tables' cut-off
   fix_history = nullptr;
   freeze_group_bit = 0;
   tables_ready = false;
@@ -240,6 +241,16 @@ void PairEGW::init_style()
       bool covered = built_rhi[i][j] > 0 &&
           (!needs_r || (R_lo >= built_rlo[i][j] && R_hi <= built_rhi[i][j]));
       if (!covered) build_tables(i, j, R_lo, R_hi);
+      // the contacts' reach from the energy the tail holds (cheap: every run)
+      double tail_old = L.tail;
+      L.set_reach(tail_energy, tol, built_rhi[i][j]);
+      if (comm->me == 0 && L.kind != EgwLaw::HERTZ && (!covered || L.tail != tail_old))
+        utils::logmesg(lmp, "pair egw: types {} {}: contacts reach delta_t = {:.6g} ({:.4g} "
+                            "sigma; the tables' cut-off {:.4g} sigma), the tail's loading work "
+                            "below it {:.3g}{}\n", i, j, -L.tail, L.xt, L.xc, L.tail_work,
+                       tail_energy > 0
+                           ? fmt::format(" (<= TOL x tail_energy = {:.3g})", tol * tail_energy)
+                           : std::string(" (tail_energy 0: the tables' cut-off)"));
     }
   tables_ready = true;
 }
@@ -331,8 +342,9 @@ void PairEGW::compute(int eflag, int vflag)
       double reach = radi + radj + L.tail;
       double *hist = &allhist[nhist * jj];
       if (rsq >= reach * reach) {
+        // a pair beyond the reach has no history: a contact that forms starts afresh
+        // (EgwHistory::start sets every value), so nothing is cleared here
         touch[jj] = 0;
-        for (int k = 0; k < nhist; k++) hist[k] = 0.0;
         continue;
       }
       double r = std::sqrt(rsq), rinv = 1.0 / r;

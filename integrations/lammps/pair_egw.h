@@ -51,6 +51,7 @@ class PairEGW : public Pair {
   bool heat_any;        // some type pair has a heat model
   double tol;           // table tolerance
   double rmin_user, rmax_user, overlap_max;
+  double tail_energy;   // reference energy of the tail's reach (0: the tables' cut-off)
   class Fix *fix_history;
   int freeze_group_bit;
   bool tables_ready;
