@@ -225,9 +225,9 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
   if (kind == UNIVERSAL)
     extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
                          "(universal table built to TOL/2)", slices.size(), interp_error);
-  return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, tail = {:.6g} (the tables' cut-off: "
-                     "force 0 below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
-                     tail, reach, extra) +
+  return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, cut-off {:.6g} (the tables' first node; "
+                     "the tail law below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
+                     xc * sigma, reach, extra) +
       (capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it are not reliable)",
                             HYST_X_MAX)
               : std::string());

@@ -252,6 +252,14 @@ void PairEGW::init_style()
                            ? fmt::format(" (<= TOL x tail_energy = {:.3g})", tol * tail_energy)
                            : std::string(" (tail_energy 0: the tables' cut-off)"));
     }
+  law_of.assign((n + 1) * (n + 1), nullptr);
+  tail_of.assign((n + 1) * (n + 1), 0.0);
+  for (int i = 1; i <= n; i++)
+    for (int j = 1; j <= n; j++) {
+      EgwLaw &L = law[std::min(i, j)][std::max(i, j)];
+      law_of[i * (n + 1) + j] = &L;
+      tail_of[i * (n + 1) + j] = L.tail;
+    }
   tables_ready = true;
 }
 
@@ -323,9 +331,11 @@ void PairEGW::compute(int eflag, int vflag)
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   double ncontact = 0.0;    // a pair with a ghost under newton off is counted by both ranks
 
+  const int nt1 = atom->ntypes + 1;
   for (int ii = 0; ii < inum; ii++) {
     int i = ilist[ii];
-    int itype = type[i];
+    const int irow = type[i] * nt1;
+    const double *tail_i = &tail_of[irow];
     double xi = x[i][0], yi = x[i][1], zi = x[i][2], radi = radius[i];
     int *touch = firsttouch[i];
     double *allhist = firsthist[i];
@@ -334,19 +344,18 @@ void PairEGW::compute(int eflag, int vflag)
 
     for (int jj = 0; jj < jnum; jj++) {
       int j = jlist[jj] & NEIGHMASK;
-      int jtype = type[j];
-      EgwLaw &L = itype <= jtype ? law[itype][jtype] : law[jtype][itype];
       double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
       double rsq = dx * dx + dy * dy + dz * dz;
       double radj = radius[j];
-      double reach = radi + radj + L.tail;
-      double *hist = &allhist[nhist * jj];
+      double reach = radi + radj + tail_i[type[j]];
       if (rsq >= reach * reach) {
         // a pair beyond the reach has no history: a contact that forms starts afresh
         // (EgwHistory::start sets every value), so nothing is cleared here
         touch[jj] = 0;
         continue;
       }
+      EgwLaw &L = *law_of[irow + type[j]];
+      double *hist = &allhist[nhist * jj];
       double r = std::sqrt(rsq), rinv = 1.0 / r;
       double nx = dx * rinv, ny = dy * rinv, nz = dz * rinv;
       double delta = radi + radj - r;
