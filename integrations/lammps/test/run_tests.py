@@ -894,7 +894,7 @@ def test_restart_keeps_history():
 
 
 def test_bad_coeff():
-    """Bad pair_coeff / pair_style input (35 cases, granular's sub-model syntax among them): a
+    """Bad pair_coeff / pair_style input (38 cases, granular's sub-model syntax among them): a
     LAMMPS ERROR naming the keyword, a non-zero exit, never a crash."""
     base = f"E {E} nu {NU}"
     cases = [
@@ -916,6 +916,9 @@ def test_bad_coeff():
         ("egw E-GW 1e-4 overlap_max -1", f"{base} sigma 1e-6 mu 4", "overlap_max"),
         ("egw E-GW 1e-4 rmin", f"{base} sigma 1e-6 mu 4", "rmin"),
         ("egw E-GW 1e-4 speed 3", f"{base} sigma 1e-6 mu 4", "speed"),
+        ("egw E-GW 1e-4 tail_energy -1e-12", f"{base} sigma 1e-6 mu 4", "tail_energy"),
+        ("egw E-GW 1e-4 tail_energy inf", f"{base} sigma 1e-6 mu 4", "tail_energy"),
+        ("egw E-GW 1e-4 tail_energy", f"{base} sigma 1e-6 mu 4", "tail_energy"),
         # granular's sub-models: names, counts, ranges; granular's own normal model
         ("egw E-GW 1e-4", f"hertz/material {E} 0.8 {NU}", "hertz/material"),
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping foo", "damping"),
