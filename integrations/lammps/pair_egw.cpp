@@ -1,6 +1,6 @@
 /* pair_style egw: egw's rough-sphere contact law as a LAMMPS granular pair style.
  *
- *   pair_style egw MODEL TOL [rmin R] [rmax R] [overlap_max F]
+ *   pair_style egw MODEL TOL [rmin R] [rmax R] [overlap_max F] [tail_energy W]
  *   pair_coeff I J E v nu v sigma v [mu v | summit_density v summit_radius v] [psi v]
  *              [K v] [plastic_ratio v] [damping e] [friction mu_t]
  *
