@@ -6,6 +6,7 @@
 #include "egw.h"
 #include "egw_history.h"
 #include "egw_submodels.h"
+#include "egw_tables.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,12 +48,18 @@ struct EgwLaw {
   double reach = 0;                // the tables' largest overlap [length] (inf: Hertz)
   bool capped = false;             // reach capped at HYST_X_MAX sigma (hysteresis)
   static constexpr double HYST_X_MAX = 140.0;
+  // EP-GW with summit data: the ln-mu lattice's estimate is multiplied by LNMU_SAFETY
+  // before it is compared with TOL; at most LNMU_MAX_LEVEL refinements (h = ln 2 / 2^m)
+  static constexpr double LNMU_SAFETY = 1.25;
+  static constexpr int LNMU_MAX_LEVEL = 6;
   double s05 = 0, s15 = 0, s25 = 0, inv_sigma = 0;
   double mu_lo = 0, mu_hi = 0;     // mu range of the tables (summit data)
   double interp_error = 0;         // measured ln-mu interpolation error (summit data)
   egw_table table = nullptr;
   egw_universal universal = nullptr;
-  std::vector<egw_hysteresis> hyst;
+  std::vector<egw_hysteresis> hyst;    // evaluated; owned by hyst_held (shared: egw_tables.h)
+  std::vector<EgwTables::Hyst> hyst_held;
+  int hyst_built = 0;              // hysteresis tables this law's build made (others shared)
   std::vector<egw_table> slices;   // 1-D slices of universal at nodes in ln mu (summit data)
   double lnmu0 = 0, inv_h = 0;     // first node, 1 / node spacing
   std::vector<double> lnmu;        // nodes of hyst in ln mu (summit data)
@@ -67,9 +74,11 @@ struct EgwLaw {
   /* the evaluation for egw model `model` from the coefficients (kind, scales, prm) */
   void setup(int model);
   /* the tables for equivalent radii in [R_lo, R_hi] up to overlap_max R_hi (n_threads 0:
-   * egw's default); an egw call that fails calls fail() (which reports egw_last_error) */
-  void build(double R_lo, double R_hi, double tol, double overlap_max, int n_threads,
-             const std::function<void()> &fail);
+   * egw's default). Collective over comm (hysteresis tables are shared and split across
+   * the ranks, egw_tables.h). An egw call that fails calls fail(egw's message) on every
+   * rank. */
+  void build(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
+             int n_threads, const std::function<void(const std::string &)> &fail);
   /* what was built, for the log */
   std::string describe(double R_lo, double R_hi) const;
   /* the contact's mu at R (summit data) */

@@ -80,6 +80,7 @@ PairEGW::~PairEGW()
     modify->delete_fix("NEIGH_HISTORY_EGW_DUMMY");
   for (auto &row : law)
     for (auto &l : row) l.release();
+  EgwTables::purge();
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -150,7 +151,8 @@ void PairEGW::build_tables(int i, int j, double R_lo, double R_hi)
 {
   EgwLaw &L = law[i][j];
   std::string what = fmt::format("tables of types {} {}", i, j);
-  L.build(R_lo, R_hi, tol, overlap_max, comm->nprocs > 1 ? 1 : 0, [&]() { egw_fail(what); });
+  L.build(R_lo, R_hi, tol, overlap_max, world, comm->nprocs > 1 ? 1 : 0,
+          [&](const std::string &msg) { error->all(FLERR, "Pair egw: {}: {}", what, msg); });
   built_rlo[i][j] = R_lo, built_rhi[i][j] = R_hi;
   if (comm->me == 0)
     utils::logmesg(lmp, "pair egw: types {} {}: {}\n", i, j, L.describe(R_lo, R_hi));
@@ -219,6 +221,7 @@ void PairEGW::init_style()
     built_model = model, built_tol = tol, built_overlap = overlap_max;
   }
   type_radii();
+  EgwTables::purge();    // tables no law holds since the last run
   int n = atom->ntypes;
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) {
