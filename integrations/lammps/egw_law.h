@@ -85,10 +85,19 @@ struct EgwLaw {
   double mu_at(double R) const { return mu * std::sqrt(R); }
   inline int mu_position(double R, double *hist, double &t) const;
   /* elastic normal force F, stiffness S = dF/ddelta and (want_energy) the energy U at
-   * overlap delta of a contact of radius R with history hist; egw's status (EGW_OK,
+   * overlap delta of a contact of radius R with history hist; EP-GW's two hysteresis
+   * states in cache (EgwHistory::HYST_CACHE doubles: filled again from hist's delta_max
+   * when they do not hold it, e.g. new, zeroed or another table's); egw's status (EGW_OK,
    * EGW_OUT_OF_RANGE beyond the tables, ...) or MU_OUTSIDE */
-  inline int eval(double delta, double R, double *hist, double &F, double &S, double &U,
-                  int want_energy) const;
+  inline int eval(double delta, double R, double *hist, double *cache, double &F, double &S,
+                  double &U, int want_energy, bool states_are_history = false) const;
+  /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
+   * where they are the history (all zeros: a new contact) */
+  int eval(double delta, double R, double *hist, double &F, double &S, double &U,
+           int want_energy) const
+  {
+    return eval(delta, R, hist, hist + EgwHistory::HYST_A, F, S, U, want_energy, true);
+  }
 };
 
 extern const char *egw_law_kind_name[];
@@ -111,8 +120,29 @@ inline int EgwLaw::mu_position(double R, double *hist, double &t) const
   return EGW_OK;
 }
 
-inline int EgwLaw::eval(double delta, double R, double *hist, double &F, double &S,
-                        double &U, int want_energy) const
+/* egw_hysteresis_eval_state at x with the state s. refill: s is a cache that must hold the
+ * contact's history xm (delta_max/sigma, -inf for a new contact); one that does not
+ * (dropped, or filled for another table, which egw reads as a new contact) is filled again
+ * by loading a new contact to xm. Otherwise s is the history itself. */
+inline int egw_law_hyst_eval(egw_hysteresis h, double x, double xm, double *s, double &p,
+                             double &dp, bool refill)
+{
+  if (!refill) return egw_hysteresis_eval_state(h, x, s, &p, &dp);
+  if (!(s[0] == xm)) {
+    egw_hysteresis_state_init(s);
+    if (xm > -HUGE_VAL) egw_hysteresis_eval_state(h, xm, s, &p, &dp);
+  }
+  int st = egw_hysteresis_eval_state(h, x, s, &p, &dp);
+  if (s[0] < xm) {    // egw did not know the state (another table's): its history was reset
+    egw_hysteresis_state_init(s);
+    egw_hysteresis_eval_state(h, xm, s, &p, &dp);
+    st = egw_hysteresis_eval_state(h, x, s, &p, &dp);
+  }
+  return st;
+}
+
+inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, double &F,
+                        double &S, double &U, int want_energy, bool states_are_history) const
 {
   using namespace EgwHistory;
   double *dmax = &hist[DELTA_MAX];
@@ -157,14 +187,14 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double &F, double 
       break;
     }
     case HYST: {
-      // the state (table units) with its turning point's cache lives in hist[HYST_A..]
+      // the state (table units) with its turning point's cache lives in cache[0..23]
       double x = delta * inv_sigma, p, dp;
-      st = egw_hysteresis_eval_state(hyst[0], x, &hist[HYST_A], &p, &dp);
-      *dmax = hist[HYST_A] * sigma;
+      st = egw_law_hyst_eval(hyst[0], x, *dmax, cache, p, dp, !states_are_history);
+      *dmax = cache[0];
       // the energy the contact returns if it separates now (the rest of its loading work
       // is dissipated): kinetic + this falls while contacts load, stays while they unload
       double u = 0.0;
-      if (want_energy) egw_hysteresis_energy(hyst[0], x, hist[HYST_A], &u);
+      if (want_energy) egw_hysteresis_energy(hyst[0], x, cache[0], &u);
       F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
       break;
     }
@@ -176,14 +206,15 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double &F, double 
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
       double p0, p1, d0, d1;
-      st = egw_hysteresis_eval_state(hyst[k], x, &hist[HYST_A], &p0, &d0);
-      int st2 = egw_hysteresis_eval_state(hyst[k + 1], x, &hist[HYST_B], &p1, &d1);
+      double *sa = cache, *sb = cache + EGW_HYSTERESIS_STATE_SIZE;
+      st = egw_law_hyst_eval(hyst[k], x, *dmax, sa, p0, d0, !states_are_history);
+      int st2 = egw_law_hyst_eval(hyst[k + 1], x, *dmax, sb, p1, d1, !states_are_history);
       if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
-      *dmax = hist[HYST_A] * sigma;
+      *dmax = sa[0];
       double u0 = 0.0, u1 = 0.0;
       if (want_energy) {
-        egw_hysteresis_energy(hyst[k], x, hist[HYST_A], &u0);
-        egw_hysteresis_energy(hyst[k + 1], x, hist[HYST_B], &u1);
+        egw_hysteresis_energy(hyst[k], x, sa[0], &u0);
+        egw_hysteresis_energy(hyst[k + 1], x, sb[0], &u1);
       }
       F = sr * s15 * (p0 + w * (p1 - p0));
       S = sr * s05 * (d0 + w * (d1 - d0));

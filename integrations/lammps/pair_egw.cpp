@@ -180,7 +180,7 @@ void PairEGW::init_style()
         extra = extra || pcoeff[i][j].sub.needs_extra_history();
         heat_any = heat_any || pcoeff[i][j].sub.heat != EgwSubmodels::HEAT_NONE;
       }
-  int core = model == EGW_MODEL_EPGW ? NHIST_EPGW : NHIST_BASE;
+  int core = NHIST_BASE;    // EP-GW's hysteresis states: beside the list (hyst_cache)
   hist_sub = extra ? core : -1;
   int want = core + (extra ? EgwSubmodels::NHIST_SUB : 0);
   if (heat_any && (!atom->temperature_flag || !atom->heatflow_flag))
@@ -269,10 +269,10 @@ double PairEGW::init_one(int i, int j)
 
 /* the elastic normal force of a contact from its law; out-of-range overlaps warn once,
  * a mu outside the tables or a failed evaluation stop the run */
-inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, double &F,
-                            double &S, double &U, int want_energy)
+inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, double *cache,
+                            double &F, double &S, double &U, int want_energy)
 {
-  int st = L.eval(delta, R, hist, F, S, U, want_energy);
+  int st = L.eval(delta, R, hist, cache, F, S, U, want_energy);
   if (st == EGW_OK) return;
   if (st == EgwLaw::MU_OUTSIDE)
     error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
@@ -313,7 +313,9 @@ void PairEGW::compute(int eflag, int vflag)
 
   int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
-  double ncontact = 0.0;    // a pair with a ghost under newton off is counted by both ranks
+  double ncontact = 0.0;
+  const bool cached = model == EGW_MODEL_EPGW;    // EP-GW: hysteresis states per list entry
+  if (cached) hyst_cache_rows();    // a pair with a ghost under newton off is counted by both ranks
 
   for (int ii = 0; ii < inum; ii++) {
     int i = ilist[ii];
@@ -347,7 +349,8 @@ void PairEGW::compute(int eflag, int vflag)
         EgwHistory::start(hist, nhist);
       }
       double Fn, S, U;
-      normal(L, delta, R, hist, Fn, S, U, eflag);
+      double *cache = cached ? &hyst_cache[(hyst_cache_first[ii] + jj) * HYST_CACHE] : nullptr;
+      normal(L, delta, R, hist, cache, Fn, S, U, eflag);
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
       double mi = rmass[i], mj = rmass[j];
@@ -443,7 +446,8 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
     }
   }
   double Fn, S, U;
-  normal(L, delta, R, hist, Fn, S, U, 1);
+  double cache[HYST_CACHE] = {0.0};    // filled from the history's delta_max
+  normal(L, delta, R, hist, cache, Fn, S, U, 1);
   double dx[3] = {0.0, 0.0, r}, n[3] = {0.0, 0.0, 1.0}, vr[3] = {0, 0, 0};
   double wi[3] = {0, 0, 0}, wj[3] = {0, 0, 0}, meff = 1.0, Ti = 0, Tj = 0;
   if (!writing) {
@@ -471,14 +475,37 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   svector[8] = c.Mtw;
   for (int d = 0; d < 3; d++) svector[9 + d] = dx[d];
   svector[12] = delta;
-  svector[13] = hist[EgwHistory::DELTA_MAX];
+  bool hyst = L.kind == EgwLaw::HYST || L.kind == EgwLaw::HYST_MU;
+  svector[13] = hist[EgwHistory::DELTA_MAX] * (hyst ? L.sigma : 1.0);    // EP-GW: in sigma
   svector[14] = S;
   svector[15] = Fn;
   svector[16] = c.Fdamp;
   return U;
 }
 
+/* EP-GW: one pair of hysteresis states per entry of the neighbor list, rebuilt with the
+ * list (a contact's states are then filled again from its delta_max: egw_law.h) */
+void PairEGW::hyst_cache_rows()
+{
+  if (neighbor->ncalls == hyst_cache_calls && (int) hyst_cache_first.size() == list->inum + 1)
+    return;
+  hyst_cache_calls = neighbor->ncalls;
+  int inum = list->inum;
+  hyst_cache_first.resize(inum + 1);
+  size_t n = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    hyst_cache_first[ii] = n;
+    n += list->numneigh[list->ilist[ii]];
+  }
+  hyst_cache_first[inum] = n;
+  hyst_cache.resize(n * HYST_CACHE);
+  // mark every state as not holding its contact's history (NaN never equals delta_max)
+  for (size_t k = 0; k < n; k++)
+    hyst_cache[k * HYST_CACHE] = hyst_cache[k * HYST_CACHE + EGW_HYSTERESIS_STATE_SIZE] = NAN;
+}
+
 double PairEGW::memory_usage()
 {
-  return 0.0;
+  return (double) hyst_cache.capacity() * sizeof(double) +
+      (double) hyst_cache_first.capacity() * sizeof(size_t);
 }

@@ -73,8 +73,14 @@ class PairEGW : public Pair {
   void build_tables(int, int, double, double);
   void type_radii();
   void egw_fail(const std::string &what);
-  inline void normal(EgwLaw &, double delta, double R, double *hist, double &F, double &S,
-                     double &U, int want_energy);
+  inline void normal(EgwLaw &, double delta, double R, double *hist, double *cache, double &F,
+                     double &S, double &U, int want_energy);
+  // EP-GW: two hysteresis states per neighbor-list entry (entry jj of ilist[ii] at
+  // hyst_cache_first[ii] + jj), rebuilt with the list (egw_history.h)
+  std::vector<double> hyst_cache;
+  std::vector<size_t> hyst_cache_first;
+  bigint hyst_cache_calls = -1;
+  void hyst_cache_rows();
 };
 
 }    // namespace LAMMPS_NS
