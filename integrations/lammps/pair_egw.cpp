@@ -32,7 +32,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <unordered_map>
 
 using namespace LAMMPS_NS;
 using namespace EgwHistory;
@@ -349,7 +351,12 @@ void PairEGW::compute(int eflag, int vflag)
         EgwHistory::start(hist, nhist);
       }
       double Fn, S, U;
-      double *cache = cached ? &hyst_cache[(hyst_cache_first[ii] + jj) * HYST_CACHE] : nullptr;
+      double *cache = nullptr;
+      if (cached) {
+        size_t e = hyst_cache_first[ii] + jj;
+        cache = hyst_slot[e] >= 0 ? &hyst_cache[hyst_slot[e] * HYST_CACHE]
+                                  : hyst_block(e, atom->tag[i], atom->tag[j]);
+      }
       normal(L, delta, R, hist, cache, Fn, S, U, eflag);
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
@@ -483,14 +490,36 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   return U;
 }
 
-/* EP-GW: one pair of hysteresis states per entry of the neighbor list, rebuilt with the
- * list (a contact's states are then filled again from its delta_max: egw_law.h) */
+/* EP-GW: a pair of hysteresis states per contact (a block), found from its neighbor-list
+ * entry (hyst_slot, -1: none yet); laid out anew when the list is rebuilt. A contact's
+ * block moves with it to its new entry (found by the two atoms' IDs, either order: the
+ * states are the same for both atoms); a new block is marked empty (a NaN never equals a
+ * delta_max) and filled from the history when used (egw_law.h). Moving a block costs a
+ * hash lookup; filling one about seven evaluations, and the pour reneighbors every ~8
+ * steps. */
 void PairEGW::hyst_cache_rows()
 {
   if (neighbor->ncalls == hyst_cache_calls && (int) hyst_cache_first.size() == list->inum + 1)
     return;
   hyst_cache_calls = neighbor->ncalls;
+  auto key = [](tagint a, tagint b) {
+    uint64_t lo = (uint64_t) std::min(a, b), hi = (uint64_t) std::max(a, b);
+    return (lo << 32) ^ hi;    // a collision (64-bit IDs) only costs a refill: egw_law.h
+  };
+  // the filled blocks of the old layout, by the pair's IDs
+  std::unordered_map<uint64_t, size_t> old;
+  size_t nold = hyst_cache_tags.size() / 2;
+  old.reserve(nold);
+  for (size_t b = 0; b < nold; b++)
+    if (hyst_cache[b * HYST_CACHE] == hyst_cache[b * HYST_CACHE])    // not NaN: filled
+      old[key(hyst_cache_tags[2 * b], hyst_cache_tags[2 * b + 1])] = b;
+  hyst_cache_prev.swap(hyst_cache);
+  hyst_cache.clear();
+  std::vector<tagint> prev_tags;
+  prev_tags.swap(hyst_cache_tags);
   int inum = list->inum;
+  tagint *tag = atom->tag;
+  auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
   hyst_cache_first.resize(inum + 1);
   size_t n = 0;
   for (int ii = 0; ii < inum; ii++) {
@@ -498,14 +527,39 @@ void PairEGW::hyst_cache_rows()
     n += list->numneigh[list->ilist[ii]];
   }
   hyst_cache_first[inum] = n;
-  hyst_cache.resize(n * HYST_CACHE);
-  // mark every state as not holding its contact's history (NaN never equals delta_max)
-  for (size_t k = 0; k < n; k++)
-    hyst_cache[k * HYST_CACHE] = hyst_cache[k * HYST_CACHE + EGW_HYSTERESIS_STATE_SIZE] = NAN;
+  hyst_slot.assign(n, -1);
+  if (old.empty()) return;
+  for (int ii = 0; ii < inum; ii++) {
+    int i = list->ilist[ii];
+    int *jlist = list->firstneigh[i];
+    int *touch = view->firstflag[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      if (!touch[jj]) continue;
+      auto it = old.find(key(tag[i], tag[jlist[jj] & NEIGHMASK]));
+      if (it == old.end()) continue;
+      double *c = hyst_block(hyst_cache_first[ii] + jj, tag[i], tag[jlist[jj] & NEIGHMASK]);
+      std::copy(&hyst_cache_prev[it->second * HYST_CACHE],
+                &hyst_cache_prev[(it->second + 1) * HYST_CACHE], c);
+    }
+  }
+}
+
+/* a new, empty block for list entry e (atoms with IDs ti, tj) */
+double *PairEGW::hyst_block(size_t e, tagint ti, tagint tj)
+{
+  size_t b = hyst_cache_tags.size() / 2;
+  hyst_slot[e] = (int) b;
+  hyst_cache.resize((b + 1) * HYST_CACHE);
+  hyst_cache_tags.push_back(ti), hyst_cache_tags.push_back(tj);
+  double *c = &hyst_cache[b * HYST_CACHE];
+  c[0] = c[EGW_HYSTERESIS_STATE_SIZE] = NAN;
+  return c;
 }
 
 double PairEGW::memory_usage()
 {
-  return (double) hyst_cache.capacity() * sizeof(double) +
-      (double) hyst_cache_first.capacity() * sizeof(size_t);
+  return (double) (hyst_cache.capacity() + hyst_cache_prev.capacity()) * sizeof(double) +
+      (double) hyst_cache_first.capacity() * sizeof(size_t) +
+      (double) hyst_slot.capacity() * sizeof(int) +
+      (double) hyst_cache_tags.capacity() * sizeof(tagint);
 }
