@@ -61,12 +61,12 @@ void EgwLaw::setup(int model)
 
 void EgwLaw::release()
 {
-  egw_table_free(&table);
+  table = nullptr;    // table and slices: freed with their last holder (slices_held)
   egw_universal_free(&universal);
   hyst.clear();    // shared tables: freed with their last holder
   hyst_held.clear();
-  for (auto &t : slices) egw_table_free(&t);
   slices.clear();
+  slices_held.reset();
   lnmu.clear();
 }
 
@@ -88,13 +88,33 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   // instead of 0.948 for a reach of 280 sigma, right to 1e-4 at 140): capped there
   capped = (kind == HYST || kind == HYST_MU) && xmax > HYST_X_MAX;
   if (capped) xmax = HYST_X_MAX;
-  if (kind == HERTZ) {
+  // GW/E-GW: a law with the same normalised tables as one built before (another type pair
+  // or wall fix) shares them
+  EgwTables::SliceKey skey;
+  skey.kind = kind, skey.model = prm.model, skey.psi = psi, skey.K = K, skey.rho = rho;
+  skey.xmax = xmax, skey.tol = tol;
+  if (kind == TABLE) skey.mu = mu;
+  if (kind == UNIVERSAL)
+    skey.mu_lo = mu * std::sqrt(R_lo) / 1.02, skey.mu_hi = mu * std::sqrt(R_hi) * 1.02;
+  EgwTables::Slices shared;
+  if (kind == TABLE || kind == UNIVERSAL) shared = EgwTables::find_slices(skey);
+  if (shared) {
+    slices_held = shared;
+    xc = shared->xc, lnmu0 = shared->lnmu0, inv_h = shared->inv_h;
+    interp_error = shared->interp_error;
+    if (kind == TABLE) table = shared->tables[0];
+    else slices = shared->tables, mu_lo = skey.mu_lo, mu_hi = skey.mu_hi;
+  } else if (kind == HERTZ) {
     xc = 0, tail = 0;
   } else if (kind == TABLE) {
     if (egw_table_build(&prm, &o, 0.0, xmax, tol, &table)) fail();
     egw_table_info in;
     egw_table_get_info(table, &in);
     xc = in.cutoff;
+    slices_held = std::make_shared<EgwTables::SliceSet>();
+    slices_held->tables = {table};
+    slices_held->xc = xc;
+    EgwTables::keep_slices(skey, slices_held);
   } else if (kind == UNIVERSAL) {
     // the universal table at TOL/2, cut into 1-D slices (no solves) at nodes in ln mu; a
     // contact interpolates its two neighbouring slices linearly in ln mu, with the nodes
@@ -145,6 +165,11 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
       if (err <= 0.5 * tol || n > 1000) break;
     }
     egw_universal_free(&universal);
+    slices_held = std::make_shared<EgwTables::SliceSet>();
+    slices_held->tables = slices;
+    slices_held->xc = xc, slices_held->lnmu0 = lnmu0, slices_held->inv_h = inv_h;
+    slices_held->interp_error = interp_error;
+    EgwTables::keep_slices(skey, slices_held);
   } else {
     // EP-GW: one hysteresis table (mu given) or tables at nodes in ln mu (summit data),
     // normalised and shared through the registry (egw_tables.h): every type pair and wall

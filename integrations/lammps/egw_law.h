@@ -61,6 +61,7 @@ struct EgwLaw {
   std::vector<EgwTables::Hyst> hyst_held;
   int hyst_built = 0;              // hysteresis tables this law's build made (others shared)
   std::vector<egw_table> slices;   // 1-D slices of universal at nodes in ln mu (summit data)
+  EgwTables::Slices slices_held;   // owns table or slices (shared: egw_tables.h)
   double lnmu0 = 0, inv_h = 0;     // first node, 1 / node spacing
   std::vector<double> lnmu;        // nodes of hyst in ln mu (summit data)
   egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)

@@ -22,12 +22,24 @@ bool HystKey::operator<(const HystKey &o) const
       std::tie(o.model, o.mu, o.psi, o.K, o.rho, o.xmax, o.tol);
 }
 
+bool SliceKey::operator<(const SliceKey &o) const
+{
+  return std::tie(kind, model, mu, mu_lo, mu_hi, psi, K, rho, xmax, tol) <
+      std::tie(o.kind, o.model, o.mu, o.mu_lo, o.mu_hi, o.psi, o.K, o.rho, o.xmax, o.tol);
+}
+
+SliceSet::~SliceSet()
+{
+  for (auto &t : tables) egw_table_free(&t);
+}
+
 namespace {
 
 // the registry keeps a reference to every table it handed out, so that a law that is
 // rebuilt (or another fix) finds it again; purge() lets go of those nobody else holds
 std::mutex registry_mutex;
 std::map<HystKey, Hyst> registry;
+std::map<SliceKey, Slices> slice_registry;
 
 Hyst own(egw_hysteresis h)
 {
@@ -194,18 +206,34 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
   return out;
 }
 
+Slices EgwTables::find_slices(const SliceKey &key)
+{
+  std::lock_guard<std::mutex> lock(registry_mutex);
+  auto it = slice_registry.find(key);
+  return it == slice_registry.end() ? Slices() : it->second;
+}
+
+void EgwTables::keep_slices(const SliceKey &key, const Slices &set)
+{
+  std::lock_guard<std::mutex> lock(registry_mutex);
+  slice_registry[key] = set;
+}
+
 void EgwTables::purge()
 {
   std::lock_guard<std::mutex> lock(registry_mutex);
   for (auto it = registry.begin(); it != registry.end();)
     if (it->second.use_count() == 1) it = registry.erase(it);
     else ++it;
+  for (auto it = slice_registry.begin(); it != slice_registry.end();)
+    if (it->second.use_count() == 1) it = slice_registry.erase(it);
+    else ++it;
 }
 
 int EgwTables::count()
 {
   std::lock_guard<std::mutex> lock(registry_mutex);
-  return (int) registry.size();
+  return (int) (registry.size() + slice_registry.size());
 }
 
 double EgwTables::lnmu_error_estimate(const std::vector<egw_hysteresis> &nodes, double xc,

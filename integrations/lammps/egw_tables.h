@@ -1,4 +1,5 @@
-/* pair_style egw and fix wall/egw: the process-wide registry of EP-GW hysteresis tables.
+/* pair_style egw and fix wall/egw: the process-wide registry of egw tables (EP-GW
+ * hysteresis tables one by one, GW/E-GW laws' 1-D tables and slices as sets).
  * Tables are normalised (R = E* = sigma = 1, delta in units of sigma, force in units of
  * E* sqrt(R) sigma^1.5), so a table depends only on the model, mu, psi, K, rho_p, its
  * reach and tolerance: every type pair and wall that needs the same one shares it, and
@@ -38,6 +39,27 @@ using Hyst = std::shared_ptr<struct egw_hysteresis_s>;
 std::vector<Hyst> hysteresis(const std::vector<HystKey> &keys, MPI_Comm comm, int n_threads,
                              const std::function<void(const std::string &)> &fail,
                              int *n_built = nullptr);
+
+/* what the 1-D tables of a GW/E-GW law are built for: kind 1 one table at mu, kind 2 the
+ * slices of a universal table over [mu_lo, mu_hi] (EgwLaw::TABLE, UNIVERSAL) */
+struct SliceKey {
+  int kind = 0, model = 0;
+  double mu = 0, mu_lo = 0, mu_hi = 0, psi = 0, K = 0, rho = 0, xmax = 0, tol = 0;
+  bool operator<(const SliceKey &o) const;
+};
+
+/* a law's 1-D tables with what their build found; freed with their last holder */
+struct SliceSet {
+  std::vector<egw_table> tables;
+  double xc = 0, lnmu0 = 0, inv_h = 0, interp_error = 0;
+  ~SliceSet();
+};
+using Slices = std::shared_ptr<SliceSet>;
+
+/* the set built for key in this process before, or null; keep() registers a new one (each
+ * rank builds its own: these builds are not split across the ranks) */
+Slices find_slices(const SliceKey &key);
+void keep_slices(const SliceKey &key, const Slices &set);
 
 /* drop the registry's own reference to every table no law holds (they are freed) */
 void purge();
