@@ -574,7 +574,7 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (10 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    """Bad fix wall/egw input (12 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
     never a crash or hang."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
@@ -588,6 +588,8 @@ def test_bad_wall():
         (f"wall/egw Foo 1e-4 {c} zplane 0 NULL", "MODEL"),
         (f"wall/egw E-GW 1e-4 {c} tangential mindlin NULL 1 zplane 0 NULL", "tangential"),
         (f"wall/egw E-GW 1e-4 {c} damping tsuji damping 2 zplane 0 NULL", "damping"),
+        (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL contacts 3", "'3'"),
+        (f"wall/egw/region E-GW 1e-4 {c} nowhere contacts", "nowhere"),
     ]
     bad = []
     for wall, key in cases:
@@ -644,6 +646,247 @@ def test_drum_example():
     ok = out["egw"][0] == 300 and dz < 0.02
     return ok, (f"mean z egw {out['egw'][3]:.6g}, granular {out['granular'][3]:.6g} "
                 f"(|diff| {dz:.1e} of the radius < 2e-2)")
+
+
+def curved_run(shape, pstyle, pcoeff, wallfix, nmid=0, nrun=6000):
+    """curved.in: the bead 10 um from a curved wall, 0.1 m/s towards it, 0.03 m/s along it,
+    spinning (contact from step ~5000 for ~400 steps at dt 2e-8)."""
+    return lmp("curved.in", shape=shape, pstyle=pstyle, pcoeff=pcoeff, wallfix=wallfix, v=0.1,
+               dt=2e-8, nrun=nrun, nmid=nmid)
+
+
+CURVED_SUB = ("tangential mindlin NULL 1.0 0.3 rolling sds 1e5 0.05 0.2 twisting marshall "
+              "damping coeff_restitution")
+
+
+def test_wall_curvature_vs_wall_gran():
+    """Curved walls: a bead (R = 1 mm) meets obliquely, spinning, the inside of a cylinder
+    region of radius 5 mm (a drum: concave, LAMMPS's radius of curvature -2 x 5 mm, R_eff =
+    1.11 mm), the outside of a sphere region of radius 3 mm (convex, +3 mm, R_eff = 0.75 mm),
+    the outside of a cylinder region of radius 3 mm (+6 mm, R_eff = 0.86 mm), and a fix
+    wall/egw zcylinder of radius 5 mm (-10 mm, as fix wall/gran): fix wall/egw[/region] E-GW
+    at sigma = 1e-16 (TOL 1e-8) with mindlin, rolling sds and twisting marshall against fix
+    wall/gran[/region] granular hertz/material, the same sub-models: velocities and spins
+    (times R) after the contact within 1e-6 of the speed (the issue's bound; measured
+    ~1e-8).  The bound discriminates: the drum's contact taken flat (a zplane at the drum's
+    bottom) ends more than 1e-4 away."""
+    c = f"E {E} nu {NU} sigma 1e-16 mu 4"
+    msgs, ok, res = [], True, {}
+    for shape, egw_wall, gran_wall in (
+            ("drum", "wreg", "region wreg"), ("ball", "wreg", "region wreg"),
+            ("post", "wreg", "region wreg"), ("zcyl", "zcylinder 0.005", "zcylinder 0.005"),
+            ("flat", "zplane -0.005 NULL", None)):
+        style = "wall/egw" if "plane" in egw_wall or "cylinder" in egw_wall else "wall/egw/region"
+        rc1, o1 = curved_run("drum" if shape == "flat" else shape, "egw E-GW 1e-8", c,
+                             f"{style} E-GW 1e-8 {c} damping 0.7 {CURVED_SUB} {egw_wall}")
+        if rc1:
+            return False, f"{shape}: " + " ".join(l for l in o1.splitlines() if "ERROR" in l)
+        res[shape] = result(o1)
+        if gran_wall is None:
+            continue
+        gstyle = "wall/gran/region" if gran_wall.startswith("region") else "wall/gran"
+        rc2, o2 = curved_run(shape, "granular", f"hertz/material {E} 0.7 {NU} {CURVED_SUB}",
+                             f"{gstyle} granular hertz/material {E} 0.7 {NU} {CURVED_SUB} "
+                             f"{gran_wall}")
+        if rc2:
+            return False, f"{shape} granular: " + " ".join(l for l in o2.splitlines() if "ERROR" in l)
+        a, b = res[shape], result(o2)
+        d = max(max(abs(x - y) for x, y in zip(a[:3], b[:3])) / 0.1,
+                max(abs(x - y) for x, y in zip(a[3:], b[3:])) * RAD / 0.1)
+        ok = ok and d < 1e-6
+        msgs.append(f"{shape} {d:.1e}")
+    a, b = res["drum"], res["flat"]
+    dflat = max(max(abs(x - y) for x, y in zip(a[:3], b[:3])) / 0.1,
+                max(abs(x - y) for x, y in zip(a[3:], b[3:])) * RAD / 0.1)
+    ok = ok and dflat > 1e-4
+    return ok, ", ".join(msgs) + f" (< 1e-6); drum taken flat: {dflat:.1e} (> 1e-4)"
+
+
+def test_wall_curvature_summit():
+    """A curved wall with mu from summit data: the drum contact's mu is that of its own R_eff
+    = R_i r_c/(R_i + r_c) = 1.11 mm, beyond the bead's radius, so the fix widens its tables to
+    the R_eff the atoms can meet (log: 'for R in [..., 0.001167]') and the contact equals the
+    same contact with mu = (8/3) eta sigma sqrt(2 R_eff beta) given (computed here): E-GW,
+    sigma 0.5 um per body, tables at 1e-4, velocities and spins within 1e-4 of the speed
+    (the tables' tolerance; measured 5e-6).  Twice: the bead 10 um from the shell at the
+    start (the tables are built for it at once), and 100 um away (dt 1e-7: it comes within
+    reach only later, and the tables are rebuilt at a reneighboring: two builds logged)."""
+    sig, eta, beta = 0.5e-6, 1e10, 1e-5
+    Reff = RAD * 0.01 / (0.01 - RAD)
+    mu = 8 / 3 * eta * math.sqrt(2) * sig * math.sqrt(2 * Reff * beta)
+    msgs, ok = [], True
+    for tag, var, builds in (("at once", {}, 1),
+                             ("later", dict(gap=1e-4, dt=1e-7, nrun=11000), 2)):
+        out = []
+        for c in (f"summit_density {eta} summit_radius {beta}", f"mu {mu!r}"):
+            cc = f"E {E} nu {NU} sigma {sig} {c}"
+            kw = dict(shape="drum", pstyle="egw E-GW 1e-4", pcoeff=cc, v=0.1, dt=2e-8,
+                      nrun=6000, nmid=0,
+                      wallfix=f"wall/egw/region E-GW 1e-4 {cc} damping 0.7 "
+                              "tangential mindlin NULL 1.0 0.3 wreg")
+            kw.update(var)
+            rc, o = lmp("curved.in", **kw)
+            if rc:
+                return False, " ".join(l for l in o.splitlines() if "ERROR" in l)
+            out.append((result(o), o))
+        (a, oa), (b, _) = out
+        d = max(max(abs(x - y) for x, y in zip(a[:3], b[:3])) / 0.1,
+                max(abs(x - y) for x, y in zip(a[3:], b[3:])) * RAD / 0.1)
+        widened = re.findall(r"fix wall/egw w: type 1: .*R in \[(\S+), (\S+)\]", oa)
+        rhi = float(widened[-1][1]) if widened else 0.0
+        ok = ok and d < 1e-4 and rhi >= Reff and len(widened) == builds
+        msgs.append(f"{tag}: {len(widened)} build(s), R up to {rhi:.4g}, summit data vs mu "
+                    f"given {d:.1e}")
+    return ok, f"mu(R_eff = {Reff:.4g}) = {mu:.5g}; " + "; ".join(msgs) + " (< 1e-4)"
+
+
+def test_wall_contacts_vs_wall_gran():
+    """The 'contacts' per-atom array of fix wall/egw[/region] mid-contact (the bead pressed
+    into the drum's shell, and into a zcylinder), against fix wall/gran[/region] granular's
+    own contacts columns (E-GW sigma = 1e-16, TOL 1e-8, as above): flag 1, the wall's force
+    on the atom within 1e-6 of its magnitude (and equal to the atom's force fx, fy, fz: the
+    wall is its only force, 1e-12), the contact point on the wall and the radius to 1e-12;
+    with heat area the ninth column (heat into the atom) within 1e-6 of granular's."""
+    c = f"E {E} nu {NU} sigma 1e-16 mu 4"
+    msgs, ok = [], True
+    for shape, egw_wall, gran_wall in (("drum", "wall/egw/region", "wall/gran/region"),
+                                       ("zcyl", "wall/egw", "wall/gran")):
+        ew = "wreg contacts" if shape == "drum" else "zcylinder 0.005 contacts"
+        gw = "region wreg contacts" if shape == "drum" else "zcylinder 0.005 contacts"
+        rc1, o1 = curved_run(shape, "egw E-GW 1e-8", c,
+                             f"{egw_wall} E-GW 1e-8 {c} damping 0.7 {CURVED_SUB} {ew}", nmid=5200)
+        rc2, o2 = curved_run(shape, "granular", f"hertz/material {E} 0.7 {NU} {CURVED_SUB}",
+                             f"{gran_wall} granular hertz/material {E} 0.7 {NU} {CURVED_SUB} {gw}",
+                             nmid=5200)
+        rows = []
+        for rc, o in ((rc1, o1), (rc2, o2)):
+            m = re.search(r"^MID (.*)$", o, re.M)
+            if rc or not m:
+                return False, f"{shape}: rc {rc} " + " ".join(l for l in o.splitlines() if "ERROR" in l)
+            rows.append([float(x) for x in m.group(1).split()])
+        a, b = rows
+        fmag = math.sqrt(sum(x * x for x in b[1:4]))
+        df = max(abs(x - y) for x, y in zip(a[1:4], b[1:4])) / fmag
+        dself = max(abs(x - y) for x, y in zip(a[1:4], a[8:11])) / fmag
+        dpt = max(abs(x - y) for x, y in zip(a[4:8], b[4:8])) / RAD
+        good = a[0] == 1 and b[0] == 1 and df < 1e-6 and dself < 1e-12 and dpt < 1e-9 and fmag > 0
+        ok = ok and good
+        msgs.append(f"{shape}: |F| {fmag:.6g}, force {df:.1e}, point+radius {dpt:.1e} of R")
+    g = "tangential linear_nohistory 0 0 heat area 1e5"
+    hw = []
+    for ps, pc, wf in (("egw E-GW 1e-8", c, f"wall/egw E-GW 1e-8 {c} heat area 1e5 temperature 200 "
+                                           "zplane 0 NULL contacts"),
+                       ("granular", f"hertz/material {E} 1.0 {NU} {g}",
+                        f"wall/gran granular hertz/material {E} 1.0 {NU} {g} zplane 0 NULL "
+                        "temperature 200 contacts")):
+        rc, o = lmp("heatwall.in", pstyle=ps, pcoeff=pc, wallfix=wf, contacts=1)
+        m = re.search(r"^CONTACTS9 (\S+)", o, re.M)
+        if rc or not m:
+            return False, "heat: " + " ".join(l for l in o.splitlines() if "ERROR" in l)
+        hw.append(float(m.group(1)))
+    dq = abs(hw[0] - hw[1]) / abs(hw[1])
+    ok = ok and dq < 1e-6 and hw[1] < 0
+    return ok, "; ".join(msgs) + f" (1e-6; the point 1e-9 of R: the trajectories differ by ~1e-9 of the speed); heat column {hw[0]:.9g} vs {hw[1]:.9g} ({dq:.1e})"
+
+
+# Our own decks in the spirit of LAMMPS's granular examples (test/decks/, README): each with
+# law granular (pair granular + fix wall/gran[/region] granular) and law egw (pair egw +
+# fix wall/egw[/region], E-GW at sigma = 1e-16, the same sub-models); seeds of the pours;
+# the step through which 1 and 2 ranks must agree to 1e-6, after the first wall and pair
+# contacts (measured: first departures beyond 1e-9 at 10100, 3900, 3300 and beyond 1e-6
+# at 10400, 4400, 3800; the first floor contacts come at ~4300, ~3000 and from the start).
+GRANULAR_DECKS = [("flatwall", (4213, 1234, 999), 9000),
+                  ("box", (7351, 1234, 999, 2024, 31337, 4242, 777), 3800),
+                  ("drum", (3371, 1234, 999, 2024, 31337), 3000)]
+
+
+def deck_run(deck, np=1, **var):
+    args = [LMP, "-np", str(np), "-in", os.path.join(HERE, "decks", deck + ".in"), "-log",
+            "none", "-nocite"]
+    for k, v in var.items():
+        args += ["-var", k, str(v)]
+    p = subprocess.run(args, cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=600)
+    return p.returncode, p.stdout
+
+
+def ke_rows(out):
+    """{step: KE} of the thermo rows (step atoms ke)."""
+    rows = {}
+    for line in out.splitlines():
+        f = line.split()
+        if len(f) == 3 and all(re.match(r"^-?[0-9.]+(e[-+]?[0-9]+)?$", x) for x in f):
+            rows[int(f[0])] = float(f[2])
+    return rows
+
+
+def deck_ok(out, rc):
+    return rc == 0 and "FINAL" in out and "ERROR" not in out and not re.search(
+        r"\bnan\b|\binf\b", out, re.I)
+
+
+def test_granular_decks():
+    """Three decks of our own that exercise what LAMMPS's in.pour.flatwall (two grain types
+    with their own tangential/rolling/twisting models poured onto a flat wall, periodic
+    sides), in.granregion.box (grains in a region box that turns, rests, turns about a skew
+    axis: regions redefined between runs) and in.pour.drum (two types poured into a drum of
+    rotating region walls, a curved shell and plane floor, atoms deleted, a lid added,
+    gravity turned, the drum rotated; fix balance) exercise, each with egw for particles
+    AND walls (E-GW, sigma = 1e-16) and with granular:
+    - every run ends (FINAL), no ERROR, no NaN;
+    - the kinetic energy averaged over the run, then over the pour seeds (flat wall 3,
+      drum 5, box 7: the box's tumbles spread most), within 2 % of
+      granular's (a single pile or tumble is chaotic: round-off-sized differences, here
+      egw's table at TOL 1e-4 against Hertz, grow, and single runs spread by up to 3 %
+      between seeds, the standard error of the means ~1 %; the seed mean is the
+      statistic);
+    - 1 and 2 ranks: the KE rows agree to 1e-6 through a stated step after the first wall
+      and pair contacts (MPI reorders force sums; that round-off, 1e-16 at first, grows
+      chaotically, so exact agreement is not expected and later rows do differ; a contact
+      history lost or garbled between ranks changes a contact's force at once, by far
+      more than 1e-6 of the KE);
+    - restart: the run continued from write_restart (mid-run, contacts under load, a
+      rotating region's motion) ends bit for bit as the uninterrupted run (FINAL line and
+      every KE row after the restart identical)."""
+    msgs, ok = [], True
+    for deck, seeds, agree_to in GRANULAR_DECKS:
+        ke = {"granular": [], "egw": []}
+        straight = None
+        for seed in seeds:
+            for law in ("granular", "egw"):
+                rf = f"{deck}_{law}_{seed}.restart"
+                rc, out = deck_run(deck, law=law, seed=seed, rfile=rf)
+                if not deck_ok(out, rc):
+                    return False, f"{deck} {law} seed {seed}: rc {rc} " + " ".join(
+                        l for l in out.splitlines() if "ERROR" in l)[:300]
+                rows = ke_rows(out)
+                ke[law].append(sum(rows.values()) / len(rows))
+                if law == "egw" and straight is None:
+                    straight = (out, rows, rf, seed)
+        mg = sum(ke["granular"]) / len(seeds)
+        me = sum(ke["egw"]) / len(seeds)
+        dke = abs(me / mg - 1)
+        out1, rows1, rf, seed = straight
+        rc2, out2 = deck_run(deck, np=2, law="egw", seed=seed, rfile=f"{deck}_np2.restart")
+        rows2 = ke_rows(out2)
+        d2 = max(abs(rows2[k] / rows1[k] - 1) for k in rows1 if k <= agree_to and rows1[k] > 0)
+        def first(tol):
+            return min([k for k in rows1 if k in rows2 and rows1[k] > 0 and
+                        abs(rows2[k] / rows1[k] - 1) > tol] or [None], key=lambda k: k or 10**9)
+        rc3, out3 = deck_run(deck, law="egw", seed=seed, rfile=rf, resume=1)
+        rows3 = ke_rows(out3)
+        fin1 = re.findall(r"^FINAL .*$", out1, re.M)
+        fin3 = re.findall(r"^FINAL .*$", out3, re.M)
+        same = (deck_ok(out3, rc3) and fin1 == fin3 and len(rows3) > 5 and
+                all(rows3[k] == rows1[k] for k in rows3))
+        good = deck_ok(out2, rc2) and dke < 0.02 and d2 < 1e-6 and same
+        ok = ok and good
+        msgs.append(f"{deck}: KE egw/granular {me / mg:.4f} (per seed " +
+                    ", ".join(f"{e / g:.3f}" for e, g in zip(ke["egw"], ke["granular"])) +
+                    f"), 2 ranks {d2:.0e} to step {agree_to} (< 1e-6; first > 1e-9 at {first(1e-9)}, "
+                    f"> 1e-6 at {first(1e-6)}), "
+                    f"restart {'bit for bit' if same else 'DIFFERS'}")
+    return ok, "; ".join(msgs)
 
 
 def test_submodels_ranks_agree():
@@ -945,7 +1188,8 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_energy_epgw, test_sing
          test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution,
          test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
          test_bad_wall, test_wall_region, test_drum_example,
-         test_wall_heat_vs_wall_gran,
+         test_wall_heat_vs_wall_gran, test_wall_curvature_vs_wall_gran,
+         test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff,
          test_lnmu_error_estimate, test_normalised_table_scaling, test_pour_tables_shared]
