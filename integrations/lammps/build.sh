@@ -64,6 +64,13 @@ if [ ! -x "$OUT/egw-restitution" ] || [ -n "$(find $SRC/tools/egw_restitution.c 
     "$OUT/egw-cmake/libegw.a" -lgfortran -lgomp -llapack -lblas -lm
 fi
 
+# the EP-GW set-up's checks (ln-mu error estimate, scaling of normalised tables)
+if [ ! -x "$OUT/hyst-mu-check" ] || [ -n "$(find $SRC/tools/hyst_mu_check.cpp $SRC/egw_tables.* "$OUT/egw-cmake/libegw.a" -newer "$OUT/hyst-mu-check" | head -n 1)" ]; then
+  ${CXX:-g++} -std=c++17 -O2 -Iinclude -I"$VENV/include" $SRC/tools/hyst_mu_check.cpp $SRC/egw_tables.cpp \
+    -o "$OUT/hyst-mu-check" "$OUT/egw-cmake/libegw.a" -L"$VENV/lib" -lmpi -Wl,-rpath,"$VENV/lib" \
+    -lgfortran -lgomp -llapack -lblas -lm
+fi
+
 # the runner: build/lammps/lmp [-np N] -in deck.in [LAMMPS options]
 cat >"$OUT/lmp.tmp" <<RUNNER
 #!/bin/sh

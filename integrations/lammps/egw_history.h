@@ -13,17 +13,22 @@
 namespace LAMMPS_NS {
 namespace EgwHistory {
 
-// per contact: delta_max, tangential displacement (3), and the contact's R with its
-// position t in the ln-mu nodes and the nodes' fingerprint (summit data: mu depends on R
-// only, so t is computed once per contact and set of tables)
+// per contact: delta_max (EP-GW: in units of the contact's sigma, as its hysteresis state
+// keeps it), tangential displacement (3), and the contact's R with its position t in the
+// ln-mu nodes and the nodes' fingerprint (summit data: mu depends on R only, so t is
+// computed once per contact and set of tables)
 constexpr int DELTA_MAX = 0;
 constexpr int SHEAR = 1;                 // 3 values
 constexpr int MU_R = 4, MU_T = 5, MU_PRINT = 6;
-// EP-GW adds two hysteresis states (egw_hysteresis_eval_state: the largest overlap in
-// table units and the cache of its turning point), one per table of the ln-mu pair
 constexpr int NHIST_BASE = 7;
+// EP-GW evaluates with two hysteresis states (egw_hysteresis_eval_state, one per table of
+// the ln-mu pair): delta_max/sigma and a cache of its turning point, rebuilt from delta_max
+// whenever it is missing (EgwLaw::eval). The pair keeps them beside its neighbor list,
+// not in the history (48 doubles a contact in fix NEIGH_HISTORY's pages were ~86 MB a
+// rank); the wall fix keeps them in its per-atom history after the base values.
+constexpr int HYST_CACHE = 2 * EGW_HYSTERESIS_STATE_SIZE;
 constexpr int HYST_A = NHIST_BASE, HYST_B = NHIST_BASE + EGW_HYSTERESIS_STATE_SIZE;
-constexpr int NHIST_EPGW = NHIST_BASE + 2 * EGW_HYSTERESIS_STATE_SIZE;
+constexpr int NHIST_EPGW = NHIST_BASE + HYST_CACHE;    // wall/egw's EP-GW history
 
 /* a contact that has just formed: delta_max = -inf, no displacement, fresh states */
 inline void start(double *hist, int nhist)

@@ -6,6 +6,7 @@
 #include "egw.h"
 #include "egw_history.h"
 #include "egw_submodels.h"
+#include "egw_tables.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,13 +50,20 @@ struct EgwLaw {
   double reach = 0;                // the tables' largest overlap [length] (inf: Hertz)
   bool capped = false;             // reach capped at HYST_X_MAX sigma (hysteresis)
   static constexpr double HYST_X_MAX = 140.0;
+  // EP-GW with summit data: the ln-mu lattice's estimate is multiplied by LNMU_SAFETY
+  // before it is compared with TOL; at most LNMU_MAX_LEVEL refinements (h = ln 2 / 2^m)
+  static constexpr double LNMU_SAFETY = 1.25;
+  static constexpr int LNMU_MAX_LEVEL = 6;
   double s05 = 0, s15 = 0, s25 = 0, inv_sigma = 0;
   double mu_lo = 0, mu_hi = 0;     // mu range of the tables (summit data)
   double interp_error = 0;         // measured ln-mu interpolation error (summit data)
   egw_table table = nullptr;
   egw_universal universal = nullptr;
-  std::vector<egw_hysteresis> hyst;
+  std::vector<egw_hysteresis> hyst;    // evaluated; owned by hyst_held (shared: egw_tables.h)
+  std::vector<EgwTables::Hyst> hyst_held;
+  int hyst_built = 0;              // hysteresis tables this law's build made (others shared)
   std::vector<egw_table> slices;   // 1-D slices of universal at nodes in ln mu (summit data)
+  EgwTables::Slices slices_held;   // owns table or slices (shared: egw_tables.h)
   double lnmu0 = 0, inv_h = 0;     // first node, 1 / node spacing
   std::vector<double> lnmu;        // nodes of hyst in ln mu (summit data)
   egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)
@@ -69,9 +77,11 @@ struct EgwLaw {
   /* the evaluation for egw model `model` from the coefficients (kind, scales, prm) */
   void setup(int model);
   /* the tables for equivalent radii in [R_lo, R_hi] up to overlap_max R_hi (n_threads 0:
-   * egw's default); an egw call that fails calls fail() (which reports egw_last_error) */
-  void build(double R_lo, double R_hi, double tol, double overlap_max, int n_threads,
-             const std::function<void()> &fail);
+   * egw's default). Collective over comm (hysteresis tables are shared and split across
+   * the ranks, egw_tables.h). An egw call that fails calls fail(egw's message) on every
+   * rank. */
+  void build(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
+             int n_threads, const std::function<void(const std::string &)> &fail);
   /* the contacts' reach delta_t = xt sigma (sets xt, tail, tail_work): the largest overlap
    * below which the loading work of the tail is at most frac * w_ref [energy] for every
    * contact of radius up to R_hi (the tail's work grows with R and mu), never below the
@@ -85,10 +95,19 @@ struct EgwLaw {
   double mu_at(double R) const { return mu * std::sqrt(R); }
   inline int mu_position(double R, double *hist, double &t) const;
   /* elastic normal force F, stiffness S = dF/ddelta and (want_energy) the energy U at
-   * overlap delta of a contact of radius R with history hist; egw's status (EGW_OK,
+   * overlap delta of a contact of radius R with history hist; EP-GW's two hysteresis
+   * states in cache (EgwHistory::HYST_CACHE doubles: filled again from hist's delta_max
+   * when they do not hold it, e.g. new, zeroed or another table's); egw's status (EGW_OK,
    * EGW_OUT_OF_RANGE beyond the tables, ...) or MU_OUTSIDE */
-  inline int eval(double delta, double R, double *hist, double &F, double &S, double &U,
-                  int want_energy) const;
+  inline int eval(double delta, double R, double *hist, double *cache, double &F, double &S,
+                  double &U, int want_energy, bool states_are_history = false) const;
+  /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
+   * where they are the history (all zeros: a new contact) */
+  int eval(double delta, double R, double *hist, double &F, double &S, double &U,
+           int want_energy) const
+  {
+    return eval(delta, R, hist, hist + EgwHistory::HYST_A, F, S, U, want_energy, true);
+  }
 };
 
 extern const char *egw_law_kind_name[];
@@ -111,8 +130,29 @@ inline int EgwLaw::mu_position(double R, double *hist, double &t) const
   return EGW_OK;
 }
 
-inline int EgwLaw::eval(double delta, double R, double *hist, double &F, double &S,
-                        double &U, int want_energy) const
+/* egw_hysteresis_eval_state at x with the state s. refill: s is a cache that must hold the
+ * contact's history xm (delta_max/sigma, -inf for a new contact); one that does not
+ * (dropped, or filled for another table, which egw reads as a new contact) is filled again
+ * by loading a new contact to xm. Otherwise s is the history itself. */
+inline int egw_law_hyst_eval(egw_hysteresis h, double x, double xm, double *s, double &p,
+                             double &dp, bool refill)
+{
+  if (!refill) return egw_hysteresis_eval_state(h, x, s, &p, &dp);
+  if (!(s[0] == xm)) {
+    egw_hysteresis_state_init(s);
+    if (xm > -HUGE_VAL) egw_hysteresis_eval_state(h, xm, s, &p, &dp);
+  }
+  int st = egw_hysteresis_eval_state(h, x, s, &p, &dp);
+  if (s[0] < xm) {    // egw did not know the state (another table's): its history was reset
+    egw_hysteresis_state_init(s);
+    egw_hysteresis_eval_state(h, xm, s, &p, &dp);
+    st = egw_hysteresis_eval_state(h, x, s, &p, &dp);
+  }
+  return st;
+}
+
+inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, double &F,
+                        double &S, double &U, int want_energy, bool states_are_history) const
 {
   using namespace EgwHistory;
   double *dmax = &hist[DELTA_MAX];
@@ -157,14 +197,14 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double &F, double 
       break;
     }
     case HYST: {
-      // the state (table units) with its turning point's cache lives in hist[HYST_A..]
+      // the state (table units) with its turning point's cache lives in cache[0..23]
       double x = delta * inv_sigma, p, dp;
-      st = egw_hysteresis_eval_state(hyst[0], x, &hist[HYST_A], &p, &dp);
-      *dmax = hist[HYST_A] * sigma;
+      st = egw_law_hyst_eval(hyst[0], x, *dmax, cache, p, dp, !states_are_history);
+      *dmax = cache[0];
       // the energy the contact returns if it separates now (the rest of its loading work
       // is dissipated): kinetic + this falls while contacts load, stays while they unload
       double u = 0.0;
-      if (want_energy) egw_hysteresis_energy(hyst[0], x, hist[HYST_A], &u);
+      if (want_energy) egw_hysteresis_energy(hyst[0], x, cache[0], &u);
       F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
       break;
     }
@@ -176,14 +216,15 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double &F, double 
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
       double p0, p1, d0, d1;
-      st = egw_hysteresis_eval_state(hyst[k], x, &hist[HYST_A], &p0, &d0);
-      int st2 = egw_hysteresis_eval_state(hyst[k + 1], x, &hist[HYST_B], &p1, &d1);
+      double *sa = cache, *sb = cache + EGW_HYSTERESIS_STATE_SIZE;
+      st = egw_law_hyst_eval(hyst[k], x, *dmax, sa, p0, d0, !states_are_history);
+      int st2 = egw_law_hyst_eval(hyst[k + 1], x, *dmax, sb, p1, d1, !states_are_history);
       if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
-      *dmax = hist[HYST_A] * sigma;
+      *dmax = sa[0];
       double u0 = 0.0, u1 = 0.0;
       if (want_energy) {
-        egw_hysteresis_energy(hyst[k], x, hist[HYST_A], &u0);
-        egw_hysteresis_energy(hyst[k + 1], x, hist[HYST_B], &u1);
+        egw_hysteresis_energy(hyst[k], x, sa[0], &u0);
+        egw_hysteresis_energy(hyst[k + 1], x, sb[0], &u1);
       }
       F = sr * s15 * (p0 + w * (p1 - p0));
       S = sr * s05 * (d0 + w * (d1 - d0));

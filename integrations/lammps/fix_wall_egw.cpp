@@ -90,6 +90,7 @@ FixWallEGW::~FixWallEGW()
   memory->destroy(history);
   memory->destroy(array_atom);
   for (auto &l : law) l.release();
+  EgwTables::purge();
 }
 
 /* MODEL TOL, the wall's keywords and sub-models, the wall style and its options */
@@ -297,7 +298,8 @@ void FixWallEGW::build_law(int t)
   law[t].release();
   law[t] = L;
   std::string what = fmt::format("tables of type {} against the wall", t);
-  law[t].build(rlo, rhi, tol, overlap_max, comm->nprocs > 1 ? 1 : 0, [&]() { egw_fail(what); });
+  law[t].build(rlo, rhi, tol, overlap_max, world, comm->nprocs > 1 ? 1 : 0,
+               [&](const std::string &msg) { error->all(FLERR, "Fix wall/egw: {}: {}", what, msg); });
   built_rlo[t] = rlo, built_rhi[t] = rhi;
   if (comm->me == 0)
     utils::logmesg(lmp, "fix wall/egw {}: type {}: {}\n", id, t, law[t].describe(rlo, rhi));

@@ -32,7 +32,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <unordered_map>
 
 using namespace LAMMPS_NS;
 using namespace EgwHistory;
@@ -81,6 +83,7 @@ PairEGW::~PairEGW()
     modify->delete_fix("NEIGH_HISTORY_EGW_DUMMY");
   for (auto &row : law)
     for (auto &l : row) l.release();
+  EgwTables::purge();
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -146,12 +149,12 @@ void PairEGW::type_radii()
 }
 
 /* build the tables of law (i, j) for equivalent radii in [R_lo, R_hi] */
-/* build the tables of law (i, j) for equivalent radii in [R_lo, R_hi] */
 void PairEGW::build_tables(int i, int j, double R_lo, double R_hi)
 {
   EgwLaw &L = law[i][j];
   std::string what = fmt::format("tables of types {} {}", i, j);
-  L.build(R_lo, R_hi, tol, overlap_max, comm->nprocs > 1 ? 1 : 0, [&]() { egw_fail(what); });
+  L.build(R_lo, R_hi, tol, overlap_max, world, comm->nprocs > 1 ? 1 : 0,
+          [&](const std::string &msg) { error->all(FLERR, "Pair egw: {}: {}", what, msg); });
   built_rlo[i][j] = R_lo, built_rhi[i][j] = R_hi;
   if (comm->me == 0)
     utils::logmesg(lmp, "pair egw: types {} {}: {}\n", i, j, L.describe(R_lo, R_hi));
@@ -179,7 +182,7 @@ void PairEGW::init_style()
         extra = extra || pcoeff[i][j].sub.needs_extra_history();
         heat_any = heat_any || pcoeff[i][j].sub.heat != EgwSubmodels::HEAT_NONE;
       }
-  int core = model == EGW_MODEL_EPGW ? NHIST_EPGW : NHIST_BASE;
+  int core = NHIST_BASE;    // EP-GW's hysteresis states: beside the list (hyst_cache)
   hist_sub = extra ? core : -1;
   int want = core + (extra ? EgwSubmodels::NHIST_SUB : 0);
   if (heat_any && (!atom->temperature_flag || !atom->heatflow_flag))
@@ -220,6 +223,7 @@ void PairEGW::init_style()
     built_model = model, built_tol = tol, built_overlap = overlap_max;
   }
   type_radii();
+  EgwTables::purge();    // tables no law holds since the last run
   int n = atom->ntypes;
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) {
@@ -285,10 +289,10 @@ double PairEGW::init_one(int i, int j)
 
 /* the elastic normal force of a contact from its law; out-of-range overlaps warn once,
  * a mu outside the tables or a failed evaluation stop the run */
-inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, double &F,
-                            double &S, double &U, int want_energy)
+inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, double *cache,
+                            double &F, double &S, double &U, int want_energy)
 {
-  int st = L.eval(delta, R, hist, F, S, U, want_energy);
+  int st = L.eval(delta, R, hist, cache, F, S, U, want_energy);
   if (st == EGW_OK) return;
   if (st == EgwLaw::MU_OUTSIDE)
     error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
@@ -329,7 +333,9 @@ void PairEGW::compute(int eflag, int vflag)
 
   int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
-  double ncontact = 0.0;    // a pair with a ghost under newton off is counted by both ranks
+  double ncontact = 0.0;
+  const bool cached = model == EGW_MODEL_EPGW;    // EP-GW: hysteresis states per list entry
+  if (cached) hyst_cache_rows();    // a pair with a ghost under newton off is counted by both ranks
 
   const int nt1 = atom->ntypes + 1;
   for (int ii = 0; ii < inum; ii++) {
@@ -365,7 +371,13 @@ void PairEGW::compute(int eflag, int vflag)
         EgwHistory::start(hist, nhist);
       }
       double Fn, S, U;
-      normal(L, delta, R, hist, Fn, S, U, eflag);
+      double *cache = nullptr;
+      if (cached) {
+        size_t e = hyst_cache_first[ii] + jj;
+        cache = hyst_slot[e] >= 0 ? &hyst_cache[hyst_slot[e] * HYST_CACHE]
+                                  : hyst_block(e, atom->tag[i], atom->tag[j]);
+      }
+      normal(L, delta, R, hist, cache, Fn, S, U, eflag);
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
       double mi = rmass[i], mj = rmass[j];
@@ -461,7 +473,8 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
     }
   }
   double Fn, S, U;
-  normal(L, delta, R, hist, Fn, S, U, 1);
+  double cache[HYST_CACHE] = {0.0};    // filled from the history's delta_max
+  normal(L, delta, R, hist, cache, Fn, S, U, 1);
   double dx[3] = {0.0, 0.0, r}, n[3] = {0.0, 0.0, 1.0}, vr[3] = {0, 0, 0};
   double wi[3] = {0, 0, 0}, wj[3] = {0, 0, 0}, meff = 1.0, Ti = 0, Tj = 0;
   if (!writing) {
@@ -489,14 +502,84 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   svector[8] = c.Mtw;
   for (int d = 0; d < 3; d++) svector[9 + d] = dx[d];
   svector[12] = delta;
-  svector[13] = hist[EgwHistory::DELTA_MAX];
+  bool hyst = L.kind == EgwLaw::HYST || L.kind == EgwLaw::HYST_MU;
+  svector[13] = hist[EgwHistory::DELTA_MAX] * (hyst ? L.sigma : 1.0);    // EP-GW: in sigma
   svector[14] = S;
   svector[15] = Fn;
   svector[16] = c.Fdamp;
   return U;
 }
 
+/* EP-GW: a pair of hysteresis states per contact (a block), found from its neighbor-list
+ * entry (hyst_slot, -1: none yet); laid out anew when the list is rebuilt. A contact's
+ * block moves with it to its new entry (found by the two atoms' IDs, either order: the
+ * states are the same for both atoms); a new block is marked empty (a NaN never equals a
+ * delta_max) and filled from the history when used (egw_law.h). Moving a block costs a
+ * hash lookup; filling one about seven evaluations, and the pour reneighbors every ~8
+ * steps. */
+void PairEGW::hyst_cache_rows()
+{
+  if (neighbor->ncalls == hyst_cache_calls && (int) hyst_cache_first.size() == list->inum + 1)
+    return;
+  hyst_cache_calls = neighbor->ncalls;
+  auto key = [](tagint a, tagint b) {
+    uint64_t lo = (uint64_t) std::min(a, b), hi = (uint64_t) std::max(a, b);
+    return (lo << 32) ^ hi;    // a collision (64-bit IDs) only costs a refill: egw_law.h
+  };
+  // the filled blocks of the old layout, by the pair's IDs
+  std::unordered_map<uint64_t, size_t> old;
+  size_t nold = hyst_cache_tags.size() / 2;
+  old.reserve(nold);
+  for (size_t b = 0; b < nold; b++)
+    if (hyst_cache[b * HYST_CACHE] == hyst_cache[b * HYST_CACHE])    // not NaN: filled
+      old[key(hyst_cache_tags[2 * b], hyst_cache_tags[2 * b + 1])] = b;
+  hyst_cache_prev.swap(hyst_cache);
+  hyst_cache.clear();
+  std::vector<tagint> prev_tags;
+  prev_tags.swap(hyst_cache_tags);
+  int inum = list->inum;
+  tagint *tag = atom->tag;
+  auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
+  hyst_cache_first.resize(inum + 1);
+  size_t n = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    hyst_cache_first[ii] = n;
+    n += list->numneigh[list->ilist[ii]];
+  }
+  hyst_cache_first[inum] = n;
+  hyst_slot.assign(n, -1);
+  if (old.empty()) return;
+  for (int ii = 0; ii < inum; ii++) {
+    int i = list->ilist[ii];
+    int *jlist = list->firstneigh[i];
+    int *touch = view->firstflag[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      if (!touch[jj]) continue;
+      auto it = old.find(key(tag[i], tag[jlist[jj] & NEIGHMASK]));
+      if (it == old.end()) continue;
+      double *c = hyst_block(hyst_cache_first[ii] + jj, tag[i], tag[jlist[jj] & NEIGHMASK]);
+      std::copy(&hyst_cache_prev[it->second * HYST_CACHE],
+                &hyst_cache_prev[(it->second + 1) * HYST_CACHE], c);
+    }
+  }
+}
+
+/* a new, empty block for list entry e (atoms with IDs ti, tj) */
+double *PairEGW::hyst_block(size_t e, tagint ti, tagint tj)
+{
+  size_t b = hyst_cache_tags.size() / 2;
+  hyst_slot[e] = (int) b;
+  hyst_cache.resize((b + 1) * HYST_CACHE);
+  hyst_cache_tags.push_back(ti), hyst_cache_tags.push_back(tj);
+  double *c = &hyst_cache[b * HYST_CACHE];
+  c[0] = c[EGW_HYSTERESIS_STATE_SIZE] = NAN;
+  return c;
+}
+
 double PairEGW::memory_usage()
 {
-  return 0.0;
+  return (double) (hyst_cache.capacity() + hyst_cache_prev.capacity()) * sizeof(double) +
+      (double) hyst_cache_first.capacity() * sizeof(size_t) +
+      (double) hyst_slot.capacity() * sizeof(int) +
+      (double) hyst_cache_tags.capacity() * sizeof(tagint);
 }

@@ -78,8 +78,17 @@ class PairEGW : public Pair {
   void build_tables(int, int, double, double);
   void type_radii();
   void egw_fail(const std::string &what);
-  inline void normal(EgwLaw &, double delta, double R, double *hist, double &F, double &S,
-                     double &U, int want_energy);
+  inline void normal(EgwLaw &, double delta, double R, double *hist, double *cache, double &F,
+                     double &S, double &U, int want_energy);
+  // EP-GW: two hysteresis states per contact (blocks of HYST_CACHE doubles), entry jj of
+  // ilist[ii] at hyst_slot[hyst_cache_first[ii] + jj]; rebuilt with the list (egw_history.h)
+  std::vector<double> hyst_cache, hyst_cache_prev;
+  std::vector<size_t> hyst_cache_first;
+  std::vector<int> hyst_slot;
+  std::vector<tagint> hyst_cache_tags;     // the two atoms' IDs of each block
+  bigint hyst_cache_calls = -1;
+  double *hyst_block(size_t entry, tagint ti, tagint tj);
+  void hyst_cache_rows();
 };
 
 }    // namespace LAMMPS_NS

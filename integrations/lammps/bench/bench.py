@@ -8,7 +8,12 @@ ratios to granular with the same sub-models; also with rolling sds + twisting ma
 doc/benchmarks.md, and writes it as CSV to build/lammps/bench.csv. Each case runs REPEAT
 times (default 3, interleaved) and keeps its fastest run: the machine is shared, and the
 minimum is the figure least disturbed by other processes.
-Usage: bench.py [NRUN [REPEAT]]"""
+Then the set-up: the same deck for 100 steps with the table cache off (EGW_CACHE_DIR=off,
+a first run), granular, egw E-GW and EP-GW on 1 and 2 ranks: set-up time = wall time of
+the run (start-up, tables, pour) minus its loop time, and LAMMPS's "Per MPI rank memory
+allocation" (the largest rank's), best of REPEAT interleaved runs; written to
+build/lammps/bench_setup.csv.
+Usage: bench.py [NRUN [REPEAT]]      bench.py --setup [REPEAT]   (the set-up table only)"""
 import os
 import re
 import subprocess
@@ -20,8 +25,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
 LMP = os.path.join(ROOT, "build", "lammps", "lmp")
 DECK = os.path.join(ROOT, "integrations", "lammps", "examples", "pour.in")
-NRUN = int(sys.argv[1]) if len(sys.argv) > 1 else 20000
-REPEAT = int(sys.argv[2]) if len(sys.argv) > 2 else 3
+SETUP_ONLY = len(sys.argv) > 1 and sys.argv[1] == "--setup"
+ARGS = sys.argv[2:] if SETUP_ONLY else sys.argv[1:]
+NRUN = 20000 if SETUP_ONLY or not ARGS else int(ARGS[0])
+REPEAT = int(ARGS[-1]) if (SETUP_ONLY and ARGS) or len(ARGS) > 1 else 3
+SETUP_NRUN = 100
 
 EGW = "egw E-GW (mu from summits: 2 slices, linear in ln mu)"
 EPGW = "egw EP-GW (mu from summits: 2 hysteresis tables, delta_max history)"
@@ -35,13 +43,19 @@ CASES = [("granular hertz/material + mindlin", "granular", "E-GW", 1, ""),
          (EGW, "egw", "E-GW", 2, "")]
 
 
-def run(law, model, np, extra):
+SETUP_CASES = [("granular hertz/material + mindlin", "granular", "E-GW"),
+               ("egw E-GW (summit data)", "egw", "E-GW"),
+               ("egw EP-GW (summit data)", "egw", "EP-GW")]
+
+
+def run(law, model, np, extra, nrun=None, env=None):
     tmp = tempfile.mkdtemp(prefix="egw-bench-")
     t0 = time.time()
     p = subprocess.run([LMP, "-np", str(np), "-in", DECK, "-var", "law", law, "-var", "model",
-                        model, "-var", "nrun", str(NRUN), "-var", "extra", extra, "-log", "none",
-                        "-nocite"],
-                       cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                        model, "-var", "nrun", str(nrun or NRUN), "-var", "extra", extra, "-log",
+                        "none", "-nocite"],
+                       cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                       env=dict(os.environ, **(env or {})))
     wall = time.time() - t0
     out = p.stdout
     if p.returncode:
@@ -52,13 +66,46 @@ def run(law, model, np, extra):
     # the deck's fixes (nve/sphere, gravity, pour), the same in both laws
     modify = float(re.search(r"^Modify\s+\|\s*\S+\s*\|\s*([0-9.eE+-]+)", out, re.M).group(1))
     m = re.search(r"POUR atoms (\d+) mean_z (\S+) mean_contacts (\S+)", out)
+    mem = re.search(r"Per MPI rank memory allocation \(min/avg/max\) = \S+ \| \S+ \| (\S+) Mbytes",
+                    out)
     return dict(wall=wall, loop=loop, pair=pair, modify=modify, atoms=int(m.group(1)), z=float(m.group(2)),
-                contacts=float(m.group(3)))
+                contacts=float(m.group(3)), mem=float(mem.group(1)))
+
+
+def setup_table():
+    """set-up time (wall - loop, first run: cache off) and memory per rank"""
+    best = {}
+    for rep in range(REPEAT):
+        for k, (name, law, model) in enumerate(SETUP_CASES):
+            for np in (1, 2):
+                r = run(law, model, np, "", SETUP_NRUN, {"EGW_CACHE_DIR": "off"})
+                r["setup"] = r["wall"] - r["loop"]
+                print(f"  set-up {name}, {np} rank(s): {r['setup']:.2f} s, {r['mem']:.2f} MB",
+                      file=sys.stderr, flush=True)
+                if (k, np) not in best or r["setup"] < best[(k, np)]["setup"]:
+                    best[(k, np)] = r
+    print()
+    print(f"| deck: pour.in, {SETUP_NRUN} steps, EGW_CACHE_DIR=off, best of {REPEAT} | ranks | "
+          "set-up [s] (wall - loop) | set-up - granular's [s] | memory per rank [MB] |")
+    print("|---|---|---|---|---|")
+    lines = ["name,ranks,setup_s,setup_minus_granular_s,memory_mb"]
+    for k, (name, law, model) in enumerate(SETUP_CASES):
+        for np in (1, 2):
+            r, g = best[(k, np)], best[(0, np)]
+            print(f"| {name} | {np} | {r['setup']:.2f} | {r['setup'] - g['setup']:.2f} | "
+                  f"{r['mem']:.2f} |")
+            lines.append(f"{name},{np},{r['setup']:.3f},{r['setup'] - g['setup']:.3f},{r['mem']:.2f}")
+    os.makedirs(os.path.join(ROOT, "build", "lammps"), exist_ok=True)
+    with open(os.path.join(ROOT, "build", "lammps", "bench_setup.csv"), "w") as f:
+        f.write("\n".join(lines) + "\n")
 
 
 def main():
     if not os.access(LMP, os.X_OK):
         sys.exit("bench: " + LMP + " not found: build the plugin and runner first (make lammps)")
+    if SETUP_ONLY:
+        setup_table()
+        return
     best = {}
     for rep in range(REPEAT):
         for k, (name, law, model, np, extra) in enumerate(CASES):
@@ -73,10 +120,11 @@ def main():
     one = {(r["law"], r["model"], r["extra"]): r for r in rows if r["np"] == 1}
     print(f"| deck: pour.in, {rows[0]['atoms']} grains, {NRUN} steps, best of {REPEAT} | ranks | "
           "loop [s] | pair [s] | fixes [s] | mean contacts | pair ns / contact / step | "
-          "loop / granular | fixes (walls) / granular | speed-up 1 -> 2 ranks | setup (tables) [s] |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+          "loop / granular | fixes (walls) / granular | speed-up 1 -> 2 ranks | setup (cached) [s] | "
+          "memory per rank [MB] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     lines = ["name,ranks,loop_s,pair_s,modify_s,mean_contacts,ns_per_contact,ratio,modify_ratio,"
-             "speedup,setup_s"]
+             "speedup,setup_s,memory_mb"]
     for r in rows:
         ns = r["pair"] / (NRUN * max(r["contacts"], 1e-30)) * 1e9 * r["np"]
         g = ref[(r["np"], r["extra"])]
@@ -86,12 +134,13 @@ def main():
         setup = r["wall"] - r["loop"]
         print(f"| {r['name']} | {r['np']} | {r['loop']:.2f} | {r['pair']:.2f} | {r['modify']:.2f} | "
               f"{r['contacts']:.0f} | {ns:.0f} | {ratio:.2f} | {mratio:.2f} | "
-              f"{'' if r['np'] == 1 else f'{sp:.2f}'} | {setup:.1f} |")
+              f"{'' if r['np'] == 1 else f'{sp:.2f}'} | {setup:.1f} | {r['mem']:.2f} |")
         lines.append(f"{r['name']},{r['np']},{r['loop']:.3f},{r['pair']:.3f},{r['modify']:.3f},"
-                     f"{r['contacts']:.1f},{ns:.1f},{ratio:.3f},{mratio:.3f},{sp:.3f},{setup:.1f}")
+                     f"{r['contacts']:.1f},{ns:.1f},{ratio:.3f},{mratio:.3f},{sp:.3f},{setup:.1f},{r['mem']:.2f}")
     os.makedirs(os.path.join(ROOT, "build", "lammps"), exist_ok=True)
     with open(os.path.join(ROOT, "build", "lammps", "bench.csv"), "w") as f:
         f.write("\n".join(lines) + "\n")
+    setup_table()
 
 
 if __name__ == "__main__":

@@ -1195,6 +1195,77 @@ def test_bad_coeff():
         "; " + "; ".join(bad) if bad else "")
 
 
+CHECK = os.path.join(ROOT, "build", "lammps", "hyst-mu-check")
+POUR = os.path.join(ROOT, "integrations", "lammps", "examples", "pour.in")
+
+
+def test_lnmu_error_estimate():
+    """EP-GW with summit data: the plugin picks its ln-mu lattice from a second-difference
+    estimate of the linear interpolation's error (no tables between the nodes) times 1.25.
+    Over the pour example's mu range (8.1-20.9, psi 0.5, TOL 1e-4, reach 140 sigma), on the
+    lattice levels 1 (h = ln 2 / 2) and 2 (ln 2 / 4), every interval's error measured
+    against a table built at its midpoint (the check the estimate replaced) must be within
+    1.25 x the estimate (else the factor would not cover the estimate's own error) and the
+    estimate within 1.5 x the measured error (not an inflated bound). Measured: ratios
+    0.88-1.14 (and 0.95-1.09 for psi 2, mu 2-8, too slow to build here)."""
+    worst_lo, worst_hi, n = 1e9, 0.0, 0
+    for level in (1, 2):
+        p = subprocess.run([CHECK, "lattice", "8.1", "20.9", str(level), "0.5", "0.6", "1e-4",
+                            "140"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           timeout=600)
+        if p.returncode:
+            return False, p.stdout[-500:]
+        for m in re.finditer(r"estimate (\S+) midpoint (\S+)", p.stdout):
+            est, mid = float(m.group(1)), float(m.group(2))
+            worst_hi, worst_lo, n = max(worst_hi, mid / est), min(worst_lo, mid / est), n + 1
+    ok = n == 9 and worst_hi <= 1.25 and worst_lo >= 1 / 1.5
+    return ok, (f"{n} intervals: measured / estimated error in [{worst_lo:.3f}, {worst_hi:.3f}] "
+                "(within [1/1.5, 1.25])")
+
+
+def test_normalised_table_scaling():
+    """The shared tables are normalised (R = E* = sigma = 1) and scaled per contact by
+    E* sqrt(R) sigma^1.5 and sigma (doc/theory.md, Scaling). An EP-GW hysteresis table built
+    with the pour's physical values (R 0.5 mm, E* 5.5 MPa, sigma 1.41 um, mu 10, psi 0.5)
+    against the normalised one, scaled, at loading, unloading and tail points: within 1e-10
+    of the turning point's force (egw solves in the scaled variables, so the two builds are
+    the same computation up to rounding; a wrong power of R or sigma would be off by O(1))."""
+    p = subprocess.run([CHECK, "scaling", "5e-4", "5.5e6", "1.41421e-6", "10", "0.5", "0.6",
+                        "1e-4", "140"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=600)
+    m = re.search(r"max_rel_diff (\S+)", p.stdout)
+    if p.returncode or not m:
+        return False, p.stdout[-500:]
+    d = float(m.group(1))
+    return d <= 1e-10, f"max |P_physical / (E* sqrt(R) sigma^1.5) - p| / p_turning = {d:.1e} (<= 1e-10)"
+
+
+def test_pour_tables_shared():
+    """The pour example with EP-GW (three type pairs and three wall fixes of two types, each
+    with its own mu range): with the cache off, the tables are built once per lattice node
+    and shared (7 nodes, ln mu spacing ln 2 / 4, as many builds), every law's estimated
+    ln-mu error x 1.25 within TOL = 1e-4; on 2 ranks (builds split between the ranks and
+    sent to the other) the log's table lines (the errors estimated from every table, half
+    of them received) are identical."""
+    logs = []
+    for np in (1, 2):
+        p = subprocess.run([LMP, "-np", str(np), "-in", POUR, "-log", "none", "-nocite", "-var",
+                            "model", "EP-GW", "-var", "n", "20", "-var", "nrun", "100"], cwd=TMP,
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           timeout=600, env=dict(os.environ, EGW_CACHE_DIR="off"))
+        lines = [l for l in p.stdout.splitlines() if l.startswith(("pair egw:", "fix wall/egw"))]
+        if p.returncode or len(lines) != 9:
+            return False, f"{np} rank(s): rc {p.returncode}, {len(lines)} table lines; " + p.stdout[-400:]
+        logs.append(lines)
+    built = sum(int(m) for l in logs[0] for m in re.findall(r"built for it: (\d+)", l))
+    errs = [float(m) for l in logs[0] for m in re.findall(r"interpolation error (\S+) of", l)]
+    nodes = {m for l in logs[0] for m in re.findall(r"(\d+) mu nodes", l)}
+    ok = built == 7 and len(errs) == 9 and max(errs) * 1.25 <= 1e-4 and logs[0] == logs[1]
+    return ok, (f"{built} hysteresis tables built for 9 laws ({nodes} nodes each), largest "
+                f"estimated error {max(errs) if errs else float('nan'):.2g}; 2 ranks: "
+                f"{'same' if logs[0] == logs[1] else 'different'} table lines")
+
+
 TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_submodels_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
@@ -1205,7 +1276,8 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_wall_heat_vs_wall_gran, test_wall_curvature_vs_wall_gran,
          test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
-         test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff]
+         test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff,
+         test_lnmu_error_estimate, test_normalised_table_scaling, test_pour_tables_shared]
 
 
 def main():

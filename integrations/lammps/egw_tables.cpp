@@ -1,0 +1,277 @@
+/* pair_style egw and fix wall/egw: the process-wide registry of hysteresis tables and the
+ * ln-mu interpolation error estimate (egw_tables.h). */
+#include "egw_tables.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <mutex>
+#include <tuple>
+#include <unistd.h>
+
+using namespace LAMMPS_NS;
+using namespace LAMMPS_NS::EgwTables;
+
+bool HystKey::operator<(const HystKey &o) const
+{
+  return std::tie(model, mu, psi, K, rho, xmax, tol) <
+      std::tie(o.model, o.mu, o.psi, o.K, o.rho, o.xmax, o.tol);
+}
+
+bool SliceKey::operator<(const SliceKey &o) const
+{
+  return std::tie(kind, model, mu, mu_lo, mu_hi, psi, K, rho, xmax, tol) <
+      std::tie(o.kind, o.model, o.mu, o.mu_lo, o.mu_hi, o.psi, o.K, o.rho, o.xmax, o.tol);
+}
+
+SliceSet::~SliceSet()
+{
+  for (auto &t : tables) egw_table_free(&t);
+}
+
+namespace {
+
+// the registry keeps a reference to every table it handed out, so that a law that is
+// rebuilt (or another fix) finds it again; purge() lets go of those nobody else holds
+std::mutex registry_mutex;
+std::map<HystKey, Hyst> registry;
+std::map<SliceKey, Slices> slice_registry;
+
+Hyst own(egw_hysteresis h)
+{
+  return Hyst(h, [](egw_hysteresis p) { egw_hysteresis_free(&p); });
+}
+
+std::string last_error()
+{
+  char buf[1024];
+  egw_last_error(buf, sizeof(buf));
+  return buf;
+}
+
+// a fresh file name for one table in transit (egw's reader and writer take paths)
+std::string temp_path()
+{
+  const char *dir = std::getenv("TMPDIR");
+  std::string path = std::string(dir && *dir ? dir : "/tmp") + "/egw-lammps-XXXXXX";
+  int fd = mkstemp(&path[0]);
+  if (fd < 0) return std::string();
+  close(fd);
+  return path;
+}
+
+// status 0 and the file's bytes, or an egw status and its message
+int serialize(egw_hysteresis h, std::string &bytes)
+{
+  std::string path = temp_path();
+  if (path.empty()) {
+    bytes = "cannot create a temporary file in $TMPDIR or /tmp to send a table to the other "
+            "ranks";
+    return EGW_IO_ERROR;
+  }
+  int st = egw_hysteresis_write(h, path.c_str(), EGW_FORMAT_BINARY);
+  if (st) {
+    bytes = last_error();
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  std::remove(path.c_str());
+  return st;
+}
+
+int deserialize(const std::string &bytes, egw_hysteresis &h, std::string &message)
+{
+  std::string path = temp_path();
+  if (path.empty()) {
+    message = "cannot create a temporary file in $TMPDIR or /tmp to receive a table";
+    return EGW_IO_ERROR;
+  }
+  {
+    std::ofstream out(path, std::ios::binary);
+    out.write(bytes.data(), (std::streamsize) bytes.size());
+  }
+  int st = egw_hysteresis_read(path.c_str(), &h);
+  if (st) message = last_error();
+  std::remove(path.c_str());
+  return st;
+}
+
+// force at overlap x after the turning point xt (a new contact loaded to xt first)
+double force_after(egw_hysteresis h, double xt, double x)
+{
+  double s = -HUGE_VAL, p = 0.0, dp;
+  egw_hysteresis_eval(h, xt, &s, &p, &dp);
+  egw_hysteresis_eval(h, x, &s, &p, &dp);
+  return p;
+}
+
+// the check points: (turning point, overlap) pairs in units of sigma
+std::vector<std::pair<double, double>> check_points(double xc, double xmax)
+{
+  std::vector<std::pair<double, double>> pts;
+  for (double xt : {2.0, 10.0, 0.2 * xmax, 0.5 * xmax})
+    for (double f : {1.0, 0.95, 0.8, 0.5, 0.2, 0.0})
+      if (xt <= xmax) pts.emplace_back(xt, xc + f * (xt - xc));
+  return pts;
+}
+
+}    // namespace
+
+std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Comm comm,
+                                        int n_threads,
+                                        const std::function<void(const std::string &)> &fail,
+                                        int *n_built)
+{
+  int me = 0, nprocs = 1;
+  MPI_Comm_rank(comm, &me);
+  MPI_Comm_size(comm, &nprocs);
+  std::vector<Hyst> out(keys.size());
+  std::vector<size_t> missing;
+  {
+    std::lock_guard<std::mutex> lock(registry_mutex);
+    for (size_t i = 0; i < keys.size(); i++) {
+      auto it = registry.find(keys[i]);
+      if (it != registry.end()) out[i] = it->second;
+      else if (std::find_if(missing.begin(), missing.end(), [&](size_t j) {
+                 return !(keys[j] < keys[i]) && !(keys[i] < keys[j]);
+               }) == missing.end())
+        missing.push_back(i);
+    }
+  }
+  std::vector<std::string> build_error(missing.size());
+  // every rank holds the same tables (the same calls in the same order), so missing is
+  // the same list everywhere; table m is built on rank m % nprocs
+  for (size_t m = 0; m < missing.size(); m++) {
+    const HystKey &k = keys[missing[m]];
+    int owner = (int) (m % nprocs);
+    if (owner != me) continue;
+    egw_params p;
+    egw_params_default(&p);
+    p.model = k.model, p.radius = 1, p.modulus = 1, p.sigma = 1, p.mu = k.mu;
+    p.psi = k.psi, p.hardness_coeff = k.K, p.plastic_ratio = k.rho;
+    egw_options o;
+    egw_options_default(&o);
+    if (n_threads > 0) o.n_threads = n_threads;
+    egw_hysteresis h = nullptr;
+    if (egw_hysteresis_build(&p, &o, 0.0, k.xmax, k.tol, &h)) build_error[m] = last_error();
+    else out[missing[m]] = own(h);
+  }
+  // send each table (or its build's failure) from its owner to the others
+  std::string first_error;
+  for (size_t m = 0; m < missing.size(); m++) {
+    int owner = (int) (m % nprocs);
+    size_t i = missing[m];
+    std::string bytes;
+    int st = 0;
+    if (owner == me) {
+      if (!out[i]) {
+        st = EGW_NOT_CONVERGED;
+        bytes = build_error[m];
+      } else if (nprocs > 1)
+        st = serialize(out[i].get(), bytes);
+    }
+    if (nprocs > 1) {
+      long n[2] = {(long) st, (long) bytes.size()};
+      MPI_Bcast(n, 2, MPI_LONG, owner, comm);
+      st = (int) n[0];
+      bytes.resize((size_t) n[1]);
+      if (n[1] > 0) MPI_Bcast(&bytes[0], (int) n[1], MPI_CHAR, owner, comm);
+      if (owner != me && st == 0) {
+        egw_hysteresis h = nullptr;
+        std::string msg;
+        st = deserialize(bytes, h, msg);
+        if (st == 0) out[i] = own(h);
+        else bytes = msg;
+      }
+      // a rank that could not read the table stops every rank
+      int bad = st != 0, any = 0;
+      MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, comm);
+      if (any && !bad) st = EGW_IO_ERROR, bytes = "another rank could not read a table";
+    }
+    if (st && first_error.empty()) first_error = bytes;
+  }
+  if (!first_error.empty()) fail(first_error);
+  {
+    std::lock_guard<std::mutex> lock(registry_mutex);
+    for (size_t m = 0; m < missing.size(); m++) registry[keys[missing[m]]] = out[missing[m]];
+    for (size_t i = 0; i < keys.size(); i++)
+      if (!out[i]) out[i] = registry[keys[i]];    // a key repeated in the list
+  }
+  if (n_built) *n_built = (int) missing.size();
+  return out;
+}
+
+Slices EgwTables::find_slices(const SliceKey &key)
+{
+  std::lock_guard<std::mutex> lock(registry_mutex);
+  auto it = slice_registry.find(key);
+  return it == slice_registry.end() ? Slices() : it->second;
+}
+
+void EgwTables::keep_slices(const SliceKey &key, const Slices &set)
+{
+  std::lock_guard<std::mutex> lock(registry_mutex);
+  slice_registry[key] = set;
+}
+
+void EgwTables::purge()
+{
+  std::lock_guard<std::mutex> lock(registry_mutex);
+  for (auto it = registry.begin(); it != registry.end();)
+    if (it->second.use_count() == 1) it = registry.erase(it);
+    else ++it;
+  for (auto it = slice_registry.begin(); it != slice_registry.end();)
+    if (it->second.use_count() == 1) it = slice_registry.erase(it);
+    else ++it;
+}
+
+int EgwTables::count()
+{
+  std::lock_guard<std::mutex> lock(registry_mutex);
+  return (int) (registry.size() + slice_registry.size());
+}
+
+double EgwTables::lnmu_error_estimate(const std::vector<egw_hysteresis> &nodes, double xc,
+                                      double xmax, std::vector<double> *per_interval)
+{
+  int n = (int) nodes.size();
+  if (n < 3) return HUGE_VAL;
+  // the second difference at every inner node, relative to its turning-point force
+  std::vector<double> d2(n, 0.0);
+  for (auto &pt : check_points(xc, xmax)) {
+    for (int c = 1; c + 1 < n; c++) {
+      double ft = force_after(nodes[c], pt.first, pt.first);
+      if (!(ft > 0)) continue;
+      double s = force_after(nodes[c - 1], pt.first, pt.second) -
+          2.0 * force_after(nodes[c], pt.first, pt.second) +
+          force_after(nodes[c + 1], pt.first, pt.second);
+      d2[c] = std::max(d2[c], std::fabs(s) / ft);
+    }
+  }
+  double err = 0.0;
+  if (per_interval) per_interval->assign(n - 1, 0.0);
+  for (int k = 0; k + 1 < n; k++) {
+    double e = 0.125 * std::max(k >= 1 ? d2[k] : 0.0, k + 2 < n ? d2[k + 1] : 0.0);
+    if (per_interval) (*per_interval)[k] = e;
+    err = std::max(err, e);
+  }
+  return err;
+}
+
+double EgwTables::lnmu_error_midpoint(egw_hysteresis a, egw_hysteresis b, egw_hysteresis mid,
+                                      double xc, double xmax)
+{
+  double err = 0.0;
+  for (auto &pt : check_points(xc, xmax)) {
+    double ft = force_after(mid, pt.first, pt.first);
+    if (!(ft > 0)) continue;
+    double pl = 0.5 * (force_after(a, pt.first, pt.second) + force_after(b, pt.first, pt.second));
+    err = std::max(err, std::fabs(pl - force_after(mid, pt.first, pt.second)) / ft);
+  }
+  return err;
+}
