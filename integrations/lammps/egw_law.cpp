@@ -84,8 +84,9 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   if (n_threads > 0) o.n_threads = n_threads;
   double xmax = 30.0;
   if (sigma > 0) xmax = std::max(30.0, overlap_max * R_hi / sigma);
-  // hysteresis tables reaching much beyond 140 sigma unload wrongly (measured: e = 0.9998
-  // instead of 0.948 for a reach of 280 sigma, right to 1e-4 at 140): capped there
+  // hysteresis tables capped at 140 sigma: their nodes (set-up time, memory) grow with the
+  // reach, and deeper contacts take egw's deep law (a 280 sigma table is right too:
+  // doc/benchmarks.md, Deep tables)
   capped = (kind == HYST || kind == HYST_MU) && xmax > HYST_X_MAX;
   if (capped) xmax = HYST_X_MAX;
   // GW/E-GW: a law with the same normalised tables as one built before (another type pair
