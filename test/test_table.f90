@@ -756,6 +756,22 @@ contains
          worst = max(worst, abs(f/res%force - 1))
       end do
       call check(error, worst <= 3*utol, "max rel. error vs solves "//format_real(worst))
+      if (allocated(error)) return
+      ! above x_max = 50: the deep-overlap law of the combined last node, to 0.2 R = 1667
+      ! sigma; within 1 % (issue 22; measured 0.04 %; the law itself: test_deep_law)
+      worst = 0
+      do i = 1, 12
+         p%mu = 2.0_dp*4.0_dp**((i - 0.37_dp)/12)
+         x = 50.0_dp*(0.2_dp*p%radius/(50.0_dp*p%sigma))**(i/12.0_dp)
+         call solve_contact(p, opts, x*p%sigma, res, err)
+         call check(error, .not. allocated(err), "solve at x = "//format_real(x))
+         if (allocated(error)) return
+         call universal_eval(u, p%radius, p%modulus, p%sigma, p%mu, x*p%sigma, f, k, stat)
+         call check(error, stat == egw_out_of_range, "above x_max: flagged")
+         if (allocated(error)) return
+         worst = max(worst, abs(f/res%force - 1))
+      end do
+      call check(error, worst <= 1.0e-2_dp, "above x_max: error vs solves "//format_real(worst))
    end subroutine test_universal_rough
 
    subroutine test_universal_invalid(error)

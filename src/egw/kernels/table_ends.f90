@@ -1,7 +1,7 @@
 !> The laws at the ends of a force table (doc/theory.md §9): the separated tail of a rough
-!> sphere, the rigid-sphere law far apart, and the deep-overlap asymptote, the Hertz form
-!> with the rough layer's offset. Closed forms matched to a table's end node; egw_table
-!> and egw_table_universal continue their interpolants with them.
+!> sphere, the rigid-sphere law far apart, and the deep-overlap asymptote, Hertz's force on
+!> the overlap the rough layer leaves. Closed forms matched to a table's end node;
+!> egw_table and egw_table_universal continue their interpolants with them.
 module egw_table_ends
    use egw_kinds, only: dp
    use egw_gauss, only: gauss_f32, gauss_f52
@@ -53,8 +53,9 @@ contains
    !> g^(1/3) term is classic GW's layer compression (its central summit interference
    !> grows as (p_0/C)^(2/3) ~ delta^(1/3), DESIGN eq. 20 corrected); for E-GW and EP-GW a
    !> is small and absorbs the decaying corrections. Increasing (d delta/dg > 0 at d_e
-   !> and growing), exact for Hertz (a = 0). Within 0.3 % of solves up to 1e6 sigma from
-   !> delta_max = 20 sigma for every model (GW 0.1 <= mu <= 1e5; E-GW, EP-GW up to 0.07 %).
+   !> and growing), exact for Hertz (a = 0). Against solves up to 1e6 sigma from d_e = 20
+   !> sigma: classic GW within 0.2 % (0.1 <= mu <= 1e5), E-GW and EP-GW 0.07 %; within 1 %
+   !> from d_e = 10 sigma (GW, mu >= 0.1) and 2 sigma (E-GW, EP-GW; test_deep_law).
    !> Where p_e, k_e or c is not positive, the linear continuation.
    pure subroutine deep_force(d_e, p_e, k_e, c, delta, force, stiffness)
       real(dp), intent(in) :: d_e        !< last node [length]
