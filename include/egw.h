@@ -266,9 +266,11 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * interpolated to rel_tol), and below it the force follows the model's separated tail
  * (the rigid-sphere law, C1, -> 0 as delta -> -inf; doc/theory.md 9). Hertz: the cut-off
  * is where P = rel_tol * P_ref, and below it Hertz itself. Above delta_max every table
- * follows the deep-overlap asymptote P_n r^(3/2), r = 1 + (delta - delta_max) K_n/(1.5
- * P_n) (the Hertz form with the rough layer's offset, C1, increasing; within 1 % of
- * E-GW and EP-GW solves up to 0.2 R). P_ref = P(min(0, delta_max)) for rough models,
+ * follows the deep-overlap asymptote: Hertz's force (4/3) E sqrt(R) g^(3/2) on the overlap g
+ * the rough layer leaves, delta = delta_max + (g - g_n) + a (g^(1/3) - g_n^(1/3)), a fitted
+ * to the last node (C1, increasing; doc/theory.md 9, doc/formats.md). Within 1 % of solves
+ * up to 0.2 R for every model from delta_max >= 10 sigma (classic GW, mu >= 0.1) or
+ * >= 2 sigma (E-GW, EP-GW); measured 0.2 % (GW) and 0.05 % from 20 sigma. P_ref = P(min(0, delta_max)) for rough models,
  * P(delta_max) for Hertz. Evaluation allocates nothing and is thread-safe. File formats:
  * doc/formats.md. The builds go through an on-disk cache (EGW_CACHE_DIR, else
  * $XDG_CACHE_HOME/egw or $HOME/.cache/egw; EGW_CACHE_DIR=off turns it off): a build done
