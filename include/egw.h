@@ -536,9 +536,9 @@ int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
  * work that comes back; the rest is dissipated when the contact unloads (a DEM code's
  * kinetic + this energy falls while contacts load and stays while they unload or reload).
  * Reversible tables: the loading curve's energy. The state is not changed. It integrates
- * the table's unloading force also where, far down the separated range, its interpolation
- * dips below 0 within rel_tol and egw_hysteresis_eval returns 0 (a difference below rel_tol
- * of the energy: kinetic + this energy is constant to that while a contact unloads).
+ * the force egw_hysteresis_eval returns, 0 also where, far down the separated range, the
+ * interpolated curve dips below 0 within rel_tol (kinetic + this energy is constant to
+ * ~1e-12 of it while a contact unloads, measured against quadrature of the force).
  * EGW_OUT_OF_RANGE above the table's delta_max (value written); EGW_INVALID_ARGUMENT for
  * NaN or overflowing input; EGW_NULL_POINTER for h or energy. */
 int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,
