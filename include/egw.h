@@ -487,8 +487,13 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * *out receives a handle only on success. The curves are solved at min(o->rel_tol,
  * rel_tol/10); before a build (not on a cache hit), a probe of 18 such solves (loading
  * and unloading from delta_max and delta_max/2; milliseconds at the usual tolerances)
- * fails at once where they cannot reach it, rather than after minutes of building (a
- * probe that passes promises nothing: the build may still meet a failing solve). Every
+ * fails at once where they cannot reach it, rather than after minutes of building; below
+ * rel_tol 1e-4 a pilot table at 1e-3 (a few percent of a 1e-5 build) estimates the
+ * build's delta_max grid (growing 2.75x per decade of rel_tol, as measured builds do) and
+ * refuses a rel_tol whose grid would pass the build's limit of 400 nodes, naming the
+ * smallest rel_tol within it (the glass pair of issue 22: 1e-6 refused in seconds,
+ * ~2.2e-6 within). A probe that passes promises nothing: the build may still meet a
+ * failing solve or its limit. Every
  * EGW_NOT_CONVERGED message starts "hysteresis table: rel_tol = <the caller's> ..." and
  * says what the solves' tolerance was and what the failing solve reached (its error
  * estimate, and the rel_tol it could meet). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT

@@ -2,7 +2,8 @@
 !> history semantics of the evaluation, reversibility of elastic summits, bad input.
 module test_hysteresis
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, format_real
+   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, format_real, &
+      & egw_not_converged
    use egw_params, only: contact_params, model_epgw, model_egw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & solve_contact_unload
@@ -14,6 +15,8 @@ module test_hysteresis
    use egw_table_format, only: format_csv, format_binary, format_lammps
    use egw_status, only: egw_bad_file, egw_io_error
    use egw_impact, only: restitution
+   use egw_tolerance_probe, only: probe_hysteresis_size, build_m_node_limit
+   use egw_cache, only: build_hysteresis_cached
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
    use, intrinsic :: iso_c_binding, only: c_int
    use, intrinsic :: iso_fortran_env, only: int64
@@ -52,6 +55,7 @@ contains
          & new_unittest("energy: the force's integral; e^2 at a turning point", test_energy), &
          & new_unittest("elastic summits: no hysteresis", test_reversible), &
          & new_unittest("bad input", test_bad_input), &
+         & new_unittest("glass at 1e-6: refused before the build", test_unreachable_size), &
          & new_unittest("write/read CSV and binary: same values", test_round_trip), &
          & new_unittest("read refuses corrupted and insane files", test_bad_files), &
          & new_unittest("C DEM loop, egw_time_step: e at 1e-4..10 m/s", t_c_dem_loop), &
@@ -430,6 +434,38 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_reversible
+
+   !> Issue 22 item 5: the glass pair's EP-GW table (R = 1 mm, E = 70 GPa, nu = 0.22,
+   !> sigma = 1 um, mu = 4, psi = 2, K = 0.6) at rel_tol 1e-6 over [-3, 30] sigma ran 21.6
+   !> min and then failed. Its pilot at 1e-3 (27 delta_max nodes measured; <= 60 asserted,
+   !> so it built at most 119 curves of at most 800 solves each: a bounded number of
+   !> solves, no timing) estimates ~560 nodes, above the build's 400: the cached build (the
+   !> C path) refuses before building, egw_not_converged, quoting the caller's rel_tol and
+   !> the limit. At 1e-5 (137 nodes when built) the same pilot lets the build go.
+   subroutine test_unreachable_size(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: glass
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      integer :: n_p
+      logical :: hit
+      glass = contact_params(model=model_epgw, radius=0.5e-3_dp, &
+         & modulus=70.0e9_dp/(2*(1 - 0.22_dp**2)), sigma=1.0e-6_dp, mu=4.0_dp, psi=2.0_dp, &
+         & hardness_coeff=0.6_dp, plastic_ratio=54.0_dp)
+      call probe_hysteresis_size(glass, solver_options(), -3.0e-6_dp, 3.0e-5_dp, 1.0e-5_dp, &
+         & err, n_p)
+      call check(error, .not. allocated(err) .and. n_p > 0 .and. n_p <= 60, &
+         & "1e-5: not refused, a small pilot ("//to_string(n_p)//" nodes)")
+      if (allocated(error)) return
+      call build_hysteresis_cached(glass, solver_options(), -3.0e-6_dp, 3.0e-5_dp, 1.0e-6_dp, &
+         & t, err, hit=hit)
+      call check(error, allocated(err), "1e-6: refused")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_not_converged .and. .not. hit .and. &
+         & index(err%message, "rel_tol = "//format_real(1.0e-6_dp)//" (the caller's) "// &
+         & "cannot be reached") > 0 .and. index(err%message, "limit of "// &
+         & to_string(build_m_node_limit)) > 0 .and. .not. allocated(t%m), err%message)
+   end subroutine test_unreachable_size
 
    subroutine test_bad_input(error)
       type(error_type), allocatable, intent(out) :: error
