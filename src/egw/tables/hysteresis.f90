@@ -409,6 +409,14 @@ contains
       !> The unclipped span force P_load(x) - f_m g(s(x)) (unload_branch before its clip).
       pure real(dp) function span_force(x) result(f)
          real(dp), intent(in) :: x
+         real(dp) :: k
+         call span_eval(x, f, k)
+      end function span_force
+
+      !> span_force and its slope dF/dx (unload_branch's stiffness before the clip).
+      pure subroutine span_eval(x, f, k)
+         real(dp), intent(in) :: x
+         real(dp), intent(out) :: f, k
          real(dp) :: s, c(4), g, dg, f_d, k_d
          integer :: i
          s = min((m - x)*inv_span, 1.0_dp)
@@ -417,21 +425,29 @@ contains
          call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
          call table_eval(table%loading, x, f_d, k_d)
          f = f_d - f_m*g
-      end function span_force
+         k = k_d + f_m*dg*inv_span
+      end subroutine span_eval
 
       !> int_a^b min(F, 0) over the span force F: the part of the closed form that the
       !> evaluation clips. F is smooth between the breaks of the loading intervals and of
-      !> the s intervals (x = m - s_i/(s_max L)); on each such piece it is sampled at 9
+      !> the s intervals (x = m - s_i/(s_max L)); a piece whose cubic Hermite of its end
+      !> values and slopes stays positive is skipped (F is that cubic where the loading
+      !> interval is linear, and close to it on ln P intervals); others are sampled at 9
       !> points, and where a sample is not positive the negative runs between its
       !> neighbours (roots by bisection) are integrated by 8-point Gauss-Legendre (exact
       !> for the cubic F of a linear loading interval). Dips narrower than an eighth of a
       !> piece go unseen: they are of the order of the interpolation noise times their
-      !> width cubed.
+      !> width cubed. The scan stops at the first piece that starts above 10 rel_tol f_m:
+      !> the unloading force increases with delta and the table is within ~rel_tol f_m of
+      !> it, so nothing above dips below 0 (a few pieces at the curve's low end are
+      !> scanned, not the whole span: the energy stays cheap enough for pair energies).
       pure real(dp) function span_dips(a, b) result(total)
          real(dp), intent(in) :: a, b
-         real(dp) :: x_a, x_b, next, s_a, xs(0:8), fs(0:8)
+         real(dp) :: x_a, x_b, next, s_a, xs(0:8), fs(0:8), safe, f_a, k_a, f_b, k_b
          integer :: i, k, it, n_load
          total = 0.0_dp
+         safe = 10*table%rel_tol*f_m
+         call span_eval(a, f_a, k_a)
          n_load = size(table%loading%delta)
          x_a = a
          do it = 1, 4*(n_load + size(table%s)) + 8
@@ -448,44 +464,93 @@ contains
             if (.not. next > x_a .and. i > 1) next = m - table%s(i - 1)/inv_span
             if (next > x_a) x_b = min(x_b, next)
             if (.not. x_b > x_a) exit   ! round-off at a break
-            xs = x_a + (x_b - x_a)*[(real(k, dp), k=0, 8)]/8
-            do k = 0, 8
-               fs(k) = span_force(xs(k))
-            end do
-            if (any(.not. fs > 0.0_dp)) then
-               do k = 0, 7
-                  total = total + negative_part(xs(k), xs(k + 1), fs(k), fs(k + 1))
+            if (f_a > safe) exit
+            call span_eval(x_b, f_b, k_b)
+            if (.not. hermite_positive(x_b - x_a, f_a, f_b, k_a, k_b)) then
+               xs = x_a + (x_b - x_a)*[(real(k, dp), k=0, 8)]/8
+               fs(0) = f_a
+               do k = 1, 7
+                  fs(k) = span_force(xs(k))
                end do
+               fs(8) = f_b
+               if (any(.not. fs > 0.0_dp)) then
+                  do k = 0, 7
+                     total = total + negative_part(xs(k), xs(k + 1), fs(k), fs(k + 1))
+                  end do
+               end if
             end if
             x_a = x_b
+            f_a = f_b
+            k_a = k_b
          end do
       end function span_dips
 
-      !> int_x0^x1 min(F, 0) where F(x0) = f0, F(x1) = f1 and F changes sign at most once.
+      !> True when the cubic Hermite of (f0, k0) and (f1, k1) over a width h is positive
+      !> on it: both ends positive and no interior minimum at or below 0.
+      pure logical function hermite_positive(h, f0, f1, k0, k1) result(ok)
+         real(dp), intent(in) :: h, f0, f1, k0, k1
+         real(dp) :: c1, c2, c3, disc, t, r(2)
+         integer :: j
+         ok = f0 > 0.0_dp .and. f1 > 0.0_dp
+         if (.not. ok) return
+         ! p(t) = f0 + c1 t + c2 t^2 + c3 t^3 on [0, 1]; p'(t) = c1 + 2 c2 t + 3 c3 t^2
+         c1 = h*k0
+         c2 = 3*(f1 - f0) - h*(2*k0 + k1)
+         c3 = 2*(f0 - f1) + h*(k0 + k1)
+         if (abs(c3) > 0.0_dp) then
+            disc = c2*c2 - 3*c3*c1
+            if (disc < 0.0_dp) return   ! monotone
+            r = [(-c2 - sqrt(disc))/(3*c3), (-c2 + sqrt(disc))/(3*c3)]
+         else if (abs(c2) > 0.0_dp) then
+            r = -c1/(2*c2)
+         else
+            return   ! linear
+         end if
+         do j = 1, 2
+            t = r(j)
+            if (t > 0.0_dp .and. t < 1.0_dp) ok = ok .and. f0 + t*(c1 + t*(c2 + t*c3)) > 0.0_dp
+         end do
+      end function hermite_positive
+
+      !> int_x0^x1 min(F, 0) where F(x0) = f0, F(x1) = f1 and F changes sign at most once
+      !> (the root to 1e-12 of the width: what remains is ~1e-24 of its slope times width^2).
       pure real(dp) function negative_part(x0, x1, f0, f1) result(total)
          real(dp), intent(in) :: x0, x1, f0, f1
-         real(dp) :: lo_x, hi_x, r, mid, f_lo
-         integer :: j
+         real(dp) :: lo_x, hi_x, r, f_lo, f_hi, f_r
+         integer :: j, side
          total = 0.0_dp
          if (f0 > 0.0_dp .and. f1 > 0.0_dp) return
          if (.not. f0 > 0.0_dp .and. .not. f1 > 0.0_dp) then
             total = min(gauss_integral(x0, x1), 0.0_dp)
             return
          end if
-         ! one end positive: bisect for the root, integrate the negative side
+         ! one end positive: the root by regula falsi (Illinois: a few evaluations, the
+         ! bracket kept), then the negative side
          lo_x = x0
          hi_x = x1
          f_lo = f0
-         do j = 1, 100
-            mid = 0.5_dp*(lo_x + hi_x)
-            if (.not. (mid > lo_x .and. mid < hi_x)) exit
-            if ((span_force(mid) > 0.0_dp) .eqv. (f_lo > 0.0_dp)) then
-               lo_x = mid
+         f_hi = f1
+         side = 0
+         r = x0
+         do j = 1, 60
+            r = (lo_x*f_hi - hi_x*f_lo)/(f_hi - f_lo)
+            if (.not. (r > lo_x .and. r < hi_x)) r = 0.5_dp*(lo_x + hi_x)
+            if (.not. (r > lo_x .and. r < hi_x)) exit
+            f_r = span_force(r)
+            if (abs(f_r) <= 1.0e-14_dp*max(abs(f0), abs(f1))) exit   ! at the root
+            if ((f_r > 0.0_dp) .eqv. (f_lo > 0.0_dp)) then
+               lo_x = r
+               f_lo = f_r
+               if (side == -1) f_hi = 0.5_dp*f_hi
+               side = -1
             else
-               hi_x = mid
+               hi_x = r
+               f_hi = f_r
+               if (side == 1) f_lo = 0.5_dp*f_lo
+               side = 1
             end if
+            if (hi_x - lo_x <= 1.0e-12_dp*(x1 - x0)) exit
          end do
-         r = 0.5_dp*(lo_x + hi_x)
          if (f0 > 0.0_dp) then
             total = min(gauss_integral(r, x1), 0.0_dp)
          else
