@@ -484,16 +484,17 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 
 /* Build for p (EP-GW for hysteresis; other models give reversible curves) over overlaps
  * [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL (defaults).
- * *out receives a handle only on success. The curves are solved at min(o->rel_tol,
- * rel_tol/10); before a build (not on a cache hit), a probe of 18 such solves (loading
- * and unloading from delta_max and delta_max/2; milliseconds at the usual tolerances)
- * fails at once where they cannot reach it, rather than after minutes of building; below
- * rel_tol 1e-4 a pilot table at 1e-3 (a few percent of a 1e-5 build) estimates the
- * build's delta_max grid (growing 2.75x per decade of rel_tol, as measured builds do) and
- * refuses a rel_tol whose grid would pass the build's limit of 400 nodes, naming the
- * smallest rel_tol within it (the glass pair of issue 22: 1e-6 refused in seconds,
- * ~2.2e-6 within). A probe that passes promises nothing: the build may still meet a
- * failing solve or its limit. Every
+ * *out receives a handle only on success. The unloading curves are solved at rel_tol/10,
+ * or at o->rel_tol where that is set below its default 1e-6 and below rel_tol/10 (the
+ * loading table at min(o->rel_tol, rel_tol/10)); before a build (not on a cache hit), a
+ * probe of 18 such solves (loading and unloading from delta_max and delta_max/2;
+ * milliseconds at the usual tolerances) fails at once where they cannot reach it, rather
+ * than after minutes of building; below rel_tol 1e-4 a pilot table at 1e-3 (a few
+ * percent of a 1e-5 build) estimates the build's delta_max grid (growing 2.75x per
+ * decade of rel_tol, as measured builds do) and refuses a rel_tol whose grid would pass
+ * the build's limit of 400 nodes, naming the smallest rel_tol within it (the glass pair
+ * of issue 22: 1e-6 refused in seconds, ~2.2e-6 within). A probe that passes promises
+ * nothing: the build may still meet a failing solve or its limit. Every
  * EGW_NOT_CONVERGED message starts "hysteresis table: rel_tol = <the caller's> ..." and
  * says what the solves' tolerance was and what the failing solve reached (its error
  * estimate, and the rel_tol it could meet). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT

@@ -25,6 +25,9 @@ struct ContactForces {
  * lever_j: the tangential force's lever arms (R - delta/2 for pairs, R_i for walls, as
  * granular); vr = v_i - v_j, wi/wj the spins, a = S/(2 E*) egw's contact radius; sub: the
  * sub-models' history (nullptr when no contact needs it). */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
 inline void contact_submodels(const EgwLaw &L, double Fn, double S, double R, double radi,
                               double radj, double lever_i, double lever_j, const double *n,
                               const double *vr,

@@ -225,10 +225,64 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
   if (kind == UNIVERSAL)
     extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
                          "(universal table built to TOL/2)", slices.size(), interp_error);
-  return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, tail = {:.6g} (the tables' cut-off: "
-                     "force 0 below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
-                     tail, reach, extra) +
+  return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, cut-off {:.6g} (the tables' first node; "
+                     "the tail law below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
+                     xc * sigma, reach, extra) +
       (capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it are not reliable)",
                             HYST_X_MAX)
               : std::string());
+}
+
+void EgwLaw::set_reach(double w_ref, double frac, double R_hi)
+{
+  xt = xc, tail = -xc * sigma, tail_work = 0.0;
+  if (kind == HERTZ || !(sigma > 0) || !(R_hi > 0)) return;
+  // the loading force p(x) of each table (R = E* = sigma = 1); the tail's work grows with
+  // mu, so every node's table is integrated and the lowest reach kept
+  std::vector<std::function<double(double)>> curves;
+  if (kind == TABLE)
+    curves.push_back([this](double x) {
+      double p = 0, dp;
+      egw_table_eval(table, x, &p, &dp);
+      return p;
+    });
+  for (const egw_table &s : slices)
+    curves.push_back([s](double x) {
+      double p = 0, dp;
+      egw_table_eval(s, x, &p, &dp);
+      return p;
+    });
+  for (const egw_hysteresis &h : hyst)
+    curves.push_back([h](double x) {
+      double p = 0, dp, st = -HUGE_VAL;    // a new contact: the loading curve
+      egw_hysteresis_eval(h, x, &st, &p, &dp);
+      return p;
+    });
+  // the work in table units: E* sqrt(R) sigma^2.5 w(x), largest for the largest R
+  const double scale = E_star * std::sqrt(R_hi) * s25;
+  const double w_max = w_ref > 0 ? frac * w_ref / scale : 0.0;
+  const double h = 1e-3;    // Simpson steps in x: the tail varies on the scale of sigma
+  double x_best = 0.0, w_best = HUGE_VAL;
+  for (auto &p : curves) {
+    // the force step where a contact forms stays below frac of the force at delta = 0
+    const double p_top = frac * p(0.0);
+    // w(x) = int_{-inf}^{x} p from the cut-off (the tail law below it holds at most
+    // p(xc) l, l = p / (dp/dx) its decay length, ~1e-12 of P_ref sigma: counted)
+    double p0 = p(xc), d0 = (p(xc + 1e-6) - p0) / 1e-6;
+    double w = d0 > 0 ? p0 * p0 / d0 : 0.0;
+    double x = xc, xr = xc, wr = w;
+    if (w_max > 0)
+      while (x < 0.0) {
+        double pa = p(x), pm = p(x + 0.5 * h), pb = p(x + h);
+        if (pb > p_top) break;
+        double wn = w + h * (pa + 4 * pm + pb) / 6;
+        if (wn > w_max) break;
+        w = wn, x += h;
+        xr = x, wr = w;
+      }
+    if (xr < x_best) x_best = xr, w_best = wr;
+  }
+  xt = x_best;
+  tail = -xt * sigma;
+  tail_work = w_best * scale;
 }

@@ -42,8 +42,10 @@ struct EgwLaw {
   double kt = 0;                   // tangential k_t (mindlin NULL: 8 G*)
   // evaluation
   int kind = HERTZ;
-  double xc = 0;                   // cut-off delta_c/sigma (<= 0)
-  double tail = 0;                 // -delta_c [length]
+  double xc = 0;                   // the tables' cut-off delta_c/sigma (<= 0)
+  double xt = 0;                   // the contacts' reach delta_t/sigma (xc <= xt <= 0)
+  double tail = 0;                 // -delta_t [length]: contacts live while delta > -tail
+  double tail_work = 0;            // the loading work the tail holds below delta_t [energy]
   double reach = 0;                // the tables' largest overlap [length] (inf: Hertz)
   bool capped = false;             // reach capped at HYST_X_MAX sigma (hysteresis)
   static constexpr double HYST_X_MAX = 140.0;
@@ -70,6 +72,13 @@ struct EgwLaw {
    * egw's default); an egw call that fails calls fail() (which reports egw_last_error) */
   void build(double R_lo, double R_hi, double tol, double overlap_max, int n_threads,
              const std::function<void()> &fail);
+  /* the contacts' reach delta_t = xt sigma (sets xt, tail, tail_work): the largest overlap
+   * below which the loading work of the tail is at most frac * w_ref [energy] for every
+   * contact of radius up to R_hi (the tail's work grows with R and mu), never below the
+   * tables' cut-off and never above the overlap where the loading force is frac of its
+   * value at delta = 0 (a contact forms with at most that force step); w_ref <= 0: the
+   * tables' cut-off.  After build(). */
+  void set_reach(double w_ref, double frac, double R_hi);
   /* what was built, for the log */
   std::string describe(double R_lo, double R_hi) const;
   /* the contact's mu at R (summit data) */

@@ -4,13 +4,16 @@
  *       summit_radius v] [psi v] [K v] [plastic_ratio v] [overlap_max F] [temperature T]
  *       [<sub-models>]
  *       xplane|yplane|zplane lo hi | zcylinder radius [wiggle dim A period] [shear dim v]
+ *       [contacts]
+ *   fix ID group wall/egw/region MODEL TOL <the same keywords> region-ID [contacts]
  *
  * A wall contact is the contact of the particle's type (its pair_coeff I I in pair_style
  * egw) with the wall's own material and surface, combined as two types combine (E*, G*
- * from both bodies, sigma = sqrt(sigma_i^2 + sigma_wall^2), mu as in mixing), with R = R_i
- * (a flat wall is a sphere of infinite radius) and m* = m_i; the wall's sub-models (damping,
- * tangential, rolling, twisting) are the fix's own.  History per atom (one wall contact at
- * a time, as fix wall/gran), kept through exchange and restart. */
+ * from both bodies, sigma = sqrt(sigma_i^2 + sigma_wall^2), mu as in mixing), with m* = m_i
+ * and R = R_i rc/(R_i + rc) from the wall's radius of curvature rc at the contact (R_i for
+ * a flat wall, a sphere of infinite radius), as fix wall/gran; the wall's sub-models
+ * (damping, tangential, rolling, twisting, heat) are the fix's own.  History per atom (one
+ * contact per plane wall, one per region face), kept through exchange and restart. */
 #include "fix_wall_egw.h"
 
 #include "egw_contact.h"
@@ -25,6 +28,7 @@
 #include "error.h"
 #include "force.h"
 #include "memory.h"
+#include "neighbor.h"
 #include "update.h"
 #include "utils.h"
 
@@ -35,26 +39,30 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), region(nullptr), history(nullptr), pair(nullptr)
+    Fix(lmp, narg, arg), region(nullptr), history(nullptr), contacts(false),
+    pair(nullptr)
 {
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Fix wall/egw requires atom_style sphere");
   model = EGW_MODEL_EGW, tol = 1e-4, overlap_max = 1.0;
-  wallstyle = -1, axis = 2, lo = hi = cylradius = 0.0, have_lo = have_hi = false;
+  wallstyle = -1, axis = 2, lo = hi = cylradius = cyl_rc = 0.0, have_lo = have_hi = false;
   wiggle = wshear = 0, wdim = 0, amplitude = period = omega = vshear = 0.0;
   built_model = -1, warned_range = false;
   wall_temperature = 0.0, have_temperature = false;
   tmax = 1;
   if (std::string(arg[2]) == "wall/egw/region") {
-    // fix ID group wall/egw/region MODEL TOL <keywords> region-ID
-    if (narg < 6) error->all(FLERR, "Fix wall/egw/region: expected 'fix ID group wall/egw/region "
-                                    "MODEL TOL <wall keywords> region-ID'");
-    region_id = arg[narg - 1];
+    // fix ID group wall/egw/region MODEL TOL <keywords> region-ID [contacts]
+    int last = narg - 1;
+    if (narg > 6 && std::string(arg[last]) == "contacts") contacts = true, last--;
+    if (last < 5) error->all(FLERR, "Fix wall/egw/region: expected 'fix ID group wall/egw/region "
+                                    "MODEL TOL <wall keywords> region-ID [contacts]'");
+    region_id = arg[last];
     region = domain->get_region_by_id(region_id);
     if (!region) error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
     wallstyle = REGION;
     tmax = std::max(1, region->tmax);
-    parse(narg - 1, arg);
+    restart_global = 1;    // the region's motion (as fix wall/gran/region)
+    parse(last, arg);
   } else
     parse(narg, arg);
   time_origin = update->ntimestep;
@@ -66,11 +74,13 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
 
   restart_peratom = 1;
   create_attribute = 1;
+  // fix wall/gran's columns; a heat model appends the heat into the atom (as granular's)
+  ncols = wall.sub.heat != EgwSubmodels::HEAT_NONE ? 9 : 8;
+  if (contacts) peratom_flag = 1, size_peratom_cols = ncols, peratom_freq = 1;
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nlocal; i++)
-    for (int k = 0; k < stride; k++) history[i][k] = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
 }
 
 FixWallEGW::~FixWallEGW()
@@ -78,6 +88,7 @@ FixWallEGW::~FixWallEGW()
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(history);
+  memory->destroy(array_atom);
   for (auto &l : law) l.release();
 }
 
@@ -181,6 +192,7 @@ void FixWallEGW::parse(int narg, char **arg)
     wallstyle = ZCYLINDER, axis = 2;
     cylradius = number("zcylinder radius", i + 1);
     if (cylradius <= 0) error->all(FLERR, "{}: zcylinder radius = {}: must be > 0", who, cylradius);
+    cyl_rc = -2.0 * cylradius;    // concave, with fix wall/gran's radius of curvature
     i += 2;
   } else {
     wallstyle = style == "xplane" ? XPLANE : style == "yplane" ? YPLANE : ZPLANE;
@@ -221,8 +233,12 @@ void FixWallEGW::parse(int narg, char **arg)
         error->all(FLERR, "{}: a plane shears along its own plane", who);
       wshear = 1;
       i += 3;
+    } else if (key == "contacts") {
+      contacts = true;
+      i += 1;
     } else
-      error->all(FLERR, "{}: unknown keyword '{}' after the wall style (wiggle, shear)", who, key);
+      error->all(FLERR, "{}: unknown keyword '{}' after the wall style (wiggle, shear, contacts)",
+                 who, key);
   }
   if (wiggle && wshear) error->all(FLERR, "{}: wiggle and shear together", who);
 }
@@ -239,8 +255,17 @@ void FixWallEGW::egw_fail(const std::string &what)
   error->all(FLERR, "Fix wall/egw: {}: {}", what, buf);
 }
 
+/* The contact's equivalent radius against a wall of radius of curvature rc at the contact
+ * (LAMMPS's region convention: 0 flat, > 0 convex, < 0 concave): R_eff = R_i rc/(R_i + rc),
+ * as fix wall/gran[/region] granular; <= 0 when a concave wall is tighter than the atom. */
+double FixWallEGW::effective_radius(double radi, double rc) const
+{
+  if (rc == 0.0) return radi;
+  return radi * rc / (radi + rc);
+}
+
 /* the law of the wall against particle type t: both bodies' coefficients combined, the
- * fix's sub-models, tables for R = R_i over the type's radii */
+ * fix's sub-models, tables for R = R_eff over the type's radii and the wall's curvatures */
 void FixWallEGW::build_law(int t)
 {
   const EgwCoeff *c = pair->type_coeff(t);
@@ -259,6 +284,12 @@ void FixWallEGW::build_law(int t)
   if (!(rhi > 0)) rhi = rlo = 1.0 / std::max(L.inv_sigma, 1e-300);
   if (rlo > rhi || !(rlo > 0)) rlo = 0.5 * rhi;
   if (rlo == rhi) rlo = rhi / 1.05;
+  if (wallstyle == ZCYLINDER) {    // R_eff grows with R_i (concave wall)
+    double a = effective_radius(rlo, cyl_rc), b = effective_radius(rhi, cyl_rc);
+    if (a > 0 && b > 0) rlo = a, rhi = b;
+  }
+  if (wallstyle == REGION && t < (int) need_rhi.size() && need_rhi[t] > 0)
+    rlo = std::min(rlo, need_rlo[t]), rhi = std::max(rhi, need_rhi[t]);
   bool covered = built_rhi[t] > 0 && rlo >= built_rlo[t] && rhi <= built_rhi[t] &&
       law[t].kind == L.kind && law[t].E_star == L.E_star && law[t].sigma == L.sigma &&
       built_model == model;
@@ -286,7 +317,10 @@ void FixWallEGW::init()
     for (auto &l : law) l.release();
     law.assign(n + 1, EgwLaw());
     built_rlo.assign(n + 1, 0.0), built_rhi.assign(n + 1, 0.0);
+    need_rlo.assign(n + 1, 0.0), need_rhi.assign(n + 1, 0.0);
   }
+  // a curved region with summit data: the R the atoms meet, before the first build
+  if (wallstyle == REGION) region_cover_radii(true);
   for (int t = 1; t <= n; t++)
     if (pair->type_coeff(t)) build_law(t);
   built_model = model;
@@ -297,11 +331,77 @@ void FixWallEGW::init()
 
 void FixWallEGW::setup(int vflag)
 {
+  if (wallstyle == REGION) region_cover_radii(false);
   post_force(vflag);
+}
+
+/* Curved region walls with summit data: a contact's mu follows its R_eff, which the
+ * region's curvature moves away from R_i, so the tables must cover the R_eff the atoms can
+ * meet.  Collective: at set-up and at every reneighboring (all ranks at the same step)
+ * each atom's region contacts within its reach + the neighbor skin (what it can touch
+ * before the next reneighboring) are found, the ranges reduced over ranks, and a type's
+ * tables rebuilt (5 % wider) when they do not cover its range.  before_build (init(),
+ * the tables not built yet): the ranges only, for the first build. */
+void FixWallEGW::region_cover_radii(bool before_build)
+{
+  int n = atom->ntypes;
+  bool any = false;
+  for (int t = 1; t <= n; t++) {
+    if (before_build) {
+      const EgwCoeff *c = pair->type_coeff(t);
+      any = any || wall.mu_mode == 2 || (c && c->mu_mode == 2);
+    } else
+      any = any || law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU;
+  }
+  if (!any) return;
+  std::vector<double> lo(n + 1, HUGE_VAL), hi(n + 1, 0.0);
+  double **x = atom->x, *radius = atom->radius;
+  int *mask = atom->mask, *type = atom->type;
+  if (region->dynamic_check()) region->prematch();
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit) || !region->match(x[i][0], x[i][1], x[i][2])) continue;
+    int t = type[i];
+    int nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + law[t].tail + neighbor->skin);
+    for (int m = 0; m < nc; m++) {
+      double R = effective_radius(radius[i], region->contact[m].radius);
+      if (R > 0) lo[t] = std::min(lo[t], R), hi[t] = std::max(hi[t], R);
+    }
+  }
+  std::vector<double> glo(n + 1), ghi(n + 1);
+  MPI_Allreduce(lo.data(), glo.data(), n + 1, MPI_DOUBLE, MPI_MIN, world);
+  MPI_Allreduce(hi.data(), ghi.data(), n + 1, MPI_DOUBLE, MPI_MAX, world);
+  for (int t = 1; t <= n; t++) {
+    if (before_build) {
+      if (ghi[t] > 0) need_rlo[t] = glo[t] / 1.05, need_rhi[t] = ghi[t] * 1.05;
+      continue;
+    }
+    if (!(ghi[t] > 0) || !(law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU))
+      continue;
+    if (glo[t] >= built_rlo[t] && ghi[t] <= built_rhi[t]) continue;
+    need_rlo[t] = std::min(glo[t], built_rlo[t]) / 1.05;
+    need_rhi[t] = std::max(ghi[t], built_rhi[t]) * 1.05;
+    build_law(t);
+  }
+}
+
+/* the 'contacts' row of atom i (fix wall/gran's columns): 1, the wall's force on the
+ * atom, the contact point on the wall (the centre less dist along the normal n from the
+ * wall to the centre), the atom's radius; with a heat model the heat flow into the atom */
+void FixWallEGW::store_contact(int i, const double *x, const double *n, double dist,
+                               const double *f, double radi, double dq)
+{
+  double *row = array_atom[i];
+  row[0] = 1.0;
+  for (int d = 0; d < 3; d++) row[1 + d] = f[d], row[4 + d] = x[d] - dist * n[d];
+  row[7] = radi;
+  if (ncols > 8) row[8] = dq;
 }
 
 void FixWallEGW::post_force(int /*vflag*/)
 {
+  if (contacts)
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < ncols; k++) array_atom[i][k] = 0.0;
   if (wallstyle == REGION) {
     post_force_region();
     return;
@@ -351,7 +451,11 @@ void FixWallEGW::post_force(int /*vflag*/)
     if (!(built_rhi[type[i]] > 0))
       error->one(FLERR, "Fix wall/egw: an atom of type {} touches the wall but the type has no "
                         "pair_coeff in pair_style egw", type[i]);
-    double R = radi;
+    // the cylinder's curvature (concave) enters R as in fix wall/gran
+    double R = wallstyle == ZCYLINDER ? effective_radius(radi, cyl_rc) : radi;
+    if (!(R > 0))
+      error->one(FLERR, "Fix wall/egw: an atom of radius {} does not fit the zcylinder of radius "
+                        "{}", radi, cylradius);
     double Fn, S, U;
     int st = L.eval(delta, R, hist, Fn, S, U, 0);
     if (st == EgwLaw::MU_OUTSIDE)
@@ -376,17 +480,18 @@ void FixWallEGW::post_force(int /*vflag*/)
                       hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt,
                       heat ? atom->temperature[i] : 0.0, wall_temperature, c);
     if (heat) atom->heatflow[i] += c.dq;
-    f[i][0] += c.Fntot * n[0] + c.fs[0];
-    f[i][1] += c.Fntot * n[1] + c.fs[1];
-    f[i][2] += c.Fntot * n[2] + c.fs[2];
+    const double fw[3] = {c.Fntot * n[0] + c.fs[0], c.Fntot * n[1] + c.fs[1],
+                          c.Fntot * n[2] + c.fs[2]};
+    f[i][0] += fw[0], f[i][1] += fw[1], f[i][2] += fw[2];
     torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
+    if (contacts) store_contact(i, x[i], n, dist, fw, radi, c.dq);
   }
 }
 
 /* The region's surfaces: each atom inside the region keeps up to tmax contacts, each
  * with the id of its wall (the region's iwall) and its history; per atom: [0] the number
- * of contacts, then per slot the wall id + 1 and the history.  Flat faces and curved
- * ones alike are flat contacts of radius R_i (the region's curvature is not used). */
+ * of contacts, then per slot the wall id + 1 and the history.  A contact's R is R_eff
+ * from R_i and the region's radius of curvature there (flat faces: R_i). */
 void FixWallEGW::post_force_region()
 {
   const bool update_history = update->setupflag == 0;
@@ -394,8 +499,9 @@ void FixWallEGW::post_force_region()
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega_a = atom->omega;
   double **torque = atom->torque, *radius = atom->radius, *rmass = atom->rmass;
   int *mask = atom->mask, *type = atom->type, nlocal = atom->nlocal;
+  if (update->setupflag == 0 && neighbor->ago == 0) region_cover_radii(false);
   if (region->dynamic_check()) region->prematch();
-  bool moving = region->moveflag || region->rotateflag;
+  bool moving = region->dynamic_check();
   if (moving) region->set_velocity();
   const double zero[3] = {0.0, 0.0, 0.0};
   const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;
@@ -432,12 +538,17 @@ void FixWallEGW::post_force_region()
       double *hist = &slot[1];
       double n[3] = {region->contact[m].delx / r, region->contact[m].dely / r,
                      region->contact[m].delz / r};
-      double R = radi, Fn, S, U;
+      double R = effective_radius(radi, region->contact[m].radius), Fn, S, U;
+      if (!(R > 0))
+        error->one(FLERR, "Fix wall/egw/region: an atom of radius {} does not fit the region's "
+                          "concave surface of radius of curvature {}", radi,
+                   -region->contact[m].radius);
       int st = L.eval(delta, R, hist, Fn, S, U, 0);
       if (st == EgwLaw::MU_OUTSIDE)
-        error->one(FLERR, "Fix wall/egw/region: contact with R = {} has mu = {} outside the "
-                          "tables' [{}, {}]: widen pair_style egw ... rmin/rmax", R, L.mu_at(R),
-                   L.mu_lo, L.mu_hi);
+        error->one(FLERR, "Fix wall/egw/region: contact with R = {} (R_i = {}, the region's "
+                          "radius of curvature {}) has mu = {} outside the tables' [{}, {}]: "
+                          "widen pair_style egw ... rmin/rmax", R, radi,
+                   region->contact[m].radius, L.mu_at(R), L.mu_lo, L.mu_hi);
       if (st == EGW_OUT_OF_RANGE && !warned_range) {
         warned_range = true;
         error->warning(FLERR, "Fix wall/egw/region: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond "
@@ -458,10 +569,12 @@ void FixWallEGW::post_force_region()
                         hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt,
                         heat ? atom->temperature[i] : 0.0, wall_temperature, c);
       if (heat) atom->heatflow[i] += c.dq;
-      f[i][0] += c.Fntot * n[0] + c.fs[0];
-      f[i][1] += c.Fntot * n[1] + c.fs[1];
-      f[i][2] += c.Fntot * n[2] + c.fs[2];
+      const double fw[3] = {c.Fntot * n[0] + c.fs[0], c.Fntot * n[1] + c.fs[1],
+                            c.Fntot * n[2] + c.fs[2]};
+      f[i][0] += fw[0], f[i][1] += fw[1], f[i][2] += fw[2];
       torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
+      // several contacts: the row holds the last one (as fix wall/gran/region)
+      if (contacts) store_contact(i, x[i], n, r, fw, radi, c.dq);
       nnew++;
     }
     h[0] = nnew;
@@ -479,16 +592,22 @@ double FixWallEGW::memory_usage()
 void FixWallEGW::grow_arrays(int nmax)
 {
   memory->grow(history, nmax, stride, "fix_wall_egw:history");
+  if (contacts) memory->grow(array_atom, nmax, ncols, "fix_wall_egw:array_atom");
 }
 
 void FixWallEGW::copy_arrays(int i, int j, int /*delflag*/)
 {
   for (int k = 0; k < stride; k++) history[j][k] = history[i][k];
+  if (contacts)
+    for (int k = 0; k < ncols; k++) array_atom[j][k] = array_atom[i][k];
 }
 
+/* the 'contacts' rows are not exchanged: post_force fills them every step before output */
 void FixWallEGW::set_arrays(int i)
 {
   for (int k = 0; k < stride; k++) history[i][k] = 0.0;
+  if (contacts)
+    for (int k = 0; k < ncols; k++) array_atom[i][k] = 0.0;
 }
 
 int FixWallEGW::pack_exchange(int i, double *buf)
@@ -528,4 +647,28 @@ int FixWallEGW::size_restart(int /*nlocal*/)
 int FixWallEGW::maxsize_restart()
 {
   return stride + 1;
+}
+
+/* ------------------------------------------------------------ the region's motion (global) */
+
+/* a moving region's wall velocity comes from its previous displacement and angle: they go
+ * into restart files, so that a run continued by read_restart moves the wall as before */
+void FixWallEGW::write_restart(FILE *fp)
+{
+  if (wallstyle != REGION || comm->me) return;
+  int len = 0;
+  region->length_restart_string(len);
+  fwrite(&len, sizeof(int), 1, fp);
+  region->write_restart(fp);
+}
+
+void FixWallEGW::restart(char *buf)
+{
+  if (wallstyle != REGION) return;
+  int n = 0;
+  if (!region->restart(buf, n)) {
+    error->warning(FLERR, "Fix wall/egw/region: region {} differs from the restart file's; "
+                          "its motion starts afresh", region_id);
+    region->reset_vel();
+  }
 }

@@ -1,6 +1,7 @@
-/* fix wall/egw: flat and cylindrical walls with egw's rough contact law (the wall's own
- * material and surface combined with the particle type's as two types combine) and pair
- * granular's sub-models; per-atom contact histories that migrate and go into restarts.
+/* fix wall/egw[/region]: flat, cylindrical and region walls (their curvature as in fix
+ * wall/gran) with egw's rough contact law (the wall's own material and surface combined
+ * with the particle type's as two types combine) and pair granular's sub-models; per-atom
+ * contact histories that migrate and go into restarts; fix wall/gran's 'contacts' array.
  * See integrations/lammps/README.md. */
 #ifndef EGW_LAMMPS_FIX_WALL_EGW_H
 #define EGW_LAMMPS_FIX_WALL_EGW_H
@@ -31,6 +32,8 @@ class FixWallEGW : public Fix {
   void unpack_restart(int, int) override;
   int size_restart(int) override;
   int maxsize_restart() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
   /* the wall exchanges heat with the atoms (a heat model) */
   bool has_heat() const { return wall.sub.heat != EgwSubmodels::HEAT_NONE; }
 
@@ -41,6 +44,7 @@ class FixWallEGW : public Fix {
   EgwCoeff wall;                   // the wall's material, surface and sub-models
   int wallstyle, axis;             // axis: 0, 1, 2 (the plane's normal; z for the cylinder)
   double lo, hi, cylradius;
+  double cyl_rc;                   // zcylinder: the wall's radius of curvature (-2 radius)
   bool have_lo, have_hi;
   int wiggle, wshear, wdim;        // wiggle/shear along wdim
   double amplitude, period, omega, vshear;
@@ -54,6 +58,12 @@ class FixWallEGW : public Fix {
   int stride;                      // doubles per atom: planes nhist; region 1 + tmax (1 + nhist)
   double **history;                // per atom: its wall contacts' histories (0: none)
   void post_force_region();
+  bool contacts;                   // the 'contacts' per-atom array (array_atom)
+  int ncols;                       // its columns: 8 (fix wall/gran's), 9 with a heat model
+  // the radii R_eff (over the region's curvatures) the tables must cover (summit data)
+  std::vector<double> need_rlo, need_rhi;
+  double effective_radius(double radi, double rc) const;
+  void region_cover_radii(bool before_build);
   std::vector<EgwLaw> law;         // per particle type
   std::vector<double> built_rlo, built_rhi;
   int built_model;
@@ -62,6 +72,8 @@ class FixWallEGW : public Fix {
 
   void parse(int, char **);
   void build_law(int type);
+  void store_contact(int i, const double *x, const double *n, double dist,
+                     const double *f, double radi, double dq);
   void egw_fail(const std::string &);
 };
 

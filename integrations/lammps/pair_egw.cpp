@@ -1,6 +1,6 @@
 /* pair_style egw: egw's rough-sphere contact law as a LAMMPS granular pair style.
  *
- *   pair_style egw MODEL TOL [rmin R] [rmax R] [overlap_max F]
+ *   pair_style egw MODEL TOL [rmin R] [rmax R] [overlap_max F] [tail_energy W]
  *   pair_coeff I J E v nu v sigma v [mu v | summit_density v summit_radius v] [psi v]
  *              [K v] [plastic_ratio v] [damping e] [friction mu_t]
  *
@@ -58,6 +58,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   tol = 1e-4;
   rmin_user = rmax_user = 0.0;
   overlap_max = 1.0;    // granular decks reach 0.57 R in a pour
+  tail_energy = 0.0;    // contacts reach the tables' cut-off
   fix_history = nullptr;
   freeze_group_bit = 0;
   tables_ready = false;
@@ -240,6 +241,24 @@ void PairEGW::init_style()
       bool covered = built_rhi[i][j] > 0 &&
           (!needs_r || (R_lo >= built_rlo[i][j] && R_hi <= built_rhi[i][j]));
       if (!covered) build_tables(i, j, R_lo, R_hi);
+      // the contacts' reach from the energy the tail holds (cheap: every run)
+      double tail_old = L.tail;
+      L.set_reach(tail_energy, tol, built_rhi[i][j]);
+      if (comm->me == 0 && L.kind != EgwLaw::HERTZ && (!covered || L.tail != tail_old))
+        utils::logmesg(lmp, "pair egw: types {} {}: contacts reach delta_t = {:.6g} ({:.4g} "
+                            "sigma; the tables' cut-off {:.4g} sigma), the tail's loading work "
+                            "below it {:.3g}{}\n", i, j, -L.tail, L.xt, L.xc, L.tail_work,
+                       tail_energy > 0
+                           ? fmt::format(" (<= TOL x tail_energy = {:.3g})", tol * tail_energy)
+                           : std::string(" (tail_energy 0: the tables' cut-off)"));
+    }
+  law_of.assign((n + 1) * (n + 1), nullptr);
+  tail_of.assign((n + 1) * (n + 1), 0.0);
+  for (int i = 1; i <= n; i++)
+    for (int j = 1; j <= n; j++) {
+      EgwLaw &L = law[std::min(i, j)][std::max(i, j)];
+      law_of[i * (n + 1) + j] = &L;
+      tail_of[i * (n + 1) + j] = L.tail;
     }
   tables_ready = true;
 }
@@ -312,9 +331,11 @@ void PairEGW::compute(int eflag, int vflag)
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   double ncontact = 0.0;    // a pair with a ghost under newton off is counted by both ranks
 
+  const int nt1 = atom->ntypes + 1;
   for (int ii = 0; ii < inum; ii++) {
     int i = ilist[ii];
-    int itype = type[i];
+    const int irow = type[i] * nt1;
+    const double *tail_i = &tail_of[irow];
     double xi = x[i][0], yi = x[i][1], zi = x[i][2], radi = radius[i];
     int *touch = firsttouch[i];
     double *allhist = firsthist[i];
@@ -323,18 +344,18 @@ void PairEGW::compute(int eflag, int vflag)
 
     for (int jj = 0; jj < jnum; jj++) {
       int j = jlist[jj] & NEIGHMASK;
-      int jtype = type[j];
-      EgwLaw &L = itype <= jtype ? law[itype][jtype] : law[jtype][itype];
       double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
       double rsq = dx * dx + dy * dy + dz * dz;
       double radj = radius[j];
-      double reach = radi + radj + L.tail;
-      double *hist = &allhist[nhist * jj];
+      double reach = radi + radj + tail_i[type[j]];
       if (rsq >= reach * reach) {
+        // a pair beyond the reach has no history: a contact that forms starts afresh
+        // (EgwHistory::start sets every value), so nothing is cleared here
         touch[jj] = 0;
-        for (int k = 0; k < nhist; k++) hist[k] = 0.0;
         continue;
       }
+      EgwLaw &L = *law_of[irow + type[j]];
+      double *hist = &allhist[nhist * jj];
       double r = std::sqrt(rsq), rinv = 1.0 / r;
       double nx = dx * rinv, ny = dy * rinv, nz = dz * rinv;
       double delta = radi + radj - r;

@@ -51,6 +51,7 @@ class PairEGW : public Pair {
   bool heat_any;        // some type pair has a heat model
   double tol;           // table tolerance
   double rmin_user, rmax_user, overlap_max;
+  double tail_energy;   // reference energy of the tail's reach (0: the tables' cut-off)
   class Fix *fix_history;
   int freeze_group_bit;
   bool tables_ready;
@@ -64,6 +65,10 @@ class PairEGW : public Pair {
   std::vector<std::vector<EgwLaw>> law;      // [i][j] = [j][i]
   std::vector<double> rad_max, rad_min;      // per type, for cut-offs and table ranges
   std::vector<std::vector<double>> built_rlo, built_rhi;
+  // compute()'s flat per-type-pair view [itype * (ntypes + 1) + jtype], both orders: the law
+  // and its reach -delta_t (read for every neighbor, most of them beyond it)
+  std::vector<EgwLaw *> law_of;
+  std::vector<double> tail_of;
 
   void allocate();
   void parse_coeff(int, char **, Coeff &);

@@ -39,12 +39,20 @@ void PairEGW::settings(int narg, char **arg)
   else if (m == "EP-GW" || m == "ep-gw" || m == "EPGW") model = EGW_MODEL_EPGW;
   else error->all(FLERR, "Pair style egw: MODEL = '{}': must be Hertz, GW, E-GW or EP-GW", m);
   double v;
+  rmin_user = rmax_user = 0.0, overlap_max = 1.0, tail_energy = 0.0;    // the defaults
   if (!egw_parse_number(arg[1], v) || v < 1e-8 || v > 0.1)
     error->all(FLERR, "Pair style egw: TOL = '{}': must be a number in [1e-8, 0.1]", arg[1]);
   tol = v;
   for (int i = 2; i < narg; i += 2) {
     std::string key = arg[i];
     if (i + 1 >= narg) error->all(FLERR, "Pair style egw: keyword '{}' needs a value", key);
+    if (key == "tail_energy") {
+      if (!egw_parse_number(arg[i + 1], v) || v < 0.0)
+        error->all(FLERR, "Pair style egw: tail_energy = '{}': must be a number >= 0 (an "
+                          "energy; 0: contacts reach the tables' cut-off)", arg[i + 1]);
+      tail_energy = v;
+      continue;
+    }
     if (!egw_parse_number(arg[i + 1], v) || v <= 0.0)
       error->all(FLERR, "Pair style egw: {} = '{}': must be a number > 0", key, arg[i + 1]);
     if (key == "rmin") rmin_user = v;

@@ -31,6 +31,7 @@ void PairEGW::write_restart_settings(FILE *fp)
   fwrite(&rmin_user, sizeof(double), 1, fp);
   fwrite(&rmax_user, sizeof(double), 1, fp);
   fwrite(&overlap_max, sizeof(double), 1, fp);
+  fwrite(&tail_energy, sizeof(double), 1, fp);
 }
 
 void PairEGW::read_restart_settings(FILE *fp)
@@ -41,12 +42,14 @@ void PairEGW::read_restart_settings(FILE *fp)
     utils::sfread(FLERR, &rmin_user, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &rmax_user, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &overlap_max, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &tail_energy, sizeof(double), 1, fp, nullptr, error);
   }
   MPI_Bcast(&model, 1, MPI_INT, 0, world);
   MPI_Bcast(&tol, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&rmin_user, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&rmax_user, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&overlap_max, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&tail_energy, 1, MPI_DOUBLE, 0, world);
 }
 
 void PairEGW::write_restart(FILE *fp)

@@ -108,7 +108,9 @@ module egw_hysteresis
       module subroutine build_hysteresis(params, options, delta_min, delta_max, rel_tol, &
          & table, error, progress)
          type(contact_params), intent(in) :: params   !< one parameter set (EP-GW dissipates)
-         !> solver options (the unloading solves use at most a tenth of rel_tol)
+         !> solver options (the loading table's solves at min(options%rel_tol, rel_tol/10),
+         !> the unloading curves' at hysteresis_solve_tol: rel_tol/10, or options%rel_tol
+         !> if set below its default 1e-6 and below that)
          type(solver_options), intent(in) :: options
          real(dp), intent(in) :: delta_min      !< smallest overlap of interest (< 0: separation)
          real(dp), intent(in) :: delta_max      !< largest overlap (and delta_max) tabulated

@@ -6,6 +6,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_params, only: validate_params, model_epgw
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload
    use egw_table, only: build_table
+   use egw_tolerance_probe, only: hysteresis_solve_tol
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -270,15 +271,15 @@ contains
       end subroutine one_length
    end subroutine unloading_lengths
 
-   !> The options of one curve's solves: serial (the parallelism is over the curves), and
-   !> a decade finer than the table's tolerance rel_tol.
+   !> The options of one curve's solves: serial (the parallelism is over the curves), at
+   !> hysteresis_solve_tol (a decade finer than the table's tolerance rel_tol).
    pure function curve_options(options, rel_tol) result(serial)
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: rel_tol
       type(solver_options) :: serial
       serial = options
       serial%n_threads = 1
-      serial%rel_tol = min(options%rel_tol, rel_tol/10.0_dp)
+      serial%rel_tol = hysteresis_solve_tol(options, rel_tol)
    end function curve_options
 
    !> The first failure of a parallel loop over curves (stats(j) /= 0, with its message) as
@@ -438,16 +439,26 @@ contains
       !> delta = m - s span, P_ext the loading table with its tail below the cut-off (below
       !> the cut-off too: the curve is a neighbour of others in the m direction), c the
       !> solve's force at m over the table's; g = 0 at the turning point, so that the force
-      !> is continuous there
+      !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
       subroutine gap_at(x, g, dg)
          real(dp), intent(in) :: x
          real(dp), intent(out) :: g, dg
-         real(dp) :: p_ext, k_ext
+         real(dp) :: p_ext, k_ext, x_solve
          g = 0.0_dp
          dg = 0.0_dp
-         call solve_unload(hist, m - x*span, res, error)
+         ! At s = 0 solve_unload returns the loading solve, whose stiffness is the loading
+         ! branch's; unloading leaves the turning point stiffer (mu 4, psi 2, m = sigma:
+         ! 2.740 against 2.539), so a slope of ~0 there made the first interval's cubic
+         ! wrong and the bisection halve it down to s ~ 6e-5 (10 nodes, 20 solves a
+         ! curve). The slope at s = 1e-4 instead: g is smooth there (g/s linear in s from
+         ! 0.5 down to 1e-6 sigma), the difference is ~1e-4 g'' and the checks below see
+         ! what remains. (Nearer than ~1e-7 sigma to m an unloading solve's stiffness is
+         ! off: d - d_max is then below the error of the interpolated d_max field.)
+         x_solve = x
+         if (x == 0.0_dp) x_solve = 1.0e-4_dp
+         call solve_unload(hist, m - x_solve*span, res, error)
          if (allocated(error)) return
-         call table_eval(table%loading, m - x*span, p_ext, k_ext)
+         call table_eval(table%loading, m - x_solve*span, p_ext, k_ext)
          if (x > 0.0_dp) g = (c_turn*p_ext - res%force)/scale
          dg = (res%stiffness - c_turn*k_ext)*span/scale
          ! far below the cut-off the forces underflow: no subnormal numbers in the table
