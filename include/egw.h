@@ -266,9 +266,11 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * interpolated to rel_tol), and below it the force follows the model's separated tail
  * (the rigid-sphere law, C1, -> 0 as delta -> -inf; doc/theory.md 9). Hertz: the cut-off
  * is where P = rel_tol * P_ref, and below it Hertz itself. Above delta_max every table
- * follows the deep-overlap asymptote P_n r^(3/2), r = 1 + (delta - delta_max) K_n/(1.5
- * P_n) (the Hertz form with the rough layer's offset, C1, increasing; within 1 % of
- * E-GW and EP-GW solves up to 0.2 R). P_ref = P(min(0, delta_max)) for rough models,
+ * follows the deep-overlap asymptote: Hertz's force (4/3) E sqrt(R) g^(3/2) on the overlap g
+ * the rough layer leaves, delta = delta_max + (g - g_n) + a (g^(1/3) - g_n^(1/3)), a fitted
+ * to the last node (C1, increasing; doc/theory.md 9, doc/formats.md). Within 1 % of solves
+ * up to 0.2 R for every model from delta_max >= 10 sigma (classic GW, mu >= 0.1) or
+ * >= 2 sigma (E-GW, EP-GW); measured 0.2 % (GW) and 0.05 % from 20 sigma. P_ref = P(min(0, delta_max)) for rough models,
  * P(delta_max) for Hertz. Evaluation allocates nothing and is thread-safe. File formats:
  * doc/formats.md. The builds go through an on-disk cache (EGW_CACHE_DIR, else
  * $XDG_CACHE_HOME/egw or $HOME/.cache/egw; EGW_CACHE_DIR=off turns it off): a build done
@@ -487,8 +489,12 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * loading table at min(o->rel_tol, rel_tol/10)); before a build (not on a cache hit), a
  * probe of 18 such solves (loading and unloading from delta_max and delta_max/2;
  * milliseconds at the usual tolerances) fails at once where they cannot reach it, rather
- * than after minutes of building (a probe that passes promises nothing: the build may
- * still meet a failing solve). Every
+ * than after minutes of building; below rel_tol 1e-4 a pilot table at 1e-3 (a few
+ * percent of a 1e-5 build) estimates the build's delta_max grid (growing 2.75x per
+ * decade of rel_tol, as measured builds do) and refuses a rel_tol whose grid would pass
+ * the build's limit of 400 nodes, naming the smallest rel_tol within it (the glass pair
+ * of issue 22: 1e-6 refused in seconds, ~2.2e-6 within). A probe that passes promises
+ * nothing: the build may still meet a failing solve or its limit. Every
  * EGW_NOT_CONVERGED message starts "hysteresis table: rel_tol = <the caller's> ..." and
  * says what the solves' tolerance was and what the failing solve reached (its error
  * estimate, and the rel_tol it could meet). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT
@@ -536,9 +542,9 @@ int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
  * work that comes back; the rest is dissipated when the contact unloads (a DEM code's
  * kinetic + this energy falls while contacts load and stays while they unload or reload).
  * Reversible tables: the loading curve's energy. The state is not changed. It integrates
- * the table's unloading force also where, far down the separated range, its interpolation
- * dips below 0 within rel_tol and egw_hysteresis_eval returns 0 (a difference below rel_tol
- * of the energy: kinetic + this energy is constant to that while a contact unloads).
+ * the force egw_hysteresis_eval returns, 0 also where, far down the separated range, the
+ * interpolated curve dips below 0 within rel_tol (kinetic + this energy is constant to
+ * ~1e-12 of it while a contact unloads, measured against quadrature of the force).
  * EGW_OUT_OF_RANGE above the table's delta_max (value written); EGW_INVALID_ARGUMENT for
  * NaN or overflowing input; EGW_NULL_POINTER for h or energy. */
 int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,

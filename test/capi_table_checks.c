@@ -2,6 +2,7 @@
  * free, universal tables, with good and bad input. Each egw_capi_test_table_* returns
  * the number of failed checks and prints why; test/test_capi_table.f90 runs them as a
  * test-drive suite. Exact references: the Hertz closed form, written out here. */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -428,11 +429,19 @@ static void plain_table_eval(const plain_table *t, double d, double *f, double *
     }
     return;
   }
-  if (d >= t->delta[n - 1]) { /* rule 2 */
-    double p = t->force[n - 1], q = t->stiffness[n - 1], r;
-    if (!(p > 0.0 && q > 0.0)) { *k = q; *f = p + q * (d - t->delta[n - 1]); return; }
-    r = 1.0 + (d - t->delta[n - 1]) * q / (1.5 * p);
-    *k = q * sqrt(r); *f = p * r * sqrt(r); return;
+  if (d >= t->delta[n - 1]) { /* rule 2: c = (4/3) E sqrt(R), params[0] = R, [1] = E */
+    double p = t->force[n - 1], q = t->stiffness[n - 1], s = d - t->delta[n - 1];
+    double c = 4.0 / 3.0 * t->params[1] * sqrt(t->params[0]), te, u, a, x, step;
+    if (!(p > 0.0 && q > 0.0 && c > 0.0)) { *k = q; *f = p + q * s; return; }
+    te = pow(cbrt(p) / cbrt(c), 2.0 / 3.0); u = 1.5 * p / q; a = 3.0 * (u - te * te * te) / te;
+    x = fmin(te + s * te / (3.0 * u), cbrt(te * te * te + s) + sqrt(fmax(-a, 0.0)));
+    for (int it = 0; s > 0.0 && it < 200; it++) { /* Newton from above: monotone */
+      step = ((x - te) * (x * x + x * te + te * te + a) - s) / (3.0 * x * x + a);
+      if (!(step > 4.0 * DBL_EPSILON * x)) break;
+      x -= step;
+    }
+    if (!(s > 0.0) || x < te) x = te;
+    *f = p * pow(x / te, 4.5); *k = 1.5 * *f / (x * (x * x + a / 3.0)); return;
   }
   while (hi - lo > 1) { int m = (lo + hi) / 2; if (d >= t->delta[m]) lo = m; else hi = m; }
   {

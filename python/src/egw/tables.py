@@ -154,7 +154,7 @@ class Table(_Handle):
         Warns
         -----
         OutOfRangeWarning
-            Above the last node (values extrapolated linearly with the last stiffness).
+            Above the last node (values from the deep-overlap asymptote, doc/theory.md §9).
         """
         d = _array(delta)
         force = np.empty_like(d)
@@ -248,7 +248,7 @@ class UniversalTable(_Handle):
         Warns
         -----
         OutOfRangeWarning
-            Points above x_max*sigma (extrapolated linearly) or with mu outside the table
+            Points above x_max*sigma (the deep-overlap asymptote) or with mu outside the table
             (NaN there).
 
         Raises

@@ -15,6 +15,8 @@ module egw_capi_hysteresis
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
+   use egw_table, only: deep_coefficient
+   use egw_table_ends, only: deep_reach
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, check_count, &
       & read_contact, put, put_handle_settled, take_handle, double_array, from_params, &
       & egw_params_c, c_path
@@ -180,7 +182,7 @@ contains
 
    !> C: egw_hysteresis_eval_array: n independent contacts in one call. Every input is
    !> checked before anything is written: overlaps and states must be numbers, and at most
-   !> where the loading table's linear continuation stays well inside the doubles.
+   !> where the loading table's deep-overlap asymptote stays well inside the doubles.
    function egw_hysteresis_eval_array(hp, n, delta_p, state_p, force, stiffness) &
       & result(stat) bind(C, name="egw_hysteresis_eval_array")
       type(c_ptr), value, intent(in) :: hp
@@ -336,21 +338,14 @@ contains
          & ": above the table's delta_max = "//format_real(h%delta_max)//" (values extrapolated)")
    end function above_table
 
-   !> The largest overlap (or state) whose force stays well inside the doubles: the
-   !> loading table's continuation beyond its delta_max (deep_force: P_n r^(3/2), r = 1 +
-   !> (delta - delta_max)/u_0; linear where P_n or K_n is not positive) reaches huge/4.
+   !> The largest overlap (or state) whose force stays well inside the doubles: where the
+   !> loading table's deep-overlap asymptote beyond its delta_max (deep_force) reaches
+   !> huge/4.
    pure real(dp) function reach(h)
       type(hysteresis_table), intent(in) :: h
-      real(dp) :: p, k
       associate (l => h%loading)
-         p = l%force(size(l%force))
-         k = l%stiffness(size(l%stiffness))
-         if (p > 0.0_dp .and. k > 0.0_dp) then
-            reach = l%delta_max + min(1.5_dp*p/k, 1.0_dp)*(0.25_dp*huge(1.0_dp)/ &
-               & max(1.0_dp, p, k))**(2.0_dp/3.0_dp)
-         else
-            reach = l%delta_max + 0.25_dp*huge(1.0_dp)/max(1.0_dp, p, k)
-         end if
+         reach = deep_reach(l%delta_max, l%force(size(l%force)), &
+            & l%stiffness(size(l%stiffness)), deep_coefficient(l%params), 0.25_dp*huge(1.0_dp))
       end associate
    end function reach
 

@@ -77,7 +77,7 @@ contains
       call c_f_pointer(h, t)
       call table_eval(t, delta, f, k)
       if (delta > t%delta_max) then
-         ! the linear continuation: +Inf or far enough to overflow is refused, untouched
+         ! the deep-overlap asymptote: +Inf or far enough to overflow is refused, untouched
          if (.not. (ieee_is_finite(f) .and. ieee_is_finite(k))) then
             stat = beyond(t, delta)
             return
@@ -519,7 +519,7 @@ contains
       if (.not. allocated(u%slices)) stat = invalid("u: not a built or read table")
    end function get_universal
 
-   !> EGW_OK if every overlap is a number whose linear continuation above delta_max stays
+   !> EGW_OK if every overlap is a number whose deep-overlap asymptote above delta_max stays
    !> inside the doubles, else EGW_INVALID_ARGUMENT naming the first other (delta[i]).
    integer(c_int) function check_overlaps(t, delta) result(stat)
       type(force_table), intent(in) :: t
@@ -546,10 +546,10 @@ contains
       real(dp), intent(in) :: delta
       stat = failure(egw_out_of_range, "delta = "//format_real(delta)// &
          & ": above the table's delta_max = "//format_real(t%delta_max)// &
-         & " (values extrapolated linearly)")
+         & " (values extrapolated)")
    end function out_of_range
 
-   !> An overlap whose linear continuation above delta_max leaves the doubles (+Inf, or
+   !> An overlap whose deep-overlap asymptote above delta_max leaves the doubles (+Inf, or
    !> ~1e300): refused, outputs untouched.
    integer(c_int) function beyond(t, delta, name) result(stat)
       type(force_table), intent(in) :: t

@@ -17,7 +17,7 @@ module egw_cache
    use egw_table, only: force_table, build_table, table_progress
    use egw_table_universal, only: universal_table, build_universal
    use egw_hysteresis, only: hysteresis_table, build_hysteresis
-   use egw_tolerance_probe, only: probe_hysteresis_tolerance
+   use egw_tolerance_probe, only: probe_hysteresis_tolerance, probe_hysteresis_size
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
       & format_binary
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
@@ -117,7 +117,9 @@ contains
    !> build_hysteresis through the cache: the same table, read back when this build was
    !> done before (arguments as build_hysteresis; the progress hook is called by a build
    !> only). hit reports which (optional). A build is preceded by
-   !> probe_hysteresis_tolerance: a rel_tol its solves cannot reach fails in seconds.
+   !> probe_hysteresis_tolerance and probe_hysteresis_size: a rel_tol its solves cannot
+   !> reach, or whose delta_max grid is estimated beyond the build's limit, fails in
+   !> seconds.
    subroutine build_hysteresis_cached(params, options, delta_min, delta_max, rel_tol, &
       & table, error, progress, hit)
       type(contact_params), intent(in) :: params   !< one parameter set
@@ -143,6 +145,8 @@ contains
       if (found) return
       ! a miss: an unreachable rel_tol fails in seconds, not after the build's minutes
       call probe_hysteresis_tolerance(params, options, delta_max, rel_tol, error)
+      if (allocated(error)) return
+      call probe_hysteresis_size(params, options, delta_min, delta_max, rel_tol, error)
       if (allocated(error)) return
       call build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error, &
          & progress)

@@ -11,7 +11,8 @@
 !> the force at delta = min(0, delta_max), the first contact of the mean planes) and to
 !> rel_tol * P_ref at delta_max for Hertz. Below delta_c the force follows the model's
 !> own tail (tail_force: the rigid-sphere law, doc/theory.md §9), above delta_max its
-!> deep-overlap asymptote (deep_force): no jump, no zero, C1 everywhere.
+!> deep-overlap asymptote (deep_force: Hertz's force on the overlap the rough layer
+!> leaves): no jump, no zero, C1 everywhere.
 !>
 !> Error control: the force at the midpoint of every interval against a solve. For
 !> smooth spheres the stiffness is checked too (10 rel_tol), because P ~ delta^(3/2)
@@ -32,7 +33,7 @@ module egw_table
       & check_scaled_overlap
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
-   use egw_table_ends, only: tail_force, deep_force
+   use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor
    implicit none
    private
 
@@ -40,7 +41,8 @@ module egw_table
       & table_eval, table_eval_cached, table_segment, segment_eval, table_eval_log, &
       & table_eval_all, &
       & table_covers, table_energy, &
-      & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff
+      & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff, &
+      & deep_coefficient
    public :: below_cutoff
    public :: table_meta, set_table_meta
 
@@ -634,8 +636,8 @@ contains
       integer :: n
       n = size(table%delta)
       if (delta >= table%delta_max) then
-         call deep_force(table%delta_max, table%force(n), table%stiffness(n), delta, force, &
-            & stiffness)
+         call deep_force(table%delta_max, table%force(n), table%stiffness(n), &
+            & deep_coefficient(table%params), delta, force, stiffness)
       else if (delta == table%cutoff) then
          force = table%force(1)
          stiffness = table%stiffness(1)
@@ -647,7 +649,7 @@ contains
 
    !> The force below the cut-off delta_c of a table of params whose first node has force
    !> p_c and stiffness k_c: rough models their tail (tail_force); Hertz P_c (delta/
-   !> delta_c)^(3/2), the closed form itself, and 0 apart. NaN gives 0 (the C layer refuses
+   !> delta_c)^(3/2), the closed form itself (k_c unused), and 0 apart. NaN gives 0 (the C layer refuses
    !> it before). The universal table calls it with a slice's params (x = delta/sigma).
    pure subroutine below_cutoff(params, delta_c, p_c, k_c, delta, force, stiffness)
       type(contact_params), intent(in) :: params   !< the table's parameters
@@ -658,7 +660,8 @@ contains
          call tail_force(delta_c, p_c, k_c, params%sigma, plastic_summits(params), delta, &
             & force, stiffness)
       else if (delta > 0.0_dp .and. delta_c > 0.0_dp) then
-         call deep_force(delta_c, p_c, 1.5_dp*p_c/delta_c, delta, force, stiffness)
+         force = p_c*(delta/delta_c)**1.5_dp
+         stiffness = 1.5_dp*force/delta
       else
          force = 0.0_dp
          stiffness = 0.0_dp
@@ -791,7 +794,8 @@ contains
 
       n = size(table%delta)
       if (delta >= table%delta_max) then
-         call deep_force(table%delta_max, table%force(n), table%stiffness(n), delta, v, d)
+         call deep_force(table%delta_max, table%force(n), table%stiffness(n), &
+            & deep_coefficient(table%params), delta, v, d)
          log_force = log(v)
          dlog_force = d/v
          return
@@ -826,20 +830,12 @@ contains
       real(dp), intent(in) :: delta   !< overlap [length]
       real(dp) :: energy
       integer :: i, n
-      real(dp) :: t, u0, r
       n = size(table%delta)
       if (.not. delta > table%cutoff) then
          energy = 0.0_dp
       else if (delta >= table%delta_max) then
-         t = delta - table%delta_max
-         if (table%force(n) > 0.0_dp .and. table%stiffness(n) > 0.0_dp) then
-            ! int of p_e r^(3/2) (deep_force): p_e u_0 (r^(5/2) - 1)/(5/2)
-            u0 = 1.5_dp*table%force(n)/table%stiffness(n)
-            r = 1.0_dp + t/u0
-            energy = table%energy(n) + table%force(n)*u0*(r*r*sqrt(r) - 1.0_dp)/2.5_dp
-         else
-            energy = table%energy(n) + table%force(n)*t + 0.5_dp*table%stiffness(n)*t**2
-         end if
+         energy = table%energy(n) + deep_energy(table%delta_max, table%force(n), &
+            & table%stiffness(n), deep_coefficient(table%params), delta)
       else
          i = find_interval(table, delta)
          energy = table%energy(i) + interval_integral(table, i, delta - table%delta(i))
@@ -847,8 +843,8 @@ contains
    end function table_energy
 
    !> Effective contact radius a* at delta (monotone cubic Hermite through the solver's
-   !> node values; 0 below the cut-off; above delta_max it grows as sqrt(delta - delta_0),
-   !> Hertz's a with deep_force's offset). Not part of the adaptive error control.
+   !> node values; 0 below the cut-off; above delta_max it grows as sqrt(g), Hertz's a on
+   !> deep_force's layer overlap g). Not part of the adaptive error control.
    pure function table_contact_radius(table, delta) result(radius)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]
@@ -859,9 +855,8 @@ contains
       if (.not. delta >= table%cutoff) then
          radius = 0.0_dp
       else if (delta >= table%delta_max) then
-         radius = table%contact_radius(n)
-         if (table%force(n) > 0.0_dp .and. table%stiffness(n) > 0.0_dp) radius = radius* &
-            & sqrt(1.0_dp + (delta - table%delta_max)*table%stiffness(n)/(1.5_dp*table%force(n)))
+         radius = table%contact_radius(n)*deep_radius_factor(table%delta_max, &
+            & table%force(n), table%stiffness(n), deep_coefficient(table%params), delta)
       else
          i = find_interval(table, delta)
          h = table%delta(i + 1) - table%delta(i)
@@ -1270,6 +1265,13 @@ contains
       opts%n_threads = 1
       opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
    end function point_options
+
+   !> The Hertz constant (4/3) E sqrt(R) of params, which every model's force approaches
+   !> deep in contact (deep_force); 4/3 for the universal table's slices (R = E = 1).
+   elemental real(dp) function deep_coefficient(params) result(c)
+      type(contact_params), intent(in) :: params   !< the table's parameters
+      c = (4.0_dp/3.0_dp)*params%modulus*sqrt(params%radius)
+   end function deep_coefficient
 
    !> EP-GW with yielding summits (psi > 0): its tail carries their slope (tail_force).
    pure logical function plastic_summits(params)

@@ -24,7 +24,7 @@ module egw_table_universal
    use egw_table_ends, only: deep_force
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
       & below_cutoff, &
-      & table_interval, table_prepare, table_eval, table_progress
+      & table_interval, table_prepare, table_eval, table_progress, deep_coefficient
    implicit none
    private
 
@@ -346,9 +346,11 @@ contains
          end if
       else
          ! above x_max: the combined p and dp/dx at the last node, continued by the
-         ! deep-overlap asymptote (deep_force in x: universal_slice's table gives the same)
+         ! deep-overlap asymptote (deep_force in x, c = 4/3: universal_slice's table, in
+         ! physical units, gives the same)
          call combined_node(u, j0, w, n, v, dv)
-         call deep_force(u%x_max, v, dv, x, force, stiffness)
+         call deep_force(u%x_max, v, dv, deep_coefficient(u%slices(1)%params), x, force, &
+            & stiffness)
          force = scale*force
          stiffness = scale*stiffness/sigma
       end if
@@ -416,7 +418,7 @@ contains
    !> slices' cubics, or boundary_cubic's on the last ln p interval); scaling
    !> delta = sigma x, P = E sqrt(R) sigma^1.5 p, dP/ddelta = E sqrt(R) sigma^0.5 dp/dx
    !> turns it into a table in physical units with the slices' n_log, the same cut-off
-   !> and the same linear continuation above delta_max. Being an ordinary table of
+   !> and the same deep-overlap asymptote above delta_max. Being an ordinary table of
    !> nodes, it survives write_table/read_table bit for bit. The contact radius
    !> a* = sqrt(R sigma) a*_x is combined with the same weights (not error-controlled,
    !> as in every table).

@@ -1,19 +1,32 @@
-!> A quick look, before a long build, at whether the solves it needs can reach their
-!> tolerance (issue 22 item 5: a 1e-6 hysteresis table ran 21.6 min before one of its
-!> solves gave up). A few solves of the kind the build needs, at its own solve
-!> tolerance: a failure there fails the build at once, in the caller's terms. A probe
-!> that passes promises nothing (the build may still meet a solve that fails; its
-!> message then quotes the caller's rel_tol too).
+!> A quick look, before a long build, at whether it can reach its tolerance (issue 22
+!> item 5: a 1e-6 hysteresis table ran 21.6 min before one of its solves gave up). A few
+!> solves of the kind the build needs, at its own solve tolerance, and for tight
+!> tolerances a pilot table at 1e-3 whose delta_max grid, grown to the requested rel_tol,
+!> estimates the build's: a failure there fails the build at once, in the caller's terms.
+!> A probe that passes promises nothing (the build may still meet a solve that fails or
+!> a limit; its message then quotes the caller's rel_tol too).
 module egw_tolerance_probe
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_not_converged, format_real
+   use egw_status, only: egw_error, egw_not_converged, format_real, fatal_error, int_str
    use egw_params, only: contact_params, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & solve_contact_unload
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis
    implicit none
    private
 
-   public :: probe_hysteresis_tolerance, hysteresis_solve_tol
+   public :: probe_hysteresis_tolerance, probe_hysteresis_size, hysteresis_solve_tol
+
+   !> The most delta_max nodes a hysteresis build may place (max_m_nodes of
+   !> hysteresis_build.f90: keep the two equal).
+   integer, parameter, public :: build_m_node_limit = 400
+   !> The pilot's tolerance, and the rel_tol below which a build is preceded by the pilot
+   !> (above it even a pilot at the node limit estimates at most 2.75x its grid).
+   real(dp), parameter :: pilot_tol = 1.0e-3_dp, pilot_below = 1.0e-4_dp
+   !> Growth of the delta_max grid per decade of rel_tol, the largest measured (glass pair
+   !> of issue 22: 27, 50, 137 nodes at 1e-3, 1e-4, 1e-5, x1.85 then x2.74; steel pair 31,
+   !> 55 at 1e-3, 1e-4): the growth accelerates as the curves' solves near their noise.
+   real(dp), parameter :: m_growth_per_decade = 2.75_dp
 
 contains
 
@@ -105,5 +118,60 @@ contains
       tol = 0.1_dp*rel_tol
       if (options%rel_tol < defaults%rel_tol) tol = min(tol, options%rel_tol)
    end function hysteresis_solve_tol
+
+   !> Before build_hysteresis(params, options, delta_min, delta_max, rel_tol) with rel_tol
+   !> below 1e-4 (plastic summits only): a pilot table at 1e-3 over the same range (a few
+   !> percent of a 1e-5 build's solves), whose delta_max grid of n_p nodes, grown by 2.75x
+   !> per decade to rel_tol (m_growth_per_decade: an estimate from measured builds, not a
+   !> bound), gives the build's n_p 2.75^log10(1e-3/rel_tol). Above build_m_node_limit the
+   !> build would run for many minutes (the glass pair at 1e-6: 21.6 min) and then stop at
+   !> the limit or at a solve: refused now, egw_not_converged, with a message that quotes
+   !> the caller's rel_tol, the pilot's grid, the estimate and the smallest rel_tol within
+   !> the limit. A pilot that fails to converge fails the probe in the same terms; other
+   !> errors are left to the build. pilot_nodes (optional): n_p, 0 without a pilot.
+   subroutine probe_hysteresis_size(params, options, delta_min, delta_max, rel_tol, error, &
+      & pilot_nodes)
+      type(contact_params), intent(in) :: params   !< the contact of the build
+      type(solver_options), intent(in) :: options  !< the build's solver options
+      real(dp), intent(in) :: delta_min, delta_max   !< the build's range [length]
+      real(dp), intent(in) :: rel_tol              !< the build's (the caller's) tolerance
+      !> allocated only when the build is estimated out of reach
+      type(egw_error), allocatable, intent(out) :: error
+      integer, intent(out), optional :: pilot_nodes   !< the pilot's delta_max nodes
+      type(hysteresis_table) :: pilot
+      real(dp) :: estimate, reach
+      integer :: n_p
+      character(len=16) :: short
+      if (present(pilot_nodes)) pilot_nodes = 0
+      if (.not. (params%model == model_epgw .and. params%psi > 0.0_dp .and. &
+         & params%sigma > 0.0_dp .and. rel_tol < pilot_below .and. rel_tol > 0.0_dp)) return
+      call build_hysteresis(params, options, delta_min, delta_max, pilot_tol, pilot, error)
+      if (allocated(error)) then
+         if (error%stat /= egw_not_converged) then
+            deallocate (error)   ! invalid input: the build's own checks report it
+            return
+         end if
+         error%message = "hysteresis table: rel_tol = "//format_real(rel_tol)// &
+            & " (the caller's) cannot be reached, found before the build: a pilot table "// &
+            & "at 1e-3 fails already: "//error%message
+         return
+      end if
+      n_p = size(pilot%m)
+      if (present(pilot_nodes)) pilot_nodes = n_p
+      estimate = n_p*m_growth_per_decade**log10(pilot_tol/rel_tol)
+      if (.not. estimate > build_m_node_limit) return
+      ! the rel_tol whose estimate is the limit
+      reach = pilot_tol/10.0_dp**(log(real(build_m_node_limit, dp)/n_p)/ &
+         & log(m_growth_per_decade))
+      ! (the text spells pilot_tol and m_growth_per_decade out)
+      write (short, '(es8.1)') reach
+      call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
+         & format_real(rel_tol)//" (the caller's) cannot be reached within the build's "// &
+         & "limit of "//int_str(build_m_node_limit)//" delta_max nodes, found before the "// &
+         & "build: a pilot table at 1e-3 needed "//int_str(n_p)//", and at about 2.75x "// &
+         & "per decade of rel_tol (as measured builds grow) rel_tol = "//format_real(rel_tol) &
+         & //" needs ~"//int_str(nint(estimate))//" (a build of many minutes that would "// &
+         & "stop at the limit); rel_tol >= ~"//trim(adjustl(short))//" is within it")
+   end subroutine probe_hysteresis_size
 
 end module egw_tolerance_probe
