@@ -6,11 +6,11 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_params, only: validate_params, model_epgw
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload
    use egw_table, only: build_table
-   use egw_tolerance_probe, only: hysteresis_solve_tol
+   use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
-   integer, parameter :: max_s_nodes = 400, max_m_nodes = 400
+   integer, parameter :: max_s_nodes = 400, max_m_nodes = build_m_node_limit
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
