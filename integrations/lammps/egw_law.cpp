@@ -89,6 +89,11 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   // doc/benchmarks.md, Deep tables)
   capped = (kind == HYST || kind == HYST_MU) && xmax > HYST_X_MAX;
   if (capped) xmax = HYST_X_MAX;
+  // and every table within the solver's range of delta/sigma (1e15), with room: a sigma
+  // far below the radii (sigma -> 0, e.g. 1e-16 in LJ units) takes egw's deep law
+  // (Hertz's constant, exact as sigma -> 0) beyond, with the reach warning
+  capped_solver = xmax > TABLE_X_MAX;
+  if (capped_solver) xmax = TABLE_X_MAX;
   // GW/E-GW: a law with the same normalised tables as one built before (another type pair
   // or wall fix) shares them
   EgwTables::SliceKey skey;
@@ -244,7 +249,10 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
   return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, cut-off {:.6g} (the tables' first node; "
                      "the tail law below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
                      xc * sigma, reach, extra) +
-      (capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it are not reliable)",
+      (capped_solver ? fmt::format(" (capped at {:g} sigma, the solver's range)", TABLE_X_MAX)
+                     : std::string()) +
+      (capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it cost more than "
+                            "they bring)",
                             HYST_X_MAX)
               : std::string());
 }

@@ -468,8 +468,8 @@ void FixWallEGW::post_force(int /*vflag*/)
       warned_range = true;
       error->warning(FLERR, "Fix wall/egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the "
                             "tables' reach {:.6g} (overlap_max = {}): force from egw's "
-                            "extrapolation above its last node; raise 'overlap_max' (warned "
-                            "once)", delta, delta / R, R, L.reach, overlap_max);
+                            "deep-overlap law above its last node; {} (warned once)", delta,
+                     delta / R, R, L.reach, overlap_max, egw_reach_advice(L));
     }
     if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
       char buf[512];

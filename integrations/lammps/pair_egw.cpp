@@ -302,9 +302,8 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
     warned_range = true;
     error->warning(FLERR, "Pair egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the tables' "
                           "reach {:.6g} (overlap_max = {} of the type pair's largest R): force "
-                          "from egw's extrapolation above its last node; raise 'overlap_max' "
-                          "in pair_style egw (warned once)", delta, delta / R, R, L.reach,
-                   overlap_max);
+                          "from egw's deep-overlap law above its last node; {} (warned once)",
+                   delta, delta / R, R, L.reach, overlap_max, egw_reach_advice(L));
   }
   if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
     char buf[512];

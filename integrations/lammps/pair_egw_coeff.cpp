@@ -348,6 +348,7 @@ void PairEGW::make_law(int i, int j)
     L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h;
     old.slices.clear();
     L.xc = old.xc, L.tail = old.tail, L.reach = old.reach, L.capped = old.capped;
+    L.capped_solver = old.capped_solver;
     L.mu_lo = old.mu_lo, L.mu_hi = old.mu_hi;
     L.interp_error = old.interp_error;
     old.table = nullptr, old.universal = nullptr, old.hyst.clear(), old.hyst_held.clear();
