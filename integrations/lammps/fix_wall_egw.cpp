@@ -51,7 +51,7 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
   wall_temperature = 0.0, have_temperature = false;
   tmax = 1;
   if (std::string(arg[2]) == "wall/egw/region") {
-    // fix ID group wall/egw/region MODEL TOL <keywords> region-ID [contacts]
+    // fix ID group wall/egw/region MODEL TOL <keywords> [region] region-ID [contacts]
     int last = narg - 1;
     if (narg > 6 && std::string(arg[last]) == "contacts") contacts = true, last--;
     if (last < 5) error->all(FLERR, "Fix wall/egw/region: expected 'fix ID group wall/egw/region "
@@ -62,6 +62,9 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
     wallstyle = REGION;
     tmax = std::max(1, region->tmax);
     restart_global = 1;    // the region's motion (as fix wall/gran/region)
+    // granular's form 'region region-ID' (its wallstyle word) too: a granular deck's
+    // fix line then changes only its normal model
+    if (last - 1 >= 5 && std::string(arg[last - 1]) == "region") last--;
     parse(last, arg);
   } else
     parse(narg, arg);
