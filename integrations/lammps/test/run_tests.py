@@ -688,7 +688,8 @@ def test_wall_region():
     """fix wall/egw/region on a block region's open-topped box: an oblique EP-GW impact with
     friction on its floor ends as on a wall/egw zplane at the same height (1e-12: the same
     contact), and a run split by write_restart/read_restart in mid contact ends as the
-    uninterrupted one (1e-12: the per-atom slots with their wall ids come back)."""
+    uninterrupted one (1e-12: the per-atom slots with their wall ids come back), the
+    continuation's fix given in granular's form '... region wreg' (the same fix)."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1"
     sub = "damping 0.9 tangential mindlin NULL 1.0 0.3"
     plane = f"wall/egw EP-GW 1e-3 {c} {sub} zplane 0 NULL"
@@ -697,7 +698,9 @@ def test_wall_region():
     rc1, o1 = wall_run("egw E-GW 1e-3", c, plane, 0.1, 2e-8, 8600, RAD + 1e-5, **kw)
     rc2, o2 = wall_run("egw E-GW 1e-3", c, reg, 0.1, 2e-8, 8600, RAD + 1e-5, restart=1,
                        rfile="wallreg.restart", **kw)
-    rc3, o3 = lmp("wall_restart.in", rfile="wallreg.restart", wallfix=reg, n2=3000)
+    # the continuation gives the fix in granular's form 'region region-ID'
+    rc3, o3 = lmp("wall_restart.in", rfile="wallreg.restart",
+                  wallfix=reg.replace(" wreg", " region wreg"), n2=3000)
     if rc1 or rc2 or rc3:
         return False, " ".join(l for l in (o1 + o2 + o3).splitlines() if "ERROR" in l)
     a, b, r = result(o1), result(o2), result(o3)
