@@ -15,8 +15,6 @@ module egw_capi_hysteresis
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
-   use egw_table, only: deep_coefficient
-   use egw_table_ends, only: deep_reach
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, check_count, &
       & read_contact, put, put_handle_settled, take_handle, double_array, from_params, &
       & egw_params_c, c_path
@@ -119,7 +117,7 @@ contains
             & "egw_hysteresis_state_init (state[0] = -HUGE_VAL)")
          return
       end if
-      limit = reach(h)   ! once: a division, on the DEM hot path
+      limit = reach(h)   ! once (a stored number: the DEM hot path)
       if (delta > limit .or. state(1) > limit) then
          stat = invalid("delta = "//format_real(delta)//", state[0] = "// &
             & format_real(state(1))//": must be <= "//format_real(limit)// &
@@ -340,13 +338,10 @@ contains
 
    !> The largest overlap (or state) whose force stays well inside the doubles: where the
    !> loading table's deep-overlap asymptote beyond its delta_max (deep_force) reaches
-   !> huge/4.
+   !> huge/4 (computed once, by hysteresis_prepare).
    pure real(dp) function reach(h)
       type(hysteresis_table), intent(in) :: h
-      associate (l => h%loading)
-         reach = deep_reach(l%delta_max, l%force(size(l%force)), &
-            & l%stiffness(size(l%stiffness)), deep_coefficient(l%params), 0.25_dp*huge(1.0_dp))
-      end associate
+      reach = h%input_limit
    end function reach
 
 end module egw_capi_hysteresis

@@ -31,7 +31,8 @@ module egw_hysteresis
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, table_eval, table_eval_cached, table_segment, &
-      & segment_eval, table_energy, table_progress, table_interval
+      & segment_eval, table_energy, table_progress, table_interval, deep_coefficient
+   use egw_table_ends, only: deep_reach
    implicit none
    private
 
@@ -99,6 +100,10 @@ module egw_hysteresis
       real(dp) :: tag = 0.0_dp
       !> index of the delta_max node at 0 where stencils stop (m_breakpoint; 0: none)
       integer :: m_break = 0
+      !> the largest overlap (or state) whose force stays well inside the doubles: where
+      !> the loading table's deep-overlap law beyond delta_max reaches huge/4 (the C
+      !> layer's input check; hysteresis_prepare, once: four powers, off the hot path)
+      real(dp) :: input_limit = 0.0_dp
    end type hysteresis_table
 
    interface
@@ -676,6 +681,11 @@ contains
       integer :: n_s, n_m, i, j, first, k, l
       real(dp) :: h
       table%tag = data_tag(table)
+      associate (l => table%loading)
+         table%input_limit = deep_reach(l%delta_max, l%force(size(l%force)), &
+            & l%stiffness(size(l%stiffness)), deep_coefficient(l%params), &
+            & 0.25_dp*huge(1.0_dp))
+      end associate
       if (table%reversible) return   ! no curves: the loading table serves
       n_s = size(table%s)
       n_m = size(table%m)
