@@ -101,9 +101,20 @@ int egw_capi_test_table_build_eval(void) {
   /* above delta_max: the deep-overlap asymptote (Hertz's own form: the closed form to
    * the table's 1.5 tol at delta_max), flagged, outputs written */
   {
+    char msg[256];
     CHECK(egw_table_eval(t, 0.011, &f, &k) == EGW_OUT_OF_RANGE);
     CHECK(fabs(f / p_hertz(2.0, 0.5, 0.011) - 1.0) <= 1.5 * tol);
     CHECK(last_error_names("delta"));
+    /* the message is formed when asked (kept as numbers on the hot path): whole, with
+     * both numbers, and a later error's message replaces it */
+    CHECK(egw_table_eval(t, 0.011, &f, &k) == EGW_OUT_OF_RANGE);
+    CHECK(egw_last_error(msg, (int)sizeof msg) > 1 &&
+          strncmp(msg, "delta = 1.1", 11) == 0 && strstr(msg, "above the table's delta_max = 1.0") != NULL &&
+          strstr(msg, "(values extrapolated)") != NULL);
+    CHECK(egw_table_eval(t, 0.011, &f, &k) == EGW_OUT_OF_RANGE);
+    CHECK(egw_table_eval(t, NAN, &f, &k) == EGW_INVALID_ARGUMENT);
+    CHECK(egw_last_error(msg, (int)sizeof msg) > 1 && strstr(msg, "above") == NULL &&
+          strstr(msg, "delta") != NULL);
   }
   /* the array evaluator: bit-for-bit egw_table_eval at each point, one status */
   {

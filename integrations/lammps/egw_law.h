@@ -51,7 +51,7 @@ struct EgwLaw {
   bool capped = false;             // reach capped at HYST_X_MAX sigma (hysteresis)
   static constexpr double HYST_X_MAX = 140.0;
   bool capped_solver = false;      // reach capped at TABLE_X_MAX sigma (any table)
-  static constexpr double TABLE_X_MAX = 1e14;
+  static constexpr double TABLE_X_MAX = 5e14;
   // EP-GW with summit data: the ln-mu lattice's estimate is multiplied by LNMU_SAFETY
   // before it is compared with TOL; at most LNMU_MAX_LEVEL refinements (h = ln 2 / 2^m)
   static constexpr double LNMU_SAFETY = 1.25;
@@ -118,8 +118,8 @@ extern const char *egw_law_kind_name[];
 inline const char *egw_reach_advice(const EgwLaw &L)
 {
   if (L.capped_solver)
-    return "the tables stop at 1e14 sigma, egw's range (sigma is that small against the "
-           "radii; the deep law tends to Hertz there)";
+    return "the tables stop at 5e14 sigma, within egw's range of delta/sigma (sigma is that "
+           "small against the radii; the deep law tends to Hertz there)";
   if (L.capped)
     return "EP-GW's hysteresis tables stop at 140 sigma (the deep law continues them)";
   return "raise 'overlap_max'";

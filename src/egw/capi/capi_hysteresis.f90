@@ -17,7 +17,7 @@ module egw_capi_hysteresis
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, check_count, &
       & read_contact, put, put_handle_settled, take_handle, double_array, from_params, &
-      & egw_params_c, c_path
+      & egw_params_c, c_path, above_delta_max
    implicit none
    private
 
@@ -332,8 +332,7 @@ contains
       type(hysteresis_table), intent(in) :: h
       character(len=*), intent(in) :: name
       real(dp), intent(in) :: x
-      stat = failure(egw_out_of_range, name//" = "//format_real(x)// &
-         & ": above the table's delta_max = "//format_real(h%delta_max)//" (values extrapolated)")
+      stat = above_delta_max(name, x, h%delta_max)
    end function above_table
 
    !> The largest overlap (or state) whose force stays well inside the doubles: where the

@@ -20,7 +20,7 @@ module egw_capi_table
       & write_calculix_flat, write_lammps, write_calculix_sphere
    use egw_capi_utils, only: egw_params_c, settle, require, invalid, failure, check_number, &
       & check_count, read_params, read_contact, put, put_settled, put_handle_settled, &
-      & take_handle, double_array, c_path
+      & take_handle, double_array, c_path, above_delta_max
    implicit none
    private
 
@@ -544,9 +544,7 @@ contains
    integer(c_int) function out_of_range(t, delta) result(stat)
       type(force_table), intent(in) :: t
       real(dp), intent(in) :: delta
-      stat = failure(egw_out_of_range, "delta = "//format_real(delta)// &
-         & ": above the table's delta_max = "//format_real(t%delta_max)// &
-         & " (values extrapolated)")
+      stat = above_delta_max("delta", delta, t%delta_max)
    end function out_of_range
 
    !> An overlap whose deep-overlap asymptote above delta_max leaves the doubles (+Inf, or

@@ -11,14 +11,14 @@ module egw_capi_utils
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
-      & status_message, format_real, int_str
+      & egw_out_of_range, status_message, format_real, int_str
    use egw_params, only: contact_params, validate_params
    use egw_rough_sphere, only: solver_options, solve_result
    implicit none
    private
 
    public :: c_string, c_path, copy_to_c, copy_last_error
-   public :: settle, require, invalid, failure
+   public :: settle, require, invalid, failure, above_delta_max
    public :: check_nonneg, check_positive, check_number, check_count
    public :: put, put_settled, put_handle_settled, take_handle, double_array
    public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params, read_params, &
@@ -35,6 +35,13 @@ module egw_capi_utils
    !> (16384 characters: a message naming a path of PATH_MAX = 4096 bytes fits whole.)
    character(len=16384), save :: last_message = ""
    !$omp threadprivate(last_message)
+   !> An EGW_OUT_OF_RANGE message kept as its numbers (above_delta_max): extrapolated
+   !> evaluations are a DEM hot path (every deep contact, every step), so the text is
+   !> formed only when egw_last_error asks for it. Cleared by every other message.
+   logical, save :: pending = .false.
+   character(len=64), save :: pending_name = ""
+   real(dp), save :: pending_x = 0.0_dp, pending_limit = 0.0_dp
+   !$omp threadprivate(pending, pending_name, pending_x, pending_limit)
 
    !> Mirror of the C struct egw_options.
    type, bind(C) :: egw_options_c
@@ -180,6 +187,7 @@ contains
       stat = egw_ok
       if (.not. allocated(error)) return
       stat = int(error%stat, c_int)
+      pending = .false.
       if (allocated(error%message)) then
          last_message = error%message
       else
@@ -194,6 +202,7 @@ contains
       stat = egw_ok
       if (c_associated(ptr)) return
       stat = egw_null_pointer
+      pending = .false.
       last_message = name//": NULL pointer"
    end function require
 
@@ -310,8 +319,22 @@ contains
       integer, intent(in) :: code               !< an EGW_* status
       character(len=*), intent(in) :: message  !< the message, naming the argument
       stat = int(code, c_int)
+      pending = .false.
       last_message = message
    end function failure
+
+   !> EGW_OUT_OF_RANGE for x (called name) above a table's delta_max = limit, the values
+   !> written extrapolated; the message "name = x: above the table's delta_max = limit
+   !> (values extrapolated)" is formed when egw_last_error asks (no text on the hot path).
+   integer(c_int) function above_delta_max(name, x, limit) result(stat)
+      character(len=*), intent(in) :: name   !< the argument, e.g. "delta"
+      real(dp), intent(in) :: x, limit
+      stat = int(egw_out_of_range, c_int)
+      pending = .true.
+      pending_name = name
+      pending_x = x
+      pending_limit = limit
+   end function above_delta_max
 
    !> Copy this thread's last error message into a C buffer and return the bytes it needs
    !> whole (its length + 1 for the NUL; >= 1): buflen >= that copies it whole, 0 < buflen
@@ -331,6 +354,12 @@ contains
       if (buflen > 0 .and. .not. c_associated(buf)) then
          needed = -int(egw_null_pointer, c_int)
          return
+      end if
+      if (pending) then
+         last_message = trim(pending_name)//" = "//format_real(pending_x)// &
+            & ": above the table's delta_max = "//format_real(pending_limit)// &
+            & " (values extrapolated)"
+         pending = .false.
       end if
       needed = int(len_trim(last_message) + 1, c_int)
       if (buflen > 0) stat = copy_to_c(trim(last_message), buf, buflen)
