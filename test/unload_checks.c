@@ -173,6 +173,30 @@ int egw_capi_test_hysteresis(void) {
   HCHECK(egw_hysteresis_eval(h, NAN, &state, &f, &k) == EGW_INVALID_ARGUMENT && f == 7.0);
   nf += !last_error_names("delta");
   HCHECK(egw_hysteresis_eval(h, 5.0, &state, &f, &k) == EGW_OUT_OF_RANGE && state == 5.0);
+  /* the input limit (where the deep law's force reaches huge/4) of a table whose last
+   * force is small (sigma 1e-3: huge/4 over it leaves the doubles, which once made the
+   * limit NaN and let +Inf through to an infinite force): +Inf, 1e300 refused by name,
+   * outputs untouched */
+  {
+    egw_params q = p;
+    egw_hysteresis hs = NULL;
+    double d[2] = {2e-3, INFINITY}, sm[2] = {3e-3, 3e-3}, fa[2] = {7.0, 7.0}, st1 = -HUGE_VAL;
+    q.sigma = 1e-3; q.mu = 2.0; q.psi = 0.5;
+    HCHECK(egw_hysteresis_build(&q, NULL, -1e-3, 4e-3, 5e-2, &hs) == EGW_OK && hs != NULL);
+    if (hs != NULL) {
+      HCHECK(egw_hysteresis_eval_array(hs, 2, d, sm, fa, NULL) == EGW_INVALID_ARGUMENT &&
+             fa[0] == 7.0 && fa[1] == 7.0);
+      nf += !last_error_names("delta[1]");
+      d[1] = 1e300;
+      HCHECK(egw_hysteresis_eval_array(hs, 2, d, sm, fa, NULL) == EGW_INVALID_ARGUMENT);
+      HCHECK(egw_hysteresis_eval(hs, 1e300, &st1, &fa[0], NULL) == EGW_INVALID_ARGUMENT &&
+             st1 == -HUGE_VAL && fa[0] == 7.0);
+      d[1] = 1.0;   /* far above delta_max, inside the limit: extrapolated, finite */
+      HCHECK(egw_hysteresis_eval_array(hs, 2, d, sm, fa, NULL) == EGW_OUT_OF_RANGE &&
+             isfinite(fa[1]) && fa[1] > fa[0]);
+      egw_hysteresis_free(&hs);
+    }
+  }
   HCHECK(egw_hysteresis_eval(NULL, 1.0, &state, &f, &k) == EGW_NULL_POINTER);
   HCHECK(egw_hysteresis_eval(h, 1.0, NULL, &f, &k) == EGW_NULL_POINTER);
   {

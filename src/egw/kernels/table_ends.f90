@@ -114,16 +114,26 @@ contains
 
    !> The overlap where deep_force's force reaches p_lim (>= p_e): closed form in g,
    !> delta = d_e + (g - g_e) + a (g^(1/3) - g_e^(1/3)), g = g_e (p_lim/p_e)^(2/3). The
-   !> callers bound their arguments with it so that forces stay doubles.
+   !> callers bound their arguments with it so that forces stay doubles. Formed in logs:
+   !> p_lim/p_e overflows for p_lim near huge (then the a term, O(g^(1/3)), is dropped
+   !> against g, and where g itself leaves the doubles, c g^1.5 stays below p_lim for
+   !> every double: huge/4).
    pure real(dp) function deep_reach(d_e, p_e, k_e, c, p_lim) result(delta)
       real(dp), intent(in) :: d_e, p_e, k_e, c   !< as deep_force
       real(dp), intent(in) :: p_lim              !< force [force], >= p_e
-      real(dp) :: t_e, a, u_0, q
+      real(dp) :: t_e, a, u_0, q, g, log_g
       logical :: ok
       call deep_fit(p_e, k_e, c, t_e, a, u_0, ok)
       if (ok) then
-         q = (p_lim/p_e)**(1.0_dp/4.5_dp)
-         delta = d_e + t_e**3*(q**3 - 1) + a*t_e*(q - 1)
+         log_g = 2*(log(p_lim) - log(c))/3
+         if (log_g > log(0.25_dp*huge(1.0_dp))) then
+            delta = 0.25_dp*huge(1.0_dp)
+            return
+         end if
+         g = exp(log_g)
+         q = exp((log(p_lim) - log(p_e))/4.5_dp)
+         delta = d_e + (g - t_e**3) + a*t_e*(q - 1)
+         if (.not. (abs(delta) <= huge(1.0_dp))) delta = d_e + g
       else
          delta = d_e + (p_lim - p_e)/max(k_e, tiny(1.0_dp))
       end if
