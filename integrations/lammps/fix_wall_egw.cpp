@@ -402,6 +402,51 @@ void FixWallEGW::store_contact(int i, const double *x, const double *n, double d
   if (ncols > 8) row[8] = dq;
 }
 
+/* One wall contact of atom i at overlap delta (R its radius, n the normal from the wall
+ * to the centre, vwall the wall's velocity there, hist its history, dist the centre's
+ * distance for the contacts array): the normal law, granular's sub-models, the force and
+ * torque on the atom and its heat, and the contacts row. rc: the wall's radius of
+ * curvature there (0 flat; for the mu message only). */
+void FixWallEGW::wall_contact(int i, EgwLaw &L, double delta, double R, const double *n,
+                              const double *vwall, double *hist, double dist,
+                              bool update_history, double rc)
+{
+  double Fn, S, U;
+  int st = L.eval(delta, R, hist, Fn, S, U, 0);
+  if (st == EgwLaw::MU_OUTSIDE)
+    error->one(FLERR, "Fix wall/egw: contact with R = {} (R_i = {}, the wall's radius of "
+                      "curvature {}) has mu = {} outside the tables' [{}, {}]: widen the radius "
+                      "range with pair_style egw ... rmin/rmax",
+               R, atom->radius[i], rc, L.mu_at(R), L.mu_lo, L.mu_hi);
+  if (st == EGW_OUT_OF_RANGE && !warned_range) {
+    warned_range = true;
+    error->warning(FLERR, "Fix wall/egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the "
+                          "tables' reach {:.6g} (overlap_max = {}): force from egw's "
+                          "deep-overlap law above its last node; {} (warned once)", delta,
+                   delta / R, R, L.reach, overlap_max, egw_reach_advice(L));
+  }
+  if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
+    char buf[512];
+    egw_last_error(buf, sizeof(buf));
+    error->one(FLERR, "Fix wall/egw: evaluation failed at overlap {}: {}", delta, buf);
+  }
+  double **v = atom->v, **f = atom->f, **torque = atom->torque;
+  const double zero[3] = {0.0, 0.0, 0.0}, radi = atom->radius[i];
+  const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;
+  const double vr[3] = {v[i][0] - vwall[0], v[i][1] - vwall[1], v[i][2] - vwall[2]};
+  ContactForces c;
+  contact_submodels(L, Fn, S, R, radi, 0.0, radi, 0.0, n, vr, atom->omega[i], zero,
+                    atom->rmass[i], hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr,
+                    update_history, update->dt, heat ? atom->temperature[i] : 0.0,
+                    wall_temperature, c);
+  if (heat) atom->heatflow[i] += c.dq;
+  const double fw[3] = {c.Fntot * n[0] + c.fs[0], c.Fntot * n[1] + c.fs[1],
+                        c.Fntot * n[2] + c.fs[2]};
+  f[i][0] += fw[0], f[i][1] += fw[1], f[i][2] += fw[2];
+  torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
+  if (contacts) store_contact(i, atom->x[i], n, dist, fw, radi, c.dq);
+}
+
 void FixWallEGW::post_force(int /*vflag*/)
 {
   if (contacts)
@@ -413,8 +458,7 @@ void FixWallEGW::post_force(int /*vflag*/)
   }
   const bool update_history = update->setupflag == 0;
   const double dt = update->dt;
-  double **x = atom->x, **v = atom->v, **f = atom->f, **omega_a = atom->omega;
-  double **torque = atom->torque, *radius = atom->radius, *rmass = atom->rmass;
+  double **x = atom->x, *radius = atom->radius;
   int *mask = atom->mask, *type = atom->type, nlocal = atom->nlocal;
 
   // the wall's position and velocity (wiggle along the normal, shear in its plane)
@@ -428,8 +472,6 @@ void FixWallEGW::post_force(int /*vflag*/)
   } else if (wshear)
     vwall[wdim] = vshear;
 
-  const double zero[3] = {0.0, 0.0, 0.0};
-  const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     EgwLaw &L = law[type[i]];
@@ -461,35 +503,8 @@ void FixWallEGW::post_force(int /*vflag*/)
     if (!(R > 0))
       error->one(FLERR, "Fix wall/egw: an atom of radius {} does not fit the zcylinder of radius "
                         "{}", radi, cylradius);
-    double Fn, S, U;
-    int st = L.eval(delta, R, hist, Fn, S, U, 0);
-    if (st == EgwLaw::MU_OUTSIDE)
-      error->one(FLERR, "Fix wall/egw: contact with R = {} has mu = {} outside the tables' "
-                        "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
-                 R, L.mu_at(R), L.mu_lo, L.mu_hi);
-    if (st == EGW_OUT_OF_RANGE && !warned_range) {
-      warned_range = true;
-      error->warning(FLERR, "Fix wall/egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the "
-                            "tables' reach {:.6g} (overlap_max = {}): force from egw's "
-                            "deep-overlap law above its last node; {} (warned once)", delta,
-                     delta / R, R, L.reach, overlap_max, egw_reach_advice(L));
-    }
-    if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
-      char buf[512];
-      egw_last_error(buf, sizeof(buf));
-      error->one(FLERR, "Fix wall/egw: evaluation failed at overlap {}: {}", delta, buf);
-    }
-    const double vr[3] = {v[i][0] - vwall[0], v[i][1] - vwall[1], v[i][2] - vwall[2]};
-    ContactForces c;
-    contact_submodels(L, Fn, S, R, radi, 0.0, radi, 0.0, n, vr, omega_a[i], zero, rmass[i],
-                      hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt,
-                      heat ? atom->temperature[i] : 0.0, wall_temperature, c);
-    if (heat) atom->heatflow[i] += c.dq;
-    const double fw[3] = {c.Fntot * n[0] + c.fs[0], c.Fntot * n[1] + c.fs[1],
-                          c.Fntot * n[2] + c.fs[2]};
-    f[i][0] += fw[0], f[i][1] += fw[1], f[i][2] += fw[2];
-    torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
-    if (contacts) store_contact(i, x[i], n, dist, fw, radi, c.dq);
+    wall_contact(i, L, delta, R, n, vwall, hist, dist, update_history,
+                 wallstyle == ZCYLINDER ? cyl_rc : 0.0);
   }
 }
 
@@ -500,16 +515,12 @@ void FixWallEGW::post_force(int /*vflag*/)
 void FixWallEGW::post_force_region()
 {
   const bool update_history = update->setupflag == 0;
-  const double dt = update->dt;
-  double **x = atom->x, **v = atom->v, **f = atom->f, **omega_a = atom->omega;
-  double **torque = atom->torque, *radius = atom->radius, *rmass = atom->rmass;
+  double **x = atom->x, *radius = atom->radius;
   int *mask = atom->mask, *type = atom->type, nlocal = atom->nlocal;
   if (update->setupflag == 0 && neighbor->ago == 0) region_cover_radii(false);
   if (region->dynamic_check()) region->prematch();
   bool moving = region->dynamic_check();
   if (moving) region->set_velocity();
-  const double zero[3] = {0.0, 0.0, 0.0};
-  const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;
   std::vector<double> keep((size_t) tmax * (1 + nhist));
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -543,43 +554,15 @@ void FixWallEGW::post_force_region()
       double *hist = &slot[1];
       double n[3] = {region->contact[m].delx / r, region->contact[m].dely / r,
                      region->contact[m].delz / r};
-      double R = effective_radius(radi, region->contact[m].radius), Fn, S, U;
+      double R = effective_radius(radi, region->contact[m].radius);
       if (!(R > 0))
         error->one(FLERR, "Fix wall/egw/region: an atom of radius {} does not fit the region's "
                           "concave surface of radius of curvature {}", radi,
                    -region->contact[m].radius);
-      int st = L.eval(delta, R, hist, Fn, S, U, 0);
-      if (st == EgwLaw::MU_OUTSIDE)
-        error->one(FLERR, "Fix wall/egw/region: contact with R = {} (R_i = {}, the region's "
-                          "radius of curvature {}) has mu = {} outside the tables' [{}, {}]: "
-                          "widen pair_style egw ... rmin/rmax", R, radi,
-                   region->contact[m].radius, L.mu_at(R), L.mu_lo, L.mu_hi);
-      if (st == EGW_OUT_OF_RANGE && !warned_range) {
-        warned_range = true;
-        error->warning(FLERR, "Fix wall/egw/region: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond "
-                              "the tables' reach {:.6g} (overlap_max = {}): force from egw's "
-                              "extrapolation (warned once)", delta, delta / R, R, L.reach,
-                       overlap_max);
-      }
-      if (st != EGW_OK && st != EGW_OUT_OF_RANGE) {
-        char buf[512];
-        egw_last_error(buf, sizeof(buf));
-        error->one(FLERR, "Fix wall/egw/region: evaluation failed at overlap {}: {}", delta, buf);
-      }
       double vwall[3] = {0.0, 0.0, 0.0};
       if (moving) region->velocity_contact(vwall, x[i], m);
-      const double vr[3] = {v[i][0] - vwall[0], v[i][1] - vwall[1], v[i][2] - vwall[2]};
-      ContactForces c;
-      contact_submodels(L, Fn, S, R, radi, 0.0, radi, 0.0, n, vr, omega_a[i], zero, rmass[i],
-                        hist, hist_sub >= 0 ? &hist[hist_sub] : nullptr, update_history, dt,
-                        heat ? atom->temperature[i] : 0.0, wall_temperature, c);
-      if (heat) atom->heatflow[i] += c.dq;
-      const double fw[3] = {c.Fntot * n[0] + c.fs[0], c.Fntot * n[1] + c.fs[1],
-                            c.Fntot * n[2] + c.fs[2]};
-      f[i][0] += fw[0], f[i][1] += fw[1], f[i][2] += fw[2];
-      torque[i][0] += c.ti[0], torque[i][1] += c.ti[1], torque[i][2] += c.ti[2];
-      // several contacts: the row holds the last one (as fix wall/gran/region)
-      if (contacts) store_contact(i, x[i], n, r, fw, radi, c.dq);
+      // several contacts: the contacts row holds the last one (as fix wall/gran/region)
+      wall_contact(i, L, delta, R, n, vwall, hist, r, update_history, region->contact[m].radius);
       nnew++;
     }
     h[0] = nnew;

@@ -74,6 +74,9 @@ class FixWallEGW : public Fix {
   void build_law(int type);
   void store_contact(int i, const double *x, const double *n, double dist,
                      const double *f, double radi, double dq);
+  void wall_contact(int i, EgwLaw &L, double delta, double R, const double *n,
+                    const double *vwall, double *hist, double dist, bool update_history,
+                    double rc);
   void egw_fail(const std::string &);
 };
 
