@@ -645,54 +645,23 @@ contains
    !> and apart (-sigma), psi 2, mu 4, K 0.6.
    subroutine test_e_reference(error)
       type(error_type), allocatable, intent(out) :: error
-      character(len=*), parameter :: path = "test/data/restitution_reference.csv"
       character(len=row_length), allocatable :: rows(:)
       character(len=8) :: model
-      real(dp) :: delta_m_ref, mu, psi, hardness, w_load, w_load_err, w_unload, &
-         & w_unload_err, velocity, e_ref, e_err, e, dissipated, delta_m, tol
-      real(dp), parameter :: tols(3) = [1.0e-4_dp, 1.0e-6_dp, 1.0e-7_dp]
-      type(solver_options) :: opts
-      type(solve_result) :: at_turn
-      type(egw_error), allocatable :: err
-      integer :: k, j
-      call read_data_rows(path, rows, error)
+      real(dp) :: delta_m_ref, mu, psi, hardness, w_load, w_load_err, w_unload, w_unload_err
+      integer :: k
+      call read_data_rows("test/data/restitution_reference.csv", rows, error)
       if (allocated(error)) return
-      call check(error, size(rows), 3, "rows read from "//path)
+      call check(error, size(rows), 3, "rows read from test/data/restitution_reference.csv")
       if (allocated(error)) return
       do k = 1, size(rows)
-         associate (line => rows(k))
-            read (line, *) model, delta_m_ref, mu, psi, hardness, w_load, w_load_err, &
-               & w_unload, w_unload_err, velocity, e_ref, e_err
-            call check(error, max(w_load_err, w_unload_err) <= 1.0e-2_dp*minval(tols), &
-               & trim(line)//": reference error above 1e-2 of the tightest rel_tol")
-            if (allocated(error)) return
-            call solve_contact(epgw(psi, mu, hardness), opts, delta_m_ref, at_turn, err)
-            if (allocated(err)) call test_failed(error, err%message)
-            if (allocated(error)) return
-            do j = 1, size(tols)
-               opts%rel_tol = tols(j)
-               call restitution(epgw(psi, mu, hardness), opts, 1.0_dp, velocity, e, &
-                  & dissipated, err, max_overlap=delta_m)
-               if (allocated(err)) call test_failed(error, trim(line)//", rel_tol " &
-                  & //str(tols(j))//": "//err%message)
-               if (allocated(error)) return
-               print '(a,f5.2,a,es8.1,a,es9.2)', "    e against the reference, delta_m = ", &
-                  & delta_m_ref, " sigma, rel_tol ", tols(j), ": ", e/e_ref - 1.0_dp
-               call check(error, e, e_ref, trim(line)//", rel_tol "//str(tols(j))//": e", &
-                  & rel=.true., thr=tols(j) + e_err)
-               if (allocated(error)) return
-               tol = tols(j)*w_load + w_load*w_load_err + w_unload*w_unload_err
-               call check(error, abs(dissipated - (w_load - w_unload)) <= tol, trim(line) &
-                  & //", rel_tol "//str(tols(j))//": dissipated "//str(dissipated) &
-                  & //" against "//str(w_load - w_unload))
-               if (allocated(error)) return
-               tol = (2*tols(j) + w_load_err)*w_load/at_turn%force
-               call check(error, abs(delta_m - delta_m_ref) <= tol, trim(line) &
-                  & //", rel_tol "//str(tols(j))//": delta_m "//str(delta_m)//" against " &
-                  & //str(delta_m_ref))
-               if (allocated(error)) return
-            end do
-         end associate
+         read (rows(k), *) model, delta_m_ref, mu, psi, hardness, w_load, w_load_err, &
+            & w_unload, w_unload_err
+         call check(error, max(w_load_err, w_unload_err) <= 1.0e-2_dp*1.0e-7_dp, &
+            & trim(rows(k))//": reference error above 1e-2 of the tightest rel_tol")
+         if (allocated(error)) return
+         call check_reference_row(rows(k), epgw(psi, mu, hardness), 1.0_dp, &
+            & [1.0e-4_dp, 1.0e-6_dp, 1.0e-7_dp], error)
+         if (allocated(error)) return
       end do
    end subroutine test_e_reference
 
@@ -713,62 +682,79 @@ contains
       character(len=*), parameter :: path = "test/data/restitution_speeds_reference.csv"
       character(len=row_length), allocatable :: rows(:)
       character(len=8) :: model
-      real(dp) :: delta_m_ref, mu, psi, hardness, w_load, w_load_err, w_unload, &
-         & w_unload_err, velocity, e_ref, e_err, e, dissipated, delta_m, tol, radius, &
-         & modulus, nu, sigma, density, mass, w_scale
-      real(dp), parameter :: tols(2) = [1.0e-5_dp, 1.0e-6_dp]
-      type(solver_options) :: opts
-      type(solve_result) :: at_turn
-      type(contact_params) :: p
-      type(egw_error), allocatable :: err
-      integer :: k, j
+      real(dp) :: delta_m_ref, mu, psi, hardness, radius, modulus, nu, sigma, density
+      integer :: k
       call read_data_rows(path, rows, error)
       if (allocated(error)) return
       call check(error, size(rows), 9, "rows read from "//path)
       if (allocated(error)) return
       do k = 1, size(rows)
-         associate (line => rows(k))
-            read (line, *) model, delta_m_ref, mu, psi, hardness, w_load, w_load_err, &
-               & w_unload, w_unload_err, velocity, e_ref, e_err
-            if (mu == 4.0_dp) then   ! glass
-               radius = 1.0e-3_dp; modulus = 70.0e9_dp; nu = 0.22_dp; sigma = 1.0e-6_dp
-               density = 2500.0_dp
-            else                     ! steel
-               radius = 2.0e-3_dp; modulus = 210.0e9_dp; nu = 0.3_dp; sigma = 0.5e-6_dp
-               density = 7800.0_dp
-            end if
-            p = contact_params(model=model_epgw, radius=radius/2, &
-               & modulus=modulus/(2*(1 - nu*nu)), sigma=sigma, mu=mu, psi=psi, &
-               & hardness_coeff=hardness)
-            mass = density*4.0_dp/3.0_dp*pi*radius**3/2
-            w_scale = p%modulus*sqrt(p%radius)*sigma**2.5_dp
-            velocity = sqrt(2*w_load*w_scale/mass)
-            call solve_contact(epgw(psi, mu, hardness), opts, delta_m_ref, at_turn, err)
-            if (allocated(err)) call test_failed(error, err%message)
-            if (allocated(error)) return
-            do j = 1, size(tols)
-               opts%rel_tol = tols(j)
-               call restitution(p, opts, mass, velocity, e, dissipated, err, &
-                  & max_overlap=delta_m)
-               if (allocated(err)) call test_failed(error, trim(line)//", rel_tol " &
-                  & //str(tols(j))//": "//err%message)
-               if (allocated(error)) return
-               delta_m = delta_m/sigma
-               print '(a,es9.2,a,f6.2,a,es8.1,a,es9.2)', "    v = ", velocity, &
-                  & " m/s, delta_m = ", delta_m_ref, " sigma, rel_tol ", tols(j), &
-                  & ": e/e_ref - 1 = ", e/e_ref - 1.0_dp
-               call check(error, e, e_ref, trim(line)//", rel_tol "//str(tols(j))//": e", &
-                  & rel=.true., thr=tols(j) + e_err)
-               if (allocated(error)) return
-               tol = (2*tols(j) + w_load_err)*w_load/at_turn%force
-               call check(error, abs(delta_m - delta_m_ref) <= tol, trim(line) &
-                  & //", rel_tol "//str(tols(j))//": delta_m "//str(delta_m)//" against " &
-                  & //str(delta_m_ref))
-               if (allocated(error)) return
-            end do
-         end associate
+         read (rows(k), *) model, delta_m_ref, mu, psi, hardness
+         if (mu == 4.0_dp) then   ! glass
+            radius = 1.0e-3_dp; modulus = 70.0e9_dp; nu = 0.22_dp; sigma = 1.0e-6_dp
+            density = 2500.0_dp
+         else                     ! steel
+            radius = 2.0e-3_dp; modulus = 210.0e9_dp; nu = 0.3_dp; sigma = 0.5e-6_dp
+            density = 7800.0_dp
+         end if
+         call check_reference_row(rows(k), contact_params(model=model_epgw, &
+            & radius=radius/2, modulus=modulus/(2*(1 - nu*nu)), sigma=sigma, mu=mu, psi=psi, &
+            & hardness_coeff=hardness), density*4.0_dp/3.0_dp*pi*radius**3/2, &
+            & [1.0e-5_dp, 1.0e-6_dp], error)
+         if (allocated(error)) return
       end do
    end subroutine test_e_speeds
+
+   !> One row of a restitution reference file (scaled units: R = E* = sigma = 1, unit
+   !> mass) against egw's restitution for params p and effective mass at each rel_tol:
+   !> the row's speed is v = sqrt(2 W_load W_s/mass), W_s = E* sqrt(R) sigma^2.5 the
+   !> work unit; e within rel_tol plus the reference's error, the dissipated energy within
+   !> rel_tol of W_load (plus the works' errors), delta_m/sigma within 2 rel_tol
+   !> W_load/P_load(delta_m) plus the reference's error (see test_e_reference).
+   subroutine check_reference_row(line, p, mass, tols, error)
+      character(len=*), intent(in) :: line
+      type(contact_params), intent(in) :: p
+      real(dp), intent(in) :: mass, tols(:)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=8) :: model
+      real(dp) :: delta_m_ref, mu, psi, hardness, w_load, w_load_err, w_unload, &
+         & w_unload_err, velocity, e_ref, e_err, e, dissipated, delta_m, tol, w_scale
+      type(solver_options) :: opts
+      type(solve_result) :: at_turn
+      type(egw_error), allocatable :: err
+      integer :: j
+      read (line, *) model, delta_m_ref, mu, psi, hardness, w_load, w_load_err, &
+         & w_unload, w_unload_err, velocity, e_ref, e_err
+      w_scale = p%modulus*sqrt(p%radius)*p%sigma**2.5_dp
+      velocity = sqrt(2*w_load*w_scale/mass)
+      call solve_contact(epgw(psi, mu, hardness), opts, delta_m_ref, at_turn, err)
+      if (allocated(err)) call test_failed(error, err%message)
+      if (allocated(error)) return
+      do j = 1, size(tols)
+         opts%rel_tol = tols(j)
+         call restitution(p, opts, mass, velocity, e, dissipated, err, max_overlap=delta_m)
+         if (allocated(err)) call test_failed(error, trim(line)//", rel_tol " &
+            & //str(tols(j))//": "//err%message)
+         if (allocated(error)) return
+         delta_m = delta_m/p%sigma
+         print '(a,es9.2,a,f6.2,a,es8.1,a,es9.2)', "    v = ", velocity, &
+            & ", delta_m = ", delta_m_ref, " sigma, rel_tol ", tols(j), &
+            & ": e/e_ref - 1 = ", e/e_ref - 1.0_dp
+         call check(error, e, e_ref, trim(line)//", rel_tol "//str(tols(j))//": e", &
+            & rel=.true., thr=tols(j) + e_err)
+         if (allocated(error)) return
+         tol = tols(j)*w_load + w_load*w_load_err + w_unload*w_unload_err
+         call check(error, abs(dissipated/w_scale - (w_load - w_unload)) <= tol, trim(line) &
+            & //", rel_tol "//str(tols(j))//": dissipated "//str(dissipated/w_scale) &
+            & //" against "//str(w_load - w_unload))
+         if (allocated(error)) return
+         tol = (2*tols(j) + w_load_err)*w_load/at_turn%force
+         call check(error, abs(delta_m - delta_m_ref) <= tol, trim(line) &
+            & //", rel_tol "//str(tols(j))//": delta_m "//str(delta_m)//" against " &
+            & //str(delta_m_ref))
+         if (allocated(error)) return
+      end do
+   end subroutine check_reference_row
 
    !> mass, velocity <= 0, NaN or Inf, and bad params: named statuses, outputs untouched.
    subroutine test_e_bad_input(error)
