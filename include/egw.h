@@ -338,6 +338,22 @@ int egw_table_eval_all(egw_table t, double delta, double *force, double *stiffne
 /* Facts about t into *info. EGW_NULL_POINTER. */
 int egw_table_get_info(egw_table t, egw_table_info *info);
 
+/* The table's interpolant between its cut-off and delta_max, for a caller that evaluates
+ * it in its own inner loop (e.g. blends two tables' cubics, or keeps a contact's
+ * interval): nodes[0..n-1] (n = egw_table_info.n_nodes, ascending, nodes[0] = cutoff,
+ * nodes[n-1] = delta_max) [length] and, for interval i (nodes[i] <= delta < nodes[i+1]),
+ * the cubic v = c0 + c1 t + c2 t^2 + c3 t^3 in t = delta - nodes[i] with (c0..c3) =
+ * coeffs[4i..4i+3] (coeffs holds 4(n-1) doubles). For i < *n_log (the separated tail,
+ * where the table interpolates ln P) force = exp(v) and stiffness = force dv/dt; for
+ * the others force = v, stiffness = dv/dt. Evaluated so (as egw_table_eval evaluates
+ * it: same coefficients, same order of operations up to rounding) it gives
+ * egw_table_eval's values on (cutoff, delta_max); outside that interval use
+ * egw_table_eval (tail law, node value, deep-overlap asymptote). Statuses:
+ * EGW_INVALID_ARGUMENT (capacity < n, nothing written; the message gives n),
+ * EGW_NULL_POINTER. */
+int egw_table_get_interpolant(egw_table t, int capacity, double *nodes, double *coeffs,
+                              int *n_log);
+
 /* Record the particle radii R1, R2 of the pair (LAMMPS distances r = R1 + R2 - delta).
  * They must give the table's R: 1/R = 1/R1 + 1/R2 (to 1e-12); otherwise
  * EGW_INVALID_ARGUMENT and nothing changes. Without radii the LAMMPS file is written for

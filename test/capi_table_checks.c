@@ -501,6 +501,35 @@ int egw_capi_test_table_plain_reader(void) {
   }
   free(pt.delta);
   {
+    /* egw_table_get_interpolant: its cubics, evaluated as egw.h says, give
+     * egw_table_eval's values on (cutoff, delta_max) to 1e-14 relative (same coefficients
+     * and order of operations, up to the compiler's rounding; exp() amplifies an ulp of
+     * ln P by |ln P| < 30, as above); a too small capacity or NULL is refused */
+    int n = info.n_nodes, nl = -1, i;
+    double *x = malloc(sizeof(double) * n), *c = malloc(sizeof(double) * 4 * n);
+    CHECK(egw_table_get_interpolant(t, n - 1, x, c, &nl) == EGW_INVALID_ARGUMENT && nl == -1);
+    CHECK(last_error_names("capacity"));
+    CHECK(egw_table_get_interpolant(t, n, NULL, c, &nl) == EGW_NULL_POINTER);
+    CHECK(egw_table_get_interpolant(NULL, n, x, c, &nl) == EGW_NULL_POINTER);
+    CHECK(egw_table_get_interpolant(t, n, x, c, &nl) == EGW_OK);
+    CHECK(nl > 0 && nl < n - 1 && x[0] == info.cutoff && x[n - 1] == info.delta_max);
+    for (i = 0; i + 1 < n; i++) CHECK(x[i] < x[i + 1]);
+    i = 0;
+    for (int j = 1; j < 2000; j++) {
+      double d = info.cutoff + (info.delta_max - info.cutoff) * j / 2000.0, f1, k1, f2, k2;
+      while (d >= x[i + 1]) i++;
+      double tt = d - x[i], *ci = &c[4 * i];
+      double v = (ci[0] + tt * ci[1]) + tt * tt * (ci[2] + tt * ci[3]);
+      double dv = (ci[1] + 2 * tt * ci[2]) + 3 * tt * tt * ci[3];
+      f2 = i < nl ? exp(v) : v;
+      k2 = i < nl ? f2 * dv : dv;
+      CHECK(egw_table_eval(t, d, &f1, &k1) == EGW_OK);
+      CHECK(fabs(f1 - f2) <= 1e-14 * fabs(f1) && fabs(k1 - k2) <= 1e-14 * fabs(k1) + 1e-300);
+    }
+    free(x);
+    free(c);
+  }
+  {
     FILE *fp = fopen(path, "r+b");
     if (fp != NULL) { fseek(fp, 150, SEEK_SET); fputc(0x55, fp); fclose(fp); }
     CHECK(plain_table_read(path, &pt) == 2);

@@ -67,6 +67,7 @@ void EgwLaw::release()
   hyst_held.clear();
   slices.clear();
   slices_held.reset();
+  fast = nullptr;
   lnmu.clear();
 }
 
@@ -119,6 +120,7 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     xc = in.cutoff;
     slices_held = std::make_shared<EgwTables::SliceSet>();
     slices_held->tables = {table};
+    slices_held->fast.make(slices_held->tables);
     slices_held->xc = xc;
     EgwTables::keep_slices(skey, slices_held);
   } else if (kind == UNIVERSAL) {
@@ -173,6 +175,7 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     egw_universal_free(&universal);
     slices_held = std::make_shared<EgwTables::SliceSet>();
     slices_held->tables = slices;
+    slices_held->fast.make(slices_held->tables);
     slices_held->xc = xc, slices_held->lnmu0 = lnmu0, slices_held->inv_h = inv_h;
     slices_held->interp_error = interp_error;
     EgwTables::keep_slices(skey, slices_held);
@@ -229,6 +232,7 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   }
   tail = -xc * sigma;
   reach = kind == HERTZ ? HUGE_VAL : xmax * sigma;
+  fast = slices_held && slices_held->fast.n > 0 ? &slices_held->fast : nullptr;
 }
 
 std::string EgwLaw::describe(double R_lo, double R_hi) const

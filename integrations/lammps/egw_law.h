@@ -66,6 +66,7 @@ struct EgwLaw {
   int hyst_built = 0;              // hysteresis tables this law's build made (others shared)
   std::vector<egw_table> slices;   // 1-D slices of universal at nodes in ln mu (summit data)
   EgwTables::Slices slices_held;   // owns table or slices (shared: egw_tables.h)
+  const EgwTables::Inline *fast = nullptr;    // their cubics for the force loop, or null
   double lnmu0 = 0, inv_h = 0;     // first node, 1 / node spacing
   std::vector<double> lnmu;        // nodes of hyst in ln mu (summit data)
   egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)
@@ -185,8 +186,16 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     case TABLE: {
       double p, dp, u = 0, ac;
       double x = delta * inv_sigma;
-      if (want_energy) st = egw_table_eval_all(table, x, &p, &dp, &u, &ac);
-      else st = egw_table_eval(table, x, &p, &dp);
+      if (fast && fast->covers(x)) {
+        // the force from the tables' cubics in every step (egw's values to rounding; with
+        // or without energy, so that output steps do not change a trajectory)
+        fast->eval(x, 0, 0.0, p, dp);
+        if (want_energy) egw_table_eval_all(table, x, nullptr, nullptr, &u, nullptr);
+      } else if (want_energy) {
+        st = egw_table_eval_all(table, x, &p, &dp, &u, &ac);
+      } else {
+        st = egw_table_eval(table, x, &p, &dp);
+      }
       F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
       break;
     }
@@ -197,6 +206,15 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
       double x = delta * inv_sigma, p0, p1, d0, d1, u0 = 0, u1 = 0, ac;
+      if (fast && fast->covers(x)) {    // as TABLE
+        fast->eval(x, k, w, p0, d0);
+        if (want_energy) {
+          egw_table_eval_all(slices[k], x, nullptr, nullptr, &u0, nullptr);
+          egw_table_eval_all(slices[k + 1], x, nullptr, nullptr, &u1, nullptr);
+        }
+        F = sr * s15 * p0, S = sr * s05 * d0, U = sr * s25 * (u0 + w * (u1 - u0));
+        return EGW_OK;
+      }
       if (want_energy) {
         st = egw_table_eval_all(slices[k], x, &p0, &d0, &u0, &ac);
         egw_table_eval_all(slices[k + 1], x, &p1, &d1, &u1, &ac);

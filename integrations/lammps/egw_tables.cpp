@@ -206,6 +206,51 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
   return out;
 }
 
+bool Inline::make(const std::vector<egw_table> &tables)
+{
+  *this = Inline();
+  if (tables.empty()) return false;
+  egw_table_info in;
+  if (egw_table_get_info(tables[0], &in) != EGW_OK || in.n_nodes < 2) return false;
+  int nn = in.n_nodes, k = 0;
+  std::vector<double> xk(nn), ck(4 * (nn - 1));
+  std::vector<double> coef(4 * (nn - 1) * tables.size());
+  for (egw_table t : tables) {
+    int nl = 0;
+    if (egw_table_get_interpolant(t, nn, xk.data(), ck.data(), &nl) != EGW_OK) return false;
+    if (k == 0) x = xk, n_log = nl;
+    if (xk != x || nl != n_log) {    // another table's nodes: no shared lookup
+      x.clear();
+      return false;
+    }
+    for (int i = 0; i + 1 < nn; i++)
+      for (int j = 0; j < 4; j++)
+        coef[4 * (i * tables.size() + k) + j] = ck[4 * i + j];
+    k++;
+  }
+  c.swap(coef);
+  ns = (int) tables.size();
+  x_lo = x.front(), x_hi = x.back();
+  // buckets: about 8 per interval, doubled while one spans more than 8 intervals (nodes
+  // crowd near the cut-off and contact; a scan of a few nodes is cheaper than a search)
+  origin = x_lo;
+  for (nb = 8 * (nn - 1);; nb *= 2) {
+    scale = nb / (x_hi - x_lo);
+    bucket.assign(nb, 0);
+    int i = 0, widest = 0;
+    for (int b = 0; b < nb; b++) {
+      double xb = origin + (b - 1e-6) / scale;    // rounding never passes a bucket's start
+      int i0 = i;
+      while (i < nn - 2 && xb >= x[i + 1]) i++;
+      bucket[b] = i;
+      if (b > 0) widest = std::max(widest, i - i0);
+    }
+    if (widest <= 8 || nb >= (1 << 20)) break;
+  }
+  n = nn;
+  return true;
+}
+
 Slices EgwTables::find_slices(const SliceKey &key)
 {
   std::lock_guard<std::mutex> lock(registry_mutex);

@@ -12,6 +12,8 @@
 
 #include <mpi.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -48,10 +50,71 @@ struct SliceKey {
   bool operator<(const SliceKey &o) const;
 };
 
+/* A set of 1-D tables' cubics copied out of egw (egw_table_get_interpolant) for
+ * evaluation inside the force loop, without a library call. The slices of one universal
+ * table share their nodes, so a contact finds its interval once for both of its slices and,
+ * where they interpolate p, blends their cubics into one (the value of interpolating their
+ * forces linearly in ln mu, to rounding); where they interpolate ln p (the tail) it takes
+ * both exps. Serves cut-off < x < last node; egw_table_eval the rest (tail law, deep
+ * overlaps, energy). n = 0: the tables' nodes differ, egw_table_eval serves everything. */
+struct Inline {
+  int n = 0, n_log = 0, ns = 0;    // nodes, intervals of ln p (the first ones), tables
+  double x_lo = 0, x_hi = 0;       // first and last node [sigma]
+  std::vector<double> x;           // nodes [sigma]
+  std::vector<double> c;           // interval i, table k: c[4 (i ns + k) + 0..3]
+  std::vector<int> bucket;         // the interval holding each bucket's start
+  double origin = 0, scale = 0;
+  int nb = 0;
+  /* the interval i with x[i] <= xv < x[i + 1], for x_lo < xv < x_hi */
+  int locate(double xv) const
+  {
+    int b = std::min(nb - 1, (int) ((xv - origin) * scale));
+    int i = bucket[b];
+    while (xv >= x[i + 1]) i++;
+    return i;
+  }
+  /* fill from tables (false, n = 0: their nodes or ln-p intervals differ) */
+  bool make(const std::vector<egw_table> &tables);
+  bool covers(double xv) const { return xv > x_lo && xv < x_hi; }    // false when n = 0
+  /* p and dp/dx at x (covers(x)) of table k, or (ns > 1) of tables k and k + 1
+   * interpolated linearly in ln mu with weight w on k + 1 */
+  void eval(double xv, int k, double w, double &p, double &dp) const
+  {
+    int i = locate(xv);
+    double t = xv - x[i], t2 = t * t;
+    const double *a = &c[4 * (i * ns + k)];
+    // egw's cubic in Estrin's form, as egw_table_eval evaluates it
+    if (ns == 1) {
+      double v = (a[0] + t * a[1]) + t2 * (a[2] + t * a[3]);
+      double d = (a[1] + 2 * t * a[2]) + 3 * t2 * a[3];
+      if (i < n_log) p = std::exp(v), dp = p * d;
+      else p = v, dp = d;
+      return;
+    }
+    const double *b = a + 4;    // table k + 1, same interval
+    if (i < n_log) {
+      double v0 = (a[0] + t * a[1]) + t2 * (a[2] + t * a[3]);
+      double v1 = (b[0] + t * b[1]) + t2 * (b[2] + t * b[3]);
+      double d0 = (a[1] + 2 * t * a[2]) + 3 * t2 * a[3];
+      double d1 = (b[1] + 2 * t * b[2]) + 3 * t2 * b[3];
+      double p0 = std::exp(v0), p1 = std::exp(v1);
+      p = p0 + w * (p1 - p0);
+      dp = p0 * d0 + w * (p1 * d1 - p0 * d0);
+      return;
+    }
+    // p interpolated in both: the blended cubic is the blend of their values
+    double c0 = a[0] + w * (b[0] - a[0]), c1 = a[1] + w * (b[1] - a[1]);
+    double c2 = a[2] + w * (b[2] - a[2]), c3 = a[3] + w * (b[3] - a[3]);
+    p = (c0 + t * c1) + t2 * (c2 + t * c3);
+    dp = (c1 + 2 * t * c2) + 3 * t2 * c3;
+  }
+};
+
 /* a law's 1-D tables with what their build found; freed with their last holder */
 struct SliceSet {
   std::vector<egw_table> tables;
   double xc = 0, lnmu0 = 0, inv_h = 0, interp_error = 0;
+  Inline fast;                     // their cubics, for the force loop
   ~SliceSet();
 };
 using Slices = std::shared_ptr<SliceSet>;

@@ -345,7 +345,7 @@ void PairEGW::make_law(int i, int j)
   if (same) {
     L.table = old.table, L.universal = old.universal, L.hyst = old.hyst, L.lnmu = old.lnmu;
     L.hyst_held = old.hyst_held, L.hyst_built = old.hyst_built, L.slices_held = old.slices_held;
-    L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h;
+    L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h, L.fast = old.fast;
     old.slices.clear();
     L.xc = old.xc, L.tail = old.tail, L.reach = old.reach, L.capped = old.capped;
     L.capped_solver = old.capped_solver;

@@ -1226,6 +1226,32 @@ def test_lnmu_error_estimate():
                 "(within [1/1.5, 1.25])")
 
 
+def test_inline_law():
+    """GW and E-GW evaluate in the force loop from their own copy of the tables' cubics
+    (egw_table_get_interpolant; EgwTables::Inline): one lookup for both ln-mu slices of a
+    contact, their cubics blended where they interpolate p. Against egw_table_eval of the
+    slices interpolated linearly in ln mu (what the loop computed before) at 20000 overlaps
+    over each table's range, with 9 and 5 slices (summit data) and one table (mu given):
+    force and stiffness agree to 1e-13 (rounding: the same coefficients in the same order,
+    exp() amplifying an ulp of ln p by |ln p| < 30, and the blend's reassociation). A wrong
+    blend weight of 1e-3 gives 2e-5."""
+    worst, lines = 0.0, []
+    for args in (("3", "8", "12", "9", "5e-5", "400"), ("3", "4", "4", "1", "1e-4", "100"),
+                 ("2", "3", "30", "5", "1e-4", "200")):
+        p = subprocess.run([CHECK, "inline", *args], stdout=subprocess.PIPE,
+                           stderr=subprocess.STDOUT, text=True, timeout=600)
+        m = re.search(r"max_rel_diff (\S+) max_rel_diff_stiffness (\S+) nodes (\d+) n_log (\d+)",
+                      p.stdout)
+        if p.returncode or not m:
+            return False, p.stdout[-500:]
+        d, ds, n, nl = float(m.group(1)), float(m.group(2)), int(m.group(3)), int(m.group(4))
+        if not 0 < nl < n - 1:
+            return False, f"{args}: {n} nodes, {nl} ln-p intervals: both kinds expected"
+        worst = max(worst, d, ds)
+        lines.append(f"model {args[0]}, {args[3]} slice(s): {d:.1e} / {ds:.1e}")
+    return worst <= 1e-13, "; ".join(lines) + " (force / stiffness, <= 1e-13)"
+
+
 def test_normalised_table_scaling():
     """The shared tables are normalised (R = E* = sigma = 1) and scaled per contact by
     E* sqrt(R) sigma^1.5 and sigma (doc/theory.md, Scaling). An EP-GW hysteresis table built
@@ -1282,7 +1308,7 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff,
-         test_lnmu_error_estimate, test_normalised_table_scaling, test_pour_tables_shared]
+         test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared]
 
 
 def main():

@@ -11,6 +11,14 @@
  *     (R = E* = sigma = 1) scaled by E* sqrt(R) sigma^1.5 (force) and sigma (overlap): the
  *     largest difference at the check points relative to the turning point's force:
  *       scaling max_rel_diff D
+ *   hyst_mu_check inline MODEL MU_LO MU_HI N TOL XMAX
+ *     the force loop's copy of 1-D tables (EgwTables::Inline): N slices of a universal
+ *     table of MODEL (2 GW, 3 E-GW) at equal steps in ln mu over [MU_LO, MU_HI] (N = 1: one
+ *     slice at MU_LO), evaluated by Inline at 20000 overlaps over (cut-off, XMAX) and
+ *     weights w in [0, 1] between neighbouring slices, against egw_table_eval of the two
+ *     slices interpolated p0 + w (p1 - p0); the largest relative differences of force and
+ *     stiffness, the tables' nodes and ln-p intervals:
+ *       inline max_rel_diff D max_rel_diff_stiffness DS nodes N n_log L
  * Tables are built with egw's defaults (threads, cache). */
 #include "../egw_tables.h"
 
@@ -103,9 +111,53 @@ int main(int argc, char **argv)
       }
     std::printf("scaling max_rel_diff %.4e\n", d);
     egw_hysteresis_free(&phys);
+  } else if (mode == "inline" && argc == 8) {
+    int model = atoi(argv[2]), n = atoi(argv[5]);
+    double mu_lo = atof(argv[3]), mu_hi = atof(argv[4]), tol = atof(argv[6]);
+    double xmax = atof(argv[7]);
+    egw_params p;
+    egw_params_default(&p);
+    p.model = model, p.radius = p.modulus = p.sigma = 1.0;    // normalised, as the plugin's
+    egw_universal u = nullptr;
+    auto check = [](int st) {
+      if (st == EGW_OK) return;
+      char b[1024];
+      egw_last_error(b, sizeof b);
+      fail(b);
+    };
+    check(egw_universal_build(&p, nullptr, mu_lo, n == 1 ? 1.02 * mu_lo : mu_hi, 0.0, xmax, tol,
+                              &u));
+    std::vector<egw_table> slices;
+    for (int k = 0; k < n; k++) {
+      p.mu = n == 1 ? mu_lo : std::exp(std::log(mu_lo) + k * std::log(mu_hi / mu_lo) / (n - 1));
+      egw_table s = nullptr;
+      check(egw_universal_slice(u, &p, &s));
+      slices.push_back(s);
+    }
+    EgwTables::Inline fast;
+    if (!fast.make(slices)) fail("Inline::make refused the slices (nodes differ)");
+    double dmax = 0.0, smax = 0.0;
+    for (int j = 1; j < 20000; j++) {
+      // overlaps crowded towards contact, where the nodes are (and the pour's contacts)
+      double f = j / 20000.0, x = fast.x_lo + (fast.x_hi - fast.x_lo) * f * f * f;
+      int k = n == 1 ? 0 : j % (n - 1);
+      double w = n == 1 ? 0.0 : (j % 7) / 6.0, p0, d0, p1 = 0, d1 = 0, pf, df;
+      if (!fast.covers(x)) continue;
+      check(egw_table_eval(slices[k], x, &p0, &d0));
+      if (n > 1) check(egw_table_eval(slices[k + 1], x, &p1, &d1));
+      fast.eval(x, k, w, pf, df);
+      double pr = n == 1 ? p0 : p0 + w * (p1 - p0), dr = n == 1 ? d0 : d0 + w * (d1 - d0);
+      dmax = std::max(dmax, std::fabs(pf - pr) / std::fabs(pr));
+      smax = std::max(smax, std::fabs(df - dr) / std::max(std::fabs(dr), 1e-300));
+    }
+    std::printf("inline max_rel_diff %.4e max_rel_diff_stiffness %.4e nodes %d n_log %d\n", dmax,
+                smax, fast.n, fast.n_log);
+    for (auto &s : slices) egw_table_free(&s);
+    egw_universal_free(&u);
   } else {
     std::fprintf(stderr, "usage: hyst_mu_check lattice MU_LO MU_HI LEVEL PSI K TOL XMAX\n"
-                         "       hyst_mu_check scaling R E_STAR SIGMA MU PSI K TOL XMAX\n");
+                         "       hyst_mu_check scaling R E_STAR SIGMA MU PSI K TOL XMAX\n"
+                         "       hyst_mu_check inline MODEL MU_LO MU_HI N TOL XMAX\n");
     return 2;
   }
   MPI_Finalize();

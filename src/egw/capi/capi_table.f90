@@ -166,6 +166,38 @@ contains
          & checksum_missing=merge(1_c_int, 0_c_int, t%checksum_missing))
    end function egw_table_get_info
 
+   !> C: egw_table_get_interpolant: the nodes and each interval's cubic (table%seg's
+   !> layout unpacked) for callers that evaluate the table in their own inner loop.
+   function egw_table_get_interpolant(h, capacity, nodes, coeffs, n_log) result(stat) &
+      & bind(C, name="egw_table_get_interpolant")
+      type(c_ptr), value, intent(in) :: h, nodes, coeffs, n_log
+      integer(c_int), value, intent(in) :: capacity
+      integer(c_int) :: stat
+      type(force_table), pointer :: t
+      real(c_double), pointer :: x(:), c(:)
+      integer(c_int), pointer :: nl
+      integer :: n, i
+      stat = get_table(h, t)
+      if (stat == egw_ok) stat = require(nodes, "nodes")
+      if (stat == egw_ok) stat = require(coeffs, "coeffs")
+      if (stat == egw_ok) stat = require(n_log, "n_log")
+      if (stat /= egw_ok) return
+      n = size(t%delta)
+      if (capacity < n) then
+         stat = invalid("capacity = "//int_str(int(capacity))//": below the table's "// &
+            & int_str(n)//" nodes (egw_table_info.n_nodes; coeffs needs 4*(n_nodes-1))")
+         return
+      end if
+      x => double_array(nodes, int(n, c_int))
+      c => double_array(coeffs, int(4*(n - 1), c_int))
+      call c_f_pointer(n_log, nl)
+      x = t%seg(0, 1:n)
+      do i = 1, n - 1
+         c(4*i - 3:4*i) = t%seg(1:4, i)
+      end do
+      nl = int(t%n_log, c_int)
+   end function egw_table_get_interpolant
+
    !> C: egw_table_set_radii (R1, R2 consistent with the table's R).
    function egw_table_set_radii(h, radius1, radius2) result(stat) &
       & bind(C, name="egw_table_set_radii")
