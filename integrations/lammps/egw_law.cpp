@@ -65,6 +65,7 @@ void EgwLaw::release()
   egw_universal_free(&universal);
   hyst.clear();    // shared tables: freed with their last holder
   hyst_held.clear();
+  hyst_tag.clear(), hyst_dmax.clear();
   slices.clear();
   slices_held.reset();
   fast = nullptr;
@@ -193,13 +194,16 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
       int built = 0;
       hyst_held = EgwTables::hysteresis(keys, comm, n_threads, fail_with, &built);
       hyst_built += built;
-      hyst.clear();
+      hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
       xc = 0.0;
       for (auto &t : hyst_held) {
         hyst.push_back(t.get());
         egw_hysteresis_info in;
         egw_hysteresis_get_info(t.get(), &in);
         xc = std::min(xc, in.cutoff);    // each table ends at its own cut-off
+        double tag = 0.0;
+        egw_hysteresis_state_tag(t.get(), &tag);
+        hyst_tag.push_back(tag), hyst_dmax.push_back(in.delta_max);
       }
     };
     hyst_built = 0;

@@ -63,6 +63,7 @@ struct EgwLaw {
   egw_universal universal = nullptr;
   std::vector<egw_hysteresis> hyst;    // evaluated; owned by hyst_held (shared: egw_tables.h)
   std::vector<EgwTables::Hyst> hyst_held;
+  std::vector<double> hyst_tag, hyst_dmax;    // hyst's state tags and delta_max [sigma]
   int hyst_built = 0;              // hysteresis tables this law's build made (others shared)
   std::vector<egw_table> slices;   // 1-D slices of universal at nodes in ln mu (summit data)
   EgwTables::Slices slices_held;   // owns table or slices (shared: egw_tables.h)
@@ -148,9 +149,13 @@ inline int EgwLaw::mu_position(double R, double *hist, double &t) const
  * contact's history xm (delta_max/sigma, -inf for a new contact); one that does not
  * (dropped, or filled for another table, which egw reads as a new contact) is filled again
  * by loading a new contact to xm. Otherwise s is the history itself. */
-inline int egw_law_hyst_eval(egw_hysteresis h, double x, double xm, double *s, double &p,
-                             double &dp, bool refill)
+inline int egw_law_hyst_eval(egw_hysteresis h, double tag, double dmax, double x, double xm,
+                             double *s, double &p, double &dp, bool refill)
 {
+  // most steps: the state's piece of its unloading curve covers x (egw.h's inline first
+  // step of egw_hysteresis_eval_state, the same values without a library call)
+  if ((!refill || s[0] == xm) && egw_hysteresis_eval_piece(tag, x, s, &p, &dp))
+    return s[0] > dmax ? EGW_OUT_OF_RANGE : EGW_OK;
   if (!refill) return egw_hysteresis_eval_state(h, x, s, &p, &dp);
   if (!(s[0] == xm)) {
     egw_hysteresis_state_init(s);
@@ -230,7 +235,8 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     case HYST: {
       // the state (table units) with its turning point's cache lives in cache[0..23]
       double x = delta * inv_sigma, p, dp;
-      st = egw_law_hyst_eval(hyst[0], x, *dmax, cache, p, dp, !states_are_history);
+      st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], x, *dmax, cache, p, dp,
+                             !states_are_history);
       *dmax = cache[0];
       // the energy the contact returns if it separates now (the rest of its loading work
       // is dissipated): kinetic + this falls while contacts load, stays while they unload
@@ -248,8 +254,10 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       double w = t - k;
       double p0, p1, d0, d1;
       double *sa = cache, *sb = cache + EGW_HYSTERESIS_STATE_SIZE;
-      st = egw_law_hyst_eval(hyst[k], x, *dmax, sa, p0, d0, !states_are_history);
-      int st2 = egw_law_hyst_eval(hyst[k + 1], x, *dmax, sb, p1, d1, !states_are_history);
+      st = egw_law_hyst_eval(hyst[k], hyst_tag[k], hyst_dmax[k], x, *dmax, sa, p0, d0,
+                             !states_are_history);
+      int st2 = egw_law_hyst_eval(hyst[k + 1], hyst_tag[k + 1], hyst_dmax[k + 1], x, *dmax, sb,
+                                  p1, d1, !states_are_history);
       if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
       *dmax = sa[0];
       double u0 = 0.0, u1 = 0.0;

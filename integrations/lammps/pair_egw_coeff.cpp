@@ -344,6 +344,7 @@ void PairEGW::make_law(int i, int j)
       old.kind == L.kind && old.prm.model == L.prm.model && built_rhi[i][j] > 0;
   if (same) {
     L.table = old.table, L.universal = old.universal, L.hyst = old.hyst, L.lnmu = old.lnmu;
+    L.hyst_tag = old.hyst_tag, L.hyst_dmax = old.hyst_dmax;
     L.hyst_held = old.hyst_held, L.hyst_built = old.hyst_built, L.slices_held = old.slices_held;
     L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h, L.fast = old.fast;
     old.slices.clear();

@@ -138,6 +138,19 @@ contains
       if (stat == egw_out_of_range) stat = above_table(h, "state[0]", state(1))
    end function egw_hysteresis_eval_state
 
+   !> C: egw_hysteresis_state_tag: the tag egw writes into the states h fills (state[2]),
+   !> for egw.h's inline egw_hysteresis_eval_piece.
+   function egw_hysteresis_state_tag(hp, tag) result(stat) &
+      & bind(C, name="egw_hysteresis_state_tag")
+      type(c_ptr), value, intent(in) :: hp, tag
+      integer(c_int) :: stat
+      type(hysteresis_table), pointer :: h
+      stat = get_table(hp, h)
+      if (stat == egw_ok) stat = require(tag, "tag")
+      if (stat /= egw_ok) return
+      call put(tag, h%tag)
+   end function egw_hysteresis_state_tag
+
    !> C: egw_hysteresis_energy: the elastic energy a contact returns if it separates now.
    function egw_hysteresis_energy(hp, delta, state, energy) result(stat) &
       & bind(C, name="egw_hysteresis_energy")
