@@ -57,7 +57,11 @@ class FixWallEGW : public Fix {
   int tmax;                        // contacts an atom may have at once (1 for planes)
   int stride;                      // doubles per atom: planes nhist; region 1 + tmax (1 + nhist)
   double **history;                // per atom: its wall contacts' histories (0: none)
+  // per local atom: its history is all zero (away from the wall since it was cleared);
+  // valid between reneighborings, when LAMMPS neither sorts nor exchanges atoms
+  std::vector<char> cleared;
   void post_force_region();
+  void clear_history(int i, double *h, int n);
   bool contacts;                   // the 'contacts' per-atom array (array_atom)
   int ncols;                       // its columns: 8 (fix wall/gran's), 9 with a heat model
   // the radii R_eff (over the region's curvatures) the tables must cover (summit data)

@@ -602,6 +602,30 @@ def test_wall_restitution():
     return ok, "; ".join(msgs)
 
 
+def test_wall_bounces_start_afresh():
+    """An EP-GW bead bouncing on a fix wall/egw zplane under gravity (0.1 m/s, g = 9.81,
+    several impacts): each impact starts as a new contact (the history is zeroed when the
+    bead leaves). The fix zeroes a far atom's history once, not on every step, and again
+    after every reneighboring (atoms may have moved in memory): the run without any
+    reneighboring (skin 10 mm) must match the run that reneighbors on every step (neigh_modify
+    check no) bit for bit. A history left unzeroed starts an impact on an earlier one's
+    unloading curve: forgetting that the bead touched the wall again (a bug tried on
+    purpose) gave vz 0.03615 against 0.03107."""
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1"
+    wall = f"wall/egw EP-GW 1e-3 {c} zplane 0 NULL"
+    dt, nrun = 2e-7, 250000
+    runs = {}
+    for name, var in (("never", dict(skin=0.01)), ("every step", dict(check="no"))):
+        rc, out = wall_run("egw EP-GW 1e-3", c, wall, 0.1, dt, nrun, RAD + 1e-6, g=9.81, **var)
+        if rc != 0:
+            return False, f"{name}: " + " ".join(l for l in out.splitlines() if "ERROR" in l)
+        runs[name] = result(out)
+    vz = runs["never"][2]
+    ok = runs["never"] == runs["every step"] and vz != 0.0
+    return ok, (f"vz after {nrun} steps: {vz:.15g} (no reneighboring) vs "
+                f"{runs['every step'][2]:.15g} (every step)")
+
+
 def test_wall_rolling_vs_wall_gran():
     """A bead set down on a zplane under gravity, sliding at 0.05 m/s and spinning at 30 rad/s
     about x (it slides, rolls and comes to roll without slipping, resisted by rolling sds and
@@ -1301,7 +1325,7 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_submodels_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
          test_heat_flow_needs_model, test_pair_write, test_overlap_beyond_tables,
-         test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution,
+         test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution, test_wall_bounces_start_afresh,
          test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
          test_bad_wall, test_wall_region, test_drum_example,
          test_wall_heat_vs_wall_gran, test_wall_curvature_vs_wall_gran,
