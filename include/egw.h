@@ -566,7 +566,8 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * returns 0 and writes nothing: call egw_hysteresis_eval_state. Neither changes the state
  * here. It does not report EGW_OUT_OF_RANGE (a caller that needs it compares state[0]
  * with egw_hysteresis_info.delta_max). It reads the state's layout, which is egw's: use
- * it with the library of the same version as this header. */
+ * it with the library of the same version as this header. C99 or C++ (inline). */
+#if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 199901L)
 static inline int egw_hysteresis_eval_piece(double tag, double delta,
                                             const double state[EGW_HYSTERESIS_STATE_SIZE],
                                             double *force, double *stiffness)
@@ -594,6 +595,7 @@ static inline int egw_hysteresis_eval_piece(double tag, double delta,
   if (stiffness) *stiffness = k;
   return 1;
 }
+#endif /* C99 or C++: inline */
 
 /* Elastic energy [force*length] that a contact at overlap delta returns if it separates
  * now: the integral of its unloading curve (turning point max(delta_max_state, delta))
