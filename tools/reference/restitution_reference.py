@@ -45,8 +45,8 @@ CASES = (
     # rounded: the test takes the speed from this file's W_load), panels to 1e-8 of W
     # (e to ~1e-8, far below the 1e-5 asked). Written to
     # test/data/restitution_speeds_reference.csv (--out, one --cases K at a time):
-    # cases 4-8 and 10-13 took 2-53 min each with --jobs 2 on a loaded 2-core machine;
-    # 9, 14 and 15 (12, 7.3 and 50 sigma) take hours and are not generated yet.
+    # cases 4-8 and 10-13 took 2-53 min each with --jobs 2 on a loaded 2-core machine,
+    # 14 (7.3 sigma) 31 min (unloading 28 min); 9 and 15 (12 and 50 sigma) take longer.
     ("EPGW", -4.7, 4.0, 2.0, 0.6, 3.2e-16),
     ("EPGW", -3.8, 4.0, 2.0, 0.6, 3.2e-14),
     ("EPGW", -2.7, 4.0, 2.0, 0.6, 3.2e-12),
