@@ -555,42 +555,59 @@ int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
 
 /* The tag egw writes into the states h fills (a number of h's data, never 0; a table read
  * from h's file or rebuilt with the same data has the same tag), for
- * egw_hysteresis_eval_piece. EGW_NULL_POINTER for h or tag. */
+ * egw_hysteresis_eval_cached. EGW_NULL_POINTER for h or tag. */
 int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
 
-/* The first step of egw_hysteresis_eval_state, inline, for a force loop in which a
- * library call per contact costs as much as the evaluation: when state holds a piece of
- * an unloading curve of the table with tag `tag` (egw_hysteresis_state_tag) that covers
- * delta -- most DEM steps -- it writes the force and stiffness egw_hysteresis_eval_state
- * would (the same arithmetic on the state's cached cubics) and returns 1; otherwise it
- * returns 0 and writes nothing: call egw_hysteresis_eval_state. Neither changes the state
- * here. It does not report EGW_OUT_OF_RANGE (a caller that needs it compares state[0]
- * with egw_hysteresis_info.delta_max). It reads the state's layout, which is egw's: use
- * it with the library of the same version as this header. C99 or C++ (inline). */
+/* The steps of egw_hysteresis_eval_state that read nothing but the state, inline, for a
+ * force loop in which a library call per contact costs as much as the evaluation: when
+ * state was filled by the table with tag `tag` (egw_hysteresis_state_tag) and either
+ * holds a piece of an unloading curve that covers delta, or delta loads the contact
+ * further (delta >= state[0]) inside the loading table's interval the state holds -- most
+ * DEM steps -- it writes the force and stiffness egw_hysteresis_eval_state would (the
+ * same arithmetic on the state's cached cubics), changes the state as that call would
+ * (loading: state[0] = delta, the piece dropped) and returns 1; otherwise it returns 0
+ * and changes nothing: call egw_hysteresis_eval_state. It does not report
+ * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max) and refuses
+ * nothing (what it does not serve, the call checks). It reads the state's layout, which
+ * is egw's: use it with the library of the same version as this header. C99 or C++. */
 #if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 199901L)
-static inline int egw_hysteresis_eval_piece(double tag, double delta,
-                                            const double state[EGW_HYSTERESIS_STATE_SIZE],
-                                            double *force, double *stiffness)
+static inline int egw_hysteresis_eval_cached(double tag, double delta,
+                                             double state[EGW_HYSTERESIS_STATE_SIZE],
+                                             double *force, double *stiffness)
 {
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
-   * [17..23] the loading interval (ends, cubic in delta - [17], 1 where it is ln P) */
-  double x, x2, f, k;
-  if (!(state[2] == tag && state[1] == state[0] && state[10] < delta && delta < state[11]))
-    return 0;
-  x = delta - state[10];
-  x2 = x * x;
-  f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
-  k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
-  if (state[23] > 0.0) {
+   * [17..23] the loading table's interval (ends, cubic in delta - [17], 1 where it is
+   * ln P) */
+  double f = 0.0, k = 0.0;
+  int piece, loading;
+  if (!(state[2] == tag)) return 0;
+  piece = state[1] == state[0] && state[10] < delta && delta < state[11];
+  loading = !piece && delta >= state[0] && state[17] < delta && delta < state[18];
+  if (!piece && !loading) return 0;
+  if (piece) {
+    double x = delta - state[10], x2 = x * x;
+    f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
+    k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
+  } else {
+    state[10] = state[11] = NAN;    /* loading further: no piece, the new history */
+    state[0] = delta;
+  }
+  if (loading || state[23] > 0.0) {
+    /* the loading interval's force: all of it when loading; on a piece its ln P part */
     double t = delta - state[17], t2 = t * t;
     double v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
     double d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
-    double p = exp(v);
-    f = f + p;
-    k = k + p * d;
+    if (state[23] > 0.0) {
+      double p = exp(v);
+      f = f + p;
+      k = k + p * d;
+    } else {
+      f = v;
+      k = d;
+    }
   }
-  if (!(f > 0.0)) f = k = 0.0;
+  if (piece && !(f > 0.0)) f = k = 0.0;
   if (force) *force = f;
   if (stiffness) *stiffness = k;
   return 1;

@@ -218,35 +218,42 @@ int egw_capi_test_hysteresis(void) {
     }
     HCHECK(same);
     {
-      /* egw_hysteresis_eval_piece (egw.h, inline): along a contact unloading from 3.2 and
-       * reloading in small steps, wherever it serves a step it gives exactly
-       * egw_hysteresis_eval_state's values (the same arithmetic on the same cached
-       * cubics; exp from the same libm), and it serves most steps; it serves none for a
-       * new, zeroed or foreign-tag state, or with another table's tag */
-      double sp[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0, fi, ki, fe, ke;
-      int served = 0, steps = 0, exact = 1;
+      /* egw_hysteresis_eval_cached (egw.h, inline), the cached steps of
+       * egw_hysteresis_eval_state: a contact loading from -1 to 3.2, unloading to -0.8,
+       * reloading to 3.6 in small steps, once with the inline step first (the call when it
+       * does not serve) and once with the call alone: the same forces, stiffnesses and
+       * states bit for bit at every step (the same arithmetic on the same cached cubics,
+       * exp from the same libm), most steps served on each branch; nothing served for a
+       * new, zeroed or foreign-tag state */
+      double sp[EGW_HYSTERESIS_STATE_SIZE], se[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0;
+      double fi, ki, fe, ke;
+      int served_up = 0, served_down = 0, up = 0, down = 0, exact = 1;
       HCHECK(egw_hysteresis_state_tag(h, &tag) == EGW_OK && tag != 0.0 && tag == tag);
       HCHECK(egw_hysteresis_state_tag(NULL, &tag) == EGW_NULL_POINTER);
       HCHECK(egw_hysteresis_state_tag(h, NULL) == EGW_NULL_POINTER);
       egw_hysteresis_state_init(sp);
-      HCHECK(egw_hysteresis_eval_piece(tag, 1.0, sp, &fi, &ki) == 0);
-      HCHECK(egw_hysteresis_eval_state(h, 3.2, sp, &fe, &ke) == EGW_OK);
-      for (int i = 1; i <= 800; i++, steps++) {
-        double d = 3.2 - 4.0 * (i <= 400 ? i : 800 - i) / 400.0;   /* down to -0.8, back */
-        int hit = egw_hysteresis_eval_piece(tag, d, sp, &fi, &ki);
-        HCHECK(egw_hysteresis_eval_state(h, d, sp, &fe, &ke) == EGW_OK);
-        if (hit) {
-          served++;
-          exact = exact && fi == fe && ki == ke;
-        }
+      egw_hysteresis_state_init(se);
+      HCHECK(egw_hysteresis_eval_cached(tag, 1.0, sp, &fi, &ki) == 0);
+      for (int i = 0; i <= 1260; i++) {
+        /* -1 -> 3.2 (420 steps), -> -0.8 (400), -> 3.6 (440) */
+        double d = i <= 420 ? -1.0 + 0.01 * i : i <= 820 ? 3.2 - 0.01 * (i - 420)
+                                                         : -0.8 + 0.01 * (i - 820);
+        int loading = d >= se[0];
+        int hit = egw_hysteresis_eval_cached(tag, d, sp, &fi, &ki);
+        if (!hit) HCHECK(egw_hysteresis_eval_state(h, d, sp, &fi, &ki) == EGW_OK);
+        HCHECK(egw_hysteresis_eval_state(h, d, se, &fe, &ke) == EGW_OK);
+        exact = exact && fi == fe && ki == ke && memcmp(sp, se, sizeof sp) == 0;
+        if (loading) up++, served_up += hit;
+        else down++, served_down += hit;
       }
-      HCHECK(exact && served >= steps / 2);
-      HCHECK(egw_hysteresis_eval_piece(tag + 1.0, 3.0, sp, &fi, &ki) == 0);
+      HCHECK(exact && 2 * served_up >= up && 2 * served_down >= down);
+      HCHECK(egw_hysteresis_eval_cached(tag + 1.0, 3.0, sp, &fi, &ki) == 0);
       {
         double zero[EGW_HYSTERESIS_STATE_SIZE] = {0};
-        HCHECK(egw_hysteresis_eval_piece(tag, 0.0, zero, &fi, &ki) == 0);
+        HCHECK(egw_hysteresis_eval_cached(tag, 0.0, zero, &fi, &ki) == 0);
       }
-      printf("    eval_piece: served %d of %d steps, values identical\n", served, steps);
+      printf("    eval_cached: served %d of %d loading and %d of %d unloading/reloading steps, "
+             "values and states identical\n", served_up, up, served_down, down);
     }
     {
       double garbage[EGW_HYSTERESIS_STATE_SIZE];

@@ -152,9 +152,10 @@ inline int EgwLaw::mu_position(double R, double *hist, double &t) const
 inline int egw_law_hyst_eval(egw_hysteresis h, double tag, double dmax, double x, double xm,
                              double *s, double &p, double &dp, bool refill)
 {
-  // most steps: the state's piece of its unloading curve covers x (egw.h's inline first
-  // step of egw_hysteresis_eval_state, the same values without a library call)
-  if ((!refill || s[0] == xm) && egw_hysteresis_eval_piece(tag, x, s, &p, &dp))
+  // most steps: the state's piece of its unloading curve covers x, or x loads further
+  // inside its loading interval (egw.h's inline egw_hysteresis_eval_cached: the steps of
+  // egw_hysteresis_eval_state that read only the state, the same values without a call)
+  if ((!refill || s[0] == xm) && egw_hysteresis_eval_cached(tag, x, s, &p, &dp))
     return s[0] > dmax ? EGW_OUT_OF_RANGE : EGW_OK;
   if (!refill) return egw_hysteresis_eval_state(h, x, s, &p, &dp);
   if (!(s[0] == xm)) {

@@ -34,7 +34,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <unordered_map>
 
 using namespace LAMMPS_NS;
 using namespace EgwHistory;
@@ -525,13 +524,23 @@ void PairEGW::hyst_cache_rows()
     uint64_t lo = (uint64_t) std::min(a, b), hi = (uint64_t) std::max(a, b);
     return (lo << 32) ^ hi;    // a collision (64-bit IDs) only costs a refill: egw_law.h
   };
-  // the filled blocks of the old layout, by the pair's IDs
-  std::unordered_map<uint64_t, size_t> old;
-  size_t nold = hyst_cache_tags.size() / 2;
-  old.reserve(nold);
+  // the filled blocks of the old layout, by the pair's IDs: a table of twice their
+  // number rounded up to a power of 2 (keys are never 0: IDs start at 1)
+  size_t nold = hyst_cache_tags.size() / 2, size = 16, nfilled = 0;
+  while (size < 2 * nold) size *= 2;
+  hyst_old.assign(size, {0, 0});
+  const size_t mask = size - 1;
+  auto slot_of = [&](uint64_t k) {
+    size_t h = (size_t) ((k * 0x9E3779B97F4A7C15ull) >> 32) & mask;
+    while (hyst_old[h].first != 0 && hyst_old[h].first != k) h = (h + 1) & mask;
+    return h;
+  };
   for (size_t b = 0; b < nold; b++)
-    if (hyst_cache[b * HYST_CACHE] == hyst_cache[b * HYST_CACHE])    // not NaN: filled
-      old[key(hyst_cache_tags[2 * b], hyst_cache_tags[2 * b + 1])] = b;
+    if (hyst_cache[b * HYST_CACHE] == hyst_cache[b * HYST_CACHE]) {    // not NaN: filled
+      uint64_t k = key(hyst_cache_tags[2 * b], hyst_cache_tags[2 * b + 1]);
+      hyst_old[slot_of(k)] = {k, b};
+      nfilled++;
+    }
   hyst_cache_prev.swap(hyst_cache);
   hyst_cache.clear();
   std::vector<tagint> prev_tags;
@@ -547,18 +556,18 @@ void PairEGW::hyst_cache_rows()
   }
   hyst_cache_first[inum] = n;
   hyst_slot.assign(n, -1);
-  if (old.empty()) return;
+  if (nfilled == 0) return;
   for (int ii = 0; ii < inum; ii++) {
     int i = list->ilist[ii];
     int *jlist = list->firstneigh[i];
     int *touch = view->firstflag[i];
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       if (!touch[jj]) continue;
-      auto it = old.find(key(tag[i], tag[jlist[jj] & NEIGHMASK]));
-      if (it == old.end()) continue;
+      const auto &hit = hyst_old[slot_of(key(tag[i], tag[jlist[jj] & NEIGHMASK]))];
+      if (hit.first == 0) continue;
       double *c = hyst_block(hyst_cache_first[ii] + jj, tag[i], tag[jlist[jj] & NEIGHMASK]);
-      std::copy(&hyst_cache_prev[it->second * HYST_CACHE],
-                &hyst_cache_prev[(it->second + 1) * HYST_CACHE], c);
+      std::copy(&hyst_cache_prev[hit.second * HYST_CACHE],
+                &hyst_cache_prev[(hit.second + 1) * HYST_CACHE], c);
     }
   }
 }
@@ -580,5 +589,6 @@ double PairEGW::memory_usage()
   return (double) (hyst_cache.capacity() + hyst_cache_prev.capacity()) * sizeof(double) +
       (double) hyst_cache_first.capacity() * sizeof(size_t) +
       (double) hyst_slot.capacity() * sizeof(int) +
-      (double) hyst_cache_tags.capacity() * sizeof(tagint);
+      (double) hyst_cache_tags.capacity() * sizeof(tagint) +
+      (double) hyst_old.capacity() * sizeof(hyst_old[0]);
 }

@@ -12,7 +12,9 @@
 #include "egw.h"
 #include "egw_law.h"
 
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -86,6 +88,9 @@ class PairEGW : public Pair {
   std::vector<size_t> hyst_cache_first;
   std::vector<int> hyst_slot;
   std::vector<tagint> hyst_cache_tags;     // the two atoms' IDs of each block
+  // the old layout's filled blocks by their pair's key (open addressing, key 0 empty),
+  // kept between rebuilds so that a rebuild allocates nothing
+  std::vector<std::pair<uint64_t, size_t>> hyst_old;
   bigint hyst_cache_calls = -1;
   double *hyst_block(size_t entry, tagint ti, tagint tj);
   void hyst_cache_rows();

@@ -139,7 +139,7 @@ contains
    end function egw_hysteresis_eval_state
 
    !> C: egw_hysteresis_state_tag: the tag egw writes into the states h fills (state[2]),
-   !> for egw.h's inline egw_hysteresis_eval_piece.
+   !> for egw.h's inline egw_hysteresis_eval_cached.
    function egw_hysteresis_state_tag(hp, tag) result(stat) &
       & bind(C, name="egw_hysteresis_state_tag")
       type(c_ptr), value, intent(in) :: hp, tag
