@@ -565,8 +565,9 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * further (delta >= state[0]) inside the loading table's interval the state holds -- most
  * DEM steps -- it writes the force and stiffness egw_hysteresis_eval_state would (the
  * same arithmetic on the state's cached cubics), changes the state as that call would
- * (loading: state[0] = delta, the piece dropped) and returns 1; otherwise it returns 0
- * and changes nothing: call egw_hysteresis_eval_state. It does not report
+ * (loading: state[0] = delta, the piece dropped) and returns 1; otherwise (also when
+ * the values would not be finite) it returns 0 and changes nothing: call
+ * egw_hysteresis_eval_state. It does not report
  * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max) and refuses
  * nothing (what it does not serve, the call checks). It reads the state's layout, which
  * is egw's: use it with the library of the same version as this header. C99 or C++. */
@@ -589,9 +590,6 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
     double x = delta - state[10], x2 = x * x;
     f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
     k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
-  } else {
-    state[10] = state[11] = NAN;    /* loading further: no piece, the new history */
-    state[0] = delta;
   }
   if (loading || state[23] > 0.0) {
     /* the loading interval's force: all of it when loading; on a piece its ln P part */
@@ -608,6 +606,12 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
     }
   }
   if (piece && !(f > 0.0)) f = k = 0.0;
+  /* not a number (a garbled state with this table's tag): the call refuses it */
+  if (!(f - f == 0.0 && k - k == 0.0)) return 0;
+  if (loading) {
+    state[10] = state[11] = NAN;    /* loading further: no piece, the new history */
+    state[0] = delta;
+  }
   if (force) *force = f;
   if (stiffness) *stiffness = k;
   return 1;

@@ -249,6 +249,20 @@ int egw_capi_test_hysteresis(void) {
       HCHECK(exact && 2 * served_up >= up && 2 * served_down >= down);
       HCHECK(egw_hysteresis_eval_cached(tag + 1.0, 3.0, sp, &fi, &ki) == 0);
       {
+        /* a garbled state with this table's tag whose cached cubic is not finite: not
+         * served, nothing changed (the call then refuses it) */
+        double g[EGW_HYSTERESIS_STATE_SIZE], keep[EGW_HYSTERESIS_STATE_SIZE];
+        memcpy(g, sp, sizeof g);
+        g[0] = g[1] = 3.0, g[10] = 0.0, g[11] = 2.0, g[13] = INFINITY;   /* a piece */
+        memcpy(keep, g, sizeof g);
+        HCHECK(egw_hysteresis_eval_cached(tag, 1.0, g, &fi, &ki) == 0 &&
+               memcmp(keep, g, sizeof g) == 0);
+        g[1] = 9.0, g[0] = 0.5, g[17] = 0.0, g[18] = 2.0, g[19] = NAN;  /* loading */
+        memcpy(keep, g, sizeof g);
+        HCHECK(egw_hysteresis_eval_cached(tag, 1.0, g, &fi, &ki) == 0 &&
+               memcmp(keep, g, sizeof g) == 0);
+      }
+      {
         double zero[EGW_HYSTERESIS_STATE_SIZE] = {0};
         HCHECK(egw_hysteresis_eval_cached(tag, 0.0, zero, &fi, &ki) == 0);
       }

@@ -667,6 +667,34 @@ static int r_table_info_radii(void) {
   return st;
 }
 
+/* egw_table_get_interpolant: capacity fuzzed (arrays of 4096 nodes passed, never fewer
+ * than the capacity says), every pointer NULL in turn; written: finite, ascending nodes */
+static int r_table_interpolant(void) {
+  egw_table t = base_table();
+  static double nodes[4096], coeffs[4 * 4096];
+  int n_log, st, cap = I(1, 4096);
+  if (cap > 4096) cap = 4096;   /* the arrays' size: a larger one is the caller's UB */
+  sentinel(nodes, sizeof nodes);
+  sentinel(coeffs, sizeof coeffs);
+  sentinel(&n_log, sizeof n_log);
+  st = egw_table_get_interpolant(P(0, t), cap, P(2, nodes), P(3, coeffs), P(4, &n_log));
+  if (st == EGW_OK) {
+    egw_table_info info;
+    egw_table_get_info(t, &info);
+    out_doubles(st, 0, "nodes", nodes, info.n_nodes, 0);
+    out_doubles(st, 0, "coeffs", coeffs, 4 * (info.n_nodes - 1), 0);
+    for (int i = 0; i + 1 < info.n_nodes; i++)
+      sane(st, nodes[i] < nodes[i + 1], "nodes not ascending", nodes[i]);
+    sane(st, n_log >= 0 && n_log < info.n_nodes, "n_log out of range", n_log);
+  } else {
+    out_untouched(st, "nodes", nodes, sizeof nodes);
+    out_untouched(st, "coeffs", coeffs, sizeof coeffs);
+    out_untouched(st, "n_log", &n_log, sizeof n_log);
+  }
+  egw_table_free(&t);
+  return st;
+}
+
 static int r_table_write(void) {
   egw_table t = base_table();
   double err;
@@ -871,6 +899,49 @@ static int r_hysteresis_eval_state(void) {
   egw_hysteresis_state_init(P(4, state));
   egw_hysteresis_free(&h);
   return st;
+}
+
+/* egw.h's inline egw_hysteresis_eval_cached with its tag (egw_hysteresis_state_tag):
+ * state[0], delta, every cache entry and the tag fuzzed; a step it serves must give
+ * exactly what egw_hysteresis_eval_state gives (values and state), never a value that call
+ * refuses; state and tag pointers are not optional for the inline step (not fuzzed) */
+static int r_hysteresis_eval_cached(void) {
+  egw_params p = params_at(100, EGW_MODEL_EPGW, 0.5); /* slots >= 100: never fuzzed */
+  egw_options o = options_at(100, 1e-3);
+  egw_hysteresis h = NULL;
+  double state[EGW_HYSTERESIS_STATE_SIZE], a[EGW_HYSTERESIS_STATE_SIZE];
+  double b[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0, fa = NAN, ka = NAN, fb = NAN, kb = NAN, d;
+  int st, hit;
+  if (egw_hysteresis_build(&p, &o, -1e-3, 4e-3, 5e-2, &h) != EGW_OK) _exit(3);
+  st = egw_hysteresis_state_tag(P(0, h), &tag);
+  if (st != EGW_OK) {
+    egw_hysteresis_free(&h);
+    return st;
+  }
+  egw_hysteresis_state_init(state);
+  egw_hysteresis_eval_state(h, 3e-3, state, &fa, &ka); /* loaded to 3e-3, ... */
+  egw_hysteresis_eval_state(h, 2e-3, state, &fa, &ka); /* a valid cache ... */
+  for (int i = 1; i < EGW_HYSTERESIS_STATE_SIZE; i++)  /* ... or garbage */
+    state[i] = D(3, state[i]);
+  state[0] = D(1, 3e-3);
+  d = D(2, 2.1e-3);
+  tag = D(4, tag);
+  memcpy(a, state, sizeof a);
+  memcpy(b, state, sizeof b);
+  hit = egw_hysteresis_eval_cached(tag, d, a, &fa, &ka);
+  st = egw_hysteresis_eval_state(h, d, b, &fb, &kb);
+  if (hit && st != EGW_OK && st != EGW_OUT_OF_RANGE) {
+    cur->silent = 1;
+    note(" served a step egw_hysteresis_eval_state refuses", "delta", d);
+  } else if (hit && !(fa == fb && ka == kb && memcmp(a, b, sizeof a) == 0)) {
+    cur->silent = 1;
+    note(" differs from egw_hysteresis_eval_state", "force", fa);
+  } else if (!hit && memcmp(a, state, sizeof a) != 0) {
+    cur->clobbered = 1;
+    note(" changed the state without serving", "state[0]", a[0]);
+  }
+  egw_hysteresis_free(&h);
+  return hit ? EGW_OK : st;
 }
 
 static int r_hysteresis_energy(void) {
@@ -1162,6 +1233,9 @@ static fz_function functions[] = {
     {"egw_table_get_info/set_radii", 4,
      {{"t", K_PTR}, {"info", K_PTR}, {"radius1", K_DBL}, {"radius2", K_DBL}},
      r_table_info_radii, 0},
+    {"egw_table_get_interpolant", 5,
+     {{"t", K_PTR}, {"capacity", K_INT}, {"nodes", K_PTR}, {"coeffs", K_PTR}, {"n_log", K_PTR}},
+     r_table_interpolant, 0},
     {"egw_table_write(_calculix)", 4,
      {{"t", K_PTR}, {"path", K_STR}, {"format/shift", K_INT}, {"max_error", K_PTR}},
      r_table_write, 0},
@@ -1201,6 +1275,10 @@ static fz_function functions[] = {
      {{"h", K_PTR}, {"state[0]", K_DBL}, {"delta", K_DBL}, {"state[1..]", K_DBL},
       {"state", K_PTR}, {"force", K_PTR}, {"stiffness", K_PTR}},
      r_hysteresis_eval_state, 1},
+    {"egw_hysteresis_eval_cached", 5,
+     {{"h", K_PTR}, {"state[0]", K_DBL}, {"delta", K_DBL}, {"state[1..]", K_DBL},
+      {"tag", K_DBL}},
+     r_hysteresis_eval_cached, 1},
     {"egw_hysteresis_energy", 4,
      {{"h", K_PTR}, {"delta_max_state", K_DBL}, {"delta", K_DBL}, {"energy", K_PTR}},
      r_hysteresis_energy, 1},
