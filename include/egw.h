@@ -270,8 +270,11 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * follows the deep-overlap asymptote: Hertz's force (4/3) E sqrt(R) g^(3/2) on the overlap g
  * the rough layer leaves, delta = delta_max + (g - g_n) + a (g^(1/3) - g_n^(1/3)), a fitted
  * to the last node (C1, increasing; doc/theory.md 9, doc/formats.md). Within 1 % of solves
- * up to 0.2 R for every model from delta_max >= 10 sigma (classic GW, mu >= 0.1) or
- * >= 2 sigma (E-GW, EP-GW); measured 0.2 % (GW) and 0.05 % from 20 sigma. P_ref = P(min(0, delta_max)) for rough models,
+ * up to 0.2 R for every model from a last node >= 10 sigma (classic GW, mu >= 0.1) or
+ * >= 2 sigma (E-GW, EP-GW; measured 0.2 % (GW) and 0.05 % from 20 sigma), so the nodes of a
+ * rough table reach at least that far (or 0.2 R) whatever delta_max is asked: info.delta_max
+ * may exceed it (a hysteresis table's loading curve likewise; its unloading grid ends at
+ * the delta_max asked). P_ref = P(min(0, delta_max)) for rough models (the delta_max asked),
  * P(delta_max) for Hertz. Evaluation allocates nothing and is thread-safe. File formats:
  * doc/formats.md. The builds go through an on-disk cache (EGW_CACHE_DIR, else
  * $XDG_CACHE_HOME/egw or $HOME/.cache/egw; EGW_CACHE_DIR=off turns it off): a build done

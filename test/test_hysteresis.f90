@@ -50,6 +50,8 @@ contains
          & new_unittest("DEM loop restitution = restitution to 1e-4", test_dem_restitution), &
          & new_unittest("table within rel_tol of solves between nodes", test_accuracy), &
          & new_unittest("loading above delta_max: the deep law", test_deep_loading), &
+         & new_unittest("low delta_max: loading table to the deep law's floor", &
+         & test_deep_floor), &
          & new_unittest("history: load, unload, reload, new contact", test_history), &
          & new_unittest("state with cached turning point = plain history", test_state), &
          & new_unittest("energy: the force's integral; e^2 at a turning point", test_energy), &
@@ -155,6 +157,62 @@ contains
       end do
       call check(error, worst <= 1.0e-2_dp, "loading above delta_max: error "//format_real(worst))
    end subroutine test_deep_loading
+
+   !> A table asked to end at 0.5 sigma (below 2 sigma, where the deep-overlap law starts to
+   !> hold its 1 %: egw_table's deep_law_floor): its unloading grid ends there, its loading
+   !> table at 2 sigma, so that loading above delta_max is within 1 % of solves up to 0.2 R
+   !> (R = 1e6 sigma; from 0.5 sigma the law alone is 4 % off); the files keep both ends
+   !> (the reader allows a loading table that reaches beyond delta_max) and read back bit for
+   !> bit.
+   subroutine test_deep_floor(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t, back
+      type(contact_params) :: p
+      type(solver_options) :: fine
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: d, f, k, f2, k2, state, state2, worst
+      integer :: i, stat, fmt
+      p = ep
+      p%radius = 1.0e6_dp   ! sigma/R = 1e-6: the floor is not capped at 0.2 R
+      call build_hysteresis(p, solver_options(), -2.0_dp*p%sigma, 0.5_dp*p%sigma, &
+         & 1.0e-3_dp, t, err)
+      call check(error, .not. allocated(err), "build")
+      if (allocated(error)) return
+      call check(error, t%delta_max == 0.5_dp*p%sigma .and. &
+         & abs(t%loading%delta_max/(2.0_dp*p%sigma) - 1) <= 1.0e-14_dp, &
+         & "delta_max "//format_real(t%delta_max)//", loading to "// &
+         & format_real(t%loading%delta_max))
+      if (allocated(error)) return
+      fine%rel_tol = 1.0e-7_dp
+      worst = 0.0_dp
+      do i = 1, 10
+         d = t%delta_max*(0.2_dp*p%radius/t%delta_max)**(i/10.0_dp)
+         call solve_contact(p, fine, d, res, err)
+         call check(error, .not. allocated(err), "solve")
+         if (allocated(error)) return
+         state = -huge(1.0_dp)
+         call hysteresis_eval(t, d, state, f, k, stat)
+         worst = max(worst, abs(f/res%force - 1))
+      end do
+      call check(error, worst <= 1.0e-2_dp, "loading above delta_max: error "//format_real(worst))
+      if (allocated(error)) return
+      do fmt = format_csv, format_binary
+         call write_hysteresis(t, "build/hyst_floor.dat", fmt, err)
+         if (.not. allocated(err)) call read_hysteresis("build/hyst_floor.dat", back, err)
+         call check(error, .not. allocated(err), "write/read back")
+         if (allocated(error)) return
+         do i = 1, 7
+            d = -1.5_dp*p%sigma + 0.5_dp*(i - 1)*p%sigma
+            state = 0.4_dp*p%sigma
+            state2 = state
+            call hysteresis_eval(t, d, state, f, k, stat)
+            call hysteresis_eval(back, d, state2, f2, k2, stat)
+            call check(error, f == f2 .and. k == k2 .and. state == state2, "read back")
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine test_deep_floor
 
    subroutine test_history(error)
       type(error_type), allocatable, intent(out) :: error

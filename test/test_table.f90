@@ -77,6 +77,7 @@ contains
          & new_unittest("rough tables at 1e-6 (E-GW, GW, EP-GW)", test_rough_tight), &
          & new_unittest("separated tail and deep overlaps vs solves", test_tail_deep), &
          & new_unittest("deep-overlap law vs solves (every model, mu)", test_deep_law), &
+         & new_unittest("low delta_max: nodes to the deep law's floor", test_deep_floor), &
          & new_unittest("universal hertz exact scaling", test_universal_hertz), &
          & new_unittest("universal rough vs solves (contract)", test_universal_rough), &
          & new_unittest("universal invalid calls", test_universal_invalid), &
@@ -695,6 +696,57 @@ contains
          end do
       end do
    end subroutine test_deep_law
+
+   !> Tables asked to end below where the deep-overlap law holds its 1 % (GW 10 sigma, E-GW
+   !> and EP-GW 2 sigma: deep_law_floor) end there instead, so that the continuation above
+   !> them is within 1 % of solves up to 0.2 R whatever delta_max was asked (issue 22 item
+   !> 2; from a last node at 0.5 sigma the law alone is 4 % off for EP-GW, 1.8 % from sigma):
+   !> 1-D tables of GW (asked 2 sigma), E-GW (0.5 sigma) and EP-GW (-1 sigma, a table of the
+   !> separated range only) against solves at 10 overlaps from the floor to 0.2 R
+   !> (R = 1, sigma = 1e-6); the universal table's x_max likewise (E-GW asked x_max = 1).
+   subroutine test_deep_floor(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solver_options) :: opts
+      type(force_table) :: t
+      type(universal_table) :: u
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      integer, parameter :: models(3) = [model_gw, model_egw, model_epgw]
+      real(dp), parameter :: asked(3) = [2.0_dp, 0.5_dp, -1.0_dp], floors(3) = [10.0_dp, &
+         & 2.0_dp, 2.0_dp], sigma = 1.0e-6_dp
+      real(dp) :: d, f, k, worst
+      integer :: m, i
+      opts%rel_tol = 1.0e-7_dp
+      do m = 1, size(models)
+         p = contact_params(model=models(m), radius=1.0_dp, modulus=1.0_dp, sigma=sigma, &
+            & mu=4.0_dp)
+         if (models(m) == model_epgw) p%psi = 2.0_dp
+         call build_table(p, solver_options(), -3*sigma, asked(m)*sigma, 1.0e-4_dp, t, err)
+         call check(error, .not. allocated(err), "build")
+         if (allocated(error)) return
+         call check(error, t%delta_max, floors(m)*sigma, "last node of model "// &
+            & to_string(models(m)), rel=.true., thr=1.0e-14_dp)
+         if (allocated(error)) return
+         worst = 0
+         do i = 1, 10
+            d = t%delta_max*(0.2_dp/t%delta_max)**(i/10.0_dp)
+            call solve_contact(p, opts, d, res, err)
+            call check(error, .not. allocated(err), "solve at "//format_real(d))
+            if (allocated(error)) return
+            call table_eval(t, d, f, k)
+            worst = max(worst, abs(f/res%force - 1))
+         end do
+         call check(error, worst <= 1.0e-2_dp, "model "//to_string(models(m))// &
+            & ": above the last node up to 0.2 R, error "//format_real(worst))
+         if (allocated(error)) return
+      end do
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 2.0_dp, &
+         & 4.0_dp, -3.0_dp, 1.0_dp, 1.0e-2_dp, u, err)
+      call check(error, .not. allocated(err), "universal build")
+      if (allocated(error)) return
+      call check(error, u%x_max, 2.0_dp, "universal x_max")
+   end subroutine test_deep_floor
 
    !> Hertz in universal form: p = P/(E sqrt(R) sigma^1.5) = (4/3) x^1.5 whatever mu, so
    !> the mu-interpolation (in p: Hertz slices have no ln p intervals) is exact and the

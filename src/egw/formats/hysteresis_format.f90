@@ -496,7 +496,7 @@ contains
             return
          end if
          if (any(l%delta(2:n) <= l%delta(1:n - 1)) .or. l%cutoff /= l%delta(1) .or. &
-            & l%delta_max /= l%delta(n) .or. t%delta_max /= l%delta(n)) then
+            & l%delta_max /= l%delta(n) .or. t%delta_max > l%delta(n)) then
             call bad(error, path, "loading curve: nodes not increasing, or cutoff/delta_max "// &
                & "disagree with them")
             return

@@ -29,8 +29,8 @@ module egw_table
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
       & format_real, int_str, tolerance_context
-   use egw_params, only: contact_params, validate_params, model_hertz, model_epgw, &
-      & check_scaled_overlap
+   use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
+      & model_epgw, check_scaled_overlap
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
    use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor
@@ -42,7 +42,7 @@ module egw_table
       & table_eval_all, &
       & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff, &
-      & deep_coefficient
+      & deep_coefficient, deep_law_floor, deep_law_floor_x
    public :: below_cutoff
    public :: table_meta, set_table_meta
 
@@ -139,7 +139,8 @@ contains
 
    !> Build a table over [delta_min, delta_max] with interpolation error <= rel_tol.
    !> The table starts at the cut-off delta_c where P = rel_tol*P_ref (below delta_min
-   !> if the force at delta_min is still larger than that). The solver runs with
+   !> if the force at delta_min is still larger than that) and ends at delta_max, or at
+   !> deep_law_floor where that is higher (P_ref stays delta_max's). The solver runs with
    !> options%n_threads = 1 inside an OpenMP loop over points, and with its rel_tol
    !> tightened to min(options%rel_tol, rel_tol/10) so that its own error does not
    !> dominate the interpolation check. The optional progress hook (table_progress)
@@ -165,8 +166,10 @@ contains
       opts = point_options(options, rel_tol)
       call find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, n_solves, &
          & error)
-      if (.not. allocated(error)) call build_shared_nodes([params], opts, cutoff, delta_max, &
-         & rel_tol, [p_ref], .false., tables, error, n_solves, progress)
+      ! nodes at least up to where the deep-overlap law above the last node holds its 1 %
+      if (.not. allocated(error)) call build_shared_nodes([params], opts, cutoff, &
+         & max(delta_max, deep_law_floor(params)), rel_tol, [p_ref], .false., tables, error, &
+         & n_solves, progress)
       if (allocated(error)) then
          call tolerance_context(error, "table", rel_tol, opts%rel_tol)   ! the caller's terms
          return
@@ -1268,6 +1271,26 @@ contains
 
    !> The Hertz constant (4/3) E sqrt(R) of params, which every model's force approaches
    !> deep in contact (deep_force); 4/3 for the universal table's slices (R = E = 1).
+   !> The lowest last node of a table of params from which the deep-overlap law above it
+   !> (deep_force) stays within 1 % of solves up to 0.2 R (doc/theory.md §9): deep_law_floor_x
+   !> sigma, capped at 0.2 R; -huge (no floor) for Hertz and smooth spheres.
+   elemental real(dp) function deep_law_floor(params) result(d)
+      type(contact_params), intent(in) :: params
+      d = -huge(1.0_dp)
+      if (is_rough(params)) d = min(deep_law_floor_x(params%model)*params%sigma, &
+         & 0.2_dp*params%radius)
+   end function deep_law_floor
+
+   !> deep_law_floor in units of sigma: GW 10, E-GW and EP-GW 2 (test table "deep-overlap
+   !> law vs solves": at most 0.6 % (GW) and 0.75 % (E-GW, EP-GW psi 0.5-20) for mu
+   !> 0.1-1000; from sigma EP-GW reaches 1.8 %, from 0.5 sigma 4 %); -huge for Hertz.
+   elemental real(dp) function deep_law_floor_x(model) result(x)
+      integer, intent(in) :: model
+      x = -huge(1.0_dp)
+      if (model == model_gw) x = 10.0_dp
+      if (model == model_egw .or. model == model_epgw) x = 2.0_dp
+   end function deep_law_floor_x
+
    elemental real(dp) function deep_coefficient(params) result(c)
       type(contact_params), intent(in) :: params   !< the table's parameters
       c = (4.0_dp/3.0_dp)*params%modulus*sqrt(params%radius)

@@ -22,7 +22,7 @@ module egw_table_universal
       & force_unit, stiffness_unit, length_unit
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table_ends, only: deep_force
-   use egw_table, only: force_table, build_tables_shared, table_find_cutoff, &
+   use egw_table, only: force_table, build_tables_shared, table_find_cutoff, deep_law_floor_x, &
       & below_cutoff, &
       & table_interval, table_prepare, table_eval, table_progress, deep_coefficient
    implicit none
@@ -60,7 +60,7 @@ module egw_table_universal
 contains
 
    !> Build the universal table of a model over mu in [mu_min, mu_max] (mu_max > mu_min)
-   !> and x = delta/sigma up to x_max, starting where the force has fallen to rel_tol times
+   !> and x = delta/sigma up to x_max (or egw_table's deep_law_floor_x, if higher), starting where the force has fallen to rel_tol times
    !> its reference (see egw_table) for every grid mu, or at x_min if that is lower.
    !> The optional progress hook (egw_table's table_progress) counts solves of the slice
    !> builds and their mu checks over all rounds of mu refinement as one monotone
@@ -99,7 +99,8 @@ contains
       u%hardness_coeff = hardness_coeff
       u%plastic_ratio = plastic_ratio
       u%rel_tol = rel_tol
-      u%x_max = x_max
+      ! at least up to where the deep-overlap law above the last node holds its 1 %
+      u%x_max = max(x_max, deep_law_floor_x(model))
       u%mu_min = mu_min
       u%mu_max = mu_max
       ! 4 nodes per decade to start (and at least 4 for the cubic stencil)
