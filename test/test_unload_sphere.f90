@@ -666,10 +666,9 @@ contains
    end subroutine test_e_reference
 
    !> Issue 22's pairs in SI units against test/data/restitution_speeds_reference.csv
-   !> (tools/reference/restitution_reference.py, cases 4-14: the independent Python
-   !> solvers' works integrated at each pair's turning points of 1e-4, 1e-3, 1e-2, 0.1 and
-   !> 1 m/s, and 10 m/s for glass, rounded; estimated errors in the file, <= 3.2e-8; the
-   !> steel pair's turning point at 10 m/s, 50 sigma, is not generated yet). Glass: R 1 mm, E 70 GPa, nu 0.22,
+   !> (tools/reference/restitution_reference.py, cases 4-15: the independent Python
+   !> solvers' works integrated at each pair's turning points of 1e-4, 1e-3, 1e-2, 0.1, 1
+   !> and 10 m/s, rounded; estimated errors in the file, <= 3.2e-8). Glass: R 1 mm, E 70 GPa, nu 0.22,
    !> sigma 1 um, rho 2500, mu 4, psi 2, K 0.6; steel: R 2 mm, E 210 GPa, nu 0.3, sigma
    !> 0.5 um, rho 7800, mu 10, psi 5, K 0.6; two equal spheres (R* = R/2, m* = m/2). The row's
    !> speed is v = sqrt(2 W_load W_s/m*) with W_s = E* sqrt(R*) sigma^2.5 (the scaled work
@@ -685,7 +684,7 @@ contains
       integer :: k
       call read_data_rows(path, rows, error)
       if (allocated(error)) return
-      call check(error, size(rows), 11, "rows read from "//path)
+      call check(error, size(rows), 12, "rows read from "//path)
       if (allocated(error)) return
       do k = 1, size(rows)
          read (rows(k), *) model, delta_m_ref, mu, psi, hardness

@@ -46,7 +46,7 @@ CASES = (
     # (e to ~1e-8, far below the 1e-5 asked). Written to
     # test/data/restitution_speeds_reference.csv (--out, one --cases K at a time):
     # cases 4-8 and 10-13 took 2-53 min each with --jobs 2 on a loaded 2-core machine,
-    # 14 (7.3 sigma) 31 min, 9 (12 sigma) 22 min; 15 (50 sigma) takes longer.
+    # 14 (7.3 sigma) 31 min, 9 (12 sigma) 22 min, 15 (50 sigma) 28 min.
     ("EPGW", -4.7, 4.0, 2.0, 0.6, 3.2e-16),
     ("EPGW", -3.8, 4.0, 2.0, 0.6, 3.2e-14),
     ("EPGW", -2.7, 4.0, 2.0, 0.6, 3.2e-12),
