@@ -1269,8 +1269,6 @@ contains
       opts%rel_tol = min(options%rel_tol, 0.1_dp*rel_tol)
    end function point_options
 
-   !> The Hertz constant (4/3) E sqrt(R) of params, which every model's force approaches
-   !> deep in contact (deep_force); 4/3 for the universal table's slices (R = E = 1).
    !> The lowest last node of a table of params from which the deep-overlap law above it
    !> (deep_force) stays within 1 % of solves up to 0.2 R (doc/theory.md §9): deep_law_floor_x
    !> sigma, capped at 0.2 R; -huge (no floor) for Hertz and smooth spheres.
@@ -1291,6 +1289,8 @@ contains
       if (model == model_egw .or. model == model_epgw) x = 2.0_dp
    end function deep_law_floor_x
 
+   !> The Hertz constant (4/3) E sqrt(R) of params, which every model's force approaches
+   !> deep in contact (deep_force); 4/3 for the universal table's slices (R = E = 1).
    elemental real(dp) function deep_coefficient(params) result(c)
       type(contact_params), intent(in) :: params   !< the table's parameters
       c = (4.0_dp/3.0_dp)*params%modulus*sqrt(params%radius)
