@@ -72,6 +72,20 @@ void EgwLaw::release()
   lnmu.clear();
 }
 
+void EgwLaw::take_tables(EgwLaw &from)
+{
+  release();
+  table = from.table, universal = from.universal, hyst = from.hyst;
+  hyst_held = from.hyst_held, hyst_tag = from.hyst_tag, hyst_dmax = from.hyst_dmax;
+  hyst_built = from.hyst_built, slices = from.slices, slices_held = from.slices_held;
+  fast = from.fast, lnmu0 = from.lnmu0, inv_h = from.inv_h, lnmu = from.lnmu;
+  xc = from.xc, tail = from.tail, reach = from.reach, capped = from.capped;
+  capped_solver = from.capped_solver, mu_lo = from.mu_lo, mu_hi = from.mu_hi;
+  interp_error = from.interp_error;
+  from.universal = nullptr;    // now ours (the shared tables are counted by their holders)
+  from.release();
+}
+
 void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
                    int n_threads, const std::function<void(const std::string &)> &fail_with)
 {

@@ -73,6 +73,9 @@ struct EgwLaw {
   egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)
 
   void release();
+  /* the tables of `from` (a law with the same coefficients) and what their build found,
+   * from build() to set_reach()'s inputs; `from` is left released */
+  void take_tables(EgwLaw &from);
   /* the coefficients of two unlike bodies combined (E*, G*, sigma, mu as two types mix);
    * false when they give mu in different ways (mu vs summit data) */
   bool combine(const EgwCoeff &a, const EgwCoeff &b);
@@ -212,16 +215,14 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
       double x = delta * inv_sigma, p0, p1, d0, d1, u0 = 0, u1 = 0, ac;
-      if (fast && fast->covers(x)) {    // as TABLE
+      if (fast && fast->covers(x)) {    // as TABLE; p0, d0 already interpolated in ln mu
         fast->eval(x, k, w, p0, d0);
+        p1 = p0, d1 = d0;
         if (want_energy) {
           egw_table_eval_all(slices[k], x, nullptr, nullptr, &u0, nullptr);
           egw_table_eval_all(slices[k + 1], x, nullptr, nullptr, &u1, nullptr);
         }
-        F = sr * s15 * p0, S = sr * s05 * d0, U = sr * s25 * (u0 + w * (u1 - u0));
-        return EGW_OK;
-      }
-      if (want_energy) {
+      } else if (want_energy) {
         st = egw_table_eval_all(slices[k], x, &p0, &d0, &u0, &ac);
         egw_table_eval_all(slices[k + 1], x, &p1, &d1, &u1, &ac);
       } else {

@@ -343,17 +343,7 @@ void PairEGW::make_law(int i, int j)
       old.mu == L.mu && old.psi == L.psi && old.K == L.K && old.rho == L.rho &&
       old.kind == L.kind && old.prm.model == L.prm.model && built_rhi[i][j] > 0;
   if (same) {
-    L.table = old.table, L.universal = old.universal, L.hyst = old.hyst, L.lnmu = old.lnmu;
-    L.hyst_tag = old.hyst_tag, L.hyst_dmax = old.hyst_dmax;
-    L.hyst_held = old.hyst_held, L.hyst_built = old.hyst_built, L.slices_held = old.slices_held;
-    L.slices = old.slices, L.lnmu0 = old.lnmu0, L.inv_h = old.inv_h, L.fast = old.fast;
-    old.slices.clear();
-    L.xc = old.xc, L.tail = old.tail, L.reach = old.reach, L.capped = old.capped;
-    L.capped_solver = old.capped_solver;
-    L.mu_lo = old.mu_lo, L.mu_hi = old.mu_hi;
-    L.interp_error = old.interp_error;
-    old.table = nullptr, old.universal = nullptr, old.hyst.clear(), old.hyst_held.clear();
-    old.slices_held.reset();
+    L.take_tables(old);
   } else {
     old.release();
     built_rhi[i][j] = 0.0;

@@ -910,13 +910,7 @@ GRANULAR_DECKS = [("flatwall", (4213, 1234, 999), 9000),
 
 
 def deck_run(deck, np=1, **var):
-    args = [LMP, "-np", str(np), "-in", os.path.join(HERE, "decks", deck + ".in"), "-log",
-            "none", "-nocite"]
-    for k, v in var.items():
-        args += ["-var", k, str(v)]
-    p = subprocess.run(args, cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       text=True, timeout=600)
-    return p.returncode, p.stdout
+    return lmp(os.path.join("decks", deck + ".in"), np=np, **var)
 
 
 def ke_rows(out):

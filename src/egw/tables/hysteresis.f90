@@ -30,7 +30,7 @@ module egw_hysteresis
    use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
-   use egw_table, only: force_table, table_eval, table_eval_cached, table_segment, &
+   use egw_table, only: force_table, table_eval, table_eval_cached, table_segment, gl_x, gl_w, &
       & segment_eval, table_energy, table_progress, table_interval, deep_coefficient
    use egw_table_ends, only: deep_reach
    implicit none
@@ -127,16 +127,6 @@ module egw_hysteresis
          procedure(table_progress), optional :: progress
       end subroutine build_hysteresis
    end interface
-
-
-   !> 8-point Gauss-Legendre rule on [0, 1] (hysteresis_energy's clipped dips).
-   real(dp), parameter :: gl_x(8) = 0.5_dp + 0.5_dp*[-0.9602898564975363_dp, &
-      & -0.7966664774136267_dp, -0.5255324099163290_dp, -0.1834346424956498_dp, &
-      & 0.1834346424956498_dp, 0.5255324099163290_dp, 0.7966664774136267_dp, &
-      & 0.9602898564975363_dp]
-   real(dp), parameter :: gl_w(8) = 0.5_dp*[0.1012285362903763_dp, 0.2223810344533745_dp, &
-      & 0.3137066458778873_dp, 0.3626837833783620_dp, 0.3626837833783620_dp, &
-      & 0.3137066458778873_dp, 0.2223810344533745_dp, 0.1012285362903763_dp]
 
 contains
 

@@ -104,14 +104,15 @@ module egw_table
 
    !> 8-point Gauss-Legendre rule on [0, 1] for the energy of log-space intervals,
    !> where exp(cubic) has no closed-form integral (exact to ~1e-16 relative for the
-   !> near-quadratic ln P of a refined interval).
-   real(dp), parameter :: gl_x(8) = 0.5_dp + 0.5_dp*[-0.9602898564975363_dp, &
+   !> near-quadratic ln P of a refined interval); hysteresis_energy's clipped dips too.
+   real(dp), parameter, public :: gl_x(8) = 0.5_dp + 0.5_dp*[-0.9602898564975363_dp, &
       & -0.7966664774136267_dp, -0.5255324099163290_dp, -0.1834346424956498_dp, &
       & 0.1834346424956498_dp, 0.5255324099163290_dp, 0.7966664774136267_dp, &
       & 0.9602898564975363_dp]
-   real(dp), parameter :: gl_w(8) = 0.5_dp*[0.1012285362903763_dp, 0.2223810344533745_dp, &
-      & 0.3137066458778873_dp, 0.3626837833783620_dp, 0.3626837833783620_dp, &
-      & 0.3137066458778873_dp, 0.2223810344533745_dp, 0.1012285362903763_dp]
+   real(dp), parameter, public :: gl_w(8) = 0.5_dp*[0.1012285362903763_dp, &
+      & 0.2223810344533745_dp, 0.3137066458778873_dp, 0.3626837833783620_dp, &
+      & 0.3626837833783620_dp, 0.3137066458778873_dp, 0.2223810344533745_dp, &
+      & 0.1012285362903763_dp]
 
 contains
 
