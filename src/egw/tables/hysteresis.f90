@@ -244,12 +244,12 @@ contains
       first = int(state(4))
       s = min((state(1) - delta)*state(5), 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
-      call gap_combination(table, first, state(7:10), i, g)
       call make_piece(table, state(7:10), first, i, s, state(1), delta, state(5), state(6), &
          & state(13), state(18:24), state(11:12), state(14:17), found)
       if (found) then
          call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
-      else
+      else   ! (the interval's gap cubic only here: the piece has its own)
+         call gap_combination(table, first, state(7:10), i, g)
          call unload_branch(table, g, i, s, state(1), state(6), state(5), delta, force, &
             & stiffness)
       end if
