@@ -79,6 +79,7 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
 
   restart_peratom = 1;
   create_attribute = 1;
+  maxexchange = stride + 1;    // pack_exchange: the history and its cleared flag
   // fix wall/gran's columns; a heat model appends the heat into the atom (as granular's)
   ncols = wall.sub.heat != EgwSubmodels::HEAT_NONE ? 9 : 8;
   if (contacts) peratom_flag = 1, size_peratom_cols = ncols, peratom_freq = 1;
@@ -451,7 +452,7 @@ void FixWallEGW::wall_contact(int i, EgwLaw &L, double delta, double R, const do
 
 /* atom i away from the wall: its history all zero (a new contact when it comes back),
  * written only once after it left (rewriting every far atom's EP-GW history, 55 doubles,
- * on every step was 6 % of the pour's loop) */
+ * on every step was 6 % of the pour's loop); the flag moves with the atom */
 inline void FixWallEGW::clear_history(int i, double *h, int n)
 {
   if (cleared[i]) return;
@@ -464,10 +465,9 @@ void FixWallEGW::post_force(int /*vflag*/)
   if (contacts)
     for (int i = 0; i < atom->nlocal; i++)
       for (int k = 0; k < ncols; k++) array_atom[i][k] = 0.0;
-  // atoms keep their indices between reneighborings: clear every far atom's history again
-  // after one (sorted, exchanged, inserted or read atoms)
-  if (neighbor->ago == 0 || update->setupflag || (int) cleared.size() != atom->nlocal)
-    cleared.assign(atom->nlocal, 0);
+  // commands between runs may change atoms without the per-atom callbacks' care for the
+  // flag: each far atom's history is cleared once again in a run's set-up
+  if (update->setupflag) std::fill(cleared.begin(), cleared.begin() + atom->nlocal, 0);
   if (wallstyle == REGION) {
     post_force_region();
     return;
@@ -598,12 +598,14 @@ double FixWallEGW::memory_usage()
 void FixWallEGW::grow_arrays(int nmax)
 {
   memory->grow(history, nmax, stride, "fix_wall_egw:history");
+  cleared.resize(nmax, 0);
   if (contacts) memory->grow(array_atom, nmax, ncols, "fix_wall_egw:array_atom");
 }
 
 void FixWallEGW::copy_arrays(int i, int j, int /*delflag*/)
 {
   for (int k = 0; k < stride; k++) history[j][k] = history[i][k];
+  cleared[j] = cleared[i];
   if (contacts)
     for (int k = 0; k < ncols; k++) array_atom[j][k] = array_atom[i][k];
 }
@@ -612,6 +614,7 @@ void FixWallEGW::copy_arrays(int i, int j, int /*delflag*/)
 void FixWallEGW::set_arrays(int i)
 {
   for (int k = 0; k < stride; k++) history[i][k] = 0.0;
+  cleared[i] = 1;
   if (contacts)
     for (int k = 0; k < ncols; k++) array_atom[i][k] = 0.0;
 }
@@ -619,13 +622,15 @@ void FixWallEGW::set_arrays(int i)
 int FixWallEGW::pack_exchange(int i, double *buf)
 {
   for (int k = 0; k < stride; k++) buf[k] = history[i][k];
-  return stride;
+  buf[stride] = cleared[i];
+  return stride + 1;
 }
 
 int FixWallEGW::unpack_exchange(int nlocal, double *buf)
 {
   for (int k = 0; k < stride; k++) history[nlocal][k] = buf[k];
-  return stride;
+  cleared[nlocal] = buf[stride] != 0.0;
+  return stride + 1;
 }
 
 int FixWallEGW::pack_restart(int i, double *buf)
@@ -643,6 +648,7 @@ void FixWallEGW::unpack_restart(int nlocal, int nth)
   int size = static_cast<int>(extra[nlocal][m]) - 1;
   m++;
   for (int k = 0; k < stride; k++) history[nlocal][k] = k < size ? extra[nlocal][m + k] : 0.0;
+  cleared[nlocal] = 0;
 }
 
 int FixWallEGW::size_restart(int /*nlocal*/)

@@ -57,8 +57,8 @@ class FixWallEGW : public Fix {
   int tmax;                        // contacts an atom may have at once (1 for planes)
   int stride;                      // doubles per atom: planes nhist; region 1 + tmax (1 + nhist)
   double **history;                // per atom: its wall contacts' histories (0: none)
-  // per local atom: its history is all zero (away from the wall since it was cleared);
-  // valid between reneighborings, when LAMMPS neither sorts nor exchanges atoms
+  // per atom: its history is all zero (away from the wall since it was cleared); kept
+  // with the atom as its history (copy_arrays, exchange; 0 after a restart)
   std::vector<char> cleared;
   void post_force_region();
   void clear_history(int i, double *h, int n);
