@@ -37,7 +37,7 @@ inline void contact_submodels(const EgwLaw &L, double Fn, double S, double R, do
 {
   using namespace EgwSubmodels;
   const Params &P = L.sub;
-  const double a = S > 0 ? 0.5 * S / L.E_star : 0.0;
+  const double a = S > 0 ? S * L.half_inv_E : 0.0;
   double vnn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
   double eta_n = L.damp > 0 ? damping_eta(P.damping, L.damp, meff, S, a) : 0.0;
   c.Fdamp = -eta_n * vnn;

@@ -44,6 +44,7 @@ void EgwLaw::setup(int model)
 {
   damp = EgwSubmodels::damping_factor(sub.damping, sub.damp_value);
   kt = sub.kt_null ? 8.0 * G_star : sub.kt;
+  half_inv_E = 0.5 / E_star;
   if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = HERTZ;
   else if (model == EGW_MODEL_EPGW && psi > 0) kind = mu_mode == 1 ? HYST : HYST_MU;
   else kind = mu_mode == 1 ? TABLE : UNIVERSAL;

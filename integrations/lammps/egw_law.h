@@ -41,6 +41,7 @@ struct EgwLaw {
   EgwSubmodels::Params sub;        // damping, tangential, rolling, twisting, heat
   double damp = 0;                 // the damping model's factor (damping_factor)
   double kt = 0;                   // tangential k_t (mindlin NULL: 8 G*)
+  double half_inv_E = 0;           // 1/(2 E*): egw's contact radius a = S/(2 E*)
   // evaluation
   int kind = HERTZ;
   double xc = 0;                   // the tables' cut-off delta_c/sigma (<= 0)
