@@ -2,6 +2,7 @@
  * (fix_wall_egw.cpp).  Loaded with
  * `plugin load egwplugin.so` or from LAMMPS_PLUGIN_PATH (which loads only *plugin.so). */
 #include "lammps.h"
+#include "fix_egw_reach.h"
 #include "fix_wall_egw.h"
 #include "pair_egw.h"
 
@@ -38,6 +39,11 @@ static Fix *wall_egw_creator(LAMMPS *lmp, int argc, char **argv)
   return new FixWallEGW(lmp, argc, argv);
 }
 
+static Fix *egw_reach_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixEGWReach(lmp, argc, argv);
+}
+
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   lammpsplugin_t plugin;
@@ -59,5 +65,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 
   plugin.name = "wall/egw/region";
   plugin.info = "egw rough contact walls: the surfaces of a region";
+  (*reg)(&plugin, lmp);
+
+  plugin.name = "EGW_REACH";
+  plugin.info = "pair_style egw's own: rebuilds the neighbor list before the rough tail outruns it";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &egw_reach_creator;
   (*reg)(&plugin, lmp);
 }

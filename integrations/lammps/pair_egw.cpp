@@ -16,6 +16,7 @@
 #include "egw_history.h"
 #include "egw_contact.h"
 #include "egw_submodels.h"
+#include "fix_egw_reach.h"
 #include "fix_wall_egw.h"
 
 #include "atom.h"
@@ -61,6 +62,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   overlap_max = 1.0;    // granular decks reach 0.57 R in a pour
   tail_energy = 0.0;    // contacts reach the tables' cut-off
   fix_history = nullptr;
+  list_was_size = false, list_trigger = -1.0;
   freeze_group_bit = 0;
   tables_ready = false;
   warned_range = false;
@@ -80,6 +82,7 @@ PairEGW::~PairEGW()
   if (modify->find_fix("NEIGH_HISTORY_EGW") >= 0) modify->delete_fix("NEIGH_HISTORY_EGW");
   if (modify->find_fix("NEIGH_HISTORY_EGW_DUMMY") >= 0)
     modify->delete_fix("NEIGH_HISTORY_EGW_DUMMY");
+  if (modify->get_fix_by_id("EGW_REACH")) modify->delete_fix("EGW_REACH");
   for (auto &row : law)
     for (auto &l : row) l.release();
   EgwTables::purge();
@@ -165,10 +168,6 @@ void PairEGW::init_style()
     error->all(FLERR, "Pair egw requires atom_style sphere (radius, rmass, omega, torque)");
   if (comm->ghost_velocity == 0)
     error->all(FLERR, "Pair egw requires ghost atoms store velocity: use 'comm_modify vel yes'");
-
-  // a half list with per-neighbor history; the cut-off covers the rough tail, so a plain
-  // list (not a size list, whose reach is r < R_i + R_j + skin) is used
-  neighbor->add_request(this, NeighConst::REQ_HISTORY);
 
   // the histories: the normal law's, then the sub-models' if any type pair needs them
   // (pair_style or pair_coeff given again with another size: every history starts afresh)
@@ -264,6 +263,46 @@ void PairEGW::init_style()
       tail_of[i * (n + 1) + j] = L.tail;
     }
   tables_ready = true;
+  request_list();
+}
+
+/* A half list with per-neighbor history. A size list (the pairs within R_i + R_j + skin at
+ * the build, as pair granular's) when the rough tail reaches at most skin/4 beyond touching
+ * and fix EGW_REACH rebuilds it before any pair can have closed in by skin - tail (the two
+ * largest displacements since the build add up to it; LAMMPS's own check, one atom moved
+ * skin/2, comes later); otherwise a plain list to the types' largest radii + tail + skin
+ * (more pairs: every pair of a polydisperse type's smaller grains, ~45 % more in the pour).
+ * The guard needs post_integrate before each step's Neighbor::decide() and a box whose
+ * images do not move: a run with the Verlet family and no fix that changes the box. */
+void PairEGW::request_list()
+{
+  double tail_max = 0.0;
+  for (const EgwLaw *L : law_of)
+    if (L) tail_max = std::max(tail_max, L->tail);
+  bool box_changes = false;
+  for (auto f : modify->get_fix_list()) box_changes = box_changes || f->box_change;
+  bool guard_works = update->whichflag == 1 && !utils::strmatch(update->integrate_style, "^respa")
+      && !box_changes && !neighbor->build_once;
+  bool size = !(tail_max > 0) || (guard_works && tail_max <= 0.25 * neighbor->skin);
+  double trigger = size && tail_max > 0 ? neighbor->skin - tail_max : 0.0;
+  if (size) neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_HISTORY);
+  else neighbor->add_request(this, NeighConst::REQ_HISTORY);
+  // found by its ID on every run (the pointer of an earlier run may be gone with 'unfix')
+  auto reach = dynamic_cast<FixEGWReach *>(modify->get_fix_by_id("EGW_REACH"));
+  if (trigger > 0 && reach == nullptr)
+    reach = dynamic_cast<FixEGWReach *>(modify->add_fix("EGW_REACH all EGW_REACH", 1));
+  if (reach) reach->set_limit(trigger);
+  if (comm->me == 0 && (size != list_was_size || trigger != list_trigger))
+    utils::logmesg(lmp, "pair egw: {}\n",
+                   size ? (trigger > 0 ? fmt::format("a size neighbor list, rebuilt once two "
+                                                     "atoms may have closed in by skin - tail = "
+                                                     "{:.6g} (the tail: {:.6g})", trigger,
+                                                     tail_max)
+                                       : std::string("a size neighbor list"))
+                        : fmt::format("a neighbor list to the types' largest radii + the tail "
+                                      "{:.6g} + skin (a size list needs the tail <= skin/4 "
+                                      "and a run with a fixed box)", tail_max));
+  list_was_size = size, list_trigger = trigger;
 }
 
 double PairEGW::init_one(int i, int j)
@@ -354,8 +393,9 @@ void PairEGW::compute(int eflag, int vflag)
       double reach = radi + radj + tail_i[type[j]];
       if (rsq >= reach * reach) {
         // a pair beyond the reach has no history: a contact that forms starts afresh
-        // (EgwHistory::start sets every value), so nothing is cleared here
-        touch[jj] = 0;
+        // (EgwHistory::start sets every value), so nothing is cleared here (and the flag
+        // written only when set: most pairs of the list never touch)
+        if (touch[jj]) touch[jj] = 0;
         continue;
       }
       EgwLaw &L = *law_of[irow + type[j]];

@@ -55,6 +55,8 @@ class PairEGW : public Pair {
   double rmin_user, rmax_user, overlap_max;
   double tail_energy;   // reference energy of the tail's reach (0: the tables' cut-off)
   class Fix *fix_history;
+  bool list_was_size;              // the last run's list (for the log)
+  double list_trigger;
   int freeze_group_bit;
   bool tables_ready;
   bool warned_range;
@@ -79,6 +81,7 @@ class PairEGW : public Pair {
                                      const EgwSubmodels::Params &);
   void build_tables(int, int, double, double);
   void type_radii();
+  void request_list();
   void egw_fail(const std::string &what);
   inline void normal(EgwLaw &, double delta, double R, double *hist, double *cache, double &F,
                      double &S, double &U, int want_energy);

@@ -1157,6 +1157,64 @@ def test_restart_keeps_history():
     return ok, "; ".join(msgs) + " (< 1e-12)"
 
 
+def reach_run(np, skin=1e-4, npairs=40, nrun=700):
+    """reach.in: npairs head-on pairs at gaps 0.2 .. 0.6 mm, 1 m/s approach, E-GW with
+    sigma 2 um (the tail reaches the tables' cut-off, ~14 um); returns (rc, out, the
+    contact count per step, the pairs' centre distances per step, the tail)."""
+    dump = os.path.join(TMP, "reach.dump")
+    if os.path.exists(dump):
+        os.remove(dump)
+    c = f"E {E} nu {NU} sigma 2e-6 mu 4"
+    rc, out = lmp("reach.in", np=np, npairs=npairs, g0=2e-4, dg=1.07e-5, v=0.5, dt=1e-6,
+                  nrun=nrun, skin=skin, pstyle="egw E-GW 1e-4", pcoeff=c)
+    count = {int(r[0]): r[2] for r in thermo(out) if len(r) == 3}
+    dist, step, xs = {}, None, {}
+    if os.path.exists(dump):
+        lines = open(dump).read().splitlines()
+        for k, line in enumerate(lines):
+            if line.startswith("ITEM: TIMESTEP"):
+                step = int(lines[k + 1])
+            elif line.startswith("ITEM: ATOMS"):
+                n = int(lines[k - 5])
+                xs = {int(a.split()[0]): float(a.split()[1]) for a in lines[k + 1:k + 1 + n]}
+                dist[step] = [xs[2 * p + 2] - xs[2 * p + 1] for p in range(npairs)]
+    m = re.search(r"contacts reach delta_t = (-?[0-9.e+-]+)", out)
+    tail = -float(m.group(1)) if m else float("nan")
+    return rc, out, count, dist, tail
+
+
+def test_size_list_reaches_tail():
+    """The size neighbor list (pairs within R_i + R_j + skin at the build) with fix
+    EGW_REACH: 40 head-on pairs whose gaps step through the rebuild cycle (each bead moves
+    half the skin in ~100 steps); at every step the pair style's contact count equals the
+    number of pairs whose overlap, from the dumped positions, is above -tail (the reach the
+    log gives), the tail-only contacts (-tail < delta <= 0) included; on 1 and 2 ranks. With
+    the size list and no guard (LAMMPS's own rebuild at skin/2 alone) pairs that were
+    just beyond R_i + R_j + skin at a build enter the reach before the next build unseen:
+    the count is wrong on 47 of the 701 steps (measured with the guard switched off).
+    With a skin below 4 tails (5e-5 m) the pair style takes the plain list (to the largest
+    radii + tail + skin): the same counts."""
+    msgs, ok = [], True
+    for np, skin in ((1, 1e-4), (2, 1e-4), (1, 5e-5)):
+        rc, out, count, dist, tail = reach_run(np, skin)
+        want = "a size neighbor list, rebuilt once two atoms" if skin == 1e-4 else \
+            "a neighbor list to the types' largest radii + the tail"
+        size_list = want in out
+        bad, tail_only, steps = 0, 0, 0
+        for step, d in dist.items():
+            if step not in count:
+                continue
+            steps += 1
+            within = sum(1 for r in d if 2e-3 - r > -tail)
+            tail_only += sum(1 for r in d if -tail < 2e-3 - r <= 0)
+            bad += int(count[step] != within)
+        ok = ok and rc == 0 and size_list and steps >= 700 and bad == 0 and tail_only > 100
+        msgs.append(f"{np} rank(s), skin {skin:g}: {steps} steps, {bad} with a wrong count, "
+                    f"{tail_only} tail-only pair-steps (tail {tail:.3g} m, "
+                    f"{'size list + guard' if skin == 1e-4 else 'plain list'}: {size_list})")
+    return ok, "; ".join(msgs)
+
+
 def test_bad_coeff():
     """Bad pair_coeff / pair_style input (38 cases, granular's sub-model syntax among them): a
     LAMMPS ERROR naming the keyword, a non-zero exit, never a crash."""
@@ -1300,9 +1358,9 @@ def test_pour_tables_shared():
                             "model", "EP-GW", "-var", "n", "20", "-var", "nrun", "100"], cwd=TMP,
                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                            timeout=600, env=dict(os.environ, EGW_CACHE_DIR="off"))
-        # the tables' lines (not the reach lines, "contacts reach delta_t")
+        # the tables' lines (not the reach lines, "contacts reach delta_t", nor the list's)
         lines = [l for l in p.stdout.splitlines() if l.startswith(("pair egw:", "fix wall/egw"))
-                 and "contacts reach" not in l]
+                 and "contacts reach" not in l and "neighbor list" not in l]
         if p.returncode or len(lines) != 9:
             return False, f"{np} rank(s): rc {p.returncode}, {len(lines)} table lines; " + p.stdout[-400:]
         logs.append(lines)
@@ -1325,7 +1383,7 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_wall_heat_vs_wall_gran, test_wall_curvature_vs_wall_gran,
          test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
-         test_reneighbor_keeps_history, test_restart_keeps_history, test_bad_coeff,
+         test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,
          test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared]
 
 
