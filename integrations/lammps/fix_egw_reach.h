@@ -11,6 +11,7 @@
 
 #include "fix.h"
 
+#include <mpi.h>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -18,6 +19,7 @@ namespace LAMMPS_NS {
 class FixEGWReach : public Fix {
  public:
   FixEGWReach(class LAMMPS *, int, char **);
+  ~FixEGWReach() override;
   int setmask() override;
   void setup_post_neighbor() override;
   void post_neighbor() override;
@@ -29,9 +31,10 @@ class FixEGWReach : public Fix {
 
  private:
   double limit = -1.0;
-  std::vector<double> all;    // every rank's two largest (squared)
   std::vector<double> xhold;    // local atoms' positions at the last build
   int nhold = -1;
+  MPI_Datatype two_type;        // two doubles, and the reduction that keeps the two largest
+  MPI_Op two_op;
 };
 
 }    // namespace LAMMPS_NS

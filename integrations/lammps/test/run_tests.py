@@ -1166,7 +1166,7 @@ def reach_run(np, skin=1e-4, npairs=40, nrun=700):
         os.remove(dump)
     c = f"E {E} nu {NU} sigma 2e-6 mu 4"
     rc, out = lmp("reach.in", np=np, npairs=npairs, g0=2e-4, dg=1.07e-5, v=0.5, dt=1e-6,
-                  nrun=nrun, skin=skin, pstyle="egw E-GW 1e-4", pcoeff=c)
+                  nrun=nrun, skin=skin, pstyle="egw E-GW 1e-4", pcoeff=c, px=np)
     count = {int(r[0]): r[2] for r in thermo(out) if len(r) == 3}
     dist, step, xs = {}, None, {}
     if os.path.exists(dump):
@@ -1188,7 +1188,8 @@ def test_size_list_reaches_tail():
     EGW_REACH: 40 head-on pairs whose gaps step through the rebuild cycle (each bead moves
     half the skin in ~100 steps); at every step the pair style's contact count equals the
     number of pairs whose overlap, from the dumped positions, is above -tail (the reach the
-    log gives), the tail-only contacts (-tail < delta <= 0) included; on 1 and 2 ranks. With
+    log gives), the tail-only contacts (-tail < delta <= 0) included; on 1 rank and on 2
+    (split along the pairs' line: each pair's beads on different ranks). With
     the size list and no guard (LAMMPS's own rebuild at skin/2 alone) pairs that were
     just beyond R_i + R_j + skin at a build enter the reach before the next build unseen:
     the count is wrong on 47 of the 701 steps (measured with the guard switched off).
