@@ -491,26 +491,30 @@ void FixWallEGW::post_force(int /*vflag*/)
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     EgwLaw &L = law[type[i]];
-    double *hist = history[i];
     double radi = radius[i];
-    // the distance from the centre to the wall and the normal from the wall to the centre
-    double dist, n[3] = {0.0, 0.0, 0.0};
+    // the distance from the centre to the wall (most atoms are beyond the reach: the
+    // normal from the wall to the centre only for the others)
+    double dist, rxy = 0.0;
+    bool low = true;
     if (wallstyle == ZCYLINDER) {
-      double rxy = std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]);
+      rxy = std::sqrt(x[i][0] * x[i][0] + x[i][1] * x[i][1]);
       dist = cylradius - rxy;
-      if (rxy > 0) n[0] = -x[i][0] / rxy, n[1] = -x[i][1] / rxy;
-      else n[0] = 1.0;
     } else {
       double dlo = have_lo ? x[i][axis] - wlo : HUGE_VAL;
       double dhi = have_hi ? whi - x[i][axis] : HUGE_VAL;
-      if (dlo <= dhi) dist = dlo, n[axis] = 1.0;
-      else dist = dhi, n[axis] = -1.0;
+      low = dlo <= dhi;
+      dist = low ? dlo : dhi;
     }
     double delta = radi - dist;
     if (!(delta > -L.tail)) {
-      clear_history(i, hist, nhist);
+      if (!cleared[i]) clear_history(i, history[i], nhist);
       continue;
     }
+    double *hist = history[i];
+    double n[3] = {0.0, 0.0, 0.0};
+    if (wallstyle != ZCYLINDER) n[axis] = low ? 1.0 : -1.0;
+    else if (rxy > 0) n[0] = -x[i][0] / rxy, n[1] = -x[i][1] / rxy;
+    else n[0] = 1.0;
     cleared[i] = 0;
     if (!(built_rhi[type[i]] > 0))
       error->one(FLERR, "Fix wall/egw: an atom of type {} touches the wall but the type has no "
