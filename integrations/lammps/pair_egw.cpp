@@ -583,8 +583,7 @@ void PairEGW::hyst_cache_rows()
     }
   hyst_cache_prev.swap(hyst_cache);
   hyst_cache.clear();
-  std::vector<tagint> prev_tags;
-  prev_tags.swap(hyst_cache_tags);
+  hyst_cache_tags.clear();    // (read above; its capacity kept for the new layout)
   int inum = list->inum;
   tagint *tag = atom->tag;
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
