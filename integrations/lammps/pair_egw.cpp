@@ -301,7 +301,8 @@ void PairEGW::request_list()
                                        : std::string("a size neighbor list"))
                         : fmt::format("a neighbor list to the types' largest radii + the tail "
                                       "{:.6g} + skin (a size list needs the tail <= skin/4 "
-                                      "and a run with a fixed box)", tail_max));
+                                      "and a Verlet run, reneighboring, with a fixed box)",
+                                      tail_max));
   list_was_size = size, list_trigger = trigger;
 }
 
