@@ -1203,13 +1203,15 @@ def test_size_list_reaches_tail():
         size_list = want in out
         bad, tail_only, steps = 0, 0, 0
         for step, d in dist.items():
-            if step not in count:
+            # (a step with a pair within 1e-9 m of the reach is not judged: the log gives
+            # the tail to 6 digits, ~1e-10 m)
+            if step not in count or any(abs(2e-3 - r + tail) < 1e-9 for r in d):
                 continue
             steps += 1
             within = sum(1 for r in d if 2e-3 - r > -tail)
             tail_only += sum(1 for r in d if -tail < 2e-3 - r <= 0)
             bad += int(count[step] != within)
-        ok = ok and rc == 0 and size_list and steps >= 700 and bad == 0 and tail_only > 100
+        ok = ok and rc == 0 and size_list and steps >= 690 and bad == 0 and tail_only > 100
         msgs.append(f"{np} rank(s), skin {skin:g}: {steps} steps, {bad} with a wrong count, "
                     f"{tail_only} tail-only pair-steps (tail {tail:.3g} m, "
                     f"{'size list + guard' if skin == 1e-4 else 'plain list'}: {size_list})")
