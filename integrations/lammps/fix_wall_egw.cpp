@@ -507,7 +507,7 @@ void FixWallEGW::post_force(int /*vflag*/)
     }
     double delta = radi - dist;
     if (!(delta > -L.tail)) {
-      if (!cleared[i]) clear_history(i, history[i], nhist);
+      clear_history(i, history[i], nhist);
       continue;
     }
     double *hist = history[i];

@@ -277,8 +277,7 @@ void PairEGW::init_style()
 void PairEGW::request_list()
 {
   double tail_max = 0.0;
-  for (const EgwLaw *L : law_of)
-    if (L) tail_max = std::max(tail_max, L->tail);
+  for (double t : tail_of) tail_max = std::max(tail_max, t);
   bool box_changes = false;
   for (auto f : modify->get_fix_list()) box_changes = box_changes || f->box_change;
   bool guard_works = update->whichflag == 1 && !utils::strmatch(update->integrate_style, "^respa")

@@ -117,7 +117,7 @@ contains
             & "egw_hysteresis_state_init (state[0] = -HUGE_VAL)")
          return
       end if
-      limit = reach(h)   ! once (a stored number: the DEM hot path)
+      limit = h%input_limit   ! (stored: the DEM hot path)
       if (delta > limit .or. state(1) > limit) then
          stat = invalid("delta = "//format_real(delta)//", state[0] = "// &
             & format_real(state(1))//": must be <= "//format_real(limit)// &
@@ -163,10 +163,10 @@ contains
       stat = get_table(hp, h)
       if (stat == egw_ok) stat = require(energy, "energy")
       if (stat /= egw_ok) return
-      if (ieee_is_nan(delta) .or. ieee_is_nan(state) .or. delta > reach(h) .or. &
-         & state > reach(h)) then
+      if (ieee_is_nan(delta) .or. ieee_is_nan(state) .or. delta > h%input_limit .or. &
+         & state > h%input_limit) then
          stat = invalid("delta = "//format_real(delta)//", delta_max_state = "// &
-            & format_real(state)//": must be numbers <= "//format_real(reach(h))// &
+            & format_real(state)//": must be numbers <= "//format_real(h%input_limit)// &
             & " (the force there exceeds the doubles)")
          return
       end if
@@ -318,7 +318,7 @@ contains
       if (alloc_stat /= 0) stat = failure(egw_out_of_memory, "hysteresis table: out of memory")
    end function new_table
 
-   !> EGW_OK if every overlap and its state are numbers <= reach(h), else
+   !> EGW_OK if every overlap and its state are numbers <= h%input_limit, else
    !> EGW_INVALID_ARGUMENT naming the first other pair (delta[i], delta_max_state[i]).
    integer(c_int) function check_histories(h, delta, state) result(stat)
       type(hysteresis_table), intent(in) :: h
@@ -326,7 +326,7 @@ contains
       real(dp) :: limit
       integer :: i
       stat = egw_ok
-      limit = reach(h)
+      limit = h%input_limit
       do i = 1, size(delta)
          if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > limit .or. &
             & state(i) > limit) then
@@ -347,13 +347,5 @@ contains
       real(dp), intent(in) :: x
       stat = above_delta_max(name, x, h%delta_max)
    end function above_table
-
-   !> The largest overlap (or state) whose force stays well inside the doubles: where the
-   !> loading table's deep-overlap asymptote beyond its delta_max (deep_force) reaches
-   !> huge/4 (computed once, by hysteresis_prepare).
-   pure real(dp) function reach(h)
-      type(hysteresis_table), intent(in) :: h
-      reach = h%input_limit
-   end function reach
 
 end module egw_capi_hysteresis
