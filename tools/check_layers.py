@@ -26,14 +26,15 @@ import tempfile
 LAYERS = {
     "core": [],
     "kernels": ["core"],
-    "solver": ["core", "kernels"],
-    "tables": ["core", "kernels", "solver"],
-    "formats": ["core", "kernels", "solver", "tables"],
-    "scene": ["core", "kernels", "solver", "tables"],
-    "capi": ["core", "kernels", "solver", "tables", "formats", "scene"],
+    "laws": ["core", "kernels"],
+    "solver": ["core", "kernels", "laws"],
+    "tables": ["core", "kernels", "laws", "solver"],
+    "formats": ["core", "kernels", "laws", "solver", "tables"],
+    "scene": ["core", "kernels", "laws", "solver", "tables"],
+    "capi": ["core", "kernels", "laws", "solver", "tables", "formats", "scene"],
 }
 FACADE = "facade"  # src/*.f90: may use every layer but the C layer
-FACADE_USES = ["core", "kernels", "solver", "tables", "formats", "scene"]
+FACADE_USES = ["core", "kernels", "laws", "solver", "tables", "formats", "scene"]
 PROGRAM_DIRS = ["app", "bench"]  # programs: the library through the facade only
 
 USE_RE = re.compile(r"^\s*use\s*(?:,\s*(intrinsic|non_intrinsic)\s*::)?\s*(?:::)?\s*(\w+)",
