@@ -861,6 +861,59 @@ int egw_universal_eval_array(egw_universal u, const egw_params *p, int p_stride,
                              const double *delta, int delta_stride, double *force,
                              double *stiffness, int flags, int *n_failed);
 
+/* ------------------------------------------------------------------------
+ * Rough-flat laws beyond GW (doc/theory.md 10). A rough flat pressed onto a smooth rigid
+ * flat carries a mean pressure p [pressure] at a mean separation u [length] (u > 0 apart,
+ * measured from the law's reference plane: the mean plane of the heights for a tabulated,
+ * Persson or BEM law; p >= 0; dp/du <= 0). egw_flat_law is such a law; the sphere solve
+ * egw_solve_flat_law takes one in place of GW's law of independent summits: the local
+ * pressure at radius r is p(u(r)) with u(r) = r^2/(2R) - delta + w(r), w the half-space
+ * deflection, so delta is the overlap with the law's reference plane (delta_m; for the
+ * mean plane, GW's delta = delta_m + y_s). Laws are read-only once made: one law may
+ * serve any number of threads at once.
+ * ------------------------------------------------------------------------ */
+
+typedef struct egw_flat_law_s *egw_flat_law; /* opaque: one rough-flat law */
+
+/* A tabulated law from n >= 2 nodes: u[i] strictly ascending [length], p[i] > 0 strictly
+ * decreasing [pressure]; dpdu[i] <= 0 (NULL: slopes from the nodes) and area[i] in [0, 1],
+ * the contact-area fraction (NULL: the law has none). Interpolation: a monotone cubic
+ * Hermite in (u, ln p) (C1, exact at the nodes); beyond both ends ln p continues linearly
+ * with the end slope (p ~ exp(-u/u0), the large-separation law of Persson's theory and of
+ * BEM). length [length]: the law's natural length, the unit the sphere solve scales by
+ * (the surface's rms height; 0: the decay length -1/(d ln p/du) at the last node).
+ * modulus: the E* the law was computed with (0: not known; else egw_solve_flat_law
+ * refuses another E*). *out receives a handle only on success; free it with
+ * egw_flat_law_free. Statuses: EGW_INVALID_ARGUMENT (naming the node), EGW_NULL_POINTER. */
+int egw_flat_law_from_table(const double *u, const double *p, const double *dpdu,
+                            const double *area, int n, double length, double modulus,
+                            egw_flat_law *out);
+
+/* Mean pressure *pressure [pressure] and *dpdu [pressure/length] at mean separation u
+ * [length] (NULL outputs skipped). EGW_INVALID_ARGUMENT for NaN u; EGW_NULL_POINTER. */
+int egw_flat_law_pressure(egw_flat_law law, double u, double *pressure, double *dpdu);
+
+/* Contact-area fraction A/A0 in [0, 1] at u (linear between nodes, the end values beyond
+ * them). EGW_UNSUPPORTED for a law made without area data; EGW_INVALID_ARGUMENT for NaN
+ * u; EGW_NULL_POINTER. */
+int egw_flat_law_contact_area(egw_flat_law law, double u, double *area);
+
+/* Facts about a law (NULL outputs skipped): nodes, length, modulus (0: not known), the
+ * nodes' separation range [u_min, u_max] and has_area (1 if it carries contact areas). */
+int egw_flat_law_info(egw_flat_law law, int *n_nodes, double *length, double *modulus,
+                      double *u_min, double *u_max, int *has_area);
+
+/* Release a law; sets *law to NULL. NULL or *law == NULL is fine. */
+void egw_flat_law_free(egw_flat_law *law);
+
+/* The loading solve of a sphere pair with a rough-flat law: R = p->radius, E* =
+ * p->modulus (the other fields of p must be valid, as egw_params_default leaves them, and
+ * are not used), delta [length] the overlap with the law's reference plane. Results,
+ * options and statuses as egw_solve, plus EGW_INVALID_PARAMETER when the law was made
+ * with another E* than p->modulus. Unloading is EP-GW's alone (egw_solve_unload). */
+int egw_solve_flat_law(const egw_params *p, egw_flat_law law, const egw_options *o,
+                       double delta, egw_result *res);
+
 #ifdef __cplusplus
 }
 #endif

@@ -29,6 +29,7 @@ program tester
    use test_facade, only: collect_facade
    use test_cache, only: collect_cache
    use test_capi_array, only: collect_capi_array
+   use test_flat_law, only: collect_flat_law
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -37,6 +38,7 @@ program tester
 
    suites = [ &
       & new_testsuite("params", collect_params), &
+      & new_testsuite("flat_law", collect_flat_law), &
       & new_testsuite("ellip", collect_ellip), &
       & new_testsuite("hertz", collect_hertz), &
       & new_testsuite("gauss", collect_gauss), &

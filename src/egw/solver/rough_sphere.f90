@@ -13,15 +13,16 @@
 module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi
-   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
+   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
+      & egw_not_converged, fatal_error, &
       & format_real, int_str
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, &
       & check_scaled_overlap, length_unit, pressure_unit, force_unit, stiffness_unit, product4
    use egw_smooth_sphere, only: hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
-   use egw_asperity, only: rough_flat_law
    use egw_unloading, only: unloading_law_of, unloading_pressure
    use egw_halfspace, only: influence_row
+   use egw_flat_law, only: flat_law
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & scaled, normal, negligible, base_gap, closest_gap, solve_scaled, differentiate, &
@@ -43,7 +44,7 @@ module egw_rough_sphere
       integer :: method_used = method_auto !< method that produced the result
    end type solve_result
 
-   public :: validate_options, solve_contact, contact_profile
+   public :: validate_options, solve_contact, solve_contact_law, contact_profile
    public :: load_history, solve_unload, solve_contact_unload, unload_profile
 
    !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
@@ -156,6 +157,50 @@ contains
       end if
       call solve_rough(params, options, prob, sol, result, error)
    end subroutine solve_contact
+
+   !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
+   !> (a tabulated, Persson or BEM law; doc/theory.md §10): the law gives the whole
+   !> pressure p(u) at the local mean separation u(r) = r**2/(2R) - delta + w(r), w the
+   !> half-space deflection, so delta is the overlap with the law's reference plane (the
+   !> mean plane of the heights for those laws). Of params only radius and modulus are
+   !> used (R and E* of the pair); the solve is scaled by the law's length. Result and
+   !> errors as solve_contact; also egw_invalid_parameter when the law was made with
+   !> another E* than params%modulus.
+   subroutine solve_contact_law(params, law, options, delta, result, error)
+      type(contact_params), intent(in) :: params   !< radius R and modulus E*
+      class(flat_law), intent(in) :: law           !< the rough-flat law p(u)
+      type(solver_options), intent(in) :: options  !< mesh, tolerance, method and threads
+      real(dp), intent(in) :: delta   !< overlap [length] with the law's reference plane
+      type(solve_result), intent(out) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(contact_params) :: lp
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+
+      lp = contact_params(model=model_gw, radius=params%radius, modulus=params%modulus, &
+         & sigma=law%length())
+      call check_input(lp, options, delta, error)
+      if (allocated(error)) then
+         error%message = "flat law of length "//format_real(law%length())//": " &
+            & //error%message
+         return
+      end if
+      if (law%modulus() > 0.0_dp .and. abs(params%modulus - law%modulus()) > &
+         & 1.0e-12_dp*law%modulus()) then
+         call fatal_error(error, egw_invalid_parameter, "modulus = " &
+            & //format_real(params%modulus)//": the flat law was made with E* = " &
+            & //format_real(law%modulus())//"; the sphere must have the same")
+         return
+      end if
+      prob = scaled(lp, delta)
+      call law%rescaled(law%length(), pressure_unit(lp), prob%law)
+      if (negligible(prob)) then
+         result%method_used = options%method
+         result%est_rel_err = 1.0_dp
+         return
+      end if
+      call solve_rough(lp, options, prob, sol, result, error)
+   end subroutine solve_contact_law
 
    !> The discrete solve of a rough scaled problem (loading, or unloading when
    !> prob%closest is allocated), its stiffness, and the result in the caller's units.
@@ -572,17 +617,16 @@ contains
       real(dp), intent(in) :: rs(:)
       real(dp), intent(out) :: pressure(:), deflection(:)
       real(dp), allocatable :: row(:)
-      real(dp) :: wg, f, dfdh
+      real(dp) :: wg, f(1), dfdh(1)
       integer :: i
       allocate (row(size(sol%p)))
       do i = 1, size(rs)
          call influence_row(sol%mesh, rs(i), row)
          wg = dot_product(row, sol%p)
-         call rough_flat_law(base_gap(prob, rs(i)) + wg, prob%psi, prob%hardness, &
-            & prob%plastic_ratio, f, dfdh)
-         pressure(i) = prob%scale*f
+         call prob%law%pressure([base_gap(prob, rs(i)) + wg], f, dfdh)
+         pressure(i) = f(1)
          deflection(i) = wg
-         if (prob%delta > 0.0_dp .and. prob%model /= model_gw) then
+         if (prob%extended) then
             pressure(i) = pressure(i) + hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
             deflection(i) = deflection(i) + hertz_deflection(rs(i), prob%delta, 1.0_dp)
          end if

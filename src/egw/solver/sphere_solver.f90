@@ -36,7 +36,7 @@ module egw_sphere_solver
       & egw_out_of_memory, fatal_error, format_real, int_str
    use egw_params, only: contact_params, model_gw, model_egw, model_epgw
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_force, hertz_stiffness
-   use egw_asperity, only: rough_flat_law
+   use egw_flat_law, only: flat_law, gw_flat_law
    use egw_unloading, only: unloading_law, unloading_law_of, unloading_pressure, unloading_kinks
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index, &
       & assemble_influence, influence_row, interpolate_nodal
@@ -104,7 +104,10 @@ module egw_sphere_solver
       real(dp) :: delta = 0.0_dp       !< delta/sigma
       logical :: extended = .false.    !< base gap is the Hertz gap (E-GW/EP-GW, delta > 0)
       real(dp) :: a = 0.0_dp           !< Hertz radius sqrt(delta/sigma) (0 if delta <= 0)
-      real(dp) :: scale = 0.0_dp       !< mu/(2 sqrt 2): p_G = scale * f(h)
+      !> The rough-flat law of loading, in scaled units (GW's, or a law the caller gave).
+      class(flat_law), allocatable :: law
+      !> EP-GW unloading: mu/(2 sqrt 2), p = scale Z_u(h, h_min), and the ZMC parameters.
+      real(dp) :: scale = 0.0_dp
       real(dp) :: psi = 0.0_dp, hardness = 0.6_dp, plastic_ratio = 54.0_dp
       !> Unloading: the closest approach so far (allocated), else the loading law.
       type(separation_field), allocatable :: closest
@@ -198,7 +201,20 @@ contains
       if (params%model == model_epgw) prob%psi = params%psi
       prob%hardness = params%hardness_coeff
       prob%plastic_ratio = params%plastic_ratio
+      allocate (prob%law, source=gw_flat_law(scale=prob%scale, psi=prob%psi, &
+         & hardness_coeff=prob%hardness, plastic_ratio=prob%plastic_ratio))
    end function scaled
+
+   !> Scaled pressure of the loading law at one scaled separation h, and its derivative.
+   pure subroutine law_at(prob, h, p, dpdh)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: h
+      real(dp), intent(out) :: p, dpdh
+      real(dp) :: pa(1), da(1)
+      call prob%law%pressure([h], pa, da)
+      p = pa(1)
+      dpdh = da(1)
+   end subroutine law_at
 
    elemental logical function normal(x)
       real(dp), intent(in) :: x
@@ -211,8 +227,8 @@ contains
       real(dp) :: f, dfdh
       negligible = .false.
       if (prob%delta >= 0.0_dp) return
-      call rough_flat_law(-prob%delta, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
-      negligible = prob%scale*f < tiny_force
+      call law_at(prob, -prob%delta, f, dfdh)
+      negligible = f < tiny_force
    end function negligible
 
    !> Base gap z(r): the Hertz gap of eq. (28) (zero inside a) for the extended models at
@@ -287,7 +303,7 @@ contains
             & mesh%step_prev, mesh%outer, coarse, error)
          if (allocated(error)) return
       end if
-      if (prob%model == model_gw .and. prob%delta > 1.0_dp) then
+      if (.not. prob%extended .and. prob%delta > 1.0_dp) then
          call refocus_classic_gw(prob, options, method_used, mesh, coarse, error)
          if (allocated(error)) return
       end if
@@ -443,7 +459,7 @@ contains
       type(discrete_solution), intent(inout) :: coarse
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution) :: first
-      if (.not. law_inverse(prob, 2.0_dp*prob%a/pi/prob%scale) < -3.0_dp) return
+      if (.not. law_inverse(prob, 2.0_dp*prob%a/pi) < -3.0_dp) return
       call gap_edge(coarse, mesh%focus, mesh%width)
       mesh%layered = .true.
       ! The first level again, on the refocused mesh family: two levels of different
@@ -1014,18 +1030,18 @@ contains
       end if
       ! Gap where the law has fallen by 1e-3 rel_tol from its value at the closest point.
       h_ref = max(0.0_dp, -prob%delta)
-      if (prob%model == model_gw .and. prob%delta > 0.0_dp) h_ref = 0.0_dp
-      call rough_flat_law(h_ref, prob%psi, prob%hardness, prob%plastic_ratio, f_ref, dfdh)
+      if (.not. prob%extended .and. prob%delta > 0.0_dp) h_ref = 0.0_dp
+      call law_at(prob, h_ref, f_ref, dfdh)
       h_cut = h_ref
       do i = 1, 400
          h_cut = h_cut + 0.25_dp
-         call rough_flat_law(h_cut, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+         call law_at(prob, h_cut, f, dfdh)
          if (f <= 1.0e-3_dp*rel_tol*f_ref) exit
       end do
       ! Classic GW at delta > 0 has its gap below the Hertz gap by up to the centre value
       ! -h(p_H(0)) (eq. 19; ~15 sigma at sigma/delta = 1e-5): reach that much further out.
-      if (prob%model == model_gw .and. prob%delta > 0.0_dp) h_cut = h_cut &
-         & + max(0.0_dp, -law_inverse(prob, 2.0_dp*prob%a/pi/prob%scale))
+      if (.not. prob%extended .and. prob%delta > 0.0_dp) h_cut = h_cut &
+         & + max(0.0_dp, -law_inverse(prob, 2.0_dp*prob%a/pi))
       ! Radius where the Hertz (or rigid) gap reaches h_cut: bisection, the gap grows with r.
       lo = prob%a
       hi = prob%a + sqrt(2.0_dp*(h_cut + abs(prob%delta))) + 10.0_dp
@@ -1239,8 +1255,8 @@ contains
          hi = 40.0_dp
          do i = 1, 50
             h = 0.5_dp*(lo + hi)
-            call rough_flat_law(h, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
-            if (h < 2.0_dp*prob%a*prob%scale*f) then
+            call law_at(prob, h, f, dfdh)
+            if (h < 2.0_dp*prob%a*f) then
                lo = h
             else
                hi = h
@@ -1255,24 +1271,36 @@ contains
       end if
       do i = 1, size(sol%w)
          r = sol%mesh%node(i)
-         target = hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)/prob%scale
+         target = hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
          h = h_cap
          if (target > 0.0_dp) h = min(h_cap, law_inverse(prob, target))
          sol%w(i) = hertz_gap(r, prob%delta, 1.0_dp) + h - base_gap(prob, r)
       end do
    end subroutine initial_deflection
 
-   !> h with f(h) = target (f decreasing) by bisection.
+   !> h with p(h) = target (the scaled law, decreasing) by bisection: a bracket about
+   !> [-2, 40] (GW's law underflows at 40), widened until it holds the target.
    pure real(dp) function law_inverse(prob, target) result(h)
       type(scaled_problem), intent(in) :: prob
       real(dp), intent(in) :: target
       real(dp) :: lo, hi, f, dfdh
       integer :: i
-      lo = -(2.0_dp*target)**(2.0_dp/3.0_dp) - 2.0_dp
+      lo = -2.0_dp
       hi = 40.0_dp
       do i = 1, 60
+         call law_at(prob, lo, f, dfdh)
+         if (f > target) exit
+         lo = 2.0_dp*lo
+      end do
+      do i = 1, 60
+         call law_at(prob, hi, f, dfdh)
+         if (.not. f > target) exit
+         hi = 2.0_dp*hi
+      end do
+      do i = 1, 200
          h = 0.5_dp*(lo + hi)
-         call rough_flat_law(h, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+         if (.not. (h > lo .and. h < hi)) exit
+         call law_at(prob, h, f, dfdh)
          if (f > target) then
             lo = h
          else
@@ -1303,14 +1331,16 @@ contains
       type(discrete_solution), intent(inout) :: sol
       real(dp), allocatable :: f(:), dfdh(:)
       sol%gap = sol%base + gauss_values(sol%mesh, sol%w)
-      allocate (f(size(sol%gap)), dfdh(size(sol%gap)))
       if (allocated(sol%gap_min)) then
+         allocate (f(size(sol%gap)), dfdh(size(sol%gap)))
          call unloading_pressure(prob%unload, sol%gap, sol%gap_min, f, dfdh)
+         sol%p = prob%scale*f
+         sol%dpdh = prob%scale*dfdh
       else
-         call rough_flat_law(sol%gap, prob%psi, prob%hardness, prob%plastic_ratio, f, dfdh)
+         sol%p = sol%gap       ! (sized as the gap)
+         sol%dpdh = sol%gap
+         call prob%law%pressure(sol%gap, sol%p, sol%dpdh)
       end if
-      sol%p = prob%scale*f
-      sol%dpdh = prob%scale*dfdh
    end subroutine evaluate
 
    !> Residual F = w - H p_G(z + w) (at the current evaluate()) and its scaled max norm.
@@ -1515,11 +1545,10 @@ contains
          gap_min = closest_gap(prob%closest, [r])
          call unloading_pressure(prob%unload, base_gap(prob, r) + dot_product(row, sol%p), &
             & gap_min(1), f, dfdh)
+         p = prob%scale*f
       else
-         call rough_flat_law(base_gap(prob, r) + dot_product(row, sol%p), prob%psi, &
-            & prob%hardness, prob%plastic_ratio, f, dfdh)
+         call law_at(prob, base_gap(prob, r) + dot_product(row, sol%p), p, dfdh)
       end if
-      p = prob%scale*f
       if (prob%extended) p = p + hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
    end function total_pressure
 

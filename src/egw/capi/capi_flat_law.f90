@@ -1,0 +1,156 @@
+!> The C API of rough-flat laws (include/egw.h, "Rough-flat laws"): the opaque handle
+!> egw_flat_law (c_loc of an allocated table_flat_law, released by egw_flat_law_free),
+!> made from a table of (u, p); evaluated; a sphere solve that takes one.
+module egw_capi_flat_law
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_associated, c_f_pointer, &
+      & c_loc
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_ok, egw_unsupported, int_str
+   use egw_params, only: contact_params
+   use egw_flat_law, only: table_flat_law, new_table_law
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact_law
+   use egw_capi_utils, only: settle, require, invalid, failure, check_number, &
+      & double_array, read_contact, put, put_handle_settled, take_handle, put_result
+   implicit none
+   private
+
+   public :: egw_flat_law_from_table, egw_flat_law_pressure, egw_flat_law_contact_area, &
+      & egw_flat_law_info, egw_flat_law_free, egw_solve_flat_law
+
+contains
+
+   !> C: egw_flat_law_from_table: a tabulated law from n nodes (u, p), optional dp/du and
+   !> contact-area fraction (NULL: none), its length (0: from the table) and E* (0: not
+   !> known).
+   function egw_flat_law_from_table(u, p, dpdu, area, n, length, modulus, out) result(stat) &
+      & bind(C, name="egw_flat_law_from_table")
+      type(c_ptr), value, intent(in) :: u, p, dpdu, area, out
+      integer(c_int), value, intent(in) :: n
+      real(c_double), value, intent(in) :: length, modulus
+      integer(c_int) :: stat
+      type(table_flat_law), pointer :: law
+      type(egw_error), allocatable :: error
+      real(c_double), pointer :: uu(:), pp(:), dd(:), aa(:)
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = require(u, "u")
+      if (stat == egw_ok) stat = require(p, "p")
+      if (stat /= egw_ok) return
+      if (n < 2) then
+         stat = invalid("n = "//int_str(int(n))//": a tabulated flat law needs n >= 2 nodes")
+         return
+      end if
+      uu => double_array(u, n)
+      pp => double_array(p, n)
+      dd => double_array(dpdu, n)
+      aa => double_array(area, n)
+      allocate (law)
+      if (associated(dd) .and. associated(aa)) then
+         call new_table_law(uu, pp, law, error, dpdu=dd, area=aa, length=length, &
+            & modulus=modulus)
+      else if (associated(dd)) then
+         call new_table_law(uu, pp, law, error, dpdu=dd, length=length, modulus=modulus)
+      else if (associated(aa)) then
+         call new_table_law(uu, pp, law, error, area=aa, length=length, modulus=modulus)
+      else
+         call new_table_law(uu, pp, law, error, length=length, modulus=modulus)
+      end if
+      stat = put_handle_settled(out, c_loc(law), error)
+      if (stat /= egw_ok) deallocate (law)
+   end function egw_flat_law_from_table
+
+   !> C: egw_flat_law_pressure: p and dp/du at the mean separation u.
+   function egw_flat_law_pressure(h, u, pressure, dpdu) result(stat) &
+      & bind(C, name="egw_flat_law_pressure")
+      type(c_ptr), value, intent(in) :: h, pressure, dpdu
+      real(c_double), value, intent(in) :: u
+      integer(c_int) :: stat
+      type(table_flat_law), pointer :: law
+      real(dp) :: p(1), d(1)
+      stat = require(h, "law")
+      if (stat == egw_ok) stat = check_number("u", u)
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, law)
+      call law%pressure([u], p, d)
+      call put(pressure, p(1))
+      call put(dpdu, d(1))
+   end function egw_flat_law_pressure
+
+   !> C: egw_flat_law_contact_area: the contact-area fraction at u (laws that carry one).
+   function egw_flat_law_contact_area(h, u, area) result(stat) &
+      & bind(C, name="egw_flat_law_contact_area")
+      type(c_ptr), value, intent(in) :: h, area
+      real(c_double), value, intent(in) :: u
+      integer(c_int) :: stat
+      type(table_flat_law), pointer :: law
+      real(dp) :: a
+      stat = require(h, "law")
+      if (stat == egw_ok) stat = check_number("u", u)
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, law)
+      a = law%contact_area(u)
+      if (ieee_is_nan(a)) then
+         stat = failure(egw_unsupported, "law: made without contact-area data (a table " &
+            & //"without area): no contact area to give")
+         return
+      end if
+      call put(area, a)
+   end function egw_flat_law_contact_area
+
+   !> C: egw_flat_law_info: nodes, length, E*, separation range and whether it has areas.
+   function egw_flat_law_info(h, n_nodes, length, modulus, u_min, u_max, has_area) &
+      & result(stat) bind(C, name="egw_flat_law_info")
+      type(c_ptr), value, intent(in) :: h, n_nodes, length, modulus, u_min, u_max, has_area
+      integer(c_int) :: stat
+      type(table_flat_law), pointer :: law
+      integer(c_int), pointer :: ip
+      stat = require(h, "law")
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, law)
+      if (c_associated(n_nodes)) then
+         call c_f_pointer(n_nodes, ip)
+         ip = int(size(law%u), c_int)
+      end if
+      if (c_associated(has_area)) then
+         call c_f_pointer(has_area, ip)
+         ip = merge(1_c_int, 0_c_int, allocated(law%area))
+      end if
+      call put(length, law%length())
+      call put(modulus, law%modulus())
+      call put(u_min, law%u(1))
+      call put(u_max, law%u(size(law%u)))
+   end function egw_flat_law_info
+
+   !> C: egw_flat_law_free(egw_flat_law *law): releases the law, sets *law = NULL.
+   subroutine egw_flat_law_free(h) bind(C, name="egw_flat_law_free")
+      type(c_ptr), value, intent(in) :: h
+      type(c_ptr) :: object
+      type(table_flat_law), pointer :: law
+      object = take_handle(h)
+      if (.not. c_associated(object)) return
+      call c_f_pointer(object, law)
+      deallocate (law)
+   end subroutine egw_flat_law_free
+
+   !> C: egw_solve_flat_law: the sphere solve (R, E* of p) with the rough-flat law.
+   function egw_solve_flat_law(p, h, o, delta, res) result(stat) &
+      & bind(C, name="egw_solve_flat_law")
+      type(c_ptr), value, intent(in) :: p, h, o, res
+      real(c_double), value, intent(in) :: delta
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(solve_result) :: result
+      type(table_flat_law), pointer :: law
+      type(egw_error), allocatable :: error
+      stat = require(res, "res")
+      if (stat == egw_ok) stat = require(h, "law")
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, law)
+      call solve_contact_law(params, law, options, delta, result, error)
+      stat = settle(error)
+      if (stat == egw_ok) call put_result(res, result)
+   end function egw_solve_flat_law
+
+end module egw_capi_flat_law

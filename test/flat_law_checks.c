@@ -1,0 +1,76 @@
+/* C tests of the rough-flat law entry points of include/egw.h (egw_flat_law_from_table,
+ * egw_flat_law_pressure, egw_flat_law_contact_area, egw_flat_law_info, egw_flat_law_free,
+ * egw_solve_flat_law) with good and bad input. Returns the number of failed checks and
+ * prints why; test/test_flat_law.f90 runs it. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "egw.h"
+
+static int failures;
+#define CHECK(cond) do { if (!(cond)) { failures++; \
+  printf("    C check failed at %s:%d: %s\n", __FILE__, __LINE__, #cond); } } while (0)
+static int last_error_names(const char *name) {
+  char buf[256];
+  if (egw_last_error(buf, (int)sizeof buf) < 1) return 0;
+  return strstr(buf, name) != NULL;
+}
+
+/* An exponential law p = p0 exp(-u/l) on a nearly rigid sphere (p0/E* = 1e-12): the force
+ * is 2 pi R p0 l exp(delta/l) (the integral of p over the rigid gap r^2/(2R) - delta);
+ * the half-space's deflection changes it by ~ p0 sqrt(R l)/(E* l) ~ 1e-10, so 1e-7. */
+int egw_capi_test_flat_law(void) {
+  const double l = 1e-6, p0 = 1.0, R = 1e-2, E = 1e12;
+  double u[2] = {0.0, 3e-6}, p[2], area[2] = {0.5, 0.1};
+  egw_flat_law law = NULL;
+  egw_params par;
+  egw_result res;
+  double pr, d, a, length, modulus, u_min, u_max;
+  int n, has_area;
+  failures = 0;
+  p[0] = p0;
+  p[1] = p0 * exp(-u[1] / l);
+  CHECK(egw_flat_law_from_table(u, p, NULL, area, 2, 0.0, E, &law) == EGW_OK);
+  CHECK(law != NULL);
+  CHECK(egw_flat_law_pressure(law, 5e-6, &pr, &d) == EGW_OK);
+  CHECK(fabs(pr - p0 * exp(-5.0)) <= 1e-13 * pr && fabs(d + pr / l) <= 1e-12 * pr / l);
+  CHECK(egw_flat_law_contact_area(law, 1.5e-6, &a) == EGW_OK && fabs(a - 0.3) < 1e-15);
+  CHECK(egw_flat_law_info(law, &n, &length, &modulus, &u_min, &u_max, &has_area) == EGW_OK);
+  CHECK(n == 2 && fabs(length - l) <= 1e-13 * l && modulus == E && u_min == 0.0 &&
+        u_max == 3e-6 && has_area == 1);
+  egw_params_default(&par);
+  par.radius = R;
+  par.modulus = E;
+  for (int k = 0; k < 3; k++) {
+    double delta = (k - 1) * 2e-6, exact = 2.0 * M_PI * R * p0 * l * exp(delta / l);
+    CHECK(egw_solve_flat_law(&par, law, NULL, delta, &res) == EGW_OK);
+    CHECK(fabs(res.force - exact) <= 1e-7 * exact);
+    CHECK(fabs(res.stiffness - exact / l) <= 1e-6 * exact / l);
+  }
+  /* bad input */
+  CHECK(egw_flat_law_pressure(law, NAN, &pr, NULL) == EGW_INVALID_ARGUMENT &&
+        last_error_names("u"));
+  par.modulus = 2.0 * E;
+  CHECK(egw_solve_flat_law(&par, law, NULL, 0.0, &res) == EGW_INVALID_PARAMETER &&
+        last_error_names("modulus"));
+  CHECK(egw_solve_flat_law(&par, NULL, NULL, 0.0, &res) == EGW_NULL_POINTER &&
+        last_error_names("law"));
+  egw_flat_law_free(&law);
+  CHECK(law == NULL);
+  egw_flat_law_free(&law);
+  egw_flat_law_free(NULL);
+  CHECK(egw_flat_law_from_table(u, p, NULL, NULL, 2, 0.0, 0.0, &law) == EGW_OK);
+  CHECK(egw_flat_law_contact_area(law, 1e-6, &a) == EGW_UNSUPPORTED);
+  egw_flat_law_free(&law);
+  u[1] = u[0];
+  CHECK(egw_flat_law_from_table(u, p, NULL, NULL, 2, 0.0, 0.0, &law) == EGW_INVALID_ARGUMENT
+        && last_error_names("u(2)") && law == NULL);
+  u[1] = 3e-6;
+  p[1] = 2.0 * p0;
+  CHECK(egw_flat_law_from_table(u, p, NULL, NULL, 2, 0.0, 0.0, &law) == EGW_INVALID_ARGUMENT
+        && last_error_names("p(2)") && law == NULL);
+  CHECK(egw_flat_law_from_table(u, p, NULL, NULL, 1, 0.0, 0.0, &law) == EGW_INVALID_ARGUMENT
+        && last_error_names("n = 1"));
+  CHECK(egw_flat_law_from_table(NULL, p, NULL, NULL, 2, 0.0, 0.0, &law) == EGW_NULL_POINTER);
+  return failures;
+}
