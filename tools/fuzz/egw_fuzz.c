@@ -585,6 +585,46 @@ static int r_profile(void) {
   return st;
 }
 
+/* a rough-flat law from a 3-node table (n clamped to the arrays' size), evaluated */
+static int r_flat_law(void) {
+  double u[3] = {0.0, 1e-6, 2e-6}, p[3] = {1e6, 3e5, 1e5}, a[3] = {0.3, 0.1, 0.02}, v[3];
+  egw_flat_law law;
+  int st, n = I(6, 3);
+  if (n > 3) n = 3;
+  u[1] = D(0, 1e-6);
+  p[1] = D(1, 3e5);
+  a[1] = D(2, 0.1);
+  sentinel(&law, sizeof law);
+  st = egw_flat_law_from_table(P(3, u), P(4, p), NULL, P(5, a), n, D(7, 0.0), D(8, 1e9),
+                               P(9, &law));
+  out_untouched(st, "*out", &law, sizeof law);
+  if (st != EGW_OK) return st;
+  sentinel(v, sizeof v);
+  st = egw_flat_law_pressure(law, D(10, 1.5e-6), &v[0], &v[1]);
+  out_doubles(st, 0, "pressure, dpdu", v, 2, 2 * sizeof *v);
+  sane(st, v[0] >= 0 && v[1] <= 0, "pressure < 0 or dp/du > 0", v[0]);
+  if (egw_flat_law_contact_area(law, D(10, 1.5e-6), &v[2]) == EGW_OK)
+    sane(EGW_OK, v[2] >= 0 && v[2] <= 1, "contact area outside [0, 1]", v[2]);
+  egw_flat_law_free(&law);
+  return st;
+}
+
+/* the sphere solve with an exponential flat law (length 1e-6 m, E* of p) */
+static int r_solve_flat_law(void) {
+  egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
+  egw_options o = options_at(9, 1e-4);
+  double u[2] = {0.0, 3e-6}, pr[2] = {1e7, 1e7 * exp(-3.0)};
+  egw_flat_law law = NULL;
+  egw_result r;
+  int st;
+  if (egw_flat_law_from_table(u, pr, NULL, NULL, 2, 0.0, 0.0, &law) != EGW_OK) return -1;
+  sentinel(&r, sizeof r);
+  st = egw_solve_flat_law(P(8, &p), P(15, law), P(14, &o), D(16, 1e-6), P(17, &r));
+  check_result(st, &r);
+  egw_flat_law_free(&law);
+  return st;
+}
+
 static int r_table_build(void) {
   egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
   egw_options o = options_at(9, 1e-3);
@@ -1214,6 +1254,15 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"delta", K_DBL},
       {"n", K_INT}, {"r[1]", K_DBL}, {"r", K_PTR}, {"pressure", K_PTR}, {"deflection", K_PTR}},
      r_profile, 1},
+    {"egw_flat_law_from_table, _pressure, _contact_area", 11,
+     {{"u[1]", K_DBL}, {"p[1]", K_DBL}, {"area[1]", K_DBL}, {"u", K_PTR}, {"p", K_PTR},
+      {"area", K_PTR}, {"n", K_INT}, {"length", K_DBL}, {"modulus", K_DBL}, {"out", K_PTR},
+      {"u (eval)", K_DBL}},
+     r_flat_law, 0},
+    {"egw_solve_flat_law", 18,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"law", K_PTR},
+      {"delta", K_DBL}, {"res", K_PTR}},
+     r_solve_flat_law, 1},
     {"egw_table_build E-GW", 19,
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"delta_min", K_DBL},
       {"delta_max", K_DBL}, {"rel_tol", K_DBL}, {"out", K_PTR}},

@@ -6,7 +6,7 @@ module egw_capi_flat_law
       & c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok, egw_unsupported, int_str
+   use egw_status, only: egw_error, egw_ok, egw_unsupported, format_real, int_str
    use egw_params, only: contact_params
    use egw_flat_law, only: table_flat_law, new_table_law
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact_law
@@ -72,6 +72,11 @@ contains
       if (stat /= egw_ok) return
       call c_f_pointer(h, law)
       call law%pressure([u], p, d)
+      if (p(1) >= huge(1.0_dp) .or. d(1) <= -huge(1.0_dp)) then
+         stat = invalid("u = "//format_real(u)//": the law's pressure or its derivative " &
+            & //"there is beyond the doubles")
+         return
+      end if
       call put(pressure, p(1))
       call put(dpdu, d(1))
    end function egw_flat_law_pressure

@@ -188,8 +188,21 @@ contains
       law%lnp = log(p)
       allocate (secant(n - 1), law%slope(n))
       secant = (law%lnp(2:) - law%lnp(:n - 1))/(u(2:) - u(:n - 1))
+      if (.not. all(ieee_is_finite(secant))) then
+         i = findloc(ieee_is_finite(secant), .false., dim=1)
+         call fatal_error(error, egw_invalid_argument, "u("//int_str(i + 1)//") = " &
+            & //format_real(u(i + 1))//": too close to u("//int_str(i)//") = " &
+            & //format_real(u(i))//" for the change of ln p between them (not finite)")
+         return
+      end if
       if (present(dpdu)) then
          law%slope = dpdu/p
+         if (.not. all(ieee_is_finite(law%slope))) then
+            i = findloc(ieee_is_finite(law%slope), .false., dim=1)
+            call fatal_error(error, egw_invalid_argument, "dpdu("//int_str(i)//") = " &
+               & //format_real(dpdu(i))//": d ln p/du = dpdu/p is not finite there")
+            return
+         end if
       else
          ! Fritsch-Carlson: the harmonic mean of the neighbouring secants (all < 0), the
          ! end secants at the ends: a monotone interpolant.
@@ -320,9 +333,10 @@ contains
                & + (1.0_dp - t)*(1.0_dp - 3.0_dp*t)*law%slope(k) &
                & + t*(3.0_dp*t - 2.0_dp)*law%slope(k + 1)
          end if
-         ! ln p beyond the doubles: p = 0 (far) or the largest double (deep).
+         ! ln p beyond the doubles: p = 0 (far) or the largest double (deep), and dp/du no
+         ! steeper than the largest double.
          p(i) = exp(min(lnp, log(huge(1.0_dp))))
-         dpdu(i) = p(i)*dlnp
+         dpdu(i) = -min(p(i)*abs(dlnp), huge(1.0_dp))
       end do
    end subroutine table_pressure
 
