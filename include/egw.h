@@ -50,12 +50,14 @@ enum {
   EGW_MODEL_HERTZ = 0, /* smooth spheres, closed form */
   EGW_MODEL_GW = 1,    /* classic Greenwood-Williamson / Greenwood-Tripp */
   EGW_MODEL_EGW = 2,   /* extended elastic GW */
-  EGW_MODEL_EPGW = 3   /* extended elasto-plastic GW (ZMC asperities) */
+  EGW_MODEL_EPGW = 3,  /* extended elasto-plastic GW (ZMC asperities) */
+  EGW_MODEL_FLAT_LAW = 4 /* a rough-flat law (egw_flat_law): in tables built from one; a
+                            solve needs the law (egw_solve_flat_law), not p alone */
 };
 
 /* Parameters of one contact (doc/theory.md section 1). */
 typedef struct {
-  int    model;          /* EGW_MODEL_HERTZ=0, EGW_MODEL_GW=1, EGW_MODEL_EGW=2, EGW_MODEL_EPGW=3 */
+  int    model;          /* EGW_MODEL_HERTZ=0, GW=1, EGW=2, EPGW=3 (FLAT_LAW=4: tables) */
   double radius;         /* equivalent radius R, 1/R = 1/R1 + 1/R2; > 0 */
   double modulus;        /* effective modulus E*, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2; > 0 */
   double sigma;          /* std of summit heights, sigma^2 = sigma1^2 + sigma2^2; 0 = smooth */
@@ -913,6 +915,18 @@ void egw_flat_law_free(egw_flat_law *law);
  * with another E* than p->modulus. Unloading is EP-GW's alone (egw_solve_unload). */
 int egw_solve_flat_law(const egw_params *p, egw_flat_law law, const egw_options *o,
                        double delta, egw_result *res);
+
+/* A 1-D force table (egw_table_build's machinery and tolerance) of the pair R =
+ * p->radius, E* = p->modulus with the law, delta the overlap with the law's reference
+ * plane. The table's model is EGW_MODEL_FLAT_LAW with sigma = the law's length; it is
+ * evaluated, written and read like any table (egw_table_eval, egw_table_write,
+ * egw_table_read: a file needs no law): below the cut-off the exponential continuation of
+ * the first node P = P_c exp((K_c/P_c)(delta - delta_c)), above the last node the
+ * deep-overlap asymptote, nodes at least to 10 lengths. Not cached on disk (a law is not
+ * a few numbers). Statuses as egw_table_build and egw_solve_flat_law. */
+int egw_table_build_flat_law(const egw_params *p, egw_flat_law law, const egw_options *o,
+                             double delta_min, double delta_max, double rel_tol,
+                             egw_table *out);
 
 #ifdef __cplusplus
 }

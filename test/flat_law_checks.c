@@ -1,10 +1,11 @@
 /* C tests of the rough-flat law entry points of include/egw.h (egw_flat_law_from_table,
  * egw_flat_law_pressure, egw_flat_law_contact_area, egw_flat_law_info, egw_flat_law_free,
- * egw_solve_flat_law) with good and bad input. Returns the number of failed checks and
- * prints why; test/test_flat_law.f90 runs it. */
+ * egw_solve_flat_law, egw_table_build_flat_law) with good and bad input. Returns the
+ * number of failed checks and prints why; test/test_flat_law.f90 runs it. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 #include "egw.h"
 
 static int failures;
@@ -46,6 +47,38 @@ int egw_capi_test_flat_law(void) {
     CHECK(egw_solve_flat_law(&par, law, NULL, delta, &res) == EGW_OK);
     CHECK(fabs(res.force - exact) <= 1e-7 * exact);
     CHECK(fabs(res.stiffness - exact / l) <= 1e-6 * exact / l);
+  }
+  /* a 1-D table of the same pair: within its tolerance 1e-6 of the closed form (plus the
+   * solves' 1e-7) from 8 lengths apart to 4 lengths in, the exponential tail below its
+   * cut-off (the law's own: within 1e-6 too), and the same after a file round trip */
+  {
+    egw_table t = NULL, back = NULL;
+    egw_table_info info;
+    char path[] = "build/flat_law_table_XXXXXX";
+    int fd = mkstemp(path);
+    CHECK(fd >= 0);
+    if (fd >= 0) close(fd);
+    CHECK(egw_table_build_flat_law(&par, law, NULL, -8e-6, 4e-6, 1e-6, &t) == EGW_OK);
+    CHECK(egw_table_get_info(t, &info) == EGW_OK && info.model == EGW_MODEL_FLAT_LAW);
+    CHECK(egw_table_write(t, path, EGW_FORMAT_BINARY) == EGW_OK);
+    CHECK(egw_table_read(path, &back) == EGW_OK);
+    remove(path);
+    for (int k = 0; k <= 60; k++) {
+      double delta = -40e-6 + k * 0.7e-6, exact = 2.0 * M_PI * R * p0 * l * exp(delta / l);
+      double f = -1.0, fb = -1.0, st = -1.0;
+      if (delta > 4e-6) break;
+      CHECK(egw_table_eval(t, delta, &f, &st) == EGW_OK);
+      CHECK(fabs(f - exact) <= 1.2e-6 * exact);
+      CHECK(fabs(st - exact / l) <= 1e-4 * exact / l);
+      CHECK(back != NULL && egw_table_eval(back, delta, &fb, NULL) == EGW_OK && fb == f);
+    }
+    egw_table_free(&t);
+    egw_table_free(&back);
+    egw_params bad = par;
+    bad.model = EGW_MODEL_FLAT_LAW;
+    CHECK(egw_solve(&bad, NULL, 0.0, &res) == EGW_INVALID_PARAMETER &&
+          last_error_names("flat law"));
+    CHECK(egw_table_build(&bad, NULL, -1e-6, 1e-6, 1e-4, &t) == EGW_INVALID_PARAMETER);
   }
   /* bad input */
   CHECK(egw_flat_law_pressure(law, NAN, &pr, NULL) == EGW_INVALID_ARGUMENT &&

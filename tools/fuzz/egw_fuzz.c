@@ -624,6 +624,27 @@ static int r_solve_flat_law(void) {
   egw_flat_law_free(&law);
   return st;
 }
+static int r_table_build_flat_law(void) {
+  egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
+  egw_options o = options_at(9, 1e-3);
+  double u[2] = {0.0, 3e-6}, pr[2] = {1e7, 1e7 * exp(-3.0)};
+  egw_flat_law law = NULL;
+  egw_table t;
+  int st;
+  if (egw_flat_law_from_table(u, pr, NULL, NULL, 2, 0.0, 0.0, &law) != EGW_OK) return -1;
+  sentinel(&t, sizeof t);
+  st = egw_table_build_flat_law(P(8, &p), P(15, law), P(14, &o), D(16, -3e-6), D(17, 2e-6),
+                                D(18, 1e-3), P(19, &t));
+  out_untouched(st, "*out", &t, sizeof t);
+  if (st == EGW_OK) {
+    double f = -1.0, k = -1.0;
+    egw_table_eval(t, 0.0, &f, &k);
+    sane(st, isfinite(f) && isfinite(k) && f >= 0, "flat-law table force at 0", f);
+    egw_table_free(&t);
+  }
+  egw_flat_law_free(&law);
+  return st;
+}
 
 static int r_table_build(void) {
   egw_params p = params_at(0, EGW_MODEL_EGW, 0.0);
@@ -1263,6 +1284,10 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"law", K_PTR},
       {"delta", K_DBL}, {"res", K_PTR}},
      r_solve_flat_law, 1},
+    {"egw_table_build_flat_law", 20,
+     {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"law", K_PTR},
+      {"delta_min", K_DBL}, {"delta_max", K_DBL}, {"rel_tol", K_DBL}, {"out", K_PTR}},
+     r_table_build_flat_law, 1},
     {"egw_table_build E-GW", 19,
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"delta_min", K_DBL},
       {"delta_max", K_DBL}, {"rel_tol", K_DBL}, {"out", K_PTR}},

@@ -10,13 +10,14 @@ module egw_capi_flat_law
    use egw_params, only: contact_params
    use egw_flat_law, only: table_flat_law, new_table_law
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact_law
+   use egw_table, only: force_table, build_table_law
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, &
       & double_array, read_contact, put, put_handle_settled, take_handle, put_result
    implicit none
    private
 
    public :: egw_flat_law_from_table, egw_flat_law_pressure, egw_flat_law_contact_area, &
-      & egw_flat_law_info, egw_flat_law_free, egw_solve_flat_law
+      & egw_flat_law_info, egw_flat_law_free, egw_solve_flat_law, egw_table_build_flat_law
 
 contains
 
@@ -157,5 +158,27 @@ contains
       stat = settle(error)
       if (stat == egw_ok) call put_result(res, result)
    end function egw_solve_flat_law
+
+   !> C: egw_table_build_flat_law: a 1-D force table of the sphere pair with the law.
+   function egw_table_build_flat_law(p, h, o, delta_min, delta_max, rel_tol, out) &
+      & result(stat) bind(C, name="egw_table_build_flat_law")
+      type(c_ptr), value, intent(in) :: p, h, o, out
+      real(c_double), value, intent(in) :: delta_min, delta_max, rel_tol
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      type(table_flat_law), pointer :: law
+      type(force_table), pointer :: t
+      type(egw_error), allocatable :: error
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = require(h, "law")
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, law)
+      allocate (t)
+      call build_table_law(params, law, options, delta_min, delta_max, rel_tol, t, error)
+      stat = put_handle_settled(out, c_loc(t), error)
+      if (stat /= egw_ok) deallocate (t)
+   end function egw_table_build_flat_law
 
 end module egw_capi_flat_law

@@ -12,6 +12,10 @@ module egw_params
    integer, parameter, public :: model_gw = 1     !< classic GW (Greenwood-Tripp)
    integer, parameter, public :: model_egw = 2    !< extended elastic GW
    integer, parameter, public :: model_epgw = 3   !< extended elasto-plastic GW (ZMC asperities)
+   !> a rough-flat law of the caller's (egw_flat_law: tabulated, Persson, BEM); its
+   !> parameters are R, E* and sigma = the law's length. Only the solves and tables
+   !> that take a law accept it (validate_params' allow_flat_law).
+   integer, parameter, public :: model_flat_law = 4
 
    !> Parameters of one contact. Field order and meaning match the C struct egw_params.
    type, public :: contact_params
@@ -57,14 +61,25 @@ contains
    !> Check every field, whatever the model (fields a model ignores must still be sane,
    !> so that switching model never turns garbage into physics). On failure the message
    !> names the parameter and its value.
-   pure subroutine validate_params(params, error)
+   pure subroutine validate_params(params, error, allow_flat_law)
       type(contact_params), intent(in) :: params   !< the parameters to check
       !> allocated, naming the field, when one is invalid
       type(egw_error), allocatable, intent(out) :: error
+      !> model_flat_law is valid here (a solve or table that has the law; a table file)
+      logical, intent(in), optional :: allow_flat_law
+      logical :: flat_ok
 
-      if (params%model < model_hertz .or. params%model > model_epgw) then
+      flat_ok = .false.
+      if (present(allow_flat_law)) flat_ok = allow_flat_law
+      if (params%model == model_flat_law .and. .not. flat_ok) then
+         call fatal_error(error, egw_invalid_parameter, "model = 4 (flat law): a rough-" &
+            & //"flat law is solved with its law (solve_contact_law, egw_solve_flat_law, " &
+            & //"egw_table_build_flat_law), not from parameters alone")
+         return
+      end if
+      if (params%model < model_hertz .or. params%model > model_flat_law) then
          call fatal_error(error, egw_invalid_parameter, "model = "//int_str(params%model) &
-            & //": unknown model (0 Hertz, 1 GW, 2 E-GW, 3 EP-GW)")
+            & //": unknown model (0 Hertz, 1 GW, 2 E-GW, 3 EP-GW, 4 flat law)")
          return
       end if
       if (.not. positive_finite(params%radius)) then
@@ -256,6 +271,7 @@ contains
       case (model_gw);    name = "GW"
       case (model_egw);   name = "E-GW"
       case (model_epgw);  name = "EP-GW"
+      case (model_flat_law); name = "flat law"
       case default;       name = "unknown"
       end select
    end function model_label

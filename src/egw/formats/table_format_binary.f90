@@ -106,7 +106,8 @@ contains
       call get_f64(bytes, pos, t%stiffness)
       call get_f64(bytes, pos, t%energy)
       call get_f64(bytes, pos, t%contact_radius)
-      call validate_params(t%params, error)
+      ! (a table of a flat law is a table like any other: its tail needs no law)
+      call validate_params(t%params, error, allow_flat_law=.true.)
       if (allocated(error)) then
          call bad(error, path, "stored parameters invalid: "//error%message)
          return

@@ -342,7 +342,7 @@ contains
       if (.not. allocated(error)) call get_real(path, dict, "plastic_ratio", &
          & p%plastic_ratio, error)
       if (allocated(error)) return
-      call validate_params(p, error)
+      call validate_params(p, error, allow_flat_law=.true.)   ! a flat law's table too
       if (allocated(error)) call bad(error, path, "stored parameters invalid: "//error%message)
    end subroutine get_params
 

@@ -16,7 +16,7 @@ module egw_rough_sphere
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_not_converged, fatal_error, &
       & format_real, int_str
-   use egw_params, only: contact_params, validate_params, model_hertz, model_gw, &
+   use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_flat_law, &
       & check_scaled_overlap, length_unit, pressure_unit, force_unit, stiffness_unit, product4
    use egw_smooth_sphere, only: hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
@@ -177,9 +177,9 @@ contains
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
 
-      lp = contact_params(model=model_gw, radius=params%radius, modulus=params%modulus, &
-         & sigma=law%length())
-      call check_input(lp, options, delta, error)
+      lp = contact_params(model=model_flat_law, radius=params%radius, &
+         & modulus=params%modulus, sigma=law%length())
+      call check_input(lp, options, delta, error, allow_flat_law=.true.)
       if (allocated(error)) then
          error%message = "flat law of length "//format_real(law%length())//": " &
             & //error%message
@@ -633,12 +633,13 @@ contains
       end do
    end subroutine profile_values
 
-   pure subroutine check_input(params, options, delta, error)
+   pure subroutine check_input(params, options, delta, error, allow_flat_law)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta
       type(egw_error), allocatable, intent(out) :: error
-      call validate_params(params, error)
+      logical, intent(in), optional :: allow_flat_law   !< the caller has the law
+      call validate_params(params, error, allow_flat_law)
       if (allocated(error)) return
       call validate_options(options, error)
       if (allocated(error)) return

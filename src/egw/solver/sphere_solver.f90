@@ -195,7 +195,8 @@ contains
       ! into the mesh: solve at 0 (continuous: at x = 1e-300 the force equals P(0)).
       if (abs(prob%delta) < tiny(1.0_dp)) prob%delta = 0.0_dp
       prob%a = sqrt(max(prob%delta, 0.0_dp))
-      prob%extended = params%model /= model_gw .and. prob%delta > 0.0_dp
+      prob%extended = (params%model == model_egw .or. params%model == model_epgw) .and. &
+         & prob%delta > 0.0_dp
       prob%scale = params%mu/(2.0_dp*sqrt2)
       prob%psi = 0.0_dp
       if (params%model == model_epgw) prob%psi = params%psi

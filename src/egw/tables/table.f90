@@ -30,14 +30,15 @@ module egw_table
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
       & format_real, int_str, tolerance_context
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw, check_scaled_overlap
-   use egw_rough_sphere, only: solver_options, solve_result, solve_contact
+      & model_epgw, model_flat_law, check_scaled_overlap
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_law
+   use egw_flat_law, only: flat_law
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
    use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor
    implicit none
    private
 
-   public :: build_table, build_table_fixed_cutoff, build_tables_shared, table_interval, &
+   public :: build_table, build_table_law, build_table_fixed_cutoff, build_tables_shared, table_interval, &
       & table_eval, table_eval_cached, table_segment, segment_eval, table_eval_log, &
       & table_eval_all, &
       & table_covers, table_energy, &
@@ -157,26 +158,61 @@ contains
       type(force_table), intent(out) :: table   !< the table; empty on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       procedure(table_progress), optional :: progress   !< optional hook (table_progress)
+      call build_1d(params, options, delta_min, delta_max, rel_tol, table, error, progress)
+   end subroutine build_table
+
+   !> build_table for a sphere pair whose local pressure is a rough-flat law (doc/theory.md
+   !> §10; solve_contact_law): R and E* from params, delta the overlap with the law's
+   !> reference plane. The table's params are model_flat_law with sigma the law's length;
+   !> below the cut-off its tail is the exponential continuation of the first node,
+   !> P = P_c exp((K_c/P_c)(delta - delta_c)) (the rigid sphere on the law's own
+   !> exponential large-separation end), above the last node the deep-overlap asymptote
+   !> as for classic GW (both laws give the whole pressure), nodes up to 10 length units.
+   subroutine build_table_law(params, law, options, delta_min, delta_max, rel_tol, table, &
+      & error, progress)
+      type(contact_params), intent(in) :: params   !< radius R and modulus E* of the pair
+      class(flat_law), intent(in) :: law           !< the rough-flat law
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol   !< as build_table
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
+      type(contact_params) :: lp
+      lp = contact_params(model=model_flat_law, radius=params%radius, &
+         & modulus=params%modulus, sigma=law%length())
+      call build_1d(lp, options, delta_min, delta_max, rel_tol, table, error, progress, law)
+   end subroutine build_table_law
+
+   !> The 1-D build of build_table and build_table_law (law present: solves with it).
+   subroutine build_1d(params, options, delta_min, delta_max, rel_tol, table, error, &
+      & progress, law)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol
+      type(force_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
+      class(flat_law), intent(in), optional :: law
       type(solver_options) :: opts
       real(dp) :: cutoff, p_ref
       type(force_table) :: tables(1)
       integer :: n_solves
 
-      call check_request(params, delta_min, delta_max, rel_tol, error)
+      call check_request(params, delta_min, delta_max, rel_tol, error, present(law))
       if (allocated(error)) return
       opts = point_options(options, rel_tol)
       call find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, n_solves, &
-         & error)
+         & error, law)
       ! nodes at least up to where the deep-overlap law above the last node holds its 1 %
       if (.not. allocated(error)) call build_shared_nodes([params], opts, cutoff, &
          & max(delta_max, deep_law_floor(params)), rel_tol, [p_ref], .false., tables, error, &
-         & n_solves, progress)
+         & n_solves, progress, law)
       if (allocated(error)) then
          call tolerance_context(error, "table", rel_tol, opts%rel_tol)   ! the caller's terms
          return
       end if
       table = tables(1)
-   end subroutine build_table
+   end subroutine build_1d
 
    !> Build a table whose cut-off is fixed at cutoff (used by the universal table,
    !> whose slices share one cut-off). P_ref is computed as in build_table. With
@@ -258,13 +294,14 @@ contains
 
    !> table_find_cutoff, also counting its solves (n_solves, for progress reports).
    subroutine find_cutoff(params, options, delta_min, delta_max, rel_tol, cutoff, p_ref, &
-      & n_solves, error)
+      & n_solves, error, law)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
       real(dp), intent(out) :: cutoff, p_ref
       integer, intent(out) :: n_solves
       type(egw_error), allocatable, intent(out) :: error
+      class(flat_law), intent(in), optional :: law   !< solves with this law
       real(dp) :: lo, hi, p_lo, k, a, target, step, d_ref, xs(2), ps(2, 1), ks(2, 1), &
          & as(2, 1)
       integer :: it, j
@@ -274,7 +311,7 @@ contains
       lo = min(delta_min, d_ref)
       ! P_ref and the force at delta_min together (solve_grid: in parallel)
       n_solves = 2
-      call solve_grid([params], options, [d_ref, lo], ps, ks, as, error)
+      call solve_grid([params], options, [d_ref, lo], ps, ks, as, error, law)
       if (allocated(error)) return
       p_ref = ps(1, 1)
       p_lo = ps(2, 1)
@@ -299,7 +336,7 @@ contains
          lo = lo - step
          step = 2*step
          n_solves = n_solves + 1
-         call solve_point(params, options, lo, p_lo, k, a, error)
+         call solve_point(params, options, lo, p_lo, k, a, error, law)
          if (allocated(error)) return
       end do
       ! trisection: two solves per step in parallel shrink the bracket 3x per solve
@@ -311,7 +348,7 @@ contains
          xs = [lo + (hi - lo)/3, lo + 2*(hi - lo)/3]
          if (.not. (xs(1) > lo .and. xs(2) > xs(1) .and. hi > xs(2))) exit
          n_solves = n_solves + 2
-         call solve_grid([params], options, xs, ps, ks, as, error)
+         call solve_grid([params], options, xs, ps, ks, as, error, law)
          if (allocated(error)) return
          do j = 2, 1, -1
             if (.not. ps(j, 1) > target) exit
@@ -350,7 +387,7 @@ contains
    !> set is the ordinary 1-D build. n_solves: solves done before (counted on in place, for
    !> the optional progress hook, which is called after every batch of solves).
    subroutine build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, &
-      & tables, error, n_solves, progress)
+      & tables, error, n_solves, progress, law)
       type(contact_params), intent(in) :: params(:)
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: cutoff, delta_max, rel_tol, p_ref(:)
@@ -359,6 +396,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       integer, intent(inout) :: n_solves
       procedure(table_progress), optional :: progress
+      class(flat_law), intent(in), optional :: law   !< solves with this law (one set)
       real(dp), allocatable :: x(:), f(:, :), k(:, :), a(:, :), xm(:), fm(:, :), km(:, :)
       real(dp), allocatable :: am(:, :), err_f(:), err_k(:)
       logical, allocatable :: accepted(:), split(:)
@@ -369,7 +407,7 @@ contains
       call initial_nodes(params(1), cutoff, delta_max, x)
       n = size(x)
       allocate (f(n, ns), k(n, ns), a(n, ns))
-      call solve_grid(params, opts, x, f, k, a, error)
+      call solve_grid(params, opts, x, f, k, a, error, law)
       if (allocated(error)) return
       n_solves = n_solves + n*ns
       ! pending: one midpoint solve per set for each of the n - 1 unchecked intervals
@@ -399,7 +437,7 @@ contains
             return
          end if
          allocate (fm(m, ns), km(m, ns), am(m, ns), split(m))
-         call solve_grid(params, opts, xm, fm, km, am, error)
+         call solve_grid(params, opts, xm, fm, km, am, error, law)
          if (allocated(error)) return
          call check_midpoints(params, rel_tol, log_all, x, f, k, todo, xm, fm, km, split, &
             & err_f, err_k)
@@ -660,7 +698,9 @@ contains
       real(dp), intent(in) :: delta_c, p_c, k_c    !< first node: overlap, force, stiffness
       real(dp), intent(in) :: delta                !< overlap [length], < delta_c
       real(dp), intent(out) :: force, stiffness
-      if (is_rough(params)) then
+      if (params%model == model_flat_law) then
+         call exponential_tail(delta_c, p_c, k_c, delta, force, stiffness)
+      else if (is_rough(params)) then
          call tail_force(delta_c, p_c, k_c, params%sigma, plastic_summits(params), delta, &
             & force, stiffness)
       else if (delta > 0.0_dp .and. delta_c > 0.0_dp) then
@@ -671,6 +711,18 @@ contains
          stiffness = 0.0_dp
       end if
    end subroutine below_cutoff
+
+   !> The tail of a flat-law table below its cut-off: P = p_c exp((k_c/p_c)(delta -
+   !> delta_c)), C1 at delta_c, 0 as delta -> -inf (and for p_c or k_c not positive).
+   pure subroutine exponential_tail(delta_c, p_c, k_c, delta, force, stiffness)
+      real(dp), intent(in) :: delta_c, p_c, k_c, delta
+      real(dp), intent(out) :: force, stiffness
+      force = 0.0_dp
+      stiffness = 0.0_dp
+      if (.not. (p_c > 0.0_dp .and. k_c > 0.0_dp)) return
+      force = p_c*exp((k_c/p_c)*(delta - delta_c))
+      stiffness = force*(k_c/p_c)
+   end subroutine exponential_tail
 
    !> table_eval through the caller's copy seg of the interval last used (table_segment's
    !> layout; anything else, e.g. NaN ends, is a miss), refilled when delta leaves it: the
@@ -1172,12 +1224,13 @@ contains
    end subroutine initial_nodes
 
    !> Solve every (point, parameter set) pair in parallel (solver threads off).
-   subroutine solve_grid(params, opts, x, f, k, a, error)
+   subroutine solve_grid(params, opts, x, f, k, a, error, law)
       type(contact_params), intent(in) :: params(:)
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: x(:)
       real(dp), intent(out) :: f(:, :), k(:, :), a(:, :)
       type(egw_error), allocatable, intent(out) :: error
+      class(flat_law), intent(in), optional :: law   !< solves with this law
       integer, allocatable :: stat(:, :)
       integer :: i, s, idx, nx
       nx = size(x)
@@ -1186,14 +1239,14 @@ contains
       do idx = 1, nx*size(params)
          i = mod(idx - 1, nx) + 1
          s = (idx - 1)/nx + 1
-         call solve_quiet(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), stat(i, s))
+         call solve_quiet(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), stat(i, s), law)
       end do
       !$omp end parallel do
       do s = 1, size(params)
          do i = 1, nx
             if (stat(i, s) /= 0) then
                ! redo the first failure serially to recover its message
-               call solve_point(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), error)
+               call solve_point(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), error, law)
                if (.not. allocated(error)) call fatal_error(error, stat(i, s), "delta = "// &
                   & format_real(x(i))//": solve failed while building the table")
                return
@@ -1202,26 +1255,32 @@ contains
       end do
    end subroutine solve_grid
 
-   subroutine solve_quiet(params, opts, x, f, k, a, stat)
+   subroutine solve_quiet(params, opts, x, f, k, a, stat, law)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: x
       real(dp), intent(out) :: f, k, a
       integer, intent(out) :: stat
+      class(flat_law), intent(in), optional :: law
       type(egw_error), allocatable :: error
-      call solve_point(params, opts, x, f, k, a, error)
+      call solve_point(params, opts, x, f, k, a, error, law)
       stat = 0
       if (allocated(error)) stat = error%stat
    end subroutine solve_quiet
 
-   subroutine solve_point(params, opts, x, f, k, a, error)
+   subroutine solve_point(params, opts, x, f, k, a, error, law)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: x
       real(dp), intent(out) :: f, k, a
       type(egw_error), allocatable, intent(out) :: error
+      class(flat_law), intent(in), optional :: law   !< (params: R, E* of the pair)
       type(solve_result) :: res
-      call solve_contact(params, opts, x, res, error)
+      if (present(law)) then
+         call solve_contact_law(params, law, opts, x, res, error)
+      else
+         call solve_contact(params, opts, x, res, error)
+      end if
       f = res%force
       k = res%stiffness
       a = res%contact_radius
@@ -1232,11 +1291,12 @@ contains
       end if
    end subroutine solve_point
 
-   pure subroutine check_request(params, delta_min, delta_max, rel_tol, error)
+   pure subroutine check_request(params, delta_min, delta_max, rel_tol, error, with_law)
       type(contact_params), intent(in) :: params
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
       type(egw_error), allocatable, intent(out) :: error
-      call validate_params(params, error)
+      logical, intent(in), optional :: with_law   !< the build has the law (model_flat_law)
+      call validate_params(params, error, with_law)
       if (allocated(error)) return
       if (.not. ieee_is_finite(delta_min)) then
          call fatal_error(error, egw_invalid_argument, "delta_min = "// &
@@ -1286,7 +1346,7 @@ contains
    elemental real(dp) function deep_law_floor_x(model) result(x)
       integer, intent(in) :: model
       x = -huge(1.0_dp)
-      if (model == model_gw) x = 10.0_dp
+      if (model == model_gw .or. model == model_flat_law) x = 10.0_dp
       if (model == model_egw .or. model == model_epgw) x = 2.0_dp
    end function deep_law_floor_x
 
