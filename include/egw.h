@@ -910,7 +910,8 @@ void egw_flat_law_free(egw_flat_law *law);
 
 /* The loading solve of a sphere pair with a rough-flat law: R = p->radius, E* =
  * p->modulus (the other fields of p must be valid, as egw_params_default leaves them, and
- * are not used), delta [length] the overlap with the law's reference plane. Results,
+ * are not used; p->model may be EGW_MODEL_FLAT_LAW), delta [length] the overlap with the
+ * law's reference plane. Results,
  * options and statuses as egw_solve, plus EGW_INVALID_PARAMETER when the law was made
  * with another E* than p->modulus. Unloading is EP-GW's alone (egw_solve_unload). */
 int egw_solve_flat_law(const egw_params *p, egw_flat_law law, const egw_options *o,

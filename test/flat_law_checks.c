@@ -79,6 +79,8 @@ int egw_capi_test_flat_law(void) {
     CHECK(egw_solve(&bad, NULL, 0.0, &res) == EGW_INVALID_PARAMETER &&
           last_error_names("flat law"));
     CHECK(egw_table_build(&bad, NULL, -1e-6, 1e-6, 1e-4, &t) == EGW_INVALID_PARAMETER);
+    CHECK(egw_solve_flat_law(&bad, law, NULL, 0.0, &res) == EGW_OK &&
+          fabs(res.force - 2.0 * M_PI * R * p0 * l) <= 1e-7 * res.force);
   }
   /* bad input */
   CHECK(egw_flat_law_pressure(law, NAN, &pr, NULL) == EGW_INVALID_ARGUMENT &&

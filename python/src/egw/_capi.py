@@ -170,6 +170,16 @@ _SIGNATURES = {
                                          c_int, _ip]),
     "egw_time_step_array": (c_int, [_P, c_int, _O, c_int, _dp, c_int, _dp, c_int, c_double,
                                     _dp, _dp, c_int, _ip]),
+    # rough-flat laws (egw.h "Rough-flat laws beyond GW")
+    "egw_flat_law_from_table": (c_int, [_dp, _dp, _dp, _dp, c_int, c_double, c_double,
+                                        POINTER(c_void_p)]),
+    "egw_flat_law_pressure": (c_int, [c_void_p, c_double, _dp, _dp]),
+    "egw_flat_law_contact_area": (c_int, [c_void_p, c_double, _dp]),
+    "egw_flat_law_info": (c_int, [c_void_p, _ip, _dp, _dp, _dp, _dp, _ip]),
+    "egw_flat_law_free": (None, [POINTER(c_void_p)]),
+    "egw_solve_flat_law": (c_int, [_P, c_void_p, _O, c_double, POINTER(Result)]),
+    "egw_table_build_flat_law": (c_int, [_P, c_void_p, _O, c_double, c_double, c_double,
+                                         POINTER(c_void_p)]),
 }
 
 for _name, (_res, _args) in _SIGNATURES.items():

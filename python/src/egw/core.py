@@ -32,7 +32,7 @@ FloatOrArray = Union[float, NDArray[np.float64]]
 OK, INVALID_ARGUMENT, INVALID_PARAMETER, NOT_CONVERGED = 0, 1, 2, 3
 IO_ERROR, BAD_FILE, OUT_OF_MEMORY, NULL_POINTER, OUT_OF_RANGE, UNSUPPORTED = 4, 5, 6, 7, 8, 9
 
-MODELS = {"Hertz": 0, "GW": 1, "E-GW": 2, "EP-GW": 3}
+MODELS = {"Hertz": 0, "GW": 1, "E-GW": 2, "EP-GW": 3, "flat law": 4}
 METHODS = {"auto": 0, "newton": 1, "picard": 2}
 
 
@@ -214,8 +214,8 @@ class Params:
 
     Parameters
     ----------
-    model : {"Hertz", "GW", "E-GW", "EP-GW"} or int 0..3
-        Contact model (default "E-GW").
+    model : {"Hertz", "GW", "E-GW", "EP-GW", "flat law"} or int 0..4
+        Contact model (default "E-GW"; "flat law" with a ``flat_law``, which sets it).
     radius : float or array, > 0
         Equivalent radius R = R1 R2/(R1 + R2) [length] (default 1).
     modulus : float or array, > 0
@@ -232,6 +232,11 @@ class Params:
         ZMC coefficient K (H = K x hardness at the onset of yield; default 0.6).
     plastic_ratio : float or array, > 1
         rho_p, fully plastic over initial yield interference (default 54).
+    flat_law : FlatLaw, optional
+        A rough-flat law (:class:`egw.FlatLaw`: tabulated, Persson, BEM) in place of the
+        GW models' law of independent summits: the model becomes "flat law", only radius
+        and modulus are used (scalars), sigma is set to the law's length, and delta is the
+        overlap with the law's reference plane (the mean plane of the heights).
 
     Raises
     ------
@@ -255,9 +260,15 @@ class Params:
     psi: FloatOrArray = 0.0
     hardness_coeff: FloatOrArray = 0.6
     plastic_ratio: FloatOrArray = 54.0
+    flat_law: Optional[object] = None
 
     def __post_init__(self) -> None:
         self.model = _model_name(self.model)
+        if self.flat_law is not None:
+            self._take_flat_law()
+        elif self.model == "flat law":
+            raise InvalidArgumentError(INVALID_PARAMETER, "model = 'flat law' needs "
+                                       "flat_law = an egw.FlatLaw")
         scalar = True
         for name in _FIELDS:
             a = _number_array(name, getattr(self, name))
@@ -274,12 +285,24 @@ class Params:
             raise InvalidArgumentError(INVALID_PARAMETER, "the array fields of Params do "
                                        f"not broadcast together: {exc}") from None
         self._check_bounds()
-        if scalar:
+        if scalar and self.model != "flat law":
             check(lib.egw_params_validate(ctypes.byref(self.to_c())))
         if self.model != "EP-GW" and np.any(np.asarray(self.psi) > 0):
             warnings.warn(f"psi = {self.psi}: the plasticity index is used by EP-GW only; "
                           f"model {self.model!r} ignores it", IgnoredParameterWarning,
                           stacklevel=3)
+
+    def _take_flat_law(self) -> None:
+        from .flat_law import FlatLaw
+        if not isinstance(self.flat_law, FlatLaw):
+            raise TypeError(f"flat_law must be an egw.FlatLaw, not "
+                            f"{type(self.flat_law).__name__}")
+        if self.model not in ("E-GW", "flat law"):
+            raise InvalidArgumentError(INVALID_PARAMETER, f"model = {self.model!r} with a "
+                                       "flat_law: the law replaces the model (leave model "
+                                       "out, or give 'flat law')")
+        self.model = "flat law"
+        self.sigma = self.flat_law.length
 
     def _check_bounds(self) -> None:
         for name, (low, strict) in _BOUNDS.items():
@@ -347,13 +370,13 @@ class Params:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Params):
             return NotImplemented
-        return self.model == other.model and all(
+        return self.model == other.model and self.flat_law is other.flat_law and all(
             np.array_equal(getattr(self, f), getattr(other, f)) for f in _FIELDS)
 
 
 def _model_name(model) -> str:
     if isinstance(model, (bool, np.bool_)) or not isinstance(model, (str, int, np.integer)):
-        raise TypeError(f"model = {model!r}: must be one of {list(MODELS)} or 0..3")
+        raise TypeError(f"model = {model!r}: must be one of {list(MODELS)} or 0..4")
     if isinstance(model, str):
         if model not in MODELS:
             raise InvalidArgumentError(
@@ -362,7 +385,7 @@ def _model_name(model) -> str:
     names = {v: k for k, v in MODELS.items()}
     if int(model) not in names:
         raise InvalidArgumentError(INVALID_PARAMETER,
-                                   f"model = {model}: must be 0..3 ({list(MODELS)})")
+                                   f"model = {model}: must be 0..4 ({list(MODELS)})")
     return names[int(model)]
 
 
@@ -850,8 +873,43 @@ def solve(params: Params, delta: ArrayLike, options: Optional[Options] = None) -
     NotConvergedError
         A solve did not reach its tolerance.
     """
+    if isinstance(params, Params) and params.flat_law is not None:
+        return _solve_flat_law(params, delta, options)
     single = _single(params, delta, None, options)
     return single if single is not None else _solve(params, delta, None, options)
+
+
+def _solve_flat_law(params: Params, delta: ArrayLike, options: Optional[Options]
+                    ) -> SolveResult:
+    """solve() with a rough-flat law: egw_solve_flat_law at each overlap (scalar params)."""
+    if not params.is_scalar:
+        raise TypeError("Params with a flat_law takes scalar radius and modulus")
+    d = np.asarray(_number_array("delta", delta), dtype=np.float64)
+    p, o = params.to_c(), _options(options)
+    law = params.flat_law._ptr
+    out = np.full((5,) + d.shape, np.nan)
+    iters = np.full(d.shape, -1, dtype=np.int64)
+    res = _capi.Result()
+    failed = 0
+    for i, x in enumerate(d.reshape(-1)):
+        status = lib.egw_solve_flat_law(ctypes.byref(p), law, o, float(x), ctypes.byref(res))
+        if status != OK:
+            if _FAILED.get() == "raise":
+                message = last_error()
+                raise _exception(status, message if d.ndim == 0 else
+                                 f"index {np.unravel_index(i, d.shape)}: {message}")
+            failed += 1
+            continue
+        for k, v in enumerate((res.force, res.stiffness, res.contact_radius, res.max_pressure,
+                               res.est_rel_err)):
+            out[k].reshape(-1)[i] = v
+        iters.reshape(-1)[i] = res.iterations
+    if failed and _FAILED.get() == "warn":
+        warnings.warn(f"{failed} of {d.size} points failed and are NaN", PointFailedWarning,
+                      stacklevel=3)
+    if d.ndim == 0:
+        return SolveResult(*(float(out[k]) for k in range(5)), int(iters))
+    return SolveResult(*(out[k] for k in range(5)), iters)
 
 
 def solve_unload(params: Params, delta: ArrayLike, delta_max: ArrayLike,

@@ -97,7 +97,8 @@ class Table(_Handle):
         Parameters
         ----------
         params : Params
-            Scalar fields.
+            Scalar fields; with a ``flat_law`` the table of that law
+            (egw_table_build_flat_law: delta from the law's reference plane).
         delta_min, delta_max : float
             Overlap range [length] (delta > 0 pressed together, < 0 apart, from the mean
             summit plane); the table starts at the cut-off if that lies lower.
@@ -116,6 +117,12 @@ class Table(_Handle):
         """
         p = _params(params)
         h = ctypes.c_void_p()
+        if params.flat_law is not None:
+            check(lib.egw_table_build_flat_law(ctypes.byref(p), params.flat_law._ptr,
+                                               _options(options), float(delta_min),
+                                               float(delta_max), float(rel_tol),
+                                               ctypes.byref(h)))
+            return cls(h)
         check(lib.egw_table_build(ctypes.byref(p), _options(options), float(delta_min),
                                   float(delta_max), float(rel_tol), ctypes.byref(h)))
         return cls(h)

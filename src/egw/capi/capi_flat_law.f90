@@ -151,7 +151,7 @@ contains
       type(egw_error), allocatable :: error
       stat = require(res, "res")
       if (stat == egw_ok) stat = require(h, "law")
-      if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat == egw_ok) stat = read_contact(p, o, params, options, allow_flat_law=.true.)
       if (stat /= egw_ok) return
       call c_f_pointer(h, law)
       call solve_contact_law(params, law, options, delta, result, error)
@@ -172,7 +172,7 @@ contains
       type(egw_error), allocatable :: error
       stat = require(out, "out")
       if (stat == egw_ok) stat = require(h, "law")
-      if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat == egw_ok) stat = read_contact(p, o, params, options, allow_flat_law=.true.)
       if (stat /= egw_ok) return
       call c_f_pointer(h, law)
       allocate (t)

@@ -131,16 +131,17 @@ contains
    end function from_params
 
    !> Read and validate a const egw_params*.
-   integer(c_int) function read_params(p, params) result(stat)
+   integer(c_int) function read_params(p, params, allow_flat_law) result(stat)
       type(c_ptr), intent(in) :: p
       type(contact_params), intent(out) :: params
+      logical, intent(in), optional :: allow_flat_law   !< EGW_MODEL_FLAT_LAW is valid
       type(egw_params_c), pointer :: cp
       type(egw_error), allocatable :: error
       stat = require(p, "p")
       if (stat /= egw_ok) return
       call c_f_pointer(p, cp)
       params = to_params(cp)
-      call validate_params(params, error)
+      call validate_params(params, error, allow_flat_law)
       stat = settle(error)
    end function read_params
 
@@ -160,12 +161,13 @@ contains
 
    !> The inputs of a solve: validated params from p (read_params), options from the
    !> nullable o (read_options, read only when p passed).
-   integer(c_int) function read_contact(p, o, params, options) result(stat)
+   integer(c_int) function read_contact(p, o, params, options, allow_flat_law) result(stat)
       type(c_ptr), intent(in) :: p   !< const egw_params*
       type(c_ptr), intent(in) :: o   !< const egw_options* (NULL: defaults)
       type(contact_params), intent(out) :: params
       type(solver_options), intent(out) :: options
-      stat = read_params(p, params)
+      logical, intent(in), optional :: allow_flat_law   !< EGW_MODEL_FLAT_LAW is valid
+      stat = read_params(p, params, allow_flat_law)
       if (stat == egw_ok) call read_options(o, options)
    end function read_contact
 
