@@ -17,6 +17,7 @@ from .core import (EgwError, FileError, IgnoredParameterWarning, InvalidArgument
                    time_step, version)
 from .scene import ModelChoice, Scene, build, choose
 from .tables import HysteresisInfo, HysteresisTable, Table, TableInfo, UniversalTable
+from .flat_law import FlatLaw
 from . import topography
 from .topography import contact_from_topography, psi_from_hardness
 
@@ -29,4 +30,4 @@ __all__ = ["EgwError", "FileError", "InvalidArgumentError", "NotConvergedError",
            "ModelChoice", "Scene", "build", "choose", "HysteresisInfo", "HysteresisTable", "Table",
            "TableInfo", "UniversalTable", "topography", "psi_from_hardness",
            "IgnoredParameterWarning", "PointFailedWarning", "TimeStep", "effective_modulus",
-           "errstate", "time_step", "contact_from_topography"]
+           "errstate", "time_step", "contact_from_topography", "FlatLaw"]

@@ -1,0 +1,68 @@
+"""egw.FlatLaw and Params(flat_law=...): tabulated rough-flat laws through the sphere solve
+and the 1-D table, checked against closed forms of an exponential law."""
+import math
+
+import numpy as np
+import pytest
+
+import egw
+
+L, P0, R, E = 1e-6, 1.0, 1e-2, 1e12
+
+
+def exponential_law(**kw):
+    u = np.array([0.0, 1e-6, 3e-6])
+    return egw.FlatLaw.from_table(u, P0 * np.exp(-u / L), **kw)
+
+
+def test_pressure_exact_for_an_exponential():
+    # ln p linear: the Hermite pieces and both continuations are that line (1e-14)
+    law = exponential_law(area=[0.5, 0.3, 0.1])
+    u = np.linspace(-2e-6, 8e-6, 11).reshape(11, 1)
+    p, d = law.pressure(u, derivative=True)
+    assert p.shape == (11, 1)
+    np.testing.assert_allclose(p, P0 * np.exp(-u / L), rtol=1e-14)
+    np.testing.assert_allclose(d, -p / L, rtol=1e-13)
+    assert isinstance(law.pressure(1e-6), float)
+    assert law.contact_area(2e-6) == pytest.approx(0.2, abs=1e-15)   # linear between nodes
+    assert law.length == pytest.approx(L, rel=1e-13)
+    assert law.separation_range == (0.0, 3e-6) and law.has_area
+
+
+def test_sphere_on_exponential_law():
+    # nearly rigid sphere (p0/E* = 1e-12): P = 2 pi R p0 l exp(delta/l) to ~1e-10
+    law = exponential_law(modulus=E)
+    p = egw.Params(radius=R, modulus=E, flat_law=law)
+    assert p.model == "flat law" and p.sigma == pytest.approx(L)
+    delta = np.array([-2e-6, 0.0, 2e-6])
+    r = egw.solve(p, delta)
+    exact = 2 * math.pi * R * P0 * L * np.exp(delta / L)
+    np.testing.assert_allclose(r.force, exact, rtol=1e-7)
+    np.testing.assert_allclose(r.stiffness, exact / L, rtol=1e-6)
+    t = egw.Table.build(p, -8e-6, 4e-6, 1e-6)
+    f, k = t.eval(np.linspace(-30e-6, 4e-6, 35))
+    np.testing.assert_allclose(f, 2 * math.pi * R * P0 * L * np.exp(np.linspace(-30e-6, 4e-6,
+                                                                          35) / L), rtol=1.2e-6)
+
+
+def test_bad_input():
+    with pytest.raises(egw.InvalidArgumentError, match=r"u\(2\)"):
+        egw.FlatLaw.from_table([0.0, 0.0], [2.0, 1.0])
+    with pytest.raises(egw.InvalidArgumentError, match=r"p\(2\)"):
+        egw.FlatLaw.from_table([0.0, 1.0], [1.0, 2.0])
+    with pytest.raises(egw.InvalidArgumentError, match="area"):
+        egw.FlatLaw.from_table([0.0, 1.0], [2.0, 1.0], area=[0.5])
+    with pytest.raises(TypeError):
+        egw.FlatLaw.from_table("abc", [2.0, 1.0])
+    law = exponential_law()
+    with pytest.raises(egw.EgwError):            # no area data
+        law.contact_area(1e-6)
+    with pytest.raises(egw.InvalidArgumentError):
+        law.pressure(float("nan"))
+    with pytest.raises(egw.InvalidArgumentError, match="flat_law"):
+        egw.Params(model="GW", flat_law=law)
+    with pytest.raises(egw.InvalidArgumentError, match="flat_law"):
+        egw.Params(model="flat law")
+    law_e = exponential_law(modulus=E)
+    with pytest.raises(egw.InvalidArgumentError, match="modulus"):
+        egw.solve(egw.Params(radius=R, modulus=2 * E, flat_law=law_e), 0.0)
