@@ -864,7 +864,7 @@ int egw_universal_eval_array(egw_universal u, const egw_params *p, int p_stride,
                              double *stiffness, int flags, int *n_failed);
 
 /* ------------------------------------------------------------------------
- * Rough-flat laws beyond GW (doc/theory.md 10). A rough flat pressed onto a smooth rigid
+ * Rough-flat laws beyond GW (doc/theory.md 11). A rough flat pressed onto a smooth rigid
  * flat carries a mean pressure p [pressure] at a mean separation u [length] (u > 0 apart,
  * measured from the law's reference plane: the mean plane of the heights for a tabulated,
  * Persson or BEM law; p >= 0; dp/du <= 0). egw_flat_law is such a law; the sphere solve

@@ -1,4 +1,4 @@
-"""Rough-flat laws beyond GW (doc/theory.md section 10): the mean pressure p of a rough
+"""Rough-flat laws beyond GW (doc/theory.md section 11): the mean pressure p of a rough
 flat pressed onto a smooth rigid flat against their mean separation u, as an owned handle
 of the C library (egw_flat_law). A law is used by the sphere solve and the 1-D table in
 place of GW's law of independent summits: give it to :class:`egw.Params` as ``flat_law``.

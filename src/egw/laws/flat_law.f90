@@ -1,6 +1,6 @@
 !> Rough-flat laws as objects: the mean pressure p of a rough flat pressed onto a smooth
 !> rigid flat against their mean separation u, and dp/du. The sphere solver takes any
-!> `flat_law` (doc/theory.md §10); it asks for p(u) and dp/du and never how they were made.
+!> `flat_law` (doc/theory.md §11); it asks for p(u) and dp/du and never how they were made.
 !>
 !> Sign conventions: u > 0 apart (u is measured from the law's reference plane: the mean
 !> plane of the heights for a tabulated, Persson or BEM law, the summit base plane for GW's);

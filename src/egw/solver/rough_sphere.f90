@@ -159,7 +159,7 @@ contains
    end subroutine solve_contact
 
    !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
-   !> (a tabulated, Persson or BEM law; doc/theory.md §10): the law gives the whole
+   !> (a tabulated, Persson or BEM law; doc/theory.md §11): the law gives the whole
    !> pressure p(u) at the local mean separation u(r) = r**2/(2R) - delta + w(r), w the
    !> half-space deflection, so delta is the overlap with the law's reference plane (the
    !> mean plane of the heights for those laws). Of params only radius and modulus are
