@@ -908,6 +908,18 @@ int egw_flat_law_info(egw_flat_law law, int *n_nodes, double *length, double *mo
 /* Release a law; sets *law to NULL. NULL or *law == NULL is fine. */
 void egw_flat_law_free(egw_flat_law *law);
 
+/* Write the law as egw CSV (doc/formats.md 7: columns u, pressure, dpdu[, area], the
+ * length and modulus in '#' lines, a checksum line), atomically. Statuses as
+ * egw_table_write (EGW_IO_ERROR naming the path), EGW_NULL_POINTER. */
+int egw_flat_law_write(egw_flat_law law, const char *path);
+
+/* Read a law file: egw's CSV, or a user's CSV whose first line names the columns u and
+ * pressure (optionally dpdu, area), with optional '# length = ...' and '# modulus = ...'
+ * lines and no checksum needed (one that is there must match). *out receives a handle
+ * only on success. Statuses: EGW_IO_ERROR, EGW_BAD_FILE (naming the path and line or
+ * node), EGW_NULL_POINTER. */
+int egw_flat_law_read(const char *path, egw_flat_law *out);
+
 /* The loading solve of a sphere pair with a rough-flat law: R = p->radius, E* =
  * p->modulus (the other fields of p must be valid, as egw_params_default leaves them, and
  * are not used; p->model may be EGW_MODEL_FLAT_LAW), delta [length] the overlap with the

@@ -82,6 +82,55 @@ int egw_capi_test_flat_law(void) {
     CHECK(egw_solve_flat_law(&bad, law, NULL, 0.0, &res) == EGW_OK &&
           fabs(res.force - 2.0 * M_PI * R * p0 * l) <= 1e-7 * res.force);
   }
+  /* files: egw's CSV round trip (the same law at nodes and between them, bit for bit:
+   * the slopes are stored as dp/du), a user's two-column CSV, malformed files */
+  {
+    char path[] = "build/flat_law_file_XXXXXX";
+    int fd = mkstemp(path);
+    egw_flat_law back = NULL;
+    double pb, db;
+    FILE *f;
+    CHECK(fd >= 0);
+    if (fd >= 0) close(fd);
+    CHECK(egw_flat_law_write(law, path) == EGW_OK);
+    CHECK(egw_flat_law_read(path, &back) == EGW_OK);
+    for (int k = 0; k < 7; k++) {
+      double x = -1e-6 + k * 0.9e-6;
+      egw_flat_law_pressure(law, x, &pr, &d);
+      CHECK(egw_flat_law_pressure(back, x, &pb, &db) == EGW_OK);
+      CHECK(fabs(pb - pr) <= 1e-15 * pr && fabs(db - d) <= 1e-14 * fabs(d));
+    }
+    CHECK(egw_flat_law_contact_area(back, 1.5e-6, &a) == EGW_OK && fabs(a - 0.3) < 1e-15);
+    {
+      double length0;
+      egw_flat_law_info(law, NULL, &length0, NULL, NULL, NULL, NULL);
+      CHECK(egw_flat_law_info(back, NULL, &length, &modulus, NULL, NULL, NULL) == EGW_OK &&
+            length == length0 && modulus == E);
+    }
+    egw_flat_law_free(&back);
+    f = fopen(path, "w");
+    fprintf(f, "u,pressure\n# length = 1e-6\n0,1\n1e-6,0.36787944117144233\n");
+    fclose(f);
+    CHECK(egw_flat_law_read(path, &back) == EGW_OK);
+    CHECK(egw_flat_law_pressure(back, 2e-6, &pb, NULL) == EGW_OK &&
+          fabs(pb - exp(-2.0)) <= 1e-14);
+    egw_flat_law_free(&back);
+    f = fopen(path, "w");
+    fprintf(f, "u,pressure\n0,1\n1e-6,x\n");
+    fclose(f);
+    CHECK(egw_flat_law_read(path, &back) == EGW_BAD_FILE && last_error_names("line 3") &&
+          back == NULL);
+    f = fopen(path, "w");
+    fprintf(f, "delta,force\n0,1\n1e-6,0.5\n");
+    fclose(f);
+    CHECK(egw_flat_law_read(path, &back) == EGW_BAD_FILE && last_error_names("columns u"));
+    f = fopen(path, "w");
+    fprintf(f, "u,pressure\n0,1\n1e-6,2\n");
+    fclose(f);
+    CHECK(egw_flat_law_read(path, &back) == EGW_BAD_FILE && last_error_names("p(2)"));
+    remove(path);
+    CHECK(egw_flat_law_read(path, &back) == EGW_IO_ERROR);
+  }
   /* bad input */
   CHECK(egw_flat_law_pressure(law, NAN, &pr, NULL) == EGW_INVALID_ARGUMENT &&
         last_error_names("u"));

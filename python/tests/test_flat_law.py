@@ -66,3 +66,18 @@ def test_bad_input():
     law_e = exponential_law(modulus=E)
     with pytest.raises(egw.InvalidArgumentError, match="modulus"):
         egw.solve(egw.Params(radius=R, modulus=2 * E, flat_law=law_e), 0.0)
+
+
+def test_file_round_trip(tmp_path):
+    law = exponential_law(area=[0.5, 0.3, 0.1], modulus=E)
+    path = tmp_path / "law.csv"
+    law.write(path)
+    back = egw.FlatLaw.read(path)
+    u = np.linspace(-1e-6, 5e-6, 13)
+    np.testing.assert_array_equal(back.pressure(u), law.pressure(u))
+    assert back.modulus == E and back.has_area
+    (tmp_path / "mine.csv").write_text("u,pressure\n0,2\n1e-6,1\n")
+    assert egw.FlatLaw.read(tmp_path / "mine.csv").pressure(0.5e-6) < 2
+    (tmp_path / "bad.csv").write_text("u,pressure\n0,2\n1e-6,oops\n")
+    with pytest.raises(egw.FileError, match="line 3"):
+        egw.FlatLaw.read(tmp_path / "bad.csv")

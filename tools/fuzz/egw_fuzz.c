@@ -805,6 +805,24 @@ static int r_table_read(void) {
   return st;
 }
 
+/* a law written (path fuzzed) and read back (its file's path fuzzed too) */
+static int r_flat_law_file(void) {
+  double u[2] = {0.0, 1e-6}, p[2] = {1.0, 0.5};
+  egw_flat_law law = NULL, back;
+  const char *path = S(1, out_path("law.csv"));
+  int st;
+  if (egw_flat_law_from_table(u, p, NULL, NULL, 2, 0.0, 0.0, &law) != EGW_OK) return -1;
+  st = egw_flat_law_write(P(0, law), path);
+  if (st == EGW_OK) {
+    sentinel(&back, sizeof back);
+    st = egw_flat_law_read(S(2, path), P(3, &back));
+    out_untouched(st, "*out", &back, sizeof back);
+    if (st == EGW_OK) egw_flat_law_free(&back);
+  }
+  egw_flat_law_free(&law);
+  return st;
+}
+
 static int r_flat_calculix(void) {
   egw_params p = params_at(0, EGW_MODEL_EPGW, 0.5);
   double err;
@@ -1316,6 +1334,9 @@ static fz_function functions[] = {
     {"egw_tables_write_lammps(_units)", 4,
      {{"n", K_INT}, {"tables", K_PTR}, {"path", K_STR}, {"units", K_STR}}, r_tables_lammps, 0},
     {"egw_table_read", 2, {{"path", K_STR}, {"out", K_PTR}}, r_table_read, 0},
+    {"egw_flat_law_write, egw_flat_law_read", 4,
+     {{"law", K_PTR}, {"path (write)", K_STR}, {"path (read)", K_STR}, {"out", K_PTR}},
+     r_flat_law_file, 0},
     {"egw_write_flat_calculix(_shifted)", 14,
      {PARAM_SLOTS("p."), {"p", K_PTR}, {"overclosure_max", K_DBL}, {"rel_tol", K_DBL},
       {"shift", K_INT}, {"path", K_STR}, {"max_error", K_PTR}},

@@ -177,6 +177,8 @@ _SIGNATURES = {
     "egw_flat_law_contact_area": (c_int, [c_void_p, c_double, _dp]),
     "egw_flat_law_info": (c_int, [c_void_p, _ip, _dp, _dp, _dp, _dp, _ip]),
     "egw_flat_law_free": (None, [POINTER(c_void_p)]),
+    "egw_flat_law_write": (c_int, [c_void_p, c_char_p]),
+    "egw_flat_law_read": (c_int, [c_char_p, POINTER(c_void_p)]),
     "egw_solve_flat_law": (c_int, [_P, c_void_p, _O, c_double, POINTER(Result)]),
     "egw_table_build_flat_law": (c_int, [_P, c_void_p, _O, c_double, c_double, c_double,
                                          POINTER(c_void_p)]),

@@ -10,6 +10,7 @@ are the caller's (any consistent set, SI suggested).
 from __future__ import annotations
 
 import ctypes
+import os
 from typing import Optional, Tuple, Union
 
 import numpy as np
@@ -92,6 +93,48 @@ class FlatLaw(_Handle):
                                           int(ua.size), float(length), float(modulus),
                                           ctypes.byref(h)))
         return cls(h)
+
+    @classmethod
+    def read(cls, path) -> "FlatLaw":
+        """Read a law file (egw_flat_law_read): egw's CSV (:meth:`write`), or a CSV of
+        one's own whose first line names the columns ``u`` and ``pressure`` (optionally
+        ``dpdu``, ``area``), with optional ``# length = ...`` and ``# modulus = ...``
+        lines.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+
+        Returns
+        -------
+        FlatLaw
+
+        Raises
+        ------
+        FileError
+            The file cannot be read or is malformed (the message names the line or node).
+        """
+        h = ctypes.c_void_p()
+        check(lib.egw_flat_law_read(os.fsencode(path), ctypes.byref(h)))
+        return cls(h)
+
+    def write(self, path) -> None:
+        """Write the law as egw CSV, atomically (egw_flat_law_write).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+
+        Returns
+        -------
+        None
+
+        Raises
+        ------
+        FileError
+            The file cannot be written (an existing file is left as it was).
+        """
+        check(lib.egw_flat_law_write(self._ptr, os.fsencode(path)))
 
     def _info(self) -> Tuple[int, float, float, float, float, int]:
         n, has_area = ctypes.c_int(), ctypes.c_int()

@@ -11,13 +11,15 @@ module egw_capi_flat_law
    use egw_flat_law, only: table_flat_law, new_table_law
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact_law
    use egw_table, only: force_table, build_table_law
+   use egw_flat_law_format, only: write_flat_law, read_flat_law
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, &
-      & double_array, read_contact, put, put_handle_settled, take_handle, put_result
+      & double_array, read_contact, put, put_handle_settled, take_handle, put_result, c_path
    implicit none
    private
 
    public :: egw_flat_law_from_table, egw_flat_law_pressure, egw_flat_law_contact_area, &
-      & egw_flat_law_info, egw_flat_law_free, egw_solve_flat_law, egw_table_build_flat_law
+      & egw_flat_law_info, egw_flat_law_free, egw_solve_flat_law, egw_table_build_flat_law, &
+      & egw_flat_law_write, egw_flat_law_read
 
 contains
 
@@ -180,5 +182,36 @@ contains
       stat = put_handle_settled(out, c_loc(t), error)
       if (stat /= egw_ok) deallocate (t)
    end function egw_table_build_flat_law
+
+   !> C: egw_flat_law_write: the law as egw CSV (atomic).
+   function egw_flat_law_write(h, path) result(stat) bind(C, name="egw_flat_law_write")
+      type(c_ptr), value, intent(in) :: h, path
+      integer(c_int) :: stat
+      type(table_flat_law), pointer :: law
+      character(len=:), allocatable :: fpath
+      type(egw_error), allocatable :: error
+      stat = require(h, "law")
+      if (stat == egw_ok) stat = c_path(path, fpath)
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, law)
+      call write_flat_law(law, fpath, error)
+      stat = settle(error)
+   end function egw_flat_law_write
+
+   !> C: egw_flat_law_read: a law from egw's CSV or a user's (u, pressure) CSV.
+   function egw_flat_law_read(path, out) result(stat) bind(C, name="egw_flat_law_read")
+      type(c_ptr), value, intent(in) :: path, out
+      integer(c_int) :: stat
+      character(len=:), allocatable :: fpath
+      type(table_flat_law), pointer :: law
+      type(egw_error), allocatable :: error
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = c_path(path, fpath)
+      if (stat /= egw_ok) return
+      allocate (law)
+      call read_flat_law(fpath, law, error)
+      stat = put_handle_settled(out, c_loc(law), error)
+      if (stat /= egw_ok) deallocate (law)
+   end function egw_flat_law_read
 
 end module egw_capi_flat_law
