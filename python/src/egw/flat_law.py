@@ -10,6 +10,7 @@ are the caller's (any consistent set, SI suggested).
 from __future__ import annotations
 
 import ctypes
+import math
 import os
 from typing import Optional, Tuple, Union
 
@@ -17,7 +18,7 @@ import numpy as np
 
 from ._capi import lib
 from .core import (OK, ArrayLike, FloatOrArray, InvalidArgumentError, INVALID_ARGUMENT,
-                   _number_array, check)
+                   Options, _number_array, _require, check)
 from .tables import _Handle
 
 
@@ -93,6 +94,152 @@ class FlatLaw(_Handle):
                                           int(ua.size), float(length), float(modulus),
                                           ctypes.byref(h)))
         return cls(h)
+
+    @classmethod
+    def from_psd(cls, q: ArrayLike, C: ArrayLike, modulus: float, *,
+                 p_min: Optional[float] = None, p_max: Optional[float] = None) -> "FlatLaw":
+        """Persson's law from an isotropic power spectrum (egw_flat_law_from_psd).
+
+        Parameters
+        ----------
+        q : array of float
+            Wavenumbers [rad/length], ascending, > 0.
+        C : array of float
+            Isotropic 2-D PSD at q [length^4], >= 0, with <h^2> = 2 pi int q C(q) dq
+            (:func:`psd_from_heights` gives it for a map).
+        modulus : float
+            E* of the contact [pressure].
+        p_min, p_max : float, optional
+            Mean-pressure range of the law's nodes [pressure] (default 1e-6 E* to 1e-1 E*).
+
+        Returns
+        -------
+        FlatLaw
+            With contact areas; its length is the spectrum's rms height.
+
+        Raises
+        ------
+        InvalidArgumentError
+            A bad spectrum or range (the message names it).
+        NotImplementedError
+            The loaded libegw has no Persson law.
+        """
+        _require("egw_flat_law_from_psd")
+        qa = _nodes("q", q)
+        ca = _nodes("C", C, qa.size)
+        h = ctypes.c_void_p()
+        check(lib.egw_flat_law_from_psd(_ptr(qa), _ptr(ca), int(qa.size), float(modulus),
+                                        float(p_min or 0.0), float(p_max or 0.0),
+                                        ctypes.byref(h)))
+        return cls(h)
+
+    @classmethod
+    def from_heights(cls, heights: ArrayLike, pixel: float, modulus: float, *,
+                     p_min: Optional[float] = None, p_max: Optional[float] = None,
+                     n_threads: int = 0) -> "FlatLaw":
+        """egw's periodic boundary-element solution of a height map, tabulated as a law
+        (egw_flat_law_from_heights).
+
+        Parameters
+        ----------
+        heights : 2-D array, shape (ny, nx)
+            One period of a periodic surface [length], square pixels.
+        pixel : float
+            Pixel size [length].
+        modulus : float
+            E* of the contact [pressure].
+        p_min, p_max : float, optional
+            Mean-pressure range [pressure] (default 1e-6 E* to 1e-1 E*).
+        n_threads : int
+            OpenMP threads of the solver (0: the default).
+
+        Returns
+        -------
+        FlatLaw
+            With contact areas; its length is the map's rms height.
+
+        Raises
+        ------
+        InvalidArgumentError
+            A bad map or range (NaN pixels, a map that is not 2-D, ...).
+        NotConvergedError
+            A load did not converge.
+        NotImplementedError
+            The loaded libegw has no BEM law.
+        """
+        _require("egw_flat_law_from_heights")
+        z = np.ascontiguousarray(_number_array("heights", heights), dtype=np.float64)
+        if z.ndim != 2:
+            raise InvalidArgumentError(INVALID_ARGUMENT,
+                                       f"heights: a 2-D map is needed (shape {z.shape})")
+        ny, nx = z.shape
+        o = Options(n_threads=int(n_threads)).to_c()
+        h = ctypes.c_void_p()
+        check(lib.egw_flat_law_from_heights(_ptr(z), int(nx), int(ny), float(pixel),
+                                            float(modulus), float(p_min or 0.0),
+                                            float(p_max or 0.0), ctypes.byref(o),
+                                            ctypes.byref(h)))
+        return cls(h)
+
+    @classmethod
+    def from_topography(cls, top, modulus: float, method: str = "BEM", *,
+                        pixel_size=None, unit: Optional[str] = None,
+                        p_min: Optional[float] = None, p_max: Optional[float] = None,
+                        n_threads: int = 0) -> "FlatLaw":
+        """The law of a measured or generated surface, by egw's BEM or Persson's theory.
+
+        Parameters
+        ----------
+        top : height map source
+            Anything :func:`egw.topography.height_map` takes (a SurfaceTopography
+            topography, a HeightMap, a numpy array with pixel_size and unit, a file).
+            Converted to metres: give modulus and pressures in Pa.
+        modulus : float
+            E* of the contact [Pa].
+        method : {"BEM", "Persson"}
+            "BEM": egw's periodic boundary-element solver on the map itself (the map
+            must be periodic: a non-periodic map is refused, see Notes); "Persson":
+            Persson's theory from the map's radially averaged PSD.
+        pixel_size, unit :
+            For numpy arrays and plain files (as height_map).
+        p_min, p_max : float, optional
+            Mean-pressure range [Pa] (default 1e-6 E* to 1e-1 E*).
+        n_threads : int
+            OpenMP threads of the BEM (0: the default).
+
+        Returns
+        -------
+        FlatLaw
+
+        Raises
+        ------
+        ValueError
+            An unknown method, a non-periodic map for "BEM", pixels that are not square,
+            missing units.
+
+        Notes
+        -----
+        A non-periodic map (an instrument's) has edges that the periodic BEM would wrap
+        onto each other: give it to method="Persson", or make it periodic first (e.g.
+        SurfaceTopography's windowing, or a periodic generated surface).
+        """
+        from .topography import height_map
+        if method not in ("BEM", "Persson"):
+            raise ValueError(f"method = {method!r}: must be 'BEM' or 'Persson'")
+        hm = height_map(top, pixel_size, unit).to_metres()
+        z = hm.heights - np.mean(hm.heights)
+        if not math.isclose(hm.dx, hm.dy, rel_tol=1e-9):
+            raise ValueError(f"pixel sizes dx = {hm.dx:g} m and dy = {hm.dy:g} m differ: "
+                             "the BEM and the PSD here need square pixels")
+        if method == "Persson":
+            q, C = psd_from_heights(z, hm.dx)
+            return cls.from_psd(q, C, modulus, p_min=p_min, p_max=p_max)
+        if not hm.periodic:
+            raise ValueError("the map is not periodic: the periodic BEM would wrap its "
+                             "edges onto each other; use method='Persson', or a periodic "
+                             "map (periodic=True if it is one)")
+        return cls.from_heights(z, hm.dx, modulus, p_min=p_min, p_max=p_max,
+                                n_threads=n_threads)
 
     @classmethod
     def read(cls, path) -> "FlatLaw":
@@ -240,4 +387,53 @@ class FlatLaw(_Handle):
                 f"modulus {modulus:.4g}, area {'yes' if has_area else 'no'})")
 
 
-__all__ = ["FlatLaw"]
+def psd_from_heights(heights: ArrayLike, pixel: float, per_decade: int = 20
+                     ) -> Tuple[np.ndarray, np.ndarray]:
+    """The isotropic (radially averaged) 2-D power spectrum of a periodic height map.
+
+    Parameters
+    ----------
+    heights : 2-D array
+        One period of the surface [length] (its mean is removed).
+    pixel : float
+        Pixel size [length] (square pixels).
+    per_decade : int
+        Logarithmic bins of |q| per decade.
+
+    Returns
+    -------
+    q, C : arrays
+        Bin-mean wavenumbers [rad/length] from 2 pi/L to the Nyquist pi/pixel, and the
+        PSD [length^4] with Persson's convention <h^2> = int d^2q C(q) = 2 pi int q C dq
+        (C(q_k) = |FFT(h)_k|^2 A/(N^2 (2 pi)^2), averaged over each bin; empty bins are
+        dropped).
+
+    Raises
+    ------
+    InvalidArgumentError
+        A map that is not 2-D, or not finite.
+    """
+    z = np.asarray(_number_array("heights", heights), dtype=np.float64)
+    if z.ndim != 2 or not np.all(np.isfinite(z)):
+        raise InvalidArgumentError(INVALID_ARGUMENT, "heights: a finite 2-D map is needed")
+    ny, nx = z.shape
+    z = z - z.mean()
+    area = nx * ny * pixel * pixel
+    power = np.abs(np.fft.fft2(z)) ** 2 * area / (nx * ny) ** 2 / (2 * math.pi) ** 2
+    qx = 2 * math.pi * np.fft.fftfreq(nx, d=pixel)
+    qy = 2 * math.pi * np.fft.fftfreq(ny, d=pixel)
+    qq = np.hypot(*np.meshgrid(qx, qy))
+    q_min, q_max = 2 * math.pi / (max(nx, ny) * pixel), math.pi / pixel
+    keep = (qq >= q_min * (1 - 1e-12)) & (qq <= q_max * (1 + 1e-12))
+    edges = np.logspace(math.log10(q_min), math.log10(q_max),
+                        max(2, int(per_decade * math.log10(q_max / q_min)) + 1))
+    edges[0], edges[-1] = q_min * (1 - 1e-9), q_max * (1 + 1e-9)
+    idx = np.digitize(qq[keep], edges) - 1
+    n = np.bincount(idx, minlength=edges.size - 1)[: edges.size - 1]
+    sq = np.bincount(idx, qq[keep], minlength=edges.size - 1)[: edges.size - 1]
+    sc = np.bincount(idx, power[keep], minlength=edges.size - 1)[: edges.size - 1]
+    ok = (n > 0) & (sc > 0)
+    return sq[ok] / n[ok], sc[ok] / n[ok]
+
+
+__all__ = ["FlatLaw", "psd_from_heights"]
