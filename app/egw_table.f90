@@ -13,13 +13,16 @@ program egw_table_app
       & write_calculix_flat, write_lammps, force_table, build_pair_tables, format_csv, &
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw, &
-      & text_buffer, remove_file, hysteresis_table, build_hysteresis, write_hysteresis
+      & text_buffer, remove_file, hysteresis_table, build_hysteresis, write_hysteresis, &
+      & table_flat_law, read_flat_law, write_flat_law, model_flat_law
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
 
    type(scene_input) :: input
-   type(scene_overrides) :: ov
+   type(scene_overrides) :: ov, ov_law
+   !> the rough-flat law of a flat-law scene (flat_law = 'FILE', --flat-law FILE)
+   type(table_flat_law) :: law
    type(contact_scene) :: scene
    type(model_choice) :: choice
    type(scene_tables) :: tables
@@ -72,6 +75,7 @@ program egw_table_app
          case ("-o", "--out"); out_dir = val
          case ("--formats"); format_list = val; formats_given = .true.
          case ("--model"); ov%model = val
+         case ("--flat-law"); ov%flat_law = val
          case ("--radius"); ov%radius(1) = real_value(arg, val)
          case ("--radii"); call real_list(arg, val, ov%radius)
          case ("--radius-range"); call real_pair(arg, val, ov%radius_min, ov%radius_max)
@@ -107,6 +111,14 @@ program egw_table_app
    end if
    call apply_scene_overrides(input, ov, error)
    if (allocated(error)) call die("command line: "//error%message)
+   if (input%model == model_flat_law) then
+      ! the law's length is the scene's sigma (overlaps given in sigma are in it)
+      call read_flat_law(trim(input%flat_law), law, error)
+      if (allocated(error)) call die(error%message)
+      ov_law%sigma = law%length()
+      call apply_scene_overrides(input, ov_law, error)
+      if (allocated(error)) call die("flat_law: "//error%message)
+   end if
    call resolve_scene(input, scene, error)
    if (allocated(error)) call die(error%message)
    call parse_formats(format_list, formats_given, want)
@@ -133,7 +145,10 @@ program egw_table_app
       & call die("--formats: a LAMMPS file needs one table per particle-type pair: "// &
       & "list the types (--radii) and give one sigma")
    if (.not. formats_given) want = [.true., .true., choice%kind == choice_table, &
-      & choice%kind == choice_table]
+      & choice%kind == choice_table .and. input%model /= model_flat_law]
+   if (input%model == model_flat_law .and. want(format_calculix)) call die("--formats " &
+      & //"calculix: the CalculiX curves are GW's rough flat; a flat-law scene has csv, " &
+      & //"binary and lammps")
    write (output_unit, '(a)') "model: "//choice_name(choice%kind)//" ("// &
       & model_name(merge(0, input%model, choice%kind == choice_hertz))//")"
    write (output_unit, '(a)') "  why: "//choice%reason
@@ -146,10 +161,10 @@ program egw_table_app
       call progress("building the "//choice_name(choice%kind)//" at tol = "// &
          & num(input%tol)//" (full solves, OpenMP over points) ...")
       if (quiet) then
-         call build_scene_tables(scene, choice, options, tables, error)
+         call build_scene_tables(scene, choice, options, tables, error, law=law)
       else
          call bar_start("building", stderr_is_terminal())
-         call build_scene_tables(scene, choice, options, tables, error, bar_update)
+         call build_scene_tables(scene, choice, options, tables, error, bar_update, law=law)
          call bar_finish()
       end if
       if (allocated(error)) call die(error%message)
@@ -323,6 +338,15 @@ contains
          call out%add(trim(line))
       end do
       call put_text(out, path)
+      if (p%model == model_flat_law) then
+         ! the scene's own law, as egw CSV (the rough flat's pressure-separation law)
+         path = out_dir//"/scene_flat_law.csv"
+         call write_flat_law(law, path//".part", error, source="scene")
+         if (allocated(error)) call fail_write(error%message)
+         n_written = n_written + 1
+         written(n_written) = path
+         return
+      end if
       if (p%sigma <= 0.0_dp) return
       path = out_dir//"/rough_flat_pressure.csv"
       out = text_buffer()
@@ -418,9 +442,13 @@ contains
       integer :: i
       write (output_unit, '(a)') "summary:"
       write (output_unit, '(a)') "  model chosen      "//choice_name(choice%kind)
-      write (output_unit, '(a)') "  Hertz error       "//num(choice%hertz_error)// &
-         & either(choice%hertz_relative_to_max, " of P(delta_max)", " (relative)")// &
-         & " (" //int_str(choice%n_solves)//" full solves)"
+      if (input%model == model_flat_law) then
+         write (output_unit, '(a)') "  Hertz error       not measured (flat-law scene)"
+      else
+         write (output_unit, '(a)') "  Hertz error       "//num(choice%hertz_error)// &
+            & either(choice%hertz_relative_to_max, " of P(delta_max)", " (relative)")// &
+            & " (" //int_str(choice%n_solves)//" full solves)"
+      end if
       write (output_unit, '(a)') "  error bound       "//num(choice%error_bound)
       if (.not. choose_only .and. choice%kind /= choice_hertz) then
          write (output_unit, '(a)') "  measured error    "// &
@@ -563,6 +591,9 @@ contains
          & "", &
          & "Scene:", &
          & "  --model NAME            Hertz, GW, E-GW (default) or EP-GW", &
+         & "  --flat-law FILE         a rough-flat law file (egw-topo, doc/formats.md 7) in", &
+         & "                          place of the summit model: sigma = the law's length,", &
+         & "                          one particle pair; writes its 1-D table", &
          & "  --radius R              one particle type of radius R [length]", &
          & "  --radii R1,R2,...       particle types (all type pairs are contacts; <= 8)", &
          & "  --radius-range MIN,MAX  continuous radius range (polydisperse, one material)", &
@@ -612,7 +643,8 @@ contains
    pure logical function takes_value(name)
       character(len=*), intent(in) :: name
       select case (name)
-      case ("-o", "--out", "--formats", "--model", "--radius", "--radii", "--radius-range", &
+      case ("-o", "--out", "--formats", "--model", "--flat-law", "--radius", "--radii", &
+         & "--radius-range", &
          & "--modulus", "--poisson", "--effective-modulus", "--sigma", "--sigma-range", &
          & "--mu", "--summit-density", "--summit-radius", "--psi", "--K", "--k", &
          & "--plastic-ratio", "--delta-min", "--delta-max", "--delta-min-sigma", &

@@ -10,7 +10,8 @@ module egw
       & egw_invalid_parameter, egw_not_converged, egw_io_error, egw_bad_file, &
       & egw_out_of_memory, egw_null_pointer, egw_out_of_range, egw_unsupported
    use egw_params, only: contact_params, model_hertz, model_gw, model_egw, model_epgw, &
-      & validate_params, model_name, mu_from_summits, psi_from_hardness
+      & model_flat_law, validate_params, model_name, mu_from_summits, psi_from_hardness
+   use egw_flat_law, only: flat_law, table_flat_law, new_table_law
    use egw_gauss, only: gauss_integral, gauss_integral_deriv, get_gauss_integral, &
       & get_gauss_integral_deriv, zmc_integrals
    use egw_ellip, only: ellipk, ellipe, ellipk_comp, ellipe_comp, get_ellipk, get_ellipe
@@ -23,10 +24,10 @@ module egw
       & hertz_contact_radius, hertz_energy, hertz_pressure, hertz_deflection, hertz_gap
    use egw_rough_sphere, only: solver_options, solve_result, method_auto, method_newton, &
       & method_picard, validate_options, solve_contact, contact_profile, loading_history, &
-      & load_history, solve_unload, solve_contact_unload, unload_profile
+      & load_history, solve_unload, solve_contact_unload, unload_profile, solve_contact_law
    use egw_impact, only: restitution, time_step
-   use egw_table, only: force_table, build_table, table_eval, table_eval_all, table_covers, &
-      & table_energy, table_contact_radius, table_set_radii
+   use egw_table, only: force_table, build_table, build_table_law, table_eval, &
+      & table_eval_all, table_covers, table_energy, table_contact_radius, table_set_radii
    use egw_table_universal, only: universal_table, build_universal, universal_eval, &
       & universal_slice
    use egw_table_format, only: format_csv, format_binary, format_lammps, format_calculix, &
@@ -35,6 +36,7 @@ module egw
    use egw_hysteresis, only: hysteresis_table, hysteresis_state_size, build_hysteresis, &
       & hysteresis_eval, hysteresis_eval_state, hysteresis_state_init, hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
+   use egw_flat_law_format, only: write_flat_law, read_flat_law
    use egw_scene, only: scene_input, scene_overrides, contact_scene, model_choice, &
       & scene_tables, max_types, choice_hertz, choice_table, choice_universal, choice_name, &
       & default_scene_input, read_scene_file, apply_scene_overrides, validate_scene_input, &

@@ -11,6 +11,8 @@ module egw_all
    use egw_ellip
    use egw_asperity
    use egw_unloading
+   use egw_flat_law
+   use egw_flat_law_format
    use egw_table_ends
    use egw_hysteresis
    use egw_hysteresis_format

@@ -47,6 +47,26 @@ refuse empty_scene "empty.nml" "$work/empty.nml"
 printf 'PK\003\004\377\376&scene \001\002 = /\n\000\000' >"$work/junk.nml"
 refuse junk_scene "junk.nml" "$work/junk.nml"
 
+# a flat-law scene (--flat-law FILE, or flat_law = 'FILE' in a scene file): the law's
+# table and the law itself written; its sigma is the law's length; refusals name the cause
+printf 'u,pressure\n# length = 1e-6\n0,1e7\n3e-6,4.978706836786394e5\n' >"$work/law.csv"
+"$exe" --flat-law "$work/law.csv" --out "$work/flat" >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 0 ] || fail "--flat-law: exit status $rc: $(cat "$work/stderr")"
+grep -q "model = 4 (flat law)" "$work/flat/scene_table.csv" ||
+  fail "--flat-law: scene_table.csv is not the flat law's table"
+[ -s "$work/flat/scene_flat_law.csv" ] || fail "--flat-law: scene_flat_law.csv not written"
+grep -q "sigma = 1.0000E-06" "$work/stdout" || fail "--flat-law: sigma is not the law's length"
+printf "&scene\n  flat_law = '%s'\n  radius = 2e-3\n/\n" "$work/law.csv" >"$work/flat.nml"
+"$exe" "$work/flat.nml" --quiet --choose-only >"$work/stdout" 2>"$work/stderr" ||
+  fail "flat_law in a scene file: $(cat "$work/stderr")"
+grep -q "flat law" "$work/stdout" || fail "flat_law in a scene file: not a flat-law scene"
+refuse flat_law_pairs "one pair" -q --flat-law "$work/law.csv" --radii 1e-3,2e-3
+refuse flat_law_missing "nope.csv" --flat-law "$work/nope.csv"
+printf 'u,pressure\n0,1\n1e-6,2\n' >"$work/rising.csv"
+refuse flat_law_rising "p(2)" --flat-law "$work/rising.csv"
+refuse flat_law_calculix "calculix" -q --flat-law "$work/law.csv" --formats calculix
+
 # smooth spheres: sigma = 0 is the Hertz model, not an error
 "$exe" --sigma 0 --quiet --out "$work/smooth" >"$work/stdout" 2>"$work/stderr"
 rc=$?

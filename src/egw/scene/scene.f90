@@ -8,7 +8,8 @@ module egw_scene
    use egw_status, only: egw_error, egw_invalid_parameter, egw_bad_file, &
       & egw_unsupported, fatal_error, format_real, int_str, bad => parameter_error
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw, mu_from_summits, check_scaled_overlap
+      & model_epgw, model_flat_law, mu_from_summits, check_scaled_overlap
+   use egw_flat_law, only: flat_law
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, table_progress
    use egw_table_universal, only: universal_table
@@ -60,6 +61,10 @@ module egw_scene
       real(dp) :: delta_min = 0.0_dp, delta_max = 0.0_dp
       integer :: delta_in_sigma = 0
       real(dp) :: tol = 1.0e-3_dp
+      !> A rough-flat law file (doc/formats.md §7) in place of the summit model (model
+      !> flat law; Fortran only: not in the C struct). Its caller reads the law and gives
+      !> sigma = the law's length (egw-table does); blank: none.
+      character(len=512) :: flat_law = ""
    end type scene_input
 
    !> "Not given" marker of scene_overrides (a value no scene uses).
@@ -80,6 +85,7 @@ module egw_scene
       real(dp) :: delta_min = unset, delta_max = unset
       real(dp) :: delta_min_sigma = unset, delta_max_sigma = unset
       real(dp) :: tol = unset
+      character(len=512) :: flat_law = ""   !< a rough-flat law file (blank: not given)
    end type scene_overrides
 
    !> A validated scene resolved into the distinct parameter sets of its pairs (for a
@@ -166,7 +172,8 @@ module egw_scene
       !> LAMMPS), or the universal table over the scene's mu range (widened to +-5 % when
       !> mu is one value: the table needs a range) and delta/sigma range. measured_error is
       !> the largest relative force error the builds measured at their check solves.
-      module subroutine build_scene_tables(scene, choice, options, tables, error, progress)
+      module subroutine build_scene_tables(scene, choice, options, tables, error, progress, &
+         & law)
          type(contact_scene), intent(in) :: scene   !< resolved (resolve_scene)
          type(model_choice), intent(in) :: choice   !< from choose_model
          type(solver_options), intent(in) :: options   !< of the builds' solves
@@ -174,6 +181,8 @@ module egw_scene
          type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
          !> called as the build goes (see egw_table's table_progress; not called for Hertz)
          procedure(table_progress), optional :: progress
+         !> the law of a flat-law scene (model flat law: required)
+         class(flat_law), intent(in), optional :: law
       end subroutine build_scene_tables
 
       !> One 1-D table per particle-type pair (1,1), (1,2), .., (1,n), (2,2), .., (n,n) of a
@@ -233,10 +242,11 @@ contains
       case ("gw", "1"); model = model_gw
       case ("egw", "2"); model = model_egw
       case ("epgw", "3"); model = model_epgw
+      case ("flatlaw", "4"); model = model_flat_law
       case default
          model = -1
          call fatal_error(error, egw_invalid_parameter, "model = '"//trim(name)// &
-            & "': unknown (Hertz, GW, E-GW or EP-GW)")
+            & "': unknown (Hertz, GW, E-GW, EP-GW or flat law)")
       end select
    end subroutine model_from_name
 
@@ -350,9 +360,11 @@ contains
          & poisson(max_types), effective_modulus, sigma, sigma_min, sigma_max, mu, &
          & summit_density, summit_radius, psi, k, plastic_ratio, delta_min, delta_max, &
          & delta_min_sigma, delta_max_sigma, tol
+      character(len=512) :: flat_law
       namelist /scene/ model, radius, radius_min, radius_max, modulus, poisson, &
          & effective_modulus, sigma, sigma_min, sigma_max, mu, summit_density, summit_radius, &
-         & psi, k, plastic_ratio, delta_min, delta_max, delta_min_sigma, delta_max_sigma, tol
+         & psi, k, plastic_ratio, delta_min, delta_max, delta_min_sigma, delta_max_sigma, tol, &
+         & flat_law
       integer :: stat
       character(len=512) :: msg
 
@@ -365,6 +377,7 @@ contains
       delta_min = ov%delta_min; delta_max = ov%delta_max
       delta_min_sigma = ov%delta_min_sigma; delta_max_sigma = ov%delta_max_sigma
       tol = ov%tol
+      flat_law = ov%flat_law
 
       msg = ""
       ! gfortran 12 reads an internal file without the group as a success: look first
@@ -383,7 +396,8 @@ contains
          & sigma_max=sigma_max, mu=mu, summit_density=summit_density, &
          & summit_radius=summit_radius, psi=psi, hardness_coeff=k, &
          & plastic_ratio=plastic_ratio, delta_min=delta_min, delta_max=delta_max, &
-         & delta_min_sigma=delta_min_sigma, delta_max_sigma=delta_max_sigma, tol=tol)
+         & delta_min_sigma=delta_min_sigma, delta_max_sigma=delta_max_sigma, tol=tol, &
+         & flat_law=flat_law)
       call apply_scene_overrides(input, ov, error)
 
    contains
@@ -514,6 +528,10 @@ contains
       call override_overlaps(s, ov, input%sigma_max, error)
       if (allocated(error)) return
       if (given(ov%tol)) s%tol = ov%tol
+      if (len_trim(ov%flat_law) > 0) then
+         s%flat_law = ov%flat_law
+         s%model = model_flat_law
+      end if
 
       call validate_scene_input(s, error)
       if (allocated(error)) return
@@ -689,9 +707,15 @@ contains
       type(scene_input), intent(in) :: s   !< the scene to check
       !> allocated, naming the entry, when one is invalid
       type(egw_error), allocatable, intent(out) :: error
-      if (s%model < model_hertz .or. s%model > model_epgw) then
+      if (s%model < model_hertz .or. s%model > model_flat_law) then
          call fatal_error(error, egw_invalid_parameter, "model = "//int_str(s%model)// &
-            & ": unknown (0 Hertz, 1 GW, 2 E-GW, 3 EP-GW)")
+            & ": unknown (0 Hertz, 1 GW, 2 E-GW, 3 EP-GW, 4 flat law)")
+         return
+      end if
+      if ((s%model == model_flat_law) .neqv. (len_trim(s%flat_law) > 0)) then
+         call fatal_error(error, egw_invalid_parameter, "model = flat law and flat_law: " &
+            & //"a flat-law scene names its law file (flat_law = 'path', egw-table " &
+            & //"--flat-law FILE), and a law file makes the model flat law")
          return
       end if
       call check_particles(s, error)
@@ -787,7 +811,14 @@ contains
             & "(sigma = 0 alone means smooth spheres)")
          return
       end if
-      if (s%sigma_max > 0.0_dp .and. s%model /= model_hertz) then
+      if (s%model == model_flat_law .and. .not. (s%sigma_min == s%sigma_max .and. &
+         & s%sigma_max > 0.0_dp)) then
+         call bad(error, "sigma", s%sigma_max, "a flat-law scene's sigma is its law's " &
+            & //"length: one value > 0 (egw-table sets it from the law)")
+         return
+      end if
+      if (s%sigma_max > 0.0_dp .and. s%model /= model_hertz .and. &
+         & s%model /= model_flat_law) then
          if (s%mu /= 0.0_dp) then
             if (.not. positive(s%mu)) then
                call bad(error, "mu", s%mu, "must be finite and > 0"); return
@@ -910,7 +941,7 @@ contains
                   pset(np) = match
                   cycle
                end if
-               call validate_params(p, error)
+               call validate_params(p, error, input%model == model_flat_law)
                if (allocated(error)) then
                   error%message = "pair of types "//int_str(i)//", "//int_str(j)//": "// &
                      & error%message

@@ -6,7 +6,7 @@ submodule (egw_scene) egw_scene_choice
    use egw_status, only: egw_invalid_argument, egw_not_converged
    use egw_smooth_sphere, only: hertz_force
    use egw_rough_sphere, only: solve_result, solve_contact, validate_options
-   use egw_table, only: build_table, table_set_radii
+   use egw_table, only: build_table, build_table_law, table_set_radii
    use egw_table_universal, only: build_universal
    use egw_text, only: real_text, real_text_len
    implicit none
@@ -37,6 +37,21 @@ contains
          choice%kind = choice_hertz
          choice%error_bound = 0.0_dp
          choice%reason = "smooth spheres (model Hertz or sigma = 0): Hertz is exact"
+         return
+      end if
+      if (scene%input%model == model_flat_law) then
+         if (ns /= 1 .or. scene%continuous) then
+            call fatal_error(error, egw_unsupported, "flat_law: a flat-law scene builds " &
+               & //"the table of one pair (one particle type or one radius, one material)" &
+               & //"; this one has "//int_str(ns)//" parameter sets (build each pair's " &
+               & //"table with egw_table_build_flat_law, or pair_coeff ... law FILE in " &
+               & //"LAMMPS)")
+            return
+         end if
+         choice%kind = choice_table
+         choice%error_bound = tol
+         choice%reason = "rough-flat law "//trim(scene%input%flat_law)//" in place of " &
+            & //"the summit model: one 1-D table of the law (no Hertz check)"
          return
       end if
 
@@ -185,7 +200,8 @@ contains
    ! build_scene_tables: interface and documentation in egw_scene (src/egw/scene/scene.f90)
    ! (a full header: gfortran 12 loses the interface of a procedure dummy in a
    ! `module procedure` body)
-   module subroutine build_scene_tables(scene, choice, options, tables, error, progress)
+   module subroutine build_scene_tables(scene, choice, options, tables, error, progress, &
+      & law)
       type(contact_scene), intent(in) :: scene
       type(model_choice), intent(in) :: choice
       type(solver_options), intent(in) :: options
@@ -193,6 +209,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       !> called as the build goes (see egw_table's table_progress; not called for Hertz)
       procedure(table_progress), optional :: progress
+      class(flat_law), intent(in), optional :: law   !< a flat-law scene's law
       real(dp) :: mu_lo, mu_hi
       integer :: j
 
@@ -201,8 +218,18 @@ contains
       case (choice_hertz)
          tables%measured_error = choice%error_bound
       case (choice_table)
-         call build_table(scene%sets(1), options, scene%delta_min(1), scene%delta_max(1), &
-            & scene%input%tol, tables%table, error, progress)
+         if (scene%input%model == model_flat_law) then
+            if (.not. present(law)) then
+               call fatal_error(error, egw_invalid_argument, "law: a flat-law scene's " &
+                  & //"table needs its law (read from "//trim(scene%input%flat_law)//")")
+               return
+            end if
+            call build_table_law(scene%sets(1), law, options, scene%delta_min(1), &
+               & scene%delta_max(1), scene%input%tol, tables%table, error, progress)
+         else
+            call build_table(scene%sets(1), options, scene%delta_min(1), &
+               & scene%delta_max(1), scene%input%tol, tables%table, error, progress)
+         end if
          if (allocated(error)) return
          call table_set_radii(tables%table, scene%radius1(1), scene%radius2(1), error)
          if (allocated(error)) return
