@@ -1,0 +1,394 @@
+!> The nonlinear solve of one mesh (doc/theory.md §7): w = H p(z + w) at the nodes by
+!> Newton with a backtracking line search (LAPACK dgetf2/dgetrs, factors reused while they
+!> contract) or damped Picard, from an initial deflection near the solution; the force by
+!> the Gauss sum, and the stiffness by implicit differentiation of the converged system.
+module egw_sphere_iteration
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_kinds, only: dp, pi
+   use egw_status, only: egw_error, egw_not_converged, &
+      & egw_out_of_memory, fatal_error, format_real, int_str
+   use egw_smooth_sphere, only: hertz_gap, hertz_pressure
+   use egw_unloading, only: unloading_pressure
+   use egw_halfspace, only: build_mesh, mesh_nodes, node_index, assemble_influence, &
+      & interpolate_nodal
+   use egw_lapack, only: dgetf2, dgetrs
+   use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
+      & scaled_problem, discrete_solution, law_at, law_inverse, base_gap, base_gap_rate, &
+      & closest_gap, gauss_values, deflection_degree, pressure_points
+   implicit none
+   private
+
+
+   integer, parameter :: newton_max_default = 100, picard_max_default = 3000
+
+   public :: solve_mesh, differentiate, initial_deflection, evaluate, residual, jacobian, &
+      & newton, picard
+
+contains
+
+   !> Build the mesh on edges, assemble, and solve the discrete equations; then the force,
+   !> its delta-derivative (implicit differentiation), moments and the tail estimate.
+   subroutine solve_mesh(prob, options, method, edges, sol, error, guess)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      integer, intent(in) :: method
+      real(dp), intent(in) :: edges(0:)
+      type(discrete_solution), intent(out) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
+      integer :: n, ng, max_iter, i, stat
+      real(dp) :: kappa, rn
+
+      if ((size(edges) - 1)*deflection_degree + 1 > max_mesh_nodes) then
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): the mesh would need " &
+            & //int_str((size(edges) - 1)*deflection_degree + 1)//" nodes, more than " &
+            & //int_str(max_mesh_nodes))
+         return
+      end if
+      call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
+      n = mesh_nodes(sol%mesh)
+      ng = size(sol%mesh%gauss_r)
+      allocate (sol%infl(n, ng), stat=stat)
+      if (stat == 0) call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, &
+         & options%n_threads, stat)
+      if (stat /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the influence matrix of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
+      sol%base = base_gap(prob, sol%mesh%gauss_r)
+      sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
+      if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
+      if (present(guess)) then
+         ! Interpolated; beyond the guess's mesh its outermost value (w_G varies slowly there).
+         allocate (sol%w(n))
+         do i = 1, n
+            sol%w(i) = interpolate_nodal(guess%mesh, guess%w, &
+               & min(sol%mesh%node(i), guess%mesh%edge(guess%mesh%n_elem)))
+         end do
+      else
+         call initial_deflection(prob, sol)
+      end if
+
+      max_iter = options%max_iter
+      if (method == method_picard) then
+         if (max_iter == 0) max_iter = picard_max_default
+         call picard(prob, sol, max_iter, error)
+      else
+         if (max_iter == 0) max_iter = newton_max_default
+         call newton(prob, sol, max_iter, error)
+      end if
+      if (allocated(error)) return
+
+      sol%force = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
+      sol%moment0 = sum(sol%mesh%gauss_w*sol%p)
+      sol%moment1 = sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
+      ! Force beyond the outer radius if p keeps falling like at the last two Gauss points.
+      rn = sol%mesh%gauss_r(ng)
+      kappa = 0.0_dp
+      if (sol%p(ng) > 0.0_dp .and. sol%p(ng - 1) > sol%p(ng)) &
+         & kappa = log(sol%p(ng - 1)/sol%p(ng))/(rn - sol%mesh%gauss_r(ng - 1))
+      if (kappa > 0.0_dp) then
+         sol%tail = 2.0_dp*pi*rn*sol%p(ng)*(1.0_dp/kappa + 1.0_dp/(rn*kappa**2))
+      else
+         sol%tail = huge(1.0_dp)
+         if (sol%p(ng) == 0.0_dp) sol%tail = 0.0_dp
+      end if
+   end subroutine solve_mesh
+
+   !> d(force)/d(delta) of the converged discrete solution by implicit differentiation:
+   !> J dw/d(delta) = infl (p' dz/d(delta)) with J the Jacobian at the solution. Newton's
+   !> last factors belong to an iterate near the solution: iterative refinement with them
+   !> (residuals with the exact J) contracts by |J_old**-1 (J - J_old)| << 1 per sweep
+   !> and spares an LU; without them, or if refinement stalls, J itself is factored.
+   subroutine differentiate(prob, sol, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      integer, parameter :: max_sweeps = 6
+      real(dp), allocatable :: jac(:, :), rhs(:), x(:, :), corr(:, :), rate(:)
+      integer, allocatable :: ipiv(:)
+      integer :: n, info, sweep
+      logical :: refined
+      n = size(sol%w)
+      allocate (jac(n, n), x(n, 1), corr(n, 1), stat=info)
+      if (info /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
+      call evaluate(prob, sol)
+      call jacobian(sol, jac)
+      rhs = matmul(sol%infl, sol%dpdh*sol%dbase)
+      refined = .false.
+      if (allocated(sol%lu)) then
+         if (size(sol%lu, 1) == n) then
+            x(:, 1) = rhs
+            call dgetrs('N', n, 1, sol%lu, n, sol%pivots, x, n, info)
+            do sweep = 1, max_sweeps
+               corr(:, 1) = rhs - matmul(jac, x(:, 1))
+               call dgetrs('N', n, 1, sol%lu, n, sol%pivots, corr, n, info)
+               x = x + corr
+               if (maxval(abs(corr)) <= 1.0e-14_dp*maxval(abs(x))) then
+                  refined = .true.
+                  exit
+               end if
+            end do
+         end if
+      end if
+      if (.not. refined) then
+         allocate (ipiv(n))
+         call dgetf2(n, n, jac, n, ipiv, info)
+         if (info /= 0) then
+            call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+               & //" (in units of sigma): singular Jacobian at the solution")
+            return
+         end if
+         x(:, 1) = rhs
+         call dgetrs('N', n, 1, jac, n, ipiv, x, n, info)
+      end if
+      rate = sol%dbase + gauss_values(sol%mesh, x(:, 1))
+      sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%dpdh*rate)
+   end subroutine differentiate
+
+   !> Initial rough deflection. Separated spheres: 0 (the base gap is already close).
+   !> Extended models: inside the Hertz radius the gap is w_G itself, and a disc of radius a
+   !> under uniform pressure p sags by 2 p a at its centre (E = 1), so w_G ~ w_c with
+   !> w_c = 2 a p_G(w_c), flat inside a and falling like the flat-punch field (2/pi)
+   !> asin(a/r) outside. From w = 0 Newton needs 7 LUs at delta/sigma = 1e4, from this 3.
+   !> Classic GW at delta > 0: the deflection whose gap gives the Hertz pressure through
+   !> the law (capped near the edge), so that w ~ w_H: the stiff case starts close to its
+   !> solution.
+   pure subroutine initial_deflection(prob, sol)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      integer :: i
+      real(dp) :: r, h, target, lo, hi, f, dfdh
+      real(dp), parameter :: h_cap = 1.5_dp
+      allocate (sol%w(mesh_nodes(sol%mesh)))
+      sol%w = 0.0_dp
+      if (prob%delta <= 0.0_dp) return
+      if (prob%extended) then
+         ! Bisection for w_c - 2 a p_G(w_c) = 0 (increasing in w_c; p_G(40) underflows).
+         lo = 0.0_dp
+         hi = 40.0_dp
+         do i = 1, 50
+            h = 0.5_dp*(lo + hi)
+            call law_at(prob, h, f, dfdh)
+            if (h < 2.0_dp*prob%a*f) then
+               lo = h
+            else
+               hi = h
+            end if
+         end do
+         where (sol%mesh%node <= prob%a)
+            sol%w = h
+         elsewhere
+            sol%w = h*2.0_dp/pi*asin(prob%a/sol%mesh%node)
+         end where
+         return
+      end if
+      do i = 1, size(sol%w)
+         r = sol%mesh%node(i)
+         target = hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
+         h = h_cap
+         if (target > 0.0_dp) h = min(h_cap, law_inverse(prob, target))
+         sol%w(i) = hertz_gap(r, prob%delta, 1.0_dp) + h - base_gap(prob, r)
+      end do
+   end subroutine initial_deflection
+
+   !> Gap, pressure and its derivative at the Gauss points for the current w (the
+   !> unloading law at the closest-approach gaps when unloading).
+   pure subroutine evaluate(prob, sol)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      real(dp), allocatable :: f(:), dfdh(:)
+      sol%gap = sol%base + gauss_values(sol%mesh, sol%w)
+      if (allocated(sol%gap_min)) then
+         allocate (f(size(sol%gap)), dfdh(size(sol%gap)))
+         call unloading_pressure(prob%unload, sol%gap, sol%gap_min, f, dfdh)
+         sol%p = prob%scale*f
+         sol%dpdh = prob%scale*dfdh
+      else
+         sol%p = sol%gap       ! (sized as the gap)
+         sol%dpdh = sol%gap
+         call prob%law%pressure(sol%gap, sol%p, sol%dpdh)
+      end if
+   end subroutine evaluate
+
+   !> Residual F = w - H p_G(z + w) (at the current evaluate()) and its scaled max norm.
+   pure subroutine residual(sol, res, norm)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(out) :: res(:)
+      real(dp), intent(out) :: norm
+      res = sol%w - matmul(sol%infl, sol%p)
+      norm = maxval(abs(res))/max(1.0_dp, maxval(abs(sol%w)))
+   end subroutine residual
+
+   !> Jacobian J = I - infl diag(p') interp.
+   pure subroutine jacobian(sol, jac)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(out) :: jac(:, :)
+      integer :: e, q, j, g, col
+      jac = 0.0_dp
+      do j = 1, size(jac, 1)
+         jac(j, j) = 1.0_dp
+      end do
+      do e = 1, sol%mesh%n_elem
+         do q = 1, sol%mesh%n_gauss
+            g = (e - 1)*sol%mesh%n_gauss + q
+            do j = 0, sol%mesh%degree
+               col = node_index(sol%mesh, e, j)
+               jac(:, col) = jac(:, col) - sol%infl(:, g)*(sol%dpdh(g)*sol%mesh%interp(j, q))
+            end do
+         end do
+      end do
+   end subroutine jacobian
+
+   !> Newton with backtracking (Armijo on |F|_2). Converged when the scaled residual is
+   !> below prob%residual_tol: 1e-11 (the rounding floor of H p is ~1e-12 for w ~ 1e6;
+   !> looser for unloading, see solve_scaled), or the step is at rounding level with a
+   !> residual below 1e-9.
+   !> The LU factors are kept once Newton is in its quadratic regime (the last full step
+   !> cut |F|_2 at least chord_start-fold): a full step with the old factors (chord step) is
+   !> accepted when it cuts |F|_2 at least chord_gain-fold, else the Jacobian is refactored
+   !> at the same iterate and the Newton step with line search taken. Near the solution a
+   !> chord step contracts like |w - w*|, so the fallback only costs one evaluation, while
+   !> the LU (n**3) is most of an iteration's cost on the solver's meshes. Far from the
+   !> solution chord steps would cost iterations: max_iter counts both kinds alike.
+   !> Unloading solves take no chord steps (see below).
+   subroutine newton(prob, sol, max_iter, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      integer, intent(in) :: max_iter
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), parameter :: chord_gain = 10.0_dp, chord_start = 100.0_dp
+      real(dp), allocatable :: jac(:, :), res(:), step(:, :), w0(:), res_try(:)
+      integer, allocatable :: ipiv(:)
+      integer :: n, it, info, k
+      real(dp) :: norm, norm_try, lambda, f2, f2_try
+      logical :: factored, have_lu, converged
+
+      n = size(sol%w)
+      allocate (jac(n, n), res(n), step(n, 1), ipiv(n), res_try(n), stat=info)
+      if (info /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
+      call evaluate(prob, sol)
+      call residual(sol, res, norm)
+      factored = .false.
+      have_lu = .false.
+      converged = .false.
+      do it = 1, max_iter + 1
+         sol%iterations = it - 1
+         sol%residual = norm
+         converged = norm <= prob%residual_tol
+         if (converged .or. it > max_iter) exit
+         w0 = sol%w
+         f2 = sum(res**2)
+         lambda = 1.0_dp
+         if (factored) then
+            step(:, 1) = -res
+            call dgetrs('N', n, 1, jac, n, ipiv, step, n, info)
+            sol%w = w0 + step(:, 1)
+            call evaluate(prob, sol)
+            call residual(sol, res_try, norm_try)
+            f2_try = sum(res_try**2)
+            factored = f2_try <= f2/chord_gain**2 .and. ieee_is_finite(f2_try)
+            if (.not. factored) then
+               sol%w = w0
+               call evaluate(prob, sol)
+            end if
+         end if
+         if (.not. factored) then
+            call jacobian(sol, jac)
+            call dgetf2(n, n, jac, n, ipiv, info)
+            have_lu = info == 0
+            if (.not. have_lu) exit
+            factored = .true.
+            step(:, 1) = -res
+            call dgetrs('N', n, 1, jac, n, ipiv, step, n, info)
+            do k = 1, 40
+               sol%w = w0 + lambda*step(:, 1)
+               call evaluate(prob, sol)
+               call residual(sol, res_try, norm_try)
+               f2_try = sum(res_try**2)
+               if (f2_try <= (1.0_dp - 1.0e-4_dp*lambda)*f2) exit
+               lambda = 0.5_dp*lambda
+            end do
+            ! Factors from far away (damped, or slow) are not worth reusing. Unloading never
+            ! reuses them: an evaluation of Z_u costs ~1.5x the loading law's, so on the
+            ! solver's meshes the LU costs less than the evaluation a chord step adds, and
+            ! the law's kink at d = d_max (dp/dh jumps) slows chord steps to a 20-50-fold
+            ! gain each (seen: 5 chord steps from 1e-4 to 1e-11 where Newton takes 2).
+            factored = lambda == 1.0_dp .and. f2_try <= f2/chord_start**2 .and. &
+               & .not. allocated(prob%closest)
+         end if
+         res = res_try
+         norm = norm_try
+         if (maxval(abs(lambda*step(:, 1))) <= 1.0e-14_dp*max(1.0_dp, maxval(abs(sol%w))) &
+            & .and. norm <= 1.0e-9_dp) then
+            sol%iterations = it
+            sol%residual = norm
+            converged = .true.
+            exit
+         end if
+      end do
+      if (converged) then
+         ! Keep the last factors for differentiate.
+         if (have_lu) then
+            call move_alloc(jac, sol%lu)
+            call move_alloc(ipiv, sol%pivots)
+         end if
+         return
+      end if
+      sol%iterations = max_iter
+      sol%residual = norm
+      call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+         & //" (in units of sigma): Newton did not converge in "//int_str(max_iter) &
+         & //" iterations, residual "//format_real(norm))
+   end subroutine newton
+
+   !> Damped fixed point w <- w - omega (w - H p_G(z + w)); omega halves when the residual
+   !> grows and recovers slowly while it falls. Converged at a scaled residual of 1e-11.
+   !> Where the spectral radius of H |dp/dw| is large (classic GW at small sigma/delta)
+   !> omega must become tiny and the iteration runs out of max_iter: not converged.
+   subroutine picard(prob, sol, max_iter, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      integer, intent(in) :: max_iter
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: res(:), w0(:)
+      real(dp) :: norm, norm_old, omega
+      integer :: it
+      allocate (res(size(sol%w)))
+      omega = 0.5_dp
+      call evaluate(prob, sol)
+      call residual(sol, res, norm)
+      do it = 1, max_iter + 1
+         sol%iterations = it - 1
+         sol%residual = norm
+         if (norm <= 1.0e-11_dp) return
+         if (it > max_iter) exit
+         w0 = sol%w
+         norm_old = norm
+         sol%w = w0 - omega*res
+         call evaluate(prob, sol)
+         call residual(sol, res, norm)
+         if (norm > norm_old) then
+            omega = 0.5_dp*omega
+         else
+            omega = min(1.0_dp, 1.05_dp*omega)
+         end if
+      end do
+      sol%iterations = max_iter
+      sol%residual = norm
+      call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+         & //" (in units of sigma): Picard did not converge in "//int_str(max_iter) &
+         & //" iterations, residual "//format_real(norm))
+   end subroutine picard
+
+end module egw_sphere_iteration

@@ -1,0 +1,420 @@
+!> The meshes of a rough-sphere solve (doc/theory.md §7 "Unknowns and discretisation"):
+!> the family's grading focus, width and outer radius, the steps of the levels, geometric
+!> layers at the Hertz edge, element edges at the unloading law's branch radii and kinks,
+!> and the outer radius grown where the pressure has not decayed.
+module egw_sphere_mesh
+   use egw_kinds, only: dp, pi
+   use egw_halfspace, only: graded_edges, interpolate_nodal
+   use egw_sphere_problem, only: solver_options, scaled_problem, discrete_solution, law_at, &
+      & law_inverse, estimated_gap, closest_gap, base_gap, deflection_degree
+   implicit none
+   private
+
+   !> Step ratio of the first two levels, and the order assumed when extrapolating the
+   !> difference of two levels to an error estimate: 3, the lowest seen on coarse meshes
+   !> (5-6 asymptotically), so that the estimate errs on the safe side; 2 for unloading,
+   !> whose (t - t*)**1.5 edges of Z_u inside elements slow it (with 3 the errors of
+   !> egw-bench --unloading-sweep at rel_tol 1e-6 were up to 2-3 times their estimates,
+   !> with 2 at most 1.8; the levels it accepts, and the bench times, did not change).
+   real(dp), parameter :: coarsen = 1.5_dp, force_order = 3.0_dp, unload_order = 2.0_dp
+   !> Geometric layers at the Hertz edge (number, size ratio).
+   integer, parameter :: focus_layers = 2
+   real(dp), parameter :: focus_ratio = 0.25_dp
+   !> Step (in asinh units) of the first level, and the finest allowed.
+   real(dp), parameter :: finest_step = 0.01_dp, coarsest_step = 0.6_dp
+   integer, parameter :: min_elements = 8
+   !> A kink of Z_u in Delta closer than this fraction of its element to a branch edge
+   !> gets no edge of its own (with_kink_edges).
+   real(dp), parameter :: near_kink = 0.3_dp
+
+   public :: coarsen, force_order, unload_order, finest_step
+
+   !> The meshes of a solve's levels: one family (grading focus and width, outer radius,
+   !> geometric layers at the focus) and the steps (asinh units) of the level being solved
+   !> and of the one before. Passed from step to step of solve_scaled.
+   type :: mesh_family
+      real(dp) :: focus = 0.0_dp, width = 0.0_dp, outer = 0.0_dp
+      real(dp) :: step = 0.0_dp, step_prev = 0.0_dp
+      logical :: layered = .false.
+   end type mesh_family
+
+   public :: mesh_family
+   public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
+      & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
+      & mesh_geometry, step_for_nodes, grown_outer
+
+contains
+
+   !> The mesh family of the first level (doc/theory.md §7 "Unknowns and discretisation"):
+   !> grading focus, width and outer radius (mesh_geometry), and the steps of the first
+   !> level (step_prev) and of the next (step).
+   pure subroutine first_mesh(prob, options, mesh)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      type(mesh_family), intent(out) :: mesh
+      call mesh_geometry(prob, options%rel_tol, mesh%focus, mesh%width, mesh%outer)
+      mesh%layered = prob%extended
+      if (options%n_radial > 0) then
+         mesh%step = step_for_nodes(prob%extended, mesh%focus, mesh%width, mesh%outer, &
+            & options%n_radial)
+         mesh%step_prev = coarsen*mesh%step
+      else
+         mesh%step_prev = coarsest_level_step(prob, mesh)
+         mesh%step = mesh%step_prev/coarsen
+      end if
+   end subroutine first_mesh
+
+   !> Step of the first level of an automatic mesh family.
+   pure real(dp) function coarsest_level_step(prob, mesh) result(step)
+      type(scaled_problem), intent(in) :: prob
+      type(mesh_family), intent(in) :: mesh
+      ! Deep contacts resolve the same relative error on coarser steps (the rough part,
+      ! where the error lives, weighs less): start coarser there ...
+      step = coarsest_step*max(1.0_dp, prob%delta)**0.1_dp
+      ! ... but never fewer than min_elements graded elements: on fewer, two levels can
+      ! agree by accident (not yet asymptotic) and the estimate would be worthless.
+      step = min(step, (asinh(mesh%focus/mesh%width) &
+         & + asinh((mesh%outer - mesh%focus)/mesh%width))/real(min_elements, dp))
+   end function coarsest_level_step
+
+   !> The outer radius (and the steps) of an unloading solve from where the unloading
+   !> pressure of the locating solve (first) has died (doc/theory.md §8).
+   pure subroutine trim_to_unloading_decay(prob, options, first, mesh)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(in) :: first
+      type(mesh_family), intent(inout) :: mesh
+      real(dp) :: trimmed
+      ! mesh_geometry sizes the mesh for the loading law, whose Gaussian tail reaches
+      ! far out, but Z_u vanishes once the summits it holds have recovered, so r p
+      ! falls far faster (seen: 1e-19 of the loading tail at the same radius). A mesh
+      ! trimmed to where r p is below 1e-6 rel_tol of its peak (the force beyond is
+      ! then ~1e-6 rel_tol, and the tail check of solve_with_tail still guards it)
+      ! puts the same number of elements where the force is. At delta -1 after
+      ! delta_max 1, psi 10 (a force of 1.4e-18 from a peak at r ~ 0.1 that has fallen
+      ! by 1e-12 at r ~ 0.5, on a mesh out to 3.2) this spares a third level. On a
+      ! sweep of 120 unloading solves (psi 1-10, delta_max -0.5..20) the 14 trimmed
+      ! ones moved by at most 4e-8, except psi 10, delta 0 after delta_max 2, where
+      ! the untrimmed solve was 9.7e-6 off its own rel_tol 1e-7 answer and the
+      ! trimmed one is 2.1e-7 off.
+      trimmed = decayed_radius(first, 1.0e-6_dp*options%rel_tol)
+      ! Only a mesh that shrinks by half: a slight trim gains little and moves the
+      ! edges, which can cost a level (seen: outer 3.59 -> 3.36 at delta 0.5 after
+      ! delta_max 1, psi 10, a third level).
+      ! (trimmed is 0 where the pressure is 0 throughout: nothing to trim to.)
+      if (trimmed > 0.0_dp .and. trimmed <= 0.5_dp*mesh%outer) then
+         ! At the centre focus the grading width must fit inside the trimmed mesh.
+         if (mesh%focus == 0.0_dp) mesh%width = min(mesh%width, 0.5_dp*trimmed)
+         mesh%outer = max(trimmed, mesh%focus + 2.0_dp*mesh%width)
+         mesh%step_prev = coarsest_level_step(prob, mesh)
+         mesh%step = mesh%step_prev/coarsen
+      end if
+   end subroutine trim_to_unloading_decay
+
+   !> Where the gap of a solution last crosses 0 (linear between Gauss points), and the
+   !> distance over which it grows by one sigma there; focus and width unchanged if the
+   !> gap never crosses 0.
+   pure subroutine gap_edge(sol, focus, width)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(inout) :: focus, width
+      real(dp) :: slope
+      integer :: g
+      do g = size(sol%gap) - 1, 1, -1
+         if (sol%gap(g) < 0.0_dp .and. sol%gap(g + 1) >= 0.0_dp) then
+            slope = (sol%gap(g + 1) - sol%gap(g))/(sol%mesh%gauss_r(g + 1) - sol%mesh%gauss_r(g))
+            focus = sol%mesh%gauss_r(g) - sol%gap(g)/slope
+            width = min(width, 1.0_dp/slope)
+            return
+         end if
+      end do
+   end subroutine gap_edge
+
+   !> Radii where the gap of a solution crosses its closest-approach gap plus one of the
+   !> levels (0: the branch; the kinks of Z_u in Delta), at most 16. Bracketed by the Gauss
+   !> points where gap - gap_min - level changes sign, then bisected on the solution's own
+   !> field (nodal interpolation of w, the history's d_max): an edge placed off the kink by
+   !> the linear interpolation's error (~ spacing^2 x curvature) left both levels with the
+   !> same error, which their difference (the Richardson estimate) cannot see.
+   function branch_radii(prob, sol, levels, negligible_weight, n_first) result(radii)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: levels(:)
+      real(dp), intent(in) :: negligible_weight  !< skip radii where negligible_at says so
+      integer, intent(out) :: n_first            !< how many radii (the first) are of levels(1)
+      real(dp), allocatable :: radii(:)
+      real(dp) :: f0, f1, lo, hi, mid, f_lo, f_hi, f_mid
+      integer :: g, k, i, side
+      allocate (radii(0))
+      n_first = 0
+      do k = 1, size(levels)
+         do g = 1, size(sol%gap) - 1
+            f0 = sol%gap(g) - sol%gap_min(g) - levels(k)
+            f1 = sol%gap(g + 1) - sol%gap_min(g + 1) - levels(k)
+            if ((f0 < 0.0_dp .eqv. f1 < 0.0_dp) .or. size(radii) >= 16) cycle
+            if (negligible_at(sol, 0.5_dp*(sol%mesh%gauss_r(g) + sol%mesh%gauss_r(g + 1)), &
+               & negligible_weight)) cycle
+            lo = sol%mesh%gauss_r(g)
+            hi = sol%mesh%gauss_r(g + 1)
+            mid = lo + f0/(f0 - f1)*(hi - lo)
+            f_lo = excess(lo)
+            f_hi = excess(hi)
+            if ((f_lo < 0.0_dp) .neqv. (f_hi < 0.0_dp)) then
+               ! Illinois (regula falsi that halves the value kept twice): ~8 evaluations
+               ! of the field to full precision where bisection took 40-50.
+               side = 0
+               do i = 1, 60
+                  mid = (lo*f_hi - hi*f_lo)/(f_hi - f_lo)
+                  if (.not. (mid > lo .and. mid < hi)) mid = 0.5_dp*(lo + hi)
+                  if (.not. (mid > lo .and. mid < hi)) exit
+                  f_mid = excess(mid)
+                  if (f_mid == 0.0_dp) exit
+                  if ((f_mid < 0.0_dp) .eqv. (f_lo < 0.0_dp)) then
+                     lo = mid
+                     f_lo = f_mid
+                     if (side == 1) f_hi = 0.5_dp*f_hi
+                     side = 1
+                  else
+                     hi = mid
+                     f_hi = f_mid
+                     if (side == -1) f_lo = 0.5_dp*f_lo
+                     side = -1
+                  end if
+                  if (hi - lo <= 8.0_dp*epsilon(1.0_dp)*hi) exit
+               end do
+            end if
+            radii = [radii, mid]
+         end do
+         if (k == 1) n_first = size(radii)
+      end do
+   contains
+      !> gap - gap_min - level at r from the nodal field
+      pure real(dp) function excess(r)
+         real(dp), intent(in) :: r
+         real(dp) :: gm(1)
+         gm = closest_gap(prob%closest, [r])
+         excess = base_gap(prob, r) + interpolate_nodal(sol%mesh, sol%w, r) - gm(1) - levels(k)
+      end function excess
+   end function branch_radii
+
+   !> True when r p(r) of a solution, at the two Gauss points around r (or the last one),
+   !> is at most weight times its largest value over the mesh.
+   pure logical function negligible_at(sol, r, weight)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: r, weight
+      real(dp) :: peak, local
+      integer :: g, ng
+      ng = size(sol%p)
+      peak = maxval(abs(sol%p*sol%mesh%gauss_r))
+      g = 1
+      do while (g < ng)
+         if (sol%mesh%gauss_r(g + 1) >= r) exit
+         g = g + 1
+      end do
+      local = abs(sol%p(g)*sol%mesh%gauss_r(g))
+      if (g < ng) local = max(local, abs(sol%p(g + 1)*sol%mesh%gauss_r(g + 1)))
+      negligible_at = local <= weight*peak
+   end function negligible_at
+
+   !> The Gauss radius just past the last one where r p of a solution exceeds weight times
+   !> its peak (the last Gauss radius if that is the last point; 0 if p is 0 throughout).
+   pure real(dp) function decayed_radius(sol, weight) result(r)
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: weight
+      real(dp) :: peak
+      integer :: g, ng
+      ng = size(sol%p)
+      peak = maxval(abs(sol%p*sol%mesh%gauss_r))
+      r = 0.0_dp
+      if (.not. peak > 0.0_dp) return
+      do g = ng, 1, -1
+         if (abs(sol%p(g)*sol%mesh%gauss_r(g)) > weight*peak) exit
+      end do
+      r = sol%mesh%gauss_r(min(g + 1, ng))
+   end function decayed_radius
+
+   !> Geometric layers on both sides of the focus (the Hertz edge of the extended models),
+   !> where the pressure has its one-sided (r - a)**1.5 onset: a polynomial on an element
+   !> touching a converges only algebraically, on geometric layers exponentially.
+   pure function focus_refined(edge, focus) result(refined)
+      real(dp), intent(in) :: edge(0:), focus
+      real(dp), allocatable :: refined(:)
+      real(dp) :: left, right
+      integer :: i, k, n
+      n = size(edge) - 1
+      k = -1
+      if (focus > 0.0_dp) k = findloc(edge, focus, dim=1) - 1
+      if (k <= 0 .or. k >= n .or. focus_layers == 0) then
+         refined = edge
+         return
+      end if
+      left = focus - edge(k - 1)
+      right = edge(k + 1) - focus
+      refined = [edge(0:k - 1), (focus - left*focus_ratio**i, i=1, focus_layers), focus, &
+         & (focus + right*focus_ratio**i, i=focus_layers, 1, -1), edge(k + 1:n)]
+   end function focus_refined
+
+   !> edge with r added as an element edge (the element holding r split in two) unless r
+   !> is outside (0, outer) or within a tenth of its element's length of an edge already.
+   pure function with_edge(edge, r) result(out)
+      real(dp), intent(in) :: edge(0:), r
+      real(dp), allocatable :: out(:)
+      integer :: k, n
+      n = size(edge) - 1
+      out = edge
+      if (.not. (r > 0.0_dp .and. r < edge(n))) return
+      k = 1
+      do while (edge(k) < r)
+         k = k + 1
+      end do
+      if (min(edge(k) - r, r - edge(k - 1)) <= 0.1_dp*(edge(k) - edge(k - 1))) return
+      out = [edge(0:k - 1), r, edge(k:n)]
+   end function with_edge
+
+   !> edge with each of the radii r (kinks of the unloading pressure) made an element edge:
+   !> the edge nearest r is moved onto it when that is at most a tenth of both elements
+   !> beside it away (and is not 0, the outer radius, the focus or an edge placed for an
+   !> earlier r), else r is inserted (the element holding it split in two). Formerly an r
+   !> within a tenth of an element of an edge was skipped, which left the kink inside the
+   !> element on one level and not on the other: the Richardson estimate then measured
+   !> the kink, not the discretisation (seen: 3.8e-7 for an error of 2e-9). The a_max edge
+   !> (keep) and the focus layers are never moved onto a kink (without the a_max edge the
+   !> unloading forces of psi 10 after delta_max 1, 2 were off by up to 1.3e-6).
+   pure function with_kink_edges(edge, radii, focus, n_strong, keep) result(out)
+      real(dp), intent(in) :: edge(:), radii(:), focus
+      integer, intent(in) :: n_strong   !< radii(:n_strong): d = d_max crossings
+      real(dp), intent(in) :: keep      !< an edge never moved (the a_max edge; 0: none)
+      real(dp), allocatable :: out(:)   ! indices 1..m (the edges' 0..n)
+      logical, allocatable :: fixed(:)
+      real(dp) :: r, room
+      integer :: i, j, k, m, kf
+      allocate (out(size(edge)))
+      out(:) = edge
+      fixed = out == focus .or. out == keep
+      ! nor the focus layers
+      if (focus > 0.0_dp .and. any(out == focus)) then
+         kf = findloc(out, focus, dim=1)
+         fixed(max(1, kf - focus_layers):min(size(out), kf + focus_layers)) = .true.
+      end if
+      do i = 1, size(radii)
+         r = radii(i)
+         m = size(out)
+         if (.not. (r > 0.0_dp .and. r < out(m))) cycle
+         k = 2
+         do while (out(k) < r)
+            k = k + 1
+         end do
+         ! A kink of Z_u in Delta (d2p jumps) within near_kink of its element of a branch
+         ! edge (dp jumps) gets no edge of its own: the element that short between them
+         ! cost 6 % of the solve (psi 10, delta 0.5 after delta_max 1: Delta reaches e
+         ! 0.016 past the branch edge) for an error of order its length cubed (on the 16
+         ! references the forces moved by at most 7.5e-8 at rel_tol 1e-7, within the
+         ! tolerance and the estimate).
+         if (i > n_strong .and. n_strong > 0) then
+            if (minval(abs(radii(:n_strong) - r)) < near_kink*(out(k) - out(k - 1))) cycle
+         end if
+         ! nearest edge j of the element (out(k-1), out(k)] holding r
+         j = k
+         if (r - out(k - 1) < out(k) - r) j = k - 1
+         if (abs(out(j) - r) <= 4.0_dp*epsilon(1.0_dp)*r) then
+            fixed(j) = .true.
+            cycle
+         end if
+         if (j > 1 .and. j < m) then
+            room = 0.1_dp*min(out(j) - out(j - 1), out(j + 1) - out(j))
+            if (.not. fixed(j) .and. abs(out(j) - r) <= room) then
+               out(j) = r
+               fixed(j) = .true.
+               cycle
+            end if
+         end if
+         out = [out(:k - 1), r, out(k:)]
+         fixed = [fixed(:k - 1), .true., fixed(k:)]
+      end do
+   end function with_kink_edges
+
+   !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
+   !> Outside the Hertz edge the gap grows like (4/3)(a**2/pi)(2 s/a)**1.5 (s = r - a), so
+   !> it reaches one sigma at s_b = (a/2)(3 pi/(4 a**2))**(2/3): the boundary layer whose
+   !> relative width is ~ (sigma/delta)**(2/3).
+   pure subroutine mesh_geometry(prob, rel_tol, focus, width, outer)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: rel_tol
+      real(dp), intent(out) :: focus, width, outer
+      real(dp) :: h_ref, f_ref, h_cut, f, dfdh, lo, hi, mid
+      integer :: i
+
+      if (prob%a > 1.0_dp .or. (prob%extended .and. prob%a > 0.0_dp)) then
+         ! The extended models need a node at a, where z has its (r - a)**1.5 onset.
+         focus = prob%a
+         width = min(1.0_dp, 0.5_dp*prob%a*(0.75_dp*pi/prob%a**2)**(2.0_dp/3.0_dp))
+      else
+         focus = 0.0_dp
+         width = min(1.0_dp, 1.0_dp/sqrt(max(1.0_dp, -prob%delta)))
+      end if
+      ! Gap where the law has fallen by 1e-3 rel_tol from its value at the closest point.
+      h_ref = max(0.0_dp, -prob%delta)
+      if (.not. prob%extended .and. prob%delta > 0.0_dp) h_ref = 0.0_dp
+      call law_at(prob, h_ref, f_ref, dfdh)
+      h_cut = h_ref
+      do i = 1, 400
+         h_cut = h_cut + 0.25_dp
+         call law_at(prob, h_cut, f, dfdh)
+         if (f <= 1.0e-3_dp*rel_tol*f_ref) exit
+      end do
+      ! Classic GW at delta > 0 has its gap below the Hertz gap by up to the centre value
+      ! -h(p_H(0)) (eq. 19; ~15 sigma at sigma/delta = 1e-5): reach that much further out.
+      if (.not. prob%extended .and. prob%delta > 0.0_dp) h_cut = h_cut &
+         & + max(0.0_dp, -law_inverse(prob, 2.0_dp*prob%a/pi))
+      ! Radius where the Hertz (or rigid) gap reaches h_cut: bisection, the gap grows with r.
+      lo = prob%a
+      hi = prob%a + sqrt(2.0_dp*(h_cut + abs(prob%delta))) + 10.0_dp
+      do i = 1, 100
+         mid = 0.5_dp*(lo + hi)
+         if (estimated_gap(prob, mid) < h_cut) then
+            lo = mid
+         else
+            hi = mid
+         end if
+      end do
+      outer = max(hi, focus + 2.0_dp*width)
+   end subroutine mesh_geometry
+
+   !> Step that gives about n_nodes nodes with graded_edges.
+   pure real(dp) function step_for_nodes(extended, focus, width, outer, n_nodes) result(step)
+      logical, intent(in) :: extended
+      real(dp), intent(in) :: focus, width, outer
+      integer, intent(in) :: n_nodes
+      real(dp) :: xi_total
+      integer :: graded_nodes
+      xi_total = asinh(focus/width) + asinh((outer - focus)/width)
+      ! The focus layers add 2 focus_layers elements when the focus is inside the mesh.
+      graded_nodes = n_nodes - 1
+      if (extended .and. focus > 0.0_dp) graded_nodes = graded_nodes &
+         & - 2*focus_layers*deflection_degree
+      step = xi_total*real(deflection_degree, dp) &
+         & /real(max(graded_nodes, 2*deflection_degree), dp)
+   end function step_for_nodes
+
+   !> New outer radius when the pressure at the old one leaves too much force outside:
+   !> the pressure falls at least like exp(-kappa (r - outer)) with kappa from the last
+   !> two Gauss points.
+   pure real(dp) function grown_outer(prob, sol, allowed, outer) result(new_outer)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: allowed, outer
+      real(dp) :: kappa
+      integer :: n
+      n = size(sol%p)
+      kappa = 0.0_dp
+      if (sol%p(n) > 0.0_dp .and. sol%p(n - 1) > sol%p(n)) kappa = log(sol%p(n - 1)/sol%p(n)) &
+         & /(sol%mesh%gauss_r(n) - sol%mesh%gauss_r(n - 1))
+      if (kappa > 0.0_dp) then
+         new_outer = outer + max(0.25_dp*(outer - prob%a), &
+            & log(max(sol%tail/(0.001_dp*allowed), 2.0_dp))/kappa)
+      else
+         new_outer = outer + 0.5_dp*(outer - prob%a)
+      end if
+      if (prob%a > 0.0_dp) new_outer = max(new_outer, prob%a*1.05_dp)
+   end function grown_outer
+
+end module egw_sphere_mesh

@@ -1,0 +1,315 @@
+!> The scaled problem of a rough sphere (doc/theory.md §5, §7): the options of a solve,
+!> the problem in scaled variables (the loading law as a flat_law object, the base gap, the
+!> unloading's closest-approach field), a discrete solution and what is read off it
+!> (pressure, force, contact radius). Shared by the solver's meshes (egw_sphere_mesh),
+!> iterations (egw_sphere_iteration) and levels (egw_sphere_solver).
+module egw_sphere_problem
+   use egw_kinds, only: dp, pi, sqrt2
+   use egw_params, only: contact_params, model_egw, model_epgw
+   use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_force, hertz_stiffness
+   use egw_flat_law, only: flat_law, gw_flat_law
+   use egw_unloading, only: unloading_law, unloading_law_of, unloading_pressure
+   use egw_halfspace, only: radial_mesh, node_index, influence_row, interpolate_nodal
+   implicit none
+   private
+
+   integer, parameter, public :: method_auto = 0    !< Newton (the robust choice)
+   integer, parameter, public :: method_newton = 1  !< Newton + backtracking line search
+   integer, parameter, public :: method_picard = 2  !< damped fixed point (Picard)
+
+   !> Options of a solve. Field order and meaning match the C struct egw_options.
+   type, public :: solver_options
+      integer :: n_radial = 0          !< mesh nodes; 0 = chosen from rel_tol
+      real(dp) :: rel_tol = 1.0e-6_dp  !< target relative accuracy of the force
+      integer :: max_iter = 0          !< nonlinear iterations; 0 = default
+      integer :: method = method_auto  !< method_auto, method_newton or method_picard
+      integer :: n_threads = 0         !< threads of the assembly; 0 = OpenMP default
+   end type solver_options
+
+   !> Largest mesh (nodes) of a solve: its dense influence matrix (nodes x 1.5 nodes) and
+   !> Jacobian take ~0.5 GB and an LU ~10 s; the automatic meshes of the solver's range
+   !> (delta/sigma up to 1e15, rel_tol down to 1e-10) stay well below. Bounds every solve's
+   !> time and memory (n_radial larger: egw_invalid_argument).
+   integer, parameter, public :: max_mesh_nodes = 4097
+   !> Scaled force below which a solve returns 0 (as negligible() does before solving).
+   real(dp), parameter :: tiny_force = 1.0e-250_dp
+
+   public :: tiny_force
+
+   !> Degree of the deflection elements and pressure points per element: quartic elements
+   !> with 6 Gauss points were the cheapest per digit of the pairs tried (degree 2-4,
+   !> 4-8 points); the force error then falls like step**5 to step**6.
+   integer, parameter, public :: deflection_degree = 4, pressure_points = 6
+
+   !> Separation field of the loading solve at delta_max (scaled): d_max(r) = z_max(r) +
+   !> w_max(r) with z_max the base gap at delta_max and w_max the nodal rough deflection
+   !> interpolated on its mesh (beyond the mesh it falls like 1/r, the far field of a load).
+   type :: separation_field
+      logical :: extended = .false.   !< z_max is the Hertz gap (else the rigid gap)
+      real(dp) :: delta = 0.0_dp      !< delta_max/sigma
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: w(:)
+   end type separation_field
+
+   !> The scaled problem.
+   type :: scaled_problem
+      integer :: model = model_egw
+      real(dp) :: delta = 0.0_dp       !< delta/sigma
+      logical :: extended = .false.    !< base gap is the Hertz gap (E-GW/EP-GW, delta > 0)
+      real(dp) :: a = 0.0_dp           !< Hertz radius sqrt(delta/sigma) (0 if delta <= 0)
+      !> The rough-flat law of loading, in scaled units (GW's, or a law the caller gave).
+      class(flat_law), allocatable :: law
+      !> EP-GW unloading: mu/(2 sqrt 2), p = scale Z_u(h, h_min), and the ZMC parameters.
+      real(dp) :: scale = 0.0_dp
+      real(dp) :: psi = 0.0_dp, hardness = 0.6_dp, plastic_ratio = 54.0_dp
+      !> Unloading: the closest approach so far (allocated), else the loading law.
+      type(separation_field), allocatable :: closest
+      !> Unloading: Z_u of psi, K, rho_p prepared once per solve (unloading_law_of).
+      type(unloading_law) :: unload
+      !> Unloading: radii where d crosses d_max (the law switches branch; the first
+      !> n_branch) and where d - d_max crosses a kink of Z_u in Delta: element edges.
+      real(dp), allocatable :: branch(:)
+      integer :: n_branch = 0
+      !> Unloading: an element edge at the loading Hertz edge sqrt(delta_max) (the onset of
+      !> d_max); dropped where the locating solve's pressure there is negligible.
+      logical :: amax_edge = .true.
+      !> Scaled residual at which Newton stops (looser only for the unloading's locating
+      !> solve, see first_unloading_level).
+      real(dp) :: residual_tol = 1.0e-11_dp
+   end type scaled_problem
+
+
+   !> A converged discrete solution and what is derived from it (scaled units, rough part).
+   type :: discrete_solution
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: infl(:, :)        !< nodes x Gauss points
+      real(dp), allocatable :: w(:)              !< nodal rough deflection
+      real(dp), allocatable :: base(:), dbase(:) !< base gap and d(base)/d(delta) at Gauss pts
+      real(dp), allocatable :: gap(:), p(:), dpdh(:)  !< at the Gauss points
+      real(dp), allocatable :: gap_min(:)  !< closest-approach gap at the Gauss points (unloading)
+      real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
+      real(dp) :: residual = 0.0_dp, tail = 0.0_dp
+      integer :: iterations = 0
+      !> LU factors (dgetf2) of the last Jacobian Newton factored, near the solution; not
+      !> allocated after Picard.
+      real(dp), allocatable :: lu(:, :)
+      integer, allocatable :: pivots(:)
+   end type discrete_solution
+
+   public :: separation_field, scaled_problem, discrete_solution
+   public :: scaled, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
+      & estimated_gap, law_inverse, gauss_values, effective_radius, total_pressure, &
+      & smooth_force, smooth_stiffness
+
+contains
+
+   !> Gap at the closest approach, d_max(r)/sigma, at scaled radii r >= 0.
+   pure function closest_gap(field, r) result(gap)
+      type(separation_field), intent(in) :: field
+      real(dp), intent(in) :: r(:)
+      real(dp) :: gap(size(r))
+      real(dp) :: r_out, w_out
+      integer :: i
+      r_out = field%mesh%edge(field%mesh%n_elem)
+      w_out = field%w(size(field%w))
+      do i = 1, size(r)
+         if (r(i) <= r_out) then
+            gap(i) = interpolate_nodal(field%mesh, field%w, r(i))
+         else
+            ! Beyond the loading mesh the pressure was negligible: the deflection is that
+            ! of a point load there, continued from the outer radius.
+            gap(i) = w_out*r_out/r(i)
+         end if
+         if (field%extended) then
+            gap(i) = gap(i) + hertz_gap(r(i), field%delta, 1.0_dp)
+         else
+            gap(i) = gap(i) + 0.5_dp*r(i)*r(i) - field%delta
+         end if
+      end do
+   end function closest_gap
+
+   !> The scaled problem of params at overlap delta (sigma > 0).
+   pure function scaled(params, delta) result(prob)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta
+      type(scaled_problem) :: prob
+      prob%model = params%model
+      prob%delta = delta/params%sigma
+      ! A subnormal delta/sigma is 0 to the solver's precision (the Hertz part, ~x**1.5,
+      ! underflows), and its Hertz edge at sqrt(x) would put elements of subnormal size
+      ! into the mesh: solve at 0 (continuous: at x = 1e-300 the force equals P(0)).
+      if (abs(prob%delta) < tiny(1.0_dp)) prob%delta = 0.0_dp
+      prob%a = sqrt(max(prob%delta, 0.0_dp))
+      prob%extended = (params%model == model_egw .or. params%model == model_epgw) .and. &
+         & prob%delta > 0.0_dp
+      prob%scale = params%mu/(2.0_dp*sqrt2)
+      prob%psi = 0.0_dp
+      if (params%model == model_epgw) prob%psi = params%psi
+      prob%hardness = params%hardness_coeff
+      prob%plastic_ratio = params%plastic_ratio
+      allocate (prob%law, source=gw_flat_law(scale=prob%scale, psi=prob%psi, &
+         & hardness_coeff=prob%hardness, plastic_ratio=prob%plastic_ratio))
+   end function scaled
+
+   !> Scaled pressure of the loading law at one scaled separation h, and its derivative.
+   pure subroutine law_at(prob, h, p, dpdh)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: h
+      real(dp), intent(out) :: p, dpdh
+      real(dp) :: pa(1), da(1)
+      call prob%law%pressure([h], pa, da)
+      p = pa(1)
+      dpdh = da(1)
+   end subroutine law_at
+
+   elemental logical function normal(x)
+      real(dp), intent(in) :: x
+      normal = abs(x) >= tiny(1.0_dp) .and. abs(x) <= huge(1.0_dp)
+   end function normal
+
+   !> True when the spheres are so far apart that the summit pressure underflows.
+   elemental logical function negligible(prob)
+      type(scaled_problem), intent(in) :: prob
+      real(dp) :: f, dfdh
+      negligible = .false.
+      if (prob%delta >= 0.0_dp) return
+      call law_at(prob, -prob%delta, f, dfdh)
+      negligible = f < tiny_force
+   end function negligible
+
+   !> Base gap z(r): the Hertz gap of eq. (28) (zero inside a) for the extended models at
+   !> delta > 0, else the rigid gap r**2/2 - delta (classic GW, eq. 10).
+   elemental real(dp) function base_gap(prob, r) result(z)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: r
+      if (prob%extended) then
+         z = hertz_gap(r, prob%delta, 1.0_dp)
+      else
+         z = 0.5_dp*r*r - prob%delta
+      end if
+   end function base_gap
+
+   !> d z / d delta at fixed r: Hertz gives d w_H/d delta = 1 inside a and
+   !> (2/pi) asin(a/r) outside (the flat-punch field), so dz/d delta = 0 inside.
+   elemental real(dp) function base_gap_rate(prob, r) result(dz)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: r
+      if (prob%extended) then
+         if (r <= prob%a) then
+            dz = 0.0_dp
+         else
+            dz = 2.0_dp/pi*asin(prob%a/r) - 1.0_dp
+         end if
+      else
+         dz = -1.0_dp
+      end if
+   end function base_gap_rate
+
+   !> Gap estimate before solving: the Hertz gap (extended models, and classic GW at
+   !> delta > 0 whose gap is close to it) or the rigid gap.
+   elemental real(dp) function estimated_gap(prob, r) result(z)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: r
+      if (prob%delta > 0.0_dp) then
+         z = hertz_gap(r, prob%delta, 1.0_dp)
+      else
+         z = 0.5_dp*r*r - prob%delta
+      end if
+   end function estimated_gap
+
+   !> h with p(h) = target (the scaled law, decreasing) by bisection: a bracket about
+   !> [-2, 40] (GW's law underflows at 40), widened until it holds the target.
+   pure real(dp) function law_inverse(prob, target) result(h)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: target
+      real(dp) :: lo, hi, f, dfdh
+      integer :: i
+      lo = -2.0_dp
+      hi = 40.0_dp
+      do i = 1, 60
+         call law_at(prob, lo, f, dfdh)
+         if (f > target) exit
+         lo = 2.0_dp*lo
+      end do
+      do i = 1, 60
+         call law_at(prob, hi, f, dfdh)
+         if (.not. f > target) exit
+         hi = 2.0_dp*hi
+      end do
+      do i = 1, 200
+         h = 0.5_dp*(lo + hi)
+         if (.not. (h > lo .and. h < hi)) exit
+         call law_at(prob, h, f, dfdh)
+         if (f > target) then
+            lo = h
+         else
+            hi = h
+         end if
+      end do
+   end function law_inverse
+
+   !> Nodal field -> values at the Gauss points (element-wise Lagrange interpolation).
+   pure function gauss_values(mesh, v) result(vg)
+      type(radial_mesh), intent(in) :: mesh
+      real(dp), intent(in) :: v(:)
+      real(dp) :: vg(size(mesh%gauss_r))
+      integer :: e, q, i0, j0
+      do e = 1, mesh%n_elem
+         i0 = (e - 1)*mesh%n_gauss
+         j0 = node_index(mesh, e, 0)
+         do q = 1, mesh%n_gauss
+            vg(i0 + q) = dot_product(mesh%interp(:, q), v(j0:j0 + mesh%degree))
+         end do
+      end do
+   end function gauss_values
+
+   !> Effective contact radius a* = (3 pi/4) int r p dr / int p dr of the total pressure
+   !> (scaled); the Hertz part has int r p_H dr = P_H/(2 pi), int p_H dr = a**2/2.
+   pure real(dp) function effective_radius(prob, sol) result(a_eff)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp) :: m0, m1
+      m0 = sol%moment0
+      m1 = sol%moment1
+      if (prob%extended) then
+         m0 = m0 + 0.5_dp*prob%a**2
+         m1 = m1 + hertz_force(prob%delta, 1.0_dp, 1.0_dp)/(2.0_dp*pi)
+      end if
+      a_eff = 0.0_dp
+      if (m0 > 0.0_dp) a_eff = 0.75_dp*pi*m1/m0
+   end function effective_radius
+
+   !> Total scaled pressure at r from the solved deflection (influence row, exact for the
+   !> discrete pressure).
+   pure real(dp) function total_pressure(prob, sol, r) result(p)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: r
+      real(dp) :: row(size(sol%p)), f, dfdh, gap_min(1)
+      call influence_row(sol%mesh, r, row)
+      if (allocated(prob%closest)) then
+         gap_min = closest_gap(prob%closest, [r])
+         call unloading_pressure(prob%unload, base_gap(prob, r) + dot_product(row, sol%p), &
+            & gap_min(1), f, dfdh)
+         p = prob%scale*f
+      else
+         call law_at(prob, base_gap(prob, r) + dot_product(row, sol%p), p, dfdh)
+      end if
+      if (prob%extended) p = p + hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
+   end function total_pressure
+
+   !> Scaled Hertz force of the smooth part (extended models only).
+   pure real(dp) function smooth_force(prob) result(force)
+      type(scaled_problem), intent(in) :: prob
+      force = 0.0_dp
+      if (prob%extended) force = hertz_force(prob%delta, 1.0_dp, 1.0_dp)
+   end function smooth_force
+
+   !> Scaled Hertz stiffness of the smooth part (extended models only).
+   pure real(dp) function smooth_stiffness(prob) result(stiffness)
+      type(scaled_problem), intent(in) :: prob
+      stiffness = 0.0_dp
+      if (prob%extended) stiffness = hertz_stiffness(prob%delta, 1.0_dp, 1.0_dp)
+   end function smooth_stiffness
+
+end module egw_sphere_problem
