@@ -126,8 +126,15 @@ def check(root):
 
 def self_test():
     """Run check() on made-up trees; return the faults it missed (empty when all seen)."""
+    with tempfile.TemporaryDirectory(prefix="egw_layers_") as scratch:
+        return _self_test(scratch)
+
+
+def _self_test(scratch):
+    """self_test's body: every made-up tree in a fresh folder under scratch (removed
+    with it)."""
     def tree(files):
-        root = tempfile.mkdtemp(prefix="egw_layers_")
+        root = tempfile.mkdtemp(dir=scratch)
         for layer in LAYERS:
             os.makedirs(os.path.join(root, "src", "egw", layer))
             open(os.path.join(root, "src", "egw", layer, "README.md"), "w").close()
