@@ -604,6 +604,44 @@ def analyse(source: Any, pixel_size=None, unit: Optional[str] = None, *,
                             notes)
 
 
+#: models whose overlap delta is measured from the mean SUMMIT plane (GW's base plane);
+#: a model measured from the mean plane of the heights (y_s = 0) is simply not listed here
+SUMMIT_PLANE_MODELS = ("GW", "E-GW", "EP-GW")
+
+
+def reference_plane_offset(model: str, stats: SummitStatistics) -> float:
+    """The height y_s of a model's reference plane above the mean plane of the heights.
+
+    An overlap delta_m measured from the mean plane of the heights is delta = delta_m + y_s
+    for the model; a separation u between the mean planes is d = u - y_s.
+
+    Parameters
+    ----------
+    model : str
+        The model name ('GW', 'E-GW', 'EP-GW', ...).
+    stats : SummitStatistics
+        The statistics of the surface (their mean_summit_height is used).
+
+    Returns
+    -------
+    float
+        y_s [the unit of stats]: the mean summit height (> 0) for the models in
+        SUMMIT_PLANE_MODELS, whose delta is measured from the mean summit plane; 0 for a
+        model measured from the mean plane of the heights.
+
+    Raises
+    ------
+    ValueError
+        A summit-plane model whose statistics carry no mean summit height.
+    """
+    if model not in SUMMIT_PLANE_MODELS:
+        return 0.0
+    if stats.mean_summit_height is None:
+        raise ValueError(f"model {model!r} measures delta from the mean summit plane, but "
+                         f"the statistics ({stats.method}) carry no mean summit height")
+    return float(stats.mean_summit_height)
+
+
 @dataclass
 class ContactReport:
     """How contact_from_topography got its Params.
@@ -612,9 +650,14 @@ class ContactReport:
     ----------
     params : the Params returned.
     estimate : 'summits' or 'spectral', the statistics used; reason : why.
-    summit_density, summit_radius, sigma, y_s, sigma_surface : the combined surface's
-        statistics [SI: 1/m^2, m]; y_s is the mean summit plane above the mean plane
-        (convert an overlap measured from the mean planes with delta = delta_mean - y_s).
+    summit_density, summit_radius, sigma, sigma_surface : the combined surface's
+        statistics [SI: 1/m^2, m].
+    y_s : the offset of the model's reference plane above the mean plane of the heights
+        [m]: an overlap delta_m measured from the mean plane is delta = delta_m + y_s for
+        the model (a separation u between mean planes: d = u - y_s). GW, E-GW and EP-GW
+        measure from the mean summit plane, which lies the mean summit height above the
+        mean plane (y_s > 0); a model measured from the mean plane has y_s = 0
+        (:func:`reference_plane_offset`).
     effective_modulus : E* [Pa]; radius : R [m] (None for a flat).
     surfaces : the TopographyReport of each map analysed (empty for moments).
     notes : warnings and assumptions.
@@ -719,7 +762,7 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
     params = Params(model=model, radius=r_mu, modulus=e_star, sigma=stats.sigma_summits,
                     mu=mu, psi=psi, hardness_coeff=hardness_coeff)
     report = ContactReport(params, chosen, reason, stats.summit_density, stats.summit_radius,
-                           stats.sigma_summits, stats.mean_summit_height,
+                           stats.sigma_summits, reference_plane_offset(model, stats),
                            stats.sigma_surface, e_star, radius, surfaces, notes)
     return params, report
 
