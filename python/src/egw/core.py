@@ -187,13 +187,44 @@ RESULT_DTYPE = np.dtype([(f, np.float64) for f in ("force", "stiffness", "contac
 assert RESULT_DTYPE.itemsize == ctypes.sizeof(_capi.Result)
 
 
+#: an error message shows at most this many characters of a value (never a whole array)
+BRIEF_CHARS = 60
+
+
+def _brief(value) -> str:
+    """A short repr for error messages: a value itself when short, else its type, shape,
+    dtype and first elements (a message must never print a whole input array)."""
+    text = repr(value)
+    if len(text) <= BRIEF_CHARS and "\n" not in text:
+        return text
+    try:
+        a = np.asarray(value)
+    except Exception:  # noqa: BLE001 - any object: fall back to its cut repr
+        return text[:BRIEF_CHARS] + "..."
+    if a.ndim == 0:
+        return text[:BRIEF_CHARS] + "..."
+    head = ", ".join(repr(x)[:12] for x in a.reshape(-1)[:3].tolist())
+    return f"<{type(value).__name__} shape {a.shape} dtype {a.dtype}: {head}, ...>"
+
+
+def _refuse_masked(name: str, value) -> None:
+    """Masked arrays are refused (never a mask dropped silently)."""
+    if np.ma.is_masked(value):
+        raise TypeError(f"{name}: a masked array with {np.ma.count_masked(value)} masked "
+                        "values: egw would compute under the mask; pass the valid values "
+                        "(x.compressed()), or x.filled(np.nan) under "
+                        "egw.errstate(failed='nan') and np.ma.masked_invalid on the result")
+
+
 def _number_array(name: str, value) -> np.ndarray:
-    """value as float64 (a scalar as 0-d); strings, None, booleans and complex refused."""
+    """value as float64 (a scalar as 0-d); strings, None, booleans, complex and masked
+    arrays with a masked value refused."""
+    _refuse_masked(name, value)
     raw = np.asarray(value)
     if raw.dtype.kind not in "iuf":
         got = raw.dtype if raw.dtype.kind != "O" else type(value).__name__
-        raise TypeError(f"{name} = {value!r}: must be a real number or an array of real "
-                        f"numbers (got {got})")
+        raise TypeError(f"{name} = {_brief(value)}: must be a real number or an array of "
+                        f"real numbers (got {got})")
     return np.asarray(raw, dtype=np.float64)
 
 
@@ -277,7 +308,7 @@ class Params:
         if scalar:
             check(lib.egw_params_validate(ctypes.byref(self.to_c())))
         if self.model != "EP-GW" and np.any(np.asarray(self.psi) > 0):
-            warnings.warn(f"psi = {self.psi}: the plasticity index is used by EP-GW only; "
+            warnings.warn(f"psi = {_brief(self.psi)}: the plasticity index is used by EP-GW only; "
                           f"model {self.model!r} ignores it", IgnoredParameterWarning,
                           stacklevel=3)
 
@@ -592,12 +623,12 @@ def effective_modulus(E1: ArrayLike, nu1: ArrayLike, E2: Optional[ArrayLike] = N
                                                  ("nu2", nu2))}
     for k in ("E1", "E2"):
         if np.any(~np.isfinite(vals[k]) | (vals[k] <= 0)):
-            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {vals[k]}: must be finite "
-                                       "and > 0")
+            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {_brief(vals[k])}: must "
+                                       "be finite and > 0")
     for k in ("nu1", "nu2"):
         if np.any(~((vals[k] > -1) & (vals[k] <= 0.5))):
-            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {vals[k]}: Poisson's ratio "
-                                       "must lie in (-1, 0.5]")
+            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {_brief(vals[k])}: "
+                                       "Poisson's ratio must lie in (-1, 0.5]")
     e = 1.0 / ((1 - vals["nu1"] ** 2) / vals["E1"] + (1 - vals["nu2"] ** 2) / vals["E2"])
     return float(e) if np.ndim(e) == 0 else e
 

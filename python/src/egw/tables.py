@@ -381,8 +381,10 @@ class HysteresisTable(_Handle):
         the whole array (egw_hysteresis_eval_array), every element its own contact."""
         d = _array(delta)
         if not (isinstance(state, np.ndarray) and state.dtype == np.float64
-                and state.shape == d.shape and state.flags.c_contiguous):
-            raise TypeError("state must be a C-contiguous float64 array shaped like delta")
+                and state.shape == d.shape and state.flags.c_contiguous) \
+                or isinstance(state, np.ma.MaskedArray):
+            raise TypeError("state must be a C-contiguous float64 array shaped like delta "
+                            "(not a masked array)")
         force = np.empty(d.shape)
         stiffness = np.empty(d.shape)
         if d.size:
@@ -407,7 +409,7 @@ class HysteresisTable(_Handle):
         (egw_hysteresis_energy): the integral of its unloading curve, turning point
         max(state, delta), from the cut-off to delta. `state` is read, not changed."""
         d = _array(delta)
-        s = np.broadcast_to(np.asarray(state, dtype=np.float64), d.shape)
+        s = np.broadcast_to(_array(state, "state"), d.shape)
         out = np.empty(d.shape)
         u = ctypes.c_double()
         of, df, sf = out.reshape(-1), d.reshape(-1), s.reshape(-1)

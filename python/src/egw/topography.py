@@ -373,6 +373,10 @@ def _from_surface_topography(top: Any, unit: Optional[str],
 
 def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic: bool,
                  what: str) -> HeightMap:
+    if np.ma.is_masked(heights):
+        raise ValueError(f"{what}: a masked array with {np.ma.count_masked(heights)} masked "
+                         "pixels: masked pixels are missing data; fill or crop them first "
+                         "(summits and moments are undefined next to them)")
     z = np.asarray(heights, dtype=np.float64)
     if z.ndim != 2 or min(z.shape) < 3:
         raise ValueError(f"{what}: a height map must be a 2-D matrix of at least 3 x 3 "
@@ -402,7 +406,7 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
     source : ndarray (ny, nx), SurfaceTopography topography, HeightMap or path
         A path ending .npy, .csv or .txt is read by :func:`read_height_map`; any other
         file (x3p, datx, opd, gwy, sur, ...) by SurfaceTopography
-        (``pip install egw[topography]``), which records its units.
+        (``pip install "./python[topography]"``), which records its units.
     pixel_size : float or (dx, dy)
         For arrays and plain files: in the unit of the heights.
     unit : str
@@ -453,7 +457,7 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
             import SurfaceTopography as st  # noqa: N813 (the package's own name)
         except ImportError:
             raise ImportError(f"{path}: instrument formats are read by SurfaceTopography: "
-                              "pip install 'egw[topography]'") from None
+                              "pip install './python[topography]' (from the egw repository)") from None
         reader = st.open_topography(path)
         kwargs = {}
         if pixel_size is not None:
