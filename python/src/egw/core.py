@@ -12,6 +12,8 @@ import contextlib
 import contextvars
 import ctypes
 import dataclasses
+import functools
+import inspect
 import re
 import warnings
 from dataclasses import dataclass
@@ -553,13 +555,38 @@ class _Batch:
         raise _exception(status, message)
 
 
+def keyword_only(hint: str = ""):
+    """Decorator: the function's keyword-only quantities given positionally raise a
+    TypeError that names them (a positional call could swap quantities of one kind)."""
+    def wrap(func):
+        params = inspect.signature(func).parameters.values()
+        n_positional = sum(p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)
+                           for p in params)
+        names = [p.name for p in params if p.kind is p.KEYWORD_ONLY]
+
+        @functools.wraps(func)
+        def call(*args, **kwargs):
+            if len(args) > n_positional:
+                raise TypeError(
+                    f"{func.__name__}() takes {', '.join(n + '=' for n in names)} by keyword "
+                    f"only (got {len(args)} positional arguments): a positional call could "
+                    f"swap quantities of one kind{'; ' + hint if hint else ''}")
+            return func(*args, **kwargs)
+        return call
+    return wrap
+
+
 def _arr(*arrays: np.ndarray):
     return [None if a is None else _double_ptr(a) for a in arrays]
 
 
-def mu_from_summits(summit_density: ArrayLike, summit_radius: ArrayLike, sigma: ArrayLike,
+@keyword_only("C's egw_mu_from_summits takes (eta, beta, sigma, R)")
+def mu_from_summits(*, summit_density: ArrayLike, summit_radius: ArrayLike, sigma: ArrayLike,
                     radius: ArrayLike) -> FloatOrArray:
     """Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta), elementwise with broadcasting.
+
+    Every argument is keyword-only (four lengths and densities a positional call could
+    swap without an error).
 
     Parameters
     ----------
@@ -581,6 +608,8 @@ def mu_from_summits(summit_density: ArrayLike, summit_radius: ArrayLike, sigma: 
     ------
     InvalidArgumentError
         A negative or non-finite input (named), or an overflowing mu.
+    TypeError
+        A positional argument, a non-numeric or masked input.
     """
     b = _Batch(None, summit_density=summit_density, summit_radius=summit_radius,
                sigma=sigma, radius=radius)
@@ -957,7 +986,8 @@ class Restitution:
     max_overlap: FloatOrArray = float("nan")
 
 
-def restitution(params: Params, mass: ArrayLike, velocity: ArrayLike,
+@keyword_only("restitution(params, mass=..., velocity=...)")
+def restitution(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
                 options: Optional[Options] = None) -> Restitution:
     """Coefficient of restitution of head-on impacts, e = sqrt(W_unload/W_load).
 
@@ -1007,8 +1037,9 @@ class TimeStep:
     step: FloatOrArray
 
 
-def time_step(params: Params, mass: ArrayLike, velocity: ArrayLike, tolerance: float = 1e-3,
-              options: Optional[Options] = None) -> TimeStep:
+@keyword_only("time_step(params, mass=..., velocity=..., tolerance=...)")
+def time_step(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
+              tolerance: float = 1e-3, options: Optional[Options] = None) -> TimeStep:
     """The time step of a DEM loop for head-on impacts (egw_time_step).
 
     Parameters

@@ -35,7 +35,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .core import Params, check, effective_modulus, mu_from_summits
+from .core import Params, check, effective_modulus, keyword_only, mu_from_summits
 
 #: below this bandwidth parameter McCool's summit statistics are poor (sigma_s^2 loses
 #: more than 10 % against m0: 0.8968/alpha > 0.1) — GW's isolated-summit picture is
@@ -296,9 +296,40 @@ def sum_surface(a: HeightMap, b: HeightMap) -> HeightMap:
     return HeightMap(a.heights + b.heights, a.dx, a.dy, a.unit, a.periodic and b.periodic)
 
 
-def psi_from_hardness(modulus: float, hardness: float, sigma: float, summit_radius: float,
-                      hardness_coeff: float = 0.6) -> float:
-    """The paper's plasticity index psi = 4 E*/(3 pi K H) sqrt(sigma/beta)."""
+@keyword_only("C's egw_psi_from_hardness takes (E*, H, K, sigma, beta)")
+def psi_from_hardness(*, modulus: float, hardness: float, sigma: float,
+                      summit_radius: float, hardness_coeff: float = 0.6) -> float:
+    """The paper's plasticity index psi = 4 E*/(3 pi K H) sqrt(sigma/beta).
+
+    Every argument is keyword-only: the C function egw_psi_from_hardness takes another
+    order (modulus, hardness, hardness_coeff, sigma, beta), and a call in that order would
+    return a wrong psi without an error.
+
+    Parameters
+    ----------
+    modulus : float
+        Effective modulus E* [pressure], > 0.
+    hardness : float
+        Hardness H of the softer surface [pressure], > 0.
+    sigma : float
+        Std of the summit heights [length], > 0.
+    summit_radius : float
+        Mean summit radius beta [length], > 0.
+    hardness_coeff : float
+        ZMC K, in (0, 1).
+
+    Returns
+    -------
+    float
+        psi (dimensionless).
+
+    Raises
+    ------
+    InvalidArgumentError
+        A value out of range (named by the library).
+    TypeError
+        A positional argument.
+    """
     psi = ctypes.c_double()
     check(lib.egw_psi_from_hardness(float(modulus), float(hardness), float(hardness_coeff),
                                     float(sigma), float(summit_radius), ctypes.byref(psi)))
@@ -757,12 +788,14 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
     if radius is None:
         notes.append("radius None: a flat; mu computed for R = 1 m (flat_pressure depends "
                      "on mu/sqrt(R) only)")
-    mu = mu_from_summits(stats.summit_density, stats.summit_radius, stats.sigma_summits,
-                         r_mu)
+    mu = mu_from_summits(summit_density=stats.summit_density,
+                         summit_radius=stats.summit_radius, sigma=stats.sigma_summits,
+                         radius=r_mu)
     psi = 0.0
     if model == "EP-GW":
-        psi = psi_from_hardness(e_star, hardness, stats.sigma_summits, stats.summit_radius,
-                                hardness_coeff)
+        psi = psi_from_hardness(modulus=e_star, hardness=hardness, sigma=stats.sigma_summits,
+                                summit_radius=stats.summit_radius,
+                                hardness_coeff=hardness_coeff)
     params = Params(model=model, radius=r_mu, modulus=e_star, sigma=stats.sigma_summits,
                     mu=mu, psi=psi, hardness_coeff=hardness_coeff)
     report = ContactReport(params, chosen, reason, stats.summit_density, stats.summit_radius,
@@ -785,11 +818,13 @@ def _report(stats: SummitStatistics, radius, modulus, hardness, k, unit) -> List
     if stats.alpha is not None:
         lines.append(f"  bandwidth alpha        {stats.alpha:.6g}")
     if radius is not None:
-        mu = mu_from_summits(stats.summit_density, stats.summit_radius, stats.sigma_summits,
-                             radius)
+        mu = mu_from_summits(summit_density=stats.summit_density,
+                             summit_radius=stats.summit_radius, sigma=stats.sigma_summits,
+                             radius=radius)
         lines.append(f"  mu (R = {radius:g})        {mu:.6g}")
     if modulus is not None and hardness is not None:
-        psi = psi_from_hardness(modulus, hardness, stats.sigma_summits, stats.summit_radius, k)
+        psi = psi_from_hardness(modulus=modulus, hardness=hardness, sigma=stats.sigma_summits,
+                                summit_radius=stats.summit_radius, hardness_coeff=k)
         lines.append(f"  psi (E* = {modulus:g}, H = {hardness:g}, K = {k:g})  {psi:.6g}")
     return lines
 
