@@ -74,7 +74,13 @@ def _status_name(status: int) -> str:
 
 
 def last_error() -> str:
-    """egw's message of the last failing call on this thread."""
+    """egw's message of the last failing call on this thread.
+
+    Returns
+    -------
+    str
+        The whole message (empty when no call has failed).
+    """
     # egw_last_error returns the bytes the whole message needs (length + 1): a size
     # query first, then a buffer of that size (no truncation, whatever its length)
     needed = lib.egw_last_error(None, 0)
@@ -128,7 +134,13 @@ def check(status: int, allow_out_of_range: bool = False) -> int:
 
 
 def version() -> str:
-    """Version of the loaded libegw, e.g. '0.1.0'."""
+    """Version of the loaded libegw.
+
+    Returns
+    -------
+    str
+        'major.minor.patch', e.g. '0.1.0'.
+    """
     v = lib.egw_get_version()
     return f"{v // 10000}.{v // 100 % 100}.{v % 100}"
 
@@ -153,6 +165,11 @@ def errstate(failed: str = "raise") -> Iterator[None]:
         ``"raise"`` (default): the call raises the point's exception, its message naming
         the point's index. ``"nan"``: the point's outputs are NaN, silently. ``"warn"``: NaN
         and one :class:`PointFailedWarning` with the number of failed points.
+
+    Yields
+    ------
+    None
+        The mode holds inside the ``with`` block (per thread and async task).
 
     Raises
     ------
@@ -339,14 +356,35 @@ class Params:
         return self.shape == ()
 
     def to_c(self) -> _capi.Params:
-        """The C struct egw_params of a scalar Params (TypeError for array fields)."""
+        """The C struct egw_params of a scalar Params.
+
+        Returns
+        -------
+        egw._capi.Params
+
+        Raises
+        ------
+        TypeError
+            Params with array fields (use the array functions).
+        """
         if not self.is_scalar:
             raise TypeError("Params with array fields has no single C egw_params: "
                             "use the array functions (hertz, solve, ...)")
         return _capi.Params(MODELS[self.model], *(float(getattr(self, f)) for f in _FIELDS))
 
     def to_struct_array(self, shape: Tuple[int, ...]) -> np.ndarray:
-        """The parameters broadcast to shape, as a flat array of the C struct egw_params."""
+        """The parameters broadcast to shape, as a flat array of the C struct egw_params.
+
+        Parameters
+        ----------
+        shape : tuple of int
+            A shape the fields broadcast to.
+
+        Returns
+        -------
+        ndarray
+            1-D, dtype PARAMS_DTYPE, prod(shape) elements in C order.
+        """
         n = int(np.prod(shape, dtype=np.int64))
         block = np.empty(n, dtype=PARAMS_DTYPE)
         block["model"] = MODELS[self.model]
@@ -374,7 +412,22 @@ class Params:
                 raise InvalidArgumentError(status, f"index {idx}: {last_error()}")
 
     def replace(self, **changes) -> "Params":
-        """A copy with the given fields changed (checked as at construction)."""
+        """A copy with the given fields changed (checked as at construction).
+
+        Parameters
+        ----------
+        **changes
+            Field names and their new values (model, radius, ...).
+
+        Returns
+        -------
+        Params
+
+        Raises
+        ------
+        TypeError, InvalidArgumentError
+            As at construction.
+        """
         return dataclasses.replace(self, **changes)
 
     def __eq__(self, other: object) -> bool:
@@ -423,7 +476,17 @@ class Options:
     n_threads: int = 0
 
     def to_c(self) -> _capi.Options:
-        """The C struct egw_options."""
+        """The C struct egw_options.
+
+        Returns
+        -------
+        egw._capi.Options
+
+        Raises
+        ------
+        InvalidArgumentError
+            An unknown method name.
+        """
         if isinstance(self.method, str):
             if self.method not in METHODS:
                 raise InvalidArgumentError(INVALID_ARGUMENT, f"method = {self.method!r}: "
@@ -555,7 +618,7 @@ class _Batch:
         raise _exception(status, message)
 
 
-def keyword_only(hint: str = ""):
+def _keyword_only(hint: str = ""):
     """Decorator: the function's keyword-only quantities given positionally raise a
     TypeError that names them (a positional call could swap quantities of one kind)."""
     def wrap(func):
@@ -580,7 +643,7 @@ def _arr(*arrays: np.ndarray):
     return [None if a is None else _double_ptr(a) for a in arrays]
 
 
-@keyword_only("C's egw_mu_from_summits takes (eta, beta, sigma, R)")
+@_keyword_only("C's egw_mu_from_summits takes (eta, beta, sigma, R)")
 def mu_from_summits(*, summit_density: ArrayLike, summit_radius: ArrayLike, sigma: ArrayLike,
                     radius: ArrayLike) -> FloatOrArray:
     """Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta), elementwise with broadcasting.
@@ -694,8 +757,25 @@ def gauss_integral(n: ArrayLike, h: ArrayLike, derivative: bool = False) -> Floa
 
 
 def ellipk(k: ArrayLike) -> FloatOrArray:
-    """Complete elliptic integral of the first kind K(k) of MODULUS k, 0 <= k < 1,
-    elementwise (float for a scalar)."""
+    """Complete elliptic integral of the first kind K(k) of MODULUS k (not m = k^2).
+
+    Parameters
+    ----------
+    k : float or array
+        Modulus, 0 <= k < 1.
+
+    Returns
+    -------
+    float or ndarray
+        K(k), elementwise (a float for a scalar).
+
+    Raises
+    ------
+    InvalidArgumentError
+        k outside [0, 1) or NaN.
+    TypeError
+        A non-numeric or masked k.
+    """
     k = _array(k, "k")
     flat = k.reshape(-1)
     (out,) = _loop(k.shape, 1, lambda i, r: check(lib.egw_ellipk(float(flat[i]), r)))
@@ -703,8 +783,25 @@ def ellipk(k: ArrayLike) -> FloatOrArray:
 
 
 def ellipe(k: ArrayLike) -> FloatOrArray:
-    """Complete elliptic integral of the second kind E(k) of MODULUS k, 0 <= k < 1,
-    elementwise (float for a scalar)."""
+    """Complete elliptic integral of the second kind E(k) of MODULUS k (not m = k^2).
+
+    Parameters
+    ----------
+    k : float or array
+        Modulus, 0 <= k < 1.
+
+    Returns
+    -------
+    float or ndarray
+        E(k), elementwise (a float for a scalar).
+
+    Raises
+    ------
+    InvalidArgumentError
+        k outside [0, 1) or NaN.
+    TypeError
+        A non-numeric or masked k.
+    """
     k = _array(k, "k")
     flat = k.reshape(-1)
     (out,) = _loop(k.shape, 1, lambda i, r: check(lib.egw_ellipe(float(flat[i]), r)))
@@ -954,10 +1051,20 @@ def profile(params: Params, delta: float, r: ArrayLike,
     r : array
         Radii >= 0 [length], any order.
 
+    options : Options, optional
+        Solver options.
+
     Returns
     -------
     pressure, deflection : ndarray
         Flat arrays of len(r) [pressure], [length].
+
+    Raises
+    ------
+    InvalidArgumentError
+        Invalid parameters, a NaN overlap or a negative radius.
+    NotConvergedError
+        The solve did not converge.
     """
     p = _params(params)
     radii = _array(r, "r").reshape(-1).copy()
@@ -986,7 +1093,7 @@ class Restitution:
     max_overlap: FloatOrArray = float("nan")
 
 
-@keyword_only("restitution(params, mass=..., velocity=...)")
+@_keyword_only("restitution(params, mass=..., velocity=...)")
 def restitution(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
                 options: Optional[Options] = None) -> Restitution:
     """Coefficient of restitution of head-on impacts, e = sqrt(W_unload/W_load).
@@ -1037,7 +1144,7 @@ class TimeStep:
     step: FloatOrArray
 
 
-@keyword_only("time_step(params, mass=..., velocity=..., tolerance=...)")
+@_keyword_only("time_step(params, mass=..., velocity=..., tolerance=...)")
 def time_step(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
               tolerance: float = 1e-3, options: Optional[Options] = None) -> TimeStep:
     """The time step of a DEM loop for head-on impacts (egw_time_step).

@@ -35,7 +35,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .core import Params, check, effective_modulus, keyword_only, mu_from_summits
+from .core import Params, check, effective_modulus, _keyword_only, mu_from_summits
 
 #: below this bandwidth parameter McCool's summit statistics are poor (sigma_s^2 loses
 #: more than 10 % against m0: 0.8968/alpha > 0.1) — GW's isolated-summit picture is
@@ -79,7 +79,18 @@ class HeightMap:
     periodic: bool = False
 
     def to_metres(self) -> "HeightMap":
-        """The same map in metres (ValueError when the unit is unknown)."""
+        """The same map in metres.
+
+        Returns
+        -------
+        HeightMap
+            Heights and pixel sizes scaled to metres, unit 'm'.
+
+        Raises
+        ------
+        ValueError
+            The map has no unit or an unknown one.
+        """
         factor = _unit_factor(self.unit)
         return HeightMap(self.heights * factor, self.dx * factor, self.dy * factor, "m",
                          self.periodic)
@@ -93,8 +104,19 @@ class HeightMap:
 
 @dataclass
 class Moments:
-    """Profile spectral moments m0 [length^2], m2 [-], m4 [1/length^2] (averaged over
-    x and y), and their directional parts."""
+    """Profile spectral moments of a surface (averaged over the x and y directions).
+
+    Attributes
+    ----------
+    m0 : float
+        Variance of the heights [length^2].
+    m2 : float
+        Variance of the slopes [-].
+    m4 : float
+        Variance of the curvatures [1/length^2].
+    m2_xy, m4_xy : (float, float)
+        m2 and m4 along x and along y (NaN when not known).
+    """
     m0: float
     m2: float
     m4: float
@@ -115,9 +137,30 @@ class Moments:
 
 @dataclass
 class SummitStatistics:
-    """GW parameters: summit density eta [1/length^2], mean summit radius beta [length],
-    std of summit heights sigma_s [length], rms height of the surface sigma_z [length],
-    and (summit identification) the number of summits found."""
+    """GW parameters of a surface, by one method.
+
+    Attributes
+    ----------
+    method : str
+        How they were found (summit identification or spectral).
+    summit_density : float
+        eta [1/length^2].
+    summit_radius : float
+        Mean summit radius beta [length].
+    sigma_summits : float
+        Std of the summit heights sigma_s [length] (GW's sigma).
+    sigma_surface : float
+        Rms height of the surface [length].
+    n_summits : int or None
+        Summits found (summit identification only).
+    alpha : float or None
+        Nayak's bandwidth parameter (spectral only).
+    mean_summit_height : float or None
+        Mean summit height above the mean plane of the heights [length] (y_s: an overlap
+        delta_m from the mean plane is delta = delta_m + y_s for GW's models).
+    warnings : list of str
+        Where GW's assumptions are poor.
+    """
     method: str
     summit_density: float
     summit_radius: float
@@ -132,9 +175,32 @@ class SummitStatistics:
 def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1.0,
                     unit: Optional[str] = None, periodic: bool = False) -> HeightMap:
     """Read a height map: `.npy` (numpy), `.csv` (comma-separated rows) or a plain-text
-    matrix (whitespace-separated rows); '#' lines are comments. pixel_size: dx or (dx, dy),
-    in the unit of the heights (unit: recorded on the map; None = unknown). NaN pixels
-    are refused. Instrument formats: :func:`height_map` (through SurfaceTopography)."""
+    matrix (whitespace-separated rows); '#' lines are comments. Instrument formats:
+    :func:`height_map` (through SurfaceTopography).
+
+    Parameters
+    ----------
+    path : str
+        The file.
+    pixel_size : float or (dx, dy)
+        In the unit of the heights.
+    unit : str, optional
+        Recorded on the map (None = unknown: the contact functions refuse it).
+    periodic : bool
+        The map is one period of a periodic surface.
+
+    Returns
+    -------
+    HeightMap
+
+    Raises
+    ------
+    ValueError
+        Not a 2-D matrix of at least 3 x 3, NaN or infinite pixels, a bad pixel size or
+        an unknown unit.
+    OSError
+        The file cannot be read.
+    """
     ext = os.path.splitext(path)[1].lower()
     if ext == ".npy":
         z = np.load(path, allow_pickle=False)
@@ -157,9 +223,25 @@ def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1
 def detrend(surface: HeightMap, mode: Optional[str] = None) -> HeightMap:
     """Remove the mean ('mean') or the least-squares plane ('plane') of the heights.
 
-    mode None (default): 'mean' for a periodic map (a plane would break its periodicity
-    and inflate the spectral moments), 'plane' otherwise. The shared default of the CLI
-    and Python (see DEFAULTS)."""
+    Parameters
+    ----------
+    surface : HeightMap
+        The map.
+    mode : {'mean', 'plane'}, optional
+        None (default): 'mean' for a periodic map (a plane would break its periodicity
+        and inflate the spectral moments), 'plane' otherwise; the shared default of the
+        CLI and Python (see DEFAULTS).
+
+    Returns
+    -------
+    HeightMap
+        The detrended map (the same grid, unit and periodicity).
+
+    Raises
+    ------
+    ValueError
+        Another mode.
+    """
     mode = mode or default_detrend(surface.periodic)
     z = surface.heights
     if mode == "mean":
@@ -208,8 +290,27 @@ def spectral_moments(surface: HeightMap, method: Optional[str] = None) -> Moment
     """Profile moments m0, m2, m4 of a (detrended) height map, averaged over the x and y
     directions (for an isotropic surface they are the profile moments in any direction).
 
-    method: 'fft' (exact for a periodic band-limited map) or 'difference' (central
-    differences, any map); None: 'fft' for a periodic map, else 'difference' (DEFAULTS)."""
+    Parameters
+    ----------
+    surface : HeightMap
+        The detrended map.
+    method : {'fft', 'difference'}, optional
+        'fft' (exact for a periodic band-limited map) or 'difference' (central
+        differences, any map); None: 'fft' for a periodic map, else 'difference'
+        (DEFAULTS).
+
+    Returns
+    -------
+    Moments
+        In the map's unit. Both methods resolve nothing finer than the pixel: on a map
+        whose roughness continues down to the pixel, m2 and m4 (and so eta, beta) depend
+        on the pixel size (doc/parameters.md).
+
+    Raises
+    ------
+    ValueError
+        Another method.
+    """
     method = method or default_derivatives(surface.periodic)
     z = surface.heights
     zx, zy, zxx, zyy = _derivatives(surface, method)
@@ -220,7 +321,25 @@ def spectral_moments(surface: HeightMap, method: Optional[str] = None) -> Moment
 
 
 def mccool(moments: Moments) -> SummitStatistics:
-    """GW summit statistics from the spectral moments (Nayak 1971, McCool 1986)."""
+    """GW summit statistics from the spectral moments (Nayak 1971, McCool 1986):
+    eta = m4/(6 pi sqrt(3) m2), beta = (3/8) sqrt(pi/m4), sigma_s^2 = (1 - 0.8968/alpha)
+    m0, y_s = 4 sqrt(m0/(pi alpha)).
+
+    Parameters
+    ----------
+    moments : Moments
+        The profile moments (all > 0).
+
+    Returns
+    -------
+    SummitStatistics
+        With alpha and mean_summit_height (y_s); a warning note when alpha < ALPHA_WARN.
+
+    Raises
+    ------
+    ValueError
+        A moment that is not > 0.
+    """
     m0, m2, m4 = moments.m0, moments.m2, moments.m4
     if not (m0 > 0 and m2 > 0 and m4 > 0):
         raise ValueError(f"spectral moments m0 = {m0}, m2 = {m2}, m4 = {m4}: all must be > 0")
@@ -238,8 +357,20 @@ def mccool(moments: Moments) -> SummitStatistics:
 
 
 def identify_summits(surface: HeightMap, periodic: bool = False):
-    """Indices (iy, ix) of the 8-neighbour summits: pixels strictly higher than all eight
-    neighbours (the border rows/columns are skipped unless periodic)."""
+    """The 8-neighbour summits: pixels strictly higher than all eight neighbours.
+
+    Parameters
+    ----------
+    surface : HeightMap
+        The map.
+    periodic : bool
+        Neighbours across the edges (else the border rows and columns are skipped).
+
+    Returns
+    -------
+    iy, ix : ndarray of int
+        Row and column indices of the summits.
+    """
     z = surface.heights
     if periodic:
         is_max = np.ones(z.shape, dtype=bool)
@@ -260,7 +391,29 @@ def identify_summits(surface: HeightMap, periodic: bool = False):
 
 
 def summit_statistics(surface: HeightMap, periodic: bool = False) -> SummitStatistics:
-    """GW parameters by 8-neighbour summit identification on the detrended map."""
+    """GW parameters by 8-neighbour summit identification on the detrended map: eta =
+    count/area, sigma_s = std of their heights, beta = 1/mean(kappa) with kappa the mean
+    curvature -(z_xx + z_yy)/2 at each summit (central differences).
+
+    Parameters
+    ----------
+    surface : HeightMap
+        The detrended map.
+    periodic : bool
+        Summits and curvatures across the edges.
+
+    Returns
+    -------
+    SummitStatistics
+        With n_summits and mean_summit_height (y_s, above the mean plane); a warning note
+        for fewer than SUMMITS_WARN summits. Summits and curvatures are those the pixel
+        resolves: with roughness down to the pixel, they depend on the pixel size.
+
+    Raises
+    ------
+    ValueError
+        Fewer than 2 summits.
+    """
     z, dx, dy = surface.heights, surface.dx, surface.dy
     iy, ix = identify_summits(surface, periodic)
     n = iy.size
@@ -287,7 +440,23 @@ def summit_statistics(surface: HeightMap, periodic: bool = False) -> SummitStati
 
 def sum_surface(a: HeightMap, b: HeightMap) -> HeightMap:
     """The sum surface z1 + z2 of two maps on the same grid (GW's equivalent rough
-    surface against a smooth one; its moments are the sums for independent surfaces)."""
+    surface against a smooth one; its moments are the sums for independent surfaces).
+
+    Parameters
+    ----------
+    a, b : HeightMap
+        Maps of the same shape, pixel size and unit.
+
+    Returns
+    -------
+    HeightMap
+        Periodic when both are.
+
+    Raises
+    ------
+    ValueError
+        Different shapes, pixel sizes or units.
+    """
     if a.heights.shape != b.heights.shape or (a.dx, a.dy) != (b.dx, b.dy):
         raise ValueError("sum_surface: the two maps need the same shape and pixel size")
     if a.unit != b.unit:
@@ -296,7 +465,7 @@ def sum_surface(a: HeightMap, b: HeightMap) -> HeightMap:
     return HeightMap(a.heights + b.heights, a.dx, a.dy, a.unit, a.periodic and b.periodic)
 
 
-@keyword_only("C's egw_psi_from_hardness takes (E*, H, K, sigma, beta)")
+@_keyword_only("C's egw_psi_from_hardness takes (E*, H, K, sigma, beta)")
 def psi_from_hardness(*, modulus: float, hardness: float, sigma: float,
                       summit_radius: float, hardness_coeff: float = 0.6) -> float:
     """The paper's plasticity index psi = 4 E*/(3 pi K H) sqrt(sigma/beta).
@@ -351,12 +520,34 @@ SUMMITS_STATISTICS_MIN = 400
 
 
 def default_detrend(periodic: bool) -> str:
-    """'mean' for a periodic map, 'plane' otherwise (DEFAULTS)."""
+    """The default detrending (DEFAULTS).
+
+    Parameters
+    ----------
+    periodic : bool
+        Whether the map is periodic.
+
+    Returns
+    -------
+    str
+        'mean' for a periodic map, 'plane' otherwise.
+    """
     return DEFAULTS["detrend"][bool(periodic)]
 
 
 def default_derivatives(periodic: bool) -> str:
-    """'fft' for a periodic map, 'difference' otherwise (DEFAULTS)."""
+    """The default derivatives (DEFAULTS).
+
+    Parameters
+    ----------
+    periodic : bool
+        Whether the map is periodic.
+
+    Returns
+    -------
+    str
+        'fft' for a periodic map, 'difference' otherwise.
+    """
     return DEFAULTS["derivatives"][bool(periodic)]
 
 
@@ -540,7 +731,13 @@ class TopographyReport:
         return self.summits if self.trust == "summits" else self.spectral
 
     def to_dict(self) -> Dict[str, Any]:
-        """A JSON-ready dictionary (numbers in the map's unit)."""
+        """The report as a JSON-ready dictionary.
+
+        Returns
+        -------
+        dict
+            Plain numbers, strings and lists (numbers in the map's unit).
+        """
         def stats(s: SummitStatistics) -> Dict[str, Any]:
             return {"summit_density": s.summit_density, "summit_radius": s.summit_radius,
                     "sigma_summits": s.sigma_summits, "sigma_surface": s.sigma_surface,
@@ -841,7 +1038,23 @@ def _pixel_size(text: str) -> Tuple[float, float]:
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
-    """egw-topo: GW parameters of one height map, or of the sum surface of two."""
+    """egw-topo: GW parameters of one height map, or of the sum surface of two.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The command line without the program name (default: sys.argv[1:]).
+
+    Returns
+    -------
+    int
+        The exit status: 0, or 2 after a message on stderr (bad map, unit, file).
+
+    Raises
+    ------
+    SystemExit
+        From argparse, for bad options or --help.
+    """
     ap = argparse.ArgumentParser(
         prog="egw-topo", description="Greenwood-Williamson parameters (sigma, eta, beta, "
         "y_s) of a measured height map, by summit identification and by spectral moments, "
