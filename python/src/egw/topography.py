@@ -18,6 +18,14 @@ surface) or 'difference' (central differences, for measured, non-periodic maps).
 The contact parameters (mu for a sphere radius R, psi for E*, H) are computed by the C
 library (egw_mu_from_summits, egw_psi_from_hardness); GW's assumptions are flagged when
 alpha is small or few summits were found.
+
+Both estimates see the surface only down to the pixel. On a map rough down to the pixel
+(no short-wavelength cut-off in the data) m2 and m4 grow as the pixel shrinks, and eta,
+beta (so mu, psi) are those of the sampling: analyse() coarse-grains the map by 2 and
+warns when the spectral eta or beta changes by more than RESOLUTION_TOL. Then cut the map
+off at a physical short-wavelength limit (coarse_grain, a low-pass filter) until they stop
+changing, or use a contact law that needs no summit statistics (Persson's theory, a
+boundary-element rough-flat law).
 """
 from __future__ import annotations
 
@@ -517,6 +525,11 @@ AGREEMENT_TOL = 0.10
 PIXELS_PER_WAVELENGTH_MIN = 20.0
 #: fewer summits than this: their averages carry more than 5 % statistical error
 SUMMITS_STATISTICS_MIN = 400
+#: the spectral eta or beta changing by more than this when the pixel size doubles: the
+#: roughness goes down to the pixel and GW's parameters are those of the sampling. A map
+#: resolving its shortest wavelength by >= 16 pixels changes by ~5 %; a self-affine map
+#: rough down to the pixel (Hurst 0.8) by a factor 2-4.
+RESOLUTION_TOL = 0.25
 
 
 def default_detrend(periodic: bool) -> str:
@@ -679,7 +692,8 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
             import SurfaceTopography as st  # noqa: N813 (the package's own name)
         except ImportError:
             raise ImportError(f"{path}: instrument formats are read by SurfaceTopography: "
-                              "pip install './python[topography]' (from the egw repository)") from None
+                              "pip install './python[topography]' (from the egw "
+                              "repository)") from None
         reader = st.open_topography(path)
         kwargs = {}
         if pixel_size is not None:
@@ -711,6 +725,10 @@ class TopographyReport:
     disagreement : relative gaps |summits/spectral - 1| of eta, beta, sigma_s.
     trust : 'summits' or 'spectral'; reason : why.
     warnings : every warning (also issued as TopographyWarning).
+    resolution : relative change of the spectral eta ('summit_density') and beta
+        ('summit_radius') when the pixel size doubles (:func:`resolution_dependence`);
+        above RESOLUTION_TOL the parameters depend on the pixel size (a warning says
+        what to do).
     """
     shape: Tuple[int, int]
     unit: Optional[str]
@@ -724,6 +742,7 @@ class TopographyReport:
     trust: str
     reason: str
     warnings: List[str] = field(default_factory=list)
+    resolution: Dict[str, float] = field(default_factory=dict)
 
     @property
     def recommended(self) -> SummitStatistics:
@@ -750,7 +769,90 @@ class TopographyReport:
                             "m4_xy": list(self.moments.m4_xy), "alpha": self.moments.alpha},
                 "summits": stats(self.summits), "spectral": stats(self.spectral),
                 "disagreement": self.disagreement, "trust": self.trust,
-                "reason": self.reason, "warnings": list(self.warnings)}
+                "reason": self.reason, "warnings": list(self.warnings),
+                "resolution": dict(self.resolution)}
+
+
+def coarse_grain(surface: HeightMap, factor: int = 2) -> HeightMap:
+    """The map with pixels factor times larger: the means of factor x factor blocks (a
+    low-pass at the new pixel; a row or column that fills no block is dropped).
+
+    Parameters
+    ----------
+    surface : HeightMap
+        The map.
+    factor : int
+        Block size, >= 1.
+
+    Returns
+    -------
+    HeightMap
+        Pixel sizes factor * (dx, dy); the same unit and periodicity.
+
+    Raises
+    ------
+    ValueError
+        A factor < 1, or a map with fewer than 3 x 3 blocks.
+    """
+    factor = int(factor)
+    ny, nx = surface.heights.shape
+    if factor < 1 or ny // factor < 3 or nx // factor < 3:
+        raise ValueError(f"factor = {factor}: must be >= 1 and leave at least 3 x 3 pixels "
+                         f"of the {ny} x {nx} map")
+    z = surface.heights[:ny - ny % factor, :nx - nx % factor]
+    z = z.reshape(ny // factor, factor, nx // factor, factor).mean(axis=(1, 3))
+    return HeightMap(z, surface.dx * factor, surface.dy * factor, surface.unit,
+                     surface.periodic and ny % factor == 0 and nx % factor == 0)
+
+
+def resolution_dependence(surface: HeightMap, derivatives: Optional[str] = None
+                          ) -> Dict[str, float]:
+    """How much the spectral GW parameters depend on the pixel size: their relative change
+    when the map is coarse-grained by 2 (:func:`coarse_grain`).
+
+    On a map whose roughness continues down to the pixel (no short-wavelength cut-off in
+    the data), m2 and m4 grow as the pixel shrinks, and so do the summit density and the
+    summit curvature: GW's eta and beta are then those of the instrument's sampling, not
+    of the surface.
+
+    Parameters
+    ----------
+    surface : HeightMap
+        The detrended map.
+    derivatives : {'fft', 'difference'}, optional
+        As :func:`spectral_moments` (default: DEFAULTS).
+
+    Returns
+    -------
+    dict
+        'summit_density' and 'summit_radius': coarse/fine - 1 of the spectral eta and
+        beta (|value| > RESOLUTION_TOL: resolution-dependent parameters).
+
+    Raises
+    ------
+    ValueError
+        A map too small to coarse-grain, or vanishing moments.
+    """
+    derivatives = derivatives or default_derivatives(surface.periodic)
+    fine = mccool(spectral_moments(surface, derivatives))
+    coarse_map = detrend(coarse_grain(surface, 2), "mean")
+    coarse = mccool(spectral_moments(coarse_map, derivatives))
+    return {"summit_density": coarse.summit_density / fine.summit_density - 1.0,
+            "summit_radius": coarse.summit_radius / fine.summit_radius - 1.0}
+
+
+def _resolution_note(change: Dict[str, float]) -> Optional[str]:
+    worst = max(abs(v) for v in change.values())
+    if worst <= RESOLUTION_TOL:
+        return None
+    return (f"resolution: doubling the pixel size changes the spectral summit density by "
+            f"{100 * change['summit_density']:+.0f} % and the summit radius by "
+            f"{100 * change['summit_radius']:+.0f} %: the roughness goes down to the pixel, "
+            "so eta and beta (and mu, psi) are those of the sampling, not of the surface. "
+            "Cut the map off at a physical short-wavelength limit (the smallest wavelength "
+            "that carries load: coarse_grain or a low-pass filter) and check the result no "
+            "longer changes, or use a contact law that needs no summit statistics (Persson's "
+            "theory, a BEM rough-flat law)")
 
 
 def _trust(hm: HeightMap, summits: SummitStatistics, moments: Moments) -> Tuple[str, str]:
@@ -828,12 +930,17 @@ def analyse(source: Any, pixel_size=None, unit: Optional[str] = None, *,
     if max(m2x, m2y) > 1.5 * min(m2x, m2y):
         notes.append(f"anisotropic: m2 along x and y differ ({m2x:.3g}, {m2y:.3g}); GW's "
                      "isotropic formulas use their mean")
+    resolution = resolution_dependence(hm, derivatives) if min(hm.heights.shape) >= 12 \
+        else {}
+    note = _resolution_note(resolution) if resolution else None
+    if note:
+        notes.append(note)
     for note in notes:
         warnings.warn(note, TopographyWarning, stacklevel=2)
     return TopographyReport(hm.heights.shape, hm.unit, hm.periodic, detrend_mode,
                             derivatives, summits, spectral, moments,
                             {k: float(abs(v)) for k, v in gaps.items()}, trust, reason,
-                            notes)
+                            notes, resolution)
 
 
 #: models whose overlap delta is measured from the mean SUMMIT plane (GW's base plane);
