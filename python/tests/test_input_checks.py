@@ -1,7 +1,6 @@
 """Python that cannot go wrong silently: masked arrays are refused (never a mask dropped,
 never values under a mask computed), and error messages stay short whatever the input
 (a message never prints a whole array)."""
-import warnings
 
 import numpy as np
 import pytest

@@ -61,3 +61,22 @@ def test_every_documented_pip_install_line_names_an_installable_egw():
                 for e in filter(None, (extra or "").split(",")):
                     assert e.strip() in extras, f"{doc}: {line!r}: no extra {e!r}"
     assert seen_egw >= 3    # README, python/README, doc/parameters.md
+
+
+def test_every_documented_shared_pkg_config_link_line_finds_libegw_at_run_time():
+    # a program linked with `pkg-config --libs egw` (the shared library) builds but stops
+    # at start (libegw.so.0 not found) unless the line records the rpath or the loader is
+    # told (LD_LIBRARY_PATH); egw-static needs neither
+    checked = 0
+    for doc in DOCS:
+        path = os.path.join(REPO, doc)
+        if not os.path.exists(path):
+            continue
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        for cmd in commands(text):
+            links = re.match(r"\s*(cc|c\+\+|gcc|g\+\+|gfortran)\s", cmd)
+            if links and re.search(r"pkg-config[^)]*--libs egw\)", cmd):
+                checked += 1
+                assert "-Wl,-rpath" in cmd or "LD_LIBRARY_PATH" in cmd, f"{doc}: {cmd!r}"
+    assert checked >= 4    # README: C and Fortran; example/README: C and Fortran
