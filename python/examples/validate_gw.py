@@ -78,8 +78,9 @@ def per_realisation_ratios(summit_stats, f_runs, overlaps, radius, modulus):
     for model in ("GW", "E-GW"):
         rows = []
         for s, f_bem in zip(summit_stats, f_runs):
-            mu = egw.mu_from_summits(s.summit_density, s.summit_radius, s.sigma_summits,
-                                     radius)
+            mu = egw.mu_from_summits(summit_density=s.summit_density,
+                                     summit_radius=s.summit_radius, sigma=s.sigma_summits,
+                                     radius=radius)
             p = egw.Params(model=model, radius=radius, modulus=modulus,
                            sigma=s.sigma_summits, mu=mu)
             f = egw.solve(p, overlaps + s.mean_summit_height, egw.Options(rel_tol=1e-6)).force
@@ -146,8 +147,9 @@ def main(argv=None):
     curves = {}
     t0 = time.time()
     for label, s in mean.items():
-        mu = egw.mu_from_summits(s["summit_density"], s["summit_radius"], s["sigma_summits"],
-                                 radius)
+        mu = egw.mu_from_summits(summit_density=s["summit_density"],
+                                 summit_radius=s["summit_radius"], sigma=s["sigma_summits"],
+                                 radius=radius)
         for model in ("GW", "E-GW"):
             p = egw.Params(model=model, radius=radius, modulus=modulus,
                            sigma=s["sigma_summits"], mu=mu)

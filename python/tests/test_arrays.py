@@ -70,14 +70,14 @@ def test_solves_over_arrays_of_params_equal_scalar_solves_any_threads():
 def test_restitution_and_time_step_arrays():
     p = egw.Params(model="EP-GW", psi=2.0, **ROUGH)
     v = np.array([0.05, 0.5])
-    r = egw.restitution(p, 1e-3, v)
-    t = egw.time_step(p, 1e-3, v, tolerance=1e-3)
+    r = egw.restitution(p, mass=1e-3, velocity=v)
+    t = egw.time_step(p, mass=1e-3, velocity=v, tolerance=1e-3)
     for i in range(2):
-        s = egw.restitution(p, 1e-3, float(v[i]))
+        s = egw.restitution(p, mass=1e-3, velocity=float(v[i]))
         assert (s.e, s.work_load, s.dissipated, s.max_overlap) == (
             r.e[i], r.work_load[i], r.dissipated[i], r.max_overlap[i])
         assert s.max_overlap > 0 and 0 < s.e < 1
-        ts = egw.time_step(p, 1e-3, float(v[i]), tolerance=1e-3)
+        ts = egw.time_step(p, mass=1e-3, velocity=float(v[i]), tolerance=1e-3)
         assert (ts.duration, ts.step) == (t.duration[i], t.step[i])
         assert 0 < ts.step < ts.duration
     # the faster impact is shorter and needs the smaller step (Hertz-like stiffening)
@@ -148,7 +148,7 @@ def test_wrong_inputs_raise_named_errors():
     with pytest.raises(ValueError, match="broadcast"):
         egw.flat_pressure_unload(p, [1.0, 2.0], [1.0, 2.0, 3.0])
     with pytest.raises(egw.InvalidArgumentError, match="mass"):
-        egw.restitution(p, [1e-3, -1.0], 0.1)
+        egw.restitution(p, mass=[1e-3, -1.0], velocity=0.1)
 
 
 def test_effective_modulus_and_mu_from_summits_arrays():
@@ -157,7 +157,8 @@ def test_effective_modulus_and_mu_from_summits_arrays():
     assert e.shape == (2,)
     with pytest.raises(egw.InvalidArgumentError, match="nu1"):
         egw.effective_modulus(70e9, 0.7)
-    mu = egw.mu_from_summits(np.array([1e10, 2e10]), 1e-5, 1e-6, 5e-4)
+    mu = egw.mu_from_summits(summit_density=np.array([1e10, 2e10]), summit_radius=1e-5,
+                             sigma=1e-6, radius=5e-4)
     assert mu.shape == (2,) and mu[1] == pytest.approx(2 * mu[0], rel=1e-15)
 
 

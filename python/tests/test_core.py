@@ -113,13 +113,16 @@ def test_errors_name_the_parameter_and_leave_no_nan():
 def test_mu_and_psi_from_surface_data():
     # mu = (8/3) eta sigma sqrt(2 R beta) (doc/theory.md §1); psi = 4E/(3 pi K H) sqrt(sigma/beta)
     eta, beta, sigma, radius = 1e10, 1e-5, 1e-6, 5e-4
-    assert egw.mu_from_summits(eta, beta, sigma, radius) == pytest.approx(
+    assert egw.mu_from_summits(summit_density=eta, summit_radius=beta, sigma=sigma,
+                               radius=radius) == pytest.approx(
         8 / 3 * eta * sigma * math.sqrt(2 * radius * beta), rel=1e-15)
     e, h, k = 1e11, 2e9, 0.6
-    assert egw.psi_from_hardness(e, h, sigma, beta, k) == pytest.approx(
+    assert egw.psi_from_hardness(modulus=e, hardness=h, sigma=sigma, summit_radius=beta,
+                                 hardness_coeff=k) == pytest.approx(
         4 * e / (3 * math.pi * k * h) * math.sqrt(sigma / beta), rel=1e-15)
     with pytest.raises(egw.InvalidArgumentError) as info:
-        egw.psi_from_hardness(e, -1.0, sigma, beta, k)
+        egw.psi_from_hardness(modulus=e, hardness=-1.0, sigma=sigma, summit_radius=beta,
+                              hardness_coeff=k)
     assert "hardness" in info.value.message
 
 

@@ -7,6 +7,7 @@ import math
 import os
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -128,3 +129,37 @@ def test_egw_topo_command(tmp_path):
                           "--pixel-size", "1"], capture_output=True, text=True)
     assert bad.returncode == 2 and bad.stderr.startswith("egw-topo: ")
     assert "Traceback" not in bad.stderr
+
+
+def test_coarse_grain_is_the_block_mean():
+    z = np.arange(36.0).reshape(6, 6)
+    c = topo.coarse_grain(topo.HeightMap(z, 1.0, 2.0, "um", periodic=True), 2)
+    # block (0, 0) holds 0, 1, 6, 7: mean 3.5; pixel sizes doubled
+    assert c.heights.shape == (3, 3) and c.heights[0, 0] == 3.5 and (c.dx, c.dy) == (2, 4)
+    assert c.periodic and c.unit == "um"
+    with pytest.raises(ValueError, match="factor"):
+        topo.coarse_grain(c, 2)
+
+
+@pytest.mark.filterwarnings("ignore:summit identification and spectral")
+@pytest.mark.parametrize("periodic", [True, False])
+def test_roughness_down_to_the_pixel_is_flagged_resolution_dependent(periodic):
+    # spectrum up to the Nyquist wavenumber (index n/2): m4 ~ q_max^(4 - 2H) with H = 0.8,
+    # so doubling the pixel lowers m4 by ~2^2.4: beta rises ~130 %, eta falls ~70 %
+    # (measured +130..+140 %, -70 %); a map whose shortest wavelength spans 16 pixels
+    # changes by <= 3 % (measured). RESOLUTION_TOL = 25 % lies between with margin.
+    rough, _ = synthetic(n=256, q_high=128)
+    rough = topo.HeightMap(rough.heights, rough.dx, rough.dy, "m", periodic)
+    with pytest.warns(topo.TopographyWarning, match="resolution: doubling the pixel") as rec:
+        rep = topo.analyse(rough)
+    assert rep.resolution["summit_radius"] > 1.0 and rep.resolution["summit_density"] < -0.5
+    text = " ".join(str(w.message) for w in rec)
+    assert "short-wavelength limit" in text and "Persson" in text
+    smooth, _ = synthetic(n=256, q_high=16)
+    smooth = topo.HeightMap(smooth.heights, smooth.dx, smooth.dy, "m", periodic)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        rep = topo.analyse(smooth)
+    assert max(abs(v) for v in rep.resolution.values()) < 0.05
+    assert not any("resolution" in str(w.message) for w in rec)
+    assert "resolution" in rep.to_dict()

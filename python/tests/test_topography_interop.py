@@ -217,8 +217,9 @@ def test_contact_from_topography_one_call():
         stats = topo.analyse(heights, dx, "m", periodic=False).recommended
     assert isinstance(p, egw.Params) and p.model == "EP-GW" and p.psi > 0
     assert p.modulus == pytest.approx(210e9 / (2 * (1 - 0.09)))
-    assert p.mu == pytest.approx(egw.mu_from_summits(rep.summit_density, rep.summit_radius,
-                                                     rep.sigma, 2.5e-3))
+    assert p.mu == pytest.approx(egw.mu_from_summits(
+        summit_density=rep.summit_density, summit_radius=rep.summit_radius, sigma=rep.sigma,
+        radius=2.5e-3))
     assert rep.y_s > 0 and rep.sigma == p.sigma
     assert p.sigma == pytest.approx(stats.sigma_summits, rel=1e-12)
     # a flat needs no radius: flat_pressure does not depend on it

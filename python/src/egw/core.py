@@ -12,6 +12,8 @@ import contextlib
 import contextvars
 import ctypes
 import dataclasses
+import functools
+import inspect
 import re
 import warnings
 from dataclasses import dataclass
@@ -72,7 +74,13 @@ def _status_name(status: int) -> str:
 
 
 def last_error() -> str:
-    """egw's message of the last failing call on this thread."""
+    """egw's message of the last failing call on this thread.
+
+    Returns
+    -------
+    str
+        The whole message (empty when no call has failed).
+    """
     # egw_last_error returns the bytes the whole message needs (length + 1): a size
     # query first, then a buffer of that size (no truncation, whatever its length)
     needed = lib.egw_last_error(None, 0)
@@ -126,7 +134,13 @@ def check(status: int, allow_out_of_range: bool = False) -> int:
 
 
 def version() -> str:
-    """Version of the loaded libegw, e.g. '0.1.0'."""
+    """Version of the loaded libegw.
+
+    Returns
+    -------
+    str
+        'major.minor.patch', e.g. '0.1.0'.
+    """
     v = lib.egw_get_version()
     return f"{v // 10000}.{v // 100 % 100}.{v % 100}"
 
@@ -151,6 +165,11 @@ def errstate(failed: str = "raise") -> Iterator[None]:
         ``"raise"`` (default): the call raises the point's exception, its message naming
         the point's index. ``"nan"``: the point's outputs are NaN, silently. ``"warn"``: NaN
         and one :class:`PointFailedWarning` with the number of failed points.
+
+    Yields
+    ------
+    None
+        The mode holds inside the ``with`` block (per thread and async task).
 
     Raises
     ------
@@ -187,13 +206,44 @@ RESULT_DTYPE = np.dtype([(f, np.float64) for f in ("force", "stiffness", "contac
 assert RESULT_DTYPE.itemsize == ctypes.sizeof(_capi.Result)
 
 
+#: an error message shows at most this many characters of a value (never a whole array)
+BRIEF_CHARS = 60
+
+
+def _brief(value) -> str:
+    """A short repr for error messages: a value itself when short, else its type, shape,
+    dtype and first elements (a message must never print a whole input array)."""
+    text = repr(value)
+    if len(text) <= BRIEF_CHARS and "\n" not in text:
+        return text
+    try:
+        a = np.asarray(value)
+    except Exception:  # noqa: BLE001 - any object: fall back to its cut repr
+        return text[:BRIEF_CHARS] + "..."
+    if a.ndim == 0:
+        return text[:BRIEF_CHARS] + "..."
+    head = ", ".join(repr(x)[:12] for x in a.reshape(-1)[:3].tolist())
+    return f"<{type(value).__name__} shape {a.shape} dtype {a.dtype}: {head}, ...>"
+
+
+def _refuse_masked(name: str, value) -> None:
+    """Masked arrays are refused (never a mask dropped silently)."""
+    if np.ma.is_masked(value):
+        raise TypeError(f"{name}: a masked array with {np.ma.count_masked(value)} masked "
+                        "values: egw would compute under the mask; pass the valid values "
+                        "(x.compressed()), or x.filled(np.nan) under "
+                        "egw.errstate(failed='nan') and np.ma.masked_invalid on the result")
+
+
 def _number_array(name: str, value) -> np.ndarray:
-    """value as float64 (a scalar as 0-d); strings, None, booleans and complex refused."""
+    """value as float64 (a scalar as 0-d); strings, None, booleans, complex and masked
+    arrays with a masked value refused."""
+    _refuse_masked(name, value)
     raw = np.asarray(value)
     if raw.dtype.kind not in "iuf":
         got = raw.dtype if raw.dtype.kind != "O" else type(value).__name__
-        raise TypeError(f"{name} = {value!r}: must be a real number or an array of real "
-                        f"numbers (got {got})")
+        raise TypeError(f"{name} = {_brief(value)}: must be a real number or an array of "
+                        f"real numbers (got {got})")
     return np.asarray(raw, dtype=np.float64)
 
 
@@ -288,7 +338,7 @@ class Params:
         if scalar and self.model != "flat law":
             check(lib.egw_params_validate(ctypes.byref(self.to_c())))
         if self.model != "EP-GW" and np.any(np.asarray(self.psi) > 0):
-            warnings.warn(f"psi = {self.psi}: the plasticity index is used by EP-GW only; "
+            warnings.warn(f"psi = {_brief(self.psi)}: the plasticity index is used by EP-GW only; "
                           f"model {self.model!r} ignores it", IgnoredParameterWarning,
                           stacklevel=3)
 
@@ -329,14 +379,35 @@ class Params:
         return self.shape == ()
 
     def to_c(self) -> _capi.Params:
-        """The C struct egw_params of a scalar Params (TypeError for array fields)."""
+        """The C struct egw_params of a scalar Params.
+
+        Returns
+        -------
+        egw._capi.Params
+
+        Raises
+        ------
+        TypeError
+            Params with array fields (use the array functions).
+        """
         if not self.is_scalar:
             raise TypeError("Params with array fields has no single C egw_params: "
                             "use the array functions (hertz, solve, ...)")
         return _capi.Params(MODELS[self.model], *(float(getattr(self, f)) for f in _FIELDS))
 
     def to_struct_array(self, shape: Tuple[int, ...]) -> np.ndarray:
-        """The parameters broadcast to shape, as a flat array of the C struct egw_params."""
+        """The parameters broadcast to shape, as a flat array of the C struct egw_params.
+
+        Parameters
+        ----------
+        shape : tuple of int
+            A shape the fields broadcast to.
+
+        Returns
+        -------
+        ndarray
+            1-D, dtype PARAMS_DTYPE, prod(shape) elements in C order.
+        """
         n = int(np.prod(shape, dtype=np.int64))
         block = np.empty(n, dtype=PARAMS_DTYPE)
         block["model"] = MODELS[self.model]
@@ -364,7 +435,22 @@ class Params:
                 raise InvalidArgumentError(status, f"index {idx}: {last_error()}")
 
     def replace(self, **changes) -> "Params":
-        """A copy with the given fields changed (checked as at construction)."""
+        """A copy with the given fields changed (checked as at construction).
+
+        Parameters
+        ----------
+        **changes
+            Field names and their new values (model, radius, ...).
+
+        Returns
+        -------
+        Params
+
+        Raises
+        ------
+        TypeError, InvalidArgumentError
+            As at construction.
+        """
         return dataclasses.replace(self, **changes)
 
     def __eq__(self, other: object) -> bool:
@@ -413,7 +499,17 @@ class Options:
     n_threads: int = 0
 
     def to_c(self) -> _capi.Options:
-        """The C struct egw_options."""
+        """The C struct egw_options.
+
+        Returns
+        -------
+        egw._capi.Options
+
+        Raises
+        ------
+        InvalidArgumentError
+            An unknown method name.
+        """
         if isinstance(self.method, str):
             if self.method not in METHODS:
                 raise InvalidArgumentError(INVALID_ARGUMENT, f"method = {self.method!r}: "
@@ -545,13 +641,38 @@ class _Batch:
         raise _exception(status, message)
 
 
+def _keyword_only(hint: str = ""):
+    """Decorator: the function's keyword-only quantities given positionally raise a
+    TypeError that names them (a positional call could swap quantities of one kind)."""
+    def wrap(func):
+        params = inspect.signature(func).parameters.values()
+        n_positional = sum(p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)
+                           for p in params)
+        names = [p.name for p in params if p.kind is p.KEYWORD_ONLY]
+
+        @functools.wraps(func)
+        def call(*args, **kwargs):
+            if len(args) > n_positional:
+                raise TypeError(
+                    f"{func.__name__}() takes {', '.join(n + '=' for n in names)} by keyword "
+                    f"only (got {len(args)} positional arguments): a positional call could "
+                    f"swap quantities of one kind{'; ' + hint if hint else ''}")
+            return func(*args, **kwargs)
+        return call
+    return wrap
+
+
 def _arr(*arrays: np.ndarray):
     return [None if a is None else _double_ptr(a) for a in arrays]
 
 
-def mu_from_summits(summit_density: ArrayLike, summit_radius: ArrayLike, sigma: ArrayLike,
+@_keyword_only("C's egw_mu_from_summits takes (eta, beta, sigma, R)")
+def mu_from_summits(*, summit_density: ArrayLike, summit_radius: ArrayLike, sigma: ArrayLike,
                     radius: ArrayLike) -> FloatOrArray:
     """Greenwood-Tripp mu = (8/3) eta sigma sqrt(2 R beta), elementwise with broadcasting.
+
+    Every argument is keyword-only (four lengths and densities a positional call could
+    swap without an error).
 
     Parameters
     ----------
@@ -573,6 +694,8 @@ def mu_from_summits(summit_density: ArrayLike, summit_radius: ArrayLike, sigma: 
     ------
     InvalidArgumentError
         A negative or non-finite input (named), or an overflowing mu.
+    TypeError
+        A positional argument, a non-numeric or masked input.
     """
     b = _Batch(None, summit_density=summit_density, summit_radius=summit_radius,
                sigma=sigma, radius=radius)
@@ -615,12 +738,12 @@ def effective_modulus(E1: ArrayLike, nu1: ArrayLike, E2: Optional[ArrayLike] = N
                                                  ("nu2", nu2))}
     for k in ("E1", "E2"):
         if np.any(~np.isfinite(vals[k]) | (vals[k] <= 0)):
-            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {vals[k]}: must be finite "
-                                       "and > 0")
+            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {_brief(vals[k])}: must "
+                                       "be finite and > 0")
     for k in ("nu1", "nu2"):
         if np.any(~((vals[k] > -1) & (vals[k] <= 0.5))):
-            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {vals[k]}: Poisson's ratio "
-                                       "must lie in (-1, 0.5]")
+            raise InvalidArgumentError(INVALID_ARGUMENT, f"{k} = {_brief(vals[k])}: "
+                                       "Poisson's ratio must lie in (-1, 0.5]")
     e = 1.0 / ((1 - vals["nu1"] ** 2) / vals["E1"] + (1 - vals["nu2"] ** 2) / vals["E2"])
     return float(e) if np.ndim(e) == 0 else e
 
@@ -657,8 +780,25 @@ def gauss_integral(n: ArrayLike, h: ArrayLike, derivative: bool = False) -> Floa
 
 
 def ellipk(k: ArrayLike) -> FloatOrArray:
-    """Complete elliptic integral of the first kind K(k) of MODULUS k, 0 <= k < 1,
-    elementwise (float for a scalar)."""
+    """Complete elliptic integral of the first kind K(k) of MODULUS k (not m = k^2).
+
+    Parameters
+    ----------
+    k : float or array
+        Modulus, 0 <= k < 1.
+
+    Returns
+    -------
+    float or ndarray
+        K(k), elementwise (a float for a scalar).
+
+    Raises
+    ------
+    InvalidArgumentError
+        k outside [0, 1) or NaN.
+    TypeError
+        A non-numeric or masked k.
+    """
     k = _array(k, "k")
     flat = k.reshape(-1)
     (out,) = _loop(k.shape, 1, lambda i, r: check(lib.egw_ellipk(float(flat[i]), r)))
@@ -666,8 +806,25 @@ def ellipk(k: ArrayLike) -> FloatOrArray:
 
 
 def ellipe(k: ArrayLike) -> FloatOrArray:
-    """Complete elliptic integral of the second kind E(k) of MODULUS k, 0 <= k < 1,
-    elementwise (float for a scalar)."""
+    """Complete elliptic integral of the second kind E(k) of MODULUS k (not m = k^2).
+
+    Parameters
+    ----------
+    k : float or array
+        Modulus, 0 <= k < 1.
+
+    Returns
+    -------
+    float or ndarray
+        E(k), elementwise (a float for a scalar).
+
+    Raises
+    ------
+    InvalidArgumentError
+        k outside [0, 1) or NaN.
+    TypeError
+        A non-numeric or masked k.
+    """
     k = _array(k, "k")
     flat = k.reshape(-1)
     (out,) = _loop(k.shape, 1, lambda i, r: check(lib.egw_ellipe(float(flat[i]), r)))
@@ -952,10 +1109,20 @@ def profile(params: Params, delta: float, r: ArrayLike,
     r : array
         Radii >= 0 [length], any order.
 
+    options : Options, optional
+        Solver options.
+
     Returns
     -------
     pressure, deflection : ndarray
         Flat arrays of len(r) [pressure], [length].
+
+    Raises
+    ------
+    InvalidArgumentError
+        Invalid parameters, a NaN overlap or a negative radius.
+    NotConvergedError
+        The solve did not converge.
     """
     p = _params(params)
     radii = _array(r, "r").reshape(-1).copy()
@@ -984,7 +1151,8 @@ class Restitution:
     max_overlap: FloatOrArray = float("nan")
 
 
-def restitution(params: Params, mass: ArrayLike, velocity: ArrayLike,
+@_keyword_only("restitution(params, mass=..., velocity=...)")
+def restitution(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
                 options: Optional[Options] = None) -> Restitution:
     """Coefficient of restitution of head-on impacts, e = sqrt(W_unload/W_load).
 
@@ -1034,8 +1202,9 @@ class TimeStep:
     step: FloatOrArray
 
 
-def time_step(params: Params, mass: ArrayLike, velocity: ArrayLike, tolerance: float = 1e-3,
-              options: Optional[Options] = None) -> TimeStep:
+@_keyword_only("time_step(params, mass=..., velocity=..., tolerance=...)")
+def time_step(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
+              tolerance: float = 1e-3, options: Optional[Options] = None) -> TimeStep:
     """The time step of a DEM loop for head-on impacts (egw_time_step).
 
     Parameters

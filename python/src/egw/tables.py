@@ -69,10 +69,28 @@ class _Handle:
 
 @dataclass
 class TableInfo:
-    """egw_table_info: model, n_nodes, cutoff (first node; the tail law below) [length],
-    delta_max (last node; the deep-overlap asymptote above) [length], reference_force,
-    rel_tol, max_force_error, max_stiffness_error,
-    checksum_missing (1: read from a CSV file without its checksum line)."""
+    """Facts about a force table (the C struct egw_table_info).
+
+    Attributes
+    ----------
+    model : int
+        EGW_MODEL_* of the parameters (0 Hertz, 1 GW, 2 E-GW, 3 EP-GW).
+    n_nodes : int
+        Interpolation nodes.
+    cutoff : float
+        First node [length]; the model's separated tail below.
+    delta_max : float
+        Last node [length]; the deep-overlap asymptote above.
+    reference_force : float
+        P_ref of the cut-off rule [force].
+    rel_tol : float
+        The requested interpolation tolerance.
+    max_force_error, max_stiffness_error : float
+        Measured max relative errors at the build's check solves.
+    checksum_missing : int
+        1: read from a CSV file without its checksum line (only the reader's sanity
+        checks vouch for the numbers).
+    """
     model: int
     n_nodes: int
     cutoff: float
@@ -86,7 +104,16 @@ class TableInfo:
 
 class Table(_Handle):
     """Force table of one parameter set: force and stiffness against the overlap delta,
-    built adaptively to rel_tol from full solves (egw_table_build)."""
+    built adaptively to rel_tol from full solves (egw_table_build).
+
+    Made by :meth:`build`, :meth:`read` or :meth:`UniversalTable.slice`, never directly;
+    released by :meth:`close`, a ``with`` block or the garbage collector.
+
+    Parameters
+    ----------
+    handle : ctypes.c_void_p
+        The C handle (egw_table) this object owns (internal).
+    """
     _free = "egw_table_free"
 
     @classmethod
@@ -129,13 +156,43 @@ class Table(_Handle):
 
     @classmethod
     def read(cls, path: PathLike) -> "Table":
-        """Read an egw CSV or binary table (format recognised from the file)."""
+        """Read an egw CSV or binary table (format recognised from the file).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The table file.
+
+        Returns
+        -------
+        Table
+
+        Raises
+        ------
+        FileError
+            The file cannot be opened, or its content is refused (message says what).
+        """
         h = ctypes.c_void_p()
         check(lib.egw_table_read(_path(path), ctypes.byref(h)))
         return cls(h)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
-        """Write atomically as 'csv', 'binary', 'lammps' or 'calculix'."""
+        """Write atomically (a temporary file renamed on success).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write.
+        format : {'binary', 'csv', 'lammps', 'calculix'} or int
+            The file format (doc/formats.md).
+
+        Raises
+        ------
+        ValueError
+            An unknown format name.
+        FileError
+            The file cannot be written.
+        """
         check(lib.egw_table_write(self._ptr, _path(path), _format(format)))
 
     @property
@@ -162,6 +219,13 @@ class Table(_Handle):
         -----
         OutOfRangeWarning
             Above the last node (values from the deep-overlap asymptote, doc/theory.md §9).
+
+        Raises
+        ------
+        TypeError
+            A non-numeric or masked delta.
+        InvalidArgumentError
+            A NaN overlap.
         """
         d = _array(delta)
         force = np.empty_like(d)
@@ -173,7 +237,24 @@ class Table(_Handle):
         return _scalar_or_array(d.shape, force, stiffness)
 
     def eval_all(self, delta: float) -> Tuple[float, float, float, float]:
-        """(force, stiffness, elastic energy int P ddelta, effective contact radius)."""
+        """Everything the table knows at one overlap (egw_table_eval_all).
+
+        Parameters
+        ----------
+        delta : float
+            Overlap [length].
+
+        Returns
+        -------
+        force, stiffness, energy, contact_radius : float
+            P [force], dP/ddelta [force/length], the elastic energy int P ddelta from the
+            cut-off [energy], and the effective contact radius [length].
+
+        Raises
+        ------
+        InvalidArgumentError
+            A NaN overlap (above the last node: OutOfRangeWarning, extrapolated).
+        """
         out = [ctypes.c_double() for _ in range(4)]
         check(lib.egw_table_eval_all(self._ptr, float(delta), *map(ctypes.byref, out)),
               allow_out_of_range=True)
@@ -182,7 +263,16 @@ class Table(_Handle):
 
 class UniversalTable(_Handle):
     """P/(E sqrt(R) sigma^1.5) over (delta/sigma, mu) for one model: every radius,
-    modulus and roughness (egw_universal_build)."""
+    modulus and roughness (egw_universal_build).
+
+    Made by :meth:`build` or :meth:`read`, never directly; released by :meth:`close`,
+    a ``with`` block or the garbage collector.
+
+    Parameters
+    ----------
+    handle : ctypes.c_void_p
+        The C handle (egw_universal) this object owns (internal).
+    """
     _free = "egw_universal_free"
 
     @classmethod
@@ -221,16 +311,40 @@ class UniversalTable(_Handle):
 
     @classmethod
     def read(cls, path: PathLike) -> "UniversalTable":
-        """Read a universal table written by :meth:`write` (FileError if unreadable)."""
+        """Read a universal table written by :meth:`write`.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The table file.
+
+        Returns
+        -------
+        UniversalTable
+
+        Raises
+        ------
+        FileError
+            The file cannot be opened, or its content is refused.
+        """
         h = ctypes.c_void_p()
         check(lib.egw_universal_read(_path(path), ctypes.byref(h)))
         return cls(h)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
-        """Write atomically ('binary' or 'csv', doc/formats.md).
+        """Write atomically (a temporary file renamed on success).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write.
+        format : {'binary', 'csv'} or int
+            The file format (doc/formats.md).
 
         Raises
         ------
+        ValueError
+            An unknown format name.
         FileError
             The file cannot be written.
         """
@@ -284,8 +398,26 @@ class UniversalTable(_Handle):
         return _scalar_or_array(b.shape, force, stiffness)
 
     def slice(self, params: Params, delta_max: Optional[float] = None) -> Table:
-        """The 1-D table of one contact cut out of the universal table (no solves); with
-        delta_max, trimmed to the overlaps a scene visits (faster lookups)."""
+        """The 1-D table of one contact cut out of the universal table (no solves).
+
+        Parameters
+        ----------
+        params : Params
+            The contact (scalar fields; model, psi, K, rho_p as the table's, mu inside
+            its range).
+        delta_max : float, optional
+            Trim the slice to the overlaps up to delta_max [length] a scene visits (faster
+            lookups); None: the whole range.
+
+        Returns
+        -------
+        Table
+
+        Raises
+        ------
+        InvalidArgumentError
+            Parameters that do not match the table, or mu outside it.
+        """
         p = _params(params)
         h = ctypes.c_void_p()
         if delta_max is None:
@@ -298,12 +430,29 @@ class UniversalTable(_Handle):
 
 @dataclass(frozen=True)
 class HysteresisInfo:
-    """egw_hysteresis_info: model; reversible (no plastic summits: unloading retraces
-    loading); n_delta_max and n_s (grid sizes, 0 when reversible); n_loading (nodes of the
-    loading table); cutoff (the loading table's first node, its tail law below: forces
-    under 1e-12 of reference_force) and delta_max [length]; reference_force (P_ref of the
-    loading table) [force]; rel_tol and max_error (relative to the force at the turning
-    point)."""
+    """Facts about a hysteresis table (the C struct egw_hysteresis_info).
+
+    Attributes
+    ----------
+    model : int
+        EGW_MODEL_* of the parameters.
+    reversible : bool
+        No plastic summits: unloading retraces loading.
+    n_delta_max, n_s : int
+        Grid sizes over delta_max and along each unloading curve (0 when reversible).
+    n_loading : int
+        Nodes of the loading table.
+    cutoff : float
+        The loading table's first node [length] (forces under 1e-12 of
+        reference_force; its tail law below).
+    delta_max : float
+        The last delta_max node [length].
+    reference_force : float
+        P_ref of the loading table [force].
+    rel_tol, max_error : float
+        Requested tolerance and largest mismatch found at the check solves, relative to
+        the force at the turning point.
+    """
     model: int
     reversible: bool
     n_delta_max: int
@@ -319,7 +468,16 @@ class HysteresisInfo:
 class HysteresisTable(_Handle):
     """EP-GW loading/unloading/reloading force over (delta, delta_max) for one parameter
     set (egw_hysteresis_build). The history (the largest overlap so far) belongs to the
-    caller: a new contact starts from -inf."""
+    caller: a new contact starts from -inf (:meth:`new_state`).
+
+    Made by :meth:`build` or :meth:`read`, never directly; released by :meth:`close`,
+    a ``with`` block or the garbage collector.
+
+    Parameters
+    ----------
+    handle : ctypes.c_void_p
+        The C handle (egw_hysteresis) this object owns (internal).
+    """
     _free = "egw_hysteresis_free"
 
     @classmethod
@@ -354,17 +512,43 @@ class HysteresisTable(_Handle):
 
     @classmethod
     def read(cls, path: PathLike) -> "HysteresisTable":
-        """Read a hysteresis table written by :meth:`write` (FileError if unreadable)."""
+        """Read a hysteresis table written by :meth:`write`.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The table file.
+
+        Returns
+        -------
+        HysteresisTable
+
+        Raises
+        ------
+        FileError
+            The file cannot be opened, or its content is refused.
+        NotImplementedError
+            The loaded libegw has no hysteresis tables.
+        """
         _require("egw_hysteresis_read")
         h = ctypes.c_void_p()
         check(lib.egw_hysteresis_read(_path(path), ctypes.byref(h)))
         return cls(h)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
-        """Write atomically ('binary' or 'csv', doc/formats.md).
+        """Write atomically (a temporary file renamed on success).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write.
+        format : {'binary', 'csv'} or int
+            The file format (doc/formats.md).
 
         Raises
         ------
+        ValueError
+            An unknown format name.
         FileError
             The file cannot be written.
         """
@@ -372,7 +556,17 @@ class HysteresisTable(_Handle):
         check(lib.egw_hysteresis_write(self._ptr, _path(path), _format(format)))
 
     def info(self) -> "HysteresisInfo":
-        """Facts about the table (egw_hysteresis_get_info)."""
+        """Facts about the table (egw_hysteresis_get_info).
+
+        Returns
+        -------
+        HysteresisInfo
+
+        Raises
+        ------
+        ValueError
+            The table was closed.
+        """
         _require("egw_hysteresis_get_info")
         c = _capi.HysteresisInfo()
         check(lib.egw_hysteresis_get_info(self._ptr, ctypes.byref(c)))
@@ -383,13 +577,42 @@ class HysteresisTable(_Handle):
                               max_error=c.max_error)
 
     def eval(self, delta: ArrayLike, state: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
-        """(force, stiffness) at delta for contacts whose histories are `state` (a float
-        array of the same shape, updated in place to max(state, delta)): one C call for
-        the whole array (egw_hysteresis_eval_array), every element its own contact."""
+        """Force and stiffness of contacts on loading, unloading or reloading: one C call
+        for the whole array (egw_hysteresis_eval_array), every element its own contact.
+
+        Parameters
+        ----------
+        delta : float or array
+            Overlaps [length], sign as in :func:`egw.solve`.
+        state : ndarray
+            The contacts' histories (largest overlap so far; -inf for a new contact:
+            :meth:`new_state`): a C-contiguous float64 array of delta's shape, updated in
+            place to max(state, delta).
+
+        Returns
+        -------
+        force, stiffness : ndarray
+            Of delta's shape [force], [force/length].
+
+        Warns
+        -----
+        OutOfRangeWarning
+            Overlaps above the table's last node (extrapolated).
+
+        Raises
+        ------
+        TypeError
+            A state that is not a C-contiguous float64 array of delta's shape, or a
+            masked array.
+        InvalidArgumentError
+            A NaN overlap.
+        """
         d = _array(delta)
         if not (isinstance(state, np.ndarray) and state.dtype == np.float64
-                and state.shape == d.shape and state.flags.c_contiguous):
-            raise TypeError("state must be a C-contiguous float64 array shaped like delta")
+                and state.shape == d.shape and state.flags.c_contiguous) \
+                or isinstance(state, np.ma.MaskedArray):
+            raise TypeError("state must be a C-contiguous float64 array shaped like delta "
+                            "(not a masked array)")
         force = np.empty(d.shape)
         stiffness = np.empty(d.shape)
         if d.size:
@@ -412,9 +635,29 @@ class HysteresisTable(_Handle):
     def energy(self, delta: ArrayLike, state: ArrayLike) -> np.ndarray:
         """The elastic energy each contact returns if it separates now
         (egw_hysteresis_energy): the integral of its unloading curve, turning point
-        max(state, delta), from the cut-off to delta. `state` is read, not changed."""
+        max(state, delta), from the cut-off to delta.
+
+        Parameters
+        ----------
+        delta : float or array
+            Overlaps [length].
+        state : float or array
+            The contacts' histories (broadcast to delta's shape); read, not changed.
+
+        Returns
+        -------
+        ndarray
+            The energies [energy], of delta's shape.
+
+        Raises
+        ------
+        TypeError
+            A non-numeric or masked input.
+        InvalidArgumentError
+            A NaN overlap.
+        """
         d = _array(delta)
-        s = np.broadcast_to(np.asarray(state, dtype=np.float64), d.shape)
+        s = np.broadcast_to(_array(state, "state"), d.shape)
         out = np.empty(d.shape)
         u = ctypes.c_double()
         of, df, sf = out.reshape(-1), d.reshape(-1), s.reshape(-1)
@@ -426,7 +669,18 @@ class HysteresisTable(_Handle):
 
     @staticmethod
     def new_state(shape=()) -> np.ndarray:
-        """Histories of contacts that never touched (-inf)."""
+        """Histories of contacts that never touched.
+
+        Parameters
+        ----------
+        shape : int or tuple of int
+            Shape of the array of contacts (() for one).
+
+        Returns
+        -------
+        ndarray
+            float64 filled with -inf, for :meth:`eval`.
+        """
         return np.full(shape, -np.inf)
 
 

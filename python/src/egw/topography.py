@@ -18,6 +18,14 @@ surface) or 'difference' (central differences, for measured, non-periodic maps).
 The contact parameters (mu for a sphere radius R, psi for E*, H) are computed by the C
 library (egw_mu_from_summits, egw_psi_from_hardness); GW's assumptions are flagged when
 alpha is small or few summits were found.
+
+Both estimates see the surface only down to the pixel. On a map rough down to the pixel
+(no short-wavelength cut-off in the data) m2 and m4 grow as the pixel shrinks, and eta,
+beta (so mu, psi) are those of the sampling: analyse() coarse-grains the map by 2 and
+warns when the spectral eta or beta changes by more than RESOLUTION_TOL. Then cut the map
+off at a physical short-wavelength limit (coarse_grain, a low-pass filter) until they stop
+changing, or use a contact law that needs no summit statistics (Persson's theory, a
+boundary-element rough-flat law).
 """
 from __future__ import annotations
 
@@ -35,7 +43,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .core import Params, check, effective_modulus, mu_from_summits
+from .core import Params, check, effective_modulus, _keyword_only, mu_from_summits
 
 #: below this bandwidth parameter McCool's summit statistics are poor (sigma_s^2 loses
 #: more than 10 % against m0: 0.8968/alpha > 0.1) — GW's isolated-summit picture is
@@ -79,7 +87,18 @@ class HeightMap:
     periodic: bool = False
 
     def to_metres(self) -> "HeightMap":
-        """The same map in metres (ValueError when the unit is unknown)."""
+        """The same map in metres.
+
+        Returns
+        -------
+        HeightMap
+            Heights and pixel sizes scaled to metres, unit 'm'.
+
+        Raises
+        ------
+        ValueError
+            The map has no unit or an unknown one.
+        """
         factor = _unit_factor(self.unit)
         return HeightMap(self.heights * factor, self.dx * factor, self.dy * factor, "m",
                          self.periodic)
@@ -93,8 +112,19 @@ class HeightMap:
 
 @dataclass
 class Moments:
-    """Profile spectral moments m0 [length^2], m2 [-], m4 [1/length^2] (averaged over
-    x and y), and their directional parts."""
+    """Profile spectral moments of a surface (averaged over the x and y directions).
+
+    Attributes
+    ----------
+    m0 : float
+        Variance of the heights [length^2].
+    m2 : float
+        Variance of the slopes [-].
+    m4 : float
+        Variance of the curvatures [1/length^2].
+    m2_xy, m4_xy : (float, float)
+        m2 and m4 along x and along y (NaN when not known).
+    """
     m0: float
     m2: float
     m4: float
@@ -115,9 +145,30 @@ class Moments:
 
 @dataclass
 class SummitStatistics:
-    """GW parameters: summit density eta [1/length^2], mean summit radius beta [length],
-    std of summit heights sigma_s [length], rms height of the surface sigma_z [length],
-    and (summit identification) the number of summits found."""
+    """GW parameters of a surface, by one method.
+
+    Attributes
+    ----------
+    method : str
+        How they were found (summit identification or spectral).
+    summit_density : float
+        eta [1/length^2].
+    summit_radius : float
+        Mean summit radius beta [length].
+    sigma_summits : float
+        Std of the summit heights sigma_s [length] (GW's sigma).
+    sigma_surface : float
+        Rms height of the surface [length].
+    n_summits : int or None
+        Summits found (summit identification only).
+    alpha : float or None
+        Nayak's bandwidth parameter (spectral only).
+    mean_summit_height : float or None
+        Mean summit height above the mean plane of the heights [length] (y_s: an overlap
+        delta_m from the mean plane is delta = delta_m + y_s for GW's models).
+    warnings : list of str
+        Where GW's assumptions are poor.
+    """
     method: str
     summit_density: float
     summit_radius: float
@@ -132,9 +183,32 @@ class SummitStatistics:
 def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1.0,
                     unit: Optional[str] = None, periodic: bool = False) -> HeightMap:
     """Read a height map: `.npy` (numpy), `.csv` (comma-separated rows) or a plain-text
-    matrix (whitespace-separated rows); '#' lines are comments. pixel_size: dx or (dx, dy),
-    in the unit of the heights (unit: recorded on the map; None = unknown). NaN pixels
-    are refused. Instrument formats: :func:`height_map` (through SurfaceTopography)."""
+    matrix (whitespace-separated rows); '#' lines are comments. Instrument formats:
+    :func:`height_map` (through SurfaceTopography).
+
+    Parameters
+    ----------
+    path : str
+        The file.
+    pixel_size : float or (dx, dy)
+        In the unit of the heights.
+    unit : str, optional
+        Recorded on the map (None = unknown: the contact functions refuse it).
+    periodic : bool
+        The map is one period of a periodic surface.
+
+    Returns
+    -------
+    HeightMap
+
+    Raises
+    ------
+    ValueError
+        Not a 2-D matrix of at least 3 x 3, NaN or infinite pixels, a bad pixel size or
+        an unknown unit.
+    OSError
+        The file cannot be read.
+    """
     ext = os.path.splitext(path)[1].lower()
     if ext == ".npy":
         z = np.load(path, allow_pickle=False)
@@ -157,9 +231,25 @@ def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1
 def detrend(surface: HeightMap, mode: Optional[str] = None) -> HeightMap:
     """Remove the mean ('mean') or the least-squares plane ('plane') of the heights.
 
-    mode None (default): 'mean' for a periodic map (a plane would break its periodicity
-    and inflate the spectral moments), 'plane' otherwise. The shared default of the CLI
-    and Python (see DEFAULTS)."""
+    Parameters
+    ----------
+    surface : HeightMap
+        The map.
+    mode : {'mean', 'plane'}, optional
+        None (default): 'mean' for a periodic map (a plane would break its periodicity
+        and inflate the spectral moments), 'plane' otherwise; the shared default of the
+        CLI and Python (see DEFAULTS).
+
+    Returns
+    -------
+    HeightMap
+        The detrended map (the same grid, unit and periodicity).
+
+    Raises
+    ------
+    ValueError
+        Another mode.
+    """
     mode = mode or default_detrend(surface.periodic)
     z = surface.heights
     if mode == "mean":
@@ -208,8 +298,27 @@ def spectral_moments(surface: HeightMap, method: Optional[str] = None) -> Moment
     """Profile moments m0, m2, m4 of a (detrended) height map, averaged over the x and y
     directions (for an isotropic surface they are the profile moments in any direction).
 
-    method: 'fft' (exact for a periodic band-limited map) or 'difference' (central
-    differences, any map); None: 'fft' for a periodic map, else 'difference' (DEFAULTS)."""
+    Parameters
+    ----------
+    surface : HeightMap
+        The detrended map.
+    method : {'fft', 'difference'}, optional
+        'fft' (exact for a periodic band-limited map) or 'difference' (central
+        differences, any map); None: 'fft' for a periodic map, else 'difference'
+        (DEFAULTS).
+
+    Returns
+    -------
+    Moments
+        In the map's unit. Both methods resolve nothing finer than the pixel: on a map
+        whose roughness continues down to the pixel, m2 and m4 (and so eta, beta) depend
+        on the pixel size (doc/parameters.md).
+
+    Raises
+    ------
+    ValueError
+        Another method.
+    """
     method = method or default_derivatives(surface.periodic)
     z = surface.heights
     zx, zy, zxx, zyy = _derivatives(surface, method)
@@ -220,7 +329,25 @@ def spectral_moments(surface: HeightMap, method: Optional[str] = None) -> Moment
 
 
 def mccool(moments: Moments) -> SummitStatistics:
-    """GW summit statistics from the spectral moments (Nayak 1971, McCool 1986)."""
+    """GW summit statistics from the spectral moments (Nayak 1971, McCool 1986):
+    eta = m4/(6 pi sqrt(3) m2), beta = (3/8) sqrt(pi/m4), sigma_s^2 = (1 - 0.8968/alpha)
+    m0, y_s = 4 sqrt(m0/(pi alpha)).
+
+    Parameters
+    ----------
+    moments : Moments
+        The profile moments (all > 0).
+
+    Returns
+    -------
+    SummitStatistics
+        With alpha and mean_summit_height (y_s); a warning note when alpha < ALPHA_WARN.
+
+    Raises
+    ------
+    ValueError
+        A moment that is not > 0.
+    """
     m0, m2, m4 = moments.m0, moments.m2, moments.m4
     if not (m0 > 0 and m2 > 0 and m4 > 0):
         raise ValueError(f"spectral moments m0 = {m0}, m2 = {m2}, m4 = {m4}: all must be > 0")
@@ -238,8 +365,20 @@ def mccool(moments: Moments) -> SummitStatistics:
 
 
 def identify_summits(surface: HeightMap, periodic: bool = False):
-    """Indices (iy, ix) of the 8-neighbour summits: pixels strictly higher than all eight
-    neighbours (the border rows/columns are skipped unless periodic)."""
+    """The 8-neighbour summits: pixels strictly higher than all eight neighbours.
+
+    Parameters
+    ----------
+    surface : HeightMap
+        The map.
+    periodic : bool
+        Neighbours across the edges (else the border rows and columns are skipped).
+
+    Returns
+    -------
+    iy, ix : ndarray of int
+        Row and column indices of the summits.
+    """
     z = surface.heights
     if periodic:
         is_max = np.ones(z.shape, dtype=bool)
@@ -260,7 +399,29 @@ def identify_summits(surface: HeightMap, periodic: bool = False):
 
 
 def summit_statistics(surface: HeightMap, periodic: bool = False) -> SummitStatistics:
-    """GW parameters by 8-neighbour summit identification on the detrended map."""
+    """GW parameters by 8-neighbour summit identification on the detrended map: eta =
+    count/area, sigma_s = std of their heights, beta = 1/mean(kappa) with kappa the mean
+    curvature -(z_xx + z_yy)/2 at each summit (central differences).
+
+    Parameters
+    ----------
+    surface : HeightMap
+        The detrended map.
+    periodic : bool
+        Summits and curvatures across the edges.
+
+    Returns
+    -------
+    SummitStatistics
+        With n_summits and mean_summit_height (y_s, above the mean plane); a warning note
+        for fewer than SUMMITS_WARN summits. Summits and curvatures are those the pixel
+        resolves: with roughness down to the pixel, they depend on the pixel size.
+
+    Raises
+    ------
+    ValueError
+        Fewer than 2 summits.
+    """
     z, dx, dy = surface.heights, surface.dx, surface.dy
     iy, ix = identify_summits(surface, periodic)
     n = iy.size
@@ -287,7 +448,23 @@ def summit_statistics(surface: HeightMap, periodic: bool = False) -> SummitStati
 
 def sum_surface(a: HeightMap, b: HeightMap) -> HeightMap:
     """The sum surface z1 + z2 of two maps on the same grid (GW's equivalent rough
-    surface against a smooth one; its moments are the sums for independent surfaces)."""
+    surface against a smooth one; its moments are the sums for independent surfaces).
+
+    Parameters
+    ----------
+    a, b : HeightMap
+        Maps of the same shape, pixel size and unit.
+
+    Returns
+    -------
+    HeightMap
+        Periodic when both are.
+
+    Raises
+    ------
+    ValueError
+        Different shapes, pixel sizes or units.
+    """
     if a.heights.shape != b.heights.shape or (a.dx, a.dy) != (b.dx, b.dy):
         raise ValueError("sum_surface: the two maps need the same shape and pixel size")
     if a.unit != b.unit:
@@ -296,9 +473,40 @@ def sum_surface(a: HeightMap, b: HeightMap) -> HeightMap:
     return HeightMap(a.heights + b.heights, a.dx, a.dy, a.unit, a.periodic and b.periodic)
 
 
-def psi_from_hardness(modulus: float, hardness: float, sigma: float, summit_radius: float,
-                      hardness_coeff: float = 0.6) -> float:
-    """The paper's plasticity index psi = 4 E*/(3 pi K H) sqrt(sigma/beta)."""
+@_keyword_only("C's egw_psi_from_hardness takes (E*, H, K, sigma, beta)")
+def psi_from_hardness(*, modulus: float, hardness: float, sigma: float,
+                      summit_radius: float, hardness_coeff: float = 0.6) -> float:
+    """The paper's plasticity index psi = 4 E*/(3 pi K H) sqrt(sigma/beta).
+
+    Every argument is keyword-only: the C function egw_psi_from_hardness takes another
+    order (modulus, hardness, hardness_coeff, sigma, beta), and a call in that order would
+    return a wrong psi without an error.
+
+    Parameters
+    ----------
+    modulus : float
+        Effective modulus E* [pressure], > 0.
+    hardness : float
+        Hardness H of the softer surface [pressure], > 0.
+    sigma : float
+        Std of the summit heights [length], > 0.
+    summit_radius : float
+        Mean summit radius beta [length], > 0.
+    hardness_coeff : float
+        ZMC K, in (0, 1).
+
+    Returns
+    -------
+    float
+        psi (dimensionless).
+
+    Raises
+    ------
+    InvalidArgumentError
+        A value out of range (named by the library).
+    TypeError
+        A positional argument.
+    """
     psi = ctypes.c_double()
     check(lib.egw_psi_from_hardness(float(modulus), float(hardness), float(hardness_coeff),
                                     float(sigma), float(summit_radius), ctypes.byref(psi)))
@@ -317,15 +525,42 @@ AGREEMENT_TOL = 0.10
 PIXELS_PER_WAVELENGTH_MIN = 20.0
 #: fewer summits than this: their averages carry more than 5 % statistical error
 SUMMITS_STATISTICS_MIN = 400
+#: the spectral eta or beta changing by more than this when the pixel size doubles: the
+#: roughness goes down to the pixel and GW's parameters are those of the sampling. A map
+#: resolving its shortest wavelength by >= 16 pixels changes by ~5 %; a self-affine map
+#: rough down to the pixel (Hurst 0.8) by a factor 2-4.
+RESOLUTION_TOL = 0.25
 
 
 def default_detrend(periodic: bool) -> str:
-    """'mean' for a periodic map, 'plane' otherwise (DEFAULTS)."""
+    """The default detrending (DEFAULTS).
+
+    Parameters
+    ----------
+    periodic : bool
+        Whether the map is periodic.
+
+    Returns
+    -------
+    str
+        'mean' for a periodic map, 'plane' otherwise.
+    """
     return DEFAULTS["detrend"][bool(periodic)]
 
 
 def default_derivatives(periodic: bool) -> str:
-    """'fft' for a periodic map, 'difference' otherwise (DEFAULTS)."""
+    """The default derivatives (DEFAULTS).
+
+    Parameters
+    ----------
+    periodic : bool
+        Whether the map is periodic.
+
+    Returns
+    -------
+    str
+        'fft' for a periodic map, 'difference' otherwise.
+    """
     return DEFAULTS["derivatives"][bool(periodic)]
 
 
@@ -373,6 +608,10 @@ def _from_surface_topography(top: Any, unit: Optional[str],
 
 def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic: bool,
                  what: str) -> HeightMap:
+    if np.ma.is_masked(heights):
+        raise ValueError(f"{what}: a masked array with {np.ma.count_masked(heights)} masked "
+                         "pixels: masked pixels are missing data; fill or crop them first "
+                         "(summits and moments are undefined next to them)")
     z = np.asarray(heights, dtype=np.float64)
     if z.ndim != 2 or min(z.shape) < 3:
         raise ValueError(f"{what}: a height map must be a 2-D matrix of at least 3 x 3 "
@@ -402,7 +641,7 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
     source : ndarray (ny, nx), SurfaceTopography topography, HeightMap or path
         A path ending .npy, .csv or .txt is read by :func:`read_height_map`; any other
         file (x3p, datx, opd, gwy, sur, ...) by SurfaceTopography
-        (``pip install egw[topography]``), which records its units.
+        (``pip install "./python[topography]"``), which records its units.
     pixel_size : float or (dx, dy)
         For arrays and plain files: in the unit of the heights.
     unit : str
@@ -453,7 +692,8 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
             import SurfaceTopography as st  # noqa: N813 (the package's own name)
         except ImportError:
             raise ImportError(f"{path}: instrument formats are read by SurfaceTopography: "
-                              "pip install 'egw[topography]'") from None
+                              "pip install './python[topography]' (from the egw "
+                              "repository)") from None
         reader = st.open_topography(path)
         kwargs = {}
         if pixel_size is not None:
@@ -485,6 +725,10 @@ class TopographyReport:
     disagreement : relative gaps |summits/spectral - 1| of eta, beta, sigma_s.
     trust : 'summits' or 'spectral'; reason : why.
     warnings : every warning (also issued as TopographyWarning).
+    resolution : relative change of the spectral eta ('summit_density') and beta
+        ('summit_radius') when the pixel size doubles (:func:`resolution_dependence`);
+        above RESOLUTION_TOL the parameters depend on the pixel size (a warning says
+        what to do).
     """
     shape: Tuple[int, int]
     unit: Optional[str]
@@ -498,6 +742,7 @@ class TopographyReport:
     trust: str
     reason: str
     warnings: List[str] = field(default_factory=list)
+    resolution: Dict[str, float] = field(default_factory=dict)
 
     @property
     def recommended(self) -> SummitStatistics:
@@ -505,7 +750,13 @@ class TopographyReport:
         return self.summits if self.trust == "summits" else self.spectral
 
     def to_dict(self) -> Dict[str, Any]:
-        """A JSON-ready dictionary (numbers in the map's unit)."""
+        """The report as a JSON-ready dictionary.
+
+        Returns
+        -------
+        dict
+            Plain numbers, strings and lists (numbers in the map's unit).
+        """
         def stats(s: SummitStatistics) -> Dict[str, Any]:
             return {"summit_density": s.summit_density, "summit_radius": s.summit_radius,
                     "sigma_summits": s.sigma_summits, "sigma_surface": s.sigma_surface,
@@ -518,7 +769,90 @@ class TopographyReport:
                             "m4_xy": list(self.moments.m4_xy), "alpha": self.moments.alpha},
                 "summits": stats(self.summits), "spectral": stats(self.spectral),
                 "disagreement": self.disagreement, "trust": self.trust,
-                "reason": self.reason, "warnings": list(self.warnings)}
+                "reason": self.reason, "warnings": list(self.warnings),
+                "resolution": dict(self.resolution)}
+
+
+def coarse_grain(surface: HeightMap, factor: int = 2) -> HeightMap:
+    """The map with pixels factor times larger: the means of factor x factor blocks (a
+    low-pass at the new pixel; a row or column that fills no block is dropped).
+
+    Parameters
+    ----------
+    surface : HeightMap
+        The map.
+    factor : int
+        Block size, >= 1.
+
+    Returns
+    -------
+    HeightMap
+        Pixel sizes factor * (dx, dy); the same unit and periodicity.
+
+    Raises
+    ------
+    ValueError
+        A factor < 1, or a map with fewer than 3 x 3 blocks.
+    """
+    factor = int(factor)
+    ny, nx = surface.heights.shape
+    if factor < 1 or ny // factor < 3 or nx // factor < 3:
+        raise ValueError(f"factor = {factor}: must be >= 1 and leave at least 3 x 3 pixels "
+                         f"of the {ny} x {nx} map")
+    z = surface.heights[:ny - ny % factor, :nx - nx % factor]
+    z = z.reshape(ny // factor, factor, nx // factor, factor).mean(axis=(1, 3))
+    return HeightMap(z, surface.dx * factor, surface.dy * factor, surface.unit,
+                     surface.periodic and ny % factor == 0 and nx % factor == 0)
+
+
+def resolution_dependence(surface: HeightMap, derivatives: Optional[str] = None
+                          ) -> Dict[str, float]:
+    """How much the spectral GW parameters depend on the pixel size: their relative change
+    when the map is coarse-grained by 2 (:func:`coarse_grain`).
+
+    On a map whose roughness continues down to the pixel (no short-wavelength cut-off in
+    the data), m2 and m4 grow as the pixel shrinks, and so do the summit density and the
+    summit curvature: GW's eta and beta are then those of the instrument's sampling, not
+    of the surface.
+
+    Parameters
+    ----------
+    surface : HeightMap
+        The detrended map.
+    derivatives : {'fft', 'difference'}, optional
+        As :func:`spectral_moments` (default: DEFAULTS).
+
+    Returns
+    -------
+    dict
+        'summit_density' and 'summit_radius': coarse/fine - 1 of the spectral eta and
+        beta (|value| > RESOLUTION_TOL: resolution-dependent parameters).
+
+    Raises
+    ------
+    ValueError
+        A map too small to coarse-grain, or vanishing moments.
+    """
+    derivatives = derivatives or default_derivatives(surface.periodic)
+    fine = mccool(spectral_moments(surface, derivatives))
+    coarse_map = detrend(coarse_grain(surface, 2), "mean")
+    coarse = mccool(spectral_moments(coarse_map, derivatives))
+    return {"summit_density": coarse.summit_density / fine.summit_density - 1.0,
+            "summit_radius": coarse.summit_radius / fine.summit_radius - 1.0}
+
+
+def _resolution_note(change: Dict[str, float]) -> Optional[str]:
+    worst = max(abs(v) for v in change.values())
+    if worst <= RESOLUTION_TOL:
+        return None
+    return (f"resolution: doubling the pixel size changes the spectral summit density by "
+            f"{100 * change['summit_density']:+.0f} % and the summit radius by "
+            f"{100 * change['summit_radius']:+.0f} %: the roughness goes down to the pixel, "
+            "so eta and beta (and mu, psi) are those of the sampling, not of the surface. "
+            "Cut the map off at a physical short-wavelength limit (the smallest wavelength "
+            "that carries load: coarse_grain or a low-pass filter) and check the result no "
+            "longer changes, or use a contact law that needs no summit statistics (Persson's "
+            "theory, a BEM rough-flat law)")
 
 
 def _trust(hm: HeightMap, summits: SummitStatistics, moments: Moments) -> Tuple[str, str]:
@@ -596,12 +930,55 @@ def analyse(source: Any, pixel_size=None, unit: Optional[str] = None, *,
     if max(m2x, m2y) > 1.5 * min(m2x, m2y):
         notes.append(f"anisotropic: m2 along x and y differ ({m2x:.3g}, {m2y:.3g}); GW's "
                      "isotropic formulas use their mean")
+    resolution = resolution_dependence(hm, derivatives) if min(hm.heights.shape) >= 12 \
+        else {}
+    note = _resolution_note(resolution) if resolution else None
+    if note:
+        notes.append(note)
     for note in notes:
         warnings.warn(note, TopographyWarning, stacklevel=2)
     return TopographyReport(hm.heights.shape, hm.unit, hm.periodic, detrend_mode,
                             derivatives, summits, spectral, moments,
                             {k: float(abs(v)) for k, v in gaps.items()}, trust, reason,
-                            notes)
+                            notes, resolution)
+
+
+#: models whose overlap delta is measured from the mean SUMMIT plane (GW's base plane);
+#: a model measured from the mean plane of the heights (y_s = 0) is simply not listed here
+SUMMIT_PLANE_MODELS = ("GW", "E-GW", "EP-GW")
+
+
+def reference_plane_offset(model: str, stats: SummitStatistics) -> float:
+    """The height y_s of a model's reference plane above the mean plane of the heights.
+
+    An overlap delta_m measured from the mean plane of the heights is delta = delta_m + y_s
+    for the model; a separation u between the mean planes is d = u - y_s.
+
+    Parameters
+    ----------
+    model : str
+        The model name ('GW', 'E-GW', 'EP-GW', ...).
+    stats : SummitStatistics
+        The statistics of the surface (their mean_summit_height is used).
+
+    Returns
+    -------
+    float
+        y_s [the unit of stats]: the mean summit height (> 0) for the models in
+        SUMMIT_PLANE_MODELS, whose delta is measured from the mean summit plane; 0 for a
+        model measured from the mean plane of the heights.
+
+    Raises
+    ------
+    ValueError
+        A summit-plane model whose statistics carry no mean summit height.
+    """
+    if model not in SUMMIT_PLANE_MODELS:
+        return 0.0
+    if stats.mean_summit_height is None:
+        raise ValueError(f"model {model!r} measures delta from the mean summit plane, but "
+                         f"the statistics ({stats.method}) carry no mean summit height")
+    return float(stats.mean_summit_height)
 
 
 @dataclass
@@ -612,9 +989,14 @@ class ContactReport:
     ----------
     params : the Params returned.
     estimate : 'summits' or 'spectral', the statistics used; reason : why.
-    summit_density, summit_radius, sigma, y_s, sigma_surface : the combined surface's
-        statistics [SI: 1/m^2, m]; y_s is the mean summit plane above the mean plane
-        (convert an overlap measured from the mean planes with delta = delta_mean - y_s).
+    summit_density, summit_radius, sigma, sigma_surface : the combined surface's
+        statistics [SI: 1/m^2, m].
+    y_s : the offset of the model's reference plane above the mean plane of the heights
+        [m]: an overlap delta_m measured from the mean plane is delta = delta_m + y_s for
+        the model (a separation u between mean planes: d = u - y_s). GW, E-GW and EP-GW
+        measure from the mean summit plane, which lies the mean summit height above the
+        mean plane (y_s > 0); a model measured from the mean plane has y_s = 0
+        (:func:`reference_plane_offset`).
     effective_modulus : E* [Pa]; radius : R [m] (None for a flat).
     surfaces : the TopographyReport of each map analysed (empty for moments).
     notes : warnings and assumptions.
@@ -710,16 +1092,18 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
     if radius is None:
         notes.append("radius None: a flat; mu computed for R = 1 m (flat_pressure depends "
                      "on mu/sqrt(R) only)")
-    mu = mu_from_summits(stats.summit_density, stats.summit_radius, stats.sigma_summits,
-                         r_mu)
+    mu = mu_from_summits(summit_density=stats.summit_density,
+                         summit_radius=stats.summit_radius, sigma=stats.sigma_summits,
+                         radius=r_mu)
     psi = 0.0
     if model == "EP-GW":
-        psi = psi_from_hardness(e_star, hardness, stats.sigma_summits, stats.summit_radius,
-                                hardness_coeff)
+        psi = psi_from_hardness(modulus=e_star, hardness=hardness, sigma=stats.sigma_summits,
+                                summit_radius=stats.summit_radius,
+                                hardness_coeff=hardness_coeff)
     params = Params(model=model, radius=r_mu, modulus=e_star, sigma=stats.sigma_summits,
                     mu=mu, psi=psi, hardness_coeff=hardness_coeff)
     report = ContactReport(params, chosen, reason, stats.summit_density, stats.summit_radius,
-                           stats.sigma_summits, stats.mean_summit_height,
+                           stats.sigma_summits, reference_plane_offset(model, stats),
                            stats.sigma_surface, e_star, radius, surfaces, notes)
     return params, report
 
@@ -738,11 +1122,13 @@ def _report(stats: SummitStatistics, radius, modulus, hardness, k, unit) -> List
     if stats.alpha is not None:
         lines.append(f"  bandwidth alpha        {stats.alpha:.6g}")
     if radius is not None:
-        mu = mu_from_summits(stats.summit_density, stats.summit_radius, stats.sigma_summits,
-                             radius)
+        mu = mu_from_summits(summit_density=stats.summit_density,
+                             summit_radius=stats.summit_radius, sigma=stats.sigma_summits,
+                             radius=radius)
         lines.append(f"  mu (R = {radius:g})        {mu:.6g}")
     if modulus is not None and hardness is not None:
-        psi = psi_from_hardness(modulus, hardness, stats.sigma_summits, stats.summit_radius, k)
+        psi = psi_from_hardness(modulus=modulus, hardness=hardness, sigma=stats.sigma_summits,
+                                summit_radius=stats.summit_radius, hardness_coeff=k)
         lines.append(f"  psi (E* = {modulus:g}, H = {hardness:g}, K = {k:g})  {psi:.6g}")
     return lines
 
@@ -759,7 +1145,23 @@ def _pixel_size(text: str) -> Tuple[float, float]:
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
-    """egw-topo: GW parameters of one height map, or of the sum surface of two."""
+    """egw-topo: GW parameters of one height map, or of the sum surface of two.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The command line without the program name (default: sys.argv[1:]).
+
+    Returns
+    -------
+    int
+        The exit status: 0, or 2 after a message on stderr (bad map, unit, file).
+
+    Raises
+    ------
+    SystemExit
+        From argparse, for bad options or --help.
+    """
     ap = argparse.ArgumentParser(
         prog="egw-topo", description="Greenwood-Williamson parameters (sigma, eta, beta, "
         "y_s) of a measured height map, by summit identification and by spectral moments, "

@@ -1,0 +1,80 @@
+"""Python that cannot go wrong silently: masked arrays are refused (never a mask dropped,
+never values under a mask computed), and error messages stay short whatever the input
+(a message never prints a whole array)."""
+
+import numpy as np
+import pytest
+
+import egw
+from egw import topography as topo
+
+P = egw.Params(model="E-GW", radius=5e-4, modulus=3.678e10, sigma=1e-6, mu=4.0)
+MASKED = np.ma.masked_array([0.0, 1e-6, 2e-6], mask=[False, True, False])
+
+
+@pytest.mark.parametrize("call", [
+    lambda x: egw.hertz(P, x),
+    lambda x: egw.solve(P, x),
+    lambda x: egw.flat_pressure(P, x),
+    lambda x: egw.gauss_integral(1.5, x),
+    lambda x: egw.mu_from_summits(summit_density=x, summit_radius=1e-5, sigma=1e-6,
+                                  radius=1e-3),
+    lambda x: egw.effective_modulus(x + 1e9, 0.3),
+    lambda x: egw.Params(model="E-GW", radius=x + 1e-3, modulus=1e9, sigma=1e-6, mu=4.0),
+    lambda x: egw.restitution(P, mass=1e-3, velocity=x + 0.1),
+], ids=["hertz", "solve", "flat_pressure", "gauss_integral", "mu_from_summits",
+        "effective_modulus", "Params", "restitution"])
+def test_masked_arrays_are_refused_with_a_clear_message(call):
+    with pytest.raises(TypeError, match="masked array with 1 masked value"):
+        call(MASKED)
+
+
+def test_masked_array_with_nothing_masked_is_its_values():
+    # no value hidden: the data are the input (nothing to drop)
+    x = np.ma.masked_array([1e-6, 2e-6])
+    assert np.array_equal(egw.hertz(P, x)[0], egw.hertz(P, x.data)[0])
+
+
+def test_masked_table_input_and_height_map_are_refused():
+    t = egw.Table.build(P, -2e-6, 2e-5, rel_tol=1e-4)
+    with pytest.raises(TypeError, match="masked"):
+        t.eval(MASKED)
+    z = np.ma.masked_array(np.random.default_rng(1).standard_normal((16, 16)))
+    z[3, 4] = np.ma.masked
+    with pytest.raises(ValueError, match="1 masked pixels"):
+        topo.height_map(z, 1.0, "um")
+
+
+LONG = [str(x) for x in np.linspace(0, 1, 1000)]   # 1000 strings: a TypeError
+
+
+@pytest.mark.parametrize("call", [
+    lambda: egw.hertz(P, LONG),
+    lambda: egw.solve(P, np.array(LONG)),
+    lambda: egw.Params(model="E-GW", radius=np.array(LONG), modulus=1e9, sigma=1e-6, mu=4),
+    lambda: egw.mu_from_summits(summit_density=LONG, summit_radius=1e-5, sigma=1e-6,
+                                radius=1e-3),
+    lambda: egw.effective_modulus(-np.ones(1000), 0.3),
+    lambda: egw.effective_modulus(1e9, np.full(1000, 0.7)),
+    lambda: egw.hertz(P, np.full((1000, 1000), 1e-6).astype(complex)[:3]),
+], ids=["list", "array", "Params", "mu_from_summits", "E1", "nu1", "complex"])
+def test_error_messages_for_1000_point_inputs_are_short(call):
+    # the issue saw 17 826 characters; a message names the argument, the shape and a few
+    # values: 300 characters hold that with room to spare
+    with pytest.raises((TypeError, ValueError)) as info:
+        call()
+    assert len(str(info.value)) < 300, str(info.value)
+
+
+def test_short_message_still_names_the_argument_and_shape():
+    with pytest.raises(TypeError) as info:
+        egw.hertz(P, LONG)
+    text = str(info.value)
+    assert "delta" in text and "(1000,)" in text and "'0.0'" in text
+
+
+def test_ignored_psi_warning_is_short():
+    with pytest.warns(egw.IgnoredParameterWarning) as rec:
+        egw.Params(model="E-GW", radius=1e-3, modulus=1e9, sigma=1e-6, mu=4.0,
+                   psi=np.full(1000, 2.0))
+    assert len(str(rec[0].message)) < 300
