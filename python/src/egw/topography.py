@@ -1035,7 +1035,12 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
         for R = 1 m: flat_pressure depends on mu/sqrt(R) only, so R cancels).
     E1, nu1, E2, nu2 : float
         Young's moduli [Pa] and Poisson's ratios (E2, nu2 default to body 1's).
-    model : {'GW', 'E-GW', 'EP-GW'}
+    model : {'GW', 'E-GW', 'EP-GW', 'Persson', 'BEM'}
+        GW's summit models, or a rough-flat law of the combined surface
+        (doc/theory.md section 11): 'Persson' from its radially averaged power spectrum,
+        'BEM' from egw's periodic boundary-element solver on the map itself (a periodic
+        map; a non-periodic one is refused). The last two return Params with a
+        ``flat_law`` (model "flat law"), delta measured from the mean plane (y_s = 0).
     hardness : float, optional
         Hardness of the softer body [Pa]; needed for EP-GW (psi from it).
     hardness_coeff : float
@@ -1058,8 +1063,12 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
     ValueError
         Missing units, NaN pixels, maps on different grids, EP-GW without hardness.
     """
-    if model not in ("GW", "E-GW", "EP-GW"):
-        raise ValueError(f"model = {model!r}: a rough contact needs 'GW', 'E-GW' or 'EP-GW'")
+    if model not in ("GW", "E-GW", "EP-GW", "Persson", "BEM"):
+        raise ValueError(f"model = {model!r}: a rough contact needs 'GW', 'E-GW', 'EP-GW', "
+                         "'Persson' or 'BEM'")
+    if model in ("Persson", "BEM") and isinstance(top1, Moments):
+        raise ValueError(f"model {model!r} needs a height map (a power spectrum or the map "
+                         "itself), not profile Moments")
     if model == "EP-GW" and hardness is None:
         raise ValueError("model EP-GW needs hardness= (psi follows from it)")
     if estimate not in ("auto", "summits", "spectral"):
@@ -1100,12 +1109,41 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
         psi = psi_from_hardness(modulus=e_star, hardness=hardness, sigma=stats.sigma_summits,
                                 summit_radius=stats.summit_radius,
                                 hardness_coeff=hardness_coeff)
-    params = Params(model=model, radius=r_mu, modulus=e_star, sigma=stats.sigma_summits,
-                    mu=mu, psi=psi, hardness_coeff=hardness_coeff)
+    if model in ("Persson", "BEM"):
+        from .flat_law import FlatLaw
+        law = FlatLaw.from_topography(surface, e_star, model)
+        params = Params(radius=r_mu, modulus=e_star, flat_law=law)
+        notes.append(f"model {model}: a rough-flat law of the surface (length "
+                     f"{law.length:.6g} m, its rms height); delta from the mean plane")
+    else:
+        params = Params(model=model, radius=r_mu, modulus=e_star,
+                        sigma=stats.sigma_summits, mu=mu, psi=psi,
+                        hardness_coeff=hardness_coeff)
     report = ContactReport(params, chosen, reason, stats.summit_density, stats.summit_radius,
                            stats.sigma_summits, reference_plane_offset(model, stats),
                            stats.sigma_surface, e_star, radius, surfaces, notes)
     return params, report
+
+
+def _write_flat_law(surface: HeightMap, args) -> List[str]:
+    """egw-topo --model: the surface's law (and the sphere's table) written, as lines."""
+    from .flat_law import FlatLaw
+    from .tables import Table
+    if args.modulus is None:
+        raise ValueError("--model needs --modulus (E* in Pa)")
+    law = FlatLaw.from_topography(surface, args.modulus, args.model)
+    law.write(args.law)
+    lines = [f"{args.model} rough-flat law: length {law.length:.6g} m, u in "
+             f"[{law.separation_range[0]:.6g}, {law.separation_range[1]:.6g}] m: "
+             f"wrote {args.law}"]
+    if args.radius is not None:
+        r = args.radius * _unit_factor(surface.unit)
+        t = Table.build(Params(radius=r, modulus=args.modulus, flat_law=law),
+                        -3 * law.length, 10 * law.length, 1e-4)
+        t.write(args.table, "csv")
+        lines.append(f"sphere R = {r:.6g} m on the law: 1-D table, overlaps from the mean "
+                     f"plane [-3, 10] x {law.length:.6g} m: wrote {args.table}")
+    return lines
 
 
 def _report(stats: SummitStatistics, radius, modulus, hardness, k, unit) -> List[str]:
@@ -1187,6 +1225,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                     help="the map is periodic")
     ap.add_argument("--json", metavar="PATH", help="also write the report as JSON to PATH "
                     "('-': standard output, instead of the text)")
+    ap.add_argument("--model", choices=["BEM", "Persson"], default=None,
+                    help="also compute the surface's rough-flat law (needs --modulus in Pa; "
+                    "BEM needs a periodic map) and write it to --law; with --radius also "
+                    "the sphere's force table to --table (lengths in m, forces in N)")
+    ap.add_argument("--law", metavar="PATH", default="flat_law.csv",
+                    help="where --model writes the law (default flat_law.csv)")
+    ap.add_argument("--table", metavar="PATH", default="flat_law_table.csv",
+                    help="where --model with --radius writes the sphere's 1-D table "
+                    "(egw CSV, overlaps -3 to 10 law lengths, tol 1e-4; default "
+                    "flat_law_table.csv)")
     args = ap.parse_args(argv)
     try:
         if len(args.maps) > 2:
@@ -1205,6 +1253,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                              rep.unit)
         lines.append(f"trust: {rep.trust} ({rep.reason})")
         lines += [f"WARNING: {w.message}" for w in caught]
+        if args.model is not None:
+            lines += _write_flat_law(surface, args)
         data = rep.to_dict()
         if args.json == "-":
             print(json.dumps(data, indent=2))
