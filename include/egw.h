@@ -891,6 +891,16 @@ int egw_flat_law_from_table(const double *u, const double *p, const double *dpdu
                             const double *area, int n, double length, double modulus,
                             egw_flat_law *out);
 
+/* Persson's law (doc/theory.md 11: PRL 99 125502 (2007) with the elastic-energy factor
+ * gamma = 0.42 of Yang & Persson 2008) of an isotropic 2-D power spectrum: n >= 2 nodes
+ * q[i] [rad/length] ascending, C[i] >= 0 [length^4] (<h^2> = 2 pi int q C dq; a power law
+ * between nodes, 0 outside), E* = modulus. Nodes at 10 mean pressures a decade from p_min
+ * to p_max [pressure] (0: 1e-6 E* and 1e-1 E*), with exact dp/du and the contact-area
+ * fraction; length = the spectrum's rms height; modulus recorded. Statuses:
+ * EGW_INVALID_ARGUMENT (naming q(i), C(i), modulus, p_min, p_max), EGW_NULL_POINTER. */
+int egw_flat_law_from_psd(const double *q, const double *C, int n, double modulus,
+                          double p_min, double p_max, egw_flat_law *out);
+
 /* Mean pressure *pressure [pressure] and *dpdu [pressure/length] at mean separation u
  * [length] (NULL outputs skipped). EGW_INVALID_ARGUMENT for NaN u; EGW_NULL_POINTER. */
 int egw_flat_law_pressure(egw_flat_law law, double u, double *pressure, double *dpdu);

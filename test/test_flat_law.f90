@@ -25,7 +25,10 @@ contains
          & new_unittest("table law: nodes, slopes, C1, ends", test_table_law), &
          & new_unittest("table law: bad tables", test_bad_tables), &
          & new_unittest("tabulated GW law = classic GW solve", test_tabulated_gw), &
-         & new_unittest("C egw_flat_law_*, egw_solve_flat_law", test_c)]
+         & new_unittest("C egw_flat_law_*, egw_solve_flat_law", test_c), &
+         & new_unittest("Persson: u(p) vs independent quadrature", test_persson_reference), &
+         & new_unittest("Persson: small-load area, large-u asymptote", test_persson_limits), &
+         & new_unittest("Persson: scale invariance, bad input", test_persson_scaling)]
    end subroutine collect_flat_law
 
    !> An exponential is reproduced exactly (ln p linear: every Hermite piece and both
@@ -160,5 +163,127 @@ contains
       failed = c_flat_law()
       call check(error, failed == 0, to_string(int(failed))//" C check(s) failed")
    end subroutine test_c
+
+   !> The self-affine spectrum of tools/reference/persson_reference.py.
+   subroutine reference_psd(q, c)
+      use egw_flat_persson, only: self_affine_psd
+      real(dp), allocatable, intent(out) :: q(:), c(:)
+      type(egw_error), allocatable :: e
+      real(dp), parameter :: two_pi = 6.283185307179586_dp
+      call self_affine_psd(0.8_dp, 1.0e-6_dp, two_pi/1.0e-3_dp, two_pi/1.0e-4_dp, &
+         & two_pi/1.0e-6_dp, q, c, e)
+   end subroutine reference_psd
+
+   !> Persson's u(p) against test/data/persson_reference.csv (the published double
+   !> integral by nested adaptive quadrature, its error <= 2e-12): egw within 1e-9 (its
+   !> tabulated J ~1e-11, Gauss-Legendre panels ~1e-12; measured 1e-11), p/E* 1e-7..5e-2.
+   subroutine test_persson_reference(error)
+      use egw_flat_persson, only: persson_flat_curve, persson_options
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), allocatable :: q(:), c(:), u(:), p(:), area(:), dpdu(:)
+      type(egw_error), allocatable :: e
+      real(dp) :: pr, uref, err
+      integer :: unit, ios
+      character(len=256) :: line
+      call reference_psd(q, c)
+      open (newunit=unit, file="test/data/persson_reference.csv", status="old", &
+         & action="read", iostat=ios)
+      call check(error, ios == 0, "test/data/persson_reference.csv not found")
+      if (allocated(error)) return
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (line(1:1) == "#" .or. line(1:1) == "p") cycle
+         read (line, *) pr, uref, err
+         call persson_flat_curve(q, c, 1.0e9_dp, pr*1.0e9_dp, 2.0_dp*pr*1.0e9_dp, 1, &
+            & persson_options(), u, p, area, dpdu, e)
+         if (allocated(e)) then
+            call check(error, .false., e%message)
+            exit
+         end if
+         call check(error, abs(u(1)/uref - 1.0_dp) < 1.0e-9_dp, "p/E* = " &
+            & //format_real(pr)//": u = "//format_real(u(1))//", reference " &
+            & //format_real(uref))
+         if (allocated(error)) exit
+      end do
+      close (unit)
+   end subroutine test_persson_reference
+
+   !> The theory's limits, in closed form: at small load A/A0 -> sqrt(8/pi) p/(E*
+   !> sqrt(m2)) (erf's linear term: relative deviation (2/3) x^2 ~ 1e-17 at p/E* = 1e-9),
+   !> m2 = 2 pi int q^3 C of the self-affine spectrum; far apart, p ~ exp(-u/u0):
+   !> -du/d ln p between p/E* = 1e-10 and 1e-9 within 1e-4 of u0 = 5.1758891e-7 m
+   !> (persson_reference.py; the corrections are O((w p/E*)^2) and from the few q near the
+   !> longest wavelength where w p/E* is not small). And dp/du = the curve's slope:
+   !> the exact dp/du against centred differences of u(ln p) (1e-6).
+   subroutine test_persson_limits(error)
+      use egw_flat_persson, only: persson_flat_curve, persson_options
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), allocatable :: q(:), c(:), u(:), p(:), area(:), dpdu(:)
+      type(egw_error), allocatable :: e
+      real(dp) :: m2, kappa_law, slope, fd
+      real(dp), parameter :: e_star = 1.0e9_dp, h = 0.8_dp, u0 = 5.1758891046980315e-7_dp
+      integer :: k
+      call reference_psd(q, c)
+      m2 = 6.283185307179586_dp*(c(1)*(q(2)**4 - q(1)**4)/4.0_dp + c(1)*q(2)**4* &
+         & ((q(3)/q(2))**(2.0_dp - 2.0_dp*h) - 1.0_dp)/(2.0_dp - 2.0_dp*h))
+      call persson_flat_curve(q, c, e_star, 1.0e-10_dp*e_star, 1.0e-9_dp*e_star, 1, &
+         & persson_options(), u, p, area, dpdu, e)
+      call check(error, .not. allocated(e))
+      if (allocated(error)) return
+      kappa_law = area(2)/(p(2)/(e_star*sqrt(m2)))
+      call check(error, abs(kappa_law/sqrt(8.0_dp/3.141592653589793_dp) - 1.0_dp) < 1.0e-10_dp, &
+         & "small-load area: kappa = "//format_real(kappa_law))
+      if (allocated(error)) return
+      slope = -(u(2) - u(1))/log(p(2)/p(1))
+      call check(error, abs(slope/u0 - 1.0_dp) < 1.0e-4_dp, "-du/dln p = " &
+         & //format_real(slope)//", u0 = "//format_real(u0))
+      if (allocated(error)) return
+      call persson_flat_curve(q, c, e_star, 1.0e-4_dp*e_star, 1.0e-1_dp*e_star, 300, &
+         & persson_options(), u, p, area, dpdu, e)
+      do k = 3, size(u) - 2, 50
+         ! fourth-order difference of u in ln p (uniform): error ~ (ln 10/300)**4 ~ 1e-9
+         fd = p(k)*12.0_dp*log(p(k + 1)/p(k))/(-u(k + 2) + 8.0_dp*u(k + 1) &
+            & - 8.0_dp*u(k - 1) + u(k - 2))
+         call check(error, abs(dpdu(k)/fd - 1.0_dp) < 1.0e-7_dp, "dp/du at p/E* = " &
+            & //format_real(p(k)/e_star)//": "//format_real(dpdu(k))//" vs " &
+            & //format_real(fd))
+         if (allocated(error)) return
+      end do
+   end subroutine test_persson_limits
+
+   !> Heights times s (C -> s^2 C) give u(p) = s u_1(p/s) (slopes times s), and u depends
+   !> on p/E* alone (E* and p times the same factor): to 1e-12; bad input names the
+   !> argument.
+   subroutine test_persson_scaling(error)
+      use egw_flat_persson, only: persson_flat_curve, persson_options
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), allocatable :: q(:), c(:), u(:), p(:), area(:), dpdu(:), u2(:)
+      type(egw_error), allocatable :: e
+      call reference_psd(q, c)
+      call persson_flat_curve(q, c, 1.0e9_dp, 1.0e3_dp, 1.0e7_dp, 2, persson_options(), &
+         & u, p, area, dpdu, e)
+      call persson_flat_curve(q, 9.0_dp*c, 1.0e9_dp, 3.0e3_dp, 3.0e7_dp, 2, &
+         & persson_options(), u2, p, area, dpdu, e)
+      call check(error, maxval(abs(u2/(3.0_dp*u) - 1.0_dp)) < 1.0e-12_dp, "heights x 3")
+      if (allocated(error)) return
+      call persson_flat_curve(q, c, 7.0e9_dp, 7.0e3_dp, 7.0e7_dp, 2, persson_options(), &
+         & u2, p, area, dpdu, e)
+      call check(error, maxval(abs(u2/u - 1.0_dp)) < 1.0e-12_dp, "E*, p x 7")
+      if (allocated(error)) return
+      call persson_flat_curve(q(3:1:-1), c, 1.0e9_dp, 1.0e3_dp, 1.0e7_dp, 2, &
+         & persson_options(), u2, p, area, dpdu, e)
+      call check(error, allocated(e), "descending q accepted")
+      if (allocated(error)) return
+      call check(error, index(e%message, "q(2)") == 1, e%message)
+      if (allocated(error)) return
+      call persson_flat_curve(q, -c, 1.0e9_dp, 1.0e3_dp, 1.0e7_dp, 2, persson_options(), &
+         & u2, p, area, dpdu, e)
+      call check(error, allocated(e), "negative C accepted")
+      if (allocated(error)) return
+      call persson_flat_curve(q, c, 1.0e9_dp, 1.0e3_dp, 1.0e7_dp, 2, persson_options(2.0_dp), &
+         & u2, p, area, dpdu, e)
+      call check(error, allocated(e), "gamma = 2 accepted")
+   end subroutine test_persson_scaling
 
 end module test_flat_law

@@ -12,14 +12,18 @@ module egw_capi_flat_law
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact_law
    use egw_table, only: force_table, build_table_law
    use egw_flat_law_format, only: write_flat_law, read_flat_law
+   use egw_flat_persson, only: persson_flat_curve, persson_options, psd_rms_height
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, &
       & double_array, read_contact, put, put_handle_settled, take_handle, put_result, c_path
    implicit none
    private
 
+   !> Mean pressures a decade of the laws made from a PSD or a map.
+   integer, parameter :: per_decade = 10
+
    public :: egw_flat_law_from_table, egw_flat_law_pressure, egw_flat_law_contact_area, &
       & egw_flat_law_info, egw_flat_law_free, egw_solve_flat_law, egw_table_build_flat_law, &
-      & egw_flat_law_write, egw_flat_law_read
+      & egw_flat_law_write, egw_flat_law_read, egw_flat_law_from_psd
 
 contains
 
@@ -61,6 +65,61 @@ contains
       stat = put_handle_settled(out, c_loc(law), error)
       if (stat /= egw_ok) deallocate (law)
    end function egw_flat_law_from_table
+
+   !> C: egw_flat_law_from_psd: Persson's law of an isotropic PSD (q, C).
+   function egw_flat_law_from_psd(q, c, n, modulus, p_min, p_max, out) result(stat) &
+      & bind(C, name="egw_flat_law_from_psd")
+      type(c_ptr), value, intent(in) :: q, c, out
+      integer(c_int), value, intent(in) :: n
+      real(c_double), value, intent(in) :: modulus, p_min, p_max
+      integer(c_int) :: stat
+      type(egw_error), allocatable :: error
+      real(c_double), pointer :: qq(:), cc(:)
+      real(dp), allocatable :: u(:), p(:), area(:), dpdu(:)
+      real(dp) :: lo, hi
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = require(q, "q")
+      if (stat == egw_ok) stat = require(c, "C")
+      if (stat /= egw_ok) return
+      if (n < 2) then
+         stat = invalid("n = "//int_str(int(n))//": a PSD needs n >= 2 nodes (q, C)")
+         return
+      end if
+      qq => double_array(q, n)
+      cc => double_array(c, n)
+      call pressure_range(modulus, p_min, p_max, lo, hi)
+      call persson_flat_curve(qq, cc, modulus, lo, hi, per_decade, persson_options(), u, p, &
+         & area, dpdu, error)
+      if (.not. allocated(error)) stat = made(u, p, dpdu, area, psd_rms_height(qq, cc), &
+         & modulus, out, error)
+      if (allocated(error)) stat = settle(error)
+   end function egw_flat_law_from_psd
+
+   !> The default range p/E* in [1e-6, 1e-1] where p_min or p_max is 0.
+   pure subroutine pressure_range(modulus, p_min, p_max, lo, hi)
+      real(dp), intent(in) :: modulus, p_min, p_max
+      real(dp), intent(out) :: lo, hi
+      lo = p_min
+      hi = p_max
+      if (lo == 0.0_dp) lo = 1.0e-6_dp*modulus
+      if (hi == 0.0_dp) hi = 1.0e-1_dp*modulus
+   end subroutine pressure_range
+
+   !> A law from a curve of decreasing u (Persson, BEM): nodes reversed to ascending u;
+   !> the handle at *out (status), or error set.
+   integer(c_int) function made(u, p, dpdu, area, length, modulus, out, error) result(stat)
+      real(dp), intent(in) :: u(:), p(:), dpdu(:), area(:), length, modulus
+      type(c_ptr), intent(in) :: out
+      type(egw_error), allocatable, intent(out) :: error
+      type(table_flat_law), pointer :: law
+      integer :: n
+      n = size(u)
+      allocate (law)
+      call new_table_law(u(n:1:-1), p(n:1:-1), law, error, dpdu=dpdu(n:1:-1), &
+         & area=area(n:1:-1), length=length, modulus=modulus)
+      stat = put_handle_settled(out, c_loc(law), error)
+      if (stat /= egw_ok) deallocate (law)
+   end function made
 
    !> C: egw_flat_law_pressure: p and dp/du at the mean separation u.
    function egw_flat_law_pressure(h, u, pressure, dpdu) result(stat) &
