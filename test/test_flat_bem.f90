@@ -377,8 +377,67 @@ contains
       end do
    end subroutine test_contactmechanics
 
+   !> Bad input gets egw_invalid_parameter / egw_invalid_argument naming the parameter and
+   !> its value; an iteration cap too small returns egw_not_converged (never a hang).
    subroutine test_invalid(error)
       type(error_type), allocatable, intent(out) :: error
+      type(bem_options) :: opt, capped
+      type(bem_state) :: state
+      type(bem_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp), allocatable :: h(:, :), u(:), p(:), area(:), k(:)
+      real(dp) :: nan
+      call rough_map(16, 4, h)
+      nan = 0.0_dp
+      nan = nan/nan
+      call expect(-1.0_dp, 1.0_dp, 1.0e-3_dp, opt, egw_invalid_parameter, "pixel = -1")
+      if (allocated(error)) return
+      call expect(1.0_dp/16, 0.0_dp, 1.0e-3_dp, opt, egw_invalid_parameter, "modulus = 0")
+      if (allocated(error)) return
+      call expect(1.0_dp/16, 1.0_dp, -2.0_dp, opt, egw_invalid_parameter, "mean_pressure = -2")
+      if (allocated(error)) return
+      call expect(1.0_dp/16, 1.0_dp, nan, opt, egw_invalid_parameter, "mean_pressure = NaN")
+      if (allocated(error)) return
+      capped%max_iter = 2
+      call expect(1.0_dp/16, 1.0_dp, 1.0e-3_dp, capped, egw_not_converged, &
+         & "mean_pressure = 1.000000000000000E-003: not converged after options%max_iter = 2")
+      if (allocated(error)) return
+      capped = opt
+      capped%tolerance = 0.0_dp
+      call expect(1.0_dp/16, 1.0_dp, 1.0e-3_dp, capped, egw_invalid_argument, &
+         & "options%tolerance = 0")
+      if (allocated(error)) return
+      h(3, 5) = nan
+      call expect(1.0_dp/16, 1.0_dp, 1.0e-3_dp, opt, egw_invalid_parameter, "heights(3, 5) = NaN")
+      if (allocated(error)) return
+      h = 2.0_dp
+      call expect(1.0_dp/16, 1.0_dp, 1.0e-3_dp, opt, egw_invalid_parameter, &
+         & "rms height of heights")
+      if (allocated(error)) return
+      call rough_map(16, 4, h)
+      call bem_solve_gap(h, 1.0_dp/16, 1.0_dp, 0.0_dp, opt, state, res, err)
+      call check(error, allocated(err), "gap control at u = 0 refused")
+      if (allocated(error)) return
+      call bem_flat_curve(h, 1.0_dp/16, 1.0_dp, 1.0e-3_dp, 1.0e-4_dp, 4, opt, u, p, area, k, err)
+      call check(error, allocated(err), "p_max < p_min refused")
+      if (allocated(error)) return
+      call check(error, index(err%message, "p_max = 1.000000000000000E-004") == 1, err%message)
+   contains
+      subroutine expect(pixel, modulus, pbar, o, stat, start)
+         real(dp), intent(in) :: pixel, modulus, pbar
+         type(bem_options), intent(in) :: o
+         integer, intent(in) :: stat
+         character(len=*), intent(in) :: start
+         call bem_solve_load(h, pixel, modulus, pbar, o, state, res, err)
+         if (.not. allocated(err)) then
+            call test_failed(error, "no error for "//start)
+            return
+         end if
+         call check(error, err%stat, stat, "status of "//start//": "//err%message)
+         if (allocated(error)) return
+         call check(error, index(err%message, start) == 1, "message '"//err%message// &
+            & "' must start with '"//start//"'")
+      end subroutine expect
    end subroutine test_invalid
 
    !> A load-controlled solve on a fresh state (pixel 1/n, E* = 1).

@@ -34,8 +34,9 @@ import time
 import numpy as np
 
 
-def self_affine_map(n, hurst=0.8, rms=0.01, seed=20261128):
-    """A seeded periodic self-affine map, n x n, rms height `rms`, mean zero."""
+def self_affine_map(n, hurst=0.8, rms=0.01, seed=20261128, slope=None):
+    """A seeded periodic self-affine map on the unit square, n x n, mean zero, scaled to
+    the rms height `rms`, or (if given) to the rms slope `slope` (from the spectrum)."""
     rng = np.random.default_rng(seed)
     kx = np.fft.fftfreq(n, 1.0 / n)
     ky = np.fft.rfftfreq(n, 1.0 / n)
@@ -46,6 +47,11 @@ def self_affine_map(n, hurst=0.8, rms=0.01, seed=20261128):
     spectrum = amp * (rng.standard_normal(k.shape) + 1j * rng.standard_normal(k.shape))
     h = np.fft.irfft2(spectrum, s=(n, n))
     h -= h.mean()
+    if slope is not None:
+        hq = np.fft.rfft2(h)
+        weight = np.where((ky[None, :] == 0) | (2 * ky[None, :] == n), 1.0, 2.0)
+        grad2 = np.sum(weight * (2 * np.pi * k) ** 2 * np.abs(hq) ** 2) / n ** 4
+        return h * (slope / np.sqrt(grad2))
     return h * (rms / np.sqrt(np.mean(h ** 2)))
 
 

@@ -102,7 +102,8 @@ module egw_flat_bem
       real(dp) :: mean_separation = 0.0_dp  !< u: mean gap, from the heights' mean plane
       real(dp) :: mean_pressure = 0.0_dp    !< p-bar: mean pressure over the nominal area
       real(dp) :: area_fraction = 0.0_dp    !< pixels with p > 0 over nx ny
-      real(dp) :: stiffness = 0.0_dp        !< -dp-bar/du (options%stiffness); huge() in full contact
+      !> -dp-bar/du, units of modulus/length (options%stiffness); huge() in full contact
+      real(dp) :: stiffness = 0.0_dp
       integer :: iterations = 0             !< CG steps taken
       real(dp), allocatable :: pressure(:, :)  !< pressure field (options%keep_fields)
       real(dp), allocatable :: gap(:, :)       !< gap field (options%keep_fields)
