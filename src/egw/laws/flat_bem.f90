@@ -508,10 +508,10 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       real(dp), allocatable :: w(:, :), g(:, :), t(:, :), r(:, :)
       logical, allocatable :: inside(:, :)
-      real(dp) :: npix, gsum, residual, gg, gg_old, beta, rsum, num, den, tau, psum, scale
+      real(dp) :: npix, gsum, residual, gg, gg_old, beta, rsum, tsum, num, den, tau, scale
       integer :: nx, ny, i, j, it, st
       integer(kind=8) :: ncontact
-      logical :: restart, added
+      logical :: restart
 
       nx = size(h, 1)
       ny = size(h, 2)
@@ -596,67 +596,77 @@ contains
          ! control) and the step length
          call respond(state, t, r, nt)
          rsum = 0.0_dp
-         if (load) then
-            !$omp parallel do num_threads(nt) schedule(static) reduction(+:rsum)
-            do j = 1, ny
-               do i = 1, nx
-                  if (inside(i, j)) rsum = rsum + r(i, j)
-               end do
-            end do
-            !$omp end parallel do
-            rsum = rsum/real(ncontact, dp)
-         end if
+         tsum = 0.0_dp
          num = 0.0_dp
          den = 0.0_dp
-         !$omp parallel do num_threads(nt) schedule(static) reduction(+:num, den)
+         !$omp parallel do num_threads(nt) schedule(static) reduction(+:rsum, tsum, num, den)
          do j = 1, ny
             do i = 1, nx
                if (inside(i, j)) then
+                  rsum = rsum + r(i, j)
+                  tsum = tsum + t(i, j)
                   num = num + g(i, j)*t(i, j)
-                  den = den + (r(i, j) - rsum)*t(i, j)
+                  den = den + r(i, j)*t(i, j)
                end if
             end do
          end do
          !$omp end parallel do
+         ! sum (r - mean r) t over the contact set under load control
+         if (load) den = den - rsum/real(ncontact, dp)*tsum
          tau = 0.0_dp
          if (den > 0.0_dp) tau = num/den
-         ! P&K steps 7-9: the step, p >= 0, penetrating pixels without pressure added
+         ! P&K steps 7-10: the step, p >= 0, penetrating pixels added, the load
          scale = tau
          if (.not. (scale > 0.0_dp)) scale = 1.0_dp/state%self_compliance
-         added = .false.
-         !$omp parallel do num_threads(nt) schedule(static) reduction(.or.:added)
-         do j = 1, ny
-            do i = 1, nx
-               if (inside(i, j)) p(i, j) = max(p(i, j) - tau*t(i, j), 0.0_dp)
-               if (p(i, j) <= 0.0_dp .and. g(i, j) < 0.0_dp) then
-                  p(i, j) = -scale*g(i, j)
-                  added = .true.
-               end if
-            end do
-         end do
-         !$omp end parallel do
-         restart = added .or. .not. (den > 0.0_dp)
-         ! P&K step 10: the load
-         if (load) then
-            psum = 0.0_dp
-            !$omp parallel do num_threads(nt) schedule(static) reduction(+:psum)
-            do j = 1, ny
-               psum = psum + sum(p(:, j))
-            end do
-            !$omp end parallel do
-            if (psum > 0.0_dp) then
-               p = p*(target*npix/psum)
-            else
-               p = target
-               restart = .true.
-            end if
-         end if
+         call pk_step(p, g, t, inside, tau, scale, load, target, npix, nt, restart)
+         if (.not. (den > 0.0_dp)) restart = .true.
          call respond(state, p, w, nt)
       end do
       call fatal_error(error, egw_not_converged, "not converged after options%max_iter = " &
          & //int_str(options%max_iter)//" steps: gap residual "//format_real(residual/rms) &
          & //" of the rms height, options%tolerance = "//format_real(options%tolerance))
    end subroutine pk_solve
+
+   !> P&K steps 7-10: p - tau t on the contact set, clipped at 0; pixels that penetrate
+   !> without pressure get -scale g (restart = .true. then); under load control p is
+   !> rescaled to the mean `target`.
+   subroutine pk_step(p, g, t, inside, tau, scale, load, target, npix, nt, restart)
+      real(dp), intent(inout) :: p(:, :)
+      real(dp), intent(in) :: g(:, :), t(:, :), tau, scale, target, npix
+      logical, intent(in) :: inside(:, :), load
+      integer, intent(in) :: nt
+      logical, intent(out) :: restart
+      real(dp) :: psum
+      integer :: i, j
+      logical :: added
+      added = .false.
+      psum = 0.0_dp
+      !$omp parallel do num_threads(nt) schedule(static) reduction(.or.:added) &
+      !$omp & reduction(+:psum)
+      do j = 1, size(p, 2)
+         do i = 1, size(p, 1)
+            if (inside(i, j)) p(i, j) = max(p(i, j) - tau*t(i, j), 0.0_dp)
+            if (p(i, j) <= 0.0_dp .and. g(i, j) < 0.0_dp) then
+               p(i, j) = -scale*g(i, j)
+               added = .true.
+            end if
+            psum = psum + p(i, j)
+         end do
+      end do
+      !$omp end parallel do
+      restart = added
+      if (.not. load) return
+      if (psum > 0.0_dp) then
+         !$omp parallel do num_threads(nt) schedule(static)
+         do j = 1, size(p, 2)
+            p(:, j) = p(:, j)*(target*npix/psum)
+         end do
+         !$omp end parallel do
+      else
+         p = target
+         restart = .true.
+      end if
+   end subroutine pk_step
 
    !> p scaled to the mean `target` (uniform if it carries nothing).
    pure subroutine rescale(p, target, npix)
