@@ -23,6 +23,9 @@
 !>                 -> out/bench/universal_tol.csv
 !>   --hysteresis  EP-GW hysteresis table: build time (1e-3, 1e-4) and eval / Hertz force
 !>                 (and the floor of a one-double evaluation: bench/bench_floor.f90)
+!>   --bem         periodic BEM flat law (bem_flat_curve) on the 512^2 and 576^2 maps of
+!>                 tools/bench/bem_contactmechanics_time.py (which times ContactMechanics
+!>                 and takes the ratio in one run); not in the default set
 !>   --quick       fewer cases and shorter timings (a smoke run)
 !>   --out DIR     write the CSVs to DIR/ (default out/bench/)
 !>   --update-docs write the CSVs to doc/bench/, replacing the committed results that
@@ -38,6 +41,7 @@ program egw_bench
    use bench_tables, only: run_tables, run_universal, run_build_speedup
    use bench_hysteresis, only: run_hysteresis
    use bench_unloading, only: run_unloading, run_unloading_sweep
+   use bench_bem, only: run_bem
    implicit none
 
    integer, parameter :: n = 4096        ! inputs per sweep (fit in L1/L2 cache)
@@ -47,7 +51,7 @@ program egw_bench
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
    logical :: universal_1thread, any_section, ok, do_speedup, do_unloading, do_hysteresis, &
-      & do_sweep
+      & do_sweep, do_bem
    real(dp) :: universal_tol
    character(len=512) :: arg, peer_file
    integer :: unit_speedup, unit_csv
@@ -79,6 +83,7 @@ program egw_bench
       call close_csv(unit_csv)
    end if
    if (do_kernels) call run_kernels()
+   if (do_bem) call run_bem()
    if (do_hysteresis) call run_hysteresis()
    if (do_fn) then
       call open_csv("fn.csv", unit_csv)
@@ -114,6 +119,7 @@ contains
       do_hysteresis = .false.
       do_unloading = .false.
       do_sweep = .false.
+      do_bem = .false.
       universal_tol = 0
       universal_1thread = .false.; peer_file = ""
       out_dir = "out/bench/"
@@ -134,6 +140,7 @@ contains
          case ("--speedup"); do_speedup = .true.
          case ("--unloading"); do_unloading = .true.
          case ("--unloading-sweep"); do_sweep = .true.
+         case ("--bem"); do_bem = .true.
          case ("--universal-tol")
             k = k + 1
             call get_command_argument(k, arg)
@@ -155,7 +162,7 @@ contains
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
          & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_hysteresis &
-         & .or. do_unloading .or. do_sweep
+         & .or. do_unloading .or. do_sweep .or. do_bem
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
          do_tables = .true.; do_universal = .true.; do_unloading = .true.

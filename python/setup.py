@@ -33,7 +33,7 @@ def _build_library(dest_dir):
             f"({REPO} has no CMakeLists.txt); set EGW_LIBRARY to an installed libegw.so")
     if shutil.which("cmake") is None:
         raise RuntimeError("egw: building libegw needs cmake and gfortran "
-                           "(Debian: apt-get install cmake gfortran liblapack-dev)")
+                           "(Debian: apt-get install cmake gfortran liblapack-dev libfftw3-dev)")
     with tempfile.TemporaryDirectory(prefix="egw-build-") as build:
         configure = ["cmake", "-S", REPO, "-B", build, "-DEGW_BUILD_STATIC=OFF",
                      "-DCMAKE_BUILD_TYPE=Release"]

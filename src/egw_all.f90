@@ -26,6 +26,7 @@ module egw_all
    use egw_scene
    use egw_io
    use egw_cache
+   use egw_flat_bem
    implicit none
    public
 end module egw_all

@@ -30,6 +30,7 @@ program tester
    use test_cache, only: collect_cache
    use test_capi_array, only: collect_capi_array
    use test_flat_law, only: collect_flat_law
+   use test_flat_bem, only: collect_flat_bem
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -62,7 +63,8 @@ program tester
       & new_testsuite("input", collect_input), &
       & new_testsuite("facade", collect_facade), &
       & new_testsuite("capi_array", collect_capi_array), &
-      & new_testsuite("cache", collect_cache) &
+      & new_testsuite("cache", collect_cache), &
+      & new_testsuite("flat_bem", collect_flat_bem) &
       & ]
 
    stat = 0

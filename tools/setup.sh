@@ -1,6 +1,6 @@
 #!/bin/sh
 # Install what egw needs if it is missing, on stock Debian as root or as a sudo user:
-# gfortran and LAPACK/BLAS from Debian, and fpm 0.12 from PyPI into the project venv .venv/
+# gfortran, LAPACK/BLAS and FFTW3 (libfftw3-dev: the boundary-element solver) from Debian, and fpm 0.12 from PyPI into the project venv .venv/
 # (stdlib venv, so it works where the system python refuses pip installs, PEP 668;
 # Debian's python3-venv is installed when the venv module cannot bootstrap pip).
 # Silent and quick (well under a second) when everything is already there. Other make
@@ -16,6 +16,7 @@ for lib in /usr/lib/liblapack.so /usr/lib/*/liblapack.so; do
   [ -e "$lib" ] && have_lapack=yes
 done
 [ "$have_lapack" = yes ] || need_apt="$need_apt liblapack-dev"
+[ -e /usr/include/fftw3.h ] || need_apt="$need_apt libfftw3-dev"
 if [ ! -x "$VENV/bin/python" ]; then
   command -v python3 >/dev/null 2>&1 || need_apt="$need_apt python3"
   if command -v python3 >/dev/null 2>&1 &&

