@@ -901,6 +901,21 @@ int egw_flat_law_from_table(const double *u, const double *p, const double *dpdu
 int egw_flat_law_from_psd(const double *q, const double *C, int n, double modulus,
                           double p_min, double p_max, egw_flat_law *out);
 
+/* egw's periodic FFT boundary-element law of a height map (doc/theory.md 11): heights
+ * [length] row-major, ny rows of nx pixels (heights[iy*nx + ix], a numpy (ny, nx) array),
+ * one period of a periodic surface, square pixels of size pixel [length], E* = modulus;
+ * frictionless, non-adhesive, hard wall, the half-space's Fourier stiffness E*|q|/2 on the
+ * pixels (as ContactMechanics' periodic FFT system); load-controlled solves at 10 mean
+ * pressures a decade from p_min to p_max [pressure] (0: 1e-6 E* and 1e-1 E*), each
+ * warm-started, with the contact-area fraction and the exact incremental stiffness as
+ * -dp/du; the sweep stops before full contact. length = the map's rms height; o: NULL or
+ * options (n_threads used: OpenMP and FFTW threads). Statuses: EGW_INVALID_ARGUMENT (a bad
+ * map, pixel, modulus or range), EGW_NOT_CONVERGED (a load's solve), EGW_UNSUPPORTED
+ * (full contact at p_min already), EGW_NULL_POINTER. */
+int egw_flat_law_from_heights(const double *heights, int nx, int ny, double pixel,
+                              double modulus, double p_min, double p_max,
+                              const egw_options *o, egw_flat_law *out);
+
 /* Mean pressure *pressure [pressure] and *dpdu [pressure/length] at mean separation u
  * [length] (NULL outputs skipped). EGW_INVALID_ARGUMENT for NaN u; EGW_NULL_POINTER. */
 int egw_flat_law_pressure(egw_flat_law law, double u, double *pressure, double *dpdu);

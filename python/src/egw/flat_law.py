@@ -389,7 +389,8 @@ class FlatLaw(_Handle):
 
 def psd_from_heights(heights: ArrayLike, pixel: float, per_decade: int = 20
                      ) -> Tuple[np.ndarray, np.ndarray]:
-    """The isotropic (radially averaged) 2-D power spectrum of a periodic height map.
+    """The isotropic (radially averaged) 2-D power spectrum of a periodic height map, as
+    the nodes of a step function that keeps the map's power.
 
     Parameters
     ----------
@@ -398,42 +399,54 @@ def psd_from_heights(heights: ArrayLike, pixel: float, per_decade: int = 20
     pixel : float
         Pixel size [length] (square pixels).
     per_decade : int
-        Logarithmic bins of |q| per decade.
+        Logarithmic bins of |q| per decade (bins without a mode join the next).
 
     Returns
     -------
     q, C : arrays
-        Bin-mean wavenumbers [rad/length] from 2 pi/L to the Nyquist pi/pixel, and the
-        PSD [length^4] with Persson's convention <h^2> = int d^2q C(q) = 2 pi int q C dq
-        (C(q_k) = |FFT(h)_k|^2 A/(N^2 (2 pi)^2), averaged over each bin; empty bins are
-        dropped).
+        Nodes for :meth:`FlatLaw.from_psd` [rad/length], [length^4], in Persson's convention
+        <h^2> = int d^2q C(q) = 2 pi int q C dq: C is constant on each annulus of |q| from
+        2 pi/L to the Nyquist pi/pixel (two nodes per annulus, the second 1e-9 below the
+        next), equal to the power of the map's modes in it over the annulus' area, so that
+        2 pi int q C dq is the power of every mode inside the Nyquist circle exactly (the
+        corners of the square spectrum, beyond it, are dropped).
 
     Raises
     ------
     InvalidArgumentError
-        A map that is not 2-D, or not finite.
+        A map that is not 2-D, or not finite, or a pixel size that is not > 0.
     """
     z = np.asarray(_number_array("heights", heights), dtype=np.float64)
     if z.ndim != 2 or not np.all(np.isfinite(z)):
         raise InvalidArgumentError(INVALID_ARGUMENT, "heights: a finite 2-D map is needed")
+    if not (math.isfinite(pixel) and pixel > 0):
+        raise InvalidArgumentError(INVALID_ARGUMENT, f"pixel = {pixel!r}: must be > 0")
     ny, nx = z.shape
     z = z - z.mean()
-    area = nx * ny * pixel * pixel
-    power = np.abs(np.fft.fft2(z)) ** 2 * area / (nx * ny) ** 2 / (2 * math.pi) ** 2
+    power = np.abs(np.fft.fft2(z)) ** 2 / (nx * ny) ** 2  # |a_k|^2: sum = variance
     qx = 2 * math.pi * np.fft.fftfreq(nx, d=pixel)
     qy = 2 * math.pi * np.fft.fftfreq(ny, d=pixel)
     qq = np.hypot(*np.meshgrid(qx, qy))
     q_min, q_max = 2 * math.pi / (max(nx, ny) * pixel), math.pi / pixel
-    keep = (qq >= q_min * (1 - 1e-12)) & (qq <= q_max * (1 + 1e-12))
+    keep = (qq > 0) & (qq <= q_max * (1 + 1e-12))
     edges = np.logspace(math.log10(q_min), math.log10(q_max),
                         max(2, int(per_decade * math.log10(q_max / q_min)) + 1))
-    edges[0], edges[-1] = q_min * (1 - 1e-9), q_max * (1 + 1e-9)
-    idx = np.digitize(qq[keep], edges) - 1
-    n = np.bincount(idx, minlength=edges.size - 1)[: edges.size - 1]
-    sq = np.bincount(idx, qq[keep], minlength=edges.size - 1)[: edges.size - 1]
-    sc = np.bincount(idx, power[keep], minlength=edges.size - 1)[: edges.size - 1]
-    ok = (n > 0) & (sc > 0)
-    return sq[ok] / n[ok], sc[ok] / n[ok]
+    edges[0], edges[-1] = q_min * (1 - 1e-6), q_max * (1 + 1e-6)
+    idx = np.clip(np.digitize(qq[keep], edges) - 1, 0, edges.size - 2)
+    counts = np.bincount(idx, minlength=edges.size - 1)
+    sums = np.bincount(idx, power[keep], minlength=edges.size - 1)
+    q_nodes, c_nodes = [], []
+    lo, acc = edges[0], 0.0
+    for i in range(edges.size - 1):
+        acc += sums[i]
+        if counts[i] == 0 and i < edges.size - 2:
+            continue                       # an empty bin joins the next
+        hi = edges[i + 1]
+        c = acc / (math.pi * (hi ** 2 - lo ** 2)) if acc > 0 else 0.0
+        q_nodes += [lo, hi * (1 - 1e-9)]
+        c_nodes += [c, c]
+        lo, acc = hi, 0.0
+    return np.array(q_nodes), np.array(c_nodes)
 
 
 __all__ = ["FlatLaw", "psd_from_heights"]

@@ -13,8 +13,10 @@ module egw_capi_flat_law
    use egw_table, only: force_table, build_table_law
    use egw_flat_law_format, only: write_flat_law, read_flat_law
    use egw_flat_persson, only: persson_flat_curve, persson_options, psd_rms_height
+   use egw_flat_bem, only: bem_flat_curve, bem_options
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, &
-      & double_array, read_contact, put, put_handle_settled, take_handle, put_result, c_path
+      & double_array, read_contact, put, put_handle_settled, take_handle, put_result, c_path, &
+      & read_options
    implicit none
    private
 
@@ -23,7 +25,8 @@ module egw_capi_flat_law
 
    public :: egw_flat_law_from_table, egw_flat_law_pressure, egw_flat_law_contact_area, &
       & egw_flat_law_info, egw_flat_law_free, egw_solve_flat_law, egw_table_build_flat_law, &
-      & egw_flat_law_write, egw_flat_law_read, egw_flat_law_from_psd
+      & egw_flat_law_write, egw_flat_law_read, egw_flat_law_from_psd, &
+      & egw_flat_law_from_heights
 
 contains
 
@@ -94,6 +97,44 @@ contains
          & modulus, out, error)
       if (allocated(error)) stat = settle(error)
    end function egw_flat_law_from_psd
+
+   !> C: egw_flat_law_from_heights: egw's periodic BEM law of a height map.
+   function egw_flat_law_from_heights(heights, nx, ny, pixel, modulus, p_min, p_max, o, out) &
+      & result(stat) bind(C, name="egw_flat_law_from_heights")
+      type(c_ptr), value, intent(in) :: heights, o, out
+      integer(c_int), value, intent(in) :: nx, ny
+      real(c_double), value, intent(in) :: pixel, modulus, p_min, p_max
+      integer(c_int) :: stat
+      type(egw_error), allocatable :: error
+      real(c_double), pointer :: h(:, :)
+      type(bem_options) :: opts
+      type(solver_options) :: options
+      real(dp), allocatable :: u(:), p(:), area(:), k(:)
+      real(dp) :: lo, hi, rms
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = require(heights, "heights")
+      if (stat /= egw_ok) return
+      if (nx < 2 .or. ny < 2) then
+         stat = invalid("nx = "//int_str(int(nx))//", ny = "//int_str(int(ny)) &
+            & //": a height map needs at least 2 x 2 pixels")
+         return
+      end if
+      call read_options(o, options)
+      opts%n_threads = options%n_threads
+      call c_f_pointer(heights, h, [nx, ny])
+      call pressure_range(modulus, p_min, p_max, lo, hi)
+      call bem_flat_curve(h, pixel, modulus, lo, hi, per_decade, opts, u, p, area, k, error)
+      if (.not. allocated(error)) then
+         if (size(u) < 2) then
+            stat = failure(egw_unsupported, "heights: the map is in full contact at " &
+               & //"p_min = "//format_real(lo)//" already: no law (lower p_min)")
+            return
+         end if
+         rms = sqrt(sum((h - sum(h)/size(h))**2)/size(h))
+         stat = made(u, p, -k, area, rms, modulus, out, error)
+      end if
+      if (allocated(error)) stat = settle(error)
+   end function egw_flat_law_from_heights
 
    !> The default range p/E* in [1e-6, 1e-1] where p_min or p_max is 0.
    pure subroutine pressure_range(modulus, p_min, p_max, lo, hi)
