@@ -48,6 +48,11 @@
 !> called once per process (the module's only saved variable, `fftw_threads_ready`).
 !> Plans use FFTW_ESTIMATE (no measurement, no wisdom), so results are reproducible for a
 !> given thread count. Everything else travels in arguments and the `bem_state`.
+!>
+!> **Threads.** `options%n_threads` threads run FFTW and the pointwise loops: about twenty
+!> short parallel regions per CG step, so on an oversubscribed machine (more runnable
+!> threads than cores) one thread can be much faster than two (egw-bench --bem, 512^2:
+!> 10 s on 2 threads when quiet, 22 s on 1 thread and 160 s on 2 at load average 5).
 module egw_flat_bem
    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_loc, c_int
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
