@@ -910,7 +910,8 @@ int egw_flat_law_from_psd(const double *q, const double *C, int n, double modulu
  * warm-started, with the contact-area fraction and the exact incremental stiffness as
  * -dp/du; the sweep stops before full contact. length = the map's rms height; o: NULL or
  * options (n_threads used: OpenMP and FFTW threads). Statuses: EGW_INVALID_ARGUMENT (a bad
- * map, pixel, modulus or range), EGW_NOT_CONVERGED (a load's solve), EGW_UNSUPPORTED
+ * map; pixel or modulus outside [1e-100, 1e100]; pressures outside [1e-12 E*, E*]),
+ * EGW_NOT_CONVERGED (a load's solve), EGW_UNSUPPORTED
  * (full contact at p_min already), EGW_NULL_POINTER. */
 int egw_flat_law_from_heights(const double *heights, int nx, int ny, double pixel,
                               double modulus, double p_min, double p_max,

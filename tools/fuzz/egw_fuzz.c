@@ -805,6 +805,44 @@ static int r_table_read(void) {
   return st;
 }
 
+/* Persson's law of a two-node power-law PSD, n clamped to the arrays */
+static int r_flat_law_psd(void) {
+  double q[2] = {1e4, 1e6}, c[2] = {1e-24, 1e-24 * pow(100.0, -3.6)};
+  egw_flat_law law;
+  int st, n = I(2, 2);
+  if (n > 2) n = 2;
+  q[1] = D(0, 1e6);
+  c[1] = D(1, c[1]);
+  sentinel(&law, sizeof law);
+  st = egw_flat_law_from_psd(P(3, q), P(4, c), n, D(5, 1e9), D(6, 0.0), D(7, 0.0),
+                             P(8, &law));
+  out_untouched(st, "*out", &law, sizeof law);
+  if (st == EGW_OK) {
+    double v[2];
+    int s2 = egw_flat_law_pressure(law, 1e-7, &v[0], &v[1]);
+    sane(s2, isfinite(v[0]) && v[0] >= 0 && v[1] <= 0, "Persson pressure", v[0]);
+    egw_flat_law_free(&law);
+  }
+  return st;
+}
+
+/* the BEM law of an 8 x 8 map (a cosine bump), nx and ny clamped to the array */
+static int r_flat_law_heights(void) {
+  double h[64];
+  egw_flat_law law;
+  int st, nx = I(1, 8), ny = I(2, 8);
+  for (int i = 0; i < 64; i++) h[i] = 1e-7 * cos(0.785398 * (i % 8)) * cos(0.785398 * (i / 8));
+  h[9] = D(0, h[9]);
+  if (nx > 8) nx = 8;
+  if (ny > 8) ny = 8;
+  sentinel(&law, sizeof law);
+  st = egw_flat_law_from_heights(P(3, h), nx, ny, D(4, 1e-6), D(5, 1e9), D(6, 0.0),
+                                 D(7, 0.0), NULL, P(8, &law));
+  out_untouched(st, "*out", &law, sizeof law);
+  if (st == EGW_OK) egw_flat_law_free(&law);
+  return st;
+}
+
 /* a law written (path fuzzed) and read back (its file's path fuzzed too) */
 static int r_flat_law_file(void) {
   double u[2] = {0.0, 1e-6}, p[2] = {1.0, 0.5};
@@ -1334,6 +1372,14 @@ static fz_function functions[] = {
     {"egw_tables_write_lammps(_units)", 4,
      {{"n", K_INT}, {"tables", K_PTR}, {"path", K_STR}, {"units", K_STR}}, r_tables_lammps, 0},
     {"egw_table_read", 2, {{"path", K_STR}, {"out", K_PTR}}, r_table_read, 0},
+    {"egw_flat_law_from_psd", 9,
+     {{"q[1]", K_DBL}, {"C[1]", K_DBL}, {"n", K_INT}, {"q", K_PTR}, {"C", K_PTR},
+      {"modulus", K_DBL}, {"p_min", K_DBL}, {"p_max", K_DBL}, {"out", K_PTR}},
+     r_flat_law_psd, 0},
+    {"egw_flat_law_from_heights", 9,
+     {{"heights[9]", K_DBL}, {"nx", K_INT}, {"ny", K_INT}, {"heights", K_PTR}, {"pixel", K_DBL},
+      {"modulus", K_DBL}, {"p_min", K_DBL}, {"p_max", K_DBL}, {"out", K_PTR}},
+     r_flat_law_heights, 1},
     {"egw_flat_law_write, egw_flat_law_read", 4,
      {{"law", K_PTR}, {"path (write)", K_STR}, {"path (read)", K_STR}, {"out", K_PTR}},
      r_flat_law_file, 0},

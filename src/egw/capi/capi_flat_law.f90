@@ -123,6 +123,17 @@ contains
       opts%n_threads = options%n_threads
       call c_f_pointer(heights, h, [nx, ny])
       call pressure_range(modulus, p_min, p_max, lo, hi)
+      ! scales the solver's pressures, compliances and sweep represent (beyond them it
+      ! would overflow or sweep for ever: a range of 1e300 is 3000 loads)
+      if (.not. (pixel >= 1.0e-100_dp .and. pixel <= 1.0e100_dp)) then
+         stat = invalid("pixel = "//format_real(pixel)//": must lie in [1e-100, 1e100]")
+      else if (.not. (modulus >= 1.0e-100_dp .and. modulus <= 1.0e100_dp)) then
+         stat = invalid("modulus = "//format_real(modulus)//": must lie in [1e-100, 1e100]")
+      else if (.not. (lo >= 1.0e-12_dp*modulus .and. hi <= modulus .and. hi > lo)) then
+         stat = invalid("p_min = "//format_real(lo)//", p_max = "//format_real(hi) &
+            & //": the pressures must lie in [1e-12 E*, E*] with p_min < p_max")
+      end if
+      if (stat /= egw_ok) return
       call bem_flat_curve(h, pixel, modulus, lo, hi, per_decade, opts, u, p, area, k, error)
       if (.not. allocated(error)) then
          if (size(u) < 2) then

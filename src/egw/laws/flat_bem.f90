@@ -66,7 +66,7 @@ module egw_flat_bem
    implicit none
    private
 
-   public :: bem_solve_load, bem_solve_gap, bem_flat_curve
+   public :: bem_solve_load, bem_solve_gap, bem_flat_curve, bem_state_release
 
    !> Options of a solve. Defaults: tolerance 1e-10 of the rms height, 20000 steps,
    !> OpenMP's default thread count, no fields kept, no stiffness.
@@ -98,8 +98,6 @@ module egw_flat_bem
       complex(dp), allocatable :: spectrum(:, :)
       type(c_ptr) :: forward = c_null_ptr, backward = c_null_ptr
       type(c_ptr) :: planned_buffer = c_null_ptr  ! real_buffer's address when planned
-   contains
-      final :: state_final
    end type bem_state
 
    !> Result of one solve.
@@ -213,6 +211,7 @@ contains
          area(k) = res%area_fraction
          stiffness(k) = res%stiffness
       end do
+      call bem_state_release(state)
       if (allocated(error)) then
          deallocate (u, p, area, stiffness)
          allocate (u(0), p(0), area(0), stiffness(0))
@@ -467,11 +466,13 @@ contains
       state%planned_buffer = c_null_ptr
    end subroutine release_plans
 
-   !> Finaliser: the FFTW plans a state made.
-   subroutine state_final(state)
+   !> Release the FFTW plans a state made (call when done with it; bem_flat_curve does for
+   !> its own). Not a finaliser: gfortran 12 finalises such derived types where the
+   !> standard does not (a release build crashed destroying plans twice).
+   subroutine bem_state_release(state)
       type(bem_state), intent(inout), target :: state
       call release_plans(state)
-   end subroutine state_final
+   end subroutine bem_state_release
 
    !> y = G x: the zero-mean surface displacement under the pixel pressures x.
    subroutine respond(state, x, y, nt)
