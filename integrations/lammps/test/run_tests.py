@@ -653,6 +653,70 @@ def test_wall_restitution():
     return ok, "; ".join(msgs)
 
 
+def wall_contact_time(pstyle, pcoeff, wallfix, v, dt, gap):
+    """A bead of R = 1 mm thrown head-on at v onto a zplane at z = 0 from gap above it (no
+    gravity): the contact time from the free flights before and after it, t_c = t_end -
+    gap/v - z_end'/vz_end (z_end' the gap at the end), and the rebound speed."""
+    nrun = int((gap / v + 1.5e-5) / dt)
+    rc, out = wall_run(pstyle, pcoeff, wallfix, v, dt, nrun, RAD + gap, dumpz=1)
+    if rc != 0:
+        raise RuntimeError(" ".join(l for l in out.splitlines() if "ERROR" in l)[:300])
+    vz = result(out)[2]
+    z = float(re.findall(r"^ZEND (.*)$", out, re.M)[-1])
+    return nrun * dt - gap / v - (z - RAD) / vz, vz
+
+
+def test_wall_material_contact():
+    """fix wall/egw ... wall_material contact: the wall's E and nu are the contact's, as fix
+    wall/gran granular hertz/material's (E* = E/(2(1 - nu^2)), G* = E/(4(2 - nu)(1 + nu))).
+    A glass bead (70 GPa, 0.22) thrown at 0.1 m/s onto a steel wall (200 GPa, 0.3), E-GW at
+    sigma = 1e-16 (the smooth limit), TOL 1e-8, dt = t_c/400: the contact time within 1e-6
+    (relative) of fix wall/gran's (measured ~1e-9); both within 1e-3 of Hertz's closed
+    form 2.9432 (15 m/(16 E* sqrt R))^(2/5) v^(-1/5) with the wall's E* (Verlet at t_c/400
+    and the free-flight extrapolation: measured ~1e-5); the default (wall_material own, E*
+    of glass on steel) within 1e-3 of the closed form with that E* (1.32x longer)."""
+    v, Ew, nuw = 0.1, 200e9, 0.3
+    E_contact = Ew / (2 * (1 - nuw * nuw))
+    E_own = 1 / ((1 - NU * NU) / E + (1 - nuw * nuw) / Ew)
+    hertz = lambda Es: 2.94324 * (15 * M_BEAD / (16 * Es * math.sqrt(RAD))) ** 0.4 * v ** -0.2
+    dt = hertz(E_contact) / 400
+    gap = 10.37 * v * dt    # not a whole number of steps
+    c = f"E {E} nu {NU} sigma 1e-16 mu 4"
+    w = f"E {Ew} nu {nuw} sigma 1e-16 mu 4"
+    t_egw, _ = wall_contact_time("egw E-GW 1e-8", c, f"wall/egw E-GW 1e-8 {w} wall_material "
+                                 "contact zplane 0 NULL", v, dt, gap)
+    t_gran, _ = wall_contact_time(
+        "granular", f"hertz/material {E} 1.0 {NU} tangential mindlin NULL 0 0",
+        f"wall/gran granular hertz/material {Ew} 1.0 {nuw} tangential mindlin NULL 0 0 "
+        "damping coeff_restitution zplane 0 NULL", v, dt, gap)
+    t_own, _ = wall_contact_time("egw E-GW 1e-8", c, f"wall/egw E-GW 1e-8 {w} zplane 0 NULL",
+                                 v, dt, gap)
+    d_gran = abs(t_egw - t_gran) / t_gran
+    d_hertz = abs(t_egw - hertz(E_contact)) / hertz(E_contact)
+    d_own = abs(t_own - hertz(E_own)) / hertz(E_own)
+    ok = d_gran < 1e-6 and d_hertz < 1e-3 and d_own < 1e-3
+    return ok, (f"t_c {t_egw:.9g} s vs wall/gran {t_gran:.9g} ({d_gran:.1e} < 1e-6), vs Hertz "
+                f"{d_hertz:.1e}; own {t_own:.6g} s vs Hertz {d_own:.1e} (< 1e-3)")
+
+
+def test_wall_sink_through():
+    """A bead that sinks through a wall (a wall far too soft for the impact: E = 10 Pa, Hertz,
+    1 m/s) stops the run with an ERROR naming the overlap ("sank through", "overlap") on the
+    step its centre reaches the wall, for a zplane and a wall/egw/region block face, never
+    a lost atom or a NaN later."""
+    c = f"E {E} nu {NU}"
+    bad = []
+    for wall in ("wall/egw Hertz 1e-4 E 10 nu 0.3 zplane 0 NULL",
+                 "wall/egw/region Hertz 1e-4 E 10 nu 0.3 wreg"):
+        rc, out = wall_run("egw Hertz 1e-4", c, wall, 1.0, 1e-6, 3000, RAD + 1e-5)
+        err = [l for l in out.splitlines() if "ERROR" in l]
+        if rc == 0 or not err or "sank through" not in err[0] or (
+                "region" not in wall and "overlap" not in err[0]) or "Lost atoms" in out:
+            bad.append(f"{wall}: rc {rc} {err[:1]}")
+    return not bad, "ERROR on sinking through, plane and region" + (
+        "; " + "; ".join(bad) if bad else "")
+
+
 def test_wall_bounces_start_afresh():
     """An EP-GW bead bouncing on a fix wall/egw zplane under gravity (0.1 m/s, g = 9.81,
     several impacts): each impact starts as a new contact (the history is zeroed when the
@@ -731,7 +795,7 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (12 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    """Bad fix wall/egw input (14 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
     never a crash or hang."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
@@ -747,6 +811,8 @@ def test_bad_wall():
         (f"wall/egw E-GW 1e-4 {c} damping tsuji damping 2 zplane 0 NULL", "damping"),
         (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL contacts 3", "'3'"),
         (f"wall/egw/region E-GW 1e-4 {c} nowhere contacts", "nowhere"),
+        (f"wall/egw E-GW 1e-4 {c} wall_material", "wall_material"),
+        (f"wall/egw E-GW 1e-4 {c} wall_material rigid zplane 0 NULL", "wall_material"),
     ]
     bad = []
     for wall, key in cases:
@@ -1431,7 +1497,7 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_submodels_vs_granular, test_twisting_pair_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
          test_heat_flow_needs_model, test_pair_write, test_overlap_beyond_tables,
-         test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution, test_wall_bounces_start_afresh,
+         test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution, test_wall_material_contact, test_wall_sink_through, test_wall_bounces_start_afresh,
          test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
          test_bad_wall, test_wall_region, test_drum_example,
          test_wall_heat_vs_wall_gran, test_wall_curvature_vs_wall_gran,
