@@ -27,6 +27,9 @@
 #include "region.h"
 #include "error.h"
 #include "force.h"
+#include "input.h"
+#include "modify.h"
+#include "variable.h"
 #include "memory.h"
 #include "neighbor.h"
 #include "update.h"
@@ -41,7 +44,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), material_contact(false), region(nullptr), history(nullptr),
+    Fix(lmp, narg, arg), material_contact(false), tvar(-1), region(nullptr), history(nullptr),
     contacts(false), pair(nullptr)
 {
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
@@ -55,7 +58,17 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
   if (std::string(arg[2]) == "wall/egw/region") {
     // fix ID group wall/egw/region MODEL TOL <keywords> [region] region-ID [contacts]
     int last = narg - 1;
-    if (narg > 6 && std::string(arg[last]) == "contacts") contacts = true, last--;
+    // fix wall/gran/region's keywords after the region ID (contacts, temperature T), in
+    // any order
+    while (last > 5) {
+      if (std::string(arg[last]) == "contacts") {
+        contacts = true, last--;
+      } else if (last - 1 > 5 && std::string(arg[last - 1]) == "temperature") {
+        set_temperature(arg[last]);
+        last -= 2;
+      } else
+        break;
+    }
     if (last < 5) error->all(FLERR, "Fix wall/egw/region: expected 'fix ID group wall/egw/region "
                                     "MODEL TOL <wall keywords> region-ID [contacts]'");
     region_id = arg[last];
@@ -116,7 +129,7 @@ void FixWallEGW::parse(int narg, char **arg)
     error->all(FLERR, "{}: TOL = '{}': must be a number in [1e-8, 0.1]", who, arg[4]);
   tol = v;
   bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
-       havebeta = false;
+       havebeta = false, haveplastic = false;
   int i = 5;
   auto number = [&](const std::string &key, int k) {
     if (k >= narg) error->all(FLERR, "{}: keyword '{}' needs a value", who, key);
@@ -131,6 +144,12 @@ void FixWallEGW::parse(int narg, char **arg)
     int next = egw_submodels_parse(error, who, narg, arg, i, wall.sub);
     if (next > 0) {
       i = next;
+      continue;
+    }
+    if (key == "temperature") {
+      if (i + 1 >= narg) error->all(FLERR, "{}: keyword 'temperature' needs a value", who);
+      set_temperature(arg[i + 1]);
+      i += 2;
       continue;
     }
     if (key == "wall_material") {
@@ -164,15 +183,13 @@ void FixWallEGW::parse(int narg, char **arg)
       wall.beta = x, havebeta = true;
     } else if (key == "psi") {
       if (x < 0) bad("must be >= 0");
-      wall.psi = x;
+      wall.psi = x, haveplastic = true;
     } else if (key == "K") {
       if (x <= 0 || x >= 1) bad("must be in (0, 1)");
-      wall.K = x;
+      wall.K = x, haveplastic = true;
     } else if (key == "plastic_ratio") {
       if (x <= 1) bad("must be > 1");
-      wall.rho = x;
-    } else if (key == "temperature") {
-      wall_temperature = x, have_temperature = true;
+      wall.rho = x, haveplastic = true;
     } else if (key == "overlap_max") {
       if (x <= 0) bad("must be > 0");
       overlap_max = x;
@@ -192,9 +209,9 @@ void FixWallEGW::parse(int narg, char **arg)
                haveeta ? "summit_density" : "summit_radius",
                haveeta ? "summit_radius" : "summit_density");
   wall.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
+  if (comm->me == 0) egw_warn_ignored(error, who, model, wall, havesig, haveplastic);
   if (wall.sub.heat != EgwSubmodels::HEAT_NONE && !have_temperature)
     error->all(FLERR, "{}: a heat model needs the wall's 'temperature T'", who);
-  (void) havesig;
   wall.set = 1;
 
   if (wallstyle == REGION) {
@@ -262,6 +279,21 @@ void FixWallEGW::parse(int narg, char **arg)
 int FixWallEGW::setmask()
 {
   return POST_FORCE | POST_FORCE_RESPA | MIN_POST_FORCE;
+}
+
+/* the wall's temperature: a number, or v_name (an equal-style variable, evaluated every
+ * step, as fix wall/gran's) */
+void FixWallEGW::set_temperature(const char *word)
+{
+  have_temperature = true;
+  if (utils::strmatch(word, "^v_")) {
+    tvar_name = word + 2;
+    return;
+  }
+  if (!egw_parse_number(word, wall_temperature))
+    error->all(FLERR, "Fix wall/egw: temperature = '{}': neither a finite number nor v_name",
+               word);
+  tvar_name.clear();
 }
 
 /* atom i's centre has reached or crossed the wall (delta >= R_i): the wall let it through
@@ -364,6 +396,13 @@ void FixWallEGW::init()
   if (wallstyle == REGION) {
     region = domain->get_region_by_id(region_id);
     if (!region) error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
+  }
+  if (!tvar_name.empty()) {
+    tvar = input->variable->find(tvar_name.c_str());
+    if (tvar < 0)
+      error->all(FLERR, "Fix wall/egw: temperature variable '{}' does not exist", tvar_name);
+    if (!input->variable->equalstyle(tvar))
+      error->all(FLERR, "Fix wall/egw: temperature variable '{}' is not equal-style", tvar_name);
   }
   pair = dynamic_cast<PairEGW *>(force->pair_match("egw", 1));
   if (!pair)
@@ -516,6 +555,11 @@ void FixWallEGW::post_force(int /*vflag*/)
   // commands between runs may change atoms without the per-atom callbacks' care for the
   // flag: each far atom's history is cleared once again in a run's set-up
   if (update->setupflag) std::fill(cleared.begin(), cleared.begin() + atom->nlocal, 0);
+  if (tvar >= 0 && has_heat()) {
+    modify->clearstep_compute();
+    wall_temperature = input->variable->compute_equal(tvar);
+    modify->addstep_compute(update->ntimestep + 1);
+  }
   if (wallstyle == REGION) {
     post_force_region();
     return;

@@ -54,6 +54,9 @@ class FixWallEGW : public Fix {
   bigint time_origin;
   double wall_temperature;         // heat models: the wall's temperature
   bool have_temperature;
+  std::string tvar_name;           // temperature v_name: the variable's name, its index
+  int tvar;
+  void set_temperature(const char *word);
   int nhist, hist_sub;
   class Region *region;            // wall/egw/region: the region's surfaces
   std::string region_id;

@@ -305,7 +305,7 @@ def test_hertz_damping_vs_granular():
     """Smooth spheres (sigma = 0) with damping e = 0.8: the same rebound as pair_style
     granular hertz/material + coeff_restitution (same formula: 1e-9 is round-off over the
     collision), and LAMMPS's e."""
-    rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} sigma 0 damping 0.8")
+    rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} sigma 0 damping 0.8 damping coeff_restitution")
     rc2, out2 = collision("granular", granular(e=0.8))
     a, b = result(out1), result(out2)
     d = max(abs(x - y) for x, y in zip(a, b)) / V
@@ -319,7 +319,7 @@ def test_oblique_friction_vs_granular():
     spins after the contact against pair_style granular hertz/material + mindlin (same
     stiffness 8 G* a, Coulomb limit, same tangent-plane bookkeeping: 1e-12 of the speed is
     round-off)."""
-    c = f"E {E} nu {NU} sigma 0 damping 0.7 friction 0.3"
+    c = f"E {E} nu {NU} sigma 0 damping 0.7 damping coeff_restitution friction 0.3"
     rc1, out1 = collision("egw Hertz 1e-4", c, yoff=0.0008, wz=60.0)
     rc2, out2 = collision("granular", granular(e=0.7, mut=0.3), yoff=0.0008, wz=60.0)
     a, b = result(out1), result(out2)
@@ -337,10 +337,10 @@ def test_sigma_to_zero_vs_granular():
     changes the force by O(sigma/delta) ~ 1e-3); and the oblique, spinning collision with
     damping 0.7 and friction 0.3 (mindlin): velocities and spins within 5e-3 of the speed
     (the tangential spring also loads over the rough tail, |delta_c|/delta_max ~ 3e-3)."""
-    rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} sigma 1e-9 mu 4 damping 0.8")
+    rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} sigma 1e-9 mu 4 damping 0.8 damping coeff_restitution")
     rc2, out2 = collision("granular", granular(e=0.8))
     e1, e2 = restitution_of(out1), restitution_of(out2)
-    c = f"E {E} nu {NU} sigma 1e-9 mu 4 damping 0.7 friction 0.3"
+    c = f"E {E} nu {NU} sigma 1e-9 mu 4 damping 0.7 damping coeff_restitution friction 0.3"
     rc3, out3 = collision("egw E-GW 1e-4", c, yoff=0.0008, wz=60.0)
     rc4, out4 = collision("granular", granular(e=0.7, mut=0.3), yoff=0.0008, wz=60.0)
     a, b = result(out3), result(out4)
@@ -444,7 +444,7 @@ def test_twisting_pair_vs_granular():
     v = 0.05
     words = "tangential mindlin NULL 1.0 0.3 {tw}damping tsuji"
     gran = f"hertz/material {E} 0.7 {NU} " + words
-    egw = f"E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 " + words
+    egw = f"E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 damping coeff_restitution " + words
     worst = 0.0
     for tol in ("1e-6", "1e-8"):
         a = twisting_pair(f"egw E-GW {tol}", egw.format(tw="twisting marshall "), 2.0123e-5)
@@ -478,7 +478,7 @@ def test_pair_local_granular_columns():
             "damping coeff_restitution"
     kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5, pairlocal=2, thermo_every=2600,
               n1=2600)
-    rc1, out1 = collision("egw Hertz 1e-4", f"E {E} nu {NU} sigma 0 damping 0.7 " + words, **kw)
+    rc1, out1 = collision("egw Hertz 1e-4", f"E {E} nu {NU} sigma 0 damping 0.7 damping coeff_restitution " + words, **kw)
     rc2, out2 = collision("granular", f"hertz/material {E} 0.7 {NU} " + words, **kw)
     got = []
     for out in (out1, out2):
@@ -751,7 +751,7 @@ def test_wall_rolling_vs_wall_gran():
          "damping coeff_restitution")
     kw = dict(vx=0.05, wx=30.0, g=9.81)
     rc1, o1 = wall_run("egw E-GW 1e-8", f"E {E} nu {NU} sigma 1e-16 mu 4",
-                       f"wall/egw E-GW 1e-8 E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 {W} "
+                       f"wall/egw E-GW 1e-8 E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 damping coeff_restitution {W} "
                        "zplane 0 NULL", 0.0, 1e-6, 20000, RAD, **kw)
     rc2, o2 = wall_run("granular", f"hertz/material {E} 0.7 {NU} {W}",
                        f"wall/gran granular hertz/material {E} 0.7 {NU} {W} zplane 0 NULL",
@@ -775,7 +775,7 @@ def test_wall_restart_and_ranks():
     ends the same (1e-12; the bead stays on one rank here: migration of the per-atom
     history is exercised by the pour example on 2 ranks, not compared bit for bit)."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1"
-    wall = f"wall/egw EP-GW 1e-3 {c} damping 0.9 tangential mindlin NULL 1.0 0.3 zplane 0 NULL"
+    wall = f"wall/egw EP-GW 1e-3 {c} damping 0.9 damping coeff_restitution tangential mindlin NULL 1.0 0.3 zplane 0 NULL"
     kw = dict(vx=0.05, wx=40.0, n1=5600, n2=3000)
     rc1, o1 = wall_run("egw E-GW 1e-3", c, wall, 0.1, 2e-8, 8600, RAD + 1e-5, restart=1,
                        rfile="wall.restart", **kw)
@@ -904,7 +904,7 @@ def test_wall_curvature_vs_wall_gran():
             ("flat", "zplane -0.005 NULL", None)):
         style = "wall/egw" if "plane" in egw_wall or "cylinder" in egw_wall else "wall/egw/region"
         rc1, o1 = curved_run("drum" if shape == "flat" else shape, "egw E-GW 1e-8", c,
-                             f"{style} E-GW 1e-8 {c} damping 0.7 {CURVED_SUB} {egw_wall}")
+                             f"{style} E-GW 1e-8 {c} damping 0.7 damping coeff_restitution {CURVED_SUB} {egw_wall}")
         if rc1:
             return False, f"{shape}: " + " ".join(l for l in o1.splitlines() if "ERROR" in l)
         res[shape] = result(o1)
@@ -948,7 +948,7 @@ def test_wall_curvature_summit():
             cc = f"E {E} nu {NU} sigma {sig} {c}"
             kw = dict(shape="drum", pstyle="egw E-GW 1e-4", pcoeff=cc, v=0.1, dt=2e-8,
                       nrun=6000, nmid=0,
-                      wallfix=f"wall/egw/region E-GW 1e-4 {cc} damping 0.7 "
+                      wallfix=f"wall/egw/region E-GW 1e-4 {cc} damping 0.7 damping coeff_restitution "
                               "tangential mindlin NULL 1.0 0.3 wreg")
             kw.update(var)
             rc, o = lmp("curved.in", **kw)
@@ -980,7 +980,7 @@ def test_wall_contacts_vs_wall_gran():
         ew = "wreg contacts" if shape == "drum" else "zcylinder 0.005 contacts"
         gw = "region wreg contacts" if shape == "drum" else "zcylinder 0.005 contacts"
         rc1, o1 = curved_run(shape, "egw E-GW 1e-8", c,
-                             f"{egw_wall} E-GW 1e-8 {c} damping 0.7 {CURVED_SUB} {ew}", nmid=5200)
+                             f"{egw_wall} E-GW 1e-8 {c} damping 0.7 damping coeff_restitution {CURVED_SUB} {ew}", nmid=5200)
         rc2, o2 = curved_run(shape, "granular", f"hertz/material {E} 0.7 {NU} {CURVED_SUB}",
                              f"{gran_wall} granular hertz/material {E} 0.7 {NU} {CURVED_SUB} {gw}",
                              nmid=5200)
@@ -1117,7 +1117,7 @@ def test_submodels_ranks_agree():
     to 1e-12."""
     w = ("tangential mindlin_rescale NULL 1.0 0.3 rolling sds 1e5 0.05 0.2 twisting marshall "
          "damping coeff_restitution")
-    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.7 " + w
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.7 damping coeff_restitution " + w
     kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5)
     res = []
     for np, newton in ((1, "on"), (2, "on"), (2, "off")):
@@ -1149,6 +1149,82 @@ def test_wall_heat_vs_wall_gran():
     return rel < 1e-6 and d2 > 1, f"dT {d1:.9g} vs {d2:.9g} (rel. {rel:.1e} < 1e-6)"
 
 
+def test_wall_temperature_variable():
+    """A wall temperature from an equal-style variable (as in.pour.heat's `temperature
+    v_oscillate`): 200 + 50 sin(step/100) K, the bead held 2 um into a zplane and into a
+    block region's floor; fix wall/egw E-GW at sigma = 1e-16 (TOL 1e-8) against fix
+    wall/gran[/region] granular hertz/material with the same variable, the region fixes with
+    fix wall/gran/region's keyword order ('region ID temperature v_twall'): the bead's
+    temperature change within 1e-6 (relative) of granular's; the oscillating wall gives
+    another change than a wall at 200 K (> 1e-3)."""
+    g = "tangential linear_nohistory 0 0 heat area 1e5"
+    c = f"E {E} nu {NU} sigma 1e-16 mu 4"
+    tw = "200+50*sin(step/100)"
+    runs = {}
+    cases = {
+        "egw plane": ("egw E-GW 1e-8", c, f"wall/egw E-GW 1e-8 {c} heat area 1e5 temperature "
+                      "v_twall zplane 0 NULL"),
+        "gran plane": ("granular", f"hertz/material {E} 1.0 {NU} {g}",
+                       f"wall/gran granular hertz/material {E} 1.0 {NU} {g} zplane 0 NULL "
+                       "temperature v_twall"),
+        "egw region": ("egw E-GW 1e-8", c, f"wall/egw/region E-GW 1e-8 {c} heat area 1e5 "
+                       "region wreg temperature v_twall"),
+        "gran region": ("granular", f"hertz/material {E} 1.0 {NU} {g}",
+                        f"wall/gran/region granular hertz/material {E} 1.0 {NU} {g} region wreg "
+                        "temperature v_twall"),
+        "egw 200": ("egw E-GW 1e-8", c, f"wall/egw E-GW 1e-8 {c} heat area 1e5 temperature 200 "
+                    "zplane 0 NULL"),
+    }
+    for name, (ps, pc, wf) in cases.items():
+        rc, out = lmp("heatwall.in", pstyle=ps, pcoeff=pc, wallfix=wf, twexpr=tw)
+        if rc:
+            return False, name + ": " + " ".join(l for l in out.splitlines() if "ERROR" in l)
+        runs[name] = 300 - result(out)[0]
+    dp = abs(runs["egw plane"] - runs["gran plane"]) / abs(runs["gran plane"])
+    dr = abs(runs["egw region"] - runs["gran region"]) / abs(runs["gran region"])
+    dv = abs(runs["egw plane"] - runs["egw 200"]) / abs(runs["egw 200"])
+    ok = dp < 1e-6 and dr < 1e-6 and dv > 1e-3
+    return ok, (f"plane dT {runs['egw plane']:.9g} vs {runs['gran plane']:.9g} ({dp:.1e}), "
+                f"region {dr:.1e} (< 1e-6); against a wall at 200 K {dv:.1e} (> 1e-3)")
+
+
+def test_default_damping_vs_granular():
+    """The damping model by default is granular's, viscoelastic: `damping 1e10` alone in
+    egw's pair_coeff and granular's `hertz/material E 1e10 nu` without a damping keyword give
+    the same rebound (E-GW at sigma = 1e-16, TOL 1e-6, head-on at 0.2 m/s): velocities within
+    1e-6 of the speed (the table's TOL), and the collision damped (e < 0.9)."""
+    kw = dict(gap=2.0123e-5)
+    rc1, o1 = collision("egw E-GW 1e-6", f"E {E} nu {NU} sigma 1e-16 mu 4 damping 1e10", **kw)
+    rc2, o2 = collision("granular", f"hertz/material {E} 1e10 {NU} tangential mindlin NULL 0 0",
+                        **kw)
+    if rc1 or rc2:
+        return False, " ".join(l for l in (o1 + o2).splitlines() if "ERROR" in l)
+    a, b = result(o1), result(o2)
+    d = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
+    e = restitution_of(o2)
+    return d < 1e-6 and e < 0.9, f"e {restitution_of(o1):.9f} vs {e:.9f}, |dv|/v {d:.1e} (< 1e-6)"
+
+
+def test_ignored_keywords_warn():
+    """Keywords the model ignores are named in a WARNING (as egw's Python warns): psi (and K,
+    plastic_ratio) with E-GW in pair_coeff and in fix wall/egw; mu with Hertz."""
+    c = f"E {E} nu {NU} sigma 1e-6 mu 4"
+    bad = []
+    for ps, pc, wall, word in (
+            ("egw E-GW 1e-4", c + " psi 1", None, "psi"),
+            ("egw E-GW 1e-4", c + " K 0.5", None, "psi, K"),
+            ("egw Hertz 1e-4", f"E {E} nu {NU} mu 4", None, "Hertz"),
+            ("egw E-GW 1e-4", c, f"wall/egw E-GW 1e-4 {c} psi 1 zplane -0.003 NULL", "psi")):
+        if wall:
+            rc, out = wall_run(ps, pc, wall, 0.1, 1e-8, 0, RAD + 1e-5)
+        else:
+            rc, out = collision(ps, pc, nrun=0)
+        warn = [l for l in out.splitlines() if "WARNING" in l and word in l]
+        if rc != 0 or not warn:
+            bad.append(f"{pc} {wall or ''}: rc {rc}, no WARNING naming {word}")
+    return not bad, "4/4 warned" if not bad else "; ".join(bad)
+
+
 def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
     return lmp(deck, np=np, pstyle=pstyle, pcoeff11=c11, pcoeff22=c22, dt=5e-6,
                nrun=nrun, newton=newton, thermo=10000, seed=seed, Ewall=PILE_E)
@@ -1161,11 +1237,11 @@ def test_column_vs_granular():
     granular's: sigma = 0 to 1e-12 (round-off; the pressure, a sum of ~20 virial terms
     with cancellation taken in another order, to 1e-9), and E-GW with
     sigma = 1 nm per bead (overlaps ~10 um here) to 1e-5 of the mean height."""
-    c = f"E {PILE_E} nu {NU} sigma 0 damping 0.5 friction 0.5"
+    c = f"E {PILE_E} nu {NU} sigma 0 damping 0.5 damping coeff_restitution friction 0.5"
     g = granular(e=0.5, mut=0.5, Ey=PILE_E)
     r0 = pile("granular", g, g, nrun=40000, deck="column.in")
     r1 = pile("egw E-GW 1e-4", c, c, nrun=40000, deck="column.in")
-    c2 = f"E {PILE_E} nu {NU} sigma 1e-9 mu 4 damping 0.5 friction 0.5"
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-9 mu 4 damping 0.5 damping coeff_restitution friction 0.5"
     r2 = pile("egw E-GW 1e-4", c2, c2, nrun=40000, deck="column.in")
     a, b, s = result(r0[1]), result(r1[1]), result(r2[1])
     d1 = max(abs(b[1] / a[1] - 1), abs(b[2] / a[2] - 1))
@@ -1181,7 +1257,7 @@ def test_peratom_energy_virial():
     per-atom energies (compute pe/atom) add up to the global pair energy and the per-atom
     stresses (compute stress/atom, with the wall's) to the pressure, to 1e-10; the energy
     is the elastic energy of the 1-D table (> 0)."""
-    c = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 friction 0.5"
+    c = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 damping coeff_restitution friction 0.5"
     rc, out = pile("egw E-GW 1e-4", c, c, np=2, nrun=20000, deck="column_peratom.in")
     pe, pes, p, pp = result(out)
     d = max(abs(pes / pe - 1), abs(pp / p - 1))
@@ -1194,7 +1270,7 @@ def test_pile_vs_granular():
     sigma = 0) against pair_style granular: a pile is chaotic (round-off differences in the
     force sums grow), so the settled mean height is compared over 4 seeds: the means agree
     within 3 standard errors of the difference."""
-    c = f"E {PILE_E} nu {NU} sigma 0 damping 0.5 friction 0.5"
+    c = f"E {PILE_E} nu {NU} sigma 0 damping 0.5 damping coeff_restitution friction 0.5"
     g = granular(e=0.5, mut=0.5, Ey=PILE_E)
     ze, zg = [], []
     for seed in (11, 12, 13, 14):
@@ -1218,16 +1294,16 @@ def test_ranks_agree():
     off: the same settled column to 1e-10 (only the order of force sums differs;
     the column is not chaotic). Then the chaotic E-GW pile with friction on 1 and 2 ranks
     (newton on and off) after 2000 steps (before round-off grows): the same to 1e-6."""
-    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 psi 0.5 damping 0.5 friction 0.5"
-    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 psi 0.3 damping 0.6 friction 0.4"
+    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 psi 0.5 damping 0.5 damping coeff_restitution friction 0.5"
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 psi 0.3 damping 0.6 damping coeff_restitution friction 0.4"
     layouts = ((1, "on"), (2, "on"), (2, "off"))    # 3+ ranks oversubscribe a 2-core CI
     runs = [pile("egw EP-GW 1e-3", c1, c2, np=n, newton=nw, nrun=30000, deck="column.in")
             for n, nw in layouts]
     ok = all(rc == 0 for rc, o in runs)
     res = [result(o) for rc, o in runs] if ok else []
     dz = max(abs(r[1] / res[0][1] - 1) for r in res) if ok else 1
-    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 friction 0.5"
-    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 damping 0.6 friction 0.4"
+    c1 = f"E {PILE_E} nu {NU} sigma 2e-6 mu 4 damping 0.5 damping coeff_restitution friction 0.5"
+    c2 = f"E {PILE_E} nu {NU} sigma 1e-6 mu 3 damping 0.6 damping coeff_restitution friction 0.4"
     piles = [pile("egw E-GW 1e-4", c1, c2, np=n, newton=nw, nrun=2000) for n, nw in layouts]
     ok = ok and all(rc == 0 for rc, o in piles)
     pres = [result(o) for rc, o in piles] if ok else []
@@ -1242,7 +1318,7 @@ def test_reneighbor_keeps_history():
     every step) against rebuilt only when atoms moved half the skin (never during the
     contact): the same end state to 1e-12 of the speed (delta_max and the tangential
     displacement survive reneighboring)."""
-    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.9 friction 0.3"
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.9 damping coeff_restitution friction 0.3"
     rc1, out1 = collision("egw EP-GW 1e-3", c, yoff=0.0005, wz=30.0, check="yes")
     rc2, out2 = collision("egw EP-GW 1e-3", c, yoff=0.0005, wz=30.0, check="no")
     a, b = result(out1), result(out2)
@@ -1262,7 +1338,7 @@ def test_restart_keeps_history():
     n1 = 2640    # contact from ~step 2500 for ~200 steps: restart while unloading
     msgs, ok = [], True
     for tag, mu in (("mu", "mu 4"), ("summits", "summit_density 1e10 summit_radius 1e-5")):
-        c = f"E {E} nu {NU} sigma 0.5e-6 {mu} psi 1 damping 0.9 friction 0.3"
+        c = f"E {E} nu {NU} sigma 0.5e-6 {mu} psi 1 damping 0.9 damping coeff_restitution friction 0.3"
         rc1, out1 = collision("egw EP-GW 1e-3", c, yoff=0.0005, wz=30.0, n1=n1, restart=1,
                               rfile="egw.restart")
         rc2, out2 = lmp("collision_restart.in", rfile="egw.restart", n2=6000 - n1, thermo=1000)
@@ -1336,8 +1412,10 @@ def test_size_list_reaches_tail():
 
 
 def test_bad_coeff():
-    """Bad pair_coeff / pair_style input (38 cases, granular's sub-model syntax among them): a
-    LAMMPS ERROR naming the keyword, a non-zero exit, never a crash."""
+    """Bad pair_coeff / pair_style input (54 cases, granular's sub-model syntax among them): a
+    LAMMPS ERROR naming the keyword, a non-zero exit, never a crash; granular's keywords and
+    models egw does not have (cutoff, synchronized_verlet, the classic tangential models,
+    rolling cdt, ..., every granular normal model) say "not supported"."""
     base = f"E {E} nu {NU}"
     cases = [
         ("egw E-GW 1e-4", f"E -1 nu {NU} sigma 1e-6 mu 4", "E"),
@@ -1347,7 +1425,9 @@ def test_bad_coeff():
         ("egw E-GW 1e-4", f"{base} sigma 1e-6", "mu"),
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 summit_density 1e9 summit_radius 1e-5", "summit_density"),
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 summit_density 1e9", "summit_radius"),
-        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping 0", "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping 0 damping coeff_restitution",
+         "damping"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping none damping 0.5", "damping"),
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 friction -1", "friction"),
         ("egw E-GW 1e-4", f"{base} sigma abc mu 4", "sigma"),
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 psi", "psi"),
@@ -1383,6 +1463,13 @@ def test_bad_coeff():
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat area nan", "h_s"),
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat radius 1", "heat"),
     ]
+    # granular's words egw does not have: "not supported", never "needs a value"
+    cases += [("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 {w}", "not supported") for w in (
+        "cutoff 0.01", "synchronized_verlet", "tangential linear_history_classic 1 1 1",
+        "tangential mindlin_classic 1 1 1", "rolling cdt", "twisting bagi", "damping foo",
+        "heat conduction 1", "tangential none 1 1 1")]
+    cases += [("egw E-GW 1e-4", f"{g} {E} 0.8 {NU}", "not supported") for g in (
+        "hooke", "hertz", "hertz/material", "dmt", "jkr", "mdr")]
     bad = []
     for ps, pc, key in cases:
         rc, out = collision(ps, pc, nrun=0)
@@ -1500,7 +1587,8 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution, test_wall_material_contact, test_wall_sink_through, test_wall_bounces_start_afresh,
          test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
          test_bad_wall, test_wall_region, test_drum_example,
-         test_wall_heat_vs_wall_gran, test_wall_curvature_vs_wall_gran,
+         test_wall_heat_vs_wall_gran, test_wall_temperature_variable, test_default_damping_vs_granular,
+         test_ignored_keywords_warn, test_wall_curvature_vs_wall_gran,
          test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,
