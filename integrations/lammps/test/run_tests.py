@@ -1109,6 +1109,42 @@ def test_granular_decks():
     return ok, "; ".join(msgs)
 
 
+BENCH = os.path.join(ROOT, "integrations", "lammps", "bench")
+
+
+def test_lammps_decks_converted():
+    """LAMMPS's own in.pour.flatwall, in.pour.drum, in.pour.heat converted to egw
+    (bench/flatwall.in, drum.in, heat.in: E-GW at sigma = 1e-16, walls with wall_material
+    contact, in.pour.heat's floor at 'temperature v_oscillate'), short runs (flatwall 2500
+    steps, the grains landing; drum 1500 + 300 steps on 2 ranks with fix balance; heat 3000
+    steps, the grains on the heated floor): no ERROR, no lost atom, no NaN; drum and heat
+    keep the size neighbor list with fix balance; heat flowed (the temperatures' sum is not
+    0)."""
+    msgs, ok = [], True
+    for deck, np, var in (("flatwall.in", 1, dict(nrun=2500)), ("drum.in", 2, dict(n1=1500, n2=300)),
+                          ("heat.in", 1, dict(nrun=3000))):
+        args = [LMP, "-np", str(np), "-in", os.path.join(BENCH, deck), "-var", "law", "egw",
+                "-log", "none", "-nocite"]
+        for k, v in var.items():
+            args += ["-var", k, str(v)]
+        p = subprocess.run(args, cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           text=True, timeout=600)
+        out = p.stdout
+        m = re.search(r"^DECK \S+ atoms (\d+)(.*)$", out, re.M)
+        good = (p.returncode == 0 and m and "ERROR" not in out and "Lost atoms" not in out
+                and not re.search(r"\bnan\b", out, re.I) and int(m.group(1)) > 0)
+        if deck != "flatwall.in":
+            good = good and "a size neighbor list" in out
+        if deck == "heat.in" and m:
+            t = re.search(r"temperature_sum (\S+)", m.group(2))
+            good = good and t is not None and float(t.group(1)) != 0.0
+        ok = ok and bool(good)
+        err = [l for l in out.splitlines() if "ERROR" in l or "Lost" in l][:1]
+        msgs.append(f"{deck}: {'ok' if good else 'FAILED'} ({m.group(0)[5:] if m else 'no DECK line'}"
+                    f"{'; ' + err[0] if err else ''})")
+    return ok, "; ".join(msgs)
+
+
 def test_submodels_ranks_agree():
     """EP-GW with mindlin_rescale + tangential damping, rolling sds and twisting marshall (all
     sub-model histories) in the oblique, spinning, twisting collision on 1 rank, on 2 ranks
@@ -1350,7 +1386,7 @@ def test_restart_keeps_history():
     return ok, "; ".join(msgs) + " (< 1e-12)"
 
 
-def reach_run(np, skin=1e-4, npairs=40, nrun=700):
+def reach_run(np, skin=1e-4, npairs=40, nrun=700, balance=0):
     """reach.in: npairs head-on pairs at gaps 0.2 .. 0.6 mm, 1 m/s approach, E-GW with
     sigma 2 um (the tail reaches the tables' cut-off, ~14 um); returns (rc, out, the
     contact count per step, the pairs' centre distances per step, the tail)."""
@@ -1359,7 +1395,8 @@ def reach_run(np, skin=1e-4, npairs=40, nrun=700):
         os.remove(dump)
     c = f"E {E} nu {NU} sigma 2e-6 mu 4"
     rc, out = lmp("reach.in", np=np, npairs=npairs, g0=2e-4, dg=1.07e-5, v=0.5, dt=1e-6,
-                  nrun=nrun, skin=skin, pstyle="egw E-GW 1e-4", pcoeff=c, px=np)
+                  nrun=nrun, skin=skin, pstyle="egw E-GW 1e-4", pcoeff=c, px=np,
+                  balance=balance)
     count = {int(r[0]): r[2] for r in thermo(out) if len(r) == 3}
     dist, step, xs = {}, None, {}
     if os.path.exists(dump):
@@ -1387,10 +1424,16 @@ def test_size_list_reaches_tail():
     just beyond R_i + R_j + skin at a build enter the reach before the next build unseen:
     the count is wrong on 47 of the 701 steps (measured with the guard switched off).
     With a skin below 4 tails (5e-5 m) the pair style takes the plain list (to the largest
-    radii + tail + skin): the same counts."""
+    radii + tail + skin): the same counts.  With fix balance (every 20 steps, the left
+    beads weighted 3x: the ranks' boundary shifts and atoms migrate) on 2 ranks the size
+    list is kept (fix balance changes the sub-domains, not the box): the same counts."""
     msgs, ok = [], True
-    for np, skin in ((1, 1e-4), (2, 1e-4), (1, 5e-5)):
-        rc, out, count, dist, tail = reach_run(np, skin)
+    for np, skin, bal in ((1, 1e-4, 0), (2, 1e-4, 0), (1, 5e-5, 0), (2, 1e-4, 20)):
+        rc, out, count, dist, tail = reach_run(np, skin, balance=bal)
+        if bal:    # the weighted balance moved atoms: the ranks end with unequal counts
+            m = re.search(r"^Nlocal:\s+(\S+) ave\s+(\S+) max\s+(\S+) min", out, re.M)
+            if not m or not float(m.group(2)) > float(m.group(3)):
+                return False, f"fix balance moved no atoms ({m.group(0) if m else 'no Nlocal'})"
         want = "a size neighbor list, rebuilt once two atoms" if skin == 1e-4 else \
             "a neighbor list to the types' largest radii + the tail"
         size_list = want in out
@@ -1405,7 +1448,7 @@ def test_size_list_reaches_tail():
             tail_only += sum(1 for r in d if -tail < 2e-3 - r <= 0)
             bad += int(count[step] != within)
         ok = ok and rc == 0 and size_list and steps >= 690 and bad == 0 and tail_only > 100
-        msgs.append(f"{np} rank(s), skin {skin:g}: {steps} steps, {bad} with a wrong count, "
+        msgs.append(f"{np} rank(s), skin {skin:g}{', fix balance' if bal else ''}: {steps} steps, {bad} with a wrong count, "
                     f"{tail_only} tail-only pair-steps (tail {tail:.3g} m, "
                     f"{'size list + guard' if skin == 1e-4 else 'plain list'}: {size_list})")
     return ok, "; ".join(msgs)
@@ -1589,7 +1632,7 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_bad_wall, test_wall_region, test_drum_example,
          test_wall_heat_vs_wall_gran, test_wall_temperature_variable, test_default_damping_vs_granular,
          test_ignored_keywords_warn, test_wall_curvature_vs_wall_gran,
-         test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks,
+         test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks, test_lammps_decks_converted,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,
          test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared]
