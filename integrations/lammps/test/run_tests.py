@@ -1557,13 +1557,14 @@ def test_inline_law():
     (egw_table_get_interpolant; EgwTables::Inline): one lookup for both ln-mu slices of a
     contact, their cubics blended where they interpolate p. Against egw_table_eval of the
     slices interpolated linearly in ln mu (what the loop computed before) at 20000 overlaps
-    over each table's range, with 9 and 5 slices (summit data) and one table (mu given):
+    over each table's range, with 9 and 5 slices (summit data) and one table (mu given),
+    and one table to 5e14 sigma (sigma -> 0: its buckets ~log2 x, sampled in every decade):
     force and stiffness agree to 1e-13 (rounding: the same coefficients in the same order,
     exp() amplifying an ulp of ln p by |ln p| < 30, and the blend's reassociation). A wrong
     blend weight of 1e-3 gives 2e-5."""
     worst, lines = 0.0, []
     for args in (("3", "8", "12", "9", "5e-5", "400"), ("3", "4", "4", "1", "1e-4", "100"),
-                 ("2", "3", "30", "5", "1e-4", "200")):
+                 ("2", "3", "30", "5", "1e-4", "200"), ("2", "4", "4", "1", "1e-6", "5e14")):
         p = subprocess.run([CHECK, "inline", *args], stdout=subprocess.PIPE,
                            stderr=subprocess.STDOUT, text=True, timeout=600)
         m = re.search(r"max_rel_diff (\S+) max_rel_diff_stiffness (\S+) nodes (\d+) n_log (\d+)",
