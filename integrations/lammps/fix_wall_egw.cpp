@@ -212,6 +212,9 @@ void FixWallEGW::parse(int narg, char **arg)
   if (comm->me == 0) egw_warn_ignored(error, who, model, wall, havesig, haveplastic);
   if (wall.sub.heat != EgwSubmodels::HEAT_NONE && !have_temperature)
     error->all(FLERR, "{}: a heat model needs the wall's 'temperature T'", who);
+  if (wall.sub.heat == EgwSubmodels::HEAT_NONE && have_temperature && comm->me == 0)
+    error->warning(FLERR, "{}: 'temperature' without a heat model (heat area|radius) is "
+                          "ignored", who);
   wall.set = 1;
 
   if (wallstyle == REGION) {

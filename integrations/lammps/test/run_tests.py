@@ -795,7 +795,7 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (14 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    """Bad fix wall/egw input (16 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
     never a crash or hang."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
@@ -813,6 +813,8 @@ def test_bad_wall():
         (f"wall/egw/region E-GW 1e-4 {c} nowhere contacts", "nowhere"),
         (f"wall/egw E-GW 1e-4 {c} wall_material", "wall_material"),
         (f"wall/egw E-GW 1e-4 {c} wall_material rigid zplane 0 NULL", "wall_material"),
+        (f"wall/egw E-GW 1e-4 {c} temperature abc zplane 0 NULL", "temperature"),
+        (f"wall/egw E-GW 1e-4 {c} temperature v_nowhere zplane 0 NULL", "nowhere"),
     ]
     bad = []
     for wall, key in cases:
@@ -1243,14 +1245,17 @@ def test_default_damping_vs_granular():
 
 def test_ignored_keywords_warn():
     """Keywords the model ignores are named in a WARNING (as egw's Python warns): psi (and K,
-    plastic_ratio) with E-GW in pair_coeff and in fix wall/egw; mu with Hertz."""
+    plastic_ratio) with E-GW in pair_coeff and in fix wall/egw; mu with Hertz; a wall's
+    temperature without a heat model."""
     c = f"E {E} nu {NU} sigma 1e-6 mu 4"
     bad = []
     for ps, pc, wall, word in (
             ("egw E-GW 1e-4", c + " psi 1", None, "psi"),
             ("egw E-GW 1e-4", c + " K 0.5", None, "psi, K"),
             ("egw Hertz 1e-4", f"E {E} nu {NU} mu 4", None, "Hertz"),
-            ("egw E-GW 1e-4", c, f"wall/egw E-GW 1e-4 {c} psi 1 zplane -0.003 NULL", "psi")):
+            ("egw E-GW 1e-4", c, f"wall/egw E-GW 1e-4 {c} psi 1 zplane -0.003 NULL", "psi"),
+            ("egw E-GW 1e-4", c, f"wall/egw E-GW 1e-4 {c} temperature 300 zplane -0.003 NULL",
+             "temperature")):
         if wall:
             rc, out = wall_run(ps, pc, wall, 0.1, 1e-8, 0, RAD + 1e-5)
         else:
@@ -1258,7 +1263,7 @@ def test_ignored_keywords_warn():
         warn = [l for l in out.splitlines() if "WARNING" in l and word in l]
         if rc != 0 or not warn:
             bad.append(f"{pc} {wall or ''}: rc {rc}, no WARNING naming {word}")
-    return not bad, "4/4 warned" if not bad else "; ".join(bad)
+    return not bad, "5/5 warned" if not bad else "; ".join(bad)
 
 
 def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
