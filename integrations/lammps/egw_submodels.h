@@ -14,7 +14,7 @@ namespace LAMMPS_NS {
 namespace EgwSubmodels {
 
 enum Damping { DAMP_VELOCITY = 0, DAMP_MASS_VELOCITY, DAMP_VISCOELASTIC, DAMP_TSUJI,
-               DAMP_COEFF_RESTITUTION };
+               DAMP_COEFF_RESTITUTION, DAMP_NONE };
 enum Tangential { TANG_NONE = 0, TANG_LINEAR_NOHISTORY, TANG_LINEAR_HISTORY, TANG_MINDLIN,
                   TANG_MINDLIN_RESCALE, TANG_MINDLIN_FORCE, TANG_MINDLIN_RESCALE_FORCE };
 enum Rolling { ROLL_NONE = 0, ROLL_SDS };
@@ -30,7 +30,7 @@ constexpr int SUB_A_PREV = 0, SUB_ROLL = 1, SUB_TWIST = 4, NHIST_SUB = 5;
 
 /* the sub-models of a type pair as given (plain data: written to restart files) */
 struct Params {
-  int damping = DAMP_COEFF_RESTITUTION;
+  int damping = DAMP_VISCOELASTIC;    // granular's default
   double damp_value = 1.0;    // e (tsuji, coeff_restitution) or eta_n0 (the others)
   int damp_value_set = 0;
   int limit_damping = 0;
@@ -56,6 +56,7 @@ struct Params {
  * sqrt(2/3); the others eta_n0 itself */
 inline double damping_factor(int model, double value)
 {
+  if (model == DAMP_NONE) return 0.0;
   if (model == DAMP_COEFF_RESTITUTION) {
     if (!(value < 1.0)) return 0.0;
     double le = std::log(value);

@@ -232,16 +232,22 @@ bool Inline::make(const std::vector<egw_table> &tables)
   ns = (int) tables.size();
   x_lo = x.front(), x_hi = x.back();
   // buckets: about 8 per interval, doubled while one spans more than 8 intervals (nodes
-  // crowd near the cut-off and contact; a scan of a few nodes is cheaper than a search)
-  origin = x_lo;
+  // crowd near the cut-off and contact; a scan of a few nodes is cheaper than a search).
+  // A table reaching far (x_hi > 1024, sigma far below R) spaces its nodes geometrically
+  // out there: buckets uniform in x would take 2^20 of them (4 MB, a cache miss a lookup)
+  // and still scan, so they are uniform in bucket_coord, ~log2 x above 1
+  log_buckets = x_hi > 1024.0;
+  std::vector<double> u(nn);
+  for (int i = 0; i < nn; i++) u[i] = log_buckets ? bucket_coord(x[i]) : x[i];
+  origin = u.front();
   for (nb = 8 * (nn - 1);; nb *= 2) {
-    scale = nb / (x_hi - x_lo);
+    scale = nb / (u.back() - origin);
     bucket.assign(nb, 0);
     int i = 0, widest = 0;
     for (int b = 0; b < nb; b++) {
       double xb = origin + (b - 1e-6) / scale;    // rounding never passes a bucket's start
       int i0 = i;
-      while (i < nn - 2 && xb >= x[i + 1]) i++;
+      while (i < nn - 2 && xb >= u[i + 1]) i++;
       bucket[b] = i;
       if (b > 0) widest = std::max(widest, i - i0);
     }

@@ -14,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <memory>
 #include <string>
@@ -65,10 +67,23 @@ struct Inline {
   std::vector<int> bucket;         // the interval holding each bucket's start
   double origin = 0, scale = 0;
   int nb = 0;
+  bool log_buckets = false;        // buckets uniform in bucket_coord (tables reaching far)
+  /* a monotone coordinate: x below 1, above it 1 + log2(x) with the mantissa taken
+   * linearly (exact at powers of 2; from the double's bits, no library call), so that a
+   * table over many decades (sigma -> 0: x up to 5e14) gets buckets per octave */
+  static double bucket_coord(double xv)
+  {
+    if (!(xv >= 1.0)) return xv;
+    std::uint64_t b;
+    std::memcpy(&b, &xv, sizeof b);
+    return (double) (int) (b >> 52) - 1022.0 +
+        (double) (b & ((std::uint64_t(1) << 52) - 1)) * 0x1p-52;
+  }
   /* the interval i with x[i] <= xv < x[i + 1], for x_lo < xv < x_hi */
   int locate(double xv) const
   {
-    int b = std::min(nb - 1, (int) ((xv - origin) * scale));
+    double u = log_buckets ? bucket_coord(xv) : xv;
+    int b = std::min(nb - 1, (int) ((u - origin) * scale));
     int i = bucket[b];
     while (xv >= x[i + 1]) i++;
     return i;

@@ -1,6 +1,6 @@
 /* fix wall/egw: walls with egw's rough contact law.
  *
- *   fix ID group wall/egw MODEL TOL E v nu v [sigma v] [mu v | summit_density v
+ *   fix ID group wall/egw MODEL TOL E v nu v [wall_material own|contact] [sigma v] [mu v | summit_density v
  *       summit_radius v] [psi v] [K v] [plastic_ratio v] [overlap_max F] [temperature T]
  *       [<sub-models>]
  *       xplane|yplane|zplane lo hi | zcylinder radius [wiggle dim A period] [shear dim v]
@@ -27,6 +27,9 @@
 #include "region.h"
 #include "error.h"
 #include "force.h"
+#include "input.h"
+#include "modify.h"
+#include "variable.h"
 #include "memory.h"
 #include "neighbor.h"
 #include "update.h"
@@ -41,8 +44,8 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), region(nullptr), history(nullptr), contacts(false),
-    pair(nullptr)
+    Fix(lmp, narg, arg), material_contact(false), tvar(-1), region(nullptr), history(nullptr),
+    contacts(false), pair(nullptr)
 {
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "Fix wall/egw requires atom_style sphere");
@@ -55,7 +58,17 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
   if (std::string(arg[2]) == "wall/egw/region") {
     // fix ID group wall/egw/region MODEL TOL <keywords> [region] region-ID [contacts]
     int last = narg - 1;
-    if (narg > 6 && std::string(arg[last]) == "contacts") contacts = true, last--;
+    // fix wall/gran/region's keywords after the region ID (contacts, temperature T), in
+    // any order
+    while (last > 5) {
+      if (std::string(arg[last]) == "contacts") {
+        contacts = true, last--;
+      } else if (last - 1 > 5 && std::string(arg[last - 1]) == "temperature") {
+        set_temperature(arg[last]);
+        last -= 2;
+      } else
+        break;
+    }
     if (last < 5) error->all(FLERR, "Fix wall/egw/region: expected 'fix ID group wall/egw/region "
                                     "MODEL TOL <wall keywords> region-ID [contacts]'");
     region_id = arg[last];
@@ -116,7 +129,7 @@ void FixWallEGW::parse(int narg, char **arg)
     error->all(FLERR, "{}: TOL = '{}': must be a number in [1e-8, 0.1]", who, arg[4]);
   tol = v;
   bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
-       havebeta = false;
+       havebeta = false, haveplastic = false;
   int i = 5;
   auto number = [&](const std::string &key, int k) {
     if (k >= narg) error->all(FLERR, "{}: keyword '{}' needs a value", who, key);
@@ -131,6 +144,21 @@ void FixWallEGW::parse(int narg, char **arg)
     int next = egw_submodels_parse(error, who, narg, arg, i, wall.sub);
     if (next > 0) {
       i = next;
+      continue;
+    }
+    if (key == "temperature") {
+      if (i + 1 >= narg) error->all(FLERR, "{}: keyword 'temperature' needs a value", who);
+      set_temperature(arg[i + 1]);
+      i += 2;
+      continue;
+    }
+    if (key == "wall_material") {
+      if (i + 1 >= narg) error->all(FLERR, "{}: keyword 'wall_material' needs a value", who);
+      std::string w = arg[i + 1];
+      if (w == "contact") material_contact = true;
+      else if (w == "own") material_contact = false;
+      else error->all(FLERR, "{}: wall_material = '{}': must be 'own' or 'contact'", who, w);
+      i += 2;
       continue;
     }
     double x = number(key, i + 1);
@@ -155,15 +183,13 @@ void FixWallEGW::parse(int narg, char **arg)
       wall.beta = x, havebeta = true;
     } else if (key == "psi") {
       if (x < 0) bad("must be >= 0");
-      wall.psi = x;
+      wall.psi = x, haveplastic = true;
     } else if (key == "K") {
       if (x <= 0 || x >= 1) bad("must be in (0, 1)");
-      wall.K = x;
+      wall.K = x, haveplastic = true;
     } else if (key == "plastic_ratio") {
       if (x <= 1) bad("must be > 1");
-      wall.rho = x;
-    } else if (key == "temperature") {
-      wall_temperature = x, have_temperature = true;
+      wall.rho = x, haveplastic = true;
     } else if (key == "overlap_max") {
       if (x <= 0) bad("must be > 0");
       overlap_max = x;
@@ -183,9 +209,12 @@ void FixWallEGW::parse(int narg, char **arg)
                haveeta ? "summit_density" : "summit_radius",
                haveeta ? "summit_radius" : "summit_density");
   wall.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
+  if (comm->me == 0) egw_warn_ignored(error, who, model, wall, havesig, haveplastic);
   if (wall.sub.heat != EgwSubmodels::HEAT_NONE && !have_temperature)
     error->all(FLERR, "{}: a heat model needs the wall's 'temperature T'", who);
-  (void) havesig;
+  if (wall.sub.heat == EgwSubmodels::HEAT_NONE && have_temperature && comm->me == 0)
+    error->warning(FLERR, "{}: 'temperature' without a heat model (heat area|radius) is "
+                          "ignored", who);
   wall.set = 1;
 
   if (wallstyle == REGION) {
@@ -255,6 +284,54 @@ int FixWallEGW::setmask()
   return POST_FORCE | POST_FORCE_RESPA | MIN_POST_FORCE;
 }
 
+/* the wall's temperature: a number, or v_name (an equal-style variable, evaluated every
+ * step, as fix wall/gran's) */
+void FixWallEGW::set_temperature(const char *word)
+{
+  have_temperature = true;
+  if (utils::strmatch(word, "^v_")) {
+    tvar_name = word + 2;
+    return;
+  }
+  if (!egw_parse_number(word, wall_temperature))
+    error->all(FLERR, "Fix wall/egw: temperature = '{}': neither a finite number nor v_name",
+               word);
+  tvar_name.clear();
+}
+
+/* atom i's centre has reached or crossed the wall (delta >= R_i): the wall let it through
+ * (too soft a wall or too large a time step); stop now, naming the overlap, rather than
+ * let LAMMPS find a lost atom later */
+void FixWallEGW::sank_through(int i, double delta, double radi)
+{
+  error->one(FLERR, "Fix wall/egw {}: atom {} sank through the wall: overlap {:.6g} >= its "
+                    "radius {:.6g} (its centre reached the wall's surface): a stiffer wall "
+                    "(E, or wall_material contact for fix wall/gran's E), a smaller time step or "
+                    "a slower impact", id, atom->tag[i], delta, radi);
+}
+
+/* region walls: atom i (history h of the last step) has no contact now, or (h null) a
+ * deep one now; if it had a deep one (overlap >= R_i/2, its wall id stored negative) or has
+ * one now, and its centre is outside the region with its faces closed (an open region
+ * matches every point and measures its faces from outside too), it went through a wall */
+void FixWallEGW::sank_through_region(int i, const double *h)
+{
+  if (update->setupflag) return;
+  bool deep = h == nullptr;
+  for (int s = 0; h && s < (int) h[0]; s++) deep = deep || h[1 + s * (1 + nhist)] < 0.0;
+  if (!deep) return;
+  double *xi = atom->x[i];
+  int open = region->openflag;
+  region->openflag = 0;
+  bool inside = region->match(xi[0], xi[1], xi[2]);
+  region->openflag = open;
+  if (inside) return;
+  error->one(FLERR, "Fix wall/egw/region {}: atom {} sank through the region's wall: overlap "
+                    ">= half its radius {:.6g} on the last step, its centre now outside the "
+                    "region: a stiffer wall (E, or wall_material contact for fix wall/gran's E), "
+                    "a smaller time step or a slower impact", id, atom->tag[i], atom->radius[i]);
+}
+
 void FixWallEGW::egw_fail(const std::string &what)
 {
   char buf[512];
@@ -285,6 +362,12 @@ void FixWallEGW::build_law(int t)
   if (!L.combine(*c, wall))
     error->all(FLERR, "Fix wall/egw: type {} and the wall give mu in different ways (mu vs "
                       "summit_density/summit_radius)", t);
+  if (material_contact) {
+    // the wall's E and nu are the contact's (fix wall/gran granular hertz/material): E*
+    // and G* of two bodies of that material, E/(2(1-nu^2)) and E/(4(2-nu)(1+nu))
+    L.E_star = wall.E / (2.0 * (1.0 - wall.nu * wall.nu));
+    L.G_star = wall.E / (4.0 * (2.0 - wall.nu) * (1.0 + wall.nu));
+  }
   L.sub = wall.sub;
   L.setup(model);
   double rhi = pair->type_radius_max(t), rlo = pair->type_radius_min(t);
@@ -316,6 +399,13 @@ void FixWallEGW::init()
   if (wallstyle == REGION) {
     region = domain->get_region_by_id(region_id);
     if (!region) error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
+  }
+  if (!tvar_name.empty()) {
+    tvar = input->variable->find(tvar_name.c_str());
+    if (tvar < 0)
+      error->all(FLERR, "Fix wall/egw: temperature variable '{}' does not exist", tvar_name);
+    if (!input->variable->equalstyle(tvar))
+      error->all(FLERR, "Fix wall/egw: temperature variable '{}' is not equal-style", tvar_name);
   }
   pair = dynamic_cast<PairEGW *>(force->pair_match("egw", 1));
   if (!pair)
@@ -468,6 +558,11 @@ void FixWallEGW::post_force(int /*vflag*/)
   // commands between runs may change atoms without the per-atom callbacks' care for the
   // flag: each far atom's history is cleared once again in a run's set-up
   if (update->setupflag) std::fill(cleared.begin(), cleared.begin() + atom->nlocal, 0);
+  if (tvar >= 0 && has_heat()) {
+    modify->clearstep_compute();
+    wall_temperature = input->variable->compute_equal(tvar);
+    modify->addstep_compute(update->ntimestep + 1);
+  }
   if (wallstyle == REGION) {
     post_force_region();
     return;
@@ -510,6 +605,7 @@ void FixWallEGW::post_force(int /*vflag*/)
       clear_history(i, history[i], nhist);
       continue;
     }
+    if (!(delta < radi)) sank_through(i, delta, radi);
     double *hist = history[i];
     double n[3] = {0.0, 0.0, 0.0};
     if (wallstyle != ZCYLINDER) n[axis] = low ? 1.0 : -1.0;
@@ -547,6 +643,7 @@ void FixWallEGW::post_force_region()
     if (!(mask[i] & groupbit)) continue;
     double *h = history[i];
     if (!region->match(x[i][0], x[i][1], x[i][2])) {
+      sank_through_region(i, h);
       clear_history(i, h, stride);
       continue;
     }
@@ -563,12 +660,14 @@ void FixWallEGW::post_force_region()
       if (!(built_rhi[type[i]] > 0))
         error->one(FLERR, "Fix wall/egw/region: an atom of type {} touches the region but the "
                           "type has no pair_coeff in pair_style egw", type[i]);
+      if (delta >= 0.5 * radi) sank_through_region(i, nullptr);
       double wid = region->contact[m].iwall + 1.0;
       double *slot = &keep[(size_t) nnew * (1 + nhist)];
-      slot[0] = wid;
+      // the wall's id + 1, negative for a deep contact (delta >= R_i/2: sank_through_region)
+      slot[0] = delta >= 0.5 * radi ? -wid : wid;
       for (int s = 0; s < nold; s++) {    // this wall's history from the last step
         const double *old = &h[1 + s * (1 + nhist)];
-        if (old[0] == wid) {
+        if (std::fabs(old[0]) == wid) {
           for (int k = 0; k < nhist; k++) slot[1 + k] = old[1 + k];
           break;
         }
@@ -587,6 +686,7 @@ void FixWallEGW::post_force_region()
       wall_contact(i, L, delta, R, n, vwall, hist, r, update_history, region->contact[m].radius);
       nnew++;
     }
+    if (nnew == 0) sank_through_region(i, h);
     h[0] = nnew;
     for (size_t k = 0; k < keep.size(); k++) h[1 + k] = keep[k];
   }

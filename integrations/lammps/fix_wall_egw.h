@@ -42,6 +42,9 @@ class FixWallEGW : public Fix {
   int model;                       // EGW_MODEL_*
   double tol, overlap_max;
   EgwCoeff wall;                   // the wall's material, surface and sub-models
+  // wall_material own: the wall's E, nu are its own, combined with the particle's (E*, G*
+  // as two types); contact: they are the contact's, as fix wall/gran's (E* = E/(2(1-nu^2)))
+  bool material_contact;
   int wallstyle, axis;             // axis: 0, 1, 2 (the plane's normal; z for the cylinder)
   double lo, hi, cylradius;
   double cyl_rc;                   // zcylinder: the wall's radius of curvature (-2 radius)
@@ -51,6 +54,9 @@ class FixWallEGW : public Fix {
   bigint time_origin;
   double wall_temperature;         // heat models: the wall's temperature
   bool have_temperature;
+  std::string tvar_name;           // temperature v_name: the variable's name, its index
+  int tvar;
+  void set_temperature(const char *word);
   int nhist, hist_sub;
   class Region *region;            // wall/egw/region: the region's surfaces
   std::string region_id;
@@ -82,6 +88,8 @@ class FixWallEGW : public Fix {
                     const double *vwall, double *hist, double dist, bool update_history,
                     double rc);
   void egw_fail(const std::string &);
+  void sank_through(int i, double delta, double radi);
+  void sank_through_region(int i, const double *h);
 };
 
 }    // namespace LAMMPS_NS

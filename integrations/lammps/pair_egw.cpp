@@ -274,14 +274,35 @@ void PairEGW::init_style()
  * (more pairs: every pair of a polydisperse type's smaller grains, ~45 % more in the pour).
  * The guard needs post_integrate before each step's Neighbor::decide() and a box whose
  * images do not move: a run with the Verlet family and no fix that changes the box. */
+/* why request_list() took the plain list, for the log */
+std::string PairEGW::plain_reason(double tail_max, const std::string &box_fixes) const
+{
+  std::vector<std::string> why;
+  if (tail_max > 0.25 * neighbor->skin)
+    why.push_back(fmt::format("the tail {:.6g} > skin/4 = {:.6g}", tail_max,
+                              0.25 * neighbor->skin));
+  if (update->whichflag != 1) why.push_back("not a run (a minimization)");
+  if (utils::strmatch(update->integrate_style, "^respa")) why.push_back("run_style respa");
+  if (!box_fixes.empty()) why.push_back(box_fixes + " changes the box");
+  if (neighbor->build_once) why.push_back("neigh_modify once yes");
+  std::string s;
+  for (auto &w : why) s += (s.empty() ? "" : "; ") + w;
+  return s;
+}
+
 void PairEGW::request_list()
 {
   double tail_max = 0.0;
   for (double t : tail_of) tail_max = std::max(tail_max, t);
-  bool box_changes = false;
-  for (auto f : modify->get_fix_list()) box_changes = box_changes || f->box_change;
+  // a fix that changes the box moves the periodic images and so the pairs' distances
+  // without moving the atoms; one that changes only the sub-domains (fix balance:
+  // BOX_CHANGE_DOMAIN, atoms migrating on reneighboring steps) does not
+  std::string box_fixes;
+  for (auto f : modify->get_fix_list())
+    if (f->box_change & ~Fix::BOX_CHANGE_DOMAIN)
+      box_fixes += fmt::format("{}fix {} ({})", box_fixes.empty() ? "" : ", ", f->id, f->style);
   bool guard_works = update->whichflag == 1 && !utils::strmatch(update->integrate_style, "^respa")
-      && !box_changes && !neighbor->build_once;
+      && box_fixes.empty() && !neighbor->build_once;
   bool size = !(tail_max > 0) || (guard_works && tail_max <= 0.25 * neighbor->skin);
   double trigger = size && tail_max > 0 ? neighbor->skin - tail_max : 0.0;
   if (size) neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_HISTORY);
@@ -300,8 +321,9 @@ void PairEGW::request_list()
                                        : std::string("a size neighbor list"))
                         : fmt::format("a neighbor list to the types' largest radii + the tail "
                                       "{:.6g} + skin (a size list needs the tail <= skin/4 "
-                                      "and a Verlet run, reneighboring, with a fixed box)",
-                                      tail_max));
+                                      "and a Verlet run, reneighboring, with a fixed box; "
+                                      "here: {})", tail_max, plain_reason(tail_max,
+                                      box_fixes)));
   list_was_size = size, list_trigger = trigger;
 }
 

@@ -82,6 +82,7 @@ class PairEGW : public Pair {
   void build_tables(int, int, double, double);
   void type_radii();
   void request_list();
+  std::string plain_reason(double tail_max, const std::string &box_fixes) const;
   void egw_fail(const std::string &what);
   inline void normal(EgwLaw &, double delta, double R, double *hist, double *cache, double &F,
                      double &S, double &U, int want_energy);

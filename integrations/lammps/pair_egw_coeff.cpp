@@ -89,6 +89,16 @@ int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char
     return v;
   };
   const double inf = HUGE_VAL;
+  // granular's words egw does not have: refused by name, never read as something else
+  auto unsupported = [&](const std::string &what) {
+    error->all(FLERR, "{}: {} is not supported by egw (pair granular's; egw has: damping "
+                      "velocity|mass_velocity|viscoelastic|tsuji|coeff_restitution|none, "
+                      "tangential linear_nohistory|linear_history|mindlin[_rescale][/force], "
+                      "rolling sds|none, twisting marshall|sds|none, heat area|radius|none, "
+                      "limit_damping)", who, what);
+  };
+  if (key == "cutoff" || key == "synchronized_verlet")
+    unsupported(fmt::format("keyword '{}'", key));
   if (key == "limit_damping") {
     p.limit_damping = 1;
     return i + 1;
@@ -101,11 +111,11 @@ int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char
     else if (m == "viscoelastic") p.damping = DAMP_VISCOELASTIC;
     else if (m == "tsuji") p.damping = DAMP_TSUJI;
     else if (m == "coeff_restitution") p.damping = DAMP_COEFF_RESTITUTION;
+    else if (m == "none") p.damping = DAMP_NONE;
     else {
       double v;
       if (!egw_parse_number(arg[i + 1], v))
-        error->all(FLERR, "{}: damping '{}': neither a number nor velocity, mass_velocity, "
-                          "viscoelastic, tsuji or coeff_restitution", who, m);
+        unsupported(fmt::format("damping model '{}' (nor is it a number)", m));
       p.damp_value = v, p.damp_value_set = 1;
     }
     return i + 2;
@@ -132,10 +142,7 @@ int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char
         : m == "mindlin_rescale" ? TANG_MINDLIN_RESCALE
         : m == "mindlin/force" ? TANG_MINDLIN_FORCE
         : m == "mindlin_rescale/force" ? TANG_MINDLIN_RESCALE_FORCE : -1;
-    if (t < 0)
-      error->all(FLERR, "{}: tangential model '{}': must be linear_nohistory, linear_history, "
-                        "mindlin, mindlin_rescale, mindlin/force or mindlin_rescale/force",
-                 who, m);
+    if (t < 0) unsupported(fmt::format("tangential model '{}'", m));
     need(4, (m + " k_t x_t mu_t").c_str());
     p.tangential = t;
     if (t != TANG_LINEAR_HISTORY && std::string(arg[i + 2]) == "NULL") p.kt_null = 1;
@@ -146,8 +153,12 @@ int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char
   }
   if (key == "rolling") {
     need(1, "sds k_r gamma_r mu_r");
+    if (std::string(arg[i + 1]) == "none") {
+      p.rolling = ROLL_NONE;
+      return i + 2;
+    }
     if (std::string(arg[i + 1]) != "sds")
-      error->all(FLERR, "{}: rolling model '{}': must be sds", who, arg[i + 1]);
+      unsupported(fmt::format("rolling model '{}'", arg[i + 1]));
     need(4, "sds k_r gamma_r mu_r");
     p.rolling = ROLL_SDS;
     p.kr = num(i + 2, "k_r", 0, true, inf, true);
@@ -162,7 +173,11 @@ int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char
       p.twisting = TWIST_MARSHALL;
       return i + 2;
     }
-    if (m != "sds") error->all(FLERR, "{}: twisting model '{}': must be marshall or sds", who, m);
+    if (m == "none") {
+      p.twisting = TWIST_NONE;
+      return i + 2;
+    }
+    if (m != "sds") unsupported(fmt::format("twisting model '{}'", m));
     need(4, "sds k_tw gamma_tw mu_tw");
     p.twisting = TWIST_SDS;
     p.ktw = num(i + 2, "k_tw", 0, true, inf, true);
@@ -171,15 +186,33 @@ int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char
     return i + 5;
   }
   if (key == "heat") {
-    need(2, "area h_s | radius k_s");
+    need(1, "area h_s | radius k_s | none");
     std::string m = arg[i + 1];
+    if (m == "none") {
+      p.heat = HEAT_NONE, p.heat_coeff = 0.0;
+      return i + 2;
+    }
+    need(2, "area h_s | radius k_s");
     if (m == "area") p.heat = HEAT_AREA;
     else if (m == "radius") p.heat = HEAT_RADIUS;
-    else error->all(FLERR, "{}: heat model '{}': must be area or radius", who, m);
+    else unsupported(fmt::format("heat model '{}'", m));
     p.heat_coeff = num(i + 2, m == "area" ? "h_s" : "k_s", 0, false, inf, true);
     return i + 3;
   }
   return -1;
+}
+
+/* keywords the model ignores: a WARNING naming them (as Python's egw warns) */
+void LAMMPS_NS::egw_warn_ignored(Error *error, const char *who, int model, const EgwCoeff &c,
+                                 bool have_sigma, bool have_plastic)
+{
+  const char *names[] = {"Hertz", "GW", "E-GW", "EP-GW"};
+  if (have_plastic && model != EGW_MODEL_EPGW)
+    error->warning(FLERR, "{}: psi, K and plastic_ratio are EP-GW's; model {} ignores them",
+                   who, names[model]);
+  if (model == EGW_MODEL_HERTZ && (c.mu_mode != 0 || (have_sigma && c.sigma > 0)))
+    error->warning(FLERR, "{}: model Hertz is smooth: it ignores sigma, mu and summit data",
+                   who);
 }
 
 /* the damping value's range once the model is known */
@@ -188,6 +221,9 @@ void LAMMPS_NS::egw_submodels_check(Error *error, const char *who, EgwSubmodels:
   using namespace EgwSubmodels;
   bool restitution = p.damping == DAMP_TSUJI || p.damping == DAMP_COEFF_RESTITUTION;
   if (!p.damp_value_set) p.damp_value = restitution ? 1.0 : 0.0;
+  if (p.damping == DAMP_NONE && p.damp_value_set && p.damp_value != 0.0)
+    error->all(FLERR, "{}: damping {} with damping none: no damping model takes it (give a "
+                      "model, e.g. viscoelastic, granular's default)", who, p.damp_value);
   double v = p.damp_value;
   if (restitution && !(v > 0 && v <= 1))
     error->all(FLERR, "{}: damping = {}: the restitution coefficient must be in (0, 1]", who, v);
@@ -201,7 +237,7 @@ void LAMMPS_NS::egw_submodels_check(Error *error, const char *who, EgwSubmodels:
 void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
 {
   bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
-       havebeta = false;
+       havebeta = false, haveplastic = false;
   c = Coeff();
   static const char *granular_normal[] = {"hooke", "hertz", "hertz/material", "dmt", "jkr",
                                           "mdr"};
@@ -209,9 +245,9 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
     std::string key = arg[i];
     for (const char *g : granular_normal)
       if (key == g)
-        error->all(FLERR, "Pair coeff egw: '{}' is pair granular's normal model; egw's normal "
-                          "law takes keywords: E v nu v sigma v mu v ... (damping, tangential, "
-                          "rolling, twisting and heat as in granular)", key);
+        error->all(FLERR, "Pair coeff egw: '{}' (pair granular's normal model) is not supported: "
+                          "egw's normal law takes keywords: E v nu v sigma v mu v ... (damping, "
+                          "tangential, rolling, twisting and heat as in granular)", key);
     int next = egw_submodels_parse(error, "Pair coeff egw", narg, arg, i, c.sub);
     if (next > 0) {
       i = next;
@@ -244,13 +280,13 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
       c.beta = v, havebeta = true;
     } else if (key == "psi") {
       if (v < 0) bad("must be >= 0");
-      c.psi = v;
+      c.psi = v, haveplastic = true;
     } else if (key == "K") {
       if (v <= 0 || v >= 1) bad("must be in (0, 1)");
-      c.K = v;
+      c.K = v, haveplastic = true;
     } else if (key == "plastic_ratio") {
       if (v <= 1) bad("must be > 1");
-      c.rho = v;
+      c.rho = v, haveplastic = true;
     } else
       error->all(FLERR, "Pair coeff egw: unknown keyword '{}'", key);
     i += 2;
@@ -269,6 +305,7 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
                haveeta ? "summit_density" : "summit_radius",
                haveeta ? "summit_radius" : "summit_density");
   c.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
+  if (comm->me == 0) egw_warn_ignored(error, "Pair coeff egw", model, c, havesig, haveplastic);
   if (model != EGW_MODEL_HERTZ && c.sigma > 0 && c.mu_mode == 0)
     error->all(FLERR, "Pair coeff egw: keyword 'mu' (or 'summit_density' and "
                       "'summit_radius') is required when sigma > 0");

@@ -13,7 +13,14 @@ a first run), granular, egw E-GW and EP-GW on 1 and 2 ranks: set-up time = wall 
 the run (start-up, tables, pour) minus its loop time, and LAMMPS's "Per MPI rank memory
 allocation" (the largest rank's), best of REPEAT interleaved runs; written to
 build/lammps/bench_setup.csv.
-Usage: bench.py [NRUN [REPEAT]]      bench.py --setup [REPEAT]   (the set-up table only)"""
+Then LAMMPS's own three granular decks converted to egw (bench/flatwall.in, drum.in,
+heat.in: in.pour.flatwall, in.pour.drum, in.pour.heat with their numbers, E-GW at sigma =
+1e-16, walls with wall_material contact), each with law egw and granular on 1 and 2 ranks
+(drum and heat have fix balance), best of REPEAT interleaved runs: loop / granular, written
+to build/lammps/bench_decks.csv.  in.pour.heat runs DECK_HEAT_NRUN steps (20000 of its
+100000: the pour is in by then; the ratio of the rest is the resting pile's).
+Usage: bench.py [NRUN [REPEAT]]      bench.py --setup [REPEAT]   (the set-up table only)
+       bench.py --decks [REPEAT]                                  (the three decks only)"""
 import os
 import re
 import subprocess
@@ -26,9 +33,16 @@ ROOT = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
 LMP = os.path.join(ROOT, "build", "lammps", "lmp")
 DECK = os.path.join(ROOT, "integrations", "lammps", "examples", "pour.in")
 SETUP_ONLY = len(sys.argv) > 1 and sys.argv[1] == "--setup"
-ARGS = sys.argv[2:] if SETUP_ONLY else sys.argv[1:]
+DECKS_ONLY = len(sys.argv) > 1 and sys.argv[1] == "--decks"
+ARGS = sys.argv[2:] if SETUP_ONLY or DECKS_ONLY else sys.argv[1:]
 NRUN = 20000 if SETUP_ONLY or not ARGS else int(ARGS[0])
-REPEAT = int(ARGS[-1]) if (SETUP_ONLY and ARGS) or len(ARGS) > 1 else 3
+REPEAT = int(ARGS[-1]) if ((SETUP_ONLY or DECKS_ONLY) and ARGS) or len(ARGS) > 1 else 3
+DECK_HEAT_NRUN = 20000
+# LAMMPS's decks converted (bench/*.in): name, file, extra -var pairs
+DECKS = [("in.pour.flatwall (5000 steps)", "flatwall.in", []),
+         ("in.pour.drum (2000 + 3000 steps, fix balance)", "drum.in", []),
+         (f"in.pour.heat ({DECK_HEAT_NRUN} of 100000 steps, fix balance)", "heat.in",
+          ["nrun", str(DECK_HEAT_NRUN)])]
 SETUP_NRUN = 100
 
 EGW = "egw E-GW (mu from summits: 2 slices, linear in ln mu)"
@@ -72,6 +86,56 @@ def run(law, model, np, extra, nrun=None, env=None):
                 contacts=float(m.group(3)), mem=float(mem.group(1)))
 
 
+def run_deck(deck, law, np, extra):
+    tmp = tempfile.mkdtemp(prefix="egw-bench-")
+    args = [LMP, "-np", str(np), "-in", os.path.join(HERE, deck), "-var", "law", law]
+    for k in range(0, len(extra), 2):
+        args += ["-var", extra[k], extra[k + 1]]
+    p = subprocess.run(args + ["-log", "none", "-nocite"], cwd=tmp, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True)
+    out = p.stdout
+    if p.returncode or "DECK" not in out:
+        sys.exit("bench: " + deck + " failed:\n" + out[-3000:])
+    loops = [float(x) for x in re.findall(r"Loop time of ([0-9.eE+-]+)", out)]
+    pairs = [float(x) for x in re.findall(r"^Pair\s+\|\s*\S+\s*\|\s*([0-9.eE+-]+)", out, re.M)]
+    size = "a size neighbor list" in out
+    return dict(loop=sum(loops), pair=sum(pairs), size=size,
+                atoms=int(re.search(r"DECK \S+ atoms (\d+)", out).group(1)))
+
+
+def decks_table():
+    """LAMMPS's three granular decks converted: loop time egw / granular"""
+    best = {}
+    for rep in range(REPEAT):
+        for k, (name, deck, extra) in enumerate(DECKS):
+            for np in (1, 2):
+                for law in ("granular", "egw"):
+                    r = run_deck(deck, law, np, extra)
+                    print(f"  {name} {law}, {np} rank(s): loop {r['loop']:.2f} s",
+                          file=sys.stderr, flush=True)
+                    key = (k, np, law)
+                    if key not in best or r["loop"] < best[key]["loop"]:
+                        best[key] = r
+    print()
+    print(f"| LAMMPS's deck, converted (E-GW, sigma = 1e-16), best of {REPEAT} | ranks | "
+          "grains | loop egw [s] | loop granular [s] | loop / granular | pair / granular | "
+          "egw's list |")
+    print("|---|---|---|---|---|---|---|---|")
+    lines = ["deck,ranks,atoms,loop_egw_s,loop_granular_s,ratio,pair_ratio,size_list"]
+    for k, (name, deck, extra) in enumerate(DECKS):
+        for np in (1, 2):
+            e, g = best[(k, np, "egw")], best[(k, np, "granular")]
+            ratio, pratio = e["loop"] / g["loop"], e["pair"] / max(g["pair"], 1e-30)
+            lst = "size" if e["size"] else "plain"
+            print(f"| {name} | {np} | {e['atoms']} | {e['loop']:.2f} | {g['loop']:.2f} | "
+                  f"**{ratio:.2f}** | {pratio:.2f} | {lst} |")
+            lines.append(f"{deck},{np},{e['atoms']},{e['loop']:.3f},{g['loop']:.3f},{ratio:.3f},"
+                         f"{pratio:.3f},{lst}")
+    os.makedirs(os.path.join(ROOT, "build", "lammps"), exist_ok=True)
+    with open(os.path.join(ROOT, "build", "lammps", "bench_decks.csv"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 def setup_table():
     """set-up time (wall - loop, first run: cache off) and memory per rank"""
     best = {}
@@ -105,6 +169,9 @@ def main():
         sys.exit("bench: " + LMP + " not found: build the plugin and runner first (make lammps)")
     if SETUP_ONLY:
         setup_table()
+        return
+    if DECKS_ONLY:
+        decks_table()
         return
     best = {}
     for rep in range(REPEAT):
@@ -141,6 +208,7 @@ def main():
     with open(os.path.join(ROOT, "build", "lammps", "bench.csv"), "w") as f:
         f.write("\n".join(lines) + "\n")
     setup_table()
+    decks_table()
 
 
 if __name__ == "__main__":

@@ -140,6 +140,10 @@ int main(int argc, char **argv)
     for (int j = 1; j < 20000; j++) {
       // overlaps crowded towards contact, where the nodes are (and the pour's contacts)
       double f = j / 20000.0, x = fast.x_lo + (fast.x_hi - fast.x_lo) * f * f * f;
+      // a table over many decades (sigma -> 0, log-spaced buckets): every decade, and the
+      // tail and contact in detail
+      if (fast.x_hi > 1024.0 && j % 3 == 1) x = std::exp(f * std::log(fast.x_hi));
+      if (fast.x_hi > 1024.0 && j % 3 == 2) x = fast.x_lo + (2.0 - fast.x_lo) * f;
       int k = n == 1 ? 0 : j % (n - 1);
       double w = n == 1 ? 0.0 : (j % 7) / 6.0, p0, d0, p1 = 0, d1 = 0, pf, df;
       if (!fast.covers(x)) continue;
