@@ -108,7 +108,8 @@ contains
    end function psd_slope_squared
 
    !> Persson's curve at mean pressures geometric from p_min to p_max (per_decade a decade,
-   !> both ends): u(:) [length] (decreasing), p(:), the area fraction and dp/du (< 0).
+   !> both ends): u(:) [length] (decreasing), p(:), the area fraction and dp/du (< 0);
+   !> it ends before (nearly) full contact, where u underflows (so it may be shorter).
    !> Errors (egw_invalid_argument, naming the argument): fewer than 2 nodes, q not
    !> finite, > 0 and ascending, C not finite or < 0, all of C zero, a pressure range or
    !> modulus that is not finite and positive, gamma outside (0, 1].
@@ -123,7 +124,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       real(dp), allocatable :: qq(:), wq(:), fq(:), ww(:), jt(:), dj(:)
       real(dp) :: s0, dudp
-      integer :: n, k, i
+      integer :: n, k, i, last
 
       call check_curve(q, c, modulus, p_min, p_max, per_decade, options, error)
       if (allocated(error)) return
@@ -135,6 +136,7 @@ contains
          p(k) = p_min*(p_max/p_min)**(real(k - 1, dp)/real(n - 1, dp))
       end do
       p(n) = p_max
+      last = 0
       do k = 1, n
          u(k) = 0.0_dp
          dudp = 0.0_dp
@@ -145,9 +147,22 @@ contains
             dudp = dudp + wq(i)*fq(i)*(ww(i)/modulus)*inner_rate(s0, options%gamma)
          end do
          u(k) = sqrt(pi)*u(k)
-         dpdu(k) = 1.0_dp/(sqrt(pi)*dudp)
          area(k) = erf(p(k)/modulus*sqrt(2.0_dp/psd_slope_squared(q, c)))
+         ! (nearly) full contact: u and du/dp underflow, the law ends (as the BEM's)
+         if (.not. (dudp < 0.0_dp .and. u(k) > 0.0_dp .and. area(k) < 1.0_dp)) exit
+         dpdu(k) = 1.0_dp/(sqrt(pi)*dudp)
+         last = k
       end do
+      if (last < 2) then
+         call fatal_error(error, egw_invalid_argument, "p_min = "//format_real(p_min) &
+            & //": the surface is in full contact there already (Persson's u vanishes): " &
+            & //"lower p_min")
+         return
+      end if
+      u = u(:last)
+      p = p(:last)
+      area = area(:last)
+      dpdu = dpdu(:last)
    end subroutine persson_flat_curve
 
    subroutine check_curve(q, c, modulus, p_min, p_max, per_decade, options, error)
