@@ -44,8 +44,7 @@ contains
             call fatal_error(error, egw_unsupported, "flat_law: a flat-law scene builds " &
                & //"the table of one pair (one particle type or one radius, one material)" &
                & //"; this one has "//int_str(ns)//" parameter sets (build each pair's " &
-               & //"table with egw_table_build_flat_law, or pair_coeff ... law FILE in " &
-               & //"LAMMPS)")
+               & //"table with egw_table_build_flat_law, or run egw-table once per pair)")
             return
          end if
          choice%kind = choice_table
