@@ -17,8 +17,8 @@ from typing import Optional, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .core import (OK, ArrayLike, FloatOrArray, InvalidArgumentError, INVALID_ARGUMENT,
-                   Options, _number_array, _require, check)
+from .core import (ArrayLike, FloatOrArray, InvalidArgumentError, INVALID_ARGUMENT,
+                   Options, _loop, _number_array, _require, _scalar_or_array, check)
 from .tables import _Handle
 
 
@@ -338,18 +338,10 @@ class FlatLaw(_Handle):
             A NaN u, or one where the law is beyond the doubles (the message names it).
         """
         ua = np.asarray(_number_array("u", u), dtype=np.float64)
-        p = np.empty(ua.shape)
-        d = np.empty(ua.shape)
-        pv, dv = ctypes.c_double(), ctypes.c_double()
-        h = self._ptr
-        for i, x in enumerate(ua.reshape(-1)):
-            status = lib.egw_flat_law_pressure(h, float(x), ctypes.byref(pv), ctypes.byref(dv))
-            if status != OK:
-                check(status)
-            p.reshape(-1)[i] = pv.value
-            d.reshape(-1)[i] = dv.value
-        if ua.ndim == 0:
-            p, d = float(p), float(d)
+        flat, h = ua.reshape(-1), self._ptr
+        p, d = _loop(ua.shape, 2, lambda i, rp, rd: check(
+            lib.egw_flat_law_pressure(h, float(flat[i]), rp, rd)))
+        p, d = _scalar_or_array(ua.shape, p, d)
         return (p, d) if derivative else p
 
     def contact_area(self, u: ArrayLike) -> FloatOrArray:
@@ -371,13 +363,10 @@ class FlatLaw(_Handle):
             The law carries no contact areas (status UNSUPPORTED), or a NaN u.
         """
         ua = np.asarray(_number_array("u", u), dtype=np.float64)
-        a = np.empty(ua.shape)
-        av = ctypes.c_double()
-        h = self._ptr
-        for i, x in enumerate(ua.reshape(-1)):
-            check(lib.egw_flat_law_contact_area(h, float(x), ctypes.byref(av)))
-            a.reshape(-1)[i] = av.value
-        return float(a) if ua.ndim == 0 else a
+        flat, h = ua.reshape(-1), self._ptr
+        (a,) = _loop(ua.shape, 1, lambda i, r: check(
+            lib.egw_flat_law_contact_area(h, float(flat[i]), r)))
+        return _scalar_or_array(ua.shape, a)
 
     def __repr__(self) -> str:
         if self._handle is None:
