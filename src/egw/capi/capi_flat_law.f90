@@ -55,16 +55,9 @@ contains
       dd => double_array(dpdu, n)
       aa => double_array(area, n)
       allocate (law)
-      if (associated(dd) .and. associated(aa)) then
-         call new_table_law(uu, pp, law, error, dpdu=dd, area=aa, length=length, &
-            & modulus=modulus)
-      else if (associated(dd)) then
-         call new_table_law(uu, pp, law, error, dpdu=dd, length=length, modulus=modulus)
-      else if (associated(aa)) then
-         call new_table_law(uu, pp, law, error, area=aa, length=length, modulus=modulus)
-      else
-         call new_table_law(uu, pp, law, error, length=length, modulus=modulus)
-      end if
+      ! (a disassociated pointer is an absent optional argument, Fortran 2008)
+      call new_table_law(uu, pp, law, error, dpdu=dd, area=aa, length=length, &
+         & modulus=modulus)
       stat = put_handle_settled(out, c_loc(law), error)
       if (stat /= egw_ok) deallocate (law)
    end function egw_flat_law_from_table

@@ -84,7 +84,7 @@ contains
       character(len=*), intent(in) :: path, text
       type(table_flat_law), intent(out) :: law
       type(egw_error), allocatable, intent(out) :: error
-      real(dp), allocatable :: rows(:, :)
+      real(dp), allocatable :: rows(:, :), dpdu(:), area(:)
       real(dp) :: length, modulus, v
       integer :: col(4), ncol, start, eol, line, n, k
       logical :: ok, have_columns
@@ -153,19 +153,11 @@ contains
          call bad(error, path, "a rough-flat law needs at least 2 rows of (u, pressure)")
          return
       end if
-      if (col(3) /= 0 .and. col(4) /= 0) then
-         call new_table_law(rows(1, :n), rows(2, :n), law, error, dpdu=rows(3, :n), &
-            & area=rows(4, :n), length=length, modulus=modulus)
-      else if (col(3) /= 0) then
-         call new_table_law(rows(1, :n), rows(2, :n), law, error, dpdu=rows(3, :n), &
-            & length=length, modulus=modulus)
-      else if (col(4) /= 0) then
-         call new_table_law(rows(1, :n), rows(2, :n), law, error, area=rows(4, :n), &
-            & length=length, modulus=modulus)
-      else
-         call new_table_law(rows(1, :n), rows(2, :n), law, error, length=length, &
-            & modulus=modulus)
-      end if
+      ! the optional columns as present or absent arguments
+      if (col(3) /= 0) dpdu = rows(3, :n)
+      if (col(4) /= 0) area = rows(4, :n)
+      call new_table_law(rows(1, :n), rows(2, :n), law, error, dpdu=dpdu, area=area, &
+         & length=length, modulus=modulus)
       if (allocated(error)) then
          error%stat = egw_bad_file
          error%message = path//": "//error%message//" (row = node)"
