@@ -1544,8 +1544,17 @@ int main(int argc, char **argv) {
   }
   if (jobs < 1) jobs = 1;
   if (limit < 1) limit = 1;
-  /* each solve on one thread: -j children share the cores */
-  setenv("OMP_NUM_THREADS", "1", 1);
+  /* each solve on one thread: -j children share the cores. libgomp reads
+   * OMP_NUM_THREADS when it is loaded, before main, so a setenv here alone would change
+   * nothing: the harness runs itself again with the variable set (once; on failure it
+   * goes on with OpenMP's default). */
+  {
+    const char *omp = getenv("OMP_NUM_THREADS");
+    if (!(omp && strcmp(omp, "1") == 0)) {
+      setenv("OMP_NUM_THREADS", "1", 1);
+      execv("/proc/self/exe", argv);
+    }
+  }
 
   snprintf(tmpdir, sizeof tmpdir, "%s/egw-fuzz-XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
   if (!mkdtemp(tmpdir)) {

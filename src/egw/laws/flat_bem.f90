@@ -53,6 +53,8 @@
 !> short parallel regions per CG step, so on an oversubscribed machine (more runnable
 !> threads than cores) one thread can be much faster than two (egw-bench --bem, 512^2:
 !> 10 s on 2 threads when quiet, 22 s on 1 thread and 160 s on 2 at load average 5).
+!> A map gets at most one thread per 128^2 pixels: an 8 x 8 map on two threads beside
+!> another busy process took 15 s instead of 0.1 s (egw-fuzz), every barrier a time slice.
 module egw_flat_bem
    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_loc, c_int
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -112,6 +114,7 @@ module egw_flat_bem
       real(dp), allocatable :: gap(:, :)       !< gap field (options%keep_fields)
    end type bem_result
 
+   integer, parameter :: pixels_per_thread = 128*128
    logical, save :: fftw_threads_ready = .false.  ! guarded by critical(egw_fftw_planner)
 
 contains
@@ -262,6 +265,9 @@ contains
          !$ nt = omp_get_max_threads()
       end if
       npix = real(nx, dp)*real(ny, dp)
+      ! a thread per 128^2 pixels at most: below that the ~20 parallel regions of a CG
+      ! step cost more than they share, and on a busy machine far more (see Threads)
+      nt = max(1, min(nt, int(npix/real(pixels_per_thread, dp))))
       allocate (h(nx, ny), p(nx, ny), w(nx, ny), stat=st)
       if (st /= 0) then
          call fatal_error(error, egw_out_of_memory, "heights: "//int_str(nx)//" x " &
