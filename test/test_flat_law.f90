@@ -24,6 +24,7 @@ contains
       testsuite = [ &
          & new_unittest("table law: nodes, slopes, C1, ends", test_table_law), &
          & new_unittest("table law: bad tables", test_bad_tables), &
+         & new_unittest("table law: steep given slopes stay monotone", test_steep_slopes), &
          & new_unittest("tabulated GW law = classic GW solve", test_tabulated_gw), &
          & new_unittest("C egw_flat_law_*, egw_solve_flat_law", test_c), &
          & new_unittest("Persson: u(p) vs independent quadrature", test_persson_reference), &
@@ -75,6 +76,40 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_table_law
+
+   !> Given slopes far steeper than their interval's secant (a BEM law near full contact:
+   !> ln p falls 0.23 over 4.7e-12 m with d ln p/du 13x the secant at one end): the cubic
+   !> would overshoot (a pressure below the next node's, so no longer decreasing); with
+   !> Fritsch and Carlson's bound it decreases everywhere (checked at 2001 points) and is
+   !> still exact at the nodes (1e-14). Slopes within the bound are kept as given (1e-14).
+   subroutine test_steep_slopes(error)
+      use egw_flat_law, only: table_flat_law, new_table_law
+      type(error_type), allocatable, intent(out) :: error
+      type(table_flat_law) :: law
+      type(egw_error), allocatable :: e
+      real(dp) :: u(3), p(3), k(3), x(2001), px(2001), dx(2001), pn(3), dn(3)
+      integer :: i
+      u = [1.98e-14_dp, 4.71e-12_dp, 1.0e-9_dp]
+      p = [3.162e7_dp, 2.512e7_dp, 1.088e7_dp]
+      k = [-2.017e19_dp, -3.667e17_dp, -2.6e15_dp]
+      call new_table_law(u, p, law, e, dpdu=k)
+      call check(error, .not. allocated(e))
+      if (allocated(error)) return
+      x = [(u(1) + (u(2) - u(1))*real(i, dp)/2000.0_dp, i = 0, 2000)]
+      call law%pressure(x, px, dx)
+      call check(error, all(px(2:) < px(:2000)) .and. all(dx <= 0.0_dp), &
+         & "not decreasing on the steep interval: min p "//format_real(minval(px)))
+      if (allocated(error)) return
+      call law%pressure(u, pn, dn)
+      call check(error, maxval(abs(pn/p - 1.0_dp)) < 1.0e-14_dp, "exact at the nodes")
+      if (allocated(error)) return
+      ! within the bound (an exponential's own slopes): kept
+      p = 3.0_dp*exp(-u/1.0e-9_dp)
+      call new_table_law(u, p, law, e, dpdu=-p/1.0e-9_dp)
+      call law%pressure(u, pn, dn)
+      call check(error, maxval(abs(dn*(-1.0e-9_dp)/p - 1.0_dp)) < 1.0e-14_dp, &
+         & "slopes within the bound changed")
+   end subroutine test_steep_slopes
 
    subroutine test_bad_tables(error)
       use egw_flat_law, only: table_flat_law, new_table_law

@@ -69,7 +69,8 @@ module egw_flat_law
 
    !> A tabulated law: nodes (u_i, p_i), u ascending and p strictly decreasing and > 0,
    !> interpolated by a monotone cubic Hermite in (u, ln p) (C1; exact at the nodes; slopes
-   !> from dp/du where given, else Fritsch-Carlson), and continued beyond both ends by
+   !> from dp/du where given, scaled back where they exceed Fritsch and Carlson's bound
+   !> (alpha^2 + beta^2 <= 9 per interval), else Fritsch-Carlson's), and continued beyond both ends by
    !> the end nodes' exponentials ln p linear in u (the large-separation asymptote of
    !> Persson's theory and of BEM, p ~ exp(-u/u0), at the far end; a stiff, finite
    !> continuation at the near end). Optional contact-area fraction, linear between nodes.
@@ -164,6 +165,7 @@ contains
       real(dp), intent(in), optional :: modulus   !< E* of the law (0: not known)
       integer :: n, i
       real(dp), allocatable :: secant(:)
+      real(dp) :: alpha, beta, tau
 
       n = size(u)
       call check_table(u, p, error, dpdu, area)
@@ -203,6 +205,18 @@ contains
                & //format_real(dpdu(i))//": d ln p/du = dpdu/p is not finite there")
             return
          end if
+         ! Fritsch-Carlson's limit: where a given slope is over 3x its interval's secant
+         ! (ln p strongly curved between coarse nodes, as near a BEM law's full contact),
+         ! both ends of the interval are scaled back so that the cubic stays monotone
+         do i = 1, n - 1
+            alpha = law%slope(i)/secant(i)
+            beta = law%slope(i + 1)/secant(i)
+            if (alpha**2 + beta**2 > 9.0_dp) then
+               tau = 3.0_dp/sqrt(alpha**2 + beta**2)
+               law%slope(i) = tau*alpha*secant(i)
+               law%slope(i + 1) = tau*beta*secant(i)
+            end if
+         end do
       else
          ! Fritsch-Carlson: the harmonic mean of the neighbouring secants (all < 0), the
          ! end secants at the ends: a monotone interpolant.
