@@ -18,6 +18,7 @@ from .core import (EgwError, FileError, IgnoredParameterWarning, InvalidArgument
 from .scene import ModelChoice, Scene, build, choose
 from .tables import HysteresisInfo, HysteresisTable, Table, TableInfo, UniversalTable
 from .flat_law import FlatLaw
+from .surface_choice import SurfaceChoice, choose_for_surface
 from . import topography
 from .topography import contact_from_topography, psi_from_hardness
 
@@ -30,4 +31,5 @@ __all__ = ["EgwError", "FileError", "InvalidArgumentError", "NotConvergedError",
            "ModelChoice", "Scene", "build", "choose", "HysteresisInfo", "HysteresisTable", "Table",
            "TableInfo", "UniversalTable", "topography", "psi_from_hardness",
            "IgnoredParameterWarning", "PointFailedWarning", "TimeStep", "effective_modulus",
-           "errstate", "time_step", "contact_from_topography", "FlatLaw"]
+           "errstate", "time_step", "contact_from_topography", "FlatLaw",
+           "SurfaceChoice", "choose_for_surface"]

@@ -1147,6 +1147,30 @@ def _write_flat_law(surface: HeightMap, args) -> List[str]:
     return lines
 
 
+def _choose_lines(surface: HeightMap, args) -> List[str]:
+    """egw-topo --choose: every model against the surface's BEM law, as lines."""
+    from .surface_choice import choose_for_surface
+    if args.radius is None or args.modulus is None:
+        raise ValueError("--choose needs --radius and --modulus (E* in Pa)")
+    try:
+        lo, hi = (float(v) for v in args.overlaps.split(","))
+    except ValueError:
+        raise ValueError(f"--overlaps {args.overlaps!r}: MIN,MAX (numbers)") from None
+    r = args.radius * _unit_factor(surface.unit)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")   # the summit advice is printed above already
+        c = choose_for_surface(surface, radius=r, modulus=args.modulus, tol=args.choose,
+                               delta_min_sigma=lo, delta_max_sigma=hi)
+    lines = [f"model choice against the surface's BEM law (R = {r:.6g} m, E* = "
+             f"{args.modulus:g} Pa, delta_m in [{lo:g}, {hi:g}] rms heights, error "
+             f"{'relative to the largest force' if c.relative_to_max else 'pointwise'}):"]
+    for m in c.candidates[:-1]:
+        lines.append(f"  {m.model:8s} error {m.error:.3g}  (y_s {m.y_s:.4g} m, set-up "
+                     f"{m.seconds:.3g} s)")
+    lines.append(f"  choice: {c.reason}")
+    return lines
+
+
 def _report(stats: SummitStatistics, radius, modulus, hardness, k, unit) -> List[str]:
     u = f" {unit}" if unit else ""
     lines = [f"{stats.method}:",
@@ -1236,6 +1260,13 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                     help="where --model with --radius writes the sphere's 1-D table "
                     "(egw CSV, overlaps -3 to 10 law lengths, tol 1e-4; default "
                     "flat_law_table.csv)")
+    ap.add_argument("--choose", metavar="TOL", type=float, default=None,
+                    help="also choose the cheapest model (Hertz, GW, E-GW, Persson, the BEM "
+                    "law) whose sphere force stays within TOL of the sphere with the "
+                    "surface's BEM law (needs --radius, --modulus in Pa, a periodic map)")
+    ap.add_argument("--overlaps", metavar="MIN,MAX", default="0.5,10",
+                    help="--choose's overlap range with the mean plane, in rms heights "
+                    "(default 0.5,10)")
     args = ap.parse_args(argv)
     try:
         if len(args.maps) > 2:
@@ -1256,14 +1287,18 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         lines += [f"WARNING: {w.message}" for w in caught]
         if args.model is not None:
             lines += _write_flat_law(surface, args)
+        if args.choose is not None:
+            lines += _choose_lines(surface, args)
         data = rep.to_dict()
         if args.json == "-":
             print(json.dumps(data, indent=2))
         else:
             print("\n".join(lines))
             if args.json:
-                with open(args.json, "w") as f:
+                tmp = args.json + ".tmp"
+                with open(tmp, "w") as f:
                     json.dump(data, f, indent=2)
+                os.replace(tmp, args.json)
     except (ValueError, OSError, ImportError) as exc:
         print(f"egw-topo: {exc}", file=sys.stderr)
         return 2
