@@ -931,6 +931,13 @@ int egw_flat_law_contact_area(egw_flat_law law, double u, double *area);
 int egw_flat_law_info(egw_flat_law law, int *n_nodes, double *length, double *modulus,
                       double *u_min, double *u_max, int *has_area);
 
+/* The same law in other units: separations (and its length) divided by unit_length,
+ * pressures (and its E*) by pressure_unit, both in [1e-100, 1e100]; e.g. a DEM code's
+ * normalised units. *out receives a new handle only on success. Statuses:
+ * EGW_INVALID_ARGUMENT (naming the unit), EGW_NULL_POINTER. */
+int egw_flat_law_rescale(egw_flat_law law, double unit_length, double pressure_unit,
+                         egw_flat_law *out);
+
 /* Release a law; sets *law to NULL. NULL or *law == NULL is fine. */
 void egw_flat_law_free(egw_flat_law *law);
 

@@ -39,6 +39,25 @@ int egw_capi_test_flat_law(void) {
   CHECK(egw_flat_law_info(law, &n, &length, &modulus, &u_min, &u_max, &has_area) == EGW_OK);
   CHECK(n == 2 && fabs(length - l) <= 1e-13 * l && modulus == E && u_min == 0.0 &&
         u_max == 3e-6 && has_area == 1);
+  /* the law in units of (l, p0): p' = exp(-u'), its length 1 and E* E/p0, exactly (the
+   * units are powers of 2 apart from l, so 1e-15: one division) */
+  {
+    egw_flat_law s = NULL, keep = law;
+    double ls, ms;
+    CHECK(egw_flat_law_rescale(law, l, p0, &s) == EGW_OK && s != NULL && s != law);
+    CHECK(egw_flat_law_pressure(s, 5.0, &pr, &d) == EGW_OK);
+    CHECK(fabs(pr - exp(-5.0)) <= 1e-13 * pr && fabs(d + pr) <= 1e-12 * pr);
+    CHECK(egw_flat_law_info(s, NULL, &ls, &ms, NULL, &u_max, NULL) == EGW_OK);
+    CHECK(fabs(ls - 1.0) <= 1e-13 && fabs(ms - E / p0) <= 1e-15 * ms &&
+          fabs(u_max - 3.0) <= 1e-15 * 3.0);
+    egw_flat_law_free(&s);
+    CHECK(s == NULL && law == keep);
+    s = (egw_flat_law) &ls;   /* refused: outputs unchanged */
+    CHECK(egw_flat_law_rescale(law, 0.0, 1.0, &s) == EGW_INVALID_ARGUMENT &&
+          s == (egw_flat_law) &ls);
+    CHECK(egw_flat_law_rescale(law, 1.0, NAN, &s) == EGW_INVALID_ARGUMENT);
+    CHECK(egw_flat_law_rescale(NULL, 1.0, 1.0, &s) == EGW_NULL_POINTER);
+  }
   egw_params_default(&par);
   par.radius = R;
   par.modulus = E;

@@ -843,6 +843,25 @@ static int r_flat_law_heights(void) {
   return st;
 }
 
+/* a law in other units */
+static int r_flat_law_rescale(void) {
+  double u[2] = {0.0, 1e-6}, p[2] = {1.0, 0.5};
+  egw_flat_law law = NULL, out;
+  int st;
+  if (egw_flat_law_from_table(u, p, NULL, NULL, 2, 0.0, 0.0, &law) != EGW_OK) return -1;
+  sentinel(&out, sizeof out);
+  st = egw_flat_law_rescale(P(0, law), D(1, 1e-6), D(2, 1.0), P(3, &out));
+  out_untouched(st, "*out", &out, sizeof out);
+  if (st == EGW_OK) {
+    double v[2];
+    int s2 = egw_flat_law_pressure(out, 0.5, &v[0], &v[1]);
+    sane(s2, isfinite(v[0]) && v[0] > 0 && v[1] <= 0, "rescaled pressure", v[0]);
+    egw_flat_law_free(&out);
+  }
+  egw_flat_law_free(&law);
+  return st;
+}
+
 /* a law written (path fuzzed) and read back (its file's path fuzzed too) */
 static int r_flat_law_file(void) {
   double u[2] = {0.0, 1e-6}, p[2] = {1.0, 0.5};
@@ -1380,6 +1399,9 @@ static fz_function functions[] = {
      {{"heights[9]", K_DBL}, {"nx", K_INT}, {"ny", K_INT}, {"heights", K_PTR}, {"pixel", K_DBL},
       {"modulus", K_DBL}, {"p_min", K_DBL}, {"p_max", K_DBL}, {"out", K_PTR}},
      r_flat_law_heights, 1},
+    {"egw_flat_law_rescale", 4,
+     {{"law", K_PTR}, {"unit_length", K_DBL}, {"pressure_unit", K_DBL}, {"out", K_PTR}},
+     r_flat_law_rescale, 0},
     {"egw_flat_law_write, egw_flat_law_read", 4,
      {{"law", K_PTR}, {"path (write)", K_STR}, {"path (read)", K_STR}, {"out", K_PTR}},
      r_flat_law_file, 0},

@@ -8,7 +8,7 @@ module egw_capi_flat_law
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_unsupported, format_real, int_str
    use egw_params, only: contact_params
-   use egw_flat_law, only: table_flat_law, new_table_law
+   use egw_flat_law, only: flat_law, table_flat_law, new_table_law
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact_law
    use egw_table, only: force_table, build_table_law
    use egw_flat_law_format, only: write_flat_law, read_flat_law
@@ -26,7 +26,7 @@ module egw_capi_flat_law
    public :: egw_flat_law_from_table, egw_flat_law_pressure, egw_flat_law_contact_area, &
       & egw_flat_law_info, egw_flat_law_free, egw_solve_flat_law, egw_table_build_flat_law, &
       & egw_flat_law_write, egw_flat_law_read, egw_flat_law_from_psd, &
-      & egw_flat_law_from_heights
+      & egw_flat_law_from_heights, egw_flat_law_rescale
 
 contains
 
@@ -61,6 +61,39 @@ contains
       stat = put_handle_settled(out, c_loc(law), error)
       if (stat /= egw_ok) deallocate (law)
    end function egw_flat_law_from_table
+
+   !> C: egw_flat_law_rescale: the same law in other units (separations divided by
+   !> unit_length, pressures by pressure_unit; its length and E* with them).
+   function egw_flat_law_rescale(h, unit_length, pressure_unit, out) result(stat) &
+      & bind(C, name="egw_flat_law_rescale")
+      type(c_ptr), value, intent(in) :: h, out
+      real(c_double), value, intent(in) :: unit_length, pressure_unit
+      integer(c_int) :: stat
+      type(table_flat_law), pointer :: law, scaled
+      class(flat_law), allocatable :: s
+      type(egw_error), allocatable :: error
+      stat = require(out, "out")
+      if (stat == egw_ok) stat = require(h, "law")
+      if (stat /= egw_ok) return
+      ! (units the law's numbers survive: beyond them ln p or u would overflow)
+      if (.not. (unit_length >= 1.0e-100_dp .and. unit_length <= 1.0e100_dp)) then
+         stat = invalid("unit_length = "//format_real(unit_length)//": must lie in " &
+            & //"[1e-100, 1e100]")
+      else if (.not. (pressure_unit >= 1.0e-100_dp .and. pressure_unit <= 1.0e100_dp)) then
+         stat = invalid("pressure_unit = "//format_real(pressure_unit)//": must lie in " &
+            & //"[1e-100, 1e100]")
+      end if
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, law)
+      call law%rescaled(unit_length, pressure_unit, s)
+      allocate (scaled)
+      select type (s)
+      type is (table_flat_law)
+         scaled = s
+      end select
+      stat = put_handle_settled(out, c_loc(scaled), error)
+      if (stat /= egw_ok) deallocate (scaled)
+   end function egw_flat_law_rescale
 
    !> C: egw_flat_law_from_psd: Persson's law of an isotropic PSD (q, C).
    function egw_flat_law_from_psd(q, c, n, modulus, p_min, p_max, out) result(stat) &

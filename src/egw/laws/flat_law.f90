@@ -70,8 +70,8 @@ module egw_flat_law
    !> A tabulated law: nodes (u_i, p_i), u ascending and p strictly decreasing and > 0,
    !> interpolated by a monotone cubic Hermite in (u, ln p) (C1; exact at the nodes; slopes
    !> from dp/du where given, scaled back where they exceed Fritsch and Carlson's bound
-   !> (alpha^2 + beta^2 <= 9 per interval), else Fritsch-Carlson's), and continued beyond both ends by
-   !> the end nodes' exponentials ln p linear in u (the large-separation asymptote of
+   !> (alpha^2 + beta^2 <= 9 per interval), else Fritsch-Carlson's), and continued beyond
+   !> both ends by the end nodes' exponentials ln p linear in u (the large-separation asymptote of
    !> Persson's theory and of BEM, p ~ exp(-u/u0), at the far end; a stiff, finite
    !> continuation at the near end). Optional contact-area fraction, linear between nodes.
    type, extends(flat_law), public :: table_flat_law
