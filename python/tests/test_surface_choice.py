@@ -27,9 +27,13 @@ RADIUS = 1.25e-3           # m: contact diameter ~ 2 roll-off wavelengths at del
 MODULUS = 1e9              # Pa
 
 
+def choice_map_heights():
+    return self_affine_map(N, hurst=0.8, rms=RMS, seed=31)
+
+
 @pytest.fixture(scope="module")
 def surface():
-    h = self_affine_map(N, hurst=0.8, rms=RMS, seed=31)
+    h = choice_map_heights()
     return egw.topography.HeightMap(h, SIZE / N, SIZE / N, "m", periodic=True)
 
 
@@ -46,7 +50,8 @@ def test_errors_recomputed(choice):
     c = choice
     names = [m.model for m in c.candidates]
     assert names == ["Hertz", "GW", "E-GW", "Persson", "BEM law"]
-    sigma = c.overlaps[0] / 1.0
+    sigma = c.candidates[-1].params.flat_law.length   # the truth's length: rms height
+    assert sigma == pytest.approx(np.std(choice_map_heights()), rel=1e-12)
     assert c.overlaps == pytest.approx(np.linspace(1.0, 10.0, 10) * sigma, rel=1e-14)
     assert not c.relative_to_max
     hz = c.candidates[0]
