@@ -18,11 +18,6 @@ void EgwLaw::like(const EgwCoeff &c)
   sigma = std::sqrt(2.0) * c.sigma;
   mu_mode = c.mu_mode, mu = c.mu, eta = c.eta, beta = c.beta;
   psi = c.psi, K = c.K, rho = c.rho, sub = c.sub;
-  if (c.law[0]) {
-    // the law describes the pair's combined surface already
-    law_path = c.law, law_modulus = c.law_modulus;
-    sigma = c.law_length;
-  }
 }
 
 bool EgwLaw::combine(const EgwCoeff &a, const EgwCoeff &b)
@@ -50,10 +45,7 @@ void EgwLaw::setup(int model)
   damp = EgwSubmodels::damping_factor(sub.damping, sub.damp_value);
   kt = sub.kt_null ? 8.0 * G_star : sub.kt;
   half_inv_E = 0.5 / E_star;
-  if (!law_path.empty()) {
-    // a flat law: the sphere's tables at nodes in ln sqrt(R), as UNIVERSAL's slices
-    kind = UNIVERSAL, mu_mode = 2, eta = beta = 0;
-  } else if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = HERTZ;
+  if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = HERTZ;
   else if (model == EGW_MODEL_EPGW && psi > 0) kind = mu_mode == 1 ? HYST : HYST_MU;
   else kind = mu_mode == 1 ? TABLE : UNIVERSAL;
   egw_params_default(&prm);
@@ -66,7 +58,6 @@ void EgwLaw::setup(int model)
     inv_sigma = 1.0 / sigma;
   }
   if (mu_mode == 2) mu = 8.0 / 3.0 * eta * sigma * std::sqrt(2.0 * beta);    // x sqrt(R)
-  if (!law_path.empty()) prm.model = EGW_MODEL_FLAT_LAW, prm.mu = 1.0, mu = 1.0;
 }
 
 void EgwLaw::release()
@@ -129,11 +120,8 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   if (kind == UNIVERSAL)
     skey.mu_lo = mu * std::sqrt(R_lo) / 1.02, skey.mu_hi = mu * std::sqrt(R_hi) * 1.02;
   EgwTables::Slices shared;
-  if ((kind == TABLE || kind == UNIVERSAL) && law_path.empty())
-    shared = EgwTables::find_slices(skey);
-  if (!law_path.empty()) {
-    build_flat_law(R_lo, R_hi, tol, xmax, o, fail_with);
-  } else if (shared) {
+  if (kind == TABLE || kind == UNIVERSAL) shared = EgwTables::find_slices(skey);
+  if (shared) {
     slices_held = shared;
     xc = shared->xc, lnmu0 = shared->lnmu0, inv_h = shared->inv_h;
     interp_error = shared->interp_error;
@@ -266,99 +254,6 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   fast = slices_held && slices_held->fast.n > 0 ? &slices_held->fast : nullptr;
 }
 
-// The sphere's tables with a rough-flat law, in table units (R = E* = sigma = 1 as the
-// other kinds; lengths in sigma = the law's length): the force of a sphere R with the law
-// is not a function of delta/sigma alone, so one table per node R_k on a grid in ln sqrt(R)
-// (mu_at(R) = sqrt(R), UNIVERSAL's interpolation), each the law's sphere in the units
-// (length sigma, pressure E* / m_k) with radius R_k / sigma and modulus
-// m_k = sqrt(sigma / R_k): its force is then F / (E* sqrt(R_k) sigma^1.5), the normalised
-// force the evaluation scales. The node grid is halved until tables built at the midpoints
-// agree with the interpolation to TOL/2 (of the larger of the force and the force at
-// delta = 0).
-void EgwLaw::build_flat_law(double R_lo, double R_hi, double tol, double xmax,
-                            const egw_options &o,
-                            const std::function<void(const std::string &)> &fail_with)
-{
-  auto fail = [&]() {
-    char buf[1024];
-    egw_last_error(buf, sizeof(buf));
-    fail_with(fmt::format("law {}: {}", law_path, buf));
-  };
-  egw_flat_law law = nullptr;
-  if (egw_flat_law_read(law_path.c_str(), &law)) fail();
-  auto slice_at = [&](double m) {    // m = sqrt(R)
-    double Rn = m * m / sigma, mk = 1.0 / std::sqrt(Rn);
-    egw_flat_law scaled = nullptr;
-    if (egw_flat_law_rescale(law, sigma, E_star / mk, &scaled)) fail();
-    egw_params p;
-    egw_params_default(&p);
-    p.model = EGW_MODEL_FLAT_LAW, p.radius = Rn, p.modulus = mk;
-    egw_table t = nullptr;
-    int st = egw_table_build_flat_law(&p, scaled, &o, 0.0, xmax, 0.5 * tol, &t);
-    egw_flat_law_free(&scaled);
-    if (st) fail();
-    return t;
-  };
-  // one radius (a type pair of one size each): two nodes 2e-7 apart in ln sqrt(R), whose
-  // interpolation error (~1e-14 of the force) needs no check
-  bool one_radius = R_hi <= R_lo * (1.0 + 1e-9);
-  double margin = one_radius ? 1.0 + 1e-7 : 1.02;
-  mu_lo = std::sqrt(R_lo) / margin, mu_hi = std::sqrt(R_hi) * margin;
-  double a = std::log(mu_lo), b = std::log(mu_hi);
-  for (auto &t : slices) egw_table_free(&t);
-  slices.clear();
-  int n = 2;
-  for (int k = 0; k < n; k++) slices.push_back(slice_at(std::exp(a + k * (b - a) / (n - 1))));
-  xc = 0.0;
-  std::vector<double> xs;
-  for (;;) {
-    double h = (b - a) / (n - 1);
-    xc = 0.0;
-    for (auto &s : slices) {
-      egw_table_info in;
-      egw_table_get_info(s, &in);
-      xc = std::min(xc, in.cutoff);
-    }
-    xs.clear();
-    for (int k = 0; k <= 40; k++) xs.push_back(xc * (1.0 - k / 40.0));
-    for (int k = 1; k <= 80; k++) xs.push_back(1e-3 * std::pow(xmax / 1e-3, k / 80.0));
-    std::vector<egw_table> mids;
-    double err = 0.0;
-    for (int k = 0; k + 1 < n && !one_radius; k++) {
-      egw_table m = slice_at(std::exp(a + (k + 0.5) * h));
-      double pref = 0, dum;
-      egw_table_eval(m, 0.0, &pref, &dum);
-      for (double x : xs) {
-        double pm, p0, p1;
-        egw_table_eval(m, x, &pm, &dum);
-        egw_table_eval(slices[k], x, &p0, &dum);
-        egw_table_eval(slices[k + 1], x, &p1, &dum);
-        err = std::max(err, std::fabs(0.5 * (p0 + p1) - pm) / std::max(pm, pref));
-      }
-      mids.push_back(m);
-    }
-    interp_error = err;
-    lnmu0 = a, inv_h = 1.0 / h;
-    if (err <= 0.5 * tol || n > 257) {
-      for (auto &m : mids) egw_table_free(&m);
-      break;
-    }
-    std::vector<egw_table> merged;
-    for (int k = 0; k < n; k++) {
-      merged.push_back(slices[k]);
-      if (k + 1 < n) merged.push_back(mids[k]);
-    }
-    slices = merged;
-    n = 2 * n - 1;
-  }
-  egw_flat_law_free(&law);
-  slices_held = std::make_shared<EgwTables::SliceSet>();
-  slices_held->tables = slices;
-  slices_held->fast.make(slices_held->tables);
-  slices_held->xc = xc, slices_held->lnmu0 = lnmu0, slices_held->inv_h = inv_h;
-  slices_held->interp_error = interp_error;
-}
-
 std::string EgwLaw::describe(double R_lo, double R_hi) const
 {
   std::string extra;
@@ -371,12 +266,6 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                          interp_error);
   if (kind == HYST || kind == HYST_MU)
     extra += fmt::format(", hysteresis tables built for it: {} (the others shared)", hyst_built);
-  if (kind == UNIVERSAL && !law_path.empty())
-    return fmt::format("rough-flat law {} (sigma = its length {:.6g}, E* = {:.6g}): the "
-                       "sphere's 1-D tables at {} radii in [{:.4g}, {:.4g}], linear in ln R "
-                       "(measured interpolation error {:.2g}, tables at TOL/2), cut-off "
-                       "{:.6g}, reach {:.6g}", law_path, sigma, E_star, slices.size(),
-                       mu_lo * mu_lo, mu_hi * mu_hi, interp_error, xc * sigma, reach);
   if (kind == UNIVERSAL)
     extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
                          "(universal table built to TOL/2)", slices.size(), interp_error);

@@ -24,11 +24,6 @@ struct EgwCoeff {
   int mu_mode = 0;
   double psi = 0, K = 0.6, rho = 54;
   EgwSubmodels::Params sub;       // damping, tangential, rolling, twisting, heat
-  // `law FILE`: a rough-flat law (egw CSV, doc/formats.md 7) in place of the summit model;
-  // its length (the combined surface's rms height) and the E* it was made with (0: unknown)
-  static constexpr int LAW_PATH_MAX = 512;
-  char law[LAW_PATH_MAX] = {0};
-  double law_length = 0, law_modulus = 0;
 };
 
 /* The contact law of one particle-type pair: parameters and the egw tables that evaluate
@@ -77,10 +72,6 @@ struct EgwLaw {
   double lnmu0 = 0, inv_h = 0;     // first node, 1 / node spacing
   std::vector<double> lnmu;        // nodes of hyst in ln mu (summit data)
   egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)
-  // a rough-flat law (pair_coeff ... law FILE): its slices are the sphere's tables at nodes
-  // in ln sqrt(R) (mu_at(R) = sqrt(R) with mu = 1), evaluated as UNIVERSAL's
-  std::string law_path;
-  double law_modulus = 0;
 
   void release();
   /* the tables of `from` (a law with the same coefficients) and what their build found,
@@ -106,9 +97,6 @@ struct EgwLaw {
    * value at delta = 0 (a contact forms with at most that force step); w_ref <= 0: the
    * tables' cut-off.  After build(). */
   void set_reach(double w_ref, double frac, double R_hi);
-  /* build()'s part for a rough-flat law (law_path): slices in ln sqrt(R) */
-  void build_flat_law(double R_lo, double R_hi, double tol, double xmax, const egw_options &o,
-                      const std::function<void(const std::string &)> &fail_with);
   /* what was built, for the log */
   std::string describe(double R_lo, double R_hi) const;
   /* the contact's mu at R (summit data) */

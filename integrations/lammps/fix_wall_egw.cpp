@@ -355,9 +355,6 @@ void FixWallEGW::build_law(int t)
   const EgwCoeff *c = pair->type_coeff(t);
   if (!c)
     error->all(FLERR, "Fix wall/egw: type {} has no pair_coeff {} {} in pair_style egw", t, t, t);
-  if (c->law[0])
-    error->all(FLERR, "Fix wall/egw: type {} has a rough-flat law (law {}): a law is a pair's "
-                      "combined surface; fix wall/egw does not take laws yet", t, c->law);
   if (model != EGW_MODEL_HERTZ && c->sigma + wall.sigma > 0 && c->mu_mode == 0 && wall.mu_mode == 0)
     error->all(FLERR, "Fix wall/egw: type {} and the wall are rough but neither gives mu or "
                       "summit data", t);

@@ -254,25 +254,6 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
       continue;
     }
     if (i + 1 >= narg) error->all(FLERR, "Pair coeff egw: keyword '{}' needs a value", key);
-    if (key == "law") {
-      // a rough-flat law file in place of the summit model (read here to refuse a bad file
-      // at once, on every rank; the tables are built from it at the run's start)
-      std::string path = arg[i + 1];
-      if (path.size() >= EgwCoeff::LAW_PATH_MAX)
-        error->all(FLERR, "Pair coeff egw: law {}: the path is longer than {} characters",
-                   path, EgwCoeff::LAW_PATH_MAX - 1);
-      egw_flat_law law = nullptr;
-      if (egw_flat_law_read(path.c_str(), &law)) {
-        char buf[1024];
-        egw_last_error(buf, sizeof(buf));
-        error->all(FLERR, "Pair coeff egw: law {}: {}", path, buf);
-      }
-      egw_flat_law_info(law, nullptr, &c.law_length, &c.law_modulus, nullptr, nullptr, nullptr);
-      egw_flat_law_free(&law);
-      std::snprintf(c.law, sizeof(c.law), "%s", path.c_str());
-      i += 2;
-      continue;
-    }
     double v;
     if (!egw_parse_number(arg[i + 1], v))
       error->all(FLERR, "Pair coeff egw: {} = '{}': not a finite number", key, arg[i + 1]);
@@ -313,20 +294,6 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
   egw_submodels_check(error, "Pair coeff egw", c.sub);
   if (!haveE) error->all(FLERR, "Pair coeff egw: keyword 'E' is required");
   if (!havenu) error->all(FLERR, "Pair coeff egw: keyword 'nu' is required");
-  if (c.law[0]) {
-    // the law is the whole rough surface of the pair, elastic
-    const char *clash = havesig ? "sigma" : havemu ? "mu" : haveeta ? "summit_density"
-        : havebeta ? "summit_radius" : haveplastic ? "psi, K or plastic_ratio" : nullptr;
-    if (clash)
-      error->all(FLERR, "Pair coeff egw: law {} and {}: the law is the pair's rough surface "
-                        "(its length is sigma); give one or the other", c.law, clash);
-    if (model == EGW_MODEL_EPGW || model == EGW_MODEL_HERTZ)
-      error->all(FLERR, "Pair coeff egw: law {}: a rough-flat law is elastic and replaces the "
-                        "summit model: use it with pair_style egw E-GW or GW (not {})", c.law,
-                 model_names[model]);
-    c.set = 1;
-    return;
-  }
   if (!havesig && model != EGW_MODEL_HERTZ)
     error->all(FLERR, "Pair coeff egw: keyword 'sigma' is required for model {}",
                model_names[model]);
@@ -400,10 +367,6 @@ void PairEGW::make_law(int i, int j)
   } else {
     const Coeff &a = pcoeff[i][i], &b = pcoeff[j][j];
     if (!a.set || !b.set) error->all(FLERR, "Pair egw: coefficients of types {} {} not set", i, j);
-    if (a.law[0] || b.law[0])
-      error->all(FLERR, "Pair egw: type {} has a rough-flat law (law {}): a law is the pair's "
-                        "combined surface and does not mix: set pair_coeff {} {} ... law FILE",
-                 a.law[0] ? i : j, a.law[0] ? a.law : b.law, i, j);
     if (!L.combine(a, b))
       error->all(FLERR, "Pair egw: types {} and {} give mu in different ways (mu vs "
                         "summit_density/summit_radius): set pair_coeff {} {} explicitly",
@@ -411,18 +374,11 @@ void PairEGW::make_law(int i, int j)
     L.sub = mix_submodels(i, j, a.sub, b.sub);
   }
   L.setup(model);
-  if (!L.law_path.empty() && L.law_modulus > 0 &&
-      std::fabs(L.E_star / L.law_modulus - 1.0) > 1e-6)
-    error->all(FLERR, "Pair egw: types {} {}: law {} was made with E* = {:.9g}, the pair's E* "
-                      "(from E and nu, E* = E / (2 (1 - nu^2))) is {:.9g}: make the law with "
-                      "the pair's E* (pressures scale with it)", i, j, L.law_path,
-               L.law_modulus, L.E_star);
   // keep the tables of an unchanged law
   EgwLaw &old = law[i][j];
   bool same = old.E_star == L.E_star && old.sigma == L.sigma && old.mu_mode == L.mu_mode &&
       old.mu == L.mu && old.psi == L.psi && old.K == L.K && old.rho == L.rho &&
-      old.kind == L.kind && old.prm.model == L.prm.model && old.law_path == L.law_path &&
-      built_rhi[i][j] > 0;
+      old.kind == L.kind && old.prm.model == L.prm.model && built_rhi[i][j] > 0;
   if (same) {
     L.take_tables(old);
   } else {
