@@ -231,12 +231,12 @@ void PairEGW::init_style()
       double R_hi = rhi_i > 0 && rhi_j > 0 ? rhi_i * rhi_j / (rhi_i + rhi_j) : 0.0;
       double R_lo = rlo_i > 0 && rlo_j > 0 ? rlo_i * rlo_j / (rlo_i + rlo_j) : 0.0;
       EgwLaw &L = law[i][j];
-      bool needs_r = L.kind == EgwLaw::UNIVERSAL || L.kind == EgwLaw::HYST_MU;
+      bool needs_r = L.kind == EgwLaw::UNIVERSAL || L.kind == EgwLaw::HYST_MU ||
+          L.kind == EgwLaw::FLAT;
       if (needs_r && !(R_hi > 0))
         error->all(FLERR, "Pair egw: types {} {}: no atoms and no fix pour/deposit give their "
-                          "radii (needed for mu from summit data): add 'rmin R rmax R' to "
-                          "pair_style",
-                   i, j);
+                          "radii (needed for {}): add 'rmin R rmax R' to pair_style",
+                   i, j, L.kind == EgwLaw::FLAT ? "a law's tables" : "mu from summit data");
       if (!(R_hi > 0)) R_hi = R_lo = 1.0 / std::max(L.inv_sigma, 1e-300);
       if (R_lo > R_hi) R_lo = R_hi;
       if (R_lo == R_hi) R_lo = R_hi / 1.05;
@@ -254,6 +254,22 @@ void PairEGW::init_style()
                            ? fmt::format(" (<= TOL x tail_energy = {:.3g})", tol * tail_energy)
                            : std::string(" (tail_energy 0: the tables' cut-off)"));
     }
+  // a law file without its modulus holds pressures for one E* only: every type pair using
+  // it must have that E* (a '# modulus = E*' line in the file lets egw scale it instead)
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      for (int k = 1; k <= n; k++)
+        for (int l = k; l <= n; l++) {
+          const EgwLaw &A = law[i][j], &B = law[k][l];
+          if (A.kind != EgwLaw::FLAT || B.kind != EgwLaw::FLAT || A.law_file != B.law_file ||
+              A.law_modulus > 0 || std::fabs(A.E_star - B.E_star) <= 1e-12 * A.E_star)
+            continue;
+          error->all(FLERR, "Pair egw: law {} has no modulus line, so its pressures fit one "
+                            "E* only, but types {} {} have E* = {} and types {} {} E* = {}: "
+                            "add '# modulus = <the E* it was made with>' to the file (egw then "
+                            "scales it to each E*) or use one file per E*",
+                     A.law_file, i, j, A.E_star, k, l, B.E_star);
+        }
   law_of.assign((n + 1) * (n + 1), nullptr);
   tail_of.assign((n + 1) * (n + 1), 0.0);
   for (int i = 1; i <= n; i++)
