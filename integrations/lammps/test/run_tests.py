@@ -1634,6 +1634,37 @@ def test_flat_law_vs_solve():
 
 
 
+def test_flat_law_energy():
+    """A head-on collision of two 1 mm beads on the analytic law file (law FILE, E-GW pair
+    style, TOL 1e-4), no damping: a flat law is elastic (unloading = loading), so the total
+    energy (kinetic + the tables' elastic energy) stays constant through the contact and
+    the rebound speed equals the approach speed, to the Verlet bound of test energy_elastic
+    (5e-5). An oblique run with friction split by write_restart/read_restart in mid
+    contact ends as the uninterrupted one (the law's file name is in the restart file)."""
+    law = os.path.join(TMP, "law_energy.csv")
+    write_user_law(law, 1.0, E_STAR)
+    rc, out = collision("egw E-GW 1e-4", f"E {E} nu {NU} law {law}", thermo_every=10)
+    rows = thermo(out)
+    if rc != 0 or not rows:
+        return False, "run failed: " + str([l for l in out.splitlines() if "ERROR" in l][:1])
+    e0 = rows[0][3]
+    drift = max(abs(r[3] / e0 - 1) for r in rows)
+    pe_max = max(r[2] for r in rows)
+    e = restitution_of(out)
+    # the law's path travels in the restart file: a run split by write_restart in mid
+    # contact and continued by read_restart ends as the uninterrupted one (1e-12 of v)
+    n1 = 2540
+    rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} law {law} friction 0.3",
+                          yoff=0.0005, n1=n1, restart=1, rfile="law.restart")
+    rc2, out2 = lmp("collision_restart.in", rfile="law.restart", n2=6000 - n1, thermo=1000)
+    d = max(abs(x - y) for x, y in zip(result(out1), result(out2))) / V if rc1 == rc2 == 0 \
+        else math.inf
+    ok = drift < 5e-5 and abs(e - 1) < 5e-5 and pe_max > 0.5 * e0 and d < 1e-12
+    return ok, (f"max |E/E0 - 1| = {drift:.2e} (< 5e-5), e = {e:.8f}, max PE/E0 = "
+                f"{pe_max / e0:.3f}; restart in mid contact: max |dv|/v = {d:.1e} (< 1e-12)")
+
+
+
 LAW_DECK = """units si
 atom_style sphere
 boundary f f f
@@ -1803,7 +1834,7 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks, test_lammps_decks_converted,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,
-         test_flat_law_vs_solve, test_flat_law_mixing, test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared]
+         test_flat_law_vs_solve, test_flat_law_energy, test_flat_law_mixing, test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared]
 
 
 def main():
