@@ -3,6 +3,7 @@
  *   pair_style egw MODEL TOL [rmin R] [rmax R] [overlap_max F] [tail_energy W]
  *   pair_coeff I J E v nu v sigma v [mu v | summit_density v summit_radius v] [psi v]
  *              [K v] [plastic_ratio v] [damping e] [friction mu_t]
+ *   pair_coeff I J E v nu v law FILE [damping e] [friction mu_t]   (a rough-flat law file)
  *
  * Normal force: egw's tables scaled per contact by R, E*, sigma (exact for any radius
  * distribution); EP-GW keeps each contact's delta_max; damping in the coeff_restitution
