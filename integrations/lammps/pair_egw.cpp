@@ -257,20 +257,22 @@ void PairEGW::init_style()
     }
   // a law file without its modulus holds pressures for one E* only: every type pair using
   // it must have that E* (a '# modulus = E*' line in the file lets egw scale it instead)
+  std::vector<std::pair<int, int>> flat_pairs;
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++)
-      for (int k = 1; k <= n; k++)
-        for (int l = k; l <= n; l++) {
-          const EgwLaw &A = law[i][j], &B = law[k][l];
-          if (A.kind != EgwLaw::FLAT || B.kind != EgwLaw::FLAT || A.law_file != B.law_file ||
-              A.law_modulus > 0 || std::fabs(A.E_star - B.E_star) <= 1e-12 * A.E_star)
-            continue;
-          error->all(FLERR, "Pair egw: law {} has no modulus line, so its pressures fit one "
-                            "E* only, but types {} {} have E* = {} and types {} {} E* = {}: "
-                            "add '# modulus = <the E* it was made with>' to the file (egw then "
-                            "scales it to each E*) or use one file per E*",
-                     A.law_file, i, j, A.E_star, k, l, B.E_star);
-        }
+      if (law[i][j].kind == EgwLaw::FLAT && !(law[i][j].law_modulus > 0))
+        flat_pairs.emplace_back(i, j);
+  for (auto &a : flat_pairs)
+    for (auto &b : flat_pairs) {
+      const EgwLaw &A = law[a.first][a.second], &B = law[b.first][b.second];
+      if (A.law_file != B.law_file || std::fabs(A.E_star - B.E_star) <= 1e-12 * A.E_star)
+        continue;
+      error->all(FLERR, "Pair egw: law {} has no modulus line, so its pressures fit one E* "
+                        "only, but types {} {} have E* = {} and types {} {} E* = {}: add "
+                        "'# modulus = <the E* it was made with>' to the file (egw then scales "
+                        "it to each E*) or use one file per E*",
+                 A.law_file, a.first, a.second, A.E_star, b.first, b.second, B.E_star);
+    }
   law_of.assign((n + 1) * (n + 1), nullptr);
   tail_of.assign((n + 1) * (n + 1), 0.0);
   for (int i = 1; i <= n; i++)

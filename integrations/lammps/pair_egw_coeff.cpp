@@ -419,7 +419,9 @@ void PairEGW::make_law(int i, int j)
   L.setup(model);
   // keep the tables of an unchanged law
   EgwLaw &old = law[i][j];
-  bool same = old.E_star == L.E_star && old.sigma == L.sigma && old.mu_mode == L.mu_mode &&
+  // (a law's sigma is its file's length, known once built: the file name stands for it)
+  bool same = old.E_star == L.E_star && (old.sigma == L.sigma || L.kind == EgwLaw::FLAT) &&
+      old.mu_mode == L.mu_mode &&
       old.mu == L.mu && old.psi == L.psi && old.K == L.K && old.rho == L.rho &&
       old.kind == L.kind && old.prm.model == L.prm.model && old.law_file == L.law_file &&
       built_rhi[i][j] > 0;
