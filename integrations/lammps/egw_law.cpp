@@ -142,6 +142,7 @@ void EgwLaw::take_tables(EgwLaw &from)
   flat = from.flat, flat_inv_sqrt_r = from.flat_inv_sqrt_r;
   law_modulus = from.law_modulus, flat_modulus = from.flat_modulus;
   flat_scale = from.flat_scale, sigma = from.sigma, inv_sigma = from.inv_sigma;
+  tol_built = from.tol_built;
   s05 = from.s05, s15 = from.s15, s25 = from.s25;
   from.flat.clear();
   from.universal = nullptr;    // now ours (the shared tables are counted by their holders)
@@ -342,7 +343,8 @@ void EgwLaw::build_flat(double R_lo, double R_hi, double tol, double overlap_max
     egw_flat_law_free(&fl);
     fail_with(fmt::format("law {}: {}", law_file, buf));
   };
-  // the law's sphere at R = r^2, r = sqrt(R) (the node variable), to TOL/2
+  // the law's sphere at R = r^2, r = sqrt(R) (the node variable), to TOL/2 (the check
+  // below compares tables, so what it measures includes their own errors)
   auto table_at = [&](double r) {
     egw_params p;
     egw_params_default(&p);
@@ -352,8 +354,8 @@ void EgwLaw::build_flat(double R_lo, double R_hi, double tol, double overlap_max
     return t;
   };
   // nodes in ln sqrt(R) over the range (2 % margin, as the ln-mu slices); the midpoints'
-  // tables check the interpolation of F/sqrt(R) (geometric, as eval) to TOL/2 and become nodes of the
-  // next level; the last level's midpoints are kept as nodes too (spacing halved)
+  // tables check the interpolation of F/sqrt(R) (geometric, as eval) to TOL/2 and become
+  // nodes of the next level; the last level's midpoints are kept as nodes too
   double a = std::log(std::sqrt(R_lo) / 1.02), b = std::log(std::sqrt(R_hi) * 1.02);
   std::vector<double> r = {std::exp(a), std::exp(b)};
   flat = {table_at(r[0]), table_at(r[1])};
@@ -398,12 +400,14 @@ void EgwLaw::build_flat(double R_lo, double R_hi, double tol, double overlap_max
       if (k < mid.size()) r2.push_back(rm[k]), t2.push_back(mid[k]);
     }
     r = r2, flat = t2;
-    if (err <= 0.5 * tol || r.size() > 1000) break;
+    // at most 33 tables (set-up time: a wide radius range); the log says what was reached
+    if (err <= 0.5 * tol || r.size() >= FLAT_MAX_TABLES) break;
   }
   egw_flat_law_free(&fl);
   flat_inv_sqrt_r.clear();
   for (double x : r) flat_inv_sqrt_r.push_back(1.0 / x);
   mu_lo = r.front(), mu_hi = r.back();
+  tol_built = tol;
   lnmu0 = a, inv_h = (r.size() - 1) / (b - a);
   tail = -xc * sigma;
   reach = xmax * sigma;
@@ -424,10 +428,15 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
   if (kind == FLAT)
     extra = fmt::format(", law {} (its modulus {}; forces x E*/{:.6g}), {} tables for R in "
                         "[{:.4g}, {:.4g}], measured ln-R interpolation error {:.2g} (at twice "
-                        "the final spacing; tables built to TOL/2); sigma below = the law's "
-                        "length", law_file, law_modulus > 0 ? fmt::format("{:.6g}", law_modulus)
+                        "the final spacing; tables built to TOL/2{}); sigma below = the "
+                        "law's length", law_file, law_modulus > 0 ? fmt::format("{:.6g}", law_modulus)
                         : std::string("not given: pressures as they are"), flat_modulus,
-                        flat.size(), R_lo, R_hi, interp_error);
+                        flat.size(), R_lo, R_hi, interp_error,
+                        interp_error > 0.5 * tol_built
+                            ? fmt::format("; ABOVE TOL/2 = {:.2g}: the table limit {} was "
+                                          "reached, narrow the radius range (rmin/rmax)",
+                                          0.5 * tol_built, (int) FLAT_MAX_TABLES)
+                            : std::string());
   if (kind == UNIVERSAL)
     extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
                          "(universal table built to TOL/2)", slices.size(), interp_error);

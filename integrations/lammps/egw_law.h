@@ -93,6 +93,8 @@ struct EgwLaw {
   double flat_scale = 1;           // E_star / flat_modulus
   std::vector<egw_table> flat;     // owned
   std::vector<double> flat_inv_sqrt_r;    // 1/sqrt(R_k)
+  double tol_built = 0;            // TOL of the FLAT tables' build
+  static constexpr size_t FLAT_MAX_TABLES = 33;
 
   void release();
   /* the tables of `from` (a law with the same coefficients) and what their build found,

@@ -1605,10 +1605,10 @@ def test_flat_law_vs_solve():
     write_user_law(half, 0.5, E_STAR / 2)
     egw_python(f"import egw\negw.FlatLaw.read({half!r}).write({own!r})")
     forces = {}
-    for name, path, np_ in (("plain", plain, 1), ("half", half, 1), ("own", own, 1),
-                            ("own2", own, 2)):
+    for name, path, np_, ps in (("plain", plain, 1, ""), ("half", half, 1, ""),
+                                ("own", own, 1, ""), ("own2", own, 2, "")):
         f = os.path.join(TMP, f"pw_law_{name}.table")
-        rc, out = lmp("pairwrite.in", np=np_, pstyle="egw E-GW 1e-4",
+        rc, out = lmp("pairwrite.in", np=np_, pstyle="egw E-GW 1e-4" + ps,
                       pcoeff=f"E {E} nu {NU} law {path}", file=f)
         if rc != 0 or not os.path.exists(f):
             return False, f"{name}: rc {rc}: " + str([l for l in out.splitlines()
