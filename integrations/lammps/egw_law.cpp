@@ -8,7 +8,49 @@ using namespace LAMMPS_NS;
 const char *LAMMPS_NS::egw_law_kind_name[] = {
     "Hertz (closed form)", "1-D table in delta/sigma",
     "1-D slices of a universal table, linear in ln mu (R-dependent mu)", "hysteresis table",
-    "hysteresis tables at nodes in ln mu, linear in ln mu"};
+    "hysteresis tables at nodes in ln mu, linear in ln mu",
+    "rough-flat law: 1-D tables at nodes in ln R, geometric in R"};
+
+egw_flat_law LAMMPS_NS::egw_law_read_file(const std::string &path, MPI_Comm comm,
+                                          const std::function<void(const std::string &)> &fail)
+{
+  int me = 0, nprocs = 1;
+  MPI_Comm_rank(comm, &me);
+  MPI_Comm_size(comm, &nprocs);
+  egw_flat_law law = nullptr;
+  int st = egw_flat_law_read(path.c_str(), &law);
+  char msg[1024] = "";
+  if (st != EGW_OK) egw_last_error(msg, sizeof(msg));
+  // the lowest rank that failed says why, on every rank
+  int first_bad = st != EGW_OK ? me : nprocs, bad = nprocs;
+  MPI_Allreduce(&first_bad, &bad, 1, MPI_INT, MPI_MIN, comm);
+  if (bad < nprocs) {
+    MPI_Bcast(msg, sizeof(msg), MPI_CHAR, bad, comm);
+    egw_flat_law_free(&law);
+    fail(fmt::format("law {}: {}{}", path, msg,
+                     nprocs > 1 ? fmt::format(" (rank {})", bad) : std::string()));
+    return nullptr;
+  }
+  // every rank reads the file itself: they must have read the same law
+  int n = 0, has_area = 0;
+  double print[8] = {0};
+  egw_flat_law_info(law, &n, &print[1], &print[2], &print[3], &print[4], &has_area);
+  print[0] = n + 0.5 * has_area;
+  egw_flat_law_pressure(law, print[3], &print[5], nullptr);
+  egw_flat_law_pressure(law, print[4], &print[6], nullptr);
+  egw_flat_law_pressure(law, 0.5 * (print[3] + print[4]), &print[7], nullptr);
+  double lo[8], hi[8];
+  MPI_Allreduce(print, lo, 8, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(print, hi, 8, MPI_DOUBLE, MPI_MAX, comm);
+  for (int k = 0; k < 8; k++)
+    if (lo[k] != hi[k]) {
+      egw_flat_law_free(&law);
+      fail(fmt::format("law {}: the ranks read different laws (each rank reads the file "
+                       "itself: give every rank the same file)", path));
+      return nullptr;
+    }
+  return law;
+}
 
 void EgwLaw::like(const EgwCoeff &c)
 {
@@ -18,6 +60,7 @@ void EgwLaw::like(const EgwCoeff &c)
   sigma = std::sqrt(2.0) * c.sigma;
   mu_mode = c.mu_mode, mu = c.mu, eta = c.eta, beta = c.beta;
   psi = c.psi, K = c.K, rho = c.rho, sub = c.sub;
+  law_file = c.law_file;
 }
 
 bool EgwLaw::combine(const EgwCoeff &a, const EgwCoeff &b)
@@ -37,6 +80,10 @@ bool EgwLaw::combine(const EgwCoeff &a, const EgwCoeff &b)
     mu = r.mu, eta = r.eta, beta = r.beta;
   }
   psi = 0.5 * (a.psi + b.psi), K = 0.5 * (a.K + b.K), rho = 0.5 * (a.rho + b.rho);
+  // a law is the contact's (the pair's combined surface): two types with the same law
+  // file mix to it (independent surfaces' spectra add: C_ij = C_ii/2 + C_jj/2 = C_law);
+  // the caller refuses two different files, or a law against sigma/mu
+  law_file = a.law_file;
   return true;
 }
 
@@ -45,6 +92,13 @@ void EgwLaw::setup(int model)
   damp = EgwSubmodels::damping_factor(sub.damping, sub.damp_value);
   kt = sub.kt_null ? 8.0 * G_star : sub.kt;
   half_inv_E = 0.5 / E_star;
+  if (!law_file.empty()) {
+    // sigma: the law's length (read in build()); mu = 1 so that mu_at(R) = sqrt(R)
+    kind = FLAT, mu_mode = 0, mu = 1.0;
+    egw_params_default(&prm);
+    prm.model = EGW_MODEL_FLAT_LAW;
+    return;
+  }
   if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = HERTZ;
   else if (model == EGW_MODEL_EPGW && psi > 0) kind = mu_mode == 1 ? HYST : HYST_MU;
   else kind = mu_mode == 1 ? TABLE : UNIVERSAL;
@@ -71,6 +125,8 @@ void EgwLaw::release()
   slices_held.reset();
   fast = nullptr;
   lnmu.clear();
+  for (auto &t : flat) egw_table_free(&t);
+  flat.clear(), flat_inv_sqrt_r.clear();
 }
 
 void EgwLaw::take_tables(EgwLaw &from)
@@ -83,6 +139,12 @@ void EgwLaw::take_tables(EgwLaw &from)
   xc = from.xc, tail = from.tail, reach = from.reach, capped = from.capped;
   capped_solver = from.capped_solver, mu_lo = from.mu_lo, mu_hi = from.mu_hi;
   interp_error = from.interp_error;
+  flat = from.flat, flat_inv_sqrt_r = from.flat_inv_sqrt_r;
+  law_modulus = from.law_modulus, flat_modulus = from.flat_modulus;
+  flat_scale = from.flat_scale, sigma = from.sigma, inv_sigma = from.inv_sigma;
+  tol_built = from.tol_built;
+  s05 = from.s05, s15 = from.s15, s25 = from.s25;
+  from.flat.clear();
   from.universal = nullptr;    // now ours (the shared tables are counted by their holders)
   from.release();
 }
@@ -99,6 +161,10 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   egw_options o;
   egw_options_default(&o);
   if (n_threads > 0) o.n_threads = n_threads;
+  if (kind == FLAT) {
+    build_flat(R_lo, R_hi, tol, overlap_max, comm, o, fail_with);
+    return;
+  }
   double xmax = 30.0;
   if (sigma > 0) xmax = std::max(30.0, overlap_max * R_hi / sigma);
   // hysteresis tables capped at 140 sigma: their nodes (set-up time, memory) grow with the
@@ -254,6 +320,99 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   fast = slices_held && slices_held->fast.n > 0 ? &slices_held->fast : nullptr;
 }
 
+void EgwLaw::build_flat(double R_lo, double R_hi, double tol, double overlap_max,
+                        MPI_Comm comm, const egw_options &o,
+                        const std::function<void(const std::string &)> &fail_with)
+{
+  egw_flat_law fl = egw_law_read_file(law_file, comm, fail_with);
+  int n_nodes = 0, has_area = 0;
+  double u_lo = 0, u_hi = 0;
+  egw_flat_law_info(fl, &n_nodes, &sigma, &law_modulus, &u_lo, &u_hi, &has_area);
+  // an elastic, frictionless, non-adhesive law is p = E* f(u): the file's law made with
+  // E*_law serves the contact's E* as F(delta; E*) = (E*/E*_law) F(delta; E*_law) (the
+  // deflection, pressure over E*, is the same); a law without a modulus is taken as given
+  flat_modulus = law_modulus > 0 ? law_modulus : E_star;
+  flat_scale = E_star / flat_modulus;
+  s05 = std::sqrt(sigma), s15 = sigma * s05, s25 = s15 * sigma, inv_sigma = 1.0 / sigma;
+  double xmax = std::max(30.0, overlap_max * R_hi / sigma);
+  capped_solver = xmax > TABLE_X_MAX;
+  if (capped_solver) xmax = TABLE_X_MAX;
+  auto fail = [&]() {
+    char buf[1024];
+    egw_last_error(buf, sizeof(buf));
+    egw_flat_law_free(&fl);
+    fail_with(fmt::format("law {}: {}", law_file, buf));
+  };
+  // the law's sphere at R = r^2, r = sqrt(R) (the node variable), to TOL/2 (the check
+  // below compares tables, so what it measures includes their own errors)
+  auto table_at = [&](double r) {
+    egw_params p;
+    egw_params_default(&p);
+    p.model = EGW_MODEL_FLAT_LAW, p.radius = r * r, p.modulus = flat_modulus;
+    egw_table t = nullptr;
+    if (egw_table_build_flat_law(&p, fl, &o, 0.0, xmax * sigma, 0.5 * tol, &t)) fail();
+    return t;
+  };
+  // nodes in ln sqrt(R) over the range (2 % margin, as the ln-mu slices); the midpoints'
+  // tables check the interpolation of F/sqrt(R) (geometric, as eval) to TOL/2 and become
+  // nodes of the next level; the last level's midpoints are kept as nodes too
+  double a = std::log(std::sqrt(R_lo) / 1.02), b = std::log(std::sqrt(R_hi) * 1.02);
+  std::vector<double> r = {std::exp(a), std::exp(b)};
+  flat = {table_at(r[0]), table_at(r[1])};
+  auto cutoff_of = [&](egw_table t) {
+    egw_table_info in;
+    egw_table_get_info(t, &in);
+    return in.cutoff / sigma;
+  };
+  for (;;) {
+    std::vector<double> rm;
+    std::vector<egw_table> mid;
+    for (size_t k = 0; k + 1 < r.size(); k++) {
+      rm.push_back(std::sqrt(r[k] * r[k + 1]));
+      mid.push_back(table_at(rm.back()));
+    }
+    xc = 0.0;
+    for (auto t : flat) xc = std::min(xc, cutoff_of(t));
+    for (auto t : mid) xc = std::min(xc, cutoff_of(t));
+    std::vector<double> xs;
+    for (int k = 0; k <= 40; k++) xs.push_back(xc * (1.0 - k / 40.0));
+    for (int k = 1; k <= 80; k++) xs.push_back(1e-3 * std::pow(xmax / 1e-3, k / 80.0));
+    double err = 0.0, dum;
+    for (size_t k = 0; k < mid.size(); k++) {
+      double gref = 0;
+      egw_table_eval(mid[k], 0.0, &gref, &dum);
+      gref /= rm[k];
+      for (double x : xs) {
+        double fm, f0, f1;
+        egw_table_eval(mid[k], x * sigma, &fm, &dum);
+        egw_table_eval(flat[k], x * sigma, &f0, &dum);
+        egw_table_eval(flat[k + 1], x * sigma, &f1, &dum);
+        double g = fm / rm[k], g0 = f0 / r[k], g1 = f1 / r[k + 1];
+        double gi = g0 > 0 && g1 > 0 ? std::sqrt(g0 * g1) : 0.5 * (g0 + g1);    // as eval
+        err = std::max(err, std::fabs(gi - g) / std::max(g, gref));
+      }
+    }
+    interp_error = err;
+    std::vector<double> r2;
+    std::vector<egw_table> t2;
+    for (size_t k = 0; k < r.size(); k++) {
+      r2.push_back(r[k]), t2.push_back(flat[k]);
+      if (k < mid.size()) r2.push_back(rm[k]), t2.push_back(mid[k]);
+    }
+    r = r2, flat = t2;
+    // at most 33 tables (set-up time: a wide radius range); the log says what was reached
+    if (err <= 0.5 * tol || r.size() >= FLAT_MAX_TABLES) break;
+  }
+  egw_flat_law_free(&fl);
+  flat_inv_sqrt_r.clear();
+  for (double x : r) flat_inv_sqrt_r.push_back(1.0 / x);
+  mu_lo = r.front(), mu_hi = r.back();
+  tol_built = tol;
+  lnmu0 = a, inv_h = (r.size() - 1) / (b - a);
+  tail = -xc * sigma;
+  reach = xmax * sigma;
+}
+
 std::string EgwLaw::describe(double R_lo, double R_hi) const
 {
   std::string extra;
@@ -266,6 +425,18 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                          interp_error);
   if (kind == HYST || kind == HYST_MU)
     extra += fmt::format(", hysteresis tables built for it: {} (the others shared)", hyst_built);
+  if (kind == FLAT)
+    extra = fmt::format(", law {} (its modulus {}; forces x E*/{:.6g}), {} tables for R in "
+                        "[{:.4g}, {:.4g}], measured ln-R interpolation error {:.2g} (at twice "
+                        "the final spacing; tables built to TOL/2{}); sigma below = the "
+                        "law's length", law_file, law_modulus > 0 ? fmt::format("{:.6g}", law_modulus)
+                        : std::string("not given: pressures as they are"), flat_modulus,
+                        flat.size(), R_lo, R_hi, interp_error,
+                        interp_error > 0.5 * tol_built
+                            ? fmt::format("; ABOVE TOL/2 = {:.2g}: the table limit {} was "
+                                          "reached, narrow the radius range (rmin/rmax)",
+                                          0.5 * tol_built, (int) FLAT_MAX_TABLES)
+                            : std::string());
   if (kind == UNIVERSAL)
     extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
                          "(universal table built to TOL/2)", slices.size(), interp_error);
@@ -298,6 +469,12 @@ void EgwLaw::set_reach(double w_ref, double frac, double R_hi)
       double p = 0, dp;
       egw_table_eval(s, x, &p, &dp);
       return p;
+    });
+  for (size_t k = 0; k < flat.size(); k++)    // in the units of the other tables' x, p
+    curves.push_back([this, k](double x) {
+      double f = 0, df;
+      egw_table_eval(flat[k], x * sigma, &f, &df);
+      return f * flat_inv_sqrt_r[k] / (flat_modulus * s15);
     });
   for (const egw_hysteresis &h : hyst)
     curves.push_back([h](double x) {

@@ -24,12 +24,23 @@ struct EgwCoeff {
   int mu_mode = 0;
   double psi = 0, K = 0.6, rho = 54;
   EgwSubmodels::Params sub;       // damping, tangential, rolling, twisting, heat
+  // 'law FILE': the contact's rough-flat law file (empty: GW's law from sigma, mu); kept
+  // as characters so that the coefficients stay plain data (restart files, broadcasts)
+  static constexpr int LAW_PATH_MAX = 512;
+  char law_file[LAW_PATH_MAX] = {};
 };
+
+/* Read the rough-flat law file `path` (egw_flat_law_read) on every rank of comm and check
+ * that all ranks read the same law (its nodes, length, modulus and pressures at its ends);
+ * a rank that cannot read it, or ranks that disagree, call fail(message) on every rank.
+ * The caller frees the law (egw_flat_law_free). */
+egw_flat_law egw_law_read_file(const std::string &path, MPI_Comm comm,
+                               const std::function<void(const std::string &)> &fail);
 
 /* The contact law of one particle-type pair: parameters and the egw tables that evaluate
  * it.  Tables are normalised (R = E* = sigma = 1, x = delta/sigma) unless stated. */
 struct EgwLaw {
-  enum Kind { HERTZ = 0, TABLE, UNIVERSAL, HYST, HYST_MU };
+  enum Kind { HERTZ = 0, TABLE, UNIVERSAL, HYST, HYST_MU, FLAT };
   // eval()'s status beyond egw's: the contact's mu lies outside the tables' range
   static constexpr int MU_OUTSIDE = -1000;
 
@@ -72,6 +83,18 @@ struct EgwLaw {
   double lnmu0 = 0, inv_h = 0;     // first node, 1 / node spacing
   std::vector<double> lnmu;        // nodes of hyst in ln mu (summit data)
   egw_params prm{};                // model, psi, K, rho_p (+ R, E, sigma, mu at eval)
+  // FLAT ('law FILE'): tables of the law's sphere at nodes in ln sqrt(R) (mu = 1, so that
+  // mu_at(R) = sqrt(R) and mu_position serve), in physical units with E* = flat_modulus;
+  // a contact's force is flat_scale sqrt(R) times the tables' F/sqrt(R_k), interpolated
+  // geometrically (linear in ln F against ln sqrt(R)) between neighbouring nodes
+  std::string law_file;
+  double law_modulus = 0;          // the file's E* (0: not known)
+  double flat_modulus = 0;         // E* the tables are built with (the file's, else E_star)
+  double flat_scale = 1;           // E_star / flat_modulus
+  std::vector<egw_table> flat;     // owned
+  std::vector<double> flat_inv_sqrt_r;    // 1/sqrt(R_k)
+  double tol_built = 0;            // TOL of the FLAT tables' build
+  static constexpr size_t FLAT_MAX_TABLES = 33;
 
   void release();
   /* the tables of `from` (a law with the same coefficients) and what their build found,
@@ -90,6 +113,9 @@ struct EgwLaw {
    * rank. */
   void build(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
              int n_threads, const std::function<void(const std::string &)> &fail);
+  /* build() of a FLAT law: reads law_file (every rank), sets sigma to its length */
+  void build_flat(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
+                  const egw_options &o, const std::function<void(const std::string &)> &fail);
   /* the contacts' reach delta_t = xt sigma (sets xt, tail, tail_work): the largest overlap
    * below which the loading work of the tail is at most frac * w_ref [energy] for every
    * contact of radius up to R_hi (the tail's work grows with R and mu), never below the
@@ -246,6 +272,36 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       double u = 0.0;
       if (want_energy) egw_hysteresis_energy(hyst[0], x, cache[0], &u);
       F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
+      break;
+    }
+    case FLAT: {
+      double t;
+      if (mu_position(R, hist, t) != EGW_OK) return MU_OUTSIDE;
+      int n = (int) flat.size();
+      int k = std::max(0, std::min(n - 2, (int) t));
+      double w = n > 1 ? t - k : 0.0;
+      int k1 = n > 1 ? k + 1 : k;
+      double f0, f1, d0, d1, u0 = 0, u1 = 0, ac;
+      if (want_energy) {
+        st = egw_table_eval_all(flat[k], delta, &f0, &d0, &u0, &ac);
+        egw_table_eval_all(flat[k1], delta, &f1, &d1, &u1, &ac);
+      } else {
+        st = egw_table_eval(flat[k], delta, &f0, &d0);
+        egw_table_eval(flat[k1], delta, &f1, &d1);
+      }
+      // geometric in R (linear in ln F): exact where F is a power of R, as Hertz's
+      // (F/sqrt(R) constant) and a rigid sphere's on the law's exponential end (F ~ R)
+      double s = flat_scale * std::sqrt(R);
+      double g0 = f0 * flat_inv_sqrt_r[k], g1 = f1 * flat_inv_sqrt_r[k1];
+      auto geo = [w](double a, double b) {
+        return a > 0 && b > 0 ? a * std::exp(w * std::log(b / a)) : a + w * (b - a);
+      };
+      double g = geo(g0, g1);
+      F = s * g;
+      S = f0 > 0 && f1 > 0 ? F * ((1.0 - w) * d0 / f0 + w * d1 / f1)
+                           : s * ((1.0 - w) * d0 * flat_inv_sqrt_r[k] +
+                                  w * d1 * flat_inv_sqrt_r[k1]);
+      U = s * geo(u0 * flat_inv_sqrt_r[k], u1 * flat_inv_sqrt_r[k1]);
       break;
     }
     case HYST_MU: {

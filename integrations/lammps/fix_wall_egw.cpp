@@ -355,6 +355,10 @@ void FixWallEGW::build_law(int t)
   const EgwCoeff *c = pair->type_coeff(t);
   if (!c)
     error->all(FLERR, "Fix wall/egw: type {} has no pair_coeff {} {} in pair_style egw", t, t, t);
+  if (c->law_file[0])
+    error->all(FLERR, "Fix wall/egw: type {} has a rough-flat law (pair_coeff {} {} ... law {}): "
+                      "walls do not take flat laws yet (a law is the contact's surface; the "
+                      "wall contact's is not known)", t, t, t, c->law_file);
   if (model != EGW_MODEL_HERTZ && c->sigma + wall.sigma > 0 && c->mu_mode == 0 && wall.mu_mode == 0)
     error->all(FLERR, "Fix wall/egw: type {} and the wall are rough but neither gives mu or "
                       "summit data", t);

@@ -3,6 +3,7 @@
  *   pair_style egw MODEL TOL [rmin R] [rmax R] [overlap_max F] [tail_energy W]
  *   pair_coeff I J E v nu v sigma v [mu v | summit_density v summit_radius v] [psi v]
  *              [K v] [plastic_ratio v] [damping e] [friction mu_t]
+ *   pair_coeff I J E v nu v law FILE [damping e] [friction mu_t]   (a rough-flat law file)
  *
  * Normal force: egw's tables scaled per contact by R, E*, sigma (exact for any radius
  * distribution); EP-GW keeps each contact's delta_max; damping in the coeff_restitution
@@ -231,12 +232,12 @@ void PairEGW::init_style()
       double R_hi = rhi_i > 0 && rhi_j > 0 ? rhi_i * rhi_j / (rhi_i + rhi_j) : 0.0;
       double R_lo = rlo_i > 0 && rlo_j > 0 ? rlo_i * rlo_j / (rlo_i + rlo_j) : 0.0;
       EgwLaw &L = law[i][j];
-      bool needs_r = L.kind == EgwLaw::UNIVERSAL || L.kind == EgwLaw::HYST_MU;
+      bool needs_r = L.kind == EgwLaw::UNIVERSAL || L.kind == EgwLaw::HYST_MU ||
+          L.kind == EgwLaw::FLAT;
       if (needs_r && !(R_hi > 0))
         error->all(FLERR, "Pair egw: types {} {}: no atoms and no fix pour/deposit give their "
-                          "radii (needed for mu from summit data): add 'rmin R rmax R' to "
-                          "pair_style",
-                   i, j);
+                          "radii (needed for {}): add 'rmin R rmax R' to pair_style",
+                   i, j, L.kind == EgwLaw::FLAT ? "a law's tables" : "mu from summit data");
       if (!(R_hi > 0)) R_hi = R_lo = 1.0 / std::max(L.inv_sigma, 1e-300);
       if (R_lo > R_hi) R_lo = R_hi;
       if (R_lo == R_hi) R_lo = R_hi / 1.05;
@@ -253,6 +254,24 @@ void PairEGW::init_style()
                        tail_energy > 0
                            ? fmt::format(" (<= TOL x tail_energy = {:.3g})", tol * tail_energy)
                            : std::string(" (tail_energy 0: the tables' cut-off)"));
+    }
+  // a law file without its modulus holds pressures for one E* only: every type pair using
+  // it must have that E* (a '# modulus = E*' line in the file lets egw scale it instead)
+  std::vector<std::pair<int, int>> flat_pairs;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      if (law[i][j].kind == EgwLaw::FLAT && !(law[i][j].law_modulus > 0))
+        flat_pairs.emplace_back(i, j);
+  for (auto &a : flat_pairs)
+    for (auto &b : flat_pairs) {
+      const EgwLaw &A = law[a.first][a.second], &B = law[b.first][b.second];
+      if (A.law_file != B.law_file || std::fabs(A.E_star - B.E_star) <= 1e-12 * A.E_star)
+        continue;
+      error->all(FLERR, "Pair egw: law {} has no modulus line, so its pressures fit one E* "
+                        "only, but types {} {} have E* = {} and types {} {} E* = {}: add "
+                        "'# modulus = <the E* it was made with>' to the file (egw then scales "
+                        "it to each E*) or use one file per E*",
+                 A.law_file, a.first, a.second, A.E_star, b.first, b.second, B.E_star);
     }
   law_of.assign((n + 1) * (n + 1), nullptr);
   tail_of.assign((n + 1) * (n + 1), 0.0);

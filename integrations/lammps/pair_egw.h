@@ -77,6 +77,7 @@ class PairEGW : public Pair {
   void allocate();
   void parse_coeff(int, char **, Coeff &);
   void make_law(int, int);
+  void check_law_model(const char *file);
   EgwSubmodels::Params mix_submodels(int, int, const EgwSubmodels::Params &,
                                      const EgwSubmodels::Params &);
   void build_tables(int, int, double, double);

@@ -237,7 +237,7 @@ void LAMMPS_NS::egw_submodels_check(Error *error, const char *who, EgwSubmodels:
 void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
 {
   bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
-       havebeta = false, haveplastic = false;
+       havebeta = false, haveplastic = false, havelaw = false;
   c = Coeff();
   static const char *granular_normal[] = {"hooke", "hertz", "hertz/material", "dmt", "jkr",
                                           "mdr"};
@@ -254,6 +254,21 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
       continue;
     }
     if (i + 1 >= narg) error->all(FLERR, "Pair coeff egw: keyword '{}' needs a value", key);
+    if (key == "law") {
+      std::string path = arg[i + 1];
+      if (path.size() >= sizeof(c.law_file))
+        error->all(FLERR, "Pair coeff egw: law = '{}': a path of at most {} characters", path,
+                   sizeof(c.law_file) - 1);
+      // read now (every rank) so that a missing or bad file stops at this line
+      egw_flat_law fl = egw_law_read_file(path, world, [&](const std::string &msg) {
+        error->all(FLERR, "Pair coeff egw: {}", msg);
+      });
+      egw_flat_law_free(&fl);
+      std::strncpy(c.law_file, path.c_str(), sizeof(c.law_file) - 1);
+      havelaw = true;
+      i += 2;
+      continue;
+    }
     double v;
     if (!egw_parse_number(arg[i + 1], v))
       error->all(FLERR, "Pair coeff egw: {} = '{}': not a finite number", key, arg[i + 1]);
@@ -294,6 +309,18 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
   egw_submodels_check(error, "Pair coeff egw", c.sub);
   if (!haveE) error->all(FLERR, "Pair coeff egw: keyword 'E' is required");
   if (!havenu) error->all(FLERR, "Pair coeff egw: keyword 'nu' is required");
+  if (havelaw) {
+    // the file is the contact's whole rough surface: GW's parameters would contradict it
+    const char *other = havesig ? "sigma" : havemu ? "mu" : haveeta ? "summit_density"
+        : havebeta ? "summit_radius" : haveplastic ? "psi/K/plastic_ratio" : nullptr;
+    if (other)
+      error->all(FLERR, "Pair coeff egw: law {} with '{}': the law file is the contact's rough "
+                        "surface (no sigma, mu, summit data, psi, K or plastic_ratio with it)",
+                 c.law_file, other);
+    check_law_model(c.law_file);
+    c.set = 1;
+    return;
+  }
   if (!havesig && model != EGW_MODEL_HERTZ)
     error->all(FLERR, "Pair coeff egw: keyword 'sigma' is required for model {}",
                model_names[model]);
@@ -333,6 +360,17 @@ void PairEGW::coeff(int narg, char **arg)
   tables_ready = false;
 }
 
+/* a flat law is elastic and rough: refused with Hertz (smooth) and EP-GW (plastic summits,
+ * hysteresis) as the pair style's MODEL */
+void PairEGW::check_law_model(const char *file)
+{
+  if (model == EGW_MODEL_HERTZ || model == EGW_MODEL_EPGW)
+    error->all(FLERR, "Pair coeff egw: law {} with pair_style egw {}: a rough-flat law is "
+                      "elastic and rough (unloading = loading); use pair_style egw GW or E-GW "
+                      "(the law replaces their model for this type pair)", file,
+               model_names[model]);
+}
+
 /* the sub-models of unlike types without their own pair_coeff: the same models in both,
  * their numbers geometric means (as e and mu_t always were) */
 EgwSubmodels::Params PairEGW::mix_submodels(int i, int j, const EgwSubmodels::Params &a,
@@ -367,18 +405,26 @@ void PairEGW::make_law(int i, int j)
   } else {
     const Coeff &a = pcoeff[i][i], &b = pcoeff[j][j];
     if (!a.set || !b.set) error->all(FLERR, "Pair egw: coefficients of types {} {} not set", i, j);
+    if (std::strcmp(a.law_file, b.law_file) != 0)
+      error->all(FLERR, "Pair egw: types {} and {} have different rough surfaces (law '{}' vs "
+                        "'{}'; a law is the contact's): set pair_coeff {} {} explicitly", i, j,
+                 a.law_file, b.law_file, i, j);
     if (!L.combine(a, b))
       error->all(FLERR, "Pair egw: types {} and {} give mu in different ways (mu vs "
                         "summit_density/summit_radius): set pair_coeff {} {} explicitly",
                  i, j, i, j);
     L.sub = mix_submodels(i, j, a.sub, b.sub);
   }
+  if (!L.law_file.empty()) check_law_model(L.law_file.c_str());
   L.setup(model);
   // keep the tables of an unchanged law
   EgwLaw &old = law[i][j];
-  bool same = old.E_star == L.E_star && old.sigma == L.sigma && old.mu_mode == L.mu_mode &&
+  // (a law's sigma is its file's length, known once built: the file name stands for it)
+  bool same = old.E_star == L.E_star && (old.sigma == L.sigma || L.kind == EgwLaw::FLAT) &&
+      old.mu_mode == L.mu_mode &&
       old.mu == L.mu && old.psi == L.psi && old.K == L.K && old.rho == L.rho &&
-      old.kind == L.kind && old.prm.model == L.prm.model && built_rhi[i][j] > 0;
+      old.kind == L.kind && old.prm.model == L.prm.model && old.law_file == L.law_file &&
+      built_rhi[i][j] > 0;
   if (same) {
     L.take_tables(old);
   } else {

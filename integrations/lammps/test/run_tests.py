@@ -1460,7 +1460,7 @@ def test_size_list_reaches_tail():
 
 
 def test_bad_coeff():
-    """Bad pair_coeff / pair_style input (54 cases, granular's sub-model syntax among them): a
+    """Bad pair_coeff / pair_style input (66 cases, granular's sub-model syntax among them): a
     LAMMPS ERROR naming the keyword, a non-zero exit, never a crash; granular's keywords and
     models egw does not have (cutoff, synchronized_verlet, the classic tangential models,
     rolling cdt, ..., every granular normal model) say "not supported"."""
@@ -1518,6 +1518,31 @@ def test_bad_coeff():
         "heat conduction 1", "tangential none 1 1 1")]
     cases += [("egw E-GW 1e-4", f"{g} {E} 0.8 {NU}", "not supported") for g in (
         "hooke", "hertz", "hertz/material", "dmt", "jkr", "mdr")]
+    # law FILE: missing, unreadable or invalid files, GW's keywords beside it, a model that
+    # contradicts it (smooth Hertz, plastic EP-GW)
+    law = os.path.join(TMP, "law_bad_coeff.csv")
+    write_user_law(law)
+    garbled = os.path.join(TMP, "law_garbled.csv")
+    with open(garbled, "w") as f:
+        f.write("u,pressure\n0,1e7\n1e-7,abc\n")
+    rising = os.path.join(TMP, "law_rising.csv")
+    with open(rising, "w") as f:
+        f.write("u,pressure\n0,1e7\n1e-7,2e7\n")
+    cases += [
+        ("egw E-GW 1e-4", f"{base} law {os.path.join(TMP, 'nowhere.csv')}", "law"),
+        ("egw E-GW 1e-4", f"{base} law {garbled}", "law"),
+        ("egw E-GW 1e-4", f"{base} law {rising}", "law"),
+        ("egw E-GW 1e-4", f"{base} law {TMP}", "law"),
+        ("egw E-GW 1e-4", f"{base} law", "law"),
+        ("egw E-GW 1e-4", f"{base} law {law} sigma 1e-6", "sigma"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 law {law}", "mu"),
+        ("egw E-GW 1e-4", f"{base} law {law} summit_density 1e9 summit_radius 1e-5",
+         "summit_density"),
+        ("egw E-GW 1e-4", f"{base} law {law} psi 1", "psi"),
+        ("egw EP-GW 1e-4", f"{base} law {law}", "law"),
+        ("egw Hertz 1e-4", f"{base} law {law}", "law"),
+        ("egw E-GW 1e-4", f"nu {NU} law {law}", "E"),
+    ]
     bad = []
     for ps, pc, key in cases:
         rc, out = collision(ps, pc, nrun=0)
@@ -1527,6 +1552,174 @@ def test_bad_coeff():
             bad.append(f"{pc!r}: rc {rc}, {err[:1]}")
     return not bad, f"{len(cases) - len(bad)}/{len(cases)} refused with the keyword named" + (
         "; " + "; ".join(bad) if bad else "")
+
+
+VENV_PY = os.path.join(os.environ.get("VENV", os.path.join(ROOT, ".venv")), "bin", "python")
+
+
+def egw_python(script):
+    """Run a script with the project venv's python (the egw package, `make python`);
+    return its stdout (raises with its stderr on failure)."""
+    p = subprocess.run([VENV_PY, "-c", script], cwd=TMP, stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, text=True, timeout=600)
+    if p.returncode != 0:
+        raise RuntimeError("egw python failed (make python?): " + p.stderr[-800:])
+    return p.stdout
+
+
+# an analytic rough-flat law p(u) = P0 exp(-u/U0) tabulated on 61 nodes (exact: the law's
+# interpolant is linear in ln p, and so is this law)
+LAW_P0, LAW_U0 = 1e7, 0.5e-6
+
+
+def write_user_law(path, scale=1.0, modulus=None):
+    """The analytic law as a user's CSV (u, pressure; optional '# modulus' line), pressures
+    times scale."""
+    with open(path, "w") as f:
+        f.write("u,pressure\n")
+        if modulus is not None:
+            f.write(f"# modulus = {modulus!r}\n")
+        for k in range(61):
+            u = -1e-6 + k * 1e-7
+            f.write(f"{u!r},{scale * LAW_P0 * math.exp(-u / LAW_U0)!r}\n")
+
+
+def pair_write_rows(path):
+    return [l.split() for l in open(path) if re.match(r"^\s+\d+\s", l)]
+
+
+def test_flat_law_vs_solve():
+    """pair_coeff ... law FILE (types of 1 and 0.5 mm, R = 1/3 mm, E-GW pair style, TOL
+    1e-4): the force pair_write gives at 20 overlaps (0.1 to 10 um, 0.2 to 20 U0) against
+    egw's own sphere solve with the same law (egw.solve, Params(flat_law=FlatLaw.from_table),
+    rel_tol 1e-6), within TOL (the tables' TOL/2 and the ln-R interpolation's TOL/2). The
+    analytic law p = P0 exp(-u/U0) is given three ways: a user's CSV without a modulus
+    (pressures as they are), the same at half the pressures with '# modulus = E*/2' (scaled
+    by E*/(E*/2) = 2 to the same law: the scaling rule), and egw's own file
+    (FlatLaw.write) of the scaled law; the last also on 2 ranks (each rank reads the file:
+    the same forces to 1e-12)."""
+    plain = os.path.join(TMP, "law_plain.csv")
+    half = os.path.join(TMP, "law_half.csv")
+    own = os.path.join(TMP, "law_own.csv")
+    write_user_law(plain)
+    write_user_law(half, 0.5, E_STAR / 2)
+    egw_python(f"import egw\negw.FlatLaw.read({half!r}).write({own!r})")
+    forces = {}
+    for name, path, np_, ps in (("plain", plain, 1, ""), ("half", half, 1, ""),
+                                ("own", own, 1, ""), ("own2", own, 2, "")):
+        f = os.path.join(TMP, f"pw_law_{name}.table")
+        rc, out = lmp("pairwrite.in", np=np_, pstyle="egw E-GW 1e-4" + ps,
+                      pcoeff=f"E {E} nu {NU} law {path}", file=f)
+        if rc != 0 or not os.path.exists(f):
+            return False, f"{name}: rc {rc}: " + str([l for l in out.splitlines()
+                                                       if "ERROR" in l][:1])
+        rows = pair_write_rows(f)
+        forces[name] = [(1.5e-3 - float(r[1]), float(r[3])) for r in rows]
+    deltas = [d for d, _ in forces["plain"]]
+    R = 1e-3 * 0.5e-3 / 1.5e-3
+    ref = egw_python(
+        "import numpy as np, egw\n"
+        f"u = -1e-6 + 1e-7 * np.arange(61); p = {LAW_P0!r} * np.exp(-u / {LAW_U0!r})\n"
+        f"law = egw.FlatLaw.from_table(u, p, modulus={E_STAR!r})\n"
+        f"par = egw.Params(radius={R!r}, modulus={E_STAR!r}, flat_law=law)\n"
+        f"res = egw.solve(par, np.array({deltas!r}), egw.Options(rel_tol=1e-6))\n"
+        "print(' '.join(repr(float(x)) for x in res.force))\n")
+    ref = [float(x) for x in ref.split()]
+    worst = {k: max(abs(F / P - 1) for (_, F), P in zip(v, ref)) for k, v in forces.items()}
+    ranks = max(abs(a[1] - b[1]) / abs(b[1]) for a, b in zip(forces["own2"], forces["own"]))
+    ok = (len(ref) == 20 and all(len(v) == 20 for v in forces.values()) and
+          max(worst[k] for k in ("plain", "half", "own")) <= 1e-4 and ranks <= 1e-12)
+    return ok, (", ".join(f"{k} {v:.2e}" for k, v in worst.items()) +
+                f" worst relative to egw.solve (<= 1e-4); 2 ranks vs 1: {ranks:.1e}")
+
+
+
+def test_flat_law_energy():
+    """A head-on collision of two 1 mm beads on the analytic law file (law FILE, E-GW pair
+    style, TOL 1e-4), no damping: a flat law is elastic (unloading = loading), so the total
+    energy (kinetic + the tables' elastic energy) stays constant through the contact and
+    the rebound speed equals the approach speed, to the Verlet bound of test energy_elastic
+    (5e-5). An oblique run with friction split by write_restart/read_restart in mid
+    contact ends as the uninterrupted one (the law's file name is in the restart file)."""
+    law = os.path.join(TMP, "law_energy.csv")
+    write_user_law(law, 1.0, E_STAR)
+    rc, out = collision("egw E-GW 1e-4", f"E {E} nu {NU} law {law}", thermo_every=10)
+    rows = thermo(out)
+    if rc != 0 or not rows:
+        return False, "run failed: " + str([l for l in out.splitlines() if "ERROR" in l][:1])
+    e0 = rows[0][3]
+    drift = max(abs(r[3] / e0 - 1) for r in rows)
+    pe_max = max(r[2] for r in rows)
+    e = restitution_of(out)
+    # the law's path travels in the restart file: a run split by write_restart in mid
+    # contact and continued by read_restart ends as the uninterrupted one (1e-12 of v)
+    n1 = 2540
+    rc1, out1 = collision("egw E-GW 1e-4", f"E {E} nu {NU} law {law} friction 0.3",
+                          yoff=0.0005, n1=n1, restart=1, rfile="law.restart")
+    rc2, out2 = lmp("collision_restart.in", rfile="law.restart", n2=6000 - n1, thermo=1000)
+    d = max(abs(x - y) for x, y in zip(result(out1), result(out2))) / V if rc1 == rc2 == 0 \
+        else math.inf
+    ok = drift < 5e-5 and abs(e - 1) < 5e-5 and pe_max > 0.5 * e0 and d < 1e-12
+    return ok, (f"max |E/E0 - 1| = {drift:.2e} (< 5e-5), e = {e:.8f}, max PE/E0 = "
+                f"{pe_max / e0:.3f}; restart in mid contact: max |dv|/v = {d:.1e} (< 1e-12)")
+
+
+
+LAW_DECK = """units si
+atom_style sphere
+boundary f f f
+comm_modify vel yes
+region box block -0.004 0.004 -0.004 0.004 -0.004 0.004
+create_box 2 box
+create_atoms 1 single -0.0011 0 0
+create_atoms 2 single 0.0011 0 0
+set type * diameter 0.002
+set type * density 2500
+pair_style egw E-GW 1e-3
+pair_coeff 1 1 ${c1}
+pair_coeff 2 2 ${c2}
+${wall}
+fix 1 all nve/sphere
+run 0
+print "LAWDECK DONE"
+"""
+
+
+def test_flat_law_mixing():
+    """Two types with law files: the same file with a modulus line serves both materials (E
+    70 and 200 GPa: scaled to each E*, the deck runs); different files for the two types
+    (a law is the contact's surface), a file without a modulus line under two E*, and a
+    wall against a type with a law are refused with an ERROR naming 'law'."""
+    deck = os.path.join(TMP, "lawdeck.in")
+    with open(deck, "w") as f:
+        f.write(LAW_DECK)
+    plain = os.path.join(TMP, "law_mix_plain.csv")
+    other = os.path.join(TMP, "law_mix_other.csv")
+    scaled = os.path.join(TMP, "law_mix_scaled.csv")
+    write_user_law(plain)
+    write_user_law(other, 2.0)
+    write_user_law(scaled, 1.0, E_STAR)
+    wall = "fix w all wall/egw E-GW 1e-3 E 70e9 nu 0.22 sigma 1e-6 mu 4 xplane -0.0025 0.0025"
+    runs = [("same file, modulus", f"E {E} nu {NU} law {scaled}",
+             f"E 200e9 nu 0.3 law {scaled}", "", None),
+            ("different files", f"E {E} nu {NU} law {plain}", f"E {E} nu {NU} law {other}", "",
+             "law"),
+            ("no modulus, two E*", f"E {E} nu {NU} law {plain}", f"E 200e9 nu 0.3 law {plain}",
+             "", "law"),
+            ("wall", f"E {E} nu {NU} law {scaled}", f"E {E} nu {NU} law {scaled}", wall, "law")]
+    bad = []
+    for name, c1, c2, w, key in runs:
+        rc, out = lmp(deck, c1=c1, c2=c2, wall=w or "print no-wall")
+        err = [l for l in out.splitlines() if "ERROR" in l]
+        crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
+        if key is None:
+            good = rc == 0 and "LAWDECK DONE" in out and not err
+        else:
+            good = rc != 0 and err and key in err[0] and not crashed
+        if not good:
+            bad.append(f"{name}: rc {rc}, {err[:1]}")
+    return not bad, ("same file for two materials runs; 3 contradictions refused with 'law' "
+                     "named" + ("; " + "; ".join(bad) if bad else ""))
 
 
 CHECK = os.path.join(ROOT, "build", "lammps", "hyst-mu-check")
@@ -1641,7 +1834,7 @@ TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_ene
          test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks, test_lammps_decks_converted,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,
-         test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared]
+         test_flat_law_vs_solve, test_flat_law_energy, test_flat_law_mixing, test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared]
 
 
 def main():
