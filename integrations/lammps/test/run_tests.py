@@ -561,6 +561,52 @@ def test_pair_write():
                 f"no type-2 atoms: {err[0] if err else 'no ERROR'}")
 
 
+def write_exponential_law(path, ell, p0, modulus, extra=""):
+    """A user's law file (doc/formats.md 7): p = p0 exp(-u/ell) at 3 nodes, its length and
+    E*; ln p is linear, so the law is exact between and beyond the nodes."""
+    with open(path, "w") as f:
+        f.write("u,pressure\n" + extra)
+        f.write(f"# length = {ell!r}\n# modulus = {modulus!r}\n")
+        for k in range(3):
+            u = 4.0 * k * ell
+            f.write(f"{u!r},{p0 * math.exp(-u / ell)!r}\n")
+
+
+def test_flat_law_file():
+    """pair_coeff ... law FILE (issue 31): a rough-flat law p = p0 exp(-u/l) (l = 0.5 um,
+    p0 = 1e-12 E*) for the pair of 1 mm and 0.5 mm beads (R = 1/3 mm). On a rigid sphere
+    its force is 2 pi R p0 l exp(delta/l) (the integral of p over the gap r^2/(2R) - delta);
+    the half-space's deflection changes it by ~ (p/E*) sqrt(R/l), < 1e-5 up to delta = 12 l
+    (p < e^12 p0). pair_write's forces at delta = 0.2 l ... 12 l within 2e-4 of it (TOL
+    1e-4: the tables at TOL/2, the ln-R interpolation of one radius per pair ~1e-14); from
+    there to 20 l, below it (the deflection lowers the force: 0.98 of it at 20 l). The law
+    gives the pair's whole normal law (its refusals: bad_coeff and flat_law_mixing)."""
+    ell, p0 = 0.5e-6, 1e-12 * E_STAR
+    law = os.path.join(TMP, "law.csv")
+    write_exponential_law(law, ell, p0, E_STAR)
+    f = os.path.join(TMP, "law.table")
+    rc, out = lmp("pairwrite.in", pstyle="egw E-GW 1e-4", pcoeff=f"E {E} nu {NU} law {law}",
+                  file=f)
+    if rc != 0 or not os.path.exists(f):
+        return False, "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    R = 1e-3 * 0.5e-3 / 1.5e-3
+    worst, rows, below = 0.0, [], True
+    for line in open(f):
+        row = line.split()
+        if len(row) == 4 and re.match(r"^\d+$", row[0]):
+            d = 1.5e-3 - float(row[1])
+            ratio = float(row[3]) / (2 * math.pi * R * p0 * ell * math.exp(d / ell))
+            rows.append(ratio)
+            if d <= 12 * ell:
+                worst = max(worst, abs(ratio - 1))
+            else:
+                below = below and ratio < 1 + 2e-4
+    ok = len(rows) == 20 and worst < 2e-4 and below and rows[0] < 0.99
+    msgs = [f"{len(rows)} rows, worst relative difference up to 12 l {worst:.1e} (< 2e-4), "
+            f"at 20 l {rows[0] if rows else float('nan'):.4f} of the rigid force"]
+    return ok, "; ".join(msgs)
+
+
 def test_overlap_beyond_tables():
     """An impact deeper than the tables reach (E-GW, sigma = 10 nm, overlap_max 1e-4: the
     reach is 30 sigma = 0.42 um against a 1.3 um overlap): one WARNING naming the overlap in
@@ -1822,7 +1868,7 @@ def test_pour_tables_shared():
                 f"{'same' if logs[0] == logs[1] else 'different'} table lines")
 
 
-TESTS = [test_energy_elastic, test_epgw_restitution, test_slow_impacts, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
+TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_slow_impacts, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_submodels_vs_granular, test_twisting_pair_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
          test_heat_flow_needs_model, test_pair_write, test_overlap_beyond_tables,
