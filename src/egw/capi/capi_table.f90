@@ -68,6 +68,17 @@ contains
       ! lean: this is the per-contact hot path (a handle only comes from build or read,
       ! so it always holds a prepared table: no get_table), and good arguments pass an
       ! inline test, not the checks' calls (~1 ns of ~8)
+      if (c_associated(h)) then
+         call c_f_pointer(h, t)
+         ! far apart (the tail law is exactly 0 there: table_prepare's zero_below): one
+         ! comparison, EGW_OK, zeros
+         if (delta < t%zero_below) then
+            stat = egw_ok
+            call put(force, 0.0_dp)
+            call put(stiffness, 0.0_dp)
+            return
+         end if
+      end if
       if (.not. c_associated(h) .or. ieee_is_nan(delta)) then
          stat = require(h, "t")
          if (stat == egw_ok) stat = check_number("delta", delta)
