@@ -3,7 +3,8 @@
 !> DEM calls them) and through Fortran's table_eval, as ratios to an inline Hertz force
 !> F = (4/3) E* sqrt(R) |delta|^(3/2) evaluated on the same overlaps, in three regimes:
 !> (i) beyond the tail's cut-off (delta < delta_c, the table's first node), (ii) in the
-!> tail (delta_c < delta < 0, ln P interpolated), (iii) in contact (delta > 0).
+!> tail (delta_c < delta < 0, ln P interpolated), (iii) in contact (delta > 0), and (o) far
+!> apart (delta < -40 sigma, where the tail law is exactly 0).
 module bench_separated
    use, intrinsic :: iso_fortran_env, only: output_unit
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc, c_null_ptr
@@ -48,10 +49,11 @@ contains
       type(force_table), allocatable, target :: table
       type(contact_params) :: params
       type(egw_error), allocatable :: error
-      real(dp), target :: d(n_eval, 3)
-      real(dp) :: t(4), lo(3), hi(3), f, k
-      character(len=*), parameter :: names(3) = [character(len=32) :: &
-         & "(i) beyond the cut-off", "(ii) tail (cut-off < delta < 0)", "(iii) delta > 0"]
+      real(dp), target :: d(n_eval, 4)
+      real(dp) :: t(4), lo(4), hi(4), f, k
+      character(len=*), parameter :: names(4) = [character(len=32) :: &
+         & "(i) beyond the cut-off", "(ii) tail (cut-off < delta < 0)", "(iii) delta > 0", &
+         & "(o) delta < -40 sigma (P = 0)"]
       integer :: r, i
       allocate (table)
       params = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
@@ -63,9 +65,9 @@ contains
          return
       end if
       ! (i) from 2 sigma below the cut-off up to it (delta = -8 sigma is in there)
-      lo = [table%cutoff - 2.0_dp, table%cutoff, 0.0_dp]
-      hi = [table%cutoff, 0.0_dp, 20.0_dp]
-      do r = 1, 3
+      lo = [table%cutoff - 2.0_dp, table%cutoff, 0.0_dp, -60.0_dp]
+      hi = [table%cutoff, 0.0_dp, 20.0_dp, -41.0_dp]
+      do r = 1, 4
          do i = 1, n_eval
             d(i, r) = lo(r) + (hi(r) - lo(r))*(0.001_dp + 0.998_dp*frac(0.6180339887498949_dp*i))
          end do
@@ -78,7 +80,7 @@ contains
          & "  P(delta_c) = ", table%force(1)
       write (output_unit, '(a)') "  regime                            Hertz  eval   "// &
          & "ratio  array  ratio  Fortran ratio"
-      do r = 1, 3
+      do r = 1, 4
          t = regime_ns(c_loc(table), table, d(:, r))
          write (output_unit, '(2x,a32,f7.2,3(f7.2,f7.1))') names(r), t(1), t(2), &
             & t(2)/t(1), t(3), t(3)/t(1), t(4), t(4)/t(1)

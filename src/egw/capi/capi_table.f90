@@ -64,6 +64,7 @@ contains
       real(c_double), value, intent(in) :: delta
       integer(c_int) :: stat
       type(force_table), pointer :: t
+      real(c_double), pointer :: out
       real(dp) :: f, k
       ! lean: this is the per-contact hot path (a handle only comes from build or read,
       ! so it always holds a prepared table: no get_table), and good arguments pass an
@@ -73,9 +74,16 @@ contains
          ! far apart (the tail law is exactly 0 there: table_prepare's zero_below): one
          ! comparison, EGW_OK, zeros
          if (delta < t%zero_below) then
+            ! the stores written out (put is a call into another module)
             stat = egw_ok
-            call put(force, 0.0_dp)
-            call put(stiffness, 0.0_dp)
+            if (c_associated(force)) then
+               call c_f_pointer(force, out)
+               out = 0.0_dp
+            end if
+            if (c_associated(stiffness)) then
+               call c_f_pointer(stiffness, out)
+               out = 0.0_dp
+            end if
             return
          end if
       end if
