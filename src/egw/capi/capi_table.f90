@@ -74,7 +74,7 @@ contains
          ! far apart (the tail law is exactly 0 there: table_prepare's zero_below): one
          ! comparison, EGW_OK, zeros
          if (delta < t%zero_below) then
-            ! the stores written out (put is a call into another module)
+            ! the stores written out, as below (put is a call into another module)
             stat = egw_ok
             if (c_associated(force)) then
                call c_f_pointer(force, out)
@@ -103,8 +103,14 @@ contains
          end if
          stat = out_of_range(t, delta)
       end if
-      call put(force, f)
-      call put(stiffness, k)
+      if (c_associated(force)) then
+         call c_f_pointer(force, out)
+         out = f
+      end if
+      if (c_associated(stiffness)) then
+         call c_f_pointer(stiffness, out)
+         out = k
+      end if
    end function egw_table_eval
 
    !> C: egw_table_eval_array: egw_table_eval at n overlaps in one call (for callers such
