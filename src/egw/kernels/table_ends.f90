@@ -8,7 +8,8 @@ module egw_table_ends
    implicit none
    private
 
-   public :: tail_force, tail_constants, tail_force_matched, deep_force, deep_energy, deep_radius_factor, deep_reach
+   public :: tail_force, tail_constants, tail_force_matched, deep_force, deep_energy, &
+      & deep_radius_factor, deep_reach
 
    !> h = -delta/sigma from which gauss_f52, so tail_force, is exactly 0.
    real(dp), parameter, public :: tail_zero_h = 40.0_dp

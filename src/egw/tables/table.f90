@@ -604,7 +604,8 @@ contains
       ! sqrt on the lookup path made an evaluation ~1.8x slower, measured.)
       call fit_buckets(table)
       call tail_constants(table%cutoff, table%force(1), table%stiffness(1), &
-         & table%params%sigma, plastic_summits(table%params), table%tail_f52_c, table%tail_kappa)
+         & table%params%sigma, plastic_summits(table%params), table%tail_f52_c, &
+         & table%tail_kappa)
       table%zero_below = zero_overlap(table%params, table%cutoff)
    end subroutine table_prepare
 
