@@ -23,6 +23,9 @@
 !>                 -> out/bench/universal_tol.csv
 !>   --hysteresis  EP-GW hysteresis table: build time (1e-3, 1e-4) and eval / Hertz force
 !>                 (and the floor of a one-double evaluation: bench/bench_floor.f90)
+!>   --separated   separated contacts (issue 33): egw_table_eval, egw_table_eval_array and
+!>                 table_eval of a 1-D E-GW table beyond the cut-off, in the tail and in
+!>                 contact, as ratios to an inline Hertz force; not in the default set
 !>   --bem         periodic BEM flat law (bem_flat_curve) on the 512^2 and 576^2 maps of
 !>                 tools/bench/bem_contactmechanics_time.py (which times ContactMechanics
 !>                 and takes the ratio in one run); not in the default set
@@ -42,6 +45,7 @@ program egw_bench
    use bench_hysteresis, only: run_hysteresis
    use bench_unloading, only: run_unloading, run_unloading_sweep
    use bench_bem, only: run_bem
+   use bench_separated, only: run_separated
    implicit none
 
    integer, parameter :: n = 4096        ! inputs per sweep (fit in L1/L2 cache)
@@ -51,7 +55,7 @@ program egw_bench
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
    logical :: universal_1thread, any_section, ok, do_speedup, do_unloading, do_hysteresis, &
-      & do_sweep, do_bem
+      & do_sweep, do_bem, do_separated
    real(dp) :: universal_tol
    character(len=512) :: arg, peer_file
    integer :: unit_speedup, unit_csv
@@ -84,6 +88,7 @@ program egw_bench
    end if
    if (do_kernels) call run_kernels()
    if (do_bem) call run_bem()
+   if (do_separated) call run_separated()
    if (do_hysteresis) call run_hysteresis()
    if (do_fn) then
       call open_csv("fn.csv", unit_csv)
@@ -120,6 +125,7 @@ contains
       do_unloading = .false.
       do_sweep = .false.
       do_bem = .false.
+      do_separated = .false.
       universal_tol = 0
       universal_1thread = .false.; peer_file = ""
       out_dir = "out/bench/"
@@ -141,6 +147,7 @@ contains
          case ("--unloading"); do_unloading = .true.
          case ("--unloading-sweep"); do_sweep = .true.
          case ("--bem"); do_bem = .true.
+         case ("--separated"); do_separated = .true.
          case ("--universal-tol")
             k = k + 1
             call get_command_argument(k, arg)
@@ -162,7 +169,7 @@ contains
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
          & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_hysteresis &
-         & .or. do_unloading .or. do_sweep .or. do_bem
+         & .or. do_unloading .or. do_sweep .or. do_bem .or. do_separated
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.
          do_tables = .true.; do_universal = .true.; do_unloading = .true.

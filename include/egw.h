@@ -322,7 +322,9 @@ int egw_table_build(const egw_params *p, const egw_options *o, double delta_min,
  * EGW_OUT_OF_RANGE is returned above delta_max WITH the outputs written (the one
  * exception to "outputs unchanged on failure"). NULL outputs are skipped.
  * EGW_INVALID_ARGUMENT for NaN delta, and (nothing written) for delta = +inf or a
- * continuation beyond the doubles; EGW_NULL_POINTER for t. */
+ * continuation beyond the doubles; EGW_NULL_POINTER for t. Far apart, where the tail law
+ * is exactly 0 (rough tables: delta < -40 sigma (1 + 1e-9), F_{5/2} = 0; Hertz: delta < 0),
+ * the first test of the call: EGW_OK, force = stiffness = 0. */
 int egw_table_eval(egw_table t, double delta, double *force, double *stiffness);
 
 /* egw_table_eval at the n overlaps delta[0..n-1] in one call: force[i], stiffness[i]

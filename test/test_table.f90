@@ -83,7 +83,8 @@ contains
          & new_unittest("universal invalid calls", test_universal_invalid), &
          & new_unittest("universal slice = universal eval", test_universal_slice), &
          & new_unittest("progress hook (1-D table)", test_progress_table), &
-         & new_unittest("progress hook (universal table)", test_progress_universal) &
+         & new_unittest("progress hook (universal table)", test_progress_universal), &
+         & new_unittest("beyond the cut-off: closed-form tail, exact 0", test_beyond_cutoff) &
          & ]
    end subroutine collect_table
 
@@ -1008,5 +1009,86 @@ contains
       if (allocated(error)) return
       call check(error, err%stat == egw_invalid_argument, "other model: "//err%message)
    end subroutine test_universal_slice
+
+   !> Below the cut-off delta_1 an E-GW table follows the tail law of doc/formats.md rule 1,
+   !> P = P_1 F_{5/2}(h)/F_{5/2}(h_1) (kappa = 0, elastic summits), h = -delta/sigma, with
+   !> F_{5/2} computed here by Simpson's rule (x = u^2: int 2 u^6 phi(h + u^2) du over
+   !> u in [0, 2.5], the rest below e^-40 of it for h > 6; 4000 intervals, error ~1e-14):
+   !> to 1e-10, above the fitted kernel's and the log/exp round-off (~1e-13), far below
+   !> what a wrong constant of the match gives (O(1)). Values are bit-identical to
+   !> tail_force (the law's one-call form) and, from -40 sigma down, exactly 0, also through
+   !> the C entry egw_table_eval (EGW_OK, the outputs written).
+   subroutine test_beyond_cutoff(error)
+      use, intrinsic :: iso_c_binding, only: c_loc, c_int, c_double, c_ptr
+      use egw_table_ends, only: tail_force
+      interface
+         !> include/egw.h's egw_table_eval
+         function egw_table_eval(h, delta, force, stiffness) result(stat) &
+            & bind(C, name="egw_table_eval")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value, intent(in) :: h, force, stiffness
+            real(c_double), value, intent(in) :: delta
+            integer(c_int) :: stat
+         end function egw_table_eval
+      end interface
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table), allocatable, target :: t
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      real(dp), target :: f, k
+      real(dp) :: d, f_ref, k_ref, h1, worst
+      real(dp), parameter :: sigma = 1.0e-3_dp
+      real(dp), parameter :: far(4) = [-40.0001_dp*sigma, -41*sigma, -1.0e3_dp, -huge(1.0_dp)]
+      integer :: i
+      integer(c_int) :: stat
+      allocate (t)
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=sigma, &
+         & mu=4.0_dp)
+      call build_table(p, solver_options(), -2*sigma, 10*sigma, 1.0e-4_dp, t, err)
+      call check(error, .not. allocated(err), "E-GW table build failed")
+      if (allocated(error)) return
+      h1 = -t%cutoff/sigma
+      worst = 0
+      do i = 1, 12
+         d = t%cutoff - 0.25_dp*i*sigma   ! down to 3 sigma below the cut-off
+         call table_eval(t, d, f, k)
+         worst = max(worst, abs(f/(t%force(1)*f52_simpson(-d/sigma)/f52_simpson(h1)) - 1))
+         call tail_force(t%cutoff, t%force(1), t%stiffness(1), sigma, .false., d, f_ref, k_ref)
+         call check(error, f == f_ref .and. k == k_ref, "tail at delta = "//format_real(d)// &
+            & " differs from tail_force")
+         if (allocated(error)) return
+      end do
+      call check(error, worst <= 1.0e-10_dp, "tail vs closed form: "//format_real(worst))
+      if (allocated(error)) return
+      do i = 1, 4
+         d = far(i)
+         call table_eval(t, d, f, k)
+         call check(error, f == 0.0_dp .and. k == 0.0_dp, "not 0 at delta = "//format_real(d))
+         if (allocated(error)) return
+         f = 1
+         k = 1
+         stat = egw_table_eval(c_loc(t), d, c_loc(f), c_loc(k))
+         call check(error, stat == 0 .and. f == 0.0_dp .and. k == 0.0_dp, &
+            & "egw_table_eval: status "//to_string(int(stat))//" or not 0 at delta = "// &
+            & format_real(d))
+         if (allocated(error)) return
+      end do
+   end subroutine test_beyond_cutoff
+
+   !> F_{5/2}(h) = int_0^inf x^(5/2) phi(h + x) dx by Simpson's rule in x = u^2, h > 6.
+   real(dp) function f52_simpson(h) result(s)
+      real(dp), intent(in) :: h
+      integer, parameter :: n = 4000
+      real(dp), parameter :: u_max = 2.5_dp, pi = acos(-1.0_dp)
+      real(dp) :: u, w
+      integer :: j
+      s = 0
+      do j = 0, n
+         u = u_max*j/n
+         w = merge(1.0_dp, merge(4.0_dp, 2.0_dp, mod(j, 2) == 1), j == 0 .or. j == n)
+         s = s + w*2*u**6*exp(-0.5_dp*(h + u*u)**2)/sqrt(2*pi)
+      end do
+      s = s*u_max/(3*n)
+   end function f52_simpson
 
 end module test_table

@@ -64,10 +64,29 @@ contains
       real(c_double), value, intent(in) :: delta
       integer(c_int) :: stat
       type(force_table), pointer :: t
+      real(c_double), pointer :: out
       real(dp) :: f, k
       ! lean: this is the per-contact hot path (a handle only comes from build or read,
       ! so it always holds a prepared table: no get_table), and good arguments pass an
       ! inline test, not the checks' calls (~1 ns of ~8)
+      if (c_associated(h)) then
+         call c_f_pointer(h, t)
+         ! far apart (the tail law is exactly 0 there: table_prepare's zero_below): one
+         ! comparison, EGW_OK, zeros
+         if (delta < t%zero_below) then
+            ! the stores written out, as below (put is a call into another module)
+            stat = egw_ok
+            if (c_associated(force)) then
+               call c_f_pointer(force, out)
+               out = 0.0_dp
+            end if
+            if (c_associated(stiffness)) then
+               call c_f_pointer(stiffness, out)
+               out = 0.0_dp
+            end if
+            return
+         end if
+      end if
       if (.not. c_associated(h) .or. ieee_is_nan(delta)) then
          stat = require(h, "t")
          if (stat == egw_ok) stat = check_number("delta", delta)
@@ -84,8 +103,14 @@ contains
          end if
          stat = out_of_range(t, delta)
       end if
-      call put(force, f)
-      call put(stiffness, k)
+      if (c_associated(force)) then
+         call c_f_pointer(force, out)
+         out = f
+      end if
+      if (c_associated(stiffness)) then
+         call c_f_pointer(stiffness, out)
+         out = k
+      end if
    end function egw_table_eval
 
    !> C: egw_table_eval_array: egw_table_eval at n overlaps in one call (for callers such

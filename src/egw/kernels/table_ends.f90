@@ -8,7 +8,11 @@ module egw_table_ends
    implicit none
    private
 
-   public :: tail_force, deep_force, deep_energy, deep_radius_factor, deep_reach
+   public :: tail_force, tail_constants, tail_force_matched, deep_force, deep_energy, &
+      & deep_radius_factor, deep_reach
+
+   !> h = -delta/sigma from which gauss_f52, so tail_force, is exactly 0.
+   real(dp), parameter, public :: tail_zero_h = 40.0_dp
 
 contains
 
@@ -23,7 +27,8 @@ contains
    !> Elastic summits: kappa = 0, the rigid-sphere law itself (its slope at delta_c meets
    !> k_c to the solver's accuracy). Plastic summits (EP-GW, psi > 0), many of which yield
    !> even far apart: kappa = k_c/p_c - (5/2) F_{3/2}(h_c)/(sigma F_{5/2}(h_c)) matches
-   !> the slope too. C1 at delta_c, 0 as delta -> -inf.
+   !> the slope too. C1 at delta_c, 0 as delta -> -inf, and exactly 0 for delta <=
+   !> -40 sigma (F_{5/2} is 0 there: tail_zero_h).
    pure subroutine tail_force(delta_c, p_c, k_c, sigma, plastic, delta, force, stiffness)
       real(dp), intent(in) :: delta_c   !< cut-off, the table's first node [length]
       real(dp), intent(in) :: p_c, k_c  !< force and stiffness there
@@ -31,19 +36,42 @@ contains
       logical, intent(in) :: plastic    !< summits yield (EP-GW with psi > 0)
       real(dp), intent(in) :: delta     !< overlap [length], < delta_c
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: f52, f52_c, kappa, log_p
+      real(dp) :: f52_c, kappa
+      call tail_constants(delta_c, p_c, k_c, sigma, plastic, f52_c, kappa)
+      call tail_force_matched(delta_c, p_c, sigma, f52_c, kappa, delta, force, stiffness)
+   end subroutine tail_force
+
+   !> tail_force's constants of the match at the cut-off, which a table computes once:
+   !> f52_c = F_{5/2}(h_c) and kappa (0 where the law does not apply).
+   pure subroutine tail_constants(delta_c, p_c, k_c, sigma, plastic, f52_c, kappa)
+      real(dp), intent(in) :: delta_c, p_c, k_c, sigma   !< as tail_force
+      logical, intent(in) :: plastic                     !< as tail_force
+      real(dp), intent(out) :: f52_c   !< F_{5/2}(-delta_c/sigma)
+      real(dp), intent(out) :: kappa   !< exponent rate of the match [1/length]
+      f52_c = gauss_f52(-delta_c/sigma)
+      kappa = 0.0_dp
+      if (plastic .and. p_c > 0.0_dp .and. f52_c > 0.0_dp) &
+         & kappa = k_c/p_c - 2.5_dp*gauss_f32(-delta_c/sigma)/(sigma*f52_c)
+   end subroutine tail_constants
+
+   !> tail_force from tail_constants' f52_c and kappa (the same values, one F_{5/2} fewer
+   !> per call, and no F_{3/2} at the cut-off).
+   pure subroutine tail_force_matched(delta_c, p_c, sigma, f52_c, kappa, delta, force, &
+      & stiffness)
+      real(dp), intent(in) :: delta_c, p_c, sigma   !< as tail_force
+      real(dp), intent(in) :: f52_c, kappa          !< tail_constants'
+      real(dp), intent(in) :: delta                 !< overlap [length], < delta_c
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: f52, log_p
       force = 0.0_dp
       stiffness = 0.0_dp
-      f52_c = gauss_f52(-delta_c/sigma)
       f52 = gauss_f52(-delta/sigma)
       if (.not. (p_c > 0.0_dp .and. f52_c > 0.0_dp .and. f52 > 0.0_dp)) return
-      kappa = 0.0_dp
-      if (plastic) kappa = k_c/p_c - 2.5_dp*gauss_f32(-delta_c/sigma)/(sigma*f52_c)
       log_p = log(p_c) + log(f52/f52_c) + kappa*(delta - delta_c)
       if (.not. log_p > log(tiny(1.0_dp))) return
       force = exp(min(log_p, log(p_c)))
       stiffness = force*(2.5_dp*gauss_f32(-delta/sigma)/(sigma*f52) + kappa)
-   end subroutine tail_force
+   end subroutine tail_force_matched
 
    !> Deep overlaps above the last node d_e (force p_e, stiffness k_e), doc/theory.md §9:
    !> the model's asymptote, Hertz's force on the overlap g the rough layer leaves,

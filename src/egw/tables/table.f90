@@ -34,7 +34,8 @@ module egw_table
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_law
    use egw_flat_law, only: flat_law
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
-   use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor
+   use egw_table_ends, only: tail_force, tail_constants, tail_force_matched, tail_zero_h, &
+      & deep_force, deep_energy, deep_radius_factor
    implicit none
    private
 
@@ -101,6 +102,12 @@ module egw_table
       real(dp) :: bucket_origin = 0.0_dp          !< overlap at the first node
       !> some bucket spans > 6 intervals (its entry is negated: bisect there)
       logical :: crowded = .false.
+      !> rough tail's match at the cut-off (tail_constants): F_{5/2}(h_c), kappa
+      real(dp) :: tail_f52_c = 0.0_dp, tail_kappa = 0.0_dp
+      !> below this overlap force and stiffness are exactly 0 (the tail law's own zero:
+      !> delta <= -40 sigma for rough models, delta <= 0 for Hertz; -huge for flat laws):
+      !> the first test of an evaluation
+      real(dp) :: zero_below = -huge(1.0_dp)
    end type force_table
 
    !> 8-point Gauss-Legendre rule on [0, 1] for the energy of log-space intervals,
@@ -596,7 +603,26 @@ contains
       ! (Buckets uniform in sign(delta) sqrt|delta| would spread graded nodes, but the
       ! sqrt on the lookup path made an evaluation ~1.8x slower, measured.)
       call fit_buckets(table)
+      call tail_constants(table%cutoff, table%force(1), table%stiffness(1), &
+         & table%params%sigma, plastic_summits(table%params), table%tail_f52_c, &
+         & table%tail_kappa)
+      table%zero_below = zero_overlap(table%params, table%cutoff)
    end subroutine table_prepare
+
+   !> The overlap below which table_eval is exactly 0 (below the cut-off too): rough
+   !> models (not flat laws) where -delta/sigma > tail_zero_h (F_{5/2} = 0; the factor
+   !> keeps the rounded quotient above it), Hertz at delta < 0; -huge otherwise.
+   pure real(dp) function zero_overlap(params, cutoff) result(delta)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: cutoff
+      delta = -huge(1.0_dp)
+      if (params%model == model_flat_law) return
+      if (is_rough(params)) then
+         delta = min(cutoff, -(tail_zero_h*(1 + 1.0e-9_dp))*params%sigma)
+      else
+         delta = min(cutoff, 0.0_dp)
+      end if
+   end function zero_overlap
 
    !> Buckets uniform in delta, 8 per interval, doubled while more than 1/64 of them span
    !> more than 6 intervals (up to max_buckets); those left crowded are marked.
@@ -683,6 +709,13 @@ contains
       else if (delta == table%cutoff) then
          force = table%force(1)
          stiffness = table%stiffness(1)
+      else if (delta < table%zero_below) then
+         force = 0.0_dp
+         stiffness = 0.0_dp
+      else if (is_rough(table%params) .and. table%params%model /= model_flat_law) then
+         ! below_cutoff's rough tail with the constants of the match computed once
+         call tail_force_matched(table%cutoff, table%force(1), table%params%sigma, &
+            & table%tail_f52_c, table%tail_kappa, delta, force, stiffness)
       else
          call below_cutoff(table%params, table%cutoff, table%force(1), table%stiffness(1), &
             & delta, force, stiffness)
