@@ -502,6 +502,12 @@ void egw_universal_free(egw_universal *u);
  * adaptively: solves at the midpoints of both grids agree to rel_tol of the force at the
  * turning point. Evaluation allocates nothing and takes no lock; a table is read-only
  * after the build, so any number of threads may evaluate it (each with its own states).
+ * EP-GW alone does not let a packing come to rest: it dissipates only while a contact
+ * loads beyond its past maximum overlap, and below it unloading and reloading retrace one
+ * elastic curve (no loss), so contacts vibrating about equilibrium keep their energy. A
+ * DEM needs damping beside it, as with any elastic law: a viscous term, e.g.
+ * F = P - c d(delta)/dt with c = 2 zeta sqrt(m* K), K the stiffness these calls return
+ * (example/dem_c/dem_c.c); in LAMMPS the damping sub-model of pair_style egw.
  * ------------------------------------------------------------------------ */
 typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 
