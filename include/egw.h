@@ -390,8 +390,9 @@ int egw_tables_write_lammps(int n, const egw_table *tables, const char *path);
  * truncated, corrupted (checksum), wrong-version or inconsistent file, or one whose
  * numbers do not make a table, even under a valid checksum (not finite; negative force,
  * stiffness, energy or contact radius; a force that decreases with the overlap; a
- * stiffness or an energy inconsistent with the forces between nodes; metadata out of
- * range: doc/formats.md section 1, "Checks on read")
+ * stiffness or an energy inconsistent with the forces between nodes; an interpolated
+ * force that dips below 0 between nodes; a node value above 1e200 in magnitude; metadata
+ * out of range: doc/formats.md section 1, "Checks on read")
  * gives EGW_BAD_FILE with a message saying what is wrong, and no table. A CSV file
  * without its checksum line (hand-edited) is read, with info.checksum_missing = 1.
  * EGW_IO_ERROR if it cannot be opened. *out receives a handle only on success. */
@@ -503,6 +504,12 @@ void egw_universal_free(egw_universal *u);
  * adaptively: solves at the midpoints of both grids agree to rel_tol of the force at the
  * turning point. Evaluation allocates nothing and takes no lock; a table is read-only
  * after the build, so any number of threads may evaluate it (each with its own states).
+ * EP-GW alone does not let a packing come to rest: it dissipates only while a contact
+ * loads beyond its past maximum overlap, and below it unloading and reloading retrace one
+ * elastic curve (no loss), so contacts vibrating about equilibrium keep their energy. A
+ * DEM needs damping beside it, as with any elastic law: a viscous term, e.g.
+ * F = P - c d(delta)/dt with c = 2 zeta sqrt(m* K), K the stiffness these calls return
+ * (example/dem_c/dem_c.c); in LAMMPS the damping sub-model of pair_style egw.
  * ------------------------------------------------------------------------ */
 typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 

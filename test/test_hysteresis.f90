@@ -18,7 +18,7 @@ module test_hysteresis
    use egw_tolerance_probe, only: probe_hysteresis_size, build_m_node_limit
    use egw_cache, only: build_hysteresis_cached
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
-   use, intrinsic :: iso_c_binding, only: c_int
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc, c_null_ptr, c_char
    use, intrinsic :: iso_fortran_env, only: int64
    implicit none
    private
@@ -57,6 +57,7 @@ contains
          & new_unittest("energy: the force's integral; e^2 at a turning point", test_energy), &
          & new_unittest("elastic summits: no hysteresis", test_reversible), &
          & new_unittest("bad input", test_bad_input), &
+         & new_unittest("errors with messages = the C calls' statuses", test_eval_errors), &
          & new_unittest("glass at 1e-6: refused before the build", test_unreachable_size), &
          & new_unittest("write/read CSV and binary: same values", test_round_trip), &
          & new_unittest("read refuses corrupted and insane files", test_bad_files), &
@@ -711,6 +712,153 @@ contains
       nfail = c_hysteresis()
       call check(error, nfail == 0, to_string(nfail)//" C check(s) failed (see above)")
    end subroutine test_c_api
+
+   !> The optional error of hysteresis_eval, hysteresis_eval_state and hysteresis_energy
+   !> (issue 33 item 5: they returned a bare stat): on the EP-GW table, at loading and
+   !> unloading states inside the table (no error), above its delta_max (egw_out_of_range),
+   !> with a NaN overlap or history (egw_invalid_argument, nothing changed) and far beyond
+   !> the doubles (1e250: the force ~ delta**1.5 overflows; egw_invalid_argument), each
+   !> error's status equals stat and the C call's on the same table (handle = its address)
+   !> and its message names the argument; the C message is the same text where C names the
+   !> argument alike (delta_max_state, max(delta, delta_max_state); C's state[0] is
+   !> Fortran's state(1)). Values and histories are the same bits with and without the
+   !> error (the same code).
+   subroutine test_eval_errors(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table), target :: t
+      type(egw_error), allocatable :: err
+      real(dp), parameter :: big = 1.0e250_dp
+      real(dp) :: nan, cases(2, 7), f, k, f0, k0, m, m0, st(hysteresis_state_size), &
+         & st0(hysteresis_state_size), u, u0
+      real(c_double), target :: mc, stc(hysteresis_state_size), uc
+      character(len=32) :: names(7)
+      integer :: codes(7), i, stat, stat0, stat_c
+      interface
+         integer(c_int) function c_eval(h, delta, state, force, stiffness) &
+            & bind(C, name="egw_hysteresis_eval")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, state, force, stiffness
+            real(c_double), value :: delta
+         end function c_eval
+         integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
+            & bind(C, name="egw_hysteresis_eval_state")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, state, force, stiffness
+            real(c_double), value :: delta
+         end function c_eval_state
+         integer(c_int) function c_energy(h, delta, state, energy) &
+            & bind(C, name="egw_hysteresis_energy")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, energy
+            real(c_double), value :: delta, state
+         end function c_energy
+      end interface
+      call build(ep, t, error)
+      if (allocated(error)) return
+      nan = ieee_nan()
+      ! (delta, history) pairs
+      cases = reshape([1.0_dp, -huge(1.0_dp), 1.0_dp, 3.0_dp, t%delta_max + 1, 3.0_dp, &
+         & 1.0_dp, t%delta_max + 1, nan, 3.0_dp, 1.0_dp, nan, big, -huge(1.0_dp)], [2, 7])
+      codes = [0, 0, egw_out_of_range, egw_out_of_range, egw_invalid_argument, &
+         & egw_invalid_argument, egw_invalid_argument]
+      names = [character(len=32) :: "", "", "delta_max_state", "delta_max_state", "delta", &
+         & "delta_max_state", "delta_max_state"]
+      do i = 1, size(codes)
+         ! hysteresis_eval
+         m0 = cases(2, i)
+         m = m0
+         mc = m0
+         call hysteresis_eval(t, cases(1, i), m0, f0, k0, stat0)
+         call hysteresis_eval(t, cases(1, i), m, f, k, stat, err)
+         stat_c = c_eval(c_loc(t), cases(1, i), c_loc(mc), c_null_ptr, c_null_ptr)
+         call expect("hysteresis_eval", names(i), codes(i) /= egw_invalid_argument)
+         if (allocated(error)) return
+         call check(error, same(m, m0), "hysteresis_eval: history differs with the error")
+         if (allocated(error)) return
+         ! hysteresis_eval_state (C names state[0]; the overlap's name is the same)
+         ! a state this table filled (another is a new contact): loaded to the history
+         ! (case 6: one whose history became NaN)
+         call hysteresis_state_init(st0)
+         if (.not. cases(2, i) <= -huge(1.0_dp)) call hysteresis_eval_state(t, 3.0_dp, st0, &
+            & f, k, stat)
+         if (cases(2, i) > -huge(1.0_dp)) call hysteresis_eval_state(t, cases(2, i), st0, f, &
+            & k, stat)
+         if (i == 6) st0(1) = nan
+         st = st0
+         stc = st0
+         call hysteresis_eval_state(t, cases(1, i), st0, f0, k0, stat0)
+         call hysteresis_eval_state(t, cases(1, i), st, f, k, stat, err)
+         stat_c = c_eval_state(c_loc(t), cases(1, i), c_loc(stc), c_null_ptr, c_null_ptr)
+         if (names(i) == "delta_max_state") names(i) = "state(1)"
+         call expect("hysteresis_eval_state", names(i), .false.)
+         if (allocated(error)) return
+         call check(error, all(same(st, st0)), "hysteresis_eval_state: state differs")
+         if (allocated(error)) return
+         ! hysteresis_energy (no NaN result check: f, k unused there)
+         call hysteresis_energy(t, cases(1, i), cases(2, i), u0, stat0)
+         call hysteresis_energy(t, cases(1, i), cases(2, i), u, stat, err)
+         stat_c = c_energy(c_loc(t), cases(1, i), cases(2, i), c_loc(uc))
+         f = u
+         f0 = u0
+         k = 0
+         k0 = 0
+         if (names(i) == "state(1)") names(i) = "delta_max_state"
+         if (codes(i) == egw_out_of_range) names(i) = "max(delta, delta_max_state)"
+         if (i == 7) names(i) = "delta"
+         call expect("hysteresis_energy", names(i), codes(i) == egw_out_of_range)
+         if (allocated(error)) return
+      end do
+   contains
+      !> stat, stat0 (without the error), C's status, the error: codes(i); its message
+      !> starts with "name = " (and equals C's when same_text); f, k as f0, k0.
+      subroutine expect(what, name, same_text)
+         character(len=*), intent(in) :: what, name
+         logical, intent(in) :: same_text
+         character(len=:), allocatable :: where
+         where = what//" case "//to_string(i)
+         call check(error, stat == codes(i) .and. stat0 == stat .and. stat_c == stat, where// &
+            & ": status "//to_string(stat)//", without the error "//to_string(stat0)// &
+            & ", C "//to_string(stat_c)//", expected "//to_string(codes(i)))
+         if (allocated(error)) return
+         call check(error, same(f, f0) .and. same(k, k0), where//": values differ")
+         if (allocated(error)) return
+         if (codes(i) == 0) then
+            call check(error, .not. allocated(err), where//": an error on a valid call")
+            return
+         end if
+         call check(error, allocated(err), where//": no error")
+         if (allocated(error)) return
+         call check(error, err%stat == stat .and. index(err%message, trim(name)//" = ") == 1, &
+            & where//": '"//err%message//"'")
+         if (allocated(error)) return
+         if (same_text) call check(error, err%message == c_message(), where//": '"// &
+            & err%message//"' against C's '"//c_message()//"'")
+      end subroutine expect
+   end subroutine test_eval_errors
+
+   !> a and b the same double (NaN equal to NaN).
+   elemental logical function same(a, b)
+      use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+      real(dp), intent(in) :: a, b
+      same = a == b .or. (ieee_is_nan(a) .and. ieee_is_nan(b))
+   end function same
+
+   !> This thread's last C error message (egw_last_error).
+   function c_message() result(text)
+      character(len=:), allocatable :: text
+      character(kind=c_char), target :: buf(1000)
+      integer :: n
+      interface
+         integer(c_int) function c_last_error(b, buflen) bind(C, name="egw_last_error")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: b
+            integer(c_int), value :: buflen
+         end function c_last_error
+      end interface
+      n = min(c_last_error(c_loc(buf), size(buf)), size(buf)) - 1
+      allocate (character(len=n) :: text)
+      text = transfer(buf(1:n), text)
+   end function c_message
 
    real(dp) function ieee_nan()
       use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan

@@ -5,7 +5,10 @@
 !> solve_contact between nodes to the stated tolerance); they become accuracy tests of
 !> the real rough solver once it is linked.
 module test_table
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
+      & ieee_is_nan
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc, c_null_ptr, c_char, &
+      & c_null_char
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
@@ -21,6 +24,12 @@ module test_table
    public :: collect_table
 
    real(dp), parameter :: tol = 1.0e-6_dp
+
+   !> egw_params of include/egw.h (field order checked by the capi_structs suite)
+   type, bind(C) :: egw_params_mirror
+      integer(c_int) :: model
+      real(c_double) :: radius, modulus, sigma, mu, psi, hardness_coeff, plastic_ratio
+   end type egw_params_mirror
 
    ! record of the calls of the progress hook (record_progress); test-only module state
    integer :: n_calls = 0, last_done = -1, last_total = -1
@@ -69,6 +78,7 @@ contains
          & new_unittest("hertz cut-off and zero below", test_hertz_cutoff), &
          & new_unittest("extrapolation above delta_max", test_extrapolation), &
          & new_unittest("invalid requests", test_invalid), &
+         & new_unittest("table_eval's error = egw_table_eval's status", test_eval_error), &
          & new_unittest("unreached tolerance in the caller's terms", test_tolerance_context), &
          & new_unittest("particle radii", test_radii), &
          & new_unittest("threads give the same table", test_threads), &
@@ -81,6 +91,8 @@ contains
          & new_unittest("universal hertz exact scaling", test_universal_hertz), &
          & new_unittest("universal rough vs solves (contract)", test_universal_rough), &
          & new_unittest("universal invalid calls", test_universal_invalid), &
+         & new_unittest("universal_eval's error = egw_universal_eval's", &
+         & test_universal_error), &
          & new_unittest("universal slice = universal eval", test_universal_slice), &
          & new_unittest("progress hook (1-D table)", test_progress_table), &
          & new_unittest("progress hook (universal table)", test_progress_universal), &
@@ -367,6 +379,139 @@ contains
             & "got '"//err%message//"' for "//name)
       end subroutine expect
    end subroutine test_invalid
+
+   !> table_eval and table_eval_all with the optional error (issue 33 item 5): on the same
+   !> table (the C handle is the address of the Fortran table, as egw_table_build's), the
+   !> status of egw_table_eval and egw_table_eval_all (C) at each overlap, and the message
+   !> egw_last_error gives, equal the error's; valid overlaps (the tail, a node, between
+   !> nodes, delta_max itself) give no error; above delta_max egw_out_of_range; a NaN
+   !> overlap egw_invalid_argument naming delta; +Inf egw_invalid_argument. With or
+   !> without the error the values are the same bits (exact comparison: the same code).
+   subroutine test_eval_error(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table), target :: t
+      type(egw_error), allocatable :: err
+      real(dp) :: deltas(8), f, k, f0, k0, e, a, e0, a0
+      real(c_double), target :: fc, kc
+      integer :: i, stat_c
+      interface
+         integer(c_int) function c_table_eval(h, delta, force, stiffness) &
+            & bind(C, name="egw_table_eval")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, force, stiffness
+            real(c_double), value :: delta
+         end function c_table_eval
+         integer(c_int) function c_table_eval_all(h, delta, force, stiffness, energy, &
+            & radius) bind(C, name="egw_table_eval_all")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, force, stiffness, energy, radius
+            real(c_double), value :: delta
+         end function c_table_eval_all
+      end interface
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      deltas = [t%cutoff/2, t%delta(3), 0.5_dp*(t%delta(3) + t%delta(4)), t%delta_max, &
+         & 1.5_dp*t%delta_max, ieee_value(f, ieee_quiet_nan), ieee_value(f, ieee_positive_inf), &
+         & -1.0_dp]
+      do i = 1, size(deltas)
+         call table_eval(t, deltas(i), f0, k0)
+         call table_eval(t, deltas(i), f, k, err)
+         stat_c = c_table_eval(c_loc(t), deltas(i), c_loc(fc), c_loc(kc))
+         call same_as_c(err, stat_c, "table_eval at delta = "//format_real(deltas(i)))
+         if (allocated(error)) return
+         call table_eval_all(t, deltas(i), f0, k0, e0, a0)
+         call table_eval_all(t, deltas(i), f, k, e, a, err)
+         stat_c = c_table_eval_all(c_loc(t), deltas(i), c_null_ptr, c_null_ptr, c_null_ptr, &
+            & c_null_ptr)
+         call same_as_c(err, stat_c, "table_eval_all at delta = "//format_real(deltas(i)))
+         if (allocated(error)) return
+         call check(error, same_bits(e, e0) .and. same_bits(a, a0), "table_eval_all's "// &
+            & "energy and radius differ with the error at delta = "//format_real(deltas(i)))
+         if (allocated(error)) return
+         if (i <= 4) then
+            call check(error, .not. allocated(err), "no error at delta = "// &
+               & format_real(deltas(i)))
+         else if (i == 5) then
+            call check(error, err%stat == egw_out_of_range .and. &
+               & index(err%message, "delta = ") == 1, "above delta_max: "//err%message)
+         else if (i <= 7) then
+            call check(error, err%stat == egw_invalid_argument .and. &
+               & index(err%message, "delta = ") == 1, "NaN, +Inf: "//err%message)
+         end if
+         if (allocated(error)) return
+      end do
+   contains
+      !> err as C's status and message; the values with the error as without.
+      subroutine same_as_c(err, stat_c, where)
+         type(egw_error), allocatable, intent(in) :: err
+         integer, intent(in) :: stat_c
+         character(len=*), intent(in) :: where
+         call check(error, same_bits(f, f0) .and. same_bits(k, k0), where// &
+            & ": values differ with the error")
+         if (allocated(error)) return
+         if (.not. allocated(err)) then
+            call check(error, stat_c == 0, where//": no error, C status "//to_string(stat_c))
+            return
+         end if
+         call check(error, err%stat == stat_c .and. err%message == last_error_c(), where// &
+            & ": "//to_string(err%stat)//" '"//err%message//"', C "//to_string(stat_c)// &
+            & " '"//last_error_c()//"'")
+      end subroutine same_as_c
+   end subroutine test_eval_error
+
+   !> universal_eval with the optional error: on the same table as egw_universal_eval (C,
+   !> handle = the table's address), the same status and message for a valid contact (none,
+   !> values equal bit for bit with and without the error), x above x_max, mu outside the
+   !> range, a NaN delta and sigma = 0 (C refuses those two; Fortran's old call gave
+   !> force 0 and no status).
+   subroutine test_universal_error(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table), target :: u
+      type(egw_error), allocatable :: err
+      type(egw_params_mirror), target :: cp
+      real(dp) :: f, k, f0, k0, deltas(5), sigmas(5), mus(5)
+      integer :: i, stat, stat0, stat_c
+      character(len=*), parameter :: names(5) = [character(len=5) :: "", "delta", "mu", &
+         & "delta", "sigma"]
+      integer, parameter :: codes(5) = [0, egw_out_of_range, egw_out_of_range, &
+         & egw_invalid_argument, egw_invalid_parameter]
+      interface
+         integer(c_int) function c_universal_eval(h, p, delta, force, stiffness) &
+            & bind(C, name="egw_universal_eval")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, p, force, stiffness
+            real(c_double), value :: delta
+         end function c_universal_eval
+      end interface
+      call build_universal(model_hertz, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), &
+         & 1.0_dp, 2.0_dp, -1.0_dp, 10.0_dp, 1e-4_dp, u, err)
+      call check(error, .not. allocated(err), "small universal build failed")
+      if (allocated(error)) return
+      deltas = [0.5_dp, 20.0_dp, 0.5_dp, ieee_value(f, ieee_quiet_nan), 0.5_dp]
+      mus = [1.5_dp, 1.5_dp, 3.0_dp, 1.5_dp, 1.5_dp]
+      sigmas = [1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 0.0_dp]
+      do i = 1, size(deltas)
+         call universal_eval(u, 2.0_dp, 3.0_dp, sigmas(i), mus(i), deltas(i), f0, k0, stat0)
+         call universal_eval(u, 2.0_dp, 3.0_dp, sigmas(i), mus(i), deltas(i), f, k, stat, err)
+         cp = egw_params_mirror(model=0, radius=2.0_dp, modulus=3.0_dp, sigma=sigmas(i), &
+            & mu=mus(i), psi=0.0_dp, hardness_coeff=0.6_dp, plastic_ratio=54.0_dp)
+         stat_c = c_universal_eval(c_loc(u), c_loc(cp), deltas(i), c_null_ptr, c_null_ptr)
+         call check(error, stat == codes(i) .and. stat0 == stat .and. same_bits(f, f0) .and. &
+            & same_bits(k, k0), "case "//to_string(i)//": status "//to_string(stat)// &
+            & " (without the error "//to_string(stat0)//"), expected "//to_string(codes(i)))
+         if (allocated(error)) return
+         if (i == 1) then
+            call check(error, .not. allocated(err) .and. stat_c == 0, "valid call: an error")
+         else
+            call check(error, allocated(err), "case "//to_string(i)//": no error")
+            if (allocated(error)) return
+            call check(error, err%stat == stat .and. stat_c == stat .and. &
+               & index(err%message, trim(names(i))//" = ") == 1, "case "//to_string(i)// &
+               & ": '"//err%message//"', C status "//to_string(stat_c))
+         end if
+         if (allocated(error)) return
+      end do
+   end subroutine test_universal_error
 
    subroutine test_radii(error)
       type(error_type), allocatable, intent(out) :: error
@@ -1090,5 +1235,28 @@ contains
       end do
       s = s*u_max/(3*n)
    end function f52_simpson
+   !> a and b the same double (NaN equal to NaN).
+   elemental logical function same_bits(a, b)
+      real(dp), intent(in) :: a, b
+      same_bits = a == b .or. (ieee_is_nan(a) .and. ieee_is_nan(b))
+   end function same_bits
+
+   !> This thread's last C error message (egw_last_error).
+   function last_error_c() result(text)
+      character(len=:), allocatable :: text
+      character(kind=c_char), target :: buf(1000)
+      integer :: n
+      interface
+         integer(c_int) function c_last_error(b, buflen) bind(C, name="egw_last_error")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: b
+            integer(c_int), value :: buflen
+         end function c_last_error
+      end interface
+      n = c_last_error(c_loc(buf), size(buf))
+      n = min(n, size(buf)) - 1
+      allocate (character(len=n) :: text)
+      text = transfer(buf(1:n), text)
+   end function last_error_c
 
 end module test_table

@@ -40,6 +40,7 @@ contains
          & new_unittest("csv sanity on read", test_csv_sanity), &
          & new_unittest("binary sanity on read", test_binary_sanity), &
          & new_unittest("crafted values with a valid checksum", test_crafted_values), &
+         & new_unittest("crafted tail (n_log lowered) and absurd node", test_crafted_tail), &
          & new_unittest("atomic writes", test_atomic), &
          & new_unittest("lammps export", test_lammps), &
          & new_unittest("lammps export, rough table", test_lammps_rough), &
@@ -609,6 +610,70 @@ contains
          end do
       end subroutine crafted_hysteresis
    end subroutine test_crafted_values
+
+   !> Issue 33's crafted files: a valid E-GW binary table (doc/formats.md §3) with n_log
+   !> (int32 at offset 28) lowered to 0, 1 and 2, so that separated-tail intervals are
+   !> read as P instead of ln P, and one with the last node's force (offset 144 + 8 n +
+   !> 8 (n - 1)) set to 1e300 (still increasing, so the older checks passed it); each
+   !> with its FNV-1a checksum recomputed here from the documented rule (not the
+   !> writer's code). Each is refused with egw_bad_file naming what is wrong: a negative
+   !> interpolated force between two named nodes, and the node's force above 1e200.
+   !> The unpatched bytes, re-checksummed the same way, still read (the checksum code
+   !> here is right, and the new checks pass a built table).
+   subroutine test_crafted_tail(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t, back
+      type(egw_error), allocatable :: err
+      character(len=:), allocatable :: b, c
+      integer :: n, n_log
+      call rough_table(t, error)
+      if (allocated(error)) return
+      call check(error, t%n_log > 3, "the E-GW table has more than 3 ln P intervals")
+      if (allocated(error)) return
+      call write_table(t, dir//"/tail.egwt", format_binary, err)
+      call check(error, .not. allocated(err), "write")
+      if (allocated(error)) return
+      call slurp(dir//"/tail.egwt", b)
+      n = size(t%delta)
+      c = b
+      call resum(c)
+      call spit(dir//"/tail_resum.egwt", c)
+      call read_table(dir//"/tail_resum.egwt", back, err)
+      call check(error, .not. allocated(err), "the re-checksummed valid table is refused")
+      if (allocated(error)) return
+      do n_log = 0, 2
+         c = b
+         c(29:32) = transfer(int(n_log, int32), c(29:32))
+         call resum(c)
+         call spit(dir//"/tail_nlog.egwt", c)
+         call expect_bad(error, dir//"/tail_nlog.egwt", "the force interpolated between them "// &
+            & "falls to -")
+         if (allocated(error)) return
+      end do
+      c = b
+      c(145 + 16*n - 8:145 + 16*n - 1) = transfer(1.0e300_dp, c(1:8))
+      call resum(c)
+      call spit(dir//"/tail_absurd.egwt", c)
+      call expect_bad(error, dir//"/tail_absurd.egwt", "node "//to_string(n)//": force "// &
+         & format_real(1.0e300_dp)//" above")
+   contains
+      !> The checksum of doc/formats.md §3: FNV-1a 32 over every byte before it, stored as
+      !> a little-endian uint32 in the last 4 bytes.
+      subroutine resum(bytes)
+         character(len=*), intent(inout) :: bytes
+         integer(int64) :: h
+         integer :: k, j
+         h = 2166136261_int64
+         do k = 1, len(bytes) - 4
+            h = ieor(h, int(ichar(bytes(k:k)), int64))
+            h = iand(h*16777619_int64, 4294967295_int64)
+         end do
+         do j = 0, 3
+            bytes(len(bytes) - 3 + j:len(bytes) - 3 + j) = achar(int(iand(shiftr(h, 8*j), &
+               & 255_int64)))
+         end do
+      end subroutine resum
+   end subroutine test_crafted_tail
 
    !> b with the double at byte pos set to x and the checksum recomputed: refused.
    subroutine patched(error, b, pos, x, what)

@@ -4,6 +4,14 @@
 submodule (egw_table_format) egw_table_format_checks
    implicit none
 
+   !> The largest node value (overlap, force, stiffness, energy, contact radius, in the
+   !> table's units) a reader accepts. No contact comes near it in any units (a steel ball
+   !> of 1 km pressed 1 m carries ~1e17 N; in SI, pN or light-years the exponents shift
+   !> by tens), and it leaves ~1e100 of room below the largest double for what evaluation
+   !> derives from a node: products with overlaps, energies, the deep-overlap law above
+   !> delta_max. A file with a node force of 1e300 and a valid checksum is refused.
+   real(dp), parameter :: absurd_value = 1.0e200_dp
+
 contains
 
    module procedure check_table
@@ -79,8 +87,80 @@ contains
       do i = 1, n - 1
          call check_interval(path, where, t, i, error)
          if (allocated(error)) return
+         if (i > t%n_log) call check_positive_cubic(path, where, t, i, error)
+         if (allocated(error)) return
+      end do
+      ! last: values that pass every check above but no contact has
+      do i = 1, n
+         if (maxval(abs([t%delta(i), t%force(i), t%stiffness(i), t%energy(i), &
+            & t%contact_radius(i)])) > absurd_value) then
+            call bad(error, path, where//"node "//int_str(i)//": "// &
+               & absurd_field(t, i)//" above "//format_real(absurd_value)// &
+               & " (no contact reaches it in any units; the continuations would overflow)")
+            return
+         end if
       end do
    end procedure check_table
+
+   !> The first of the node's values above absurd_value, as "name value".
+   function absurd_field(t, i) result(text)
+      type(force_table), intent(in) :: t
+      integer, intent(in) :: i
+      character(len=:), allocatable :: text
+      if (abs(t%delta(i)) > absurd_value) then
+         text = "delta "//format_real(t%delta(i))
+      else if (abs(t%force(i)) > absurd_value) then
+         text = "force "//format_real(t%force(i))
+      else if (abs(t%stiffness(i)) > absurd_value) then
+         text = "stiffness "//format_real(t%stiffness(i))
+      else if (abs(t%energy(i)) > absurd_value) then
+         text = "energy "//format_real(t%energy(i))
+      else
+         text = "contact_radius "//format_real(t%contact_radius(i))
+      end if
+   end function absurd_field
+
+   !> An interval that interpolates P itself (i > n_log) must not dip below 0: its Hermite
+   !> cubic's least value on [0, 1] (at an end or where its derivative vanishes) at least
+   !> -64 eps of its larger end (round-off). The builder's cubics are monotone
+   !> (Fritsch-Carlson) and never dip; a file whose n_log was lowered, so that the
+   !> separated tail is read as P rather than ln P, would (issue 33: negative forces
+   !> below the cut-off's neighbours).
+   subroutine check_positive_cubic(path, where, t, i, error)
+      character(len=*), intent(in) :: path, where
+      type(force_table), intent(in) :: t
+      integer, intent(in) :: i
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: h, c(0:3), disc, roots(2), low, v
+      integer :: r
+      h = t%delta(i + 1) - t%delta(i)
+      c(0) = t%force(i)
+      c(1) = h*t%stiffness(i)
+      c(2) = 3*(t%force(i + 1) - t%force(i)) - 2*h*t%stiffness(i) - h*t%stiffness(i + 1)
+      c(3) = 2*(t%force(i) - t%force(i + 1)) + h*t%stiffness(i) + h*t%stiffness(i + 1)
+      low = min(t%force(i), t%force(i + 1))
+      ! v'(u) = c1 + 2 c2 u + 3 c3 u^2
+      roots = -1.0_dp
+      if (c(3) /= 0.0_dp) then
+         disc = c(2)**2 - 3*c(3)*c(1)
+         if (disc >= 0.0_dp) roots = [(-c(2) - sqrt(disc))/(3*c(3)), &
+            & (-c(2) + sqrt(disc))/(3*c(3))]
+      else if (c(2) /= 0.0_dp) then
+         roots(1) = -c(1)/(2*c(2))
+      end if
+      do r = 1, 2
+         if (roots(r) > 0.0_dp .and. roots(r) < 1.0_dp) then
+            v = c(0) + roots(r)*(c(1) + roots(r)*(c(2) + roots(r)*c(3)))
+            low = min(low, v)
+         end if
+      end do
+      if (low < -64*epsilon(1.0_dp)*max(t%force(i), t%force(i + 1))) then
+         call bad(error, path, where//"nodes "//int_str(i)//", "//int_str(i + 1)// &
+            & ": the force interpolated between them falls to "//format_real(low)// &
+            & " (negative; n_log = "//int_str(t%n_log)//": is the separated tail "// &
+            & "interpolated in P instead of ln P?)")
+      end if
+   end subroutine check_positive_cubic
 
    module procedure check_universal_header
       if (u%n_mu < 4 .or. u%n_mu > 100000) then

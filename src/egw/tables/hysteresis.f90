@@ -24,14 +24,17 @@
 !> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
 !> retraces the loading table exactly.
 module egw_hysteresis
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
+      & ieee_quiet_nan
    use, intrinsic :: iso_fortran_env, only: int64
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range
+   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, fatal_error, &
+      & format_real
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, table_eval, table_eval_cached, table_segment, gl_x, gl_w, &
-      & segment_eval, table_energy, table_progress, table_interval, deep_coefficient
+      & segment_eval, table_energy, table_progress, table_interval, deep_coefficient, &
+      & beyond_status
    use egw_table_ends, only: deep_reach
    implicit none
    private
@@ -137,8 +140,13 @@ contains
    !> state, 0 below the loading table's cut-off (where the loading force is below 1e-12
    !> of the reference force; a state at or below the cut-off unloads on the loading
    !> curve's tail). A state above the table's delta_max uses the last curve and returns
-   !> egw_out_of_range (values written). NaN delta: egw_invalid_argument, nothing changed.
-   pure subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat)
+   !> egw_out_of_range (values written). NaN delta or state: egw_invalid_argument, nothing
+   !> changed (force, stiffness 0); a state above delta_max whose force leaves the doubles:
+   !> egw_invalid_argument, the values as computed (egw_hysteresis_eval's statuses). The
+   !> optional error says the same with a message naming the argument (formed only when
+   !> stat is not 0).
+   pure subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat, &
+      & error)
       type(hysteresis_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
       !> the contact's history: its largest overlap so far [length]
@@ -146,13 +154,17 @@ contains
       real(dp), intent(out) :: force       !< normal force [force], >= 0 (repulsive)
       real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
       integer, intent(out) :: stat         !< 0 or an egw status
+      !> allocated when stat is not 0, with a message naming the argument
+      type(egw_error), allocatable, intent(out), optional :: error
       real(dp) :: w(4), inv_span, f_m, c(4), s
       integer :: first, i
       stat = 0
       force = 0.0_dp
       stiffness = 0.0_dp
-      if (ieee_is_nan(delta)) then
+      if (ieee_is_nan(delta) .or. ieee_is_nan(delta_max_state)) then
          stat = egw_invalid_argument
+         if (present(error)) call nan_error(delta, "delta_max_state", &
+            & "-huge(1.0_dp)", error)
          return
       end if
       ! turning points at or below the cut-off (the lowest m node) unload on the loading
@@ -161,18 +173,51 @@ contains
          & .not. delta_max_state > table%loading%cutoff) then
          delta_max_state = max(delta_max_state, delta)
          call table_eval(table%loading, delta, force, stiffness)
-         if (delta > table%delta_max) stat = egw_out_of_range
+         if (delta > table%delta_max) call beyond(table, "delta_max_state", &
+            & delta_max_state, force, stiffness, stat, error)
          return
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
-      if (delta_max_state > table%delta_max) stat = egw_out_of_range
       call turning_point(table, delta_max_state, first, w, inv_span, f_m)
       s = min((delta_max_state - delta)*inv_span, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, first, w, i, c)
       call unload_branch(table, c, i, s, delta_max_state, f_m, inv_span, delta, force, &
          & stiffness)
+      if (delta_max_state > table%delta_max) call beyond(table, "delta_max_state", &
+         & delta_max_state, force, stiffness, stat, error)
    end subroutine hysteresis_eval
+
+   !> The status of an evaluation whose turning point (or overlap) x, called name, lies
+   !> above the table's delta_max, with the force and stiffness it gave: egw_out_of_range,
+   !> or egw_invalid_argument where they left the doubles; error (optional) with the
+   !> message, formed only here (the hot path allocates nothing).
+   pure subroutine beyond(table, name, x, force, stiffness, stat, error)
+      type(hysteresis_table), intent(in) :: table
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: x, force, stiffness
+      integer, intent(out) :: stat
+      type(egw_error), allocatable, intent(out), optional :: error
+      stat = egw_out_of_range
+      if (.not. (ieee_is_finite(force) .and. ieee_is_finite(stiffness))) &
+         & stat = egw_invalid_argument
+      if (present(error)) call beyond_status(table%delta_max, name, x, [force, stiffness], &
+         & error)
+   end subroutine beyond
+
+   !> egw_invalid_argument for a NaN overlap delta or a NaN history (called name; a new
+   !> contact starts from fresh, the way to start one).
+   pure subroutine nan_error(delta, name, fresh, error)
+      real(dp), intent(in) :: delta
+      character(len=*), intent(in) :: name, fresh
+      type(egw_error), allocatable, intent(out) :: error
+      if (ieee_is_nan(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = NaN: must be a number")
+      else
+         call fatal_error(error, egw_invalid_argument, name//" = NaN: a new contact starts "// &
+            & "from "//fresh)
+      end if
+   end subroutine nan_error
 
    !> hysteresis_eval with a state that also keeps what the evaluation needs of the turning
    !> point and of the piece of its unloading curve last used (hysteresis_state_size
@@ -185,8 +230,11 @@ contains
    !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
    !> histories. Only a state that this table filled is trusted (its tag, state(3)): any
    !> other (all zero, as a DEM code's zeroed contact arrays; hysteresis_state_init's;
-   !> another table's; garbled) is a new contact, its history reset to -huge.
-   pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat)
+   !> another table's; garbled) is a new contact, its history reset to -huge; but a NaN
+   !> state(1), as a NaN delta, is refused (egw_invalid_argument, nothing changed, as
+   !> egw_hysteresis_eval_state). The optional error says what stat says, with a message
+   !> naming the argument (formed only when stat is not 0).
+   pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat, error)
       type(hysteresis_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
       !> the contact's state (hysteresis_state_init): state(1) its largest overlap so far
@@ -194,6 +242,8 @@ contains
       real(dp), intent(out) :: force       !< normal force [force], >= 0 (repulsive)
       real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
       integer, intent(out) :: stat         !< 0 or an egw status
+      !> allocated when stat is not 0, with a message naming the argument
+      type(egw_error), allocatable, intent(out), optional :: error
       real(dp) :: w(4), g(4), s
       integer :: first, i
       logical :: found
@@ -203,13 +253,15 @@ contains
       if (state(3) == table%tag .and. state(2) == state(1) .and. state(11) < delta .and. &
          & delta < state(12)) then
          call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
-         if (state(1) > table%delta_max) stat = egw_out_of_range
+         if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
+            & stiffness, stat, error)
          return
       end if
       force = 0.0_dp
       stiffness = 0.0_dp
-      if (ieee_is_nan(delta)) then
+      if (ieee_is_nan(delta) .or. ieee_is_nan(state(1))) then
          stat = egw_invalid_argument
+         if (present(error)) call nan_error(delta, "state(1)", "hysteresis_state_init", error)
          return
       end if
       if (.not. state(3) == table%tag) then
@@ -227,11 +279,11 @@ contains
          & .not. state(1) > table%loading%cutoff) then
          state(1) = max(state(1), delta)
          call table_eval_cached(table%loading, delta, state(18:24), force, stiffness)
-         if (delta > table%delta_max) stat = egw_out_of_range
+         if (delta > table%delta_max) call beyond(table, "state(1)", state(1), force, &
+            & stiffness, stat, error)
          return
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
-      if (state(1) > table%delta_max) stat = egw_out_of_range
       if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
          & state(4) <= size(table%m) - 3)) then
          call turning_point(table, state(1), first, w, state(5), state(6))
@@ -253,6 +305,8 @@ contains
          call unload_branch(table, g, i, s, state(1), state(6), state(5), delta, force, &
             & stiffness)
       end if
+      if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
+         & stiffness, stat, error)
    end subroutine hysteresis_eval_state
 
    !> The force and stiffness at delta inside a piece (make_piece: start lo, cubic c),
@@ -347,13 +401,38 @@ contains
    !> it within rel_tol, and 0 below the cut-off). On the loading curve (delta = m) it is
    !> the part of the loading work that comes back; what the turning point leaves behind
    !> is dissipated. Reversible tables: the loading table's energy. The state is not
-   !> changed. Statuses as hysteresis_eval.
-   pure subroutine hysteresis_energy(table, delta, delta_max_state, energy, stat)
+   !> changed. Statuses as hysteresis_eval (egw_hysteresis_energy's): NaN delta or state
+   !> egw_invalid_argument (energy 0); max(delta, state) above delta_max egw_out_of_range
+   !> (value written); an energy beyond the doubles egw_invalid_argument. The optional
+   !> error says the same with a message naming the argument.
+   pure subroutine hysteresis_energy(table, delta, delta_max_state, energy, stat, error)
       type(hysteresis_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta             !< overlap [length]
       real(dp), intent(in) :: delta_max_state   !< the contact's largest overlap so far
       real(dp), intent(out) :: energy           !< [force*length], >= 0
       integer, intent(out) :: stat              !< 0 or an egw status
+      !> allocated when stat is not 0, with a message naming the argument
+      type(egw_error), allocatable, intent(out), optional :: error
+      call energy_value(table, delta, delta_max_state, energy, stat)
+      if (stat == egw_invalid_argument) then
+         if (present(error)) call nan_error(delta, "delta_max_state", "-huge(1.0_dp)", error)
+      else if (.not. ieee_is_finite(energy)) then
+         stat = egw_invalid_argument
+         if (present(error)) call fatal_error(error, stat, "delta = "//format_real(delta)// &
+            & ", delta_max_state = "//format_real(delta_max_state)// &
+            & ": the energy there exceeds the doubles")
+      else if (stat /= 0 .and. present(error)) then
+         call beyond_status(table%delta_max, "max(delta, delta_max_state)", &
+            & max(delta, delta_max_state), [energy], error)
+      end if
+   end subroutine hysteresis_energy
+
+   !> hysteresis_energy's value and status (NaN input, above delta_max).
+   pure subroutine energy_value(table, delta, delta_max_state, energy, stat)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta, delta_max_state
+      real(dp), intent(out) :: energy
+      integer, intent(out) :: stat
       real(dp) :: m, w(4), inv_span, f_m, d_1, lo, ratio
       integer :: first
       stat = 0
@@ -562,7 +641,7 @@ contains
          end do
          total = total*(x1 - x0)
       end function gauss_integral
-   end subroutine hysteresis_energy
+   end subroutine energy_value
 
    !> A new contact's state for hysteresis_eval_state: never touched (-huge), no cache.
    pure subroutine hysteresis_state_init(state)

@@ -25,10 +25,11 @@
 !> better than ~1e-4 (the bulk contact patch is far below the mesh), which drove builds
 !> with the 10 rel_tol check below rel_tol ~ 5e-6 into the node limit.
 module egw_table
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
+      & ieee_quiet_nan
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, fatal_error, &
-      & format_real, int_str, tolerance_context
+   use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
+      & egw_out_of_range, fatal_error, format_real, int_str, tolerance_context
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, model_flat_law, check_scaled_overlap
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_law
@@ -45,7 +46,7 @@ module egw_table
       & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff, &
       & deep_coefficient, deep_law_floor, deep_law_floor_x
-   public :: below_cutoff
+   public :: below_cutoff, beyond_status
    public :: table_meta, set_table_meta
 
    public :: table_progress
@@ -680,20 +681,53 @@ contains
    !> Force and stiffness at overlap delta: below the cut-off the model's tail (tail_force),
    !> above delta_max its deep-overlap asymptote (deep_force; see table_covers), both C1
    !> continuations of the interpolant. No allocation, no shared state: safe in OpenMP
-   !> loops over contacts.
-   pure subroutine table_eval(table, delta, force, stiffness)
+   !> loops over contacts. The optional error says what egw_table_eval's status says
+   !> (the values are written as without it): egw_invalid_argument for a NaN delta
+   !> (force and stiffness 0) or one whose continuation above delta_max leaves the doubles
+   !> (+Inf, or far enough to overflow); egw_out_of_range above delta_max (the values of
+   !> the deep-overlap asymptote, not checked against solves by the build). Without an
+   !> error the call costs what it did: the checks run only outside (cutoff, delta_max).
+   pure subroutine table_eval(table, delta, force, stiffness, error)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]: > 0 pressed together, < 0 apart
       real(dp), intent(out) :: force   !< normal force [force], >= 0 (repulsive)
       real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
+      !> allocated for a NaN or overflowing delta, or one above delta_max (see above)
+      type(egw_error), allocatable, intent(out), optional :: error
       if (delta > table%cutoff .and. delta < table%delta_max) then
          ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
          call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
             & table%bucket_scale, table%n_log, size(table%seg, 2), delta, force, stiffness)
       else
          call table_beyond(table, delta, force, stiffness)
+         if (present(error)) call beyond_status(table%delta_max, "delta", delta, &
+            & [force, stiffness], error)
       end if
    end subroutine table_eval
+
+   !> The status of an evaluation at x (called name) outside a table's (cutoff, delta_max)
+   !> with the values it gave (egw_table_eval's statuses, as messages):
+   !> none at or below delta_max; a NaN x or values that left the doubles
+   !> egw_invalid_argument; above delta_max egw_out_of_range. Shared by the 1-D, universal
+   !> and hysteresis evaluations.
+   pure subroutine beyond_status(delta_max, name, x, values, error)
+      real(dp), intent(in) :: delta_max   !< the table's last node [length]
+      character(len=*), intent(in) :: name   !< the argument, e.g. "delta"
+      real(dp), intent(in) :: x           !< its value
+      real(dp), intent(in) :: values(:)   !< what the evaluation gave (force, stiffness, ...)
+      type(egw_error), allocatable, intent(out) :: error   !< allocated as said above
+      if (ieee_is_nan(x)) then
+         call fatal_error(error, egw_invalid_argument, name//" = NaN: must be a number")
+      else if (.not. all(ieee_is_finite(values))) then
+         call fatal_error(error, egw_invalid_argument, name//" = "//format_real(x)// &
+            & ": the continuation above the table's delta_max = "//format_real(delta_max)// &
+            & " exceeds the largest double")
+      else if (x > delta_max) then
+         call fatal_error(error, egw_out_of_range, name//" = "//format_real(x)// &
+            & ": above the table's delta_max = "//format_real(delta_max)// &
+            & " (values extrapolated)")
+      end if
+   end subroutine beyond_status
 
    !> table_eval outside (cutoff, delta_max): the node values at the ends, the tail below
    !> the cut-off, the deep-overlap asymptote above delta_max.
@@ -960,16 +994,25 @@ contains
    end function table_contact_radius
 
    !> All four tabulated quantities at delta.
-   pure subroutine table_eval_all(table, delta, force, stiffness, energy, contact_radius)
+   !> error: as table_eval's, and egw_invalid_argument where the energy or the contact
+   !> radius above delta_max leaves the doubles (egw_table_eval_all's statuses).
+   pure subroutine table_eval_all(table, delta, force, stiffness, energy, contact_radius, &
+      & error)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]
       real(dp), intent(out) :: force   !< normal force [force], >= 0
       real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
       real(dp), intent(out) :: energy   !< int P ddelta from the cut-off [force*length]
       real(dp), intent(out) :: contact_radius   !< effective contact radius a* [length]
+      !> allocated for a NaN or overflowing delta, or one above delta_max (table_eval)
+      type(egw_error), allocatable, intent(out), optional :: error
       call table_eval(table, delta, force, stiffness)
       energy = table_energy(table, delta)
       contact_radius = table_contact_radius(table, delta)
+      if (.not. present(error)) return
+      if (delta > table%cutoff .and. delta < table%delta_max) return
+      call beyond_status(table%delta_max, "delta", delta, [force, stiffness, energy, &
+         & contact_radius], error)
    end subroutine table_eval_all
 
    !> Record the particle radii R1, R2 of the pair (used by the LAMMPS writer for

@@ -283,33 +283,90 @@ contains
    !> A node is combined in p as soon as it bounds a p interval (see combined_node), so
    !> the last log interval (n_log, ending at the first p node) has its right end ln of
    !> the combined p and its cubic is formed from the combined nodal data (boundary_cubic).
-   !> stat: 0; egw_out_of_range for mu outside [mu_min, mu_max] (force, stiffness 0)
-   !> or x above x_max (the deep-overlap asymptote of the combined last node, deep_force,
-   !> as in the 1-D table, so that universal_slice reproduces it). Below the cut-off the
-   !> rough tail of the combined first node (tail_force). No allocation; thread-safe.
-   pure subroutine universal_eval(u, radius, modulus, sigma, mu, delta, force, stiffness, stat)
+   !> stat (egw_universal_eval's statuses; the optional error says the same with a message
+   !> naming the argument): 0; egw_invalid_parameter for sigma, R or E not > 0 and
+   !> egw_invalid_argument for a NaN delta (force, stiffness 0); egw_out_of_range for mu
+   !> outside [mu_min, mu_max] (force, stiffness 0) or x above x_max (the deep-overlap
+   !> asymptote of the combined last node, deep_force, as in the 1-D table, so that
+   !> universal_slice reproduces it); egw_invalid_parameter where the force or stiffness
+   !> is not finite (R, E or sigma infinite, or a force beyond the doubles; the values as
+   !> computed). Below the cut-off the rough tail of the combined first node (tail_force).
+   !> No allocation; thread-safe.
+   pure subroutine universal_eval(u, radius, modulus, sigma, mu, delta, force, stiffness, &
+      & stat, error)
       type(universal_table), intent(in) :: u   !< built or read
-      real(dp), intent(in) :: radius   !< equivalent radius R [length]
-      real(dp), intent(in) :: modulus   !< effective modulus E* [force/length^2]
+      real(dp), intent(in) :: radius   !< equivalent radius R [length], > 0
+      real(dp), intent(in) :: modulus   !< effective modulus E* [force/length^2], > 0
       real(dp), intent(in) :: sigma   !< summit height deviation [length], > 0
       real(dp), intent(in) :: mu   !< Greenwood-Tripp mu, in the table's range
       real(dp), intent(in) :: delta   !< overlap [length]
       real(dp), intent(out) :: force   !< normal force [force], >= 0
       real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
-      integer, intent(out) :: stat   !< 0 or egw_out_of_range
+      integer, intent(out) :: stat   !< 0 or an egw status (above)
+      !> allocated when stat is not 0, with a message naming the argument
+      type(egw_error), allocatable, intent(out), optional :: error
+
+      force = 0.0_dp
+      stiffness = 0.0_dp
+      stat = 0
+      if (.not. (sigma > 0.0_dp .and. radius > 0.0_dp .and. modulus > 0.0_dp)) then
+         stat = egw_invalid_parameter
+      else if (ieee_is_nan(delta)) then
+         stat = egw_invalid_argument
+      else if (.not. mu_in_range(u, mu)) then
+         stat = egw_out_of_range
+      else
+         call universal_values(u, radius, modulus, sigma, mu, delta, force, stiffness)
+         if (.not. (ieee_is_finite(force) .and. ieee_is_finite(stiffness))) then
+            stat = egw_invalid_parameter
+         else if (delta/sigma > u%x_max) then
+            stat = egw_out_of_range
+         end if
+      end if
+      if (stat /= 0 .and. present(error)) call universal_error(u, radius, modulus, sigma, &
+         & mu, delta, stat, error)
+   end subroutine universal_eval
+
+   !> universal_eval's error of status stat, with its message (egw_universal_eval's).
+   pure subroutine universal_error(u, radius, modulus, sigma, mu, delta, stat, error)
+      type(universal_table), intent(in) :: u
+      real(dp), intent(in) :: radius, modulus, sigma, mu, delta
+      integer, intent(in) :: stat
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: text
+      if (stat == egw_invalid_argument) then
+         text = "delta = NaN: must be a number"
+      else if (stat == egw_out_of_range .and. .not. mu_in_range(u, mu)) then
+         text = "mu = "//format_real(mu)//": outside the table's ["//format_real(u%mu_min)// &
+            & ", "//format_real(u%mu_max)//"]"
+      else if (stat == egw_out_of_range) then
+         text = "delta = "//format_real(delta)//": above the table's delta_max = x_max sigma"// &
+            & " = "//format_real(u%x_max*sigma)//" (values extrapolated)"
+      else if (.not. (sigma > 0.0_dp .and. radius > 0.0_dp .and. modulus > 0.0_dp)) then
+         text = "sigma = "//format_real(sigma)//", radius = "//format_real(radius)// &
+            & ", modulus = "//format_real(modulus)//": universal tables need all three > 0"
+      else
+         text = "sigma = "//format_real(sigma)//", radius = "//format_real(radius)// &
+            & ", modulus = "//format_real(modulus)//", delta = "//format_real(delta)// &
+            & ": the force E sqrt(R) sigma**1.5 p(delta/sigma) exceeds the largest double" &
+            & //" (R, E, sigma must be finite)"
+      end if
+      call fatal_error(error, stat, text)
+   end subroutine universal_error
+
+   !> universal_eval's force and stiffness for valid arguments (sigma, R, E > 0, mu in
+   !> range, delta a number).
+   pure subroutine universal_values(u, radius, modulus, sigma, mu, delta, force, stiffness)
+      type(universal_table), intent(in) :: u
+      real(dp), intent(in) :: radius, modulus, sigma, mu, delta
+      real(dp), intent(out) :: force, stiffness
       real(dp) :: x, t, w(0:3), v, dv, scale, c(0:3)
       integer :: j0, i, n
 
       force = 0.0_dp
       stiffness = 0.0_dp
-      stat = 0
-      if (.not. mu_in_range(u, mu)) then
-         stat = egw_out_of_range
-         return
-      end if
       x = delta/sigma
-      if (ieee_is_nan(x)) return
-      if (x > u%x_max) stat = egw_out_of_range
+      if (ieee_is_nan(x)) return   ! (Inf/Inf)
       call mu_stencil(u, mu, j0, w)
       scale = modulus*sqrt(radius)
       ! (sqrt(sigma) >= 1.5e-154 for a normal sigma: only the first two factors can leave
@@ -355,7 +412,7 @@ contains
          force = scale*force
          stiffness = scale*stiffness/sigma
       end if
-   end subroutine universal_eval
+   end subroutine universal_values
 
    !> Combined p and dp/dx at node i (x = x_i) of mu's stencil: in ln p (exp of the
    !> weighted ln p) at nodes bounding only ln p intervals (i <= n_log, or all nodes when
