@@ -31,6 +31,7 @@ program tester
    use test_capi_array, only: collect_capi_array
    use test_flat_law, only: collect_flat_law
    use test_flat_bem, only: collect_flat_bem
+   use test_cap_sphere, only: collect_cap_sphere
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -64,7 +65,8 @@ program tester
       & new_testsuite("facade", collect_facade), &
       & new_testsuite("capi_array", collect_capi_array), &
       & new_testsuite("cache", collect_cache), &
-      & new_testsuite("flat_bem", collect_flat_bem) &
+      & new_testsuite("flat_bem", collect_flat_bem), &
+      & new_testsuite("cap_sphere", collect_cap_sphere) &
       & ]
 
    stat = 0
