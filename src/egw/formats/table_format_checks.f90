@@ -16,6 +16,7 @@ contains
 
    module procedure check_table
       integer :: n, i
+      character(len=:), allocatable :: field
       n = size(t%delta)
       if (n < 2) then
          call bad(error, path, where//"fewer than 2 nodes")
@@ -94,8 +95,9 @@ contains
       do i = 1, n
          if (maxval(abs([t%delta(i), t%force(i), t%stiffness(i), t%energy(i), &
             & t%contact_radius(i)])) > absurd_value) then
+            call absurd_field(t, i, field)
             call bad(error, path, where//"node "//int_str(i)//": "// &
-               & absurd_field(t, i)//" above "//format_real(absurd_value)// &
+               & field//" above "//format_real(absurd_value)// &
                & " (no contact reaches it in any units; the continuations would overflow)")
             return
          end if
@@ -103,10 +105,10 @@ contains
    end procedure check_table
 
    !> The first of the node's values above absurd_value, as "name value".
-   function absurd_field(t, i) result(text)
+   subroutine absurd_field(t, i, text)
       type(force_table), intent(in) :: t
       integer, intent(in) :: i
-      character(len=:), allocatable :: text
+      character(len=:), allocatable, intent(out) :: text
       if (abs(t%delta(i)) > absurd_value) then
          text = "delta "//format_real(t%delta(i))
       else if (abs(t%force(i)) > absurd_value) then
@@ -118,7 +120,7 @@ contains
       else
          text = "contact_radius "//format_real(t%contact_radius(i))
       end if
-   end function absurd_field
+   end subroutine absurd_field
 
    !> An interval that interpolates P itself (i > n_log) must not dip below 0: its Hermite
    !> cubic's least value on [0, 1] (at an end or where its derivative vanishes) at least
