@@ -1600,7 +1600,8 @@ def test_bad_coeff():
         "; " + "; ".join(bad) if bad else "")
 
 
-VENV_PY = os.path.join(os.environ.get("VENV", os.path.join(ROOT, ".venv")), "bin", "python")
+# (the Makefile passes VENV relative to the repository root; decks run in TMP)
+VENV_PY = os.path.join(ROOT, os.environ.get("VENV", ".venv"), "bin", "python")
 
 
 def egw_python(script):
