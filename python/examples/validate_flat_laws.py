@@ -40,7 +40,7 @@ import egw
 from egw import topography as topo
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from validate_gw import rough_surface  # noqa: E402
+from validate_gw import cm_sphere_system, rough_surface  # noqa: E402
 
 SIZE = 0.5e-3       # m, side of the periodic patch
 MODULUS = 1e9       # Pa, E*
@@ -82,15 +82,7 @@ def _cm_force(system, d, pentol):
 def bem_sphere_forces(heights, size, radius, modulus, overlaps, pentol):
     """Full-sphere BEM force (ContactMechanics, free boundary) at each overlap delta_m of the
     smooth sphere with the mean plane of the heights."""
-    import ContactMechanics as CM
-    from SurfaceTopography import Topography
-    n = heights.shape[0]
-    x = (np.arange(n) + 0.5) * size / n - size / 2
-    xx, yy = np.meshgrid(x, x, indexing="ij")
-    sphere = -(xx ** 2 + yy ** 2) / (2 * radius)
-    system = CM.make_system(substrate="free",
-                            surface=Topography(sphere + heights, (size, size), periodic=False),
-                            young=modulus)
+    system = cm_sphere_system(heights, size, radius, modulus)
     forces = []
     for d in overlaps:
         forces.append(_cm_force(system, d, pentol))

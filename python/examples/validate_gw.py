@@ -41,18 +41,26 @@ def rough_surface(n, size, rms_height, hurst, short_cutoff, long_cutoff, seed):
     return np.asarray(t.heights())
 
 
-def bem_forces(heights, size, radius, modulus, overlaps):
-    """BEM force of the rigid rough sphere (apex at the roughness' mean plane) on an elastic
-    half-space at each overlap delta_m with that plane."""
+def cm_sphere_system(heights, size, radius, modulus):
+    """ContactMechanics' non-periodic (free-boundary) FFT half-space of E* = modulus against
+    the rigid rough sphere: the paraboloid of radius R, apex at the mean plane of the
+    heights, carrying the roughness (heights on a square periodic-sized grid of side size)."""
     import ContactMechanics as CM
     from SurfaceTopography import Topography
     n = heights.shape[0]
     x = (np.arange(n) + 0.5) * size / n - size / 2
     xx, yy = np.meshgrid(x, x, indexing="ij")
     sphere = -(xx ** 2 + yy ** 2) / (2 * radius)
-    system = CM.make_system(substrate="free",
-                            surface=Topography(sphere + heights, (size, size), periodic=False),
-                            young=modulus)
+    return CM.make_system(substrate="free",
+                          surface=Topography(sphere + heights, (size, size), periodic=False),
+                          young=modulus)
+
+
+def bem_forces(heights, size, radius, modulus, overlaps):
+    """BEM force of the rigid rough sphere (apex at the roughness' mean plane) on an elastic
+    half-space at each overlap delta_m with that plane."""
+    n = heights.shape[0]
+    system = cm_sphere_system(heights, size, radius, modulus)
     forces, contact_radii = [], []
     guess = None
     for d in overlaps:
