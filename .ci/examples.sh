@@ -85,6 +85,9 @@ if command -v c++ >/dev/null; then
     c++ -x c++ -O2 -o '$work/dem_cxx_pc' '$root/example/dem_c/dem_c.c' \
       \$(pkg-config --cflags --libs egw) -Wl,-rpath,'$libdir' && '$work/dem_cxx_pc'"
 fi
+step "dem_fortran: pkg-config egw (shared)" sh -c "
+  gfortran -O2 -o '$work/dem_f_pc' '$root/example/dem_fortran/dem_fortran.f90' \
+    \$(pkg-config --cflags --libs egw) -Wl,-rpath,'$libdir' && '$work/dem_f_pc'"
 step "dem_fortran: pkg-config egw-static" sh -c "
   gfortran -O2 -o '$work/dem_f_pcs' '$root/example/dem_fortran/dem_fortran.f90' \
     \$(pkg-config --cflags --libs egw-static) && '$work/dem_f_pcs'"
