@@ -29,7 +29,7 @@ extern "C" {
 #endif
 
 /* Version of this header; egw_get_version() returns the library's. */
-#define EGW_VERSION 100
+#define EGW_VERSION 200
 
 /* Status codes. */
 enum {
@@ -65,6 +65,13 @@ typedef struct {
   double psi;            /* plasticity index of the paper, delta_ep = sigma/psi^2; 0 = elastic */
   double hardness_coeff; /* ZMC K, mean pressure K*H at yield onset; in (0, 1) */
   double plastic_ratio;  /* delta_p / delta_ep (ZMC: 54); > 1 */
+  double flow_pressure;  /* bulk flow pressure p_y [pressure] (doc/theory.md section 12): the
+                            contact pressure is capped at p_y (elastic-perfectly-plastic
+                            half-space, Thornton 1997); 0 = no bulk yield, else in
+                            (0, modulus). From the yield stress Y: p_y = 1.6 Y (the Hertz
+                            first-yield peak; theory.md section 12 says why). Smooth
+                            spheres (Hertz or sigma = 0) only: a rough model with p_y > 0
+                            is refused (EGW_INVALID_PARAMETER) for now. Since 0.2.0. */
 } egw_params;
 
 /* 10000*major + 100*minor + patch. */
@@ -88,7 +95,8 @@ int egw_status_message(int status, char *buf, int buflen);
  * (Unlike the other int functions it never returns EGW_OK: test > 0, or <= buflen.) */
 int egw_last_error(char *buf, int buflen);
 
-/* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54. */
+/* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54,
+ * flow_pressure 0 (no bulk yield). */
 void egw_params_default(egw_params *p);
 
 /* Validate every field of p, including the ranges the numerics represent (normal doubles;
