@@ -98,7 +98,7 @@ int egw_capi_test_flow_pressure_solves(void) {
     }
   }
   CHECK(egw_solve(&h, NULL, 3.0, &hz) == EGW_OK);
-  CHECK(hz.force == 4.0 / 3.0 * pow(3.0, 1.5) || fabs(hz.force / (4.0 / 3.0 * pow(3.0, 1.5)) - 1) < 4e-16);
+  CHECK(fabs(hz.force / (4.0 / 3.0 * pow(3.0, 1.5)) - 1) < 4e-16); /* an ulp or two */
   /* restitution at v = 5 v_y (e = 0.8315494929966) and 0.5 v_y (elastic: 1) */
   CHECK(egw_restitution(&p, NULL, 16.0 / 15.0, 5.0, &e) == EGW_OK);
   CHECK(fabs(e - 0.8315494929966) <= 1e-2 * 0.8315494929966);
