@@ -29,7 +29,7 @@ extern "C" {
 #endif
 
 /* Version of this header; egw_get_version() returns the library's. */
-#define EGW_VERSION 100
+#define EGW_VERSION 200
 
 /* Status codes. */
 enum {
@@ -65,6 +65,13 @@ typedef struct {
   double psi;            /* plasticity index of the paper, delta_ep = sigma/psi^2; 0 = elastic */
   double hardness_coeff; /* ZMC K, mean pressure K*H at yield onset; in (0, 1) */
   double plastic_ratio;  /* delta_p / delta_ep (ZMC: 54); > 1 */
+  double flow_pressure;  /* bulk flow pressure p_y [pressure] (doc/theory.md section 12): the
+                            contact pressure is capped at p_y (elastic-perfectly-plastic
+                            half-space, Thornton 1997); 0 = no bulk yield, else in
+                            (0, modulus). From the yield stress Y: p_y = 1.6 Y (the Hertz
+                            first-yield peak; theory.md section 12 says why). Smooth
+                            spheres (Hertz or sigma = 0) only: a rough model with p_y > 0
+                            is refused (EGW_INVALID_PARAMETER) for now. Since 0.2.0. */
 } egw_params;
 
 /* 10000*major + 100*minor + patch. */
@@ -88,7 +95,8 @@ int egw_status_message(int status, char *buf, int buflen);
  * (Unlike the other int functions it never returns EGW_OK: test > 0, or <= buflen.) */
 int egw_last_error(char *buf, int buflen);
 
-/* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54. */
+/* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54,
+ * flow_pressure 0 (no bulk yield). */
 void egw_params_default(egw_params *p);
 
 /* Validate every field of p, including the ranges the numerics represent (normal doubles;
@@ -193,6 +201,16 @@ void egw_options_default(egw_options *o);
  * doubles, bad options), EGW_NULL_POINTER, EGW_NOT_CONVERGED (also a mesh above 4097
  * nodes), EGW_OUT_OF_MEMORY; res is left untouched on any failure. */
 int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_result *res);
+
+/* The flow-pressure cap (p->flow_pressure = p_y > 0; smooth spheres: Hertz or sigma = 0;
+ * doc/theory.md section 12). Up to first yield delta_y = (pi p_y/(2 E*))^2 R every solve
+ * is Hertz's, bit for bit. Above it: egw_solve is the cap's loading solve (force, loading
+ * stiffness, contact radius, max_pressure <= p_y; est_rel_err of its 100/200-ring levels,
+ * whatever o says), egw_solve_unload its elastic unloading from the deformed shape (0 at
+ * and below the residual overlap), egw_restitution(_energy, _overlap) its head-on impact
+ * (w_dissipated = (1 - e^2) m* v^2/2; e = 1 up to v_y). Beyond 1e6 delta_y or 1e4 v_y:
+ * EGW_INVALID_ARGUMENT. Not yet: egw_profile beyond delta_y and egw_time_step beyond v_y
+ * (EGW_UNSUPPORTED), tables (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to

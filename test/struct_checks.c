@@ -35,13 +35,14 @@ static int failures;
   if (egw_test_fortran_struct(which, NULL) != sizeof(type)) return; \
   egw_test_fortran_struct(which, &f_)
 
-#define PARAMS_REF(s) {s + 1, s + 2.25, s + 3.25, s + 4.25, s + 5.25, s + 6.25, s + 7.25, s + 8.25}
+#define PARAMS_REF(s) \
+  {s + 1, s + 2.25, s + 3.25, s + 4.25, s + 5.25, s + 6.25, s + 7.25, s + 8.25, s + 9.25}
 #define ARRAY_REF(k) {100 * k + 1, 100 * k + 2, 100 * k + 3, 100 * k + 4, 100 * k + 5, \
   100 * k + 6, 100 * k + 7, 100 * k + 8}
 
 static void same_params(egw_params c, egw_params f_) {
   SAME(model); SAME(radius); SAME(modulus); SAME(sigma); SAME(mu); SAME(psi);
-  SAME(hardness_coeff); SAME(plastic_ratio);
+  SAME(hardness_coeff); SAME(plastic_ratio); SAME(flow_pressure);
 }
 
 static void check_params(void) {

@@ -37,6 +37,16 @@ module test_capi
       integer(c_int) function c_profile() bind(C, name="egw_capi_test_profile")
          import :: c_int
       end function
+      integer(c_int) function c_cap_params() bind(C, name="egw_capi_test_flow_pressure_params")
+         import :: c_int
+      end function
+      integer(c_int) function c_cap_solves() bind(C, name="egw_capi_test_flow_pressure_solves")
+         import :: c_int
+      end function
+      integer(c_int) function c_cap_refusals() &
+         & bind(C, name="egw_capi_test_flow_pressure_refusals")
+         import :: c_int
+      end function
    end interface
 
 contains
@@ -53,7 +63,10 @@ contains
          & new_unittest("flat pressure", t_flat), &
          & new_unittest("hertz", t_hertz), &
          & new_unittest("solve", t_solver), &
-         & new_unittest("profile", t_profile) &
+         & new_unittest("profile", t_profile), &
+         & new_unittest("flow pressure: params", t_cap_params), &
+         & new_unittest("flow pressure: solves against the cap reference", t_cap_solves), &
+         & new_unittest("flow pressure: doors not served yet refuse", t_cap_refusals) &
          & ]
    end subroutine collect_capi
 
@@ -103,6 +116,18 @@ contains
    subroutine t_profile(error)
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_profile())
+   end subroutine
+   subroutine t_cap_params(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_cap_params())
+   end subroutine
+   subroutine t_cap_solves(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_cap_solves())
+   end subroutine
+   subroutine t_cap_refusals(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_cap_refusals())
    end subroutine
 
 end module test_capi

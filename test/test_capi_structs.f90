@@ -176,7 +176,8 @@ contains
       s = real(shift, c_double)
       p = egw_params_c(model=shift + 1, radius=s + 2.25_c_double, modulus=s + 3.25_c_double, &
          & sigma=s + 4.25_c_double, mu=s + 5.25_c_double, psi=s + 6.25_c_double, &
-         & hardness_coeff=s + 7.25_c_double, plastic_ratio=s + 8.25_c_double)
+         & hardness_coeff=s + 7.25_c_double, plastic_ratio=s + 8.25_c_double, &
+         & flow_pressure=s + 9.25_c_double)
    end function ref_params
 
    !> The reference array field number k: element j holds 100 k + j.

@@ -3,7 +3,7 @@ module test_params
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
    use testdrive, only: new_unittest, unittest_type, error_type, check
    use egw, only: dp, contact_params, validate_params, egw_error, egw_ok, &
-      & egw_invalid_parameter, mu_from_summits, model_epgw
+      & egw_invalid_parameter, mu_from_summits, model_epgw, model_hertz
    implicit none
    private
    public :: collect_params
@@ -25,6 +25,8 @@ contains
       type(egw_error), allocatable :: err
       call validate_params(p, err)
       call check(error, .not. allocated(err), "default parameters must validate")
+      if (allocated(error)) return
+      call check(error, p%flow_pressure == 0.0_dp, "default flow_pressure must be 0")
    end subroutine test_defaults
 
    !> One bad value per field; the message must name the field.
@@ -52,6 +54,31 @@ contains
       p = contact_params(); p%hardness_coeff = nan;    call expect(p, "hardness_coeff"); if (allocated(error)) return
       p = contact_params(); p%plastic_ratio = 1;       call expect(p, "plastic_ratio"); if (allocated(error)) return
       p = contact_params(); p%plastic_ratio = nan;     call expect(p, "plastic_ratio"); if (allocated(error)) return
+      ! flow_pressure: negative, NaN, +-Inf, and = modulus (the cap must lie below E*)
+      block
+         integer :: k
+         real(dp) :: bad_py(5)
+         bad_py = [-1e-3_dp, nan, inf, -inf, 1.0_dp]
+         do k = 1, size(bad_py)
+            p = contact_params(model=model_hertz, flow_pressure=bad_py(k))
+            call expect(p, "flow_pressure"); if (allocated(error)) return
+         end do
+      end block
+      ! a rough model with the cap: not available yet, named
+      p = contact_params(sigma=1e-3_dp, mu=4.0_dp, flow_pressure=0.01_dp)
+      call expect(p, "flow_pressure"); if (allocated(error)) return
+      ! the cap on a smooth sphere (Hertz, or any model with sigma = 0) is valid
+      p = contact_params(model=model_hertz, flow_pressure=0.01_dp)
+      block
+         type(egw_error), allocatable :: err
+         call validate_params(p, err)
+         call check(error, .not. allocated(err), "flow_pressure = 0.01 with Hertz refused")
+         if (allocated(error)) return
+         p%model = model_epgw
+         call validate_params(p, err)
+         call check(error, .not. allocated(err), "flow_pressure = 0.01, sigma = 0 refused")
+         if (allocated(error)) return
+      end block
       ! mu is free when the spheres are smooth
       p = contact_params(); p%sigma = 0; p%mu = 0; p%model = model_epgw
       block

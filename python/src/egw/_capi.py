@@ -44,7 +44,8 @@ lib = _load()
 class Params(ctypes.Structure):
     _fields_ = [("model", c_int), ("radius", c_double), ("modulus", c_double),
                 ("sigma", c_double), ("mu", c_double), ("psi", c_double),
-                ("hardness_coeff", c_double), ("plastic_ratio", c_double)]
+                ("hardness_coeff", c_double), ("plastic_ratio", c_double),
+                ("flow_pressure", c_double)]
 
 
 class Options(ctypes.Structure):

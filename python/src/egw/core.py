@@ -194,8 +194,9 @@ class IgnoredParameterWarning(UserWarning):
     """A parameter was given that the chosen model does not use (psi > 0 outside EP-GW)."""
 
 
-_FIELDS = ("radius", "modulus", "sigma", "mu", "psi", "hardness_coeff", "plastic_ratio")
-#: numpy layout of the C struct egw_params (int model, 7 doubles, C alignment).
+_FIELDS = ("radius", "modulus", "sigma", "mu", "psi", "hardness_coeff", "plastic_ratio",
+           "flow_pressure")
+#: numpy layout of the C struct egw_params (int model, 8 doubles, C alignment).
 PARAMS_DTYPE = np.dtype([("model", np.int32)] + [(f, np.float64) for f in _FIELDS],
                         align=True)
 assert PARAMS_DTYPE.itemsize == ctypes.sizeof(_capi.Params)
@@ -249,7 +250,8 @@ def _number_array(name: str, value) -> np.ndarray:
 
 # (field, lower bound, strict, bound text): the checks egw_params_validate makes first
 _BOUNDS = {"radius": (0.0, True), "modulus": (0.0, True), "sigma": (0.0, False),
-           "mu": (0.0, True), "psi": (0.0, False), "plastic_ratio": (1.0, True)}
+           "mu": (0.0, True), "psi": (0.0, False), "plastic_ratio": (1.0, True),
+           "flow_pressure": (0.0, False)}
 
 
 @dataclass(eq=False)
@@ -287,6 +289,13 @@ class Params:
         GW models' law of independent summits: the model becomes "flat law", only radius
         and modulus are used (scalars), sigma is set to the law's length, and delta is the
         overlap with the law's reference plane (the mean plane of the heights).
+    flow_pressure : float or array, >= 0
+        Bulk flow pressure p_y [pressure] (default 0: no bulk yield): the contact pressure
+        is capped at p_y (elastic-perfectly-plastic half-space, doc/theory.md section 12),
+        so that loading beyond first yield leaves a residual overlap and impacts lose
+        energy. From the yield stress Y, p_y = 1.6 Y (the Hertz first-yield peak). Smooth
+        spheres only for now (model "Hertz" or sigma = 0); a rough model with p_y > 0
+        raises :class:`InvalidArgumentError`. Must lie below modulus.
 
     Raises
     ------
@@ -311,6 +320,7 @@ class Params:
     hardness_coeff: FloatOrArray = 0.6
     plastic_ratio: FloatOrArray = 54.0
     flat_law: Optional[object] = None
+    flow_pressure: FloatOrArray = 0.0
 
     def __post_init__(self) -> None:
         self.model = _model_name(self.model)

@@ -20,7 +20,7 @@ module egw_capi_table
       & write_calculix_flat, write_lammps, write_calculix_sphere
    use egw_capi_utils, only: egw_params_c, settle, require, invalid, failure, check_number, &
       & check_count, read_params, read_contact, put, put_settled, put_handle_settled, &
-      & take_handle, double_array, c_path, above_delta_max
+      & take_handle, double_array, c_path, above_delta_max, refuse_cap
    implicit none
    private
 
@@ -50,6 +50,7 @@ contains
       type(egw_error), allocatable :: error
       stat = require(out, "out")
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat == egw_ok) stat = refuse_cap(params, "a force table")
       if (stat /= egw_ok) return
       allocate (t)
       call build_table_cached(params, options, delta_min, delta_max, rel_tol, t, error)
@@ -366,6 +367,7 @@ contains
       type(egw_error), allocatable :: error
       stat = require(out, "out")
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat == egw_ok) stat = refuse_cap(params, "a universal table")
       if (stat /= egw_ok) return
       allocate (u)
       call build_universal_cached(params%model, params%psi, params%hardness_coeff, &
@@ -461,6 +463,7 @@ contains
       stat = get_universal(h, u)
       if (stat == egw_ok) stat = require(out, "out")
       if (stat == egw_ok) stat = read_params(p, params)
+      if (stat == egw_ok) stat = refuse_cap(params, "a force table")
       if (stat /= egw_ok) return
       allocate (t)
       if (trim) then

@@ -12,7 +12,7 @@ module egw_capi_utils
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_argument, egw_null_pointer, &
       & egw_out_of_range, status_message, format_real, int_str
-   use egw_params, only: contact_params, validate_params
+   use egw_params, only: contact_params, validate_params, refuse_flow_pressure
    use egw_rough_sphere, only: solver_options, solve_result
    implicit none
    private
@@ -22,12 +22,13 @@ module egw_capi_utils
    public :: check_nonneg, check_positive, check_number, check_count
    public :: put, put_settled, put_handle_settled, take_handle, double_array
    public :: egw_params_c, egw_options_c, egw_result_c, to_params, from_params, read_params, &
-      & read_options, read_contact, put_result
+      & read_options, read_contact, put_result, refuse_cap
 
    !> Mirror of the C struct egw_params.
    type, bind(C) :: egw_params_c
       integer(c_int) :: model
       real(c_double) :: radius, modulus, sigma, mu, psi, hardness_coeff, plastic_ratio
+      real(c_double) :: flow_pressure
    end type egw_params_c
 
    !> Last error message of this thread: the only mutable state of egw, kept per thread
@@ -118,7 +119,7 @@ contains
       type(contact_params) :: params
       params = contact_params(model=int(cp%model), radius=cp%radius, modulus=cp%modulus, &
          & sigma=cp%sigma, mu=cp%mu, psi=cp%psi, hardness_coeff=cp%hardness_coeff, &
-         & plastic_ratio=cp%plastic_ratio)
+         & plastic_ratio=cp%plastic_ratio, flow_pressure=cp%flow_pressure)
    end function to_params
 
    !> The C struct egw_params of Fortran contact_params (field by field).
@@ -127,7 +128,8 @@ contains
       type(egw_params_c) :: cp
       cp = egw_params_c(model=int(params%model, c_int), radius=params%radius, &
          & modulus=params%modulus, sigma=params%sigma, mu=params%mu, psi=params%psi, &
-         & hardness_coeff=params%hardness_coeff, plastic_ratio=params%plastic_ratio)
+         & hardness_coeff=params%hardness_coeff, plastic_ratio=params%plastic_ratio, &
+         & flow_pressure=params%flow_pressure)
    end function from_params
 
    !> Read and validate a const egw_params*.
@@ -144,6 +146,16 @@ contains
       call validate_params(params, error, allow_flat_law)
       stat = settle(error)
    end function read_params
+
+   !> EGW_INVALID_PARAMETER (message recorded) when params have the flow-pressure cap and
+   !> the request (what) does not serve it yet; EGW_OK otherwise.
+   integer(c_int) function refuse_cap(params, what) result(stat)
+      type(contact_params), intent(in) :: params
+      character(len=*), intent(in) :: what
+      type(egw_error), allocatable :: error
+      call refuse_flow_pressure(params, what, error)
+      stat = settle(error)
+   end function refuse_cap
 
    !> Options from a nullable const egw_options* (NULL: defaults); checked by the solver.
    subroutine read_options(o, options)

@@ -27,11 +27,15 @@ module egw_params
       real(dp) :: psi = 0.0_dp             !< plasticity index of the paper (0 = elastic)
       real(dp) :: hardness_coeff = 0.6_dp  !< ZMC K in (0, 1)
       real(dp) :: plastic_ratio = 54.0_dp  !< ZMC delta_p/delta_ep > 1
+      !> bulk flow pressure p_y of the elastic-perfectly-plastic half-space (doc/theory.md
+      !> section 12): the contact pressure is capped at p_y; 0 = no bulk yield. Smooth
+      !> spheres (Hertz, sigma = 0) only for now: a rough model with p_y > 0 is refused.
+      real(dp) :: flow_pressure = 0.0_dp
    end type contact_params
 
    public :: validate_params, model_name, mu_from_summits, psi_from_hardness, &
       & rough_flat_coefficient, check_scaled_overlap, range_str, product4, length_unit, &
-      & pressure_unit, force_unit, stiffness_unit
+      & pressure_unit, force_unit, stiffness_unit, refuse_flow_pressure
 
    !> What the numerics represent (doc/parameters.md "Valid ranges"): every positive field
    !> a normal double (no subnormals: they carry fewer digits and their reciprocals
@@ -104,8 +108,47 @@ contains
       if (.not. ieee_is_finite(params%plastic_ratio) .or. .not. params%plastic_ratio > 1.0_dp) then
          call bad(error, "plastic_ratio", params%plastic_ratio, "must be finite and > 1"); return
       end if
+      call check_flow_pressure(params, error)
+      if (allocated(error)) return
       call check_ranges(params, error)
    end subroutine validate_params
+
+   !> flow_pressure: 0 (no bulk yield) or a normal double below the modulus (the cap
+   !> model is a small-strain one: p_y << E*); a rough model with the cap is not solved yet.
+   pure subroutine check_flow_pressure(params, error)
+      type(contact_params), intent(in) :: params
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. ieee_is_finite(params%flow_pressure) .or. params%flow_pressure < 0.0_dp) then
+         call bad(error, "flow_pressure", params%flow_pressure, "must be finite and >= 0 " &
+            & //"(0 = no bulk yield)"); return
+      end if
+      if (params%flow_pressure == 0.0_dp) return
+      if (params%flow_pressure < tiny(1.0_dp) .or. .not. params%flow_pressure &
+         & < params%modulus) then
+         call bad(error, "flow_pressure", params%flow_pressure, "must be 0 or lie in [" &
+            & //format_real(tiny(1.0_dp))//", modulus = "//format_real(params%modulus) &
+            & //") (a small-strain cap: p_y < E*)"); return
+      end if
+      if (params%model /= model_hertz .and. params%sigma > 0.0_dp) then
+         call fatal_error(error, egw_invalid_parameter, "flow_pressure = " &
+            & //format_real(params%flow_pressure)//": flow_pressure with a rough model " &
+            & //"(sigma > 0) is not available yet (use model Hertz or sigma = 0)")
+      end if
+   end subroutine check_flow_pressure
+
+   !> egw_invalid_parameter when params have the flow-pressure cap, for a door that does
+   !> not serve it yet (what: e.g. "a force table"; doc/theory.md section 12).
+   pure subroutine refuse_flow_pressure(params, what, error)
+      type(contact_params), intent(in) :: params   !< the contact
+      character(len=*), intent(in) :: what         !< the refused request, for the message
+      !> allocated when params%flow_pressure /= 0
+      type(egw_error), allocatable, intent(out) :: error
+      if (params%flow_pressure == 0.0_dp) return
+      call fatal_error(error, egw_invalid_parameter, "flow_pressure = " &
+         & //format_real(params%flow_pressure)//": "//what//" with the flow-pressure " &
+         & //"cap is not available yet (solves and egw_restitution are; flow_pressure = 0 " &
+         & //"for a table without bulk yield)")
+   end subroutine refuse_flow_pressure
 
    !> The ranges the numerics represent (see scale_margin above; doc/parameters.md).
    pure subroutine check_ranges(params, error)

@@ -12,7 +12,7 @@ module egw_cache
    use egw_status, only: egw_error
    use egw_version, only: egw_version_number
    use egw_io, only: make_directories
-   use egw_params, only: contact_params
+   use egw_params, only: contact_params, refuse_flow_pressure
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, build_table, table_progress
    use egw_table_universal, only: universal_table, build_universal
@@ -70,6 +70,9 @@ contains
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
       logical :: found
+      ! not in the key (params_key): refused before any cache lookup
+      call refuse_flow_pressure(params, "a force table", error)
+      if (allocated(error)) return
       call entry_path("table", [params_key(params), options_key(options), delta_min, &
          & delta_max, rel_tol], path)
       found = .false.
@@ -132,6 +135,8 @@ contains
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
       logical :: found
+      call refuse_flow_pressure(params, "a hysteresis table", error)
+      if (allocated(error)) return
       call entry_path("hysteresis", [params_key(params), options_key(options), delta_min, &
          & delta_max, rel_tol], path)
       found = .false.

@@ -526,13 +526,15 @@ contains
    !> v_y**2 = (16/15) (pi/2)**5 p_y**5 R**3/(m* E***4) (the speed that just reaches
    !> first yield), (v/v_y)**2 = W_load/(2/5) in units P_y delta_y; e = 1 for v <= v_y.
    subroutine cap_restitution(radius, modulus, flow_pressure, mass, velocity, options, e, &
-      & error)
+      & error, max_overlap)
       real(dp), intent(in) :: radius, modulus, flow_pressure
       real(dp), intent(in) :: mass       !< effective mass m* > 0
       real(dp), intent(in) :: velocity   !< impact speed v > 0
       type(cap_options), intent(in) :: options
       real(dp), intent(out) :: e
       type(egw_error), allocatable, intent(out) :: error
+      !> the deepest overlap delta_max of the impact (Hertz's for v <= v_y)
+      real(dp), intent(out), optional :: max_overlap
       real(dp) :: vy, target, dm, wl, fm, wu, res, step
       integer :: it
       e = 1.0_dp
@@ -542,8 +544,10 @@ contains
       call positive(velocity, "velocity", error); if (allocated(error)) return
       vy = sqrt(16.0_dp/15.0_dp*(pi/2.0_dp)**5*flow_pressure**5*radius**3 &
          & /(mass*modulus**4))
-      if (velocity <= vy) return
       target = 0.4_dp*(velocity/vy)**2
+      if (present(max_overlap)) max_overlap = (target/0.4_dp)**0.4_dp* &
+         & (pi*flow_pressure/(2.0_dp*modulus))**2*radius
+      if (velocity <= vy) return
       if (target > 1.0e8_dp) then
          call fatal_error(error, egw_invalid_argument, "velocity = "//format_real(velocity) &
             & //": above 1e4 v_y (v_y = "//format_real(vy)//"), beyond the cap model")
@@ -569,6 +573,7 @@ contains
       call cap_load_scaled_work(dm, options, wl, fm, error)
       if (allocated(error)) return
       e = sqrt(wu/wl)
+      if (present(max_overlap)) max_overlap = dm*(pi*flow_pressure/(2.0_dp*modulus))**2*radius
    end subroutine cap_restitution
 
 end module egw_cap_sphere

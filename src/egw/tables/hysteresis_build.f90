@@ -3,7 +3,7 @@
 !> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
 submodule (egw_hysteresis) egw_hysteresis_build
    use egw_status, only: egw_not_converged, fatal_error, format_real
-   use egw_params, only: validate_params, model_epgw
+   use egw_params, only: validate_params, model_epgw, refuse_flow_pressure
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload
    use egw_table, only: build_table
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
@@ -38,6 +38,8 @@ contains
       integer :: j, n
 
       call validate_params(params, error)
+      if (allocated(error)) return
+      call refuse_flow_pressure(params, "a hysteresis table", error)
       if (allocated(error)) return
       if (.not. (rel_tol >= 1.0e-8_dp .and. rel_tol <= 0.1_dp)) then
          call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
