@@ -41,8 +41,8 @@ module egw_table
    private
 
    public :: build_table, build_table_law, build_table_fixed_cutoff, build_tables_shared, table_interval, &
-      & table_eval, table_eval_tail_law, table_eval_cached, table_segment, segment_eval, table_eval_log, &
-      & table_eval_all, &
+      & table_eval, table_eval_tail_law, table_eval_cached, table_segment, segment_eval, &
+      & table_eval_log, table_eval_all, &
       & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff, &
       & deep_coefficient, deep_law_floor, deep_law_floor_x
@@ -675,9 +675,10 @@ contains
    !> Force and stiffness at overlap delta: below the cut-off below_cutoff's (exactly 0 for
    !> rough models, whose force at the cut-off is below 1e-12 P_ref), above delta_max the
    !> deep-overlap asymptote (deep_force, a C1 continuation; see table_covers). No
-   !> allocation, no shared state: safe in OpenMP loops over contacts. The optional error says what egw_table_eval's status says
-   !> (the values are written as without it): egw_invalid_argument for a NaN delta
-   !> (force and stiffness 0) or one whose continuation above delta_max leaves the doubles
+   !> allocation, no shared state: safe in OpenMP loops over contacts. The optional error
+   !> says what egw_table_eval's status says (the values are written as without it):
+   !> egw_invalid_argument for a NaN delta (force and stiffness 0) or one whose
+   !> continuation above delta_max leaves the doubles
    !> (+Inf, or far enough to overflow); egw_out_of_range above delta_max (the values of
    !> the deep-overlap asymptote, not checked against solves by the build). Without an
    !> error the call costs what it did: the checks run only outside (cutoff, delta_max).
