@@ -2,9 +2,9 @@
 !> E-GW table through the C API (egw_table_eval, egw_table_eval_array, as a C or Fortran
 !> DEM calls them) and through Fortran's table_eval, as ratios to an inline Hertz force
 !> F = (4/3) E* sqrt(R) |delta|^(3/2) evaluated on the same overlaps, in three regimes:
-!> (i) beyond the tail's cut-off (delta < delta_c, the table's first node), (ii) in the
-!> tail (delta_c < delta < 0, ln P interpolated), (iii) in contact (delta > 0), and (o) far
-!> apart (delta < -40 sigma, where the tail law is exactly 0).
+!> (i) beyond the tail's cut-off (delta < delta_c, the table's first node, where a rough
+!> table gives 0), (ii) in the tail (delta_c < delta < 0, ln P interpolated), (iii) in
+!> contact (delta > 0), and (o) far apart (delta < -40 sigma).
 module bench_separated
    use, intrinsic :: iso_fortran_env, only: output_unit
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc, c_null_ptr
@@ -17,8 +17,11 @@ module bench_separated
    public :: run_separated
 
    integer, parameter :: n_eval = 4096   !< overlaps per sweep (fit in L1/L2 cache)
-   integer, parameter :: repeats = 11    !< best of 11: sheds the noise of a shared machine
-   integer, parameter :: sweeps = 200
+   !> best of 101 rounds of 20 sweeps (~1 ms each): on a shared machine a round that long
+   !> often runs without being descheduled (rounds of 200 sweeps, ~25 ms in the tail, were
+   !> all preempted at load 7 on 2 cores and measured the load, not the evaluation)
+   integer, parameter :: repeats = 101
+   integer, parameter :: sweeps = 20
 
    interface
       !> include/egw.h: int egw_table_eval(egw_table t, double delta, double *force,
@@ -73,7 +76,7 @@ contains
          end do
       end do
       write (output_unit, '(a)') "egw-bench --separated: 1-D E-GW table (mu = 4, R = E* = "// &
-         & "sigma = 1), ns per evaluation (best of 11 rounds) and / inline Hertz F"
+         & "sigma = 1), ns per evaluation (best of 101 rounds) and / inline Hertz F"
       write (output_unit, '(a,f8.3,a)') "  cut-off delta_c = ", table%cutoff, " sigma"
       call table_eval(table, -8.0_dp, f, k)
       write (output_unit, '(a,es12.4,a,es12.4)') "  P(-8 sigma) = ", f, &

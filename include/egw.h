@@ -284,8 +284,9 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * Hermite interpolant (slope = the solver's stiffness; ln P in the separated tail)
  * agrees with solves between nodes to rel_tol. Rough models: the nodes reach down to the
  * cut-off delta_c where the force has fallen to 1e-12 * P_ref (every larger force is
- * interpolated to rel_tol), and below it the force follows the model's separated tail
- * (the rigid-sphere law, C1, -> 0 as delta -> -inf; doc/theory.md 9). Hertz: the cut-off
+ * interpolated to rel_tol), and below it force and stiffness are exactly 0 (the model's
+ * separated tail there is below 1e-12 * P_ref; doc/formats.md rule 1, doc/theory.md 9;
+ * the energy counts from the cut-off, 0 below it). Hertz: the cut-off
  * is where P = rel_tol * P_ref, and below it Hertz itself. Above delta_max every table
  * follows the deep-overlap asymptote: Hertz's force (4/3) E sqrt(R) g^(3/2) on the overlap g
  * the rough layer leaves, delta = delta_max + (g - g_n) + a (g^(1/3) - g_n^(1/3)), a fitted
@@ -310,7 +311,7 @@ enum { EGW_FORMAT_CSV = 0, EGW_FORMAT_BINARY = 1, EGW_FORMAT_LAMMPS = 2, EGW_FOR
 typedef struct {
   int    model;               /* EGW_MODEL_* of the parameters */
   int    n_nodes;             /* interpolation nodes */
-  double cutoff;              /* delta_c: first node; the tail law below [length] */
+  double cutoff;              /* delta_c: first node; rough tables 0 below [length] */
   double delta_max;           /* last node [length]; above it the table extrapolates */
   double reference_force;     /* P_ref of the cut-off rule [force] */
   double rel_tol;             /* requested interpolation tolerance */
@@ -336,13 +337,13 @@ int egw_table_build(const egw_params *p, const egw_options *o, double delta_min,
                     double delta_max, double rel_tol, egw_table *out);
 
 /* Force [force] and stiffness dP/ddelta [force/length] at overlap delta. Below the
- * cut-off the tail law, above delta_max the deep-overlap asymptote (see above), and
+ * cut-off 0 (rough tables; Hertz: Hertz itself), above delta_max the deep-overlap
+ * asymptote (see above), and
  * EGW_OUT_OF_RANGE is returned above delta_max WITH the outputs written (the one
  * exception to "outputs unchanged on failure"). NULL outputs are skipped.
  * EGW_INVALID_ARGUMENT for NaN delta, and (nothing written) for delta = +inf or a
- * continuation beyond the doubles; EGW_NULL_POINTER for t. Far apart, where the tail law
- * is exactly 0 (rough tables: delta < -40 sigma (1 + 1e-9), F_{5/2} = 0; Hertz: delta < 0),
- * the first test of the call: EGW_OK, force = stiffness = 0. */
+ * continuation beyond the doubles; EGW_NULL_POINTER for t. Below a rough table's cut-off
+ * (Hertz: delta < 0) the first test of the call: EGW_OK, force = stiffness = 0. */
 int egw_table_eval(egw_table t, double delta, double *force, double *stiffness);
 
 /* egw_table_eval at the n overlaps delta[0..n-1] in one call: force[i], stiffness[i]
@@ -374,7 +375,7 @@ int egw_table_get_info(egw_table t, egw_table_info *info);
  * the others force = v, stiffness = dv/dt. Evaluated so (as egw_table_eval evaluates
  * it: same coefficients, same order of operations up to rounding) it gives
  * egw_table_eval's values on (cutoff, delta_max); outside that interval use
- * egw_table_eval (tail law, node value, deep-overlap asymptote). Statuses:
+ * egw_table_eval (0 or Hertz below, node value, deep-overlap asymptote). Statuses:
  * EGW_INVALID_ARGUMENT (capacity < n, nothing written; the message gives n),
  * EGW_NULL_POINTER. */
 int egw_table_get_interpolant(egw_table t, int capacity, double *nodes, double *coeffs,
@@ -474,8 +475,8 @@ int egw_universal_build(const egw_params *p, const egw_options *o, double mu_min
 
 /* Force and stiffness of the contact p (R, E, sigma > 0, mu; model, psi, K, rho_p must
  * equal the table's, else EGW_INVALID_ARGUMENT) at overlap delta: P = E sqrt(R)
- * sigma^1.5 p(delta/sigma, mu); below the cut-off the tail law of the combined first
- * node. mu outside the table: EGW_OUT_OF_RANGE, outputs unchanged. delta above
+ * sigma^1.5 p(delta/sigma, mu); at the cut-off the combined first node, below it 0
+ * (rough models; Hertz: Hertz itself). mu outside the table: EGW_OUT_OF_RANGE, outputs unchanged. delta above
  * x_max*sigma: EGW_OUT_OF_RANGE with extrapolated outputs written (the deep-overlap
  * asymptote of the combined last node, as a 1-D table). EGW_INVALID_PARAMETER for
  * sigma, R or E <= 0. */
@@ -486,7 +487,7 @@ int egw_universal_eval(egw_universal u, const egw_params *p, double delta, doubl
  * u's) cut out of u: egw_table_eval on it gives egw_universal_eval's force [force] and
  * stiffness [force/length] at every delta [length] to rounding (relative ~1e-14: the
  * 4 slices' nodal data, ln p, d ln p/dx in the tail and p, dp/dx in the contact range,
- * are combined once, as the evaluation combines their cubics), including the tail below
+ * are combined once, as the evaluation combines their cubics), including the 0 below
  * the cut-off and the asymptote above x_max*sigma, at the cost of a 1-D table
  * (no log, no mu interpolation, no exp in the contact range). info:
  * rel_tol and max_force_error are u's; a* = sqrt(R sigma) a*(x) with the same weights.
@@ -556,8 +557,8 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
  * whose history is *delta_max_state, updated to max(*delta_max_state, delta). force or
  * stiffness may be NULL. A state above the table's delta_max: EGW_OUT_OF_RANGE with the
  * values written (the last unloading curve, the loading table's deep-overlap asymptote).
- * Below the loading table's cut-off: its tail law (a turning point at or below it unloads
- * on that tail too).
+ * Below the loading table's cut-off: 0 (a turning point at or below it unloads on the
+ * loading curve, so 0 there too).
  * EGW_INVALID_ARGUMENT for NaN delta or a NaN state (nothing changed);
  * EGW_NULL_POINTER for h or delta_max_state. */
 int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,

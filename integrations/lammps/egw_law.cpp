@@ -441,7 +441,7 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
     extra += fmt::format(", {} slices, measured ln-mu interpolation error {:.2g} "
                          "(universal table built to TOL/2)", slices.size(), interp_error);
   return fmt::format("{}, E* = {:.6g}, sigma = {:.6g}, cut-off {:.6g} (the tables' first node; "
-                     "the tail law below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
+                     "0 below), reach {:.6g}{}", egw_law_kind_name[kind], E_star, sigma,
                      xc * sigma, reach, extra) +
       (capped_solver ? fmt::format(" (capped at {:g} sigma, the solver's range)", TABLE_X_MAX)
                      : std::string()) +
@@ -490,8 +490,9 @@ void EgwLaw::set_reach(double w_ref, double frac, double R_hi)
   for (auto &p : curves) {
     // the force step where a contact forms stays below frac of the force at delta = 0
     const double p_top = frac * p(0.0);
-    // w(x) = int_{-inf}^{x} p from the cut-off (the tail law below it holds at most
-    // p(xc) l, l = p / (dp/dx) its decay length, ~1e-12 of P_ref sigma: counted)
+    // w(x) = int_{-inf}^{x} p from the cut-off (the tables give 0 below it, where the
+    // model's tail holds at most p(xc) l, l = p / (dp/dx) its decay length, ~1e-12 of
+    // P_ref sigma: counted, conservatively)
     double p0 = p(xc), d0 = (p(xc + 1e-6) - p0) / 1e-6;
     double w = d0 > 0 ? p0 * p0 / d0 : 0.0;
     double x = xc, xr = xc, wr = w;

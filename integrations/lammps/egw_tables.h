@@ -57,7 +57,7 @@ struct SliceKey {
  * table share their nodes, so a contact finds its interval once for both of its slices and,
  * where they interpolate p, blends their cubics into one (the value of interpolating their
  * forces linearly in ln mu, to rounding); where they interpolate ln p (the tail) it takes
- * both exps. Serves cut-off < x < last node; egw_table_eval the rest (tail law, deep
+ * both exps. Serves cut-off < x < last node; egw_table_eval the rest (0 below, deep
  * overlaps, energy). n = 0: the tables' nodes differ, egw_table_eval serves everything. */
 struct Inline {
   int n = 0, n_log = 0, ns = 0;    // nodes, intervals of ln p (the first ones), tables

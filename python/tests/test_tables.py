@@ -33,11 +33,12 @@ def test_array_eval_equals_pointwise_eval(table):
         assert fi == f[i] and ki == k[i]
     info = table.info
     below = info.cutoff * (1 + 1e-9)  # cut-off < 0: just below it
-    # below the cut-off the model's tail (since c071800, no longer exactly zero): a force
-    # under rel_tol * P_ref, falling further out
-    f_below, _ = table.eval(below)
-    assert 0.0 <= f_below <= info.rel_tol * info.reference_force
-    assert table.eval(2 * info.cutoff)[0] < f_below
+    # below a rough table's cut-off exactly 0 (doc/formats.md rule 1: the force there is
+    # under 1e-12 P_ref); at the cut-off itself the first node's force, at most that
+    assert table.eval(below) == (0.0, 0.0)
+    assert table.eval(2 * info.cutoff) == (0.0, 0.0)
+    f_cut, _ = table.eval(info.cutoff)
+    assert 0.0 < f_cut <= 1e-12 * info.reference_force
 
 
 def test_above_range_warns_and_extrapolates(table):

@@ -78,7 +78,7 @@ class TableInfo:
     n_nodes : int
         Interpolation nodes.
     cutoff : float
-        First node [length]; the model's separated tail below.
+        First node [length]; rough tables give 0 below it (force under 1e-12 P_ref).
     delta_max : float
         Last node [length]; the deep-overlap asymptote above.
     reference_force : float
@@ -444,7 +444,7 @@ class HysteresisInfo:
         Nodes of the loading table.
     cutoff : float
         The loading table's first node [length] (forces under 1e-12 of
-        reference_force; its tail law below).
+        reference_force; 0 below it).
     delta_max : float
         The last delta_max node [length].
     reference_force : float

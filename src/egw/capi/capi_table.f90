@@ -72,8 +72,8 @@ contains
       ! inline test, not the checks' calls (~1 ns of ~8)
       if (c_associated(h)) then
          call c_f_pointer(h, t)
-         ! far apart (the tail law is exactly 0 there: table_prepare's zero_below): one
-         ! comparison, EGW_OK, zeros
+         ! below a rough table's cut-off (or a Hertz table's 0), where the force is exactly
+         ! 0 (table_prepare's zero_below): one comparison, EGW_OK, zeros
          if (delta < t%zero_below) then
             ! the stores written out, as below (put is a call into another module)
             stat = egw_ok

@@ -225,8 +225,6 @@ contains
       to%bucket_scale = from%bucket_scale
       to%bucket_origin = from%bucket_origin
       to%crowded = from%crowded
-      to%tail_f52_c = from%tail_f52_c
-      to%tail_kappa = from%tail_kappa
       to%zero_below = from%zero_below
       call move_alloc(from%delta, to%delta)
       call move_alloc(from%force, to%force)

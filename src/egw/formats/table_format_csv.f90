@@ -28,8 +28,9 @@ contains
          & "contact_radius [length]; force [modulus*length^2]; stiffness [modulus*length]; "// &
          & "energy [modulus*length^3]")
       call out%add("# interpolation = cubic Hermite in delta with stiffness as slope; "// &
-         & "ln(force) in intervals 1..n_log; below cutoff and above delta_max the tail and "// &
-         & "deep-overlap laws of doc/formats.md; energy = int of force from cutoff")
+         & "ln(force) in intervals 1..n_log; below cutoff and above delta_max the rules "// &
+         & "of doc/formats.md (rough models: 0 below cutoff); energy = int of force from "// &
+         & "cutoff")
       do i = 1, size(table%delta)
          if (.not. row_ok([table%delta(i), table%force(i), table%stiffness(i), &
             & table%energy(i), table%contact_radius(i)])) then

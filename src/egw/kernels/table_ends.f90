@@ -1,18 +1,16 @@
 !> The laws at the ends of a force table (doc/theory.md §9): the separated tail of a rough
 !> sphere, the rigid-sphere law far apart, and the deep-overlap asymptote, Hertz's force on
 !> the overlap the rough layer leaves. Closed forms matched to a table's end node;
-!> egw_table and egw_table_universal continue their interpolants with them.
+!> egw_table and egw_table_universal continue their interpolants above delta_max with the
+!> deep law; below a rough table's cut-off they give 0, and the tail law serves the
+!> builders that need the force's continuation there (hysteresis gaps).
 module egw_table_ends
    use egw_kinds, only: dp
    use egw_gauss, only: gauss_f32, gauss_f52
    implicit none
    private
 
-   public :: tail_force, tail_constants, tail_force_matched, deep_force, deep_energy, &
-      & deep_radius_factor, deep_reach
-
-   !> h = -delta/sigma from which gauss_f52, so tail_force, is exactly 0.
-   real(dp), parameter, public :: tail_zero_h = 40.0_dp
+   public :: tail_force, deep_force, deep_energy, deep_radius_factor, deep_reach
 
 contains
 
@@ -28,7 +26,7 @@ contains
    !> k_c to the solver's accuracy). Plastic summits (EP-GW, psi > 0), many of which yield
    !> even far apart: kappa = k_c/p_c - (5/2) F_{3/2}(h_c)/(sigma F_{5/2}(h_c)) matches
    !> the slope too. C1 at delta_c, 0 as delta -> -inf, and exactly 0 for delta <=
-   !> -40 sigma (F_{5/2} is 0 there: tail_zero_h).
+   !> -40 sigma (F_{5/2} is 0 there).
    pure subroutine tail_force(delta_c, p_c, k_c, sigma, plastic, delta, force, stiffness)
       real(dp), intent(in) :: delta_c   !< cut-off, the table's first node [length]
       real(dp), intent(in) :: p_c, k_c  !< force and stiffness there

@@ -5,7 +5,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_status, only: egw_not_converged, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, refuse_flow_pressure
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload
-   use egw_table, only: build_table
+   use egw_table, only: build_table, table_eval_tail_law
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    implicit none
 
@@ -460,7 +460,9 @@ contains
          if (x == 0.0_dp) x_solve = 1.0e-4_dp
          call solve_unload(hist, m - x_solve*span, res, error)
          if (allocated(error)) return
-         call table_eval(table%loading, m - x_solve*span, p_ext, k_ext)
+         ! the loading force continued below its cut-off by the tail law (table_eval
+         ! gives 0 there), so that the gap stays smooth across it
+         call table_eval_tail_law(table%loading, m - x_solve*span, p_ext, k_ext)
          if (x > 0.0_dp) g = (c_turn*p_ext - res%force)/scale
          dg = (res%stiffness - c_turn*k_ext)*span/scale
          ! far below the cut-off the forces underflow: no subnormal numbers in the table

@@ -9,10 +9,11 @@
 !> reach down to the cut-off delta_c, where P has fallen to tail_floor * P_ref for rough
 !> models (1e-12: every force above 1e-12 of P_ref is interpolated to rel_tol; P_ref is
 !> the force at delta = min(0, delta_max), the first contact of the mean planes) and to
-!> rel_tol * P_ref at delta_max for Hertz. Below delta_c the force follows the model's
-!> own tail (tail_force: the rigid-sphere law, doc/theory.md §9), above delta_max its
-!> deep-overlap asymptote (deep_force: Hertz's force on the overlap the rough layer
-!> leaves): no jump, no zero, C1 everywhere.
+!> rel_tol * P_ref at delta_max for Hertz. Below delta_c a rough table gives exactly 0
+!> (its force there is below 1e-12 P_ref: the jump at delta_c is that small; doc/theory.md
+!> §9), a Hertz table Hertz's closed form, a flat-law table an exponential continuation;
+!> above delta_max the deep-overlap asymptote (deep_force: Hertz's force on the overlap
+!> the rough layer leaves), C1 there.
 !>
 !> Error control: the force at the midpoint of every interval against a solve. For
 !> smooth spheres the stiffness is checked too (10 rel_tol), because P ~ delta^(3/2)
@@ -35,14 +36,13 @@ module egw_table
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_law
    use egw_flat_law, only: flat_law
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
-   use egw_table_ends, only: tail_force, tail_constants, tail_force_matched, tail_zero_h, &
-      & deep_force, deep_energy, deep_radius_factor
+   use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor
    implicit none
    private
 
    public :: build_table, build_table_law, build_table_fixed_cutoff, build_tables_shared, table_interval, &
-      & table_eval, table_eval_cached, table_segment, segment_eval, table_eval_log, &
-      & table_eval_all, &
+      & table_eval, table_eval_tail_law, table_eval_cached, table_segment, segment_eval, &
+      & table_eval_log, table_eval_all, &
       & table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_prepare, table_is_ready, table_find_cutoff, &
       & deep_coefficient, deep_law_floor, deep_law_floor_x
@@ -69,7 +69,7 @@ module egw_table
    integer, parameter :: max_buckets = 16384
    !> Rough models: the nodes reach down to where P = tail_floor * P_ref (the force at the
    !> first contact of the mean planes), so that every force above 1e-12 of P(delta_max)
-   !> is interpolated to rel_tol; below, tail_force.
+   !> is interpolated to rel_tol; below, 0.
    real(dp), parameter, public :: tail_floor = 1.0e-12_dp
 
    !> One-parameter-set force table. Arrays are the nodes (delta ascending); the
@@ -77,7 +77,7 @@ module egw_table
    type, public :: force_table
       type(contact_params) :: params              !< parameters the table was built for
       real(dp) :: rel_tol = 0.0_dp                !< requested interpolation tolerance
-      real(dp) :: cutoff = 0.0_dp                 !< delta_c: first node, tail_force below
+      real(dp) :: cutoff = 0.0_dp                 !< delta_c: first node (rough: 0 below)
       real(dp) :: delta_max = 0.0_dp              !< last node
       real(dp) :: reference_force = 0.0_dp        !< P_ref of the cut-off rule
       real(dp) :: max_force_error = 0.0_dp        !< max |P_table/P_solve - 1| at check points
@@ -103,11 +103,8 @@ module egw_table
       real(dp) :: bucket_origin = 0.0_dp          !< overlap at the first node
       !> some bucket spans > 6 intervals (its entry is negated: bisect there)
       logical :: crowded = .false.
-      !> rough tail's match at the cut-off (tail_constants): F_{5/2}(h_c), kappa
-      real(dp) :: tail_f52_c = 0.0_dp, tail_kappa = 0.0_dp
-      !> below this overlap force and stiffness are exactly 0 (the tail law's own zero:
-      !> delta <= -40 sigma for rough models, delta <= 0 for Hertz; -huge for flat laws):
-      !> the first test of an evaluation
+      !> below this overlap force and stiffness are exactly 0 (rough models: the cut-off;
+      !> Hertz: 0; flat laws: -huge): the first test of an evaluation
       real(dp) :: zero_below = -huge(1.0_dp)
    end type force_table
 
@@ -604,22 +601,19 @@ contains
       ! (Buckets uniform in sign(delta) sqrt|delta| would spread graded nodes, but the
       ! sqrt on the lookup path made an evaluation ~1.8x slower, measured.)
       call fit_buckets(table)
-      call tail_constants(table%cutoff, table%force(1), table%stiffness(1), &
-         & table%params%sigma, plastic_summits(table%params), table%tail_f52_c, &
-         & table%tail_kappa)
       table%zero_below = zero_overlap(table%params, table%cutoff)
    end subroutine table_prepare
 
-   !> The overlap below which table_eval is exactly 0 (below the cut-off too): rough
-   !> models (not flat laws) where -delta/sigma > tail_zero_h (F_{5/2} = 0; the factor
-   !> keeps the rounded quotient above it), Hertz at delta < 0; -huge otherwise.
+   !> The overlap below which table_eval is exactly 0: rough models (not flat laws) their
+   !> cut-off (the force there is below 1e-12 P_ref; doc/formats.md rule 1), Hertz 0 (or
+   !> its cut-off if that is lower); -huge otherwise.
    pure real(dp) function zero_overlap(params, cutoff) result(delta)
       type(contact_params), intent(in) :: params
       real(dp), intent(in) :: cutoff
       delta = -huge(1.0_dp)
       if (params%model == model_flat_law) return
       if (is_rough(params)) then
-         delta = min(cutoff, -(tail_zero_h*(1 + 1.0e-9_dp))*params%sigma)
+         delta = cutoff
       else
          delta = min(cutoff, 0.0_dp)
       end if
@@ -678,12 +672,13 @@ contains
       table_is_ready = allocated(table%seg) .and. allocated(table%bucket)
    end function table_is_ready
 
-   !> Force and stiffness at overlap delta: below the cut-off the model's tail (tail_force),
-   !> above delta_max its deep-overlap asymptote (deep_force; see table_covers), both C1
-   !> continuations of the interpolant. No allocation, no shared state: safe in OpenMP
-   !> loops over contacts. The optional error says what egw_table_eval's status says
-   !> (the values are written as without it): egw_invalid_argument for a NaN delta
-   !> (force and stiffness 0) or one whose continuation above delta_max leaves the doubles
+   !> Force and stiffness at overlap delta: below the cut-off below_cutoff's (exactly 0 for
+   !> rough models, whose force at the cut-off is below 1e-12 P_ref), above delta_max the
+   !> deep-overlap asymptote (deep_force, a C1 continuation; see table_covers). No
+   !> allocation, no shared state: safe in OpenMP loops over contacts. The optional error
+   !> says what egw_table_eval's status says (the values are written as without it):
+   !> egw_invalid_argument for a NaN delta (force and stiffness 0) or one whose
+   !> continuation above delta_max leaves the doubles
    !> (+Inf, or far enough to overflow); egw_out_of_range above delta_max (the values of
    !> the deep-overlap asymptote, not checked against solves by the build). Without an
    !> error the call costs what it did: the checks run only outside (cutoff, delta_max).
@@ -704,6 +699,24 @@ contains
             & [force, stiffness], error)
       end if
    end subroutine table_eval
+
+   !> table_eval, except below a rough table's cut-off: there the model's separated tail
+   !> law (tail_force, doc/theory.md §9, matched to the first node) instead of 0. Not what
+   !> a table evaluates: the force's physical continuation, for builders that compare a
+   !> solve with the loading force below the cut-off (the hysteresis gaps).
+   pure subroutine table_eval_tail_law(table, delta, force, stiffness)
+      type(force_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta   !< overlap [length]
+      real(dp), intent(out) :: force   !< normal force [force], >= 0
+      real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
+      if (delta < table%cutoff .and. is_rough(table%params) .and. &
+         & table%params%model /= model_flat_law) then
+         call tail_force(table%cutoff, table%force(1), table%stiffness(1), &
+            & table%params%sigma, plastic_summits(table%params), delta, force, stiffness)
+      else
+         call table_eval(table, delta, force, stiffness)
+      end if
+   end subroutine table_eval_tail_law
 
    !> The status of an evaluation at x (called name) outside a table's (cutoff, delta_max)
    !> with the values it gave (egw_table_eval's statuses, as messages):
@@ -729,8 +742,8 @@ contains
       end if
    end subroutine beyond_status
 
-   !> table_eval outside (cutoff, delta_max): the node values at the ends, the tail below
-   !> the cut-off, the deep-overlap asymptote above delta_max.
+   !> table_eval outside (cutoff, delta_max): the node values at the ends, below_cutoff
+   !> below the cut-off, the deep-overlap asymptote above delta_max.
    pure subroutine table_beyond(table, delta, force, stiffness)
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
@@ -746,10 +759,6 @@ contains
       else if (delta < table%zero_below) then
          force = 0.0_dp
          stiffness = 0.0_dp
-      else if (is_rough(table%params) .and. table%params%model /= model_flat_law) then
-         ! below_cutoff's rough tail with the constants of the match computed once
-         call tail_force_matched(table%cutoff, table%force(1), table%params%sigma, &
-            & table%tail_f52_c, table%tail_kappa, delta, force, stiffness)
       else
          call below_cutoff(table%params, table%cutoff, table%force(1), table%stiffness(1), &
             & delta, force, stiffness)
@@ -757,9 +766,11 @@ contains
    end subroutine table_beyond
 
    !> The force below the cut-off delta_c of a table of params whose first node has force
-   !> p_c and stiffness k_c: rough models their tail (tail_force); Hertz P_c (delta/
-   !> delta_c)^(3/2), the closed form itself (k_c unused), and 0 apart. NaN gives 0 (the C layer refuses
-   !> it before). The universal table calls it with a slice's params (x = delta/sigma).
+   !> p_c and stiffness k_c: rough models 0 (p_c <= 1e-12 P_ref; the separated tail below
+   !> it, doc/theory.md §9, is smaller still); Hertz P_c (delta/delta_c)^(3/2), the closed
+   !> form itself (k_c unused), and 0 apart; flat laws exponential_tail. NaN gives 0 (the
+   !> C layer refuses it before). The universal table calls it with a slice's params
+   !> (x = delta/sigma).
    pure subroutine below_cutoff(params, delta_c, p_c, k_c, delta, force, stiffness)
       type(contact_params), intent(in) :: params   !< the table's parameters
       real(dp), intent(in) :: delta_c, p_c, k_c    !< first node: overlap, force, stiffness
@@ -768,8 +779,8 @@ contains
       if (params%model == model_flat_law) then
          call exponential_tail(delta_c, p_c, k_c, delta, force, stiffness)
       else if (is_rough(params)) then
-         call tail_force(delta_c, p_c, k_c, params%sigma, plastic_summits(params), delta, &
-            & force, stiffness)
+         force = 0.0_dp
+         stiffness = 0.0_dp
       else if (delta > 0.0_dp .and. delta_c > 0.0_dp) then
          force = p_c*(delta/delta_c)**1.5_dp
          stiffness = 1.5_dp*force/delta
@@ -936,18 +947,18 @@ contains
       end if
    end subroutine table_eval_log
 
-   !> True when delta lies in [cutoff, delta_max] or below the cut-off (the tail law holds
-   !> there); false above delta_max (the deep-overlap asymptote, not checked against solves
-   !> by the build) or for NaN.
+   !> True when delta lies in [cutoff, delta_max] or below the cut-off (below_cutoff's
+   !> values hold there); false above delta_max (the deep-overlap asymptote, not checked
+   !> against solves by the build) or for NaN.
    elemental logical function table_covers(table, delta)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]
       table_covers = delta <= table%delta_max
    end function table_covers
 
-   !> Elastic energy int_{delta_c}^{delta} P ddelta of the interpolant (0 below the
-   !> cut-off, where the tail holds less than 1e-12 P_ref sigma; above delta_max, of the
-   !> deep-overlap asymptote).
+   !> Elastic energy int_{delta_c}^{delta} P ddelta of the interpolant (0 at and below the
+   !> cut-off, measured from it as the force is 0 below it for rough models; above
+   !> delta_max, of the deep-overlap asymptote).
    pure function table_energy(table, delta) result(energy)
       type(force_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length]

@@ -41,7 +41,7 @@ module egw_table_universal
       integer :: model = 0
       real(dp) :: psi = 0.0_dp, hardness_coeff = 0.6_dp, plastic_ratio = 54.0_dp
       real(dp) :: rel_tol = 0.0_dp
-      real(dp) :: x_cut = 0.0_dp          !< common cut-off in x: the tail law below
+      real(dp) :: x_cut = 0.0_dp          !< common cut-off in x: rough models 0 below
       real(dp) :: x_max = 0.0_dp          !< upper end in x
       real(dp) :: mu_min = 0.0_dp, mu_max = 0.0_dp
       integer :: n_mu = 0                  !< mu_j = mu_min (mu_max/mu_min)^((j-1)/(n_mu-1))
@@ -290,7 +290,8 @@ contains
    !> asymptote of the combined last node, deep_force, as in the 1-D table, so that
    !> universal_slice reproduces it); egw_invalid_parameter where the force or stiffness
    !> is not finite (R, E or sigma infinite, or a force beyond the doubles; the values as
-   !> computed). Below the cut-off the rough tail of the combined first node (tail_force).
+   !> computed). At the cut-off the combined first node, below it 0 (rough models: the
+   !> force there is below 1e-12 P_ref; below_cutoff, as the 1-D table).
    !> No allocation; thread-safe.
    pure subroutine universal_eval(u, radius, modulus, sigma, mu, delta, force, stiffness, &
       & stat, error)
@@ -380,10 +381,15 @@ contains
       end if
       n = size(u%slices(1)%delta)
       if (.not. x > u%x_cut) then
-         ! below the cut-off: the rough tail from the combined first node (tail_force in
-         ! x, sigma = 1: what universal_slice's table gives)
+         ! at the cut-off its combined node, below it below_cutoff (0 for rough models;
+         ! in x, sigma = 1: what universal_slice's table gives)
          call combined_node(u, j0, w, 1, v, dv)
-         call below_cutoff(u%slices(1)%params, u%x_cut, v, dv, x, force, stiffness)
+         if (x == u%x_cut) then
+            force = v
+            stiffness = dv
+         else
+            call below_cutoff(u%slices(1)%params, u%x_cut, v, dv, x, force, stiffness)
+         end if
          force = scale*force
          stiffness = scale*stiffness/sigma
       else if (x < u%x_max) then
