@@ -363,6 +363,12 @@ contains
       call build_table(p, solver_options(), -1.0_dp, -0.5_dp, tol, t, err)
       call expect(err, egw_invalid_argument, "delta_max")
       if (allocated(error)) return
+      ! a capped Hertz sphere unloads along another curve than it loads: no 1-D table
+      p%flow_pressure = 0.01_dp
+      call build_table(p, solver_options(), 0.0_dp, 1.0_dp, tol, t, err)
+      call expect(err, egw_invalid_parameter, "flow_pressure")
+      if (allocated(error)) return
+      p%flow_pressure = 0
       p%radius = -1
       call build_table(p, solver_options(), 0.0_dp, 1.0_dp, tol, t, err)
       call expect(err, egw_invalid_parameter, "radius")

@@ -32,7 +32,7 @@ module egw_table
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
       & egw_out_of_range, fatal_error, format_real, int_str, tolerance_context
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
-      & model_epgw, model_flat_law, check_scaled_overlap
+      & model_epgw, model_flat_law, check_scaled_overlap, refuse_flow_pressure
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_law
    use egw_flat_law, only: flat_law
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
@@ -1384,6 +1384,9 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       logical, intent(in), optional :: with_law   !< the build has the law (model_flat_law)
       call validate_params(params, error, with_law)
+      if (allocated(error)) return
+      ! the formats store a reversible loading curve: a capped one unloads otherwise
+      call refuse_flow_pressure(params, "a force table", error)
       if (allocated(error)) return
       if (.not. ieee_is_finite(delta_min)) then
          call fatal_error(error, egw_invalid_argument, "delta_min = "// &
