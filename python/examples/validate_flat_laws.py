@@ -191,6 +191,27 @@ def goals(name, rows):
     return miss
 
 
+def apex_waviness(name, args, wavelength=40e-6):
+    """Per realisation: the mean, over the Hertz contact disc at delta_m = sigma, of the map's
+    wavelengths longer than `wavelength` (a low-pass of the heights), in units of the rms
+    height: the long waves under the sphere's apex, which a local flat law cannot see
+    (doc/validation.md, family B). No contact solve: seconds."""
+    fam = FAMILIES[name]
+    n, rms, radius = args.grid, fam["rms"], fam["radius"]
+    x = (np.arange(n) + 0.5) * SIZE / n - SIZE / 2
+    xx, yy = np.meshgrid(x, x, indexing="ij")
+    disc = np.hypot(xx, yy) < np.sqrt(radius * rms)        # Hertz a at delta = sigma
+    q = 2 * np.pi * np.fft.fftfreq(n, SIZE / n)
+    qq = np.hypot(*np.meshgrid(q, q, indexing="ij"))
+    print(f"family {name}: mean of the wavelengths > {wavelength * 1e6:g} um over the "
+          f"contact disc at delta_m = sigma (radius {np.sqrt(radius * rms) * 1e6:.1f} um), "
+          "in rms heights:")
+    for k in range(args.seeds):
+        h = rough_surface(n, SIZE, rms, fam["hurst"], fam["short"], fam["long"], args.seed + k)
+        low = np.real(np.fft.ifft2(np.fft.fft2(h - h.mean()) * (qq < 2 * np.pi / wavelength)))
+        print(f"  seed {args.seed + k}: {low[disc].mean() / rms:+.2f}")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--family", nargs="+", default=["A", "B"], choices=sorted(FAMILIES))
@@ -200,7 +221,13 @@ def main(argv=None):
     ap.add_argument("--seeds", type=int, default=8, help="realisations per family")
     ap.add_argument("--threads", type=int, default=0, help="egw BEM threads (0: default)")
     ap.add_argument("--out", default="out/validation_flat_laws")
+    ap.add_argument("--apex", action="store_true", help="only print, per realisation, the "
+                    "long waves under the sphere's apex (no solves)")
     args = ap.parse_args(argv)
+    if args.apex:
+        for name in args.family:
+            apex_waviness(name, args)
+        return 0
     if args.seeds < 2:
         ap.error("--seeds must be >= 2 (a spread needs two realisations)")
     misses = 0
