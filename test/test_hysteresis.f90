@@ -2,6 +2,7 @@
 !> history semantics of the evaluation, reversibility of elastic summits, bad input.
 module test_hysteresis
    use egw_kinds, only: dp
+   use test_compare, only: same => same_bits, c_message => last_error_c
    use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, format_real, &
       & egw_not_converged
    use egw_params, only: contact_params, model_epgw, model_egw
@@ -835,30 +836,6 @@ contains
             & err%message//"' against C's '"//c_message()//"'")
       end subroutine expect
    end subroutine test_eval_errors
-
-   !> a and b the same double (NaN equal to NaN).
-   elemental logical function same(a, b)
-      use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
-      real(dp), intent(in) :: a, b
-      same = a == b .or. (ieee_is_nan(a) .and. ieee_is_nan(b))
-   end function same
-
-   !> This thread's last C error message (egw_last_error).
-   function c_message() result(text)
-      character(len=:), allocatable :: text
-      character(kind=c_char), target :: buf(1000)
-      integer :: n
-      interface
-         integer(c_int) function c_last_error(b, buflen) bind(C, name="egw_last_error")
-            import :: c_int, c_ptr
-            type(c_ptr), value :: b
-            integer(c_int), value :: buflen
-         end function c_last_error
-      end interface
-      n = min(c_last_error(c_loc(buf), size(buf)), size(buf)) - 1
-      allocate (character(len=n) :: text)
-      text = transfer(buf(1:n), text)
-   end function c_message
 
    real(dp) function ieee_nan()
       use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan

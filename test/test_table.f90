@@ -11,6 +11,7 @@ module test_table
       & c_null_char
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
+   use test_compare, only: same_bits, last_error_c
    use egw_kinds, only: dp
    use egw_status, only: format_real, egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_out_of_range, egw_not_converged, tolerance_context
@@ -1254,28 +1255,5 @@ contains
       end do
       s = s*u_max/(3*n)
    end function f52_simpson
-   !> a and b the same double (NaN equal to NaN).
-   elemental logical function same_bits(a, b)
-      real(dp), intent(in) :: a, b
-      same_bits = a == b .or. (ieee_is_nan(a) .and. ieee_is_nan(b))
-   end function same_bits
-
-   !> This thread's last C error message (egw_last_error).
-   function last_error_c() result(text)
-      character(len=:), allocatable :: text
-      character(kind=c_char), target :: buf(1000)
-      integer :: n
-      interface
-         integer(c_int) function c_last_error(b, buflen) bind(C, name="egw_last_error")
-            import :: c_int, c_ptr
-            type(c_ptr), value :: b
-            integer(c_int), value :: buflen
-         end function c_last_error
-      end interface
-      n = c_last_error(c_loc(buf), size(buf))
-      n = min(n, size(buf)) - 1
-      allocate (character(len=n) :: text)
-      text = transfer(buf(1:n), text)
-   end function last_error_c
 
 end module test_table

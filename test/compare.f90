@@ -1,0 +1,36 @@
+!> Helpers the suites share to compare egw's Fortran and C doors: bitwise equality of
+!> doubles and the C API's last error message.
+module test_compare
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_ptr, c_loc
+   use egw_kinds, only: dp
+   implicit none
+   private
+   public :: same_bits, last_error_c
+
+contains
+
+   !> a and b the same double (NaN equal to NaN).
+   elemental logical function same_bits(a, b)
+      real(dp), intent(in) :: a, b
+      same_bits = a == b .or. (ieee_is_nan(a) .and. ieee_is_nan(b))
+   end function same_bits
+
+   !> This thread's last C error message (egw_last_error), at most 999 characters.
+   function last_error_c() result(text)
+      character(len=:), allocatable :: text
+      character(kind=c_char), target :: buf(1000)
+      integer :: n
+      interface
+         integer(c_int) function c_last_error(b, buflen) bind(C, name="egw_last_error")
+            import :: c_int, c_ptr
+            type(c_ptr), value :: b
+            integer(c_int), value :: buflen
+         end function c_last_error
+      end interface
+      n = min(c_last_error(c_loc(buf), size(buf)), size(buf)) - 1
+      allocate (character(len=n) :: text)
+      text = transfer(buf(1:n), text)
+   end function last_error_c
+
+end module test_compare
