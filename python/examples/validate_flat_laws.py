@@ -62,19 +62,21 @@ def _cm_solve(system, d, pentol):
     return float(system.compute_normal_force()) if sol.success else None
 
 
-def _cm_force(system, d, pentol):
+def _cm_force(system, d, pentol, scale):
     """The force at overlap d. CM's constrained CG converges in 20-60 steps or cycles for
     ever at isolated overlaps (seen on 128^2 maps: d = 3.00 sigma cycles, 2.95 and 3.05
     converge, from rest or warm-started alike): there the mean of the forces at
-    d (1 -+ e), e = 1e-3, 3e-3 or 1e-2 (the first pair that converges; error ~ e^2)."""
+    d -+ e max(|d|, scale), e = 1e-3, 3e-3 or 1e-2 (the first pair that converges; error
+    ~ e^2; scale: the rms height, for d = 0)."""
     f = _cm_solve(system, d, pentol)
     if f is not None:
         return f
     for e in (1e-3, 3e-3, 1e-2):
-        lo, hi = _cm_solve(system, d * (1 - e), pentol), _cm_solve(system, d * (1 + e), pentol)
+        step = e * max(abs(d), scale)
+        lo, hi = _cm_solve(system, d - step, pentol), _cm_solve(system, d + step, pentol)
         if lo is not None and hi is not None:
-            print(f"  CM cycled at delta_m = {d:.4g}: mean of {1 - e:g} and {1 + e:g} x it",
-                  flush=True)
+            print(f"  CM cycled at delta_m = {d:.4g}: mean of the forces at -+ {step:.3g} "
+                  "beside it", flush=True)
             return 0.5 * (lo + hi)
     raise RuntimeError(f"ContactMechanics did not converge at delta_m = {d:g} nor beside it")
 
@@ -85,7 +87,7 @@ def bem_sphere_forces(heights, size, radius, modulus, overlaps, pentol):
     system = cm_sphere_system(heights, size, radius, modulus)
     forces = []
     for d in overlaps:
-        forces.append(_cm_force(system, d, pentol))
+        forces.append(_cm_force(system, d, pentol, np.std(heights)))
     return np.array(forces)
 
 
@@ -113,7 +115,7 @@ def egw_forces(h, size, radius, modulus, overlaps, threads):
 def run_family(name, args):
     fam = FAMILIES[name]
     n, rms, radius = args.grid, fam["rms"], fam["radius"]
-    overlaps = X * rms
+    overlaps = args.x * rms
     f_bem_runs, f_egw_runs = [], {m: [] for m in MODELS}
     t0 = time.time()
     for k in range(args.seeds):
@@ -131,7 +133,7 @@ def run_family(name, args):
     f_bem_runs = np.array(f_bem_runs)
     bem_mean = f_bem_runs.mean(axis=0)
     rows = []
-    for i, xi in enumerate(X):
+    for i, xi in enumerate(args.x):
         row = [xi, bem_mean[i], f_bem_runs[:, i].std(ddof=1) / bem_mean[i]]
         for m in MODELS:
             f = np.array(f_egw_runs[m])[:, i]
@@ -221,9 +223,12 @@ def main(argv=None):
     ap.add_argument("--seeds", type=int, default=8, help="realisations per family")
     ap.add_argument("--threads", type=int, default=0, help="egw BEM threads (0: default)")
     ap.add_argument("--out", default="out/validation_flat_laws")
+    ap.add_argument("--x", type=float, nargs="+", default=list(X),
+                    help="overlaps delta_m / sigma (default: 0.5 ... 10)")
     ap.add_argument("--apex", action="store_true", help="only print, per realisation, the "
                     "long waves under the sphere's apex (no solves)")
     args = ap.parse_args(argv)
+    args.x = np.array(args.x)
     if args.apex:
         for name in args.family:
             apex_waviness(name, args)
