@@ -1,12 +1,23 @@
 !> Helpers the suites share to compare egw's Fortran and C doors: bitwise equality of
-!> doubles and the C API's last error message.
+!> doubles, the C API's last error message and egw_table_eval as a C caller sees it.
 module test_compare
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_ptr, c_loc
+   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_loc
    use egw_kinds, only: dp
    implicit none
    private
-   public :: same_bits, last_error_c
+   public :: same_bits, last_error_c, c_table_eval
+
+   interface
+      !> include/egw.h: int egw_table_eval(egw_table t, double delta, double *force,
+      !> double *stiffness)
+      integer(c_int) function c_table_eval(h, delta, force, stiffness) &
+         & bind(C, name="egw_table_eval")
+         import :: c_int, c_double, c_ptr
+         type(c_ptr), value :: h, force, stiffness
+         real(c_double), value :: delta
+      end function c_table_eval
+   end interface
 
 contains
 

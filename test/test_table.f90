@@ -11,7 +11,7 @@ module test_table
       & c_null_char
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
-   use test_compare, only: same_bits, last_error_c
+   use test_compare, only: same_bits, last_error_c, c_table_eval
    use egw_kinds, only: dp
    use egw_status, only: format_real, egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_out_of_range, egw_not_converged, tolerance_context
@@ -402,12 +402,6 @@ contains
       real(c_double), target :: fc, kc
       integer :: i, stat_c
       interface
-         integer(c_int) function c_table_eval(h, delta, force, stiffness) &
-            & bind(C, name="egw_table_eval")
-            import :: c_int, c_double, c_ptr
-            type(c_ptr), value :: h, force, stiffness
-            real(c_double), value :: delta
-         end function c_table_eval
          integer(c_int) function c_table_eval_all(h, delta, force, stiffness, energy, &
             & radius) bind(C, name="egw_table_eval_all")
             import :: c_int, c_double, c_ptr
@@ -1173,17 +1167,7 @@ contains
    !> bounds its interpolation error against solves; a wrong tail (0, or the cubic's
    !> extrapolation) misses by O(1).
    subroutine test_beyond_cutoff(error)
-      use, intrinsic :: iso_c_binding, only: c_loc, c_int, c_double, c_ptr
-      interface
-         !> include/egw.h's egw_table_eval
-         function egw_table_eval(h, delta, force, stiffness) result(stat) &
-            & bind(C, name="egw_table_eval")
-            import :: c_int, c_double, c_ptr
-            type(c_ptr), value, intent(in) :: h, force, stiffness
-            real(c_double), value, intent(in) :: delta
-            integer(c_int) :: stat
-         end function egw_table_eval
-      end interface
+      use, intrinsic :: iso_c_binding, only: c_loc
       type(error_type), allocatable, intent(out) :: error
       type(force_table), allocatable, target :: t
       type(egw_error), allocatable :: err
@@ -1218,7 +1202,7 @@ contains
          if (allocated(error)) return
          f = 1
          k = 1
-         stat = egw_table_eval(c_loc(t), d, c_loc(f), c_loc(k))
+         stat = c_table_eval(c_loc(t), d, c_loc(f), c_loc(k))
          call check(error, stat == 0 .and. f == 0.0_dp .and. k == 0.0_dp, &
             & "egw_table_eval: status "//to_string(int(stat))//" or not 0 at delta = "// &
             & format_real(d))

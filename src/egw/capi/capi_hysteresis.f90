@@ -17,7 +17,7 @@ module egw_capi_hysteresis
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, check_count, &
       & read_contact, put, put_handle_settled, take_handle, double_array, from_params, &
-      & egw_params_c, c_path, above_delta_max, refuse_cap
+      & egw_params_c, c_path, above_delta_max
    implicit none
    private
 
@@ -44,7 +44,6 @@ contains
       type(egw_error), allocatable :: error
       stat = require(out, "out")
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
-      if (stat == egw_ok) stat = refuse_cap(params, "a hysteresis table")
       if (stat /= egw_ok) return
       stat = new_table(h)
       if (stat /= egw_ok) return

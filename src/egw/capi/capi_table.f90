@@ -50,9 +50,9 @@ contains
       type(egw_error), allocatable :: error
       stat = require(out, "out")
       if (stat == egw_ok) stat = read_contact(p, o, params, options)
-      if (stat == egw_ok) stat = refuse_cap(params, "a force table")
       if (stat /= egw_ok) return
       allocate (t)
+      ! (flow_pressure is refused by the build, before any cache lookup)
       call build_table_cached(params, options, delta_min, delta_max, rel_tol, t, error)
       stat = put_handle_settled(out, c_loc(t), error)
       if (stat /= egw_ok) deallocate (t)
@@ -463,7 +463,6 @@ contains
       stat = get_universal(h, u)
       if (stat == egw_ok) stat = require(out, "out")
       if (stat == egw_ok) stat = read_params(p, params)
-      if (stat == egw_ok) stat = refuse_cap(params, "a force table")
       if (stat /= egw_ok) return
       allocate (t)
       if (trim) then

@@ -19,7 +19,7 @@ module egw_table_universal
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_not_converged, egw_out_of_range, fatal_error, format_real, int_str
    use egw_params, only: contact_params, validate_params, overlap_ratio_max, product4, &
-      & force_unit, stiffness_unit, length_unit
+      & force_unit, stiffness_unit, length_unit, refuse_flow_pressure
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_table_ends, only: deep_force
    use egw_table, only: force_table, build_tables_shared, table_find_cutoff, deep_law_floor_x, &
@@ -511,6 +511,8 @@ contains
       integer :: j0, m, i, n
 
       call validate_params(params, error)
+      if (allocated(error)) return
+      call refuse_flow_pressure(params, "a force table", error)
       if (allocated(error)) return
       if (.not. allocated(u%slices) .or. .not. allocated(u%coef)) then
          call fatal_error(error, egw_invalid_argument, "u: not a built or read table")
