@@ -374,7 +374,10 @@ int egw_table_get_info(egw_table t, egw_table_info *info);
  * where the table interpolates ln P) force = exp(v) and stiffness = force dv/dt; for
  * the others force = v, stiffness = dv/dt. Evaluated so (as egw_table_eval evaluates
  * it: same coefficients, same order of operations up to rounding) it gives
- * egw_table_eval's values on (cutoff, delta_max); outside that interval use
+ * egw_table_eval's values on (cutoff, delta_max), except in the separated tail's ln P
+ * intervals below 0: there egw_table_eval evaluates a resampling of this interpolant
+ * without exp (equal pieces of a cubic in P, within 5e-2 rel_tol of it in the force
+ * and rel_tol/2 in the stiffness; doc/formats.md rule 3); outside that interval use
  * egw_table_eval (0 or Hertz below, node value, deep-overlap asymptote). Statuses:
  * EGW_INVALID_ARGUMENT (capacity < n, nothing written; the message gives n),
  * EGW_NULL_POINTER. */

@@ -97,7 +97,9 @@ contains
          & new_unittest("universal slice = universal eval", test_universal_slice), &
          & new_unittest("progress hook (1-D table)", test_progress_table), &
          & new_unittest("progress hook (universal table)", test_progress_universal), &
-         & new_unittest("0 below the cut-off, tail law above", test_beyond_cutoff) &
+         & new_unittest("0 below the cut-off, tail law above", test_beyond_cutoff), &
+         & new_unittest("resampled tail = ln P interpolant (5e-2 rel_tol)", &
+         & test_resampled_tail) &
          & ]
    end subroutine collect_table
 
@@ -997,7 +999,9 @@ contains
    end subroutine test_universal_invalid
 
    !> universal_slice: the 1-D table cut out of a universal table at (R, E, sigma, mu)
-   !> evaluates like universal_eval there. Both evaluate the same cubic in each interval
+   !> evaluates like universal_eval there (except in the separated tail, where the slice's
+   !> table_eval takes its resampled pieces: within 5e-2 rel_tol in P and rel_tol in K of
+   !> the same ln P cubic, test_resampled_tail's contract). Both evaluate the same cubic in each interval
    !> (of ln P in the tail, of P in the contact range: nodal data combined with the same
    !> Lagrange weights before, not after, the Hermite formula: both linear), scaled by the
    !> same E sqrt(R) sigma^1.5; only rounding differs: a few ulp of |ln P| <~ 40 or of P
@@ -1047,11 +1051,12 @@ contains
             call check(error, (fu == 0 .and. ku == 0) .eqv. x < u%x_cut, "exactly 0 below "// &
                & "the cut-off only, x = "//format_real(x))
             if (allocated(error)) return
-            if (fu > 0) worst = max(worst, abs(ft/fu - 1), abs(kt/ku - 1))
+            if (fu > 0) worst = max(worst, slice_error(t, x*p%sigma, ft, kt, fu, ku))
          end do
       end do
-      ! 1e-12: see above (rounding only)
-      call check(error, worst <= 1.0e-12_dp, "slice vs universal eval: "//format_real(worst))
+      ! 1e-12: see above (rounding only); the resampled tail's own tolerance there
+      call check(error, worst <= 1.0_dp, "slice vs universal eval: "//format_real(worst)// &
+         & " of the tolerance")
       if (allocated(error)) return
       ! a slice trimmed to the overlaps a scene needs (delta_max = 10 sigma) keeps the
       ! same cubics below it: same values to rounding (1e-12 as above), fewer nodes
@@ -1071,10 +1076,10 @@ contains
             call table_eval(trimmed, x*p%sigma, ft, kt)
             call check(error, (fu == 0) .eqv. (ft == 0), "trimmed: zero below the cut-off")
             if (allocated(error)) return
-            if (fu > 0) worst = max(worst, abs(ft/fu - 1), abs(kt/ku - 1))
+            if (fu > 0) worst = max(worst, slice_error(trimmed, x*p%sigma, ft, kt, fu, ku))
          end do
-         call check(error, worst <= 1.0e-12_dp, "trimmed slice vs universal eval: "// &
-            & format_real(worst))
+         call check(error, worst <= 1.0_dp, "trimmed slice vs universal eval: "// &
+            & format_real(worst)//" of the tolerance")
          if (allocated(error)) return
          call universal_slice(u, p, trimmed, err, delta_max=(u%x_cut - 1.0_dp)*p%sigma)
          call check(error, allocated(err), "delta_max below the cut-off must be refused")
@@ -1135,9 +1140,10 @@ contains
          call universal_eval(legacy, p%radius, p%modulus, p%sigma, p%mu, x*p%sigma, fb, kb, &
             & stat)
          call table_eval(t, x*p%sigma, ft, kt)
-         worst = max(worst, abs(ft/fb - 1), abs(kt/kb - 1))
+         worst = max(worst, slice_error(t, x*p%sigma, ft, kt, fb, kb))
       end do
-      call check(error, worst <= 1.0e-12_dp, "all-log slice vs eval: "//format_real(worst))
+      call check(error, worst <= 1.0_dp, "all-log slice vs eval: "//format_real(worst)// &
+         & " of the tolerance")
       if (allocated(error)) return
       ! mu outside the range: status and a message naming mu
       p%mu = 10.5_dp
@@ -1154,6 +1160,18 @@ contains
       if (allocated(error)) return
       call check(error, err%stat == egw_invalid_argument, "other model: "//err%message)
    end subroutine test_universal_slice
+
+   !> The slice's difference from universal_eval as a fraction of what is allowed: 1e-12
+   !> relative (rounding) above the resampled tail, 5e-2 rel_tol (P) and rel_tol (K) in it.
+   pure real(dp) function slice_error(t, delta, ft, kt, fu, ku) result(frac)
+      type(force_table), intent(in) :: t
+      real(dp), intent(in) :: delta, ft, kt, fu, ku
+      if (delta < t%tail_end) then
+         frac = max(abs(ft/fu - 1)/(5.0e-2_dp*t%rel_tol), abs(kt/ku - 1)/t%rel_tol)
+      else
+         frac = max(abs(ft/fu - 1), abs(kt/ku - 1))/1.0e-12_dp
+      end if
+   end function slice_error
 
    !> Below the cut-off delta_1 a rough table gives exactly 0 (doc/formats.md rule 1: its
    !> force there is below 1e-12 P_ref): force, stiffness and energy, just below delta_1,
@@ -1239,5 +1257,75 @@ contains
       end do
       s = s*u_max/(3*n)
    end function f52_simpson
+
+   !> The tail evaluation (table_eval on cut-off < delta < delta(n_log + 1)) uses equal
+   !> pieces of cubic Hermite in P instead of exp of the ln P cubic (issue 33: cost). Its
+   !> contract: within 5e-2 rel_tol of the ln P interpolant (the interpolant the build
+   !> checked against solves; table_segment + segment_eval still evaluate it), at 2001
+   !> overlaps per table; the node values within the same at the nodes; the stiffness
+   !> within rel_tol (not part of the table's contract, but no worse than the force's);
+   !> continuous into the first P interval to 5e-2 rel_tol. E-GW at rel_tol 1e-4, 1e-6,
+   !> 1e-8 (at 1e-8 still within max_fine pieces), EP-GW at 1e-6.
+   subroutine test_resampled_tail(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      real(dp) :: seg(7), d, f, k, fr, kr, worst, worst_k, lo, hi
+      real(dp), parameter :: tols(4) = [1.0e-4_dp, 1.0e-6_dp, 1.0e-8_dp, 1.0e-6_dp]
+      logical :: found
+      integer :: c, i
+      do c = 1, size(tols)
+         p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
+            & mu=4.0_dp)
+         if (c == 4) then
+            p%model = model_epgw
+            p%psi = 2.0_dp
+         end if
+         call build_table(p, solver_options(n_threads=1), -2.0_dp, 20.0_dp, tols(c), t, err)
+         call check(error, .not. allocated(err), "table build failed")
+         if (allocated(error)) return
+         call check(error, size(t%fine_seg, 2) > 0 .and. t%tail_end == t%delta(t%n_log + 1), &
+            & "rel_tol "//format_real(tols(c))//": no resampled tail ("// &
+            & to_string(size(t%fine_seg, 2))//" pieces)")
+         if (allocated(error)) return
+         write (*, '(a,es8.1,a,i0,a)') "    rel_tol", tols(c), ": ", size(t%fine_seg, 2), &
+            & " pieces in the tail"
+         lo = t%cutoff
+         hi = t%tail_end
+         worst = 0
+         worst_k = 0
+         do i = 0, 2000
+            d = lo + (hi - lo)*i/2000.0_dp
+            if (i == 0) d = lo + 1.0e-9_dp*(hi - lo)
+            if (i == 2000) d = hi - 1.0e-9_dp*(hi - lo)
+            call table_segment(t, d, seg, found)
+            call segment_eval(seg, d, fr, kr)
+            call table_eval(t, d, f, k)
+            worst = max(worst, abs(f/fr - 1))
+            worst_k = max(worst_k, abs(k/kr - 1))
+         end do
+         call check(error, worst <= 5.0e-2_dp*tols(c), "rel_tol "//format_real(tols(c)) &
+            & //": resampled tail off the ln P interpolant by "//format_real(worst))
+         if (allocated(error)) return
+         ! stiffness: the pieces' slopes are fitted to 10x the values' tolerance
+         call check(error, worst_k <= tols(c), "rel_tol "//format_real(tols(c)) &
+            & //": resampled tail's stiffness off by "//format_real(worst_k))
+         if (allocated(error)) return
+         do i = 1, t%n_log + 1
+            call table_eval(t, t%delta(i), f, k)
+            if (i == 1) cycle   ! the cut-off itself is 0 (zero_below)
+            call check(error, abs(f/t%force(i) - 1) <= 5.0e-2_dp*tols(c), "node "// &
+               & to_string(i)//": "//format_real(f)//" vs "//format_real(t%force(i)))
+            if (allocated(error)) return
+         end do
+         ! continuous where the pieces end and the P intervals begin
+         call table_eval(t, hi*(1 - epsilon(1.0_dp)) - 4*tiny(1.0_dp), f, k)
+         call table_eval(t, hi, fr, kr)
+         call check(error, abs(f/fr - 1) <= 5.0e-2_dp*tols(c), "jump at the tail's end: " &
+            & //format_real(f)//" vs "//format_real(fr))
+         if (allocated(error)) return
+      end do
+   end subroutine test_resampled_tail
 
 end module test_table

@@ -92,7 +92,7 @@ contains
          call clear(table)
          return
       end if
-      call table_prepare(table%loading)
+      call table_prepare(table%loading, resample=.false.)
       call hysteresis_prepare(table)
    end subroutine read_hysteresis
 

@@ -232,6 +232,9 @@ contains
       call move_alloc(from%energy, to%energy)
       call move_alloc(from%contact_radius, to%contact_radius)
       call move_alloc(from%seg, to%seg)
+      call move_alloc(from%fine_seg, to%fine_seg)
+      to%fine_scale = from%fine_scale
+      to%tail_end = from%tail_end
       call move_alloc(from%radius_slope, to%radius_slope)
       call move_alloc(from%bucket, to%bucket)
    end procedure move_table

@@ -5,7 +5,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_status, only: egw_not_converged, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, refuse_flow_pressure
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload
-   use egw_table, only: build_table, table_eval_tail_law
+   use egw_table, only: build_table, table_eval_tail_law, table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    implicit none
 
@@ -55,6 +55,8 @@ contains
       end if
       call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, error)
       if (allocated(error)) return
+      ! the loading branch evaluates its ln P intervals (table_eval = table_eval_cached)
+      call table_prepare(table%loading, resample=.false.)
       table%params = params
       table%rel_tol = rel_tol
       table%delta_max = delta_max

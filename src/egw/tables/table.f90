@@ -67,6 +67,12 @@ module egw_table
    integer, parameter :: max_nodes = 20000, max_rounds = 200
    !> Most lookup buckets of a table (table_prepare): 64 kB.
    integer, parameter :: max_buckets = 16384
+   !> The resampled tail (force_table%fine_seg): relative distance to the ln P cubic it
+   !> replaces, as a fraction of the table's rel_tol (so the table keeps its tolerance to
+   !> within 5 %), and its most pieces (320 kB; an E-GW tail over 28 e-folds takes ~270
+   !> at rel_tol 1e-4, ~1200 at 1e-6, ~6000 at 1e-8: beyond, exp as before).
+   real(dp), parameter :: tail_resample_tol = 5.0e-2_dp
+   integer, parameter :: max_fine = 8192
    !> Rough models: the nodes reach down to where P = tail_floor * P_ref (the force at the
    !> first contact of the mean planes), so that every force above 1e-12 of P(delta_max)
    !> is interpolated to rel_tol; below, 0.
@@ -97,6 +103,15 @@ module egw_table
       !> (seg(0, n) = delta_max ends the forward scan; one cache line per interval)
       real(dp), allocatable :: seg(:, :)
       real(dp), allocatable :: radius_slope(:)    !< monotone Hermite slopes of a*
+      !> Rough tables' tail [cutoff, tail_end] (ln P intervals below 0) resampled for
+      !> table_eval: equal pieces of width 1/fine_scale, each a cubic Hermite in P
+      !> (fine_seg(0:4, :) as seg) within tail_resample_tol of the ln P interpolant, found
+      !> by one multiplication: no lookup and no exp on the hot path (issue 33: a tail
+      !> evaluation cost 7.7x an inline Hertz force). Empty (size 0) where there is no
+      !> such tail or it would take more than max_fine pieces (then exp, as before).
+      real(dp), allocatable :: fine_seg(:, :)
+      real(dp) :: fine_scale = 0.0_dp
+      real(dp) :: tail_end = -huge(1.0_dp)        !< end of fine_seg's range, else -huge
       integer, allocatable :: bucket(:)           !< (0:n_bucket+1): interval at bucket start
       integer :: n_bucket = 0
       real(dp) :: bucket_scale = 0.0_dp
@@ -555,8 +570,12 @@ contains
    !> Derive the evaluation data (coefficients, energy, lookup buckets) from the nodes.
    !> Called by the builder and by the readers; deterministic, so a table read back
    !> evaluates bit-for-bit like the one written.
-   pure subroutine table_prepare(table)
+   pure subroutine table_prepare(table, resample)
       type(force_table), intent(inout) :: table
+      !> resample the ln P tail for table_eval (default); .false. for a hysteresis
+      !> table's loading table, whose evaluations go through its ln P intervals
+      !> (table_eval_cached) and must match table_eval's bit for bit
+      logical, intent(in), optional :: resample
       integer :: n, i
       real(dp) :: h, v0, v1, d0, d1, s
 
@@ -587,7 +606,10 @@ contains
          table%seg(3, i) = (3*s - 2*d0 - d1)/h
          table%seg(4, i) = (d0 + d1 - 2*s)/h**2
       end do
-      ! energy: exact integral of the interpolant (Hermite rule in linear intervals)
+      table%zero_below = zero_overlap(table%params, table%cutoff)
+      call resample_tail(table, resample)
+      ! energy: exact integral of the interpolant (Hermite rule in linear intervals; the
+      ! resampled tail's pieces)
       table%energy(1) = 0.0_dp
       do i = 1, n - 1
          table%energy(i + 1) = table%energy(i) + interval_integral(table, i, &
@@ -601,8 +623,123 @@ contains
       ! (Buckets uniform in sign(delta) sqrt|delta| would spread graded nodes, but the
       ! sqrt on the lookup path made an evaluation ~1.8x slower, measured.)
       call fit_buckets(table)
-      table%zero_below = zero_overlap(table%params, table%cutoff)
    end subroutine table_prepare
+
+   !> The tail's ln P intervals [cutoff, delta(last)] (last <= n_log + 1 the last node
+   !> <= 0: n_log + 1 for the tables egw builds) as equal pieces of cubic Hermite in P
+   !> (force_table%fine_seg), for rough tables (not flat laws, whose every interval is
+   !> ln P). From 16 pieces, their number grows by 20 % until every piece, checked at 8
+   !> points, lies within tail_resample_tol rel_tol / 2 of the ln P interpolant, relative
+   !> to it, and its slope within 10 tail_resample_tol rel_tol of the interpolant's.
+   !> The ends are the table's nodes (exact there). Deterministic.
+   pure subroutine resample_tail(table, resample)
+      type(force_table), intent(inout) :: table
+      logical, intent(in), optional :: resample   !< .false.: none
+      integer :: n_fine, k, last
+      real(dp) :: lo, hi, tol
+      real(dp), allocatable :: x(:)
+      if (allocated(table%fine_seg)) deallocate (table%fine_seg)
+      allocate (table%fine_seg(0:4, 0))
+      table%fine_scale = 0.0_dp
+      table%tail_end = -huge(1.0_dp)
+      if (table%n_log < 1 .or. table%params%model == model_flat_law .or. &
+         & .not. is_rough(table%params)) return
+      if (present(resample)) then
+         if (.not. resample) return
+      end if
+      tol = tail_resample_tol*table%rel_tol
+      ! the separated part only (tables of earlier versions have ln P intervals above 0)
+      last = table%n_log + 1
+      do while (table%delta(last) > 0.0_dp .and. last > 2)
+         last = last - 1
+      end do
+      if (.not. table%delta(last) <= 0.0_dp) return
+      lo = table%delta(1)
+      hi = table%delta(last)
+      n_fine = 16
+      do
+         x = [(lo + (hi - lo)*k/n_fine, k=0, n_fine)]
+         x(n_fine + 1) = hi
+         if (pieces_fit(table, x, tol)) exit
+         n_fine = ceiling(1.2_dp*n_fine)
+         if (n_fine > max_fine) return
+      end do
+      deallocate (table%fine_seg)
+      allocate (table%fine_seg(0:4, n_fine))
+      do k = 1, n_fine
+         table%fine_seg(:, k) = hermite_piece(table, x(k), x(k + 1))
+      end do
+      table%fine_scale = n_fine/(hi - lo)
+      table%tail_end = hi
+   end subroutine resample_tail
+
+   !> The tail's ln P interpolant (P, dP/ddelta) at delta in [cutoff, delta(n_log + 1)]:
+   !> the table's nodes where delta is one, else exp of its interval's cubic.
+   pure subroutine tail_value(table, delta, p, dpdx)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: p, dpdx
+      integer :: i, lo, hi, mid
+      real(dp) :: t
+      lo = 1
+      hi = table%n_log + 1
+      do while (hi - lo > 1)
+         mid = (lo + hi)/2
+         if (delta >= table%delta(mid)) then
+            lo = mid
+         else
+            hi = mid
+         end if
+      end do
+      i = lo
+      if (delta == table%delta(i) .or. delta == table%delta(i + 1)) then
+         if (delta == table%delta(i + 1)) i = i + 1
+         p = table%force(i)
+         dpdx = table%stiffness(i)
+         return
+      end if
+      t = delta - table%seg(0, i)
+      p = exp(table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i))))
+      dpdx = p*(table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i)))
+   end subroutine tail_value
+
+   !> The cubic Hermite in P on [x0, x1] through the tail's values and slopes there:
+   !> start, value, slope and the two coefficients (seg's layout).
+   pure function hermite_piece(table, x0, x1) result(c)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: x0, x1
+      real(dp) :: c(0:4)
+      real(dp) :: p0, p1, d0, d1, s, h
+      call tail_value(table, x0, p0, d0)
+      call tail_value(table, x1, p1, d1)
+      h = x1 - x0
+      s = (p1 - p0)/h
+      c = [x0, p0, d0, (3*s - 2*d0 - d1)/h, (d0 + d1 - 2*s)/h**2]
+   end function hermite_piece
+
+   !> Whether the Hermite pieces in P on the grid x stay within tol/2 of the tail's ln P
+   !> interpolant (relative) and their slopes within 10 tol of its slope, checked at 8
+   !> points of every piece (1/16, 3/16, ... 15/16; the half is a margin for the maxima
+   !> between them, where a piece spans a node and the interpolant is only C1).
+   pure logical function pieces_fit(table, x, tol) result(fit)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: x(:), tol
+      integer :: k, j
+      real(dp) :: c(0:4), u, exact, dexact, approx
+      fit = .false.
+      do k = 1, size(x) - 1
+         c = hermite_piece(table, x(k), x(k + 1))
+         do j = 1, 15, 2
+            u = (x(k + 1) - x(k))*j/16.0_dp
+            call tail_value(table, x(k) + u, exact, dexact)
+            approx = c(1) + u*(c(2) + u*(c(3) + u*c(4)))
+            if (.not. abs(approx - exact) <= 0.5_dp*tol*exact) return
+            approx = c(2) + u*(2*c(3) + 3*u*c(4))
+            if (.not. abs(approx - dexact) <= 10*tol*abs(dexact)) return
+         end do
+      end do
+      fit = .true.
+   end function pieces_fit
 
    !> The overlap below which table_eval is exactly 0: rough models (not flat laws) their
    !> cut-off (the force there is below 1e-12 P_ref; doc/formats.md rule 1), Hertz 0 (or
@@ -669,7 +806,8 @@ contains
    !> True when the evaluation data are present (a built or read table).
    pure logical function table_is_ready(table)
       type(force_table), intent(in) :: table
-      table_is_ready = allocated(table%seg) .and. allocated(table%bucket)
+      table_is_ready = allocated(table%seg) .and. allocated(table%bucket) .and. &
+         & allocated(table%fine_seg)
    end function table_is_ready
 
    !> Force and stiffness at overlap delta: below the cut-off below_cutoff's (exactly 0 for
@@ -689,7 +827,11 @@ contains
       real(dp), intent(out) :: stiffness   !< dP/ddelta [force/length]
       !> allocated for a NaN or overflowing delta, or one above delta_max (see above)
       type(egw_error), allocatable, intent(out), optional :: error
-      if (delta > table%cutoff .and. delta < table%delta_max) then
+      if (delta > table%cutoff .and. delta < table%tail_end) then
+         ! the resampled tail: one piece by one multiplication, a cubic in P
+         call fine_kernel(table%fine_seg, size(table%fine_seg, 2), table%cutoff, &
+            & table%fine_scale, delta, force, stiffness)
+      else if (delta > table%cutoff .and. delta < table%delta_max) then
          ! hot path: bucket lookup, forward scan, one cubic (no search, no allocation)
          call eval_kernel(table%seg, table%bucket, table%n_bucket, table%bucket_origin, &
             & table%bucket_scale, table%n_log, size(table%seg, 2), delta, force, stiffness)
@@ -845,7 +987,9 @@ contains
    !> stays inside (a DEM contact): seg = [lo, hi, c1, c2, c3, c4, log] with lo <= delta <
    !> hi, the cubic in delta - lo and log = 1 where it is ln P; table_eval_cached evaluates
    !> it exactly as table_eval does for lo <= delta < hi and delta > cutoff (the cut-off
-   !> itself has its own value). found = .false. outside (cut-off, delta_max), where
+   !> itself has its own value), except in a rough table's ln P tail, where table_eval
+   !> takes the resampled pieces (fine_seg: within 5e-2 rel_tol of these).
+   !> found = .false. outside (cut-off, delta_max), where
    !> table_eval has no interval.
    pure subroutine table_segment(table, delta, seg, found)
       type(force_table), intent(in) :: table
@@ -889,6 +1033,21 @@ contains
          stiffness = d
       end if
    end subroutine eval_kernel
+
+   !> The resampled tail at cutoff < delta < tail_end: piece int((delta - cutoff) scale)
+   !> and its cubic in P (explicit-shape, as eval_kernel, for the same reason).
+   pure subroutine fine_kernel(fine_seg, n_fine, cutoff, scale, delta, force, stiffness)
+      integer, intent(in) :: n_fine
+      real(dp), intent(in) :: fine_seg(0:4, n_fine), cutoff, scale, delta
+      real(dp), intent(out) :: force, stiffness
+      integer :: j
+      real(dp) :: t, t2
+      j = min(int((delta - cutoff)*scale), n_fine - 1) + 1
+      t = delta - fine_seg(0, j)
+      t2 = t*t
+      force = (fine_seg(1, j) + t*fine_seg(2, j)) + t2*(fine_seg(3, j) + t*fine_seg(4, j))
+      stiffness = (fine_seg(2, j) + 2*t*fine_seg(3, j)) + 3*t2*fine_seg(4, j)
+   end subroutine fine_kernel
 
    !> The interval i of delta in (seg(0, 1), seg(0, n)): seg(0, i) <= delta < seg(0, i+1).
    pure integer function kernel_locate(seg, bucket, n_bucket, origin, scale, n, delta) &
@@ -1103,7 +1262,10 @@ contains
       real(dp), intent(in) :: t
       integer :: q
       real(dp) :: u
-      if (i <= table%n_log) then
+      if (i <= table%n_log .and. table%delta(i) < table%tail_end) then
+         ! the resampled tail: table_eval's pieces, integrated exactly
+         s = fine_integral(table, table%delta(i), table%delta(i) + t)
+      else if (i <= table%n_log) then
          s = 0.0_dp
          do q = 1, size(gl_x)
             u = gl_x(q)*t
@@ -1116,6 +1278,30 @@ contains
             & t*table%seg(4, i)/4)))
       end if
    end function interval_integral
+
+   !> Integral over [a, b] (inside [cutoff, tail_end]) of the resampled tail's pieces.
+   pure real(dp) function fine_integral(table, a, b) result(s)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: a, b
+      integer :: j, ja, jb, n_fine
+      real(dp) :: u0, u1, c(0:4)
+      n_fine = size(table%fine_seg, 2)
+      ja = min(max(int((a - table%cutoff)*table%fine_scale), 0), n_fine - 1) + 1
+      jb = min(max(int((b - table%cutoff)*table%fine_scale), 0), n_fine - 1) + 1
+      s = 0.0_dp
+      do j = ja, jb
+         c = table%fine_seg(:, j)
+         u0 = max(a, c(0)) - c(0)
+         u1 = b - c(0)
+         if (j < n_fine) u1 = min(b, table%fine_seg(0, j + 1)) - c(0)
+         if (u1 > u0) s = s + (antiderivative(c, u1) - antiderivative(c, u0))
+      end do
+   contains
+      pure real(dp) function antiderivative(c, u) result(w)
+         real(dp), intent(in) :: c(0:4), u
+         w = u*(c(1) + u*(c(2)/2 + u*(c(3)/3 + u*c(4)/4)))
+      end function antiderivative
+   end function fine_integral
 
    !> Hermite interpolant of one interval at xq (log space if in_log).
    pure subroutine hermite_at(x0, x1, f0, f1, k0, k1, in_log, xq, f, k)
