@@ -209,8 +209,10 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * whatever o says), egw_solve_unload its elastic unloading from the deformed shape (0 at
  * and below the residual overlap), egw_restitution(_energy, _overlap) its head-on impact
  * (w_dissipated = (1 - e^2) m* v^2/2; e = 1 up to v_y). Beyond 1e6 delta_y or 1e4 v_y:
- * EGW_INVALID_ARGUMENT. Not yet: egw_profile beyond delta_y and egw_time_step beyond v_y
- * (EGW_UNSUPPORTED), tables (EGW_INVALID_PARAMETER). */
+ * EGW_INVALID_ARGUMENT. egw_time_step beyond v_y takes the elastic unloading stiffness at
+ * delta_m; egw_hysteresis_build gives Hertz + cap tables (doc/formats.md 6). Not yet:
+ * egw_profile beyond delta_y (EGW_UNSUPPORTED), force and universal tables, hysteresis
+ * tables of rough models with the cap (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -263,7 +265,8 @@ int egw_restitution_overlap(const egw_params *p, const egw_options *o, double ma
  * [time], and *time_step = the largest velocity-Verlet step whose error in the coefficient
  * of restitution stays below tolerance (in (0, 0.1]): dt = sqrt(tolerance/0.06)/omega,
  * omega^2 = K_max/m* with K_max the stiffest point of the impact (the unloading stiffness
- * at delta_m), at most 0.5/omega. A table-driven loop adds the table's own error. Either
+ * at delta_m; with the flow-pressure cap beyond v_y the elastic unloading from the
+ * flattened shape, ~2 E* a), at most 0.5/omega. A table-driven loop adds the table's own error. Either
  * output may be NULL. Statuses as egw_restitution, EGW_INVALID_ARGUMENT naming tolerance;
  * outputs untouched on failure. */
 int egw_time_step(const egw_params *p, const egw_options *o, double mass, double velocity,
@@ -535,7 +538,9 @@ void egw_universal_free(egw_universal *u);
  * ------------------------------------------------------------------------ */
 typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 
-/* Build for p (EP-GW for hysteresis; other models give reversible curves) over overlaps
+/* Build for p (EP-GW, or Hertz/sigma = 0 with p->flow_pressure > 0, for hysteresis: the
+ * cap's turning points from first yield delta_y on, doc/theory.md 12; other models give
+ * reversible curves; a rough model with flow_pressure: EGW_INVALID_PARAMETER) over overlaps
  * [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL (defaults).
  * *out receives a handle only on success. The unloading curves are solved at rel_tol/10,
  * or at o->rel_tol where that is set below its default 1e-6 and below rel_tol/10 (the

@@ -135,10 +135,11 @@ contains
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
       logical :: found
-      call refuse_flow_pressure(params, "a hysteresis table", error)
-      if (allocated(error)) return
+      ! flow_pressure (Hertz + cap; build_hysteresis refuses it with a rough model) is in
+      ! the key only where it is set: the other entries keep their names
       call entry_path("hysteresis", [params_key(params), options_key(options), delta_min, &
-         & delta_max, rel_tol], path)
+         & delta_max, rel_tol, pack([params%flow_pressure], params%flow_pressure /= 0.0_dp)], &
+         & path)
       found = .false.
       if (len(path) > 0) then
          call read_hysteresis(path, table, ignored)
@@ -148,11 +149,14 @@ contains
       end if
       if (present(hit)) hit = found
       if (found) return
-      ! a miss: an unreachable rel_tol fails in seconds, not after the build's minutes
-      call probe_hysteresis_tolerance(params, options, delta_max, rel_tol, error)
-      if (allocated(error)) return
-      call probe_hysteresis_size(params, options, delta_min, delta_max, rel_tol, error)
-      if (allocated(error)) return
+      ! a miss: an unreachable rel_tol fails in seconds, not after the build's minutes (the
+      ! probes solve rough models; a Hertz + cap build takes seconds)
+      if (params%flow_pressure == 0.0_dp) then
+         call probe_hysteresis_tolerance(params, options, delta_max, rel_tol, error)
+         if (allocated(error)) return
+         call probe_hysteresis_size(params, options, delta_min, delta_max, rel_tol, error)
+         if (allocated(error)) return
+      end if
       call build_hysteresis(params, options, delta_min, delta_max, rel_tol, table, error, &
          & progress)
       if (allocated(error) .or. len(path) == 0) return
@@ -230,7 +234,7 @@ contains
       type(contact_params), intent(in) :: a, b
       real(dp), intent(in) :: a_rel_tol, a_delta_max, b_rel_tol, b_delta_max
       same_request = all(params_key(a) == params_key(b)) .and. a_rel_tol == b_rel_tol .and. &
-         & a_delta_max == b_delta_max
+         & a_delta_max == b_delta_max .and. a%flow_pressure == b%flow_pressure
    end function same_request
 
    !> The value of an environment variable, "" when unset.

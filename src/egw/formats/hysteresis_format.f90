@@ -15,19 +15,25 @@ module egw_hysteresis_format
    use egw_table, only: force_table, table_prepare, table_meta, set_table_meta
    use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
       & get_f64, split_checksum, checksum_line, check_table
-   use egw_hysteresis, only: hysteresis_table, hysteresis_prepare
+   use egw_hysteresis, only: hysteresis_table, hysteresis_prepare, first_yield
    implicit none
    private
 
    public :: write_hysteresis, read_hysteresis
 
    character(len=8), parameter :: magic = "EGWHYST1"
-   integer(int32), parameter :: hysteresis_version = 1
+   !> Version 1: no flow-pressure cap; version 2 (Hertz + cap, params%flow_pressure > 0):
+   !> flow_pressure follows the seven parameters (one float64 more in the header). Tables
+   !> without the cap are still written as version 1, byte for byte as before.
+   integer(int32), parameter :: hysteresis_version = 1, cap_version = 2
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
    !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
    character(len=*), parameter :: csv_columns = "delta_max,length,s,gap,dgap_ds"
    character(len=*), parameter :: csv_title = "# egw hysteresis table, CSV format 1"
+   !> The title of a Hertz + cap table (a flow_pressure line): an egw that knows only
+   !> format 1 refuses it rather than read it without the cap.
+   character(len=*), parameter :: csv_title_cap = "# egw hysteresis table, CSV format 2"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
 
@@ -39,6 +45,7 @@ module egw_hysteresis_format
       integer :: n_load = -1, n_m = -1, n_s = -1, model = -1, rev = -1, n_log = -1
       integer :: k_load = 0, k_row = 0
       real(dp) :: p(7) = -huge(1.0_dp), lmeta(7) = -huge(1.0_dp)
+      real(dp) :: flow_pressure = 0.0_dp   !< format 2 only
       real(dp) :: v(5)
    end type csv_reading
 
@@ -79,7 +86,8 @@ contains
       if (allocated(error)) return
       if (starts_with(bytes, magic)) then
          call parse_binary(path, bytes, table, error)
-      else if (starts_with(bytes, csv_columns//new_line("a")//csv_title)) then
+      else if (starts_with(bytes, csv_columns//new_line("a")//csv_title) .or. &
+         & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap)) then
          call parse_csv(path, bytes, table, error)
       else
          call fatal_error(error, egw_bad_file, "path = "//path//": not an egw hysteresis "// &
@@ -104,16 +112,26 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: buf
       integer :: pos, n_load, n_m, n_s
+      integer(int32) :: version
+      integer :: extra
       n_load = size(table%loading%delta)
       call grid_sizes(table, n_m, n_s)
-      allocate (character(len=header_bytes + 8*(5*n_load + 2*n_m + n_s + 2*n_m*n_s) + 4) :: buf)
+      version = hysteresis_version
+      extra = 0
+      if (table%params%flow_pressure /= 0.0_dp) then
+         version = cap_version
+         extra = 8
+      end if
+      allocate (character(len=header_bytes + extra + 8*(5*n_load + 2*n_m + n_s + &
+         & 2*n_m*n_s) + 4) :: buf)
       buf(1:8) = magic
       pos = 9
-      call put_i32(buf, pos, [hysteresis_version, byte_order_mark, &
+      call put_i32(buf, pos, [version, byte_order_mark, &
          & int(egw_version_number, int32), int(table%params%model, int32), &
          & merge(1_int32, 0_int32, table%reversible), int(n_load, int32), &
          & int(table%loading%n_log, int32), int(n_m, int32), int(n_s, int32)])
       call put_f64(buf, pos, params_array(table%params))
+      if (version == cap_version) call put_f64(buf, pos, [table%params%flow_pressure])
       call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
       call put_f64(buf, pos, table_meta(table%loading))
       call put_f64(buf, pos, table%loading%delta)
@@ -139,8 +157,8 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       integer(int32) :: head(9), stored(1)
       integer(int64) :: expected
-      integer :: pos, n_load, n_m, n_s
-      real(dp) :: p(7), meta(4), lmeta(7)
+      integer :: pos, n_load, n_m, n_s, extra
+      real(dp) :: p(7), meta(4), lmeta(7), flow(1)
       if (len(bytes) < header_bytes + 4) then
          call bad(error, path, "truncated: "//int_str(len(bytes))//" bytes")
          return
@@ -158,11 +176,14 @@ contains
             & "endianness, or corrupted")
          return
       end if
-      if (head(1) /= hysteresis_version) then
+      if (head(1) /= hysteresis_version .and. head(1) /= cap_version) then
          call bad(error, path, "format version "//int_str(int(head(1)))//" is not "// &
-            & "supported (this egw reads version "//int_str(int(hysteresis_version))//")")
+            & "supported (this egw reads versions "//int_str(int(hysteresis_version))// &
+            & " and "//int_str(int(cap_version))//")")
          return
       end if
+      extra = 0
+      if (head(1) == cap_version) extra = 8
       n_load = head(6)
       n_m = head(8)
       n_s = head(9)
@@ -171,7 +192,7 @@ contains
          call bad(error, path, "node counts out of range")
          return
       end if
-      expected = header_bytes + 8_int64*(5*int(n_load, int64) + 2*n_m + n_s + &
+      expected = header_bytes + extra + 8_int64*(5*int(n_load, int64) + 2*n_m + n_s + &
          & 2*int(n_m, int64)*n_s) + 4
       if (len(bytes, int64) /= expected) then
          call bad(error, path, "node counts do not match the file size "// &
@@ -179,9 +200,17 @@ contains
          return
       end if
       call get_f64(bytes, pos, p)
+      flow = 0.0_dp
+      if (extra > 0) call get_f64(bytes, pos, flow)
       call get_f64(bytes, pos, meta)
       call get_f64(bytes, pos, lmeta)
       table%params = params_from(int(head(4)), p)
+      table%params%flow_pressure = flow(1)
+      if (head(1) == cap_version .and. .not. flow(1) > 0.0_dp) then
+         call bad(error, path, "format version 2 with flow_pressure = "// &
+            & format_real(flow(1))//" (version 2 is the flow-pressure cap's, > 0)")
+         return
+      end if
       table%reversible = head(5) /= 0
       table%rel_tol = meta(1)
       table%delta_max = meta(2)
@@ -220,13 +249,17 @@ contains
       associate (l => table%loading)
          ! the column header first and the metadata as '#' lines, as the 1-D tables:
          ! pandas.read_csv(path, comment="#") reads the unloading rows as they are
-         head = csv_columns//new_line("a")//csv_title//new_line("a")// &
+         head = csv_columns//new_line("a")//merge(csv_title_cap, csv_title, &
+            & table%params%flow_pressure /= 0.0_dp)//new_line("a")// &
             & "# egw_version = "//egw_version_string//new_line("a")// &
             & "# model = "//int_str(table%params%model)//" ("// &
             & model_name(table%params%model)//")"//new_line("a")
          call add_reals(head, ["radius        ", "modulus       ", "sigma         ", &
             & "mu            ", "psi           ", "hardness_coeff", "plastic_ratio "], &
             & params_array(table%params))
+         ! the cap's only: files without it stay as before
+         if (table%params%flow_pressure /= 0.0_dp) call add_reals(head, ["flow_pressure"], &
+            & [table%params%flow_pressure])
          call add_reals(head, ["rel_tol  ", "delta_max", "max_error", "s_max    "], &
             & [table%rel_tol, table%delta_max, table%max_error, table%s_max])
          head = head//"# reversible = "//int_str(merge(1, 0, table%reversible))// &
@@ -330,6 +363,7 @@ contains
          case ("psi"); call get_real(value, p(5), ios)
          case ("hardness_coeff"); call get_real(value, p(6), ios)
          case ("plastic_ratio"); call get_real(value, p(7), ios)
+         case ("flow_pressure"); call get_real(value, reading%flow_pressure, ios)
          case ("rel_tol"); call get_real(value, table%rel_tol, ios)
          case ("delta_max"); call get_real(value, table%delta_max, ios)
          case ("max_error"); call get_real(value, table%max_error, ios)
@@ -455,6 +489,7 @@ contains
          return
       end if
       table%params = params_from(reading%model, reading%p)
+      table%params%flow_pressure = reading%flow_pressure
       table%reversible = reading%rev /= 0
       table%loading%params = table%params
       table%loading%n_log = reading%n_log
@@ -475,6 +510,7 @@ contains
       type(hysteresis_table), intent(in) :: t
       type(egw_error), allocatable, intent(out) :: error
       integer :: n, n_m, n_s
+      real(dp) :: first
       call validate_params(t%params, error)
       if (allocated(error)) then
          call bad(error, path, "stored parameters invalid: "//error%message)
@@ -541,10 +577,13 @@ contains
          call bad(error, path, "unloading data: length and s_max must be > 0")
          return
       end if
-      if (any(t%m(2:n_m) <= t%m(1:n_m - 1)) .or. t%m(1) /= t%loading%cutoff .or. &
+      first = t%loading%cutoff
+      if (t%params%flow_pressure > 0.0_dp) first = first_yield(t%params)
+      if (any(t%m(2:n_m) <= t%m(1:n_m - 1)) .or. t%m(1) /= first .or. &
          & t%m(n_m) /= t%delta_max .or. any(t%s(2:n_s) <= t%s(1:n_s - 1)) .or. &
          & t%s(1) /= 0.0_dp .or. t%s(n_s) /= 1.0_dp) then
-         call bad(error, path, "unloading grid: delta_max from the cut-off to delta_max "// &
+         call bad(error, path, "unloading grid: delta_max from the cut-off (first yield "// &
+            & "delta_y with the flow-pressure cap) to delta_max "// &
             & "and s from 0 to 1 must increase")
          return
       end if

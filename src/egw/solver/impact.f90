@@ -21,7 +21,8 @@ module egw_impact
    use egw_params, only: contact_params, model_hertz, validate_params, overlap_ratio_max
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
       & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options
-   use egw_cap_sphere, only: cap_options, cap_restitution
+   use egw_cap_sphere, only: cap_options, cap_restitution, cap_history, cap_result, cap_load, &
+      & cap_unload
    implicit none
    private
 
@@ -396,7 +397,9 @@ contains
    !> coefficient of restitution below tolerance (doc/theory.md §10):
    !>   dt = sqrt(tolerance/(2 verlet_error))/omega,  omega**2 = K_max/m*,
    !> K_max the stiffest point of the impact (the unloading stiffness at the deepest
-   !> overlap delta_m; the loading one for elastic contacts), capped at 0.5/omega. The
+   !> overlap delta_m; the loading one for elastic contacts; with the flow-pressure cap
+   !> beyond first yield the elastic unloading from the flattened shape, ~2 E* a),
+   !> capped at 0.5/omega. The
    !> duration is the time the force spends above 1 % of its peak P(delta_m), loading and
    !> unloading, from the solver's force curves (16-point Gauss rule in sqrt(delta_m -
    !> delta)); a DEM step should resolve it too (dt is far below it for tolerance <= 1e-3).
@@ -422,19 +425,19 @@ contains
       call restitution(params, options, mass, velocity, e, dissipated, error, &
          & max_overlap=delta_m)
       if (allocated(error)) return
-      if (above_first_yield(params, delta_m)) then
-         ! the stiffest point is the cap's unloading stiffness at delta_m, which the
-         ! histories do not give yet (solve_unload at delta_max is the loading solve)
-         call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//", velocity = "//format_real(velocity) &
-            & //": the time step of an impact beyond first yield of the cap is not " &
-            & //"available yet (egw_restitution is)")
-         return
-      end if
       call load_history(params, options, delta_m, hist, top, error)
       if (allocated(error)) return
-      call solve_unload(hist, delta_m, res, error)
-      if (allocated(error)) return
+      if (above_first_yield(params, delta_m)) then
+         ! the flow-pressure cap: the stiffest point is the elastic unloading from the
+         ! flattened shape at delta_m (solve_unload at delta_max is the loading solve,
+         ! whose tangent holds the capped rings fixed: ~0 once the contact is capped)
+         call cap_unload_stiffness(params, delta_m, res%stiffness, error)
+         if (allocated(error)) return
+         if (.not. top%stiffness > 0.0_dp) top%stiffness = res%stiffness
+      else
+         call solve_unload(hist, delta_m, res, error)
+         if (allocated(error)) return
+      end if
       k_max = max(top%stiffness, res%stiffness)
       if (.not. (k_max > 0.0_dp .and. top%force > 0.0_dp)) then
          call fatal_error(error, egw_not_converged, "velocity = "//format_real(velocity)// &
@@ -449,6 +452,26 @@ contains
       step = min(sqrt(tolerance/(2*verlet_error)), 0.5_dp)/omega
       duration = t_load + t_unload
    end subroutine time_step
+
+   !> The unloading stiffness at the turning point delta_max (> delta_y) of a smooth sphere
+   !> with the flow-pressure cap: cap_unload at delta_max on the public solves' options,
+   !> elastic from the deformed shape (2 E* a for an axisymmetric punch of contact radius
+   !> a, here the cap's flattened contact).
+   subroutine cap_unload_stiffness(params, delta_max, stiffness, error)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta_max
+      real(dp), intent(out) :: stiffness
+      type(egw_error), allocatable, intent(out) :: error
+      type(cap_history) :: hist
+      type(cap_result) :: res
+      stiffness = 0.0_dp
+      call cap_load(params%radius, params%modulus, params%flow_pressure, delta_max, &
+         & cap_solve_options(), hist, res, error)
+      if (allocated(error)) return
+      call cap_unload(hist, delta_max, res, error)
+      if (allocated(error)) return
+      stiffness = res%stiffness
+   end subroutine cap_unload_stiffness
 
    !> The time from the overlap where the force is 1 % of P(delta_m) to delta_m (loading)
    !> or back (unloading): int dx/v(x), v(x)**2 = (2/m*) int_x^{delta_m} P, with x =

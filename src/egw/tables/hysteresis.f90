@@ -36,12 +36,13 @@ module egw_hysteresis
       & segment_eval, table_energy, table_progress, table_interval, deep_coefficient, &
       & beyond_status
    use egw_table_ends, only: deep_reach
+   use egw_cap_sphere, only: cap_units
    implicit none
    private
 
    public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_eval_state, &
       & hysteresis_state_init, hysteresis_energy, hysteresis_prepare, m_breakpoint, &
-      & stencil_first, m_coordinate
+      & stencil_first, m_coordinate, first_yield
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
@@ -103,6 +104,13 @@ module egw_hysteresis
       real(dp) :: tag = 0.0_dp
       !> index of the delta_max node at 0 where stencils stop (m_breakpoint; 0: none)
       integer :: m_break = 0
+      !> turning points at or below it unload on the loading curve (hysteresis_prepare):
+      !> the loading cut-off, or for the flow-pressure cap (capped) its first yield delta_y,
+      !> below which the contact is Hertz's and reversible
+      real(dp) :: elastic_limit = 0.0_dp
+      !> Hertz + flow-pressure cap (params%flow_pressure > 0, doc/theory.md §12): L(m_j) is
+      !> m_j minus the residual overlap, s_max = 1, and below s = 1 there is no force
+      logical :: capped = .false.
       !> the largest overlap (or state) whose force stays well inside the doubles: where
       !> the loading table's deep-overlap law beyond delta_max reaches huge/4 (the C
       !> layer's input check; hysteresis_prepare, once: four powers, off the hot path)
@@ -170,7 +178,7 @@ contains
       ! turning points at or below the cut-off (the lowest m node) unload on the loading
       ! tail: their forces are below 1e-12 of the reference force
       if (.not. delta < delta_max_state .or. table%reversible .or. &
-         & .not. delta_max_state > table%loading%cutoff) then
+         & .not. delta_max_state > table%elastic_limit) then
          delta_max_state = max(delta_max_state, delta)
          call table_eval(table%loading, delta, force, stiffness)
          if (delta > table%delta_max) call beyond(table, "delta_max_state", &
@@ -276,7 +284,7 @@ contains
       ! no piece unless one is made below (the loading interval may change)
       state(11:12) = ieee_value(1.0_dp, ieee_quiet_nan)
       if (.not. delta < state(1) .or. table%reversible .or. &
-         & .not. state(1) > table%loading%cutoff) then
+         & .not. state(1) > table%elastic_limit) then
          state(1) = max(state(1), delta)
          call table_eval_cached(table%loading, delta, state(18:24), force, stiffness)
          if (delta > table%delta_max) call beyond(table, "state(1)", state(1), force, &
@@ -445,7 +453,7 @@ contains
       if (m > table%delta_max) stat = egw_out_of_range
       if (.not. delta > table%loading%cutoff) return
       energy = table_energy(table%loading, delta)
-      if (table%reversible .or. .not. m > table%loading%cutoff) return
+      if (table%reversible .or. .not. m > table%elastic_limit) return
       call turning_point(table, m, first, w, inv_span, f_m)
       ! below the span's end d_1 the force is ratio P_load (unload_branch), above it
       ! P_load - f_m g(s), clipped at 0: int g(s(x)) dx over (lo, delta) with s = (m -
@@ -737,8 +745,9 @@ contains
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: d_1, f_m, g_1
       real(dp) :: f_1, k_1
-      call table_eval(table%loading, d_1, f_1, k_1)
       ratio = 0.0_dp
+      if (table%capped) return   ! below the residual overlap: apart
+      call table_eval(table%loading, d_1, f_1, k_1)
       if (f_1 > 0.0_dp) ratio = min(max(1.0_dp - f_m*g_1/f_1, 0.0_dp), 1.0_dp)
    end function unload_tail_ratio
 
@@ -750,6 +759,10 @@ contains
       integer :: n_s, n_m, i, j, first, k, l
       real(dp) :: h
       table%tag = data_tag(table)
+      table%capped = table%params%flow_pressure > 0.0_dp
+      table%elastic_limit = table%loading%cutoff
+      if (table%capped) table%elastic_limit = max(table%elastic_limit, &
+         & first_yield(table%params))
       associate (l => table%loading)
          table%input_limit = deep_reach(l%delta_max, l%force(size(l%force)), &
             & l%stiffness(size(l%stiffness)), deep_coefficient(l%params), &
@@ -800,6 +813,15 @@ contains
       call make_lookup(table%s, table%s_lookup)
       call make_runs(table)
    end subroutine hysteresis_prepare
+
+   !> First yield of the flow-pressure cap, delta_y = (pi p_y/(2 E*))**2 R (doc/theory.md
+   !> §12; egw_cap_sphere's cap_units): the first turning point that leaves a hysteresis.
+   pure real(dp) function first_yield(params) result(delta_y)
+      type(contact_params), intent(in) :: params   !< with flow_pressure > 0
+      real(dp) :: a_y, force_y
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+   end function first_yield
 
    !> run_first/run_last: for each stencil, the runs of s intervals joined by union nodes
    !> that are none of its four curves' own nodes. Such a node is where a curve's cubics

@@ -2,9 +2,12 @@
 !> declares build_hysteresis): the delta_max grid, each node's unloading curve from
 !> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
 submodule (egw_hysteresis) egw_hysteresis_build
-   use egw_status, only: egw_not_converged, fatal_error, format_real
-   use egw_params, only: validate_params, model_epgw, refuse_flow_pressure
-   use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload
+   use egw_status, only: egw_not_converged, egw_invalid_parameter, fatal_error, format_real
+   use egw_params, only: validate_params, model_epgw, model_hertz
+   use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
+      & cap_solve_options
+   use egw_cap_sphere, only: cap_history, cap_result, cap_load
+   use egw_cap_loading, only: build_cap_loading
    use egw_table, only: build_table, table_eval_tail_law, table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    implicit none
@@ -39,8 +42,14 @@ contains
 
       call validate_params(params, error)
       if (allocated(error)) return
-      call refuse_flow_pressure(params, "a hysteresis table", error)
-      if (allocated(error)) return
+      if (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
+         & params%sigma > 0.0_dp) then
+         call fatal_error(error, egw_invalid_parameter, "flow_pressure = "// &
+            & format_real(params%flow_pressure)//": a hysteresis table of a rough model "// &
+            & "(sigma > 0) with the flow-pressure cap is not available yet (Hertz + cap "// &
+            & "is: model Hertz or sigma = 0)")
+         return
+      end if
       if (.not. (rel_tol >= 1.0e-8_dp .and. rel_tol <= 0.1_dp)) then
          call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
             & ": must lie in [1e-8, 0.1]")
@@ -53,18 +62,31 @@ contains
             & ": need finite delta_min < delta_max")
          return
       end if
-      call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, error)
+      if (params%flow_pressure > 0.0_dp) then
+         call build_cap_loading(params, options, delta_min, delta_max, rel_tol, &
+            & table%loading, error)
+      else
+         call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, &
+            & error)
+      end if
       if (allocated(error)) return
       ! the loading branch evaluates its ln P intervals (table_eval = table_eval_cached)
       call table_prepare(table%loading, resample=.false.)
       table%params = params
       table%rel_tol = rel_tol
       table%delta_max = delta_max
-      ! elastic summits (or none): unloading retraces the loading table exactly
+      ! elastic summits (or none): unloading retraces the loading table exactly; the cap
+      ! only dissipates from first yield on
       table%reversible = params%model /= model_epgw .or. params%psi == 0.0_dp .or. &
          & params%sigma == 0.0_dp
+      if (params%flow_pressure > 0.0_dp) table%reversible = .not. delta_max > &
+         & first_yield(params)
       if (table%reversible) then
          call hysteresis_prepare(table)   ! the tag only
+         return
+      end if
+      if (params%flow_pressure > 0.0_dp) then
+         call build_cap_curves(table, options, error, progress)
          return
       end if
       ! delta_max grid: from the loading cut-off (1e-12 of P_ref: the slowest impacts turn
@@ -104,6 +126,52 @@ contains
    end subroutine build_hysteresis
 
    ! ---------------------------------------------------------------------------------------
+
+   !> The unloading curves of Hertz + cap (doc/theory.md §12): turning points from first
+   !> yield delta_y (where the contact is still Hertz's: gap 0) to delta_max, 9 at first,
+   !> then refine_m; L(m) = m - residual overlap and s_max = 1, so that s = 1 is where the
+   !> unloading force vanishes on every curve (the one place where the curves are not
+   !> smooth: (delta - delta_r)**(3/2) there), and the evaluation gives 0 below it.
+   subroutine build_cap_curves(table, options, error, progress)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
+      type(unloading_curve), allocatable :: curves(:)
+      real(dp), allocatable :: m(:)
+      real(dp) :: delta_y
+      integer :: j, n
+      delta_y = first_yield(table%params)
+      n = 9
+      m = delta_y + (table%delta_max - delta_y)*[(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
+      m(1) = delta_y
+      m(n) = table%delta_max
+      table%s_max = 1.0_dp
+      allocate (curves(n))
+      if (present(progress)) call progress(0, 2*n - 1)
+      call build_curves(table, options, m, curves, error)
+      if (allocated(error)) return
+      call refine_m(table, options, m, curves, error, progress)
+      if (allocated(error)) return
+      call resample(table, m, curves)
+      call hysteresis_prepare(table)
+   end subroutine build_cap_curves
+
+   !> The unloading length of a Hertz + cap curve of turning point m: m minus the residual
+   !> overlap of cap_load (on the public solves' options); m at and below first yield
+   !> (Hertz: the residual overlap is 0).
+   subroutine cap_length(params, m, length, error)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: m
+      real(dp), intent(out) :: length
+      type(egw_error), allocatable, intent(out) :: error
+      type(cap_history) :: hist
+      type(cap_result) :: res
+      call cap_load(params%radius, params%modulus, params%flow_pressure, m, &
+         & cap_solve_options(), hist, res, error)
+      if (allocated(error)) return
+      length = m - hist%residual*hist%delta_y
+   end subroutine cap_length
 
    !> Bisect the delta_max intervals until, for each, the Lagrange combination of its
    !> stencil's curves meets the midpoint's own curve at every node of that curve within
@@ -377,9 +445,14 @@ contains
       ! would otherwise be a jump that no refinement in s removes)
       c_turn = 1.0_dp
       if (f_turn > 0.0_dp .and. scale > 0.0_dp) c_turn = f_turn/scale
-      call solve_unload(hist, m, res, error)
+      if (table%params%flow_pressure > 0.0_dp) then
+         call cap_length(table%params, m, curve%length, error)
+      else
+         call solve_unload(hist, m, res, error)
+         if (.not. allocated(error)) curve%length = unloading_length(f_turn, res%stiffness, &
+            & table%params%sigma)
+      end if
       if (allocated(error)) return
-      curve%length = unloading_length(f_turn, res%stiffness, table%params%sigma)
       span = table%s_max*curve%length
       n = 5
       s(1:n) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]

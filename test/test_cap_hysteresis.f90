@@ -1,0 +1,347 @@
+!> Tests of the Hertz + flow-pressure cap hysteresis tables (egw_hysteresis with
+!> params%flow_pressure > 0, doc/theory.md §12) and of egw_time_step beyond first yield:
+!> the table against direct unloading solves, reversibility below delta_y, the residual
+!> overlap, the energy of a cycle, the file formats, refusals; and the C DEM loop.
+module test_cap_hysteresis
+   use, intrinsic :: iso_c_binding, only: c_int
+   use egw_kinds, only: dp, pi
+   use test_compare, only: same => same_bits
+   use egw_status, only: egw_error, egw_invalid_parameter
+   use egw_params, only: contact_params, model_hertz, model_egw
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
+      & load_history, solve_unload
+   use egw_cap_sphere, only: cap_units, cap_history, cap_result, cap_load, cap_options, &
+      & cap_load_scaled_work, cap_unload_scaled_work
+   use egw_rough_sphere, only: cap_solve_options
+   use egw_table, only: table_eval, table_energy
+   use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
+      & hysteresis_energy
+   use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
+   use egw_table_format, only: format_csv, format_binary
+   use egw_impact, only: restitution, time_step
+   use testdrive, only: new_unittest, unittest_type, error_type, check
+   implicit none
+   private
+   public :: collect_cap_hysteresis
+
+   interface
+      integer(c_int) function c_cap_dem_loop() bind(C, name="egw_capi_test_cap_dem_loop")
+         import :: c_int
+      end function c_cap_dem_loop
+   end interface
+
+   !> A steel-like pair: R = 1 mm, E* = 100 GPa, p_y = 1 GPa (p_y/E* = 0.01).
+   type(contact_params), parameter :: capped = contact_params(model=model_hertz, &
+      & radius=1.0e-3_dp, modulus=1.0e11_dp, flow_pressure=1.0e9_dp)
+   real(dp), parameter :: tol = 1.0e-3_dp
+   !> The table of capped over [-delta_y, 10 delta_y] at tol, built once for the suite.
+   type(hysteresis_table), save :: cap_table
+   logical, save :: built = .false.
+
+contains
+
+   subroutine collect_cap_hysteresis(testsuite)
+      type(unittest_type), allocatable, intent(out) :: testsuite(:)
+      testsuite = [ &
+         & new_unittest("table within rel_tol of unloading solves", test_solves), &
+         & new_unittest("reversible below first yield", test_reversible), &
+         & new_unittest("residual overlap: no force below it", test_residual), &
+         & new_unittest("energy of a cycle = closed integral of P d delta", test_cycle), &
+         & new_unittest("binary and CSV round trip; version 2 only with the cap", &
+         & test_formats), &
+         & new_unittest("rough model with flow_pressure refused", test_rough_refused), &
+         & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
+         & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop) &
+         & ]
+   end subroutine collect_cap_hysteresis
+
+   function str(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=24) :: s
+      write (s, '(es24.16)') x
+   end function str
+
+   real(dp) function delta_y()
+      real(dp) :: a_y, f_y
+      call cap_units(capped%radius, capped%modulus, capped%flow_pressure, delta_y, a_y, f_y)
+   end function delta_y
+
+   subroutine get_table(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(egw_error), allocatable :: err
+      if (built) return
+      call build_hysteresis(capped, solver_options(), -delta_y(), 10*delta_y(), tol, &
+         & cap_table, err)
+      call check(error, .not. allocated(err), "build failed")
+      if (allocated(error)) return
+      built = .true.
+   end subroutine get_table
+
+   !> The table's force (loading, then unloading below turning points m from 1.3 to 9.6
+   !> delta_y, nodes and between) against solve_contact and solve_unload: within rel_tol of
+   !> the force at the turning point (the table's definition, doc/theory.md §8), zero
+   !> where the solve is zero.
+   subroutine test_solves(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: turning(4) = [1.3_dp, 2.7_dp, 5.1_dp, 9.6_dp]
+      type(egw_error), allocatable :: err
+      type(loading_history) :: hist
+      type(solve_result) :: top, res
+      real(dp) :: m, d, f, k, state, worst
+      integer :: i, j, stat
+      call get_table(error)
+      if (allocated(error)) return
+      worst = 0
+      do i = 1, size(turning)
+         m = turning(i)*delta_y()
+         call load_history(capped, solver_options(), m, hist, top, err)
+         call check(error, .not. allocated(err), "load_history")
+         if (allocated(error)) return
+         state = -huge(1.0_dp)
+         call hysteresis_eval(cap_table, m, state, f, k, stat)
+         call check(error, stat == 0 .and. abs(f - top%force) <= tol*top%force, &
+            & "loading at m = "//str(m)//": "//str(f)//" solve "//str(top%force))
+         if (allocated(error)) return
+         do j = 1, 40
+            d = m*(1 - j/40.0_dp)
+            call solve_unload(hist, d, res, err)
+            call check(error, .not. allocated(err), "solve_unload")
+            if (allocated(error)) return
+            call hysteresis_eval(cap_table, d, state, f, k, stat)
+            call check(error, stat == 0 .and. state == m, "state changed")
+            if (allocated(error)) return
+            worst = max(worst, abs(f - res%force)/top%force)
+            call check(error, abs(f - res%force) <= tol*top%force, "m = "//str(m)// &
+               & ", delta = "//str(d)//": table "//str(f)//" solve "//str(res%force))
+            if (allocated(error)) return
+         end do
+      end do
+      print '(4x, a, es9.2)', "largest |P_table - P_solve|/P(m): ", worst
+   end subroutine test_solves
+
+   !> Turning points at or below delta_y: the contact is Hertz's, unloading retraces the
+   !> loading curve bit for bit, within rel_tol of Hertz's closed form; a table that ends
+   !> at delta_y is reversible (no curves).
+   subroutine test_reversible(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      real(dp) :: m, d, f, k, fl, kl, state, hertz
+      integer :: j, stat
+      call get_table(error)
+      if (allocated(error)) return
+      do j = 0, 3
+         m = delta_y()*(1 - 0.1_dp*j)
+         state = -huge(1.0_dp)
+         call hysteresis_eval(cap_table, m, state, f, k, stat)
+         d = 0.37_dp*m
+         call hysteresis_eval(cap_table, d, state, f, k, stat)
+         call table_eval(cap_table%loading, d, fl, kl)
+         hertz = 4.0_dp/3.0_dp*capped%modulus*sqrt(capped%radius)*d**1.5_dp
+         call check(error, stat == 0 .and. same(f, fl) .and. same(k, kl) .and. &
+            & abs(f - hertz) <= tol*hertz, "m = "//str(m)//": unloading "//str(f)// &
+            & " loading "//str(fl)//" Hertz "//str(hertz))
+         if (allocated(error)) return
+      end do
+      call build_hysteresis(capped, solver_options(), 0.0_dp, delta_y(), tol, t, err)
+      call check(error, .not. allocated(err), "build to delta_y")
+      if (allocated(error)) return
+      call check(error, t%reversible, "a table up to delta_y has curves")
+   end subroutine test_reversible
+
+   !> From m = 6 delta_y (near a node) the force vanishes at the residual overlap delta_r
+   !> of cap_load (min(z + u_pl) of the deformed shape): 0 at 0.9 delta_r, at most rel_tol
+   !> P(m) just below delta_r (the interpolated end of the curve), and above it within
+   !> rel_tol P(m) of the unloading solve.
+   subroutine test_residual(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(cap_history) :: h
+      type(cap_result) :: r
+      type(egw_error), allocatable :: err
+      type(loading_history) :: hist
+      type(solve_result) :: top, res
+      real(dp) :: m, d_r, f, k, state
+      integer :: stat
+      call get_table(error)
+      if (allocated(error)) return
+      m = 6*delta_y()
+      call cap_load(capped%radius, capped%modulus, capped%flow_pressure, m, &
+         & cap_solve_options(), h, r, err)
+      call check(error, .not. allocated(err), "cap_load")
+      if (allocated(error)) return
+      d_r = h%residual*h%delta_y
+      call check(error, d_r > 0 .and. d_r < m, "residual "//str(d_r/m)//" m")
+      if (allocated(error)) return
+      state = m
+      call hysteresis_eval(cap_table, 0.9_dp*d_r, state, f, k, stat)
+      call check(error, f == 0 .and. k == 0, "force below the residual "//str(f))
+      if (allocated(error)) return
+      call hysteresis_eval(cap_table, d_r*(1 - 1.0e-3_dp), state, f, k, stat)
+      call check(error, f <= tol*r%force, "force just below the residual "//str(f))
+      if (allocated(error)) return
+      call load_history(capped, solver_options(), m, hist, top, err)
+      call solve_unload(hist, d_r + 0.05_dp*(m - d_r), res, err)
+      call check(error, .not. allocated(err), "solve_unload")
+      if (allocated(error)) return
+      call hysteresis_eval(cap_table, d_r + 0.05_dp*(m - d_r), state, f, k, stat)
+      call check(error, res%force > 0 .and. abs(f - res%force) <= tol*top%force, &
+         & "just above the residual: table "//str(f)//" solve "//str(res%force))
+   end subroutine test_residual
+
+   !> A load-unload cycle to m = 4.4 delta_y: the dissipated energy W_load - W_unload of
+   !> the table's energies (table_energy, hysteresis_energy) equals the closed integral of
+   !> the table's own force along the cycle (midpoint rule, 20000 points: its error with
+   !> the kinks at delta_y and at the residual overlap is ~1e-9 of W_load; checked to
+   !> 1e-6) and the cap solver's works
+   !> (cap_load_scaled_work - cap_unload_scaled_work, 32-point rules) within 3 rel_tol of
+   !> W_load (the forces are within rel_tol of P(m) over a range of m, W_load ~ P(m) m/2).
+   subroutine test_cycle(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(egw_error), allocatable :: err
+      type(cap_options) :: o
+      real(dp) :: m, w_load, w_unload, loop, wl, wu, fm, resid, f, k, state, d, dy, fy, ay
+      real(dp) :: h
+      integer, parameter :: n = 20000
+      integer :: i, stat
+      call get_table(error)
+      if (allocated(error)) return
+      dy = delta_y()
+      call cap_units(capped%radius, capped%modulus, capped%flow_pressure, dy, ay, fy)
+      m = 4.4_dp*dy
+      w_load = table_energy(cap_table%loading, m)
+      call hysteresis_energy(cap_table, m, m, w_unload, stat)
+      call check(error, stat == 0 .and. w_unload > 0 .and. w_unload < w_load, "energies")
+      if (allocated(error)) return
+      ! the closed integral: loading from the cut-off to m, unloading back (midpoint rule)
+      loop = 0
+      h = (m - cap_table%loading%cutoff)/n
+      do i = 1, n
+         d = cap_table%loading%cutoff + (i - 0.5_dp)*h
+         state = -huge(1.0_dp)
+         call hysteresis_eval(cap_table, d, state, f, k, stat)
+         loop = loop + h*f
+         state = m
+         call hysteresis_eval(cap_table, d, state, f, k, stat)
+         loop = loop - h*f
+      end do
+      call check(error, abs((w_load - w_unload) - loop) <= 1.0e-6_dp*w_load, &
+         & "dissipated "//str(w_load - w_unload)//" closed integral "//str(loop))
+      if (allocated(error)) return
+      o = cap_solve_options()
+      o%n_quad = 32
+      call cap_load_scaled_work(m/dy, o, wl, fm, err)
+      if (.not. allocated(err)) call cap_unload_scaled_work(m/dy, o, wu, resid, err)
+      call check(error, .not. allocated(err), "cap works")
+      if (allocated(error)) return
+      ! scaled works in units P_y delta_y
+      call check(error, abs((w_load - w_unload) - (wl - wu)*fy*dy) <= 3*tol*w_load, &
+         & "dissipated "//str(w_load - w_unload)//" cap solver "//str((wl - wu)*fy*dy))
+      print '(4x, a, es9.2, a, es9.2)', "dissipated/W_load: table ", &
+         & (w_load - w_unload)/w_load, ", solver ", (wl - wu)*fy*dy/w_load
+   end subroutine test_cycle
+
+   !> Written and read back (binary: format version 2 with flow_pressure; CSV: format 2)
+   !> the table evaluates bit for bit as built; a table without the cap is still written
+   !> as version 1 (old readers keep reading it).
+   subroutine test_formats(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: names(2) = ["build/cap_hyst.bin", "build/cap_hyst.csv"]
+      integer, parameter :: formats(2) = [format_binary, format_csv]
+      type(hysteresis_table) :: t, plain
+      type(egw_error), allocatable :: err
+      real(dp) :: f1, k1, f2, k2, s1, s2, d
+      integer :: it, j, stat, u
+      character(len=8) :: magic
+      integer :: version
+      call get_table(error)
+      if (allocated(error)) return
+      do it = 1, 2
+         call write_hysteresis(cap_table, names(it), formats(it), err)
+         if (.not. allocated(err)) call read_hysteresis(names(it), t, err)
+         call check(error, .not. allocated(err), "round trip "//names(it))
+         if (allocated(error)) return
+         call check(error, t%params%flow_pressure == capped%flow_pressure .and. &
+            & .not. t%reversible, "flow_pressure lost in "//names(it))
+         if (allocated(error)) return
+         do j = 1, 30
+            d = 9.9_dp*delta_y()*j/30
+            s1 = 7.3_dp*delta_y()
+            s2 = s1
+            call hysteresis_eval(cap_table, d, s1, f1, k1, stat)
+            call hysteresis_eval(t, d, s2, f2, k2, stat)
+            call check(error, same(f1, f2) .and. same(k1, k2), "read back differs at "//str(d))
+            if (allocated(error)) return
+         end do
+      end do
+      open (newunit=u, file=names(1), access="stream", form="unformatted", status="old")
+      read (u) magic, version
+      close (u)
+      call check(error, magic == "EGWHYST1" .and. version == 2, "binary version")
+      if (allocated(error)) return
+      call build_hysteresis(contact_params(model=model_hertz, radius=1.0_dp, modulus=1.0_dp), &
+         & solver_options(), 0.0_dp, 1.0_dp, tol, plain, err)
+      if (.not. allocated(err)) call write_hysteresis(plain, "build/plain_hyst.bin", &
+         & format_binary, err)
+      call check(error, .not. allocated(err), "plain table")
+      if (allocated(error)) return
+      open (newunit=u, file="build/plain_hyst.bin", access="stream", form="unformatted", &
+         & status="old")
+      read (u) magic, version
+      close (u)
+      call check(error, version == 1, "a table without the cap is not version 1")
+   end subroutine test_formats
+
+   !> Rough model + cap: refused with a message naming flow_pressure (rough + cap tables
+   !> are not built yet; validate_params or the build says so).
+   subroutine test_rough_refused(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      call build_hysteresis(contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
+         & sigma=1.0e-3_dp, mu=4.0_dp, flow_pressure=1.0e-2_dp), solver_options(), -0.01_dp, &
+         & 0.1_dp, tol, t, err)
+      call check(error, allocated(err), "rough + cap table built")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_parameter .and. &
+         & index(err%message, "flow_pressure") > 0, "message: "//err%message)
+   end subroutine test_rough_refused
+
+   !> egw_time_step at 60 v_y: omega**2 = K/m* with K the elastic unloading stiffness from
+   !> the flattened shape at delta_m, which for an axisymmetric contact of radius a is
+   !> 2 E* a (any profile; Johnson 1985, §3.8). The fully capped contact's radius from
+   !> a**2/2 + 8 a/pi**2 = delta_m/delta_y (in a_y; doc/theory.md §12 (iv), to 1e-9 from
+   !> 20 delta_y) gives the closed form dt = sqrt(tol/0.06)/omega; within 1 % (the rings'
+   !> stiffness: 0.4 % at 10 delta_y). Below v_y the step is Hertz's (the cap never acts).
+   subroutine test_time_step(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: mass = 1.0e-5_dp
+      type(egw_error), allocatable :: err
+      real(dp) :: dy, ay, fy, vy, e, diss, dm, duration, step, a, k, expected
+      call cap_units(capped%radius, capped%modulus, capped%flow_pressure, dy, ay, fy)
+      vy = sqrt(16.0_dp/15.0_dp*(pi/2)**5*capped%flow_pressure**5*capped%radius**3 &
+         & /(mass*capped%modulus**4))
+      call restitution(capped, solver_options(), mass, 60*vy, e, diss, err, max_overlap=dm)
+      call check(error, .not. allocated(err), "restitution")
+      if (allocated(error)) return
+      call check(error, dm > 20*dy, "delta_m = "//str(dm/dy)//" delta_y: not fully capped")
+      if (allocated(error)) return
+      call time_step(capped, solver_options(), mass, 60*vy, 1.0e-4_dp, duration, step, err)
+      call check(error, .not. allocated(err), "time_step beyond v_y refused")
+      if (allocated(error)) return
+      a = -8/pi**2 + sqrt(64/pi**4 + 2*dm/dy)
+      k = 2*capped%modulus*a*ay
+      expected = sqrt(1.0e-4_dp/0.06_dp)/sqrt(k/mass)
+      call check(error, abs(step/expected - 1) < 1.0e-2_dp .and. duration > 20*step, &
+         & "step "//str(step)//" closed form "//str(expected)//" duration "//str(duration))
+      if (allocated(error)) return
+      print '(4x, a, f8.5)', "time step / closed form at 60 v_y: ", step/expected
+   end subroutine test_time_step
+
+   subroutine test_c_dem_loop(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer(c_int) :: failures
+      failures = c_cap_dem_loop()
+      call check(error, failures == 0, "C DEM loop with the cap: failed checks")
+   end subroutine test_c_dem_loop
+
+end module test_cap_hysteresis
