@@ -23,15 +23,16 @@ struct EgwCoeff {
   double E = 0, nu = 0, sigma = 0, mu = 0, eta = 0, beta = 0;
   int mu_mode = 0;
   double psi = 0, K = 0.6, rho = 54;
-  // the body's bulk flow pressure p_y [pressure] (0: no bulk yield), given as
-  // 'flow_pressure P' (flow_keyword 0) or 'yield_stress Y' (p_y = 1.6 Y, flow_keyword 1)
-  double flow_pressure = 0;
-  int flow_keyword = 0;
   EgwSubmodels::Params sub;       // damping, tangential, rolling, twisting, heat
   // 'law FILE': the contact's rough-flat law file (empty: GW's law from sigma, mu); kept
   // as characters so that the coefficients stay plain data (restart files, broadcasts)
   static constexpr int LAW_PATH_MAX = 512;
   char law_file[LAW_PATH_MAX] = {};
+  // the body's bulk flow pressure p_y [pressure] (0: no bulk yield), given as
+  // 'flow_pressure P' (flow_keyword 0) or 'yield_stress Y' (p_y = 1.6 Y, flow_keyword 1).
+  // Last: a restart file's record from before them is this struct's prefix
+  double flow_pressure = 0;
+  int flow_keyword = 0;
 };
 
 /* Read the rough-flat law file `path` (egw_flat_law_read) on every rank of comm and check

@@ -154,7 +154,11 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
     egw_params_default(&p);
     p.model = k.model, p.radius = 1, p.modulus = 1, p.sigma = 1, p.mu = k.mu;
     p.psi = k.psi, p.hardness_coeff = k.K, p.plastic_ratio = k.rho;
-    if (k.flow_pressure > 0) p.sigma = 0, p.flow_pressure = k.flow_pressure;
+    if (k.flow_pressure > 0) {    // Hertz + cap: only R, E*, p_y count (the rest default)
+      egw_params_default(&p);
+      p.model = EGW_MODEL_HERTZ, p.radius = 1, p.modulus = 1, p.sigma = 0;
+      p.flow_pressure = k.flow_pressure;
+    }
     egw_options o;
     egw_options_default(&o);
     if (n_threads > 0) o.n_threads = n_threads;
