@@ -2056,6 +2056,28 @@ def test_bad_flow_pressure():
         "; " + "; ".join(bad) if bad else "")
 
 
+def test_cap_restart():
+    """Smooth beads with the cap (flow_pressure 0.01 E*, ~6.7 v_y), oblique, no friction: a
+    run split by write_restart in mid contact (unloading from beyond first yield) and
+    continued by read_restart ends as the uninterrupted split run (1e-12 of the speed:
+    delta_max in units of delta_y came back, and the state refilled from it), and the
+    rebound lost energy (relative speed after / before < 0.9: without friction only the
+    cap dissipates)."""
+    c = f"E {E} nu {NU} flow_pressure {0.01 * E_STAR!r}"
+    rc1, out1 = collision("egw Hertz 1e-3", c, yoff=0.0005, wz=30.0, n1=2640, restart=1,
+                          rfile="cap.restart")
+    rc2, out2 = lmp("collision_restart.in", rfile="cap.restart", n2=6000 - 2640, thermo=1000)
+    if rc1 or rc2:
+        return False, " ".join(l for l in (out1 + out2).splitlines() if "ERROR" in l)
+    a, b = result(out1), result(out2)
+    d = max(abs(x - y) for x, y in zip(a, b)) / V
+    mid = [float(x) for x in re.findall(r"^MID (.*)$", out1, re.M)[-1].split()]
+    speed = math.hypot(a[2] - a[0], a[3] - a[1]) / (2 * V)
+    ok = d < 1e-12 and abs(mid[0]) > 0 and speed < 0.9
+    return ok, (f"force at the restart ({mid[0]:.4g}, {mid[1]:.4g}), max |dv|/v = {d:.1e} "
+                f"(< 1e-12), relative speed after / before {speed:.4f}")
+
+
 TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_slow_impacts, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_submodels_vs_granular, test_twisting_pair_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
@@ -2069,7 +2091,8 @@ TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_sl
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,
          test_flat_law_vs_solve, test_flat_law_energy, test_flat_law_mixing, test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared,
-         test_cap_pair_restitution, test_cap_wall_restitution, test_bad_flow_pressure]
+         test_cap_pair_restitution, test_cap_wall_restitution, test_bad_flow_pressure,
+         test_cap_restart]
 
 
 def main():
