@@ -1936,15 +1936,15 @@ def cap_deck(pair_coeff, wall, speeds, dt, nrun):
     return path
 
 
-def cap_run(pair_coeff, wall, p_y, r, m):
-    """The impacts at CAP_RATIOS v_y in one run (dt: egw_time_step's at 1e-4 for the
-    fastest, halved): e of each against egw_restitution's."""
+def cap_run(pair_coeff, wall, p_y, r, m, np=1):
+    """The impacts at CAP_RATIOS v_y in one run on np ranks (dt: egw_time_step's at 1e-4
+    for the fastest, halved): e of each against egw_restitution's."""
     vy, dy = cap_units(p_y, r, m)
     speeds = [x * vy for x in CAP_RATIOS]
     refs = [cap_reference(p_y, r, m, v) for v in speeds]
     dt = 0.5 * min(ref[3] for ref in refs)
     nrun = int((20 * dt + 1.5 * max(ref[2] for ref in refs)) / dt)
-    rc, out = lmp(cap_deck(pair_coeff, wall, speeds, dt, nrun))
+    rc, out = lmp(cap_deck(pair_coeff, wall, speeds, dt, nrun), np=np)
     if rc != 0:
         return None, refs, [l for l in out.splitlines() if "ERROR" in l or "WARN" in l], dy
     return result(out), refs, out, dy
@@ -1969,11 +1969,17 @@ def test_cap_pair_restitution():
     (the cap solver's works, not the table) at every speed, and no WARNING (no overlap
     beyond the table). The table is built to 1e-3 (the cap's least TOL): its force error
     gives e within ~1.25e-3 by the library's DEM loop (test/cap_dem_checks.c, 1.1e-3 at 20
-    and 50 v_y); Verlet at half egw_time_step's 1e-4 step adds ~3e-5."""
+    and 50 v_y); Verlet at half egw_time_step's 1e-4 step adds ~3e-5. The same run on 2
+    ranks (each pair's beads on both: ghosts, newton on) gives the same e (1e-12)."""
     p_y = 0.01 * E_STAR
-    es, refs, out, dy = cap_run(f"E {E} nu {NU} flow_pressure {p_y!r}", None, p_y, R_STAR,
-                                M_STAR)
-    return cap_verdict(es, refs, out, dy, "pair")
+    coeff = f"E {E} nu {NU} flow_pressure {p_y!r}"
+    es, refs, out, dy = cap_run(coeff, None, p_y, R_STAR, M_STAR)
+    ok, msg = cap_verdict(es, refs, out, dy, "pair")
+    es2, _, out2, _ = cap_run(coeff, None, p_y, R_STAR, M_STAR, np=2)
+    if es is None or es2 is None:
+        return False, msg + "; 2 ranks: " + " ".join(out2 if es2 is None else [])
+    d2 = max(abs(a - b) for a, b in zip(es, es2))
+    return ok and d2 < 1e-12, msg + f"; 2 ranks: max |de| = {d2:.1e} (< 1e-12)"
 
 
 def test_cap_wall_restitution():
@@ -2078,6 +2084,31 @@ def test_cap_restart():
                 f"(< 1e-12), relative speed after / before {speed:.4f}")
 
 
+def test_cap_energy():
+    """Hertz + cap (flow_pressure 0.01 E*, ~6.7 v_y), no damping: as energy_epgw, the
+    tallied energy is what the contact returns if it separates now (egw_hysteresis_energy
+    in units of E* sqrt(R) delta_y^2.5), so kinetic + it never rises by more than the
+    Verlet noise (5e-5 of E0), stays constant while the contact unloads (5e-4, half the
+    table's 1e-3), and ends at the rebound's kinetic energy, E_end/E0 = e^2 (1e-4), with
+    e < 0.9 (the cap dissipated)."""
+    rc, out = collision("egw Hertz 1e-3", f"E {E} nu {NU} flow_pressure {0.01 * E_STAR!r}",
+                        thermo_every=10)
+    if rc:
+        return False, " ".join(l for l in out.splitlines() if "ERROR" in l)
+    rows = thermo(out)
+    e0 = rows[0][3]
+    rise = max((b[3] - a[3]) / e0 for a, b in zip(rows, rows[1:]))
+    deepest = max(range(len(rows)), key=lambda i: rows[i][2])
+    after = [r[3] for r in rows[deepest + 2:]]
+    drift = (max(after) - min(after)) / e0
+    e = restitution_of(out)
+    end = rows[-1][3] / e0
+    ok = (rise < 5e-5 and drift < 5e-4 and abs(end - e * e) < 1e-4 and
+          rows[deepest][2] > 0.2 * e0 and e < 0.9)
+    return ok, (f"largest rise {rise:.1e}, unloading drift {drift:.1e} (< 5e-4), E_end/E0 "
+                f"{end:.6f} vs e^2 {e * e:.6f}, e = {e:.5f}")
+
+
 TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_slow_impacts, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_submodels_vs_granular, test_twisting_pair_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
@@ -2092,7 +2123,7 @@ TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_sl
          test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,
          test_flat_law_vs_solve, test_flat_law_energy, test_flat_law_mixing, test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared,
          test_cap_pair_restitution, test_cap_wall_restitution, test_bad_flow_pressure,
-         test_cap_restart]
+         test_cap_restart, test_cap_energy]
 
 
 def main():
