@@ -9,7 +9,8 @@ const char *LAMMPS_NS::egw_law_kind_name[] = {
     "Hertz (closed form)", "1-D table in delta/sigma",
     "1-D slices of a universal table, linear in ln mu (R-dependent mu)", "hysteresis table",
     "hysteresis tables at nodes in ln mu, linear in ln mu",
-    "rough-flat law: 1-D tables at nodes in ln R, geometric in R"};
+    "rough-flat law: 1-D tables at nodes in ln R, geometric in R",
+    "flow-pressure cap: one hysteresis table in units of the first-yield overlap delta_y"};
 
 egw_flat_law LAMMPS_NS::egw_law_read_file(const std::string &path, MPI_Comm comm,
                                           const std::function<void(const std::string &)> &fail)
@@ -60,6 +61,7 @@ void EgwLaw::like(const EgwCoeff &c)
   sigma = std::sqrt(2.0) * c.sigma;
   mu_mode = c.mu_mode, mu = c.mu, eta = c.eta, beta = c.beta;
   psi = c.psi, K = c.K, rho = c.rho, sub = c.sub;
+  flow_pressure = c.flow_pressure, flow_keyword = c.flow_keyword;
   law_file = c.law_file;
 }
 
@@ -80,6 +82,14 @@ bool EgwLaw::combine(const EgwCoeff &a, const EgwCoeff &b)
     mu = r.mu, eta = r.eta, beta = r.beta;
   }
   psi = 0.5 * (a.psi + b.psi), K = 0.5 * (a.K + b.K), rho = 0.5 * (a.rho + b.rho);
+  // the flow pressure: the smaller of the bodies' positive p_y (0: no bulk yield). Both
+  // surfaces carry the same contact pressure, so the softer body reaches its p_y first and
+  // from then on flows and holds the pressure there; a body without p_y does not yield
+  const EgwCoeff *soft = nullptr;
+  for (const EgwCoeff *c : {&a, &b})
+    if (c->flow_pressure > 0 && (!soft || c->flow_pressure < soft->flow_pressure)) soft = c;
+  flow_pressure = soft ? soft->flow_pressure : 0.0;
+  flow_keyword = soft ? soft->flow_keyword : 0;
   // a law is the contact's (the pair's combined surface): two types with the same law
   // file mix to it (independent surfaces' spectra add: C_ij = C_ii/2 + C_jj/2 = C_law);
   // the caller refuses two different files, or a law against sigma/mu
@@ -99,7 +109,7 @@ void EgwLaw::setup(int model)
     prm.model = EGW_MODEL_FLAT_LAW;
     return;
   }
-  if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = HERTZ;
+  if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = flow_pressure > 0 ? HYST_CAP : HERTZ;
   else if (model == EGW_MODEL_EPGW && psi > 0) kind = mu_mode == 1 ? HYST : HYST_MU;
   else kind = mu_mode == 1 ? TABLE : UNIVERSAL;
   egw_params_default(&prm);
@@ -112,6 +122,10 @@ void EgwLaw::setup(int model)
     inv_sigma = 1.0 / sigma;
   }
   if (mu_mode == 2) mu = 8.0 / 3.0 * eta * sigma * std::sqrt(2.0 * beta);    // x sqrt(R)
+  if (kind == HYST_CAP) {
+    double r = M_PI * flow_pressure / (2.0 * E_star);
+    cap_c = r * r;
+  }
 }
 
 void EgwLaw::release()
@@ -137,6 +151,7 @@ void EgwLaw::take_tables(EgwLaw &from)
   hyst_built = from.hyst_built, slices = from.slices, slices_held = from.slices_held;
   fast = from.fast, lnmu0 = from.lnmu0, inv_h = from.inv_h, lnmu = from.lnmu;
   xc = from.xc, tail = from.tail, reach = from.reach, capped = from.capped;
+  tol_cap = from.tol_cap, built_tol = from.built_tol, cap_wanted = from.cap_wanted;
   capped_solver = from.capped_solver, mu_lo = from.mu_lo, mu_hi = from.mu_hi;
   interp_error = from.interp_error;
   flat = from.flat, flat_inv_sqrt_r = from.flat_inv_sqrt_r;
@@ -163,6 +178,64 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   if (n_threads > 0) o.n_threads = n_threads;
   if (kind == FLAT) {
     build_flat(R_lo, R_hi, tol, overlap_max, comm, o, fail_with);
+    return;
+  }
+  if (flow_pressure > 0 && kind != HYST_CAP) {
+    // a rough model with the cap: egw says whether it serves it (a table over a short
+    // range, for the contact of the largest R in physical units, so that its message
+    // names the deck's values); while it refuses, its message is the error. The law's
+    // tables are normalised by sigma, and the cap adds the scale delta_y ~ R: pair egw
+    // does not build rough + cap tables yet either way.
+    egw_params p = prm;
+    p.radius = R_hi, p.modulus = E_star, p.sigma = sigma;
+    p.mu = mu_mode == 2 ? mu_at(R_hi) : prm.mu;
+    p.flow_pressure = flow_pressure;
+    int st;
+    if (kind == HYST || kind == HYST_MU) {
+      egw_hysteresis h = nullptr;
+      st = egw_hysteresis_build(&p, &o, 0.0, sigma, 0.1, &h);
+      egw_hysteresis_free(&h);
+    } else {
+      egw_table t = nullptr;
+      st = egw_table_build(&p, &o, 0.0, sigma, 0.1, &t);
+      egw_table_free(&t);
+    }
+    if (st != EGW_OK) {
+      fail();
+      return;
+    }
+    fail_with(fmt::format("flow_pressure {} with a rough surface (sigma = {}): pair egw does "
+                          "not build tables for a rough model with the flow-pressure cap yet "
+                          "(give sigma 0 or model Hertz for the smooth sphere with the cap)",
+                          flow_pressure, sigma));
+    return;
+  }
+  if (kind == HYST_CAP) {
+    // one table in units of delta_y (universal: R = E* = 1, p_y = 2/pi), reaching
+    // overlap_max R, at most CAP_X_MAX delta_y, shared through the registry (and egw's
+    // disk cache: one build per machine)
+    EgwTables::HystKey k;
+    k.model = EGW_MODEL_HERTZ, k.flow_pressure = 2.0 / M_PI;
+    cap_wanted = overlap_max / cap_c;
+    k.xmax = std::min(CAP_X_MAX, cap_wanted);
+    capped = cap_wanted > CAP_X_MAX;
+    k.tol = tol_cap = std::max(tol, CAP_TOL_MIN);
+    built_tol = tol;
+    int built = 0;
+    hyst_held = EgwTables::hysteresis({k}, comm, n_threads, fail_with, &built);
+    hyst_built = built;
+    hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
+    for (auto &t : hyst_held) {
+      hyst.push_back(t.get());
+      egw_hysteresis_info in;
+      egw_hysteresis_get_info(t.get(), &in);
+      double tag = 0.0;
+      egw_hysteresis_state_tag(t.get(), &tag);
+      hyst_tag.push_back(tag), hyst_dmax.push_back(in.delta_max);
+    }
+    xc = 0.0, tail = 0.0;    // a smooth sphere: no force before it touches
+    reach = k.xmax * cap_c * R_hi;
+    fast = nullptr;
     return;
   }
   double xmax = 30.0;
@@ -425,6 +498,14 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                          interp_error);
   if (kind == HYST || kind == HYST_MU)
     extra += fmt::format(", hysteresis tables built for it: {} (the others shared)", hyst_built);
+  if (kind == HYST_CAP)
+    extra = fmt::format(", flow pressure p_y = {:.6g} (from {}), first yield delta_y = {:.6g} R, "
+                        "the table reaches {:.4g} delta_y at rel_tol {:.2g}{}, built for it: {} "
+                        "(the others shared)", flow_pressure,
+                        flow_keyword ? "yield_stress: 1.6 Y" : "flow_pressure", cap_c,
+                        hyst_dmax.empty() ? 0.0 : hyst_dmax[0], tol_cap,
+                        tol_cap > built_tol ? " (TOL raised to the cap's least, 1e-3)" : "",
+                        hyst_built);
   if (kind == FLAT)
     extra = fmt::format(", law {} (its modulus {}; forces x E*/{:.6g}), {} tables for R in "
                         "[{:.4g}, {:.4g}], measured ln-R interpolation error {:.2g} (at twice "
@@ -445,10 +526,12 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                      xc * sigma, reach, extra) +
       (capped_solver ? fmt::format(" (capped at {:g} sigma, the solver's range)", TABLE_X_MAX)
                      : std::string()) +
-      (capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it cost more than "
-                            "they bring)",
-                            HYST_X_MAX)
-              : std::string());
+      (capped && kind == HYST_CAP
+           ? fmt::format(" (capped at {} delta_y; overlap_max R is {:.4g} delta_y)", CAP_X_MAX,
+                         cap_wanted)
+       : capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it cost more "
+                              "than they bring)", HYST_X_MAX)
+                : std::string());
 }
 
 void EgwLaw::set_reach(double w_ref, double frac, double R_hi)

@@ -28,6 +28,11 @@ struct EgwCoeff {
   // as characters so that the coefficients stay plain data (restart files, broadcasts)
   static constexpr int LAW_PATH_MAX = 512;
   char law_file[LAW_PATH_MAX] = {};
+  // the body's bulk flow pressure p_y [pressure] (0: no bulk yield), given as
+  // 'flow_pressure P' (flow_keyword 0) or 'yield_stress Y' (p_y = 1.6 Y, flow_keyword 1).
+  // Last: a restart file's record from before them is this struct's prefix
+  double flow_pressure = 0;
+  int flow_keyword = 0;
 };
 
 /* Read the rough-flat law file `path` (egw_flat_law_read) on every rank of comm and check
@@ -40,7 +45,7 @@ egw_flat_law egw_law_read_file(const std::string &path, MPI_Comm comm,
 /* The contact law of one particle-type pair: parameters and the egw tables that evaluate
  * it.  Tables are normalised (R = E* = sigma = 1, x = delta/sigma) unless stated. */
 struct EgwLaw {
-  enum Kind { HERTZ = 0, TABLE, UNIVERSAL, HYST, HYST_MU, FLAT };
+  enum Kind { HERTZ = 0, TABLE, UNIVERSAL, HYST, HYST_MU, FLAT, HYST_CAP };
   // eval()'s status beyond egw's: the contact's mu lies outside the tables' range
   static constexpr int MU_OUTSIDE = -1000;
 
@@ -49,6 +54,20 @@ struct EgwLaw {
   int mu_mode = 0;                 // 0 none (smooth), 1 mu given, 2 from summit data
   double mu = 0, eta = 0, beta = 0;
   double psi = 0, K = 0.6, rho = 54;
+  // the contact's flow pressure p_y (0: none; the smaller of the two bodies' positive
+  // values, combine()) and the keyword that gave it (0 flow_pressure, 1 yield_stress)
+  double flow_pressure = 0;
+  int flow_keyword = 0;
+  // HYST_CAP (a smooth sphere with the cap): first yield delta_y = cap_c R, cap_c =
+  // (pi p_y/(2 E*))^2; one table in units of delta_y (R = E* = 1, p_y = 2/pi: delta_y =
+  // 1), universal: F = E* sqrt(R) delta_y^1.5 p(delta/delta_y) (doc/theory.md section 12)
+  double cap_c = 0;
+  // its reach at most CAP_X_MAX delta_y, its rel_tol at least CAP_TOL_MIN (the cap solver's
+  // force is a sawtooth of ~3e-3 beyond ~15 delta_y: finer tables chase it for minutes)
+  static constexpr double CAP_X_MAX = 40.0;
+  static constexpr double CAP_TOL_MIN = 1e-3;
+  double tol_cap = 0, built_tol = 0;    // the cap table's rel_tol, and the TOL asked for
+  double cap_wanted = 0;           // overlap_max R in delta_y (the reach before the cap)
   EgwSubmodels::Params sub;        // damping, tangential, rolling, twisting, heat
   double damp = 0;                 // the damping model's factor (damping_factor)
   double kt = 0;                   // tangential k_t (mindlin NULL: 8 G*)
@@ -149,6 +168,10 @@ extern const char *egw_law_kind_name[];
 /* what a user can do about a contact beyond the tables' reach (the warning's advice) */
 inline const char *egw_reach_advice(const EgwLaw &L)
 {
+  if (L.kind == EgwLaw::HYST_CAP)
+    return "the flow-pressure cap's table stops at 40 delta_y (the first-yield overlap "
+           "delta_y = (pi p_y/(2 E*))^2 R; ~60 times the first-yield speed v_y): beyond it "
+           "the force is the table's extrapolation, not the cap model's";
   if (L.capped_solver)
     return "the tables stop at 5e14 sigma, within egw's range of delta/sigma (sigma is that "
            "small against the radii; the deep law tends to Hertz there)";
@@ -272,6 +295,19 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       double u = 0.0;
       if (want_energy) egw_hysteresis_energy(hyst[0], x, cache[0], &u);
       F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
+      break;
+    }
+    case HYST_CAP: {
+      // as HYST in units of the contact's first yield delta_y = cap_c R (not sigma)
+      double s = cap_c * R, rs = std::sqrt(s);
+      double x = delta / s, p, dp;
+      st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], x, *dmax, cache, p, dp,
+                             !states_are_history);
+      *dmax = cache[0];
+      double u = 0.0;
+      if (want_energy) egw_hysteresis_energy(hyst[0], x, cache[0], &u);
+      double sq = sr * rs;    // E* sqrt(R) delta_y^0.5
+      F = sq * s * p, S = sq * dp, U = sq * s * s * u;
       break;
     }
     case FLAT: {

@@ -5,6 +5,8 @@
 
 #include "egw_submodels.h"
 
+#include <string>
+
 namespace LAMMPS_NS {
 class Error;
 /* a finite number, the whole string */
@@ -19,6 +21,16 @@ void egw_warn_ignored(Error *error, const char *who, int model, const EgwCoeff &
                       bool have_sigma, bool have_plastic);
 /* ranges that depend on more than one keyword (the damping value by its model, ...) */
 void egw_submodels_check(Error *error, const char *who, EgwSubmodels::Params &p);
+/* 'flow_pressure P' or 'yield_stress Y' (p_y = 1.6 Y) at arg[i] into c.flow_pressure and
+ * c.flow_keyword; the index after it, or -1 if it is neither. given: -1 before the first,
+ * then the keyword given (0, 1); the other one too, or a value that is not a finite
+ * number >= 0, is an ERROR naming the keyword. */
+int egw_flow_parse(Error *error, const char *who, int narg, char **arg, int i, EgwCoeff &c,
+                   int &given);
+/* an ERROR naming the keyword (flow_keyword: 0 flow_pressure, 1 yield_stress) when the
+ * contact's p_y > 0 is not below its E*; what: the contact, for the message */
+void egw_flow_check(Error *error, const char *who, const std::string &what,
+                    double flow_pressure, int flow_keyword, double E_star);
 }    // namespace LAMMPS_NS
 
 #endif

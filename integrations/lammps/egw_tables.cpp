@@ -18,8 +18,8 @@ using namespace LAMMPS_NS::EgwTables;
 
 bool HystKey::operator<(const HystKey &o) const
 {
-  return std::tie(model, mu, psi, K, rho, xmax, tol) <
-      std::tie(o.model, o.mu, o.psi, o.K, o.rho, o.xmax, o.tol);
+  return std::tie(model, mu, psi, K, rho, xmax, tol, flow_pressure) <
+      std::tie(o.model, o.mu, o.psi, o.K, o.rho, o.xmax, o.tol, o.flow_pressure);
 }
 
 bool SliceKey::operator<(const SliceKey &o) const
@@ -154,6 +154,11 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
     egw_params_default(&p);
     p.model = k.model, p.radius = 1, p.modulus = 1, p.sigma = 1, p.mu = k.mu;
     p.psi = k.psi, p.hardness_coeff = k.K, p.plastic_ratio = k.rho;
+    if (k.flow_pressure > 0) {    // Hertz + cap: only R, E*, p_y count (the rest default)
+      egw_params_default(&p);
+      p.model = EGW_MODEL_HERTZ, p.radius = 1, p.modulus = 1, p.sigma = 0;
+      p.flow_pressure = k.flow_pressure;
+    }
     egw_options o;
     egw_options_default(&o);
     if (n_threads > 0) o.n_threads = n_threads;

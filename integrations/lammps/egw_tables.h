@@ -29,6 +29,9 @@ struct HystKey {
   int model = 0;
   double mu = 0, psi = 0, K = 0, rho = 0;
   double xmax = 0, tol = 0;    // reach [sigma] and rel_tol
+  // > 0: Hertz with the flow-pressure cap (sigma 0, R = E* = 1, p_y = flow_pressure; the
+  // reach in units of length, i.e. of delta_y = (pi p_y/2)^2 for p_y = 2/pi)
+  double flow_pressure = 0;
   bool operator<(const HystKey &o) const;
 };
 

@@ -1,8 +1,8 @@
 /* fix wall/egw: walls with egw's rough contact law.
  *
  *   fix ID group wall/egw MODEL TOL E v nu v [wall_material own|contact] [sigma v] [mu v | summit_density v
- *       summit_radius v] [psi v] [K v] [plastic_ratio v] [overlap_max F] [temperature T]
- *       [<sub-models>]
+ *       summit_radius v] [psi v] [K v] [plastic_ratio v] [flow_pressure P | yield_stress Y]
+ *       [overlap_max F] [temperature T] [<sub-models>]
  *       xplane|yplane|zplane lo hi | zcylinder radius [wiggle dim A period] [shear dim v]
  *       [contacts]
  *   fix ID group wall/egw/region MODEL TOL <the same keywords> region-ID [contacts]
@@ -85,20 +85,35 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
     parse(narg, arg);
   time_origin = update->ntimestep;
 
-  int core = model == EGW_MODEL_EPGW ? EgwHistory::NHIST_EPGW : EgwHistory::NHIST_BASE;
-  hist_sub = wall.sub.needs_extra_history() ? core : -1;
-  nhist = core + (hist_sub >= 0 ? EgwSubmodels::NHIST_SUB : 0);
-  stride = wallstyle == REGION ? 1 + tmax * (1 + nhist) : nhist;
+  // the history holds the hysteresis states when a contact may have hysteresis: EP-GW, or
+  // a flow pressure of the wall or of a type known now (init() widens it if a type given
+  // later needs it)
+  bool hyst = model == EGW_MODEL_EPGW || wall.flow_pressure > 0;
+  if (auto p = dynamic_cast<PairEGW *>(force->pair_match("egw", 1)))
+    for (int t = 1; t <= atom->ntypes; t++)
+      hyst = hyst || (p->type_coeff(t) && p->type_coeff(t)->flow_pressure > 0);
 
   restart_peratom = 1;
   create_attribute = 1;
-  maxexchange = stride + 1;    // pack_exchange: the history and its cleared flag
   // fix wall/gran's columns; a heat model appends the heat into the atom (as granular's)
   ncols = wall.sub.heat != EgwSubmodels::HEAT_NONE ? 9 : 8;
   if (contacts) peratom_flag = 1, size_peratom_cols = ncols, peratom_freq = 1;
-  grow_arrays(atom->nmax);
+  set_layout(hyst ? EgwHistory::NHIST_EPGW : EgwHistory::NHIST_BASE);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
+}
+
+/* the per-atom history's layout for a contact history of core doubles (NHIST_BASE, or
+ * NHIST_EPGW with the hysteresis states) and the sub-models' after it; every atom's history
+ * starts afresh */
+void FixWallEGW::set_layout(int core)
+{
+  hist_sub = wall.sub.needs_extra_history() ? core : -1;
+  nhist = core + (hist_sub >= 0 ? EgwSubmodels::NHIST_SUB : 0);
+  stride = wallstyle == REGION ? 1 + tmax * (1 + nhist) : nhist;
+  maxexchange = stride + 1;    // pack_exchange: the history and its cleared flag
+  memory->destroy(history);
+  grow_arrays(atom->nmax);
   for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
 }
 
@@ -130,6 +145,7 @@ void FixWallEGW::parse(int narg, char **arg)
   tol = v;
   bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
        havebeta = false, haveplastic = false;
+  int flow_given = -1;
   int i = 5;
   auto number = [&](const std::string &key, int k) {
     if (k >= narg) error->all(FLERR, "{}: keyword '{}' needs a value", who, key);
@@ -142,6 +158,7 @@ void FixWallEGW::parse(int narg, char **arg)
     std::string key = arg[i];
     if (key == "xplane" || key == "yplane" || key == "zplane" || key == "zcylinder") break;
     int next = egw_submodels_parse(error, who, narg, arg, i, wall.sub);
+    if (next < 0) next = egw_flow_parse(error, who, narg, arg, i, wall, flow_given);
     if (next > 0) {
       i = next;
       continue;
@@ -373,6 +390,8 @@ void FixWallEGW::build_law(int t)
     L.G_star = wall.E / (4.0 * (2.0 - wall.nu) * (1.0 + wall.nu));
   }
   L.sub = wall.sub;
+  egw_flow_check(error, "Fix wall/egw", fmt::format("type {} against the wall", t),
+                 L.flow_pressure, L.flow_keyword, L.E_star);
   L.setup(model);
   double rhi = pair->type_radius_max(t), rlo = pair->type_radius_min(t);
   if (!(rhi > 0)) rhi = rlo = 1.0 / std::max(L.inv_sigma, 1e-300);
@@ -386,7 +405,7 @@ void FixWallEGW::build_law(int t)
     rlo = std::min(rlo, need_rlo[t]), rhi = std::max(rhi, need_rhi[t]);
   bool covered = built_rhi[t] > 0 && rlo >= built_rlo[t] && rhi <= built_rhi[t] &&
       law[t].kind == L.kind && law[t].E_star == L.E_star && law[t].sigma == L.sigma &&
-      built_model == model;
+      law[t].flow_pressure == L.flow_pressure && built_model == model;
   if (covered) return;
   law[t].release();
   law[t] = L;
@@ -426,6 +445,21 @@ void FixWallEGW::init()
   for (int t = 1; t <= n; t++)
     if (pair->type_coeff(t)) build_law(t);
   built_model = model;
+  // a type's flow pressure given after this fix: the histories must hold the states
+  bool hyst = false;
+  for (int t = 1; t <= n; t++)
+    hyst = hyst || law[t].kind == EgwLaw::HYST || law[t].kind == EgwLaw::HYST_MU ||
+        law[t].kind == EgwLaw::HYST_CAP;
+  if (hyst && nhist - (hist_sub >= 0 ? EgwSubmodels::NHIST_SUB : 0) < EgwHistory::NHIST_EPGW) {
+    int touching = 0, any = 0;
+    for (int i = 0; i < atom->nlocal; i++) touching = touching || !cleared[i];
+    MPI_Allreduce(&touching, &any, 1, MPI_INT, MPI_MAX, world);
+    if (any && comm->me == 0)
+      error->warning(FLERR, "Fix wall/egw {}: a type's flow pressure (given after the fix) "
+                            "gives its wall contacts hysteresis: every wall contact's history "
+                            "starts afresh", id);
+    set_layout(EgwHistory::NHIST_EPGW);
+  }
   if (wall.sub.heat != EgwSubmodels::HEAT_NONE && (!atom->temperature_flag || !atom->heatflow_flag))
     error->all(FLERR, "Fix wall/egw: a heat model needs atoms with temperature and heatflow "
                       "(fix property/atom temperature heatflow)");

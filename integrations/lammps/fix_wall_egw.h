@@ -81,6 +81,7 @@ class FixWallEGW : public Fix {
   class PairEGW *pair;
 
   void parse(int, char **);
+  void set_layout(int core);
   void build_law(int type);
   void store_contact(int i, const double *x, const double *n, double dist,
                      const double *f, double radi, double dq);

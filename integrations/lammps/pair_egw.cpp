@@ -58,6 +58,7 @@ PairEGW::PairEGW(LAMMPS *lmp) : Pair(lmp)
   nhist = NHIST_BASE;
   hist_sub = -1;
   heat_any = false;
+  hyst_any = false;
   tol = 1e-4;
   rmin_user = rmax_user = 0.0;
   overlap_max = 1.0;    // granular decks reach 0.57 R in a pour
@@ -247,7 +248,8 @@ void PairEGW::init_style()
       // the contacts' reach from the energy the tail holds (cheap: every run)
       double tail_old = L.tail;
       L.set_reach(tail_energy, tol, built_rhi[i][j]);
-      if (comm->me == 0 && L.kind != EgwLaw::HERTZ && (!covered || L.tail != tail_old))
+      if (comm->me == 0 && L.kind != EgwLaw::HERTZ && L.kind != EgwLaw::HYST_CAP &&
+          (!covered || L.tail != tail_old))
         utils::logmesg(lmp, "pair egw: types {} {}: contacts reach delta_t = {:.6g} ({:.4g} "
                             "sigma; the tables' cut-off {:.4g} sigma), the tail's loading work "
                             "below it {:.3g}{}\n", i, j, -L.tail, L.xt, L.xc, L.tail_work,
@@ -273,6 +275,11 @@ void PairEGW::init_style()
                         "it to each E*) or use one file per E*",
                  A.law_file, a.first, a.second, A.E_star, b.first, b.second, B.E_star);
     }
+  hyst_any = false;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      hyst_any = hyst_any || law[i][j].kind == EgwLaw::HYST ||
+          law[i][j].kind == EgwLaw::HYST_MU || law[i][j].kind == EgwLaw::HYST_CAP;
   law_of.assign((n + 1) * (n + 1), nullptr);
   tail_of.assign((n + 1) * (n + 1), 0.0);
   for (int i = 1; i <= n; i++)
@@ -412,7 +419,7 @@ void PairEGW::compute(int eflag, int vflag)
   int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   double ncontact = 0.0;
-  const bool cached = model == EGW_MODEL_EPGW;    // EP-GW: hysteresis states per list entry
+  const bool cached = hyst_any;    // EP-GW, the cap: hysteresis states per list entry
   if (cached) hyst_cache_rows();    // a pair with a ghost under newton off is counted by both ranks
 
   const int nt1 = atom->ntypes + 1;
@@ -582,7 +589,9 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   for (int d = 0; d < 3; d++) svector[9 + d] = dx[d];
   svector[12] = delta;
   bool hyst = L.kind == EgwLaw::HYST || L.kind == EgwLaw::HYST_MU;
-  svector[13] = hist[EgwHistory::DELTA_MAX] * (hyst ? L.sigma : 1.0);    // EP-GW: in sigma
+  // EP-GW's delta_max is kept in units of sigma, the cap's in units of delta_y = cap_c R
+  double unit = hyst ? L.sigma : L.kind == EgwLaw::HYST_CAP ? L.cap_c * R : 1.0;
+  svector[13] = hist[EgwHistory::DELTA_MAX] * unit;
   svector[14] = S;
   svector[15] = Fn;
   svector[16] = c.Fdamp;

@@ -51,6 +51,7 @@ class PairEGW : public Pair {
   int nhist;            // doubles of history per contact (egw_history.h)
   int hist_sub;         // where the sub-models' history starts (-1: none)
   bool heat_any;        // some type pair has a heat model
+  bool hyst_any;        // some type pair's law has hysteresis (EP-GW, the flow-pressure cap)
   double tol;           // table tolerance
   double rmin_user, rmax_user, overlap_max;
   double tail_energy;   // reference energy of the tail's reach (0: the tables' cut-off)

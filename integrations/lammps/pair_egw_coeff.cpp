@@ -202,6 +202,44 @@ int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char
   return -1;
 }
 
+/* 'flow_pressure P' or 'yield_stress Y' (p_y = 1.6 Y, doc/theory.md section 12) at
+ * arg[i] into c: the index after it, -1 if arg[i] is neither. Refused: a value that is not
+ * a finite number >= 0, and both keywords for one body. who: as egw_submodels_parse. */
+int LAMMPS_NS::egw_flow_parse(Error *error, const char *who, int narg, char **arg, int i,
+                              EgwCoeff &c, int &given)
+{
+  std::string key = arg[i];
+  if (key != "flow_pressure" && key != "yield_stress") return -1;
+  if (i + 1 >= narg) error->all(FLERR, "{}: keyword '{}' needs a value", who, key);
+  int kw = key == "yield_stress";
+  if (given >= 0 && given != kw)
+    error->all(FLERR, "{}: flow_pressure and yield_stress together: give one (yield_stress Y "
+                      "is flow_pressure 1.6 Y)", who);
+  double v;
+  if (!egw_parse_number(arg[i + 1], v))
+    error->all(FLERR, "{}: {} = '{}': not a finite number", who, key, arg[i + 1]);
+  if (v < 0)
+    error->all(FLERR, "{}: {} = {}: must be >= 0 (a {} [pressure]; 0: no bulk yield)", who, key,
+               arg[i + 1], kw ? "yield stress" : "flow pressure");
+  given = kw;
+  c.flow_keyword = kw;
+  c.flow_pressure = kw ? 1.6 * v : v;
+  return i + 2;
+}
+
+/* the contact's p_y below its E*: an ERROR naming the keyword that gave it */
+void LAMMPS_NS::egw_flow_check(Error *error, const char *who, const std::string &what,
+                               double flow_pressure, int flow_keyword, double E_star)
+{
+  if (!(flow_pressure > 0) || flow_pressure < E_star) return;
+  if (flow_keyword)
+    error->all(FLERR, "{}: yield_stress = {} (p_y = 1.6 Y = {}) for {}: p_y must be below the "
+                      "contact's E* = {} (the cap is a small-strain model)", who,
+               flow_pressure / 1.6, flow_pressure, what, E_star);
+  error->all(FLERR, "{}: flow_pressure = {} for {}: must be below the contact's E* = {} (the "
+                    "cap is a small-strain model)", who, flow_pressure, what, E_star);
+}
+
 /* keywords the model ignores: a WARNING naming them (as Python's egw warns) */
 void LAMMPS_NS::egw_warn_ignored(Error *error, const char *who, int model, const EgwCoeff &c,
                                  bool have_sigma, bool have_plastic)
@@ -238,6 +276,7 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
 {
   bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
        havebeta = false, haveplastic = false, havelaw = false;
+  int flow_given = -1;
   c = Coeff();
   static const char *granular_normal[] = {"hooke", "hertz", "hertz/material", "dmt", "jkr",
                                           "mdr"};
@@ -249,6 +288,7 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
                           "egw's normal law takes keywords: E v nu v sigma v mu v ... (damping, "
                           "tangential, rolling, twisting and heat as in granular)", key);
     int next = egw_submodels_parse(error, "Pair coeff egw", narg, arg, i, c.sub);
+    if (next < 0) next = egw_flow_parse(error, "Pair coeff egw", narg, arg, i, c, flow_given);
     if (next > 0) {
       i = next;
       continue;
@@ -317,6 +357,11 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
       error->all(FLERR, "Pair coeff egw: law {} with '{}': the law file is the contact's rough "
                         "surface (no sigma, mu, summit data, psi, K or plastic_ratio with it)",
                  c.law_file, other);
+    if (flow_given >= 0 && c.flow_pressure > 0)
+      error->all(FLERR, "Pair coeff egw: law {} with '{}': a rough-flat law with the "
+                        "flow-pressure cap is not available (egw's cap serves smooth spheres: "
+                        "sigma 0 or model Hertz)", c.law_file,
+                 flow_given ? "yield_stress" : "flow_pressure");
     check_law_model(c.law_file);
     c.set = 1;
     return;
@@ -332,6 +377,9 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
                haveeta ? "summit_density" : "summit_radius",
                haveeta ? "summit_radius" : "summit_density");
   c.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
+  // like types: E* = E/(2(1-nu^2)) (unlike types and walls are checked when mixed)
+  egw_flow_check(error, "Pair coeff egw", fmt::format("types {} {}", arg[0], arg[1]),
+                 c.flow_pressure, c.flow_keyword, c.E / (2.0 * (1.0 - c.nu * c.nu)));
   if (comm->me == 0) egw_warn_ignored(error, "Pair coeff egw", model, c, havesig, haveplastic);
   if (model != EGW_MODEL_HERTZ && c.sigma > 0 && c.mu_mode == 0)
     error->all(FLERR, "Pair coeff egw: keyword 'mu' (or 'summit_density' and "
@@ -416,6 +464,8 @@ void PairEGW::make_law(int i, int j)
     L.sub = mix_submodels(i, j, a.sub, b.sub);
   }
   if (!L.law_file.empty()) check_law_model(L.law_file.c_str());
+  egw_flow_check(error, "Pair egw", fmt::format("types {} {}", i, j), L.flow_pressure,
+                 L.flow_keyword, L.E_star);
   L.setup(model);
   // keep the tables of an unchanged law
   EgwLaw &old = law[i][j];
@@ -423,6 +473,7 @@ void PairEGW::make_law(int i, int j)
   bool same = old.E_star == L.E_star && (old.sigma == L.sigma || L.kind == EgwLaw::FLAT) &&
       old.mu_mode == L.mu_mode &&
       old.mu == L.mu && old.psi == L.psi && old.K == L.K && old.rho == L.rho &&
+      old.flow_pressure == L.flow_pressure &&
       old.kind == L.kind && old.prm.model == L.prm.model && old.law_file == L.law_file &&
       built_rhi[i][j] > 0;
   if (same) {
