@@ -6,7 +6,7 @@ module test_cap_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int
    use egw_kinds, only: dp, pi
    use test_compare, only: same => same_bits
-   use egw_status, only: egw_error, egw_invalid_parameter
+   use egw_status, only: egw_error, egw_invalid_parameter, egw_invalid_argument
    use egw_params, only: contact_params, model_hertz, model_egw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
       & load_history, solve_unload
@@ -49,7 +49,7 @@ contains
          & new_unittest("energy of a cycle = closed integral of P d delta", test_cycle), &
          & new_unittest("binary and CSV round trip; version 2 only with the cap", &
          & test_formats), &
-         & new_unittest("rough model with flow_pressure refused", test_rough_refused), &
+         & new_unittest("refused: rough model, beyond 1000 delta_y", test_rough_refused), &
          & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop) &
          & ]
@@ -299,7 +299,8 @@ contains
    end subroutine test_formats
 
    !> Rough model + cap: refused with a message naming flow_pressure (rough + cap tables
-   !> are not built yet; validate_params or the build says so).
+   !> are not built yet; validate_params or the build says so); a cap table beyond 1000
+   !> delta_y: refused naming delta_max.
    subroutine test_rough_refused(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t
@@ -311,6 +312,13 @@ contains
       if (allocated(error)) return
       call check(error, err%stat == egw_invalid_parameter .and. &
          & index(err%message, "flow_pressure") > 0, "message: "//err%message)
+      if (allocated(error)) return
+      ! beyond 1000 delta_y (a/R ~ 70 p_y/E*: no sphere) a cap table ends
+      call build_hysteresis(capped, solver_options(), 0.0_dp, 2000*delta_y(), tol, t, err)
+      call check(error, allocated(err), "a table to 2000 delta_y built")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. &
+         & index(err%message, "delta_max") > 0, "message: "//err%message)
    end subroutine test_rough_refused
 
    !> egw_time_step at 60 v_y: omega**2 = K/m* with K the elastic unloading stiffness from
