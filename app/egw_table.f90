@@ -95,6 +95,8 @@ program egw_table_app
          case ("--delta-min-sigma"); ov%delta_min_sigma = real_value(arg, val)
          case ("--delta-max-sigma"); ov%delta_max_sigma = real_value(arg, val)
          case ("--tol"); ov%tol = real_value(arg, val)
+         case ("--flow-pressure"); ov%flow_pressure = real_value(arg, val)
+         case ("--yield-stress"); ov%yield_stress = real_value(arg, val)
          case ("--lammps-delta-max"); lammps_reach = real_value(arg, val)
          case default
             call die("unknown option "//arg//" (see --help)")
@@ -152,12 +154,20 @@ program egw_table_app
    write (output_unit, '(a)') "model: "//choice_name(choice%kind)//" ("// &
       & model_name(merge(0, input%model, choice%kind == choice_hertz))//")"
    write (output_unit, '(a)') "  why: "//choice%reason
+   if (input%flow_pressure > 0.0_dp) write (output_unit, '(a)') "  note: flow_pressure = "// &
+      & num(input%flow_pressure)//": Hertz holds up to first yield only, (pi p_y/(2 E*))^2 R;"// &
+      & " the hysteresis table(s) hold the cap's loading and unloading beyond it"
 
    n_written = 0
    ! every output: at most 10 tables and curves, and a hysteresis table in two formats
    ! per parameter set
    allocate (character(len=1024) :: written(10 + 2*max_types*(max_types + 1)/2))
-   if (.not. choose_only .and. choice%kind /= choice_hertz) then
+   if (.not. choose_only .and. choice%kind == choice_hertz .and. &
+      & input%flow_pressure > 0.0_dp) then
+      ! smooth spheres with the flow-pressure cap: no force table (the closed form holds
+      ! up to first yield only), their hysteresis tables
+      call write_all()
+   else if (.not. choose_only .and. choice%kind /= choice_hertz) then
       call progress("building the "//choice_name(choice%kind)//" at tol = "// &
          & num(input%tol)//" (full solves, OpenMP over points) ...")
       if (quiet) then
@@ -237,17 +247,20 @@ contains
       end do
    end subroutine write_all
 
-   !> EP-GW with plastic summits: the hysteresis table (loading, unloading, reloading) of
-   !> every parameter set in the wanted egw formats, built to the scene's tolerance, for
-   !> DEM codes that carry a per-contact history. A continuous radius or sigma range has
-   !> no finite set of them (only discrete particle types do).
+   !> EP-GW with plastic summits, or smooth spheres with the flow-pressure cap: the
+   !> hysteresis table (loading, unloading, reloading) of every parameter set in the
+   !> wanted egw formats, built to the scene's tolerance, for DEM codes that carry a
+   !> per-contact history. A continuous radius or sigma range has no finite set of them
+   !> (only discrete particle types do).
    subroutine put_hysteresis()
       type(hysteresis_table) :: h
       character(len=:), allocatable :: base
       integer :: i, n_sets
-      if (.not. (input%model == model_epgw .and. input%psi > 0.0_dp)) return
+      if (.not. ((input%model == model_epgw .and. input%psi > 0.0_dp) .or. &
+         & input%flow_pressure > 0.0_dp)) return
       if (.not. (want(format_csv) .or. want(format_binary))) return
-      if (tables%kind == choice_universal .and. input%n_types == 0) then
+      if (input%n_types == 0 .and. (tables%kind == choice_universal .or. &
+         & input%flow_pressure > 0.0_dp)) then
          hysteresis_note = "not written: a radius or sigma range has no finite set of "// &
             & "parameter sets (list the particle types with --radii, or build one with "// &
             & "egw_hysteresis_build)"
@@ -255,7 +268,8 @@ contains
       end if
       n_sets = size(scene%sets)
       do i = 1, n_sets
-         call progress("building the EP-GW hysteresis table of parameter set "// &
+         call progress("building the "//either(input%flow_pressure > 0.0_dp, &
+            & "Hertz + cap", "EP-GW")//" hysteresis table of parameter set "// &
             & int_str(i)//" at tol = "//num(input%tol)//" ...")
          if (quiet) then
             call build_hysteresis(scene%sets(i), options, scene%delta_min(i), &
@@ -424,6 +438,8 @@ contains
          line = "  sigma in ["//num(input%sigma_min)//", "// &
             & num(input%sigma_max)//"]"
       end if
+      if (input%flow_pressure > 0.0_dp) line = line//", flow_pressure = "// &
+         & num(input%flow_pressure)
       write (output_unit, '(a)') line//", overlaps ["//num(input%delta_min)//", "// &
          & num(input%delta_max)//"]"//either(input%delta_in_sigma == 1, &
          & " sigma", "")//", tol = "//num(input%tol)
@@ -472,7 +488,9 @@ contains
          & "  WARNING           EP-GW: the LAMMPS and CalculiX files carry the loading"// &
          & " curve only (no unloading hysteresis, no plastic dissipation)"
       if (n_hysteresis > 0) write (output_unit, '(a)') "  hysteresis        "// &
-         & int_str(n_hysteresis)//" EP-GW table(s) scene_hysteresis*: loading, unloading"// &
+         & int_str(n_hysteresis)//either(input%flow_pressure > 0.0_dp, &
+         & " Hertz + cap (flow_pressure "//num(input%flow_pressure)//")", " EP-GW")// &
+         & " table(s) scene_hysteresis*: loading, unloading"// &
          & " and reloading over (delta, delta_max) for a per-contact history"// &
          & " (egw_hysteresis_read, egw_hysteresis_eval)"
       if (allocated(hysteresis_note)) write (output_unit, '(a)') &
@@ -608,6 +626,9 @@ contains
          & "  --psi PSI               plasticity index (EP-GW)", &
          & "  --K K                   ZMC hardness coefficient in (0, 1) (EP-GW)", &
          & "  --plastic-ratio RHO     ZMC delta_p/delta_ep > 1 (EP-GW)", &
+         & "  --flow-pressure PY      bulk flow pressure p_y [pressure] of the cap (Hertz or", &
+         & "                          sigma = 0): writes the hysteresis table(s)", &
+         & "  --yield-stress Y        the same from the yield stress: p_y = 1.6 Y", &
          & "  --delta-min D, --delta-max D            overlap range [length]", &
          & "  --delta-min-sigma X, --delta-max-sigma X  overlap range in units of sigma", &
          & "  --tol TOL               force tolerance (relative), 1e-8 .. 0.1", &
@@ -648,7 +669,8 @@ contains
          & "--modulus", "--poisson", "--effective-modulus", "--sigma", "--sigma-range", &
          & "--mu", "--summit-density", "--summit-radius", "--psi", "--K", "--k", &
          & "--plastic-ratio", "--delta-min", "--delta-max", "--delta-min-sigma", &
-         & "--delta-max-sigma", "--tol", "--lammps-delta-max")
+         & "--delta-max-sigma", "--tol", "--lammps-delta-max", "--flow-pressure", &
+         & "--yield-stress")
          takes_value = .true.
       case default
          takes_value = .false.

@@ -566,7 +566,9 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
  * stiffness may be NULL. A state above the table's delta_max: EGW_OUT_OF_RANGE with the
  * values written (the last unloading curve, the loading table's deep-overlap asymptote).
  * Below the loading table's cut-off: 0 (a turning point at or below it unloads on the
- * loading curve, so 0 there too).
+ * loading curve, so 0 there too). With the flow-pressure cap a turning point at or below
+ * first yield delta_y unloads on the loading curve (Hertz), one above it gives 0 below its
+ * residual overlap.
  * EGW_INVALID_ARGUMENT for NaN delta or a NaN state (nothing changed);
  * EGW_NULL_POINTER for h or delta_max_state. */
 int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,

@@ -6,7 +6,7 @@ module test_cap_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int
    use egw_kinds, only: dp, pi
    use test_compare, only: same => same_bits
-   use egw_status, only: egw_error, egw_invalid_parameter
+   use egw_status, only: egw_error, egw_invalid_parameter, egw_invalid_argument
    use egw_params, only: contact_params, model_hertz, model_egw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
       & load_history, solve_unload
@@ -15,7 +15,7 @@ module test_cap_hysteresis
    use egw_rough_sphere, only: cap_solve_options
    use egw_table, only: table_eval, table_energy
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
-      & hysteresis_energy
+      & hysteresis_energy, hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary
    use egw_impact, only: restitution, time_step
@@ -49,7 +49,7 @@ contains
          & new_unittest("energy of a cycle = closed integral of P d delta", test_cycle), &
          & new_unittest("binary and CSV round trip; version 2 only with the cap", &
          & test_formats), &
-         & new_unittest("rough model with flow_pressure refused", test_rough_refused), &
+         & new_unittest("refused: rough model, beyond 1000 delta_y", test_rough_refused), &
          & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop) &
          & ]
@@ -80,15 +80,16 @@ contains
    !> The table's force (loading, then unloading below turning points m from 1.3 to 9.6
    !> delta_y, nodes and between) against solve_contact and solve_unload: within rel_tol of
    !> the force at the turning point (the table's definition, doc/theory.md §8), zero
-   !> where the solve is zero.
+   !> where the solve is zero; hysteresis_eval_state along the same path gives the same
+   !> force to 1e-12 of P(m) (its pieces are the same cubics re-expanded, egw.h).
    subroutine test_solves(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: turning(4) = [1.3_dp, 2.7_dp, 5.1_dp, 9.6_dp]
       type(egw_error), allocatable :: err
       type(loading_history) :: hist
       type(solve_result) :: top, res
-      real(dp) :: m, d, f, k, state, worst
-      integer :: i, j, stat
+      real(dp) :: m, d, f, k, state, worst, st(hysteresis_state_size), fs, ks
+      integer :: i, j, stat, stat_s
       call get_table(error)
       if (allocated(error)) return
       worst = 0
@@ -98,7 +99,9 @@ contains
          call check(error, .not. allocated(err), "load_history")
          if (allocated(error)) return
          state = -huge(1.0_dp)
+         call hysteresis_state_init(st)
          call hysteresis_eval(cap_table, m, state, f, k, stat)
+         call hysteresis_eval_state(cap_table, m, st, fs, ks, stat_s)
          call check(error, stat == 0 .and. abs(f - top%force) <= tol*top%force, &
             & "loading at m = "//str(m)//": "//str(f)//" solve "//str(top%force))
          if (allocated(error)) return
@@ -109,6 +112,10 @@ contains
             if (allocated(error)) return
             call hysteresis_eval(cap_table, d, state, f, k, stat)
             call check(error, stat == 0 .and. state == m, "state changed")
+            if (allocated(error)) return
+            call hysteresis_eval_state(cap_table, d, st, fs, ks, stat_s)
+            call check(error, stat_s == 0 .and. abs(fs - f) <= 1.0e-12_dp*top%force, &
+               & "state form "//str(fs)//" plain "//str(f))
             if (allocated(error)) return
             worst = max(worst, abs(f - res%force)/top%force)
             call check(error, abs(f - res%force) <= tol*top%force, "m = "//str(m)// &
@@ -292,7 +299,8 @@ contains
    end subroutine test_formats
 
    !> Rough model + cap: refused with a message naming flow_pressure (rough + cap tables
-   !> are not built yet; validate_params or the build says so).
+   !> are not built yet; validate_params or the build says so); a cap table beyond 1000
+   !> delta_y: refused naming delta_max.
    subroutine test_rough_refused(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t
@@ -304,6 +312,13 @@ contains
       if (allocated(error)) return
       call check(error, err%stat == egw_invalid_parameter .and. &
          & index(err%message, "flow_pressure") > 0, "message: "//err%message)
+      if (allocated(error)) return
+      ! beyond 1000 delta_y (a/R ~ 70 p_y/E*: no sphere) a cap table ends
+      call build_hysteresis(capped, solver_options(), 0.0_dp, 2000*delta_y(), tol, t, err)
+      call check(error, allocated(err), "a table to 2000 delta_y built")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. &
+         & index(err%message, "delta_max") > 0, "message: "//err%message)
    end subroutine test_rough_refused
 
    !> egw_time_step at 60 v_y: omega**2 = K/m* with K the elastic unloading stiffness from

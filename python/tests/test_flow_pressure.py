@@ -69,3 +69,21 @@ def test_restitution_reference():
 def test_tables_refused():
     with pytest.raises(egw.InvalidArgumentError, match="flow_pressure"):
         egw.Table.build(capped(), delta_min=-1.0, delta_max=5.0, rel_tol=1e-3)
+
+
+def test_hysteresis_table_with_the_cap():
+    # Hertz + cap (R = E* = 1, p_y = 2/pi: delta_y = 1): a 1e-3 table to 6 delta_y against
+    # egw.solve_unload from 4.5 delta_y (between turning points) within rel_tol of the force
+    # at the turning point (the table's definition), no force below the residual overlap,
+    # unloading below delta_y retraces the loading curve; it reads back as built
+    h = egw.HysteresisTable.build(capped(), 0.0, 6.0, rel_tol=1e-3)
+    m = 4.5
+    top = egw.solve(capped(), m).force
+    d = np.linspace(0.05, 1.0, 20) * m
+    f, _ = h.eval(d, np.full(d.size, m))
+    ref = np.array([egw.solve_unload(capped(), x, m).force for x in d])
+    assert np.max(np.abs(f - ref)) <= 1e-3 * top
+    assert f[0] == 0.0 and ref[0] == 0.0 and f[-1] > 0.9 * top
+    below, _ = h.eval([0.3, 0.6], np.full(2, 0.9))
+    loading, _ = h.eval([0.3, 0.6], egw.HysteresisTable.new_state(2))
+    np.testing.assert_array_equal(below, loading)

@@ -466,9 +466,10 @@ class HysteresisInfo:
 
 
 class HysteresisTable(_Handle):
-    """EP-GW loading/unloading/reloading force over (delta, delta_max) for one parameter
-    set (egw_hysteresis_build). The history (the largest overlap so far) belongs to the
-    caller: a new contact starts from -inf (:meth:`new_state`).
+    """EP-GW (or Hertz + flow-pressure cap) loading/unloading/reloading force over
+    (delta, delta_max) for one parameter set (egw_hysteresis_build). The history (the
+    largest overlap so far) belongs to the caller: a new contact starts from -inf
+    (:meth:`new_state`).
 
     Made by :meth:`build` or :meth:`read`, never directly; released by :meth:`close`,
     a ``with`` block or the garbage collector.
@@ -488,7 +489,9 @@ class HysteresisTable(_Handle):
         Parameters
         ----------
         params : Params
-            Scalar fields, model EP-GW (other models give a reversible table).
+            Scalar fields, model EP-GW, or Hertz (or sigma = 0) with flow_pressure > 0
+            (the flow-pressure cap: unloading from the deformed shape, doc/theory.md
+            section 12); other models give a reversible table.
         delta_min, delta_max : float
             Overlap range [length], sign as in :func:`egw.solve`.
         rel_tol : float

@@ -6,7 +6,7 @@ module egw_capi_scene
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok
+   use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, fatal_error
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table
    use egw_table_universal, only: universal_table
@@ -75,6 +75,12 @@ contains
       input = from_c(cs)
       call c_string(path, fpath)  ! its full length (egw_capi_utils)
       call read_scene_file(fpath, input, error)
+      if (.not. allocated(error) .and. input%flow_pressure /= 0.0_dp) then
+         ! the C struct has no field for it: refused rather than dropped
+         call fatal_error(error, egw_invalid_parameter, "path = "//fpath// &
+            & ": flow_pressure (or yield_stress) is not in the C struct egw_scene; set "// &
+            & "egw_params.flow_pressure and build with egw_hysteresis_build (egw-table reads it)")
+      end if
       stat = settle(error)
       if (stat == egw_ok) cs = to_c(input)
    end function egw_scene_read

@@ -65,6 +65,11 @@ module egw_scene
       !> flat law; Fortran only: not in the C struct). Its caller reads the law and gives
       !> sigma = the law's length (egw-table does); blank: none.
       character(len=512) :: flat_law = ""
+      !> The bulk flow pressure p_y of the flow-pressure cap (doc/theory.md §12; 0: none;
+      !> Fortran only, not in the C struct: egw_scene_read refuses a file that sets it).
+      !> Smooth spheres only (model Hertz or sigma = 0): egw-table writes their hysteresis
+      !> tables. From yield_stress Y: p_y = 1.6 Y.
+      real(dp) :: flow_pressure = 0.0_dp
    end type scene_input
 
    !> "Not given" marker of scene_overrides (a value no scene uses).
@@ -86,7 +91,13 @@ module egw_scene
       real(dp) :: delta_min_sigma = unset, delta_max_sigma = unset
       real(dp) :: tol = unset
       character(len=512) :: flat_law = ""   !< a rough-flat law file (blank: not given)
+      !> the cap's p_y, or the yield stress Y it follows from (p_y = 1.6 Y): one of them
+      real(dp) :: flow_pressure = unset, yield_stress = unset
    end type scene_overrides
+
+   !> p_y = flow_pressure_per_yield_stress Y: the Hertz peak pressure at first yield of
+   !> the sphere (Johnson 1985, §6.2; doc/theory.md §12 says why egw takes 1.6).
+   real(dp), parameter, public :: flow_pressure_per_yield_stress = 1.6_dp
 
    !> A validated scene resolved into the distinct parameter sets of its pairs (for a
    !> continuous radius range: the pairs of the range's ends, whose R and mu bound those
@@ -274,7 +285,8 @@ contains
    !> default scene). Variables (doc/scenes.md): model, radius(1:8) or radius_min and
    !> radius_max, modulus(1:8), poisson(1:8) or effective_modulus, sigma or sigma_min and
    !> sigma_max, mu or summit_density and summit_radius, psi, K, plastic_ratio,
-   !> delta_min and delta_max or delta_min_sigma and delta_max_sigma, tol. The result is
+   !> delta_min and delta_max or delta_min_sigma and delta_max_sigma, tol, flat_law,
+   !> flow_pressure or yield_stress (smooth spheres; doc/theory.md §12). The result is
    !> validated; on any error input is unchanged and the message names the variable.
    !> Thread-safe, also on one file from many threads at once: the file is read whole
    !> through C stdio (egw_io) and the namelist parsed from memory (a Fortran open of a
@@ -359,12 +371,12 @@ contains
       real(dp) :: radius(max_types), radius_min, radius_max, modulus(max_types), &
          & poisson(max_types), effective_modulus, sigma, sigma_min, sigma_max, mu, &
          & summit_density, summit_radius, psi, k, plastic_ratio, delta_min, delta_max, &
-         & delta_min_sigma, delta_max_sigma, tol
+         & delta_min_sigma, delta_max_sigma, tol, flow_pressure, yield_stress
       character(len=512) :: flat_law
       namelist /scene/ model, radius, radius_min, radius_max, modulus, poisson, &
          & effective_modulus, sigma, sigma_min, sigma_max, mu, summit_density, summit_radius, &
          & psi, k, plastic_ratio, delta_min, delta_max, delta_min_sigma, delta_max_sigma, tol, &
-         & flat_law
+         & flat_law, flow_pressure, yield_stress
       integer :: stat
       character(len=512) :: msg
 
@@ -378,6 +390,7 @@ contains
       delta_min_sigma = ov%delta_min_sigma; delta_max_sigma = ov%delta_max_sigma
       tol = ov%tol
       flat_law = ov%flat_law
+      flow_pressure = ov%flow_pressure; yield_stress = ov%yield_stress
 
       msg = ""
       ! gfortran 12 reads an internal file without the group as a success: look first
@@ -397,7 +410,7 @@ contains
          & summit_radius=summit_radius, psi=psi, hardness_coeff=k, &
          & plastic_ratio=plastic_ratio, delta_min=delta_min, delta_max=delta_max, &
          & delta_min_sigma=delta_min_sigma, delta_max_sigma=delta_max_sigma, tol=tol, &
-         & flat_law=flat_law)
+         & flat_law=flat_law, flow_pressure=flow_pressure, yield_stress=yield_stress)
       call apply_scene_overrides(input, ov, error)
 
    contains
@@ -532,11 +545,35 @@ contains
          s%flat_law = ov%flat_law
          s%model = model_flat_law
       end if
+      call override_cap(s, ov, error)
+      if (allocated(error)) return
 
       call validate_scene_input(s, error)
       if (allocated(error)) return
       input = s
    end subroutine apply_scene_overrides
+
+   !> The flow-pressure cap of ov, if given: flow_pressure itself, or yield_stress Y
+   !> (p_y = 1.6 Y; doc/theory.md §12), not both.
+   pure subroutine override_cap(s, ov, error)
+      type(scene_input), intent(inout) :: s
+      type(scene_overrides), intent(in) :: ov
+      type(egw_error), allocatable, intent(out) :: error
+      if (given(ov%flow_pressure) .and. given(ov%yield_stress)) then
+         call fatal_error(error, egw_invalid_parameter, "flow_pressure and yield_stress: "// &
+            & "give one (flow_pressure = 1.6 yield_stress, doc/theory.md section 12)")
+         return
+      end if
+      if (given(ov%flow_pressure)) s%flow_pressure = ov%flow_pressure
+      if (given(ov%yield_stress)) then
+         if (.not. positive(ov%yield_stress)) then
+            call bad(error, "yield_stress", ov%yield_stress, "must be finite and > 0 "// &
+               & "(flow_pressure = 1.6 yield_stress; flow_pressure = 0 for no bulk yield)")
+            return
+         end if
+         s%flow_pressure = flow_pressure_per_yield_stress*ov%yield_stress
+      end if
+   end subroutine override_cap
 
    !> The particles of ov, if given: a list of the types' radii or a radius range.
    pure subroutine override_radii(s, ov, error)
@@ -728,6 +765,8 @@ contains
       if (allocated(error)) return
       call check_overlaps(s, error)
       if (allocated(error)) return
+      call check_cap(s, error)
+      if (allocated(error)) return
       if (.not. (s%tol >= tol_min .and. s%tol <= tol_max)) then
          call bad(error, "tol", s%tol, "must lie in ["//format_real(tol_min)//", "// &
             & format_real(tol_max)//"]")
@@ -853,6 +892,24 @@ contains
       end if
    end subroutine check_summit_law
 
+   !> validate_scene_input: the flow-pressure cap, 0 or > 0 on smooth spheres (model Hertz
+   !> or sigma = 0; each pair's p_y < E* is checked with its parameters).
+   pure subroutine check_cap(s, error)
+      type(scene_input), intent(in) :: s
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. (ieee_is_finite(s%flow_pressure) .and. s%flow_pressure >= 0.0_dp)) then
+         call bad(error, "flow_pressure", s%flow_pressure, "must be finite and >= 0 "// &
+            & "(0: no bulk yield)")
+         return
+      end if
+      if (s%flow_pressure > 0.0_dp .and. s%model /= model_hertz .and. &
+         & s%sigma_max > 0.0_dp) then
+         call bad(error, "flow_pressure", s%flow_pressure, "the flow-pressure cap with a "// &
+            & "rough model (sigma > 0) is not available yet in scenes (Hertz + cap is: "// &
+            & "model = 'Hertz' or sigma = 0)")
+      end if
+   end subroutine check_cap
+
    !> validate_scene_input: the overlap range and its unit (length or sigma).
    pure subroutine check_overlaps(s, error)
       type(scene_input), intent(in) :: s
@@ -927,7 +984,8 @@ contains
             do is = 1, nsig
                p = contact_params(model=input%model, radius=r, modulus=e_star, &
                   & sigma=sig(is), mu=1.0_dp, psi=input%psi, &
-                  & hardness_coeff=input%hardness_coeff, plastic_ratio=input%plastic_ratio)
+                  & hardness_coeff=input%hardness_coeff, plastic_ratio=input%plastic_ratio, &
+                  & flow_pressure=input%flow_pressure)
                ! (mu stays 1 for smooth spheres and Hertz scenes without roughness data)
                if (input%mu > 0.0_dp) then
                   p%mu = input%mu

@@ -14,6 +14,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
    integer, parameter :: max_s_nodes = 400, max_m_nodes = build_m_node_limit
+   !> The deepest turning point of a Hertz + cap table, in units of first yield delta_y.
+   real(dp), parameter :: max_cap_range = 1000.0_dp
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
@@ -60,6 +62,14 @@ contains
          call fatal_error(error, egw_invalid_argument, "delta_min, delta_max = "// &
             & format_real(delta_min)//", "//format_real(delta_max)// &
             & ": need finite delta_min < delta_max")
+         return
+      end if
+      if (params%flow_pressure > 0.0_dp .and. delta_max > max_cap_range*first_yield(params)) then
+         ! (its builds then take many minutes: the cap solver's force is a sawtooth there)
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max)// &
+            & ": above 1000 delta_y (first yield delta_y = "//format_real(first_yield(params))// &
+            & "), where a Hertz + cap hysteresis table ends: a/R is ~70 p_y/E* there, far "// &
+            & "beyond a half-space (doc/theory.md section 12)")
          return
       end if
       if (params%flow_pressure > 0.0_dp) then
