@@ -28,6 +28,7 @@ contains
          & new_unittest("overrides: invalid leaves the scene unchanged", test_overrides), &
          & new_unittest("pairs: radii, materials, mu from summits", test_pairs), &
          & new_unittest("smooth scene: Hertz exact", test_smooth), &
+         & new_unittest("smooth scene with the cap: first yield decides", test_smooth_cap), &
          & new_unittest("Hertz chosen: bound vs full solves", test_hertz_chosen), &
          & new_unittest("Hertz chosen from contact onset", test_hertz_separated), &
          & new_unittest("Hertz rejected: bound exceeded", test_hertz_rejected), &
@@ -260,6 +261,50 @@ contains
       call check(error, choice%kind == choice_hertz .and. choice%error_bound == 0.0_dp &
          & .and. choice%n_solves == 0, "smooth spheres: Hertz exact without solves")
    end subroutine test_smooth
+
+   !> The chooser with the flow-pressure cap (issue 32): a smooth scene says the cap acts
+   !> exactly when its deepest overlap passes first yield delta_y = (pi p_y/(2 E*))^2 R
+   !> (Hertz's p_max = 2 E* a/(pi R) reaching p_y; written out here from the closed form,
+   !> with E* = E/(2(1 - nu^2)) of two equal spheres and R the pair's effective radius):
+   !> delta_max = 0.9 delta_y "below first yield", 1.1 delta_y "beyond first yield".
+   subroutine test_smooth_cap(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(scene_input) :: s
+      type(contact_scene) :: scene
+      type(model_choice) :: choice
+      type(egw_error), allocatable :: err
+      real(dp) :: e_star, r_eff, delta_y, pi
+      integer :: k
+      character(len=*), parameter :: expect(2) = [character(len=24) :: &
+         & "below first yield", "beyond first yield"]
+      pi = acos(-1.0_dp)
+      do k = 1, 2
+         s = default_scene_input()
+         s%model = model_hertz
+         s%sigma_min = 0.0_dp
+         s%sigma_max = 0.0_dp
+         s%delta_in_sigma = 0
+         s%n_types = 1
+         s%radius(1) = 1.0e-3_dp
+         s%modulus(1) = 7.0e10_dp
+         s%poisson(1) = 0.25_dp
+         s%effective_modulus = 0.0_dp
+         s%flow_pressure = 1.0e9_dp
+         e_star = s%modulus(1)/(2*(1 - s%poisson(1)**2))
+         r_eff = s%radius(1)/2
+         delta_y = (pi*s%flow_pressure/(2*e_star))**2*r_eff
+         s%delta_min = 1.0e-3_dp*delta_y
+         s%delta_max = merge(0.9_dp, 1.1_dp, k == 1)*delta_y
+         call resolve_scene(s, scene, err)
+         if (.not. allocated(err)) call choose_model(scene, solver_options(), choice, err)
+         call check(error, .not. allocated(err), "smooth cap scene failed")
+         if (allocated(error)) return
+         call check(error, choice%kind == choice_hertz .and. &
+            & index(choice%reason, trim(expect(k))) > 0, "delta_max = "// &
+            & format_real(s%delta_max/delta_y)//" delta_y: "//choice%reason)
+         if (allocated(error)) return
+      end do
+   end subroutine test_smooth_cap
 
    !> delta/sigma in [300, 3000], tol 1e-2: roughness changes the force by ~0.3 %, so
    !> Hertz is chosen. Check at 15 overlaps uniform in delta (not the choice's geometric

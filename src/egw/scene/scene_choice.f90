@@ -8,10 +8,39 @@ submodule (egw_scene) egw_scene_choice
    use egw_rough_sphere, only: solve_result, solve_contact, validate_options
    use egw_table, only: build_table, build_table_law, table_set_radii
    use egw_table_universal, only: build_universal
+   use egw_cap_sphere, only: cap_units
    use egw_text, only: real_text, real_text_len
    implicit none
 
 contains
+
+   !> Why a smooth scene with the flow-pressure cap needs it or not: the deepest overlap
+   !> against first yield delta_y = (pi p_y/(2 E*))**2 R of each parameter set (Hertz's
+   !> p_max = p_y; an impact reaches it above v_y, doc/theory.md section 12).
+   function cap_reason(scene) result(reason)
+      type(contact_scene), intent(in) :: scene
+      character(len=:), allocatable :: reason
+      real(dp) :: delta_y, a_y, force_y, ratio, ratio_max, dy_min
+      integer :: s
+      ratio_max = 0.0_dp
+      dy_min = huge(1.0_dp)
+      do s = 1, size(scene%sets)
+         call cap_units(scene%sets(s)%radius, scene%sets(s)%modulus, &
+            & scene%sets(s)%flow_pressure, delta_y, a_y, force_y)
+         ratio = scene%delta_max(s)/delta_y
+         ratio_max = max(ratio_max, ratio)
+         dy_min = min(dy_min, delta_y)
+      end do
+      if (ratio_max <= 1.0_dp) then
+         reason = "smooth spheres below first yield (delta_max <= delta_y = "//num(dy_min) &
+            & //" (pi p_y/(2 E*))^2 R, the cap never acts): Hertz is exact"
+      else
+         reason = "smooth spheres beyond first yield: delta_max reaches "//num(ratio_max) &
+            & //" delta_y (delta_y = (pi p_y/(2 E*))^2 R, smallest "//num(dy_min)//"; impacts " &
+            & //"faster than v_y yield): Hertz holds below delta_y, the flow-pressure " &
+            & //"cap's hysteresis table beyond"
+      end if
+   end function cap_reason
 
    ! choose_model: interface and documentation in egw_scene (src/egw/scene/scene.f90)
    module procedure choose_model
@@ -37,6 +66,7 @@ contains
          choice%kind = choice_hertz
          choice%error_bound = 0.0_dp
          choice%reason = "smooth spheres (model Hertz or sigma = 0): Hertz is exact"
+         if (scene%input%flow_pressure > 0.0_dp) choice%reason = cap_reason(scene)
          return
       end if
       if (scene%input%model == model_flat_law) then
