@@ -9,6 +9,7 @@ submodule (egw_scene) egw_scene_choice
    use egw_table, only: build_table, build_table_law, table_set_radii
    use egw_table_universal, only: build_universal
    use egw_text, only: real_text, real_text_len
+   use egw_impact_regime, only: first_yield_overlap
    implicit none
 
 contains
@@ -33,10 +34,20 @@ contains
          choice%x_min = minval(scene%delta_min/scene%sets%sigma)
          choice%x_max = maxval(scene%delta_max/scene%sets%sigma)
       end if
+      call yield_check(scene, choice)
       if (scene%input%model == model_hertz .or. scene%input%sigma_max == 0.0_dp) then
          choice%kind = choice_hertz
          choice%error_bound = 0.0_dp
-         choice%reason = "smooth spheres (model Hertz or sigma = 0): Hertz is exact"
+         if (choice%cap_matters) then
+            choice%reason = "smooth spheres (model Hertz or sigma = 0) with flow_pressure: " &
+               & //"delta_max reaches "//num(choice%yield_ratio)//" delta_y, beyond first " &
+               & //"yield: Hertz + cap (the bulk yields and dissipates; the Hertz closed " &
+               & //"form holds up to delta_y only)"
+         else
+            choice%reason = "smooth spheres (model Hertz or sigma = 0): Hertz is exact"
+            if (choice%yield_ratio > 0.0_dp) choice%reason = choice%reason// &
+               & " (delta_max <= delta_y: the flow-pressure cap never acts)"
+         end if
          return
       end if
       if (scene%input%model == model_flat_law) then
@@ -82,6 +93,21 @@ contains
             & num(choice%x_max)//"]"
       end if
    end procedure choose_model
+
+   !> The flow-pressure cap (issue 32): largest delta_max/delta_y of the sets with a
+   !> flow_pressure, delta_y = (pi p_y/(2 E*))**2 R (Hertz's peak pressure reaches p_y);
+   !> beyond 1 the cap matters (for an impact: speed above v_y, egw_impact_regime).
+   pure subroutine yield_check(scene, choice)
+      type(contact_scene), intent(in) :: scene
+      type(model_choice), intent(inout) :: choice
+      integer :: s
+      choice%yield_ratio = 0.0_dp
+      do s = 1, size(scene%sets)
+         if (scene%sets(s)%flow_pressure > 0.0_dp) choice%yield_ratio = max( &
+            & choice%yield_ratio, scene%delta_max(s)/first_yield_overlap(scene%sets(s)))
+      end do
+      choice%cap_matters = choice%yield_ratio > 1.0_dp
+   end subroutine yield_check
 
    pure function hertz_measure(choice) result(str)
       type(model_choice), intent(in) :: choice
