@@ -113,7 +113,8 @@ def main():
                 rows.append((name, label, v, e, dm, dm / p["sigma"], v / vy))
     path = os.path.join(args.out, "beads.csv")
     with open(path + ".tmp", "w", newline="") as fh:
-        fh.write(f"# tools/restitution_beads.py at commit {commit}, egw {egw.version()}\n")
+        fh.write(f"# tools/restitution_beads.py at commit {commit}, egw {egw.version()}, "
+                 f"library {os.environ.get('EGW_LIBRARY', 'of the installed package')}\n")
         for n in notes:
             fh.write(f"# {n}\n")
         w = csv.writer(fh)
