@@ -28,6 +28,7 @@ contains
          & new_unittest("fully capped: P -> pi a**2 p_y", test_fully_capped), &
          & new_unittest("unloading at delta_max is the loading state", test_turning_point), &
          & new_unittest("force converges under refinement", test_convergence), &
+         & new_unittest("public options converge from 1 to 100 delta_y", test_robust), &
          & new_unittest("energy balance of a load-unload cycle", test_energy), &
          & new_unittest("restitution against Thornton (1997)", test_restitution), &
          & new_unittest("bad input is refused with a message", test_bad_input), &
@@ -203,6 +204,39 @@ contains
       d2 = abs(f(4) - f(3))
       call check(error, d2 < 0.5_dp*d1 .and. d2 < 1e-4_dp*f(4), "differences "//str(d1)//str(d2))
    end subroutine test_convergence
+
+   !> Robustness of the options behind the public doors (cap_solve_options: 100 uniform
+   !> rings, then 200 graded toward the contact edge once it is capped): loading at 60
+   !> overlaps log-spaced from 1 to 100 delta_y (a grid offset from the 201 of the
+   !> measurement in doc/theory.md section 12, also all converged) and unloading from each
+   !> to 0.999 and 0.5 of it all converge; the loading force rises with delta and stays
+   !> below Hertz's (the cap removes pressure; + 1e-3, the accuracy goal: just above
+   !> delta_y it removes less than the mesh's error), the unloading force below the
+   !> loading one.
+   subroutine test_robust(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(cap_history) :: h
+      type(cap_result) :: res, un(2)
+      type(egw_error), allocatable :: err
+      real(dp) :: d, prev
+      integer :: i
+      prev = 0
+      do i = 0, 59
+         d = 10.0_dp**(2.0_dp*(real(i, dp) + 0.61_dp)/60.0_dp)
+         call cap_load(1.0_dp, 1.0_dp, 2.0_dp/pi, d, cap_solve_options(), h, res, err)
+         if (.not. allocated(err)) call cap_unload(h, 0.999_dp*d, un(1), err)
+         if (.not. allocated(err)) call cap_unload(h, 0.5_dp*d, un(2), err)
+         if (allocated(err)) then
+            call check(error, .false., "delta = "//str(d)//": "//err%message)
+            return
+         end if
+         call check(error, res%force > prev .and. res%force < (1 + 1e-3_dp)*4.0_dp/3.0_dp*d**1.5_dp &
+            & .and. un(1)%force <= res%force .and. un(2)%force >= 0 .and. &
+            & un(2)%force < un(1)%force, "delta = "//str(d)//": P = "//str(res%force))
+         if (allocated(error)) return
+         prev = res%force
+      end do
+   end subroutine test_robust
 
    !> Dissipated energy of a cycle to 4 delta_y, two ways: W_load - W_unload (Gauss
    !> quadratures) and the closed-loop trapezoid sum of P d delta over 400 points on each
