@@ -13,6 +13,7 @@ module test_scene
    use egw_table, only: table_eval, force_table
    use egw_table_universal, only: universal_eval
    use egw_scene
+   use egw_impact_regime, only: impact_regime, classify_impact, rough_overlaps
    implicit none
    private
    public :: collect_scene
@@ -28,7 +29,9 @@ contains
          & new_unittest("overrides: invalid leaves the scene unchanged", test_overrides), &
          & new_unittest("pairs: radii, materials, mu from summits", test_pairs), &
          & new_unittest("smooth scene: Hertz exact", test_smooth), &
-         & new_unittest("smooth scene with the cap: first yield decides", test_smooth_cap), &
+         & new_unittest("flow_pressure: the cap matters beyond delta_y", test_cap_choice), &
+         & new_unittest("impact: cap above v_y, roughness within a few sigma", &
+         & test_impact_regime), &
          & new_unittest("Hertz chosen: bound vs full solves", test_hertz_chosen), &
          & new_unittest("Hertz chosen from contact onset", test_hertz_separated), &
          & new_unittest("Hertz rejected: bound exceeded", test_hertz_rejected), &
@@ -262,49 +265,100 @@ contains
          & .and. choice%n_solves == 0, "smooth spheres: Hertz exact without solves")
    end subroutine test_smooth
 
-   !> The chooser with the flow-pressure cap (issue 32): a smooth scene says the cap acts
-   !> exactly when its deepest overlap passes first yield delta_y = (pi p_y/(2 E*))^2 R
-   !> (Hertz's p_max = 2 E* a/(pi R) reaching p_y; written out here from the closed form,
-   !> with E* = E/(2(1 - nu^2)) of two equal spheres and R the pair's effective radius):
-   !> delta_max = 0.9 delta_y "below first yield", 1.1 delta_y "beyond first yield".
-   subroutine test_smooth_cap(error)
+   !> A smooth scene whose sets carry a flow pressure p_y (set on the resolved scene: scene
+   !> files do not take one here): delta_y = (pi p_y/(2E*))**2 R in closed form. With p_y
+   !> such that delta_max = 4 delta_y the choice says the cap matters (yield_ratio = 4 to
+   !> rounding), with delta_max = delta_y/4 that Hertz is exact; without p_y, no ratio.
+   subroutine test_cap_choice(error)
       type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: pi = acos(-1.0_dp)
       type(scene_input) :: s
       type(contact_scene) :: scene
       type(model_choice) :: choice
       type(egw_error), allocatable :: err
-      real(dp) :: e_star, r_eff, delta_y, pi
-      integer :: k
-      character(len=*), parameter :: expect(2) = [character(len=24) :: &
-         & "below first yield", "beyond first yield"]
-      pi = acos(-1.0_dp)
-      do k = 1, 2
-         s = default_scene_input()
-         s%model = model_hertz
-         s%sigma_min = 0.0_dp
-         s%sigma_max = 0.0_dp
-         s%delta_in_sigma = 0
-         s%n_types = 1
-         s%radius(1) = 1.0e-3_dp
-         s%modulus(1) = 7.0e10_dp
-         s%poisson(1) = 0.25_dp
-         s%effective_modulus = 0.0_dp
-         s%flow_pressure = 1.0e9_dp
-         e_star = s%modulus(1)/(2*(1 - s%poisson(1)**2))
-         r_eff = s%radius(1)/2
-         delta_y = (pi*s%flow_pressure/(2*e_star))**2*r_eff
-         s%delta_min = 1.0e-3_dp*delta_y
-         s%delta_max = merge(0.9_dp, 1.1_dp, k == 1)*delta_y
-         call resolve_scene(s, scene, err)
-         if (.not. allocated(err)) call choose_model(scene, solver_options(), choice, err)
-         call check(error, .not. allocated(err), "smooth cap scene failed")
+      real(dp) :: ratio(2) = [4.0_dp, 0.25_dp], py
+      integer :: i
+      s = default_scene_input()
+      s%sigma_min = 0.0_dp
+      s%sigma_max = 0.0_dp
+      s%delta_in_sigma = 0
+      s%delta_min = 1e-7_dp
+      s%delta_max = 1e-5_dp
+      call resolve_scene(s, scene, err)
+      call check(error, .not. allocated(err), "smooth scene failed")
+      if (allocated(error)) return
+      call choose_model(scene, solver_options(), choice, err)
+      call check(error, .not. allocated(err) .and. .not. choice%cap_matters .and. &
+         & choice%yield_ratio == 0.0_dp, "no flow_pressure: no cap")
+      if (allocated(error)) return
+      do i = 1, 2
+         associate (p => scene%sets(1))
+            ! delta_max/delta_y = ratio: p_y = (2E*/pi) sqrt(delta_max/(ratio R))
+            py = 2.0_dp*p%modulus/pi*sqrt(scene%delta_max(1)/(ratio(i)*p%radius))
+         end associate
+         scene%sets%flow_pressure = py
+         call choose_model(scene, solver_options(), choice, err)
+         call check(error, .not. allocated(err), "choice with flow_pressure failed")
          if (allocated(error)) return
          call check(error, choice%kind == choice_hertz .and. &
-            & index(choice%reason, trim(expect(k))) > 0, "delta_max = "// &
-            & format_real(s%delta_max/delta_y)//" delta_y: "//choice%reason)
+            & abs(choice%yield_ratio/ratio(i) - 1) < 1e-12_dp .and. &
+            & (choice%cap_matters .eqv. ratio(i) > 1) .and. &
+            & (index(choice%reason, "Hertz + cap") > 0 .eqv. ratio(i) > 1), &
+            & "ratio "//format_real(ratio(i))//": "//choice%reason)
          if (allocated(error)) return
       end do
-   end subroutine test_smooth_cap
+   end subroutine test_cap_choice
+
+   !> classify_impact against closed forms: at v = v_y Hertz's deepest overlap is delta_y
+   !> itself (an identity between the two closed forms, checked to 1e-12); the cap matters
+   !> just above v_y and not just below (and never without flow_pressure); the roughness
+   !> matters at delta_m = 2 sigma and not at 50 sigma (rough_overlaps = 10).
+   subroutine test_impact_regime(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: pi = acos(-1.0_dp), mass = 1.6e-5_dp
+      type(contact_params) :: p
+      type(impact_regime) :: r, below, above
+      type(egw_error), allocatable :: err
+      real(dp) :: dy, vy
+      p = contact_params(model=model_egw, radius=5e-4_dp, modulus=1.15e11_dp, &
+         & sigma=1.8e-7_dp, mu=4.0_dp, flow_pressure=3.2e9_dp)
+      dy = (pi*p%flow_pressure/(2*p%modulus))**2*p%radius
+      call classify_impact(p, mass, 1.0_dp, r, err)
+      call check(error, .not. allocated(err), "classify_impact failed")
+      if (allocated(error)) return
+      vy = r%yield_speed
+      call classify_impact(p, mass, vy, r, err)
+      call check(error, .not. allocated(err) .and. abs(r%max_overlap/dy - 1) < 1e-12_dp &
+         & .and. abs(r%yield_overlap/dy - 1) < 1e-14_dp, "delta_m(v_y) = " &
+         & //format_real(r%max_overlap)//" vs delta_y "//format_real(dy))
+      if (allocated(error)) return
+      call classify_impact(p, mass, 0.999_dp*vy, below, err)
+      if (.not. allocated(err)) call classify_impact(p, mass, 1.001_dp*vy, above, err)
+      call check(error, .not. allocated(err) .and. .not. below%cap_matters .and. &
+         & above%cap_matters .and. index(above%reason, "cap matters") > 0, above%reason)
+      if (allocated(error)) return
+      ! roughness: choose sigma so that Hertz's delta_m is 2 and 50 sigma
+      p%sigma = below%max_overlap/2.0_dp
+      call classify_impact(p, mass, 0.999_dp*vy, r, err)
+      call check(error, .not. allocated(err) .and. r%roughness_matters .and. &
+         & abs(r%overlap_in_sigma - 2) < 1e-12_dp, "2 sigma: "//r%reason)
+      if (allocated(error)) return
+      p%sigma = below%max_overlap/50.0_dp
+      call classify_impact(p, mass, 0.999_dp*vy, r, err)
+      call check(error, .not. allocated(err) .and. .not. r%roughness_matters .and. &
+         & 50 > rough_overlaps, "50 sigma: "//r%reason)
+      if (allocated(error)) return
+      p%flow_pressure = 0.0_dp
+      p%sigma = 0.0_dp
+      call classify_impact(p, mass, 100.0_dp, r, err)
+      call check(error, .not. allocated(err) .and. .not. r%cap_matters .and. &
+         & .not. r%roughness_matters .and. r%yield_speed == 0, "smooth, no cap: "//r%reason)
+      if (allocated(error)) return
+      call classify_impact(p, -1.0_dp, 1.0_dp, r, err)
+      call check(error, allocated(err), "negative mass accepted")
+      if (allocated(error)) return
+      call check(error, index(err%message, "mass") > 0, err%message)
+   end subroutine test_impact_regime
 
    !> delta/sigma in [300, 3000], tol 1e-2: roughness changes the force by ~0.3 %, so
    !> Hertz is chosen. Check at 15 overlaps uniform in delta (not the choice's geometric

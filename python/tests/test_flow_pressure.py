@@ -62,7 +62,7 @@ def test_solve_equals_c_and_reference():
 def test_restitution_reference():
     # m* = 16/15 makes v_y = 1; e at 5 v_y within 1 % of the reference (measured 5e-4)
     r = egw.restitution(capped(), mass=16.0 / 15.0, velocity=5.0)
-    assert abs(r.e - 0.8315494929966) <= 1e-2 * 0.83
+    assert abs(r.e - 0.8315491288598) <= 1e-2 * 0.83
     assert abs(r.dissipated - (1 - r.e ** 2) * r.work_load) <= 1e-14 * r.work_load
 
 

@@ -127,6 +127,10 @@ module egw_scene
       integer :: n_solves = 0            !< full solves spent on the choice
       real(dp) :: mu_min = 0.0_dp, mu_max = 0.0_dp   !< mu range of the scene
       real(dp) :: x_min = 0.0_dp, x_max = 0.0_dp     !< delta/sigma range of the scene
+      !> largest delta_max/delta_y over the sets with a flow_pressure (0: none has one);
+      !> above 1 the bulk yields (issue 32): cap_matters, and the reason says so
+      real(dp) :: yield_ratio = 0.0_dp
+      logical :: cap_matters = .false.
       character(len=:), allocatable :: reason
    end type model_choice
 

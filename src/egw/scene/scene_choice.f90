@@ -8,39 +8,11 @@ submodule (egw_scene) egw_scene_choice
    use egw_rough_sphere, only: solve_result, solve_contact, validate_options
    use egw_table, only: build_table, build_table_law, table_set_radii
    use egw_table_universal, only: build_universal
-   use egw_cap_sphere, only: cap_units
    use egw_text, only: real_text, real_text_len
+   use egw_impact_regime, only: first_yield_overlap
    implicit none
 
 contains
-
-   !> Why a smooth scene with the flow-pressure cap needs it or not: the deepest overlap
-   !> against first yield delta_y = (pi p_y/(2 E*))**2 R of each parameter set (Hertz's
-   !> p_max = p_y; an impact reaches it above v_y, doc/theory.md section 12).
-   function cap_reason(scene) result(reason)
-      type(contact_scene), intent(in) :: scene
-      character(len=:), allocatable :: reason
-      real(dp) :: delta_y, a_y, force_y, ratio, ratio_max, dy_min
-      integer :: s
-      ratio_max = 0.0_dp
-      dy_min = huge(1.0_dp)
-      do s = 1, size(scene%sets)
-         call cap_units(scene%sets(s)%radius, scene%sets(s)%modulus, &
-            & scene%sets(s)%flow_pressure, delta_y, a_y, force_y)
-         ratio = scene%delta_max(s)/delta_y
-         ratio_max = max(ratio_max, ratio)
-         dy_min = min(dy_min, delta_y)
-      end do
-      if (ratio_max <= 1.0_dp) then
-         reason = "smooth spheres below first yield (delta_max <= delta_y = "//num(dy_min) &
-            & //" (pi p_y/(2 E*))^2 R, the cap never acts): Hertz is exact"
-      else
-         reason = "smooth spheres beyond first yield: delta_max reaches "//num(ratio_max) &
-            & //" delta_y (delta_y = (pi p_y/(2 E*))^2 R, smallest "//num(dy_min)//"; impacts " &
-            & //"faster than v_y yield): Hertz holds below delta_y, the flow-pressure " &
-            & //"cap's hysteresis table beyond"
-      end if
-   end function cap_reason
 
    ! choose_model: interface and documentation in egw_scene (src/egw/scene/scene.f90)
    module procedure choose_model
@@ -62,11 +34,20 @@ contains
          choice%x_min = minval(scene%delta_min/scene%sets%sigma)
          choice%x_max = maxval(scene%delta_max/scene%sets%sigma)
       end if
+      call yield_check(scene, choice)
       if (scene%input%model == model_hertz .or. scene%input%sigma_max == 0.0_dp) then
          choice%kind = choice_hertz
          choice%error_bound = 0.0_dp
-         choice%reason = "smooth spheres (model Hertz or sigma = 0): Hertz is exact"
-         if (scene%input%flow_pressure > 0.0_dp) choice%reason = cap_reason(scene)
+         if (choice%cap_matters) then
+            choice%reason = "smooth spheres (model Hertz or sigma = 0) with flow_pressure: " &
+               & //"delta_max reaches "//num(choice%yield_ratio)//" delta_y, beyond first " &
+               & //"yield: Hertz + cap (the bulk yields and dissipates; the Hertz closed " &
+               & //"form holds up to delta_y only)"
+         else
+            choice%reason = "smooth spheres (model Hertz or sigma = 0): Hertz is exact"
+            if (choice%yield_ratio > 0.0_dp) choice%reason = choice%reason// &
+               & " (delta_max <= delta_y: the flow-pressure cap never acts)"
+         end if
          return
       end if
       if (scene%input%model == model_flat_law) then
@@ -112,6 +93,21 @@ contains
             & num(choice%x_max)//"]"
       end if
    end procedure choose_model
+
+   !> The flow-pressure cap (issue 32): largest delta_max/delta_y of the sets with a
+   !> flow_pressure, delta_y = (pi p_y/(2 E*))**2 R (Hertz's peak pressure reaches p_y);
+   !> beyond 1 the cap matters (for an impact: speed above v_y, egw_impact_regime).
+   pure subroutine yield_check(scene, choice)
+      type(contact_scene), intent(in) :: scene
+      type(model_choice), intent(inout) :: choice
+      integer :: s
+      choice%yield_ratio = 0.0_dp
+      do s = 1, size(scene%sets)
+         if (scene%sets(s)%flow_pressure > 0.0_dp) choice%yield_ratio = max( &
+            & choice%yield_ratio, scene%delta_max(s)/first_yield_overlap(scene%sets(s)))
+      end do
+      choice%cap_matters = choice%yield_ratio > 1.0_dp
+   end subroutine yield_check
 
    pure function hertz_measure(choice) result(str)
       type(model_choice), intent(in) :: choice

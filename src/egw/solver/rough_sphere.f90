@@ -713,11 +713,11 @@ contains
       call put_cap_result(res, options, result)
    end subroutine cap_loading
 
-   !> The cap solver's options behind every public door (doc/theory.md section 12): 100 and
-   !> 200 rings. Measured: loading and unloading at 201 overlaps from 1 to 100 delta_y all
-   !> converge, and the force is within 7e-4 of test/data/cap_reference.csv up to 10
-   !> delta_y (1.1e-3 at 20). cap_options()' 100/200/400 rings are more accurate where
-   !> they converge, but a 400-ring (or 300-ring) box problem fails at some overlaps
+   !> The cap solver's options behind every public door (doc/theory.md section 12): 100
+   !> uniform rings, then 200 graded toward the contact edge once the contact is capped to
+   !> within a ring of it. Measured: loading and unloading at 201 overlaps from 1 to 100
+   !> delta_y all converge, and the force is within 3.1e-4 of test/data/cap_reference.csv
+   !> up to 100 delta_y. A third level (cap_options()' 400 rings) fails at some overlaps
    !> (e.g. 1.097 delta_y: the active set cycles and PSOR stalls).
    pure function cap_solve_options() result(options)
       type(cap_options) :: options
