@@ -190,7 +190,8 @@ contains
    end subroutine test_smooth_limit
 
    !> Unloading of E-GW with the cap at sigma/delta_y = 1e-4 from delta_max = 2 delta_y
-   !> against the reference's unloading rows (error column <= 1.7e-7): within 1e-3
+   !> against the reference's unloading rows and residual overlap (error column <= 1.7e-7):
+   !> forces within 1e-3
    !> (measured 2.5e-4 .. 3.8e-4: the O((sigma/delta_y)**(2/3)) = 2e-3 x 0.2 of the rough
    !> layer, as on loading). History and unloading at rel_tol 1e-7.
    subroutine test_smooth_limit_unload(error)
@@ -198,6 +199,7 @@ contains
       real(dp), parameter :: y(4) = [0.99_dp, 0.95_dp, 0.9_dp, 0.8_dp]
       real(dp), parameter :: ref(4) = [2.677343788024_dp, 2.507170193550_dp, &
          & 2.298961418756_dp, 1.897742567134_dp]
+      real(dp), parameter :: residual = 1.440704322244e-01_dp  ! delta_r/delta_max
       type(contact_params) :: p
       type(solver_options) :: o
       type(loading_history) :: h
@@ -221,6 +223,28 @@ contains
             & //str(y(i))//": P/P_y = "//str(got)//", reference "//str(ref(i)))
          if (allocated(error)) return
       end do
+      ! The residual overlap within 1e-3 delta_max of the reference's (0.14407 delta_max;
+      ! issue 32's goal for the smooth cap): a force 1e-3 delta_max above it, none below
+      ! (measured: P/P_y = 1.1e-4 at 0.145 delta_max, 0 at 0.144). The sign of the force is
+      ! all that counts: these solves at rel_tol 1e-5 (near the residual 1e-7 is not
+      ! reached: the force is 1e-4 of the Hertz part it is the difference of).
+      h%options%rel_tol = 1.0e-5_dp
+      call solve_unload(h, (residual + 1.0e-3_dp)*2.0_dp*delta_y, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading above the residual: "//err%message)
+         return
+      end if
+      if (allocated(error)) return
+      call check(error, res%force > 0.0_dp, "no force 1e-3 delta_max above the residual")
+      if (allocated(error)) return
+      call solve_unload(h, (residual - 1.0e-3_dp)*2.0_dp*delta_y, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading below the residual: "//err%message)
+         return
+      end if
+      if (allocated(error)) return
+      call check(error, res%force == 0.0_dp, "force "//str(res%force/force_y) &
+         & //" P_y 1e-3 delta_max below the residual")
    end subroutine test_smooth_limit_unload
 
    !> The pair of the impact checks: EP-GW (psi 1, mu 4) with sigma = delta_y, p_y = 0.01,
@@ -305,7 +329,7 @@ contains
    end subroutine test_energy
 
    !> Beyond v_y the cap dissipates: at 3 v_y e is below the cap-free EP-GW's (measured
-   !> 0.877 vs 0.984 at rel_tol 1e-4; the smooth cap model's is 0.92..0.83 from 2 to 5 v_y).
+   !> 0.879 vs 0.984 at rel_tol 1e-4; the smooth cap model's is 0.92..0.83 from 2 to 5 v_y).
    !> First yield of the rough sphere: with p_y 1 % above the largest total pressure of the
    !> cap-free impact (at delta_m) the cap never acts, e is the cap-free one (1e-12);
    !> 10 % below it the cap acts and e falls below the cap-free e by more than the

@@ -9,9 +9,6 @@ module egw_flow_cap
    implicit none
    private
 
-   !> Smallest cap target of the plastic shift, as a fraction of p_y (see plastic_shift).
-   real(dp), parameter :: target_floor = 1.0e-3_dp
-
    !> The flow-pressure cap: p_y in the solver's pressure unit.
    type, public :: flow_cap
       real(dp) :: p_y = huge(1.0_dp)   !< scaled flow pressure (> 0)
@@ -59,10 +56,12 @@ contains
    !> The plastic displacement at delta_max of a point at gap h_max with smooth pressure
    !> p_smooth_max there, for the loading law: where the law was capped (law(h_max) > c,
    !> c = p_y - p_smooth_max) the gap shift u_pl = h_c - h_max with law(h_c) = t,
-   !> t = max(c, target_floor p_y), and the pressure offset t - c (> 0 only where the
-   !> smooth part alone came within target_floor p_y of the cap or beyond: law(h_c) = c
-   !> has no finite root there). Unloading then uses the law at h + u_pl minus the offset:
-   !> at delta_max this is c again (continuous), and u_pl, offset are continuous in r.
+   !> t = min(p_y, law(h_max)), and the pressure offset t - c; 0 and 0 elsewhere. Unloading
+   !> uses the law at h + u_pl less the offset: at delta_max that is c again (continuous),
+   !> and u_pl, offset are continuous in r (at the cap edge law(h_max) = c: t = c). Where
+   !> law(h_max) >= p_y the unloading total is law(h + u_pl) + p_s(delta) - p_s(delta_max):
+   !> the law carries the capped p_y from the shifted gap, the smooth part only its change
+   !> (doc/theory.md §12 "Rough spheres with the cap").
    elemental subroutine cap_plastic_shift(cap, law, p_smooth_max, h_max, shift, offset)
       class(flow_cap), intent(in) :: cap
       class(flat_law), intent(in) :: law
@@ -75,7 +74,7 @@ contains
       c = cap%p_y - p_smooth_max
       call law%pressure([h_max], p, dpdh)
       if (.not. p(1) > c) return
-      t = max(c, target_floor*cap%p_y)
+      t = min(cap%p_y, p(1))
       offset = t - c
       if (.not. p(1) > t) return
       ! law decreasing: law(h_max) > t; bracket [h_max, hi] with law(hi) <= t
