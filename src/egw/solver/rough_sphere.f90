@@ -319,6 +319,10 @@ contains
          if (allocated(error)) return
          hist%closest%extended = prob%extended
          hist%closest%delta = prob%delta
+         ! the cap acted (capped points: dp/dh = 0 at a nonzero pressure)
+         hist%closest%capped = allocated(prob%cap) .and. any(sol%dpdh == 0.0_dp .and. &
+            & sol%p /= 0.0_dp)
+         hist%closest%force = smooth_force(prob) + sol%force
          call move_alloc(sol%w, hist%closest%w)
          hist%closest%mesh = sol%mesh
       end if
@@ -341,6 +345,8 @@ contains
       history%cap = hist%cap
       history%closest%extended = hist%closest%extended
       history%closest%delta = hist%closest%delta
+      history%closest%capped = hist%closest%capped
+      history%closest%force = hist%closest%force
       history%closest%mesh = hist%closest%mesh
       if (allocated(history%closest%w)) deallocate (history%closest%w)
       if (allocated(hist%closest%w)) call move_alloc(hist%closest%w, history%closest%w)

@@ -14,7 +14,7 @@ module egw_sphere_iteration
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
       & scaled_problem, discrete_solution, law_at, law_inverse, base_gap, base_gap_rate, &
       & closest_gap, gauss_values, deflection_degree, pressure_points, rough_pressure, &
-      & cap_fields, smooth_force
+      & cap_fields, sums_total
    implicit none
    private
 
@@ -91,19 +91,9 @@ contains
       if (allocated(error)) return
 
       sol%force = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
-      ! Unloading with the cap: where the total pressure sits at its floor 0 the rough part
-      ! is -p_s, and near the residual overlap the force is the small difference of the
-      ! Hertz force and that Gauss sum; summed as the total pressure (0 there) instead, the
-      ! levels' difference and the force carry no cancellation (smooth_force is added back
-      ! by the caller).
-      ! Only where the floor acts: elsewhere the Hertz part's closed form is more accurate
-      ! than its Gauss sum (6e-7 of the Hertz force on the test cases), and the cap-free
-      ! results stay bit for bit.
-      if (allocated(prob%cap) .and. allocated(prob%closest) .and. prob%extended) then
-         if (any(sol%p_smooth > 0.0_dp .and. sol%p + sol%p_smooth == 0.0_dp)) &
-            & sol%force = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%p + &
-            & sol%p_smooth)) - smooth_force(prob)
-      end if
+      ! unloading after a capped loading: the total pressure (sums_total)
+      if (sums_total(prob)) sol%force = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r* &
+         & (sol%p + sol%p_smooth))
       sol%moment0 = sum(sol%mesh%gauss_w*sol%p)
       sol%moment1 = sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
       ! Force beyond the outer radius if p keeps falling like at the last two Gauss points.

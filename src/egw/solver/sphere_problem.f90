@@ -48,6 +48,9 @@ module egw_sphere_problem
    type :: separation_field
       logical :: extended = .false.   !< z_max is the Hertz gap (else the rigid gap)
       real(dp) :: delta = 0.0_dp      !< delta_max/sigma
+      !> The flow-pressure cap acted on the loading at delta_max (sums_total, force_floor)
+      logical :: capped = .false.
+      real(dp) :: force = 0.0_dp      !< the loading force at delta_max (scaled)
       type(radial_mesh) :: mesh
       real(dp), allocatable :: w(:)
    end type separation_field
@@ -107,7 +110,8 @@ module egw_sphere_problem
    public :: separation_field, scaled_problem, discrete_solution
    public :: scaled, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
       & estimated_gap, law_inverse, gauss_values, effective_radius, total_pressure, &
-      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess
+      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, sums_total, &
+      & force_floor
 
 contains
 
@@ -394,12 +398,41 @@ contains
       end if
    end function cap_excess
 
-   !> Scaled Hertz force of the smooth part (extended models only).
+   !> Scaled Hertz force of the smooth part (extended models only; 0 where the solution's
+   !> force holds it, sums_total).
    pure real(dp) function smooth_force(prob) result(force)
       type(scaled_problem), intent(in) :: prob
       force = 0.0_dp
-      if (prob%extended) force = hertz_force(prob%delta, 1.0_dp, 1.0_dp)
+      if (prob%extended .and. .not. sums_total(prob)) force = hertz_force(prob%delta, &
+         & 1.0_dp, 1.0_dp)
    end function smooth_force
+
+   !> Unloading of an extended model after a capped loading: the force is the Gauss sum
+   !> of the total pressure p_s + p (discrete_solution%force holds the Hertz part too).
+   !> Where the total sits at its floor 0 the rough part is -p_s, and near the residual
+   !> overlap the force would be the small difference of the Hertz force and that sum:
+   !> summed as the total pressure (0 there) neither the force nor the levels' difference
+   !> carries the cancellation. Elsewhere the Hertz part's closed form is kept (more
+   !> accurate than its Gauss sum, and the cap-free results stay bit for bit).
+   elemental logical function sums_total(prob)
+      type(scaled_problem), intent(in) :: prob
+      sums_total = .false.
+      if (.not. (allocated(prob%cap) .and. allocated(prob%closest))) return
+      sums_total = prob%extended .and. prob%closest%capped
+   end function sums_total
+
+   !> The force below which an unloading solve after a capped loading bounds
+   !> its error absolutely, by rel_tol times this: 1e-6 of the loading force at
+   !> delta_max. Near and below the residual overlap the force falls to 1e-10 .. 1e-80 of
+   !> it (the unloaded summits' Gaussian tail) where its relative error cannot be resolved
+   !> (a sum of the total pressure whose terms are 1e6 times larger); an impact's work
+   !> integrals need it to rel_tol of their whole. 0 (relative errors) elsewhere.
+   elemental real(dp) function force_floor(prob) result(floor)
+      type(scaled_problem), intent(in) :: prob
+      floor = 0.0_dp
+      if (.not. (allocated(prob%cap) .and. allocated(prob%closest))) return
+      if (prob%closest%capped) floor = 1.0e-6_dp*abs(prob%closest%force)
+   end function force_floor
 
    !> Scaled Hertz stiffness of the smooth part (extended models only).
    pure real(dp) function smooth_stiffness(prob) result(stiffness)

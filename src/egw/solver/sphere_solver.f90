@@ -43,7 +43,7 @@ module egw_sphere_solver
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & scaled, normal, negligible, base_gap, closest_gap, law_inverse, &
       & effective_radius, total_pressure, smooth_force, smooth_stiffness, rough_pressure, &
-      & cap_fields
+      & cap_fields, force_floor
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, &
@@ -280,6 +280,7 @@ contains
             est = 1.0_dp
             return
          end if
+         total = max(total, force_floor(prob))
          ! Discretisation (Richardson) plus the force estimated beyond the outer radius,
          ! which both levels share and their difference cannot see.
          if (total > 0.0_dp) est = discretisation_error(sol%force, coarse%force, total, &
@@ -363,6 +364,7 @@ contains
          total_again = abs(smooth_force(prob) + sol%force)
          vanished = total_again < tiny_force
          if (vanished) return
+         total_again = max(total_again, force_floor(prob))
          kink_err = kink_offset_error(prob, sol, options%rel_tol, moved, n_moved)/total_again
          est = discretisation_error(sol%force, coarse%force, total_again, &
             & mesh%step_prev/mesh%step, confirming, order) + sol%tail/total_again
@@ -475,6 +477,7 @@ contains
          call solve_mesh(prob, options, method, edges, sol, error, guess)
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
+         if (total > 0.0_dp) total = max(total, force_floor(prob))
          if (sol%tail <= 0.01_dp*options%rel_tol*total .or. total == 0.0_dp) return
          outer = grown_outer(prob, sol, options%rel_tol*total, outer)
       end do
@@ -504,6 +507,7 @@ contains
       do pass = 1, 3
          total = abs(smooth_force(prob) + sol%force)
          if (.not. total > 0.0_dp) return
+         total = max(total, force_floor(prob))
          if (kink_offset_error(prob, sol, options%rel_tol, moved, n_moved) &
             & <= 0.1_dp*options%rel_tol*total) return
          prob%branch = moved
