@@ -154,7 +154,7 @@ contains
    end function kink_radii
 
    !> Radii where the cap puts a kink into p(r) of a solution (cap_excess changes sign; its
-   !> kinds 1 and 2), at most 8 of each kind: bracketed by the Gauss points, then solved on
+   !> kinds 1 to 3), at most 8 of each kind: bracketed by the Gauss points, then solved on
    !> the solution's own field (Illinois), as branch_radii.
    function cap_kink_radii(prob, sol, negligible_weight) result(radii)
       type(scaled_problem), intent(in) :: prob
@@ -164,7 +164,7 @@ contains
       real(dp) :: f0, f1, lo, hi, mid, f_lo, f_hi, f_mid
       integer :: g, kind, i, side, found
       allocate (radii(0))
-      do kind = 1, 2
+      do kind = 1, 3
          found = 0
          f1 = cap_excess(prob, sol%mesh%gauss_r(1), sol%gap(1), kind)
          do g = 1, size(sol%gap) - 1
@@ -199,6 +199,10 @@ contains
                   end if
                   if (hi - lo <= 8.0_dp*epsilon(1.0_dp)*hi) exit
                end do
+            end if
+            ! kinds 2 and 3 coincide where p_s(delta_max) = 0: one edge
+            if (size(radii) > 0) then
+               if (minval(abs(radii - mid)) <= 1.0e-12_dp*mid) cycle
             end if
             radii = [radii, mid]
             found = found + 1

@@ -369,9 +369,10 @@ contains
 
    !> Where p(r) has a kink from the cap, the sign of this changes (prob%cap allocated;
    !> gap: the solution's gap at r): loading (kind 1) p_s + law(gap) - p_y, the cap edge;
-   !> unloading kind 1, the total unloading pressure before its floor at 0, and kind 2,
-   !> law(d_max) - (p_y - p_s(delta_max)), the cap edge at delta_max where the plastic
-   !> shift starts. 1 where a kind does not apply.
+   !> unloading kind 1, the total unloading pressure before its floor at 0, kind 2,
+   !> law(d_max) - (p_y - p_s(delta_max)), the cap edge at delta_max where the offset
+   !> starts, and kind 3, law(d_max) - p_y, where the gap shift starts (flow_cap's
+   !> plastic_shift: t = min(p_y, law(d_max))). 1 where a kind does not apply.
    pure real(dp) function cap_excess(prob, r, gap, kind) result(excess)
       type(scaled_problem), intent(in) :: prob
       real(dp), intent(in) :: r, gap
@@ -391,8 +392,8 @@ contains
          excess = p_smooth(1) + prob%scale*p(1) - offset(1)
       else
          ps_max = 0.0_dp
-         if (prob%closest%extended) ps_max = hertz_pressure(r, prob%closest%delta, 1.0_dp, &
-            & 1.0_dp)
+         if (prob%closest%extended .and. kind == 2) ps_max = hertz_pressure(r, &
+            & prob%closest%delta, 1.0_dp, 1.0_dp)
          call prob%law%pressure(gm, p, dpdh)
          excess = p(1) - (prob%cap%p_y - ps_max)
       end if

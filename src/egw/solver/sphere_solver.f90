@@ -557,6 +557,7 @@ contains
             if (i /= k) gapr = min(gapr, abs(moved(i) - r))
          end do
          s = 1.0e-3_dp*gapr
+         if (.not. s > 0.0_dp) cycle   ! (kinks found twice: counted once)
          do i = -2, 2
             if (i /= 0) pm(i) = pressure_at(r + real(i, dp)*s)
          end do
