@@ -69,9 +69,10 @@ typedef struct {
                             contact pressure is capped at p_y (elastic-perfectly-plastic
                             half-space, Thornton 1997); 0 = no bulk yield, else in
                             (0, modulus). From the yield stress Y: p_y = 1.6 Y (the Hertz
-                            first-yield peak; theory.md section 12 says why). Smooth
-                            spheres (Hertz or sigma = 0) only: a rough model with p_y > 0
-                            is refused (EGW_INVALID_PARAMETER) for now. Since 0.2.0. */
+                            first-yield peak; theory.md section 12 says why). Every
+                            model: rough ones cap the total pressure in their own solve
+                            (theory.md section 12, "Rough spheres with the cap").
+                            Since 0.2.0. */
 } egw_params;
 
 /* 10000*major + 100*minor + patch. */
@@ -209,10 +210,14 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * whatever o says), egw_solve_unload its elastic unloading from the deformed shape (0 at
  * and below the residual overlap), egw_restitution(_energy, _overlap) its head-on impact
  * (w_dissipated = (1 - e^2) m* v^2/2; e = 1 up to v_y). Beyond 1e6 delta_y or 1e4 v_y:
- * EGW_INVALID_ARGUMENT. egw_time_step beyond v_y takes the elastic unloading stiffness at
- * delta_m; egw_hysteresis_build gives Hertz + cap tables (doc/formats.md 6). Not yet:
- * egw_profile beyond delta_y (EGW_UNSUPPORTED), force and universal tables, hysteresis
- * tables of rough models with the cap (EGW_INVALID_PARAMETER). */
+ * EGW_INVALID_ARGUMENT. Rough models (sigma > 0) with p_y > 0: egw_solve, egw_solve_unload
+ * and egw_restitution(...) are the rough solver's, the cap on the total pressure (first
+ * yield where the rough contact's largest total pressure reaches p_y). egw_time_step
+ * beyond v_y takes the smooth sphere's elastic unloading stiffness at delta_m (rough
+ * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables (doc/formats.md
+ * 6). Not yet: egw_profile beyond delta_y or of a rough sphere with the cap
+ * (EGW_UNSUPPORTED), force and universal tables, hysteresis tables of rough models with
+ * the cap (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to

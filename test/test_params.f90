@@ -64,13 +64,15 @@ contains
             call expect(p, "flow_pressure"); if (allocated(error)) return
          end do
       end block
-      ! a rough model with the cap: not available yet, named
-      p = contact_params(sigma=1e-3_dp, mu=4.0_dp, flow_pressure=0.01_dp)
-      call expect(p, "flow_pressure"); if (allocated(error)) return
-      ! the cap on a smooth sphere (Hertz, or any model with sigma = 0) is valid
+      ! the cap on a smooth sphere (Hertz, or any model with sigma = 0) is valid, and on a
+      ! rough one (doc/theory.md §12 "Rough spheres with the cap")
       p = contact_params(model=model_hertz, flow_pressure=0.01_dp)
       block
          type(egw_error), allocatable :: err
+         call validate_params(contact_params(sigma=1e-3_dp, mu=4.0_dp, flow_pressure=0.01_dp), &
+            & err)
+         call check(error, .not. allocated(err), "flow_pressure = 0.01 with EP-GW refused")
+         if (allocated(error)) return
          call validate_params(p, err)
          call check(error, .not. allocated(err), "flow_pressure = 0.01 with Hertz refused")
          if (allocated(error)) return

@@ -35,11 +35,12 @@ def test_bad_flow_pressure_named(bad):
         egw.Params(model="Hertz", flow_pressure=bad)
 
 
-def test_rough_refused():
-    with pytest.raises(egw.InvalidArgumentError,
-                       match=r"flow_pressure with a rough model \(sigma > 0\) is not "
-                             r"available yet"):
-        egw.Params(model="E-GW", sigma=1e-3, mu=4.0, flow_pressure=0.01)
+def test_rough_served():
+    # a rough model with the cap (doc/theory.md section 12, "Rough spheres with the cap"):
+    # the capped force lies below the cap-free one (the physics: test/test_rough_cap.f90)
+    p = egw.Params(model="E-GW", sigma=1e-3, mu=4.0, flow_pressure=0.01)
+    free = egw.Params(model="E-GW", sigma=1e-3, mu=4.0)
+    assert 0.0 < egw.solve(p, 1e-3).force < egw.solve(free, 1e-3).force
 
 
 def test_solve_equals_c_and_reference():

@@ -293,9 +293,9 @@ class Params:
         Bulk flow pressure p_y [pressure] (default 0: no bulk yield): the contact pressure
         is capped at p_y (elastic-perfectly-plastic half-space, doc/theory.md section 12),
         so that loading beyond first yield leaves a residual overlap and impacts lose
-        energy. From the yield stress Y, p_y = 1.6 Y (the Hertz first-yield peak). Smooth
-        spheres only for now (model "Hertz" or sigma = 0); a rough model with p_y > 0
-        raises :class:`InvalidArgumentError`. Must lie below modulus.
+        energy. From the yield stress Y, p_y = 1.6 Y (the Hertz first-yield peak). Every
+        model: a rough one caps its total pressure in its own solve (doc/theory.md
+        section 12, "Rough spheres with the cap"). Must lie below modulus.
 
     Raises
     ------

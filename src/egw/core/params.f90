@@ -114,7 +114,7 @@ contains
    end subroutine validate_params
 
    !> flow_pressure: 0 (no bulk yield) or a normal double below the modulus (the cap
-   !> model is a small-strain one: p_y << E*); a rough model with the cap is not solved yet.
+   !> model is a small-strain one: p_y << E*); every model takes it.
    pure subroutine check_flow_pressure(params, error)
       type(contact_params), intent(in) :: params
       type(egw_error), allocatable, intent(out) :: error
@@ -128,11 +128,6 @@ contains
          call bad(error, "flow_pressure", params%flow_pressure, "must be 0 or lie in [" &
             & //format_real(tiny(1.0_dp))//", modulus = "//format_real(params%modulus) &
             & //") (a small-strain cap: p_y < E*)"); return
-      end if
-      if (params%model /= model_hertz .and. params%sigma > 0.0_dp) then
-         call fatal_error(error, egw_invalid_parameter, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//": flow_pressure with a rough model " &
-            & //"(sigma > 0) is not available yet (use model Hertz or sigma = 0)")
       end if
    end subroutine check_flow_pressure
 

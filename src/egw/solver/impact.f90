@@ -85,8 +85,10 @@ contains
       call check(params, options, mass, velocity, error)
       if (allocated(error)) return
       energy = 0.5_dp*mass*velocity**2
-      if (params%flow_pressure > 0.0_dp) then
-         ! The smooth sphere with the flow-pressure cap (validate_params: only smooth ones)
+      if (params%flow_pressure > 0.0_dp .and. (params%model == model_hertz .or. &
+         & params%sigma == 0.0_dp)) then
+         ! The smooth sphere with the flow-pressure cap (a rough one takes the cap in its
+         ! solves: the integrals below)
          call cap_impact(params, mass, velocity, e, dissipated, error, max_overlap, work_load)
          return
       end if

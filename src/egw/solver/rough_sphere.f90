@@ -11,10 +11,12 @@
 !> delta <= delta_max is the same problem with the unloading law at fixed d_max
 !> (egw_sphere_solver).
 !>
-!> The flow-pressure cap (params%flow_pressure > 0, smooth spheres only; doc/theory.md §12)
+!> The flow-pressure cap (params%flow_pressure > 0; doc/theory.md §12) of a smooth sphere
 !> is routed here and nowhere else: above first yield a smooth solve, history or unloading
 !> solve is egw_cap_sphere's (cap_load, cap_unload with its default options); at or below
-!> first yield it is Hertz, bit for bit as without the cap.
+!> first yield it is Hertz, bit for bit as without the cap. A rough sphere takes the cap
+!> inside its scaled problem (scaled_problem%cap, egw_flow_cap; "Rough spheres with the
+!> cap"): the same solves, histories and unloading solves.
 module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi
@@ -144,7 +146,7 @@ contains
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
-      if (above_first_yield(params, delta)) then
+      if (smooth_capped(params, delta)) then
          call cap_loading(params, options, delta, cap, result, error)
          return
       end if
@@ -194,14 +196,8 @@ contains
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
 
-      if (params%flow_pressure /= 0.0_dp) then
-         call fatal_error(error, egw_invalid_parameter, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//": flow_pressure with a rough model " &
-            & //"(sigma > 0) is not available yet (a rough-flat law is one)")
-         return
-      end if
       lp = contact_params(model=model_flat_law, radius=params%radius, &
-         & modulus=params%modulus, sigma=law%length())
+         & modulus=params%modulus, sigma=law%length(), flow_pressure=params%flow_pressure)
       call check_input(lp, options, delta, error, allow_flat_law=.true.)
       if (allocated(error)) then
          error%message = "flat law of length "//format_real(law%length())//": " &
@@ -305,7 +301,7 @@ contains
       hist%params = params
       hist%options = options
       hist%delta_max = delta_max
-      hist%capped = above_first_yield(params, delta_max)
+      hist%capped = smooth_capped(params, delta_max)
       hist%reversible = (params%model == model_hertz .or. params%sigma == 0.0_dp) .and. &
          & .not. hist%capped
       if (.not. (hist%reversible .or. hist%capped)) then
@@ -323,6 +319,10 @@ contains
          if (allocated(error)) return
          hist%closest%extended = prob%extended
          hist%closest%delta = prob%delta
+         ! the cap acted (capped points: dp/dh = 0 at a nonzero pressure)
+         hist%closest%capped = allocated(prob%cap) .and. any(sol%dpdh == 0.0_dp .and. &
+            & sol%p /= 0.0_dp)
+         hist%closest%force = smooth_force(prob) + sol%force
          call move_alloc(sol%w, hist%closest%w)
          hist%closest%mesh = sol%mesh
       end if
@@ -345,6 +345,8 @@ contains
       history%cap = hist%cap
       history%closest%extended = hist%closest%extended
       history%closest%delta = hist%closest%delta
+      history%closest%capped = hist%closest%capped
+      history%closest%force = hist%closest%force
       history%closest%mesh = hist%closest%mesh
       if (allocated(history%closest%w)) deallocate (history%closest%w)
       if (allocated(hist%closest%w)) call move_alloc(hist%closest%w, history%closest%w)
@@ -485,10 +487,11 @@ contains
       real(dp) :: est, length, c
       integer :: i, method_used
 
-      if (history%capped) then
+      if (history%capped .or. (history%params%flow_pressure > 0.0_dp .and. &
+         & .not. history%reversible)) then
          call fatal_error(error, egw_unsupported, "flow_pressure = " &
             & //format_real(history%params%flow_pressure)//": the unloading profile " &
-            & //"beyond first yield of the cap is not available yet (forces are)")
+            & //"with the cap (beyond first yield, or rough) is not available yet (forces are)")
          return
       end if
       if (size(pressure) /= size(r) .or. size(separation) /= size(r) .or. &
@@ -583,11 +586,12 @@ contains
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
-      if (above_first_yield(params, delta)) then
+      if (above_first_yield(params, delta) .or. (params%flow_pressure > 0.0_dp .and. &
+         & params%model /= model_hertz .and. params%sigma > 0.0_dp)) then
          call fatal_error(error, egw_unsupported, "flow_pressure = " &
             & //format_real(params%flow_pressure)//": the pressure profile beyond first " &
-            & //"yield of the cap (delta = "//format_real(delta)//") is not available yet " &
-            & //"(forces are)")
+            & //"yield of the cap (delta = "//format_real(delta)//"), or of a rough sphere " &
+            & //"with the cap, is not available yet (forces are)")
          return
       end if
       if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
@@ -696,6 +700,15 @@ contains
          & force_y)
       above = delta > delta_y
    end function above_first_yield
+
+   !> Whether params are a smooth sphere (Hertz or sigma = 0) with the cap beyond first
+   !> yield: egw_cap_sphere's range. A rough sphere's cap lives in its scaled problem.
+   elemental logical function smooth_capped(params, delta)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta
+      smooth_capped = (params%model == model_hertz .or. params%sigma == 0.0_dp) .and. &
+         & above_first_yield(params, delta)
+   end function smooth_capped
 
    !> The smooth sphere with the cap loaded to delta (> delta_y): egw_cap_sphere's solve
    !> on cap_solve_options and the history its unloading needs.

@@ -8,13 +8,13 @@ module egw_sphere_iteration
    use egw_status, only: egw_error, egw_not_converged, &
       & egw_out_of_memory, fatal_error, format_real, int_str
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure
-   use egw_unloading, only: unloading_pressure
    use egw_halfspace, only: build_mesh, mesh_nodes, node_index, assemble_influence, &
       & interpolate_nodal
    use egw_lapack, only: dgetf2, dgetrs
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
       & scaled_problem, discrete_solution, law_at, law_inverse, base_gap, base_gap_rate, &
-      & closest_gap, gauss_values, deflection_degree, pressure_points
+      & closest_gap, gauss_values, deflection_degree, pressure_points, rough_pressure, &
+      & cap_fields, sums_total
    implicit none
    private
 
@@ -60,6 +60,15 @@ contains
       sol%base = base_gap(prob, sol%mesh%gauss_r)
       sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
       if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
+      if (allocated(prob%cap)) then
+         if (allocated(sol%gap_min)) then
+            call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
+               & sol%shift, sol%offset)
+         else
+            call cap_fields(prob, sol%mesh%gauss_r, 0.0_dp*sol%mesh%gauss_r, sol%p_smooth, &
+               & sol%dps, sol%shift, sol%offset)
+         end if
+      end if
       if (present(guess)) then
          ! Interpolated; beyond the guess's mesh its outermost value (w_G varies slowly there).
          allocate (sol%w(n))
@@ -82,6 +91,9 @@ contains
       if (allocated(error)) return
 
       sol%force = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
+      ! unloading after a capped loading: the total pressure (sums_total)
+      if (sums_total(prob)) sol%force = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r* &
+         & (sol%p + sol%p_smooth))
       sol%moment0 = sum(sol%mesh%gauss_w*sol%p)
       sol%moment1 = sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%p)
       ! Force beyond the outer radius if p keeps falling like at the last two Gauss points.
@@ -120,7 +132,8 @@ contains
       end if
       call evaluate(prob, sol)
       call jacobian(sol, jac)
-      rhs = matmul(sol%infl, sol%dpdh*sol%dbase)
+      ! with the cap the rough part also moves with delta at fixed gap (sol%dpdd)
+      rhs = matmul(sol%infl, sol%dpdh*sol%dbase + sol%dpdd)
       refined = .false.
       if (allocated(sol%lu)) then
          if (size(sol%lu, 1) == n) then
@@ -149,7 +162,7 @@ contains
          call dgetrs('N', n, 1, jac, n, ipiv, x, n, info)
       end if
       rate = sol%dbase + gauss_values(sol%mesh, x(:, 1))
-      sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*sol%dpdh*rate)
+      sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%dpdh*rate + sol%dpdd))
    end subroutine differentiate
 
    !> Initial rough deflection. Separated spheres: 0 (the base gap is already close).
@@ -199,21 +212,20 @@ contains
    end subroutine initial_deflection
 
    !> Gap, pressure and its derivative at the Gauss points for the current w (the
-   !> unloading law at the closest-approach gaps when unloading).
+   !> unloading law at the closest-approach gaps when unloading; the cap: rough_pressure).
    pure subroutine evaluate(prob, sol)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(inout) :: sol
-      real(dp), allocatable :: f(:), dfdh(:)
       sol%gap = sol%base + gauss_values(sol%mesh, sol%w)
+      sol%p = sol%gap       ! (sized as the gap)
+      sol%dpdh = sol%gap
+      sol%dpdd = sol%gap
       if (allocated(sol%gap_min)) then
-         allocate (f(size(sol%gap)), dfdh(size(sol%gap)))
-         call unloading_pressure(prob%unload, sol%gap, sol%gap_min, f, dfdh)
-         sol%p = prob%scale*f
-         sol%dpdh = prob%scale*dfdh
+         call rough_pressure(prob, sol%gap, sol%gap_min, sol%p_smooth, sol%dps, sol%shift, &
+            & sol%offset, sol%p, sol%dpdh, sol%dpdd)
       else
-         sol%p = sol%gap       ! (sized as the gap)
-         sol%dpdh = sol%gap
-         call prob%law%pressure(sol%gap, sol%p, sol%dpdh)
+         call rough_pressure(prob, sol%gap, sol%gap, sol%p_smooth, sol%dps, sol%shift, &
+            & sol%offset, sol%p, sol%dpdh, sol%dpdd)
       end if
    end subroutine evaluate
 

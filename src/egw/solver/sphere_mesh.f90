@@ -5,8 +5,9 @@
 module egw_sphere_mesh
    use egw_kinds, only: dp, pi
    use egw_halfspace, only: graded_edges, interpolate_nodal
+   use egw_unloading, only: unloading_kinks
    use egw_sphere_problem, only: solver_options, scaled_problem, discrete_solution, law_at, &
-      & law_inverse, estimated_gap, closest_gap, base_gap, deflection_degree
+      & law_inverse, estimated_gap, closest_gap, base_gap, deflection_degree, cap_excess
    implicit none
    private
 
@@ -39,6 +40,7 @@ module egw_sphere_mesh
    end type mesh_family
 
    public :: mesh_family
+   public :: kink_radii, cap_kink_radii
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
       & mesh_geometry, step_for_nodes, grown_outer
@@ -128,6 +130,92 @@ contains
          end if
       end do
    end subroutine gap_edge
+
+   !> The radii where p(r) of a solution has kinks that become element edges: unloading,
+   !> the branch radii (d = d_max crossings, then the kinks of Z_u in Delta); with the cap
+   !> its edges (cap_kink_radii) first. n_first: how many radii (the first) are kinks where
+   !> dp/dr jumps (the cap's and the d = d_max crossings); the rest are milder.
+   function kink_radii(prob, sol, negligible_weight, n_first) result(radii)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: negligible_weight
+      integer, intent(out) :: n_first
+      real(dp), allocatable :: radii(:), branch(:)
+      integer :: n_branch
+      allocate (radii(0))
+      n_first = 0
+      if (allocated(prob%cap)) radii = cap_kink_radii(prob, sol, negligible_weight)
+      n_first = size(radii)
+      if (.not. allocated(prob%closest)) return
+      branch = branch_radii(prob, sol, [0.0_dp, unloading_kinks(prob%unload)], &
+         & negligible_weight, n_branch)
+      radii = [radii, branch]
+      n_first = n_first + n_branch
+   end function kink_radii
+
+   !> Radii where the cap puts a kink into p(r) of a solution (cap_excess changes sign; its
+   !> kinds 1 to 3), at most 8 of each kind: bracketed by the Gauss points, then solved on
+   !> the solution's own field (Illinois), as branch_radii.
+   function cap_kink_radii(prob, sol, negligible_weight) result(radii)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(in) :: negligible_weight
+      real(dp), allocatable :: radii(:)
+      real(dp) :: f0, f1, lo, hi, mid, f_lo, f_hi, f_mid
+      integer :: g, kind, i, side, found
+      allocate (radii(0))
+      do kind = 1, 3
+         found = 0
+         f1 = cap_excess(prob, sol%mesh%gauss_r(1), sol%gap(1), kind)
+         do g = 1, size(sol%gap) - 1
+            f0 = f1
+            f1 = cap_excess(prob, sol%mesh%gauss_r(g + 1), sol%gap(g + 1), kind)
+            if ((f0 < 0.0_dp .eqv. f1 < 0.0_dp) .or. found >= 8) cycle
+            if (negligible_at(sol, 0.5_dp*(sol%mesh%gauss_r(g) + sol%mesh%gauss_r(g + 1)), &
+               & negligible_weight)) cycle
+            lo = sol%mesh%gauss_r(g)
+            hi = sol%mesh%gauss_r(g + 1)
+            mid = lo + f0/(f0 - f1)*(hi - lo)
+            f_lo = excess(lo)
+            f_hi = excess(hi)
+            if ((f_lo < 0.0_dp) .neqv. (f_hi < 0.0_dp)) then
+               side = 0
+               do i = 1, 60
+                  mid = (lo*f_hi - hi*f_lo)/(f_hi - f_lo)
+                  if (.not. (mid > lo .and. mid < hi)) mid = 0.5_dp*(lo + hi)
+                  if (.not. (mid > lo .and. mid < hi)) exit
+                  f_mid = excess(mid)
+                  if (f_mid == 0.0_dp) exit
+                  if ((f_mid < 0.0_dp) .eqv. (f_lo < 0.0_dp)) then
+                     lo = mid
+                     f_lo = f_mid
+                     if (side == 1) f_hi = 0.5_dp*f_hi
+                     side = 1
+                  else
+                     hi = mid
+                     f_hi = f_mid
+                     if (side == -1) f_lo = 0.5_dp*f_lo
+                     side = -1
+                  end if
+                  if (hi - lo <= 8.0_dp*epsilon(1.0_dp)*hi) exit
+               end do
+            end if
+            ! kinds 2 and 3 coincide where p_s(delta_max) = 0: one edge
+            if (size(radii) > 0) then
+               if (minval(abs(radii - mid)) <= 1.0e-12_dp*mid) cycle
+            end if
+            radii = [radii, mid]
+            found = found + 1
+         end do
+      end do
+   contains
+      !> cap_excess of this kind at r on the nodal field
+      pure real(dp) function excess(r)
+         real(dp), intent(in) :: r
+         excess = cap_excess(prob, r, base_gap(prob, r) + interpolate_nodal(sol%mesh, sol%w, r), &
+            & kind)
+      end function excess
+   end function cap_kink_radii
 
    !> Radii where the gap of a solution crosses its closest-approach gap plus one of the
    !> levels (0: the branch; the kinks of Z_u in Delta), at most 16. Bracketed by the Gauss
@@ -377,6 +465,14 @@ contains
          end if
       end do
       outer = max(hi, focus + 2.0_dp*width)
+      ! With the cap the contact outgrows the Hertz radius (from ~2 delta_y on): up to the
+      ! radius of a uniform disc at p_y, r**2/2 + (4/pi) p_y r = delta (doc/theory.md §12,
+      ! trap iv), with the same margin beyond it.
+      if (allocated(prob%cap) .and. prob%delta > 0.0_dp) then
+         mid = 4.0_dp*prob%cap%p_y/pi
+         mid = 2.0_dp*prob%delta/(mid + sqrt(mid*mid + 2.0_dp*prob%delta))
+         outer = max(outer, mid + (outer - prob%a))
+      end if
    end subroutine mesh_geometry
 
    !> Step that gives about n_nodes nodes with graded_edges.

@@ -5,9 +5,10 @@
 !> iterations (egw_sphere_iteration) and levels (egw_sphere_solver).
 module egw_sphere_problem
    use egw_kinds, only: dp, pi, sqrt2
-   use egw_params, only: contact_params, model_egw, model_epgw
+   use egw_params, only: contact_params, model_egw, model_epgw, pressure_unit
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_force, hertz_stiffness
    use egw_flat_law, only: flat_law, gw_flat_law
+   use egw_flow_cap, only: flow_cap
    use egw_unloading, only: unloading_law, unloading_law_of, unloading_pressure
    use egw_halfspace, only: radial_mesh, node_index, influence_row, interpolate_nodal
    implicit none
@@ -47,6 +48,9 @@ module egw_sphere_problem
    type :: separation_field
       logical :: extended = .false.   !< z_max is the Hertz gap (else the rigid gap)
       real(dp) :: delta = 0.0_dp      !< delta_max/sigma
+      !> The flow-pressure cap acted on the loading at delta_max (sums_total, force_floor)
+      logical :: capped = .false.
+      real(dp) :: force = 0.0_dp      !< the loading force at delta_max (scaled)
       type(radial_mesh) :: mesh
       real(dp), allocatable :: w(:)
    end type separation_field
@@ -73,6 +77,9 @@ module egw_sphere_problem
       !> Unloading: an element edge at the loading Hertz edge sqrt(delta_max) (the onset of
       !> d_max); dropped where the locating solve's pressure there is negligible.
       logical :: amax_edge = .true.
+      !> The flow-pressure cap (params%flow_pressure > 0; doc/theory.md §12 "Rough spheres
+      !> with the cap"), applied to the law in one place: rough_pressure.
+      type(flow_cap), allocatable :: cap
       !> Scaled residual at which Newton stops (looser only for the unloading's locating
       !> solve, see first_unloading_level).
       real(dp) :: residual_tol = 1.0e-11_dp
@@ -87,6 +94,10 @@ module egw_sphere_problem
       real(dp), allocatable :: base(:), dbase(:) !< base gap and d(base)/d(delta) at Gauss pts
       real(dp), allocatable :: gap(:), p(:), dpdh(:)  !< at the Gauss points
       real(dp), allocatable :: gap_min(:)  !< closest-approach gap at the Gauss points (unloading)
+      !> With the cap (allocated then, at the Gauss points): smooth pressure p_s and its
+      !> delta-derivative, the plastic gap shift and pressure offset (unloading), and
+      !> dp/d(delta) of the rough part at fixed gap.
+      real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:), dpdd(:)
       real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
       real(dp) :: residual = 0.0_dp, tail = 0.0_dp
       integer :: iterations = 0
@@ -99,7 +110,8 @@ module egw_sphere_problem
    public :: separation_field, scaled_problem, discrete_solution
    public :: scaled, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
       & estimated_gap, law_inverse, gauss_values, effective_radius, total_pressure, &
-      & smooth_force, smooth_stiffness
+      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, sums_total, &
+      & force_floor
 
 contains
 
@@ -149,6 +161,8 @@ contains
       prob%plastic_ratio = params%plastic_ratio
       allocate (prob%law, source=gw_flat_law(scale=prob%scale, psi=prob%psi, &
          & hardness_coeff=prob%hardness, plastic_ratio=prob%plastic_ratio))
+      if (params%flow_pressure > 0.0_dp) prob%cap = &
+         & flow_cap(p_y=params%flow_pressure/pressure_unit(params))
    end function scaled
 
    !> Scaled pressure of the loading law at one scaled separation h, and its derivative.
@@ -285,25 +299,141 @@ contains
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(in) :: sol
       real(dp), intent(in) :: r
-      real(dp) :: row(size(sol%p)), f, dfdh, gap_min(1)
+      real(dp) :: row(size(sol%p)), gap_min(1), pr(1), dpdh(1), dpdd(1)
+      real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:)
       call influence_row(sol%mesh, r, row)
-      if (allocated(prob%closest)) then
-         gap_min = closest_gap(prob%closest, [r])
-         call unloading_pressure(prob%unload, base_gap(prob, r) + dot_product(row, sol%p), &
-            & gap_min(1), f, dfdh)
-         p = prob%scale*f
-      else
-         call law_at(prob, base_gap(prob, r) + dot_product(row, sol%p), p, dfdh)
-      end if
+      gap_min = 0.0_dp
+      if (allocated(prob%closest)) gap_min = closest_gap(prob%closest, [r])
+      if (allocated(prob%cap)) call cap_fields(prob, [r], gap_min, p_smooth, dps, shift, &
+         & offset)
+      call rough_pressure(prob, [base_gap(prob, r) + dot_product(row, sol%p)], gap_min, &
+         & p_smooth, dps, shift, offset, pr, dpdh, dpdd)
+      p = pr(1)
       if (prob%extended) p = p + hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
    end function total_pressure
 
-   !> Scaled Hertz force of the smooth part (extended models only).
+   !> The rough part of the pressure and dp/dh at gaps h: the loading law, or (prob%closest
+   !> allocated) the unloading law at the closest-approach gaps h_min; with the cap
+   !> (prob%cap) the loading law capped (flow_cap%apply) or the unloading law at the
+   !> shifted gaps h + shift, h_min + shift less the offset, the total kept >= 0
+   !> (doc/theory.md §12 "Rough spheres with the cap"). dpdd: dp/d(delta) at fixed h (0
+   !> without the cap). The one place the solver evaluates its pressure law. The cap
+   !> fields (p_smooth .. offset, from cap_fields) are only read when prob%cap is allocated.
+   pure subroutine rough_pressure(prob, h, h_min, p_smooth, dps, shift, offset, p, dpdh, dpdd)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: h(:), h_min(:)
+      real(dp), allocatable, intent(in) :: p_smooth(:), dps(:), shift(:), offset(:)
+      real(dp), intent(out) :: p(:), dpdh(:), dpdd(:)
+      dpdd = 0.0_dp
+      if (allocated(prob%closest)) then
+         if (allocated(prob%cap)) then
+            call unloading_pressure(prob%unload, h + shift, h_min + shift, p, dpdh)
+            p = prob%scale*p - offset
+            dpdh = prob%scale*dpdh
+            call prob%cap%unload_floor(p_smooth, dps, p, dpdh, dpdd)
+         else
+            call unloading_pressure(prob%unload, h, h_min, p, dpdh)
+            p = prob%scale*p
+            dpdh = prob%scale*dpdh
+         end if
+      else
+         call prob%law%pressure(h, p, dpdh)
+         if (allocated(prob%cap)) call prob%cap%apply(p_smooth, dps, p, dpdh, dpdd)
+      end if
+   end subroutine rough_pressure
+
+   !> The cap's fields at radii r (prob%cap allocated): the smooth pressure p_s at delta
+   !> and its delta-derivative (Hertz for the extended models, else 0); unloading (gap_min:
+   !> the closest-approach gaps at r) the plastic gap shift and pressure offset from the
+   !> loading at delta_max (flow_cap%plastic_shift), else 0.
+   pure subroutine cap_fields(prob, r, gap_min, p_smooth, dps, shift, offset)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: r(:), gap_min(:)
+      real(dp), allocatable, intent(out) :: p_smooth(:), dps(:), shift(:), offset(:)
+      real(dp), allocatable :: ps_max(:)
+      p_smooth = 0.0_dp*r
+      dps = 0.0_dp*r
+      shift = 0.0_dp*r
+      offset = 0.0_dp*r
+      if (prob%extended) then
+         p_smooth = hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
+         ! p_s = (2/pi) sqrt(delta - r**2): d p_s/d delta = (1/pi)/sqrt(delta - r**2)
+         where (p_smooth > 0.0_dp) dps = 2.0_dp/(pi*pi*p_smooth)
+      end if
+      if (.not. allocated(prob%closest)) return
+      ps_max = 0.0_dp*r
+      if (prob%closest%extended) ps_max = hertz_pressure(r, prob%closest%delta, 1.0_dp, &
+         & 1.0_dp)
+      call prob%cap%plastic_shift(prob%law, ps_max, gap_min, shift, offset)
+   end subroutine cap_fields
+
+   !> Where p(r) has a kink from the cap, the sign of this changes (prob%cap allocated;
+   !> gap: the solution's gap at r): loading (kind 1) p_s + law(gap) - p_y, the cap edge;
+   !> unloading kind 1, the total unloading pressure before its floor at 0, kind 2,
+   !> law(d_max) - (p_y - p_s(delta_max)), the cap edge at delta_max where the offset
+   !> starts, and kind 3, law(d_max) - p_y, where the gap shift starts (flow_cap's
+   !> plastic_shift: t = min(p_y, law(d_max))). 1 where a kind does not apply.
+   pure real(dp) function cap_excess(prob, r, gap, kind) result(excess)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(in) :: r, gap
+      integer, intent(in) :: kind
+      real(dp) :: gm(1), p(1), dpdh(1), ps_max
+      real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:)
+      excess = 1.0_dp
+      gm = gap
+      if (allocated(prob%closest)) gm = closest_gap(prob%closest, [r])
+      call cap_fields(prob, [r], gm, p_smooth, dps, shift, offset)
+      if (.not. allocated(prob%closest)) then
+         if (kind /= 1) return
+         call prob%law%pressure([gap], p, dpdh)
+         excess = p_smooth(1) + p(1) - prob%cap%p_y
+      else if (kind == 1) then
+         call unloading_pressure(prob%unload, gap + shift(1), gm(1) + shift(1), p(1), dpdh(1))
+         excess = p_smooth(1) + prob%scale*p(1) - offset(1)
+      else
+         ps_max = 0.0_dp
+         if (prob%closest%extended .and. kind == 2) ps_max = hertz_pressure(r, &
+            & prob%closest%delta, 1.0_dp, 1.0_dp)
+         call prob%law%pressure(gm, p, dpdh)
+         excess = p(1) - (prob%cap%p_y - ps_max)
+      end if
+   end function cap_excess
+
+   !> Scaled Hertz force of the smooth part (extended models only; 0 where the solution's
+   !> force holds it, sums_total).
    pure real(dp) function smooth_force(prob) result(force)
       type(scaled_problem), intent(in) :: prob
       force = 0.0_dp
-      if (prob%extended) force = hertz_force(prob%delta, 1.0_dp, 1.0_dp)
+      if (prob%extended .and. .not. sums_total(prob)) force = hertz_force(prob%delta, &
+         & 1.0_dp, 1.0_dp)
    end function smooth_force
+
+   !> Unloading of an extended model after a capped loading: the force is the Gauss sum
+   !> of the total pressure p_s + p (discrete_solution%force holds the Hertz part too).
+   !> Where the total sits at its floor 0 the rough part is -p_s, and near the residual
+   !> overlap the force would be the small difference of the Hertz force and that sum:
+   !> summed as the total pressure (0 there) neither the force nor the levels' difference
+   !> carries the cancellation. Elsewhere the Hertz part's closed form is kept (more
+   !> accurate than its Gauss sum, and the cap-free results stay bit for bit).
+   elemental logical function sums_total(prob)
+      type(scaled_problem), intent(in) :: prob
+      sums_total = .false.
+      if (.not. (allocated(prob%cap) .and. allocated(prob%closest))) return
+      sums_total = prob%extended .and. prob%closest%capped
+   end function sums_total
+
+   !> The force below which an unloading solve after a capped loading bounds
+   !> its error absolutely, by rel_tol times this: 1e-6 of the loading force at
+   !> delta_max. Near and below the residual overlap the force falls to 1e-10 .. 1e-80 of
+   !> it (the unloaded summits' Gaussian tail) where its relative error cannot be resolved
+   !> (a sum of the total pressure whose terms are 1e6 times larger); an impact's work
+   !> integrals need it to rel_tol of their whole. 0 (relative errors) elsewhere.
+   elemental real(dp) function force_floor(prob) result(floor)
+      type(scaled_problem), intent(in) :: prob
+      floor = 0.0_dp
+      if (.not. (allocated(prob%cap) .and. allocated(prob%closest))) return
+      if (prob%closest%capped) floor = 1.0e-6_dp*abs(prob%closest%force)
+   end function force_floor
 
    !> Scaled Hertz stiffness of the smooth part (extended models only).
    pure real(dp) function smooth_stiffness(prob) result(stiffness)

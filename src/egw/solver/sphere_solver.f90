@@ -37,14 +37,15 @@
 module egw_sphere_solver
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
-   use egw_unloading, only: unloading_law_of, unloading_pressure, unloading_kinks
+   use egw_unloading, only: unloading_law_of, unloading_kinks
    use egw_halfspace, only: graded_edges, interpolate_nodal
    use egw_sphere_problem, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & scaled, normal, negligible, base_gap, closest_gap, law_inverse, &
-      & effective_radius, total_pressure, smooth_force, smooth_stiffness
+      & effective_radius, total_pressure, smooth_force, smooth_stiffness, rough_pressure, &
+      & cap_fields, force_floor
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
-      & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, with_edge, &
+      & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, &
       & mesh_geometry
    use egw_sphere_iteration, only: solve_mesh, differentiate
@@ -107,6 +108,10 @@ contains
          call refocus_classic_gw(prob, options, method_used, mesh, coarse, error)
          if (allocated(error)) return
       end if
+      if (allocated(prob%cap) .and. .not. allocated(prob%closest)) then
+         call first_cap_level(prob, options, method_used, mesh, coarse, error)
+         if (allocated(error)) return
+      end if
       call refine_levels(prob, options, method_used, order, mesh, coarse, sol, est, error)
    end subroutine solve_scaled
 
@@ -155,8 +160,7 @@ contains
       ! 1e-4 rel_tol of its peak cannot move the force by rel_tol even if its elements
       ! were wholly wrong, and such edges (seen: r p at 1e-45 of the peak, in the far
       ! tail) cost a level of elements 4 nodes each.
-      prob%branch = branch_radii(prob, first, [0.0_dp, unloading_kinks(prob%unload)], &
-         & 1.0e-4_dp*options%rel_tol, prob%n_branch)
+      prob%branch = kink_radii(prob, first, 1.0e-4_dp*options%rel_tol, prob%n_branch)
       if (prob%closest%extended) prob%amax_edge = .not. negligible_at(first, &
          & sqrt(prob%closest%delta), 1.0e-4_dp*options%rel_tol)
       if (options%n_radial == 0) call trim_to_unloading_decay(prob, options, first, mesh)
@@ -180,6 +184,42 @@ contains
       if (.not. allocated(error)) call relocate_kinks(prob, options, method, mesh%layered, &
          & mesh%focus, mesh%width, mesh%step_prev, mesh%outer, coarse, error)
    end subroutine first_unloading_level
+
+   !> Loading with the cap (doc/theory.md §12 "Rough spheres with the cap"): the cap edges
+   !> of the first level's solution (coarse) become element edges (prob%branch: where
+   !> p_s + p reaches p_y, dp/dr jumps), the first level is solved again with them and
+   !> they are relocated on it (relocate_kinks), as for the unloading's kinks.
+   subroutine first_cap_level(prob, options, method, mesh, coarse, error)
+      type(scaled_problem), intent(inout) :: prob
+      type(solver_options), intent(in) :: options
+      integer, intent(in) :: method
+      type(mesh_family), intent(inout) :: mesh
+      type(discrete_solution), intent(inout) :: coarse
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution) :: first
+      real(dp) :: edge
+      prob%branch = kink_radii(prob, coarse, 1.0e-4_dp*options%rel_tol, prob%n_branch)
+      if (size(prob%branch) == 0) then
+         deallocate (prob%branch)
+         return
+      end if
+      ! Beyond ~2 delta_y the capped contact outgrows the Hertz radius and ends, just past
+      ! its outermost cap edge, in a layer as thin as the Hertz edge's (the smooth cap's
+      ! pressure jumps from p_y to 0 there, trap iv): the family is refocused there (the
+      ! Hertz edge, where the base gap has its onset, stays an element edge).
+      edge = maxval(prob%branch)
+      if (edge > mesh%focus + 4.0_dp*mesh%width) then
+         mesh%focus = edge
+         mesh%width = min(1.0_dp, 0.5_dp*edge*(0.75_dp*pi/edge**2)**(2.0_dp/3.0_dp))
+         mesh%layered = .true.
+         mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
+      end if
+      first = coarse
+      call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
+         & mesh%step_prev, mesh%outer, coarse, error, first)
+      if (.not. allocated(error)) call relocate_kinks(prob, options, method, mesh%layered, &
+         & mesh%focus, mesh%width, mesh%step_prev, mesh%outer, coarse, error)
+   end subroutine first_cap_level
 
    !> Classic GW deep in contact (doc/theory.md §5 "Useful facts", §7): with
    !> p_H(0) >> C sigma**1.5 (centre gap below -3 sigma) the solution ends in a thin layer
@@ -240,6 +280,7 @@ contains
             est = 1.0_dp
             return
          end if
+         total = max(total, force_floor(prob))
          ! Discretisation (Richardson) plus the force estimated beyond the outer radius,
          ! which both levels share and their difference cannot see.
          if (total > 0.0_dp) est = discretisation_error(sol%force, coarse%force, total, &
@@ -323,6 +364,7 @@ contains
          total_again = abs(smooth_force(prob) + sol%force)
          vanished = total_again < tiny_force
          if (vanished) return
+         total_again = max(total_again, force_floor(prob))
          kink_err = kink_offset_error(prob, sol, options%rel_tol, moved, n_moved)/total_again
          est = discretisation_error(sol%force, coarse%force, total_again, &
             & mesh%step_prev/mesh%step, confirming, order) + sol%tail/total_again
@@ -422,10 +464,20 @@ contains
                if (prob%closest%extended .and. prob%amax_edge) keep = sqrt(prob%closest%delta)
                edges = with_kink_edges(edges, prob%branch, focus, prob%n_branch, keep)
             end if
+         else if (allocated(prob%branch)) then
+            ! loading with the cap: its edges (cap_kink_radii), and the Hertz edge where the
+            ! family was refocused off it (first_cap_level)
+            keep = 0.0_dp
+            if (prob%extended .and. focus /= prob%a) then
+               edges = with_edge(edges, prob%a)
+               keep = prob%a
+            end if
+            edges = with_kink_edges(edges, prob%branch, focus, prob%n_branch, keep)
          end if
          call solve_mesh(prob, options, method, edges, sol, error, guess)
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
+         if (total > 0.0_dp) total = max(total, force_floor(prob))
          if (sol%tail <= 0.01_dp*options%rel_tol*total .or. total == 0.0_dp) return
          outer = grown_outer(prob, sol, options%rel_tol*total, outer)
       end do
@@ -455,6 +507,7 @@ contains
       do pass = 1, 3
          total = abs(smooth_force(prob) + sol%force)
          if (.not. total > 0.0_dp) return
+         total = max(total, force_floor(prob))
          if (kink_offset_error(prob, sol, options%rel_tol, moved, n_moved) &
             & <= 0.1_dp*options%rel_tol*total) return
          prob%branch = moved
@@ -490,8 +543,7 @@ contains
       real(dp) :: err
       real(dp) :: r, off, s, gapr, jump, pm(-2:2)
       integer :: k, i
-      moved = branch_radii(prob, sol, [0.0_dp, unloading_kinks(prob%unload)], &
-         & 1.0e-4_dp*rel_tol, n_moved)
+      moved = kink_radii(prob, sol, 1.0e-4_dp*rel_tol, n_moved)
       err = 0.0_dp
       do k = 1, size(moved)
          r = moved(k)
@@ -505,6 +557,7 @@ contains
             if (i /= k) gapr = min(gapr, abs(moved(i) - r))
          end do
          s = 1.0e-3_dp*gapr
+         if (.not. s > 0.0_dp) cycle   ! (kinks found twice: counted once)
          do i = -2, 2
             if (i /= 0) pm(i) = pressure_at(r + real(i, dp)*s)
          end do
@@ -514,11 +567,14 @@ contains
    contains
       real(dp) function pressure_at(x) result(p)
          real(dp), intent(in) :: x
-         real(dp) :: gm(1), f, dfdh
-         gm = closest_gap(prob%closest, [x])
-         call unloading_pressure(prob%unload, base_gap(prob, x) &
-            & + interpolate_nodal(sol%mesh, sol%w, x), gm(1), f, dfdh)
-         p = prob%scale*f
+         real(dp) :: gm(1), pr(1), dpdh(1), dpdd(1)
+         real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:)
+         gm = 0.0_dp
+         if (allocated(prob%closest)) gm = closest_gap(prob%closest, [x])
+         if (allocated(prob%cap)) call cap_fields(prob, [x], gm, p_smooth, dps, shift, offset)
+         call rough_pressure(prob, [base_gap(prob, x) + interpolate_nodal(sol%mesh, sol%w, x)], &
+            & gm, p_smooth, dps, shift, offset, pr, dpdh, dpdd)
+         p = pr(1)
       end function pressure_at
    end function kink_offset_error
 

@@ -1,0 +1,102 @@
+!> The flow-pressure cap as an object the rough sphere solver takes (doc/theory.md §12,
+!> "Rough spheres with the cap"): the bulk flow pressure p_y caps the TOTAL pressure
+!> p_s + p (p_s the smooth part of the extended models, p the rough-flat law's), so the
+!> rough part is capped at p_y - p_s; and after a capped loading the plastic displacement
+!> that unloading starts from. All in the solver's scaled units.
+module egw_flow_cap
+   use egw_kinds, only: dp
+   use egw_flat_law, only: flat_law
+   implicit none
+   private
+
+   !> The flow-pressure cap: p_y in the solver's pressure unit.
+   type, public :: flow_cap
+      real(dp) :: p_y = huge(1.0_dp)   !< scaled flow pressure (> 0)
+   contains
+      procedure :: apply => cap_apply
+      procedure :: unload_floor => cap_unload_floor
+      procedure :: plastic_shift => cap_plastic_shift
+   end type flow_cap
+
+contains
+
+   !> Loading: the rough part p (and dp/dh) at smooth pressures p_smooth capped so that
+   !> p_smooth + p <= p_y; where capped p = p_y - p_smooth (negative where p_smooth > p_y),
+   !> dp/dh = 0 and dp/d(delta) = -d(p_smooth)/d(delta), else dp/d(delta) = 0 (at fixed h).
+   elemental subroutine cap_apply(cap, p_smooth, dps_ddelta, p, dpdh, dpdd)
+      class(flow_cap), intent(in) :: cap
+      real(dp), intent(in) :: p_smooth     !< smooth (Hertz) pressure, 0 for classic GW
+      real(dp), intent(in) :: dps_ddelta   !< its delta-derivative at fixed r
+      real(dp), intent(inout) :: p         !< rough part: the law's in, the capped out
+      real(dp), intent(inout) :: dpdh      !< dp/dh: the law's in, 0 where capped
+      real(dp), intent(out) :: dpdd        !< dp/d(delta) at fixed h
+      dpdd = 0.0_dp
+      if (p_smooth + p > cap%p_y) then
+         p = cap%p_y - p_smooth
+         dpdh = 0.0_dp
+         dpdd = -dps_ddelta
+      end if
+   end subroutine cap_apply
+
+   !> Unloading: the total pressure never falls below 0 (the rough part at least
+   !> -p_smooth; only a shifted rough part with an offset, plastic_shift, can go below).
+   elemental subroutine cap_unload_floor(cap, p_smooth, dps_ddelta, p, dpdh, dpdd)
+      class(flow_cap), intent(in) :: cap
+      real(dp), intent(in) :: p_smooth, dps_ddelta
+      real(dp), intent(inout) :: p, dpdh
+      real(dp), intent(out) :: dpdd
+      dpdd = 0.0_dp
+      if (p_smooth + p < 0.0_dp) then
+         p = -p_smooth
+         dpdh = 0.0_dp
+         dpdd = -dps_ddelta
+      end if
+   end subroutine cap_unload_floor
+
+   !> The plastic displacement at delta_max of a point at gap h_max with smooth pressure
+   !> p_smooth_max there, for the loading law: where the law was capped (law(h_max) > c,
+   !> c = p_y - p_smooth_max) the gap shift u_pl = h_c - h_max with law(h_c) = t,
+   !> t = min(p_y, law(h_max)), and the pressure offset t - c; 0 and 0 elsewhere. Unloading
+   !> uses the law at h + u_pl less the offset: at delta_max that is c again (continuous),
+   !> and u_pl, offset are continuous in r (at the cap edge law(h_max) = c: t = c). Where
+   !> law(h_max) >= p_y the unloading total is law(h + u_pl) + p_s(delta) - p_s(delta_max):
+   !> the law carries the capped p_y from the shifted gap, the smooth part only its change
+   !> (doc/theory.md §12 "Rough spheres with the cap").
+   elemental subroutine cap_plastic_shift(cap, law, p_smooth_max, h_max, shift, offset)
+      class(flow_cap), intent(in) :: cap
+      class(flat_law), intent(in) :: law
+      real(dp), intent(in) :: p_smooth_max, h_max
+      real(dp), intent(out) :: shift, offset
+      real(dp) :: c, t, lo, hi, h, p(1), dpdh(1)
+      integer :: i
+      shift = 0.0_dp
+      offset = 0.0_dp
+      c = cap%p_y - p_smooth_max
+      call law%pressure([h_max], p, dpdh)
+      if (.not. p(1) > c) return
+      t = min(cap%p_y, p(1))
+      offset = t - c
+      if (.not. p(1) > t) return
+      ! law decreasing: law(h_max) > t; bracket [h_max, hi] with law(hi) <= t
+      lo = h_max
+      hi = h_max + 1.0_dp
+      do i = 1, 200
+         call law%pressure([hi], p, dpdh)
+         if (.not. p(1) > t) exit
+         lo = hi
+         hi = h_max + 2.0_dp*(hi - h_max)
+      end do
+      do i = 1, 200
+         h = 0.5_dp*(lo + hi)
+         if (.not. (h > lo .and. h < hi)) exit
+         call law%pressure([h], p, dpdh)
+         if (p(1) > t) then
+            lo = h
+         else
+            hi = h
+         end if
+      end do
+      shift = 0.5_dp*(lo + hi) - h_max
+   end subroutine cap_plastic_shift
+
+end module egw_flow_cap

@@ -1,0 +1,380 @@
+!> Tests of the rough sphere with the flow-pressure cap (doc/theory.md §12 "Rough spheres
+!> with the cap"; egw_flow_cap in the scaled problem of egw_sphere_problem): it is the
+!> cap-free model where the pressure stays below p_y, and the smooth cap model
+!> (test/data/cap_reference.csv, tools/reference/cap_reference.py) as sigma -> 0.
+module test_rough_cap
+   use testdrive, only: new_unittest, unittest_type, error_type, check
+   use egw_kinds, only: dp, pi
+   use egw_status, only: egw_error
+   use egw_flat_law, only: gw_flat_law
+   use egw_halfspace, only: gauss_legendre
+   use egw, only: contact_params, model_gw, model_egw, model_epgw, solver_options, &
+      & solve_result, solve_contact, solve_contact_law, loading_history, load_history, &
+      & solve_unload, restitution
+   implicit none
+   private
+   public :: collect_rough_cap
+
+   !> The pair of the sigma -> 0 checks: R = E* = 1, p_y = 0.01 (delta_y = (pi p_y/2)**2).
+   real(dp), parameter :: py = 0.01_dp
+
+contains
+
+   subroutine collect_rough_cap(testsuite)
+      type(unittest_type), allocatable, intent(out) :: testsuite(:)
+      testsuite = [ &
+         & new_unittest("p_y above every pressure: the cap-free loading", test_no_cap_load), &
+         & new_unittest("p_y above every pressure: the cap-free unloading", &
+         & test_no_cap_unload), &
+         & new_unittest("sigma -> 0: loading reduces to the smooth cap", test_smooth_limit), &
+         & new_unittest("sigma -> 0: unloading reduces to the smooth cap", &
+         & test_smooth_limit_unload), &
+         & new_unittest("impact: dissipated = closed integral of P d delta", test_energy), &
+         & new_unittest("impact: e below the cap-free EP-GW's, and first yield", &
+         & test_first_yield) &
+         & ]
+   end subroutine collect_rough_cap
+
+   function str(x) result(s)
+      real(dp), intent(in) :: x
+      character(len=24) :: s
+      write (s, '(es24.16)') x
+   end function str
+
+   !> Equal to 1e-12 relative: the cap-free solve's own values (the flat law's stiffness
+   !> differs by 1 ulp, 6e-16, the other cases are bit for bit).
+   pure logical function same(a, b)
+      real(dp), intent(in) :: a, b
+      same = abs(a - b) <= 1.0e-12_dp*abs(b)
+   end function same
+
+   !> First yield delta_y and force P_y of the smooth sphere (R = E* = 1) at p_y.
+   pure subroutine yield_units(delta_y, force_y)
+      real(dp), intent(out) :: delta_y, force_y
+      delta_y = (0.5_dp*pi*py)**2
+      force_y = 4.0_dp/3.0_dp*delta_y**1.5_dp
+   end subroutine yield_units
+
+   !> With p_y above the largest total pressure the cap never acts, and every loading solve
+   !> is the cap-free one (GW, E-GW, EP-GW, and a caller's flat law: GW's own through
+   !> solve_contact_law), to 1e-12 (same): the cap only enters through rough_pressure,
+   !> which then returns the law's values, and the mesh gets no cap edges. p_y = 2 x the
+   !> cap-free max_pressure.
+   subroutine test_no_cap_load(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: models(3) = [model_gw, model_egw, model_epgw]
+      real(dp), parameter :: deltas(3) = [-1.0e-3_dp, 2.0e-3_dp, 2.0e-2_dp]
+      type(contact_params) :: p
+      type(solve_result) :: free, capped
+      type(egw_error), allocatable :: err
+      integer :: m, k
+      do m = 1, size(models)
+         do k = 1, size(deltas)
+            p = contact_params(model=models(m), radius=1.0_dp, modulus=1.0_dp, &
+               & sigma=1.0e-3_dp, mu=4.0_dp, psi=2.0_dp)
+            call solve_contact(p, solver_options(), deltas(k), free, err)
+            call check(error, .not. allocated(err), "cap-free solve failed")
+            if (allocated(error)) return
+            p%flow_pressure = min(0.5_dp, 2.0_dp*free%max_pressure)
+            call solve_contact(p, solver_options(), deltas(k), capped, err)
+            call check(error, .not. allocated(err), "solve with the cap failed")
+            if (allocated(error)) return
+            call check(error, same(capped%force, free%force) .and. &
+               & same(capped%stiffness, free%stiffness), &
+               & "model "//str(real(models(m), dp))//" delta "//str(deltas(k)) &
+               & //": "//str(capped%force)//" /= "//str(free%force))
+            if (allocated(error)) return
+         end do
+      end do
+      ! a rough-flat law of the caller's (GW's of mu 4, in its own units: sigma = 1)
+      block
+         type(gw_flat_law) :: law
+         law = gw_flat_law(scale=4.0_dp/(2.0_dp*sqrt(2.0_dp)), psi=0.0_dp, &
+            & hardness_coeff=0.6_dp, plastic_ratio=54.0_dp)
+         ! R = 1e4 sigma: pressures ~1e-2 E*, so that p_y < E* as validate_params asks
+         p = contact_params(radius=1.0e4_dp, modulus=1.0_dp)
+         call solve_contact_law(p, law, solver_options(), 2.0_dp, free, err)
+         call check(error, .not. allocated(err), "flat-law solve failed")
+         if (allocated(error)) return
+         p%flow_pressure = 2.0_dp*free%max_pressure
+         call solve_contact_law(p, law, solver_options(), 2.0_dp, capped, err)
+         call check(error, .not. allocated(err), "flat-law solve with the cap failed")
+         if (allocated(error)) return
+         call check(error, same(capped%force, free%force) .and. &
+            & same(capped%stiffness, free%stiffness), "flat law: "//str(capped%force) &
+            & //" /= "//str(free%force)//" or stiffness "//str(capped%stiffness)//" /= " &
+            & //str(free%stiffness))
+      end block
+   end subroutine test_no_cap_load
+
+   !> Unloading with p_y above every pressure of the loading at delta_max: no plastic
+   !> shift, no offset, the floor never reached: the cap-free unloading bit for bit.
+   subroutine test_no_cap_unload(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: models(3) = [model_gw, model_egw, model_epgw]
+      type(contact_params) :: p
+      type(loading_history) :: h_free, h_cap
+      type(solve_result) :: top, free, capped
+      type(egw_error), allocatable :: err
+      integer :: m
+      do m = 1, size(models)
+         p = contact_params(model=models(m), radius=1.0_dp, modulus=1.0_dp, &
+            & sigma=1.0e-3_dp, mu=4.0_dp, psi=2.0_dp)
+         call load_history(p, solver_options(), 3.0e-3_dp, h_free, top, err)
+         call check(error, .not. allocated(err), "cap-free history failed")
+         if (allocated(error)) return
+         call solve_unload(h_free, 1.0e-3_dp, free, err)
+         call check(error, .not. allocated(err), "cap-free unloading failed")
+         if (allocated(error)) return
+         p%flow_pressure = 2.0_dp*top%max_pressure
+         call load_history(p, solver_options(), 3.0e-3_dp, h_cap, top, err)
+         call check(error, .not. allocated(err), "history with the cap failed")
+         if (allocated(error)) return
+         call solve_unload(h_cap, 1.0e-3_dp, capped, err)
+         call check(error, .not. allocated(err), "unloading with the cap failed")
+         if (allocated(error)) return
+         call check(error, same(capped%force, free%force) .and. &
+            & same(capped%stiffness, free%stiffness), "model "//str(real(models(m), dp)) &
+            & //": "//str(capped%force)//" /= "//str(free%force))
+         if (allocated(error)) return
+      end do
+   end subroutine test_no_cap_unload
+
+   !> E-GW with the cap at sigma/delta_y = 1e-4 and 1e-5 against the smooth cap model's
+   !> independent reference (its error column <= 5e-8 on these rows): the rough model's
+   !> rough layer adds a compliance whose gap is ~ sigma (p/(mu E* sqrt(sigma/R)))**(2/3),
+   !> so it differs from the smooth cap by O((sigma/delta_y)**(2/3)) (measured: 1.2e-4 ..
+   !> 3.2e-4 at 1e-4, 1.3e-5 .. 6.9e-5 at 1e-5, the ratio ~10**(2/3)). Checked: at 1e-5
+   !> within 1e-4 (3 x (1e-5)**(2/3) x 0.7, the largest seen x 1.5), and the Richardson
+   !> extrapolation of the two in (sigma/delta_y)**(2/3) within 1e-5 of the reference
+   !> (seen: 3e-7 .. 5.4e-6; each solve at rel_tol 1e-6, estimates <= 4e-7).
+   subroutine test_smooth_limit(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: x(6) = [1.5_dp, 2.0_dp, 3.0_dp, 5.0_dp, 10.0_dp, 20.0_dp]
+      real(dp), parameter :: ref(6) = [1.815256521822_dp, 2.720383972669_dp, &
+         & 4.696156337776_dp, 9.032667181270_dp, 2.091895411785e+01_dp, &
+         & 4.646580037371e+01_dp]
+      real(dp), parameter :: ratios(2) = [1.0e-4_dp, 1.0e-5_dp]
+      type(contact_params) :: p
+      type(solver_options) :: o
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y, got(2), extrapolated, q
+      integer :: i, j
+      call yield_units(delta_y, force_y)
+      o%rel_tol = 1.0e-6_dp
+      q = 10.0_dp**(2.0_dp/3.0_dp)
+      do i = 1, size(x)
+         do j = 1, 2
+            p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
+               & sigma=ratios(j)*delta_y, mu=4.0_dp, flow_pressure=py)
+            call solve_contact(p, o, x(i)*delta_y, res, err)
+            if (allocated(err)) then
+               call check(error, .false., "delta/delta_y = "//str(x(i))//": " &
+                  & //err%message)
+               return
+            end if
+            if (allocated(error)) return
+            got(j) = res%force/force_y
+         end do
+         call check(error, abs(got(2) - ref(i)) <= 1.0e-4_dp*ref(i), "delta/delta_y = " &
+            & //str(x(i))//", sigma/delta_y 1e-5: P/P_y = "//str(got(2))//", reference " &
+            & //str(ref(i)))
+         if (allocated(error)) return
+         extrapolated = (q*got(2) - got(1))/(q - 1.0_dp)
+         call check(error, abs(extrapolated - ref(i)) <= 1.0e-5_dp*ref(i), &
+            & "delta/delta_y = "//str(x(i))//": extrapolated P/P_y = "//str(extrapolated) &
+            & //", reference "//str(ref(i)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_smooth_limit
+
+   !> Unloading of E-GW with the cap at sigma/delta_y = 1e-4 from delta_max = 2 delta_y
+   !> against the reference's unloading rows and residual overlap (error column <= 1.7e-7):
+   !> forces within 1e-3
+   !> (measured 2.4e-4 .. 3.4e-4: the O((sigma/delta_y)**(2/3)) = 2e-3 x 0.2 of the rough
+   !> layer, as on loading). History and unloading at rel_tol 1e-7.
+   subroutine test_smooth_limit_unload(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: y(4) = [0.99_dp, 0.95_dp, 0.9_dp, 0.8_dp]
+      real(dp), parameter :: ref(4) = [2.677343788024_dp, 2.507170193550_dp, &
+         & 2.298961418756_dp, 1.897742567134_dp]
+      real(dp), parameter :: residual = 1.440704322244e-01_dp  ! delta_r/delta_max
+      type(contact_params) :: p
+      type(solver_options) :: o
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y, got
+      integer :: i
+      call yield_units(delta_y, force_y)
+      o%rel_tol = 1.0e-7_dp
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
+         & sigma=1.0e-4_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      call load_history(p, o, 2.0_dp*delta_y, h, res, err)
+      call check(error, .not. allocated(err), "history failed")
+      if (allocated(error)) return
+      do i = 1, size(y)
+         call solve_unload(h, y(i)*2.0_dp*delta_y, res, err)
+         call check(error, .not. allocated(err), "y = "//str(y(i))//": unloading failed")
+         if (allocated(error)) return
+         got = res%force/force_y
+         call check(error, abs(got - ref(i)) <= 1.0e-3_dp*ref(i), "delta/delta_max = " &
+            & //str(y(i))//": P/P_y = "//str(got)//", reference "//str(ref(i)))
+         if (allocated(error)) return
+      end do
+      ! The residual overlap within 1e-3 delta_max of the reference's (0.14407 delta_max;
+      ! issue 32's goal for the smooth cap): a force 1e-3 delta_max above it, none below
+      ! (measured: P/P_y = 1.1e-4 at 0.145 delta_max, 0 at 0.144). The sign of the force is
+      ! all that counts: these solves at rel_tol 1e-5 (near the residual 1e-7 is not
+      ! reached: the force is 1e-4 of the Hertz part it is the difference of).
+      h%options%rel_tol = 1.0e-5_dp
+      call solve_unload(h, (residual + 1.0e-3_dp)*2.0_dp*delta_y, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading above the residual: "//err%message)
+         return
+      end if
+      if (allocated(error)) return
+      call check(error, res%force > 0.0_dp, "no force 1e-3 delta_max above the residual")
+      if (allocated(error)) return
+      call solve_unload(h, (residual - 1.0e-3_dp)*2.0_dp*delta_y, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading below the residual: "//err%message)
+         return
+      end if
+      if (allocated(error)) return
+      call check(error, res%force == 0.0_dp, "force "//str(res%force/force_y) &
+         & //" P_y 1e-3 delta_max below the residual")
+   end subroutine test_smooth_limit_unload
+
+   !> The pair of the impact checks: EP-GW (psi 1, mu 4) with sigma = delta_y, p_y = 0.01,
+   !> R = E* = m* = 1; v_y the smooth sphere's first-yield speed.
+   pure function impact_pair() result(p)
+      type(contact_params) :: p
+      real(dp) :: delta_y, force_y
+      call yield_units(delta_y, force_y)
+      p = contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, sigma=delta_y, &
+         & mu=4.0_dp, psi=1.0_dp, flow_pressure=py)
+   end function impact_pair
+
+   pure real(dp) function first_yield_speed() result(v_y)
+      v_y = sqrt(16.0_dp/15.0_dp*(0.5_dp*pi)**5*py**5)
+   end function first_yield_speed
+
+   !> Energy balance of an impact at 3 v_y: restitution's dissipated energy (its integrals
+   !> to rel_tol 1e-5 of the energy each) against the closed integral of P d(delta) by a
+   !> composite Gauss-Legendre rule of this test (8 panels x 12 points from -8 sigma, where
+   !> the force is ~1e-14 of its peak, to delta_m, on the loading solves and on the
+   !> unloading solves of a history at delta_m; the curves are smooth on the scale of sigma,
+   !> the panels 0.3 sigma wide). Within 1e-4 of the impact energy (about 1e-3 of what is
+   !> dissipated, 10 x the integrals' tolerance); W_load within 1e-4 of m v**2/2.
+   subroutine test_energy(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solver_options) :: o
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: e, dissipated, dm, energy, w_load, w_unload, v
+      p = impact_pair()
+      o%rel_tol = 1.0e-5_dp
+      v = 3.0_dp*first_yield_speed()
+      energy = 0.5_dp*v*v
+      call restitution(p, o, 1.0_dp, v, e, dissipated, err, max_overlap=dm)
+      if (allocated(err)) then
+         call check(error, .false., "restitution: "//err%message)
+         return
+      end if
+      call load_history(p, o, dm, h, res, err)
+      call check(error, .not. allocated(err), "load_history failed")
+      if (allocated(error)) return
+      w_load = integral(.false.)
+      if (allocated(error)) return
+      w_unload = integral(.true.)
+      if (allocated(error)) return
+      call check(error, abs(w_load - energy) <= 1.0e-4_dp*energy, "W_load "//str(w_load) &
+         & //" vs m v**2/2 = "//str(energy))
+      if (allocated(error)) return
+      call check(error, abs((w_load - w_unload) - dissipated) <= 1.0e-4_dp*energy, &
+         & "closed integral "//str(w_load - w_unload)//" vs dissipated "//str(dissipated))
+      if (allocated(error)) return
+      call check(error, abs(e - sqrt(w_unload/w_load)) <= 1.0e-4_dp, "e = "//str(e) &
+         & //" vs "//str(sqrt(w_unload/w_load)))
+   contains
+      real(dp) function integral(unloading) result(total)
+         logical, intent(in) :: unloading
+         integer, parameter :: panels = 8, points = 12
+         real(dp) :: x(points), w(points), a, b, lo
+         integer :: i, k
+         call gauss_legendre(points, x, w)
+         lo = -8.0_dp*p%sigma
+         total = 0.0_dp
+         do k = 1, panels
+            a = lo + (dm - lo)*real(k - 1, dp)/panels
+            b = lo + (dm - lo)*real(k, dp)/panels
+            do i = 1, points
+               if (unloading) then
+                  call solve_unload(h, a + 0.5_dp*(b - a)*(x(i) + 1.0_dp), res, err)
+               else
+                  call solve_contact(p, o, a + 0.5_dp*(b - a)*(x(i) + 1.0_dp), res, err)
+               end if
+               if (allocated(err)) then
+                  call check(error, .false., "solve: "//err%message)
+                  return
+               end if
+               total = total + 0.5_dp*(b - a)*w(i)*res%force
+            end do
+         end do
+      end function integral
+   end subroutine test_energy
+
+   !> Beyond v_y the cap dissipates: at 3 v_y e is below the cap-free EP-GW's (measured
+   !> 0.879 vs 0.984 at rel_tol 1e-4; the smooth cap model's is 0.92..0.83 from 2 to 5 v_y).
+   !> First yield of the rough sphere: with p_y 1 % above the largest total pressure of the
+   !> cap-free impact (at delta_m) the cap never acts, e is the cap-free one (1e-12);
+   !> 10 % below it the cap acts and e falls below the cap-free e by more than the
+   !> integrals' tolerance (2 x 1e-4).
+   subroutine test_first_yield(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solver_options) :: o
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: e_cap, e_free, e_above, e_below, dissipated, dm, v
+      p = impact_pair()
+      o%rel_tol = 1.0e-4_dp
+      v = 3.0_dp*first_yield_speed()
+      call restitution(p, o, 1.0_dp, v, e_cap, dissipated, err)
+      call check(error, .not. allocated(err), "restitution with the cap failed")
+      if (allocated(error)) return
+      p%flow_pressure = 0.0_dp
+      call restitution(p, o, 1.0_dp, v, e_free, dissipated, err, max_overlap=dm)
+      call check(error, .not. allocated(err), "cap-free restitution failed")
+      if (allocated(error)) return
+      call check(error, e_cap < e_free - 0.05_dp, "e with the cap "//str(e_cap) &
+         & //" not below the cap-free "//str(e_free))
+      if (allocated(error)) return
+      ! a slow impact: first yield of the rough sphere
+      v = 0.5_dp*first_yield_speed()
+      call restitution(p, o, 1.0_dp, v, e_free, dissipated, err, max_overlap=dm)
+      call check(error, .not. allocated(err), "slow cap-free restitution failed")
+      if (allocated(error)) return
+      call solve_contact(p, o, dm, res, err)
+      call check(error, .not. allocated(err), "solve at delta_m failed")
+      if (allocated(error)) return
+      p%flow_pressure = 1.01_dp*res%max_pressure
+      call restitution(p, o, 1.0_dp, v, e_above, dissipated, err)
+      call check(error, .not. allocated(err), "restitution, p_y above failed")
+      if (allocated(error)) return
+      call check(error, abs(e_above - e_free) <= 1.0e-12_dp, "p_y above the peak: e = " &
+         & //str(e_above)//" vs cap-free "//str(e_free))
+      if (allocated(error)) return
+      p%flow_pressure = 0.9_dp*res%max_pressure
+      call restitution(p, o, 1.0_dp, v, e_below, dissipated, err)
+      call check(error, .not. allocated(err), "restitution, p_y below failed")
+      if (allocated(error)) return
+      call check(error, e_below < e_free - 2.0e-4_dp, "p_y below the peak: e = " &
+         & //str(e_below)//" vs cap-free "//str(e_free))
+   end subroutine test_first_yield
+
+end module test_rough_cap
