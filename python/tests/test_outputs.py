@@ -35,9 +35,12 @@ def test_table_csv_reads_with_numpy_and_pandas(tmp_path):
     t.write(path, "csv")
     rows = read_all_ways(path, "delta")
     assert rows.shape == (t.info.n_nodes, 5)
-    # the nodes are the table: evaluating there returns the written force (17 digits;
-    # the ln P tail's exp/log round trip costs a few ulp)
-    np.testing.assert_allclose(t.eval(rows[:, 0])[0], rows[:, 1], rtol=1e-13)
+    # the nodes are the table: evaluating there returns the written force (17 digits),
+    # except in the separated tail (delta < 0), whose resampled pieces (doc/formats.md,
+    # after rule 4) stay within 5e-2 rel_tol of the interpolant through the nodes
+    tail = rows[:, 0] < 0
+    np.testing.assert_allclose(t.eval(rows[~tail, 0])[0], rows[~tail, 1], rtol=1e-13)
+    np.testing.assert_allclose(t.eval(rows[tail, 0])[0], rows[tail, 1], rtol=5e-2 * 1e-4)
 
 
 def test_table_csv_format_1_still_reads(tmp_path):

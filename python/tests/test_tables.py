@@ -72,7 +72,13 @@ def test_universal_slice_matches_universal_eval():
     p = P.replace(mu=5.0)
     s = u.slice(p, 1.5e-5)
     d = np.linspace(-1e-6, 1.5e-5, 9)
-    np.testing.assert_allclose(s.eval(d)[0], u.eval(p, d)[0], rtol=1e-12, atol=1e-30)
+    # to rounding in contact; in the separated tail (d < 0) the slice's 1-D evaluation
+    # takes its resampled pieces, within 5e-2 rel_tol of the same interpolant
+    # (doc/formats.md, after rule 4)
+    tail = d < 0
+    np.testing.assert_allclose(s.eval(d[~tail])[0], u.eval(p, d[~tail])[0], rtol=1e-12,
+                               atol=1e-30)
+    np.testing.assert_allclose(s.eval(d[tail])[0], u.eval(p, d[tail])[0], rtol=5e-2 * 1e-4)
 
 
 def test_hysteresis_table_histories():

@@ -3,7 +3,8 @@
 !> placed adaptively, and evaluated at about the cost of the Hertz closed form.
 !>
 !> Interpolation: cubic Hermite in delta with the solver's exact stiffness as the
-!> derivative (C1, exact at the nodes). In the separated tail (delta <= 0 for rough
+!> derivative (C1, exact at the nodes; table_eval's resampled tail, force_table%fine_seg,
+!> within 5e-2 rel_tol there). In the separated tail (delta <= 0 for rough
 !> models, where P decays like a Gaussian in delta/sigma) the cubic interpolates ln P with
 !> derivative K/P, so the relative error stays bounded however small P gets. The nodes
 !> reach down to the cut-off delta_c, where P has fallen to tail_floor * P_ref for rough
