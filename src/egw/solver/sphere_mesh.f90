@@ -161,8 +161,8 @@ contains
       type(discrete_solution), intent(in) :: sol
       real(dp), intent(in) :: negligible_weight
       real(dp), allocatable :: radii(:)
-      real(dp) :: f0, f1, lo, hi, mid, f_lo, f_hi, f_mid
-      integer :: g, kind, i, side, found
+      real(dp) :: f0, f1, lo, hi, mid
+      integer :: g, kind, found
       allocate (radii(0))
       do kind = 1, 3
          found = 0
@@ -176,30 +176,7 @@ contains
             lo = sol%mesh%gauss_r(g)
             hi = sol%mesh%gauss_r(g + 1)
             mid = lo + f0/(f0 - f1)*(hi - lo)
-            f_lo = excess(lo)
-            f_hi = excess(hi)
-            if ((f_lo < 0.0_dp) .neqv. (f_hi < 0.0_dp)) then
-               side = 0
-               do i = 1, 60
-                  mid = (lo*f_hi - hi*f_lo)/(f_hi - f_lo)
-                  if (.not. (mid > lo .and. mid < hi)) mid = 0.5_dp*(lo + hi)
-                  if (.not. (mid > lo .and. mid < hi)) exit
-                  f_mid = excess(mid)
-                  if (f_mid == 0.0_dp) exit
-                  if ((f_mid < 0.0_dp) .eqv. (f_lo < 0.0_dp)) then
-                     lo = mid
-                     f_lo = f_mid
-                     if (side == 1) f_hi = 0.5_dp*f_hi
-                     side = 1
-                  else
-                     hi = mid
-                     f_hi = f_mid
-                     if (side == -1) f_lo = 0.5_dp*f_lo
-                     side = -1
-                  end if
-                  if (hi - lo <= 8.0_dp*epsilon(1.0_dp)*hi) exit
-               end do
-            end if
+            call illinois_root(excess, lo, hi, mid)
             ! kinds 2 and 3 coincide where p_s(delta_max) = 0: one edge
             if (size(radii) > 0) then
                if (minval(abs(radii - mid)) <= 1.0e-12_dp*mid) cycle
@@ -230,8 +207,8 @@ contains
       real(dp), intent(in) :: negligible_weight  !< skip radii where negligible_at says so
       integer, intent(out) :: n_first            !< how many radii (the first) are of levels(1)
       real(dp), allocatable :: radii(:)
-      real(dp) :: f0, f1, lo, hi, mid, f_lo, f_hi, f_mid
-      integer :: g, k, i, side
+      real(dp) :: f0, f1, lo, hi, mid
+      integer :: g, k
       allocate (radii(0))
       n_first = 0
       do k = 1, size(levels)
@@ -244,32 +221,7 @@ contains
             lo = sol%mesh%gauss_r(g)
             hi = sol%mesh%gauss_r(g + 1)
             mid = lo + f0/(f0 - f1)*(hi - lo)
-            f_lo = excess(lo)
-            f_hi = excess(hi)
-            if ((f_lo < 0.0_dp) .neqv. (f_hi < 0.0_dp)) then
-               ! Illinois (regula falsi that halves the value kept twice): ~8 evaluations
-               ! of the field to full precision where bisection took 40-50.
-               side = 0
-               do i = 1, 60
-                  mid = (lo*f_hi - hi*f_lo)/(f_hi - f_lo)
-                  if (.not. (mid > lo .and. mid < hi)) mid = 0.5_dp*(lo + hi)
-                  if (.not. (mid > lo .and. mid < hi)) exit
-                  f_mid = excess(mid)
-                  if (f_mid == 0.0_dp) exit
-                  if ((f_mid < 0.0_dp) .eqv. (f_lo < 0.0_dp)) then
-                     lo = mid
-                     f_lo = f_mid
-                     if (side == 1) f_hi = 0.5_dp*f_hi
-                     side = 1
-                  else
-                     hi = mid
-                     f_hi = f_mid
-                     if (side == -1) f_lo = 0.5_dp*f_lo
-                     side = -1
-                  end if
-                  if (hi - lo <= 8.0_dp*epsilon(1.0_dp)*hi) exit
-               end do
-            end if
+            call illinois_root(excess, lo, hi, mid)
             radii = [radii, mid]
          end do
          if (k == 1) n_first = size(radii)
@@ -283,6 +235,47 @@ contains
          excess = base_gap(prob, r) + interpolate_nodal(sol%mesh, sol%w, r) - gm(1) - levels(k)
       end function excess
    end function branch_radii
+
+   !> The root of f in [lo, hi] where f(lo), f(hi) differ in sign (else mid is left as
+   !> given: the caller's linear estimate): Illinois (regula falsi that halves the value
+   !> kept twice), ~8 evaluations of the field to full precision where bisection took 40-50.
+   subroutine illinois_root(f, lo_in, hi_in, mid)
+      interface
+         pure real(dp) function f(r)
+            import :: dp
+            real(dp), intent(in) :: r
+         end function f
+      end interface
+      real(dp), intent(in) :: lo_in, hi_in
+      real(dp), intent(inout) :: mid
+      real(dp) :: lo, hi, f_lo, f_hi, f_mid
+      integer :: i, side
+      lo = lo_in
+      hi = hi_in
+      f_lo = f(lo)
+      f_hi = f(hi)
+      if ((f_lo < 0.0_dp) .eqv. (f_hi < 0.0_dp)) return
+      side = 0
+      do i = 1, 60
+         mid = (lo*f_hi - hi*f_lo)/(f_hi - f_lo)
+         if (.not. (mid > lo .and. mid < hi)) mid = 0.5_dp*(lo + hi)
+         if (.not. (mid > lo .and. mid < hi)) exit
+         f_mid = f(mid)
+         if (f_mid == 0.0_dp) exit
+         if ((f_mid < 0.0_dp) .eqv. (f_lo < 0.0_dp)) then
+            lo = mid
+            f_lo = f_mid
+            if (side == 1) f_hi = 0.5_dp*f_hi
+            side = 1
+         else
+            hi = mid
+            f_hi = f_mid
+            if (side == -1) f_lo = 0.5_dp*f_lo
+            side = -1
+         end if
+         if (hi - lo <= 8.0_dp*epsilon(1.0_dp)*hi) exit
+      end do
+   end subroutine illinois_root
 
    !> True when r p(r) of a solution, at the two Gauss points around r (or the last one),
    !> is at most weight times its largest value over the mesh.
