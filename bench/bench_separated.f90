@@ -4,7 +4,9 @@
 !> F = (4/3) E* sqrt(R) |delta|^(3/2) evaluated on the same overlaps, in three regimes:
 !> (i) beyond the tail's cut-off (delta < delta_c, the table's first node, where a rough
 !> table gives 0), (ii) in the tail (delta_c < delta < 0, ln P interpolated), (iii) in
-!> contact (delta > 0), and (o) far apart (delta < -40 sigma).
+!> contact (delta > 0), (o) far apart (delta < -40 sigma), and (d) far above the table's
+!> last node (20 sigma .. 2e13 sigma: the deep-overlap law, where every contact of a deck
+!> converted from Hertz with sigma -> 0 sits).
 module bench_separated
    use, intrinsic :: iso_fortran_env, only: output_unit
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc, c_null_ptr
@@ -52,11 +54,11 @@ contains
       type(force_table), allocatable, target :: table
       type(contact_params) :: params
       type(egw_error), allocatable :: error
-      real(dp), target :: d(n_eval, 4)
+      real(dp), target :: d(n_eval, 5)
       real(dp) :: t(4), lo(4), hi(4), f, k
-      character(len=*), parameter :: names(4) = [character(len=32) :: &
+      character(len=*), parameter :: names(5) = [character(len=32) :: &
          & "(i) beyond the cut-off", "(ii) tail (cut-off < delta < 0)", "(iii) delta > 0", &
-         & "(o) delta < -40 sigma (P = 0)"]
+         & "(o) delta < -40 sigma (P = 0)", "(d) deep law, 20..2e13 sigma"]
       integer :: r, i
       allocate (table)
       params = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
@@ -75,6 +77,9 @@ contains
             d(i, r) = lo(r) + (hi(r) - lo(r))*(0.001_dp + 0.998_dp*frac(0.6180339887498949_dp*i))
          end do
       end do
+      do i = 1, n_eval
+         d(i, 5) = table%delta_max*10.0_dp**(12*frac(0.6180339887498949_dp*i))
+      end do
       write (output_unit, '(a)') "egw-bench --separated: 1-D E-GW table (mu = 4, R = E* = "// &
          & "sigma = 1), ns per evaluation (best of 101 rounds) and / inline Hertz F"
       write (output_unit, '(a,f8.3,a)') "  cut-off delta_c = ", table%cutoff, " sigma"
@@ -83,7 +88,7 @@ contains
          & "  P(delta_c) = ", table%force(1)
       write (output_unit, '(a)') "  regime                            Hertz  eval   "// &
          & "ratio  array  ratio  Fortran ratio"
-      do r = 1, 4
+      do r = 1, 5
          t = regime_ns(c_loc(table), table, d(:, r))
          write (output_unit, '(2x,a32,f7.2,3(f7.2,f7.1))') names(r), t(1), t(2), &
             & t(2)/t(1), t(3), t(3)/t(1), t(4), t(4)/t(1)

@@ -78,6 +78,8 @@ contains
          & new_unittest("hertz energy", test_hertz_energy), &
          & new_unittest("hertz cut-off and zero below", test_hertz_cutoff), &
          & new_unittest("extrapolation above delta_max", test_extrapolation), &
+         & new_unittest("deep law: prepared, read back, refitted; far above", &
+         & test_deep_prepared), &
          & new_unittest("invalid requests", test_invalid), &
          & new_unittest("table_eval's error = egw_table_eval's status", test_eval_error), &
          & new_unittest("unreached tolerance in the caller's terms", test_tolerance_context), &
@@ -309,6 +311,54 @@ contains
       call table_eval(t, -1.0_dp, f, k)
       call check(error, f == 0.0_dp .and. k == 0.0_dp, "no force apart (delta < 0)")
    end subroutine test_hertz_cutoff
+
+   !> The deep-overlap law table_prepare fits once (the sigma -> 0 regime of a DEM deck
+   !> evaluates it every step) gives the values of deep_force fitted anew, bit for bit,
+   !> also after a CSV and a binary round trip (the readers prepare too); and a Hertz
+   !> table's law at 1e3..1e10 delta_max is Hertz's closed form to 1e-12: there
+   !> P = c g^1.5 with g = delta - d_e + g_e exact, so the only departure is
+   !> 1.5 (g_e - d_e)/delta ~ 1.5 tol d_e/delta <= 1.5e-9 tol, far below 1e-12, and
+   !> rounding (cbrt and the Newton step: a few ulp).
+   subroutine test_deep_prepared(error)
+      use egw_table_ends, only: deep_force
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t, back
+      type(egw_error), allocatable :: err
+      character(len=*), parameter :: path = "build/test_deep_prepared.out"
+      real(dp) :: d, f, k, f0, k0
+      integer :: n, i, fmt_id
+      call hertz_table(t, error)
+      if (allocated(error)) return
+      call check(error, t%deep%ready, "table_prepare fits the deep law")
+      if (allocated(error)) return
+      n = size(t%delta)
+      do fmt_id = format_csv, format_binary
+         call write_table(t, path, fmt_id, err)
+         call check(error, .not. allocated(err), "write")
+         if (allocated(error)) return
+         call read_table(path, back, err)
+         call check(error, .not. allocated(err) .and. back%deep%ready, "read, prepared")
+         if (allocated(error)) return
+         do i = 0, 10
+            d = t%delta_max*10.0_dp**i
+            call table_eval(back, d, f, k)
+            call deep_force(t%delta_max, t%force(n), t%stiffness(n), deep_coefficient(t%params), &
+               & d, f0, k0)
+            call check(error, same_bits(f, f0) .and. same_bits(k, k0), "read table's deep law "// &
+               & "at "//format_real(d)//" differs from deep_force's")
+            if (allocated(error)) return
+            if (i < 3) cycle
+            call check(error, f, p_hertz(2.0_dp, 0.5_dp, d), "Hertz far above", &
+               & thr=1e-12_dp, rel=.true.)
+            if (allocated(error)) return
+            call check(error, k, k_hertz(2.0_dp, 0.5_dp, d), "Hertz stiffness far above", &
+               & thr=1e-12_dp, rel=.true.)
+            if (allocated(error)) return
+         end do
+      end do
+      open (newunit=i, file=path, status="old", iostat=n)
+      if (n == 0) close (i, status="delete")
+   end subroutine test_deep_prepared
 
    subroutine test_extrapolation(error)
       type(error_type), allocatable, intent(out) :: error

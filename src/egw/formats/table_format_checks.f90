@@ -235,6 +235,7 @@ contains
       call move_alloc(from%fine_seg, to%fine_seg)
       to%fine_scale = from%fine_scale
       to%tail_end = from%tail_end
+      to%deep = from%deep
       call move_alloc(from%radius_slope, to%radius_slope)
       call move_alloc(from%bucket, to%bucket)
    end procedure move_table

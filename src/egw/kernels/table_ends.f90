@@ -5,12 +5,34 @@
 !> deep law; below a rough table's cut-off they give 0, and the tail law serves the
 !> builders that need the force's continuation there (hysteresis gaps).
 module egw_table_ends
+   use, intrinsic :: iso_c_binding, only: c_double
    use egw_kinds, only: dp
    use egw_gauss, only: gauss_f32, gauss_f52
    implicit none
    private
 
    public :: tail_force, deep_force, deep_energy, deep_radius_factor, deep_reach
+   public :: deep_law, deep_law_fit, deep_law_force
+
+   !> deep_force's law fitted once to a table's last node (deep_law_fit), so that an
+   !> evaluation above it costs a cube root and a square root, not five powers: a contact
+   !> far above a table's end (sigma -> 0, e.g. 1e-16 in a LAMMPS deck converted from
+   !> Hertz) is evaluated there at every step.
+   type :: deep_law
+      logical :: ready = .false.   !< fitted (deep_law_fit was called)
+      logical :: ok = .false.      !< the law applies (else the linear continuation)
+      real(dp) :: d_e = 0, p_e = 0, k_e = 0   !< the last node, its force and stiffness
+      real(dp) :: t_e = 0, a = 0, u_0 = 0     !< deep_fit's constants
+   end type deep_law
+
+   interface
+      !> C99's cube root (libm): a few times cheaper than x**(1/3), and exact for cubes
+      pure function libm_cbrt(x) result(y) bind(C, name="cbrt")
+         import :: c_double
+         real(c_double), value, intent(in) :: x
+         real(c_double) :: y
+      end function libm_cbrt
+   end interface
 
 contains
 
@@ -89,20 +111,40 @@ contains
       real(dp), intent(in) :: c          !< Hertz constant (4/3) E sqrt(R) [force/length^1.5]
       real(dp), intent(in) :: delta      !< overlap [length], >= d_e
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: t_e, a, u_0, t, q
-      logical :: ok
-      call deep_fit(p_e, k_e, c, t_e, a, u_0, ok)
-      if (ok) then
-         t = deep_root(t_e, a, u_0, delta - d_e)
-         q = t/t_e
-         force = p_e*q**4.5_dp
-         ! dP/ddelta = (dP/dg)/(ddelta/dg) = 1.5 P/(t^3 + (a/3) t); u_0 at t_e
-         stiffness = 1.5_dp*force/(t*(t*t + a/3))
-      else
-         stiffness = k_e
-         force = p_e + k_e*(delta - d_e)
-      end if
+      call deep_law_force(deep_law_fit(d_e, p_e, k_e, c), delta, force, stiffness)
    end subroutine deep_force
+
+   !> deep_force's law fitted to the last node (d_e, p_e, k_e) with Hertz constant c,
+   !> for deep_law_force (deep_force gives the same values bit for bit).
+   pure function deep_law_fit(d_e, p_e, k_e, c) result(law)
+      real(dp), intent(in) :: d_e, p_e, k_e, c   !< as deep_force
+      type(deep_law) :: law
+      law%ready = .true.
+      law%d_e = d_e
+      law%p_e = p_e
+      law%k_e = k_e
+      call deep_fit(p_e, k_e, c, law%t_e, law%a, law%u_0, law%ok)
+   end function deep_law_fit
+
+   !> deep_force at delta >= law%d_e with the fitted law: P = p_e q^(9/2), q = t/t_e
+   !> (q^4 sqrt(q): no power function).
+   pure subroutine deep_law_force(law, delta, force, stiffness)
+      type(deep_law), intent(in) :: law
+      real(dp), intent(in) :: delta      !< overlap [length], >= law%d_e
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: t, q, q2
+      if (law%ok) then
+         t = deep_root(law%t_e, law%a, law%u_0, delta - law%d_e)
+         q = t/law%t_e
+         q2 = q*q
+         force = law%p_e*(q2*q2)*sqrt(q)
+         ! dP/ddelta = (dP/dg)/(ddelta/dg) = 1.5 P/(t^3 + (a/3) t); u_0 at t_e
+         stiffness = 1.5_dp*force/(t*(t*t + law%a/3))
+      else
+         stiffness = law%k_e
+         force = law%p_e + law%k_e*(delta - law%d_e)
+      end if
+   end subroutine deep_law_force
 
    !> Work int_{d_e}^{delta} P of deep_force's law: with P = p_e (t/t_e)^(9/2) and
    !> ddelta = (3 t^2 + a) dt, p_e [3 t_e^3 (q^7.5 - 1)/7.5 + a t_e (q^5.5 - 1)/5.5],
@@ -187,20 +229,23 @@ contains
    end subroutine deep_fit
 
    !> The root t >= t_e of f(t) = (t - t_e)(t^2 + t t_e + t_e^2 + a) - s (s = delta - d_e
-   !> >= 0): f is convex for t > 0 and increasing from t_e (f'(t_e) = 3 u_0/t_e > 0), so
-   !> Newton from an upper bound descends monotonically onto it. Bounds: the tangent at
-   !> t_e, and cbrt(t_e^3 + s) + sqrt(max(-a, 0)) (f >= 0 there for either sign of a).
+   !> >= 0), i.e. t^3 + a t = t_e^3 + a t_e + s: f is convex for t > 0 and increasing from
+   !> t_e (f'(t_e) = 3 u_0/t_e > 0), so Newton converges from either side (from below, the
+   !> first step lands above the root, then the steps descend onto it). Start: the smaller
+   !> of the tangent at t_e (an upper bound, close for small s) and cbrt(t_e^3 + a t_e + s)
+   !> (at least t_e): the root itself when a = 0 (Hertz), and off by |a|/(3 t^2) of t
+   !> otherwise, which deep overlaps make tiny, so that two steps end there.
    pure real(dp) function deep_root(t_e, a, u_0, s) result(t)
       real(dp), intent(in) :: t_e, a, u_0, s
       real(dp) :: f, step
       integer :: it
       t = t_e
       if (.not. s > 0.0_dp) return
-      t = min(t_e + s*t_e/(3*u_0), (t_e**3 + s)**(1.0_dp/3) + sqrt(max(-a, 0.0_dp)))
+      t = min(t_e + s*t_e/(3*u_0), max(libm_cbrt(t_e**3 + a*t_e + s), t_e))
       do it = 1, 200
          f = (t - t_e)*(t*t + t*t_e + t_e*t_e + a) - s
          step = f/(3*t*t + a)
-         if (.not. step > 4*epsilon(t)*t) exit   ! at the root (or round-off below it)
+         if (.not. abs(step) > 4*epsilon(t)*t) exit   ! at the root (to round-off)
          t = t - step
       end do
       t = max(t, t_e)

@@ -37,7 +37,8 @@ module egw_table
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_law
    use egw_flat_law, only: flat_law
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
-   use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor
+   use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor, &
+      & deep_law, deep_law_fit, deep_law_force
    implicit none
    private
 
@@ -122,6 +123,9 @@ module egw_table
       !> below this overlap force and stiffness are exactly 0 (rough models: the cut-off;
       !> Hertz: 0; flat laws: -huge): the first test of an evaluation
       real(dp) :: zero_below = -huge(1.0_dp)
+      !> the deep-overlap law fitted to the last node (table_prepare): above delta_max
+      !> an evaluation needs no fit (sigma -> 0 puts every contact there)
+      type(deep_law) :: deep
    end type force_table
 
    !> 8-point Gauss-Legendre rule on [0, 1] for the energy of log-space intervals,
@@ -608,6 +612,8 @@ contains
          table%seg(4, i) = (d0 + d1 - 2*s)/h**2
       end do
       table%zero_below = zero_overlap(table%params, table%cutoff)
+      table%deep = deep_law_fit(table%delta_max, table%force(n), table%stiffness(n), &
+         & deep_coefficient(table%params))
       call resample_tail(table, resample)
       ! energy: exact integral of the interpolant (Hermite rule in linear intervals; the
       ! resampled tail's pieces)
@@ -894,8 +900,7 @@ contains
       integer :: n
       n = size(table%delta)
       if (delta >= table%delta_max) then
-         call deep_force(table%delta_max, table%force(n), table%stiffness(n), &
-            & deep_coefficient(table%params), delta, force, stiffness)
+         call table_deep(table, delta, force, stiffness)
       else if (delta == table%cutoff) then
          force = table%force(1)
          stiffness = table%stiffness(1)
@@ -907,6 +912,22 @@ contains
             & delta, force, stiffness)
       end if
    end subroutine table_beyond
+
+   !> The deep-overlap asymptote above delta_max: the law table_prepare fitted, else
+   !> (a table not yet prepared) fitted now; the same values either way.
+   pure subroutine table_deep(table, delta, force, stiffness)
+      type(force_table), intent(in) :: table
+      real(dp), intent(in) :: delta   !< >= table%delta_max
+      real(dp), intent(out) :: force, stiffness
+      integer :: n
+      if (table%deep%ready) then
+         call deep_law_force(table%deep, delta, force, stiffness)
+      else
+         n = size(table%delta)
+         call deep_force(table%delta_max, table%force(n), table%stiffness(n), &
+            & deep_coefficient(table%params), delta, force, stiffness)
+      end if
+   end subroutine table_deep
 
    !> The force below the cut-off delta_c of a table of params whose first node has force
    !> p_c and stiffness k_c: rough models 0 (p_c <= 1e-12 P_ref; the separated tail below
@@ -1088,8 +1109,7 @@ contains
 
       n = size(table%delta)
       if (delta >= table%delta_max) then
-         call deep_force(table%delta_max, table%force(n), table%stiffness(n), &
-            & deep_coefficient(table%params), delta, v, d)
+         call table_deep(table, delta, v, d)
          log_force = log(v)
          dlog_force = d/v
          return
