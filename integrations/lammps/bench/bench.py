@@ -18,7 +18,10 @@ heat.in: in.pour.flatwall, in.pour.drum, in.pour.heat with their numbers, E-GW a
 1e-16, walls with wall_material contact), each with law egw and granular on 1 and 2 ranks
 (drum and heat have fix balance), best of REPEAT interleaved runs: loop / granular, written
 to build/lammps/bench_decks.csv.  in.pour.heat runs DECK_HEAT_NRUN steps (20000 of its
-100000: the pour is in by then; the ratio of the rest is the resting pile's).
+100000: the pour is in by then; the ratio of the rest is the resting pile's).  in.pour.drum
+and in.pour.heat also run with EP-GW (sigma = 1e-3, psi = 1: rough grains whose contacts
+sit in the hysteresis tables, 1-20 sigma) against the same granular runs (issue 33: EP-GW
+<= 1.2x granular there, E-GW <= 1.1x).
 Usage: bench.py [NRUN [REPEAT]]      bench.py --setup [REPEAT]   (the set-up table only)
        bench.py --decks [REPEAT]                                  (the three decks only)"""
 import os
@@ -43,6 +46,10 @@ DECKS = [("in.pour.flatwall (5000 steps)", "flatwall.in", []),
          ("in.pour.drum (2000 + 3000 steps, fix balance)", "drum.in", []),
          (f"in.pour.heat ({DECK_HEAT_NRUN} of 100000 steps, fix balance)", "heat.in",
           ["nrun", str(DECK_HEAT_NRUN)])]
+# the egw variants of each deck: label, extra -var pairs, decks (indices into DECKS)
+DECK_MODELS = [("E-GW, sigma = 1e-16", [], (0, 1, 2)),
+               ("EP-GW, sigma = 1e-3, psi = 1",
+                ["model", "EP-GW", "sig", "1e-3", "plastic", "psi 1"], (1, 2))]
 SETUP_NRUN = 100
 
 EGW = "egw E-GW (mu from summits: 2 slices, linear in ln mu)"
@@ -86,6 +93,16 @@ def run(law, model, np, extra, nrun=None, env=None):
                 contacts=float(m.group(3)), mem=float(mem.group(1)))
 
 
+def write_csv(name, lines):
+    """build/lammps/NAME, written to a temporary file and renamed only when complete"""
+    out = os.path.join(ROOT, "build", "lammps")
+    os.makedirs(out, exist_ok=True)
+    tmp = os.path.join(out, name + ".tmp")
+    with open(tmp, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(tmp, os.path.join(out, name))
+
+
 def run_deck(deck, law, np, extra):
     tmp = tempfile.mkdtemp(prefix="egw-bench-")
     args = [LMP, "-np", str(np), "-in", os.path.join(HERE, deck), "-var", "law", law]
@@ -106,34 +123,40 @@ def run_deck(deck, law, np, extra):
 def decks_table():
     """LAMMPS's three granular decks converted: loop time egw / granular"""
     best = {}
+    laws = [("granular", -1)] + [("egw", v) for v in range(len(DECK_MODELS))]
     for rep in range(REPEAT):
         for k, (name, deck, extra) in enumerate(DECKS):
             for np in (1, 2):
-                for law in ("granular", "egw"):
-                    r = run_deck(deck, law, np, extra)
-                    print(f"  {name} {law}, {np} rank(s): loop {r['loop']:.2f} s",
+                for law, v in laws:
+                    if v >= 0 and k not in DECK_MODELS[v][2]:
+                        continue
+                    more = DECK_MODELS[v][1] if v >= 0 else []
+                    r = run_deck(deck, law, np, extra + more)
+                    label = DECK_MODELS[v][0] if v >= 0 else "granular"
+                    print(f"  {name} {label}, {np} rank(s): loop {r['loop']:.2f} s",
                           file=sys.stderr, flush=True)
-                    key = (k, np, law)
+                    key = (k, np, v)
                     if key not in best or r["loop"] < best[key]["loop"]:
                         best[key] = r
     print()
-    print(f"| LAMMPS's deck, converted (E-GW, sigma = 1e-16), best of {REPEAT} | ranks | "
+    print(f"| LAMMPS's deck, converted, best of {REPEAT} | egw's model | ranks | "
           "grains | loop egw [s] | loop granular [s] | loop / granular | pair / granular | "
           "egw's list |")
-    print("|---|---|---|---|---|---|---|---|")
-    lines = ["deck,ranks,atoms,loop_egw_s,loop_granular_s,ratio,pair_ratio,size_list"]
+    print("|---|---|---|---|---|---|---|---|---|")
+    lines = ["deck,model,ranks,atoms,loop_egw_s,loop_granular_s,ratio,pair_ratio,size_list"]
     for k, (name, deck, extra) in enumerate(DECKS):
-        for np in (1, 2):
-            e, g = best[(k, np, "egw")], best[(k, np, "granular")]
-            ratio, pratio = e["loop"] / g["loop"], e["pair"] / max(g["pair"], 1e-30)
-            lst = "size" if e["size"] else "plain"
-            print(f"| {name} | {np} | {e['atoms']} | {e['loop']:.2f} | {g['loop']:.2f} | "
-                  f"**{ratio:.2f}** | {pratio:.2f} | {lst} |")
-            lines.append(f"{deck},{np},{e['atoms']},{e['loop']:.3f},{g['loop']:.3f},{ratio:.3f},"
-                         f"{pratio:.3f},{lst}")
-    os.makedirs(os.path.join(ROOT, "build", "lammps"), exist_ok=True)
-    with open(os.path.join(ROOT, "build", "lammps", "bench_decks.csv"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+        for v, (label, _, where) in enumerate(DECK_MODELS):
+            if k not in where:
+                continue
+            for np in (1, 2):
+                e, g = best[(k, np, v)], best[(k, np, -1)]
+                ratio, pratio = e["loop"] / g["loop"], e["pair"] / max(g["pair"], 1e-30)
+                lst = "size" if e["size"] else "plain"
+                print(f"| {name} | {label} | {np} | {e['atoms']} | {e['loop']:.2f} | "
+                      f"{g['loop']:.2f} | **{ratio:.2f}** | {pratio:.2f} | {lst} |")
+                lines.append(f"{deck},{label.split(',')[0]},{np},{e['atoms']},{e['loop']:.3f},"
+                             f"{g['loop']:.3f},{ratio:.3f},{pratio:.3f},{lst}")
+    write_csv("bench_decks.csv", lines)
 
 
 def setup_table():
@@ -159,9 +182,7 @@ def setup_table():
             print(f"| {name} | {np} | {r['setup']:.2f} | {r['setup'] - g['setup']:.2f} | "
                   f"{r['mem']:.2f} |")
             lines.append(f"{name},{np},{r['setup']:.3f},{r['setup'] - g['setup']:.3f},{r['mem']:.2f}")
-    os.makedirs(os.path.join(ROOT, "build", "lammps"), exist_ok=True)
-    with open(os.path.join(ROOT, "build", "lammps", "bench_setup.csv"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_csv("bench_setup.csv", lines)
 
 
 def main():
@@ -204,9 +225,7 @@ def main():
               f"{'' if r['np'] == 1 else f'{sp:.2f}'} | {setup:.1f} | {r['mem']:.2f} |")
         lines.append(f"{r['name']},{r['np']},{r['loop']:.3f},{r['pair']:.3f},{r['modify']:.3f},"
                      f"{r['contacts']:.1f},{ns:.1f},{ratio:.3f},{mratio:.3f},{sp:.3f},{setup:.1f},{r['mem']:.2f}")
-    os.makedirs(os.path.join(ROOT, "build", "lammps"), exist_ok=True)
-    with open(os.path.join(ROOT, "build", "lammps", "bench.csv"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_csv("bench.csv", lines)
     setup_table()
     decks_table()
 
