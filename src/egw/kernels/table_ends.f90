@@ -232,16 +232,18 @@ contains
    !> >= 0), i.e. t^3 + a t = t_e^3 + a t_e + s: f is convex for t > 0 and increasing from
    !> t_e (f'(t_e) = 3 u_0/t_e > 0), so Newton converges from either side (from below, the
    !> first step lands above the root, then the steps descend onto it). Start: the smaller
-   !> of the tangent at t_e (an upper bound, close for small s) and cbrt(t_e^3 + a t_e + s)
-   !> (at least t_e): the root itself when a = 0 (Hertz), and off by |a|/(3 t^2) of t
-   !> otherwise, which deep overlaps make tiny, so that two steps end there.
+   !> of the tangent at t_e (an upper bound, close for small s) and c - a/(3c), c =
+   !> cbrt(t_e^3 + a t_e + s) (at least t_e): the root itself when a = 0 (Hertz), and
+   !> within (a/(3 t^2))^2 of t otherwise, which deep overlaps make far below round-off,
+   !> so that the first Newton step there only confirms it.
    pure real(dp) function deep_root(t_e, a, u_0, s) result(t)
       real(dp), intent(in) :: t_e, a, u_0, s
-      real(dp) :: f, step
+      real(dp) :: f, step, c
       integer :: it
       t = t_e
       if (.not. s > 0.0_dp) return
-      t = min(t_e + s*t_e/(3*u_0), max(libm_cbrt(t_e**3 + a*t_e + s), t_e))
+      c = libm_cbrt(t_e**3 + a*t_e + s)
+      t = min(t_e + s*t_e/(3*u_0), max(c - a/(3*c), t_e))
       do it = 1, 200
          f = (t - t_e)*(t*t + t*t_e + t_e*t_e + a) - s
          step = f/(3*t*t + a)
