@@ -1,0 +1,247 @@
+"""The flow-pressure cap (`flow_pressure`, `yield_stress`) in pairs and walls: restitution
+against egw-restitution, bad input, restarts and energy."""
+from lmp_common import *  # noqa: F401,F403 (the shared runner and constants)
+from suite_pair import *  # noqa: F401,F403
+from suite_walls import *  # noqa: F401,F403
+from suite_decks import *  # noqa: F401,F403
+from suite_laws import *  # noqa: F401,F403
+
+
+# ------------------------------------------------------------------ the flow-pressure cap
+
+CAP_RATIOS = [2.0, 5.0, 10.0, 20.0, 50.0]
+
+
+def cap_units(p_y, r, m):
+    """The first-yield speed v_y and overlap delta_y of a smooth sphere (R = r, m* = m, like
+    glass beads' E*) with flow pressure p_y (doc/theory.md section 12)."""
+    vy = math.sqrt(16 / 15 * (math.pi / 2) ** 5 * p_y ** 5 * r ** 3 / (m * E_STAR ** 4))
+    return vy, (math.pi * p_y / (2 * E_STAR)) ** 2 * r
+
+
+def cap_reference(p_y, r, m, v):
+    """egw_restitution of the smooth sphere with the cap (the cap solver, independent of the
+    tables LAMMPS evaluates): e, delta_m and egw_time_step's step at 1e-4."""
+    p = subprocess.run([REST, "0", repr(E_STAR), repr(r), "0", "1", "0", "0.6", "54", repr(m),
+                        repr(v), "1e-6", "1e-4", repr(p_y)],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode:
+        raise RuntimeError(p.stdout)
+    e, dm, duration, dt = (float(x) for x in p.stdout.split())
+    return e, dm, duration, dt
+
+
+def cap_deck(pair_coeff, wall, speeds, dt, nrun):
+    """A deck of glass beads (R = 1 mm) at rest 4 mm apart in y: wall None, pairs meeting
+    head-on in x at approach speed speeds[k] (atoms 2k+1, 2k+2), both touching after ~20
+    steps; else one bead per speed dropped onto the fix wall/egw zplane z = 0. Prints
+    "RESULT" with each impact's e (from the velocities after the run)."""
+    lines = ["units si", "atom_style sphere", "atom_modify map array", "boundary f f f",
+             "comm_modify vel yes",
+             f"region box block -0.01 0.01 -0.004 {0.004 * len(speeds) + 0.004} -0.004 0.01",
+             "create_box 1 box"]
+    t0 = 20 * dt
+    for k, v in enumerate(speeds):
+        y = 0.004 * k
+        if wall is None:
+            x0 = RAD + 0.5 * v * t0
+            lines += [f"create_atoms 1 single {-x0!r} {y!r} 0",
+                      f"create_atoms 1 single {x0!r} {y!r} 0"]
+        else:
+            lines += [f"create_atoms 1 single 0 {y!r} {RAD + v * t0!r}"]
+    lines += ["set type 1 diameter 0.002", "set type 1 density 2500",
+              "velocity all set 0 0 0"]
+    for k, v in enumerate(speeds):
+        if wall is None:
+            lines += [f"set atom {2 * k + 1} vx {0.5 * v!r}", f"set atom {2 * k + 2} vx {-0.5 * v!r}"]
+        else:
+            lines += [f"set atom {k + 1} vz {-v!r}"]
+    lines += ["pair_style egw Hertz 1e-3", f"pair_coeff * * {pair_coeff}",
+              "neighbor 1e-5 bin", "neigh_modify every 1 delay 0 check yes",
+              "fix 1 all nve/sphere", f"timestep {dt!r}"]
+    if wall is not None:
+        lines += [f"fix w all {wall} zplane 0 NULL"]
+    lines += ["thermo_style custom step ke", f"thermo {nrun}", f"run {nrun}"]
+    if wall is None:
+        es = " ".join(f"$((vx[{2 * k + 2}]-vx[{2 * k + 1}])/{v!r}:%.15g)"
+                      for k, v in enumerate(speeds))
+    else:
+        es = " ".join(f"$(vz[{k + 1}]/{v!r}:%.15g)" for k, v in enumerate(speeds))
+    lines += [f'print "RESULT {es}"']
+    path = os.path.join(TMP, "cap_wall.in" if wall else "cap_pair.in")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def cap_run(pair_coeff, wall, p_y, r, m, np=1):
+    """The impacts at CAP_RATIOS v_y in one run on np ranks (dt: egw_time_step's at 1e-4
+    for the fastest, halved): e of each against egw_restitution's."""
+    vy, dy = cap_units(p_y, r, m)
+    speeds = [x * vy for x in CAP_RATIOS]
+    refs = [cap_reference(p_y, r, m, v) for v in speeds]
+    dt = 0.5 * min(ref[3] for ref in refs)
+    nrun = int((20 * dt + 1.5 * max(ref[2] for ref in refs)) / dt)
+    rc, out = lmp(cap_deck(pair_coeff, wall, speeds, dt, nrun), np=np)
+    if rc != 0:
+        return None, refs, [l for l in out.splitlines() if "ERROR" in l or "WARN" in l], dy
+    return result(out), refs, out, dy
+
+
+def cap_verdict(es, refs, out, dy, what):
+    if es is None:
+        return False, f"{what}: " + " ".join(out)
+    dev = [abs(e - ref[0]) for e, ref in zip(es, refs)]
+    rows = ", ".join(f"{x:g} v_y (delta_m {ref[1] / dy:.1f} delta_y): {e:.5f} vs {ref[0]:.5f}"
+                     for x, e, ref in zip(CAP_RATIOS, es, refs))
+    warned = "WARNING" in out
+    ok = max(dev) <= 1e-3 and not warned
+    return ok, f"{what}: {rows}; max |e - e_ref| = {max(dev):.1e} (<= 1e-3)" + (
+        "; a WARNING" if warned else "")
+
+
+def test_cap_pair_restitution():
+    """A head-on pair of smooth glass beads (model Hertz, pair_coeff flow_pressure p_y =
+    0.01 E*, v_y = 0.030 m/s) at 2, 5, 10, 20 and 50 v_y (delta_m 1.8 to 30 delta_y, inside
+    the cap table's 40 delta_y): e from the run's velocities within 1e-3 of egw_restitution
+    (the cap solver's works, not the table) at every speed, and no WARNING (no overlap
+    beyond the table). The table is built to 1e-3 (the cap's least TOL): its force error
+    gives e within ~1.25e-3 by the library's DEM loop (test/cap_dem_checks.c, 1.1e-3 at 20
+    and 50 v_y); Verlet at half egw_time_step's 1e-4 step adds ~3e-5. The same run on 2
+    ranks (each pair's beads on both: ghosts, newton on) gives the same e (1e-12)."""
+    p_y = 0.01 * E_STAR
+    coeff = f"E {E} nu {NU} flow_pressure {p_y!r}"
+    es, refs, out, dy = cap_run(coeff, None, p_y, R_STAR, M_STAR)
+    ok, msg = cap_verdict(es, refs, out, dy, "pair")
+    es2, _, out2, _ = cap_run(coeff, None, p_y, R_STAR, M_STAR, np=2)
+    if es is None or es2 is None:
+        return False, msg + "; 2 ranks: " + " ".join(out2 if es2 is None else [])
+    d2 = max(abs(a - b) for a, b in zip(es, es2))
+    return ok and d2 < 1e-12, msg + f"; 2 ranks: max |de| = {d2:.1e} (< 1e-12)"
+
+
+def test_cap_wall_restitution():
+    """A smooth glass bead dropped onto a fix wall/egw zplane of its own material (R = 1 mm,
+    m* = m) at 2 ... 50 v_y: the bead's type gives yield_stress Y (p_y = 1.6 Y = 0.01 E*), the
+    wall flow_pressure 0.02 E*, so the contact's p_y is the smaller, 0.01 E* (the mixing
+    rule), and e is egw_restitution's for it within 1e-3 (as the pair)."""
+    p_y = 0.01 * E_STAR
+    wall = f"wall/egw Hertz 1e-3 E {E} nu {NU} flow_pressure {2 * p_y!r}"
+    es, refs, out, dy = cap_run(f"E {E} nu {NU} yield_stress {p_y / 1.6!r}", wall, p_y, RAD,
+                                2 * M_STAR)
+    return cap_verdict(es, refs, out, dy, "wall")
+
+
+def test_bad_flow_pressure():
+    """Bad flow_pressure / yield_stress input for particles and walls: negative, not finite,
+    no value, both keywords, p_y >= E* (like types, mixed types and the wall contact), a
+    rough model (egw's own refusal, naming flow_pressure, passed through) and a rough-flat
+    law: a LAMMPS ERROR naming the keyword, a non-zero exit, never a crash."""
+    base = f"E {E} nu {NU}"
+    big = 1.01 * E_STAR
+    pair_cases = [
+        ("egw Hertz 1e-3", f"{base} flow_pressure -1e8", "flow_pressure"),
+        ("egw Hertz 1e-3", f"{base} flow_pressure nan", "flow_pressure"),
+        ("egw Hertz 1e-3", f"{base} flow_pressure inf", "flow_pressure"),
+        ("egw Hertz 1e-3", f"{base} yield_stress -5", "yield_stress"),
+        ("egw Hertz 1e-3", f"{base} yield_stress", "yield_stress"),
+        ("egw Hertz 1e-3", f"{base} flow_pressure 1e8 yield_stress 1e8", "yield_stress"),
+        ("egw Hertz 1e-3", f"{base} yield_stress 1e8 flow_pressure 1e8", "flow_pressure"),
+        ("egw Hertz 1e-3", f"{base} flow_pressure {big!r}", "flow_pressure"),
+        ("egw Hertz 1e-3", f"{base} yield_stress {big / 1.6!r}", "yield_stress"),
+        ("egw E-GW 1e-3", f"{base} sigma 0.5e-6 mu 4 flow_pressure 1e8", "flow_pressure"),
+        ("egw EP-GW 1e-3", f"{base} sigma 0.5e-6 mu 4 psi 1 flow_pressure 1e8", "flow_pressure"),
+        ("egw E-GW 1e-3", f"{base} law {os.path.join(TMP, 'cap_law.csv')} flow_pressure 1e8",
+         "flow_pressure"),
+    ]
+    with open(os.path.join(TMP, "cap_law.csv"), "w") as f:
+        f.write("u,pressure\n0,1e6\n1e-6,1e5\n2e-6,1e4\n")
+    bad = []
+
+    def check(rc, out, key, what):
+        err = [l for l in out.splitlines() if "ERROR" in l]
+        crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
+        if rc == 0 or not err or key not in err[0] or crashed:
+            bad.append(f"{what}: rc {rc}, {err[:1]}")
+
+    for pstyle, coeff, key in pair_cases:
+        rc, out = collision(pstyle, coeff, nrun=0)
+        check(rc, out, key, coeff)
+    # unlike types mixed to p_y >= E*: type 2's soft E with type 1's p_y (the smaller)
+    soft = 0.01 * E
+    deck = os.path.join(TMP, "cap_mix.in")
+    with open(deck, "w") as f:
+        f.write("units si\natom_style sphere\ncomm_modify vel yes\nboundary f f f\n"
+                "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01\ncreate_box 2 box\n"
+                "create_atoms 1 single -0.003 0 0\ncreate_atoms 2 single 0.003 0 0\n"
+                "set type * diameter 0.002\nset type * density 2500\n"
+                "pair_style egw Hertz 1e-3\n"
+                f"pair_coeff 1 1 {base} flow_pressure {0.5 * E_STAR!r}\n"
+                f"pair_coeff 2 2 E {soft!r} nu {NU}\nrun 0\n")
+    rc, out = lmp(deck)
+    check(rc, out, "flow_pressure", "mixed types 1 2")
+    wall_cases = [
+        (f"{base}", f"wall/egw Hertz 1e-3 {base} flow_pressure -1 zplane 0 NULL",
+         "flow_pressure"),
+        (f"{base}", f"wall/egw Hertz 1e-3 {base} yield_stress abc zplane 0 NULL", "yield_stress"),
+        (f"{base}", f"wall/egw Hertz 1e-3 {base} flow_pressure 1e8 yield_stress 1e8 "
+                    "zplane 0 NULL", "yield_stress"),
+        (f"{base}", f"wall/egw Hertz 1e-3 {base} flow_pressure {big!r} zplane 0 NULL",
+         "flow_pressure"),
+        (f"{base} sigma 0.5e-6 mu 4", f"wall/egw E-GW 1e-3 {base} sigma 0.5e-6 mu 4 "
+                                      "flow_pressure 1e8 zplane 0 NULL", "flow_pressure"),
+    ]
+    for coeff, wall, key in wall_cases:
+        pstyle = "egw E-GW 1e-3" if "sigma" in coeff else "egw Hertz 1e-3"
+        rc, out = wall_run(pstyle, coeff, wall, 0.1, 1e-8, 0, RAD + 1e-5)
+        check(rc, out, key, wall)
+    n = len(pair_cases) + 1 + len(wall_cases)
+    return not bad, f"{n - len(bad)}/{n} refused with the keyword named" + (
+        "; " + "; ".join(bad) if bad else "")
+
+
+def test_cap_restart():
+    """Smooth beads with the cap (flow_pressure 0.01 E*, ~6.7 v_y), oblique, no friction: a
+    run split by write_restart in mid contact (unloading from beyond first yield) and
+    continued by read_restart ends as the uninterrupted split run (1e-12 of the speed:
+    delta_max in units of delta_y came back, and the state refilled from it), and the
+    rebound lost energy (relative speed after / before < 0.9: without friction only the
+    cap dissipates)."""
+    c = f"E {E} nu {NU} flow_pressure {0.01 * E_STAR!r}"
+    rc1, out1 = collision("egw Hertz 1e-3", c, yoff=0.0005, wz=30.0, n1=2640, restart=1,
+                          rfile="cap.restart")
+    rc2, out2 = lmp("collision_restart.in", rfile="cap.restart", n2=6000 - 2640, thermo=1000)
+    if rc1 or rc2:
+        return False, " ".join(l for l in (out1 + out2).splitlines() if "ERROR" in l)
+    a, b = result(out1), result(out2)
+    d = max(abs(x - y) for x, y in zip(a, b)) / V
+    mid = [float(x) for x in re.findall(r"^MID (.*)$", out1, re.M)[-1].split()]
+    speed = math.hypot(a[2] - a[0], a[3] - a[1]) / (2 * V)
+    ok = d < 1e-12 and abs(mid[0]) > 0 and speed < 0.9
+    return ok, (f"force at the restart ({mid[0]:.4g}, {mid[1]:.4g}), max |dv|/v = {d:.1e} "
+                f"(< 1e-12), relative speed after / before {speed:.4f}")
+
+
+def test_cap_energy():
+    """Hertz + cap (flow_pressure 0.01 E*, ~6.7 v_y), no damping: as energy_epgw, the
+    tallied energy is what the contact returns if it separates now (egw_hysteresis_energy
+    in units of E* sqrt(R) delta_y^2.5), so kinetic + it never rises by more than the
+    Verlet noise (5e-5 of E0), stays constant while the contact unloads (5e-4, half the
+    table's 1e-3), and ends at the rebound's kinetic energy, E_end/E0 = e^2 (1e-4), with
+    e < 0.9 (the cap dissipated)."""
+    rc, out = collision("egw Hertz 1e-3", f"E {E} nu {NU} flow_pressure {0.01 * E_STAR!r}",
+                        thermo_every=10)
+    if rc:
+        return False, " ".join(l for l in out.splitlines() if "ERROR" in l)
+    rows = thermo(out)
+    e0 = rows[0][3]
+    rise = max((b[3] - a[3]) / e0 for a, b in zip(rows, rows[1:]))
+    deepest = max(range(len(rows)), key=lambda i: rows[i][2])
+    after = [r[3] for r in rows[deepest + 2:]]
+    drift = (max(after) - min(after)) / e0
+    e = restitution_of(out)
+    end = rows[-1][3] / e0
+    ok = (rise < 5e-5 and drift < 5e-4 and abs(end - e * e) < 1e-4 and
+          rows[deepest][2] > 0.2 * e0 and e < 0.9)
+    return ok, (f"largest rise {rise:.1e}, unloading drift {drift:.1e} (< 5e-4), E_end/E0 "
+                f"{end:.6f} vs e^2 {e * e:.6f}, e = {e:.5f}")
