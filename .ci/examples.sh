@@ -58,6 +58,13 @@ step "cmake: configure, build, install" sh -c "
   cmake --build '$work/build' -j 2 >>'$work/cmake.log' &&
   cmake --install '$work/build' >>'$work/cmake.log' || { tail -40 '$work/cmake.log'; exit 1; }"
 
+# a shared library that asks for an executable stack (gfortran's trampolines for an internal
+# procedure passed as an argument) is refused by dlopen on newer glibc: LAMMPS could not load
+# the plugin, Python not the package
+step "libegw.so: no executable stack" sh -c "
+  lib=\$(find '$prefix' -name 'libegw.so*' -type f | head -n 1) && test -n \"\$lib\" &&
+  readelf -lW \"\$lib\" | grep GNU_STACK | grep -qv RWE"
+
 step "egw-table: installed, runs from the prefix (rpath), no LD_LIBRARY_PATH" sh -c "
   env -i PATH=/usr/bin:/bin '$prefix/bin/egw-table' --quiet --formats csv --out '$work/installed_out' \
     >/dev/null && test -s '$work/installed_out/scene_table.csv'"

