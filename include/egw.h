@@ -277,6 +277,20 @@ int egw_restitution_overlap(const egw_params *p, const egw_options *o, double ma
 int egw_time_step(const egw_params *p, const egw_options *o, double mass, double velocity,
                   double tolerance, double *duration, double *time_step);
 
+/* First yield under the flow-pressure cap (doc/theory.md section 12; doc/restitution.md):
+ * *delta_y = (pi p_y/(2 E*))^2 R [length], the overlap at which the smooth sphere's peak
+ * pressure 2 E* a/(pi R) reaches p_y = p->flow_pressure, and *velocity_y [length/time] the
+ * approach speed of a head-on impact of effective mass m* = mass whose deepest overlap it
+ * is, from (1/2) m* v_y^2 = (8/15) E* sqrt(R) delta_y^(5/2). Below v_y an impact is
+ * elastic (e = 1 for Hertz), above it the cap dissipates: the model a scene needs (egw-table
+ * scenes say "beyond first yield: Hertz + cap"). Closed forms of the smooth sphere with
+ * p's R and E*, whatever p->model: a rough sphere's first yield, where its largest total
+ * pressure reaches p_y, lies elsewhere (egw_solve's max_pressure tells where). flow_pressure 0 (no bulk yield): both DBL_MAX (never). Either
+ * output may be NULL. Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT (mass not
+ * finite and > 0, or a speed that is not a double for these units), EGW_NULL_POINTER (p);
+ * outputs untouched on failure. Since 0.2.0. */
+int egw_first_yield(const egw_params *p, double mass, double *delta_y, double *velocity_y);
+
 /* Total pressure p(r) and surface deflection w(r) of the solved contact at the n radii
  * r[0..n-1] (>= 0, any order) into pressure[] and deflection[], each pointwise within
  * o->rel_tol of the profile's peak (pressure) and of its largest deflection: the contact

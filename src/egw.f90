@@ -41,6 +41,8 @@ module egw
       & scene_tables, max_types, choice_hertz, choice_table, choice_universal, choice_name, &
       & default_scene_input, read_scene_file, apply_scene_overrides, validate_scene_input, &
       & resolve_scene, choose_model, build_scene_tables
+   use egw_impact_regime, only: impact_regime, classify_impact, first_yield_overlap, &
+      & first_yield_speed
    use egw_io, only: write_file, open_temporary, commit_temporary, discard_temporary
    use egw_cache, only: cache_directory, build_table_cached, build_universal_cached, &
       & build_hysteresis_cached

@@ -3,6 +3,7 @@
  * test/data/cap_reference.csv (tools/reference/cap_reference.py, an independent solve of
  * the same cap model), and the refusals. R = E* = 1, p_y = 2/pi: delta_y = 1, P_y = 4/3,
  * m* = 16/15 makes v_y = 1. Run by test/test_capi.f90 (suite capi, "flow pressure"). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -134,5 +135,40 @@ int egw_capi_test_flow_pressure_refusals(void) {
   CHECK(message_has("flow_pressure"));
   /* below first yield the profile is Hertz's */
   CHECK(egw_profile(&p, NULL, 0.5, 2, r, pr, w) == EGW_OK);
+  return failures;
+}
+
+/* egw_first_yield: in the cap's units (R = E* = 1, p_y = 2/pi: delta_y = 1, P_y = 4/3; m* =
+ * 16/15: v_y = 1, since (1/2) m* v_y^2 = (8/15) delta_y^(5/2)) both are 1 to a few ulp;
+ * for a steel pair (R = 0.5 mm, E* = 115 GPa, p_y = 1.6 GPa) against the same energy balance
+ * written out, and egw_restitution_overlap's deepest overlap at v_y is delta_y (the
+ * solver's Hertz impact: 1e-9). flow_pressure 0: DBL_MAX; bad mass, NULL p refused. */
+int egw_capi_test_first_yield(void) {
+  egw_params p = capped(), s = capped(), h = capped();
+  double dy = 0, vy = 0, dm = 0, m;
+  failures = 0;
+  CHECK(egw_first_yield(&p, 16.0 / 15.0, &dy, &vy) == EGW_OK);
+  CHECK(fabs(dy - 1) <= 4e-16 && fabs(vy - 1) <= 8e-16);
+  s.radius = 0.5e-3, s.modulus = 115e9, s.flow_pressure = 1.6e9;
+  m = 7800 * 4.0 / 3.0 * M_PI * 1e-9 / 2; /* two 1 mm steel beads */
+  CHECK(egw_first_yield(&s, m, &dy, &vy) == EGW_OK);
+  {
+    double d = pow(M_PI * 1.6e9 / (2 * 115e9), 2) * 0.5e-3;
+    double v = sqrt(2 * (8.0 / 15.0) * 115e9 * sqrt(0.5e-3) * pow(d, 2.5) / m);
+    CHECK(fabs(dy / d - 1) <= 1e-14 && fabs(vy / v - 1) <= 1e-14);
+  }
+  CHECK(egw_restitution_overlap(&s, NULL, m, vy, NULL, &dm) == EGW_OK);
+  CHECK(fabs(dm / dy - 1) <= 1e-9);
+  CHECK(egw_first_yield(&s, m, NULL, NULL) == EGW_OK);
+  h.flow_pressure = 0.0;
+  CHECK(egw_first_yield(&h, 1.0, &dy, &vy) == EGW_OK && dy == DBL_MAX && vy == DBL_MAX);
+  dy = vy = -1;
+  CHECK(egw_first_yield(&p, 0.0, &dy, &vy) == EGW_INVALID_ARGUMENT && dy == -1 && vy == -1);
+  CHECK(message_has("mass"));
+  CHECK(egw_first_yield(&p, NAN, &dy, &vy) == EGW_INVALID_ARGUMENT);
+  CHECK(egw_first_yield(NULL, 1.0, &dy, &vy) == EGW_NULL_POINTER);
+  p.flow_pressure = -1;
+  CHECK(egw_first_yield(&p, 1.0, &dy, &vy) == EGW_INVALID_PARAMETER);
+  CHECK(message_has("flow_pressure"));
   return failures;
 }

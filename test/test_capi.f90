@@ -47,6 +47,9 @@ module test_capi
          & bind(C, name="egw_capi_test_flow_pressure_refusals")
          import :: c_int
       end function
+      integer(c_int) function c_first_yield() bind(C, name="egw_capi_test_first_yield")
+         import :: c_int
+      end function
    end interface
 
 contains
@@ -66,7 +69,8 @@ contains
          & new_unittest("profile", t_profile), &
          & new_unittest("flow pressure: params", t_cap_params), &
          & new_unittest("flow pressure: solves against the cap reference", t_cap_solves), &
-         & new_unittest("flow pressure: doors not served yet refuse", t_cap_refusals) &
+         & new_unittest("flow pressure: doors not served yet refuse", t_cap_refusals), &
+         & new_unittest("flow pressure: egw_first_yield", t_first_yield) &
          & ]
    end subroutine collect_capi
 
@@ -128,6 +132,11 @@ contains
    subroutine t_cap_refusals(error)
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_cap_refusals())
+   end subroutine
+
+   subroutine t_first_yield(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_first_yield())
    end subroutine
 
 end module test_capi

@@ -88,3 +88,25 @@ def test_hysteresis_table_with_the_cap():
     below, _ = h.eval([0.3, 0.6], np.full(2, 0.9))
     loading, _ = h.eval([0.3, 0.6], egw.HysteresisTable.new_state(2))
     np.testing.assert_array_equal(below, loading)
+
+
+def test_first_yield():
+    """egw.first_yield: in the cap's units (delta_y = 1) m* = 16/15 gives v_y = 1 (energy
+    balance (1/2) m* v_y^2 = (8/15) E* sqrt(R) delta_y^(5/2)); the deepest overlap of an
+    impact at v_y (egw.restitution, a Hertz impact solved by the library) is delta_y to
+    1e-9; v_y scales as m*^(-1/2) (array mass); no cap: inf; bad mass named."""
+    fy = egw.first_yield(capped(), mass=16.0 / 15.0)
+    assert abs(fy.overlap - 1) <= 4e-16 and abs(fy.speed - 1) <= 8e-16
+    steel = egw.Params(model="Hertz", radius=0.5e-3, modulus=115e9, flow_pressure=1.6e9)
+    m = 7800 * 4 / 3 * math.pi * 1e-9 / 2
+    fy = egw.first_yield(steel, mass=m)
+    r = egw.restitution(steel, mass=m, velocity=fy.speed)
+    assert abs(r.max_overlap / fy.overlap - 1) <= 1e-9 and r.e == 1.0
+    arr = egw.first_yield(steel, mass=np.array([m, 4 * m]))
+    assert arr.speed.shape == (2,) and abs(arr.speed[1] / arr.speed[0] - 0.5) <= 1e-15
+    free = egw.first_yield(egw.Params(model="Hertz"), mass=1.0)
+    assert free.overlap == math.inf and free.speed == math.inf
+    with pytest.raises(egw.InvalidArgumentError, match="mass"):
+        egw.first_yield(steel, mass=-1.0)
+    with pytest.raises(TypeError, match="mass"):
+        egw.first_yield(steel, m)    # keyword-only: a positional mass is refused

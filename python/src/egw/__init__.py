@@ -9,12 +9,12 @@ message (which names the offending parameter).
 >>> t = egw.Table.build(p, -2e-6, 2e-5, 1e-6)  # a force table for a DEM code
 >>> force, stiffness = t.eval(np.linspace(0, 2e-5, 1000))
 """
-from .core import (EgwError, FileError, IgnoredParameterWarning, InvalidArgumentError,
-                   NotConvergedError, Options, OutOfRangeWarning, Params, PointFailedWarning,
-                   Restitution, SolveResult, TimeStep, effective_modulus, ellipe, ellipk,
-                   errstate, flat_pressure, flat_pressure_unload, gauss_integral, hertz,
-                   last_error, mu_from_summits, profile, restitution, solve, solve_unload,
-                   time_step, version)
+from .core import (EgwError, FileError, FirstYield, IgnoredParameterWarning,
+                   InvalidArgumentError, NotConvergedError, Options, OutOfRangeWarning, Params,
+                   PointFailedWarning, Restitution, SolveResult, TimeStep, effective_modulus,
+                   ellipe, ellipk, errstate, first_yield, flat_pressure, flat_pressure_unload,
+                   gauss_integral, hertz, last_error, mu_from_summits, profile, restitution,
+                   solve, solve_unload, time_step, version)
 from .scene import ModelChoice, Scene, build, choose
 from .tables import HysteresisInfo, HysteresisTable, Table, TableInfo, UniversalTable
 from .flat_law import FlatLaw
@@ -31,5 +31,6 @@ __all__ = ["EgwError", "FileError", "InvalidArgumentError", "NotConvergedError",
            "ModelChoice", "Scene", "build", "choose", "HysteresisInfo", "HysteresisTable", "Table",
            "TableInfo", "UniversalTable", "topography", "psi_from_hardness",
            "IgnoredParameterWarning", "PointFailedWarning", "TimeStep", "effective_modulus",
-           "errstate", "time_step", "contact_from_topography", "FlatLaw",
+           "errstate", "time_step", "contact_from_topography", "FlatLaw", "FirstYield",
+           "first_yield",
            "SurfaceChoice", "choose_for_surface"]

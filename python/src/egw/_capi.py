@@ -156,6 +156,7 @@ _SIGNATURES = {
                                 POINTER(c_void_p)]),
     "egw_restitution_overlap": (c_int, [_P, _O, c_double, c_double, _dp, _dp]),
     "egw_time_step": (c_int, [_P, _O, c_double, c_double, c_double, _dp, _dp]),
+    "egw_first_yield": (c_int, [_P, c_double, _dp, _dp]),
     # array kernels (egw.h "Array kernels"): a stride after every input
     "egw_hertz_array": (c_int, [_P, c_int, c_int, _dp, c_int, _dp, _dp, _dp, c_int, _ip]),
     "egw_flat_pressure_array": (c_int, [_P, c_int, c_int, _dp, c_int, _dp, _dp, c_int, _ip]),

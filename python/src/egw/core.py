@@ -1249,6 +1249,63 @@ def time_step(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
     return TimeStep(*_scalar_or_array(b.shape, duration, step))
 
 
+@dataclass
+class FirstYield:
+    """First yield under the flow-pressure cap (floats, or arrays of mass's shape).
+
+    Attributes
+    ----------
+    overlap : delta_y = (pi p_y/(2 E*))^2 R, where the smooth sphere's peak pressure
+        reaches p_y [length] (inf for flow_pressure 0).
+    speed : v_y, the approach speed of a head-on impact whose deepest overlap is delta_y
+        [length/time] (inf for flow_pressure 0).
+    """
+    overlap: FloatOrArray
+    speed: FloatOrArray
+
+
+@_keyword_only("first_yield(params, mass=...)")
+def first_yield(params: Params, *, mass: ArrayLike) -> FirstYield:
+    """First-yield overlap and impact speed of the flow-pressure cap (egw_first_yield).
+
+    Closed forms of the smooth sphere with the params' R and E*, whatever the model (a rough
+    sphere's own first yield is where ``solve(...).max_pressure`` reaches p_y): below v_y an
+    impact is elastic, above it the cap dissipates (doc/restitution.md).
+
+    Parameters
+    ----------
+    params : Params
+        One contact (scalar fields) with ``flow_pressure`` p_y >= 0.
+    mass : float or array, > 0
+        Effective mass m*, 1/m* = 1/m1 + 1/m2 [mass].
+
+    Returns
+    -------
+    FirstYield
+        overlap delta_y and speed v_y; both inf when flow_pressure is 0 (no bulk yield).
+
+    Raises
+    ------
+    InvalidArgumentError
+        params invalid, or mass not finite and > 0 (named).
+    TypeError
+        params not a scalar egw.Params.
+    """
+    if not isinstance(params, Params) or not params.is_scalar:
+        raise TypeError("params must be one egw.Params with scalar fields")
+    m = _array(mass, "mass")
+    c = params.to_c()
+
+    def call(i, dy, vy):
+        check(lib.egw_first_yield(ctypes.byref(c), float(m.reshape(-1)[i]), dy, vy))
+
+    overlap, speed = _loop(m.shape, 2, call)
+    if params.flow_pressure == 0:
+        overlap[...] = np.inf    # the C call's DBL_MAX: never
+        speed[...] = np.inf
+    return FirstYield(*_scalar_or_array(m.shape, overlap, speed))
+
+
 def _require(name: str) -> None:
     if not _capi.has(name):
         raise NotImplementedError(f"the loaded libegw has no {name} (egw {version()})")
@@ -1256,7 +1313,8 @@ def _require(name: str) -> None:
 
 __all__ = ["EgwError", "InvalidArgumentError", "NotConvergedError", "FileError",
            "OutOfRangeWarning", "PointFailedWarning", "IgnoredParameterWarning", "Params",
-           "Options", "SolveResult", "Restitution", "TimeStep", "version", "last_error",
+           "Options", "SolveResult", "Restitution", "TimeStep", "FirstYield", "first_yield",
+           "version", "last_error",
            "check", "errstate", "mu_from_summits", "effective_modulus", "gauss_integral",
            "ellipk", "ellipe", "hertz", "flat_pressure", "flat_pressure_unload", "solve",
            "solve_unload", "profile", "restitution", "time_step", "MODELS", "PARAMS_DTYPE",

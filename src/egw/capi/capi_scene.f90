@@ -1,19 +1,23 @@
 !> C API of scenes (include/egw.h): the egw_scene
 !> struct, reading a namelist scene file, the model choice and the build of its tables
 !> as egw_table / egw_universal handles (released by egw_table_free /
-!> egw_universal_free). Errors go through egw_capi_utils' per-thread last-error message.
+!> egw_universal_free), and the first yield of an impact (egw_first_yield). Errors go through egw_capi_utils' per-thread last-error message.
 module egw_capi_scene
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, fatal_error
+   use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, fatal_error, format_real
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table
    use egw_table_universal, only: universal_table
    use egw_scene, only: scene_input, contact_scene, model_choice, scene_tables, max_types, &
       & default_scene_input, read_scene_file, validate_scene_input, resolve_scene, &
       & choose_model, build_scene_tables, choice_table, choice_universal
-   use egw_capi_utils, only: settle, require, read_options, c_string, copy_to_c
+   use egw_capi_utils, only: settle, require, read_options, c_string, copy_to_c, read_params, &
+      & check_positive, invalid, put
+   use egw_params, only: contact_params
+   use egw_impact_regime, only: first_yield_overlap, first_yield_speed
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
 
@@ -244,5 +248,33 @@ contains
       cc%x_min = mc%x_min
       cc%x_max = mc%x_max
    end function choice_to_c
+
+   !> C: egw_first_yield: the smooth sphere's first-yield overlap and impact speed under
+   !> the flow-pressure cap (scene/impact_regime: closed forms); +HUGE where p_y = 0.
+   function egw_first_yield(p, mass, delta_y, velocity_y) result(stat) &
+      & bind(C, name="egw_first_yield")
+      type(c_ptr), value, intent(in) :: p, delta_y, velocity_y
+      real(c_double), value, intent(in) :: mass
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      real(dp) :: d_y, v_y
+      stat = read_params(p, params)
+      if (stat == egw_ok) stat = check_positive("mass", mass)
+      if (stat /= egw_ok) return
+      if (params%flow_pressure > 0.0_dp) then
+         d_y = first_yield_overlap(params)
+         v_y = first_yield_speed(params, mass)
+         if (.not. (ieee_is_finite(v_y) .and. v_y > 0.0_dp .and. d_y > 0.0_dp)) then
+            stat = invalid("mass = "//format_real(mass)//": with flow_pressure, radius "// &
+               & "and modulus the first-yield speed is not a positive double")
+            return
+         end if
+      else
+         d_y = huge(1.0_dp)   ! no bulk yield: never
+         v_y = huge(1.0_dp)
+      end if
+      call put(delta_y, d_y)
+      call put(velocity_y, v_y)
+   end function egw_first_yield
 
 end module egw_capi_scene
