@@ -500,6 +500,62 @@ static int r_time_step(void) {
   return st;
 }
 
+/* the flow-pressure cap (Hertz, R = E* = 1, p_y = 2/pi: delta_y = 1, m* = 16/15: v_y = 1):
+ * its own slots, p.flow_pressure among them */
+#define CAP_SLOTS {"p.radius", K_DBL}, {"p.modulus", K_DBL}, {"p.flow_pressure", K_DBL}
+static egw_params cap_params_at(int s) {
+  egw_params p;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_HERTZ;
+  p.radius = D(s, 1.0);
+  p.modulus = D(s + 1, 1.0);
+  p.flow_pressure = D(s + 2, 2.0 / 3.141592653589793);
+  return p;
+}
+
+static int r_first_yield(void) {
+  egw_params p = cap_params_at(0);
+  double v[2];
+  int st;
+  sentinel(v, sizeof v);
+  st = egw_first_yield(P(3, &p), D(4, 16.0 / 15.0), P(5, &v[0]), P(6, &v[1]));
+  out_doubles(st, 0, "delta_y, velocity_y", v, 2, sizeof v);
+  sane(st, cur->slot == 5 || v[0] > 0, "delta_y not > 0", v[0]);
+  sane(st, cur->slot == 6 || v[1] > 0, "velocity_y not > 0", v[1]);
+  return st;
+}
+
+static int r_cap_solve_unload(void) {
+  egw_params p = cap_params_at(0);
+  egw_result r;
+  int st;
+  sentinel(&r, sizeof r);
+  st = egw_solve_unload(P(3, &p), NULL, D(4, 4.0), D(5, 6.0), P(6, &r));
+  check_result(st, &r);
+  return st;
+}
+
+static int r_cap_restitution(void) {
+  egw_params p = cap_params_at(0);
+  double v[2];
+  int st;
+  sentinel(v, sizeof v);
+  st = egw_time_step(P(3, &p), NULL, D(4, 16.0 / 15.0), D(5, 5.0), D(6, 1e-3), P(7, &v[0]),
+                     P(8, &v[1]));
+  out_doubles(st, 0, "duration, time_step", v, 2, sizeof v);
+  sane(st, cur->slot == 7 || v[0] > 0, "duration not > 0", v[0]);
+  sane(st, cur->slot == 8 || (v[1] > 0 && (cur->slot == 7 || v[1] < v[0])),
+       "time step not in (0, duration)", v[1]);
+  if (st == EGW_OK) {
+    double e;
+    sentinel(&e, sizeof e);
+    st = egw_restitution(P(3, &p), NULL, D(4, 16.0 / 15.0), D(5, 5.0), &e);
+    out_doubles(st, 0, "e", &e, 1, sizeof e);
+    sane(st, e > 0 && e <= 1, "e outside (0, 1]", e);
+  }
+  return st;
+}
+
 /* array kernels (capi_array.f90): n and strides clamped to the arrays' sizes (beyond them
  * is the caller's undefined behaviour); outputs may be partly written on refusal
  * (egw.h), so only finiteness on success is checked */
@@ -1322,6 +1378,16 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass", K_DBL},
       {"velocity", K_DBL}, {"tolerance", K_DBL}, {"duration", K_PTR}, {"time_step", K_PTR}},
      r_time_step, 1},
+    {"egw_first_yield", 7,
+     {CAP_SLOTS, {"p", K_PTR}, {"mass", K_DBL}, {"delta_y", K_PTR}, {"velocity_y", K_PTR}},
+     r_first_yield, 0},
+    {"egw_solve_unload (flow_pressure)", 7,
+     {CAP_SLOTS, {"p", K_PTR}, {"delta", K_DBL}, {"delta_max", K_DBL}, {"res", K_PTR}},
+     r_cap_solve_unload, 1},
+    {"egw_time_step, egw_restitution (flow_pressure)", 9,
+     {CAP_SLOTS, {"p", K_PTR}, {"mass", K_DBL}, {"velocity", K_DBL}, {"tolerance", K_DBL},
+      {"duration", K_PTR}, {"time_step", K_PTR}},
+     r_cap_restitution, 1},
     {"egw_hertz_array", 19,
      {PARAM_SLOTS("p."), {"p", K_PTR}, {"p_stride", K_INT}, {"n", K_INT}, {"delta[1]", K_DBL},
       {"delta", K_PTR}, {"delta_stride", K_INT}, {"force", K_PTR}, {"stiffness", K_PTR},
