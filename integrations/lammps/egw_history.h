@@ -14,13 +14,14 @@ namespace LAMMPS_NS {
 namespace EgwHistory {
 
 // per contact: delta_max (EP-GW: in units of the contact's sigma, as its hysteresis state
-// keeps it), tangential displacement (3), and the contact's R with its position t in the
-// ln-mu nodes and the nodes' fingerprint (summit data: mu depends on R only, so t is
-// computed once per contact and set of tables)
+// keeps it) and the tangential displacement (3). Four doubles, one more than granular's
+// hertz/material + mindlin: FixNeighHistory's pages dominate a rank's memory (~1.5 MB per
+// double at LAMMPS's default page size), so the contact's position in the ln-mu nodes is
+// recomputed (a log) rather than kept (the three doubles R, t and a fingerprint it took
+// made egw's memory per rank 1.96x granular's in the pour, issue 33 asks <= 1.5x).
 constexpr int DELTA_MAX = 0;
 constexpr int SHEAR = 1;                 // 3 values
-constexpr int MU_R = 4, MU_T = 5, MU_PRINT = 6;
-constexpr int NHIST_BASE = 7;
+constexpr int NHIST_BASE = 4;
 // EP-GW evaluates with two hysteresis states (egw_hysteresis_eval_state, one per table of
 // the ln-mu pair): delta_max/sigma and a cache of its turning point, rebuilt from delta_max
 // whenever it is missing (EgwLaw::eval). The pair keeps them beside its neighbor list,

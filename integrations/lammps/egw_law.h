@@ -146,7 +146,7 @@ struct EgwLaw {
   std::string describe(double R_lo, double R_hi) const;
   /* the contact's mu at R (summit data) */
   double mu_at(double R) const { return mu * std::sqrt(R); }
-  inline int mu_position(double R, double *hist, double &t) const;
+  inline int mu_position(double R, double &t) const;
   /* elastic normal force F, stiffness S = dF/ddelta and (want_energy) the energy U at
    * overlap delta of a contact of radius R with history hist; EP-GW's two hysteresis
    * states in cache (EgwHistory::HYST_CACHE doubles: filled again from hist's delta_max
@@ -180,21 +180,12 @@ inline const char *egw_reach_advice(const EgwLaw &L)
   return "raise 'overlap_max'";
 }
 
-/* the position t of the contact's mu = mu(R) in the ln-mu nodes, cached in the history */
-inline int EgwLaw::mu_position(double R, double *hist, double &t) const
+/* the position t of the contact's mu = mu(R) in the ln-mu nodes (MU_OUTSIDE beyond them) */
+inline int EgwLaw::mu_position(double R, double &t) const
 {
-  using namespace EgwHistory;
-  double print = lnmu0 + inv_h;    // changes when the tables are rebuilt for a new range
-  if (hist[MU_R] == R && hist[MU_PRINT] == print) {
-    t = hist[MU_T];
-    return EGW_OK;
-  }
   double m = mu_at(R);
   if (!(m >= mu_lo && m <= mu_hi)) return MU_OUTSIDE;
-  hist[MU_R] = R;
-  hist[MU_T] = (std::log(m) - lnmu0) * inv_h;
-  hist[MU_PRINT] = print;
-  t = hist[MU_T];
+  t = (std::log(m) - lnmu0) * inv_h;
   return EGW_OK;
 }
 
@@ -260,7 +251,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     }
     case UNIVERSAL: {
       double t;
-      if (mu_position(R, hist, t) != EGW_OK) return MU_OUTSIDE;
+      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
       int n = (int) slices.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
@@ -312,7 +303,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     }
     case FLAT: {
       double t;
-      if (mu_position(R, hist, t) != EGW_OK) return MU_OUTSIDE;
+      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
       int n = (int) flat.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = n > 1 ? t - k : 0.0;
@@ -343,7 +334,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     case HYST_MU: {
       double x = delta * inv_sigma;
       double t;
-      if (mu_position(R, hist, t) != EGW_OK) return MU_OUTSIDE;
+      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
       int n = (int) hyst.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
