@@ -20,6 +20,7 @@ module egw_ellip
 
    public :: ellipk, ellipe, ellipk_comp, ellipe_comp
    public :: get_ellipk, get_ellipe, ellipk_log_split, ellipk_comp_fast
+   public :: fast_p, fast_q
 
    !> 1/sqrt(2): below it (in k) the Legendre sum for E has no cancellation worth naming
    !> (E/K >= 0.73), above it the complementary AGM converges in a few steps.
