@@ -25,7 +25,7 @@
 module egw_halfspace
    !$ use omp_lib, only: omp_get_num_procs
    use egw_kinds, only: dp, pi
-   use egw_ellip, only: ellipk_comp_fast, ellipk_log_split, fast_p, fast_q
+   use egw_ellip, only: ellipk_comp_fast, ellipk_log_split, ellipk_fast_p, ellipk_fast_q
    implicit none
    private
 
@@ -302,12 +302,14 @@ contains
          eta = kc*kc
          e2 = eta*eta
          e4 = e2*e2
-         p = (fast_p(0) + fast_p(1)*eta) + e2*(fast_p(2) + fast_p(3)*eta) &
-            & + e4*((fast_p(4) + fast_p(5)*eta) + e2*(fast_p(6) + fast_p(7)*eta) &
-            & + e4*(fast_p(8) + fast_p(9)*eta))
-         q = (fast_q(0) + fast_q(1)*eta) + e2*(fast_q(2) + fast_q(3)*eta) &
-            & + e4*((fast_q(4) + fast_q(5)*eta) + e2*(fast_q(6) + fast_q(7)*eta) &
-            & + e4*(fast_q(8) + fast_q(9)*eta))
+         associate (fp => ellipk_fast_p, fq => ellipk_fast_q)
+            p = (fp(0) + fp(1)*eta) + e2*(fp(2) + fp(3)*eta) &
+               & + e4*((fp(4) + fp(5)*eta) + e2*(fp(6) + fp(7)*eta) &
+               & + e4*(fp(8) + fp(9)*eta))
+            q = (fq(0) + fq(1)*eta) + e2*(fq(2) + fq(3)*eta) &
+               & + e4*((fq(4) + fq(5)*eta) + e2*(fq(6) + fq(7)*eta) &
+               & + e4*(fq(8) + fq(9)*eta))
+         end associate
          row(i) = w(i)*(4.0_dp/pi*t(i)/(r + t(i))*(p - 2.0_dp*log(kc)*q))
       end do
    end subroutine far_kernel_run
