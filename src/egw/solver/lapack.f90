@@ -2,7 +2,7 @@
 !> implicit interfaces). Only double precision, only what the solver uses. And the
 !> sphere solver's own dense LU (lu_factor, lu_solve): dgetf2/dgetrs's algorithm with
 !> the same operations, compiled with egw's flags instead of called through the
-!> reference BLAS (a dger/dtrsm call a column), 2x faster on the solver's n ~ 30-300.
+!> reference BLAS (a dger/dtrsm call a column): 1.6x faster on the solver's n ~ 50-70.
 module egw_lapack
    use egw_kinds, only: dp
    implicit none
