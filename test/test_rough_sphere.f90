@@ -11,6 +11,7 @@ module test_rough_sphere
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
       & validate_options, method_newton, method_picard
    use ref_rough_sphere, only: ref_f52_11, ref_f52_13
+   use egw_lapack, only: lu_factor, lu_solve
    implicit none
    private
    public :: collect_rough_sphere
@@ -39,7 +40,8 @@ contains
          & new_unittest("EP-GW with psi = 0 is E-GW", test_psi_zero), &
          & new_unittest("EP-GW on Fig. 8 settings", test_fig8), &
          & new_unittest("profile integrates to the force", test_profile_force), &
-         & new_unittest("bad input is reported", test_bad_input) &
+         & new_unittest("bad input is reported", test_bad_input), &
+         & new_unittest("the solver's dense LU (lu_factor, lu_solve)", test_dense_lu) &
          & ]
    end subroutine collect_rough_sphere
 
@@ -685,5 +687,35 @@ contains
       write (buf, '(es12.4)') x
       s = trim(adjustl(buf))
    end function str
+
+   !> The Newton solver's LU (egw_lapack lu_factor/lu_solve) on a system whose solution is
+   !> known exactly: A x = b with integer A (a zero leading entry, so rows must be swapped)
+   !> and x, b = A x exact in double. Partial pivoting on this well-conditioned matrix
+   !> (condition ~ 10) leaves a few ulp: 1e-14 is a wide margin. A zero column gives
+   !> info = its index (the factorisation stops), as dgetf2's.
+   subroutine test_dense_lu(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp) :: a(4, 4), lu(4, 4), x(4), b(4)
+      integer :: ipiv(4), info
+      a = reshape([0.0_dp, 1.0_dp, 2.0_dp, -1.0_dp, &
+         & 2.0_dp, 1.0_dp, 0.0_dp, 3.0_dp, &
+         & 1.0_dp, 0.0_dp, 3.0_dp, 1.0_dp, &
+         & 4.0_dp, -2.0_dp, 1.0_dp, 0.0_dp], [4, 4])
+      x = [1.0_dp, -2.0_dp, 3.0_dp, 0.5_dp]
+      b = matmul(a, x)
+      lu = a
+      call lu_factor(4, lu, ipiv, info)
+      call check(error, info, 0, "lu_factor: info")
+      if (allocated(error)) return
+      call check(error, ipiv(1) /= 1, "lu_factor: the zero pivot a(1, 1) was swapped")
+      if (allocated(error)) return
+      call lu_solve(4, lu, ipiv, b)
+      call check(error, maxval(abs(b - x)) <= 1.0e-14_dp, "lu_solve: max error "// &
+         & "against the exact solution above 1e-14")
+      if (allocated(error)) return
+      a(:, 3) = 0.0_dp
+      call lu_factor(4, a, ipiv, info)
+      call check(error, info, 3, "lu_factor on a zero third column: info")
+   end subroutine test_dense_lu
 
 end module test_rough_sphere

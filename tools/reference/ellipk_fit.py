@@ -63,7 +63,7 @@ def main():
         approx = horner(p, eta) - math.log(eta) * horner(q, eta)
         worst = max(worst, abs(approx / float(k_of_eta(mpf(eta))) - 1))
     print(f"! max relative error on {len(grid)} points, eta in [1e-300, 1]: {worst:.3e}")
-    for name, c in (("fast_p", p), ("fast_q", q)):
+    for name, c in (("ellipk_fast_p", p), ("ellipk_fast_q", q)):
         print(f"real(dp), parameter :: {name}(0:{DEGREE}) = [ &")
         body = [f"   & {v!r}_dp" for v in c]
         print(", &\n".join(body) + "]")

@@ -25,7 +25,7 @@
 module egw_halfspace
    !$ use omp_lib, only: omp_get_num_procs
    use egw_kinds, only: dp, pi
-   use egw_ellip, only: ellipk_comp_fast, ellipk_log_split
+   use egw_ellip, only: ellipk_comp_fast, ellipk_log_split, ellipk_fast_p, ellipk_fast_q
    implicit none
    private
 
@@ -41,6 +41,16 @@ module egw_halfspace
    !> Recursion guard for the bisection of near pieces (r is never closer than
    !> 2**(-max_depth) element lengths to a piece without being on its end).
    integer, parameter :: max_depth = 60
+
+   !> Points queued for add_batch: this many at most (a near element takes 30-100).
+   integer, parameter :: max_batch = 128
+
+   !> Quadrature points of a near element's pieces not yet summed into its coefficients:
+   !> local coordinates s on [-1, 1] and weights wt (kernel included).
+   type :: point_batch
+      integer :: m = 0
+      real(dp) :: s(max_batch), wt(max_batch)
+   end type point_batch
 
    !> Radial mesh: elements [edge(e-1), edge(e)], e = 1..n_elem, edge(0) = 0.
    type :: radial_mesh
@@ -248,9 +258,13 @@ contains
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: r
       real(dp), intent(out) :: row(:)   !< size n_elem*n_gauss
-      integer :: e, q, i0
+      integer :: e, i0, first_far
       real(dp) :: x0, x1, dist
+      type(point_batch) :: pts
 
+      ! Far elements in runs of consecutive ones, each run's points in one loop
+      ! (far_kernel_run), which the compiler vectorizes, log included.
+      first_far = 0
       do e = 1, mesh%n_elem
          x0 = mesh%edge(e - 1)
          x1 = mesh%edge(e)
@@ -258,125 +272,184 @@ contains
          dist = max(0.0_dp, x0 - r, r - x1)
          if (r <= 0.0_dp .or. dist >= 2.0_dp*(x1 - x0)) then
             ! Smooth kernel on this element (at r = 0, K = pi/2 and the kernel is 2).
-            do q = 1, mesh%n_gauss
-               row(i0 + q) = mesh%gauss_w(i0 + q)*halfspace_kernel(r, mesh%gauss_r(i0 + q))
-            end do
+            if (first_far == 0) first_far = i0 + 1
          else
+            if (first_far > 0) call far_kernel_run(mesh%gauss_r(first_far:i0), &
+               & mesh%gauss_w(first_far:i0), r, row(first_far:i0))
+            first_far = 0
             ! Accumulated in place: a local buffer of run-time size would be a heap array.
             row(i0 + 1:i0 + mesh%n_gauss) = 0.0_dp
-            call add_piece(mesh, x0, x1, x0, x1, r, 0, row(i0 + 1:i0 + mesh%n_gauss))
+            call add_piece(mesh, x0, x1, x0, x1, r, 0, pts, row(i0 + 1:i0 + mesh%n_gauss))
+            call add_batch(mesh, pts, row(i0 + 1:i0 + mesh%n_gauss))
          end if
       end do
+      i0 = mesh%n_elem*mesh%n_gauss
+      if (first_far > 0) call far_kernel_run(mesh%gauss_r(first_far:i0), &
+         & mesh%gauss_w(first_far:i0), r, row(first_far:i0))
    end subroutine influence_row
 
+   !> row(i) = w(i) halfspace_kernel(r, t(i)) for points t(i) > 0 off r (kc in (0, 1]),
+   !> with ellipk_comp_fast's formula written out so that the loop has no branch and no
+   !> call but log (the compiler's vector log): the far field is most of the kernel
+   !> evaluations of an assembly.
+   pure subroutine far_kernel_run(t, w, r, row)
+      real(dp), intent(in) :: t(:), w(:), r
+      real(dp), intent(out) :: row(:)
+      integer :: i
+      real(dp) :: kc, eta, e2, e4, p, q
+      do i = 1, size(t)
+         kc = abs(r - t(i))/(r + t(i))
+         eta = kc*kc
+         e2 = eta*eta
+         e4 = e2*e2
+         associate (fp => ellipk_fast_p, fq => ellipk_fast_q)
+            p = (fp(0) + fp(1)*eta) + e2*(fp(2) + fp(3)*eta) &
+               & + e4*((fp(4) + fp(5)*eta) + e2*(fp(6) + fp(7)*eta) &
+               & + e4*(fp(8) + fp(9)*eta))
+            q = (fq(0) + fq(1)*eta) + e2*(fq(2) + fq(3)*eta) &
+               & + e4*((fq(4) + fq(5)*eta) + e2*(fq(6) + fq(7)*eta) &
+               & + e4*(fq(8) + fq(9)*eta))
+         end associate
+         row(i) = w(i)*(4.0_dp/pi*t(i)/(r + t(i))*(p - 2.0_dp*log(kc)*q))
+      end do
+   end subroutine far_kernel_run
+
    !> Add int_alpha^beta kernel(r, t) L_q(t) dt to acc(q) for the pressure basis L_q of the
-   !> element [x0, x1]; bisects until r is far from the piece or at its end.
-   pure recursive subroutine add_piece(mesh, x0, x1, alpha, beta, r, depth, acc)
+   !> element [x0, x1]; bisects until r is far from the piece or at its end. The pieces'
+   !> quadrature points go to pts and are summed into acc in batches (add_batch).
+   pure recursive subroutine add_piece(mesh, x0, x1, alpha, beta, r, depth, pts, acc)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: x0, x1, alpha, beta, r
       integer, intent(in) :: depth
+      type(point_batch), intent(inout) :: pts
       real(dp), intent(inout) :: acc(:)
       real(dp) :: len, dist, mid
 
       len = beta - alpha
       if (len <= 0.0_dp) return
       if (r > alpha .and. r < beta) then
-         call add_piece(mesh, x0, x1, alpha, r, r, depth + 1, acc)
-         call add_piece(mesh, x0, x1, r, beta, r, depth + 1, acc)
+         call add_piece(mesh, x0, x1, alpha, r, r, depth + 1, pts, acc)
+         call add_piece(mesh, x0, x1, r, beta, r, depth + 1, pts, acc)
          return
       end if
       mid = alpha + 0.5_dp*len
       if (r == alpha .or. r == beta) then
          ! kc <= 1/3 on a piece no longer than r/2 touching r: the log split is analytic there.
          if (len <= 0.5_dp*r .or. depth >= max_depth) then
-            call add_log_piece(mesh, x0, x1, alpha, beta, r, acc)
+            call add_log_piece(mesh, x0, x1, alpha, beta, r, pts, acc)
          else
-            call add_piece(mesh, x0, x1, alpha, mid, r, depth + 1, acc)
-            call add_piece(mesh, x0, x1, mid, beta, r, depth + 1, acc)
+            call add_piece(mesh, x0, x1, alpha, mid, r, depth + 1, pts, acc)
+            call add_piece(mesh, x0, x1, mid, beta, r, depth + 1, pts, acc)
          end if
          return
       end if
       dist = min(abs(r - alpha), abs(r - beta))
       if (dist >= len .or. depth >= max_depth) then
-         call add_gauss_piece(mesh, x0, x1, alpha, beta, r, acc)
+         call add_gauss_piece(mesh, x0, x1, alpha, beta, r, pts, acc)
       else
-         call add_piece(mesh, x0, x1, alpha, mid, r, depth + 1, acc)
-         call add_piece(mesh, x0, x1, mid, beta, r, depth + 1, acc)
+         call add_piece(mesh, x0, x1, alpha, mid, r, depth + 1, pts, acc)
+         call add_piece(mesh, x0, x1, mid, beta, r, depth + 1, pts, acc)
       end if
    end subroutine add_piece
 
-   !> Plain n_fine-point Gauss on a piece at distance >= its length from r.
-   pure subroutine add_gauss_piece(mesh, x0, x1, alpha, beta, r, acc)
+   !> Plain n_fine-point Gauss on a piece at distance >= its length from r (t /= r, so
+   !> the branch-free far_kernel_run applies).
+   pure subroutine add_gauss_piece(mesh, x0, x1, alpha, beta, r, pts, acc)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: x0, x1, alpha, beta, r
+      type(point_batch), intent(inout) :: pts
       real(dp), intent(inout) :: acc(:)
       integer :: i
-      real(dp) :: t, wt
+      real(dp) :: t(n_fine), w(n_fine), wt(n_fine)
       do i = 1, n_fine
-         t = 0.5_dp*(alpha + beta) + 0.5_dp*(beta - alpha)*mesh%fine_s(i)
-         wt = 0.5_dp*(beta - alpha)*mesh%fine_w(i)*halfspace_kernel(r, t)
-         call add_basis(mesh, local_coord(x0, x1, t), wt, acc)
+         t(i) = 0.5_dp*(alpha + beta) + 0.5_dp*(beta - alpha)*mesh%fine_s(i)
+         w(i) = 0.5_dp*(beta - alpha)*mesh%fine_w(i)
+      end do
+      call far_kernel_run(t, w, r, wt)
+      do i = 1, n_fine
+         call add_point(mesh, local_coord(x0, x1, t(i)), wt(i), pts, acc)
       end do
    end subroutine add_gauss_piece
 
    !> Product integration on a piece with r at one end (length <= r/2):
-   !> kernel = 4/pi t/(r+t) [kreg + klog ln(r+t) - klog ln|t-r|], |t - r| = len x.
-   pure subroutine add_log_piece(mesh, x0, x1, alpha, beta, r, acc)
+   !> kernel = 4/pi t/(r+t) [kreg + klog ln(r+t) - klog ln|t-r|], |t - r| = len x,
+   !> so that len (log_w (g1 - g2 ln len) - log_lw g2) = len c (log_w (kreg + klog
+   !> ln((r+t)/len)) - log_lw klog), c = 4/pi t/(r+t): one log a point.
+   pure subroutine add_log_piece(mesh, x0, x1, alpha, beta, r, pts, acc)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: x0, x1, alpha, beta, r
+      type(point_batch), intent(inout) :: pts
       real(dp), intent(inout) :: acc(:)
       integer :: i
-      real(dp) :: t, len, kreg, klog, g1, g2, wt, direction
+      real(dp) :: t, len, kreg, klog, c, wt, direction
       len = beta - alpha
       direction = 1.0_dp
       if (r == beta) direction = -1.0_dp
       do i = 1, n_log
          t = r + direction*len*mesh%log_x(i)
          call ellipk_log_split(len*mesh%log_x(i)/(r + t), kreg, klog)
-         g1 = 4.0_dp/pi*t/(r + t)*(kreg + klog*log(r + t))
-         g2 = 4.0_dp/pi*t/(r + t)*klog
-         wt = len*(mesh%log_w(i)*(g1 - g2*log(len)) - mesh%log_lw(i)*g2)
-         call add_basis(mesh, local_coord(x0, x1, t), wt, acc)
+         c = 4.0_dp/pi*t/(r + t)
+         wt = len*c*(mesh%log_w(i)*(kreg + klog*log((r + t)/len)) - mesh%log_lw(i)*klog)
+         call add_point(mesh, local_coord(x0, x1, t), wt, pts, acc)
       end do
    end subroutine add_log_piece
 
-   !> acc(q) += wt L_q(s), q = 1..n_gauss, for the pressure basis of the element,
-   !> L_q(s) = bary_q prod_{k /= q} (s - s_k), by prefix and suffix products: no
-   !> divisions and no array temporaries (this is the innermost loop of the assembly).
-   !> Rules beyond max_basis points (never used by the solver) take the barycentric
-   !> form with one division per point.
-   pure subroutine add_basis(mesh, s, wt, acc)
+   !> Queue the point (s, wt) of the element's pressure basis; a full batch is summed.
+   pure subroutine add_point(mesh, s, wt, pts, acc)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: s, wt
+      type(point_batch), intent(inout) :: pts
+      real(dp), intent(inout) :: acc(:)
+      if (pts%m == max_batch) call add_batch(mesh, pts, acc)
+      pts%m = pts%m + 1
+      pts%s(pts%m) = s
+      pts%wt(pts%m) = wt
+   end subroutine add_point
+
+   !> acc(q) += sum_p wt_p L_q(s_p), q = 1..n_gauss, over the queued points (then
+   !> emptied), L_q(s) = bary_q prod_{k /= q} (s - s_k), by prefix and suffix products
+   !> across the batch: no divisions, and no chain of dependent products from one point
+   !> to the next (this is the innermost work of the assembly; the loops over points
+   !> vectorize). Rules beyond max_basis points (never used by the solver) take the
+   !> barycentric form with one division per point.
+   pure subroutine add_batch(mesh, pts, acc)
+      type(radial_mesh), intent(in) :: mesh
+      type(point_batch), intent(inout) :: pts
       real(dp), intent(inout) :: acc(:)
       integer, parameter :: max_basis = 32
-      real(dp) :: prefix(max_basis), suffix, prod
-      integer :: q, n
+      real(dp) :: prefix(max_batch, max_basis), suffix(max_batch), prod
+      integer :: q, n, m, i
       n = mesh%n_gauss
+      m = pts%m
+      pts%m = 0
+      if (m == 0) return
       if (n > max_basis) then
-         prod = wt
-         do q = 1, n
-            if (s == mesh%local_s(q)) then
-               acc(q) = acc(q) + wt
-               return
+         do i = 1, m
+            prod = pts%wt(i)
+            do q = 1, n
+               if (pts%s(i) == mesh%local_s(q)) exit
+               prod = prod*(pts%s(i) - mesh%local_s(q))
+            end do
+            if (q <= n) then
+               acc(q) = acc(q) + pts%wt(i)
+               cycle
             end if
-            prod = prod*(s - mesh%local_s(q))
-         end do
-         do q = 1, n
-            acc(q) = acc(q) + prod*mesh%local_bary(q)/(s - mesh%local_s(q))
+            do q = 1, n
+               acc(q) = acc(q) + prod*mesh%local_bary(q)/(pts%s(i) - mesh%local_s(q))
+            end do
          end do
          return
       end if
-      prefix(1) = wt
+      prefix(1:m, 1) = pts%wt(1:m)
       do q = 2, n
-         prefix(q) = prefix(q - 1)*(s - mesh%local_s(q - 1))
+         prefix(1:m, q) = prefix(1:m, q - 1)*(pts%s(1:m) - mesh%local_s(q - 1))
       end do
-      suffix = 1.0_dp
+      suffix(1:m) = 1.0_dp
       do q = n, 1, -1
-         acc(q) = acc(q) + prefix(q)*suffix*mesh%local_bary(q)
-         suffix = suffix*(s - mesh%local_s(q))
+         acc(q) = acc(q) + mesh%local_bary(q)*sum(prefix(1:m, q)*suffix(1:m))
+         suffix(1:m) = suffix(1:m)*(pts%s(1:m) - mesh%local_s(q))
       end do
-   end subroutine add_basis
+   end subroutine add_batch
 
    elemental real(dp) function local_coord(x0, x1, t) result(s)
       real(dp), intent(in) :: x0, x1, t

@@ -101,7 +101,7 @@ module egw_sphere_problem
       real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
       real(dp) :: residual = 0.0_dp, tail = 0.0_dp
       integer :: iterations = 0
-      !> LU factors (dgetf2) of the last Jacobian Newton factored, near the solution; not
+      !> LU factors (lu_factor) of the last Jacobian Newton factored, near the solution; not
       !> allocated after Picard.
       real(dp), allocatable :: lu(:, :)
       integer, allocatable :: pivots(:)
