@@ -73,8 +73,9 @@ contains
          call build_cap_loading(params, options, delta_min, delta_max, rel_tol, &
             & table%loading, error)
       else
+         ! (a rough model with the cap: its capped loading curve, not a force law)
          call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, &
-            & error, loading_curve=.true.)
+            & error, loading_curve=rough_cap)
       end if
       if (allocated(error)) return
       ! the loading branch evaluates its ln P intervals (table_eval = table_eval_cached)
