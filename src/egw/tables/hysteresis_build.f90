@@ -207,9 +207,9 @@ contains
 
    !> The first yield m_y of a rough sphere with the cap (elastic summits): the overlap in
    !> (lo, hi) where the loading solve's largest total pressure reaches p_y (cap_reached at
-   !> hi), by bisection to 1e-7 of hi - lo: turning points below it unload on the loading
-   !> curve, and a misplaced m_y by e leaves out a hysteresis of order (e/m_y)**2 of the
-   !> force (the curves start from 0 with a slope in m of ~0; doc/theory.md section 12).
+   !> hi), by bisection to 6e-8 of hi - lo: turning points below it unload on the loading
+   !> curve (a misplaced m_y leaves out only the hysteresis of turning points that close
+   !> above it, which starts from 0 at m_y; doc/theory.md section 12).
    subroutine rough_first_yield(params, options, rel_tol, lo, hi, m_y, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
