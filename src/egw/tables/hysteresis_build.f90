@@ -2,7 +2,7 @@
 !> declares build_hysteresis): the delta_max grid, each node's unloading curve from
 !> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
 submodule (egw_hysteresis) egw_hysteresis_build
-   use egw_status, only: egw_not_converged, egw_invalid_parameter, fatal_error, format_real
+   use egw_status, only: egw_not_converged, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, model_hertz
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
       & cap_solve_options, solve_contact
