@@ -14,7 +14,7 @@ program egw_table_app
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw, &
       & text_buffer, remove_file, hysteresis_table, build_hysteresis, write_hysteresis, &
-      & table_flat_law, read_flat_law, write_flat_law, model_flat_law
+      & table_flat_law, read_flat_law, write_flat_law, model_flat_law, model_hertz
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
@@ -154,18 +154,22 @@ program egw_table_app
    write (output_unit, '(a)') "model: "//choice_name(choice%kind)//" ("// &
       & model_name(merge(0, input%model, choice%kind == choice_hertz))//")"
    write (output_unit, '(a)') "  why: "//choice%reason
-   if (input%flow_pressure > 0.0_dp) write (output_unit, '(a)') "  note: flow_pressure = "// &
+   if (input%flow_pressure > 0.0_dp .and. choice%kind == choice_hertz) write (output_unit, &
+      & '(a)') "  note: flow_pressure = "// &
       & num(input%flow_pressure)//": Hertz holds up to first yield only, (pi p_y/(2 E*))^2 R;"// &
       & " the hysteresis table(s) hold the cap's loading and unloading beyond it"
+   if (input%flow_pressure > 0.0_dp .and. choice%kind /= choice_hertz) write (output_unit, &
+      & '(a)') "  note: flow_pressure = "//num(input%flow_pressure)//": with the cap no "// &
+      & "force table is written (a capped loading curve unloads otherwise); the "// &
+      & "hysteresis table(s) of the rough model + cap hold loading and unloading"
 
    n_written = 0
    ! every output: at most 10 tables and curves, and a hysteresis table in two formats
    ! per parameter set
    allocate (character(len=1024) :: written(10 + 2*max_types*(max_types + 1)/2))
-   if (.not. choose_only .and. choice%kind == choice_hertz .and. &
-      & input%flow_pressure > 0.0_dp) then
-      ! smooth spheres with the flow-pressure cap: no force table (the closed form holds
-      ! up to first yield only), their hysteresis tables
+   if (.not. choose_only .and. input%flow_pressure > 0.0_dp) then
+      ! the flow-pressure cap: no force table (the closed form holds up to first yield
+      ! only; a rough capped loading curve is no reversible law), the hysteresis tables
       call write_all()
    else if (.not. choose_only .and. choice%kind /= choice_hertz) then
       call progress("building the "//choice_name(choice%kind)//" at tol = "// &
@@ -247,7 +251,7 @@ contains
       end do
    end subroutine write_all
 
-   !> EP-GW with plastic summits, or smooth spheres with the flow-pressure cap: the
+   !> EP-GW with plastic summits, or any model but a flat law with the flow-pressure cap: the
    !> hysteresis table (loading, unloading, reloading) of every parameter set in the
    !> wanted egw formats, built to the scene's tolerance, for DEM codes that carry a
    !> per-contact history. A continuous radius or sigma range has no finite set of them
@@ -269,7 +273,7 @@ contains
       n_sets = size(scene%sets)
       do i = 1, n_sets
          call progress("building the "//either(input%flow_pressure > 0.0_dp, &
-            & "Hertz + cap", "EP-GW")//" hysteresis table of parameter set "// &
+            & cap_label(), "EP-GW")//" hysteresis table of parameter set "// &
             & int_str(i)//" at tol = "//num(input%tol)//" ...")
          if (quiet) then
             call build_hysteresis(scene%sets(i), options, scene%delta_min(i), &
@@ -288,6 +292,14 @@ contains
          n_hysteresis = n_hysteresis + 1
       end do
    end subroutine put_hysteresis
+
+   !> "Hertz + cap", or the rough model's name + cap.
+   function cap_label() result(label)
+      character(len=:), allocatable :: label
+      label = "Hertz + cap"
+      if (input%model /= model_hertz .and. input%sigma_max > 0.0_dp) label = &
+         & model_name(input%model)//" + cap"
+   end function cap_label
 
    subroutine put_hysteresis_file(h, path, format)
       type(hysteresis_table), intent(in) :: h
@@ -466,7 +478,8 @@ contains
             & " (" //int_str(choice%n_solves)//" full solves)"
       end if
       write (output_unit, '(a)') "  error bound       "//num(choice%error_bound)
-      if (.not. choose_only .and. choice%kind /= choice_hertz) then
+      if (.not. choose_only .and. choice%kind /= choice_hertz .and. &
+         & input%flow_pressure == 0.0_dp) then
          write (output_unit, '(a)') "  measured error    "// &
             & num(tables%measured_error)//" (max at the build's check solves)"
          write (output_unit, '(a)') "  nodes             "//int_str(tables%n_nodes)// &
@@ -488,8 +501,8 @@ contains
          & "  WARNING           EP-GW: the LAMMPS and CalculiX files carry the loading"// &
          & " curve only (no unloading hysteresis, no plastic dissipation)"
       if (n_hysteresis > 0) write (output_unit, '(a)') "  hysteresis        "// &
-         & int_str(n_hysteresis)//either(input%flow_pressure > 0.0_dp, &
-         & " Hertz + cap (flow_pressure "//num(input%flow_pressure)//")", " EP-GW")// &
+         & int_str(n_hysteresis)//either(input%flow_pressure > 0.0_dp, " "// &
+         & cap_label()//" (flow_pressure "//num(input%flow_pressure)//")", " EP-GW")// &
          & " table(s) scene_hysteresis*: loading, unloading"// &
          & " and reloading over (delta, delta_max) for a per-contact history"// &
          & " (egw_hysteresis_read, egw_hysteresis_eval)"

@@ -214,10 +214,10 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * and egw_restitution(...) are the rough solver's, the cap on the total pressure (first
  * yield where the rough contact's largest total pressure reaches p_y). egw_time_step
  * beyond v_y takes the smooth sphere's elastic unloading stiffness at delta_m (rough
- * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables (doc/formats.md
- * 6). Not yet: egw_profile beyond delta_y or of a rough sphere with the cap
- * (EGW_UNSUPPORTED), force and universal tables, hysteresis tables of rough models with
- * the cap (EGW_INVALID_PARAMETER). */
+ * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
+ * EP-GW + cap tables (doc/formats.md 6). Not yet: egw_profile beyond delta_y or of a
+ * rough sphere with the cap (EGW_UNSUPPORTED), force and universal tables
+ * (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -558,10 +558,13 @@ void egw_universal_free(egw_universal *u);
 typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 
 /* Build for p (EP-GW, or Hertz/sigma = 0 with p->flow_pressure > 0, for hysteresis: the
- * cap's turning points from first yield delta_y on, doc/theory.md 12; other models give
- * reversible curves; a rough model with flow_pressure: EGW_INVALID_PARAMETER) over overlaps
- * [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL (defaults).
- * *out receives a handle only on success. The unloading curves are solved at rel_tol/10,
+ * cap's turning points from first yield delta_y on, doc/theory.md 12; GW, E-GW, EP-GW
+ * with p->flow_pressure > 0: EP-GW's curves from the rough solver with the cap, the
+ * turning points of GW/E-GW from the rough first yield on, where the largest total
+ * pressure reaches p_y (reversible when it never does up to delta_max); other models
+ * give reversible curves; with p_y, delta_max above 1000 delta_y: EGW_INVALID_ARGUMENT)
+ * over overlaps [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL
+ * (defaults). *out receives a handle only on success. The unloading curves are solved at rel_tol/10,
  * or at o->rel_tol where that is set below its default 1e-6 and below rel_tol/10 (the
  * loading table at min(o->rel_tol, rel_tol/10)); before a build (not on a cache hit), a
  * probe of 18 such solves (loading and unloading from delta_max and delta_max/2;

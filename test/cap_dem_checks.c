@@ -74,19 +74,35 @@ int egw_capi_test_cap_dem_loop(void) {
   }
   egw_hysteresis_free(&tables[0]);
   egw_hysteresis_free(&tables[1]);
-  /* rough + cap: refused with a message naming flow_pressure, no handle */
+  /* rough + cap (test/test_rough_cap_hysteresis.f90): served; E-GW whose largest total
+   * pressure stays below p_y is reversible there, as without the cap (its force the
+   * cap-free table's, bit for bit); a table with the cap beyond 1000 delta_y is refused
+   * naming delta_max, no handle */
   {
     egw_params q;
-    egw_hysteresis r = NULL;
+    egw_hysteresis r = NULL, free_h = NULL;
+    egw_table free_t = NULL;
     char msg[512];
+    double st = -1e300, f = 0, k = 0, f0 = 0, k0 = 0, dy;
     egw_params_default(&q);
     q.sigma = 0.01;
     q.mu = 4.0;
+    CHECK(egw_table_build(&q, NULL, -q.sigma, q.sigma, 1e-3, &free_t) == EGW_OK);
+    q.flow_pressure = 0.5 * q.modulus;
+    CHECK(egw_hysteresis_build(&q, NULL, -q.sigma, q.sigma, 1e-3, &r) == EGW_OK && r != NULL);
+    if (r != NULL && free_t != NULL) {
+      CHECK(egw_hysteresis_eval(r, 0.5 * q.sigma, &st, &f, &k) == EGW_OK);
+      CHECK(egw_table_eval(free_t, 0.5 * q.sigma, &f0, &k0) == EGW_OK);
+      CHECK(fabs(f - f0) <= 1e-12 * f0 && f > 0);
+    }
+    egw_hysteresis_free(&r);
+    egw_table_free(&free_t);
     q.flow_pressure = 0.01 * q.modulus;
-    CHECK(egw_hysteresis_build(&q, NULL, -q.sigma, q.sigma, 1e-3, &r) ==
-          EGW_INVALID_PARAMETER && r == NULL);
+    dy = pow(3.14159265358979323846 * q.flow_pressure / (2 * q.modulus), 2) * q.radius;
+    CHECK(egw_hysteresis_build(&q, NULL, 0.0, 2000 * dy, 1e-3, &free_h) ==
+          EGW_INVALID_ARGUMENT && free_h == NULL);
     egw_last_error(msg, sizeof msg);
-    CHECK(strstr(msg, "flow_pressure") != NULL);
+    CHECK(strstr(msg, "delta_max") != NULL);
   }
   /* a scene file with the cap: egw-table reads it, the C struct has no field for it, so
    * egw_scene_read refuses it (naming flow_pressure) and leaves *s as it was */

@@ -34,6 +34,7 @@ program tester
    use test_cap_sphere, only: collect_cap_sphere
    use test_cap_hysteresis, only: collect_cap_hysteresis
    use test_rough_cap, only: collect_rough_cap
+   use test_rough_cap_hysteresis, only: collect_rough_cap_hysteresis
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -70,7 +71,8 @@ program tester
       & new_testsuite("flat_bem", collect_flat_bem), &
       & new_testsuite("cap_sphere", collect_cap_sphere), &
       & new_testsuite("cap_hysteresis", collect_cap_hysteresis), &
-      & new_testsuite("rough_cap", collect_rough_cap) &
+      & new_testsuite("rough_cap", collect_rough_cap), &
+      & new_testsuite("rough_cap_hysteresis", collect_rough_cap_hysteresis) &
       & ]
 
    stat = 0

@@ -6,8 +6,8 @@ module test_cap_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int
    use egw_kinds, only: dp, pi
    use test_compare, only: same => same_bits
-   use egw_status, only: egw_error, egw_invalid_parameter, egw_invalid_argument
-   use egw_params, only: contact_params, model_hertz, model_egw
+   use egw_status, only: egw_error, egw_invalid_argument
+   use egw_params, only: contact_params, model_hertz
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
       & load_history, solve_unload
    use egw_cap_sphere, only: cap_units, cap_history, cap_result, cap_load, cap_options, &
@@ -49,7 +49,7 @@ contains
          & new_unittest("energy of a cycle = closed integral of P d delta", test_cycle), &
          & new_unittest("binary and CSV round trip; version 2 only with the cap", &
          & test_formats), &
-         & new_unittest("refused: rough model, beyond 1000 delta_y", test_rough_refused), &
+         & new_unittest("refused: beyond 1000 delta_y", test_rough_refused), &
          & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop) &
          & ]
@@ -298,21 +298,12 @@ contains
       call check(error, version == 1, "a table without the cap is not version 1")
    end subroutine test_formats
 
-   !> Rough model + cap: refused with a message naming flow_pressure (rough + cap tables
-   !> are not built yet; validate_params or the build says so); a cap table beyond 1000
-   !> delta_y: refused naming delta_max.
+   !> A cap table beyond 1000 delta_y: refused naming delta_max (rough models with the cap:
+   !> test_rough_cap_hysteresis).
    subroutine test_rough_refused(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t
       type(egw_error), allocatable :: err
-      call build_hysteresis(contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-3_dp, mu=4.0_dp, flow_pressure=1.0e-2_dp), solver_options(), -0.01_dp, &
-         & 0.1_dp, tol, t, err)
-      call check(error, allocated(err), "rough + cap table built")
-      if (allocated(error)) return
-      call check(error, err%stat == egw_invalid_parameter .and. &
-         & index(err%message, "flow_pressure") > 0, "message: "//err%message)
-      if (allocated(error)) return
       ! beyond 1000 delta_y (a/R ~ 70 p_y/E*: no sphere) a cap table ends
       call build_hysteresis(capped, solver_options(), 0.0_dp, 2000*delta_y(), tol, t, err)
       call check(error, allocated(err), "a table to 2000 delta_y built")

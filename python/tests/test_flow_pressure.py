@@ -110,3 +110,29 @@ def test_first_yield():
         egw.first_yield(steel, mass=-1.0)
     with pytest.raises(TypeError, match="mass"):
         egw.first_yield(steel, m)    # keyword-only: a positional mass is refused
+
+
+def test_rough_hysteresis_table_with_the_cap(tmp_path):
+    # E-GW + cap (R = E* = 1, p_y = 0.01: delta_y = 2.47e-4; sigma = delta_y/100, so the
+    # cap engages near delta_y): a 1e-2 table to 4 delta_y against egw.solve_unload (the
+    # rough solver with the cap) from 2.6 delta_y, between turning points, within 2 rel_tol
+    # of the force at the turning point (the build checks the curves at its own nodes to
+    # rel_tol; test/test_rough_cap_hysteresis.f90 says why 2); it dissipates (irreversible,
+    # unloading below loading); it reads back from both formats as built
+    dy = (math.pi * 0.01 / 2) ** 2
+    p = egw.Params(model="E-GW", sigma=dy / 100, mu=4.0, flow_pressure=0.01)
+    h = egw.HysteresisTable.build(p, -3 * p.sigma, 4 * dy, rel_tol=1e-2)
+    m = 2.6 * dy
+    top = egw.solve(p, m).force
+    d = np.linspace(0.1, 0.98, 12) * m
+    f, _ = h.eval(d, np.full(d.size, m))
+    ref = np.array([egw.solve_unload(p, x, m).force for x in d])
+    assert np.max(np.abs(f - ref)) <= 2e-2 * top
+    loading, _ = h.eval(d, egw.HysteresisTable.new_state(d.size))
+    assert np.all(f < loading) and f[0] < 0.5 * loading[0]
+    for name in ("rough_cap.bin", "rough_cap.csv"):
+        path = tmp_path / name
+        h.write(path, "csv" if name.endswith("csv") else "binary")
+        back = egw.HysteresisTable.read(path)
+        g, _ = back.eval(d, np.full(d.size, m))
+        np.testing.assert_array_equal(f, g)

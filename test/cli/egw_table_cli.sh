@@ -153,15 +153,13 @@ else
 fi
 
 # the flow-pressure cap (doc/theory.md 12): flow_pressure or yield_stress (p_y = 1.6 Y) for
-# smooth spheres writes the Hertz + cap hysteresis table; both given, negative values and
-# a rough model are refused naming the variable
+# smooth spheres writes the Hertz + cap hysteresis table, for a rough model its hysteresis
+# table with the cap; both given and negative values are refused naming the variable
 smooth="--model Hertz --radius 1e-3 --modulus 200e9 --poisson 0.3 --delta-min 0 --delta-max 4e-7"
 refuse cap_both "flow_pressure and yield_stress: give one" $smooth --flow-pressure 1e9 \
   --yield-stress 1e9
 refuse cap_negative "flow_pressure = -1" $smooth --flow-pressure -1
 refuse cap_negative_yield "yield_stress = -2" $smooth --yield-stress -2
-refuse cap_rough "with a rough model (sigma > 0) is not available yet" --model E-GW \
-  --sigma 1e-7 --mu 4 --flow-pressure 1e9
 printf '&scene\n  model = "Hertz"\n  yield_stress = 0.6e9\n  flow_pressure = 1e9\n/\n' \
   >"$work/cap_both.nml"
 refuse cap_both_file "flow_pressure and yield_stress" "$work/cap_both.nml"
@@ -177,6 +175,16 @@ grep -q "^# flow_pressure = 9.600000000" "$work/cap/scene_hysteresis.csv" ||
   fail "cap scene: flow_pressure is not 1.6 yield_stress: $(grep flow "$work/cap/scene_hysteresis.csv")"
 [ -s "$work/cap/scene_hysteresis.bin" ] || fail "cap scene: scene_hysteresis.bin not written"
 grep -q "Hertz + cap" "$work/stdout" || fail "cap scene: summary does not name the cap"
+# the same beads, E-GW with sigma = 1 nm (delta_y/94): the rough model's table with the cap
+"$exe" "$work/cap.nml" --model E-GW --sigma 1e-9 --mu 4 --delta-min -3e-9 --out \
+  "$work/rough_cap" -q >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" -eq 0 ] || fail "rough cap scene: exit status $rc: $(cat "$work/stderr")"
+grep -q "CSV format 2" "$work/rough_cap/scene_hysteresis.csv" &&
+  grep -q "^# sigma = 1.000000000" "$work/rough_cap/scene_hysteresis.csv" ||
+  fail "rough cap scene: scene_hysteresis.csv is not a rough + cap table"
+[ ! -e "$work/rough_cap/scene_table.csv" ] || fail "rough cap scene: a force table written"
+grep -q "E-GW + cap" "$work/stdout" || fail "rough cap scene: summary does not name the cap"
 
 echo "    $fails CLI check(s) failed"
 exit "$fails"

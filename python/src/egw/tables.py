@@ -466,7 +466,7 @@ class HysteresisInfo:
 
 
 class HysteresisTable(_Handle):
-    """EP-GW (or Hertz + flow-pressure cap) loading/unloading/reloading force over
+    """EP-GW (or any model + flow-pressure cap) loading/unloading/reloading force over
     (delta, delta_max) for one parameter set (egw_hysteresis_build). The history (the
     largest overlap so far) belongs to the caller: a new contact starts from -inf
     (:meth:`new_state`).
@@ -491,7 +491,10 @@ class HysteresisTable(_Handle):
         params : Params
             Scalar fields, model EP-GW, or Hertz (or sigma = 0) with flow_pressure > 0
             (the flow-pressure cap: unloading from the deformed shape, doc/theory.md
-            section 12); other models give a reversible table.
+            section 12), or GW, E-GW, EP-GW with flow_pressure > 0 (the rough solver
+            caps the total pressure; GW and E-GW dissipate from the rough first yield,
+            where the largest total pressure reaches p_y, and are reversible when it
+            never does up to delta_max); other models give a reversible table.
         delta_min, delta_max : float
             Overlap range [length], sign as in :func:`egw.solve`.
         rel_tol : float

@@ -135,7 +135,7 @@ contains
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
       logical :: found
-      ! flow_pressure (Hertz + cap; build_hysteresis refuses it with a rough model) is in
+      ! flow_pressure (Hertz or a rough model + cap; params_key has model and sigma) is in
       ! the key only where it is set: the other entries keep their names
       call entry_path("hysteresis", [params_key(params), options_key(options), delta_min, &
          & delta_max, rel_tol, pack([params%flow_pressure], params%flow_pressure /= 0.0_dp)], &

@@ -15,14 +15,15 @@ module egw_hysteresis_format
    use egw_table, only: force_table, table_prepare, table_meta, set_table_meta
    use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
       & get_f64, split_checksum, checksum_line, check_table
-   use egw_hysteresis, only: hysteresis_table, hysteresis_prepare, first_yield
+   use egw_hysteresis, only: hysteresis_table, hysteresis_prepare, first_yield, hertz_capped
    implicit none
    private
 
    public :: write_hysteresis, read_hysteresis
 
    character(len=8), parameter :: magic = "EGWHYST1"
-   !> Version 1: no flow-pressure cap; version 2 (Hertz + cap, params%flow_pressure > 0):
+   !> Version 1: no flow-pressure cap; version 2 (the cap, params%flow_pressure > 0: Hertz
+   !> + cap, or a rough model + cap, told apart by model and sigma as the evaluation does):
    !> flow_pressure follows the seven parameters (one float64 more in the header). Tables
    !> without the cap are still written as version 1, byte for byte as before.
    integer(int32), parameter :: hysteresis_version = 1, cap_version = 2
@@ -578,12 +579,16 @@ contains
          return
       end if
       first = t%loading%cutoff
-      if (t%params%flow_pressure > 0.0_dp) first = first_yield(t%params)
+      if (hertz_capped(t%params)) first = first_yield(t%params)
+      ! a rough model with the cap and elastic summits starts at its rough first yield
+      if (t%params%flow_pressure > 0.0_dp .and. .not. hertz_capped(t%params) .and. &
+         & t%m(1) >= first) first = t%m(1)
       if (any(t%m(2:n_m) <= t%m(1:n_m - 1)) .or. t%m(1) /= first .or. &
          & t%m(n_m) /= t%delta_max .or. any(t%s(2:n_s) <= t%s(1:n_s - 1)) .or. &
          & t%s(1) /= 0.0_dp .or. t%s(n_s) /= 1.0_dp) then
          call bad(error, path, "unloading grid: delta_max from the cut-off (first yield "// &
-            & "delta_y with the flow-pressure cap) to delta_max "// &
+            & "delta_y with the flow-pressure cap; a rough model with the cap: at or above "// &
+            & "the cut-off) to delta_max "// &
             & "and s from 0 to 1 must increase")
          return
       end if

@@ -896,8 +896,8 @@ contains
       end if
    end subroutine check_summit_law
 
-   !> validate_scene_input: the flow-pressure cap, 0 or > 0 on smooth spheres (model Hertz
-   !> or sigma = 0; each pair's p_y < E* is checked with its parameters).
+   !> validate_scene_input: the flow-pressure cap, 0 or > 0 (Hertz, GW, E-GW, EP-GW; not a
+   !> flat law; each pair's p_y < E* is checked with its parameters).
    pure subroutine check_cap(s, error)
       type(scene_input), intent(in) :: s
       type(egw_error), allocatable, intent(out) :: error
@@ -906,11 +906,10 @@ contains
             & "(0: no bulk yield)")
          return
       end if
-      if (s%flow_pressure > 0.0_dp .and. s%model /= model_hertz .and. &
-         & s%sigma_max > 0.0_dp) then
+      if (s%flow_pressure > 0.0_dp .and. s%model == model_flat_law) then
          call bad(error, "flow_pressure", s%flow_pressure, "the flow-pressure cap with a "// &
-            & "rough model (sigma > 0) is not available yet in scenes (Hertz + cap is: "// &
-            & "model = 'Hertz' or sigma = 0)")
+            & "flat law is not available in scenes (no hysteresis table takes a flat law; "// &
+            & "egw_solve_flat_law takes the cap)")
       end if
    end subroutine check_cap
 

@@ -30,7 +30,7 @@ module egw_hysteresis
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, fatal_error, &
       & format_real
-   use egw_params, only: contact_params
+   use egw_params, only: contact_params, model_hertz
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, table_eval, table_eval_cached, table_segment, gl_x, gl_w, &
       & segment_eval, table_energy, table_progress, table_interval, deep_coefficient, &
@@ -42,7 +42,7 @@ module egw_hysteresis
 
    public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_eval_state, &
       & hysteresis_state_init, hysteresis_energy, hysteresis_prepare, m_breakpoint, &
-      & stencil_first, m_coordinate, first_yield
+      & stencil_first, m_coordinate, first_yield, hertz_capped
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
@@ -106,10 +106,12 @@ module egw_hysteresis
       integer :: m_break = 0
       !> turning points at or below it unload on the loading curve (hysteresis_prepare):
       !> the loading cut-off, or for the flow-pressure cap (capped) its first yield delta_y,
-      !> below which the contact is Hertz's and reversible
+      !> below which the contact is Hertz's and reversible; a rough model with the cap:
+      !> the first turning point m(1) (its rough first yield with elastic summits)
       real(dp) :: elastic_limit = 0.0_dp
-      !> Hertz + flow-pressure cap (params%flow_pressure > 0, doc/theory.md §12): L(m_j) is
-      !> m_j minus the residual overlap, s_max = 1, and below s = 1 there is no force
+      !> Hertz + flow-pressure cap (hertz_capped: flow_pressure > 0, smooth; doc/theory.md
+      !> §12): L(m_j) is m_j minus the residual overlap, s_max = 1, and below s = 1 there
+      !> is no force (a rough model with the cap is not capped here: EP-GW's layout)
       logical :: capped = .false.
       !> the largest overlap (or state) whose force stays well inside the doubles: where
       !> the loading table's deep-overlap law beyond delta_max reaches huge/4 (the C
@@ -759,10 +761,16 @@ contains
       integer :: n_s, n_m, i, j, first, k, l
       real(dp) :: h
       table%tag = data_tag(table)
-      table%capped = table%params%flow_pressure > 0.0_dp
+      table%capped = hertz_capped(table%params)
       table%elastic_limit = table%loading%cutoff
       if (table%capped) table%elastic_limit = max(table%elastic_limit, &
          & first_yield(table%params))
+      ! a rough model with the cap: its curves start at the first turning point (the
+      ! cut-off, or with elastic summits the rough first yield, below which it is elastic)
+      if (table%params%flow_pressure > 0.0_dp .and. .not. table%capped .and. &
+         & .not. table%reversible) then
+         if (size(table%m) > 0) table%elastic_limit = max(table%elastic_limit, table%m(1))
+      end if
       associate (l => table%loading)
          table%input_limit = deep_reach(l%delta_max, l%force(size(l%force)), &
             & l%stiffness(size(l%stiffness)), deep_coefficient(l%params), &
@@ -813,6 +821,15 @@ contains
       call make_lookup(table%s, table%s_lookup)
       call make_runs(table)
    end subroutine hysteresis_prepare
+
+   !> Whether params are a smooth sphere (Hertz or sigma = 0) with the flow-pressure cap:
+   !> a table of the cap solver's curves (capped). A rough model with the cap is built and
+   !> evaluated as EP-GW's (its solves cap the total pressure; doc/theory.md section 12).
+   elemental logical function hertz_capped(params)
+      type(contact_params), intent(in) :: params   !< the table's parameters
+      hertz_capped = params%flow_pressure > 0.0_dp .and. (params%model == model_hertz .or. &
+         & params%sigma == 0.0_dp)
+   end function hertz_capped
 
    !> First yield of the flow-pressure cap, delta_y = (pi p_y/(2 E*))**2 R (doc/theory.md
    !> §12; egw_cap_sphere's cap_units): the first turning point that leaves a hysteresis.

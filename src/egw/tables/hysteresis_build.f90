@@ -2,10 +2,10 @@
 !> declares build_hysteresis): the delta_max grid, each node's unloading curve from
 !> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
 submodule (egw_hysteresis) egw_hysteresis_build
-   use egw_status, only: egw_not_converged, egw_invalid_parameter, fatal_error, format_real
+   use egw_status, only: egw_not_converged, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, model_hertz
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
-      & cap_solve_options
+      & cap_solve_options, solve_contact
    use egw_cap_sphere, only: cap_history, cap_result, cap_load
    use egw_cap_loading, only: build_cap_loading
    use egw_table, only: build_table, table_eval_tail_law, table_prepare
@@ -41,17 +41,14 @@ contains
       type(unloading_curve), allocatable :: curves(:)
       real(dp), allocatable :: m(:)
       integer :: j, n
+      logical :: rough_cap
 
       call validate_params(params, error)
       if (allocated(error)) return
-      if (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
-         & params%sigma > 0.0_dp) then
-         call fatal_error(error, egw_invalid_parameter, "flow_pressure = "// &
-            & format_real(params%flow_pressure)//": a hysteresis table of a rough model "// &
-            & "(sigma > 0) with the flow-pressure cap is not available yet (Hertz + cap "// &
-            & "is: model Hertz or sigma = 0)")
-         return
-      end if
+      ! a rough model with the cap (doc/theory.md section 12, "Rough spheres with the
+      ! cap"): the EP-GW route below, its solves the rough solver's with the cap
+      rough_cap = params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
+         & params%sigma > 0.0_dp
       if (.not. (rel_tol >= 1.0e-8_dp .and. rel_tol <= 0.1_dp)) then
          call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
             & ": must lie in [1e-8, 0.1]")
@@ -68,34 +65,43 @@ contains
          ! (its builds then take many minutes: the cap solver's force is a sawtooth there)
          call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max)// &
             & ": above 1000 delta_y (first yield delta_y = "//format_real(first_yield(params))// &
-            & "), where a Hertz + cap hysteresis table ends: a/R is ~70 p_y/E* there, far "// &
+            & "), where a hysteresis table with the cap ends: a/R is ~70 p_y/E* there, far "// &
             & "beyond a half-space (doc/theory.md section 12)")
          return
       end if
-      if (params%flow_pressure > 0.0_dp) then
+      if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) then
          call build_cap_loading(params, options, delta_min, delta_max, rel_tol, &
             & table%loading, error)
       else
+         ! (a rough model with the cap: its capped loading curve, not a force law)
          call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, &
-            & error)
+            & error, loading_curve=rough_cap)
       end if
       if (allocated(error)) return
       ! the loading branch evaluates its ln P intervals (table_eval = table_eval_cached)
       call table_prepare(table%loading, resample=.false.)
       table%params = params
+      table%capped = hertz_capped(params)   ! (hysteresis_prepare sets it again)
       table%rel_tol = rel_tol
       table%delta_max = delta_max
       ! elastic summits (or none): unloading retraces the loading table exactly; the cap
       ! only dissipates from first yield on
       table%reversible = params%model /= model_epgw .or. params%psi == 0.0_dp .or. &
          & params%sigma == 0.0_dp
-      if (params%flow_pressure > 0.0_dp) table%reversible = .not. delta_max > &
-         & first_yield(params)
+      if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) table%reversible = .not. &
+         & delta_max > first_yield(params)
+      if (rough_cap .and. .not. plastic_summits(params)) then
+         ! elastic summits: irreversible once the cap acts, i.e. once the largest total
+         ! pressure reaches p_y somewhere (it grows with the overlap on loading)
+         call cap_reached(params, options, rel_tol, delta_max, table%reversible, error)
+         if (allocated(error)) return
+         table%reversible = .not. table%reversible
+      end if
       if (table%reversible) then
          call hysteresis_prepare(table)   ! the tag only
          return
       end if
-      if (params%flow_pressure > 0.0_dp) then
+      if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) then
          call build_cap_curves(table, options, error, progress)
          return
       end if
@@ -106,7 +112,17 @@ contains
       m = table%loading%cutoff + (delta_max - table%loading%cutoff)* &
          & [(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       m(n) = delta_max   ! exactly (the readers check it): the sum above may round off
-      if (table%loading%cutoff < 0.0_dp .and. delta_max > params%sigma) then
+      if (rough_cap .and. .not. plastic_summits(params)) then
+         ! elastic summits: reversible below the first yield of the rough contact, m_y
+         ! (where its largest total pressure reaches p_y), and the curves have a kink in
+         ! m there (g = 0 below): the turning points start at m_y, as the smooth cap's at
+         ! delta_y (hysteresis_prepare: elastic_limit = m(1))
+         call rough_first_yield(params, options, rel_tol, table%loading%cutoff, delta_max, &
+            & m(1), error)
+         if (allocated(error)) return
+         m = m(1) + (delta_max - m(1))*[(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
+         m(n) = delta_max
+      else if (table%loading%cutoff < 0.0_dp .and. delta_max > params%sigma) then
          ! a node at 0, where the smooth sphere's Hertz part sets in (m_breakpoint): five
          ! nodes up to it and nine above, so that stencils need not straddle it (where the
          ! table reaches a sigma into contact: below, the onset is within its last node)
@@ -166,6 +182,78 @@ contains
       call resample(table, m, curves)
       call hysteresis_prepare(table)
    end subroutine build_cap_curves
+
+   !> Whether the flow-pressure cap acts on the loading of a rough sphere up to delta_max:
+   !> the largest total pressure of the loading solve there (at the curves' tolerance)
+   !> reaches p_y (the cap holds it at p_y; rounding aside, 1e-9 below counts).
+   subroutine cap_reached(params, options, rel_tol, delta_max, reached, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: rel_tol, delta_max
+      logical, intent(out) :: reached
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      reached = .false.
+      call solve_contact(params, curve_options(options, rel_tol), delta_max, res, error)
+      if (allocated(error)) return
+      reached = res%max_pressure >= (1.0_dp - 1.0e-9_dp)*params%flow_pressure
+   end subroutine cap_reached
+
+   !> EP-GW with yielding summits (psi > 0): dissipative without the cap.
+   elemental logical function plastic_summits(params)
+      type(contact_params), intent(in) :: params
+      plastic_summits = params%model == model_epgw .and. params%psi > 0.0_dp
+   end function plastic_summits
+
+   !> The first yield m_y of a rough sphere with the cap (elastic summits): the overlap in
+   !> (lo, hi) where the loading solve's largest total pressure reaches p_y (cap_reached at
+   !> hi), by bisection to 6e-8 of hi - lo: turning points below it unload on the loading
+   !> curve (a misplaced m_y leaves out only the hysteresis of turning points that close
+   !> above it, which starts from 0 at m_y; doc/theory.md section 12).
+   subroutine rough_first_yield(params, options, rel_tol, lo, hi, m_y, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: rel_tol, lo, hi
+      real(dp), intent(out) :: m_y
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: a, b, mid
+      logical :: reached
+      integer :: it
+      a = lo
+      b = hi
+      do it = 1, 24
+         mid = 0.5_dp*(a + b)
+         call cap_reached(params, options, rel_tol, mid, reached, error)
+         if (allocated(error)) return
+         if (reached) then
+            b = mid
+         else
+            a = mid
+         end if
+      end do
+      m_y = a
+   end subroutine rough_first_yield
+
+   !> L(m) of a rough model with the cap: unloading_length of the cap-free loading solve at
+   !> m. The capped solve's loading stiffness holds its capped set fixed and converges
+   !> slowly (doc/theory.md section 12, Limits): L from it jumped by 5 % between
+   !> neighbouring turning points, which no bisection in m removes; the cap-free L is
+   !> smooth in m, and equal to the capped one where the cap does not act.
+   subroutine free_length(params, options, m, length, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: m
+      real(dp), intent(out) :: length
+      type(egw_error), allocatable, intent(out) :: error
+      type(contact_params) :: free
+      type(solve_result) :: res
+      free = params
+      free%flow_pressure = 0.0_dp
+      length = params%sigma
+      call solve_contact(free, options, m, res, error)
+      if (allocated(error)) return
+      length = unloading_length(res%force, res%stiffness, params%sigma)
+   end subroutine free_length
 
    !> The unloading length of a Hertz + cap curve of turning point m: m minus the residual
    !> overlap of cap_load (on the public solves' options); m at and below first yield
@@ -342,14 +430,19 @@ contains
          type(egw_error), allocatable :: err
          type(loading_history) :: hist
          type(solve_result) :: top, res
-         call load_history(table%params, serial, m(j), hist, top, err)
-         if (.not. allocated(err)) call solve_unload(hist, m(j), res, err)
+         if (table%params%flow_pressure > 0.0_dp) then   ! (rough: the smooth cap's differ)
+            call free_length(table%params, serial, m(j), curves(j)%length, err)
+         else
+            call load_history(table%params, serial, m(j), hist, top, err)
+            if (.not. allocated(err)) call solve_unload(hist, m(j), res, err)
+            if (.not. allocated(err)) curves(j)%length = unloading_length(top%force, &
+               & res%stiffness, table%params%sigma)
+         end if
          if (allocated(err)) then
             stats(j) = err%stat
             messages(j) = err%message
             return
          end if
-         curves(j)%length = unloading_length(top%force, res%stiffness, table%params%sigma)
       end subroutine one_length
    end subroutine unloading_lengths
 
@@ -455,8 +548,10 @@ contains
       ! would otherwise be a jump that no refinement in s removes)
       c_turn = 1.0_dp
       if (f_turn > 0.0_dp .and. scale > 0.0_dp) c_turn = f_turn/scale
-      if (table%params%flow_pressure > 0.0_dp) then
+      if (table%capped) then
          call cap_length(table%params, m, curve%length, error)
+      else if (table%params%flow_pressure > 0.0_dp) then
+         call free_length(table%params, options, m, curve%length, error)
       else
          call solve_unload(hist, m, res, error)
          if (.not. allocated(error)) curve%length = unloading_length(f_turn, res%stiffness, &

@@ -174,7 +174,7 @@ contains
    !> counts solves; the cut-off search is counted in done but not reported on its own
    !> (its length is not known in advance).
    subroutine build_table(params, options, delta_min, delta_max, rel_tol, table, error, &
-      & progress)
+      & progress, loading_curve)
       type(contact_params), intent(in) :: params   !< one parameter set
       type(solver_options), intent(in) :: options !< of the solves (rel_tol at most rel_tol/10)
       real(dp), intent(in) :: delta_min   !< smallest overlap of interest [length] (< 0: apart)
@@ -183,7 +183,12 @@ contains
       type(force_table), intent(out) :: table   !< the table; empty on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       procedure(table_progress), optional :: progress   !< optional hook (table_progress)
-      call build_1d(params, options, delta_min, delta_max, rel_tol, table, error, progress)
+      !> true: the loading curve of a hysteresis table (build_hysteresis), which may have
+      !> the flow-pressure cap (a capped loading curve is no reversible force law, so a
+      !> force table refuses flow_pressure otherwise); default false
+      logical, intent(in), optional :: loading_curve
+      call build_1d(params, options, delta_min, delta_max, rel_tol, table, error, progress, &
+         & loading_curve=loading_curve)
    end subroutine build_table
 
    !> build_table for a sphere pair whose local pressure is a rough-flat law (doc/theory.md
@@ -210,7 +215,7 @@ contains
 
    !> The 1-D build of build_table and build_table_law (law present: solves with it).
    subroutine build_1d(params, options, delta_min, delta_max, rel_tol, table, error, &
-      & progress, law)
+      & progress, law, loading_curve)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
@@ -218,12 +223,16 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       procedure(table_progress), optional :: progress
       class(flat_law), intent(in), optional :: law
+      logical, intent(in), optional :: loading_curve   !< as build_table's
       type(solver_options) :: opts
       real(dp) :: cutoff, p_ref
       type(force_table) :: tables(1)
       integer :: n_solves
+      logical :: allow_cap
 
-      call check_request(params, delta_min, delta_max, rel_tol, error, present(law))
+      allow_cap = .false.
+      if (present(loading_curve)) allow_cap = loading_curve
+      call check_request(params, delta_min, delta_max, rel_tol, error, present(law), allow_cap)
       if (allocated(error)) return
       opts = point_options(options, rel_tol)
       call find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, n_solves, &
@@ -1585,15 +1594,21 @@ contains
       end if
    end subroutine solve_point
 
-   pure subroutine check_request(params, delta_min, delta_max, rel_tol, error, with_law)
+   pure subroutine check_request(params, delta_min, delta_max, rel_tol, error, with_law, &
+      & allow_cap)
       type(contact_params), intent(in) :: params
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
       type(egw_error), allocatable, intent(out) :: error
       logical, intent(in), optional :: with_law   !< the build has the law (model_flat_law)
+      !> a hysteresis table's loading curve: flow_pressure allowed
+      logical, intent(in), optional :: allow_cap
+      logical :: cap_ok
       call validate_params(params, error, with_law)
       if (allocated(error)) return
       ! the formats store a reversible loading curve: a capped one unloads otherwise
-      call refuse_flow_pressure(params, "a force table", error)
+      cap_ok = .false.
+      if (present(allow_cap)) cap_ok = allow_cap
+      if (.not. cap_ok) call refuse_flow_pressure(params, "a force table", error)
       if (allocated(error)) return
       if (.not. ieee_is_finite(delta_min)) then
          call fatal_error(error, egw_invalid_argument, "delta_min = "// &
