@@ -181,32 +181,13 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     return;
   }
   if (flow_pressure > 0 && kind != HYST_CAP) {
-    // a rough model with the cap: egw says whether it serves it (a table over a short
-    // range, for the contact of the largest R in physical units, so that its message
-    // names the deck's values); while it refuses, its message is the error. The law's
-    // tables are normalised by sigma, and the cap adds the scale delta_y ~ R: pair egw
-    // does not build rough + cap tables yet either way.
-    egw_params p = prm;
-    p.radius = R_hi, p.modulus = E_star, p.sigma = sigma;
-    p.mu = mu_mode == 2 ? mu_at(R_hi) : prm.mu;
-    p.flow_pressure = flow_pressure;
-    int st;
-    if (kind == HYST || kind == HYST_MU) {
-      egw_hysteresis h = nullptr;
-      st = egw_hysteresis_build(&p, &o, 0.0, sigma, 0.1, &h);
-      egw_hysteresis_free(&h);
-    } else {
-      egw_table t = nullptr;
-      st = egw_table_build(&p, &o, 0.0, sigma, 0.1, &t);
-      egw_table_free(&t);
-    }
-    if (st != EGW_OK) {
-      fail();
-      return;
-    }
+    // a rough model with the cap: the law's tables are normalised by sigma, and the cap
+    // adds the scale delta_y ~ R, so no universal table serves it (egw itself builds
+    // rough + cap hysteresis tables for one parameter set: egw-table, egw_hysteresis_build)
     fail_with(fmt::format("flow_pressure {} with a rough surface (sigma = {}): pair egw does "
                           "not build tables for a rough model with the flow-pressure cap yet "
-                          "(give sigma 0 or model Hertz for the smooth sphere with the cap)",
+                          "(give sigma 0 or model Hertz for the smooth sphere with the cap; "
+                          "egw-table builds the hysteresis table of one rough + cap contact)",
                           flow_pressure, sigma));
     return;
   }
