@@ -36,6 +36,9 @@ contains
          & test_reference), &
          & new_unittest("public solves with flow_pressure: the reference", test_public), &
          & new_unittest("public solves: Hertz at and below first yield", test_public_hertz), &
+         & new_unittest("loading force smooth in delta at 30-34 delta_y", test_smooth_load), &
+         & new_unittest("residual and unloading smooth in delta_max, delta", &
+         & test_smooth_unload), &
          & new_unittest("public: energy of a load-unload cycle = dissipated", &
          & test_public_energy), &
          & new_unittest("public: rough model with flow_pressure solved, profile refused", &
@@ -157,7 +160,10 @@ contains
    end subroutine test_fully_capped
 
    !> Unloading at delta_max from the deformed shape is the loading state itself
-   !> (u_pl = -gap on the capped rings): same force to 1e-9 (the box solves' tolerance).
+   !> (u_pl = -gap on the cap): the same force to 1e-5. Loading and unloading are solved
+   !> on different meshes (the annulus [c, a] and the disc [0, b]), each within 3.3e-6 of
+   !> test/data/cap_reference.csv (measured at 50 and 64 rings), so they agree to ~1e-5
+   !> (measured 2e-7 here).
    subroutine test_turning_point(error)
       type(error_type), allocatable, intent(out) :: error
       type(cap_history) :: h
@@ -172,7 +178,7 @@ contains
       call cap_unload(h, 5*dy, un, err)
       call check(error, .not. allocated(err), "cap_unload failed")
       if (allocated(error)) return
-      call check(error, abs(un%force/res%force - 1) < 1e-9_dp, "unload at delta_max "// &
+      call check(error, abs(un%force/res%force - 1) < 1e-5_dp, "unload at delta_max "// &
          & str(un%force)//" load "//str(res%force))
       if (allocated(error)) return
       call cap_unload(h, h%residual*dy*0.999_dp, un, err)
@@ -604,5 +610,102 @@ contains
       call check(error, err%stat == egw_unsupported .and. index(err%message, &
          & "flow_pressure") > 0, "message: "//err%message)
    end subroutine test_public_rough
+
+   !> The third difference of a table over equally spaced arguments: for a smooth
+   !> value it is its third derivative times h**3; a value that jumps or kinks as an
+   !> edge crosses a ring (the sawtooth of a fixed mesh: P/(pi a**2 p_y) swung by 3e-3 at
+   !> 32 delta_y) gives third differences of the size of the jump.
+   pure real(dp) function worst_third_difference(f) result(worst)
+      real(dp), intent(in) :: f(:)
+      integer :: i
+      worst = 0
+      do i = 2, size(f) - 2
+         worst = max(worst, abs(f(i + 2) - 3*f(i + 1) + 3*f(i) - f(i - 1)))
+      end do
+   end function worst_third_difference
+
+   !> The fourth difference, as worst_third_difference one order further.
+   pure real(dp) function worst_fourth_difference(f) result(worst)
+      real(dp), intent(in) :: f(:)
+      integer :: i
+      worst = 0
+      do i = 3, size(f) - 2
+         worst = max(worst, abs(f(i + 2) - 4*f(i + 1) + 6*f(i) - 4*f(i - 1) + f(i - 2)))
+      end do
+   end function worst_fourth_difference
+
+   !> P(delta) at 200 overlaps in [30, 34] delta_y (where the capped zone's edge is 1e-7 a
+   !> from the contact edge; the fully capped limit begins at ~35) with the public
+   !> options: third differences below 1e-8 of P. Smooth: P ~ 3 delta has a third
+   !> derivative <~ 1e-2, times h**3 = 8e-6 is ~1e-9 of P ~ 80; the solves' own noise
+   !> (roots to 1e-15, the cap radius's Newton to ~1e-7 in ln(c/(a - c)), which P does not
+   !> see to first order) is far below. The stiffness (dP/d delta by the envelope) must
+   !> agree with the central differences of P to 1e-6 (their error is ~1e-7).
+   subroutine test_smooth_load(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 200
+      type(cap_history) :: h
+      type(cap_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: d(n), f(n), k(n), worst
+      integer :: i
+      do i = 1, n
+         d(i) = 30.0_dp + 4.0_dp*real(i - 1, dp)/real(n - 1, dp)
+         call cap_load(1.0_dp, 1.0_dp, 2.0_dp/pi, d(i), cap_solve_options(), h, res, err)
+         if (allocated(err)) then
+            call check(error, .false., "delta = "//str(d(i))//": "//err%message)
+            return
+         end if
+         f(i) = res%force
+         k(i) = res%stiffness
+      end do
+      worst = worst_third_difference(f)
+      call check(error, worst <= 1e-8_dp*f(n), "third difference of P "//str(worst))
+      if (allocated(error)) return
+      worst = 0
+      do i = 2, n - 1
+         worst = max(worst, abs((f(i + 1) - f(i - 1))/(d(i + 1) - d(i - 1))/k(i) - 1))
+      end do
+      call check(error, worst <= 1e-6_dp, "stiffness vs dP/d delta: "//str(worst))
+   end subroutine test_smooth_load
+
+   !> The residual overlap at 120 delta_max in [8, 14] delta_y (the elastic edge a - c
+   !> shrinking from 1e-3 a to 6e-5 a), and the unloading force from 32 delta_y at 120
+   !> delta in [0.9, 1] delta_max: fourth differences below 1e-8 of the value. Smooth:
+   !> the residual's third differences are its third derivative (-3.3e-3 at 8 delta_y)
+   !> times h**3 = 1.3e-4, 4e-7, varying by ~2e-9 of the value per step; a jump J as an
+   !> edge crosses a ring gives fourth differences of up to 6 J.
+   subroutine test_smooth_unload(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 120
+      type(cap_history) :: h
+      type(cap_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: r(n), f(n), worst, d
+      integer :: i
+      do i = 1, n
+         d = 8.0_dp + 6.0_dp*real(i - 1, dp)/real(n - 1, dp)
+         call cap_load(1.0_dp, 1.0_dp, 2.0_dp/pi, d, cap_solve_options(), h, res, err)
+         if (allocated(err)) then
+            call check(error, .false., "delta = "//str(d)//": "//err%message)
+            return
+         end if
+         r(i) = h%residual
+      end do
+      worst = worst_fourth_difference(r)
+      call check(error, worst <= 1e-8_dp*r(n), "fourth difference of delta_r "//str(worst))
+      if (allocated(error)) return
+      call cap_load(1.0_dp, 1.0_dp, 2.0_dp/pi, 32.0_dp, cap_solve_options(), h, res, err)
+      do i = 1, n
+         if (allocated(err)) exit
+         call cap_unload(h, 32.0_dp*(0.9_dp + 0.1_dp*real(i - 1, dp)/real(n - 1, dp)), &
+            & res, err)
+         f(i) = res%force
+      end do
+      call check(error, .not. allocated(err), "unloading solves")
+      if (allocated(error)) return
+      worst = worst_fourth_difference(f)
+      call check(error, worst <= 1e-8_dp*f(n), "fourth difference of P_unload "//str(worst))
+   end subroutine test_smooth_unload
 
 end module test_cap_sphere
