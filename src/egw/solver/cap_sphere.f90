@@ -321,11 +321,30 @@ contains
       g = 1.0_dp/(1.0_dp + exp(-t))
    end function logistic
 
-   !> A start for gamma = c/a at Delta > 1 (a fit of the solutions; Newton does the rest).
+   !> A start for gamma = c/a at Delta > 1: ln(c/(a - c)) of the solutions (32/64 rings),
+   !> linear between them in ln(Delta - 1), beyond 30 delta_y along the last slope.
    pure real(dp) function gamma_start(delta) result(g)
       real(dp), intent(in) :: delta
-      g = sqrt(max(1.0e-6_dp, 1.0_dp - 1.0_dp/delta))
-      g = max(1.0e-4_dp, g)
+      real(dp), parameter :: at(14) = [1.0002_dp, 1.001_dp, 1.01_dp, 1.1_dp, 1.5_dp, &
+         & 2.0_dp, 3.0_dp, 4.0_dp, 5.0_dp, 6.5_dp, 8.0_dp, 12.0_dp, 20.0_dp, 30.0_dp], &
+         & t_at(14) = [-2.952_dp, -2.819_dp, -1.964_dp, -0.539_dp, 0.843_dp, 1.689_dp, &
+         & 2.856_dp, 3.779_dp, 4.583_dp, 5.650_dp, 6.603_dp, 8.786_dp, 12.267_dp, 15.751_dp]
+      real(dp) :: t, x0, x1
+      integer :: i
+      if (delta >= at(14)) then
+         t = t_at(14) + 0.348_dp*(delta - at(14))
+      else if (delta <= at(1)) then
+         t = t_at(1)
+      else
+         i = 1
+         do while (at(i + 1) < delta)
+            i = i + 1
+         end do
+         x0 = log(at(i) - 1.0_dp)
+         x1 = log(at(i + 1) - 1.0_dp)
+         t = t_at(i) + (t_at(i + 1) - t_at(i))*(log(delta - 1.0_dp) - x0)/(x1 - x0)
+      end if
+      g = logistic(min(t, t_cap))
    end function gamma_start
 
    !> Clenshaw sum of the Chebyshev series c at y in [-1, 1].
