@@ -562,7 +562,8 @@ contains
       end if
       side = 0
       do it = 1, 200
-         b = (lo*fhi - hi*flo)/(fhi - flo)
+         b = 0.5_dp*(lo + hi)
+         if (fhi /= flo) b = (lo*fhi - hi*flo)/(fhi - flo)
          if (.not. (b > lo .and. b < hi)) b = 0.5_dp*(lo + hi)
          call unload_at(hist, l, b, fb, force)
          fb = fb - d
