@@ -719,9 +719,9 @@ contains
       real(dp), intent(in) :: delta              !< overlap <= delta_max
       type(cap_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: d, f, k, a, pm, b, dl, fc
+      real(dp) :: d, f, k, a, pm, b, dl, fc, u, du
       real(dp), allocatable :: q(:, :)
-      integer :: l, m, i, info
+      integer :: m, i, info
       if (history%delta_y <= 0.0_dp) then
          call fatal_error(error, egw_invalid_argument, "cap_unload: history not loaded")
          return
@@ -760,8 +760,8 @@ contains
       m = history%n_unload(2)
       allocate (q(m, 1))
       do i = 1, m
-         call u_plastic(history, b*history%x_unload(i, 2), pm, dl)
-         q(i, 1) = (d - 0.5_dp*(b*history%x_unload(i, 2))**2 - pm)/b
+         call u_plastic(history, b*history%x_unload(i, 2), u, du)
+         q(i, 1) = (d - 0.5_dp*(b*history%x_unload(i, 2))**2 - u)/b
       end do
       call dgetrs('N', m, 1, history%lu_unload, m, history%piv_unload, q, m, info)
       pm = maxval(q(:, 1))
