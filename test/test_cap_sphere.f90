@@ -440,9 +440,9 @@ contains
    end function unit_cap
 
    !> solve_contact, load_history + solve_unload, solve_contact_unload and restitution
-   !> (the egw facade) with flow_pressure against rows of the reference: force within 1e-3
-   !> (issue 32's goal; the 100/200-ring solve behind the public doors is measured within
-   !> 7e-4 up to 10 delta_y), e within 1 % (measured 5e-4).
+   !> (the egw facade) with flow_pressure against rows of the reference: force and e within
+   !> 1e-4 (a tenth of issue 32's goal for the force, 1 % for e; the fitted 32/64-ring
+   !> solve behind the public doors is measured within 3.3e-6 up to 100 delta_y).
    subroutine test_public(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: x(3) = [2.0_dp, 3.0_dp, 10.0_dp], &
@@ -456,7 +456,7 @@ contains
          call solve_contact(unit_cap(), solver_options(), x(i), res, err)
          call check(error, .not. allocated(err), "solve_contact with the cap failed")
          if (allocated(error)) return
-         call check(error, abs(res%force*0.75_dp - ref(i)) <= 1e-3_dp*ref(i) .and. &
+         call check(error, abs(res%force*0.75_dp - ref(i)) <= 1e-4_dp*ref(i) .and. &
             & res%max_pressure <= 2.0_dp/pi*(1 + 1e-12_dp), "P/P_y at "//str(x(i)) &
             & //": "//str(res%force*0.75_dp))
          if (allocated(error)) return
@@ -467,7 +467,7 @@ contains
       call solve_unload(h, 9.0_dp, res, err)
       call check(error, .not. allocated(err), "solve_unload with the cap failed")
       if (allocated(error)) return
-      call check(error, abs(res%force*0.75_dp - 15.35888043866_dp) <= 1e-3_dp*15.36_dp, &
+      call check(error, abs(res%force*0.75_dp - 15.35888043866_dp) <= 1e-4_dp*15.36_dp, &
          & "unloading from 10 delta_y at 9: "//str(res%force*0.75_dp))
       if (allocated(error)) return
       ! the residual overlap after 10 delta_y is 0.5245 delta_max: no force at 5
@@ -477,14 +477,14 @@ contains
       call solve_contact_unload(unit_cap(), solver_options(), 1.8_dp, 2.0_dp, res, err)
       call check(error, .not. allocated(err), "solve_contact_unload with the cap failed")
       if (allocated(error)) return
-      call check(error, abs(res%force*0.75_dp - 2.298961418756_dp) <= 1e-3_dp*2.3_dp, &
+      call check(error, abs(res%force*0.75_dp - 2.298961418756_dp) <= 1e-4_dp*2.3_dp, &
          & "unloading from 2 delta_y at 1.8: "//str(res%force*0.75_dp))
       if (allocated(error)) return
       call restitution(unit_cap(), solver_options(), 16.0_dp/15.0_dp, 10.0_dp, e, &
          & dissipated, err)
       call check(error, .not. allocated(err), "restitution with the cap failed")
       if (allocated(error)) return
-      call check(error, abs(e - 0.7301151640084_dp) <= 1e-2_dp*0.73_dp, "e at 10 v_y: "//str(e))
+      call check(error, abs(e - 0.7301151640084_dp) <= 1e-4_dp*0.73_dp, "e at 10 v_y: "//str(e))
    end subroutine test_public
 
    !> flow_pressure = 0 is today's Hertz, and with the cap every overlap up to delta_y
@@ -528,7 +528,7 @@ contains
    !> [0, delta_y], [delta_y, delta_m] loading and [delta_r, delta_m] unloading, where the
    !> force behaves like (delta - a)**1.5; delta_r by bisection of the unloading force).
    !> Within 1e-3 of the loading work: the brief's tolerance; both sides integrate the same
-   !> 100/200-ring forces, so the difference is quadrature and delta_r (~1e-6).
+   !> 32/64-ring forces, so the difference is quadrature and delta_r (~1e-6).
    subroutine test_public_energy(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: mass = 16.0_dp/15.0_dp, v = 5.0_dp
