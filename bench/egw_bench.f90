@@ -21,6 +21,8 @@
 !>                 5), universal 1e-4 build -> out/bench/speedup.csv, universal_speedup.csv
 !>   --universal-tol X  only the universal table at rel_tol X (2 threads)
 !>                 -> out/bench/universal_tol.csv
+!>   --cap         Hertz + cap hysteresis table: build time (1e-3 .. 1e-4, 10 and 35 delta_y)
+!>                 and its error against unloading solves (2 threads)
 !>   --hysteresis  EP-GW hysteresis table: build time (1e-3, 1e-4) and eval / Hertz force
 !>                 (and the floor of a one-double evaluation: bench/bench_floor.f90)
 !>   --separated   separated contacts (issue 33): egw_table_eval, egw_table_eval_array and
@@ -43,6 +45,7 @@ program egw_bench
    use bench_solver, only: run_solver, run_assembly, run_peer_cases
    use bench_tables, only: run_tables, run_universal, run_build_speedup
    use bench_hysteresis, only: run_hysteresis
+   use bench_cap, only: run_cap
    use bench_unloading, only: run_unloading, run_unloading_sweep
    use bench_bem, only: run_bem
    use bench_separated, only: run_separated
@@ -55,6 +58,7 @@ program egw_bench
    integer :: i, sweeps
    logical :: do_kernels, do_fn, do_solver, do_assembly, do_tables, do_universal, quick
    logical :: universal_1thread, any_section, ok, do_speedup, do_unloading, do_hysteresis, &
+      & do_cap, &
       & do_sweep, do_bem, do_separated
    real(dp) :: universal_tol
    character(len=512) :: arg, peer_file
@@ -90,6 +94,7 @@ program egw_bench
    if (do_bem) call run_bem()
    if (do_separated) call run_separated()
    if (do_hysteresis) call run_hysteresis()
+   if (do_cap) call run_cap()
    if (do_fn) then
       call open_csv("fn.csv", unit_csv)
       call run_fn(unit_csv)
@@ -122,6 +127,7 @@ contains
       do_kernels = .false.; do_fn = .false.; do_solver = .false.; do_assembly = .false.
       do_tables = .false.; do_universal = .false.; quick = .false.; do_speedup = .false.
       do_hysteresis = .false.
+      do_cap = .false.
       do_unloading = .false.
       do_sweep = .false.
       do_bem = .false.
@@ -143,6 +149,7 @@ contains
          case ("--universal-1thread"); do_universal = .true.; universal_1thread = .true.
          case ("--quick"); quick = .true.
          case ("--hysteresis"); do_hysteresis = .true.
+         case ("--cap"); do_cap = .true.
          case ("--speedup"); do_speedup = .true.
          case ("--unloading"); do_unloading = .true.
          case ("--unloading-sweep"); do_sweep = .true.
@@ -169,6 +176,7 @@ contains
       end do
       any_section = do_kernels .or. do_fn .or. do_solver .or. do_assembly .or. do_tables &
          & .or. do_universal .or. do_speedup .or. universal_tol > 0 .or. do_hysteresis &
+         & .or. do_cap &
          & .or. do_unloading .or. do_sweep .or. do_bem .or. do_separated
       if (.not. any_section .and. len_trim(peer_file) == 0) then
          do_kernels = .true.; do_fn = .true.; do_solver = .true.; do_assembly = .true.

@@ -206,7 +206,7 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
 /* The flow-pressure cap (p->flow_pressure = p_y > 0; smooth spheres: Hertz or sigma = 0;
  * doc/theory.md section 12). Up to first yield delta_y = (pi p_y/(2 E*))^2 R every solve
  * is Hertz's, bit for bit. Above it: egw_solve is the cap's loading solve (force, loading
- * stiffness, contact radius, max_pressure <= p_y; est_rel_err of its 100/200-ring levels,
+ * stiffness, contact radius, max_pressure <= p_y; est_rel_err of its 32/64-ring levels,
  * whatever o says), egw_solve_unload its elastic unloading from the deformed shape (0 at
  * and below the residual overlap), egw_restitution(_energy, _overlap) its head-on impact
  * (w_dissipated = (1 - e^2) m* v^2/2; e = 1 up to v_y). Beyond 1e6 delta_y or 1e4 v_y:

@@ -67,9 +67,10 @@ int egw_capi_test_flow_pressure_params(void) {
   return failures;
 }
 
-/* Solves: loading and unloading against the reference at 1e-3 (issue 32's goal; egw's
- * 100/200-ring solve is within 7e-4 up to 10 delta_y), e within 1 % (the goal; measured
- * 5e-4). flow_pressure = 0 and overlaps up to first yield: Hertz, bit for bit. */
+/* Solves: loading and unloading against the reference at 1e-4 (a tenth of issue 32's
+ * goal; egw's fitted 32/64-ring solve is within 3.3e-6 up to 100 delta_y), e within 1e-4
+ * (the goal is 1 %; measured 1e-7). flow_pressure = 0 and overlaps up to first yield:
+ * Hertz, bit for bit. */
 int egw_capi_test_flow_pressure_solves(void) {
   const double load_x[3] = {2.0, 3.0, 10.0};
   const double load_ref[3] = {2.720383972669e+00, 4.696156337776e+00, 2.091895411785e+01};
@@ -80,15 +81,15 @@ int egw_capi_test_flow_pressure_solves(void) {
   failures = 0;
   for (int i = 0; i < 3; i++) {
     CHECK(egw_solve(&p, NULL, load_x[i], &r) == EGW_OK);
-    CHECK(fabs(r.force / fy - load_ref[i]) <= 1e-3 * load_ref[i]);
+    CHECK(fabs(r.force / fy - load_ref[i]) <= 1e-4 * load_ref[i]);
     CHECK(r.max_pressure <= p.flow_pressure * (1 + 1e-12));
     CHECK(r.contact_radius > sqrt(load_x[i])); /* wider than Hertz's sqrt(R delta) */
   }
   /* unloading from delta_max = 2 to 0.9 delta_max, and from 10 to 0.9 delta_max */
   CHECK(egw_solve_unload(&p, NULL, 1.8, 2.0, &r) == EGW_OK);
-  CHECK(fabs(r.force / fy - 2.298961418756) <= 1e-3 * 2.298961418756);
+  CHECK(fabs(r.force / fy - 2.298961418756) <= 1e-4 * 2.298961418756);
   CHECK(egw_solve_unload(&p, NULL, 9.0, 10.0, &r) == EGW_OK);
-  CHECK(fabs(r.force / fy - 1.535888043866e+01) <= 1e-3 * 1.535888043866e+01);
+  CHECK(fabs(r.force / fy - 1.535888043866e+01) <= 1e-4 * 1.535888043866e+01);
   /* below the residual overlap (0.144 delta_max after 2 delta_y): no force */
   CHECK(egw_solve_unload(&p, NULL, 0.2, 2.0, &r) == EGW_OK && r.force == 0.0);
   /* flow_pressure = 0 and any overlap at or below delta_y: Hertz exactly */
@@ -109,7 +110,7 @@ int egw_capi_test_flow_pressure_solves(void) {
   CHECK(fabs(hz.force / (4.0 / 3.0 * pow(3.0, 1.5)) - 1) < 4e-16); /* an ulp or two */
   /* restitution at v = 5 v_y (e = 0.8315491288598) and 0.5 v_y (elastic: 1) */
   CHECK(egw_restitution(&p, NULL, 16.0 / 15.0, 5.0, &e) == EGW_OK);
-  CHECK(fabs(e - 0.8315491288598) <= 1e-2 * 0.8315491288598);
+  CHECK(fabs(e - 0.8315491288598) <= 1e-4 * 0.8315491288598);
   CHECK(egw_restitution_energy(&p, NULL, 16.0 / 15.0, 5.0, &e2, &w_load, &w_dis) == EGW_OK);
   CHECK(e2 == e && fabs(w_load - 0.5 * 16.0 / 15.0 * 25.0) <= 1e-15 * w_load);
   CHECK(fabs(w_dis - (1 - e * e) * w_load) <= 1e-15 * w_load);

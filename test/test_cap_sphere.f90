@@ -36,6 +36,9 @@ contains
          & test_reference), &
          & new_unittest("public solves with flow_pressure: the reference", test_public), &
          & new_unittest("public solves: Hertz at and below first yield", test_public_hertz), &
+         & new_unittest("loading force smooth in delta at 30-34 delta_y", test_smooth_load), &
+         & new_unittest("residual and unloading smooth in delta_max, delta", &
+         & test_smooth_unload), &
          & new_unittest("public: energy of a load-unload cycle = dissipated", &
          & test_public_energy), &
          & new_unittest("public: rough model with flow_pressure solved, profile refused", &
@@ -157,7 +160,10 @@ contains
    end subroutine test_fully_capped
 
    !> Unloading at delta_max from the deformed shape is the loading state itself
-   !> (u_pl = -gap on the capped rings): same force to 1e-9 (the box solves' tolerance).
+   !> (u_pl = -gap on the cap): the same force to 1e-5. Loading and unloading are solved
+   !> on different meshes (the annulus [c, a] and the disc [0, b]), each within 3.3e-6 of
+   !> test/data/cap_reference.csv (measured at 50 and 64 rings), so they agree to ~1e-5
+   !> (measured 2e-7 here).
    subroutine test_turning_point(error)
       type(error_type), allocatable, intent(out) :: error
       type(cap_history) :: h
@@ -172,7 +178,7 @@ contains
       call cap_unload(h, 5*dy, un, err)
       call check(error, .not. allocated(err), "cap_unload failed")
       if (allocated(error)) return
-      call check(error, abs(un%force/res%force - 1) < 1e-9_dp, "unload at delta_max "// &
+      call check(error, abs(un%force/res%force - 1) < 1e-5_dp, "unload at delta_max "// &
          & str(un%force)//" load "//str(res%force))
       if (allocated(error)) return
       call cap_unload(h, h%residual*dy*0.999_dp, un, err)
@@ -206,8 +212,8 @@ contains
       call check(error, d2 < 0.5_dp*d1 .and. d2 < 1e-4_dp*f(4), "differences "//str(d1)//str(d2))
    end subroutine test_convergence
 
-   !> Robustness of the options behind the public doors (cap_solve_options: 100 uniform
-   !> rings, then 200 graded toward the contact edge once it is capped): loading at 60
+   !> Robustness of the options behind the public doors (cap_solve_options: the fitted
+   !> meshes of 32 and 64 rings): loading at 60
    !> overlaps log-spaced from 1 to 100 delta_y (a grid offset from the 201 of the
    !> measurement in doc/theory.md section 12, also all converged) and unloading from each
    !> to 0.999 and 0.5 of it all converge; the loading force rises with delta and stays
@@ -369,14 +375,14 @@ contains
    !> Every row of test/data/cap_reference.csv (tools/reference/cap_reference.py: an
    !> independent solve of the same cap model, edge-aligned piecewise-linear pressure,
    !> Richardson error <= 1e-5) against egw with the options of the public doors
-   !> (cap_solve_options: 100 uniform rings, then 200 graded toward the contact edge).
+   !> (cap_solve_options: the fitted meshes of 32 and 64 rings).
    !> R = E* = 1, p_y = 2/pi: delta_y = 1, P_y = 4/3, and m* = 16/15 makes v_y = 1.
-   !> Tolerances are issue 32's goals at every row, 20, 50 and 100 delta_y included (the
-   !> fully capped contact, whose edge is a boundary layer: trap iv): P within 1e-3
-   !> (relative; measured 3.1e-4 at worst, unloading from 100 delta_y), delta_r within
-   !> 1e-3 of delta_max (measured 1.7e-4), e within 1e-3 (measured 2e-4; issue: 1 %).
-   !> Each reference error must be below a tenth of its tolerance (all are: the largest,
-   !> 2e-5, is unloading from 100 delta_y; e's are below 6e-8).
+   !> Tolerances, at every row (20, 50 and 100 delta_y included: the fully capped
+   !> contact, whose edge is a boundary layer, trap iv), a tenth of issue 32's goals (the
+   !> smooth solver's brief: 1e-4): P within 1e-4 (relative), delta_r within 1e-4 of
+   !> delta_max, e within 1e-4 (all measured within 3.3e-6). Each reference error must be
+   !> below a tenth of its tolerance (all are: the largest, 4.3e-5 absolute on P = 248,
+   !> is unloading from 100 delta_y; e's are below 6e-8).
    subroutine test_reference(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: py = 2.0_dp/pi, fy = 4.0_dp/3.0_dp, mass = 16.0_dp/15.0_dp
@@ -395,20 +401,20 @@ contains
          read (rows(k), *) model, x, y, val, ref_err, order
          select case (trim(model))
          case ("load")
-            tol = 1.0e-3_dp*val
+            tol = 1.0e-4_dp*val
             call cap_load(1.0_dp, 1.0_dp, py, x, cap_solve_options(), h, res, err)
             got = res%force/fy
          case ("residual")
-            tol = 1.0e-3_dp
+            tol = 1.0e-4_dp
             call cap_load(1.0_dp, 1.0_dp, py, x, cap_solve_options(), h, res, err)
             got = h%residual/h%delta_max
          case ("unload")
-            tol = 1.0e-3_dp*val
+            tol = 1.0e-4_dp*val
             call cap_load(1.0_dp, 1.0_dp, py, x, cap_solve_options(), h, res, err)
             if (.not. allocated(err)) call cap_unload(h, x*y, res, err)
             got = res%force/fy
          case ("restitution")
-            tol = 1.0e-3_dp*val
+            tol = 1.0e-4_dp*val
             call cap_restitution(1.0_dp, 1.0_dp, py, mass, x, cap_solve_options(), got, err)
          case default
             call check(error, .false., "unknown row "//trim(rows(k)))
@@ -434,9 +440,9 @@ contains
    end function unit_cap
 
    !> solve_contact, load_history + solve_unload, solve_contact_unload and restitution
-   !> (the egw facade) with flow_pressure against rows of the reference: force within 1e-3
-   !> (issue 32's goal; the 100/200-ring solve behind the public doors is measured within
-   !> 7e-4 up to 10 delta_y), e within 1 % (measured 5e-4).
+   !> (the egw facade) with flow_pressure against rows of the reference: force and e within
+   !> 1e-4 (a tenth of issue 32's goal for the force, 1 % for e; the fitted 32/64-ring
+   !> solve behind the public doors is measured within 3.3e-6 up to 100 delta_y).
    subroutine test_public(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: x(3) = [2.0_dp, 3.0_dp, 10.0_dp], &
@@ -450,7 +456,7 @@ contains
          call solve_contact(unit_cap(), solver_options(), x(i), res, err)
          call check(error, .not. allocated(err), "solve_contact with the cap failed")
          if (allocated(error)) return
-         call check(error, abs(res%force*0.75_dp - ref(i)) <= 1e-3_dp*ref(i) .and. &
+         call check(error, abs(res%force*0.75_dp - ref(i)) <= 1e-4_dp*ref(i) .and. &
             & res%max_pressure <= 2.0_dp/pi*(1 + 1e-12_dp), "P/P_y at "//str(x(i)) &
             & //": "//str(res%force*0.75_dp))
          if (allocated(error)) return
@@ -461,7 +467,7 @@ contains
       call solve_unload(h, 9.0_dp, res, err)
       call check(error, .not. allocated(err), "solve_unload with the cap failed")
       if (allocated(error)) return
-      call check(error, abs(res%force*0.75_dp - 15.35888043866_dp) <= 1e-3_dp*15.36_dp, &
+      call check(error, abs(res%force*0.75_dp - 15.35888043866_dp) <= 1e-4_dp*15.36_dp, &
          & "unloading from 10 delta_y at 9: "//str(res%force*0.75_dp))
       if (allocated(error)) return
       ! the residual overlap after 10 delta_y is 0.5245 delta_max: no force at 5
@@ -471,14 +477,14 @@ contains
       call solve_contact_unload(unit_cap(), solver_options(), 1.8_dp, 2.0_dp, res, err)
       call check(error, .not. allocated(err), "solve_contact_unload with the cap failed")
       if (allocated(error)) return
-      call check(error, abs(res%force*0.75_dp - 2.298961418756_dp) <= 1e-3_dp*2.3_dp, &
+      call check(error, abs(res%force*0.75_dp - 2.298961418756_dp) <= 1e-4_dp*2.3_dp, &
          & "unloading from 2 delta_y at 1.8: "//str(res%force*0.75_dp))
       if (allocated(error)) return
       call restitution(unit_cap(), solver_options(), 16.0_dp/15.0_dp, 10.0_dp, e, &
          & dissipated, err)
       call check(error, .not. allocated(err), "restitution with the cap failed")
       if (allocated(error)) return
-      call check(error, abs(e - 0.7301151640084_dp) <= 1e-2_dp*0.73_dp, "e at 10 v_y: "//str(e))
+      call check(error, abs(e - 0.7301151640084_dp) <= 1e-4_dp*0.73_dp, "e at 10 v_y: "//str(e))
    end subroutine test_public
 
    !> flow_pressure = 0 is today's Hertz, and with the cap every overlap up to delta_y
@@ -522,7 +528,7 @@ contains
    !> [0, delta_y], [delta_y, delta_m] loading and [delta_r, delta_m] unloading, where the
    !> force behaves like (delta - a)**1.5; delta_r by bisection of the unloading force).
    !> Within 1e-3 of the loading work: the brief's tolerance; both sides integrate the same
-   !> 100/200-ring forces, so the difference is quadrature and delta_r (~1e-6).
+   !> 32/64-ring forces, so the difference is quadrature and delta_r (~1e-6).
    subroutine test_public_energy(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: mass = 16.0_dp/15.0_dp, v = 5.0_dp
@@ -604,5 +610,102 @@ contains
       call check(error, err%stat == egw_unsupported .and. index(err%message, &
          & "flow_pressure") > 0, "message: "//err%message)
    end subroutine test_public_rough
+
+   !> The third difference of a table over equally spaced arguments: for a smooth
+   !> value it is its third derivative times h**3; a value that jumps or kinks as an
+   !> edge crosses a ring (the sawtooth of a fixed mesh: P/(pi a**2 p_y) swung by 3e-3 at
+   !> 32 delta_y) gives third differences of the size of the jump.
+   pure real(dp) function worst_third_difference(f) result(worst)
+      real(dp), intent(in) :: f(:)
+      integer :: i
+      worst = 0
+      do i = 2, size(f) - 2
+         worst = max(worst, abs(f(i + 2) - 3*f(i + 1) + 3*f(i) - f(i - 1)))
+      end do
+   end function worst_third_difference
+
+   !> The fourth difference, as worst_third_difference one order further.
+   pure real(dp) function worst_fourth_difference(f) result(worst)
+      real(dp), intent(in) :: f(:)
+      integer :: i
+      worst = 0
+      do i = 3, size(f) - 2
+         worst = max(worst, abs(f(i + 2) - 4*f(i + 1) + 6*f(i) - 4*f(i - 1) + f(i - 2)))
+      end do
+   end function worst_fourth_difference
+
+   !> P(delta) at 200 overlaps in [30, 34] delta_y (where the capped zone's edge is 1e-7 a
+   !> from the contact edge; the fully capped limit begins at ~35) with the public
+   !> options: third differences below 1e-8 of P. Smooth: P ~ 3 delta has a third
+   !> derivative <~ 1e-2, times h**3 = 8e-6 is ~1e-9 of P ~ 80; the solves' own noise
+   !> (roots to 1e-15, the cap radius's Newton to ~1e-7 in ln(c/(a - c)), which P does not
+   !> see to first order) is far below. The stiffness (dP/d delta by the envelope) must
+   !> agree with the central differences of P to 1e-6 (their error is ~1e-7).
+   subroutine test_smooth_load(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 200
+      type(cap_history) :: h
+      type(cap_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: d(n), f(n), k(n), worst
+      integer :: i
+      do i = 1, n
+         d(i) = 30.0_dp + 4.0_dp*real(i - 1, dp)/real(n - 1, dp)
+         call cap_load(1.0_dp, 1.0_dp, 2.0_dp/pi, d(i), cap_solve_options(), h, res, err)
+         if (allocated(err)) then
+            call check(error, .false., "delta = "//str(d(i))//": "//err%message)
+            return
+         end if
+         f(i) = res%force
+         k(i) = res%stiffness
+      end do
+      worst = worst_third_difference(f)
+      call check(error, worst <= 1e-8_dp*f(n), "third difference of P "//str(worst))
+      if (allocated(error)) return
+      worst = 0
+      do i = 2, n - 1
+         worst = max(worst, abs((f(i + 1) - f(i - 1))/(d(i + 1) - d(i - 1))/k(i) - 1))
+      end do
+      call check(error, worst <= 1e-6_dp, "stiffness vs dP/d delta: "//str(worst))
+   end subroutine test_smooth_load
+
+   !> The residual overlap at 120 delta_max in [8, 14] delta_y (the elastic edge a - c
+   !> shrinking from 1e-3 a to 6e-5 a), and the unloading force from 32 delta_y at 120
+   !> delta in [0.9, 1] delta_max: fourth differences below 1e-8 of the value. Smooth:
+   !> the residual's third differences are its third derivative (-3.3e-3 at 8 delta_y)
+   !> times h**3 = 1.3e-4, 4e-7, varying by ~2e-9 of the value per step; a jump J as an
+   !> edge crosses a ring gives fourth differences of up to 6 J.
+   subroutine test_smooth_unload(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 120
+      type(cap_history) :: h
+      type(cap_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: r(n), f(n), worst, d
+      integer :: i
+      do i = 1, n
+         d = 8.0_dp + 6.0_dp*real(i - 1, dp)/real(n - 1, dp)
+         call cap_load(1.0_dp, 1.0_dp, 2.0_dp/pi, d, cap_solve_options(), h, res, err)
+         if (allocated(err)) then
+            call check(error, .false., "delta = "//str(d)//": "//err%message)
+            return
+         end if
+         r(i) = h%residual
+      end do
+      worst = worst_fourth_difference(r)
+      call check(error, worst <= 1e-8_dp*r(n), "fourth difference of delta_r "//str(worst))
+      if (allocated(error)) return
+      call cap_load(1.0_dp, 1.0_dp, 2.0_dp/pi, 32.0_dp, cap_solve_options(), h, res, err)
+      do i = 1, n
+         if (allocated(err)) exit
+         call cap_unload(h, 32.0_dp*(0.9_dp + 0.1_dp*real(i - 1, dp)/real(n - 1, dp)), &
+            & res, err)
+         f(i) = res%force
+      end do
+      call check(error, .not. allocated(err), "unloading solves")
+      if (allocated(error)) return
+      worst = worst_fourth_difference(f)
+      call check(error, worst <= 1e-8_dp*f(n), "fourth difference of P_unload "//str(worst))
+   end subroutine test_smooth_unload
 
 end module test_cap_sphere

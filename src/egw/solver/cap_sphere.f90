@@ -7,36 +7,49 @@
 !> P_y = (4/3) E* sqrt(R) delta_y**1.5, pressures in p_y. Then gap = rho**2/2 - Delta + w,
 !> w(rho) = (2/pi) int 4/pi t/(rho+t) K(k) p(t) dt and P/P_y = 3 int rho p drho.
 !>
-!> Method: uniform rings of constant pressure on [0, L], L = 1.05 sqrt(2 Delta_max) (the
-!> contact radius is below sqrt(2 Delta): w > 0), collocated at the ring midpoints with the
-!> influence coefficients of egw_halfspace (one Gauss point per element). The collocation
-!> matrix H is not symmetric; the rings' area weights D make D H symmetric up to the
-!> discretisation error, and egw solves the box complementarity problem of A = sym(D H)
-!> (a consistent Galerkin-like symmetrisation): 0 <= p <= p_cap, y = A p + D q, y >= 0
-!> where p = 0, y = 0 where 0 < p < p_cap, y <= 0 where p = p_cap. A primal-dual active
-!> set (semismooth Newton) iteration solves it; every active set it visits is kept, and a
-!> repeated set (a cycle) or more than max_active iterations switches to projected SOR,
-!> which converges for a symmetric positive definite A (Cryer 1971), then the active set
-!> iteration restarts from the PSOR point. Both phases are capped: egw_not_converged.
-!> Accuracy: levels of n, 2n, 4n rings; the finest is returned with the difference to the
-!> level before as its error estimate. Once the capped zone reaches the contact edge (from
-!> ~5 delta_y) the edge is a boundary layer (theory section 12, trap iv) that uniform rings
-!> resolve to one ring only, an error of up to 3e-3 in P that oscillates with the edge's
-!> place in the mesh; there every level after the first is graded toward the contact edge
-!> the level before found (rings 16 times finer within one coarse ring of it): measured
-!> within 3.1e-4 of the reference from 1 to 100 delta_y at n = 100, 2 levels.
+!> Method: the edges are in the mesh, so that nothing jumps as Delta moves. Loading: p = 1
+!> on the capped disc [0, c] (one element, its influence exact), unknown constant-pressure
+!> rings on the elastic annulus [c, a] whose edges are fixed fractions of it (graded toward
+!> both ends), collocated at their midpoints (gap = 0) with egw_halfspace's influence
+!> coefficients (n_press Gauss points per element, summed: a constant pressure's far field
+!> to ~1e-8). For given (c, a) the rings' pressure is linear in Delta, and the force
+!> P(c, a; Delta) of the contact forced onto [c, a] is stationary at the solution in both:
+!> dP/da = 0 is the edge's zero stress intensity (p ~ sqrt(a - rho)), dP/dc = 0 the
+!> cap edge's (1 - p ~ sqrt(rho - c)), both linear in them (so single roots; the energy
+!> would have double ones). At fixed gamma = c/a, dP/da = 0 is a quadratic in a (closed
+!> form); in gamma a Newton iteration on finite differences of P*(gamma) (a minimum: the
+!> cap takes pressure away). A stationary P
+!> is second-order insensitive to gamma's error, and every quantity is a smooth function
+!> of (gamma, a, Delta): P, a, c and the stiffness dP/dDelta = dP/dDelta at fixed
+!> (gamma, a) (the envelope) are smooth in Delta. The plastic displacement u_pl = -gap on
+!> [0, c] is kept as a Chebyshev series in s = sqrt(1 - rho/c) (u_pl ~ (c - rho)**1.5 at
+!> the cap edge is smooth in s), made to vanish at c with zero slope.
+!> Unloading from the deformed shape f(rho) = rho**2/2 + u_pl(rho) (f increases, so the
+!> contact is a disc [0, b]): rings on [0, b] at fixed fractions of b (graded toward b),
+!> whose influence matrix is b times one fixed matrix; collocation makes P(b; Delta) =
+!> 3 b (Delta r1 - v.f(b x)) with v = H^-T area, and dP/db = 0 gives Delta(b) in closed
+!> form: a root in b per solve, no matrix. The residual overlap is f(0) = u_pl(0).
+!> The elastic edge a - c shrinks exponentially with Delta (1e-7 a at 32 delta_y); beyond
+!> ~35 delta_y the solve is the fully capped limit in closed form (see t_cap), and up to
+!> 1.0001 delta_y Hertz's (see elastic_margin).
+!> Accuracy: levels of n, 2n ... rings; the finest is solved and the level before for the
+!> error estimate (loading: at the finest's gamma). Measured at 32/64 rings (the public
+!> doors' options): every row of test/data/cap_reference.csv (loading, residual,
+!> unloading, restitution; 1 to 100 delta_y) within 3.3e-6; P, a, the residual and
+!> the unloading force are smooth in delta and delta_max (test_cap_sphere).
 !>
 !> Limits: half-space theory; from ~50 v_y (Delta_max of several hundred) a/R > 0.24, where
 !> a sphere is no longer a half-space. u_pl is the deformation-theory field at delta_max
-!> (the box problem at delta_max); for a smooth sphere the capped zone grows with delta,
+!> (the cap problem at delta_max); for a smooth sphere the capped zone grows with delta,
 !> so it equals the accumulated plastic displacement of a monotone loading.
 module egw_cap_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, fatal_error, format_real, int_str, &
       & egw_invalid_argument, egw_not_converged
-   use egw_halfspace, only: radial_mesh, build_mesh, assemble_influence
+   use egw_halfspace, only: radial_mesh, build_mesh, assemble_influence, influence_row
    use egw_lapack, only: dgetrf, dgetrs
+   use egw_ellip, only: ellipe_comp, ellipk_comp
    implicit none
    private
 
@@ -44,52 +57,75 @@ module egw_cap_sphere
    public :: cap_load, cap_unload, cap_restitution, cap_units
    public :: cap_load_scaled_work, cap_unload_scaled_work
 
+   !> Gauss points per element of the influence integrals of a constant pressure
+   integer, parameter :: n_press = 4
+   !> Chebyshev points per panel of u_pl's series, and most panels
+   integer, parameter :: n_cheb = 16, max_panels = 12
+
    !> Mesh and iteration options of the cap solver.
    type :: cap_options
       integer :: n_rings = 100      !< rings of the coarsest level (>= 8)
-      integer :: n_levels = 3       !< levels n, 2n, 4n ... (>= 2)
-      integer :: max_active = 60    !< active-set iterations before PSOR
-      integer :: max_sweeps = 200000 !< PSOR sweeps
+      integer :: n_levels = 2       !< levels n, 2n, 4n ... (>= 2; the last two are used)
+      integer :: max_active = 60    !< Newton iterations on the cap radius (>= 1)
+      integer :: max_sweeps = 200000 !< (unused; kept for the interface)
       integer :: n_quad = 16        !< Gauss points of the work integrals
    end type cap_options
 
    !> A solve's result in the caller's units.
    type :: cap_result
       real(dp) :: force = 0.0_dp           !< P
-      real(dp) :: stiffness = 0.0_dp       !< dP/d delta (at fixed plastic field)
+      real(dp) :: stiffness = 0.0_dp       !< dP/d delta (loading: along the loading curve)
       real(dp) :: contact_radius = 0.0_dp  !< a
       real(dp) :: cap_radius = 0.0_dp      !< radius of the capped (plastic) zone
       real(dp) :: max_pressure = 0.0_dp    !< max p (<= p_y)
       real(dp) :: force_error = 0.0_dp     !< estimate: |P(finest) - P(level before)|
    end type cap_result
 
-   !> What unloading needs of a loading to delta_max, per level (scaled units).
+   !> What unloading needs of a loading to delta_max (scaled units).
    type :: cap_history
       real(dp) :: radius = 0, modulus = 0, flow_pressure = 0
       real(dp) :: delta_y = 0, a_y = 0, force_y = 0
       real(dp) :: delta_max = 0            !< scaled Delta_max
       real(dp) :: residual = 0             !< scaled residual overlap Delta_res
-      real(dp) :: outer = 0                !< L, the mesh's outer radius (scaled)
+      real(dp) :: contact = 0              !< scaled contact radius a at delta_max
+      real(dp) :: cap = 0                  !< scaled cap radius c at delta_max
+      real(dp) :: disc = 0                 !< the radius of p = 1 of the same force, sqrt(2P/3)
       logical :: elastic = .true.          !< Delta_max <= 1: Hertz, reversible
-      integer :: n_levels = 0
-      integer, allocatable :: n(:)         !< uniform rings per level (before grading)
-      real(dp), allocatable :: centre(:)   !< per level: graded toward this radius (0: uniform)
-      real(dp), allocatable :: u_pl(:, :) !< (max n, level) plastic displacement
-      real(dp), allocatable :: residual_level(:)
+      !> g's Chebyshev coefficients (see u_plastic) on the panels [s_break(j-1), s_break(j)]
+      real(dp) :: u_cheb(0:n_cheb - 1, max_panels) = 0
+      real(dp) :: s_break(0:max_panels) = 0
+      integer :: n_panels = 0
+      integer :: n_unload(2) = 0           !< unloading rings per level (before, finest)
+      real(dp), allocatable :: x_unload(:, :)  !< (ring, level) unit midpoints
+      real(dp), allocatable :: v_unload(:, :)  !< H^-T area (ring, level)
+      real(dp) :: r_unload(2) = 0          !< sum(v) per level
+      real(dp), allocatable :: lu_unload(:, :) !< finest level's LU of H (pressures)
+      integer, allocatable :: piv_unload(:)
       type(cap_options) :: options
    end type cap_history
 
-   !> One level: rings and the symmetrised influence matrix.
-   type :: cap_level
-      integer :: n = 0
-      real(dp) :: outer = 0
-      real(dp), allocatable :: rho(:), width(:), area(:), a(:, :)
-   end type cap_level
 
-   !> The edge-graded mesh (doc/theory.md section 12, trap iv): rings refined by 2**edge_levels
-   !> within edge_zone coarse rings of the contact edge, growing by edge_growth per ring.
-   integer, parameter :: edge_levels = 4
-   real(dp), parameter :: edge_zone = 1.0_dp, edge_growth = 0.3_dp
+   !> Largest t = ln(c/(a - c)) of the loading solve. The elastic edge a - c shrinks
+   !> exponentially with Delta (1e-7 a at 32 delta_y); once the solution's t is beyond
+   !> t_cap (a - c < 1.5e-8 a, from ~35 delta_y) the solve is the fully capped limit: p = 1
+   !> on [0, a], gap(a) = 0, i.e. Delta = a**2/2 + 8 a/pi**2 (the uniform disc's edge
+   !> deflection 4 a/pi in E* = 1 units, times 2/pi), P = 3 a**2/2; the edge's share of P
+   !> is of the order of its width, so the switch moves P by ~1e-8.
+   real(dp), parameter :: t_cap = 18.0_dp
+
+   !> Up to delta_y (1 + elastic_margin) the solve is Hertz's: there the cap's zone is
+   !> ~0.03 a wide and its force differs from Hertz by ~1e-8 (measured at 1.0001 delta_y),
+   !> its residual overlap is ~1e-6 delta_y, and the flat minimum in gamma is ill-posed.
+   real(dp), parameter :: elastic_margin = 1.0e-4_dp
+
+   !> One fitted loading mesh at gamma = c/a (unit contact radius) and its solution.
+   type :: fitted_load
+      integer :: m = 0
+      real(dp) :: gamma = 0, delta = 0, a = 0, force = 0, stiffness = 0
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: x(:), hc(:), lu(:, :), q(:)
+      integer, allocatable :: piv(:)
+   end type fitted_load
 
 contains
 
@@ -121,6 +157,9 @@ contains
       else if (options%n_levels < 2 .or. options%n_levels > 5) then
          call fatal_error(error, egw_invalid_argument, "n_levels = " &
             & //int_str(options%n_levels)//": must be in 2..5")
+      else if (options%n_rings*2**(options%n_levels - 1) > 4000) then
+         call fatal_error(error, egw_invalid_argument, "n_rings*2**(n_levels - 1) = " &
+            & //int_str(options%n_rings*2**(options%n_levels - 1))//": must be <= 4000")
       else if (options%max_active < 1 .or. options%max_sweeps < 1) then
          call fatal_error(error, egw_invalid_argument, "max_active, max_sweeps must be >= 1")
       else if (options%n_quad < 4 .or. options%n_quad > 64) then
@@ -139,227 +178,410 @@ contains
       end if
    end subroutine positive
 
-   !> Build a level on [0, outer] (scaled units): n uniform rings, or (centre > 0) rings of
-   !> the same width h = outer/n away from centre, refined to h/2**edge_levels within
-   !> edge_zone*h of it and growing by the factor 1 + edge_growth per ring in between.
-   subroutine make_level(n, outer, centre, lev, error)
-      integer, intent(in) :: n
-      real(dp), intent(in) :: outer, centre
-      type(cap_level), intent(out) :: lev
+   !> Ring edges graded toward both ends of [0, 1] (spacing ~ 1/m**2 there).
+   elemental real(dp) function both_ends(t) result(x)
+      real(dp), intent(in) :: t
+      x = t*t*(3.0_dp - 2.0_dp*t)
+   end function both_ends
+
+   !> Ring edges graded toward 1 (spacing ~ 1/m**2 there, 2/m at 0).
+   elemental real(dp) function toward_one(t) result(x)
+      real(dp), intent(in) :: t
+      x = 1.0_dp - (1.0_dp - t)**2
+   end function toward_one
+
+   !> Scaled influence h(i, e) = w at x(i) of p = 1 on element e (elements on edges), and
+   !> the mesh: n_press Gauss points per element, their coefficients summed.
+   subroutine influence(edges, x, mesh, h, error)
+      real(dp), intent(in) :: edges(0:), x(:)
+      type(radial_mesh), intent(out) :: mesh
+      real(dp), allocatable, intent(out) :: h(:, :)
       type(egw_error), allocatable, intent(out) :: error
-      type(radial_mesh) :: mesh
-      real(dp), allocatable :: h(:, :), edges(:)
-      integer :: i, stat
-      if (centre > 0.0_dp) then
-         call graded_edges(n, outer, centre, edges)
-      else
-         edges = [(outer*real(i, dp)/real(n, dp), i=0, n)]
-      end if
-      lev%n = size(edges) - 1
-      lev%outer = outer
-      call build_mesh(edges, 1, 1, mesh)
-      lev%rho = mesh%gauss_r
-      lev%width = edges(2:lev%n + 1) - edges(1:lev%n)
-      lev%area = lev%rho*lev%width
-      allocate (h(lev%n, lev%n))
-      call assemble_influence(mesh, lev%rho, h, 1, stat)
+      real(dp), allocatable :: infl(:, :)
+      integer :: e, n, stat
+      n = size(edges) - 1
+      call build_mesh(edges, 1, n_press, mesh)
+      allocate (infl(size(x), n*n_press), h(size(x), n), stat=stat)
+      if (stat == 0) call assemble_influence(mesh, x, infl, 1, stat)
       if (stat /= 0) then
          call fatal_error(error, egw_not_converged, "cap solver: influence matrix of " &
-            & //int_str(lev%n)//" rings could not be allocated")
+            & //int_str(n)//" rings could not be allocated")
          return
       end if
-      ! Scaled deflection w = (2/pi) * (E = 1 deflection); A = sym(D H).
-      do i = 1, lev%n
-         h(i, :) = 2.0_dp/pi*lev%area(i)*h(i, :)
+      do e = 1, n
+         h(:, e) = 2.0_dp/pi*sum(infl(:, (e - 1)*n_press + 1:e*n_press), dim=2)
       end do
-      lev%a = 0.5_dp*(h + transpose(h))
-   end subroutine make_level
+   end subroutine influence
 
-   !> Ring edges on [0, outer] graded toward centre (see make_level).
-   pure subroutine graded_edges(n, outer, centre, edges)
-      integer, intent(in) :: n
-      real(dp), intent(in) :: outer, centre
-      real(dp), allocatable, intent(out) :: edges(:)
-      real(dp) :: coarse, fine, x, s, buf(max_graded_rings(n) + 1)
-      integer :: k
-      coarse = outer/real(n, dp)
-      fine = coarse/2.0_dp**edge_levels
-      buf(1) = 0.0_dp
-      x = 0.0_dp
-      k = 1
-      do
-         s = min(coarse, fine*(1.0_dp + max(0.0_dp, abs(x - centre) - edge_zone*coarse) &
-            & *edge_growth/fine))
-         ! approaching the centre: the ring may not overshoot into the fine zone
-         if (x < centre) s = min(s, max(fine, fine + (centre - edge_zone*coarse - x) &
-            & *edge_growth/(1.0_dp + edge_growth)))
-         if (x + 1.5_dp*s >= outer .or. k == size(buf) - 1) exit
-         x = x + s
-         k = k + 1
-         buf(k) = x
-      end do
-      k = k + 1
-      buf(k) = outer
-      edges = buf(1:k)
-   end subroutine graded_edges
-
-   !> An upper bound of the rings of a graded level of base n (sizes the history).
-   pure integer function max_graded_rings(n) result(m)
-      integer, intent(in) :: n
-      m = n + 2*ceiling((edge_zone + 1.0_dp)*2.0_dp**edge_levels) &
-         & + 2*ceiling(log(2.0_dp**edge_levels)/log(1.0_dp + edge_growth)) + 8
-   end function max_graded_rings
-
-   !> Box complementarity 0 <= p <= cap, y = A p + b (see the module header).
-   subroutine solve_box(lev, b, cap, options, p, error)
-      type(cap_level), intent(in) :: lev
-      real(dp), intent(in) :: b(:), cap
-      type(cap_options), intent(in) :: options
-      real(dp), intent(inout) :: p(:)     !< in: start; out: solution
+   !> The loading problem on the fitted mesh of m rings at gamma = c/a in (0, 1): p = 1 on
+   !> [0, gamma], rings on [gamma, 1] (unit a; lengths scale with a, deflections too), gap = 0
+   !> at their midpoints. q = H^-1 (Delta/a - a x**2/2 - hc), P = 3 a**2 (gamma**2/2 +
+   !> area.q) = 3 (a**2 gamma**2/2 + a Delta r1 - a**3 r2 - a**2 r3), r = v.(1, x**2/2, hc),
+   !> v = H^-T area; dP/da = 0 is 3 r2 a**2 - (gamma**2 - 2 r3) a - Delta r1 = 0.
+   subroutine fitted_solve(m, gamma, delta, st, error)
+      integer, intent(in) :: m
+      real(dp), intent(in) :: gamma, delta
+      type(fitted_load), intent(out) :: st
       type(egw_error), allocatable, intent(out) :: error
-      integer :: round
-      logical :: done
-      do round = 1, 3
-         call active_set(lev, b, cap, options%max_active, p, done)
-         if (done) return
-         call psor(lev, b, cap, options%max_sweeps, p, done)
-         if (.not. done) exit
-      end do
-      call fatal_error(error, egw_not_converged, "cap solver: the box problem of " &
-         & //int_str(lev%n)//" rings did not converge (active set cycled, PSOR after " &
-         & //int_str(options%max_sweeps)//" sweeps)")
-   end subroutine solve_box
-
-   !> Primal-dual active set; done = .false. on a cycle or after max_iter.
-   subroutine active_set(lev, b, cap, max_iter, p, done)
-      type(cap_level), intent(in) :: lev
-      real(dp), intent(in) :: b(:), cap
-      integer, intent(in) :: max_iter
-      real(dp), intent(inout) :: p(:)
-      logical, intent(out) :: done
-      integer :: state(lev%n), seen(lev%n, max_iter), it, k, m, info, i
-      integer, allocatable :: idx(:), ipiv(:)
-      real(dp), allocatable :: m_ii(:, :), rhs(:, :)
-      real(dp) :: y(lev%n), c(lev%n), pn(lev%n)
-      done = .false.
-      c = 1.0_dp/[(lev%a(i, i), i=1, lev%n)]
-      do it = 1, max_iter
-         y = matmul(lev%a, p) + b
-         ! -1 free (p = 0), 0 elastic, 1 capped (p = cap)
-         state = 0
-         where (p - c*y <= 0.0_dp) state = -1
-         where (p - c*y >= cap) state = 1
-         do k = 1, it - 1
-            if (all(seen(:, k) == state)) return    ! a cycle: give up to PSOR
-         end do
-         seen(:, it) = state
-         idx = pack([(i, i=1, lev%n)], state == 0)
-         m = size(idx)
-         pn = 0.0_dp
-         where (state == 1) pn = cap
-         if (m > 0) then
-            m_ii = lev%a(idx, idx)
-            allocate (rhs(m, 1), ipiv(m))
-            rhs(:, 1) = -b(idx) - matmul(lev%a(idx, :), pn)
-            call dgetrf(m, m, m_ii, m, ipiv, info)
-            if (info /= 0) return
-            call dgetrs('N', m, 1, m_ii, m, ipiv, rhs, m, info)
-            pn(idx) = rhs(:, 1)
-            deallocate (rhs, ipiv)
-         end if
-         p = pn
-         y = matmul(lev%a, p) + b
-         if (all(p >= 0.0_dp .and. p <= cap) .and. all(y >= -1.0e-13_dp*maxval(abs(b)) &
-            & .or. state /= -1) .and. all(y <= 1.0e-13_dp*maxval(abs(b)) .or. state /= 1)) then
-            done = .true.
-            return
-         end if
-      end do
-   end subroutine active_set
-
-   !> Projected SOR (omega = 1.5) to 1e-13 of the cap in the largest change of a sweep.
-   subroutine psor(lev, b, cap, max_sweeps, p, done)
-      type(cap_level), intent(in) :: lev
-      real(dp), intent(in) :: b(:), cap
-      integer, intent(in) :: max_sweeps
-      real(dp), intent(inout) :: p(:)
-      logical, intent(out) :: done
-      integer :: sweep, i
-      real(dp) :: change, new
-      done = .false.
-      do sweep = 1, max_sweeps
-         change = 0.0_dp
-         do i = 1, lev%n
-            new = p(i) - 1.5_dp*(dot_product(lev%a(:, i), p) + b(i))/lev%a(i, i)
-            new = min(cap, max(0.0_dp, new))
-            change = max(change, abs(new - p(i)))
-            p(i) = new
-         end do
-         if (change <= 1.0e-13_dp*cap) then
-            done = .true.
-            return
-         end if
-      end do
-   end subroutine psor
-
-   !> Scaled force, stiffness, radii of a box solution.
-   subroutine read_off(lev, p, cap, force, stiffness, contact, capped, pmax)
-      type(cap_level), intent(in) :: lev
-      real(dp), intent(in) :: p(:), cap
-      real(dp), intent(out) :: force, stiffness, contact, capped, pmax
-      integer, allocatable :: idx(:), ipiv(:)
-      real(dp), allocatable :: m_ii(:, :), rhs(:, :)
-      integer :: m, info, k, i
-      force = 3.0_dp*sum(lev%area*p)
-      pmax = maxval(p)
-      ! tangent: elastic rings move, capped and free ones do not
-      idx = pack([(i, i=1, lev%n)], p > 0.0_dp .and. p < cap)
-      m = size(idx)
-      stiffness = 0.0_dp
-      if (m > 0) then
-         m_ii = lev%a(idx, idx)
-         allocate (rhs(m, 1), ipiv(m))
-         rhs(:, 1) = lev%area(idx)
-         call dgetrf(m, m, m_ii, m, ipiv, info)
-         if (info == 0) call dgetrs('N', m, 1, m_ii, m, ipiv, rhs, m, info)
-         stiffness = 3.0_dp*sum(lev%area(idx)*rhs(:, 1))
+      real(dp) :: edges(0:m + 1), ar(m), v(m, 1), rhs(m, 1), r1, r2, r3, bq, a
+      real(dp), allocatable :: h(:, :)
+      integer :: j, info
+      edges(0) = 0.0_dp
+      edges(1) = gamma
+      edges(2:m + 1) = gamma + (1.0_dp - gamma)*both_ends([(real(j, dp)/real(m, dp), j=1, m)])
+      edges(m + 1) = 1.0_dp
+      st%m = m
+      st%gamma = gamma
+      st%delta = delta
+      st%x = 0.5_dp*(edges(1:m) + edges(2:m + 1))
+      ar = 0.5_dp*(edges(2:m + 1)**2 - edges(1:m)**2)
+      call influence(edges, st%x, st%mesh, h, error)
+      if (allocated(error)) return
+      st%hc = h(:, 1)
+      st%lu = h(:, 2:m + 1)
+      allocate (st%piv(m))
+      call dgetrf(m, m, st%lu, m, st%piv, info)
+      if (info == 0) then
+         v(:, 1) = ar
+         call dgetrs('T', m, 1, st%lu, m, st%piv, v, m, info)
       end if
-      ! contact edge: p**2 linear in rho over the last two loaded rings (p ~ sqrt(a - rho))
-      k = 0
-      do i = lev%n, 1, -1
-         if (p(i) > 0.0_dp) then
-            k = i
-            exit
-         end if
-      end do
-      contact = 0.0_dp
-      if (k >= 2) then
-         if (p(k - 1)**2 > p(k)**2) then
-            contact = lev%rho(k) + p(k)**2*(lev%rho(k) - lev%rho(k - 1)) &
-               & /(p(k - 1)**2 - p(k)**2)
-            contact = min(contact, lev%rho(k) + lev%width(k))
-         else
-            contact = lev%rho(k) + 0.5_dp*lev%width(k)
-         end if
+      r1 = sum(v(:, 1))
+      r2 = 0.5_dp*sum(v(:, 1)*st%x**2)
+      r3 = sum(v(:, 1)*st%hc)
+      if (info /= 0 .or. .not. (r1 > 0.0_dp .and. r2 > 0.0_dp)) then
+         call fatal_error(error, egw_not_converged, "cap solver: the fitted mesh at c/a = " &
+            & //format_real(gamma)//" is singular")
+         return
       end if
-      capped = 0.0_dp
-      do i = lev%n, 1, -1
-         if (p(i) >= cap) then
-            capped = lev%rho(i) + 0.5_dp*lev%width(i)
-            exit
-         end if
-      end do
-   end subroutine read_off
+      bq = gamma**2 - 2.0_dp*r3
+      a = (bq + sqrt(bq**2 + 12.0_dp*r2*r1*delta))/(6.0_dp*r2)
+      st%a = a
+      st%force = 3.0_dp*(0.5_dp*a**2*gamma**2 + a*delta*r1 - a**3*r2 - a**2*r3)
+      st%stiffness = 3.0_dp*a*r1
+      rhs(:, 1) = delta/a - 0.5_dp*a*st%x**2 - st%hc
+      call dgetrs('N', m, 1, st%lu, m, st%piv, rhs, m, info)
+      st%q = rhs(:, 1)
+   end subroutine fitted_solve
 
-   !> Scaled loading solve at Delta on one level: p (warm start in, solution out).
-   subroutine load_level(lev, delta, options, p, error)
-      type(cap_level), intent(in) :: lev
+   !> The loading solution at Delta on m rings: Newton on dP*/dt = 0, t = ln(gamma/(1 -
+   !> gamma)), P*(t) = P at the stationary a, derivatives by central differences (step
+   !> h_t: their truncation error ~1e-7 in t moves P* by ~1e-14, P* being stationary).
+   !> gamma: in, the start; out, the solution. st: the solution's mesh and pressures.
+   subroutine load_fitted(m, delta, max_iter, gamma, st, full, error)
+      integer, intent(in) :: m, max_iter
       real(dp), intent(in) :: delta
-      type(cap_options), intent(in) :: options
-      real(dp), intent(inout) :: p(:)
+      real(dp), intent(inout) :: gamma
+      type(fitted_load), intent(out) :: st
+      logical, intent(out) :: full   !< the solution's edge is below exp(-t_cap) a
       type(egw_error), allocatable, intent(out) :: error
-      call solve_box(lev, lev%area*(0.5_dp*lev%rho**2 - delta), 1.0_dp, options, p, error)
-   end subroutine load_level
+      real(dp), parameter :: h_t = 1.0e-3_dp
+      type(fitted_load) :: sm, sp
+      real(dp) :: t, d1, d2, step
+      integer :: it
+      t = min(t_cap, log(gamma/(1.0_dp - gamma)))
+      full = .false.
+      step = huge(1.0_dp)
+      do it = 1, max_iter
+         call fitted_solve(m, logistic(t), delta, st, error)
+         if (.not. allocated(error)) call fitted_solve(m, logistic(t - h_t), delta, sm, error)
+         if (.not. allocated(error)) call fitted_solve(m, logistic(t + h_t), delta, sp, error)
+         if (allocated(error)) return
+         d1 = (sp%force - sm%force)/(2.0_dp*h_t)
+         d2 = (sp%force - 2.0_dp*st%force + sm%force)/h_t**2
+         if (.not. d2 > 0.0_dp) then
+            ! P* is a minimum in gamma (the cap takes pressure away); away from it descend
+            step = -sign(0.5_dp, d1)
+         else
+            step = max(-1.0_dp, min(1.0_dp, -d1/d2))
+         end if
+         if (t + step > t_cap) then
+            ! the elastic edge is thinner than exp(-t_cap) a: the fully capped limit
+            full = .true.
+            return
+         end if
+         t = t + step
+         if (abs(step) <= 1.0e-6_dp) exit
+         ! a flat minimum (a small cap just above delta_y): P* settled to rounding
+         if (abs(d1*step) <= 1.0e-15_dp*st%force .and. d2 > 0.0_dp .and. &
+            & abs(step) <= 1.0e-3_dp) exit
+      end do
+      if (.not. (abs(step) <= 1.0e-3_dp .and. abs(d1*step) <= 1.0e-15_dp*st%force .or. &
+         & abs(step) <= 1.0e-6_dp) &
+         & .or. .not. ieee_is_finite(t)) then
+         call fatal_error(error, egw_not_converged, "cap solver: the cap radius at delta = " &
+            & //format_real(delta)//" delta_y did not converge")
+         return
+      end if
+      gamma = logistic(t)
+      call fitted_solve(m, gamma, delta, st, error)
+   end subroutine load_fitted
+
+   elemental real(dp) function logistic(t) result(g)
+      real(dp), intent(in) :: t
+      g = 1.0_dp/(1.0_dp + exp(-t))
+   end function logistic
+
+   !> A start for gamma = c/a at Delta > 1: ln(c/(a - c)) of the solutions (32/64 rings),
+   !> linear between them in ln(Delta - 1), beyond 30 delta_y along the last slope.
+   pure real(dp) function gamma_start(delta) result(g)
+      real(dp), intent(in) :: delta
+      real(dp), parameter :: at(14) = [1.0002_dp, 1.001_dp, 1.01_dp, 1.1_dp, 1.5_dp, &
+         & 2.0_dp, 3.0_dp, 4.0_dp, 5.0_dp, 6.5_dp, 8.0_dp, 12.0_dp, 20.0_dp, 30.0_dp], &
+         & t_at(14) = [-2.952_dp, -2.819_dp, -1.964_dp, -0.539_dp, 0.843_dp, 1.689_dp, &
+         & 2.856_dp, 3.779_dp, 4.583_dp, 5.650_dp, 6.603_dp, 8.786_dp, 12.267_dp, 15.751_dp]
+      real(dp) :: t, x0, x1
+      integer :: i
+      if (delta >= at(14)) then
+         t = t_at(14) + 0.348_dp*(delta - at(14))
+      else if (delta <= at(1)) then
+         t = t_at(1)
+      else
+         i = 1
+         do while (at(i + 1) < delta)
+            i = i + 1
+         end do
+         x0 = log(at(i) - 1.0_dp)
+         x1 = log(at(i + 1) - 1.0_dp)
+         t = t_at(i) + (t_at(i + 1) - t_at(i))*(log(delta - 1.0_dp) - x0)/(x1 - x0)
+      end if
+      g = logistic(min(t, t_cap))
+   end function gamma_start
+
+   !> Clenshaw sum of the Chebyshev series c at y in [-1, 1].
+   pure real(dp) function cheb(c, y) result(s)
+      real(dp), intent(in) :: c(0:), y
+      real(dp) :: b0, b1, b2
+      integer :: k
+      b1 = 0.0_dp
+      b2 = 0.0_dp
+      do k = ubound(c, 1), 1, -1
+         b0 = c(k) + 2.0_dp*y*b1 - b2
+         b2 = b1
+         b1 = b0
+      end do
+      s = c(0) + y*b1 - b2
+   end function cheb
+
+   !> The series of dU/dy of U = sum c_k T_k(y).
+   pure function cheb_derivative(c) result(d)
+      real(dp), intent(in) :: c(0:)
+      real(dp) :: d(0:ubound(c, 1))
+      integer :: n, k
+      n = ubound(c, 1)
+      d = 0.0_dp
+      if (n >= 1) d(n - 1) = 2.0_dp*real(n, dp)*c(n)
+      do k = n - 1, 1, -1
+         d(k - 1) = merge(d(k + 1), 0.0_dp, k + 1 <= n) + 2.0_dp*real(k, dp)*c(k)
+      end do
+      d(0) = 0.5_dp*d(0)
+   end function cheb_derivative
+
+   !> The plastic displacement u_pl(rho) and its slope (scaled): 0 beyond the cap radius c;
+   !> within, u_pl = D + g. D = Delta - rho**2/2 - (8 r/pi**2) E(rho/r), minus the gap of
+   !> p = 1 on the disc [0, r] of the same force (r = sqrt(2P/3) in (c, a); exact, with the
+   !> log-steep rim of the fully capped crater, where r = c = a), g the deflection of the
+   !> rest, p - 1 on [c, r] and p on [r, a]: no net force and continuous at c, so it is
+   !> small (~(a - c)**2 near a thin elastic edge) and smooth in s = sqrt(1 - rho/c) on
+   !> [0, c), kept as a series
+   !> less the Hermite cubics in s that set u_pl(c) = 0 and take out its s-slope at s = 0
+   !> (the discrete solution's misfit there), so that u_pl and its slope stay bounded and
+   !> nothing jumps as a collocation point crosses c.
+   pure subroutine u_plastic(hist, rho, u, du)
+      type(cap_history), intent(in) :: hist
+      real(dp), intent(in) :: rho
+      real(dp), intent(out) :: u, du
+      real(dp) :: s, y, d(0:n_cheb - 1), d1(0:n_cheb - 1), us, u0, us0, dd, dc, dummy, h
+      integer :: j
+      u = 0.0_dp
+      du = 0.0_dp
+      if (rho >= hist%cap) return
+      call full_gap(hist%delta_max, hist%disc, rho, u, du)
+      if (hist%cap >= hist%disc) return
+      call full_gap(hist%delta_max, hist%disc, hist%cap, dc, dummy)
+      s = sqrt(max(0.0_dp, 1.0_dp - rho/hist%cap))
+      j = 1
+      do while (j < hist%n_panels .and. s > hist%s_break(j))
+         j = j + 1
+      end do
+      h = hist%s_break(j) - hist%s_break(j - 1)
+      y = max(-1.0_dp, min(1.0_dp, 2.0_dp*(s - hist%s_break(j - 1))/h - 1.0_dp))
+      d = cheb_derivative(hist%u_cheb(:, j))
+      d1 = cheb_derivative(hist%u_cheb(:, 1))
+      u0 = cheb(hist%u_cheb(:, 1), -1.0_dp) + dc
+      us0 = 2.0_dp/hist%s_break(1)*cheb(d1, -1.0_dp)
+      u = u + cheb(hist%u_cheb(:, j), y) - u0*(1.0_dp - s)**2*(1.0_dp + 2.0_dp*s) &
+         & - us0*s*(1.0_dp - s)**2
+      us = 2.0_dp/h*cheb(d, y) + u0*6.0_dp*s*(1.0_dp - s) &
+         & - us0*(1.0_dp - s)*(1.0_dp - 3.0_dp*s)
+      ! du/drho = us ds/drho, ds/drho = -1/(2 c s); us = O(s) at s = 0
+      dd = -us/(2.0_dp*hist%cap*max(s, 1.0e-8_dp))
+      du = du + dd
+   end subroutine u_plastic
+
+   !> D = Delta - rho**2/2 - (8 a/pi**2) E(rho/a) and dD/drho, 0 <= rho < a: minus the gap
+   !> of p = 1 on [0, a] (uniform disc: w = 4 a/pi E(k) for E* = 1, times 2/pi).
+   pure subroutine full_gap(delta, a, rho, d, dd)
+      real(dp), intent(in) :: delta, a, rho
+      real(dp), intent(out) :: d, dd
+      real(dp) :: k, kc, e, dedk
+      k = rho/a
+      kc = sqrt(max(0.0_dp, (1.0_dp - k)*(1.0_dp + k)))
+      e = ellipe_comp(kc)
+      if (k < 1.0e-4_dp) then
+         dedk = -0.25_dp*pi*k
+      else
+         dedk = (e - ellipk_comp(kc))/k
+      end if
+      d = delta - 0.5_dp*rho**2 - 8.0_dp*a/pi**2*e
+      dd = -rho - 8.0_dp/pi**2*dedk
+   end subroutine full_gap
+
+   !> u_pl = -gap on [0, c] of the loading solution st at Delta, less D (see u_plastic),
+   !> sampled at the Chebyshev points of max_panels panels in s whose breaks are geometric
+   !> from sqrt((a - c)/c) to 1 (g varies on the scale a - c of the elastic edge next to c)
+   !> and kept as their series (in hist).
+   subroutine keep_plastic(st, hist)
+      type(fitted_load), intent(in) :: st
+      type(cap_history), intent(inout) :: hist
+      real(dp) :: row(st%mesh%n_elem*n_press), hr(st%mesh%n_elem), u(0:n_cheb - 1), th, s
+      real(dp) :: x, w, d, dd, eta
+      integer :: k, e, j, n
+      ! a fixed count of panels whose breaks move with eta: nothing jumps as Delta moves
+      eta = sqrt(max(1.0e-300_dp, 1.0_dp - st%gamma))
+      n = max_panels
+      hist%n_panels = n
+      hist%s_break(0) = 0.0_dp
+      hist%s_break(1:n - 1) = eta**(real([(n - j, j=1, n - 1)], dp)/real(n - 1, dp))
+      hist%s_break(n) = 1.0_dp
+      do j = 1, n
+         do k = 0, n_cheb - 1
+            th = pi*(real(k, dp) + 0.5_dp)/real(n_cheb, dp)
+            s = hist%s_break(j - 1) + 0.5_dp*(1.0_dp + cos(th))* &
+               & (hist%s_break(j) - hist%s_break(j - 1))
+            x = st%gamma*(1.0_dp - s*s)
+            call influence_row(st%mesh, x, row)
+            do e = 1, st%mesh%n_elem
+               hr(e) = 2.0_dp/pi*sum(row((e - 1)*n_press + 1:e*n_press))
+            end do
+            w = st%a*(hr(1) + sum(hr(2:)*st%q))
+            call full_gap(st%delta, hist%disc, st%a*x, d, dd)
+            u(k) = st%delta - 0.5_dp*(st%a*x)**2 - w - d
+         end do
+         call keep_series(u, hist%u_cheb(:, j))
+      end do
+   end subroutine keep_plastic
+
+   !> The Chebyshev series c of the values u at the points cos(pi (k + 1/2)/n_cheb).
+   pure subroutine keep_series(u, c)
+      real(dp), intent(in) :: u(0:n_cheb - 1)
+      real(dp), intent(out) :: c(0:n_cheb - 1)
+      integer :: j, k
+      do j = 0, n_cheb - 1
+         c(j) = 2.0_dp/real(n_cheb, dp)*sum(u*cos(real(j, dp)*pi* &
+            & ([(real(k, dp), k=0, n_cheb - 1)] + 0.5_dp)/real(n_cheb, dp)))
+      end do
+      c(0) = 0.5_dp*c(0)
+   end subroutine keep_series
+
+   !> The unloading mesh of m rings on the unit disc (graded toward its edge): midpoints x,
+   !> v = H^-T area and (lu, piv) = H's LU.
+   subroutine unload_mesh(m, x, v, r1, lu, piv, error)
+      integer, intent(in) :: m
+      real(dp), intent(out) :: x(m), v(m), r1
+      real(dp), allocatable, intent(out) :: lu(:, :)
+      integer, allocatable, intent(out) :: piv(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      real(dp) :: edges(0:m), rhs(m, 1)
+      integer :: j, info
+      edges = toward_one([(real(j, dp)/real(m, dp), j=0, m)])
+      edges(0) = 0.0_dp
+      edges(m) = 1.0_dp
+      x = 0.5_dp*(edges(0:m - 1) + edges(1:m))
+      call influence(edges, x, mesh, lu, error)
+      if (allocated(error)) return
+      allocate (piv(m))
+      call dgetrf(m, m, lu, m, piv, info)
+      rhs(:, 1) = 0.5_dp*(edges(1:m)**2 - edges(0:m - 1)**2)
+      if (info == 0) call dgetrs('T', m, 1, lu, m, piv, rhs, m, info)
+      if (info /= 0) then
+         call fatal_error(error, egw_not_converged, "cap solver: the unloading mesh of " &
+            & //int_str(m)//" rings is singular")
+         return
+      end if
+      v = rhs(:, 1)
+      r1 = sum(v)
+   end subroutine unload_mesh
+
+   !> Unloading on level l at contact radius b: Delta(b) (dP/db = 0) and P there.
+   pure subroutine unload_at(hist, l, b, delta, force)
+      type(cap_history), intent(in) :: hist
+      integer, intent(in) :: l
+      real(dp), intent(in) :: b
+      real(dp), intent(out) :: delta, force
+      real(dp) :: rho, u, du, sf, sd
+      integer :: i
+      sf = 0.0_dp
+      sd = 0.0_dp
+      do i = 1, hist%n_unload(l)
+         rho = b*hist%x_unload(i, l)
+         call u_plastic(hist, rho, u, du)
+         sf = sf + hist%v_unload(i, l)*(0.5_dp*rho**2 + u)
+         sd = sd + hist%v_unload(i, l)*rho*(rho + du)
+      end do
+      delta = (sf + sd)/hist%r_unload(l)
+      force = 3.0_dp*b*(delta*hist%r_unload(l) - sf)
+   end subroutine unload_at
+
+   !> The contact radius b of level l where Delta(b) = d (> residual): Illinois on
+   !> [0, b_hi], Delta(0) = residual, b_hi from the loading contact radius outward.
+   subroutine unload_radius(hist, l, d, b, error)
+      type(cap_history), intent(in) :: hist
+      integer, intent(in) :: l
+      real(dp), intent(in) :: d
+      real(dp), intent(out) :: b
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: lo, hi, flo, fhi, fb, force
+      integer :: it, side
+      lo = 0.0_dp
+      flo = hist%residual - d
+      hi = hist%contact
+      do it = 1, 20
+         call unload_at(hist, l, hi, fhi, force)
+         fhi = fhi - d
+         if (fhi >= 0.0_dp) exit
+         lo = hi
+         flo = fhi
+         hi = 1.25_dp*hi
+      end do
+      b = hi
+      if (fhi < 0.0_dp) then
+         call fatal_error(error, egw_not_converged, "cap_unload: no contact radius for " &
+            & //"delta = "//format_real(d)//" delta_y")
+         return
+      end if
+      side = 0
+      do it = 1, 200
+         b = 0.5_dp*(lo + hi)
+         if (fhi /= flo) b = (lo*fhi - hi*flo)/(fhi - flo)
+         if (.not. (b > lo .and. b < hi)) b = 0.5_dp*(lo + hi)
+         call unload_at(hist, l, b, fb, force)
+         fb = fb - d
+         if (fb == 0.0_dp .or. hi - lo <= 1.0e-15_dp*hi) exit
+         if (sign(1.0_dp, fb) == sign(1.0_dp, fhi)) then
+            hi = b
+            fhi = fb
+            if (side == 1) flo = 0.5_dp*flo
+            side = 1
+         else
+            lo = b
+            flo = fb
+            if (side == -1) fhi = 0.5_dp*fhi
+            side = -1
+         end if
+         if (abs(fb) <= 1.0e-15_dp*d) exit
+      end do
+   end subroutine unload_radius
 
    !> Loading solve at delta_max (>= 0) of a sphere R, E* against the cap p_y; keeps the
    !> plastic field in history for cap_unload. Below delta_y: Hertz (closed form).
@@ -373,10 +595,10 @@ contains
       type(cap_history), intent(out) :: history
       type(cap_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
-      type(cap_level) :: lev
-      real(dp), allocatable :: p(:), b(:)
-      real(dp) :: dm, f, k, a, c, pm, f_prev
-      integer :: l, nmax
+      type(fitted_load) :: st, coarse
+      real(dp) :: dm, f, k, a, pm, gamma, u, du
+      integer :: m
+      logical :: full
       call check_inputs(radius, modulus, flow_pressure, options, error)
       if (allocated(error)) return
       if (.not. ieee_is_finite(delta_max) .or. .not. delta_max >= 0.0_dp) then
@@ -397,7 +619,7 @@ contains
             & //": beyond 1e6 delta_y (the cap model's range)")
          return
       end if
-      if (dm <= 1.0_dp) then
+      if (dm <= 1.0_dp + elastic_margin) then
          history%elastic = .true.
          history%residual = 0.0_dp
          call hertz_scaled(dm, f, k, a, pm)
@@ -405,77 +627,68 @@ contains
          return
       end if
       history%elastic = .false.
-      history%outer = 1.05_dp*sqrt(2.0_dp*dm)
-      history%n_levels = options%n_levels
-      nmax = max_graded_rings(options%n_rings*2**(options%n_levels - 1))
-      allocate (history%n(options%n_levels), history%u_pl(nmax, options%n_levels))
-      allocate (history%residual_level(options%n_levels), history%centre(options%n_levels))
-      history%u_pl = 0.0_dp
-      history%centre = 0.0_dp
-      f_prev = 0.0_dp
-      a = 0.0_dp
-      c = 0.0_dp
-      do l = 1, options%n_levels
-         ! level 1 uniform; once the capped zone reaches the contact edge (to within a
-         ! ring of the level before: the boundary layer of trap iv) each finer level is
-         ! graded toward the edge found before. (Graded meshes with a wide elastic ring,
-         ! below ~5 delta_y, make the box problem fail to converge, and gain nothing there.)
-         if (l > 1 .and. a >= c .and. a - c <= edge_zone*history%outer/history%n(l - 1) &
-            & .and. a < 0.95_dp*history%outer) history%centre(l) = a
-         history%n(l) = options%n_rings*2**(l - 1)
-         call load_on_level(history%n(l), history%outer, dm, options, history%centre(l), &
-            & lev, p, error)
-         if (allocated(error)) return
-         b = lev%area*(0.5_dp*lev%rho**2 - dm)
-         call read_off(lev, p, 1.0_dp, f, k, a, c, pm)
-         ! plastic displacement = interpenetration of the capped rings, -gap
-         where (p >= 1.0_dp) history%u_pl(1:lev%n, l) = &
-            & max(0.0_dp, -(matmul(lev%a, p) + b)/lev%area)
-         history%residual_level(l) = minval(0.5_dp*lev%rho**2 + history%u_pl(1:lev%n, l))
-         if (l == options%n_levels) result%force_error = abs(f - f_prev)*history%force_y
-         f_prev = f
-      end do
-      history%residual = history%residual_level(options%n_levels)
-      call unscale(history, f, k, a, c, pm, result%force_error, result)
+      m = options%n_rings*2**(options%n_levels - 1)
+      gamma = gamma_start(dm)
+      call load_fitted(m, dm, options%max_active, gamma, st, full, error)
+      if (allocated(error)) return
+      if (full) then
+         call load_full(dm, history, result)
+         call keep_unloading(history, m, error)
+         return
+      end if
+      ! the level before at the same gamma: P is stationary in gamma, so this is its own
+      ! solution's force to second order
+      call fitted_solve(m/2, gamma, dm, coarse, error)
+      if (allocated(error)) return
+      history%contact = st%a
+      history%cap = gamma*st%a
+      history%disc = sqrt(2.0_dp*st%force/3.0_dp)
+      call keep_plastic(st, history)
+      call u_plastic(history, 0.0_dp, u, du)
+      history%residual = max(0.0_dp, u)
+      call keep_unloading(history, m, error)
+      if (allocated(error)) return
+      call unscale(history, st%force, st%stiffness, st%a, gamma*st%a, 1.0_dp, &
+         & abs(st%force - coarse%force)*history%force_y, result)
    end subroutine cap_load
 
-   !> Loading solve at Delta on a level of base n rings graded toward centre (0: uniform).
-   !> A graded box problem that does not converge (its active set cycles; PSOR is slow on
-   !> the fine rings, so it gets few sweeps) is retried with the fine zone shifted by
-   !> a third of a coarse ring either way, then on the uniform mesh (centre returns 0).
-   subroutine load_on_level(n, outer, delta, options, centre, lev, p, error)
-      integer, intent(in) :: n
-      real(dp), intent(in) :: outer, delta
-      type(cap_options), intent(in) :: options
-      real(dp), intent(inout) :: centre
-      type(cap_level), intent(out) :: lev
-      real(dp), allocatable, intent(out) :: p(:)
+   !> The fully capped limit at Delta (see t_cap): a from Delta = a**2/2 + 8 a/pi**2,
+   !> P = 3 a**2/2, dP/dDelta = 3 a/(a + 8/pi**2); u_pl = Delta - rho**2/2 - w of the
+   !> uniform disc, w = (8 a/pi**2) E(rho/a); force_error: the limit's ~1e-8 of P.
+   subroutine load_full(delta, history, result)
+      real(dp), intent(in) :: delta
+      type(cap_history), intent(inout) :: history
+      type(cap_result), intent(out) :: result
+      real(dp) :: a, dummy
+      a = -8.0_dp/pi**2 + sqrt(64.0_dp/pi**4 + 2.0_dp*delta)
+      history%contact = a
+      history%cap = a
+      history%disc = a
+      history%u_cheb = 0.0_dp
+      history%n_panels = 1
+      history%s_break(0:1) = [0.0_dp, 1.0_dp]
+      call u_plastic(history, 0.0_dp, history%residual, dummy)
+      call unscale(history, 1.5_dp*a**2, 3.0_dp*a/(a + 8.0_dp/pi**2), a, a, 1.0_dp, &
+         & 1.0e-8_dp*1.5_dp*a**2*history%force_y, result)
+   end subroutine load_full
+
+   !> The unloading meshes of the last two levels (m/2 and m rings) into history.
+   subroutine keep_unloading(history, m, error)
+      type(cap_history), intent(inout) :: history
+      integer, intent(in) :: m
       type(egw_error), allocatable, intent(out) :: error
-      type(cap_options) :: quick
-      real(dp) :: shift(3), try
-      integer :: i
-      quick = options
-      quick%max_sweeps = min(options%max_sweeps, 2000)
-      shift = [0.0_dp, 1.0_dp, -1.0_dp]*outer/(3.0_dp*real(n, dp))
-      if (centre > 0.0_dp) then
-         do i = 1, size(shift)
-            try = centre + shift(i)
-            call make_level(n, outer, try, lev, error)
-            if (allocated(error)) return
-            p = min(1.0_dp, sqrt(max(0.0_dp, delta - lev%rho**2)))
-            call load_level(lev, delta, quick, p, error)
-            if (.not. allocated(error)) then
-               centre = try
-               return
-            end if
-         end do
-      end if
-      centre = 0.0_dp
-      call make_level(n, outer, centre, lev, error)
-      if (allocated(error)) return
-      p = min(1.0_dp, sqrt(max(0.0_dp, delta - lev%rho**2)))
-      call load_level(lev, delta, options, p, error)
-   end subroutine load_on_level
+      integer :: l, n
+      history%n_unload = [m/2, m]
+      allocate (history%x_unload(m, 2), history%v_unload(m, 2))
+      history%x_unload = 0.0_dp
+      history%v_unload = 0.0_dp
+      do l = 1, 2
+         n = history%n_unload(l)
+         call unload_mesh(n, history%x_unload(1:n, l), history%v_unload(1:n, l), &
+            & history%r_unload(l), history%lu_unload, history%piv_unload, error)
+         if (allocated(error)) return
+      end do
+   end subroutine keep_unloading
 
    pure subroutine hertz_scaled(d, f, k, a, pm)
       real(dp), intent(in) :: d
@@ -506,10 +719,9 @@ contains
       real(dp), intent(in) :: delta              !< overlap <= delta_max
       type(cap_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: d, f, k, a, c, pm, f_prev, ferr
-      integer :: l
-      type(cap_level) :: lev
-      real(dp), allocatable :: p(:)
+      real(dp) :: d, f, k, a, pm, b, dl, fc, u, du
+      real(dp), allocatable :: q(:, :)
+      integer :: m, i, info
       if (history%delta_y <= 0.0_dp) then
          call fatal_error(error, egw_invalid_argument, "cap_unload: history not loaded")
          return
@@ -535,30 +747,26 @@ contains
          call unscale(history, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, result)
          return
       end if
-      f_prev = 0.0_dp
-      ferr = 0.0_dp
-      do l = 1, history%n_levels
-         call make_level(history%n(l), history%outer, history%centre(l), lev, error)
-         if (allocated(error)) return
-         call unload_level(lev, history%u_pl(1:lev%n, l), d, history%options, p, error)
-         if (allocated(error)) return
-         call read_off(lev, p, huge(1.0_dp), f, k, a, c, pm)
-         if (l == history%n_levels) ferr = abs(f - f_prev)*history%force_y
-         f_prev = f
+      call unload_radius(history, 1, d, b, error)
+      if (allocated(error)) return
+      call unload_at(history, 1, b, dl, fc)
+      fc = fc + 3.0_dp*b*history%r_unload(1)*(d - dl)
+      call unload_radius(history, 2, d, b, error)
+      if (allocated(error)) return
+      call unload_at(history, 2, b, dl, f)
+      ! the root's last misfit d - dl to first order (dP/dDelta = 3 b r1 at fixed b)
+      f = f + 3.0_dp*b*history%r_unload(2)*(d - dl)
+      k = 3.0_dp*b*history%r_unload(2)
+      m = history%n_unload(2)
+      allocate (q(m, 1))
+      do i = 1, m
+         call u_plastic(history, b*history%x_unload(i, 2), u, du)
+         q(i, 1) = (d - 0.5_dp*(b*history%x_unload(i, 2))**2 - u)/b
       end do
-      call unscale(history, f, k, a, 0.0_dp, pm, ferr, result)
+      call dgetrs('N', m, 1, history%lu_unload, m, history%piv_unload, q, m, info)
+      pm = maxval(q(:, 1))
+      call unscale(history, f, k, b, 0.0_dp, pm, abs(f - fc)*history%force_y, result)
    end subroutine cap_unload
-
-   subroutine unload_level(lev, u_pl, d, options, p, error)
-      type(cap_level), intent(in) :: lev
-      real(dp), intent(in) :: u_pl(:), d
-      type(cap_options), intent(in) :: options
-      real(dp), allocatable, intent(out) :: p(:)
-      type(egw_error), allocatable, intent(out) :: error
-      p = min(1.0_dp, sqrt(max(0.0_dp, d - lev%rho**2 - u_pl)))
-      call solve_box(lev, lev%area*(0.5_dp*lev%rho**2 + u_pl - d), huge(1.0_dp), options, &
-         & p, error)
-   end subroutine unload_level
 
    !> Scaled loading work W(Delta_m) = int_0^Delta_m P dDelta (units P_y delta_y):
    !> 2/5 up to first yield, then Gauss-Legendre in t, Delta = 1 + (Delta_m - 1) t**2.

@@ -151,11 +151,9 @@ contains
    end subroutine cap_impact
 
    !> The cap solver's options for restitution (doc/theory.md section 12): the solves'
-   !> (100 and 200 rings) with 16 Gauss points per work integral. Measured against
-   !> test/data/cap_reference.csv from 2 to 100 v_y: within 5e-4 of e (0.08 %; the goal
-   !> is 1 %), about 1 s per impact. cap_options()' 100/200/400 rings do not converge
-   !> here: a 400-ring box problem on the quadrature's overlaps cycles in the active set
-   !> and stalls in PSOR.
+   !> (fitted meshes of 64 rings, 32 for the estimate) with 16 Gauss points per work
+   !> integral. Measured against test/data/cap_reference.csv from 2 to 100 v_y: within
+   !> 3.4e-6 of e (the goal is 1 %).
    pure function restitution_options() result(options)
       type(cap_options) :: options
       options = cap_solve_options()

@@ -3,11 +3,10 @@
 !> closed form up to first yield delta_y (a node there: the curvature jumps), the cap's
 !> loading solves above it.
 !>
-!> Slopes: the cap solver's loading stiffness holds the capped rings fixed, which misses
-!> the thin elastic edge of a nearly fully capped contact (it is 0 from ~10 delta_y). So
-!> the table's slopes above delta_y are not the solver's but the derivative of the
-!> quadratic through each node and its two neighbours (through the last three at the last
-!> node), Hertz's exact one at delta_y (the loading stiffness is continuous there). The
+!> Slopes: the derivative of the quadratic through each node and its two neighbours
+!> (through the last three at the last node), Hertz's exact one at delta_y (the loading
+!> stiffness is continuous there). (The cap solver's stiffness is the loading tangent now,
+!> egw_cap_sphere's envelope; the quadratic slopes are kept: the checks below see them.) The
 !> intervals are bisected until the cubic Hermite with those slopes meets a solve at every
 !> midpoint to rel_tol of the force there, and its slope there the chord's (the parabola
 !> through the three solves) to rel_tol of the force over 16/h (all intervals are checked
@@ -24,7 +23,7 @@ module egw_cap_loading
 
    public :: build_cap_loading
 
-   !> Most nodes above delta_y (a curve that needs more meets the solver's noise).
+   !> Most nodes above delta_y (a smooth curve needs far fewer).
    integer, parameter :: max_cap_nodes = 2000
 
 contains
@@ -136,7 +135,7 @@ contains
                & format_real(params%flow_pressure)//": the cap's loading curve needs more "// &
                & "than "//int_str(max_cap_nodes)//" nodes for rel_tol = "// &
                & format_real(rel_tol)//" (its largest midpoint error still "// &
-               & format_real(worst)//": the cap solver's noise?)")
+               & format_real(worst)//")")
             return
          end if
          ! split: a failed interval's midpoint becomes a node, its halves unchecked

@@ -62,7 +62,6 @@ contains
          return
       end if
       if (params%flow_pressure > 0.0_dp .and. delta_max > max_cap_range*first_yield(params)) then
-         ! (its builds then take many minutes: the cap solver's force is a sawtooth there)
          call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max)// &
             & ": above 1000 delta_y (first yield delta_y = "//format_real(first_yield(params))// &
             & "), where a hysteresis table with the cap ends: a/R is ~70 p_y/E* there, far "// &
