@@ -586,7 +586,7 @@ contains
    !> Loading solve at delta_max (>= 0) of a sphere R, E* against the cap p_y; keeps the
    !> plastic field in history for cap_unload. Below delta_y: Hertz (closed form).
    subroutine cap_load(radius, modulus, flow_pressure, delta_max, options, history, result, &
-      & error)
+      & error, name)
       real(dp), intent(in) :: radius          !< equivalent radius R > 0
       real(dp), intent(in) :: modulus         !< effective modulus E* > 0
       real(dp), intent(in) :: flow_pressure   !< p_y, 0 < p_y < E*
@@ -595,14 +595,19 @@ contains
       type(cap_history), intent(out) :: history
       type(cap_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
+      !> the overlap's name in messages (default "delta_max"; a loading solve's: "delta")
+      character(len=*), intent(in), optional :: name
+      character(len=:), allocatable :: label
       type(fitted_load) :: st, coarse
       real(dp) :: dm, f, k, a, pm, gamma, u, du
       integer :: m
       logical :: full
+      label = "delta_max"
+      if (present(name)) label = name
       call check_inputs(radius, modulus, flow_pressure, options, error)
       if (allocated(error)) return
       if (.not. ieee_is_finite(delta_max) .or. .not. delta_max >= 0.0_dp) then
-         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+         call fatal_error(error, egw_invalid_argument, label//" = "//format_real(delta_max) &
             & //": must be finite and >= 0")
          return
       end if
@@ -615,7 +620,7 @@ contains
       dm = delta_max/history%delta_y
       history%delta_max = dm
       if (dm > 1.0e6_dp) then
-         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+         call fatal_error(error, egw_invalid_argument, label//" = "//format_real(delta_max) &
             & //": beyond 1e6 delta_y (the cap model's range)")
          return
       end if

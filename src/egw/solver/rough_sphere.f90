@@ -147,7 +147,7 @@ contains
       call check_input(params, options, delta, error)
       if (allocated(error)) return
       if (smooth_capped(params, delta)) then
-         call cap_loading(params, options, delta, cap, result, error)
+         call cap_loading(params, options, delta, cap, result, error, "delta")
          return
       end if
       if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
@@ -309,7 +309,7 @@ contains
          hist%reversible = negligible(prob)
       end if
       if (hist%capped) then
-         call cap_loading(params, options, delta_max, hist%cap, hist%loading, error)
+         call cap_loading(params, options, delta_max, hist%cap, hist%loading, error, "delta_max")
          if (allocated(error)) return
       else if (hist%reversible) then
          call solve_contact(params, options, delta_max, hist%loading, error)
@@ -712,16 +712,17 @@ contains
 
    !> The smooth sphere with the cap loaded to delta (> delta_y): egw_cap_sphere's solve
    !> on cap_solve_options and the history its unloading needs.
-   subroutine cap_loading(params, options, delta, history, result, error)
+   subroutine cap_loading(params, options, delta, history, result, error, name)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta
       type(cap_history), intent(out) :: history
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: name   !< the overlap's name in messages
       type(cap_result) :: res
       call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
-         & cap_solve_options(), history, res, error)
+         & cap_solve_options(), history, res, error, name)
       if (allocated(error)) return
       call put_cap_result(res, options, result)
    end subroutine cap_loading
