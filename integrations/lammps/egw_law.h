@@ -62,10 +62,11 @@ struct EgwLaw {
   // (pi p_y/(2 E*))^2; one table in units of delta_y (R = E* = 1, p_y = 2/pi: delta_y =
   // 1), universal: F = E* sqrt(R) delta_y^1.5 p(delta/delta_y) (doc/theory.md section 12)
   double cap_c = 0;
-  // its reach at most CAP_X_MAX delta_y, its rel_tol at least CAP_TOL_MIN (the cap solver's
-  // force is a sawtooth of ~3e-3 beyond ~15 delta_y: finer tables chase it for minutes)
+  // its reach at most CAP_X_MAX delta_y, its rel_tol at least CAP_TOL_MIN (to 40 delta_y on
+  // 2 threads: 1e-4 in 1.1 s, 1e-5 in 3.1 s, 1e-6 in 13 s, 2026-11-29; the cap solver is
+  // smooth in delta since then, it was a sawtooth of ~3e-3 that held tables at 1e-3)
   static constexpr double CAP_X_MAX = 40.0;
-  static constexpr double CAP_TOL_MIN = 1e-3;
+  static constexpr double CAP_TOL_MIN = 1e-5;
   double tol_cap = 0, built_tol = 0;    // the cap table's rel_tol, and the TOL asked for
   double cap_wanted = 0;           // overlap_max R in delta_y (the reach before the cap)
   EgwSubmodels::Params sub;        // damping, tangential, rolling, twisting, heat

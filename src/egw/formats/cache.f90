@@ -28,8 +28,9 @@ module egw_cache
       & build_hysteresis_cached
 
    !> Bumped whenever a build's algorithm changes what it produces, so that entries of an
-   !> earlier build (same parameters) are not taken for the new one.
-   integer, parameter, public :: cache_revision = 4
+   !> earlier build (same parameters) are not taken for the new one (5: the smooth Hertz +
+   !> cap solver, 2026-11-29).
+   integer, parameter, public :: cache_revision = 5
 
 
 contains
