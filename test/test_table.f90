@@ -313,14 +313,15 @@ contains
    end subroutine test_hertz_cutoff
 
    !> The deep-overlap law table_prepare fits once (the sigma -> 0 regime of a DEM deck
-   !> evaluates it every step) gives the values of deep_force fitted anew, bit for bit,
+   !> evaluates it every step) gives the values of deep_force (and its energy and contact
+   !> radius those of deep_energy, deep_radius_factor) fitted anew, bit for bit,
    !> also after a CSV and a binary round trip (the readers prepare too); and a Hertz
    !> table's law at 1e3..1e10 delta_max is Hertz's closed form to 1e-12: there
    !> P = c g^1.5 with g = delta - d_e + g_e exact, so the only departure is
    !> 1.5 (g_e - d_e)/delta ~ 1.5 tol d_e/delta <= 1.5e-9 tol, far below 1e-12, and
    !> rounding (cbrt and the Newton step: a few ulp).
    subroutine test_deep_prepared(error)
-      use egw_table_ends, only: deep_force
+      use egw_table_ends, only: deep_force, deep_energy, deep_radius_factor
       type(error_type), allocatable, intent(out) :: error
       type(force_table) :: t, back
       type(egw_error), allocatable :: err
@@ -346,6 +347,13 @@ contains
                & d, f0, k0)
             call check(error, same_bits(f, f0) .and. same_bits(k, k0), "read table's deep law "// &
                & "at "//format_real(d)//" differs from deep_force's")
+            if (allocated(error)) return
+            call check(error, same_bits(table_energy(back, d), t%energy(n) + &
+               & deep_energy(t%delta_max, t%force(n), t%stiffness(n), &
+               & deep_coefficient(t%params), d)) .and. same_bits(table_contact_radius(back, d), &
+               & t%contact_radius(n)*deep_radius_factor(t%delta_max, t%force(n), &
+               & t%stiffness(n), deep_coefficient(t%params), d)), "read table's deep "// &
+               & "energy or contact radius at "//format_real(d)//" differs from the fit's")
             if (allocated(error)) return
             if (i < 3) cycle
             call check(error, f, p_hertz(2.0_dp, 0.5_dp, d), "Hertz far above", &

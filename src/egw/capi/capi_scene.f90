@@ -1,7 +1,8 @@
 !> C API of scenes (include/egw.h): the egw_scene
 !> struct, reading a namelist scene file, the model choice and the build of its tables
 !> as egw_table / egw_universal handles (released by egw_table_free /
-!> egw_universal_free), and the first yield of an impact (egw_first_yield). Errors go through egw_capi_utils' per-thread last-error message.
+!> egw_universal_free), and the first yield of an impact (egw_first_yield). Errors go
+!> through egw_capi_utils' per-thread last-error message.
 module egw_capi_scene
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc

@@ -12,7 +12,7 @@ module egw_table_ends
    private
 
    public :: tail_force, deep_force, deep_energy, deep_radius_factor, deep_reach
-   public :: deep_law, deep_law_fit, deep_law_force
+   public :: deep_law, deep_law_fit, deep_law_force, deep_law_energy, deep_law_radius_factor
 
    !> deep_force's law fitted once to a table's last node (deep_law_fit), so that an
    !> evaluation above it costs a cube root and a square root, not five powers: a contact
@@ -152,16 +152,24 @@ contains
    pure real(dp) function deep_energy(d_e, p_e, k_e, c, delta) result(energy)
       real(dp), intent(in) :: d_e, p_e, k_e, c   !< as deep_force
       real(dp), intent(in) :: delta              !< overlap [length], >= d_e
-      real(dp) :: t_e, a, u_0, q
-      logical :: ok
-      call deep_fit(p_e, k_e, c, t_e, a, u_0, ok)
-      if (ok) then
-         q = deep_root(t_e, a, u_0, delta - d_e)/t_e
-         energy = p_e*(3*t_e**3*(q**7.5_dp - 1)/7.5_dp + a*t_e*(q**5.5_dp - 1)/5.5_dp)
-      else
-         energy = p_e*(delta - d_e) + 0.5_dp*k_e*(delta - d_e)**2
-      end if
+      energy = deep_law_energy(deep_law_fit(d_e, p_e, k_e, c), delta)
    end function deep_energy
+
+   !> deep_energy with the fitted law (the same values bit for bit; q^5 sqrt(q), no
+   !> power function).
+   pure real(dp) function deep_law_energy(law, delta) result(energy)
+      type(deep_law), intent(in) :: law
+      real(dp), intent(in) :: delta   !< overlap [length], >= law%d_e
+      real(dp) :: q, q5, rq
+      if (law%ok) then
+         q = deep_root(law%t_e, law%a, law%u_0, delta - law%d_e)/law%t_e
+         rq = sqrt(q)
+         q5 = (q*q)*(q*q)*q*rq                    ! q^5.5
+         energy = law%p_e*(3*law%t_e**3*(q5*q*q - 1)/7.5_dp + law%a*law%t_e*(q5 - 1)/5.5_dp)
+      else
+         energy = law%p_e*(delta - law%d_e) + 0.5_dp*law%k_e*(delta - law%d_e)**2
+      end if
+   end function deep_law_energy
 
    !> The factor sqrt(g/g_e) by which deep_force's law grows the contact radius (Hertz's
    !> a = sqrt(R g) on the layer's overlap g); 1 + (delta - d_e) k_e/(2 p_e) where
@@ -169,16 +177,22 @@ contains
    pure real(dp) function deep_radius_factor(d_e, p_e, k_e, c, delta) result(factor)
       real(dp), intent(in) :: d_e, p_e, k_e, c   !< as deep_force
       real(dp), intent(in) :: delta              !< overlap [length], >= d_e
-      real(dp) :: t_e, a, u_0
-      logical :: ok
-      factor = 1.0_dp
-      call deep_fit(p_e, k_e, c, t_e, a, u_0, ok)
-      if (ok) then
-         factor = (deep_root(t_e, a, u_0, delta - d_e)/t_e)**1.5_dp
-      else if (p_e > 0.0_dp) then
-         factor = max(1.0_dp, 1.0_dp + (delta - d_e)*k_e/(2*p_e))
-      end if
+      factor = deep_law_radius_factor(deep_law_fit(d_e, p_e, k_e, c), delta)
    end function deep_radius_factor
+
+   !> deep_radius_factor with the fitted law (the same values bit for bit).
+   pure real(dp) function deep_law_radius_factor(law, delta) result(factor)
+      type(deep_law), intent(in) :: law
+      real(dp), intent(in) :: delta   !< overlap [length], >= law%d_e
+      real(dp) :: q
+      factor = 1.0_dp
+      if (law%ok) then
+         q = deep_root(law%t_e, law%a, law%u_0, delta - law%d_e)/law%t_e
+         factor = q*sqrt(q)
+      else if (law%p_e > 0.0_dp) then
+         factor = max(1.0_dp, 1.0_dp + (delta - law%d_e)*law%k_e/(2*law%p_e))
+      end if
+   end function deep_law_radius_factor
 
    !> The overlap where deep_force's force reaches p_lim (>= p_e): closed form in g,
    !> delta = d_e + (g - g_e) + a (g^(1/3) - g_e^(1/3)), g = g_e (p_lim/p_e)^(2/3). The

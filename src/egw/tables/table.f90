@@ -38,11 +38,13 @@ module egw_table
    use egw_flat_law, only: flat_law
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
    use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor, &
-      & deep_law, deep_law_fit, deep_law_force
+      & deep_law, deep_law_fit, deep_law_force, deep_law_energy, &
+      & deep_law_radius_factor
    implicit none
    private
 
-   public :: build_table, build_table_law, build_table_fixed_cutoff, build_tables_shared, table_interval, &
+   public :: build_table, build_table_law, build_table_fixed_cutoff, build_tables_shared, &
+      & table_interval, &
       & table_eval, table_eval_tail_law, table_eval_cached, table_segment, segment_eval, &
       & table_eval_log, table_eval_all, &
       & table_covers, table_energy, &
@@ -1157,8 +1159,12 @@ contains
       if (.not. delta > table%cutoff) then
          energy = 0.0_dp
       else if (delta >= table%delta_max) then
-         energy = table%energy(n) + deep_energy(table%delta_max, table%force(n), &
-            & table%stiffness(n), deep_coefficient(table%params), delta)
+         if (table%deep%ready) then
+            energy = table%energy(n) + deep_law_energy(table%deep, delta)
+         else
+            energy = table%energy(n) + deep_energy(table%delta_max, table%force(n), &
+               & table%stiffness(n), deep_coefficient(table%params), delta)
+         end if
       else
          i = find_interval(table, delta)
          energy = table%energy(i) + interval_integral(table, i, delta - table%delta(i))
@@ -1178,8 +1184,12 @@ contains
       if (.not. delta >= table%cutoff) then
          radius = 0.0_dp
       else if (delta >= table%delta_max) then
-         radius = table%contact_radius(n)*deep_radius_factor(table%delta_max, &
-            & table%force(n), table%stiffness(n), deep_coefficient(table%params), delta)
+         if (table%deep%ready) then
+            radius = table%contact_radius(n)*deep_law_radius_factor(table%deep, delta)
+         else
+            radius = table%contact_radius(n)*deep_radius_factor(table%delta_max, &
+               & table%force(n), table%stiffness(n), deep_coefficient(table%params), delta)
+         end if
       else
          i = find_interval(table, delta)
          h = table%delta(i + 1) - table%delta(i)
