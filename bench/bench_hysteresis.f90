@@ -262,8 +262,8 @@ contains
    pure real(dp) function table_bytes(t) result(bytes)
       type(hysteresis_table), intent(in) :: t
       bytes = 8.0_dp*(size(t%m) + size(t%length) + size(t%inv_span) + size(t%s) + &
-         & size(t%q) + size(t%slope) + size(t%coef) + size(t%inv_ds) + &
-         & size(t%lagrange)) + 4.0_dp*(size(t%run_first) + &
+         & size(t%gap) + size(t%slope) + size(t%coef) + size(t%inv_ds) + &
+         & size(t%gap_integral) + size(t%lagrange)) + 4.0_dp*(size(t%run_first) + &
          & size(t%run_last) + size(t%m_lookup%bucket) + size(t%s_lookup%bucket)) + &
          & 8.0_dp*(6*size(t%loading%delta) + size(t%loading%seg)) + &
          & 4.0_dp*size(t%loading%bucket)

@@ -545,10 +545,8 @@ void egw_universal_free(egw_universal *u);
  * delta_max_state owned by the caller (a double per contact; a new contact starts at
  * -HUGE_VAL). Loading (delta >= state) follows the loading table and moves the state up;
  * below the state, the unloading curve of that state (reloading retraces it). Built
- * adaptively: solves at the midpoints of both grids agree to rel_tol of the local
- * unloading force P (of 1e-3 of the force at the turning point where P is below that; the
- * curves are stored as q = (P/P(delta_max))^(2/3), whose cubics err relative to P).
- * Evaluation allocates nothing and takes no lock; a table is read-only
+ * adaptively: solves at the midpoints of both grids agree to rel_tol of the force at the
+ * turning point. Evaluation allocates nothing and takes no lock; a table is read-only
  * after the build, so any number of threads may evaluate it (each with its own states).
  * EP-GW alone does not let a packing come to rest: it dissipates only while a contact
  * loads beyond its past maximum overlap, and below it unloading and reloading retrace one
@@ -644,9 +642,9 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
                                              double *force, double *stiffness)
 {
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
-   * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10]
-   * (the force is its 3/2 power, 0 where it is not positive), [17..23] the loading
-   * table's interval (ends, cubic in delta - [17], 1 where it is ln P) */
+   * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
+   * [17..23] the loading table's interval (ends, cubic in delta - [17], 1 where it is
+   * ln P) */
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (!(state[2] == tag)) return 0;
@@ -655,27 +653,24 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
   if (!piece && !loading) return 0;
   if (piece) {
     double x = delta - state[10], x2 = x * x;
-    double v = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
-    double d = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
-    if (v > 0.0) {
-      double r = sqrt(v);
-      f = v * r;
-      k = 1.5 * r * d;
-    }
-  } else {
-    /* the loading interval's force */
+    f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
+    k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
+  }
+  if (loading || state[23] > 0.0) {
+    /* the loading interval's force: all of it when loading; on a piece its ln P part */
     double t = delta - state[17], t2 = t * t;
     double v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
     double d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
     if (state[23] > 0.0) {
       double p = exp(v);
-      f = p;
-      k = p * d;
+      f = f + p;
+      k = k + p * d;
     } else {
       f = v;
       k = d;
     }
   }
+  if (piece && !(f > 0.0)) f = k = 0.0;
   /* not a number (a garbled state with this table's tag): the call refuses it */
   if (!(f - f == 0.0 && k - k == 0.0)) return 0;
   if (loading) {
@@ -721,20 +716,17 @@ void egw_hysteresis_free(egw_hysteresis *h);
 
 /* Write h to path (NUL-terminated) atomically (temporary file, then rename: a failed write
  * leaves an existing file intact). format: EGW_FORMAT_CSV (unloading data as rows
- * delta_max,length,s,q,dq_ds, q = (P/P(delta_max))^(2/3); loading curve and metadata as
- * '#' lines; a checksum line last: CSV format 3, 4 with the cap) or EGW_FORMAT_BINARY
- * (checksummed; version 3, 4 with the cap); doc/formats.md section 6.
+ * delta_max,s,ratio,dratio_ds; loading curve and metadata as '#' lines; a checksum line
+ * last) or EGW_FORMAT_BINARY (versioned, checksummed); doc/formats.md section 6.
  * Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (other formats), EGW_NULL_POINTER. */
 int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
 
 /* Read a hysteresis table written by egw_hysteresis_write (CSV or binary, recognised from
  * the file's start). *out receives a handle only for a file that passed every check
  * (checksum; finite values; the loading curve every check of egw_table_read, stiffness
- * and energy consistent with its forces included; increasing grids; q = 1 at the
+ * and energy consistent with its forces included; increasing grids; gaps 0 at the
  * turning point and within [0, 1], with slopes that keep each curve near that range:
- * doc/formats.md section 6). Files of egw before 2026-11-29 (binary versions 1, 2 and CSV
- * formats 1, 2: the unloading curves as a gap to the loading curve) are refused with
- * EGW_BAD_FILE saying so: build the table again.
+ * doc/formats.md section 6).
  * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),
  * EGW_NULL_POINTER. */
 int egw_hysteresis_read(const char *path, egw_hysteresis *out);
@@ -757,11 +749,8 @@ typedef struct {
   double reference_force; /* P_ref [force] of the loading table's cut-off rule: the loading
                            * force at min(0, delta_max) for rough models, at delta_max for
                            * Hertz (egw_table_info.reference_force of the loading curve) */
-  double rel_tol;      /* requested tolerance, relative to the local unloading force P down to
-                        * 1e-3 of the force at the turning point, below relative to 1e-3 of
-                        * that (doc/theory.md section 8) */
-  double max_error;    /* largest mismatch found at the build's check solves, relative as
-                        * rel_tol */
+  double rel_tol;      /* requested tolerance, relative to the force at the turning point */
+  double max_error;    /* largest mismatch found at the build's check solves */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;
 

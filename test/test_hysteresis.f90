@@ -5,10 +5,9 @@ module test_hysteresis
    use test_compare, only: same => same_bits, c_message => last_error_c
    use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, format_real, &
       & egw_not_converged
-   use egw_params, only: contact_params, model_epgw, model_egw, model_hertz
+   use egw_params, only: contact_params, model_epgw, model_egw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
-      & solve_contact_unload, loading_history, load_history, solve_unload
-   use egw_cap_sphere, only: cap_units
+      & solve_contact_unload
    use egw_table, only: table_eval
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
@@ -51,10 +50,6 @@ contains
       testsuite = [ &
          & new_unittest("DEM loop restitution = restitution to 1e-4", test_dem_restitution), &
          & new_unittest("table within rel_tol of solves between nodes", test_accuracy), &
-         & new_unittest("EP-GW 1e-4: rel_tol of the local force down to 1e-3 P(m)", &
-         & test_local_epgw), &
-         & new_unittest("Hertz + cap 1e-4: rel_tol of the local force down to 1e-3 P(m)", &
-         & test_local_cap), &
          & new_unittest("loading above delta_max: the deep law", test_deep_loading), &
          & new_unittest("low delta_max: loading table to the deep law's floor", &
          & test_deep_floor), &
@@ -129,135 +124,6 @@ contains
       call check(error, worst <= tol, "worst error "//format_real(worst)// &
          & " of P(delta_max) over "//to_string(size(t%m))//" delta_max nodes")
    end subroutine test_accuracy
-
-   !> EP-GW (the bench's pair: mu 4, psi 2) at rel_tol 1e-4 over [-2, 3] sigma: against
-   !> solve_contact_unload at rel_tol 1e-8 (its history loaded at 1e-10; the solver, not
-   !> an interpolation, so independent of what is tested) far below turning points (local
-   !> errors below).
-   subroutine test_local_epgw(error)
-      type(error_type), allocatable, intent(out) :: error
-      type(hysteresis_table) :: t
-      type(egw_error), allocatable :: err
-      call build_hysteresis(ep, solver_options(), -2.0_dp, 3.0_dp, 1.0e-4_dp, t, err)
-      if (allocated(err)) then
-         call test_failed(error, "build: "//err%message)
-         return
-      end if
-      call local_errors(t, error)
-   end subroutine test_local_epgw
-
-   !> A Hertz + cap table (R = 1 mm, E* = 100 GPa, p_y = 1 GPa) at rel_tol 1e-4 over
-   !> [-delta_y, 10 delta_y]: against the cap solver's unloading solves (load_history,
-   !> solve_unload) far below turning points (local errors below).
-   subroutine test_local_cap(error)
-      type(error_type), allocatable, intent(out) :: error
-      type(contact_params), parameter :: capped = contact_params(model=model_hertz, &
-         & radius=1.0e-3_dp, modulus=1.0e11_dp, flow_pressure=1.0e9_dp)
-      type(hysteresis_table) :: t
-      type(egw_error), allocatable :: err
-      real(dp) :: dy, a_y, f_y
-      call cap_units(capped%radius, capped%modulus, capped%flow_pressure, dy, a_y, f_y)
-      call build_hysteresis(capped, solver_options(), -dy, 10*dy, 1.0e-4_dp, t, err)
-      if (allocated(err)) then
-         call test_failed(error, "build: "//err%message)
-         return
-      end if
-      call local_errors(t, error)
-   end subroutine test_local_cap
-
-   !> The table t (rel_tol) at turning points m halfway between its delta_max nodes, at
-   !> the overlaps where its force is 0.5 .. 1e-4 of the force at the turning point P(m)
-   !> (bisection on the table), each moved to the middle of its s cell (where a cubic's
-   !> error peaks), against unloading solves: within 2 rel_tol max(P, 1e-3 P(m)) (issue
-   !> 33 item 5: before, the tolerance held relative to P(m) only, and the error reached
-   !> 1.4 % of P far down). The build bisects until its own error estimate (its cubics
-   !> against solves at rel_tol/10 at the midpoints of its cells, where a cubic's error
-   !> peaks) is below rel_tol of the local force; the factor 2 allows for what the estimate
-   !> does not see: the check solves' own rel_tol/10 and the bound's being taken at the
-   !> cells' midpoints while the points here lie between two grids' midpoints (an s cell's
-   !> middle at a delta_max halfway between nodes, whose curve is s-interpolated from four).
-   subroutine local_errors(t, error)
-      type(hysteresis_table), intent(in) :: t
-      type(error_type), allocatable, intent(out) :: error
-      real(dp), parameter :: ratios(7) = [0.5_dp, 0.1_dp, 1.0e-2_dp, 3.0e-3_dp, &
-         & 1.2e-3_dp, 3.0e-4_dp, 1.0e-4_dp], factor = 2.0_dp
-      type(solver_options) :: fine
-      type(loading_history) :: hist
-      type(solve_result) :: res, top
-      type(egw_error), allocatable :: err
-      real(dp) :: m, d, f, k, state, worst, rel, lo, hi, s, span, worst_at(2), iota
-      integer :: j, i, it, stat, n, l
-      fine%rel_tol = 1.0e-8_dp
-      worst = 0.0_dp
-      worst_at = 0.0_dp
-      n = 0
-      do j = 2, size(t%m) - 2, max(1, (size(t%m) - 4)/6)
-         m = 0.5_dp*(t%m(j) + t%m(j + 1))
-         if (t%capped) then
-            call load_history(t%params, solver_options(), m, hist, top, err)
-         else
-            call solve_contact(t%params, fine, m, top, err)
-         end if
-         if (allocated(err)) exit
-         ! s = (m - delta) iota, iota = 1/(s_max L) interpolated linearly (enough to land
-         ! inside an s cell's middle half)
-         iota = 0.5_dp*(t%inv_span(j) + t%inv_span(j + 1))
-         span = 1.0_dp/iota
-         do i = 1, size(ratios)
-            ! the overlap where the table's force is ratios(i) of P(m): bisection
-            lo = t%loading%cutoff
-            hi = m
-            do it = 1, 200
-               d = 0.5_dp*(lo + hi)
-               state = m
-               call hysteresis_eval(t, d, state, f, k, stat)
-               if (f < ratios(i)*top%force) then
-                  lo = d
-               else
-                  hi = d
-               end if
-            end do
-            ! moved to the middle of its s cell
-            s = min((m - d)*iota, 1.0_dp)
-            do l = 1, size(t%s) - 1
-               if (t%s(l + 1) > s) exit
-            end do
-            if (l >= size(t%s)) cycle
-            d = m - 0.5_dp*(t%s(l) + t%s(l + 1))*span
-            if (.not. d > t%loading%cutoff) cycle   ! no force below (< 1e-12 of P_ref)
-            if (t%capped) then
-               call solve_unload(hist, d, res, err)
-            else
-               call solve_contact_unload(t%params, fine, d, m, res, err)
-               if (allocated(err)) then
-                  ! not always reached on the finest mesh: 1e-7, still 1e-3 of the bound
-                  deallocate (err)
-                  call solve_contact_unload(t%params, solver_options(rel_tol=1.0e-7_dp), d, &
-                     & m, res, err)
-               end if
-            end if
-            if (allocated(err)) exit
-            state = m
-            call hysteresis_eval(t, d, state, f, k, stat)
-            rel = abs(f - res%force)/max(res%force, 1.0e-3_dp*top%force)
-            n = n + 1
-            if (rel > worst) then
-               worst = rel
-               worst_at = [m, res%force/top%force]
-            end if
-         end do
-         if (allocated(err)) exit
-      end do
-      if (allocated(err)) then
-         call test_failed(error, err%message)
-         return
-      end if
-      print '(4x, a, es9.2, a, i0, a, es9.2, a, es9.2, a, i0, a, i0)', &
-         & "worst local error ", worst, " of ", n, " points (at delta_max ", worst_at(1), &
-         & ", P/P(m) ", worst_at(2), "), grid ", size(t%m), " x ", size(t%s)
-      call check(error, n >= 10 .and. worst <= factor*t%rel_tol, "worst error "// &
-         & format_real(worst)//" of max(P, 1e-3 P(m)) over "//to_string(n)//" points")
-   end subroutine local_errors
 
    !> The loading curve above the table's delta_max (6 sigma) follows the deep-overlap law
    !> (doc/theory.md §9): against loading solves at 10 overlaps up to 1e4 sigma (the scaled

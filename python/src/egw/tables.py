@@ -451,8 +451,7 @@ class HysteresisInfo:
         P_ref of the loading table [force].
     rel_tol, max_error : float
         Requested tolerance and largest mismatch found at the check solves, relative to
-        the local unloading force (to 1e-3 of the force at the turning point where the
-        unloading force is below that).
+        the force at the turning point.
     """
     model: int
     reversible: bool

@@ -29,7 +29,7 @@ module egw_cache
 
    !> Bumped whenever a build's algorithm changes what it produces, so that entries of an
    !> earlier build (same parameters) are not taken for the new one.
-   integer, parameter, public :: cache_revision = 5
+   integer, parameter, public :: cache_revision = 4
 
 
 contains

@@ -22,25 +22,19 @@ module egw_hysteresis_format
    public :: write_hysteresis, read_hysteresis
 
    character(len=8), parameter :: magic = "EGWHYST1"
-   !> Version 3: no flow-pressure cap; version 4 (the cap, params%flow_pressure > 0: Hertz
+   !> Version 1: no flow-pressure cap; version 2 (the cap, params%flow_pressure > 0: Hertz
    !> + cap, or a rough model + cap, told apart by model and sigma as the evaluation does):
-   !> flow_pressure follows the seven parameters (one float64 more in the header). Both
-   !> store the reduced force q = (P/P_load(delta_max))**(2/3) and dq/ds; versions 1 and 2
-   !> (the same layouts) stored the gap g = (P_load(delta) - P)/P_load(delta_max) of egw
-   !> before 2026-11-29 and are refused (a rebuild is needed: the gap cannot be resampled
-   !> to the local tolerance).
-   integer(int32), parameter :: hysteresis_version = 3, cap_version = 4
-   integer(int32), parameter :: old_version = 1, old_cap_version = 2
+   !> flow_pressure follows the seven parameters (one float64 more in the header). Tables
+   !> without the cap are still written as version 1, byte for byte as before.
+   integer(int32), parameter :: hysteresis_version = 1, cap_version = 2
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
    !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
-   character(len=*), parameter :: csv_columns = "delta_max,length,s,q,dq_ds"
-   !> CSV formats 3 and 4 (the cap's: a flow_pressure line) store q as the binary
-   !> versions 3 and 4; formats 1 and 2 (the gap, columns ...,gap,dgap_ds) are refused.
-   character(len=*), parameter :: csv_title = "# egw hysteresis table, CSV format 3"
-   !> The title of a table with the cap (a flow_pressure line): an egw that knows only
-   !> format 3 refuses it rather than read it without the cap.
-   character(len=*), parameter :: csv_title_cap = "# egw hysteresis table, CSV format 4"
+   character(len=*), parameter :: csv_columns = "delta_max,length,s,gap,dgap_ds"
+   character(len=*), parameter :: csv_title = "# egw hysteresis table, CSV format 1"
+   !> The title of a Hertz + cap table (a flow_pressure line): an egw that knows only
+   !> format 1 refuses it rather than read it without the cap.
+   character(len=*), parameter :: csv_title_cap = "# egw hysteresis table, CSV format 2"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
 
@@ -52,7 +46,7 @@ module egw_hysteresis_format
       integer :: n_load = -1, n_m = -1, n_s = -1, model = -1, rev = -1, n_log = -1
       integer :: k_load = 0, k_row = 0
       real(dp) :: p(7) = -huge(1.0_dp), lmeta(7) = -huge(1.0_dp)
-      real(dp) :: flow_pressure = 0.0_dp   !< format 4 only
+      real(dp) :: flow_pressure = 0.0_dp   !< format 2 only
       real(dp) :: v(5)
    end type csv_reading
 
@@ -96,13 +90,6 @@ contains
       else if (starts_with(bytes, csv_columns//new_line("a")//csv_title) .or. &
          & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap)) then
          call parse_csv(path, bytes, table, error)
-      else if (starts_with(bytes, "delta_max,length,s,gap,dgap_ds"//new_line("a")// &
-         & "# egw hysteresis table, CSV format ")) then
-         call bad(error, path, "CSV format 1 or 2 (egw before 2026-11-29) stores the "// &
-            & "unloading curves as the gap to the loading curve, which this egw no longer "// &
-            & "reads (formats 3 and 4: the reduced force, accurate relative to the local "// &
-            & "force): build the table again")
-         return
       else
          call fatal_error(error, egw_bad_file, "path = "//path//": not an egw hysteresis "// &
             & "table (neither binary magic "//magic//" nor its CSV header)")
@@ -157,7 +144,7 @@ contains
          call put_f64(buf, pos, table%m)
          call put_f64(buf, pos, table%length)
          call put_f64(buf, pos, table%s)
-         call put_f64(buf, pos, reshape(table%q, [n_m*n_s]))
+         call put_f64(buf, pos, reshape(table%gap, [n_m*n_s]))
          call put_f64(buf, pos, reshape(table%slope, [n_m*n_s]))
       end if
       call put_i32(buf, pos, [checksum_i32(fnv1a32(buf(1:pos - 1)))])
@@ -188,14 +175,6 @@ contains
       if (head(2) /= byte_order_mark) then
          call bad(error, path, "byte order mark: written on a machine of the other "// &
             & "endianness, or corrupted")
-         return
-      end if
-      if (head(1) == old_version .or. head(1) == old_cap_version) then
-         call bad(error, path, "format version "//int_str(int(head(1)))//" (egw before "// &
-            & "2026-11-29) stores the unloading curves as the gap to the loading curve, "// &
-            & "which this egw no longer reads (versions "//int_str(int(hysteresis_version))// &
-            & " and "//int_str(int(cap_version))//": the reduced force, accurate relative "// &
-            & "to the local force): build the table again")
          return
       end if
       if (head(1) /= hysteresis_version .and. head(1) /= cap_version) then
@@ -229,8 +208,8 @@ contains
       table%params = params_from(int(head(4)), p)
       table%params%flow_pressure = flow(1)
       if (head(1) == cap_version .and. .not. flow(1) > 0.0_dp) then
-         call bad(error, path, "format version 4 with flow_pressure = "// &
-            & format_real(flow(1))//" (version 4 is the flow-pressure cap's, > 0)")
+         call bad(error, path, "format version 2 with flow_pressure = "// &
+            & format_real(flow(1))//" (version 2 is the flow-pressure cap's, > 0)")
          return
       end if
       table%reversible = head(5) /= 0
@@ -249,12 +228,12 @@ contains
       call get_f64(bytes, pos, table%loading%stiffness)
       call get_f64(bytes, pos, table%loading%energy)
       call get_f64(bytes, pos, table%loading%contact_radius)
-      allocate (table%m(n_m), table%length(n_m), table%s(n_s), table%q(n_s, n_m), &
+      allocate (table%m(n_m), table%length(n_m), table%s(n_s), table%gap(n_s, n_m), &
          & table%slope(n_s, n_m))
       call get_f64(bytes, pos, table%m)
       call get_f64(bytes, pos, table%length)
       call get_f64(bytes, pos, table%s)
-      call get_matrix(bytes, pos, table%q)
+      call get_matrix(bytes, pos, table%gap)
       call get_matrix(bytes, pos, table%slope)
    end subroutine parse_binary
 
@@ -294,10 +273,10 @@ contains
          head = head//"# loading.n_nodes = "//int_str(size(l%delta))//new_line("a")// &
             & "# loading.n_log = "//int_str(l%n_log)//new_line("a")// &
             & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
-            & "stiffness [modulus*length]; energy [modulus*length^3]; s, q [1]"// &
+            & "stiffness [modulus*length]; energy [modulus*length^3]; s, gap [1]"// &
             & new_line("a")// &
-            & "# rows: unloading force = P_load(delta_max)*max(q, 0)^(3/2) at s = "// &
-            & "(delta_max - delta)/(s_max*length), q cubic Hermite in s (slope dq_ds), cubic Lagrange in "// &
+            & "# rows: unloading force = P_load(delta) - P_load(delta_max)*gap at s = "// &
+            & "(delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), cubic Lagrange in "// &
             & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
             & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
          call put_line(head)
@@ -309,7 +288,7 @@ contains
       do j = 1, n_m
          do i = 1, n_s
             call put_line(csv_row([table%m(j), table%length(j), table%s(i), &
-               & table%q(i, j), table%slope(i, j)]))
+               & table%gap(i, j), table%slope(i, j)]))
          end do
       end do
       call put_line("# end of table, "//int_str(n_m*n_s)//" rows")
@@ -448,7 +427,7 @@ contains
       end associate
    end subroutine read_loading_node
 
-   !> One row of a hysteresis CSV: (delta_max, length, s, q, dq_ds) at the next point
+   !> One row of a hysteresis CSV: (delta_max, length, s, gap, dgap_ds) at the next point
    !> of the unloading grid, which the rows must fill in order (doc/formats.md §6).
    subroutine read_csv_row(path, line, table, reading, error)
       character(len=*), intent(in) :: path, line
@@ -465,7 +444,7 @@ contains
                return
             end if
             allocate (table%m(n_m), table%length(n_m), table%s(n_s), &
-               & table%q(n_s, n_m), table%slope(n_s, n_m))
+               & table%gap(n_s, n_m), table%slope(n_s, n_m))
          end if
          reading%k_row = reading%k_row + 1
          read (line, *, iostat=ios) v(1:5)
@@ -484,7 +463,7 @@ contains
                   & "or s differs from the grid of the rows before")
                return
             end if
-            table%q(i, j) = v(4)
+            table%gap(i, j) = v(4)
             table%slope(i, j) = v(5)
          end associate
       end associate
@@ -504,7 +483,7 @@ contains
          return
       end if
       if (.not. allocated(table%m)) allocate (table%m(0), table%length(0), table%s(0), &
-         & table%q(0, 0), table%slope(0, 0))
+         & table%gap(0, 0), table%slope(0, 0))
       if (reading%k_row /= size(table%m)*size(table%s)) then
          call bad(error, path, int_str(reading%k_row)//" rows, n_delta_max*n_s = "// &
             & int_str(size(table%m)*size(table%s)))
@@ -524,9 +503,9 @@ contains
    !> loading curve (everything a force table's reader checks, check_table: finite;
    !> increasing nodes; force >= 0 and non-decreasing; stiffness >= 0 and consistent with
    !> the force differences; energies consistent with the forces) and unloading grid (m
-   !> from the cut-off to delta_max, s from 0 to 1, both increasing; q finite, 1 at
+   !> from the cut-off to delta_max, s from 0 to 1, both increasing; gap finite, 0 at
    !> s = 0 and within [0, 1] up to the tables' errors; its slopes small enough that no
-   !> curve strays far from [0, 1] between nodes: check_q_slopes).
+   !> curve strays far from [0, 1] between nodes: check_gap_slopes).
    subroutine check_hysteresis(path, t, error)
       character(len=*), intent(in) :: path
       type(hysteresis_table), intent(in) :: t
@@ -590,7 +569,7 @@ contains
          return
       end if
       if (.not. (all(ieee_is_finite(t%m)) .and. all(ieee_is_finite(t%s)) .and. &
-         & all(ieee_is_finite(t%q)) .and. all(ieee_is_finite(t%slope)) .and. &
+         & all(ieee_is_finite(t%gap)) .and. all(ieee_is_finite(t%slope)) .and. &
          & all(ieee_is_finite(t%length)) .and. ieee_is_finite(t%s_max))) then
          call bad(error, path, "unloading data: a value is not finite")
          return
@@ -613,22 +592,22 @@ contains
             & "and s from 0 to 1 must increase")
          return
       end if
-      ! q is relative to the turning-point force: within [0, 1] up to the tables' own
-      ! errors
-      if (any(t%q(1, :) /= 1.0_dp) .or. any(t%q < -10*t%rel_tol) .or. &
-         & any(t%q > 1.0_dp + 10*t%rel_tol)) then
-         call bad(error, path, "unloading data: q must be 1 at s = 0 and within [0, 1]")
+      ! the gap is relative to the turning-point force: within [0, 1] up to the tables'
+      ! own errors
+      if (any(t%gap(1, :) /= 0.0_dp) .or. any(t%gap < -10*t%rel_tol) .or. &
+         & any(t%gap > 1.0_dp + 10*t%rel_tol)) then
+         call bad(error, path, "unloading data: gap must be 0 at s = 0 and within [0, 1]")
          return
       end if
-      call check_q_slopes(path, t, error)
+      call check_gap_slopes(path, t, error)
    end subroutine check_hysteresis
 
-   !> The slopes of q: |dq/ds| (s_{i+1} - s_i) <= 2 at both ends of every interval of
+   !> The gap's slopes: |dg/ds| (s_{i+1} - s_i) <= 2 at both ends of every interval of
    !> every curve, so that a curve's cubic stays within about 1 of the chord of its
-   !> nodes (their q lie in [0, 1]): the unloading force within the force at the turning
-   !> point. Hertzian unloading has q = 1 - s (slope 1, widths <= 1/2); a crafted slope of
-   !> 1e300 does not pass.
-   subroutine check_q_slopes(path, t, error)
+   !> nodes (their gaps lie in [0, 1]): the unloading force within the loading force at
+   !> the turning point of the loading curve. Built tables stay below 0.4 (rel_tol 1e-2
+   !> .. 1e-4, psi 0.5 .. 10, mu 0.3 .. 50); a crafted slope of 1e300 does not.
+   subroutine check_gap_slopes(path, t, error)
       character(len=*), intent(in) :: path
       type(hysteresis_table), intent(in) :: t
       type(egw_error), allocatable, intent(out) :: error
@@ -642,13 +621,13 @@ contains
                call bad(error, path, "unloading data: curve "//int_str(j)//", s nodes "// &
                   & int_str(i)//", "//int_str(i + 1)//": slope "// &
                   & format_real(max(abs(t%slope(i, j)), abs(t%slope(i + 1, j))))// &
-                  & " inconsistent with q (it rises more than "// &
+                  & " inconsistent with the gap (it rises more than "// &
                   & format_real(rise_bound)//" over the interval)")
                return
             end if
          end do
       end do
-   end subroutine check_q_slopes
+   end subroutine check_gap_slopes
 
    ! ---------------------------------------------------------------------------- helpers
 

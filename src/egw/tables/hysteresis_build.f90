@@ -8,7 +8,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
       & cap_solve_options, solve_contact
    use egw_cap_sphere, only: cap_history, cap_result, cap_load
    use egw_cap_loading, only: build_cap_loading
-   use egw_table, only: build_table, table_prepare
+   use egw_table, only: build_table, table_eval_tail_law, table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    implicit none
 
@@ -18,17 +18,11 @@ submodule (egw_hysteresis) egw_hysteresis_build
    real(dp), parameter :: max_cap_range = 1000.0_dp
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
-   !> Narrowest interval bisected, relative to its grid's span (s: 1; delta_max: the
-   !> range): a mismatch that survives halving down to it is a jump in the solves (the
-   !> solver's mesh changes; ~rel_tol/10 of the local force), which no refinement
-   !> removes: the interval is kept and its mismatch reported in max_error.
-   real(dp), parameter :: narrowest = 2.0_dp**(-20)
 
-   !> The unloading curve of one delta_max node during the build: q = (P/P(m))**(2/3) and
-   !> dq/ds at nodes s.
+   !> The unloading curve of one delta_max node during the build: g and dg/ds at nodes s.
    type :: unloading_curve
       real(dp) :: length = 0.0_dp   !< L(m) = 1.5 P_load(m)/K_unload(m)
-      real(dp), allocatable :: s(:), q(:), slope(:)
+      real(dp), allocatable :: s(:), gap(:), slope(:)
    end type unloading_curve
 
 contains
@@ -289,7 +283,7 @@ contains
       procedure(table_progress), optional :: progress
       type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
       real(dp), allocatable :: new_m(:), err_mid(:)
-      logical, allocatable :: have_mid(:), new_have(:), split(:)
+      logical, allocatable :: have_mid(:), new_have(:)
       integer, allocatable :: idx(:)
       integer :: pass, j, k, n_split
       allocate (mids(size(m) - 1), have_mid(size(m) - 1))
@@ -310,9 +304,7 @@ contains
          do j = 1, size(m) - 1
             err_mid(j) = stencil_mismatch(m, curves, j, mids(j))
          end do
-         split = err_mid > table%rel_tol .and. m(2:) - m(:size(m) - 1) > &
-            & narrowest*(m(size(m)) - m(1))
-         n_split = count(split)
+         n_split = count(err_mid > table%rel_tol)
          ! built: the nodes' curves and the kept midpoints'; pending: two per split
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
@@ -323,8 +315,7 @@ contains
             call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
                & format_real(table%rel_tol)//" not reached: more than "// &
                & format_real(real(max_m_nodes, dp))//" delta_max nodes needed, the largest "// &
-               & "mismatch between them still "//format_real(maxval(err_mid))// &
-               & " of the local force")
+               & "mismatch between them still "//format_real(maxval(err_mid)))
             return
          end if
          allocate (new_m(size(m) + n_split), new_curves(size(m) + n_split), &
@@ -336,7 +327,7 @@ contains
             new_m(k) = m(j)
             call move_curve(curves(j), new_curves(k))
             if (j == size(m)) exit
-            if (split(j)) then
+            if (err_mid(j) > table%rel_tol) then
                k = k + 1
                new_m(k) = 0.5_dp*(m(j) + m(j + 1))
                call move_curve(mids(j), new_curves(k))
@@ -356,11 +347,9 @@ contains
          & "after 30 bisections")
    end subroutine refine_m
 
-   !> Largest force error (force_error) of the Lagrange combination of interval j's stencil
-   !> against the midpoint curve (solves) at every node of that curve, relative to the
-   !> local force: the table's whole error there, its interpolation in s
-   !> included (the curves are built to rel_tol/4, so that what remains is mostly the
-   !> error in m, which bisection removes).
+   !> Largest |r_stencil - r_mid| of interval j over the nodes of the midpoint curve (solves):
+   !> the table's whole error there, its interpolation in s included (the curves are built
+   !> to rel_tol/4, so that what remains is mostly the error in m, which bisection removes).
    pure real(dp) function stencil_mismatch(m, curves, j, mid) result(err)
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:), mid
@@ -388,25 +377,9 @@ contains
             call curve_eval(curves(first + k - 1), s, r, dr)
             v = v + w(k)*r
          end do
-         err = max(err, force_error(v, mid%q(i)))
+         err = max(err, abs(v - mid%gap(i)))
       end do
    end function stencil_mismatch
-
-   !> The force ratio P/P(m) = max(q, 0)**(3/2) of a reduced force q.
-   elemental real(dp) function force_ratio(q) result(r)
-      real(dp), intent(in) :: q
-      r = 0.0_dp
-      if (q > 0.0_dp) r = q*sqrt(q)
-   end function force_ratio
-
-   !> The error of the force of a reduced force q_table where the solves give q_solve, over
-   !> the local scale max(P, floor_ratio P(m)) (P the solves' force): the table's error
-   !> relative to the local force, or to floor_ratio P(m) far below the turning point.
-   elemental real(dp) function force_error(q_table, q_solve) result(err)
-      real(dp), intent(in) :: q_table, q_solve
-      err = abs(force_ratio(q_table) - force_ratio(q_solve))/max(force_ratio(q_solve), &
-         & floor_ratio)
-   end function force_error
 
    !> The overlap where the loading table's force falls to rel_tol of its reference force
    !> (bisection on the monotone table; its cut-off if the force there is larger).
@@ -545,8 +518,8 @@ contains
    end subroutine build_curves
 
    !> The unloading curve of delta_max = m: s nodes 0, 1/16, 1/4, 1/2, 1, bisected until the
-   !> Hermite curve of q agrees with the solves at every midpoint to rel_tol/4 of the local
-   !> force (force_error; an interval that passed is not solved again).
+   !> Hermite curve agrees with the solves at every midpoint to rel_tol/4 (an interval that
+   !> passed is not solved again).
    subroutine build_curve(table, options, m, curve, worst, error)
       type(hysteresis_table), intent(in) :: table
       type(solver_options), intent(in) :: options
@@ -556,17 +529,24 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(loading_history) :: hist
       type(solve_result) :: res
-      real(dp) :: s(max_s_nodes), q(max_s_nodes), slope(max_s_nodes), span, &
-         & r_mid, d_mid, r_int, d_int, s_mid, err, f_turn, scale
+      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), span, scale, &
+         & r_mid, d_mid, r_int, d_int, s_mid, err, f_turn, k_turn, c_turn
       integer :: n, i
       logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
       worst = 0.0_dp
-      call load_tight(table%params, options, m, hist, res, error)
+      call load_history(table%params, options, m, hist, res, error)
       if (allocated(error)) return
-      ! q relative to the solve's own force at the turning point: q(0) = 1 exactly, and
-      ! the evaluation multiplies by the loading table's force there (within its rel_tol)
       f_turn = res%force
+      ! gaps relative to the loading table's force at the turning point (what the
+      ! evaluation multiplies them by)
+      call table_eval(table%loading, m, scale, k_turn)
+      if (.not. scale > 0.0_dp) scale = table%loading%reference_force*table%rel_tol
+      ! the loading reference scaled to the solve's force at the turning point, so that the
+      ! gap vanishes there continuously (the table's own error, <= rel_tol of the force,
+      ! would otherwise be a jump that no refinement in s removes)
+      c_turn = 1.0_dp
+      if (f_turn > 0.0_dp .and. scale > 0.0_dp) c_turn = f_turn/scale
       if (table%capped) then
          call cap_length(table%params, m, curve%length, error)
       else if (table%params%flow_pressure > 0.0_dp) then
@@ -581,7 +561,7 @@ contains
       n = 5
       s(1:n) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
       do i = 1, n
-         call q_at(s(i), q(i), slope(i))
+         call gap_at(s(i), gap(i), slope(i))
          if (allocated(error)) return
       end do
       checked(1:n - 1) = .false.
@@ -594,35 +574,30 @@ contains
                cycle
             end if
             s_mid = 0.5_dp*(s(i) + s(i + 1))
-            call q_at(s_mid, r_mid, d_mid)
+            call gap_at(s_mid, r_mid, d_mid)
             if (allocated(error)) return
             probe%s = s(i:i + 1)
-            probe%q = q(i:i + 1)
+            probe%gap = gap(i:i + 1)
             probe%slope = slope(i:i + 1)
             call curve_eval(probe, s_mid, r_int, d_int)
             ! the slope's mismatch too: a midpoint value can agree by chance where the
-            ! curve bends (near the residual overlap) while a quarter point does not; a
-            ! slope error e of q is a quarter point's error of ~e h/4 in q, 1.5 sqrt(q) e h/4
-            ! in the force ratio (the largest q of the interval: the safe side), relative
-            ! to the local scale of the interval's smallest force
-            scale = max(force_ratio(min(q(i), q(i + 1), r_mid)), floor_ratio)
-            err = max(force_error(r_int, r_mid), 0.25_dp*(s(i + 1) - s(i))* &
-               & abs(d_int - d_mid)*1.5_dp*sqrt(max(q(i), q(i + 1), r_mid, 0.0_dp))/scale)
-            if (err > 0.25_dp*table%rel_tol .and. s(i + 1) - s(i) > narrowest) then
+            ! curve bends (near the residual overlap) while a quarter point does not
+            err = max(abs(r_int - r_mid), 0.25_dp*(s(i + 1) - s(i))*abs(d_int - d_mid))
+            if (err > 0.25_dp*table%rel_tol) then
                if (n == max_s_nodes) then
                   call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
                      & format_real(table%rel_tol)//" not reached: the unloading curve at "// &
                      & "delta_max = "//format_real(m)//" needs more than 400 nodes for "// &
-                     & "rel_tol/4 of the local force, its mismatch still "//format_real(err))
+                     & "rel_tol/4, its mismatch still "//format_real(err))
                   return
                end if
                s(i + 2:n + 1) = s(i + 1:n)
-               q(i + 2:n + 1) = q(i + 1:n)
+               gap(i + 2:n + 1) = gap(i + 1:n)
                slope(i + 2:n + 1) = slope(i + 1:n)
                checked(i + 2:n) = checked(i + 1:n - 1)
                checked(i:i + 1) = .false.
                s(i + 1) = s_mid
-               q(i + 1) = r_mid
+               gap(i + 1) = r_mid
                slope(i + 1) = d_mid
                n = n + 1
                refined = .true.
@@ -636,80 +611,46 @@ contains
          if (.not. refined) exit
       end do
       curve%s = s(1:n)
-      curve%q = q(1:n)
+      curve%gap = gap(1:n)
       curve%slope = slope(1:n)
 
    contains
 
-      !> The reduced force q = (P_unload(delta)/P(m))**(2/3) and dq/ds at delta = m - s span
-      !> (P(m) the solve's force at the turning point: q = 1 at s = 0). At s = 0 the slope
-      !> is the unloading branch's, dq/ds(0+); at the end s = 1 of a Hertz + cap curve
-      !> (the residual overlap, where P vanishes as (delta - delta_r)**(3/2) and q
-      !> linearly) the slope is the one just inside it.
-      subroutine q_at(x, g, dg)
+      !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
+      !> delta = m - s span, P_ext the loading table with its tail below the cut-off (below
+      !> the cut-off too: the curve is a neighbour of others in the m direction), c the
+      !> solve's force at m over the table's; g = 0 at the turning point, so that the force
+      !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
+      subroutine gap_at(x, g, dg)
          real(dp), intent(in) :: x
          real(dp), intent(out) :: g, dg
-         real(dp) :: x_solve, r
+         real(dp) :: p_ext, k_ext, x_solve
          g = 0.0_dp
          dg = 0.0_dp
          ! At s = 0 solve_unload returns the loading solve, whose stiffness is the loading
          ! branch's; unloading leaves the turning point stiffer (mu 4, psi 2, m = sigma:
          ! 2.740 against 2.539), so a slope of ~0 there made the first interval's cubic
          ! wrong and the bisection halve it down to s ~ 6e-5 (10 nodes, 20 solves a
-         ! curve). The slope at s = 1e-4 instead: q is smooth there, the difference is
-         ! ~1e-4 q'' and the checks below see what remains. (Nearer than ~1e-7 sigma to m
-         ! an unloading solve's stiffness is off: d - d_max is then below the error of the
-         ! interpolated d_max field.)
+         ! curve). The slope at s = 1e-4 instead: g is smooth there (g/s linear in s from
+         ! 0.5 down to 1e-6 sigma), the difference is ~1e-4 g'' and the checks below see
+         ! what remains. (Nearer than ~1e-7 sigma to m an unloading solve's stiffness is
+         ! off: d - d_max is then below the error of the interpolated d_max field.)
          x_solve = x
          if (x == 0.0_dp) x_solve = 1.0e-4_dp
-         if (table%capped .and. x == 1.0_dp) then
-            x_solve = 1.0_dp - 1.0e-4_dp
-            call solve_unload(hist, m - span, res, error)
-            if (allocated(error)) return
-            if (res%force > 0.0_dp .and. f_turn > 0.0_dp) g = (res%force/f_turn)**(2.0_dp/3)
-         end if
          call solve_unload(hist, m - x_solve*span, res, error)
          if (allocated(error)) return
-         if (.not. (res%force > 0.0_dp .and. f_turn > 0.0_dp)) return
-         r = res%force/f_turn
-         if (x == 0.0_dp) then
-            g = 1.0_dp
-         else if (.not. (table%capped .and. x == 1.0_dp)) then
-            g = r**(2.0_dp/3)
-         end if
-         ! dq/ds = (2/3) q/P dP/ds with dP/ds = -K span, at the solve's point
-         dg = -(2.0_dp/3)*r**(2.0_dp/3)*res%stiffness*span/res%force
+         ! the loading force continued below its cut-off by the tail law (table_eval
+         ! gives 0 there), so that the gap stays smooth across it
+         call table_eval_tail_law(table%loading, m - x_solve*span, p_ext, k_ext)
+         if (x > 0.0_dp) g = (c_turn*p_ext - res%force)/scale
+         dg = (res%stiffness - c_turn*k_ext)*span/scale
          ! far below the cut-off the forces underflow: no subnormal numbers in the table
          ! (they would slow every evaluation that touches them by two orders)
          if (abs(g) < tiny_ratio) g = 0.0_dp
          if (abs(dg) < tiny_ratio) dg = 0.0_dp
-      end subroutine q_at
+      end subroutine gap_at
 
    end subroutine build_curve
-
-   !> load_history for unloading solves at options%rel_tol, loaded at 1e-2 of it (at least
-   !> 1e-10; where that does not converge, at options%rel_tol): the error of the loading
-   !> field d_max(r) is not in the unloading solves' estimate, and far below the turning
-   !> point it is a large part of a small force (doc/theory.md §8, solve_contact_unload).
-   subroutine load_tight(params, options, m, hist, res, error)
-      type(contact_params), intent(in) :: params
-      type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: m
-      type(loading_history), intent(inout) :: hist
-      type(solve_result), intent(inout) :: res
-      type(egw_error), allocatable, intent(out) :: error
-      type(solver_options) :: tight
-      tight = options
-      tight%rel_tol = max(1.0e-10_dp, 1.0e-2_dp*options%rel_tol)
-      call load_history(params, tight, m, hist, res, error)
-      if (allocated(error)) then
-         if (error%stat /= egw_not_converged) return
-         deallocate (error)
-         call load_history(params, options, m, hist, res, error)
-         if (allocated(error)) return
-      end if
-      hist%options = options
-   end subroutine load_tight
 
    !> Put every curve on the union of their s nodes: the union refines each curve's own
    !> nodes, so the Hermite data there reproduce each curve's cubics exactly.
@@ -728,10 +669,10 @@ contains
       table%m = m
       table%length = curves%length
       table%s = all_s(1:n)
-      allocate (table%q(n, size(m)), table%slope(n, size(m)))
+      allocate (table%gap(n, size(m)), table%slope(n, size(m)))
       do j = 1, size(m)
          do i = 1, n
-            call curve_eval(curves(j), table%s(i), table%q(i, j), table%slope(i, j))
+            call curve_eval(curves(j), table%s(i), table%gap(i, j), table%slope(i, j))
          end do
       end do
    end subroutine resample
@@ -760,9 +701,9 @@ contains
       h10 = t*(1 - t)**2
       h01 = t*t*(3 - 2*t)
       h11 = t*t*(t - 1)
-      r = h00*curve%q(i) + h10*h*curve%slope(i) + h01*curve%q(i + 1) &
+      r = h00*curve%gap(i) + h10*h*curve%slope(i) + h01*curve%gap(i + 1) &
          & + h11*h*curve%slope(i + 1)
-      dr = 6*t*(t - 1)/h*(curve%q(i) - curve%q(i + 1)) &
+      dr = 6*t*(t - 1)/h*(curve%gap(i) - curve%gap(i + 1)) &
          & + (1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1)
    end subroutine curve_eval
 
@@ -801,7 +742,7 @@ contains
       type(unloading_curve), intent(out) :: to
       to%length = from%length
       call move_alloc(from%s, to%s)
-      call move_alloc(from%q, to%q)
+      call move_alloc(from%gap, to%gap)
       call move_alloc(from%slope, to%slope)
    end subroutine move_curve
 
