@@ -463,6 +463,10 @@ contains
       m = pts%m
       pts%m = 0
       if (m == 0) return
+      if (n == 6) then
+         call add_batch_six(mesh%local_s, mesh%local_bary, pts%s(1:m), pts%wt(1:m), acc)
+         return
+      end if
       if (n > max_basis) then
          do i = 1, m
             prod = pts%wt(i)
@@ -490,6 +494,50 @@ contains
          suffix(1:m) = suffix(1:m)*(pts%s(1:m) - mesh%local_s(q))
       end do
    end subroutine add_batch
+
+   !> add_batch for the sphere solver's six-point pressure basis (pressure_points): the
+   !> same products point by point in registers, the six sums interleaved (the general
+   !> form sums one basis function at a time over the batch, a chain of dependent adds
+   !> each; without reassociation the compiler cannot vectorize such sums).
+   pure subroutine add_batch_six(ls, bary, s, wt, acc)
+      real(dp), intent(in) :: ls(6), bary(6), s(:), wt(:)
+      real(dp), intent(inout) :: acc(:)
+      real(dp) :: d1, d2, d3, d4, d5, d6, p2, p3, p4, p5, p6, q1, q2, q3, q4, q5
+      real(dp) :: a1, a2, a3, a4, a5, a6
+      integer :: i
+      a1 = 0.0_dp; a2 = 0.0_dp; a3 = 0.0_dp; a4 = 0.0_dp; a5 = 0.0_dp; a6 = 0.0_dp
+      do i = 1, size(s)
+         d1 = s(i) - ls(1)
+         d2 = s(i) - ls(2)
+         d3 = s(i) - ls(3)
+         d4 = s(i) - ls(4)
+         d5 = s(i) - ls(5)
+         d6 = s(i) - ls(6)
+         ! prefix wt prod_{k<q} d_k, suffix prod_{k>q} d_k
+         p2 = wt(i)*d1
+         p3 = p2*d2
+         p4 = p3*d3
+         p5 = p4*d4
+         p6 = p5*d5
+         q5 = d6
+         q4 = q5*d5
+         q3 = q4*d4
+         q2 = q3*d3
+         q1 = q2*d2
+         a1 = a1 + wt(i)*q1
+         a2 = a2 + p2*q2
+         a3 = a3 + p3*q3
+         a4 = a4 + p4*q4
+         a5 = a5 + p5*q5
+         a6 = a6 + p6
+      end do
+      acc(1) = acc(1) + bary(1)*a1
+      acc(2) = acc(2) + bary(2)*a2
+      acc(3) = acc(3) + bary(3)*a3
+      acc(4) = acc(4) + bary(4)*a4
+      acc(5) = acc(5) + bary(5)*a5
+      acc(6) = acc(6) + bary(6)*a6
+   end subroutine add_batch_six
 
    elemental real(dp) function local_coord(x0, x1, t) result(s)
       real(dp), intent(in) :: x0, x1, t
