@@ -6,7 +6,8 @@ module test_ellip
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
    use egw_kinds, only: pi
    use egw_all, only: dp, egw_error, egw_invalid_argument, ellipk, ellipe, ellipk_comp, &
-      & ellipe_comp, get_ellipk, get_ellipe, ellipk_log_split, ellipk_comp_fast
+      & ellipe_comp, get_ellipk, get_ellipe, ellipk_log_split, ellipk_comp_fast, &
+      & ellipk_split_a, ellipk_split_b
    use ref_ellip, only: k_arg, k_ellipk, k_ellipe, kc_arg, kc_ellipk, kc_ellipe, kc_kreg, &
       & kc_klog
    implicit none
@@ -28,6 +29,7 @@ contains
          & new_unittest("E(kc) against mpmath", test_e_comp), &
          & new_unittest("fast K(kc) against mpmath and the AGM", test_k_fast), &
          & new_unittest("log split of K against mpmath", test_log_split), &
+         & new_unittest("log split's series near k = 1 against mpmath", test_split_series), &
          & new_unittest("Legendre relation", test_legendre), &
          & new_unittest("special values and limits", test_special), &
          & new_unittest("invalid modulus gives a status", test_invalid) &
@@ -125,6 +127,32 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_log_split
+
+   !> The truncated series of the split (ellipk_split_a, _b, which the half-space's product
+   !> integration evaluates for kc <= 1/3), summed here by Horner, against the same
+   !> mpmath references at every kc_arg in (0, 1/3]: both pieces to a few ulp.
+   subroutine test_split_series(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp) :: x, kreg, klog
+      integer :: i, n, tested
+      tested = 0
+      do i = 1, size(kc_arg)
+         if (.not. (kc_arg(i) > 0.0_dp .and. kc_arg(i) <= 1.0_dp/3.0_dp)) cycle
+         x = kc_arg(i)**2
+         kreg = 0.0_dp
+         klog = 0.0_dp
+         do n = ubound(ellipk_split_a, 1), 0, -1
+            kreg = kreg*x + ellipk_split_a(n)
+            klog = klog*x + ellipk_split_b(n)
+         end do
+         call check(error, ulps(kreg, kc_kreg(i)) <= max_ulp .and. &
+            & ulps(klog, kc_klog(i)) <= max_ulp, "split series off by more than 4 ulp")
+         if (allocated(error)) return
+         tested = tested + 1
+      end do
+      ! the references must reach into the range, else this tests nothing
+      call check(error, tested >= 5, "fewer than 5 references with kc <= 1/3")
+   end subroutine test_split_series
 
    !> E K' + E' K - K K' = pi/2 (DLMF 19.7.1) on 1999 moduli across both branches of E.
    !> The three products are O(1) to O(40) and nearly cancel near k = 0 and 1, so the

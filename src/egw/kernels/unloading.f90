@@ -60,6 +60,8 @@ module egw_unloading
       real(dp) :: k = 1.0_dp        !< hardness coefficient K
       real(dp) :: lnqe = 1.0_dp     !< ln(q/e) = ln rho_p
       real(dp) :: c = 1.0_dp        !< sqrt(e)/K, the prefactor of the ZMC pieces
+      ! for unload_integral's nodes (no division there): ln q, 1/(q - e), (1 - K)/ln rho_p
+      real(dp) :: lnq = 0.0_dp, inv_qe = 0.0_dp, slope = 0.0_dp
    end type zmc_law
 
    !> Z_u of one parameter set, with what depends on the law alone computed once: the
@@ -265,6 +267,9 @@ contains
          law%k = hardness_coeff
          law%lnqe = log(plastic_ratio)
          law%c = sqrt(law%e)/hardness_coeff
+         law%lnq = log(law%q)
+         law%inv_qe = 1.0_dp/(law%q - law%e)
+         law%slope = (1.0_dp - hardness_coeff)/law%lnqe
       end if
    end function make_law
 
@@ -508,20 +513,26 @@ contains
       !> one branch of the law holds on the whole panel: it is chosen once, at the panel's
       !> middle t_mid, and the 16 nodes are evaluated as arrays, which the compiler turns
       !> into SIMD code (vector log, exp, sqrt; as egw_gauss's panels of the loading law).
-      !> Evaluated node by node through law_at, this was ~70 % of Z_u's time.
+      !> Evaluated node by node through law_at, this was ~70 % of Z_u's time. The law's
+      !> constants are prepared (make_law) so that a node divides once (1/D); below e,
+      !> where f^ = t^(3/2) and D = t, G is sqrt(t - Delta) phi outright.
       pure subroutine integrands(t_mid, z, fz, gz)
          real(dp), intent(in) :: t_mid, z(16)
          real(dp), intent(out) :: fz(16), gz(16)
-         real(dp) :: t(16), f(16), d(16), x(16), l(16), area(16), pres(16), phi(16)
+         real(dp) :: t(16), f(16), d(16), x(16), l(16), area(16), pres(16), phi(16), &
+            & inv_d(16)
          t = max(z - h_min, tiny(1.0_dp))  ! nodes lie above t* >= 0
+         phi = gaussian(z)
          associate (law => ulaw%zmc)
             if (t_mid <= law%e) then
-               f = t*sqrt(t)
-               d = t
+               x = max(t - delta, 0.0_dp)
+               gz = sqrt(x)*phi
+               fz = gz*x
+               return
             else if (t_mid <= law%q) then
-               l = (t - law%e)/(law%q - law%e)
+               l = (t - law%e)*law%inv_qe
                area = 1.0_dp + l*l*(3.0_dp - 2.0_dp*l)
-               pres = 1.0_dp - (1.0_dp - law%k)*log(law%q/t)/law%lnqe
+               pres = 1.0_dp - law%slope*(law%lnq - log(t))
                f = law%c*pres*area*t
                d = min(t, law%c*pres*sqrt(area*t))
             else
@@ -530,8 +541,8 @@ contains
             end if
          end associate
          x = max(d - delta, 0.0_dp)
-         phi = gaussian(z)
-         gz = f*sqrt(x/d)/d*phi
+         inv_d = 1.0_dp/d
+         gz = f*inv_d*sqrt(x*inv_d)*phi
          fz = gz*x
       end subroutine integrands
 
@@ -540,8 +551,8 @@ contains
          real(dp), intent(out) :: rp, rdp
          real(dp) :: fz(16), gz(16)
          call integrands(0.5_dp*(za + zb) - h_min, za + (zb - za)*gl_u, fz, gz)
-         rp = sum(gl_w16*fz)*(zb - za)
-         rdp = sum(gl_w16*gz)*(zb - za)
+         rp = sum16(gl_w16*fz)*(zb - za)
+         rdp = sum16(gl_w16*gz)*(zb - za)
       end subroutine plain_panel
 
       !> [za, zb] in z = z* + v^2, v from sqrt(za - z*) to sqrt(zb - z*)
@@ -553,11 +564,22 @@ contains
          vb = sqrt(max(zb - z_star, 0.0_dp))
          v = va + (vb - va)*gl_u
          call integrands(0.5_dp*(za + zb) - h_min, z_star + v*v, fz, gz)
-         rp = sum(gl_w16*fz*2.0_dp*v)*(vb - va)
-         rdp = sum(gl_w16*gz*2.0_dp*v)*(vb - va)
+         rp = sum16(gl_w16*fz*2.0_dp*v)*(vb - va)
+         rdp = sum16(gl_w16*gz*2.0_dp*v)*(vb - va)
       end subroutine edge_panel
 
    end subroutine unload_integral
+
+   !> Sum of a panel's 16 terms as a tree of halves (vector adds; the sum intrinsic adds
+   !> them one after the other, a chain of 15 dependent adds, since the compiler may not
+   !> reorder them).
+   pure real(dp) function sum16(x) result(total)
+      real(dp), intent(in) :: x(16)
+      real(dp) :: h8(8), h4(4)
+      h8 = x(1:8) + x(9:16)
+      h4 = h8(1:4) + h8(5:8)
+      total = (h4(1) + h4(3)) + (h4(2) + h4(4))
+   end function sum16
 
    !> Append z to breaks(1:nb) if it lies inside (z_lo, z_hi).
    pure subroutine add_break(z, z_lo, z_hi, breaks, nb)

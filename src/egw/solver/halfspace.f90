@@ -25,7 +25,8 @@
 module egw_halfspace
    !$ use omp_lib, only: omp_get_num_procs
    use egw_kinds, only: dp, pi
-   use egw_ellip, only: ellipk_comp_fast, ellipk_log_split, ellipk_fast_p, ellipk_fast_q
+   use egw_ellip, only: ellipk_comp_fast, ellipk_log_split, ellipk_fast_p, ellipk_fast_q, &
+      & ellipk_split_a, ellipk_split_b
    implicit none
    private
 
@@ -296,9 +297,10 @@ contains
       real(dp), intent(in) :: t(:), w(:), r
       real(dp), intent(out) :: row(:)
       integer :: i
-      real(dp) :: kc, eta, e2, e4, p, q
+      real(dp) :: kc, eta, e2, e4, p, q, inv_sum
       do i = 1, size(t)
-         kc = abs(r - t(i))/(r + t(i))
+         inv_sum = 1.0_dp/(r + t(i))  ! one division a point
+         kc = abs(r - t(i))*inv_sum
          eta = kc*kc
          e2 = eta*eta
          e4 = e2*e2
@@ -310,7 +312,7 @@ contains
                & + e4*((fq(4) + fq(5)*eta) + e2*(fq(6) + fq(7)*eta) &
                & + e4*(fq(8) + fq(9)*eta))
          end associate
-         row(i) = w(i)*(4.0_dp/pi*t(i)/(r + t(i))*(p - 2.0_dp*log(kc)*q))
+         row(i) = w(i)*(4.0_dp/pi*t(i)*inv_sum*(p - 2.0_dp*log(kc)*q))
       end do
    end subroutine far_kernel_run
 
@@ -366,45 +368,83 @@ contains
          w(i) = 0.5_dp*(beta - alpha)*mesh%fine_w(i)
       end do
       call far_kernel_run(t, w, r, wt)
-      do i = 1, n_fine
-         call add_point(mesh, local_coord(x0, x1, t(i)), wt(i), pts, acc)
-      end do
+      call add_points(mesh, (2.0_dp*t - (x0 + x1))*(1.0_dp/(x1 - x0)), wt, pts, acc)
    end subroutine add_gauss_piece
 
    !> Product integration on a piece with r at one end (length <= r/2):
    !> kernel = 4/pi t/(r+t) [kreg + klog ln(r+t) - klog ln|t-r|], |t - r| = len x,
    !> so that len (log_w (g1 - g2 ln len) - log_lw g2) = len c (log_w (kreg + klog
-   !> ln((r+t)/len)) - log_lw klog), c = 4/pi t/(r+t): one log a point.
+   !> ln((r+t)/len)) - log_lw klog), c = 4/pi t/(r+t): one log a point. The n_log points
+   !> as arrays (the loops vectorize, log included); kc <= 1/3 there, where the split is
+   !> two fixed polynomials (split_near) instead of ellipk_log_split's series.
    pure subroutine add_log_piece(mesh, x0, x1, alpha, beta, r, pts, acc)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: x0, x1, alpha, beta, r
       type(point_batch), intent(inout) :: pts
       real(dp), intent(inout) :: acc(:)
-      integer :: i
-      real(dp) :: t, len, kreg, klog, c, wt, direction
+      real(dp) :: len, direction
+      real(dp) :: t(n_log), inv_sum(n_log), kreg(n_log), klog(n_log), wt(n_log)
       len = beta - alpha
       direction = 1.0_dp
       if (r == beta) direction = -1.0_dp
-      do i = 1, n_log
-         t = r + direction*len*mesh%log_x(i)
-         call ellipk_log_split(len*mesh%log_x(i)/(r + t), kreg, klog)
-         c = 4.0_dp/pi*t/(r + t)
-         wt = len*c*(mesh%log_w(i)*(kreg + klog*log((r + t)/len)) - mesh%log_lw(i)*klog)
-         call add_point(mesh, local_coord(x0, x1, t), wt, pts, acc)
-      end do
+      t = r + direction*len*mesh%log_x
+      inv_sum = 1.0_dp/(r + t)
+      ! |t - r|/(r + t) <= (r/2)/(3r/2) = 1/3 when len <= r/2 (add_piece's rule; only the
+      ! recursion guard max_depth can leave a longer piece)
+      if (len <= 0.5_dp*r) then
+         call split_near(len*mesh%log_x*inv_sum, kreg, klog)
+      else
+         call ellipk_log_split(len*mesh%log_x*inv_sum, kreg, klog)
+      end if
+      wt = len*(4.0_dp/pi*t*inv_sum)*(mesh%log_w*(kreg + klog*log((r + t)*(1.0_dp/len))) &
+         & - mesh%log_lw*klog)
+      call add_points(mesh, (2.0_dp*t - (x0 + x1))*(1.0_dp/(x1 - x0)), wt, pts, acc)
    end subroutine add_log_piece
 
-   !> Queue the point (s, wt) of the element's pressure basis; a full batch is summed.
-   pure subroutine add_point(mesh, s, wt, pts, acc)
+   !> ellipk_log_split for kc <= 1/3: kreg and klog as their power series in x = kc**2
+   !> truncated after x**17 (egw_ellip's ellipk_split_a, _b; the truncation is below
+   !> 1e-18 relative there), by Estrin's scheme; no branch, no division, so that the
+   !> points of a piece vectorize.
+   pure subroutine split_near(kc, kreg, klog)
+      real(dp), intent(in) :: kc(:)
+      real(dp), intent(out) :: kreg(:), klog(:)
+      integer :: i
+      real(dp) :: x, x2, x4, x8, x16
+      do i = 1, size(kc)
+         x = kc(i)*kc(i)
+         x2 = x*x
+         x4 = x2*x2
+         x8 = x4*x4
+         x16 = x8*x8
+         associate (a => ellipk_split_a, b => ellipk_split_b)
+            kreg(i) = ((a(0) + a(1)*x) + x2*(a(2) + a(3)*x) &
+               & + x4*((a(4) + a(5)*x) + x2*(a(6) + a(7)*x))) &
+               & + x8*((a(8) + a(9)*x) + x2*(a(10) + a(11)*x) &
+               & + x4*((a(12) + a(13)*x) + x2*(a(14) + a(15)*x))) &
+               & + x16*(a(16) + a(17)*x)
+            klog(i) = ((b(0) + b(1)*x) + x2*(b(2) + b(3)*x) &
+               & + x4*((b(4) + b(5)*x) + x2*(b(6) + b(7)*x))) &
+               & + x8*((b(8) + b(9)*x) + x2*(b(10) + b(11)*x) &
+               & + x4*((b(12) + b(13)*x) + x2*(b(14) + b(15)*x))) &
+               & + x16*(b(16) + b(17)*x)
+         end associate
+      end do
+   end subroutine split_near
+
+   !> Queue the points (s(:), wt(:)) of the element's pressure basis (local coordinates,
+   !> weights with the kernel); a batch that would overflow is summed first.
+   pure subroutine add_points(mesh, s, wt, pts, acc)
       type(radial_mesh), intent(in) :: mesh
-      real(dp), intent(in) :: s, wt
+      real(dp), intent(in) :: s(:), wt(:)
       type(point_batch), intent(inout) :: pts
       real(dp), intent(inout) :: acc(:)
-      if (pts%m == max_batch) call add_batch(mesh, pts, acc)
-      pts%m = pts%m + 1
-      pts%s(pts%m) = s
-      pts%wt(pts%m) = wt
-   end subroutine add_point
+      integer :: m
+      if (pts%m + size(s) > max_batch) call add_batch(mesh, pts, acc)
+      m = pts%m
+      pts%s(m + 1:m + size(s)) = s
+      pts%wt(m + 1:m + size(s)) = wt
+      pts%m = m + size(s)
+   end subroutine add_points
 
    !> acc(q) += sum_p wt_p L_q(s_p), q = 1..n_gauss, over the queued points (then
    !> emptied), L_q(s) = bary_q prod_{k /= q} (s - s_k), by prefix and suffix products
@@ -423,6 +463,10 @@ contains
       m = pts%m
       pts%m = 0
       if (m == 0) return
+      if (n == 6) then
+         call add_batch_six(mesh%local_s, mesh%local_bary, pts%s(1:m), pts%wt(1:m), acc)
+         return
+      end if
       if (n > max_basis) then
          do i = 1, m
             prod = pts%wt(i)
@@ -450,6 +494,50 @@ contains
          suffix(1:m) = suffix(1:m)*(pts%s(1:m) - mesh%local_s(q))
       end do
    end subroutine add_batch
+
+   !> add_batch for the sphere solver's six-point pressure basis (pressure_points): the
+   !> same products point by point in registers, the six sums interleaved (the general
+   !> form sums one basis function at a time over the batch, a chain of dependent adds
+   !> each; without reassociation the compiler cannot vectorize such sums).
+   pure subroutine add_batch_six(ls, bary, s, wt, acc)
+      real(dp), intent(in) :: ls(6), bary(6), s(:), wt(:)
+      real(dp), intent(inout) :: acc(:)
+      real(dp) :: d1, d2, d3, d4, d5, d6, p2, p3, p4, p5, p6, q1, q2, q3, q4, q5
+      real(dp) :: a1, a2, a3, a4, a5, a6
+      integer :: i
+      a1 = 0.0_dp; a2 = 0.0_dp; a3 = 0.0_dp; a4 = 0.0_dp; a5 = 0.0_dp; a6 = 0.0_dp
+      do i = 1, size(s)
+         d1 = s(i) - ls(1)
+         d2 = s(i) - ls(2)
+         d3 = s(i) - ls(3)
+         d4 = s(i) - ls(4)
+         d5 = s(i) - ls(5)
+         d6 = s(i) - ls(6)
+         ! prefix wt prod_{k<q} d_k, suffix prod_{k>q} d_k
+         p2 = wt(i)*d1
+         p3 = p2*d2
+         p4 = p3*d3
+         p5 = p4*d4
+         p6 = p5*d5
+         q5 = d6
+         q4 = q5*d5
+         q3 = q4*d4
+         q2 = q3*d3
+         q1 = q2*d2
+         a1 = a1 + wt(i)*q1
+         a2 = a2 + p2*q2
+         a3 = a3 + p3*q3
+         a4 = a4 + p4*q4
+         a5 = a5 + p5*q5
+         a6 = a6 + p6
+      end do
+      acc(1) = acc(1) + bary(1)*a1
+      acc(2) = acc(2) + bary(2)*a2
+      acc(3) = acc(3) + bary(3)*a3
+      acc(4) = acc(4) + bary(4)*a4
+      acc(5) = acc(5) + bary(5)*a5
+      acc(6) = acc(6) + bary(6)*a6
+   end subroutine add_batch_six
 
    elemental real(dp) function local_coord(x0, x1, t) result(s)
       real(dp), intent(in) :: x0, x1, t

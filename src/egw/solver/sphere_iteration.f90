@@ -14,7 +14,7 @@ module egw_sphere_iteration
    use egw_lapack, only: lu_factor, lu_solve
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
       & scaled_problem, discrete_solution, law_at, law_inverse, base_gap, base_gap_rate, &
-      & closest_gap, gauss_values, deflection_degree, pressure_points, rough_pressure, &
+      & closest_gap, gauss_values, gauss_gap, deflection_degree, pressure_points, rough_pressure, &
       & cap_fields, sums_total
    implicit none
    private
@@ -233,7 +233,11 @@ contains
    pure subroutine evaluate(prob, sol)
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(inout) :: sol
-      sol%gap = sol%base + gauss_values(sol%mesh, sol%w)
+      if (allocated(sol%gap)) then
+         if (size(sol%gap) /= size(sol%base)) deallocate (sol%gap)
+      end if
+      if (.not. allocated(sol%gap)) allocate (sol%gap(size(sol%base)))
+      call gauss_gap(sol%mesh, sol%w, sol%base, sol%gap)
       sol%p = sol%gap       ! (sized as the gap)
       sol%dpdh = sol%gap
       sol%dpdd = sol%gap
