@@ -37,9 +37,8 @@ module egw_table
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_law
    use egw_flat_law, only: flat_law
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
-   use egw_table_ends, only: tail_force, deep_force, deep_energy, deep_radius_factor, &
-      & deep_law, deep_law_fit, deep_law_force, deep_law_energy, &
-      & deep_law_radius_factor
+   use egw_table_ends, only: tail_force, deep_law, deep_law_fit, deep_law_force, &
+      & deep_law_energy, deep_law_radius_factor
    implicit none
    private
 
@@ -924,21 +923,28 @@ contains
       end if
    end subroutine table_beyond
 
-   !> The deep-overlap asymptote above delta_max: the law table_prepare fitted, else
-   !> (a table not yet prepared) fitted now; the same values either way.
+   !> The deep-overlap asymptote above delta_max (force and stiffness).
    pure subroutine table_deep(table, delta, force, stiffness)
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta   !< >= table%delta_max
       real(dp), intent(out) :: force, stiffness
+      call deep_law_force(table_deep_law(table), delta, force, stiffness)
+   end subroutine table_deep
+
+   !> The deep-overlap law of the last node: the one table_prepare fitted, else (a table
+   !> not yet prepared) fitted now; the same values either way.
+   pure function table_deep_law(table) result(law)
+      type(force_table), intent(in) :: table
+      type(deep_law) :: law
       integer :: n
       if (table%deep%ready) then
-         call deep_law_force(table%deep, delta, force, stiffness)
+         law = table%deep
       else
          n = size(table%delta)
-         call deep_force(table%delta_max, table%force(n), table%stiffness(n), &
-            & deep_coefficient(table%params), delta, force, stiffness)
+         law = deep_law_fit(table%delta_max, table%force(n), table%stiffness(n), &
+            & deep_coefficient(table%params))
       end if
-   end subroutine table_deep
+   end function table_deep_law
 
    !> The force below the cut-off delta_c of a table of params whose first node has force
    !> p_c and stiffness k_c: rough models 0 (p_c <= 1e-12 P_ref; the separated tail below
@@ -1159,12 +1165,7 @@ contains
       if (.not. delta > table%cutoff) then
          energy = 0.0_dp
       else if (delta >= table%delta_max) then
-         if (table%deep%ready) then
-            energy = table%energy(n) + deep_law_energy(table%deep, delta)
-         else
-            energy = table%energy(n) + deep_energy(table%delta_max, table%force(n), &
-               & table%stiffness(n), deep_coefficient(table%params), delta)
-         end if
+         energy = table%energy(n) + deep_law_energy(table_deep_law(table), delta)
       else
          i = find_interval(table, delta)
          energy = table%energy(i) + interval_integral(table, i, delta - table%delta(i))
@@ -1184,12 +1185,8 @@ contains
       if (.not. delta >= table%cutoff) then
          radius = 0.0_dp
       else if (delta >= table%delta_max) then
-         if (table%deep%ready) then
-            radius = table%contact_radius(n)*deep_law_radius_factor(table%deep, delta)
-         else
-            radius = table%contact_radius(n)*deep_radius_factor(table%delta_max, &
-               & table%force(n), table%stiffness(n), deep_coefficient(table%params), delta)
-         end if
+         radius = table%contact_radius(n)*deep_law_radius_factor(table_deep_law(table), &
+            & delta)
       else
          i = find_interval(table, delta)
          h = table%delta(i + 1) - table%delta(i)
