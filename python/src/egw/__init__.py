@@ -9,12 +9,13 @@ message (which names the offending parameter).
 >>> t = egw.Table.build(p, -2e-6, 2e-5, 1e-6)  # a force table for a DEM code
 >>> force, stiffness = t.eval(np.linspace(0, 2e-5, 1000))
 """
-from .core import (EgwError, FileError, FirstYield, IgnoredParameterWarning,
-                   InvalidArgumentError, NotConvergedError, Options, OutOfRangeWarning, Params,
-                   PointFailedWarning, Restitution, SolveResult, TimeStep, effective_modulus,
-                   ellipe, ellipk, errstate, first_yield, flat_pressure, flat_pressure_unload,
-                   gauss_integral, hertz, last_error, mu_from_summits, profile, restitution,
-                   solve, solve_unload, time_step, version)
+from .errors import (EgwError, errstate, FileError, IgnoredParameterWarning, InvalidArgumentError,
+                     last_error, NotConvergedError, OutOfRangeWarning, PointFailedWarning, version)
+from .params import Options, Params
+from .functions import (effective_modulus, ellipe, ellipk, flat_pressure, flat_pressure_unload,
+                        gauss_integral, hertz, mu_from_summits)
+from .solves import profile, solve, solve_unload, SolveResult
+from .impact import first_yield, FirstYield, Restitution, restitution, time_step, TimeStep
 from .scene import ModelChoice, Scene, build, choose
 from .tables import HysteresisInfo, HysteresisTable, Table, TableInfo, UniversalTable
 from .flat_law import FlatLaw

@@ -17,8 +17,9 @@ from typing import Optional, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .core import (ArrayLike, FloatOrArray, InvalidArgumentError, INVALID_ARGUMENT,
-                   Options, _loop, _number_array, _require, _scalar_or_array, check)
+from .errors import check, INVALID_ARGUMENT, InvalidArgumentError, _require
+from .params import ArrayLike, FloatOrArray, _number_array, Options
+from ._calls import _loop, _scalar_or_array
 from .tables import _Handle
 
 

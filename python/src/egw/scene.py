@@ -9,7 +9,8 @@ from typing import List, Optional, Tuple, Union
 
 from . import _capi
 from ._capi import SCENE_MAX_TYPES, lib
-from .core import MODELS, InvalidArgumentError, INVALID_PARAMETER, Options, _options, check
+from .errors import check, INVALID_PARAMETER, InvalidArgumentError
+from .params import MODELS, Options, _options
 from .tables import Table, UniversalTable
 
 CHOICES = {0: "Hertz", 1: "table", 2: "universal"}

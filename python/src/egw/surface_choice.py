@@ -17,7 +17,9 @@ from typing import Any, List, Optional, Sequence
 
 import numpy as np
 
-from .core import Options, Params, hertz, solve
+from .params import Options, Params
+from .functions import hertz
+from .solves import solve
 
 #: candidate models, cheapest first: Hertz needs nothing; GW and E-GW a table from summit
 #: statistics; Persson a law from the spectrum, then a table; the BEM law a BEM of the map

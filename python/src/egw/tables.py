@@ -15,9 +15,9 @@ import numpy as np
 
 from . import _capi
 from ._capi import lib
-from .core import (_FAILED, OK, OUT_OF_RANGE, ArrayLike, FloatOrArray, Options, Params,
-                   PointFailedWarning, _array, _Batch, _double_ptr, _options, _params,
-                   _require, _scalar_or_array, check)
+from .errors import check, _FAILED, OK, OUT_OF_RANGE, PointFailedWarning, _require
+from .params import ArrayLike, FloatOrArray, Options, _options, Params, _params
+from ._calls import _array, _Batch, _double_ptr, _scalar_or_array
 
 FORMATS = {"csv": 0, "binary": 1, "lammps": 2, "calculix": 3}
 PathLike = Union[str, os.PathLike]

@@ -43,7 +43,10 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .core import Params, check, effective_modulus, _keyword_only, mu_from_summits
+from .errors import check
+from .params import Params
+from ._calls import _keyword_only
+from .functions import effective_modulus, mu_from_summits
 
 #: below this bandwidth parameter McCool's summit statistics are poor (sigma_s^2 loses
 #: more than 10 % against m0: 0.8968/alpha > 0.1) — GW's isolated-summit picture is
