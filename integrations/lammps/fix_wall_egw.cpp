@@ -19,7 +19,6 @@
 #include "egw_contact.h"
 #include "egw_history.h"
 #include "egw_submodels_parse.h"
-#include "pair_egw.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -32,6 +31,7 @@
 #include "variable.h"
 #include "memory.h"
 #include "neighbor.h"
+#include "pair.h"
 #include "update.h"
 #include "utils.h"
 
@@ -89,7 +89,7 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
   // a flow pressure of the wall or of a type known now (init() widens it if a type given
   // later needs it)
   bool hyst = model == EGW_MODEL_EPGW || wall.flow_pressure > 0;
-  if (auto p = dynamic_cast<PairEGW *>(force->pair_match("egw", 1)))
+  if (auto p = dynamic_cast<EgwTypeCoeffs *>(force->pair_match("egw", 1)))
     for (int t = 1; t <= atom->ntypes; t++)
       hyst = hyst || (p->type_coeff(t) && p->type_coeff(t)->flow_pressure > 0);
 
@@ -430,7 +430,7 @@ void FixWallEGW::init()
     if (!input->variable->equalstyle(tvar))
       error->all(FLERR, "Fix wall/egw: temperature variable '{}' is not equal-style", tvar_name);
   }
-  pair = dynamic_cast<PairEGW *>(force->pair_match("egw", 1));
+  pair = dynamic_cast<EgwTypeCoeffs *>(force->pair_match("egw", 1));
   if (!pair)
     error->all(FLERR, "Fix wall/egw needs pair_style egw (the particle types' coefficients)");
   int n = atom->ntypes;

@@ -9,12 +9,13 @@
 #include "fix.h"
 
 #include "egw_law.h"
+#include "egw_peers.h"
 
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class FixWallEGW : public Fix {
+class FixWallEGW : public Fix, public EgwHeatWall {
  public:
   FixWallEGW(class LAMMPS *, int, char **);
   ~FixWallEGW() override;
@@ -34,8 +35,7 @@ class FixWallEGW : public Fix {
   int maxsize_restart() override;
   void write_restart(FILE *) override;
   void restart(char *) override;
-  /* the wall exchanges heat with the atoms (a heat model) */
-  bool has_heat() const { return wall.sub.heat != EgwSubmodels::HEAT_NONE; }
+  bool has_heat() const override { return wall.sub.heat != EgwSubmodels::HEAT_NONE; }
 
  protected:
   enum { XPLANE = 0, YPLANE, ZPLANE, ZCYLINDER, REGION };
@@ -78,7 +78,7 @@ class FixWallEGW : public Fix {
   std::vector<double> built_rlo, built_rhi;
   int built_model;
   bool warned_range;
-  class PairEGW *pair;
+  const EgwTypeCoeffs *pair;    // pair egw: the particle types' coefficients
 
   void parse(int, char **);
   void set_layout(int core);

@@ -18,7 +18,6 @@
 #include "egw_contact.h"
 #include "egw_submodels.h"
 #include "fix_egw_reach.h"
-#include "fix_wall_egw.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -190,7 +189,7 @@ void PairEGW::init_style()
                       "(atom_style sphere/temp, or fix property/atom temperature heatflow)");
   bool wall_heat = false;
   for (auto f : modify->get_fix_by_style("^wall/egw")) {
-    auto w = dynamic_cast<FixWallEGW *>(f);
+    auto w = dynamic_cast<EgwHeatWall *>(f);
     wall_heat = wall_heat || (w && w->has_heat());
   }
   if (!heat_any && !wall_heat && !modify->get_fix_by_style("^heat/flow").empty())

@@ -11,6 +11,7 @@
 
 #include "egw.h"
 #include "egw_law.h"
+#include "egw_peers.h"
 
 #include <cstdint>
 #include <string>
@@ -19,7 +20,7 @@
 
 namespace LAMMPS_NS {
 
-class PairEGW : public Pair {
+class PairEGW : public Pair, public EgwTypeCoeffs {
  public:
   PairEGW(class LAMMPS *);
   ~PairEGW() override;
@@ -38,13 +39,19 @@ class PairEGW : public Pair {
 
  public:
   /* a type's own coefficients (pair_coeff I I); nullptr if not set (the wall fix reads them) */
-  const EgwCoeff *type_coeff(int t) const
+  const EgwCoeff *type_coeff(int t) const override
   {
     return (allocated && t >= 1 && t < (int) pcoeff.size() && pcoeff[t][t].set) ? &pcoeff[t][t]
                                                                                : nullptr;
   }
-  double type_radius_max(int t) const { return t < (int) rad_max.size() ? rad_max[t] : 0.0; }
-  double type_radius_min(int t) const { return t < (int) rad_min.size() ? rad_min[t] : 0.0; }
+  double type_radius_max(int t) const override
+  {
+    return t < (int) rad_max.size() ? rad_max[t] : 0.0;
+  }
+  double type_radius_min(int t) const override
+  {
+    return t < (int) rad_min.size() ? rad_min[t] : 0.0;
+  }
 
  protected:
   int model;            // EGW_MODEL_*
