@@ -35,7 +35,7 @@ module egw_params
 
    public :: validate_params, model_name, mu_from_summits, psi_from_hardness, &
       & rough_flat_coefficient, check_scaled_overlap, range_str, product4, length_unit, &
-      & pressure_unit, force_unit, stiffness_unit, refuse_flow_pressure
+      & pressure_unit, force_unit, stiffness_unit, refuse_flow_pressure, positive_finite
 
    !> What the numerics represent (doc/parameters.md "Valid ranges"): every positive field
    !> a normal double (no subnormals: they carry fewer digits and their reciprocals
@@ -322,6 +322,7 @@ contains
       name = model_label(model)
    end function model_name
 
+   !> Whether x is finite and > 0 (a NaN is not).
    elemental logical function positive_finite(x)
       real(dp), intent(in) :: x
       positive_finite = ieee_is_finite(x) .and. x > 0.0_dp
