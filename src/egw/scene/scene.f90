@@ -221,7 +221,7 @@ module egw_scene
       !> radius_max, modulus(1:8), poisson(1:8) or effective_modulus, sigma or sigma_min and
       !> sigma_max, mu or summit_density and summit_radius, psi, K, plastic_ratio,
       !> delta_min and delta_max or delta_min_sigma and delta_max_sigma, tol, flat_law,
-      !> flow_pressure or yield_stress (smooth spheres; doc/theory.md §12). The result is
+      !> flow_pressure or yield_stress (the bulk cap: doc/theory.md §12). The result is
       !> validated; on any error input is unchanged and the message names the variable.
       !> Thread-safe, also on one file from many threads at once: the file is read whole
       !> through C stdio (egw_io) and the namelist parsed from memory (a Fortran open of a
