@@ -99,10 +99,10 @@ module egw_hysteresis
       real(dp), allocatable :: gap_integral(:, :)
       !> the part of the unloading integral that the clip at 0 removes, int min(F, 0) dx
       !> over the whole span of the turning point m (F the span force before the clip),
-      !> times 1/(s_max L(m) P_load(m)), at evenly spaced m of each delta_max interval j:
-      !> dip(dip_first(j) + k), k = 0 .. dip_first(j + 1) - dip_first(j) - 1 (energy_prepare;
-      !> linear between samples)
-      real(dp), allocatable :: dip(:)
+      !> times 1/(s_max L(m) P_load(m)), at m = m_j + dip_u (m_{j+1} - m_j) in delta_max
+      !> interval j: dip(k) for k = dip_first(j) .. dip_first(j + 1) - 1, dip_u increasing
+      !> from 0 to 1 (energy_prepare; linear between samples)
+      real(dp), allocatable :: dip(:), dip_u(:)
       integer, allocatable :: dip_first(:)   !< (n_m): interval j's first sample in dip
       !> (n_m - 1): per delta_max interval, an s below which no sample's span force is
       !> clipped (with a margin): an overlap at a smaller s needs no walk (energy_prepare)
@@ -131,9 +131,10 @@ module egw_hysteresis
    end type hysteresis_table
 
    !> Turning points sampled per delta_max interval for the energy's clipped dips
-   !> (energy_prepare): dip_samples at first, doubled up to dip_samples_max until linear
-   !> interpolation meets every midpoint's walk to dip_tol of the span's integral.
-   integer, parameter :: dip_samples = 16, dip_samples_max = 512
+   !> (energy_prepare): dip_samples + 1 evenly spaced, each gap bisected (to a width of
+   !> 1/dip_samples_max of the interval) until linear interpolation meets the walk at its
+   !> midpoint to dip_tol of the span's (unclipped) integral.
+   integer, parameter :: dip_samples = 16, dip_samples_max = 1024
    real(dp), parameter :: dip_tol = 1.0e-9_dp
 
    !> One turning point's unloading curve (turning_point): what its span force needs.
@@ -538,17 +539,25 @@ contains
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: lo, delta
       real(dp) :: u, x_band, f, slope, x_top, above
-      integer :: j, n, k
+      integer :: i, j, n, k
       if (.not. allocated(table%dip) .or. cv%m > table%delta_max) then
          call span_dips(table, cv, lo, delta, total, x_top)
          return
       end if
       j = locate(table%m_lookup, table%m, cv%m)
-      n = table%dip_first(j + 1) - table%dip_first(j) - 1
-      u = min(max((cv%m - table%m(j))/(table%m(j + 1) - table%m(j)), 0.0_dp), 1.0_dp)*n
-      k = min(int(u), n - 1)
-      u = u - k
-      k = k + table%dip_first(j)
+      u = min(max((cv%m - table%m(j))/(table%m(j + 1) - table%m(j)), 0.0_dp), 1.0_dp)
+      ! the samples' gap around u (bisection: a few hundred samples at most)
+      k = table%dip_first(j)
+      n = table%dip_first(j + 1) - 1
+      do while (n - k > 1)
+         i = (k + n)/2
+         if (table%dip_u(i) <= u) then
+            k = i
+         else
+            n = i
+         end if
+      end do
+      u = (u - table%dip_u(k))/(table%dip_u(k + 1) - table%dip_u(k))
       total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m/cv%inv_span
       x_band = cv%m - table%dip_band(j)/cv%inv_span
       if (delta > x_band) then
@@ -773,67 +782,94 @@ contains
       total = total*(x1 - x0)
    end function gauss_integral
 
-   !> The dips' samples (dip, dip_first, dip_band): at evenly spaced turning points of
-   !> each delta_max interval, the walk over the whole span (span_dips), normalised by
+   !> The dips' samples (dip, dip_u, dip_first, dip_band): at turning points of each
+   !> delta_max interval, the walk over the whole span (span_dips), normalised by
    !> P_load(m)/(s_max L(m)) (the scale of the span's force and of its width in s), so
-   !> that a sample is a number of order rel_tol; dip_samples + 1 at first, the spacing
-   !> halved (to dip_samples_max) until linear interpolation meets the walk at every
-   !> midpoint to dip_tol of the span's (unclipped) integral in the same units (dips come
-   !> and go with m: bumps of a few hundredths of an interval were seen). dip_band: the
+   !> that a sample is a number of order rel_tol; dip_samples + 1 evenly spaced, then each
+   !> gap bisected until linear interpolation meets the walk at its midpoint to dip_tol of
+   !> the span's (unclipped) integral in the same units, or the gap is 1/dip_samples_max
+   !> of the interval (dips come and go with m: bumps of a few hundredths of an interval
+   !> were seen, and the walk's own jumps where it first sees a dip). dip_band: the
    !> smallest s above which a sample clipped anything, less a margin of a twentieth
    !> (dips move with m between samples). Called by hysteresis_prepare (cost: a walk per
-   !> sample, ~20 samples per interval where the dips are smooth in m).
+   !> sample, 33 per interval where the dips are smooth in m, more where they are not).
    pure subroutine energy_prepare(table)
       type(hysteresis_table), intent(inout) :: table
-      real(dp), allocatable :: q(:), mid(:), top(:), mid_top(:), store(:), q2(:), top2(:)
-      real(dp) :: band, scale, dummy
-      integer :: j, k, n, n_m, used
-      logical :: fine
+      real(dp), allocatable :: store_u(:), store_q(:)
+      real(dp) :: band, scale, u0, u1, q0, q1, top
+      integer :: j, k, n_m, used
       n_m = size(table%m)
       if (allocated(table%dip)) deallocate (table%dip)
+      if (allocated(table%dip_u)) deallocate (table%dip_u)
       if (allocated(table%dip_first)) deallocate (table%dip_first)
       if (allocated(table%dip_band)) deallocate (table%dip_band)
-      allocate (table%dip_first(n_m), table%dip_band(n_m - 1), store(64*n_m))
+      allocate (table%dip_first(n_m), table%dip_band(n_m - 1), store_u(64*n_m), &
+         & store_q(64*n_m))
       used = 0
       do j = 1, n_m - 1
-         n = dip_samples
-         allocate (q(0:n), top(0:n))
-         do k = 0, n
-            call dip_sample(table, j, real(k, dp)/n, q(k), top(k), dummy)
-         end do
-         do
-            allocate (mid(n), mid_top(n))
-            fine = .true.
-            do k = 1, n
-               call dip_sample(table, j, (k - 0.5_dp)/n, mid(k), mid_top(k), scale)
-               fine = fine .and. abs(mid(k) - 0.5_dp*(q(k - 1) + q(k))) <= dip_tol*scale
-            end do
-            if (fine .or. 2*n > dip_samples_max) then
-               deallocate (mid, mid_top)
-               exit
-            end if
-            ! interleave: the midpoints become samples
-            allocate (q2(0:2*n), top2(0:2*n))
-            q2(0:2*n:2) = q
-            q2(1:2*n - 1:2) = mid
-            top2(0:2*n:2) = top
-            top2(1:2*n - 1:2) = mid_top
-            call move_alloc(q2, q)
-            call move_alloc(top2, top)
-            n = 2*n
-            deallocate (mid, mid_top)
-         end do
-         if (used + n + 1 > size(store)) store = [store, (0.0_dp, k = 1, size(store) + n + 1)]
+         band = huge(1.0_dp)
          table%dip_first(j) = used + 1
-         store(used + 1:used + n + 1) = q
-         used = used + n + 1
-         band = minval(top)
+         u0 = 0.0_dp
+         call dip_sample(table, j, u0, q0, top, scale)
+         band = min(band, top)
+         call dip_push(store_u, store_q, used, u0, q0)
+         do k = 1, dip_samples
+            u1 = real(k, dp)/dip_samples
+            call dip_sample(table, j, u1, q1, top, scale)
+            band = min(band, top)
+            call refine(table, j, u0, u1, q0, q1, band, store_u, store_q, used)
+            u0 = u1
+            q0 = q1
+         end do
          table%dip_band(j) = max(0.95_dp*band, 0.0_dp)
-         deallocate (q, top)
       end do
       table%dip_first(n_m) = used + 1
-      table%dip = store(1:used)
+      table%dip_u = store_u(1:used)
+      table%dip = store_q(1:used)
    end subroutine energy_prepare
+
+   !> Append the samples of (u0, u1] of delta_max interval j (q0, q1 the samples at its
+   !> ends; u0's already stored): its midpoint's, then each half refined where linear
+   !> interpolation misses the midpoint by more than dip_tol of the span's integral.
+   pure recursive subroutine refine(table, j, u0, u1, q0, q1, band, store_u, store_q, used)
+      type(hysteresis_table), intent(in) :: table
+      integer, intent(in) :: j
+      real(dp), intent(in) :: u0, u1, q0, q1
+      real(dp), intent(inout) :: band
+      real(dp), allocatable, intent(inout) :: store_u(:), store_q(:)
+      integer, intent(inout) :: used
+      real(dp) :: u_mid, q_mid, top, scale
+      u_mid = 0.5_dp*(u0 + u1)
+      call dip_sample(table, j, u_mid, q_mid, top, scale)
+      band = min(band, top)
+      if (abs(q_mid - 0.5_dp*(q0 + q1)) <= dip_tol*scale .or. &
+         & u1 - u0 <= 2.0_dp/dip_samples_max) then
+         call dip_push(store_u, store_q, used, u_mid, q_mid)
+         call dip_push(store_u, store_q, used, u1, q1)
+      else
+         call refine(table, j, u0, u_mid, q0, q_mid, band, store_u, store_q, used)
+         call refine(table, j, u_mid, u1, q_mid, q1, band, store_u, store_q, used)
+      end if
+   end subroutine refine
+
+   !> Append (u, q) to the samples (grown by doubling).
+   pure subroutine dip_push(store_u, store_q, used, u, q)
+      real(dp), allocatable, intent(inout) :: store_u(:), store_q(:)
+      integer, intent(inout) :: used
+      real(dp), intent(in) :: u, q
+      real(dp), allocatable :: grown(:)
+      if (used == size(store_u)) then
+         allocate (grown(2*used + 16))
+         grown(1:used) = store_u(1:used)
+         call move_alloc(grown, store_u)
+         allocate (grown(2*used + 16))
+         grown(1:used) = store_q(1:used)
+         call move_alloc(grown, store_q)
+      end if
+      used = used + 1
+      store_u(used) = u
+      store_q(used) = q
+   end subroutine dip_push
 
    !> One sample of energy_prepare at fraction u of delta_max interval j: the normalised
    !> dips q, the s above which none was clipped (top; huge where none was) and the span's
