@@ -107,6 +107,10 @@ module egw_hysteresis
       !> (n_m - 1): per delta_max interval, an s below which no sample's span force is
       !> clipped (with a margin): an overlap at a smaller s needs no walk (energy_prepare)
       real(dp), allocatable :: dip_band(:)
+      !> per sample (as dip): the fraction of the span [lo, m] from its start lo over which
+      !> the sample's span force was clipped all along: an overlap in that of both samples
+      !> around m (less a twentieth) returns only the energy below lo (energy_prepare)
+      real(dp), allocatable :: dip_low(:)
       !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
       real(dp), allocatable :: lagrange(:, :)
       type(grid_lookup) :: m_lookup, s_lookup
@@ -529,9 +533,11 @@ contains
 
    !> int_lo^delta min(F, 0) dx (F the span force of curve cv, lo its span's start): the
    !> dips that the evaluation clips, from the table's samples (energy_prepare) in O(1):
-   !> over the whole span, interpolated linearly in m between the samples of m's interval,
-   !> less the dips between delta and the band (dip_band: a short walk, only for an
-   !> overlap in or below it). Above the band the span force at delta is looked at: a dip
+   !> over the whole span, interpolated linearly in m between the samples of m's interval
+   !> (at an overlap in the stretch from lo that both samples around m clipped, dip_low:
+   !> the integral of F from lo, all of it clipped), less the dips between delta and the
+   !> band (dip_band: a short walk, only for an overlap in or below it; from lo instead
+   !> where that is shorter). Above the band the span force at delta is looked at: a dip
    !> there that no sample saw (between them) gets the walk from lo, as a turning point
    !> above the table's delta_max (no samples).
    pure real(dp) function dips_below(table, cv, lo, delta) result(total)
@@ -557,12 +563,23 @@ contains
             n = i
          end if
       end do
+      if (delta - lo <= 0.95_dp*min(table%dip_low(k), table%dip_low(k + 1))*(cv%m - lo)) then
+         ! in the stretch from lo that every sample clipped: all of it clipped (F(delta)
+         ! looked at: a positive force there was not seen by the samples)
+         call span_eval(table, cv, delta, f, slope)
+         if (.not. f > 0.0_dp) then
+            total = span_integral(table, cv, lo, delta)
+            return
+         end if
+      end if
       u = (u - table%dip_u(k))/(table%dip_u(k + 1) - table%dip_u(k))
       total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m/cv%inv_span
       x_band = cv%m - table%dip_band(j)/cv%inv_span
       if (delta > x_band) then
          call span_eval(table, cv, delta, f, slope)
          if (.not. f > 0.0_dp) call span_dips(table, cv, lo, delta, total, x_top)
+      else if (delta - lo < x_band - delta) then   ! the shorter walk: from lo
+         call span_dips(table, cv, lo, delta, total, x_top)
       else
          call span_dips(table, cv, delta, x_band, above, x_top)
          total = min(total - above, 0.0_dp)
@@ -631,16 +648,21 @@ contains
    !> with delta) missed dips of LAMMPS's EP-GW tables (test energy_epgw: the unloading
    !> energy drift 1.7e-4 instead of 1.6e-5). Cost: the pieces of [a, b] (the reference
    !> walk, and energy_prepare's samples; dips_below walks only short stretches).
-   pure subroutine span_dips(table, cv, a, b, total, x_top)
+   pure subroutine span_dips(table, cv, a, b, total, x_top, x_low)
       type(hysteresis_table), intent(in) :: table
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: a, b
       real(dp), intent(out) :: total, x_top
+      !> the end of the run from a on which every sample was <= 0 (a: none)
+      real(dp), intent(out), optional :: x_low
       real(dp) :: x_a, x_b, next, s_a, xs(0:8), fs(0:8), f_a, k_a, f_b, k_b
       integer :: i, k, it, n_load
+      logical :: low_open
       total = 0.0_dp
       x_top = -huge(1.0_dp)
       call span_eval(table, cv, a, f_a, k_a)
+      low_open = .not. f_a > 0.0_dp
+      if (present(x_low)) x_low = a
       n_load = size(table%loading%delta)
       x_a = a
       do it = 1, 4*(n_load + size(table%s)) + 8
@@ -658,7 +680,9 @@ contains
          if (next > x_a) x_b = min(x_b, next)
          if (.not. x_b > x_a) exit   ! round-off at a break
          call span_eval(table, cv, x_b, f_b, k_b)
-         if (.not. hermite_positive(x_b - x_a, f_a, f_b, k_a, k_b)) then
+         if (hermite_positive(x_b - x_a, f_a, f_b, k_a, k_b)) then
+            low_open = .false.
+         else
             xs = x_a + (x_b - x_a)*[(real(k, dp), k=0, 8)]/8
             fs(0) = f_a
             do k = 1, 7
@@ -669,12 +693,20 @@ contains
                ! a piece below 0 at every sample: min(F, 0) = F, the closed form
                total = total + span_integral(table, cv, x_a, x_b)
                x_top = x_b
+               if (low_open .and. present(x_low)) x_low = x_b
             else if (any(.not. fs > 0.0_dp)) then
+               if (low_open .and. present(x_low)) then
+                  k = findloc(fs > 0.0_dp, .true., dim=1) - 1   ! the first positive sample
+                  x_low = xs(k - 1)
+               end if
+               low_open = .false.
                do k = 0, 7
                   total = total + negative_part(table, cv, xs(k), xs(k + 1), fs(k), &
                      & fs(k + 1))
                   if (.not. (fs(k) > 0.0_dp .and. fs(k + 1) > 0.0_dp)) x_top = xs(k + 1)
                end do
+            else
+               low_open = .false.
             end if
          end if
          x_a = x_b
@@ -791,99 +823,102 @@ contains
    !> of the interval (dips come and go with m: bumps of a few hundredths of an interval
    !> were seen, and the walk's own jumps where it first sees a dip). dip_band: the
    !> smallest s above which a sample clipped anything, less a margin of a twentieth
-   !> (dips move with m between samples). Called by hysteresis_prepare (cost: a walk per
+   !> (dips move with m between samples); dip_low: per sample, the fraction of the span
+   !> from its start over which it clipped everything. Called by hysteresis_prepare
+   !> (cost: a walk per
    !> sample, 33 per interval where the dips are smooth in m, more where they are not).
    pure subroutine energy_prepare(table)
       type(hysteresis_table), intent(inout) :: table
-      real(dp), allocatable :: store_u(:), store_q(:)
-      real(dp) :: band, scale, u0, u1, q0, q1, top
+      real(dp), allocatable :: store(:, :)
+      real(dp) :: band, scale, u0, u1, q0, q1, top, low0, low1
       integer :: j, k, n_m, used
       n_m = size(table%m)
       if (allocated(table%dip)) deallocate (table%dip)
       if (allocated(table%dip_u)) deallocate (table%dip_u)
       if (allocated(table%dip_first)) deallocate (table%dip_first)
       if (allocated(table%dip_band)) deallocate (table%dip_band)
-      allocate (table%dip_first(n_m), table%dip_band(n_m - 1), store_u(64*n_m), &
-         & store_q(64*n_m))
+      if (allocated(table%dip_low)) deallocate (table%dip_low)
+      allocate (table%dip_first(n_m), table%dip_band(n_m - 1), store(3, 64*n_m))
       used = 0
       do j = 1, n_m - 1
          band = huge(1.0_dp)
          table%dip_first(j) = used + 1
          u0 = 0.0_dp
-         call dip_sample(table, j, u0, q0, top, scale)
+         call dip_sample(table, j, u0, q0, top, scale, low0)
          band = min(band, top)
-         call dip_push(store_u, store_q, used, u0, q0)
+         call dip_push(store, used, [u0, q0, low0])
          do k = 1, dip_samples
             u1 = real(k, dp)/dip_samples
-            call dip_sample(table, j, u1, q1, top, scale)
+            call dip_sample(table, j, u1, q1, top, scale, low1)
             band = min(band, top)
-            call refine(table, j, u0, u1, q0, q1, band, store_u, store_q, used)
+            call refine(table, j, u0, u1, q0, q1, low1, band, store, used)
             u0 = u1
             q0 = q1
          end do
          table%dip_band(j) = max(0.95_dp*band, 0.0_dp)
       end do
       table%dip_first(n_m) = used + 1
-      table%dip_u = store_u(1:used)
-      table%dip = store_q(1:used)
+      table%dip_u = store(1, 1:used)
+      table%dip = store(2, 1:used)
+      table%dip_low = store(3, 1:used)
    end subroutine energy_prepare
 
    !> Append the samples of (u0, u1] of delta_max interval j (q0, q1 the samples at its
-   !> ends; u0's already stored): its midpoint's, then each half refined where linear
-   !> interpolation misses the midpoint by more than dip_tol of the span's integral.
-   pure recursive subroutine refine(table, j, u0, u1, q0, q1, band, store_u, store_q, used)
+   !> ends, low1 u1's dip_low; u0's already stored): its midpoint's, then each half
+   !> refined where linear interpolation misses the midpoint by more than dip_tol of the
+   !> span's integral.
+   pure recursive subroutine refine(table, j, u0, u1, q0, q1, low1, band, store, used)
       type(hysteresis_table), intent(in) :: table
       integer, intent(in) :: j
-      real(dp), intent(in) :: u0, u1, q0, q1
+      real(dp), intent(in) :: u0, u1, q0, q1, low1
       real(dp), intent(inout) :: band
-      real(dp), allocatable, intent(inout) :: store_u(:), store_q(:)
+      real(dp), allocatable, intent(inout) :: store(:, :)
       integer, intent(inout) :: used
-      real(dp) :: u_mid, q_mid, top, scale
+      real(dp) :: u_mid, q_mid, top, scale, low_mid
       u_mid = 0.5_dp*(u0 + u1)
-      call dip_sample(table, j, u_mid, q_mid, top, scale)
+      call dip_sample(table, j, u_mid, q_mid, top, scale, low_mid)
       band = min(band, top)
       if (abs(q_mid - 0.5_dp*(q0 + q1)) <= dip_tol*scale .or. &
          & u1 - u0 <= 2.0_dp/dip_samples_max) then
-         call dip_push(store_u, store_q, used, u_mid, q_mid)
-         call dip_push(store_u, store_q, used, u1, q1)
+         call dip_push(store, used, [u_mid, q_mid, low_mid])
+         call dip_push(store, used, [u1, q1, low1])
       else
-         call refine(table, j, u0, u_mid, q0, q_mid, band, store_u, store_q, used)
-         call refine(table, j, u_mid, u1, q_mid, q1, band, store_u, store_q, used)
+         call refine(table, j, u0, u_mid, q0, q_mid, low_mid, band, store, used)
+         call refine(table, j, u_mid, u1, q_mid, q1, low1, band, store, used)
       end if
    end subroutine refine
 
-   !> Append (u, q) to the samples (grown by doubling).
-   pure subroutine dip_push(store_u, store_q, used, u, q)
-      real(dp), allocatable, intent(inout) :: store_u(:), store_q(:)
+   !> Append a sample (u, q, low) to store (grown by doubling).
+   pure subroutine dip_push(store, used, sample)
+      real(dp), allocatable, intent(inout) :: store(:, :)
       integer, intent(inout) :: used
-      real(dp), intent(in) :: u, q
-      real(dp), allocatable :: grown(:)
-      if (used == size(store_u)) then
-         allocate (grown(2*used + 16))
-         grown(1:used) = store_u(1:used)
-         call move_alloc(grown, store_u)
-         allocate (grown(2*used + 16))
-         grown(1:used) = store_q(1:used)
-         call move_alloc(grown, store_q)
+      real(dp), intent(in) :: sample(3)
+      real(dp), allocatable :: grown(:, :)
+      if (used == size(store, 2)) then
+         allocate (grown(3, 2*used + 16))
+         grown(:, 1:used) = store(:, 1:used)
+         call move_alloc(grown, store)
       end if
       used = used + 1
-      store_u(used) = u
-      store_q(used) = q
+      store(:, used) = sample
    end subroutine dip_push
 
    !> One sample of energy_prepare at fraction u of delta_max interval j: the normalised
    !> dips q, the s above which none was clipped (top; huge where none was) and the span's
-   !> unclipped integral in the same units (scale, > 0).
-   pure subroutine dip_sample(table, j, u, q, top, scale)
+   !> unclipped integral in the same units (scale, > 0), and the fraction of the span from
+   !> its start over which every sample was clipped (low).
+   pure subroutine dip_sample(table, j, u, q, top, scale, low)
       type(hysteresis_table), intent(in) :: table
       integer, intent(in) :: j
       real(dp), intent(in) :: u
       real(dp), intent(out) :: q, top, scale
+      real(dp), intent(out) :: low   !< (x_low - lo)/(m - lo) of span_dips
       type(unload_curve) :: cv
-      real(dp) :: lo, total, x_top
+      real(dp) :: lo, total, x_top, x_low
       q = 0.0_dp
       top = huge(1.0_dp)
       scale = tiny(1.0_dp)
+      low = 0.0_dp
       cv%m = table%m(j) + (table%m(j + 1) - table%m(j))*u
       if (u >= 1.0_dp) cv%m = table%m(j + 1)
       if (.not. cv%m > table%elastic_limit) return
@@ -891,8 +926,9 @@ contains
       if (.not. cv%f_m > 0.0_dp) return
       lo = max(cv%m - 1.0_dp/cv%inv_span, table%loading%cutoff)
       if (.not. lo < cv%m) return
-      call span_dips(table, cv, lo, cv%m, total, x_top)
+      call span_dips(table, cv, lo, cv%m, total, x_top, x_low)
       q = total*cv%inv_span/cv%f_m
+      low = (x_low - lo)/(cv%m - lo)
       if (x_top > -huge(1.0_dp)) top = (cv%m - x_top)*cv%inv_span
       scale = max(abs(span_integral(table, cv, lo, cv%m))*cv%inv_span/cv%f_m, tiny(1.0_dp))
    end subroutine dip_sample
