@@ -104,6 +104,9 @@ module egw_hysteresis
       !> from 0 to 1 (energy_prepare; linear between samples)
       real(dp), allocatable :: dip(:), dip_u(:)
       integer, allocatable :: dip_first(:)   !< (n_m): interval j's first sample in dip
+      !> (dip_samples, n_m - 1): the sample at the start of each of interval j's
+      !> dip_samples equal parts (dip_u = (b - 1)/dip_samples): the search starts there
+      integer, allocatable :: dip_base(:, :)
       !> (n_m - 1): per delta_max interval, an s below which no sample's span force is
       !> clipped (with a margin): an overlap at a smaller s needs no walk (energy_prepare)
       real(dp), allocatable :: dip_band(:)
@@ -552,9 +555,11 @@ contains
       end if
       j = locate(table%m_lookup, table%m, cv%m)
       u = min(max((cv%m - table%m(j))/(table%m(j + 1) - table%m(j)), 0.0_dp), 1.0_dp)
-      ! the samples' gap around u (bisection: a few hundred samples at most)
-      k = table%dip_first(j)
+      ! the samples' gap around u: its equal part, then bisection (few samples in a part)
+      i = min(int(u*dip_samples), dip_samples - 1) + 1
+      k = table%dip_base(i, j)
       n = table%dip_first(j + 1) - 1
+      if (i < dip_samples) n = table%dip_base(i + 1, j)
       do while (n - k > 1)
          i = (k + n)/2
          if (table%dip_u(i) <= u) then
@@ -838,7 +843,9 @@ contains
       if (allocated(table%dip_first)) deallocate (table%dip_first)
       if (allocated(table%dip_band)) deallocate (table%dip_band)
       if (allocated(table%dip_low)) deallocate (table%dip_low)
-      allocate (table%dip_first(n_m), table%dip_band(n_m - 1), store(3, 64*n_m))
+      if (allocated(table%dip_base)) deallocate (table%dip_base)
+      allocate (table%dip_first(n_m), table%dip_band(n_m - 1), store(3, 64*n_m), &
+         & table%dip_base(dip_samples, n_m - 1))
       used = 0
       do j = 1, n_m - 1
          band = huge(1.0_dp)
@@ -851,6 +858,7 @@ contains
             u1 = real(k, dp)/dip_samples
             call dip_sample(table, j, u1, q1, top, scale, low1)
             band = min(band, top)
+            table%dip_base(k, j) = used   ! u0's sample
             call refine(table, j, u0, u1, q0, q1, low1, band, store, used)
             u0 = u1
             q0 = q1
