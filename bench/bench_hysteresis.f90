@@ -10,7 +10,7 @@ module bench_hysteresis
       & force_table, build_table, &
       & hertz_force, hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
-      & solve_contact_unload, solve_contact
+      & hysteresis_energy, hysteresis_energy_walk, solve_contact_unload, solve_contact
    use bench_common, only: frac, open_csv, write_row, close_csv, fmt_e
    use bench_floor, only: floor_grid, floor_grid_init, floor_kernel, floor_state_only, &
       & floor_bilinear, floor_linear_cubic, floor_bicubic
@@ -28,7 +28,8 @@ contains
       type(egw_error), allocatable :: err
       integer, parameter :: n = 4096, rounds = 11, sweeps = 200
       real(dp) :: delta(n), state(n), tols(2), sink, f, k, m, t_h, t_y, best_h, best_y, &
-         & build_s, max_err, t_c, best_c, t_w, best_w, wobble(0:63)
+         & build_s, max_err, t_c, best_c, t_w, best_w, wobble(0:63), t_e, best_e, t_v, &
+         & best_v, u
       real(dp), allocatable :: states(:, :), moving(:, :)
       integer(int64) :: c0, c1, rate
       integer :: i, r, s, stat, it, unit
@@ -71,6 +72,8 @@ contains
          best_y = huge(1.0_dp)
          best_c = huge(1.0_dp)
          best_w = huge(1.0_dp)
+         best_e = huge(1.0_dp)
+         best_v = huge(1.0_dp)
          ! the contacts' states with the turning point's cache (hysteresis_eval_state):
          ! filled by the first sweep, kept with the contacts as a DEM code keeps them
          allocate (states(hysteresis_state_size, n), moving(hysteresis_state_size, n))
@@ -123,6 +126,29 @@ contains
             end do
             call system_clock(c1)
             t_w = real(c1 - c0, dp)/real(rate, dp)/(sweeps*n)
+            ! the energy each contact returns if it separates now (LAMMPS tallies it on
+            ! energy steps): the dips from the table's samples, and the walk over the span
+            ! (the evaluation before the samples; 1/50 of the sweeps)
+            call system_clock(c0, rate)
+            do s = 1, sweeps
+               do i = 1, n
+                  call hysteresis_energy(t, delta(i), state(i), u, stat)
+                  sink = sink + u
+               end do
+            end do
+            call system_clock(c1)
+            t_e = real(c1 - c0, dp)/real(rate, dp)/(sweeps*n)
+            call system_clock(c0, rate)
+            do s = 1, sweeps/50
+               do i = 1, n
+                  call hysteresis_energy_walk(t, delta(i), state(i), u, stat)
+                  sink = sink + u
+               end do
+            end do
+            call system_clock(c1)
+            t_v = real(c1 - c0, dp)/real(rate, dp)/((sweeps/50)*n)
+            best_e = min(best_e, t_e)
+            best_v = min(best_v, t_v)
             best_w = min(best_w, t_w)
             best_h = min(best_h, t_h)
             best_y = min(best_y, t_y)
@@ -136,6 +162,9 @@ contains
             & "contacts at rest: ", best_c*1e9, " ns/call: ratio ", best_c/best_h
          write (output_unit, '(a,f7.2,a,f6.2)') "  eval with a state, contacts moving "// &
             & "(DEM-like steps):   ", best_w*1e9, " ns/call: ratio ", best_w/best_h
+         write (output_unit, '(a,f8.1,a,f6.2,a,f9.1,a,f8.1,a)') "  energy (hysteresis_energy): ", &
+            & best_e*1e9, " ns/call: / eval ", best_e/best_y, "; the walk over the span: ", &
+            & best_v*1e9, " ns/call: / eval ", best_v/best_y, ""
          write (label, '(es7.1)') tols(it)
          call write_row(unit, "hysteresis", "hysteresis table", "EP-GW psi=2 mu=4 mix", &
             & "rel_tol="//trim(label), best_y, max_err, &

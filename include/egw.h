@@ -690,8 +690,9 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
  * kinetic + this energy falls while contacts load and stays while they unload or reload).
  * Reversible tables: the loading curve's energy. The state is not changed. It integrates
  * the force egw_hysteresis_eval returns, 0 also where, far down the separated range, the
- * interpolated curve dips below 0 within rel_tol (kinetic + this energy is constant to
- * ~1e-12 of it while a contact unloads, measured against quadrature of the force).
+ * interpolated curve dips below 0 within rel_tol (those dips sampled per table when it
+ * is built or read; kinetic + this energy is constant to ~1e-8 of it while a contact
+ * unloads, measured against quadrature of the force; a few table lookups a call).
  * EGW_OUT_OF_RANGE above the table's delta_max (value written); EGW_INVALID_ARGUMENT for
  * NaN or overflowing input; EGW_NULL_POINTER for h or energy. */
 int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,

@@ -34,7 +34,8 @@ module egw
       & write_table, read_table, write_universal, read_universal, write_lammps, &
       & write_calculix_flat, write_calculix_sphere
    use egw_hysteresis, only: hysteresis_table, hysteresis_state_size, build_hysteresis, &
-      & hysteresis_eval, hysteresis_eval_state, hysteresis_state_init, hysteresis_energy
+      & hysteresis_eval, hysteresis_eval_state, hysteresis_state_init, hysteresis_energy, &
+      & hysteresis_energy_walk
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_flat_law_format, only: write_flat_law, read_flat_law
    use egw_scene, only: scene_input, scene_overrides, contact_scene, model_choice, &

@@ -24,6 +24,7 @@ program tester
    use test_unloading, only: collect_unloading
    use test_cli, only: collect_cli
    use test_hysteresis, only: collect_hysteresis
+   use test_hysteresis_energy, only: collect_hysteresis_energy
    use test_unload_sphere, only: collect_unload_sphere
    use test_input, only: collect_input
    use test_facade, only: collect_facade
@@ -64,6 +65,7 @@ program tester
       & new_testsuite("cli", collect_cli), &
       & new_testsuite("unload_sphere", collect_unload_sphere), &
       & new_testsuite("hysteresis", collect_hysteresis), &
+      & new_testsuite("hysteresis_energy", collect_hysteresis_energy), &
       & new_testsuite("input", collect_input), &
       & new_testsuite("facade", collect_facade), &
       & new_testsuite("capi_array", collect_capi_array), &
