@@ -596,11 +596,11 @@ void FixWallEGW::post_force(int /*vflag*/)
   // commands between runs may change atoms without the per-atom callbacks' care for the
   // flag: each far atom's history is cleared once again in a run's set-up
   if (update->setupflag) std::fill(cleared.begin(), cleared.begin() + atom->nlocal, 0);
-  if (tvar >= 0 && has_heat()) {
-    modify->clearstep_compute();
-    wall_temperature = input->variable->compute_equal(tvar);
-    modify->addstep_compute(update->ntimestep + 1);
-  }
+  // the wall temperature's variable evaluated as fix wall/gran does: without scheduling the
+  // computes for the next step (clearstep/addstep_compute would make LAMMPS tally energies
+  // on every step, for EP-GW a cost of its own); a variable of an energy compute stops
+  // with LAMMPS's "Energy was not tallied on needed timestep", as with fix wall/gran
+  if (tvar >= 0 && has_heat()) wall_temperature = input->variable->compute_equal(tvar);
   if (wallstyle == REGION) {
     post_force_region();
     return;
