@@ -310,8 +310,11 @@ contains
             ! check curves, solved at their neighbours' nodes (the grid in s that the
             ! neighbours' bisection found; refine_curve completes one that becomes a node)
             allocate (built(size(idx)))
+            ! (but s = 0, where every gap is 0 and so is the mismatch: its solve gives
+            ! only the slope, which the check does not use)
             do k = 1, size(idx)
                call merge_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
+               built(k)%s = pack(built(k)%s, built(k)%s > 0.0_dp)
             end do
             call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), built, error, &
                & check=.true.)
@@ -588,18 +591,30 @@ contains
          integer, intent(in) :: k
          type(egw_error), allocatable :: err
          type(unloading_curve) :: known
-         integer :: i
+         integer :: i, at
          known%s = curves(idx(k))%s
          known%gap = curves(idx(k))%gap
          known%slope = curves(idx(k))%slope
-         ! the bisection of a node's curve from its first nodes (every curve holds them),
-         ! the check solves taken where it meets them: the curve a node built at once has
+         ! the bisection of a node's curve from its first nodes, the check solves taken
+         ! where it meets them (all first nodes but s = 0): the curve a node built at once
+         ! has
          curves(idx(k))%s = first_nodes
-         curves(idx(k))%gap = [(known%gap(findloc(known%s, first_nodes(i), 1)), i = 1, &
-            & size(first_nodes))]
-         curves(idx(k))%slope = [(known%slope(findloc(known%s, first_nodes(i), 1)), i = 1, &
-            & size(first_nodes))]
-         call refine_curve(table, curves(idx(k)), worst(k), err, known)
+         deallocate (curves(idx(k))%gap, curves(idx(k))%slope)
+         allocate (curves(idx(k))%gap(size(first_nodes)), &
+            & curves(idx(k))%slope(size(first_nodes)))
+         do i = 1, size(first_nodes)
+            at = findloc(known%s, first_nodes(i), 1)
+            if (at > 0) then
+               curves(idx(k))%gap(i) = known%gap(at)
+               curves(idx(k))%slope(i) = known%slope(at)
+            else
+               call gap_at(table, curves(idx(k)), first_nodes(i), curves(idx(k))%gap(i), &
+                  & curves(idx(k))%slope(i), err)
+               if (allocated(err)) exit
+            end if
+         end do
+         if (.not. allocated(err)) call refine_curve(table, curves(idx(k)), worst(k), err, &
+            & known)
          if (allocated(err)) then
             stats(k) = err%stat
             messages(k) = err%message
