@@ -168,7 +168,6 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
                    int n_threads, const std::function<void(const std::string &)> &fail_with)
 {
   release();
-  EgwTables::BuildThreads team(n_threads);    // egw's table builds: every processor (1 rank)
   auto fail = [&]() {
     char buf[1024];
     egw_last_error(buf, sizeof(buf));
