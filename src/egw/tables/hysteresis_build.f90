@@ -694,6 +694,7 @@ contains
       integer :: n, i, k
       logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
+      type(loading_history) :: unloaded
       worst = 0.0_dp
       n = size(curve%s)
       s(1:n) = curve%s
@@ -756,6 +757,7 @@ contains
       curve%gap = gap(1:n)
       curve%slope = slope(1:n)
       curve%verified = .true.
+      curve%hist = unloaded   ! (no more solves: its mesh and field freed)
    end subroutine refine_curve
 
    !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
