@@ -50,6 +50,7 @@ contains
       testsuite = [ &
          & new_unittest("DEM loop restitution = restitution to 1e-4", test_dem_restitution), &
          & new_unittest("table within rel_tol of solves between nodes", test_accuracy), &
+         & new_unittest("every delta_max interval, between the s nodes", test_between_nodes), &
          & new_unittest("loading above delta_max: the deep law", test_deep_loading), &
          & new_unittest("low delta_max: loading table to the deep law's floor", &
          & test_deep_floor), &
@@ -124,6 +125,56 @@ contains
       call check(error, worst <= tol, "worst error "//format_real(worst)// &
          & " of P(delta_max) over "//to_string(size(t%m))//" delta_max nodes")
    end subroutine test_accuracy
+
+   !> The build checks each delta_max interval with a midpoint curve solved at its two
+   !> neighbours' s nodes only (no bisection of its own unless it becomes a node): at the
+   !> midpoint of every interval, and at the midpoints between the table's s nodes (where
+   !> neither a node's curve nor a check curve was solved; every other one, the first
+   !> six and the last always), the table's force against a solve at rel_tol 1e-7 (as
+   !> test_accuracy): within rel_tol of the force at the turning point.
+   subroutine test_between_nodes(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(solver_options) :: fine
+      type(solve_result) :: res, top
+      type(egw_error), allocatable :: err
+      real(dp) :: m, d, f, k, state, worst, span, x
+      integer :: j, i, stat, n_points
+      call build(ep, t, error)
+      if (allocated(error)) return
+      fine%rel_tol = 1.0e-7_dp
+      worst = 0.0_dp
+      n_points = 0
+      do j = 1, size(t%m) - 1
+         m = 0.5_dp*(t%m(j) + t%m(j + 1))
+         call solve_contact(ep, fine, m, top, err)
+         if (allocated(err)) exit
+         span = t%s_max*0.5_dp*(t%length(j) + t%length(j + 1))
+         do i = 1, size(t%s) - 1
+            if (i > 6 .and. mod(i, 2) == 1 .and. i < size(t%s) - 1) cycle
+            x = 0.5_dp*(t%s(i) + t%s(i + 1))
+            d = m - x*span
+            if (d < t%loading%cutoff) exit
+            call solve_contact_unload(ep, fine, d, m, res, err)
+            if (allocated(err)) exit
+            state = m
+            call hysteresis_eval(t, d, state, f, k, stat)
+            worst = max(worst, abs(f - res%force)/top%force)
+            n_points = n_points + 1
+         end do
+         if (allocated(err)) exit
+      end do
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      call check(error, worst <= tol .and. n_points >= 4*(size(t%m) - 1), "worst error "// &
+         & format_real(worst)//" of P(delta_max) at "//to_string(n_points)//" points, "// &
+         & to_string(size(t%m))//" delta_max x "//to_string(size(t%s))//" s nodes")
+      if (allocated(error)) return
+      print '(4x,a,es9.2,a,i0,a,i0,a,i0,a)', "worst ", worst, " of P(delta_max) at ", &
+         & n_points, " points (", size(t%m), " delta_max x ", size(t%s), " s nodes)"
+   end subroutine test_between_nodes
 
    !> The loading curve above the table's delta_max (6 sigma) follows the deep-overlap law
    !> (doc/theory.md §9): against loading solves at 10 overlaps up to 1e4 sigma (the scaled

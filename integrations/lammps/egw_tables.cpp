@@ -10,6 +10,7 @@
 #include <iterator>
 #include <map>
 #include <mutex>
+#include <omp.h>
 #include <tuple>
 #include <unistd.h>
 
@@ -122,6 +123,16 @@ std::vector<std::pair<double, double>> check_points(double xc, double xmax)
 
 }    // namespace
 
+EgwTables::BuildThreads::BuildThreads(int n_threads) : before(omp_get_max_threads())
+{
+  omp_set_num_threads(n_threads > 0 ? n_threads : std::max(1, omp_get_num_procs()));
+}
+
+EgwTables::BuildThreads::~BuildThreads()
+{
+  omp_set_num_threads(before);
+}
+
 std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Comm comm,
                                         int n_threads,
                                         const std::function<void(const std::string &)> &fail,
@@ -146,6 +157,7 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
   std::vector<std::string> build_error(missing.size());
   // every rank holds the same tables (the same calls in the same order), so missing is
   // the same list everywhere; table m is built on rank m % nprocs
+  BuildThreads team(n_threads);
   for (size_t m = 0; m < missing.size(); m++) {
     const HystKey &k = keys[missing[m]];
     int owner = (int) (m % nprocs);

@@ -38,10 +38,24 @@ struct HystKey {
 /* one table, freed when its last holder (a law, or the registry) lets it go */
 using Hyst = std::shared_ptr<struct egw_hysteresis_s>;
 
+/* The OpenMP team of egw's table builds while it lives (egw builds its tables' points and
+ * curves in OpenMP loops of the default team): n_threads, or with 0 every processor this
+ * process may run on (omp_get_num_procs: its affinity mask), whatever OMP_NUM_THREADS says
+ * (build/lammps/lmp sets it to 1 for the force loop, which would leave a single rank's
+ * set-up on one core); the team before is restored at the end. */
+struct BuildThreads {
+  explicit BuildThreads(int n_threads);
+  ~BuildThreads();
+  BuildThreads(const BuildThreads &) = delete;
+  BuildThreads &operator=(const BuildThreads &) = delete;
+  int before;
+};
+
 /* The tables for keys, in order. Collective over comm (every rank calls with the same
  * keys): a table this process already holds is shared, the others are built with
- * delta_min = 0 (each its own cut-off) on rank i % nprocs, n_threads threads (0: egw's
- * default), and broadcast. On an egw failure fail(message) is called on every rank.
+ * delta_min = 0 (each its own cut-off) on rank i % nprocs, n_threads threads (0: every
+ * processor of this process, BuildThreads), and broadcast. On an egw failure
+ * fail(message) is called on every rank.
  * n_built (may be null) receives the number of tables built in this call (all ranks). */
 std::vector<Hyst> hysteresis(const std::vector<HystKey> &keys, MPI_Comm comm, int n_threads,
                              const std::function<void(const std::string &)> &fail,

@@ -16,13 +16,24 @@ submodule (egw_hysteresis) egw_hysteresis_build
    integer, parameter :: max_s_nodes = 400, max_m_nodes = build_m_node_limit
    !> The deepest turning point of a Hertz + cap table, in units of first yield delta_y.
    real(dp), parameter :: max_cap_range = 1000.0_dp
+   !> The first s nodes of every curve (bisection adds nodes between them).
+   real(dp), parameter :: first_nodes(5) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
-   !> The unloading curve of one delta_max node during the build: g and dg/ds at nodes s.
+   !> The unloading curve of one delta_max node during the build: g and dg/ds at nodes s,
+   !> and what its solves need (start_curve): a check curve (a midpoint of refine_m,
+   !> solved at its neighbours' nodes) is bisected in s (refine_curve) only when it
+   !> becomes a node.
    type :: unloading_curve
       real(dp) :: length = 0.0_dp   !< L(m) = 1.5 P_load(m)/K_unload(m)
       real(dp), allocatable :: s(:), gap(:), slope(:)
+      real(dp) :: m = 0.0_dp        !< its turning point
+      real(dp) :: span = 0.0_dp     !< s_max L: delta = m - s span
+      real(dp) :: scale = 1.0_dp    !< the loading table's force at m (g's unit)
+      real(dp) :: c_turn = 1.0_dp   !< the solve's force at m over scale
+      logical :: verified = .false. !< bisected in s to rel_tol/4 (refine_curve)
+      type(loading_history) :: hist !< the loading solve at m (loaded: reused)
    end type unloading_curve
 
 contains
@@ -272,8 +283,13 @@ contains
 
    !> Bisect the delta_max intervals until, for each, the Lagrange combination of its
    !> stencil's curves meets the midpoint's own curve at every node of that curve within
-   !> rel_tol. Midpoint curves are kept until their interval is split (then they become
-   !> nodes) and rechecked when the stencil changed: only new midpoints cost solves.
+   !> rel_tol. A midpoint's curve is a check curve: solved at the union of its two
+   !> neighbours' s nodes (where their bisection found the curves need nodes), not
+   !> bisected itself (a node's curve costs twice its nodes in solves, one check solve an
+   !> interval: the EP-GW table at 1e-4 of egw-bench 3933 -> 3100 solves). Check curves
+   !> are kept until their interval is split, then bisected from the first nodes as a
+   !> node's curve is (refine_curve, taking the check solves it meets: the same curve)
+   !> and rechecked when the stencil changed: only new midpoints cost solves.
    subroutine refine_m(table, options, m, curves, error, progress)
       type(hysteresis_table), intent(inout) :: table
       type(solver_options), intent(in) :: options
@@ -284,15 +300,24 @@ contains
       type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
       real(dp), allocatable :: new_m(:), err_mid(:)
       logical, allocatable :: have_mid(:), new_have(:)
-      integer, allocatable :: idx(:)
+      integer, allocatable :: idx(:), promoted(:)
       integer :: pass, j, k, n_split
       allocate (mids(size(m) - 1), have_mid(size(m) - 1))
       have_mid = .false.
       do pass = 1, 30
          idx = pack([(j, j = 1, size(m) - 1)], .not. have_mid)
          if (size(idx) > 0) then
+            ! check curves, solved at their neighbours' nodes (the grid in s that the
+            ! neighbours' bisection found; refine_curve completes one that becomes a node)
             allocate (built(size(idx)))
-            call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), built, error)
+            ! (but s = 0, where every gap is 0 and so is the mismatch: its solve gives
+            ! only the slope, which the check does not use)
+            do k = 1, size(idx)
+               call merge_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
+               built(k)%s = pack(built(k)%s, built(k)%s > 0.0_dp)
+            end do
+            call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), built, error, &
+               & check=.true.)
             if (allocated(error)) return
             do k = 1, size(idx)
                call move_curve(built(k), mids(idx(k)))
@@ -321,6 +346,8 @@ contains
          allocate (new_m(size(m) + n_split), new_curves(size(m) + n_split), &
             & new_mids(size(m) + n_split - 1), new_have(size(m) + n_split - 1))
          new_have = .false.
+         allocate (promoted(n_split))
+         n_split = 0
          k = 0
          do j = 1, size(m)
             k = k + 1
@@ -331,6 +358,8 @@ contains
                k = k + 1
                new_m(k) = 0.5_dp*(m(j) + m(j + 1))
                call move_curve(mids(j), new_curves(k))
+               n_split = n_split + 1
+               promoted(n_split) = k
             else
                call move_curve(mids(j), new_mids(k))
                new_have(k) = .true.
@@ -341,6 +370,10 @@ contains
          call move_alloc(new_mids, mids)
          call move_alloc(new_have, have_mid)
          deallocate (err_mid)
+         ! the new nodes: bisected in s as every node's curve
+         call verify_curves(table, curves, promoted, error)
+         if (allocated(error)) return
+         deallocate (promoted)
       end do
       call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
          & format_real(table%rel_tol)//" not reached: the delta_max grid did not settle "// &
@@ -405,7 +438,8 @@ contains
       floor = lo
    end function unloading_floor
 
-   !> L(m) of the curves at m(:) (a loading and an unloading solve each, in parallel).
+   !> L(m) of the curves at m(:) (a loading solve each, in parallel; its history is kept
+   !> in the curve for build_curves).
    subroutine unloading_lengths(table, options, m, curves, error)
       type(hysteresis_table), intent(in) :: table
       type(solver_options), intent(in) :: options
@@ -427,13 +461,12 @@ contains
       subroutine one_length(j)
          integer, intent(in) :: j
          type(egw_error), allocatable :: err
-         type(loading_history) :: hist
          type(solve_result) :: top, res
          if (table%params%flow_pressure > 0.0_dp) then   ! (rough: the smooth cap's differ)
             call free_length(table%params, serial, m(j), curves(j)%length, err)
          else
-            call load_history(table%params, serial, m(j), hist, top, err)
-            if (.not. allocated(err)) call solve_unload(hist, m(j), res, err)
+            call load_history(table%params, serial, m(j), curves(j)%hist, top, err)
+            if (.not. allocated(err)) call solve_unload(curves(j)%hist, m(j), res, err)
             if (.not. allocated(err)) curves(j)%length = unloading_length(top%force, &
                & res%stiffness, table%params%sigma)
          end if
@@ -483,17 +516,23 @@ contains
    end function unloading_length
 
    !> The unloading curves of the delta_max values m(:), in parallel (OpenMP; every curve
-   !> is independent: its own loading history and solves); the first error wins.
-   subroutine build_curves(table, options, m, curves, error)
+   !> is independent: its own loading history and solves); the first error wins. A curve
+   !> whose history is loaded already (unloading_lengths) keeps it. check: solve each
+   !> curve at the s nodes curves(j)%s holds (refine_m's check curves), without bisection.
+   subroutine build_curves(table, options, m, curves, error, check)
       type(hysteresis_table), intent(inout) :: table
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(inout) :: curves(:)
       type(egw_error), allocatable, intent(out) :: error
+      logical, intent(in), optional :: check
       type(solver_options) :: serial
       real(dp) :: worst(size(m))
       integer :: stats(size(m)), j
       character(len=256) :: messages(size(m))
+      logical :: only_check
+      only_check = .false.
+      if (present(check)) only_check = check
       serial = curve_options(options, table%rel_tol)
       stats = 0
       worst = 0.0_dp
@@ -509,7 +548,18 @@ contains
       subroutine one_curve(j)
          integer, intent(in) :: j
          type(egw_error), allocatable :: err
-         call build_curve(table, serial, m(j), curves(j), worst(j), err)
+         real(dp), allocatable :: s(:)
+         call start_curve(table, serial, m(j), curves(j), err)
+         if (.not. allocated(err)) then
+            if (only_check) then
+               s = curves(j)%s
+            else
+               s = first_nodes
+            end if
+            call solve_nodes(table, curves(j), s, err)
+         end if
+         if (.not. (allocated(err) .or. only_check)) call refine_curve(table, curves(j), &
+            & worst(j), err)
          if (allocated(err)) then
             stats(j) = err%stat
             messages(j) = err%message
@@ -517,53 +567,139 @@ contains
       end subroutine one_curve
    end subroutine build_curves
 
-   !> The unloading curve of delta_max = m: s nodes 0, 1/16, 1/4, 1/2, 1, bisected until the
-   !> Hermite curve agrees with the solves at every midpoint to rel_tol/4 (an interval that
-   !> passed is not solved again).
-   subroutine build_curve(table, options, m, curve, worst, error)
+   !> refine_curve on curves(idx(:)) (check curves that became nodes), in parallel.
+   subroutine verify_curves(table, curves, idx, error)
+      type(hysteresis_table), intent(inout) :: table
+      type(unloading_curve), intent(inout) :: curves(:)
+      integer, intent(in) :: idx(:)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: worst(size(idx))
+      integer :: stats(size(idx)), k
+      character(len=256) :: messages(size(idx))
+      stats = 0
+      worst = 0.0_dp
+      !$omp parallel do schedule(dynamic) default(shared) private(k)
+      do k = 1, size(idx)
+         call one_verify(k)
+      end do
+      !$omp end parallel do
+      call first_failure(stats, messages, error)
+      if (allocated(error) .or. size(idx) == 0) return
+      table%max_error = max(table%max_error, maxval(worst))
+   contains
+      subroutine one_verify(k)
+         integer, intent(in) :: k
+         type(egw_error), allocatable :: err
+         type(unloading_curve) :: known
+         integer :: i, at
+         known%s = curves(idx(k))%s
+         known%gap = curves(idx(k))%gap
+         known%slope = curves(idx(k))%slope
+         ! the bisection of a node's curve from its first nodes, the check solves taken
+         ! where it meets them (all first nodes but s = 0): the curve a node built at once
+         ! has
+         curves(idx(k))%s = first_nodes
+         deallocate (curves(idx(k))%gap, curves(idx(k))%slope)
+         allocate (curves(idx(k))%gap(size(first_nodes)), &
+            & curves(idx(k))%slope(size(first_nodes)))
+         do i = 1, size(first_nodes)
+            at = findloc(known%s, first_nodes(i), 1)
+            if (at > 0) then
+               curves(idx(k))%gap(i) = known%gap(at)
+               curves(idx(k))%slope(i) = known%slope(at)
+            else
+               call gap_at(table, curves(idx(k)), first_nodes(i), curves(idx(k))%gap(i), &
+                  & curves(idx(k))%slope(i), err)
+               if (allocated(err)) exit
+            end if
+         end do
+         if (.not. allocated(err)) call refine_curve(table, curves(idx(k)), worst(k), err, &
+            & known)
+         if (allocated(err)) then
+            stats(k) = err%stat
+            messages(k) = err%message
+         end if
+      end subroutine one_verify
+   end subroutine verify_curves
+
+   !> What the solves of the unloading curve of delta_max = m need: its loading history
+   !> (loaded here unless the curve holds one for m), the force scale and L(m).
+   subroutine start_curve(table, options, m, curve, error)
       type(hysteresis_table), intent(in) :: table
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: m
-      type(unloading_curve), intent(out) :: curve
-      real(dp), intent(out) :: worst
+      type(unloading_curve), intent(inout) :: curve
       type(egw_error), allocatable, intent(out) :: error
-      type(loading_history) :: hist
       type(solve_result) :: res
-      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), span, scale, &
-         & r_mid, d_mid, r_int, d_int, s_mid, err, f_turn, k_turn, c_turn
-      integer :: n, i
-      logical :: refined, checked(max_s_nodes)
-      type(unloading_curve) :: probe
-      worst = 0.0_dp
-      call load_history(table%params, options, m, hist, res, error)
-      if (allocated(error)) return
+      real(dp) :: f_turn, k_turn
+      curve%m = m
+      curve%verified = .false.
+      if (curve%hist%loaded .and. curve%hist%delta_max == m) then
+         res = curve%hist%loading
+      else
+         call load_history(table%params, options, m, curve%hist, res, error)
+         if (allocated(error)) return
+      end if
       f_turn = res%force
       ! gaps relative to the loading table's force at the turning point (what the
       ! evaluation multiplies them by)
-      call table_eval(table%loading, m, scale, k_turn)
-      if (.not. scale > 0.0_dp) scale = table%loading%reference_force*table%rel_tol
+      call table_eval(table%loading, m, curve%scale, k_turn)
+      if (.not. curve%scale > 0.0_dp) curve%scale = table%loading%reference_force*table%rel_tol
       ! the loading reference scaled to the solve's force at the turning point, so that the
       ! gap vanishes there continuously (the table's own error, <= rel_tol of the force,
       ! would otherwise be a jump that no refinement in s removes)
-      c_turn = 1.0_dp
-      if (f_turn > 0.0_dp .and. scale > 0.0_dp) c_turn = f_turn/scale
+      curve%c_turn = 1.0_dp
+      if (f_turn > 0.0_dp .and. curve%scale > 0.0_dp) curve%c_turn = f_turn/curve%scale
       if (table%capped) then
          call cap_length(table%params, m, curve%length, error)
       else if (table%params%flow_pressure > 0.0_dp) then
          call free_length(table%params, options, m, curve%length, error)
       else
-         call solve_unload(hist, m, res, error)
+         call solve_unload(curve%hist, m, res, error)
          if (.not. allocated(error)) curve%length = unloading_length(f_turn, res%stiffness, &
             & table%params%sigma)
       end if
       if (allocated(error)) return
-      span = table%s_max*curve%length
-      n = 5
-      s(1:n) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
-      do i = 1, n
-         call gap_at(s(i), gap(i), slope(i))
+      curve%span = table%s_max*curve%length
+   end subroutine start_curve
+
+   !> The curve's g and dg/ds at the nodes s (increasing, in [0, 1]), solved.
+   subroutine solve_nodes(table, curve, s, error)
+      type(hysteresis_table), intent(in) :: table
+      type(unloading_curve), intent(inout) :: curve
+      real(dp), intent(in) :: s(:)
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i
+      curve%s = s
+      if (allocated(curve%gap)) deallocate (curve%gap, curve%slope)
+      allocate (curve%gap(size(s)), curve%slope(size(s)))
+      do i = 1, size(s)
+         call gap_at(table, curve, s(i), curve%gap(i), curve%slope(i), error)
          if (allocated(error)) return
       end do
+   end subroutine solve_nodes
+
+   !> Bisect the curve's s intervals (from the nodes it holds) until the Hermite curve
+   !> agrees with the solves at every midpoint to rel_tol/4 (an interval that passed is not
+   !> solved again); worst: the largest mismatch accepted. known: solves of this curve
+   !> done before (a check curve's), taken instead of solving again at their s.
+   subroutine refine_curve(table, curve, worst, error, known)
+      type(hysteresis_table), intent(in) :: table
+      type(unloading_curve), intent(inout) :: curve
+      real(dp), intent(out) :: worst
+      type(egw_error), allocatable, intent(out) :: error
+      type(unloading_curve), intent(in), optional :: known
+      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), r_mid, d_mid, &
+         & r_int, d_int, s_mid, err
+      integer :: n, i, k
+      logical :: refined, checked(max_s_nodes)
+      type(unloading_curve) :: probe
+      type(loading_history) :: unloaded
+      worst = 0.0_dp
+      n = size(curve%s)
+      s(1:n) = curve%s
+      gap(1:n) = curve%gap
+      slope(1:n) = curve%slope
       checked(1:n - 1) = .false.
       do
          refined = .false.
@@ -574,8 +710,15 @@ contains
                cycle
             end if
             s_mid = 0.5_dp*(s(i) + s(i + 1))
-            call gap_at(s_mid, r_mid, d_mid)
-            if (allocated(error)) return
+            k = 0
+            if (present(known)) k = findloc(known%s, s_mid, 1)
+            if (k > 0) then
+               r_mid = known%gap(k)
+               d_mid = known%slope(k)
+            else
+               call gap_at(table, curve, s_mid, r_mid, d_mid, error)
+               if (allocated(error)) return
+            end if
             probe%s = s(i:i + 1)
             probe%gap = gap(i:i + 1)
             probe%slope = slope(i:i + 1)
@@ -587,8 +730,8 @@ contains
                if (n == max_s_nodes) then
                   call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
                      & format_real(table%rel_tol)//" not reached: the unloading curve at "// &
-                     & "delta_max = "//format_real(m)//" needs more than 400 nodes for "// &
-                     & "rel_tol/4, its mismatch still "//format_real(err))
+                     & "delta_max = "//format_real(curve%m)//" needs more than 400 nodes "// &
+                     & "for rel_tol/4, its mismatch still "//format_real(err))
                   return
                end if
                s(i + 2:n + 1) = s(i + 1:n)
@@ -613,44 +756,47 @@ contains
       curve%s = s(1:n)
       curve%gap = gap(1:n)
       curve%slope = slope(1:n)
+      curve%verified = .true.
+      curve%hist = unloaded   ! (no more solves: its mesh and field freed)
+   end subroutine refine_curve
 
-   contains
-
-      !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
-      !> delta = m - s span, P_ext the loading table with its tail below the cut-off (below
-      !> the cut-off too: the curve is a neighbour of others in the m direction), c the
-      !> solve's force at m over the table's; g = 0 at the turning point, so that the force
-      !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
-      subroutine gap_at(x, g, dg)
-         real(dp), intent(in) :: x
-         real(dp), intent(out) :: g, dg
-         real(dp) :: p_ext, k_ext, x_solve
-         g = 0.0_dp
-         dg = 0.0_dp
-         ! At s = 0 solve_unload returns the loading solve, whose stiffness is the loading
-         ! branch's; unloading leaves the turning point stiffer (mu 4, psi 2, m = sigma:
-         ! 2.740 against 2.539), so a slope of ~0 there made the first interval's cubic
-         ! wrong and the bisection halve it down to s ~ 6e-5 (10 nodes, 20 solves a
-         ! curve). The slope at s = 1e-4 instead: g is smooth there (g/s linear in s from
-         ! 0.5 down to 1e-6 sigma), the difference is ~1e-4 g'' and the checks below see
-         ! what remains. (Nearer than ~1e-7 sigma to m an unloading solve's stiffness is
-         ! off: d - d_max is then below the error of the interpolated d_max field.)
-         x_solve = x
-         if (x == 0.0_dp) x_solve = 1.0e-4_dp
-         call solve_unload(hist, m - x_solve*span, res, error)
-         if (allocated(error)) return
-         ! the loading force continued below its cut-off by the tail law (table_eval
-         ! gives 0 there), so that the gap stays smooth across it
-         call table_eval_tail_law(table%loading, m - x_solve*span, p_ext, k_ext)
-         if (x > 0.0_dp) g = (c_turn*p_ext - res%force)/scale
-         dg = (res%stiffness - c_turn*k_ext)*span/scale
-         ! far below the cut-off the forces underflow: no subnormal numbers in the table
-         ! (they would slow every evaluation that touches them by two orders)
-         if (abs(g) < tiny_ratio) g = 0.0_dp
-         if (abs(dg) < tiny_ratio) dg = 0.0_dp
-      end subroutine gap_at
-
-   end subroutine build_curve
+   !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
+   !> delta = m - s span, P_ext the loading table with its tail below the cut-off (below
+   !> the cut-off too: the curve is a neighbour of others in the m direction), c the
+   !> solve's force at m over the table's; g = 0 at the turning point, so that the force
+   !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
+   subroutine gap_at(table, curve, x, g, dg, error)
+      type(hysteresis_table), intent(in) :: table
+      type(unloading_curve), intent(in) :: curve
+      real(dp), intent(in) :: x
+      real(dp), intent(out) :: g, dg
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      real(dp) :: p_ext, k_ext, x_solve
+      g = 0.0_dp
+      dg = 0.0_dp
+      ! At s = 0 solve_unload returns the loading solve, whose stiffness is the loading
+      ! branch's; unloading leaves the turning point stiffer (mu 4, psi 2, m = sigma:
+      ! 2.740 against 2.539), so a slope of ~0 there made the first interval's cubic
+      ! wrong and the bisection halve it down to s ~ 6e-5 (10 nodes, 20 solves a
+      ! curve). The slope at s = 1e-4 instead: g is smooth there (g/s linear in s from
+      ! 0.5 down to 1e-6 sigma), the difference is ~1e-4 g'' and the checks below see
+      ! what remains. (Nearer than ~1e-7 sigma to m an unloading solve's stiffness is
+      ! off: d - d_max is then below the error of the interpolated d_max field.)
+      x_solve = x
+      if (x == 0.0_dp) x_solve = 1.0e-4_dp
+      call solve_unload(curve%hist, curve%m - x_solve*curve%span, res, error)
+      if (allocated(error)) return
+      ! the loading force continued below its cut-off by the tail law (table_eval
+      ! gives 0 there), so that the gap stays smooth across it
+      call table_eval_tail_law(table%loading, curve%m - x_solve*curve%span, p_ext, k_ext)
+      if (x > 0.0_dp) g = (curve%c_turn*p_ext - res%force)/curve%scale
+      dg = (res%stiffness - curve%c_turn*k_ext)*curve%span/curve%scale
+      ! far below the cut-off the forces underflow: no subnormal numbers in the table
+      ! (they would slow every evaluation that touches them by two orders)
+      if (abs(g) < tiny_ratio) g = 0.0_dp
+      if (abs(dg) < tiny_ratio) dg = 0.0_dp
+   end subroutine gap_at
 
    !> Put every curve on the union of their s nodes: the union refines each curve's own
    !> nodes, so the Hermite data there reproduce each curve's cubics exactly.
@@ -741,6 +887,12 @@ contains
       type(unloading_curve), intent(inout) :: from
       type(unloading_curve), intent(out) :: to
       to%length = from%length
+      to%m = from%m
+      to%span = from%span
+      to%scale = from%scale
+      to%c_turn = from%c_turn
+      to%verified = from%verified
+      to%hist = from%hist
       call move_alloc(from%s, to%s)
       call move_alloc(from%gap, to%gap)
       call move_alloc(from%slope, to%slope)
