@@ -15,7 +15,7 @@ module egw_sphere_iteration
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
       & scaled_problem, discrete_solution, law_at, law_inverse, base_gap, base_gap_rate, &
       & closest_gap, gauss_values, gauss_gap, deflection_degree, pressure_points, rough_pressure, &
-      & cap_fields, sums_total
+      & cap_fields, sums_total, smooth_stiffness
    implicit none
    private
 
@@ -123,7 +123,8 @@ contains
       real(dp), allocatable :: jac(:, :), rhs(:), x(:, :), corr(:, :), rate(:)
       integer, allocatable :: ipiv(:)
       integer :: n, info, sweep
-      logical :: refined
+      logical :: refined, edge_capped
+      real(dp), allocatable :: free_rate(:)
       n = size(sol%w)
       allocate (jac(n, n), x(n, 1), corr(n, 1), stat=info)
       if (info /= 0) then
@@ -139,7 +140,22 @@ contains
       if (.not. evaluated_at_w(sol)) call evaluate(prob, sol)
       call jacobian(sol, jac)
       ! with the cap the rough part also moves with delta at fixed gap (sol%dpdd)
-      rhs = matmul(sol%infl, sol%dpdh*sol%dbase + sol%dpdd)
+      edge_capped = capped_at_edge(prob, sol)
+      if (edge_capped) then
+         ! The capped zone holds the Hertz edge a: the total pressure there is p_y, the
+         ! rough part p_y - p_s, whose rate -d(p_s)/d(delta) = -(1/pi)/sqrt(delta - r**2)
+         ! has the Hertz stiffness's 1/sqrt(a - r) edge, which the Gauss sums integrate to
+         ! ~1e-3 of the stiffness only (beyond ~3 delta_y, sigma = delta_y/100). Written
+         ! for the total instead, the capped points' rates cancel exactly: the gap rate is
+         ! -1 + H[d(p_s)/d(delta) where p_s > 0 but not capped] + H[rough rate elsewhere],
+         ! the same Jacobian with another right-hand side (uncapped_rate: the first term's
+         ! pressure), and dP/d(delta) = int (uncapped_rate + dp/dh gap rate); see
+         ! doc/theory.md §12 "Rough spheres with the cap".
+         free_rate = uncapped_rate(prob, sol)
+         rhs = matmul(sol%infl, free_rate - sol%dpdh)
+      else
+         rhs = matmul(sol%infl, sol%dpdh*sol%dbase + sol%dpdd)
+      end if
       refined = .false.
       if (allocated(sol%lu)) then
          if (size(sol%lu, 1) == n) then
@@ -167,9 +183,40 @@ contains
          x(:, 1) = rhs
          call lu_solve(n, jac, ipiv, x(:, 1))
       end if
+      if (edge_capped) then
+         ! (solve_rough adds the Hertz stiffness, which the total holds)
+         rate = gauss_values(sol%mesh, x(:, 1)) - 1.0_dp
+         sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%dpdh*rate + &
+            & free_rate)) - smooth_stiffness(prob)
+         return
+      end if
       rate = sol%dbase + gauss_values(sol%mesh, x(:, 1))
       sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%dpdh*rate + sol%dpdd))
    end subroutine differentiate
+
+   !> Loading with the cap of an extended model (differentiate): whether the Gauss point
+   !> nearest the Hertz edge a from inside is capped (sol%dpdd < 0 there).
+   pure logical function capped_at_edge(prob, sol) result(capped)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      integer :: g
+      capped = .false.
+      if (.not. (allocated(prob%cap) .and. prob%extended)) return
+      if (allocated(prob%closest)) return
+      g = count(sol%mesh%gauss_r < prob%a)
+      if (g < 1) return
+      capped = sol%dpdd(g) < 0.0_dp
+   end function capped_at_edge
+
+   !> d(p_s)/d(delta) at the Gauss points inside the Hertz radius that are not capped, 0
+   !> elsewhere (differentiate, capped_at_edge).
+   pure function uncapped_rate(prob, sol) result(rate)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp) :: rate(size(sol%dps))
+      rate = 0.0_dp
+      where (sol%mesh%gauss_r < prob%a .and. .not. sol%dpdd < 0.0_dp) rate = sol%dps
+   end function uncapped_rate
 
    !> Whether the gap, pressure and its derivatives of sol are those of its w (as
    !> evaluate leaves them): the gap is recomputed exactly as evaluate does and compared.

@@ -20,6 +20,8 @@ module egw_sphere_mesh
    real(dp), parameter :: coarsen = 1.5_dp, force_order = 3.0_dp, unload_order = 2.0_dp
    !> Geometric layers at the Hertz edge (number, size ratio).
    integer, parameter :: focus_layers = 2
+   !> Layers of halving elements inside the Hertz edge with the cap (inner_layers)
+   integer, parameter :: cap_edge_layers = 8
    real(dp), parameter :: focus_ratio = 0.25_dp
    !> Step (in asinh units) of the first level, and the finest allowed.
    real(dp), parameter :: finest_step = 0.01_dp, coarsest_step = 0.6_dp
@@ -43,7 +45,7 @@ module egw_sphere_mesh
    public :: kink_radii, cap_kink_radii
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
-      & mesh_geometry, step_for_nodes, grown_outer
+      & mesh_geometry, step_for_nodes, grown_outer, inner_layers
 
 
    !> The state of an Illinois root search (illinois_begin, illinois_step).
@@ -366,6 +368,27 @@ contains
       refined = [edge(0:k - 1), (focus - left*focus_ratio**i, i=1, focus_layers), focus, &
          & (focus + right*focus_ratio**i, i=focus_layers, 1, -1), edge(k + 1:n)]
    end function focus_refined
+
+   !> edge with the element that ends at the edge r (an edge of it, exactly) split into
+   !> cap_edge_layers elements halving towards r. Loading with the cap (doc/theory.md §12
+   !> "Rough spheres with the cap"): where the cap holds the total pressure at p_y just
+   !> inside the Hertz edge a, the rough part p_y - p_s has the Hertz pressure's
+   !> sqrt(a - r) edge, which an element's polynomial holds only to ~ its length**1.5 (the
+   !> levels then converge like step**1.5 and their Richardson estimate, of order 5, saw
+   !> a tenth of the error: 1.1e-5 under 7e-7 at 9.7 delta_y, sigma = delta_y/100). Each
+   !> layer is as long as its distance to a, so its polynomial error is ~1e-5 of its
+   !> share, and the last, 2**-8 of the element, leaves (2**-8)**1.5 of the error.
+   pure function inner_layers(edge, r) result(out)
+      real(dp), intent(in) :: edge(0:), r
+      real(dp), allocatable :: out(:)
+      real(dp) :: h
+      integer :: k, i
+      out = edge
+      k = findloc(edge, r, dim=1) - 1
+      if (k < 1) return
+      h = edge(k) - edge(k - 1)
+      out = [edge(0:k - 1), (r - h*0.5_dp**i, i=1, cap_edge_layers), edge(k:)]
+   end function inner_layers
 
    !> edge with r added as an element edge (the element holding r split in two) unless r
    !> is outside (0, outer) or within a tenth of its element's length of an edge already.

@@ -398,14 +398,18 @@ contains
       real(dp) :: gm(1), p(1), dpdh(1), ps_max
       real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:)
       excess = 1.0_dp
-      gm = gap
-      if (allocated(prob%closest)) gm = closest_gap(prob%closest, [r])
-      call cap_fields(prob, [r], gm, p_smooth, dps, shift, offset)
       if (.not. allocated(prob%closest)) then
          if (kind /= 1) return
          call prob%law%pressure([gap], p, dpdh)
-         excess = p_smooth(1) + p(1) - prob%cap%p_y
-      else if (kind == 1) then
+         ps_max = 0.0_dp   ! (here: p_s at delta)
+         if (prob%extended) ps_max = hertz_pressure(r, prob%delta, 1.0_dp, 1.0_dp)
+         excess = ps_max + p(1) - prob%cap%p_y
+         return
+      end if
+      gm = closest_gap(prob%closest, [r])
+      ! (the plastic shift, a root of the law, only where kind 1 needs it)
+      if (kind == 1) call cap_fields(prob, [r], gm, p_smooth, dps, shift, offset)
+      if (kind == 1) then
          call unloading_pressure(prob%unload, gap + shift(1), gm(1) + shift(1), p(1), dpdh(1))
          excess = p_smooth(1) + prob%scale*p(1) - offset(1)
       else
