@@ -690,7 +690,7 @@ void FixWallEGW::post_force_region()
     double radi = radius[i];
     int nc = region->surface(x[i][0], x[i][1], x[i][2], radi + L.tail);
     int nold = (int) h[0], nnew = 0;
-    std::fill(keep.begin(), keep.end(), 0.0);
+    if (nc == 0 && nold == 0) continue;    // most atoms: no wall within reach, none before
     for (int m = 0; m < nc && nnew < tmax; m++) {
       double r = region->contact[m].r;
       double delta = radi - r;
@@ -703,13 +703,15 @@ void FixWallEGW::post_force_region()
       double *slot = &keep[(size_t) nnew * (1 + nhist)];
       // the wall's id + 1, negative for a deep contact (delta >= R_i/2: sank_through_region)
       slot[0] = delta >= 0.5 * radi ? -wid : wid;
-      for (int s = 0; s < nold; s++) {    // this wall's history from the last step
+      bool known = false;
+      for (int s = 0; s < nold && !known; s++) {    // this wall's history from the last step
         const double *old = &h[1 + s * (1 + nhist)];
         if (std::fabs(old[0]) == wid) {
-          for (int k = 0; k < nhist; k++) slot[1 + k] = old[1 + k];
-          break;
+          std::copy(old + 1, old + 1 + nhist, slot + 1);
+          known = true;
         }
       }
+      if (!known) std::fill(slot + 1, slot + 1 + nhist, 0.0);    // a new contact
       double *hist = &slot[1];
       double n[3] = {region->contact[m].delx / r, region->contact[m].dely / r,
                      region->contact[m].delz / r};
@@ -725,8 +727,13 @@ void FixWallEGW::post_force_region()
       nnew++;
     }
     if (nnew == 0) sank_through_region(i, h);
+    // the slots in use now (h[0] of them are read), zeros over those the last step used
+    // beyond them; the rest of the stride is left as it is (writing all tmax slots of every
+    // atom on every step was most of the fix's time in in.pour.drum)
+    const size_t width = 1 + (size_t) nhist;
     h[0] = nnew;
-    for (size_t k = 0; k < keep.size(); k++) h[1 + k] = keep[k];
+    std::copy(keep.begin(), keep.begin() + nnew * width, h + 1);
+    if (nold > nnew) std::fill(h + 1 + nnew * width, h + 1 + nold * width, 0.0);
   }
 }
 
