@@ -203,7 +203,8 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     k.tol = tol_cap = std::max(tol, CAP_TOL_MIN);
     built_tol = tol;
     int built = 0;
-    hyst_held = EgwTables::hysteresis({k}, comm, n_threads, fail_with, &built);
+    // n_threads 0: the node's processors shared among the ranks that build (egw_tables.h)
+    hyst_held = EgwTables::hysteresis({k}, comm, 0, fail_with, &built);
     hyst_built = built;
     hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
     for (auto &t : hyst_held) {
@@ -327,7 +328,7 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     };
     auto acquire = [&](const std::vector<EgwTables::HystKey> &keys) {
       int built = 0;
-      hyst_held = EgwTables::hysteresis(keys, comm, n_threads, fail_with, &built);
+      hyst_held = EgwTables::hysteresis(keys, comm, 0, fail_with, &built);
       hyst_built += built;
       hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
       xc = 0.0;

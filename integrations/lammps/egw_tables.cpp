@@ -111,6 +111,37 @@ double force_after(egw_hysteresis h, double xt, double x)
   return p;
 }
 
+// Waits for every rank of comm without spinning: MPICH's blocking calls poll at full speed,
+// and a rank waiting so for another's table build takes a core from that build's threads
+// (2 ranks on 2 cores: the EP-GW set-up 1.28 s against 0.95 s on 1 rank)
+void quiet_barrier(MPI_Comm comm)
+{
+  MPI_Request req;
+  MPI_Ibarrier(comm, &req);
+  int done = 0;
+  MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+  while (!done) {
+    usleep(200);
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+  }
+}
+
+// The ranks of comm that share this rank's node, and the processors a rank of the node
+// may run on (the largest affinity mask among them: all the node's cores when the ranks
+// are not bound, one when each is bound to its own)
+void node_ranks(MPI_Comm comm, std::vector<int> &ranks, int &procs)
+{
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int n = 1, me = 0, mine = std::max(1, omp_get_num_procs());
+  MPI_Comm_size(node, &n);
+  MPI_Comm_rank(comm, &me);
+  ranks.assign(n, 0);
+  MPI_Allgather(&me, 1, MPI_INT, ranks.data(), 1, MPI_INT, node);
+  MPI_Allreduce(&mine, &procs, 1, MPI_INT, MPI_MAX, node);
+  MPI_Comm_free(&node);
+}
+
 // the check points: (turning point, overlap) pairs in units of sigma
 std::vector<std::pair<double, double>> check_points(double xc, double xmax)
 {
@@ -156,12 +187,27 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
   }
   std::vector<std::string> build_error(missing.size());
   // every rank holds the same tables (the same calls in the same order), so missing is
-  // the same list everywhere; table m is built on rank m % nprocs
-  BuildThreads team(n_threads);
+  // the same list everywhere; table m is built on rank m % nprocs, in rounds of nprocs
+  // tables. With n_threads 0 the node's processors are shared among its ranks that build
+  // in a round: 3 tables on 2 ranks of a 2-core node take one thread each for the first
+  // two, then two threads for the third while the other rank waits (quiet_barrier)
+  std::vector<int> local;
+  int node_procs = 1;
+  if (n_threads <= 0 && !missing.empty()) node_ranks(comm, local, node_procs);
+  BuildThreads team(n_threads > 0 ? n_threads : 1);
   for (size_t m = 0; m < missing.size(); m++) {
     const HystKey &k = keys[missing[m]];
     int owner = (int) (m % nprocs);
     if (owner != me) continue;
+    int threads = n_threads;
+    if (threads <= 0) {
+      size_t round = m - m % nprocs;
+      int builders = 0;
+      for (int w : local)
+        if (round + w < missing.size()) builders++;
+      threads = std::max(1, std::min(omp_get_num_procs(), node_procs / std::max(1, builders)));
+      omp_set_num_threads(threads);
+    }
     egw_params p;
     egw_params_default(&p);
     p.model = k.model, p.radius = 1, p.modulus = 1, p.sigma = 1, p.mu = k.mu;
@@ -173,12 +219,13 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
     }
     egw_options o;
     egw_options_default(&o);
-    if (n_threads > 0) o.n_threads = n_threads;
+    o.n_threads = threads;
     egw_hysteresis h = nullptr;
     if (egw_hysteresis_build(&p, &o, 0.0, k.xmax, k.tol, &h)) build_error[m] = last_error();
     else out[missing[m]] = own(h);
   }
   // send each table (or its build's failure) from its owner to the others
+  if (nprocs > 1 && !missing.empty()) quiet_barrier(comm);
   std::string first_error;
   for (size_t m = 0; m < missing.size(); m++) {
     int owner = (int) (m % nprocs);

@@ -53,8 +53,9 @@ struct BuildThreads {
 
 /* The tables for keys, in order. Collective over comm (every rank calls with the same
  * keys): a table this process already holds is shared, the others are built with
- * delta_min = 0 (each its own cut-off) on rank i % nprocs, n_threads threads (0: every
- * processor of this process, BuildThreads), and broadcast. On an egw failure
+ * delta_min = 0 (each its own cut-off) on rank i % nprocs, n_threads threads (0: the
+ * processors of the node shared among its ranks that build at the same time; a rank
+ * without a table to build waits without spinning), and broadcast. On an egw failure
  * fail(message) is called on every rank.
  * n_built (may be null) receives the number of tables built in this call (all ranks). */
 std::vector<Hyst> hysteresis(const std::vector<HystKey> &keys, MPI_Comm comm, int n_threads,

@@ -34,7 +34,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
-LMP = os.path.join(ROOT, "build", "lammps", "lmp")
+LMP = os.environ.get("EGW_BENCH_LMP") or os.path.join(ROOT, "build", "lammps", "lmp")
 DECK = os.path.join(ROOT, "integrations", "lammps", "examples", "pour.in")
 SETUP_ONLY = len(sys.argv) > 1 and sys.argv[1] == "--setup"
 DECKS_ONLY = len(sys.argv) > 1 and sys.argv[1] == "--decks"
