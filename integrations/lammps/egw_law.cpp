@@ -10,7 +10,9 @@ const char *LAMMPS_NS::egw_law_kind_name[] = {
     "1-D slices of a universal table, linear in ln mu (R-dependent mu)", "hysteresis table",
     "hysteresis tables at nodes in ln mu, linear in ln mu",
     "rough-flat law: 1-D tables at nodes in ln R, geometric in R",
-    "flow-pressure cap: one hysteresis table in units of the first-yield overlap delta_y"};
+    "flow-pressure cap: one hysteresis table in units of the first-yield overlap delta_y",
+    "rough surface with the flow-pressure cap: one hysteresis table in delta/sigma for the "
+    "type pair's one radius"};
 
 egw_flat_law LAMMPS_NS::egw_law_read_file(const std::string &path, MPI_Comm comm,
                                           const std::function<void(const std::string &)> &fail)
@@ -110,6 +112,7 @@ void EgwLaw::setup(int model)
     return;
   }
   if (model == EGW_MODEL_HERTZ || sigma == 0.0) kind = flow_pressure > 0 ? HYST_CAP : HERTZ;
+  else if (flow_pressure > 0) kind = HYST_RCAP;
   else if (model == EGW_MODEL_EPGW && psi > 0) kind = mu_mode == 1 ? HYST : HYST_MU;
   else kind = mu_mode == 1 ? TABLE : UNIVERSAL;
   egw_params_default(&prm);
@@ -122,7 +125,7 @@ void EgwLaw::setup(int model)
     inv_sigma = 1.0 / sigma;
   }
   if (mu_mode == 2) mu = 8.0 / 3.0 * eta * sigma * std::sqrt(2.0 * beta);    // x sqrt(R)
-  if (kind == HYST_CAP) {
+  if (kind == HYST_CAP || kind == HYST_RCAP) {
     double r = M_PI * flow_pressure / (2.0 * E_star);
     cap_c = r * r;
   }
@@ -157,7 +160,7 @@ void EgwLaw::take_tables(EgwLaw &from)
   flat = from.flat, flat_inv_sqrt_r = from.flat_inv_sqrt_r;
   law_modulus = from.law_modulus, flat_modulus = from.flat_modulus;
   flat_scale = from.flat_scale, sigma = from.sigma, inv_sigma = from.inv_sigma;
-  tol_built = from.tol_built;
+  tol_built = from.tol_built, rcap_R = from.rcap_R, rcap_F = from.rcap_F;
   s05 = from.s05, s15 = from.s15, s25 = from.s25;
   from.flat.clear();
   from.universal = nullptr;    // now ours (the shared tables are counted by their holders)
@@ -180,15 +183,37 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     build_flat(R_lo, R_hi, tol, overlap_max, comm, o, fail_with);
     return;
   }
-  if (flow_pressure > 0 && kind != HYST_CAP) {
-    // a rough model with the cap: the law's tables are normalised by sigma, and the cap
-    // adds the scale delta_y ~ R, so no universal table serves it (egw itself builds
-    // rough + cap hysteresis tables for one parameter set: egw-table, egw_hysteresis_build)
-    fail_with(fmt::format("flow_pressure {} with a rough surface (sigma = {}): pair egw does "
-                          "not build tables for a rough model with the flow-pressure cap yet "
-                          "(give sigma 0 or model Hertz for the smooth sphere with the cap; "
-                          "egw-table builds the hysteresis table of one rough + cap contact)",
-                          flow_pressure, sigma));
+  if (kind == HYST_RCAP) {
+    // one table for the law's one radius R_hi (pair egw and fix wall/egw refuse types of
+    // several radii, eval() contacts of another R), in delta/sigma with R/sigma and
+    // p_y/E*, reaching overlap_max R, at most RCAP_X_MAX delta_y, shared through the
+    // registry (and egw's disk cache) with every law of the same numbers
+    rcap_R = R_hi;
+    double dy = cap_c * R_hi;
+    EgwTables::HystKey k;
+    k.model = prm.model, k.mu = mu_mode == 1 ? mu : mu_at(R_hi), k.psi = psi, k.K = K;
+    k.rho = rho, k.flow_pressure = flow_pressure / E_star, k.radius = R_hi / sigma;
+    cap_wanted = overlap_max * R_hi / dy;
+    capped = cap_wanted > RCAP_X_MAX;
+    k.xmax = std::min(cap_wanted, RCAP_X_MAX) * dy / sigma;
+    k.tol = tol_cap = built_tol = tol;
+    int built = 0;
+    hyst_held = EgwTables::hysteresis({k}, comm, 0, fail_with, &built);
+    hyst_built = built;
+    hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
+    for (auto &t : hyst_held) {
+      hyst.push_back(t.get());
+      egw_hysteresis_info in;
+      egw_hysteresis_get_info(t.get(), &in);
+      xc = in.cutoff;
+      double tag = 0.0;
+      egw_hysteresis_state_tag(t.get(), &tag);
+      hyst_tag.push_back(tag), hyst_dmax.push_back(in.delta_max);
+    }
+    rcap_F = E_star * sigma * sigma;
+    tail = -xc * sigma;
+    reach = k.xmax * sigma;
+    fast = nullptr;
     return;
   }
   if (kind == HYST_CAP) {
@@ -488,6 +513,13 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                         hyst_dmax.empty() ? 0.0 : hyst_dmax[0], tol_cap,
                         tol_cap > built_tol ? " (TOL raised to the cap's least, 1e-3)" : "",
                         hyst_built);
+  if (kind == HYST_RCAP)
+    extra = fmt::format(", R = {:.6g} (the types' one radius), flow pressure p_y = {:.6g} (from "
+                        "{}), first yield delta_y = {:.6g} ({:.4g} sigma), the table reaches "
+                        "{:.4g} sigma at rel_tol {:.2g}, built for it: {} (the others shared)",
+                        rcap_R, flow_pressure,
+                        flow_keyword ? "yield_stress: 1.6 Y" : "flow_pressure", cap_c * rcap_R, cap_c * rcap_R / sigma,
+                        hyst_dmax.empty() ? 0.0 : hyst_dmax[0], tol_cap, hyst_built);
   if (kind == FLAT)
     extra = fmt::format(", law {} (its modulus {}; forces x E*/{:.6g}), {} tables for R in "
                         "[{:.4g}, {:.4g}], measured ln-R interpolation error {:.2g} (at twice "
@@ -508,9 +540,9 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                      xc * sigma, reach, extra) +
       (capped_solver ? fmt::format(" (capped at {:g} sigma, the solver's range)", TABLE_X_MAX)
                      : std::string()) +
-      (capped && kind == HYST_CAP
-           ? fmt::format(" (capped at {} delta_y; overlap_max R is {:.4g} delta_y)", CAP_X_MAX,
-                         cap_wanted)
+      (capped && (kind == HYST_CAP || kind == HYST_RCAP)
+           ? fmt::format(" (capped at {} delta_y; overlap_max R is {:.4g} delta_y)",
+                         kind == HYST_CAP ? CAP_X_MAX : RCAP_X_MAX, cap_wanted)
        : capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it cost more "
                               "than they bring)", HYST_X_MAX)
                 : std::string());
@@ -547,8 +579,9 @@ void EgwLaw::set_reach(double w_ref, double frac, double R_hi)
       egw_hysteresis_eval(h, x, &st, &p, &dp);
       return p;
     });
-  // the work in table units: E* sqrt(R) sigma^2.5 w(x), largest for the largest R
-  const double scale = E_star * std::sqrt(R_hi) * s25;
+  // the work in table units: E* sqrt(R) sigma^2.5 w(x), largest for the largest R (rough +
+  // cap: its table's R/sigma, E* sigma^3 w(x))
+  const double scale = kind == HYST_RCAP ? rcap_F * sigma : E_star * std::sqrt(R_hi) * s25;
   const double w_max = w_ref > 0 ? frac * w_ref / scale : 0.0;
   const double h = 1e-3;    // Simpson steps in x: the tail varies on the scale of sigma
   double x_best = 0.0, w_best = HUGE_VAL;

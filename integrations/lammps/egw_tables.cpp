@@ -19,8 +19,8 @@ using namespace LAMMPS_NS::EgwTables;
 
 bool HystKey::operator<(const HystKey &o) const
 {
-  return std::tie(model, mu, psi, K, rho, xmax, tol, flow_pressure) <
-      std::tie(o.model, o.mu, o.psi, o.K, o.rho, o.xmax, o.tol, o.flow_pressure);
+  return std::tie(model, mu, psi, K, rho, xmax, tol, flow_pressure, radius) <
+      std::tie(o.model, o.mu, o.psi, o.K, o.rho, o.xmax, o.tol, o.flow_pressure, o.radius);
 }
 
 bool SliceKey::operator<(const SliceKey &o) const
@@ -212,7 +212,9 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
     egw_params_default(&p);
     p.model = k.model, p.radius = 1, p.modulus = 1, p.sigma = 1, p.mu = k.mu;
     p.psi = k.psi, p.hardness_coeff = k.K, p.plastic_ratio = k.rho;
-    if (k.flow_pressure > 0) {    // Hertz + cap: only R, E*, p_y count (the rest default)
+    if (k.flow_pressure > 0 && k.radius > 0) {    // rough + cap: R/sigma, p_y/E*
+      p.radius = k.radius, p.flow_pressure = k.flow_pressure;
+    } else if (k.flow_pressure > 0) {    // Hertz + cap: only R, E*, p_y count (the rest default)
       egw_params_default(&p);
       p.model = EGW_MODEL_HERTZ, p.radius = 1, p.modulus = 1, p.sigma = 0;
       p.flow_pressure = k.flow_pressure;

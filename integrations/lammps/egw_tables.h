@@ -32,6 +32,9 @@ struct HystKey {
   // > 0: Hertz with the flow-pressure cap (sigma 0, R = E* = 1, p_y = flow_pressure; the
   // reach in units of length, i.e. of delta_y = (pi p_y/2)^2 for p_y = 2/pi)
   double flow_pressure = 0;
+  // > 0 with flow_pressure: a rough model with the cap for one equivalent radius, R/sigma
+  // (sigma = E* = 1, p_y = flow_pressure/E*: the reach in units of sigma)
+  double radius = 0;
   bool operator<(const HystKey &o) const;
 };
 

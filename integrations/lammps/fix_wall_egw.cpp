@@ -394,6 +394,15 @@ void FixWallEGW::build_law(int t)
                  L.flow_pressure, L.flow_keyword, L.E_star);
   L.setup(model);
   double rhi = pair->type_radius_max(t), rlo = pair->type_radius_min(t);
+  if (L.kind == EgwLaw::HYST_RCAP && (!(rhi > 0) || rlo != rhi || wallstyle == REGION))
+    error->all(FLERR, "Fix wall/egw: type {}: flow_pressure with a rough surface (sigma = "
+                      "{:.6g}) needs one radius for the type ({}) and a {}: its table is built "
+                      "for one equivalent radius (the cap's first yield delta_y grows with R "
+                      "beside sigma); sigma 0 (smooth spheres with the cap) takes any", t,
+               L.sigma, rhi > 0 ? fmt::format("radii {:.6g} to {:.6g}", rlo, rhi)
+                                : std::string("no atoms and no fix pour give its radius"),
+               wallstyle == REGION ? "plane or zcylinder wall, not a region (several "
+                                     "curvatures)" : "plane or zcylinder wall");
   if (!(rhi > 0)) rhi = rlo = 1.0 / std::max(L.inv_sigma, 1e-300);
   if (rlo > rhi || !(rlo > 0)) rlo = 0.5 * rhi;
   if (rlo == rhi) rlo = rhi / 1.05;
@@ -405,7 +414,8 @@ void FixWallEGW::build_law(int t)
     rlo = std::min(rlo, need_rlo[t]), rhi = std::max(rhi, need_rhi[t]);
   bool covered = built_rhi[t] > 0 && rlo >= built_rlo[t] && rhi <= built_rhi[t] &&
       law[t].kind == L.kind && law[t].E_star == L.E_star && law[t].sigma == L.sigma &&
-      law[t].flow_pressure == L.flow_pressure && built_model == model;
+      law[t].flow_pressure == L.flow_pressure && built_model == model &&
+      (L.kind != EgwLaw::HYST_RCAP || rhi == built_rhi[t]);
   if (covered) return;
   law[t].release();
   law[t] = L;
@@ -449,7 +459,7 @@ void FixWallEGW::init()
   bool hyst = false;
   for (int t = 1; t <= n; t++)
     hyst = hyst || law[t].kind == EgwLaw::HYST || law[t].kind == EgwLaw::HYST_MU ||
-        law[t].kind == EgwLaw::HYST_CAP;
+        law[t].kind == EgwLaw::HYST_CAP || law[t].kind == EgwLaw::HYST_RCAP;
   if (hyst && nhist - (hist_sub >= 0 ? EgwSubmodels::NHIST_SUB : 0) < EgwHistory::NHIST_EPGW) {
     int touching = 0, any = 0;
     for (int i = 0; i < atom->nlocal; i++) touching = touching || !cleared[i];
@@ -549,6 +559,11 @@ void FixWallEGW::wall_contact(int i, EgwLaw &L, double delta, double R, const do
                       "curvature {}) has mu = {} outside the tables' [{}, {}]: widen the radius "
                       "range with pair_style egw ... rmin/rmax",
                R, atom->radius[i], rc, L.mu_at(R), L.mu_lo, L.mu_hi);
+  if (st == EgwLaw::R_OTHER)
+    error->one(FLERR, "Fix wall/egw: contact with R = {} (R_i = {}, the wall's radius of "
+                      "curvature {}) but its rough + cap law (flow_pressure with sigma > 0) "
+                      "was built for R = {} only: one radius per type, and a wall of one "
+                      "curvature", R, atom->radius[i], rc, L.rcap_R);
   if (st == EGW_OUT_OF_RANGE && !warned_range) {
     warned_range = true;
     error->warning(FLERR, "Fix wall/egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the "

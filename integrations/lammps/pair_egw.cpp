@@ -233,16 +233,28 @@ void PairEGW::init_style()
       double R_lo = rlo_i > 0 && rlo_j > 0 ? rlo_i * rlo_j / (rlo_i + rlo_j) : 0.0;
       EgwLaw &L = law[i][j];
       bool needs_r = L.kind == EgwLaw::UNIVERSAL || L.kind == EgwLaw::HYST_MU ||
-          L.kind == EgwLaw::FLAT;
+          L.kind == EgwLaw::FLAT || L.kind == EgwLaw::HYST_RCAP;
       if (needs_r && !(R_hi > 0))
         error->all(FLERR, "Pair egw: types {} {}: no atoms and no fix pour/deposit give their "
                           "radii (needed for {}): add 'rmin R rmax R' to pair_style",
-                   i, j, L.kind == EgwLaw::FLAT ? "a law's tables" : "mu from summit data");
+                   i, j, L.kind == EgwLaw::FLAT ? "a law's tables"
+                       : L.kind == EgwLaw::HYST_RCAP ? "a rough surface with flow_pressure"
+                                                     : "mu from summit data");
+      if (L.kind == EgwLaw::HYST_RCAP && (rlo_i != rhi_i || rlo_j != rhi_j))
+        error->all(FLERR, "Pair egw: types {} {}: flow_pressure with a rough surface (sigma = "
+                          "{:.6g}) needs one radius per type (type {} has radii {:.6g} to "
+                          "{:.6g}{}): its table is built for one equivalent radius, the cap's "
+                          "first yield delta_y growing with R beside sigma; give each radius "
+                          "its own type, or sigma 0 (smooth spheres with the cap take any "
+                          "radii)", i, j, L.sigma, i, rlo_i, rhi_i,
+                   i == j ? std::string()
+                          : fmt::format(", type {} {:.6g} to {:.6g}", j, rlo_j, rhi_j));
       if (!(R_hi > 0)) R_hi = R_lo = 1.0 / std::max(L.inv_sigma, 1e-300);
       if (R_lo > R_hi) R_lo = R_hi;
       if (R_lo == R_hi) R_lo = R_hi / 1.05;
       bool covered = built_rhi[i][j] > 0 &&
-          (!needs_r || (R_lo >= built_rlo[i][j] && R_hi <= built_rhi[i][j]));
+          (L.kind == EgwLaw::HYST_RCAP ? R_hi == built_rhi[i][j]
+           : !needs_r || (R_lo >= built_rlo[i][j] && R_hi <= built_rhi[i][j]));
       if (!covered) build_tables(i, j, R_lo, R_hi);
       // the contacts' reach from the energy the tail holds (cheap: every run)
       double tail_old = L.tail;
@@ -278,7 +290,8 @@ void PairEGW::init_style()
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++)
       hyst_any = hyst_any || law[i][j].kind == EgwLaw::HYST ||
-          law[i][j].kind == EgwLaw::HYST_MU || law[i][j].kind == EgwLaw::HYST_CAP;
+          law[i][j].kind == EgwLaw::HYST_MU || law[i][j].kind == EgwLaw::HYST_CAP ||
+          law[i][j].kind == EgwLaw::HYST_RCAP;
   law_of.assign((n + 1) * (n + 1), nullptr);
   tail_of.assign((n + 1) * (n + 1), 0.0);
   for (int i = 1; i <= n; i++)
@@ -383,6 +396,10 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
     error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
                       "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
                R, L.mu_at(R), L.mu_lo, L.mu_hi);
+  if (st == EgwLaw::R_OTHER)
+    error->one(FLERR, "Pair egw: contact with R = {} but its rough + cap law (flow_pressure "
+                      "with sigma > 0) was built for R = {} only (atoms of another radius "
+                      "added after the run's set-up?): one radius per type", R, L.rcap_R);
   if (st == EGW_OUT_OF_RANGE && !warned_range) {
     warned_range = true;
     error->warning(FLERR, "Pair egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the tables' "
@@ -587,7 +604,7 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   svector[8] = c.Mtw;
   for (int d = 0; d < 3; d++) svector[9 + d] = dx[d];
   svector[12] = delta;
-  bool hyst = L.kind == EgwLaw::HYST || L.kind == EgwLaw::HYST_MU;
+  bool hyst = L.kind == EgwLaw::HYST || L.kind == EgwLaw::HYST_MU || L.kind == EgwLaw::HYST_RCAP;
   // EP-GW's delta_max is kept in units of sigma, the cap's in units of delta_y = cap_c R
   double unit = hyst ? L.sigma : L.kind == EgwLaw::HYST_CAP ? L.cap_c * R : 1.0;
   svector[13] = hist[EgwHistory::DELTA_MAX] * unit;
