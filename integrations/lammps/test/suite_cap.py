@@ -260,7 +260,7 @@ def rcap_reference(sigma, mu, p_y, r, m, v):
     return e, dm
 
 
-def rcap_run(wall, r, m):
+def rcap_run(wall, r, m, np=1):
     """E-GW glass beads with the cap (p_y = 0.01 E*, the contact's sigma = delta_y/100 of a
     pair, mu = 4) at RCAP_RATIOS v_y of the smooth cap, pairs head-on or beads onto a
     plane wall/egw of their material: e from the run against egw_restitution's."""
@@ -278,7 +278,7 @@ def rcap_run(wall, r, m):
     style = f"egw E-GW 1e-3 overlap_max {6 * dy / R_STAR!r}"
     coeff = f"E {E} nu {NU} sigma {s_body!r} mu 4 flow_pressure {p_y!r}"
     wfix = None if wall is None else f"wall/egw E-GW 1e-3 E {E} nu {NU} sigma 0 mu 4"
-    rc, out = lmp(cap_deck(coeff, wfix, speeds, dt, nrun, style=style))
+    rc, out = lmp(cap_deck(coeff, wfix, speeds, dt, nrun, style=style), np=np)
     if rc != 0:
         return None, refs, [l for l in out.splitlines() if "ERROR" in l or "WARN" in l], dy
     return result(out), [(e, dm, 0, 0) for e, dm in refs], out, dy
@@ -290,9 +290,9 @@ def test_rough_cap_pair_restitution():
     in delta/sigma, TOL 1e-3) at 2 and 5 v_y: e from the run's velocities against
     egw_restitution of the same contact (the rough solver with the cap at rel_tol 1e-4, no
     table) within 1.5e-3: the table's 1e-3 force error gives e to ~1.25e-3 (as the smooth
-    cap's, test_cap_pair_restitution), the reference's 1e-4 adds ~1e-4. Then a bead of
-    another radius added to the deck's type stops the run's set-up with an ERROR naming
-    the radii."""
+    cap's, test_cap_pair_restitution), the reference's 1e-4 adds ~1e-4. The same run on 2
+    ranks gives the same e (1e-12). A type of two radii stops the run's set-up with an
+    ERROR naming them."""
     es, refs, out, dy = rcap_run(None, R_STAR, M_STAR)
     if es is None:
         return False, "pair: " + " ".join(out)
@@ -300,6 +300,9 @@ def test_rough_cap_pair_restitution():
     rows = ", ".join(f"{x:g} v_y (delta_m {ref[1] / dy:.2f} delta_y): {e:.5f} vs {ref[0]:.5f}"
                      for x, e, ref in zip(RCAP_RATIOS, es, refs))
     ok = max(dev) <= 1.5e-3 and "WARNING" not in out and "rough surface with the flow" in out
+    es2, _, out2, _ = rcap_run(None, R_STAR, M_STAR, np=2)
+    d2 = max(abs(a - b) for a, b in zip(es, es2)) if es2 is not None else float("inf")
+    ok = ok and d2 < 1e-12
     # two radii in one type: refused at set-up, naming them
     deck = os.path.join(TMP, "rcap_two_radii.in")
     with open(deck, "w") as f:
@@ -312,10 +315,11 @@ def test_rough_cap_pair_restitution():
             "pair_style egw E-GW 1e-3",
             f"pair_coeff * * E {E} nu {NU} sigma 1e-9 mu 4 flow_pressure {0.01 * E_STAR!r}",
             "run 0"]) + "\n")
-    rc2, out2 = lmp(deck)
-    refused = rc2 != 0 and "needs one radius per type" in out2 and "0.00075" in out2
+    rc3, out3 = lmp(deck)
+    refused = rc3 != 0 and "needs one radius per type" in out3 and "0.00075" in out3
     return ok and refused, (f"pair: {rows}; max |e - e_ref| = {max(dev):.1e} (<= 1.5e-3); "
-                            f"two radii refused: {refused}")
+                            f"2 ranks: max |de| = {d2:.1e} (< 1e-12); two radii refused: "
+                            f"{refused}")
 
 
 def test_rough_cap_wall_restitution():
