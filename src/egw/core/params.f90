@@ -35,7 +35,8 @@ module egw_params
 
    public :: validate_params, model_name, mu_from_summits, psi_from_hardness, &
       & rough_flat_coefficient, check_scaled_overlap, range_str, product4, length_unit, &
-      & pressure_unit, force_unit, stiffness_unit, refuse_flow_pressure, positive_finite
+      & pressure_unit, force_unit, stiffness_unit, refuse_flow_pressure, positive_finite, &
+      & is_rough
 
    !> What the numerics represent (doc/parameters.md "Valid ranges"): every positive field
    !> a normal double (no subnormals: they carry fewer digits and their reciprocals
@@ -327,5 +328,12 @@ contains
       real(dp), intent(in) :: x
       positive_finite = ieee_is_finite(x) .and. x > 0.0_dp
    end function positive_finite
+
+   !> True for a rough contact: a GW-family model (GW, E-GW, EP-GW, a flat law) with
+   !> sigma > 0; Hertz, or any model with sigma = 0, is a smooth sphere.
+   pure logical function is_rough(params)
+      type(contact_params), intent(in) :: params   !< the contact's parameters
+      is_rough = params%model /= model_hertz .and. params%sigma > 0.0_dp
+   end function is_rough
 
 end module egw_params
