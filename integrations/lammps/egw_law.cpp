@@ -193,9 +193,14 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     EgwTables::HystKey k;
     k.model = prm.model, k.mu = mu_mode == 1 ? mu : mu_at(R_hi), k.psi = psi, k.K = K;
     k.rho = rho, k.flow_pressure = flow_pressure / E_star, k.radius = R_hi / sigma;
-    cap_wanted = overlap_max * R_hi / dy;
-    capped = cap_wanted > RCAP_X_MAX;
-    k.xmax = std::min(cap_wanted, RCAP_X_MAX) * dy / sigma;
+    // the reach: overlap_max R, at most RCAP_X_MAX delta_y but 30 sigma where sigma is
+    // the larger scale (as EP-GW's least reach), and at most egw's limit, 1000 delta_y
+    double want = overlap_max * R_hi;
+    double lim = std::min(std::max(RCAP_X_MAX * dy, 30.0 * sigma), 1000.0 * dy);
+    double len = std::max(std::min(want, lim), std::min(30.0 * sigma, lim));
+    cap_wanted = want / dy;
+    capped = want > len;
+    k.xmax = len / sigma;
     k.tol = tol_cap = built_tol = tol;
     int built = 0;
     hyst_held = EgwTables::hysteresis({k}, comm, 0, fail_with, &built);
@@ -541,8 +546,8 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
       (capped_solver ? fmt::format(" (capped at {:g} sigma, the solver's range)", TABLE_X_MAX)
                      : std::string()) +
       (capped && (kind == HYST_CAP || kind == HYST_RCAP)
-           ? fmt::format(" (capped at {} delta_y; overlap_max R is {:.4g} delta_y)",
-                         kind == HYST_CAP ? CAP_X_MAX : RCAP_X_MAX, cap_wanted)
+           ? fmt::format(" (capped at {:.4g} delta_y; overlap_max R is {:.4g} delta_y)",
+                         kind == HYST_CAP ? CAP_X_MAX : reach / (cap_c * rcap_R), cap_wanted)
        : capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it cost more "
                               "than they bring)", HYST_X_MAX)
                 : std::string());

@@ -74,7 +74,8 @@ struct EgwLaw {
   // HYST_RCAP (a rough model with the cap): the cap's delta_y ~ R next to sigma, so no
   // table normalised by sigma serves every R: one hysteresis table for the law's one
   // equivalent radius rcap_R (monodisperse types), x = delta/sigma, built with R/sigma and
-  // p_y/E* (sigma = E* = 1): F = E* sigma^2 p(x); its reach at most RCAP_X_MAX delta_y
+  // p_y/E* (sigma = E* = 1): F = E* sigma^2 p(x); its reach overlap_max R, at most
+  // RCAP_X_MAX delta_y (or 30 sigma where that is farther, within egw's 1000 delta_y)
   // (E-GW + cap to 20 delta_y at 1e-3: 3.5 s at sigma = delta_y/100, EP-GW 22 s at
   // delta_y/10 on 2 threads, 2026-11-29: builds that grow fast with the reach)
   static constexpr double RCAP_X_MAX = 20.0;
@@ -180,9 +181,9 @@ extern const char *egw_law_kind_name[];
 inline const char *egw_reach_advice(const EgwLaw &L)
 {
   if (L.kind == EgwLaw::HYST_RCAP)
-    return "the rough + cap table stops at 20 delta_y (the first-yield overlap delta_y = "
-           "(pi p_y/(2 E*))^2 R): beyond it the force is the table's extrapolation, not the "
-           "cap model's";
+    return "the rough + cap table stops at 20 delta_y or 30 sigma, whichever is farther, and "
+           "at most 1000 delta_y (the first-yield overlap delta_y = (pi p_y/(2 E*))^2 R): "
+           "beyond it the force is the table's extrapolation, not the cap model's";
   if (L.kind == EgwLaw::HYST_CAP)
     return "the flow-pressure cap's table stops at 40 delta_y (the first-yield overlap "
            "delta_y = (pi p_y/(2 E*))^2 R; ~60 times the first-yield speed v_y): beyond it "
