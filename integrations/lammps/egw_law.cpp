@@ -202,19 +202,8 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     capped = want > len;
     k.xmax = len / sigma;
     k.tol = tol_cap = built_tol = tol;
-    int built = 0;
-    hyst_held = EgwTables::hysteresis({k}, comm, 0, fail_with, &built);
-    hyst_built = built;
-    hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
-    for (auto &t : hyst_held) {
-      hyst.push_back(t.get());
-      egw_hysteresis_info in;
-      egw_hysteresis_get_info(t.get(), &in);
-      xc = in.cutoff;
-      double tag = 0.0;
-      egw_hysteresis_state_tag(t.get(), &tag);
-      hyst_tag.push_back(tag), hyst_dmax.push_back(in.delta_max);
-    }
+    hyst_built = 0;
+    xc = hold_hysteresis({k}, comm, fail_with);
     rcap_F = E_star * sigma * sigma;
     tail = -xc * sigma;
     reach = k.xmax * sigma;
@@ -232,19 +221,8 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     capped = cap_wanted > CAP_X_MAX;
     k.tol = tol_cap = std::max(tol, CAP_TOL_MIN);
     built_tol = tol;
-    int built = 0;
-    // n_threads 0: the node's processors shared among the ranks that build (egw_tables.h)
-    hyst_held = EgwTables::hysteresis({k}, comm, 0, fail_with, &built);
-    hyst_built = built;
-    hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
-    for (auto &t : hyst_held) {
-      hyst.push_back(t.get());
-      egw_hysteresis_info in;
-      egw_hysteresis_get_info(t.get(), &in);
-      double tag = 0.0;
-      egw_hysteresis_state_tag(t.get(), &tag);
-      hyst_tag.push_back(tag), hyst_dmax.push_back(in.delta_max);
-    }
+    hyst_built = 0;
+    hold_hysteresis({k}, comm, fail_with);
     xc = 0.0, tail = 0.0;    // a smooth sphere: no force before it touches
     reach = k.xmax * cap_c * R_hi;
     fast = nullptr;
@@ -357,20 +335,7 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
       return k;
     };
     auto acquire = [&](const std::vector<EgwTables::HystKey> &keys) {
-      int built = 0;
-      hyst_held = EgwTables::hysteresis(keys, comm, 0, fail_with, &built);
-      hyst_built += built;
-      hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
-      xc = 0.0;
-      for (auto &t : hyst_held) {
-        hyst.push_back(t.get());
-        egw_hysteresis_info in;
-        egw_hysteresis_get_info(t.get(), &in);
-        xc = std::min(xc, in.cutoff);    // each table ends at its own cut-off
-        double tag = 0.0;
-        egw_hysteresis_state_tag(t.get(), &tag);
-        hyst_tag.push_back(tag), hyst_dmax.push_back(in.delta_max);
-      }
+      xc = hold_hysteresis(keys, comm, fail_with);
     };
     hyst_built = 0;
     if (kind == HYST) {
@@ -403,6 +368,27 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
   tail = -xc * sigma;
   reach = kind == HERTZ ? HUGE_VAL : xmax * sigma;
   fast = slices_held && slices_held->fast.n > 0 ? &slices_held->fast : nullptr;
+}
+
+double EgwLaw::hold_hysteresis(const std::vector<EgwTables::HystKey> &keys, MPI_Comm comm,
+                               const std::function<void(const std::string &)> &fail_with)
+{
+  int built = 0;
+  // n_threads 0: the node's processors shared among the ranks that build (egw_tables.h)
+  hyst_held = EgwTables::hysteresis(keys, comm, 0, fail_with, &built);
+  hyst_built += built;
+  hyst.clear(), hyst_tag.clear(), hyst_dmax.clear();
+  double cut = 0.0;
+  for (auto &t : hyst_held) {
+    hyst.push_back(t.get());
+    egw_hysteresis_info in;
+    egw_hysteresis_get_info(t.get(), &in);
+    cut = std::min(cut, in.cutoff);    // each table ends at its own cut-off
+    double tag = 0.0;
+    egw_hysteresis_state_tag(t.get(), &tag);
+    hyst_tag.push_back(tag), hyst_dmax.push_back(in.delta_max);
+  }
+  return cut;
 }
 
 void EgwLaw::build_flat(double R_lo, double R_hi, double tol, double overlap_max,

@@ -144,6 +144,11 @@ struct EgwLaw {
    * rank. */
   void build(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
              int n_threads, const std::function<void(const std::string &)> &fail);
+  /* the hysteresis tables for keys (EgwTables::hysteresis, collective) held by this law:
+   * hyst, their tags and reaches; hyst_built counts those built; returns the smallest
+   * cut-off */
+  double hold_hysteresis(const std::vector<EgwTables::HystKey> &keys, MPI_Comm comm,
+                         const std::function<void(const std::string &)> &fail_with);
   /* build() of a FLAT law: reads law_file (every rank), sets sigma to its length */
   void build_flat(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
                   const egw_options &o, const std::function<void(const std::string &)> &fail);
