@@ -692,6 +692,7 @@ void FixWallEGW::post_force_region()
   bool moving = region->dynamic_check();
   if (moving) region->set_velocity();
   std::vector<double> keep((size_t) tmax * (1 + nhist));
+  std::vector<int> pick(tmax), from(tmax);
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     double *h = history[i];
@@ -712,27 +713,39 @@ void FixWallEGW::post_force_region()
       cleared[i] = 1;
       continue;
     }
+    // the contacts within reach (at most tmax) and the slot each wall had on the last step
+    // (-1: a new contact). Most steps each keeps its slot (or a new one comes after the
+    // old ones): then the histories are updated where they are; otherwise through keep
+    // (copying every contact's history twice a step was most of the fix's memory traffic
+    // in in.pour.drum with EP-GW, ~60 doubles a slot)
+    const size_t width = 1 + (size_t) nhist;
+    bool in_place = true;
     for (int m = 0; m < nc && nnew < tmax; m++) {
       double r = region->contact[m].r;
+      if (!(radi - r > -L.tail) || !(r > 0)) continue;
+      double wid = region->contact[m].iwall + 1.0;
+      int s_old = -1;
+      for (int s = 0; s < nold && s_old < 0; s++)    // this wall's history from the last step
+        if (std::fabs(h[1 + s * width]) == wid) s_old = s;
+      pick[nnew] = m, from[nnew] = s_old;
+      if (s_old >= 0 ? s_old != nnew : nnew < nold) in_place = false;
+      nnew++;
+    }
+    for (int k = 0; k < nnew; k++) {
+      int m = pick[k];
+      double r = region->contact[m].r;
       double delta = radi - r;
-      if (!(delta > -L.tail) || !(r > 0)) continue;
       if (!(built_rhi[type[i]] > 0))
         error->one(FLERR, "Fix wall/egw/region: an atom of type {} touches the region but the "
                           "type has no pair_coeff in pair_style egw", type[i]);
       if (delta >= 0.5 * radi) sank_through_region(i, nullptr);
       double wid = region->contact[m].iwall + 1.0;
-      double *slot = &keep[(size_t) nnew * (1 + nhist)];
+      double *slot = in_place ? &h[1 + k * width] : &keep[k * width];
+      if (from[k] < 0) std::fill(slot + 1, slot + width, 0.0);    // a new contact
+      else if (!in_place)
+        std::copy(&h[2 + from[k] * width], &h[1 + (from[k] + 1) * width], slot + 1);
       // the wall's id + 1, negative for a deep contact (delta >= R_i/2: sank_through_region)
       slot[0] = delta >= 0.5 * radi ? -wid : wid;
-      bool known = false;
-      for (int s = 0; s < nold && !known; s++) {    // this wall's history from the last step
-        const double *old = &h[1 + s * (1 + nhist)];
-        if (std::fabs(old[0]) == wid) {
-          std::copy(old + 1, old + 1 + nhist, slot + 1);
-          known = true;
-        }
-      }
-      if (!known) std::fill(slot + 1, slot + 1 + nhist, 0.0);    // a new contact
       double *hist = &slot[1];
       double n[3] = {region->contact[m].delx / r, region->contact[m].dely / r,
                      region->contact[m].delz / r};
@@ -745,15 +758,13 @@ void FixWallEGW::post_force_region()
       if (moving) region->velocity_contact(vwall, x[i], m);
       // several contacts: the contacts row holds the last one (as fix wall/gran/region)
       wall_contact(i, L, delta, R, n, vwall, hist, r, update_history, region->contact[m].radius);
-      nnew++;
     }
     if (nnew == 0) sank_through_region(i, h);
     // the slots in use now (h[0] of them are read), zeros over those the last step used
     // beyond them; the rest of the stride is left as it is (writing all tmax slots of every
     // atom on every step was most of the fix's time in in.pour.drum)
-    const size_t width = 1 + (size_t) nhist;
     h[0] = nnew;
-    std::copy(keep.begin(), keep.begin() + nnew * width, h + 1);
+    if (!in_place) std::copy(keep.begin(), keep.begin() + nnew * width, h + 1);
     if (nold > nnew) std::fill(h + 1 + nnew * width, h + 1 + nold * width, 0.0);
     cleared[i] = nnew == 0;    // no slot in use: the row is all zero again
   }

@@ -615,12 +615,14 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
 }
 
 /* EP-GW: a pair of hysteresis states per contact (a block), found from its neighbor-list
- * entry (hyst_slot, -1: none yet); laid out anew when the list is rebuilt. A contact's
- * block moves with it to its new entry (found by the two atoms' IDs, either order: the
- * states are the same for both atoms); a new block is marked empty (a NaN never equals a
- * delta_max) and filled from the history when used (egw_law.h). Moving a block costs a
- * hash lookup; filling one about seven evaluations, and the pour reneighbors every ~8
- * steps. */
+ * entry (hyst_slot, -1: none yet); the slots are laid out anew when the list is rebuilt.
+ * A block stays where it is while its contact is listed: the new entry of a contact
+ * (found by the two atoms' IDs, either order: the states are the same for both atoms)
+ * takes the block it had; blocks no entry takes are free for new contacts. A new block is
+ * marked empty (a NaN never equals a delta_max) and filled from the history when used
+ * (egw_law.h). The pour and the drum reneighbor every 2-8 steps: moving every block to its
+ * entry's new place (48 doubles each) and reading each block to test it was 3-4 % of the
+ * drum's EP-GW run; the map reads the blocks' IDs only. */
 void PairEGW::hyst_cache_rows()
 {
   if (neighbor->ncalls == hyst_cache_calls && (int) hyst_cache_first.size() == list->inum + 1)
@@ -630,10 +632,11 @@ void PairEGW::hyst_cache_rows()
     uint64_t lo = (uint64_t) std::min(a, b), hi = (uint64_t) std::max(a, b);
     return (lo << 32) ^ hi;    // a collision (64-bit IDs) only costs a refill: egw_law.h
   };
-  // the filled blocks of the old layout, by the pair's IDs: a table of twice their
-  // number rounded up to a power of 2 (keys are never 0: IDs start at 1)
-  size_t nold = hyst_cache_tags.size() / 2, size = 16, nfilled = 0;
-  while (size < 2 * nold) size *= 2;
+  // the live blocks by the pair's IDs: a table of twice their number rounded up to a
+  // power of 2 (keys are never 0: IDs start at 1)
+  size_t nblock = hyst_cache_tags.size() / 2, size = 16, nlive = 0;
+  for (size_t b = 0; b < nblock; b++) nlive += hyst_live[b] != 0;
+  while (size < 2 * nlive) size *= 2;
   hyst_old.assign(size, {0, 0});
   const size_t mask = size - 1;
   auto slot_of = [&](uint64_t k) {
@@ -641,15 +644,12 @@ void PairEGW::hyst_cache_rows()
     while (hyst_old[h].first != 0 && hyst_old[h].first != k) h = (h + 1) & mask;
     return h;
   };
-  for (size_t b = 0; b < nold; b++)
-    if (hyst_cache[b * HYST_CACHE] == hyst_cache[b * HYST_CACHE]) {    // not NaN: filled
+  for (size_t b = 0; b < nblock; b++)
+    if (hyst_live[b]) {
       uint64_t k = key(hyst_cache_tags[2 * b], hyst_cache_tags[2 * b + 1]);
       hyst_old[slot_of(k)] = {k, b};
-      nfilled++;
     }
-  hyst_cache_prev.swap(hyst_cache);
-  hyst_cache.clear();
-  hyst_cache_tags.clear();    // (read above; its capacity kept for the new layout)
+  std::fill(hyst_live.begin(), hyst_live.end(), 0);
   int inum = list->inum;
   tagint *tag = atom->tag;
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
@@ -661,29 +661,40 @@ void PairEGW::hyst_cache_rows()
   }
   hyst_cache_first[inum] = n;
   hyst_slot.assign(n, -1);
-  if (nfilled == 0) return;
-  for (int ii = 0; ii < inum; ii++) {
-    int i = list->ilist[ii];
-    int *jlist = list->firstneigh[i];
-    int *touch = view->firstflag[i];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      if (!touch[jj]) continue;
-      const auto &hit = hyst_old[slot_of(key(tag[i], tag[jlist[jj] & NEIGHMASK]))];
-      if (hit.first == 0) continue;
-      double *c = hyst_block(hyst_cache_first[ii] + jj, tag[i], tag[jlist[jj] & NEIGHMASK]);
-      std::copy(&hyst_cache_prev[hit.second * HYST_CACHE],
-                &hyst_cache_prev[(hit.second + 1) * HYST_CACHE], c);
+  if (nlive > 0)
+    for (int ii = 0; ii < inum; ii++) {
+      int i = list->ilist[ii];
+      int *jlist = list->firstneigh[i];
+      int *touch = view->firstflag[i];
+      for (int jj = 0; jj < list->numneigh[i]; jj++) {
+        if (!touch[jj]) continue;
+        const auto &hit = hyst_old[slot_of(key(tag[i], tag[jlist[jj] & NEIGHMASK]))];
+        if (hit.first == 0 || hyst_live[hit.second]) continue;    // none, or taken
+        hyst_slot[hyst_cache_first[ii] + jj] = (int) hit.second;
+        hyst_live[hit.second] = 1;
+      }
     }
-  }
+  hyst_free.clear();
+  for (size_t b = nblock; b-- > 0;)
+    if (!hyst_live[b]) hyst_free.push_back((int) b);
 }
 
-/* a new, empty block for list entry e (atoms with IDs ti, tj) */
+/* a new, empty block for list entry e (atoms with IDs ti, tj): a free one, else one more */
 double *PairEGW::hyst_block(size_t e, tagint ti, tagint tj)
 {
-  size_t b = hyst_cache_tags.size() / 2;
+  size_t b;
+  if (!hyst_free.empty()) {
+    b = (size_t) hyst_free.back();
+    hyst_free.pop_back();
+    hyst_cache_tags[2 * b] = ti, hyst_cache_tags[2 * b + 1] = tj;
+    hyst_live[b] = 1;
+  } else {
+    b = hyst_cache_tags.size() / 2;
+    hyst_cache.resize((b + 1) * HYST_CACHE);
+    hyst_cache_tags.push_back(ti), hyst_cache_tags.push_back(tj);
+    hyst_live.push_back(1);
+  }
   hyst_slot[e] = (int) b;
-  hyst_cache.resize((b + 1) * HYST_CACHE);
-  hyst_cache_tags.push_back(ti), hyst_cache_tags.push_back(tj);
   double *c = &hyst_cache[b * HYST_CACHE];
   c[0] = c[EGW_HYSTERESIS_STATE_SIZE] = NAN;
   return c;
@@ -691,9 +702,9 @@ double *PairEGW::hyst_block(size_t e, tagint ti, tagint tj)
 
 double PairEGW::memory_usage()
 {
-  return (double) (hyst_cache.capacity() + hyst_cache_prev.capacity()) * sizeof(double) +
+  return (double) hyst_cache.capacity() * sizeof(double) +
       (double) hyst_cache_first.capacity() * sizeof(size_t) +
-      (double) hyst_slot.capacity() * sizeof(int) +
-      (double) hyst_cache_tags.capacity() * sizeof(tagint) +
+      (double) (hyst_slot.capacity() + hyst_free.capacity()) * sizeof(int) +
+      (double) hyst_cache_tags.capacity() * sizeof(tagint) + (double) hyst_live.capacity() +
       (double) hyst_old.capacity() * sizeof(hyst_old[0]);
 }

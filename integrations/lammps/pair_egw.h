@@ -95,14 +95,18 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
   void egw_fail(const std::string &what);
   inline void normal(EgwLaw &, double delta, double R, double *hist, double *cache, double &F,
                      double &S, double &U, int want_energy);
-  // EP-GW: two hysteresis states per contact (blocks of HYST_CACHE doubles), entry jj of
-  // ilist[ii] at hyst_slot[hyst_cache_first[ii] + jj]; rebuilt with the list (egw_history.h)
-  std::vector<double> hyst_cache, hyst_cache_prev;
+  // EP-GW: two hysteresis states per contact (blocks of HYST_CACHE doubles, which stay
+  // where they are while their contact lasts), entry jj of ilist[ii] uses block
+  // hyst_slot[hyst_cache_first[ii] + jj] (-1: none yet); the slots are rebuilt with the
+  // list, the blocks of contacts no longer listed reused (hyst_free) (egw_history.h)
+  std::vector<double> hyst_cache;
   std::vector<size_t> hyst_cache_first;
   std::vector<int> hyst_slot;
   std::vector<tagint> hyst_cache_tags;     // the two atoms' IDs of each block
-  // the old layout's filled blocks by their pair's key (open addressing, key 0 empty),
-  // kept between rebuilds so that a rebuild allocates nothing
+  std::vector<char> hyst_live;             // the block belongs to an entry of the list
+  std::vector<int> hyst_free;              // blocks free for new contacts
+  // the blocks by their pair's key (open addressing, key 0 empty), kept between rebuilds
+  // so that a rebuild allocates nothing
   std::vector<std::pair<uint64_t, size_t>> hyst_old;
   bigint hyst_cache_calls = -1;
   double *hyst_block(size_t entry, tagint ti, tagint tj);

@@ -24,7 +24,10 @@ hysteresis tables, 1-20 sigma) against the same granular runs (issue 33: EP-GW <
 granular there, E-GW <= 1.1x); so does in.pour.heat (its wall temperature variable
 makes LAMMPS tally energies on every step).
 Usage: bench.py [NRUN [REPEAT]]      bench.py --setup [REPEAT]   (the set-up table only)
-       bench.py --decks [REPEAT]                                  (the three decks only)"""
+       bench.py --decks [REPEAT]                                  (the three decks only)
+Environment: EGW_BENCH_LMP another runner (build/lammps/lmp of another build: A/B runs);
+EGW_BENCH_DECKS deck files to run (e.g. drum.in,heat.in), EGW_BENCH_RANKS rank counts
+(e.g. 1): the decks' table for those only."""
 import os
 import re
 import subprocess
@@ -133,12 +136,18 @@ def run_deck(deck, law, np, extra):
 
 
 def decks_table():
-    """LAMMPS's three granular decks converted: loop time egw / granular"""
-    best = {}
+    """LAMMPS's three granular decks converted: loop time egw / granular (best of REPEAT
+    interleaved runs, and the ratio of each round's pair of runs). EGW_BENCH_DECKS (deck
+    files, comma-separated, e.g. drum.in,heat.in) and EGW_BENCH_RANKS (e.g. 1) narrow it."""
+    best, rounds = {}, {}
     laws = [("granular", -1)] + [("egw", v) for v in range(len(DECK_MODELS))]
+    only = [d for d in os.environ.get("EGW_BENCH_DECKS", "").split(",") if d]
+    ranks = [int(n) for n in os.environ.get("EGW_BENCH_RANKS", "1,2").split(",") if n]
     for rep in range(REPEAT):
         for k, (name, deck, extra) in enumerate(DECKS):
-            for np in (1, 2):
+            if only and deck not in only:
+                continue
+            for np in ranks:
                 for law, v in laws:
                     if v >= 0 and k not in DECK_MODELS[v][2]:
                         continue
@@ -148,24 +157,27 @@ def decks_table():
                     print(f"  {name} {label}, {np} rank(s): loop {r['loop']:.2f} s",
                           file=sys.stderr, flush=True)
                     key = (k, np, v)
+                    rounds.setdefault(key, []).append(r["loop"])
                     if key not in best or r["loop"] < best[key]["loop"]:
                         best[key] = r
     print()
     print(f"| LAMMPS's deck, converted, best of {REPEAT} | egw's model | ranks | "
-          "grains | loop egw [s] | loop granular [s] | loop / granular | pair / granular | "
-          "egw's list |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "grains | loop egw [s] | loop granular [s] | loop / granular | each round's | "
+          "pair / granular | egw's list |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     lines = ["deck,model,ranks,atoms,loop_egw_s,loop_granular_s,ratio,pair_ratio,size_list"]
     for k, (name, deck, extra) in enumerate(DECKS):
         for v, (label, _, where) in enumerate(DECK_MODELS):
-            if k not in where:
+            if k not in where or (k, ranks[0], v) not in best:
                 continue
-            for np in (1, 2):
+            for np in ranks:
                 e, g = best[(k, np, v)], best[(k, np, -1)]
                 ratio, pratio = e["loop"] / g["loop"], e["pair"] / max(g["pair"], 1e-30)
+                each = ", ".join(f"{a / b:.2f}" for a, b in zip(rounds[(k, np, v)],
+                                                               rounds[(k, np, -1)]))
                 lst = "size" if e["size"] else "plain"
                 print(f"| {name} | {label} | {np} | {e['atoms']} | {e['loop']:.2f} | "
-                      f"{g['loop']:.2f} | **{ratio:.2f}** | {pratio:.2f} | {lst} |")
+                      f"{g['loop']:.2f} | **{ratio:.2f}** | {each} | {pratio:.2f} | {lst} |")
                 lines.append(f"{deck},{label.split(',')[0]},{np},{e['atoms']},{e['loop']:.3f},"
                              f"{g['loop']:.3f},{ratio:.3f},{pratio:.3f},{lst}")
     write_csv("bench_decks.csv", lines)
