@@ -51,6 +51,8 @@ contains
          & new_unittest("DEM loop restitution = restitution to 1e-4", test_dem_restitution), &
          & new_unittest("table within rel_tol of solves between nodes", test_accuracy), &
          & new_unittest("every delta_max interval, between the s nodes", test_between_nodes), &
+         & new_unittest("EP-GW 1e-4, down to 1e-4 P(m): rel_tol of P(m)", test_far_epgw), &
+         & new_unittest("EP-GW 1e-3 to 30 sigma, down to 1e-4 P(m)", test_far_epgw_deep), &
          & new_unittest("loading above delta_max: the deep law", test_deep_loading), &
          & new_unittest("low delta_max: loading table to the deep law's floor", &
          & test_deep_floor), &
@@ -125,6 +127,122 @@ contains
       call check(error, worst <= tol, "worst error "//format_real(worst)// &
          & " of P(delta_max) over "//to_string(size(t%m))//" delta_max nodes")
    end subroutine test_accuracy
+
+   !> EP-GW (the suite's pair: mu 4, psi 2) at rel_tol 1e-4 over [-2, 3] sigma (turning
+   !> points from the separated tail to 3 sigma): far_errors.
+   subroutine test_far_epgw(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      call build_hysteresis(ep, solver_options(), -2.0_dp, 3.0_dp, 1.0e-4_dp, t, err)
+      if (allocated(err)) then
+         call test_failed(error, "build: "//err%message)
+         return
+      end if
+      call far_errors(t, error)
+   end subroutine test_far_epgw
+
+   !> The same pair at rel_tol 1e-3 over [-3, 30] sigma (egw-bench's range: deep turning
+   !> points, whose unloading force vanishes at a residual overlap far below them).
+   subroutine test_far_epgw_deep(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      call build_hysteresis(ep, solver_options(), -3.0_dp, 30.0_dp, 1.0e-3_dp, t, err)
+      if (allocated(err)) then
+         call test_failed(error, "build: "//err%message)
+         return
+      end if
+      call far_errors(t, error)
+   end subroutine test_far_epgw_deep
+
+   !> The table t (rel_tol) at turning points m halfway between its delta_max nodes, at
+   !> the overlaps where its force is 0.5 .. 1e-4 of the force at the turning point P(m)
+   !> (bisection on the table), each moved to the middle of its s cell (where a cubic's
+   !> error peaks), against unloading solves at rel_tol 1e-8 (the solver, independent of
+   !> the table's interpolation; 1e-7 where the finest mesh does not reach 1e-8): within
+   !> 2 rel_tol P(m), the table's documented tolerance (the build checks its cubics at
+   !> the cells' midpoints against rel_tol/4 of P(m) in s and its whole error at the
+   !> midpoint curves' nodes against rel_tol in delta_max; the factor 2 allows for what
+   !> those checks do not see: the check solves' own rel_tol/10 and points at an s cell's
+   !> middle of a turning point halfway between nodes, interpolated from four curves).
+   !> Also printed: the largest error relative to max(P, 1e-3 P(m)), the measure of
+   !> issue 33 item 5 (a tolerance relative to the local force): measured 2.6e-2 at 1e-4
+   !> and [-2, 3] sigma, not yet met (doc/benchmarks.md, local4).
+   subroutine far_errors(t, error)
+      type(hysteresis_table), intent(in) :: t
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: ratios(7) = [0.5_dp, 0.1_dp, 1.0e-2_dp, 3.0e-3_dp, &
+         & 1.2e-3_dp, 3.0e-4_dp, 1.0e-4_dp], factor = 2.0_dp, floor = 1.0e-3_dp
+      type(solver_options) :: fine
+      type(solve_result) :: res, top
+      type(egw_error), allocatable :: err
+      real(dp) :: m, d, f, k, state, worst, local, rel, lo, hi, s, local_at(2), span
+      integer :: j, i, it, stat, n, l
+      fine%rel_tol = 1.0e-8_dp
+      worst = 0.0_dp
+      local = 0.0_dp
+      local_at = 0.0_dp
+      n = 0
+      do j = 2, size(t%m) - 2, max(1, (size(t%m) - 4)/6)
+         m = 0.5_dp*(t%m(j) + t%m(j + 1))
+         call solve_contact(t%params, fine, m, top, err)
+         if (allocated(err)) exit
+         ! s = (m - delta)/(s_max L(m)), L interpolated linearly (enough to land inside
+         ! an s cell's middle half)
+         span = t%s_max*0.5_dp*(t%length(j) + t%length(j + 1))
+         do i = 1, size(ratios)
+            ! the overlap where the table's force is ratios(i) of P(m): bisection
+            lo = t%loading%cutoff
+            hi = m
+            do it = 1, 200
+               d = 0.5_dp*(lo + hi)
+               state = m
+               call hysteresis_eval(t, d, state, f, k, stat)
+               if (f < ratios(i)*top%force) then
+                  lo = d
+               else
+                  hi = d
+               end if
+            end do
+            ! moved to the middle of its s cell
+            s = (m - d)/span
+            do l = 1, size(t%s) - 1
+               if (t%s(l + 1) > s) exit
+            end do
+            if (l >= size(t%s)) cycle
+            d = m - span*0.5_dp*(t%s(l) + t%s(l + 1))
+            if (.not. d > t%loading%cutoff) cycle   ! no force below (< 1e-12 of P_ref)
+            call solve_contact_unload(t%params, fine, d, m, res, err)
+            if (allocated(err)) then
+               deallocate (err)
+               call solve_contact_unload(t%params, solver_options(rel_tol=1.0e-7_dp), d, &
+                  & m, res, err)
+            end if
+            if (allocated(err)) exit
+            state = m
+            call hysteresis_eval(t, d, state, f, k, stat)
+            n = n + 1
+            worst = max(worst, abs(f - res%force)/top%force)
+            rel = abs(f - res%force)/max(res%force, floor*top%force)
+            if (rel > local) then
+               local = rel
+               local_at = [m, res%force/top%force]
+            end if
+         end do
+         if (allocated(err)) exit
+      end do
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      print '(4x, a, es9.2, a, es9.2, a, i0, a, es9.2, a, es9.2, a, i0, a, i0)', &
+         & "error/P(m) ", worst, ", local error ", local, " of ", n, &
+         & " points (at delta_max ", local_at(1), ", P/P(m) ", local_at(2), "), grid ", &
+         & size(t%m), " x ", size(t%s)
+      call check(error, n >= 10 .and. worst <= factor*t%rel_tol, "worst error "// &
+         & format_real(worst)//" of P(m) over "//to_string(n)//" points")
+   end subroutine far_errors
 
    !> The build checks each delta_max interval with a midpoint curve solved at its two
    !> neighbours' s nodes only (no bisection of its own unless it becomes a node): at the
