@@ -47,8 +47,9 @@ module egw_sphere_solver
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, inner_layers, &
-      & mesh_geometry
+      & mesh_geometry, kink_layers
    use egw_sphere_iteration, only: solve_mesh, differentiate
+   use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load
    implicit none
    private
 
@@ -66,6 +67,92 @@ contains
    !> continuation if a cold start fails; refocus_classic_gw), then the refinement levels
    !> (refine_levels).
    subroutine solve_scaled(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable :: guided_error
+      call solve_default(problem, options, sol, est, method_used, error)
+      if (.not. allocated(error)) return
+      ! Loading of an extended model with the cap that did not converge (small
+      ! sigma/delta_y: the plastic zone's edge is a layer the default meshes do not
+      ! resolve): the guided route; its own failure reports the default route's error.
+      if (error%stat /= egw_not_converged .or. .not. allocated(problem%cap) .or. &
+         & allocated(problem%closest) .or. .not. problem%extended) return
+      if (options%n_radial > 0) return
+      call guided_cap_solve(problem, options, sol, est, method_used, guided_error)
+      if (.not. allocated(guided_error)) deallocate (error)
+   end subroutine solve_scaled
+
+   !> Loading with the cap, the guided route (doc/theory.md §12 "Rough spheres with the
+   !> cap", "Small sigma"): the smooth cap model's plastic radius c at the same delta
+   !> (egw_cap_sphere's cap_load, in its universal units), which the rough solution's
+   !> inner cap edge approaches as sigma -> 0, is an element edge of every level from the
+   !> first, with geometric layers on both sides down to the Hertz edge's layer width
+   !> (prob%kink_width, kink_layers); beyond the Hertz radius the family is focused there.
+   !> Then the levels as on the default route (first_cap_level relocates the edge onto
+   !> the rough solution's own cap edges).
+   subroutine guided_cap_solve(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution) :: coarse
+      type(scaled_problem) :: prob
+      type(mesh_family) :: mesh
+      real(dp) :: edge
+      prob = problem
+      method_used = options%method
+      if (method_used == method_auto) method_used = method_newton
+      call first_mesh(prob, options, mesh)
+      call smooth_cap_edge(prob, edge, error)
+      if (allocated(error)) return
+      prob%branch = [edge]
+      prob%n_branch = 1
+      prob%kink_width = mesh%width
+      if (edge > mesh%focus + 4.0_dp*mesh%width) then
+         mesh%focus = edge
+         mesh%width = min(1.0_dp, 0.5_dp*edge*(0.75_dp*pi/edge**2)**(2.0_dp/3.0_dp))
+         mesh%layered = .true.
+         mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
+      end if
+      call solve_with_tail(prob, options, method_used, mesh%layered, mesh%focus, mesh%width, &
+         & mesh%step_prev, mesh%outer, coarse, error)
+      if (allocated(error)) return
+      call first_cap_level(prob, options, method_used, mesh, coarse, error)
+      if (allocated(error)) return
+      call refine_levels(prob, options, method_used, force_order, mesh, coarse, sol, est, &
+         & error)
+   end subroutine guided_cap_solve
+
+   !> The smooth cap model's plastic radius at prob's delta, in the scaled units of prob:
+   !> cap_load in universal units (R = E* = 1, p_y = 0.01, delta in its delta_y), whose
+   !> radius scales with a_y = pi p_y/2 (prob%cap%p_y the scaled p_y). Below first yield
+   !> the Hertz radius (there is no plastic zone; the guided route is not needed there).
+   subroutine smooth_cap_edge(prob, edge, error)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(out) :: edge
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), parameter :: p_unit = 0.01_dp
+      type(cap_history) :: history
+      type(cap_result) :: res
+      real(dp) :: ratio, delta_y_unit
+      edge = prob%a
+      ratio = prob%delta/(0.5_dp*pi*prob%cap%p_y)**2
+      if (.not. ratio > 1.0_dp) return
+      delta_y_unit = (0.5_dp*pi*p_unit)**2
+      call cap_load(1.0_dp, 1.0_dp, p_unit, ratio*delta_y_unit, cap_options(), history, res, &
+         & error, "delta")
+      if (allocated(error)) return
+      edge = res%cap_radius/(0.5_dp*pi*p_unit)*(0.5_dp*pi*prob%cap%p_y)
+   end subroutine smooth_cap_edge
+
+   !> The levels of solve_scaled's default route (all solves but guided_cap_solve's).
+   subroutine solve_default(problem, options, sol, est, method_used, error)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
@@ -113,7 +200,7 @@ contains
          if (allocated(error)) return
       end if
       call refine_levels(prob, options, method_used, order, mesh, coarse, sol, est, error)
-   end subroutine solve_scaled
+   end subroutine solve_default
 
    !> The first level of an unloading solve (doc/theory.md §8 "Sphere"): a locating solve
    !> on a coarser mesh places the element edges at the kinks of p(r) (prob%branch) and
@@ -444,7 +531,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       real(dp) :: total, keep
-      integer :: attempt
+      integer :: attempt, i
       real(dp), allocatable :: edges(:)
 
       do attempt = 1, 8
@@ -477,6 +564,11 @@ contains
                edges = inner_layers(edges, prob%a)
             else
                edges = with_kink_edges(edges, prob%branch, focus, prob%n_branch, 0.0_dp)
+            end if
+            if (prob%kink_width > 0.0_dp) then
+               do i = 1, size(prob%branch)
+                  edges = kink_layers(edges, prob%branch(i), prob%kink_width)
+               end do
             end if
          end if
          call solve_mesh(prob, options, method, edges, sol, error, guess)
