@@ -30,6 +30,8 @@ contains
          & new_unittest("sigma -> 0: loading reduces to the smooth cap", test_smooth_limit), &
          & new_unittest("sigma -> 0: unloading reduces to the smooth cap", &
          & test_smooth_limit_unload), &
+         & new_unittest("sigma/delta_y = 1e-6: loading converges to the smooth cap", &
+         & test_small_sigma), &
          & new_unittest("impact: dissipated = closed integral of P d delta", test_energy), &
          & new_unittest("impact: e below the cap-free EP-GW's, and first yield", &
          & test_first_yield), &
@@ -195,6 +197,43 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_smooth_limit
+
+   !> E-GW with the cap at sigma/delta_y = 1e-6 from 1.5 to 20 delta_y (before, Newton
+   !> did not converge at 1.5 and 2 delta_y: the plastic zone's edge, a layer ~ a
+   !> (sigma/delta)**(2/3) thin, sat inside elements ~100 layers long; now the solver's
+   !> guided route, sphere_solver's guided_cap_solve) against the reference (as
+   !> test_smooth_limit): the rough layer's O((sigma/delta_y)**(2/3)) difference, at
+   !> 1e-5 up to 6.9e-5, is 10**(-2/3) of that, 1.5e-5, at 1e-6 (measured 2.5e-6 ..
+   !> 1.5e-5; the solves at rel_tol 1e-6, error <= 5e-7): within 3e-5, twice that.
+   !> Differences above 3e-5 mean the solve is wrong or the layer's law is not the one
+   !> measured (a limit that stalled at 1e-5's values would be 6.9e-5 off).
+   subroutine test_small_sigma(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: x(6) = [1.5_dp, 2.0_dp, 3.0_dp, 5.0_dp, 10.0_dp, 20.0_dp]
+      real(dp), parameter :: ref(6) = [1.815256521822_dp, 2.720383972669_dp, &
+         & 4.696156337776_dp, 9.032667181270_dp, 2.091895411785e+01_dp, &
+         & 4.646580037371e+01_dp]
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y, got
+      integer :: i
+      call yield_units(delta_y, force_y)
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
+         & sigma=1.0e-6_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      do i = 1, size(x)
+         call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), x(i)*delta_y, res, err)
+         if (allocated(err)) then
+            call check(error, .false., "delta/delta_y = "//str(x(i))//": "//err%message)
+            return
+         end if
+         got = res%force/force_y
+         call check(error, abs(got - ref(i)) <= 3.0e-5_dp*ref(i), "delta/delta_y = " &
+            & //str(x(i))//", sigma/delta_y 1e-6: P/P_y = "//str(got)//", reference " &
+            & //str(ref(i)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_small_sigma
 
    !> Unloading of E-GW with the cap at sigma/delta_y = 1e-4 from delta_max = 2 delta_y
    !> against the reference's unloading rows and residual overlap (error column <= 1.7e-7):

@@ -79,12 +79,52 @@ contains
       ! Loading of an extended model with the cap that did not converge (small
       ! sigma/delta_y: the plastic zone's edge is a layer the default meshes do not
       ! resolve): the guided route; its own failure reports the default route's error.
-      if (error%stat /= egw_not_converged .or. .not. allocated(problem%cap) .or. &
-         & allocated(problem%closest) .or. .not. problem%extended) return
+      if (error%stat /= egw_not_converged .or. .not. allocated(problem%cap)) return
       if (options%n_radial > 0) return
-      call guided_cap_solve(problem, options, sol, est, method_used, guided_error)
+      if (allocated(problem%closest)) then
+         if (.not. problem%closest%extended) return
+         call guided_cap_unload(problem, options, sol, est, method_used, guided_error)
+      else
+         if (.not. problem%extended) return
+         call guided_cap_solve(problem, options, sol, est, method_used, guided_error)
+      end if
       if (.not. allocated(guided_error)) deallocate (error)
    end subroutine solve_scaled
+
+   !> Unloading after a capped loading, the guided route (as guided_cap_solve): the
+   !> smooth cap model's plastic radius at delta_max, where the history's plastic shift
+   !> has its edge, is an element edge with layers on both sides (prob%kink_width) from
+   !> the locating solve on; then first_unloading_level and the levels as on the default
+   !> route.
+   subroutine guided_cap_unload(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution) :: coarse
+      type(scaled_problem) :: prob, at_max
+      type(mesh_family) :: mesh
+      real(dp) :: edge
+      prob = problem
+      method_used = options%method
+      if (method_used == method_auto) method_used = method_newton
+      prob%residual_tol = max(prob%residual_tol, min(1.0e-10_dp, 1.0e-4_dp*options%rel_tol))
+      call first_mesh(prob, options, mesh)
+      at_max = prob
+      at_max%delta = prob%closest%delta
+      at_max%a = sqrt(at_max%delta)
+      call smooth_cap_edge(at_max, edge, error)
+      if (allocated(error)) return
+      prob%branch = [edge]
+      prob%n_branch = 0
+      prob%kink_width = mesh%width
+      call first_unloading_level(prob, options, method_used, mesh, coarse, error)
+      if (allocated(error)) return
+      call refine_levels(prob, options, method_used, unload_order, mesh, coarse, sol, est, &
+         & error)
+   end subroutine guided_cap_unload
 
    !> Loading with the cap, the guided route (doc/theory.md §12 "Rough spheres with the
    !> cap", "Small sigma"): the smooth cap model's plastic radius c at the same delta
@@ -101,9 +141,9 @@ contains
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
-      type(discrete_solution) :: coarse
-      type(scaled_problem) :: prob
-      type(mesh_family) :: mesh
+      type(discrete_solution) :: coarse, first
+      type(scaled_problem) :: prob, relocated
+      type(mesh_family) :: mesh, moved_mesh
       real(dp) :: edge
       prob = problem
       method_used = options%method
@@ -123,8 +163,19 @@ contains
       call solve_with_tail(prob, options, method_used, mesh%layered, mesh%focus, mesh%width, &
          & mesh%step_prev, mesh%outer, coarse, error)
       if (allocated(error)) return
-      call first_cap_level(prob, options, method_used, mesh, coarse, error)
-      if (allocated(error)) return
+      ! the edge relocated onto the rough solution's own cap edge; where that solve fails
+      ! (from sigma/delta_y ~ 1e-7: the edge moves by more than a layer) the smooth edge
+      ! is kept and the levels' kink error (add_kink_error) measures what it misses by
+      relocated = prob
+      moved_mesh = mesh
+      first = coarse
+      call first_cap_level(relocated, options, method_used, moved_mesh, first, error)
+      if (.not. allocated(error)) then
+         prob = relocated
+         mesh = moved_mesh
+         coarse = first
+      end if
+      if (allocated(error)) deallocate (error)
       call refine_levels(prob, options, method_used, force_order, mesh, coarse, sol, est, &
          & error)
    end subroutine guided_cap_solve
@@ -550,6 +601,11 @@ contains
                keep = 0.0_dp
                if (prob%closest%extended .and. prob%amax_edge) keep = sqrt(prob%closest%delta)
                edges = with_kink_edges(edges, prob%branch, focus, prob%n_branch, keep)
+               if (prob%kink_width > 0.0_dp) then
+                  do i = 1, size(prob%branch)
+                     edges = kink_layers(edges, prob%branch(i), prob%kink_width)
+                  end do
+               end if
             end if
          else if (allocated(prob%branch)) then
             ! loading with the cap: its edges (cap_kink_radii) and, extended models, the
