@@ -597,6 +597,17 @@ contains
             ! insertion unless within a tenth of an element of an edge.
             if (prob%closest%extended .and. prob%amax_edge) edges = with_edge(edges, &
                & sqrt(prob%closest%delta))
+            ! After a capped loading the offset (flow_cap's plastic_shift) is p_s(delta_max)
+            ! in the capped body, with the loading Hertz pressure's sqrt(a_max - r) edge at
+            ! a_max, and the total pressure can step from its floor 0 to ~p_s there within
+            ! ~1e-3 a_max: a_max an element edge always, with halving layers inside it, as
+            ! the loading's a (inner_layers). Without them EP-GW (sigma = delta_y, mu 4,
+            ! psi 1) unloading from 6 delta_y missed rel_tol 1e-6 at 7 of 70 overlaps: its
+            ! levels' forces alternated by 1.2e-3 (estimates 6e-7 .. 6e-4).
+            if (prob%closest%extended .and. prob%amax_edge .and. prob%closest%capped) then
+               edges = with_kink_edges(edges, [sqrt(prob%closest%delta)], focus, 1, 0.0_dp)
+               edges = inner_layers(edges, sqrt(prob%closest%delta))
+            end if
             if (allocated(prob%branch)) then
                keep = 0.0_dp
                if (prob%closest%extended .and. prob%amax_edge) keep = sqrt(prob%closest%delta)
