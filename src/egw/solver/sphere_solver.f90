@@ -103,7 +103,7 @@ contains
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
-      type(discrete_solution) :: coarse
+      type(discrete_solution) :: coarse, start
       type(scaled_problem) :: prob, at_max
       type(mesh_family) :: mesh
       real(dp) :: edge
@@ -120,7 +120,12 @@ contains
       prob%branch = [edge]
       prob%n_branch = 0
       prob%kink_width = mesh%width
-      call first_unloading_level(prob, options, method_used, mesh, coarse, error)
+      ! started from the loading's deflection at delta_max (the rough part there is the
+      ! offset's -p_s deep inside, ~1e5 sigma of deflection at sigma/delta_y = 1e-6, far
+      ! from the initial deflection of the law)
+      start%mesh = prob%closest%mesh
+      start%w = prob%closest%w
+      call first_unloading_level(prob, options, method_used, mesh, coarse, error, start)
       if (allocated(error)) return
       call refine_levels(prob, options, method_used, unload_order, mesh, coarse, sol, est, &
          & error)
@@ -257,13 +262,15 @@ contains
    !> on a coarser mesh places the element edges at the kinks of p(r) (prob%branch) and
    !> trims the mesh to where the unloading pressure has died (trim_to_unloading_decay);
    !> then the first level itself, whose kink edges are relocated (relocate_kinks).
-   subroutine first_unloading_level(prob, options, method, mesh, coarse, error)
+   subroutine first_unloading_level(prob, options, method, mesh, coarse, error, start)
       type(scaled_problem), intent(inout) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
       type(mesh_family), intent(inout) :: mesh
       type(discrete_solution), intent(out) :: coarse
       type(egw_error), allocatable, intent(out) :: error
+      !> start of the locating solve (the cap's guided route; else the initial deflection)
+      type(discrete_solution), intent(in), optional :: start
       type(discrete_solution) :: first
       type(scaled_problem) :: locate
       ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
@@ -287,11 +294,11 @@ contains
       locate = prob
       locate%residual_tol = 1.0e-6_dp
       call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
-         & 2.0_dp*mesh%step_prev, mesh%outer, first, error)
+         & 2.0_dp*mesh%step_prev, mesh%outer, first, error, start)
       if (allocated(error)) then
          deallocate (error)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step_prev, mesh%outer, coarse, error)
+            & mesh%step_prev, mesh%outer, coarse, error, start)
          return
       end if
       ! Edges only where the pressure is not negligible: a kink where r p is below
