@@ -43,7 +43,7 @@ module egw_sphere_solver
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & scaled, normal, negligible, base_gap, closest_gap, law_inverse, &
       & effective_radius, total_pressure, smooth_force, smooth_stiffness, rough_pressure, &
-      & cap_fields, force_floor
+      & cap_fields, force_floor, cap_excess
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, inner_layers, &
@@ -619,9 +619,15 @@ contains
                keep = 0.0_dp
                if (prob%closest%extended .and. prob%amax_edge) keep = sqrt(prob%closest%delta)
                edges = with_kink_edges(edges, prob%branch, focus, prob%n_branch, keep)
+               ! (the guided route: layers at the edges of the history's plastic zone,
+               ! where the shift and the offset start, cap_excess kinds 2 and 3, not at the
+               ! d = d_max crossings, which the capped body has in numbers there)
                if (prob%kink_width > 0.0_dp) then
                   do i = 1, size(prob%branch)
-                     edges = kink_layers(edges, prob%branch(i), prob%kink_width)
+                     if (min(abs(cap_excess(prob, prob%branch(i), 0.0_dp, 2)), &
+                        & abs(cap_excess(prob, prob%branch(i), 0.0_dp, 3))) <= 1.0e-6_dp &
+                        & *prob%cap%p_y) edges = kink_layers(edges, prob%branch(i), &
+                        & prob%kink_width)
                   end do
                end if
             end if
