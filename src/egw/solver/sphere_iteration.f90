@@ -88,6 +88,15 @@ contains
       else
          if (max_iter == 0) max_iter = newton_max_default
          call newton(prob, sol, max_iter, error)
+         ! The cap's guided route (prob%kink_width > 0; egw_sphere_solver's
+         ! guided_cap_solve): a guess interpolated from another mesh can put the steep
+         ! gap of the plastic zone's edge layers off, where Newton stalls; from the
+         ! initial deflection it converges on these meshes (their layers resolve the edge)
+         if (allocated(error) .and. prob%kink_width > 0.0_dp .and. present(guess)) then
+            deallocate (error, sol%w)
+            call initial_deflection(prob, sol)
+            call newton(prob, sol, max_iter, error)
+         end if
       end if
       if (allocated(error)) return
 

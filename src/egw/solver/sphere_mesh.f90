@@ -45,7 +45,7 @@ module egw_sphere_mesh
    public :: kink_radii, cap_kink_radii
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
-      & mesh_geometry, step_for_nodes, grown_outer, inner_layers
+      & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers
 
 
    !> The state of an Illinois root search (illinois_begin, illinois_step).
@@ -389,6 +389,30 @@ contains
       h = edge(k) - edge(k - 1)
       out = [edge(0:k - 1), (r - h*0.5_dp**i, i=1, cap_edge_layers), edge(k:)]
    end function inner_layers
+
+   !> edge with the two elements beside the edge r (an edge of it, exactly) split into
+   !> layers halving towards r until the one at r is at most width long (at most 40 each
+   !> side). Loading with the cap at small sigma/delta_y (egw_sphere_solver's
+   !> guided_cap_solve): at the inner cap edge the gap goes from the stiff rough layer's
+   !> few sigma to the plastic zone's deep overlap within ~ a (sigma/delta)**(2/3), as
+   !> thin as the Hertz edge's layer, and an element much longer than that holding it
+   !> gave Newton an oscillating discrete problem (doc/theory.md §12, "Small sigma").
+   pure function kink_layers(edge, r, width) result(out)
+      real(dp), intent(in) :: edge(0:), r, width
+      real(dp), allocatable :: out(:)
+      real(dp) :: left, right
+      integer :: k, n, nl, nr, i
+      out = edge
+      n = size(edge) - 1
+      k = findloc(edge, r, dim=1) - 1
+      if (k < 1 .or. k >= n .or. .not. width > 0.0_dp) return
+      left = r - edge(k - 1)
+      right = edge(k + 1) - r
+      nl = min(40, max(0, ceiling(log(left/width)/log(2.0_dp))))
+      nr = min(40, max(0, ceiling(log(right/width)/log(2.0_dp))))
+      out = [edge(0:k - 1), (r - left*0.5_dp**i, i=1, nl), r, (r + right*0.5_dp**i, &
+         & i=nr, 1, -1), edge(k + 1:n)]
+   end function kink_layers
 
    !> edge with r added as an element edge (the element holding r split in two) unless r
    !> is outside (0, outer) or within a tenth of its element's length of an edge already.

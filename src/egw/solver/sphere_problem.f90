@@ -80,6 +80,10 @@ module egw_sphere_problem
       !> The flow-pressure cap (params%flow_pressure > 0; doc/theory.md §12 "Rough spheres
       !> with the cap"), applied to the law in one place: rough_pressure.
       type(flow_cap), allocatable :: cap
+      !> Loading with the cap on the guided route (egw_sphere_solver's guided_cap_solve,
+      !> small sigma/delta_y): geometric layers on both sides of each cap edge (branch)
+      !> down to this width; 0: none (the default route).
+      real(dp) :: kink_width = 0.0_dp
       !> Scaled residual at which Newton stops (looser only for the unloading's locating
       !> solve, see first_unloading_level).
       real(dp) :: residual_tol = 1.0e-11_dp

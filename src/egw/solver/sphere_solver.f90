@@ -43,12 +43,13 @@ module egw_sphere_solver
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & scaled, normal, negligible, base_gap, closest_gap, law_inverse, &
       & effective_radius, total_pressure, smooth_force, smooth_stiffness, rough_pressure, &
-      & cap_fields, force_floor
+      & cap_fields, force_floor, cap_excess
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, inner_layers, &
-      & mesh_geometry
+      & mesh_geometry, kink_layers
    use egw_sphere_iteration, only: solve_mesh, differentiate
+   use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load
    implicit none
    private
 
@@ -66,6 +67,148 @@ contains
    !> continuation if a cold start fails; refocus_classic_gw), then the refinement levels
    !> (refine_levels).
    subroutine solve_scaled(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable :: guided_error
+      call solve_default(problem, options, sol, est, method_used, error)
+      if (.not. allocated(error)) return
+      ! Loading of an extended model with the cap that did not converge (small
+      ! sigma/delta_y: the plastic zone's edge is a layer the default meshes do not
+      ! resolve): the guided route; its own failure reports the default route's error.
+      if (error%stat /= egw_not_converged .or. .not. allocated(problem%cap)) return
+      if (options%n_radial > 0) return
+      if (allocated(problem%closest)) then
+         if (.not. problem%closest%extended) return
+         call guided_cap_unload(problem, options, sol, est, method_used, guided_error)
+      else
+         if (.not. problem%extended) return
+         call guided_cap_solve(problem, options, sol, est, method_used, guided_error)
+      end if
+      if (.not. allocated(guided_error)) deallocate (error)
+   end subroutine solve_scaled
+
+   !> Unloading after a capped loading, the guided route (as guided_cap_solve): the
+   !> smooth cap model's plastic radius at delta_max, where the history's plastic shift
+   !> has its edge, is an element edge with layers on both sides (prob%kink_width) from
+   !> the locating solve on; then first_unloading_level and the levels as on the default
+   !> route.
+   subroutine guided_cap_unload(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution) :: coarse, start
+      type(scaled_problem) :: prob, at_max
+      type(mesh_family) :: mesh
+      real(dp) :: edge
+      prob = problem
+      method_used = options%method
+      if (method_used == method_auto) method_used = method_newton
+      prob%residual_tol = max(prob%residual_tol, min(1.0e-10_dp, 1.0e-4_dp*options%rel_tol))
+      call first_mesh(prob, options, mesh)
+      at_max = prob
+      at_max%delta = prob%closest%delta
+      at_max%a = sqrt(at_max%delta)
+      call smooth_cap_edge(at_max, edge, error)
+      if (allocated(error)) return
+      prob%branch = [edge]
+      prob%n_branch = 0
+      prob%kink_width = mesh%width
+      ! started from the loading's deflection at delta_max (the rough part there is the
+      ! offset's -p_s deep inside, ~1e5 sigma of deflection at sigma/delta_y = 1e-6, far
+      ! from the initial deflection of the law)
+      start%mesh = prob%closest%mesh
+      start%w = prob%closest%w
+      call first_unloading_level(prob, options, method_used, mesh, coarse, error, start)
+      if (allocated(error)) return
+      call refine_levels(prob, options, method_used, unload_order, mesh, coarse, sol, est, &
+         & error)
+   end subroutine guided_cap_unload
+
+   !> Loading with the cap, the guided route (doc/theory.md §12 "Rough spheres with the
+   !> cap", "Small sigma"): the smooth cap model's plastic radius c at the same delta
+   !> (egw_cap_sphere's cap_load, in its universal units), which the rough solution's
+   !> inner cap edge approaches as sigma -> 0, is an element edge of every level from the
+   !> first, with geometric layers on both sides down to the Hertz edge's layer width
+   !> (prob%kink_width, kink_layers); beyond the Hertz radius the family is focused there.
+   !> Then the levels as on the default route (first_cap_level relocates the edge onto
+   !> the rough solution's own cap edges).
+   subroutine guided_cap_solve(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution) :: coarse, first
+      type(scaled_problem) :: prob, relocated
+      type(mesh_family) :: mesh, moved_mesh
+      real(dp) :: edge
+      prob = problem
+      method_used = options%method
+      if (method_used == method_auto) method_used = method_newton
+      call first_mesh(prob, options, mesh)
+      call smooth_cap_edge(prob, edge, error)
+      if (allocated(error)) return
+      prob%branch = [edge]
+      prob%n_branch = 1
+      prob%kink_width = mesh%width
+      if (edge > mesh%focus + 4.0_dp*mesh%width) then
+         mesh%focus = edge
+         mesh%width = min(1.0_dp, 0.5_dp*edge*(0.75_dp*pi/edge**2)**(2.0_dp/3.0_dp))
+         mesh%layered = .true.
+         mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
+      end if
+      call solve_with_tail(prob, options, method_used, mesh%layered, mesh%focus, mesh%width, &
+         & mesh%step_prev, mesh%outer, coarse, error)
+      if (allocated(error)) return
+      ! the edge relocated onto the rough solution's own cap edge; where that solve fails
+      ! (from sigma/delta_y ~ 1e-7: the edge moves by more than a layer) the smooth edge
+      ! is kept and the levels' kink error (add_kink_error) measures what it misses by
+      relocated = prob
+      moved_mesh = mesh
+      first = coarse
+      call first_cap_level(relocated, options, method_used, moved_mesh, first, error)
+      if (.not. allocated(error)) then
+         prob = relocated
+         mesh = moved_mesh
+         coarse = first
+      end if
+      if (allocated(error)) deallocate (error)
+      call refine_levels(prob, options, method_used, force_order, mesh, coarse, sol, est, &
+         & error)
+   end subroutine guided_cap_solve
+
+   !> The smooth cap model's plastic radius at prob's delta, in the scaled units of prob:
+   !> cap_load in universal units (R = E* = 1, p_y = 0.01, delta in its delta_y), whose
+   !> radius scales with a_y = pi p_y/2 (prob%cap%p_y the scaled p_y). Below first yield
+   !> the Hertz radius (there is no plastic zone; the guided route is not needed there).
+   subroutine smooth_cap_edge(prob, edge, error)
+      type(scaled_problem), intent(in) :: prob
+      real(dp), intent(out) :: edge
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), parameter :: p_unit = 0.01_dp
+      type(cap_history) :: history
+      type(cap_result) :: res
+      real(dp) :: ratio, delta_y_unit
+      edge = prob%a
+      ratio = prob%delta/(0.5_dp*pi*prob%cap%p_y)**2
+      if (.not. ratio > 1.0_dp) return
+      delta_y_unit = (0.5_dp*pi*p_unit)**2
+      call cap_load(1.0_dp, 1.0_dp, p_unit, ratio*delta_y_unit, cap_options(), history, res, &
+         & error, "delta")
+      if (allocated(error)) return
+      edge = res%cap_radius/(0.5_dp*pi*p_unit)*(0.5_dp*pi*prob%cap%p_y)
+   end subroutine smooth_cap_edge
+
+   !> The levels of solve_scaled's default route (all solves but guided_cap_solve's).
+   subroutine solve_default(problem, options, sol, est, method_used, error)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
@@ -113,19 +256,21 @@ contains
          if (allocated(error)) return
       end if
       call refine_levels(prob, options, method_used, order, mesh, coarse, sol, est, error)
-   end subroutine solve_scaled
+   end subroutine solve_default
 
    !> The first level of an unloading solve (doc/theory.md §8 "Sphere"): a locating solve
    !> on a coarser mesh places the element edges at the kinks of p(r) (prob%branch) and
    !> trims the mesh to where the unloading pressure has died (trim_to_unloading_decay);
    !> then the first level itself, whose kink edges are relocated (relocate_kinks).
-   subroutine first_unloading_level(prob, options, method, mesh, coarse, error)
+   subroutine first_unloading_level(prob, options, method, mesh, coarse, error, start)
       type(scaled_problem), intent(inout) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
       type(mesh_family), intent(inout) :: mesh
       type(discrete_solution), intent(out) :: coarse
       type(egw_error), allocatable, intent(out) :: error
+      !> start of the locating solve (the cap's guided route; else the initial deflection)
+      type(discrete_solution), intent(in), optional :: start
       type(discrete_solution) :: first
       type(scaled_problem) :: locate
       ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
@@ -149,11 +294,11 @@ contains
       locate = prob
       locate%residual_tol = 1.0e-6_dp
       call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
-         & 2.0_dp*mesh%step_prev, mesh%outer, first, error)
+         & 2.0_dp*mesh%step_prev, mesh%outer, first, error, start)
       if (allocated(error)) then
          deallocate (error)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step_prev, mesh%outer, coarse, error)
+            & mesh%step_prev, mesh%outer, coarse, error, start)
          return
       end if
       ! Edges only where the pressure is not negligible: a kink where r p is below
@@ -444,7 +589,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       real(dp) :: total, keep
-      integer :: attempt
+      integer :: attempt, i
       real(dp), allocatable :: edges(:)
 
       do attempt = 1, 8
@@ -459,10 +604,32 @@ contains
             ! insertion unless within a tenth of an element of an edge.
             if (prob%closest%extended .and. prob%amax_edge) edges = with_edge(edges, &
                & sqrt(prob%closest%delta))
+            ! After a capped loading the offset (flow_cap's plastic_shift) is p_s(delta_max)
+            ! in the capped body, with the loading Hertz pressure's sqrt(a_max - r) edge at
+            ! a_max, and the total pressure can step from its floor 0 to ~p_s there within
+            ! ~1e-3 a_max: a_max an element edge always, with halving layers inside it, as
+            ! the loading's a (inner_layers). Without them EP-GW (sigma = delta_y, mu 4,
+            ! psi 1) unloading from 6 delta_y missed rel_tol 1e-6 at 7 of 70 overlaps: its
+            ! levels' forces alternated by 1.2e-3 (estimates 6e-7 .. 6e-4).
+            if (prob%closest%extended .and. prob%amax_edge .and. prob%closest%capped) then
+               edges = with_kink_edges(edges, [sqrt(prob%closest%delta)], focus, 1, 0.0_dp)
+               edges = inner_layers(edges, sqrt(prob%closest%delta))
+            end if
             if (allocated(prob%branch)) then
                keep = 0.0_dp
                if (prob%closest%extended .and. prob%amax_edge) keep = sqrt(prob%closest%delta)
                edges = with_kink_edges(edges, prob%branch, focus, prob%n_branch, keep)
+               ! (the guided route: layers at the edges of the history's plastic zone,
+               ! where the shift and the offset start, cap_excess kinds 2 and 3, not at the
+               ! d = d_max crossings, which the capped body has in numbers there)
+               if (prob%kink_width > 0.0_dp) then
+                  do i = 1, size(prob%branch)
+                     if (min(abs(cap_excess(prob, prob%branch(i), 0.0_dp, 2)), &
+                        & abs(cap_excess(prob, prob%branch(i), 0.0_dp, 3))) <= 1.0e-6_dp &
+                        & *prob%cap%p_y) edges = kink_layers(edges, prob%branch(i), &
+                        & prob%kink_width)
+                  end do
+               end if
             end if
          else if (allocated(prob%branch)) then
             ! loading with the cap: its edges (cap_kink_radii) and, extended models, the
@@ -477,6 +644,11 @@ contains
                edges = inner_layers(edges, prob%a)
             else
                edges = with_kink_edges(edges, prob%branch, focus, prob%n_branch, 0.0_dp)
+            end if
+            if (prob%kink_width > 0.0_dp) then
+               do i = 1, size(prob%branch)
+                  edges = kink_layers(edges, prob%branch(i), prob%kink_width)
+               end do
             end if
          end if
          call solve_mesh(prob, options, method, edges, sol, error, guess)
