@@ -30,8 +30,9 @@ module egw_cache
    !> Bumped whenever a build's algorithm changes what it produces, so that entries of an
    !> earlier build (same parameters) are not taken for the new one (5: the smooth Hertz +
    !> cap solver; 6: the hysteresis build's check curves, whose tables at 1e-5 differ, and
-   !> the rough + cap solver's meshes, 2026-11-29).
-   integer, parameter, public :: cache_revision = 6
+   !> the rough + cap solver's meshes, 2026-11-29; 7: rough + cap unloading after a capped
+   !> loading, a_max an element edge, and the guided route at small sigma/delta_y).
+   integer, parameter, public :: cache_revision = 7
 
 
 contains
