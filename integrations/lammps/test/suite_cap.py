@@ -351,3 +351,26 @@ def test_rough_cap_wall_restitution():
     return max(dev) <= 1.5e-3 and "WARNING" not in out and refused, (
         f"wall: {rows}; max |e - e_ref| = {max(dev):.1e} (<= 1.5e-3); region wall refused: "
         f"{refused}")
+
+
+def test_rough_cap_restart():
+    """Rough beads with the cap (E-GW, the contact's sigma = delta_y/100, mu 4,
+    flow_pressure 0.01 E*; ~6.7 v_y), oblique, no friction: a run split by write_restart in
+    mid contact and continued by read_restart ends as the uninterrupted split run (1e-12 of
+    the speed: delta_max in units of sigma came back, the law's one-radius table was found
+    again and the state refilled from it), and the rebound lost energy (< 0.9)."""
+    p_y = 0.01 * E_STAR
+    _, dy = cap_units(p_y, R_STAR, M_STAR)
+    c = f"E {E} nu {NU} sigma {0.01 * dy / math.sqrt(2)!r} mu 4 flow_pressure {p_y!r}"
+    rc1, out1 = collision("egw E-GW 1e-3", c, yoff=0.0005, wz=30.0, n1=2640, restart=1,
+                          rfile="rcap.restart")
+    rc2, out2 = lmp("collision_restart.in", rfile="rcap.restart", n2=6000 - 2640, thermo=1000)
+    if rc1 or rc2:
+        return False, " ".join(l for l in (out1 + out2).splitlines() if "ERROR" in l)
+    a, b = result(out1), result(out2)
+    d = max(abs(x - y) for x, y in zip(a, b)) / V
+    mid = [float(x) for x in re.findall(r"^MID (.*)$", out1, re.M)[-1].split()]
+    speed = math.hypot(a[2] - a[0], a[3] - a[1]) / (2 * V)
+    ok = d < 1e-12 and abs(mid[0]) > 0 and speed < 0.9 and "rough surface with the flow" in out2
+    return ok, (f"force at the restart ({mid[0]:.4g}, {mid[1]:.4g}), max |dv|/v = {d:.1e} "
+                f"(< 1e-12), relative speed after / before {speed:.4f}")
