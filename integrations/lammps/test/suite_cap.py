@@ -196,6 +196,25 @@ def test_bad_flow_pressure():
         "; " + "; ".join(bad) if bad else "")
 
 
+def cap_restart_check(pstyle, coeff, rfile, law=None):
+    """The oblique collision (~6.7 v_y, no friction) split by write_restart in mid contact
+    and continued by read_restart against the uninterrupted split run: (ok, message), ok
+    when they agree to 1e-12 of the speed, the force at the restart is not 0, the rebound
+    lost energy (relative speed after / before < 0.9) and, with law, the continued run's
+    log names that law."""
+    rc1, out1 = collision(pstyle, coeff, yoff=0.0005, wz=30.0, n1=2640, restart=1, rfile=rfile)
+    rc2, out2 = lmp("collision_restart.in", rfile=rfile, n2=6000 - 2640, thermo=1000)
+    if rc1 or rc2:
+        return False, " ".join(l for l in (out1 + out2).splitlines() if "ERROR" in l)
+    a, b = result(out1), result(out2)
+    d = max(abs(x - y) for x, y in zip(a, b)) / V
+    mid = [float(x) for x in re.findall(r"^MID (.*)$", out1, re.M)[-1].split()]
+    speed = math.hypot(a[2] - a[0], a[3] - a[1]) / (2 * V)
+    ok = d < 1e-12 and abs(mid[0]) > 0 and speed < 0.9 and (law is None or law in out2)
+    return ok, (f"force at the restart ({mid[0]:.4g}, {mid[1]:.4g}), max |dv|/v = {d:.1e} "
+                f"(< 1e-12), relative speed after / before {speed:.4f}")
+
+
 def test_cap_restart():
     """Smooth beads with the cap (flow_pressure 0.01 E*, ~6.7 v_y), oblique, no friction: a
     run split by write_restart in mid contact (unloading from beyond first yield) and
@@ -203,19 +222,8 @@ def test_cap_restart():
     delta_max in units of delta_y came back, and the state refilled from it), and the
     rebound lost energy (relative speed after / before < 0.9: without friction only the
     cap dissipates)."""
-    c = f"E {E} nu {NU} flow_pressure {0.01 * E_STAR!r}"
-    rc1, out1 = collision("egw Hertz 1e-3", c, yoff=0.0005, wz=30.0, n1=2640, restart=1,
-                          rfile="cap.restart")
-    rc2, out2 = lmp("collision_restart.in", rfile="cap.restart", n2=6000 - 2640, thermo=1000)
-    if rc1 or rc2:
-        return False, " ".join(l for l in (out1 + out2).splitlines() if "ERROR" in l)
-    a, b = result(out1), result(out2)
-    d = max(abs(x - y) for x, y in zip(a, b)) / V
-    mid = [float(x) for x in re.findall(r"^MID (.*)$", out1, re.M)[-1].split()]
-    speed = math.hypot(a[2] - a[0], a[3] - a[1]) / (2 * V)
-    ok = d < 1e-12 and abs(mid[0]) > 0 and speed < 0.9
-    return ok, (f"force at the restart ({mid[0]:.4g}, {mid[1]:.4g}), max |dv|/v = {d:.1e} "
-                f"(< 1e-12), relative speed after / before {speed:.4f}")
+    return cap_restart_check("egw Hertz 1e-3", f"E {E} nu {NU} flow_pressure {0.01 * E_STAR!r}",
+                             "cap.restart")
 
 
 def test_cap_energy():
@@ -284,6 +292,20 @@ def rcap_run(wall, r, m, np=1):
     return result(out), [(e, dm, 0, 0) for e, dm in refs], out, dy
 
 
+def rcap_deck(name, atoms, fixes):
+    """A one-type deck of rough glass beads with the cap (E-GW, sigma 1e-9, mu 4,
+    flow_pressure 0.01 E*) with the given atom lines and fix lines, run 0: its path."""
+    deck = os.path.join(TMP, name)
+    with open(deck, "w") as f:
+        f.write("\n".join(
+            ["units si", "atom_style sphere", "boundary f f f", "comm_modify vel yes",
+             "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box"] +
+            atoms + ["set type 1 density 2500", "pair_style egw E-GW 1e-3",
+                     f"pair_coeff * * E {E} nu {NU} sigma 1e-9 mu 4 "
+                     f"flow_pressure {0.01 * E_STAR!r}"] + fixes + ["run 0"]) + "\n")
+    return deck
+
+
 def test_rough_cap_pair_restitution():
     """A head-on pair of rough glass beads with the cap (E-GW, the contact's sigma =
     delta_y/100, mu = 4, flow_pressure p_y = 0.01 E*; one table for the pair's one radius,
@@ -304,18 +326,9 @@ def test_rough_cap_pair_restitution():
     d2 = max(abs(a - b) for a, b in zip(es, es2)) if es2 is not None else float("inf")
     ok = ok and d2 < 1e-12
     # two radii in one type: refused at set-up, naming them
-    deck = os.path.join(TMP, "rcap_two_radii.in")
-    with open(deck, "w") as f:
-        f.write("\n".join([
-            "units si", "atom_style sphere", "boundary f f f", "comm_modify vel yes",
-            "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
-            "create_atoms 1 single -0.002 0 0", "create_atoms 1 single 0.002 0 0",
-            "set atom 1 diameter 0.002", "set atom 2 diameter 0.0015",
-            "set type 1 density 2500",
-            "pair_style egw E-GW 1e-3",
-            f"pair_coeff * * E {E} nu {NU} sigma 1e-9 mu 4 flow_pressure {0.01 * E_STAR!r}",
-            "run 0"]) + "\n")
-    rc3, out3 = lmp(deck)
+    rc3, out3 = lmp(rcap_deck("rcap_two_radii.in", [
+        "create_atoms 1 single -0.002 0 0", "create_atoms 1 single 0.002 0 0",
+        "set atom 1 diameter 0.002", "set atom 2 diameter 0.0015"], []))
     refused = rc3 != 0 and "needs one radius per type" in out3 and "0.00075" in out3
     return ok and refused, (f"pair: {rows}; max |e - e_ref| = {max(dev):.1e} (<= 1.5e-3); "
                             f"2 ranks: max |de| = {d2:.1e} (< 1e-12); two radii refused: "
@@ -334,19 +347,10 @@ def test_rough_cap_wall_restitution():
     dev = [abs(e - ref[0]) for e, ref in zip(es, refs)]
     rows = ", ".join(f"{x:g}: {e:.5f} vs {ref[0]:.5f}" for x, e, ref in zip(RCAP_RATIOS, es, refs))
     # a region wall (several curvatures: several R) is refused, naming why
-    deck = os.path.join(TMP, "rcap_region.in")
-    p_y = 0.01 * E_STAR
-    with open(deck, "w") as f:
-        f.write("\n".join([
-            "units si", "atom_style sphere", "boundary f f f", "comm_modify vel yes",
-            "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
-            "create_atoms 1 single 0 0 0.002", "set type 1 diameter 0.002",
-            "set type 1 density 2500", "pair_style egw E-GW 1e-3",
-            f"pair_coeff * * E {E} nu {NU} sigma 1e-9 mu 4 flow_pressure {p_y!r}",
-            "region floor plane 0 0 0 0 0 1 side in",
-            f"fix w all wall/egw/region E-GW 1e-3 E {E} nu {NU} sigma 0 mu 4 region floor",
-            "run 0"]) + "\n")
-    rc2, out2 = lmp(deck)
+    rc2, out2 = lmp(rcap_deck("rcap_region.in", [
+        "create_atoms 1 single 0 0 0.002", "set type 1 diameter 0.002"], [
+        "region floor plane 0 0 0 0 0 1 side in",
+        f"fix w all wall/egw/region E-GW 1e-3 E {E} nu {NU} sigma 0 mu 4 region floor"]))
     refused = rc2 != 0 and "not a region" in out2
     return max(dev) <= 1.5e-3 and "WARNING" not in out and refused, (
         f"wall: {rows}; max |e - e_ref| = {max(dev):.1e} (<= 1.5e-3); region wall refused: "
@@ -362,15 +366,5 @@ def test_rough_cap_restart():
     p_y = 0.01 * E_STAR
     _, dy = cap_units(p_y, R_STAR, M_STAR)
     c = f"E {E} nu {NU} sigma {0.01 * dy / math.sqrt(2)!r} mu 4 flow_pressure {p_y!r}"
-    rc1, out1 = collision("egw E-GW 1e-3", c, yoff=0.0005, wz=30.0, n1=2640, restart=1,
-                          rfile="rcap.restart")
-    rc2, out2 = lmp("collision_restart.in", rfile="rcap.restart", n2=6000 - 2640, thermo=1000)
-    if rc1 or rc2:
-        return False, " ".join(l for l in (out1 + out2).splitlines() if "ERROR" in l)
-    a, b = result(out1), result(out2)
-    d = max(abs(x - y) for x, y in zip(a, b)) / V
-    mid = [float(x) for x in re.findall(r"^MID (.*)$", out1, re.M)[-1].split()]
-    speed = math.hypot(a[2] - a[0], a[3] - a[1]) / (2 * V)
-    ok = d < 1e-12 and abs(mid[0]) > 0 and speed < 0.9 and "rough surface with the flow" in out2
-    return ok, (f"force at the restart ({mid[0]:.4g}, {mid[1]:.4g}), max |dv|/v = {d:.1e} "
-                f"(< 1e-12), relative speed after / before {speed:.4f}")
+    return cap_restart_check("egw E-GW 1e-3", c, "rcap.restart",
+                             law="rough surface with the flow")

@@ -130,6 +130,14 @@ def gauss_integral(n: ArrayLike, h: ArrayLike, derivative: bool = False) -> Floa
     return _scalar_or_array(b.shape, out)
 
 
+def _of_modulus(c_fn, k: ArrayLike) -> FloatOrArray:
+    """c_fn(k, &result) elementwise over the modulus k (ellipk, ellipe)."""
+    k = _array(k, "k")
+    flat = k.reshape(-1)
+    (out,) = _loop(k.shape, 1, lambda i, r: check(c_fn(float(flat[i]), r)))
+    return _scalar_or_array(k.shape, out)
+
+
 def ellipk(k: ArrayLike) -> FloatOrArray:
     """Complete elliptic integral of the first kind K(k) of MODULUS k (not m = k^2).
 
@@ -150,10 +158,7 @@ def ellipk(k: ArrayLike) -> FloatOrArray:
     TypeError
         A non-numeric or masked k.
     """
-    k = _array(k, "k")
-    flat = k.reshape(-1)
-    (out,) = _loop(k.shape, 1, lambda i, r: check(lib.egw_ellipk(float(flat[i]), r)))
-    return _scalar_or_array(k.shape, out)
+    return _of_modulus(lib.egw_ellipk, k)
 
 
 def ellipe(k: ArrayLike) -> FloatOrArray:
@@ -176,10 +181,7 @@ def ellipe(k: ArrayLike) -> FloatOrArray:
     TypeError
         A non-numeric or masked k.
     """
-    k = _array(k, "k")
-    flat = k.reshape(-1)
-    (out,) = _loop(k.shape, 1, lambda i, r: check(lib.egw_ellipe(float(flat[i]), r)))
-    return _scalar_or_array(k.shape, out)
+    return _of_modulus(lib.egw_ellipe, k)
 
 
 def hertz(params: Params, delta: ArrayLike) -> Tuple[FloatOrArray, FloatOrArray, FloatOrArray]:
