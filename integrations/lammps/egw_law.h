@@ -296,9 +296,25 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       U = sr * s25 * (u0 + w * (u1 - u0));
       break;
     }
-    case HYST: {
-      // the state (table units) with its turning point's cache lives in cache[0..23]
-      double x = delta * inv_sigma, p, dp;
+    case HYST:
+    case HYST_RCAP:
+    case HYST_CAP: {
+      // one table (HYST_MU below interpolates two), its state (table units) with its
+      // turning point's cache in cache[0..23]; x in the table's unit of length with the
+      // force, stiffness and energy units: HYST sigma, E* sqrt(R) sigma^1.5; HYST_RCAP
+      // sigma, E* sigma^2 (the table of this law's one radius); HYST_CAP the contact's
+      // first yield delta_y = cap_c R, E* sqrt(R) delta_y^1.5
+      double x, fF, fS, fU;
+      if (kind == HYST) {
+        x = delta * inv_sigma, fF = sr * s15, fS = sr * s05, fU = sr * s25;
+      } else if (kind == HYST_RCAP) {
+        if (!(std::fabs(R - rcap_R) <= 1e-9 * rcap_R)) return R_OTHER;
+        x = delta * inv_sigma, fF = rcap_F, fS = rcap_F * inv_sigma, fU = rcap_F * sigma;
+      } else {
+        double s = cap_c * R, sq = sr * std::sqrt(s);    // E* sqrt(R) delta_y^0.5
+        x = delta / s, fF = sq * s, fS = sq, fU = sq * s * s;
+      }
+      double p, dp;
       st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], x, *dmax, cache, p, dp,
                              !states_are_history);
       *dmax = cache[0];
@@ -306,32 +322,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       // is dissipated): kinetic + this falls while contacts load, stays while they unload
       double u = 0.0;
       if (want_energy) egw_hysteresis_energy(hyst[0], x, cache[0], &u);
-      F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
-      break;
-    }
-    case HYST_RCAP: {
-      // as HYST (delta/sigma), the table of this law's one radius
-      if (!(std::fabs(R - rcap_R) <= 1e-9 * rcap_R)) return R_OTHER;
-      double x = delta * inv_sigma, p, dp;
-      st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], x, *dmax, cache, p, dp,
-                             !states_are_history);
-      *dmax = cache[0];
-      double u = 0.0;
-      if (want_energy) egw_hysteresis_energy(hyst[0], x, cache[0], &u);
-      F = rcap_F * p, S = rcap_F * inv_sigma * dp, U = rcap_F * sigma * u;
-      break;
-    }
-    case HYST_CAP: {
-      // as HYST in units of the contact's first yield delta_y = cap_c R (not sigma)
-      double s = cap_c * R, rs = std::sqrt(s);
-      double x = delta / s, p, dp;
-      st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], x, *dmax, cache, p, dp,
-                             !states_are_history);
-      *dmax = cache[0];
-      double u = 0.0;
-      if (want_energy) egw_hysteresis_energy(hyst[0], x, cache[0], &u);
-      double sq = sr * rs;    // E* sqrt(R) delta_y^0.5
-      F = sq * s * p, S = sq * dp, U = sq * s * s * u;
+      F = fF * p, S = fS * dp, U = fU * u;
       break;
     }
     case FLAT: {
