@@ -8,7 +8,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
       & cap_solve_options, solve_contact
    use egw_cap_sphere, only: cap_history, cap_result, cap_load
    use egw_cap_loading, only: build_cap_loading
-   use egw_table, only: build_table, table_eval_tail_law, table_prepare
+   use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
+      & table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    implicit none
 

@@ -1,0 +1,306 @@
+!> The data of an egw_hysteresis table and the arithmetic every use of it shares: the
+!> table type, the turning point's Lagrange stencil and weights, the gap cubics of its
+!> unloading curve, and the bucket lookups of the delta_max and s grids (the evaluation
+!> in egw_hysteresis, the energy in egw_unload_energy, the build in its submodule).
+!>
+!> Hysteresis tables for DEM (EP-GW loading, unloading and reloading, doc/theory.md §8):
+!> the force of one parameter set over (delta, delta_max), with a per-contact history that
+!> the caller owns (the largest overlap so far; -huge for a contact that never touched).
+!>
+!> Layout: the loading curve is a 1-D force table (egw_table). Below a turning point
+!> m = delta_max the force is P = P_load(delta) - P_load(m) g(s, m): g is the hysteresis
+!> gap relative to the force at the turning point, at s = (m - delta)/(s_max L(m)) with
+!> L(m) = 1.5 P_load(m)/K_unload(m). For Hertzian unloading L is m minus the residual
+!> overlap, and in the separated tail 1.5 times the force's decay length, so g depends
+!> little on m at fixed s (the edge where the unloading force vanishes stays put); and
+!> the gap, not the unloading force, is stored, so that tables of weakly plastic contacts
+!> (g nearly 0) need few nodes. g(0, m) = 0: the force is continuous where unloading
+!> starts and the loading table is used as it is. Below each curve's span the unloading
+!> force keeps its ratio to the loading tail (unload_branch), and below the loading
+!> table's cut-off delta_c it is 0 (the gap is taken to the loading tail below it).
+!> Each node m_j carries g(., m_j) as a cubic Hermite curve in s (slopes from the solver's
+!> stiffnesses, solves at rel_tol/10, s bisected until value and slope at every midpoint
+!> meet the solves to rel_tol/4); between nodes g and 1/L are cubic Lagrange combinations
+!> of four neighbouring curves, and the m grid is bisected until that combination meets
+!> the midpoint's curve at all its nodes to rel_tol (the table's whole error there).
+!> Every curve's cubics are then resampled onto the union of the s nodes (exactly: the
+!> union refines every curve's own nodes), so that an evaluation needs one lookup in s and
+!> one in m, served by uniform buckets: no search, no allocation, only the caller's
+!> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
+!> retraces the loading table exactly.
+module egw_hysteresis_data
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use egw_kinds, only: dp
+   use egw_status, only: egw_error, egw_invalid_argument, fatal_error
+   use egw_params, only: contact_params
+   use egw_table, only: force_table, table_eval
+   implicit none
+   private
+
+   public :: hysteresis_table, grid_lookup, unload_curve, nan_error, gap_cubic, &
+      & turning_point, gap_combination, unload_tail_ratio, make_lookup, m_breakpoint, &
+      & m_coordinate, stencil_first, locate
+
+   !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
+   !> then caches that name the table (3, its tag): of the turning point (2, the m they
+   !> belong to): (4) the Lagrange stencil, (5) 1/(s_max L), (6) P_load, (7:10) the weights;
+   !> (13) s_max L; of the piece of its unloading curve last used (make_piece): (11:12) its
+   !> open ends, (14:17) its cubic in delta; of the loading table's interval last used
+   !> (the piece's, while there is one): (18:19) its ends, (20:23) its cubic, (24) 1 where
+   !> that is ln P (then the piece's cubic is the gap part). A contact that stays inside
+   !> its piece (most DEM steps) touches nothing but its state.
+   integer, parameter, public :: hysteresis_state_size = 24
+
+   !> Finest bucket level (2**14 buckets): the grids are dyadic, so buckets at the finest
+   !> level hold at most one node and the forward scan takes at most one step.
+   integer, parameter :: max_bucket_level = 14
+
+   !> Uniform buckets over [origin, origin + 1/scale]: bucket b holds the interval that
+   !> contains the bucket's start.
+   type, public :: grid_lookup
+      real(dp) :: origin = 0.0_dp, scale = 0.0_dp
+      integer :: n_bucket = 0
+      integer, allocatable :: bucket(:)     !< (0:n_bucket)
+   end type grid_lookup
+
+   !> A hysteresis table of one parameter set (build_hysteresis).
+   type :: hysteresis_table
+      type(contact_params) :: params           !< parameters the table was built for
+      real(dp) :: rel_tol = 0.0_dp             !< requested tolerance
+      real(dp) :: delta_max = 0.0_dp           !< last delta_max node (table range)
+      real(dp) :: max_error = 0.0_dp           !< largest mismatch found at check solves
+      type(force_table) :: loading             !< the loading curve
+      !> no plastic summits (not EP-GW, psi = 0 or sigma = 0): no unloading curves, the
+      !> loading table serves loading and unloading alike (no spurious hysteresis)
+      logical :: reversible = .false.
+      real(dp), allocatable :: m(:)            !< delta_max nodes, increasing (n_m >= 4)
+      !> L(m_j) = 1.5 P_load(m_j)/K_unload(m_j): the unloading length of a Hertzian
+      !> contact (m - residual overlap), the scale of s
+      real(dp), allocatable :: length(:)
+      real(dp), allocatable :: inv_span(:)     !< 1/(s_max L(m_j)) (hysteresis_prepare)
+      real(dp) :: s_max = 0.0_dp               !< s = (m - delta)/(s_max L(m)) lies in [0, 1]
+      real(dp), allocatable :: s(:)            !< s nodes of every curve, 0 .. 1 (n_s)
+      !> g(s, m_j) at the s nodes and dg/ds there: (n_s, n_m) (the stored table)
+      real(dp), allocatable :: gap(:, :), slope(:, :)
+      ! evaluation data (hysteresis_prepare)
+      !> (4, n_m, n_s - 1): the cubic in t = (s - s_i)/(s_{i+1} - s_i) of curve j on
+      !> interval i (the four curves of a Lagrange stencil share two cache lines)
+      real(dp), allocatable :: coef(:, :, :)
+      real(dp), allocatable :: inv_ds(:)       !< 1/(s_{i+1} - s_i)
+      !> (n_m - 3, n_s - 1): the first and last s interval of the run around interval i
+      !> on which the four curves of stencil first are each one cubic (the union nodes
+      !> inside it are none of theirs): a state's piece spans the run
+      integer, allocatable :: run_first(:, :), run_last(:, :)
+      !> (n_m, n_s): int_0^{s_i} g(s, m_j) ds of each curve's cubics (hysteresis_energy)
+      real(dp), allocatable :: gap_integral(:, :)
+      !> the part of the unloading integral that the clip at 0 removes, int min(F, 0) dx
+      !> over the whole span of the turning point m (F the span force before the clip),
+      !> times 1/(s_max L(m) P_load(m)), at m = m_j + dip_u (m_{j+1} - m_j) in delta_max
+      !> interval j: dip(k) for k = dip_first(j) .. dip_first(j + 1) - 1, dip_u increasing
+      !> from 0 to 1 (energy_prepare; linear between samples)
+      real(dp), allocatable :: dip(:), dip_u(:)
+      integer, allocatable :: dip_first(:)   !< (n_m): interval j's first sample in dip
+      !> (dip_samples, n_m - 1): the sample at the start of each of interval j's
+      !> dip_samples equal parts (dip_u = (b - 1)/dip_samples): the search starts there
+      integer, allocatable :: dip_base(:, :)
+      !> (n_m - 1): per delta_max interval, an s below which no sample's span force is
+      !> clipped (with a margin): an overlap at a smaller s needs no walk (energy_prepare)
+      real(dp), allocatable :: dip_band(:)
+      !> per sample (as dip): the fraction of the span [lo, m] from its start lo over which
+      !> the sample's span force was clipped all along: an overlap in that of both samples
+      !> around m (less a twentieth) returns only the energy below lo (energy_prepare)
+      real(dp), allocatable :: dip_low(:)
+      !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
+      real(dp), allocatable :: lagrange(:, :)
+      type(grid_lookup) :: m_lookup, s_lookup
+      !> an integer in [1, 2**52) hashed from the stored data: a state's cached turning
+      !> point is used only by a table with the same data (hysteresis_eval_state)
+      real(dp) :: tag = 0.0_dp
+      !> index of the delta_max node at 0 where stencils stop (m_breakpoint; 0: none)
+      integer :: m_break = 0
+      !> turning points at or below it unload on the loading curve (hysteresis_prepare):
+      !> the loading cut-off, or for the flow-pressure cap (capped) its first yield delta_y,
+      !> below which the contact is Hertz's and reversible; a rough model with the cap:
+      !> the first turning point m(1) (its rough first yield with elastic summits)
+      real(dp) :: elastic_limit = 0.0_dp
+      !> Hertz + flow-pressure cap (hertz_capped: flow_pressure > 0, smooth; doc/theory.md
+      !> §12): L(m_j) is m_j minus the residual overlap, s_max = 1, and below s = 1 there
+      !> is no force (a rough model with the cap is not capped here: EP-GW's layout)
+      logical :: capped = .false.
+      !> the largest overlap (or state) whose force stays well inside the doubles: where
+      !> the loading table's deep-overlap law beyond delta_max reaches huge/4 (the C
+      !> layer's input check; hysteresis_prepare, once: four powers, off the hot path)
+      real(dp) :: input_limit = 0.0_dp
+   end type hysteresis_table
+
+   !> One turning point's unloading curve (turning_point): what its span force needs.
+   type :: unload_curve
+      real(dp) :: m = 0.0_dp               !< the turning point
+      real(dp) :: w(4) = 0.0_dp            !< Lagrange weights of its stencil
+      real(dp) :: inv_span = 0.0_dp        !< 1/(s_max L(m))
+      real(dp) :: f_m = 0.0_dp             !< P_load(m)
+      integer :: first = 1                 !< the stencil's first curve
+   end type unload_curve
+
+contains
+
+   !> egw_invalid_argument for a NaN overlap delta or a NaN history (called name; a new
+   !> contact starts from fresh, the way to start one).
+   pure subroutine nan_error(delta, name, fresh, error)
+      real(dp), intent(in) :: delta
+      character(len=*), intent(in) :: name, fresh
+      type(egw_error), allocatable, intent(out) :: error
+      if (ieee_is_nan(delta)) then
+         call fatal_error(error, egw_invalid_argument, "delta = NaN: must be a number")
+      else
+         call fatal_error(error, egw_invalid_argument, name//" = NaN: a new contact starts "// &
+            & "from "//fresh)
+      end if
+   end subroutine nan_error
+
+   !> g and dg/ds of the cubic c in t = (s - s_i)/(s_{i+1} - s_i) (inv_ds = the 1/width);
+   !> Estrin's scheme: shorter dependency chains than Horner.
+   pure subroutine gap_cubic(c, t, inv_ds, g, dg)
+      real(dp), intent(in) :: c(4), t, inv_ds
+      real(dp), intent(out) :: g, dg
+      real(dp) :: t2
+      t2 = t*t
+      g = (c(1) + t*c(2)) + t2*(c(3) + t*c(4))
+      dg = ((c(2) + 2*t*c(3)) + 3*t2*c(4))*inv_ds
+   end subroutine gap_cubic
+
+   !> What the unloading branch needs of the turning point m: the Lagrange stencil of the
+   !> m interval (clamped at the ends of the grid; the last curve above the table), its
+   !> weights, 1/(s_max L) interpolated with them and the loading force P_load(m).
+   pure subroutine turning_point(table, m, first, w, inv_span, f_m)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m
+      integer, intent(out) :: first
+      real(dp), intent(out) :: w(4), inv_span, f_m
+      real(dp) :: d(4), k_m
+      integer :: j, n_m
+      call table_eval(table%loading, m, f_m, k_m)
+      n_m = size(table%m)
+      j = locate(table%m_lookup, table%m, min(m, table%delta_max))
+      first = stencil_first(j, n_m, table%m_break)
+      d = m_coordinate(m, table%m_break) - m_coordinate(table%m(first:first + 3), table%m_break)
+      w(1) = d(2)*d(3)*d(4)*table%lagrange(1, j)
+      w(2) = d(1)*d(3)*d(4)*table%lagrange(2, j)
+      w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
+      w(4) = d(1)*d(2)*d(3)*table%lagrange(4, j)
+      if (m > table%delta_max) w = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
+      ! 1/(s_max L) interpolated (no division on the hot path; smooth and > 0 as L)
+      inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
+         & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
+      if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
+   end subroutine turning_point
+
+   !> The gap cubic g(t) of the turning point (stencil first, weights w) on s interval i:
+   !> the four curves' cubics (16 contiguous numbers) combined.
+   pure subroutine gap_combination(table, first, w, i, c)
+      type(hysteresis_table), intent(in) :: table
+      integer, intent(in) :: first, i
+      real(dp), intent(in) :: w(4)
+      real(dp), intent(out) :: c(4)
+      associate (cf => table%coef(:, first:first + 3, i))
+         c(1) = w(1)*cf(1, 1) + w(2)*cf(1, 2) + w(3)*cf(1, 3) + w(4)*cf(1, 4)
+         c(2) = w(1)*cf(2, 1) + w(2)*cf(2, 2) + w(3)*cf(2, 3) + w(4)*cf(2, 4)
+         c(3) = w(1)*cf(3, 1) + w(2)*cf(3, 2) + w(3)*cf(3, 3) + w(4)*cf(3, 4)
+         c(4) = w(1)*cf(4, 1) + w(2)*cf(4, 2) + w(3)*cf(4, 3) + w(4)*cf(4, 4)
+      end associate
+   end subroutine gap_combination
+
+   !> The unloading force over the loading force at the end d_1 of a curve's span, where
+   !> its gap is g_1 (P_load(m) = f_m), in [0, 1]: below d_1 the unloading force is that
+   !> ratio of the loading tail (continuous at d_1 where the force there is positive).
+   pure real(dp) function unload_tail_ratio(table, d_1, f_m, g_1) result(ratio)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: d_1, f_m, g_1
+      real(dp) :: f_1, k_1
+      ratio = 0.0_dp
+      if (table%capped) return   ! below the residual overlap: apart
+      call table_eval(table%loading, d_1, f_1, k_1)
+      if (f_1 > 0.0_dp) ratio = min(max(1.0_dp - f_m*g_1/f_1, 0.0_dp), 1.0_dp)
+   end function unload_tail_ratio
+
+   !> capped at 2**max_bucket_level.
+   pure subroutine make_lookup(x, lookup)
+      real(dp), intent(in) :: x(:)
+      type(grid_lookup), intent(out) :: lookup
+      real(dp) :: width, finest, xb
+      integer :: n, b, i, level
+      n = size(x)
+      width = x(n) - x(1)
+      finest = minval(x(2:n) - x(1:n - 1))
+      level = 3
+      do while (level < max_bucket_level .and. width/2.0_dp**level > 0.75_dp*finest)
+         level = level + 1
+      end do
+      lookup%n_bucket = 2**level
+      lookup%origin = x(1)
+      lookup%scale = lookup%n_bucket/width
+      allocate (lookup%bucket(0:lookup%n_bucket))
+      i = 1
+      do b = 0, lookup%n_bucket
+         xb = lookup%origin + b/lookup%scale
+         do while (i < n - 1 .and. x(i + 1) <= xb)
+            i = i + 1
+         end do
+         lookup%bucket(b) = i
+      end do
+   end subroutine make_lookup
+
+   !> The node of the delta_max grid m at exactly 0, where the smooth sphere of the
+   !> extended models first touches (its Hertz part grows as m^(3/2) from there: the curves
+   !> are not smooth across it), if there are 4 nodes on each side (it included); else 0.
+   pure integer function m_breakpoint(m) result(k)
+      real(dp), intent(in) :: m(:)
+      integer :: j
+      k = 0
+      do j = 4, size(m) - 3
+         if (m(j) == 0.0_dp) k = j
+      end do
+   end function m_breakpoint
+
+   !> The variable in which the curves are interpolated across delta_max: m itself, and
+   !> with a breakpoint at 0 (k_b > 0) sqrt(m) above it, in which the curves just above it
+   !> are smooth (the contact radius grows as sqrt(m)); no stencil mixes the two sides.
+   elemental real(dp) function m_coordinate(m, k_b) result(x)
+      real(dp), intent(in) :: m
+      integer, intent(in) :: k_b
+      x = m
+      if (k_b > 0 .and. m > 0.0_dp) x = sqrt(m)
+   end function m_coordinate
+
+   !> The first of the four delta_max nodes of the Lagrange stencil of interval j (m_j <=
+   !> m < m_{j+1}) of n_m nodes: centred, clamped at the grid's ends and, with a breakpoint
+   !> node k_b (m_breakpoint), on interval j's side of it (the cubic does not straddle the
+   !> onset of the Hertz part).
+   pure integer function stencil_first(j, n_m, k_b) result(first)
+      integer, intent(in) :: j, n_m, k_b
+      first = min(max(j - 1, 1), n_m - 3)
+      if (k_b > 0) then
+         if (j < k_b) then
+            first = min(first, k_b - 3)
+         else
+            first = max(first, k_b)
+         end if
+      end if
+   end function stencil_first
+
+   !> i with x(i) <= v < x(i+1), clamped to [1, n-1]: the bucket's interval, then a short
+   !> forward scan (at most one step where the buckets are as fine as the grid).
+   pure integer function locate(lookup, x, v) result(i)
+      type(grid_lookup), intent(in) :: lookup
+      real(dp), intent(in) :: x(:), v
+      integer :: b, n
+      n = size(x)
+      b = min(max(int((v - lookup%origin)*lookup%scale), 0), lookup%n_bucket)
+      i = lookup%bucket(b)
+      do while (i < n - 1)
+         if (x(i + 1) > v) exit
+         i = i + 1
+      end do
+   end function locate
+
+end module egw_hysteresis_data
