@@ -9,7 +9,10 @@ parent) of those files, and fails on:
   - an arrow to a layer not allowed (e.g. kernels/ using solver/, or anything using capi/),
   - a source file outside the known folders, or a module defined twice,
   - a program using a library module other than the facade,
-  - a layer folder without its README.md.
+  - a layer folder without its README.md,
+  - a module named as a C binding label (`bind(C, name="...")`): both are global
+    identifiers, and gfortran 12 then resolved a call inside that C routine to the routine
+    itself (egw_hysteresis_energy recursed until the stack overflowed) without a word.
 Prints one line per failure and ends "N passed, N failed" (one check per file, and one
 per layer README). `--self-test` first runs the check on small made-up trees, one clean
 and one with each kind of fault, and fails if any fault goes unseen.
@@ -41,6 +44,7 @@ USE_RE = re.compile(r"^\s*use\s*(?:,\s*(intrinsic|non_intrinsic)\s*::)?\s*(?:::)
                     re.IGNORECASE | re.MULTILINE)
 MODULE_RE = re.compile(r"^\s*module\s+(?!procedure\b|function\b|subroutine\b)(\w+)\s*$",
                        re.IGNORECASE | re.MULTILINE)
+BIND_RE = re.compile(r"""\bbind\s*\(\s*c\s*,\s*name\s*=\s*["'](\w+)["']""", re.IGNORECASE)
 SUBMODULE_RE = re.compile(r"^\s*submodule\s*\(\s*(\w+)(?:\s*:\s*\w+)?\s*\)\s*(\w+)",
                           re.IGNORECASE | re.MULTILINE)
 
@@ -74,6 +78,8 @@ def check(root):
     src = os.path.join(root, "src")
     defined = {}  # module name -> (layer, file)
     arrows = {}   # file -> [(used module, line text)]
+    labels = {}   # C binding label (lower case) -> file
+    submodules = set()
     for path in fortran_files(src):
         rel = os.path.relpath(path, root)
         layer = layer_of(root, path)
@@ -86,12 +92,21 @@ def check(root):
         for m in SUBMODULE_RE.finditer(text):
             uses.append((m.group(1).lower(), m.group(0).strip()))
         names = [m.group(1).lower() for m in MODULE_RE.finditer(text)]
-        names += [m.group(2).lower() for m in SUBMODULE_RE.finditer(text)]
+        subs = [m.group(2).lower() for m in SUBMODULE_RE.finditer(text)]
+        submodules.update(subs)   # named within their ancestor: not global identifiers
+        names += subs
         for name in names:
             if name in defined:
                 failures.append(f"{rel}: module {name} is also defined in {defined[name][1]}")
             defined[name] = (layer, rel)
         arrows[rel] = (layer, uses)
+        for m in BIND_RE.finditer(text):
+            labels.setdefault(m.group(1).lower(), rel)
+    checks += 1
+    for name, (_, rel) in defined.items():
+        if name in labels and name not in submodules:
+            failures.append(f"{rel}: module {name} has the name of the C binding label in "
+                            f"{labels[name]} (one global identifier: rename the module)")
     for rel, (layer, uses) in arrows.items():
         checks += 1
         allowed = set(FACADE_USES if layer == FACADE else LAYERS[layer] + [layer])
@@ -164,6 +179,9 @@ def _self_test(scratch):
         "a file outside the layers": {"src/egw/misc/m.f90": "module egw_m\nend module\n"},
         "a module defined twice": {"src/egw/core/k2.f90": "module egw_kinds\nend module\n"},
         "a program using internals": {"bench/b.f90": "program b\n use egw_k\nend program\n"},
+        "a module named as a C binding label": {
+            "src/egw/capi/c.f90": "module egw_c\ncontains\n function egw_t_eval() &\n"
+                                  "   & bind(C, name=\"egw_t\")\n end function\nend module\n"},
     }
     missed = []
     failures, _ = check(tree(clean))
@@ -188,7 +206,7 @@ def main(argv):
         missed = self_test()
         for m in missed:
             print(f"FAIL self-test: {m}")
-        print(f"self-test: made-up trees with 8 kinds of fault: {'all seen' if not missed else 'MISSED'}")
+        print(f"self-test: made-up trees with 9 kinds of fault: {'all seen' if not missed else 'MISSED'}")
         passed += 0 if missed else 1
         failed += 1 if missed else 0
     failures, checks = check(root)
