@@ -60,6 +60,10 @@ module egw_rough_sphere
    !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
    !> tolerance the solver's error estimate can resolve in double precision.
    integer, parameter :: profile_levels = 4
+   !> Loading with the cap: sigma/delta_y at or below which a solve that does not converge
+   !> takes small_sigma_loading (from 1e-6 down: the guided route converged at 1e-6 but
+   !> not at 1e-7, 1e-8; doc/theory.md §12 "Small sigma").
+   real(dp), parameter :: small_sigma_limit = 1.0e-6_dp
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
 
    !> Loading history of one contact: the loading solve at delta_max and its separation
@@ -175,7 +179,81 @@ contains
          return
       end if
       call solve_rough(params, options, prob, sol, result, error)
+      if (allocated(error)) call small_sigma_loading(params, options, delta, prob, result, &
+         & error)
    end subroutine solve_contact
+
+   !> Loading of an extended model (E-GW, EP-GW) with the cap at sigma/delta_y <=
+   !> small_sigma_limit whose discrete solve did not converge (doc/theory.md §12 "Small
+   !> sigma: the asymptotic route"): the rough model's leading-order expansion in sigma,
+   !> P(sigma) = P_cap + C sigma**(2/3) (P_cap the smooth cap model, its sigma -> 0
+   !> limit, by cap_load on 100/200 rings: ~1e-8; C sigma**(2/3) the rough layer's
+   !> compliance, gap ~ sigma (p/(mu E* sqrt(sigma/R)))**(2/3)), with C from the same
+   !> model's own solves at 10**k sigma (the first two of k = 1 .. 4 that converge, at
+   !> most 1e-4 delta_y). est_rel_err: the cap solve's estimate, the nearer solve's
+   !> estimate times its scale factor, and the two corrections' disagreement (which also
+   !> catches an exponent other than 2/3); above rel_tol/2 the original error stands.
+   !> Stiffness and contact radius take the same correction. error is kept when the
+   !> route does not apply or fails.
+   subroutine small_sigma_loading(params, options, delta, prob, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      type(scaled_problem), intent(in) :: prob
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(inout) :: error
+      type(contact_params) :: wider
+      type(scaled_problem) :: wide_prob
+      type(discrete_solution) :: sol
+      type(cap_history) :: history
+      type(cap_result) :: cap
+      type(solve_result) :: res, wide(2)
+      type(egw_error), allocatable :: wide_error
+      real(dp) :: delta_y, a_y, force_y, shrink(2), est
+      integer :: k, found
+      if (error%stat /= egw_not_converged .or. options%n_radial > 0) return
+      if (.not. (prob%extended .and. allocated(prob%cap))) return
+      if (.not. above_first_yield(params, delta)) return
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+      if (params%sigma > small_sigma_limit*delta_y) return
+      found = 0
+      do k = 1, 4
+         wider = params
+         wider%sigma = params%sigma*10.0_dp**k
+         if (wider%sigma > 1.0e-4_dp*delta_y) exit
+         wide_prob = scaled(wider, delta)
+         call solve_rough(wider, options, wide_prob, sol, res, wide_error)
+         if (allocated(wide_error)) then
+            deallocate (wide_error)
+            cycle
+         end if
+         found = found + 1
+         wide(found) = res
+         shrink(found) = 10.0_dp**(-2.0_dp*real(k, dp)/3.0_dp)
+         if (found == 2) exit
+      end do
+      if (found < 2) return
+      call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
+         & cap_options(n_rings=100, n_levels=2), history, cap, wide_error, "delta")
+      if (allocated(wide_error)) return
+      est = cap%force_error/cap%force + shrink(1)*wide(1)%est_rel_err + &
+         & abs((wide(1)%force - cap%force)*shrink(1) - (wide(2)%force - cap%force)*shrink(2)) &
+         & /cap%force
+      if (.not. est <= 0.5_dp*options%rel_tol) then
+         error%message = error%message//"; nor by the small-sigma route (estimate " &
+            & //format_real(est)//")"
+         return
+      end if
+      deallocate (error)
+      result = wide(1)
+      result%force = cap%force + (wide(1)%force - cap%force)*shrink(1)
+      result%stiffness = cap%stiffness + (wide(1)%stiffness - cap%stiffness)*shrink(1)
+      result%contact_radius = cap%contact_radius + (wide(1)%contact_radius - &
+         & cap%contact_radius)*shrink(1)
+      result%max_pressure = params%flow_pressure
+      result%est_rel_err = est
+   end subroutine small_sigma_loading
 
    !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
    !> (a tabulated, Persson or BEM law; doc/theory.md §11): the law gives the whole
