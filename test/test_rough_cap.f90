@@ -247,7 +247,7 @@ contains
    !> rough layer's correction scaled in sigma**(2/3) from solves at 10 and 100 sigma),
    !> against the reference (as test_small_sigma). The rough layer's difference, up to
    !> 1.5e-5 = 0.15 (1e-6)**(2/3) at 1e-6, is at most 0.15 (sigma/delta_y)**(2/3): 3.2e-6
-   !> at 1e-7, 7e-7 at 1e-8 (measured 2.0e-6 .. 3.2e-6 and 3.3e-7 .. 7.0e-7); within
+   !> at 1e-7, 7e-7 at 1e-8 (measured 1.6e-6 .. 3.0e-6 and 3.4e-7 .. 6.5e-7); within
    !> 0.3 (sigma/delta_y)**(2/3), twice that: 6.5e-6 and 1.4e-6. rel_tol 2e-6: the route's
    !> own estimate at 1e-7, 2 delta_y is 8.6e-7 (the two corrections' disagreement), above
    !> half of 1e-6, which is then refused.
