@@ -60,10 +60,17 @@ module egw_rough_sphere
    !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
    !> tolerance the solver's error estimate can resolve in double precision.
    integer, parameter :: profile_levels = 4
-   !> Loading with the cap: sigma/delta_y at or below which a solve that does not converge
-   !> takes small_sigma_loading (from 1e-6 down: the guided route converged at 1e-6 but
-   !> not at 1e-7, 1e-8; doc/theory.md §12 "Small sigma").
+   !> With the cap: sigma/delta_y at or below which a solve that does not converge takes
+   !> the asymptotic route (small_sigma_loading, small_sigma_unload; doc/theory.md §12
+   !> "Small sigma"): from 1e-6 down, where the discrete solves fail at some overlaps.
    real(dp), parameter :: small_sigma_limit = 1.0e-6_dp
+   !> sigma/delta_y of the rough solves that give the asymptotic route its sigma**(2/3)
+   !> correction: the nearer, and the farther that checks it. There the discrete solves
+   !> converge at every overlap tried and their differences from the smooth cap fall by
+   !> 4.5 (10**(2/3) = 4.6 for the pure law) from 1e-4 to 1e-5 (E-GW, mu 4, 2 delta_y,
+   !> loading and unloading at 0.99 delta_max); from 1e-5 to 1e-6 by 5.5 .. 7.1, the
+   !> 1e-6 solves being off by several 1e-6 under smaller estimates.
+   real(dp), parameter :: wide_sigmas(2) = [1.0e-5_dp, 1.0e-4_dp]
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
 
    !> Loading history of one contact: the loading solve at delta_max and its separation
@@ -185,16 +192,10 @@ contains
 
    !> Loading of an extended model (E-GW, EP-GW) with the cap at sigma/delta_y <=
    !> small_sigma_limit whose discrete solve did not converge (doc/theory.md §12 "Small
-   !> sigma: the asymptotic route"): the rough model's leading-order expansion in sigma,
-   !> P(sigma) = P_cap + C sigma**(2/3) (P_cap the smooth cap model, its sigma -> 0
-   !> limit, by cap_load on 100/200 rings: ~1e-8; C sigma**(2/3) the rough layer's
-   !> compliance, gap ~ sigma (p/(mu E* sqrt(sigma/R)))**(2/3)), with C from the same
-   !> model's own solves at 10**k sigma (the first two of k = 1 .. 4 that converge, at
-   !> most 1e-4 delta_y). est_rel_err: the cap solve's estimate, the nearer solve's
-   !> estimate times its scale factor, and the two corrections' disagreement (which also
-   !> catches an exponent other than 2/3); above rel_tol/2 the original error stands.
-   !> Stiffness and contact radius take the same correction. error is kept when the
-   !> route does not apply or fails.
+   !> sigma: the asymptotic route"): the smooth cap model (cap_load on 100/200 rings, its
+   !> sigma -> 0 limit) plus the rough layer's sigma**(2/3) correction from the same
+   !> model's solves at wide_sigmas (asymptotic_answer). error is kept when the route does
+   !> not apply or fails.
    subroutine small_sigma_loading(params, options, delta, prob, result, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
@@ -207,53 +208,130 @@ contains
       type(discrete_solution) :: sol
       type(cap_history) :: history
       type(cap_result) :: cap
-      type(solve_result) :: res, wide(2)
+      type(solve_result) :: wide(2)
       type(egw_error), allocatable :: wide_error
-      real(dp) :: delta_y, a_y, force_y, shrink(2), est
-      integer :: k, found
-      if (error%stat /= egw_not_converged .or. options%n_radial > 0) return
-      if (.not. (prob%extended .and. allocated(prob%cap))) return
-      if (.not. above_first_yield(params, delta)) return
-      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
-         & force_y)
-      if (params%sigma > small_sigma_limit*delta_y) return
-      found = 0
-      do k = 1, 4
+      real(dp) :: delta_y
+      integer :: k
+      if (.not. asymptotic_applies(params, options, delta, prob%extended .and. &
+         & allocated(prob%cap), error, delta_y)) return
+      do k = 1, 2
          wider = params
-         wider%sigma = params%sigma*10.0_dp**k
-         if (wider%sigma > 1.0e-4_dp*delta_y) exit
+         wider%sigma = wide_sigmas(k)*delta_y
          wide_prob = scaled(wider, delta)
-         call solve_rough(wider, options, wide_prob, sol, res, wide_error)
-         if (allocated(wide_error)) then
-            deallocate (wide_error)
-            cycle
-         end if
-         found = found + 1
-         wide(found) = res
-         shrink(found) = 10.0_dp**(-2.0_dp*real(k, dp)/3.0_dp)
-         if (found == 2) exit
+         call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
+         if (allocated(wide_error)) return
       end do
-      if (found < 2) return
       call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
          & cap_options(n_rings=100, n_levels=2), history, cap, wide_error, "delta")
       if (allocated(wide_error)) return
-      est = cap%force_error/cap%force + shrink(1)*wide(1)%est_rel_err + &
-         & abs((wide(1)%force - cap%force)*shrink(1) - (wide(2)%force - cap%force)*shrink(2)) &
-         & /cap%force
+      call asymptotic_answer(params, options, cap, wide, 0.0_dp, result, error)
+   end subroutine small_sigma_loading
+
+   !> Unloading after a capped loading of an extended model at sigma/delta_y <=
+   !> small_sigma_limit whose discrete solve did not converge: as small_sigma_loading,
+   !> with the smooth cap's unloading from delta_max (cap_unload) and the rough model's
+   !> histories and unloading solves at wide_sigmas. error is kept when the route does not
+   !> apply or fails.
+   subroutine small_sigma_unload(history, delta, result, error)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(inout) :: error
+      type(contact_params) :: wider
+      type(loading_history) :: wide_history
+      type(cap_history) :: cap_hist
+      type(cap_result) :: cap
+      type(solve_result) :: wide(2), res
+      type(egw_error), allocatable :: wide_error
+      real(dp) :: delta_y
+      integer :: k
+      if (.not. asymptotic_applies(history%params, history%options, history%delta_max, &
+         & history%closest%extended .and. history%closest%capped, error, delta_y)) return
+      do k = 1, 2
+         wider = history%params
+         wider%sigma = wide_sigmas(k)*delta_y
+         call load_history(wider, history%options, history%delta_max, wide_history, res, &
+            & wide_error)
+         if (allocated(wide_error)) return
+         call rough_unload(wide_history, delta, wide(k), wide_error)
+         if (allocated(wide_error)) return
+      end do
+      call cap_load(history%params%radius, history%params%modulus, &
+         & history%params%flow_pressure, history%delta_max, cap_options(n_rings=100, &
+         & n_levels=2), cap_hist, cap, wide_error, "delta_max")
+      if (allocated(wide_error)) return
+      call cap_unload(cap_hist, delta, cap, wide_error)
+      if (allocated(wide_error)) return
+      call asymptotic_answer(history%params, history%options, cap, wide, &
+         & 1.0e-6_dp*history%loading%force, result, error)
+   end subroutine small_sigma_unload
+
+   !> Whether the asymptotic route may answer a failed solve (error not converged, an
+   !> extended model with the cap that acted, beyond first yield at delta, sigma/delta_y
+   !> <= small_sigma_limit, no fixed mesh); delta_y of params.
+   logical function asymptotic_applies(params, options, delta, capped, error, delta_y) &
+      & result(applies)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      logical, intent(in) :: capped
+      type(egw_error), intent(in) :: error
+      real(dp), intent(out) :: delta_y
+      real(dp) :: a_y, force_y
+      applies = .false.
+      delta_y = 0.0_dp
+      if (error%stat /= egw_not_converged .or. options%n_radial > 0 .or. .not. capped) return
+      if (.not. above_first_yield(params, delta)) return
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+      applies = params%sigma <= small_sigma_limit*delta_y
+   end function asymptotic_applies
+
+   !> The asymptotic route's answer (doc/theory.md §12 "Small sigma: the asymptotic
+   !> route"): P(sigma) = P_cap + C sigma**(2/3), the rough layer's compliance (gap ~
+   !> sigma (p/(mu E* sqrt(sigma/R)))**(2/3)) on the smooth cap model (cap, its sigma -> 0
+   !> limit), C from the rough model's solve at wide_sigmas(1) (wide(1)); stiffness and
+   !> contact radius alike, the maximum pressure p_y. est_rel_err: the cap solve's
+   !> estimate, wide(1)'s times its factor, and the disagreement of the two solves'
+   !> corrections at sigma (it bounds the neglected terms when they are of order sigma
+   !> or higher, and shows an exponent other than 2/3), relative to max(|P|, floor).
+   !> Above rel_tol/2 error stands, its message naming the route's estimate; else it is
+   !> deallocated and result written.
+   subroutine asymptotic_answer(params, options, cap, wide, floor, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      type(cap_result), intent(in) :: cap
+      type(solve_result), intent(in) :: wide(2)
+      real(dp), intent(in) :: floor
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(inout) :: error
+      real(dp) :: delta_y, a_y, force_y, shrink(2), force, est, total
+      integer :: k
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+      do k = 1, 2
+         shrink(k) = (params%sigma/(wide_sigmas(k)*delta_y))**(2.0_dp/3.0_dp)
+      end do
+      force = cap%force + (wide(1)%force - cap%force)*shrink(1)
+      total = max(abs(force), floor)
+      est = huge(1.0_dp)
+      if (total > 0.0_dp) est = (cap%force_error + shrink(1)*wide(1)%est_rel_err* &
+         & max(abs(wide(1)%force), floor) + abs((wide(1)%force - cap%force)*shrink(1) - &
+         & (wide(2)%force - cap%force)*shrink(2)))/total
       if (.not. est <= 0.5_dp*options%rel_tol) then
          error%message = error%message//"; nor by the small-sigma route (estimate " &
-            & //format_real(est)//")"
+            & //format_real(est)//", doc/theory.md section 12)"
          return
       end if
       deallocate (error)
       result = wide(1)
-      result%force = cap%force + (wide(1)%force - cap%force)*shrink(1)
+      result%force = force
       result%stiffness = cap%stiffness + (wide(1)%stiffness - cap%stiffness)*shrink(1)
       result%contact_radius = cap%contact_radius + (wide(1)%contact_radius - &
          & cap%contact_radius)*shrink(1)
       result%max_pressure = params%flow_pressure
       result%est_rel_err = est
-   end subroutine small_sigma_loading
+   end subroutine asymptotic_answer
 
    !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
    !> (a tabulated, Persson or BEM law; doc/theory.md §11): the law gives the whole
@@ -479,11 +557,25 @@ contains
          result = res
          return
       end if
+      call rough_unload(history, delta, result, error)
+      if (allocated(error)) call small_sigma_unload(history, delta, result, error)
+   end subroutine solve_unload
+
+   !> The discrete unloading solve of a rough history (solve_unload's, without the
+   !> asymptotic route).
+   subroutine rough_unload(history, delta, result, error)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      prob = scaled(history%params, delta)
       allocate (prob%closest)
       prob%closest = history%closest
       prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
       call solve_rough(history%params, history%options, prob, sol, result, error)
-   end subroutine solve_unload
+   end subroutine rough_unload
 
    !> One unloading solve from scratch: load to delta_max, then solve_unload at delta
    !> (delta >= delta_max: just the loading solve at delta). The history is loaded at
