@@ -141,7 +141,9 @@ contains
    !> closed form; the rough models by the discrete solve, refined until the two-level
    !> estimate of the force error is below options%rel_tol/2 (n_radial = 0) or on the mesh
    !> of about n_radial nodes. Fails with egw_not_converged rather than return a doubtful
-   !> answer.
+   !> answer. E-GW, EP-GW with the cap at sigma/delta_y <= 1e-6 whose discrete solve
+   !> does not converge: the asymptotic route (small_sigma_loading, doc/theory.md §12),
+   !> if its estimate meets rel_tol.
    subroutine solve_contact(params, options, delta, result, error)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
@@ -514,14 +516,15 @@ contains
    !> delta_max returns the history's loading solve; delta > delta_max is the loading
    !> solve (the curve has left the history: load a new one). Same meshes, Newton, error
    !> estimate, stiffness (dP/d(delta) at fixed history) and egw_not_converged contract
-   !> as solve_contact. history is only read: thread-safe. result untouched on error.
+   !> as solve_contact (after a capped loading at sigma/delta_y <= 1e-6 the asymptotic
+   !> route too: small_sigma_unload). history is only read: thread-safe. result untouched
+   !> on error.
    subroutine solve_unload(history, delta, result, error)
       type(loading_history), intent(in) :: history   !< from load_history (only read)
       real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
       type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(scaled_problem) :: prob
-      type(discrete_solution) :: sol
       type(solve_result) :: res
       type(cap_result) :: cres
 
