@@ -142,9 +142,9 @@ contains
    !> closed form; the rough models by the discrete solve, refined until the two-level
    !> estimate of the force error is below options%rel_tol/2 (n_radial = 0) or on the mesh
    !> of about n_radial nodes. Fails with egw_not_converged rather than return a doubtful
-   !> answer. E-GW, EP-GW with the cap at sigma/delta_y <= 1e-6 whose discrete solve
-   !> does not converge: the asymptotic route (small_sigma_loading, doc/theory.md §12),
-   !> if its estimate meets rel_tol.
+   !> answer. E-GW (EP-GW at psi = 0) with the cap at sigma/delta_y <= 1e-6 whose
+   !> discrete solve does not converge: the asymptotic route (small_sigma_loading,
+   !> doc/theory.md §12), if its estimate meets rel_tol.
    subroutine solve_contact(params, options, delta, result, error)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
@@ -193,8 +193,8 @@ contains
          & error)
    end subroutine solve_contact
 
-   !> Loading of an extended model (E-GW, EP-GW) with the cap at sigma/delta_y <=
-   !> small_sigma_limit whose discrete solve did not converge (doc/theory.md §12 "Small
+   !> Loading of an extended model with elastic summits (asymptotic_applies) with the cap
+   !> at sigma/delta_y <= small_sigma_limit whose discrete solve did not converge (doc/theory.md §12 "Small
    !> sigma: the asymptotic route"): the smooth cap model (cap_load on 100/200 rings, its
    !> sigma -> 0 limit) plus the rough layer's sigma**(2/3) correction from the same
    !> model's solves at wide_sigmas (asymptotic_answer). error is kept when the route does
