@@ -194,11 +194,11 @@ contains
    end subroutine solve_contact
 
    !> Loading of an extended model with elastic summits (asymptotic_applies) with the cap
-   !> at sigma/delta_y <= small_sigma_limit whose discrete solve did not converge (doc/theory.md §12 "Small
-   !> sigma: the asymptotic route"): the smooth cap model (cap_load on 100/200 rings, its
-   !> sigma -> 0 limit) plus the rough layer's sigma**(2/3) correction from the same
-   !> model's solves at wide_sigmas (asymptotic_answer). error is kept when the route does
-   !> not apply or fails.
+   !> at sigma/delta_y <= small_sigma_limit whose discrete solve did not converge
+   !> (doc/theory.md §12 "Small sigma: the asymptotic route"): the smooth cap model
+   !> (cap_load on 100/200 rings, its sigma -> 0 limit) plus the rough layer's
+   !> sigma**(2/3) correction from the same model's solves at wide_sigmas
+   !> (asymptotic_answer). error is kept when the route does not apply or fails.
    subroutine small_sigma_loading(params, options, delta, prob, result, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
