@@ -34,6 +34,10 @@ contains
          & test_small_sigma), &
          & new_unittest("sigma/delta_y = 1e-6: unloading at 0.95, 0.9 delta_max", &
          & test_small_sigma_unload), &
+         & new_unittest("sigma/delta_y = 1e-7, 1e-8: loading by the asymptotic route", &
+         & test_tiny_sigma), &
+         & new_unittest("sigma/delta_y = 1e-6: unloading at 0.99 delta_max", &
+         & test_small_sigma_unload_top), &
          & new_unittest("EP-GW + cap unloading from 6 delta_y at rel_tol 1e-6", &
          & test_deep_unloading), &
          & new_unittest("impact: dissipated = closed integral of P d delta", test_energy), &
@@ -238,6 +242,78 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_small_sigma
+
+   !> E-GW with the cap at sigma/delta_y = 1e-7 (2, 3 delta_y) and 1e-8 (2, 3, 5 delta_y),
+   !> where the discrete solve does not converge (before: egw_not_converged) and the
+   !> asymptotic route answers (rough_sphere's small_sigma_loading: the smooth cap plus the
+   !> rough layer's correction scaled in sigma**(2/3) from solves at 1e-5 and 1e-4
+   !> delta_y), against the reference (as test_small_sigma). The rough layer's difference,
+   !> up to 1.5e-5 = 0.15 (1e-6)**(2/3) at 1e-6, is at most 0.15 (sigma/delta_y)**(2/3):
+   !> 3.2e-6 at 1e-7, 7e-7 at 1e-8 (measured 2.4e-6, 3.2e-6 and 4.0e-7 .. 6.9e-7); within
+   !> 0.3 (sigma/delta_y)**(2/3), twice that: 6.5e-6 and 1.4e-6. rel_tol 1e-6 (the
+   !> route's estimates 7e-9 .. 8.7e-8).
+   subroutine test_tiny_sigma(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: ratios(5) = [1.0e-7_dp, 1.0e-7_dp, 1.0e-8_dp, 1.0e-8_dp, &
+         & 1.0e-8_dp]
+      real(dp), parameter :: x(5) = [2.0_dp, 3.0_dp, 2.0_dp, 3.0_dp, 5.0_dp]
+      real(dp), parameter :: ref(5) = [2.720383972669_dp, 4.696156337776_dp, &
+         & 2.720383972669_dp, 4.696156337776_dp, 9.032667181270_dp]
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y, got
+      integer :: i
+      call yield_units(delta_y, force_y)
+      do i = 1, size(x)
+         p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
+            & sigma=ratios(i)*delta_y, mu=4.0_dp, flow_pressure=py)
+         call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), x(i)*delta_y, res, err)
+         if (allocated(err)) then
+            call check(error, .false., "sigma/delta_y = "//str(ratios(i))//", delta/delta_y = " &
+               & //str(x(i))//": "//err%message)
+            return
+         end if
+         got = res%force/force_y
+         call check(error, abs(got - ref(i)) <= 0.3_dp*ratios(i)**(2.0_dp/3.0_dp)*ref(i), &
+            & "sigma/delta_y = "//str(ratios(i))//", delta/delta_y = "//str(x(i)) &
+            & //": P/P_y = "//str(got)//", reference "//str(ref(i)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_tiny_sigma
+
+   !> Unloading of E-GW with the cap at sigma/delta_y = 1e-6 from 2 delta_y (history at
+   !> rel_tol 1e-7, as test_small_sigma_unload) at 0.99 delta_max, rel_tol 1e-6, where
+   !> the discrete solve does not converge (before: egw_not_converged; Newton diverges)
+   !> and the asymptotic route answers (rough_sphere's small_sigma_unload: the smooth cap's
+   !> unloading plus the rough layer's correction from histories at 1e-5 and 1e-4
+   !> delta_y), against the reference's unloading row: within 3e-5 as
+   !> test_small_sigma_unload (the rough layer's 0.15 (1e-6)**(2/3) = 1.5e-5, twice;
+   !> measured 1.1e-5; the route's estimate 3.6e-7).
+   subroutine test_small_sigma_unload_top(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: ref = 2.677343788024_dp  ! P/P_y at 0.99 delta_max
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y, got
+      call yield_units(delta_y, force_y)
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
+         & sigma=1.0e-6_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      call load_history(p, solver_options(rel_tol=1.0e-7_dp), 2.0_dp*delta_y, h, res, err)
+      call check(error, .not. allocated(err), "history at 2 delta_y failed")
+      if (allocated(error)) return
+      h%options%rel_tol = 1.0e-6_dp
+      call solve_unload(h, 0.99_dp*2.0_dp*delta_y, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading at 0.99 delta_max: "//err%message)
+         return
+      end if
+      got = res%force/force_y
+      call check(error, abs(got - ref) <= 3.0e-5_dp*ref, "delta/delta_max = 0.99: P/P_y = " &
+         & //str(got)//", reference "//str(ref))
+   end subroutine test_small_sigma_unload_top
 
    !> Unloading of E-GW with the cap at sigma/delta_y = 1e-6 from 2 delta_y at 0.95 and
    !> 0.9 delta_max (the guided route: sphere_solver's guided_cap_unload; 0.8 converges
