@@ -46,7 +46,9 @@ contains
          & new_unittest("E-GW + cap loading: stiffness = difference quotient", &
          & test_stiffness), &
          & new_unittest("E-GW + cap loading table at 1e-5 against solves", &
-         & test_loading_table) &
+         & test_loading_table), &
+         & new_unittest("EP-GW + cap loading table at 1e-4: quarter points", &
+         & test_loading_table_quarters) &
          & ]
    end subroutine collect_rough_cap
 
@@ -690,5 +692,53 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_loading_table
+
+   !> The loading table of the EP-GW + cap hysteresis table of issue 32 (mu 4, psi 1, sigma
+   !> = delta_y/100, R/sigma = 4.05e5; build_table with loading_curve, rel_tol 1e-4, from 0
+   !> to 10 delta_y) against rel_tol 1e-8 solves at the quarter points and midpoints of its
+   !> intervals from delta_y on, within rel_tol 1e-4 (the table's tolerance; the solves'
+   !> own error is ~1e-8). Its curvature changes at ~3 delta_y (where the capped zone
+   !> outgrows the Hertz radius): before the build checked the slope at its midpoints too,
+   !> the interval 2.46 .. 3.69 delta_y met its midpoint solve (8.1e-5) while the table was
+   !> 2.2e-4 off at 3.35 delta_y.
+   subroutine test_loading_table_quarters(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(force_table) :: t
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y, d, f, k, worst
+      integer :: i, j, first
+      call yield_units(delta_y, force_y)
+      p = impact_pair()
+      p%sigma = 0.01_dp*delta_y
+      call build_table(p, solver_options(), 0.0_dp, 10*delta_y, 1.0e-4_dp, t, err, &
+         & loading_curve=.true.)
+      if (allocated(err)) then
+         call check(error, .false., "loading table at 1e-4: "//err%message)
+         return
+      end if
+      first = findloc(t%delta >= delta_y, .true., dim=1)
+      call check(error, first > 1, "no node above delta_y")
+      if (allocated(error)) return
+      worst = 0
+      do i = first - 1, size(t%delta) - 1
+         do j = 1, 3
+            d = t%delta(i) + 0.25_dp*j*(t%delta(i + 1) - t%delta(i))
+            call table_eval(t, d, f, k)
+            call solve_contact(p, solver_options(rel_tol=1.0e-8_dp), d, res, err)
+            if (allocated(err)) then
+               call check(error, .false., "solve at "//str(d/delta_y)//" delta_y: " &
+                  & //err%message)
+               return
+            end if
+            worst = max(worst, abs(f - res%force)/res%force)
+            call check(error, abs(f - res%force) <= 1.0e-4_dp*res%force, "table "//str(f) &
+               & //" vs solve "//str(res%force)//" at "//str(d/delta_y)//" delta_y")
+            if (allocated(error)) return
+         end do
+      end do
+      print '(4x, a, es9.2)', "largest |P_table - P_solve|/P: ", worst
+   end subroutine test_loading_table_quarters
 
 end module test_rough_cap
