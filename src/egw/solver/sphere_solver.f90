@@ -440,8 +440,10 @@ contains
          ! Half the tolerance: a margin for the estimate itself.
          if (options%n_radial > 0) return
          ! Unloading after a capped loading (sums_total), at any rel_tol: an accepted level
-         ! is checked on its own mesh with every element halved (bisection_check).
-         if (est <= 0.5_dp*options%rel_tol .and. sums_total(prob) .and. .not. confirm) then
+         ! is checked on its own mesh with every element halved (bisection_check), where
+         ! that mesh stays within max_mesh_nodes (else accepted as before).
+         if (est <= 0.5_dp*options%rel_tol .and. sums_total(prob) .and. .not. confirm &
+            & .and. 2*size(sol%w) - 1 <= max_mesh_nodes) then
             confirm = .true.
             call bisection_check(prob, options, method, total, sol, fine, est, error)
             if (allocated(error)) return
