@@ -31,8 +31,9 @@ module egw_cache
    !> earlier build (same parameters) are not taken for the new one (5: the smooth Hertz +
    !> cap solver; 6: the hysteresis build's check curves, whose tables at 1e-5 differ, and
    !> the rough + cap solver's meshes, 2026-11-29; 7: rough + cap unloading after a capped
-   !> loading, a_max an element edge, and the guided route at small sigma/delta_y).
-   integer, parameter, public :: cache_revision = 7
+   !> loading, a_max an element edge, and the guided route at small sigma/delta_y; 8:
+   !> that unloading with halving layers inside the Hertz edge and a bisection check).
+   integer, parameter, public :: cache_revision = 8
 
 
 contains
