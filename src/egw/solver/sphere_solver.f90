@@ -440,12 +440,12 @@ contains
          ! Half the tolerance: a margin for the estimate itself.
          if (options%n_radial > 0) return
          ! Unloading after a capped loading (sums_total), at any rel_tol: an accepted level
-         ! is checked on its own mesh with every element halved (bisection_check), where
-         ! that mesh stays within max_mesh_nodes (else accepted as before).
+         ! whose mesh keeps elements of the level before is checked with those halved
+         ! (bisection_check).
          if (est <= 0.5_dp*options%rel_tol .and. sums_total(prob) .and. .not. confirm &
-            & .and. 2*size(sol%w) - 1 <= max_mesh_nodes) then
+            & .and. any_kept(sol, coarse)) then
             confirm = .true.
-            call bisection_check(prob, options, method, total, sol, fine, est, error)
+            call bisection_check(prob, options, method, total, coarse, sol, fine, est, error)
             if (allocated(error)) return
             if (est <= 0.5_dp*options%rel_tol) then
                sol = fine
@@ -491,36 +491,67 @@ contains
    end subroutine refine_levels
 
    !> Unloading after a capped loading (sums_total): the accepted level sol solved again on
-   !> its own mesh with every element halved (fine), est the whole difference (plus the
-   !> tail and the kink offsets). Richardson assumes that every element
-   !> shrinks with the step, but an element between two fixed edges (r = 0 and a kink
-   !> edge) stays the same while the step exceeds it: near the residual overlap the total
-   !> pressure lives on such a disc [0, 0.091] (E-GW, sigma = 0.059 delta_y, delta =
-   !> 0.0174 delta_y after 1.297 delta_y), one element at steps 0.19, 0.15 and 0.076,
-   !> whose levels agreed to 6e-8 while all were 8.2e-6 off (doc/theory.md section 12).
-   subroutine bisection_check(prob, options, method, total, sol, fine, est, error)
+   !> its own mesh with the elements it shares with the level before (coarse) halved
+   !> (fine), their whole difference added to est (sol's). Richardson
+   !> assumes that every element shrinks with the step, but an element between two fixed
+   !> edges (r = 0, kink edges) stays the same while the step exceeds it, and its error is
+   !> in both levels: near the residual overlap the total pressure lives on such a disc
+   !> [0, 0.091] (E-GW, sigma = 0.059 delta_y, delta = 0.0174 delta_y after 1.297
+   !> delta_y), one element at steps 0.19, 0.15 and 0.076, whose levels agreed to 6e-8
+   !> while all were 8.2e-6 off (doc/theory.md section 12).
+   subroutine bisection_check(prob, options, method, total, coarse, sol, fine, est, error)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
       real(dp), intent(in) :: total   !< |force| of sol (at least force_floor)
-      type(discrete_solution), intent(in) :: sol
+      type(discrete_solution), intent(in) :: coarse, sol
       type(discrete_solution), intent(out) :: fine
-      real(dp), intent(out) :: est
+      !> in: sol's estimate, kept where the halved mesh would exceed max_mesh_nodes
+      real(dp), intent(inout) :: est
       type(egw_error), allocatable, intent(out) :: error
-      real(dp), allocatable :: edges(:), moved(:)
-      integer :: n, i, n_moved
-      n = sol%mesh%n_elem
-      allocate (edges(0:2*n))
-      edges(0:2*n:2) = sol%mesh%edge(0:n)
-      do i = 1, n
-         edges(2*i - 1) = 0.5_dp*(sol%mesh%edge(i - 1) + sol%mesh%edge(i))
+      real(dp), allocatable :: edges(:)
+      integer :: i, degree
+      edges = [sol%mesh%edge(0)]
+      do i = 1, sol%mesh%n_elem
+         if (kept(sol%mesh%edge(i - 1), sol%mesh%edge(i), coarse)) edges = [edges, &
+            & 0.5_dp*(sol%mesh%edge(i - 1) + sol%mesh%edge(i))]
+         edges = [edges, sol%mesh%edge(i)]
       end do
+      degree = (size(sol%w) - 1)/sol%mesh%n_elem
+      if (size(sol%w) + degree*(size(edges) - 1 - sol%mesh%n_elem) > max_mesh_nodes) then
+         fine = sol
+         return
+      end if
       call solve_mesh(prob, options, method, edges, fine, error, sol)
       if (allocated(error)) return
-      est = abs(fine%force - sol%force)/total + fine%tail/total
-      if (allocated(prob%branch)) est = est + kink_offset_error(prob, fine, options%rel_tol, &
-         & moved, n_moved)/total
+      ! (what the halved elements change, which the levels' Richardson estimate of the
+      ! others cannot see)
+      est = est + abs(fine%force - sol%force)/total
    end subroutine bisection_check
+
+   !> Whether sol's mesh has an element (both edges) that coarse's mesh has too.
+   pure logical function any_kept(sol, coarse)
+      type(discrete_solution), intent(in) :: sol, coarse
+      integer :: i
+      any_kept = .false.
+      do i = 1, sol%mesh%n_elem
+         if (kept(sol%mesh%edge(i - 1), sol%mesh%edge(i), coarse)) then
+            any_kept = .true.
+            return
+         end if
+      end do
+   end function any_kept
+
+   !> Whether (left, right) is an element of coarse's mesh.
+   pure logical function kept(left, right, coarse)
+      real(dp), intent(in) :: left, right
+      type(discrete_solution), intent(in) :: coarse
+      integer :: k
+      kept = .false.
+      k = findloc(coarse%mesh%edge(0:coarse%mesh%n_elem), left, dim=1) - 1
+      if (k < 0 .or. k >= coarse%mesh%n_elem) return
+      kept = coarse%mesh%edge(k + 1) == right
+   end function kept
 
    !> Unloading (doc/theory.md §8): adds to est what the kink edges still miss by (both
    !> levels share it). Edges off by more than a tenth of rel_tol are moved and both levels
