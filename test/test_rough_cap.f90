@@ -59,9 +59,10 @@ contains
    !> delta_y at 0.017419 delta_y, just above the residual overlap, at rel_tol 1e-6:
    !> before, egw_not_converged (the estimate 9.6e-7 on the finest mesh: the Hertz edge's
    !> sqrt in the floored total pressure, converging like h**1.5). Reference: this
-   !> solve at rel_tol 2e-8 (estimate 4.7e-9), corroborated by main's levels before the
-   !> fix (steps 0.0183, 0.0103) extrapolated for h**1.5: 2e-8 apart. Within rel_tol
-   !> (measured 1.1e-7, estimate 3.0e-7).
+   !> solve at rel_tol 2e-8 with 8 layers inside the Hertz edge (commit 1877970; estimate
+   !> 4.7e-9), corroborated by the levels before the fix (steps 0.0183, 0.0103)
+   !> extrapolated for h**1.5: 1e-8 apart. Within rel_tol (measured 6.9e-8, estimate
+   !> 2.8e-7).
    subroutine test_residual_overlap_beads(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: radius = 0.5e-3_dp, p_y = 1.6e9_dp
