@@ -52,9 +52,49 @@ contains
          & new_unittest("E-GW + cap loading table at 1e-5 against solves", &
          & test_loading_table), &
          & new_unittest("EP-GW + cap loading table at 1e-4: quarter points", &
-         & test_loading_table_quarters) &
+         & test_loading_table_quarters), &
+         & new_unittest("E-GW + cap steel beads: unloading near the residual overlap", &
+         & test_residual_overlap_beads) &
          & ]
    end subroutine collect_rough_cap
+
+   !> Polished steel beads (R = 0.5 mm, E* = 210 GPa/(2 (1 - 0.29**2)), sigma = 14.1 nm,
+   !> mu 4, p_y = 1.6 GPa: sigma = 0.0587 delta_y), E-GW + cap unloading from 1.2971
+   !> delta_y at 0.017419 delta_y, just above the residual overlap, at rel_tol 1e-6:
+   !> before, egw_not_converged (the estimate 9.6e-7 on the finest mesh: the Hertz edge's
+   !> sqrt in the floored total pressure, converging like h**1.5). Reference: this
+   !> solve at rel_tol 2e-8 with 8 layers inside the Hertz edge (commit 1877970; estimate
+   !> 4.7e-9), corroborated by the levels before the fix (steps 0.0183, 0.0103)
+   !> extrapolated for h**1.5: 1e-8 apart. Within rel_tol (measured 6.9e-8, estimate
+   !> 2.8e-7).
+   subroutine test_residual_overlap_beads(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: radius = 0.5e-3_dp, p_y = 1.6e9_dp
+      real(dp), parameter :: ref = 8.982700861461e-7_dp   ! N
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      ! (the overlaps in units of this pair's first yield, egw_first_yield)
+      real(dp), parameter :: delta_y = 2.403074547673163e-7_dp
+      real(dp) :: modulus
+      modulus = 210.0e9_dp/(2.0_dp*(1.0_dp - 0.29_dp**2))
+      p = contact_params(model=model_egw, radius=radius, modulus=modulus, sigma=1.41e-8_dp, &
+         & mu=4.0_dp, flow_pressure=p_y)
+      ! (the history at 1e-4 rel_tol, as solve_contact_unload loads it)
+      call load_history(p, solver_options(rel_tol=1.0e-10_dp), 1.2970813472435374_dp* &
+         & delta_y, h, res, err)
+      call check(error, .not. allocated(err), "history at 1.297 delta_y failed")
+      if (allocated(error)) return
+      h%options%rel_tol = 1.0e-6_dp
+      call solve_unload(h, 0.01741909132221112_dp*delta_y, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading at 0.0174 delta_y: "//err%message)
+         return
+      end if
+      call check(error, abs(res%force - ref) <= 1.0e-6_dp*ref, "P = "//str(res%force) &
+         & //" N, reference "//str(ref))
+   end subroutine test_residual_overlap_beads
 
    function str(x) result(s)
       real(dp), intent(in) :: x

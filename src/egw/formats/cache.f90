@@ -33,8 +33,9 @@ module egw_cache
    !> the rough + cap solver's meshes, 2026-11-29; 7: rough + cap unloading after a capped
    !> loading, a_max an element edge, and the guided route at small sigma/delta_y; 8: rough
    !> + cap unloading solves confirmed by a level more, the capped loading table's slope
+   !> check; 9: that unloading with halving layers inside the Hertz edge and a bisection
    !> check).
-   integer, parameter, public :: cache_revision = 8
+   integer, parameter, public :: cache_revision = 9
 
 
 contains
