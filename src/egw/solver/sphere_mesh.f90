@@ -377,17 +377,21 @@ contains
    !> levels then converge like step**1.5 and their Richardson estimate, of order 5, saw
    !> a tenth of the error: 1.1e-5 under 7e-7 at 9.7 delta_y, sigma = delta_y/100). Each
    !> layer is as long as its distance to a, so its polynomial error is ~1e-5 of its
-   !> share, and the last, 2**-8 of the element, leaves (2**-8)**1.5 of the error.
-   pure function inner_layers(edge, r) result(out)
+   !> share, and the last, 2**-8 of the element, leaves (2**-8)**1.5 of the error. n: that
+   !> many layers instead (unloading after a capped loading takes 5, egw_sphere_solver).
+   pure function inner_layers(edge, r, n) result(out)
       real(dp), intent(in) :: edge(0:), r
+      integer, intent(in), optional :: n
       real(dp), allocatable :: out(:)
       real(dp) :: h
-      integer :: k, i
+      integer :: k, i, layers
+      layers = cap_edge_layers
+      if (present(n)) layers = n
       out = edge
       k = findloc(edge, r, dim=1) - 1
       if (k < 1) return
       h = edge(k) - edge(k - 1)
-      out = [edge(0:k - 1), (r - h*0.5_dp**i, i=1, cap_edge_layers), edge(k:)]
+      out = [edge(0:k - 1), (r - h*0.5_dp**i, i=1, layers), edge(k:)]
    end function inner_layers
 
    !> edge with the two elements beside the edge r (an edge of it, exactly) split into

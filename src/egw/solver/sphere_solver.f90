@@ -738,7 +738,7 @@ contains
             ! finest step, egw_not_converged at rel_tol 1e-6). (8 layers: the E-GW + cap
             ! table of theory.md section 12 built 2.8x slower than without; 5: 2.2x, and
             ! 3 left the error at 0.018 delta_y above its estimate, 2.5e-7 > 1.95e-7.)
-            if (sums_total(prob) .and. prob%delta > 0.0_dp) edges = halving_layers(edges, &
+            if (sums_total(prob) .and. prob%delta > 0.0_dp) edges = inner_layers(edges, &
                & sqrt(prob%delta), 5)
          else if (allocated(prob%branch)) then
             ! loading with the cap: its edges (cap_kink_radii) and, extended models, the
@@ -771,20 +771,6 @@ contains
          & //" (in units of sigma): the pressure does not decay within the outer radius " &
          & //format_real(outer))
    end subroutine solve_with_tail
-
-   !> n elements halving towards the edge r (an edge of edge(0:)) inside it.
-   pure function halving_layers(edge, r, n) result(out)
-      real(dp), intent(in) :: edge(0:), r
-      integer, intent(in) :: n
-      real(dp), allocatable :: out(:)
-      real(dp) :: h
-      integer :: k, i
-      out = edge
-      k = findloc(edge, r, dim=1) - 1
-      if (k < 1) return
-      h = edge(k) - edge(k - 1)
-      out = [edge(0:k - 1), (r - h*0.5_dp**i, i=1, n), edge(k:)]
-   end function halving_layers
 
    !> Kink edges of an unloading solve placed from a solution with them in place (sol, the
    !> first level): while what the edges still miss by (kink_offset_error) exceeds a tenth
