@@ -489,12 +489,7 @@ contains
       end do
       do i = 1, size(checked)
          d = checked(i)*delta_y
-         h%options%rel_tol = 1.0e-6_dp
-         call solve_unload(h, d, res, err)
-         if (.not. allocated(err)) then
-            h%options%rel_tol = 1.0e-8_dp
-            call solve_unload(h, d, ref, err)
-         end if
+         call unload_at_tols(h, d, 1.0e-6_dp, 1.0e-8_dp, res, ref, err)
          if (allocated(err)) then
             call check(error, .false., "unloading at "//str(checked(i))//" delta_y: " &
                & //err%message)
@@ -533,12 +528,7 @@ contains
       if (allocated(error)) return
       do i = 1, size(fractions)
          d = fractions(i)*dm
-         h%options%rel_tol = 1.0e-5_dp
-         call solve_unload(h, d, res, err)
-         if (.not. allocated(err)) then
-            h%options%rel_tol = 1.0e-7_dp
-            call solve_unload(h, d, ref, err)
-         end if
+         call unload_at_tols(h, d, 1.0e-5_dp, 1.0e-7_dp, res, ref, err)
          if (allocated(err)) then
             call check(error, .false., "unloading at "//str(fractions(i))//" delta_max: " &
                & //err%message)
@@ -550,6 +540,20 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_deep_unloading_loose
+
+   !> Unloading solves of the history h at d at rel_tol tol (res) and at the reference's
+   !> ref_tol (ref); err allocated when either fails (h's tolerance left at ref_tol).
+   subroutine unload_at_tols(h, d, tol, ref_tol, res, ref, err)
+      type(loading_history), intent(inout) :: h
+      real(dp), intent(in) :: d, tol, ref_tol
+      type(solve_result), intent(inout) :: res, ref
+      type(egw_error), allocatable, intent(out) :: err
+      h%options%rel_tol = tol
+      call solve_unload(h, d, res, err)
+      if (allocated(err)) return
+      h%options%rel_tol = ref_tol
+      call solve_unload(h, d, ref, err)
+   end subroutine unload_at_tols
 
    !> The pair of the impact checks: EP-GW (psi 1, mu 4) with sigma = delta_y, p_y = 0.01,
    !> R = E* = m* = 1; v_y the smooth sphere's first-yield speed.
@@ -779,10 +783,9 @@ contains
       type(error_type), allocatable, intent(out) :: error
       type(contact_params) :: p
       type(force_table) :: t
-      type(solve_result) :: res
       type(egw_error), allocatable :: err
-      real(dp) :: d, f, k
-      integer :: i, first, n
+      real(dp) :: worst
+      integer :: first, n
       p = steel_pair()
       call build_table(p, solver_options(), -3*p%sigma, 10*steel_delta_y(), 1.0e-5_dp, t, &
          & err, loading_curve=.true.)
@@ -794,19 +797,8 @@ contains
       n = size(t%delta)
       call check(error, first > 0 .and. n - first >= 5, "too few nodes above delta_y")
       if (allocated(error)) return
-      do i = first, n - 1
-         d = 0.5_dp*(t%delta(i) + t%delta(i + 1))
-         call table_eval(t, d, f, k)
-         call solve_contact(p, solver_options(rel_tol=1.0e-8_dp), d, res, err)
-         if (allocated(err)) then
-            call check(error, .false., "solve at "//str(d/steel_delta_y())//" delta_y: " &
-               & //err%message)
-            return
-         end if
-         call check(error, abs(f - res%force) <= 1.0e-5_dp*res%force, "table "//str(f) &
-            & //" vs solve "//str(res%force)//" at "//str(d/steel_delta_y())//" delta_y")
-         if (allocated(error)) return
-      end do
+      call check_table_points(error, p, t, first, [0.5_dp], 1.0e-5_dp, steel_delta_y(), &
+         & worst)
    end subroutine test_loading_table
 
    !> The loading table of the EP-GW + cap hysteresis table of issue 32 (mu 4, psi 1, sigma
@@ -821,10 +813,9 @@ contains
       type(error_type), allocatable, intent(out) :: error
       type(contact_params) :: p
       type(force_table) :: t
-      type(solve_result) :: res
       type(egw_error), allocatable :: err
-      real(dp) :: delta_y, force_y, d, f, k, worst
-      integer :: i, j, first
+      real(dp) :: delta_y, force_y, worst
+      integer :: first
       call yield_units(delta_y, force_y)
       p = impact_pair()
       p%sigma = 0.01_dp*delta_y
@@ -837,10 +828,29 @@ contains
       first = findloc(t%delta >= delta_y, .true., dim=1)
       call check(error, first > 1, "no node above delta_y")
       if (allocated(error)) return
+      call check_table_points(error, p, t, first - 1, [0.25_dp, 0.5_dp, 0.75_dp], &
+         & 1.0e-4_dp, delta_y, worst)
+      print '(4x, a, es9.2)', "largest |P_table - P_solve|/P: ", worst
+   end subroutine test_loading_table_quarters
+
+   !> The force table t of p against solves at rel_tol 1e-8 at the fractions u of each of
+   !> its intervals from node first on: within tol of the solve's force (error on the
+   !> first miss); worst the largest relative difference seen; delta_y the messages' unit.
+   subroutine check_table_points(error, p, t, first, u, tol, delta_y, worst)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params), intent(in) :: p
+      type(force_table), intent(in) :: t
+      integer, intent(in) :: first
+      real(dp), intent(in) :: u(:), tol, delta_y
+      real(dp), intent(out) :: worst
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: d, f, k
+      integer :: i, j
       worst = 0
-      do i = first - 1, size(t%delta) - 1
-         do j = 1, 3
-            d = t%delta(i) + 0.25_dp*j*(t%delta(i + 1) - t%delta(i))
+      do i = first, size(t%delta) - 1
+         do j = 1, size(u)
+            d = t%delta(i) + u(j)*(t%delta(i + 1) - t%delta(i))
             call table_eval(t, d, f, k)
             call solve_contact(p, solver_options(rel_tol=1.0e-8_dp), d, res, err)
             if (allocated(err)) then
@@ -849,12 +859,11 @@ contains
                return
             end if
             worst = max(worst, abs(f - res%force)/res%force)
-            call check(error, abs(f - res%force) <= 1.0e-4_dp*res%force, "table "//str(f) &
+            call check(error, abs(f - res%force) <= tol*res%force, "table "//str(f) &
                & //" vs solve "//str(res%force)//" at "//str(d/delta_y)//" delta_y")
             if (allocated(error)) return
          end do
       end do
-      print '(4x, a, es9.2)', "largest |P_table - P_solve|/P: ", worst
-   end subroutine test_loading_table_quarters
+   end subroutine check_table_points
 
 end module test_rough_cap
