@@ -132,29 +132,29 @@ contains
    !> points from the separated tail to 3 sigma): far_errors.
    subroutine test_far_epgw(error)
       type(error_type), allocatable, intent(out) :: error
-      type(hysteresis_table) :: t
-      type(egw_error), allocatable :: err
-      call build_hysteresis(ep, solver_options(), -2.0_dp, 3.0_dp, 1.0e-4_dp, t, err)
-      if (allocated(err)) then
-         call test_failed(error, "build: "//err%message)
-         return
-      end if
-      call far_errors(t, error)
+      call far_case(-2.0_dp, 3.0_dp, 1.0e-4_dp, error)
    end subroutine test_far_epgw
 
    !> The same pair at rel_tol 1e-3 over [-3, 30] sigma (egw-bench's range: deep turning
    !> points, whose unloading force vanishes at a residual overlap far below them).
    subroutine test_far_epgw_deep(error)
       type(error_type), allocatable, intent(out) :: error
+      call far_case(-3.0_dp, 30.0_dp, 1.0e-3_dp, error)
+   end subroutine test_far_epgw_deep
+
+   !> far_errors of the suite's EP-GW table over [lo, hi] sigma at rel_tol.
+   subroutine far_case(lo, hi, rel_tol, error)
+      real(dp), intent(in) :: lo, hi, rel_tol
+      type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t
       type(egw_error), allocatable :: err
-      call build_hysteresis(ep, solver_options(), -3.0_dp, 30.0_dp, 1.0e-3_dp, t, err)
+      call build_hysteresis(ep, solver_options(), lo, hi, rel_tol, t, err)
       if (allocated(err)) then
          call test_failed(error, "build: "//err%message)
          return
       end if
       call far_errors(t, error)
-   end subroutine test_far_epgw_deep
+   end subroutine far_case
 
    !> The table t (rel_tol) at turning points m halfway between its delta_max nodes, at
    !> the overlaps where its force is 0.5 .. 1e-4 of the force at the turning point P(m)
