@@ -11,8 +11,8 @@ const char *LAMMPS_NS::egw_law_kind_name[] = {
     "hysteresis tables at nodes in ln mu, linear in ln mu",
     "rough-flat law: 1-D tables at nodes in ln R, geometric in R",
     "flow-pressure cap: one hysteresis table in units of the first-yield overlap delta_y",
-    "rough surface with the flow-pressure cap: one hysteresis table in delta/sigma for the "
-    "type pair's one radius"};
+    "rough surface with the flow-pressure cap: hysteresis tables in delta/sigma, one per "
+    "equivalent radius (one radius, or nodes in ln R, linear in ln R)"};
 
 egw_flat_law LAMMPS_NS::egw_law_read_file(const std::string &path, MPI_Comm comm,
                                           const std::function<void(const std::string &)> &fail)
@@ -161,6 +161,8 @@ void EgwLaw::take_tables(EgwLaw &from)
   law_modulus = from.law_modulus, flat_modulus = from.flat_modulus;
   flat_scale = from.flat_scale, sigma = from.sigma, inv_sigma = from.inv_sigma;
   tol_built = from.tol_built, rcap_R = from.rcap_R, rcap_F = from.rcap_F;
+  rcap_R_lo = from.rcap_R_lo, rcap_R_ref = from.rcap_R_ref;
+  lnr0 = from.lnr0, inv_hr = from.inv_hr;
   s05 = from.s05, s15 = from.s15, s25 = from.s25;
   from.flat.clear();
   from.universal = nullptr;    // now ours (the shared tables are counted by their holders)
@@ -184,30 +186,7 @@ void EgwLaw::build(double R_lo, double R_hi, double tol, double overlap_max, MPI
     return;
   }
   if (kind == HYST_RCAP) {
-    // one table for the law's one radius R_hi (pair egw and fix wall/egw refuse types of
-    // several radii, eval() contacts of another R), in delta/sigma with R/sigma and
-    // p_y/E*, reaching overlap_max R, at most RCAP_X_MAX delta_y, shared through the
-    // registry (and egw's disk cache) with every law of the same numbers
-    rcap_R = R_hi;
-    double dy = cap_c * R_hi;
-    EgwTables::HystKey k;
-    k.model = prm.model, k.mu = mu_mode == 1 ? mu : mu_at(R_hi), k.psi = psi, k.K = K;
-    k.rho = rho, k.flow_pressure = flow_pressure / E_star, k.radius = R_hi / sigma;
-    // the reach: overlap_max R, at most RCAP_X_MAX delta_y but 30 sigma where sigma is
-    // the larger scale (as EP-GW's least reach), and at most egw's limit, 1000 delta_y
-    double want = overlap_max * R_hi;
-    double lim = std::min(std::max(RCAP_X_MAX * dy, 30.0 * sigma), 1000.0 * dy);
-    double len = std::max(std::min(want, lim), std::min(30.0 * sigma, lim));
-    cap_wanted = want / dy;
-    capped = want > len;
-    k.xmax = len / sigma;
-    k.tol = tol_cap = built_tol = tol;
-    hyst_built = 0;
-    xc = hold_hysteresis({k}, comm, fail_with);
-    rcap_F = E_star * sigma * sigma;
-    tail = -xc * sigma;
-    reach = k.xmax * sigma;
-    fast = nullptr;
+    build_rcap(R_lo, R_hi, tol, overlap_max, comm, fail_with);
     return;
   }
   if (kind == HYST_CAP) {
@@ -391,6 +370,71 @@ double EgwLaw::hold_hysteresis(const std::vector<EgwTables::HystKey> &keys, MPI_
   return cut;
 }
 
+void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max,
+                        MPI_Comm comm, const std::function<void(const std::string &)> &fail_with)
+{
+  // tables in delta/sigma with R/sigma and p_y/E*, shared through the registry (and egw's
+  // disk cache) with every law of the same numbers: one for a law of one radius (R_lo =
+  // R_hi: pair egw and fix wall/egw pass the types' one radius), else at the nodes of a
+  // lattice in ln(R/sigma) covering [R_lo, R_hi]
+  rcap_R = R_hi, rcap_R_lo = R_lo;
+  // h = ln 2 / 4 first: level 1's lowest node (R steps of 41 %) may lie 29 % below R_lo
+  const int FIRST_LEVEL = 2;
+  double a = std::log(R_lo * inv_sigma), b = std::log(R_hi * inv_sigma);
+  auto lattice = [&](int level, int &k0, int &k1) {
+    double h = std::log(2.0) / (1 << level);
+    k0 = (int) std::floor(a / h), k1 = (int) std::ceil(b / h);
+    if (k1 - k0 < 2) k1 = k0 + 2;    // three nodes: the estimate is a second difference
+    return h;
+  };
+  // the reach (one for every node, so that the levels share tables): overlap_max R_hi, at
+  // most RCAP_X_MAX delta_y of R_lo (the node below R_lo, at most 2^(1/4) smaller from the
+  // first level, 2, on, reaches up to 24 of its own), but 30 sigma where sigma is the larger
+  // scale (as EP-GW's least reach), and at most egw's limit, 1000 delta_y of that node
+  int k0, k1;
+  lattice(FIRST_LEVEL, k0, k1);
+  double r_min = R_lo == R_hi ? R_hi : sigma * std::exp(k0 * std::log(2.0) / 4);
+  rcap_R_ref = R_lo;
+  double dy = cap_c * R_lo;
+  double want = overlap_max * R_hi;
+  double lim = std::min(std::max(RCAP_X_MAX * dy, 30.0 * sigma), 1000.0 * cap_c * r_min);
+  double len = std::max(std::min(want, lim), std::min(30.0 * sigma, lim));
+  cap_wanted = want / dy;
+  capped = want > len;
+  auto key_at = [&](double R) {
+    EgwTables::HystKey k;
+    k.model = prm.model, k.mu = mu_mode == 1 ? mu : mu_at(R), k.psi = psi, k.K = K;
+    k.rho = rho, k.flow_pressure = flow_pressure / E_star, k.radius = R / sigma;
+    k.xmax = len / sigma;
+    k.tol = tol;
+    return k;
+  };
+  tol_cap = built_tol = tol;
+  hyst_built = 0;
+  interp_error = 0.0;
+  if (R_lo == R_hi) {
+    xc = hold_hysteresis({key_at(R_hi)}, comm, fail_with);
+    lnr0 = b, inv_hr = 0.0;
+  } else {
+    // linear in ln R between neighbouring nodes; the level refined until the error
+    // estimated from second differences of the node tables (EgwTables::lnmu_error_estimate,
+    // as HYST_MU's ln mu) times LNMU_SAFETY is within TOL of the turning-point force
+    for (int level = FIRST_LEVEL;; level++) {
+      double h = lattice(level, k0, k1);
+      std::vector<EgwTables::HystKey> keys;
+      for (int k = k0; k <= k1; k++) keys.push_back(key_at(sigma * std::exp(k * h)));
+      xc = hold_hysteresis(keys, comm, fail_with);
+      interp_error = EgwTables::lnmu_error_estimate(hyst, xc, len / sigma);
+      lnr0 = k0 * h, inv_hr = 1.0 / h;
+      if (LNMU_SAFETY * interp_error <= tol || level >= RCAP_MAX_LEVEL) break;
+    }
+  }
+  rcap_F = E_star * sigma * sigma;
+  tail = -xc * sigma;
+  reach = len;
+  fast = nullptr;
+}
+
 void EgwLaw::build_flat(double R_lo, double R_hi, double tol, double overlap_max,
                         MPI_Comm comm, const egw_options &o,
                         const std::function<void(const std::string &)> &fail_with)
@@ -504,13 +548,28 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                         hyst_dmax.empty() ? 0.0 : hyst_dmax[0], tol_cap,
                         tol_cap > built_tol ? " (TOL raised to the cap's least, 1e-3)" : "",
                         hyst_built);
-  if (kind == HYST_RCAP)
+  if (kind == HYST_RCAP && hyst.size() <= 1)
     extra = fmt::format(", R = {:.6g} (the types' one radius), flow pressure p_y = {:.6g} (from "
                         "{}), first yield delta_y = {:.6g} ({:.4g} sigma), the table reaches "
                         "{:.4g} sigma at rel_tol {:.2g}, built for it: {} (the others shared)",
                         rcap_R, flow_pressure,
-                        flow_keyword ? "yield_stress: 1.6 Y" : "flow_pressure", cap_c * rcap_R, cap_c * rcap_R / sigma,
-                        hyst_dmax.empty() ? 0.0 : hyst_dmax[0], tol_cap, hyst_built);
+                        flow_keyword ? "yield_stress: 1.6 Y" : "flow_pressure", cap_c * rcap_R,
+                        cap_c * rcap_R / sigma, hyst_dmax.empty() ? 0.0 : hyst_dmax[0], tol_cap,
+                        hyst_built);
+  if (kind == HYST_RCAP && hyst.size() > 1)
+    extra = fmt::format(", R in [{:.6g}, {:.6g}]: {} tables at nodes in ln R (spacing {:.4g}), "
+                        "estimated ln-R interpolation error {:.2g} of the turning-point "
+                        "force{}, flow pressure p_y = {:.6g} (from {}), first yield delta_y = "
+                        "{:.6g} R, the tables reach {:.4g} sigma at rel_tol {:.2g}, built for "
+                        "it: {} (the others shared)", rcap_R_lo, rcap_R, hyst.size(), 1.0 / inv_hr,
+                        interp_error,
+                        LNMU_SAFETY * interp_error > tol_cap
+                            ? fmt::format(" (ABOVE TOL/{:g}: the finest level {} was reached, "
+                                          "narrow the radius range with rmin/rmax)",
+                                          LNMU_SAFETY, (int) RCAP_MAX_LEVEL)
+                            : std::string(),
+                        flow_pressure, flow_keyword ? "yield_stress: 1.6 Y" : "flow_pressure",
+                        cap_c, hyst_dmax.empty() ? 0.0 : hyst_dmax[0], tol_cap, hyst_built);
   if (kind == FLAT)
     extra = fmt::format(", law {} (its modulus {}; forces x E*/{:.6g}), {} tables for R in "
                         "[{:.4g}, {:.4g}], measured ln-R interpolation error {:.2g} (at twice "
@@ -533,7 +592,7 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                      : std::string()) +
       (capped && (kind == HYST_CAP || kind == HYST_RCAP)
            ? fmt::format(" (capped at {:.4g} delta_y; overlap_max R is {:.4g} delta_y)",
-                         kind == HYST_CAP ? CAP_X_MAX : reach / (cap_c * rcap_R), cap_wanted)
+                         kind == HYST_CAP ? CAP_X_MAX : reach / (cap_c * rcap_R_ref), cap_wanted)
        : capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it cost more "
                               "than they bring)", HYST_X_MAX)
                 : std::string());

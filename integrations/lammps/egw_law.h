@@ -72,14 +72,27 @@ struct EgwLaw {
   double tol_cap = 0, built_tol = 0;    // the cap table's rel_tol, and the TOL asked for
   double cap_wanted = 0;           // overlap_max R in delta_y (the reach before the cap)
   // HYST_RCAP (a rough model with the cap): the cap's delta_y ~ R next to sigma, so no
-  // table normalised by sigma serves every R: one hysteresis table for the law's one
-  // equivalent radius rcap_R (monodisperse types), x = delta/sigma, built with R/sigma and
-  // p_y/E* (sigma = E* = 1): F = E* sigma^2 p(x); its reach overlap_max R, at most
-  // RCAP_X_MAX delta_y (or 30 sigma where that is farther, within egw's 1000 delta_y)
-  // (E-GW + cap to 20 delta_y at 1e-3: 3.5 s at sigma = delta_y/100, EP-GW 22 s at
-  // delta_y/10 on 2 threads, 2026-11-29: builds that grow fast with the reach)
+  // table normalised by sigma serves every R: hysteresis tables in x = delta/sigma, each
+  // built for one equivalent radius with R/sigma and p_y/E* (sigma = E* = 1): F = E*
+  // sigma^2 p(x). One table for a law of one radius rcap_R (monodisperse types); for a
+  // range of radii, tables at nodes on a lattice in ln(R/sigma) (k h, h = ln 2 / 2^m, as
+  // the ln-mu lattice: laws with overlapping ranges share nodes), a contact interpolating
+  // its two neighbours linearly in ln R with a state each (as HYST_MU), the level m
+  // refined until the estimated interpolation error (LNMU_SAFETY times) is within TOL.
+  // The reach: overlap_max R, at most RCAP_X_MAX delta_y of the smallest radius rcap_R_ref
+  // (or 30 sigma where that is farther, within egw's 1000 delta_y) (E-GW + cap
+  // to 20 delta_y at 1e-3: 3.5 s at sigma = delta_y/100, EP-GW 22 s at delta_y/10 on 2
+  // threads, 2026-11-29: builds that grow fast with the reach)
   static constexpr double RCAP_X_MAX = 20.0;
-  double rcap_R = 0, rcap_F = 0;   // the radius, E* sigma^2
+  static constexpr int RCAP_MAX_LEVEL = 5;
+  double rcap_R = 0, rcap_F = 0;   // the (largest) radius, E* sigma^2
+  double rcap_R_lo = 0, rcap_R_ref = 0;    // the smallest radius; the reach's delta_y radius
+  double lnr0 = 0, inv_hr = 0;     // the first node's ln(R/sigma), 1 / node spacing
+  inline int r_position(double R, double &t) const;
+  /* the two tables k, k + 1 (hyst) at x interpolated with weight w on k + 1, their states
+   * in cache (HYST_MU, HYST_RCAP over radii); *dmax the contact's delta_max [x] */
+  inline int eval_two(int k, double w, double x, double *dmax, double *cache, int want_energy,
+                      bool states_are_history, double &p, double &dp, double &u) const;
   EgwSubmodels::Params sub;        // damping, tangential, rolling, twisting, heat
   double damp = 0;                 // the damping model's factor (damping_factor)
   double kt = 0;                   // tangential k_t (mindlin NULL: 8 G*)
@@ -149,6 +162,9 @@ struct EgwLaw {
    * cut-off */
   double hold_hysteresis(const std::vector<EgwTables::HystKey> &keys, MPI_Comm comm,
                          const std::function<void(const std::string &)> &fail_with);
+  /* build() of a rough + cap law (HYST_RCAP): one table (R_lo = R_hi) or the ln-R nodes */
+  void build_rcap(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
+                  const std::function<void(const std::string &)> &fail);
   /* build() of a FLAT law: reads law_file (every rank), sets sigma to its length */
   void build_flat(double R_lo, double R_hi, double tol, double overlap_max, MPI_Comm comm,
                   const egw_options &o, const std::function<void(const std::string &)> &fail);
@@ -210,6 +226,15 @@ inline int EgwLaw::mu_position(double R, double &t) const
   return EGW_OK;
 }
 
+/* the position t of the contact's R in the ln-R nodes of a rough + cap law over radii
+ * (R_OTHER beyond them) */
+inline int EgwLaw::r_position(double R, double &t) const
+{
+  t = (std::log(R * inv_sigma) - lnr0) * inv_hr;
+  int n = (int) hyst.size();
+  return t >= 0.0 && t <= n - 1 ? EGW_OK : R_OTHER;
+}
+
 /* egw_hysteresis_eval_state at x with the state s. refill: s is a cache that must hold the
  * contact's history xm (delta_max/sigma, -inf for a new contact); one that does not
  * (dropped, or filled for another table, which egw reads as a new contact) is filled again
@@ -233,6 +258,27 @@ inline int egw_law_hyst_eval(egw_hysteresis h, double tag, double dmax, double x
     egw_hysteresis_eval_state(h, xm, s, &p, &dp);
     st = egw_hysteresis_eval_state(h, x, s, &p, &dp);
   }
+  return st;
+}
+
+inline int EgwLaw::eval_two(int k, double w, double x, double *dmax, double *cache,
+                            int want_energy, bool states_are_history, double &p, double &dp,
+                            double &u) const
+{
+  double p0, p1, d0, d1;
+  double *sa = cache, *sb = cache + EGW_HYSTERESIS_STATE_SIZE;
+  int st = egw_law_hyst_eval(hyst[k], hyst_tag[k], hyst_dmax[k], x, *dmax, sa, p0, d0,
+                             !states_are_history);
+  int st2 = egw_law_hyst_eval(hyst[k + 1], hyst_tag[k + 1], hyst_dmax[k + 1], x, *dmax, sb,
+                              p1, d1, !states_are_history);
+  if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
+  *dmax = sa[0];
+  double u0 = 0.0, u1 = 0.0;
+  if (want_energy) {
+    egw_hysteresis_energy(hyst[k], x, sa[0], &u0);
+    egw_hysteresis_energy(hyst[k + 1], x, sb[0], &u1);
+  }
+  p = p0 + w * (p1 - p0), dp = d0 + w * (d1 - d0), u = u0 + w * (u1 - u0);
   return st;
 }
 
@@ -308,8 +354,16 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       if (kind == HYST) {
         x = delta * inv_sigma, fF = sr * s15, fS = sr * s05, fU = sr * s25;
       } else if (kind == HYST_RCAP) {
-        if (!(std::fabs(R - rcap_R) <= 1e-9 * rcap_R)) return R_OTHER;
         x = delta * inv_sigma, fF = rcap_F, fS = rcap_F * inv_sigma, fU = rcap_F * sigma;
+        if (hyst.size() > 1) {    // tables at nodes in ln R: the contact's two neighbours
+          double t, p, dp, u;
+          if (r_position(R, t) != EGW_OK) return R_OTHER;
+          int k = std::min((int) hyst.size() - 2, (int) t);
+          st = eval_two(k, t - k, x, dmax, cache, want_energy, states_are_history, p, dp, u);
+          F = fF * p, S = fS * dp, U = fU * u;
+          break;
+        }
+        if (!(std::fabs(R - rcap_R) <= 1e-9 * rcap_R)) return R_OTHER;
       } else {
         double s = cap_c * R, sq = sr * std::sqrt(s);    // E* sqrt(R) delta_y^0.5
         x = delta / s, fF = sq * s, fS = sq, fU = sq * s * s;
@@ -361,23 +415,9 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
       int n = (int) hyst.size();
       int k = std::max(0, std::min(n - 2, (int) t));
-      double w = t - k;
-      double p0, p1, d0, d1;
-      double *sa = cache, *sb = cache + EGW_HYSTERESIS_STATE_SIZE;
-      st = egw_law_hyst_eval(hyst[k], hyst_tag[k], hyst_dmax[k], x, *dmax, sa, p0, d0,
-                             !states_are_history);
-      int st2 = egw_law_hyst_eval(hyst[k + 1], hyst_tag[k + 1], hyst_dmax[k + 1], x, *dmax, sb,
-                                  p1, d1, !states_are_history);
-      if (st == EGW_OK || st == EGW_OUT_OF_RANGE) st = st2 == EGW_OUT_OF_RANGE ? st : st2;
-      *dmax = sa[0];
-      double u0 = 0.0, u1 = 0.0;
-      if (want_energy) {
-        egw_hysteresis_energy(hyst[k], x, sa[0], &u0);
-        egw_hysteresis_energy(hyst[k + 1], x, sb[0], &u1);
-      }
-      F = sr * s15 * (p0 + w * (p1 - p0));
-      S = sr * s05 * (d0 + w * (d1 - d0));
-      U = sr * s25 * (u0 + w * (u1 - u0));
+      double p, dp, u;
+      st = eval_two(k, t - k, x, dmax, cache, want_energy, states_are_history, p, dp, u);
+      F = sr * s15 * p, S = sr * s05 * dp, U = sr * s25 * u;
       break;
     }
   }

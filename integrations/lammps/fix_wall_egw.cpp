@@ -394,18 +394,21 @@ void FixWallEGW::build_law(int t)
                  L.flow_pressure, L.flow_keyword, L.E_star);
   L.setup(model);
   double rhi = pair->type_radius_max(t), rlo = pair->type_radius_min(t);
-  if (L.kind == EgwLaw::HYST_RCAP && (!(rhi > 0) || rlo != rhi || wallstyle == REGION))
+  if (L.kind == EgwLaw::HYST_RCAP && (!(rhi > 0) || wallstyle == REGION))
     error->all(FLERR, "Fix wall/egw: type {}: flow_pressure with a rough surface (sigma = "
-                      "{:.6g}) needs one radius for the type ({}) and a {}: its table is built "
-                      "for one equivalent radius (the cap's first yield delta_y grows with R "
-                      "beside sigma); sigma 0 (smooth spheres with the cap) takes any", t,
-               L.sigma, rhi > 0 ? fmt::format("radii {:.6g} to {:.6g}", rlo, rhi)
-                                : std::string("no atoms and no fix pour give its radius"),
-               wallstyle == REGION ? "plane or zcylinder wall, not a region (several "
-                                     "curvatures)" : "plane or zcylinder wall");
+                      "{:.6g}) needs the type's radii ({}) and a {}: its tables are built "
+                      "for the equivalent radii of the type's atoms against the wall (the "
+                      "cap's first yield delta_y grows with R beside sigma); sigma 0 (smooth "
+                      "spheres with the cap) takes any wall", t, L.sigma,
+               rhi > 0 ? fmt::format("radii {:.6g} to {:.6g}", rlo, rhi)
+                       : std::string("no atoms and no fix pour give its radius"),
+               wallstyle == REGION ? "plane or zcylinder wall, not a region (its curvatures "
+                                     "give radii not known before the run)"
+                                   : "plane or zcylinder wall");
   if (!(rhi > 0)) rhi = rlo = 1.0 / std::max(L.inv_sigma, 1e-300);
   if (rlo > rhi || !(rlo > 0)) rlo = 0.5 * rhi;
-  if (rlo == rhi) rlo = rhi / 1.05;
+  // a rough + cap law of one radius is one table for it (egw_law.h, HYST_RCAP)
+  if (rlo == rhi && L.kind != EgwLaw::HYST_RCAP) rlo = rhi / 1.05;
   if (wallstyle == ZCYLINDER) {    // R_eff grows with R_i (concave wall)
     double a = effective_radius(rlo, cyl_rc), b = effective_radius(rhi, cyl_rc);
     if (a > 0 && b > 0) rlo = a, rhi = b;
@@ -414,8 +417,7 @@ void FixWallEGW::build_law(int t)
     rlo = std::min(rlo, need_rlo[t]), rhi = std::max(rhi, need_rhi[t]);
   bool covered = built_rhi[t] > 0 && rlo >= built_rlo[t] && rhi <= built_rhi[t] &&
       law[t].kind == L.kind && law[t].E_star == L.E_star && law[t].sigma == L.sigma &&
-      law[t].flow_pressure == L.flow_pressure && built_model == model &&
-      (L.kind != EgwLaw::HYST_RCAP || rhi == built_rhi[t]);
+      law[t].flow_pressure == L.flow_pressure && built_model == model;
   if (covered) return;
   law[t].release();
   law[t] = L;
@@ -562,8 +564,9 @@ void FixWallEGW::wall_contact(int i, EgwLaw &L, double delta, double R, const do
   if (st == EgwLaw::R_OTHER)
     error->one(FLERR, "Fix wall/egw: contact with R = {} (R_i = {}, the wall's radius of "
                       "curvature {}) but its rough + cap law (flow_pressure with sigma > 0) "
-                      "was built for R = {} only: one radius per type, and a wall of one "
-                      "curvature", R, atom->radius[i], rc, L.rcap_R);
+                      "was built for R in [{}, {}] only: give the types' radius range with "
+                      "pair_style egw ... rmin/rmax", R, atom->radius[i], rc, L.rcap_R_lo,
+               L.rcap_R);
   if (st == EGW_OUT_OF_RANGE && !warned_range) {
     warned_range = true;
     error->warning(FLERR, "Fix wall/egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the "

@@ -240,21 +240,14 @@ void PairEGW::init_style()
                    i, j, L.kind == EgwLaw::FLAT ? "a law's tables"
                        : L.kind == EgwLaw::HYST_RCAP ? "a rough surface with flow_pressure"
                                                      : "mu from summit data");
-      if (L.kind == EgwLaw::HYST_RCAP && (rlo_i != rhi_i || rlo_j != rhi_j))
-        error->all(FLERR, "Pair egw: types {} {}: flow_pressure with a rough surface (sigma = "
-                          "{:.6g}) needs one radius per type (type {} has radii {:.6g} to "
-                          "{:.6g}{}): its table is built for one equivalent radius, the cap's "
-                          "first yield delta_y growing with R beside sigma; give each radius "
-                          "its own type, or sigma 0 (smooth spheres with the cap take any "
-                          "radii)", i, j, L.sigma, i, rlo_i, rhi_i,
-                   i == j ? std::string()
-                          : fmt::format(", type {} {:.6g} to {:.6g}", j, rlo_j, rhi_j));
       if (!(R_hi > 0)) R_hi = R_lo = 1.0 / std::max(L.inv_sigma, 1e-300);
       if (R_lo > R_hi) R_lo = R_hi;
-      if (R_lo == R_hi) R_lo = R_hi / 1.05;
+      // a rough + cap law of one radius (monodisperse types) is one table for it; every
+      // other law of one radius gets a margin (tables over a range of mu or R)
+      bool one_radius = L.kind == EgwLaw::HYST_RCAP && rlo_i == rhi_i && rlo_j == rhi_j;
+      if (R_lo == R_hi && !one_radius) R_lo = R_hi / 1.05;
       bool covered = built_rhi[i][j] > 0 &&
-          (L.kind == EgwLaw::HYST_RCAP ? R_hi == built_rhi[i][j]
-           : !needs_r || (R_lo >= built_rlo[i][j] && R_hi <= built_rhi[i][j]));
+          (!needs_r || (R_lo >= built_rlo[i][j] && R_hi <= built_rhi[i][j]));
       if (!covered) build_tables(i, j, R_lo, R_hi);
       // the contacts' reach from the energy the tail holds (cheap: every run)
       double tail_old = L.tail;
@@ -398,8 +391,9 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
                R, L.mu_at(R), L.mu_lo, L.mu_hi);
   if (st == EgwLaw::R_OTHER)
     error->one(FLERR, "Pair egw: contact with R = {} but its rough + cap law (flow_pressure "
-                      "with sigma > 0) was built for R = {} only (atoms of another radius "
-                      "added after the run's set-up?): one radius per type", R, L.rcap_R);
+                      "with sigma > 0) was built for R in [{}, {}] only (atoms of another "
+                      "radius added after the run's set-up?): give the types' radius range "
+                      "with pair_style egw ... rmin/rmax", R, L.rcap_R_lo, L.rcap_R);
   if (st == EGW_OUT_OF_RANGE && !warned_range) {
     warned_range = true;
     error->warning(FLERR, "Pair egw: overlap {:.6g} = {:.3g} R (R = {:.6g}) beyond the tables' "

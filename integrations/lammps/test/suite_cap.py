@@ -313,8 +313,7 @@ def test_rough_cap_pair_restitution():
     egw_restitution of the same contact (the rough solver with the cap at rel_tol 1e-4, no
     table) within 1.5e-3: the table's 1e-3 force error gives e to ~1.25e-3 (as the smooth
     cap's, test_cap_pair_restitution), the reference's 1e-4 adds ~1e-4. The same run on 2
-    ranks gives the same e (1e-12). A type of two radii stops the run's set-up with an
-    ERROR naming them."""
+    ranks gives the same e (1e-12). (Types of several radii: test_rough_cap_polydisperse.)"""
     es, refs, out, dy = rcap_run(None, R_STAR, M_STAR)
     if es is None:
         return False, "pair: " + " ".join(out)
@@ -325,14 +324,114 @@ def test_rough_cap_pair_restitution():
     es2, _, out2, _ = rcap_run(None, R_STAR, M_STAR, np=2)
     d2 = max(abs(a - b) for a, b in zip(es, es2)) if es2 is not None else float("inf")
     ok = ok and d2 < 1e-12
-    # two radii in one type: refused at set-up, naming them
-    rc3, out3 = lmp(rcap_deck("rcap_two_radii.in", [
-        "create_atoms 1 single -0.002 0 0", "create_atoms 1 single 0.002 0 0",
-        "set atom 1 diameter 0.002", "set atom 2 diameter 0.0015"], []))
-    refused = rc3 != 0 and "needs one radius per type" in out3 and "0.00075" in out3
-    return ok and refused, (f"pair: {rows}; max |e - e_ref| = {max(dev):.1e} (<= 1.5e-3); "
-                            f"2 ranks: max |de| = {d2:.1e} (< 1e-12); two radii refused: "
-                            f"{refused}")
+    return ok, (f"pair: {rows}; max |e - e_ref| = {max(dev):.1e} (<= 1.5e-3); "
+                f"2 ranks: max |de| = {d2:.1e} (< 1e-12)")
+
+
+# the polydisperse type: its radii (m); the head-on pairs meet 1 mm against 0.8 mm beads
+POLY_RADII = [1e-3, 0.8e-3, 0.7e-3]
+
+
+def rcap_poly_deck(coeff, style, impacts, dt, nrun, wall):
+    """One type of glass beads of POLY_RADII (a lone 0.7 mm bead far off widens the type's
+    range): wall None, impacts (r1, r2, v) head-on in x, else (r, v) dropped onto a plane
+    fix wall/egw. Prints "RESULT" with each impact's e. Its path."""
+    lines = ["units si", "atom_style sphere", "atom_modify map array", "boundary f f f",
+             "comm_modify vel yes",
+             f"region box block -0.01 0.01 -0.004 {0.004 * len(impacts) + 0.012} -0.004 0.01",
+             "create_box 1 box"]
+    t0, sets, ids, natoms = 20 * dt, [], [], 0
+    for k, imp in enumerate(impacts):
+        y = 0.004 * k
+        if wall is None:
+            r1, r2, v = imp
+            # each bead's speed from momentum zero (masses ~ r^3), touching after t0
+            m1, m2 = r1 ** 3, r2 ** 3
+            v1, v2 = v * m2 / (m1 + m2), -v * m1 / (m1 + m2)
+            x1, x2 = -(r1 + v1 * t0), r2 - v2 * t0
+            n = natoms + 1
+            natoms += 2
+            lines += [f"create_atoms 1 single {x1!r} {y!r} 0",
+                      f"create_atoms 1 single {x2!r} {y!r} 0"]
+            sets += [f"set atom {n} diameter {2 * r1!r}", f"set atom {n + 1} diameter {2 * r2!r}",
+                     f"set atom {n} vx {v1!r}", f"set atom {n + 1} vx {v2!r}"]
+            ids.append((n, n + 1, v))
+        else:
+            r, v = imp
+            n = natoms + 1
+            natoms += 1
+            lines += [f"create_atoms 1 single 0 {y!r} {r + v * t0!r}"]
+            sets += [f"set atom {n} diameter {2 * r!r}", f"set atom {n} vz {-v!r}"]
+            ids.append((n, None, v))
+    n = natoms + 1
+    lines += [f"create_atoms 1 single 0 {0.004 * len(impacts) + 0.006!r} 0.005"]
+    # diameters before the density (the masses follow from it)
+    lines += ["velocity all set 0 0 0", f"set atom {n} diameter {2 * POLY_RADII[-1]!r}"] + \
+        sets + ["set type 1 density 2500"]
+    lines += [f"pair_style {style}", f"pair_coeff * * {coeff}",
+              "neighbor 1e-5 bin", "neigh_modify every 1 delay 0 check yes",
+              "fix 1 all nve/sphere", f"timestep {dt!r}"]
+    if wall is not None:
+        lines += [f"fix w all {wall} zplane 0 NULL"]
+    lines += ["thermo_style custom step ke", f"thermo {nrun}", f"run {nrun}"]
+    if wall is None:
+        es = " ".join(f"$((vx[{b}]-vx[{a}])/{v!r}:%.15g)" for a, b, v in ids)
+    else:
+        es = " ".join(f"$(vz[{a}]/{v!r}:%.15g)" for a, _, v in ids)
+    lines += [f'print "RESULT {es}"']
+    path = os.path.join(TMP, "rcap_poly_wall.in" if wall else "rcap_poly_pair.in")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def test_rough_cap_polydisperse():
+    """Rough glass beads with the cap (E-GW, body sigma 2 nm, mu 4, flow_pressure p_y =
+    0.01 E*) in ONE type of three radii (1, 0.8, 0.7 mm): the law's tables lie at nodes in
+    ln R over the type's equivalent radii (0.35 to 0.5 mm for pairs, 0.7 to 1 mm against the
+    wall), a contact interpolating its two neighbours (egw_law.h, HYST_RCAP). A 1 mm bead
+    meets a 0.8 mm one head-on (R = 0.444 mm, between nodes) and 1 and 0.8 mm beads drop
+    onto a plane fix wall/egw of their material at 2 and 5 v_y of the contact: e within
+    2.5e-3 of egw_restitution of each contact (its own R and m*, the rough solver with the
+    cap at rel_tol 1e-4, no table): the tables' 1e-3 (e to ~1.25e-3, as the one-radius
+    test) plus the ln-R interpolation, estimated within TOL/1.25 of the turning-point force
+    at build (another ~1e-3 of e at most). The log names the nodes and the estimate."""
+    p_y = 0.01 * E_STAR
+    s_body = 2e-9
+    rho = RHO
+    mass = lambda r: rho * 4 / 3 * math.pi * r ** 3
+    cases, walls = [], []
+    r1, r2 = POLY_RADII[0], POLY_RADII[1]
+    R, m = r1 * r2 / (r1 + r2), mass(r1) * mass(r2) / (mass(r1) + mass(r2))
+    vy, dy = cap_units(p_y, R, m)
+    for x in RCAP_RATIOS:
+        cases.append((R, m, math.sqrt(2) * s_body, x * vy, (r1, r2, x * vy)))
+    for r in (r1, r2):
+        vy, dy = cap_units(p_y, r, mass(r))
+        for x in RCAP_RATIOS:
+            walls.append((r, mass(r), s_body, x * vy, (r, x * vy)))
+    refs = [rcap_reference(sg, 4.0, p_y, R_, m_, v) for R_, m_, sg, v, _ in cases + walls]
+    smooth = [cap_reference(p_y, R_, m_, v) for R_, m_, sg, v, _ in cases + walls]
+    dt = 0.5 * min(ref[3] for ref in smooth)
+    nrun = int((20 * dt + 2.0 * max(ref[2] for ref in smooth)) / dt)
+    # overlap_max: 6 delta_y of the largest contact (the deepest overlaps are below 5)
+    style = f"egw E-GW 1e-3 overlap_max {6 * (math.pi * p_y / (2 * E_STAR)) ** 2!r}"
+    coeff = f"E {E} nu {NU} sigma {s_body!r} mu 4 flow_pressure {p_y!r}"
+    rc, out = lmp(rcap_poly_deck(coeff, style, [c[4] for c in cases], dt, nrun, None))
+    wfix = f"wall/egw E-GW 1e-3 E {E} nu {NU} sigma 0 mu 4 overlap_max " \
+        f"{6 * (math.pi * p_y / (2 * E_STAR)) ** 2!r}"
+    rcw, outw = lmp(rcap_poly_deck(coeff, style, [c[4] for c in walls], dt, nrun, wfix))
+    if rc != 0 or rcw != 0:
+        return False, " ".join(l for l in (out + outw).splitlines() if "ERROR" in l)
+    es = result(out) + result(outw)
+    dev = [abs(e - ref[0]) for e, ref in zip(es, refs)]
+    rows = ", ".join(f"{c[4]}: {e:.5f} vs {ref[0]:.5f}" for c, e, ref in zip(cases + walls, es,
+                                                                            refs))
+    nodes = re.findall(r"R in \[[^]]*\]: (\d+) tables at nodes in ln R", out + outw)
+    ok = (max(dev) <= 2.5e-3 and "WARNING" not in out + outw and len(nodes) >= 2
+          and all(int(n) >= 3 for n in nodes))
+    return ok, (f"{rows}; max |e - e_ref| = {max(dev):.1e} (<= 2.5e-3); ln-R nodes (pair, "
+                f"wall): {nodes}")
 
 
 def test_rough_cap_wall_restitution():
