@@ -31,6 +31,22 @@ def cap_reference(p_y, r, m, v):
     return e, dm, duration, dt
 
 
+def impact_run(style, pair_coeff, dt, nrun, wall, ids):
+    """The deck lines after the atoms: the pair style, the wall fix (wall not None: a
+    zplane at z = 0), the run, and "RESULT" with each impact's e from ids (a, b, v): the
+    relative speed of atoms a, b in x after the run over the approach speed v, or (b None)
+    atom a's vz over v."""
+    lines = [f"pair_style {style}", f"pair_coeff * * {pair_coeff}",
+             "neighbor 1e-5 bin", "neigh_modify every 1 delay 0 check yes",
+             "fix 1 all nve/sphere", f"timestep {dt!r}"]
+    if wall is not None:
+        lines += [f"fix w all {wall} zplane 0 NULL"]
+    lines += ["thermo_style custom step ke", f"thermo {nrun}", f"run {nrun}"]
+    es = " ".join(f"$((vx[{b}]-vx[{a}])/{v!r}:%.15g)" if b is not None else
+                  f"$(vz[{a}]/{v!r}:%.15g)" for a, b, v in ids)
+    return lines + [f'print "RESULT {es}"']
+
+
 def cap_deck(pair_coeff, wall, speeds, dt, nrun, style="egw Hertz 1e-3"):
     """A deck of glass beads (R = 1 mm) at rest 4 mm apart in y: wall None, pairs meeting
     head-on in x at approach speed speeds[k] (atoms 2k+1, 2k+2), both touching after ~20
@@ -56,18 +72,9 @@ def cap_deck(pair_coeff, wall, speeds, dt, nrun, style="egw Hertz 1e-3"):
             lines += [f"set atom {2 * k + 1} vx {0.5 * v!r}", f"set atom {2 * k + 2} vx {-0.5 * v!r}"]
         else:
             lines += [f"set atom {k + 1} vz {-v!r}"]
-    lines += [f"pair_style {style}", f"pair_coeff * * {pair_coeff}",
-              "neighbor 1e-5 bin", "neigh_modify every 1 delay 0 check yes",
-              "fix 1 all nve/sphere", f"timestep {dt!r}"]
-    if wall is not None:
-        lines += [f"fix w all {wall} zplane 0 NULL"]
-    lines += ["thermo_style custom step ke", f"thermo {nrun}", f"run {nrun}"]
-    if wall is None:
-        es = " ".join(f"$((vx[{2 * k + 2}]-vx[{2 * k + 1}])/{v!r}:%.15g)"
-                      for k, v in enumerate(speeds))
-    else:
-        es = " ".join(f"$(vz[{k + 1}]/{v!r}:%.15g)" for k, v in enumerate(speeds))
-    lines += [f'print "RESULT {es}"']
+    ids = [(2 * k + 1, 2 * k + 2, v) if wall is None else (k + 1, None, v)
+           for k, v in enumerate(speeds)]
+    lines += impact_run(style, pair_coeff, dt, nrun, wall, ids)
     path = os.path.join(TMP, "cap_wall.in" if wall else "cap_pair.in")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -368,17 +375,7 @@ def rcap_poly_deck(coeff, style, impacts, dt, nrun, wall):
     # diameters before the density (the masses follow from it)
     lines += ["velocity all set 0 0 0", f"set atom {n} diameter {2 * POLY_RADII[-1]!r}"] + \
         sets + ["set type 1 density 2500"]
-    lines += [f"pair_style {style}", f"pair_coeff * * {coeff}",
-              "neighbor 1e-5 bin", "neigh_modify every 1 delay 0 check yes",
-              "fix 1 all nve/sphere", f"timestep {dt!r}"]
-    if wall is not None:
-        lines += [f"fix w all {wall} zplane 0 NULL"]
-    lines += ["thermo_style custom step ke", f"thermo {nrun}", f"run {nrun}"]
-    if wall is None:
-        es = " ".join(f"$((vx[{b}]-vx[{a}])/{v!r}:%.15g)" for a, b, v in ids)
-    else:
-        es = " ".join(f"$(vz[{a}]/{v!r}:%.15g)" for a, _, v in ids)
-    lines += [f'print "RESULT {es}"']
+    lines += impact_run(style, coeff, dt, nrun, wall, ids)
     path = os.path.join(TMP, "rcap_poly_wall.in" if wall else "rcap_poly_pair.in")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
