@@ -227,12 +227,15 @@ inline int EgwLaw::mu_position(double R, double &t) const
 }
 
 /* the position t of the contact's R in the ln-R nodes of a rough + cap law over radii
- * (R_OTHER beyond them) */
+ * (R_OTHER beyond them; an end node's R, e.g. R/sigma = 2 on the lattice, within
+ * rounding) */
 inline int EgwLaw::r_position(double R, double &t) const
 {
   t = (std::log(R * inv_sigma) - lnr0) * inv_hr;
   int n = (int) hyst.size();
-  return t >= 0.0 && t <= n - 1 ? EGW_OK : R_OTHER;
+  if (!(t >= -1e-9 && t <= n - 1 + 1e-9)) return R_OTHER;
+  t = std::min(std::max(t, 0.0), n - 1.0);
+  return EGW_OK;
 }
 
 /* egw_hysteresis_eval_state at x with the state s. refill: s is a cache that must hold the
