@@ -394,21 +394,17 @@ void FixWallEGW::build_law(int t)
                  L.flow_pressure, L.flow_keyword, L.E_star);
   L.setup(model);
   double rhi = pair->type_radius_max(t), rlo = pair->type_radius_min(t);
-  if (L.kind == EgwLaw::HYST_RCAP && (!(rhi > 0) || wallstyle == REGION))
+  if (L.kind == EgwLaw::HYST_RCAP && !(rhi > 0))
     error->all(FLERR, "Fix wall/egw: type {}: flow_pressure with a rough surface (sigma = "
-                      "{:.6g}) needs the type's radii ({}) and a {}: its tables are built "
-                      "for the equivalent radii of the type's atoms against the wall (the "
-                      "cap's first yield delta_y grows with R beside sigma); sigma 0 (smooth "
-                      "spheres with the cap) takes any wall", t, L.sigma,
-               rhi > 0 ? fmt::format("radii {:.6g} to {:.6g}", rlo, rhi)
-                       : std::string("no atoms and no fix pour give its radius"),
-               wallstyle == REGION ? "plane or zcylinder wall, not a region (its curvatures "
-                                     "give radii not known before the run)"
-                                   : "plane or zcylinder wall");
+                      "{:.6g}) needs the type's radii (no atoms and no fix pour give them): "
+                      "its tables are built for the equivalent radii of the type's atoms "
+                      "against the wall (the cap's first yield delta_y grows with R beside "
+                      "sigma); add 'rmin R rmax R' to pair_style egw", t, L.sigma);
   if (!(rhi > 0)) rhi = rlo = 1.0 / std::max(L.inv_sigma, 1e-300);
   if (rlo > rhi || !(rlo > 0)) rlo = 0.5 * rhi;
-  // a rough + cap law of one radius is one table for it (egw_law.h, HYST_RCAP)
-  if (rlo == rhi && L.kind != EgwLaw::HYST_RCAP) rlo = rhi / 1.05;
+  // a rough + cap law of one radius is one table for it (egw_law.h, HYST_RCAP), but a
+  // region's curvatures give other radii
+  if (rlo == rhi && (L.kind != EgwLaw::HYST_RCAP || wallstyle == REGION)) rlo = rhi / 1.05;
   if (wallstyle == ZCYLINDER) {    // R_eff grows with R_i (concave wall)
     double a = effective_radius(rlo, cyl_rc), b = effective_radius(rhi, cyl_rc);
     if (a > 0 && b > 0) rlo = a, rhi = b;
@@ -483,9 +479,9 @@ void FixWallEGW::setup(int vflag)
   post_force(vflag);
 }
 
-/* Curved region walls with summit data: a contact's mu follows its R_eff, which the
- * region's curvature moves away from R_i, so the tables must cover the R_eff the atoms can
- * meet.  Collective: at set-up and at every reneighboring (all ranks at the same step)
+/* Curved region walls with summit data or a rough surface with the flow-pressure cap: a
+ * contact's mu (or its rough + cap table) follows its R_eff, which the region's curvature
+ * moves away from R_i, so the tables must cover the R_eff the atoms can meet.  Collective: at set-up and at every reneighboring (all ranks at the same step)
  * each atom's region contacts within its reach + the neighbor skin (what it can touch
  * before the next reneighboring) are found, the ranges reduced over ranks, and a type's
  * tables rebuilt (5 % wider) when they do not cover its range.  before_build (init(),
@@ -497,9 +493,12 @@ void FixWallEGW::region_cover_radii(bool before_build)
   for (int t = 1; t <= n; t++) {
     if (before_build) {
       const EgwCoeff *c = pair->type_coeff(t);
-      any = any || wall.mu_mode == 2 || (c && c->mu_mode == 2);
+      // summit data (mu follows R) or a flow pressure (rough + cap tables follow R)
+      any = any || wall.mu_mode == 2 || (c && c->mu_mode == 2) || wall.flow_pressure > 0 ||
+          (c && c->flow_pressure > 0);
     } else
-      any = any || law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU;
+      any = any || law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU ||
+          law[t].kind == EgwLaw::HYST_RCAP;
   }
   if (!any) return;
   std::vector<double> lo(n + 1, HUGE_VAL), hi(n + 1, 0.0);
@@ -523,7 +522,8 @@ void FixWallEGW::region_cover_radii(bool before_build)
       if (ghi[t] > 0) need_rlo[t] = glo[t] / 1.05, need_rhi[t] = ghi[t] * 1.05;
       continue;
     }
-    if (!(ghi[t] > 0) || !(law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU))
+    if (!(ghi[t] > 0) || !(law[t].kind == EgwLaw::UNIVERSAL || law[t].kind == EgwLaw::HYST_MU ||
+                           law[t].kind == EgwLaw::HYST_RCAP))
       continue;
     if (glo[t] >= built_rlo[t] && ghi[t] <= built_rhi[t]) continue;
     need_rlo[t] = std::min(glo[t], built_rlo[t]) / 1.05;
