@@ -72,6 +72,14 @@ module egw_rough_sphere
    !> loading and unloading at 0.99 delta_max); from 1e-5 to 1e-6 by 5.5 .. 7.1, the
    !> 1e-6 solves being off by several 1e-6 under smaller estimates.
    real(dp), parameter :: wide_sigmas(2) = [1.0e-5_dp, 1.0e-4_dp]
+   !> sigma/delta_y at or below which a converged solve of small_sigma_limit's models is
+   !> checked against the asymptotic route (small_sigma_check_loading/_unload): there the
+   !> route's correction is <= 5 % of P(sigma_1) - P_cap, and discrete solves were found
+   !> off by up to 800 times their estimates; at 1e-6 the route's own estimate is often
+   !> above 5e-7, so a check there would refuse solves the guided route answers.
+   real(dp), parameter :: small_sigma_check_limit = 1.0e-7_dp
+   !> the unloading's force floor of the route's estimates, relative to P(delta_max)
+   real(dp), parameter :: unload_floor = 1.0e-6_dp
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
 
    !> Loading history of one contact: the loading solve at delta_max and its separation
@@ -144,7 +152,9 @@ contains
    !> of about n_radial nodes. Fails with egw_not_converged rather than return a doubtful
    !> answer. E-GW (EP-GW at psi = 0) with the cap at sigma/delta_y <= 1e-6 whose
    !> discrete solve does not converge: the asymptotic route (small_sigma_loading,
-   !> doc/theory.md §12), if its estimate meets rel_tol.
+   !> doc/theory.md §12), if its estimate meets rel_tol; at sigma/delta_y <= 1e-7 a
+   !> converged solve of those models is checked against that route
+   !> (small_sigma_check_loading).
    subroutine solve_contact(params, options, delta, result, error)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
@@ -189,16 +199,18 @@ contains
          return
       end if
       call solve_rough(params, options, prob, sol, result, error)
-      if (allocated(error)) call small_sigma_loading(params, options, delta, prob, result, &
-         & error)
+      if (allocated(error)) then
+         call small_sigma_loading(params, options, delta, prob, result, error)
+      else
+         call small_sigma_check_loading(params, options, delta, prob, result, error)
+      end if
    end subroutine solve_contact
 
    !> Loading of an extended model with elastic summits (asymptotic_applies) with the cap
    !> at sigma/delta_y <= small_sigma_limit whose discrete solve did not converge
-   !> (doc/theory.md §12 "Small sigma: the asymptotic route"): the smooth cap model
-   !> (cap_load on 100/200 rings, its sigma -> 0 limit) plus the rough layer's
-   !> sigma**(2/3) correction from the same model's solves at wide_sigmas
-   !> (asymptotic_answer). error is kept when the route does not apply or fails.
+   !> (doc/theory.md §12 "Small sigma: the asymptotic route"): the route's answer
+   !> (asymptotic_loading) if its estimate meets rel_tol/2. error is kept, its message
+   !> naming the route's estimate, when the route does not apply, fails or misses rel_tol.
    subroutine small_sigma_loading(params, options, delta, prob, result, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
@@ -206,6 +218,87 @@ contains
       type(scaled_problem), intent(in) :: prob
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(inout) :: error
+      type(solve_result) :: asym
+      real(dp) :: delta_y
+      logical :: ok
+      if (error%stat /= egw_not_converged) return
+      if (.not. asymptotic_applies(params, options, delta, prob%extended .and. &
+         & allocated(prob%cap), delta_y)) return
+      call asymptotic_loading(params, options, delta, delta_y, asym, ok)
+      if (ok) call take_asymptotic(options, asym, result, error)
+   end subroutine small_sigma_loading
+
+   !> Unloading after a capped loading of an extended model at sigma/delta_y <=
+   !> small_sigma_limit whose discrete solve did not converge: as small_sigma_loading,
+   !> with asymptotic_unloading.
+   subroutine small_sigma_unload(history, delta, result, error)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(inout) :: error
+      type(solve_result) :: asym
+      real(dp) :: delta_y
+      logical :: ok
+      if (error%stat /= egw_not_converged) return
+      if (.not. asymptotic_applies(history%params, history%options, history%delta_max, &
+         & history%closest%extended .and. history%closest%capped, delta_y)) return
+      call asymptotic_unloading(history, delta, delta_y, asym, ok)
+      if (ok) call take_asymptotic(history%options, asym, result, error)
+   end subroutine small_sigma_unload
+
+   !> A converged discrete loading solve of an extended model with elastic summits with
+   !> the cap at sigma/delta_y <= small_sigma_check_limit, checked against the asymptotic
+   !> route (doc/theory.md §12 "Small sigma: the check"): where the two differ by more
+   !> than their estimates together, the discrete solve is wrong (its levels agreed by
+   !> accident: 1.28e-5 off under an estimate of 1.5e-8 at 1e-10, 10 delta_y, measured):
+   !> the route's answer replaces it if it meets rel_tol/2, else egw_not_converged.
+   !> Where the route itself fails the discrete answer stands.
+   subroutine small_sigma_check_loading(params, options, delta, prob, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      type(scaled_problem), intent(in) :: prob
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(inout) :: error
+      type(solve_result) :: asym
+      real(dp) :: delta_y
+      logical :: ok
+      if (.not. asymptotic_applies(params, options, delta, prob%extended .and. &
+         & allocated(prob%cap), delta_y)) return
+      if (.not. params%sigma <= small_sigma_check_limit*delta_y) return
+      call asymptotic_loading(params, options, delta, delta_y, asym, ok)
+      if (ok) call check_against_asymptotic(options, "delta", delta, asym, 0.0_dp, result, &
+         & error)
+   end subroutine small_sigma_check_loading
+
+   !> A converged discrete unloading solve after a capped loading at sigma/delta_y <=
+   !> small_sigma_check_limit: as small_sigma_check_loading, with asymptotic_unloading.
+   subroutine small_sigma_check_unload(history, delta, result, error)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(inout) :: error
+      type(solve_result) :: asym
+      real(dp) :: delta_y
+      logical :: ok
+      if (.not. asymptotic_applies(history%params, history%options, history%delta_max, &
+         & history%closest%extended .and. history%closest%capped, delta_y)) return
+      if (.not. history%params%sigma <= small_sigma_check_limit*delta_y) return
+      call asymptotic_unloading(history, delta, delta_y, asym, ok)
+      if (ok) call check_against_asymptotic(history%options, "delta", delta, asym, &
+         & unload_floor*history%loading%force, result, error)
+   end subroutine small_sigma_check_unload
+
+   !> The asymptotic route's loading answer at delta (doc/theory.md §12): the smooth cap
+   !> model (cap_load on 100/200 rings, its sigma -> 0 limit) plus the rough layer's
+   !> sigma**(2/3) correction from the same model's solves at wide_sigmas
+   !> (asymptotic_result). ok false when one of those solves fails.
+   subroutine asymptotic_loading(params, options, delta, delta_y, asym, ok)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, delta_y
+      type(solve_result), intent(out) :: asym
+      logical, intent(out) :: ok
       type(contact_params) :: wider
       type(scaled_problem) :: wide_prob
       type(discrete_solution) :: sol
@@ -213,10 +306,8 @@ contains
       type(cap_result) :: cap
       type(solve_result) :: wide(2)
       type(egw_error), allocatable :: wide_error
-      real(dp) :: delta_y
       integer :: k
-      if (.not. asymptotic_applies(params, options, delta, prob%extended .and. &
-         & allocated(prob%cap), error, delta_y)) return
+      ok = .false.
       do k = 1, 2
          wider = params
          wider%sigma = wide_sigmas(k)*delta_y
@@ -227,29 +318,26 @@ contains
       call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
          & cap_options(n_rings=100, n_levels=2), history, cap, wide_error, "delta")
       if (allocated(wide_error)) return
-      call asymptotic_answer(params, options, cap, wide, 0.0_dp, result, error)
-   end subroutine small_sigma_loading
+      call asymptotic_result(params, cap, wide, 0.0_dp, asym)
+      ok = .true.
+   end subroutine asymptotic_loading
 
-   !> Unloading after a capped loading of an extended model at sigma/delta_y <=
-   !> small_sigma_limit whose discrete solve did not converge: as small_sigma_loading,
-   !> with the smooth cap's unloading from delta_max (cap_unload) and the rough model's
-   !> histories and unloading solves at wide_sigmas. error is kept when the route does not
-   !> apply or fails.
-   subroutine small_sigma_unload(history, delta, result, error)
+   !> The asymptotic route's unloading answer at delta after history: as
+   !> asymptotic_loading, with the smooth cap's unloading from delta_max (cap_unload) and
+   !> the rough model's histories and unloading solves at wide_sigmas.
+   subroutine asymptotic_unloading(history, delta, delta_y, asym, ok)
       type(loading_history), intent(in) :: history
-      real(dp), intent(in) :: delta
-      type(solve_result), intent(inout) :: result
-      type(egw_error), allocatable, intent(inout) :: error
+      real(dp), intent(in) :: delta, delta_y
+      type(solve_result), intent(out) :: asym
+      logical, intent(out) :: ok
       type(contact_params) :: wider
       type(loading_history) :: wide_history
       type(cap_history) :: cap_hist
       type(cap_result) :: cap
       type(solve_result) :: wide(2), res
       type(egw_error), allocatable :: wide_error
-      real(dp) :: delta_y
       integer :: k
-      if (.not. asymptotic_applies(history%params, history%options, history%delta_max, &
-         & history%closest%extended .and. history%closest%capped, error, delta_y)) return
+      ok = .false.
       do k = 1, 2
          wider = history%params
          wider%sigma = wide_sigmas(k)*delta_y
@@ -265,31 +353,30 @@ contains
       if (allocated(wide_error)) return
       call cap_unload(cap_hist, delta, cap, wide_error)
       if (allocated(wide_error)) return
-      call asymptotic_answer(history%params, history%options, cap, wide, &
-         & 1.0e-6_dp*history%loading%force, result, error)
-   end subroutine small_sigma_unload
+      call asymptotic_result(history%params, cap, wide, unload_floor* &
+         & history%loading%force, asym)
+      ok = .true.
+   end subroutine asymptotic_unloading
 
-   !> Whether the asymptotic route may answer a failed solve (error not converged, an
-   !> extended model with the cap that acted, beyond first yield at delta, sigma/delta_y
-   !> <= small_sigma_limit, no fixed mesh); delta_y of params. Elastic summits only
-   !> (E-GW, EP-GW at psi = 0), whose layer's compliance is the sigma**(2/3) law: plastic
-   !> summits (EP-GW, psi 1) carry the deep pressure like F_1, a sigma**(1/2) law, and their
-   !> differences from the smooth cap fell by 5.3, then 3.7 from 1e-4 to 1e-6 delta_y (3
-   !> delta_y), where a 2/3 law scaled from 1e-5 delta_y to 1e-8 would be off by ~1e-6
-   !> under an estimate of ~1e-7 (the two corrections' disagreement does not show an
-   !> exponent error that far down).
-   logical function asymptotic_applies(params, options, delta, capped, error, delta_y) &
+   !> Whether the asymptotic route may answer or check a solve (an extended model with the
+   !> cap that acted, beyond first yield at delta, sigma/delta_y <= small_sigma_limit, no
+   !> fixed mesh); delta_y of params. Elastic summits only (E-GW, EP-GW at psi = 0), whose
+   !> layer's compliance is the sigma**(2/3) law: plastic summits (EP-GW, psi 1) carry the
+   !> deep pressure like F_1, a sigma**(1/2) law, and their differences from the smooth cap
+   !> fell by 5.3, then 3.7 from 1e-4 to 1e-6 delta_y (3 delta_y), where a 2/3 law scaled
+   !> from 1e-5 delta_y to 1e-8 would be off by ~1e-6 under an estimate of ~1e-7 (the two
+   !> corrections' disagreement does not show an exponent error that far down).
+   logical function asymptotic_applies(params, options, delta, capped, delta_y) &
       & result(applies)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta
       logical, intent(in) :: capped
-      type(egw_error), intent(in) :: error
       real(dp), intent(out) :: delta_y
       real(dp) :: a_y, force_y
       applies = .false.
       delta_y = 0.0_dp
-      if (error%stat /= egw_not_converged .or. options%n_radial > 0 .or. .not. capped) return
+      if (options%n_radial > 0 .or. .not. capped) return
       if (.not. (params%model == model_egw .or. (params%model == model_epgw .and. &
          & params%psi == 0.0_dp))) return
       if (.not. above_first_yield(params, delta)) return
@@ -305,44 +392,77 @@ contains
    !> contact radius alike, the maximum pressure p_y. est_rel_err: the cap solve's
    !> estimate, wide(1)'s times its factor, and the disagreement of the two solves'
    !> corrections at sigma (it bounds the neglected terms when they are of order sigma
-   !> or higher, and shows an exponent other than 2/3), relative to max(|P|, floor).
-   !> Above rel_tol/2 error stands, its message naming the route's estimate; else it is
-   !> deallocated and result written.
-   subroutine asymptotic_answer(params, options, cap, wide, floor, result, error)
+   !> or higher, and shows an exponent other than 2/3), relative to max(|P|, floor)
+   !> (huge where that is 0).
+   subroutine asymptotic_result(params, cap, wide, floor, asym)
       type(contact_params), intent(in) :: params
-      type(solver_options), intent(in) :: options
       type(cap_result), intent(in) :: cap
       type(solve_result), intent(in) :: wide(2)
       real(dp), intent(in) :: floor
-      type(solve_result), intent(inout) :: result
-      type(egw_error), allocatable, intent(inout) :: error
-      real(dp) :: delta_y, a_y, force_y, shrink(2), force, est, total
+      type(solve_result), intent(out) :: asym
+      real(dp) :: delta_y, a_y, force_y, shrink(2), total
       integer :: k
       call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
          & force_y)
       do k = 1, 2
          shrink(k) = (params%sigma/(wide_sigmas(k)*delta_y))**(2.0_dp/3.0_dp)
       end do
-      force = cap%force + (wide(1)%force - cap%force)*shrink(1)
-      total = max(abs(force), floor)
-      est = huge(1.0_dp)
-      if (total > 0.0_dp) est = (cap%force_error + shrink(1)*wide(1)%est_rel_err* &
-         & max(abs(wide(1)%force), floor) + abs((wide(1)%force - cap%force)*shrink(1) - &
-         & (wide(2)%force - cap%force)*shrink(2)))/total
-      if (.not. est <= 0.5_dp*options%rel_tol) then
+      asym = wide(1)
+      asym%force = cap%force + (wide(1)%force - cap%force)*shrink(1)
+      asym%stiffness = cap%stiffness + (wide(1)%stiffness - cap%stiffness)*shrink(1)
+      asym%contact_radius = cap%contact_radius + (wide(1)%contact_radius - &
+         & cap%contact_radius)*shrink(1)
+      asym%max_pressure = params%flow_pressure
+      total = max(abs(asym%force), floor)
+      asym%est_rel_err = huge(1.0_dp)
+      if (total > 0.0_dp) asym%est_rel_err = (cap%force_error + shrink(1)* &
+         & wide(1)%est_rel_err*max(abs(wide(1)%force), floor) + abs((wide(1)%force - &
+         & cap%force)*shrink(1) - (wide(2)%force - cap%force)*shrink(2)))/total
+   end subroutine asymptotic_result
+
+   !> A failed solve answered by the asymptotic route (asym) if its estimate meets
+   !> rel_tol/2: result written, error deallocated; else error's message names the
+   !> route's estimate.
+   subroutine take_asymptotic(options, asym, result, error)
+      type(solver_options), intent(in) :: options
+      type(solve_result), intent(in) :: asym
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(inout) :: error
+      if (.not. asym%est_rel_err <= 0.5_dp*options%rel_tol) then
          error%message = error%message//"; nor by the small-sigma route (estimate " &
-            & //format_real(est)//", doc/theory.md section 12)"
+            & //format_real(asym%est_rel_err)//", doc/theory.md section 12)"
          return
       end if
       deallocate (error)
-      result = wide(1)
-      result%force = force
-      result%stiffness = cap%stiffness + (wide(1)%stiffness - cap%stiffness)*shrink(1)
-      result%contact_radius = cap%contact_radius + (wide(1)%contact_radius - &
-         & cap%contact_radius)*shrink(1)
-      result%max_pressure = params%flow_pressure
-      result%est_rel_err = est
-   end subroutine asymptotic_answer
+      result = asym
+   end subroutine take_asymptotic
+
+   !> A converged discrete solve (result) against the asymptotic route's answer (asym):
+   !> consistent when their forces differ by at most their estimates together (relative
+   !> to max(|P|, floor)); else the route's answer replaces it if that meets rel_tol/2,
+   !> or error (egw_not_converged) names both.
+   subroutine check_against_asymptotic(options, name, value, asym, floor, result, error)
+      type(solver_options), intent(in) :: options
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: value, floor
+      type(solve_result), intent(in) :: asym
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: diff, allowed
+      diff = abs(result%force - asym%force)
+      allowed = result%est_rel_err*max(abs(result%force), floor) + &
+         & asym%est_rel_err*max(abs(asym%force), floor)
+      if (diff <= allowed) return
+      if (asym%est_rel_err <= 0.5_dp*options%rel_tol) then
+         result = asym
+         return
+      end if
+      call fatal_error(error, egw_not_converged, name//" = "//format_real(value)// &
+         & ": the discrete solve (force "//format_real(result%force)//", estimate "// &
+         & format_real(result%est_rel_err)//") and the small-sigma route (force "// &
+         & format_real(asym%force)//", estimate "//format_real(asym%est_rel_err)// &
+         & ") disagree beyond their estimates (doc/theory.md section 12)")
+   end subroutine check_against_asymptotic
 
    !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
    !> (a tabulated, Persson or BEM law; doc/theory.md §11): the law gives the whole
@@ -569,8 +689,13 @@ contains
          result = res
          return
       end if
-      call rough_unload(history, delta, result, error)
-      if (allocated(error)) call small_sigma_unload(history, delta, result, error)
+      call rough_unload(history, delta, res, error)
+      if (allocated(error)) then
+         call small_sigma_unload(history, delta, result, error)
+      else
+         call small_sigma_check_unload(history, delta, res, error)
+         if (.not. allocated(error)) result = res
+      end if
    end subroutine solve_unload
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the
