@@ -3,6 +3,7 @@
 #include "egw_tables.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,8 @@
 #include <map>
 #include <mutex>
 #include <omp.h>
+#include <system_error>
+#include <thread>
 #include <tuple>
 #include <unistd.h>
 
@@ -195,19 +198,11 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
   int node_procs = 1;
   if (n_threads <= 0 && !missing.empty()) node_ranks(comm, local, node_procs);
   BuildThreads team(n_threads > 0 ? n_threads : 1);
-  for (size_t m = 0; m < missing.size(); m++) {
+  // table m of missing with threads threads (egw's OpenMP loops over its curves and
+  // points take the default team, set here; o.n_threads its solver's)
+  auto build_one = [&](size_t m, int threads) {
     const HystKey &k = keys[missing[m]];
-    int owner = (int) (m % nprocs);
-    if (owner != me) continue;
-    int threads = n_threads;
-    if (threads <= 0) {
-      size_t round = m - m % nprocs;
-      int builders = 0;
-      for (int w : local)
-        if (round + w < missing.size()) builders++;
-      threads = std::max(1, std::min(omp_get_num_procs(), node_procs / std::max(1, builders)));
-      omp_set_num_threads(threads);
-    }
+    omp_set_num_threads(threads);
     egw_params p;
     egw_params_default(&p);
     p.model = k.model, p.radius = 1, p.modulus = 1, p.sigma = 1, p.mu = k.mu;
@@ -225,6 +220,44 @@ std::vector<Hyst> EgwTables::hysteresis(const std::vector<HystKey> &keys, MPI_Co
     egw_hysteresis h = nullptr;
     if (egw_hysteresis_build(&p, &o, 0.0, k.xmax, k.tol, &h)) build_error[m] = last_error();
     else out[missing[m]] = own(h);
+  };
+  // One rank with several processors and several tables to build: side by side, one
+  // thread each (dynamic order), an odd one out first with every thread. A table's build
+  // does not share its processors well (its OpenMP loops wait for their slowest curve
+  // or point, and its loading table and curve phases follow one another); two tables
+  // side by side keep both cores busy. The tables are the same whatever the threads (egw
+  // builds them bit for bit alike on 1 or more threads).
+  int procs = std::max(1, std::min(omp_get_num_procs(), node_procs));
+  if (nprocs == 1 && n_threads <= 0 && procs >= 2 && missing.size() >= 2) {
+    size_t n = missing.size(), lead = n > (size_t) procs ? n % (size_t) procs : 0;
+    for (size_t m = 0; m < lead; m++) build_one(m, procs);
+    // (threads of their own, each its own OpenMP team of one: the plugin is not compiled
+    // with OpenMP pragmas)
+    std::atomic<size_t> next(lead);
+    auto worker = [&]() {
+      for (size_t m = next++; m < n; m = next++) build_one(m, 1);
+    };
+    std::vector<std::thread> side;
+    try {
+      for (size_t w = 1; w < std::min((size_t) procs, n - lead); w++) side.emplace_back(worker);
+    } catch (const std::system_error &) {    // no thread: this one builds what is left
+    }
+    worker();
+    for (auto &t : side) t.join();
+  } else {
+    for (size_t m = 0; m < missing.size(); m++) {
+      int owner = (int) (m % nprocs);
+      if (owner != me) continue;
+      int threads = n_threads;
+      if (threads <= 0) {
+        size_t round = m - m % nprocs;
+        int builders = 0;
+        for (int w : local)
+          if (round + w < missing.size()) builders++;
+        threads = std::max(1, std::min(omp_get_num_procs(), node_procs / std::max(1, builders)));
+      }
+      build_one(m, threads);
+    }
   }
   // send each table (or its build's failure) from its owner to the others
   if (nprocs > 1 && !missing.empty()) quiet_barrier(comm);

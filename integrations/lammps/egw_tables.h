@@ -58,7 +58,8 @@ struct BuildThreads {
  * keys): a table this process already holds is shared, the others are built with
  * delta_min = 0 (each its own cut-off) on rank i % nprocs, n_threads threads (0: the
  * processors of the node shared among its ranks that build at the same time; a rank
- * without a table to build waits without spinning), and broadcast. On an egw failure
+ * without a table to build waits without spinning; a single rank builds several tables
+ * side by side, one thread each), and broadcast. On an egw failure
  * fail(message) is called on every rank.
  * n_built (may be null) receives the number of tables built in this call (all ranks). */
 std::vector<Hyst> hysteresis(const std::vector<HystKey> &keys, MPI_Comm comm, int n_threads,
