@@ -34,8 +34,9 @@ module egw_cache
    !> loading, a_max an element edge, and the guided route at small sigma/delta_y; 8: rough
    !> + cap unloading solves confirmed by a level more, the capped loading table's slope
    !> check; 9: that unloading with halving layers inside the Hertz edge and a bisection
-   !> check).
-   integer, parameter, public :: cache_revision = 9
+   !> check; 10: that unloading deep in the cap with the plastic zone's rim an element
+   !> edge with layers).
+   integer, parameter, public :: cache_revision = 10
 
 
 contains
