@@ -44,6 +44,8 @@ contains
          & test_deep_unloading), &
          & new_unittest("EP-GW + cap unloading from 9.375 delta_y at rel_tol 1e-5", &
          & test_deep_unloading_loose), &
+         & new_unittest("EP-GW + cap unloading from 18.9 delta_y: the contact's end", &
+         & test_rim_unloading), &
          & new_unittest("impact: dissipated = closed integral of P d delta", test_energy), &
          & new_unittest("impact: e below the cap-free EP-GW's, and first yield", &
          & test_first_yield), &
@@ -576,6 +578,37 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_deep_unloading_loose
+
+   !> The unloading solve at rel_tol 1e-5 after the capped loading to 18.90625 delta_y
+   !> (the pair of test_deep_unloading_loose: a delta_max node of the hysteresis table at
+   !> 1e-4 to 20 delta_y) at 17.65375 delta_y, where the unloading contact ends ~0.5 inside
+   !> the rim of the history's plastic zone (scaled r 53.8, the Hertz edge 42): on graded
+   !> elements 2.6 long there its levels agreed to 1.3e-6 while 5.1e-5 of P(delta_max)
+   !> off (6.6e-5 of its own force), and the table's curve at that node needed more than
+   !> 400 s nodes. Against a rel_tol 1e-7 solve of the same history (its estimate 2e-8;
+   !> rel_tol 3e-8 and 2e-6 solves agree with it to 2.1e-8 of its force). Bound: rel_tol
+   !> 1e-5 of P(delta_max), the solve's own tolerance (its force is below P there).
+   subroutine test_rim_unloading(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: top, res, ref
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y
+      call yield_units(delta_y, force_y)
+      p = impact_pair()
+      p%sigma = 0.01_dp*delta_y
+      call load_history(p, solver_options(rel_tol=1.0e-6_dp), 18.90625_dp*delta_y, h, top, &
+         & err)
+      call check(error, .not. allocated(err), "history at 18.9 delta_y failed")
+      if (allocated(error)) return
+      call unload_at_tols(h, 17.65375_dp*delta_y, 1.0e-5_dp, 1.0e-7_dp, res, ref, err)
+      call check(error, .not. allocated(err), "unloading at 17.65 delta_y failed")
+      if (allocated(error)) return
+      call check(error, abs(res%force - ref%force) <= 1.0e-5_dp*top%force, "at 17.65 " &
+         & //"delta_y: "//str(res%force)//" vs rel_tol 1e-7 "//str(ref%force) &
+         & //", P(delta_max) "//str(top%force))
+   end subroutine test_rim_unloading
 
    !> Unloading solves of the history h at d at rel_tol tol (res) and at the reference's
    !> ref_tol (ref); err allocated when either fails (h's tolerance left at ref_tol).

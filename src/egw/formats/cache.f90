@@ -35,8 +35,10 @@ module egw_cache
    !> + cap unloading solves confirmed by a level more, the capped loading table's slope
    !> check; 9: that unloading with halving layers inside the Hertz edge and a bisection
    !> check; 10: the hysteresis build's first delta_max grid above 0, five nodes, not nine,
-   !> in tables without the cap).
-   integer, parameter, public :: cache_revision = 10
+   !> in tables without the cap; 11: unloading deep in the cap with the plastic zone's rim
+   !> an element edge with layers, and converged solves at sigma/delta_y <= 1e-7 checked
+   !> against the asymptotic route).
+   integer, parameter, public :: cache_revision = 11
 
 
 contains

@@ -42,7 +42,7 @@ module egw_sphere_mesh
    end type mesh_family
 
    public :: mesh_family
-   public :: kink_radii, cap_kink_radii
+   public :: kink_radii, cap_kink_radii, plastic_rim
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
       & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers
@@ -163,6 +163,35 @@ contains
       radii = [radii, branch]
       n_first = n_first + n_branch
    end function kink_radii
+
+   !> Unloading after a capped loading: the outermost radius of the history's plastic
+   !> zone, where cap_excess of kind 2 (the cap edge at delta_max) changes sign, bracketed
+   !> by the Gauss points of the history's mesh and solved there (Illinois); 0 if none.
+   !> A property of the history alone (its d_max field and p_s(delta_max)).
+   function plastic_rim(prob) result(rim)
+      type(scaled_problem), intent(in) :: prob
+      real(dp) :: rim
+      real(dp) :: f0, f1, mid
+      real(dp), allocatable :: r(:)
+      integer :: g
+      type(illinois_iteration) :: root
+      rim = 0.0_dp
+      if (.not. (allocated(prob%cap) .and. allocated(prob%closest))) return
+      r = prob%closest%mesh%gauss_r
+      f1 = cap_excess(prob, r(size(r)), 0.0_dp, 2)
+      do g = size(r) - 1, 1, -1
+         f0 = f1
+         f1 = cap_excess(prob, r(g), 0.0_dp, 2)
+         if (f0 < 0.0_dp .eqv. f1 < 0.0_dp) cycle
+         mid = r(g) + f1/(f1 - f0)*(r(g + 1) - r(g))
+         call illinois_begin(root, r(g), r(g + 1), f1, f0, mid)
+         do while (.not. root%done)
+            call illinois_step(root, cap_excess(prob, mid, 0.0_dp, 2), mid)
+         end do
+         rim = mid
+         return
+      end do
+   end function plastic_rim
 
    !> Radii where the cap puts a kink into p(r) of a solution (cap_excess changes sign; its
    !> kinds 1 to 3), at most 8 of each kind: bracketed by the Gauss points, then solved on

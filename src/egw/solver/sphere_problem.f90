@@ -84,6 +84,11 @@ module egw_sphere_problem
       !> small sigma/delta_y): geometric layers on both sides of each cap edge (branch)
       !> down to this width; 0: none (the default route).
       real(dp) :: kink_width = 0.0_dp
+      !> Unloading after a capped loading, deep in the cap: the history's outermost
+      !> plastic-zone edge (the rim, where the unloading contact ends in a layer), an
+      !> element edge with geometric layers down to rim_width (first_unloading_level);
+      !> 0: none.
+      real(dp) :: rim = 0.0_dp, rim_width = 0.0_dp
       !> Scaled residual at which Newton stops (looser only for the unloading's locating
       !> solve, see first_unloading_level).
       real(dp) :: residual_tol = 1.0e-11_dp

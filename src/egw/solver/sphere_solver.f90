@@ -47,7 +47,7 @@ module egw_sphere_solver
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, inner_layers, &
-      & mesh_geometry, kink_layers
+      & mesh_geometry, kink_layers, plastic_rim
    use egw_sphere_iteration, only: solve_mesh, differentiate
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load
    implicit none
@@ -291,6 +291,26 @@ contains
       ! without them the 12 reference cases keep their errors (<= 1.2e-7) and a sweep
       ! of 40 random unloading solves agrees with rel_tol 1e-9 solves as well as with
       ! the layers (worst 5e-7, the same case either way).
+      ! After a capped loading deep in the cap the unloading contact ends near the rim of
+      ! the history's plastic zone, far outside the Hertz edge (the focus), in a layer as
+      ! thin as the loading's there (first_cap_level): there the graded elements are
+      ! ~ step (rim - focus) long, and the levels' forces are not yet asymptotic (EP-GW,
+      ! sigma = delta_y/100, psi 1, from 18.9 delta_y, delta = 17.65 delta_y, rel_tol 1e-5:
+      ! the contact ends within 53.0 .. 53.5 of the rim 53.8, elements 2.6 long there; the
+      ! levels agreed to 1.3e-6 while 6.6e-5 off, and a hysteresis table at 1e-4 to 20
+      ! delta_y did not build). The rim becomes an element edge with geometric layers on
+      ! both sides, of the loading's layer width there (a property of the history: the same
+      ! edges on every level).
+      if (sums_total(prob) .and. options%n_radial == 0) then
+         prob%rim = plastic_rim(prob)
+         if (prob%rim > mesh%focus + 4.0_dp*mesh%width) then
+            prob%rim_width = min(1.0_dp, 0.5_dp*prob%rim*(0.75_dp*pi/prob%rim**2)** &
+               & (2.0_dp/3.0_dp))
+            mesh%outer = max(mesh%outer, prob%rim + 4.0_dp*prob%rim_width)
+         else
+            prob%rim = 0.0_dp
+         end if
+      end if
       locate = prob
       locate%residual_tol = 1.0e-6_dp
       call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
@@ -309,6 +329,8 @@ contains
       if (prob%closest%extended) prob%amax_edge = .not. negligible_at(first, &
          & sqrt(prob%closest%delta), 1.0e-4_dp*options%rel_tol)
       if (options%n_radial == 0) call trim_to_unloading_decay(prob, options, first, mesh)
+      ! (the trimmed mesh keeps the rim's outer layers: the contact ends just inside it)
+      if (prob%rim > 0.0_dp) mesh%outer = max(mesh%outer, prob%rim + 4.0_dp*prob%rim_width)
       ! The first level only enters the estimate through its difference to the next
       ! (divided by 2.4) and places the kinks again: Newton to a scaled residual of
       ! 1e-2 rel_tol (at most 1e-8) moves its force by far less than the estimate's
@@ -713,6 +735,11 @@ contains
             if (prob%closest%extended .and. prob%amax_edge .and. prob%closest%capped) then
                edges = with_kink_edges(edges, [sqrt(prob%closest%delta)], focus, 1, 0.0_dp)
                edges = inner_layers(edges, sqrt(prob%closest%delta))
+            end if
+            ! the rim of the history's plastic zone (first_unloading_level)
+            if (prob%rim > 0.0_dp) then
+               edges = with_kink_edges(edges, [prob%rim], focus, 1, sqrt(prob%closest%delta))
+               edges = kink_layers(edges, prob%rim, prob%rim_width)
             end if
             if (allocated(prob%branch)) then
                keep = 0.0_dp
