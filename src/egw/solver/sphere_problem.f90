@@ -84,6 +84,11 @@ module egw_sphere_problem
       !> small sigma/delta_y): geometric layers on both sides of each cap edge (branch)
       !> down to this width; 0: none (the default route).
       real(dp) :: kink_width = 0.0_dp
+      !> Unloading after a capped loading, the central-disc route (egw_sphere_solver's
+      !> disc_cap_unload): the elements inside the innermost kink edge shrink with the
+      !> level's step relative to that radius (sphere_mesh's disc_refined); .false.: the
+      !> default route.
+      logical :: refine_disc = .false.
       !> Scaled residual at which Newton stops (looser only for the unloading's locating
       !> solve, see first_unloading_level).
       real(dp) :: residual_tol = 1.0e-11_dp

@@ -47,7 +47,7 @@ module egw_sphere_solver
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, inner_layers, &
-      & mesh_geometry, kink_layers
+      & mesh_geometry, kink_layers, disc_refined
    use egw_sphere_iteration, only: solve_mesh, differentiate
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load
    implicit none
@@ -58,6 +58,10 @@ module egw_sphere_solver
    public :: separation_field, scaled_problem, discrete_solution
    public :: scaled, normal, negligible, base_gap, closest_gap, solve_scaled, differentiate, &
       & effective_radius, total_pressure, smooth_force, smooth_stiffness
+
+   !> The central-disc route (disc_cap_unload) only where the innermost kink edge is
+   !> below this fraction of the Hertz radius.
+   real(dp), parameter :: disc_fraction = 0.25_dp
 
 contains
 
@@ -76,11 +80,22 @@ contains
       type(egw_error), allocatable :: guided_error
       call solve_default(problem, options, sol, est, method_used, error)
       if (.not. allocated(error)) return
+      ! Unloading after a capped loading that did not converge: the central-disc route
+      ! first (disc_cap_unload; near the residual overlap), then the guided one; a
+      ! failure of both reports the default route's error.
+      if (error%stat /= egw_not_converged .or. options%n_radial > 0) return
+      if (sums_total(problem)) then
+         call disc_cap_unload(problem, options, sol, est, method_used, guided_error)
+         if (.not. allocated(guided_error)) then
+            deallocate (error)
+            return
+         end if
+         deallocate (guided_error)
+      end if
       ! Loading of an extended model with the cap that did not converge (small
       ! sigma/delta_y: the plastic zone's edge is a layer the default meshes do not
       ! resolve): the guided route; its own failure reports the default route's error.
-      if (error%stat /= egw_not_converged .or. .not. allocated(problem%cap)) return
-      if (options%n_radial > 0) return
+      if (.not. allocated(problem%cap)) return
       if (allocated(problem%closest)) then
          if (.not. problem%closest%extended) return
          call guided_cap_unload(problem, options, sol, est, method_used, guided_error)
@@ -90,6 +105,49 @@ contains
       end if
       if (.not. allocated(guided_error)) deallocate (error)
    end subroutine solve_scaled
+
+   !> Unloading after a capped loading (sums_total), the central-disc route, taken only
+   !> where the default route did not converge: the default route's levels with the
+   !> elements inside the innermost kink edge c refined with the step relative to c
+   !> (prob%refine_disc, sphere_mesh's disc_refined). Near the residual overlap the
+   !> total pressure lives on a disc [0, c], c ~ 0.03 a (a the Hertz radius the mesh is
+   !> graded about), that held 1 to 5 graded elements: kept between levels (the fixed
+   !> edges 0 and c) they agreed by accident, and refined with the step they shrank like
+   !> step a, so the finest step was reached with estimates of 6e-7 .. 1.1e-6 (steel
+   !> beads, E-GW + cap and EP-GW + cap, sigma 10 nm, doc/stability.md).
+   subroutine disc_cap_unload(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(mesh_family) :: mesh
+      type(discrete_solution) :: coarse
+      real(dp) :: disc
+      prob = problem
+      prob%refine_disc = .true.
+      method_used = options%method
+      if (method_used == method_auto) method_used = method_newton
+      prob%residual_tol = max(prob%residual_tol, min(1.0e-10_dp, 1.0e-4_dp*options%rel_tol))
+      call first_mesh(prob, options, mesh)
+      call first_unloading_level(prob, options, method_used, mesh, coarse, error)
+      if (allocated(error)) return
+      ! only where the innermost kink edge is a central disc's well inside the Hertz edge
+      ! (elsewhere, e.g. mid-unloading at 0.67 delta_max, the route would only repeat the
+      ! default route's levels)
+      disc = huge(1.0_dp)
+      if (allocated(prob%branch)) then
+         if (any(prob%branch > 0.0_dp)) disc = minval(prob%branch, mask=prob%branch > 0.0_dp)
+      end if
+      if (.not. disc <= disc_fraction*prob%a) then
+         call fatal_error(error, egw_not_converged, "no central disc")
+         return
+      end if
+      call refine_levels(prob, options, method_used, unload_order, mesh, coarse, sol, est, &
+         & error)
+   end subroutine disc_cap_unload
 
    !> Unloading after a capped loading, the guided route (as guided_cap_solve): the
    !> smooth cap model's plastic radius at delta_max, where the history's plastic shift
@@ -740,6 +798,9 @@ contains
             ! 3 left the error at 0.018 delta_y above its estimate, 2.5e-7 > 1.95e-7.)
             if (sums_total(prob) .and. prob%delta > 0.0_dp) edges = inner_layers(edges, &
                & sqrt(prob%delta), 5)
+            ! (the central-disc route: the disc's elements shrink with the step)
+            if (prob%refine_disc .and. allocated(prob%branch)) edges = disc_refined(edges, &
+               & prob%branch, step)
          else if (allocated(prob%branch)) then
             ! loading with the cap: its edges (cap_kink_radii) and, extended models, the
             ! Hertz edge a always (moved onto or inserted, even where the family was
