@@ -80,25 +80,21 @@ contains
       type(egw_error), allocatable :: guided_error
       call solve_default(problem, options, sol, est, method_used, error)
       if (.not. allocated(error)) return
-      ! Unloading after a capped loading that did not converge: the central-disc route
-      ! first (disc_cap_unload; near the residual overlap), then the guided one; a
-      ! failure of both reports the default route's error.
-      if (error%stat /= egw_not_converged .or. options%n_radial > 0) return
-      if (sums_total(problem)) then
-         call disc_cap_unload(problem, options, sol, est, method_used, guided_error)
-         if (.not. allocated(guided_error)) then
-            deallocate (error)
-            return
-         end if
-         deallocate (guided_error)
-      end if
       ! Loading of an extended model with the cap that did not converge (small
       ! sigma/delta_y: the plastic zone's edge is a layer the default meshes do not
       ! resolve): the guided route; its own failure reports the default route's error.
-      if (.not. allocated(problem%cap)) return
+      if (error%stat /= egw_not_converged .or. .not. allocated(problem%cap)) return
+      if (options%n_radial > 0) return
       if (allocated(problem%closest)) then
          if (.not. problem%closest%extended) return
          call guided_cap_unload(problem, options, sol, est, method_used, guided_error)
+         ! then, unloading after a capped loading, the central-disc route (near the
+         ! residual overlap; last, so that every solve that converged before it came
+         ! is unchanged)
+         if (allocated(guided_error) .and. sums_total(problem)) then
+            deallocate (guided_error)
+            call disc_cap_unload(problem, options, sol, est, method_used, guided_error)
+         end if
       else
          if (.not. problem%extended) return
          call guided_cap_solve(problem, options, sol, est, method_used, guided_error)
@@ -107,14 +103,15 @@ contains
    end subroutine solve_scaled
 
    !> Unloading after a capped loading (sums_total), the central-disc route, taken only
-   !> where the default route did not converge: the default route's levels with the
-   !> elements inside the innermost kink edge c refined with the step relative to c
+   !> where neither the default nor the guided route converged, and only where the
+   !> innermost kink edge c is below disc_fraction of the Hertz radius a: the default
+   !> route's levels with the elements inside c refined with the step relative to c
    !> (prob%refine_disc, sphere_mesh's disc_refined). Near the residual overlap the
-   !> total pressure lives on a disc [0, c], c ~ 0.03 a (a the Hertz radius the mesh is
-   !> graded about), that held 1 to 5 graded elements: kept between levels (the fixed
-   !> edges 0 and c) they agreed by accident, and refined with the step they shrank like
-   !> step a, so the finest step was reached with estimates of 6e-7 .. 1.1e-6 (steel
-   !> beads, E-GW + cap and EP-GW + cap, sigma 10 nm, doc/stability.md).
+   !> total pressure lives on such a disc [0, c], c = 0.04 .. 0.09 a (a the radius the
+   !> mesh family is graded about), that held 1 to 5 graded elements: kept between levels
+   !> (the fixed edges 0 and c) they agreed by accident, and refined with the step they
+   !> shrank like step a, so the finest step was reached with estimates of 6.0e-7 ..
+   !> 6.7e-7 (steel beads, E-GW + cap and EP-GW + cap, sigma 10 nm, doc/stability.md).
    subroutine disc_cap_unload(problem, options, sol, est, method_used, error)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
