@@ -49,7 +49,8 @@ module egw_sphere_mesh
    public :: kink_radii, cap_kink_radii
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
-      & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined
+      & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined, &
+      & with_history_edges
 
 
    !> The state of an Illinois root search (illinois_begin, illinois_step).
@@ -526,6 +527,53 @@ contains
             & j=1, parts - 1), edge(e)]
       end do
    end function disc_refined
+
+   !> edge with the radii inside (0, edge's outer radius) added as element edges (the
+   !> element holding each split), except where an edge lies within 1e-9 max(1, r)
+   !> already: both increasing. Unloading after a capped loading (egw_sphere_solver's
+   !> history_cap_unload): the closest-approach field d_max(r) is the history's nodal
+   !> deflection, piecewise quadratic, whose slope jumps at the history's element edges,
+   !> and in the capped zone the unloading pressure follows d_max (the plastic shift and
+   !> offset): kinks of p(r) at every history edge, inside the unloading elements.
+   pure function with_history_edges(edge, radii) result(out)
+      real(dp), intent(in) :: edge(0:), radii(:)
+      real(dp), allocatable :: out(:)
+      real(dp) :: x
+      logical :: own, last_own
+      integer :: i, j, m, n
+      n = size(edge) - 1
+      allocate (out(size(edge) + size(radii)))
+      last_own = .false.
+      m = 0
+      i = 0
+      j = 1
+      ! a merge of the two increasing lists, each x appended unless outside (0, the outer
+      ! radius) or within the tolerance of the last kept (an edge of edge then replaces a
+      ! radius kept just before it)
+      do while (i <= n)
+         own = .true.
+         if (j <= size(radii)) own = radii(j) >= edge(i)
+         if (own) then
+            x = edge(i)
+            i = i + 1
+         else
+            x = radii(j)
+            j = j + 1
+            if (.not. (x > 0.0_dp .and. x < edge(n))) cycle
+         end if
+         if (m > 0 .and. .not. (own .and. last_own)) then
+            if (abs(x - out(m)) <= 1.0e-9_dp*max(1.0_dp, x)) then
+               if (own) out(m) = x
+               last_own = last_own .or. own
+               cycle
+            end if
+         end if
+         m = m + 1
+         out(m) = x
+         last_own = own
+      end do
+      out = out(:m)
+   end function with_history_edges
 
    !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
    !> Outside the Hertz edge the gap grows like (4/3)(a**2/pi)(2 s/a)**1.5 (s = r - a), so

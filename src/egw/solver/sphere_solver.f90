@@ -47,7 +47,7 @@ module egw_sphere_solver
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, inner_layers, &
-      & mesh_geometry, kink_layers, disc_refined
+      & mesh_geometry, kink_layers, disc_refined, with_history_edges
    use egw_sphere_iteration, only: solve_mesh, differentiate
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load
    implicit none
@@ -94,6 +94,12 @@ contains
          if (allocated(guided_error) .and. sums_total(problem)) then
             deallocate (guided_error)
             call disc_cap_unload(problem, options, sol, est, method_used, guided_error)
+            ! and else the history-edges route (mid-unloading)
+            if (allocated(guided_error)) then
+               deallocate (guided_error)
+               call history_cap_unload(problem, options, sol, est, method_used, &
+                  & guided_error)
+            end if
          end if
       else
          if (.not. problem%extended) return
@@ -145,6 +151,32 @@ contains
       call refine_levels(prob, options, method_used, unload_order, mesh, coarse, sol, est, &
          & error)
    end subroutine disc_cap_unload
+
+   !> Unloading after a capped loading (sums_total), the history-edges route, taken only
+   !> where the default, guided and central-disc routes did not converge: the default
+   !> route's levels with the element edges of the history's mesh as element edges of
+   !> every level (prob%history_edges, sphere_mesh's with_history_edges). The
+   !> closest-approach field d_max(r) is the history's piecewise quadratic deflection,
+   !> whose slope jumps at the history's element edges; in the capped zone the unloading
+   !> pressure follows d_max (the plastic shift and offset), so p(r) has a kink at each,
+   !> inside the unloading elements, and the levels' forces moved irregularly (steel
+   !> beads, sigma 42 nm, 0.67 delta_max after 5.5 delta_y: E-GW + cap 485.8159, 485.8014,
+   !> 485.7965, 485.7979 on steps 0.124 .. 0.01, estimates down to 1.5e-6; EP-GW + cap
+   !> 2.1e-6 off at the finest step, estimate 1.2e-6). With them one level met rel_tol
+   !> (E-GW 1.4e-7 from that finest level; EP-GW 9e-9 from the same route with the
+   !> history's edges beyond 0.9 a only, whose bisection check ran).
+   subroutine history_cap_unload(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      prob = problem
+      prob%history_edges = .true.
+      call solve_default(prob, options, sol, est, method_used, error)
+   end subroutine history_cap_unload
 
    !> Unloading after a capped loading, the guided route (as guided_cap_solve): the
    !> smooth cap model's plastic radius at delta_max, where the history's plastic shift
@@ -798,6 +830,9 @@ contains
             ! (the central-disc route: the disc's elements shrink with the step)
             if (prob%refine_disc .and. allocated(prob%branch)) edges = disc_refined(edges, &
                & prob%branch, step)
+            ! (the history-edges route: the kinks of the history's d_max(r))
+            if (prob%history_edges) edges = with_history_edges(edges, &
+               & prob%closest%mesh%edge(1:prob%closest%mesh%n_elem))
          else if (allocated(prob%branch)) then
             ! loading with the cap: its edges (cap_kink_radii) and, extended models, the
             ! Hertz edge a always (moved onto or inserted, even where the family was
