@@ -12,6 +12,7 @@ module test_rough_cap
       & solve_result, solve_contact, solve_contact_law, loading_history, load_history, &
       & solve_unload, restitution
    use egw_table, only: force_table, build_table, table_eval
+   use egw_sphere_mesh, only: disc_refined, with_history_edges
    implicit none
    private
    public :: collect_rough_cap
@@ -56,7 +57,9 @@ contains
          & new_unittest("E-GW + cap steel beads: unloading near the residual overlap", &
          & test_residual_overlap_beads), &
          & new_unittest("E-GW + cap steel beads, 10 nm: the central-disc route", &
-         & test_residual_disc_beads) &
+         & test_residual_disc_beads), &
+         & new_unittest("the two routes' meshes: disc_refined, with_history_edges", &
+         & test_route_meshes) &
          & ]
    end subroutine collect_rough_cap
 
@@ -130,6 +133,38 @@ contains
       call check(error, abs(res%force - ref) <= 1.0e-6_dp*ref, "P = "//str(res%force) &
          & //" N, reference "//str(ref))
    end subroutine test_residual_disc_beads
+
+   !> The meshes of the central-disc and history-edges routes (egw_sphere_mesh), on
+   !> hand-made edges: disc_refined splits each element inside the innermost positive
+   !> radius c into equal parts no longer than c step/2 and leaves the others;
+   !> with_history_edges keeps every edge of its own, adds the radii inside (0, outer)
+   !> that are not within 1e-9 of an edge, increasing. Exact (equal parts of exact
+   !> decimal edges to 1e-15; the edges themselves copied).
+   subroutine test_route_meshes(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: edge(0:4) = [0.0_dp, 0.5_dp, 1.0_dp, 3.0_dp, 6.0_dp]
+      real(dp), allocatable :: out(:)
+      integer :: i
+      ! c = 1 (the 0 and the negative radius ignored), step 0.5: at most 0.25 long, so
+      ! [0, 0.5] and [0.5, 1] in 2 parts each; [1, 3] and [3, 6] untouched
+      out = disc_refined(edge, [2.0_dp, 0.0_dp, 1.0_dp, -1.0_dp], 0.5_dp)
+      call check(error, size(out) == 7, "disc_refined: "//str(real(size(out), dp))//" edges")
+      if (allocated(error)) return
+      call check(error, all(abs(out - [0.0_dp, 0.25_dp, 0.5_dp, 0.75_dp, 1.0_dp, 3.0_dp, &
+         & 6.0_dp]) <= 1.0e-15_dp), "disc_refined: the edges")
+      if (allocated(error)) return
+      ! 0.5 + 1e-12 and 3 - 1e-10 within 1e-9 of an edge (dropped), 0 and 7 outside
+      out = with_history_edges(edge, [0.0_dp, 0.25_dp, 0.5_dp + 1.0e-12_dp, 2.0_dp, &
+         & 3.0_dp - 1.0e-10_dp, 5.0_dp, 7.0_dp])
+      call check(error, size(out) == 8, "with_history_edges: "//str(real(size(out), dp)) &
+         & //" edges")
+      if (allocated(error)) return
+      call check(error, all(out == [0.0_dp, 0.25_dp, 0.5_dp, 1.0_dp, 2.0_dp, 3.0_dp, &
+         & 5.0_dp, 6.0_dp]), "with_history_edges: the edges")
+      if (allocated(error)) return
+      call check(error, all([(out(i) < out(i + 1), i=1, size(out) - 1)]), &
+         & "with_history_edges: not increasing")
+   end subroutine test_route_meshes
 
    function str(x) result(s)
       real(dp), intent(in) :: x

@@ -91,7 +91,10 @@ contains
          ! then, unloading after a capped loading, the central-disc route (near the
          ! residual overlap; last, so that every solve that converged before it came
          ! is unchanged)
-         if (allocated(guided_error) .and. sums_total(problem)) then
+         ! (not at sigma/delta_y <= 2e-6, delta_y/sigma = (pi p_y/2)**2 here: below
+         ! 1e-6 egw_rough_sphere's asymptotic route answers after a failure, unchanged)
+         if (allocated(guided_error) .and. sums_total(problem) .and. &
+            & (0.5_dp*pi*problem%cap%p_y)**2 < 0.5e6_dp) then
             deallocate (guided_error)
             call disc_cap_unload(problem, options, sol, est, method_used, guided_error)
             ! and else the history-edges route (mid-unloading)
