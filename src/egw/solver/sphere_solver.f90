@@ -165,9 +165,9 @@ contains
    !> inside the unloading elements, and the levels' forces moved irregularly (steel
    !> beads, sigma 42 nm, 0.67 delta_max after 5.5 delta_y: E-GW + cap 485.8159, 485.8014,
    !> 485.7965, 485.7979 on steps 0.124 .. 0.01, estimates down to 1.5e-6; EP-GW + cap
-   !> 2.1e-6 off at the finest step, estimate 1.2e-6). With them one level met rel_tol
-   !> (E-GW 1.4e-7 from that finest level; EP-GW 9e-9 from the same route with the
-   !> history's edges beyond 0.9 a only, whose bisection check ran).
+   !> 2.1e-6 off at the finest step, estimate 1.2e-6). With them one level met rel_tol,
+   !> both within 9e-9 of the same route on the history's edges beyond 0.87 a only
+   !> (fewer nodes, so that its bisection check ran).
    subroutine history_cap_unload(problem, options, sol, est, method_used, error)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
