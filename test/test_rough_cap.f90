@@ -12,6 +12,7 @@ module test_rough_cap
       & solve_result, solve_contact, solve_contact_law, loading_history, load_history, &
       & solve_unload, restitution
    use egw_table, only: force_table, build_table, table_eval
+   use egw_sphere_mesh, only: disc_refined, with_history_edges
    implicit none
    private
    public :: collect_rough_cap
@@ -58,7 +59,11 @@ contains
          & new_unittest("EP-GW + cap loading table at 1e-4: quarter points", &
          & test_loading_table_quarters), &
          & new_unittest("E-GW + cap steel beads: unloading near the residual overlap", &
-         & test_residual_overlap_beads) &
+         & test_residual_overlap_beads), &
+         & new_unittest("E-GW + cap steel beads, 10 nm: the central-disc route", &
+         & test_residual_disc_beads), &
+         & new_unittest("the two routes' meshes: disc_refined, with_history_edges", &
+         & test_route_meshes) &
          & ]
    end subroutine collect_rough_cap
 
@@ -99,6 +104,71 @@ contains
       call check(error, abs(res%force - ref) <= 1.0e-6_dp*ref, "P = "//str(res%force) &
          & //" N, reference "//str(ref))
    end subroutine test_residual_overlap_beads
+
+   !> Steel beads of example cap-bead-grid (R* = 0.5 mm, E = 210 GPa, nu 0.3, pair sigma
+   !> 10 nm = 0.0105 delta_y, mu 4, p_y = 3.2 GPa), E-GW + cap unloading from 5.5141
+   !> delta_y (the turning point at 3 m/s) at 2.1972 delta_y, where the force has fallen
+   !> to 3.4e-6 of P(delta_max) and lives on a central disc of radius ~0.03 a, at rel_tol
+   !> 1e-6: before, egw_not_converged (the finest mesh's estimate 6.0e-7; the disc's
+   !> 1-5 elements kept between levels). Reference: this solve at rel_tol 1e-8 (the
+   !> central-disc route, estimate 3.8e-9), corroborated by the default route's level at
+   !> step 0.156 with its disc split into 2, 4, 8, 16 equal elements, extrapolated for
+   !> their order 3 (errors 4.9e-7, 7.4e-8, 9.6e-9 apart): 8e-8 apart. Within rel_tol
+   !> (measured 1.2e-7, estimate 2.8e-7).
+   subroutine test_residual_disc_beads(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: ref = 1.02877858952745e-4_dp   ! N
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      p = contact_params(model=model_egw, radius=0.5e-3_dp, modulus=210.0e9_dp/(2.0_dp* &
+         & (1.0_dp - 0.3_dp**2)), sigma=1.0e-8_dp, mu=4.0_dp, flow_pressure=3.2e9_dp)
+      ! (the history at 1e-4 rel_tol, as solve_contact_unload loads it)
+      call load_history(p, solver_options(rel_tol=1.0e-10_dp), 5.2323e-6_dp, h, res, err)
+      call check(error, .not. allocated(err), "history at 5.51 delta_y failed")
+      if (allocated(error)) return
+      h%options%rel_tol = 1.0e-6_dp
+      call solve_unload(h, 2.084897e-6_dp, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading at 2.20 delta_y: "//err%message)
+         return
+      end if
+      call check(error, abs(res%force - ref) <= 1.0e-6_dp*ref, "P = "//str(res%force) &
+         & //" N, reference "//str(ref))
+   end subroutine test_residual_disc_beads
+
+   !> The meshes of the central-disc and history-edges routes (egw_sphere_mesh), on
+   !> hand-made edges: disc_refined splits each element inside the innermost positive
+   !> radius c into equal parts no longer than c step/2 and leaves the others;
+   !> with_history_edges keeps every edge of its own, adds the radii inside (0, outer)
+   !> that are not within 1e-9 of an edge, increasing. Exact (equal parts of exact
+   !> decimal edges to 1e-15; the edges themselves copied).
+   subroutine test_route_meshes(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: edge(0:4) = [0.0_dp, 0.5_dp, 1.0_dp, 3.0_dp, 6.0_dp]
+      real(dp), allocatable :: out(:)
+      integer :: i
+      ! c = 1 (the 0 and the negative radius ignored), step 0.5: at most 0.25 long, so
+      ! [0, 0.5] and [0.5, 1] in 2 parts each; [1, 3] and [3, 6] untouched
+      out = disc_refined(edge, [2.0_dp, 0.0_dp, 1.0_dp, -1.0_dp], 0.5_dp)
+      call check(error, size(out) == 7, "disc_refined: "//str(real(size(out), dp))//" edges")
+      if (allocated(error)) return
+      call check(error, all(abs(out - [0.0_dp, 0.25_dp, 0.5_dp, 0.75_dp, 1.0_dp, 3.0_dp, &
+         & 6.0_dp]) <= 1.0e-15_dp), "disc_refined: the edges")
+      if (allocated(error)) return
+      ! 0.5 + 1e-12 and 3 - 1e-10 within 1e-9 of an edge (dropped), 0 and 7 outside
+      out = with_history_edges(edge, [0.0_dp, 0.25_dp, 0.5_dp + 1.0e-12_dp, 2.0_dp, &
+         & 3.0_dp - 1.0e-10_dp, 5.0_dp, 7.0_dp])
+      call check(error, size(out) == 8, "with_history_edges: "//str(real(size(out), dp)) &
+         & //" edges")
+      if (allocated(error)) return
+      call check(error, all(out == [0.0_dp, 0.25_dp, 0.5_dp, 1.0_dp, 2.0_dp, 3.0_dp, &
+         & 5.0_dp, 6.0_dp]), "with_history_edges: the edges")
+      if (allocated(error)) return
+      call check(error, all([(out(i) < out(i + 1), i=1, size(out) - 1)]), &
+         & "with_history_edges: not increasing")
+   end subroutine test_route_meshes
 
    function str(x) result(s)
       real(dp), intent(in) :: x

@@ -26,6 +26,10 @@ module egw_sphere_mesh
    !> Step (in asinh units) of the first level, and the finest allowed.
    real(dp), parameter :: finest_step = 0.01_dp, coarsest_step = 0.6_dp
    integer, parameter :: min_elements = 8
+   !> Elements per unit of step across the central disc of disc_refined (2: at 1 the
+   !> steel beads' E-GW + cap solve at 10 m/s accepted an estimate of 4.1e-7, at 2 of
+   !> 1.3e-7, one level fewer elsewhere).
+   real(dp), parameter :: disc_elements = 2.0_dp
    !> A kink of Z_u in Delta closer than this fraction of its element to a branch edge
    !> gets no edge of its own (with_kink_edges).
    real(dp), parameter :: near_kink = 0.3_dp
@@ -45,7 +49,8 @@ module egw_sphere_mesh
    public :: kink_radii, cap_kink_radii, plastic_rim
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
-      & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers
+      & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined, &
+      & with_history_edges
 
 
    !> The state of an Illinois root search (illinois_begin, illinois_step).
@@ -525,6 +530,79 @@ contains
          fixed = [fixed(:k - 1), .true., fixed(k:)]
       end do
    end function with_kink_edges
+
+   !> edge with every element inside the innermost positive radius c of radii split into
+   !> equal parts no longer than c step/disc_elements (disc_elements per unit of step
+   !> across [0, c]), so that they shrink with the level's step as the graded ones do.
+   !> Unloading after a capped loading near the residual overlap (egw_sphere_solver's
+   !> disc_cap_unload): the total pressure lives on a central disc [0, c] whose edge is a
+   !> floor kink, c << the Hertz radius the family is graded about, so the disc held 1-5
+   !> graded elements of ~ step a, kept from level to level between the fixed edges 0 and
+   !> c until the step fell below c/a: the levels agreed to 1e-7 while 5e-5 off (steel
+   !> beads, E-GW + cap, sigma 10 nm, delta 0.4 delta_max after 5.5 delta_y).
+   pure function disc_refined(edge, radii, step) result(out)
+      real(dp), intent(in) :: edge(0:), radii(:), step
+      real(dp), allocatable :: out(:)
+      real(dp) :: c
+      integer :: e, j, parts
+      out = edge
+      if (.not. any(radii > 0.0_dp)) return
+      c = minval(radii, mask=radii > 0.0_dp)
+      out = [edge(0)]
+      do e = 1, size(edge) - 1
+         parts = 1
+         if (edge(e) <= c) parts = ceiling((edge(e) - edge(e - 1))/c*disc_elements/step)
+         out = [out, (edge(e - 1) + (edge(e) - edge(e - 1))*real(j, dp)/real(parts, dp), &
+            & j=1, parts - 1), edge(e)]
+      end do
+   end function disc_refined
+
+   !> edge with the radii inside (0, edge's outer radius) added as element edges (the
+   !> element holding each split), except where an edge lies within 1e-9 max(1, r)
+   !> already: both increasing. Unloading after a capped loading (egw_sphere_solver's
+   !> history_cap_unload): the closest-approach field d_max(r) is the history's nodal
+   !> deflection, piecewise quadratic, whose slope jumps at the history's element edges,
+   !> and in the capped zone the unloading pressure follows d_max (the plastic shift and
+   !> offset): kinks of p(r) at every history edge, inside the unloading elements.
+   pure function with_history_edges(edge, radii) result(out)
+      real(dp), intent(in) :: edge(0:), radii(:)
+      real(dp), allocatable :: out(:)
+      real(dp) :: x
+      logical :: own, last_own
+      integer :: i, j, m, n
+      n = size(edge) - 1
+      allocate (out(size(edge) + size(radii)))
+      last_own = .false.
+      m = 0
+      i = 0
+      j = 1
+      ! a merge of the two increasing lists, each x appended unless outside (0, the outer
+      ! radius) or within the tolerance of the last kept (an edge of edge then replaces a
+      ! radius kept just before it)
+      do while (i <= n)
+         own = .true.
+         if (j <= size(radii)) own = radii(j) >= edge(i)
+         if (own) then
+            x = edge(i)
+            i = i + 1
+         else
+            x = radii(j)
+            j = j + 1
+            if (.not. (x > 0.0_dp .and. x < edge(n))) cycle
+         end if
+         if (m > 0 .and. .not. (own .and. last_own)) then
+            if (abs(x - out(m)) <= 1.0e-9_dp*max(1.0_dp, x)) then
+               if (own) out(m) = x
+               last_own = last_own .or. own
+               cycle
+            end if
+         end if
+         m = m + 1
+         out(m) = x
+         last_own = own
+      end do
+      out = out(:m)
+   end function with_history_edges
 
    !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
    !> Outside the Hertz edge the gap grows like (4/3)(a**2/pi)(2 s/a)**1.5 (s = r - a), so

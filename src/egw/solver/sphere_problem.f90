@@ -89,6 +89,15 @@ module egw_sphere_problem
       !> element edge with geometric layers down to rim_width (first_unloading_level);
       !> 0: none.
       real(dp) :: rim = 0.0_dp, rim_width = 0.0_dp
+      !> Unloading after a capped loading, the central-disc route (egw_sphere_solver's
+      !> disc_cap_unload): the elements inside the innermost kink edge shrink with the
+      !> level's step relative to that radius (sphere_mesh's disc_refined); .false.: the
+      !> default route.
+      logical :: refine_disc = .false.
+      !> Unloading after a capped loading, the history-edges route (egw_sphere_solver's
+      !> history_cap_unload): the element edges of the history's mesh (closest%mesh) are
+      !> element edges of every level (sphere_mesh's with_history_edges).
+      logical :: history_edges = .false.
       !> Scaled residual at which Newton stops (looser only for the unloading's locating
       !> solve, see first_unloading_level).
       real(dp) :: residual_tol = 1.0e-11_dp

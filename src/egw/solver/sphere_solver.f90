@@ -47,7 +47,7 @@ module egw_sphere_solver
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, inner_layers, &
-      & mesh_geometry, kink_layers, plastic_rim
+      & mesh_geometry, kink_layers, plastic_rim, disc_refined, with_history_edges
    use egw_sphere_iteration, only: solve_mesh, differentiate
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load
    implicit none
@@ -58,6 +58,10 @@ module egw_sphere_solver
    public :: separation_field, scaled_problem, discrete_solution
    public :: scaled, normal, negligible, base_gap, closest_gap, solve_scaled, differentiate, &
       & effective_radius, total_pressure, smooth_force, smooth_stiffness
+
+   !> The central-disc route (disc_cap_unload) only where the innermost kink edge is
+   !> below this fraction of the Hertz radius.
+   real(dp), parameter :: disc_fraction = 0.25_dp
 
 contains
 
@@ -84,12 +88,98 @@ contains
       if (allocated(problem%closest)) then
          if (.not. problem%closest%extended) return
          call guided_cap_unload(problem, options, sol, est, method_used, guided_error)
+         ! then, unloading after a capped loading, the central-disc route (near the
+         ! residual overlap; last, so that every solve that converged before it came
+         ! is unchanged)
+         ! (not at sigma/delta_y <= 2e-6, delta_y/sigma = (pi p_y/2)**2 here: below
+         ! 1e-6 egw_rough_sphere's asymptotic route answers after a failure, unchanged)
+         if (allocated(guided_error) .and. sums_total(problem) .and. &
+            & (0.5_dp*pi*problem%cap%p_y)**2 < 0.5e6_dp) then
+            deallocate (guided_error)
+            call disc_cap_unload(problem, options, sol, est, method_used, guided_error)
+            ! and else the history-edges route (mid-unloading)
+            if (allocated(guided_error)) then
+               deallocate (guided_error)
+               call history_cap_unload(problem, options, sol, est, method_used, &
+                  & guided_error)
+            end if
+         end if
       else
          if (.not. problem%extended) return
          call guided_cap_solve(problem, options, sol, est, method_used, guided_error)
       end if
       if (.not. allocated(guided_error)) deallocate (error)
    end subroutine solve_scaled
+
+   !> Unloading after a capped loading (sums_total), the central-disc route, taken only
+   !> where neither the default nor the guided route converged, and only where the
+   !> innermost kink edge c is below disc_fraction of the Hertz radius a: the default
+   !> route's levels with the elements inside c refined with the step relative to c
+   !> (prob%refine_disc, sphere_mesh's disc_refined). Near the residual overlap the
+   !> total pressure lives on such a disc [0, c], c = 0.04 .. 0.09 a (a the radius the
+   !> mesh family is graded about), that held 1 to 5 graded elements: kept between levels
+   !> (the fixed edges 0 and c) they agreed by accident, and refined with the step they
+   !> shrank like step a, so the finest step was reached with estimates of 6.0e-7 ..
+   !> 6.7e-7 (steel beads, E-GW + cap and EP-GW + cap, sigma 10 nm, doc/stability.md).
+   subroutine disc_cap_unload(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(mesh_family) :: mesh
+      type(discrete_solution) :: coarse
+      real(dp) :: disc
+      prob = problem
+      prob%refine_disc = .true.
+      method_used = options%method
+      if (method_used == method_auto) method_used = method_newton
+      prob%residual_tol = max(prob%residual_tol, min(1.0e-10_dp, 1.0e-4_dp*options%rel_tol))
+      call first_mesh(prob, options, mesh)
+      call first_unloading_level(prob, options, method_used, mesh, coarse, error)
+      if (allocated(error)) return
+      ! only where the innermost kink edge is a central disc's well inside the Hertz edge
+      ! (elsewhere, e.g. mid-unloading at 0.67 delta_max, the route would only repeat the
+      ! default route's levels)
+      disc = huge(1.0_dp)
+      if (allocated(prob%branch)) then
+         if (any(prob%branch > 0.0_dp)) disc = minval(prob%branch, mask=prob%branch > 0.0_dp)
+      end if
+      if (.not. disc <= disc_fraction*prob%a) then
+         call fatal_error(error, egw_not_converged, "no central disc")
+         return
+      end if
+      call refine_levels(prob, options, method_used, unload_order, mesh, coarse, sol, est, &
+         & error)
+   end subroutine disc_cap_unload
+
+   !> Unloading after a capped loading (sums_total), the history-edges route, taken only
+   !> where the default, guided and central-disc routes did not converge: the default
+   !> route's levels with the element edges of the history's mesh as element edges of
+   !> every level (prob%history_edges, sphere_mesh's with_history_edges). The
+   !> closest-approach field d_max(r) is the history's piecewise quadratic deflection,
+   !> whose slope jumps at the history's element edges; in the capped zone the unloading
+   !> pressure follows d_max (the plastic shift and offset), so p(r) has a kink at each,
+   !> inside the unloading elements, and the levels' forces moved irregularly (steel
+   !> beads, sigma 42 nm, 0.67 delta_max after 5.5 delta_y: E-GW + cap 485.8159, 485.8014,
+   !> 485.7965, 485.7979 on steps 0.124 .. 0.01, estimates down to 1.5e-6; EP-GW + cap
+   !> 2.1e-6 off at the finest step, estimate 1.2e-6). With them one level met rel_tol,
+   !> both within 9e-9 of the same route on the history's edges beyond 0.87 a only
+   !> (fewer nodes, so that its bisection check ran).
+   subroutine history_cap_unload(problem, options, sol, est, method_used, error)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      prob = problem
+      prob%history_edges = .true.
+      call solve_default(prob, options, sol, est, method_used, error)
+   end subroutine history_cap_unload
 
    !> Unloading after a capped loading, the guided route (as guided_cap_solve): the
    !> smooth cap model's plastic radius at delta_max, where the history's plastic shift
@@ -767,6 +857,12 @@ contains
             ! 3 left the error at 0.018 delta_y above its estimate, 2.5e-7 > 1.95e-7.)
             if (sums_total(prob) .and. prob%delta > 0.0_dp) edges = inner_layers(edges, &
                & sqrt(prob%delta), 5)
+            ! (the central-disc route: the disc's elements shrink with the step)
+            if (prob%refine_disc .and. allocated(prob%branch)) edges = disc_refined(edges, &
+               & prob%branch, step)
+            ! (the history-edges route: the kinks of the history's d_max(r))
+            if (prob%history_edges) edges = with_history_edges(edges, &
+               & prob%closest%mesh%edge(1:prob%closest%mesh%n_elem))
          else if (allocated(prob%branch)) then
             ! loading with the cap: its edges (cap_kink_radii) and, extended models, the
             ! Hertz edge a always (moved onto or inserted, even where the family was
