@@ -53,7 +53,7 @@ contains
       type(unloading_curve), allocatable :: curves(:)
       real(dp), allocatable :: m(:)
       integer :: j, n, n_above
-      logical :: rough_cap
+      logical :: rough_cap, reached
 
       call validate_params(params, error)
       if (allocated(error)) return
@@ -142,9 +142,15 @@ contains
          ! need, which passed every check with five and 25 % less CPU time, and met
          ! solve_unload at 1e-7 within 3.8e-5 of P(delta_max) above 0 (5.6e-5 with nine;
          ! egw-bench's table at 1e-4 48 x 55 nodes against 50 x 55, the same 9.04e-5 at
-         ! its checks). The cap's tables keep nine (validated so, not measured again).
+         ! its checks). The cap's tables keep nine where the cap acts below delta_max
+         ! (validated so, not measured again); where it never acts the table is the
+         ! cap-free one, grid and all (test rough_cap_hysteresis's reduction).
          n_above = 5
-         if (rough_cap) n_above = 9
+         if (rough_cap) then
+            call cap_reached(params, options, rel_tol, delta_max, reached, error)
+            if (allocated(error)) return
+            if (reached) n_above = 9
+         end if
          m = [table%loading%cutoff*[(real(j, dp), j = 4, 1, -1)]/4.0_dp, &
             & delta_max*[(real(j, dp), j = 0, n_above - 1)]/real(n_above - 1, dp)]
          m(1) = table%loading%cutoff
