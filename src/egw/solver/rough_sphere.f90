@@ -73,7 +73,7 @@ module egw_rough_sphere
    !> 1e-6 solves being off by several 1e-6 under smaller estimates.
    real(dp), parameter :: wide_sigmas(2) = [1.0e-5_dp, 1.0e-4_dp]
    !> sigma/delta_y at or below which a converged solve of small_sigma_limit's models is
-   !> checked against the asymptotic route (small_sigma_check_loading/_unload): there the
+   !> checked against the asymptotic route (small_sigma_loading/_unload): there the
    !> route's correction is <= 5 % of P(sigma_1) - P_cap, and discrete solves were found
    !> off by up to 800 times their estimates; at 1e-6 the route's own estimate is often
    !> above 5e-7, so a check there would refuse solves the guided route answers.
@@ -154,7 +154,7 @@ contains
    !> discrete solve does not converge: the asymptotic route (small_sigma_loading,
    !> doc/theory.md §12), if its estimate meets rel_tol; at sigma/delta_y <= 1e-7 a
    !> converged solve of those models is checked against that route
-   !> (small_sigma_check_loading).
+   !> (small_sigma_loading).
    subroutine solve_contact(params, options, delta, result, error)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
@@ -199,18 +199,15 @@ contains
          return
       end if
       call solve_rough(params, options, prob, sol, result, error)
-      if (allocated(error)) then
-         call small_sigma_loading(params, options, delta, prob, result, error)
-      else
-         call small_sigma_check_loading(params, options, delta, prob, result, error)
-      end if
+      call small_sigma_loading(params, options, delta, prob, result, error)
    end subroutine solve_contact
 
-   !> Loading of an extended model with elastic summits (asymptotic_applies) with the cap
-   !> at sigma/delta_y <= small_sigma_limit whose discrete solve did not converge
-   !> (doc/theory.md §12 "Small sigma: the asymptotic route"): the route's answer
-   !> (asymptotic_loading) if its estimate meets rel_tol/2. error is kept, its message
-   !> naming the route's estimate, when the route does not apply, fails or misses rel_tol.
+   !> The asymptotic route after the discrete loading solve of an extended model with
+   !> elastic summits with the cap (asymptotic_applies; doc/theory.md §12 "Small sigma"):
+   !> a solve that failed with egw_not_converged takes the route's answer if its estimate
+   !> meets rel_tol/2; a converged one at sigma/delta_y <= small_sigma_check_limit is
+   !> checked against it (use_asymptotic). Nothing changes where the route does not apply
+   !> or its own solves fail.
    subroutine small_sigma_loading(params, options, delta, prob, result, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
@@ -221,16 +218,14 @@ contains
       type(solve_result) :: asym
       real(dp) :: delta_y
       logical :: ok
-      if (error%stat /= egw_not_converged) return
-      if (.not. asymptotic_applies(params, options, delta, prob%extended .and. &
-         & allocated(prob%cap), delta_y)) return
+      if (.not. route_wanted(params, options, delta, prob%extended .and. &
+         & allocated(prob%cap), error, delta_y)) return
       call asymptotic_loading(params, options, delta, delta_y, asym, ok)
-      if (ok) call take_asymptotic(options, asym, result, error)
+      if (ok) call use_asymptotic(options, delta, asym, 0.0_dp, result, error)
    end subroutine small_sigma_loading
 
-   !> Unloading after a capped loading of an extended model at sigma/delta_y <=
-   !> small_sigma_limit whose discrete solve did not converge: as small_sigma_loading,
-   !> with asymptotic_unloading.
+   !> As small_sigma_loading after the discrete unloading solve of a capped history, with
+   !> asymptotic_unloading.
    subroutine small_sigma_unload(history, delta, result, error)
       type(loading_history), intent(in) :: history
       real(dp), intent(in) :: delta
@@ -239,55 +234,32 @@ contains
       type(solve_result) :: asym
       real(dp) :: delta_y
       logical :: ok
-      if (error%stat /= egw_not_converged) return
-      if (.not. asymptotic_applies(history%params, history%options, history%delta_max, &
-         & history%closest%extended .and. history%closest%capped, delta_y)) return
+      if (.not. route_wanted(history%params, history%options, history%delta_max, &
+         & history%closest%extended .and. history%closest%capped, error, delta_y)) return
       call asymptotic_unloading(history, delta, delta_y, asym, ok)
-      if (ok) call take_asymptotic(history%options, asym, result, error)
+      if (ok) call use_asymptotic(history%options, delta, asym, &
+         & unload_floor*history%loading%force, result, error)
    end subroutine small_sigma_unload
 
-   !> A converged discrete loading solve of an extended model with elastic summits with
-   !> the cap at sigma/delta_y <= small_sigma_check_limit, checked against the asymptotic
-   !> route (doc/theory.md §12 "Small sigma: the check"): where the two differ by more
-   !> than their estimates together, the discrete solve is wrong (its levels agreed by
-   !> accident: 1.28e-5 off under an estimate of 1.5e-8 at 1e-10, 10 delta_y, measured):
-   !> the route's answer replaces it if it meets rel_tol/2, else egw_not_converged.
-   !> Where the route itself fails the discrete answer stands.
-   subroutine small_sigma_check_loading(params, options, delta, prob, result, error)
+   !> Whether the asymptotic route answers a failed solve (error allocated: only
+   !> egw_not_converged) or checks a converged one (sigma/delta_y <=
+   !> small_sigma_check_limit); asymptotic_applies either way. delta_y of params.
+   logical function route_wanted(params, options, delta, capped, error, delta_y) &
+      & result(wanted)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta
-      type(scaled_problem), intent(in) :: prob
-      type(solve_result), intent(inout) :: result
-      type(egw_error), allocatable, intent(inout) :: error
-      type(solve_result) :: asym
-      real(dp) :: delta_y
-      logical :: ok
-      if (.not. asymptotic_applies(params, options, delta, prob%extended .and. &
-         & allocated(prob%cap), delta_y)) return
-      if (.not. params%sigma <= small_sigma_check_limit*delta_y) return
-      call asymptotic_loading(params, options, delta, delta_y, asym, ok)
-      if (ok) call check_against_asymptotic(options, "delta", delta, asym, 0.0_dp, result, &
-         & error)
-   end subroutine small_sigma_check_loading
-
-   !> A converged discrete unloading solve after a capped loading at sigma/delta_y <=
-   !> small_sigma_check_limit: as small_sigma_check_loading, with asymptotic_unloading.
-   subroutine small_sigma_check_unload(history, delta, result, error)
-      type(loading_history), intent(in) :: history
-      real(dp), intent(in) :: delta
-      type(solve_result), intent(inout) :: result
-      type(egw_error), allocatable, intent(inout) :: error
-      type(solve_result) :: asym
-      real(dp) :: delta_y
-      logical :: ok
-      if (.not. asymptotic_applies(history%params, history%options, history%delta_max, &
-         & history%closest%extended .and. history%closest%capped, delta_y)) return
-      if (.not. history%params%sigma <= small_sigma_check_limit*delta_y) return
-      call asymptotic_unloading(history, delta, delta_y, asym, ok)
-      if (ok) call check_against_asymptotic(history%options, "delta", delta, asym, &
-         & unload_floor*history%loading%force, result, error)
-   end subroutine small_sigma_check_unload
+      logical, intent(in) :: capped
+      type(egw_error), allocatable, intent(in) :: error
+      real(dp), intent(out) :: delta_y
+      wanted = asymptotic_applies(params, options, delta, capped, delta_y)
+      if (.not. wanted) return
+      if (allocated(error)) then
+         wanted = error%stat == egw_not_converged
+      else
+         wanted = params%sigma <= small_sigma_check_limit*delta_y
+      end if
+   end function route_wanted
 
    !> The asymptotic route's loading answer at delta (doc/theory.md §12): the smooth cap
    !> model (cap_load on 100/200 rings, its sigma -> 0 limit) plus the rough layer's
@@ -420,49 +392,42 @@ contains
          & cap%force)*shrink(1) - (wide(2)%force - cap%force)*shrink(2)))/total
    end subroutine asymptotic_result
 
-   !> A failed solve answered by the asymptotic route (asym) if its estimate meets
-   !> rel_tol/2: result written, error deallocated; else error's message names the
-   !> route's estimate.
-   subroutine take_asymptotic(options, asym, result, error)
+   !> The asymptotic route's answer asym after a discrete solve at delta. A failed solve
+   !> (error allocated) takes it if its estimate meets rel_tol/2 (result written, error
+   !> deallocated), else error's message names the route's estimate. A converged one
+   !> (result) stands where the two forces differ by at most their estimates together
+   !> (relative to max(|P|, floor)); else the route's answer replaces it if that meets
+   !> rel_tol/2, or error (egw_not_converged) names both.
+   subroutine use_asymptotic(options, delta, asym, floor, result, error)
       type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, floor
       type(solve_result), intent(in) :: asym
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(inout) :: error
-      if (.not. asym%est_rel_err <= 0.5_dp*options%rel_tol) then
-         error%message = error%message//"; nor by the small-sigma route (estimate " &
-            & //format_real(asym%est_rel_err)//", doc/theory.md section 12)"
-         return
+      logical :: meets
+      meets = asym%est_rel_err <= 0.5_dp*options%rel_tol
+      if (allocated(error)) then
+         if (.not. meets) then
+            error%message = error%message//"; nor by the small-sigma route (estimate " &
+               & //format_real(asym%est_rel_err)//", doc/theory.md section 12)"
+            return
+         end if
+         deallocate (error)
+      else
+         if (abs(result%force - asym%force) <= result%est_rel_err* &
+            & max(abs(result%force), floor) + asym%est_rel_err*max(abs(asym%force), floor)) &
+            & return
+         if (.not. meets) then
+            call fatal_error(error, egw_not_converged, "delta = "//format_real(delta)// &
+               & ": the discrete solve (force "//format_real(result%force)//", estimate " &
+               & //format_real(result%est_rel_err)//") and the small-sigma route (force "// &
+               & format_real(asym%force)//", estimate "//format_real(asym%est_rel_err)// &
+               & ") disagree beyond their estimates (doc/theory.md section 12)")
+            return
+         end if
       end if
-      deallocate (error)
       result = asym
-   end subroutine take_asymptotic
-
-   !> A converged discrete solve (result) against the asymptotic route's answer (asym):
-   !> consistent when their forces differ by at most their estimates together (relative
-   !> to max(|P|, floor)); else the route's answer replaces it if that meets rel_tol/2,
-   !> or error (egw_not_converged) names both.
-   subroutine check_against_asymptotic(options, name, value, asym, floor, result, error)
-      type(solver_options), intent(in) :: options
-      character(len=*), intent(in) :: name
-      real(dp), intent(in) :: value, floor
-      type(solve_result), intent(in) :: asym
-      type(solve_result), intent(inout) :: result
-      type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: diff, allowed
-      diff = abs(result%force - asym%force)
-      allowed = result%est_rel_err*max(abs(result%force), floor) + &
-         & asym%est_rel_err*max(abs(asym%force), floor)
-      if (diff <= allowed) return
-      if (asym%est_rel_err <= 0.5_dp*options%rel_tol) then
-         result = asym
-         return
-      end if
-      call fatal_error(error, egw_not_converged, name//" = "//format_real(value)// &
-         & ": the discrete solve (force "//format_real(result%force)//", estimate "// &
-         & format_real(result%est_rel_err)//") and the small-sigma route (force "// &
-         & format_real(asym%force)//", estimate "//format_real(asym%est_rel_err)// &
-         & ") disagree beyond their estimates (doc/theory.md section 12)")
-   end subroutine check_against_asymptotic
+   end subroutine use_asymptotic
 
    !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
    !> (a tabulated, Persson or BEM law; doc/theory.md §11): the law gives the whole
@@ -690,12 +655,8 @@ contains
          return
       end if
       call rough_unload(history, delta, res, error)
-      if (allocated(error)) then
-         call small_sigma_unload(history, delta, result, error)
-      else
-         call small_sigma_check_unload(history, delta, res, error)
-         if (.not. allocated(error)) result = res
-      end if
+      call small_sigma_unload(history, delta, res, error)
+      if (.not. allocated(error)) result = res
    end subroutine solve_unload
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the

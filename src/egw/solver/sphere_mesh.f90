@@ -46,7 +46,7 @@ module egw_sphere_mesh
    end type mesh_family
 
    public :: mesh_family
-   public :: kink_radii, cap_kink_radii, plastic_rim
+   public :: kink_radii, cap_kink_radii, plastic_rim, edge_layer_width
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
       & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined, &
@@ -604,6 +604,15 @@ contains
       out = out(:m)
    end function with_history_edges
 
+   !> Width of the boundary layer outside a contact edge at radius edge (scaled units):
+   !> where the gap outside a Hertz-like edge, (4/3)(a**2/pi)(2 s/a)**1.5, reaches one
+   !> sigma, s_b = (a/2)(3 pi/(4 a**2))**(2/3), at most 1 (mesh_geometry's Hertz edge; the
+   !> solver's cap edges and the plastic rim take the same).
+   elemental real(dp) function edge_layer_width(edge) result(width)
+      real(dp), intent(in) :: edge
+      width = min(1.0_dp, 0.5_dp*edge*(0.75_dp*pi/edge**2)**(2.0_dp/3.0_dp))
+   end function edge_layer_width
+
    !> Focus of the mesh grading (Hertz edge or 0), its width, and the first outer radius.
    !> Outside the Hertz edge the gap grows like (4/3)(a**2/pi)(2 s/a)**1.5 (s = r - a), so
    !> it reaches one sigma at s_b = (a/2)(3 pi/(4 a**2))**(2/3): the boundary layer whose
@@ -618,7 +627,7 @@ contains
       if (prob%a > 1.0_dp .or. (prob%extended .and. prob%a > 0.0_dp)) then
          ! The extended models need a node at a, where z has its (r - a)**1.5 onset.
          focus = prob%a
-         width = min(1.0_dp, 0.5_dp*prob%a*(0.75_dp*pi/prob%a**2)**(2.0_dp/3.0_dp))
+         width = edge_layer_width(prob%a)
       else
          focus = 0.0_dp
          width = min(1.0_dp, 1.0_dp/sqrt(max(1.0_dp, -prob%delta)))

@@ -47,7 +47,8 @@ module egw_sphere_solver
    use egw_sphere_mesh, only: force_order, unload_order, finest_step, mesh_family, &
       & first_mesh, trim_to_unloading_decay, gap_edge, branch_radii, kink_radii, with_edge, &
       & with_kink_edges, focus_refined, grown_outer, negligible_at, inner_layers, &
-      & mesh_geometry, kink_layers, plastic_rim, disc_refined, with_history_edges
+      & mesh_geometry, kink_layers, plastic_rim, disc_refined, with_history_edges, &
+      & edge_layer_width
    use egw_sphere_iteration, only: solve_mesh, differentiate
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load
    implicit none
@@ -111,6 +112,20 @@ contains
       if (.not. allocated(guided_error)) deallocate (error)
    end subroutine solve_scaled
 
+   !> The method a solve runs: options%method, Newton for auto.
+   elemental integer function solve_method(options) result(method)
+      type(solver_options), intent(in) :: options
+      method = options%method
+      if (method == method_auto) method = method_newton
+   end function solve_method
+
+   !> An unloading solve's Newton residual: a scaled residual of 1e-4 rel_tol (at most
+   !> 1e-10; solve_default says why), never below residual_tol.
+   elemental real(dp) function unload_residual_tol(residual_tol, rel_tol) result(tol)
+      real(dp), intent(in) :: residual_tol, rel_tol
+      tol = max(residual_tol, min(1.0e-10_dp, 1.0e-4_dp*rel_tol))
+   end function unload_residual_tol
+
    !> Unloading after a capped loading (sums_total), the central-disc route, taken only
    !> where neither the default nor the guided route converged, and only where the
    !> innermost kink edge c is below disc_fraction of the Hertz radius a: the default
@@ -134,9 +149,8 @@ contains
       real(dp) :: disc
       prob = problem
       prob%refine_disc = .true.
-      method_used = options%method
-      if (method_used == method_auto) method_used = method_newton
-      prob%residual_tol = max(prob%residual_tol, min(1.0e-10_dp, 1.0e-4_dp*options%rel_tol))
+      method_used = solve_method(options)
+      prob%residual_tol = unload_residual_tol(prob%residual_tol, options%rel_tol)
       call first_mesh(prob, options, mesh)
       call first_unloading_level(prob, options, method_used, mesh, coarse, error)
       if (allocated(error)) return
@@ -198,9 +212,8 @@ contains
       type(mesh_family) :: mesh
       real(dp) :: edge
       prob = problem
-      method_used = options%method
-      if (method_used == method_auto) method_used = method_newton
-      prob%residual_tol = max(prob%residual_tol, min(1.0e-10_dp, 1.0e-4_dp*options%rel_tol))
+      method_used = solve_method(options)
+      prob%residual_tol = unload_residual_tol(prob%residual_tol, options%rel_tol)
       call first_mesh(prob, options, mesh)
       at_max = prob
       at_max%delta = prob%closest%delta
@@ -241,8 +254,7 @@ contains
       type(mesh_family) :: mesh, moved_mesh
       real(dp) :: edge
       prob = problem
-      method_used = options%method
-      if (method_used == method_auto) method_used = method_newton
+      method_used = solve_method(options)
       call first_mesh(prob, options, mesh)
       call smooth_cap_edge(prob, edge, error)
       if (allocated(error)) return
@@ -251,7 +263,7 @@ contains
       prob%kink_width = mesh%width
       if (edge > mesh%focus + 4.0_dp*mesh%width) then
          mesh%focus = edge
-         mesh%width = min(1.0_dp, 0.5_dp*edge*(0.75_dp*pi/edge**2)**(2.0_dp/3.0_dp))
+         mesh%width = edge_layer_width(edge)
          mesh%layered = .true.
          mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
       end if
@@ -313,15 +325,14 @@ contains
       prob = problem
       order = force_order
       if (allocated(prob%closest)) order = unload_order
-      method_used = options%method
-      if (method_used == method_auto) method_used = method_newton
+      method_used = solve_method(options)
       ! Unloading: Newton to a scaled residual of 1e-4 rel_tol (at most 1e-10, 1e-11 from
       ! rel_tol 1e-7 down), which moves the force by ~1e-4 rel_tol times the Jacobian's
       ! condition, far inside the tolerance and the Richardson margin; a level whose last
       ! step lands between 1e-11 and that (seen: 2.8e-11, 4.0e-11 on the reference cases)
       ! is spared an evaluation of Z_u over the mesh and an LU.
       if (allocated(prob%closest)) prob%residual_tol = &
-         & max(prob%residual_tol, min(1.0e-10_dp, 1.0e-4_dp*options%rel_tol))
+         & unload_residual_tol(prob%residual_tol, options%rel_tol)
       call first_mesh(prob, options, mesh)
       if (allocated(prob%closest)) then
          call first_unloading_level(prob, options, method_used, mesh, coarse, error)
@@ -394,8 +405,7 @@ contains
       if (sums_total(prob) .and. options%n_radial == 0) then
          prob%rim = plastic_rim(prob)
          if (prob%rim > mesh%focus + 4.0_dp*mesh%width) then
-            prob%rim_width = min(1.0_dp, 0.5_dp*prob%rim*(0.75_dp*pi/prob%rim**2)** &
-               & (2.0_dp/3.0_dp))
+            prob%rim_width = edge_layer_width(prob%rim)
             mesh%outer = max(mesh%outer, prob%rim + 4.0_dp*prob%rim_width)
          else
             prob%rim = 0.0_dp
@@ -467,7 +477,7 @@ contains
       edge = maxval(prob%branch)
       if (edge > mesh%focus + 4.0_dp*mesh%width) then
          mesh%focus = edge
-         mesh%width = min(1.0_dp, 0.5_dp*edge*(0.75_dp*pi/edge**2)**(2.0_dp/3.0_dp))
+         mesh%width = edge_layer_width(edge)
          mesh%layered = .true.
          mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
       end if
