@@ -53,7 +53,7 @@ contains
       type(unloading_curve), allocatable :: curves(:)
       real(dp), allocatable :: m(:)
       integer :: j, n, n_above
-      logical :: rough_cap, reached
+      logical :: rough_cap, shift
 
       call validate_params(params, error)
       if (allocated(error)) return
@@ -116,6 +116,13 @@ contains
          call build_cap_curves(table, options, error, progress)
          return
       end if
+      ! a rough model whose cap acts below delta_max (elastic summits: the table is
+      ! irreversible only then): L(m) less the smooth cap's residual overlap (rough_length)
+      shift = rough_cap
+      if (rough_cap .and. plastic_summits(params)) then
+         call cap_reached(params, options, rel_tol, delta_max, shift, error)
+         if (allocated(error)) return
+      end if
       ! delta_max grid: from the loading cut-off (1e-12 of P_ref: the slowest impacts turn
       ! in the tail, where summits yield too) to delta_max, dyadic (bisection keeps it so:
       ! the m buckets rely on it)
@@ -146,11 +153,7 @@ contains
          ! (validated so, not measured again); where it never acts the table is the
          ! cap-free one, grid and all (test rough_cap_hysteresis's reduction).
          n_above = 5
-         if (rough_cap) then
-            call cap_reached(params, options, rel_tol, delta_max, reached, error)
-            if (allocated(error)) return
-            if (reached) n_above = 9
-         end if
+         if (shift) n_above = 9
          m = [table%loading%cutoff*[(real(j, dp), j = 4, 1, -1)]/4.0_dp, &
             & delta_max*[(real(j, dp), j = 0, n_above - 1)]/real(n_above - 1, dp)]
          m(1) = table%loading%cutoff
@@ -164,13 +167,13 @@ contains
       ! unloading force is below the table's tolerance: the evaluation continues each
       ! curve in proportion to the loading tail, and the s grid keeps its resolution
       ! where the unloading forces are)
-      call unloading_lengths(table, options, m, curves, error)
+      call unloading_lengths(table, options, m, shift, curves, error)
       if (allocated(error)) return
       table%s_max = 2*maxval((m - unloading_floor(table%loading, table%rel_tol))/ &
          & curves%length)
-      call build_curves(table, options, m, curves, error)
+      call build_curves(table, options, m, shift, curves, error)
       if (allocated(error)) return
-      call refine_m(table, options, m, curves, error, progress)
+      call refine_m(table, options, shift, m, curves, error, progress)
       if (allocated(error)) return
       call resample(table, m, curves)
       call hysteresis_prepare(table)
@@ -200,9 +203,9 @@ contains
       table%s_max = 1.0_dp
       allocate (curves(n))
       if (present(progress)) call progress(0, 2*n - 1)
-      call build_curves(table, options, m, curves, error)
+      call build_curves(table, options, m, .false., curves, error)
       if (allocated(error)) return
-      call refine_m(table, options, m, curves, error, progress)
+      call refine_m(table, options, .false., m, curves, error, progress)
       if (allocated(error)) return
       call resample(table, m, curves)
       call hysteresis_prepare(table)
@@ -260,25 +263,40 @@ contains
    end subroutine rough_first_yield
 
    !> L(m) of a rough model with the cap: unloading_length of the cap-free loading solve at
-   !> m. The capped solve's loading stiffness holds its capped set fixed and converges
-   !> slowly (doc/theory.md section 12, Limits): L from it jumped by 5 % between
-   !> neighbouring turning points, which no bisection in m removes; the cap-free L is
-   !> smooth in m, and equal to the capped one where the cap does not act.
-   subroutine free_length(params, options, m, length, error)
+   !> m, less (shift: where the cap acts below the table's delta_max) the smooth cap
+   !> model's residual overlap delta_r(m) (0 up to first yield delta_y; cap_length). The
+   !> capped solve's loading stiffness holds its capped set fixed and converges slowly
+   !> (doc/theory.md section 12, Limits): L from it jumped by 5 % between neighbouring
+   !> turning points, which no bisection in m removes; the cap-free L is smooth in m, and
+   !> equal to the capped one where the cap does not act. The shift puts the knee of every
+   !> curve, where the unloading contact separates near delta_r, at about one s (1/s_max,
+   !> as the Hertz + cap curves' residual overlap at s = 1): with the cap-free L alone it
+   !> moved from s = 0.48 to 0.29 between 1.2 and 5.7 delta_y (E-GW, sigma = delta_y/100),
+   !> the curves' cubics in m met it at every s and the delta_max grid at 1e-4 needed 81
+   !> nodes, its midpoint mismatch falling only ~h**1.5 (doc/benchmarks.md, stop 43).
+   !> delta_r (C1 at delta_y, smooth above) keeps L smooth in m.
+   subroutine rough_length(params, options, m, shift, length, error)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: m
+      logical, intent(in) :: shift
       real(dp), intent(out) :: length
       type(egw_error), allocatable, intent(out) :: error
       type(contact_params) :: free
       type(solve_result) :: res
+      real(dp) :: smooth
       free = params
       free%flow_pressure = 0.0_dp
       length = params%sigma
       call solve_contact(free, options, m, res, error)
       if (allocated(error)) return
       length = unloading_length(res%force, res%stiffness, params%sigma)
-   end subroutine free_length
+      if (.not. (shift .and. m > first_yield(params))) return
+      call cap_length(params, m, smooth, error)
+      if (allocated(error)) return
+      ! (L_free >= m on the rough models: never below the smooth cap's m - delta_r)
+      length = max(length - (m - smooth), smooth)
+   end subroutine rough_length
 
    !> The unloading length of a Hertz + cap curve of turning point m: m minus the residual
    !> overlap of cap_load (on the public solves' options); m at and below first yield
@@ -305,9 +323,10 @@ contains
    !> are kept until their interval is split, then bisected from the first nodes as a
    !> node's curve is (refine_curve, taking the check solves it meets: the same curve)
    !> and rechecked when the stencil changed: only new midpoints cost solves.
-   subroutine refine_m(table, options, m, curves, error, progress)
+   subroutine refine_m(table, options, shift, m, curves, error, progress)
       type(hysteresis_table), intent(inout) :: table
       type(solver_options), intent(in) :: options
+      logical, intent(in) :: shift   !< rough_length's
       real(dp), allocatable, intent(inout) :: m(:)
       type(unloading_curve), allocatable, intent(inout) :: curves(:)
       type(egw_error), allocatable, intent(out) :: error
@@ -331,8 +350,8 @@ contains
                call merge_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
                built(k)%s = pack(built(k)%s, built(k)%s > 0.0_dp)
             end do
-            call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), built, error, &
-               & check=.true.)
+            call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), shift, built, &
+               & error, check=.true.)
             if (allocated(error)) return
             do k = 1, size(idx)
                call move_curve(built(k), mids(idx(k)))
@@ -455,10 +474,11 @@ contains
 
    !> L(m) of the curves at m(:) (a loading solve each, in parallel; its history is kept
    !> in the curve for build_curves).
-   subroutine unloading_lengths(table, options, m, curves, error)
+   subroutine unloading_lengths(table, options, m, shift, curves, error)
       type(hysteresis_table), intent(in) :: table
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: m(:)
+      logical, intent(in) :: shift   !< rough_length's
       type(unloading_curve), intent(inout) :: curves(:)
       type(egw_error), allocatable, intent(out) :: error
       type(solver_options) :: serial
@@ -478,7 +498,7 @@ contains
          type(egw_error), allocatable :: err
          type(solve_result) :: top, res
          if (table%params%flow_pressure > 0.0_dp) then   ! (rough: the smooth cap's differ)
-            call free_length(table%params, serial, m(j), curves(j)%length, err)
+            call rough_length(table%params, serial, m(j), shift, curves(j)%length, err)
          else
             call load_history(table%params, serial, m(j), curves(j)%hist, top, err)
             if (.not. allocated(err)) call solve_unload(curves(j)%hist, m(j), res, err)
@@ -534,10 +554,11 @@ contains
    !> is independent: its own loading history and solves); the first error wins. A curve
    !> whose history is loaded already (unloading_lengths) keeps it. check: solve each
    !> curve at the s nodes curves(j)%s holds (refine_m's check curves), without bisection.
-   subroutine build_curves(table, options, m, curves, error, check)
+   subroutine build_curves(table, options, m, shift, curves, error, check)
       type(hysteresis_table), intent(inout) :: table
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: m(:)
+      logical, intent(in) :: shift   !< rough_length's
       type(unloading_curve), intent(inout) :: curves(:)
       type(egw_error), allocatable, intent(out) :: error
       logical, intent(in), optional :: check
@@ -564,7 +585,7 @@ contains
          integer, intent(in) :: j
          type(egw_error), allocatable :: err
          real(dp), allocatable :: s(:)
-         call start_curve(table, serial, m(j), curves(j), err)
+         call start_curve(table, serial, m(j), shift, curves(j), err)
          if (.not. allocated(err)) then
             if (only_check) then
                s = curves(j)%s
@@ -639,10 +660,11 @@ contains
 
    !> What the solves of the unloading curve of delta_max = m need: its loading history
    !> (loaded here unless the curve holds one for m), the force scale and L(m).
-   subroutine start_curve(table, options, m, curve, error)
+   subroutine start_curve(table, options, m, shift, curve, error)
       type(hysteresis_table), intent(in) :: table
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: m
+      logical, intent(in) :: shift   !< rough_length's
       type(unloading_curve), intent(inout) :: curve
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
@@ -668,7 +690,7 @@ contains
       if (table%capped) then
          call cap_length(table%params, m, curve%length, error)
       else if (table%params%flow_pressure > 0.0_dp) then
-         call free_length(table%params, options, m, curve%length, error)
+         call rough_length(table%params, options, m, shift, curve%length, error)
       else
          call solve_unload(curve%hist, m, res, error)
          if (.not. allocated(error)) curve%length = unloading_length(f_turn, res%stiffness, &
