@@ -41,6 +41,8 @@ def main():
     ap.add_argument("--solves", type=int, default=0, help="turning points for solves")
     ap.add_argument("--m", type=float, nargs="*", default=[],
                     help="more turning points for solves")
+    ap.add_argument("--worst", type=int, default=0,
+                    help="solves where A and B differ most, at this many turning points")
     args = ap.parse_args()
     ta = egw.HysteresisTable.read(args.a)
     if args.b:
@@ -49,13 +51,24 @@ def main():
         nodes = nodes[nodes > nodes[0]]   # (the first node: g = 0, both tables exact)
         pts = np.unique(np.concatenate([nodes, 0.5 * (nodes[1:] + nodes[:-1])]))
         worst = (0.0, None)
+        diffs = []
         for m in pts:
             d, p_m = curve_deltas(ta, m)
-            err = np.max(np.abs(unload(ta, m, d) - unload(tb, m, d))) / p_m
-            if err > worst[0]:
-                worst = (err, m)
+            e = np.abs(unload(ta, m, d) - unload(tb, m, d)) / p_m
+            diffs.append((e.max(), m, d[e.argmax()], p_m))
+            if e.max() > worst[0]:
+                worst = (e.max(), m)
         print(f"A vs B: {len(pts)} turning points x 201 overlaps: max |dP|/P(m) = "
               f"{worst[0]:.3e} (at m = {worst[1]:.3f})")
+        diffs.sort(reverse=True)
+        params = _params(args.a)
+        opts = egw.Options(rel_tol=1e-7)
+        for e, m, d, p_m in diffs[:args.worst]:
+            ref = egw.solve_unload(params, float(d), float(m), opts).force
+            x = np.array([d])
+            print(f"largest differences: m {m:9.3f} delta {d:9.3f} A-B {e:.2e} ref {ref:.6e}"
+                  f"  errA {abs(unload(ta, m, x)[0] - ref) / p_m:.2e}"
+                  f"  errB {abs(unload(tb, m, x)[0] - ref) / p_m:.2e}", flush=True)
     if args.solves:
         params = _params(args.a)
         tabs = [ta] + ([tb] if args.b else [])
