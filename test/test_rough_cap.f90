@@ -63,7 +63,9 @@ contains
          & new_unittest("E-GW + cap steel beads, 10 nm: the central-disc route", &
          & test_residual_disc_beads), &
          & new_unittest("the two routes' meshes: disc_refined, with_history_edges", &
-         & test_route_meshes) &
+         & test_route_meshes), &
+         & new_unittest("E-GW + cap steel beads, 42 nm: mid-unloading reaches the rim", &
+         & test_mid_unloading_rim) &
          & ]
    end subroutine collect_rough_cap
 
@@ -169,6 +171,55 @@ contains
       call check(error, all([(out(i) < out(i + 1), i=1, size(out) - 1)]), &
          & "with_history_edges: not increasing")
    end subroutine test_route_meshes
+
+   !> Steel beads of example cap-bead-grid (R* = 0.5 mm, E = 210 GPa, nu 0.3, pair sigma
+   !> 42 nm = 0.0443 delta_y, mu 4, p_y = 3.2 GPa), E-GW + cap unloading from the turning
+   !> point of the 3 m/s impact (5.2304e-6 m = 5.51 delta_y) at 0.66 delta_max. There the
+   !> contact ends in an annulus at the rim of the history's plastic zone (scaled radius
+   !> 12.08), beyond a band of zero pressure, outside the outer radius (10.90) that a
+   !> fixed mesh (n_radial) had: every n_radial from 257 to 2049 gave 458.95984 (scaled),
+   !> 2.7e-3 low under estimates of ~1e-9, and P(delta) jumped by 0.33 % at 0.67
+   !> delta_max (the history-edges route of stop 42's steel6 branch too: its e 0.7633088
+   !> against 0.763344). Reference (scaled force P/(E* sqrt(R) sigma**1.5), the history at
+   !> rel_tol 1e-9): fixed meshes reaching past the rim, n_radial 1025, 1537, 2049:
+   !> 460.1819248, 460.1819250, 460.1819253; the default route at rel_tol 1e-8
+   !> 460.1819251 (example steel-mid-unload, doc/stability.md). Bounds: the default route
+   !> at rel_tol 1e-6 its tolerance (measured 1.4e-8); n_radial 513 1e-7 (measured 1.3e-8;
+   !> the reference is good to ~1e-9; the failure was 2.7e-3).
+   subroutine test_mid_unloading_rim(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: ref_scaled = 460.1819252_dp, delta_max = 5.2304422987839924e-6_dp
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: ref
+      p = contact_params(model=model_egw, radius=0.5e-3_dp, modulus=210.0e9_dp/(2.0_dp* &
+         & (1.0_dp - 0.3_dp**2)), sigma=4.2e-8_dp, mu=4.0_dp, flow_pressure=3.2e9_dp)
+      ref = ref_scaled*p%modulus*sqrt(p%radius)*p%sigma**1.5_dp
+      call load_history(p, solver_options(rel_tol=1.0e-9_dp, n_threads=1), delta_max, h, &
+         & res, err)
+      call check(error, .not. allocated(err), "history at 5.51 delta_y failed")
+      if (allocated(error)) return
+      h%options%rel_tol = 1.0e-6_dp
+      call solve_unload(h, 0.66_dp*delta_max, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading at 0.66 delta_max: "//err%message)
+         return
+      end if
+      call check(error, abs(res%force - ref) <= 1.0e-6_dp*ref, "rel_tol 1e-6: P = " &
+         & //str(res%force)//" N, reference "//str(ref))
+      if (allocated(error)) return
+      h%options%n_radial = 513
+      call solve_unload(h, 0.66_dp*delta_max, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading at 0.66 delta_max, n_radial 513: " &
+            & //err%message)
+         return
+      end if
+      call check(error, abs(res%force - ref) <= 1.0e-7_dp*ref, "n_radial 513: P = " &
+         & //str(res%force)//" N, reference "//str(ref))
+   end subroutine test_mid_unloading_rim
 
    function str(x) result(s)
       real(dp), intent(in) :: x
