@@ -100,8 +100,9 @@ module egw_rough_sphere
       logical :: capped = .false.
       type(separation_field), private :: closest
       type(cap_history), private :: cap
-      !> Loaded by the small-sigma route (its loading did not converge at sigma/delta_y
-      !> <= 1e-6): no rough field; every unloading solve is the route's.
+      !> Loaded by the small-sigma route (its discrete loading did not converge at
+      !> sigma/delta_y <= 1e-6, or was replaced by the route's check at <= 1e-7): no rough
+      !> field; every unloading solve is the route's.
       logical, private :: asymptotic = .false.
    end type loading_history
 
@@ -717,8 +718,8 @@ contains
       if (history%asymptotic) then
          ! (the small-sigma route's history: its answer, or the failure naming its estimate)
          call fatal_error(error, egw_not_converged, "delta = "//format_real(delta)// &
-            & ": the history was loaded by the small-sigma route (its loading did not " &
-            & //"converge), which answers its unloading")
+            & ": the history was loaded by the small-sigma route (its discrete " &
+            & //"loading failed or was replaced), which answers its unloading")
       else
          call rough_unload(history, delta, res, error)
       end if
