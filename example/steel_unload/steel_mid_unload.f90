@@ -26,95 +26,91 @@ program steel_mid_unload
    type(egw_error), allocatable :: err
    type(loading_history) :: hist
    type(solve_result) :: res, top
-   real(dp) :: mass, e, diss, depth, dy, scale, frac, htol
-   integer :: i, k, ns(7), ios
-   real(dp) :: tols(3)
-   character(len=32) :: arg
+   real(dp) :: mass, e, diss, depth, dy, scale, frac, htol, unit_r
+   integer :: i, k, ios
+   integer, parameter :: ns(7) = [257, 385, 513, 769, 1025, 1537, 2049]
+   real(dp), parameter :: tols(3) = [1.0e-6_dp, 1.0e-7_dp, 1.0e-8_dp]
+   character(len=32) :: arg, mode
    integer(int64) :: c0, c1, rate
-   p = contact_params(model=model_egw, radius=0.5e-3_dp, modulus=210.0e9_dp/(2.0_dp*(1.0_dp - 0.09_dp)), &
-      & sigma=4.2e-8_dp, mu=4.0_dp, psi=0.0_dp, flow_pressure=3.2e9_dp)
+
+   p = contact_params(model=model_egw, radius=0.5e-3_dp, modulus=210.0e9_dp/(2.0_dp* &
+      & (1.0_dp - 0.3_dp**2)), sigma=4.2e-8_dp, mu=4.0_dp, psi=0.0_dp, &
+      & flow_pressure=3.2e9_dp)
    mass = 0.5_dp*7830.0_dp*4.0_dp*pi*1.0e-9_dp/3.0_dp
    dy = first_yield_overlap(p)
    scale = p%modulus*sqrt(p%radius)*p%sigma**1.5_dp
+   unit_r = sqrt(p%radius*p%sigma)
    frac = 0.67_dp
    htol = 1.0e-8_dp
+   mode = ""
    if (command_argument_count() >= 1) then
-      call get_command_argument(1, arg); read (arg, *, iostat=ios) frac
+      call get_command_argument(1, arg)
+      read (arg, *, iostat=ios) frac
    end if
    if (command_argument_count() >= 2) then
-      call get_command_argument(2, arg); read (arg, *, iostat=ios) htol
+      call get_command_argument(2, arg)
+      read (arg, *, iostat=ios) htol
    end if
+   if (command_argument_count() >= 3) call get_command_argument(3, mode)
+
    opts%n_threads = 1
    opts%rel_tol = 1.0e-6_dp
    call system_clock(c0, rate)
    call restitution(p, opts, mass, 3.0_dp, e, diss, err, max_overlap=depth)
    call system_clock(c1)
-   if (allocated(err)) then
-      print *, "restitution failed: ", err%message
-      stop 1
-   end if
-   print '(a,f10.7,a,es24.16,a,f9.5,a,f7.1)', "e = ", e, " delta_m = ", depth, " delta_m/delta_y = ", depth/dy, &
-      & " s ", real(c1 - c0)/real(rate)
+   if (allocated(err)) error stop "restitution failed: "//err%message
+   print '(a,f10.7,a,es24.16,a,f9.5,a,f7.1)', "e = ", e, " delta_m = ", depth, &
+      & " delta_m/delta_y = ", depth/dy, " s ", real(c1 - c0)/real(rate)
    opts%rel_tol = htol
    call load_history(p, opts, depth, hist, top, err)
-   if (allocated(err)) then
-      print *, "history failed: ", err%message
-      stop 1
-   end if
-   print '(a,es10.2,a,es24.16,a,es10.2)', "history rel_tol ", htol, " P(delta_m)/scale ", top%force/scale, " est ", top%est_rel_err
-   if (command_argument_count() >= 3) then
-      call get_command_argument(3, arg)
-      if (arg == "work") then
-         call unloading_work()
-         stop
-      end if
+   if (allocated(err)) error stop "history failed: "//err%message
+   print '(a,es10.2,a,es24.16,a,es10.2)', "history rel_tol ", htol, " P(delta_m)/scale ", &
+      & top%force/scale, " est ", top%est_rel_err
+
+   select case (mode)
+   case ("work")
+      call unloading_work()
+   case ("sweep", "fine", "finefixed")
       hist%options%rel_tol = 1.0e-6_dp
+      if (mode == "finefixed") hist%options%n_radial = 1025
       do k = 1, 49
-         if (index(arg, "fixed") > 0) hist%options%n_radial = 1025
          frac = real(k, dp)/50.0_dp
-         if (index(arg, "fine") > 0) frac = 0.56_dp + 0.004_dp*real(k - 1, dp)
-         call solve_unload(hist, frac*depth, res, err)
-         if (allocated(err)) then
-            print '(a,f7.4,a)', "sweep ", frac, " failed"
-            deallocate (err)
-         else
-            print '(a,f7.4,a,es24.16,a,es10.2,a,f12.6)', "sweep ", frac, " P/scale ", &
-               & res%force/scale, " est ", res%est_rel_err, " a* ", res%contact_radius/sqrt(p%radius*p%sigma)
-         end if
+         if (mode /= "sweep") frac = 0.56_dp + 0.004_dp*real(k - 1, dp)
+         call report("sweep", frac)
       end do
-      stop
-   end if
-   tols = [1.0e-6_dp, 1.0e-7_dp, 1.0e-8_dp]
-   do i = 1, 3
-      hist%options%rel_tol = tols(i)
-      hist%options%n_radial = 0
-      call system_clock(c0)
-      call solve_unload(hist, frac*depth, res, err)
-      call system_clock(c1)
-      if (allocated(err)) then
-         print '(a,es9.1,a,a)', "adaptive ", tols(i), " failed: ", err%message
-         deallocate (err)
-      else
-         print '(a,es9.1,a,es24.16,a,es10.2,a,f7.1,a,f12.6)', "adaptive ", tols(i), " P/scale ", res%force/scale, " est ", &
-            & res%est_rel_err, " s ", real(c1 - c0)/real(rate), " a* ", res%contact_radius/sqrt(p%radius*p%sigma)
-      end if
-   end do
-   ns = [257, 385, 513, 769, 1025, 1537, 2049]
-   do k = 1, size(ns)
-      hist%options%rel_tol = 1.0e-6_dp
-      hist%options%n_radial = ns(k)
-      call system_clock(c0)
-      call solve_unload(hist, frac*depth, res, err)
-      call system_clock(c1)
-      if (allocated(err)) then
-         print '(a,i6,a,a)', "n_radial ", ns(k), " failed: ", err%message
-         deallocate (err)
-      else
-         print '(a,i6,a,es24.16,a,es10.2,a,f7.1,a,f12.6)', "n_radial ", ns(k), " P/scale ", res%force/scale, " est ", &
-            & res%est_rel_err, " s ", real(c1 - c0)/real(rate), " a* ", res%contact_radius/sqrt(p%radius*p%sigma)
-      end if
-   end do
+   case default
+      do i = 1, size(tols)
+         hist%options%rel_tol = tols(i)
+         hist%options%n_radial = 0
+         call report("adaptive", tols(i))
+      end do
+      do k = 1, size(ns)
+         hist%options%rel_tol = 1.0e-6_dp
+         hist%options%n_radial = ns(k)
+         call report("n_radial", real(ns(k), dp))
+      end do
+   end select
+
 contains
+
+   !> One unloading solve at frac delta_m (sweeps: x = frac; else at FRAC, x labels it).
+   subroutine report(label, x)
+      character(len=*), intent(in) :: label
+      real(dp), intent(in) :: x
+      real(dp) :: at
+      at = frac
+      call system_clock(c0)
+      call solve_unload(hist, at*depth, res, err)
+      call system_clock(c1)
+      if (allocated(err)) then
+         print '(a,1x,es10.3,a,a)', label, x, " failed: ", err%message
+         deallocate (err)
+         return
+      end if
+      print '(a,1x,es10.3,a,es24.16,a,es10.2,a,f7.1,a,f12.6)', label, x, " P/scale ", &
+         & res%force/scale, " est ", res%est_rel_err, " s ", real(c1 - c0)/real(rate), &
+         & " a* ", res%contact_radius/unit_r
+   end subroutine report
 
    !> W_unload by 8-point Gauss-Legendre on n_panel equal panels of [0.36, 1] delta_m, on
    !> fixed meshes of n_radial nodes (the force below 0.38 delta_m is < 1e-90 of the peak)
@@ -139,16 +135,14 @@ contains
                   do sgn = -1, 1, 2
                      x = mid + real(sgn, dp)*0.5_dp*h*x8(q)
                      call solve_unload(hist, x, res, err)
-                     if (allocated(err)) then
-                        print *, "failed at ", x/depth, err%message
-                        stop 1
-                     end if
+                     if (allocated(err)) error stop "unloading failed: "//err%message
                      wsum = wsum + 0.5_dp*h*w8(q)*res%force
                   end do
                end do
             end do
             print '(a,i5,a,i4,a,es24.16,a,f12.9)', "n_radial ", nodes(jn), " panels ", &
-               & panels(ip), " W_unload ", wsum, " e = sqrt(W_u/(m v^2/2)) ", sqrt(wsum/energy)
+               & panels(ip), " W_unload ", wsum, " e = sqrt(W_u/(m v^2/2)) ", &
+               & sqrt(wsum/energy)
          end do
       end do
    end subroutine unloading_work

@@ -601,7 +601,7 @@ contains
             ! to keep; doc/theory.md section 12 "Small sigma: the asymptotic route").
             call small_sigma_loading(params, options, delta_max, prob, hist%loading, error)
             if (allocated(error)) return
-            call asymptotic_history()
+            call asymptotic_history(params, prob, hist, history, result)
             return
          end if
          ! ... and a converged one at sigma/delta_y <= 1e-7 is checked against the route
@@ -612,7 +612,7 @@ contains
          call small_sigma_loading(params, options, delta_max, prob, hist%loading, error)
          if (allocated(error)) return
          if (hist%loading%force /= checked%force) then
-            call asymptotic_history()
+            call asymptotic_history(params, prob, hist, history, result)
             return
          end if
          hist%closest%extended = prob%extended
@@ -627,21 +627,24 @@ contains
       hist%loaded = .true.
       result = hist%loading
       call move_history(hist, history)
-
-   contains
-
-      !> The small-sigma route's history (hist%loading its answer): no rough field.
-      subroutine asymptotic_history()
-         hist%asymptotic = .true.
-         hist%closest%extended = prob%extended
-         hist%closest%delta = prob%delta
-         hist%closest%capped = .true.
-         hist%closest%force = hist%loading%force/force_unit(params)
-         hist%loaded = .true.
-         result = hist%loading
-         call move_history(hist, history)
-      end subroutine asymptotic_history
    end subroutine load_history
+
+   !> load_history's end where the small-sigma route answered the loading (hist%loading):
+   !> a history without rough field whose unloading solves are the route's.
+   subroutine asymptotic_history(params, prob, hist, history, result)
+      type(contact_params), intent(in) :: params
+      type(scaled_problem), intent(in) :: prob
+      type(loading_history), intent(inout) :: hist, history
+      type(solve_result), intent(inout) :: result
+      hist%asymptotic = .true.
+      hist%closest%extended = prob%extended
+      hist%closest%delta = prob%delta
+      hist%closest%capped = .true.
+      hist%closest%force = hist%loading%force/force_unit(params)
+      hist%loaded = .true.
+      result = hist%loading
+      call move_history(hist, history)
+   end subroutine asymptotic_history
 
    !> history <- hist without copying the arrays.
    pure subroutine move_history(hist, history)
