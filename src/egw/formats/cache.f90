@@ -37,8 +37,9 @@ module egw_cache
    !> check; 10: the hysteresis build's first delta_max grid above 0, five nodes, not nine,
    !> in tables without the cap; 11: unloading deep in the cap with the plastic zone's rim
    !> an element edge with layers, and converged solves at sigma/delta_y <= 1e-7 checked
-   !> against the asymptotic route).
-   integer, parameter, public :: cache_revision = 11
+   !> against the asymptotic route; 12: histories at sigma/delta_y <= 1e-6 by the
+   !> asymptotic route where their loading fails or its check replaces it).
+   integer, parameter, public :: cache_revision = 12
 
 
 contains
