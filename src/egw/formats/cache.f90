@@ -38,8 +38,9 @@ module egw_cache
    !> in tables without the cap; 11: unloading deep in the cap with the plastic zone's rim
    !> an element edge with layers, and converged solves at sigma/delta_y <= 1e-7 checked
    !> against the asymptotic route; 12: rough + cap hysteresis tables' L(m) less the smooth
-   !> cap's residual overlap where the cap acts).
-   integer, parameter, public :: cache_revision = 12
+   !> cap's residual overlap where the cap acts; 13: histories at sigma/delta_y <= 1e-6 by
+   !> the asymptotic route where their loading fails or its check replaces it).
+   integer, parameter, public :: cache_revision = 13
 
 
 contains

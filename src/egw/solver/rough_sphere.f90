@@ -100,6 +100,10 @@ module egw_rough_sphere
       logical :: capped = .false.
       type(separation_field), private :: closest
       type(cap_history), private :: cap
+      !> Loaded by the small-sigma route (its discrete loading did not converge at
+      !> sigma/delta_y <= 1e-6, or was replaced by the route's check at <= 1e-7): no rough
+      !> field; every unloading solve is the route's.
+      logical, private :: asymptotic = .false.
    end type loading_history
 
    !> The history solve_contact_unload loaded last on this thread, with the inputs it was
@@ -237,8 +241,13 @@ contains
       if (.not. route_wanted(history%params, history%options, history%delta_max, &
          & history%closest%extended .and. history%closest%capped, error, delta_y)) return
       call asymptotic_unloading(history, delta, delta_y, asym, ok)
-      if (ok) call use_asymptotic(history%options, delta, asym, &
-         & unload_floor*history%loading%force, result, error)
+      if (ok) then
+         call use_asymptotic(history%options, delta, asym, unload_floor* &
+            & history%loading%force, result, error)
+      else if (allocated(error)) then
+         error%message = error%message//"; nor by the small-sigma route (its solves at " &
+            & //"sigma = 1e-5 and 1e-4 delta_y failed)"
+      end if
    end subroutine small_sigma_unload
 
    !> Whether the asymptotic route answers a failed solve (error allocated: only
@@ -372,7 +381,7 @@ contains
       type(solve_result), intent(in) :: wide(2)
       real(dp), intent(in) :: floor
       type(solve_result), intent(out) :: asym
-      real(dp) :: delta_y, a_y, force_y, shrink(2), total
+      real(dp) :: delta_y, a_y, force_y, shrink(2), total, wide_error
       integer :: k
       call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
          & force_y)
@@ -386,10 +395,17 @@ contains
          & cap%contact_radius)*shrink(1)
       asym%max_pressure = params%flow_pressure
       total = max(abs(asym%force), floor)
+      ! (a wide solve's force 0 is the underflow answer, est_rel_err 1 by convention: its
+      ! absolute error is below the underflow threshold, not est_rel_err times the floor;
+      ! unloading below the residual overlap from 10 delta_y at sigma/delta_y = 1e-10
+      ! was refused with an estimate of exactly shrink(1) for it)
+      wide_error = 0.0_dp
+      if (wide(1)%force /= 0.0_dp) wide_error = wide(1)%est_rel_err*max(abs(wide(1)%force), &
+         & floor)
       asym%est_rel_err = huge(1.0_dp)
-      if (total > 0.0_dp) asym%est_rel_err = (cap%force_error + shrink(1)* &
-         & wide(1)%est_rel_err*max(abs(wide(1)%force), floor) + abs((wide(1)%force - &
-         & cap%force)*shrink(1) - (wide(2)%force - cap%force)*shrink(2)))/total
+      if (total > 0.0_dp) asym%est_rel_err = (cap%force_error + shrink(1)*wide_error &
+         & + abs((wide(1)%force - cap%force)*shrink(1) - (wide(2)%force - cap%force)* &
+         & shrink(2)))/total
    end subroutine asymptotic_result
 
    !> The asymptotic route's answer asym after a discrete solve at delta. A failed solve
@@ -406,6 +422,15 @@ contains
       type(egw_error), allocatable, intent(inout) :: error
       logical :: meets
       meets = asym%est_rel_err <= 0.5_dp*options%rel_tol
+      ! (a failed solve where the smooth cap and the wide solves give force 0 alike, below
+      ! the residual overlap and the rough tail's underflow: 0 with est_rel_err 1, as
+      ! negligible())
+      if (allocated(error) .and. asym%force == 0.0_dp .and. meets) then
+         deallocate (error)
+         result = asym
+         result%est_rel_err = 1.0_dp
+         return
+      end if
       if (allocated(error)) then
          if (.not. meets) then
             error%message = error%message//"; nor by the small-sigma route (estimate " &
@@ -539,6 +564,7 @@ contains
       type(loading_history) :: hist
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
+      type(solve_result) :: checked
 
       call check_input(params, options, 0.0_dp, error)
       if (allocated(error)) return
@@ -568,7 +594,27 @@ contains
          if (allocated(error)) return
       else
          call solve_rough(params, options, prob, sol, hist%loading, error)
+         if (allocated(error)) then
+            ! A capped loading that does not converge at sigma/delta_y <= 1e-6 (E-GW,
+            ! EP-GW at psi 0): the small-sigma route answers it (its estimate meeting
+            ! rel_tol/2), and then every unloading solve of this history (no rough field
+            ! to keep; doc/theory.md section 12 "Small sigma: the asymptotic route").
+            call small_sigma_loading(params, options, delta_max, prob, hist%loading, error)
+            if (allocated(error)) return
+            call asymptotic_history(params, prob, hist, history, result)
+            return
+         end if
+         ! ... and a converged one at sigma/delta_y <= 1e-7 is checked against the route
+         ! as solve_contact's (10 delta_y at sigma/delta_y = 1e-10: 1.28e-5 above the
+         ! smooth cap under an estimate of 1.5e-8); where the route's answer replaces it,
+         ! the rough field is not trusted either: the route's history.
+         checked = hist%loading
+         call small_sigma_loading(params, options, delta_max, prob, hist%loading, error)
          if (allocated(error)) return
+         if (hist%loading%force /= checked%force) then
+            call asymptotic_history(params, prob, hist, history, result)
+            return
+         end if
          hist%closest%extended = prob%extended
          hist%closest%delta = prob%delta
          ! the cap acted (capped points: dp/dh = 0 at a nonzero pressure)
@@ -583,6 +629,23 @@ contains
       call move_history(hist, history)
    end subroutine load_history
 
+   !> load_history's end where the small-sigma route answered the loading (hist%loading):
+   !> a history without rough field whose unloading solves are the route's.
+   subroutine asymptotic_history(params, prob, hist, history, result)
+      type(contact_params), intent(in) :: params
+      type(scaled_problem), intent(in) :: prob
+      type(loading_history), intent(inout) :: hist, history
+      type(solve_result), intent(inout) :: result
+      hist%asymptotic = .true.
+      hist%closest%extended = prob%extended
+      hist%closest%delta = prob%delta
+      hist%closest%capped = .true.
+      hist%closest%force = hist%loading%force/force_unit(params)
+      hist%loaded = .true.
+      result = hist%loading
+      call move_history(hist, history)
+   end subroutine asymptotic_history
+
    !> history <- hist without copying the arrays.
    pure subroutine move_history(hist, history)
       type(loading_history), intent(inout) :: hist
@@ -595,6 +658,7 @@ contains
       history%reversible = hist%reversible
       history%capped = hist%capped
       history%cap = hist%cap
+      history%asymptotic = hist%asymptotic
       history%closest%extended = hist%closest%extended
       history%closest%delta = hist%closest%delta
       history%closest%capped = hist%closest%capped
@@ -654,7 +718,14 @@ contains
          result = res
          return
       end if
-      call rough_unload(history, delta, res, error)
+      if (history%asymptotic) then
+         ! (the small-sigma route's history: its answer, or the failure naming its estimate)
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(delta)// &
+            & ": the history was loaded by the small-sigma route (its discrete " &
+            & //"loading failed or was replaced), which answers its unloading")
+      else
+         call rough_unload(history, delta, res, error)
+      end if
       call small_sigma_unload(history, delta, res, error)
       if (.not. allocated(error)) result = res
    end subroutine solve_unload
