@@ -488,9 +488,17 @@ contains
       end if
       write (output_unit, '(a,f7.3,a)') "  time           ", elapsed, " s"
       if (n_written == 0) then
-         write (output_unit, '(a)') "  files             none"// &
-            & either(choice%kind == choice_hertz, " (Hertz closed form: no table needed)", &
-            & "")
+         if (input%flow_pressure > 0.0_dp) then
+            ! the cap needs its hysteresis table even where the choice is Hertz (below δ_y)
+            write (output_unit, '(a)') "  files             none ("//either(choose_only, &
+               & "--choose-only: the "//cap_label()//" hysteresis table(s) not built)", &
+               & "the "//cap_label()//" hysteresis table(s) come in the csv and binary"// &
+               & " formats only: --formats)")
+         else
+            write (output_unit, '(a)') "  files             none"// &
+               & either(choice%kind == choice_hertz, " (Hertz closed form: no table needed)", &
+               & "")
+         end if
       end if
       do i = 1, n_written
          write (output_unit, '(a)') "  wrote             "//trim(written(i))

@@ -187,6 +187,15 @@ int egw_capi_test_hysteresis(void) {
       HCHECK(egw_hysteresis_eval_array(hs, 2, d, sm, fa, NULL) == EGW_INVALID_ARGUMENT &&
              fa[0] == 7.0 && fa[1] == 7.0);
       nf += !last_error_names("delta[1]");
+      /* a NaN is named alone and called what it is (not "exceeds the doubles") */
+      d[1] = NAN;
+      HCHECK(egw_hysteresis_eval_array(hs, 2, d, sm, fa, NULL) == EGW_INVALID_ARGUMENT);
+      nf += !last_error_names("delta[1] = NaN: must be a number");
+      {
+        char m[512];
+        egw_last_error(m, sizeof m);
+        HCHECK(strstr(m, "doubles") == NULL && strstr(m, "delta_max_state") == NULL);
+      }
       d[1] = 1e300;
       HCHECK(egw_hysteresis_eval_array(hs, 2, d, sm, fa, NULL) == EGW_INVALID_ARGUMENT);
       HCHECK(egw_hysteresis_eval(hs, 1e300, &st1, &fa[0], NULL) == EGW_INVALID_ARGUMENT &&

@@ -175,6 +175,19 @@ grep -q "^# flow_pressure = 9.600000000" "$work/cap/scene_hysteresis.csv" ||
   fail "cap scene: flow_pressure is not 1.6 yield_stress: $(grep flow "$work/cap/scene_hysteresis.csv")"
 [ -s "$work/cap/scene_hysteresis.bin" ] || fail "cap scene: scene_hysteresis.bin not written"
 grep -q "Hertz + cap" "$work/stdout" || fail "cap scene: summary does not name the cap"
+# --choose-only: no files, and the summary must not say the cap needs none
+"$exe" "$work/cap.nml" --choose-only -q >"$work/stdout" 2>"$work/stderr" ||
+  fail "cap scene --choose-only: $(cat "$work/stderr")"
+if grep -q "no table needed" "$work/stdout"; then
+  fail "cap scene --choose-only: says no table is needed: $(grep files "$work/stdout")"
+fi
+grep -q "Hertz + cap hysteresis table(s) not built" "$work/stdout" ||
+  fail "cap scene --choose-only: the summary does not name the table a run would build"
+# formats without the hysteresis table's (csv, binary): none written, and said why
+"$exe" "$work/cap.nml" --formats lammps --out "$work/cap_lammps" -q >"$work/stdout" \
+  2>"$work/stderr" || fail "cap scene --formats lammps: $(cat "$work/stderr")"
+grep -q "hysteresis table(s) come in the csv and binary formats only" "$work/stdout" ||
+  fail "cap scene --formats lammps: $(grep files "$work/stdout")"
 # the same beads, E-GW with sigma = 1 nm (delta_y/94): the rough model's table with the cap
 "$exe" "$work/cap.nml" --model E-GW --sigma 1e-9 --mu 4 --delta-min -3e-9 --out \
   "$work/rough_cap" -q >"$work/stdout" 2>"$work/stderr"

@@ -12,17 +12,17 @@ from suite_laws import *  # noqa: F401,F403
 CAP_RATIOS = [2.0, 5.0, 10.0, 20.0, 50.0]
 
 
-def cap_units(p_y, r, m):
-    """The first-yield speed v_y and overlap delta_y of a smooth sphere (R = r, m* = m, like
-    glass beads' E*) with flow pressure p_y (doc/theory.md section 12)."""
-    vy = math.sqrt(16 / 15 * (math.pi / 2) ** 5 * p_y ** 5 * r ** 3 / (m * E_STAR ** 4))
-    return vy, (math.pi * p_y / (2 * E_STAR)) ** 2 * r
+def cap_units(p_y, r, m, e_star=E_STAR):
+    """The first-yield speed v_y and overlap delta_y of a smooth sphere (R = r, m* = m, E*
+    e_star: by default glass beads') with flow pressure p_y (doc/theory.md section 12)."""
+    vy = math.sqrt(16 / 15 * (math.pi / 2) ** 5 * p_y ** 5 * r ** 3 / (m * e_star ** 4))
+    return vy, (math.pi * p_y / (2 * e_star)) ** 2 * r
 
 
-def cap_reference(p_y, r, m, v):
+def cap_reference(p_y, r, m, v, e_star=E_STAR):
     """egw_restitution of the smooth sphere with the cap (the cap solver, independent of the
     tables LAMMPS evaluates): e, delta_m and egw_time_step's step at 1e-4."""
-    p = subprocess.run([REST, "0", repr(E_STAR), repr(r), "0", "1", "0", "0.6", "54", repr(m),
+    p = subprocess.run([REST, "0", repr(e_star), repr(r), "0", "1", "0", "0.6", "54", repr(m),
                         repr(v), "1e-6", "1e-4", repr(p_y)],
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode:
@@ -83,12 +83,12 @@ def cap_deck(pair_coeff, wall, speeds, dt, nrun, style="egw Hertz 1e-3"):
     return path
 
 
-def cap_run(pair_coeff, wall, p_y, r, m, np=1):
+def cap_run(pair_coeff, wall, p_y, r, m, np=1, e_star=E_STAR):
     """The impacts at CAP_RATIOS v_y in one run on np ranks (dt: egw_time_step's at 1e-4
     for the fastest, halved): e of each against egw_restitution's."""
-    vy, dy = cap_units(p_y, r, m)
+    vy, dy = cap_units(p_y, r, m, e_star)
     speeds = [x * vy for x in CAP_RATIOS]
-    refs = [cap_reference(p_y, r, m, v) for v in speeds]
+    refs = [cap_reference(p_y, r, m, v, e_star) for v in speeds]
     dt = 0.5 * min(ref[3] for ref in refs)
     nrun = int((20 * dt + 1.5 * max(ref[2] for ref in refs)) / dt)
     rc, out = lmp(cap_deck(pair_coeff, wall, speeds, dt, nrun), np=np)
@@ -139,6 +139,20 @@ def test_cap_wall_restitution():
     es, refs, out, dy = cap_run(f"E {E} nu {NU} yield_stress {p_y / 1.6!r}", wall, p_y, RAD,
                                 2 * M_STAR)
     return cap_verdict(es, refs, out, dy, "wall")
+
+
+def test_cap_wall_material_contact():
+    """The same drops onto a fix wall/egw zplane with `wall_material contact` (issue 33's
+    granular conversion) and the wall's flow_pressure (issue 32): the wall's E = 1e11, nu =
+    0.3 are the contact's, E* = E/(2(1 - nu^2)) = 5.49e10 (own: 4.4e10), the particle's
+    p_y none, so p_y = the wall's 0.01 E*; e within 1e-3 of egw_restitution of that
+    contact (R = 1 mm, m* = m) at 2 ... 50 v_y."""
+    e_w, nu_w = 1e11, 0.3
+    e_c = e_w / (2 * (1 - nu_w ** 2))
+    p_y = 0.01 * e_c
+    wall = f"wall/egw Hertz 1e-3 E {e_w!r} nu {nu_w} wall_material contact flow_pressure {p_y!r}"
+    es, refs, out, dy = cap_run(f"E {E} nu {NU}", wall, p_y, RAD, 2 * M_STAR, e_star=e_c)
+    return cap_verdict(es, refs, out, dy, "wall, wall_material contact")
 
 
 def test_bad_flow_pressure():

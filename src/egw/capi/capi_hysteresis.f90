@@ -165,9 +165,8 @@ contains
       if (stat /= egw_ok) return
       if (ieee_is_nan(delta) .or. ieee_is_nan(state) .or. delta > h%input_limit .or. &
          & state > h%input_limit) then
-         stat = invalid("delta = "//format_real(delta)//", delta_max_state = "// &
-            & format_real(state)//": must be numbers <= "//format_real(h%input_limit)// &
-            & " (the force there exceeds the doubles)")
+         stat = invalid(history_message("delta", delta, "delta_max_state", state, &
+            & h%input_limit))
          return
       end if
       call hysteresis_energy(h, delta, state, u, st)
@@ -318,6 +317,25 @@ contains
       if (alloc_stat /= 0) stat = failure(egw_out_of_memory, "hysteresis table: out of memory")
    end function new_table
 
+   !> The refusal of an overlap and its history: the one that is NaN, or above limit (the
+   !> force there leaves the doubles), named with its value.
+   function history_message(dname, d, sname, st, limit) result(msg)
+      character(len=*), intent(in) :: dname, sname
+      real(dp), intent(in) :: d, st, limit
+      character(len=:), allocatable :: msg
+      if (ieee_is_nan(d)) then
+         msg = dname//" = NaN: must be a number"
+      else if (ieee_is_nan(st)) then
+         msg = sname//" = NaN: must be a number (a new contact starts at -HUGE_VAL)"
+      else if (d > limit) then
+         msg = dname//" = "//format_real(d)//": must be <= "//format_real(limit)// &
+            & " (the force there exceeds the doubles)"
+      else
+         msg = sname//" = "//format_real(st)//": must be <= "//format_real(limit)// &
+            & " (the force there exceeds the doubles)"
+      end if
+   end function history_message
+
    !> EGW_OK if every overlap and its state are numbers <= h%input_limit, else
    !> EGW_INVALID_ARGUMENT naming the first other pair (delta[i], delta_max_state[i]).
    integer(c_int) function check_histories(h, delta, state) result(stat)
@@ -330,10 +348,8 @@ contains
       do i = 1, size(delta)
          if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > limit .or. &
             & state(i) > limit) then
-            stat = invalid("delta["//int_str(i - 1)//"] = "//format_real(delta(i))// &
-               & ", delta_max_state["//int_str(i - 1)//"] = "//format_real(state(i))// &
-               & ": must be numbers <= "//format_real(limit)// &
-               & " (the force there exceeds the doubles)")
+            stat = invalid(history_message("delta["//int_str(i - 1)//"]", delta(i), &
+               & "delta_max_state["//int_str(i - 1)//"]", state(i), limit))
             return
          end if
       end do

@@ -32,17 +32,29 @@ module egw_impact_regime
 contains
 
    !> First-yield overlap of a sphere R, E* with the flow pressure p_y: Hertz's peak
-   !> pressure 2 E* a/(pi R) reaches p_y at delta_y = (pi p_y/(2 E*))**2 R (0 for p_y = 0).
+   !> pressure 2 E* a/(pi R) reaches p_y at delta_y = (pi p_y/(2 E*))**2 R; huge (never)
+   !> for p_y = 0, as C's egw_first_yield (DBL_MAX). A closed form without checks: R, E* of
+   !> valid parameters (validate_params); egw_first_yield and classify_impact check them.
    pure real(dp) function first_yield_overlap(params) result(delta_y)
       type(contact_params), intent(in) :: params
+      if (.not. (params%flow_pressure > 0.0_dp)) then
+         delta_y = huge(1.0_dp)
+         return
+      end if
       delta_y = (pi*params%flow_pressure/(2.0_dp*params%modulus))**2*params%radius
    end function first_yield_overlap
 
    !> First-yield speed of a head-on impact of effective mass m*: Hertz's deepest overlap
-   !> reaches delta_y, v_y = sqrt((16/15) (pi/2)**5 p_y**5 R**3/(m* E***4)) (0 for p_y = 0).
+   !> reaches delta_y, v_y = sqrt((16/15) (pi/2)**5 p_y**5 R**3/(m* E***4)); huge (never)
+   !> for p_y = 0, as C's egw_first_yield. Unchecked: mass must be finite and > 0 (NaN
+   !> otherwise; egw_first_yield and classify_impact refuse it with a message).
    pure real(dp) function first_yield_speed(params, mass) result(v_y)
       type(contact_params), intent(in) :: params
       real(dp), intent(in) :: mass   !< effective mass m* > 0
+      if (.not. (params%flow_pressure > 0.0_dp)) then
+         v_y = huge(1.0_dp)
+         return
+      end if
       v_y = sqrt(16.0_dp/15.0_dp*(pi/2.0_dp)**5*params%flow_pressure**5*params%radius**3 &
          & /(mass*params%modulus**4))
    end function first_yield_speed

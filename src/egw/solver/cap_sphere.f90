@@ -884,7 +884,9 @@ contains
       if (allocated(error)) return
       call cap_load_scaled_work(dm, options, wl, fm, error)
       if (allocated(error)) return
-      e = sqrt(wu/wl)
+      ! the plastic displacement only takes energy (W_unload <= W_load): just above v_y,
+      ! where 1 - e < 2e-6, the works' own error (~3e-7) would otherwise give e > 1
+      e = min(1.0_dp, sqrt(wu/wl))
       if (present(max_overlap)) max_overlap = dm*(pi*flow_pressure/(2.0_dp*modulus))**2*radius
    end subroutine cap_restitution
 
