@@ -16,6 +16,15 @@
 
 namespace LAMMPS_NS {
 
+/* What a contact's evaluation keeps between steps (pair egw: one per neighbor-list entry,
+ * emptied when the list is rebuilt): its R and its position t in the law's nodes in ln mu
+ * or ln R (EgwLaw::position: no log while R is the same), and the inline tables' interval
+ * it was last in (EgwTables::Inline::locate: no search while it stays there) */
+struct EgwMemo {
+  double R = NAN, t = 0.0;
+  int interval = -1;
+};
+
 /* One body's coefficients as given with pair_coeff (or a wall fix): its material, surface
  * and the contact's sub-models (plain data: written to restart files). */
 struct EgwCoeff {
@@ -89,6 +98,10 @@ struct EgwLaw {
   double rcap_R_lo = 0, rcap_R_ref = 0;    // the smallest radius; the reach's delta_y radius
   double lnr0 = 0, inv_hr = 0;     // the first node's ln(R/sigma), 1 / node spacing
   inline int r_position(double R, double &t) const;
+  /* mu_position (ln mu nodes) or r_position (ln R nodes, rough + cap) through memo: the
+   * t of an earlier call for the same R (no log), else computed and kept there; memo
+   * null: computed. The same t to the bit. */
+  inline int position(double R, double &t, EgwMemo *memo) const;
   /* the two tables k, k + 1 (hyst) at x interpolated with weight w on k + 1, their states
    * in cache (HYST_MU, HYST_RCAP over radii); *dmax the contact's delta_max [x] */
   inline int eval_two(int k, double w, double x, double *dmax, double *cache, int want_energy,
@@ -185,8 +198,11 @@ struct EgwLaw {
    * states in cache (EgwHistory::HYST_CACHE doubles: filled again from hist's delta_max
    * when they do not hold it, e.g. new, zeroed or another table's); egw's status (EGW_OK,
    * EGW_OUT_OF_RANGE beyond the tables, ...) or MU_OUTSIDE */
+  /* memo (may be null): what the contact keeps between steps (EgwMemo; pair egw: per
+   * neighbor-list entry), read and updated; the same values with or without it */
   inline int eval(double delta, double R, double *hist, double *cache, double &F, double &S,
-                  double &U, int want_energy, bool states_are_history = false) const;
+                  double &U, int want_energy, bool states_are_history = false,
+                  EgwMemo *memo = nullptr) const;
   /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
    * where they are the history (all zeros: a new contact) */
   int eval(double delta, double R, double *hist, double &F, double &S, double &U,
@@ -238,6 +254,17 @@ inline int EgwLaw::r_position(double R, double &t) const
   return EGW_OK;
 }
 
+inline int EgwLaw::position(double R, double &t, EgwMemo *memo) const
+{
+  if (memo && memo->R == R) {
+    t = memo->t;
+    return EGW_OK;
+  }
+  int st = kind == HYST_RCAP ? r_position(R, t) : mu_position(R, t);
+  if (memo && st == EGW_OK) memo->R = R, memo->t = t;
+  return st;
+}
+
 /* egw_hysteresis_eval_state at x with the state s. refill: s is a cache that must hold the
  * contact's history xm (delta_max/sigma, -inf for a new contact); one that does not
  * (dropped, or filled for another table, which egw reads as a new contact) is filled again
@@ -286,7 +313,8 @@ inline int EgwLaw::eval_two(int k, double w, double x, double *dmax, double *cac
 }
 
 inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, double &F,
-                        double &S, double &U, int want_energy, bool states_are_history) const
+                        double &S, double &U, int want_energy, bool states_are_history,
+                        EgwMemo *memo) const
 {
   using namespace EgwHistory;
   double *dmax = &hist[DELTA_MAX];
@@ -309,7 +337,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       if (fast && fast->covers(x)) {
         // the force from the tables' cubics in every step (egw's values to rounding; with
         // or without energy, so that output steps do not change a trajectory)
-        fast->eval(x, 0, 0.0, p, dp);
+        fast->eval(x, 0, 0.0, p, dp, memo ? &memo->interval : nullptr);
         if (want_energy) egw_table_eval_all(table, x, nullptr, nullptr, &u, nullptr);
       } else if (want_energy) {
         st = egw_table_eval_all(table, x, &p, &dp, &u, &ac);
@@ -321,13 +349,13 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     }
     case UNIVERSAL: {
       double t;
-      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
+      if (position(R, t, memo) != EGW_OK) return MU_OUTSIDE;
       int n = (int) slices.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
       double x = delta * inv_sigma, p0, p1, d0, d1, u0 = 0, u1 = 0, ac;
       if (fast && fast->covers(x)) {    // as TABLE; p0, d0 already interpolated in ln mu
-        fast->eval(x, k, w, p0, d0);
+        fast->eval(x, k, w, p0, d0, memo ? &memo->interval : nullptr);
         p1 = p0, d1 = d0;
         if (want_energy) {
           egw_table_eval_all(slices[k], x, nullptr, nullptr, &u0, nullptr);
@@ -360,7 +388,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
         x = delta * inv_sigma, fF = rcap_F, fS = rcap_F * inv_sigma, fU = rcap_F * sigma;
         if (hyst.size() > 1) {    // tables at nodes in ln R: the contact's two neighbours
           double t, p, dp, u;
-          if (r_position(R, t) != EGW_OK) return R_OTHER;
+          if (position(R, t, memo) != EGW_OK) return R_OTHER;
           int k = std::min((int) hyst.size() - 2, (int) t);
           st = eval_two(k, t - k, x, dmax, cache, want_energy, states_are_history, p, dp, u);
           F = fF * p, S = fS * dp, U = fU * u;
@@ -384,7 +412,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     }
     case FLAT: {
       double t;
-      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
+      if (position(R, t, memo) != EGW_OK) return MU_OUTSIDE;
       int n = (int) flat.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = n > 1 ? t - k : 0.0;
@@ -415,7 +443,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     case HYST_MU: {
       double x = delta * inv_sigma;
       double t;
-      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
+      if (position(R, t, memo) != EGW_OK) return MU_OUTSIDE;
       int n = (int) hyst.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double p, dp, u;

@@ -101,7 +101,18 @@ struct Inline {
     return (double) (int) (b >> 52) - 1022.0 +
         (double) (b & ((std::uint64_t(1) << 52) - 1)) * 0x1p-52;
   }
-  /* the interval i with x[i] <= xv < x[i + 1], for x_lo < xv < x_hi */
+  /* the interval i with x[i] <= xv < x[i + 1], for x_lo < xv < x_hi; hint (may be null):
+   * an interval to try first (any int: checked), set to the one found (a contact moves
+   * little between steps: mostly no search) */
+  int locate(double xv, int *hint) const
+  {
+    if (hint) {
+      int i = *hint;
+      if (i >= 0 && i < n - 1 && x[i] <= xv && xv < x[i + 1]) return i;
+      return *hint = locate(xv);
+    }
+    return locate(xv);
+  }
   int locate(double xv) const
   {
     double u = log_buckets ? bucket_coord(xv) : xv;
@@ -114,10 +125,10 @@ struct Inline {
   bool make(const std::vector<egw_table> &tables);
   bool covers(double xv) const { return xv > x_lo && xv < x_hi; }    // false when n = 0
   /* p and dp/dx at x (covers(x)) of table k, or (ns > 1) of tables k and k + 1
-   * interpolated linearly in ln mu with weight w on k + 1 */
-  void eval(double xv, int k, double w, double &p, double &dp) const
+   * interpolated linearly in ln mu with weight w on k + 1; hint: locate()'s */
+  void eval(double xv, int k, double w, double &p, double &dp, int *hint = nullptr) const
   {
-    int i = locate(xv);
+    int i = locate(xv, hint);
     double t = xv - x[i], t2 = t * t;
     const double *a = &c[4 * (i * ns + k)];
     // egw's cubic in Estrin's form, as egw_table_eval evaluates it

@@ -279,7 +279,14 @@ void PairEGW::init_style()
                         "it to each E*) or use one file per E*",
                  A.law_file, a.first, a.second, A.E_star, b.first, b.second, B.E_star);
     }
-  hyst_any = false;
+  hyst_any = memo_any = false;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) {
+      const EgwLaw &L = law[i][j];
+      memo_any = memo_any || L.kind == EgwLaw::TABLE || L.kind == EgwLaw::UNIVERSAL ||
+          L.kind == EgwLaw::HYST_MU || L.kind == EgwLaw::FLAT ||
+          (L.kind == EgwLaw::HYST_RCAP && L.hyst.size() > 1);
+    }
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++)
       hyst_any = hyst_any || law[i][j].kind == EgwLaw::HYST ||
@@ -381,9 +388,9 @@ double PairEGW::init_one(int i, int j)
 /* the elastic normal force of a contact from its law; out-of-range overlaps warn once,
  * a mu outside the tables or a failed evaluation stop the run */
 inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, double *cache,
-                            double &F, double &S, double &U, int want_energy)
+                            double &F, double &S, double &U, int want_energy, EgwMemo *memo)
 {
-  int st = L.eval(delta, R, hist, cache, F, S, U, want_energy);
+  int st = L.eval(delta, R, hist, cache, F, S, U, want_energy, false, memo);
   if (st == EGW_OK) return;
   if (st == EgwLaw::MU_OUTSIDE)
     error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
@@ -430,7 +437,8 @@ void PairEGW::compute(int eflag, int vflag)
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   double ncontact = 0.0;
   const bool cached = hyst_any;    // EP-GW, the cap: hysteresis states per list entry
-  if (cached) hyst_cache_rows();    // a pair with a ghost under newton off is counted by both ranks
+  if (cached || memo_any) list_rows();
+  // (a pair with a ghost under newton off is counted by both ranks)
 
   const int nt1 = atom->ntypes + 1;
   for (int ii = 0; ii < inum; ii++) {
@@ -468,12 +476,15 @@ void PairEGW::compute(int eflag, int vflag)
       }
       double Fn, S, U;
       double *cache = nullptr;
-      if (cached) {
-        size_t e = hyst_cache_first[ii] + jj;
-        cache = hyst_slot[e] >= 0 ? &hyst_cache[hyst_slot[e] * HYST_CACHE]
-                                  : hyst_block(e, atom->tag[i], atom->tag[j]);
+      EgwMemo *memo = nullptr;
+      if (cached || memo_any) {
+        size_t e = entry_first[ii] + jj;
+        if (memo_any) memo = &entry_memo[e];
+        if (cached)
+          cache = hyst_slot[e] >= 0 ? &hyst_cache[hyst_slot[e] * HYST_CACHE]
+                                    : hyst_block(e, atom->tag[i], atom->tag[j]);
       }
-      normal(L, delta, R, hist, cache, Fn, S, U, eflag);
+      normal(L, delta, R, hist, cache, Fn, S, U, eflag, memo);
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
       double mi = rmass[i], mj = rmass[j];
@@ -608,6 +619,27 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   return U;
 }
 
+/* compute()'s per-entry rows, laid out anew when the list was rebuilt */
+void PairEGW::list_rows()
+{
+  if (neighbor->ncalls == rows_calls && (int) entry_first.size() == list->inum + 1 &&
+      entry_memo.size() == (memo_any ? entry_first.back() : entry_memo.size()))
+    return;
+  rows_calls = neighbor->ncalls;
+  int inum = list->inum;
+  entry_first.resize(inum + 1);
+  size_t n = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    entry_first[ii] = n;
+    n += list->numneigh[list->ilist[ii]];
+  }
+  entry_first[inum] = n;
+  // an entry's memo holds its pair's position until the list is rebuilt (then the entry
+  // may be another pair, of other types): empty again (a NaN equals no R)
+  if (memo_any) entry_memo.assign(n, EgwMemo());
+  if (hyst_any) hyst_cache_rows();
+}
+
 /* EP-GW: a pair of hysteresis states per contact (a block), found from its neighbor-list
  * entry (hyst_slot, -1: none yet); the slots are laid out anew when the list is rebuilt.
  * A block stays where it is while its contact is listed: the new entry of a contact
@@ -621,9 +653,6 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
  * 3.66-4.76 s against 3.77-4.05 s moving, three interleaved rounds at load 3.) */
 void PairEGW::hyst_cache_rows()
 {
-  if (neighbor->ncalls == hyst_cache_calls && (int) hyst_cache_first.size() == list->inum + 1)
-    return;
-  hyst_cache_calls = neighbor->ncalls;
   auto key = [](tagint a, tagint b) {
     uint64_t lo = (uint64_t) std::min(a, b), hi = (uint64_t) std::max(a, b);
     return (lo << 32) ^ hi;    // a collision (64-bit IDs) only costs a refill: egw_law.h
@@ -649,14 +678,7 @@ void PairEGW::hyst_cache_rows()
   int inum = list->inum;
   tagint *tag = atom->tag;
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
-  hyst_cache_first.resize(inum + 1);
-  size_t n = 0;
-  for (int ii = 0; ii < inum; ii++) {
-    hyst_cache_first[ii] = n;
-    n += list->numneigh[list->ilist[ii]];
-  }
-  hyst_cache_first[inum] = n;
-  hyst_slot.assign(n, -1);
+  hyst_slot.assign(entry_first[inum], -1);
   if (nlive > 0)
     for (int ii = 0; ii < inum; ii++) {
       int i = list->ilist[ii];
@@ -666,7 +688,7 @@ void PairEGW::hyst_cache_rows()
         if (!touch[jj]) continue;
         const auto &hit = hyst_old[slot_of(key(tag[i], tag[jlist[jj] & NEIGHMASK]))];
         if (hit.first == 0 || hyst_live[hit.second]) continue;    // none, or taken
-        hyst_slot[hyst_cache_first[ii] + jj] = (int) hit.second;
+        hyst_slot[entry_first[ii] + jj] = (int) hit.second;
         hyst_live[hit.second] = 1;
       }
     }
@@ -699,7 +721,8 @@ double *PairEGW::hyst_block(size_t e, tagint ti, tagint tj)
 double PairEGW::memory_usage()
 {
   return (double) hyst_cache.capacity() * sizeof(double) +
-      (double) hyst_cache_first.capacity() * sizeof(size_t) +
+      (double) entry_first.capacity() * sizeof(size_t) +
+      (double) entry_memo.capacity() * sizeof(EgwMemo) +
       (double) (hyst_slot.capacity() + hyst_free.capacity()) * sizeof(int) +
       (double) hyst_cache_tags.capacity() * sizeof(tagint) + (double) hyst_live.capacity() +
       (double) hyst_old.capacity() * sizeof(hyst_old[0]);
