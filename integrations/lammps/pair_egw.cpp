@@ -292,6 +292,19 @@ void PairEGW::init_style()
       hyst_any = hyst_any || law[i][j].kind == EgwLaw::HYST ||
           law[i][j].kind == EgwLaw::HYST_MU || law[i][j].kind == EgwLaw::HYST_CAP ||
           law[i][j].kind == EgwLaw::HYST_RCAP;
+  // one state per block unless a law interpolates two tables (the blocks of an earlier run
+  // are dropped when that changes: their contacts refill from their histories)
+  int stride = EGW_HYSTERESIS_STATE_SIZE;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      if (law[i][j].kind == EgwLaw::HYST_MU ||
+          (law[i][j].kind == EgwLaw::HYST_RCAP && law[i][j].hyst.size() > 1))
+        stride = HYST_CACHE;
+  if (stride != hyst_stride) {
+    hyst_stride = stride;
+    hyst_cache.clear(), hyst_cache_tags.clear(), hyst_live.clear(), hyst_free.clear();
+    rows_calls = -1;
+  }
   law_of.assign((n + 1) * (n + 1), nullptr);
   tail_of.assign((n + 1) * (n + 1), 0.0);
   for (int i = 1; i <= n; i++)
@@ -438,6 +451,7 @@ void PairEGW::compute(int eflag, int vflag)
   double ncontact = 0.0;
   const bool cached = hyst_any;    // EP-GW, the cap: hysteresis states per list entry
   if (cached || memo_any) list_rows();
+  const size_t n_entries = cached ? entry_first[inum] : 0;
   // (a pair with a ghost under newton off is counted by both ranks)
 
   const int nt1 = atom->ntypes + 1;
@@ -452,6 +466,13 @@ void PairEGW::compute(int eflag, int vflag)
     int jnum = numneigh[i];
 
     for (int jj = 0; jj < jnum; jj++) {
+      if (cached) {    // the block (its first state) of the entry HYST_PREFETCH ahead
+        size_t ahead = entry_first[ii] + jj + HYST_PREFETCH;
+        if (ahead < n_entries && hyst_slot[ahead] >= 0) {
+          const double *b = &hyst_cache[(size_t) hyst_slot[ahead] * hyst_stride];
+          __builtin_prefetch(b), __builtin_prefetch(b + 8), __builtin_prefetch(b + 16);
+        }
+      }
       int j = jlist[jj] & NEIGHMASK;
       double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
       double rsq = dx * dx + dy * dy + dz * dz;
@@ -481,7 +502,7 @@ void PairEGW::compute(int eflag, int vflag)
         size_t e = entry_first[ii] + jj;
         if (memo_any) memo = &entry_memo[e];
         if (cached)
-          cache = hyst_slot[e] >= 0 ? &hyst_cache[hyst_slot[e] * HYST_CACHE]
+          cache = hyst_slot[e] >= 0 ? &hyst_cache[(size_t) hyst_slot[e] * hyst_stride]
                                     : hyst_block(e, atom->tag[i], atom->tag[j]);
       }
       normal(L, delta, R, hist, cache, Fn, S, U, eflag, memo);
@@ -708,13 +729,13 @@ double *PairEGW::hyst_block(size_t e, tagint ti, tagint tj)
     hyst_live[b] = 1;
   } else {
     b = hyst_cache_tags.size() / 2;
-    hyst_cache.resize((b + 1) * HYST_CACHE);
+    hyst_cache.resize((b + 1) * hyst_stride);
     hyst_cache_tags.push_back(ti), hyst_cache_tags.push_back(tj);
     hyst_live.push_back(1);
   }
   hyst_slot[e] = (int) b;
-  double *c = &hyst_cache[b * HYST_CACHE];
-  c[0] = c[EGW_HYSTERESIS_STATE_SIZE] = NAN;
+  double *c = &hyst_cache[b * hyst_stride];
+  for (int k = 0; k < hyst_stride; k += EGW_HYSTERESIS_STATE_SIZE) c[k] = NAN;
   return c;
 }
 

@@ -14,6 +14,7 @@
 #include "egw_peers.h"
 
 #include <cstdint>
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
@@ -109,7 +110,23 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
   // where they are while their contact lasts), entry e uses block hyst_slot[e] (-1: none
   // yet); the slots are rebuilt with the list, the blocks of contacts no longer listed
   // reused (hyst_free) (egw_history.h)
-  std::vector<double> hyst_cache;
+  // Blocks of hyst_stride doubles: one state (EGW_HYSTERESIS_STATE_SIZE) when every law
+  // has one table, two (HYST_CACHE) when one interpolates two (HYST_MU, rough + cap over
+  // radii); on 64-byte lines, so that a state is 3 of them. compute() prefetches the block
+  // of the entry HYST_PREFETCH ahead: a block is read from where its contact began, not in
+  // list order, and waiting for it was half of the drum's EP-GW evaluations
+  static constexpr int HYST_PREFETCH = 2;
+  template <class T> struct LineAllocator {
+    using value_type = T;
+    LineAllocator() = default;
+    template <class U> LineAllocator(const LineAllocator<U> &) {}
+    T *allocate(size_t n) { return (T *) ::operator new(n * sizeof(T), std::align_val_t(64)); }
+    void deallocate(T *p, size_t) { ::operator delete(p, std::align_val_t(64)); }
+    bool operator==(const LineAllocator &) const { return true; }
+    bool operator!=(const LineAllocator &) const { return false; }
+  };
+  std::vector<double, LineAllocator<double>> hyst_cache;
+  int hyst_stride = EgwHistory::HYST_CACHE;
   std::vector<int> hyst_slot;
   std::vector<tagint> hyst_cache_tags;     // the two atoms' IDs of each block
   std::vector<char> hyst_live;             // the block belongs to an entry of the list
