@@ -17,10 +17,12 @@
 namespace LAMMPS_NS {
 
 /* What a contact's evaluation keeps between steps (pair egw: one per neighbor-list entry,
- * emptied when the list is rebuilt): its R and its position t in the law's nodes in ln mu
- * or ln R (EgwLaw::position: no log while R is the same), and the inline tables' interval
- * it was last in (EgwTables::Inline::locate: no search while it stays there) */
+ * emptied when the list is rebuilt; fix wall/egw: one per atom): the law and R its
+ * position t in the law's nodes in ln mu or ln R belongs to (EgwLaw::position: no log
+ * while both are the same), and the inline tables' interval it was last in
+ * (EgwTables::Inline::locate: no search while it stays there; any value is safe) */
 struct EgwMemo {
+  const void *law = nullptr;
   double R = NAN, t = 0.0;
   int interval = -1;
 };
@@ -203,12 +205,16 @@ struct EgwLaw {
   inline int eval(double delta, double R, double *hist, double *cache, double &F, double &S,
                   double &U, int want_energy, bool states_are_history = false,
                   EgwMemo *memo = nullptr) const;
+  /* the force loop's common case of eval without energy, for inlining: a GW/E-GW contact
+   * inside its inline tables (TABLE, UNIVERSAL with fast): F and S as eval gives them (to
+   * the bit), true; otherwise false (nothing written): call eval */
+  inline bool eval_tables(double delta, double R, EgwMemo *memo, double &F, double &S) const;
   /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
    * where they are the history (all zeros: a new contact) */
   int eval(double delta, double R, double *hist, double &F, double &S, double &U,
-           int want_energy) const
+           int want_energy, EgwMemo *memo = nullptr) const
   {
-    return eval(delta, R, hist, hist + EgwHistory::HYST_A, F, S, U, want_energy, true);
+    return eval(delta, R, hist, hist + EgwHistory::HYST_A, F, S, U, want_energy, true, memo);
   }
 };
 
@@ -256,12 +262,12 @@ inline int EgwLaw::r_position(double R, double &t) const
 
 inline int EgwLaw::position(double R, double &t, EgwMemo *memo) const
 {
-  if (memo && memo->R == R) {
+  if (memo && memo->R == R && memo->law == this) {
     t = memo->t;
     return EGW_OK;
   }
   int st = kind == HYST_RCAP ? r_position(R, t) : mu_position(R, t);
-  if (memo && st == EGW_OK) memo->R = R, memo->t = t;
+  if (memo && st == EGW_OK) memo->law = this, memo->R = R, memo->t = t;
   return st;
 }
 
@@ -310,6 +316,29 @@ inline int EgwLaw::eval_two(int k, double w, double x, double *dmax, double *cac
   }
   p = p0 + w * (p1 - p0), dp = d0 + w * (d1 - d0), u = u0 + w * (u1 - u0);
   return st;
+}
+
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline bool EgwLaw::eval_tables(double delta, double R, EgwMemo *memo, double &F,
+                                double &S) const
+{
+  if ((kind != TABLE && kind != UNIVERSAL) || !fast) return false;
+  double x = delta * inv_sigma;
+  if (!fast->covers(x)) return false;
+  int k = 0;
+  double w = 0.0, t, p, dp;
+  if (kind == UNIVERSAL) {    // eval's steps: the slices' pair, p and dp blended by fast
+    if (position(R, t, memo) != EGW_OK) return false;
+    int n = (int) slices.size();
+    k = std::max(0, std::min(n - 2, (int) t));
+    w = t - k;
+  }
+  fast->eval(x, k, w, p, dp, memo ? &memo->interval : nullptr);
+  double sr = E_star * std::sqrt(R);
+  F = sr * s15 * p, S = sr * s05 * dp;
+  return true;
 }
 
 inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, double &F,

@@ -126,6 +126,9 @@ struct Inline {
   bool covers(double xv) const { return xv > x_lo && xv < x_hi; }    // false when n = 0
   /* p and dp/dx at x (covers(x)) of table k, or (ns > 1) of tables k and k + 1
    * interpolated linearly in ln mu with weight w on k + 1; hint: locate()'s */
+#if defined(__GNUC__)
+  __attribute__((always_inline))
+#endif
   void eval(double xv, int k, double w, double &p, double &dp, int *hint = nullptr) const
   {
     int i = locate(xv, hint);

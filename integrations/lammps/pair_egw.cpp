@@ -505,7 +505,10 @@ void PairEGW::compute(int eflag, int vflag)
           cache = hyst_slot[e] >= 0 ? &hyst_cache[(size_t) hyst_slot[e] * hyst_stride]
                                     : hyst_block(e, atom->tag[i], atom->tag[j]);
       }
-      normal(L, delta, R, hist, cache, Fn, S, U, eflag, memo);
+      // GW/E-GW inside the inline tables without energy (most steps) here, the rest in
+      // normal() (U: eval's 0 without energy)
+      if (!eflag && L.eval_tables(delta, R, memo, Fn, S)) U = 0.0;
+      else normal(L, delta, R, hist, cache, Fn, S, U, eflag, memo);
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
       double mi = rmass[i], mj = rmass[j];
