@@ -209,6 +209,12 @@ struct EgwLaw {
    * inside its inline tables (TABLE, UNIVERSAL with fast): F and S as eval gives them (to
    * the bit), true; otherwise false (nothing written): call eval */
   inline bool eval_tables(double delta, double R, EgwMemo *memo, double &F, double &S) const;
+  /* eval_tables, or an EP-GW contact of one table (HYST) whose state in cache serves it
+   * without egw (egw_hysteresis_eval_cached): F, S, the history's delta_max and the state
+   * as eval leaves them (to the bit), and eval's status (EGW_OK, EGW_OUT_OF_RANGE);
+   * otherwise -1 (nothing changed): call eval */
+  inline int eval_fast(double delta, double R, double *hist, double *cache, EgwMemo *memo,
+                       double &F, double &S) const;
   /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
    * where they are the history (all zeros: a new contact) */
   int eval(double delta, double R, double *hist, double &F, double &S, double &U,
@@ -339,6 +345,24 @@ inline bool EgwLaw::eval_tables(double delta, double R, EgwMemo *memo, double &F
   double sr = E_star * std::sqrt(R);
   F = sr * s15 * p, S = sr * s05 * dp;
   return true;
+}
+
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline int EgwLaw::eval_fast(double delta, double R, double *hist, double *cache,
+                             EgwMemo *memo, double &F, double &S) const
+{
+  if (kind != HYST) return eval_tables(delta, R, memo, F, S) ? EGW_OK : -1;
+  // eval's HYST steps when egw_law_hyst_eval's first test serves
+  double *dmax = &hist[EgwHistory::DELTA_MAX], p, dp;
+  if (!cache || !(cache[0] == *dmax) ||
+      !egw_hysteresis_eval_cached(hyst_tag[0], delta * inv_sigma, cache, &p, &dp))
+    return -1;
+  *dmax = cache[0];
+  double sr = E_star * std::sqrt(R);
+  F = sr * s15 * p, S = sr * s05 * dp;
+  return cache[0] > hyst_dmax[0] ? EGW_OUT_OF_RANGE : EGW_OK;
 }
 
 inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, double &F,

@@ -404,7 +404,12 @@ inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, dou
                             double &F, double &S, double &U, int want_energy, EgwMemo *memo)
 {
   int st = L.eval(delta, R, hist, cache, F, S, U, want_energy, false, memo);
-  if (st == EGW_OK) return;
+  if (st != EGW_OK) report(L, st, delta, R);
+}
+
+/* what normal() says about an evaluation's status other than EGW_OK */
+void PairEGW::report(const EgwLaw &L, int st, double delta, double R)
+{
   if (st == EgwLaw::MU_OUTSIDE)
     error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
                       "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
@@ -505,10 +510,14 @@ void PairEGW::compute(int eflag, int vflag)
           cache = hyst_slot[e] >= 0 ? &hyst_cache[(size_t) hyst_slot[e] * hyst_stride]
                                     : hyst_block(e, atom->tag[i], atom->tag[j]);
       }
-      // GW/E-GW inside the inline tables without energy (most steps) here, the rest in
-      // normal() (U: eval's 0 without energy)
-      if (!eflag && L.eval_tables(delta, R, memo, Fn, S)) U = 0.0;
-      else normal(L, delta, R, hist, cache, Fn, S, U, eflag, memo);
+      // GW/E-GW inside the inline tables, EP-GW of one table within its state's piece,
+      // without energy (most steps) here, the rest in normal() (U: eval's 0 without energy)
+      int st = eflag ? -1 : L.eval_fast(delta, R, hist, cache, memo, Fn, S);
+      if (st < 0) normal(L, delta, R, hist, cache, Fn, S, U, eflag, memo);
+      else {
+        U = 0.0;
+        if (st != EGW_OK) report(L, st, delta, R);
+      }
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
       double mi = rmass[i], mj = rmass[j];

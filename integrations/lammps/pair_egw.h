@@ -96,6 +96,7 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
   void egw_fail(const std::string &what);
   inline void normal(EgwLaw &, double delta, double R, double *hist, double *cache, double &F,
                      double &S, double &U, int want_energy, EgwMemo *memo = nullptr);
+  void report(const EgwLaw &, int st, double delta, double R);
   // per neighbor-list entry: entry jj of ilist[ii] is entry_first[ii] + jj (rebuilt with
   // the list, list_rows())
   std::vector<size_t> entry_first;
