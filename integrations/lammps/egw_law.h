@@ -16,9 +16,9 @@
 
 namespace LAMMPS_NS {
 
-/* What a contact's evaluation keeps between steps (pair egw: one per neighbor-list entry,
- * emptied when the list is rebuilt; fix wall/egw: one per atom): the law and R its
- * position t in the law's nodes in ln mu or ln R belongs to (EgwLaw::position: no log
+/* What a contact's evaluation keeps between steps (pair egw: one per neighbor-list entry;
+ * fix wall/egw: one per atom; both emptied when their tables are built): the law and R
+ * its position t in the law's nodes in ln mu or ln R belongs to (EgwLaw::position: no log
  * while both are the same), and the inline tables' interval it was last in
  * (EgwTables::Inline::locate: no search while it stays there; any value is safe) */
 struct EgwMemo {

@@ -369,6 +369,7 @@ double FixWallEGW::effective_radius(double radi, double rc) const
  * fix's sub-models, tables for R = R_eff over the type's radii and the wall's curvatures */
 void FixWallEGW::build_law(int t)
 {
+  memo.clear();    // positions in the tables built before
   const EgwCoeff *c = pair->type_coeff(t);
   if (!c)
     error->all(FLERR, "Fix wall/egw: type {} has no pair_coeff {} {} in pair_style egw", t, t, t);

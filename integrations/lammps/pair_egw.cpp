@@ -313,6 +313,7 @@ void PairEGW::init_style()
       law_of[i * (n + 1) + j] = &L;
       tail_of[i * (n + 1) + j] = L.tail;
     }
+  entry_memo.clear(), rows_calls = -1;    // positions in this run's tables
   tables_ready = true;
   request_list();
 }
@@ -667,9 +668,10 @@ void PairEGW::list_rows()
     n += list->numneigh[list->ilist[ii]];
   }
   entry_first[inum] = n;
-  // an entry's memo holds its pair's position until the list is rebuilt (then the entry
-  // may be another pair, of other types): empty again (a NaN equals no R)
-  if (memo_any) entry_memo.assign(n, EgwMemo());
+  // an entry's memo is checked where it is used (its law and R key the position, the
+  // interval is a hint), so it stays as it was when the entry becomes another pair (emptied
+  // with every run's tables: init_style)
+  if (memo_any) entry_memo.resize(n);
   if (hyst_any) hyst_cache_rows();
 }
 
