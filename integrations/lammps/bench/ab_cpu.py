@@ -11,7 +11,7 @@ Environment: EGW_AB_A, EGW_AB_B the two runners (build/lammps/lmp of two builds;
 defaults to this tree's), EGW_AB_MODEL extra egw variables 'k=v,k=v' (e.g.
 'model=EP-GW,sig=1e-3,plastic=psi 1'), EGW_AB_NP ranks (default 1)."""
 import os, re, resource, subprocess, sys, tempfile
-rounds = int(sys.argv[1]); deck = sys.argv[2]; extra = sys.argv[3:]
+rounds = int(sys.argv[1]); deck = os.path.abspath(sys.argv[2]); extra = sys.argv[3:]
 egwvars = [kv.split("=", 1) for kv in os.environ.get("EGW_AB_MODEL", "").split(",") if kv]
 ev = [a for kv in egwvars for a in ("-var", kv[0], kv[1])]
 ex = [a for k in range(0, len(extra), 2) for a in ("-var", extra[k], extra[k + 1])]
