@@ -392,13 +392,15 @@ bool Inline::resample_tail(double rel_tol)
         exact(k, xs[q + 1], p1, d1);
         double sl = (p1 - p0) / h;
         double *a = &pc[4 * ((size_t) q * ns + k)];
-        a[0] = p0, a[1] = d0, a[2] = (3 * sl - 2 * d0 - d1) / h, a[3] = (d0 + d1 - 2 * sl) / (h * h);
+        a[0] = p0, a[1] = d0;
+        a[2] = (3 * sl - 2 * d0 - d1) / h, a[3] = (d0 + d1 - 2 * sl) / (h * h);
         for (int j = 1; j < 16 && fit; j += 2) {
           double u = h * j / 16.0, pe, de;
           exact(k, xs[q] + u, pe, de);
           double pa = a[0] + u * (a[1] + u * (a[2] + u * a[3]));
           double da = a[1] + u * (2 * a[2] + 3 * u * a[3]);
-          fit = std::fabs(pa - pe) <= 0.5 * tol * pe && std::fabs(da - de) <= 10 * tol * std::fabs(de);
+          fit = std::fabs(pa - pe) <= 0.5 * tol * pe &&
+              std::fabs(da - de) <= 10 * tol * std::fabs(de);
         }
       }
     if (!fit) continue;

@@ -26,10 +26,12 @@ def cpu():
 def run(lmp, law, zero=False):
     xx = list(ex)
     if zero:   # set-up only: every run of the deck with 0 steps (the first -var of a name wins)
-        xx = [a for k in range(0, len(ex), 3) for a in ex[k:k + 3] if ex[k + 1] not in ("nrun", "n1", "n2")]
+        xx = [a for k in range(0, len(ex), 3) for a in ex[k:k + 3]
+              if ex[k + 1] not in ("nrun", "n1", "n2")]
         z = "20" if deck.endswith("pour.in") else "0"    # the pour's averaging needs nrun >= 20
         xx += ["-var", "nrun", z, "-var", "n1", "0", "-var", "n2", "0"]
-    args = [lmp, "-np", np_, "-in", deck, "-var", "law", law] + xx + (ev if law == "egw" else []) + ["-log", "none", "-nocite"]
+    args = ([lmp, "-np", np_, "-in", deck, "-var", "law", law] + xx +
+            (ev if law == "egw" else []) + ["-log", "none", "-nocite"])
     c0 = cpu()
     with tempfile.TemporaryDirectory(prefix="egw-ab-") as tmp:
         out = subprocess.run(args, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
@@ -39,11 +41,16 @@ def run(lmp, law, zero=False):
     pairs = [float(x) for x in re.findall(r"^Pair\s+\|\s*\S+\s*\|\s*([0-9.eE+-]+)", out, re.M)]
     if not loops: print(out[-2000:]); sys.exit(1)
     return c, sum(loops), sum(pairs)
-setup = {k: min(run(R[k if k != "gran" else "A"], "granular" if k == "gran" else "egw", True)[0] for _ in range(2)) for k in ("gran", "A", "B")}
+setup = {k: min(run(R["A" if k == "gran" else k], "granular" if k == "gran" else "egw",
+                     True)[0] for _ in range(2)) for k in ("gran", "A", "B")}
 print("A = " + R["A"] + ", B = " + R["B"])
 print("set-up CPU (0 steps): " + ", ".join(f"{k} {v:.2f} s" for k, v in setup.items()), flush=True)
 for r in range(rounds):
     g = run(R["A"], "granular"); b = run(R["A"], "egw"); n = run(R["B"], "egw")
     cg, cb, cn = g[0] - setup["gran"], b[0] - setup["A"], n[0] - setup["B"]
     la = open("/proc/loadavg").read().split()[0]
-    print(f"round {r+1} load {la}: CPU loop gran {cg:.2f} A {cb:.2f} B {cn:.2f} -> /gran A {cb/cg:.3f} B {cn/cg:.3f}, B/A {cn/cb:.3f} | wall loop gran {g[1]:.2f} A {b[1]:.2f} B {n[1]:.2f} (/gran {b[1]/g[1]:.3f} {n[1]/g[1]:.3f}) | pair gran {g[2]:.2f} A {b[2]:.2f} B {n[2]:.2f} (/gran {b[2]/g[2]:.3f} {n[2]/g[2]:.3f})", flush=True)
+    print(f"round {r + 1} load {la}: CPU loop gran {cg:.2f} A {cb:.2f} B {cn:.2f} -> /gran "
+          f"A {cb / cg:.3f} B {cn / cg:.3f}, B/A {cn / cb:.3f} | wall loop gran {g[1]:.2f} "
+          f"A {b[1]:.2f} B {n[1]:.2f} (/gran {b[1] / g[1]:.3f} {n[1] / g[1]:.3f}) | pair gran "
+          f"{g[2]:.2f} A {b[2]:.2f} B {n[2]:.2f} (/gran {b[2] / g[2]:.3f} "
+          f"{n[2] / g[2]:.3f})", flush=True)
