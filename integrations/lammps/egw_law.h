@@ -16,6 +16,17 @@
 
 namespace LAMMPS_NS {
 
+/* What a contact's evaluation keeps between steps (pair egw: one per neighbor-list entry;
+ * fix wall/egw: one per atom; both emptied when their tables are built): the law and R
+ * its position t in the law's nodes in ln mu or ln R belongs to (EgwLaw::position: no log
+ * while both are the same), and the inline tables' interval it was last in
+ * (EgwTables::Inline::locate: no search while it stays there; any value is safe) */
+struct EgwMemo {
+  const void *law = nullptr;
+  double R = NAN, t = 0.0;
+  int interval = -1;
+};
+
 /* One body's coefficients as given with pair_coeff (or a wall fix): its material, surface
  * and the contact's sub-models (plain data: written to restart files). */
 struct EgwCoeff {
@@ -89,6 +100,10 @@ struct EgwLaw {
   double rcap_R_lo = 0, rcap_R_ref = 0;    // the smallest radius; the reach's delta_y radius
   double lnr0 = 0, inv_hr = 0;     // the first node's ln(R/sigma), 1 / node spacing
   inline int r_position(double R, double &t) const;
+  /* mu_position (ln mu nodes) or r_position (ln R nodes, rough + cap) through memo: the
+   * t of an earlier call for the same R (no log), else computed and kept there; memo
+   * null: computed. The same t to the bit. */
+  inline int position(double R, double &t, EgwMemo *memo) const;
   /* the two tables k, k + 1 (hyst) at x interpolated with weight w on k + 1, their states
    * in cache (HYST_MU, HYST_RCAP over radii); *dmax the contact's delta_max [x] */
   inline int eval_two(int k, double w, double x, double *dmax, double *cache, int want_energy,
@@ -185,14 +200,27 @@ struct EgwLaw {
    * states in cache (EgwHistory::HYST_CACHE doubles: filled again from hist's delta_max
    * when they do not hold it, e.g. new, zeroed or another table's); egw's status (EGW_OK,
    * EGW_OUT_OF_RANGE beyond the tables, ...) or MU_OUTSIDE */
+  /* memo (may be null): what the contact keeps between steps (EgwMemo; pair egw: per
+   * neighbor-list entry), read and updated; the same values with or without it */
   inline int eval(double delta, double R, double *hist, double *cache, double &F, double &S,
-                  double &U, int want_energy, bool states_are_history = false) const;
+                  double &U, int want_energy, bool states_are_history = false,
+                  EgwMemo *memo = nullptr) const;
+  /* the force loop's common case of eval without energy, for inlining: a GW/E-GW contact
+   * inside its inline tables (TABLE, UNIVERSAL with fast): F and S as eval gives them (to
+   * the bit), true; otherwise false (nothing written): call eval */
+  inline bool eval_tables(double delta, double R, EgwMemo *memo, double &F, double &S) const;
+  /* eval_tables, or an EP-GW contact of one table (HYST) whose state in cache serves it
+   * without egw (egw_hysteresis_eval_cached): F, S, the history's delta_max and the state
+   * as eval leaves them (to the bit), and eval's status (EGW_OK, EGW_OUT_OF_RANGE);
+   * otherwise -1 (nothing changed): call eval */
+  inline int eval_fast(double delta, double R, double *hist, double *cache, EgwMemo *memo,
+                       double &F, double &S) const;
   /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
    * where they are the history (all zeros: a new contact) */
   int eval(double delta, double R, double *hist, double &F, double &S, double &U,
-           int want_energy) const
+           int want_energy, EgwMemo *memo = nullptr) const
   {
-    return eval(delta, R, hist, hist + EgwHistory::HYST_A, F, S, U, want_energy, true);
+    return eval(delta, R, hist, hist + EgwHistory::HYST_A, F, S, U, want_energy, true, memo);
   }
 };
 
@@ -236,6 +264,17 @@ inline int EgwLaw::r_position(double R, double &t) const
   if (!(t >= -1e-9 && t <= n - 1 + 1e-9)) return R_OTHER;
   t = std::min(std::max(t, 0.0), n - 1.0);
   return EGW_OK;
+}
+
+inline int EgwLaw::position(double R, double &t, EgwMemo *memo) const
+{
+  if (memo && memo->R == R && memo->law == this) {
+    t = memo->t;
+    return EGW_OK;
+  }
+  int st = kind == HYST_RCAP ? r_position(R, t) : mu_position(R, t);
+  if (memo && st == EGW_OK) memo->law = this, memo->R = R, memo->t = t;
+  return st;
 }
 
 /* egw_hysteresis_eval_state at x with the state s. refill: s is a cache that must hold the
@@ -285,8 +324,50 @@ inline int EgwLaw::eval_two(int k, double w, double x, double *dmax, double *cac
   return st;
 }
 
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline bool EgwLaw::eval_tables(double delta, double R, EgwMemo *memo, double &F,
+                                double &S) const
+{
+  if ((kind != TABLE && kind != UNIVERSAL) || !fast) return false;
+  double x = delta * inv_sigma;
+  if (!fast->covers(x)) return false;
+  int k = 0;
+  double w = 0.0, t, p, dp;
+  if (kind == UNIVERSAL) {    // eval's steps: the slices' pair, p and dp blended by fast
+    if (position(R, t, memo) != EGW_OK) return false;
+    int n = (int) slices.size();
+    k = std::max(0, std::min(n - 2, (int) t));
+    w = t - k;
+  }
+  fast->eval(x, k, w, p, dp, memo ? &memo->interval : nullptr);
+  double sr = E_star * std::sqrt(R);
+  F = sr * s15 * p, S = sr * s05 * dp;
+  return true;
+}
+
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline int EgwLaw::eval_fast(double delta, double R, double *hist, double *cache,
+                             EgwMemo *memo, double &F, double &S) const
+{
+  if (kind != HYST) return eval_tables(delta, R, memo, F, S) ? EGW_OK : -1;
+  // eval's HYST steps when egw_law_hyst_eval's first test serves
+  double *dmax = &hist[EgwHistory::DELTA_MAX], p, dp;
+  if (!cache || !(cache[0] == *dmax) ||
+      !egw_hysteresis_eval_cached(hyst_tag[0], delta * inv_sigma, cache, &p, &dp))
+    return -1;
+  *dmax = cache[0];
+  double sr = E_star * std::sqrt(R);
+  F = sr * s15 * p, S = sr * s05 * dp;
+  return cache[0] > hyst_dmax[0] ? EGW_OUT_OF_RANGE : EGW_OK;
+}
+
 inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, double &F,
-                        double &S, double &U, int want_energy, bool states_are_history) const
+                        double &S, double &U, int want_energy, bool states_are_history,
+                        EgwMemo *memo) const
 {
   using namespace EgwHistory;
   double *dmax = &hist[DELTA_MAX];
@@ -309,7 +390,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       if (fast && fast->covers(x)) {
         // the force from the tables' cubics in every step (egw's values to rounding; with
         // or without energy, so that output steps do not change a trajectory)
-        fast->eval(x, 0, 0.0, p, dp);
+        fast->eval(x, 0, 0.0, p, dp, memo ? &memo->interval : nullptr);
         if (want_energy) egw_table_eval_all(table, x, nullptr, nullptr, &u, nullptr);
       } else if (want_energy) {
         st = egw_table_eval_all(table, x, &p, &dp, &u, &ac);
@@ -321,13 +402,13 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     }
     case UNIVERSAL: {
       double t;
-      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
+      if (position(R, t, memo) != EGW_OK) return MU_OUTSIDE;
       int n = (int) slices.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = t - k;
       double x = delta * inv_sigma, p0, p1, d0, d1, u0 = 0, u1 = 0, ac;
       if (fast && fast->covers(x)) {    // as TABLE; p0, d0 already interpolated in ln mu
-        fast->eval(x, k, w, p0, d0);
+        fast->eval(x, k, w, p0, d0, memo ? &memo->interval : nullptr);
         p1 = p0, d1 = d0;
         if (want_energy) {
           egw_table_eval_all(slices[k], x, nullptr, nullptr, &u0, nullptr);
@@ -360,7 +441,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
         x = delta * inv_sigma, fF = rcap_F, fS = rcap_F * inv_sigma, fU = rcap_F * sigma;
         if (hyst.size() > 1) {    // tables at nodes in ln R: the contact's two neighbours
           double t, p, dp, u;
-          if (r_position(R, t) != EGW_OK) return R_OTHER;
+          if (position(R, t, memo) != EGW_OK) return R_OTHER;
           int k = std::min((int) hyst.size() - 2, (int) t);
           st = eval_two(k, t - k, x, dmax, cache, want_energy, states_are_history, p, dp, u);
           F = fF * p, S = fS * dp, U = fU * u;
@@ -384,7 +465,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     }
     case FLAT: {
       double t;
-      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
+      if (position(R, t, memo) != EGW_OK) return MU_OUTSIDE;
       int n = (int) flat.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double w = n > 1 ? t - k : 0.0;
@@ -415,7 +496,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
     case HYST_MU: {
       double x = delta * inv_sigma;
       double t;
-      if (mu_position(R, t) != EGW_OK) return MU_OUTSIDE;
+      if (position(R, t, memo) != EGW_OK) return MU_OUTSIDE;
       int n = (int) hyst.size();
       int k = std::max(0, std::min(n - 2, (int) t));
       double p, dp, u;

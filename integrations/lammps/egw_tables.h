@@ -78,9 +78,12 @@ struct SliceKey {
  * evaluation inside the force loop, without a library call. The slices of one universal
  * table share their nodes, so a contact finds its interval once for both of its slices and,
  * where they interpolate p, blends their cubics into one (the value of interpolating their
- * forces linearly in ln mu, to rounding); where they interpolate ln p (the tail) it takes
- * both exps. Serves cut-off < x < last node; egw_table_eval the rest (0 below, deep
- * overlaps, energy). n = 0: the tables' nodes differ, egw_table_eval serves everything. */
+ * forces linearly in ln mu, to rounding); the separated tail, where they interpolate ln p,
+ * is resampled into pieces of cubics in p as egw_table_eval's own (within TAIL_TOL/2 of
+ * rel_tol of the ln-p interpolant: below), so there too one blended cubic and no exp
+ * (ln-p intervals above 0, or a tail beyond MAX_PIECES: both exps). Serves cut-off < x <
+ * last node; egw_table_eval the rest (0 below, deep overlaps, energy). n = 0: the tables'
+ * nodes differ, egw_table_eval serves everything. */
 struct Inline {
   int n = 0, n_log = 0, ns = 0;    // nodes, intervals of ln p (the first ones), tables
   double x_lo = 0, x_hi = 0;       // first and last node [sigma]
@@ -90,6 +93,20 @@ struct Inline {
   double origin = 0, scale = 0;
   int nb = 0;
   bool log_buckets = false;        // buckets uniform in bucket_coord (tables reaching far)
+  // The separated tail (x_lo to tail_end, the last node <= 0, where the tables hold ln p)
+  // resampled as egw_table_eval resamples it (doc/formats.md): n_piece equal pieces, on
+  // each every table's cubic Hermite in p through its ln-p interpolant's values and slopes
+  // at the piece's ends, n_piece grown by 20 % from 16 until at 8 points of every piece p
+  // is within TAIL_TOL/2 of the tables' rel_tol of the ln-p interpolant and dp/dx within
+  // 10 TAIL_TOL rel_tol of its slope (at most MAX_PIECES; else, and without ln-p
+  // intervals below 0, tail_end = x_lo: the exps). A contact there finds its piece by one
+  // multiplication and takes no exp; between two slices one blended cubic, as above 0.
+  static constexpr double TAIL_TOL = 1e-2;
+  static constexpr int MAX_PIECES = 8192;
+  int n_piece = 0;
+  double tail_end = 0, piece_scale = 0;
+  std::vector<double> piece_x;     // the pieces' starts
+  std::vector<double> piece_c;     // piece q, table k: piece_c[4 (q ns + k) + 0..3]
   /* a monotone coordinate: x below 1, above it 1 + log2(x) with the mantissa taken
    * linearly (exact at powers of 2; from the double's bits, no library call), so that a
    * table over many decades (sigma -> 0: x up to 5e14) gets buckets per octave */
@@ -101,7 +118,18 @@ struct Inline {
     return (double) (int) (b >> 52) - 1022.0 +
         (double) (b & ((std::uint64_t(1) << 52) - 1)) * 0x1p-52;
   }
-  /* the interval i with x[i] <= xv < x[i + 1], for x_lo < xv < x_hi */
+  /* the interval i with x[i] <= xv < x[i + 1], for x_lo < xv < x_hi; hint (may be null):
+   * an interval to try first (any int: checked), set to the one found (a contact moves
+   * little between steps: mostly no search) */
+  int locate(double xv, int *hint) const
+  {
+    if (hint) {
+      int i = *hint;
+      if (i >= 0 && i < n - 1 && x[i] <= xv && xv < x[i + 1]) return i;
+      return *hint = locate(xv);
+    }
+    return locate(xv);
+  }
   int locate(double xv) const
   {
     double u = log_buckets ? bucket_coord(xv) : xv;
@@ -114,10 +142,19 @@ struct Inline {
   bool make(const std::vector<egw_table> &tables);
   bool covers(double xv) const { return xv > x_lo && xv < x_hi; }    // false when n = 0
   /* p and dp/dx at x (covers(x)) of table k, or (ns > 1) of tables k and k + 1
-   * interpolated linearly in ln mu with weight w on k + 1 */
-  void eval(double xv, int k, double w, double &p, double &dp) const
+   * interpolated linearly in ln mu with weight w on k + 1; hint: locate()'s */
+#if defined(__GNUC__)
+  __attribute__((always_inline))
+#endif
+  void eval(double xv, int k, double w, double &p, double &dp, int *hint = nullptr) const
   {
-    int i = locate(xv);
+    if (xv < tail_end) {    // a piece of the resampled tail: cubics in p
+      int q = std::min(n_piece - 1, (int) ((xv - x_lo) * piece_scale));
+      double t = xv - piece_x[q];
+      cubic_p(&piece_c[4 * (q * ns + k)], t, w, p, dp);
+      return;
+    }
+    int i = locate(xv, hint);
     double t = xv - x[i], t2 = t * t;
     const double *a = &c[4 * (i * ns + k)];
     // egw's cubic in Estrin's form, as egw_table_eval evaluates it
@@ -139,12 +176,29 @@ struct Inline {
       dp = p0 * d0 + w * (p1 * d1 - p0 * d0);
       return;
     }
-    // p interpolated in both: the blended cubic is the blend of their values
+    cubic_p(a, t, w, p, dp);
+  }
+  /* p and dp/dx of the cubic in p at a (ns == 1), or (ns > 1) of the cubics at a and a + 4
+   * blended with weight w on the second (the blended cubic is the blend of their values) */
+#if defined(__GNUC__)
+  __attribute__((always_inline))
+#endif
+  void cubic_p(const double *a, double t, double w, double &p, double &dp) const
+  {
+    double t2 = t * t;
+    if (ns == 1) {
+      p = (a[0] + t * a[1]) + t2 * (a[2] + t * a[3]);
+      dp = (a[1] + 2 * t * a[2]) + 3 * t2 * a[3];
+      return;
+    }
+    const double *b = a + 4;
     double c0 = a[0] + w * (b[0] - a[0]), c1 = a[1] + w * (b[1] - a[1]);
     double c2 = a[2] + w * (b[2] - a[2]), c3 = a[3] + w * (b[3] - a[3]);
     p = (c0 + t * c1) + t2 * (c2 + t * c3);
     dp = (c1 + 2 * t * c2) + 3 * t2 * c3;
   }
+  /* fill piece_x, piece_c (make()): false when MAX_PIECES do not fit */
+  bool resample_tail(double rel_tol);
 };
 
 /* a law's 1-D tables with what their build found; freed with their last holder */

@@ -369,6 +369,7 @@ double FixWallEGW::effective_radius(double radi, double rc) const
  * fix's sub-models, tables for R = R_eff over the type's radii and the wall's curvatures */
 void FixWallEGW::build_law(int t)
 {
+  memo.clear();    // positions in the tables built before
   const EgwCoeff *c = pair->type_coeff(t);
   if (!c)
     error->all(FLERR, "Fix wall/egw: type {} has no pair_coeff {} {} in pair_style egw", t, t, t);
@@ -552,10 +553,11 @@ void FixWallEGW::store_contact(int i, const double *x, const double *n, double d
  * curvature there (0 flat; for the mu message only). */
 void FixWallEGW::wall_contact(int i, EgwLaw &L, double delta, double R, const double *n,
                               const double *vwall, double *hist, double dist,
-                              bool update_history, double rc)
+                              bool update_history, double rc, EgwMemo *memo)
 {
   double Fn, S, U;
-  int st = L.eval(delta, R, hist, Fn, S, U, 0);
+  int st = EGW_OK;
+  if (!L.eval_tables(delta, R, memo, Fn, S)) st = L.eval(delta, R, hist, Fn, S, U, 0, memo);
   if (st == EgwLaw::MU_OUTSIDE)
     error->one(FLERR, "Fix wall/egw: contact with R = {} (R_i = {}, the wall's radius of "
                       "curvature {}) has mu = {} outside the tables' [{}, {}]: widen the radius "
@@ -676,8 +678,9 @@ void FixWallEGW::post_force(int /*vflag*/)
     if (!(R > 0))
       error->one(FLERR, "Fix wall/egw: an atom of radius {} does not fit the zcylinder of radius "
                         "{}", radi, cylradius);
+    if (memo.size() < (size_t) nlocal) memo.resize(atom->nmax);
     wall_contact(i, L, delta, R, n, vwall, hist, dist, update_history,
-                 wallstyle == ZCYLINDER ? cyl_rc : 0.0);
+                 wallstyle == ZCYLINDER ? cyl_rc : 0.0, &memo[i]);
   }
 }
 

@@ -87,7 +87,10 @@ class FixWallEGW : public Fix, public EgwHeatWall {
                      const double *f, double radi, double dq);
   void wall_contact(int i, EgwLaw &L, double delta, double R, const double *n,
                     const double *vwall, double *hist, double dist, bool update_history,
-                    double rc);
+                    double rc, EgwMemo *memo = nullptr);
+  // planes and cylinders: each atom index's EgwMemo (the atom's R and law are its keys:
+  // one that moved to another index misses once, never reads another's position)
+  std::vector<EgwMemo> memo;
   void egw_fail(const std::string &);
   void sank_through(int i, double delta, double radi);
   void sank_through_region(int i, const double *h);

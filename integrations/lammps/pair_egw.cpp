@@ -279,12 +279,32 @@ void PairEGW::init_style()
                         "it to each E*) or use one file per E*",
                  A.law_file, a.first, a.second, A.E_star, b.first, b.second, B.E_star);
     }
-  hyst_any = false;
+  hyst_any = memo_any = false;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) {
+      const EgwLaw &L = law[i][j];
+      memo_any = memo_any || L.kind == EgwLaw::TABLE || L.kind == EgwLaw::UNIVERSAL ||
+          L.kind == EgwLaw::HYST_MU || L.kind == EgwLaw::FLAT ||
+          (L.kind == EgwLaw::HYST_RCAP && L.hyst.size() > 1);
+    }
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++)
       hyst_any = hyst_any || law[i][j].kind == EgwLaw::HYST ||
           law[i][j].kind == EgwLaw::HYST_MU || law[i][j].kind == EgwLaw::HYST_CAP ||
           law[i][j].kind == EgwLaw::HYST_RCAP;
+  // one state per block unless a law interpolates two tables (the blocks of an earlier run
+  // are dropped when that changes: their contacts refill from their histories)
+  int stride = EGW_HYSTERESIS_STATE_SIZE;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      if (law[i][j].kind == EgwLaw::HYST_MU ||
+          (law[i][j].kind == EgwLaw::HYST_RCAP && law[i][j].hyst.size() > 1))
+        stride = HYST_CACHE;
+  if (stride != hyst_stride) {
+    hyst_stride = stride;
+    hyst_cache.clear(), hyst_cache_tags.clear(), hyst_live.clear(), hyst_free.clear();
+    rows_calls = -1;
+  }
   law_of.assign((n + 1) * (n + 1), nullptr);
   tail_of.assign((n + 1) * (n + 1), 0.0);
   for (int i = 1; i <= n; i++)
@@ -293,6 +313,7 @@ void PairEGW::init_style()
       law_of[i * (n + 1) + j] = &L;
       tail_of[i * (n + 1) + j] = L.tail;
     }
+  entry_memo.clear(), rows_calls = -1;    // positions in this run's tables
   tables_ready = true;
   request_list();
 }
@@ -381,10 +402,15 @@ double PairEGW::init_one(int i, int j)
 /* the elastic normal force of a contact from its law; out-of-range overlaps warn once,
  * a mu outside the tables or a failed evaluation stop the run */
 inline void PairEGW::normal(EgwLaw &L, double delta, double R, double *hist, double *cache,
-                            double &F, double &S, double &U, int want_energy)
+                            double &F, double &S, double &U, int want_energy, EgwMemo *memo)
 {
-  int st = L.eval(delta, R, hist, cache, F, S, U, want_energy);
-  if (st == EGW_OK) return;
+  int st = L.eval(delta, R, hist, cache, F, S, U, want_energy, false, memo);
+  if (st != EGW_OK) report(L, st, delta, R);
+}
+
+/* what normal() says about an evaluation's status other than EGW_OK */
+void PairEGW::report(const EgwLaw &L, int st, double delta, double R)
+{
   if (st == EgwLaw::MU_OUTSIDE)
     error->one(FLERR, "Pair egw: contact with R = {} has mu = {} outside the tables' "
                       "[{}, {}]: widen the radius range with pair_style egw ... rmin/rmax",
@@ -430,7 +456,9 @@ void PairEGW::compute(int eflag, int vflag)
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   double ncontact = 0.0;
   const bool cached = hyst_any;    // EP-GW, the cap: hysteresis states per list entry
-  if (cached) hyst_cache_rows();    // a pair with a ghost under newton off is counted by both ranks
+  if (cached || memo_any) list_rows();
+  const size_t n_entries = cached ? entry_first[inum] : 0;
+  // (a pair with a ghost under newton off is counted by both ranks)
 
   const int nt1 = atom->ntypes + 1;
   for (int ii = 0; ii < inum; ii++) {
@@ -444,6 +472,13 @@ void PairEGW::compute(int eflag, int vflag)
     int jnum = numneigh[i];
 
     for (int jj = 0; jj < jnum; jj++) {
+      if (cached) {    // the block (its first state) of the entry HYST_PREFETCH ahead
+        size_t ahead = entry_first[ii] + jj + HYST_PREFETCH;
+        if (ahead < n_entries && hyst_slot[ahead] >= 0) {
+          const double *b = &hyst_cache[(size_t) hyst_slot[ahead] * hyst_stride];
+          __builtin_prefetch(b), __builtin_prefetch(b + 8), __builtin_prefetch(b + 16);
+        }
+      }
       int j = jlist[jj] & NEIGHMASK;
       double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
       double rsq = dx * dx + dy * dy + dz * dz;
@@ -468,12 +503,22 @@ void PairEGW::compute(int eflag, int vflag)
       }
       double Fn, S, U;
       double *cache = nullptr;
-      if (cached) {
-        size_t e = hyst_cache_first[ii] + jj;
-        cache = hyst_slot[e] >= 0 ? &hyst_cache[hyst_slot[e] * HYST_CACHE]
-                                  : hyst_block(e, atom->tag[i], atom->tag[j]);
+      EgwMemo *memo = nullptr;
+      if (cached || memo_any) {
+        size_t e = entry_first[ii] + jj;
+        if (memo_any) memo = &entry_memo[e];
+        if (cached)
+          cache = hyst_slot[e] >= 0 ? &hyst_cache[(size_t) hyst_slot[e] * hyst_stride]
+                                    : hyst_block(e, atom->tag[i], atom->tag[j]);
       }
-      normal(L, delta, R, hist, cache, Fn, S, U, eflag);
+      // GW/E-GW inside the inline tables, EP-GW of one table within its state's piece,
+      // without energy (most steps) here, the rest in normal() (U: eval's 0 without energy)
+      int st = eflag ? -1 : L.eval_fast(delta, R, hist, cache, memo, Fn, S);
+      if (st < 0) normal(L, delta, R, hist, cache, Fn, S, U, eflag, memo);
+      else {
+        U = 0.0;
+        if (st != EGW_OK) report(L, st, delta, R);
+      }
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
       double mi = rmass[i], mj = rmass[j];
@@ -608,6 +653,28 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
   return U;
 }
 
+/* compute()'s per-entry rows, laid out anew when the list was rebuilt */
+void PairEGW::list_rows()
+{
+  if (neighbor->ncalls == rows_calls && (int) entry_first.size() == list->inum + 1 &&
+      entry_memo.size() == (memo_any ? entry_first.back() : entry_memo.size()))
+    return;
+  rows_calls = neighbor->ncalls;
+  int inum = list->inum;
+  entry_first.resize(inum + 1);
+  size_t n = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    entry_first[ii] = n;
+    n += list->numneigh[list->ilist[ii]];
+  }
+  entry_first[inum] = n;
+  // an entry's memo is checked where it is used (its law and R key the position, the
+  // interval is a hint), so it stays as it was when the entry becomes another pair (emptied
+  // with every run's tables: init_style)
+  if (memo_any) entry_memo.resize(n);
+  if (hyst_any) hyst_cache_rows();
+}
+
 /* EP-GW: a pair of hysteresis states per contact (a block), found from its neighbor-list
  * entry (hyst_slot, -1: none yet); the slots are laid out anew when the list is rebuilt.
  * A block stays where it is while its contact is listed: the new entry of a contact
@@ -621,9 +688,6 @@ double PairEGW::single(int i, int j, int itype, int jtype, double rsq, double /*
  * 3.66-4.76 s against 3.77-4.05 s moving, three interleaved rounds at load 3.) */
 void PairEGW::hyst_cache_rows()
 {
-  if (neighbor->ncalls == hyst_cache_calls && (int) hyst_cache_first.size() == list->inum + 1)
-    return;
-  hyst_cache_calls = neighbor->ncalls;
   auto key = [](tagint a, tagint b) {
     uint64_t lo = (uint64_t) std::min(a, b), hi = (uint64_t) std::max(a, b);
     return (lo << 32) ^ hi;    // a collision (64-bit IDs) only costs a refill: egw_law.h
@@ -649,14 +713,7 @@ void PairEGW::hyst_cache_rows()
   int inum = list->inum;
   tagint *tag = atom->tag;
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
-  hyst_cache_first.resize(inum + 1);
-  size_t n = 0;
-  for (int ii = 0; ii < inum; ii++) {
-    hyst_cache_first[ii] = n;
-    n += list->numneigh[list->ilist[ii]];
-  }
-  hyst_cache_first[inum] = n;
-  hyst_slot.assign(n, -1);
+  hyst_slot.assign(entry_first[inum], -1);
   if (nlive > 0)
     for (int ii = 0; ii < inum; ii++) {
       int i = list->ilist[ii];
@@ -666,7 +723,7 @@ void PairEGW::hyst_cache_rows()
         if (!touch[jj]) continue;
         const auto &hit = hyst_old[slot_of(key(tag[i], tag[jlist[jj] & NEIGHMASK]))];
         if (hit.first == 0 || hyst_live[hit.second]) continue;    // none, or taken
-        hyst_slot[hyst_cache_first[ii] + jj] = (int) hit.second;
+        hyst_slot[entry_first[ii] + jj] = (int) hit.second;
         hyst_live[hit.second] = 1;
       }
     }
@@ -686,20 +743,21 @@ double *PairEGW::hyst_block(size_t e, tagint ti, tagint tj)
     hyst_live[b] = 1;
   } else {
     b = hyst_cache_tags.size() / 2;
-    hyst_cache.resize((b + 1) * HYST_CACHE);
+    hyst_cache.resize((b + 1) * hyst_stride);
     hyst_cache_tags.push_back(ti), hyst_cache_tags.push_back(tj);
     hyst_live.push_back(1);
   }
   hyst_slot[e] = (int) b;
-  double *c = &hyst_cache[b * HYST_CACHE];
-  c[0] = c[EGW_HYSTERESIS_STATE_SIZE] = NAN;
+  double *c = &hyst_cache[b * hyst_stride];
+  for (int k = 0; k < hyst_stride; k += EGW_HYSTERESIS_STATE_SIZE) c[k] = NAN;
   return c;
 }
 
 double PairEGW::memory_usage()
 {
   return (double) hyst_cache.capacity() * sizeof(double) +
-      (double) hyst_cache_first.capacity() * sizeof(size_t) +
+      (double) entry_first.capacity() * sizeof(size_t) +
+      (double) entry_memo.capacity() * sizeof(EgwMemo) +
       (double) (hyst_slot.capacity() + hyst_free.capacity()) * sizeof(int) +
       (double) hyst_cache_tags.capacity() * sizeof(tagint) + (double) hyst_live.capacity() +
       (double) hyst_old.capacity() * sizeof(hyst_old[0]);

@@ -14,6 +14,7 @@
 #include "egw_peers.h"
 
 #include <cstdint>
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
@@ -94,13 +95,39 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
   std::string plain_reason(double tail_max, const std::string &box_fixes) const;
   void egw_fail(const std::string &what);
   inline void normal(EgwLaw &, double delta, double R, double *hist, double *cache, double &F,
-                     double &S, double &U, int want_energy);
+                     double &S, double &U, int want_energy, EgwMemo *memo = nullptr);
+  void report(const EgwLaw &, int st, double delta, double R);
+  // per neighbor-list entry: entry jj of ilist[ii] is entry_first[ii] + jj (rebuilt with
+  // the list, list_rows())
+  std::vector<size_t> entry_first;
+  bigint rows_calls = -1;
+  void list_rows();
+  // laws whose contacts keep an EgwMemo (1-D tables: the interval; nodes in ln mu or ln
+  // R: their position there, a log once per contact and list instead of every step), one
+  // per entry
+  bool memo_any = false;
+  std::vector<EgwMemo> entry_memo;
   // EP-GW: two hysteresis states per contact (blocks of HYST_CACHE doubles, which stay
-  // where they are while their contact lasts), entry jj of ilist[ii] uses block
-  // hyst_slot[hyst_cache_first[ii] + jj] (-1: none yet); the slots are rebuilt with the
-  // list, the blocks of contacts no longer listed reused (hyst_free) (egw_history.h)
-  std::vector<double> hyst_cache;
-  std::vector<size_t> hyst_cache_first;
+  // where they are while their contact lasts), entry e uses block hyst_slot[e] (-1: none
+  // yet); the slots are rebuilt with the list, the blocks of contacts no longer listed
+  // reused (hyst_free) (egw_history.h)
+  // Blocks of hyst_stride doubles: one state (EGW_HYSTERESIS_STATE_SIZE) when every law
+  // has one table, two (HYST_CACHE) when one interpolates two (HYST_MU, rough + cap over
+  // radii); on 64-byte lines, so that a state is 3 of them. compute() prefetches the block
+  // of the entry HYST_PREFETCH ahead: a block is read from where its contact began, not in
+  // list order, and waiting for it was half of the drum's EP-GW evaluations
+  static constexpr int HYST_PREFETCH = 2;
+  template <class T> struct LineAllocator {
+    using value_type = T;
+    LineAllocator() = default;
+    template <class U> LineAllocator(const LineAllocator<U> &) {}
+    T *allocate(size_t n) { return (T *) ::operator new(n * sizeof(T), std::align_val_t(64)); }
+    void deallocate(T *p, size_t) { ::operator delete(p, std::align_val_t(64)); }
+    bool operator==(const LineAllocator &) const { return true; }
+    bool operator!=(const LineAllocator &) const { return false; }
+  };
+  std::vector<double, LineAllocator<double>> hyst_cache;
+  int hyst_stride = EgwHistory::HYST_CACHE;
   std::vector<int> hyst_slot;
   std::vector<tagint> hyst_cache_tags;     // the two atoms' IDs of each block
   std::vector<char> hyst_live;             // the block belongs to an entry of the list
@@ -108,7 +135,6 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
   // the blocks by their pair's key (open addressing, key 0 empty), kept between rebuilds
   // so that a rebuild allocates nothing
   std::vector<std::pair<uint64_t, size_t>> hyst_old;
-  bigint hyst_cache_calls = -1;
   double *hyst_block(size_t entry, tagint ti, tagint tj);
   void hyst_cache_rows();
 };

@@ -19,9 +19,13 @@
  *     slices interpolated p0 + w (p1 - p0); the largest relative differences of force and
  *     stiffness, the tables' nodes and ln-p intervals:
  *       inline max_rel_diff D max_rel_diff_stiffness DS nodes N n_log L
+ *     and the largest difference of the same evaluations with a hint (locate()'s interval
+ *     carried from the last overlap, as a contact's EgwMemo) from those without: 0 expected
+ *       inline hint_diff H
  * Tables are built with egw's defaults (threads, cache). */
 #include "../egw_tables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -136,7 +140,8 @@ int main(int argc, char **argv)
     }
     EgwTables::Inline fast;
     if (!fast.make(slices)) fail("Inline::make refused the slices (nodes differ)");
-    double dmax = 0.0, smax = 0.0, tmax = 0.0, tsmax = 0.0;
+    double dmax = 0.0, smax = 0.0, tmax = 0.0, tsmax = 0.0, hint_diff = 0.0;
+    int hint = -1;    // carried from overlap to overlap, as a contact's memo (EgwMemo)
     for (int j = 1; j < 20000; j++) {
       // overlaps crowded towards contact, where the nodes are (and the pour's contacts)
       double f = j / 20000.0, x = fast.x_lo + (fast.x_hi - fast.x_lo) * f * f * f;
@@ -150,6 +155,14 @@ int main(int argc, char **argv)
       check(egw_table_eval(slices[k], x, &p0, &d0));
       if (n > 1) check(egw_table_eval(slices[k + 1], x, &p1, &d1));
       fast.eval(x, k, w, pf, df);
+      // with the hint: the last overlap's interval, or one step on (a contact's next step)
+      for (double xh : {x, x * (1.0 + 1e-4) + 1e-7}) {
+        double ph, dh, pn, dn;
+        if (!fast.covers(xh)) continue;
+        fast.eval(xh, k, w, ph, dh, &hint);
+        fast.eval(xh, k, w, pn, dn);
+        hint_diff = std::max({hint_diff, std::fabs(ph - pn), std::fabs(dh - dn)});
+      }
       double pr = n == 1 ? p0 : p0 + w * (p1 - p0), dr = n == 1 ? d0 : d0 + w * (d1 - d0);
       double ep = std::fabs(pf - pr) / std::fabs(pr);
       double es = std::fabs(df - dr) / std::max(std::fabs(dr), 1e-300);
@@ -163,6 +176,7 @@ int main(int argc, char **argv)
                 smax, fast.n, fast.n_log);
     std::printf("inline tail_rel_diff %.4e tail_rel_diff_stiffness %.4e tol %.4e\n", tmax,
                 tsmax, tol);
+    std::printf("inline hint_diff %.4e\n", hint_diff);
     for (auto &s : slices) egw_table_free(&s);
     egw_universal_free(&u);
   } else {
