@@ -67,7 +67,9 @@ contains
          & new_unittest("E-GW + cap steel beads, 42 nm: mid-unloading reaches the rim", &
          & test_mid_unloading_rim), &
          & new_unittest("sigma/delta_y = 1e-8, 1e-10: histories by the small-sigma route", &
-         & test_tiny_sigma_history) &
+         & test_tiny_sigma_history), &
+         & new_unittest("sigma/delta_y = 1e-8: restitution at 3 v_y by the small-sigma route", &
+         & test_tiny_sigma_restitution) &
          & ]
    end subroutine collect_rough_cap
 
@@ -284,6 +286,41 @@ contains
       call check(error, res%force == 0.0_dp, "sigma/delta_y = 1e-10, 0.5 delta_max: " &
          & //"P = "//str(res%force)//", below the residual overlap")
    end subroutine test_tiny_sigma_history
+
+   !> restitution of E-GW + cap at sigma/delta_y = 1e-8 (mu 4, 3 v_y, rel_tol 1e-4), whose
+   !> loading and unloading solves are the small-sigma route's (doc/theory.md section 12),
+   !> against the smooth cap's e (restitution at sigma = 0: cap_restitution, an independent
+   !> closed solve on the cap model, within 3.4e-6 of test/data/cap_reference.csv). Before,
+   !> every unloading solve reloaded the route's two wide histories (minutes per impact, or
+   !> egw_not_converged). Tolerance 1e-4: restitution's own (rel_tol, the work integrals'
+   !> tolerance on e), plus the smooth cap's 3.4e-6 and the rough layer's effect on the
+   !> forces, at most 0.3 (sigma/delta_y)**(2/3) = 1.4e-6 (test_tiny_sigma_history).
+   subroutine test_tiny_sigma_restitution(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y, v, e_cap, e_rough, dissipated, tol
+      call yield_units(delta_y, force_y)
+      v = 3.0_dp*first_yield_speed()
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=0.0_dp, &
+         & mu=4.0_dp, flow_pressure=py)
+      call restitution(p, solver_options(rel_tol=1.0e-4_dp), 1.0_dp, v, e_cap, dissipated, &
+         & err)
+      if (allocated(err)) then
+         call check(error, .false., "smooth cap restitution: "//err%message)
+         return
+      end if
+      p%sigma = 1.0e-8_dp*delta_y
+      call restitution(p, solver_options(rel_tol=1.0e-4_dp), 1.0_dp, v, e_rough, &
+         & dissipated, err)
+      if (allocated(err)) then
+         call check(error, .false., "sigma/delta_y = 1e-8: restitution: "//err%message)
+         return
+      end if
+      tol = 1.0e-4_dp + 3.4e-6_dp + 0.3_dp*1.0e-8_dp**(2.0_dp/3.0_dp)
+      call check(error, abs(e_rough - e_cap) <= tol*e_cap, "sigma/delta_y = 1e-8: e = " &
+         & //str(e_rough)//", smooth cap "//str(e_cap))
+   end subroutine test_tiny_sigma_restitution
 
    function str(x) result(s)
       real(dp), intent(in) :: x

@@ -71,7 +71,11 @@ module egw_rough_sphere
    !> 4.5 (10**(2/3) = 4.6 for the pure law) from 1e-4 to 1e-5 (E-GW, mu 4, 2 delta_y,
    !> loading and unloading at 0.99 delta_max); from 1e-5 to 1e-6 by 5.5 .. 7.1, the
    !> 1e-6 solves being off by several 1e-6 under smaller estimates.
-   real(dp), parameter :: wide_sigmas(2) = [1.0e-5_dp, 1.0e-4_dp]
+   !> Where a solve of that pair fails, the second pair (2e-5, 2e-4) answers (E-GW, mu 4,
+   !> from 2.44 delta_y: the unloading solve at 1e-5 delta_y fails at 0.21 delta_max,
+   !> Newton stalling); its correction is checked by its own farther solve alike.
+   real(dp), parameter :: wide_sigmas(2, 2) = reshape([1.0e-5_dp, 1.0e-4_dp, 2.0e-5_dp, &
+      & 2.0e-4_dp], [2, 2])
    !> sigma/delta_y at or below which a converged solve of small_sigma_limit's models is
    !> checked against the asymptotic route (small_sigma_loading/_unload): there the
    !> route's correction is <= 5 % of P(sigma_1) - P_cap, and discrete solves were found
@@ -104,6 +108,16 @@ module egw_rough_sphere
       !> sigma/delta_y <= 1e-6, or was replaced by the route's check at <= 1e-7): no rough
       !> field; every unloading solve is the route's.
       logical, private :: asymptotic = .false.
+      !> The small-sigma route's own histories, loaded once with this one where the route
+      !> may answer or check its unloading solves (asymptotic_applies at delta_max;
+      !> route_histories): the rough model's separation fields after loading to delta_max
+      !> at wide_sigmas and the smooth cap's loading (cap_load, 100 rings). Every route
+      !> unloading solve reuses them (it reloaded them before: 0.5-20 s a solve).
+      !> wide_loaded(j) false where a loading of pair j failed (the route then tries the
+      !> other pair; it fails where both fail).
+      logical, private :: wide_loaded(2) = .false.   !< per pair of wide_sigmas
+      type(separation_field), private :: wide(2, 2)
+      type(cap_history), private :: wide_cap
    end type loading_history
 
    !> The history solve_contact_unload loaded last on this thread, with the inputs it was
@@ -246,7 +260,7 @@ contains
             & history%loading%force, result, error)
       else if (allocated(error)) then
          error%message = error%message//"; nor by the small-sigma route (its solves at " &
-            & //"sigma = 1e-5 and 1e-4 delta_y failed)"
+            & //"sigma = 1e-5, 1e-4 and 2e-5, 2e-4 delta_y failed)"
       end if
    end subroutine small_sigma_unload
 
@@ -288,18 +302,24 @@ contains
       type(solve_result) :: wide(2)
       type(egw_error), allocatable :: wide_error
       integer :: k
+      integer :: pair
       ok = .false.
-      do k = 1, 2
-         wider = params
-         wider%sigma = wide_sigmas(k)*delta_y
-         wide_prob = scaled(wider, delta)
-         call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
-         if (allocated(wide_error)) return
+      do pair = 1, 2
+         do k = 1, 2
+            wider = params
+            wider%sigma = wide_sigmas(k, pair)*delta_y
+            wide_prob = scaled(wider, delta)
+            call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
+            if (allocated(wide_error)) exit
+         end do
+         if (.not. allocated(wide_error)) exit
+         deallocate (wide_error)
       end do
+      if (pair > 2) return
       call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
          & cap_options(n_rings=100, n_levels=2), history, cap, wide_error, "delta")
       if (allocated(wide_error)) return
-      call asymptotic_result(params, cap, wide, 0.0_dp, asym)
+      call asymptotic_result(params, cap, wide, wide_sigmas(:, pair), 0.0_dp, asym)
       ok = .true.
    end subroutine asymptotic_loading
 
@@ -312,32 +332,73 @@ contains
       type(solve_result), intent(out) :: asym
       logical, intent(out) :: ok
       type(contact_params) :: wider
-      type(loading_history) :: wide_history
-      type(cap_history) :: cap_hist
       type(cap_result) :: cap
-      type(solve_result) :: wide(2), res
+      type(solve_result) :: wide(2)
       type(egw_error), allocatable :: wide_error
       integer :: k
+      integer :: pair
       ok = .false.
-      do k = 1, 2
-         wider = history%params
-         wider%sigma = wide_sigmas(k)*delta_y
-         call load_history(wider, history%options, history%delta_max, wide_history, res, &
-            & wide_error)
-         if (allocated(wide_error)) return
-         call rough_unload(wide_history, delta, wide(k), wide_error)
-         if (allocated(wide_error)) return
+      do pair = 1, 2
+         if (.not. history%wide_loaded(pair)) cycle
+         do k = 1, 2
+            wider = history%params
+            wider%sigma = wide_sigmas(k, pair)*delta_y
+            call rough_unload(wider, history%options, history%wide(k, pair), delta, &
+               & wide(k), wide_error)
+            if (allocated(wide_error)) exit
+         end do
+         if (.not. allocated(wide_error)) exit
+         deallocate (wide_error)
       end do
-      call cap_load(history%params%radius, history%params%modulus, &
-         & history%params%flow_pressure, history%delta_max, cap_options(n_rings=100, &
-         & n_levels=2), cap_hist, cap, wide_error, "delta_max")
+      if (pair > 2) return
+      call cap_unload(history%wide_cap, delta, cap, wide_error)
       if (allocated(wide_error)) return
-      call cap_unload(cap_hist, delta, cap, wide_error)
-      if (allocated(wide_error)) return
-      call asymptotic_result(history%params, cap, wide, unload_floor* &
+      call asymptotic_result(history%params, cap, wide, wide_sigmas(:, pair), unload_floor* &
          & history%loading%force, asym)
       ok = .true.
    end subroutine asymptotic_unloading
+
+   !> The small-sigma route's histories of hist (loaded, its params and options; see
+   !> loading_history%wide_loaded), where the route may answer or check its unloading
+   !> solves: the rough model loaded to delta_max at wide_sigmas (load_history, as the
+   !> route's unloading solves did each time before) and the smooth cap's cap_load.
+   !> Nothing where the route does not apply; wide_loaded false where a loading fails.
+   recursive subroutine route_histories(hist)
+      type(loading_history), intent(inout) :: hist
+      type(contact_params) :: wider
+      type(loading_history) :: wide_history
+      type(cap_result) :: cap
+      type(solve_result) :: res
+      type(egw_error), allocatable :: wide_error
+      real(dp) :: delta_y
+      integer :: k, pair
+      logical :: loaded
+      hist%wide_loaded = .false.
+      if (.not. asymptotic_applies(hist%params, hist%options, hist%delta_max, &
+         & hist%closest%extended .and. hist%closest%capped, delta_y)) return
+      call cap_load(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
+         & hist%delta_max, cap_options(n_rings=100, n_levels=2), hist%wide_cap, cap, &
+         & wide_error, "delta_max")
+      if (allocated(wide_error)) return
+      do pair = 1, 2
+         loaded = .true.
+         do k = 1, 2
+            wider = hist%params
+            wider%sigma = wide_sigmas(k, pair)*delta_y
+            call load_history(wider, hist%options, hist%delta_max, wide_history, res, &
+               & wide_error)
+            ! (above first yield at sigma = 1e-5 .. 2e-4 delta_y: a rough field, never
+            ! the route's, reversible or smooth)
+            loaded = .not. allocated(wide_error)
+            if (loaded) loaded = .not. (wide_history%reversible .or. &
+               & wide_history%capped .or. wide_history%asymptotic)
+            if (.not. loaded) exit
+            hist%wide(k, pair) = wide_history%closest
+         end do
+         if (allocated(wide_error)) deallocate (wide_error)
+         hist%wide_loaded(pair) = loaded
+      end do
+   end subroutine route_histories
 
    !> Whether the asymptotic route may answer or check a solve (an extended model with the
    !> cap that acted, beyond first yield at delta, sigma/delta_y <= small_sigma_limit, no
@@ -369,16 +430,17 @@ contains
    !> The asymptotic route's answer (doc/theory.md §12 "Small sigma: the asymptotic
    !> route"): P(sigma) = P_cap + C sigma**(2/3), the rough layer's compliance (gap ~
    !> sigma (p/(mu E* sqrt(sigma/R)))**(2/3)) on the smooth cap model (cap, its sigma -> 0
-   !> limit), C from the rough model's solve at wide_sigmas(1) (wide(1)); stiffness and
-   !> contact radius alike, the maximum pressure p_y. est_rel_err: the cap solve's
+   !> limit), C from the rough model's solve at sigmas(1) (a pair of wide_sigmas; wide(1));
+   !> stiffness and contact radius alike, the maximum pressure p_y. est_rel_err: the cap solve's
    !> estimate, wide(1)'s times its factor, and the disagreement of the two solves'
    !> corrections at sigma (it bounds the neglected terms when they are of order sigma
    !> or higher, and shows an exponent other than 2/3), relative to max(|P|, floor)
    !> (huge where that is 0).
-   subroutine asymptotic_result(params, cap, wide, floor, asym)
+   subroutine asymptotic_result(params, cap, wide, sigmas, floor, asym)
       type(contact_params), intent(in) :: params
       type(cap_result), intent(in) :: cap
       type(solve_result), intent(in) :: wide(2)
+      real(dp), intent(in) :: sigmas(2)   !< sigma/delta_y of wide
       real(dp), intent(in) :: floor
       type(solve_result), intent(out) :: asym
       real(dp) :: delta_y, a_y, force_y, shrink(2), total, wide_error
@@ -386,7 +448,7 @@ contains
       call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
          & force_y)
       do k = 1, 2
-         shrink(k) = (params%sigma/(wide_sigmas(k)*delta_y))**(2.0_dp/3.0_dp)
+         shrink(k) = (params%sigma/(sigmas(k)*delta_y))**(2.0_dp/3.0_dp)
       end do
       asym = wide(1)
       asym%force = cap%force + (wide(1)%force - cap%force)*shrink(1)
@@ -552,7 +614,7 @@ contains
    !> (delta_max not finite: egw_invalid_argument naming delta_max); history and result
    !> are left untouched on any error. A delta_max so far apart that the summit pressure
    !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
-   subroutine load_history(params, options, delta_max, history, result, error)
+   recursive subroutine load_history(params, options, delta_max, history, result, error)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the loading solve and of the unloading solves that follow
       type(solver_options), intent(in) :: options
@@ -623,6 +685,7 @@ contains
          hist%closest%force = smooth_force(prob) + sol%force
          call move_alloc(sol%w, hist%closest%w)
          hist%closest%mesh = sol%mesh
+         call route_histories(hist)
       end if
       hist%loaded = .true.
       result = hist%loading
@@ -631,7 +694,7 @@ contains
 
    !> load_history's end where the small-sigma route answered the loading (hist%loading):
    !> a history without rough field whose unloading solves are the route's.
-   subroutine asymptotic_history(params, prob, hist, history, result)
+   recursive subroutine asymptotic_history(params, prob, hist, history, result)
       type(contact_params), intent(in) :: params
       type(scaled_problem), intent(in) :: prob
       type(loading_history), intent(inout) :: hist, history
@@ -642,6 +705,7 @@ contains
       hist%closest%capped = .true.
       hist%closest%force = hist%loading%force/force_unit(params)
       hist%loaded = .true.
+      call route_histories(hist)
       result = hist%loading
       call move_history(hist, history)
    end subroutine asymptotic_history
@@ -659,6 +723,9 @@ contains
       history%capped = hist%capped
       history%cap = hist%cap
       history%asymptotic = hist%asymptotic
+      history%wide_loaded = hist%wide_loaded
+      history%wide = hist%wide
+      history%wide_cap = hist%wide_cap
       history%closest%extended = hist%closest%extended
       history%closest%delta = hist%closest%delta
       history%closest%capped = hist%closest%capped
@@ -724,7 +791,8 @@ contains
             & ": the history was loaded by the small-sigma route (its discrete " &
             & //"loading failed or was replaced), which answers its unloading")
       else
-         call rough_unload(history, delta, res, error)
+         call rough_unload(history%params, history%options, history%closest, delta, res, &
+            & error)
       end if
       call small_sigma_unload(history, delta, res, error)
       if (.not. allocated(error)) result = res
@@ -732,18 +800,20 @@ contains
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the
    !> asymptotic route).
-   subroutine rough_unload(history, delta, result, error)
-      type(loading_history), intent(in) :: history
+   subroutine rough_unload(params, options, closest, delta, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      type(separation_field), intent(in) :: closest   !< the history's loading field
       real(dp), intent(in) :: delta
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
-      prob = scaled(history%params, delta)
+      prob = scaled(params, delta)
       allocate (prob%closest)
-      prob%closest = history%closest
+      prob%closest = closest
       prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
-      call solve_rough(history%params, history%options, prob, sol, result, error)
+      call solve_rough(params, options, prob, sol, result, error)
    end subroutine rough_unload
 
    !> One unloading solve from scratch: load to delta_max, then solve_unload at delta
