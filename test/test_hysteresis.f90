@@ -12,6 +12,7 @@ module test_hysteresis
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
+   use egw_hysteresis_data, only: turning_point
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary, format_lammps
    use egw_status, only: egw_bad_file, egw_io_error
@@ -429,8 +430,8 @@ contains
       type(contact_params) :: p
       type(egw_error), allocatable :: err
       real(dp) :: state(hysteresis_state_size), copy(hysteresis_state_size), plain, d, &
-         & f, k, f2, k2
-      integer :: i, step, stat, stat2, mismatches
+         & f, k, f2, k2, m, w(4), inv_span, f_m
+      integer :: i, step, stat, stat2, mismatches, first
       call build(ep, t, error)
       if (allocated(error)) return
       mismatches = 0
@@ -460,6 +461,21 @@ contains
             & mismatches = mismatches + 1
       end do
       call check(error, mismatches, 0, "steps of a slowly moving contact where they differ")
+      if (allocated(error)) return
+      ! the turning point's data a state takes on unloading (P_load(m) from the loading
+      ! interval it holds where that is eval_kernel's cubic) = turning_point's from the
+      ! table itself, to the bit: over (cut-off, 6), the ln P tail below 0 included
+      do i = 1, 800
+         m = t%loading%cutoff + (6.0_dp - t%loading%cutoff)*(i - 0.5_dp)/800
+         call hysteresis_state_init(state)
+         call hysteresis_eval_state(t, m - 1.0e-3_dp, state, f, k, stat)
+         call hysteresis_eval_state(t, m, state, f, k, stat)
+         call hysteresis_eval_state(t, m - 1.0e-4_dp, state, f, k, stat)
+         call turning_point(t, m, first, w, inv_span, f_m)
+         if (.not. (state(2) == m .and. int(state(4)) == first .and. state(5) == inv_span &
+            & .and. state(6) == f_m .and. all(state(7:10) == w))) mismatches = mismatches + 1
+      end do
+      call check(error, mismatches, 0, "turning points whose state differs from turning_point")
       if (allocated(error)) return
       call write_hysteresis(t, "build/hyst_state.csv", format_csv, err)
       if (.not. allocated(err)) call read_hysteresis("build/hyst_state.csv", back, err)

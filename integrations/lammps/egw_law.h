@@ -209,10 +209,10 @@ struct EgwLaw {
    * inside its inline tables (TABLE, UNIVERSAL with fast): F and S as eval gives them (to
    * the bit), true; otherwise false (nothing written): call eval */
   inline bool eval_tables(double delta, double R, EgwMemo *memo, double &F, double &S) const;
-  /* eval_tables, or an EP-GW contact of one table (HYST) whose state in cache serves it
-   * without egw (egw_hysteresis_eval_cached): F, S, the history's delta_max and the state
-   * as eval leaves them (to the bit), and eval's status (EGW_OK, EGW_OUT_OF_RANGE);
-   * otherwise -1 (nothing changed): call eval */
+  /* eval_tables, or an EP-GW contact of one table (HYST) whose cache holds its history
+   * (served inline by egw_hysteresis_eval_cached, else by one egw call): F, S, the
+   * history's delta_max and the state as eval without energy leaves them (to the bit),
+   * and eval's status; otherwise -1 (nothing changed): call eval */
   inline int eval_fast(double delta, double R, double *hist, double *cache, EgwMemo *memo,
                        double &F, double &S) const;
   /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
@@ -281,6 +281,8 @@ inline int EgwLaw::position(double R, double &t, EgwMemo *memo) const
  * contact's history xm (delta_max/sigma, -inf for a new contact); one that does not
  * (dropped, or filled for another table, which egw reads as a new contact) is filled again
  * by loading a new contact to xm. Otherwise s is the history itself. */
+inline int egw_law_hyst_refill(egw_hysteresis h, double x, double xm, double *s, double &p,
+                               double &dp);
 inline int egw_law_hyst_eval(egw_hysteresis h, double tag, double dmax, double x, double xm,
                              double *s, double &p, double &dp, bool refill)
 {
@@ -290,6 +292,13 @@ inline int egw_law_hyst_eval(egw_hysteresis h, double tag, double dmax, double x
   if ((!refill || s[0] == xm) && egw_hysteresis_eval_cached(tag, x, s, &p, &dp))
     return s[0] > dmax ? EGW_OUT_OF_RANGE : EGW_OK;
   if (!refill) return egw_hysteresis_eval_state(h, x, s, &p, &dp);
+  return egw_law_hyst_refill(h, x, xm, s, p, dp);
+}
+
+/* egw_law_hyst_eval's call of egw when the cache s of history xm did not serve x */
+inline int egw_law_hyst_refill(egw_hysteresis h, double x, double xm, double *s, double &p,
+                               double &dp)
+{
   if (!(s[0] == xm)) {
     egw_hysteresis_state_init(s);
     if (xm > -HUGE_VAL) egw_hysteresis_eval_state(h, xm, s, &p, &dp);
@@ -354,15 +363,21 @@ inline int EgwLaw::eval_fast(double delta, double R, double *hist, double *cache
                              EgwMemo *memo, double &F, double &S) const
 {
   if (kind != HYST) return eval_tables(delta, R, memo, F, S) ? EGW_OK : -1;
-  // eval's HYST steps when egw_law_hyst_eval's first test serves
+  // eval's HYST steps for a cache that holds the history: egw_law_hyst_eval's first test,
+  // else its call of egw (the rest of eval's steps without energy: a refill of the
+  // state's turning point or piece, ~1/3 of the drum's evaluations, skips normal())
   double *dmax = &hist[EgwHistory::DELTA_MAX], p, dp;
-  if (!cache || !(cache[0] == *dmax) ||
-      !egw_hysteresis_eval_cached(hyst_tag[0], delta * inv_sigma, cache, &p, &dp))
-    return -1;
+  if (!cache || !(cache[0] == *dmax)) return -1;
+  double x = delta * inv_sigma;
+  int st;
+  if (egw_hysteresis_eval_cached(hyst_tag[0], x, cache, &p, &dp))
+    st = cache[0] > hyst_dmax[0] ? EGW_OUT_OF_RANGE : EGW_OK;
+  else
+    st = egw_law_hyst_refill(hyst[0], x, *dmax, cache, p, dp);
   *dmax = cache[0];
   double sr = E_star * std::sqrt(R);
   F = sr * s15 * p, S = sr * s05 * dp;
-  return cache[0] > hyst_dmax[0] ? EGW_OUT_OF_RANGE : EGW_OK;
+  return st;
 }
 
 inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, double &F,

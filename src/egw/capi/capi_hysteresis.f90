@@ -101,6 +101,7 @@ contains
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
+      real(c_double), pointer :: out
       real(dp) :: f, k, kept, limit
       integer :: st
       ! good arguments pass an inline test, not the checks' calls (the hot path)
@@ -132,8 +133,15 @@ contains
             & format_real(kept)//": the force there exceeds the doubles")
          return
       end if
-      call put(force, f)
-      call put(stiffness, k)
+      ! put's steps written out (a call each on the DEM hot path)
+      if (c_associated(force)) then
+         call c_f_pointer(force, out)
+         out = f
+      end if
+      if (c_associated(stiffness)) then
+         call c_f_pointer(stiffness, out)
+         out = k
+      end if
       stat = int(st, c_int)
       if (stat == egw_out_of_range) stat = above_table(h, "state[0]", state(1))
    end function egw_hysteresis_eval_state

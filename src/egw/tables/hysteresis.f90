@@ -5,8 +5,7 @@
 !> read table. The layout: egw_hysteresis_data; the energy: egw_unload_energy; the
 !> adaptive build: the submodule egw_hysteresis_build (hysteresis_build.f90).
 module egw_hysteresis
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
-      & ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use, intrinsic :: iso_fortran_env, only: int64
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range
@@ -18,7 +17,7 @@ module egw_hysteresis
    use egw_cap_sphere, only: cap_units
    use egw_hysteresis_data, only: hysteresis_table, hysteresis_state_size, nan_error, &
       & gap_cubic, turning_point, gap_combination, unload_tail_ratio, make_lookup, &
-      & m_breakpoint, m_coordinate, stencil_first, locate
+      & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan
    use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, &
       & energy_prepare
    implicit none
@@ -176,12 +175,12 @@ contains
          ! hysteresis_state_init, another table's, garbled): a new contact, so that a
          ! history it did not write never becomes a turning point
          call hysteresis_state_init(state)
-         state(2) = ieee_value(1.0_dp, ieee_quiet_nan)
+         state(2) = quiet_nan
          state(18:19) = state(2)
          state(3) = table%tag
       end if
       ! no piece unless one is made below (the loading interval may change)
-      state(11:12) = ieee_value(1.0_dp, ieee_quiet_nan)
+      state(11:12) = quiet_nan
       if (.not. delta < state(1) .or. table%reversible .or. &
          & .not. state(1) > table%elastic_limit) then
          state(1) = max(state(1), delta)
@@ -193,7 +192,8 @@ contains
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
          & state(4) <= size(table%m) - 3)) then
-         call turning_point(table, state(1), first, w, state(5), state(6))
+         ! (P_load of the turning point from the loading interval the state holds)
+         call turning_point(table, state(1), first, w, state(5), state(6), state(18:24))
          state(2) = state(1)
          state(4) = real(first, dp)
          state(7:10) = w
@@ -260,7 +260,7 @@ contains
       real(dp) :: lo, hi, t0, alpha, d, g(4), g_a, g_b, h_a, h_b, width
       integer :: a, b
       logical :: inside
-      ends = ieee_value(1.0_dp, ieee_quiet_nan)
+      ends = quiet_nan
       c = 0.0_dp
       found = .false.
       if (.not. s < 1.0_dp) return   ! the clamp: g held
@@ -365,6 +365,7 @@ contains
       if (allocated(table%coef)) deallocate (table%coef)
       if (allocated(table%inv_ds)) deallocate (table%inv_ds)
       if (allocated(table%lagrange)) deallocate (table%lagrange)
+      if (allocated(table%m_coord)) deallocate (table%m_coord)
       if (allocated(table%gap_integral)) deallocate (table%gap_integral)
       if (allocated(table%run_first)) deallocate (table%run_first)
       if (allocated(table%run_last)) deallocate (table%run_last)
@@ -389,6 +390,7 @@ contains
             & table%coef(3, :, i)/3 + table%coef(4, :, i)/4)
       end do
       table%m_break = m_breakpoint(table%m)
+      table%m_coord = m_coordinate(table%m, table%m_break)
       do j = 1, n_m - 1
          first = stencil_first(j, n_m, table%m_break)
          do k = 1, 4

@@ -30,10 +30,11 @@
 !> retraces the loading table exactly.
 module egw_hysteresis_data
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+   use, intrinsic :: iso_fortran_env, only: int64
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error
    use egw_params, only: contact_params
-   use egw_table, only: force_table, table_eval
+   use egw_table, only: force_table, table_eval, segment_eval
    implicit none
    private
 
@@ -112,6 +113,9 @@ module egw_hysteresis_data
       real(dp), allocatable :: dip_low(:)
       !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
       real(dp), allocatable :: lagrange(:, :)
+      !> (n_m): m_coordinate of the delta_max nodes (hysteresis_prepare: no sqrt per
+      !> node in turning_point)
+      real(dp), allocatable :: m_coord(:)
       type(grid_lookup) :: m_lookup, s_lookup
       !> an integer in [1, 2**52) hashed from the stored data: a state's cached turning
       !> point is used only by a table with the same data (hysteresis_eval_state)
@@ -142,6 +146,10 @@ module egw_hysteresis_data
       integer :: first = 1                 !< the stencil's first curve
    end type unload_curve
 
+   !> A quiet NaN (ieee_value's bits, 0x7FF8000000000000) as a constant: the states' "no
+   !> piece" mark, written on the DEM hot path, where ieee_value is a library call
+   real(dp), parameter, public :: quiet_nan = transfer(9221120237041090560_int64, 1.0_dp)
+
 contains
 
    !> egw_invalid_argument for a NaN overlap delta or a NaN history (called name; a new
@@ -171,19 +179,32 @@ contains
 
    !> What the unloading branch needs of the turning point m: the Lagrange stencil of the
    !> m interval (clamped at the ends of the grid; the last curve above the table), its
-   !> weights, 1/(s_max L) interpolated with them and the loading force P_load(m).
-   pure subroutine turning_point(table, m, first, w, inv_span, f_m)
+   !> weights, 1/(s_max L) interpolated with them and the loading force P_load(m). seg
+   !> (optional): an interval of the loading table (table_segment's layout, e.g. a state's
+   !> copy from its last loading step); where it holds m above the resampled tail, P_load(m)
+   !> comes from it without the table's lookup (eval_kernel's arithmetic: the same value).
+   pure subroutine turning_point(table, m, first, w, inv_span, f_m, seg)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m
       integer, intent(out) :: first
       real(dp), intent(out) :: w(4), inv_span, f_m
+      real(dp), intent(in), optional :: seg(7)
       real(dp) :: d(4), k_m
       integer :: j, n_m
-      call table_eval(table%loading, m, f_m, k_m)
+      logical :: held
+      held = .false.
+      if (present(seg)) held = seg(1) <= m .and. m < seg(2) .and. &
+         & m > table%loading%cutoff .and. m >= table%loading%tail_end .and. &
+         & seg(2) <= table%loading%delta_max
+      if (held) then
+         call segment_eval(seg, m, f_m, k_m)
+      else
+         call table_eval(table%loading, m, f_m, k_m)
+      end if
       n_m = size(table%m)
       j = locate(table%m_lookup, table%m, min(m, table%delta_max))
       first = stencil_first(j, n_m, table%m_break)
-      d = m_coordinate(m, table%m_break) - m_coordinate(table%m(first:first + 3), table%m_break)
+      d = m_coordinate(m, table%m_break) - table%m_coord(first:first + 3)
       w(1) = d(2)*d(3)*d(4)*table%lagrange(1, j)
       w(2) = d(1)*d(3)*d(4)*table%lagrange(2, j)
       w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
