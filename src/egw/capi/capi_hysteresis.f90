@@ -168,13 +168,15 @@ contains
       type(hysteresis_table), pointer :: h
       real(dp) :: u
       integer :: st
+      character(len=:), allocatable :: message
       stat = get_table(hp, h)
       if (stat == egw_ok) stat = require(energy, "energy")
       if (stat /= egw_ok) return
       if (ieee_is_nan(delta) .or. ieee_is_nan(state) .or. delta > h%input_limit .or. &
          & state > h%input_limit) then
-         stat = invalid(history_message("delta", delta, "delta_max_state", state, &
-            & h%input_limit))
+         call history_message("delta", delta, "delta_max_state", state, h%input_limit, &
+            & message)
+         stat = invalid(message)
          return
       end if
       call hysteresis_energy(h, delta, state, u, st)
@@ -326,11 +328,12 @@ contains
    end function new_table
 
    !> The refusal of an overlap and its history: the one that is NaN, or above limit (the
-   !> force there leaves the doubles), named with its value.
-   function history_message(dname, d, sname, st, limit) result(msg)
+   !> force there leaves the doubles), named with its value. (A subroutine: deferred-length
+   !> function results are not thread-safe under gfortran 12, test_text_io.)
+   subroutine history_message(dname, d, sname, st, limit, msg)
       character(len=*), intent(in) :: dname, sname
       real(dp), intent(in) :: d, st, limit
-      character(len=:), allocatable :: msg
+      character(len=:), allocatable, intent(out) :: msg
       if (ieee_is_nan(d)) then
          msg = dname//" = NaN: must be a number"
       else if (ieee_is_nan(st)) then
@@ -342,7 +345,7 @@ contains
          msg = sname//" = "//format_real(st)//": must be <= "//format_real(limit)// &
             & " (the force there exceeds the doubles)"
       end if
-   end function history_message
+   end subroutine history_message
 
    !> EGW_OK if every overlap and its state are numbers <= h%input_limit, else
    !> EGW_INVALID_ARGUMENT naming the first other pair (delta[i], delta_max_state[i]).
@@ -351,13 +354,15 @@ contains
       real(dp), intent(in) :: delta(:), state(:)
       real(dp) :: limit
       integer :: i
+      character(len=:), allocatable :: message
       stat = egw_ok
       limit = h%input_limit
       do i = 1, size(delta)
          if (ieee_is_nan(delta(i)) .or. ieee_is_nan(state(i)) .or. delta(i) > limit .or. &
             & state(i) > limit) then
-            stat = invalid(history_message("delta["//int_str(i - 1)//"]", delta(i), &
-               & "delta_max_state["//int_str(i - 1)//"]", state(i), limit))
+            call history_message("delta["//int_str(i - 1)//"]", delta(i), &
+               & "delta_max_state["//int_str(i - 1)//"]", state(i), limit, message)
+            stat = invalid(message)
             return
          end if
       end do
