@@ -363,17 +363,12 @@ inline int EgwLaw::eval_fast(double delta, double R, double *hist, double *cache
                              EgwMemo *memo, double &F, double &S) const
 {
   if (kind != HYST) return eval_tables(delta, R, memo, F, S) ? EGW_OK : -1;
-  // eval's HYST steps for a cache that holds the history: egw_law_hyst_eval's first test,
-  // else its call of egw (the rest of eval's steps without energy: a refill of the
-  // state's turning point or piece, ~1/3 of the drum's evaluations, skips normal())
+  // eval's HYST steps without energy for a cache that holds the history (a refill of the
+  // state's turning point or piece, ~1/3 of the drum's evaluations, skips normal() too)
   double *dmax = &hist[EgwHistory::DELTA_MAX], p, dp;
   if (!cache || !(cache[0] == *dmax)) return -1;
-  double x = delta * inv_sigma;
-  int st;
-  if (egw_hysteresis_eval_cached(hyst_tag[0], x, cache, &p, &dp))
-    st = cache[0] > hyst_dmax[0] ? EGW_OUT_OF_RANGE : EGW_OK;
-  else
-    st = egw_law_hyst_refill(hyst[0], x, *dmax, cache, p, dp);
+  int st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], delta * inv_sigma, *dmax,
+                             cache, p, dp, true);
   *dmax = cache[0];
   double sr = E_star * std::sqrt(R);
   F = sr * s15 * p, S = sr * s05 * dp;
