@@ -21,6 +21,7 @@ module egw_all
    use egw_rough_sphere
    use egw_impact
    use egw_table
+   use egw_table_tail
    use egw_table_universal
    use egw_table_format
    use egw_scene

@@ -39,6 +39,7 @@ module egw_table
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
    use egw_table_ends, only: tail_force, deep_law, deep_law_fit, deep_law_force, &
       & deep_law_energy, deep_law_radius_factor
+   use egw_table_tail, only: tail_last_node, resample_tails, tail_resample_tol, min_fine
    implicit none
    private
 
@@ -70,12 +71,6 @@ module egw_table
    integer, parameter :: max_nodes = 20000, max_rounds = 200
    !> Most lookup buckets of a table (table_prepare): 64 kB.
    integer, parameter :: max_buckets = 16384
-   !> The resampled tail (force_table%fine_seg): relative distance to the ln P cubic it
-   !> replaces, as a fraction of the table's rel_tol (so the table keeps its tolerance to
-   !> within 5 %), and its most pieces (320 kB; an E-GW tail over 28 e-folds takes ~270
-   !> at rel_tol 1e-4, ~1200 at 1e-6, ~6000 at 1e-8: beyond, exp as before).
-   real(dp), parameter :: tail_resample_tol = 5.0e-2_dp
-   integer, parameter :: max_fine = 8192
    !> Rough models: the nodes reach down to where P = tail_floor * P_ref (the force at the
    !> first contact of the mean planes), so that every force above 1e-12 of P(delta_max)
    !> is interpolated to rel_tol; below, 0.
@@ -111,7 +106,7 @@ module egw_table
       !> (fine_seg(0:4, :) as seg) within tail_resample_tol of the ln P interpolant, found
       !> by one multiplication: no lookup and no exp on the hot path (issue 33: a tail
       !> evaluation cost 7.7x an inline Hertz force). Empty (size 0) where there is no
-      !> such tail or it would take more than max_fine pieces (then exp, as before).
+      !> such tail or it would take more than max_fine pieces (egw_table_tail; then exp).
       real(dp), allocatable :: fine_seg(:, :)
       real(dp) :: fine_scale = 0.0_dp
       real(dp) :: tail_end = -huge(1.0_dp)        !< end of fine_seg's range, else -huge
@@ -317,19 +312,17 @@ contains
       call fit_buckets(table)
    end subroutine table_prepare
 
-   !> The tail's ln P intervals [cutoff, delta(last)] (last <= n_log + 1 the last node
-   !> <= 0: n_log + 1 for the tables egw builds) as equal pieces of cubic Hermite in P
-   !> (force_table%fine_seg), for rough tables (not flat laws, whose every interval is
-   !> ln P). From 16 pieces, their number grows by 20 % until every piece, checked at 8
-   !> points, lies within tail_resample_tol rel_tol / 2 of the ln P interpolant, relative
-   !> to it, and its slope within 10 tail_resample_tol rel_tol of the interpolant's.
-   !> The ends are the table's nodes (exact there). Deterministic.
+   !> The tail's ln P intervals [cutoff, delta(last)] (last the last node <= 0 that ends
+   !> one: n_log + 1 for the tables egw builds) as equal pieces of cubic Hermite in P
+   !> (force_table%fine_seg: egw_table_tail's resample_tails, one table), for rough
+   !> tables (not flat laws, whose every interval is ln P): within tail_resample_tol
+   !> rel_tol / 2 of the ln P interpolant, relative to it, and their slopes within
+   !> 10 tail_resample_tol rel_tol of its slope. Deterministic.
    pure subroutine resample_tail(table, resample)
       type(force_table), intent(inout) :: table
       logical, intent(in), optional :: resample   !< .false.: none
-      integer :: n_fine, k, last
-      real(dp) :: lo, hi, tol
-      real(dp), allocatable :: x(:)
+      integer :: n_fine, last
+      real(dp), allocatable :: pieces(:, :)
       if (allocated(table%fine_seg)) deallocate (table%fine_seg)
       allocate (table%fine_seg(0:4, 0))
       table%fine_scale = 0.0_dp
@@ -339,99 +332,16 @@ contains
       if (present(resample)) then
          if (.not. resample) return
       end if
-      tol = tail_resample_tol*table%rel_tol
-      ! the separated part only (tables of earlier versions have ln P intervals above 0)
-      last = table%n_log + 1
-      do while (table%delta(last) > 0.0_dp .and. last > 2)
-         last = last - 1
-      end do
-      if (.not. table%delta(last) <= 0.0_dp) return
-      lo = table%delta(1)
-      hi = table%delta(last)
-      n_fine = 16
-      do
-         x = [(lo + (hi - lo)*k/n_fine, k=0, n_fine)]
-         x(n_fine + 1) = hi
-         if (pieces_fit(table, x, tol)) exit
-         n_fine = ceiling(1.2_dp*n_fine)
-         if (n_fine > max_fine) return
-      end do
-      deallocate (table%fine_seg)
-      allocate (table%fine_seg(0:4, n_fine))
-      do k = 1, n_fine
-         table%fine_seg(:, k) = hermite_piece(table, x(k), x(k + 1))
-      end do
-      table%fine_scale = n_fine/(hi - lo)
-      table%tail_end = hi
+      last = tail_last_node(table%delta, table%n_log)
+      if (last == 0) return
+      call resample_tails(size(table%delta), 1, table%delta, table%force, table%stiffness, &
+         & table%seg, table%n_log, last, [tail_resample_tol*table%rel_tol], min_fine, &
+         & pieces, n_fine)
+      if (n_fine == 0) return
+      call move_alloc(pieces, table%fine_seg)
+      table%fine_scale = n_fine/(table%delta(last) - table%delta(1))
+      table%tail_end = table%delta(last)
    end subroutine resample_tail
-
-   !> The tail's ln P interpolant (P, dP/ddelta) at delta in [cutoff, delta(n_log + 1)]:
-   !> the table's nodes where delta is one, else exp of its interval's cubic.
-   pure subroutine tail_value(table, delta, p, dpdx)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: p, dpdx
-      integer :: i, lo, hi, mid
-      real(dp) :: t
-      lo = 1
-      hi = table%n_log + 1
-      do while (hi - lo > 1)
-         mid = (lo + hi)/2
-         if (delta >= table%delta(mid)) then
-            lo = mid
-         else
-            hi = mid
-         end if
-      end do
-      i = lo
-      if (delta == table%delta(i) .or. delta == table%delta(i + 1)) then
-         if (delta == table%delta(i + 1)) i = i + 1
-         p = table%force(i)
-         dpdx = table%stiffness(i)
-         return
-      end if
-      t = delta - table%seg(0, i)
-      p = exp(table%seg(1, i) + t*(table%seg(2, i) + t*(table%seg(3, i) + t*table%seg(4, i))))
-      dpdx = p*(table%seg(2, i) + t*(2*table%seg(3, i) + 3*t*table%seg(4, i)))
-   end subroutine tail_value
-
-   !> The cubic Hermite in P on [x0, x1] through the tail's values and slopes there:
-   !> start, value, slope and the two coefficients (seg's layout).
-   pure function hermite_piece(table, x0, x1) result(c)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: x0, x1
-      real(dp) :: c(0:4)
-      real(dp) :: p0, p1, d0, d1, s, h
-      call tail_value(table, x0, p0, d0)
-      call tail_value(table, x1, p1, d1)
-      h = x1 - x0
-      s = (p1 - p0)/h
-      c = [x0, p0, d0, (3*s - 2*d0 - d1)/h, (d0 + d1 - 2*s)/h**2]
-   end function hermite_piece
-
-   !> Whether the Hermite pieces in P on the grid x stay within tol/2 of the tail's ln P
-   !> interpolant (relative) and their slopes within 10 tol of its slope, checked at 8
-   !> points of every piece (1/16, 3/16, ... 15/16; the half is a margin for the maxima
-   !> between them, where a piece spans a node and the interpolant is only C1).
-   pure logical function pieces_fit(table, x, tol) result(fit)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: x(:), tol
-      integer :: k, j
-      real(dp) :: c(0:4), u, exact, dexact, approx
-      fit = .false.
-      do k = 1, size(x) - 1
-         c = hermite_piece(table, x(k), x(k + 1))
-         do j = 1, 15, 2
-            u = (x(k + 1) - x(k))*j/16.0_dp
-            call tail_value(table, x(k) + u, exact, dexact)
-            approx = c(1) + u*(c(2) + u*(c(3) + u*c(4)))
-            if (.not. abs(approx - exact) <= 0.5_dp*tol*exact) return
-            approx = c(2) + u*(2*c(3) + 3*u*c(4))
-            if (.not. abs(approx - dexact) <= 10*tol*abs(dexact)) return
-         end do
-      end do
-      fit = .true.
-   end function pieces_fit
 
    !> The overlap below which table_eval is exactly 0: rough models (not flat laws) their
    !> cut-off (the force there is below 1e-12 P_ref; doc/formats.md rule 1), Hertz 0 (or
