@@ -544,3 +544,181 @@ int egw_capi_test_table_plain_reader(void) {
   egw_table_free(&t);
   return failures;
 }
+
+/* |error| bound of a cubic (c0 + t c1) + t^2 (c2 + t c3) and its slope evaluated in
+ * doubles: each of the <= 7 operations rounds once, relative 2^-53 of the partial sums,
+ * which are bounded by the sum of the terms' magnitudes; 8 DBL_EPSILON of that sum covers
+ * them (two evaluations of the same formula differ by at most twice one's error). */
+static double cubic_rounding(const double *c, double t) {
+  return 8.0 * DBL_EPSILON * (fabs(c[0]) + fabs(t * c[1]) + fabs(t * t * c[2]) +
+                              fabs(t * t * t * c[3]) + 1e-300);
+}
+static double slope_rounding(const double *c, double t) {
+  return 8.0 * DBL_EPSILON * (fabs(c[1]) + fabs(2.0 * t * c[2]) + fabs(3.0 * t * t * c[3]) +
+                              1e-300);
+}
+/* The ln P interpolant of a table (egw_table_get_interpolant's cubics with exp: the
+ * table's own rule 3, not its resampling) at d in its interval i < n_log. */
+static void ln_interpolant(const double *x, const double *c, int i, double d, double *f,
+                           double *k) {
+  double t = d - x[i];
+  const double *a = &c[4 * i];
+  double v = (a[0] + t * a[1]) + t * t * (a[2] + t * a[3]);
+  double dv = (a[1] + 2 * t * a[2]) + 3 * t * t * a[3];
+  *f = exp(v);
+  *k = *f * dv;
+}
+
+/* egw_table_get_tail: the resampled tail's pieces of one table, evaluated as egw.h says
+ * at 5 points inside each piece, give egw_table_eval's force and stiffness (the same
+ * cubics: to the rounding of a cubic, cubic_rounding; bit for bit when both compilers
+ * round alike); the pieces start at the cut-off, are equal and end at a node <= 0 that
+ * ends an ln P interval. Two slices of an E-GW universal table on one grid: each slice's
+ * pieces within 5e-2 rel_tol of its ln P interpolant (rule 3) in the force and rel_tol in
+ * the stiffness at 5 points of every piece (the resampling's contract: 2.5e-2 and
+ * 0.5 rel_tol at its 8 check points, twice that between them, as test_table's
+ * resampled-tail test); one table twice gives its own pieces bit for bit. Refused, with
+ * nothing written: NULL arguments, too small buffers, n < 1, a table without a tail
+ * (Hertz), tables on different nodes. */
+int egw_capi_test_table_tail(void) {
+  egw_params p;
+  egw_table t = NULL, h = NULL, pair[2];
+  egw_table_info info;
+  const double tol = 1e-4;
+  int n = -1, nq, st;
+  failures = 0;
+  egw_params_default(&p);
+  p.sigma = 1e-3; p.mu = 4.0;
+  CHECK(egw_table_build(&p, NULL, -6e-3, 5e-3, tol, &t) == EGW_OK);
+  if (t == NULL) return failures;
+  CHECK(egw_table_get_info(t, &info) == EGW_OK);
+  /* the size query */
+  CHECK(egw_table_get_tail(1, &t, 0, NULL, NULL, &n) == EGW_OK && n >= 16 && n <= 8192);
+  if (n < 16 || n > 8192) { egw_table_free(&t); return failures; }
+  nq = n;
+  {
+    double *s = malloc(sizeof(double) * (nq + 1)), *c = malloc(sizeof(double) * 4 * nq);
+    int nn = info.n_nodes, nl = -1, last;
+    double *x = malloc(sizeof(double) * nn), *ci = malloc(sizeof(double) * 4 * nn);
+    /* refusals: nothing written, the message names the argument */
+    s[0] = -7.0; n = -1;
+    CHECK(egw_table_get_tail(1, &t, nq - 1, s, c, &n) == EGW_INVALID_ARGUMENT);
+    CHECK(n == -1 && s[0] == -7.0 && last_error_names("capacity"));
+    CHECK(egw_table_get_tail(1, &t, -1, NULL, NULL, &n) == EGW_INVALID_ARGUMENT && n == -1);
+    CHECK(last_error_names("capacity"));
+    CHECK(egw_table_get_tail(0, &t, nq, s, c, &n) == EGW_INVALID_ARGUMENT && n == -1);
+    CHECK(last_error_names("n"));
+    CHECK(egw_table_get_tail(1, NULL, nq, s, c, &n) == EGW_NULL_POINTER && n == -1);
+    CHECK(last_error_names("tables"));
+    { egw_table none = NULL;
+      CHECK(egw_table_get_tail(1, &none, nq, s, c, &n) == EGW_NULL_POINTER && n == -1);
+      CHECK(last_error_names("tables[0]")); }
+    CHECK(egw_table_get_tail(1, &t, nq, s, c, NULL) == EGW_NULL_POINTER && s[0] == -7.0);
+    CHECK(last_error_names("n_pieces"));
+    CHECK(egw_table_get_tail(1, &t, nq, NULL, c, &n) == EGW_NULL_POINTER && n == -1);
+    CHECK(last_error_names("starts"));
+    CHECK(egw_table_get_tail(1, &t, nq, s, NULL, &n) == EGW_NULL_POINTER && n == -1);
+    CHECK(last_error_names("coeffs"));
+    /* a Hertz table has no separated tail */
+    { egw_params q = hertz_params();
+      CHECK(egw_table_build(&q, NULL, 0.0, 1e-3, 1e-4, &h) == EGW_OK);
+      CHECK(egw_table_get_tail(1, &h, nq, s, c, &n) == EGW_INVALID_ARGUMENT && n == -1);
+      CHECK(last_error_names("tables[0]") && s[0] == -7.0); }
+    /* tables on different nodes get no common grid */
+    pair[0] = t; pair[1] = h;
+    CHECK(egw_table_get_tail(2, pair, nq, s, c, &n) == EGW_INVALID_ARGUMENT && n == -1);
+    CHECK(last_error_names("tables[1]"));
+    /* the pieces */
+    CHECK(egw_table_get_tail(1, &t, nq, s, c, &n) == EGW_OK && n == nq);
+    CHECK(egw_table_get_interpolant(t, nn, x, ci, &nl) == EGW_OK && nl > 0);
+    CHECK(s[0] == info.cutoff && s[nq] <= 0.0);
+    for (last = 0; last < nn && x[last] != s[nq]; last++) {}
+    CHECK(last < nn && last <= nl && (last == nl || x[last + 1] > 0.0));
+    for (int q = 0; q < nq; q++) {
+      double w = (s[nq] - s[0]) / nq;
+      CHECK(s[q] < s[q + 1] && fabs(s[q + 1] - s[q] - w) <= 1e-9 * w);
+      for (int j = 1; j <= 5; j++) {
+        double d = s[q] + (s[q + 1] - s[q]) * (j - 0.5) / 5.0, f1, k1;
+        int qq = (int) ((d - s[0]) * (nq / (s[nq] - s[0])));
+        double tt;
+        const double *a;
+        if (qq > nq - 1) qq = nq - 1;
+        tt = d - s[qq];
+        a = &c[4 * qq];
+        st = egw_table_eval(t, d, &f1, &k1);
+        CHECK(st == EGW_OK);
+        CHECK(fabs(f1 - ((a[0] + tt * a[1]) + tt * tt * (a[2] + tt * a[3])))
+              <= cubic_rounding(a, tt));
+        CHECK(fabs(k1 - ((a[1] + 2 * tt * a[2]) + 3 * tt * tt * a[3]))
+              <= slope_rounding(a, tt));
+      }
+    }
+    /* one table twice: one grid, its own pieces for both */
+    pair[0] = t; pair[1] = t;
+    {
+      double *s2 = malloc(sizeof(double) * (nq + 1)), *c2 = malloc(sizeof(double) * 8 * nq);
+      int n2 = -1;
+      CHECK(egw_table_get_tail(2, pair, nq, s2, c2, &n2) == EGW_OK && n2 == nq);
+      for (int q = 0; n2 == nq && q < nq; q++)
+        for (int j = 0; j < 4; j++)
+          CHECK(c2[8 * q + j] == c[4 * q + j] && c2[8 * q + 4 + j] == c[4 * q + j]);
+      CHECK(memcmp(s, s2, sizeof(double) * (nq + 1)) == 0);
+      free(s2);
+      free(c2);
+    }
+    free(s); free(c); free(x); free(ci);
+  }
+  egw_table_free(&h);
+  egw_table_free(&t);
+  /* two slices of an E-GW universal table (shared nodes) on one grid */
+  {
+    egw_universal u = NULL;
+    egw_table sl[2] = {NULL, NULL};
+    egw_params q;
+    egw_params_default(&q);
+    q.sigma = 1e-3; q.radius = 1.0;
+    CHECK(egw_universal_build(&q, NULL, 1.0, 8.0, -6.0, 5.0, tol, &u) == EGW_OK);
+    if (u == NULL) return failures;
+    q.mu = 1.5; CHECK(egw_universal_slice(u, &q, &sl[0]) == EGW_OK);
+    q.mu = 6.0; CHECK(egw_universal_slice(u, &q, &sl[1]) == EGW_OK);
+    egw_universal_free(&u);
+    if (sl[0] == NULL || sl[1] == NULL) { egw_table_free(&sl[0]); egw_table_free(&sl[1]);
+      return failures; }
+    CHECK(egw_table_get_tail(2, sl, 0, NULL, NULL, &n) == EGW_OK && n >= 16 && n <= 8192);
+    nq = n;
+    {
+      double *s = malloc(sizeof(double) * (nq + 1)), *c = malloc(sizeof(double) * 8 * nq);
+      egw_table_info in0;
+      CHECK(egw_table_get_info(sl[0], &in0) == EGW_OK);
+      {
+        int nn = in0.n_nodes, nl = -1;
+        double *x = malloc(sizeof(double) * nn), *ci = malloc(sizeof(double) * 4 * nn);
+        CHECK(egw_table_get_tail(2, sl, nq, s, c, &n) == EGW_OK && n == nq);
+        for (int k = 0; k < 2; k++) {
+          egw_table_info ik;
+          int i = 0;
+          CHECK(egw_table_get_info(sl[k], &ik) == EGW_OK);
+          CHECK(egw_table_get_interpolant(sl[k], nn, x, ci, &nl) == EGW_OK && nl > 0);
+          CHECK(s[0] == x[0]);
+          for (int qd = 0; qd < nq; qd++)
+            for (int j = 1; j <= 5; j++) {
+              double d = s[qd] + (s[qd + 1] - s[qd]) * (j - 0.5) / 5.0, fe, ke, tt;
+              const double *a = &c[4 * (2 * qd + k)];
+              while (d >= x[i + 1]) i++;
+              ln_interpolant(x, ci, i, d, &fe, &ke);
+              tt = d - s[qd];
+              CHECK(fabs((a[0] + tt * a[1]) + tt * tt * (a[2] + tt * a[3]) - fe)
+                    <= 5e-2 * ik.rel_tol * fe);
+              CHECK(fabs((a[1] + 2 * tt * a[2]) + 3 * tt * tt * a[3] - ke)
+                    <= ik.rel_tol * fabs(ke));
+            }
+        }
+        free(x); free(ci);
+      }
+      free(s); free(c);
+    }
+    egw_table_free(&sl[0]);
+    egw_table_free(&sl[1]);
+  }
+  return failures;
+}

@@ -19,6 +19,9 @@ module test_capi_table
       integer(c_int) function c_plain() bind(C, name="egw_capi_test_table_plain_reader")
          import :: c_int
       end function c_plain
+      integer(c_int) function c_tail() bind(C, name="egw_capi_test_table_tail")
+         import :: c_int
+      end function c_tail
    end interface
 
 contains
@@ -29,7 +32,8 @@ contains
          & new_unittest("build and eval", t_build_eval), &
          & new_unittest("files", t_files), &
          & new_unittest("universal", t_universal), &
-         & new_unittest("documented plain C reader", t_plain) &
+         & new_unittest("documented plain C reader", t_plain), &
+         & new_unittest("the resampled tail's pieces (egw_table_get_tail)", t_tail) &
          & ]
    end subroutine collect_capi_table
 
@@ -58,5 +62,10 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_plain())
    end subroutine t_plain
+
+   subroutine t_tail(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_tail())
+   end subroutine t_tail
 
 end module test_capi_table

@@ -812,6 +812,42 @@ static int r_table_interpolant(void) {
   return st;
 }
 
+/* egw_table_get_tail: n (the base table once or twice) and capacity fuzzed (arrays of 8192
+ * pieces passed, never fewer than the capacity says), every pointer NULL in turn; written:
+ * a count in [16, 8192] and, with a capacity, finite ascending starts and finite cubics */
+static int r_table_tail(void) {
+  egw_table t[2];
+  static double starts[8193], coeffs[8 * 8192];
+  int n_pieces, st, n = I(0, 1), cap = I(2, 8192);
+  if (n > 2) n = 2;          /* a count above the array's length is the caller's lie */
+  if (cap > 8192) cap = 8192; /* the arrays' size: a larger one is the caller's UB */
+  t[0] = base_table();
+  t[1] = base_table();
+  sentinel(starts, sizeof starts);
+  sentinel(coeffs, sizeof coeffs);
+  sentinel(&n_pieces, sizeof n_pieces);
+  st = egw_table_get_tail(n, P(1, t), cap, P(3, starts), P(4, coeffs), P(5, &n_pieces));
+  if (st == EGW_OK) {
+    sane(st, n_pieces >= 16 && n_pieces <= 8192, "n_pieces out of range", n_pieces);
+    if (cap > 0 && n_pieces >= 16 && n_pieces <= 8192) {
+      out_doubles(st, 0, "starts", starts, n_pieces + 1, 0);
+      out_doubles(st, 0, "coeffs", coeffs, 4 * n * n_pieces, 0);
+      for (int q = 0; q < n_pieces; q++)
+        sane(st, starts[q] < starts[q + 1], "starts not ascending", starts[q]);
+    } else {
+      out_untouched(EGW_INVALID_ARGUMENT, "starts", starts, sizeof starts);
+      out_untouched(EGW_INVALID_ARGUMENT, "coeffs", coeffs, sizeof coeffs);
+    }
+  } else {
+    out_untouched(st, "starts", starts, sizeof starts);
+    out_untouched(st, "coeffs", coeffs, sizeof coeffs);
+    out_untouched(st, "n_pieces", &n_pieces, sizeof n_pieces);
+  }
+  egw_table_free(&t[0]);
+  egw_table_free(&t[1]);
+  return st;
+}
+
 static int r_table_write(void) {
   egw_table t = base_table();
   double err;
@@ -1451,6 +1487,10 @@ static fz_function functions[] = {
     {"egw_table_get_interpolant", 5,
      {{"t", K_PTR}, {"capacity", K_INT}, {"nodes", K_PTR}, {"coeffs", K_PTR}, {"n_log", K_PTR}},
      r_table_interpolant, 0},
+    {"egw_table_get_tail", 6,
+     {{"n", K_INT}, {"tables", K_PTR}, {"capacity", K_INT}, {"starts", K_PTR}, {"coeffs", K_PTR},
+      {"n_pieces", K_PTR}},
+     r_table_tail, 0},
     {"egw_table_write(_calculix)", 4,
      {{"t", K_PTR}, {"path", K_STR}, {"format/shift", K_INT}, {"max_error", K_PTR}},
      r_table_write, 0},

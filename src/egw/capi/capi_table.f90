@@ -9,11 +9,12 @@ module egw_capi_table
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, egw_out_of_range, &
       & egw_out_of_memory, format_real, int_str, tolerance_context
-   use egw_params, only: contact_params
+   use egw_params, only: contact_params, is_rough, model_flat_law
    use egw_rough_sphere, only: solver_options
    use egw_cache, only: build_table_cached, build_universal_cached
    use egw_table, only: force_table, table_eval, table_covers, table_energy, &
       & table_contact_radius, table_set_radii, table_is_ready
+   use egw_table_tail, only: tail_last_node, resample_tails, tail_resample_tol, max_fine
    use egw_table_universal, only: universal_table, universal_eval, &
       & universal_slice
    use egw_table_format, only: write_table, read_table, write_universal, read_universal, &
@@ -223,6 +224,53 @@ contains
       end do
       nl = int(t%n_log, c_int)
    end function egw_table_get_interpolant
+
+   !> C: egw_table_get_tail: the separated tail's resampled pieces of n tables sharing their
+   !> nodes (one table: its fine_seg, what egw_table_eval evaluates; several: egw_table_tail's
+   !> rule on one grid), for callers that evaluate the tail in their own inner loop.
+   function egw_table_get_tail(n, tables, capacity, starts, coeffs, n_pieces) result(stat) &
+      & bind(C, name="egw_table_get_tail")
+      integer(c_int), value, intent(in) :: n, capacity
+      type(c_ptr), value, intent(in) :: tables, starts, coeffs, n_pieces
+      integer(c_int) :: stat
+      type(c_ptr), pointer :: handles(:)
+      real(dp), allocatable :: pieces(:, :)
+      real(dp) :: tail_end
+      real(c_double), pointer :: x(:), c(:)
+      integer(c_int), pointer :: count
+      integer :: n_fine, j
+      stat = egw_ok
+      if (n < 1) stat = invalid("n = "//int_str(int(n))//": need at least one table")
+      ! (4 n n_pieces coefficients must be an int)
+      if (n > huge(n)/(4*max_fine)) stat = invalid("n = "//int_str(int(n))// &
+         & ": at most "//int_str(huge(1)/(4*max_fine))//" tables")
+      if (stat == egw_ok) stat = require(tables, "tables")
+      if (stat == egw_ok) stat = require(n_pieces, "n_pieces")
+      if (stat == egw_ok .and. capacity < 0) stat = invalid("capacity = "// &
+         & int_str(int(capacity))//": must be >= 0 (0: a size query)")
+      if (stat == egw_ok .and. capacity > 0) stat = require(starts, "starts")
+      if (stat == egw_ok .and. capacity > 0) stat = require(coeffs, "coeffs")
+      if (stat /= egw_ok) return
+      call c_f_pointer(tables, handles, [n])
+      stat = tail_pieces(handles, pieces, n_fine, tail_end)
+      if (stat /= egw_ok) return
+      if (capacity > 0 .and. capacity < n_fine) then
+         stat = invalid("capacity = "//int_str(int(capacity))//": below the tail's "// &
+            & int_str(n_fine)//" pieces (capacity = 0 asks their number; starts needs "// &
+            & "n_pieces + 1 doubles, coeffs 4 n n_pieces)")
+         return
+      end if
+      call c_f_pointer(n_pieces, count)
+      count = int(n_fine, c_int)
+      if (capacity == 0) return
+      x => double_array(starts, int(n_fine + 1, c_int))
+      c => double_array(coeffs, int(4*size(pieces, 2), c_int))
+      x(1:n_fine) = pieces(0, 1:size(pieces, 2):n)
+      x(n_fine + 1) = tail_end
+      do j = 1, size(pieces, 2)
+         c(4*j - 3:4*j) = pieces(1:4, j)
+      end do
+   end function egw_table_get_tail
 
    !> C: egw_table_set_radii (R1, R2 consistent with the table's R).
    function egw_table_set_radii(h, radius1, radius2) result(stat) &
@@ -566,6 +614,89 @@ contains
       call c_f_pointer(h, t)
       if (.not. table_is_ready(t)) stat = invalid("t: not a built or read table")
    end function get_table
+
+   !> egw_table_get_tail's pieces of the tables behind handles (checked: built or read, each
+   !> with a resampled tail of its own, all on the first one's nodes and ln P intervals):
+   !> the one table's fine_seg, or resample_tails over all from the most pieces any of them
+   !> takes alone (each fails on every count below its own, so the first count on which
+   !> all fit is the one a search from min_fine finds); the tail's end.
+   integer(c_int) function tail_pieces(handles, pieces, n_fine, tail_end) result(stat)
+      type(c_ptr), intent(in) :: handles(:)
+      real(dp), allocatable, intent(out) :: pieces(:, :)
+      integer, intent(out) :: n_fine
+      real(dp), intent(out) :: tail_end
+      type(force_table), pointer :: t, first
+      real(dp), allocatable :: force(:, :), stiffness(:, :), seg(:, :, :), tol(:)
+      integer :: i, nn, ns, n_start
+      n_fine = 0
+      tail_end = 0.0_dp
+      ns = size(handles)
+      n_start = 0
+      do i = 1, ns
+         stat = tail_table(handles(i), "tables["//int_str(i - 1)//"]", t)
+         if (stat /= egw_ok) return
+         if (i == 1) first => t
+         if (size(t%delta) /= size(first%delta) .or. t%n_log /= first%n_log) then
+            stat = invalid("tables["//int_str(i - 1)//"]: its nodes or ln P intervals "// &
+               & "differ from tables[0]'s (one grid needs shared nodes)")
+         else if (any(t%delta /= first%delta)) then
+            stat = invalid("tables["//int_str(i - 1)//"]: its nodes differ from "// &
+               & "tables[0]'s (one grid needs shared nodes)")
+         end if
+         if (stat /= egw_ok) return
+         n_start = max(n_start, size(t%fine_seg, 2))
+      end do
+      tail_end = first%tail_end
+      if (ns == 1) then
+         pieces = first%fine_seg
+         n_fine = size(pieces, 2)
+         return
+      end if
+      nn = size(first%delta)
+      allocate (force(nn, ns), stiffness(nn, ns), seg(0:4, nn, ns), tol(ns), stat=i)
+      if (i /= 0) then
+         stat = failure(egw_out_of_memory, "n = "//int_str(ns)//": no memory for that "// &
+            & "many tables' nodes")
+         return
+      end if
+      do i = 1, ns
+         call c_f_pointer(handles(i), t)
+         force(:, i) = t%force
+         stiffness(:, i) = t%stiffness
+         seg(:, :, i) = t%seg
+         tol(i) = tail_resample_tol*t%rel_tol
+      end do
+      call resample_tails(nn, ns, first%delta, force, stiffness, seg, first%n_log, &
+         & tail_last_node(first%delta, first%n_log), tol, n_start, pieces, n_fine)
+      if (n_fine == 0) stat = invalid("n = "//int_str(ns)//": on one grid the tables' "// &
+         & "tails need more than "//int_str(max_fine)//" pieces")
+   end function tail_pieces
+
+   !> The table of handle h (called name) if it has a resampled tail, else
+   !> EGW_NULL_POINTER or EGW_INVALID_ARGUMENT saying why it has none.
+   integer(c_int) function tail_table(h, name, t) result(stat)
+      type(c_ptr), intent(in) :: h
+      character(len=*), intent(in) :: name   !< e.g. "tables[2]"
+      type(force_table), pointer, intent(out) :: t
+      t => null()
+      stat = require(h, name)
+      if (stat /= egw_ok) return
+      call c_f_pointer(h, t)
+      if (.not. table_is_ready(t)) then
+         stat = invalid(name//": not a built or read table")
+      else if (size(t%fine_seg, 2) > 0) then
+         return
+      else if (.not. is_rough(t%params)) then
+         stat = invalid(name//": a smooth-sphere table has no separated tail")
+      else if (t%params%model == model_flat_law) then
+         stat = invalid(name//": a flat-law table's tail is ln P throughout (not resampled)")
+      else if (tail_last_node(t%delta, t%n_log) == 0) then
+         stat = invalid(name//": no ln P interval below delta = 0 (no separated tail)")
+      else
+         stat = invalid(name//": its tail would take more than "//int_str(max_fine)// &
+            & " pieces at rel_tol "//format_real(t%rel_tol)//" (egw_table_eval takes exp)")
+      end if
+   end function tail_table
 
    !> The table of a handle egw_universal (not NULL, built or read).
    integer(c_int) function get_universal(h, u) result(stat)
