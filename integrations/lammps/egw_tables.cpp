@@ -353,63 +353,27 @@ bool Inline::make(const std::vector<egw_table> &tables)
     if (widest <= 8 || nb >= (1 << 20)) break;
   }
   n = nn;
-  double rel_tol = 1.0;
-  for (egw_table t : tables)
-    if (egw_table_get_info(t, &in) == EGW_OK) rel_tol = std::min(rel_tol, in.rel_tol);
-  resample_tail(rel_tol);
+  take_tail(tables);
   return true;
 }
 
-bool Inline::resample_tail(double rel_tol)
+bool Inline::take_tail(const std::vector<egw_table> &tables)
 {
   n_piece = 0, tail_end = x_lo, piece_scale = 0.0;
   piece_x.clear(), piece_c.clear();
-  int last = n_log;    // the last node <= 0 that ends an ln-p interval
-  while (last > 0 && x[last] > 0.0) last--;
-  if (last < 1) return false;
-  const double lo = x_lo, hi = x[last], tol = TAIL_TOL * rel_tol;
-  // table k's ln-p interpolant (p, dp/dx) at xv in [lo, hi]
-  auto exact = [&](int k, double xv, double &p, double &dp) {
-    int i = (int) (std::upper_bound(x.begin(), x.begin() + last + 1, xv) - x.begin()) - 1;
-    i = std::max(0, std::min(last - 1, i));
-    const double *a = &c[4 * (i * ns + k)];
-    double t = xv - x[i];
-    p = std::exp(a[0] + t * (a[1] + t * (a[2] + t * a[3])));
-    dp = p * (a[1] + t * (2 * a[2] + 3 * t * a[3]));
-  };
-  std::vector<double> xs, pc;
-  for (int np = 16; np <= MAX_PIECES; np = (int) std::ceil(1.2 * np)) {
-    xs.resize(np + 1);
-    for (int q = 0; q <= np; q++) xs[q] = lo + (hi - lo) * q / np;
-    xs[np] = hi;
-    pc.assign(4 * (size_t) np * ns, 0.0);
-    bool fit = true;
-    for (int q = 0; q < np && fit; q++)
-      for (int k = 0; k < ns && fit; k++) {
-        // the cubic Hermite in p through the ends' values and slopes
-        double p0, d0, p1, d1, h = xs[q + 1] - xs[q];
-        exact(k, xs[q], p0, d0);
-        exact(k, xs[q + 1], p1, d1);
-        double sl = (p1 - p0) / h;
-        double *a = &pc[4 * ((size_t) q * ns + k)];
-        a[0] = p0, a[1] = d0;
-        a[2] = (3 * sl - 2 * d0 - d1) / h, a[3] = (d0 + d1 - 2 * sl) / (h * h);
-        for (int j = 1; j < 16 && fit; j += 2) {
-          double u = h * j / 16.0, pe, de;
-          exact(k, xs[q] + u, pe, de);
-          double pa = a[0] + u * (a[1] + u * (a[2] + u * a[3]));
-          double da = a[1] + u * (2 * a[2] + 3 * u * a[3]);
-          fit = std::fabs(pa - pe) <= 0.5 * tol * pe &&
-              std::fabs(da - de) <= 10 * tol * std::fabs(de);
-        }
-      }
-    if (!fit) continue;
-    n_piece = np, tail_end = hi, piece_scale = np / (hi - lo);
-    xs.pop_back();
-    piece_x.swap(xs), piece_c.swap(pc);
-    return true;
-  }
-  return false;
+  int nt = (int) tables.size(), np = 0;
+  // the size first, then the pieces (egw.h); a refusal leaves the exps
+  if (egw_table_get_tail(nt, tables.data(), 0, nullptr, nullptr, &np) != EGW_OK || np < 1)
+    return false;
+  std::vector<double> xs(np + 1), pc(4 * (size_t) np * nt);
+  if (egw_table_get_tail(nt, tables.data(), np, xs.data(), pc.data(), &np) != EGW_OK)
+    return false;
+  // egw_table_eval's piece of x: (x - starts[0]) * (N / (starts[N] - starts[0])), the same
+  // doubles, so the same piece
+  n_piece = np, tail_end = xs[np], piece_scale = np / (xs[np] - xs[0]);
+  xs.pop_back();
+  piece_x.swap(xs), piece_c.swap(pc);
+  return true;
 }
 
 Slices EgwTables::find_slices(const SliceKey &key)

@@ -78,12 +78,12 @@ struct SliceKey {
  * evaluation inside the force loop, without a library call. The slices of one universal
  * table share their nodes, so a contact finds its interval once for both of its slices and,
  * where they interpolate p, blends their cubics into one (the value of interpolating their
- * forces linearly in ln mu, to rounding); the separated tail, where they interpolate ln p,
- * is resampled into pieces of cubics in p as egw_table_eval's own (within TAIL_TOL/2 of
- * rel_tol of the ln-p interpolant: below), so there too one blended cubic and no exp
- * (ln-p intervals above 0, or a tail beyond MAX_PIECES: both exps). Serves cut-off < x <
- * last node; egw_table_eval the rest (0 below, deep overlaps, energy). n = 0: the tables'
- * nodes differ, egw_table_eval serves everything. */
+ * forces linearly in ln mu, to rounding); in the separated tail, where they interpolate
+ * ln p, it takes egw's resampled pieces of cubics in p (egw_table_get_tail: below), so
+ * there too one blended cubic and no exp (ln-p intervals above 0, or a tail egw does not
+ * resample: both exps). Serves cut-off < x < last node; egw_table_eval the rest (0 below,
+ * deep overlaps, energy). n = 0: the tables' nodes differ, egw_table_eval serves
+ * everything. */
 struct Inline {
   int n = 0, n_log = 0, ns = 0;    // nodes, intervals of ln p (the first ones), tables
   double x_lo = 0, x_hi = 0;       // first and last node [sigma]
@@ -94,15 +94,13 @@ struct Inline {
   int nb = 0;
   bool log_buckets = false;        // buckets uniform in bucket_coord (tables reaching far)
   // The separated tail (x_lo to tail_end, the last node <= 0, where the tables hold ln p)
-  // resampled as egw_table_eval resamples it (doc/formats.md): n_piece equal pieces, on
-  // each every table's cubic Hermite in p through its ln-p interpolant's values and slopes
-  // at the piece's ends, n_piece grown by 20 % from 16 until at 8 points of every piece p
-  // is within TAIL_TOL/2 of the tables' rel_tol of the ln-p interpolant and dp/dx within
-  // 10 TAIL_TOL rel_tol of its slope (at most MAX_PIECES; else, and without ln-p
-  // intervals below 0, tail_end = x_lo: the exps). A contact there finds its piece by one
-  // multiplication and takes no exp; between two slices one blended cubic, as above 0.
-  static constexpr double TAIL_TOL = 1e-2;
-  static constexpr int MAX_PIECES = 8192;
+  // as egw_table_get_tail hands it out: n_piece equal pieces, on each every table's cubic
+  // in p (one table: egw_table_eval's own pieces, so the same values bit for bit; the
+  // slices of a universal table: one grid on which each slice meets egw's tail tolerance,
+  // 2.5e-2 rel_tol of its ln-p interpolant at egw's check points). Without them (egw
+  // refuses: no ln-p interval below 0, or a tail beyond egw's 8192 pieces) tail_end = x_lo:
+  // the exps. A contact there finds its piece by one multiplication and takes no exp;
+  // between two slices one blended cubic, as above 0.
   int n_piece = 0;
   double tail_end = 0, piece_scale = 0;
   std::vector<double> piece_x;     // the pieces' starts
@@ -197,8 +195,8 @@ struct Inline {
     p = (c0 + t * c1) + t2 * (c2 + t * c3);
     dp = (c1 + 2 * t * c2) + 3 * t2 * c3;
   }
-  /* fill piece_x, piece_c (make()): false when MAX_PIECES do not fit */
-  bool resample_tail(double rel_tol);
+  /* fill piece_x, piece_c from egw_table_get_tail (make()): false where egw refuses */
+  bool take_tail(const std::vector<egw_table> &tables);
 };
 
 /* a law's 1-D tables with what their build found; freed with their last holder */

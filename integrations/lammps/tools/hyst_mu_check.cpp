@@ -166,7 +166,7 @@ int main(int argc, char **argv)
       double pr = n == 1 ? p0 : p0 + w * (p1 - p0), dr = n == 1 ? d0 : d0 + w * (d1 - d0);
       double ep = std::fabs(pf - pr) / std::fabs(pr);
       double es = std::fabs(df - dr) / std::max(std::fabs(dr), 1e-300);
-      if (x < 0.0) {    // egw_table_eval's resampled tail (egw.h): its own tolerance
+      if (x < 0.0) {    // the resampled tail (egw_table_get_tail): slices on one grid
         tmax = std::max(tmax, ep), tsmax = std::max(tsmax, es);
       } else {
         dmax = std::max(dmax, ep), smax = std::max(smax, es);
