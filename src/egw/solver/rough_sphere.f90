@@ -372,10 +372,12 @@ contains
       end if
       ! (every wide solve again at rel_tol/10: their estimates enter through weights up
       ! to ~0.5 at sigma/delta_y = 1e-6, and at rel_tol they alone missed rel_tol/2; one
-      ! that fails there keeps its answer at rel_tol, or is tried at rel_tol)
+      ! that fails there keeps its answer at rel_tol, or is tried at rel_tol; one that
+      ! failed at rel_tol is not tried again: Newton stalls there, 2-8 s a solve)
       do pair = 1, 2
          if (.not. history%wide_loaded(pair)) cycle
          do k = 1, 2
+            if (solved(k, pair) < 0) cycle
             tight = wide
             tight_solved = solved
             call wide_unload(history, delta, delta_y, k, pair, tight, tight_solved, &
