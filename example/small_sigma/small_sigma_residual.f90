@@ -11,10 +11,16 @@
 !> fits' difference (its uncertainty). The test adds it to the independent smooth-cap
 !> values of tools/reference/cap_near_residual.py.
 !>
-!>     OMP_NUM_THREADS=1 fpm run --profile release --example small-sigma-residual
+!> With the argument `route`, the solves themselves at the target sigma (the small-sigma
+!> route's: history at rel_tol 1e-7, unloading at 1e-5 at 1e-6 and at 1e-6 at 1e-10): P/P_y,
+!> est_rel_err and CPU seconds, or the failure. With `restitution`: e at 3 v_y (rel_tol
+!> 1e-4) at sigma/delta_y = 0 (the smooth cap), 1e-6, 1e-7, 1e-8, 1e-10, CPU seconds.
+!>
+!>     OMP_NUM_THREADS=1 fpm run --profile release --example small-sigma-residual \
+!>        [-- route | restitution]
 program small_sigma_residual
    use egw, only: dp, contact_params, model_egw, solver_options, solve_result, &
-      & loading_history, load_history, solve_unload, egw_error
+      & loading_history, load_history, solve_unload, restitution, egw_error
    implicit none
    real(dp), parameter :: pi = acos(-1.0_dp)
    real(dp), parameter :: candidates(6) = [5.0e-5_dp, 1.0e-4_dp, 2.0e-4_dp, 5.0e-4_dp, &
@@ -27,8 +33,20 @@ program small_sigma_residual
    real(dp) :: py, force_y, p_cap, force, d(4), s(4), used(4), fit3, fit4
    integer :: i, k, n
    logical :: ok
+   character(len=16) :: mode
    py = 2.0_dp/pi
    force_y = 4.0_dp/3.0_dp
+   call get_command_argument(1, mode)
+   if (mode == "route") then
+      do i = 1, n_cases
+         call route_at(i)
+      end do
+      stop
+   end if
+   if (mode == "restitution") then
+      call impacts()
+      stop
+   end if
    print '(a)', 'delta_max,fraction,sigma,P_cap,correction,relative,uncertainty'
    do i = 1, n_cases
       call unload_at(0.0_dp, maxima(i), fractions(i), p_cap, ok)
@@ -64,6 +82,57 @@ program small_sigma_residual
          & abs(fit4 - fit3)/p_cap
    end do
 contains
+   !> restitution at 3 v_y (v_y**2 = 16/15 at R = E* = m* = 1, p_y = 2/pi), rel_tol 1e-4.
+   subroutine impacts()
+      real(dp), parameter :: ratios(5) = [0.0_dp, 1.0e-6_dp, 1.0e-7_dp, 1.0e-8_dp, 1.0e-10_dp]
+      type(contact_params) :: p
+      type(egw_error), allocatable :: err
+      real(dp) :: e, dissipated, t0, t1
+      integer :: j
+      do j = 1, size(ratios)
+         p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
+            & sigma=ratios(j), mu=4.0_dp, flow_pressure=py)
+         call cpu_time(t0)
+         call restitution(p, solver_options(rel_tol=1.0e-4_dp), 1.0_dp, &
+            & 3.0_dp*sqrt(16.0_dp/15.0_dp), e, dissipated, err)
+         call cpu_time(t1)
+         if (allocated(err)) then
+            print '(es9.2,",",a)', ratios(j), err%message
+            deallocate (err)
+         else
+            print '(es9.2,",",f13.10,",",f7.2," s")', ratios(j), e, t1 - t0
+         end if
+      end do
+   end subroutine impacts
+
+   !> The solve of case i at its target sigma, as a user calls it.
+   subroutine route_at(i)
+      integer, intent(in) :: i
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: t0, t1
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=targets(i), &
+         & mu=4.0_dp, flow_pressure=py)
+      call load_history(p, solver_options(rel_tol=1.0e-7_dp), maxima(i), h, res, err)
+      if (allocated(err)) then
+         print '(a,f6.2,a,a)', 'history from ', maxima(i), ': ', err%message
+         return
+      end if
+      h%options%rel_tol = merge(1.0e-5_dp, 1.0e-6_dp, targets(i) >= 1.0e-6_dp)
+      call cpu_time(t0)
+      call solve_unload(h, fractions(i)*maxima(i), res, err)
+      call cpu_time(t1)
+      if (allocated(err)) then
+         print '(f6.2,",",f7.4,",",es9.2,",",a)', maxima(i), fractions(i), targets(i), &
+            & err%message
+      else
+         print '(f6.2,",",f7.4,",",es9.2,",",es21.13,",",es9.2,",",f7.2," s")', maxima(i), &
+            & fractions(i), targets(i), res%force/force_y, res%est_rel_err, t1 - t0
+      end if
+   end subroutine route_at
+
    !> The rough (sigma > 0) or smooth unloading force at fraction of delta_max [delta_y].
    subroutine unload_at(ratio, delta_max, fraction, force, ok)
       real(dp), intent(in) :: ratio, delta_max, fraction
