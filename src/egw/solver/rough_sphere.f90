@@ -269,8 +269,8 @@ contains
          call use_asymptotic(history%options, delta, asym, unload_floor* &
             & history%loading%force, result, error)
       else if (allocated(error)) then
-         error%message = error%message//"; nor by the small-sigma route (its solves at " &
-            & //"sigma = 1e-5, 1e-4 and 2e-5, 2e-4 delta_y failed)"
+         error%message = error%message//"; nor by the small-sigma route (fewer than two " &
+            & //"of its solves at sigma = 1e-5, 2e-5, 1e-4, 2e-4 delta_y converged)"
       end if
    end subroutine small_sigma_unload
 
