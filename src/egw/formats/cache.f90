@@ -39,8 +39,10 @@ module egw_cache
    !> an element edge with layers, and converged solves at sigma/delta_y <= 1e-7 checked
    !> against the asymptotic route; 12: rough + cap hysteresis tables' L(m) less the smooth
    !> cap's residual overlap where the cap acts; 13: histories at sigma/delta_y <= 1e-6 by
-   !> the asymptotic route where their loading fails or its check replaces it).
-   integer, parameter, public :: cache_revision = 13
+   !> the asymptotic route where their loading fails or its check replaces it; 14: that
+   !> route's wide histories at rel_tol <= 1e-6 and its unloading one order further near
+   !> the residual overlap).
+   integer, parameter, public :: cache_revision = 14
 
 
 contains

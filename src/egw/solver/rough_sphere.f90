@@ -82,6 +82,16 @@ module egw_rough_sphere
    !> off by up to 800 times their estimates; at 1e-6 the route's own estimate is often
    !> above 5e-7, so a check there would refuse solves the guided route answers.
    real(dp), parameter :: small_sigma_check_limit = 1.0e-7_dp
+   !> the wide solves' rel_tol in asymptotic_unloading's further order, relative to the
+   !> solve's (at least validate_options' 1e-10)
+   real(dp), parameter :: further_tol = 0.1_dp
+   !> The loosest rel_tol of the route's wide histories (route_histories). Near the
+   !> residual overlap an unloading force hangs on the history's plastic field (the
+   !> residual overlap moves with it); from histories at rel_tol 1e-4 the wide solves at
+   !> sigma/delta_y = 1e-5 .. 2e-4 disagreed by 1e-3 of the force there (E-GW, mu 4, from
+   !> 2.44 delta_y at 0.197 delta_max: the route refused, estimate 3.7e-4), from 1e-6
+   !> histories by 2e-5 (answered within its estimate).
+   real(dp), parameter :: wide_history_tol = 1.0e-6_dp
    !> the unloading's force floor of the route's estimates, relative to P(delta_max)
    real(dp), parameter :: unload_floor = 1.0e-6_dp
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
@@ -259,8 +269,8 @@ contains
          call use_asymptotic(history%options, delta, asym, unload_floor* &
             & history%loading%force, result, error)
       else if (allocated(error)) then
-         error%message = error%message//"; nor by the small-sigma route (its solves at " &
-            & //"sigma = 1e-5, 1e-4 and 2e-5, 2e-4 delta_y failed)"
+         error%message = error%message//"; nor by the small-sigma route (fewer than two " &
+            & //"of its solves at sigma = 1e-5, 2e-5, 1e-4, 2e-4 delta_y converged)"
       end if
    end subroutine small_sigma_unload
 
@@ -325,38 +335,94 @@ contains
 
    !> The asymptotic route's unloading answer at delta after history: as
    !> asymptotic_loading, with the smooth cap's unloading from delta_max (cap_unload) and
-   !> the rough model's histories and unloading solves at wide_sigmas.
+   !> the rough model's histories and unloading solves at wide_sigmas. Where that answer's
+   !> estimate misses rel_tol/2 or both pairs fail (near the residual overlap the sigma**(2/3)
+   !> term's own next order dominates, and solves at 1e-5 delta_y fail), every wide solve
+   !> is tried and the extrapolation in sigma**(2/3) goes one order further
+   !> (extrapolated_result); the answer with the smaller estimate is kept.
    subroutine asymptotic_unloading(history, delta, delta_y, asym, ok)
       type(loading_history), intent(in) :: history
       real(dp), intent(in) :: delta, delta_y
       type(solve_result), intent(out) :: asym
       logical, intent(out) :: ok
-      type(contact_params) :: wider
       type(cap_result) :: cap
-      type(solve_result) :: wide(2)
-      type(egw_error), allocatable :: wide_error
-      integer :: k
-      integer :: pair
+      type(solve_result) :: wide(2, 2), tight(2, 2), further
+      type(egw_error), allocatable :: cap_error
+      integer :: solved(2, 2), tight_solved(2, 2)   ! 0 not tried, 1 converged, -1 failed
+      integer :: k, pair
+      logical :: ok_further
       ok = .false.
+      solved = 0
       do pair = 1, 2
          if (.not. history%wide_loaded(pair)) cycle
          do k = 1, 2
-            wider = history%params
-            wider%sigma = wide_sigmas(k, pair)*delta_y
-            call rough_unload(wider, history%options, history%wide(k, pair), delta, &
-               & wide(k), wide_error)
-            if (allocated(wide_error)) exit
+            call wide_unload(history, delta, delta_y, k, pair, wide, solved, &
+               & history%options%rel_tol)
+            if (solved(k, pair) < 0) exit
          end do
-         if (.not. allocated(wide_error)) exit
-         deallocate (wide_error)
+         if (all(solved(:, pair) == 1)) exit
       end do
-      if (pair > 2) return
-      call cap_unload(history%wide_cap, delta, cap, wide_error)
-      if (allocated(wide_error)) return
-      call asymptotic_result(history%params, cap, wide, wide_sigmas(:, pair), unload_floor* &
-         & history%loading%force, asym)
+      call cap_unload(history%wide_cap, delta, cap, cap_error)
+      if (allocated(cap_error)) return
+      if (pair <= 2) then
+         call asymptotic_result(history%params, cap, wide(:, pair), wide_sigmas(:, pair), &
+            & unload_floor*history%loading%force, asym)
+         ok = .true.
+         if (asym%est_rel_err <= 0.5_dp*history%options%rel_tol) return
+      end if
+      ! (every wide solve again at rel_tol/10: their estimates enter through weights up
+      ! to ~0.5 at sigma/delta_y = 1e-6, and at rel_tol they alone missed rel_tol/2; one
+      ! that fails there keeps its answer at rel_tol, or is tried at rel_tol; one that
+      ! failed at rel_tol is not tried again: Newton stalls there, 2-8 s a solve)
+      do pair = 1, 2
+         if (.not. history%wide_loaded(pair)) cycle
+         do k = 1, 2
+            if (solved(k, pair) < 0) cycle
+            tight = wide
+            tight_solved = solved
+            call wide_unload(history, delta, delta_y, k, pair, tight, tight_solved, &
+               & max(further_tol*history%options%rel_tol, 1.0e-10_dp))
+            if (tight_solved(k, pair) == 1) then
+               wide(k, pair) = tight(k, pair)
+               solved(k, pair) = 1
+            else if (solved(k, pair) == 0) then
+               call wide_unload(history, delta, delta_y, k, pair, wide, solved, &
+                  & history%options%rel_tol)
+            end if
+         end do
+      end do
+      if (count(solved == 1) < 2) return
+      call extrapolated_result(history%params, cap, pack(wide, solved == 1), &
+         & pack(wide_sigmas, solved == 1), unload_floor*history%loading%force, further, &
+         & ok_further)
+      if (.not. ok_further) return
+      if (ok) then
+         if (further%est_rel_err >= asym%est_rel_err) return
+      end if
+      asym = further
       ok = .true.
    end subroutine asymptotic_unloading
+
+   !> The rough unloading solve at delta of the route's history at wide_sigmas(k, pair),
+   !> at rel_tol; solved(k, pair) 1 where it converged (wide(k, pair) its result), -1
+   !> where it failed.
+   subroutine wide_unload(history, delta, delta_y, k, pair, wide, solved, rel_tol)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta, delta_y, rel_tol
+      integer, intent(in) :: k, pair
+      type(solve_result), intent(inout) :: wide(2, 2)
+      integer, intent(inout) :: solved(2, 2)
+      type(contact_params) :: wider
+      type(solver_options) :: options
+      type(egw_error), allocatable :: wide_error
+      wider = history%params
+      wider%sigma = wide_sigmas(k, pair)*delta_y
+      options = history%options
+      options%rel_tol = rel_tol
+      call rough_unload(wider, options, history%wide(k, pair), delta, wide(k, pair), &
+         & wide_error)
+      solved(k, pair) = merge(-1, 1, allocated(wide_error))
+   end subroutine wide_unload
 
    !> The small-sigma route's histories of hist (loaded, its params and options; see
    !> loading_history%wide_loaded), where the route may answer or check its unloading
@@ -367,6 +433,7 @@ contains
       type(loading_history), intent(inout) :: hist
       type(contact_params) :: wider
       type(loading_history) :: wide_history
+      type(solver_options) :: wide_options
       type(cap_result) :: cap
       type(solve_result) :: res
       type(egw_error), allocatable :: wide_error
@@ -376,6 +443,8 @@ contains
       hist%wide_loaded = .false.
       if (.not. asymptotic_applies(hist%params, hist%options, hist%delta_max, &
          & hist%closest%extended .and. hist%closest%capped, delta_y)) return
+      wide_options = hist%options
+      wide_options%rel_tol = min(hist%options%rel_tol, wide_history_tol)
       call cap_load(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
          & hist%delta_max, cap_options(n_rings=100, n_levels=2), hist%wide_cap, cap, &
          & wide_error, "delta_max")
@@ -385,7 +454,7 @@ contains
          do k = 1, 2
             wider = hist%params
             wider%sigma = wide_sigmas(k, pair)*delta_y
-            call load_history(wider, hist%options, hist%delta_max, wide_history, res, &
+            call load_history(wider, wide_options, hist%delta_max, wide_history, res, &
                & wide_error)
             ! (above first yield at sigma = 1e-5 .. 2e-4 delta_y: a rough field, never
             ! the route's, reversible or smooth)
@@ -469,6 +538,110 @@ contains
          & + abs((wide(1)%force - cap%force)*shrink(1) - (wide(2)%force - cap%force)* &
          & shrink(2)))/total
    end subroutine asymptotic_result
+
+   !> The asymptotic route one order further (asymptotic_unloading's fallback; doc/theory.md
+   !> section 12 "Small sigma: near the residual overlap"). The rough model's expansion
+   !> P(sigma) = P_cap + A s + B s**2 + ..., s = sigma**(2/3), seen from a wide solve at
+   !> sigma_j: e_j = (P_j - P_cap)/x_j, x_j = (sigma_j/sigma)**(2/3), is
+   !> A s + B s**2 x_j + ..., a polynomial in x_j whose value at x = 1 is P(sigma) - P_cap.
+   !> asymptotic_result takes e_1 (order 0). Here, with n >= 3 wide solves, the line
+   !> through the two smallest sigmas' (x_1, e_1), (x_2, e_2) at x = 1 (order 1), its
+   !> error the difference from the parabola through the three smallest (order 2); with
+   !> n = 2, e_1 with the difference from that line (order 0, its error estimated as
+   !> asymptotic_result's is not: it used |e_1 - e_2|, which for a pair 2 apart in sigma
+   !> is 0.6 times e_1's error, for 10 apart 3.6 times). The order with the smaller
+   !> estimate answers. est_rel_err: that difference, plus the cap solve's and the wide
+   !> solves' estimates through the weights (the latter at both orders used), relative to
+   !> max(|P|, floor). Stiffness and contact radius with the same weights; the force is
+   !> kept >= 0. ok false with fewer than two wide solves.
+   subroutine extrapolated_result(params, cap, wide, sigmas, floor, asym, ok)
+      type(contact_params), intent(in) :: params
+      type(cap_result), intent(in) :: cap
+      type(solve_result), intent(in) :: wide(:)   !< converged wide solves
+      real(dp), intent(in) :: sigmas(:)           !< their sigma/delta_y
+      real(dp), intent(in) :: floor
+      type(solve_result), intent(out) :: asym
+      logical, intent(out) :: ok
+      real(dp) :: delta_y, a_y, force_y, x(size(wide)), noise(size(wide)), lower(3), &
+         & higher(3), est(2), total
+      integer :: order(size(wide)), i, j, n, best
+      n = size(wide)
+      ok = n >= 2
+      if (.not. ok) return
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+      ! increasing sigma
+      order = [(i, i = 1, n)]
+      do i = 2, n
+         j = i
+         do while (j > 1)
+            if (sigmas(order(j - 1)) <= sigmas(order(j))) exit
+            order([j - 1, j]) = order([j, j - 1])
+            j = j - 1
+         end do
+      end do
+      do i = 1, n
+         x(i) = (sigmas(order(i))*delta_y/params%sigma)**(2.0_dp/3.0_dp)
+         associate (w => wide(order(i)))
+            ! (a force 0 with est_rel_err 1 is the underflow answer: error below underflow)
+            noise(i) = 0.0_dp
+            if (w%force /= 0.0_dp) noise(i) = w%est_rel_err*max(abs(w%force), floor)
+         end associate
+      end do
+      est = huge(1.0_dp)
+      do best = 1, min(2, n - 1)
+         ! order best - 1 against order best
+         lower = extrapolate(best)
+         higher = extrapolate(best + 1)
+         total = max(abs(lower(1)), floor)
+         if (total > 0.0_dp) est(best) = (abs(higher(1) - lower(1)) + cap%force_error* &
+            & (1.0_dp + spread(best) + spread(best + 1)) + error_sum(best) + &
+            & error_sum(best + 1))/total
+      end do
+      best = minloc(est, 1)
+      lower = extrapolate(best)
+      asym = wide(order(1))
+      asym%force = max(lower(1), 0.0_dp)
+      asym%stiffness = lower(2)
+      asym%contact_radius = lower(3)
+      asym%max_pressure = params%flow_pressure
+      asym%est_rel_err = est(best)
+   contains
+      !> Lagrange weights at x = 1 of the m smallest sigmas' nodes.
+      pure function weights(m) result(w)
+         integer, intent(in) :: m
+         real(dp) :: w(m)
+         integer :: p, q
+         w = 1.0_dp
+         do p = 1, m
+            do q = 1, m
+               if (q /= p) w(p) = w(p)*(1.0_dp - x(q))/(x(p) - x(q))
+            end do
+         end do
+      end function weights
+      !> force, stiffness, contact radius extrapolated from the m smallest sigmas
+      pure function extrapolate(m) result(q)
+         integer, intent(in) :: m
+         real(dp) :: q(3), w(m)
+         integer :: p
+         w = weights(m)
+         q = [cap%force, cap%stiffness, cap%contact_radius]
+         do p = 1, m
+            associate (v => wide(order(p)))
+               q = q + w(p)/x(p)*([v%force, v%stiffness, v%contact_radius] - &
+                  & [cap%force, cap%stiffness, cap%contact_radius])
+            end associate
+         end do
+      end function extrapolate
+      pure real(dp) function spread(m)
+         integer, intent(in) :: m
+         spread = sum(abs(weights(m))/x(1:m))
+      end function spread
+      pure real(dp) function error_sum(m)
+         integer, intent(in) :: m
+         error_sum = sum(abs(weights(m))/x(1:m)*noise(1:m))
+      end function error_sum
+   end subroutine extrapolated_result
 
    !> The asymptotic route's answer asym after a discrete solve at delta. A failed solve
    !> (error allocated) takes it if its estimate meets rel_tol/2 (result written, error
