@@ -699,50 +699,34 @@ void PairEGW::hyst_cache_rows()
   while (size < 2 * nlive) size *= 2;
   hyst_old.assign(size, {0, 0});
   const size_t mask = size - 1;
-  auto home = [mask](uint64_t k) { return (size_t) ((k * 0x9E3779B97F4A7C15ull) >> 32) & mask; };
   auto slot_of = [&](uint64_t k) {
-    size_t h = home(k);
+    size_t h = (size_t) ((k * 0x9E3779B97F4A7C15ull) >> 32) & mask;
     while (hyst_old[h].first != 0 && hyst_old[h].first != k) h = (h + 1) & mask;
     return h;
   };
-  for (size_t b = 0; b < nblock; b++) {
-    if (b + HYST_AHEAD < nblock)    // (its slot prefetched as the probes' below)
-      __builtin_prefetch(&hyst_old[home(key(hyst_cache_tags[2 * (b + HYST_AHEAD)],
-                                            hyst_cache_tags[2 * (b + HYST_AHEAD) + 1]))], 1);
+  for (size_t b = 0; b < nblock; b++)
     if (hyst_live[b]) {
       uint64_t k = key(hyst_cache_tags[2 * b], hyst_cache_tags[2 * b + 1]);
       hyst_old[slot_of(k)] = {k, b};
     }
-  }
   std::fill(hyst_live.begin(), hyst_live.end(), 0);
   int inum = list->inum;
   tagint *tag = atom->tag;
   auto view = reinterpret_cast<NeighHistoryView *>(fix_history);
   hyst_slot.assign(entry_first[inum], -1);
-  if (nlive > 0) {
-    // the touched entries and their keys first (the list streamed, no branch on a probe),
-    // then the probes in the same order with the table's slot of the one HYST_AHEAD on
-    // prefetched (a random read each: waiting for them, and for tag[j], was most of this
-    // routine's samples in in.pour.drum with EP-GW)
-    hyst_touched.clear();
+  if (nlive > 0)
     for (int ii = 0; ii < inum; ii++) {
       int i = list->ilist[ii];
       int *jlist = list->firstneigh[i];
       int *touch = view->firstflag[i];
-      const tagint ti = tag[i];
-      const size_t first = entry_first[ii];
-      for (int jj = 0; jj < list->numneigh[i]; jj++)
-        if (touch[jj]) hyst_touched.push_back({first + jj, key(ti, tag[jlist[jj] & NEIGHMASK])});
+      for (int jj = 0; jj < list->numneigh[i]; jj++) {
+        if (!touch[jj]) continue;
+        const auto &hit = hyst_old[slot_of(key(tag[i], tag[jlist[jj] & NEIGHMASK]))];
+        if (hit.first == 0 || hyst_live[hit.second]) continue;    // none, or taken
+        hyst_slot[entry_first[ii] + jj] = (int) hit.second;
+        hyst_live[hit.second] = 1;
+      }
     }
-    const size_t nt = hyst_touched.size();
-    for (size_t t = 0; t < nt; t++) {
-      if (t + HYST_AHEAD < nt) __builtin_prefetch(&hyst_old[home(hyst_touched[t + HYST_AHEAD].second)]);
-      const auto &hit = hyst_old[slot_of(hyst_touched[t].second)];
-      if (hit.first == 0 || hyst_live[hit.second]) continue;    // none, or taken
-      hyst_slot[hyst_touched[t].first] = (int) hit.second;
-      hyst_live[hit.second] = 1;
-    }
-  }
   hyst_free.clear();
   for (size_t b = nblock; b-- > 0;)
     if (!hyst_live[b]) hyst_free.push_back((int) b);
@@ -776,6 +760,5 @@ double PairEGW::memory_usage()
       (double) entry_memo.capacity() * sizeof(EgwMemo) +
       (double) (hyst_slot.capacity() + hyst_free.capacity()) * sizeof(int) +
       (double) hyst_cache_tags.capacity() * sizeof(tagint) + (double) hyst_live.capacity() +
-      (double) hyst_old.capacity() * sizeof(hyst_old[0]) +
-      (double) hyst_touched.capacity() * sizeof(hyst_touched[0]);
+      (double) hyst_old.capacity() * sizeof(hyst_old[0]);
 }

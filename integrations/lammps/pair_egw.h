@@ -135,10 +135,6 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
   // the blocks by their pair's key (open addressing, key 0 empty), kept between rebuilds
   // so that a rebuild allocates nothing
   std::vector<std::pair<uint64_t, size_t>> hyst_old;
-  // hyst_cache_rows: the touched entries (entry, key) of the new list, and how far ahead
-  // their probes are prefetched
-  std::vector<std::pair<size_t, uint64_t>> hyst_touched;
-  static constexpr size_t HYST_AHEAD = 8;
   double *hyst_block(size_t entry, tagint ti, tagint tj);
   void hyst_cache_rows();
 };
