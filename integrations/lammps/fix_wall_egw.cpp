@@ -771,8 +771,12 @@ void FixWallEGW::post_force_region()
                    -region->contact[m].radius);
       double vwall[3] = {0.0, 0.0, 0.0};
       if (moving) region->velocity_contact(vwall, x[i], m);
-      // several contacts: the contacts row holds the last one (as fix wall/gran/region)
-      wall_contact(i, L, delta, R, n, vwall, hist, r, update_history, region->contact[m].radius);
+      // several contacts: the contacts row holds the last one (as fix wall/gran/region);
+      // a memo per atom index and slot (keyed by law and R as the planes': one that moved
+      // to another index or slot misses once)
+      if (memo.size() < (size_t) nlocal * tmax) memo.resize((size_t) atom->nmax * tmax);
+      wall_contact(i, L, delta, R, n, vwall, hist, r, update_history, region->contact[m].radius,
+                   &memo[(size_t) i * tmax + k]);
     }
     if (nnew == 0) sank_through_region(i, h);
     // the slots in use now (h[0] of them are read), zeros over those the last step used
@@ -789,7 +793,8 @@ void FixWallEGW::post_force_region()
 
 double FixWallEGW::memory_usage()
 {
-  return (double) atom->nmax * stride * sizeof(double);
+  return (double) atom->nmax * stride * sizeof(double) +
+      (double) memo.capacity() * sizeof(EgwMemo);
 }
 
 void FixWallEGW::grow_arrays(int nmax)
