@@ -215,6 +215,13 @@ struct EgwLaw {
    * and eval's status; otherwise -1 (nothing changed): call eval */
   inline int eval_fast(double delta, double R, double *hist, double *cache, EgwMemo *memo,
                        double &F, double &S) const;
+  /* wall/egw's eval_fast, its states in hist itself (at EgwHistory::HYST_A): eval_tables,
+   * or an EP-GW contact of one table (HYST) by egw_law_hyst_eval on that state (the
+   * inline cached test, else one egw call; no switch, no call of eval): F, S, the
+   * history and the state as eval without energy leaves them (to the bit), and eval's
+   * status; otherwise -1 (nothing changed): call eval */
+  inline int eval_hist_fast(double delta, double R, double *hist, EgwMemo *memo, double &F,
+                            double &S) const;
   /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
    * where they are the history (all zeros: a new contact) */
   int eval(double delta, double R, double *hist, double &F, double &S, double &U,
@@ -370,6 +377,23 @@ inline int EgwLaw::eval_fast(double delta, double R, double *hist, double *cache
   int st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], delta * inv_sigma, *dmax,
                              cache, p, dp, true);
   *dmax = cache[0];
+  double sr = E_star * std::sqrt(R);
+  F = sr * s15 * p, S = sr * s05 * dp;
+  return st;
+}
+
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline int EgwLaw::eval_hist_fast(double delta, double R, double *hist, EgwMemo *memo,
+                                  double &F, double &S) const
+{
+  if (kind != HYST) return eval_tables(delta, R, memo, F, S) ? EGW_OK : -1;
+  // eval's HYST steps with states_are_history and without energy
+  double *dmax = &hist[EgwHistory::DELTA_MAX], *state = hist + EgwHistory::HYST_A, p, dp;
+  int st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], delta * inv_sigma, *dmax,
+                             state, p, dp, false);
+  *dmax = state[0];
   double sr = E_star * std::sqrt(R);
   F = sr * s15 * p, S = sr * s05 * dp;
   return st;

@@ -556,8 +556,10 @@ void FixWallEGW::wall_contact(int i, EgwLaw &L, double delta, double R, const do
                               bool update_history, double rc, EgwMemo *memo)
 {
   double Fn, S, U;
-  int st = EGW_OK;
-  if (!L.eval_tables(delta, R, memo, Fn, S)) st = L.eval(delta, R, hist, Fn, S, U, 0, memo);
+  // GW/E-GW inside the inline tables and EP-GW of one table inline (egw_law.h), the rest
+  // through eval (its switch and a call: ~150 instructions a contact in in.pour.drum)
+  int st = L.eval_hist_fast(delta, R, hist, memo, Fn, S);
+  if (st < 0) st = L.eval(delta, R, hist, Fn, S, U, 0, memo);
   if (st == EgwLaw::MU_OUTSIDE)
     error->one(FLERR, "Fix wall/egw: contact with R = {} (R_i = {}, the wall's radius of "
                       "curvature {}) has mu = {} outside the tables' [{}, {}]: widen the radius "
@@ -703,12 +705,19 @@ void FixWallEGW::post_force_region()
     if (!(mask[i] & groupbit)) continue;
     double *h = history[i];
     if (!region->match(x[i][0], x[i][1], x[i][2])) {
-      sank_through_region(i, h);
+      // (a cleared row has no contact to check: not read, a cache miss each for the
+      // grains poured above the drum's shell)
+      if (!cleared[i]) sank_through_region(i, h);
       clear_history(i, h, stride);
       continue;
     }
     EgwLaw &L = law[type[i]];
     double radi = radius[i];
+    // an atom with a contact on the last step: its first slot's lines (the history, EP-GW's
+    // state, the sub-models') on their way while the region finds its surfaces
+    if (!cleared[i])
+      for (int k = 0; k < 1 + (int) std::min<size_t>(1 + nhist, 64); k += 8)
+        __builtin_prefetch(h + k);
     int nc = region->surface(x[i][0], x[i][1], x[i][2], radi + L.tail);
     // most atoms: no wall within reach and a history known to be zero (the flag, not the
     // row: reading h[0] of every atom was a cache miss each, 2/3 of the fix's own time in
@@ -762,8 +771,12 @@ void FixWallEGW::post_force_region()
                    -region->contact[m].radius);
       double vwall[3] = {0.0, 0.0, 0.0};
       if (moving) region->velocity_contact(vwall, x[i], m);
-      // several contacts: the contacts row holds the last one (as fix wall/gran/region)
-      wall_contact(i, L, delta, R, n, vwall, hist, r, update_history, region->contact[m].radius);
+      // several contacts: the contacts row holds the last one (as fix wall/gran/region);
+      // a memo per atom index and slot (keyed by law and R as the planes': one that moved
+      // to another index or slot misses once)
+      if (memo.size() < (size_t) nlocal * tmax) memo.resize((size_t) atom->nmax * tmax);
+      wall_contact(i, L, delta, R, n, vwall, hist, r, update_history, region->contact[m].radius,
+                   &memo[(size_t) i * tmax + k]);
     }
     if (nnew == 0) sank_through_region(i, h);
     // the slots in use now (h[0] of them are read), zeros over those the last step used
@@ -780,7 +793,8 @@ void FixWallEGW::post_force_region()
 
 double FixWallEGW::memory_usage()
 {
-  return (double) atom->nmax * stride * sizeof(double);
+  return (double) atom->nmax * stride * sizeof(double) +
+      (double) memo.capacity() * sizeof(EgwMemo);
 }
 
 void FixWallEGW::grow_arrays(int nmax)

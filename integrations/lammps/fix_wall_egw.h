@@ -89,7 +89,8 @@ class FixWallEGW : public Fix, public EgwHeatWall {
                     const double *vwall, double *hist, double dist, bool update_history,
                     double rc, EgwMemo *memo = nullptr);
   // planes and cylinders: each atom index's EgwMemo (the atom's R and law are its keys:
-  // one that moved to another index misses once, never reads another's position)
+  // one that moved to another index misses once, never reads another's position); the
+  // region: one per atom index and slot (tmax each)
   std::vector<EgwMemo> memo;
   void egw_fail(const std::string &);
   void sank_through(int i, double delta, double radi);
