@@ -10,6 +10,7 @@ module egw_sphere_iteration
       & egw_out_of_memory, fatal_error, format_real, int_str
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure
    use egw_halfspace, only: build_mesh, mesh_nodes, node_index, assemble_influence, &
+      & influence_cache, assemble_influence_cached, &
       & interpolate_nodal
    use egw_lapack, only: lu_factor, lu_solve
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
@@ -29,7 +30,7 @@ contains
 
    !> Build the mesh on edges, assemble, and solve the discrete equations; then the force,
    !> its delta-derivative (implicit differentiation), moments and the tail estimate.
-   subroutine solve_mesh(prob, options, method, edges, sol, error, guess)
+   subroutine solve_mesh(prob, options, method, edges, sol, error, guess, cache)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -37,6 +38,8 @@ contains
       type(discrete_solution), intent(out) :: sol
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
+      !> influence matrices of the caller's earlier meshes: shared coefficients reused
+      type(influence_cache), intent(inout), optional :: cache
       integer :: n, ng, max_iter, i, stat
       real(dp) :: kappa, rn
 
@@ -51,8 +54,15 @@ contains
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
       allocate (sol%infl(n, ng), stat=stat)
-      if (stat == 0) call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, &
-         & options%n_threads, stat)
+      if (stat == 0) then
+         if (present(cache)) then
+            call assemble_influence_cached(sol%mesh, sol%infl, options%n_threads, cache, &
+               & stat)
+         else
+            call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads, &
+               & stat)
+         end if
+      end if
       if (stat /= 0) then
          call fatal_error(error, egw_out_of_memory, "the influence matrix of " &
             & //int_str(n)//" nodes could not be allocated")
