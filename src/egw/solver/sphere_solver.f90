@@ -71,15 +71,18 @@ contains
    !> level's mesh (first_mesh), the first level (first_unloading_level for unloading;
    !> continuation if a cold start fails; refocus_classic_gw), then the refinement levels
    !> (refine_levels).
-   subroutine solve_scaled(problem, options, sol, est, method_used, error)
+   subroutine solve_scaled(problem, options, sol, est, method_used, error, warm)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      !> unloading: the solution of another solve of the same history (another delta),
+      !> the start of the default route's locating solve (first_unloading_level)
+      type(discrete_solution), intent(in), optional :: warm
       type(egw_error), allocatable :: guided_error
-      call solve_default(problem, options, sol, est, method_used, error)
+      call solve_default(problem, options, sol, est, method_used, error, warm)
       if (.not. allocated(error)) return
       ! Loading of an extended model with the cap that did not converge (small
       ! sigma/delta_y: the plastic zone's edge is a layer the default meshes do not
@@ -314,13 +317,14 @@ contains
    end subroutine smooth_cap_edge
 
    !> The levels of solve_scaled's default route (all solves but guided_cap_solve's).
-   subroutine solve_default(problem, options, sol, est, method_used, error)
+   subroutine solve_default(problem, options, sol, est, method_used, error, warm)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution), intent(in), optional :: warm   !< solve_scaled's
       type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(discrete_solution) :: coarse
       type(scaled_problem) :: prob
@@ -340,7 +344,8 @@ contains
          & unload_residual_tol(prob%residual_tol, options%rel_tol)
       call first_mesh(prob, options, mesh)
       if (allocated(prob%closest)) then
-         call first_unloading_level(prob, options, method_used, mesh, coarse, error, cache=cache)
+         call first_unloading_level(prob, options, method_used, mesh, coarse, error, &
+            & cache=cache, warm=warm)
       else
          call solve_with_tail(prob, options, method_used, mesh%layered, mesh%focus, &
             & mesh%width, mesh%step_prev, mesh%outer, coarse, error, cache=cache)
@@ -369,7 +374,8 @@ contains
    !> on a coarser mesh places the element edges at the kinks of p(r) (prob%branch) and
    !> trims the mesh to where the unloading pressure has died (trim_to_unloading_decay);
    !> then the first level itself, whose kink edges are relocated (relocate_kinks).
-   subroutine first_unloading_level(prob, options, method, mesh, coarse, error, start, cache)
+   subroutine first_unloading_level(prob, options, method, mesh, coarse, error, start, cache, &
+      & warm)
       type(scaled_problem), intent(inout) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -379,6 +385,10 @@ contains
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       !> start of the locating solve (the cap's guided route; else the initial deflection)
       type(discrete_solution), intent(in), optional :: start
+      !> a solution of another solve of the same history: the locating solve's start
+      !> where start is absent (if that locating solve fails, it is solved again from
+      !> the initial deflection)
+      type(discrete_solution), intent(in), optional :: warm
       type(discrete_solution) :: first
       type(scaled_problem) :: locate
       ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
@@ -438,8 +448,23 @@ contains
       end if
       locate = prob
       locate%residual_tol = 1.0e-6_dp
-      call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
-         & 2.0_dp*mesh%step_prev, mesh%outer, first, error, start, cache=cache)
+      ! The locating solve from the deflection of the history's last solve (a table's
+      ! curve at the neighbouring s): the rough deflection after a capped loading is far
+      ! from the initial deflection's (the shift and offset), and Newton took 5.6
+      ! iterations from it, 3.3 from a warm start (E-GW + cap, the table of
+      ! doc/benchmarks.md "Stop 44"). Only edges and the next start come from this solve.
+      if (present(warm) .and. .not. present(start)) then
+         call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
+            & 2.0_dp*mesh%step_prev, mesh%outer, first, error, warm, cache=cache)
+         if (allocated(error)) then
+            deallocate (error)
+            call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
+               & 2.0_dp*mesh%step_prev, mesh%outer, first, error, cache=cache)
+         end if
+      else
+         call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
+            & 2.0_dp*mesh%step_prev, mesh%outer, first, error, start, cache=cache)
+      end if
       if (allocated(error)) then
          deallocate (error)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
