@@ -170,7 +170,7 @@ contains
          call assemble_influence(mesh, mesh%node, plain, 1)
          if (k == 2) then
             poisoned = cache
-            poisoned%slot(poisoned%last)%infl = -1.0_dp
+            poisoned%slot(poisoned%last)%rows = -1.0_dp
             call assemble_influence_cached(mesh, infl, 1, poisoned)
             n_reused = count(infl == -1.0_dp)
             ! (the three halved elements' columns and the new nodes' rows are computed)

@@ -83,8 +83,9 @@ module egw_halfspace
    !> One mesh's influence matrix as assemble_influence_cached stored it.
    type :: cached_matrix
       real(dp), allocatable :: edge(:)       !< (0:n_elem) its element edges
-      real(dp), allocatable :: node(:)       !< its deflection nodes (the rows)
-      real(dp), allocatable :: infl(:, :)    !< (nodes, n_elem*n_gauss)
+      real(dp), allocatable :: node(:)       !< its deflection nodes
+      !> (n_elem*n_gauss, nodes): the matrix transposed, a node's row contiguous
+      real(dp), allocatable :: rows(:, :)
    end type cached_matrix
 
    !> The influence matrices of the last few meshes of one caller (one solve's levels),
@@ -635,13 +636,14 @@ contains
       integer, allocatable :: node_at(:, :), elem_at(:, :), row_slot(:)
       real(dp), allocatable :: rows(:, :)
       logical, allocatable :: known(:, :)
+      logical :: shares(cache_meshes)
       n = size(mesh%node)
       ng = mesh%n_gauss
       if (cache%n_gauss /= ng) then
          cache%last = 0
          do j = 1, cache_meshes
             if (allocated(cache%slot(j)%edge)) deallocate (cache%slot(j)%edge, &
-               & cache%slot(j)%node, cache%slot(j)%infl)
+               & cache%slot(j)%node, cache%slot(j)%rows)
          end do
          cache%n_gauss = ng
       end if
@@ -651,10 +653,12 @@ contains
       if (ios /= 0) return
       node_at = 0
       elem_at = 0
+      shares = .false.
       do j = 1, cache_meshes
          if (.not. allocated(cache%slot(j)%edge)) cycle
-         call match_sorted(mesh%node, cache%slot(j)%node, node_at(:, j))
          call match_elements(mesh%edge, cache%slot(j)%edge, elem_at(:, j))
+         shares(j) = any(elem_at(:, j) > 0)
+         if (shares(j)) call match_sorted(mesh%node, cache%slot(j)%node, node_at(:, j))
       end do
       ! each row from the most recent mesh that has its node (and shares elements)
       row_slot = 0
@@ -662,7 +666,7 @@ contains
       do i = 1, n
          do k = 0, cache_meshes - 1
             slot = modulo(cache%last - 1 - k, cache_meshes) + 1
-            if (node_at(i, slot) > 0 .and. any(elem_at(:, slot) > 0)) then
+            if (node_at(i, slot) > 0 .and. shares(slot)) then
                row_slot(i) = slot
                exit
             end if
@@ -673,8 +677,8 @@ contains
             c = elem_at(e, slot)
             if (c == 0) cycle
             known(e, i) = .true.
-            rows((e - 1)*ng + 1:e*ng, i) = cache%slot(slot)%infl(node_at(i, slot), &
-               & (c - 1)*ng + 1:c*ng)
+            rows((e - 1)*ng + 1:e*ng, i) = cache%slot(slot)%rows((c - 1)*ng + 1:c*ng, &
+               & node_at(i, slot))
          end do
       end do
       threads = n_threads
@@ -697,7 +701,7 @@ contains
       slot = modulo(cache%last, cache_meshes) + 1
       cache%slot(slot)%edge = mesh%edge
       cache%slot(slot)%node = mesh%node
-      cache%slot(slot)%infl = infl
+      call move_alloc(rows, cache%slot(slot)%rows)
       cache%last = slot
    contains
       subroutine row_of(i)
