@@ -39,8 +39,11 @@ module egw_cache
    !> an element edge with layers, and converged solves at sigma/delta_y <= 1e-7 checked
    !> against the asymptotic route; 12: rough + cap hysteresis tables' L(m) less the smooth
    !> cap's residual overlap where the cap acts; 13: histories at sigma/delta_y <= 1e-6 by
-   !> the asymptotic route where their loading fails or its check replaces it).
-   integer, parameter, public :: cache_revision = 13
+   !> the asymptotic route where their loading fails or its check replaces it; 14:
+   !> unloading solves' locating solve warm-started from the curve's last solve, and
+   !> lu_factor's rank-2 updates: forces moved by <= 2.2e-10 of themselves, tables by
+   !> <= 5.9e-8 of P(m)).
+   integer, parameter, public :: cache_revision = 14
 
 
 contains
