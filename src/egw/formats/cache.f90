@@ -40,9 +40,9 @@ module egw_cache
    !> against the asymptotic route; 12: rough + cap hysteresis tables' L(m) less the smooth
    !> cap's residual overlap where the cap acts; 13: histories at sigma/delta_y <= 1e-6 by
    !> the asymptotic route where their loading fails or its check replaces it; 14:
-   !> unloading solves' locating solve warm-started from the curve's last solve, and
-   !> lu_factor's rank-2 updates: forces moved by <= 2.2e-10 of themselves, tables by
-   !> <= 5.9e-8 of P(m)).
+   !> unloading solves' locating solve warm-started from the curve's last solve,
+   !> lu_factor's rank-2 updates and the Jacobian's columns in one pass: forces moved by
+   !> <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m)).
    integer, parameter, public :: cache_revision = 14
 
 
