@@ -5,7 +5,8 @@ module test_halfspace
    use egw_kinds, only: dp, pi
    use egw_ellip, only: ellipk, ellipe
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, influence_row, &
-      & assemble_influence, interpolate_nodal, mesh_nodes
+      & assemble_influence, interpolate_nodal, mesh_nodes, influence_cache, &
+      & assemble_influence_cached
    implicit none
    private
    public :: collect_halfspace
@@ -19,6 +20,7 @@ contains
          & new_unittest("Hertz pressure converges at order 1.5", test_hertz_order), &
          & new_unittest("deflection at r = 0 is 2 int p dt", test_centre), &
          & new_unittest("parallel assembly equals the rows", test_assembly), &
+         & new_unittest("cached assembly equals the plain one", test_cached_assembly), &
          & new_unittest("nodal interpolation reproduces polynomials", test_interpolation) &
          & ]
    end subroutine collect_halfspace
@@ -131,6 +133,61 @@ contains
          end if
       end do
    end subroutine test_assembly
+
+   !> assemble_influence_cached against assemble_influence, bit for bit, on the solver's
+   !> element kinds (degree 4, 6 points) over a sequence of meshes as one solve's levels
+   !> make them: a graded mesh; it with three elements halved (a bisection check); its
+   !> inner part with a grown outer radius; another step (shares r = 0 and little else).
+   !> A coefficient depends only on the node and the element's edges, so the reused ones
+   !> are the same numbers. That reuse happens at all is checked with a poisoned cache
+   !> (its stored matrix set to -1: the entries taken from it show).
+   subroutine test_cached_assembly(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      type(influence_cache) :: cache, poisoned
+      real(dp), allocatable :: infl(:, :), plain(:, :), edges(:), base(:)
+      integer :: k, n_reused
+      base = graded_edges(3.0_dp, 0.2_dp, 5.0_dp, 0.25_dp)
+      do k = 1, 4
+         select case (k)
+         case (1)
+            edges = base
+         case (2)
+            edges = [base(1:4), 0.5_dp*(base(4) + base(5)), base(5:9), &
+               & 0.5_dp*(base(9) + base(10)), base(10:size(base) - 1), &
+               & 0.5_dp*(base(size(base) - 1) + base(size(base))), base(size(base))]
+         case (3)
+            edges = [base(1:size(base) - 3), graded_edges(3.0_dp, 0.2_dp, 7.0_dp, &
+               & 0.25_dp)]
+            edges = [base(1:size(base) - 3), pack(edges(size(base) - 2:), &
+               & edges(size(base) - 2:) > base(size(base) - 3))]
+         case (4)
+            edges = graded_edges(3.0_dp, 0.2_dp, 5.0_dp, 0.2_dp)
+         end select
+         call build_mesh(edges, 4, 6, mesh)
+         allocate (infl(mesh_nodes(mesh), mesh%n_elem*mesh%n_gauss))
+         allocate (plain(mesh_nodes(mesh), mesh%n_elem*mesh%n_gauss))
+         call assemble_influence(mesh, mesh%node, plain, 1)
+         if (k == 2) then
+            poisoned = cache
+            poisoned%slot(poisoned%last)%rows = -1.0_dp
+            call assemble_influence_cached(mesh, infl, 1, poisoned)
+            n_reused = count(infl == -1.0_dp)
+            ! (the three halved elements' columns and the new nodes' rows are computed)
+            call check(error, n_reused > size(infl)/2, "mesh 2: only "// &
+               & "some coefficients reused from the cache")
+            if (allocated(error)) return
+            call check(error, all(infl == plain .or. infl == -1.0_dp), &
+               & "mesh 2: a computed coefficient differs from the plain assembly's")
+            if (allocated(error)) return
+         end if
+         call assemble_influence_cached(mesh, infl, 1, cache)
+         call check(error, all(infl == plain), "mesh "//char(48 + k)// &
+            & ": the cached assembly differs from the plain one")
+         if (allocated(error)) return
+         deallocate (infl, plain)
+      end do
+   end subroutine test_cached_assembly
 
    !> Continuous Lagrange elements of degree 3 reproduce a cubic to rounding (1e-13 for
    !> values ~ 30), at nodes and between them.

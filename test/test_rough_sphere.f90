@@ -11,7 +11,7 @@ module test_rough_sphere
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
       & validate_options, method_newton, method_picard
    use ref_rough_sphere, only: ref_f52_11, ref_f52_13
-   use egw_lapack, only: lu_factor, lu_solve
+   use egw_lapack, only: lu_factor, lu_solve, dgetf2
    implicit none
    private
    public :: collect_rough_sphere
@@ -716,6 +716,38 @@ contains
       a(:, 3) = 0.0_dp
       call lu_factor(4, a, ipiv, info)
       call check(error, info, 3, "lu_factor on a zero third column: info")
+      if (allocated(error)) return
+      call check_against_dgetf2(36, error)
+      if (allocated(error)) return
+      call check_against_dgetf2(37, error)
    end subroutine test_dense_lu
+
+   !> lu_factor (two columns a sweep) against the reference LAPACK's dgetf2 on an n x n
+   !> matrix of deterministic pseudo-random entries in [-0.5, 0.5) (odd n: the last
+   !> column alone): the same pivots, and factors that differ only by the order of the
+   !> updates' roundings (seen: 1.5e-14 of the largest; 1e-12 allows growth). (Not
+   !> sin(7 i + c): 7 rad is near 2 pi, so its rows nearly repeat, and pivots of nearly
+   !> equal size change places with a rounding.)
+   subroutine check_against_dgetf2(n, error)
+      integer, intent(in) :: n
+      type(error_type), allocatable, intent(out) :: error
+      real(dp) :: a(n, n), ref(n, n)
+      integer :: ipiv(n), ipiv_ref(n), info, info_ref, i, j
+      do j = 1, n
+         do i = 1, n
+            a(i, j) = modulo(real(7919*i*i + 104729*j + 613*i*j, dp) &
+               & *0.6180339887498949_dp, 1.0_dp) - 0.5_dp
+         end do
+      end do
+      ref = a
+      call lu_factor(n, a, ipiv, info)
+      call dgetf2(n, n, ref, n, ipiv_ref, info_ref)
+      call check(error, info == 0 .and. info_ref == 0, "lu_factor against dgetf2: info")
+      if (allocated(error)) return
+      call check(error, all(ipiv == ipiv_ref), "lu_factor against dgetf2: pivots differ")
+      if (allocated(error)) return
+      call check(error, maxval(abs(a - ref)) <= 1.0e-12_dp*maxval(abs(ref)), &
+         & "lu_factor against dgetf2: factors differ by more than 1e-12")
+   end subroutine check_against_dgetf2
 
 end module test_rough_sphere

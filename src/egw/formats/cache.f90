@@ -41,8 +41,10 @@ module egw_cache
    !> cap's residual overlap where the cap acts; 13: histories at sigma/delta_y <= 1e-6 by
    !> the asymptotic route where their loading fails or its check replaces it; 14: that
    !> route's wide histories at rel_tol <= 1e-6 and its unloading one order further near
-   !> the residual overlap).
-   integer, parameter, public :: cache_revision = 14
+   !> the residual overlap; 15: unloading solves' locating solve warm-started from the
+   !> curve's last solve, lu_factor's rank-2 updates and the Jacobian's columns in one
+   !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m)).
+   integer, parameter, public :: cache_revision = 15
 
 
 contains

@@ -32,6 +32,7 @@ module egw_halfspace
 
    public :: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index
    public :: influence_row, assemble_influence, interpolate_nodal, halfspace_kernel
+   public :: influence_cache, assemble_influence_cached
    public :: gauss_legendre
 
    !> Points of the plain rule on near pieces and of the log-product rule. Max error on the
@@ -75,6 +76,29 @@ module egw_halfspace
       !> log_lw: weights with sum log_lw f(x) = int_0^1 f(x) ln(x) dx for degree < n_log.
       real(dp), allocatable :: log_lw(:)
    end type radial_mesh
+
+   !> Meshes an influence_cache keeps, and the largest matrix it keeps (entries; 16 MB).
+   integer, parameter :: cache_meshes = 3, cache_max_entries = 2*1024*1024
+
+   !> One mesh's influence matrix as assemble_influence_cached stored it.
+   type :: cached_matrix
+      real(dp), allocatable :: edge(:)       !< (0:n_elem) its element edges
+      real(dp), allocatable :: node(:)       !< its deflection nodes
+      !> (n_elem*n_gauss, nodes): the matrix transposed, a node's row contiguous
+      real(dp), allocatable :: rows(:, :)
+   end type cached_matrix
+
+   !> The influence matrices of the last few meshes of one caller (one solve's levels),
+   !> for assemble_influence_cached. A coefficient depends only on the node's radius and
+   !> the element's two edges (and the rules, fixed by n_gauss), so a mesh that shares
+   !> nodes and elements with a stored one takes those coefficients from it: the same
+   !> numbers, computed the same way. Owned by one caller (a local of the solve): no
+   !> sharing between threads.
+   type :: influence_cache
+      integer :: last = 0   !< the slot stored last (0: none)
+      integer :: n_gauss = 0
+      type(cached_matrix) :: slot(cache_meshes)
+   end type influence_cache
 
 contains
 
@@ -255,10 +279,12 @@ contains
    end function halfspace_kernel
 
    !> Influence row at radius r >= 0: w(r) = sum_i row(i) p(gauss_r(i)) (E = 1).
-   pure subroutine influence_row(mesh, r, row)
+   pure subroutine influence_row(mesh, r, row, known)
       type(radial_mesh), intent(in) :: mesh
       real(dp), intent(in) :: r
-      real(dp), intent(out) :: row(:)   !< size n_elem*n_gauss
+      real(dp), intent(inout) :: row(:)   !< size n_elem*n_gauss
+      !> elements whose coefficients row holds already (left as they are)
+      logical, intent(in), optional :: known(:)
       integer :: e, i0, first_far
       real(dp) :: x0, x1, dist
       type(point_batch) :: pts
@@ -267,6 +293,15 @@ contains
       ! (far_kernel_run), which the compiler vectorizes, log included.
       first_far = 0
       do e = 1, mesh%n_elem
+         if (present(known)) then
+            if (known(e)) then
+               i0 = (e - 1)*mesh%n_gauss
+               if (first_far > 0) call far_kernel_run(mesh%gauss_r(first_far:i0), &
+                  & mesh%gauss_w(first_far:i0), r, row(first_far:i0))
+               first_far = 0
+               cycle
+            end if
+         end if
          x0 = mesh%edge(e - 1)
          x1 = mesh%edge(e)
          i0 = (e - 1)*mesh%n_gauss
@@ -583,6 +618,134 @@ contains
       end if
       infl = transpose(rows)
    end subroutine assemble_influence
+
+   !> assemble_influence at the mesh's own nodes (infl(i, :) the row of mesh%node(i)),
+   !> with the coefficients of every (node, element) pair that a mesh in cache has too
+   !> (the same node radius, the same two edges) taken from it; then the mesh is stored
+   !> in the cache in place of the oldest (not a matrix of more than cache_max_entries).
+   !> Levels of a solve share elements and nodes where edges are fixed (r = 0, kinks,
+   !> layers, the inner part when only the outer radius grows); a kink relocation or a
+   !> bisection check keeps most of its mesh.
+   subroutine assemble_influence_cached(mesh, infl, n_threads, cache, stat)
+      type(radial_mesh), intent(in) :: mesh
+      real(dp), intent(out) :: infl(:, :)   !< (nodes, n_elem*n_gauss)
+      integer, intent(in) :: n_threads
+      type(influence_cache), intent(inout) :: cache
+      integer, intent(out), optional :: stat
+      integer :: i, j, k, e, c, ng, n, threads, ios, slot
+      integer, allocatable :: node_at(:, :), elem_at(:, :), row_slot(:)
+      real(dp), allocatable :: rows(:, :)
+      logical, allocatable :: known(:, :)
+      logical :: shares(cache_meshes)
+      n = size(mesh%node)
+      ng = mesh%n_gauss
+      if (cache%n_gauss /= ng) then
+         cache%last = 0
+         do j = 1, cache_meshes
+            if (allocated(cache%slot(j)%edge)) deallocate (cache%slot(j)%edge, &
+               & cache%slot(j)%node, cache%slot(j)%rows)
+         end do
+         cache%n_gauss = ng
+      end if
+      allocate (rows(mesh%n_elem*ng, n), node_at(n, cache_meshes), &
+         & elem_at(mesh%n_elem, cache_meshes), row_slot(n), known(mesh%n_elem, n), stat=ios)
+      if (present(stat)) stat = ios
+      if (ios /= 0) return
+      node_at = 0
+      elem_at = 0
+      shares = .false.
+      do j = 1, cache_meshes
+         if (.not. allocated(cache%slot(j)%edge)) cycle
+         call match_elements(mesh%edge, cache%slot(j)%edge, elem_at(:, j))
+         shares(j) = any(elem_at(:, j) > 0)
+         if (shares(j)) call match_sorted(mesh%node, cache%slot(j)%node, node_at(:, j))
+      end do
+      ! each row from the most recent mesh that has its node (and shares elements)
+      row_slot = 0
+      known = .false.
+      do i = 1, n
+         do k = 0, cache_meshes - 1
+            slot = modulo(cache%last - 1 - k, cache_meshes) + 1
+            if (node_at(i, slot) > 0 .and. shares(slot)) then
+               row_slot(i) = slot
+               exit
+            end if
+         end do
+         if (row_slot(i) == 0) cycle
+         slot = row_slot(i)
+         do e = 1, mesh%n_elem
+            c = elem_at(e, slot)
+            if (c == 0) cycle
+            known(e, i) = .true.
+            rows((e - 1)*ng + 1:e*ng, i) = cache%slot(slot)%rows((c - 1)*ng + 1:c*ng, &
+               & node_at(i, slot))
+         end do
+      end do
+      threads = n_threads
+      !$ threads = min(n_threads, omp_get_num_procs())
+      if (threads > 0) then
+         !$omp parallel do schedule(dynamic, 4) num_threads(threads)
+         do i = 1, n
+            call row_of(i)
+         end do
+         !$omp end parallel do
+      else
+         !$omp parallel do schedule(dynamic, 4)
+         do i = 1, n
+            call row_of(i)
+         end do
+         !$omp end parallel do
+      end if
+      infl = transpose(rows)
+      if (size(infl, kind=8) > int(cache_max_entries, 8)) return
+      slot = modulo(cache%last, cache_meshes) + 1
+      cache%slot(slot)%edge = mesh%edge
+      cache%slot(slot)%node = mesh%node
+      call move_alloc(rows, cache%slot(slot)%rows)
+      cache%last = slot
+   contains
+      subroutine row_of(i)
+         integer, intent(in) :: i
+         if (row_slot(i) > 0) then
+            call influence_row(mesh, mesh%node(i), rows(:, i), known(:, i))
+         else
+            call influence_row(mesh, mesh%node(i), rows(:, i))
+         end if
+      end subroutine row_of
+   end subroutine assemble_influence_cached
+
+   !> at(i) = k where b(k) == a(i) exactly, else 0 (a and b increasing).
+   pure subroutine match_sorted(a, b, at)
+      real(dp), intent(in) :: a(:), b(:)
+      integer, intent(out) :: at(:)
+      integer :: i, k
+      at = 0
+      k = 1
+      do i = 1, size(a)
+         do while (k <= size(b))
+            if (b(k) >= a(i)) exit
+            k = k + 1
+         end do
+         if (k > size(b)) exit
+         if (b(k) == a(i)) at(i) = k
+      end do
+   end subroutine match_sorted
+
+   !> at(e) = c where element c of the edges b(0:) ([b(c - 1), b(c)]) is element e of
+   !> a(0:) (both edges exactly equal), else 0.
+   pure subroutine match_elements(a, b, at)
+      real(dp), intent(in) :: a(0:), b(0:)
+      integer, intent(out) :: at(:)
+      integer :: edge_at(0:size(a) - 1), e
+      call match_sorted(a, b, edge_at)
+      at = 0
+      do e = 1, size(a) - 1
+         if (edge_at(e - 1) > 0 .and. edge_at(e) > 0) then
+            ! (positions in b counted from 1: b(edge_at(e) - 1) is a(e))
+            if (edge_at(e) == edge_at(e - 1) + 1) at(e) = edge_at(e) - 1
+         end if
+      end do
+   end subroutine match_elements
 
    !> Value at r of the continuous piecewise-Lagrange field with nodal values v; r beyond
    !> the mesh takes the last element's polynomial (callers keep r inside).

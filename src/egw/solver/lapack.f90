@@ -47,40 +47,69 @@ contains
 
    !> LU factorisation with partial pivoting of the n x n matrix a (in place, unit lower
    !> and upper factors, row k swapped with row ipiv(k)), as dgetf2: info = k > 0 when
-   !> the k-th pivot is exactly zero (the factorisation stops there), else 0.
+   !> the k-th pivot is exactly zero (the factorisation stops there), else 0. The same
+   !> pivots and operations as dgetf2 but for the order of the trailing updates: two
+   !> columns are eliminated per sweep of the trailing matrix (a rank-2 update), which
+   !> halves the passes over it (the solver's n ~ 100-400 fit in L2 and the rank-1
+   !> sweeps were bound by its bandwidth).
    pure subroutine lu_factor(n, a, ipiv, info)
       integer, intent(in) :: n
       real(dp), intent(inout) :: a(n, n)
       integer, intent(out) :: ipiv(n)
       integer, intent(out) :: info
-      integer :: k, j, p
-      real(dp) :: swap(n), pivot_inv, akj
+      integer :: k, j
+      real(dp) :: u1, u2
       info = 0
-      do k = 1, n
-         p = k - 1 + maxloc(abs(a(k:n, k)), 1)
-         ipiv(k) = p
-         if (a(p, k) == 0.0_dp) then
-            info = k
-            return
-         end if
-         if (p /= k) then
-            swap = a(k, :)
-            a(k, :) = a(p, :)
-            a(p, :) = swap
-         end if
-         if (k == n) exit
-         if (abs(a(k, k)) >= tiny(1.0_dp)) then
-            pivot_inv = 1.0_dp/a(k, k)
-            a(k + 1:n, k) = pivot_inv*a(k + 1:n, k)
-         else
-            a(k + 1:n, k) = a(k + 1:n, k)/a(k, k)
-         end if
-         do j = k + 1, n
-            akj = -a(k, j)
-            if (akj /= 0.0_dp) a(k + 1:n, j) = a(k + 1:n, j) + akj*a(k + 1:n, k)
+      k = 1
+      do while (k <= n)
+         call pivot_column(n, a, k, ipiv, info)
+         if (info /= 0 .or. k == n) return
+         ! column k + 1 updated with column k alone, then its own pivot
+         u1 = a(k, k + 1)
+         if (u1 /= 0.0_dp) a(k + 1:n, k + 1) = a(k + 1:n, k + 1) - u1*a(k + 1:n, k)
+         call pivot_column(n, a, k + 1, ipiv, info)
+         if (info /= 0) return
+         ! the columns beyond: rows k + 1 of U, then the rank-2 update below
+         do j = k + 2, n
+            u1 = a(k, j)
+            u2 = a(k + 1, j) - a(k + 1, k)*u1
+            a(k + 1, j) = u2
+            if (u1 /= 0.0_dp .or. u2 /= 0.0_dp) a(k + 2:n, j) = a(k + 2:n, j) &
+               & - (u1*a(k + 2:n, k) + u2*a(k + 2:n, k + 1))
          end do
+         k = k + 2
       end do
    end subroutine lu_factor
+
+   !> lu_factor's step at column c: its pivot (rows c..n, ipiv(c)), the rows swapped
+   !> across the whole matrix, the multipliers below it; info = c on an exactly zero
+   !> pivot.
+   pure subroutine pivot_column(n, a, c, ipiv, info)
+      integer, intent(in) :: n, c
+      real(dp), intent(inout) :: a(n, n)
+      integer, intent(inout) :: ipiv(n)
+      integer, intent(inout) :: info
+      integer :: p
+      real(dp) :: swap(n), pivot_inv
+      p = c - 1 + maxloc(abs(a(c:n, c)), 1)
+      ipiv(c) = p
+      if (a(p, c) == 0.0_dp) then
+         info = c
+         return
+      end if
+      if (p /= c) then
+         swap = a(c, :)
+         a(c, :) = a(p, :)
+         a(p, :) = swap
+      end if
+      if (c == n) return
+      if (abs(a(c, c)) >= tiny(1.0_dp)) then
+         pivot_inv = 1.0_dp/a(c, c)
+         a(c + 1:n, c) = pivot_inv*a(c + 1:n, c)
+      else
+         a(c + 1:n, c) = a(c + 1:n, c)/a(c, c)
+      end if
+   end subroutine pivot_column
 
    !> Solve A x = b with the factors of lu_factor (b overwritten by x).
    pure subroutine lu_solve(n, a, ipiv, b)

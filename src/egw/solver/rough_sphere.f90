@@ -56,6 +56,7 @@ module egw_rough_sphere
 
    public :: validate_options, solve_contact, solve_contact_law, contact_profile
    public :: load_history, solve_unload, solve_contact_unload, unload_profile
+   public :: unload_start
    public :: above_first_yield, cap_solve_options
 
    !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
@@ -129,6 +130,17 @@ module egw_rough_sphere
       type(separation_field), private :: wide(2, 2)
       type(cap_history), private :: wide_cap
    end type loading_history
+
+   !> The start of the next unloading solve of one history (solve_unload's start): the
+   !> rough deflection of that history's last converged discrete unloading solve, which
+   !> starts the next one's locating solve (doc/theory.md section 12, "Solves of one
+   !> history"). Owned by one caller (a curve of a table build), never shared between
+   !> threads; a start of another history (another delta_max) is not used.
+   type :: unload_start
+      logical, private :: valid = .false.
+      real(dp), private :: delta_max = 0.0_dp
+      type(discrete_solution), private :: sol   !< its mesh and w only
+   end type unload_start
 
    !> The history solve_contact_unload loaded last on this thread, with the inputs it was
    !> loaded from: a sweep of overlaps after one delta_max (egw_solve_unload in a loop)
@@ -736,17 +748,19 @@ contains
    !> The discrete solve of a rough scaled problem (loading, or unloading when
    !> prob%closest is allocated), its stiffness, and the result in the caller's units.
    !> result is only written on success.
-   subroutine solve_rough(params, options, prob, sol, result, error)
+   subroutine solve_rough(params, options, prob, sol, result, error, warm)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       type(scaled_problem), intent(in) :: prob
       type(discrete_solution), intent(out) :: sol
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
+      !> unloading: a solution of another solve of the same history (solve_scaled's)
+      type(discrete_solution), intent(in), optional :: warm
       type(solve_result) :: res
       real(dp) :: est, force_scale, pmax
 
-      call solve_scaled(prob, options, sol, est, res%method_used, error)
+      call solve_scaled(prob, options, sol, est, res%method_used, error, warm)
       if (allocated(error)) return
       if (sol%force == 0.0_dp .and. est >= 1.0_dp) then
          ! Underflow range (tiny_force): 0 with relative error 1, as negligible().
@@ -917,11 +931,15 @@ contains
    !> as solve_contact (after a capped loading at sigma/delta_y <= 1e-6 the asymptotic
    !> route too: small_sigma_unload). history is only read: thread-safe. result untouched
    !> on error.
-   subroutine solve_unload(history, delta, result, error)
+   subroutine solve_unload(history, delta, result, error, start)
       type(loading_history), intent(in) :: history   !< from load_history (only read)
       real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
       type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      !> the caller's start for solves of this history: read (if of this history) and
+      !> replaced by this solve's deflection; the result is the same to the solve's
+      !> tolerance with or without it
+      type(unload_start), intent(inout), optional :: start
       type(scaled_problem) :: prob
       type(solve_result) :: res
       type(cap_result) :: cres
@@ -965,7 +983,7 @@ contains
             & //"loading failed or was replaced), which answers its unloading")
       else
          call rough_unload(history%params, history%options, history%closest, delta, res, &
-            & error)
+            & error, start)
       end if
       call small_sigma_unload(history, delta, res, error)
       if (.not. allocated(error)) result = res
@@ -973,20 +991,34 @@ contains
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the
    !> asymptotic route).
-   subroutine rough_unload(params, options, closest, delta, result, error)
+   subroutine rough_unload(params, options, closest, delta, result, error, start)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       type(separation_field), intent(in) :: closest   !< the history's loading field
       real(dp), intent(in) :: delta
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
+      type(unload_start), intent(inout), optional :: start   !< solve_unload's
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
+      logical :: warm
       prob = scaled(params, delta)
       allocate (prob%closest)
       prob%closest = closest
       prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
-      call solve_rough(params, options, prob, sol, result, error)
+      warm = .false.
+      if (present(start)) warm = start%valid .and. start%delta_max == closest%delta
+      if (warm) then
+         call solve_rough(params, options, prob, sol, result, error, start%sol)
+      else
+         call solve_rough(params, options, prob, sol, result, error)
+      end if
+      if (allocated(error) .or. .not. present(start)) return
+      if (.not. allocated(sol%w)) return
+      start%valid = .true.
+      start%delta_max = closest%delta
+      start%sol%mesh = sol%mesh
+      call move_alloc(sol%w, start%sol%w)
    end subroutine rough_unload
 
    !> One unloading solve from scratch: load to delta_max, then solve_unload at delta

@@ -10,6 +10,7 @@ module egw_sphere_iteration
       & egw_out_of_memory, fatal_error, format_real, int_str
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure
    use egw_halfspace, only: build_mesh, mesh_nodes, node_index, assemble_influence, &
+      & influence_cache, assemble_influence_cached, &
       & interpolate_nodal
    use egw_lapack, only: lu_factor, lu_solve
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
@@ -29,7 +30,7 @@ contains
 
    !> Build the mesh on edges, assemble, and solve the discrete equations; then the force,
    !> its delta-derivative (implicit differentiation), moments and the tail estimate.
-   subroutine solve_mesh(prob, options, method, edges, sol, error, guess)
+   subroutine solve_mesh(prob, options, method, edges, sol, error, guess, cache)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -37,6 +38,8 @@ contains
       type(discrete_solution), intent(out) :: sol
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
+      !> influence matrices of the caller's earlier meshes: shared coefficients reused
+      type(influence_cache), intent(inout), optional :: cache
       integer :: n, ng, max_iter, i, stat
       real(dp) :: kappa, rn
 
@@ -51,8 +54,15 @@ contains
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
       allocate (sol%infl(n, ng), stat=stat)
-      if (stat == 0) call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, &
-         & options%n_threads, stat)
+      if (stat == 0) then
+         if (present(cache)) then
+            call assemble_influence_cached(sol%mesh, sol%infl, options%n_threads, cache, &
+               & stat)
+         else
+            call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads, &
+               & stat)
+         end if
+      end if
       if (stat /= 0) then
          call fatal_error(error, egw_out_of_memory, "the influence matrix of " &
             & //int_str(n)//" nodes could not be allocated")
@@ -315,22 +325,50 @@ contains
       norm = maxval(abs(res))/max(1.0_dp, maxval(abs(sol%w)))
    end subroutine residual
 
-   !> Jacobian J = I - infl diag(p') interp.
+   !> Jacobian J = I - infl diag(p') interp. A column of J (a node of element e) gets the
+   !> element's Gauss columns of infl in one pass (c(q) = p'_q interp(j, q)), not one pass
+   !> a Gauss point; points where p' = 0 (capped, floored, separated) are left out.
    pure subroutine jacobian(sol, jac)
       type(discrete_solution), intent(in) :: sol
       real(dp), intent(out) :: jac(:, :)
-      integer :: e, q, j, g, col
+      integer :: e, q, j, g0, col, n_used, used(sol%mesh%n_gauss), i
+      real(dp) :: c(sol%mesh%n_gauss), acc
       jac = 0.0_dp
       do j = 1, size(jac, 1)
          jac(j, j) = 1.0_dp
       end do
       do e = 1, sol%mesh%n_elem
+         g0 = (e - 1)*sol%mesh%n_gauss
+         n_used = 0
          do q = 1, sol%mesh%n_gauss
-            g = (e - 1)*sol%mesh%n_gauss + q
-            do j = 0, sol%mesh%degree
-               col = node_index(sol%mesh, e, j)
-               jac(:, col) = jac(:, col) - sol%infl(:, g)*(sol%dpdh(g)*sol%mesh%interp(j, q))
+            if (sol%dpdh(g0 + q) /= 0.0_dp) then
+               n_used = n_used + 1
+               used(n_used) = g0 + q
+            end if
+         end do
+         if (n_used == 0) cycle
+         do j = 0, sol%mesh%degree
+            col = node_index(sol%mesh, e, j)
+            do q = 1, n_used
+               c(q) = sol%dpdh(used(q))*sol%mesh%interp(j, used(q) - g0)
             end do
+            if (n_used == sol%mesh%n_gauss .and. n_used == 6) then
+               ! (the solver's six points: the sum unrolled, one pass over the column)
+               do i = 1, size(jac, 1)
+                  jac(i, col) = jac(i, col) - (((c(1)*sol%infl(i, g0 + 1) &
+                     & + c(2)*sol%infl(i, g0 + 2)) + (c(3)*sol%infl(i, g0 + 3) &
+                     & + c(4)*sol%infl(i, g0 + 4))) + (c(5)*sol%infl(i, g0 + 5) &
+                     & + c(6)*sol%infl(i, g0 + 6)))
+               end do
+            else
+               do i = 1, size(jac, 1)
+                  acc = 0.0_dp
+                  do q = 1, n_used
+                     acc = acc + c(q)*sol%infl(i, used(q))
+                  end do
+                  jac(i, col) = jac(i, col) - acc
+               end do
+            end if
          end do
       end do
    end subroutine jacobian

@@ -38,7 +38,7 @@ module egw_sphere_solver
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
    use egw_unloading, only: unloading_law_of, unloading_kinks
-   use egw_halfspace, only: graded_edges, interpolate_nodal
+   use egw_halfspace, only: graded_edges, interpolate_nodal, influence_cache
    use egw_sphere_problem, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & scaled, normal, negligible, base_gap, closest_gap, law_inverse, &
@@ -71,15 +71,18 @@ contains
    !> level's mesh (first_mesh), the first level (first_unloading_level for unloading;
    !> continuation if a cold start fails; refocus_classic_gw), then the refinement levels
    !> (refine_levels).
-   subroutine solve_scaled(problem, options, sol, est, method_used, error)
+   subroutine solve_scaled(problem, options, sol, est, method_used, error, warm)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      !> unloading: the solution of another solve of the same history (another delta),
+      !> the start of the default route's locating solve (first_unloading_level)
+      type(discrete_solution), intent(in), optional :: warm
       type(egw_error), allocatable :: guided_error
-      call solve_default(problem, options, sol, est, method_used, error)
+      call solve_default(problem, options, sol, est, method_used, error, warm)
       if (.not. allocated(error)) return
       ! Loading of an extended model with the cap that did not converge (small
       ! sigma/delta_y: the plastic zone's edge is a layer the default meshes do not
@@ -143,6 +146,7 @@ contains
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(scaled_problem) :: prob
       type(mesh_family) :: mesh
       type(discrete_solution) :: coarse
@@ -152,7 +156,7 @@ contains
       method_used = solve_method(options)
       prob%residual_tol = unload_residual_tol(prob%residual_tol, options%rel_tol)
       call first_mesh(prob, options, mesh)
-      call first_unloading_level(prob, options, method_used, mesh, coarse, error)
+      call first_unloading_level(prob, options, method_used, mesh, coarse, error, cache=cache)
       if (allocated(error)) return
       ! only where the innermost kink edge is a central disc's well inside the Hertz edge
       ! (elsewhere, e.g. mid-unloading at 0.67 delta_max, the route would only repeat the
@@ -166,7 +170,7 @@ contains
          return
       end if
       call refine_levels(prob, options, method_used, unload_order, mesh, coarse, sol, est, &
-         & error)
+         & error, cache=cache)
    end subroutine disc_cap_unload
 
    !> Unloading after a capped loading (sums_total), the history-edges route, taken only
@@ -207,6 +211,7 @@ contains
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(discrete_solution) :: coarse, start
       type(scaled_problem) :: prob, at_max
       type(mesh_family) :: mesh
@@ -228,10 +233,11 @@ contains
       ! from the initial deflection of the law)
       start%mesh = prob%closest%mesh
       start%w = prob%closest%w
-      call first_unloading_level(prob, options, method_used, mesh, coarse, error, start)
+      call first_unloading_level(prob, options, method_used, mesh, coarse, error, start, &
+         & cache=cache)
       if (allocated(error)) return
       call refine_levels(prob, options, method_used, unload_order, mesh, coarse, sol, est, &
-         & error)
+         & error, cache=cache)
    end subroutine guided_cap_unload
 
    !> Loading with the cap, the guided route (doc/theory.md §12 "Rough spheres with the
@@ -249,6 +255,7 @@ contains
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(discrete_solution) :: coarse, first
       type(scaled_problem) :: prob, relocated
       type(mesh_family) :: mesh, moved_mesh
@@ -268,7 +275,7 @@ contains
          mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
       end if
       call solve_with_tail(prob, options, method_used, mesh%layered, mesh%focus, mesh%width, &
-         & mesh%step_prev, mesh%outer, coarse, error)
+         & mesh%step_prev, mesh%outer, coarse, error, cache=cache)
       if (allocated(error)) return
       ! the edge relocated onto the rough solution's own cap edge; where that solve fails
       ! (from sigma/delta_y ~ 1e-7: the edge moves by more than a layer) the smooth edge
@@ -276,7 +283,7 @@ contains
       relocated = prob
       moved_mesh = mesh
       first = coarse
-      call first_cap_level(relocated, options, method_used, moved_mesh, first, error)
+      call first_cap_level(relocated, options, method_used, moved_mesh, first, error, cache=cache)
       if (.not. allocated(error)) then
          prob = relocated
          mesh = moved_mesh
@@ -284,7 +291,7 @@ contains
       end if
       if (allocated(error)) deallocate (error)
       call refine_levels(prob, options, method_used, force_order, mesh, coarse, sol, est, &
-         & error)
+         & error, cache=cache)
    end subroutine guided_cap_solve
 
    !> The smooth cap model's plastic radius at prob's delta, in the scaled units of prob:
@@ -310,13 +317,15 @@ contains
    end subroutine smooth_cap_edge
 
    !> The levels of solve_scaled's default route (all solves but guided_cap_solve's).
-   subroutine solve_default(problem, options, sol, est, method_used, error)
+   subroutine solve_default(problem, options, sol, est, method_used, error, warm)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution), intent(in), optional :: warm   !< solve_scaled's
+      type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(discrete_solution) :: coarse
       type(scaled_problem) :: prob
       type(mesh_family) :: mesh
@@ -335,43 +344,51 @@ contains
          & unload_residual_tol(prob%residual_tol, options%rel_tol)
       call first_mesh(prob, options, mesh)
       if (allocated(prob%closest)) then
-         call first_unloading_level(prob, options, method_used, mesh, coarse, error)
+         call first_unloading_level(prob, options, method_used, mesh, coarse, error, &
+            & cache=cache, warm=warm)
       else
          call solve_with_tail(prob, options, method_used, mesh%layered, mesh%focus, &
-            & mesh%width, mesh%step_prev, mesh%outer, coarse, error)
+            & mesh%width, mesh%step_prev, mesh%outer, coarse, error, cache=cache)
       end if
       if (allocated(error)) then
          ! A cold start that fails (classic GW deep in contact is the stiff case) is retried
          ! by continuation in delta from a shallow contact.
          if (error%stat /= egw_not_converged .or. prob%delta <= 1.0_dp) return
          call continuation(prob, options, method_used, mesh%focus, mesh%width, &
-            & mesh%step_prev, mesh%outer, coarse, error)
+            & mesh%step_prev, mesh%outer, coarse, error, cache=cache)
          if (allocated(error)) return
       end if
       if (.not. prob%extended .and. prob%delta > 1.0_dp) then
-         call refocus_classic_gw(prob, options, method_used, mesh, coarse, error)
+         call refocus_classic_gw(prob, options, method_used, mesh, coarse, error, cache=cache)
          if (allocated(error)) return
       end if
       if (allocated(prob%cap) .and. .not. allocated(prob%closest)) then
-         call first_cap_level(prob, options, method_used, mesh, coarse, error)
+         call first_cap_level(prob, options, method_used, mesh, coarse, error, cache=cache)
          if (allocated(error)) return
       end if
-      call refine_levels(prob, options, method_used, order, mesh, coarse, sol, est, error)
+      call refine_levels(prob, options, method_used, order, mesh, coarse, sol, est, error, &
+         & cache=cache)
    end subroutine solve_default
 
    !> The first level of an unloading solve (doc/theory.md §8 "Sphere"): a locating solve
    !> on a coarser mesh places the element edges at the kinks of p(r) (prob%branch) and
    !> trims the mesh to where the unloading pressure has died (trim_to_unloading_decay);
    !> then the first level itself, whose kink edges are relocated (relocate_kinks).
-   subroutine first_unloading_level(prob, options, method, mesh, coarse, error, start)
+   subroutine first_unloading_level(prob, options, method, mesh, coarse, error, start, cache, &
+      & warm)
       type(scaled_problem), intent(inout) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
       type(mesh_family), intent(inout) :: mesh
       type(discrete_solution), intent(out) :: coarse
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       !> start of the locating solve (the cap's guided route; else the initial deflection)
       type(discrete_solution), intent(in), optional :: start
+      !> a solution of another solve of the same history: the locating solve's start
+      !> where start is absent (if that locating solve fails, it is solved again from
+      !> the initial deflection)
+      type(discrete_solution), intent(in), optional :: warm
       type(discrete_solution) :: first
       type(scaled_problem) :: locate
       ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
@@ -431,12 +448,27 @@ contains
       end if
       locate = prob
       locate%residual_tol = 1.0e-6_dp
-      call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
-         & 2.0_dp*mesh%step_prev, mesh%outer, first, error, start)
+      ! The locating solve from the deflection of the history's last solve (a table's
+      ! curve at the neighbouring s): the rough deflection after a capped loading is far
+      ! from the initial deflection's (the shift and offset), and Newton took 5.6
+      ! iterations from it, 3.3 from a warm start (E-GW + cap, the table of
+      ! doc/benchmarks.md "Stop 44"). Only edges and the next start come from this solve.
+      if (present(warm) .and. .not. present(start)) then
+         call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
+            & 2.0_dp*mesh%step_prev, mesh%outer, first, error, warm, cache=cache)
+         if (allocated(error)) then
+            deallocate (error)
+            call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
+               & 2.0_dp*mesh%step_prev, mesh%outer, first, error, cache=cache)
+         end if
+      else
+         call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
+            & 2.0_dp*mesh%step_prev, mesh%outer, first, error, start, cache=cache)
+      end if
       if (allocated(error)) then
          deallocate (error)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step_prev, mesh%outer, coarse, error, start)
+            & mesh%step_prev, mesh%outer, coarse, error, start, cache=cache)
          return
       end if
       ! Edges only where the pressure is not negligible: a kink where r p is below
@@ -459,7 +491,7 @@ contains
       locate%residual_tol = max(prob%residual_tol, min(1.0e-8_dp, &
          & 1.0e-2_dp*options%rel_tol))
       call solve_with_tail(locate, options, method, mesh%layered, mesh%focus, mesh%width, &
-         & mesh%step_prev, mesh%outer, coarse, error, first)
+         & mesh%step_prev, mesh%outer, coarse, error, first, cache=cache)
       ! The locating solve (twice the step, no kink edges) places the kinks 3e-4..3e-3
       ! off (psi 10 after delta_max 2: at delta 0 the edges were 2.3e-3 off, an error
       ! of 9e-7 that every level shared, so rel_tol 1e-8 was never reached and the
@@ -467,20 +499,21 @@ contains
       ! Relocated from the first level (kink edges in place, a finer mesh) and that
       ! level solved again until the offset costs less than a tenth of rel_tol.
       if (.not. allocated(error)) call relocate_kinks(prob, options, method, mesh%layered, &
-         & mesh%focus, mesh%width, mesh%step_prev, mesh%outer, coarse, error)
+         & mesh%focus, mesh%width, mesh%step_prev, mesh%outer, coarse, error, cache=cache)
    end subroutine first_unloading_level
 
    !> Loading with the cap (doc/theory.md §12 "Rough spheres with the cap"): the cap edges
    !> of the first level's solution (coarse) become element edges (prob%branch: where
    !> p_s + p reaches p_y, dp/dr jumps), the first level is solved again with them and
    !> they are relocated on it (relocate_kinks), as for the unloading's kinks.
-   subroutine first_cap_level(prob, options, method, mesh, coarse, error)
+   subroutine first_cap_level(prob, options, method, mesh, coarse, error, cache)
       type(scaled_problem), intent(inout) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
       type(mesh_family), intent(inout) :: mesh
       type(discrete_solution), intent(inout) :: coarse
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution) :: first
       real(dp) :: edge
       prob%branch = kink_radii(prob, coarse, 1.0e-4_dp*options%rel_tol, prob%n_branch)
@@ -501,22 +534,23 @@ contains
       end if
       first = coarse
       call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-         & mesh%step_prev, mesh%outer, coarse, error, first)
+         & mesh%step_prev, mesh%outer, coarse, error, first, cache=cache)
       if (.not. allocated(error)) call relocate_kinks(prob, options, method, mesh%layered, &
-         & mesh%focus, mesh%width, mesh%step_prev, mesh%outer, coarse, error)
+         & mesh%focus, mesh%width, mesh%step_prev, mesh%outer, coarse, error, cache=cache)
    end subroutine first_cap_level
 
    !> Classic GW deep in contact (doc/theory.md §5 "Useful facts", §7): with
    !> p_H(0) >> C sigma**1.5 (centre gap below -3 sigma) the solution ends in a thin layer
    !> around d = 0 whose place is only known from a solution (near, not at, the Hertz
    !> edge): the mesh family is refocused there and the first level (coarse) solved again.
-   subroutine refocus_classic_gw(prob, options, method, mesh, coarse, error)
+   subroutine refocus_classic_gw(prob, options, method, mesh, coarse, error, cache)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
       type(mesh_family), intent(inout) :: mesh
       type(discrete_solution), intent(inout) :: coarse
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution) :: first
       if (.not. law_inverse(prob, 2.0_dp*prob%a/pi) < -3.0_dp) return
       call gap_edge(coarse, mesh%focus, mesh%width)
@@ -526,7 +560,7 @@ contains
       ! delta/sigma = 100, their difference 1.5e-8), so Richardson needs one family.
       first = coarse
       call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-         & mesh%step_prev, mesh%outer, coarse, error, first)
+         & mesh%step_prev, mesh%outer, coarse, error, first, cache=cache)
    end subroutine refocus_classic_gw
 
    !> Levels of decreasing step (doc/theory.md §7 "Error control"), each warm-started from
@@ -534,7 +568,7 @@ contains
    !> estimate |P_h - P_H|/((H/h)**order - 1) of the error of P_h, plus the tail and (for
    !> unloading) the kink offsets (add_kink_error); below rel_tol/2 the level is accepted,
    !> else the next step is predicted from the estimate.
-   subroutine refine_levels(prob, options, method, order, mesh, coarse, sol, est, error)
+   subroutine refine_levels(prob, options, method, order, mesh, coarse, sol, est, error, cache)
       type(scaled_problem), intent(inout) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -544,6 +578,7 @@ contains
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       real(dp) :: total
       integer :: level
       logical :: confirm, confirming, vanished
@@ -554,7 +589,7 @@ contains
       do level = 1, 12
          ! The previous level's solution is the initial guess: 2-3 Newton steps instead of 5-8.
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step, mesh%outer, sol, error, coarse)
+            & mesh%step, mesh%outer, sol, error, coarse, cache=cache)
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          est = 0.0_dp
@@ -573,7 +608,7 @@ contains
             & mesh%step_prev/mesh%step, confirming, order) + sol%tail/total
          if (allocated(prob%branch) .and. total > 0.0_dp) then
             call add_kink_error(prob, options, method, order, confirming, mesh, coarse, sol, &
-               & total, est, vanished, error)
+               & total, est, vanished, error, cache=cache)
             if (allocated(error)) return
             if (vanished) cycle
          end if
@@ -585,7 +620,8 @@ contains
          if (est <= 0.5_dp*options%rel_tol .and. sums_total(prob) .and. .not. confirm &
             & .and. any_kept(sol, coarse)) then
             confirm = .true.
-            call bisection_check(prob, options, method, total, coarse, sol, fine, est, error)
+            call bisection_check(prob, options, method, total, coarse, sol, fine, est, error, &
+               & cache=cache)
             if (allocated(error)) return
             if (est <= 0.5_dp*options%rel_tol) then
                sol = fine
@@ -654,7 +690,7 @@ contains
    !> [0, 0.091] (E-GW, sigma = 0.059 delta_y, delta = 0.0174 delta_y after 1.297
    !> delta_y), one element at steps 0.19, 0.15 and 0.076, whose levels agreed to 6e-8
    !> while all were 8.2e-6 off (doc/theory.md section 12).
-   subroutine bisection_check(prob, options, method, total, coarse, sol, fine, est, error)
+   subroutine bisection_check(prob, options, method, total, coarse, sol, fine, est, error, cache)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -664,6 +700,7 @@ contains
       !> in: sol's estimate, kept where the halved mesh would exceed max_mesh_nodes
       real(dp), intent(inout) :: est
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       real(dp), allocatable :: edges(:)
       integer :: i, degree
       edges = [sol%mesh%edge(0)]
@@ -677,7 +714,7 @@ contains
          fine = sol
          return
       end if
-      call solve_mesh(prob, options, method, edges, fine, error, sol)
+      call solve_mesh(prob, options, method, edges, fine, error, sol, cache=cache)
       if (allocated(error)) return
       ! (what the halved elements change, which the levels' Richardson estimate of the
       ! others cannot see)
@@ -713,7 +750,7 @@ contains
    !> (coarse, sol) solved again; vanished when the force has then fallen to the underflow
    !> range (est is then left as it was).
    subroutine add_kink_error(prob, options, method, order, confirming, mesh, coarse, sol, &
-      & total, est, vanished, error)
+      & total, est, vanished, error, cache)
       type(scaled_problem), intent(inout) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -725,6 +762,7 @@ contains
       real(dp), intent(inout) :: est
       logical, intent(out) :: vanished
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       real(dp), allocatable :: moved(:)
       real(dp) :: kink_err, total_again
       integer :: n_moved
@@ -739,11 +777,11 @@ contains
          ! may not be the guess too
          guess = coarse
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step_prev, mesh%outer, coarse, error, guess)
+            & mesh%step_prev, mesh%outer, coarse, error, guess, cache=cache)
          if (allocated(error)) return
          guess = sol
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step, mesh%outer, sol, error, guess)
+            & mesh%step, mesh%outer, sol, error, guess, cache=cache)
          if (allocated(error)) return
          total_again = abs(smooth_force(prob) + sol%force)
          vanished = total_again < tiny_force
@@ -770,7 +808,7 @@ contains
    !> Continuation in delta: solve at delta/sigma = 1 from a cold start, then at delta
    !> values growing by at most a factor 4 up to prob%delta, each started from the previous
    !> solution stretched by the Hertz similarity (r ~ sqrt(delta), w ~ delta).
-   subroutine continuation(prob, options, method, focus, width, step, outer, sol, error)
+   subroutine continuation(prob, options, method, focus, width, step, outer, sol, error, cache)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -778,6 +816,7 @@ contains
       real(dp), intent(inout) :: outer
       type(discrete_solution), intent(out) :: sol
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(scaled_problem) :: stage
       type(discrete_solution) :: previous
       real(dp) :: stage_focus, stage_width, stage_outer, ratio, delta_prev
@@ -799,13 +838,13 @@ contains
          end if
          if (k == 0) then
             call solve_with_tail(stage, options, method, stage%extended, stage_focus, &
-               & stage_width, step, stage_outer, sol, error)
+               & stage_width, step, stage_outer, sol, error, cache=cache)
          else
             ratio = stage%delta/delta_prev
             previous%mesh%edge = previous%mesh%edge*sqrt(ratio)
             previous%w = previous%w*ratio
             call solve_with_tail(stage, options, method, stage%extended, stage_focus, &
-               & stage_width, step, stage_outer, sol, error, previous)
+               & stage_width, step, stage_outer, sol, error, previous, cache=cache)
          end if
          if (allocated(error)) return
          previous = sol
@@ -817,7 +856,7 @@ contains
    !> Solve on the mesh of the given step, growing the outer radius (kept for the next
    !> levels) until the force estimated beyond it is below 1 % of the tolerance.
    subroutine solve_with_tail(prob, options, method, layered, focus, width, step, outer, sol, &
-      & error, guess)
+      & error, guess, cache)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -826,6 +865,7 @@ contains
       real(dp), intent(inout) :: outer
       type(discrete_solution), intent(out) :: sol
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       real(dp) :: total, keep
       integer :: attempt, i
@@ -911,7 +951,7 @@ contains
                end do
             end if
          end if
-         call solve_mesh(prob, options, method, edges, sol, error, guess)
+         call solve_mesh(prob, options, method, edges, sol, error, guess, cache=cache)
          if (allocated(error)) return
          total = abs(smooth_force(prob) + sol%force)
          if (total > 0.0_dp) total = max(total, force_floor(prob))
@@ -927,7 +967,7 @@ contains
    !> first level): while what the edges still miss by (kink_offset_error) exceeds a tenth
    !> of rel_tol, move them and solve that level again (at most 3 times).
    subroutine relocate_kinks(prob, options, method, layered, focus, width, step, outer, sol, &
-      & error)
+      & error, cache)
       type(scaled_problem), intent(inout) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -936,6 +976,7 @@ contains
       real(dp), intent(inout) :: outer
       type(discrete_solution), intent(inout) :: sol
       type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution) :: guess
       real(dp), allocatable :: moved(:)
       real(dp) :: total
@@ -951,7 +992,7 @@ contains
          prob%n_branch = n_moved
          call move_solution(sol, guess)
          call solve_with_tail(prob, options, method, layered, focus, width, step, outer, sol, &
-            & error, guess)
+            & error, guess, cache=cache)
          if (allocated(error)) return
       end do
    end subroutine relocate_kinks

@@ -5,7 +5,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_status, only: egw_not_converged, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, model_hertz
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
-      & cap_solve_options, solve_contact
+      & unload_start, cap_solve_options, solve_contact
    use egw_cap_sphere, only: cap_history, cap_result, cap_load
    use egw_cap_loading, only: build_cap_loading
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
@@ -35,6 +35,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
       real(dp) :: c_turn = 1.0_dp   !< the solve's force at m over scale
       logical :: verified = .false. !< bisected in s to rel_tol/4 (refine_curve)
       type(loading_history) :: hist !< the loading solve at m (loaded: reused)
+      !> the deflection of the curve's last unloading solve, the next one's start
+      type(unload_start) :: start
    end type unloading_curve
 
 contains
@@ -732,6 +734,7 @@ contains
       logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
       type(loading_history) :: unloaded
+      type(unload_start) :: none
       worst = 0.0_dp
       n = size(curve%s)
       s(1:n) = curve%s
@@ -795,6 +798,7 @@ contains
       curve%slope = slope(1:n)
       curve%verified = .true.
       curve%hist = unloaded   ! (no more solves: its mesh and field freed)
+      curve%start = none
    end subroutine refine_curve
 
    !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
@@ -804,7 +808,7 @@ contains
    !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
    subroutine gap_at(table, curve, x, g, dg, error)
       type(hysteresis_table), intent(in) :: table
-      type(unloading_curve), intent(in) :: curve
+      type(unloading_curve), intent(inout) :: curve   !< (its start replaced)
       real(dp), intent(in) :: x
       real(dp), intent(out) :: g, dg
       type(egw_error), allocatable, intent(out) :: error
@@ -822,7 +826,7 @@ contains
       ! off: d - d_max is then below the error of the interpolated d_max field.)
       x_solve = x
       if (x == 0.0_dp) x_solve = 1.0e-4_dp
-      call solve_unload(curve%hist, curve%m - x_solve*curve%span, res, error)
+      call solve_unload(curve%hist, curve%m - x_solve*curve%span, res, error, curve%start)
       if (allocated(error)) return
       ! the loading force continued below its cut-off by the tail law (table_eval
       ! gives 0 there), so that the gap stays smooth across it
