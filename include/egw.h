@@ -228,7 +228,10 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * the unloading curve (fixed history); elastic summits (GW, E-GW, psi = 0) are reversible.
  * The loading solve at delta_max is done at 1e-4 of rel_tol (at least 1e-10: the
  * unloading force can be far below the loading force, and the field it was loaded with is
- * not in the unloading solve's error estimate) and kept for the next call on the same
+ * not in the unloading solve's error estimate; where that loading does not converge, it is
+ * done again at rel_tol: rough + cap at sigma/delta_y <= 1e-6, where the fallback's
+ * unloading near the residual overlap can miss rel_tol under a small estimate,
+ * doc/stability.md "Rough + cap as sigma -> 0") and kept for the next call on the same
  * thread: calls with the same p, o and delta_max (a sweep of the unloading curve) load it
  * once, one unloading solve each after the first (results identical either way; each
  * thread keeps its own, no lock). Statuses: as egw_solve, and EGW_INVALID_ARGUMENT
@@ -399,7 +402,7 @@ int egw_table_get_info(egw_table t, egw_table_info *info);
  * egw_table_eval's values on (cutoff, delta_max), except in the separated tail's ln P
  * intervals below 0: there egw_table_eval evaluates a resampling of this interpolant
  * without exp (equal pieces of a cubic in P, within 5e-2 rel_tol of it in the force
- * and rel_tol/2 in the stiffness; doc/formats.md rule 3; egw_table_get_tail gives those
+ * and rel_tol in the stiffness; doc/formats.md rule 3; egw_table_get_tail gives those
  * pieces); outside that interval use
  * egw_table_eval (0 or Hertz below, node value, deep-overlap asymptote). Statuses:
  * EGW_INVALID_ARGUMENT (capacity < n, nothing written; the message gives n),
@@ -411,19 +414,23 @@ int egw_table_get_interpolant(egw_table t, int capacity, double *nodes, double *
  * loop (beside egw_table_get_interpolant's cubics) and wants egw_table_eval's values there
  * without exp. In a rough table's separated tail [cutoff, tail_end] (its ln P intervals up
  * to the last node <= 0) egw_table_eval evaluates N equal pieces, on each a cubic Hermite in
- * P through the ln P interpolant's values and slopes at the piece's ends, within 2.5e-2
- * rel_tol of it in the force and 0.5 rel_tol in the stiffness (doc/formats.md rule 3).
+ * P through the ln P interpolant's values and slopes at the piece's ends, checked at 8
+ * points of every piece to 2.5e-2 rel_tol of it in the force and 0.5 rel_tol in the
+ * stiffness, and within 5e-2 rel_tol and rel_tol between them (doc/formats.md rule 3).
  * tables[0..n-1]: one table, or several on the same nodes (the slices of one universal
- * table, egw_universal_slice), which get one grid: the fewest pieces (16, then 20 % more
+ * table at the same sigma, by egw_universal_slice or by egw_universal_slice_range with
+ * the same delta_max: their nodes are x sigma), which get one grid: the fewest pieces (16, then 20 % more
  * at a time) on which every table's pieces meet its own rel_tol as above (where that count
  * is a table's own, its pieces are egw_table_eval's). On success *n_pieces = N, and with
  * capacity >= N: starts[0..N] (N + 1 doubles: starts[0] = cutoff, starts[N] = tail_end)
- * [length] and, for piece q of table k, the cubic in t = delta - starts[q],
- * force = (c0 + t c1) + t^2 (c2 + t c3), stiffness = (c1 + 2 t c2) + 3 t^2 c3, with
+ * [length] and, for piece q of table k, the cubic in t = delta - starts[q] with
+ * t2 = t t: force = (c0 + t c1) + t2 (c2 + t c3), stiffness = (c1 + 2 t c2) + 3 t2 c3, with
  * (c0..c3) = coeffs[4 (q n + k) .. 4 (q n + k) + 3] (4 n N doubles). The piece of delta:
  * q = min(N - 1, (int) ((delta - starts[0]) * (N / (starts[N] - starts[0])))); so
- * evaluated (same coefficients and order of operations) one table's pieces give
- * egw_table_eval's force and stiffness on starts[0] < delta < starts[N] bit for bit.
+ * evaluated (same coefficients and order of operations: 3 t2 is (3 t2), not (3 t) t;
+ * compiled without contraction into fused multiply-adds, e.g. gcc -ffp-contract=off)
+ * one table's pieces give egw_table_eval's force and stiffness on
+ * starts[0] < delta < starts[N] bit for bit.
  * capacity = 0 is a size query: only *n_pieces is written (starts, coeffs may be NULL).
  * Statuses (nothing written): EGW_NULL_POINTER (tables, a handle, n_pieces, and starts or
  * coeffs when capacity > 0); EGW_INVALID_ARGUMENT: n < 1 or n > 65535, capacity < 0 or

@@ -22,6 +22,9 @@ module test_capi_table
       integer(c_int) function c_tail() bind(C, name="egw_capi_test_table_tail")
          import :: c_int
       end function c_tail
+      integer(c_int) function c_tail_header() bind(C, name="egw_capi_test_table_tail_header")
+         import :: c_int
+      end function c_tail_header
    end interface
 
 contains
@@ -33,7 +36,8 @@ contains
          & new_unittest("files", t_files), &
          & new_unittest("universal", t_universal), &
          & new_unittest("documented plain C reader", t_plain), &
-         & new_unittest("the resampled tail's pieces (egw_table_get_tail)", t_tail) &
+         & new_unittest("the resampled tail's pieces (egw_table_get_tail)", t_tail), &
+         & new_unittest("egw_table_get_tail as egw.h words it", t_tail_header) &
          & ]
    end subroutine collect_capi_table
 
@@ -67,5 +71,10 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_tail())
    end subroutine t_tail
+
+   subroutine t_tail_header(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_tail_header())
+   end subroutine t_tail_header
 
 end module test_capi_table
