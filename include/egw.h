@@ -229,9 +229,10 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * The loading solve at delta_max is done at 1e-4 of rel_tol (at least 1e-10: the
  * unloading force can be far below the loading force, and the field it was loaded with is
  * not in the unloading solve's error estimate; where that loading does not converge, it is
- * done again at rel_tol: rough + cap at sigma/delta_y <= 1e-6, where the fallback's
- * unloading near the residual overlap can miss rel_tol under a small estimate,
- * doc/stability.md "Rough + cap as sigma -> 0") and kept for the next call on the same
+ * done again at 1e-3, then 1e-2 of rel_tol, then at rel_tol: rough + cap at sigma/delta_y
+ * <= 1e-6 needs the looser ones, and from a history at rel_tol the unloading near the
+ * residual overlap can miss rel_tol under a small estimate, doc/stability.md "Rough + cap
+ * as sigma -> 0") and kept for the next call on the same
  * thread: calls with the same p, o and delta_max (a sweep of the unloading curve) load it
  * once, one unloading solve each after the first (results identical either way; each
  * thread keeps its own, no lock). Statuses: as egw_solve, and EGW_INVALID_ARGUMENT
