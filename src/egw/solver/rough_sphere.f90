@@ -1070,7 +1070,7 @@ contains
          ! one at rel_tol: near the residual overlap a looser history's error is not small
          ! (E-GW + cap at sigma/delta_y = 1e-6 from 2 delta_y, rel_tol 1e-5, where 1e-9
          ! does not converge: from a history at rel_tol 0.15 delta_max was 8.9e-5 off under
-         ! an estimate of 4.8e-7, from one at 1e-8 within the estimate; audit8).
+         ! an estimate of 4.8e-7, from one at 1e-8 1.1e-6 off, within rel_tol; audit8).
          last_history%valid = .false.
          tight = options
          do step = 1, size(history_steps)
