@@ -305,29 +305,7 @@ contains
    !> forces, at most 0.3 (sigma/delta_y)**(2/3) = 1.4e-6 (test_tiny_sigma_history).
    subroutine test_tiny_sigma_restitution(error)
       type(error_type), allocatable, intent(out) :: error
-      type(contact_params) :: p
-      type(egw_error), allocatable :: err
-      real(dp) :: delta_y, force_y, v, e_cap, e_rough, dissipated, tol
-      call yield_units(delta_y, force_y)
-      v = 3.0_dp*first_yield_speed()
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=0.0_dp, &
-         & mu=4.0_dp, flow_pressure=py)
-      call restitution(p, solver_options(rel_tol=1.0e-4_dp), 1.0_dp, v, e_cap, dissipated, &
-         & err)
-      if (allocated(err)) then
-         call check(error, .false., "smooth cap restitution: "//err%message)
-         return
-      end if
-      p%sigma = 1.0e-8_dp*delta_y
-      call restitution(p, solver_options(rel_tol=1.0e-4_dp), 1.0_dp, v, e_rough, &
-         & dissipated, err)
-      if (allocated(err)) then
-         call check(error, .false., "sigma/delta_y = 1e-8: restitution: "//err%message)
-         return
-      end if
-      tol = 1.0e-4_dp + 3.4e-6_dp + 0.3_dp*1.0e-8_dp**(2.0_dp/3.0_dp)
-      call check(error, abs(e_rough - e_cap) <= tol*e_cap, "sigma/delta_y = 1e-8: e = " &
-         & //str(e_rough)//", smooth cap "//str(e_cap))
+      call check_restitution_near_cap([1.0e-8_dp], error)
    end subroutine test_tiny_sigma_restitution
 
    !> E-GW + cap at sigma/delta_y = 1e-6 (mu 4) from 2 delta_y (history at rel_tol 1e-7),
@@ -455,7 +433,15 @@ contains
    !> on e: 1.6e-6, -9.7e-6).
    subroutine test_small_sigma_restitution(error)
       type(error_type), allocatable, intent(out) :: error
-      real(dp), parameter :: ratios(2) = [1.0e-7_dp, 1.0e-6_dp]
+      call check_restitution_near_cap([1.0e-7_dp, 1.0e-6_dp], error)
+   end subroutine test_small_sigma_restitution
+
+   !> E-GW + cap (mu 4) restitution at 3 v_y, rel_tol 1e-4, at each sigma/delta_y of
+   !> ratios against the smooth cap's e (sigma = 0), within 1e-4 + 3.4e-6 +
+   !> 0.3 (sigma/delta_y)**(2/3) (the tests above say why).
+   subroutine check_restitution_near_cap(ratios, error)
+      real(dp), intent(in) :: ratios(:)
+      type(error_type), allocatable, intent(out) :: error
       type(contact_params) :: p
       type(egw_error), allocatable :: err
       real(dp) :: delta_y, force_y, v, e_cap, e_rough, dissipated, tol
@@ -484,7 +470,7 @@ contains
             & //str(ratios(i))//": e = "//str(e_rough)//", smooth cap "//str(e_cap))
          if (allocated(error)) return
       end do
-   end subroutine test_small_sigma_restitution
+   end subroutine check_restitution_near_cap
 
    function str(x) result(s)
       real(dp), intent(in) :: x

@@ -222,6 +222,11 @@ struct EgwLaw {
    * status; otherwise -1 (nothing changed): call eval */
   inline int eval_hist_fast(double delta, double R, double *hist, EgwMemo *memo, double &F,
                             double &S) const;
+  /* the one-table EP-GW step of eval_fast and eval_hist_fast: egw_law_hyst_eval on state
+   * (refill: a cache beside the history, else the state in the history), *dmax from it,
+   * F and S */
+  inline int hyst_step(double delta, double R, double *dmax, double *state, bool refill,
+                       double &F, double &S) const;
   /* the same with the states in hist itself (at EgwHistory::HYST_A: wall/egw's layout),
    * where they are the history (all zeros: a new contact) */
   int eval(double delta, double R, double *hist, double &F, double &S, double &U,
@@ -372,14 +377,9 @@ inline int EgwLaw::eval_fast(double delta, double R, double *hist, double *cache
   if (kind != HYST) return eval_tables(delta, R, memo, F, S) ? EGW_OK : -1;
   // eval's HYST steps without energy for a cache that holds the history (a refill of the
   // state's turning point or piece, ~1/3 of the drum's evaluations, skips normal() too)
-  double *dmax = &hist[EgwHistory::DELTA_MAX], p, dp;
+  double *dmax = &hist[EgwHistory::DELTA_MAX];
   if (!cache || !(cache[0] == *dmax)) return -1;
-  int st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], delta * inv_sigma, *dmax,
-                             cache, p, dp, true);
-  *dmax = cache[0];
-  double sr = E_star * std::sqrt(R);
-  F = sr * s15 * p, S = sr * s05 * dp;
-  return st;
+  return hyst_step(delta, R, dmax, cache, true, F, S);
 }
 
 #if defined(__GNUC__)
@@ -390,9 +390,19 @@ inline int EgwLaw::eval_hist_fast(double delta, double R, double *hist, EgwMemo 
 {
   if (kind != HYST) return eval_tables(delta, R, memo, F, S) ? EGW_OK : -1;
   // eval's HYST steps with states_are_history and without energy
-  double *dmax = &hist[EgwHistory::DELTA_MAX], *state = hist + EgwHistory::HYST_A, p, dp;
+  return hyst_step(delta, R, &hist[EgwHistory::DELTA_MAX], hist + EgwHistory::HYST_A, false,
+                   F, S);
+}
+
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline int EgwLaw::hyst_step(double delta, double R, double *dmax, double *state, bool refill,
+                             double &F, double &S) const
+{
+  double p, dp;
   int st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], delta * inv_sigma, *dmax,
-                             state, p, dp, false);
+                             state, p, dp, refill);
   *dmax = state[0];
   double sr = E_star * std::sqrt(R);
   F = sr * s15 * p, S = sr * s05 * dp;
