@@ -430,7 +430,7 @@ contains
       type(contact_params) :: p
       type(egw_error), allocatable :: err
       real(dp) :: state(hysteresis_state_size), copy(hysteresis_state_size), plain, d, &
-         & f, k, f2, k2, m, w(4), inv_span, f_m
+         & f, k, f2, k2, m, w(4), inv_span, f_m, knee
       integer :: i, step, stat, stat2, mismatches, first
       call build(ep, t, error)
       if (allocated(error)) return
@@ -471,7 +471,7 @@ contains
          call hysteresis_eval_state(t, m - 1.0e-3_dp, state, f, k, stat)
          call hysteresis_eval_state(t, m, state, f, k, stat)
          call hysteresis_eval_state(t, m - 1.0e-4_dp, state, f, k, stat)
-         call turning_point(t, m, first, w, inv_span, f_m)
+         call turning_point(t, m, first, w, inv_span, f_m, knee)
          if (.not. (state(2) == m .and. int(state(4)) == first .and. state(5) == inv_span &
             & .and. state(6) == f_m .and. all(state(7:10) == w))) mismatches = mismatches + 1
       end do

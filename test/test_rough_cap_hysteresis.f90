@@ -41,7 +41,7 @@ contains
          & new_unittest("E-GW + cap: table within 2 rel_tol of unloading solves", &
          & test_solves), &
          & new_unittest("E-GW + cap: cycle energy = quadrature of solves", test_cycle), &
-         & new_unittest("binary and CSV round trip (version 2, sigma kept)", test_formats), &
+         & new_unittest("binary and CSV round trip (version 4, sigma kept)", test_formats), &
          & new_unittest("refused: flat law, beyond 1000 delta_y, bad p_y", test_refused), &
          & new_unittest("DEM loop on the table: e = restitution to 1e-3", test_dem_loop), &
          & new_unittest("E-GW + cap at 1e-3: the knee within rel_tol/2 of solves", &
@@ -245,7 +245,8 @@ contains
          & ", quadrature 12 vs 24 panels ", abs(loop(2) - loop(1))/w_load
    end subroutine test_cycle
 
-   !> Written and read back (binary: version 2 with flow_pressure; CSV: format 2) the
+   !> Written and read back (binary: version 4, the two-piece s map's, with flow_pressure,
+   !> tail_length and the knees; CSV: format 4) the
    !> table keeps sigma, mu and p_y and evaluates bit for bit as built: on loading, below
    !> turning points between and at nodes, and below its first turning point (the rough
    !> first yield, which a reader takes from the file's first delta_max node).
@@ -290,7 +291,7 @@ contains
       open (newunit=u, file=names(1), access="stream", form="unformatted", status="old")
       read (u) magic, version
       close (u)
-      call check(error, magic == "EGWHYST1" .and. version == 2, "binary version")
+      call check(error, magic == "EGWHYST1" .and. version == 4, "binary version")
    end subroutine test_formats
 
    !> What is still refused, naming the parameter: a flat law (model_flat_law: a

@@ -16,6 +16,7 @@ module egw_hysteresis_format
    use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
       & get_f64, split_checksum, checksum_line, check_table
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare, first_yield, hertz_capped
+   use egw_hysteresis_data, only: s_knee, s_zero, map_piece
    implicit none
    private
 
@@ -25,8 +26,11 @@ module egw_hysteresis_format
    !> Version 1: no flow-pressure cap; version 2 (the cap, params%flow_pressure > 0: Hertz
    !> + cap, or a rough model + cap, told apart by model and sigma as the evaluation does):
    !> flow_pressure follows the seven parameters (one float64 more in the header). Tables
-   !> without the cap are still written as version 1, byte for byte as before.
-   integer(int32), parameter :: hysteresis_version = 1, cap_version = 2
+   !> without the cap are still written as version 1, byte for byte as before. Version 4
+   !> (a rough model + cap with the two-piece s map, table%mapped): as version 2, then
+   !> tail_length after flow_pressure, and each curve's knee after the lengths; version 2
+   !> files of rough models + cap are read with their linear map, as written.
+   integer(int32), parameter :: hysteresis_version = 1, cap_version = 2, mapped_version = 4
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
    !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
@@ -35,6 +39,8 @@ module egw_hysteresis_format
    !> The title of a Hertz + cap table (a flow_pressure line): an egw that knows only
    !> format 1 refuses it rather than read it without the cap.
    character(len=*), parameter :: csv_title_cap = "# egw hysteresis table, CSV format 2"
+   !> The title of a table with the two-piece s map (tail_length and knee lines).
+   character(len=*), parameter :: csv_title_mapped = "# egw hysteresis table, CSV format 4"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
 
@@ -47,6 +53,8 @@ module egw_hysteresis_format
       integer :: k_load = 0, k_row = 0
       real(dp) :: p(7) = -huge(1.0_dp), lmeta(7) = -huge(1.0_dp)
       real(dp) :: flow_pressure = 0.0_dp   !< format 2 only
+      integer :: format = 1                !< the CSV title's format
+      integer :: k_knee = 0                !< knee lines read (format 4)
       real(dp) :: v(5)
    end type csv_reading
 
@@ -88,7 +96,8 @@ contains
       if (starts_with(bytes, magic)) then
          call parse_binary(path, bytes, table, error)
       else if (starts_with(bytes, csv_columns//new_line("a")//csv_title) .or. &
-         & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap)) then
+         & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap) .or. &
+         & starts_with(bytes, csv_columns//new_line("a")//csv_title_mapped)) then
          call parse_csv(path, bytes, table, error)
       else
          call fatal_error(error, egw_bad_file, "path = "//path//": not an egw hysteresis "// &
@@ -123,6 +132,10 @@ contains
          version = cap_version
          extra = 8
       end if
+      if (table%mapped .and. .not. table%reversible) then
+         version = mapped_version
+         extra = 16 + 8*n_m
+      end if
       allocate (character(len=header_bytes + extra + 8*(5*n_load + 2*n_m + n_s + &
          & 2*n_m*n_s) + 4) :: buf)
       buf(1:8) = magic
@@ -132,7 +145,8 @@ contains
          & merge(1_int32, 0_int32, table%reversible), int(n_load, int32), &
          & int(table%loading%n_log, int32), int(n_m, int32), int(n_s, int32)])
       call put_f64(buf, pos, params_array(table%params))
-      if (version == cap_version) call put_f64(buf, pos, [table%params%flow_pressure])
+      if (version /= hysteresis_version) call put_f64(buf, pos, [table%params%flow_pressure])
+      if (version == mapped_version) call put_f64(buf, pos, [table%tail_length])
       call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
       call put_f64(buf, pos, table_meta(table%loading))
       call put_f64(buf, pos, table%loading%delta)
@@ -143,6 +157,7 @@ contains
       if (.not. table%reversible) then
          call put_f64(buf, pos, table%m)
          call put_f64(buf, pos, table%length)
+         if (version == mapped_version) call put_f64(buf, pos, table%knee)
          call put_f64(buf, pos, table%s)
          call put_f64(buf, pos, reshape(table%gap, [n_m*n_s]))
          call put_f64(buf, pos, reshape(table%slope, [n_m*n_s]))
@@ -159,7 +174,7 @@ contains
       integer(int32) :: head(9), stored(1)
       integer(int64) :: expected
       integer :: pos, n_load, n_m, n_s, extra
-      real(dp) :: p(7), meta(4), lmeta(7), flow(1)
+      real(dp) :: p(7), meta(4), lmeta(7), flow(1), tail(1)
       if (len(bytes) < header_bytes + 4) then
          call bad(error, path, "truncated: "//int_str(len(bytes))//" bytes")
          return
@@ -177,10 +192,11 @@ contains
             & "endianness, or corrupted")
          return
       end if
-      if (head(1) /= hysteresis_version .and. head(1) /= cap_version) then
+      if (head(1) /= hysteresis_version .and. head(1) /= cap_version .and. &
+         & head(1) /= mapped_version) then
          call bad(error, path, "format version "//int_str(int(head(1)))//" is not "// &
             & "supported (this egw reads versions "//int_str(int(hysteresis_version))// &
-            & " and "//int_str(int(cap_version))//")")
+            & ", "//int_str(int(cap_version))//" and "//int_str(int(mapped_version))//")")
          return
       end if
       extra = 0
@@ -188,6 +204,7 @@ contains
       n_load = head(6)
       n_m = head(8)
       n_s = head(9)
+      if (head(1) == mapped_version) extra = 16 + 8*max(min(n_m, max_rows), 0)
       if (n_load < 2 .or. n_load > max_rows .or. n_m < 0 .or. n_m > max_rows .or. &
          & n_s < 0 .or. n_s > max_rows) then
          call bad(error, path, "node counts out of range")
@@ -202,16 +219,21 @@ contains
       end if
       call get_f64(bytes, pos, p)
       flow = 0.0_dp
+      tail = 0.0_dp
       if (extra > 0) call get_f64(bytes, pos, flow)
+      if (head(1) == mapped_version) call get_f64(bytes, pos, tail)
       call get_f64(bytes, pos, meta)
       call get_f64(bytes, pos, lmeta)
       table%params = params_from(int(head(4)), p)
       table%params%flow_pressure = flow(1)
-      if (head(1) == cap_version .and. .not. flow(1) > 0.0_dp) then
-         call bad(error, path, "format version 2 with flow_pressure = "// &
-            & format_real(flow(1))//" (version 2 is the flow-pressure cap's, > 0)")
+      if (head(1) /= hysteresis_version .and. .not. flow(1) > 0.0_dp) then
+         call bad(error, path, "format version "//int_str(int(head(1)))// &
+            & " with flow_pressure = "//format_real(flow(1))//" (versions 2 and 4 are "// &
+            & "the flow-pressure cap's, > 0)")
          return
       end if
+      table%mapped = head(1) == mapped_version
+      table%tail_length = tail(1)
       table%reversible = head(5) /= 0
       table%rel_tol = meta(1)
       table%delta_max = meta(2)
@@ -232,6 +254,10 @@ contains
          & table%slope(n_s, n_m))
       call get_f64(bytes, pos, table%m)
       call get_f64(bytes, pos, table%length)
+      if (table%mapped) then
+         allocate (table%knee(n_m))
+         call get_f64(bytes, pos, table%knee)
+      end if
       call get_f64(bytes, pos, table%s)
       call get_matrix(bytes, pos, table%gap)
       call get_matrix(bytes, pos, table%slope)
@@ -251,7 +277,10 @@ contains
          ! the column header first and the metadata as '#' lines, as the 1-D tables:
          ! pandas.read_csv(path, comment="#") reads the unloading rows as they are
          head = csv_columns//new_line("a")//merge(csv_title_cap, csv_title, &
-            & table%params%flow_pressure /= 0.0_dp)//new_line("a")// &
+            & table%params%flow_pressure /= 0.0_dp)//new_line("a")
+         if (table%mapped .and. .not. table%reversible) head = csv_columns//new_line("a")// &
+            & csv_title_mapped//new_line("a")
+         head = head// &
             & "# egw_version = "//egw_version_string//new_line("a")// &
             & "# model = "//int_str(table%params%model)//" ("// &
             & model_name(table%params%model)//")"//new_line("a")
@@ -263,6 +292,8 @@ contains
             & [table%params%flow_pressure])
          call add_reals(head, ["rel_tol  ", "delta_max", "max_error", "s_max    "], &
             & [table%rel_tol, table%delta_max, table%max_error, table%s_max])
+         if (table%mapped .and. .not. table%reversible) call add_reals(head, &
+            & ["tail_length"], [table%tail_length])
          head = head//"# reversible = "//int_str(merge(1, 0, table%reversible))// &
             & new_line("a")//"# n_delta_max = "//int_str(n_m)//new_line("a")//"# n_s = "// &
             & int_str(n_s)//new_line("a")
@@ -279,6 +310,14 @@ contains
             & "(delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), cubic Lagrange in "// &
             & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
             & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
+         if (table%mapped .and. .not. table%reversible) then
+            head = head//new_line("a")//"# the two-piece s map: each curve's knee (in "// &
+               & "delta_max order) at s = 1/2, delta = 0 at s = 3/4, -tail_length at s = 1; "// &
+               & "dgap_ds: the first piece's (doc/formats.md)"
+            do j = 1, n_m
+               head = head//new_line("a")//"# knee = "//fmt(table%knee(j))
+            end do
+         end if
          call put_line(head)
          do i = 1, size(l%delta)
             call put_line("# loading = "//csv_row([l%delta(i), l%force(i), l%stiffness(i), &
@@ -322,6 +361,7 @@ contains
             & "written by egw)")
          return
       end if
+      if (starts_with(text, csv_columns//new_line("a")//csv_title_mapped)) reading%format = 4
       start = 1
       do while (start <= sum_at)
          eol = index(text(start:), new_line("a"))
@@ -369,6 +409,10 @@ contains
          case ("delta_max"); call get_real(value, table%delta_max, ios)
          case ("max_error"); call get_real(value, table%max_error, ios)
          case ("s_max"); call get_real(value, table%s_max, ios)
+         case ("tail_length"); call get_real(value, table%tail_length, ios)
+         case ("knee")
+            call read_knee(path, value, table, reading, ios, error)
+            if (allocated(error)) return
          case ("reversible"); read (value, *, iostat=ios) reading%rev
          case ("n_delta_max"); read (value, *, iostat=ios) reading%n_m
          case ("n_s"); read (value, *, iostat=ios) reading%n_s
@@ -398,6 +442,28 @@ contains
          return
       end if
    end subroutine read_csv_meta
+
+   !> A '# knee = ' line of format 4: the next curve's knee (ios: of its number).
+   subroutine read_knee(path, value, table, reading, ios, error)
+      character(len=*), intent(in) :: path, value
+      type(hysteresis_table), intent(inout) :: table
+      type(csv_reading), intent(inout) :: reading
+      integer, intent(out) :: ios
+      type(egw_error), allocatable, intent(out) :: error
+      ios = 0
+      if (reading%format /= 4 .or. reading%n_m < 0 .or. reading%n_m > max_rows) then
+         call bad(error, path, "line "//int_str(reading%line)//": knee before a valid "// &
+            & "n_delta_max, or outside CSV format 4")
+         return
+      end if
+      if (.not. allocated(table%knee)) allocate (table%knee(reading%n_m))
+      reading%k_knee = reading%k_knee + 1
+      if (reading%k_knee > reading%n_m) then
+         call bad(error, path, "more knee lines than n_delta_max")
+         return
+      end if
+      call get_real(value, table%knee(reading%k_knee), ios)
+   end subroutine read_knee
 
    !> A '# loading = ' line: the next node of the loading table (ios: of its numbers).
    subroutine read_loading_node(path, value, table, reading, ios, error)
@@ -492,6 +558,12 @@ contains
       table%params = params_from(reading%model, reading%p)
       table%params%flow_pressure = reading%flow_pressure
       table%reversible = reading%rev /= 0
+      table%mapped = reading%format == 4
+      if (table%mapped .and. (reading%k_knee /= size(table%m) .or. table%reversible)) then
+         call bad(error, path, "CSV format 4: "//int_str(reading%k_knee)//" knee lines, "// &
+            & "n_delta_max = "//int_str(size(table%m))//" (and a table with curves)")
+         return
+      end if
       table%loading%params = table%params
       table%loading%n_log = reading%n_log
       call set_table_meta(table%loading, reading%lmeta)
@@ -599,8 +671,38 @@ contains
          call bad(error, path, "unloading data: gap must be 0 at s = 0 and within [0, 1]")
          return
       end if
+      if (t%mapped) then
+         call check_map(path, t, error)
+         if (allocated(error)) return
+      end if
       call check_gap_slopes(path, t, error)
    end subroutine check_hysteresis
+
+   !> The two-piece map of format 4: a rough model with the cap (flow_pressure > 0, not
+   !> Hertz + cap), turning points above 0, s_max = 1, tail_length > 0, each knee in [0,
+   !> 0.99 m] and its length (m - knee)/s_knee (to rounding), the breaks s_knee and s_zero
+   !> nodes.
+   subroutine check_map(path, t, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      if (.not. (t%params%flow_pressure > 0.0_dp .and. .not. hertz_capped(t%params) .and. &
+         & t%m(1) > 0.0_dp .and. t%s_max == 1.0_dp .and. t%tail_length > 0.0_dp .and. &
+         & ieee_is_finite(t%tail_length) .and. size(t%knee) == size(t%m))) then
+         call bad(error, path, "two-piece s map (format 4): needs a rough model with the "// &
+            & "cap, turning points above 0, s_max = 1 and a finite tail_length > 0")
+         return
+      end if
+      if (.not. (all(ieee_is_finite(t%knee)) .and. all(t%knee >= 0.0_dp) .and. &
+         & all(t%knee <= 0.99_dp*t%m) .and. all(abs(t%length - (t%m - t%knee)/s_knee) <= &
+         & 1.0e-12_dp*t%length))) then
+         call bad(error, path, "two-piece s map (format 4): each knee must lie in [0, "// &
+            & "0.99 delta_max] and its length be (delta_max - knee)/s_knee")
+         return
+      end if
+      if (findloc(t%s, s_knee, 1) == 0 .or. findloc(t%s, s_zero, 1) == 0) &
+         & call bad(error, path, "two-piece s map (format 4): s = 1/2 and 3/4 must be nodes")
+   end subroutine check_map
 
    !> The gap's slopes: |dg/ds| (s_{i+1} - s_i) <= 2 at both ends of every interval of
    !> every curve, so that a curve's cubic stays within about 1 of the chord of its
@@ -612,11 +714,16 @@ contains
       type(hysteresis_table), intent(in) :: t
       type(egw_error), allocatable, intent(out) :: error
       real(dp), parameter :: rise_bound = 2.0_dp
-      real(dp) :: h
+      real(dp) :: h, scale(3)
       integer :: i, j
       do j = 1, size(t%m)
+         ! the two-piece map: dg/ds on each piece is the stored slope times its scale
+         scale = 1.0_dp
+         if (t%mapped) scale(2:3) = [t%knee(j)/(s_zero - s_knee), &
+            & t%tail_length/(1.0_dp - s_zero)]/t%length(j)
          do i = 1, size(t%s) - 1
             h = t%s(i + 1) - t%s(i)
+            h = h*scale(map_piece(t%mapped, 0.5_dp*(t%s(i) + t%s(i + 1))))
             if (max(abs(t%slope(i, j)), abs(t%slope(i + 1, j)))*h > rise_bound) then
                call bad(error, path, "unloading data: curve "//int_str(j)//", s nodes "// &
                   & int_str(i)//", "//int_str(i + 1)//": slope "// &

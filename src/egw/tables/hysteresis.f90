@@ -17,7 +17,8 @@ module egw_hysteresis
    use egw_cap_sphere, only: cap_units
    use egw_hysteresis_data, only: hysteresis_table, hysteresis_state_size, nan_error, &
       & gap_cubic, turning_point, gap_combination, unload_tail_ratio, make_lookup, &
-      & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan
+      & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan, turning_knee, map_s, &
+      & map_x, map_piece, s_knee, s_zero
    use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, &
       & energy_prepare
    implicit none
@@ -76,7 +77,7 @@ contains
       integer, intent(out) :: stat         !< 0 or an egw status
       !> allocated when stat is not 0, with a message naming the argument
       type(egw_error), allocatable, intent(out), optional :: error
-      real(dp) :: w(4), inv_span, f_m, c(4), s
+      real(dp) :: w(4), inv_span, f_m, c(4), s, knee, dsdx
       integer :: first, i
       stat = 0
       force = 0.0_dp
@@ -98,12 +99,13 @@ contains
          return
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
-      call turning_point(table, delta_max_state, first, w, inv_span, f_m)
-      s = min((delta_max_state - delta)*inv_span, 1.0_dp)
+      call turning_point(table, delta_max_state, first, w, inv_span, f_m, knee)
+      call map_s(table, delta_max_state, knee, inv_span, delta_max_state - delta, s, dsdx)
+      s = min(s, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, first, w, i, c)
-      call unload_branch(table, c, i, s, delta_max_state, f_m, inv_span, delta, force, &
-         & stiffness)
+      call unload_branch(table, c, i, s, delta_max_state, f_m, inv_span, knee, dsdx, delta, &
+         & force, stiffness)
       if (delta_max_state > table%delta_max) call beyond(table, "delta_max_state", &
          & delta_max_state, force, stiffness, stat, error)
    end subroutine hysteresis_eval
@@ -150,7 +152,7 @@ contains
       integer, intent(out) :: stat         !< 0 or an egw status
       !> allocated when stat is not 0, with a message naming the argument
       type(egw_error), allocatable, intent(out), optional :: error
-      real(dp) :: w(4), g(4), s
+      real(dp) :: w(4), g(4), s, knee, dsdx
       integer :: first, i
       logical :: found
       stat = 0
@@ -193,7 +195,8 @@ contains
       if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
          & state(4) <= size(table%m) - 3)) then
          ! (P_load of the turning point from the loading interval the state holds)
-         call turning_point(table, state(1), first, w, state(5), state(6), state(18:24))
+         call turning_point(table, state(1), first, w, state(5), state(6), knee, &
+            & state(18:24))
          state(2) = state(1)
          state(4) = real(first, dp)
          state(7:10) = w
@@ -201,16 +204,19 @@ contains
       end if
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
-      s = min((state(1) - delta)*state(5), 1.0_dp)
+      ! (the knee from the cached weights: the state has no room for it)
+      knee = turning_knee(table, first, state(7:10), state(1))
+      call map_s(table, state(1), knee, state(5), state(1) - delta, s, dsdx)
+      s = min(s, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
-      call make_piece(table, state(7:10), first, i, s, state(1), delta, state(5), state(6), &
-         & state(13), state(18:24), state(11:12), state(14:17), found)
+      call make_piece(table, state(7:10), first, i, s, state(1), delta, state(5), knee, &
+         & state(6), state(18:24), state(11:12), state(14:17), found)
       if (found) then
          call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
       else   ! (the interval's gap cubic only here: the piece has its own)
          call gap_combination(table, first, state(7:10), i, g)
-         call unload_branch(table, g, i, s, state(1), state(6), state(5), delta, force, &
-            & stiffness)
+         call unload_branch(table, g, i, s, state(1), state(6), state(5), knee, dsdx, delta, &
+            & force, stiffness)
       end if
       if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
          & stiffness, stat, error)
@@ -249,15 +255,16 @@ contains
    !> conditioned on the whole run: interval i's own coefficients, re-expanded many of its
    !> widths away, would lose digits (4.6e-11 of f_m measured on a 1e-5 table). No piece
    !> (found false, NaN ends) at the clamp s = 1 or outside the loading table's intervals.
-   pure subroutine make_piece(table, w, first, i, s, m, delta, iota, f_m, span, seg, ends, &
+   pure subroutine make_piece(table, w, first, i, s, m, delta, iota, knee, f_m, seg, ends, &
       & c, found)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: w(4), s, m, delta, iota, f_m, span
+      real(dp), intent(in) :: w(4), s, m, delta, iota, knee, f_m
       integer, intent(in) :: first, i
       real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: ends(2), c(4)
       logical, intent(out) :: found
-      real(dp) :: lo, hi, t0, alpha, d, g(4), g_a, g_b, h_a, h_b, width
+      real(dp) :: lo, hi, t0, alpha, d, g(4), g_a, g_b, h_a, h_b, width, x_a, x_b, dsdx, &
+         & scale(4)
       integer :: a, b
       logical :: inside
       ends = quiet_nan
@@ -272,19 +279,26 @@ contains
       ! the piece is open below (the cut-off itself has no force)
       a = table%run_first(first, i)
       b = table%run_last(first, i) + 1
-      lo = max(m - table%s(b)*span, seg(1), table%loading%cutoff)
-      hi = min(m - table%s(a)*span, seg(2))
+      ! (a run lies in one piece of the map: its breaks end runs, make_runs)
+      call map_x(table, m, knee, iota, table%s(a), x_a, dsdx)
+      call map_x(table, m, knee, iota, table%s(b), x_b, dsdx)
+      lo = max(m - x_b, seg(1), table%loading%cutoff)
+      hi = min(m - x_a, seg(2))
       if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
       ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' gaps and slopes
       width = table%s(b) - table%s(a)
+      scale = 1.0_dp
+      if (table%mapped) scale = table%piece_scale(map_piece(.true., 0.5_dp*(table%s(a) + &
+         & table%s(b))), first:first + 3)
       g_a = dot_product(w, table%gap(a, first:first + 3))
       g_b = dot_product(w, table%gap(b, first:first + 3))
-      h_a = width*dot_product(w, table%slope(a, first:first + 3))
-      h_b = width*dot_product(w, table%slope(b, first:first + 3))
+      h_a = width*dot_product(w, scale*table%slope(a, first:first + 3))
+      h_b = width*dot_product(w, scale*table%slope(b, first:first + 3))
       g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
-      ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo
-      t0 = ((m - lo)*iota - table%s(a))/width
-      alpha = -iota/width
+      ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo (s linear in delta on
+      ! the run: s_a + (m - delta - x_a) dsdx)
+      t0 = (m - lo - x_a)*dsdx/width
+      alpha = -dsdx/width
       c(1) = -f_m*(g(1) + t0*(g(2) + t0*(g(3) + t0*g(4))))
       c(2) = -f_m*alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
       c(3) = -f_m*alpha**2*(g(3) + 3*t0*g(4))
@@ -314,22 +328,25 @@ contains
    !> not positive. Below the curve's span (s clamped at 1, where the loading force is
    !> below rel_tol of P_ref) the unloading force keeps its ratio to the loading force at
    !> the span's end (unload_tail_ratio): the loading tail, scaled.
-   pure subroutine unload_branch(table, c, i, s, m, f_m, inv_span, delta, force, stiffness)
+   pure subroutine unload_branch(table, c, i, s, m, f_m, inv_span, knee, dsdx, delta, force, &
+      & stiffness)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: c(4), s, m, f_m, inv_span, delta
+      !> ds/ddelta = -dsdx at delta (map_s; inv_span and knee: the turning point's map)
+      real(dp), intent(in) :: c(4), s, m, f_m, inv_span, knee, dsdx, delta
       integer, intent(in) :: i
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: g, dg, f_d, k_d, ratio
+      real(dp) :: g, dg, f_d, k_d, ratio, x_1, dummy
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
       call table_eval(table%loading, delta, f_d, k_d)
       if (s >= 1.0_dp) then
-         ratio = unload_tail_ratio(table, m - 1.0_dp/inv_span, f_m, g)
+         call map_x(table, m, knee, inv_span, 1.0_dp, x_1, dummy)
+         ratio = unload_tail_ratio(table, m - x_1, f_m, g)
          force = ratio*f_d
          stiffness = ratio*k_d
          return
       end if
       force = f_d - f_m*g
-      stiffness = k_d + f_m*dg*inv_span
+      stiffness = k_d + f_m*dg*dsdx
       if (.not. force > 0.0_dp) then
          force = 0.0_dp
          stiffness = 0.0_dp
@@ -370,13 +387,26 @@ contains
       if (allocated(table%run_first)) deallocate (table%run_first)
       if (allocated(table%run_last)) deallocate (table%run_last)
       table%inv_span = 1.0_dp/(table%s_max*table%length)
+      if (allocated(table%piece_scale)) deallocate (table%piece_scale)
+      allocate (table%piece_scale(3, n_m))
+      table%piece_scale = 1.0_dp
+      if (table%mapped) then
+         ! (ds/dx of the first piece)/(ds/dx of piece p): the stored slopes are the first
+         ! piece's (map_s; knee 0: the second piece is one point, its slope 0)
+         do j = 1, n_m
+            table%piece_scale(2, j) = table%knee(j)/(s_zero - s_knee)*table%inv_span(j)
+            table%piece_scale(3, j) = table%tail_length/(1.0_dp - s_zero)*table%inv_span(j)
+         end do
+      end if
       allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))
       do i = 1, n_s - 1
          h = table%s(i + 1) - table%s(i)
          table%inv_ds(i) = 1.0_dp/h
+         k = map_piece(table%mapped, 0.5_dp*(table%s(i) + table%s(i + 1)))
          do j = 1, n_m
             associate (r0 => table%gap(i, j), r1 => table%gap(i + 1, j), &
-               & d0 => h*table%slope(i, j), d1 => h*table%slope(i + 1, j))
+               & d0 => h*table%slope(i, j)*table%piece_scale(k, j), &
+               & d1 => h*table%slope(i + 1, j)*table%piece_scale(k, j))
                table%coef(:, j, i) = [r0, d0, 3*(r1 - r0) - 2*d0 - d1, 2*(r0 - r1) + d0 + d1]
             end associate
          end do
@@ -448,6 +478,9 @@ contains
                   & abs(6*a(4)*r**3 - 6*b(4)) <= same
             end associate
          end do
+         ! the two-piece map's breaks end every run (s is linear in delta on a run)
+         if (table%mapped .and. (table%s(i) == s_knee .or. table%s(i) == s_zero)) &
+            & joined(:, i) = .false.
       end do
       allocate (table%run_first(max(n_m - 3, 1), n_s - 1), &
          & table%run_last(max(n_m - 3, 1), n_s - 1))
@@ -484,6 +517,10 @@ contains
          call mix(h, table%s)
          call mix(h, reshape(table%gap, [size(table%gap)]))
          call mix(h, reshape(table%slope, [size(table%slope)]))
+         if (table%mapped) then
+            call mix(h, table%knee)
+            call mix(h, [table%tail_length])
+         end if
       end if
       call mix(h, table%loading%delta)
       call mix(h, table%loading%force)

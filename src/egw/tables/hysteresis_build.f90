@@ -11,14 +11,17 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
       & table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
+   use egw_hysteresis_data, only: s_knee, s_zero, map_s, map_x, map_piece
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
    integer, parameter :: max_s_nodes = 400, max_m_nodes = build_m_node_limit
    !> The deepest turning point of a Hertz + cap table, in units of first yield delta_y.
    real(dp), parameter :: max_cap_range = 1000.0_dp
-   !> The first s nodes of every curve (bisection adds nodes between them).
-   real(dp), parameter :: first_nodes(5) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp]
+   !> The first s nodes of every curve (bisection adds nodes between them); with the
+   !> two-piece map (mapped) its breaks s_knee = 1/2 and s_zero = 3/4 too.
+   real(dp), parameter :: first_nodes(5) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp], &
+      & mapped_first_nodes(6) = [0.0_dp, 0.0625_dp, 0.25_dp, s_knee, s_zero, 1.0_dp]
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
@@ -30,7 +33,10 @@ submodule (egw_hysteresis) egw_hysteresis_build
       real(dp) :: length = 0.0_dp   !< L(m) = 1.5 P_load(m)/K_unload(m)
       real(dp), allocatable :: s(:), gap(:), slope(:)
       real(dp) :: m = 0.0_dp        !< its turning point
-      real(dp) :: span = 0.0_dp     !< s_max L: delta = m - s span
+      real(dp) :: span = 0.0_dp     !< s_max L: delta = m - s span (the first piece's)
+      !> the two-piece map's knee delta_r(m) (mapped; 0 else) and, per piece, (ds/dx of
+      !> the first piece)/(ds/dx of the piece): the stored slope times it is dg/ds there
+      real(dp) :: knee = 0.0_dp, piece_scale(3) = 1.0_dp
       real(dp) :: scale = 1.0_dp    !< the loading table's force at m (g's unit)
       real(dp) :: c_turn = 1.0_dp   !< the solve's force at m over scale
       logical :: verified = .false. !< bisected in s to rel_tol/4 (refine_curve)
@@ -162,6 +168,12 @@ contains
          m(size(m)) = delta_max
          n = size(m)
       end if
+      ! the two-piece s map (rough + cap with its turning points above 0, i.e. elastic
+      ! summits: from m_y): the knee delta_r(m) at s_knee, delta = 0 at s_zero, the
+      ! tail to twice the floor delta_u below 0 (at least 2 sigma) over [s_zero, 1]
+      table%mapped = rough_cap .and. shift .and. m(1) > 0.0_dp
+      if (table%mapped) table%tail_length = max(-2*unloading_floor(table%loading, &
+         & table%rel_tol), 2*params%sigma)
       allocate (curves(n))
       if (present(progress)) call progress(0, 2*n - 1)
       ! the s range: twice the largest (m - delta_u)/L of the first nodes, so that every
@@ -173,6 +185,7 @@ contains
       if (allocated(error)) return
       table%s_max = 2*maxval((m - unloading_floor(table%loading, table%rel_tol))/ &
          & curves%length)
+      if (table%mapped) table%s_max = 1.0_dp   ! (length: the first piece's span)
       call build_curves(table, options, m, shift, curves, error)
       if (allocated(error)) return
       call refine_m(table, options, shift, m, curves, error, progress)
@@ -338,6 +351,13 @@ contains
       logical, allocatable :: have_mid(:), new_have(:)
       integer, allocatable :: idx(:), promoted(:)
       integer :: pass, j, k, n_split
+      real(dp) :: m_bound
+      ! the bound at the check curves' nodes: rel_tol; with the two-piece map rel_tol/2,
+      ! for what falls between those nodes (E-GW + cap, 1e-4: 28 delta_max nodes with
+      ! rel_tol met 1.2e-4 of P(m) off main's table between a check curve's s nodes, at
+      ! s = 0.17 of m = 333 sigma, where main's 62 nodes erred by 5e-5 against 1e-6 solves)
+      m_bound = table%rel_tol
+      if (table%mapped) m_bound = 0.5_dp*table%rel_tol
       allocate (mids(size(m) - 1), have_mid(size(m) - 1))
       have_mid = .false.
       do pass = 1, 30
@@ -363,9 +383,9 @@ contains
          end if
          allocate (err_mid(size(m) - 1))
          do j = 1, size(m) - 1
-            err_mid(j) = stencil_mismatch(m, curves, j, mids(j))
+            err_mid(j) = stencil_mismatch(table, m, curves, j, mids(j))
          end do
-         n_split = count(err_mid > table%rel_tol)
+         n_split = count(err_mid > m_bound)
          ! built: the nodes' curves and the kept midpoints'; pending: two per split
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
@@ -390,7 +410,7 @@ contains
             new_m(k) = m(j)
             call move_curve(curves(j), new_curves(k))
             if (j == size(m)) exit
-            if (err_mid(j) > table%rel_tol) then
+            if (err_mid(j) > m_bound) then
                k = k + 1
                new_m(k) = 0.5_dp*(m(j) + m(j + 1))
                call move_curve(mids(j), new_curves(k))
@@ -419,11 +439,12 @@ contains
    !> Largest |r_stencil - r_mid| of interval j over the nodes of the midpoint curve (solves):
    !> the table's whole error there, its interpolation in s included (the curves are built
    !> to rel_tol/4, so that what remains is mostly the error in m, which bisection removes).
-   pure real(dp) function stencil_mismatch(m, curves, j, mid) result(err)
+   pure real(dp) function stencil_mismatch(table, m, curves, j, mid) result(err)
+      type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:), mid
       integer, intent(in) :: j
-      real(dp) :: x, w(4), r, dr, v, s, length, xm(4)
+      real(dp) :: x, w(4), r, dr, v, s, length, xm(4), knee, offset, dsdx
       integer :: first, k, l, i, k_b
       k_b = m_breakpoint(m)
       first = stencil_first(j, size(m), k_b)
@@ -438,9 +459,17 @@ contains
       ! the table's s of the midpoint curve's delta: with the interpolated L(m)
       ! as the evaluation: 1/L interpolated
       length = 1.0_dp/sum(w/curves(first:first + 3)%length)
+      ! mapped: the knee interpolated and the first piece's span from it (turning_point)
+      knee = min(max(sum(w*curves(first:first + 3)%knee), 0.0_dp), 0.99_dp*mid%m)
+      if (table%mapped) length = (mid%m - knee)/s_knee
       err = 0.0_dp
       do i = 1, size(mid%s)
          s = min(mid%s(i)*mid%length/length, 1.0_dp)
+         if (table%mapped) then
+            offset = curve_offset(table, mid, mid%s(i))
+            call map_s(table, mid%m, knee, 1.0_dp/length, offset, s, dsdx)
+            s = min(s, 1.0_dp)
+         end if
          v = 0.0_dp
          do k = 1, 4
             call curve_eval(curves(first + k - 1), s, r, dr)
@@ -499,7 +528,10 @@ contains
          integer, intent(in) :: j
          type(egw_error), allocatable :: err
          type(solve_result) :: top, res
-         if (table%params%flow_pressure > 0.0_dp) then   ! (rough: the smooth cap's differ)
+         if (table%mapped) then
+            curves(j)%m = m(j)
+            call mapped_length(table, m(j), curves(j), err)
+         else if (table%params%flow_pressure > 0.0_dp) then   ! (rough: the smooth cap's)
             call rough_length(table%params, serial, m(j), shift, curves(j)%length, err)
          else
             call load_history(table%params, serial, m(j), curves(j)%hist, top, err)
@@ -592,7 +624,7 @@ contains
             if (only_check) then
                s = curves(j)%s
             else
-               s = first_nodes
+               s = start_nodes(table)
             end if
             call solve_nodes(table, curves(j), s, err)
          end if
@@ -629,24 +661,25 @@ contains
          integer, intent(in) :: k
          type(egw_error), allocatable :: err
          type(unloading_curve) :: known
+         real(dp), allocatable :: first(:)
          integer :: i, at
+         first = start_nodes(table)
          known%s = curves(idx(k))%s
          known%gap = curves(idx(k))%gap
          known%slope = curves(idx(k))%slope
          ! the bisection of a node's curve from its first nodes, the check solves taken
          ! where it meets them (all first nodes but s = 0): the curve a node built at once
          ! has
-         curves(idx(k))%s = first_nodes
+         curves(idx(k))%s = first
          deallocate (curves(idx(k))%gap, curves(idx(k))%slope)
-         allocate (curves(idx(k))%gap(size(first_nodes)), &
-            & curves(idx(k))%slope(size(first_nodes)))
-         do i = 1, size(first_nodes)
-            at = findloc(known%s, first_nodes(i), 1)
+         allocate (curves(idx(k))%gap(size(first)), curves(idx(k))%slope(size(first)))
+         do i = 1, size(first)
+            at = findloc(known%s, first(i), 1)
             if (at > 0) then
                curves(idx(k))%gap(i) = known%gap(at)
                curves(idx(k))%slope(i) = known%slope(at)
             else
-               call gap_at(table, curves(idx(k)), first_nodes(i), curves(idx(k))%gap(i), &
+               call gap_at(table, curves(idx(k)), first(i), curves(idx(k))%gap(i), &
                   & curves(idx(k))%slope(i), err)
                if (allocated(err)) exit
             end if
@@ -691,6 +724,8 @@ contains
       if (f_turn > 0.0_dp .and. curve%scale > 0.0_dp) curve%c_turn = f_turn/curve%scale
       if (table%capped) then
          call cap_length(table%params, m, curve%length, error)
+      else if (table%mapped) then
+         call mapped_length(table, m, curve, error)
       else if (table%params%flow_pressure > 0.0_dp) then
          call rough_length(table%params, options, m, shift, curve%length, error)
       else
@@ -701,6 +736,44 @@ contains
       if (allocated(error)) return
       curve%span = table%s_max*curve%length
    end subroutine start_curve
+
+   !> The two-piece map of the curve of turning point m (mapped): its knee, the smooth cap
+   !> model's residual overlap delta_r(m) (0 up to first yield), the first piece's span
+   !> (m - knee)/s_knee as its length (s_max = 1) and the pieces' slope scales.
+   subroutine mapped_length(table, m, curve, error)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m
+      type(unloading_curve), intent(inout) :: curve
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: smooth
+      curve%knee = 0.0_dp
+      if (m > first_yield(table%params)) then
+         call cap_length(table%params, m, smooth, error)
+         if (allocated(error)) return
+         curve%knee = min(max(m - smooth, 0.0_dp), 0.99_dp*m)
+      end if
+      curve%length = (m - curve%knee)/s_knee
+      curve%piece_scale = [1.0_dp, curve%knee/(s_zero - s_knee)/curve%length, &
+         & table%tail_length/(1.0_dp - s_zero)/curve%length]
+   end subroutine mapped_length
+
+   !> x = m - delta at s on the curve (its map, map_x) and the piece's dx/ds over the
+   !> first piece's (piece_scale).
+   pure real(dp) function curve_offset(table, curve, s) result(x)
+      type(hysteresis_table), intent(in) :: table
+      type(unloading_curve), intent(in) :: curve
+      real(dp), intent(in) :: s
+      real(dp) :: dsdx
+      call map_x(table, curve%m, curve%knee, 1.0_dp/curve%span, s, x, dsdx)
+   end function curve_offset
+
+   !> The first s nodes of the table's curves (first_nodes; mapped: its breaks too).
+   pure function start_nodes(table) result(s)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), allocatable :: s(:)
+      s = first_nodes
+      if (table%mapped) s = mapped_first_nodes
+   end function start_nodes
 
    !> The curve's g and dg/ds at the nodes s (increasing, in [0, 1]), solved.
    subroutine solve_nodes(table, curve, s, error)
@@ -762,10 +835,13 @@ contains
             probe%s = s(i:i + 1)
             probe%gap = gap(i:i + 1)
             probe%slope = slope(i:i + 1)
+            probe%piece_scale = curve%piece_scale
             call curve_eval(probe, s_mid, r_int, d_int)
             ! the slope's mismatch too: a midpoint value can agree by chance where the
-            ! curve bends (near the residual overlap) while a quarter point does not
-            err = max(abs(r_int - r_mid), 0.25_dp*(s(i + 1) - s(i))*abs(d_int - d_mid))
+            ! curve bends (near the residual overlap) while a quarter point does not (dg/ds
+            ! on the interval's piece of the map)
+            err = max(abs(r_int - r_mid), 0.25_dp*(s(i + 1) - s(i))*abs(d_int - &
+               & d_mid*curve%piece_scale(map_piece(table%mapped, s_mid))))
             if (err > 0.25_dp*table%rel_tol) then
                if (n == max_s_nodes) then
                   call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
@@ -826,11 +902,13 @@ contains
       ! off: d - d_max is then below the error of the interpolated d_max field.)
       x_solve = x
       if (x == 0.0_dp) x_solve = 1.0e-4_dp
-      call solve_unload(curve%hist, curve%m - x_solve*curve%span, res, error, curve%start)
+      ! (the overlap of s on the curve's map: m - s span unless mapped)
+      x_solve = curve_offset(table, curve, x_solve)
+      call solve_unload(curve%hist, curve%m - x_solve, res, error, curve%start)
       if (allocated(error)) return
       ! the loading force continued below its cut-off by the tail law (table_eval
       ! gives 0 there), so that the gap stays smooth across it
-      call table_eval_tail_law(table%loading, curve%m - x_solve*curve%span, p_ext, k_ext)
+      call table_eval_tail_law(table%loading, curve%m - x_solve, p_ext, k_ext)
       if (x > 0.0_dp) g = (curve%c_turn*p_ext - res%force)/curve%scale
       dg = (res%stiffness - curve%c_turn*k_ext)*curve%span/curve%scale
       ! far below the cut-off the forces underflow: no subnormal numbers in the table
@@ -855,21 +933,26 @@ contains
       n = size(all_s)
       table%m = m
       table%length = curves%length
+      if (table%mapped) table%knee = curves%knee
       table%s = all_s(1:n)
       allocate (table%gap(n, size(m)), table%slope(n, size(m)))
       do j = 1, size(m)
          do i = 1, n
-            call curve_eval(curves(j), table%s(i), table%gap(i, j), table%slope(i, j))
+            call curve_eval(curves(j), table%s(i), table%gap(i, j), table%slope(i, j), &
+               & stored=.true.)
          end do
       end do
    end subroutine resample
 
    !> Cubic Hermite r and dr/ds of a curve at s in [0, 1].
-   pure subroutine curve_eval(curve, s, r, dr)
+   pure subroutine curve_eval(curve, s, r, dr, stored)
       type(unloading_curve), intent(in) :: curve
       real(dp), intent(in) :: s
       real(dp), intent(out) :: r, dr
-      real(dp) :: h, t, h00, h10, h01, h11
+      !> dr in the stored slopes' unit (the first piece's dg/ds; 0 on a piece of no
+      !> width), not dg/ds on s's piece
+      logical, intent(in), optional :: stored
+      real(dp) :: h, t, h00, h10, h01, h11, f
       integer :: i, lo, hi, mid
       lo = 1
       hi = size(curve%s)
@@ -884,14 +967,23 @@ contains
       i = lo
       h = curve%s(i + 1) - curve%s(i)
       t = min(max((s - curve%s(i))/h, 0.0_dp), 1.0_dp)
+      ! the stored slopes are the first piece's: dg/ds on the interval's piece
+      f = curve%piece_scale(map_piece(.true., 0.5_dp*(curve%s(i) + curve%s(i + 1))))
       h00 = (1 + 2*t)*(1 - t)**2
       h10 = t*(1 - t)**2
       h01 = t*t*(3 - 2*t)
       h11 = t*t*(t - 1)
-      r = h00*curve%gap(i) + h10*h*curve%slope(i) + h01*curve%gap(i + 1) &
-         & + h11*h*curve%slope(i + 1)
+      r = h00*curve%gap(i) + h10*h*f*curve%slope(i) + h01*curve%gap(i + 1) &
+         & + h11*h*f*curve%slope(i + 1)
       dr = 6*t*(t - 1)/h*(curve%gap(i) - curve%gap(i + 1)) &
-         & + (1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1)
+         & + f*((1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1))
+      if (present(stored)) then
+         if (stored) then
+            dr = 0.0_dp
+            if (f > 0.0_dp) dr = (6*t*(t - 1)/h*(curve%gap(i) - curve%gap(i + 1)))/f + &
+               & ((1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1))
+         end if
+      end if
    end subroutine curve_eval
 
 
@@ -932,6 +1024,8 @@ contains
       to%span = from%span
       to%scale = from%scale
       to%c_turn = from%c_turn
+      to%knee = from%knee
+      to%piece_scale = from%piece_scale
       to%verified = from%verified
       to%hist = from%hist
       call move_alloc(from%s, to%s)

@@ -40,7 +40,7 @@ module egw_hysteresis_data
 
    public :: hysteresis_table, grid_lookup, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, make_lookup, m_breakpoint, &
-      & m_coordinate, stencil_first, locate
+      & m_coordinate, stencil_first, locate, turning_knee, map_s, map_x, map_piece
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
@@ -51,6 +51,13 @@ module egw_hysteresis_data
    !> that is ln P (then the piece's cubic is the gap part). A contact that stays inside
    !> its piece (most DEM steps) touches nothing but its state.
    integer, parameter, public :: hysteresis_state_size = 24
+
+   !> The two-piece s map of rough + cap tables (mapped; doc/theory.md section 12): every
+   !> curve's knee (the smooth cap's residual overlap delta_r(m)) at s = s_knee and
+   !> delta = 0 (where the loading curve's Hertz part sets in) at s = s_zero, the tail below
+   !> 0 over [s_zero, 1] in a fixed length; nodes of every curve (dyadic: the union grid
+   !> keeps them exactly).
+   real(dp), parameter, public :: s_knee = 0.5_dp, s_zero = 0.75_dp
 
    !> Finest bucket level (2**14 buckets): the grids are dyadic, so buckets at the finest
    !> level hold at most one node and the forward scan takes at most one step.
@@ -131,6 +138,17 @@ module egw_hysteresis_data
       !> §12): L(m_j) is m_j minus the residual overlap, s_max = 1, and below s = 1 there
       !> is no force (a rough model with the cap is not capped here: EP-GW's layout)
       logical :: capped = .false.
+      !> rough + cap with the two-piece s map (format version 3): s = (m - delta)/(s_max
+      !> L(m)) with L(m) = (m - knee(m))/s_knee down to the knee, then linear to s_zero at
+      !> delta = 0, then linear to 1 at delta = -tail_length (map_s); the stored slopes are
+      !> dg/ds of the first piece (dg/d(m - delta) times its span: continuous across the
+      !> breaks), the cubics' slopes on the other pieces scaled by piece_scale
+      logical :: mapped = .false.
+      real(dp), allocatable :: knee(:)         !< (n_m) the knee delta_r(m_j) (mapped)
+      real(dp) :: tail_length = 0.0_dp         !< the tail piece's length in delta (mapped)
+      !> (3, n_m): per curve and piece, (ds/dx of piece 1)/(ds/dx of the piece), x = m -
+      !> delta: the stored slope times it is dg/ds on that piece (hysteresis_prepare)
+      real(dp), allocatable :: piece_scale(:, :)
       !> the largest overlap (or state) whose force stays well inside the doubles: where
       !> the loading table's deep-overlap law beyond delta_max reaches huge/4 (the C
       !> layer's input check; hysteresis_prepare, once: four powers, off the hot path)
@@ -144,6 +162,7 @@ module egw_hysteresis_data
       real(dp) :: inv_span = 0.0_dp        !< 1/(s_max L(m))
       real(dp) :: f_m = 0.0_dp             !< P_load(m)
       integer :: first = 1                 !< the stencil's first curve
+      real(dp) :: knee = 0.0_dp            !< its knee (mapped tables; turning_knee)
    end type unload_curve
 
    !> A quiet NaN (ieee_value's bits, 0x7FF8000000000000) as a constant: the states' "no
@@ -183,11 +202,12 @@ contains
    !> (optional): an interval of the loading table (table_segment's layout, e.g. a state's
    !> copy from its last loading step); where it holds m above the resampled tail, P_load(m)
    !> comes from it without the table's lookup (eval_kernel's arithmetic: the same value).
-   pure subroutine turning_point(table, m, first, w, inv_span, f_m, seg)
+   pure subroutine turning_point(table, m, first, w, inv_span, f_m, knee, seg)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m
       integer, intent(out) :: first
       real(dp), intent(out) :: w(4), inv_span, f_m
+      real(dp), intent(out) :: knee   !< the map's knee (turning_knee; 0 unless mapped)
       real(dp), intent(in), optional :: seg(7)
       real(dp) :: d(4), k_m
       integer :: j, n_m
@@ -214,7 +234,73 @@ contains
       inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
          & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
       if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
+      knee = turning_knee(table, first, w, m)
+      ! mapped: the first piece's 1/span from the interpolated knee, so that the pieces meet
+      if (table%mapped) inv_span = s_knee/(m - knee)
    end subroutine turning_point
+
+   !> The knee of turning point m (stencil first, weights w) of a mapped table: the
+   !> nodes' knees interpolated, kept in [0, 0.99 m] (0 <= delta_r < m: the clamp only
+   !> catches the interpolation's overshoot near first yield); 0 unless mapped.
+   pure real(dp) function turning_knee(table, first, w, m) result(knee)
+      type(hysteresis_table), intent(in) :: table
+      integer, intent(in) :: first
+      real(dp), intent(in) :: w(4), m
+      knee = 0.0_dp
+      if (.not. table%mapped) return
+      knee = w(1)*table%knee(first) + w(2)*table%knee(first + 1) + &
+         & w(3)*table%knee(first + 2) + w(4)*table%knee(first + 3)
+      knee = min(max(knee, 0.0_dp), 0.99_dp*m)
+   end function turning_knee
+
+   !> The piece (1, 2, 3) of the two-piece map that holds s (an interval's midpoint:
+   !> the breaks are nodes); 1 unless mapped.
+   elemental integer function map_piece(mapped, s) result(p)
+      logical, intent(in) :: mapped
+      real(dp), intent(in) :: s
+      p = 1
+      if (.not. mapped) return
+      if (s > s_knee) p = 2
+      if (s > s_zero) p = 3
+   end function map_piece
+
+   !> s and ds/dx at x = m - delta >= 0 on the curve of turning point m (knee, iota: the
+   !> first piece's ds/dx): x iota unless mapped; mapped, linear through (0, 0),
+   !> (m - knee, s_knee), (m, s_zero) and on at slope (1 - s_zero)/tail_length (not
+   !> clamped: the callers clamp at 1).
+   pure subroutine map_s(table, m, knee, iota, x, s, dsdx)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m, knee, iota, x
+      real(dp), intent(out) :: s, dsdx
+      dsdx = iota
+      s = x*iota
+      if (.not. table%mapped .or. .not. s > s_knee) return
+      if (x <= m) then   ! (knee > 0 here: with knee = 0, x <= m is s <= s_knee)
+         dsdx = (s_zero - s_knee)/knee
+         s = s_knee + (x - (m - knee))*dsdx
+      else
+         dsdx = (1.0_dp - s_zero)/table%tail_length
+         s = s_zero + (x - m)*dsdx
+      end if
+   end subroutine map_s
+
+   !> x = m - delta at s on the curve of turning point m (map_s's inverse), and ds/dx of
+   !> the piece that holds s (at a break: the piece below it in s).
+   pure subroutine map_x(table, m, knee, iota, s, x, dsdx)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m, knee, iota, s
+      real(dp), intent(out) :: x, dsdx
+      dsdx = iota
+      x = s/iota
+      if (.not. table%mapped .or. s <= s_knee) return
+      if (s <= s_zero) then
+         dsdx = (s_zero - s_knee)/knee
+         x = (m - knee) + knee*(s - s_knee)/(s_zero - s_knee)
+      else
+         dsdx = (1.0_dp - s_zero)/table%tail_length
+         x = m + table%tail_length*(s - s_zero)/(1.0_dp - s_zero)
+      end if
+   end subroutine map_x
 
    !> The gap cubic g(t) of the turning point (stencil first, weights w) on s interval i:
    !> the four curves' cubics (16 contiguous numbers) combined.

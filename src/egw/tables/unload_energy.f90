@@ -10,7 +10,8 @@ module egw_unload_energy
       & format_real
    use egw_table, only: table_eval, gl_x, gl_w, table_energy, table_interval, beyond_status
    use egw_hysteresis_data, only: hysteresis_table, unload_curve, nan_error, gap_cubic, &
-      & turning_point, gap_combination, unload_tail_ratio, locate
+      & turning_point, gap_combination, unload_tail_ratio, locate, map_s, map_x, s_knee, &
+      & s_zero
    implicit none
    private
 
@@ -97,12 +98,13 @@ contains
       energy = table_energy(table%loading, delta)
       if (table%reversible .or. .not. m > table%elastic_limit) return
       cv%m = m
-      call turning_point(table, m, cv%first, cv%w, cv%inv_span, cv%f_m)
+      call turning_point(table, m, cv%first, cv%w, cv%inv_span, cv%f_m, cv%knee)
       ! below the span's end d_1 the force is ratio P_load (unload_branch), above it
       ! P_load - f_m g(s), clipped at 0: int g(s(x)) dx over (lo, delta) with s = (m -
       ! x)/(s_max L) is (1/(s_max L)) times the integral of g over s from s(delta) to
-      ! s(lo); the span starts at the cut-off if d_1 is below it (no force there)
-      d_1 = m - 1.0_dp/cv%inv_span
+      ! s(lo) (gap_work; the two-piece map: piece by piece); the span starts at the
+      ! cut-off if d_1 is below it (no force there)
+      d_1 = curve_x(table, cv, 1.0_dp)
       ratio = unload_tail_ratio(table, d_1, cv%f_m, dot_product(cv%w, &
          & table%gap(size(table%s), cv%first:cv%first + 3)))
       if (.not. delta > d_1) then
@@ -116,8 +118,8 @@ contains
          dips = dips_below(table, cv, lo, delta)
       end if
       energy = ratio*table_energy(table%loading, lo) + (energy - table_energy(table%loading, &
-         & lo)) - cv%f_m/cv%inv_span*(gap_primitive(table, cv, min((m - lo)*cv%inv_span, &
-         & 1.0_dp)) - gap_primitive(table, cv, (m - delta)*cv%inv_span)) - dips
+         & lo)) - cv%f_m*(gap_work(table, cv, curve_s(table, cv, lo)) - &
+         & gap_work(table, cv, curve_s(table, cv, delta))) - dips
       energy = max(energy, 0.0_dp)
    end subroutine energy_value
 
@@ -166,7 +168,7 @@ contains
       end if
       u = (u - table%dip_u(k))/(table%dip_u(k + 1) - table%dip_u(k))
       total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m/cv%inv_span
-      x_band = cv%m - table%dip_band(j)/cv%inv_span
+      x_band = curve_x(table, cv, min(table%dip_band(j), 1.0_dp))
       if (delta > x_band) then
          call span_eval(table, cv, delta, f, slope)
          if (.not. f > 0.0_dp) call span_dips(table, cv, lo, delta, total, x_top)
@@ -198,6 +200,46 @@ contains
       end do
    end function gap_primitive
 
+   !> int g(s(x)) dx from the turning point down to where s(x) = s <= 1: int_0^s g ds'
+   !> times dx/ds, piece by piece of the two-piece map (gap_primitive/(ds/dx) unless
+   !> mapped).
+   pure real(dp) function gap_work(table, cv, s) result(total)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: s
+      if (.not. table%mapped) then
+         total = gap_primitive(table, cv, s)/cv%inv_span
+         return
+      end if
+      total = gap_primitive(table, cv, min(s, s_knee))/cv%inv_span
+      if (.not. s > s_knee) return
+      total = total + (gap_primitive(table, cv, min(s, s_zero)) - gap_primitive(table, cv, &
+         & s_knee))*cv%knee/(s_zero - s_knee)
+      if (.not. s > s_zero) return
+      total = total + (gap_primitive(table, cv, s) - gap_primitive(table, cv, s_zero))* &
+         & table%tail_length/(1.0_dp - s_zero)
+   end function gap_work
+
+   !> s (at most 1) at overlap x on the unloading curve cv (map_s).
+   pure real(dp) function curve_s(table, cv, x) result(s)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: x
+      real(dp) :: dsdx
+      call map_s(table, cv%m, cv%knee, cv%inv_span, cv%m - x, s, dsdx)
+      s = min(s, 1.0_dp)
+   end function curve_s
+
+   !> The overlap at s on the unloading curve cv (map_x).
+   pure real(dp) function curve_x(table, cv, s) result(x)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: s
+      real(dp) :: dsdx
+      call map_x(table, cv%m, cv%knee, cv%inv_span, s, x, dsdx)
+      x = cv%m - x
+   end function curve_x
+
    !> The unclipped span force P_load(x) - f_m g(s(x)) of curve cv and its slope dF/dx
    !> (unload_branch before its clip).
    pure subroutine span_eval(table, cv, x, f, k)
@@ -205,15 +247,16 @@ contains
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: x
       real(dp), intent(out) :: f, k
-      real(dp) :: s, c(4), g, dg, f_d, k_d
+      real(dp) :: s, c(4), g, dg, f_d, k_d, dsdx
       integer :: i
-      s = min((cv%m - x)*cv%inv_span, 1.0_dp)
+      call map_s(table, cv%m, cv%knee, cv%inv_span, cv%m - x, s, dsdx)
+      s = min(s, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, cv%first, cv%w, i, c)
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
       call table_eval(table%loading, x, f_d, k_d)
       f = f_d - cv%f_m*g
-      k = k_d + cv%f_m*dg*cv%inv_span
+      k = k_d + cv%f_m*dg*dsdx
    end subroutine span_eval
 
    !> span_eval's force only.
@@ -265,10 +308,10 @@ contains
             i = table_interval(table%loading, x_a)
             x_b = min(x_b, table%loading%delta(i + 1))
          end if
-         s_a = min((cv%m - x_a)*cv%inv_span, 1.0_dp)
+         s_a = curve_s(table, cv, x_a)
          i = locate(table%s_lookup, table%s, s_a)
-         next = cv%m - table%s(i)/cv%inv_span
-         if (.not. next > x_a .and. i > 1) next = cv%m - table%s(i - 1)/cv%inv_span
+         next = curve_x(table, cv, table%s(i))
+         if (.not. next > x_a .and. i > 1) next = curve_x(table, cv, table%s(i - 1))
          if (next > x_a) x_b = min(x_b, next)
          if (.not. x_b > x_a) exit   ! round-off at a break
          call span_eval(table, cv, x_b, f_b, k_b)
@@ -314,8 +357,8 @@ contains
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: a, b
       total = table_energy(table%loading, b) - table_energy(table%loading, a) - &
-         & cv%f_m/cv%inv_span*(gap_primitive(table, cv, (cv%m - a)*cv%inv_span) - &
-         & gap_primitive(table, cv, (cv%m - b)*cv%inv_span))
+         & cv%f_m*(gap_work(table, cv, curve_s(table, cv, a)) - &
+         & gap_work(table, cv, curve_s(table, cv, b)))
    end function span_integral
 
    !> True when the cubic Hermite of (f0, k0) and (f1, k1) over a width h is positive
@@ -517,14 +560,14 @@ contains
       cv%m = table%m(j) + (table%m(j + 1) - table%m(j))*u
       if (u >= 1.0_dp) cv%m = table%m(j + 1)
       if (.not. cv%m > table%elastic_limit) return
-      call turning_point(table, cv%m, cv%first, cv%w, cv%inv_span, cv%f_m)
+      call turning_point(table, cv%m, cv%first, cv%w, cv%inv_span, cv%f_m, cv%knee)
       if (.not. cv%f_m > 0.0_dp) return
-      lo = max(cv%m - 1.0_dp/cv%inv_span, table%loading%cutoff)
+      lo = max(curve_x(table, cv, 1.0_dp), table%loading%cutoff)
       if (.not. lo < cv%m) return
       call span_dips(table, cv, lo, cv%m, total, x_top, x_low)
       q = total*cv%inv_span/cv%f_m
       low = (x_low - lo)/(cv%m - lo)
-      if (x_top > -huge(1.0_dp)) top = (cv%m - x_top)*cv%inv_span
+      if (x_top > -huge(1.0_dp)) top = curve_s(table, cv, x_top)
       scale = max(abs(span_integral(table, cv, lo, cv%m))*cv%inv_span/cv%f_m, tiny(1.0_dp))
    end subroutine dip_sample
 
