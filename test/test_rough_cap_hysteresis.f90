@@ -12,7 +12,9 @@ module test_rough_cap_hysteresis
    use egw_halfspace, only: gauss_legendre
    use egw_table, only: table_eval, table_energy
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
-      & hysteresis_energy
+      & hysteresis_energy, hysteresis_energy_walk, hysteresis_eval_state, &
+      & hysteresis_state_init, hysteresis_state_size
+   use egw_hysteresis_data, only: s_knee, s_zero
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary
    use egw_impact, only: restitution
@@ -44,6 +46,8 @@ contains
          & new_unittest("binary and CSV round trip (version 4, sigma kept)", test_formats), &
          & new_unittest("refused: flat law, beyond 1000 delta_y, bad p_y", test_refused), &
          & new_unittest("DEM loop on the table: e = restitution to 1e-3", test_dem_loop), &
+         & new_unittest("two-piece s map: state pieces and energy as the force", &
+         & test_map_state_energy), &
          & new_unittest("E-GW + cap at 1e-3: the knee within rel_tol/2 of solves", &
          & test_knee) &
          & ]
@@ -186,6 +190,85 @@ contains
       end do
       print '(4x, a, es9.2, a)', "largest |P_table - P_solve|/P(m): ", worst/tol, " rel_tol"
    end subroutine test_solves
+
+   !> The two-piece s map (the table is mapped: E-GW with the cap): (i) the per-contact
+   !> state's pieces (cubics in delta, one per run of s intervals: the map's breaks end
+   !> runs) give hysteresis_eval's force and stiffness to 1e-12 of P(m) along unloading
+   !> walks from 30 turning points between the nodes down past delta = -tail_length, on
+   !> both sides of both breaks (pieces whose slopes ignore their piece's scale: 4.5e-4 N
+   !> off at 1.17 delta_y, where 1e-12 P(m) is allowed; measured); (ii) the energy
+   !> (hysteresis_energy, in O(1) from the dip samples, and the walk) is the integral of
+   !> that force from the cut-off: against a composite Gauss-Legendre sum of
+   !> hysteresis_eval (8 points on 4000 panels between the cut-off and delta: the force is
+   !> piecewise cubic in delta between the s nodes' images and the loading nodes, its
+   !> kinks there leave ~(1/4000)**2 of the span's force times its width, < 1e-7 of
+   !> U(m; m)) within 1e-6 of U(m; m) (measured 1.9e-10); an energy that took the map
+   !> as one piece (gap_work) was 1.8e-2 of the quadrature off (measured).
+   subroutine test_map_state_energy(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n_gauss = 8, n_panel = 4000
+      real(dp) :: state(hysteresis_state_size), m, d, f1, k1, f2, k2, fm, km, sm, u_top, &
+         & u, u_walk, quad, x(n_gauss), w(n_gauss), a, b, lo, hmax, worst, worst_e
+      integer :: i, j, q, stat1, stat2
+      call get_table(error)
+      if (allocated(error)) return
+      call check(error, cap_table%mapped .and. any(cap_table%s == s_knee) .and. &
+         & any(cap_table%s == s_zero), "the E-GW + cap table is not on the two-piece map")
+      if (allocated(error)) return
+      worst = 0
+      do i = 1, 30
+         m = cap_table%m(1) + (cap_table%delta_max - cap_table%m(1))*(i - 0.37_dp)/30
+         call table_eval(cap_table%loading, m, fm, km)
+         call hysteresis_state_init(state)
+         call hysteresis_eval_state(cap_table, m, state, f1, k1, stat1)
+         do j = 1, 600
+            d = m - (m + 2*cap_table%tail_length)*j/600.0_dp
+            sm = m
+            call hysteresis_eval(cap_table, d, sm, f1, k1, stat1)
+            call hysteresis_eval_state(cap_table, d, state, f2, k2, stat2)
+            worst = max(worst, abs(f1 - f2)/fm)
+            call check(error, stat1 == stat2 .and. abs(f1 - f2) <= 1.0e-12_dp*fm .and. &
+               & abs(k1 - k2)*m <= 1.0e-9_dp*fm, "m = "//str(m)//", delta = "//str(d)// &
+               & ": state "//str(f2)//", "//str(k2)//" eval "//str(f1)//", "//str(k1))
+            if (allocated(error)) return
+         end do
+      end do
+      call gauss_legendre(n_gauss, x, w)
+      worst_e = 0
+      lo = cap_table%loading%cutoff
+      do i = 1, 6
+         m = cap_table%m(1) + (cap_table%delta_max - cap_table%m(1))*(i - 0.41_dp)/6
+         call hysteresis_energy(cap_table, m, m, u_top, stat1)
+         do j = 1, 4
+            d = m - (m + cap_table%tail_length)*(j - 0.5_dp)/4
+            call hysteresis_energy(cap_table, d, m, u, stat1)
+            call hysteresis_energy_walk(cap_table, d, m, u_walk, stat2)
+            quad = 0
+            hmax = (d - lo)/n_panel
+            do q = 1, n_panel
+               a = lo + (q - 1)*hmax
+               b = a + hmax
+               quad = quad + 0.5_dp*hmax*sum(w*force_at(m, 0.5_dp*(a + b) + 0.5_dp*hmax*x))
+            end do
+            worst_e = max(worst_e, abs(u - quad)/u_top)
+            call check(error, stat1 == 0 .and. stat2 == 0 .and. abs(u - quad) <= &
+               & 1.0e-6_dp*u_top .and. abs(u_walk - quad) <= 1.0e-6_dp*u_top, "m = "// &
+               & str(m)//", delta = "//str(d)//": energy "//str(u)//", walk "//str(u_walk)// &
+               & ", quadrature "//str(quad))
+            if (allocated(error)) return
+         end do
+      end do
+      print '(4x, a, es9.2, a, es9.2, a)', "state - eval: ", worst, " P(m); energy - "// &
+         & "quadrature: ", worst_e, " U(m; m)"
+   contains
+      impure elemental real(dp) function force_at(m, delta) result(f)
+         real(dp), intent(in) :: m, delta
+         real(dp) :: sm, k
+         integer :: st
+         sm = m
+         call hysteresis_eval(cap_table, delta, sm, f, k, st)
+      end function force_at
+   end subroutine test_map_state_energy
 
    !> A load-unload cycle to m = 4.6 delta_y: the dissipated energy W_load - W_unload of
    !> the table (table_energy, hysteresis_energy) against the closed integral of solves,

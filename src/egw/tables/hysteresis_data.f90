@@ -294,7 +294,7 @@ contains
       x = s/iota
       if (.not. table%mapped .or. s <= s_knee) return
       if (s <= s_zero) then
-         dsdx = (s_zero - s_knee)/knee
+         dsdx = (s_zero - s_knee)/max(knee, tiny(1.0_dp))   ! (knee 0: a piece of no width)
          x = (m - knee) + knee*(s - s_knee)/(s_zero - s_knee)
       else
          dsdx = (1.0_dp - s_zero)/table%tail_length
