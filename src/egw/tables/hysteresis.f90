@@ -100,7 +100,11 @@ contains
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       call turning_point(table, delta_max_state, first, w, inv_span, f_m, knee)
-      call map_s(table, delta_max_state, knee, inv_span, delta_max_state - delta, s, dsdx)
+      ! (the linear map inline: no call on the path of every table without the map)
+      s = (delta_max_state - delta)*inv_span
+      dsdx = inv_span
+      if (table%mapped) call map_s(table, delta_max_state, knee, inv_span, &
+         & delta_max_state - delta, s, dsdx)
       s = min(s, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, first, w, i, c)
@@ -204,9 +208,14 @@ contains
       end if
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
-      ! (the knee from the cached weights: the state has no room for it)
-      knee = turning_knee(table, first, state(7:10), state(1))
-      call map_s(table, state(1), knee, state(5), state(1) - delta, s, dsdx)
+      s = (state(1) - delta)*state(5)
+      dsdx = state(5)
+      knee = 0.0_dp
+      if (table%mapped) then
+         ! (the knee from the cached weights: the state has no room for it)
+         knee = turning_knee(table, first, state(7:10), state(1))
+         call map_s(table, state(1), knee, state(5), state(1) - delta, s, dsdx)
+      end if
       s = min(s, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       call make_piece(table, state(7:10), first, i, s, state(1), delta, state(5), knee, &
@@ -280,8 +289,13 @@ contains
       a = table%run_first(first, i)
       b = table%run_last(first, i) + 1
       ! (a run lies in one piece of the map: its breaks end runs, make_runs)
-      call map_x(table, m, knee, iota, table%s(a), x_a, dsdx)
-      call map_x(table, m, knee, iota, table%s(b), x_b, dsdx)
+      x_a = table%s(a)*(1.0_dp/iota)
+      x_b = table%s(b)*(1.0_dp/iota)
+      dsdx = iota
+      if (table%mapped) then
+         call map_x(table, m, knee, iota, table%s(a), x_a, dsdx)
+         call map_x(table, m, knee, iota, table%s(b), x_b, dsdx)
+      end if
       lo = max(m - x_b, seg(1), table%loading%cutoff)
       hi = min(m - x_a, seg(2))
       if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
@@ -297,7 +311,11 @@ contains
       g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
       ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo (s linear in delta on
       ! the run: s_a + (m - delta - x_a) dsdx)
-      t0 = (m - lo - x_a)*dsdx/width
+      if (table%mapped) then
+         t0 = (m - lo - x_a)*dsdx/width
+      else   ! (the linear map's arithmetic, bit for bit as before the map)
+         t0 = ((m - lo)*iota - table%s(a))/width
+      end if
       alpha = -dsdx/width
       c(1) = -f_m*(g(1) + t0*(g(2) + t0*(g(3) + t0*g(4))))
       c(2) = -f_m*alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
@@ -339,7 +357,8 @@ contains
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
       call table_eval(table%loading, delta, f_d, k_d)
       if (s >= 1.0_dp) then
-         call map_x(table, m, knee, inv_span, 1.0_dp, x_1, dummy)
+         x_1 = 1.0_dp/inv_span
+         if (table%mapped) call map_x(table, m, knee, inv_span, 1.0_dp, x_1, dummy)
          ratio = unload_tail_ratio(table, m - x_1, f_m, g)
          force = ratio*f_d
          stiffness = ratio*k_d

@@ -764,7 +764,8 @@ contains
       type(unloading_curve), intent(in) :: curve
       real(dp), intent(in) :: s
       real(dp) :: dsdx
-      call map_x(table, curve%m, curve%knee, 1.0_dp/curve%span, s, x, dsdx)
+      x = s*curve%span   ! (unless mapped: the arithmetic of the linear map, bit for bit)
+      if (table%mapped) call map_x(table, curve%m, curve%knee, 1.0_dp/curve%span, s, x, dsdx)
    end function curve_offset
 
    !> The first s nodes of the table's curves (first_nodes; mapped: its breaks too).
@@ -973,12 +974,13 @@ contains
       h10 = t*(1 - t)**2
       h01 = t*t*(3 - 2*t)
       h11 = t*t*(t - 1)
-      r = h00*curve%gap(i) + h10*h*f*curve%slope(i) + h01*curve%gap(i + 1) &
-         & + h11*h*f*curve%slope(i + 1)
+      ! (f = 1, every table without the map: the arithmetic before it, bit for bit)
+      r = h00*curve%gap(i) + h10*h*(f*curve%slope(i)) + h01*curve%gap(i + 1) &
+         & + h11*h*(f*curve%slope(i + 1))
       dr = 6*t*(t - 1)/h*(curve%gap(i) - curve%gap(i + 1)) &
-         & + f*((1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1))
+         & + (1 - t)*(1 - 3*t)*(f*curve%slope(i)) + t*(3*t - 2)*(f*curve%slope(i + 1))
       if (present(stored)) then
-         if (stored) then
+         if (stored .and. f /= 1.0_dp) then
             dr = 0.0_dp
             if (f > 0.0_dp) dr = (6*t*(t - 1)/h*(curve%gap(i) - curve%gap(i + 1)))/f + &
                & ((1 - t)*(1 - 3*t)*curve%slope(i) + t*(3*t - 2)*curve%slope(i + 1))

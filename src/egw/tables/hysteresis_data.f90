@@ -234,9 +234,12 @@ contains
       inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
          & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
       if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
-      knee = turning_knee(table, first, w, m)
-      ! mapped: the first piece's 1/span from the interpolated knee, so that the pieces meet
-      if (table%mapped) inv_span = s_knee/(m - knee)
+      knee = 0.0_dp
+      if (table%mapped) then
+         ! the first piece's 1/span from the interpolated knee, so that the pieces meet
+         knee = turning_knee(table, first, w, m)
+         inv_span = s_knee/(m - knee)
+      end if
    end subroutine turning_point
 
    !> The knee of turning point m (stencil first, weights w) of a mapped table: the
@@ -291,7 +294,7 @@ contains
       real(dp), intent(in) :: m, knee, iota, s
       real(dp), intent(out) :: x, dsdx
       dsdx = iota
-      x = s/iota
+      x = s*(1.0_dp/iota)   ! (the linear map's span 1/iota, as a state holds it)
       if (.not. table%mapped .or. s <= s_knee) return
       if (s <= s_zero) then
          dsdx = (s_zero - s_knee)/max(knee, tiny(1.0_dp))   ! (knee 0: a piece of no width)

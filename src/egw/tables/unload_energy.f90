@@ -118,8 +118,7 @@ contains
          dips = dips_below(table, cv, lo, delta)
       end if
       energy = ratio*table_energy(table%loading, lo) + (energy - table_energy(table%loading, &
-         & lo)) - cv%f_m*(gap_work(table, cv, curve_s(table, cv, lo)) - &
-         & gap_work(table, cv, curve_s(table, cv, delta))) - dips
+         & lo)) - gap_term(table, cv, lo, delta) - dips
       energy = max(energy, 0.0_dp)
    end subroutine energy_value
 
@@ -200,17 +199,28 @@ contains
       end do
    end function gap_primitive
 
-   !> int g(s(x)) dx from the turning point down to where s(x) = s <= 1: int_0^s g ds'
-   !> times dx/ds, piece by piece of the two-piece map (gap_primitive/(ds/dx) unless
-   !> mapped).
+   !> P_load(m) int_a^b g(s(x)) dx over overlaps a < b of curve cv's span: the gap's part
+   !> of the span force's integral (the linear map: f_m/(s_max L) times the integral of g
+   !> over s; the two-piece map: gap_work).
+   pure real(dp) function gap_term(table, cv, a, b) result(total)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: a, b
+      if (.not. table%mapped) then
+         total = cv%f_m/cv%inv_span*(gap_primitive(table, cv, (cv%m - a)*cv%inv_span) - &
+            & gap_primitive(table, cv, (cv%m - b)*cv%inv_span))
+      else
+         total = cv%f_m*(gap_work(table, cv, curve_s(table, cv, a)) - &
+            & gap_work(table, cv, curve_s(table, cv, b)))
+      end if
+   end function gap_term
+
+   !> int g(s(x)) dx from the turning point down to where s(x) = s <= 1 on a mapped
+   !> table's curve: int_0^s g ds' times dx/ds, piece by piece of the two-piece map.
    pure real(dp) function gap_work(table, cv, s) result(total)
       type(hysteresis_table), intent(in) :: table
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: s
-      if (.not. table%mapped) then
-         total = gap_primitive(table, cv, s)/cv%inv_span
-         return
-      end if
       total = gap_primitive(table, cv, min(s, s_knee))/cv%inv_span
       if (.not. s > s_knee) return
       total = total + (gap_primitive(table, cv, min(s, s_zero)) - gap_primitive(table, cv, &
@@ -226,7 +236,8 @@ contains
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: x
       real(dp) :: dsdx
-      call map_s(table, cv%m, cv%knee, cv%inv_span, cv%m - x, s, dsdx)
+      s = (cv%m - x)*cv%inv_span
+      if (table%mapped) call map_s(table, cv%m, cv%knee, cv%inv_span, cv%m - x, s, dsdx)
       s = min(s, 1.0_dp)
    end function curve_s
 
@@ -236,6 +247,8 @@ contains
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: s
       real(dp) :: dsdx
+      x = cv%m - s/cv%inv_span   ! (unless mapped: the linear map's arithmetic as before)
+      if (.not. table%mapped) return
       call map_x(table, cv%m, cv%knee, cv%inv_span, s, x, dsdx)
       x = cv%m - x
    end function curve_x
@@ -249,7 +262,9 @@ contains
       real(dp), intent(out) :: f, k
       real(dp) :: s, c(4), g, dg, f_d, k_d, dsdx
       integer :: i
-      call map_s(table, cv%m, cv%knee, cv%inv_span, cv%m - x, s, dsdx)
+      s = (cv%m - x)*cv%inv_span
+      dsdx = cv%inv_span
+      if (table%mapped) call map_s(table, cv%m, cv%knee, cv%inv_span, cv%m - x, s, dsdx)
       s = min(s, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, cv%first, cv%w, i, c)
@@ -357,8 +372,7 @@ contains
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: a, b
       total = table_energy(table%loading, b) - table_energy(table%loading, a) - &
-         & cv%f_m*(gap_work(table, cv, curve_s(table, cv, a)) - &
-         & gap_work(table, cv, curve_s(table, cv, b)))
+         & gap_term(table, cv, a, b)
    end function span_integral
 
    !> True when the cubic Hermite of (f0, k0) and (f1, k1) over a width h is positive
