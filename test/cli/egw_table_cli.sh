@@ -198,6 +198,10 @@ grep -q "CSV format 2" "$work/rough_cap/scene_hysteresis.csv" &&
   fail "rough cap scene: scene_hysteresis.csv is not a rough + cap table"
 [ ! -e "$work/rough_cap/scene_table.csv" ] || fail "rough cap scene: a force table written"
 grep -q "E-GW + cap" "$work/stdout" || fail "rough cap scene: summary does not name the cap"
+# --help says so too (it said "(Hertz or sigma = 0)" while rough scenes take the cap)
+"$exe" --help >"$work/help" 2>&1
+grep -A2 -- "--flow-pressure" "$work/help" | grep -q "rough model + cap" ||
+  fail "--help: --flow-pressure does not say rough models take the cap: $(grep -A1 -- "--flow-pressure" "$work/help")"
 
 echo "    $fails CLI check(s) failed"
 exit "$fails"
