@@ -95,6 +95,12 @@ module egw_rough_sphere
    real(dp), parameter :: wide_history_tol = 1.0e-6_dp
    !> the unloading's force floor of the route's estimates, relative to P(delta_max)
    real(dp), parameter :: unload_floor = 1.0e-6_dp
+   !> The rel_tol of the route's probe (route_floor), and the factor on it that bounds a
+   !> probe solve's error (its estimate is no bound: 1.4 times it measured, doc/theory.md
+   !> section 12). At sigma/delta_y = 1e-6 from 2 delta_y the route's loading estimate is
+   !> 2.7e-7 at every rel_tol (the wide solves at 1e-9 took 24 s to show it); at probe_tol
+   !> the four wide solves take ~1 s.
+   real(dp), parameter :: probe_tol = 1.0e-7_dp, probe_margin = 10.0_dp
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
 
    !> Loading history of one contact: the loading solve at delta_max and its separation
@@ -257,11 +263,15 @@ contains
       type(egw_error), allocatable, intent(inout) :: error
       type(solve_result) :: asym
       real(dp) :: delta_y
-      logical :: ok
+      logical :: ok, floored
       if (.not. route_wanted(params, options, delta, prob%extended .and. &
          & allocated(prob%cap), error, delta_y)) return
-      call asymptotic_loading(params, options, delta, delta_y, asym, ok)
+      call asymptotic_loading(params, options, delta, delta_y, allocated(error), asym, ok, &
+         & floored)
       if (ok) call use_asymptotic(options, delta, asym, 0.0_dp, result, error)
+      if (floored .and. allocated(error)) error%message = error%message//"; that estimate " &
+         & //"is a lower bound from its solves at rel_tol "//format_real(probe_tol)// &
+         & ": tighter solves cannot meet rel_tol/2"
    end subroutine small_sigma_loading
 
    !> As small_sigma_loading after the discrete unloading solve of a capped history, with
@@ -309,41 +319,115 @@ contains
    !> The asymptotic route's loading answer at delta (doc/theory.md §12): the smooth cap
    !> model (cap_load on 100/200 rings, its sigma -> 0 limit) plus the rough layer's
    !> sigma**(2/3) correction from the same model's solves at wide_sigmas
-   !> (asymptotic_result). ok false when one of those solves fails.
-   subroutine asymptotic_loading(params, options, delta, delta_y, asym, ok)
+   !> (asymptotic_result). ok false when one of those solves fails. After a failed
+   !> discrete solve (failed) at rel_tol below probe_tol, the route is first taken at
+   !> probe_tol (route_floor): where even a lower bound of its estimate misses rel_tol/2,
+   !> that answer, its estimate the bound, is returned at once (floored true) instead of
+   !> the wide solves at rel_tol, which cannot meet it (10-14 s each at 1e-9).
+   subroutine asymptotic_loading(params, options, delta, delta_y, failed, asym, ok, floored)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta, delta_y
+      logical, intent(in) :: failed
       type(solve_result), intent(out) :: asym
+      logical, intent(out) :: ok, floored
+      type(cap_history) :: history
+      type(cap_result) :: cap
+      type(solve_result) :: wide(2)
+      type(egw_error), allocatable :: cap_error
+      integer :: pair
+      ok = .false.
+      floored = .false.
+      call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
+         & cap_options(n_rings=100, n_levels=2), history, cap, cap_error, "delta")
+      if (allocated(cap_error)) return
+      if (failed .and. options%rel_tol < probe_tol) then
+         call route_floor(params, options, delta, delta_y, cap, asym, floored)
+         if (floored) then
+            ok = .true.
+            return
+         end if
+      end if
+      do pair = 1, 2
+         call wide_loading(params, options, delta, delta_y, pair, wide, ok)
+         if (ok) exit
+      end do
+      if (.not. ok) return
+      call asymptotic_result(params, cap, wide, wide_sigmas(:, pair), 0.0_dp, asym)
+   end subroutine asymptotic_loading
+
+   !> The rough model's loading solves at delta at wide_sigmas(:, pair) (options);
+   !> ok false where one fails.
+   subroutine wide_loading(params, options, delta, delta_y, pair, wide, ok)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, delta_y
+      integer, intent(in) :: pair
+      type(solve_result), intent(out) :: wide(2)
       logical, intent(out) :: ok
       type(contact_params) :: wider
       type(scaled_problem) :: wide_prob
       type(discrete_solution) :: sol
-      type(cap_history) :: history
-      type(cap_result) :: cap
-      type(solve_result) :: wide(2)
       type(egw_error), allocatable :: wide_error
       integer :: k
-      integer :: pair
-      ok = .false.
-      do pair = 1, 2
-         do k = 1, 2
-            wider = params
-            wider%sigma = wide_sigmas(k, pair)*delta_y
-            wide_prob = scaled(wider, delta)
-            call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
-            if (allocated(wide_error)) exit
-         end do
-         if (.not. allocated(wide_error)) exit
-         deallocate (wide_error)
+      do k = 1, 2
+         wider = params
+         wider%sigma = wide_sigmas(k, pair)*delta_y
+         wide_prob = scaled(wider, delta)
+         call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
+         ok = .not. allocated(wide_error)
+         if (.not. ok) return
       end do
-      if (pair > 2) return
-      call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
-         & cap_options(n_rings=100, n_levels=2), history, cap, wide_error, "delta")
-      if (allocated(wide_error)) return
-      call asymptotic_result(params, cap, wide, wide_sigmas(:, pair), 0.0_dp, asym)
-      ok = .true.
-   end subroutine asymptotic_loading
+   end subroutine wide_loading
+
+   !> Whether the route at options%rel_tol cannot meet rel_tol/2, told from its solves at
+   !> probe_tol (doc/theory.md section 12 "Small sigma: the route's floor"). The route's
+   !> estimate is the cap solve's (100 rings, whatever rel_tol) plus the disagreement D
+   !> of the two wide solves' corrections, D = (P_1 - P_cap) s_1 - (P_2 - P_cap) s_2 (the
+   !> next order in sigma, a property of the model, not of rel_tol), plus the wide
+   !> solves' errors: tighter wide solves move D by at most s_1 |dP_1| + s_2 |dP_2|,
+   !> |dP_j| <= probe_margin probe_tol |P_j| (the probe's error, its estimate <= probe_tol/2,
+   !> with a factor 10 for an estimate that is no bound, and the tight solve's, below it).
+   !> So (cap error + |D| - that margin)/|P| bounds the tight route's estimate from below
+   !> (|P| the probe's answer, less the same margin). floored true where that bound exceeds
+   !> rel_tol/2 for every pair of wide_sigmas (the route takes the second pair where a
+   !> solve of the first fails): asym is then the probe's answer, est_rel_err the
+   !> smallest bound. Nothing is decided (floored false) where a probe solve fails.
+   subroutine route_floor(params, options, delta, delta_y, cap, asym, floored)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, delta_y
+      type(cap_result), intent(in) :: cap
+      type(solve_result), intent(out) :: asym
+      logical, intent(out) :: floored
+      type(solver_options) :: probe
+      type(solve_result) :: wide(2), answer
+      real(dp) :: shrink(2), margin, bound, lowest
+      integer :: pair, k
+      logical :: ok
+      floored = .false.
+      probe = options
+      probe%rel_tol = probe_tol
+      lowest = huge(1.0_dp)
+      do pair = 1, 2
+         call wide_loading(params, probe, delta, delta_y, pair, wide, ok)
+         if (.not. ok) return
+         call asymptotic_result(params, cap, wide, wide_sigmas(:, pair), 0.0_dp, answer)
+         do k = 1, 2
+            shrink(k) = (params%sigma/(wide_sigmas(k, pair)*delta_y))**(2.0_dp/3.0_dp)
+         end do
+         margin = probe_margin*probe_tol*sum(shrink*abs(wide%force))
+         bound = (cap%force_error + abs((wide(1)%force - cap%force)*shrink(1) - &
+            & (wide(2)%force - cap%force)*shrink(2)) - margin)/(abs(answer%force) + margin)
+         if (.not. bound > 0.5_dp*options%rel_tol) return
+         if (bound < lowest) then
+            lowest = bound
+            asym = answer
+         end if
+      end do
+      asym%est_rel_err = lowest
+      floored = .true.
+   end subroutine route_floor
 
    !> The asymptotic route's unloading answer at delta after history: as
    !> asymptotic_loading, with the smooth cap's unloading from delta_max (cap_unload) and
