@@ -275,21 +275,22 @@ contains
    end subroutine small_sigma_loading
 
    !> As small_sigma_loading after the discrete unloading solve of a capped history, with
-   !> asymptotic_unloading.
-   subroutine small_sigma_unload(history, delta, result, error)
+   !> asymptotic_unloading. The route's estimates are relative to max(|P|, floor), floor
+   !> unload_floor P(delta_max) or the caller's force_floor (solve_unload's) if larger.
+   subroutine small_sigma_unload(history, delta, force_floor, result, error)
       type(loading_history), intent(in) :: history
-      real(dp), intent(in) :: delta
+      real(dp), intent(in) :: delta, force_floor
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(inout) :: error
       type(solve_result) :: asym
-      real(dp) :: delta_y
+      real(dp) :: delta_y, floor
       logical :: ok
       if (.not. route_wanted(history%params, history%options, history%delta_max, &
          & history%closest%extended .and. history%closest%capped, error, delta_y)) return
-      call asymptotic_unloading(history, delta, delta_y, asym, ok)
+      floor = max(unload_floor*history%loading%force, force_floor)
+      call asymptotic_unloading(history, delta, delta_y, floor, asym, ok)
       if (ok) then
-         call use_asymptotic(history%options, delta, asym, unload_floor* &
-            & history%loading%force, result, error)
+         call use_asymptotic(history%options, delta, asym, floor, result, error)
       else if (allocated(error)) then
          error%message = error%message//"; nor by the small-sigma route (fewer than two " &
             & //"of its solves at sigma = 1e-5, 2e-5, 1e-4, 2e-4 delta_y converged)"
@@ -436,9 +437,10 @@ contains
    !> term's own next order dominates, and solves at 1e-5 delta_y fail), every wide solve
    !> is tried and the extrapolation in sigma**(2/3) goes one order further
    !> (extrapolated_result); the answer with the smaller estimate is kept.
-   subroutine asymptotic_unloading(history, delta, delta_y, asym, ok)
+   subroutine asymptotic_unloading(history, delta, delta_y, floor, asym, ok)
       type(loading_history), intent(in) :: history
       real(dp), intent(in) :: delta, delta_y
+      real(dp), intent(in) :: floor   !< of the estimates (small_sigma_unload's)
       type(solve_result), intent(out) :: asym
       logical, intent(out) :: ok
       type(cap_result) :: cap
@@ -462,7 +464,7 @@ contains
       if (allocated(cap_error)) return
       if (pair <= 2) then
          call asymptotic_result(history%params, cap, wide(:, pair), wide_sigmas(:, pair), &
-            & unload_floor*history%loading%force, asym)
+            & floor, asym)
          ok = .true.
          if (asym%est_rel_err <= 0.5_dp*history%options%rel_tol) return
       end if
@@ -489,7 +491,7 @@ contains
       end do
       if (count(solved == 1) < 2) return
       call extrapolated_result(history%params, cap, pack(wide, solved == 1), &
-         & pack(wide_sigmas, solved == 1), unload_floor*history%loading%force, further, &
+         & pack(wide_sigmas, solved == 1), floor, further, &
          & ok_further)
       if (.not. ok_further) return
       if (ok) then
@@ -1015,8 +1017,9 @@ contains
    !> estimate, stiffness (dP/d(delta) at fixed history) and egw_not_converged contract
    !> as solve_contact (after a capped loading at sigma/delta_y <= 1e-6 the asymptotic
    !> route too: small_sigma_unload). history is only read: thread-safe. result untouched
-   !> on error.
-   subroutine solve_unload(history, delta, result, error, start)
+   !> on error. force_floor: where the caller needs the force only to an absolute error
+   !> (restitution's work integral), the route's estimates are relative to at least it.
+   subroutine solve_unload(history, delta, result, error, start, force_floor)
       type(loading_history), intent(in) :: history   !< from load_history (only read)
       real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
       type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
@@ -1025,9 +1028,13 @@ contains
       !> replaced by this solve's deflection; the result is the same to the solve's
       !> tolerance with or without it
       type(unload_start), intent(inout), optional :: start
+      !> [force] >= 0: the small-sigma route's estimates relative to max(|P|, force_floor)
+      !> (default 0: relative to |P|, at least 1e-6 P(delta_max))
+      real(dp), intent(in), optional :: force_floor
       type(scaled_problem) :: prob
       type(solve_result) :: res
       type(cap_result) :: cres
+      real(dp) :: floor
 
       if (.not. history%loaded) then
          call fatal_error(error, egw_invalid_argument, &
@@ -1070,7 +1077,9 @@ contains
          call rough_unload(history%params, history%options, history%closest, delta, res, &
             & error, start)
       end if
-      call small_sigma_unload(history, delta, res, error)
+      floor = 0.0_dp
+      if (present(force_floor)) floor = force_floor
+      call small_sigma_unload(history, delta, floor, res, error)
       if (.not. allocated(error)) result = res
    end subroutine solve_unload
 
