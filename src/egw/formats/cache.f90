@@ -43,8 +43,10 @@ module egw_cache
    !> route's wide histories at rel_tol <= 1e-6 and its unloading one order further near
    !> the residual overlap; 15: unloading solves' locating solve warm-started from the
    !> curve's last solve, lu_factor's rank-2 updates and the Jacobian's columns in one
-   !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m)).
-   integer, parameter, public :: cache_revision = 15
+   !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m); 16: the
+   !> route's wide histories at rel_tol >= 1e-7, which moves route answers of histories
+   !> loaded tighter than 1e-7 at sigma/delta_y <= 1e-6, within their estimates).
+   integer, parameter, public :: cache_revision = 16
 
 
 contains

@@ -93,6 +93,13 @@ module egw_rough_sphere
    !> 2.44 delta_y at 0.197 delta_max: the route refused, estimate 3.7e-4), from 1e-6
    !> histories by 2e-5 (answered within its estimate).
    real(dp), parameter :: wide_history_tol = 1.0e-6_dp
+   !> ... and the tightest: a history at a smaller rel_tol keeps its route's wide
+   !> histories at this one. From 1e-8 ones (egw_solve_unload's history at 1e-6 delta_y,
+   !> rel_tol 1e-5) they took 24 of the first call's 50 s, at 1e-7 ~1 s, and the route's
+   !> answers at 0.145 .. 0.18 delta_max were no closer to the references (-8.8e-6,
+   !> 1.1e-6, 3.8e-7, 1.0e-6 against -1.4e-6, 6.0e-7, 7.6e-7, 1.2e-6 at 1e-7; E-GW + cap,
+   !> mu 4, from 2 delta_y; doc/stability.md "Rough + cap as sigma -> 0").
+   real(dp), parameter :: wide_history_floor = 1.0e-7_dp
    !> the unloading's force floor of the route's estimates, relative to P(delta_max)
    real(dp), parameter :: unload_floor = 1.0e-6_dp
    !> The rel_tol of the route's probe (route_floor), and the factor on it that bounds a
@@ -542,7 +549,8 @@ contains
       if (.not. asymptotic_applies(hist%params, hist%options, hist%delta_max, &
          & hist%closest%extended .and. hist%closest%capped, delta_y)) return
       wide_options = hist%options
-      wide_options%rel_tol = min(hist%options%rel_tol, wide_history_tol)
+      wide_options%rel_tol = min(max(hist%options%rel_tol, wide_history_floor), &
+         & wide_history_tol)
       call cap_load(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
          & hist%delta_max, cap_options(n_rings=100, n_levels=2), hist%wide_cap, cap, &
          & wide_error, "delta_max")
