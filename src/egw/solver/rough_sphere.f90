@@ -551,6 +551,7 @@ contains
       wide_options = hist%options
       wide_options%rel_tol = min(max(hist%options%rel_tol, wide_history_floor), &
          & wide_history_tol)
+      if (hist%asymptotic) wide_options%rel_tol = wide_history_floor
       call cap_load(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
          & hist%delta_max, cap_options(n_rings=100, n_levels=2), hist%wide_cap, cap, &
          & wide_error, "delta_max")
