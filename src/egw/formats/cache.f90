@@ -44,8 +44,8 @@ module egw_cache
    !> the residual overlap; 15: unloading solves' locating solve warm-started from the
    !> curve's last solve, lu_factor's rank-2 updates and the Jacobian's columns in one
    !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m); 16: the
-   !> route's wide histories at rel_tol >= 1e-7, which moves route answers of histories
-   !> loaded tighter than 1e-7 at sigma/delta_y <= 1e-6, within their estimates).
+   !> small-sigma route's wide histories at rel_tol >= 1e-7, and at 1e-7 for a history the
+   !> route loaded: route answers at sigma/delta_y <= 1e-6 move within their estimates).
    integer, parameter, public :: cache_revision = 16
 
 

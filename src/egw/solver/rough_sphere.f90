@@ -98,7 +98,12 @@ module egw_rough_sphere
    !> rel_tol 1e-5) they took 24 of the first call's 50 s, at 1e-7 ~1 s, and the route's
    !> answers at 0.145 .. 0.18 delta_max were no closer to the references (-8.8e-6,
    !> 1.1e-6, 3.8e-7, 1.0e-6 against -1.4e-6, 6.0e-7, 7.6e-7, 1.2e-6 at 1e-7; E-GW + cap,
-   !> mu 4, from 2 delta_y; doc/stability.md "Rough + cap as sigma -> 0").
+   !> mu 4, from 2 delta_y; doc/stability.md "Rough + cap as sigma -> 0"). A history the
+   !> route loaded (asymptotic: every unloading solve is the route's, and its rel_tol only
+   !> said which route estimate was accepted) keeps them at this one whatever its rel_tol:
+   !> at 1e-6 (egw_solve_unload's history at sigma/delta_y = 1e-7 loads only at its rel_tol
+   !> 1e-5) 0.15 and 0.145 delta_max were refused (estimates 6.8e-6, 7.9e-6), at 1e-7 they
+   !> answer within 1.9e-6 of the references.
    real(dp), parameter :: wide_history_floor = 1.0e-7_dp
    !> the unloading's force floor of the route's estimates, relative to P(delta_max)
    real(dp), parameter :: unload_floor = 1.0e-6_dp
