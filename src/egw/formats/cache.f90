@@ -46,8 +46,10 @@ module egw_cache
    !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m); 16:
    !> rough + cap tables with elastic summits on the two-piece s map, format version 4;
    !> 17: rough + cap unloading meshes reach past the plastic rim also where it lies
-   !> within the Hertz edge's layers).
-   integer, parameter, public :: cache_revision = 17
+   !> within the Hertz edge's layers; 18: the small-sigma route's wide histories at
+   !> rel_tol >= 1e-7, and at 1e-7 for a history the route loaded: route answers at
+   !> sigma/delta_y <= 1e-6 move within their estimates).
+   integer, parameter, public :: cache_revision = 18
 
 
 contains
