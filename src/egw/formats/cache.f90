@@ -44,8 +44,10 @@ module egw_cache
    !> the residual overlap; 15: unloading solves' locating solve warm-started from the
    !> curve's last solve, lu_factor's rank-2 updates and the Jacobian's columns in one
    !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m); 16:
-   !> rough + cap tables with elastic summits on the two-piece s map, format version 4).
-   integer, parameter, public :: cache_revision = 16
+   !> rough + cap tables with elastic summits on the two-piece s map, format version 4;
+   !> 17: rough + cap unloading reaches a plastic rim that lies within the Hertz edge's
+   !> grading: E-GW + cap tables moved by <= 2.1e-5 of P(m) at 1e-4).
+   integer, parameter, public :: cache_revision = 17
 
 
 contains
