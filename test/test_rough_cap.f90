@@ -69,6 +69,8 @@ contains
          & test_mid_unloading_rim), &
          & new_unittest("E-GW + cap, rim within the focus's layers: the mesh reaches it", &
          & test_rim_near_focus), &
+         & new_unittest("E-GW + cap, sigma = delta_y/10: a rim within the focus's grading", &
+         & test_rim_in_grading), &
          & new_unittest("sigma/delta_y = 1e-8, 1e-10: histories by the small-sigma route", &
          & test_tiny_sigma_history), &
          & new_unittest("sigma/delta_y = 1e-8: restitution at 3 v_y by the small-sigma route", &
@@ -282,6 +284,46 @@ contains
          end do
       end do
    end subroutine test_rim_near_focus
+
+   !> E-GW + cap, R = 4.05e5 sigma, p_y = 0.01 E*, sigma = delta_y/10 (the table of
+   !> doc/benchmarks.md "Stop 43", its sigma = delta_y/10 row, to 20 delta_y at 1e-3,
+   !> which did not build: its curve at delta_max = 454.13 = 4.54 delta_y). The history's
+   !> plastic rim (scaled radius 6.93) lies within the Hertz edge's grading (5.21 + 4 x
+   !> 0.51), so it had no layers, and the outer radius (6.74) stopped inside it; from
+   !> delta = m - 182.5893544822179 on (a jump within 2e-11 of it) every level missed the
+   !> contact's annulus at the rim: at rel_tol 1e-4 the force was 6.3e-3 low (1.6e-3 of
+   !> P(m)) under an estimate of 9.2e-6. Reference: rel_tol 1e-9 solves of a rel_tol 1e-9
+   !> history on the code before the fix (whose tight solves were right there; the 1e-8
+   !> ones agree to 4e-9, and the fixed code's 1e-9 ones to 3e-11). Bound: the solves'
+   !> rel_tol 1e-4 (measured 6e-8 with the fix).
+   subroutine test_rim_in_grading(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: m = 454.1306018557710_dp
+      real(dp), parameter :: offset(3) = [182.5893544822179_dp, 182.59_dp, 182.6_dp]
+      real(dp), parameter :: ref(3) = [1.7244559632596434e6_dp, 1.7244406157879801e6_dp, &
+         & 1.7242028680744793e6_dp]
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      integer :: i
+      p = contact_params(model=model_egw, radius=405284.734569351_dp, modulus=1.0_dp, &
+         & sigma=10.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
+      call load_history(p, solver_options(rel_tol=1.0e-4_dp, n_threads=1), m, h, res, err)
+      call check(error, .not. allocated(err), "history at 4.54 delta_y failed")
+      if (allocated(error)) return
+      do i = 1, size(offset)
+         call solve_unload(h, m - offset(i), res, err)
+         if (allocated(err)) then
+            call check(error, .false., "unloading at m - "//str(offset(i))//": " &
+               & //err%message)
+            return
+         end if
+         call check(error, abs(res%force - ref(i)) <= 1.0e-4_dp*ref(i), "m - " &
+            & //str(offset(i))//": P = "//str(res%force)//", reference "//str(ref(i)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_rim_in_grading
 
    !> Histories of E-GW with the cap at tiny sigma (rel_tol 1e-6) against the smooth cap
    !> (test/data/cap_reference.csv, the sigma -> 0 limit). sigma/delta_y = 1e-8 from
