@@ -193,7 +193,8 @@ grep -q "hysteresis table(s) come in the csv and binary formats only" "$work/std
   "$work/rough_cap" -q >"$work/stdout" 2>"$work/stderr"
 rc=$?
 [ "$rc" -eq 0 ] || fail "rough cap scene: exit status $rc: $(cat "$work/stderr")"
-grep -q "CSV format 2" "$work/rough_cap/scene_hysteresis.csv" &&
+# (E-GW + cap: elastic summits, turning points above 0: the two-piece s map, CSV format 4)
+grep -q "CSV format 4" "$work/rough_cap/scene_hysteresis.csv" &&
   grep -q "^# sigma = 1.000000000" "$work/rough_cap/scene_hysteresis.csv" ||
   fail "rough cap scene: scene_hysteresis.csv is not a rough + cap table"
 [ ! -e "$work/rough_cap/scene_table.csv" ] || fail "rough cap scene: a force table written"
