@@ -48,8 +48,10 @@ module egw_cache
    !> 17: rough + cap unloading meshes reach past the plastic rim also where it lies
    !> within the Hertz edge's layers; 18: the small-sigma route's wide histories at
    !> rel_tol >= 1e-7, and at 1e-7 for a history the route loaded: route answers at
-   !> sigma/delta_y <= 1e-6 move within their estimates).
-   integer, parameter, public :: cache_revision = 18
+   !> sigma/delta_y <= 1e-6 move within their estimates; 19: rough + cap tables with
+   !> plastic summits on the two-piece s map too (turning points at or below 0 on its
+   !> tail), every mapped table's slopes stored as dg/dx times tail_length).
+   integer, parameter, public :: cache_revision = 19
 
 
 contains
