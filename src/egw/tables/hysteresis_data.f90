@@ -27,8 +27,9 @@
 !> union refines every curve's own nodes), so that an evaluation needs one lookup in s and
 !> one in m, served by uniform buckets: no search, no allocation, only the caller's
 !> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
-!> retraces the loading table exactly. Rough + cap tables whose turning points lie above
-!> 0 (mapped) take s piecewise linear in m - delta instead (the two-piece map, map_s).
+!> retraces the loading table exactly. Rough + cap tables whose cap acts below delta_max
+!> (mapped) take s piecewise linear in m - delta instead (the two-piece map, map_s;
+!> turning points at or below 0 only its tail).
 module egw_hysteresis_data
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use, intrinsic :: iso_fortran_env, only: int64
