@@ -166,9 +166,11 @@ contains
          end if
       end if
       u = (u - table%dip_u(k))/(table%dip_u(k + 1) - table%dip_u(k))
-      total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m/cv%inv_span
-      if (table%mapped) total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m* &
-         & table%tail_length
+      if (table%mapped) then   ! (dips in f_m tail_length units there)
+         total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m*table%tail_length
+      else
+         total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m/cv%inv_span
+      end if
       x_band = curve_x(table, cv, min(table%dip_band(j), 1.0_dp))
       if (delta > x_band) then
          call span_eval(table, cv, delta, f, slope)
