@@ -22,7 +22,7 @@ module egw_text
    private
 
    public :: int_text, real_text, parse_real, parse_int, int_text_len, real_text_len
-   public :: csv_row, csv_row_len
+   public :: csv_row, csv_row_len, to_lower
 
    interface int_text
       module procedure int_text_32, int_text_64
@@ -534,9 +534,11 @@ contains
       is_digit = ch >= "0" .and. ch <= "9"
    end function is_digit
 
+   !> s with its ASCII capitals A-Z as small letters, every other byte as it is (the
+   !> C locale's tolower, whatever the locale; keywords and names are matched this way).
    pure function to_lower(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
+      character(len=*), intent(in) :: s   !< any text
+      character(len=len(s)) :: t          !< s in small letters
       integer :: i
       t = s
       do i = 1, len(s)
