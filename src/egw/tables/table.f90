@@ -30,6 +30,7 @@ module egw_table
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
       & ieee_quiet_nan
    use egw_kinds, only: dp
+   use egw_search, only: bracket_interval
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
       & egw_out_of_range, fatal_error, format_real, int_str, tolerance_context
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
@@ -853,23 +854,14 @@ contains
    pure integer function find_interval(table, delta) result(i)
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
-      integer :: b, lo, hi, mid
+      integer :: b, hi
       b = min(max(int((delta - table%bucket_origin)*table%bucket_scale), 0), table%n_bucket)
       i = abs(table%bucket(b))
       hi = abs(table%bucket(b + 1)) + 1
       if (hi - i > 6) then
          ! crowded bucket (graded nodes near a singular point): bisect
-         lo = i
          hi = min(hi, size(table%seg, 2))
-         do while (hi - lo > 1)
-            mid = (lo + hi)/2
-            if (delta >= table%seg(0, mid)) then
-               lo = mid
-            else
-               hi = mid
-            end if
-         end do
-         i = lo
+         i = i - 1 + bracket_interval(table%seg(0, i:hi), delta)
       end if
       ! seg(0, n) = delta_max > delta ends the scan
       do while (delta >= table%seg(0, i + 1))
