@@ -26,6 +26,11 @@ warns when the spectral eta or beta changes by more than RESOLUTION_TOL. Then cu
 off at a physical short-wavelength limit (coarse_grain, a low-pass filter) until they stop
 changing, or use a contact law that needs no summit statistics (Persson's theory, a
 boundary-element rough-flat law).
+
+This module gathers the public names; the code lives by subject in egw.topo_maps (height
+maps, units, detrending, the defaults), egw.topo_spectra (the moments), egw.topo_summits
+(McCool's and the identified summit statistics), egw.topo_analysis (analyse),
+egw.topo_contact (psi, contact_from_topography) and egw.topo_cli (egw-topo).
 """
 from __future__ import annotations
 
