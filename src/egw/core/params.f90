@@ -204,8 +204,9 @@ contains
    !> resolves: |delta/sigma| <= overlap_ratio_max on the overlap side (any separation is
    !> fine: far apart the force is 0). name names the argument in the message.
    pure subroutine check_scaled_overlap(name, delta, sigma, error)
-      character(len=*), intent(in) :: name
-      real(dp), intent(in) :: delta, sigma
+      character(len=*), intent(in) :: name   !< the argument's name in the message
+      real(dp), intent(in) :: delta, sigma   !< overlap and sigma [length]
+      !> egw_invalid_argument naming name, if out of range
       type(egw_error), allocatable, intent(out) :: error
       if (.not. sigma > 0.0_dp) return
       if (delta > overlap_ratio_max*sigma) call fatal_error(error, egw_invalid_argument, &
@@ -218,7 +219,7 @@ contains
    !> significands multiply in [1/16, 1), the exponents add, and scale() rounds once more
    !> (to a subnormal, 0 or +Inf only if the product itself is out of range).
    elemental real(dp) function product4(w, x, y, z) result(p)
-      real(dp), intent(in) :: w, x, y, z
+      real(dp), intent(in) :: w, x, y, z   !< the four factors, > 0
       p = scale(fraction(w)*fraction(x)*fraction(y)*fraction(z), &
          & exponent(w) + exponent(x) + exponent(y) + exponent(z))
    end function product4
@@ -229,29 +230,32 @@ contains
    !> intermediates stay normal (bit for bit as before), else product4 (sigma**1.5 alone
    !> underflows at sigma = 1e-300 while the force unit E sqrt(R) sigma**1.5 need not).
    elemental real(dp) function length_unit(params) result(u)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       u = sqrt(params%radius*params%sigma)
       if (.not. normal(u) .or. .not. normal(params%radius*params%sigma)) &
          & u = sqrt(params%radius)*sqrt(params%sigma)
    end function length_unit
 
+   !> The scaled pressure unit E sqrt(sigma/R) (as length_unit).
    elemental real(dp) function pressure_unit(params) result(u)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       u = params%modulus*sqrt(params%sigma/params%radius)
       if (.not. normal(u) .or. .not. normal(params%sigma/params%radius)) &
          & u = product4(params%modulus, sqrt(params%sigma), 1.0_dp/sqrt(params%radius), 1.0_dp)
    end function pressure_unit
 
+   !> The scaled force unit E sqrt(R) sigma**1.5 (as length_unit).
    elemental real(dp) function force_unit(params) result(u)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       u = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
       if (.not. normal(u) .or. .not. normal(params%sigma**1.5_dp) .or. &
          & .not. normal(params%modulus*sqrt(params%radius))) &
          & u = product4(params%modulus, sqrt(params%radius), params%sigma, sqrt(params%sigma))
    end function force_unit
 
+   !> The scaled stiffness unit E sqrt(R sigma) (as length_unit).
    elemental real(dp) function stiffness_unit(params) result(u)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       u = product4(params%modulus, sqrt(params%radius), sqrt(params%sigma), 1.0_dp)
    end function stiffness_unit
 
@@ -262,7 +266,7 @@ contains
 
    !> "[lo, hi]" for messages.
    pure function range_str(lo, hi) result(str)
-      real(dp), intent(in) :: lo, hi
+      real(dp), intent(in) :: lo, hi   !< the range's ends
       ! a length from a specification function, not a deferred one (egw_text: threads)
       character(len=format_real_len(lo) + format_real_len(hi) + 4) :: str
       str = "["//format_real(lo)//", "//format_real(hi)//"]"
@@ -297,7 +301,7 @@ contains
 
    !> C = (4/3) E eta beta^(1/2) = mu E / (2 sigma sqrt(2R)) of eq. (9) (sigma > 0).
    elemental function rough_flat_coefficient(params) result(c)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       real(dp) :: c
       c = params%mu*params%modulus/(2.0_dp*params%sigma*sqrt(2.0_dp*params%radius))
    end function rough_flat_coefficient
@@ -325,7 +329,7 @@ contains
 
    !> Whether x is finite and > 0 (a NaN is not).
    elemental logical function positive_finite(x)
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< any double
       positive_finite = ieee_is_finite(x) .and. x > 0.0_dp
    end function positive_finite
 

@@ -158,7 +158,8 @@ contains
    pure subroutine new_table_law(u, p, law, error, dpdu, area, length, modulus)
       real(dp), intent(in) :: u(:)   !< mean separations, ascending
       real(dp), intent(in) :: p(:)   !< mean pressures, > 0 and decreasing
-      type(table_flat_law), intent(out) :: law
+      type(table_flat_law), intent(out) :: law   !< the tabulated law
+      !> egw_invalid_argument naming the node, as above
       type(egw_error), allocatable, intent(out) :: error
       real(dp), intent(in), optional :: dpdu(:)   !< dp/du at the nodes (<= 0)
       real(dp), intent(in), optional :: area(:)   !< contact-area fraction at the nodes
