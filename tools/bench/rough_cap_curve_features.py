@@ -9,7 +9,7 @@ the build's c_turn factor, within the solves' tolerance of 1):
 
 from egw.solve and egw.solve_unload at --tol (default 1e-6). Two modes:
 
-  along a curve (default): g at x = m - delta = 0, h, 2h, ... (h = --step) for each
+  along a curve (default): g at x = m - delta = 0, h, 2h, ... (h = --step; --x-range) for each
   turning point of --m, with 1e4 h**2 times its second difference (g''); the x where
   the third difference is largest are the curve's kinks in g'' (printed last);
 
@@ -41,6 +41,11 @@ def main():
     ap.add_argument("--psi", type=float, default=0.0)
     ap.add_argument("--m", type=float, nargs="+", required=True, help="turning points")
     ap.add_argument("--step", type=float, default=2.0, help="x step along a curve")
+    ap.add_argument("--x-range", type=float, nargs=2, default=None,
+                    help="x from, to along a curve (default 0 to m)")
+    ap.add_argument("--skip-delta", type=float, default=None,
+                    help="no kinks reported within 4 of this overlap (e.g. the loading "
+                         "curve's own onset of the cap)")
     ap.add_argument("--at-delta", type=float, nargs="*", default=[],
                     help="fixed overlaps: g across the turning points --m")
     ap.add_argument("--tol", type=float, default=1e-6)
@@ -56,7 +61,8 @@ def main():
                 flush=True)
         return
     for m in args.m:
-        xs = np.arange(0.0, m, args.step)
+        lo, hi = (0.0, m) if args.x_range is None else args.x_range
+        xs = np.arange(lo, min(hi, m), args.step)
         g, f = np.array([gap(params, opts, m - x, m, p_ms[m], True) for x in xs]).T
         d2 = np.zeros_like(g)
         d2[1:-1] = (g[2:] - 2 * g[1:-1] + g[:-2]) / args.step**2
@@ -67,9 +73,12 @@ def main():
         # knee near the residual overlap, which the two-piece map holds at s = 1/2)
         d3 = np.abs(np.diff(d2))
         d3[(f[:-1] < 0.05) | (np.arange(d3.size) < 1) | (np.arange(d3.size) >= d3.size - 1)] = 0
+        if args.skip_delta is not None:
+            d3[np.abs(m - xs[:-1] - args.skip_delta) < 4] = 0
         top = np.argsort(d3)[::-1][:3]
-        print("  largest changes of g'' between x = " +
-              ", ".join(f"{xs[k]:.1f} and {xs[k + 1]:.1f}" for k in sorted(top)), flush=True)
+        print(f"  m = {m:g}: largest changes of g'' between x = " +
+              ", ".join(f"{xs[k]:.1f} and {xs[k + 1]:.1f} ({d3[k]:.1e})" for k in top
+                        if d3[k] > 0), flush=True)
 
 
 if __name__ == "__main__":
