@@ -14,7 +14,8 @@ from egw.solve and egw.solve_unload at --tol (default 1e-6). Two modes:
   the third difference is largest are the curve's kinks in g'' (printed last);
 
   across turning points (--at-delta D ...): g(D; m) for each m of --m at the fixed
-  overlaps D, as the delta_max interpolation sees it at fixed s on the tail.
+  overlaps D, as the delta_max interpolation sees it at fixed s on the tail, and
+  P_load(m) (g P_load(m) is the hysteresis force itself).
 
 The parameters are the README's rough + cap benchmark row (egw-table --radius
 810569.469138702, i.e. R = 405284.7 per contact, E* = 1, sigma = 1, mu = 4,
@@ -55,6 +56,9 @@ def main():
     opts = egw.Options(rel_tol=args.tol)
     p_ms = {m: egw.solve(params, float(m), opts).force for m in args.m}
     if args.at_delta:
+        # (P_load(m) too: g P_load(m) = P_load(delta) - P_unload(delta; m), the hysteresis
+        # force itself)
+        print("P_load(m): " + "  ".join(f"m {m:g} {p_ms[m]:.6g}" for m in args.m))
         for d in args.at_delta:
             print(f"delta {d:g}: " + "  ".join(
                 f"m {m:g} g {gap(params, opts, d, m, p_ms[m]):.5f}" for m in args.m),
