@@ -103,8 +103,8 @@ void egw_params_default(egw_params *p);
 /* Validate every field of p, including the ranges the numerics represent (normal doubles;
  * for sigma > 0 the scales sqrt(R sigma), E sqrt(sigma/R), E sqrt(R) sigma^1.5 within
  * 1e+-278, mu in [1e-20, 1e20]; psi 0 or in [1e-50, 1e50]; K >= 1e-20; rho_p <= 1e50;
- * for flow_pressure > 0 the cap's scales a_y = pi R p_y/(2 E*), delta_y = a_y^2/R,
- * P_y = (4/3) E* a_y^3/R and P_y delta_y within 1e+-278: doc/parameters.md section 5). EGW_INVALID_PARAMETER names the field and its valid
+ * for flow_pressure > 0 the cap's scales a_y = pi R p_y/(2 E*), delta_y = a_y^2/R and
+ * P_y = (4/3) E* a_y^3/R within 1e+-278: doc/parameters.md section 5). EGW_INVALID_PARAMETER names the field and its valid
  * range; EGW_NULL_POINTER. */
 int egw_params_validate(const egw_params *p);
 

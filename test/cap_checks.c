@@ -69,7 +69,7 @@ int egw_capi_test_flow_pressure_params(void) {
     q.flow_pressure = 1e-300;
     CHECK(egw_solve(&q, NULL, 2e-3, &r) == EGW_INVALID_PARAMETER);
     CHECK(message_has("flow_pressure"));
-    /* inside the scales: p_y = 1e-50 (P_y delta_y = 1.3e-249); the closed forms
+    /* inside the scales: p_y = 1e-50 (P_y = 5e-150); the closed forms
      * delta_y = a_y^2, (1/2) v_y^2 = (8/15) a_y^5 (R = E* = m* = 1) to a few roundings */
     q = capped();
     q.flow_pressure = 1e-50;

@@ -182,19 +182,18 @@ contains
       end if
       if (params%flow_pressure > 0.0_dp) then
          ! the cap's scales (doc/theory.md section 12): a_y = pi R p_y/(2 E*), delta_y =
-         ! a_y**2/R, P_y = (4/3) E* a_y**3/R and the energy P_y delta_y, in logarithms;
-         ! p_y/E* = 1e-300 passed the field's own check while delta_y underflowed to 0
+         ! a_y**2/R and P_y = (4/3) E* a_y**3/R, in logarithms; p_y/E* = 1e-300 passed
+         ! the field's own check while delta_y underflowed to 0
          lr = log(params%radius)
          le = log(params%modulus)
          la = log(0.5_dp*pi) + lr + log(params%flow_pressure) - le
          if (.not. (in_scale(la) .and. in_scale(2.0_dp*la - lr) .and. &
-            & in_scale(log(4.0_dp/3.0_dp) + le + 3.0_dp*la - lr) .and. &
-            & in_scale(log(4.0_dp/3.0_dp) + le + 5.0_dp*la - 2.0_dp*lr))) then
+            & in_scale(log(4.0_dp/3.0_dp) + le + 3.0_dp*la - lr))) then
             call bad(error, "flow_pressure", params%flow_pressure, "with radius = " &
                & //format_real(params%radius)//" and modulus = " &
                & //format_real(params%modulus)//": the cap's first-yield scales a_y = " &
-               & //"pi R p_y/(2 E*), delta_y = a_y**2/R, P_y = (4/3) E* a_y**3/R and " &
-               & //"P_y delta_y must lie in "//range_str(tiny(1.0_dp)/scale_margin, &
+               & //"pi R p_y/(2 E*), delta_y = a_y**2/R, P_y = (4/3) E* a_y**3/R must " &
+               & //"lie in "//range_str(tiny(1.0_dp)/scale_margin, &
                & huge(1.0_dp)*scale_margin)); return
          end if
       end if
