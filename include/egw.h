@@ -83,7 +83,8 @@ int egw_get_version(void);
 int egw_status_message(int status, char *buf, int buflen);
 
 /* Detailed message of the last failing egw call on this thread (empty if none),
- * e.g. "sigma = -1.0E-003: must be finite and >= 0", copied into buf (buflen bytes).
+ * e.g. "sigma = -1.000000000000000E-003: must be finite and >= 0", copied into buf
+ * (buflen bytes).
  * Returns the bytes the whole message needs, strlen(message) + 1 (>= 1), in every case
  * that is not an error:
  *   - buflen >= that: the whole message and its NUL are written;
