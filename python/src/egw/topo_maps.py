@@ -109,6 +109,7 @@ def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1
     dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
     if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
         raise ValueError(f"pixel_size = {pixel_size}: must be finite and > 0")
+    _check_scales(z, float(dx), float(dy), path)
     _check_unit(unit)
     return HeightMap(z, float(dx), float(dy), unit, bool(periodic))
 
@@ -214,6 +215,25 @@ def default_derivatives(periodic: bool) -> str:
     return DEFAULTS["derivatives"][bool(periodic)]
 
 
+#: Bound on a map's scales (in its own unit): pixel sizes in [1/MAP_SCALE, MAP_SCALE],
+#: heights and the curvature scale max|z|/min(dx, dy)**2 at most MAP_SCALE, so that the
+#: pixel area, the moments m2 ~ (z/dx)**2, m4 ~ (z/dx**2)**2 and the summit density stay
+#: finite doubles (a pixel size of 1e-300 divided by zero, 1e300 overflowed).
+MAP_SCALE = 1e100
+
+
+def _check_scales(z: np.ndarray, dx: float, dy: float, what: str) -> None:
+    if not (1.0 / MAP_SCALE <= min(dx, dy) and max(dx, dy) <= MAP_SCALE):
+        raise ValueError(f"pixel_size = ({dx:g}, {dy:g}): must lie in "
+                         f"[{1.0 / MAP_SCALE:g}, {MAP_SCALE:g}] (in the unit of the heights;"
+                         " beyond, the moments and the summit density leave the doubles)")
+    top = float(np.max(np.abs(z)))
+    if top > MAP_SCALE or top / min(dx, dy) ** 2 > MAP_SCALE:
+        raise ValueError(f"{what}: heights up to {top:g} on pixel_size = ({dx:g}, {dy:g}):"
+                         f" the heights and the curvature scale max|z|/min(dx, dy)**2 must "
+                         f"be at most {MAP_SCALE:g} (the moments leave the doubles)")
+
+
 def _check_unit(unit: Optional[str]) -> None:
     if unit is not None and unit not in LENGTH_UNITS:
         raise ValueError(f"unit = {unit!r}: must be one of {sorted(set(LENGTH_UNITS))}")
@@ -276,6 +296,7 @@ def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic:
     dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
     if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
         raise ValueError(f"pixel_size = {pixel_size}: must be finite and > 0")
+    _check_scales(z, float(dx), float(dy), what)
     _check_unit(unit)
     return HeightMap(z, float(dx), float(dy), unit, bool(periodic))
 

@@ -28,8 +28,8 @@ module egw_params
       real(dp) :: hardness_coeff = 0.6_dp  !< ZMC K in (0, 1)
       real(dp) :: plastic_ratio = 54.0_dp  !< ZMC delta_p/delta_ep > 1
       !> bulk flow pressure p_y of the elastic-perfectly-plastic half-space (doc/theory.md
-      !> section 12): the contact pressure is capped at p_y; 0 = no bulk yield. Smooth
-      !> spheres (Hertz, sigma = 0) only for now: a rough model with p_y > 0 is refused.
+      !> section 12): the contact pressure is capped at p_y; 0 = no bulk yield. Every
+      !> model (rough ones cap the total pressure: theory.md section 12).
       real(dp) :: flow_pressure = 0.0_dp
    end type contact_params
 
@@ -150,7 +150,7 @@ contains
    pure subroutine check_ranges(params, error)
       type(contact_params), intent(in) :: params
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: lr, le, ls
+      real(dp) :: lr, le, ls, la
       if (params%radius < tiny(1.0_dp)) then
          call bad(error, "radius", params%radius, "must be a normal double >= " &
             & //format_real(tiny(1.0_dp))//" (subnormal)"); return
@@ -178,6 +178,23 @@ contains
                & //" and modulus = "//format_real(params%modulus)//": the scales sqrt(R sigma)" &
                & //", E sqrt(sigma/R), E sqrt(R) sigma**1.5 must lie in " &
                & //range_str(tiny(1.0_dp)/scale_margin, huge(1.0_dp)*scale_margin)); return
+         end if
+      end if
+      if (params%flow_pressure > 0.0_dp) then
+         ! the cap's scales (doc/theory.md section 12): a_y = pi R p_y/(2 E*), delta_y =
+         ! a_y**2/R and P_y = (4/3) E* a_y**3/R, in logarithms; p_y/E* = 1e-300 passed
+         ! the field's own check while delta_y underflowed to 0
+         lr = log(params%radius)
+         le = log(params%modulus)
+         la = log(0.5_dp*pi) + lr + log(params%flow_pressure) - le
+         if (.not. (in_scale(la) .and. in_scale(2.0_dp*la - lr) .and. &
+            & in_scale(log(4.0_dp/3.0_dp) + le + 3.0_dp*la - lr))) then
+            call bad(error, "flow_pressure", params%flow_pressure, "with radius = " &
+               & //format_real(params%radius)//" and modulus = " &
+               & //format_real(params%modulus)//": the cap's first-yield scales a_y = " &
+               & //"pi R p_y/(2 E*), delta_y = a_y**2/R, P_y = (4/3) E* a_y**3/R must " &
+               & //"lie in "//range_str(tiny(1.0_dp)/scale_margin, &
+               & huge(1.0_dp)*scale_margin)); return
          end if
       end if
       if (params%psi > 0.0_dp .and. (params%psi < psi_min .or. params%psi > psi_max)) then

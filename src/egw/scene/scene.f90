@@ -67,8 +67,9 @@ module egw_scene
       character(len=512) :: flat_law = ""
       !> The bulk flow pressure p_y of the flow-pressure cap (doc/theory.md §12; 0: none;
       !> Fortran only, not in the C struct: egw_scene_read refuses a file that sets it).
-      !> Smooth spheres only (model Hertz or sigma = 0): egw-table writes their hysteresis
-      !> tables. From yield_stress Y: p_y = 1.6 Y.
+      !> egw-table writes hysteresis tables with it: Hertz + cap for smooth spheres, the
+      !> rough model's with the cap for sigma > 0 (doc/scenes.md). From yield_stress Y:
+      !> p_y = 1.6 Y.
       real(dp) :: flow_pressure = 0.0_dp
    end type scene_input
 
