@@ -460,7 +460,7 @@ contains
          call bad(error, "psi", s%psi, "must be finite and >= 0"); return
       end if
       if (.not. (s%hardness_coeff > 0.0_dp .and. s%hardness_coeff < 1.0_dp)) then
-         call bad(error, "K", s%hardness_coeff, "must lie in (0, 1)"); return
+         call bad(error, "K (hardness_coeff)", s%hardness_coeff, "must lie in (0, 1)"); return
       end if
       if (.not. (ieee_is_finite(s%plastic_ratio) .and. s%plastic_ratio > 1.0_dp)) then
          call bad(error, "plastic_ratio", s%plastic_ratio, "must be finite and > 1"); return
