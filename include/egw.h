@@ -96,6 +96,21 @@ int egw_status_message(int status, char *buf, int buflen);
  * (Unlike the other int functions it never returns EGW_OK: test > 0, or <= buflen.) */
 int egw_last_error(char *buf, int buflen);
 
+/* Progress of long calls (since 0.2.0): hook(done, stage, user) is called as this
+ * thread's long calls proceed: egw_solve, egw_solve_unload, egw_restitution(...),
+ * egw_time_step and the table, hysteresis and scene builds (a solve of rough + cap at
+ * sigma/delta_y <= 1e-6 can take half a minute: its small-sigma route, doc/stability.md).
+ * done lies in [0, 1] and never decreases within one call: 0 at its start, 1 at its
+ * end; stage is a short NUL-terminated name of the step ("history", "small-sigma route:
+ * wide histories", "unloading", "restitution: loading", "table build" ...), valid only
+ * during the call. hook NULL switches reports off (the default: the library never prints).
+ * The hook is per thread, like egw_last_error: set on a thread, it hears only the calls
+ * made on that thread (no lock, no sharing); solves inside egw's own OpenMP regions
+ * (builds, array entries) report through their build, not one by one. The hook may call
+ * egw: those calls report nothing. user is passed to the hook as it was given. */
+typedef void (*egw_progress_fn)(double done, const char *stage, void *user);
+void egw_set_progress(egw_progress_fn hook, void *user);
+
 /* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54,
  * flow_pressure 0 (no bulk yield). */
 void egw_params_default(egw_params *p);

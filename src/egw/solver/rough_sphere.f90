@@ -26,6 +26,7 @@ module egw_rough_sphere
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, model_flat_law, check_scaled_overlap, length_unit, pressure_unit, &
       & force_unit, stiffness_unit, product4
+   use egw_progress, only: progress_begin, progress_end, progress_part, progress_report
    use egw_smooth_sphere, only: hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_unloading, only: unloading_law_of, unloading_pressure
@@ -213,6 +214,7 @@ contains
    !> doc/theory.md §12), if its estimate meets rel_tol; at sigma/delta_y <= 1e-7 a
    !> converged solve of those models is checked against that route
    !> (small_sigma_loading).
+   !> Reports progress (egw_progress) as one long call, stage "solve".
    subroutine solve_contact(params, options, delta, result, error)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
@@ -221,6 +223,18 @@ contains
       !> force [force] >= 0, stiffness [force/length], contact radius [length], ...
       type(solve_result), intent(out) :: result
       !> allocated on failure (result is then not defined)
+      type(egw_error), allocatable, intent(out) :: error
+      call progress_begin("solve")
+      call contact_solve(params, options, delta, result, error)
+      call progress_end("solve")
+   end subroutine solve_contact
+
+   !> solve_contact's work.
+   subroutine contact_solve(params, options, delta, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -257,8 +271,9 @@ contains
          return
       end if
       call solve_rough(params, options, prob, sol, result, error)
+      call progress_report(0.2_dp, "solve")
       call small_sigma_loading(params, options, delta, prob, result, error)
-   end subroutine solve_contact
+   end subroutine contact_solve
 
    !> The asymptotic route after the discrete loading solve of an extended model with
    !> elastic summits with the cap (asymptotic_applies; doc/theory.md §12 "Small sigma"):
@@ -388,6 +403,9 @@ contains
          wider%sigma = wide_sigmas(k, pair)*delta_y
          wide_prob = scaled(wider, delta)
          call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
+         ! (up to 8 such solves after the discrete one, at 0.2 of the call)
+         call progress_report(0.2_dp + 0.1_dp*real(2*pair + k - 2, dp), &
+            & "small-sigma route: loading")
          ok = .not. allocated(wide_error)
          if (.not. ok) return
       end do
@@ -532,6 +550,10 @@ contains
       call rough_unload(wider, options, history%wide(k, pair), delta, wide(k, pair), &
          & wide_error)
       solved(k, pair) = merge(-1, 1, allocated(wide_error))
+      ! (at most 4 solves at rel_tol, then 4 tighter: 0.2 .. 1 of the unloading call, the
+      ! pairs' solves at rel_tol counted by k + 2 pair - 2, the tighter ones by 4 more)
+      call progress_report(0.2_dp + 0.1_dp*real(2*pair + k - 2 + merge(4, 0, &
+         & rel_tol < history%options%rel_tol), dp), "small-sigma route: unloading")
    end subroutine wide_unload
 
    !> The small-sigma route's histories of hist (loaded, its params and options; see
@@ -566,6 +588,9 @@ contains
          do k = 1, 2
             wider = hist%params
             wider%sigma = wide_sigmas(k, pair)*delta_y
+            ! (the route's histories: 0.3 .. 1 of the history's call, a quarter each)
+            call progress_part(0.3_dp + 0.175_dp*real(2*pair + k - 3, dp), &
+               & 0.3_dp + 0.175_dp*real(2*pair + k - 2, dp))
             call load_history(wider, wide_options, hist%delta_max, wide_history, res, &
                & wide_error)
             ! (above first yield at sigma = 1e-5 .. 2e-4 delta_y: a rough field, never
@@ -902,6 +927,7 @@ contains
    !> (delta_max not finite: egw_invalid_argument naming delta_max); history and result
    !> are left untouched on any error. A delta_max so far apart that the summit pressure
    !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
+   !> Reports progress (egw_progress) as one long call, stage "history".
    recursive subroutine load_history(params, options, delta_max, history, result, error)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the loading solve and of the unloading solves that follow
@@ -911,6 +937,19 @@ contains
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      call progress_begin("history")
+      call history_load(params, options, delta_max, history, result, error)
+      call progress_end("history")
+   end subroutine load_history
+
+   !> load_history's work.
+   recursive subroutine history_load(params, options, delta_max, history, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max
+      type(loading_history), intent(inout) :: history
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
       type(loading_history) :: hist
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -944,6 +983,7 @@ contains
          if (allocated(error)) return
       else
          call solve_rough(params, options, prob, sol, hist%loading, error)
+         call progress_report(0.1_dp, "history: loading")
          if (allocated(error)) then
             ! A capped loading that does not converge at sigma/delta_y <= 1e-6 (E-GW,
             ! EP-GW at psi 0): the small-sigma route answers it (its estimate meeting
@@ -978,7 +1018,7 @@ contains
       hist%loaded = .true.
       result = hist%loading
       call move_history(hist, history)
-   end subroutine load_history
+   end subroutine history_load
 
    !> load_history's end where the small-sigma route answered the loading (hist%loading):
    !> a history without rough field whose unloading solves are the route's.
@@ -1033,6 +1073,7 @@ contains
    !> route too: small_sigma_unload). history is only read: thread-safe. result untouched
    !> on error. force_floor: where the caller needs the force only to an absolute error
    !> (restitution's work integral), the route's estimates are relative to at least it.
+   !> Reports progress (egw_progress) as one long call, stage "unloading".
    subroutine solve_unload(history, delta, result, error, start, force_floor)
       type(loading_history), intent(in) :: history   !< from load_history (only read)
       real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
@@ -1044,6 +1085,19 @@ contains
       type(unload_start), intent(inout), optional :: start
       !> [force] >= 0: the small-sigma route's estimates relative to max(|P|, force_floor)
       !> (default 0: relative to |P|, at least 1e-6 P(delta_max))
+      real(dp), intent(in), optional :: force_floor
+      call progress_begin("unloading")
+      call unload_solve(history, delta, result, error, start, force_floor)
+      call progress_end("unloading")
+   end subroutine solve_unload
+
+   !> solve_unload's work.
+   subroutine unload_solve(history, delta, result, error, start, force_floor)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(unload_start), intent(inout), optional :: start
       real(dp), intent(in), optional :: force_floor
       type(scaled_problem) :: prob
       type(solve_result) :: res
@@ -1090,12 +1144,13 @@ contains
       else
          call rough_unload(history%params, history%options, history%closest, delta, res, &
             & error, start)
+         call progress_report(0.2_dp, "unloading")
       end if
       floor = 0.0_dp
       if (present(force_floor)) floor = force_floor
       call small_sigma_unload(history, delta, floor, res, error)
       if (.not. allocated(error)) result = res
-   end subroutine solve_unload
+   end subroutine unload_solve
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the
    !> asymptotic route).
@@ -1136,6 +1191,8 @@ contains
    !> options and delta_max load it once, with the same results. For several turning
    !> points at once use load_history (as tightly) and solve_unload. Errors as
    !> load_history and solve_unload; result untouched on error.
+   !> Reports progress (egw_progress) as one long call, stage "unloading": the history's
+   !> loading (its tries) in 0 .. 0.9, the unloading solve in 0.9 .. 1.
    subroutine solve_contact_unload(params, options, delta, delta_max, result, error)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the unloading solve (the history is loaded tighter)
@@ -1144,6 +1201,18 @@ contains
       real(dp), intent(in) :: delta_max    !< largest overlap reached before
       type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      call progress_begin("unloading")
+      call unload_from_scratch(params, options, delta, delta_max, result, error)
+      call progress_end("unloading")
+   end subroutine solve_contact_unload
+
+   !> solve_contact_unload's work.
+   subroutine unload_from_scratch(params, options, delta, delta_max, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, delta_max
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: loaded, res
       type(solver_options) :: tight
       !> the history's rel_tol as fractions of the solve's, tried in turn
@@ -1160,6 +1229,7 @@ contains
       if (delta >= delta_max) then
          ! at or above the turning point: the loading solve itself (the history below is
          ! loaded more tightly than rel_tol)
+         call progress_part(0.0_dp, 1.0_dp)
          call solve_contact(params, options, delta, res, error)
          if (.not. allocated(error)) result = res
          return
@@ -1187,6 +1257,7 @@ contains
                   & options%rel_tol)) cycle
             end if
             if (allocated(error)) deallocate (error)
+            call progress_part(0.225_dp*real(step - 1, dp), 0.225_dp*real(step, dp))
             call load_history(params, tight, delta_max, last_history%history, loaded, error)
             if (.not. allocated(error)) exit
             if (error%stat /= egw_not_converged) return
@@ -1198,8 +1269,9 @@ contains
          last_history%delta_max = delta_max
       end if
       last_history%history%options = options
+      call progress_part(0.9_dp, 1.0_dp)
       call solve_unload(last_history%history, delta, result, error)
-   end subroutine solve_contact_unload
+   end subroutine unload_from_scratch
 
    !> Rough (asperity) pressure p_G, separation d and closest-approach separation d_max
    !> at the radii r(:) >= 0 of the unloading solve at delta < history%delta_max (where
