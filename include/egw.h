@@ -198,7 +198,10 @@ typedef struct {
 
 typedef struct {
   double force, stiffness, contact_radius, max_pressure;
-  double est_rel_err;  /* estimated relative error of force */
+  double est_rel_err;  /* estimated error of force relative to |force| (1 for force 0);
+                          unloading after a capped loading is accepted against
+                          rel_tol/2 of max(|force|, 1e-6 force(delta_max)), so below
+                          that floor est_rel_err may exceed rel_tol (doc/theory.md 12) */
   double residual;     /* final nonlinear residual */
   int    iterations;
   int    method_used;

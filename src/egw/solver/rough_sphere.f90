@@ -32,6 +32,7 @@ module egw_rough_sphere
    use egw_unloading, only: unloading_law_of, unloading_pressure
    use egw_halfspace, only: influence_row
    use egw_flat_law, only: flat_law
+   use egw_sphere_problem, only: force_floor
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
@@ -49,7 +50,12 @@ module egw_rough_sphere
       real(dp) :: stiffness = 0.0_dp       !< dP/d(delta), by implicit differentiation
       real(dp) :: contact_radius = 0.0_dp  !< a* = (3 pi/4) int r p dr / int p dr
       real(dp) :: max_pressure = 0.0_dp    !< maximum of the total pressure
-      real(dp) :: est_rel_err = 0.0_dp     !< estimated relative discretisation error of P
+      !> estimated error of P relative to |P| itself: |P_true - P| <~ est_rel_err |P| (1 for
+      !> P = 0). A solve accepts when its error estimate is below rel_tol/2 of |P| or, for
+      !> unloading after a capped loading, of a floor (1e-6 P(delta_max); restitution's
+      !> unloading solves half its work density) if that is larger: below the floor
+      !> est_rel_err can exceed rel_tol (doc/theory.md section 12, "The force floor").
+      real(dp) :: est_rel_err = 0.0_dp
       real(dp) :: residual = 0.0_dp        !< final scaled nonlinear residual
       integer :: iterations = 0            !< nonlinear iterations of the final solve
       integer :: method_used = method_auto !< method that produced the result
@@ -668,8 +674,7 @@ contains
       ! unloading below the residual overlap from 10 delta_y at sigma/delta_y = 1e-10
       ! was refused with an estimate of exactly shrink(1) for it)
       wide_error = 0.0_dp
-      if (wide(1)%force /= 0.0_dp) wide_error = wide(1)%est_rel_err*max(abs(wide(1)%force), &
-         & floor)
+      if (wide(1)%force /= 0.0_dp) wide_error = wide(1)%est_rel_err*abs(wide(1)%force)
       asym%est_rel_err = huge(1.0_dp)
       if (total > 0.0_dp) asym%est_rel_err = (cap%force_error + shrink(1)*wide_error &
          & + abs((wide(1)%force - cap%force)*shrink(1) - (wide(2)%force - cap%force)* &
@@ -722,7 +727,7 @@ contains
          associate (w => wide(order(i)))
             ! (a force 0 with est_rel_err 1 is the underflow answer: error below underflow)
             noise(i) = 0.0_dp
-            if (w%force /= 0.0_dp) noise(i) = w%est_rel_err*max(abs(w%force), floor)
+            if (w%force /= 0.0_dp) noise(i) = w%est_rel_err*abs(w%force)
          end associate
       end do
       est = huge(1.0_dp)
@@ -812,9 +817,8 @@ contains
          end if
          deallocate (error)
       else
-         if (abs(result%force - asym%force) <= result%est_rel_err* &
-            & max(abs(result%force), floor) + asym%est_rel_err*max(abs(asym%force), floor)) &
-            & return
+         if (abs(result%force - asym%force) <= result%est_rel_err*abs(result%force) + &
+            & asym%est_rel_err*max(abs(asym%force), floor)) return
          if (.not. meets) then
             call fatal_error(error, egw_not_converged, "delta = "//format_real(delta)// &
                & ": the discrete solve (force "//format_real(result%force)//", estimate " &
@@ -825,7 +829,26 @@ contains
          end if
       end if
       result = asym
+      ! (the route's estimate is relative to max(|P|, floor): the user's to |P|)
+      result%est_rel_err = relative_to_force(asym%est_rel_err, floor, abs(asym%force))
    end subroutine use_asymptotic
+
+   !> An error estimate relative to max(force, floor) (force >= 0) as one relative to force
+   !> (solve_result%est_rel_err): 1 for force 0 (its error relative to the true force),
+   !> huge(1.0) where the quotient would overflow.
+   pure real(dp) function relative_to_force(est, floor, force) result(rel)
+      real(dp), intent(in) :: est, floor, force
+      real(dp) :: absolute
+      rel = est
+      if (floor <= force) return
+      if (force == 0.0_dp) then
+         rel = 1.0_dp
+         return
+      end if
+      absolute = est*floor
+      rel = huge(1.0_dp)
+      if (force > absolute/huge(1.0_dp)) rel = absolute/force
+   end function relative_to_force
 
    !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
    !> (a tabulated, Persson or BEM law; doc/theory.md §11): the law gives the whole
@@ -909,7 +932,9 @@ contains
       if (prob%extended) pmax = max(pmax, &
          & maxval(hertz_pressure(sol%mesh%gauss_r, prob%delta, 1.0_dp, 1.0_dp) + sol%p))
       res%max_pressure = pressure_unit(params)*pmax
-      res%est_rel_err = est
+      ! (est is relative to max(|P|, force_floor): the user's is relative to |P|)
+      res%est_rel_err = relative_to_force(est, force_floor(prob), abs(smooth_force(prob) + &
+         & sol%force))
       res%residual = sol%residual
       res%iterations = sol%iterations
       if (.not. all(ieee_is_finite([res%force, res%stiffness, res%contact_radius, &
