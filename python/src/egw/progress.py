@@ -27,6 +27,22 @@ _local = threading.local()
 def set_progress(callback: Optional[Callable[[float, str], None]]) -> None:
     """Report progress of this thread's long calls to ``callback(done, stage)``; None: off.
 
+    Parameters
+    ----------
+    callback : callable(done: float, stage: str) or None
+        Called during this thread's long calls (solves, restitution, table builds) with
+        the fraction done in [0, 1] (never decreasing within one call, 0 first and 1
+        last) and a short stage name; None switches reports off (the default).
+
+    Raises
+    ------
+    TypeError
+        callback is neither callable nor None.
+    NotImplementedError
+        The loaded libegw has no egw_set_progress.
+
+    Examples
+    --------
     >>> import egw
     >>> seen = []
     >>> egw.set_progress(lambda done, stage: seen.append(done))
