@@ -20,7 +20,7 @@ module egw_progress
    private
 
    public :: progress_hook, set_progress, progress_on, progress_begin, progress_end, &
-      & progress_part, progress_report, progress_count
+      & progress_part, progress_report, progress_count, progress_note
 
    abstract interface
       !> A progress hook: done in [0, 1], monotone within one outermost call; stage names
@@ -127,6 +127,18 @@ contains
       call state%hook(done, stage)
       state%calling = .false.
    end subroutine progress_report
+
+   !> A sign of life inside the current call (a solve's mesh level): the hook is called
+   !> with the last done again and stage, where a long step has no fraction of its own.
+   subroutine progress_note(stage)
+      character(len=*), intent(in) :: stage
+      if (.not. progress_on()) return
+      if (state%depth < 1 .or. state%depth > max_depth) return
+      if (state%hi(state%depth) <= state%lo(state%depth)) return   ! (a silent call)
+      state%calling = .true.
+      call state%hook(state%last, stage)
+      state%calling = .false.
+   end subroutine progress_note
 
    !> A table build's hook (egw_table's table_progress: solves done of total so far)
    !> reporting through this thread's hook, stage "table build": pass it as a build's

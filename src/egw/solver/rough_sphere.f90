@@ -26,7 +26,8 @@ module egw_rough_sphere
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, model_flat_law, check_scaled_overlap, length_unit, pressure_unit, &
       & force_unit, stiffness_unit, product4
-   use egw_progress, only: progress_begin, progress_end, progress_part, progress_report
+   use egw_progress, only: progress_begin, progress_end, progress_part, progress_report, &
+      & progress_note
    use egw_smooth_sphere, only: hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_unloading, only: unloading_law_of, unloading_pressure
@@ -409,9 +410,9 @@ contains
          wider%sigma = wide_sigmas(k, pair)*delta_y
          wide_prob = scaled(wider, delta)
          call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
-         ! (up to 8 such solves after the discrete one, at 0.2 of the call)
-         call progress_report(0.2_dp + 0.1_dp*real(2*pair + k - 2, dp), &
-            & "small-sigma route: loading")
+         ! (up to 8 such solves after the discrete one: a sign of life; their fractions
+         ! are the caller's)
+         call progress_note("small-sigma route: loading")
          ok = .not. allocated(wide_error)
          if (.not. ok) return
       end do
@@ -594,9 +595,10 @@ contains
          do k = 1, 2
             wider = hist%params
             wider%sigma = wide_sigmas(k, pair)*delta_y
-            ! (the route's histories: 0.3 .. 1 of the history's call, a quarter each)
-            call progress_part(0.3_dp + 0.175_dp*real(2*pair + k - 3, dp), &
-               & 0.3_dp + 0.175_dp*real(2*pair + k - 2, dp))
+            ! (the route's histories: 0.6 .. 1 of the history's call, a quarter each; its
+            ! discrete loading solve takes the most, 16 of 17 s at 1e-6 from 2 delta_y)
+            call progress_part(0.6_dp + 0.1_dp*real(2*pair + k - 3, dp), &
+               & 0.6_dp + 0.1_dp*real(2*pair + k - 2, dp))
             call load_history(wider, wide_options, hist%delta_max, wide_history, res, &
                & wide_error)
             ! (above first yield at sigma = 1e-5 .. 2e-4 delta_y: a rough field, never
@@ -1008,7 +1010,7 @@ contains
          if (allocated(error)) return
       else
          call solve_rough(params, options, prob, sol, hist%loading, error)
-         call progress_report(0.1_dp, "history: loading")
+         call progress_report(0.6_dp, "history: loading")
          if (allocated(error)) then
             ! A capped loading that does not converge at sigma/delta_y <= 1e-6 (E-GW,
             ! EP-GW at psi 0): the small-sigma route answers it (its estimate meeting
