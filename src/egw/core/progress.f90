@@ -45,6 +45,7 @@ module egw_progress
       real(dp) :: next_lo(0:max_depth) = 0.0_dp, next_hi(0:max_depth) = 0.0_dp
       real(dp) :: last = 0.0_dp   !< the last done reported
       logical :: calling = .false.   !< inside the hook (it may call egw: not reported)
+      integer(8) :: last_call = 0   !< system_clock count of the last hook call
    end type progress_state
    type(progress_state), save :: state
    !$omp threadprivate(state)
@@ -123,18 +124,26 @@ contains
       if (d < 1 .or. d > max_depth) return
       done = max(state%last, place(d, fraction))
       state%last = done
+      call system_clock(state%last_call)
       state%calling = .true.
       call state%hook(done, stage)
       state%calling = .false.
    end subroutine progress_report
 
-   !> A sign of life inside the current call (a solve's mesh level): the hook is called
-   !> with the last done again and stage, where a long step has no fraction of its own.
+   !> A sign of life inside the current call (a mesh level, a Newton step): the hook is
+   !> called with the last done again and stage, where a long step has no fraction of its
+   !> own; at most one every note_interval seconds after the last call of the hook (the
+   !> notes of a small-sigma first call came ~170 a second).
    subroutine progress_note(stage)
       character(len=*), intent(in) :: stage
+      real(dp), parameter :: note_interval = 0.5_dp
+      integer(8) :: now, rate
       if (.not. progress_on()) return
       if (state%depth < 1 .or. state%depth > max_depth) return
       if (state%hi(state%depth) <= state%lo(state%depth)) return   ! (a silent call)
+      call system_clock(now, rate)
+      if (rate > 0 .and. real(now - state%last_call, dp) < note_interval*real(rate, dp)) return
+      state%last_call = now
       state%calling = .true.
       call state%hook(state%last, stage)
       state%calling = .false.
