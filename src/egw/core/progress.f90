@@ -122,6 +122,7 @@ contains
       if (.not. progress_on()) return
       d = state%depth
       if (d < 1 .or. d > max_depth) return
+      if (state%hi(d) <= state%lo(d)) return   ! (a silent call: no share given)
       done = max(state%last, place(d, fraction))
       state%last = done
       call system_clock(state%last_call)
