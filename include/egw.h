@@ -14,7 +14,7 @@
  *     failure, outputs are left unchanged and egw_last_error() gives a message
  *     naming the offending argument.
  *   - All functions are thread-safe: they keep no shared state (the last-error
- *     message is per thread), and any number of threads may write and read files at
+ *     message and the progress hook, egw_set_progress, are per thread), and any number of threads may write and read files at
  *     once (tested with 16 threads).
  *   - String arguments (paths) are read to their NUL, whatever their length.
  */
@@ -96,6 +96,21 @@ int egw_status_message(int status, char *buf, int buflen);
  * buflen > 0), -EGW_INVALID_ARGUMENT (buflen < 0). This call never changes the message.
  * (Unlike the other int functions it never returns EGW_OK: test > 0, or <= buflen.) */
 int egw_last_error(char *buf, int buflen);
+
+/* Progress of long calls (since 0.2.0): hook(done, stage, user) is called as this
+ * thread's long calls proceed: egw_solve, egw_solve_unload, egw_restitution(...),
+ * egw_time_step and the table, hysteresis and scene builds (a solve of rough + cap at
+ * sigma/delta_y <= 1e-6 can take half a minute: its small-sigma route, doc/stability.md).
+ * done lies in [0, 1] and never decreases within one call: 0 at its start, 1 at its
+ * end; stage is a short NUL-terminated name of the step ("history", "small-sigma route:
+ * wide histories", "unloading", "restitution: loading", "table build" ...), valid only
+ * during the call. hook NULL switches reports off (the default: the library never prints).
+ * The hook is per thread, like egw_last_error: set on a thread, it hears only the calls
+ * made on that thread (no lock, no sharing); solves inside egw's own OpenMP regions
+ * (builds, array entries) report through their build, not one by one. The hook may call
+ * egw: those calls report nothing. user is passed to the hook as it was given. */
+typedef void (*egw_progress_fn)(double done, const char *stage, void *user);
+void egw_set_progress(egw_progress_fn hook, void *user);
 
 /* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54,
  * flow_pressure 0 (no bulk yield). */
@@ -185,7 +200,10 @@ typedef struct {
 
 typedef struct {
   double force, stiffness, contact_radius, max_pressure;
-  double est_rel_err;  /* estimated relative error of force */
+  double est_rel_err;  /* estimated error of force relative to |force| (1 for force 0);
+                          unloading after a capped loading is accepted against
+                          rel_tol/2 of max(|force|, 1e-6 force(delta_max)), so below
+                          that floor est_rel_err may exceed rel_tol (doc/theory.md 12) */
   double residual;     /* final nonlinear residual */
   int    iterations;
   int    method_used;

@@ -345,3 +345,66 @@ int egw_capi_test_profile(void) {
   }
   return failures;
 }
+
+/* Progress hook (egw_set_progress, issue 32): a recorder of the reports of one call. */
+typedef struct {
+  int calls, out_of_range, decreasing, saw_stage, user_ok;
+  double first, last;
+  const char *want_stage;
+} progress_log;
+static void record_progress(double done, const char *stage, void *user) {
+  progress_log *log = (progress_log *)user;
+  if (log == NULL) return;
+  log->user_ok = 1;
+  if (!(done >= 0.0 && done <= 1.0)) log->out_of_range++;
+  if (log->calls == 0) log->first = done;
+  else if (done < log->last) log->decreasing++;
+  log->last = done;
+  if (stage != NULL && log->want_stage != NULL && strcmp(stage, log->want_stage) == 0)
+    log->saw_stage = 1;
+  log->calls++;
+}
+static void progress_reset(progress_log *log, const char *stage) {
+  memset(log, 0, sizeof *log);
+  log->first = -1.0; log->last = -1.0;
+  log->want_stage = stage;
+}
+
+/* The hook hears a restitution (EP-GW, sigma 1, psi 2: a history and an unloading
+ * integral, ~0.1 s) and a table build: called, the user pointer passed through, done in
+ * [0, 1] and never decreasing, 0 first and 1 last, the inner stages reported; a NULL hook
+ * switches it off (no call, same answer). Fails on main: no egw_set_progress. */
+int egw_capi_test_progress(void) {
+  egw_params p;
+  egw_options o;
+  egw_table t = NULL;
+  progress_log log;
+  double e = -1.0, e_off = -1.0;
+  failures = 0;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_EPGW; p.sigma = 1.0; p.mu = 4.0; p.psi = 2.0; p.hardness_coeff = 0.6;
+  egw_options_default(&o);
+  o.rel_tol = 1e-5;
+  progress_reset(&log, "restitution: unloading");
+  egw_set_progress(record_progress, &log);
+  CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e) == EGW_OK && e > 0.0 && e < 1.0);
+  CHECK(log.calls >= 4 && log.user_ok);
+  CHECK(log.out_of_range == 0 && log.decreasing == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  CHECK(log.saw_stage);
+  if (log.calls < 4 || !log.saw_stage)
+    printf("    restitution: %d reports, stage seen %d\n", log.calls, log.saw_stage);
+  /* a table build (Hertz, cheap): its own stage */
+  progress_reset(&log, "table build");
+  { egw_params h; egw_params_default(&h); h.model = EGW_MODEL_HERTZ;
+    CHECK(egw_table_build(&h, NULL, 0.0, 0.01, 1e-6, &t) == EGW_OK && t != NULL); }
+  egw_table_free(&t);
+  CHECK(log.calls >= 2 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  /* NULL: off, the answer unchanged */
+  progress_reset(&log, NULL);
+  egw_set_progress(NULL, &log);
+  CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e_off) == EGW_OK && e_off == e);
+  CHECK(log.calls == 0);
+  return failures;
+}

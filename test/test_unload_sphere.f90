@@ -13,10 +13,16 @@ module test_unload_sphere
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
       & load_history, solve_unload, solve_contact_unload, unload_profile
    use egw_impact, only: restitution
+   use egw_progress, only: set_progress
    use data_rows, only: read_data_rows, row_length
    implicit none
    private
    public :: collect_unload_sphere
+
+   !> test_progress's record of the reports of one call
+   integer :: n_reports = 0, n_decreasing = 0, n_outside = 0
+   real(dp) :: first_done = -1.0_dp, last_done = -1.0_dp
+   logical :: saw_history = .false., saw_unloading = .false.
 
    interface
       integer(c_int) function c_unload() bind(C, name="egw_capi_test_unload")
@@ -50,10 +56,82 @@ contains
          & new_unittest("restitution: glass and steel pairs, 1e-4 .. 10 m/s (reference)", &
          & test_e_speeds), &
          & new_unittest("restitution: bad input", test_e_bad_input), &
+         & new_unittest("progress hook (set_progress)", &
+         & test_progress), &
          & new_unittest("C egw_solve_unload", t_c_unload), &
          & new_unittest("C egw_restitution, egw_restitution_energy", t_c_restitution) &
          & ]
    end subroutine collect_unload_sphere
+
+   !> set_progress (issue 32): the hook hears restitution and solve_contact_unload (EP-GW,
+   !> sigma 1, psi 2, mu 4: a history and its unloading, ~0.1 s each), done in [0, 1],
+   !> never decreasing, 0 first and 1 last, the nested calls' stages ("history", and
+   !> "restitution: unloading" after it); set_progress() switches it off (no report, the
+   !> same answer). Fails on main: no set_progress.
+   subroutine test_progress(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: e, e_off, lost
+      p = contact_params(model=model_epgw, sigma=1.0_dp, mu=4.0_dp, psi=2.0_dp, &
+         & hardness_coeff=0.6_dp)
+      call reset()
+      call set_progress(record)
+      call restitution(p, solver_options(rel_tol=1.0e-5_dp), 1.0_dp, 1.0_dp, e, lost, err)
+      call set_progress()
+      if (allocated(err)) then
+         call test_failed(error, "restitution: "//err%message)
+         return
+      end if
+      call check(error, n_reports >= 4 .and. n_decreasing == 0 .and. n_outside == 0 .and. &
+         & first_done == 0.0_dp .and. last_done == 1.0_dp .and. saw_history .and. &
+         & saw_unloading, "restitution: "//to_string(n_reports)//" reports, " &
+         & //to_string(n_decreasing)//" decreasing, "//to_string(n_outside)//" outside [0, 1]")
+      if (allocated(error)) return
+      call reset()
+      call set_progress(record)
+      call solve_contact_unload(p, solver_options(rel_tol=1.0e-5_dp), 0.5_dp, 2.0_dp, res, err)
+      call set_progress()
+      if (allocated(err)) then
+         call test_failed(error, "solve_contact_unload: "//err%message)
+         return
+      end if
+      call check(error, n_reports >= 3 .and. n_decreasing == 0 .and. n_outside == 0 .and. &
+         & first_done == 0.0_dp .and. last_done == 1.0_dp .and. saw_history, &
+         & "solve_contact_unload: "//to_string(n_reports)//" reports")
+      if (allocated(error)) return
+      call reset()
+      call restitution(p, solver_options(rel_tol=1.0e-5_dp), 1.0_dp, 1.0_dp, e_off, lost, err)
+      call check(error, n_reports == 0 .and. e_off == e, "off: "//to_string(n_reports) &
+         & //" reports")
+   contains
+      subroutine reset()
+         n_reports = 0
+         n_decreasing = 0
+         n_outside = 0
+         first_done = -1.0_dp
+         last_done = -1.0_dp
+         saw_history = .false.
+         saw_unloading = .false.
+      end subroutine reset
+   end subroutine test_progress
+
+   !> test_progress's hook.
+   subroutine record(done, stage)
+      real(dp), intent(in) :: done
+      character(len=*), intent(in) :: stage
+      if (.not. (done >= 0.0_dp .and. done <= 1.0_dp)) n_outside = n_outside + 1
+      if (n_reports == 0) then
+         first_done = done
+      else if (done < last_done) then
+         n_decreasing = n_decreasing + 1
+      end if
+      last_done = done
+      if (stage == "history") saw_history = .true.
+      if (stage == "restitution: unloading") saw_unloading = .true.
+      n_reports = n_reports + 1
+   end subroutine record
 
    subroutine t_c_unload(error)
       type(error_type), allocatable, intent(out) :: error

@@ -32,7 +32,9 @@ class SolveResult:
     stiffness : dP/ddelta [force/length].
     contact_radius : effective contact radius a* [length].
     max_pressure : largest pressure of the profile [pressure].
-    est_rel_err : estimated relative error of the force.
+    est_rel_err : estimated error of the force relative to |force| (1 for force 0).
+        Unloading after a capped loading is accepted against rel_tol/2 of
+        max(|force|, 1e-6 force(delta_max)), so below that floor it may exceed rel_tol.
     iterations : nonlinear iterations of the final solve (-1 for a failed point under
         ``errstate(failed="nan")``).
     """

@@ -18,6 +18,7 @@ module egw_impact
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, egw_unsupported, &
       & fatal_error, &
       & format_real
+   use egw_progress, only: progress_begin, progress_end, progress_part, progress_report
    use egw_params, only: contact_params, model_hertz, validate_params, overlap_ratio_max
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
       & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options
@@ -74,6 +75,8 @@ contains
    !> Accurate to about options%rel_tol. Errors: invalid params/options as solve_contact,
    !> mass or velocity not finite and > 0 (egw_invalid_argument naming it), a failed solve
    !> (egw_not_converged). e, dissipated and max_overlap are untouched on any error.
+   !> Reports progress (egw_progress) as one long call: the loading curve to 0.15
+   !> ("restitution: loading"), the history to 0.5, the unloading integral to 1.
    subroutine restitution(params, options, mass, velocity, e, dissipated, error, max_overlap, &
          & work_load)
       type(contact_params), intent(in) :: params   !< the contact
@@ -86,6 +89,21 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       real(dp), intent(inout), optional :: max_overlap  !< delta_m, the deepest overlap
       real(dp), intent(inout), optional :: work_load    !< W_load as integrated (~ m* v**2/2)
+      call progress_begin("restitution")
+      call impact(params, options, mass, velocity, e, dissipated, error, max_overlap, &
+         & work_load)
+      call progress_end("restitution")
+   end subroutine restitution
+
+   !> restitution's work.
+   subroutine impact(params, options, mass, velocity, e, dissipated, error, max_overlap, &
+         & work_load)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: mass, velocity
+      real(dp), intent(inout) :: e, dissipated
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), intent(inout), optional :: max_overlap, work_load
       type(force_curve) :: curve
       type(solve_result) :: res
       real(dp) :: energy, delta_lo, delta_m, w_load, w_unload, tail_load
@@ -121,6 +139,7 @@ contains
          & *sqrt(params%radius)))**0.4_dp) - delta_lo + params%sigma)
       call turning_point(curve, energy, delta_lo, tail_load, delta_m, w_load, nodes, error)
       if (allocated(error)) return
+      call progress_part(0.15_dp, 0.5_dp)
       call load_history(params, options, delta_m, curve%history, res, error)
       if (allocated(error)) return
       curve%unloading = .true.
@@ -137,7 +156,7 @@ contains
       dissipated = w_load - w_unload
       if (present(max_overlap)) max_overlap = delta_m
       if (present(work_load)) work_load = w_load
-   end subroutine restitution
+   end subroutine impact
 
    !> restitution of a smooth sphere with the flow-pressure cap: egw_cap_sphere's
    !> cap_restitution (e = 1 up to the first-yield speed v_y) on restitution_options;
@@ -290,6 +309,8 @@ contains
          call integrate(curve, a, pa, ka, b, pb, kb, 0, piece, error)
          if (allocated(error)) return
          wb = wa + piece
+         call progress_report(0.15_dp*min(1.0_dp, max(0.0_dp, wb/energy)), &
+            & "restitution: loading")
          nodes = [nodes, b]
          if (wb >= energy) then
             bracketed = .true.
@@ -362,6 +383,8 @@ contains
          total = total + piece
          pa = pb
          ka = kb
+         if (curve%unloading) call progress_report(0.5_dp + 0.5_dp*real(i - 1, dp)/ &
+            & real(size(delta) - 1, dp), "restitution: unloading")
       end do
    end subroutine work
 

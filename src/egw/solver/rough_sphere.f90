@@ -26,11 +26,14 @@ module egw_rough_sphere
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, model_flat_law, check_scaled_overlap, length_unit, pressure_unit, &
       & force_unit, stiffness_unit, product4
+   use egw_progress, only: progress_begin, progress_end, progress_part, progress_report, &
+      & progress_note
    use egw_smooth_sphere, only: hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_unloading, only: unloading_law_of, unloading_pressure
    use egw_halfspace, only: influence_row
    use egw_flat_law, only: flat_law
+   use egw_sphere_problem, only: force_floor
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
@@ -48,7 +51,12 @@ module egw_rough_sphere
       real(dp) :: stiffness = 0.0_dp       !< dP/d(delta), by implicit differentiation
       real(dp) :: contact_radius = 0.0_dp  !< a* = (3 pi/4) int r p dr / int p dr
       real(dp) :: max_pressure = 0.0_dp    !< maximum of the total pressure
-      real(dp) :: est_rel_err = 0.0_dp     !< estimated relative discretisation error of P
+      !> estimated error of P relative to |P| itself: |P_true - P| <~ est_rel_err |P| (1 for
+      !> P = 0). A solve accepts when its error estimate is below rel_tol/2 of |P| or, for
+      !> unloading after a capped loading, of a floor (1e-6 P(delta_max); restitution's
+      !> unloading solves half its work density) if that is larger: below the floor
+      !> est_rel_err can exceed rel_tol (doc/theory.md section 12, "The force floor").
+      real(dp) :: est_rel_err = 0.0_dp
       real(dp) :: residual = 0.0_dp        !< final scaled nonlinear residual
       integer :: iterations = 0            !< nonlinear iterations of the final solve
       integer :: method_used = method_auto !< method that produced the result
@@ -213,6 +221,7 @@ contains
    !> doc/theory.md §12), if its estimate meets rel_tol; at sigma/delta_y <= 1e-7 a
    !> converged solve of those models is checked against that route
    !> (small_sigma_loading).
+   !> Reports progress (egw_progress) as one long call, stage "solve".
    subroutine solve_contact(params, options, delta, result, error)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
@@ -221,6 +230,24 @@ contains
       !> force [force] >= 0, stiffness [force/length], contact radius [length], ...
       type(solve_result), intent(out) :: result
       !> allocated on failure (result is then not defined)
+      type(egw_error), allocatable, intent(out) :: error
+      if ((params%model == model_hertz .or. params%sigma == 0.0_dp) .and. .not. &
+         & params%flow_pressure > 0.0_dp) then
+         ! (the closed form, ~80 ns: no progress to report, and no 5 ns spent on it)
+         call contact_solve(params, options, delta, result, error)
+         return
+      end if
+      call progress_begin("solve")
+      call contact_solve(params, options, delta, result, error)
+      call progress_end("solve")
+   end subroutine solve_contact
+
+   !> solve_contact's work.
+   subroutine contact_solve(params, options, delta, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -257,8 +284,9 @@ contains
          return
       end if
       call solve_rough(params, options, prob, sol, result, error)
+      call progress_report(0.2_dp, "solve")
       call small_sigma_loading(params, options, delta, prob, result, error)
-   end subroutine solve_contact
+   end subroutine contact_solve
 
    !> The asymptotic route after the discrete loading solve of an extended model with
    !> elastic summits with the cap (asymptotic_applies; doc/theory.md §12 "Small sigma"):
@@ -388,6 +416,9 @@ contains
          wider%sigma = wide_sigmas(k, pair)*delta_y
          wide_prob = scaled(wider, delta)
          call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
+         ! (up to 8 such solves after the discrete one: a sign of life; their fractions
+         ! are the caller's)
+         call progress_note("small-sigma route: loading")
          ok = .not. allocated(wide_error)
          if (.not. ok) return
       end do
@@ -532,6 +563,10 @@ contains
       call rough_unload(wider, options, history%wide(k, pair), delta, wide(k, pair), &
          & wide_error)
       solved(k, pair) = merge(-1, 1, allocated(wide_error))
+      ! (at most 4 solves at rel_tol, then 4 tighter: 0.2 .. 1 of the unloading call, the
+      ! pairs' solves at rel_tol counted by k + 2 pair - 2, the tighter ones by 4 more)
+      call progress_report(0.2_dp + 0.1_dp*real(2*pair + k - 2 + merge(4, 0, &
+         & rel_tol < history%options%rel_tol), dp), "small-sigma route: unloading")
    end subroutine wide_unload
 
    !> The small-sigma route's histories of hist (loaded, its params and options; see
@@ -566,6 +601,10 @@ contains
          do k = 1, 2
             wider = hist%params
             wider%sigma = wide_sigmas(k, pair)*delta_y
+            ! (the route's histories: 0.6 .. 1 of the history's call, a quarter each; its
+            ! discrete loading solve takes the most, 16 of 17 s at 1e-6 from 2 delta_y)
+            call progress_part(0.6_dp + 0.1_dp*real(2*pair + k - 3, dp), &
+               & 0.6_dp + 0.1_dp*real(2*pair + k - 2, dp))
             call load_history(wider, wide_options, hist%delta_max, wide_history, res, &
                & wide_error)
             ! (above first yield at sigma = 1e-5 .. 2e-4 delta_y: a rough field, never
@@ -643,8 +682,7 @@ contains
       ! unloading below the residual overlap from 10 delta_y at sigma/delta_y = 1e-10
       ! was refused with an estimate of exactly shrink(1) for it)
       wide_error = 0.0_dp
-      if (wide(1)%force /= 0.0_dp) wide_error = wide(1)%est_rel_err*max(abs(wide(1)%force), &
-         & floor)
+      if (wide(1)%force /= 0.0_dp) wide_error = wide(1)%est_rel_err*abs(wide(1)%force)
       asym%est_rel_err = huge(1.0_dp)
       if (total > 0.0_dp) asym%est_rel_err = (cap%force_error + shrink(1)*wide_error &
          & + abs((wide(1)%force - cap%force)*shrink(1) - (wide(2)%force - cap%force)* &
@@ -697,7 +735,7 @@ contains
          associate (w => wide(order(i)))
             ! (a force 0 with est_rel_err 1 is the underflow answer: error below underflow)
             noise(i) = 0.0_dp
-            if (w%force /= 0.0_dp) noise(i) = w%est_rel_err*max(abs(w%force), floor)
+            if (w%force /= 0.0_dp) noise(i) = w%est_rel_err*abs(w%force)
          end associate
       end do
       est = huge(1.0_dp)
@@ -787,9 +825,8 @@ contains
          end if
          deallocate (error)
       else
-         if (abs(result%force - asym%force) <= result%est_rel_err* &
-            & max(abs(result%force), floor) + asym%est_rel_err*max(abs(asym%force), floor)) &
-            & return
+         if (abs(result%force - asym%force) <= result%est_rel_err*abs(result%force) + &
+            & asym%est_rel_err*max(abs(asym%force), floor)) return
          if (.not. meets) then
             call fatal_error(error, egw_not_converged, "delta = "//format_real(delta)// &
                & ": the discrete solve (force "//format_real(result%force)//", estimate " &
@@ -800,7 +837,26 @@ contains
          end if
       end if
       result = asym
+      ! (the route's estimate is relative to max(|P|, floor): the user's to |P|)
+      result%est_rel_err = relative_to_force(asym%est_rel_err, floor, abs(asym%force))
    end subroutine use_asymptotic
+
+   !> An error estimate relative to max(force, floor) (force >= 0) as one relative to force
+   !> (solve_result%est_rel_err): 1 for force 0 (its error relative to the true force),
+   !> huge(1.0) where the quotient would overflow.
+   pure real(dp) function relative_to_force(est, floor, force) result(rel)
+      real(dp), intent(in) :: est, floor, force
+      real(dp) :: absolute
+      rel = est
+      if (floor <= force) return
+      if (force == 0.0_dp) then
+         rel = 1.0_dp
+         return
+      end if
+      absolute = est*floor
+      rel = huge(1.0_dp)
+      if (force > absolute/huge(1.0_dp)) rel = absolute/force
+   end function relative_to_force
 
    !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
    !> (a tabulated, Persson or BEM law; doc/theory.md §11): the law gives the whole
@@ -884,7 +940,9 @@ contains
       if (prob%extended) pmax = max(pmax, &
          & maxval(hertz_pressure(sol%mesh%gauss_r, prob%delta, 1.0_dp, 1.0_dp) + sol%p))
       res%max_pressure = pressure_unit(params)*pmax
-      res%est_rel_err = est
+      ! (est is relative to max(|P|, force_floor): the user's is relative to |P|)
+      res%est_rel_err = relative_to_force(est, force_floor(prob), abs(smooth_force(prob) + &
+         & sol%force))
       res%residual = sol%residual
       res%iterations = sol%iterations
       if (.not. all(ieee_is_finite([res%force, res%stiffness, res%contact_radius, &
@@ -902,6 +960,7 @@ contains
    !> (delta_max not finite: egw_invalid_argument naming delta_max); history and result
    !> are left untouched on any error. A delta_max so far apart that the summit pressure
    !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
+   !> Reports progress (egw_progress) as one long call, stage "history".
    recursive subroutine load_history(params, options, delta_max, history, result, error)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the loading solve and of the unloading solves that follow
@@ -911,6 +970,19 @@ contains
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      call progress_begin("history")
+      call history_load(params, options, delta_max, history, result, error)
+      call progress_end("history")
+   end subroutine load_history
+
+   !> load_history's work.
+   recursive subroutine history_load(params, options, delta_max, history, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max
+      type(loading_history), intent(inout) :: history
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
       type(loading_history) :: hist
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -944,6 +1016,7 @@ contains
          if (allocated(error)) return
       else
          call solve_rough(params, options, prob, sol, hist%loading, error)
+         call progress_report(0.6_dp, "history: loading")
          if (allocated(error)) then
             ! A capped loading that does not converge at sigma/delta_y <= 1e-6 (E-GW,
             ! EP-GW at psi 0): the small-sigma route answers it (its estimate meeting
@@ -978,7 +1051,7 @@ contains
       hist%loaded = .true.
       result = hist%loading
       call move_history(hist, history)
-   end subroutine load_history
+   end subroutine history_load
 
    !> load_history's end where the small-sigma route answered the loading (hist%loading):
    !> a history without rough field whose unloading solves are the route's.
@@ -1033,6 +1106,7 @@ contains
    !> route too: small_sigma_unload). history is only read: thread-safe. result untouched
    !> on error. force_floor: where the caller needs the force only to an absolute error
    !> (restitution's work integral), the route's estimates are relative to at least it.
+   !> Reports progress (egw_progress) as one long call, stage "unloading".
    subroutine solve_unload(history, delta, result, error, start, force_floor)
       type(loading_history), intent(in) :: history   !< from load_history (only read)
       real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
@@ -1044,6 +1118,19 @@ contains
       type(unload_start), intent(inout), optional :: start
       !> [force] >= 0: the small-sigma route's estimates relative to max(|P|, force_floor)
       !> (default 0: relative to |P|, at least 1e-6 P(delta_max))
+      real(dp), intent(in), optional :: force_floor
+      call progress_begin("unloading")
+      call unload_solve(history, delta, result, error, start, force_floor)
+      call progress_end("unloading")
+   end subroutine solve_unload
+
+   !> solve_unload's work.
+   subroutine unload_solve(history, delta, result, error, start, force_floor)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(unload_start), intent(inout), optional :: start
       real(dp), intent(in), optional :: force_floor
       type(scaled_problem) :: prob
       type(solve_result) :: res
@@ -1090,12 +1177,13 @@ contains
       else
          call rough_unload(history%params, history%options, history%closest, delta, res, &
             & error, start)
+         call progress_report(0.2_dp, "unloading")
       end if
       floor = 0.0_dp
       if (present(force_floor)) floor = force_floor
       call small_sigma_unload(history, delta, floor, res, error)
       if (.not. allocated(error)) result = res
-   end subroutine solve_unload
+   end subroutine unload_solve
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the
    !> asymptotic route).
@@ -1136,6 +1224,8 @@ contains
    !> options and delta_max load it once, with the same results. For several turning
    !> points at once use load_history (as tightly) and solve_unload. Errors as
    !> load_history and solve_unload; result untouched on error.
+   !> Reports progress (egw_progress) as one long call, stage "unloading": the history's
+   !> loading (its tries) in 0 .. 0.9, the unloading solve in 0.9 .. 1.
    subroutine solve_contact_unload(params, options, delta, delta_max, result, error)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the unloading solve (the history is loaded tighter)
@@ -1144,6 +1234,18 @@ contains
       real(dp), intent(in) :: delta_max    !< largest overlap reached before
       type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      call progress_begin("unloading")
+      call unload_from_scratch(params, options, delta, delta_max, result, error)
+      call progress_end("unloading")
+   end subroutine solve_contact_unload
+
+   !> solve_contact_unload's work.
+   subroutine unload_from_scratch(params, options, delta, delta_max, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, delta_max
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: loaded, res
       type(solver_options) :: tight
       !> the history's rel_tol as fractions of the solve's, tried in turn
@@ -1160,6 +1262,7 @@ contains
       if (delta >= delta_max) then
          ! at or above the turning point: the loading solve itself (the history below is
          ! loaded more tightly than rel_tol)
+         call progress_part(0.0_dp, 1.0_dp)
          call solve_contact(params, options, delta, res, error)
          if (.not. allocated(error)) result = res
          return
@@ -1187,6 +1290,7 @@ contains
                   & options%rel_tol)) cycle
             end if
             if (allocated(error)) deallocate (error)
+            call progress_part(0.225_dp*real(step - 1, dp), 0.225_dp*real(step, dp))
             call load_history(params, tight, delta_max, last_history%history, loaded, error)
             if (.not. allocated(error)) exit
             if (error%stat /= egw_not_converged) return
@@ -1198,8 +1302,9 @@ contains
          last_history%delta_max = delta_max
       end if
       last_history%history%options = options
+      call progress_part(0.9_dp, 1.0_dp)
       call solve_unload(last_history%history, delta, result, error)
-   end subroutine solve_contact_unload
+   end subroutine unload_from_scratch
 
    !> Rough (asperity) pressure p_G, separation d and closest-approach separation d_max
    !> at the radii r(:) >= 0 of the unloading solve at delta < history%delta_max (where

@@ -5,6 +5,7 @@
 !> system.
 module egw_sphere_iteration
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_progress, only: progress_note
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_not_converged, &
       & egw_out_of_memory, fatal_error, format_real, int_str
@@ -436,6 +437,8 @@ contains
          if (.not. factored) then
             call jacobian(sol, jac)
             call lu_factor(n, jac, ipiv, info)
+            ! (a sign of life for a progress hook: on 4097 nodes an LU takes seconds)
+            call progress_note("solve: Newton step")
             have_lu = info == 0
             if (.not. have_lu) exit
             factored = .true.
