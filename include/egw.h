@@ -232,7 +232,8 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * (w_dissipated = (1 - e^2) m* v^2/2; e = 1 up to v_y). Beyond 1e6 delta_y or 1e4 v_y:
  * EGW_INVALID_ARGUMENT. Rough models (sigma > 0) with p_y > 0: egw_solve, egw_solve_unload
  * and egw_restitution(...) are the rough solver's, the cap on the total pressure (first
- * yield where the rough contact's largest total pressure reaches p_y). egw_time_step
+ * yield where the rough contact's largest total pressure reaches p_y); delta or delta_max
+ * beyond 1e12 delta_y: EGW_INVALID_ARGUMENT naming it (doc/stability.md). egw_time_step
  * beyond v_y takes the smooth sphere's elastic unloading stiffness at delta_m (rough
  * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
  * EP-GW + cap tables (doc/formats.md 6). Not yet: egw_profile beyond delta_y or of a

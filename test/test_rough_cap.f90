@@ -89,7 +89,8 @@ contains
          & test_route_floor), &
          & new_unittest("sigma/delta_y = 1e-7: solve_contact_unload near the residual", &
          & test_tiny_sigma_contact_unload), &
-         & new_unittest("est_rel_err below the force floor", test_floor_estimate) &
+         & new_unittest("est_rel_err below the force floor", test_floor_estimate), &
+         & new_unittest("far beyond first yield: refused naming delta", test_far_beyond_yield) &
          & ]
    end subroutine collect_rough_cap
 
@@ -711,6 +712,46 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_floor_estimate
+
+   !> E-GW + cap at delta = 200 sigma: at 2e11 delta_y the solve converges, max_pressure <= p_y
+   !> to 1e-9 as egw-fuzz checks (1.7e-12 above from the scaled units here; audit10 measured
+   !> convergence up to 2e13 delta_y at 200 sigma, doc/stability.md "Rough + cap far beyond
+   !> first yield"); at 2e13 delta_y (beyond the range 1e12 delta_y) solve_contact refuses
+   !> naming delta and solve_contact_unload naming delta_max, with egw_invalid_argument
+   !> (before: EGW_NOT_CONVERGED one decade further, with a message naming neither).
+   subroutine test_far_beyond_yield(error)
+      use egw_status, only: egw_invalid_argument
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      type(solver_options) :: o
+      real(dp) :: delta_y, force_y
+      call yield_units(delta_y, force_y)
+      o = solver_options(rel_tol=1.0e-4_dp, n_threads=1)
+      p = egw_cap(1.0e9_dp)
+      call solve_contact(p, o, 200.0_dp*p%sigma, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "2e11 delta_y: "//err%message)
+         return
+      end if
+      call check(error, res%force > 0.0_dp .and. res%max_pressure <= py*(1.0_dp + 1.0e-9_dp), &
+         & "2e11 delta_y: force "//str(res%force)//", max_pressure/p_y "//str(res%max_pressure/py))
+      if (allocated(error)) return
+      p = egw_cap(1.0e11_dp)
+      call solve_contact(p, o, 200.0_dp*p%sigma, res, err)
+      call check(error, allocated(err), "2e13 delta_y: accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. index(err%message, "delta =") == 1 &
+         & .and. index(err%message, "1e12 delta_y") > 0, "2e13 delta_y: "//err%message)
+      if (allocated(error)) return
+      deallocate (err)
+      call solve_contact_unload(p, o, 0.0_dp, 200.0_dp*p%sigma, res, err)
+      call check(error, allocated(err), "delta_max at 2e13 delta_y: accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. index(err%message, &
+         & "delta_max =") > 0, "delta_max at 2e13 delta_y: "//err%message)
+   end subroutine test_far_beyond_yield
 
    pure type(contact_params) function egw_cap(ratio) result(p)
       real(dp), intent(in) :: ratio

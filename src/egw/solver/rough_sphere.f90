@@ -998,6 +998,9 @@ contains
       if (params%model /= model_hertz) call check_scaled_overlap("delta_max", delta_max, &
          & params%sigma, error)
       if (allocated(error)) return
+      if (params%model /= model_hertz .and. params%sigma > 0.0_dp) &
+         & call check_cap_overlap("delta_max", delta_max, params, error)
+      if (allocated(error)) return
       hist%params = params
       hist%options = options
       hist%delta_max = delta_max
@@ -1608,7 +1611,30 @@ contains
             & //" exceeds the largest double")
       else
          call check_scaled_overlap("delta", delta, params%sigma, error)
+         if (.not. allocated(error)) call check_cap_overlap("delta", delta, params, error)
       end if
    end subroutine check_input
+
+   !> A rough sphere with the cap: egw_invalid_argument naming name beyond rough_cap_range
+   !> delta_y, where E-GW and EP-GW solves stop converging (doc/stability.md "Rough + cap far
+   !> beyond first yield": converged to 2e12 .. 2e15 delta_y, failed a decade beyond,
+   !> with a message naming neither delta nor p_y); no bead comes near (<= 1e4 delta_y at
+   !> 10 m/s). The smooth cap's own range is 1e6 delta_y (egw_cap_sphere).
+   pure subroutine check_cap_overlap(name, delta, params, error)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: delta
+      type(contact_params), intent(in) :: params
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), parameter :: rough_cap_range = 1.0e12_dp
+      real(dp) :: delta_y, a_y, force_y
+      if (.not. params%flow_pressure > 0.0_dp) return
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+      if (delta > rough_cap_range*delta_y) call fatal_error(error, egw_invalid_argument, &
+         & name//" = "//format_real(delta)//": beyond 1e12 delta_y = " &
+         & //format_real(rough_cap_range*delta_y)//" (delta_y = (pi p_y/(2 E*))**2 R, " &
+         & //"flow_pressure = "//format_real(params%flow_pressure) &
+         & //"; the rough + cap solver's range)")
+   end subroutine check_cap_overlap
 
 end module egw_rough_sphere
