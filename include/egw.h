@@ -14,8 +14,8 @@
  *     failure, outputs are left unchanged and egw_last_error() gives a message
  *     naming the offending argument.
  *   - All functions are thread-safe: they keep no shared state (the last-error
- *     message and the progress hook, egw_set_progress, are per thread), and any number of threads may write and read files at
- *     once (tested with 16 threads).
+ *     message and the progress hook, egw_set_progress, are per thread), and any
+ *     number of threads may write and read files at once (tested with 16 threads).
  *   - String arguments (paths) are read to their NUL, whatever their length.
  */
 #ifndef EGW_H
