@@ -215,9 +215,10 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * yield where the rough contact's largest total pressure reaches p_y). egw_time_step
  * beyond v_y takes the smooth sphere's elastic unloading stiffness at delta_m (rough
  * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
- * EP-GW + cap tables (doc/formats.md 6). Not yet: egw_profile beyond delta_y or of a
- * rough sphere with the cap (EGW_UNSUPPORTED), force and universal tables
- * (EGW_INVALID_PARAMETER). */
+ * EP-GW + cap tables (doc/formats.md 6); egw_profile the smooth sphere's loading
+ * profile beyond delta_y (p <= p_y; see egw_profile). Not yet: egw_profile of a rough
+ * sphere with the cap and unloading profiles (EGW_UNSUPPORTED), force and universal
+ * tables (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -300,7 +301,14 @@ int egw_first_yield(const egw_params *p, double mass, double *delta_y, double *v
  * o->rel_tol of the profile's peak (pressure) and of its largest deflection: the contact
  * is solved again at rel_tol/10 (at most 4 times, down to 1e-12) until the profile
  * changes by less than that, so a profile costs a few solves. Same statuses, and
- * EGW_NOT_CONVERGED if the profile does not settle. */
+ * EGW_NOT_CONVERGED if the profile does not settle. With the cap (p->flow_pressure > 0,
+ * smooth sphere) beyond first yield: p = p_y on the capped disc r <= c, the elastic
+ * annulus's pressure (c, a) from the cap solver's rings (up to 256, whatever o->rel_tol:
+ * pointwise within 1.5e-5 p_y of tools/reference/cap_reference.py at 2, 5, 20 delta_y),
+ * 0 beyond a; deflection is then the surfaces' total normal displacement, elastic plus
+ * the plastic crater (positive toward each other), so that the gap r^2/(2R) - delta + w
+ * is 0 on [0, a]: w = delta - r^2/(2R) there, the elastic deflection beyond a (as for
+ * Hertz). A rough sphere with the cap: EGW_UNSUPPORTED. */
 int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
                 const double *r, double *pressure, double *deflection);
 

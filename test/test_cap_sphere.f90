@@ -42,6 +42,8 @@ contains
          & test_smooth_unload), &
          & new_unittest("public: energy of a load-unload cycle = dissipated", &
          & test_public_energy), &
+         & new_unittest("profile with the cap: the reference, force, p <= p_y", &
+         & test_cap_profile), &
          & new_unittest("public: rough model with flow_pressure solved, profile refused", &
          & test_public_rough), &
          & new_unittest("public: e <= 1, dissipated >= 0 just above first yield", &
@@ -595,6 +597,164 @@ contains
          end do
       end function integral
    end subroutine test_public_energy
+
+   !> contact_profile of the smooth sphere with the cap beyond first yield (unit problem:
+   !> R = E* = 1, p_y = 2/pi, so delta_y = a_y = 1 and pressures are p_y times the
+   !> reference's). Reference: python tools/reference/cap_reference.py --profile 2 5 20
+   !> (an independent solver: piecewise-linear pressure on a Chebyshev-Lobatto mesh,
+   !> m = 40, 80, 160, Richardson; rho at 0.5 c, c + (0.1, 0.3, 0.5, 0.7, 0.9)(a - c),
+   !> 1.1 a and 1.5 a of its finest level). Its pressures are good to 3.1e-5 p_y (its
+   !> printed error column, the linear interpolation between its nodes), egw's 256 rings
+   !> to ~1e-5 (their change from 128): tolerance 1e-4 p_y. Its deflections are good to
+   !> 2e-9 delta_y: tolerance 1e-8 delta_y. Also at every delta: p in [0, p_y],
+   !> 2 pi int p r dr = solve_contact's force within 2e-5 (the solve's own error 3.3e-6,
+   !> the quadrature's ~1e-6, the profile's interpolation; measured 5.2e-6), w = delta -
+   !> r**2/2 on the contact, and below first yield Hertz's closed form.
+   subroutine test_cap_profile(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: py = 2.0_dp/pi
+      ! rho, p/p_y, w/delta_y at Delta = 2, 5, 20 (8 radii each)
+      real(dp), parameter :: ref(3, 8, 3) = reshape([ &
+         & 0.606897587835162_dp, 1.0_dp, 1.815837658939955_dp, &
+         & 1.2362128856234262_dp, 0.8586990161462266_dp, 1.2358888507093249_dp, &
+         & 1.2810483055296307_dp, 0.7279211406554145_dp, 1.179457619449855_dp, &
+         & 1.325883725435835_dp, 0.6056776836509882_dp, 1.1210161733122195_dp, &
+         & 1.3707191453420395_dp, 0.4657911624747893_dp, 1.0605645122964185_dp, &
+         & 1.415554565248244_dp, 0.2681299922675734_dp, 0.9981026364024514_dp, &
+         & 1.5817695027214809_dp, 0.0_dp, 0.8305469911552023_dp, &
+         & 2.156958412802019_dp, 0.0_dp, 0.566771423991514_dp, &
+         & 1.2205892863635612_dp, 1.0_dp, 4.255080897006357_dp, &
+         & 2.443674620397629_dp, 0.8030306047297265_dp, 2.014227174811363_dp, &
+         & 2.448666715738642_dp, 0.6429835773241132_dp, 2.0020156576159773_dp, &
+         & 2.453658811079655_dp, 0.5130839999228612_dp, 1.9897792194046984_dp, &
+         & 2.4586509064206674_dp, 0.3810003874650381_dp, 1.9775178601775263_dp, &
+         & 2.4636430017616804_dp, 0.21266946597853237_dp, 1.9652315799344593_dp, &
+         & 2.712752954375406_dp, 0.0_dp, 1.6445444257234296_dp, &
+         & 3.6992085741482805_dp, 0.0_dp, 1.1057352138776908_dp, &
+         & 2.7828517086271596_dp, 1.0_dp, 16.127868183894194_dp, &
+         & 5.565706035372497_dp, 0.7951870465455889_dp, 4.5114581639078235_dp, &
+         & 5.565711271608854_dp, 0.6310031920048117_dp, 4.511429020541822_dp, &
+         & 5.5657165078452095_dp, 0.5000146462705372_dp, 4.511399877148408_dp, &
+         & 5.565721744081566_dp, 0.3690236462173884_dp, 4.511370733727571_dp, &
+         & 5.565726980317923_dp, 0.2048306031415108_dp, 4.511341590279315_dp, &
+         & 6.122302558279712_dp, 0.0_dp, 3.7581843494427902_dp, &
+         & 8.348594397654152_dp, 0.0_dp, 2.522315270524341_dp], [3, 8, 3])
+      real(dp), parameter :: deltas(3) = [2.0_dp, 5.0_dp, 20.0_dp]
+      real(dp), parameter :: more(4) = [1.5_dp, 3.0_dp, 8.0_dp, 30.0_dp]
+      type(contact_params) :: params
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: pr(8), w(8), d, force, pmax, pmin, wmis
+      integer :: k, i
+      character(len=32) :: tag
+      params = contact_params(model=model_hertz, radius=1.0_dp, modulus=1.0_dp, &
+         & flow_pressure=py)
+      do k = 1, 3
+         write (tag, '(a,f0.1,a)') " at delta = ", deltas(k), " delta_y"
+         call contact_profile(params, solver_options(), deltas(k), ref(1, :, k), pr, w, err)
+         call check(error, .not. allocated(err), "profile"//trim(tag)//" refused")
+         if (allocated(error)) then
+            if (allocated(err)) print '(a)', err%message
+            return
+         end if
+         do i = 1, 8
+            call check(error, abs(pr(i)/py - ref(2, i, k)) <= 1.0e-4_dp, "p(rho = "// &
+               & fmt(ref(1, i, k))//")/p_y = "//fmt(pr(i)/py)//", reference " &
+               & //fmt(ref(2, i, k))//trim(tag))
+            if (allocated(error)) return
+            call check(error, abs(w(i) - ref(3, i, k)) <= 1.0e-8_dp, "w(rho = "// &
+               & fmt(ref(1, i, k))//") = "//fmt(w(i))//", reference "//fmt(ref(3, i, k)) &
+               & //trim(tag))
+            if (allocated(error)) return
+         end do
+      end do
+      ! the force, p <= p_y and the contact's w at 1.5, 3, 8, 30 (fully capped) delta_y
+      do k = 1, 4
+         d = more(k)
+         write (tag, '(a,f0.1,a)') " at delta = ", d, " delta_y"
+         call solve_contact(params, solver_options(), d, res, err)
+         call check(error, .not. allocated(err), "solve"//trim(tag))
+         if (allocated(error)) return
+         call force_of_profile(params, d, res%contact_radius, force, pmax, pmin, wmis, err)
+         call check(error, .not. allocated(err), "profile"//trim(tag)//" refused")
+         if (allocated(error)) return
+         call check(error, abs(force - res%force) <= 2.0e-5_dp*res%force, "2 pi int p r dr = " &
+            & //fmt(force)//", solve: "//fmt(res%force)//trim(tag))
+         if (allocated(error)) return
+         call check(error, pmax <= py .and. pmin >= 0.0_dp, "p out of [0, p_y]: " &
+            & //fmt(pmin)//" .. "//fmt(pmax)//trim(tag))
+         if (allocated(error)) return
+         call check(error, wmis <= 1.0e-12_dp*d, "w /= delta - r**2/2 on the contact by " &
+            & //fmt(wmis)//trim(tag))
+         if (allocated(error)) return
+      end do
+      ! below first yield: Hertz's closed form p = (2/pi) sqrt(a**2 - r**2), a**2 = delta
+      call contact_profile(params, solver_options(), 0.5_dp, [0.0_dp, 0.5_dp, 0.8_dp], &
+         & pr(1:3), w(1:3), err)
+      call check(error, .not. allocated(err), "profile at 0.5 delta_y refused")
+      if (allocated(error)) return
+      call check(error, all(abs(pr(1:3) - 2.0_dp/pi*sqrt(max(0.0_dp, 0.5_dp - &
+         & [0.0_dp, 0.25_dp, 0.64_dp]))) <= 1.0e-15_dp), "Hertz below first yield")
+   contains
+      !> 2 pi int p r dr by the trapezoid rule on 2001 uniform nodes over [0, a] and 400
+      !> geometric ones on each side of a (a (1 -+ 10**(-9 .. -1)): p ~ sqrt(a - r)); the
+      !> uniform part's error ~h**2 p'' is below 1e-6 of P, the edge's below 1e-7. Also
+      !> the range of p and the largest |w - (delta - r**2/2)| on [0, 0.999 a].
+      subroutine force_of_profile(params, d, a, force, pmax, pmin, wmis, err)
+         type(contact_params), intent(in) :: params
+         real(dp), intent(in) :: d, a
+         real(dp), intent(out) :: force, pmax, pmin, wmis
+         type(egw_error), allocatable, intent(out) :: err
+         real(dp) :: x(2801), t(2801), pp(2801), ww(2801)
+         integer :: j, n
+         n = 0
+         do j = 0, 2000
+            n = n + 1
+            x(n) = a*real(j, dp)/2000.0_dp
+         end do
+         do j = 0, 399
+            x(n + 1) = a*(1.0_dp - 10.0_dp**(-9.0_dp + 8.0_dp*real(j, dp)/399.0_dp))
+            x(n + 2) = a*(1.0_dp + 10.0_dp**(-9.0_dp + 8.0_dp*real(j, dp)/399.0_dp))
+            n = n + 2
+         end do
+         t = x
+         call sort(t)
+         call contact_profile(params, solver_options(), d, t, pp, ww, err)
+         if (allocated(err)) return
+         force = 0.0_dp
+         do j = 2, n
+            force = force + 0.5_dp*(t(j) - t(j - 1))*(t(j)*pp(j) + t(j - 1)*pp(j - 1))
+         end do
+         force = 2.0_dp*pi*force
+         pmax = maxval(pp)
+         pmin = minval(pp)
+         wmis = maxval(abs(ww - (d - 0.5_dp*t**2)), mask=t <= 0.999_dp*a)
+      end subroutine force_of_profile
+
+      pure subroutine sort(v)
+         real(dp), intent(inout) :: v(:)
+         real(dp) :: tmp
+         integer :: i, j
+         do i = 2, size(v)
+            tmp = v(i)
+            j = i - 1
+            do while (j >= 1)
+               if (v(j) <= tmp) exit
+               v(j + 1) = v(j)
+               j = j - 1
+            end do
+            v(j + 1) = tmp
+         end do
+      end subroutine sort
+
+      function fmt(x) result(str)
+         real(dp), intent(in) :: x
+         character(len=:), allocatable :: str
+         character(len=32) :: buf
+         write (buf, '(es16.8)') x
+         str = trim(adjustl(buf))
+      end function fmt
+   end subroutine test_cap_profile
 
    !> A rough model with the cap is solved now (test_rough_cap checks it); what is not
    !> built yet for it, its pressure profile, is refused with egw_unsupported naming

@@ -29,6 +29,7 @@ Method (independent of egw's rings with constant pressure, midpoint collocation 
   differences do not decrease monotonically.
 
 Run: python tools/reference/cap_reference.py [--m 40] [--out test/data/cap_reference.csv]
+     python tools/reference/cap_reference.py --profile 2 5 20 (loading p(rho), w(rho))
 """
 import argparse
 import os
@@ -266,11 +267,42 @@ def richardson(q):
     return ext, err, order
 
 
+def profile(delta, ms):
+    """Loading profile at Delta: p(rho) [p_y] and w(rho) [delta_y] at rho = 0.5 c, c + f (a -
+    c) for f = 0.1 ... 0.9 and 1.1 a, 1.5 a (c, a of the finest level), each at m, 2m, 4m
+    rings (p piecewise linear between the ring nodes, exactly the discrete solution; w on
+    [0, a] is Delta - rho^2/2, beyond a the rings' w_linear) and Richardson-extrapolated.
+    Prints one line per radius: rho p p_err w w_err."""
+    sols = [load_at_delta(delta, m) for m in ms]
+    c, _, _, a, _, _ = sols[-1]
+    rhos = [0.5 * c] + [c + f * (a - c) for f in (0.1, 0.3, 0.5, 0.7, 0.9)] + [1.1 * a, 1.5 * a]
+    print(f"# Delta = {delta}: c = {c!r}, a = {a!r}")
+    for rho in rhos:
+        ps, ws = [], []
+        for cc, dd, _, aa, nodes, p in sols:
+            if nodes is None:
+                ps.append(1.0 if rho <= aa else 0.0)
+                ws.append(dd - 0.5 * rho**2 if rho <= aa else
+                          (2 / PI**2) * disk(np.array([rho]), np.array([aa]))[0])
+                continue
+            ps.append(1.0 if rho <= cc else float(np.interp(rho, nodes, p, right=0.0)))
+            ws.append(dd - 0.5 * rho**2 if rho <= aa else float(w_linear([rho], nodes, p)[0]))
+        pe, perr, _ = richardson(ps)
+        we, werr, _ = richardson(ws)
+        print(f"{rho!r} {pe!r} {perr:.2e} {we!r} {werr:.2e}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--m", type=int, default=40)
     ap.add_argument("--out", default="test/data/cap_reference.csv")
+    ap.add_argument("--profile", type=float, nargs="*",
+                    help="print the loading profile at these Delta (see profile) and stop")
     args = ap.parse_args()
+    if args.profile:
+        for d in args.profile:
+            profile(d, [args.m, 2 * args.m, 4 * args.m])
+        return
     _force_linear_check()
     ms = [args.m, 2 * args.m, 4 * args.m]
     # self-checks: Hertz (f = rho^2/2, b = 1.3: Delta = b^2, P = b^3) and first yield

@@ -32,6 +32,7 @@ module egw_rough_sphere
    use egw_halfspace, only: influence_row
    use egw_flat_law, only: flat_law
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
+      & cap_profile, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
@@ -62,6 +63,8 @@ module egw_rough_sphere
    !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
    !> tolerance the solver's error estimate can resolve in double precision.
    integer, parameter :: profile_levels = 4
+   !> capped_profile: the cap solver's rings (finest level)
+   integer, parameter :: cap_profile_rings = 256
    !> With the cap: sigma/delta_y at or below which a solve that does not converge takes
    !> the asymptotic route (small_sigma_loading, small_sigma_unload; doc/theory.md §12
    !> "Small sigma"): from 1e-6 down, where the discrete solves fail at some overlaps.
@@ -1319,12 +1322,11 @@ contains
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
-      if (above_first_yield(params, delta) .or. (params%flow_pressure > 0.0_dp .and. &
-         & params%model /= model_hertz .and. params%sigma > 0.0_dp)) then
+      if (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
+         & params%sigma > 0.0_dp) then
          call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//": the pressure profile beyond first " &
-            & //"yield of the cap (delta = "//format_real(delta)//"), or of a rough sphere " &
-            & //"with the cap, is not available yet (forces are)")
+            & //format_real(params%flow_pressure)//": the pressure profile of a rough " &
+            & //"sphere with the cap is not available yet (forces are)")
          return
       end if
       if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
@@ -1340,6 +1342,10 @@ contains
             return
          end if
       end do
+      if (smooth_capped(params, delta)) then
+         call capped_profile(params, delta, r, pressure, deflection, error)
+         return
+      end if
       if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
          pressure = hertz_pressure(r, delta, params%radius, params%modulus)
          deflection = hertz_deflection(r, delta, params%radius)
@@ -1396,6 +1402,23 @@ contains
       pressure = p_new(2:)*pressure_unit(params)
       deflection = w_new(2:)*params%sigma
    end subroutine contact_profile
+
+   !> contact_profile of the smooth sphere with the cap beyond first yield (cap_profile) on
+   !> up to cap_profile_rings rings, whatever options%rel_tol: the rings' pressures
+   !> converge as (1/rings)**2 (a change of 3e-5 p_y from 128 to 256 rings at 2 delta_y),
+   !> so rel_tol 1e-6 would take ~4000 rings. Measured against
+   !> tools/reference/cap_reference.py --profile 2 5 20: p within 1.5e-5 p_y (the
+   !> reference's own error: up to 3.1e-5), w within 1e-9 delta_y; 2 pi int p r dr within
+   !> 5.2e-6 of the force from 1.5 to 30 delta_y (test_cap_sphere, test_cap_profile).
+   subroutine capped_profile(params, delta, r, pressure, deflection, error)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta, r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      call cap_profile(params%radius, params%modulus, params%flow_pressure, delta, &
+         & cap_options(n_rings=cap_profile_rings/2, n_levels=2), r, pressure, deflection, &
+         & error)
+   end subroutine capped_profile
 
    !> Total pressure and deflection of a solved contact at scaled radii rs (scaled units).
    subroutine profile_values(prob, sol, rs, pressure, deflection)
