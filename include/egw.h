@@ -216,9 +216,9 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * beyond v_y takes the smooth sphere's elastic unloading stiffness at delta_m (rough
  * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
  * EP-GW + cap tables (doc/formats.md 6); egw_profile the smooth sphere's loading
- * profile beyond delta_y (p <= p_y; see egw_profile). Not yet: egw_profile of a rough
- * sphere with the cap and unloading profiles (EGW_UNSUPPORTED), force and universal
- * tables (EGW_INVALID_PARAMETER). */
+ * profile beyond delta_y (p <= p_y; see egw_profile), egw_profile_unload its unloading
+ * profile. Not yet: egw_profile(_unload) of a rough sphere with the cap
+ * (EGW_UNSUPPORTED), force and universal tables (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -311,6 +311,26 @@ int egw_first_yield(const egw_params *p, double mass, double *delta_y, double *v
  * Hertz). A rough sphere with the cap: EGW_UNSUPPORTED. */
 int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
                 const double *r, double *pressure, double *deflection);
+
+/* Total pressure p(r) and deflection w(r) at the n radii r[0..n-1] of the unloading (or
+ * reloading) contact at delta after the largest overlap delta_max: egw_solve_unload's
+ * contact (its force is 2 pi int p r dr). delta >= delta_max: egw_profile at delta.
+ * Reversible models (Hertz up to first yield, classic GW, E-GW, EP-GW with psi = 0): the
+ * loading profile at delta. EP-GW: Hertz's pressure plus the rough unloading pressure
+ * p_G(d(r), d_max(r)), w the rough layer's deflection plus Hertz's, pointwise within
+ * o->rel_tol of the peak and the largest deflection (the unloading solve tightened by 10
+ * until it settles; the history loaded at 1e-4 of rel_tol). Smooth sphere with the cap
+ * loaded beyond first yield: the elastic contact of the deformed shape (the cap solver's
+ * 64 unloading rings, as egw_solve_unload); w is the surfaces' total normal displacement,
+ * positive toward each other: elastic plus the permanent plastic crater u_pl(r), so that
+ * the gap r^2/(2R) - delta + w >= 0 is 0 on the contact (w = delta - r^2/(2R) there), and
+ * at or below the residual overlap p = 0, w = u_pl. Rough spheres with the cap:
+ * EGW_UNSUPPORTED. Statuses as egw_profile (EGW_INVALID_ARGUMENT for a delta_max that is
+ * not finite, n < 0 or a bad radius, EGW_NULL_POINTER for p, r, pressure, deflection);
+ * outputs untouched on failure. */
+int egw_profile_unload(const egw_params *p, const egw_options *o, double delta,
+                       double delta_max, int n, const double *r, double *pressure,
+                       double *deflection);
 
 /* ------------------------------------------------------------------------
  * Force tables for DEM and FE codes.

@@ -56,7 +56,8 @@ module egw_cap_sphere
 
    public :: cap_options, cap_result, cap_history
    public :: cap_load, cap_unload, cap_restitution, cap_units
-   public :: cap_load_scaled_work, cap_unload_scaled_work, cap_profile
+   public :: cap_load_scaled_work, cap_unload_scaled_work, cap_profile, &
+      & cap_unload_profile
 
    !> Gauss points per element of the influence integrals of a constant pressure
    integer, parameter :: n_press = 4
@@ -898,6 +899,86 @@ contains
       pm = maxval(q(:, 1))
       call unscale(history, f, k, b, 0.0_dp, pm, abs(f - fc)*history%force_y, result)
    end subroutine cap_unload
+
+   !> Unloading (or reloading) profile at delta <= delta_max after cap_load: the pressure
+   !> p(r) of the elastic contact [0, b] of the deformed shape (the finest level's rings,
+   !> interpolated between their midpoints: linear, flat toward 0, p ~ sqrt(b - r) toward
+   !> b) and the surfaces' total normal displacement w(r): elastic plus the plastic crater
+   !> u_pl, so that the gap r**2/(2R) - delta + w is 0 on [0, b] (w = delta - r**2/(2R)
+   !> there) and beyond b w = the rings' elastic deflection + u_pl(r). At or below the
+   !> residual overlap: p = 0, w = u_pl. Elastic history: Hertz at delta. Errors as
+   !> cap_unload.
+   subroutine cap_unload_profile(history, delta, r, pressure, deflection, error)
+      type(cap_history), intent(in) :: history   !< from cap_load
+      real(dp), intent(in) :: delta              !< overlap <= delta_max
+      real(dp), intent(in) :: r(:)               !< radii >= 0 [length]
+      real(dp), intent(out) :: pressure(:), deflection(:)   !< p, w at r
+      type(egw_error), allocatable, intent(out) :: error
+      type(cap_result) :: res
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: q(:, :), x(:), edges(:), row(:), hr(:)
+      real(dp) :: d, b, rho, u, du, t, xr
+      integer :: m, i, j, e, info
+      call cap_unload(history, delta, res, error)
+      if (allocated(error)) return
+      if (history%elastic) then
+         pressure = hertz_pressure(r, delta, history%radius, history%modulus)
+         deflection = hertz_deflection(r, delta, history%radius)
+         return
+      end if
+      d = delta/history%delta_y
+      if (d <= history%residual) then
+         pressure = 0.0_dp
+         do i = 1, size(r)
+            call u_plastic(history, r(i)/history%a_y, u, du)
+            deflection(i) = history%delta_y*u
+         end do
+         return
+      end if
+      b = res%contact_radius/history%a_y
+      m = history%n_unload(2)
+      x = history%x_unload(1:m, 2)
+      allocate (q(m, 1))
+      do i = 1, m
+         call u_plastic(history, b*x(i), u, du)
+         q(i, 1) = (d - 0.5_dp*(b*x(i))**2 - u)/b
+      end do
+      call dgetrs('N', m, 1, history%lu_unload, m, history%piv_unload, q, m, info)
+      edges = toward_one([(real(j, dp)/real(m, dp), j=0, m)])
+      edges(1) = 0.0_dp
+      edges(m + 1) = 1.0_dp
+      call build_mesh(edges, 1, n_press, mesh)
+      allocate (row(mesh%n_elem*n_press), hr(mesh%n_elem))
+      do i = 1, size(r)
+         rho = r(i)/history%a_y
+         xr = rho/b
+         if (xr <= 1.0_dp) then
+            deflection(i) = d - 0.5_dp*rho**2
+            if (xr <= x(1)) then
+               pressure(i) = q(1, 1)
+            else if (xr >= x(m)) then
+               pressure(i) = q(m, 1)*sqrt(max(0.0_dp, 1.0_dp - xr)/(1.0_dp - x(m)))
+            else
+               j = 1
+               do while (x(j + 1) < xr)
+                  j = j + 1
+               end do
+               t = (xr - x(j))/(x(j + 1) - x(j))
+               pressure(i) = (1.0_dp - t)*q(j, 1) + t*q(j + 1, 1)
+            end if
+         else
+            pressure(i) = 0.0_dp
+            call influence_row(mesh, xr, row)
+            do e = 1, mesh%n_elem
+               hr(e) = 2.0_dp/pi*sum(row((e - 1)*n_press + 1:e*n_press))
+            end do
+            call u_plastic(history, rho, u, du)
+            deflection(i) = b*sum(hr*q(:, 1)) + u
+         end if
+      end do
+      pressure = history%flow_pressure*pressure
+      deflection = history%delta_y*deflection
+   end subroutine cap_unload_profile
 
    !> Scaled loading work W(Delta_m) = int_0^Delta_m P dDelta (units P_y delta_y):
    !> 2/5 up to first yield, then Gauss-Legendre in t, Delta = 1 + (Delta_m - 1) t**2.

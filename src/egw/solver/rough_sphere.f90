@@ -32,7 +32,7 @@ module egw_rough_sphere
    use egw_halfspace, only: influence_row
    use egw_flat_law, only: flat_law
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
-      & cap_profile, &
+      & cap_profile, cap_unload_profile, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
@@ -57,6 +57,7 @@ module egw_rough_sphere
 
    public :: validate_options, solve_contact, solve_contact_law, contact_profile
    public :: load_history, solve_unload, solve_contact_unload, unload_profile
+   public :: contact_profile_unload
    public :: unload_start
    public :: above_first_yield, cap_solve_options
 
@@ -1278,6 +1279,118 @@ contains
       separation = history%params%sigma*gap
       separation_min = history%params%sigma*gap_min
    end subroutine unload_profile
+
+   !> Total pressure p and deflection w at the radii r(:) >= 0 of the unloading (or
+   !> reloading) solve at delta after loading to delta_max (solve_contact_unload's
+   !> contact): delta >= delta_max is contact_profile at delta; reversible histories (Hertz
+   !> below first yield, GW/E-GW, EP-GW with psi = 0: the unloading law is the loading
+   !> law) too; the smooth sphere with the cap loaded beyond first yield is
+   !> cap_unload_profile's (w the surfaces' total displacement, plastic crater included);
+   !> EP-GW: Hertz + the rough unloading pressure p_G(d, d_max) (unload_profile) and w
+   !> the rough layer's deflection + Hertz's, the unloading solve tightened by 10 until
+   !> the profile changes by at most rel_tol of its peak (pressure) and of its largest
+   !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10). A rough sphere
+   !> with the cap: egw_unsupported.
+   subroutine contact_profile_unload(params, options, delta, delta_max, r, pressure, &
+      & deflection, error)
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< tolerance of the solves
+      real(dp), intent(in) :: delta       !< overlap of the profile [length]
+      real(dp), intent(in) :: delta_max   !< largest overlap reached before [length]
+      real(dp), intent(in) :: r(:)             !< radii, >= 0
+      real(dp), intent(out) :: pressure(:)     !< total pressure at r, size(r)
+      real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      type(loading_history) :: hist
+      type(solve_result) :: loaded
+      type(solver_options) :: tight
+      type(scaled_problem) :: prob
+      real(dp), allocatable :: pg(:), d(:), dmin(:), p_prev(:), w_prev(:), p_new(:), &
+         & w_new(:), rs(:)
+      integer :: i, level
+      logical :: converged
+
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+      if (delta >= delta_max .or. ((params%model == model_hertz .or. params%sigma == &
+         & 0.0_dp) .and. .not. smooth_capped(params, delta_max))) then
+         call contact_profile(params, options, delta, r, pressure, deflection, error)
+         return
+      end if
+      if (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
+         & params%sigma > 0.0_dp) then
+         call fatal_error(error, egw_unsupported, "flow_pressure = " &
+            & //format_real(params%flow_pressure)//": the unloading profile of a rough " &
+            & //"sphere with the cap is not available yet (forces are)")
+         return
+      end if
+      if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
+         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
+            & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
+            & //" differs from size(r) = "//int_str(size(r)))
+         return
+      end if
+      do i = 1, size(r)
+         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
+               & //format_real(r(i))//": radii must be finite and >= 0")
+            return
+         end if
+      end do
+      tight = options
+      tight%rel_tol = max(1.0e-10_dp, 1.0e-4_dp*options%rel_tol)
+      call load_history(params, tight, delta_max, hist, loaded, error)
+      if (allocated(error)) return
+      if (hist%capped) then
+         call cap_unload_profile(hist%cap, delta, r, pressure, deflection, error)
+         return
+      end if
+      if (hist%reversible) then
+         call contact_profile(params, options, delta, r, pressure, deflection, error)
+         return
+      end if
+      ! the rough unloading pressure p_G and separation d: the rough layer's deflection
+      ! is d - sigma base_gap (base_gap: the Hertz-deformed or rigid gap)
+      prob = scaled(params, delta)
+      rs = r/length_unit(params)
+      allocate (pg(size(r)), d(size(r)), dmin(size(r)), p_new(size(r)), w_new(size(r)), &
+         & p_prev(size(r)), w_prev(size(r)))
+      hist%options = options
+      converged = .false.
+      do level = 0, profile_levels
+         call unload_profile(hist, delta, r, pg, d, dmin, error)
+         if (allocated(error)) return
+         do i = 1, size(r)
+            w_new(i) = d(i) - params%sigma*base_gap(prob, rs(i))
+         end do
+         p_new = pg
+         if (prob%extended) then
+            p_new = p_new + hertz_pressure(r, delta, params%radius, params%modulus)
+            w_new = w_new + hertz_deflection(r, delta, params%radius)
+         end if
+         if (level > 0) then
+            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
+               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            if (converged) exit
+         end if
+         p_prev = p_new
+         w_prev = w_new
+         if (hist%options%rel_tol <= finest_profile_tol) exit
+         hist%options%rel_tol = max(hist%options%rel_tol/10.0_dp, finest_profile_tol)
+      end do
+      if (.not. converged) then
+         call fatal_error(error, egw_not_converged, "profile_unload: the pressure profile " &
+            & //"did not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
+         return
+      end if
+      pressure = p_new
+      deflection = w_new
+   end subroutine contact_profile_unload
 
    !> Whether cache holds the history of exactly these inputs (every field equal).
    pure logical function cached(cache, params, options, delta_max)
