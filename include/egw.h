@@ -320,8 +320,8 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * p_G(d(r), d_max(r)), w the rough layer's deflection plus Hertz's, pointwise within
  * o->rel_tol of the peak and the largest deflection (the unloading solve tightened by 10
  * until it settles; the history loaded at 1e-4 of rel_tol). Smooth sphere with the cap
- * loaded beyond first yield: the elastic contact of the deformed shape (the cap solver's
- * 64 unloading rings, as egw_solve_unload); w is the surfaces' total normal displacement,
+ * loaded beyond first yield: the elastic contact of the deformed shape (the cap solver
+ * on 256 unloading rings, egw_solve_unload on 64); w is the surfaces' total displacement,
  * positive toward each other: elastic plus the permanent plastic crater u_pl(r), so that
  * the gap r^2/(2R) - delta + w >= 0 is 0 on the contact (w = delta - r^2/(2R) there), and
  * at or below the residual overlap p = 0, w = u_pl. Rough spheres with the cap:

@@ -12,6 +12,7 @@ module test_cap_sphere
    use egw, only: contact_params, model_hertz, model_egw, solver_options, solve_result, &
       & solve_contact, solve_contact_unload, loading_history, load_history, solve_unload, &
       & restitution, egw_invalid_parameter, egw_unsupported, contact_profile, &
+      & contact_profile_unload, &
       & first_yield_overlap, first_yield_speed
    use egw_rough_sphere, only: cap_solve_options
    implicit none
@@ -44,6 +45,8 @@ contains
          & test_public_energy), &
          & new_unittest("profile with the cap: the reference, force, p <= p_y", &
          & test_cap_profile), &
+         & new_unittest("unloading profile with the cap: force, contact, crater", &
+         & test_cap_profile_unload), &
          & new_unittest("public: rough model with flow_pressure solved, profile refused", &
          & test_public_rough), &
          & new_unittest("public: e <= 1, dissipated >= 0 just above first yield", &
@@ -755,6 +758,114 @@ contains
          str = trim(adjustl(buf))
       end function fmt
    end subroutine test_cap_profile
+
+   !> contact_profile_unload of the smooth sphere with the cap (unit problem as
+   !> test_cap_profile) after delta_max = 10 delta_y, at delta/delta_max = 0.99, 0.95, 0.9,
+   !> 0.8: 2 pi int p r dr = solve_contact_unload's force within 2e-5 (the profile on the
+   !> same 64 rings as the force, interpolated: the quadrature as test_cap_profile's;
+   !> measured below 5e-6), p >= 0, w = delta - r**2/2 on the contact (r < 0.999 b: the
+   !> surfaces conform), w >= delta - r**2/2 beyond (no interpenetration; the crater
+   !> included); at delta = residual/2: p = 0 and w(0) = the residual overlap
+   !> (egw_solve_unload's force is 0 from there: the crater's depth is the overlap where
+   !> the force vanishes).
+   subroutine test_cap_profile_unload(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: py = 2.0_dp/pi, dm = 10.0_dp
+      real(dp), parameter :: fr(4) = [0.99_dp, 0.95_dp, 0.9_dp, 0.8_dp]
+      integer, parameter :: n = 2801
+      type(contact_params) :: params
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: x(n), pr(n), w(n), b, d, force, lo, hi, mid
+      integer :: k, j, it
+      character(len=48) :: tag
+      params = contact_params(model=model_hertz, radius=1.0_dp, modulus=1.0_dp, &
+         & flow_pressure=py)
+      do k = 1, 4
+         d = fr(k)*dm
+         write (tag, '(a,f0.2,a)') " at delta = ", fr(k), " delta_max"
+         call solve_contact_unload(params, solver_options(), d, dm, res, err)
+         call check(error, .not. allocated(err), "solve_unload"//trim(tag))
+         if (allocated(error)) return
+         b = res%contact_radius
+         do j = 1, 2001
+            x(j) = b*real(j - 1, dp)/2000.0_dp
+         end do
+         do j = 0, 399
+            x(2002 + 2*j) = b*(1.0_dp - 10.0_dp**(-9.0_dp + 8.0_dp*real(j, dp)/399.0_dp))
+            x(2003 + 2*j) = b*(1.0_dp + 10.0_dp**(-9.0_dp + 8.0_dp*real(j, dp)/399.0_dp))
+         end do
+         call sort_up(x)
+         call contact_profile_unload(params, solver_options(), d, dm, x, pr, w, err)
+         call check(error, .not. allocated(err), "profile_unload"//trim(tag)//" refused")
+         if (allocated(error)) then
+            if (allocated(err)) print '(a)', err%message
+            return
+         end if
+         force = 0.0_dp
+         do j = 2, n
+            force = force + 0.5_dp*(x(j) - x(j - 1))*(x(j)*pr(j) + x(j - 1)*pr(j - 1))
+         end do
+         force = 2.0_dp*pi*force
+         call check(error, abs(force - res%force) <= 2.0e-5_dp*res%force, &
+            & "2 pi int p r dr = "//fmt_e(force)//", solve_unload: "//fmt_e(res%force) &
+            & //trim(tag))
+         if (allocated(error)) return
+         call check(error, all(pr >= 0.0_dp), "negative pressure"//trim(tag))
+         if (allocated(error)) return
+         call check(error, maxval(abs(w - (d - 0.5_dp*x**2)), mask=x < 0.999_dp*b) <= &
+            & 1.0e-12_dp*dm, "w /= delta - r**2/2 on the contact"//trim(tag))
+         if (allocated(error)) return
+         call check(error, all(w - (d - 0.5_dp*x**2) >= -1.0e-9_dp*dm), &
+            & "interpenetration (w < delta - r**2/2) beyond the contact"//trim(tag))
+         if (allocated(error)) return
+      end do
+      ! the residual overlap: where solve_unload's force reaches 0 (bisection to 1e-10)
+      lo = 0.0_dp
+      hi = dm
+      do it = 1, 60
+         mid = 0.5_dp*(lo + hi)
+         call solve_contact_unload(params, solver_options(), mid, dm, res, err)
+         if (allocated(err)) exit
+         if (res%force > 0.0_dp) then
+            hi = mid
+         else
+            lo = mid
+         end if
+         if (hi - lo <= 1.0e-10_dp*dm) exit
+      end do
+      call contact_profile_unload(params, solver_options(), 0.5_dp*lo, dm, [0.0_dp, 1.0_dp], &
+         & pr(1:2), w(1:2), err)
+      call check(error, .not. allocated(err), "profile below the residual overlap refused")
+      if (allocated(error)) return
+      call check(error, all(pr(1:2) == 0.0_dp) .and. abs(w(1) - hi) <= 1.0e-8_dp*dm, &
+         & "below the residual overlap: p = "//fmt_e(pr(1))//", w(0) = "//fmt_e(w(1)) &
+         & //", residual overlap "//fmt_e(hi))
+   contains
+      pure subroutine sort_up(v)
+         real(dp), intent(inout) :: v(:)
+         real(dp) :: tmp
+         integer :: i, j
+         do i = 2, size(v)
+            tmp = v(i)
+            j = i - 1
+            do while (j >= 1)
+               if (v(j) <= tmp) exit
+               v(j + 1) = v(j)
+               j = j - 1
+            end do
+            v(j + 1) = tmp
+         end do
+      end subroutine sort_up
+
+      function fmt_e(x) result(str)
+         real(dp), intent(in) :: x
+         character(len=:), allocatable :: str
+         character(len=32) :: buf
+         write (buf, '(es16.8)') x
+         str = trim(adjustl(buf))
+      end function fmt_e
+   end subroutine test_cap_profile_unload
 
    !> A rough model with the cap is solved now (test_rough_cap checks it); what is not
    !> built yet for it, its pressure profile, is refused with egw_unsupported naming

@@ -906,51 +906,61 @@ contains
    !> b) and the surfaces' total normal displacement w(r): elastic plus the plastic crater
    !> u_pl, so that the gap r**2/(2R) - delta + w is 0 on [0, b] (w = delta - r**2/(2R)
    !> there) and beyond b w = the rings' elastic deflection + u_pl(r). At or below the
-   !> residual overlap: p = 0, w = u_pl. Elastic history: Hertz at delta. Errors as
-   !> cap_unload.
-   subroutine cap_unload_profile(history, delta, r, pressure, deflection, error)
+   !> residual overlap: p = 0, w = u_pl. Elastic history: Hertz at delta. The unloading
+   !> rings are rebuilt at n_rings when that is more than history's (its force then
+   !> differs from cap_unload's on history by the rings' error). Errors as cap_unload.
+   subroutine cap_unload_profile(history, n_rings, delta, r, pressure, deflection, error)
       type(cap_history), intent(in) :: history   !< from cap_load
+      !> the unloading rings (finest level), at least history's
+      integer, intent(in) :: n_rings
       real(dp), intent(in) :: delta              !< overlap <= delta_max
       real(dp), intent(in) :: r(:)               !< radii >= 0 [length]
       real(dp), intent(out) :: pressure(:), deflection(:)   !< p, w at r
       type(egw_error), allocatable, intent(out) :: error
       type(cap_result) :: res
+      type(cap_history) :: hist
       type(radial_mesh) :: mesh
       real(dp), allocatable :: q(:, :), x(:), edges(:), row(:), hr(:)
       real(dp) :: d, b, rho, u, du, t, xr
       integer :: m, i, j, e, info
-      call cap_unload(history, delta, res, error)
+      hist = history
+      if (.not. history%elastic .and. n_rings > history%n_unload(2)) then
+         deallocate (hist%x_unload, hist%v_unload, hist%lu_unload, hist%piv_unload)
+         call keep_unloading(hist, n_rings, error)
+         if (allocated(error)) return
+      end if
+      call cap_unload(hist, delta, res, error)
       if (allocated(error)) return
       if (history%elastic) then
          pressure = hertz_pressure(r, delta, history%radius, history%modulus)
          deflection = hertz_deflection(r, delta, history%radius)
          return
       end if
-      d = delta/history%delta_y
-      if (d <= history%residual) then
+      d = delta/hist%delta_y
+      if (d <= hist%residual) then
          pressure = 0.0_dp
          do i = 1, size(r)
-            call u_plastic(history, r(i)/history%a_y, u, du)
-            deflection(i) = history%delta_y*u
+            call u_plastic(hist, r(i)/hist%a_y, u, du)
+            deflection(i) = hist%delta_y*u
          end do
          return
       end if
-      b = res%contact_radius/history%a_y
-      m = history%n_unload(2)
-      x = history%x_unload(1:m, 2)
+      b = res%contact_radius/hist%a_y
+      m = hist%n_unload(2)
+      x = hist%x_unload(1:m, 2)
       allocate (q(m, 1))
       do i = 1, m
-         call u_plastic(history, b*x(i), u, du)
+         call u_plastic(hist, b*x(i), u, du)
          q(i, 1) = (d - 0.5_dp*(b*x(i))**2 - u)/b
       end do
-      call dgetrs('N', m, 1, history%lu_unload, m, history%piv_unload, q, m, info)
+      call dgetrs('N', m, 1, hist%lu_unload, m, hist%piv_unload, q, m, info)
       edges = toward_one([(real(j, dp)/real(m, dp), j=0, m)])
       edges(1) = 0.0_dp
       edges(m + 1) = 1.0_dp
       call build_mesh(edges, 1, n_press, mesh)
       allocate (row(mesh%n_elem*n_press), hr(mesh%n_elem))
       do i = 1, size(r)
-         rho = r(i)/history%a_y
+         rho = r(i)/hist%a_y
          xr = rho/b
          if (xr <= 1.0_dp) then
             deflection(i) = d - 0.5_dp*rho**2
@@ -972,12 +982,12 @@ contains
             do e = 1, mesh%n_elem
                hr(e) = 2.0_dp/pi*sum(row((e - 1)*n_press + 1:e*n_press))
             end do
-            call u_plastic(history, rho, u, du)
+            call u_plastic(hist, rho, u, du)
             deflection(i) = b*sum(hr*q(:, 1)) + u
          end if
       end do
-      pressure = history%flow_pressure*pressure
-      deflection = history%delta_y*deflection
+      pressure = hist%flow_pressure*pressure
+      deflection = hist%delta_y*deflection
    end subroutine cap_unload_profile
 
    !> Scaled loading work W(Delta_m) = int_0^Delta_m P dDelta (units P_y delta_y):

@@ -1347,7 +1347,8 @@ contains
       call load_history(params, tight, delta_max, hist, loaded, error)
       if (allocated(error)) return
       if (hist%capped) then
-         call cap_unload_profile(hist%cap, delta, r, pressure, deflection, error)
+         call cap_unload_profile(hist%cap, cap_profile_rings, delta, r, pressure, deflection, &
+            & error)
          return
       end if
       if (hist%reversible) then
