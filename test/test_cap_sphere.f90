@@ -765,13 +765,28 @@ contains
    !> same 64 rings as the force, interpolated: the quadrature as test_cap_profile's;
    !> measured below 5e-6), p >= 0, w = delta - r**2/2 on the contact (r < 0.999 b: the
    !> surfaces conform), w >= delta - r**2/2 beyond (no interpenetration; the crater
-   !> included); at delta = residual/2: p = 0 and w(0) = the residual overlap
+   !> included); the pressure against cap_reference.py --profile-unload 10 0.99 0.9 0.8
+   !> (tolerances below); at delta = residual/2: p = 0 and w(0) = the residual overlap
    !> (egw_solve_unload's force is 0 from there: the crater's depth is the overlap where
    !> the force vanishes).
    subroutine test_cap_profile_unload(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: py = 2.0_dp/pi, dm = 10.0_dp
       real(dp), parameter :: fr(4) = [0.99_dp, 0.95_dp, 0.9_dp, 0.8_dp]
+      integer, parameter :: pick(3) = [1, 3, 4]
+      real(dp), parameter :: ref_unload(2, 6, 3) = reshape([ &
+         & 0.0_dp, 0.9866104388439675_dp, 1.1200557202981842_dp, 0.9859643386625823_dp, &
+         & 2.2401114405963685_dp, 0.9832647624379387_dp, 2.9868152541284916_dp, &
+         & 0.9776913902343126_dp, 3.360167160894553_dp, 0.9693103883352772_dp, &
+         & 3.6215134956307957_dp, 0.9451147049291135_dp, &
+         & 0.0_dp, 0.8651036225437183_dp, 1.0952781961047384_dp, 0.8587981093324814_dp, &
+         & 2.190556392209477_dp, 0.832763580236159_dp, 2.920741856279303_dp, &
+         & 0.7808289580442106_dp, 3.2858345883142155_dp, 0.7081475466680396_dp, &
+         & 3.5413995007386543_dp, 0.5388786742879965_dp, &
+         & 0.0_dp, 0.7236213650830219_dp, 1.016407036412175_dp, 0.7119936604417106_dp, &
+         & 2.03281407282435_dp, 0.6656170018015238_dp, 2.7104187637657997_dp, &
+         & 0.5811669066213468_dp, 3.049221109236525_dp, 0.480378061792447_dp, &
+         & 3.286382751066032_dp, 0.3074667784876715_dp], [2, 6, 3])
       integer, parameter :: n = 2801
       type(contact_params) :: params
       type(solve_result) :: res
@@ -819,6 +834,25 @@ contains
          call check(error, all(w - (d - 0.5_dp*x**2) >= -1.0e-9_dp*dm), &
             & "interpenetration (w < delta - r**2/2) beyond the contact"//trim(tag))
          if (allocated(error)) return
+      end do
+      ! the unloading pressure against python tools/reference/cap_reference.py
+      ! --profile-unload 10 0.99 0.9 0.8 (rho, p/p_y; its own error up to 2.6e-4 p_y at
+      ! 0.97 b, below 7e-6 inside 0.8 b)
+      do k = 1, 3
+         d = dm*fr(pick(k))
+         call contact_profile_unload(params, solver_options(), d, dm, ref_unload(1, :, k), &
+            & pr(1:6), w(1:6), err)
+         call check(error, .not. allocated(err), "profile_unload at the reference refused")
+         if (allocated(error)) return
+         do j = 1, 6
+            ! inside 0.8 b: 2e-5 (the reference's 7e-6, egw's rings' ~5e-6); at 0.9, 0.97 b
+            ! 5e-4 (the reference's 2.6e-4 there; measured 1.2e-4)
+            call check(error, abs(pr(j)/py - ref_unload(2, j, k)) <= merge(2.0e-5_dp, &
+               & 5.0e-4_dp, j <= 4), "unloading p(rho = "//fmt_e(ref_unload(1, j, k)) &
+               & //")/p_y = "//fmt_e(pr(j)/py)//", reference "//fmt_e(ref_unload(2, j, k)) &
+               & //" at delta = "//fmt_e(d))
+            if (allocated(error)) return
+         end do
       end do
       ! the residual overlap: where solve_unload's force reaches 0 (bisection to 1e-10)
       lo = 0.0_dp
