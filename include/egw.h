@@ -217,8 +217,9 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
  * EP-GW + cap tables (doc/formats.md 6); egw_profile the smooth sphere's loading
  * profile beyond delta_y (p <= p_y; see egw_profile), egw_profile_unload its unloading
- * profile. Not yet: egw_profile(_unload) of a rough sphere with the cap
- * (EGW_UNSUPPORTED), force and universal tables (EGW_INVALID_PARAMETER). */
+ * profile; egw_profile a rough sphere's with the cap (the total pressure <= p_y). Not yet:
+ * egw_profile_unload of a rough sphere with the cap (EGW_UNSUPPORTED), force and universal
+ * tables (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -308,7 +309,9 @@ int egw_first_yield(const egw_params *p, double mass, double *delta_y, double *v
  * 0 beyond a; deflection is then the surfaces' total normal displacement, elastic plus
  * the plastic crater (positive toward each other), so that the gap r^2/(2R) - delta + w
  * is 0 on [0, a]: w = delta - r^2/(2R) there, the elastic deflection beyond a (as for
- * Hertz). A rough sphere with the cap: EGW_UNSUPPORTED. */
+ * Hertz). A rough sphere with the cap: the rough solver's total pressure (<= p_y, the
+ * cap's law and plastic shift; within rel_tol as without the cap) and w the elastic
+ * deflection (rough layer + Hertz's; the plastic shift is in the law, not in w). */
 int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
                 const double *r, double *pressure, double *deflection);
 

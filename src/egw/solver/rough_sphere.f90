@@ -1436,13 +1436,6 @@ contains
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
-      if (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
-         & params%sigma > 0.0_dp) then
-         call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//": the pressure profile of a rough " &
-            & //"sphere with the cap is not available yet (forces are)")
-         return
-      end if
       if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
          call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
             & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
@@ -1547,13 +1540,18 @@ contains
       do i = 1, size(rs)
          call influence_row(sol%mesh, rs(i), row)
          wg = dot_product(row, sol%p)
-         call prob%law%pressure([base_gap(prob, rs(i)) + wg], f, dfdh)
-         pressure(i) = f(1)
-         deflection(i) = wg
-         if (prob%extended) then
-            pressure(i) = pressure(i) + hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
-            deflection(i) = deflection(i) + hertz_deflection(rs(i), prob%delta, 1.0_dp)
+         if (allocated(prob%cap)) then
+            ! the cap on the total pressure (its law and plastic shift: total_pressure)
+            pressure(i) = total_pressure(prob, sol, rs(i))
+         else
+            call prob%law%pressure([base_gap(prob, rs(i)) + wg], f, dfdh)
+            pressure(i) = f(1)
+            if (prob%extended) pressure(i) = pressure(i) + &
+               & hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
          end if
+         deflection(i) = wg
+         if (prob%extended) deflection(i) = deflection(i) + &
+            & hertz_deflection(rs(i), prob%delta, 1.0_dp)
       end do
    end subroutine profile_values
 
