@@ -217,9 +217,9 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
  * EP-GW + cap tables (doc/formats.md 6); egw_profile the smooth sphere's loading
  * profile beyond delta_y (p <= p_y; see egw_profile), egw_profile_unload its unloading
- * profile; egw_profile a rough sphere's with the cap (the total pressure <= p_y). Not yet:
- * egw_profile_unload of a rough sphere with the cap (EGW_UNSUPPORTED), force and universal
- * tables (EGW_INVALID_PARAMETER). */
+ * profile; both give a rough sphere's with the cap (the total pressure <= p_y). Not yet:
+ * egw_profile_unload after a history the small-sigma route loaded (EGW_UNSUPPORTED),
+ * force and universal tables (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -327,8 +327,10 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * on 256 unloading rings, egw_solve_unload on 64); w is the surfaces' total displacement,
  * positive toward each other: elastic plus the permanent plastic crater u_pl(r), so that
  * the gap r^2/(2R) - delta + w >= 0 is 0 on the contact (w = delta - r^2/(2R) there), and
- * at or below the residual overlap p = 0, w = u_pl. Rough spheres with the cap:
- * EGW_UNSUPPORTED. Statuses as egw_profile (EGW_INVALID_ARGUMENT for a delta_max that is
+ * at or below the residual overlap p = 0, w = u_pl. Rough spheres with the cap: the
+ * rough solver's total unloading pressure (<= p_y) within rel_tol, w elastic (as
+ * egw_profile); after a history loaded by the small-sigma route (sigma/delta_y <= ~1e-6,
+ * no rough field kept): EGW_UNSUPPORTED. Statuses as egw_profile (EGW_INVALID_ARGUMENT for a delta_max that is
  * not finite, n < 0 or a bad radius, EGW_NULL_POINTER for p, r, pressure, deflection);
  * outputs untouched on failure. */
 int egw_profile_unload(const egw_params *p, const egw_options *o, double delta,

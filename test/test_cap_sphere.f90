@@ -47,7 +47,7 @@ contains
          & test_cap_profile), &
          & new_unittest("unloading profile with the cap: force, contact, crater", &
          & test_cap_profile_unload), &
-         & new_unittest("public: rough + cap solved, its profile, unloading profile refused", &
+         & new_unittest("public: rough + cap solved, its loading and unloading profiles", &
          & test_public_rough), &
          & new_unittest("public: e <= 1, dissipated >= 0 just above first yield", &
          & test_public_near_yield), &
@@ -902,20 +902,21 @@ contains
    end subroutine test_cap_profile_unload
 
    !> A rough model with the cap (E-GW, sigma 1e-3, mu 4, p_y 0.01: delta_y 2.47e-4) at
-   !> 2e-3 (8 delta_y): its loading profile's 2 pi int p r dr equals solve_contact's force
-   !> within 2e-5 (both within rel_tol 1e-6; the trapezoid on 4001 nodes over [0, 0.2]
-   !> (the pressure is below 1e-12 of its peak beyond 0.15: gap 0.0113 - 0.002 = 9 sigma)
-   !> of a profile whose kinks at the cap's edges are resolved to ~1e-6 of P by the
-   !> 5e-5 spacing), and the total pressure <= p_y everywhere; its unloading profile is
-   !> refused with egw_unsupported naming flow_pressure.
+   !> 2e-3 (8 delta_y), and unloading from there to 1.5e-3 and 1e-3: the profile's
+   !> 2 pi int p r dr equals solve_contact's (solve_contact_unload's) force within 2e-5
+   !> (both within rel_tol 1e-6; the trapezoid on 16001 nodes over [0, 0.2]: the pressure
+   !> is below 1e-12 of its peak beyond 0.15, gap 0.0113 - 0.002 = 9 sigma; the unloading
+   !> pressure has narrow peaks at the plastic zone's edges: on 4001 nodes it was 4e-5
+   !> off, on 16001 2e-6, loading 2.3e-7), and the total pressure lies in [0, p_y].
    subroutine test_public_rough(error)
       type(error_type), allocatable, intent(out) :: error
-      integer, parameter :: n = 4001
+      integer, parameter :: n = 16001
       type(solve_result) :: res
       type(egw_error), allocatable :: err
       type(contact_params) :: params
       real(dp) :: x(n), pr(n), w(n), force
-      integer :: j
+      real(dp), parameter :: dl(2) = [1.5e-3_dp, 1.0e-3_dp]
+      integer :: j, k
       params = contact_params(model=model_egw, sigma=1e-3_dp, mu=4.0_dp, flow_pressure=0.01_dp)
       call solve_contact(params, solver_options(), 2e-3_dp, res, err)
       call check(error, .not. allocated(err), "rough + cap was refused")
@@ -938,12 +939,30 @@ contains
       call check(error, maxval(pr) <= 0.01_dp*(1.0_dp + 1.0e-12_dp) .and. minval(pr) >= &
          & 0.0_dp, "rough + cap: total pressure outside [0, p_y]")
       if (allocated(error)) return
-      call contact_profile_unload(params, solver_options(), 1e-3_dp, 2e-3_dp, [0.0_dp], &
-         & pr(1:1), w(1:1), err)
-      call check(error, allocated(err), "the unloading profile of rough + cap was not refused")
-      if (allocated(error)) return
-      call check(error, err%stat == egw_unsupported .and. index(err%message, &
-         & "flow_pressure") > 0, "message: "//err%message)
+      ! unloading from 2e-3 to 1.5e-3 and 1e-3: the force of solve_contact_unload
+      do k = 1, 2
+         call solve_contact_unload(params, solver_options(), dl(k), 2e-3_dp, res, err)
+         call check(error, .not. allocated(err), "rough + cap: solve_unload refused")
+         if (allocated(error)) return
+         call contact_profile_unload(params, solver_options(), dl(k), 2e-3_dp, x, pr, w, err)
+         call check(error, .not. allocated(err), "the unloading profile of rough + cap " &
+            & //"was refused")
+         if (allocated(error)) then
+            if (allocated(err)) print '(a)', err%message
+            return
+         end if
+         force = 0.0_dp
+         do j = 2, n
+            force = force + 0.5_dp*(x(j) - x(j - 1))*(x(j)*pr(j) + x(j - 1)*pr(j - 1))
+         end do
+         force = 2.0_dp*pi*force
+         call check(error, abs(force - res%force) <= 2.0e-5_dp*res%force, "rough + cap " &
+            & //"unloading: 2 pi int p r dr /= the force")
+         if (allocated(error)) return
+         call check(error, maxval(pr) <= 0.01_dp*(1.0_dp + 1.0e-12_dp) .and. minval(pr) >= &
+            & 0.0_dp, "rough + cap unloading: total pressure outside [0, p_y]")
+         if (allocated(error)) return
+      end do
    end subroutine test_public_rough
 
    !> The third difference of a table over equally spaced arguments: for a smooth

@@ -201,7 +201,7 @@ def profile(params: Params, delta: float, r: ArrayLike,
     EP-GW takes the rough unloading law, reversible models (Hertz below first yield, GW,
     E-GW, psi = 0) give the loading profile at delta, and the smooth sphere with the
     flow-pressure cap loaded beyond first yield its elastic contact of the deformed shape
-    (a rough sphere with the cap: loading only, its total pressure <= p_y).
+    (a rough sphere with the cap: its total pressure <= p_y).
     ``delta >= delta_max`` is the loading profile. With the cap (smooth sphere, loading or
     unloading) the deflection is the surfaces' total normal displacement, elastic plus the
     plastic crater, so that ``r**2/(2R) - delta + w`` is 0 on the contact; the cap's
@@ -231,8 +231,8 @@ def profile(params: Params, delta: float, r: ArrayLike,
     InvalidArgumentError
         Invalid parameters, a NaN overlap or delta_max, or a negative radius.
     EgwError
-        The unloading profile (delta_max given) of a rough sphere with the
-        flow-pressure cap (status EGW_UNSUPPORTED).
+        The unloading profile (delta_max given) of a rough sphere with the cap
+        after a history the small-sigma route loaded (status EGW_UNSUPPORTED).
     NotConvergedError
         The solve did not converge.
     """

@@ -1290,7 +1290,8 @@ contains
    !> the rough layer's deflection + Hertz's, the unloading solve tightened by 10 until
    !> the profile changes by at most rel_tol of its peak (pressure) and of its largest
    !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10). A rough sphere
-   !> with the cap: egw_unsupported.
+   !> with the cap: capped_rough_unload_profile; after a history the small-sigma route
+   !> loaded (no rough field): egw_unsupported.
    subroutine contact_profile_unload(params, options, delta, delta_max, r, pressure, &
       & deflection, error)
       type(contact_params), intent(in) :: params   !< the contact
@@ -1322,13 +1323,6 @@ contains
          call contact_profile(params, options, delta, r, pressure, deflection, error)
          return
       end if
-      if (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
-         & params%sigma > 0.0_dp) then
-         call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//": the unloading profile of a rough " &
-            & //"sphere with the cap is not available yet (forces are)")
-         return
-      end if
       if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
          call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
             & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
@@ -1353,6 +1347,18 @@ contains
       end if
       if (hist%reversible) then
          call contact_profile(params, options, delta, r, pressure, deflection, error)
+         return
+      end if
+      if (hist%asymptotic) then
+         call fatal_error(error, egw_unsupported, "flow_pressure = " &
+            & //format_real(params%flow_pressure)//", delta_max = "//format_real(delta_max) &
+            & //": the history was loaded by the small-sigma route (no rough field), whose " &
+            & //"unloading profile is not available (forces are)")
+         return
+      end if
+      if (params%flow_pressure > 0.0_dp) then
+         call capped_rough_unload_profile(hist, options, delta, r, pressure, deflection, &
+            & error)
          return
       end if
       ! the rough unloading pressure p_G and separation d: the rough layer's deflection
@@ -1392,6 +1398,68 @@ contains
       pressure = p_new
       deflection = w_new
    end subroutine contact_profile_unload
+
+   !> contact_profile_unload of a rough sphere with the cap after the discrete loading
+   !> history hist: the unloading solve (the history's closest field, the cap's law and
+   !> plastic shift: total_pressure) re-done at rel_tol/10 until the profile settles (as
+   !> contact_profile); w the elastic deflection (rough layer + Hertz's).
+   subroutine capped_rough_unload_profile(hist, options, delta, r, pressure, deflection, &
+      & error)
+      type(loading_history), intent(in) :: hist
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      type(solver_options) :: level_options
+      real(dp) :: est
+      real(dp), allocatable :: rs(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
+      integer :: i, level, method_used
+      logical :: converged
+      prob = scaled(hist%params, delta)
+      allocate (prob%closest)
+      prob%closest = hist%closest
+      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
+      if (negligible(prob)) then
+         pressure = 0.0_dp
+         deflection = 0.0_dp
+         return
+      end if
+      rs = [0.0_dp, r/length_unit(hist%params)]
+      do i = 2, size(rs)
+         if (.not. ieee_is_finite(rs(i))) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
+               & //format_real(r(i - 1))//": r/sqrt(R sigma) exceeds the largest double")
+            return
+         end if
+         if (rs(i) < 1.0e-150_dp) rs(i) = 0.0_dp
+      end do
+      allocate (p_prev(size(rs)), w_prev(size(rs)), p_new(size(rs)), w_new(size(rs)))
+      level_options = options
+      converged = .false.
+      do level = 0, profile_levels
+         call solve_scaled(prob, level_options, sol, est, method_used, error)
+         if (allocated(error)) return
+         call profile_values(prob, sol, rs, p_new, w_new)
+         if (level > 0) then
+            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
+               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            if (converged) exit
+         end if
+         p_prev = p_new
+         w_prev = w_new
+         if (level_options%rel_tol <= finest_profile_tol) exit
+         level_options%rel_tol = max(level_options%rel_tol/10.0_dp, finest_profile_tol)
+      end do
+      if (.not. converged) then
+         call fatal_error(error, egw_not_converged, "profile_unload: the pressure profile " &
+            & //"did not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
+         return
+      end if
+      pressure = p_new(2:)*pressure_unit(hist%params)
+      deflection = w_new(2:)*hist%params%sigma
+   end subroutine capped_rough_unload_profile
 
    !> Whether cache holds the history of exactly these inputs (every field equal).
    pure logical function cached(cache, params, options, delta_max)
