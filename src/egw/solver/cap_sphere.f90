@@ -916,7 +916,7 @@ contains
       real(dp), intent(in) :: delta              !< overlap <= delta_max
       real(dp), intent(in) :: r(:)               !< radii >= 0 [length]
       real(dp), intent(out) :: pressure(:), deflection(:)   !< p, w at r
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< cap_unload's failure
       type(cap_result) :: res
       type(cap_history) :: hist
       type(radial_mesh) :: mesh
