@@ -236,9 +236,11 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * beyond 1e12 delta_y: EGW_INVALID_ARGUMENT naming it (doc/stability.md). egw_time_step
  * beyond v_y takes the smooth sphere's elastic unloading stiffness at delta_m (rough
  * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
- * EP-GW + cap tables (doc/formats.md 6). Not yet: egw_profile beyond delta_y or of a
- * rough sphere with the cap (EGW_UNSUPPORTED), force and universal tables
- * (EGW_INVALID_PARAMETER). */
+ * EP-GW + cap tables (doc/formats.md 6); egw_profile the smooth sphere's loading
+ * profile beyond delta_y (p <= p_y; see egw_profile), egw_profile_unload its unloading
+ * profile; both give a rough sphere's with the cap (the total pressure <= p_y). Not yet:
+ * egw_profile_unload after a history the small-sigma route loaded (EGW_UNSUPPORTED),
+ * force and universal tables (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -321,9 +323,40 @@ int egw_first_yield(const egw_params *p, double mass, double *delta_y, double *v
  * o->rel_tol of the profile's peak (pressure) and of its largest deflection: the contact
  * is solved again at rel_tol/10 (at most 4 times, down to 1e-12) until the profile
  * changes by less than that, so a profile costs a few solves. Same statuses, and
- * EGW_NOT_CONVERGED if the profile does not settle. */
+ * EGW_NOT_CONVERGED if the profile does not settle. With the cap (p->flow_pressure > 0,
+ * smooth sphere) beyond first yield: p = p_y on the capped disc r <= c, the elastic
+ * annulus's pressure (c, a) from the cap solver's rings (up to 256, whatever o->rel_tol:
+ * pointwise within 1.5e-5 p_y of tools/reference/cap_reference.py at 2, 5, 20 delta_y),
+ * 0 beyond a; deflection is then the surfaces' total normal displacement, elastic plus
+ * the plastic crater (positive toward each other), so that the gap r^2/(2R) - delta + w
+ * is 0 on [0, a]: w = delta - r^2/(2R) there, the elastic deflection beyond a (as for
+ * Hertz). A rough sphere with the cap: the rough solver's total pressure (<= p_y, the
+ * cap's law and plastic shift; within rel_tol as without the cap) and w the elastic
+ * deflection (rough layer + Hertz's; the plastic shift is in the law, not in w). */
 int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
                 const double *r, double *pressure, double *deflection);
+
+/* Total pressure p(r) and deflection w(r) at the n radii r[0..n-1] of the unloading (or
+ * reloading) contact at delta after the largest overlap delta_max: egw_solve_unload's
+ * contact (its force is 2 pi int p r dr). delta >= delta_max: egw_profile at delta.
+ * Reversible models (Hertz up to first yield, classic GW, E-GW, EP-GW with psi = 0): the
+ * loading profile at delta. EP-GW: Hertz's pressure plus the rough unloading pressure
+ * p_G(d(r), d_max(r)), w the rough layer's deflection plus Hertz's, pointwise within
+ * o->rel_tol of the peak and the largest deflection (the unloading solve tightened by 10
+ * until it settles; the history loaded at 1e-4 of rel_tol). Smooth sphere with the cap
+ * loaded beyond first yield: the elastic contact of the deformed shape (the cap solver
+ * on 256 unloading rings, egw_solve_unload on 64); w is the surfaces' total displacement,
+ * positive toward each other: elastic plus the permanent plastic crater u_pl(r), so that
+ * the gap r^2/(2R) - delta + w >= 0 is 0 on the contact (w = delta - r^2/(2R) there), and
+ * at or below the residual overlap p = 0, w = u_pl. Rough spheres with the cap: the
+ * rough solver's total unloading pressure (<= p_y) within rel_tol, w elastic (as
+ * egw_profile); after a history loaded by the small-sigma route (sigma/delta_y <= ~1e-6,
+ * no rough field kept): EGW_UNSUPPORTED. Statuses as egw_profile (EGW_INVALID_ARGUMENT for a delta_max that is
+ * not finite, n < 0 or a bad radius, EGW_NULL_POINTER for p, r, pressure, deflection);
+ * outputs untouched on failure. */
+int egw_profile_unload(const egw_params *p, const egw_options *o, double delta,
+                       double delta_max, int n, const double *r, double *pressure,
+                       double *deflection);
 
 /* ------------------------------------------------------------------------
  * Force tables for DEM and FE codes.

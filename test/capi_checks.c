@@ -343,6 +343,34 @@ int egw_capi_test_profile(void) {
     const double rbad[1] = {-1.0};
     CHECK(egw_profile(&p, NULL, 0.04, 1, rbad, pr, w) == EGW_INVALID_ARGUMENT);
   }
+  /* egw_profile_unload: Hertz is reversible (the loading profile at delta, bit for bit),
+   * delta >= delta_max the loading profile; bad input named, outputs untouched */
+  {
+    double pu[3], wu[3];
+    CHECK(egw_profile(&p, NULL, 0.04, 3, r, pr, w) == EGW_OK);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 3, r, pu, wu) == EGW_OK);
+    CHECK(pu[0] == pr[0] && pu[1] == pr[1] && pu[2] == pr[2] && wu[0] == w[0] &&
+          wu[2] == w[2]);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.01, 3, r, pu, wu) == EGW_OK);
+    CHECK(pu[0] == pr[0] && wu[2] == w[2]);
+    pu[0] = 7.0;
+    CHECK(egw_profile_unload(&p, NULL, 0.04, NAN, 3, r, pu, wu) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("delta_max") && pu[0] == 7.0);
+    CHECK(egw_profile_unload(&p, NULL, NAN, 0.09, 3, r, pu, wu) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("delta"));
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, -1, r, pu, wu) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("n"));
+    CHECK(egw_profile_unload(NULL, NULL, 0.04, 0.09, 3, r, pu, wu) == EGW_NULL_POINTER);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 3, NULL, pu, wu) == EGW_NULL_POINTER);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 3, r, NULL, wu) == EGW_NULL_POINTER);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 3, r, pu, NULL) == EGW_NULL_POINTER);
+    CHECK(pu[0] == 7.0);
+    {
+      const double rbad[1] = {-1.0};
+      CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 1, rbad, pu, wu) == EGW_INVALID_ARGUMENT);
+      CHECK(last_error_names("r(1)"));
+    }
+  }
   return failures;
 }
 

@@ -126,6 +126,7 @@ _SIGNATURES = {
     "egw_restitution": (c_int, [_P, _O, c_double, c_double, _dp]),
     "egw_restitution_energy": (c_int, [_P, _O, c_double, c_double, _dp, _dp, _dp]),
     "egw_profile": (c_int, [_P, _O, c_double, c_int, _dp, _dp, _dp]),
+    "egw_profile_unload": (c_int, [_P, _O, c_double, c_double, c_int, _dp, _dp, _dp]),
     "egw_table_build": (c_int, [_P, _O, c_double, c_double, c_double, POINTER(c_void_p)]),
     "egw_table_eval": (c_int, [c_void_p, c_double, _dp, _dp]),
     "egw_table_eval_array": (c_int, [c_void_p, c_int, _dp, _dp, _dp]),

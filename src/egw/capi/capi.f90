@@ -11,6 +11,7 @@ module egw_capi
    use egw_version, only: egw_version_number
    use egw_progress, only: set_progress
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
+      & contact_profile_unload, &
       & solve_contact_unload
    use egw_impact, only: restitution, time_step
    use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
@@ -412,6 +413,39 @@ contains
       cp = pr
       cw = w
    end function egw_profile
+
+   !> C: egw_profile_unload: pressure and deflection of the unloading (reloading) solve
+   !> at delta after the largest overlap delta_max, at given radii.
+   function egw_profile_unload(p, o, delta, delta_max, n, r, pressure, deflection) &
+      & result(stat) bind(C, name="egw_profile_unload")
+      !> C: `const egw_params *p`; `const egw_options *o` (NULL: the defaults); `const
+      !> double *r`; `double *pressure` (out); `double *deflection` (out)
+      type(c_ptr), value, intent(in) :: p, o, r, pressure, deflection
+      !> C: `double delta`; `double delta_max`
+      real(c_double), value, intent(in) :: delta, delta_max
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      real(c_double), pointer :: cr(:), cp(:), cw(:)
+      real(dp), allocatable :: pr(:), w(:)
+      type(egw_error), allocatable :: error
+      stat = check_count(n)
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat == egw_ok) stat = require(r, "r")
+      if (stat == egw_ok) stat = require(pressure, "pressure")
+      if (stat == egw_ok) stat = require(deflection, "deflection")
+      if (stat /= egw_ok) return
+      call c_f_pointer(r, cr, [n])
+      call c_f_pointer(pressure, cp, [n])
+      call c_f_pointer(deflection, cw, [n])
+      allocate (pr(n), w(n))
+      call contact_profile_unload(params, options, delta, delta_max, cr, pr, w, error)
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      cp = pr
+      cw = w
+   end function egw_profile_unload
 
    ! ---------------------------------------------------------------- helpers
 

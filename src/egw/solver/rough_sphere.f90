@@ -35,6 +35,7 @@ module egw_rough_sphere
    use egw_flat_law, only: flat_law
    use egw_sphere_problem, only: force_floor
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
+      & cap_profile, cap_unload_profile, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
@@ -64,12 +65,15 @@ module egw_rough_sphere
 
    public :: validate_options, solve_contact, solve_contact_law, contact_profile
    public :: load_history, solve_unload, solve_contact_unload, unload_profile
+   public :: contact_profile_unload
    public :: unload_start
    public :: above_first_yield, cap_solve_options
 
    !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
    !> tolerance the solver's error estimate can resolve in double precision.
    integer, parameter :: profile_levels = 4
+   !> capped_profile: the cap solver's rings (finest level)
+   integer, parameter :: cap_profile_rings = 256
    !> With the cap: sigma/delta_y at or below which a solve that does not converge takes
    !> the asymptotic route (small_sigma_loading, small_sigma_unload; doc/theory.md §12
    !> "Small sigma"): from 1e-6 down, where the discrete solves fail at some overlaps.
@@ -1384,6 +1388,187 @@ contains
       separation_min = history%params%sigma*gap_min
    end subroutine unload_profile
 
+   !> Total pressure p and deflection w at the radii r(:) >= 0 of the unloading (or
+   !> reloading) solve at delta after loading to delta_max (solve_contact_unload's
+   !> contact): delta >= delta_max is contact_profile at delta; reversible histories (Hertz
+   !> below first yield, GW/E-GW, EP-GW with psi = 0: the unloading law is the loading
+   !> law) too; the smooth sphere with the cap loaded beyond first yield is
+   !> cap_unload_profile's (w the surfaces' total displacement, plastic crater included);
+   !> EP-GW: Hertz + the rough unloading pressure p_G(d, d_max) (unload_profile) and w
+   !> the rough layer's deflection + Hertz's, the unloading solve tightened by 10 until
+   !> the profile changes by at most rel_tol of its peak (pressure) and of its largest
+   !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10). A rough sphere
+   !> with the cap: capped_rough_unload_profile; after a history the small-sigma route
+   !> loaded (no rough field): egw_unsupported.
+   subroutine contact_profile_unload(params, options, delta, delta_max, r, pressure, &
+      & deflection, error)
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< tolerance of the solves
+      real(dp), intent(in) :: delta       !< overlap of the profile [length]
+      real(dp), intent(in) :: delta_max   !< largest overlap reached before [length]
+      real(dp), intent(in) :: r(:)             !< radii, >= 0
+      real(dp), intent(out) :: pressure(:)     !< total pressure at r, size(r)
+      real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      type(loading_history) :: hist
+      type(solve_result) :: loaded
+      type(solver_options) :: tight
+      type(scaled_problem) :: prob
+      real(dp), allocatable :: pg(:), d(:), dmin(:), p_prev(:), w_prev(:), p_new(:), &
+         & w_new(:), rs(:)
+      integer :: i, level
+      logical :: converged
+
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+      if (delta >= delta_max .or. ((params%model == model_hertz .or. params%sigma == &
+         & 0.0_dp) .and. .not. smooth_capped(params, delta_max))) then
+         call contact_profile(params, options, delta, r, pressure, deflection, error)
+         return
+      end if
+      if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
+         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
+            & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
+            & //" differs from size(r) = "//int_str(size(r)))
+         return
+      end if
+      do i = 1, size(r)
+         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
+               & //format_real(r(i))//": radii must be finite and >= 0")
+            return
+         end if
+      end do
+      tight = options
+      tight%rel_tol = max(1.0e-10_dp, 1.0e-4_dp*options%rel_tol)
+      call load_history(params, tight, delta_max, hist, loaded, error)
+      if (allocated(error)) return
+      if (hist%capped) then
+         call cap_unload_profile(hist%cap, cap_profile_rings, delta, r, pressure, deflection, &
+            & error)
+         return
+      end if
+      if (hist%reversible) then
+         call contact_profile(params, options, delta, r, pressure, deflection, error)
+         return
+      end if
+      if (hist%asymptotic) then
+         call fatal_error(error, egw_unsupported, "flow_pressure = " &
+            & //format_real(params%flow_pressure)//", delta_max = "//format_real(delta_max) &
+            & //": the history was loaded by the small-sigma route (no rough field), whose " &
+            & //"unloading profile is not available (forces are)")
+         return
+      end if
+      if (params%flow_pressure > 0.0_dp) then
+         call capped_rough_unload_profile(hist, options, delta, r, pressure, deflection, &
+            & error)
+         return
+      end if
+      ! the rough unloading pressure p_G and separation d: the rough layer's deflection
+      ! is d - sigma base_gap (base_gap: the Hertz-deformed or rigid gap)
+      prob = scaled(params, delta)
+      rs = r/length_unit(params)
+      allocate (pg(size(r)), d(size(r)), dmin(size(r)), p_new(size(r)), w_new(size(r)), &
+         & p_prev(size(r)), w_prev(size(r)))
+      hist%options = options
+      converged = .false.
+      do level = 0, profile_levels
+         call unload_profile(hist, delta, r, pg, d, dmin, error)
+         if (allocated(error)) return
+         do i = 1, size(r)
+            w_new(i) = d(i) - params%sigma*base_gap(prob, rs(i))
+         end do
+         p_new = pg
+         if (prob%extended) then
+            p_new = p_new + hertz_pressure(r, delta, params%radius, params%modulus)
+            w_new = w_new + hertz_deflection(r, delta, params%radius)
+         end if
+         if (level > 0) then
+            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
+               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            if (converged) exit
+         end if
+         p_prev = p_new
+         w_prev = w_new
+         if (hist%options%rel_tol <= finest_profile_tol) exit
+         hist%options%rel_tol = max(hist%options%rel_tol/10.0_dp, finest_profile_tol)
+      end do
+      if (.not. converged) then
+         call fatal_error(error, egw_not_converged, "profile_unload: the pressure profile " &
+            & //"did not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
+         return
+      end if
+      pressure = p_new
+      deflection = w_new
+   end subroutine contact_profile_unload
+
+   !> contact_profile_unload of a rough sphere with the cap after the discrete loading
+   !> history hist: the unloading solve (the history's closest field, the cap's law and
+   !> plastic shift: total_pressure) re-done at rel_tol/10 until the profile settles (as
+   !> contact_profile); w the elastic deflection (rough layer + Hertz's).
+   subroutine capped_rough_unload_profile(hist, options, delta, r, pressure, deflection, &
+      & error)
+      type(loading_history), intent(in) :: hist
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      type(discrete_solution) :: sol
+      type(solver_options) :: level_options
+      real(dp) :: est
+      real(dp), allocatable :: rs(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
+      integer :: i, level, method_used
+      logical :: converged
+      prob = scaled(hist%params, delta)
+      allocate (prob%closest)
+      prob%closest = hist%closest
+      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
+      if (negligible(prob)) then
+         pressure = 0.0_dp
+         deflection = 0.0_dp
+         return
+      end if
+      rs = [0.0_dp, r/length_unit(hist%params)]
+      do i = 2, size(rs)
+         if (.not. ieee_is_finite(rs(i))) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
+               & //format_real(r(i - 1))//": r/sqrt(R sigma) exceeds the largest double")
+            return
+         end if
+         if (rs(i) < 1.0e-150_dp) rs(i) = 0.0_dp
+      end do
+      allocate (p_prev(size(rs)), w_prev(size(rs)), p_new(size(rs)), w_new(size(rs)))
+      level_options = options
+      converged = .false.
+      do level = 0, profile_levels
+         call solve_scaled(prob, level_options, sol, est, method_used, error)
+         if (allocated(error)) return
+         call profile_values(prob, sol, rs, p_new, w_new)
+         if (level > 0) then
+            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
+               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            if (converged) exit
+         end if
+         p_prev = p_new
+         w_prev = w_new
+         if (level_options%rel_tol <= finest_profile_tol) exit
+         level_options%rel_tol = max(level_options%rel_tol/10.0_dp, finest_profile_tol)
+      end do
+      if (.not. converged) then
+         call fatal_error(error, egw_not_converged, "profile_unload: the pressure profile " &
+            & //"did not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
+         return
+      end if
+      pressure = p_new(2:)*pressure_unit(hist%params)
+      deflection = w_new(2:)*hist%params%sigma
+   end subroutine capped_rough_unload_profile
+
    !> Whether cache holds the history of exactly these inputs (every field equal).
    pure logical function cached(cache, params, options, delta_max)
       type(history_cache), intent(in) :: cache
@@ -1427,14 +1612,6 @@ contains
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
-      if (above_first_yield(params, delta) .or. (params%flow_pressure > 0.0_dp .and. &
-         & params%model /= model_hertz .and. params%sigma > 0.0_dp)) then
-         call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//": the pressure profile beyond first " &
-            & //"yield of the cap (delta = "//format_real(delta)//"), or of a rough sphere " &
-            & //"with the cap, is not available yet (forces are)")
-         return
-      end if
       if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
          call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
             & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
@@ -1448,6 +1625,10 @@ contains
             return
          end if
       end do
+      if (smooth_capped(params, delta)) then
+         call capped_profile(params, delta, r, pressure, deflection, error)
+         return
+      end if
       if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
          pressure = hertz_pressure(r, delta, params%radius, params%modulus)
          deflection = hertz_deflection(r, delta, params%radius)
@@ -1505,6 +1686,23 @@ contains
       deflection = w_new(2:)*params%sigma
    end subroutine contact_profile
 
+   !> contact_profile of the smooth sphere with the cap beyond first yield (cap_profile) on
+   !> up to cap_profile_rings rings, whatever options%rel_tol: the rings' pressures
+   !> converge as (1/rings)**2 (a change of 3e-5 p_y from 128 to 256 rings at 2 delta_y),
+   !> so rel_tol 1e-6 would take ~4000 rings. Measured against
+   !> tools/reference/cap_reference.py --profile 2 5 20: p within 1.5e-5 p_y (the
+   !> reference's own error: up to 3.1e-5), w within 1e-9 delta_y; 2 pi int p r dr within
+   !> 5.2e-6 of the force from 1.5 to 30 delta_y (test_cap_sphere, test_cap_profile).
+   subroutine capped_profile(params, delta, r, pressure, deflection, error)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta, r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      call cap_profile(params%radius, params%modulus, params%flow_pressure, delta, &
+         & cap_options(n_rings=cap_profile_rings/2, n_levels=2), r, pressure, deflection, &
+         & error)
+   end subroutine capped_profile
+
    !> Total pressure and deflection of a solved contact at scaled radii rs (scaled units).
    subroutine profile_values(prob, sol, rs, pressure, deflection)
       type(scaled_problem), intent(in) :: prob
@@ -1518,13 +1716,18 @@ contains
       do i = 1, size(rs)
          call influence_row(sol%mesh, rs(i), row)
          wg = dot_product(row, sol%p)
-         call prob%law%pressure([base_gap(prob, rs(i)) + wg], f, dfdh)
-         pressure(i) = f(1)
-         deflection(i) = wg
-         if (prob%extended) then
-            pressure(i) = pressure(i) + hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
-            deflection(i) = deflection(i) + hertz_deflection(rs(i), prob%delta, 1.0_dp)
+         if (allocated(prob%cap)) then
+            ! the cap on the total pressure (its law and plastic shift: total_pressure)
+            pressure(i) = total_pressure(prob, sol, rs(i))
+         else
+            call prob%law%pressure([base_gap(prob, rs(i)) + wg], f, dfdh)
+            pressure(i) = f(1)
+            if (prob%extended) pressure(i) = pressure(i) + &
+               & hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
          end if
+         deflection(i) = wg
+         if (prob%extended) deflection(i) = deflection(i) + &
+            & hertz_deflection(rs(i), prob%delta, 1.0_dp)
       end do
    end subroutine profile_values
 
