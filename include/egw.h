@@ -913,7 +913,7 @@ typedef struct {
 void egw_scene_default(egw_scene *s);
 
 /* Check *s: EGW_OK or EGW_INVALID_PARAMETER with a message naming the field (e.g.
- * "radius(2) = ...", "K = ..."). EGW_NULL_POINTER. */
+ * "radius(2) = ...", "K (hardness_coeff) = ..."). EGW_NULL_POINTER. */
 int egw_scene_validate(const egw_scene *s);
 
 /* Read the namelist group &scene of the file at path (NUL-terminated; variables in
