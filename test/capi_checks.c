@@ -401,6 +401,17 @@ int egw_capi_test_progress(void) {
   egw_table_free(&t);
   CHECK(log.calls >= 2 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
   CHECK(log.first == 0.0 && log.last == 1.0);
+  /* an array entry of one point (Python's scalar egw.restitution) reports as the scalar
+   * call does, with two threads asked for: on main its OpenMP region (active with 2
+   * threads) silenced the hook */
+  progress_reset(&log, "restitution: unloading");
+  { egw_options o2 = o; double m = 1.0, v = 1.0, e_arr = -1.0;
+    o2.n_threads = 2;
+    CHECK(egw_restitution_array(&p, 0, &o2, 1, &m, 0, &v, 0, &e_arr, NULL, NULL, NULL,
+                                EGW_ARRAY_RAISE, NULL) == EGW_OK && e_arr == e); }
+  CHECK(log.calls >= 4 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  if (log.calls < 4) printf("    restitution_array of one point: %d reports\n", log.calls);
   /* NULL: off, the answer unchanged */
   progress_reset(&log, NULL);
   egw_set_progress(NULL, &log);

@@ -9,6 +9,8 @@ short name of the step ("history", "small-sigma route: wide histories", "unloadi
 (the default: egw never prints).
 
 The callback is per thread, as the C hook is: set it on the thread that makes the calls.
+Scalar calls report; a call on an array of more than one point runs over OpenMP threads
+and reports nothing.
 It runs inside the egw call (keep it short); an exception it raises cannot cross the C
 library and is reported by ctypes and ignored, the call going on.
 """

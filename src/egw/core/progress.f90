@@ -5,8 +5,9 @@
 !>
 !> The hook is per thread, like the last-error message: set on a thread, it hears only the
 !> calls made on that thread, so threads never share it and need no lock. Calls inside an
-!> OpenMP parallel region (a table build's solves, array entries) never report: the
-!> build reports for them, from its own thread.
+!> active OpenMP parallel region (a table build's solves, the C array entries of more than
+!> one point, the caller's own regions) never report: a build reports for its solves, from
+!> its own thread.
 !>
 !> done is monotone within one outermost call: 0 at its start, 1 at its end, never
 !> decreasing between (a report below the last is raised to it). A call nested in another
