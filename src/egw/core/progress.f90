@@ -54,10 +54,16 @@ module egw_progress
 contains
 
    !> Set this thread's hook, or switch reports off (hook absent or not associated).
+   !> Called from inside the hook (the only way a call can be open on this thread), it
+   !> swaps the hook only: the new one hears the rest of the open call, done going on from
+   !> where it was (resetting the open calls there made each nested call of the rest an
+   !> outermost one, 0 .. 1 again and again); outside, it also forgets any open call (one
+   !> a hook switched off from inside left open).
    subroutine set_progress(hook)
       procedure(progress_hook), optional :: hook
       state%hook => null()
       if (present(hook)) state%hook => hook
+      if (state%calling) return
       state%depth = 0
       state%last = 0.0_dp
    end subroutine set_progress
