@@ -421,6 +421,17 @@ int egw_capi_test_progress(void) {
   CHECK(log.calls >= 4 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
   CHECK(log.first == 0.0 && log.last == 1.0);
   if (log.calls < 4) printf("    restitution_array of one point: %d reports\n", log.calls);
+  /* egw_time_step (a restitution, a history, an unloading and the duration's solves):
+   * one call, never decreasing; on main each of its solves reported as an outermost call
+   * (184 reports, 58 decreasing) */
+  progress_reset(&log, "history");
+  { double duration = -1.0, step = -1.0;
+    CHECK(egw_time_step(&p, &o, 1.0, 1.0, 1e-3, &duration, &step) == EGW_OK &&
+          duration > 0.0 && step > 0.0); }
+  CHECK(log.calls >= 4 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  if (log.decreasing > 0)
+    printf("    time_step: %d reports, %d decreasing\n", log.calls, log.decreasing);
   /* a hook replaced from inside itself: on main the new hook heard each nested call of
    * the restitution as an outermost one (0 .. 1 again and again, done decreasing) */
   progress_reset(&handover_log, NULL);
