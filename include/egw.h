@@ -107,8 +107,12 @@ int egw_last_error(char *buf, int buflen);
  * during the call. hook NULL switches reports off (the default: the library never prints).
  * The hook is per thread, like egw_last_error: set on a thread, it hears only the calls
  * made on that thread (no lock, no sharing); solves inside egw's own OpenMP regions
- * (builds, array entries) report through their build, not one by one. The hook may call
- * egw: those calls report nothing. user is passed to the hook as it was given. */
+ * (builds, the *_array entries of more than one point) report through their build, or
+ * not at all, not one by one; an array of one point reports as the scalar call. Calls
+ * made inside an active OpenMP parallel region of the caller's report nothing either
+ * (threads of other kinds, pthreads or Python threads, each hear their own calls). The
+ * hook may call egw: those calls report nothing; a hook set from inside a hook hears the
+ * rest of the call in progress. user is passed to the hook as it was given. */
 typedef void (*egw_progress_fn)(double done, const char *stage, void *user);
 void egw_set_progress(egw_progress_fn hook, void *user);
 

@@ -398,6 +398,15 @@ static void progress_reset(progress_log *log, const char *stage) {
   log->want_stage = stage;
 }
 
+/* A hook that hands over to another from inside itself (its second report): the new
+ * hook hears the rest of the same call, still never decreasing, and ends at 1. */
+static progress_log handover_log;
+static int handover_calls;
+static void handover(double done, const char *stage, void *user) {
+  (void)done; (void)stage; (void)user;
+  if (++handover_calls == 2) egw_set_progress(record_progress, &handover_log);
+}
+
 /* The hook hears a restitution (EP-GW, sigma 1, psi 2: a history and an unloading
  * integral, ~0.1 s) and a table build: called, the user pointer passed through, done in
  * [0, 1] and never decreasing, 0 first and 1 last, the inner stages reported; a NULL hook
@@ -429,6 +438,41 @@ int egw_capi_test_progress(void) {
   egw_table_free(&t);
   CHECK(log.calls >= 2 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
   CHECK(log.first == 0.0 && log.last == 1.0);
+  /* an array entry of one point (Python's scalar egw.restitution) reports as the scalar
+   * call does, with two threads asked for: on main its OpenMP region (active with 2
+   * threads) silenced the hook */
+  progress_reset(&log, "restitution: unloading");
+  { egw_options o2 = o; double m = 1.0, v = 1.0, e_arr = -1.0;
+    o2.n_threads = 2;
+    CHECK(egw_restitution_array(&p, 0, &o2, 1, &m, 0, &v, 0, &e_arr, NULL, NULL, NULL,
+                                EGW_ARRAY_RAISE, NULL) == EGW_OK && e_arr == e); }
+  CHECK(log.calls >= 4 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  if (log.calls < 4) printf("    restitution_array of one point: %d reports\n", log.calls);
+  /* egw_time_step (a restitution, a history, an unloading and the duration's solves):
+   * one call, never decreasing; on main each of its solves reported as an outermost call
+   * (184 reports, 58 decreasing) */
+  progress_reset(&log, "history");
+  { double duration = -1.0, step = -1.0;
+    CHECK(egw_time_step(&p, &o, 1.0, 1.0, 1e-3, &duration, &step) == EGW_OK &&
+          duration > 0.0 && step > 0.0); }
+  CHECK(log.calls >= 4 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  if (log.decreasing > 0)
+    printf("    time_step: %d reports, %d decreasing\n", log.calls, log.decreasing);
+  /* a hook replaced from inside itself: on main the new hook heard each nested call of
+   * the restitution as an outermost one (0 .. 1 again and again, done decreasing) */
+  progress_reset(&handover_log, NULL);
+  handover_calls = 0;
+  egw_set_progress(handover, NULL);
+  { double e_h = -1.0;
+    CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e_h) == EGW_OK && e_h == e); }
+  CHECK(handover_calls == 2 && handover_log.calls >= 2);
+  CHECK(handover_log.decreasing == 0 && handover_log.out_of_range == 0);
+  CHECK(handover_log.last == 1.0);
+  if (handover_log.decreasing > 0)
+    printf("    handed-over hook: %d reports, %d decreasing\n", handover_log.calls,
+           handover_log.decreasing);
   /* NULL: off, the answer unchanged */
   progress_reset(&log, NULL);
   egw_set_progress(NULL, &log);

@@ -55,3 +55,27 @@ def test_progress_is_per_thread():
 def test_bad_callback_is_refused():
     with pytest.raises(TypeError, match="callback"):
         egw.set_progress(3)
+
+
+def test_callback_replaced_from_inside_itself():
+    # a callback that hands over to another on its second report: the new one hears the
+    # rest of the same restitution, never decreasing, ending at 1 (on main each nested
+    # call of the rest started again at 0); the replaced callback's C thunk is kept alive
+    # while it runs (no crash on return into it)
+    first, second = [], []
+
+    def hand_over(done, stage):
+        first.append(done)
+        if len(first) == 2:
+            egw.set_progress(lambda d, s: second.append(d))
+
+    egw.set_progress(hand_over)
+    try:
+        e = egw.restitution(_epgw(), mass=1.0, velocity=1.0,
+                            options=egw.Options(rel_tol=1e-5)).e
+    finally:
+        egw.set_progress(None)
+    assert 0.0 < e < 1.0
+    assert len(first) == 2 and len(second) >= 2
+    assert all(b >= a for a, b in zip(second, second[1:]))
+    assert second[-1] == 1.0

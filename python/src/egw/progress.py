@@ -9,6 +9,8 @@ short name of the step ("history", "small-sigma route: wide histories", "unloadi
 (the default: egw never prints).
 
 The callback is per thread, as the C hook is: set it on the thread that makes the calls.
+Scalar calls report; a call on an array of more than one point runs over OpenMP threads
+and reports nothing.
 It runs inside the egw call (keep it short); an exception it raises cannot cross the C
 library and is reported by ctypes and ignored, the call going on.
 """
@@ -51,15 +53,28 @@ def set_progress(callback: Optional[Callable[[float, str], None]]) -> None:
     if not has("egw_set_progress"):
         raise NotImplementedError("set_progress: this libegw has no egw_set_progress "
                                   "(older than the Python package)")
+    if callback is not None and not callable(callback):
+        raise TypeError(f"callback = {callback!r}: must be callable(done, stage) or None")
+    # (a callback may call set_progress: the C thunk it runs in must outlive that call,
+    # so one replaced from inside a callback is kept until the next set_progress outside)
+    running = getattr(_local, "running", 0) > 0
+    retired = getattr(_local, "retired", [])
+    if running:
+        retired.append(getattr(_local, "hook", None))
+    else:
+        retired = []
+    _local.retired = retired
     if callback is None:
         lib.egw_set_progress(PROGRESS_FN(), None)
         _local.hook = None
         return
-    if not callable(callback):
-        raise TypeError(f"callback = {callback!r}: must be callable(done, stage) or None")
 
     def hook(done: float, stage: bytes, _user: object) -> None:
-        callback(float(done), stage.decode("utf-8", "replace"))
+        _local.running = getattr(_local, "running", 0) + 1
+        try:
+            callback(float(done), stage.decode("utf-8", "replace"))
+        finally:
+            _local.running -= 1
 
     c_hook = PROGRESS_FN(hook)
     # (kept alive on this thread as long as the library holds it)

@@ -5,8 +5,9 @@
 !>
 !> The hook is per thread, like the last-error message: set on a thread, it hears only the
 !> calls made on that thread, so threads never share it and need no lock. Calls inside an
-!> OpenMP parallel region (a table build's solves, array entries) never report: the
-!> build reports for them, from its own thread.
+!> active OpenMP parallel region (a table build's solves, the C array entries of more than
+!> one point, the caller's own regions) never report: a build reports for its solves, from
+!> its own thread.
 !>
 !> done is monotone within one outermost call: 0 at its start, 1 at its end, never
 !> decreasing between (a report below the last is raised to it). A call nested in another
@@ -53,10 +54,16 @@ module egw_progress
 contains
 
    !> Set this thread's hook, or switch reports off (hook absent or not associated).
+   !> Called from inside the hook (the only way a call can be open on this thread), it
+   !> swaps the hook only: the new one hears the rest of the open call, done going on from
+   !> where it was (resetting the open calls there made each nested call of the rest an
+   !> outermost one, 0 .. 1 again and again); outside, it also forgets any open call (one
+   !> a hook switched off from inside left open).
    subroutine set_progress(hook)
       procedure(progress_hook), optional :: hook
       state%hook => null()
       if (present(hook)) state%hook => hook
+      if (state%calling) return
       state%depth = 0
       state%last = 0.0_dp
    end subroutine set_progress

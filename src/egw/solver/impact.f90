@@ -438,6 +438,8 @@ contains
    !> delta)); a DEM step should resolve it too (dt is far below it for tolerance <= 1e-3).
    !> For the fastest impact of a run: slower ones are softer. Errors as restitution, and
    !> tolerance not in (0, 0.1] (egw_invalid_argument); outputs untouched on error.
+   !> Progress (egw_progress): one call, the restitution 0 .. 0.6 of it, the history at
+   !> delta_m 0.6 .. 0.8, the unloading solve 0.8 .. 0.9; the duration's solves are silent.
    subroutine time_step(params, options, mass, velocity, tolerance, duration, step, error)
       type(contact_params), intent(in) :: params   !< the contact
       type(solver_options), intent(in) :: options   !< tolerance of the solves
@@ -447,6 +449,19 @@ contains
       real(dp), intent(inout) :: duration   !< contact duration [time]
       real(dp), intent(inout) :: step       !< largest Verlet time step [time]
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      call progress_begin("time step")
+      call impact_time_step(params, options, mass, velocity, tolerance, duration, step, error)
+      call progress_end("time step")
+   end subroutine time_step
+
+   !> time_step's work.
+   subroutine impact_time_step(params, options, mass, velocity, tolerance, duration, step, &
+         & error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: mass, velocity, tolerance
+      real(dp), intent(inout) :: duration, step
+      type(egw_error), allocatable, intent(out) :: error
       type(loading_history) :: hist
       type(solve_result) :: top, res
       real(dp) :: e, dissipated, delta_m, k_max, omega, t_load, t_unload
@@ -455,9 +470,11 @@ contains
             & format_real(tolerance)//": must lie in (0, 0.1]")
          return
       end if
+      call progress_part(0.0_dp, 0.6_dp)
       call restitution(params, options, mass, velocity, e, dissipated, error, &
          & max_overlap=delta_m)
       if (allocated(error)) return
+      call progress_part(0.6_dp, 0.8_dp)
       call load_history(params, options, delta_m, hist, top, error)
       if (allocated(error)) return
       if (above_first_yield(params, delta_m)) then
@@ -468,6 +485,7 @@ contains
          if (allocated(error)) return
          if (.not. top%stiffness > 0.0_dp) top%stiffness = res%stiffness
       else
+         call progress_part(0.8_dp, 0.9_dp)
          call solve_unload(hist, delta_m, res, error)
          if (allocated(error)) return
       end if
@@ -484,7 +502,7 @@ contains
       omega = sqrt(k_max/mass)
       step = min(sqrt(tolerance/(2*verlet_error)), 0.5_dp)/omega
       duration = t_load + t_unload
-   end subroutine time_step
+   end subroutine impact_time_step
 
    !> The unloading stiffness at the turning point delta_max (> delta_y) of a smooth sphere
    !> with the flow-pressure cap: cap_unload at delta_max on the public solves' options,
