@@ -128,8 +128,8 @@ module egw_sphere_problem
    public :: separation_field, scaled_problem, discrete_solution
    public :: scaled, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
       & estimated_gap, law_inverse, gauss_values, gauss_gap, effective_radius, total_pressure, &
-      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, sums_total, &
-      & force_floor
+      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, &
+      & cap_excess_points, sums_total, force_floor
 
 contains
 
@@ -443,6 +443,43 @@ contains
          excess = p(1) - (prob%cap%p_y - ps_max)
       end if
    end function cap_excess
+
+   !> cap_excess of one kind at every Gauss point of sol, at sol's gaps: from the cap
+   !> fields the solve keeps there (gap_min, p_smooth, shift, offset: the plastic shift is
+   !> a root of the law, and closest_gap an interpolation on the history's mesh, which the
+   !> point-by-point cap_excess repeated for each kind at every level of a solve), else
+   !> point by point. The same formulas as cap_excess.
+   pure subroutine cap_excess_points(prob, sol, kind, excess)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      integer, intent(in) :: kind   !< 1, 2 or 3, as cap_excess
+      real(dp), intent(out) :: excess(:)   !< (Gauss points of sol)
+      real(dp) :: p(size(excess)), dpdh(size(excess)), ps_max(size(excess))
+      integer :: g, n
+      logical :: kept
+      n = size(excess)
+      kept = allocated(prob%closest) .and. allocated(sol%gap_min) .and. &
+         & allocated(sol%shift) .and. allocated(sol%offset) .and. allocated(sol%p_smooth)
+      if (kept) kept = size(sol%gap_min) == n .and. size(sol%shift) == n .and. &
+         & size(sol%offset) == n .and. size(sol%p_smooth) == n .and. size(sol%gap) == n
+      if (.not. kept) then
+         do g = 1, n
+            excess(g) = cap_excess(prob, sol%mesh%gauss_r(g), sol%gap(g), kind)
+         end do
+         return
+      end if
+      if (kind == 1) then
+         call unloading_pressure(prob%unload, sol%gap + sol%shift, sol%gap_min + sol%shift, &
+            & p, dpdh)
+         excess = sol%p_smooth + prob%scale*p - sol%offset
+      else
+         ps_max = 0.0_dp
+         if (prob%closest%extended .and. kind == 2) ps_max = hertz_pressure( &
+            & sol%mesh%gauss_r, prob%closest%delta, 1.0_dp, 1.0_dp)
+         call prob%law%pressure(sol%gap_min, p, dpdh)
+         excess = p - (prob%cap%p_y - ps_max)
+      end if
+   end subroutine cap_excess_points
 
    !> Scaled Hertz force of the smooth part (extended models only; 0 where the solution's
    !> force holds it, sums_total).
