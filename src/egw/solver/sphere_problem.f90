@@ -405,7 +405,7 @@ contains
       ps_max = 0.0_dp*r
       if (prob%closest%extended) ps_max = hertz_pressure(r, prob%closest%delta, 1.0_dp, &
          & 1.0_dp)
-      call prob%cap%plastic_shift(prob%law, ps_max, gap_min, shift, offset)
+      call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset)
    end subroutine cap_fields
 
    !> Where p(r) has a kink from the cap, the sign of this changes (prob%cap allocated;
