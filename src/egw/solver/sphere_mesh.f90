@@ -209,18 +209,18 @@ contains
       type(discrete_solution), intent(in) :: sol   !< a solution
       real(dp), intent(in) :: negligible_weight   !< skip radii where negligible_at says so
       real(dp), allocatable :: radii(:)
-      real(dp) :: f0, f1, lo, hi, mid, at_points(size(sol%gap))
+      real(dp) :: f0, f1, lo, hi, mid, at_points(size(sol%gap), 3)
       integer :: g, kind, found
       type(illinois_iteration) :: root
       allocate (radii(0))
+      ! the brackets from the solve's own cap fields at its Gauss points
+      call cap_excess_points(prob, sol, at_points)
       do kind = 1, 3
          found = 0
-         ! the brackets from the solve's own cap fields at its Gauss points
-         call cap_excess_points(prob, sol, kind, at_points)
-         f1 = at_points(1)
+         f1 = at_points(1, kind)
          do g = 1, size(sol%gap) - 1
             f0 = f1
-            f1 = at_points(g + 1)
+            f1 = at_points(g + 1, kind)
             if ((f0 < 0.0_dp .eqv. f1 < 0.0_dp) .or. found >= 8) cycle
             if (negligible_at(sol, 0.5_dp*(sol%mesh%gauss_r(g) + sol%mesh%gauss_r(g + 1)), &
                & negligible_weight)) cycle
