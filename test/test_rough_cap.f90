@@ -14,6 +14,7 @@ module test_rough_cap
    use egw_status, only: egw_not_converged
    use egw_table, only: force_table, build_table, table_eval
    use egw_sphere_mesh, only: disc_refined, with_history_edges
+   use egw_flow_cap, only: flow_cap
    implicit none
    private
    public :: collect_rough_cap
@@ -90,7 +91,9 @@ contains
          & new_unittest("sigma/delta_y = 1e-7: solve_contact_unload near the residual", &
          & test_tiny_sigma_contact_unload), &
          & new_unittest("est_rel_err below the force floor", test_floor_estimate), &
-         & new_unittest("far beyond first yield: refused naming delta", test_far_beyond_yield) &
+         & new_unittest("far beyond first yield: refused naming delta", test_far_beyond_yield), &
+         & new_unittest("plastic_shifts: law(h_max + u_pl) = p_y, offsets, GW and ZMC", &
+         & test_plastic_shifts) &
          & ]
    end subroutine collect_rough_cap
 
@@ -1575,5 +1578,71 @@ contains
          end do
       end do
    end subroutine check_table_points
+
+   !> flow_cap's plastic_shifts at many points (the deep zone's root solved once) against
+   !> the definition (doc/theory.md §12): with c = p_y - p_s,max and t = min(p_y, law(h_max)),
+   !> where law(h_max) > c the offset is t - c, and where law(h_max) > p_y the shifted gap
+   !> solves law(h_max + u_pl) = p_y (else u_pl = 0); elsewhere both 0. Laws: GW (psi 0)
+   !> and ZMC summits (psi 1), p_y = law(1); points on both sides of h = 1, with p_s,max
+   !> putting some between c and p_y. Tolerance 1e-12 of p_y on law(h_max + u_pl): the
+   !> root is converged to a few ulp of h (|d ln law/d h| h <= ~10 here), and one taken
+   !> from another point's Newton, or a shift off by 1e-11 sigma, misses it.
+   subroutine test_plastic_shifts(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: h_max(8) = [-1.5_dp, -0.3_dp, 0.2_dp, 0.7_dp, 0.95_dp, &
+         & 1.1_dp, 1.4_dp, 2.5_dp]
+      real(dp), parameter :: ps_frac(8) = [0.0_dp, 0.4_dp, 0.9_dp, 0.0_dp, 0.2_dp, 0.6_dp, &
+         & 0.3_dp, 0.1_dp]
+      type(gw_flat_law) :: law
+      type(flow_cap) :: cap
+      real(dp) :: p(8), dpdh(8), shift(8), offset(8), ps_max(8), p1(1), d1(1), c, t
+      integer :: k, i, cases(3)
+      real(dp), parameter :: psi(2) = [0.0_dp, 1.0_dp]
+      do k = 1, 2
+         law%scale = 1.0_dp
+         law%psi = psi(k)
+         call law%pressure([1.0_dp], p1, d1)
+         cap%p_y = p1(1)
+         ps_max = ps_frac*cap%p_y
+         call cap%plastic_shifts(law, ps_max, h_max, shift, offset)
+         call law%pressure(h_max, p, dpdh)
+         cases = 0
+         do i = 1, size(h_max)
+            c = cap%p_y - ps_max(i)
+            if (.not. p(i) > c) then
+               cases(1) = cases(1) + 1
+               call check(error, shift(i) == 0.0_dp .and. offset(i) == 0.0_dp, "psi " &
+                  & //str(psi(k))//", h_max "//str(h_max(i))//": below the cap, shift " &
+                  & //str(shift(i))//", offset "//str(offset(i)))
+               if (allocated(error)) return
+               cycle
+            end if
+            t = min(cap%p_y, p(i))
+            call check(error, abs(offset(i) - (t - c)) <= 1.0e-15_dp*cap%p_y, "psi " &
+               & //str(psi(k))//", h_max "//str(h_max(i))//": offset "//str(offset(i)) &
+               & //", t - c = "//str(t - c))
+            if (allocated(error)) return
+            if (.not. p(i) > cap%p_y) then
+               cases(2) = cases(2) + 1
+               call check(error, shift(i) == 0.0_dp, "psi "//str(psi(k))//", h_max " &
+                  & //str(h_max(i))//": law below p_y, shift "//str(shift(i)))
+               if (allocated(error)) return
+               cycle
+            end if
+            cases(3) = cases(3) + 1
+            call law%pressure([h_max(i) + shift(i)], p1, d1)
+            call check(error, shift(i) > 0.0_dp .and. &
+               & abs(p1(1) - cap%p_y) <= 1.0e-12_dp*cap%p_y, "psi "//str(psi(k)) &
+               & //", h_max "//str(h_max(i))//": law(h_max + shift) = "//str(p1(1)) &
+               & //", p_y "//str(cap%p_y))
+            if (allocated(error)) return
+         end do
+         ! every branch met (the points were chosen so)
+         call check(error, all(cases > 0), "psi "//str(psi(k))//": cases " &
+            & //str(real(cases(1), dp))//" "//str(real(cases(2), dp))//" " &
+            & //str(real(cases(3), dp)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_plastic_shifts
 
 end module test_rough_cap

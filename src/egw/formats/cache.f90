@@ -50,8 +50,10 @@ module egw_cache
    !> rel_tol >= 1e-7, and at 1e-7 for a history the route loaded: route answers at
    !> sigma/delta_y <= 1e-6 move within their estimates; 19: rough + cap tables with
    !> plastic summits on the two-piece s map too (turning points at or below 0 on its
-   !> tail), every mapped table's slopes stored as dg/dx times tail_length).
-   integer, parameter, public :: cache_revision = 19
+   !> tail), every mapped table's slopes stored as dg/dx times tail_length); 22: rough +
+   !> cap unloading's plastic shift in the deep zone from one root of law = p_y per mesh
+   !> (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids.
+   integer, parameter, public :: cache_revision = 22
 
 
 contains

@@ -128,8 +128,8 @@ module egw_sphere_problem
    public :: separation_field, scaled_problem, discrete_solution
    public :: scaled, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
       & estimated_gap, law_inverse, gauss_values, gauss_gap, effective_radius, total_pressure, &
-      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, sums_total, &
-      & force_floor
+      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, &
+      & cap_excess_points, sums_total, force_floor
 
 contains
 
@@ -405,7 +405,7 @@ contains
       ps_max = 0.0_dp*r
       if (prob%closest%extended) ps_max = hertz_pressure(r, prob%closest%delta, 1.0_dp, &
          & 1.0_dp)
-      call prob%cap%plastic_shift(prob%law, ps_max, gap_min, shift, offset)
+      call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset)
    end subroutine cap_fields
 
    !> Where p(r) has a kink from the cap, the sign of this changes (prob%cap allocated;
@@ -443,6 +443,43 @@ contains
          excess = p(1) - (prob%cap%p_y - ps_max)
       end if
    end function cap_excess
+
+   !> cap_excess of the kinds 1 to 3 at every Gauss point of sol, at sol's gaps: from the
+   !> cap fields the solve keeps there (gap_min, p_smooth, shift, offset: the plastic shift
+   !> is a root of the law, and closest_gap an interpolation on the history's mesh, which
+   !> the point-by-point cap_excess repeated for each kind at every level of a solve), the
+   !> law at gap_min once for kinds 2 and 3; else point by point. The same formulas as
+   !> cap_excess.
+   pure subroutine cap_excess_points(prob, sol, excess)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      real(dp), intent(out) :: excess(:, :)   !< (Gauss points of sol, kind 1:3)
+      real(dp) :: p(size(excess, 1)), dpdh(size(excess, 1)), ps_max(size(excess, 1))
+      integer :: g, n, kind
+      logical :: kept
+      n = size(excess, 1)
+      kept = allocated(prob%closest) .and. allocated(sol%gap_min) .and. &
+         & allocated(sol%shift) .and. allocated(sol%offset) .and. allocated(sol%p_smooth)
+      if (kept) kept = size(sol%gap_min) == n .and. size(sol%shift) == n .and. &
+         & size(sol%offset) == n .and. size(sol%p_smooth) == n .and. size(sol%gap) == n
+      if (.not. kept) then
+         do kind = 1, 3
+            do g = 1, n
+               excess(g, kind) = cap_excess(prob, sol%mesh%gauss_r(g), sol%gap(g), kind)
+            end do
+         end do
+         return
+      end if
+      call unloading_pressure(prob%unload, sol%gap + sol%shift, sol%gap_min + sol%shift, &
+         & p, dpdh)
+      excess(:, 1) = sol%p_smooth + prob%scale*p - sol%offset
+      ps_max = 0.0_dp
+      if (prob%closest%extended) ps_max = hertz_pressure(sol%mesh%gauss_r, &
+         & prob%closest%delta, 1.0_dp, 1.0_dp)
+      call prob%law%pressure(sol%gap_min, p, dpdh)
+      excess(:, 2) = p - (prob%cap%p_y - ps_max)
+      excess(:, 3) = p - prob%cap%p_y
+   end subroutine cap_excess_points
 
    !> Scaled Hertz force of the smooth part (extended models only; 0 where the solution's
    !> force holds it, sums_total).
