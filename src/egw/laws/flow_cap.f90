@@ -92,17 +92,20 @@ contains
    !> solved once (from the largest such h_max, the closest) and u_pl = h_y - h_max:
    !> point by point the same Newton from each h_max cost ~5 law evaluations a point
    !> (a third of an EP-GW + cap hysteresis build). The same root to rounding.
-   pure subroutine cap_plastic_shifts(cap, law, p_smooth_max, h_max, shift, offset)
+   pure subroutine cap_plastic_shifts(cap, law, p_smooth_max, h_max, shift, offset, law_max)
       class(flow_cap), intent(in) :: cap
       class(flat_law), intent(in) :: law
       real(dp), intent(in) :: p_smooth_max(:), h_max(:)   !< as cap_plastic_shift's, per point
       real(dp), intent(out) :: shift(:), offset(:)   !< as cap_plastic_shift's, per point
+      !> law(h_max) (optional: kept by the solver for the cap's kink scan)
+      real(dp), intent(out), optional :: law_max(:)
       real(dp) :: p(size(h_max)), dpdh(size(h_max)), c, t, h_y
       integer :: i, deepest
       shift = 0.0_dp
       offset = 0.0_dp
       if (size(h_max) == 0) return
       call law%pressure(h_max, p, dpdh)
+      if (present(law_max)) law_max = p
       deepest = 0
       do i = 1, size(h_max)
          if (.not. p(i) > cap%p_y) cycle

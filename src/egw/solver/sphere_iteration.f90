@@ -76,7 +76,7 @@ contains
       if (allocated(prob%cap)) then
          if (allocated(sol%gap_min)) then
             call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
-               & sol%shift, sol%offset)
+               & sol%shift, sol%offset, sol%law_min)
          else
             call cap_fields(prob, sol%mesh%gauss_r, 0.0_dp*sol%mesh%gauss_r, sol%p_smooth, &
                & sol%dps, sol%shift, sol%offset)
@@ -310,7 +310,15 @@ contains
       sol%p = sol%gap       ! (sized as the gap)
       sol%dpdh = sol%gap
       sol%dpdd = sol%gap
-      if (allocated(sol%gap_min)) then
+      if (allocated(sol%gap_min) .and. allocated(prob%cap)) then
+         ! (kept for the cap's kink scan, cap_excess_points)
+         if (allocated(sol%unfloored)) then
+            if (size(sol%unfloored) /= size(sol%gap)) deallocate (sol%unfloored)
+         end if
+         if (.not. allocated(sol%unfloored)) allocate (sol%unfloored(size(sol%gap)))
+         call rough_pressure(prob, sol%gap, sol%gap_min, sol%p_smooth, sol%dps, sol%shift, &
+            & sol%offset, sol%p, sol%dpdh, sol%dpdd, sol%unfloored)
+      else if (allocated(sol%gap_min)) then
          call rough_pressure(prob, sol%gap, sol%gap_min, sol%p_smooth, sol%dps, sol%shift, &
             & sol%offset, sol%p, sol%dpdh, sol%dpdd)
       else
