@@ -92,19 +92,39 @@ contains
    !> solved once (from the largest such h_max, the closest) and u_pl = h_y - h_max:
    !> point by point the same Newton from each h_max cost ~5 law evaluations a point
    !> (a third of an EP-GW + cap hysteresis build). The same root to rounding.
-   pure subroutine cap_plastic_shifts(cap, law, p_smooth_max, h_max, shift, offset, law_max)
+   !> With known (and law_max): law_max holds law(h_max) already where known (the solver's
+   !> values from an earlier mesh's same Gauss points), and the law is evaluated at the
+   !> other points only (point by point the same values).
+   pure subroutine cap_plastic_shifts(cap, law, p_smooth_max, h_max, shift, offset, law_max, &
+      & known)
       class(flow_cap), intent(in) :: cap
       class(flat_law), intent(in) :: law
       real(dp), intent(in) :: p_smooth_max(:), h_max(:)   !< as cap_plastic_shift's, per point
       real(dp), intent(out) :: shift(:), offset(:)   !< as cap_plastic_shift's, per point
-      !> law(h_max) (optional: kept by the solver for the cap's kink scan)
-      real(dp), intent(out), optional :: law_max(:)
-      real(dp) :: p(size(h_max)), dpdh(size(h_max)), c, t, h_y
+      !> law(h_max) (optional: kept by the solver for the cap's kink scan); in: where known
+      real(dp), intent(inout), optional :: law_max(:)
+      logical, intent(in), optional :: known(:)   !< where law_max holds law(h_max) on entry
+      real(dp) :: p(size(h_max)), dpdh(size(h_max)), c, t, h_y, p1(1), dpdh1(1)
+      real(dp), allocatable :: p_at(:), dpdh_at(:)
+      integer, allocatable :: at(:)
       integer :: i, deepest
+      logical :: reuse
       shift = 0.0_dp
       offset = 0.0_dp
       if (size(h_max) == 0) return
-      call law%pressure(h_max, p, dpdh)
+      reuse = .false.
+      if (present(known) .and. present(law_max)) reuse = any(known)
+      if (reuse) then
+         at = pack([(i, i=1, size(h_max))], .not. known)
+         allocate (p_at(size(at)), dpdh_at(size(at)))
+         if (size(at) > 0) call law%pressure(h_max(at), p_at, dpdh_at)
+         p = law_max
+         dpdh = 0.0_dp   ! (not used where known: law_root's start is evaluated again)
+         p(at) = p_at
+         dpdh(at) = dpdh_at
+      else
+         call law%pressure(h_max, p, dpdh)
+      end if
       if (present(law_max)) law_max = p
       deepest = 0
       do i = 1, size(h_max)
@@ -116,6 +136,12 @@ contains
          end if
       end do
       h_y = 0.0_dp
+      if (deepest > 0 .and. reuse) then
+         if (known(deepest)) then
+            call law%pressure(h_max(deepest:deepest), p1, dpdh1)
+            dpdh(deepest) = dpdh1(1)
+         end if
+      end if
       if (deepest > 0) call law_root(law, cap%p_y, h_max(deepest), p(deepest), &
          & dpdh(deepest), h_y)
       do i = 1, size(h_max)

@@ -395,13 +395,15 @@ contains
    !> and its delta-derivative (Hertz for the extended models, else 0); unloading (gap_min:
    !> the closest-approach gaps at r) the plastic gap shift and pressure offset from the
    !> loading at delta_max (flow_cap%plastic_shift), else 0.
-   pure subroutine cap_fields(prob, r, gap_min, p_smooth, dps, shift, offset, law_min)
+   pure subroutine cap_fields(prob, r, gap_min, p_smooth, dps, shift, offset, law_min, known)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
       real(dp), intent(in) :: r(:), gap_min(:)   !< scaled radii and the closest-approach gaps there
       !> p_s, dp_s/d(delta), gap shift and pressure offset at r
       real(dp), allocatable, intent(out) :: p_smooth(:), dps(:), shift(:), offset(:)
-      !> unloading: the loading law at gap_min (not allocated when loading)
-      real(dp), allocatable, intent(out), optional :: law_min(:)
+      !> unloading: the loading law at gap_min (not allocated when loading); in: its values
+      !> where known (from an earlier mesh's same points)
+      real(dp), allocatable, intent(inout), optional :: law_min(:)
+      logical, intent(in), optional :: known(:)   !< where law_min is given (size(r))
       real(dp), allocatable :: ps_max(:)
       p_smooth = 0.0_dp*r
       dps = 0.0_dp*r
@@ -412,13 +414,28 @@ contains
          ! p_s = (2/pi) sqrt(delta - r**2): d p_s/d delta = (1/pi)/sqrt(delta - r**2)
          where (p_smooth > 0.0_dp) dps = 2.0_dp/(pi*pi*p_smooth)
       end if
-      if (.not. allocated(prob%closest)) return
+      if (.not. allocated(prob%closest)) then
+         if (present(law_min)) then
+            if (allocated(law_min)) deallocate (law_min)
+         end if
+         return
+      end if
       ps_max = 0.0_dp*r
       if (prob%closest%extended) ps_max = hertz_pressure(r, prob%closest%delta, 1.0_dp, &
          & 1.0_dp)
       if (present(law_min)) then
-         allocate (law_min(size(r)))
-         call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset, law_min)
+         if (allocated(law_min)) then
+            if (size(law_min) /= size(r)) deallocate (law_min)
+         end if
+         if (.not. allocated(law_min)) then
+            allocate (law_min(size(r)))
+            call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset, law_min)
+         else if (present(known)) then
+            call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset, law_min, &
+               & known)
+         else
+            call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset, law_min)
+         end if
       else
          call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset)
       end if
