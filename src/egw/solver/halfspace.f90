@@ -726,7 +726,7 @@ contains
    !> radii): values(i) and known(i) = .true. there, the most recent mesh first; known
    !> .false. elsewhere (values(i) then unset).
    pure subroutine cached_point_values(cache, mesh, key, values, known)
-      type(influence_cache), intent(in) :: cache
+      type(influence_cache), intent(in) :: cache   !< a solve's cache
       type(radial_mesh), intent(in) :: mesh   !< a built mesh
       real(dp), intent(in) :: key   !< as keep_point_values'
       real(dp), intent(out) :: values(:)   !< (n_elem*n_gauss)
@@ -754,7 +754,7 @@ contains
    !> Keep values at mesh's Gauss points under key with the cache's entry of mesh (the one
    !> assemble_influence_cached stored last; nothing if it did not store mesh).
    pure subroutine keep_point_values(cache, mesh, key, values)
-      type(influence_cache), intent(inout) :: cache
+      type(influence_cache), intent(inout) :: cache   !< a solve's cache
       type(radial_mesh), intent(in) :: mesh   !< the mesh assemble_influence_cached took last
       real(dp), intent(in) :: key   !< the caller's key
       real(dp), intent(in) :: values(:)   !< (n_elem*n_gauss)
