@@ -1507,6 +1507,67 @@ contains
       deflection = w_new
    end subroutine contact_profile_unload
 
+   !> The scaled problem prob (loading, or unloading on a history's field) solved at
+   !> options%rel_tol, then again at rel_tol/10 (down to finest_profile_tol) until its
+   !> total pressure and deflection at the radii r (>= 0, checked) change by at most
+   !> rel_tol of the peak pressure and of the largest deflection; egw_not_converged
+   !> (naming what, the caller's entry) if they do not. In params' units.
+   subroutine settled_profile(prob, options, params, r, pressure, deflection, error, what)
+      type(scaled_problem), intent(inout) :: prob
+      type(solver_options), intent(in) :: options
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: what
+      type(discrete_solution) :: sol
+      type(solver_options) :: level_options
+      real(dp) :: est
+      real(dp), allocatable :: rs_all(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
+      integer :: i, method_used, level
+      logical :: converged
+      ! The force's error control does not bound the pressure pointwise (classic GW deep
+      ! in contact: 2e-4 of the peak at rel_tol 1e-6). Solve again at rel_tol/10 until
+      ! the profile changes by at most rel_tol of its peak (pressure) and of the largest
+      ! deflection: the finer of the two is then the answer.
+      rs_all = [0.0_dp, r/length_unit(params)]
+      do i = 2, size(rs_all)
+         if (.not. ieee_is_finite(rs_all(i))) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
+               & //format_real(r(i - 1))//": r/sqrt(R sigma) exceeds the largest double")
+            return
+         end if
+         ! the fields are even and smooth in r: below 1e-150 of the scaled length they
+         ! equal their value at 0 to rounding (and the kernels' 1/r would overflow)
+         if (rs_all(i) < 1.0e-150_dp) rs_all(i) = 0.0_dp
+      end do
+      allocate (p_prev(size(rs_all)), w_prev(size(rs_all)), p_new(size(rs_all)), &
+         & w_new(size(rs_all)))
+      level_options = options
+      converged = .false.
+      do level = 0, profile_levels
+         call solve_scaled(prob, level_options, sol, est, method_used, error)
+         if (allocated(error)) return
+         call profile_values(prob, sol, rs_all, p_new, w_new)
+         if (level > 0) then
+            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
+               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            if (converged) exit
+         end if
+         p_prev = p_new
+         w_prev = w_new
+         if (level_options%rel_tol <= finest_profile_tol) exit
+         level_options%rel_tol = max(level_options%rel_tol/10.0_dp, finest_profile_tol)
+      end do
+      if (.not. converged) then
+         call fatal_error(error, egw_not_converged, what//": the pressure profile did " &
+            & //"not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
+         return
+      end if
+      pressure = p_new(2:)*pressure_unit(params)
+      deflection = w_new(2:)*params%sigma
+   end subroutine settled_profile
+
    !> contact_profile_unload of a rough sphere with the cap after the discrete loading
    !> history hist: the unloading solve (the history's closest field, the cap's law and
    !> plastic shift: total_pressure) re-done at rel_tol/10 until the profile settles (as
@@ -1519,12 +1580,6 @@ contains
       real(dp), intent(out) :: pressure(:), deflection(:)
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
-      type(discrete_solution) :: sol
-      type(solver_options) :: level_options
-      real(dp) :: est
-      real(dp), allocatable :: rs(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
-      integer :: i, level, method_used
-      logical :: converged
       prob = scaled(hist%params, delta)
       allocate (prob%closest)
       prob%closest = hist%closest
@@ -1534,39 +1589,8 @@ contains
          deflection = 0.0_dp
          return
       end if
-      rs = [0.0_dp, r/length_unit(hist%params)]
-      do i = 2, size(rs)
-         if (.not. ieee_is_finite(rs(i))) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
-               & //format_real(r(i - 1))//": r/sqrt(R sigma) exceeds the largest double")
-            return
-         end if
-         if (rs(i) < 1.0e-150_dp) rs(i) = 0.0_dp
-      end do
-      allocate (p_prev(size(rs)), w_prev(size(rs)), p_new(size(rs)), w_new(size(rs)))
-      level_options = options
-      converged = .false.
-      do level = 0, profile_levels
-         call solve_scaled(prob, level_options, sol, est, method_used, error)
-         if (allocated(error)) return
-         call profile_values(prob, sol, rs, p_new, w_new)
-         if (level > 0) then
-            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
-               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
-            if (converged) exit
-         end if
-         p_prev = p_new
-         w_prev = w_new
-         if (level_options%rel_tol <= finest_profile_tol) exit
-         level_options%rel_tol = max(level_options%rel_tol/10.0_dp, finest_profile_tol)
-      end do
-      if (.not. converged) then
-         call fatal_error(error, egw_not_converged, "profile_unload: the pressure profile " &
-            & //"did not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
-         return
-      end if
-      pressure = p_new(2:)*pressure_unit(hist%params)
-      deflection = w_new(2:)*hist%params%sigma
+      call settled_profile(prob, options, hist%params, r, pressure, deflection, error, &
+         & "profile_unload")
    end subroutine capped_rough_unload_profile
 
    !> Whether cache holds the history of exactly these inputs (every field equal).
@@ -1603,12 +1627,7 @@ contains
       real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(scaled_problem) :: prob
-      type(discrete_solution) :: sol
-      type(solver_options) :: level_options
-      real(dp) :: est
-      real(dp), allocatable :: rs_all(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
-      integer :: i, method_used, level
-      logical :: converged
+      integer :: i
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
@@ -1644,46 +1663,7 @@ contains
          deflection = 0.0_dp
          return
       end if
-      ! The force's error control does not bound the pressure pointwise (classic GW deep
-      ! in contact: 2e-4 of the peak at rel_tol 1e-6). Solve again at rel_tol/10 until
-      ! the profile changes by at most rel_tol of its peak (pressure) and of the largest
-      ! deflection: the finer of the two is then the answer.
-      rs_all = [0.0_dp, r/length_unit(params)]
-      do i = 2, size(rs_all)
-         if (.not. ieee_is_finite(rs_all(i))) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
-               & //format_real(r(i - 1))//": r/sqrt(R sigma) exceeds the largest double")
-            return
-         end if
-         ! the fields are even and smooth in r: below 1e-150 of the scaled length they
-         ! equal their value at 0 to rounding (and the kernels' 1/r would overflow)
-         if (rs_all(i) < 1.0e-150_dp) rs_all(i) = 0.0_dp
-      end do
-      allocate (p_prev(size(rs_all)), w_prev(size(rs_all)), p_new(size(rs_all)), &
-         & w_new(size(rs_all)))
-      level_options = options
-      converged = .false.
-      do level = 0, profile_levels
-         call solve_scaled(prob, level_options, sol, est, method_used, error)
-         if (allocated(error)) return
-         call profile_values(prob, sol, rs_all, p_new, w_new)
-         if (level > 0) then
-            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
-               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
-            if (converged) exit
-         end if
-         p_prev = p_new
-         w_prev = w_new
-         if (level_options%rel_tol <= finest_profile_tol) exit
-         level_options%rel_tol = max(level_options%rel_tol/10.0_dp, finest_profile_tol)
-      end do
-      if (.not. converged) then
-         call fatal_error(error, egw_not_converged, "profile: the pressure profile did "// &
-            & "not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
-         return
-      end if
-      pressure = p_new(2:)*pressure_unit(params)
-      deflection = w_new(2:)*params%sigma
+      call settled_profile(prob, options, params, r, pressure, deflection, error, "profile")
    end subroutine contact_profile
 
    !> contact_profile of the smooth sphere with the cap beyond first yield (cap_profile) on
