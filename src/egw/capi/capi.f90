@@ -10,9 +10,9 @@ module egw_capi
    use egw_params, only: contact_params, mu_from_summits, psi_from_hardness
    use egw_version, only: egw_version_number
    use egw_progress, only: set_progress
-   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
-      & contact_profile_unload, &
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & solve_contact_unload
+   use egw_rough_profile, only: contact_profile, contact_profile_unload
    use egw_impact, only: restitution, time_step
    use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
    use egw_ellip, only: get_ellipk, get_ellipe
