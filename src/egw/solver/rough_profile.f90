@@ -15,7 +15,8 @@ module egw_rough_profile
    use egw_smooth_sphere, only: hertz_pressure, hertz_deflection
    use egw_unloading, only: unloading_pressure
    use egw_halfspace, only: influence_row
-   use egw_cap_sphere, only: cap_options, cap_profile, cap_unload_profile
+   use egw_cap_sphere, only: cap_options
+   use egw_cap_profile, only: cap_profile, cap_unload_profile
    use egw_sphere_solver, only: solver_options, scaled_problem, discrete_solution, scaled, &
       & negligible, base_gap, closest_gap, solve_scaled, total_pressure
    use egw_rough_sphere, only: solve_result, loading_history, load_history, check_input, &
