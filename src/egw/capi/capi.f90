@@ -62,8 +62,9 @@ contains
 
    !> C: egw_set_progress: this thread's progress hook (NULL: off) and its user pointer.
    subroutine egw_set_progress(hook, user) bind(C, name="egw_set_progress")
+      !> egw_progress_fn: called with done in [0, 1], the stage and user (NULL: off)
       type(c_funptr), value, intent(in) :: hook
-      type(c_ptr), value, intent(in) :: user
+      type(c_ptr), value, intent(in) :: user   !< passed to the hook as given
       c_hook = hook
       c_user = user
       if (c_associated(hook)) then
