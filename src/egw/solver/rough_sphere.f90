@@ -2,9 +2,10 @@
 !> (doc/theory.md §5; paper eqs. 10-13 and 28-35), with Hertz as sigma = 0.
 !>
 !> The solves in the caller's units, their validation and the unloading histories (their
-!> contact profiles: egw_rough_profile). The problem is solved in scaled variables by egw_sphere_solver: radii in
-!> units of sqrt(R sigma), gaps and deflections in sigma, pressures in E sqrt(sigma/R),
-!> forces in E sqrt(R) sigma**1.5, so that scale invariance is exact.
+!> contact profiles: egw_rough_profile). The problem is solved in scaled variables by
+!> egw_sphere_solver: radii in units of sqrt(R sigma), gaps and deflections in sigma,
+!> pressures in E sqrt(sigma/R), forces in E sqrt(R) sigma**1.5, so that scale invariance
+!> is exact.
 !>
 !> Unloading (doc/theory.md §8, issue 10 item 3): a loading_history keeps the separation field
 !> d_max(r) of the solve at delta_max (its mesh and nodal w_G); an unloading solve at
@@ -868,8 +869,8 @@ contains
       class(flat_law), intent(in) :: law           !< the rough-flat law p(u)
       type(solver_options), intent(in) :: options  !< mesh, tolerance, method and threads
       real(dp), intent(in) :: delta   !< overlap [length] with the law's reference plane
-      type(solve_result), intent(out) :: result
-      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result), intent(out) :: result   !< force, stiffness, radius ... at delta
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(contact_params) :: lp
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -1220,7 +1221,8 @@ contains
    !> One unloading solve from scratch: load to delta_max, then solve_unload at delta
    !> (delta >= delta_max: just the loading solve at delta). The history is loaded at
    !> 1e-4 rel_tol (at least 1e-10): the unloading solve's estimate cannot see its error;
-   !> where it does not converge at 1e-3, then 1e-2 rel_tol, then at rel_tol. The last history is kept per thread (history_cache): calls with the same params,
+   !> where it does not converge at 1e-3, then 1e-2 rel_tol, then at rel_tol. The last
+   !> history is kept per thread (history_cache): calls with the same params,
    !> options and delta_max load it once, with the same results. For several turning
    !> points at once use load_history (as tightly) and solve_unload. Errors as
    !> load_history and solve_unload; result untouched on error.
