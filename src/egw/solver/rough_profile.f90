@@ -67,13 +67,8 @@ contains
             & //" sizes differ from size(r) = "//int_str(size(r)))
          return
       end if
-      do i = 1, size(r)
-         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
-               & //format_real(r(i))//": radii must be finite and >= 0")
-            return
-         end if
-      end do
+      call check_radii(r, size(r), size(r), error)   ! (the sizes checked above)
+      if (allocated(error)) return
       if (.not. history%loaded .or. .not. ieee_is_finite(delta)) then
          call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
             & //" or history: the overlap must be finite and the history loaded")
@@ -150,19 +145,8 @@ contains
          call contact_profile(params, options, delta, r, pressure, deflection, error)
          return
       end if
-      if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
-         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
-            & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
-            & //" differs from size(r) = "//int_str(size(r)))
-         return
-      end if
-      do i = 1, size(r)
-         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
-               & //format_real(r(i))//": radii must be finite and >= 0")
-            return
-         end if
-      end do
+      call check_radii(r, size(pressure), size(deflection), error)
+      if (allocated(error)) return
       tight = options
       tight%rel_tol = max(1.0e-10_dp, 1.0e-4_dp*options%rel_tol)
       call load_history(params, tight, delta_max, hist, loaded, error)
@@ -208,8 +192,7 @@ contains
             w_new = w_new + hertz_deflection(r, delta, params%radius)
          end if
          if (level > 0) then
-            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
-               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            converged = settled(p_new, p_prev, w_new, w_prev, options%rel_tol)
             if (converged) exit
          end if
          p_prev = p_new
@@ -269,8 +252,7 @@ contains
          if (allocated(error)) return
          call profile_values(prob, sol, rs_all, p_new, w_new)
          if (level > 0) then
-            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
-               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            converged = settled(p_new, p_prev, w_new, w_prev, options%rel_tol)
             if (converged) exit
          end if
          p_prev = p_new
@@ -323,23 +305,11 @@ contains
       real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(scaled_problem) :: prob
-      integer :: i
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
-      if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
-         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
-            & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
-            & //" differs from size(r) = "//int_str(size(r)))
-         return
-      end if
-      do i = 1, size(r)
-         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
-               & //format_real(r(i))//": radii must be finite and >= 0")
-            return
-         end if
-      end do
+      call check_radii(r, size(pressure), size(deflection), error)
+      if (allocated(error)) return
       if (smooth_capped(params, delta)) then
          call capped_profile(params, delta, r, pressure, deflection, error)
          return
@@ -406,5 +376,38 @@ contains
             & hertz_deflection(rs(i), prob%delta, 1.0_dp)
       end do
    end subroutine profile_values
+
+   !> A profile's radii and outputs: pressure and deflection of sizes n_pressure and
+   !> n_deflection as long as r, every radius finite and >= 0; else egw_invalid_argument
+   !> naming the sizes or the first radius refused.
+   pure subroutine check_radii(r, n_pressure, n_deflection, error)
+      real(dp), intent(in) :: r(:)   !< radii [length]
+      integer, intent(in) :: n_pressure, n_deflection   !< the outputs' sizes
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: i
+      if (n_pressure /= size(r) .or. n_deflection /= size(r)) then
+         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
+            & //int_str(n_pressure)//"/"//int_str(n_deflection) &
+            & //" differs from size(r) = "//int_str(size(r)))
+         return
+      end if
+      do i = 1, size(r)
+         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
+               & //format_real(r(i))//": radii must be finite and >= 0")
+            return
+         end if
+      end do
+   end subroutine check_radii
+
+   !> Whether a profile settled from one level to the next: its pressures p and deflections
+   !> w changed by at most rel_tol of the largest |p| and of the largest |w|.
+   pure logical function settled(p_new, p_prev, w_new, w_prev, rel_tol)
+      real(dp), intent(in) :: p_new(:), p_prev(:)   !< pressures, this level and the last
+      real(dp), intent(in) :: w_new(:), w_prev(:)   !< deflections, likewise
+      real(dp), intent(in) :: rel_tol   !< the caller's tolerance
+      settled = maxval(abs(p_new - p_prev)) <= rel_tol*maxval(abs(p_new)) .and. &
+         & maxval(abs(w_new - w_prev)) <= rel_tol*maxval(abs(w_new))
+   end function settled
 
 end module egw_rough_profile
