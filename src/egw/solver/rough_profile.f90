@@ -20,7 +20,7 @@ module egw_rough_profile
    use egw_sphere_solver, only: solver_options, scaled_problem, discrete_solution, scaled, &
       & negligible, base_gap, closest_gap, solve_scaled, total_pressure
    use egw_rough_sphere, only: solve_result, loading_history, load_history, check_input, &
-      & smooth_capped, unloading_problem, history_cap, loaded_by_route
+      & check_unload_input, smooth_capped, unloading_problem, history_cap, loaded_by_route
    implicit none
    private
 
@@ -133,13 +133,8 @@ contains
       integer :: i, level
       logical :: converged
 
-      call check_input(params, options, delta, error)
+      call check_unload_input(params, options, delta, delta_max, error)
       if (allocated(error)) return
-      if (.not. ieee_is_finite(delta_max)) then
-         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
-            & //": the largest overlap must be finite")
-         return
-      end if
       if (delta >= delta_max .or. ((params%model == model_hertz .or. params%sigma == &
          & 0.0_dp) .and. .not. smooth_capped(params, delta_max))) then
          call contact_profile(params, options, delta, r, pressure, deflection, error)
