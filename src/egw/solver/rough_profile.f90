@@ -5,7 +5,7 @@
 !> loading history (unload_profile). The force's error control does not bound the
 !> pressure pointwise, so each profile re-solves egw_rough_sphere's scaled problem at
 !> rel_tol/10 until it settles; the smooth sphere with the flow-pressure cap beyond first
-!> yield is egw_cap_sphere's (cap_profile, cap_unload_profile).
+!> yield is egw_cap_profile's (cap_profile, cap_unload_profile).
 module egw_rough_profile
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
@@ -31,6 +31,7 @@ module egw_rough_profile
    integer, parameter :: profile_levels = 4
    !> capped_profile: the cap solver's rings (finest level)
    integer, parameter :: cap_profile_rings = 256
+   !> the tightest rel_tol of those re-solves
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
 
 contains
