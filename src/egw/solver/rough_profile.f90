@@ -5,7 +5,7 @@
 !> loading history (unload_profile). The force's error control does not bound the
 !> pressure pointwise, so each profile re-solves egw_rough_sphere's scaled problem at
 !> rel_tol/10 until it settles; the smooth sphere with the flow-pressure cap beyond first
-!> yield is egw_cap_sphere's (cap_profile, cap_unload_profile).
+!> yield is egw_cap_profile's (cap_profile, cap_unload_profile).
 module egw_rough_profile
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
@@ -20,7 +20,7 @@ module egw_rough_profile
    use egw_sphere_solver, only: solver_options, scaled_problem, discrete_solution, scaled, &
       & negligible, base_gap, closest_gap, solve_scaled, total_pressure
    use egw_rough_sphere, only: solve_result, loading_history, load_history, check_input, &
-      & smooth_capped, unloading_problem, history_cap, loaded_by_route
+      & check_unload_input, smooth_capped, unloading_problem, history_cap, loaded_by_route
    implicit none
    private
 
@@ -31,6 +31,7 @@ module egw_rough_profile
    integer, parameter :: profile_levels = 4
    !> capped_profile: the cap solver's rings (finest level)
    integer, parameter :: cap_profile_rings = 256
+   !> the tightest rel_tol of those re-solves
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
 
 contains
@@ -133,13 +134,8 @@ contains
       integer :: i, level
       logical :: converged
 
-      call check_input(params, options, delta, error)
+      call check_unload_input(params, options, delta, delta_max, error)
       if (allocated(error)) return
-      if (.not. ieee_is_finite(delta_max)) then
-         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
-            & //": the largest overlap must be finite")
-         return
-      end if
       if (delta >= delta_max .or. ((params%model == model_hertz .or. params%sigma == &
          & 0.0_dp) .and. .not. smooth_capped(params, delta_max))) then
          call contact_profile(params, options, delta, r, pressure, deflection, error)

@@ -67,7 +67,8 @@ module egw_rough_sphere
    public :: unload_start
    public :: above_first_yield, cap_solve_options
    ! for egw_rough_profile (the profiles of these solves)
-   public :: check_input, smooth_capped, unloading_problem, history_cap, loaded_by_route
+   public :: check_input, check_unload_input, smooth_capped, unloading_problem, &
+      & history_cap, loaded_by_route
 
    !> With the cap: sigma/delta_y at or below which a solve that does not converge takes
    !> the asymptotic route (small_sigma_loading, small_sigma_unload; doc/theory.md §12
@@ -1254,13 +1255,8 @@ contains
       real(dp), parameter :: history_steps(4) = [1.0e-4_dp, 1.0e-3_dp, 1.0e-2_dp, 1.0_dp]
       integer :: step
 
-      call check_input(params, options, delta, error)
+      call check_unload_input(params, options, delta, delta_max, error)
       if (allocated(error)) return
-      if (.not. ieee_is_finite(delta_max)) then
-         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
-            & //": the largest overlap must be finite")
-         return
-      end if
       if (delta >= delta_max) then
          ! at or above the turning point: the loading solve itself (the history below is
          ! loaded more tightly than rel_tol)
@@ -1449,6 +1445,24 @@ contains
          if (.not. allocated(error)) call check_cap_overlap("delta", delta, params, error)
       end if
    end subroutine check_input
+
+   !> check_input for an unloading solve at delta after delta_max, and a finite delta_max.
+   pure subroutine check_unload_input(params, options, delta, delta_max, error)
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< the solve's options
+      real(dp), intent(in) :: delta       !< overlap [length] of the unloading solve
+      real(dp), intent(in) :: delta_max   !< largest overlap reached before [length]
+      !> allocated (egw_invalid_parameter or egw_invalid_argument, naming the value) when
+      !> an input is refused
+      type(egw_error), allocatable, intent(out) :: error
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+   end subroutine check_unload_input
 
    !> A rough sphere with the cap: egw_invalid_argument naming name beyond rough_cap_range
    !> delta_y, where E-GW and EP-GW solves stop converging (doc/stability.md "Rough + cap far
