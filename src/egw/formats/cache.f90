@@ -52,8 +52,10 @@ module egw_cache
    !> plastic summits on the two-piece s map too (turning points at or below 0 on its
    !> tail), every mapped table's slopes stored as dg/dx times tail_length); 22: rough +
    !> cap unloading's plastic shift in the deep zone from one root of law = p_y per mesh
-   !> (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids.
-   integer, parameter, public :: cache_revision = 22
+   !> (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids; 23:
+   !> unloading with elastic summits (GW, E-GW, with or without the cap) takes Newton's
+   !> chord steps: rough + cap tables moved by <= 5.3e-9 of P(m), same grids.
+   integer, parameter, public :: cache_revision = 23
 
 
 contains
