@@ -52,8 +52,11 @@ module egw_cache
    !> plastic summits on the two-piece s map too (turning points at or below 0 on its
    !> tail), every mapped table's slopes stored as dg/dx times tail_length); 22: rough +
    !> cap unloading's plastic shift in the deep zone from one root of law = p_y per mesh
-   !> (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids.
-   integer, parameter, public :: cache_revision = 22
+   !> (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids; 25:
+   !> the loading law's series panel by reciprocals (egw_gauss series_panel: F values move
+   !> by <= 5 ulp): the EP-GW + cap table of issue 32 moved by <= 9.7e-10 relative in
+   !> its gaps, same grids.
+   integer, parameter, public :: cache_revision = 25
 
 
 contains
