@@ -54,8 +54,11 @@ module egw_cache
    !> cap unloading's plastic shift in the deep zone from one root of law = p_y per mesh
    !> (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids; 23:
    !> unloading with elastic summits (GW, E-GW, with or without the cap) takes Newton's
-   !> chord steps: rough + cap tables moved by <= 5.3e-9 of P(m), same grids.
-   integer, parameter, public :: cache_revision = 23
+   !> chord steps: rough + cap tables moved by <= 5.3e-9 of P(m), same grids; 25: the
+   !> loading law's series panel by reciprocals (egw_gauss series_panel: F values move
+   !> by <= 5 ulp): the EP-GW + cap table of issue 32 moved by <= 9.7e-10 relative in
+   !> its gaps, same grids.
+   integer, parameter, public :: cache_revision = 25
 
 
 contains
