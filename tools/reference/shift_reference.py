@@ -35,7 +35,10 @@ def main():
             if row[0] != "rough":
                 continue
             sigma, frac, tol = float(row[1]), float(row[2]), float(row[3])
-            force, shift = float(row[4]), float(row[7])
+            try:   # (Fortran writes -huge, no shift, without its exponent letter)
+                force, shift = float(row[4]), float(row[7])
+            except ValueError:
+                continue
             if force <= 0 or shift < -1:
                 continue
             key = (frac, sigma)
