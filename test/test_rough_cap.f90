@@ -624,7 +624,7 @@ contains
    !> unloading at 0.1446 and 0.1443 delta_max, 5.3e-4 and 2.3e-4 delta_max above the
    !> residual overlap (0.14407 delta_max), where no test had a reference: test_small_sigma_
    !> residual's (the force's correction fitted in sigma**(2/3)) does not converge there
-   !> (its ratio D/(delta - delta_r) is 0.1 .. 0.4 at the direct solves' sigma). Reference:
+   !> (its ratio D/(delta - delta_r) passes 0.5 at its direct solves' sigma, to 1e-3). Reference:
    !> the rough layer as a shift of the smooth cap's unloading curve, P = P_cap(delta + D)
    !> (doc/theory.md section 12 "Small sigma: the shift"): D at 1e-6 from a least-squares fit
    !> of degree 2 in x = (sigma_j/sigma)**(2/3) of D_j/x_j, D_j the shifts of the rough model's
