@@ -626,7 +626,7 @@ contains
    !> residual's (the force's correction fitted in sigma**(2/3)) does not converge there
    !> (its ratio D/(delta - delta_r) passes 0.5 at its direct solves' sigma, to 1e-3). Reference:
    !> the rough layer as a shift of the smooth cap's unloading curve, P = P_cap(delta + D)
-   !> (doc/theory.md section 12 "Small sigma: the shift"): D at 1e-6 from a least-squares fit
+   !> (doc/stability.md "Stop 47 (sigma13)"): D at 1e-6 from a least-squares fit
    !> of degree 2 in x = (sigma_j/sigma)**(2/3) of D_j/x_j, D_j the shifts of the rough model's
    !> own discrete solves at sigma_j/delta_y = 1e-5 .. 2e-4 (histories at rel_tol 1e-8, each
    !> solve at the tightest of 1e-5, 1e-6, 1e-7 that converged; example small-sigma-shift,
@@ -639,7 +639,7 @@ contains
    !> "Stop 47 (sigma13)"). At rel_tol 2e-5 both answer (the force's extrapolation, as on
    !> main: measured 8.5e-6 and 1.6e-5 above the references, estimates 6.7e-6, 8.4e-6):
    !> tolerance rel_tol + the reference's uncertainty + its Richardson error. At rel_tol
-   !> 1e-5 0.1446 is refused (the shift route's estimate 9.0e-6, main's 6.0e-4): either
+   !> 1e-5 0.1446 is refused (the route's estimate 6.0e-4): either
    !> answer must be within that tolerance at rel_tol 1e-5, or the call must say
    !> egw_not_converged.
    subroutine test_shift_references(error)
