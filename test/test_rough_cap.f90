@@ -92,8 +92,6 @@ contains
          & test_tiny_sigma_contact_unload), &
          & new_unittest("sigma/delta_y = 1e-6: 0.1446, 0.1443 delta_max against the shift", &
          & test_shift_references), &
-         & new_unittest("sigma/delta_y = 2e-5 at 0.1442 delta_max: answers within their bounds", &
-         & test_contact_in_one_element), &
          & new_unittest("est_rel_err below the force floor", test_floor_estimate), &
          & new_unittest("far beyond first yield: refused naming delta", test_far_beyond_yield), &
          & new_unittest("plastic_shifts: law(h_max + u_pl) = p_y, offsets, GW and ZMC", &
@@ -684,58 +682,6 @@ contains
          end do
       end do
    end subroutine test_shift_references
-
-   !> E-GW + cap, mu 4, R = E* = 1, p_y = 2/pi (delta_y = 1), history to 2 delta_y at
-   !> rel_tol 1e-8 (from one at 1e-7 main refuses rel_tol 1e-6 there), the discrete unloading solve at sigma = 2e-5 delta_y, 0.1442 delta_max
-   !> (near the residual overlap 0.14407 delta_max: the contact a disc of ~4.9 in scaled
-   !> radius, the mesh graded to the loading's edge at 120): at rel_tol 1e-5 and 1e-6 each
-   !> answer's estimate must be below rel_tol/2 and bound its error, so two accepted answers
-   !> differ by at most the sum of their rel_tols (the triangle inequality; no reference
-   !> from the code is needed). Main answered 6.335328e-6 (estimate 2.1e-6, the
-   !> central-disc route, 117 elements in the contact) and 6.331779e-6 (estimate 1.1e-7):
-   !> 5.6e-4 apart, the second's levels all holding the whole contact in the one element
-   !> from r = 0 to the kink edge, which Richardson cannot see (doc/stability.md, Stop 47
-   !> resid13). A refusal (egw_not_converged) passes.
-   subroutine test_contact_in_one_element(error)
-      type(error_type), allocatable, intent(out) :: error
-      real(dp), parameter :: rel_tols(2) = [1.0e-5_dp, 1.0e-6_dp]
-      type(contact_params) :: p
-      type(loading_history) :: h
-      type(solve_result) :: res
-      type(egw_error), allocatable :: err
-      real(dp) :: forces(2)
-      logical :: answered(2)
-      integer :: j
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=2.0e-5_dp, &
-         & mu=4.0_dp, flow_pressure=2.0_dp/pi)
-      call load_history(p, solver_options(rel_tol=1.0e-8_dp), 2.0_dp, h, res, err)
-      if (allocated(err)) then
-         call check(error, .false., "history from 2 delta_y: "//err%message)
-         return
-      end if
-      answered = .false.
-      forces = 0.0_dp
-      do j = 1, size(rel_tols)
-         h%options%rel_tol = rel_tols(j)
-         call solve_unload(h, 0.1442_dp*2.0_dp, res, err)
-         if (allocated(err)) then
-            call check(error, err%stat == egw_not_converged, "rel_tol "//str(rel_tols(j)) &
-               & //": "//err%message)
-            if (allocated(error)) return
-            deallocate (err)
-            cycle
-         end if
-         call check(error, res%force > 0.0_dp .and. res%est_rel_err <= 0.5_dp*rel_tols(j), &
-            & "rel_tol "//str(rel_tols(j))//": P = "//str(res%force)//", estimate " &
-            & //str(res%est_rel_err))
-         if (allocated(error)) return
-         answered(j) = .true.
-         forces(j) = res%force
-      end do
-      if (all(answered)) call check(error, abs(forces(1) - forces(2)) <= &
-         & sum(rel_tols)*forces(1), "P at rel_tol 1e-5, 1e-6: "//str(forces(1))//", " &
-         & //str(forces(2))//": further apart than the sum of their rel_tols")
-   end subroutine test_contact_in_one_element
 
    !> E-GW + cap (mu 4) restitution at 3 v_y, rel_tol, at each sigma/delta_y of ratios
    !> against the smooth cap's e (sigma = 0), within rel_tol + 3.4e-6 +

@@ -591,12 +591,10 @@ contains
       real(dp) :: total
       integer :: level
       logical :: confirm, confirming, vanished
-      logical :: bisected   !< a bisection check ran (and failed: else the level returned)
       type(discrete_solution) :: fine
 
       confirm = .false.
       confirming = .false.
-      bisected = .false.
       do level = 1, 12
          ! The previous level's solution is the initial guess: 2-3 Newton steps instead of 5-8.
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
@@ -629,17 +627,9 @@ contains
          if (options%n_radial > 0) return
          ! Unloading after a capped loading (sums_total), at any rel_tol: an accepted level
          ! whose mesh keeps elements of the level before is checked with those halved
-         ! (bisection_check); after a check that failed, every later accepted level whose
-         ! central element (from r = 0) is still kept too: their Richardson estimates cannot
-         ! see it either (E-GW + cap, sigma 2e-5 delta_y, 0.1442 delta_max after 2 delta_y,
-         ! rel_tol 1e-6: the whole contact in the element from 0 to the kink edge, the
-         ! check found 3.3e-4, the next level was accepted at 1.1e-7 with that element
-         ! unchanged, 5.6e-4 off; doc/stability.md Stop 47 resid13). (Re-checking every
-         ! level that keeps any element, e.g. the rim's layers, refused solves of an E-GW +
-         ! cap table at 1e-5 to 10 delta_y that main builds.)
-         if (est <= 0.5_dp*options%rel_tol .and. sums_total(prob) .and. (.not. confirm &
-            & .or. (bisected .and. centre_kept(sol, coarse))) .and. any_kept(sol, coarse)) then
-            bisected = .true.
+         ! (bisection_check).
+         if (est <= 0.5_dp*options%rel_tol .and. sums_total(prob) .and. .not. confirm &
+            & .and. any_kept(sol, coarse)) then
             confirm = .true.
             call bisection_check(prob, options, method, total, coarse, sol, fine, est, error, &
                & cache=cache)
@@ -726,8 +716,7 @@ contains
       integer :: i, degree
       edges = [sol%mesh%edge(0)]
       do i = 1, sol%mesh%n_elem
-         if (kept(sol%mesh%edge(i - 1), sol%mesh%edge(i), coarse) .or. (i == 1 .and. &
-            & centre_kept(sol, coarse))) edges = [edges, &
+         if (kept(sol%mesh%edge(i - 1), sol%mesh%edge(i), coarse)) edges = [edges, &
             & 0.5_dp*(sol%mesh%edge(i - 1) + sol%mesh%edge(i))]
          edges = [edges, sol%mesh%edge(i)]
       end do
@@ -747,8 +736,7 @@ contains
    pure logical function any_kept(sol, coarse)
       type(discrete_solution), intent(in) :: sol, coarse
       integer :: i
-      any_kept = centre_kept(sol, coarse)
-      if (any_kept) return
+      any_kept = .false.
       do i = 1, sol%mesh%n_elem
          if (kept(sol%mesh%edge(i - 1), sol%mesh%edge(i), coarse)) then
             any_kept = .true.
@@ -767,21 +755,6 @@ contains
       if (k < 0 .or. k >= coarse%mesh%n_elem) return
       kept = coarse%mesh%edge(k + 1) == right
    end function kept
-
-   !> Whether sol's central element (from r = 0) did not shrink from coarse's: coarse's
-   !> is less than 1.1 times as long (the same element, or one whose outer edge is a kink
-   !> edge relocated by a little between the levels, which kept does not count).
-   !> Richardson sees no error of it. E-GW + cap, mu 4, sigma 2e-5 delta_y, 0.1442
-   !> delta_max after 2 delta_y, rel_tol 1e-6: the whole contact lay in the element from
-   !> r = 0 to the kink edge, 4.944, 4.945, 4.946 on the last three levels, and they
-   !> agreed to 1.1e-7 while 5.6e-4 off (doc/stability.md, Stop 47 resid13).
-   pure logical function centre_kept(sol, coarse)
-      type(discrete_solution), intent(in) :: sol, coarse
-      centre_kept = .false.
-      if (sol%mesh%n_elem < 1 .or. coarse%mesh%n_elem < 1) return
-      centre_kept = coarse%mesh%edge(1) - coarse%mesh%edge(0) < 1.1_dp*(sol%mesh%edge(1) &
-         & - sol%mesh%edge(0))
-   end function centre_kept
 
    !> Unloading (doc/theory.md §8): adds to est what the kink edges still miss by (both
    !> levels share it). Edges off by more than a tenth of rel_tol are moved and both levels
