@@ -26,7 +26,7 @@ TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_sl
          test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
          test_bad_wall, test_wall_region, test_drum_example,
          test_wall_heat_vs_wall_gran, test_wall_temperature_variable, test_default_damping_vs_granular,
-         test_ignored_keywords_warn, test_wall_curvature_vs_wall_gran,
+         test_ignored_keywords_warn, test_collision_example, test_wall_curvature_vs_wall_gran,
          test_wall_curvature_summit, test_wall_contacts_vs_wall_gran, test_granular_decks, test_lammps_decks_converted,
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,

@@ -251,6 +251,31 @@ def test_default_damping_vs_granular():
     return d < 1e-6 and e < 0.9, f"e {restitution_of(o1):.9f} vs {e:.9f}, |dv|/v {d:.1e} (< 1e-6)"
 
 
+def test_collision_example():
+    """The README's collision example as its lines run it (examples/collision.in, EP-GW by
+    default and `-var mid 2`, E-GW), on 1 rank: no WARNING (the deck gave psi to E-GW too,
+    and E-GW warned that it ignores it), E-GW's e = 1.000000, EP-GW's e within 5e-3 of the
+    egw_restitution value the deck prints (full solves; the table's TOL is 1e-3)."""
+    deck = os.path.join(ROOT, "integrations", "lammps", "examples", "collision.in")
+    res, notes = {}, []
+    for mid in (2, 3):
+        p = subprocess.run([LMP, "-in", deck, "-log", "none", "-nocite", "-var", "mid", str(mid)],
+                           cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           timeout=600)
+        m = re.search(r"pair_style egw \S+: e = (\S+)", p.stdout)
+        ref = re.search(r"egw_restitution \(full solves\):\s*\n\s*(\S+)", p.stdout)
+        warn = [l for l in p.stdout.splitlines() if "WARNING" in l]
+        if p.returncode or not m or not ref:
+            return False, f"mid {mid}: rc {p.returncode} " + " ".join(
+                l for l in p.stdout.splitlines() if "ERROR" in l)
+        res[mid] = (float(m.group(1)), float(ref.group(1)))
+        if warn:
+            notes.append(f"mid {mid}: {warn[0].strip()}")
+    ok = (not notes and m and res[2][0] == 1.0 and abs(res[3][0] - res[3][1]) < 5e-3)
+    return ok, (f"E-GW e = {res[2][0]:.6f}, EP-GW e = {res[3][0]:.6f} vs egw_restitution "
+                f"{res[3][1]:.6f} (< 5e-3); warnings: {'; '.join(notes) or 'none'}")
+
+
 def test_ignored_keywords_warn():
     """Keywords the model ignores are named in a WARNING (as egw's Python warns): psi (and K,
     plastic_ratio) with E-GW in pair_coeff and in fix wall/egw; mu with Hertz; a wall's
