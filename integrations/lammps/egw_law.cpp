@@ -387,8 +387,8 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
         "(first yield delta_y = {:.6g}), at or below {:g}, where egw's rough + cap solves take "
         "its small-sigma route (tens of seconds each) and their hysteresis tables do not build "
         "in a run; for a smooth contact give sigma 0 (Hertz + cap, the rough model's sigma -> 0 "
-        "limit, from which it differs by ~0.15 (sigma/delta_y)^(2/3) = {:.2g} of the force, "
-        "doc/theory.md section 12)",
+        "limit; E-GW + cap differs from it by ~0.15 (sigma/delta_y)^(2/3) = {:.2g} of the "
+        "force, doc/theory.md section 12)",
         sigma, flow_pressure, ratio, R_hi, cap_c * R_hi, RCAP_SIGMA_MIN,
         0.15 * std::cbrt(ratio * ratio)));
   // h = ln 2 / 4 first: level 1's lowest node (R steps of 41 %) may lie 29 % below R_lo
