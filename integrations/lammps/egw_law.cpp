@@ -378,6 +378,19 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
   // R_hi: pair egw and fix wall/egw pass the types' one radius), else at the nodes of a
   // lattice in ln(R/sigma) covering [R_lo, R_hi]
   rcap_R = R_hi, rcap_R_lo = R_lo;
+  // sigma far below the first-yield overlap (the largest radius has the largest delta_y):
+  // no table would build in a run; say so and what to give instead of running on silently
+  double ratio = sigma / (cap_c * R_hi);
+  if (ratio <= RCAP_SIGMA_MIN)
+    fail_with(fmt::format(
+        "sigma = {:.6g} with flow_pressure {:.6g}: sigma/delta_y = {:.3g} at R = {:.6g} "
+        "(first yield delta_y = {:.6g}), at or below {:g}, where egw's rough + cap solves take "
+        "its small-sigma route (tens of seconds each) and their hysteresis tables do not build "
+        "in a run; for a smooth contact give sigma 0 (Hertz + cap, the rough model's sigma -> 0 "
+        "limit; E-GW + cap differs from it by ~0.15 (sigma/delta_y)^(2/3) = {:.2g} of the "
+        "force, doc/theory.md section 12)",
+        sigma, flow_pressure, ratio, R_hi, cap_c * R_hi, RCAP_SIGMA_MIN,
+        0.15 * std::cbrt(ratio * ratio)));
   // h = ln 2 / 4 first: level 1's lowest node (R steps of 41 %) may lie 29 % below R_lo
   const int FIRST_LEVEL = 2;
   double a = std::log(R_lo * inv_sigma), b = std::log(R_hi * inv_sigma);

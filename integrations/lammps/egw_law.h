@@ -96,6 +96,11 @@ struct EgwLaw {
   // threads, 2026-11-29: builds that grow fast with the reach)
   static constexpr double RCAP_X_MAX = 20.0;
   static constexpr int RCAP_MAX_LEVEL = 5;
+  // sigma/delta_y at or below which a rough + cap law is refused: egw's rough + cap solves
+  // take their small-sigma route there (tens of seconds each, doc/stability.md "Rough + cap
+  // as sigma -> 0"), so its hysteresis tables do not build in a run (E-GW, TOL 1e-3: none
+  // after 150 s at 1e-6; the sigma = 1e-16 of a converted granular deck ran without a word)
+  static constexpr double RCAP_SIGMA_MIN = 1e-6;
   double rcap_R = 0, rcap_F = 0;   // the (largest) radius, E* sigma^2
   double rcap_R_lo = 0, rcap_R_ref = 0;    // the smallest radius; the reach's delta_y radius
   double lnr0 = 0, inv_hr = 0;     // the first node's ln(R/sigma), 1 / node spacing

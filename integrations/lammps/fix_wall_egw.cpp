@@ -63,6 +63,10 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
     while (last > 5) {
       if (std::string(arg[last]) == "contacts") {
         contacts = true, last--;
+      } else if (std::string(arg[last]) == "temperature") {
+        // 'region ID temperature' with its value missing: not a region named 'temperature'
+        error->all(FLERR, "Fix wall/egw/region: keyword 'temperature' needs a value (T or "
+                          "v_name)");
       } else if (last - 1 > 5 && std::string(arg[last - 1]) == "temperature") {
         set_temperature(arg[last]);
         last -= 2;
@@ -227,15 +231,20 @@ void FixWallEGW::parse(int narg, char **arg)
                haveeta ? "summit_radius" : "summit_density");
   wall.mu_mode = havemu ? 1 : (haveeta ? 2 : 0);
   if (comm->me == 0) egw_warn_ignored(error, who, model, wall, havesig, haveplastic);
-  if (wall.sub.heat != EgwSubmodels::HEAT_NONE && !have_temperature)
-    error->all(FLERR, "{}: a heat model needs the wall's 'temperature T'", who);
-  if (wall.sub.heat == EgwSubmodels::HEAT_NONE && have_temperature && comm->me == 0)
-    error->warning(FLERR, "{}: 'temperature' without a heat model (heat area|radius) is "
-                          "ignored", who);
+  // the wall's temperature and its heat model, once every place 'temperature' may stand
+  // (before the wall style, or after it as fix wall/gran's) has been read
+  auto check_heat = [&]() {
+    if (wall.sub.heat != EgwSubmodels::HEAT_NONE && !have_temperature)
+      error->all(FLERR, "{}: a heat model needs the wall's 'temperature T'", who);
+    if (wall.sub.heat == EgwSubmodels::HEAT_NONE && have_temperature && comm->me == 0)
+      error->warning(FLERR, "{}: 'temperature' without a heat model (heat area|radius) is "
+                            "ignored", who);
+  };
   wall.set = 1;
 
   if (wallstyle == REGION) {
     if (i < narg) error->all(FLERR, "{}: unknown keyword '{}'", who, arg[i]);
+    check_heat();
     return;
   }
   if (i >= narg)
@@ -289,11 +298,17 @@ void FixWallEGW::parse(int narg, char **arg)
     } else if (key == "contacts") {
       contacts = true;
       i += 1;
+    } else if (key == "temperature") {
+      // fix wall/gran's place for it: after the wall style's arguments
+      if (i + 1 >= narg) error->all(FLERR, "{}: keyword 'temperature' needs a value", who);
+      set_temperature(arg[i + 1]);
+      i += 2;
     } else
-      error->all(FLERR, "{}: unknown keyword '{}' after the wall style (wiggle, shear, contacts)",
-                 who, key);
+      error->all(FLERR, "{}: unknown keyword '{}' after the wall style (wiggle, shear, contacts, "
+                        "temperature)", who, key);
   }
   if (wiggle && wshear) error->all(FLERR, "{}: wiggle and shear together", who);
+  check_heat();
 }
 
 int FixWallEGW::setmask()
@@ -305,6 +320,9 @@ int FixWallEGW::setmask()
  * step, as fix wall/gran's) */
 void FixWallEGW::set_temperature(const char *word)
 {
+  // before and after the wall style (or the region ID) both: which one was meant?
+  if (have_temperature)
+    error->all(FLERR, "Fix wall/egw: keyword 'temperature' given twice ('{}' the second)", word);
   have_temperature = true;
   if (utils::strmatch(word, "^v_")) {
     tvar_name = word + 2;

@@ -2,6 +2,7 @@
 and parameters, values equal to the scalar calls bit for bit, NaN refused with the index
 (or NaN with a count under egw.errstate), parameters checked at construction."""
 import math
+import os
 import subprocess
 import sys
 import warnings
@@ -188,6 +189,10 @@ def test_every_public_name_has_a_docstring():
 
 
 def test_python_m_egw_version():
+    """One line with both versions and the loaded library's path whole, also on a narrow
+    terminal (COLUMNS=40: argparse wrapped it there, splitting the path across lines)."""
+    env = dict(os.environ, COLUMNS="40")
     out = subprocess.run([sys.executable, "-m", "egw", "--version"], check=True,
-                         capture_output=True, text=True).stdout
+                         capture_output=True, text=True, env=env).stdout
     assert out.startswith(f"egw {egw.__version__} (libegw {egw.version()}")
+    assert out.count("\n") == 1 and f"{egw._capi.lib._name})" in out

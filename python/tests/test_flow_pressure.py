@@ -3,6 +3,7 @@
 struct, a solve equal to the C library's (called directly through ctypes), the reference
 values of test/data/cap_reference.csv, and the refusals."""
 import ctypes
+import decimal
 import math
 
 import numpy as np
@@ -112,6 +113,40 @@ def test_first_yield():
         egw.first_yield(steel, mass=-1.0)
     with pytest.raises(TypeError, match="mass"):
         egw.first_yield(steel, m)    # keyword-only: a positional mass is refused
+
+
+def test_first_yield_broadcasts_params():
+    """egw.first_yield over Params with array fields, as every evaluator (README "Arrays"):
+    three flow pressures against two masses give the (2, 3) closed forms delta_y = (pi p_y/
+    (2 E*))^2 R and (1/2) m* v_y^2 = (8/15) E* sqrt(R) delta_y^(5/2), evaluated here at 40
+    digits (decimal), to 1e-15 relative (the library's are within 3 ulp of 50-digit values,
+    README "Accuracy"; 1e-15 is ~5 ulp); p_y = 0 is inf; a bad point is named by its index, or NaN
+    under errstate(failed="nan"). Before, array fields raised TypeError ("params must be
+    one egw.Params with scalar fields")."""
+    R, E = 0.5e-3, 1.1e11
+    fp = np.array([0.0, 1e9, 1.6e9])
+    m = np.array([[1e-4], [4e-4]])
+    fy = egw.first_yield(egw.Params(model="Hertz", radius=R, modulus=E, flow_pressure=fp),
+                         mass=m)
+    assert fy.overlap.shape == (2, 3) and fy.speed.shape == (2, 3)
+    assert np.all(np.isinf(fy.overlap[:, 0])) and np.all(np.isinf(fy.speed[:, 0]))
+    with decimal.localcontext() as ctx:
+        ctx.prec = 40
+        D = decimal.Decimal
+        pi = D("3.141592653589793238462643383279502884197")
+        for j in (1, 2):
+            dy = (pi * D(fp[j]) / (2 * D(E))) ** 2 * D(R)
+            for i in (0, 1):
+                vy = (2 * D(8) / 15 * D(E) * D(R).sqrt() * dy ** 2 * dy.sqrt() /
+                      D(m[i, 0])).sqrt()
+                assert abs(D(fy.overlap[i, j]) / dy - 1) <= D("1e-15")
+                assert abs(D(fy.speed[i, j]) / vy - 1) <= D("1e-15")
+    p = egw.Params(model="Hertz", radius=R, modulus=E, flow_pressure=fp)
+    with pytest.raises(egw.InvalidArgumentError, match=r"index 1: mass"):
+        egw.first_yield(p, mass=np.array([1e-4, -1.0, 1e-4]))
+    with egw.errstate(failed="nan"):
+        bad = egw.first_yield(p, mass=np.array([1e-4, -1.0, 1e-4]))
+    assert math.isnan(bad.overlap[1]) and bad.speed[2] == fy.speed[0, 2]
 
 
 def test_rough_hysteresis_table_with_the_cap(tmp_path):

@@ -23,14 +23,15 @@ DT = 4e-8                                   # ~ t_c / 200 at 2 V (Hertz, t_c ~ 8
 TMP = tempfile.mkdtemp(prefix="egw-lammps-test-")
 
 
-def lmp(deck, np=1, **var):
-    """Run a deck; return (returncode, combined output)."""
+def lmp(deck, np=1, _timeout=600, **var):
+    """Run a deck; return (returncode, combined output). _timeout [s]: a run that takes
+    longer raises subprocess.TimeoutExpired (the test fails)."""
     args = [LMP, "-np", str(np), "-in", os.path.join(HERE, deck), "-log", "none",
             "-nocite"]
     for k, v in var.items():
         args += ["-var", k, str(v)]
     p = subprocess.run(args, cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       text=True, timeout=600)
+                       text=True, timeout=_timeout)
     return p.returncode, p.stdout
 
 

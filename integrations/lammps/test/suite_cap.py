@@ -155,6 +155,37 @@ def test_cap_wall_material_contact():
     return cap_verdict(es, refs, out, dy, "wall, wall_material contact")
 
 
+def test_rough_cap_tiny_sigma():
+    """sigma far below the first-yield overlap with flow_pressure (the sigma = 1e-16 that
+    README's conversion table gives a granular deck, plus a flow pressure): egw's rough +
+    cap tables do not build in a run there (its small-sigma route), and the run sat in the
+    set-up without a word (E-GW, TOL 1e-3: still there after 90 s). Now, within 60 s, an
+    ERROR naming sigma/delta_y and saying 'give sigma 0', for the pair (types' own sigma)
+    and for a wall (the wall's sigma); with sigma 0 the same deck runs (Hertz + cap)."""
+    base = f"E {E} nu {NU}"
+    kw = dict(pstyle="egw E-GW 1e-3", v=V, x0=(2 * RAD + 2e-5) / 2, yoff=0.0, wz=0.0,
+              d2=2 * RAD, check="yes", dt=DT, n1=0, n2=0, newton="on", thermo=1000,
+              restart=0, rfile="restart.bin", pairlocal=0, wx=0.0)
+    notes, ok = [], True
+    for what, coeff in (("sigma 1e-16", f"{base} sigma 1e-16 mu 4 flow_pressure 1e8"),
+                        ("sigma 0", f"{base} sigma 0 mu 4 flow_pressure 1e8")):
+        rc, out = lmp("collision.in", _timeout=60, pcoeff=coeff, **kw)
+        err = [l for l in out.splitlines() if "ERROR" in l]
+        if what == "sigma 0":
+            ok = ok and rc == 0 and not err
+        else:
+            ok = ok and rc != 0 and bool(err) and "sigma/delta_y" in err[0] and \
+                "give sigma 0" in err[0]
+        notes.append(f"pair {what}: rc {rc} {err[0][:90] if err else ''}")
+    wall = (f"wall/egw E-GW 1e-3 {base} sigma 1e-16 mu 4 flow_pressure 1e8 zplane 0 NULL")
+    rc, out = lmp("wall.in", _timeout=60, pstyle="egw E-GW 1e-3", pcoeff=f"{base} sigma 0",
+                  wallfix=wall, v=0.1, dt=1e-8, nrun=0, z0=RAD + 1e-5)
+    err = [l for l in out.splitlines() if "ERROR" in l]
+    ok = ok and rc != 0 and bool(err) and "sigma/delta_y" in err[0] and "Fix wall/egw" in err[0]
+    notes.append(f"wall: rc {rc} {err[0][:90] if err else ''}")
+    return ok, "; ".join(notes)
+
+
 def test_bad_flow_pressure():
     """Bad flow_pressure / yield_stress input for particles and walls: negative, not finite,
     no value, both keywords, p_y >= E* (like types, mixed types and the wall contact) and a

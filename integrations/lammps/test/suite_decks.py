@@ -181,8 +181,11 @@ def test_wall_temperature_variable():
     v_oscillate`): 200 + 50 sin(step/100) K, the bead held 2 um into a zplane and into a
     block region's floor; fix wall/egw E-GW at sigma = 1e-16 (TOL 1e-8) against fix
     wall/gran[/region] granular hertz/material with the same variable, the region fixes with
-    fix wall/gran/region's keyword order ('region ID temperature v_twall'): the bead's
-    temperature change within 1e-6 (relative) of granular's; the oscillating wall gives
+    fix wall/gran/region's keyword order ('region ID temperature v_twall'), the plane both
+    among the wall keywords and in fix wall/gran's place after the wall style ('zplane 0
+    NULL temperature v_twall', which stopped with "a heat model needs the wall's
+    'temperature T'" before): the bead's temperature change within 1e-6 (relative) of
+    granular's; the oscillating wall gives
     another change than a wall at 200 K (> 1e-3). The variable is evaluated as fix
     wall/gran's, without scheduling LAMMPS's computes for the next step (which would tally
     energies on every step): a temperature of c_thermo_pe stops both walls with the same
@@ -194,6 +197,8 @@ def test_wall_temperature_variable():
     cases = {
         "egw plane": ("egw E-GW 1e-8", c, f"wall/egw E-GW 1e-8 {c} heat area 1e5 temperature "
                       "v_twall zplane 0 NULL"),
+        "egw plane, granular's order": ("egw E-GW 1e-8", c, f"wall/egw E-GW 1e-8 {c} heat area "
+                                        "1e5 zplane 0 NULL temperature v_twall"),
         "gran plane": ("granular", f"hertz/material {E} 1.0 {NU} {g}",
                        f"wall/gran granular hertz/material {E} 1.0 {NU} {g} zplane 0 NULL "
                        "temperature v_twall"),
@@ -218,7 +223,8 @@ def test_wall_temperature_variable():
         errors[name] = next((l.strip() for l in out.splitlines() if "ERROR" in l), "")
     same_error = errors["egw plane"] != "" and \
         errors["egw plane"].split(" (")[0] == errors["gran plane"].split(" (")[0]
-    dp = abs(runs["egw plane"] - runs["gran plane"]) / abs(runs["gran plane"])
+    dp = max(abs(runs[n] - runs["gran plane"]) / abs(runs["gran plane"])
+             for n in ("egw plane", "egw plane, granular's order"))
     dr = abs(runs["egw region"] - runs["gran region"]) / abs(runs["gran region"])
     dv = abs(runs["egw plane"] - runs["egw 200"]) / abs(runs["egw 200"])
     ok = dp < 1e-6 and dr < 1e-6 and dv > 1e-3 and same_error
@@ -243,6 +249,31 @@ def test_default_damping_vs_granular():
     d = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
     e = restitution_of(o2)
     return d < 1e-6 and e < 0.9, f"e {restitution_of(o1):.9f} vs {e:.9f}, |dv|/v {d:.1e} (< 1e-6)"
+
+
+def test_collision_example():
+    """The README's collision example as its lines run it (examples/collision.in, EP-GW by
+    default and `-var mid 2`, E-GW), on 1 rank: no WARNING (the deck gave psi to E-GW too,
+    and E-GW warned that it ignores it), E-GW's e = 1.000000, EP-GW's e within 5e-3 of the
+    egw_restitution value the deck prints (full solves; the table's TOL is 1e-3)."""
+    deck = os.path.join(ROOT, "integrations", "lammps", "examples", "collision.in")
+    res, notes = {}, []
+    for mid in (2, 3):
+        p = subprocess.run([LMP, "-in", deck, "-log", "none", "-nocite", "-var", "mid", str(mid)],
+                           cwd=TMP, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           timeout=600)
+        m = re.search(r"pair_style egw \S+: e = (\S+)", p.stdout)
+        ref = re.search(r"egw_restitution \(full solves\):\s*\n\s*(\S+)", p.stdout)
+        warn = [l for l in p.stdout.splitlines() if "WARNING" in l]
+        if p.returncode or not m or not ref:
+            return False, f"mid {mid}: rc {p.returncode} " + " ".join(
+                l for l in p.stdout.splitlines() if "ERROR" in l)
+        res[mid] = (float(m.group(1)), float(ref.group(1)))
+        if warn:
+            notes.append(f"mid {mid}: {warn[0].strip()}")
+    ok = (not notes and m and res[2][0] == 1.0 and abs(res[3][0] - res[3][1]) < 5e-3)
+    return ok, (f"E-GW e = {res[2][0]:.6f}, EP-GW e = {res[3][0]:.6f} vs egw_restitution "
+                f"{res[3][1]:.6f} (< 5e-3); warnings: {'; '.join(notes) or 'none'}")
 
 
 def test_ignored_keywords_warn():

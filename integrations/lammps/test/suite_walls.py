@@ -193,8 +193,9 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (16 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
-    never a crash or hang."""
+    """Bad fix wall/egw input (19 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    never a crash or hang. 'temperature' without its value after a region ID said "region ID
+    'temperature' does not exist" before, and one given twice was taken silently."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
         (f"wall/egw E-GW 1e-4 {c}", "wall style"),
@@ -213,6 +214,10 @@ def test_bad_wall():
         (f"wall/egw E-GW 1e-4 {c} wall_material rigid zplane 0 NULL", "wall_material"),
         (f"wall/egw E-GW 1e-4 {c} temperature abc zplane 0 NULL", "temperature"),
         (f"wall/egw E-GW 1e-4 {c} temperature v_nowhere zplane 0 NULL", "nowhere"),
+        (f"wall/egw/region E-GW 1e-4 {c} nowhere temperature", "'temperature' needs a value"),
+        (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL temperature", "'temperature' needs a value"),
+        (f"wall/egw E-GW 1e-4 {c} temperature 300 zplane 0 NULL temperature 200",
+         "'temperature' given twice"),
     ]
     bad = []
     for wall, key in cases:

@@ -4,13 +4,15 @@ overlap and speed of the flow-pressure cap, vectorised over masses and speeds.
 from __future__ import annotations
 
 import ctypes
+import math
+import warnings
 from dataclasses import dataclass
 from typing import Optional
 
 import numpy as np
 
 from ._capi import lib
-from .errors import check
+from .errors import OK, PointFailedWarning, _FAILED, _exception, check, last_error
 from .params import ArrayLike, FloatOrArray, Options, Params, _number_array, _options
 from ._calls import _Batch, _arr, _array, _keyword_only, _loop, _scalar_or_array
 
@@ -146,32 +148,48 @@ def first_yield(params: Params, *, mass: ArrayLike) -> FirstYield:
     Parameters
     ----------
     params : Params
-        One contact (scalar fields) with ``flow_pressure`` p_y >= 0.
+        The contact, with ``flow_pressure`` p_y >= 0 (array fields broadcast with mass).
     mass : float or array, > 0
         Effective mass m*, 1/m* = 1/m1 + 1/m2 [mass].
 
     Returns
     -------
     FirstYield
-        overlap delta_y and speed v_y; both inf when flow_pressure is 0 (no bulk yield).
+        overlap delta_y and speed v_y (floats, or arrays of the broadcast shape); both inf
+        where flow_pressure is 0 (no bulk yield).
 
     Raises
     ------
     InvalidArgumentError
-        params invalid, or mass not finite and > 0 (named).
+        params invalid, or mass not finite and > 0 (named, with the point's index for
+        arrays; ``egw.errstate(failed="nan")`` gives NaN there instead).
     TypeError
-        params not a scalar egw.Params.
+        params not an egw.Params.
     """
-    if not isinstance(params, Params) or not params.is_scalar:
-        raise TypeError("params must be one egw.Params with scalar fields")
-    m = _array(mass, "mass")
-    c = params.to_c()
+    b = _Batch(params, mass=mass)
+    (pp, sp), (pm, sm) = b.params, b.inputs["mass"]
+    mode, failed = _FAILED.get(), 0
 
     def call(i, dy, vy):
-        check(lib.egw_first_yield(ctypes.byref(c), float(m.reshape(-1)[i]), dy, vy))
+        nonlocal failed
+        status = lib.egw_first_yield(ctypes.byref(pp[i * sp]), pm[i * sm], dy, vy)
+        if status == OK:
+            return
+        if mode == "raise":
+            message = last_error()
+            if b.shape != ():
+                index = tuple(int(j) for j in np.unravel_index(i, b.shape))
+                message = f"index {index[0] if len(index) == 1 else index}: {message}"
+            raise _exception(status, message)
+        failed += 1
+        dy._obj.value = vy._obj.value = math.nan
 
-    overlap, speed = _loop(m.shape, 2, call)
-    if params.flow_pressure == 0:
-        overlap[...] = np.inf    # the C call's DBL_MAX: never
-        speed[...] = np.inf
-    return FirstYield(*_scalar_or_array(m.shape, overlap, speed))
+    overlap, speed = _loop(b.shape, 2, call)
+    if mode == "warn" and failed:
+        warnings.warn(f"{failed} of {b.n} points failed and are NaN", PointFailedWarning,
+                      stacklevel=3)
+    free = (np.broadcast_to(np.asarray(params.flow_pressure, dtype=np.float64), b.shape) == 0) \
+        & ~np.isnan(overlap)
+    overlap[free] = np.inf    # the C call's DBL_MAX: never
+    speed[free] = np.inf
+    return FirstYield(*_scalar_or_array(b.shape, overlap, speed))

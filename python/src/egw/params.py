@@ -65,8 +65,9 @@ def _brief(value) -> str:
 def _refuse_masked(name: str, value) -> None:
     """Masked arrays are refused (never a mask dropped silently)."""
     if np.ma.is_masked(value):
-        raise TypeError(f"{name}: a masked array with {np.ma.count_masked(value)} masked "
-                        "values: egw would compute under the mask; pass the valid values "
+        n = int(np.ma.count_masked(value))
+        raise TypeError(f"{name}: a masked array with {n} masked value{'' if n == 1 else 's'}"
+                        ": egw would compute under the mask; pass the valid values "
                         "(x.compressed()), or x.filled(np.nan) under "
                         "egw.errstate(failed='nan') and np.ma.masked_invalid on the result")
 

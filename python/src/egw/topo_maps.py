@@ -279,8 +279,9 @@ def _from_surface_topography(top: Any, unit: Optional[str],
 def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic: bool,
                  what: str) -> HeightMap:
     if np.ma.is_masked(heights):
-        raise ValueError(f"{what}: a masked array with {np.ma.count_masked(heights)} masked "
-                         "pixels: masked pixels are missing data; fill or crop them first "
+        n = int(np.ma.count_masked(heights))
+        raise ValueError(f"{what}: a masked array with {n} masked pixel{'' if n == 1 else 's'}"
+                         ": masked pixels are missing data; fill or crop them first "
                          "(summits and moments are undefined next to them)")
     z = np.asarray(heights, dtype=np.float64)
     if z.ndim != 2 or min(z.shape) < 3:
