@@ -352,7 +352,8 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * loading profile at delta. EP-GW: Hertz's pressure plus the rough unloading pressure
  * p_G(d(r), d_max(r)), w the rough layer's deflection plus Hertz's, pointwise within
  * o->rel_tol of the peak and the largest deflection (the unloading solve tightened by 10
- * until it settles; the history loaded at 1e-4 of rel_tol). Smooth sphere with the cap
+ * until it settles; the history loaded at 1e-4 of rel_tol, where that does not converge
+ * at 1e-3, 1e-2, 1 of it, as egw_solve_unload's). Smooth sphere with the cap
  * loaded beyond first yield: the elastic contact of the deformed shape (the cap solver
  * on 256 unloading rings, egw_solve_unload on 64); w is the surfaces' total displacement,
  * positive toward each other: elastic plus the permanent plastic crater u_pl(r), so that

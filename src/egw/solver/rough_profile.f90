@@ -114,7 +114,8 @@ contains
    !> EP-GW: Hertz + the rough unloading pressure p_G(d, d_max) (unload_profile) and w
    !> the rough layer's deflection + Hertz's, the unloading solve tightened by 10 until
    !> the profile changes by at most rel_tol of its peak (pressure) and of its largest
-   !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10). A rough sphere
+   !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10; 1e-3, 1e-2, 1 of it
+   !> where that does not converge, as solve_contact_unload). A rough sphere
    !> with the cap: capped_rough_unload_profile; after a history the small-sigma route
    !> loaded (no rough field): route_unload_profile.
    subroutine contact_profile_unload(params, options, delta, delta_max, r, pressure, &
@@ -133,7 +134,9 @@ contains
       type(scaled_problem) :: prob
       real(dp), allocatable :: pg(:), d(:), dmin(:), p_prev(:), w_prev(:), p_new(:), &
          & w_new(:), rs(:)
-      integer :: i, level
+      !> the history's rel_tol as fractions of the solve's, tried in turn
+      real(dp), parameter :: history_steps(4) = [1.0e-4_dp, 1.0e-3_dp, 1.0e-2_dp, 1.0_dp]
+      integer :: i, level, step
       logical :: converged
 
       call check_unload_input(params, options, delta, delta_max, error)
@@ -145,9 +148,22 @@ contains
       end if
       call check_radii(r, size(pressure), size(deflection), error)
       if (allocated(error)) return
+      ! (the history at 1e-4 of rel_tol, at least 1e-10; where that does not converge,
+      ! 10 and 100 times looser ones, then one at rel_tol, as solve_contact_unload's: E-GW
+      ! + cap at sigma/delta_y = 1e-7, rel_tol 1e-4 failed at 1e-8 and 1e-7 where the force
+      ! answered; doc/stability.md Stop 48 (audit14))
       tight = options
-      tight%rel_tol = max(1.0e-10_dp, 1.0e-4_dp*options%rel_tol)
-      call load_history(params, tight, delta_max, hist, loaded, error)
+      do step = 1, size(history_steps)
+         tight%rel_tol = max(1.0e-10_dp, history_steps(step)*options%rel_tol)
+         if (step > 1) then
+            if (tight%rel_tol <= max(1.0e-10_dp, history_steps(step - 1)*options%rel_tol)) &
+               & cycle
+         end if
+         if (allocated(error)) deallocate (error)
+         call load_history(params, tight, delta_max, hist, loaded, error)
+         if (.not. allocated(error)) exit
+         if (error%stat /= egw_not_converged) return
+      end do
       if (allocated(error)) return
       if (hist%capped) then
          call cap_unload_profile(history_cap(hist), cap_profile_rings, delta, r, pressure, &
