@@ -242,9 +242,9 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
  * EP-GW + cap tables (doc/formats.md 6); egw_profile the smooth sphere's loading
  * profile beyond delta_y (p <= p_y; see egw_profile), egw_profile_unload its unloading
- * profile; both give a rough sphere's with the cap (the total pressure <= p_y). Not yet:
- * egw_profile_unload after a history the small-sigma route loaded (EGW_UNSUPPORTED),
- * force and universal tables (EGW_INVALID_PARAMETER). */
+ * profile; both give a rough sphere's with the cap (the total pressure <= p_y; after a
+ * history the small-sigma route loaded, the smooth cap's shifted to the route's force).
+ * Not yet: force and universal tables (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -352,7 +352,8 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * loading profile at delta. EP-GW: Hertz's pressure plus the rough unloading pressure
  * p_G(d(r), d_max(r)), w the rough layer's deflection plus Hertz's, pointwise within
  * o->rel_tol of the peak and the largest deflection (the unloading solve tightened by 10
- * until it settles; the history loaded at 1e-4 of rel_tol). Smooth sphere with the cap
+ * until it settles; the history loaded at 1e-4 of rel_tol, where that does not converge
+ * at 1e-3, 1e-2, 1 of it, as egw_solve_unload's). Smooth sphere with the cap
  * loaded beyond first yield: the elastic contact of the deformed shape (the cap solver
  * on 256 unloading rings, egw_solve_unload on 64); w is the surfaces' total displacement,
  * positive toward each other: elastic plus the permanent plastic crater u_pl(r), so that
@@ -360,7 +361,10 @@ int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
  * at or below the residual overlap p = 0, w = u_pl. Rough spheres with the cap: the
  * rough solver's total unloading pressure (<= p_y) within rel_tol, w elastic (as
  * egw_profile); after a history loaded by the small-sigma route (sigma/delta_y <= ~1e-6,
- * no rough field kept): EGW_UNSUPPORTED. Statuses as egw_profile (EGW_INVALID_ARGUMENT for a delta_max that is
+ * no rough field kept): the smooth cap's unloading profile at delta + D, D the shift with
+ * which its force is the route's (egw_solve_unload's, EGW_NOT_CONVERGED where that
+ * refuses; D = O((sigma/delta_y)^(2/3) delta_y)), w elastic (without u_pl) as above, and
+ * p = w = 0 at or below the residual overlap. Statuses as egw_profile (EGW_INVALID_ARGUMENT for a delta_max that is
  * not finite, n < 0 or a bad radius, EGW_NULL_POINTER for p, r, pressure, deflection);
  * outputs untouched on failure. */
 int egw_profile_unload(const egw_params *p, const egw_options *o, double delta,

@@ -25,11 +25,12 @@ program small_sigma_residual
    real(dp), parameter :: pi = acos(-1.0_dp)
    real(dp), parameter :: candidates(6) = [5.0e-5_dp, 1.0e-4_dp, 2.0e-4_dp, 5.0e-4_dp, &
       & 1.0e-3_dp, 3.0e-5_dp]
-   integer, parameter :: n_cases = 5
-   real(dp), parameter :: maxima(n_cases) = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 10.0_dp]
-   real(dp), parameter :: fractions(n_cases) = [0.145_dp, 0.15_dp, 0.16_dp, 0.18_dp, 0.53_dp]
+   integer, parameter :: n_cases = 6
+   real(dp), parameter :: maxima(n_cases) = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 10.0_dp, 2.0_dp]
+   real(dp), parameter :: fractions(n_cases) = [0.145_dp, 0.15_dp, 0.16_dp, 0.18_dp, &
+      & 0.53_dp, 0.2_dp]
    real(dp), parameter :: targets(n_cases) = [1.0e-6_dp, 1.0e-6_dp, 1.0e-6_dp, 1.0e-6_dp, &
-      & 1.0e-10_dp]
+      & 1.0e-10_dp, 1.0e-6_dp]
    real(dp) :: py, force_y, p_cap, force, d(4), s(4), used(4), fit3, fit4
    integer :: i, k, n
    logical :: ok

@@ -5,12 +5,17 @@ p_y = 2/pi, from 2 delta_y: the rough model's discrete unloading solves at sigma
 = 1e-5 .. 2e-4 and their shifts D_j, P_cap(delta + D_j) = P_j). For each overlap, of each
 sigma_j the solve at the tightest rel_tol that converged; d_j = D_j/x_j,
 x_j = (sigma_j/sigma)**(2/3), fitted by least squares as a polynomial of degree 1, 2, 3 in
-x_j and evaluated at x = 1 (the target sigma): D. Prints D per degree, the fraction of
+x_j and evaluated at x = 1 (the target sigma): D. With --pick consensus (stop 48), of each
+sigma_j the tightest solve whose force agrees with the next looser one's within that one's
+rel_tol, climbing from the loosest (rel_tol 1e-5): near the residual overlap a tighter
+solve can jump away from the looser ones by up to 5e-4 under an estimate of 1e-7 (the
+one-element disc of doc/stability.md Stop 47 (resid13): sigma_j = 2e-5 delta_y, 0.1442
+delta_max, rel_tol 1e-6), and the tightest would take it. Prints D per degree, the fraction of
 delta_max of delta + D (for tools/reference/cap_near_residual.py --at, the independent
 smooth cap), and the force's relative uncertainty 1.5 |D_3 - D_1| / (delta + D - delta_r)
 (P_cap ~ (delta - delta_r)**(3/2) there).
 
-    python tools/reference/shift_reference.py shift.csv [--sigma 1e-6]
+    python tools/reference/shift_reference.py shift.csv [--sigma 1e-6] [--pick consensus]
 """
 import argparse
 import csv
@@ -22,10 +27,12 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("csv")
     ap.add_argument("--sigma", type=float, default=1e-6)
+    ap.add_argument("--pick", choices=("tightest", "consensus"), default="tightest")
     args = ap.parse_args()
     delta_max = 2.0
     residual = None
     best = {}
+    solves = {}
     with open(args.csv) as f:
         for row in csv.reader(f):
             if not row:
@@ -42,8 +49,18 @@ def main():
             if force <= 0 or shift < -1:
                 continue
             key = (frac, sigma)
+            solves.setdefault(key, {})[tol] = (force, shift)
             if key not in best or tol < best[key][0]:
                 best[key] = (tol, shift)
+    if args.pick == "consensus":
+        for key, by_tol in solves.items():
+            tols = sorted(by_tol, reverse=True)
+            pick = tols[0]
+            for tol in tols[1:]:
+                if abs(by_tol[tol][0] / by_tol[pick][0] - 1.0) > pick:
+                    break
+                pick = tol
+            best[key] = (pick, by_tol[pick][1])
     print("fraction,n,degree,D,fraction_shifted,force_uncertainty")
     for frac in sorted({k[0] for k in best}, reverse=True):
         rows = sorted((k[1],) + v for k, v in best.items() if k[0] == frac)

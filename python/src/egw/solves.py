@@ -232,11 +232,9 @@ def profile(params: Params, delta: float, r: ArrayLike,
     ------
     InvalidArgumentError
         Invalid parameters, a NaN overlap or delta_max, or a negative radius.
-    EgwError
-        The unloading profile (delta_max given) of a rough sphere with the cap
-        after a history the small-sigma route loaded (status EGW_UNSUPPORTED).
     NotConvergedError
-        The solve did not converge.
+        The solve did not converge (also the small-sigma route's refusal, whose
+        unloading profile is the smooth cap's shifted to the route's force).
     """
     p = _params(params)
     radii = _array(r, "r").reshape(-1).copy()

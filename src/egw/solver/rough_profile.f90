@@ -15,12 +15,14 @@ module egw_rough_profile
    use egw_smooth_sphere, only: hertz_pressure, hertz_deflection
    use egw_unloading, only: unloading_pressure
    use egw_halfspace, only: influence_row
-   use egw_cap_sphere, only: cap_options
+   use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load, cap_unload, &
+      & u_plastic
    use egw_cap_profile, only: cap_profile, cap_unload_profile
    use egw_sphere_solver, only: solver_options, scaled_problem, discrete_solution, scaled, &
       & negligible, base_gap, closest_gap, solve_scaled, total_pressure
-   use egw_rough_sphere, only: solve_result, loading_history, load_history, check_input, &
-      & check_unload_input, smooth_capped, unloading_problem, history_cap, loaded_by_route
+   use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
+      & check_input, check_unload_input, smooth_capped, unloading_problem, history_cap, &
+      & loaded_by_route
    implicit none
    private
 
@@ -112,9 +114,10 @@ contains
    !> EP-GW: Hertz + the rough unloading pressure p_G(d, d_max) (unload_profile) and w
    !> the rough layer's deflection + Hertz's, the unloading solve tightened by 10 until
    !> the profile changes by at most rel_tol of its peak (pressure) and of its largest
-   !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10). A rough sphere
+   !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10; 1e-3, 1e-2, 1 of it
+   !> where that does not converge, as solve_contact_unload). A rough sphere
    !> with the cap: capped_rough_unload_profile; after a history the small-sigma route
-   !> loaded (no rough field): egw_unsupported.
+   !> loaded (no rough field): route_unload_profile.
    subroutine contact_profile_unload(params, options, delta, delta_max, r, pressure, &
       & deflection, error)
       type(contact_params), intent(in) :: params   !< the contact
@@ -131,7 +134,9 @@ contains
       type(scaled_problem) :: prob
       real(dp), allocatable :: pg(:), d(:), dmin(:), p_prev(:), w_prev(:), p_new(:), &
          & w_new(:), rs(:)
-      integer :: i, level
+      !> the history's rel_tol as fractions of the solve's, tried in turn
+      real(dp), parameter :: history_steps(4) = [1.0e-4_dp, 1.0e-3_dp, 1.0e-2_dp, 1.0_dp]
+      integer :: i, level, step
       logical :: converged
 
       call check_unload_input(params, options, delta, delta_max, error)
@@ -143,9 +148,22 @@ contains
       end if
       call check_radii(r, size(pressure), size(deflection), error)
       if (allocated(error)) return
+      ! (the history at 1e-4 of rel_tol, at least 1e-10; where that does not converge,
+      ! 10 and 100 times looser ones, then one at rel_tol, as solve_contact_unload's: E-GW
+      ! + cap at sigma/delta_y = 1e-7, rel_tol 1e-4 failed at 1e-8 and 1e-7 where the force
+      ! answered; doc/stability.md Stop 48 (audit14))
       tight = options
-      tight%rel_tol = max(1.0e-10_dp, 1.0e-4_dp*options%rel_tol)
-      call load_history(params, tight, delta_max, hist, loaded, error)
+      do step = 1, size(history_steps)
+         tight%rel_tol = max(1.0e-10_dp, history_steps(step)*options%rel_tol)
+         if (step > 1) then
+            if (tight%rel_tol <= max(1.0e-10_dp, history_steps(step - 1)*options%rel_tol)) &
+               & cycle
+         end if
+         if (allocated(error)) deallocate (error)
+         call load_history(params, tight, delta_max, hist, loaded, error)
+         if (.not. allocated(error)) exit
+         if (error%stat /= egw_not_converged) return
+      end do
       if (allocated(error)) return
       if (hist%capped) then
          call cap_unload_profile(history_cap(hist), cap_profile_rings, delta, r, pressure, &
@@ -157,10 +175,8 @@ contains
          return
       end if
       if (loaded_by_route(hist)) then
-         call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//", delta_max = "//format_real(delta_max) &
-            & //": the history was loaded by the small-sigma route (no rough field), whose " &
-            & //"unloading profile is not available (forces are)")
+         hist%options = options
+         call route_unload_profile(hist, delta, r, pressure, deflection, error)
          return
       end if
       if (params%flow_pressure > 0.0_dp) then
@@ -264,6 +280,89 @@ contains
       pressure = p_new(2:)*pressure_unit(params)
       deflection = w_new(2:)*params%sigma
    end subroutine settled_profile
+
+   !> contact_profile_unload after a history the small-sigma route loaded (sigma/delta_y
+   !> <= 1e-6, no rough field; doc/theory.md section 12 "Profiles with the cap"): the
+   !> smooth cap's unloading profile shifted as the route's force is. The route's force
+   !> P at delta (solve_unload, its estimate checked against options%rel_tol as there)
+   !> is the smooth cap's at delta + D (D = O(sigma**(2/3)), the rough layer's compliance;
+   !> P_cap(delta + D) = P by Newton safeguarded by bisection, cap_shift); the profile is
+   !> the smooth cap's there on cap_profile_rings rings (cap_unload_profile): the pressure,
+   !> and w less the plastic crater u_pl, the elastic deflection that the rough solver's
+   !> profiles give (capped_rough_unload_profile). Its force 2 pi int p r dr is the
+   !> route's P to the rings' error; as sigma -> 0, D -> 0 and the profile is the smooth
+   !> cap's. At or below the residual overlap (P = 0): p = 0 and w = 0 (no contact; the
+   !> rough solver's elastic deflection of a negligible contact).
+   subroutine route_unload_profile(hist, delta, r, pressure, deflection, error)
+      type(loading_history), intent(in) :: hist   !< loaded by the route
+      real(dp), intent(in) :: delta, r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      type(cap_history) :: cap
+      type(cap_result) :: at_max
+      real(dp) :: shift, u, du
+      integer :: i
+      call solve_unload(hist, delta, res, error)
+      if (allocated(error)) return
+      if (.not. res%force > 0.0_dp) then
+         pressure = 0.0_dp
+         deflection = 0.0_dp
+         return
+      end if
+      call cap_load(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
+         & hist%delta_max, cap_options(n_rings=cap_profile_rings/2, n_levels=2), cap, &
+         & at_max, error, "delta_max")
+      if (allocated(error)) return
+      call cap_shift(cap, delta, res%force, shift, error)
+      if (allocated(error)) return
+      call cap_unload_profile(cap, cap_profile_rings, delta + shift, r, pressure, &
+         & deflection, error)
+      if (allocated(error)) return
+      do i = 1, size(r)
+         call u_plastic(cap, r(i)/cap%a_y, u, du)
+         deflection(i) = deflection(i) - cap%delta_y*u
+      end do
+   end subroutine route_unload_profile
+
+   !> The shift D of the smooth cap's unloading curve (history) with cap_unload(delta + D)
+   !> = force, 0 < force < P_cap(delta_max): Newton on the cap's stiffness, safeguarded by
+   !> bisection in (residual overlap, delta_max]; egw_not_converged (naming force) where no
+   !> root is found to 1e-10 of force.
+   subroutine cap_shift(history, delta, force, shift, error)
+      type(cap_history), intent(in) :: history
+      real(dp), intent(in) :: delta, force
+      real(dp), intent(out) :: shift
+      type(egw_error), allocatable, intent(out) :: error
+      integer, parameter :: max_steps = 200
+      type(cap_result) :: at
+      real(dp) :: lo, hi, y
+      integer :: it
+      shift = 0.0_dp
+      lo = history%residual*history%delta_y
+      hi = history%delta_max*history%delta_y
+      y = min(max(delta, lo), hi)
+      do it = 1, max_steps
+         call cap_unload(history, y, at, error)
+         if (allocated(error)) return
+         if (at%force > force) then
+            hi = y
+         else
+            lo = y
+         end if
+         if (abs(at%force - force) <= 4.0_dp*epsilon(1.0_dp)*force) exit
+         if (hi - lo <= 4.0_dp*epsilon(1.0_dp)*hi) exit
+         y = y - (at%force - force)/max(at%stiffness, tiny(1.0_dp))
+         if (.not. (y > lo .and. y < hi)) y = 0.5_dp*(lo + hi)
+      end do
+      if (.not. abs(at%force - force) <= 1.0e-10_dp*force) then
+         call fatal_error(error, egw_not_converged, "profile_unload: the smooth cap's " &
+            & //"unloading force does not reach the small-sigma route's "// &
+            & format_real(force)//" near delta = "//format_real(delta))
+         return
+      end if
+      shift = y - delta
+   end subroutine cap_shift
 
    !> contact_profile_unload of a rough sphere with the cap after the discrete loading
    !> history hist: the unloading solve (the history's closest field, the cap's law and
