@@ -14,7 +14,7 @@ module test_rough_cap
    use egw_status, only: egw_not_converged
    use egw_table, only: force_table, build_table, table_eval
    use egw_sphere_mesh, only: disc_refined, with_history_edges
-   use egw_flow_cap, only: flow_cap
+   use egw_flow_cap, only: flow_cap, not_evaluated
    use egw_rough_profile, only: contact_profile_unload
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load, u_plastic
    use egw_cap_profile, only: cap_unload_profile
@@ -100,7 +100,9 @@ contains
          & new_unittest("est_rel_err below the force floor", test_floor_estimate), &
          & new_unittest("far beyond first yield: refused naming delta", test_far_beyond_yield), &
          & new_unittest("plastic_shifts: law(h_max + u_pl) = p_y, offsets, GW and ZMC", &
-         & test_plastic_shifts) &
+         & test_plastic_shifts), &
+         & new_unittest("plastic_shifts: deep points unevaluated, law_max and reuse", &
+         & test_plastic_shifts_deep) &
          & ]
    end subroutine collect_rough_cap
 
@@ -1801,5 +1803,94 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_plastic_shifts
+
+   !> flow_cap's plastic_shifts on a mesh-like field with a deep plastic zone (h_max from
+   !> -40 to 3, not in order, a ring that is not deep inside it; 61 points): the law is not evaluated at deep points whose
+   !> neighbours are deep (law_max = not_evaluated there), and every output is what the
+   !> definition gives with the law evaluated everywhere (here, by the test): law_max equal
+   !> to the law bit for bit where given (the same evaluation), not_evaluated only where the
+   !> point and both neighbours have law > p_y; offsets t - c to 1e-15 p_y and
+   !> law(h_max + u_pl) = p_y to 1e-12 p_y (as test_plastic_shifts); and some points
+   !> skipped. Then the solver's reuse: law_max from that call known at every other point
+   !> (not_evaluated ones included, which are no value) gives the same shifts and offsets
+   !> bit for bit and the same law_max. GW (psi 0) and ZMC summits (psi 1), p_y = law(-2).
+   subroutine test_plastic_shifts_deep(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 61
+      type(gw_flat_law) :: law
+      type(flow_cap) :: cap
+      real(dp) :: h_max(n), ps_max(n), p(n), dpdh(n), shift(n), offset(n), law_max(n), &
+         & shift2(n), offset2(n), law_max2(n), p1(1), d1(1), c, t
+      logical :: known(n), deep_row
+      integer :: k, i, skipped
+      real(dp), parameter :: psi(2) = [0.0_dp, 1.0_dp]
+      do i = 1, n
+         ! a gap rising from -40 at the centre to 3 at the rim, wavy (not monotone in i),
+         ! with a bump above p_y's gap inside the deep zone: deep points next to points
+         ! that are not deep lie on three edges, two of them far below the closest deep point
+         h_max(i) = -40.0_dp + 43.0_dp*(real(i - 1, dp)/(n - 1))**2 &
+            & + 2.0_dp*sin(0.7_dp*real(i, dp)) + 40.0_dp*exp(-((i - 20)/3.0_dp)**2)
+         ps_max(i) = 0.3_dp*max(0.0_dp, 1.0_dp - real(i - 1, dp)/40.0_dp)
+      end do
+      do k = 1, 2
+         law%scale = 1.0_dp
+         law%psi = psi(k)
+         call law%pressure([-2.0_dp], p1, d1)
+         cap%p_y = p1(1)
+         ps_max = ps_max*cap%p_y/maxval(ps_max)*0.3_dp
+         call law%pressure(h_max, p, dpdh)
+         call cap%plastic_shifts(law, ps_max, h_max, shift, offset, law_max)
+         skipped = 0
+         do i = 1, n
+            deep_row = p(i) > cap%p_y
+            if (i > 1) deep_row = deep_row .and. p(i - 1) > cap%p_y
+            if (i < n) deep_row = deep_row .and. p(i + 1) > cap%p_y
+            if (law_max(i) >= not_evaluated) then
+               skipped = skipped + 1
+               call check(error, deep_row, "psi "//str(psi(k))//", h_max "//str(h_max(i)) &
+                  & //": not evaluated outside the deep zone's interior")
+            else
+               call check(error, law_max(i) == p(i), "psi "//str(psi(k))//", h_max " &
+                  & //str(h_max(i))//": law_max "//str(law_max(i))//", law "//str(p(i)))
+            end if
+            if (allocated(error)) return
+            c = cap%p_y - ps_max(i)
+            if (.not. p(i) > c) then
+               call check(error, shift(i) == 0.0_dp .and. offset(i) == 0.0_dp, "psi " &
+                  & //str(psi(k))//", h_max "//str(h_max(i))//": below the cap, shift " &
+                  & //str(shift(i))//", offset "//str(offset(i)))
+               if (allocated(error)) return
+               cycle
+            end if
+            t = min(cap%p_y, p(i))
+            call check(error, abs(offset(i) - (t - c)) <= 1.0e-15_dp*cap%p_y, "psi " &
+               & //str(psi(k))//", h_max "//str(h_max(i))//": offset "//str(offset(i)) &
+               & //", t - c = "//str(t - c))
+            if (allocated(error)) return
+            if (.not. p(i) > cap%p_y) then
+               call check(error, shift(i) == 0.0_dp, "psi "//str(psi(k))//", h_max " &
+                  & //str(h_max(i))//": law below p_y, shift "//str(shift(i)))
+               if (allocated(error)) return
+               cycle
+            end if
+            call law%pressure([h_max(i) + shift(i)], p1, d1)
+            call check(error, shift(i) > 0.0_dp .and. &
+               & abs(p1(1) - cap%p_y) <= 1.0e-12_dp*cap%p_y, "psi "//str(psi(k)) &
+               & //", h_max "//str(h_max(i))//": law(h_max + shift) = "//str(p1(1)) &
+               & //", p_y "//str(cap%p_y))
+            if (allocated(error)) return
+         end do
+         call check(error, skipped >= 10, "psi "//str(psi(k))//": only " &
+            & //str(real(skipped, dp))//" deep points skipped")
+         if (allocated(error)) return
+         ! the solver's reuse: every other point known from the first call
+         known = [(mod(i, 2) == 0, i=1, n)]
+         law_max2 = law_max
+         call cap%plastic_shifts(law, ps_max, h_max, shift2, offset2, law_max2, known)
+         call check(error, all(shift2 == shift) .and. all(offset2 == offset) .and. &
+            & all(law_max2 == law_max), "psi "//str(psi(k))//": reuse changed the results")
+         if (allocated(error)) return
+      end do
+   end subroutine test_plastic_shifts_deep
 
 end module test_rough_cap

@@ -264,8 +264,8 @@ contains
       ! magnitudes| is the rounding error bound of either).
       phi_e = shifted_density(h, e)
       phi_q = shifted_density(h, q)
-      call gauss_moments(kind_power32, 1.5_dp, e, q, hardness_coeff, 0.0_dp, e, h, i_e, j_e, &
-         & m3, m4)
+      call gauss_moments(kind_power32, 1.5_dp, e, q, hardness_coeff, 0.0_dp, e, h, .true., &
+         & i_e, j_e, m3, m4)
       b1 = e*sqrt(e)*phi_e
       b2 = 1.5_dp*j_e
       if (m4 <= b1 + b2) then
@@ -273,7 +273,8 @@ contains
       else
          di_e = b1 - b2
       end if
-      call gauss_moments(kind_ep, 1.0_dp, e, q, hardness_coeff, e, q, h, i_ep, j_ep, m3, m4)
+      call gauss_moments(kind_ep, 1.0_dp, e, q, hardness_coeff, e, q, h, .true., i_ep, j_ep, &
+         & m3, m4)
       b1 = 2.0_dp*q*phi_q
       b2 = hardness_coeff*e*phi_e
       if (m4 <= b1 + b2 + abs(j_ep)) then
@@ -311,10 +312,10 @@ contains
       real(dp), intent(out) :: p     !< the integral p(h)
       real(dp), intent(out) :: dpdh  !< dp/dh
       real(dp) :: i_e, j_e, i_ep, j_ep, unused, unused4, i_p, di_p, f0, c
-      call gauss_moments(kind_power32, 1.5_dp, e, q, hardness_coeff, 0.0_dp, e, h, i_e, j_e, &
+      call gauss_moments(kind_power32, 1.5_dp, e, q, hardness_coeff, 0.0_dp, e, h, .false., &
+         & i_e, j_e, unused, unused4)
+      call gauss_moments(kind_ep, 1.0_dp, e, q, hardness_coeff, e, q, h, .false., i_ep, j_ep, &
          & unused, unused4)
-      call gauss_moments(kind_ep, 1.0_dp, e, q, hardness_coeff, e, q, h, i_ep, j_ep, unused, &
-         & unused4)
       call plastic_part(h, q, i_p, di_p, f0)
       c = sqrt(e)/hardness_coeff
       p = i_e + c*(i_ep + 2.0_dp*i_p)
@@ -475,7 +476,7 @@ contains
          f = asymptotic_negative(n, h)
       else
          call gauss_moments(kind_power, n, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, huge(1.0_dp), h, &
-            & f, unused, unused3, unused4)
+            & .false., f, unused, unused3, unused4)
       end if
    end function general_order
 
@@ -488,10 +489,13 @@ contains
    !> change (dloss) and, for x^p and log x, by the distance to x = 0 (panel_ratio). A panel
    !> touching x = 0 with a branch point there is done by its Taylor series instead.
    !> All node values are scaled by phi(h + x_m), formed exactly, so nothing overflows and
-   !> nothing cancels in the exponent.
-   pure subroutine gauss_moments(kind, p, e, q, kc, a, b, h, m1, m2, m3, m4)
+   !> nothing cancels in the exponent. with_m34 false: m3 and m4 are not wanted (the
+   !> rough-flat law and F_n take m1, m2 only), and the panels skip their sums (a sixth
+   !> of a panel's work; m1, m2 the same to the bit), so that m3 and m4 are meaningless.
+   pure subroutine gauss_moments(kind, p, e, q, kc, a, b, h, with_m34, m1, m2, m3, m4)
       integer, intent(in) :: kind
       real(dp), intent(in) :: p, e, q, kc, a, b, h
+      logical, intent(in) :: with_m34
       real(dp), intent(out) :: m1, m2, m3, m4
       real(dp) :: xm, zh, zl, lo_end, hi_end, x, w, s1, s2, s3, s4, loss, slope, dl, lnqe
       real(dp) :: r1, r2, r3, r4, ratio, pw, lmax, f
@@ -619,10 +623,13 @@ contains
          ! weight times phi(h + x)/phi(h + x_m) at the 16 nodes
          fac = gl_w16*exp(-0.5_dp*dlt*(2.0_dp*zh + dlt))
          call integrand(kind, x0 + off, p, e, q, kc, lnqe, g1, g2)
-         ! h + x = (h + x_m) + (x - x_m), exact up to two roundings
-         z = (zh + dlt) + zl
          r1 = half*sum(fac*g1)
          r2 = half*sum(fac*g2)
+         r3 = 0.0_dp
+         r4 = 0.0_dp
+         if (.not. with_m34) return
+         ! h + x = (h + x_m) + (x - x_m), exact up to two roundings
+         z = (zh + dlt) + zl
          r3 = half*sum(fac*g1*z)
          r4 = half*sum(fac*g1*abs(z))
       end subroutine gl_panel

@@ -9,6 +9,14 @@ module egw_flow_cap
    implicit none
    private
 
+   !> cap_plastic_shifts' law_max where the law was not evaluated (deep inside the plastic
+   !> zone: the law is above p_y there).
+   real(dp), parameter, public :: not_evaluated = huge(1.0_dp)
+   !> The band of h below the closest deep point where cap_plastic_shifts still evaluates
+   !> the law, relative to 1 + |h|: the law rises by ~1e-3 |dlaw/dh| across it, far above
+   !> its rounding, so no point deeper than the band can be at or below p_y.
+   real(dp), parameter :: deep_band = 1.0e-3_dp
+
    !> The flow-pressure cap: p_y in the solver's pressure unit.
    type, public :: flow_cap
       real(dp) :: p_y = huge(1.0_dp)   !< scaled flow pressure (> 0)
@@ -86,12 +94,20 @@ contains
       shift = h - h_max
    end subroutine cap_plastic_shift
 
-   !> cap_plastic_shift at many points (the Gauss points of a mesh), the law evaluated at
-   !> all h_max in one call. Where law(h_max) > p_y (t = p_y, the deep plastic zone) the
-   !> shifted gap h_c is the one root h_y of law(h) = p_y whatever the point, so it is
-   !> solved once (from the largest such h_max, the closest) and u_pl = h_y - h_max:
-   !> point by point the same Newton from each h_max cost ~5 law evaluations a point
-   !> (a third of an EP-GW + cap hysteresis build). The same root to rounding.
+   !> cap_plastic_shift at many points (the Gauss points of a mesh). Where law(h_max) > p_y
+   !> (t = p_y, the deep plastic zone) the shifted gap h_c is the one root h_y of
+   !> law(h) = p_y whatever the point, so it is solved once (from the largest such h_max,
+   !> the closest) and u_pl = h_y - h_max: point by point the same Newton from each h_max
+   !> cost ~5 law evaluations a point (a third of an EP-GW + cap hysteresis build). The
+   !> same root to rounding. Deep points need no law value either (their shift and offset
+   !> follow from h_y and p_y): the law is evaluated from the largest h_max down (sorted)
+   !> through the first point above p_y (the closest deep point) and a band of
+   !> deep_band (1 + |h|) below it; the points below that band are deep because the law
+   !> decreases, and are not evaluated unless law_max needs them (EP-GW + cap table of the
+   !> README: 1.1 M of 1.9 M evaluations here skipped, at gaps of -5 to -90 sigma where one
+   !> costs 0.4-1 us; doc/benchmarks.md "Stop 48 (rcost14)"). The same points are deep as
+   !> with every point evaluated, the same root from the same closest point, the same
+   !> shifts and offsets.
    !> With known (and law_max): law_max holds law(h_max) already where known (the solver's
    !> values from an earlier mesh's same Gauss points), and the law is evaluated at the
    !> other points only (point by point the same values).
@@ -101,50 +117,78 @@ contains
       class(flat_law), intent(in) :: law
       real(dp), intent(in) :: p_smooth_max(:), h_max(:)   !< as cap_plastic_shift's, per point
       real(dp), intent(out) :: shift(:), offset(:)   !< as cap_plastic_shift's, per point
-      !> law(h_max) (optional: kept by the solver for the cap's kink scan); in: where known
+      !> law(h_max) (optional: kept by the solver for the cap's kink scan), except at deep
+      !> points whose neighbours (index +-1) are deep too: not_evaluated there (> p_y, as
+      !> the law; the kink scan's brackets never end at such a point). In: where known.
       real(dp), intent(inout), optional :: law_max(:)
       logical, intent(in), optional :: known(:)   !< where law_max holds law(h_max) on entry
-      real(dp) :: p(size(h_max)), dpdh(size(h_max)), c, t, h_y, p1(1), dpdh1(1)
-      real(dp), allocatable :: p_at(:), dpdh_at(:)
-      integer, allocatable :: at(:)
-      integer :: i, deepest
-      logical :: reuse
+      real(dp) :: p(size(h_max)), dpdh(size(h_max)), c, t, h_y, p1(1), dpdh1(1), band
+      integer :: order(size(h_max)), i, k, n, deepest, first_deep
+      !> p(i) is law(h_max(i)) (from known, or evaluated here: then dpdh(i) is its slope)
+      logical :: have(size(h_max)), fresh(size(h_max)), edge
       shift = 0.0_dp
       offset = 0.0_dp
-      if (size(h_max) == 0) return
-      reuse = .false.
-      if (present(known) .and. present(law_max)) reuse = any(known)
-      if (reuse) then
-         at = pack([(i, i=1, size(h_max))], .not. known)
-         allocate (p_at(size(at)), dpdh_at(size(at)))
-         if (size(at) > 0) call law%pressure(h_max(at), p_at, dpdh_at)
-         p = law_max
-         dpdh = 0.0_dp   ! (not used where known: law_root's start is evaluated again)
-         p(at) = p_at
-         dpdh(at) = dpdh_at
-      else
-         call law%pressure(h_max, p, dpdh)
+      n = size(h_max)
+      if (n == 0) return
+      have = .false.
+      if (present(known) .and. present(law_max)) then
+         ! (a known not_evaluated is no value)
+         have = known .and. law_max < not_evaluated
+         where (have) p = law_max
       end if
-      if (present(law_max)) law_max = p
+      fresh = .false.
+      dpdh = 0.0_dp
+      call order_descending(h_max, order)
       deepest = 0
-      do i = 1, size(h_max)
-         if (.not. p(i) > cap%p_y) cycle
-         if (deepest == 0) then
+      band = 0.0_dp
+      first_deep = n + 1
+      do k = 1, n
+         i = order(k)
+         if (deepest > 0) then
+            if (h_max(i) < h_max(deepest) - band) then
+               first_deep = k
+               exit
+            end if
+         end if
+         if (.not. have(i)) then
+            call law_point(law, h_max(i), p(i), dpdh(i))
+            have(i) = .true.
+            fresh(i) = .true.
+         end if
+         if (deepest == 0 .and. p(i) > cap%p_y) then
             deepest = i
-         else if (h_max(i) > h_max(deepest)) then
-            deepest = i
+            band = deep_band*(1.0_dp + abs(h_max(i)))
          end if
       end do
-      h_y = 0.0_dp
-      if (deepest > 0 .and. reuse) then
-         if (known(deepest)) then
-            call law%pressure(h_max(deepest:deepest), p1, dpdh1)
-            dpdh(deepest) = dpdh1(1)
-         end if
+      ! order(k:) lie deeper than the band below the closest deep point: law > p_y there
+      do k = first_deep, n
+         i = order(k)
+         if (.not. have(i)) p(i) = not_evaluated
+      end do
+      if (present(law_max)) then
+         ! the kink scan brackets sign changes of law - p_y (and law - (p_y - p_s)) between
+         ! neighbouring points: a deep point next to one that is not deep needs its value
+         do i = 1, n
+            if (have(i)) cycle
+            edge = .false.
+            if (i > 1) edge = .not. p(i - 1) > cap%p_y
+            if (i < n) edge = edge .or. .not. p(i + 1) > cap%p_y
+            if (.not. edge) cycle
+            call law_point(law, h_max(i), p(i), dpdh(i))
+            have(i) = .true.
+            fresh(i) = .true.
+         end do
+         law_max = p
       end if
-      if (deepest > 0) call law_root(law, cap%p_y, h_max(deepest), p(deepest), &
-         & dpdh(deepest), h_y)
-      do i = 1, size(h_max)
+      h_y = 0.0_dp
+      if (deepest > 0) then
+         if (.not. fresh(deepest)) then
+            ! (known: law_root's start needs the slope too)
+            call law_point(law, h_max(deepest), p1(1), dpdh(deepest))
+         end if
+         call law_root(law, cap%p_y, h_max(deepest), p(deepest), dpdh(deepest), h_y)
+      end if
+      do i = 1, n
          c = cap%p_y - p_smooth_max(i)
          if (.not. p(i) > c) cycle
          t = min(cap%p_y, p(i))
@@ -153,6 +197,55 @@ contains
          shift(i) = h_y - h_max(i)
       end do
    end subroutine cap_plastic_shifts
+
+   !> The law and its slope at one point.
+   pure subroutine law_point(law, h, p, dpdh)
+      class(flat_law), intent(in) :: law
+      real(dp), intent(in) :: h
+      real(dp), intent(out) :: p, dpdh
+      real(dp) :: p1(1), dpdh1(1)
+      call law%pressure([h], p1, dpdh1)
+      p = p1(1)
+      dpdh = dpdh1(1)
+   end subroutine law_point
+
+   !> order: the indices of x by decreasing value, equal values by increasing index (a
+   !> stable merge sort, bottom up).
+   pure subroutine order_descending(x, order)
+      real(dp), intent(in) :: x(:)
+      integer, intent(out) :: order(:)
+      integer :: work(size(x)), width, lo, mid, hi, a, b, k, n
+      n = size(x)
+      order = [(k, k=1, n)]
+      width = 1
+      do while (width < n)
+         do lo = 1, n, 2*width
+            mid = min(lo + width, n + 1)
+            hi = min(lo + 2*width, n + 1)
+            a = lo
+            b = mid
+            do k = lo, hi - 1
+               if (a < mid .and. b < hi) then
+                  if (x(order(b)) > x(order(a))) then
+                     work(k) = order(b)
+                     b = b + 1
+                  else
+                     work(k) = order(a)
+                     a = a + 1
+                  end if
+               else if (a < mid) then
+                  work(k) = order(a)
+                  a = a + 1
+               else
+                  work(k) = order(b)
+                  b = b + 1
+               end if
+            end do
+         end do
+         order = work
+         width = 2*width
+      end do
+   end subroutine order_descending
 
    !> The root h >= h_start of law(h) = t (law decreasing, law(h_start) = p_start > t,
    !> dlaw/dh = dpdh_start there).

@@ -117,8 +117,10 @@ module egw_sphere_problem
       !> dp/d(delta) of the rough part at fixed gap.
       real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:), dpdd(:)
       !> Unloading with the cap (else not allocated), for cap_excess_points: the loading
-      !> law at gap_min (cap_fields), and the total unloading pressure before its floor at
-      !> the gaps of the last evaluation (rough_pressure's unfloored, as gap).
+      !> law at gap_min (cap_fields; flow_cap's not_evaluated, above p_y, deep in the
+      !> plastic zone where the kink scan needs no value), and the total unloading pressure
+      !> before its floor at the gaps of the last evaluation (rough_pressure's unfloored,
+      !> as gap).
       real(dp), allocatable :: law_min(:), unfloored(:)
       real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
       real(dp) :: residual = 0.0_dp, tail = 0.0_dp
@@ -400,8 +402,9 @@ contains
       real(dp), intent(in) :: r(:), gap_min(:)   !< scaled radii and the closest-approach gaps there
       !> p_s, dp_s/d(delta), gap shift and pressure offset at r
       real(dp), allocatable, intent(out) :: p_smooth(:), dps(:), shift(:), offset(:)
-      !> unloading: the loading law at gap_min (not allocated when loading); in: its values
-      !> where known (from an earlier mesh's same points)
+      !> unloading: the loading law at gap_min (not allocated when loading; not_evaluated
+      !> deep in the plastic zone, flow_cap's plastic_shifts); in: its values where known
+      !> (from an earlier mesh's same points)
       real(dp), allocatable, intent(inout), optional :: law_min(:)
       logical, intent(in), optional :: known(:)   !< where law_min is given (size(r))
       real(dp), allocatable :: ps_max(:)
