@@ -710,16 +710,19 @@ contains
    end subroutine test_shift_references
 
    !> E-GW + cap, mu 4, R = E* = 1, p_y = 2/pi (delta_y = 1), history to 2 delta_y at
-   !> rel_tol 1e-8 (from one at 1e-7 main refuses rel_tol 1e-6 there), the discrete unloading solve at sigma = 2e-5 delta_y, 0.1442 delta_max
-   !> (near the residual overlap 0.14407 delta_max: the contact a disc of ~4.9 in scaled
-   !> radius, the mesh graded to the loading's edge at 120): at rel_tol 1e-5 and 1e-6 each
+   !> rel_tol 1e-8 (from one at 1e-7 main refuses rel_tol 1e-6 there), the discrete
+   !> unloading solve at sigma = 2e-5 delta_y, 0.1442 delta_max (near the residual overlap
+   !> 0.14407 delta_max: the contact a disc of ~4.9 in scaled radius, the mesh graded to
+   !> the loading's edge at 120): at rel_tol 1e-5 and 1e-6 each
    !> answer's estimate must be below rel_tol/2 and bound its error, so two accepted answers
    !> differ by at most the sum of their rel_tols (the triangle inequality; no reference
    !> from the code is needed). Main answered 6.335328e-6 (estimate 2.1e-6, the
    !> central-disc route, 117 elements in the contact) and 6.331779e-6 (estimate 1.1e-7):
    !> 5.6e-4 apart, the second's levels all holding the whole contact in the one element
    !> from r = 0 to the kink edge, which Richardson cannot see (doc/stability.md, Stop 47
-   !> resid13). A refusal (egw_not_converged) passes.
+   !> resid13). With the disc graded (sphere_solver's central_disc): 6.335328e-6 and
+   !> 6.335331e-6 (estimates 2.1e-6, 1.6e-7; Stop 48 resid14). A refusal
+   !> (egw_not_converged) passes.
    subroutine test_contact_in_one_element(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: rel_tols(2) = [1.0e-5_dp, 1.0e-6_dp]
