@@ -573,10 +573,10 @@ contains
    !> central_disc): the graded elements there are ~ step a long, so the disc lay in one to
    !> a few of them, kept from level to level (fixed edges 0 and c), whose forces agreed
    !> while off (E-GW + cap, sigma = 2e-5 delta_y, 0.1442 delta_max after 2 delta_y: 5.6e-4
-   !> under an estimate of 1.1e-7, doc/stability.md Stop 47). Equal parts (disc_refined)
-   !> shrink with the step but miss the edge's layer, ~ c (sigma/delta)**(2/3) thin: at
-   !> sigma = 1e-6 delta_y, 0.15 delta_max (c = 158, layer 0.16) the levels of 3 to 6 parts
-   !> converged like parts**-0.7 and rel_tol 1e-5 answered 1.7e-5 off under 3.6e-6.
+   !> under an estimate of 1.1e-7, doc/stability.md Stop 47). Graded rather than in equal
+   !> parts (disc_refined) so that the elements at the disc's edge, where the contact
+   !> ends in a layer ~ c (sigma/delta)**(2/3) thin, shrink towards it (a choice: not
+   !> measured against equal parts where both apply).
    pure function disc_graded(edge, c, step) result(out)
       !> element boundaries, the disc's radius, the level's step (asinh units)
       real(dp), intent(in) :: edge(0:), c, step
