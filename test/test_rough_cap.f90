@@ -13,7 +13,7 @@ module test_rough_cap
       & solve_unload, restitution, solve_contact_unload
    use egw_status, only: egw_not_converged
    use egw_table, only: force_table, build_table, table_eval
-   use egw_sphere_mesh, only: disc_refined, with_history_edges
+   use egw_sphere_mesh, only: disc_refined, disc_graded, edge_layer_width, with_history_edges
    use egw_flow_cap, only: flow_cap, not_evaluated
    use egw_rough_profile, only: contact_profile_unload
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load, u_plastic
@@ -97,6 +97,8 @@ contains
          & test_shift_references), &
          & new_unittest("sigma/delta_y = 1e-8: profile_unload after a history by the route", &
          & test_route_profile), &
+         & new_unittest("sigma/delta_y = 2e-5 at 0.1442 delta_max: answers within their bounds", &
+         & test_contact_in_one_element), &
          & new_unittest("est_rel_err below the force floor", test_floor_estimate), &
          & new_unittest("far beyond first yield: refused naming delta", test_far_beyond_yield), &
          & new_unittest("plastic_shifts: law(h_max + u_pl) = p_y, offsets, GW and ZMC", &
@@ -182,12 +184,17 @@ contains
    !> radius c into equal parts no longer than c step/2 and leaves the others;
    !> with_history_edges keeps every edge of its own, adds the radii inside (0, outer)
    !> that are not within 1e-9 of an edge, increasing. Exact (equal parts of exact
-   !> decimal edges to 1e-15; the edges themselves copied).
+   !> decimal edges to 1e-15; the edges themselves copied). disc_graded replaces the
+   !> edges inside c by edges graded about c: increasing from 0, c an edge, the edges
+   !> beyond c kept, the graded ones their closed form c - w sinh(xi_c (n - i)/n),
+   !> xi_c = asinh(c/w), n = ceiling(2 xi_c/step) (to 1e-13 relative: rounding), and
+   !> half the step gives twice the elements (to 10 %: the ceiling).
    subroutine test_route_meshes(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: edge(0:4) = [0.0_dp, 0.5_dp, 1.0_dp, 3.0_dp, 6.0_dp]
       real(dp), allocatable :: out(:)
-      integer :: i
+      real(dp) :: w, xi
+      integer :: i, n
       ! c = 1 (the 0 and the negative radius ignored), step 0.5: at most 0.25 long, so
       ! [0, 0.5] and [0.5, 1] in 2 parts each; [1, 3] and [3, 6] untouched
       out = disc_refined(edge, [2.0_dp, 0.0_dp, 1.0_dp, -1.0_dp], 0.5_dp)
@@ -207,6 +214,25 @@ contains
       if (allocated(error)) return
       call check(error, all([(out(i) < out(i + 1), i=1, size(out) - 1)]), &
          & "with_history_edges: not increasing")
+      if (allocated(error)) return
+      ! c = 2 in [1, 3]: 0.5 and 1 replaced, 3 and 6 kept
+      out = disc_graded(edge, 2.0_dp, 0.5_dp)
+      w = edge_layer_width(2.0_dp)
+      xi = asinh(2.0_dp/w)
+      n = ceiling(2.0_dp*xi/0.5_dp)
+      call check(error, size(out) == n + 3, "disc_graded: "//str(real(size(out), dp)) &
+         & //" edges, expected "//str(real(n + 3, dp)))
+      if (allocated(error)) return
+      call check(error, out(1) == 0.0_dp .and. all(abs(out(2:n + 1) - [(2.0_dp - w*sinh(xi &
+         & *real(n - i, dp)/real(n, dp)), i=1, n)]) <= 1.0e-13_dp*2.0_dp) .and. &
+         & all(out(n + 2:) == [3.0_dp, 6.0_dp]), "disc_graded: the edges")
+      if (allocated(error)) return
+      call check(error, all([(out(i) < out(i + 1), i=1, size(out) - 1)]), &
+         & "disc_graded: not increasing")
+      if (allocated(error)) return
+      i = size(disc_graded(edge, 2.0_dp, 0.25_dp)) - 3
+      call check(error, abs(real(i, dp)/real(n, dp) - 2.0_dp) <= 0.2_dp, &
+         & "disc_graded: elements at half the step "//str(real(i, dp)))
    end subroutine test_route_meshes
 
    !> Steel beads of example cap-bead-grid (R* = 0.5 mm, E = 210 GPa, nu 0.3, pair sigma
@@ -776,6 +802,61 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_route_profile
+
+   !> E-GW + cap, mu 4, R = E* = 1, p_y = 2/pi (delta_y = 1), history to 2 delta_y at
+   !> rel_tol 1e-8 (from one at 1e-7 main refuses rel_tol 1e-6 there), the discrete
+   !> unloading solve at sigma = 2e-5 delta_y, 0.1442 delta_max (near the residual overlap
+   !> 0.14407 delta_max: the contact a disc of ~4.9 in scaled radius, the mesh graded to
+   !> the loading's edge at 120): at rel_tol 1e-5 and 1e-6 each
+   !> answer's estimate must be below rel_tol/2 and bound its error, so two accepted answers
+   !> differ by at most the sum of their rel_tols (the triangle inequality; no reference
+   !> from the code is needed). Main answered 6.335328e-6 (estimate 2.1e-6, the
+   !> central-disc route, 117 elements in the contact) and 6.331779e-6 (estimate 1.1e-7):
+   !> 5.6e-4 apart, the second's levels all holding the whole contact in the one element
+   !> from r = 0 to the kink edge, which Richardson cannot see (doc/stability.md, Stop 47
+   !> resid13). With the disc graded (sphere_solver's central_disc): 6.335328e-6 and
+   !> 6.335331e-6 (estimates 2.1e-6, 1.6e-7; Stop 48 resid14). A refusal
+   !> (egw_not_converged) passes.
+   subroutine test_contact_in_one_element(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: rel_tols(2) = [1.0e-5_dp, 1.0e-6_dp]
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: forces(2)
+      logical :: answered(2)
+      integer :: j
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, sigma=2.0e-5_dp, &
+         & mu=4.0_dp, flow_pressure=2.0_dp/pi)
+      call load_history(p, solver_options(rel_tol=1.0e-8_dp), 2.0_dp, h, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "history from 2 delta_y: "//err%message)
+         return
+      end if
+      answered = .false.
+      forces = 0.0_dp
+      do j = 1, size(rel_tols)
+         h%options%rel_tol = rel_tols(j)
+         call solve_unload(h, 0.1442_dp*2.0_dp, res, err)
+         if (allocated(err)) then
+            call check(error, err%stat == egw_not_converged, "rel_tol "//str(rel_tols(j)) &
+               & //": "//err%message)
+            if (allocated(error)) return
+            deallocate (err)
+            cycle
+         end if
+         call check(error, res%force > 0.0_dp .and. res%est_rel_err <= 0.5_dp*rel_tols(j), &
+            & "rel_tol "//str(rel_tols(j))//": P = "//str(res%force)//", estimate " &
+            & //str(res%est_rel_err))
+         if (allocated(error)) return
+         answered(j) = .true.
+         forces(j) = res%force
+      end do
+      if (all(answered)) call check(error, abs(forces(1) - forces(2)) <= &
+         & sum(rel_tols)*forces(1), "P at rel_tol 1e-5, 1e-6: "//str(forces(1))//", " &
+         & //str(forces(2))//": further apart than the sum of their rel_tols")
+   end subroutine test_contact_in_one_element
 
    !> E-GW + cap (mu 4) restitution at 3 v_y, rel_tol, at each sigma/delta_y of ratios
    !> against the smooth cap's e (sigma = 0), within rel_tol + 3.4e-6 +

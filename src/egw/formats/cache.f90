@@ -57,8 +57,10 @@ module egw_cache
    !> chord steps: rough + cap tables moved by <= 5.3e-9 of P(m), same grids; 25: the
    !> loading law's series panel by reciprocals (egw_gauss series_panel: F values move
    !> by <= 5 ulp): the EP-GW + cap table of issue 32 moved by <= 9.7e-10 relative in
-   !> its gaps, same grids.
-   integer, parameter, public :: cache_revision = 25
+   !> its gaps, same grids; 27: unloading after a capped loading (extended models, sigma/
+   !> delta_y >= 1e-5) grades a central-disc contact's elements about its edge on every
+   !> level (sphere_solver's central_disc): rough + cap tables moved.
+   integer, parameter, public :: cache_revision = 27
 
 
 contains

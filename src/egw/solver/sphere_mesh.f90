@@ -51,7 +51,7 @@ module egw_sphere_mesh
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
       & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined, &
-      & with_history_edges
+      & disc_graded, with_history_edges
 
 
    !> The state of an Illinois root search (illinois_begin, illinois_step).
@@ -564,6 +564,36 @@ contains
             & j=1, parts - 1), edge(e)]
       end do
    end function disc_refined
+
+   !> edge with its elements inside the radius c (0 < c < the outer radius) replaced by
+   !> elements graded as the family's, in asinh((c - r)/w) about c with w the layer width
+   !> of a contact edge at c (edge_layer_width), disc_elements per unit of the level's step;
+   !> c becomes an edge. Unloading after a capped loading whose contact is a central disc
+   !> [0, c] far inside the Hertz radius a the family is graded about (egw_sphere_solver's
+   !> central_disc): the graded elements there are ~ step a long, so the disc lay in one to
+   !> a few of them, kept from level to level (fixed edges 0 and c), whose forces agreed
+   !> while off (E-GW + cap, sigma = 2e-5 delta_y, 0.1442 delta_max after 2 delta_y: 5.6e-4
+   !> under an estimate of 1.1e-7, doc/stability.md Stop 47). Graded rather than in equal
+   !> parts (disc_refined) so that the elements at the disc's edge, where the contact
+   !> ends in a layer ~ c (sigma/delta)**(2/3) thin, shrink towards it (a choice: not
+   !> measured against equal parts where both apply).
+   pure function disc_graded(edge, c, step) result(out)
+      !> element boundaries, the disc's radius, the level's step (asinh units)
+      real(dp), intent(in) :: edge(0:), c, step
+      real(dp), allocatable :: out(:)
+      real(dp) :: w, xi_c
+      integer :: n, i, k
+      out = edge
+      if (.not. (c > 0.0_dp .and. c < edge(size(edge) - 1))) return
+      w = edge_layer_width(c)
+      xi_c = asinh(c/w)
+      n = max(1, ceiling(disc_elements*xi_c/step))
+      k = 0
+      do while (edge(k) <= c)
+         k = k + 1
+      end do
+      out = [0.0_dp, (c - w*sinh(xi_c*real(n - i, dp)/real(n, dp)), i=1, n), edge(k:)]
+   end function disc_graded
 
    !> edge with the radii inside (0, edge's outer radius) added as element edges (the
    !> element holding each split), except where an edge lies within 1e-9 max(1, r)
