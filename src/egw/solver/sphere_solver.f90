@@ -62,8 +62,11 @@ module egw_sphere_solver
       & effective_radius, total_pressure, smooth_force, smooth_stiffness
 
    !> The central-disc route (disc_cap_unload) only where the innermost kink edge is
-   !> below this fraction of the Hertz radius.
-   real(dp), parameter :: disc_fraction = 0.25_dp
+   !> below this fraction of the Hertz radius. 0.5: at sigma/delta_y = 2e-4 (E-GW + cap,
+   !> from 10.6 delta_y at 5.9 delta_y, issue 32) the disc's edge sat at 0.38 a and every
+   !> other route stalled (Newton cycling between the Gauss points' branches of the
+   !> total's floor at 0 in the unloaded centre); 0.25 refused it there.
+   real(dp), parameter :: disc_fraction = 0.5_dp
 
 contains
 
