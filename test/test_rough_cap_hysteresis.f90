@@ -51,7 +51,9 @@ contains
          & new_unittest("E-GW + cap at 1e-3: the knee within rel_tol/2 of solves", &
          & test_knee), &
          & new_unittest("EP-GW + cap on the map: below 0 within rel_tol of solves", &
-         & test_plastic_map) &
+         & test_plastic_map), &
+         & new_unittest("E-GW + cap at sigma/delta_y = 2e-4: builds, within rel_tol", &
+         & test_small_sigma) &
          & ]
    end subroutine collect_rough_cap_hysteresis
 
@@ -529,6 +531,46 @@ contains
          & size(table%s), " nodes: largest |P_table - P_solve|/P(m): ", worst/rel_tol, &
          & " rel_tol"
    end subroutine test_plastic_map
+
+   !> A realistic bead's roughness (issue 32): the normalised contact R = 2.0264e7 sigma,
+   !> E* = 1, mu 4, p_y = 0.01 (sigma/delta_y = 2e-4, glass beads of R 1 mm, sigma 10 nm),
+   !> 0 .. 12 delta_y at 1e-3, as egw-table builds it for the LAMMPS pair. On main
+   !> (c5b1f11) the build failed: Newton stalled (residual 4.4e-4) at delta = 29258 after
+   !> delta_max = 53125 on every route, the central-disc route refused (its innermost kink
+   !> at 0.38 of the Hertz radius, above the old 0.25). Here the table builds and at that
+   !> very point is within rel_tol of P(m) of the solve at rel_tol 1e-7 from a cold start
+   !> by tools/reference/rough_cap_small_sigma.py (independent, finer: the reference
+   !> values; measured 0.022 rel_tol). A load_history here would cost ~20 s.
+   subroutine test_small_sigma(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: rel_tol = 1.0e-3_dp, m = 53124.701157277108_dp, &
+         & d = 29257.973240289983_dp
+      real(dp), parameter :: p_m = 4.7664507653e10_dp, p_ref = 3.1382090149e8_dp
+      type(contact_params) :: params
+      type(hysteresis_table) :: table
+      type(egw_error), allocatable :: err
+      real(dp) :: f, k, state
+      integer :: stat
+      params = contact_params(model=model_egw, radius=40528473.45693511_dp/2, &
+         & modulus=1.0_dp, sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
+      call build_hysteresis(params, solver_options(), 0.0_dp, 60000.0_dp, rel_tol, table, &
+         & err)
+      if (allocated(err)) then
+         call check(error, .false., "build failed: "//err%message)
+         return
+      end if
+      state = -huge(1.0_dp)
+      call hysteresis_eval(table, m, state, f, k, stat)
+      call check(error, stat == 0 .and. abs(f - p_m) <= rel_tol*p_m, "loading at m: "// &
+         & str(f)//", solve "//str(p_m))
+      if (allocated(error)) return
+      call hysteresis_eval(table, d, state, f, k, stat)
+      call check(error, stat == 0 .and. abs(f - p_ref) <= rel_tol*p_m, "unloading: "// &
+         & str(f)//", solve "//str(p_ref)//", P(m) "//str(p_m))
+      if (allocated(error)) return
+      print '(4x, a, es9.2, a)', "sigma/delta_y = 2e-4: |P_table - P_solve|/P(m): ", &
+         & abs(f - p_ref)/p_m/rel_tol, " rel_tol"
+   end subroutine test_small_sigma
 
    !> The table at (turning point, overlap) points(:, i) against load_history +
    !> solve_unload at rel_tol 1e-7 (independent, finer solves): |P_table - P_solve| <=

@@ -59,8 +59,11 @@ module egw_cache
    !> by <= 5 ulp): the EP-GW + cap table of issue 32 moved by <= 9.7e-10 relative in
    !> its gaps, same grids; 27: unloading after a capped loading (extended models, sigma/
    !> delta_y >= 1e-5) grades a central-disc contact's elements about its edge on every
-   !> level (sphere_solver's central_disc): rough + cap tables moved.
-   integer, parameter, public :: cache_revision = 27
+   !> level (sphere_solver's central_disc): rough + cap tables moved; 28: rough + cap
+   !> unloading's central-disc route up to a disc edge of 0.5 a (was 0.25): solves that
+   !> took the history-edges route there may take it instead (within rel_tol), and tables
+   !> at sigma/delta_y ~ 2e-4 that failed build.
+   integer, parameter, public :: cache_revision = 28
 
 
 contains

@@ -62,8 +62,14 @@ module egw_sphere_solver
       & effective_radius, total_pressure, smooth_force, smooth_stiffness
 
    !> The central-disc route (disc_cap_unload) only where the innermost kink edge is
-   !> below this fraction of the Hertz radius.
-   real(dp), parameter :: disc_fraction = 0.25_dp
+   !> below this fraction of the Hertz radius. 0.5: at sigma/delta_y = 2e-4 (E-GW + cap,
+   !> from 10.6 delta_y at 5.9 delta_y, issue 32) the disc's edge sat at 0.38 a and every
+   !> other route stalled (Newton cycling between the Gauss points' branches of the
+   !> total's floor at 0 in the unloaded centre); 0.25 refused it there.
+   real(dp), parameter :: disc_fraction = 0.5_dp
+   !> The levels' central disc (central_disc): a contact ending below this fraction of
+   !> the Hertz radius (kept up to twice it once a solve's levels have one).
+   real(dp), parameter :: central_fraction = 0.25_dp
    !> The levels' central disc (central_disc) only at sigma/delta_y >= disc_sigma: at
    !> 1e-6 (E-GW + cap, 0.15 delta_max after 2 delta_y, c = 0.29 a) the disc's levels
    !> agreed while 6e-6 off and converged like step**1 beyond (kinks inside the disc
@@ -1024,7 +1030,7 @@ contains
 
    !> Unloading after a capped loading (sums_total), sigma/delta_y >= disc_sigma: the
    !> radius c of sol's contact where it is a central disc far inside the Hertz radius a
-   !> (below disc_fraction a), else 0; the next levels grade the disc's elements about c
+   !> (below central_fraction a), else 0; the next levels grade the disc's elements about c
    !> (prob%disc, sphere_mesh's disc_graded). c: the outermost Gauss point of a positive
    !> total pressure, or the nearest kink edge (prob%branch) within twice that beyond it
    !> (the floor kink, the contact's edge). Set from the locating solve and again from
@@ -1054,8 +1060,8 @@ contains
       ! (once a solve's levels have a disc, they keep it up to a/2: a level without it
       ! holds the disc in a few graded elements again, whose error the estimate cannot
       ! see; seen at 0.15 delta_max, sigma = 1e-6 delta_y, c from 0.25 a to 0.29 a)
-      if (.not. (c <= disc_fraction*prob%a .or. (prob%disc > 0.0_dp .and. &
-         & c <= 2.0_dp*disc_fraction*prob%a))) c = 0.0_dp
+      if (.not. (c <= central_fraction*prob%a .or. (prob%disc > 0.0_dp .and. &
+         & c <= 2.0_dp*central_fraction*prob%a))) c = 0.0_dp
    end function central_disc
 
    !> to <- from (the arrays moved, not copied).
