@@ -679,8 +679,9 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
 {
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
-   * [17..23] the loading table's interval (ends, cubic in delta - [17], 1 where it is
-   * ln P) */
+   * [17..23] the loading table's interval (ends, cubic in delta - [17], > 0 where it is
+   * ln P; on a log-ratio table's piece, whose cubic is -ln(P_load/P), 2 for ln P and -1
+   * for a linear interval) */
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (!(state[2] == tag)) return 0;
@@ -692,12 +693,21 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
     f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
     k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
   }
-  if (loading || state[23] > 0.0) {
-    /* the loading interval's force: all of it when loading; on a piece its ln P part */
+  if (loading || state[23] > 0.0 || (piece && state[23] < 0.0)) {
+    /* the loading interval's force: all of it when loading; on a piece its ln P part, or
+     * on a log-ratio piece the factor exp(-h) of the loading force (one exp) */
     double t = delta - state[17], t2 = t * t;
     double v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
     double d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
-    if (state[23] > 0.0) {
+    if (piece && state[23] > 1.0) {
+      double p = exp(v + f);
+      k = p * (d + k);
+      f = p;
+    } else if (piece && state[23] < 0.0) {
+      double e = exp(f);
+      k = e * (d + v * k);
+      f = v * e;
+    } else if (state[23] > 0.0) {
       double p = exp(v);
       f = f + p;
       k = k + p * d;

@@ -16,6 +16,7 @@ module egw_hysteresis_format
    use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
       & get_f64, split_checksum, checksum_line, check_table
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare, first_yield, hertz_capped
+   use egw_hysteresis_data, only: max_log_ratio, edge_breaks, edge_xi
    implicit none
    private
 
@@ -24,9 +25,12 @@ module egw_hysteresis_format
    character(len=8), parameter :: magic = "EGWHYST1"
    !> Version 1: no flow-pressure cap; version 2 (the cap, params%flow_pressure > 0: Hertz
    !> + cap, or a rough model + cap, told apart by model and sigma as the evaluation does):
-   !> flow_pressure follows the seven parameters (one float64 more in the header). Tables
-   !> without the cap are still written as version 1, byte for byte as before.
-   integer(int32), parameter :: hysteresis_version = 1, cap_version = 2
+   !> flow_pressure follows the seven parameters (one float64 more in the header); version 3
+   !> (EP-GW without the cap, not reversible: log_ratio curves) the layout of version 1,
+   !> the curves h = ln(P_load/P) on the edge map with slopes dh/d(m - delta) in place of
+   !> the gap and dg/ds. Reversible tables without the cap are still written as version 1.
+   !> A version-1 file with curves (egw before the log-ratio curves) is refused: rebuild.
+   integer(int32), parameter :: hysteresis_version = 1, cap_version = 2, log_version = 3
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
    !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
@@ -35,6 +39,14 @@ module egw_hysteresis_format
    !> The title of a Hertz + cap table (a flow_pressure line): an egw that knows only
    !> format 1 refuses it rather than read it without the cap.
    character(len=*), parameter :: csv_title_cap = "# egw hysteresis table, CSV format 2"
+   !> A log-ratio table's header (columns and title): h = ln(P_load/P) and dh/dxi.
+   character(len=*), parameter :: csv_columns_log = "delta_max,length,s,log_ratio,"// &
+      & "dlog_ratio_dxi"
+   character(len=*), parameter :: csv_title_log = "# egw hysteresis table, CSV format 3"
+   !> What a file of the gap curves that the log-ratio curves replaced is told.
+   character(len=*), parameter :: rebuild_note = ": an EP-GW table of the gap curves "// &
+      & "(egw before the log-ratio curves, doc/formats.md section 6), which this egw "// &
+      & "does not read: rebuild the table (egw-table, egw_hysteresis_build)"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
 
@@ -47,6 +59,7 @@ module egw_hysteresis_format
       integer :: k_load = 0, k_row = 0
       real(dp) :: p(7) = -huge(1.0_dp), lmeta(7) = -huge(1.0_dp)
       real(dp) :: flow_pressure = 0.0_dp   !< format 2 only
+      logical :: log = .false.             !< format 3 (log-ratio curves)
       real(dp) :: v(5)
    end type csv_reading
 
@@ -88,7 +101,8 @@ contains
       if (starts_with(bytes, magic)) then
          call parse_binary(path, bytes, table, error)
       else if (starts_with(bytes, csv_columns//new_line("a")//csv_title) .or. &
-         & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap)) then
+         & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap) .or. &
+         & starts_with(bytes, csv_columns_log//new_line("a")//csv_title_log)) then
          call parse_csv(path, bytes, table, error)
       else
          call fatal_error(error, egw_bad_file, "path = "//path//": not an egw hysteresis "// &
@@ -122,6 +136,8 @@ contains
       if (table%params%flow_pressure /= 0.0_dp) then
          version = cap_version
          extra = 8
+      else if (.not. table%reversible) then
+         version = log_version
       end if
       allocate (character(len=header_bytes + extra + 8*(5*n_load + 2*n_m + n_s + &
          & 2*n_m*n_s) + 4) :: buf)
@@ -177,10 +193,20 @@ contains
             & "endianness, or corrupted")
          return
       end if
-      if (head(1) /= hysteresis_version .and. head(1) /= cap_version) then
+      if (head(1) /= hysteresis_version .and. head(1) /= cap_version .and. &
+         & head(1) /= log_version) then
          call bad(error, path, "format version "//int_str(int(head(1)))//" is not "// &
             & "supported (this egw reads versions "//int_str(int(hysteresis_version))// &
-            & " and "//int_str(int(cap_version))//")")
+            & ", "//int_str(int(cap_version))//" and "//int_str(int(log_version))//")")
+         return
+      end if
+      if (head(1) == hysteresis_version .and. head(5) == 0) then
+         call bad(error, path, "format version 1 with curves"//rebuild_note)
+         return
+      end if
+      if (head(1) == log_version .and. head(5) /= 0) then
+         call bad(error, path, "format version 3 of a reversible table (version 3 is the "// &
+            & "log-ratio curves')")
          return
       end if
       extra = 0
@@ -250,8 +276,13 @@ contains
       associate (l => table%loading)
          ! the column header first and the metadata as '#' lines, as the 1-D tables:
          ! pandas.read_csv(path, comment="#") reads the unloading rows as they are
-         head = csv_columns//new_line("a")//merge(csv_title_cap, csv_title, &
-            & table%params%flow_pressure /= 0.0_dp)//new_line("a")// &
+         if (table%log_ratio) then
+            head = csv_columns_log//new_line("a")//csv_title_log//new_line("a")
+         else
+            head = csv_columns//new_line("a")//merge(csv_title_cap, csv_title, &
+               & table%params%flow_pressure /= 0.0_dp)//new_line("a")
+         end if
+         head = head// &
             & "# egw_version = "//egw_version_string//new_line("a")// &
             & "# model = "//int_str(table%params%model)//" ("// &
             & model_name(table%params%model)//")"//new_line("a")
@@ -275,9 +306,7 @@ contains
             & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
             & "stiffness [modulus*length]; energy [modulus*length^3]; s, gap [1]"// &
             & new_line("a")// &
-            & "# rows: unloading force = P_load(delta) - P_load(delta_max)*gap at s = "// &
-            & "(delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), cubic Lagrange in "// &
-            & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
+            & rows_note(table%log_ratio)// &
             & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
          call put_line(head)
          do i = 1, size(l%delta)
@@ -303,6 +332,24 @@ contains
       end subroutine put_line
    end subroutine write_csv
 
+   !> The '# rows:' line of a hysteresis CSV: what a row's numbers are.
+   pure function rows_note(log_ratio) result(line)
+      logical, intent(in) :: log_ratio
+      character(len=:), allocatable :: line
+      if (log_ratio) then
+         line = "# rows: unloading force = P_load(delta)*exp(-log_ratio) at s of the edge "// &
+            & "map of length and sigma (s piecewise linear in delta_max - delta, "// &
+            & "doc/formats.md), cubic Hermite in s (slope dlog_ratio_dxi per "// &
+            & "delta_max - delta), cubic Lagrange in delta_max over four neighbouring "// &
+            & "curves, 1/length too (doc/formats.md)"
+      else
+         line = "# rows: unloading force = P_load(delta) - P_load(delta_max)*gap at s = "// &
+            & "(delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), "// &
+            & "cubic Lagrange in delta_max over four neighbouring curves, length too "// &
+            & "(doc/formats.md)"
+      end if
+   end function rows_note
+
    !> Read the CSV form (doc/formats.md §6): the checksum line, then line by line the
    !> metadata and loading nodes ('#' lines, read_csv_meta) and the unloading rows
    !> (read_csv_row), then whether all were there (finish_csv).
@@ -322,6 +369,7 @@ contains
             & "written by egw)")
          return
       end if
+      reading%log = starts_with(text, csv_columns_log//new_line("a"))
       start = 1
       do while (start <= sum_at)
          eol = index(text(start:), new_line("a"))
@@ -492,6 +540,16 @@ contains
       table%params = params_from(reading%model, reading%p)
       table%params%flow_pressure = reading%flow_pressure
       table%reversible = reading%rev /= 0
+      if (.not. reading%log .and. .not. table%reversible .and. &
+         & .not. reading%flow_pressure > 0.0_dp) then
+         call bad(error, path, "CSV format 1 with curves"//rebuild_note)
+         return
+      end if
+      if (reading%log .and. (table%reversible .or. reading%flow_pressure /= 0.0_dp)) then
+         call bad(error, path, "CSV format 3 of a reversible table or one with the cap "// &
+            & "(format 3 is the log-ratio curves')")
+         return
+      end if
       table%loading%params = table%params
       table%loading%n_log = reading%n_log
       call set_table_meta(table%loading, reading%lmeta)
@@ -592,6 +650,10 @@ contains
             & "and s from 0 to 1 must increase")
          return
       end if
+      if (.not. t%params%flow_pressure > 0.0_dp) then
+         call check_log_curves(path, t, error)
+         return
+      end if
       ! the gap is relative to the turning-point force: within [0, 1] up to the tables'
       ! own errors
       if (any(t%gap(1, :) /= 0.0_dp) .or. any(t%gap < -10*t%rel_tol) .or. &
@@ -601,6 +663,46 @@ contains
       end if
       call check_gap_slopes(path, t, error)
    end subroutine check_hysteresis
+
+   !> The log-ratio curves (EP-GW without the cap): s_max = 1, the edge map's breaks 1/2
+   !> and 3/4 among the s nodes (no interval straddles one), h = ln(P_load/P) 0 at s = 0
+   !> and within [-10 rel_tol, max_log_ratio] (the unloading force at most the loading
+   !> force, up to the tables' errors), and no cubic rising by more than 4 max_log_ratio
+   !> over an interval from its slopes (|dh/dxi| dxi; built tables: < 1 at the
+   !> residual-overlap edge; a crafted slope of 1e300 does not).
+   subroutine check_log_curves(path, t, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: xi_b(3), x0, x1
+      integer :: i, j
+      if (t%s_max /= 1.0_dp .or. .not. (any(t%s == 0.5_dp) .and. any(t%s == 0.75_dp))) then
+         call bad(error, path, "unloading grid: log-ratio curves need s_max = 1 and the "// &
+            & "edge map's breaks s = 0.5, 0.75 among the s nodes")
+         return
+      end if
+      if (any(t%gap(1, :) /= 0.0_dp) .or. any(t%gap < -10*t%rel_tol) .or. &
+         & any(t%gap > max_log_ratio)) then
+         call bad(error, path, "unloading data: log_ratio must be 0 at s = 0 and within "// &
+            & "[-10 rel_tol, "//format_real(max_log_ratio)//"]")
+         return
+      end if
+      do j = 1, size(t%m)
+         call edge_breaks(t%length(j), t%params%sigma, xi_b)
+         do i = 1, size(t%s) - 1
+            call edge_xi(xi_b, t%s(i), x0)
+            call edge_xi(xi_b, t%s(i + 1), x1)
+            if (max(abs(t%slope(i, j)), abs(t%slope(i + 1, j)))*(x1 - x0) > &
+               & 4*max_log_ratio) then
+               call bad(error, path, "unloading data: curve "//int_str(j)//", s nodes "// &
+                  & int_str(i)//", "//int_str(i + 1)//": slope "// &
+                  & format_real(max(abs(t%slope(i, j)), abs(t%slope(i + 1, j))))// &
+                  & " inconsistent with the log ratio")
+               return
+            end if
+         end do
+      end do
+   end subroutine check_log_curves
 
    !> The gap's slopes: |dg/ds| (s_{i+1} - s_i) <= 2 at both ends of every interval of
    !> every curve, so that a curve's cubic stays within about 1 of the chord of its
