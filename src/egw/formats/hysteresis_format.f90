@@ -26,9 +26,10 @@ module egw_hysteresis_format
    !> Version 1: no flow-pressure cap; version 2 (the cap, params%flow_pressure > 0: Hertz
    !> + cap, or a rough model + cap, told apart by model and sigma as the evaluation does):
    !> flow_pressure follows the seven parameters (one float64 more in the header); version 3
-   !> (EP-GW without the cap, not reversible: log_ratio curves) the layout of version 1,
-   !> the curves h = ln(P_load/P) on the edge map with slopes dh/d(m - delta) in place of
-   !> the gap and dg/ds. Reversible tables without the cap are still written as version 1.
+   !> (log_ratio curves: EP-GW without the cap, or a rough model whose cap does not act)
+   !> the layout of version 2 (flow_pressure >= 0), the curves h = ln(P_load/P) on the
+   !> edge map with slopes dh/d(m - delta) in place of the gap and dg/ds. Reversible
+   !> tables without the cap are still written as version 1.
    !> A version-1 file with curves (egw before the log-ratio curves) is refused: rebuild.
    integer(int32), parameter :: hysteresis_version = 1, cap_version = 2, log_version = 3
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
@@ -133,11 +134,12 @@ contains
       call grid_sizes(table, n_m, n_s)
       version = hysteresis_version
       extra = 0
-      if (table%params%flow_pressure /= 0.0_dp) then
+      if (table%log_ratio) then
+         version = log_version
+         extra = 8
+      else if (table%params%flow_pressure /= 0.0_dp) then
          version = cap_version
          extra = 8
-      else if (.not. table%reversible) then
-         version = log_version
       end if
       allocate (character(len=header_bytes + extra + 8*(5*n_load + 2*n_m + n_s + &
          & 2*n_m*n_s) + 4) :: buf)
@@ -148,7 +150,7 @@ contains
          & merge(1_int32, 0_int32, table%reversible), int(n_load, int32), &
          & int(table%loading%n_log, int32), int(n_m, int32), int(n_s, int32)])
       call put_f64(buf, pos, params_array(table%params))
-      if (version == cap_version) call put_f64(buf, pos, [table%params%flow_pressure])
+      if (extra > 0) call put_f64(buf, pos, [table%params%flow_pressure])
       call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
       call put_f64(buf, pos, table_meta(table%loading))
       call put_f64(buf, pos, table%loading%delta)
@@ -210,7 +212,7 @@ contains
          return
       end if
       extra = 0
-      if (head(1) == cap_version) extra = 8
+      if (head(1) == cap_version .or. head(1) == log_version) extra = 8
       n_load = head(6)
       n_m = head(8)
       n_s = head(9)
@@ -238,7 +240,13 @@ contains
             & format_real(flow(1))//" (version 2 is the flow-pressure cap's, > 0)")
          return
       end if
+      if (head(1) == log_version .and. .not. flow(1) >= 0.0_dp) then
+         call bad(error, path, "format version 3 with flow_pressure = "// &
+            & format_real(flow(1))//" (must be >= 0)")
+         return
+      end if
       table%reversible = head(5) /= 0
+      table%log_ratio = head(1) == log_version
       table%rel_tol = meta(1)
       table%delta_max = meta(2)
       table%max_error = meta(3)
@@ -545,11 +553,12 @@ contains
          call bad(error, path, "CSV format 1 with curves"//rebuild_note)
          return
       end if
-      if (reading%log .and. (table%reversible .or. reading%flow_pressure /= 0.0_dp)) then
-         call bad(error, path, "CSV format 3 of a reversible table or one with the cap "// &
-            & "(format 3 is the log-ratio curves')")
+      if (reading%log .and. (table%reversible .or. reading%flow_pressure < 0.0_dp)) then
+         call bad(error, path, "CSV format 3 of a reversible table (format 3 is the "// &
+            & "log-ratio curves')")
          return
       end if
+      table%log_ratio = reading%log
       table%loading%params = table%params
       table%loading%n_log = reading%n_log
       call set_table_meta(table%loading, reading%lmeta)
@@ -650,7 +659,7 @@ contains
             & "and s from 0 to 1 must increase")
          return
       end if
-      if (.not. t%params%flow_pressure > 0.0_dp) then
+      if (t%log_ratio) then
          call check_log_curves(path, t, error)
          return
       end if

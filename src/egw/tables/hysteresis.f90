@@ -479,7 +479,7 @@ contains
             & l%stiffness(size(l%stiffness)), deep_coefficient(l%params), &
             & 0.25_dp*huge(1.0_dp))
       end associate
-      table%log_ratio = .not. table%reversible .and. .not. table%params%flow_pressure > 0.0_dp
+      if (table%reversible) table%log_ratio = .false.
       if (table%reversible) return   ! no curves: the loading table serves
       n_s = size(table%s)
       n_m = size(table%m)

@@ -146,6 +146,10 @@ contains
          call cap_reached(params, options, rel_tol, delta_max, shift, error)
          if (allocated(error)) return
       end if
+      ! log-ratio curves where the unloading force stays positive: EP-GW without the cap,
+      ! and a rough model whose cap does not act below delta_max (the cap-free table);
+      ! where it acts, the force vanishes below a residual overlap: the gap
+      table%log_ratio = .not. shift
       ! delta_max grid: from the loading cut-off (1e-12 of P_ref: the slowest impacts turn
       ! in the tail, where summits yield too) to delta_max, dyadic (bisection keeps it so:
       ! the m buckets rely on it)
@@ -194,8 +198,8 @@ contains
       if (allocated(error)) return
       table%s_max = 2*maxval((m - unloading_floor(table%loading, table%rel_tol))/ &
          & curves%length)
-      ! EP-GW without the cap: log-ratio curves on the edge map (s = 1 at its last break)
-      if (.not. params%flow_pressure > 0.0_dp) table%s_max = 1.0_dp
+      ! log-ratio curves on the edge map (s = 1 at its last break)
+      if (table%log_ratio) table%s_max = 1.0_dp
       call build_curves(table, options, m, shift, curves, error)
       if (allocated(error)) return
       call refine_m(table, options, shift, m, curves, error, progress)
@@ -485,11 +489,12 @@ contains
       end do
    end function stencil_mismatch
 
-   !> Whether the table's curves are log-ratio curves (EP-GW without the cap; the cap's
-   !> curves, whose force is 0 below a residual overlap, keep the gap).
+   !> Whether the table's curves are log-ratio curves (build_hysteresis sets it: EP-GW
+   !> without the cap or with a cap that does not act; curves on which the cap acts,
+   !> whose force is 0 below a residual overlap, keep the gap).
    elemental logical function log_table(table)
       type(hysteresis_table), intent(in) :: table
-      log_table = .not. table%params%flow_pressure > 0.0_dp
+      log_table = table%log_ratio
    end function log_table
 
    !> The first s nodes of curve's kind.

@@ -121,8 +121,9 @@ module egw_hysteresis_data
       !> an integer in [1, 2**52) hashed from the stored data: a state's cached turning
       !> point is used only by a table with the same data (hysteresis_eval_state)
       real(dp) :: tag = 0.0_dp
-      !> the curves store h = ln(P_load(delta)/P) (log_ratio: EP-GW without the cap) instead
-      !> of the gap g, at s of the edge map (edge_breaks: s piecewise linear in m - delta,
+      !> the curves store h = ln(P_load(delta)/P) (log_ratio: EP-GW without the cap, or a
+      !> rough model whose cap does not act below delta_max; set by the build and the
+      !> readers) instead of the gap g, at s of the edge map (edge_breaks: s piecewise linear in m - delta,
       !> the residual-overlap edge at s in [1/2, 3/4] for every m), slopes as
       !> dh/d(m - delta); s_max = 1 and inv_span = 1/L (hysteresis_prepare)
       logical :: log_ratio = .false.
