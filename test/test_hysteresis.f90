@@ -856,6 +856,24 @@ contains
       call check(error, err%stat == egw_bad_file .and. index(err%message, "negative") > 0, &
          & "negative force: "//err%message)
       if (allocated(error)) return
+      ! the same curves under the gap curves' header (CSV format 1, before the log-ratio
+      ! curves), checksum valid: refused with the advice to rebuild
+      call write_hysteresis(t, "build/hyst_bad.csv", format_csv, err)
+      call slurp("build/hyst_bad.csv", bytes)
+      at = index(bytes, new_line("a"))
+      at = at + index(bytes(at + 1:), new_line("a"))
+      bytes = "delta_max,length,s,gap,dgap_ds"//new_line("a")// &
+         & "# egw hysteresis table, CSV format 1"//bytes(at:)
+      at = index(bytes, new_line("a")//"# fnv1a32 = ", back=.true.)
+      bytes = bytes(1:at)//"# fnv1a32 = "//hex8(checksum_of(bytes(1:at)))// &
+         & " (checksum of the bytes above this line)"//new_line("a")
+      call spill("build/hyst_bad.csv", bytes)
+      call read_hysteresis("build/hyst_bad.csv", back, err)
+      call check(error, allocated(err), "gap-curve CSV (format 1) refused")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_bad_file .and. index(err%message, "rebuild") > 0 &
+         & .and. .not. allocated(back%m), "format 1 with curves: "//err%message)
+      if (allocated(error)) return
       call read_hysteresis("build/no_such_hysteresis_file", back, err)
       call check(error, allocated(err), "missing file")
       if (allocated(error)) return

@@ -110,7 +110,10 @@ contains
             & "table (neither binary magic "//magic//" nor its CSV header)")
          return
       end if
-      if (allocated(error)) return
+      if (allocated(error)) then   ! (a parse may have filled part of it)
+         call clear(table)
+         return
+      end if
       call check_hysteresis(path, table, error)
       if (allocated(error)) then
          call clear(table)
