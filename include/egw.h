@@ -581,8 +581,10 @@ void egw_universal_free(egw_universal *u);
  * delta_max_state owned by the caller (a double per contact; a new contact starts at
  * -HUGE_VAL). Loading (delta >= state) follows the loading table and moves the state up;
  * below the state, the unloading curve of that state (reloading retraces it). Built
- * adaptively: solves at the midpoints of both grids agree to rel_tol of the force at the
- * turning point. Evaluation allocates nothing and takes no lock; a table is read-only
+ * adaptively: solves at the midpoints of both grids agree to rel_tol of the local force
+ * down to 1e-3 of the force at the turning point, and of 1e-3 of that below (EP-GW, and
+ * rough models whose cap does not act, store ln(P_load/P)); where the flow-pressure cap
+ * acts, to rel_tol of the force at the turning point (doc/formats.md section 6). Evaluation allocates nothing and takes no lock; a table is read-only
  * after the build, so any number of threads may evaluate it (each with its own states).
  * EP-GW alone does not let a packing come to rest: it dissipates only while a contact
  * loads beyond its past maximum overlap, and below it unloading and reloading retrace one
@@ -606,10 +608,10 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * probe of 18 such solves (loading and unloading from delta_max and delta_max/2;
  * milliseconds at the usual tolerances) fails at once where they cannot reach it, rather
  * than after minutes of building; below rel_tol 1e-4 a pilot table at 1e-3 (a few
- * percent of a 1e-5 build) estimates the build's delta_max grid (growing 2.75x per
+ * percent of a 1e-5 build) estimates the build's delta_max grid (growing 2x per
  * decade of rel_tol, as measured builds do) and refuses a rel_tol whose grid would pass
  * the build's limit of 400 nodes, naming the smallest rel_tol within it (the glass pair
- * of issue 22: 1e-6 refused in seconds, ~2.2e-6 within). A probe that passes promises
+ * of issue 22: 1e-6 refused in seconds, ~1.9e-6 within). A probe that passes promises
  * nothing: the build may still meet a failing solve or its limit. Every
  * EGW_NOT_CONVERGED message starts "hysteresis table: rel_tol = <the caller's> ..." and
  * says what the solves' tolerance was and what the failing solve reached (its error
@@ -679,8 +681,9 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
 {
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
-   * [17..23] the loading table's interval (ends, cubic in delta - [17], 1 where it is
-   * ln P) */
+   * [17..23] the loading table's interval (ends, cubic in delta - [17], > 0 where it is
+   * ln P; on a log-ratio table's piece, whose cubic is -ln(P_load/P), 2 for ln P and -1
+   * for a linear interval) */
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (!(state[2] == tag)) return 0;
@@ -692,12 +695,21 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
     f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
     k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
   }
-  if (loading || state[23] > 0.0) {
-    /* the loading interval's force: all of it when loading; on a piece its ln P part */
+  if (loading || state[23] > 0.0 || (piece && state[23] < 0.0)) {
+    /* the loading interval's force: all of it when loading; on a piece its ln P part, or
+     * on a log-ratio piece the factor exp(-h) of the loading force (one exp) */
     double t = delta - state[17], t2 = t * t;
     double v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
     double d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
-    if (state[23] > 0.0) {
+    if (piece && state[23] > 1.0) {
+      double p = exp(v + f);
+      k = p * (d + k);
+      f = p;
+    } else if (piece && state[23] < 0.0) {
+      double e = exp(f);
+      k = e * (d + v * k);
+      f = v * e;
+    } else if (state[23] > 0.0) {
       double p = exp(v);
       f = f + p;
       k = k + p * d;
@@ -725,10 +737,13 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
  * work that comes back; the rest is dissipated when the contact unloads (a DEM code's
  * kinetic + this energy falls while contacts load and stays while they unload or reload).
  * Reversible tables: the loading curve's energy. The state is not changed. It integrates
- * the force egw_hysteresis_eval returns, 0 also where, far down the separated range, the
- * interpolated curve dips below 0 within rel_tol (those dips sampled per table when it
- * is built or read; kinetic + this energy is constant to ~1e-8 of it while a contact
- * unloads, measured against quadrature of the force; a few table lookups a call).
+ * the force egw_hysteresis_eval returns: on a ln(P_load/P) table (EP-GW) by 8-point
+ * Gauss-Legendre on each smooth piece from the curve's span end to delta (a cost that
+ * grows with the pieces crossed); on a gap table (the cap acting) 0 also where, far down
+ * the separated range, the interpolated curve dips below 0 within rel_tol (those dips
+ * sampled per table when it is built or read; a few table lookups a call); kinetic + this
+ * energy is constant to ~1e-8 of it while a contact unloads, measured against
+ * quadrature of the force.
  * EGW_OUT_OF_RANGE above the table's delta_max (value written); EGW_INVALID_ARGUMENT for
  * NaN or overflowing input; EGW_NULL_POINTER for h or energy. */
 int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,
@@ -753,8 +768,8 @@ void egw_hysteresis_free(egw_hysteresis *h);
 
 /* Write h to path (NUL-terminated) atomically (temporary file, then rename: a failed write
  * leaves an existing file intact). format: EGW_FORMAT_CSV (unloading data as rows
- * delta_max,s,ratio,dratio_ds; loading curve and metadata as '#' lines; a checksum line
- * last) or EGW_FORMAT_BINARY (versioned, checksummed); doc/formats.md section 6.
+ * delta_max,length,s and log_ratio,dlog_ratio_dxi (EP-GW) or gap,dgap_ds (the cap acting);
+ * loading curve and metadata as '#' lines; a checksum line last) or EGW_FORMAT_BINARY (versioned, checksummed); doc/formats.md section 6.
  * Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (other formats), EGW_NULL_POINTER. */
 int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
 
@@ -762,8 +777,10 @@ int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
  * the file's start). *out receives a handle only for a file that passed every check
  * (checksum; finite values; the loading curve every check of egw_table_read, stiffness
  * and energy consistent with its forces included; increasing grids; gaps 0 at the
- * turning point and within [0, 1], with slopes that keep each curve near that range:
- * doc/formats.md section 6).
+ * turning point and within [0, 1], with slopes that keep each curve near that range, or
+ * log ratios 0 there and within [-10 rel_tol, 100]: doc/formats.md section 6). An EP-GW
+ * file of the gap curves (binary version 1 / CSV format 1 with curves, egw before the log
+ * ratio) is refused: rebuild it.
  * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),
  * EGW_NULL_POINTER. */
 int egw_hysteresis_read(const char *path, egw_hysteresis *out);
@@ -786,7 +803,8 @@ typedef struct {
   double reference_force; /* P_ref [force] of the loading table's cut-off rule: the loading
                            * force at min(0, delta_max) for rough models, at delta_max for
                            * Hertz (egw_table_info.reference_force of the loading curve) */
-  double rel_tol;      /* requested tolerance, relative to the force at the turning point */
+  double rel_tol;      /* requested tolerance, relative to max(P, 1e-3 P(m)) (ln(P_load/P)
+                        * curves) or to the force at the turning point P(m) (the cap acting) */
   double max_error;    /* largest mismatch found at the build's check solves */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;

@@ -44,8 +44,10 @@ module egw_cache
    !> the residual overlap; 15: unloading solves' locating solve warm-started from the
    !> curve's last solve, lu_factor's rank-2 updates and the Jacobian's columns in one
    !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m); 16:
-   !> rough + cap tables with elastic summits on the two-piece s map, format version 4).
-   integer, parameter, public :: cache_revision = 16
+   !> rough + cap tables with elastic summits on the two-piece s map, format version 4;
+   !> 17: EP-GW hysteresis tables without the cap store ln(P_load/P) on the edge map, to
+   !> rel_tol of the local force (format version 3)).
+   integer, parameter, public :: cache_revision = 17
 
 
 contains

@@ -18,7 +18,8 @@ module egw_hysteresis
    use egw_hysteresis_data, only: hysteresis_table, hysteresis_state_size, nan_error, &
       & gap_cubic, turning_point, gap_combination, unload_tail_ratio, make_lookup, &
       & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan, turning_knee, map_s, &
-      & map_x, map_piece, s_knee, s_zero
+      & map_x, map_piece, s_knee, s_zero, log_unload, edge_breaks, edge_segment, edge_s, &
+      & edge_xi
    use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, &
       & energy_prepare
    implicit none
@@ -100,16 +101,21 @@ contains
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       call turning_point(table, delta_max_state, first, w, inv_span, f_m, knee)
-      ! (the linear map inline: no call on the path of every table without the map)
-      s = (delta_max_state - delta)*inv_span
-      dsdx = inv_span
-      if (table%mapped) call map_s(table, delta_max_state, knee, inv_span, &
-         & delta_max_state - delta, s, dsdx)
-      s = min(s, 1.0_dp)
-      i = locate(table%s_lookup, table%s, s)
-      call gap_combination(table, first, w, i, c)
-      call unload_branch(table, c, i, s, delta_max_state, f_m, inv_span, knee, dsdx, delta, &
-         & force, stiffness)
+      if (table%log_ratio) then
+         call log_unload(table, first, w, 1.0_dp/inv_span, delta_max_state, delta, force, &
+            & stiffness)
+      else
+         ! (the linear map inline: no call on the path of every table without the map)
+         s = (delta_max_state - delta)*inv_span
+         dsdx = inv_span
+         if (table%mapped) call map_s(table, delta_max_state, knee, inv_span, &
+            & delta_max_state - delta, s, dsdx)
+         s = min(s, 1.0_dp)
+         i = locate(table%s_lookup, table%s, s)
+         call gap_combination(table, first, w, i, c)
+         call unload_branch(table, c, i, s, delta_max_state, f_m, inv_span, knee, dsdx, &
+            & delta, force, stiffness)
+      end if
       if (delta_max_state > table%delta_max) call beyond(table, "delta_max_state", &
          & delta_max_state, force, stiffness, stat, error)
    end subroutine hysteresis_eval
@@ -156,7 +162,7 @@ contains
       integer, intent(out) :: stat         !< 0 or an egw status
       !> allocated when stat is not 0, with a message naming the argument
       type(egw_error), allocatable, intent(out), optional :: error
-      real(dp) :: w(4), g(4), s, knee, dsdx
+      real(dp) :: w(4), g(4), s, knee, dsdx, xi_b(3), ds
       integer :: first, i
       logical :: found
       stat = 0
@@ -208,6 +214,23 @@ contains
       end if
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
+      if (table%log_ratio) then
+         call edge_breaks(state(13), table%params%sigma, xi_b)
+         call edge_s(xi_b, state(1) - delta, s, ds)
+         s = min(s, 1.0_dp)
+         i = locate(table%s_lookup, table%s, s)
+         call make_log_piece(table, state(7:10), first, i, s, state(1), delta, xi_b, &
+            & state(18:24), state(11:12), state(14:17), found)
+         if (found) then
+            call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
+         else   ! (the clamp s = 1, or rounding at a piece's end: hysteresis_eval's)
+            call log_unload(table, first, state(7:10), state(13), state(1), delta, force, &
+               & stiffness)
+         end if
+         if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
+            & stiffness, stat, error)
+         return
+      end if
       s = (state(1) - delta)*state(5)
       dsdx = state(5)
       knee = 0.0_dp
@@ -233,16 +256,33 @@ contains
 
    !> The force and stiffness at delta inside a piece (make_piece: start lo, cubic c),
    !> with the loading interval seg it was made with: the cubic, plus exp of seg's cubic
-   !> where that is ln P; 0 where the force is not positive.
+   !> where that is ln P; 0 where the force is not positive. A log-ratio piece
+   !> (make_log_piece: seg(7) 2 on a ln P interval, -1 on a linear one; c is -h):
+   !> exp(ln P - h), or P e^-h, one exp (egw.h's inline egw_hysteresis_eval_cached does
+   !> the same arithmetic in the same order: the same bits).
    pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
       real(dp), intent(in) :: lo, c(4), seg(7), delta
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: x, x2, p, k
+      real(dp) :: x, x2, p, k, t, t2, v, d, e
       x = delta - lo
       x2 = x*x
       force = (c(1) + x*c(2)) + x2*(c(3) + x*c(4))
       stiffness = (c(2) + 2*x*c(3)) + 3*x2*c(4)
-      if (seg(7) > 0.0_dp) then
+      if (seg(7) > 1.0_dp .or. seg(7) < 0.0_dp) then
+         t = delta - seg(1)
+         t2 = t*t
+         v = (seg(3) + t*seg(4)) + t2*(seg(5) + t*seg(6))
+         d = (seg(4) + 2*t*seg(5)) + 3*t2*seg(6)
+         if (seg(7) > 1.0_dp) then
+            p = exp(v + force)
+            stiffness = p*(d + stiffness)
+            force = p
+         else
+            e = exp(force)
+            stiffness = e*(d + v*stiffness)
+            force = v*e
+         end if
+      else if (seg(7) > 0.0_dp) then
          call segment_eval(seg, delta, p, k)
          force = force + p
          stiffness = stiffness + k
@@ -333,6 +373,85 @@ contains
       found = .true.
    end subroutine make_piece
 
+   !> make_piece of a log-ratio table: the piece around delta where the run of s
+   !> intervals around i (one cubic per curve of the stencil first, weights w; inside one
+   !> segment of the edge map xi_b of the turning point m, where s is linear in delta) and
+   !> the loading interval seg do not change, as -h, a cubic c in delta - lo; seg(7) is
+   !> marked 2 (ln P) or -1 (linear) so that piece_force and egw.h's inline evaluate
+   !> exp(ln P - h) or P e^-h (every other use of seg reads seg(7) > 0 as ln P: the same).
+   !> No piece (found false, NaN ends) at the clamp s = 1 or outside the loading table's
+   !> intervals.
+   pure subroutine make_log_piece(table, w, first, i, s, m, delta, xi_b, seg, ends, c, found)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: w(4), s, m, delta, xi_b(3)
+      integer, intent(in) :: first, i
+      real(dp), intent(inout) :: seg(7)
+      real(dp), intent(out) :: ends(2), c(4)
+      logical, intent(out) :: found
+      real(dp) :: lo, hi, t0, alpha, g(4), g_a, g_b, h_a, h_b, width, x_a, x_b, ds, s_0, &
+         & x_0
+      integer :: a, b, k, j
+      logical :: inside
+      ends = quiet_nan
+      c = 0.0_dp
+      found = .false.
+      if (.not. s < 1.0_dp) return   ! the clamp: h held
+      if (.not. (seg(1) <= delta .and. delta < seg(2))) then
+         call table_segment(table%loading, delta, seg, inside)   ! the interval around delta
+         if (.not. inside) return
+      end if
+      if (seg(7) > 0.0_dp) then
+         seg(7) = 2.0_dp
+      else
+         seg(7) = -1.0_dp
+      end if
+      a = table%run_first(first, i)
+      b = table%run_last(first, i) + 1
+      k = edge_segment(table%s(a), table%s(b))
+      call edge_xi(xi_b, table%s(a), x_a)
+      call edge_xi(xi_b, table%s(b), x_b)
+      lo = max(m - x_b, seg(1), table%loading%cutoff)
+      hi = min(m - x_a, seg(2))
+      if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
+      ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' values and slopes
+      ! (dh/dxi times each curve's dxi/ds on segment k)
+      width = table%s(b) - table%s(a)
+      g_a = dot_product(w, table%gap(a, first:first + 3))
+      g_b = dot_product(w, table%gap(b, first:first + 3))
+      h_a = 0.0_dp
+      h_b = 0.0_dp
+      do j = 1, 4
+         h_a = h_a + w(j)*table%slope(a, first + j - 1)*table%xi_scale(k, first + j - 1)
+         h_b = h_b + w(j)*table%slope(b, first + j - 1)*table%xi_scale(k, first + j - 1)
+      end do
+      h_a = width*h_a
+      h_b = width*h_b
+      g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
+      ! s = s_0 + (m - delta - x_0) ds on segment k; t = t0 + alpha x, x = delta - lo
+      select case (k)
+      case (1)
+         s_0 = 0.0_dp
+         x_0 = 0.0_dp
+         ds = 0.5_dp/xi_b(1)
+      case (2)
+         s_0 = 0.5_dp
+         x_0 = xi_b(1)
+         ds = 0.25_dp/(xi_b(2) - xi_b(1))
+      case default
+         s_0 = 0.75_dp
+         x_0 = xi_b(2)
+         ds = 0.25_dp/(xi_b(3) - xi_b(2))
+      end select
+      t0 = (s_0 + (m - lo - x_0)*ds - table%s(a))/width
+      alpha = -ds/width
+      c(1) = -(g(1) + t0*(g(2) + t0*(g(3) + t0*g(4))))
+      c(2) = -alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
+      c(3) = -alpha**2*(g(3) + 3*t0*g(4))
+      c(4) = -alpha**3*g(4)
+      ends = [lo, hi]
+      found = .true.
+   end subroutine make_log_piece
+
    !> A new contact's state for hysteresis_eval_state: never touched (-huge), no cache.
    pure subroutine hysteresis_state_init(state)
       real(dp), intent(out) :: state(hysteresis_state_size)   !< the contact's new state
@@ -378,7 +497,8 @@ contains
    pure subroutine hysteresis_prepare(table)
       type(hysteresis_table), intent(inout) :: table
       integer :: n_s, n_m, i, j, first, k, l
-      real(dp) :: h
+      real(dp) :: h, xi_b(3)
+      real(dp), allocatable :: dxi_ds(:, :)
       table%tag = data_tag(table)
       table%capped = hertz_capped(table%params)
       table%elastic_limit = table%loading%cutoff
@@ -395,6 +515,7 @@ contains
             & l%stiffness(size(l%stiffness)), deep_coefficient(l%params), &
             & 0.25_dp*huge(1.0_dp))
       end associate
+      if (table%reversible) table%log_ratio = .false.
       if (table%reversible) return   ! no curves: the loading table serves
       n_s = size(table%s)
       n_m = size(table%m)
@@ -418,14 +539,26 @@ contains
          end do
       end if
       allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))
+      ! dxi/ds of each curve's edge-map segments (log-ratio: slopes are dh/dxi); 1 else
+      allocate (dxi_ds(3, n_m))
+      dxi_ds = 1.0_dp
+      if (table%log_ratio) then
+         do j = 1, n_m
+            call edge_breaks(table%length(j), table%params%sigma, xi_b)
+            dxi_ds(:, j) = [2*xi_b(1), 4*(xi_b(2) - xi_b(1)), 4*(xi_b(3) - xi_b(2))]
+         end do
+      end if
+      table%xi_scale = dxi_ds
       do i = 1, n_s - 1
          h = table%s(i + 1) - table%s(i)
          table%inv_ds(i) = 1.0_dp/h
+         ! the interval's piece of the map: two-piece (mapped) or edge map (log-ratio)
          k = map_piece(table%mapped, 0.5_dp*(table%s(i) + table%s(i + 1)))
+         if (table%log_ratio) k = edge_segment(table%s(i), table%s(i + 1))
          do j = 1, n_m
             associate (r0 => table%gap(i, j), r1 => table%gap(i + 1, j), &
-               & d0 => h*table%slope(i, j)*table%piece_scale(k, j), &
-               & d1 => h*table%slope(i + 1, j)*table%piece_scale(k, j))
+               & d0 => h*dxi_ds(k, j)*table%slope(i, j)*table%piece_scale(k, j), &
+               & d1 => h*dxi_ds(k, j)*table%slope(i + 1, j)*table%piece_scale(k, j))
                table%coef(:, j, i) = [r0, d0, 3*(r1 - r0) - 2*d0 - d1, 2*(r0 - r1) + d0 + d1]
             end associate
          end do
@@ -454,7 +587,8 @@ contains
       call make_lookup(table%m, table%m_lookup)
       call make_lookup(table%s, table%s_lookup)
       call make_runs(table)
-      call energy_prepare(table)
+      ! (log-ratio tables: P_load e^-h is never below 0, no dips to sample)
+      if (.not. table%log_ratio) call energy_prepare(table)
    end subroutine hysteresis_prepare
 
    !> Whether params are a smooth sphere (Hertz or sigma = 0) with the flow-pressure cap:

@@ -11,7 +11,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
       & table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
-   use egw_hysteresis_data, only: s_knee, s_zero, map_s, map_x, map_piece
+   use egw_hysteresis_data, only: s_knee, s_zero, map_s, map_x, map_piece, edge_breaks, &
+      & edge_s, edge_xi, edge_segment, max_log_ratio
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -22,6 +23,19 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> two-piece map (mapped) its breaks s_knee = 1/2 and s_zero = 3/4 too.
    real(dp), parameter :: first_nodes(5) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp], &
       & mapped_first_nodes(6) = [0.0_dp, 0.0625_dp, 0.25_dp, s_knee, s_zero, 1.0_dp]
+   !> The first s nodes of a log-ratio curve: the edge map's breaks 1/2, 3/4, 1 among them
+   !> (no interval straddles one).
+   real(dp), parameter :: first_log_nodes(7) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, &
+      & 0.625_dp, 0.75_dp, 1.0_dp]
+   !> Log-ratio curves: both bisections weigh a mismatch in h (the relative error of the
+   !> force) by min(1, P/(local_floor P(m))): the tolerance holds relative to the local
+   !> force down to local_floor of the turning point's, and relative to that below.
+   real(dp), parameter :: local_floor = 1.0e-3_dp
+   !> Intervals (in s, or in delta_max relative to the grid's range) narrower than this
+   !> are not split: at the residual-overlap edge of deep curves (dh/ds ~ 100) curves
+   !> 1e-5 sigma apart differed by 3 % of the local force, the solves' own noise there
+   !> (doc/benchmarks.md, local4 (e)).
+   real(dp), parameter :: min_width = 2.0_dp**(-11)
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
@@ -40,6 +54,13 @@ submodule (egw_hysteresis) egw_hysteresis_build
       real(dp) :: scale = 1.0_dp    !< the loading table's force at m (g's unit)
       real(dp) :: c_turn = 1.0_dp   !< the solve's force at m over scale
       logical :: verified = .false. !< bisected in s to rel_tol/4 (refine_curve)
+      !> h = ln(c P_ext/P) at s of the edge map xi (edge_breaks of length), slopes as
+      !> dh/d(m - delta) (the table's log_ratio); else the gap, slopes dg/ds
+      logical :: log = .false.
+      real(dp) :: xi(3) = 0.0_dp
+      real(dp) :: p_turn = 0.0_dp   !< the solve's force at m (log: the weights' unit)
+      !> per node min(1, P/(local_floor P(m))) (log; 1 else): the mismatch's weight
+      real(dp), allocatable :: weight(:)
       type(loading_history) :: hist !< the loading solve at m (loaded: reused)
       !> the deflection of the curve's last unloading solve, the next one's start
       type(unload_start) :: start
@@ -131,6 +152,10 @@ contains
          call cap_reached(params, options, rel_tol, delta_max, shift, error)
          if (allocated(error)) return
       end if
+      ! log-ratio curves where the unloading force stays positive: EP-GW without the cap,
+      ! and a rough model whose cap does not act below delta_max (the cap-free table);
+      ! where it acts, the force vanishes below a residual overlap: the gap
+      table%log_ratio = .not. shift
       ! delta_max grid: from the loading cut-off (1e-12 of P_ref: the slowest impacts turn
       ! in the tail, where summits yield too) to delta_max, dyadic (bisection keeps it so:
       ! the m buckets rely on it)
@@ -186,6 +211,8 @@ contains
       table%s_max = 2*maxval((m - unloading_floor(table%loading, table%rel_tol))/ &
          & curves%length)
       if (table%mapped) table%s_max = 1.0_dp   ! (length: the first piece's span)
+      ! log-ratio curves on the edge map (s = 1 at its last break)
+      if (table%log_ratio) table%s_max = 1.0_dp
       call build_curves(table, options, m, shift, curves, error)
       if (allocated(error)) return
       call refine_m(table, options, shift, m, curves, error, progress)
@@ -348,7 +375,7 @@ contains
       procedure(table_progress), optional :: progress
       type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
       real(dp), allocatable :: new_m(:), err_mid(:)
-      logical, allocatable :: have_mid(:), new_have(:)
+      logical, allocatable :: have_mid(:), new_have(:), wide(:)
       integer, allocatable :: idx(:), promoted(:)
       integer :: pass, j, k, n_split
       real(dp) :: m_bound
@@ -381,11 +408,14 @@ contains
             deallocate (built)
             have_mid = .true.
          end if
-         allocate (err_mid(size(m) - 1))
+         allocate (err_mid(size(m) - 1), wide(size(m) - 1))
          do j = 1, size(m) - 1
             err_mid(j) = stencil_mismatch(table, m, curves, j, mids(j))
          end do
-         n_split = count(err_mid > m_bound)
+         ! (log-ratio: an interval narrower than min_width of the range is not split)
+         wide = .true.
+         if (log_table(table)) wide = m(2:) - m(:size(m) - 1) >= min_width*(m(size(m)) - m(1))
+         n_split = count(err_mid > m_bound .and. wide)
          ! built: the nodes' curves and the kept midpoints'; pending: two per split
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
@@ -410,7 +440,7 @@ contains
             new_m(k) = m(j)
             call move_curve(curves(j), new_curves(k))
             if (j == size(m)) exit
-            if (err_mid(j) > m_bound) then
+            if (err_mid(j) > m_bound .and. wide(j)) then
                k = k + 1
                new_m(k) = 0.5_dp*(m(j) + m(j + 1))
                call move_curve(mids(j), new_curves(k))
@@ -425,7 +455,7 @@ contains
          call move_alloc(new_curves, curves)
          call move_alloc(new_mids, mids)
          call move_alloc(new_have, have_mid)
-         deallocate (err_mid)
+         deallocate (err_mid, wide)
          ! the new nodes: bisected in s as every node's curve
          call verify_curves(table, curves, promoted, error)
          if (allocated(error)) return
@@ -444,7 +474,7 @@ contains
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:), mid
       integer, intent(in) :: j
-      real(dp) :: x, w(4), r, dr, v, s, length, xm(4), knee, offset, dsdx
+      real(dp) :: x, w(4), r, dr, v, s, length, xm(4), knee, offset, dsdx, xi_b(3), xi, ds
       integer :: first, k, l, i, k_b
       k_b = m_breakpoint(m)
       first = stencil_first(j, size(m), k_b)
@@ -463,21 +493,36 @@ contains
       knee = min(max(sum(w*curves(first:first + 3)%knee), 0.0_dp), 0.99_dp*mid%m)
       if (table%mapped) length = (mid%m - knee)/s_knee
       err = 0.0_dp
+      ! (log-ratio: the edge map of the interpolated L, the mismatch in h weighted)
+      if (mid%log) call edge_breaks(length, sigma, xi_b)
       do i = 1, size(mid%s)
-         s = min(mid%s(i)*mid%length/length, 1.0_dp)
-         if (table%mapped) then
+         if (mid%log) then
+            call edge_xi(mid%xi, mid%s(i), xi)
+            call edge_s(xi_b, xi, s, ds)
+            s = min(s, 1.0_dp)
+         else if (table%mapped) then
             offset = curve_offset(table, mid, mid%s(i))
             call map_s(table, mid%m, knee, 1.0_dp/length, offset, s, dsdx)
             s = min(s, 1.0_dp)
+         else
+            s = min(mid%s(i)*mid%length/length, 1.0_dp)
          end if
          v = 0.0_dp
          do k = 1, 4
             call curve_eval(curves(first + k - 1), s, r, dr)
             v = v + w(k)*r
          end do
-         err = max(err, abs(v - mid%gap(i)))
+         err = max(err, mid%weight(i)*abs(v - mid%gap(i)))
       end do
    end function stencil_mismatch
+
+   !> Whether the table's curves are log-ratio curves (build_hysteresis sets it: EP-GW
+   !> without the cap or with a cap that does not act; curves on which the cap acts,
+   !> whose force is 0 below a residual overlap, keep the gap).
+   elemental logical function log_table(table)
+      type(hysteresis_table), intent(in) :: table
+      log_table = table%log_ratio
+   end function log_table
 
    !> The overlap where the loading table's force falls to rel_tol of its reference force
    !> (bisection on the monotone table; its cut-off if the force there is larger).
@@ -667,20 +712,23 @@ contains
          known%s = curves(idx(k))%s
          known%gap = curves(idx(k))%gap
          known%slope = curves(idx(k))%slope
+         known%weight = curves(idx(k))%weight
          ! the bisection of a node's curve from its first nodes, the check solves taken
          ! where it meets them (all first nodes but s = 0): the curve a node built at once
          ! has
          curves(idx(k))%s = first
-         deallocate (curves(idx(k))%gap, curves(idx(k))%slope)
-         allocate (curves(idx(k))%gap(size(first)), curves(idx(k))%slope(size(first)))
+         deallocate (curves(idx(k))%gap, curves(idx(k))%slope, curves(idx(k))%weight)
+         allocate (curves(idx(k))%gap(size(first)), curves(idx(k))%slope(size(first)), &
+            & curves(idx(k))%weight(size(first)))
          do i = 1, size(first)
             at = findloc(known%s, first(i), 1)
             if (at > 0) then
                curves(idx(k))%gap(i) = known%gap(at)
                curves(idx(k))%slope(i) = known%slope(at)
+               curves(idx(k))%weight(i) = known%weight(at)
             else
                call gap_at(table, curves(idx(k)), first(i), curves(idx(k))%gap(i), &
-                  & curves(idx(k))%slope(i), err)
+                  & curves(idx(k))%slope(i), curves(idx(k))%weight(i), err)
                if (allocated(err)) exit
             end if
          end do
@@ -735,6 +783,9 @@ contains
       end if
       if (allocated(error)) return
       curve%span = table%s_max*curve%length
+      curve%log = log_table(table)
+      curve%p_turn = f_turn
+      if (curve%log) call edge_breaks(curve%length, table%params%sigma, curve%xi)
    end subroutine start_curve
 
    !> The two-piece map of the curve of turning point m (mapped): its knee, the smooth cap
@@ -768,12 +819,14 @@ contains
       if (table%mapped) call map_x(table, curve%m, curve%knee, 1.0_dp/curve%span, s, x, dsdx)
    end function curve_offset
 
-   !> The first s nodes of the table's curves (first_nodes; mapped: its breaks too).
+   !> The first s nodes of the table's curves (first_nodes; mapped: its breaks too;
+   !> log-ratio: the edge map's breaks).
    pure function start_nodes(table) result(s)
       type(hysteresis_table), intent(in) :: table
       real(dp), allocatable :: s(:)
       s = first_nodes
       if (table%mapped) s = mapped_first_nodes
+      if (table%log_ratio) s = first_log_nodes
    end function start_nodes
 
    !> The curve's g and dg/ds at the nodes s (increasing, in [0, 1]), solved.
@@ -785,9 +838,11 @@ contains
       integer :: i
       curve%s = s
       if (allocated(curve%gap)) deallocate (curve%gap, curve%slope)
-      allocate (curve%gap(size(s)), curve%slope(size(s)))
+      if (allocated(curve%weight)) deallocate (curve%weight)
+      allocate (curve%gap(size(s)), curve%slope(size(s)), curve%weight(size(s)))
       do i = 1, size(s)
-         call gap_at(table, curve, s(i), curve%gap(i), curve%slope(i), error)
+         call gap_at(table, curve, s(i), curve%gap(i), curve%slope(i), curve%weight(i), &
+            & error)
          if (allocated(error)) return
       end do
    end subroutine solve_nodes
@@ -802,8 +857,9 @@ contains
       real(dp), intent(out) :: worst
       type(egw_error), allocatable, intent(out) :: error
       type(unloading_curve), intent(in), optional :: known
-      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), r_mid, d_mid, &
-         & r_int, d_int, s_mid, err
+      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), &
+         & weight(max_s_nodes), r_mid, d_mid, r_int, d_int, s_mid, err, w_mid, width, dxi, &
+         & xi_mid
       integer :: n, i, k
       logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
@@ -814,6 +870,7 @@ contains
       s(1:n) = curve%s
       gap(1:n) = curve%gap
       slope(1:n) = curve%slope
+      weight(1:n) = curve%weight
       checked(1:n - 1) = .false.
       do
          refined = .false.
@@ -829,20 +886,30 @@ contains
             if (k > 0) then
                r_mid = known%gap(k)
                d_mid = known%slope(k)
+               w_mid = known%weight(k)
             else
-               call gap_at(table, curve, s_mid, r_mid, d_mid, error)
+               call gap_at(table, curve, s_mid, r_mid, d_mid, w_mid, error)
                if (allocated(error)) return
             end if
             probe%s = s(i:i + 1)
             probe%gap = gap(i:i + 1)
             probe%slope = slope(i:i + 1)
             probe%piece_scale = curve%piece_scale
+            probe%log = curve%log
+            probe%xi = curve%xi
             call curve_eval(probe, s_mid, r_int, d_int)
             ! the slope's mismatch too: a midpoint value can agree by chance where the
             ! curve bends (near the residual overlap) while a quarter point does not (dg/ds
-            ! on the interval's piece of the map)
-            err = max(abs(r_int - r_mid), 0.25_dp*(s(i + 1) - s(i))*abs(d_int - &
+            ! on the interval's piece of the two-piece map; log-ratio: slopes per xi, the
+            ! interval's width in xi, the mismatch weighted)
+            width = s(i + 1) - s(i)
+            if (curve%log) then
+               call edge_xi(curve%xi, s_mid, xi_mid, dxi, edge_segment(s(i), s(i + 1)))
+               width = width*dxi
+            end if
+            err = w_mid*max(abs(r_int - r_mid), 0.25_dp*width*abs(d_int - &
                & d_mid*curve%piece_scale(map_piece(table%mapped, s_mid))))
+            if (curve%log .and. s(i + 1) - s(i) < min_width) err = 0.0_dp   ! not split
             if (err > 0.25_dp*table%rel_tol) then
                if (n == max_s_nodes) then
                   call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
@@ -854,11 +921,13 @@ contains
                s(i + 2:n + 1) = s(i + 1:n)
                gap(i + 2:n + 1) = gap(i + 1:n)
                slope(i + 2:n + 1) = slope(i + 1:n)
+               weight(i + 2:n + 1) = weight(i + 1:n)
                checked(i + 2:n) = checked(i + 1:n - 1)
                checked(i:i + 1) = .false.
                s(i + 1) = s_mid
                gap(i + 1) = r_mid
                slope(i + 1) = d_mid
+               weight(i + 1) = w_mid
                n = n + 1
                refined = .true.
                i = i + 1   ! the new left half is checked in the next sweep
@@ -873,6 +942,7 @@ contains
       curve%s = s(1:n)
       curve%gap = gap(1:n)
       curve%slope = slope(1:n)
+      curve%weight = weight(1:n)
       curve%verified = .true.
       curve%hist = unloaded   ! (no more solves: its mesh and field freed)
       curve%start = none
@@ -883,16 +953,23 @@ contains
    !> the cut-off too: the curve is a neighbour of others in the m direction), c the
    !> solve's force at m over the table's; g = 0 at the turning point, so that the force
    !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
-   subroutine gap_at(table, curve, x, g, dg, error)
+   subroutine gap_at(table, curve, x, g, dg, weight, error)
       type(hysteresis_table), intent(in) :: table
       type(unloading_curve), intent(inout) :: curve   !< (its start replaced)
       real(dp), intent(in) :: x
       real(dp), intent(out) :: g, dg
+      !> the mismatch's weight there: min(1, P/(local_floor P(m))) (log), else 1
+      real(dp), intent(out) :: weight
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
       real(dp) :: p_ext, k_ext, x_solve
       g = 0.0_dp
       dg = 0.0_dp
+      weight = 1.0_dp
+      if (curve%log) then
+         call log_ratio_at(table, curve, x, g, dg, weight, error)
+         return
+      end if
       ! At s = 0 solve_unload returns the loading solve, whose stiffness is the loading
       ! branch's; unloading leaves the turning point stiffer (mu 4, psi 2, m = sigma:
       ! 2.740 against 2.539), so a slope of ~0 there made the first interval's cubic
@@ -917,6 +994,43 @@ contains
       if (abs(g) < tiny_ratio) g = 0.0_dp
       if (abs(dg) < tiny_ratio) dg = 0.0_dp
    end subroutine gap_at
+
+   !> gap_at of a log-ratio curve: h = ln(c P_ext(delta)/P_unload(delta)) (h = 0 at the
+   !> turning point: the force is continuous there) and dh/dxi = K/P - K_ext/P_ext at
+   !> delta = m - xi(s) on the curve's edge map (at s = 0 the unloading branch's slope,
+   !> from s = 1e-4, as gap_at); max_log_ratio (slope 0) where the force has vanished.
+   subroutine log_ratio_at(table, curve, x, h, dh, weight, error)
+      type(hysteresis_table), intent(in) :: table
+      type(unloading_curve), intent(inout) :: curve
+      real(dp), intent(in) :: x
+      real(dp), intent(out) :: h, dh, weight
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      real(dp) :: p_ext, k_ext, xi
+      h = max_log_ratio
+      dh = 0.0_dp
+      weight = 0.0_dp
+      call edge_xi(curve%xi, max(x, 1.0e-4_dp), xi)
+      call solve_unload(curve%hist, curve%m - xi, res, error, curve%start)
+      if (allocated(error)) return
+      call table_eval_tail_law(table%loading, curve%m - xi, p_ext, k_ext)
+      if (curve%p_turn > 0.0_dp) then
+         weight = min(1.0_dp, max(res%force, 0.0_dp)/(local_floor*curve%p_turn))
+      else
+         weight = 1.0_dp
+      end if
+      if (x == 0.0_dp) weight = 1.0_dp
+      if (.not. (res%force > 0.0_dp .and. p_ext > 0.0_dp)) return
+      h = log(curve%c_turn*p_ext/res%force)
+      dh = res%stiffness/res%force - k_ext/p_ext
+      if (x == 0.0_dp) h = 0.0_dp
+      if (.not. h < max_log_ratio) then
+         h = max_log_ratio
+         dh = 0.0_dp
+      end if
+      if (abs(h) < tiny_ratio) h = 0.0_dp
+      if (abs(dh) < tiny_ratio) dh = 0.0_dp
+   end subroutine log_ratio_at
 
    !> Put every curve on the union of their s nodes: the union refines each curve's own
    !> nodes, so the Hermite data there reproduce each curve's cubics exactly.
@@ -953,7 +1067,7 @@ contains
       !> dr in the stored slopes' unit (the first piece's dg/ds; 0 on a piece of no
       !> width), not dg/ds on s's piece
       logical, intent(in), optional :: stored
-      real(dp) :: h, t, h00, h10, h01, h11, f
+      real(dp) :: h, t, h00, h10, h01, h11, f, fac, x
       integer :: i, lo, hi, mid
       lo = 1
       hi = size(curve%s)
@@ -970,6 +1084,11 @@ contains
       t = min(max((s - curve%s(i))/h, 0.0_dp), 1.0_dp)
       ! the stored slopes are the first piece's: dg/ds on the interval's piece
       f = curve%piece_scale(map_piece(.true., 0.5_dp*(curve%s(i) + curve%s(i + 1))))
+      ! log-ratio: slopes per xi, dxi/ds of the interval's segment
+      if (curve%log) then
+         call edge_xi(curve%xi, curve%s(i), x, fac, edge_segment(curve%s(i), curve%s(i + 1)))
+         h = h*fac
+      end if
       h00 = (1 + 2*t)*(1 - t)**2
       h10 = t*(1 - t)**2
       h01 = t*t*(3 - 2*t)
@@ -1030,6 +1149,10 @@ contains
       to%piece_scale = from%piece_scale
       to%verified = from%verified
       to%hist = from%hist
+      to%log = from%log
+      to%xi = from%xi
+      to%p_turn = from%p_turn
+      if (allocated(from%weight)) call move_alloc(from%weight, to%weight)
       call move_alloc(from%s, to%s)
       call move_alloc(from%gap, to%gap)
       call move_alloc(from%slope, to%slope)

@@ -41,7 +41,8 @@ module egw_hysteresis_data
 
    public :: hysteresis_table, grid_lookup, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, make_lookup, m_breakpoint, &
-      & m_coordinate, stencil_first, locate, turning_knee, map_s, map_x, map_piece
+      & m_coordinate, stencil_first, locate, turning_knee, map_s, map_x, map_piece, &
+      & edge_breaks, edge_s, edge_xi, edge_segment, log_branch, max_log_ratio, log_unload
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
@@ -128,6 +129,15 @@ module egw_hysteresis_data
       !> an integer in [1, 2**52) hashed from the stored data: a state's cached turning
       !> point is used only by a table with the same data (hysteresis_eval_state)
       real(dp) :: tag = 0.0_dp
+      !> the curves store h = ln(P_load(delta)/P) (log_ratio: EP-GW without the cap, or a
+      !> rough model whose cap does not act below delta_max; set by the build and the
+      !> readers) instead of the gap g, at s of the edge map (edge_breaks: s piecewise linear in m - delta,
+      !> the residual-overlap edge at s in [1/2, 3/4] for every m), slopes as
+      !> dh/d(m - delta); s_max = 1 and inv_span = 1/L (hysteresis_prepare)
+      logical :: log_ratio = .false.
+      !> (3, n_m): dxi/ds of each curve's edge-map segments (log_ratio; hysteresis_prepare):
+      !> a stored slope dh/dxi times it is the curve's dh/ds there
+      real(dp), allocatable :: xi_scale(:, :)
       !> index of the delta_max node at 0 where stencils stop (m_breakpoint; 0: none)
       integer :: m_break = 0
       !> turning points at or below it unload on the loading curve (hysteresis_prepare):
@@ -165,6 +175,11 @@ module egw_hysteresis_data
       integer :: first = 1                 !< the stencil's first curve
       real(dp) :: knee = 0.0_dp            !< its knee (mapped tables; turning_knee)
    end type unload_curve
+
+   !> The largest ln(P_load/P) a log-ratio curve stores (e^-100 ~ 4e-44: far below every
+   !> tolerance, far above subnormals): where the unloading force has vanished or
+   !> underflowed.
+   real(dp), parameter :: max_log_ratio = 100.0_dp
 
    !> A quiet NaN (ieee_value's bits, 0x7FF8000000000000) as a constant: the states' "no
    !> piece" mark, written on the DEM hot path, where ieee_value is a library call
@@ -398,6 +413,109 @@ contains
          end if
       end if
    end function stencil_first
+
+   !> The edge map of a log-ratio curve of unloading length L (roughness sigma): the
+   !> values xi(1:3) of m - delta at s = 1/2, 3/4 and 1. For a deep turning point (L >> sigma)
+   !> the residual-overlap edge, where the unloading force vanishes within a rounding ~sigma
+   !> wide, lies at xi ~ L: s in [1/2, 3/4] spans L - 1.5 sigma .. L + 4 sigma there
+   !> whatever m, so the edge sits at a fixed s at a fixed width (the curves' shared s
+   !> nodes resolve it for every m); [3/4, 1] the 12 sigma of the separated tail beyond.
+   !> A shallow one (L <~ sigma, the separated tail) gets L .. 5 L and 12 sigma more.
+   !> xi(1) >= L/4 > 0.
+   pure subroutine edge_breaks(length, sigma, xi)
+      real(dp), intent(in) :: length, sigma
+      real(dp), intent(out) :: xi(3)
+      xi(1) = length - 1.5_dp*sigma*length**2/(length**2 + sigma**2)
+      xi(2) = length + 4.0_dp*sigma*length/(length + sigma)
+      xi(3) = xi(2) + 12.0_dp*sigma
+   end subroutine edge_breaks
+
+   !> The segment (1, 2, 3) of the edge map that holds the s interval [a, b] (its breaks
+   !> 1/2, 3/4 are s nodes of every curve: no interval straddles one).
+   elemental integer function edge_segment(a, b) result(k)
+      real(dp), intent(in) :: a, b
+      real(dp) :: c
+      c = 0.5_dp*(a + b)
+      k = 3
+      if (c < 0.75_dp) k = 2
+      if (c < 0.5_dp) k = 1
+   end function edge_segment
+
+   !> s of xi = m - delta on the edge map xi (edge_breaks), not clamped (> 1 beyond the
+   !> span), and ds/dxi there.
+   pure subroutine edge_s(xi_b, x, s, ds)
+      real(dp), intent(in) :: xi_b(3), x
+      real(dp), intent(out) :: s, ds
+      if (x <= xi_b(1)) then
+         ds = 0.5_dp/xi_b(1)
+         s = x*ds
+      else if (x <= xi_b(2)) then
+         ds = 0.25_dp/(xi_b(2) - xi_b(1))
+         s = 0.5_dp + (x - xi_b(1))*ds
+      else
+         ds = 0.25_dp/(xi_b(3) - xi_b(2))
+         s = 0.75_dp + (x - xi_b(2))*ds
+      end if
+   end subroutine edge_s
+
+   !> xi = m - delta at s in [0, 1] on the edge map xi_b (edge_s inverted), and dxi/ds on
+   !> segment k (1..3).
+   pure subroutine edge_xi(xi_b, s, x, dxi, k)
+      real(dp), intent(in) :: xi_b(3), s
+      real(dp), intent(out) :: x
+      real(dp), intent(out), optional :: dxi
+      integer, intent(in), optional :: k
+      real(dp) :: d(3)
+      d = [2*xi_b(1), 4*(xi_b(2) - xi_b(1)), 4*(xi_b(3) - xi_b(2))]
+      if (s <= 0.5_dp) then
+         x = s*d(1)
+      else if (s <= 0.75_dp) then
+         x = xi_b(1) + (s - 0.5_dp)*d(2)
+      else
+         x = xi_b(2) + (s - 0.75_dp)*d(3)
+      end if
+      if (present(dxi) .and. present(k)) dxi = d(k)
+   end subroutine edge_xi
+
+   !> The force and stiffness at delta (cut-off < delta < m) of a log-ratio table below
+   !> the turning point m from the cubic c of h = ln(P_load/P) on s interval i, at s (not
+   !> clamped: above 1 h is held at its value at s = 1, as the gap's tail ratio), ds/dxi
+   !> = ds: P = P_load(delta) e^-h, dP/ddelta = e^-h (K_load + P_load dh/ds ds/dxi).
+   pure subroutine log_branch(table, c, i, s, ds, delta, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: c(4), s, ds, delta
+      integer, intent(in) :: i
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: h, dh, f_d, k_d, e
+      call table_eval(table%loading, delta, f_d, k_d)
+      if (s >= 1.0_dp) then
+         h = ((c(1) + c(2)) + (c(3) + c(4)))
+         dh = 0.0_dp
+      else
+         call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), h, dh)
+      end if
+      e = exp(-h)
+      force = f_d*e
+      stiffness = e*(k_d + f_d*dh*ds)
+   end subroutine log_branch
+
+   !> The unloading force and stiffness at delta (cut-off < delta < m) of a log-ratio
+   !> table below the turning point m (stencil first, weights w, interpolated unloading
+   !> length L = length): s on the edge map of L, its interval's cubic, log_branch.
+   pure subroutine log_unload(table, first, w, length, m, delta, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      integer, intent(in) :: first
+      real(dp), intent(in) :: w(4), length, m, delta
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: xi_b(3), s, ds, c(4)
+      integer :: i
+      call edge_breaks(length, table%params%sigma, xi_b)
+      call edge_s(xi_b, m - delta, s, ds)
+      s = min(s, 1.0_dp)
+      i = locate(table%s_lookup, table%s, s)
+      call gap_combination(table, first, w, i, c)
+      call log_branch(table, c, i, s, ds, delta, force, stiffness)
+   end subroutine log_unload
 
    !> i with x(i) <= v < x(i+1), clamped to [1, n-1]: the bucket's interval, then a short
    !> forward scan (at most one step where the buckets are as fine as the grid).

@@ -11,7 +11,7 @@ module egw_unload_energy
    use egw_table, only: table_eval, gl_x, gl_w, table_energy, table_interval, beyond_status
    use egw_hysteresis_data, only: hysteresis_table, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, locate, map_s, map_x, s_knee, &
-      & s_zero
+      & s_zero, log_unload, edge_breaks, edge_s, edge_xi
    implicit none
    private
 
@@ -99,6 +99,10 @@ contains
       if (table%reversible .or. .not. m > table%elastic_limit) return
       cv%m = m
       call turning_point(table, m, cv%first, cv%w, cv%inv_span, cv%f_m, cv%knee)
+      if (table%log_ratio) then   ! (no dips: the walk and the samples are one)
+         energy = log_energy(table, cv, delta)
+         return
+      end if
       ! below the span's end d_1 the force is ratio P_load (unload_branch), above it
       ! P_load - f_m g(s), clipped at 0: int g(s(x)) dx over (lo, delta) with s = (m -
       ! x)/(s_max L) is (1/(s_max L)) times the integral of g over s from s(delta) to
@@ -178,6 +182,58 @@ contains
          total = min(total - above, 0.0_dp)
       end if
    end function dips_below
+
+   !> The energy of a log-ratio table (P = P_load e^-h, never below 0: nothing clipped) at
+   !> delta below the turning point of cv: below the span's end d_1 (s = 1) the loading
+   !> table's energy times e^-h(1), above it that at d_1 plus the force's integral from d_1,
+   !> by 8-point Gauss-Legendre on each smooth piece (between the loading table's nodes
+   !> and the s nodes): O(pieces between d_1 and delta).
+   pure real(dp) function log_energy(table, cv, delta) result(energy)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: delta
+      real(dp) :: length, xi_b(3), d_1, ratio, lo, x_a, x_b, s_a, ds, next, f, k, part
+      integer :: i, q, it, n_s
+      n_s = size(table%s)
+      length = 1.0_dp/cv%inv_span
+      call edge_breaks(length, table%params%sigma, xi_b)
+      d_1 = cv%m - xi_b(3)
+      ratio = exp(-dot_product(cv%w, table%gap(n_s, cv%first:cv%first + 3)))
+      if (.not. delta > d_1) then
+         energy = ratio*table_energy(table%loading, delta)
+         return
+      end if
+      lo = max(d_1, table%loading%cutoff)
+      energy = ratio*table_energy(table%loading, lo)
+      x_a = lo
+      do it = 1, 4*(size(table%loading%delta) + n_s) + 8
+         if (.not. x_a < delta) exit
+         x_b = delta
+         if (x_a < table%loading%delta_max) then
+            i = table_interval(table%loading, x_a)
+            x_b = min(x_b, table%loading%delta(i + 1))
+         end if
+         ! the next s node below s(x_a) (s falls as x grows)
+         call edge_s(xi_b, cv%m - x_a, s_a, ds)
+         i = locate(table%s_lookup, table%s, min(s_a, 1.0_dp))
+         call edge_xi(xi_b, table%s(i), next)
+         next = cv%m - next
+         if (.not. next > x_a .and. i > 1) then
+            call edge_xi(xi_b, table%s(i - 1), next)
+            next = cv%m - next
+         end if
+         if (next > x_a) x_b = min(x_b, next)
+         if (.not. x_b > x_a) exit   ! round-off at a break
+         part = 0.0_dp
+         do q = 1, size(gl_x)
+            call log_unload(table, cv%first, cv%w, length, cv%m, x_a + (x_b - x_a)*gl_x(q), &
+               & f, k)
+            part = part + gl_w(q)*f
+         end do
+         energy = energy + part*(x_b - x_a)
+         x_a = x_b
+      end do
+   end function log_energy
 
    !> int_0^s g(s', m) ds' of curve cv, s <= 1.
    pure real(dp) function gap_primitive(table, cv, s) result(total)
