@@ -647,8 +647,9 @@ contains
          & "  --psi PSI               plasticity index (EP-GW)", &
          & "  --K K                   ZMC hardness coefficient in (0, 1) (EP-GW)", &
          & "  --plastic-ratio RHO     ZMC delta_p/delta_ep > 1 (EP-GW)", &
-         & "  --flow-pressure PY      bulk flow pressure p_y [pressure] of the cap (Hertz or", &
-         & "                          sigma = 0): writes the hysteresis table(s)", &
+         & "  --flow-pressure PY      bulk flow pressure p_y [pressure] of the cap, every", &
+         & "                          model: writes the hysteresis table(s) (Hertz + cap, or", &
+         & "                          the rough model + cap), no force table", &
          & "  --yield-stress Y        the same from the yield stress: p_y = 1.6 Y", &
          & "  --delta-min D, --delta-max D            overlap range [length]", &
          & "  --delta-min-sigma X, --delta-max-sigma X  overlap range in units of sigma", &

@@ -193,11 +193,16 @@ grep -q "hysteresis table(s) come in the csv and binary formats only" "$work/std
   "$work/rough_cap" -q >"$work/stdout" 2>"$work/stderr"
 rc=$?
 [ "$rc" -eq 0 ] || fail "rough cap scene: exit status $rc: $(cat "$work/stderr")"
-grep -q "CSV format 2" "$work/rough_cap/scene_hysteresis.csv" &&
+# (E-GW + cap: elastic summits, turning points above 0: the two-piece s map, CSV format 4)
+grep -q "CSV format 4" "$work/rough_cap/scene_hysteresis.csv" &&
   grep -q "^# sigma = 1.000000000" "$work/rough_cap/scene_hysteresis.csv" ||
   fail "rough cap scene: scene_hysteresis.csv is not a rough + cap table"
 [ ! -e "$work/rough_cap/scene_table.csv" ] || fail "rough cap scene: a force table written"
 grep -q "E-GW + cap" "$work/stdout" || fail "rough cap scene: summary does not name the cap"
+# --help says so too (it said "(Hertz or sigma = 0)" while rough scenes take the cap)
+"$exe" --help >"$work/help" 2>&1
+grep -A2 -- "--flow-pressure" "$work/help" | grep -q "rough model + cap" ||
+  fail "--help: --flow-pressure does not say rough models take the cap: $(grep -A1 -- "--flow-pressure" "$work/help")"
 
 echo "    $fails CLI check(s) failed"
 exit "$fails"

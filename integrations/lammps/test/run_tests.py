@@ -34,7 +34,8 @@ TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_sl
          test_cap_pair_restitution, test_cap_wall_restitution, test_cap_wall_material_contact,
          test_bad_flow_pressure,
          test_cap_restart, test_cap_energy, test_rough_cap_pair_restitution,
-         test_rough_cap_wall_restitution, test_rough_cap_restart, test_rough_cap_polydisperse]
+         test_rough_cap_wall_restitution, test_rough_cap_wall_rim, test_rough_cap_restart,
+         test_rough_cap_polydisperse]
 
 
 def main():

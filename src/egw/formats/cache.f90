@@ -45,9 +45,13 @@ module egw_cache
    !> curve's last solve, lu_factor's rank-2 updates and the Jacobian's columns in one
    !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m); 16:
    !> rough + cap tables with elastic summits on the two-piece s map, format version 4;
-   !> 17: EP-GW hysteresis tables without the cap store ln(P_load/P) on the edge map, to
-   !> rel_tol of the local force (format version 3)).
-   integer, parameter, public :: cache_revision = 17
+   !> 17: rough + cap unloading meshes reach past the plastic rim also where it lies
+   !> within the Hertz edge's layers; 18: the small-sigma route's wide histories at
+   !> rel_tol >= 1e-7, and at 1e-7 for a history the route loaded: route answers at
+   !> sigma/delta_y <= 1e-6 move within their estimates; 19: EP-GW hysteresis tables
+   !> without the cap store ln(P_load/P) on the edge map, to rel_tol of the local force
+   !> (format version 3)).
+   integer, parameter, public :: cache_revision = 19
 
 
 contains

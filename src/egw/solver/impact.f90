@@ -42,6 +42,15 @@ module egw_impact
 
    !> Depth of the interval bisection, and steps allowed to find delta_lo and delta_m.
    integer, parameter :: max_depth = 24, max_steps = 400
+   !> The unloading solves' force floor (solve_unload's force_floor), in units of the
+   !> unloading integral's work density w = W_load/(delta_m - delta_lo): where a solve's
+   !> estimate is relative to max(|P|, floor) and meets rel_tol/2, its error adds at most
+   !> rel_tol/2 (W_unload + 0.5 W_load) to W_unload, so at most (rel_tol/4)(1 + 0.5/e**2)
+   !> to e (0.75 rel_tol for e >= 0.5; without it rel_tol/4). Near the residual overlap
+   !> the small-sigma route's relative estimate of a force 1e-2 .. 1e-5 of P(delta_m)
+   !> misses rel_tol/2 (sigma/delta_y = 1e-6, 3 v_y, rel_tol 1e-5: 1.6e-5 at 0.197
+   !> delta_m, restitution refused) where its absolute error is far below the integral's.
+   real(dp), parameter :: unload_force_floor = 0.5_dp
    !> Smallest impact energy in units of E sqrt(R) sigma**2.5 (see check).
    real(dp), parameter :: min_scaled_energy = 1.0e-150_dp
 
@@ -209,7 +218,8 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
       if (curve%unloading) then
-         call solve_unload(curve%history, delta, res, error)
+         call solve_unload(curve%history, delta, res, error, &
+            & force_floor=unload_force_floor*curve%work_density)
       else
          call solve_contact(curve%params, curve%options, delta, res, error)
       end if

@@ -93,8 +93,26 @@ module egw_rough_sphere
    !> 2.44 delta_y at 0.197 delta_max: the route refused, estimate 3.7e-4), from 1e-6
    !> histories by 2e-5 (answered within its estimate).
    real(dp), parameter :: wide_history_tol = 1.0e-6_dp
+   !> ... and the tightest: a history at a smaller rel_tol keeps its route's wide
+   !> histories at this one. From 1e-8 ones (egw_solve_unload's history at 1e-6 delta_y,
+   !> rel_tol 1e-5) they took 24 of the first call's 50 s, at 1e-7 ~1 s, and the route's
+   !> answers at 0.145 .. 0.18 delta_max were no closer to the references (-8.8e-6,
+   !> 1.1e-6, 3.8e-7, 1.0e-6 against -1.4e-6, 6.0e-7, 7.6e-7, 1.2e-6 at 1e-7; E-GW + cap,
+   !> mu 4, from 2 delta_y; doc/stability.md "Rough + cap as sigma -> 0"). A history the
+   !> route loaded (asymptotic: every unloading solve is the route's, and its rel_tol only
+   !> said which route estimate was accepted) keeps them at this one whatever its rel_tol:
+   !> at 1e-6 (egw_solve_unload's history at sigma/delta_y = 1e-7 loads only at its rel_tol
+   !> 1e-5) 0.15 and 0.145 delta_max were refused (estimates 6.8e-6, 7.9e-6), at 1e-7 they
+   !> answer within 1.9e-6 of the references.
+   real(dp), parameter :: wide_history_floor = 1.0e-7_dp
    !> the unloading's force floor of the route's estimates, relative to P(delta_max)
    real(dp), parameter :: unload_floor = 1.0e-6_dp
+   !> The rel_tol of the route's probe (route_floor), and the factor on it that bounds a
+   !> probe solve's error (its estimate is no bound: 1.4 times it measured, doc/theory.md
+   !> section 12). At sigma/delta_y = 1e-6 from 2 delta_y the route's loading estimate is
+   !> 2.7e-7 at every rel_tol (the wide solves at 1e-9 took 24 s to show it); at probe_tol
+   !> the four wide solves take ~1 s.
+   real(dp), parameter :: probe_tol = 1.0e-7_dp, probe_margin = 10.0_dp
    real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
 
    !> Loading history of one contact: the loading solve at delta_max and its separation
@@ -257,29 +275,34 @@ contains
       type(egw_error), allocatable, intent(inout) :: error
       type(solve_result) :: asym
       real(dp) :: delta_y
-      logical :: ok
+      logical :: ok, floored
       if (.not. route_wanted(params, options, delta, prob%extended .and. &
          & allocated(prob%cap), error, delta_y)) return
-      call asymptotic_loading(params, options, delta, delta_y, asym, ok)
+      call asymptotic_loading(params, options, delta, delta_y, allocated(error), asym, ok, &
+         & floored)
       if (ok) call use_asymptotic(options, delta, asym, 0.0_dp, result, error)
+      if (floored .and. allocated(error)) error%message = error%message//"; that estimate " &
+         & //"is a lower bound from its solves at rel_tol "//format_real(probe_tol)// &
+         & ": tighter solves cannot meet rel_tol/2"
    end subroutine small_sigma_loading
 
    !> As small_sigma_loading after the discrete unloading solve of a capped history, with
-   !> asymptotic_unloading.
-   subroutine small_sigma_unload(history, delta, result, error)
+   !> asymptotic_unloading. The route's estimates are relative to max(|P|, floor), floor
+   !> unload_floor P(delta_max) or the caller's force_floor (solve_unload's) if larger.
+   subroutine small_sigma_unload(history, delta, force_floor, result, error)
       type(loading_history), intent(in) :: history
-      real(dp), intent(in) :: delta
+      real(dp), intent(in) :: delta, force_floor
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(inout) :: error
       type(solve_result) :: asym
-      real(dp) :: delta_y
+      real(dp) :: delta_y, floor
       logical :: ok
       if (.not. route_wanted(history%params, history%options, history%delta_max, &
          & history%closest%extended .and. history%closest%capped, error, delta_y)) return
-      call asymptotic_unloading(history, delta, delta_y, asym, ok)
+      floor = max(unload_floor*history%loading%force, force_floor)
+      call asymptotic_unloading(history, delta, delta_y, floor, asym, ok)
       if (ok) then
-         call use_asymptotic(history%options, delta, asym, unload_floor* &
-            & history%loading%force, result, error)
+         call use_asymptotic(history%options, delta, asym, floor, result, error)
       else if (allocated(error)) then
          error%message = error%message//"; nor by the small-sigma route (fewer than two " &
             & //"of its solves at sigma = 1e-5, 2e-5, 1e-4, 2e-4 delta_y converged)"
@@ -309,41 +332,115 @@ contains
    !> The asymptotic route's loading answer at delta (doc/theory.md §12): the smooth cap
    !> model (cap_load on 100/200 rings, its sigma -> 0 limit) plus the rough layer's
    !> sigma**(2/3) correction from the same model's solves at wide_sigmas
-   !> (asymptotic_result). ok false when one of those solves fails.
-   subroutine asymptotic_loading(params, options, delta, delta_y, asym, ok)
+   !> (asymptotic_result). ok false when one of those solves fails. After a failed
+   !> discrete solve (failed) at rel_tol below probe_tol, the route is first taken at
+   !> probe_tol (route_floor): where even a lower bound of its estimate misses rel_tol/2,
+   !> that answer, its estimate the bound, is returned at once (floored true) instead of
+   !> the wide solves at rel_tol, which cannot meet it (10-14 s each at 1e-9).
+   subroutine asymptotic_loading(params, options, delta, delta_y, failed, asym, ok, floored)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta, delta_y
+      logical, intent(in) :: failed
       type(solve_result), intent(out) :: asym
+      logical, intent(out) :: ok, floored
+      type(cap_history) :: history
+      type(cap_result) :: cap
+      type(solve_result) :: wide(2)
+      type(egw_error), allocatable :: cap_error
+      integer :: pair
+      ok = .false.
+      floored = .false.
+      call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
+         & cap_options(n_rings=100, n_levels=2), history, cap, cap_error, "delta")
+      if (allocated(cap_error)) return
+      if (failed .and. options%rel_tol < probe_tol) then
+         call route_floor(params, options, delta, delta_y, cap, asym, floored)
+         if (floored) then
+            ok = .true.
+            return
+         end if
+      end if
+      do pair = 1, 2
+         call wide_loading(params, options, delta, delta_y, pair, wide, ok)
+         if (ok) exit
+      end do
+      if (.not. ok) return
+      call asymptotic_result(params, cap, wide, wide_sigmas(:, pair), 0.0_dp, asym)
+   end subroutine asymptotic_loading
+
+   !> The rough model's loading solves at delta at wide_sigmas(:, pair) (options);
+   !> ok false where one fails.
+   subroutine wide_loading(params, options, delta, delta_y, pair, wide, ok)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, delta_y
+      integer, intent(in) :: pair
+      type(solve_result), intent(out) :: wide(2)
       logical, intent(out) :: ok
       type(contact_params) :: wider
       type(scaled_problem) :: wide_prob
       type(discrete_solution) :: sol
-      type(cap_history) :: history
-      type(cap_result) :: cap
-      type(solve_result) :: wide(2)
       type(egw_error), allocatable :: wide_error
       integer :: k
-      integer :: pair
-      ok = .false.
-      do pair = 1, 2
-         do k = 1, 2
-            wider = params
-            wider%sigma = wide_sigmas(k, pair)*delta_y
-            wide_prob = scaled(wider, delta)
-            call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
-            if (allocated(wide_error)) exit
-         end do
-         if (.not. allocated(wide_error)) exit
-         deallocate (wide_error)
+      do k = 1, 2
+         wider = params
+         wider%sigma = wide_sigmas(k, pair)*delta_y
+         wide_prob = scaled(wider, delta)
+         call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
+         ok = .not. allocated(wide_error)
+         if (.not. ok) return
       end do
-      if (pair > 2) return
-      call cap_load(params%radius, params%modulus, params%flow_pressure, delta, &
-         & cap_options(n_rings=100, n_levels=2), history, cap, wide_error, "delta")
-      if (allocated(wide_error)) return
-      call asymptotic_result(params, cap, wide, wide_sigmas(:, pair), 0.0_dp, asym)
-      ok = .true.
-   end subroutine asymptotic_loading
+   end subroutine wide_loading
+
+   !> Whether the route at options%rel_tol cannot meet rel_tol/2, told from its solves at
+   !> probe_tol (doc/theory.md section 12 "Small sigma: the route's floor"). The route's
+   !> estimate is the cap solve's (100 rings, whatever rel_tol) plus the disagreement D
+   !> of the two wide solves' corrections, D = (P_1 - P_cap) s_1 - (P_2 - P_cap) s_2 (the
+   !> next order in sigma, a property of the model, not of rel_tol), plus the wide
+   !> solves' errors: tighter wide solves move D by at most s_1 |dP_1| + s_2 |dP_2|,
+   !> |dP_j| <= probe_margin probe_tol |P_j| (the probe's error, its estimate <= probe_tol/2,
+   !> with a factor 10 for an estimate that is no bound, and the tight solve's, below it).
+   !> So (cap error + |D| - that margin)/|P| bounds the tight route's estimate from below
+   !> (|P| the probe's answer, less the same margin). floored true where that bound exceeds
+   !> rel_tol/2 for every pair of wide_sigmas (the route takes the second pair where a
+   !> solve of the first fails): asym is then the probe's answer, est_rel_err the
+   !> smallest bound. Nothing is decided (floored false) where a probe solve fails.
+   subroutine route_floor(params, options, delta, delta_y, cap, asym, floored)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, delta_y
+      type(cap_result), intent(in) :: cap
+      type(solve_result), intent(out) :: asym
+      logical, intent(out) :: floored
+      type(solver_options) :: probe
+      type(solve_result) :: wide(2), answer
+      real(dp) :: shrink(2), margin, bound, lowest
+      integer :: pair, k
+      logical :: ok
+      floored = .false.
+      probe = options
+      probe%rel_tol = probe_tol
+      lowest = huge(1.0_dp)
+      do pair = 1, 2
+         call wide_loading(params, probe, delta, delta_y, pair, wide, ok)
+         if (.not. ok) return
+         call asymptotic_result(params, cap, wide, wide_sigmas(:, pair), 0.0_dp, answer)
+         do k = 1, 2
+            shrink(k) = (params%sigma/(wide_sigmas(k, pair)*delta_y))**(2.0_dp/3.0_dp)
+         end do
+         margin = probe_margin*probe_tol*sum(shrink*abs(wide%force))
+         bound = (cap%force_error + abs((wide(1)%force - cap%force)*shrink(1) - &
+            & (wide(2)%force - cap%force)*shrink(2)) - margin)/(abs(answer%force) + margin)
+         if (.not. bound > 0.5_dp*options%rel_tol) return
+         if (bound < lowest) then
+            lowest = bound
+            asym = answer
+         end if
+      end do
+      asym%est_rel_err = lowest
+      floored = .true.
+   end subroutine route_floor
 
    !> The asymptotic route's unloading answer at delta after history: as
    !> asymptotic_loading, with the smooth cap's unloading from delta_max (cap_unload) and
@@ -352,9 +449,10 @@ contains
    !> term's own next order dominates, and solves at 1e-5 delta_y fail), every wide solve
    !> is tried and the extrapolation in sigma**(2/3) goes one order further
    !> (extrapolated_result); the answer with the smaller estimate is kept.
-   subroutine asymptotic_unloading(history, delta, delta_y, asym, ok)
+   subroutine asymptotic_unloading(history, delta, delta_y, floor, asym, ok)
       type(loading_history), intent(in) :: history
       real(dp), intent(in) :: delta, delta_y
+      real(dp), intent(in) :: floor   !< of the estimates (small_sigma_unload's)
       type(solve_result), intent(out) :: asym
       logical, intent(out) :: ok
       type(cap_result) :: cap
@@ -378,7 +476,7 @@ contains
       if (allocated(cap_error)) return
       if (pair <= 2) then
          call asymptotic_result(history%params, cap, wide(:, pair), wide_sigmas(:, pair), &
-            & unload_floor*history%loading%force, asym)
+            & floor, asym)
          ok = .true.
          if (asym%est_rel_err <= 0.5_dp*history%options%rel_tol) return
       end if
@@ -405,7 +503,7 @@ contains
       end do
       if (count(solved == 1) < 2) return
       call extrapolated_result(history%params, cap, pack(wide, solved == 1), &
-         & pack(wide_sigmas, solved == 1), unload_floor*history%loading%force, further, &
+         & pack(wide_sigmas, solved == 1), floor, further, &
          & ok_further)
       if (.not. ok_further) return
       if (ok) then
@@ -456,7 +554,9 @@ contains
       if (.not. asymptotic_applies(hist%params, hist%options, hist%delta_max, &
          & hist%closest%extended .and. hist%closest%capped, delta_y)) return
       wide_options = hist%options
-      wide_options%rel_tol = min(hist%options%rel_tol, wide_history_tol)
+      wide_options%rel_tol = min(max(hist%options%rel_tol, wide_history_floor), &
+         & wide_history_tol)
+      if (hist%asymptotic) wide_options%rel_tol = wide_history_floor
       call cap_load(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
          & hist%delta_max, cap_options(n_rings=100, n_levels=2), hist%wide_cap, cap, &
          & wide_error, "delta_max")
@@ -931,8 +1031,9 @@ contains
    !> estimate, stiffness (dP/d(delta) at fixed history) and egw_not_converged contract
    !> as solve_contact (after a capped loading at sigma/delta_y <= 1e-6 the asymptotic
    !> route too: small_sigma_unload). history is only read: thread-safe. result untouched
-   !> on error.
-   subroutine solve_unload(history, delta, result, error, start)
+   !> on error. force_floor: where the caller needs the force only to an absolute error
+   !> (restitution's work integral), the route's estimates are relative to at least it.
+   subroutine solve_unload(history, delta, result, error, start, force_floor)
       type(loading_history), intent(in) :: history   !< from load_history (only read)
       real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
       type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
@@ -941,9 +1042,13 @@ contains
       !> replaced by this solve's deflection; the result is the same to the solve's
       !> tolerance with or without it
       type(unload_start), intent(inout), optional :: start
+      !> [force] >= 0: the small-sigma route's estimates relative to max(|P|, force_floor)
+      !> (default 0: relative to |P|, at least 1e-6 P(delta_max))
+      real(dp), intent(in), optional :: force_floor
       type(scaled_problem) :: prob
       type(solve_result) :: res
       type(cap_result) :: cres
+      real(dp) :: floor
 
       if (.not. history%loaded) then
          call fatal_error(error, egw_invalid_argument, &
@@ -986,7 +1091,9 @@ contains
          call rough_unload(history%params, history%options, history%closest, delta, res, &
             & error, start)
       end if
-      call small_sigma_unload(history, delta, res, error)
+      floor = 0.0_dp
+      if (present(force_floor)) floor = force_floor
+      call small_sigma_unload(history, delta, floor, res, error)
       if (.not. allocated(error)) result = res
    end subroutine solve_unload
 

@@ -391,6 +391,7 @@ contains
       type(discrete_solution), intent(in), optional :: warm
       type(discrete_solution) :: first
       type(scaled_problem) :: locate
+      real(dp) :: reach   !< past the plastic rim: the least outer radius of every level
       ! Unloading: where d crosses d_max the law switches branch and p(r) has a kink
       ! (dp/dh jumps), which costs an element holding it its order (and the Richardson
       ! estimate its meaning); so do, more weakly (d2p/dh2 jumps), the radii where
@@ -427,23 +428,29 @@ contains
       ! inside the rim 12.08, and from 0.58 to 0.67 delta_max every n_radial from 257 to
       ! 2049 gave the same force up to 2.7e-3 low (estimates ~1e-9), and P(delta) jumped
       ! by 0.33 % at 0.67 delta_max (doc/stability.md).
+      ! Every mesh reaches past the rim, also where the rim lies within four layer widths
+      ! of the focus (no layers of its own there): the outer radius from the law's decay
+      ! can end inside it, and the annulus with it (E-GW + cap, R/sigma = 70711, p_y =
+      ! 0.01 E*, from 68.14 sigma = 3.9 delta_y: at 44.3 sigma, rim 8.30, focus 6.66 +
+      ! 4 x 0.47, outer 8.17 at rel_tol 1e-6, 8.30 at 1e-8; the force 2.1e-3 low under an
+      ! estimate of 2.8e-8, at every n_radial, and a hysteresis table at 1e-3 to 20
+      ! delta_y did not build; audit9).
+      reach = 0.0_dp
       if (sums_total(prob)) then
          prob%rim = plastic_rim(prob)
-         if (prob%rim > mesh%focus + 4.0_dp*mesh%width) then
+         if (prob%rim > 0.0_dp) reach = prob%rim + 4.0_dp*edge_layer_width(prob%rim)
+         if (prob%rim > mesh%focus + 4.0_dp*mesh%width .and. options%n_radial == 0) then
             prob%rim_width = edge_layer_width(prob%rim)
-            if (options%n_radial > 0) then
-               if (prob%rim + 4.0_dp*prob%rim_width > mesh%outer) then
-                  mesh%outer = prob%rim + 4.0_dp*prob%rim_width
-                  mesh%step = step_for_nodes(prob%extended, mesh%focus, mesh%width, &
-                     & mesh%outer, options%n_radial)
-                  mesh%step_prev = coarsen*mesh%step
-               end if
-               prob%rim = 0.0_dp
-            else
-               mesh%outer = max(mesh%outer, prob%rim + 4.0_dp*prob%rim_width)
-            end if
          else
             prob%rim = 0.0_dp
+         end if
+         if (reach > mesh%outer) then
+            mesh%outer = reach
+            if (options%n_radial > 0) then
+               mesh%step = step_for_nodes(prob%extended, mesh%focus, mesh%width, &
+                  & mesh%outer, options%n_radial)
+               mesh%step_prev = coarsen*mesh%step
+            end if
          end if
       end if
       locate = prob
@@ -479,8 +486,8 @@ contains
       if (prob%closest%extended) prob%amax_edge = .not. negligible_at(first, &
          & sqrt(prob%closest%delta), 1.0e-4_dp*options%rel_tol)
       if (options%n_radial == 0) call trim_to_unloading_decay(prob, options, first, mesh)
-      ! (the trimmed mesh keeps the rim's outer layers: the contact ends just inside it)
-      if (prob%rim > 0.0_dp) mesh%outer = max(mesh%outer, prob%rim + 4.0_dp*prob%rim_width)
+      ! (the trimmed mesh still reaches past the rim: the contact can end just inside it)
+      mesh%outer = max(mesh%outer, reach)
       ! The first level only enters the estimate through its difference to the next
       ! (divided by 2.4) and places the kinks again: Newton to a scaled residual of
       ! 1e-2 rel_tol (at most 1e-8) moves its force by far less than the estimate's
