@@ -39,10 +39,18 @@ contains
    subroutine test_lammps_table(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t
+      type(hysteresis_table) :: back
+      type(egw_error), allocatable :: err
       call build(contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, &
          & sigma=1.0_dp, mu=4.0_dp, psi=1.0_dp), 0.0_dp, 140.0_dp, 1.0e-4_dp, t, error)
       if (allocated(error)) return
       call check_table(t, error)
+      if (allocated(error)) return
+      ! the file the plugin sends between ranks reads back (its log ratios below the
+      ! cut-off reach below 0: the reader's bound once refused LAMMPS's pour tables)
+      call write_hysteresis(t, "build/hyst_lammps.bin", format_binary, err)
+      if (.not. allocated(err)) call read_hysteresis("build/hyst_lammps.bin", back, err)
+      if (allocated(err)) call test_failed(error, "write/read: "//err%message)
    end subroutine test_lammps_table
 
    !> test_hysteresis's EP-GW contact (psi = 2, mu = 4) at 1e-3 over [-2, 6] sigma.
