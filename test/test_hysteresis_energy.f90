@@ -1,7 +1,9 @@
-!> Tests of hysteresis_energy's sampled dips (hysteresis_prepare's energy_prepare): the
-!> energy against an independent quadrature of the force hysteresis_eval returns, and
-!> against the walk over the whole span (hysteresis_energy_walk, the former evaluation),
-!> on EP-GW tables built at rel_tol 1e-3, 1e-4 and 1e-5 and read back from both formats.
+!> Tests of hysteresis_energy: the energy against an independent quadrature of the force
+!> hysteresis_eval returns, and against hysteresis_energy_walk, on EP-GW tables built at
+!> rel_tol 1e-3, 1e-4 and 1e-5 and read back from both formats. EP-GW tables store
+!> ln(P_load/P) (their energy is a Gauss-Legendre sum per piece, the walk the same); the
+!> sampled dips (energy_prepare) belong to the gap tables where the cap acts (suites
+!> cap_hysteresis, rough_cap_hysteresis).
 module test_hysteresis_energy
    use egw_kinds, only: dp
    use egw_status, only: egw_error, format_real
