@@ -45,8 +45,9 @@ module egw_cache
    !> curve's last solve, lu_factor's rank-2 updates and the Jacobian's columns in one
    !> pass: forces moved by <= 5.2e-9 of themselves, tables by <= 5.9e-8 of P(m)); 16:
    !> EP-GW hysteresis tables without the cap store ln(P_load/P) on the edge map, to
-   !> rel_tol of the local force (format version 3)).
-   integer, parameter, public :: cache_revision = 16
+   !> rel_tol of the local force (format version 3); 17: their delta_max intervals at
+   !> m = 0 split down to 1/32 of the others' width limit).
+   integer, parameter, public :: cache_revision = 17
 
 
 contains
