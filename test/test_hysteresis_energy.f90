@@ -1,7 +1,9 @@
-!> Tests of hysteresis_energy's sampled dips (hysteresis_prepare's energy_prepare): the
-!> energy against an independent quadrature of the force hysteresis_eval returns, and
-!> against the walk over the whole span (hysteresis_energy_walk, the former evaluation),
-!> on EP-GW tables built at rel_tol 1e-3, 1e-4 and 1e-5 and read back from both formats.
+!> Tests of hysteresis_energy: the energy against an independent quadrature of the force
+!> hysteresis_eval returns, and against hysteresis_energy_walk, on EP-GW tables built at
+!> rel_tol 1e-3, 1e-4 and 1e-5 and read back from both formats. EP-GW tables store
+!> ln(P_load/P) (their energy is a Gauss-Legendre sum per piece, the walk the same); the
+!> sampled dips (energy_prepare) belong to the gap tables where the cap acts (suites
+!> cap_hysteresis, rough_cap_hysteresis).
 module test_hysteresis_energy
    use egw_kinds, only: dp
    use egw_status, only: egw_error, format_real
@@ -39,10 +41,18 @@ contains
    subroutine test_lammps_table(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t
+      type(hysteresis_table) :: back
+      type(egw_error), allocatable :: err
       call build(contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, &
          & sigma=1.0_dp, mu=4.0_dp, psi=1.0_dp), 0.0_dp, 140.0_dp, 1.0e-4_dp, t, error)
       if (allocated(error)) return
       call check_table(t, error)
+      if (allocated(error)) return
+      ! the file the plugin sends between ranks reads back (its log ratios below the
+      ! cut-off reach below 0: the reader's bound once refused LAMMPS's pour tables)
+      call write_hysteresis(t, "build/hyst_lammps.bin", format_binary, err)
+      if (.not. allocated(err)) call read_hysteresis("build/hyst_lammps.bin", back, err)
+      if (allocated(err)) call test_failed(error, "write/read: "//err%message)
    end subroutine test_lammps_table
 
    !> test_hysteresis's EP-GW contact (psi = 2, mu = 4) at 1e-3 over [-2, 6] sigma.

@@ -50,8 +50,9 @@ module egw_cache
    !> rel_tol >= 1e-7, and at 1e-7 for a history the route loaded: route answers at
    !> sigma/delta_y <= 1e-6 move within their estimates; 19: EP-GW hysteresis tables
    !> without the cap store ln(P_load/P) on the edge map, to rel_tol of the local force
-   !> (format version 3)).
-   integer, parameter, public :: cache_revision = 19
+   !> (format version 3); 20: their delta_max intervals at m = 0 split down to 1/32 of
+   !> the others' width limit).
+   integer, parameter, public :: cache_revision = 20
 
 
 contains

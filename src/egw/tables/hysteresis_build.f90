@@ -412,9 +412,15 @@ contains
          do j = 1, size(m) - 1
             err_mid(j) = stencil_mismatch(table, m, curves, j, mids(j))
          end do
-         ! (log-ratio: an interval narrower than min_width of the range is not split)
+         ! (log-ratio: an interval narrower than min_width of the range is not split; at
+         ! the node m = 0, where the Hertz part sets in and the curves change as sqrt(m),
+         ! 1/32 of that: its first interval met its check curve to 9.5e-4 at min_width)
          wide = .true.
-         if (log_table(table)) wide = m(2:) - m(:size(m) - 1) >= min_width*(m(size(m)) - m(1))
+         if (log_table(table)) then
+            wide = m(2:) - m(:size(m) - 1) >= min_width*(m(size(m)) - m(1))
+            where (m(:size(m) - 1) == 0.0_dp .or. m(2:) == 0.0_dp) wide = &
+               & m(2:) - m(:size(m) - 1) >= min_width/32*(m(size(m)) - m(1))
+         end if
          n_split = count(err_mid > m_bound .and. wide)
          ! built: the nodes' curves and the kept midpoints'; pending: two per split
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
