@@ -500,7 +500,7 @@ contains
       if (table%mapped) length = (mid%m - knee)/s_knee
       err = 0.0_dp
       ! (log-ratio: the edge map of the interpolated L, the mismatch in h weighted)
-      if (mid%log) call edge_breaks(length, sigma, xi_b)
+      if (mid%log) call edge_breaks(length, table%params%sigma, xi_b)
       do i = 1, size(mid%s)
          if (mid%log) then
             call edge_xi(mid%xi, mid%s(i), xi)
