@@ -350,8 +350,7 @@ contains
       integer :: i
       call yield_units(delta_y, force_y)
       do i = 1, size(ratios)
-         p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-            & sigma=ratios(i)*delta_y, mu=4.0_dp, flow_pressure=py)
+         p = egw_cap(ratios(i))
          call load_history(p, solver_options(rel_tol=1.0e-6_dp), x(i)*delta_y, h, res, err)
          if (allocated(err)) then
             call check(error, .false., "sigma/delta_y = "//str(ratios(i))//": history: " &
@@ -426,8 +425,7 @@ contains
       real(dp) :: delta_y, force_y, ref
       integer :: i
       call yield_units(delta_y, force_y)
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-6_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-6_dp)
       call load_history(p, solver_options(rel_tol=1.0e-7_dp), 2.0_dp*delta_y, h, res, err)
       if (allocated(err)) then
          call check(error, .false., "history from 2 delta_y: "//err%message)
@@ -468,8 +466,7 @@ contains
       type(egw_error), allocatable :: err
       real(dp) :: delta_y, force_y, ref
       call yield_units(delta_y, force_y)
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-10_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-10_dp)
       call load_history(p, solver_options(rel_tol=1.0e-7_dp), 10.0_dp*delta_y, h, res, err)
       if (allocated(err)) then
          call check(error, .false., "history from 10 delta_y: "//err%message)
@@ -502,8 +499,7 @@ contains
       type(egw_error), allocatable :: err
       real(dp) :: delta_y, force_y, ref
       call yield_units(delta_y, force_y)
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-6_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-6_dp)
       call solve_contact_unload(p, solver_options(rel_tol=1.0e-5_dp), 0.3_dp*delta_y, &
          & 2.0_dp*delta_y, res, err)
       if (allocated(err)) then
@@ -570,8 +566,7 @@ contains
       type(egw_error), allocatable :: err
       real(dp) :: delta_y, force_y
       call yield_units(delta_y, force_y)
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-7_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-7_dp)
       call solve_contact(p, solver_options(rel_tol=1.0e-8_dp), 2.0_dp*delta_y, res, err)
       call check(error, allocated(err), "rel_tol 1e-8: answered, P = "//str(res%force))
       if (allocated(error)) return
@@ -603,8 +598,7 @@ contains
       real(dp) :: delta_y, force_y, ref
       integer :: i
       call yield_units(delta_y, force_y)
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-7_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-7_dp)
       do i = 1, size(fractions)
          call solve_contact_unload(p, solver_options(rel_tol=1.0e-5_dp), fractions(i)* &
             & 2.0_dp*delta_y, 2.0_dp*delta_y, res, err)
@@ -667,6 +661,16 @@ contains
       real(dp), intent(in) :: a, b
       same = abs(a - b) <= 1.0e-12_dp*abs(b)
    end function same
+
+   !> The E-GW + cap contact of the small-sigma tests: mu 4, E* = R = 1, p_y = py, sigma =
+   !> ratio delta_y.
+   pure type(contact_params) function egw_cap(ratio) result(p)
+      real(dp), intent(in) :: ratio
+      real(dp) :: delta_y, force_y
+      call yield_units(delta_y, force_y)
+      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
+         & sigma=ratio*delta_y, mu=4.0_dp, flow_pressure=py)
+   end function egw_cap
 
    !> First yield delta_y and force P_y of the smooth sphere (R = E* = 1) at p_y.
    pure subroutine yield_units(delta_y, force_y)
@@ -786,8 +790,7 @@ contains
       q = 10.0_dp**(2.0_dp/3.0_dp)
       do i = 1, size(x)
          do j = 1, 2
-            p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-               & sigma=ratios(j)*delta_y, mu=4.0_dp, flow_pressure=py)
+            p = egw_cap(ratios(j))
             call solve_contact(p, o, x(i)*delta_y, res, err)
             if (allocated(err)) then
                call check(error, .false., "delta/delta_y = "//str(x(i))//": " &
@@ -830,8 +833,7 @@ contains
       real(dp) :: delta_y, force_y, got
       integer :: i
       call yield_units(delta_y, force_y)
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-6_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-6_dp)
       do i = 1, size(x)
          call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), x(i)*delta_y, res, err)
          if (allocated(err)) then
@@ -869,8 +871,7 @@ contains
       integer :: i
       call yield_units(delta_y, force_y)
       do i = 1, size(x)
-         p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-            & sigma=ratios(i)*delta_y, mu=4.0_dp, flow_pressure=py)
+         p = egw_cap(ratios(i))
          call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), x(i)*delta_y, res, err)
          if (allocated(err)) then
             call check(error, .false., "sigma/delta_y = "//str(ratios(i))//", delta/delta_y = " &
@@ -903,8 +904,7 @@ contains
       integer :: i
       call yield_units(delta_y, force_y)
       do i = 1, size(ratios)
-         p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-            & sigma=ratios(i)*delta_y, mu=4.0_dp, flow_pressure=py)
+         p = egw_cap(ratios(i))
          call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), 10.0_dp*delta_y, res, err)
          if (allocated(err)) then
             call check(error, .false., "sigma/delta_y = "//str(ratios(i))//": "//err%message)
@@ -936,8 +936,7 @@ contains
       type(egw_error), allocatable :: err
       real(dp) :: delta_y, force_y, got
       call yield_units(delta_y, force_y)
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-6_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-6_dp)
       call load_history(p, solver_options(rel_tol=1.0e-7_dp), 2.0_dp*delta_y, h, res, err)
       call check(error, .not. allocated(err), "history at 2 delta_y failed")
       if (allocated(error)) return
@@ -969,8 +968,7 @@ contains
       real(dp) :: delta_y, force_y, got
       integer :: i
       call yield_units(delta_y, force_y)
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-6_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-6_dp)
       call load_history(p, solver_options(rel_tol=1.0e-7_dp), 2.0_dp*delta_y, h, res, err)
       call check(error, .not. allocated(err), "history at 2 delta_y failed")
       if (allocated(error)) return
@@ -1008,8 +1006,7 @@ contains
       integer :: i
       call yield_units(delta_y, force_y)
       o%rel_tol = 1.0e-7_dp
-      p = contact_params(model=model_egw, radius=1.0_dp, modulus=1.0_dp, &
-         & sigma=1.0e-4_dp*delta_y, mu=4.0_dp, flow_pressure=py)
+      p = egw_cap(1.0e-4_dp)
       call load_history(p, o, 2.0_dp*delta_y, h, res, err)
       call check(error, .not. allocated(err), "history failed")
       if (allocated(error)) return

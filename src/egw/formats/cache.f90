@@ -48,11 +48,14 @@ module egw_cache
    !> 17: rough + cap unloading meshes reach past the plastic rim also where it lies
    !> within the Hertz edge's layers; 18: the small-sigma route's wide histories at
    !> rel_tol >= 1e-7, and at 1e-7 for a history the route loaded: route answers at
-   !> sigma/delta_y <= 1e-6 move within their estimates; 19: EP-GW hysteresis tables
-   !> without the cap store ln(P_load/P) on the edge map, to rel_tol of the local force
-   !> (format version 3); 20: their delta_max intervals at m = 0 split down to 1/32 of
-   !> the others' width limit).
-   integer, parameter, public :: cache_revision = 20
+   !> sigma/delta_y <= 1e-6 move within their estimates; 19: rough + cap tables with
+   !> plastic summits on the two-piece s map too (turning points at or below 0 on its
+   !> tail), every mapped table's slopes stored as dg/dx times tail_length; 20: EP-GW
+   !> hysteresis tables without the cap store ln(P_load/P) on the edge map, to rel_tol of
+   !> the local force (format version 3), their delta_max intervals at m = 0 split down to
+   !> 1/32 of the others' width limit; 21: both of 19 and 20 (branch local10's 19 and 20
+   !> had the log-ratio tables without 19's map, main's 19 not the log-ratio tables)).
+   integer, parameter, public :: cache_revision = 21
 
 
 contains

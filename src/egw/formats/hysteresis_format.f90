@@ -16,8 +16,8 @@ module egw_hysteresis_format
    use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
       & get_f64, split_checksum, checksum_line, check_table
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare, first_yield, hertz_capped
-   use egw_hysteresis_data, only: s_knee, s_zero, map_piece, max_log_ratio, edge_breaks, &
-      & edge_xi
+   use egw_hysteresis_data, only: s_knee, s_zero, map_piece, map_iota, map_lengths, &
+      & max_log_ratio, edge_breaks, edge_xi
    implicit none
    private
 
@@ -754,27 +754,35 @@ contains
    end subroutine check_hysteresis
 
    !> The two-piece map of format 4: a rough model with the cap (flow_pressure > 0, not
-   !> Hertz + cap), turning points above 0, s_max = 1, tail_length > 0, each knee in [0,
-   !> 0.99 m] and its length (m - knee)/s_knee (to rounding), the breaks s_knee and s_zero
-   !> nodes.
+   !> Hertz + cap), s_max = 1, tail_length > 0, each knee in [0, 0.99 max(m, 0)] and its
+   !> length 1/map_iota ((m - knee)/s_knee above 0; to rounding), the breaks s_knee and
+   !> s_zero nodes.
    subroutine check_map(path, t, error)
       character(len=*), intent(in) :: path
       type(hysteresis_table), intent(in) :: t
       type(egw_error), allocatable, intent(out) :: error
+      integer :: j
       if (.not. (t%params%flow_pressure > 0.0_dp .and. .not. hertz_capped(t%params) .and. &
-         & t%m(1) > 0.0_dp .and. t%s_max == 1.0_dp .and. t%tail_length > 0.0_dp .and. &
+         & t%s_max == 1.0_dp .and. t%tail_length > 0.0_dp .and. &
          & ieee_is_finite(t%tail_length) .and. size(t%knee) == size(t%m))) then
          call bad(error, path, "two-piece s map (format 4): needs a rough model with the "// &
-            & "cap, turning points above 0, s_max = 1 and a finite tail_length > 0")
+            & "cap, s_max = 1 and a finite tail_length > 0")
          return
       end if
       if (.not. (all(ieee_is_finite(t%knee)) .and. all(t%knee >= 0.0_dp) .and. &
-         & all(t%knee <= 0.99_dp*t%m) .and. all(abs(t%length - (t%m - t%knee)/s_knee) <= &
-         & 1.0e-12_dp*t%length))) then
+         & all(t%knee <= 0.99_dp*max(t%m, 0.0_dp)))) then
          call bad(error, path, "two-piece s map (format 4): each knee must lie in [0, "// &
-            & "0.99 delta_max] and its length be (delta_max - knee)/s_knee")
+            & "0.99 delta_max]")
          return
       end if
+      do j = 1, size(t%m)
+         if (.not. abs(t%length(j)*map_iota(t, t%m(j), t%knee(j)) - 1.0_dp) <= 1.0e-12_dp) then
+            call bad(error, path, "two-piece s map (format 4): curve "//int_str(j)// &
+               & ": length "//format_real(t%length(j))//" is not its first piece's span "// &
+               & "((delta_max - knee)/s_knee; above the tail's at or below 0)")
+            return
+         end if
+      end do
       if (findloc(t%s, s_knee, 1) == 0 .or. findloc(t%s, s_zero, 1) == 0) &
          & call bad(error, path, "two-piece s map (format 4): s = 1/2 and 3/4 must be nodes")
    end subroutine check_map
@@ -835,8 +843,7 @@ contains
       do j = 1, size(t%m)
          ! the two-piece map: dg/ds on each piece is the stored slope times its scale
          scale = 1.0_dp
-         if (t%mapped) scale(2:3) = [t%knee(j)/(s_zero - s_knee), &
-            & t%tail_length/(1.0_dp - s_zero)]/t%length(j)
+         if (t%mapped) scale = map_lengths(t, t%m(j), t%knee(j))/t%tail_length
          do i = 1, size(t%s) - 1
             h = t%s(i + 1) - t%s(i)
             h = h*scale(map_piece(t%mapped, 0.5_dp*(t%s(i) + t%s(i + 1))))

@@ -18,8 +18,8 @@ module egw_hysteresis
    use egw_hysteresis_data, only: hysteresis_table, hysteresis_state_size, nan_error, &
       & gap_cubic, turning_point, gap_combination, unload_tail_ratio, make_lookup, &
       & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan, turning_knee, map_s, &
-      & map_x, map_piece, s_knee, s_zero, log_unload, edge_breaks, edge_segment, edge_s, &
-      & edge_xi
+      & map_x, map_piece, s_knee, s_zero, map_lengths, log_unload, edge_breaks, &
+      & edge_segment, edge_s, edge_xi
    use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, &
       & energy_prepare
    implicit none
@@ -531,11 +531,11 @@ contains
       allocate (table%piece_scale(3, n_m))
       table%piece_scale = 1.0_dp
       if (table%mapped) then
-         ! (ds/dx of the first piece)/(ds/dx of piece p): the stored slopes are the first
-         ! piece's (map_s; knee 0: the second piece is one point, its slope 0)
+         ! (dx/ds of piece p)/tail_length: the stored slopes are dg/dx times tail_length
+         ! (map_s; a piece of no width: 0)
          do j = 1, n_m
-            table%piece_scale(2, j) = table%knee(j)/(s_zero - s_knee)*table%inv_span(j)
-            table%piece_scale(3, j) = table%tail_length/(1.0_dp - s_zero)*table%inv_span(j)
+            table%piece_scale(:, j) = map_lengths(table, table%m(j), table%knee(j))/ &
+               & table%tail_length
          end do
       end if
       allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))

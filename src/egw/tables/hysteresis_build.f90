@@ -11,8 +11,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
       & table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
-   use egw_hysteresis_data, only: s_knee, s_zero, map_s, map_x, map_piece, edge_breaks, &
-      & edge_s, edge_xi, edge_segment, max_log_ratio
+   use egw_hysteresis_data, only: s_knee, s_zero, map_s, map_x, map_piece, map_iota, &
+      & map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, max_log_ratio
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -22,7 +22,9 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> The first s nodes of every curve (bisection adds nodes between them); with the
    !> two-piece map (mapped) its breaks s_knee = 1/2 and s_zero = 3/4 too.
    real(dp), parameter :: first_nodes(5) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp], &
-      & mapped_first_nodes(6) = [0.0_dp, 0.0625_dp, 0.25_dp, s_knee, s_zero, 1.0_dp]
+      & mapped_first_nodes(6) = [0.0_dp, 0.0625_dp, 0.25_dp, s_knee, s_zero, 1.0_dp], &
+      & tail_first_nodes(7) = [0.0_dp, s_zero, s_zero + 0.25_dp*0.0625_dp, &
+      & s_zero + 0.25_dp*0.125_dp, s_zero + 0.25_dp*0.25_dp, s_zero + 0.25_dp*0.5_dp, 1.0_dp]
    !> The first s nodes of a log-ratio curve: the edge map's breaks 1/2, 3/4, 1 among them
    !> (no interval straddles one).
    real(dp), parameter :: first_log_nodes(7) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, &
@@ -193,10 +195,11 @@ contains
          m(size(m)) = delta_max
          n = size(m)
       end if
-      ! the two-piece s map (rough + cap with its turning points above 0, i.e. elastic
-      ! summits: from m_y): the knee delta_r(m) at s_knee, delta = 0 at s_zero, the
-      ! tail to twice the floor delta_u below 0 (at least 2 sigma) over [s_zero, 1]
-      table%mapped = rough_cap .and. shift .and. m(1) > 0.0_dp
+      ! the two-piece s map (rough + cap where the cap acts below delta_max): the knee
+      ! delta_r(m) at s_knee, delta = 0 at s_zero, the tail to twice the floor delta_u
+      ! below 0 (at least 2 sigma) over [s_zero, 1] (turning points at or below 0, EP-GW's:
+      ! that tail alone)
+      table%mapped = rough_cap .and. shift
       if (table%mapped) table%tail_length = max(-2*unloading_floor(table%loading, &
          & table%rel_tol), 2*params%sigma)
       allocate (curves(n))
@@ -496,8 +499,8 @@ contains
       ! as the evaluation: 1/L interpolated
       length = 1.0_dp/sum(w/curves(first:first + 3)%length)
       ! mapped: the knee interpolated and the first piece's span from it (turning_point)
-      knee = min(max(sum(w*curves(first:first + 3)%knee), 0.0_dp), 0.99_dp*mid%m)
-      if (table%mapped) length = (mid%m - knee)/s_knee
+      knee = min(max(sum(w*curves(first:first + 3)%knee), 0.0_dp), 0.99_dp*max(mid%m, 0.0_dp))
+      if (table%mapped) length = 1.0_dp/map_iota(table, mid%m, knee)
       err = 0.0_dp
       ! (log-ratio: the edge map of the interpolated L, the mismatch in h weighted)
       if (mid%log) call edge_breaks(length, table%params%sigma, xi_b)
@@ -675,7 +678,7 @@ contains
             if (only_check) then
                s = curves(j)%s
             else
-               s = start_nodes(table)
+               s = start_nodes(table, m(j))
             end if
             call solve_nodes(table, curves(j), s, err)
          end if
@@ -714,7 +717,7 @@ contains
          type(unloading_curve) :: known
          real(dp), allocatable :: first(:)
          integer :: i, at
-         first = start_nodes(table)
+         first = start_nodes(table, curves(idx(k))%m)
          known%s = curves(idx(k))%s
          known%gap = curves(idx(k))%gap
          known%slope = curves(idx(k))%slope
@@ -804,14 +807,13 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: smooth
       curve%knee = 0.0_dp
-      if (m > first_yield(table%params)) then
+      if (m > first_yield(table%params)) then   ! (then m > 0)
          call cap_length(table%params, m, smooth, error)
          if (allocated(error)) return
          curve%knee = min(max(m - smooth, 0.0_dp), 0.99_dp*m)
       end if
-      curve%length = (m - curve%knee)/s_knee
-      curve%piece_scale = [1.0_dp, curve%knee/(s_zero - s_knee)/curve%length, &
-         & table%tail_length/(1.0_dp - s_zero)/curve%length]
+      curve%length = 1.0_dp/map_iota(table, m, curve%knee)
+      curve%piece_scale = map_lengths(table, m, curve%knee)/table%tail_length
    end subroutine mapped_length
 
    !> x = m - delta at s on the curve (its map, map_x) and the piece's dx/ds over the
@@ -825,14 +827,16 @@ contains
       if (table%mapped) call map_x(table, curve%m, curve%knee, 1.0_dp/curve%span, s, x, dsdx)
    end function curve_offset
 
-   !> The first s nodes of the table's curves (first_nodes; mapped: its breaks too;
-   !> log-ratio: the edge map's breaks).
-   pure function start_nodes(table) result(s)
+   !> The first s nodes of the table's curves (first_nodes; mapped: its breaks too, and
+   !> the tail's nodes at or below 0; log-ratio: the edge map's breaks).
+   pure function start_nodes(table, m) result(s)
       type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m
       real(dp), allocatable :: s(:)
       s = first_nodes
       if (table%mapped) s = mapped_first_nodes
       if (table%log_ratio) s = first_log_nodes
+      if (table%mapped .and. .not. m > 0.0_dp) s = tail_first_nodes
    end function start_nodes
 
    !> The curve's g and dg/ds at the nodes s (increasing, in [0, 1]), solved.
@@ -969,6 +973,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
       real(dp) :: p_ext, k_ext, x_solve
+      logical :: at_turn
       g = 0.0_dp
       dg = 0.0_dp
       weight = 1.0_dp
@@ -988,13 +993,22 @@ contains
       if (x == 0.0_dp) x_solve = 1.0e-4_dp
       ! (the overlap of s on the curve's map: m - s span unless mapped)
       x_solve = curve_offset(table, curve, x_solve)
+      ! (a mapped turning point at or below 0: s <= s_zero is the turning point itself;
+      ! its slope, on the tail, is the unloading branch's, as at s = 0 above)
+      at_turn = x_solve == 0.0_dp
+      if (at_turn) x_solve = curve_offset(table, curve, s_zero + 1.0e-4_dp*(1.0_dp - s_zero))
       call solve_unload(curve%hist, curve%m - x_solve, res, error, curve%start)
       if (allocated(error)) return
       ! the loading force continued below its cut-off by the tail law (table_eval
       ! gives 0 there), so that the gap stays smooth across it
       call table_eval_tail_law(table%loading, curve%m - x_solve, p_ext, k_ext)
-      if (x > 0.0_dp) g = (curve%c_turn*p_ext - res%force)/curve%scale
-      dg = (res%stiffness - curve%c_turn*k_ext)*curve%span/curve%scale
+      if (x > 0.0_dp .and. .not. at_turn) g = (curve%c_turn*p_ext - res%force)/curve%scale
+      ! (dg/ds of the linear map; the two-piece map: dg/dx times tail_length)
+      if (table%mapped) then
+         dg = (res%stiffness - curve%c_turn*k_ext)*table%tail_length/curve%scale
+      else
+         dg = (res%stiffness - curve%c_turn*k_ext)*curve%span/curve%scale
+      end if
       ! far below the cut-off the forces underflow: no subnormal numbers in the table
       ! (they would slow every evaluation that touches them by two orders)
       if (abs(g) < tiny_ratio) g = 0.0_dp

@@ -27,8 +27,9 @@
 !> union refines every curve's own nodes), so that an evaluation needs one lookup in s and
 !> one in m, served by uniform buckets: no search, no allocation, only the caller's
 !> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
-!> retraces the loading table exactly. Rough + cap tables whose turning points lie above
-!> 0 (mapped) take s piecewise linear in m - delta instead (the two-piece map, map_s).
+!> retraces the loading table exactly. Rough + cap tables whose cap acts below delta_max
+!> (mapped) take s piecewise linear in m - delta instead (the two-piece map, map_s;
+!> turning points at or below 0 only its tail).
 module egw_hysteresis_data
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use, intrinsic :: iso_fortran_env, only: int64
@@ -42,7 +43,8 @@ module egw_hysteresis_data
    public :: hysteresis_table, grid_lookup, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, make_lookup, m_breakpoint, &
       & m_coordinate, stencil_first, locate, turning_knee, map_s, map_x, map_piece, &
-      & edge_breaks, edge_s, edge_xi, edge_segment, log_branch, max_log_ratio, log_unload
+      & map_iota, map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, log_branch, &
+      & max_log_ratio, log_unload
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
@@ -149,16 +151,17 @@ module egw_hysteresis_data
       !> §12): L(m_j) is m_j minus the residual overlap, s_max = 1, and below s = 1 there
       !> is no force (a rough model with the cap is not capped here: EP-GW's layout)
       logical :: capped = .false.
-      !> rough + cap with the two-piece s map (format version 3): s = (m - delta)/(s_max
+      !> rough + cap with the two-piece s map (format version 4): s = (m - delta)/(s_max
       !> L(m)) with L(m) = (m - knee(m))/s_knee down to the knee, then linear to s_zero at
-      !> delta = 0, then linear to 1 at delta = -tail_length (map_s); the stored slopes are
-      !> dg/ds of the first piece (dg/d(m - delta) times its span: continuous across the
-      !> breaks), the cubics' slopes on the other pieces scaled by piece_scale
+      !> delta = 0, then on below 0 at slope (1 - s_zero)/tail_length (map_s; a turning
+      !> point at or below 0 has only that tail, from s_zero); the stored slopes are
+      !> dg/d(m - delta) times tail_length (continuous across the breaks), the cubics'
+      !> slopes on each piece scaled by piece_scale
       logical :: mapped = .false.
       real(dp), allocatable :: knee(:)         !< (n_m) the knee delta_r(m_j) (mapped)
       real(dp) :: tail_length = 0.0_dp         !< the tail piece's length in delta (mapped)
-      !> (3, n_m): per curve and piece, (ds/dx of piece 1)/(ds/dx of the piece), x = m -
-      !> delta: the stored slope times it is dg/ds on that piece (hysteresis_prepare)
+      !> (3, n_m): per curve and piece, (dx/ds of the piece)/tail_length, x = m - delta: the
+      !> stored slope times it is dg/ds on that piece (hysteresis_prepare; 1 unless mapped)
       real(dp), allocatable :: piece_scale(:, :)
       !> the largest overlap (or state) whose force stays well inside the doubles: where
       !> the loading table's deep-overlap law beyond delta_max reaches huge/4 (the C
@@ -254,7 +257,7 @@ contains
       if (table%mapped) then
          ! the first piece's 1/span from the interpolated knee, so that the pieces meet
          knee = turning_knee(table, first, w, m)
-         inv_span = s_knee/(m - knee)
+         inv_span = map_iota(table, m, knee)
       end if
    end subroutine turning_point
 
@@ -266,7 +269,7 @@ contains
       integer, intent(in) :: first
       real(dp), intent(in) :: w(4), m
       knee = 0.0_dp
-      if (.not. table%mapped) return
+      if (.not. (table%mapped .and. m > 0.0_dp)) return
       knee = w(1)*table%knee(first) + w(2)*table%knee(first + 1) + &
          & w(3)*table%knee(first + 2) + w(4)*table%knee(first + 3)
       knee = min(max(knee, 0.0_dp), 0.99_dp*m)
@@ -291,6 +294,12 @@ contains
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m, knee, iota, x
       real(dp), intent(out) :: s, dsdx
+      if (table%mapped .and. .not. m > 0.0_dp) then
+         ! a turning point at or below 0: the first two pieces are the point x = 0
+         dsdx = (1.0_dp - s_zero)/table%tail_length
+         s = s_zero + x*dsdx
+         return
+      end if
       dsdx = iota
       s = x*iota
       if (.not. table%mapped .or. .not. s > s_knee) return
@@ -309,6 +318,12 @@ contains
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m, knee, iota, s
       real(dp), intent(out) :: x, dsdx
+      if (table%mapped .and. .not. m > 0.0_dp) then   ! (map_s)
+         dsdx = (1.0_dp - s_zero)/table%tail_length
+         x = max(s - s_zero, 0.0_dp)/dsdx
+         if (s <= s_zero) dsdx = huge(1.0_dp)   ! (a piece of no width)
+         return
+      end if
       dsdx = iota
       x = s*(1.0_dp/iota)   ! (the linear map's span 1/iota, as a state holds it)
       if (.not. table%mapped .or. s <= s_knee) return
@@ -320,6 +335,25 @@ contains
          x = m + table%tail_length*(s - s_zero)/(1.0_dp - s_zero)
       end if
    end subroutine map_x
+
+   !> ds/dx of the first piece of the two-piece map of turning point m with its knee:
+   !> s_knee/(m - knee); at or below 0 (no first piece) the tail's, (1 - s_zero)/tail_length.
+   pure real(dp) function map_iota(table, m, knee) result(iota)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m, knee
+      iota = (1.0_dp - s_zero)/table%tail_length
+      if (m > 0.0_dp) iota = s_knee/(m - knee)
+   end function map_iota
+
+   !> dx/ds of the three pieces of the two-piece map of turning point m with its knee (0
+   !> for a piece of no width).
+   pure function map_lengths(table, m, knee) result(dxds)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m, knee
+      real(dp) :: dxds(3)
+      dxds = [0.0_dp, 0.0_dp, table%tail_length/(1.0_dp - s_zero)]
+      if (m > 0.0_dp) dxds(1:2) = [(m - knee)/s_knee, knee/(s_zero - s_knee)]
+   end function map_lengths
 
    !> The gap cubic g(t) of the turning point (stencil first, weights w) on s interval i:
    !> the four curves' cubics (16 contiguous numbers) combined.

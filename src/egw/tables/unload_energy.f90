@@ -11,7 +11,7 @@ module egw_unload_energy
    use egw_table, only: table_eval, gl_x, gl_w, table_energy, table_interval, beyond_status
    use egw_hysteresis_data, only: hysteresis_table, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, locate, map_s, map_x, s_knee, &
-      & s_zero, log_unload, edge_breaks, edge_s, edge_xi
+      & s_zero, map_lengths, log_unload, edge_breaks, edge_s, edge_xi
    implicit none
    private
 
@@ -170,7 +170,11 @@ contains
          end if
       end if
       u = (u - table%dip_u(k))/(table%dip_u(k + 1) - table%dip_u(k))
-      total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m/cv%inv_span
+      if (table%mapped) then   ! (dips in f_m tail_length units there)
+         total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m*table%tail_length
+      else
+         total = ((1.0_dp - u)*table%dip(k) + u*table%dip(k + 1))*cv%f_m/cv%inv_span
+      end if
       x_band = curve_x(table, cv, min(table%dip_band(j), 1.0_dp))
       if (delta > x_band) then
          call span_eval(table, cv, delta, f, slope)
@@ -277,13 +281,14 @@ contains
       type(hysteresis_table), intent(in) :: table
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: s
-      total = gap_primitive(table, cv, min(s, s_knee))/cv%inv_span
+      real(dp) :: dxds(3)
+      dxds = map_lengths(table, cv%m, cv%knee)
+      total = gap_primitive(table, cv, min(s, s_knee))*dxds(1)
       if (.not. s > s_knee) return
       total = total + (gap_primitive(table, cv, min(s, s_zero)) - gap_primitive(table, cv, &
-         & s_knee))*cv%knee/(s_zero - s_knee)
+         & s_knee))*dxds(2)
       if (.not. s > s_zero) return
-      total = total + (gap_primitive(table, cv, s) - gap_primitive(table, cv, s_zero))* &
-         & table%tail_length/(1.0_dp - s_zero)
+      total = total + (gap_primitive(table, cv, s) - gap_primitive(table, cv, s_zero))*dxds(3)
    end function gap_work
 
    !> s (at most 1) at overlap x on the unloading curve cv (map_s).
@@ -636,9 +641,14 @@ contains
       if (.not. lo < cv%m) return
       call span_dips(table, cv, lo, cv%m, total, x_top, x_low)
       q = total*cv%inv_span/cv%f_m
+      ! (the two-piece map: in f_m tail_length, as its first piece vanishes at m = 0)
+      if (table%mapped) q = total/(cv%f_m*table%tail_length)
       low = (x_low - lo)/(cv%m - lo)
       if (x_top > -huge(1.0_dp)) top = curve_s(table, cv, x_top)
       scale = max(abs(span_integral(table, cv, lo, cv%m))*cv%inv_span/cv%f_m, tiny(1.0_dp))
+      ! (the two-piece map: in f_m tail_length, as its first piece vanishes at m = 0)
+      if (table%mapped) scale = max(abs(span_integral(table, cv, lo, cv%m))/(cv%f_m* &
+         & table%tail_length), tiny(1.0_dp))
    end subroutine dip_sample
 
 end module egw_unload_energy
