@@ -736,14 +736,19 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
  * from the loading cut-off to delta. On the loading curve it is the part of the loading
  * work that comes back; the rest is dissipated when the contact unloads (a DEM code's
  * kinetic + this energy falls while contacts load and stays while they unload or reload).
- * Reversible tables: the loading curve's energy. The state is not changed. It integrates
- * the force egw_hysteresis_eval returns: on a ln(P_load/P) table (EP-GW) by 8-point
- * Gauss-Legendre on each smooth piece from the curve's span end to delta (a cost that
- * grows with the pieces crossed); on a gap table (the cap acting) 0 also where, far down
- * the separated range, the interpolated curve dips below 0 within rel_tol (those dips
- * sampled per table when it is built or read; a few table lookups a call); kinetic + this
- * energy is constant to ~1e-8 of it while a contact unloads, measured against
- * quadrature of the force.
+ * Reversible tables: the loading curve's energy. The state is not changed. On a
+ * ln(P_load/P) table (EP-GW) it is the loading energy times e^-eta, eta = ln(E_load/E)
+ * tabulated per curve when the table is built or read and interpolated as the force's
+ * log ratio (one exp a call): within rel_tol of max(energy, 1e-3 of the energy at the
+ * turning point) of the integral of the force egw_hysteresis_eval returns (measured
+ * 0.2-0.4 rel_tol), so kinetic + this energy drifts by up to that while a contact
+ * unloads; overlaps within an s interval of the loading cut-off, and turning points
+ * within ~1.5 sigma of it, integrate that force piece by piece instead (exact; a cost
+ * that grows with the pieces). On a gap table (the cap acting) it integrates that force,
+ * 0 also where, far down the separated range, the interpolated curve dips below 0 within
+ * rel_tol (those dips sampled per table when it is built or read; a few table lookups a
+ * call); kinetic + this energy is constant to ~1e-8 of it while a contact unloads,
+ * measured against quadrature of the force.
  * EGW_OUT_OF_RANGE above the table's delta_max (value written); EGW_INVALID_ARGUMENT for
  * NaN or overflowing input; EGW_NULL_POINTER for h or energy. */
 int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,

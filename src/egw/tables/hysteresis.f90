@@ -20,7 +20,7 @@ module egw_hysteresis
       & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan, turning_knee, map_s, &
       & map_x, map_piece, s_knee, s_zero, map_lengths, log_unload, edge_breaks, &
       & edge_segment, edge_s, edge_xi
-   use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, &
+   use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, log_energy_prepare, &
       & energy_prepare
    implicit none
    private
@@ -589,6 +589,7 @@ contains
       call make_runs(table)
       ! (log-ratio tables: P_load e^-h is never below 0, no dips to sample)
       if (.not. table%log_ratio) call energy_prepare(table)
+      if (table%log_ratio) call log_energy_prepare(table)
    end subroutine hysteresis_prepare
 
    !> Whether params are a smooth sphere (Hertz or sigma = 0) with the flow-pressure cap:

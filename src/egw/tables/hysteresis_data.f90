@@ -105,6 +105,18 @@ module egw_hysteresis_data
       integer, allocatable :: run_first(:, :), run_last(:, :)
       !> (n_m, n_s): int_0^{s_i} g(s, m_j) ds of each curve's cubics (hysteresis_energy)
       real(dp), allocatable :: gap_integral(:, :)
+      !> log-ratio tables, (4, n_m, n_s - 1): the cubic in t (as coef) of each curve's
+      !> eta = ln(E_load(delta)/E(delta)), E its energy from the cut-off (hysteresis_energy),
+      !> E_load the loading table's; from exact values and slopes at the s nodes
+      !> (log_energy_prepare, called by hysteresis_prepare)
+      real(dp), allocatable :: energy_coef(:, :, :)
+      !> log-ratio tables, (n_m - 1): delta_max intervals whose energy is the walk's
+      !> (where energy_coef missed it at the interval's middle curve; log_energy_prepare)
+      logical, allocatable :: energy_walk(:)
+      !> log-ratio tables, (n_m): each curve's first s node at or below the loading
+      !> cut-off (n_s + 1: none): an s interval that reaches it on a curve of the stencil
+      !> takes the walk from the cut-off (log_energy_prepare)
+      integer, allocatable :: energy_cut(:)
       !> the part of the unloading integral that the clip at 0 removes, int min(F, 0) dx
       !> over the whole span of the turning point m (F the span force before the clip),
       !> times 1/(s_max L(m) P_load(m)), at m = m_j + dip_u (m_{j+1} - m_j) in delta_max
