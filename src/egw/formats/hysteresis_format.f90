@@ -791,9 +791,12 @@ contains
    !> and 3/4 among the s nodes (no interval straddles one), h = ln(P_load/P) 0 at s = 0
    !> and within [-1, max_log_ratio] (below the loading table's cut-off, where the curves
    !> run on the loading tail's continuation and the evaluation returns 0, h reaches -0.25:
-   !> LAMMPS's pour tables, mu 8-23, psi 0.5, to 140 sigma), and no cubic rising by more than 4 max_log_ratio
-   !> over an interval from its slopes (|dh/dxi| dxi; built tables: < 1 at the
-   !> residual-overlap edge; a crafted slope of 1e300 does not).
+   !> LAMMPS's pour tables, mu 8-23, psi 0.5, to 140 sigma), and no cubic rising by more
+   !> than 10 max_log_ratio over an interval from its slopes (|dh/dxi| dxi; built tables:
+   !> up to 452 on the last interval of egw-bench's 1e-4 table (mu 4, psi 2, to 30
+   !> sigma), 469 to 140 sigma at 1e-3, where h climbs from ~50 at s = 3/4 to the stored
+   !> 100 over the separated tail's 12 sigma; the bound was 4 max_log_ratio and refused
+   !> the first; a crafted slope of 1e300 does not pass).
    subroutine check_log_curves(path, t, error)
       character(len=*), intent(in) :: path
       type(hysteresis_table), intent(in) :: t
@@ -817,7 +820,7 @@ contains
             call edge_xi(xi_b, t%s(i), x0)
             call edge_xi(xi_b, t%s(i + 1), x1)
             if (max(abs(t%slope(i, j)), abs(t%slope(i + 1, j)))*(x1 - x0) > &
-               & 4*max_log_ratio) then
+               & 10*max_log_ratio) then
                call bad(error, path, "unloading data: curve "//int_str(j)//", s nodes "// &
                   & int_str(i)//", "//int_str(i + 1)//": slope "// &
                   & format_real(max(abs(t%slope(i, j)), abs(t%slope(i + 1, j))))// &
