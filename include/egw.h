@@ -83,7 +83,8 @@ int egw_get_version(void);
 int egw_status_message(int status, char *buf, int buflen);
 
 /* Detailed message of the last failing egw call on this thread (empty if none),
- * e.g. "sigma = -1.0E-003: must be finite and >= 0", copied into buf (buflen bytes).
+ * e.g. "sigma = -1.000000000000000E-003: must be finite and >= 0", copied into buf
+ * (buflen bytes).
  * Returns the bytes the whole message needs, strlen(message) + 1 (>= 1), in every case
  * that is not an error:
  *   - buflen >= that: the whole message and its NUL are written;
@@ -102,8 +103,9 @@ void egw_params_default(egw_params *p);
 
 /* Validate every field of p, including the ranges the numerics represent (normal doubles;
  * for sigma > 0 the scales sqrt(R sigma), E sqrt(sigma/R), E sqrt(R) sigma^1.5 within
- * 1e+-278, mu in [1e-20, 1e20]; psi 0 or in [1e-50, 1e50]; K >= 1e-20; rho_p <= 1e50:
- * doc/parameters.md section 5). EGW_INVALID_PARAMETER names the field and its valid
+ * 1e+-278, mu in [1e-20, 1e20]; psi 0 or in [1e-50, 1e50]; K >= 1e-20; rho_p <= 1e50;
+ * for flow_pressure > 0 the cap's scales a_y = pi R p_y/(2 E*), delta_y = a_y^2/R and
+ * P_y = (4/3) E* a_y^3/R within 1e+-278: doc/parameters.md section 5). EGW_INVALID_PARAMETER names the field and its valid
  * range; EGW_NULL_POINTER. */
 int egw_params_validate(const egw_params *p);
 

@@ -44,7 +44,43 @@ int egw_capi_test_flow_pressure_params(void) {
   BAD(INFINITY);
   BAD(-INFINITY);
   BAD(1.0); /* = modulus: not a small-strain cap */
+  /* R = E* = 1: a_y = pi p_y/2 = 1.6e-300, delta_y = a_y^2 underflowed to 0 (accepted
+   * before; a GW + cap solve then returned EGW_OK with force 0) */
+  BAD(1e-300);
+  BAD(1e-200); /* a_y a normal double, delta_y = 2.5e-400 not */
 #undef BAD
+  {
+    /* the cap's scales leave the doubles through R or E* too: named flow_pressure */
+    egw_params q = capped();
+    egw_result r;
+    double delta_y = -1.0;
+    q.radius = 1e-300; /* a_y = 1e-300 */
+    CHECK(egw_params_validate(&q) == EGW_INVALID_PARAMETER);
+    CHECK(message_has("flow_pressure") && message_has("radius"));
+    q = capped();
+    q.modulus = 1e300;
+    q.flow_pressure = 2.0 / M_PI * 1e300; /* a_y = 1, P_y = (4/3) 1e300 */
+    CHECK(egw_params_validate(&q) == EGW_INVALID_PARAMETER);
+    CHECK(message_has("flow_pressure"));
+    q = capped();
+    q.model = EGW_MODEL_GW;
+    q.sigma = 1e-3;
+    q.mu = 2.0;
+    q.flow_pressure = 1e-300;
+    CHECK(egw_solve(&q, NULL, 2e-3, &r) == EGW_INVALID_PARAMETER);
+    CHECK(message_has("flow_pressure"));
+    /* inside the scales: p_y = 1e-50 (P_y = 5e-150); the closed forms
+     * delta_y = a_y^2, (1/2) v_y^2 = (8/15) a_y^5 (R = E* = m* = 1) to a few roundings */
+    q = capped();
+    q.flow_pressure = 1e-50;
+    CHECK(egw_params_validate(&q) == EGW_OK);
+    {
+      double velocity_y = -1.0, a_y = M_PI / 2.0 * 1e-50;
+      CHECK(egw_first_yield(&q, 1.0, &delta_y, &velocity_y) == EGW_OK);
+      CHECK(fabs(delta_y / (a_y * a_y) - 1.0) < 1e-14);
+      CHECK(fabs(velocity_y / sqrt(16.0 / 15.0 * pow(a_y, 5.0)) - 1.0) < 1e-14);
+    }
+  }
   {
     egw_params q = capped();
     egw_result r;

@@ -36,6 +36,7 @@ program tester
    use test_cap_hysteresis, only: collect_cap_hysteresis
    use test_rough_cap, only: collect_rough_cap
    use test_rough_cap_hysteresis, only: collect_rough_cap_hysteresis
+   use test_search, only: collect_search
    implicit none
    type(testsuite_type), allocatable :: suites(:)
    type(unittest_type), allocatable :: tests(:)
@@ -44,6 +45,7 @@ program tester
 
    suites = [ &
       & new_testsuite("params", collect_params), &
+      & new_testsuite("search", collect_search), &
       & new_testsuite("flat_law", collect_flat_law), &
       & new_testsuite("ellip", collect_ellip), &
       & new_testsuite("hertz", collect_hertz), &

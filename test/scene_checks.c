@@ -43,7 +43,7 @@ int egw_capi_test_scene_read(void) {
   CHECK(egw_scene_validate(&s) == EGW_OK);
   s0 = s;
   s.hardness_coeff = 1.5;
-  CHECK(egw_scene_validate(&s) == EGW_INVALID_PARAMETER && last_error_names("K = "));
+  CHECK(egw_scene_validate(&s) == EGW_INVALID_PARAMETER && last_error_names("hardness_coeff"));
   s = s0;
   s.n_types = 2; s.radius[1] = -1.0;
   CHECK(egw_scene_validate(&s) == EGW_INVALID_PARAMETER && last_error_names("radius(2)"));

@@ -4,11 +4,12 @@
 !> /dev/full, a device on which every write fails with ENOSPC (a full disk).
 module test_text_io
    use, intrinsic :: iso_fortran_env, only: int64
+   use, intrinsic :: iso_c_binding, only: c_int
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_io_error
-   use egw_text, only: int_text, real_text, parse_real, parse_int
+   use egw_text, only: int_text, real_text, parse_real, parse_int, to_lower
    use egw_io, only: write_stream, write_file, read_file
    implicit none
    private
@@ -25,7 +26,8 @@ contains
          & new_unittest("integers", test_integers), &
          & new_unittest("full device: EGW_IO_ERROR", test_full_device), &
          & new_unittest("write_file onto a directory", test_directory), &
-         & new_unittest("no deferred-length function results", test_no_deferred) &
+         & new_unittest("no deferred-length function results", test_no_deferred), &
+         & new_unittest("to_lower = C's tolower, every byte", test_to_lower) &
          & ]
    end subroutine collect_text_io
 
@@ -279,5 +281,30 @@ contains
          at = k + 1
       end do
    end function has_word
+
+   !> to_lower on all 256 bytes at once equals the C library's tolower byte by byte (an
+   !> independent implementation; a Fortran program runs in the "C" locale, where only
+   !> A-Z change). Bytes compare exactly: no tolerance.
+   subroutine test_to_lower(error)
+      type(error_type), allocatable, intent(out) :: error
+      interface
+         pure function c_tolower(c) result(lower) bind(C, name="tolower")
+            import :: c_int
+            integer(c_int), value, intent(in) :: c
+            integer(c_int) :: lower
+         end function c_tolower
+      end interface
+      character(len=256) :: bytes, lower
+      integer :: i
+      do i = 0, 255
+         bytes(i + 1:i + 1) = achar(i)
+      end do
+      lower = to_lower(bytes)
+      do i = 0, 255
+         call check(error, iachar(lower(i + 1:i + 1)), int(c_tolower(int(i, c_int))), &
+            & "byte "//to_string(i))
+         if (allocated(error)) return
+      end do
+   end subroutine test_to_lower
 
 end module test_text_io

@@ -166,7 +166,8 @@ def _public_objects():
     names = [(n, getattr(egw, n)) for n in egw.__all__]
     names += [(f"topography.{n}", v) for n, v in vars(egw.topography).items()
               if not n.startswith("_") and callable(v)
-              and getattr(v, "__module__", None) == "egw.topography"]
+              and (getattr(v, "__module__", None) or "").startswith(("egw.topography",
+                                                                      "egw.topo_"))]
     for name, obj in names:
         yield name, obj
         if isinstance(obj, type):

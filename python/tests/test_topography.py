@@ -131,6 +131,34 @@ def test_egw_topo_command(tmp_path):
     assert "Traceback" not in bad.stderr
 
 
+@pytest.mark.parametrize("pixel", [1e-300, 1e300, 1e-101, 1e101])
+def test_pixel_size_beyond_the_doubles_named(tmp_path, pixel):
+    # pixel sizes whose moments leave the doubles: a ValueError naming pixel_size, from
+    # an array, a file and the command line (1e-300 raised ZeroDivisionError, 1e300
+    # OverflowError, both as tracebacks of egw-topo)
+    surface, _ = synthetic(n=32)
+    with pytest.raises(ValueError, match="pixel_size"):
+        topo.analyse(surface.heights, pixel_size=pixel, unit="m")
+    np.save(tmp_path / "s.npy", surface.heights)
+    with pytest.raises(ValueError, match="pixel_size"):
+        topo.read_height_map(str(tmp_path / "s.npy"), pixel, "m")
+    command = os.path.join(os.path.dirname(sys.executable), "egw-topo")
+    run = subprocess.run([command, str(tmp_path / "s.npy"), "--pixel-size", repr(pixel),
+                          "--unit", "m"], capture_output=True, text=True)
+    assert run.returncode == 2 and run.stderr.startswith("egw-topo: pixel_size")
+    assert "Traceback" not in run.stderr
+
+
+def test_curvature_scale_beyond_the_doubles_named():
+    # heights of 1 on pixels of 1e-60: z/dx**2 = 1e120, m4 ~ 1e240 * ... overflows
+    surface, _ = synthetic(n=32)
+    z = surface.heights / np.abs(surface.heights).max()
+    with pytest.raises(ValueError, match="curvature scale"):
+        topo.analyse(z, pixel_size=1e-60, unit="m")
+    with pytest.raises(ValueError, match="heights up to"):
+        topo.analyse(z * 1e200, pixel_size=1.0, unit="m")
+
+
 def test_coarse_grain_is_the_block_mean():
     z = np.arange(36.0).reshape(6, 6)
     c = topo.coarse_grain(topo.HeightMap(z, 1.0, 2.0, "um", periodic=True), 2)

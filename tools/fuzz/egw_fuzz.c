@@ -556,6 +556,37 @@ static int r_cap_restitution(void) {
   return st;
 }
 
+/* a rough contact with the flow-pressure cap (GW by default; R = E* = 1, sigma = 1e-3,
+ * mu = 2, p_y = 0.01: delta_y = 2.5e-4, the solve at 8 delta_y), fuzzing the fields the
+ * cap's first-yield scales combine: a solve that succeeds at an overlap carries a force
+ * > 0 (the summits touch) and a peak pressure at most p_y (flow_pressure = 1e-300 was
+ * accepted and solved to force 0 before the scales were checked) */
+#define ROUGH_CAP_SLOTS {"p.model", K_INT}, {"p.radius", K_DBL}, {"p.modulus", K_DBL}, \
+    {"p.sigma", K_DBL}, {"p.flow_pressure", K_DBL}
+static int r_rough_cap_solve(void) {
+  egw_params p;
+  egw_options o;
+  egw_result r;
+  double delta = D(6, 2e-3);
+  int st;
+  egw_params_default(&p);
+  p.model = I(0, EGW_MODEL_GW);
+  p.radius = D(1, 1.0);
+  p.modulus = D(2, 1.0);
+  p.sigma = D(3, 1e-3);
+  p.mu = 2.0;
+  p.flow_pressure = D(4, 0.01);
+  egw_options_default(&o);
+  o.rel_tol = 1e-3;
+  sentinel(&r, sizeof r);
+  st = egw_solve(P(5, &p), &o, delta, P(7, &r));
+  check_result(st, &r);
+  sane(st, !(delta > 0) || r.force > 0, "force not > 0 at an overlap", r.force);
+  sane(st, !(p.flow_pressure > 0) || r.max_pressure <= p.flow_pressure * (1 + 1e-9),
+       "max_pressure above p_y", r.max_pressure);
+  return st;
+}
+
 /* array kernels (capi_array.f90): n and strides clamped to the arrays' sizes (beyond them
  * is the caller's undefined behaviour); outputs may be partly written on refusal
  * (egw.h), so only finiteness on success is checked */
@@ -945,8 +976,11 @@ static int r_flat_law_rescale(void) {
   st = egw_flat_law_rescale(P(0, law), D(1, 1e-6), D(2, 1.0), P(3, &out));
   out_untouched(st, "*out", &out, sizeof out);
   if (st == EGW_OK) {
-    double v[2];
-    int s2 = egw_flat_law_pressure(out, 0.5, &v[0], &v[1]);
+    /* probed inside its nodes: far beyond them (u = 0.5 after unit_length = 1e100 put
+     * the last node at 1e-106) the continuation's pressure is 0, rightly */
+    double v[2], u_max = 0.0;
+    int s2 = egw_flat_law_info(out, NULL, NULL, NULL, NULL, &u_max, NULL);
+    if (s2 == EGW_OK) s2 = egw_flat_law_pressure(out, 0.5 * u_max, &v[0], &v[1]);
     sane(s2, isfinite(v[0]) && v[0] > 0 && v[1] <= 0, "rescaled pressure", v[0]);
     egw_flat_law_free(&out);
   }
@@ -1414,6 +1448,9 @@ static fz_function functions[] = {
      {PARAM_SLOTS("p."), {"p", K_PTR}, OPTION_SLOTS, {"o", K_PTR}, {"mass", K_DBL},
       {"velocity", K_DBL}, {"tolerance", K_DBL}, {"duration", K_PTR}, {"time_step", K_PTR}},
      r_time_step, 1},
+    {"egw_solve rough (flow_pressure)", 8,
+     {ROUGH_CAP_SLOTS, {"p", K_PTR}, {"delta", K_DBL}, {"res", K_PTR}},
+     r_rough_cap_solve, 1},
     {"egw_first_yield", 7,
      {CAP_SLOTS, {"p", K_PTR}, {"mass", K_DBL}, {"delta_y", K_PTR}, {"velocity_y", K_PTR}},
      r_first_yield, 0},

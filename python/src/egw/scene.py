@@ -147,13 +147,19 @@ class Scene:
         ------
         InvalidArgumentError
             An unknown model, or more than SCENE_MAX_TYPES particle types.
+        TypeError
+            radius, modulus or poisson not a list (one value per type).
         """
         model = MODELS.get(self.model, self.model) if isinstance(self.model, str) else self.model
         if isinstance(model, str):
             raise InvalidArgumentError(INVALID_PARAMETER,
                                        f"model = {model!r}: must be one of {list(MODELS)}")
         for name in ("radius", "modulus", "poisson"):
-            if len(getattr(self, name)) > SCENE_MAX_TYPES:
+            value = getattr(self, name)
+            if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+                raise TypeError(f"{name} = {value!r}: must be a list of floats, one per "
+                                f"particle type (e.g. {name}=[{value!r}])")
+            if len(value) > SCENE_MAX_TYPES:
                 raise InvalidArgumentError(
                     INVALID_PARAMETER, f"{name}: at most {SCENE_MAX_TYPES} particle types")
         c = _capi.Scene()

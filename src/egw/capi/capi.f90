@@ -54,9 +54,9 @@ contains
    !> C: egw_status_message (include/egw.h): the generic text of a status code.
    function egw_status_message(status, buf, buflen) result(stat) &
       & bind(C, name="egw_status_message")
-      integer(c_int), value, intent(in) :: status
-      type(c_ptr), value, intent(in) :: buf
-      integer(c_int), value, intent(in) :: buflen
+      integer(c_int), value, intent(in) :: status   !< C: `int status`
+      type(c_ptr), value, intent(in) :: buf   !< C: `char *buf` (out)
+      integer(c_int), value, intent(in) :: buflen   !< C: `int buflen` (bytes at buf)
       integer(c_int) :: stat
       stat = copy_to_c(status_message(int(status)), buf, buflen)
    end function egw_status_message
@@ -64,15 +64,15 @@ contains
    !> C: egw_last_error: this thread's message of the last failing call; returns the
    !> bytes it needs whole (length + 1), or minus a status (copy_last_error).
    function egw_last_error(buf, buflen) result(needed) bind(C, name="egw_last_error")
-      type(c_ptr), value, intent(in) :: buf
-      integer(c_int), value, intent(in) :: buflen
+      type(c_ptr), value, intent(in) :: buf   !< C: `char *buf` (out)
+      integer(c_int), value, intent(in) :: buflen   !< C: `int buflen` (bytes at buf)
       integer(c_int) :: needed
       needed = copy_last_error(buf, buflen)
    end function egw_last_error
 
    !> C: egw_params_default: fill an egw_params with the defaults.
    subroutine egw_params_default(p) bind(C, name="egw_params_default")
-      type(c_ptr), value, intent(in) :: p
+      type(c_ptr), value, intent(in) :: p   !< C: `egw_params *p` (filled with the defaults)
       type(egw_params_c), pointer :: cp
       if (.not. c_associated(p)) return
       call c_f_pointer(p, cp)
@@ -81,7 +81,7 @@ contains
 
    !> C: egw_params_validate: EGW_INVALID_PARAMETER naming the first bad field.
    function egw_params_validate(p) result(stat) bind(C, name="egw_params_validate")
-      type(c_ptr), value, intent(in) :: p
+      type(c_ptr), value, intent(in) :: p   !< C: `const egw_params *p` (the contact's parameters)
       integer(c_int) :: stat
       type(contact_params) :: params
       stat = read_params(p, params)
@@ -90,8 +90,9 @@ contains
    !> C: egw_mu_from_summits: mu = (8/3) eta sigma sqrt(2 R beta).
    function egw_mu_from_summits(summit_density, summit_radius, sigma, radius, mu) &
       & result(stat) bind(C, name="egw_mu_from_summits")
+      !> C: `double summit_density`; `double summit_radius`; `double sigma`; `double radius`
       real(c_double), value, intent(in) :: summit_density, summit_radius, sigma, radius
-      type(c_ptr), value, intent(in) :: mu
+      type(c_ptr), value, intent(in) :: mu   !< C: `double *mu` (out)
       integer(c_int) :: stat
       real(dp) :: value
       stat = check_nonneg("summit_density", summit_density)
@@ -113,9 +114,11 @@ contains
    !> C: egw_psi_from_hardness (include/egw.h).
    function egw_psi_from_hardness(modulus, hardness, hardness_coeff, sigma, summit_radius, &
       & psi) result(stat) bind(C, name="egw_psi_from_hardness")
+      !> C: `double modulus`; `double hardness`; `double hardness_coeff`; `double sigma`;
+      !> `double summit_radius`
       real(c_double), value, intent(in) :: modulus, hardness, hardness_coeff, sigma, &
          & summit_radius
-      type(c_ptr), value, intent(in) :: psi
+      type(c_ptr), value, intent(in) :: psi   !< C: `double *psi` (out)
       integer(c_int) :: stat
       real(dp) :: value
       stat = check_positive("modulus", modulus)
@@ -141,8 +144,8 @@ contains
 
    !> C: egw_gauss_integral: F_n(h).
    function egw_gauss_integral(n, h, value) result(stat) bind(C, name="egw_gauss_integral")
-      real(c_double), value, intent(in) :: n, h
-      type(c_ptr), value, intent(in) :: value
+      real(c_double), value, intent(in) :: n, h   !< C: `double n`; `double h`
+      type(c_ptr), value, intent(in) :: value   !< C: `double *value` (out)
       integer(c_int) :: stat
       stat = order_c(get_gauss_integral, n, h, value)
    end function egw_gauss_integral
@@ -150,24 +153,24 @@ contains
    !> C: egw_gauss_integral_deriv: dF_n/dh.
    function egw_gauss_integral_deriv(n, h, value) result(stat) &
       & bind(C, name="egw_gauss_integral_deriv")
-      real(c_double), value, intent(in) :: n, h
-      type(c_ptr), value, intent(in) :: value
+      real(c_double), value, intent(in) :: n, h   !< C: `double n`; `double h`
+      type(c_ptr), value, intent(in) :: value   !< C: `double *value` (out)
       integer(c_int) :: stat
       stat = order_c(get_gauss_integral_deriv, n, h, value)
    end function egw_gauss_integral_deriv
 
    !> C: egw_ellipk: K(k) of modulus k.
    function egw_ellipk(k, value) result(stat) bind(C, name="egw_ellipk")
-      real(c_double), value, intent(in) :: k
-      type(c_ptr), value, intent(in) :: value
+      real(c_double), value, intent(in) :: k   !< C: `double k`
+      type(c_ptr), value, intent(in) :: value   !< C: `double *value` (out)
       integer(c_int) :: stat
       stat = modulus_c(get_ellipk, k, value)
    end function egw_ellipk
 
    !> C: egw_ellipe: E(k) of modulus k.
    function egw_ellipe(k, value) result(stat) bind(C, name="egw_ellipe")
-      real(c_double), value, intent(in) :: k
-      type(c_ptr), value, intent(in) :: value
+      real(c_double), value, intent(in) :: k   !< C: `double k`
+      type(c_ptr), value, intent(in) :: value   !< C: `double *value` (out)
       integer(c_int) :: stat
       stat = modulus_c(get_ellipe, k, value)
    end function egw_ellipe
@@ -175,8 +178,9 @@ contains
    !> C: egw_flat_pressure: p_G(d) of the rough flat.
    function egw_flat_pressure(p, separation, pressure) result(stat) &
       & bind(C, name="egw_flat_pressure")
+      !> C: `const egw_params *p` (the contact's parameters); `double *pressure` (out)
       type(c_ptr), value, intent(in) :: p, pressure
-      real(c_double), value, intent(in) :: separation
+      real(c_double), value, intent(in) :: separation   !< C: `double separation`
       integer(c_int) :: stat
       stat = require(pressure, "pressure")
       if (stat /= egw_ok) return
@@ -186,8 +190,10 @@ contains
    !> C: egw_flat_pressure_deriv: p_G(d) and dp_G/dd.
    function egw_flat_pressure_deriv(p, separation, pressure, dpressure) result(stat) &
       & bind(C, name="egw_flat_pressure_deriv")
+      !> C: `const egw_params *p` (the contact's parameters); `double *pressure` (out);
+      !> `double *dpressure` (out)
       type(c_ptr), value, intent(in) :: p, pressure, dpressure
-      real(c_double), value, intent(in) :: separation
+      real(c_double), value, intent(in) :: separation   !< C: `double separation`
       integer(c_int) :: stat
       stat = require(pressure, "pressure")
       if (stat == egw_ok) stat = require(dpressure, "dpressure")
@@ -198,7 +204,10 @@ contains
    !> C: egw_flat_pressure_unload (include/egw.h). dpressure may be NULL.
    function egw_flat_pressure_unload(p, separation, separation_min, pressure, dpressure) &
       & result(stat) bind(C, name="egw_flat_pressure_unload")
+      !> C: `const egw_params *p` (the contact's parameters); `double *pressure` (out);
+      !> `double *dpressure` (out)
       type(c_ptr), value, intent(in) :: p, pressure, dpressure
+      !> C: `double separation`; `double separation_min`
       real(c_double), value, intent(in) :: separation, separation_min
       integer(c_int) :: stat
       type(contact_params) :: params
@@ -219,8 +228,10 @@ contains
    !> C: egw_hertz: force, stiffness and contact radius of smooth spheres.
    function hertz_c(p, delta, force, stiffness, contact_radius) result(stat) &
       & bind(C, name="egw_hertz")
+      !> C: `const egw_params *p` (the contact's parameters); `double *force` (out); `double
+      !> *stiffness` (out); `double *contact_radius` (out)
       type(c_ptr), value, intent(in) :: p, force, stiffness, contact_radius
-      real(c_double), value, intent(in) :: delta
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
       type(contact_params) :: params
       type(egw_error), allocatable :: error
@@ -237,7 +248,7 @@ contains
 
    !> C: egw_options_default: fill an egw_options with the defaults.
    subroutine egw_options_default(o) bind(C, name="egw_options_default")
-      type(c_ptr), value, intent(in) :: o
+      type(c_ptr), value, intent(in) :: o   !< C: `egw_options *o` (filled with the defaults)
       type(egw_options_c), pointer :: co
       type(solver_options) :: defaults
       if (.not. c_associated(o)) return
@@ -249,8 +260,10 @@ contains
 
    !> C: egw_solve: the rough-sphere solve at one overlap (include/egw.h).
    function egw_solve(p, o, delta, res) result(stat) bind(C, name="egw_solve")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `egw_result *res` (out)
       type(c_ptr), value, intent(in) :: p, o, res
-      real(c_double), value, intent(in) :: delta
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
       stat = solve_c(p, o, delta, .false., 0.0_dp, res)
    end function egw_solve
@@ -258,7 +271,10 @@ contains
    !> C: egw_solve_unload: the unloading solve at delta after a maximum delta_max.
    function egw_solve_unload(p, o, delta, delta_max, res) result(stat) &
       & bind(C, name="egw_solve_unload")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `egw_result *res` (out)
       type(c_ptr), value, intent(in) :: p, o, res
+      !> C: `double delta`; `double delta_max`
       real(c_double), value, intent(in) :: delta, delta_max
       integer(c_int) :: stat
       stat = solve_c(p, o, delta, .true., delta_max, res)
@@ -267,8 +283,10 @@ contains
    !> C: egw_restitution: the coefficient of restitution of an impact.
    function egw_restitution(p, o, mass, velocity, e) result(stat) &
       & bind(C, name="egw_restitution")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `double *e` (out)
       type(c_ptr), value, intent(in) :: p, o, e
-      real(c_double), value, intent(in) :: mass, velocity
+      real(c_double), value, intent(in) :: mass, velocity   !< C: `double mass`; `double velocity`
       integer(c_int) :: stat
       stat = require(e, "e")
       if (stat /= egw_ok) return
@@ -278,8 +296,11 @@ contains
    !> C: egw_restitution_energy: the same with the work of loading and the dissipated energy.
    function egw_restitution_energy(p, o, mass, velocity, e, w_load, w_dissipated) &
       & result(stat) bind(C, name="egw_restitution_energy")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `double *e` (out); `double *w_load` (out); `double
+      !> *w_dissipated` (out)
       type(c_ptr), value, intent(in) :: p, o, e, w_load, w_dissipated
-      real(c_double), value, intent(in) :: mass, velocity
+      real(c_double), value, intent(in) :: mass, velocity   !< C: `double mass`; `double velocity`
       integer(c_int) :: stat
       stat = restitution_c(p, o, mass, velocity, e, w_load, w_dissipated, c_null_ptr)
    end function egw_restitution_energy
@@ -287,8 +308,10 @@ contains
    !> C: egw_restitution_overlap: e and the deepest overlap delta_m of the impact.
    function egw_restitution_overlap(p, o, mass, velocity, e, max_overlap) result(stat) &
       & bind(C, name="egw_restitution_overlap")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `double *e` (out); `double *max_overlap` (out)
       type(c_ptr), value, intent(in) :: p, o, e, max_overlap
-      real(c_double), value, intent(in) :: mass, velocity
+      real(c_double), value, intent(in) :: mass, velocity   !< C: `double mass`; `double velocity`
       integer(c_int) :: stat
       stat = restitution_c(p, o, mass, velocity, e, c_null_ptr, c_null_ptr, max_overlap)
    end function egw_restitution_overlap
@@ -296,7 +319,10 @@ contains
    !> C: egw_time_step: the contact duration and the largest Verlet step for a tolerance.
    function egw_time_step(p, o, mass, velocity, tolerance, duration, step) result(stat) &
       & bind(C, name="egw_time_step")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `double *duration` (out); `double *time_step` (out)
       type(c_ptr), value, intent(in) :: p, o, duration, step
+      !> C: `double mass`; `double velocity`; `double tolerance`
       real(c_double), value, intent(in) :: mass, velocity, tolerance
       integer(c_int) :: stat
       type(contact_params) :: params
@@ -319,9 +345,12 @@ contains
    !> C: egw_profile: pressure and deflection of the solved contact at given radii.
    function egw_profile(p, o, delta, n, r, pressure, deflection) result(stat) &
       & bind(C, name="egw_profile")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `const double *r`; `double *pressure` (out); `double
+      !> *deflection` (out)
       type(c_ptr), value, intent(in) :: p, o, r, pressure, deflection
-      real(c_double), value, intent(in) :: delta
-      integer(c_int), value, intent(in) :: n
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
       integer(c_int) :: stat
       type(contact_params) :: params
       type(solver_options) :: options

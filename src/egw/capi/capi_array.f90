@@ -138,7 +138,12 @@ contains
    !> C: egw_universal_eval_array (include/egw.h).
    function egw_universal_eval_array(u, p, p_stride, n, delta, delta_stride, force, &
       & stiffness, flags, n_failed) result(stat) bind(C, name="egw_universal_eval_array")
+      !> C: `egw_universal u`; `const egw_params *p` (the contact's parameters); `const
+      !> double *delta`; `double *force` (out); `double *stiffness` (out); `int *n_failed`
+      !> (failed points, may be NULL)
       type(c_ptr), value, intent(in) :: u, p, delta, force, stiffness, n_failed
+      !> C: `int p_stride` (elements between points); `int n`; `int delta_stride` (elements
+      !> between points); `int flags` (EGW_ARRAY_RAISE or EGW_ARRAY_NAN)
       integer(c_int), value, intent(in) :: p_stride, n, delta_stride, flags
       integer(c_int) :: stat
       real(c_double), pointer :: d(:), f(:), k(:)
@@ -185,7 +190,12 @@ contains
    !> C: egw_hertz_array (include/egw.h).
    function egw_hertz_array(p, p_stride, n, delta, delta_stride, force, stiffness, &
       & contact_radius, flags, n_failed) result(stat) bind(C, name="egw_hertz_array")
+      !> C: `const egw_params *p` (the contact's parameters); `const double *delta`; `double
+      !> *force` (out); `double *stiffness` (out); `double *contact_radius` (out); `int
+      !> *n_failed` (failed points, may be NULL)
       type(c_ptr), value, intent(in) :: p, delta, force, stiffness, contact_radius, n_failed
+      !> C: `int p_stride` (elements between points); `int n`; `int delta_stride` (elements
+      !> between points); `int flags` (EGW_ARRAY_RAISE or EGW_ARRAY_NAN)
       integer(c_int), value, intent(in) :: p_stride, n, delta_stride, flags
       integer(c_int) :: stat
       type(hertz_task) :: task
@@ -209,7 +219,12 @@ contains
    !> C: egw_flat_pressure_array (include/egw.h).
    function egw_flat_pressure_array(p, p_stride, n, separation, separation_stride, pressure, &
       & dpressure, flags, n_failed) result(stat) bind(C, name="egw_flat_pressure_array")
+      !> C: `const egw_params *p` (the contact's parameters); `const double *separation`;
+      !> `double *pressure` (out); `double *dpressure` (out); `int *n_failed` (failed
+      !> points, may be NULL)
       type(c_ptr), value, intent(in) :: p, separation, pressure, dpressure, n_failed
+      !> C: `int p_stride` (elements between points); `int n`; `int separation_stride`
+      !> (elements between points); `int flags` (EGW_ARRAY_RAISE or EGW_ARRAY_NAN)
       integer(c_int), value, intent(in) :: p_stride, n, separation_stride, flags
       integer(c_int) :: stat
       type(flat_task) :: task
@@ -226,8 +241,14 @@ contains
    function egw_flat_pressure_unload_array(p, p_stride, n, separation, separation_stride, &
       & separation_min, separation_min_stride, pressure, dpressure, flags, n_failed) &
       & result(stat) bind(C, name="egw_flat_pressure_unload_array")
+      !> C: `const egw_params *p` (the contact's parameters); `const double *separation`;
+      !> `const double *separation_min`; `double *pressure` (out); `double *dpressure`
+      !> (out); `int *n_failed` (failed points, may be NULL)
       type(c_ptr), value, intent(in) :: p, separation, separation_min, pressure, dpressure, &
          & n_failed
+      !> C: `int p_stride` (elements between points); `int n`; `int separation_stride`
+      !> (elements between points); `int separation_min_stride` (elements between points);
+      !> `int flags` (EGW_ARRAY_RAISE or EGW_ARRAY_NAN)
       integer(c_int), value, intent(in) :: p_stride, n, separation_stride, &
          & separation_min_stride, flags
       integer(c_int) :: stat
@@ -246,7 +267,11 @@ contains
    !> C: egw_gauss_integral_array (include/egw.h).
    function egw_gauss_integral_array(n, order, order_stride, h, h_stride, value, derivative, &
       & flags, n_failed) result(stat) bind(C, name="egw_gauss_integral_array")
+      !> C: `const double *order`; `const double *h`; `double *value` (out); `double
+      !> *derivative` (out); `int *n_failed` (failed points, may be NULL)
       type(c_ptr), value, intent(in) :: order, h, value, derivative, n_failed
+      !> C: `int n`; `int order_stride` (elements between points); `int h_stride` (elements
+      !> between points); `int flags` (EGW_ARRAY_RAISE or EGW_ARRAY_NAN)
       integer(c_int), value, intent(in) :: n, order_stride, h_stride, flags
       integer(c_int) :: stat
       type(gauss_task) :: task
@@ -264,7 +289,13 @@ contains
    !> C: egw_solve_array (include/egw.h).
    function egw_solve_array(p, p_stride, o, n, delta, delta_stride, delta_max, &
       & delta_max_stride, res, flags, n_failed) result(stat) bind(C, name="egw_solve_array")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `const double *delta`; `const double *delta_max`;
+      !> `egw_result *res` (out); `int *n_failed` (failed points, may be NULL)
       type(c_ptr), value, intent(in) :: p, o, delta, delta_max, res, n_failed
+      !> C: `int p_stride` (elements between points); `int n`; `int delta_stride` (elements
+      !> between points); `int delta_max_stride` (elements between points); `int flags`
+      !> (EGW_ARRAY_RAISE or EGW_ARRAY_NAN)
       integer(c_int), value, intent(in) :: p_stride, n, delta_stride, delta_max_stride, flags
       integer(c_int) :: stat
       type(solve_task) :: task
@@ -285,8 +316,15 @@ contains
    function egw_restitution_array(p, p_stride, o, n, mass, mass_stride, velocity, &
       & velocity_stride, e, w_load, w_dissipated, max_overlap, flags, n_failed) result(stat) &
       & bind(C, name="egw_restitution_array")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `const double *mass`; `const double *velocity`;
+      !> `double *e` (out); `double *w_load` (out); `double *w_dissipated` (out); `double
+      !> *max_overlap` (out); `int *n_failed` (failed points, may be NULL)
       type(c_ptr), value, intent(in) :: p, o, mass, velocity, e, w_load, w_dissipated, &
          & max_overlap, n_failed
+      !> C: `int p_stride` (elements between points); `int n`; `int mass_stride` (elements
+      !> between points); `int velocity_stride` (elements between points); `int flags`
+      !> (EGW_ARRAY_RAISE or EGW_ARRAY_NAN)
       integer(c_int), value, intent(in) :: p_stride, n, mass_stride, velocity_stride, flags
       integer(c_int) :: stat
       stat = impact_points(p, p_stride, o, n, mass, mass_stride, velocity, velocity_stride, &
@@ -297,9 +335,16 @@ contains
    function egw_time_step_array(p, p_stride, o, n, mass, mass_stride, velocity, &
       & velocity_stride, tolerance, duration, step, flags, n_failed) result(stat) &
       & bind(C, name="egw_time_step_array")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `const double *mass`; `const double *velocity`;
+      !> `double *duration` (out); `double *time_step` (out); `int *n_failed` (failed
+      !> points, may be NULL)
       type(c_ptr), value, intent(in) :: p, o, mass, velocity, duration, step, n_failed
+      !> C: `int p_stride` (elements between points); `int n`; `int mass_stride` (elements
+      !> between points); `int velocity_stride` (elements between points); `int flags`
+      !> (EGW_ARRAY_RAISE or EGW_ARRAY_NAN)
       integer(c_int), value, intent(in) :: p_stride, n, mass_stride, velocity_stride, flags
-      real(c_double), value, intent(in) :: tolerance
+      real(c_double), value, intent(in) :: tolerance   !< C: `double tolerance`
       integer(c_int) :: stat
       stat = impact_points(p, p_stride, o, n, mass, mass_stride, velocity, velocity_stride, &
          & flags, n_failed, [duration, step, c_null_ptr, c_null_ptr], .true., tolerance)

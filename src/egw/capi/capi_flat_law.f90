@@ -35,9 +35,11 @@ contains
    !> known).
    function egw_flat_law_from_table(u, p, dpdu, area, n, length, modulus, out) result(stat) &
       & bind(C, name="egw_flat_law_from_table")
+      !> C: `const double *u`; `const double *p`; `const double *dpdu`; `const double
+      !> *area`; `egw_flat_law *out` (the new handle)
       type(c_ptr), value, intent(in) :: u, p, dpdu, area, out
-      integer(c_int), value, intent(in) :: n
-      real(c_double), value, intent(in) :: length, modulus
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
+      real(c_double), value, intent(in) :: length, modulus   !< C: `double length`; `double modulus`
       integer(c_int) :: stat
       type(table_flat_law), pointer :: law
       type(egw_error), allocatable :: error
@@ -66,7 +68,9 @@ contains
    !> unit_length, pressures by pressure_unit; its length and E* with them).
    function egw_flat_law_rescale(h, unit_length, pressure_unit, out) result(stat) &
       & bind(C, name="egw_flat_law_rescale")
+      !> C: `egw_flat_law law`; `egw_flat_law *out` (the new handle)
       type(c_ptr), value, intent(in) :: h, out
+      !> C: `double unit_length`; `double pressure_unit`
       real(c_double), value, intent(in) :: unit_length, pressure_unit
       integer(c_int) :: stat
       type(table_flat_law), pointer :: law, scaled
@@ -98,8 +102,10 @@ contains
    !> C: egw_flat_law_from_psd: Persson's law of an isotropic PSD (q, C).
    function egw_flat_law_from_psd(q, c, n, modulus, p_min, p_max, out) result(stat) &
       & bind(C, name="egw_flat_law_from_psd")
+      !> C: `const double *q`; `const double *C`; `egw_flat_law *out` (the new handle)
       type(c_ptr), value, intent(in) :: q, c, out
-      integer(c_int), value, intent(in) :: n
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
+      !> C: `double modulus`; `double p_min`; `double p_max`
       real(c_double), value, intent(in) :: modulus, p_min, p_max
       integer(c_int) :: stat
       type(egw_error), allocatable :: error
@@ -127,8 +133,11 @@ contains
    !> C: egw_flat_law_from_heights: egw's periodic BEM law of a height map.
    function egw_flat_law_from_heights(heights, nx, ny, pixel, modulus, p_min, p_max, o, out) &
       & result(stat) bind(C, name="egw_flat_law_from_heights")
+      !> C: `const double *heights`; `const egw_options *o` (solver options, NULL: the
+      !> defaults); `egw_flat_law *out` (the new handle)
       type(c_ptr), value, intent(in) :: heights, o, out
-      integer(c_int), value, intent(in) :: nx, ny
+      integer(c_int), value, intent(in) :: nx, ny   !< C: `int nx`; `int ny`
+      !> C: `double pixel`; `double modulus`; `double p_min`; `double p_max`
       real(c_double), value, intent(in) :: pixel, modulus, p_min, p_max
       integer(c_int) :: stat
       type(egw_error), allocatable :: error
@@ -202,8 +211,9 @@ contains
    !> C: egw_flat_law_pressure: p and dp/du at the mean separation u.
    function egw_flat_law_pressure(h, u, pressure, dpdu) result(stat) &
       & bind(C, name="egw_flat_law_pressure")
+      !> C: `egw_flat_law law`; `double *pressure` (out); `double *dpdu` (out)
       type(c_ptr), value, intent(in) :: h, pressure, dpdu
-      real(c_double), value, intent(in) :: u
+      real(c_double), value, intent(in) :: u   !< C: `double u`
       integer(c_int) :: stat
       type(table_flat_law), pointer :: law
       real(dp) :: p(1), d(1)
@@ -224,8 +234,8 @@ contains
    !> C: egw_flat_law_contact_area: the contact-area fraction at u (laws that carry one).
    function egw_flat_law_contact_area(h, u, area) result(stat) &
       & bind(C, name="egw_flat_law_contact_area")
-      type(c_ptr), value, intent(in) :: h, area
-      real(c_double), value, intent(in) :: u
+      type(c_ptr), value, intent(in) :: h, area   !< C: `egw_flat_law law`; `double *area` (out)
+      real(c_double), value, intent(in) :: u   !< C: `double u`
       integer(c_int) :: stat
       type(table_flat_law), pointer :: law
       real(dp) :: a
@@ -245,6 +255,9 @@ contains
    !> C: egw_flat_law_info: nodes, length, E*, separation range and whether it has areas.
    function egw_flat_law_info(h, n_nodes, length, modulus, u_min, u_max, has_area) &
       & result(stat) bind(C, name="egw_flat_law_info")
+      !> C: `egw_flat_law law`; `int *n_nodes` (out); `double *length` (out); `double
+      !> *modulus` (out); `double *u_min` (out); `double *u_max` (out); `int *has_area`
+      !> (out)
       type(c_ptr), value, intent(in) :: h, n_nodes, length, modulus, u_min, u_max, has_area
       integer(c_int) :: stat
       type(table_flat_law), pointer :: law
@@ -268,6 +281,7 @@ contains
 
    !> C: egw_flat_law_free(egw_flat_law *law): releases the law, sets *law = NULL.
    subroutine egw_flat_law_free(h) bind(C, name="egw_flat_law_free")
+      !> C: `egw_flat_law *law` (released, then set to NULL; NULL is fine)
       type(c_ptr), value, intent(in) :: h
       type(c_ptr) :: object
       type(table_flat_law), pointer :: law
@@ -280,8 +294,10 @@ contains
    !> C: egw_solve_flat_law: the sphere solve (R, E* of p) with the rough-flat law.
    function egw_solve_flat_law(p, h, o, delta, res) result(stat) &
       & bind(C, name="egw_solve_flat_law")
+      !> C: `const egw_params *p` (the contact's parameters); `egw_flat_law law`; `const
+      !> egw_options *o` (solver options, NULL: the defaults); `egw_result *res` (out)
       type(c_ptr), value, intent(in) :: p, h, o, res
-      real(c_double), value, intent(in) :: delta
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
       type(contact_params) :: params
       type(solver_options) :: options
@@ -301,7 +317,11 @@ contains
    !> C: egw_table_build_flat_law: a 1-D force table of the sphere pair with the law.
    function egw_table_build_flat_law(p, h, o, delta_min, delta_max, rel_tol, out) &
       & result(stat) bind(C, name="egw_table_build_flat_law")
+      !> C: `const egw_params *p` (the contact's parameters); `egw_flat_law law`; `const
+      !> egw_options *o` (solver options, NULL: the defaults); `egw_table *out` (the new
+      !> handle)
       type(c_ptr), value, intent(in) :: p, h, o, out
+      !> C: `double delta_min`; `double delta_max`; `double rel_tol`
       real(c_double), value, intent(in) :: delta_min, delta_max, rel_tol
       integer(c_int) :: stat
       type(contact_params) :: params
@@ -322,6 +342,7 @@ contains
 
    !> C: egw_flat_law_write: the law as egw CSV (atomic).
    function egw_flat_law_write(h, path) result(stat) bind(C, name="egw_flat_law_write")
+      !> C: `egw_flat_law law`; `const char *path` (NUL-terminated)
       type(c_ptr), value, intent(in) :: h, path
       integer(c_int) :: stat
       type(table_flat_law), pointer :: law
@@ -337,6 +358,7 @@ contains
 
    !> C: egw_flat_law_read: a law from egw's CSV or a user's (u, pressure) CSV.
    function egw_flat_law_read(path, out) result(stat) bind(C, name="egw_flat_law_read")
+      !> C: `const char *path` (NUL-terminated); `egw_flat_law *out` (the new handle)
       type(c_ptr), value, intent(in) :: path, out
       integer(c_int) :: stat
       character(len=:), allocatable :: fpath

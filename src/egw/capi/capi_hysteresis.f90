@@ -35,7 +35,10 @@ contains
    !> C: egw_hysteresis_build (include/egw.h).
    function egw_hysteresis_build(p, o, delta_min, delta_max, rel_tol, out) result(stat) &
       & bind(C, name="egw_hysteresis_build")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `egw_hysteresis *out` (the new handle)
       type(c_ptr), value, intent(in) :: p, o, out
+      !> C: `double delta_min`; `double delta_max`; `double rel_tol`
       real(c_double), value, intent(in) :: delta_min, delta_max, rel_tol
       integer(c_int) :: stat
       type(contact_params) :: params
@@ -58,8 +61,10 @@ contains
    !> C: egw_hysteresis_eval: the per-contact hot path (no allocation, no lock).
    function egw_hysteresis_eval(hp, delta, state, force, stiffness) result(stat) &
       & bind(C, name="egw_hysteresis_eval")
+      !> C: `egw_hysteresis h`; `double *delta_max_state` (out); `double *force` (out);
+      !> `double *stiffness` (out)
       type(c_ptr), value, intent(in) :: hp, state, force, stiffness
-      real(c_double), value, intent(in) :: delta
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       real(c_double), pointer :: s
@@ -96,8 +101,10 @@ contains
    !> in the caller's state (EGW_HYSTERESIS_STATE_SIZE doubles; state[0] the history).
    function egw_hysteresis_eval_state(hp, delta, state_p, force, stiffness) result(stat) &
       & bind(C, name="egw_hysteresis_eval_state")
+      !> C: `egw_hysteresis h`; `double state[EGW_HYSTERESIS_STATE_SIZE]`; `double *force`
+      !> (out); `double *stiffness` (out)
       type(c_ptr), value, intent(in) :: hp, state_p, force, stiffness
-      real(c_double), value, intent(in) :: delta
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
@@ -150,7 +157,7 @@ contains
    !> for egw.h's inline egw_hysteresis_eval_cached.
    function egw_hysteresis_state_tag(hp, tag) result(stat) &
       & bind(C, name="egw_hysteresis_state_tag")
-      type(c_ptr), value, intent(in) :: hp, tag
+      type(c_ptr), value, intent(in) :: hp, tag   !< C: `egw_hysteresis h`; `double *tag` (out)
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       stat = get_table(hp, h)
@@ -162,7 +169,9 @@ contains
    !> C: egw_hysteresis_energy: the elastic energy a contact returns if it separates now.
    function egw_hysteresis_energy(hp, delta, state, energy) result(stat) &
       & bind(C, name="egw_hysteresis_energy")
+      !> C: `egw_hysteresis h`; `double *energy` (out)
       type(c_ptr), value, intent(in) :: hp, energy
+      !> C: `double delta`; `double delta_max_state`
       real(c_double), value, intent(in) :: delta, state
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
@@ -192,7 +201,7 @@ contains
 
    !> C: egw_hysteresis_state_init: a new contact's state (state[0] = -HUGE_VAL, no cache).
    subroutine egw_hysteresis_state_init(state_p) bind(C, name="egw_hysteresis_state_init")
-      type(c_ptr), value, intent(in) :: state_p
+      type(c_ptr), value, intent(in) :: state_p   !< C: `double state[EGW_HYSTERESIS_STATE_SIZE]`
       real(c_double), pointer :: state(:)
       if (.not. c_associated(state_p)) return
       call c_f_pointer(state_p, state, [hysteresis_state_size])
@@ -205,8 +214,10 @@ contains
    !> where the loading table's deep-overlap asymptote stays well inside the doubles.
    function egw_hysteresis_eval_array(hp, n, delta_p, state_p, force, stiffness) &
       & result(stat) bind(C, name="egw_hysteresis_eval_array")
-      type(c_ptr), value, intent(in) :: hp
-      integer(c_int), value, intent(in) :: n
+      type(c_ptr), value, intent(in) :: hp   !< C: `egw_hysteresis h`
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
+      !> C: `const double *delta`; `double *delta_max_state` (out); `double *force` (out);
+      !> `double *stiffness` (out)
       type(c_ptr), value, intent(in) :: delta_p, state_p, force, stiffness
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
@@ -239,6 +250,7 @@ contains
 
    !> C: egw_hysteresis_free: release a table; sets *h to NULL (NULL is fine).
    subroutine egw_hysteresis_free(hp) bind(C, name="egw_hysteresis_free")
+      !> C: `egw_hysteresis *h` (released, then set to NULL; NULL is fine)
       type(c_ptr), value, intent(in) :: hp
       type(c_ptr) :: object
       type(hysteresis_table), pointer :: h
@@ -251,8 +263,9 @@ contains
    !> C: egw_hysteresis_write: CSV or binary, atomically.
    function egw_hysteresis_write(hp, path, format) result(stat) &
       & bind(C, name="egw_hysteresis_write")
+      !> C: `egw_hysteresis h`; `const char *path` (NUL-terminated)
       type(c_ptr), value, intent(in) :: hp, path
-      integer(c_int), value, intent(in) :: format
+      integer(c_int), value, intent(in) :: format   !< C: `int format`
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       character(len=:), allocatable :: fpath
@@ -266,6 +279,7 @@ contains
 
    !> C: egw_hysteresis_read: a handle only for a file that passed every check.
    function egw_hysteresis_read(path, out) result(stat) bind(C, name="egw_hysteresis_read")
+      !> C: `const char *path` (NUL-terminated); `egw_hysteresis *out` (the new handle)
       type(c_ptr), value, intent(in) :: path, out
       integer(c_int) :: stat
       character(len=:), allocatable :: fpath
@@ -283,6 +297,7 @@ contains
    !> C: egw_hysteresis_get_info.
    function egw_hysteresis_get_info(hp, info) result(stat) &
       & bind(C, name="egw_hysteresis_get_info")
+      !> C: `egw_hysteresis h`; `egw_hysteresis_info *info` (out)
       type(c_ptr), value, intent(in) :: hp, info
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h

@@ -45,7 +45,7 @@ contains
 
    !> C: egw_scene_default (the embedded default scene of egw-table).
    subroutine egw_scene_default(s) bind(C, name="egw_scene_default")
-      type(c_ptr), value, intent(in) :: s
+      type(c_ptr), value, intent(in) :: s   !< C: `egw_scene *s` (filled with the defaults)
       type(egw_scene_c), pointer :: cs
       if (.not. c_associated(s)) return
       call c_f_pointer(s, cs)
@@ -54,7 +54,7 @@ contains
 
    !> C: egw_scene_validate.
    function egw_scene_validate(s) result(stat) bind(C, name="egw_scene_validate")
-      type(c_ptr), value, intent(in) :: s
+      type(c_ptr), value, intent(in) :: s   !< C: `const egw_scene *s`
       integer(c_int) :: stat
       type(scene_input) :: input
       type(egw_error), allocatable :: error
@@ -67,6 +67,7 @@ contains
    !> C: egw_scene_read: the file's &scene values replace those of *s (validated; *s
    !> unchanged on failure).
    function egw_scene_read(path, s) result(stat) bind(C, name="egw_scene_read")
+      !> C: `const char *path` (NUL-terminated); `egw_scene *s` (out)
       type(c_ptr), value, intent(in) :: path, s
       integer(c_int) :: stat
       type(scene_input) :: input
@@ -94,8 +95,10 @@ contains
    !> the explanation, NUL-terminated and truncated.
    function egw_scene_choose(s, o, choice, reason, reason_len) result(stat) &
       & bind(C, name="egw_scene_choose")
+      !> C: `const egw_scene *s`; `const egw_options *o` (solver options, NULL: the
+      !> defaults); `egw_model_choice *choice` (out); `char *reason` (out)
       type(c_ptr), value, intent(in) :: s, o, choice, reason
-      integer(c_int), value, intent(in) :: reason_len
+      integer(c_int), value, intent(in) :: reason_len   !< C: `int reason_len`
       integer(c_int) :: stat
       type(contact_scene) :: scene
       type(model_choice) :: mc
@@ -119,6 +122,9 @@ contains
    !> for EGW_CHOICE_TABLE, *universal for EGW_CHOICE_UNIVERSAL, both NULL otherwise.
    function egw_scene_build(s, o, choice, table, universal) result(stat) &
       & bind(C, name="egw_scene_build")
+      !> C: `const egw_scene *s`; `const egw_options *o` (solver options, NULL: the
+      !> defaults); `egw_model_choice *choice` (out); `egw_table *table` (out);
+      !> `egw_universal *universal` (out)
       type(c_ptr), value, intent(in) :: s, o, choice, table, universal
       integer(c_int) :: stat
       type(contact_scene) :: scene
@@ -254,8 +260,10 @@ contains
    !> the flow-pressure cap (scene/impact_regime: closed forms); +HUGE where p_y = 0.
    function egw_first_yield(p, mass, delta_y, velocity_y) result(stat) &
       & bind(C, name="egw_first_yield")
+      !> C: `const egw_params *p` (the contact's parameters); `double *delta_y` (out);
+      !> `double *velocity_y` (out)
       type(c_ptr), value, intent(in) :: p, delta_y, velocity_y
-      real(c_double), value, intent(in) :: mass
+      real(c_double), value, intent(in) :: mass   !< C: `double mass`
       integer(c_int) :: stat
       type(contact_params) :: params
       real(dp) :: d_y, v_y

@@ -42,7 +42,10 @@ contains
    !> C: egw_table_build (see include/egw.h for units and statuses).
    function egw_table_build(p, o, delta_min, delta_max, rel_tol, out) result(stat) &
       & bind(C, name="egw_table_build")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `egw_table *out` (the new handle)
       type(c_ptr), value, intent(in) :: p, o, out
+      !> C: `double delta_min`; `double delta_max`; `double rel_tol`
       real(c_double), value, intent(in) :: delta_min, delta_max, rel_tol
       integer(c_int) :: stat
       type(contact_params) :: params
@@ -62,8 +65,9 @@ contains
    !> C: egw_table_eval; above delta_max returns EGW_OUT_OF_RANGE with values written.
    function egw_table_eval(h, delta, force, stiffness) result(stat) &
       & bind(C, name="egw_table_eval")
+      !> C: `egw_table t`; `double *force` (out); `double *stiffness` (out)
       type(c_ptr), value, intent(in) :: h, force, stiffness
-      real(c_double), value, intent(in) :: delta
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
       type(force_table), pointer :: t
       real(c_double), pointer :: out
@@ -121,9 +125,10 @@ contains
    !> names the first such overlap.
    function egw_table_eval_array(h, n, delta_ptr, force, stiffness) result(stat) &
       & bind(C, name="egw_table_eval_array")
-      type(c_ptr), value, intent(in) :: h
-      integer(c_int), value, intent(in) :: n
-      type(c_ptr), value, intent(in) :: delta_ptr
+      type(c_ptr), value, intent(in) :: h   !< C: `egw_table t`
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
+      type(c_ptr), value, intent(in) :: delta_ptr   !< C: `const double *delta`
+      !> C: `double *force` (out); `double *stiffness` (out)
       type(c_ptr), value, intent(in) :: force, stiffness
       integer(c_int) :: stat
       type(force_table), pointer :: t
@@ -153,8 +158,10 @@ contains
    !> C: egw_table_eval_all (force, stiffness, energy, contact radius).
    function egw_table_eval_all(h, delta, force, stiffness, energy, contact_radius) &
       & result(stat) bind(C, name="egw_table_eval_all")
+      !> C: `egw_table t`; `double *force` (out); `double *stiffness` (out); `double
+      !> *energy` (out); `double *contact_radius` (out)
       type(c_ptr), value, intent(in) :: h, force, stiffness, energy, contact_radius
-      real(c_double), value, intent(in) :: delta
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
       type(force_table), pointer :: t
       real(dp) :: f, k, e, a
@@ -178,7 +185,7 @@ contains
 
    !> C: egw_table_get_info.
    function egw_table_get_info(h, info) result(stat) bind(C, name="egw_table_get_info")
-      type(c_ptr), value, intent(in) :: h, info
+      type(c_ptr), value, intent(in) :: h, info   !< C: `egw_table t`; `egw_table_info *info` (out)
       integer(c_int) :: stat
       type(force_table), pointer :: t
       type(egw_table_info_c), pointer :: ci
@@ -197,8 +204,9 @@ contains
    !> layout unpacked) for callers that evaluate the table in their own inner loop.
    function egw_table_get_interpolant(h, capacity, nodes, coeffs, n_log) result(stat) &
       & bind(C, name="egw_table_get_interpolant")
+      !> C: `egw_table t`; `double *nodes` (out); `double *coeffs` (out); `int *n_log` (out)
       type(c_ptr), value, intent(in) :: h, nodes, coeffs, n_log
-      integer(c_int), value, intent(in) :: capacity
+      integer(c_int), value, intent(in) :: capacity   !< C: `int capacity`
       integer(c_int) :: stat
       type(force_table), pointer :: t
       real(c_double), pointer :: x(:), c(:)
@@ -230,7 +238,9 @@ contains
    !> rule on one grid), for callers that evaluate the tail in their own inner loop.
    function egw_table_get_tail(n, tables, capacity, starts, coeffs, n_pieces) result(stat) &
       & bind(C, name="egw_table_get_tail")
-      integer(c_int), value, intent(in) :: n, capacity
+      integer(c_int), value, intent(in) :: n, capacity   !< C: `int n`; `int capacity`
+      !> C: `const egw_table *tables`; `double *starts` (out); `double *coeffs` (out); `int
+      !> *n_pieces` (out)
       type(c_ptr), value, intent(in) :: tables, starts, coeffs, n_pieces
       integer(c_int) :: stat
       type(c_ptr), pointer :: handles(:)
@@ -275,7 +285,8 @@ contains
    !> C: egw_table_set_radii (R1, R2 consistent with the table's R).
    function egw_table_set_radii(h, radius1, radius2) result(stat) &
       & bind(C, name="egw_table_set_radii")
-      type(c_ptr), value, intent(in) :: h
+      type(c_ptr), value, intent(in) :: h   !< C: `egw_table t`
+      !> C: `double radius1`; `double radius2`
       real(c_double), value, intent(in) :: radius1, radius2
       integer(c_int) :: stat
       type(force_table), pointer :: t
@@ -288,8 +299,9 @@ contains
 
    !> C: egw_table_write (atomic; EGW_FORMAT_*).
    function egw_table_write(h, path, format) result(stat) bind(C, name="egw_table_write")
+      !> C: `egw_table t`; `const char *path` (NUL-terminated)
       type(c_ptr), value, intent(in) :: h, path
-      integer(c_int), value, intent(in) :: format
+      integer(c_int), value, intent(in) :: format   !< C: `int format`
       integer(c_int) :: stat
       type(force_table), pointer :: t
       character(len=:), allocatable :: fpath
@@ -303,6 +315,7 @@ contains
 
    !> C: egw_table_read (egw CSV or binary; no handle on a bad file).
    function egw_table_read(path, out) result(stat) bind(C, name="egw_table_read")
+      !> C: `const char *path` (NUL-terminated); `egw_table *out` (the new handle)
       type(c_ptr), value, intent(in) :: path, out
       integer(c_int) :: stat
       character(len=:), allocatable :: fpath
@@ -319,6 +332,7 @@ contains
 
    !> C: egw_table_free(egw_table *t): releases the table, sets *t = NULL.
    subroutine egw_table_free(h) bind(C, name="egw_table_free")
+      !> C: `egw_table *t` (released, then set to NULL; NULL is fine)
       type(c_ptr), value, intent(in) :: h
       type(c_ptr) :: object
       type(force_table), pointer :: t
@@ -331,7 +345,8 @@ contains
    !> C: egw_tables_write_lammps: one pair_style table section (EGW_1..EGW_n) per table.
    function egw_tables_write_lammps(n, tables, path) result(stat) &
       & bind(C, name="egw_tables_write_lammps")
-      integer(c_int), value, intent(in) :: n
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
+      !> C: `const egw_table *tables`; `const char *path` (NUL-terminated)
       type(c_ptr), value, intent(in) :: tables, path
       integer(c_int) :: stat
       stat = lammps_c(n, tables, path, .false., c_null_ptr)
@@ -340,7 +355,10 @@ contains
    !> C: egw_write_flat_calculix (rough-flat p_G for CalculiX).
    function egw_write_flat_calculix(p, overclosure_max, rel_tol, path) result(stat) &
       & bind(C, name="egw_write_flat_calculix")
+      !> C: `const egw_params *p` (the contact's parameters); `const char *path`
+      !> (NUL-terminated)
       type(c_ptr), value, intent(in) :: p, path
+      !> C: `double overclosure_max`; `double rel_tol`
       real(c_double), value, intent(in) :: overclosure_max, rel_tol
       integer(c_int) :: stat
       type(contact_params) :: params
@@ -357,8 +375,9 @@ contains
    !> max_error may be NULL).
    function egw_table_write_calculix(h, path, shift, max_error) result(stat) &
       & bind(C, name="egw_table_write_calculix")
+      !> C: `egw_table t`; `const char *path` (NUL-terminated); `double *max_error` (out)
       type(c_ptr), value, intent(in) :: h, path, max_error
-      integer(c_int), value, intent(in) :: shift
+      integer(c_int), value, intent(in) :: shift   !< C: `int shift`
       integer(c_int) :: stat
       type(force_table), pointer :: t
       character(len=:), allocatable :: fpath
@@ -375,9 +394,12 @@ contains
    !> max_error may be NULL).
    function egw_write_flat_calculix_shifted(p, overclosure_max, rel_tol, shift, path, &
       & max_error) result(stat) bind(C, name="egw_write_flat_calculix_shifted")
+      !> C: `const egw_params *p` (the contact's parameters); `const char *path`
+      !> (NUL-terminated); `double *max_error` (out)
       type(c_ptr), value, intent(in) :: p, path, max_error
+      !> C: `double overclosure_max`; `double rel_tol`
       real(c_double), value, intent(in) :: overclosure_max, rel_tol
-      integer(c_int), value, intent(in) :: shift
+      integer(c_int), value, intent(in) :: shift   !< C: `int shift`
       integer(c_int) :: stat
       type(contact_params) :: params
       character(len=:), allocatable :: fpath
@@ -395,7 +417,9 @@ contains
    !> style written as the file's UNITS: tag.
    function egw_tables_write_lammps_units(n, tables, path, units) result(stat) &
       & bind(C, name="egw_tables_write_lammps_units")
-      integer(c_int), value, intent(in) :: n
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
+      !> C: `const egw_table *tables`; `const char *path` (NUL-terminated); `const char
+      !> *units`
       type(c_ptr), value, intent(in) :: tables, path, units
       integer(c_int) :: stat
       stat = lammps_c(n, tables, path, .true., units)
@@ -406,7 +430,11 @@ contains
    !> C: egw_universal_build.
    function egw_universal_build(p, o, mu_min, mu_max, x_min, x_max, rel_tol, out) &
       & result(stat) bind(C, name="egw_universal_build")
+      !> C: `const egw_params *p` (the contact's parameters); `const egw_options *o` (solver
+      !> options, NULL: the defaults); `egw_universal *out` (the new handle)
       type(c_ptr), value, intent(in) :: p, o, out
+      !> C: `double mu_min`; `double mu_max`; `double x_min`; `double x_max`; `double
+      !> rel_tol`
       real(c_double), value, intent(in) :: mu_min, mu_max, x_min, x_max, rel_tol
       integer(c_int) :: stat
       type(contact_params) :: params
@@ -430,8 +458,10 @@ contains
    !> C: egw_universal_eval (R, E, sigma, mu from p; model, psi, K, rho_p must match).
    function egw_universal_eval(h, p, delta, force, stiffness) result(stat) &
       & bind(C, name="egw_universal_eval")
+      !> C: `egw_universal u`; `const egw_params *p` (the contact's parameters); `double
+      !> *force` (out); `double *stiffness` (out)
       type(c_ptr), value, intent(in) :: h, p, force, stiffness
-      real(c_double), value, intent(in) :: delta
+      real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
       type(universal_table), pointer :: u
       type(egw_params_c), pointer :: cp
@@ -484,6 +514,8 @@ contains
 
    !> C: egw_universal_slice: the 1-D table of the contact p cut out of u.
    function egw_universal_slice(h, p, out) result(stat) bind(C, name="egw_universal_slice")
+      !> C: `egw_universal u`; `const egw_params *p` (the contact's parameters); `egw_table
+      !> *out` (the new handle)
       type(c_ptr), value, intent(in) :: h, p, out
       integer(c_int) :: stat
       stat = slice_c(h, p, out, .false., 0.0_dp)
@@ -492,8 +524,10 @@ contains
    !> C: egw_universal_slice_range: the same, trimmed to overlaps up to delta_max.
    function egw_universal_slice_range(h, p, delta_max, out) result(stat) &
       & bind(C, name="egw_universal_slice_range")
+      !> C: `egw_universal u`; `const egw_params *p` (the contact's parameters); `egw_table
+      !> *out` (the new handle)
       type(c_ptr), value, intent(in) :: h, p, out
-      real(c_double), value, intent(in) :: delta_max
+      real(c_double), value, intent(in) :: delta_max   !< C: `double delta_max`
       integer(c_int) :: stat
       stat = slice_c(h, p, out, .true., delta_max)
    end function egw_universal_slice_range
@@ -525,8 +559,9 @@ contains
    !> C: egw_universal_write (CSV or binary).
    function egw_universal_write(h, path, format) result(stat) &
       & bind(C, name="egw_universal_write")
+      !> C: `egw_universal u`; `const char *path` (NUL-terminated)
       type(c_ptr), value, intent(in) :: h, path
-      integer(c_int), value, intent(in) :: format
+      integer(c_int), value, intent(in) :: format   !< C: `int format`
       integer(c_int) :: stat
       type(universal_table), pointer :: u
       character(len=:), allocatable :: fpath
@@ -540,6 +575,7 @@ contains
 
    !> C: egw_universal_read.
    function egw_universal_read(path, out) result(stat) bind(C, name="egw_universal_read")
+      !> C: `const char *path` (NUL-terminated); `egw_universal *out` (the new handle)
       type(c_ptr), value, intent(in) :: path, out
       integer(c_int) :: stat
       character(len=:), allocatable :: fpath
@@ -556,6 +592,7 @@ contains
 
    !> C: egw_universal_free(egw_universal *u): releases, sets *u = NULL.
    subroutine egw_universal_free(h) bind(C, name="egw_universal_free")
+      !> C: `egw_universal *u` (released, then set to NULL; NULL is fine)
       type(c_ptr), value, intent(in) :: h
       type(c_ptr) :: object
       type(universal_table), pointer :: u

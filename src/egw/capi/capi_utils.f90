@@ -72,8 +72,8 @@ contains
    !> length. (A subroutine: gfortran 12 keeps the length of a deferred-length function
    !> result in a static variable, which concurrent callers would share; see egw_text.)
    subroutine c_string(ptr, str)
-      type(c_ptr), intent(in) :: ptr
-      character(len=:), allocatable, intent(out) :: str
+      type(c_ptr), intent(in) :: ptr   !< a NUL-terminated C string, not NULL
+      character(len=:), allocatable, intent(out) :: str   !< its characters
       character(kind=c_char), pointer :: chars(:)
       integer(c_size_t) :: n
       integer :: i
@@ -91,9 +91,9 @@ contains
    !> to buflen - 1 characters. EGW_NULL_POINTER (buf NULL), EGW_INVALID_ARGUMENT
    !> (buflen < 1); nothing written then.
    integer(c_int) function copy_to_c(str, buf, buflen) result(stat)
-      character(len=*), intent(in) :: str
-      type(c_ptr), intent(in) :: buf
-      integer(c_int), intent(in) :: buflen
+      character(len=*), intent(in) :: str   !< the text to copy
+      type(c_ptr), intent(in) :: buf   !< char* of buflen bytes
+      integer(c_int), intent(in) :: buflen   !< bytes at buf, >= 1
       character(kind=c_char), pointer :: chars(:)
       integer :: i, n
       stat = egw_ok
@@ -115,7 +115,7 @@ contains
 
    !> Convert the C struct to the Fortran type.
    pure function to_params(cp) result(params)
-      type(egw_params_c), intent(in) :: cp
+      type(egw_params_c), intent(in) :: cp   !< the C struct egw_params
       type(contact_params) :: params
       params = contact_params(model=int(cp%model), radius=cp%radius, modulus=cp%modulus, &
          & sigma=cp%sigma, mu=cp%mu, psi=cp%psi, hardness_coeff=cp%hardness_coeff, &
@@ -124,7 +124,7 @@ contains
 
    !> The C struct egw_params of Fortran contact_params (field by field).
    pure function from_params(params) result(cp)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< the Fortran parameters
       type(egw_params_c) :: cp
       cp = egw_params_c(model=int(params%model, c_int), radius=params%radius, &
          & modulus=params%modulus, sigma=params%sigma, mu=params%mu, psi=params%psi, &
@@ -134,8 +134,8 @@ contains
 
    !> Read and validate a const egw_params*.
    integer(c_int) function read_params(p, params, allow_flat_law) result(stat)
-      type(c_ptr), intent(in) :: p
-      type(contact_params), intent(out) :: params
+      type(c_ptr), intent(in) :: p   !< const egw_params* (NULL: EGW_NULL_POINTER)
+      type(contact_params), intent(out) :: params   !< the validated parameters
       logical, intent(in), optional :: allow_flat_law   !< EGW_MODEL_FLAT_LAW is valid
       type(egw_params_c), pointer :: cp
       type(egw_error), allocatable :: error
@@ -150,8 +150,8 @@ contains
    !> EGW_INVALID_PARAMETER (message recorded) when params have the flow-pressure cap and
    !> the request (what) does not serve it yet; EGW_OK otherwise.
    integer(c_int) function refuse_cap(params, what) result(stat)
-      type(contact_params), intent(in) :: params
-      character(len=*), intent(in) :: what
+      type(contact_params), intent(in) :: params   !< the contact's parameters
+      character(len=*), intent(in) :: what   !< the request, for the message
       type(egw_error), allocatable :: error
       call refuse_flow_pressure(params, what, error)
       stat = settle(error)
@@ -159,8 +159,8 @@ contains
 
    !> Options from a nullable const egw_options* (NULL: defaults); checked by the solver.
    subroutine read_options(o, options)
-      type(c_ptr), intent(in) :: o
-      type(solver_options), intent(out) :: options
+      type(c_ptr), intent(in) :: o   !< const egw_options* (NULL: defaults)
+      type(solver_options), intent(out) :: options   !< the solver's options
       type(egw_options_c), pointer :: co
       if (.not. c_associated(o)) return
       call c_f_pointer(o, co)
@@ -176,8 +176,8 @@ contains
    integer(c_int) function read_contact(p, o, params, options, allow_flat_law) result(stat)
       type(c_ptr), intent(in) :: p   !< const egw_params*
       type(c_ptr), intent(in) :: o   !< const egw_options* (NULL: defaults)
-      type(contact_params), intent(out) :: params
-      type(solver_options), intent(out) :: options
+      type(contact_params), intent(out) :: params   !< the validated parameters
+      type(solver_options), intent(out) :: options   !< the solver's options
       logical, intent(in), optional :: allow_flat_law   !< EGW_MODEL_FLAT_LAW is valid
       stat = read_params(p, params, allow_flat_law)
       if (stat == egw_ok) call read_options(o, options)
@@ -185,8 +185,8 @@ contains
 
    !> Store a solve_result at a C egw_result* (not NULL).
    subroutine put_result(res, result)
-      type(c_ptr), intent(in) :: res
-      type(solve_result), intent(in) :: result
+      type(c_ptr), intent(in) :: res   !< egw_result*, not NULL
+      type(solve_result), intent(in) :: result   !< the solve's result
       type(egw_result_c), pointer :: cres
       call c_f_pointer(res, cres)
       cres = egw_result_c(force=result%force, stiffness=result%stiffness, &
@@ -197,6 +197,7 @@ contains
 
    !> Status of an error (recording its message), EGW_OK when none.
    integer(c_int) function settle(error) result(stat)
+      !> the call's error, unallocated on success
       type(egw_error), allocatable, intent(in) :: error
       stat = egw_ok
       if (.not. allocated(error)) return
@@ -211,8 +212,8 @@ contains
 
    !> EGW_OK if ptr is not NULL, else EGW_NULL_POINTER with a message naming the argument.
    integer(c_int) function require(ptr, name) result(stat)
-      type(c_ptr), intent(in) :: ptr
-      character(len=*), intent(in) :: name
+      type(c_ptr), intent(in) :: ptr   !< the pointer argument
+      character(len=*), intent(in) :: name   !< its name in egw.h
       stat = egw_ok
       if (c_associated(ptr)) return
       stat = egw_null_pointer
@@ -223,14 +224,14 @@ contains
    !> EGW_OK if x is finite and >= 0, else EGW_INVALID_ARGUMENT naming it.
    integer(c_int) function check_nonneg(name, x) result(stat)
       character(len=*), intent(in) :: name   !< the argument's name in egw.h
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< its value
       stat = check_finite(name, x, x >= 0.0_dp, ">= 0")
    end function check_nonneg
 
    !> EGW_OK if x is finite and > 0, else EGW_INVALID_ARGUMENT naming it.
    integer(c_int) function check_positive(name, x) result(stat)
       character(len=*), intent(in) :: name   !< the argument's name in egw.h
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< its value
       stat = check_finite(name, x, x > 0.0_dp, "> 0")
    end function check_positive
 
@@ -248,7 +249,7 @@ contains
    !> judges it. (The name of an array element is built only on failure: array loops.)
    integer(c_int) function check_number(name, x, index) result(stat)
       character(len=*), intent(in) :: name     !< the argument's name in egw.h
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< its value
       integer, intent(in), optional :: index   !< x is name[index] (C, from 0)
       stat = egw_ok
       if (.not. ieee_is_nan(x)) return
@@ -268,8 +269,8 @@ contains
 
    !> Store x at a C double* (NULL: nothing wanted).
    subroutine put(ptr, x)
-      type(c_ptr), intent(in) :: ptr
-      real(dp), intent(in) :: x
+      type(c_ptr), intent(in) :: ptr   !< double* (NULL: not wanted)
+      real(dp), intent(in) :: x   !< the value
       real(c_double), pointer :: target
       if (.not. c_associated(ptr)) return
       call c_f_pointer(ptr, target)
@@ -278,7 +279,7 @@ contains
 
    !> The n doubles at a nullable double* (NULL: not associated, nothing wanted there).
    function double_array(ptr, n) result(array)
-      type(c_ptr), intent(in) :: ptr
+      type(c_ptr), intent(in) :: ptr   !< double* (NULL: not wanted)
       integer(c_int), intent(in) :: n   !< the length, >= 0
       real(c_double), pointer :: array(:)
       array => null()
@@ -289,7 +290,8 @@ contains
    !> ptr (as put), on failure ptr untouched.
    integer(c_int) function put_settled(ptr, x, error) result(stat)
       type(c_ptr), intent(in) :: ptr   !< double* (NULL: not wanted)
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< the value
+      !> the call's error, unallocated on success
       type(egw_error), allocatable, intent(in) :: error
       stat = settle(error)
       if (stat == egw_ok) call put(ptr, x)
@@ -301,6 +303,7 @@ contains
    integer(c_int) function put_handle_settled(out, object, error) result(stat)
       type(c_ptr), intent(in) :: out      !< egw_table*, egw_universal*, ... (not NULL)
       type(c_ptr), intent(in) :: object   !< c_loc of the allocated object
+      !> the build's or read's error, unallocated on success
       type(egw_error), allocatable, intent(in) :: error
       type(c_ptr), pointer :: handle
       stat = settle(error)
@@ -342,7 +345,7 @@ contains
    !> (values extrapolated)" is formed when egw_last_error asks (no text on the hot path).
    integer(c_int) function above_delta_max(name, x, limit) result(stat)
       character(len=*), intent(in) :: name   !< the argument, e.g. "delta"
-      real(dp), intent(in) :: x, limit
+      real(dp), intent(in) :: x, limit   !< the value, and the table's delta_max
       stat = int(egw_out_of_range, c_int)
       pending = .true.
       pending_name = name

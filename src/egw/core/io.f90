@@ -187,8 +187,9 @@ contains
    !> rename: for devices and pipes, or where atomicity is not wanted), with the checks
    !> of write_file: egw_io_error with the system's reason if any step fails.
    subroutine write_stream(path, bytes, error)
-      character(len=*), intent(in) :: path
-      character(len=*), intent(in) :: bytes
+      character(len=*), intent(in) :: path   !< the file or device to write
+      character(len=*), intent(in) :: bytes   !< what to write, as it is
+      !> egw_io_error naming path and the system's reason
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: why
       type(c_ptr) :: fp
@@ -230,8 +231,9 @@ contains
 
    !> The whole file at path as bytes. egw_io_error if it cannot be opened or read.
    subroutine read_file(path, bytes, error)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable, target, intent(out) :: bytes
+      character(len=*), intent(in) :: path   !< the file to read
+      character(len=:), allocatable, target, intent(out) :: bytes   !< its whole content
+      !> egw_io_error naming path and the system's reason
       type(egw_error), allocatable, intent(out) :: error
       type(c_ptr) :: fp
       integer(c_long) :: size
@@ -273,7 +275,8 @@ contains
 
    !> Rename a file onto path (atomic within a file system; replaces an existing path).
    subroutine rename_file(from, path, error)
-      character(len=*), intent(in) :: from, path
+      character(len=*), intent(in) :: from, path   !< the file renamed, and the path it takes
+      !> egw_io_error naming both and the system's reason
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: why
       if (c_rename(from//c_null_char, path//c_null_char) /= 0) then
@@ -285,7 +288,7 @@ contains
 
    !> Remove a file if it exists (errors ignored: used to clean up after a failure).
    subroutine remove_file(path)
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !< the file to remove
       integer(c_int) :: ignored
       ignored = c_remove(path//c_null_char)
    end subroutine remove_file

@@ -28,8 +28,8 @@ module egw_params
       real(dp) :: hardness_coeff = 0.6_dp  !< ZMC K in (0, 1)
       real(dp) :: plastic_ratio = 54.0_dp  !< ZMC delta_p/delta_ep > 1
       !> bulk flow pressure p_y of the elastic-perfectly-plastic half-space (doc/theory.md
-      !> section 12): the contact pressure is capped at p_y; 0 = no bulk yield. Smooth
-      !> spheres (Hertz, sigma = 0) only for now: a rough model with p_y > 0 is refused.
+      !> section 12): the contact pressure is capped at p_y; 0 = no bulk yield. Every
+      !> model (rough ones cap the total pressure: theory.md section 12).
       real(dp) :: flow_pressure = 0.0_dp
    end type contact_params
 
@@ -150,7 +150,7 @@ contains
    pure subroutine check_ranges(params, error)
       type(contact_params), intent(in) :: params
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: lr, le, ls
+      real(dp) :: lr, le, ls, la
       if (params%radius < tiny(1.0_dp)) then
          call bad(error, "radius", params%radius, "must be a normal double >= " &
             & //format_real(tiny(1.0_dp))//" (subnormal)"); return
@@ -180,6 +180,23 @@ contains
                & //range_str(tiny(1.0_dp)/scale_margin, huge(1.0_dp)*scale_margin)); return
          end if
       end if
+      if (params%flow_pressure > 0.0_dp) then
+         ! the cap's scales (doc/theory.md section 12): a_y = pi R p_y/(2 E*), delta_y =
+         ! a_y**2/R and P_y = (4/3) E* a_y**3/R, in logarithms; p_y/E* = 1e-300 passed
+         ! the field's own check while delta_y underflowed to 0
+         lr = log(params%radius)
+         le = log(params%modulus)
+         la = log(0.5_dp*pi) + lr + log(params%flow_pressure) - le
+         if (.not. (in_scale(la) .and. in_scale(2.0_dp*la - lr) .and. &
+            & in_scale(log(4.0_dp/3.0_dp) + le + 3.0_dp*la - lr))) then
+            call bad(error, "flow_pressure", params%flow_pressure, "with radius = " &
+               & //format_real(params%radius)//" and modulus = " &
+               & //format_real(params%modulus)//": the cap's first-yield scales a_y = " &
+               & //"pi R p_y/(2 E*), delta_y = a_y**2/R, P_y = (4/3) E* a_y**3/R must " &
+               & //"lie in "//range_str(tiny(1.0_dp)/scale_margin, &
+               & huge(1.0_dp)*scale_margin)); return
+         end if
+      end if
       if (params%psi > 0.0_dp .and. (params%psi < psi_min .or. params%psi > psi_max)) then
          call bad(error, "psi", params%psi, "must be 0 or lie in "//range_str(psi_min, psi_max) &
             & //" (1/psi**2 and rho_p/psi**2 normal doubles)"); return
@@ -204,8 +221,9 @@ contains
    !> resolves: |delta/sigma| <= overlap_ratio_max on the overlap side (any separation is
    !> fine: far apart the force is 0). name names the argument in the message.
    pure subroutine check_scaled_overlap(name, delta, sigma, error)
-      character(len=*), intent(in) :: name
-      real(dp), intent(in) :: delta, sigma
+      character(len=*), intent(in) :: name   !< the argument's name in the message
+      real(dp), intent(in) :: delta, sigma   !< overlap and sigma [length]
+      !> egw_invalid_argument naming name, if out of range
       type(egw_error), allocatable, intent(out) :: error
       if (.not. sigma > 0.0_dp) return
       if (delta > overlap_ratio_max*sigma) call fatal_error(error, egw_invalid_argument, &
@@ -218,7 +236,7 @@ contains
    !> significands multiply in [1/16, 1), the exponents add, and scale() rounds once more
    !> (to a subnormal, 0 or +Inf only if the product itself is out of range).
    elemental real(dp) function product4(w, x, y, z) result(p)
-      real(dp), intent(in) :: w, x, y, z
+      real(dp), intent(in) :: w, x, y, z   !< the four factors, > 0
       p = scale(fraction(w)*fraction(x)*fraction(y)*fraction(z), &
          & exponent(w) + exponent(x) + exponent(y) + exponent(z))
    end function product4
@@ -229,29 +247,32 @@ contains
    !> intermediates stay normal (bit for bit as before), else product4 (sigma**1.5 alone
    !> underflows at sigma = 1e-300 while the force unit E sqrt(R) sigma**1.5 need not).
    elemental real(dp) function length_unit(params) result(u)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       u = sqrt(params%radius*params%sigma)
       if (.not. normal(u) .or. .not. normal(params%radius*params%sigma)) &
          & u = sqrt(params%radius)*sqrt(params%sigma)
    end function length_unit
 
+   !> The scaled pressure unit E sqrt(sigma/R) (as length_unit).
    elemental real(dp) function pressure_unit(params) result(u)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       u = params%modulus*sqrt(params%sigma/params%radius)
       if (.not. normal(u) .or. .not. normal(params%sigma/params%radius)) &
          & u = product4(params%modulus, sqrt(params%sigma), 1.0_dp/sqrt(params%radius), 1.0_dp)
    end function pressure_unit
 
+   !> The scaled force unit E sqrt(R) sigma**1.5 (as length_unit).
    elemental real(dp) function force_unit(params) result(u)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       u = params%modulus*sqrt(params%radius)*params%sigma**1.5_dp
       if (.not. normal(u) .or. .not. normal(params%sigma**1.5_dp) .or. &
          & .not. normal(params%modulus*sqrt(params%radius))) &
          & u = product4(params%modulus, sqrt(params%radius), params%sigma, sqrt(params%sigma))
    end function force_unit
 
+   !> The scaled stiffness unit E sqrt(R sigma) (as length_unit).
    elemental real(dp) function stiffness_unit(params) result(u)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       u = product4(params%modulus, sqrt(params%radius), sqrt(params%sigma), 1.0_dp)
    end function stiffness_unit
 
@@ -262,7 +283,7 @@ contains
 
    !> "[lo, hi]" for messages.
    pure function range_str(lo, hi) result(str)
-      real(dp), intent(in) :: lo, hi
+      real(dp), intent(in) :: lo, hi   !< the range's ends
       ! a length from a specification function, not a deferred one (egw_text: threads)
       character(len=format_real_len(lo) + format_real_len(hi) + 4) :: str
       str = "["//format_real(lo)//", "//format_real(hi)//"]"
@@ -297,7 +318,7 @@ contains
 
    !> C = (4/3) E eta beta^(1/2) = mu E / (2 sigma sqrt(2R)) of eq. (9) (sigma > 0).
    elemental function rough_flat_coefficient(params) result(c)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
       real(dp) :: c
       c = params%mu*params%modulus/(2.0_dp*params%sigma*sqrt(2.0_dp*params%radius))
    end function rough_flat_coefficient
@@ -325,7 +346,7 @@ contains
 
    !> Whether x is finite and > 0 (a NaN is not).
    elemental logical function positive_finite(x)
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< any double
       positive_finite = ieee_is_finite(x) .and. x > 0.0_dp
    end function positive_finite
 

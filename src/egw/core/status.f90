@@ -59,9 +59,9 @@ contains
    !> Allocate and fill an error; the message is prefixed by nothing so callers
    !> can compose "name = value: reason" themselves.
    pure subroutine fatal_error(error, stat, message)
-      type(egw_error), allocatable, intent(out) :: error
-      integer, intent(in) :: stat
-      character(len=*), intent(in) :: message
+      type(egw_error), allocatable, intent(out) :: error   !< allocated with stat and message
+      integer, intent(in) :: stat   !< an egw_* status code
+      character(len=*), intent(in) :: message   !< "name = value: reason"
       allocate (error)
       error%stat = stat
       error%message = message
@@ -89,8 +89,9 @@ contains
       error%message = prefix//": "//error%message
    end subroutine tolerance_context
 
+   !> Length of format_real(x).
    pure integer function format_real_len(x) result(n)
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< any double
       if (ieee_is_nan(x)) then
          n = 3
       else if (abs(x) > huge(x)) then
@@ -104,7 +105,7 @@ contains
    !> (The result's length comes from a specification function, not a deferred length:
    !> see egw_text on gfortran's static lengths of deferred-length results.)
    pure function format_real(x) result(str)
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< any double
       character(len=format_real_len(x)) :: str
       if (ieee_is_nan(x)) then
          str = "NaN"

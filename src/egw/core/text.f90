@@ -22,7 +22,7 @@ module egw_text
    private
 
    public :: int_text, real_text, parse_real, parse_int, int_text_len, real_text_len
-   public :: csv_row, csv_row_len
+   public :: csv_row, csv_row_len, to_lower
 
    interface int_text
       module procedure int_text_32, int_text_64
@@ -45,13 +45,15 @@ module egw_text
 
 contains
 
+   !> Length of int_text(i) (sign and digits).
    pure integer function int_text_len_32(i) result(n)
-      integer, intent(in) :: i
+      integer, intent(in) :: i   !< any integer
       n = int_text_len_64(int(i, int64))
    end function int_text_len_32
 
+   !> Length of int_text(i) for an int64 (sign and digits).
    pure integer function int_text_len_64(i) result(n)
-      integer(int64), intent(in) :: i
+      integer(int64), intent(in) :: i   !< any int64
       integer(int64) :: v
       n = merge(2, 1, i < 0)
       v = i/10
@@ -63,14 +65,14 @@ contains
 
    !> Decimal text of an integer (as the I0 edit descriptor writes it).
    pure function int_text_32(i) result(str)
-      integer, intent(in) :: i
+      integer, intent(in) :: i   !< any integer
       character(len=int_text_len_32(i)) :: str
       str = int_text_64(int(i, int64))
    end function int_text_32
 
    !> Decimal text of an int64.
    pure function int_text_64(i) result(str)
-      integer(int64), intent(in) :: i
+      integer(int64), intent(in) :: i   !< any int64
       character(len=int_text_len_64(i)) :: str
       integer(int64) :: v
       integer :: pos
@@ -118,7 +120,8 @@ contains
    !> Length of real_text(x, decimals, exp_digits) (cheap unless the exponent's digits
    !> are in doubt: then x is converted).
    pure integer function real_text_len(x, decimals, exp_digits) result(n)
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< any double (NaN and Inf too)
+      !> digits after the point (d), and of the exponent (e)
       integer, intent(in) :: decimals, exp_digits
       character(len=:), allocatable :: text
       real(dp) :: magnitude
@@ -141,7 +144,8 @@ contains
 
    !> x as ESw.dEe writes it (see real_text_sub).
    pure function real_text(x, decimals, exp_digits) result(str)
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< any double (NaN and Inf too)
+      !> digits after the point (d), and of the exponent (e)
       integer, intent(in) :: decimals, exp_digits
       character(len=real_text_len(x, decimals, exp_digits)) :: str
       character(len=:), allocatable :: text
@@ -151,9 +155,9 @@ contains
 
    !> Read an integer: optional blanks, an optional sign, digits, optional blanks.
    pure subroutine parse_int(text, k, ok)
-      character(len=*), intent(in) :: text
-      integer, intent(out) :: k
-      logical, intent(out) :: ok
+      character(len=*), intent(in) :: text   !< the text to read
+      integer, intent(out) :: k   !< its value (meaningful only when ok)
+      logical, intent(out) :: ok   !< false for other text or a value beyond the default integer
       character(len=:), allocatable :: t
       integer(int64) :: v
       integer :: i, first
@@ -182,9 +186,9 @@ contains
    !> exponent (E, e, D or d, optional sign, digits); also NaN, Inf, Infinity. The
    !> nearest double (ties to even); beyond the range: +-Infinity or +-0.
    pure subroutine parse_real(text, x, ok)
-      character(len=*), intent(in) :: text
-      real(dp), intent(out) :: x
-      logical, intent(out) :: ok
+      character(len=*), intent(in) :: text   !< the text to read
+      real(dp), intent(out) :: x   !< the nearest double (meaningful only when ok)
+      logical, intent(out) :: ok   !< false for text of another form
       character(len=:), allocatable :: t, lower
       character(len=max_digits) :: digits
       integer :: i, nd, e10, ex, first
@@ -534,9 +538,11 @@ contains
       is_digit = ch >= "0" .and. ch <= "9"
    end function is_digit
 
+   !> s with its ASCII capitals A-Z as small letters, every other byte as it is (the
+   !> C locale's tolower, whatever the locale; keywords and names are matched this way).
    pure function to_lower(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
+      character(len=*), intent(in) :: s   !< any text
+      character(len=len(s)) :: t          !< s in small letters
       integer :: i
       t = s
       do i = 1, len(s)

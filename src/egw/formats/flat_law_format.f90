@@ -27,10 +27,11 @@ contains
    !> file renamed over path). source: a word for the header (e.g. "table", "Persson",
    !> "BEM").
    subroutine write_flat_law(law, path, error, source)
-      type(table_flat_law), intent(in) :: law
-      character(len=*), intent(in) :: path
+      type(table_flat_law), intent(in) :: law   !< the law whose nodes are written
+      character(len=*), intent(in) :: path   !< the file to write
+      !> egw_io_error naming path and the reason
       type(egw_error), allocatable, intent(out) :: error
-      character(len=*), intent(in), optional :: source
+      character(len=*), intent(in), optional :: source   !< where the law came from, for the header
       type(text_buffer) :: out
       real(dp), allocatable :: p(:), d(:)
       integer :: i, n
@@ -67,9 +68,9 @@ contains
    !> the line for anything malformed, egw_io_error when it cannot be read; the nodes are
    !> checked as new_table_law checks them.
    subroutine read_flat_law(path, law, error)
-      character(len=*), intent(in) :: path
-      type(table_flat_law), intent(out) :: law
-      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: path   !< the file to read
+      type(table_flat_law), intent(out) :: law   !< the law, its nodes checked
+      type(egw_error), allocatable, intent(out) :: error   !< egw_bad_file or egw_io_error, as above
       character(len=:), allocatable :: text
       integer :: body
       logical :: missing

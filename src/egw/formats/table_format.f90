@@ -177,8 +177,10 @@ module egw_table_format
       !> energy and contact radius >= 0; force and energy non-decreasing in the overlap
       !> (the loading curve of every model rises: a dip is a corrupted or edited file).
       module subroutine check_table(path, where, t, error)
+         !> the file, and the format's name, for the messages
          character(len=*), intent(in) :: path, where
-         type(force_table), intent(in) :: t
+         type(force_table), intent(in) :: t   !< the table as read
+         !> egw_bad_file naming path and the first fault
          type(egw_error), allocatable, intent(out) :: error
       end subroutine check_table
 
@@ -329,9 +331,10 @@ contains
    !> The checksum line of a CSV file: body = the bytes before it (all of text if
    !> there is none, then missing = true); a checksum that does not match is an error.
    subroutine split_checksum(path, text, body, missing, error)
-      character(len=*), intent(in) :: path, text
-      integer, intent(out) :: body
-      logical, intent(out) :: missing
+      character(len=*), intent(in) :: path, text   !< the file (messages), and its whole text
+      integer, intent(out) :: body   !< bytes of text before the checksum line
+      logical, intent(out) :: missing   !< true: no checksum line
+      !> egw_bad_file naming path: a checksum that does not match
       type(egw_error), allocatable, intent(out) :: error
       character(len=*), parameter :: key = "# fnv1a32 = "
       integer :: start
@@ -351,8 +354,9 @@ contains
       end if
    end subroutine split_checksum
 
+   !> The CSV checksum line of the bytes above it.
    pure function checksum_line(above) result(line)
-      character(len=*), intent(in) :: above
+      character(len=*), intent(in) :: above   !< the file's bytes before the line
       character(len=60) :: line
       line = "# fnv1a32 = "//hex8(fnv1a32(above))//" (checksum of the bytes above this line)"
    end function checksum_line
@@ -372,7 +376,7 @@ contains
    !> FNV-1a 32-bit hash of a byte string (offset basis 2166136261, prime 16777619),
    !> returned in the low 32 bits of an int64. Products stay below 2^57: no overflow.
    pure function fnv1a32(bytes) result(h)
-      character(len=*), intent(in) :: bytes
+      character(len=*), intent(in) :: bytes   !< any bytes
       integer(int64) :: h
       integer :: i
       integer(int64), parameter :: mask = int(z'FFFFFFFF', int64)
@@ -385,7 +389,7 @@ contains
 
    !> The unsigned 32-bit checksum as the int32 with the same bits.
    pure integer(int32) function checksum_i32(h)
-      integer(int64), intent(in) :: h
+      integer(int64), intent(in) :: h   !< a checksum in 0 .. 2^32 - 1
       if (h >= 2147483648_int64) then
          checksum_i32 = int(h - 4294967296_int64, int32)
       else
@@ -396,9 +400,9 @@ contains
    !> Append the doubles v to the binary buffer buf at pos (native byte order; the
    !> formats' byte-order mark says which), advancing pos.
    pure subroutine put_f64(buf, pos, v)
-      character(len=*), intent(inout) :: buf
-      integer, intent(inout) :: pos
-      real(dp), intent(in) :: v(:)
+      character(len=*), intent(inout) :: buf   !< the buffer, long enough
+      integer, intent(inout) :: pos   !< the next byte to write (1-based)
+      real(dp), intent(in) :: v(:)   !< the doubles to append
       integer :: nb
       nb = 8*size(v)
       if (nb == 0) return
@@ -408,9 +412,9 @@ contains
 
    !> Read size(v) doubles from buf at pos, advancing pos.
    pure subroutine get_f64(buf, pos, v)
-      character(len=*), intent(in) :: buf
-      integer, intent(inout) :: pos
-      real(dp), intent(out) :: v(:)
+      character(len=*), intent(in) :: buf   !< the file's bytes
+      integer, intent(inout) :: pos   !< the next byte to read (1-based)
+      real(dp), intent(out) :: v(:)   !< the doubles read
       integer :: nb
       nb = 8*size(v)
       if (nb == 0) return

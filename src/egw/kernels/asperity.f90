@@ -119,9 +119,11 @@ contains
    !> (C alone may overflow). A pressure beyond the doubles (deep overlap, d/sigma ->
    !> -Inf) is refused: egw_invalid_argument naming the separation.
    pure subroutine flat_scaled_to_units(params, separation, p, dpdh, pressure, dpressure, error)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
+      !> d [length] (named in the message), p and dp/dh scaled
       real(wp), intent(in) :: separation, p, dpdh
-      real(wp), intent(out) :: pressure, dpressure
+      real(wp), intent(out) :: pressure, dpressure   !< p_G [pressure] and dp_G/dd [pressure/length]
+      !> egw_invalid_argument where p_G exceeds the doubles
       type(egw_error), allocatable, intent(out) :: error
       real(wp) :: scale
       scale = params%mu/(2.0_wp*sqrt(2.0_wp))*params%modulus
@@ -137,8 +139,9 @@ contains
    !> The checks of the rough-flat laws' input (flat_pressure, flat_pressure_unload): valid
    !> params, sigma > 0 (a flat needs roughness), a separation that is a number.
    pure subroutine check_flat_input(params, separation, error)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< the contact's parameters
       real(wp), intent(in) :: separation   !< d, same length unit as sigma
+      !> the first check that fails, naming its value
       type(egw_error), allocatable, intent(out) :: error
       call validate_params(params, error)
       if (allocated(error)) return
@@ -154,7 +157,7 @@ contains
    !> The plasticity index the rough-flat law uses: psi for EP-GW, 0 (elastic summits)
    !> for every other model.
    elemental real(wp) function flat_psi(params) result(psi)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< the contact's parameters
       psi = 0.0_wp
       if (params%model == model_epgw) psi = params%psi
    end function flat_psi

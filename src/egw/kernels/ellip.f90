@@ -110,7 +110,7 @@ contains
    !> Returns +Inf at |k| = 1 and NaN for |k| > 1 or NaN (use get_ellipk for a status).
    !> Near k = 1 prefer ellipk_comp(kc), since forming kc from k costs digits of kc.
    elemental real(dp) function ellipk(k)
-      real(dp), intent(in) :: k
+      real(dp), intent(in) :: k   !< modulus, 0 <= k < 1
       if (.not. abs(k) < 1.0_dp) then
          ellipk = out_of_domain_k(k)
          return
@@ -122,7 +122,7 @@ contains
    !> E(k), complete elliptic integral of the second kind of modulus k, 0 <= k < 1.
    !> Returns 1 at |k| = 1 and NaN for |k| > 1 or NaN (use get_ellipe for a status).
    elemental real(dp) function ellipe(k)
-      real(dp), intent(in) :: k
+      real(dp), intent(in) :: k   !< modulus, 0 <= k <= 1
       if (.not. abs(k) < 1.0_dp) then
          if (abs(k) == 1.0_dp) then
             ellipe = 1.0_dp
@@ -138,7 +138,7 @@ contains
    !> Accurate to a few ulp down to the smallest normal kc; +Inf at kc = 0, NaN outside
    !> [0, 1]. The half-space kernel has kc = |r - t|/(r + t) exactly.
    elemental real(dp) function ellipk_comp(kc)
-      real(dp), intent(in) :: kc
+      real(dp), intent(in) :: kc   !< complementary modulus, 0 < kc <= 1
       if (.not. (kc > 0.0_dp .and. kc <= 1.0_dp)) then
          if (kc == 0.0_dp) then
             ellipk_comp = ieee_value(1.0_dp, ieee_positive_inf)
@@ -161,7 +161,7 @@ contains
    !> The half-space kernel evaluates K millions of times: this is its K.
    !> +Inf at kc = 0, NaN outside [0, 1].
    elemental real(dp) function ellipk_comp_fast(kc) result(k)
-      real(dp), intent(in) :: kc
+      real(dp), intent(in) :: kc   !< complementary modulus, 0 < kc <= 1
       real(dp) :: eta, e2, e4, p, q
       if (.not. (kc > 0.0_dp .and. kc <= 1.0_dp)) then
          k = ellipk_comp(kc)
@@ -187,7 +187,7 @@ contains
    !> E as a function of the complementary modulus kc = sqrt(1 - k**2), 0 <= kc <= 1
    !> (E = 1 at kc = 0); NaN outside [0, 1].
    elemental real(dp) function ellipe_comp(kc)
-      real(dp), intent(in) :: kc
+      real(dp), intent(in) :: kc   !< complementary modulus, 0 <= kc <= 1
       if (.not. (kc >= 0.0_dp .and. kc <= 1.0_dp)) then
          ellipe_comp = ieee_value(1.0_dp, ieee_quiet_nan)
          return
@@ -232,8 +232,8 @@ contains
    !> kreg = pi/2, klog = 0 so that the identity still holds. NaN outside (0, 1].
    !> Accuracy: a few ulp for both pieces (tested against mpmath).
    elemental subroutine ellipk_log_split(kc, kreg, klog)
-      real(dp), intent(in) :: kc
-      real(dp), intent(out) :: kreg, klog
+      real(dp), intent(in) :: kc   !< complementary modulus in (0, 1]
+      real(dp), intent(out) :: kreg, klog   !< the regular part and the factor of ln(1/kc)
       real(dp) :: x, term_b, rest_ln2, power, a_sum, b_sum, k
       integer :: n
 

@@ -79,7 +79,7 @@ contains
    !> for the fitted orders n = -1/2, 0, 1/2, 1, 3/2, 5/2, and ~2e-15 (tested: <= 1e-12)
    !> for other orders, checked for n up to 12; those cost ~1 us (quadrature).
    elemental real(dp) function gauss_integral(n, h) result(f)
-      real(dp), intent(in) :: n, h
+      real(dp), intent(in) :: n, h   !< order n > -1, and h = separation/sigma
       if (same(n, 1.5_dp)) then
          f = fitted(ord_32, h)
       else if (same(n, 0.5_dp)) then
@@ -100,7 +100,7 @@ contains
    !> dF_n/dh = -n F_{n-1}(h) for n >= 0 (n = 0: -phi(h)). Same precondition as
    !> gauss_integral.
    elemental real(dp) function gauss_integral_deriv(n, h) result(df)
-      real(dp), intent(in) :: n, h
+      real(dp), intent(in) :: n, h   !< order n >= 0, and h = separation/sigma
       if (same(n, 0.0_dp)) then
          df = -normal_density(h)
       else if (n < small_order) then
@@ -197,44 +197,44 @@ contains
 
    !> F_{-1/2}(h) (the derivative of F_{1/2} is -F_{-1/2}/2).
    elemental real(dp) function gauss_fm12(h)
-      real(dp), intent(in) :: h
+      real(dp), intent(in) :: h   !< separation/sigma
       gauss_fm12 = fitted(ord_m12, h)
    end function gauss_fm12
 
    !> F_0(h) = erfc(h/sqrt 2)/2, accurate to a few ulp up to the underflow.
    elemental real(dp) function gauss_f0(h)
-      real(dp), intent(in) :: h
+      real(dp), intent(in) :: h   !< separation/sigma
       gauss_f0 = fitted(ord_0, h)
    end function gauss_f0
 
    !> F_{1/2}(h).
    elemental real(dp) function gauss_f12(h)
-      real(dp), intent(in) :: h
+      real(dp), intent(in) :: h   !< separation/sigma
       gauss_f12 = fitted(ord_12, h)
    end function gauss_f12
 
    !> F_1(h) = phi(h) - h F_0(h), without the cancellation of that formula for h > 0.
    elemental real(dp) function gauss_f1(h)
-      real(dp), intent(in) :: h
+      real(dp), intent(in) :: h   !< separation/sigma
       gauss_f1 = fitted(ord_1, h)
    end function gauss_f1
 
    !> F_{3/2}(h), the elastic GW rough-flat pressure (eq. 9), the hot kernel.
    elemental real(dp) function gauss_f32(h)
-      real(dp), intent(in) :: h
+      real(dp), intent(in) :: h   !< separation/sigma
       gauss_f32 = fitted(ord_32, h)
    end function gauss_f32
 
    !> F_{5/2}(h) (far-field force of a rigid rough sphere, doc/theory.md §5).
    elemental real(dp) function gauss_f52(h)
-      real(dp), intent(in) :: h
+      real(dp), intent(in) :: h   !< separation/sigma
       gauss_f52 = fitted(ord_52, h)
    end function gauss_f52
 
    !> Standard normal density phi(h) with h^2/2 formed exactly, so that the relative
    !> error stays at an ulp or two right up to the underflow (h ~ 38.6).
    elemental real(dp) function normal_density(h) result(phi)
-      real(dp), intent(in) :: h
+      real(dp), intent(in) :: h   !< any double
       phi = inv_sqrt2pi*exp_neg_half_square(h, 0.0_dp)
    end function normal_density
 
@@ -332,7 +332,7 @@ contains
 
    !> phi(h + x) with the sum h + x carried exactly into the exponent.
    elemental real(dp) function shifted_density(h, x) result(phi)
-      real(dp), intent(in) :: h, x
+      real(dp), intent(in) :: h, x   !< the two terms of the argument h + x
       real(dp) :: zh, zl
       call two_sum(h, x, zh, zl)
       phi = inv_sqrt2pi*exp_neg_half_square(zh, zl)

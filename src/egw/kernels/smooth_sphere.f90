@@ -23,7 +23,7 @@ contains
 
    !> Contact radius a = sqrt(R delta) (eq. 13); 0 for delta <= 0.
    elemental real(dp) function hertz_contact_radius(delta, radius) result(a)
-      real(dp), intent(in) :: delta, radius
+      real(dp), intent(in) :: delta, radius   !< overlap and sphere radius R [length]
       real(dp) :: rd
       if (delta > 0.0_dp) then
          rd = radius*delta
@@ -41,7 +41,7 @@ contains
    !> Force P_H = (4/3) E sqrt(R) delta**(3/2) = (4/3) E a delta (eq. 16); 0 for delta <= 0.
    !> +Inf when the force itself exceeds the doubles (never from an intermediate overflow).
    elemental real(dp) function hertz_force(delta, radius, modulus) result(force)
-      real(dp), intent(in) :: delta, radius, modulus
+      real(dp), intent(in) :: delta, radius, modulus   !< overlap, R [length], E* [pressure]
       real(dp) :: a, t
       a = hertz_contact_radius(delta, radius)
       t = (4.0_dp/3.0_dp)*modulus*a
@@ -54,7 +54,7 @@ contains
 
    !> Stiffness dP_H/d delta = 2 E a; 0 for delta <= 0.
    elemental real(dp) function hertz_stiffness(delta, radius, modulus) result(stiffness)
-      real(dp), intent(in) :: delta, radius, modulus
+      real(dp), intent(in) :: delta, radius, modulus   !< overlap, R [length], E* [pressure]
       stiffness = 2.0_dp*modulus*hertz_contact_radius(delta, radius)
    end function hertz_stiffness
 
@@ -62,7 +62,7 @@ contains
    !> Elastic energy stored at overlap delta, the integral of P_H from 0 to delta:
    !> (8/15) E sqrt(R) delta**(5/2); 0 for delta <= 0.
    elemental real(dp) function hertz_energy(delta, radius, modulus) result(energy)
-      real(dp), intent(in) :: delta, radius, modulus
+      real(dp), intent(in) :: delta, radius, modulus   !< overlap, R [length], E* [pressure]
       energy = (8.0_dp/15.0_dp)*modulus*hertz_contact_radius(delta, radius) &
          & *max(delta, 0.0_dp)**2
    end function hertz_energy
@@ -70,6 +70,7 @@ contains
    !> Contact pressure p_H(r) = p0 sqrt(1 - r**2/a**2), p0 = 2 E a/(pi R) (eq. 14), at
    !> radius r (|r| is used); 0 outside the contact and for delta <= 0.
    elemental real(dp) function hertz_pressure(r, delta, radius, modulus) result(pressure)
+      !> radial position, overlap, R [length], E* [pressure]
       real(dp), intent(in) :: r, delta, radius, modulus
       real(dp) :: a, x
       a = hertz_contact_radius(delta, radius)
@@ -88,7 +89,7 @@ contains
    !> evaluated without the cancellation that form suffers far out (it decays like
    !> P/(pi E r) while its terms grow like r). 0 for delta <= 0.
    elemental real(dp) function hertz_deflection(r, delta, radius) result(w)
-      real(dp), intent(in) :: r, delta, radius
+      real(dp), intent(in) :: r, delta, radius   !< radial position, overlap, R [length]
       real(dp) :: a, x, s, t, u
       a = hertz_contact_radius(delta, radius)
       x = abs(r)
@@ -117,7 +118,7 @@ contains
    !> z = a**2/(pi R) [(t - atan t) + t**2 atan t], evaluated without cancellation.
    !> For delta <= 0 the undeformed gap r**2/(2R) - delta.
    elemental real(dp) function hertz_gap(r, delta, radius) result(z)
-      real(dp), intent(in) :: r, delta, radius
+      real(dp), intent(in) :: r, delta, radius   !< radial position, overlap, R [length]
       real(dp) :: a, x, t
       x = abs(r)
       if (.not. delta > 0.0_dp) then

@@ -55,7 +55,7 @@ contains
       real(dp), intent(in) :: sigma     !< summit height deviation [length], > 0
       logical, intent(in) :: plastic    !< summits yield (EP-GW with psi > 0)
       real(dp), intent(in) :: delta     !< overlap [length], < delta_c
-      real(dp), intent(out) :: force, stiffness
+      real(dp), intent(out) :: force, stiffness   !< force [force] and stiffness dP/ddelta at delta
       real(dp) :: f52_c, kappa
       call tail_constants(delta_c, p_c, k_c, sigma, plastic, f52_c, kappa)
       call tail_force_matched(delta_c, p_c, sigma, f52_c, kappa, delta, force, stiffness)
@@ -110,7 +110,7 @@ contains
       real(dp), intent(in) :: p_e, k_e   !< force and stiffness there
       real(dp), intent(in) :: c          !< Hertz constant (4/3) E sqrt(R) [force/length^1.5]
       real(dp), intent(in) :: delta      !< overlap [length], >= d_e
-      real(dp), intent(out) :: force, stiffness
+      real(dp), intent(out) :: force, stiffness   !< force [force] and stiffness dP/ddelta at delta
       call deep_law_force(deep_law_fit(d_e, p_e, k_e, c), delta, force, stiffness)
    end subroutine deep_force
 
@@ -129,9 +129,9 @@ contains
    !> deep_force at delta >= law%d_e with the fitted law: P = p_e q^(9/2), q = t/t_e
    !> (q^4 sqrt(q): no power function).
    pure subroutine deep_law_force(law, delta, force, stiffness)
-      type(deep_law), intent(in) :: law
+      type(deep_law), intent(in) :: law   !< fitted by deep_law_fit
       real(dp), intent(in) :: delta      !< overlap [length], >= law%d_e
-      real(dp), intent(out) :: force, stiffness
+      real(dp), intent(out) :: force, stiffness   !< force [force] and stiffness dP/ddelta at delta
       real(dp) :: t, q, q2
       if (law%ok) then
          t = deep_root(law%t_e, law%a, law%u_0, delta - law%d_e)
@@ -158,7 +158,7 @@ contains
    !> deep_energy with the fitted law (the same values bit for bit; q^5 sqrt(q), no
    !> power function).
    pure real(dp) function deep_law_energy(law, delta) result(energy)
-      type(deep_law), intent(in) :: law
+      type(deep_law), intent(in) :: law   !< fitted by deep_law_fit
       real(dp), intent(in) :: delta   !< overlap [length], >= law%d_e
       real(dp) :: q, q5, rq
       if (law%ok) then
@@ -182,7 +182,7 @@ contains
 
    !> deep_radius_factor with the fitted law (the same values bit for bit).
    pure real(dp) function deep_law_radius_factor(law, delta) result(factor)
-      type(deep_law), intent(in) :: law
+      type(deep_law), intent(in) :: law   !< fitted by deep_law_fit
       real(dp), intent(in) :: delta   !< overlap [length], >= law%d_e
       real(dp) :: q
       factor = 1.0_dp

@@ -194,7 +194,7 @@ contains
    !> sphere solve's element costs it its order (seen: errors 10x the Richardson estimate),
    !> as Delta = 0 (the branch) does for dZ_u/dh. Empty for elastic summits.
    pure function unloading_kinks(law) result(deltas)
-      type(unloading_law), intent(in) :: law
+      type(unloading_law), intent(in) :: law   !< prepared by unloading_law_of
       real(dp), allocatable :: deltas(:)
       if (.not. law%plastic) then
          allocate (deltas(0))
@@ -206,7 +206,7 @@ contains
    !> Z_u(h, h_min) and dZ_u/dh of a prepared law: the same values as rough_flat_unload_law
    !> with the law's parameters.
    elemental subroutine unloading_pressure(law, h, h_min, p, dpdh)
-      type(unloading_law), intent(in) :: law
+      type(unloading_law), intent(in) :: law   !< prepared by unloading_law_of
       real(dp), intent(in) :: h               !< separation / sigma
       real(dp), intent(in) :: h_min           !< closest approach so far / sigma
       real(dp), intent(out) :: p              !< Z_u

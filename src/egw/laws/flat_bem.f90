@@ -476,6 +476,7 @@ contains
    !> its own). Not a finaliser: gfortran 12 finalises such derived types where the
    !> standard does not (a release build crashed destroying plans twice).
    subroutine bem_state_release(state)
+      !> its plans destroyed; the state is not used again
       type(bem_state), intent(inout), target :: state
       call release_plans(state)
    end subroutine bem_state_release

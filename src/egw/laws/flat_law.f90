@@ -11,6 +11,7 @@ module egw_flat_law
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
       & ieee_quiet_nan
    use egw_kinds, only: dp
+   use egw_search, only: bracket_interval
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real, int_str
    use egw_asperity, only: rough_flat_law
    implicit none
@@ -157,7 +158,8 @@ contains
    pure subroutine new_table_law(u, p, law, error, dpdu, area, length, modulus)
       real(dp), intent(in) :: u(:)   !< mean separations, ascending
       real(dp), intent(in) :: p(:)   !< mean pressures, > 0 and decreasing
-      type(table_flat_law), intent(out) :: law
+      type(table_flat_law), intent(out) :: law   !< the tabulated law
+      !> egw_invalid_argument naming the node, as above
       type(egw_error), allocatable, intent(out) :: error
       real(dp), intent(in), optional :: dpdu(:)   !< dp/du at the nodes (<= 0)
       real(dp), intent(in), optional :: area(:)   !< contact-area fraction at the nodes
@@ -294,26 +296,13 @@ contains
    !> The interval of x in the nodes (0 below the first, n beyond the last).
    pure integer function interval(nodes, x) result(k)
       real(dp), intent(in) :: nodes(:), x
-      integer :: lo, hi, mid
       if (x < nodes(1)) then
          k = 0
-         return
+      else if (x >= nodes(size(nodes))) then
+         k = size(nodes)
+      else
+         k = bracket_interval(nodes, x)
       end if
-      lo = 1
-      hi = size(nodes)
-      if (x >= nodes(hi)) then
-         k = hi
-         return
-      end if
-      do while (hi - lo > 1)
-         mid = (lo + hi)/2
-         if (nodes(mid) <= x) then
-            lo = mid
-         else
-            hi = mid
-         end if
-      end do
-      k = lo
    end function interval
 
    pure subroutine table_pressure(law, u, p, dpdu)

@@ -64,6 +64,7 @@ contains
       real(dp), intent(in) :: rms_height   !< rms height [length] > 0
       real(dp), intent(in) :: q_long, q_roll, q_short   !< 0 < q_long <= q_roll < q_short
       real(dp), allocatable, intent(out) :: q(:), c(:)  !< [rad/length], [length^4]
+      !> egw_invalid_argument naming the argument out of range
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: c0, tail
       if (.not. (hurst > 0.0_dp .and. hurst <= 1.0_dp)) then
@@ -97,12 +98,14 @@ contains
 
    !> rms height sqrt(2 pi int q C dq) of a tabulated PSD (power law between nodes).
    pure real(dp) function psd_rms_height(q, c) result(h)
+      !> wavenumbers [rad/length] ascending, and C(q) [length^4]
       real(dp), intent(in) :: q(:), c(:)
       h = sqrt(2.0_dp*pi*moment(q, c, 1.0_dp, size(q)))
    end function psd_rms_height
 
    !> Mean square slope m2 = 2 pi int q^3 C dq of a tabulated PSD.
    pure real(dp) function psd_slope_squared(q, c) result(m2)
+      !> wavenumbers [rad/length] ascending, and C(q) [length^4]
       real(dp), intent(in) :: q(:), c(:)
       m2 = 2.0_dp*pi*moment(q, c, 3.0_dp, size(q))
    end function psd_slope_squared
@@ -119,9 +122,10 @@ contains
       real(dp), intent(in) :: modulus        !< E* [pressure]
       real(dp), intent(in) :: p_min, p_max   !< mean-pressure range [pressure]
       integer, intent(in) :: per_decade      !< pressures per decade (1 .. 1000)
-      type(persson_options), intent(in) :: options
+      type(persson_options), intent(in) :: options   !< the theory's choices (persson_options)
+      !> mean separation [length], pressure, area fraction, dp/du
       real(dp), allocatable, intent(out) :: u(:), p(:), area(:), dpdu(:)
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< egw_invalid_argument, as above
       real(dp), allocatable :: qq(:), wq(:), fq(:), ww(:), jt(:), dj(:)
       real(dp) :: s0, dudp
       integer :: n, k, i, last

@@ -36,7 +36,7 @@ contains
    !> for p_y = 0, as C's egw_first_yield (DBL_MAX). A closed form without checks: R, E* of
    !> valid parameters (validate_params); egw_first_yield and classify_impact check them.
    pure real(dp) function first_yield_overlap(params) result(delta_y)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< R, E* and flow_pressure of valid parameters
       if (.not. (params%flow_pressure > 0.0_dp)) then
          delta_y = huge(1.0_dp)
          return
@@ -49,7 +49,7 @@ contains
    !> for p_y = 0, as C's egw_first_yield. Unchecked: mass must be finite and > 0 (NaN
    !> otherwise; egw_first_yield and classify_impact refuse it with a message).
    pure real(dp) function first_yield_speed(params, mass) result(v_y)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< R, E* and flow_pressure of valid parameters
       real(dp), intent(in) :: mass   !< effective mass m* > 0
       if (.not. (params%flow_pressure > 0.0_dp)) then
          v_y = huge(1.0_dp)
@@ -66,7 +66,8 @@ contains
       type(contact_params), intent(in) :: params   !< radius, modulus, sigma, flow_pressure
       real(dp), intent(in) :: mass                 !< effective mass m* > 0
       real(dp), intent(in) :: speed                !< impact speed v > 0
-      type(impact_regime), intent(out) :: regime
+      type(impact_regime), intent(out) :: regime   !< which of cap and roughness matter, and why
+      !> egw_invalid_argument naming the value refused
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: cap, rough
       if (.not. (ieee_is_finite(mass) .and. mass > 0.0_dp)) then

@@ -67,8 +67,9 @@ module egw_scene
       character(len=512) :: flat_law = ""
       !> The bulk flow pressure p_y of the flow-pressure cap (doc/theory.md §12; 0: none;
       !> Fortran only, not in the C struct: egw_scene_read refuses a file that sets it).
-      !> Smooth spheres only (model Hertz or sigma = 0): egw-table writes their hysteresis
-      !> tables. From yield_stress Y: p_y = 1.6 Y.
+      !> egw-table writes hysteresis tables with it: Hertz + cap for smooth spheres, the
+      !> rough model's with the cap for sigma > 0 (doc/scenes.md). From yield_stress Y:
+      !> p_y = 1.6 Y.
       real(dp) :: flow_pressure = 0.0_dp
    end type scene_input
 
@@ -175,11 +176,11 @@ module egw_scene
       !> roughness matters most relative to Hertz at the small end. Solves in parallel at
       !> rel_tol = min(options%rel_tol, tol/10).
       module subroutine scene_hertz_error(scene, options, worst, n_solves, error)
-         type(contact_scene), intent(in) :: scene
-         type(solver_options), intent(in) :: options
-         real(dp), intent(out) :: worst
-         integer, intent(out) :: n_solves
-         type(egw_error), allocatable, intent(out) :: error
+         type(contact_scene), intent(in) :: scene   !< a resolved scene
+         type(solver_options), intent(in) :: options   !< the solver's options (rel_tol as above)
+         real(dp), intent(out) :: worst   !< the error measure above
+         integer, intent(out) :: n_solves   !< full solves it took
+         type(egw_error), allocatable, intent(out) :: error   !< the first solve's failure
       end subroutine scene_hertz_error
 
       !> Build the tables of a choice at the scene's tolerance (nothing for Hertz): the 1-D
@@ -208,11 +209,13 @@ module egw_scene
       !> of type pairs). The optional progress hook is passed to every build_table: one
       !> sequence (done from 0 to total) per distinct parameter set, one set after another.
       module subroutine build_pair_tables(scene, options, tables, error, progress)
-         type(contact_scene), intent(in) :: scene
-         type(solver_options), intent(in) :: options
+         type(contact_scene), intent(in) :: scene   !< a resolved scene with discrete types
+         type(solver_options), intent(in) :: options   !< the solver's options of every build
+         !> one per type pair, in the order above
          type(force_table), allocatable, intent(out) :: tables(:)
+         !> egw_unsupported as above, or a build's failure
          type(egw_error), allocatable, intent(out) :: error
-         procedure(table_progress), optional :: progress
+         procedure(table_progress), optional :: progress   !< called by every build_table
       end subroutine build_pair_tables
 
       !> Read the namelist group &scene of a file into input: the variables given replace
@@ -266,9 +269,9 @@ contains
 
    !> Model constant from a name: Hertz, GW, E-GW, EP-GW (case and '-' ignored) or 0..3.
    pure subroutine model_from_name(name, model, error)
-      character(len=*), intent(in) :: name
-      integer, intent(out) :: model
-      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: name   !< the model's name or number
+      integer, intent(out) :: model   !< model_* constant (-1 if unknown)
+      type(egw_error), allocatable, intent(out) :: error   !< egw_invalid_parameter naming the text
       character(len=:), allocatable :: key
       integer :: i
       key = ""
@@ -457,7 +460,7 @@ contains
          call bad(error, "psi", s%psi, "must be finite and >= 0"); return
       end if
       if (.not. (s%hardness_coeff > 0.0_dp .and. s%hardness_coeff < 1.0_dp)) then
-         call bad(error, "K", s%hardness_coeff, "must lie in (0, 1)"); return
+         call bad(error, "K (hardness_coeff)", s%hardness_coeff, "must lie in (0, 1)"); return
       end if
       if (.not. (ieee_is_finite(s%plastic_ratio) .and. s%plastic_ratio > 1.0_dp)) then
          call bad(error, "plastic_ratio", s%plastic_ratio, "must be finite and > 1"); return

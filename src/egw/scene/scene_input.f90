@@ -2,6 +2,7 @@
 !> (apply_scene_overrides: egw-table's flags); the module egw_scene in
 !> src/egw/scene/scene.f90 declares them and holds the checks and the resolution.
 submodule (egw_scene) egw_scene_input
+   use egw_text, only: to_lower
    implicit none
 
 contains
@@ -214,16 +215,6 @@ contains
       end do
       starts_entry = len_trim(line(:eq - 1)) > 0
    end function starts_entry
-
-   pure function to_lower(str) result(lower)
-      character(len=*), intent(in) :: str
-      character(len=len(str)) :: lower
-      integer :: i
-      lower = str
-      do i = 1, len(str)
-         if (str(i:i) >= "A" .and. str(i:i) <= "Z") lower(i:i) = achar(iachar(str(i:i)) + 32)
-      end do
-   end function to_lower
 
    ! apply_scene_overrides: interface and documentation in egw_scene (scene.f90)
    module procedure apply_scene_overrides

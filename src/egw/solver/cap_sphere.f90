@@ -131,7 +131,9 @@ contains
 
    !> Units of the cap model: delta_y = (pi p_y/(2E))**2 R, a_y, P_y = (4/3)E sqrt(R) delta_y**1.5.
    pure subroutine cap_units(radius, modulus, flow_pressure, delta_y, a_y, force_y)
+      !> R [length], E* and p_y [pressure], each > 0
       real(dp), intent(in) :: radius, modulus, flow_pressure
+      !> first-yield overlap, its contact radius a_y [length], force P_y
       real(dp), intent(out) :: delta_y, a_y, force_y
       delta_y = (pi*flow_pressure/(2.0_dp*modulus))**2*radius
       a_y = sqrt(radius*delta_y)
@@ -591,9 +593,11 @@ contains
       real(dp), intent(in) :: modulus         !< effective modulus E* > 0
       real(dp), intent(in) :: flow_pressure   !< p_y, 0 < p_y < E*
       real(dp), intent(in) :: delta_max       !< overlap >= 0
-      type(cap_options), intent(in) :: options
-      type(cap_history), intent(out) :: history
+      type(cap_options), intent(in) :: options   !< the cap solver's options (cap_options)
+      type(cap_history), intent(out) :: history   !< the plastic field at delta_max, for cap_unload
+      !> force, stiffness, radii, peak pressure at delta_max
       type(cap_result), intent(out) :: result
+      !> egw_invalid_argument naming the value, or the solve's failure
       type(egw_error), allocatable, intent(out) :: error
       !> the overlap's name in messages (default "delta_max"; a loading solve's: "delta")
       character(len=*), intent(in), optional :: name
@@ -722,7 +726,8 @@ contains
    subroutine cap_unload(history, delta, result, error)
       type(cap_history), intent(in) :: history   !< from cap_load
       real(dp), intent(in) :: delta              !< overlap <= delta_max
-      type(cap_result), intent(out) :: result
+      type(cap_result), intent(out) :: result   !< force, stiffness, radii, peak pressure at delta
+      !> egw_invalid_argument: no loaded history, or delta refused (named)
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: d, f, k, a, pm, b, dl, fc, u, du
       real(dp), allocatable :: q(:, :)
@@ -776,10 +781,10 @@ contains
    !> Scaled loading work W(Delta_m) = int_0^Delta_m P dDelta (units P_y delta_y):
    !> 2/5 up to first yield, then Gauss-Legendre in t, Delta = 1 + (Delta_m - 1) t**2.
    subroutine cap_load_scaled_work(dm, options, work, force_m, error)
-      real(dp), intent(in) :: dm
-      type(cap_options), intent(in) :: options
+      real(dp), intent(in) :: dm   !< Delta_m = delta_max/delta_y
+      type(cap_options), intent(in) :: options   !< the cap solver's options (n_quad points)
       real(dp), intent(out) :: work, force_m   !< W and P(Delta_m), scaled
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< a loading solve's failure
       type(cap_history) :: hist
       type(cap_result) :: res
       real(dp) :: x(options%n_quad), w(options%n_quad), t, d
@@ -804,10 +809,11 @@ contains
    !> Scaled unloading work int_{Delta_res}^{Delta_m} P_u dDelta after loading to Delta_m,
    !> Gauss-Legendre in t, Delta = Delta_res + (Delta_m - Delta_res) t**2 (P_u ~ t**3 at 0).
    subroutine cap_unload_scaled_work(dm, options, work, residual, error)
-      real(dp), intent(in) :: dm
-      type(cap_options), intent(in) :: options
+      real(dp), intent(in) :: dm   !< Delta_m = delta_max/delta_y
+      type(cap_options), intent(in) :: options   !< the cap solver's options (n_quad points)
+      !> the unloading work and the residual overlap Delta_res, scaled
       real(dp), intent(out) :: work, residual
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< a solve's failure
       type(cap_history) :: hist
       type(cap_result) :: res
       real(dp) :: x(options%n_quad), w(options%n_quad), t, d
@@ -839,11 +845,13 @@ contains
    !> first yield), (v/v_y)**2 = W_load/(2/5) in units P_y delta_y; e = 1 for v <= v_y.
    subroutine cap_restitution(radius, modulus, flow_pressure, mass, velocity, options, e, &
       & error, max_overlap)
+      !> R [length], E* and p_y [pressure], as cap_load
       real(dp), intent(in) :: radius, modulus, flow_pressure
       real(dp), intent(in) :: mass       !< effective mass m* > 0
       real(dp), intent(in) :: velocity   !< impact speed v > 0
-      type(cap_options), intent(in) :: options
-      real(dp), intent(out) :: e
+      type(cap_options), intent(in) :: options   !< the cap solver's options (cap_options)
+      real(dp), intent(out) :: e   !< coefficient of restitution in (0, 1]
+      !> egw_invalid_argument naming the value, or a solve's failure
       type(egw_error), allocatable, intent(out) :: error
       !> the deepest overlap delta_max of the impact (Hertz's for v <= v_y)
       real(dp), intent(out), optional :: max_overlap

@@ -105,8 +105,8 @@ contains
    !> Gauss-Legendre rule of n points on [-1, 1] (Newton on P_n from the asymptotic
    !> guesses; converged to rounding).
    pure subroutine gauss_legendre(n, x, w)
-      integer, intent(in) :: n
-      real(dp), intent(out) :: x(n), w(n)
+      integer, intent(in) :: n   !< points, >= 1
+      real(dp), intent(out) :: x(n), w(n)   !< the nodes (ascending) and weights
       integer :: i, it
       real(dp) :: z, p, dpn
       do i = 1, (n + 1)/2
@@ -174,10 +174,10 @@ contains
 
    !> Build the mesh on the element boundaries edge(0:n) (edge(0) = 0, increasing).
    pure subroutine build_mesh(edge, degree, n_gauss, mesh)
-      real(dp), intent(in) :: edge(0:)
+      real(dp), intent(in) :: edge(0:)   !< element boundaries, edge(0) = 0, increasing
       integer, intent(in) :: degree    !< deflection element degree >= 1
       integer, intent(in) :: n_gauss   !< pressure points per element >= 1
-      type(radial_mesh), intent(out) :: mesh
+      type(radial_mesh), intent(out) :: mesh   !< the mesh, nodes and Gauss points filled
       integer :: e, j, q, k, n
       real(dp) :: x0, x1, pk, pkm1, pkm2
 
@@ -244,14 +244,14 @@ contains
 
    !> Number of deflection nodes.
    pure integer function mesh_nodes(mesh)
-      type(radial_mesh), intent(in) :: mesh
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
       mesh_nodes = mesh%n_elem*mesh%degree + 1
    end function mesh_nodes
 
    !> Global index of local node j (0..degree) of element e.
    pure integer function node_index(mesh, e, j)
-      type(radial_mesh), intent(in) :: mesh
-      integer, intent(in) :: e, j
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
+      integer, intent(in) :: e, j   !< element (1..n_elem) and local node (0..degree)
       node_index = (e - 1)*mesh%degree + j + 1
    end function node_index
 
@@ -270,7 +270,7 @@ contains
 
    !> Kernel 4/pi t/(r+t) K(k) of w = int kernel p dt (E = 1), r, t >= 0, r /= t.
    elemental real(dp) function halfspace_kernel(r, t) result(g)
-      real(dp), intent(in) :: r, t
+      real(dp), intent(in) :: r, t   !< field and source radii, >= 0, r /= t
       if (r + t <= 0.0_dp) then
          g = 0.0_dp
          return
@@ -280,8 +280,8 @@ contains
 
    !> Influence row at radius r >= 0: w(r) = sum_i row(i) p(gauss_r(i)) (E = 1).
    pure subroutine influence_row(mesh, r, row, known)
-      type(radial_mesh), intent(in) :: mesh
-      real(dp), intent(in) :: r
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
+      real(dp), intent(in) :: r   !< radius of the row, >= 0
       real(dp), intent(inout) :: row(:)   !< size n_elem*n_gauss
       !> elements whose coefficients row holds already (left as they are)
       logical, intent(in), optional :: known(:)
@@ -587,11 +587,11 @@ contains
    !> only cost; libgomp aborts when it cannot create them). stat (optional): nonzero if
    !> the buffer could not be allocated (infl then unset), else the buffer's failure stops.
    subroutine assemble_influence(mesh, r, infl, n_threads, stat)
-      type(radial_mesh), intent(in) :: mesh
-      real(dp), intent(in) :: r(:)
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
+      real(dp), intent(in) :: r(:)   !< the rows' radii, >= 0
       real(dp), intent(out) :: infl(:, :)   !< (size(r), n_elem*n_gauss)
-      integer, intent(in) :: n_threads
-      integer, intent(out), optional :: stat
+      integer, intent(in) :: n_threads   !< OpenMP threads (0: OpenMP's choice)
+      integer, intent(out), optional :: stat   !< nonzero: the buffer could not be allocated
       integer :: i, threads, ios
       real(dp), allocatable :: rows(:, :)
       if (present(stat)) then
@@ -627,11 +627,12 @@ contains
    !> layers, the inner part when only the outer radius grows); a kink relocation or a
    !> bisection check keeps most of its mesh.
    subroutine assemble_influence_cached(mesh, infl, n_threads, cache, stat)
-      type(radial_mesh), intent(in) :: mesh
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
       real(dp), intent(out) :: infl(:, :)   !< (nodes, n_elem*n_gauss)
-      integer, intent(in) :: n_threads
+      integer, intent(in) :: n_threads   !< OpenMP threads (0: OpenMP's choice)
+      !> earlier meshes' coefficients; this mesh's stored
       type(influence_cache), intent(inout) :: cache
-      integer, intent(out), optional :: stat
+      integer, intent(out), optional :: stat   !< nonzero: a buffer could not be allocated
       integer :: i, j, k, e, c, ng, n, threads, ios, slot
       integer, allocatable :: node_at(:, :), elem_at(:, :), row_slot(:)
       real(dp), allocatable :: rows(:, :)
@@ -750,8 +751,8 @@ contains
    !> Value at r of the continuous piecewise-Lagrange field with nodal values v; r beyond
    !> the mesh takes the last element's polynomial (callers keep r inside).
    pure real(dp) function interpolate_nodal(mesh, v, r) result(val)
-      type(radial_mesh), intent(in) :: mesh
-      real(dp), intent(in) :: v(:), r
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
+      real(dp), intent(in) :: v(:), r   !< nodal values, one per mesh node, and the radius r
       integer :: e, lo, hi
       real(dp) :: l(0:mesh%degree)
       ! Bisection for the element holding r.

@@ -53,10 +53,10 @@ contains
    !> halves the passes over it (the solver's n ~ 100-400 fit in L2 and the rank-1
    !> sweeps were bound by its bandwidth).
    pure subroutine lu_factor(n, a, ipiv, info)
-      integer, intent(in) :: n
-      real(dp), intent(inout) :: a(n, n)
-      integer, intent(out) :: ipiv(n)
-      integer, intent(out) :: info
+      integer, intent(in) :: n   !< order of the matrix
+      real(dp), intent(inout) :: a(n, n)   !< in: A; out: its L and U factors
+      integer, intent(out) :: ipiv(n)   !< row k swapped with row ipiv(k)
+      integer, intent(out) :: info   !< 0, or the first zero pivot's k
       integer :: k, j
       real(dp) :: u1, u2
       info = 0
@@ -113,10 +113,10 @@ contains
 
    !> Solve A x = b with the factors of lu_factor (b overwritten by x).
    pure subroutine lu_solve(n, a, ipiv, b)
-      integer, intent(in) :: n
-      real(dp), intent(in) :: a(n, n)
-      integer, intent(in) :: ipiv(n)
-      real(dp), intent(inout) :: b(n)
+      integer, intent(in) :: n   !< order of the matrix
+      real(dp), intent(in) :: a(n, n)   !< L and U from lu_factor
+      integer, intent(in) :: ipiv(n)   !< pivots from lu_factor
+      real(dp), intent(inout) :: b(n)   !< in: b; out: x
       integer :: k
       real(dp) :: t
       do k = 1, n

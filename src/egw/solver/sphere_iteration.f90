@@ -31,11 +31,12 @@ contains
    !> Build the mesh on edges, assemble, and solve the discrete equations; then the force,
    !> its delta-derivative (implicit differentiation), moments and the tail estimate.
    subroutine solve_mesh(prob, options, method, edges, sol, error, guess, cache)
-      type(scaled_problem), intent(in) :: prob
-      type(solver_options), intent(in) :: options
-      integer, intent(in) :: method
-      real(dp), intent(in) :: edges(0:)
-      type(discrete_solution), intent(out) :: sol
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(solver_options), intent(in) :: options   !< the solver's options
+      integer, intent(in) :: method   !< method_newton or method_picard
+      real(dp), intent(in) :: edges(0:)   !< element boundaries, edges(0) = 0, increasing
+      type(discrete_solution), intent(out) :: sol   !< the solution on that mesh
+      !> egw_not_converged (too many nodes, no convergence) or egw_out_of_memory
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       !> influence matrices of the caller's earlier meshes: shared coefficients reused
@@ -135,8 +136,9 @@ contains
    !> (residuals with the exact J) contracts by |J_old**-1 (J - J_old)| << 1 per sweep
    !> and spares an LU; without them, or if refinement stalls, J itself is factored.
    subroutine differentiate(prob, sol, error)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(inout) :: sol
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(inout) :: sol   !< converged; its delta-derivatives filled
+      !> egw_not_converged (singular Jacobian) or egw_out_of_memory
       type(egw_error), allocatable, intent(out) :: error
       integer, parameter :: max_sweeps = 6
       real(dp), allocatable :: jac(:, :), rhs(:), x(:, :), corr(:, :), rate(:)
@@ -257,8 +259,8 @@ contains
    !> the law (capped near the edge), so that w ~ w_H: the stiff case starts close to its
    !> solution.
    pure subroutine initial_deflection(prob, sol)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(inout) :: sol
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(inout) :: sol   !< its mesh built; w set
       integer :: i
       real(dp) :: r, h, target, lo, hi, f, dfdh
       real(dp), parameter :: h_cap = 1.5_dp
@@ -297,8 +299,8 @@ contains
    !> Gap, pressure and its derivative at the Gauss points for the current w (the
    !> unloading law at the closest-approach gaps when unloading; the cap: rough_pressure).
    pure subroutine evaluate(prob, sol)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(inout) :: sol
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(inout) :: sol   !< w given; gap, p, dp/dh filled
       if (allocated(sol%gap)) then
          if (size(sol%gap) /= size(sol%base)) deallocate (sol%gap)
       end if
@@ -318,9 +320,9 @@ contains
 
    !> Residual F = w - H p_G(z + w) (at the current evaluate()) and its scaled max norm.
    pure subroutine residual(sol, res, norm)
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(out) :: res(:)
-      real(dp), intent(out) :: norm
+      type(discrete_solution), intent(in) :: sol   !< evaluated at the current w
+      real(dp), intent(out) :: res(:)   !< F at the nodes
+      real(dp), intent(out) :: norm   !< its scaled max norm
       res = sol%w - matmul(sol%infl, sol%p)
       norm = maxval(abs(res))/max(1.0_dp, maxval(abs(sol%w)))
    end subroutine residual
@@ -329,8 +331,8 @@ contains
    !> element's Gauss columns of infl in one pass (c(q) = p'_q interp(j, q)), not one pass
    !> a Gauss point; points where p' = 0 (capped, floored, separated) are left out.
    pure subroutine jacobian(sol, jac)
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(out) :: jac(:, :)
+      type(discrete_solution), intent(in) :: sol   !< evaluated at the current w
+      real(dp), intent(out) :: jac(:, :)   !< J, nodes x nodes
       integer :: e, q, j, g0, col, n_used, used(sol%mesh%n_gauss), i
       real(dp) :: c(sol%mesh%n_gauss), acc
       jac = 0.0_dp
@@ -386,9 +388,10 @@ contains
    !> solution chord steps would cost iterations: max_iter counts both kinds alike.
    !> Unloading solves take no chord steps (see below).
    subroutine newton(prob, sol, max_iter, error)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(inout) :: sol
-      integer, intent(in) :: max_iter
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(inout) :: sol   !< in: the start; out: the solution
+      integer, intent(in) :: max_iter   !< iterations allowed (chord and Newton steps alike)
+      !> egw_not_converged or egw_out_of_memory
       type(egw_error), allocatable, intent(out) :: error
       real(dp), parameter :: chord_gain = 10.0_dp, chord_start = 100.0_dp
       real(dp), allocatable :: jac(:, :), res(:), step(:, :), w0(:), res_try(:)
@@ -484,10 +487,10 @@ contains
    !> Where the spectral radius of H |dp/dw| is large (classic GW at small sigma/delta)
    !> omega must become tiny and the iteration runs out of max_iter: not converged.
    subroutine picard(prob, sol, max_iter, error)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(inout) :: sol
-      integer, intent(in) :: max_iter
-      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(inout) :: sol   !< in: the start; out: the solution
+      integer, intent(in) :: max_iter   !< iterations allowed
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged
       real(dp), allocatable :: res(:), w0(:)
       real(dp) :: norm, norm_old, omega
       integer :: it

@@ -67,9 +67,9 @@ contains
    !> grading focus, width and outer radius (mesh_geometry), and the steps of the first
    !> level (step_prev) and of the next (step).
    pure subroutine first_mesh(prob, options, mesh)
-      type(scaled_problem), intent(in) :: prob
-      type(solver_options), intent(in) :: options
-      type(mesh_family), intent(out) :: mesh
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(solver_options), intent(in) :: options   !< the solver's options (rel_tol, n_radial)
+      type(mesh_family), intent(out) :: mesh   !< the family's geometry and steps
       call mesh_geometry(prob, options%rel_tol, mesh%focus, mesh%width, mesh%outer)
       mesh%layered = prob%extended
       if (options%n_radial > 0) then
@@ -84,8 +84,8 @@ contains
 
    !> Step of the first level of an automatic mesh family.
    pure real(dp) function coarsest_level_step(prob, mesh) result(step)
-      type(scaled_problem), intent(in) :: prob
-      type(mesh_family), intent(in) :: mesh
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(mesh_family), intent(in) :: mesh   !< its mesh family
       ! Deep contacts resolve the same relative error on coarser steps (the rough part,
       ! where the error lives, weighs less): start coarser there ...
       step = coarsest_step*max(1.0_dp, prob%delta)**0.1_dp
@@ -98,10 +98,10 @@ contains
    !> The outer radius (and the steps) of an unloading solve from where the unloading
    !> pressure of the locating solve (first) has died (doc/theory.md §8).
    pure subroutine trim_to_unloading_decay(prob, options, first, mesh)
-      type(scaled_problem), intent(in) :: prob
-      type(solver_options), intent(in) :: options
-      type(discrete_solution), intent(in) :: first
-      type(mesh_family), intent(inout) :: mesh
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem (unloading)
+      type(solver_options), intent(in) :: options   !< the solver's options
+      type(discrete_solution), intent(in) :: first   !< the locating solve
+      type(mesh_family), intent(inout) :: mesh   !< its outer radius and steps trimmed
       real(dp) :: trimmed
       ! mesh_geometry sizes the mesh for the loading law, whose Gaussian tail reaches
       ! far out, but Z_u vanishes once the summits it holds have recovered, so r p
@@ -133,7 +133,8 @@ contains
    !> distance over which it grows by one sigma there; focus and width unchanged if the
    !> gap never crosses 0.
    pure subroutine gap_edge(sol, focus, width)
-      type(discrete_solution), intent(in) :: sol
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      !> the gap's last zero and its one-sigma width (scaled)
       real(dp), intent(inout) :: focus, width
       real(dp) :: slope
       integer :: g
@@ -152,10 +153,10 @@ contains
    !> its edges (cap_kink_radii) first. n_first: how many radii (the first) are kinks where
    !> dp/dr jumps (the cap's and the d = d_max crossings); the rest are milder.
    function kink_radii(prob, sol, negligible_weight, n_first) result(radii)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(in) :: negligible_weight
-      integer, intent(out) :: n_first
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      real(dp), intent(in) :: negligible_weight   !< skip radii where negligible_at says so
+      integer, intent(out) :: n_first   !< how many radii (the first) are strong kinks
       real(dp), allocatable :: radii(:), branch(:)
       integer :: n_branch
       allocate (radii(0))
@@ -174,6 +175,7 @@ contains
    !> by the Gauss points of the history's mesh and solved there (Illinois); 0 if none.
    !> A property of the history alone (its d_max field and p_s(delta_max)).
    function plastic_rim(prob) result(rim)
+      !> the scaled problem, unloading after a capped loading
       type(scaled_problem), intent(in) :: prob
       real(dp) :: rim
       real(dp) :: f0, f1, mid
@@ -202,9 +204,9 @@ contains
    !> kinds 1 to 3), at most 8 of each kind: bracketed by the Gauss points, then solved on
    !> the solution's own field (Illinois), as branch_radii.
    function cap_kink_radii(prob, sol, negligible_weight) result(radii)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(in) :: negligible_weight
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      real(dp), intent(in) :: negligible_weight   !< skip radii where negligible_at says so
       real(dp), allocatable :: radii(:)
       real(dp) :: f0, f1, lo, hi, mid
       integer :: g, kind, found
@@ -250,9 +252,9 @@ contains
    !> the linear interpolation's error (~ spacing^2 x curvature) left both levels with the
    !> same error, which their difference (the Richardson estimate) cannot see.
    function branch_radii(prob, sol, levels, negligible_weight, n_first) result(radii)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(in) :: levels(:)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem (unloading)
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      real(dp), intent(in) :: levels(:)   !< gap - gap_min levels (scaled), levels(1) = 0
       real(dp), intent(in) :: negligible_weight  !< skip radii where negligible_at says so
       integer, intent(out) :: n_first            !< how many radii (the first) are of levels(1)
       real(dp), allocatable :: radii(:)
@@ -349,8 +351,8 @@ contains
    !> True when r p(r) of a solution, at the two Gauss points around r (or the last one),
    !> is at most weight times its largest value over the mesh.
    pure logical function negligible_at(sol, r, weight)
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(in) :: r, weight
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      real(dp), intent(in) :: r, weight   !< scaled radius, and the fraction of the peak
       real(dp) :: peak, local
       integer :: g, ng
       ng = size(sol%p)
@@ -368,8 +370,8 @@ contains
    !> The Gauss radius just past the last one where r p of a solution exceeds weight times
    !> its peak (the last Gauss radius if that is the last point; 0 if p is 0 throughout).
    pure real(dp) function decayed_radius(sol, weight) result(r)
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(in) :: weight
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      real(dp), intent(in) :: weight   !< fraction of the peak of r p
       real(dp) :: peak
       integer :: g, ng
       ng = size(sol%p)
@@ -386,7 +388,7 @@ contains
    !> where the pressure has its one-sided (r - a)**1.5 onset: a polynomial on an element
    !> touching a converges only algebraically, on geometric layers exponentially.
    pure function focus_refined(edge, focus) result(refined)
-      real(dp), intent(in) :: edge(0:), focus
+      real(dp), intent(in) :: edge(0:), focus   !< element boundaries, and the focus radius
       real(dp), allocatable :: refined(:)
       real(dp) :: left, right
       integer :: i, k, n
@@ -414,8 +416,8 @@ contains
    !> share, and the last, 2**-8 of the element, leaves (2**-8)**1.5 of the error. n: that
    !> many layers instead (unloading after a capped loading takes 5, egw_sphere_solver).
    pure function inner_layers(edge, r, n) result(out)
-      real(dp), intent(in) :: edge(0:), r
-      integer, intent(in), optional :: n
+      real(dp), intent(in) :: edge(0:), r   !< element boundaries, and the edge r (one of them)
+      integer, intent(in), optional :: n   !< layers (default cap_edge_layers)
       real(dp), allocatable :: out(:)
       real(dp) :: h
       integer :: k, i, layers
@@ -436,6 +438,7 @@ contains
    !> thin as the Hertz edge's layer, and an element much longer than that holding it
    !> gave Newton an oscillating discrete problem (doc/theory.md §12, "Small sigma").
    pure function kink_layers(edge, r, width) result(out)
+      !> element boundaries, the edge r (one of them), the last layer's width
       real(dp), intent(in) :: edge(0:), r, width
       real(dp), allocatable :: out(:)
       real(dp) :: left, right
@@ -455,7 +458,7 @@ contains
    !> edge with r added as an element edge (the element holding r split in two) unless r
    !> is outside (0, outer) or within a tenth of its element's length of an edge already.
    pure function with_edge(edge, r) result(out)
-      real(dp), intent(in) :: edge(0:), r
+      real(dp), intent(in) :: edge(0:), r   !< element boundaries, and the radius to add
       real(dp), allocatable :: out(:)
       integer :: k, n
       n = size(edge) - 1
@@ -479,6 +482,7 @@ contains
    !> (keep) and the focus layers are never moved onto a kink (without the a_max edge the
    !> unloading forces of psi 10 after delta_max 1, 2 were off by up to 1.3e-6).
    pure function with_kink_edges(edge, radii, focus, n_strong, keep) result(out)
+      !> element boundaries, kink radii, the focus
       real(dp), intent(in) :: edge(:), radii(:), focus
       integer, intent(in) :: n_strong   !< radii(:n_strong): d = d_max crossings
       real(dp), intent(in) :: keep      !< an edge never moved (the a_max edge; 0: none)
@@ -541,6 +545,7 @@ contains
    !> c until the step fell below c/a: the levels agreed to 1e-7 while 5e-5 off (steel
    !> beads, E-GW + cap, sigma 10 nm, delta 0.4 delta_max after 5.5 delta_y).
    pure function disc_refined(edge, radii, step) result(out)
+      !> element boundaries, kink radii, the level's step
       real(dp), intent(in) :: edge(0:), radii(:), step
       real(dp), allocatable :: out(:)
       real(dp) :: c
@@ -565,7 +570,7 @@ contains
    !> and in the capped zone the unloading pressure follows d_max (the plastic shift and
    !> offset): kinks of p(r) at every history edge, inside the unloading elements.
    pure function with_history_edges(edge, radii) result(out)
-      real(dp), intent(in) :: edge(0:), radii(:)
+      real(dp), intent(in) :: edge(0:), radii(:)   !< element boundaries, and the history's edges
       real(dp), allocatable :: out(:)
       real(dp) :: x
       logical :: own, last_own
@@ -609,7 +614,7 @@ contains
    !> sigma, s_b = (a/2)(3 pi/(4 a**2))**(2/3), at most 1 (mesh_geometry's Hertz edge; the
    !> solver's cap edges and the plastic rim take the same).
    elemental real(dp) function edge_layer_width(edge) result(width)
-      real(dp), intent(in) :: edge
+      real(dp), intent(in) :: edge   !< the contact edge's scaled radius
       width = min(1.0_dp, 0.5_dp*edge*(0.75_dp*pi/edge**2)**(2.0_dp/3.0_dp))
    end function edge_layer_width
 
@@ -618,8 +623,9 @@ contains
    !> it reaches one sigma at s_b = (a/2)(3 pi/(4 a**2))**(2/3): the boundary layer whose
    !> relative width is ~ (sigma/delta)**(2/3).
    pure subroutine mesh_geometry(prob, rel_tol, focus, width, outer)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: rel_tol
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      real(dp), intent(in) :: rel_tol   !< the solve's tolerance
+      !> grading focus, its width, the outer radius (scaled)
       real(dp), intent(out) :: focus, width, outer
       real(dp) :: h_ref, f_ref, h_cut, f, dfdh, lo, hi, mid
       integer :: i
@@ -670,9 +676,10 @@ contains
 
    !> Step that gives about n_nodes nodes with graded_edges.
    pure real(dp) function step_for_nodes(extended, focus, width, outer, n_nodes) result(step)
-      logical, intent(in) :: extended
+      logical, intent(in) :: extended   !< E-GW or EP-GW (a graded focus)
+      !> grading focus, its width, the outer radius (scaled)
       real(dp), intent(in) :: focus, width, outer
-      integer, intent(in) :: n_nodes
+      integer, intent(in) :: n_nodes   !< nodes wanted
       real(dp) :: xi_total
       integer :: graded_nodes
       xi_total = asinh(focus/width) + asinh((outer - focus)/width)
@@ -688,9 +695,9 @@ contains
    !> the pressure falls at least like exp(-kappa (r - outer)) with kappa from the last
    !> two Gauss points.
    pure real(dp) function grown_outer(prob, sol, allowed, outer) result(new_outer)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(in) :: allowed, outer
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(in) :: sol   !< a solution on the old outer radius
+      real(dp), intent(in) :: allowed, outer   !< force allowed outside, and the old outer radius
       real(dp) :: kappa
       integer :: n
       n = size(sol%p)

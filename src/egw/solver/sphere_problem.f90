@@ -135,8 +135,8 @@ contains
 
    !> Gap at the closest approach, d_max(r)/sigma, at scaled radii r >= 0.
    pure function closest_gap(field, r) result(gap)
-      type(separation_field), intent(in) :: field
-      real(dp), intent(in) :: r(:)
+      type(separation_field), intent(in) :: field   !< the closest approach's deflection
+      real(dp), intent(in) :: r(:)   !< scaled radii, >= 0
       real(dp) :: gap(size(r))
       real(dp) :: r_out, w_out
       integer :: i
@@ -160,8 +160,8 @@ contains
 
    !> The scaled problem of params at overlap delta (sigma > 0).
    pure function scaled(params, delta) result(prob)
-      type(contact_params), intent(in) :: params
-      real(dp), intent(in) :: delta
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
+      real(dp), intent(in) :: delta   !< overlap [length]
       type(scaled_problem) :: prob
       prob%model = params%model
       prob%delta = delta/params%sigma
@@ -185,23 +185,24 @@ contains
 
    !> Scaled pressure of the loading law at one scaled separation h, and its derivative.
    pure subroutine law_at(prob, h, p, dpdh)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: h
-      real(dp), intent(out) :: p, dpdh
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      real(dp), intent(in) :: h   !< scaled separation
+      real(dp), intent(out) :: p, dpdh   !< scaled pressure and dp/dh
       real(dp) :: pa(1), da(1)
       call prob%law%pressure([h], pa, da)
       p = pa(1)
       dpdh = da(1)
    end subroutine law_at
 
+   !> Whether x is a normal double (finite, nonzero, not subnormal).
    elemental logical function normal(x)
-      real(dp), intent(in) :: x
+      real(dp), intent(in) :: x   !< any double
       normal = abs(x) >= tiny(1.0_dp) .and. abs(x) <= huge(1.0_dp)
    end function normal
 
    !> True when the spheres are so far apart that the summit pressure underflows.
    elemental logical function negligible(prob)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       real(dp) :: f, dfdh
       negligible = .false.
       if (prob%delta >= 0.0_dp) return
@@ -212,8 +213,8 @@ contains
    !> Base gap z(r): the Hertz gap of eq. (28) (zero inside a) for the extended models at
    !> delta > 0, else the rigid gap r**2/2 - delta (classic GW, eq. 10).
    elemental real(dp) function base_gap(prob, r) result(z)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: r
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      real(dp), intent(in) :: r   !< scaled radius, >= 0
       if (prob%extended) then
          z = hertz_gap(r, prob%delta, 1.0_dp)
       else
@@ -224,8 +225,8 @@ contains
    !> d z / d delta at fixed r: Hertz gives d w_H/d delta = 1 inside a and
    !> (2/pi) asin(a/r) outside (the flat-punch field), so dz/d delta = 0 inside.
    elemental real(dp) function base_gap_rate(prob, r) result(dz)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: r
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      real(dp), intent(in) :: r   !< scaled radius, >= 0
       if (prob%extended) then
          if (r <= prob%a) then
             dz = 0.0_dp
@@ -240,8 +241,8 @@ contains
    !> Gap estimate before solving: the Hertz gap (extended models, and classic GW at
    !> delta > 0 whose gap is close to it) or the rigid gap.
    elemental real(dp) function estimated_gap(prob, r) result(z)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: r
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      real(dp), intent(in) :: r   !< scaled radius, >= 0
       if (prob%delta > 0.0_dp) then
          z = hertz_gap(r, prob%delta, 1.0_dp)
       else
@@ -252,8 +253,8 @@ contains
    !> h with p(h) = target (the scaled law, decreasing) by bisection: a bracket about
    !> [-2, 40] (GW's law underflows at 40), widened until it holds the target.
    pure real(dp) function law_inverse(prob, target) result(h)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: target
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      real(dp), intent(in) :: target   !< scaled pressure, > 0
       real(dp) :: lo, hi, f, dfdh
       integer :: i
       lo = -2.0_dp
@@ -282,8 +283,8 @@ contains
 
    !> Nodal field -> values at the Gauss points (element-wise Lagrange interpolation).
    pure function gauss_values(mesh, v) result(vg)
-      type(radial_mesh), intent(in) :: mesh
-      real(dp), intent(in) :: v(:)
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
+      real(dp), intent(in) :: v(:)   !< nodal values, one per mesh node
       real(dp) :: vg(size(mesh%gauss_r))
       integer :: e, q, i0, j0
       do e = 1, mesh%n_elem
@@ -299,7 +300,8 @@ contains
    !> temporary (a heap array: the Newton evaluations' malloc/free were ~5 % of a
    !> hysteresis build).
    pure subroutine gauss_gap(mesh, v, base, gap)
-      type(radial_mesh), intent(in) :: mesh
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
+      !> nodal deflection, and the base gap at the Gauss points
       real(dp), intent(in) :: v(:), base(:)
       real(dp), intent(out) :: gap(:)   !< size(mesh%gauss_r)
       integer :: e, q, i0, j0
@@ -316,8 +318,8 @@ contains
    !> Effective contact radius a* = (3 pi/4) int r p dr / int p dr of the total pressure
    !> (scaled); the Hertz part has int r p_H dr = P_H/(2 pi), int p_H dr = a**2/2.
    pure real(dp) function effective_radius(prob, sol) result(a_eff)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(in) :: sol
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(in) :: sol   !< its solution
       real(dp) :: m0, m1
       m0 = sol%moment0
       m1 = sol%moment1
@@ -332,9 +334,9 @@ contains
    !> Total scaled pressure at r from the solved deflection (influence row, exact for the
    !> discrete pressure).
    pure real(dp) function total_pressure(prob, sol, r) result(p)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(in) :: r
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(in) :: sol   !< its solution
+      real(dp), intent(in) :: r   !< scaled radius, >= 0
       real(dp) :: row(size(sol%p)), gap_min(1), pr(1), dpdh(1), dpdd(1)
       real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:)
       call influence_row(sol%mesh, r, row)
@@ -356,9 +358,11 @@ contains
    !> without the cap). The one place the solver evaluates its pressure law. The cap
    !> fields (p_smooth .. offset, from cap_fields) are only read when prob%cap is allocated.
    pure subroutine rough_pressure(prob, h, h_min, p_smooth, dps, shift, offset, p, dpdh, dpdd)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: h(:), h_min(:)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      real(dp), intent(in) :: h(:), h_min(:)   !< gaps and closest-approach gaps (scaled)
+      !> the cap's fields at the same points (cap_fields)
       real(dp), allocatable, intent(in) :: p_smooth(:), dps(:), shift(:), offset(:)
+      !> the rough pressure, dp/dh and dp/d(delta), scaled
       real(dp), intent(out) :: p(:), dpdh(:), dpdd(:)
       dpdd = 0.0_dp
       if (allocated(prob%closest)) then
@@ -383,8 +387,9 @@ contains
    !> the closest-approach gaps at r) the plastic gap shift and pressure offset from the
    !> loading at delta_max (flow_cap%plastic_shift), else 0.
    pure subroutine cap_fields(prob, r, gap_min, p_smooth, dps, shift, offset)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: r(:), gap_min(:)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
+      real(dp), intent(in) :: r(:), gap_min(:)   !< scaled radii and the closest-approach gaps there
+      !> p_s, dp_s/d(delta), gap shift and pressure offset at r
       real(dp), allocatable, intent(out) :: p_smooth(:), dps(:), shift(:), offset(:)
       real(dp), allocatable :: ps_max(:)
       p_smooth = 0.0_dp*r
@@ -410,9 +415,9 @@ contains
    !> starts, and kind 3, law(d_max) - p_y, where the gap shift starts (flow_cap's
    !> plastic_shift: t = min(p_y, law(d_max))). 1 where a kind does not apply.
    pure real(dp) function cap_excess(prob, r, gap, kind) result(excess)
-      type(scaled_problem), intent(in) :: prob
-      real(dp), intent(in) :: r, gap
-      integer, intent(in) :: kind
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
+      real(dp), intent(in) :: r, gap   !< scaled radius and the solution's gap there
+      integer, intent(in) :: kind   !< 1, 2 or 3, as above
       real(dp) :: gm(1), p(1), dpdh(1), ps_max
       real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:)
       excess = 1.0_dp
@@ -442,7 +447,7 @@ contains
    !> Scaled Hertz force of the smooth part (extended models only; 0 where the solution's
    !> force holds it, sums_total).
    pure real(dp) function smooth_force(prob) result(force)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       force = 0.0_dp
       if (prob%extended .and. .not. sums_total(prob)) force = hertz_force(prob%delta, &
          & 1.0_dp, 1.0_dp)
@@ -456,7 +461,7 @@ contains
    !> carries the cancellation. Elsewhere the Hertz part's closed form is kept (more
    !> accurate than its Gauss sum, and the cap-free results stay bit for bit).
    elemental logical function sums_total(prob)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       sums_total = .false.
       if (.not. (allocated(prob%cap) .and. allocated(prob%closest))) return
       sums_total = prob%extended .and. prob%closest%capped
@@ -469,7 +474,7 @@ contains
    !> (a sum of the total pressure whose terms are 1e6 times larger); an impact's work
    !> integrals need it to rel_tol of their whole. 0 (relative errors) elsewhere.
    elemental real(dp) function force_floor(prob) result(floor)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       floor = 0.0_dp
       if (.not. (allocated(prob%cap) .and. allocated(prob%closest))) return
       if (prob%closest%capped) floor = 1.0e-6_dp*abs(prob%closest%force)
@@ -477,7 +482,7 @@ contains
 
    !> Scaled Hertz stiffness of the smooth part (extended models only).
    pure real(dp) function smooth_stiffness(prob) result(stiffness)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       stiffness = 0.0_dp
       if (prob%extended) stiffness = hertz_stiffness(prob%delta, 1.0_dp, 1.0_dp)
    end function smooth_stiffness

@@ -72,12 +72,13 @@ contains
    !> continuation if a cold start fails; refocus_classic_gw), then the refinement levels
    !> (refine_levels).
    subroutine solve_scaled(problem, options, sol, est, method_used, error, warm)
-      type(scaled_problem), intent(in) :: problem
+      type(scaled_problem), intent(in) :: problem   !< the scaled problem (doc/theory.md section 5)
+      !> the solver's options (rel_tol, method, n_radial)
       type(solver_options), intent(in) :: options
-      type(discrete_solution), intent(out) :: sol
-      real(dp), intent(out) :: est
-      integer, intent(out) :: method_used
-      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution), intent(out) :: sol   !< the finest level's solution
+      real(dp), intent(out) :: est   !< its estimated relative force error
+      integer, intent(out) :: method_used   !< method_newton or method_picard, the one that solved it
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged or the failure met
       !> unloading: the solution of another solve of the same history (another delta),
       !> the start of the default route's locating solve (first_unloading_level)
       type(discrete_solution), intent(in), optional :: warm

@@ -30,6 +30,7 @@ module egw_table
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
       & ieee_quiet_nan
    use egw_kinds, only: dp
+   use egw_search, only: bracket_interval
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, &
       & egw_out_of_range, fatal_error, format_real, int_str, tolerance_context
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
@@ -175,9 +176,10 @@ module egw_table
          & table, error, progress)
          type(contact_params), intent(in) :: params   !< radius R and modulus E* of the pair
          class(flat_law), intent(in) :: law           !< the rough-flat law
-         type(solver_options), intent(in) :: options
+         type(solver_options), intent(in) :: options   !< the solver's options of every solve
          real(dp), intent(in) :: delta_min, delta_max, rel_tol   !< as build_table
-         type(force_table), intent(out) :: table
+         type(force_table), intent(out) :: table   !< the built table, prepared
+         !> a solve's failure or an unreached rel_tol
          type(egw_error), allocatable, intent(out) :: error
          procedure(table_progress), optional :: progress
       end subroutine build_table_law
@@ -188,11 +190,13 @@ module egw_table
       !> in log space; the force must be positive from the cut-off on).
       module subroutine build_table_fixed_cutoff(params, options, cutoff, delta_max, rel_tol, &
          & log_space, table, error)
-         type(contact_params), intent(in) :: params
-         type(solver_options), intent(in) :: options
+         type(contact_params), intent(in) :: params   !< validated parameters of the table
+         type(solver_options), intent(in) :: options   !< the solver's options of every solve
+         !> first node, last node [length], rel_tol as build_table
          real(dp), intent(in) :: cutoff, delta_max, rel_tol
-         logical, intent(in) :: log_space
-         type(force_table), intent(out) :: table
+         logical, intent(in) :: log_space   !< interpolate ln P on every interval
+         type(force_table), intent(out) :: table   !< the built table, prepared
+         !> a solve's failure or an unreached rel_tol
          type(egw_error), allocatable, intent(out) :: error
       end subroutine build_table_fixed_cutoff
 
@@ -204,15 +208,19 @@ module egw_table
       !> sequence; solves returns the count at the end (solves_before included).
       module subroutine build_tables_shared(params, options, cutoff, delta_max, rel_tol, &
          & log_space, tables, error, progress, solves_before, solves)
-         type(contact_params), intent(in) :: params(:)
-         type(solver_options), intent(in) :: options
+         type(contact_params), intent(in) :: params(:)   !< validated parameters, one set per table
+         type(solver_options), intent(in) :: options   !< the solver's options of every solve
+         !> first node, last node [length], rel_tol as build_table
          real(dp), intent(in) :: cutoff, delta_max, rel_tol
-         logical, intent(in) :: log_space
+         logical, intent(in) :: log_space   !< interpolate ln P on every interval
+         !> one per parameter set, on the same nodes, prepared
          type(force_table), intent(inout) :: tables(:)
+         !> a solve's failure or an unreached rel_tol
          type(egw_error), allocatable, intent(out) :: error
          procedure(table_progress), optional :: progress
+         !> solves counted before this build (default 0)
          integer, intent(in), optional :: solves_before
-         integer, intent(out), optional :: solves
+         integer, intent(out), optional :: solves   !< solves_before plus this build's solves
       end subroutine build_tables_shared
 
       !> Cut-off rule: P_ref = P(min(0, delta_max)) for rough models, P(delta_max) for Hertz;
@@ -220,11 +228,12 @@ module egw_table
       !> on solves; P is increasing in delta).
       module subroutine table_find_cutoff(params, options, delta_min, delta_max, rel_tol, cutoff, &
          & p_ref, error)
-         type(contact_params), intent(in) :: params
-         type(solver_options), intent(in) :: options
+         type(contact_params), intent(in) :: params   !< validated parameters of the table
+         type(solver_options), intent(in) :: options   !< the solver's options of every solve
+         !> build_table's range [length] and rel_tol
          real(dp), intent(in) :: delta_min, delta_max, rel_tol
-         real(dp), intent(out) :: cutoff, p_ref
-         type(egw_error), allocatable, intent(out) :: error
+         real(dp), intent(out) :: cutoff, p_ref   !< delta_c [length] and P_ref [force]
+         type(egw_error), allocatable, intent(out) :: error   !< a solve's failure
       end subroutine table_find_cutoff
    end interface
 
@@ -256,7 +265,7 @@ contains
    !> Called by the builder and by the readers; deterministic, so a table read back
    !> evaluates bit-for-bit like the one written.
    pure subroutine table_prepare(table, resample)
-      type(force_table), intent(inout) :: table
+      type(force_table), intent(inout) :: table   !< its nodes set; the evaluation data derived
       !> resample the ln P tail for table_eval (default); .false. for a hysteresis
       !> table's loading table, whose evaluations go through its ln P intervals
       !> (table_eval_cached) and must match table_eval's bit for bit
@@ -407,7 +416,7 @@ contains
 
    !> True when the evaluation data are present (a built or read table).
    pure logical function table_is_ready(table)
-      type(force_table), intent(in) :: table
+      type(force_table), intent(in) :: table   !< any table
       table_is_ready = allocated(table%seg) .and. allocated(table%bucket) .and. &
          & allocated(table%fine_seg)
    end function table_is_ready
@@ -541,7 +550,7 @@ contains
       type(contact_params), intent(in) :: params   !< the table's parameters
       real(dp), intent(in) :: delta_c, p_c, k_c    !< first node: overlap, force, stiffness
       real(dp), intent(in) :: delta                !< overlap [length], < delta_c
-      real(dp), intent(out) :: force, stiffness
+      real(dp), intent(out) :: force, stiffness   !< force [force] and stiffness dP/ddelta at delta
       if (params%model == model_flat_law) then
          call exponential_tail(delta_c, p_c, k_c, delta, force, stiffness)
       else if (is_rough(params)) then
@@ -572,9 +581,11 @@ contains
    !> layout; anything else, e.g. NaN ends, is a miss), refilled when delta leaves it: the
    !> values of table_eval, without the lookup while delta stays inside (a DEM contact).
    pure subroutine table_eval_cached(table, delta, seg, force, stiffness)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
+      type(force_table), intent(in) :: table   !< a prepared table
+      real(dp), intent(in) :: delta   !< overlap [length]
+      !> the caller's interval (table_segment's layout), refilled on a miss
       real(dp), intent(inout) :: seg(7)
+      !> force [force] and stiffness dP/ddelta, as table_eval
       real(dp), intent(out) :: force, stiffness
       logical :: found
       if (.not. (seg(1) <= delta .and. delta < seg(2) .and. delta > table%cutoff)) then
@@ -591,8 +602,9 @@ contains
    !> Force and stiffness at delta from an interval seg of table_segment's layout:
    !> eval_kernel's arithmetic on the copied interval (the same values).
    pure subroutine segment_eval(seg, delta, force, stiffness)
+      !> an interval of table_segment's layout, and the overlap [length] in it
       real(dp), intent(in) :: seg(7), delta
-      real(dp), intent(out) :: force, stiffness
+      real(dp), intent(out) :: force, stiffness   !< force [force] and stiffness dP/ddelta
       real(dp) :: t, t2, v, d
       t = delta - seg(1)
       t2 = t*t
@@ -616,10 +628,10 @@ contains
    !> found = .false. outside (cut-off, delta_max), where
    !> table_eval has no interval.
    pure subroutine table_segment(table, delta, seg, found)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: seg(7)
-      logical, intent(out) :: found
+      type(force_table), intent(in) :: table   !< a prepared table
+      real(dp), intent(in) :: delta   !< overlap [length]
+      real(dp), intent(out) :: seg(7)   !< the interval holding delta (0 where not found)
+      logical, intent(out) :: found   !< delta in (cutoff, delta_max)
       integer :: i
       seg = 0.0_dp
       found = delta > table%cutoff .and. delta < table%delta_max
@@ -703,9 +715,9 @@ contains
    !> ln P and d ln P/ddelta at delta in (cutoff, delta_max) (used by the universal table
    !> to interpolate across mu in log space without an exp per slice).
    pure subroutine table_eval_log(table, delta, log_force, dlog_force)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: log_force, dlog_force
+      type(force_table), intent(in) :: table   !< a prepared table, ln P from the cut-off on
+      real(dp), intent(in) :: delta   !< overlap [length] in (cutoff, delta_max)
+      real(dp), intent(out) :: log_force, dlog_force   !< ln P and d ln P/ddelta [1/length]
       integer :: i, n
       real(dp) :: t, v, d
 
@@ -841,8 +853,8 @@ contains
    !> in O(1) by the table's buckets (used by the universal table, whose slices share
    !> their nodes).
    pure integer function table_interval(table, delta) result(i)
-      type(force_table), intent(in) :: table
-      real(dp), intent(in) :: delta
+      type(force_table), intent(in) :: table   !< a prepared table
+      real(dp), intent(in) :: delta   !< overlap [length] in [cutoff, delta_max)
       i = find_interval(table, delta)
    end function table_interval
 
@@ -853,23 +865,14 @@ contains
    pure integer function find_interval(table, delta) result(i)
       type(force_table), intent(in) :: table
       real(dp), intent(in) :: delta
-      integer :: b, lo, hi, mid
+      integer :: b, hi
       b = min(max(int((delta - table%bucket_origin)*table%bucket_scale), 0), table%n_bucket)
       i = abs(table%bucket(b))
       hi = abs(table%bucket(b + 1)) + 1
       if (hi - i > 6) then
          ! crowded bucket (graded nodes near a singular point): bisect
-         lo = i
          hi = min(hi, size(table%seg, 2))
-         do while (hi - lo > 1)
-            mid = (lo + hi)/2
-            if (delta >= table%seg(0, mid)) then
-               lo = mid
-            else
-               hi = mid
-            end if
-         end do
-         i = lo
+         i = i - 1 + bracket_interval(table%seg(0, i:hi), delta)
       end if
       ! seg(0, n) = delta_max > delta ends the scan
       do while (delta >= table%seg(0, i + 1))
@@ -953,7 +956,7 @@ contains
    !> (deep_force) stays within 1 % of solves up to 0.2 R (doc/theory.md §9): deep_law_floor_x
    !> sigma, capped at 0.2 R; -huge (no floor) for Hertz and smooth spheres.
    elemental real(dp) function deep_law_floor(params) result(d)
-      type(contact_params), intent(in) :: params
+      type(contact_params), intent(in) :: params   !< validated parameters of the table
       d = -huge(1.0_dp)
       if (is_rough(params)) d = min(deep_law_floor_x(params%model)*params%sigma, &
          & 0.2_dp*params%radius)
@@ -963,7 +966,7 @@ contains
    !> law vs solves": at most 0.6 % (GW) and 0.75 % (E-GW, EP-GW psi 0.5-20) for mu
    !> 0.1-1000; from sigma EP-GW reaches 1.8 %, from 0.5 sigma 4 %); -huge for Hertz.
    elemental real(dp) function deep_law_floor_x(model) result(x)
-      integer, intent(in) :: model
+      integer, intent(in) :: model   !< model_* constant
       x = -huge(1.0_dp)
       if (model == model_gw .or. model == model_flat_law) x = 10.0_dp
       if (model == model_egw .or. model == model_epgw) x = 2.0_dp

@@ -5,6 +5,7 @@
 !> universal table, which a DEM code blends piece by piece), so both share one code.
 module egw_table_tail
    use egw_kinds, only: dp
+   use egw_search, only: bracket_interval
    implicit none
    private
 
@@ -101,19 +102,9 @@ contains
       integer, intent(in) :: n, n_log
       real(dp), intent(in) :: delta(n), force(n), stiffness(n), seg(0:4, n), x
       real(dp), intent(out) :: p, dpdx
-      integer :: i, lo, hi, mid
+      integer :: i
       real(dp) :: t
-      lo = 1
-      hi = n_log + 1
-      do while (hi - lo > 1)
-         mid = (lo + hi)/2
-         if (x >= delta(mid)) then
-            lo = mid
-         else
-            hi = mid
-         end if
-      end do
-      i = lo
+      i = bracket_interval(delta(1:n_log + 1), x)
       if (x == delta(i) .or. x == delta(i + 1)) then
          if (x == delta(i + 1)) i = i + 1
          p = force(i)

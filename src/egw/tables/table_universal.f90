@@ -252,7 +252,8 @@ contains
    !> Parameters of the slice at mu (R = E = sigma = 1, so P = p, delta = x).
    pure function universal_slice_params(model, psi, hardness_coeff, plastic_ratio, mu) &
       & result(params)
-      integer, intent(in) :: model
+      integer, intent(in) :: model   !< model_* constant
+      !> the model's psi, K, plastic ratio and the slice's mu
       real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio, mu
       type(contact_params) :: params
       params = contact_params(model=model, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
@@ -262,7 +263,7 @@ contains
    !> Derived evaluation data (after build or read): mu lookup constants and the
    !> slices' cubics gathered per interval. Needs universal_nodes_shared(u).
    pure subroutine universal_prepare(u)
-      type(universal_table), intent(inout) :: u
+      type(universal_table), intent(inout) :: u   !< built or read, universal_nodes_shared
       integer :: j, n
       u%log_mu_min = log(u%mu_min)
       u%inv_dlog_mu = (u%n_mu - 1)/(log(u%mu_max) - u%log_mu_min)
@@ -607,7 +608,7 @@ contains
    !> True when every slice has the nodes and the ln p intervals (n_log) of the first,
    !> as the builder makes them; readers check it before universal_prepare.
    pure logical function universal_nodes_shared(u)
-      type(universal_table), intent(in) :: u
+      type(universal_table), intent(in) :: u   !< built or read
       integer :: j
       universal_nodes_shared = .false.
       do j = 1, u%n_mu
@@ -726,8 +727,8 @@ contains
    !> Move a built universal table into `to` (allocations moved, not copied) and prepare
    !> it for evaluation.
    subroutine move_universal(from, to)
-      type(universal_table), intent(inout) :: from
-      type(universal_table), intent(out) :: to
+      type(universal_table), intent(inout) :: from   !< the built table (deallocated after)
+      type(universal_table), intent(out) :: to   !< the same table, prepared
       to%model = from%model
       to%psi = from%psi
       to%hardness_coeff = from%hardness_coeff
