@@ -294,6 +294,8 @@ contains
    !> cut-off, where ln P_load bends hard). Cost: four walks per curve (8-point
    !> Gauss-Legendre, two panels per piece).
    pure subroutine log_energy_prepare(table)
+      !> a log-ratio table prepared but for this (hysteresis_prepare): energy_coef,
+      !> energy_walk and energy_cut set
       type(hysteresis_table), intent(inout) :: table
       type(unload_curve) :: cv
       real(dp) :: xi_b(3), d(3), length, x_i, xi, e_l, p_l, k_l, p_u, h, d0, d1, e_m
@@ -723,6 +725,7 @@ contains
    !> (cost: a walk per
    !> sample, 33 per interval where the dips are smooth in m, more where they are not).
    pure subroutine energy_prepare(table)
+      !> a gap table prepared but for this (hysteresis_prepare): its dip samples set
       type(hysteresis_table), intent(inout) :: table
       real(dp), allocatable :: store(:, :)
       real(dp) :: band, scale, u0, u1, q0, q1, top, low0, low1
