@@ -6,7 +6,9 @@
 ! 0 local11's (four-point Lagrange in h), 6 six-point Lagrange (and hysteresis_eval on
 ! six points), 7 the six-point check with the four-point evaluation, 1 / 11 h over the
 ! curve's h at s = 1/2 / 5/8, 16 both 1 and 6, 21 / 23 the edge map of each curve's xi
-! where h = 1 / 3 instead of L, 26 both 21 and 6; EGW_L12_DEBUG=1 prints each failing
+! where h = 1 / 3 instead of L, 26 both 21 and 6, 8 eight-point Lagrange (check only);
+! EGW_L12_COORD=3 / 4: m^(1/3) / m^(1/4) above the m = 0 node instead of sqrt(m) (build
+! and evaluation); EGW_L12_DEBUG=1 prints each failing
 ! midpoint (pass, interval, s, h of the midpoint curve, the stencil's h, weight, error).
 program hysteresis_nodes
    use egw_kinds, only: dp
