@@ -54,8 +54,10 @@ module egw_cache
    !> hysteresis tables without the cap store ln(P_load/P) on the edge map, to rel_tol of
    !> the local force (format version 3), their delta_max intervals at m = 0 split down to
    !> 1/32 of the others' width limit; 21: both of 19 and 20 (branch local10's 19 and 20
-   !> had the log-ratio tables without 19's map, main's 19 not the log-ratio tables)).
-   integer, parameter, public :: cache_revision = 21
+   !> had the log-ratio tables without 19's map, main's 19 not the log-ratio tables);
+   !> 23: the log-ratio curves' s bisection weighted by the largest weight of each interval
+   !> (ends and middle), not the middle's (main's 22 has no log-ratio tables)).
+   integer, parameter, public :: cache_revision = 23
 
 
 contains
