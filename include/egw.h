@@ -14,8 +14,8 @@
  *     failure, outputs are left unchanged and egw_last_error() gives a message
  *     naming the offending argument.
  *   - All functions are thread-safe: they keep no shared state (the last-error
- *     message is per thread), and any number of threads may write and read files at
- *     once (tested with 16 threads).
+ *     message and the progress hook, egw_set_progress, are per thread), and any
+ *     number of threads may write and read files at once (tested with 16 threads).
  *   - String arguments (paths) are read to their NUL, whatever their length.
  */
 #ifndef EGW_H
@@ -96,6 +96,25 @@ int egw_status_message(int status, char *buf, int buflen);
  * buflen > 0), -EGW_INVALID_ARGUMENT (buflen < 0). This call never changes the message.
  * (Unlike the other int functions it never returns EGW_OK: test > 0, or <= buflen.) */
 int egw_last_error(char *buf, int buflen);
+
+/* Progress of long calls (since 0.2.0): hook(done, stage, user) is called as this
+ * thread's long calls proceed: egw_solve, egw_solve_unload, egw_restitution(...),
+ * egw_time_step and the table, hysteresis and scene builds (a solve of rough + cap at
+ * sigma/delta_y <= 1e-6 can take half a minute: its small-sigma route, doc/stability.md).
+ * done lies in [0, 1] and never decreases within one call: 0 at its start, 1 at its
+ * end; stage is a short NUL-terminated name of the step ("history", "small-sigma route:
+ * wide histories", "unloading", "restitution: loading", "table build" ...), valid only
+ * during the call. hook NULL switches reports off (the default: the library never prints).
+ * The hook is per thread, like egw_last_error: set on a thread, it hears only the calls
+ * made on that thread (no lock, no sharing); solves inside egw's own OpenMP regions
+ * (builds, the *_array entries of more than one point) report through their build, or
+ * not at all, not one by one; an array of one point reports as the scalar call. Calls
+ * made inside an active OpenMP parallel region of the caller's report nothing either
+ * (threads of other kinds, pthreads or Python threads, each hear their own calls). The
+ * hook may call egw: those calls report nothing; a hook set from inside a hook hears the
+ * rest of the call in progress. user is passed to the hook as it was given. */
+typedef void (*egw_progress_fn)(double done, const char *stage, void *user);
+void egw_set_progress(egw_progress_fn hook, void *user);
 
 /* Fill p with the defaults: E-GW, R = E = 1, sigma = 0, mu = 1, psi = 0, K = 0.6, 54,
  * flow_pressure 0 (no bulk yield). */
@@ -185,7 +204,10 @@ typedef struct {
 
 typedef struct {
   double force, stiffness, contact_radius, max_pressure;
-  double est_rel_err;  /* estimated relative error of force */
+  double est_rel_err;  /* estimated error of force relative to |force| (1 for force 0);
+                          unloading after a capped loading is accepted against
+                          rel_tol/2 of max(|force|, 1e-6 force(delta_max)), so below
+                          that floor est_rel_err may exceed rel_tol (doc/theory.md 12) */
   double residual;     /* final nonlinear residual */
   int    iterations;
   int    method_used;
@@ -214,12 +236,15 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * (w_dissipated = (1 - e^2) m* v^2/2; e = 1 up to v_y). Beyond 1e6 delta_y or 1e4 v_y:
  * EGW_INVALID_ARGUMENT. Rough models (sigma > 0) with p_y > 0: egw_solve, egw_solve_unload
  * and egw_restitution(...) are the rough solver's, the cap on the total pressure (first
- * yield where the rough contact's largest total pressure reaches p_y). egw_time_step
+ * yield where the rough contact's largest total pressure reaches p_y); delta or delta_max
+ * beyond 1e12 delta_y: EGW_INVALID_ARGUMENT naming it (doc/stability.md). egw_time_step
  * beyond v_y takes the smooth sphere's elastic unloading stiffness at delta_m (rough
  * spheres: an upper bound); egw_hysteresis_build gives Hertz + cap tables and GW, E-GW,
- * EP-GW + cap tables (doc/formats.md 6). Not yet: egw_profile beyond delta_y or of a
- * rough sphere with the cap (EGW_UNSUPPORTED), force and universal tables
- * (EGW_INVALID_PARAMETER). */
+ * EP-GW + cap tables (doc/formats.md 6); egw_profile the smooth sphere's loading
+ * profile beyond delta_y (p <= p_y; see egw_profile), egw_profile_unload its unloading
+ * profile; both give a rough sphere's with the cap (the total pressure <= p_y). Not yet:
+ * egw_profile_unload after a history the small-sigma route loaded (EGW_UNSUPPORTED),
+ * force and universal tables (EGW_INVALID_PARAMETER). */
 
 /* Unloading (and reloading) after the largest overlap delta_max (EP-GW, doc/theory.md 8):
  * delta > delta_max is the loading solve (egw_solve); delta <= delta_max loads to
@@ -302,9 +327,40 @@ int egw_first_yield(const egw_params *p, double mass, double *delta_y, double *v
  * o->rel_tol of the profile's peak (pressure) and of its largest deflection: the contact
  * is solved again at rel_tol/10 (at most 4 times, down to 1e-12) until the profile
  * changes by less than that, so a profile costs a few solves. Same statuses, and
- * EGW_NOT_CONVERGED if the profile does not settle. */
+ * EGW_NOT_CONVERGED if the profile does not settle. With the cap (p->flow_pressure > 0,
+ * smooth sphere) beyond first yield: p = p_y on the capped disc r <= c, the elastic
+ * annulus's pressure (c, a) from the cap solver's rings (up to 256, whatever o->rel_tol:
+ * pointwise within 1.5e-5 p_y of tools/reference/cap_reference.py at 2, 5, 20 delta_y),
+ * 0 beyond a; deflection is then the surfaces' total normal displacement, elastic plus
+ * the plastic crater (positive toward each other), so that the gap r^2/(2R) - delta + w
+ * is 0 on [0, a]: w = delta - r^2/(2R) there, the elastic deflection beyond a (as for
+ * Hertz). A rough sphere with the cap: the rough solver's total pressure (<= p_y, the
+ * cap's law and plastic shift; within rel_tol as without the cap) and w the elastic
+ * deflection (rough layer + Hertz's; the plastic shift is in the law, not in w). */
 int egw_profile(const egw_params *p, const egw_options *o, double delta, int n,
                 const double *r, double *pressure, double *deflection);
+
+/* Total pressure p(r) and deflection w(r) at the n radii r[0..n-1] of the unloading (or
+ * reloading) contact at delta after the largest overlap delta_max: egw_solve_unload's
+ * contact (its force is 2 pi int p r dr). delta >= delta_max: egw_profile at delta.
+ * Reversible models (Hertz up to first yield, classic GW, E-GW, EP-GW with psi = 0): the
+ * loading profile at delta. EP-GW: Hertz's pressure plus the rough unloading pressure
+ * p_G(d(r), d_max(r)), w the rough layer's deflection plus Hertz's, pointwise within
+ * o->rel_tol of the peak and the largest deflection (the unloading solve tightened by 10
+ * until it settles; the history loaded at 1e-4 of rel_tol). Smooth sphere with the cap
+ * loaded beyond first yield: the elastic contact of the deformed shape (the cap solver
+ * on 256 unloading rings, egw_solve_unload on 64); w is the surfaces' total displacement,
+ * positive toward each other: elastic plus the permanent plastic crater u_pl(r), so that
+ * the gap r^2/(2R) - delta + w >= 0 is 0 on the contact (w = delta - r^2/(2R) there), and
+ * at or below the residual overlap p = 0, w = u_pl. Rough spheres with the cap: the
+ * rough solver's total unloading pressure (<= p_y) within rel_tol, w elastic (as
+ * egw_profile); after a history loaded by the small-sigma route (sigma/delta_y <= ~1e-6,
+ * no rough field kept): EGW_UNSUPPORTED. Statuses as egw_profile (EGW_INVALID_ARGUMENT for a delta_max that is
+ * not finite, n < 0 or a bad radius, EGW_NULL_POINTER for p, r, pressure, deflection);
+ * outputs untouched on failure. */
+int egw_profile_unload(const egw_params *p, const egw_options *o, double delta,
+                       double delta_max, int n, const double *r, double *pressure,
+                       double *deflection);
 
 /* ------------------------------------------------------------------------
  * Force tables for DEM and FE codes.
@@ -884,7 +940,7 @@ typedef struct {
 void egw_scene_default(egw_scene *s);
 
 /* Check *s: EGW_OK or EGW_INVALID_PARAMETER with a message naming the field (e.g.
- * "radius(2) = ...", "K = ..."). EGW_NULL_POINTER. */
+ * "radius(2) = ...", "K (hardness_coeff) = ..."). EGW_NULL_POINTER. */
 int egw_scene_validate(const egw_scene *s);
 
 /* Read the namelist group &scene of the file at path (NUL-terminated; variables in

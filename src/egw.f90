@@ -25,8 +25,9 @@ module egw
    use egw_rough_sphere, only: solver_options, solve_result, method_auto, method_newton, &
       & method_picard, validate_options, solve_contact, contact_profile, loading_history, &
       & load_history, solve_unload, solve_contact_unload, unload_profile, solve_contact_law, &
-      & unload_start
+      & unload_start, contact_profile_unload
    use egw_impact, only: restitution, time_step
+   use egw_progress, only: progress_hook, set_progress, progress_count
    use egw_table, only: force_table, build_table, build_table_law, table_eval, &
       & table_eval_all, table_covers, table_energy, table_contact_radius, table_set_radii
    use egw_table_universal, only: universal_table, build_universal, universal_eval, &

@@ -20,6 +20,7 @@ module egw_all
    use egw_halfspace
    use egw_rough_sphere
    use egw_impact
+   use egw_progress
    use egw_table
    use egw_table_tail
    use egw_table_universal

@@ -168,8 +168,24 @@ int egw_capi_test_flow_pressure_refusals(void) {
   egw_hysteresis_free(&hy);
   CHECK(egw_time_step(&p, NULL, 16.0 / 15.0, 5.0, 1e-3, &duration, &step) == EGW_OK &&
         step > 0 && duration > step);
-  CHECK(egw_profile(&p, NULL, 3.0, 2, r, pr, w) == EGW_UNSUPPORTED);
-  CHECK(message_has("flow_pressure"));
+  /* served now beyond first yield (delta_y = 1 here): p = p_y on the capped disc (its
+   * radius 1.27 a_y at 3 delta_y, tools/reference/cap_reference.py), w = delta - r^2/2 on
+   * the contact (the surfaces' total displacement, plastic crater included) */
+  CHECK(egw_profile(&p, NULL, 3.0, 2, r, pr, w) == EGW_OK);
+  CHECK(pr[0] == p.flow_pressure && pr[1] == p.flow_pressure);
+  CHECK(fabs(w[0] - 3.0) <= 1e-14 && fabs(w[1] - (3.0 - 0.125)) <= 1e-14);
+  /* rough + cap: its loading and unloading profiles are served (total pressure <= p_y) */
+  {
+    egw_params q = p;
+    q.model = EGW_MODEL_EGW;
+    q.sigma = 1e-3;
+    q.mu = 4.0;
+    q.flow_pressure = 0.01;
+    CHECK(egw_profile(&q, NULL, 2e-3, 2, r, pr, w) == EGW_OK);
+    CHECK(pr[0] <= 0.01 * (1 + 1e-12) && pr[0] > 0.009);
+    CHECK(egw_profile_unload(&q, NULL, 1e-3, 2e-3, 2, r, pr, w) == EGW_OK);
+    CHECK(pr[0] <= 0.01 * (1 + 1e-12) && pr[0] > 0.0);
+  }
   /* below first yield the profile is Hertz's */
   CHECK(egw_profile(&p, NULL, 0.5, 2, r, pr, w) == EGW_OK);
   return failures;

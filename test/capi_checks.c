@@ -343,5 +343,140 @@ int egw_capi_test_profile(void) {
     const double rbad[1] = {-1.0};
     CHECK(egw_profile(&p, NULL, 0.04, 1, rbad, pr, w) == EGW_INVALID_ARGUMENT);
   }
+  /* egw_profile_unload: Hertz is reversible (the loading profile at delta, bit for bit),
+   * delta >= delta_max the loading profile; bad input named, outputs untouched */
+  {
+    double pu[3], wu[3];
+    CHECK(egw_profile(&p, NULL, 0.04, 3, r, pr, w) == EGW_OK);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 3, r, pu, wu) == EGW_OK);
+    CHECK(pu[0] == pr[0] && pu[1] == pr[1] && pu[2] == pr[2] && wu[0] == w[0] &&
+          wu[2] == w[2]);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.01, 3, r, pu, wu) == EGW_OK);
+    CHECK(pu[0] == pr[0] && wu[2] == w[2]);
+    pu[0] = 7.0;
+    CHECK(egw_profile_unload(&p, NULL, 0.04, NAN, 3, r, pu, wu) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("delta_max") && pu[0] == 7.0);
+    CHECK(egw_profile_unload(&p, NULL, NAN, 0.09, 3, r, pu, wu) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("delta"));
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, -1, r, pu, wu) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("n"));
+    CHECK(egw_profile_unload(NULL, NULL, 0.04, 0.09, 3, r, pu, wu) == EGW_NULL_POINTER);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 3, NULL, pu, wu) == EGW_NULL_POINTER);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 3, r, NULL, wu) == EGW_NULL_POINTER);
+    CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 3, r, pu, NULL) == EGW_NULL_POINTER);
+    CHECK(pu[0] == 7.0);
+    {
+      const double rbad[1] = {-1.0};
+      CHECK(egw_profile_unload(&p, NULL, 0.04, 0.09, 1, rbad, pu, wu) == EGW_INVALID_ARGUMENT);
+      CHECK(last_error_names("r(1)"));
+    }
+  }
+  return failures;
+}
+
+/* Progress hook (egw_set_progress, issue 32): a recorder of the reports of one call. */
+typedef struct {
+  int calls, out_of_range, decreasing, saw_stage, user_ok;
+  double first, last;
+  const char *want_stage;
+} progress_log;
+static void record_progress(double done, const char *stage, void *user) {
+  progress_log *log = (progress_log *)user;
+  if (log == NULL) return;
+  log->user_ok = 1;
+  if (!(done >= 0.0 && done <= 1.0)) log->out_of_range++;
+  if (log->calls == 0) log->first = done;
+  else if (done < log->last) log->decreasing++;
+  log->last = done;
+  if (stage != NULL && log->want_stage != NULL && strcmp(stage, log->want_stage) == 0)
+    log->saw_stage = 1;
+  log->calls++;
+}
+static void progress_reset(progress_log *log, const char *stage) {
+  memset(log, 0, sizeof *log);
+  log->first = -1.0; log->last = -1.0;
+  log->want_stage = stage;
+}
+
+/* A hook that hands over to another from inside itself (its second report): the new
+ * hook hears the rest of the same call, still never decreasing, and ends at 1. */
+static progress_log handover_log;
+static int handover_calls;
+static void handover(double done, const char *stage, void *user) {
+  (void)done; (void)stage; (void)user;
+  if (++handover_calls == 2) egw_set_progress(record_progress, &handover_log);
+}
+
+/* The hook hears a restitution (EP-GW, sigma 1, psi 2: a history and an unloading
+ * integral, ~0.1 s) and a table build: called, the user pointer passed through, done in
+ * [0, 1] and never decreasing, 0 first and 1 last, the inner stages reported; a NULL hook
+ * switches it off (no call, same answer). Fails on main: no egw_set_progress. */
+int egw_capi_test_progress(void) {
+  egw_params p;
+  egw_options o;
+  egw_table t = NULL;
+  progress_log log;
+  double e = -1.0, e_off = -1.0;
+  failures = 0;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_EPGW; p.sigma = 1.0; p.mu = 4.0; p.psi = 2.0; p.hardness_coeff = 0.6;
+  egw_options_default(&o);
+  o.rel_tol = 1e-5;
+  progress_reset(&log, "restitution: unloading");
+  egw_set_progress(record_progress, &log);
+  CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e) == EGW_OK && e > 0.0 && e < 1.0);
+  CHECK(log.calls >= 4 && log.user_ok);
+  CHECK(log.out_of_range == 0 && log.decreasing == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  CHECK(log.saw_stage);
+  if (log.calls < 4 || !log.saw_stage)
+    printf("    restitution: %d reports, stage seen %d\n", log.calls, log.saw_stage);
+  /* a table build (Hertz, cheap): its own stage */
+  progress_reset(&log, "table build");
+  { egw_params h; egw_params_default(&h); h.model = EGW_MODEL_HERTZ;
+    CHECK(egw_table_build(&h, NULL, 0.0, 0.01, 1e-6, &t) == EGW_OK && t != NULL); }
+  egw_table_free(&t);
+  CHECK(log.calls >= 2 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  /* an array entry of one point (Python's scalar egw.restitution) reports as the scalar
+   * call does, with two threads asked for: on main its OpenMP region (active with 2
+   * threads) silenced the hook */
+  progress_reset(&log, "restitution: unloading");
+  { egw_options o2 = o; double m = 1.0, v = 1.0, e_arr = -1.0;
+    o2.n_threads = 2;
+    CHECK(egw_restitution_array(&p, 0, &o2, 1, &m, 0, &v, 0, &e_arr, NULL, NULL, NULL,
+                                EGW_ARRAY_RAISE, NULL) == EGW_OK && e_arr == e); }
+  CHECK(log.calls >= 4 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  if (log.calls < 4) printf("    restitution_array of one point: %d reports\n", log.calls);
+  /* egw_time_step (a restitution, a history, an unloading and the duration's solves):
+   * one call, never decreasing; on main each of its solves reported as an outermost call
+   * (184 reports, 58 decreasing) */
+  progress_reset(&log, "history");
+  { double duration = -1.0, step = -1.0;
+    CHECK(egw_time_step(&p, &o, 1.0, 1.0, 1e-3, &duration, &step) == EGW_OK &&
+          duration > 0.0 && step > 0.0); }
+  CHECK(log.calls >= 4 && log.saw_stage && log.decreasing == 0 && log.out_of_range == 0);
+  CHECK(log.first == 0.0 && log.last == 1.0);
+  if (log.decreasing > 0)
+    printf("    time_step: %d reports, %d decreasing\n", log.calls, log.decreasing);
+  /* a hook replaced from inside itself: on main the new hook heard each nested call of
+   * the restitution as an outermost one (0 .. 1 again and again, done decreasing) */
+  progress_reset(&handover_log, NULL);
+  handover_calls = 0;
+  egw_set_progress(handover, NULL);
+  { double e_h = -1.0;
+    CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e_h) == EGW_OK && e_h == e); }
+  CHECK(handover_calls == 2 && handover_log.calls >= 2);
+  CHECK(handover_log.decreasing == 0 && handover_log.out_of_range == 0);
+  CHECK(handover_log.last == 1.0);
+  if (handover_log.decreasing > 0)
+    printf("    handed-over hook: %d reports, %d decreasing\n", handover_log.calls,
+           handover_log.decreasing);
+  /* NULL: off, the answer unchanged */
+  progress_reset(&log, NULL);
+  egw_set_progress(NULL, &log);
+  CHECK(egw_restitution(&p, &o, 1.0, 1.0, &e_off) == EGW_OK && e_off == e);
+  CHECK(log.calls == 0);
   return failures;
 }

@@ -50,6 +50,9 @@ module test_capi
       integer(c_int) function c_first_yield() bind(C, name="egw_capi_test_first_yield")
          import :: c_int
       end function
+      integer(c_int) function c_progress() bind(C, name="egw_capi_test_progress")
+         import :: c_int
+      end function
    end interface
 
 contains
@@ -70,7 +73,9 @@ contains
          & new_unittest("flow pressure: params", t_cap_params), &
          & new_unittest("flow pressure: solves against the cap reference", t_cap_solves), &
          & new_unittest("flow pressure: doors not served yet refuse", t_cap_refusals), &
-         & new_unittest("flow pressure: egw_first_yield", t_first_yield) &
+         & new_unittest("flow pressure: egw_first_yield", t_first_yield), &
+         & new_unittest("progress hook: monotone in [0, 1], NULL is off", &
+         & t_progress) &
          & ]
    end subroutine collect_capi
 
@@ -137,6 +142,11 @@ contains
    subroutine t_first_yield(error)
       type(error_type), allocatable, intent(out) :: error
       call report(error, c_first_yield())
+   end subroutine
+
+   subroutine t_progress(error)
+      type(error_type), allocatable, intent(out) :: error
+      call report(error, c_progress())
    end subroutine
 
 end module test_capi

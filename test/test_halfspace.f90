@@ -6,7 +6,7 @@ module test_halfspace
    use egw_ellip, only: ellipk, ellipe
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, influence_row, &
       & assemble_influence, interpolate_nodal, mesh_nodes, influence_cache, &
-      & assemble_influence_cached
+      & assemble_influence_cached, cached_point_values, keep_point_values
    implicit none
    private
    public :: collect_halfspace
@@ -21,6 +21,7 @@ contains
          & new_unittest("deflection at r = 0 is 2 int p dt", test_centre), &
          & new_unittest("parallel assembly equals the rows", test_assembly), &
          & new_unittest("cached assembly equals the plain one", test_cached_assembly), &
+         & new_unittest("point values kept with the cache", test_cached_point_values), &
          & new_unittest("nodal interpolation reproduces polynomials", test_interpolation) &
          & ]
    end subroutine collect_halfspace
@@ -188,6 +189,43 @@ contains
          deallocate (infl, plain)
       end do
    end subroutine test_cached_assembly
+
+   !> keep_point_values / cached_point_values (the solver's law at gap_min across a solve's
+   !> levels): values f(r) = 1 + r**2 kept at a graded mesh's Gauss points come back, bit
+   !> for bit f at the same radii, at exactly the Gauss points of the elements a second
+   !> mesh shares (it halves three of them: 6 of its elements are new); none under another
+   !> key, and none kept for a mesh that was not the one stored last.
+   subroutine test_cached_point_values(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh1, mesh2
+      type(influence_cache) :: cache
+      real(dp), allocatable :: infl(:, :), base(:), edges(:), values(:)
+      logical, allocatable :: known(:)
+      base = graded_edges(3.0_dp, 0.2_dp, 5.0_dp, 0.25_dp)
+      edges = [base(1:4), 0.5_dp*(base(4) + base(5)), base(5:9), &
+         & 0.5_dp*(base(9) + base(10)), base(10:size(base) - 1), &
+         & 0.5_dp*(base(size(base) - 1) + base(size(base))), base(size(base))]
+      call build_mesh(base, 4, 6, mesh1)
+      call build_mesh(edges, 4, 6, mesh2)
+      allocate (infl(mesh_nodes(mesh1), mesh1%n_elem*mesh1%n_gauss))
+      call assemble_influence_cached(mesh1, infl, 1, cache)
+      ! not the mesh stored last: ignored
+      call keep_point_values(cache, mesh2, 2.0_dp, 1.0_dp + mesh2%gauss_r**2)
+      allocate (values(size(mesh2%gauss_r)), known(size(mesh2%gauss_r)))
+      call cached_point_values(cache, mesh2, 2.0_dp, values, known)
+      call check(error, .not. any(known), "values kept for a mesh the cache did not store")
+      if (allocated(error)) return
+      call keep_point_values(cache, mesh1, 2.0_dp, 1.0_dp + mesh1%gauss_r**2)
+      call cached_point_values(cache, mesh2, 3.0_dp, values, known)
+      call check(error, .not. any(known), "values served under another key")
+      if (allocated(error)) return
+      call cached_point_values(cache, mesh2, 2.0_dp, values, known)
+      call check(error, count(known), (mesh2%n_elem - 6)*mesh2%n_gauss, &
+         & "Gauss points served: not those of the shared elements")
+      if (allocated(error)) return
+      call check(error, all(pack(values, known) == pack(1.0_dp + mesh2%gauss_r**2, known)), &
+         & "a served value is not the one kept at the same radius")
+   end subroutine test_cached_point_values
 
    !> Continuous Lagrange elements of degree 3 reproduce a cubic to rounding (1e-13 for
    !> values ~ 30), at nodes and between them.

@@ -695,8 +695,8 @@ contains
    !> info = its index (the factorisation stops), as dgetf2's.
    subroutine test_dense_lu(error)
       type(error_type), allocatable, intent(out) :: error
-      real(dp) :: a(4, 4), lu(4, 4), x(4), b(4)
-      integer :: ipiv(4), info
+      real(dp) :: a(4, 4), lu(4, 4), x(4), b(4), big(12, 12)
+      integer :: ipiv(4), info, n, i, ipiv12(12)
       a = reshape([0.0_dp, 1.0_dp, 2.0_dp, -1.0_dp, &
          & 2.0_dp, 1.0_dp, 0.0_dp, 3.0_dp, &
          & 1.0_dp, 0.0_dp, 3.0_dp, 1.0_dp, &
@@ -717,9 +717,26 @@ contains
       call lu_factor(4, a, ipiv, info)
       call check(error, info, 3, "lu_factor on a zero third column: info")
       if (allocated(error)) return
-      call check_against_dgetf2(36, error)
+      ! four columns a sweep (panel_of_four) while more than 3 are left, then the rest two
+      ! at a time: every remainder 0..3, and a panel alone (5)
+      do n = 36, 39
+         call check_against_dgetf2(n, error)
+         if (allocated(error)) return
+      end do
+      call check_against_dgetf2(5, error)
       if (allocated(error)) return
-      call check_against_dgetf2(37, error)
+      ! a zero column inside a panel's second step (columns 5..8): info = its index
+      do n = 6, 8
+         big = 0.0_dp
+         do i = 1, 12
+            big(i, i) = 2.0_dp
+            if (i > 1) big(i, i - 1) = 1.0_dp
+         end do
+         big(:, n) = 0.0_dp
+         call lu_factor(12, big, ipiv12, info)
+         call check(error, info, n, "lu_factor on a zero column in a panel: info")
+         if (allocated(error)) return
+      end do
    end subroutine test_dense_lu
 
    !> lu_factor (two columns a sweep) against the reference LAPACK's dgetf2 on an n x n

@@ -11,12 +11,19 @@ module test_unload_sphere
    use egw_gauss, only: get_gauss_integral
    use egw_asperity, only: flat_pressure
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
-      & load_history, solve_unload, solve_contact_unload, unload_profile
+      & load_history, solve_unload, solve_contact_unload, unload_profile, &
+      & contact_profile, contact_profile_unload
    use egw_impact, only: restitution
+   use egw_progress, only: set_progress
    use data_rows, only: read_data_rows, row_length
    implicit none
    private
    public :: collect_unload_sphere
+
+   !> test_progress's record of the reports of one call
+   integer :: n_reports = 0, n_decreasing = 0, n_outside = 0
+   real(dp) :: first_done = -1.0_dp, last_done = -1.0_dp
+   logical :: saw_history = .false., saw_unloading = .false.
 
    interface
       integer(c_int) function c_unload() bind(C, name="egw_capi_test_unload")
@@ -40,6 +47,8 @@ contains
          & new_unittest("reference at kinks, rel_tol 1e-6..1e-8 (psi 10)", test_reference_kinks), &
          & new_unittest("reference far below delta_max, rel_tol 1e-6..1e-8", test_reference_tail), &
          & new_unittest("bad input is reported, outputs untouched", test_bad_input), &
+         & new_unittest("profile_unload: 2 pi int p r dr = P_unload, reversible = loading", &
+         & test_profile_unload), &
          & new_unittest("one history shared by threads", test_threads), &
          & new_unittest("solve_contact_unload: kept history = fresh load", test_kept_history), &
          & new_unittest("restitution: e = 1 for elastic summits", test_e_elastic), &
@@ -50,10 +59,82 @@ contains
          & new_unittest("restitution: glass and steel pairs, 1e-4 .. 10 m/s (reference)", &
          & test_e_speeds), &
          & new_unittest("restitution: bad input", test_e_bad_input), &
+         & new_unittest("progress hook (set_progress)", &
+         & test_progress), &
          & new_unittest("C egw_solve_unload", t_c_unload), &
          & new_unittest("C egw_restitution, egw_restitution_energy", t_c_restitution) &
          & ]
    end subroutine collect_unload_sphere
+
+   !> set_progress (issue 32): the hook hears restitution and solve_contact_unload (EP-GW,
+   !> sigma 1, psi 2, mu 4: a history and its unloading, ~0.1 s each), done in [0, 1],
+   !> never decreasing, 0 first and 1 last, the nested calls' stages ("history", and
+   !> "restitution: unloading" after it); set_progress() switches it off (no report, the
+   !> same answer). Fails on main: no set_progress.
+   subroutine test_progress(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: e, e_off, lost
+      p = contact_params(model=model_epgw, sigma=1.0_dp, mu=4.0_dp, psi=2.0_dp, &
+         & hardness_coeff=0.6_dp)
+      call reset()
+      call set_progress(record)
+      call restitution(p, solver_options(rel_tol=1.0e-5_dp), 1.0_dp, 1.0_dp, e, lost, err)
+      call set_progress()
+      if (allocated(err)) then
+         call test_failed(error, "restitution: "//err%message)
+         return
+      end if
+      call check(error, n_reports >= 4 .and. n_decreasing == 0 .and. n_outside == 0 .and. &
+         & first_done == 0.0_dp .and. last_done == 1.0_dp .and. saw_history .and. &
+         & saw_unloading, "restitution: "//to_string(n_reports)//" reports, " &
+         & //to_string(n_decreasing)//" decreasing, "//to_string(n_outside)//" outside [0, 1]")
+      if (allocated(error)) return
+      call reset()
+      call set_progress(record)
+      call solve_contact_unload(p, solver_options(rel_tol=1.0e-5_dp), 0.5_dp, 2.0_dp, res, err)
+      call set_progress()
+      if (allocated(err)) then
+         call test_failed(error, "solve_contact_unload: "//err%message)
+         return
+      end if
+      call check(error, n_reports >= 3 .and. n_decreasing == 0 .and. n_outside == 0 .and. &
+         & first_done == 0.0_dp .and. last_done == 1.0_dp .and. saw_history, &
+         & "solve_contact_unload: "//to_string(n_reports)//" reports")
+      if (allocated(error)) return
+      call reset()
+      call restitution(p, solver_options(rel_tol=1.0e-5_dp), 1.0_dp, 1.0_dp, e_off, lost, err)
+      call check(error, n_reports == 0 .and. e_off == e, "off: "//to_string(n_reports) &
+         & //" reports")
+   contains
+      subroutine reset()
+         n_reports = 0
+         n_decreasing = 0
+         n_outside = 0
+         first_done = -1.0_dp
+         last_done = -1.0_dp
+         saw_history = .false.
+         saw_unloading = .false.
+      end subroutine reset
+   end subroutine test_progress
+
+   !> test_progress's hook.
+   subroutine record(done, stage)
+      real(dp), intent(in) :: done
+      character(len=*), intent(in) :: stage
+      if (.not. (done >= 0.0_dp .and. done <= 1.0_dp)) n_outside = n_outside + 1
+      if (n_reports == 0) then
+         first_done = done
+      else if (done < last_done) then
+         n_decreasing = n_decreasing + 1
+      end if
+      last_done = done
+      if (stage == "history") saw_history = .true.
+      if (stage == "restitution: unloading") saw_unloading = .true.
+      n_reports = n_reports + 1
+   end subroutine record
 
    subroutine t_c_unload(error)
       type(error_type), allocatable, intent(out) :: error
@@ -186,6 +267,107 @@ contains
          & //" stiffer than loading: "//str(previous%stiffness)//" vs " &
          & //str(load%stiffness))
    end subroutine test_below_loading
+
+   !> contact_profile_unload against solve_contact_unload: 2 pi int p r dr equals the
+   !> unloading force (EP-GW psi 2 and 10 at delta = 8, 4, -0.5 after delta_max = 10,
+   !> sigma = 1) within 2e-5 (the profile's and the force's rel_tol 1e-6 of the peak, the
+   !> trapezoid rule on 6001 nodes over [0, sqrt(2 R (delta_max + 10))]: h**2 p''/12 below
+   !> 1e-6 of P); GW and E-GW (psi = 0) and EP-GW psi
+   !> = 0 give the loading profile at delta (reversible: both within rel_tol 1e-6 of the
+   !> peak, so within 2e-6 of each other); delta >= delta_max the loading profile (the
+   !> same call, bit for bit); bad input named.
+   subroutine test_profile_unload(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 6001
+      type(contact_params) :: params
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: r(n), pr(n), w(n), pl(n), wl(n), force, rmax, nan
+      real(dp), parameter :: psis(2) = [2.0_dp, 10.0_dp], deltas(3) = [8.0_dp, 4.0_dp, -0.5_dp]
+      integer :: i, j, k
+      character(len=64) :: tag
+      do j = 1, 2
+         params = epgw(psis(j), 4.0_dp, 0.6_dp)
+         rmax = sqrt(2.0_dp*params%radius*(10.0_dp + 10.0_dp))
+         r = [(rmax*real(i - 1, dp)/real(n - 1, dp), i=1, n)]
+         do k = 1, 3
+            write (tag, '(a,f0.1,a,f0.2)') " psi = ", psis(j), ", delta = ", deltas(k)
+            call solve_contact_unload(params, solver_options(), deltas(k), 10.0_dp, res, err)
+            if (.not. allocated(err)) call contact_profile_unload(params, solver_options(), &
+               & deltas(k), 10.0_dp, r, pr, w, err)
+            if (allocated(err)) call test_failed(error, err%message//trim(tag))
+            if (allocated(error)) return
+            force = 0.0_dp
+            do i = 2, n
+               force = force + 0.5_dp*(r(i) - r(i - 1))*(r(i)*pr(i) + r(i - 1)*pr(i - 1))
+            end do
+            force = 2.0_dp*pi*force
+            call check(error, force, res%force, "2 pi int p r dr vs P_unload"//trim(tag), &
+               & rel=.true., thr=2.0e-5_dp)
+            if (allocated(error)) return
+            call check(error, all(pr >= 0.0_dp), "negative pressure"//trim(tag))
+            if (allocated(error)) return
+         end do
+      end do
+      ! reversible: the loading profile at delta
+      do j = 1, 3
+         select case (j)
+         case (1)
+            params = contact_params(model=model_gw, sigma=1.0_dp, mu=4.0_dp)
+         case (2)
+            params = contact_params(model=model_egw, sigma=1.0_dp, mu=4.0_dp)
+         case default
+            params = epgw(0.0_dp, 4.0_dp, 0.6_dp)
+         end select
+         call contact_profile_unload(params, solver_options(), 4.0_dp, 10.0_dp, r(1:50), &
+            & pr(1:50), w(1:50), err)
+         if (.not. allocated(err)) call contact_profile(params, solver_options(), 4.0_dp, &
+            & r(1:50), pl(1:50), wl(1:50), err)
+         if (allocated(err)) call test_failed(error, err%message)
+         if (allocated(error)) return
+         call check(error, maxval(abs(pr(1:50) - pl(1:50))) <= 2.0e-6_dp* &
+            & maxval(pl(1:50)) .and. maxval(abs(w(1:50) - wl(1:50))) <= 2.0e-6_dp* &
+            & maxval(abs(wl(1:50))), "reversible model: unloading profile /= loading " &
+            & //"profile, model "//to_string(params%model)//": "// &
+            & str(maxval(abs(pr(1:50) - pl(1:50)))/maxval(pl(1:50))))
+         if (allocated(error)) return
+      end do
+      ! delta >= delta_max: the loading profile
+      params = epgw(2.0_dp, 4.0_dp, 0.6_dp)
+      call contact_profile_unload(params, solver_options(), 10.0_dp, 10.0_dp, r(1:50), &
+         & pr(1:50), w(1:50), err)
+      if (.not. allocated(err)) call contact_profile(params, solver_options(), 10.0_dp, &
+         & r(1:50), pl(1:50), wl(1:50), err)
+      if (allocated(err)) call test_failed(error, err%message)
+      if (allocated(error)) return
+      call check(error, all(pr(1:50) == pl(1:50)), "delta = delta_max: not the loading profile")
+      if (allocated(error)) return
+      ! bad input: NaN delta_max, NaN delta, a negative radius, sizes
+      nan = ieee_value(0.0_dp, ieee_quiet_nan)
+      call contact_profile_unload(params, solver_options(), 4.0_dp, nan, r(1:2), pr(1:2), &
+         & w(1:2), err)
+      call check(error, allocated(err), "NaN delta_max accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. index(err%message, &
+         & "delta_max") > 0, "message: "//err%message)
+      if (allocated(error)) return
+      call contact_profile_unload(params, solver_options(), nan, 10.0_dp, r(1:2), pr(1:2), &
+         & w(1:2), err)
+      call check(error, allocated(err), "NaN delta accepted")
+      if (allocated(error)) return
+      call check(error, index(err%message, "delta") > 0, "message: "//err%message)
+      if (allocated(error)) return
+      call contact_profile_unload(params, solver_options(), 4.0_dp, 10.0_dp, [-1.0_dp], &
+         & pr(1:1), w(1:1), err)
+      call check(error, allocated(err), "negative radius accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. index(err%message, "r(1)") &
+         & > 0, "message: "//err%message)
+      if (allocated(error)) return
+      call contact_profile_unload(params, solver_options(), 4.0_dp, 10.0_dp, r(1:2), &
+         & pr(1:1), w(1:2), err)
+      call check(error, allocated(err), "size mismatch accepted")
+   end subroutine test_profile_unload
 
    !> Inside the Hertz contact the base gap is 0 before and after, and unloading lowers the
    !> summit pressure, so the rough deflection (and with it d) would fall below d_max: there

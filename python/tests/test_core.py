@@ -97,6 +97,30 @@ def test_profile_shapes_and_hertz_limit():
     assert deflection[0] == pytest.approx(delta, rel=1e-12)
 
 
+def test_profile_unload_force_and_reversibility():
+    # EP-GW after delta_max = 10 sigma: 2 pi int p r dr (trapezoid on 6001 nodes to
+    # sqrt(2 R 20 sigma), its error < 1e-6 of P) equals solve_unload's force within 2e-5
+    # (both within rel_tol 1e-6); the loading profile at delta_max >= delta; Hertz
+    # (reversible) unloads on its loading profile bit for bit; NaN delta_max is named.
+    p = egw.Params(model="EP-GW", sigma=1.0, mu=4.0, psi=2.0, hardness_coeff=0.6)
+    rmax = math.sqrt(2 * p.radius * 20.0)
+    r = np.linspace(0.0, rmax, 6001)
+    pr, w = egw.profile(p, 4.0, r, delta_max=10.0)
+    force = 2 * math.pi * np.sum(0.5 * np.diff(r) * (r[1:] * pr[1:] + r[:-1] * pr[:-1]))
+    assert force == pytest.approx(float(egw.solve_unload(p, 4.0, 10.0).force), rel=2e-5)
+    loaded, _ = egw.profile(p, 4.0, r)
+    assert force < 2 * math.pi * np.sum(0.5 * np.diff(r) * (r[1:] * loaded[1:] + r[:-1] * loaded[:-1]))
+    same, _ = egw.profile(p, 10.0, r[:20], delta_max=10.0)
+    np.testing.assert_array_equal(same, egw.profile(p, 10.0, r[:20])[0])
+    h = egw.Params(model="Hertz", radius=1.0, modulus=1.0)
+    rr = np.array([0.0, 0.1, 0.3])
+    np.testing.assert_array_equal(egw.profile(h, 0.04, rr, delta_max=0.09)[0],
+                                  egw.profile(h, 0.04, rr)[0])
+    with pytest.raises(egw.InvalidArgumentError) as info:
+        egw.profile(h, 0.04, rr, delta_max=float("nan"))
+    assert "delta_max" in info.value.message
+
+
 def test_errors_name_the_parameter_and_leave_no_nan():
     with pytest.raises(egw.InvalidArgumentError) as info:
         egw.solve(egw.Params(radius=-1.0, sigma=1e-3), 0.01)

@@ -1389,11 +1389,38 @@ static int r_scene_read(void) {
   return st;
 }
 
+/* egw_set_progress: the hook (NULL: off) hears a rough solve on this thread, done in
+ * [0, 1] with a stage, the user pointer as given; NULL hears nothing. */
+static int progress_calls, progress_bad;
+static void *progress_user;
+static void fuzz_progress(double done, const char *stage, void *user) {
+  progress_calls++;
+  if (!(done >= 0.0 && done <= 1.0) || stage == NULL || user != progress_user) progress_bad++;
+}
+static int r_set_progress(void) {
+  egw_params p;
+  egw_result r;
+  int st;
+  egw_params_default(&p);
+  p.model = EGW_MODEL_EGW; p.sigma = 1e-3; p.mu = 4.0;
+  progress_calls = progress_bad = 0;
+  progress_user = P(1, &progress_calls);
+  egw_set_progress(cur->slot == 0 ? NULL : fuzz_progress, progress_user);
+  st = egw_solve(&p, NULL, 1e-3, &r);
+  egw_set_progress(NULL, NULL);
+  if (progress_bad || (cur->slot == 0) != (progress_calls == 0)) {
+    cur->silent = 1;
+    note("", "progress hook called wrongly", (double)progress_calls);
+  }
+  return st;
+}
+
 static fz_function functions[] = {
     {"egw_get_version", 0, {{0}}, r_version, 0},
     {"egw_status_message", 3, {{"status", K_INT}, {"buf", K_PTR}, {"buflen", K_INT}},
      r_status_message, 0},
     {"egw_last_error", 2, {{"buf", K_PTR}, {"buflen", K_INT}}, r_last_error, 0},
+    {"egw_set_progress", 2, {{"hook", K_PTR}, {"user", K_PTR}}, r_set_progress, 0},
     {"egw_params_validate", 9, {PARAM_SLOTS("p."), {"p", K_PTR}}, r_params, 0},
     {"egw_mu_from_summits", 5,
      {{"summit_density", K_DBL}, {"summit_radius", K_DBL}, {"sigma", K_DBL}, {"radius", K_DBL},

@@ -29,6 +29,8 @@ Method (independent of egw's rings with constant pressure, midpoint collocation 
   differences do not decrease monotonically.
 
 Run: python tools/reference/cap_reference.py [--m 40] [--out test/data/cap_reference.csv]
+     python tools/reference/cap_reference.py --profile 2 5 20 (loading p(rho), w(rho))
+     python tools/reference/cap_reference.py --profile-unload 10 0.99 0.9 0.8 (unloading p)
 """
 import argparse
 import os
@@ -150,7 +152,7 @@ def load_at_delta(delta, m):
     return (c,) + load_at_c(c, m)
 
 
-def unload_state(b, f_of_rho, m, c=None):
+def unload_state(b, f_of_rho, m, c=None, nodes_too=False):
     """Unloading with contact radius b: (Delta, P). Nodes b sin(pi i/(2m)); when b > c
     (the loading's cap radius, where f has its steep shoulder), sine nodes on [0, c] and
     Chebyshev-Lobatto nodes on [c, b]."""
@@ -168,6 +170,8 @@ def unload_state(b, f_of_rho, m, c=None):
     M[:, m] = -1.0
     x = np.linalg.solve(M, -f_of_rho(nodes))
     p = np.concatenate([x[:m], [0.0]])
+    if nodes_too:
+        return x[m], force_linear(nodes, p), p, nodes
     return x[m], force_linear(nodes, p), p
 
 
@@ -266,11 +270,73 @@ def richardson(q):
     return ext, err, order
 
 
+def profile(delta, ms):
+    """Loading profile at Delta: p(rho) [p_y] and w(rho) [delta_y] at rho = 0.5 c, c + f (a -
+    c) for f = 0.1 ... 0.9 and 1.1 a, 1.5 a (c, a of the finest level), each at m, 2m, 4m
+    rings (p piecewise linear between the ring nodes, exactly the discrete solution; w on
+    [0, a] is Delta - rho^2/2, beyond a the rings' w_linear) and Richardson-extrapolated.
+    Prints one line per radius: rho p p_err w w_err."""
+    sols = [load_at_delta(delta, m) for m in ms]
+    c, _, _, a, _, _ = sols[-1]
+    rhos = [0.5 * c] + [c + f * (a - c) for f in (0.1, 0.3, 0.5, 0.7, 0.9)] + [1.1 * a, 1.5 * a]
+    print(f"# Delta = {delta}: c = {c!r}, a = {a!r}")
+    for rho in rhos:
+        ps, ws = [], []
+        for cc, dd, _, aa, nodes, p in sols:
+            if nodes is None:
+                ps.append(1.0 if rho <= aa else 0.0)
+                ws.append(dd - 0.5 * rho**2 if rho <= aa else
+                          (2 / PI**2) * disk(np.array([rho]), np.array([aa]))[0])
+                continue
+            ps.append(1.0 if rho <= cc else float(np.interp(rho, nodes, p, right=0.0)))
+            ws.append(dd - 0.5 * rho**2 if rho <= aa else float(w_linear([rho], nodes, p)[0]))
+        pe, perr, _ = richardson(ps)
+        we, werr, _ = richardson(ws)
+        print(f"{rho!r} {pe!r} {perr:.2e} {we!r} {werr:.2e}")
+
+
+def profile_unload(dm, fracs, ms):
+    """Unloading pressure after loading to Delta_m, at Delta = frac Delta_m: p(rho) [p_y] at
+    rho = (0, 0.3, 0.6, 0.8, 0.9, 0.97) b (b the finest level's contact radius), p piecewise
+    linear between the unloading nodes, at m, 2m, 4m and Richardson-extrapolated. Prints
+    rho p p_err per radius."""
+    lds = [Loaded(load_at_delta(dm, m)[0], m) for m in ms]
+    for frac in fracs:
+        d = frac * dm
+        sols = []
+        for ld in lds:
+            b = brentq(lambda bb: ld.unload(bb)[0] - d, 1e-6 * ld.a, ld.a, xtol=1e-15,
+                       rtol=1e-15)
+            _, force, p, nodes = unload_state(b, ld.f, ld.m, ld.c, nodes_too=True)
+            sols.append((b, force, p, nodes))
+        b = sols[-1][0]
+        fe, ferr, _ = richardson([s_[1] for s_ in sols])
+        print(f"# Delta_m = {dm}, Delta = {d!r}: b = {b!r}, P = {fe!r} +- {ferr:.1e}")
+        for x in (0.0, 0.3, 0.6, 0.8, 0.9, 0.97):
+            rho = x * b
+            ps = [float(np.interp(rho, nodes, p, right=0.0)) for _, _, p, nodes in sols]
+            pe, perr, _ = richardson(ps)
+            print(f"{rho!r} {pe!r} {perr:.2e}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--m", type=int, default=40)
     ap.add_argument("--out", default="test/data/cap_reference.csv")
+    ap.add_argument("--profile", type=float, nargs="*",
+                    help="print the loading profile at these Delta (see profile) and stop")
+    ap.add_argument("--profile-unload", type=float, nargs="*",
+                    help="DELTA_M FRAC...: print the unloading pressure at Delta = FRAC "
+                    "Delta_m (see profile_unload) and stop")
     args = ap.parse_args()
+    if args.profile_unload:
+        profile_unload(args.profile_unload[0], args.profile_unload[1:],
+                       [args.m, 2 * args.m, 4 * args.m])
+        return
+    if args.profile:
+        for d in args.profile:
+            profile(d, [args.m, 2 * args.m, 4 * args.m])
+        return
     _force_linear_check()
     ms = [args.m, 2 * args.m, 4 * args.m]
     # self-checks: Hertz (f = rho^2/2, b = 1.3: Delta = b^2, P = b^3) and first yield

@@ -19,6 +19,7 @@ from .impact import first_yield, FirstYield, Restitution, restitution, time_step
 from .scene import ModelChoice, Scene, build, choose
 from .tables import HysteresisInfo, HysteresisTable, Table, TableInfo, UniversalTable
 from .flat_law import FlatLaw
+from .progress import set_progress
 from .surface_choice import SurfaceChoice, choose_for_surface
 from . import topography
 from .topography import contact_from_topography, psi_from_hardness
@@ -34,4 +35,4 @@ __all__ = ["EgwError", "FileError", "InvalidArgumentError", "NotConvergedError",
            "IgnoredParameterWarning", "PointFailedWarning", "TimeStep", "effective_modulus",
            "errstate", "time_step", "contact_from_topography", "FlatLaw", "FirstYield",
            "first_yield",
-           "SurfaceChoice", "choose_for_surface"]
+           "SurfaceChoice", "choose_for_surface", "set_progress"]

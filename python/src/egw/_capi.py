@@ -9,10 +9,10 @@ from __future__ import annotations
 import ctypes
 import ctypes.util
 import os
-from ctypes import POINTER, c_char_p, c_double, c_int, c_void_p
+from ctypes import CFUNCTYPE, POINTER, c_char_p, c_double, c_int, c_void_p
 
 __all__ = ["lib", "has", "Params", "Options", "Result", "TableInfo", "Scene",
-           "ModelChoice", "SCENE_MAX_TYPES"]
+           "ModelChoice", "SCENE_MAX_TYPES", "PROGRESS_FN"]
 
 SCENE_MAX_TYPES = 8
 
@@ -96,6 +96,8 @@ class ModelChoice(ctypes.Structure):
 
 
 _dp = POINTER(c_double)
+# egw_progress_fn: void (*)(double done, const char *stage, void *user)
+PROGRESS_FN = CFUNCTYPE(None, c_double, c_char_p, c_void_p)
 _ip = POINTER(c_int)
 _P, _O = POINTER(Params), POINTER(Options)
 
@@ -104,6 +106,7 @@ _SIGNATURES = {
     "egw_get_version": (c_int, []),
     "egw_status_message": (c_int, [c_int, c_char_p, c_int]),
     "egw_last_error": (c_int, [c_char_p, c_int]),
+    "egw_set_progress": (None, [PROGRESS_FN, c_void_p]),
     "egw_params_default": (None, [_P]),
     "egw_params_validate": (c_int, [_P]),
     "egw_mu_from_summits": (c_int, [c_double, c_double, c_double, c_double, _dp]),
@@ -123,6 +126,7 @@ _SIGNATURES = {
     "egw_restitution": (c_int, [_P, _O, c_double, c_double, _dp]),
     "egw_restitution_energy": (c_int, [_P, _O, c_double, c_double, _dp, _dp, _dp]),
     "egw_profile": (c_int, [_P, _O, c_double, c_int, _dp, _dp, _dp]),
+    "egw_profile_unload": (c_int, [_P, _O, c_double, c_double, c_int, _dp, _dp, _dp]),
     "egw_table_build": (c_int, [_P, _O, c_double, c_double, c_double, POINTER(c_void_p)]),
     "egw_table_eval": (c_int, [c_void_p, c_double, _dp, _dp]),
     "egw_table_eval_array": (c_int, [c_void_p, c_int, _dp, _dp, _dp]),

@@ -32,7 +32,9 @@ class SolveResult:
     stiffness : dP/ddelta [force/length].
     contact_radius : effective contact radius a* [length].
     max_pressure : largest pressure of the profile [pressure].
-    est_rel_err : estimated relative error of the force.
+    est_rel_err : estimated error of the force relative to |force| (1 for force 0).
+        Unloading after a capped loading is accepted against rel_tol/2 of
+        max(|force|, 1e-6 force(delta_max)), so below that floor it may exceed rel_tol.
     iterations : nonlinear iterations of the final solve (-1 for a failed point under
         ``errstate(failed="nan")``).
     """
@@ -192,8 +194,20 @@ def solve_unload(params: Params, delta: ArrayLike, delta_max: ArrayLike,
 
 
 def profile(params: Params, delta: float, r: ArrayLike,
-            options: Optional[Options] = None) -> Tuple[NDArray[np.float64], NDArray[np.float64]]:
+            options: Optional[Options] = None, *, delta_max: Optional[float] = None
+            ) -> Tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Total pressure p(r) and surface deflection w(r) of the solved contact at delta.
+
+    With ``delta_max`` the contact is the unloading (or reloading) one after the largest
+    overlap ``delta_max`` (C ``egw_profile_unload``; its force is :func:`solve_unload`'s):
+    EP-GW takes the rough unloading law, reversible models (Hertz below first yield, GW,
+    E-GW, psi = 0) give the loading profile at delta, and the smooth sphere with the
+    flow-pressure cap loaded beyond first yield its elastic contact of the deformed shape
+    (a rough sphere with the cap: its total pressure <= p_y).
+    ``delta >= delta_max`` is the loading profile. With the cap (smooth sphere, loading or
+    unloading) the deflection is the surfaces' total normal displacement, elastic plus the
+    plastic crater, so that ``r**2/(2R) - delta + w`` is 0 on the contact; the cap's
+    pressures come from its solver's rings (within ~1.5e-5 p_y, whatever rel_tol).
 
     Parameters
     ----------
@@ -206,6 +220,8 @@ def profile(params: Params, delta: float, r: ArrayLike,
 
     options : Options, optional
         Solver options.
+    delta_max : float, optional
+        Largest overlap reached before [length] (keyword only): the unloading profile.
 
     Returns
     -------
@@ -215,7 +231,10 @@ def profile(params: Params, delta: float, r: ArrayLike,
     Raises
     ------
     InvalidArgumentError
-        Invalid parameters, a NaN overlap or a negative radius.
+        Invalid parameters, a NaN overlap or delta_max, or a negative radius.
+    EgwError
+        The unloading profile (delta_max given) of a rough sphere with the cap
+        after a history the small-sigma route loaded (status EGW_UNSUPPORTED).
     NotConvergedError
         The solve did not converge.
     """
@@ -223,6 +242,12 @@ def profile(params: Params, delta: float, r: ArrayLike,
     radii = _array(r, "r").reshape(-1).copy()
     pressure = np.empty_like(radii)
     deflection = np.empty_like(radii)
-    check(lib.egw_profile(ctypes.byref(p), _options(options), float(delta), radii.size,
-                          _double_ptr(radii), _double_ptr(pressure), _double_ptr(deflection)))
+    if delta_max is None:
+        check(lib.egw_profile(ctypes.byref(p), _options(options), float(delta), radii.size,
+                              _double_ptr(radii), _double_ptr(pressure),
+                              _double_ptr(deflection)))
+    else:
+        check(lib.egw_profile_unload(ctypes.byref(p), _options(options), float(delta),
+                                     float(delta_max), radii.size, _double_ptr(radii),
+                                     _double_ptr(pressure), _double_ptr(deflection)))
     return pressure, deflection

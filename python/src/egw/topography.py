@@ -38,7 +38,7 @@ import sys
 
 from .topo_maps import (  # noqa: F401
     LENGTH_UNITS, HeightMap, read_height_map, detrend, sum_surface, DEFAULTS,
-    default_detrend, default_derivatives, height_map, coarse_grain)
+    default_detrend, default_derivatives, height_map, coarse_grain, MAP_SCALE)
 from .topo_spectra import Moments, spectral_moments  # noqa: F401
 from .topo_summits import (  # noqa: F401
     ALPHA_WARN, SUMMITS_WARN, TopographyWarning, SummitStatistics, mccool, identify_summits,

@@ -3,13 +3,15 @@
 !> egw_error into a status code plus a per-thread last-error message.
 module egw_capi
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_associated, c_f_pointer, &
-      & c_null_ptr
+      & c_null_ptr, c_funptr, c_null_funptr, c_f_procpointer, c_char, c_null_char
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, status_message, format_real, tolerance_context
    use egw_params, only: contact_params, mu_from_summits, psi_from_hardness
    use egw_version, only: egw_version_number
+   use egw_progress, only: set_progress
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
+      & contact_profile_unload, &
       & solve_contact_unload
    use egw_impact, only: restitution, time_step
    use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
@@ -41,9 +43,47 @@ module egw_capi
          real(dp), intent(out) :: value
          type(egw_error), allocatable, intent(out) :: error
       end subroutine of_modulus
+      !> The C progress hook of egw_set_progress (include/egw.h).
+      subroutine c_progress_hook(done, stage, user) bind(C)
+         import :: c_double, c_char, c_ptr
+         real(c_double), value, intent(in) :: done
+         character(kind=c_char), intent(in) :: stage(*)
+         type(c_ptr), value, intent(in) :: user
+      end subroutine c_progress_hook
    end interface
 
+   !> This thread's C progress hook and its user pointer (egw_set_progress): per thread,
+   !> as egw_progress's hook that forwards to it (report_c).
+   type(c_funptr), save :: c_hook = c_null_funptr
+   type(c_ptr), save :: c_user = c_null_ptr
+   !$omp threadprivate(c_hook, c_user)
+
 contains
+
+   !> C: egw_set_progress: this thread's progress hook (NULL: off) and its user pointer.
+   subroutine egw_set_progress(hook, user) bind(C, name="egw_set_progress")
+      type(c_funptr), value, intent(in) :: hook
+      type(c_ptr), value, intent(in) :: user
+      c_hook = hook
+      c_user = user
+      if (c_associated(hook)) then
+         call set_progress(report_c)
+      else
+         call set_progress()
+      end if
+   end subroutine egw_set_progress
+
+   !> egw_progress's hook on a thread with a C hook: done and the stage, NUL-terminated.
+   subroutine report_c(done, stage)
+      real(dp), intent(in) :: done
+      character(len=*), intent(in) :: stage
+      procedure(c_progress_hook), pointer :: hook
+      character(kind=c_char, len=len(stage) + 1) :: text
+      if (.not. c_associated(c_hook)) return
+      call c_f_procpointer(c_hook, hook)
+      text = stage//c_null_char
+      call hook(real(done, c_double), text, c_user)
+   end subroutine report_c
 
    !> 10000*major + 100*minor + patch.
    function egw_get_version() result(version) bind(C, name="egw_get_version")
@@ -373,6 +413,39 @@ contains
       cp = pr
       cw = w
    end function egw_profile
+
+   !> C: egw_profile_unload: pressure and deflection of the unloading (reloading) solve
+   !> at delta after the largest overlap delta_max, at given radii.
+   function egw_profile_unload(p, o, delta, delta_max, n, r, pressure, deflection) &
+      & result(stat) bind(C, name="egw_profile_unload")
+      !> C: `const egw_params *p`; `const egw_options *o` (NULL: the defaults); `const
+      !> double *r`; `double *pressure` (out); `double *deflection` (out)
+      type(c_ptr), value, intent(in) :: p, o, r, pressure, deflection
+      !> C: `double delta`; `double delta_max`
+      real(c_double), value, intent(in) :: delta, delta_max
+      integer(c_int), value, intent(in) :: n   !< C: `int n`
+      integer(c_int) :: stat
+      type(contact_params) :: params
+      type(solver_options) :: options
+      real(c_double), pointer :: cr(:), cp(:), cw(:)
+      real(dp), allocatable :: pr(:), w(:)
+      type(egw_error), allocatable :: error
+      stat = check_count(n)
+      if (stat == egw_ok) stat = read_contact(p, o, params, options)
+      if (stat == egw_ok) stat = require(r, "r")
+      if (stat == egw_ok) stat = require(pressure, "pressure")
+      if (stat == egw_ok) stat = require(deflection, "deflection")
+      if (stat /= egw_ok) return
+      call c_f_pointer(r, cr, [n])
+      call c_f_pointer(pressure, cp, [n])
+      call c_f_pointer(deflection, cw, [n])
+      allocate (pr(n), w(n))
+      call contact_profile_unload(params, options, delta, delta_max, cr, pr, w, error)
+      stat = settle(error)
+      if (stat /= egw_ok) return
+      cp = pr
+      cw = w
+   end function egw_profile_unload
 
    ! ---------------------------------------------------------------- helpers
 

@@ -575,7 +575,10 @@ contains
       allocate (point_stat(n))
       point_stat = egw_ok
       stop_now = .false.
-      if (threads > 0) then
+      ! (one point runs on the calling thread: a parallel region, even of one busy
+      ! thread, would silence its progress reports, egw_progress; Python's scalar calls
+      ! are arrays of one point)
+      if (threads > 1 .and. n > 1) then
          !$omp parallel do schedule(dynamic, 1) num_threads(threads) default(shared)
          do i = 0, n - 1
             call run_one(task, i, flags, stop_now, point_stat(i + 1))

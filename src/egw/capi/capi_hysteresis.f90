@@ -5,6 +5,7 @@ module egw_capi_hysteresis
       & c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
       & ieee_negative_inf
+   use egw_progress, only: progress_begin, progress_end, progress_count
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_out_of_range, egw_out_of_memory, format_real, &
       & int_str, tolerance_context
@@ -50,7 +51,10 @@ contains
       if (stat /= egw_ok) return
       stat = new_table(h)
       if (stat /= egw_ok) return
-      call build_hysteresis_cached(params, options, delta_min, delta_max, rel_tol, h, error)
+      call progress_begin("table build")
+      call build_hysteresis_cached(params, options, delta_min, delta_max, rel_tol, h, error, &
+         & progress_count)
+      call progress_end("table build")
       ! in the caller's terms (its curves are solved at a tenth of rel_tol)
       if (allocated(error)) call tolerance_context(error, "hysteresis table", rel_tol, &
          & min(options%rel_tol, 0.1_dp*rel_tol))

@@ -6,6 +6,7 @@
 module egw_capi_scene
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc
+   use egw_progress, only: progress_begin, progress_end, progress_count
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, fatal_error, format_real
    use egw_rough_sphere, only: solver_options
@@ -142,8 +143,11 @@ contains
       if (stat == egw_ok) stat = resolved(s, scene)
       if (stat /= egw_ok) return
       call read_options(o, options)
+      call progress_begin("table build")
       call choose_model(scene, options, mc, error)
-      if (.not. allocated(error)) call build_scene_tables(scene, mc, options, built, error)
+      if (.not. allocated(error)) call build_scene_tables(scene, mc, options, built, error, &
+         & progress_count)
+      call progress_end("table build")
       stat = settle(error)
       if (stat /= egw_ok) return
       call c_f_pointer(choice, cc)

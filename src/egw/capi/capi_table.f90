@@ -6,6 +6,7 @@ module egw_capi_table
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, &
       & c_associated, c_f_pointer, c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+   use egw_progress, only: progress_begin, progress_end, progress_count
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_invalid_parameter, egw_out_of_range, &
       & egw_out_of_memory, format_real, int_str, tolerance_context
@@ -57,7 +58,10 @@ contains
       if (stat /= egw_ok) return
       allocate (t)
       ! (flow_pressure is refused by the build, before any cache lookup)
-      call build_table_cached(params, options, delta_min, delta_max, rel_tol, t, error)
+      call progress_begin("table build")
+      call build_table_cached(params, options, delta_min, delta_max, rel_tol, t, error, &
+         & progress=progress_count)
+      call progress_end("table build")
       stat = put_handle_settled(out, c_loc(t), error)
       if (stat /= egw_ok) deallocate (t)
    end function egw_table_build
@@ -446,8 +450,11 @@ contains
       if (stat == egw_ok) stat = refuse_cap(params, "a universal table")
       if (stat /= egw_ok) return
       allocate (u)
+      call progress_begin("table build")
       call build_universal_cached(params%model, params%psi, params%hardness_coeff, &
-         & params%plastic_ratio, options, mu_min, mu_max, x_min, x_max, rel_tol, u, error)
+         & params%plastic_ratio, options, mu_min, mu_max, x_min, x_max, rel_tol, u, error, &
+         & progress=progress_count)
+      call progress_end("table build")
       ! in the caller's terms (its slices are solved at a tenth of rel_tol)
       if (allocated(error)) call tolerance_context(error, "universal table", rel_tol, &
          & min(options%rel_tol, 0.1_dp*rel_tol))

@@ -55,9 +55,11 @@ module egw_cache
    !> the local force (format version 3), their delta_max intervals at m = 0 split down to
    !> 1/32 of the others' width limit; 21: both of 19 and 20 (branch local10's 19 and 20
    !> had the log-ratio tables without 19's map, main's 19 not the log-ratio tables);
+   !> 22: rough + cap unloading's plastic shift in the deep zone from one root of law = p_y
+   !> per mesh (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids;
    !> 23: the log-ratio curves' s bisection weighted by the largest weight of each interval
-   !> (ends and middle), not the middle's (main's 22 has no log-ratio tables)).
-   integer, parameter, public :: cache_revision = 23
+   !> (ends and middle), not the middle's (branch local12); 24: both of 22 and 23.
+   integer, parameter, public :: cache_revision = 24
 
 
 contains
@@ -86,15 +88,16 @@ contains
    end subroutine cache_directory
 
    !> build_table through the cache: the same table, read back when this build was done
-   !> before. hit reports which (optional).
+   !> before. hit reports which (optional); progress as build_table's.
    subroutine build_table_cached(params, options, delta_min, delta_max, rel_tol, table, &
-      & error, hit)
+      & error, hit, progress)
       type(contact_params), intent(in) :: params   !< one parameter set
       type(solver_options), intent(in) :: options  !< of the solves
       real(dp), intent(in) :: delta_min, delta_max, rel_tol   !< as build_table
       type(force_table), intent(out) :: table   !< the table; empty on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       logical, intent(out), optional :: hit   !< true when read from the cache
+      procedure(table_progress), optional :: progress   !< as build_table
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
       logical :: found
@@ -112,14 +115,14 @@ contains
       end if
       if (present(hit)) hit = found
       if (found) return
-      call build_table(params, options, delta_min, delta_max, rel_tol, table, error)
+      call build_table(params, options, delta_min, delta_max, rel_tol, table, error, progress)
       if (allocated(error) .or. len(path) == 0) return
       call write_table(table, path, format_binary, ignored)
    end subroutine build_table_cached
 
    !> build_universal through the cache (arguments as build_universal).
    subroutine build_universal_cached(model, psi, hardness_coeff, plastic_ratio, options, &
-      & mu_min, mu_max, x_min, x_max, rel_tol, u, error, hit)
+      & mu_min, mu_max, x_min, x_max, rel_tol, u, error, hit, progress)
       integer, intent(in) :: model   !< model of the slices
       real(dp), intent(in) :: psi, hardness_coeff, plastic_ratio   !< EP-GW parameters
       type(solver_options), intent(in) :: options   !< of the solves
@@ -127,6 +130,7 @@ contains
       type(universal_table), intent(out) :: u   !< the table; empty on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       logical, intent(out), optional :: hit   !< true when read from the cache
+      procedure(table_progress), optional :: progress   !< as build_universal
       character(len=:), allocatable :: path
       type(egw_error), allocatable :: ignored
       logical :: found
@@ -140,7 +144,7 @@ contains
       if (present(hit)) hit = found
       if (found) return
       call build_universal(model, psi, hardness_coeff, plastic_ratio, options, mu_min, &
-         & mu_max, x_min, x_max, rel_tol, u, error)
+         & mu_max, x_min, x_max, rel_tol, u, error, progress)
       if (allocated(error) .or. len(path) == 0) return
       call write_universal(u, path, format_binary, ignored)
    end subroutine build_universal_cached

@@ -32,7 +32,7 @@ module egw_halfspace
 
    public :: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index
    public :: influence_row, assemble_influence, interpolate_nodal, halfspace_kernel
-   public :: influence_cache, assemble_influence_cached
+   public :: influence_cache, assemble_influence_cached, cached_point_values, keep_point_values
    public :: gauss_legendre
 
    !> Points of the plain rule on near pieces and of the log-product rule. Max error on the
@@ -86,6 +86,10 @@ module egw_halfspace
       real(dp), allocatable :: node(:)       !< its deflection nodes
       !> (n_elem*n_gauss, nodes): the matrix transposed, a node's row contiguous
       real(dp), allocatable :: rows(:, :)
+      !> values its caller keeps at the mesh's Gauss points (keep_point_values), and the
+      !> caller's key for them (values under another key are not served)
+      real(dp), allocatable :: point_values(:)
+      real(dp) :: key = 0.0_dp
    end type cached_matrix
 
    !> The influence matrices of the last few meshes of one caller (one solve's levels),
@@ -645,6 +649,7 @@ contains
          do j = 1, cache_meshes
             if (allocated(cache%slot(j)%edge)) deallocate (cache%slot(j)%edge, &
                & cache%slot(j)%node, cache%slot(j)%rows)
+            if (allocated(cache%slot(j)%point_values)) deallocate (cache%slot(j)%point_values)
          end do
          cache%n_gauss = ng
       end if
@@ -700,6 +705,7 @@ contains
       infl = transpose(rows)
       if (size(infl, kind=8) > int(cache_max_entries, 8)) return
       slot = modulo(cache%last, cache_meshes) + 1
+      if (allocated(cache%slot(slot)%point_values)) deallocate (cache%slot(slot)%point_values)
       cache%slot(slot)%edge = mesh%edge
       cache%slot(slot)%node = mesh%node
       call move_alloc(rows, cache%slot(slot)%rows)
@@ -714,6 +720,54 @@ contains
          end if
       end subroutine row_of
    end subroutine assemble_influence_cached
+
+   !> Values a caller kept (keep_point_values, under the same key) at the Gauss points of
+   !> the cached meshes' elements that mesh shares (the same two edges, so the same Gauss
+   !> radii): values(i) and known(i) = .true. there, the most recent mesh first; known
+   !> .false. elsewhere (values(i) then unset).
+   pure subroutine cached_point_values(cache, mesh, key, values, known)
+      type(influence_cache), intent(in) :: cache   !< a solve's cache
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
+      real(dp), intent(in) :: key   !< as keep_point_values'
+      real(dp), intent(out) :: values(:)   !< (n_elem*n_gauss)
+      logical, intent(out) :: known(:)   !< (n_elem*n_gauss)
+      integer :: k, slot, e, c, ng, elem_at(mesh%n_elem)
+      known = .false.
+      values = 0.0_dp
+      ng = mesh%n_gauss
+      if (cache%n_gauss /= ng) return
+      do k = 0, cache_meshes - 1
+         slot = modulo(cache%last - 1 - k, cache_meshes) + 1
+         if (.not. allocated(cache%slot(slot)%point_values)) cycle
+         if (cache%slot(slot)%key /= key) cycle
+         call match_elements(mesh%edge, cache%slot(slot)%edge, elem_at)
+         do e = 1, mesh%n_elem
+            c = elem_at(e)
+            if (c == 0) cycle
+            if (known((e - 1)*ng + 1)) cycle
+            values((e - 1)*ng + 1:e*ng) = cache%slot(slot)%point_values((c - 1)*ng + 1:c*ng)
+            known((e - 1)*ng + 1:e*ng) = .true.
+         end do
+      end do
+   end subroutine cached_point_values
+
+   !> Keep values at mesh's Gauss points under key with the cache's entry of mesh (the one
+   !> assemble_influence_cached stored last; nothing if it did not store mesh).
+   pure subroutine keep_point_values(cache, mesh, key, values)
+      type(influence_cache), intent(inout) :: cache   !< a solve's cache
+      type(radial_mesh), intent(in) :: mesh   !< the mesh assemble_influence_cached took last
+      real(dp), intent(in) :: key   !< the caller's key
+      real(dp), intent(in) :: values(:)   !< (n_elem*n_gauss)
+      integer :: slot
+      slot = cache%last
+      if (slot == 0) return
+      if (.not. allocated(cache%slot(slot)%edge)) return
+      if (size(cache%slot(slot)%edge) /= size(mesh%edge)) return
+      if (any(cache%slot(slot)%edge /= mesh%edge)) return
+      if (size(values) /= mesh%n_elem*mesh%n_gauss) return
+      cache%slot(slot)%point_values = values
+      cache%slot(slot)%key = key
+   end subroutine keep_point_values
 
    !> at(i) = k where b(k) == a(i) exactly, else 0 (a and b increasing).
    pure subroutine match_sorted(a, b, at)

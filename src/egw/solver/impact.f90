@@ -18,6 +18,7 @@ module egw_impact
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, egw_unsupported, &
       & fatal_error, &
       & format_real
+   use egw_progress, only: progress_begin, progress_end, progress_part, progress_report
    use egw_params, only: contact_params, model_hertz, validate_params, overlap_ratio_max
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
       & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options
@@ -74,6 +75,8 @@ contains
    !> Accurate to about options%rel_tol. Errors: invalid params/options as solve_contact,
    !> mass or velocity not finite and > 0 (egw_invalid_argument naming it), a failed solve
    !> (egw_not_converged). e, dissipated and max_overlap are untouched on any error.
+   !> Reports progress (egw_progress) as one long call: the loading curve to 0.15
+   !> ("restitution: loading"), the history to 0.5, the unloading integral to 1.
    subroutine restitution(params, options, mass, velocity, e, dissipated, error, max_overlap, &
          & work_load)
       type(contact_params), intent(in) :: params   !< the contact
@@ -86,6 +89,21 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       real(dp), intent(inout), optional :: max_overlap  !< delta_m, the deepest overlap
       real(dp), intent(inout), optional :: work_load    !< W_load as integrated (~ m* v**2/2)
+      call progress_begin("restitution")
+      call impact(params, options, mass, velocity, e, dissipated, error, max_overlap, &
+         & work_load)
+      call progress_end("restitution")
+   end subroutine restitution
+
+   !> restitution's work.
+   subroutine impact(params, options, mass, velocity, e, dissipated, error, max_overlap, &
+         & work_load)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: mass, velocity
+      real(dp), intent(inout) :: e, dissipated
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), intent(inout), optional :: max_overlap, work_load
       type(force_curve) :: curve
       type(solve_result) :: res
       real(dp) :: energy, delta_lo, delta_m, w_load, w_unload, tail_load
@@ -121,6 +139,7 @@ contains
          & *sqrt(params%radius)))**0.4_dp) - delta_lo + params%sigma)
       call turning_point(curve, energy, delta_lo, tail_load, delta_m, w_load, nodes, error)
       if (allocated(error)) return
+      call progress_part(0.15_dp, 0.5_dp)
       call load_history(params, options, delta_m, curve%history, res, error)
       if (allocated(error)) return
       curve%unloading = .true.
@@ -137,7 +156,7 @@ contains
       dissipated = w_load - w_unload
       if (present(max_overlap)) max_overlap = delta_m
       if (present(work_load)) work_load = w_load
-   end subroutine restitution
+   end subroutine impact
 
    !> restitution of a smooth sphere with the flow-pressure cap: egw_cap_sphere's
    !> cap_restitution (e = 1 up to the first-yield speed v_y) on restitution_options;
@@ -290,6 +309,8 @@ contains
          call integrate(curve, a, pa, ka, b, pb, kb, 0, piece, error)
          if (allocated(error)) return
          wb = wa + piece
+         call progress_report(0.15_dp*min(1.0_dp, max(0.0_dp, wb/energy)), &
+            & "restitution: loading")
          nodes = [nodes, b]
          if (wb >= energy) then
             bracketed = .true.
@@ -362,6 +383,8 @@ contains
          total = total + piece
          pa = pb
          ka = kb
+         if (curve%unloading) call progress_report(0.5_dp + 0.5_dp*real(i - 1, dp)/ &
+            & real(size(delta) - 1, dp), "restitution: unloading")
       end do
    end subroutine work
 
@@ -415,6 +438,8 @@ contains
    !> delta)); a DEM step should resolve it too (dt is far below it for tolerance <= 1e-3).
    !> For the fastest impact of a run: slower ones are softer. Errors as restitution, and
    !> tolerance not in (0, 0.1] (egw_invalid_argument); outputs untouched on error.
+   !> Progress (egw_progress): one call, the restitution 0 .. 0.6 of it, the history at
+   !> delta_m 0.6 .. 0.8, the unloading solve 0.8 .. 0.9; the duration's solves are silent.
    subroutine time_step(params, options, mass, velocity, tolerance, duration, step, error)
       type(contact_params), intent(in) :: params   !< the contact
       type(solver_options), intent(in) :: options   !< tolerance of the solves
@@ -424,6 +449,19 @@ contains
       real(dp), intent(inout) :: duration   !< contact duration [time]
       real(dp), intent(inout) :: step       !< largest Verlet time step [time]
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      call progress_begin("time step")
+      call impact_time_step(params, options, mass, velocity, tolerance, duration, step, error)
+      call progress_end("time step")
+   end subroutine time_step
+
+   !> time_step's work.
+   subroutine impact_time_step(params, options, mass, velocity, tolerance, duration, step, &
+         & error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: mass, velocity, tolerance
+      real(dp), intent(inout) :: duration, step
+      type(egw_error), allocatable, intent(out) :: error
       type(loading_history) :: hist
       type(solve_result) :: top, res
       real(dp) :: e, dissipated, delta_m, k_max, omega, t_load, t_unload
@@ -432,9 +470,11 @@ contains
             & format_real(tolerance)//": must lie in (0, 0.1]")
          return
       end if
+      call progress_part(0.0_dp, 0.6_dp)
       call restitution(params, options, mass, velocity, e, dissipated, error, &
          & max_overlap=delta_m)
       if (allocated(error)) return
+      call progress_part(0.6_dp, 0.8_dp)
       call load_history(params, options, delta_m, hist, top, error)
       if (allocated(error)) return
       if (above_first_yield(params, delta_m)) then
@@ -445,6 +485,7 @@ contains
          if (allocated(error)) return
          if (.not. top%stiffness > 0.0_dp) top%stiffness = res%stiffness
       else
+         call progress_part(0.8_dp, 0.9_dp)
          call solve_unload(hist, delta_m, res, error)
          if (allocated(error)) return
       end if
@@ -461,7 +502,7 @@ contains
       omega = sqrt(k_max/mass)
       step = min(sqrt(tolerance/(2*verlet_error)), 0.5_dp)/omega
       duration = t_load + t_unload
-   end subroutine time_step
+   end subroutine impact_time_step
 
    !> The unloading stiffness at the turning point delta_max (> delta_y) of a smooth sphere
    !> with the flow-pressure cap: cap_unload at delta_max on the public solves' options,

@@ -51,7 +51,9 @@ contains
    !> pivots and operations as dgetf2 but for the order of the trailing updates: two
    !> columns are eliminated per sweep of the trailing matrix (a rank-2 update), which
    !> halves the passes over it (the solver's n ~ 100-400 fit in L2 and the rank-1
-   !> sweeps were bound by its bandwidth).
+   !> sweeps were bound by its bandwidth). Four columns at a time (panel_of_four): the
+   !> two rank-2 updates of a trailing column in one sweep, each entry still updated by
+   !> the same two expressions in the same order, so the factors are the same to the bit.
    pure subroutine lu_factor(n, a, ipiv, info)
       integer, intent(in) :: n   !< order of the matrix
       real(dp), intent(inout) :: a(n, n)   !< in: A; out: its L and U factors
@@ -61,15 +63,20 @@ contains
       real(dp) :: u1, u2
       info = 0
       k = 1
+      do while (k + 3 < n)
+         call panel_of_four(n, a, k, ipiv, info)
+         if (info /= 0) return
+         k = k + 4
+      end do
       do while (k <= n)
          call pivot_column(n, a, k, ipiv, info)
          if (info /= 0 .or. k == n) return
-         ! column k + 1 updated with column k alone, then its own pivot
+         ! column k + 1 from column k alone, then its pivot
          u1 = a(k, k + 1)
          if (u1 /= 0.0_dp) a(k + 1:n, k + 1) = a(k + 1:n, k + 1) - u1*a(k + 1:n, k)
          call pivot_column(n, a, k + 1, ipiv, info)
          if (info /= 0) return
-         ! the columns beyond: rows k + 1 of U, then the rank-2 update below
+         ! the trailing columns: U's two entries, then one rank-2 sweep of the column
          do j = k + 2, n
             u1 = a(k, j)
             u2 = a(k + 1, j) - a(k + 1, k)*u1
@@ -80,6 +87,59 @@ contains
          k = k + 2
       end do
    end subroutine lu_factor
+
+   !> lu_factor's two steps k and k + 2 (k + 3 < n): the panel k .. k + 3 as there (pivot
+   !> rows swapped across the whole matrix), then each trailing column j > k + 3 once: U's
+   !> entries of rows k, k + 1, the first rank-2 update of rows k + 2, k + 3, U's entries
+   !> there, and both rank-2 updates of rows k + 4 .. n in one pass, in lu_factor's order.
+   !> Row swaps and these row-wise updates commute, so every entry gets the operations of
+   !> the two separate sweeps.
+   pure subroutine panel_of_four(n, a, k, ipiv, info)
+      integer, intent(in) :: n, k
+      real(dp), intent(inout) :: a(n, n)
+      integer, intent(inout) :: ipiv(n)
+      integer, intent(inout) :: info
+      integer :: j, i, m
+      real(dp) :: u1, u2, u3, u4
+      do m = k, k + 2, 2
+         call pivot_column(n, a, m, ipiv, info)
+         if (info /= 0) return
+         u1 = a(m, m + 1)
+         if (u1 /= 0.0_dp) a(m + 1:n, m + 1) = a(m + 1:n, m + 1) - u1*a(m + 1:n, m)
+         call pivot_column(n, a, m + 1, ipiv, info)
+         if (info /= 0) return
+         if (m == k + 2) exit
+         do j = k + 2, k + 3
+            u1 = a(k, j)
+            u2 = a(k + 1, j) - a(k + 1, k)*u1
+            a(k + 1, j) = u2
+            if (u1 /= 0.0_dp .or. u2 /= 0.0_dp) a(k + 2:n, j) = a(k + 2:n, j) &
+               & - (u1*a(k + 2:n, k) + u2*a(k + 2:n, k + 1))
+         end do
+      end do
+      do j = k + 4, n
+         u1 = a(k, j)
+         u2 = a(k + 1, j) - a(k + 1, k)*u1
+         a(k + 1, j) = u2
+         if (u1 /= 0.0_dp .or. u2 /= 0.0_dp) a(k + 2:k + 3, j) = a(k + 2:k + 3, j) &
+            & - (u1*a(k + 2:k + 3, k) + u2*a(k + 2:k + 3, k + 1))
+         u3 = a(k + 2, j)
+         u4 = a(k + 3, j) - a(k + 3, k + 2)*u3
+         a(k + 3, j) = u4
+         if (u1 /= 0.0_dp .or. u2 /= 0.0_dp) then
+            if (u3 /= 0.0_dp .or. u4 /= 0.0_dp) then
+               do i = k + 4, n
+                  a(i, j) = (a(i, j) - (u1*a(i, k) + u2*a(i, k + 1))) &
+                     & - (u3*a(i, k + 2) + u4*a(i, k + 3))
+               end do
+            else
+               a(k + 4:n, j) = a(k + 4:n, j) - (u1*a(k + 4:n, k) + u2*a(k + 4:n, k + 1))
+            end if
+         else if (u3 /= 0.0_dp .or. u4 /= 0.0_dp) then
+            a(k + 4:n, j) = a(k + 4:n, j) - (u3*a(k + 4:n, k + 2) + u4*a(k + 4:n, k + 3))
+         end if
+      end do
+   end subroutine panel_of_four
 
    !> lu_factor's step at column c: its pivot (rows c..n, ipiv(c)), the rows swapped
    !> across the whole matrix, the multipliers below it; info = c on an exactly zero

@@ -26,12 +26,16 @@ module egw_rough_sphere
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, model_flat_law, check_scaled_overlap, length_unit, pressure_unit, &
       & force_unit, stiffness_unit, product4
+   use egw_progress, only: progress_begin, progress_end, progress_part, progress_report, &
+      & progress_note
    use egw_smooth_sphere, only: hertz_pressure, hertz_deflection, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_unloading, only: unloading_law_of, unloading_pressure
    use egw_halfspace, only: influence_row
    use egw_flat_law, only: flat_law
+   use egw_sphere_problem, only: force_floor
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
+      & cap_profile, cap_unload_profile, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
@@ -48,7 +52,12 @@ module egw_rough_sphere
       real(dp) :: stiffness = 0.0_dp       !< dP/d(delta), by implicit differentiation
       real(dp) :: contact_radius = 0.0_dp  !< a* = (3 pi/4) int r p dr / int p dr
       real(dp) :: max_pressure = 0.0_dp    !< maximum of the total pressure
-      real(dp) :: est_rel_err = 0.0_dp     !< estimated relative discretisation error of P
+      !> estimated error of P relative to |P| itself: |P_true - P| <~ est_rel_err |P| (1 for
+      !> P = 0). A solve accepts when its error estimate is below rel_tol/2 of |P| or, for
+      !> unloading after a capped loading, of a floor (1e-6 P(delta_max); restitution's
+      !> unloading solves half its work density) if that is larger: below the floor
+      !> est_rel_err can exceed rel_tol (doc/theory.md section 12, "The force floor").
+      real(dp) :: est_rel_err = 0.0_dp
       real(dp) :: residual = 0.0_dp        !< final scaled nonlinear residual
       integer :: iterations = 0            !< nonlinear iterations of the final solve
       integer :: method_used = method_auto !< method that produced the result
@@ -56,12 +65,15 @@ module egw_rough_sphere
 
    public :: validate_options, solve_contact, solve_contact_law, contact_profile
    public :: load_history, solve_unload, solve_contact_unload, unload_profile
+   public :: contact_profile_unload
    public :: unload_start
    public :: above_first_yield, cap_solve_options
 
    !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
    !> tolerance the solver's error estimate can resolve in double precision.
    integer, parameter :: profile_levels = 4
+   !> capped_profile: the cap solver's rings (finest level)
+   integer, parameter :: cap_profile_rings = 256
    !> With the cap: sigma/delta_y at or below which a solve that does not converge takes
    !> the asymptotic route (small_sigma_loading, small_sigma_unload; doc/theory.md §12
    !> "Small sigma"): from 1e-6 down, where the discrete solves fail at some overlaps.
@@ -213,6 +225,7 @@ contains
    !> doc/theory.md §12), if its estimate meets rel_tol; at sigma/delta_y <= 1e-7 a
    !> converged solve of those models is checked against that route
    !> (small_sigma_loading).
+   !> Reports progress (egw_progress) as one long call, stage "solve".
    subroutine solve_contact(params, options, delta, result, error)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
@@ -221,6 +234,24 @@ contains
       !> force [force] >= 0, stiffness [force/length], contact radius [length], ...
       type(solve_result), intent(out) :: result
       !> allocated on failure (result is then not defined)
+      type(egw_error), allocatable, intent(out) :: error
+      if ((params%model == model_hertz .or. params%sigma == 0.0_dp) .and. .not. &
+         & params%flow_pressure > 0.0_dp) then
+         ! (the closed form, ~80 ns: no progress to report, and no 5 ns spent on it)
+         call contact_solve(params, options, delta, result, error)
+         return
+      end if
+      call progress_begin("solve")
+      call contact_solve(params, options, delta, result, error)
+      call progress_end("solve")
+   end subroutine solve_contact
+
+   !> solve_contact's work.
+   subroutine contact_solve(params, options, delta, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -257,8 +288,9 @@ contains
          return
       end if
       call solve_rough(params, options, prob, sol, result, error)
+      call progress_report(0.2_dp, "solve")
       call small_sigma_loading(params, options, delta, prob, result, error)
-   end subroutine solve_contact
+   end subroutine contact_solve
 
    !> The asymptotic route after the discrete loading solve of an extended model with
    !> elastic summits with the cap (asymptotic_applies; doc/theory.md §12 "Small sigma"):
@@ -388,6 +420,9 @@ contains
          wider%sigma = wide_sigmas(k, pair)*delta_y
          wide_prob = scaled(wider, delta)
          call solve_rough(wider, options, wide_prob, sol, wide(k), wide_error)
+         ! (up to 8 such solves after the discrete one: a sign of life; their fractions
+         ! are the caller's)
+         call progress_note("small-sigma route: loading")
          ok = .not. allocated(wide_error)
          if (.not. ok) return
       end do
@@ -532,6 +567,10 @@ contains
       call rough_unload(wider, options, history%wide(k, pair), delta, wide(k, pair), &
          & wide_error)
       solved(k, pair) = merge(-1, 1, allocated(wide_error))
+      ! (at most 4 solves at rel_tol, then 4 tighter: 0.2 .. 1 of the unloading call, the
+      ! pairs' solves at rel_tol counted by k + 2 pair - 2, the tighter ones by 4 more)
+      call progress_report(0.2_dp + 0.1_dp*real(2*pair + k - 2 + merge(4, 0, &
+         & rel_tol < history%options%rel_tol), dp), "small-sigma route: unloading")
    end subroutine wide_unload
 
    !> The small-sigma route's histories of hist (loaded, its params and options; see
@@ -566,6 +605,10 @@ contains
          do k = 1, 2
             wider = hist%params
             wider%sigma = wide_sigmas(k, pair)*delta_y
+            ! (the route's histories: 0.6 .. 1 of the history's call, a quarter each; its
+            ! discrete loading solve takes the most, 16 of 17 s at 1e-6 from 2 delta_y)
+            call progress_part(0.6_dp + 0.1_dp*real(2*pair + k - 3, dp), &
+               & 0.6_dp + 0.1_dp*real(2*pair + k - 2, dp))
             call load_history(wider, wide_options, hist%delta_max, wide_history, res, &
                & wide_error)
             ! (above first yield at sigma = 1e-5 .. 2e-4 delta_y: a rough field, never
@@ -643,8 +686,7 @@ contains
       ! unloading below the residual overlap from 10 delta_y at sigma/delta_y = 1e-10
       ! was refused with an estimate of exactly shrink(1) for it)
       wide_error = 0.0_dp
-      if (wide(1)%force /= 0.0_dp) wide_error = wide(1)%est_rel_err*max(abs(wide(1)%force), &
-         & floor)
+      if (wide(1)%force /= 0.0_dp) wide_error = wide(1)%est_rel_err*abs(wide(1)%force)
       asym%est_rel_err = huge(1.0_dp)
       if (total > 0.0_dp) asym%est_rel_err = (cap%force_error + shrink(1)*wide_error &
          & + abs((wide(1)%force - cap%force)*shrink(1) - (wide(2)%force - cap%force)* &
@@ -697,7 +739,7 @@ contains
          associate (w => wide(order(i)))
             ! (a force 0 with est_rel_err 1 is the underflow answer: error below underflow)
             noise(i) = 0.0_dp
-            if (w%force /= 0.0_dp) noise(i) = w%est_rel_err*max(abs(w%force), floor)
+            if (w%force /= 0.0_dp) noise(i) = w%est_rel_err*abs(w%force)
          end associate
       end do
       est = huge(1.0_dp)
@@ -787,9 +829,8 @@ contains
          end if
          deallocate (error)
       else
-         if (abs(result%force - asym%force) <= result%est_rel_err* &
-            & max(abs(result%force), floor) + asym%est_rel_err*max(abs(asym%force), floor)) &
-            & return
+         if (abs(result%force - asym%force) <= result%est_rel_err*abs(result%force) + &
+            & asym%est_rel_err*max(abs(asym%force), floor)) return
          if (.not. meets) then
             call fatal_error(error, egw_not_converged, "delta = "//format_real(delta)// &
                & ": the discrete solve (force "//format_real(result%force)//", estimate " &
@@ -800,7 +841,26 @@ contains
          end if
       end if
       result = asym
+      ! (the route's estimate is relative to max(|P|, floor): the user's to |P|)
+      result%est_rel_err = relative_to_force(asym%est_rel_err, floor, abs(asym%force))
    end subroutine use_asymptotic
+
+   !> An error estimate relative to max(force, floor) (force >= 0) as one relative to force
+   !> (solve_result%est_rel_err): 1 for force 0 (its error relative to the true force),
+   !> huge(1.0) where the quotient would overflow.
+   pure real(dp) function relative_to_force(est, floor, force) result(rel)
+      real(dp), intent(in) :: est, floor, force
+      real(dp) :: absolute
+      rel = est
+      if (floor <= force) return
+      if (force == 0.0_dp) then
+         rel = 1.0_dp
+         return
+      end if
+      absolute = est*floor
+      rel = huge(1.0_dp)
+      if (force > absolute/huge(1.0_dp)) rel = absolute/force
+   end function relative_to_force
 
    !> Loading solve of a sphere whose local pressure is a rough-flat law of the caller's
    !> (a tabulated, Persson or BEM law; doc/theory.md §11): the law gives the whole
@@ -884,7 +944,9 @@ contains
       if (prob%extended) pmax = max(pmax, &
          & maxval(hertz_pressure(sol%mesh%gauss_r, prob%delta, 1.0_dp, 1.0_dp) + sol%p))
       res%max_pressure = pressure_unit(params)*pmax
-      res%est_rel_err = est
+      ! (est is relative to max(|P|, force_floor): the user's is relative to |P|)
+      res%est_rel_err = relative_to_force(est, force_floor(prob), abs(smooth_force(prob) + &
+         & sol%force))
       res%residual = sol%residual
       res%iterations = sol%iterations
       if (.not. all(ieee_is_finite([res%force, res%stiffness, res%contact_radius, &
@@ -902,6 +964,7 @@ contains
    !> (delta_max not finite: egw_invalid_argument naming delta_max); history and result
    !> are left untouched on any error. A delta_max so far apart that the summit pressure
    !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
+   !> Reports progress (egw_progress) as one long call, stage "history".
    recursive subroutine load_history(params, options, delta_max, history, result, error)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the loading solve and of the unloading solves that follow
@@ -911,6 +974,19 @@ contains
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      call progress_begin("history")
+      call history_load(params, options, delta_max, history, result, error)
+      call progress_end("history")
+   end subroutine load_history
+
+   !> load_history's work.
+   recursive subroutine history_load(params, options, delta_max, history, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max
+      type(loading_history), intent(inout) :: history
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
       type(loading_history) :: hist
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -925,6 +1001,9 @@ contains
       end if
       if (params%model /= model_hertz) call check_scaled_overlap("delta_max", delta_max, &
          & params%sigma, error)
+      if (allocated(error)) return
+      if (params%model /= model_hertz .and. params%sigma > 0.0_dp) &
+         & call check_cap_overlap("delta_max", delta_max, params, error)
       if (allocated(error)) return
       hist%params = params
       hist%options = options
@@ -944,6 +1023,7 @@ contains
          if (allocated(error)) return
       else
          call solve_rough(params, options, prob, sol, hist%loading, error)
+         call progress_report(0.6_dp, "history: loading")
          if (allocated(error)) then
             ! A capped loading that does not converge at sigma/delta_y <= 1e-6 (E-GW,
             ! EP-GW at psi 0): the small-sigma route answers it (its estimate meeting
@@ -978,7 +1058,7 @@ contains
       hist%loaded = .true.
       result = hist%loading
       call move_history(hist, history)
-   end subroutine load_history
+   end subroutine history_load
 
    !> load_history's end where the small-sigma route answered the loading (hist%loading):
    !> a history without rough field whose unloading solves are the route's.
@@ -1033,6 +1113,7 @@ contains
    !> route too: small_sigma_unload). history is only read: thread-safe. result untouched
    !> on error. force_floor: where the caller needs the force only to an absolute error
    !> (restitution's work integral), the route's estimates are relative to at least it.
+   !> Reports progress (egw_progress) as one long call, stage "unloading".
    subroutine solve_unload(history, delta, result, error, start, force_floor)
       type(loading_history), intent(in) :: history   !< from load_history (only read)
       real(dp), intent(in) :: delta                  !< overlap (> 0), separation (< 0)
@@ -1044,6 +1125,19 @@ contains
       type(unload_start), intent(inout), optional :: start
       !> [force] >= 0: the small-sigma route's estimates relative to max(|P|, force_floor)
       !> (default 0: relative to |P|, at least 1e-6 P(delta_max))
+      real(dp), intent(in), optional :: force_floor
+      call progress_begin("unloading")
+      call unload_solve(history, delta, result, error, start, force_floor)
+      call progress_end("unloading")
+   end subroutine solve_unload
+
+   !> solve_unload's work.
+   subroutine unload_solve(history, delta, result, error, start, force_floor)
+      type(loading_history), intent(in) :: history
+      real(dp), intent(in) :: delta
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
+      type(unload_start), intent(inout), optional :: start
       real(dp), intent(in), optional :: force_floor
       type(scaled_problem) :: prob
       type(solve_result) :: res
@@ -1090,12 +1184,13 @@ contains
       else
          call rough_unload(history%params, history%options, history%closest, delta, res, &
             & error, start)
+         call progress_report(0.2_dp, "unloading")
       end if
       floor = 0.0_dp
       if (present(force_floor)) floor = force_floor
       call small_sigma_unload(history, delta, floor, res, error)
       if (.not. allocated(error)) result = res
-   end subroutine solve_unload
+   end subroutine unload_solve
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the
    !> asymptotic route).
@@ -1136,6 +1231,8 @@ contains
    !> options and delta_max load it once, with the same results. For several turning
    !> points at once use load_history (as tightly) and solve_unload. Errors as
    !> load_history and solve_unload; result untouched on error.
+   !> Reports progress (egw_progress) as one long call, stage "unloading": the history's
+   !> loading (its tries) in 0 .. 0.9, the unloading solve in 0.9 .. 1.
    subroutine solve_contact_unload(params, options, delta, delta_max, result, error)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the unloading solve (the history is loaded tighter)
@@ -1144,6 +1241,18 @@ contains
       real(dp), intent(in) :: delta_max    !< largest overlap reached before
       type(solve_result), intent(inout) :: result   !< the solve at delta; untouched on error
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      call progress_begin("unloading")
+      call unload_from_scratch(params, options, delta, delta_max, result, error)
+      call progress_end("unloading")
+   end subroutine solve_contact_unload
+
+   !> solve_contact_unload's work.
+   subroutine unload_from_scratch(params, options, delta, delta_max, result, error)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, delta_max
+      type(solve_result), intent(inout) :: result
+      type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: loaded, res
       type(solver_options) :: tight
       !> the history's rel_tol as fractions of the solve's, tried in turn
@@ -1160,6 +1269,7 @@ contains
       if (delta >= delta_max) then
          ! at or above the turning point: the loading solve itself (the history below is
          ! loaded more tightly than rel_tol)
+         call progress_part(0.0_dp, 1.0_dp)
          call solve_contact(params, options, delta, res, error)
          if (.not. allocated(error)) result = res
          return
@@ -1187,6 +1297,7 @@ contains
                   & options%rel_tol)) cycle
             end if
             if (allocated(error)) deallocate (error)
+            call progress_part(0.225_dp*real(step - 1, dp), 0.225_dp*real(step, dp))
             call load_history(params, tight, delta_max, last_history%history, loaded, error)
             if (.not. allocated(error)) exit
             if (error%stat /= egw_not_converged) return
@@ -1198,8 +1309,9 @@ contains
          last_history%delta_max = delta_max
       end if
       last_history%history%options = options
+      call progress_part(0.9_dp, 1.0_dp)
       call solve_unload(last_history%history, delta, result, error)
-   end subroutine solve_contact_unload
+   end subroutine unload_from_scratch
 
    !> Rough (asperity) pressure p_G, separation d and closest-approach separation d_max
    !> at the radii r(:) >= 0 of the unloading solve at delta < history%delta_max (where
@@ -1276,55 +1388,47 @@ contains
       separation_min = history%params%sigma*gap_min
    end subroutine unload_profile
 
-   !> Whether cache holds the history of exactly these inputs (every field equal).
-   pure logical function cached(cache, params, options, delta_max)
-      type(history_cache), intent(in) :: cache
-      type(contact_params), intent(in) :: params
-      type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: delta_max
-      cached = .false.
-      if (.not. cache%valid) return
-      associate (p => cache%params, o => cache%options)
-         cached = p%model == params%model .and. p%radius == params%radius .and. &
-            & p%modulus == params%modulus .and. p%sigma == params%sigma .and. &
-            & p%mu == params%mu .and. p%psi == params%psi .and. &
-            & p%hardness_coeff == params%hardness_coeff .and. &
-            & p%plastic_ratio == params%plastic_ratio .and. &
-            & p%flow_pressure == params%flow_pressure .and. &
-            & o%n_radial == options%n_radial .and. o%rel_tol == options%rel_tol .and. &
-            & o%max_iter == options%max_iter .and. o%method == options%method .and. &
-            & o%n_threads == options%n_threads .and. cache%delta_max == delta_max
-      end associate
-   end function cached
-
-   !> Total pressure p and deflection w (Hertz + rough part for E-GW/EP-GW, the GW part for
-   !> classic GW, Hertz for model_hertz or sigma = 0) at the radii r(:) >= 0, pointwise
-   !> within options%rel_tol of the peak pressure and of the largest deflection (re-solved
-   !> at rel_tol/10 until the profile settles; egw_not_converged if it does not).
-   subroutine contact_profile(params, options, delta, r, pressure, deflection, error)
+   !> Total pressure p and deflection w at the radii r(:) >= 0 of the unloading (or
+   !> reloading) solve at delta after loading to delta_max (solve_contact_unload's
+   !> contact): delta >= delta_max is contact_profile at delta; reversible histories (Hertz
+   !> below first yield, GW/E-GW, EP-GW with psi = 0: the unloading law is the loading
+   !> law) too; the smooth sphere with the cap loaded beyond first yield is
+   !> cap_unload_profile's (w the surfaces' total displacement, plastic crater included);
+   !> EP-GW: Hertz + the rough unloading pressure p_G(d, d_max) (unload_profile) and w
+   !> the rough layer's deflection + Hertz's, the unloading solve tightened by 10 until
+   !> the profile changes by at most rel_tol of its peak (pressure) and of its largest
+   !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10). A rough sphere
+   !> with the cap: capped_rough_unload_profile; after a history the small-sigma route
+   !> loaded (no rough field): egw_unsupported.
+   subroutine contact_profile_unload(params, options, delta, delta_max, r, pressure, &
+      & deflection, error)
       type(contact_params), intent(in) :: params   !< the contact
       type(solver_options), intent(in) :: options   !< tolerance of the solves
-      real(dp), intent(in) :: delta   !< overlap [length]: > 0 pressed together, < 0 apart
+      real(dp), intent(in) :: delta       !< overlap of the profile [length]
+      real(dp), intent(in) :: delta_max   !< largest overlap reached before [length]
       real(dp), intent(in) :: r(:)             !< radii, >= 0
       real(dp), intent(out) :: pressure(:)     !< total pressure at r, size(r)
       real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      type(loading_history) :: hist
+      type(solve_result) :: loaded
+      type(solver_options) :: tight
       type(scaled_problem) :: prob
-      type(discrete_solution) :: sol
-      type(solver_options) :: level_options
-      real(dp) :: est
-      real(dp), allocatable :: rs_all(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
-      integer :: i, method_used, level
+      real(dp), allocatable :: pg(:), d(:), dmin(:), p_prev(:), w_prev(:), p_new(:), &
+         & w_new(:), rs(:)
+      integer :: i, level
       logical :: converged
 
       call check_input(params, options, delta, error)
       if (allocated(error)) return
-      if (above_first_yield(params, delta) .or. (params%flow_pressure > 0.0_dp .and. &
-         & params%model /= model_hertz .and. params%sigma > 0.0_dp)) then
-         call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//": the pressure profile beyond first " &
-            & //"yield of the cap (delta = "//format_real(delta)//"), or of a rough sphere " &
-            & //"with the cap, is not available yet (forces are)")
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+      if (delta >= delta_max .or. ((params%model == model_hertz .or. params%sigma == &
+         & 0.0_dp) .and. .not. smooth_capped(params, delta_max))) then
+         call contact_profile(params, options, delta, r, pressure, deflection, error)
          return
       end if
       if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
@@ -1340,21 +1444,88 @@ contains
             return
          end if
       end do
-      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
-         pressure = hertz_pressure(r, delta, params%radius, params%modulus)
-         deflection = hertz_deflection(r, delta, params%radius)
-         if (.not. all(ieee_is_finite(pressure) .and. ieee_is_finite(deflection))) &
-            & call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
-            & //": the Hertz pressure or deflection at r exceeds the largest double")
+      tight = options
+      tight%rel_tol = max(1.0e-10_dp, 1.0e-4_dp*options%rel_tol)
+      call load_history(params, tight, delta_max, hist, loaded, error)
+      if (allocated(error)) return
+      if (hist%capped) then
+         call cap_unload_profile(hist%cap, cap_profile_rings, delta, r, pressure, deflection, &
+            & error)
          return
       end if
-
+      if (hist%reversible) then
+         call contact_profile(params, options, delta, r, pressure, deflection, error)
+         return
+      end if
+      if (hist%asymptotic) then
+         call fatal_error(error, egw_unsupported, "flow_pressure = " &
+            & //format_real(params%flow_pressure)//", delta_max = "//format_real(delta_max) &
+            & //": the history was loaded by the small-sigma route (no rough field), whose " &
+            & //"unloading profile is not available (forces are)")
+         return
+      end if
+      if (params%flow_pressure > 0.0_dp) then
+         call capped_rough_unload_profile(hist, options, delta, r, pressure, deflection, &
+            & error)
+         return
+      end if
+      ! the rough unloading pressure p_G and separation d: the rough layer's deflection
+      ! is d - sigma base_gap (base_gap: the Hertz-deformed or rigid gap)
       prob = scaled(params, delta)
-      if (negligible(prob)) then
-         pressure = 0.0_dp
-         deflection = 0.0_dp
+      rs = r/length_unit(params)
+      allocate (pg(size(r)), d(size(r)), dmin(size(r)), p_new(size(r)), w_new(size(r)), &
+         & p_prev(size(r)), w_prev(size(r)))
+      hist%options = options
+      converged = .false.
+      do level = 0, profile_levels
+         call unload_profile(hist, delta, r, pg, d, dmin, error)
+         if (allocated(error)) return
+         do i = 1, size(r)
+            w_new(i) = d(i) - params%sigma*base_gap(prob, rs(i))
+         end do
+         p_new = pg
+         if (prob%extended) then
+            p_new = p_new + hertz_pressure(r, delta, params%radius, params%modulus)
+            w_new = w_new + hertz_deflection(r, delta, params%radius)
+         end if
+         if (level > 0) then
+            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
+               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
+            if (converged) exit
+         end if
+         p_prev = p_new
+         w_prev = w_new
+         if (hist%options%rel_tol <= finest_profile_tol) exit
+         hist%options%rel_tol = max(hist%options%rel_tol/10.0_dp, finest_profile_tol)
+      end do
+      if (.not. converged) then
+         call fatal_error(error, egw_not_converged, "profile_unload: the pressure profile " &
+            & //"did not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
          return
       end if
+      pressure = p_new
+      deflection = w_new
+   end subroutine contact_profile_unload
+
+   !> The scaled problem prob (loading, or unloading on a history's field) solved at
+   !> options%rel_tol, then again at rel_tol/10 (down to finest_profile_tol) until its
+   !> total pressure and deflection at the radii r (>= 0, checked) change by at most
+   !> rel_tol of the peak pressure and of the largest deflection; egw_not_converged
+   !> (naming what, the caller's entry) if they do not. In params' units.
+   subroutine settled_profile(prob, options, params, r, pressure, deflection, error, what)
+      type(scaled_problem), intent(inout) :: prob
+      type(solver_options), intent(in) :: options
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: what
+      type(discrete_solution) :: sol
+      type(solver_options) :: level_options
+      real(dp) :: est
+      real(dp), allocatable :: rs_all(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
+      integer :: i, method_used, level
+      logical :: converged
       ! The force's error control does not bound the pressure pointwise (classic GW deep
       ! in contact: 2e-4 of the peak at rel_tol 1e-6). Solve again at rel_tol/10 until
       ! the profile changes by at most rel_tol of its peak (pressure) and of the largest
@@ -1389,13 +1560,128 @@ contains
          level_options%rel_tol = max(level_options%rel_tol/10.0_dp, finest_profile_tol)
       end do
       if (.not. converged) then
-         call fatal_error(error, egw_not_converged, "profile: the pressure profile did "// &
-            & "not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
+         call fatal_error(error, egw_not_converged, what//": the pressure profile did " &
+            & //"not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
          return
       end if
       pressure = p_new(2:)*pressure_unit(params)
       deflection = w_new(2:)*params%sigma
+   end subroutine settled_profile
+
+   !> contact_profile_unload of a rough sphere with the cap after the discrete loading
+   !> history hist: the unloading solve (the history's closest field, the cap's law and
+   !> plastic shift: total_pressure) re-done at rel_tol/10 until the profile settles (as
+   !> contact_profile); w the elastic deflection (rough layer + Hertz's).
+   subroutine capped_rough_unload_profile(hist, options, delta, r, pressure, deflection, &
+      & error)
+      type(loading_history), intent(in) :: hist
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta, r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem) :: prob
+      prob = scaled(hist%params, delta)
+      allocate (prob%closest)
+      prob%closest = hist%closest
+      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
+      if (negligible(prob)) then
+         pressure = 0.0_dp
+         deflection = 0.0_dp
+         return
+      end if
+      call settled_profile(prob, options, hist%params, r, pressure, deflection, error, &
+         & "profile_unload")
+   end subroutine capped_rough_unload_profile
+
+   !> Whether cache holds the history of exactly these inputs (every field equal).
+   pure logical function cached(cache, params, options, delta_max)
+      type(history_cache), intent(in) :: cache
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max
+      cached = .false.
+      if (.not. cache%valid) return
+      associate (p => cache%params, o => cache%options)
+         cached = p%model == params%model .and. p%radius == params%radius .and. &
+            & p%modulus == params%modulus .and. p%sigma == params%sigma .and. &
+            & p%mu == params%mu .and. p%psi == params%psi .and. &
+            & p%hardness_coeff == params%hardness_coeff .and. &
+            & p%plastic_ratio == params%plastic_ratio .and. &
+            & p%flow_pressure == params%flow_pressure .and. &
+            & o%n_radial == options%n_radial .and. o%rel_tol == options%rel_tol .and. &
+            & o%max_iter == options%max_iter .and. o%method == options%method .and. &
+            & o%n_threads == options%n_threads .and. cache%delta_max == delta_max
+      end associate
+   end function cached
+
+   !> Total pressure p and deflection w (Hertz + rough part for E-GW/EP-GW, the GW part for
+   !> classic GW, Hertz for model_hertz or sigma = 0) at the radii r(:) >= 0, pointwise
+   !> within options%rel_tol of the peak pressure and of the largest deflection (re-solved
+   !> at rel_tol/10 until the profile settles; egw_not_converged if it does not).
+   subroutine contact_profile(params, options, delta, r, pressure, deflection, error)
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< tolerance of the solves
+      real(dp), intent(in) :: delta   !< overlap [length]: > 0 pressed together, < 0 apart
+      real(dp), intent(in) :: r(:)             !< radii, >= 0
+      real(dp), intent(out) :: pressure(:)     !< total pressure at r, size(r)
+      real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      type(scaled_problem) :: prob
+      integer :: i
+
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
+         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
+            & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
+            & //" differs from size(r) = "//int_str(size(r)))
+         return
+      end if
+      do i = 1, size(r)
+         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
+            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
+               & //format_real(r(i))//": radii must be finite and >= 0")
+            return
+         end if
+      end do
+      if (smooth_capped(params, delta)) then
+         call capped_profile(params, delta, r, pressure, deflection, error)
+         return
+      end if
+      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
+         pressure = hertz_pressure(r, delta, params%radius, params%modulus)
+         deflection = hertz_deflection(r, delta, params%radius)
+         if (.not. all(ieee_is_finite(pressure) .and. ieee_is_finite(deflection))) &
+            & call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
+            & //": the Hertz pressure or deflection at r exceeds the largest double")
+         return
+      end if
+
+      prob = scaled(params, delta)
+      if (negligible(prob)) then
+         pressure = 0.0_dp
+         deflection = 0.0_dp
+         return
+      end if
+      call settled_profile(prob, options, params, r, pressure, deflection, error, "profile")
    end subroutine contact_profile
+
+   !> contact_profile of the smooth sphere with the cap beyond first yield (cap_profile) on
+   !> up to cap_profile_rings rings, whatever options%rel_tol: the rings' pressures
+   !> converge as (1/rings)**2 (a change of 3e-5 p_y from 128 to 256 rings at 2 delta_y),
+   !> so rel_tol 1e-6 would take ~4000 rings. Measured against
+   !> tools/reference/cap_reference.py --profile 2 5 20: p within 1.5e-5 p_y (the
+   !> reference's own error: up to 3.1e-5), w within 1e-9 delta_y; 2 pi int p r dr within
+   !> 5.2e-6 of the force from 1.5 to 30 delta_y (test_cap_sphere, test_cap_profile).
+   subroutine capped_profile(params, delta, r, pressure, deflection, error)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta, r(:)
+      real(dp), intent(out) :: pressure(:), deflection(:)
+      type(egw_error), allocatable, intent(out) :: error
+      call cap_profile(params%radius, params%modulus, params%flow_pressure, delta, &
+         & cap_options(n_rings=cap_profile_rings/2, n_levels=2), r, pressure, deflection, &
+         & error)
+   end subroutine capped_profile
 
    !> Total pressure and deflection of a solved contact at scaled radii rs (scaled units).
    subroutine profile_values(prob, sol, rs, pressure, deflection)
@@ -1410,13 +1696,18 @@ contains
       do i = 1, size(rs)
          call influence_row(sol%mesh, rs(i), row)
          wg = dot_product(row, sol%p)
-         call prob%law%pressure([base_gap(prob, rs(i)) + wg], f, dfdh)
-         pressure(i) = f(1)
-         deflection(i) = wg
-         if (prob%extended) then
-            pressure(i) = pressure(i) + hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
-            deflection(i) = deflection(i) + hertz_deflection(rs(i), prob%delta, 1.0_dp)
+         if (allocated(prob%cap)) then
+            ! the cap on the total pressure (its law and plastic shift: total_pressure)
+            pressure(i) = total_pressure(prob, sol, rs(i))
+         else
+            call prob%law%pressure([base_gap(prob, rs(i)) + wg], f, dfdh)
+            pressure(i) = f(1)
+            if (prob%extended) pressure(i) = pressure(i) + &
+               & hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
          end if
+         deflection(i) = wg
+         if (prob%extended) deflection(i) = deflection(i) + &
+            & hertz_deflection(rs(i), prob%delta, 1.0_dp)
       end do
    end subroutine profile_values
 
@@ -1503,7 +1794,30 @@ contains
             & //" exceeds the largest double")
       else
          call check_scaled_overlap("delta", delta, params%sigma, error)
+         if (.not. allocated(error)) call check_cap_overlap("delta", delta, params, error)
       end if
    end subroutine check_input
+
+   !> A rough sphere with the cap: egw_invalid_argument naming name beyond rough_cap_range
+   !> delta_y, where E-GW and EP-GW solves stop converging (doc/stability.md "Rough + cap far
+   !> beyond first yield": converged to 2e12 .. 2e15 delta_y, failed a decade beyond,
+   !> with a message naming neither delta nor p_y); no bead comes near (<= 1e4 delta_y at
+   !> 10 m/s). The smooth cap's own range is 1e6 delta_y (egw_cap_sphere).
+   pure subroutine check_cap_overlap(name, delta, params, error)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: delta
+      type(contact_params), intent(in) :: params
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), parameter :: rough_cap_range = 1.0e12_dp
+      real(dp) :: delta_y, a_y, force_y
+      if (.not. params%flow_pressure > 0.0_dp) return
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+      if (delta > rough_cap_range*delta_y) call fatal_error(error, egw_invalid_argument, &
+         & name//" = "//format_real(delta)//": beyond 1e12 delta_y = " &
+         & //format_real(rough_cap_range*delta_y)//" (delta_y = (pi p_y/(2 E*))**2 R, " &
+         & //"flow_pressure = "//format_real(params%flow_pressure) &
+         & //"; the rough + cap solver's range)")
+   end subroutine check_cap_overlap
 
 end module egw_rough_sphere

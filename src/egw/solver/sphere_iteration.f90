@@ -5,12 +5,13 @@
 !> system.
 module egw_sphere_iteration
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use egw_progress, only: progress_note
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_not_converged, &
       & egw_out_of_memory, fatal_error, format_real, int_str
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure
    use egw_halfspace, only: build_mesh, mesh_nodes, node_index, assemble_influence, &
-      & influence_cache, assemble_influence_cached, &
+      & influence_cache, assemble_influence_cached, cached_point_values, keep_point_values, &
       & interpolate_nodal
    use egw_lapack, only: lu_factor, lu_solve
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
@@ -43,6 +44,8 @@ contains
       type(influence_cache), intent(inout), optional :: cache
       integer :: n, ng, max_iter, i, stat
       real(dp) :: kappa, rn
+      logical, allocatable :: known(:)
+      logical :: reuse
 
       if ((size(edges) - 1)*deflection_degree + 1 > max_mesh_nodes) then
          call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
@@ -54,6 +57,13 @@ contains
       call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
+      ! unloading with the cap: the law at gap_min where an earlier level of the solve has
+      ! the same Gauss points (cap_fields; the history, prob%closest, is the key)
+      reuse = present(cache) .and. allocated(prob%closest) .and. allocated(prob%cap)
+      if (reuse) then
+         allocate (sol%law_min(ng), known(ng))
+         call cached_point_values(cache, sol%mesh, prob%closest%delta, sol%law_min, known)
+      end if
       allocate (sol%infl(n, ng), stat=stat)
       if (stat == 0) then
          if (present(cache)) then
@@ -74,8 +84,14 @@ contains
       if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
       if (allocated(prob%cap)) then
          if (allocated(sol%gap_min)) then
-            call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
-               & sol%shift, sol%offset)
+            if (reuse) then
+               call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
+                  & sol%shift, sol%offset, sol%law_min, known)
+               call keep_point_values(cache, sol%mesh, prob%closest%delta, sol%law_min)
+            else
+               call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
+                  & sol%shift, sol%offset, sol%law_min)
+            end if
          else
             call cap_fields(prob, sol%mesh%gauss_r, 0.0_dp*sol%mesh%gauss_r, sol%p_smooth, &
                & sol%dps, sol%shift, sol%offset)
@@ -309,7 +325,15 @@ contains
       sol%p = sol%gap       ! (sized as the gap)
       sol%dpdh = sol%gap
       sol%dpdd = sol%gap
-      if (allocated(sol%gap_min)) then
+      if (allocated(sol%gap_min) .and. allocated(prob%cap)) then
+         ! (kept for the cap's kink scan, cap_excess_points)
+         if (allocated(sol%unfloored)) then
+            if (size(sol%unfloored) /= size(sol%gap)) deallocate (sol%unfloored)
+         end if
+         if (.not. allocated(sol%unfloored)) allocate (sol%unfloored(size(sol%gap)))
+         call rough_pressure(prob, sol%gap, sol%gap_min, sol%p_smooth, sol%dps, sol%shift, &
+            & sol%offset, sol%p, sol%dpdh, sol%dpdd, sol%unfloored)
+      else if (allocated(sol%gap_min)) then
          call rough_pressure(prob, sol%gap, sol%gap_min, sol%p_smooth, sol%dps, sol%shift, &
             & sol%offset, sol%p, sol%dpdh, sol%dpdd)
       else
@@ -436,6 +460,8 @@ contains
          if (.not. factored) then
             call jacobian(sol, jac)
             call lu_factor(n, jac, ipiv, info)
+            ! (a sign of life for a progress hook: on 4097 nodes an LU takes seconds)
+            call progress_note("solve: Newton step")
             have_lu = info == 0
             if (.not. have_lu) exit
             factored = .true.

@@ -7,7 +7,8 @@ module egw_sphere_mesh
    use egw_halfspace, only: graded_edges, interpolate_nodal
    use egw_unloading, only: unloading_kinks
    use egw_sphere_problem, only: solver_options, scaled_problem, discrete_solution, law_at, &
-      & law_inverse, estimated_gap, closest_gap, base_gap, deflection_degree, cap_excess
+      & law_inverse, estimated_gap, closest_gap, base_gap, deflection_degree, cap_excess, &
+      & cap_excess_points
    implicit none
    private
 
@@ -208,16 +209,18 @@ contains
       type(discrete_solution), intent(in) :: sol   !< a solution
       real(dp), intent(in) :: negligible_weight   !< skip radii where negligible_at says so
       real(dp), allocatable :: radii(:)
-      real(dp) :: f0, f1, lo, hi, mid
+      real(dp) :: f0, f1, lo, hi, mid, at_points(size(sol%gap), 3)
       integer :: g, kind, found
       type(illinois_iteration) :: root
       allocate (radii(0))
+      ! the brackets from the solve's own cap fields at its Gauss points
+      call cap_excess_points(prob, sol, at_points)
       do kind = 1, 3
          found = 0
-         f1 = cap_excess(prob, sol%mesh%gauss_r(1), sol%gap(1), kind)
+         f1 = at_points(1, kind)
          do g = 1, size(sol%gap) - 1
             f0 = f1
-            f1 = cap_excess(prob, sol%mesh%gauss_r(g + 1), sol%gap(g + 1), kind)
+            f1 = at_points(g + 1, kind)
             if ((f0 < 0.0_dp .eqv. f1 < 0.0_dp) .or. found >= 8) cycle
             if (negligible_at(sol, 0.5_dp*(sol%mesh%gauss_r(g) + sol%mesh%gauss_r(g + 1)), &
                & negligible_weight)) cycle

@@ -116,6 +116,10 @@ module egw_sphere_problem
       !> delta-derivative, the plastic gap shift and pressure offset (unloading), and
       !> dp/d(delta) of the rough part at fixed gap.
       real(dp), allocatable :: p_smooth(:), dps(:), shift(:), offset(:), dpdd(:)
+      !> Unloading with the cap (else not allocated), for cap_excess_points: the loading
+      !> law at gap_min (cap_fields), and the total unloading pressure before its floor at
+      !> the gaps of the last evaluation (rough_pressure's unfloored, as gap).
+      real(dp), allocatable :: law_min(:), unfloored(:)
       real(dp) :: force = 0.0_dp, dforce = 0.0_dp, moment0 = 0.0_dp, moment1 = 0.0_dp
       real(dp) :: residual = 0.0_dp, tail = 0.0_dp
       integer :: iterations = 0
@@ -128,8 +132,8 @@ module egw_sphere_problem
    public :: separation_field, scaled_problem, discrete_solution
    public :: scaled, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
       & estimated_gap, law_inverse, gauss_values, gauss_gap, effective_radius, total_pressure, &
-      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, sums_total, &
-      & force_floor
+      & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, &
+      & cap_excess_points, sums_total, force_floor
 
 contains
 
@@ -357,17 +361,22 @@ contains
    !> (doc/theory.md §12 "Rough spheres with the cap"). dpdd: dp/d(delta) at fixed h (0
    !> without the cap). The one place the solver evaluates its pressure law. The cap
    !> fields (p_smooth .. offset, from cap_fields) are only read when prob%cap is allocated.
-   pure subroutine rough_pressure(prob, h, h_min, p_smooth, dps, shift, offset, p, dpdh, dpdd)
+   pure subroutine rough_pressure(prob, h, h_min, p_smooth, dps, shift, offset, p, dpdh, dpdd, &
+      & unfloored)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem
       real(dp), intent(in) :: h(:), h_min(:)   !< gaps and closest-approach gaps (scaled)
       !> the cap's fields at the same points (cap_fields)
       real(dp), allocatable, intent(in) :: p_smooth(:), dps(:), shift(:), offset(:)
       !> the rough pressure, dp/dh and dp/d(delta), scaled
       real(dp), intent(out) :: p(:), dpdh(:), dpdd(:)
+      !> unloading with the cap: p_s + the rough pressure before the floor (cap_excess's
+      !> kind 1, the same expression), else left as it is
+      real(dp), intent(inout), optional :: unfloored(:)
       dpdd = 0.0_dp
       if (allocated(prob%closest)) then
          if (allocated(prob%cap)) then
             call unloading_pressure(prob%unload, h + shift, h_min + shift, p, dpdh)
+            if (present(unfloored)) unfloored = p_smooth + prob%scale*p - offset
             p = prob%scale*p - offset
             dpdh = prob%scale*dpdh
             call prob%cap%unload_floor(p_smooth, dps, p, dpdh, dpdd)
@@ -386,11 +395,15 @@ contains
    !> and its delta-derivative (Hertz for the extended models, else 0); unloading (gap_min:
    !> the closest-approach gaps at r) the plastic gap shift and pressure offset from the
    !> loading at delta_max (flow_cap%plastic_shift), else 0.
-   pure subroutine cap_fields(prob, r, gap_min, p_smooth, dps, shift, offset)
+   pure subroutine cap_fields(prob, r, gap_min, p_smooth, dps, shift, offset, law_min, known)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
       real(dp), intent(in) :: r(:), gap_min(:)   !< scaled radii and the closest-approach gaps there
       !> p_s, dp_s/d(delta), gap shift and pressure offset at r
       real(dp), allocatable, intent(out) :: p_smooth(:), dps(:), shift(:), offset(:)
+      !> unloading: the loading law at gap_min (not allocated when loading); in: its values
+      !> where known (from an earlier mesh's same points)
+      real(dp), allocatable, intent(inout), optional :: law_min(:)
+      logical, intent(in), optional :: known(:)   !< where law_min is given (size(r))
       real(dp), allocatable :: ps_max(:)
       p_smooth = 0.0_dp*r
       dps = 0.0_dp*r
@@ -401,11 +414,31 @@ contains
          ! p_s = (2/pi) sqrt(delta - r**2): d p_s/d delta = (1/pi)/sqrt(delta - r**2)
          where (p_smooth > 0.0_dp) dps = 2.0_dp/(pi*pi*p_smooth)
       end if
-      if (.not. allocated(prob%closest)) return
+      if (.not. allocated(prob%closest)) then
+         if (present(law_min)) then
+            if (allocated(law_min)) deallocate (law_min)
+         end if
+         return
+      end if
       ps_max = 0.0_dp*r
       if (prob%closest%extended) ps_max = hertz_pressure(r, prob%closest%delta, 1.0_dp, &
          & 1.0_dp)
-      call prob%cap%plastic_shift(prob%law, ps_max, gap_min, shift, offset)
+      if (present(law_min)) then
+         if (allocated(law_min)) then
+            if (size(law_min) /= size(r)) deallocate (law_min)
+         end if
+         if (.not. allocated(law_min)) then
+            allocate (law_min(size(r)))
+            call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset, law_min)
+         else if (present(known)) then
+            call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset, law_min, &
+               & known)
+         else
+            call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset, law_min)
+         end if
+      else
+         call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset)
+      end if
    end subroutine cap_fields
 
    !> Where p(r) has a kink from the cap, the sign of this changes (prob%cap allocated;
@@ -443,6 +476,56 @@ contains
          excess = p(1) - (prob%cap%p_y - ps_max)
       end if
    end function cap_excess
+
+   !> cap_excess of the kinds 1 to 3 at every Gauss point of sol, at sol's gaps: from the
+   !> cap fields the solve keeps there (gap_min, p_smooth, shift, offset: the plastic shift
+   !> is a root of the law, and closest_gap an interpolation on the history's mesh, which
+   !> the point-by-point cap_excess repeated for each kind at every level of a solve), the
+   !> law at gap_min once for kinds 2 and 3; else point by point. The same formulas as
+   !> cap_excess. A solve's unloading mesh keeps both (law_min from cap_fields, unfloored
+   !> from its last evaluation), so that this evaluates no law at all.
+   pure subroutine cap_excess_points(prob, sol, excess)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
+      type(discrete_solution), intent(in) :: sol   !< a solution
+      real(dp), intent(out) :: excess(:, :)   !< (Gauss points of sol, kind 1:3)
+      real(dp) :: p(size(excess, 1)), dpdh(size(excess, 1)), ps_max(size(excess, 1))
+      integer :: g, n, kind
+      logical :: kept
+      n = size(excess, 1)
+      kept = allocated(prob%closest) .and. allocated(sol%gap_min) .and. &
+         & allocated(sol%shift) .and. allocated(sol%offset) .and. allocated(sol%p_smooth)
+      if (kept) kept = size(sol%gap_min) == n .and. size(sol%shift) == n .and. &
+         & size(sol%offset) == n .and. size(sol%p_smooth) == n .and. size(sol%gap) == n
+      if (kept .and. allocated(sol%unfloored) .and. allocated(sol%law_min)) then
+         if (size(sol%unfloored) == n .and. size(sol%law_min) == n) then
+            ! both kept by the solve (evaluate, cap_fields): no law evaluation here
+            excess(:, 1) = sol%unfloored
+            ps_max = 0.0_dp
+            if (prob%closest%extended) ps_max = hertz_pressure(sol%mesh%gauss_r, &
+               & prob%closest%delta, 1.0_dp, 1.0_dp)
+            excess(:, 2) = sol%law_min - (prob%cap%p_y - ps_max)
+            excess(:, 3) = sol%law_min - prob%cap%p_y
+            return
+         end if
+      end if
+      if (.not. kept) then
+         do kind = 1, 3
+            do g = 1, n
+               excess(g, kind) = cap_excess(prob, sol%mesh%gauss_r(g), sol%gap(g), kind)
+            end do
+         end do
+         return
+      end if
+      call unloading_pressure(prob%unload, sol%gap + sol%shift, sol%gap_min + sol%shift, &
+         & p, dpdh)
+      excess(:, 1) = sol%p_smooth + prob%scale*p - sol%offset
+      ps_max = 0.0_dp
+      if (prob%closest%extended) ps_max = hertz_pressure(sol%mesh%gauss_r, &
+         & prob%closest%delta, 1.0_dp, 1.0_dp)
+      call prob%law%pressure(sol%gap_min, p, dpdh)
+      excess(:, 2) = p - (prob%cap%p_y - ps_max)
+      excess(:, 3) = p - prob%cap%p_y
+   end subroutine cap_excess_points
 
    !> Scaled Hertz force of the smooth part (extended models only; 0 where the solution's
    !> force holds it, sums_total).

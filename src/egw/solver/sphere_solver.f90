@@ -35,6 +35,7 @@
 !> (egw_sphere_iteration); this module runs the levels and re-exports what egw_rough_sphere
 !> uses.
 module egw_sphere_solver
+   use egw_progress, only: progress_note
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
    use egw_unloading, only: unloading_law_of, unloading_kinks
@@ -599,6 +600,8 @@ contains
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
             & mesh%step, mesh%outer, sol, error, coarse, cache=cache)
          if (allocated(error)) return
+         ! (a sign of life for a progress hook: a level of a hard solve takes seconds)
+         call progress_note("solve: mesh level")
          total = abs(smooth_force(prob) + sol%force)
          est = 0.0_dp
          if (total < tiny_force) then
