@@ -12,7 +12,7 @@ module test_hysteresis
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
-   use egw_hysteresis_data, only: turning_point, edge_breaks, edge_s, edge_xi
+   use egw_hysteresis_data, only: turning_point, edge_breaks, edge_s, edge_xi, max_stencil
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary, format_lammps
    use egw_status, only: egw_bad_file, egw_io_error
@@ -457,7 +457,7 @@ contains
       type(contact_params) :: p
       type(egw_error), allocatable :: err
       real(dp) :: state(hysteresis_state_size), copy(hysteresis_state_size), plain, d, &
-         & f, k, f2, k2, m, w(4), inv_span, f_m, knee
+         & f, k, f2, k2, m, w(max_stencil), inv_span, f_m, knee
       integer :: i, step, stat, stat2, mismatches, first
       call build(ep, t, error)
       if (allocated(error)) return
@@ -491,7 +491,10 @@ contains
       if (allocated(error)) return
       ! the turning point's data a state takes on unloading (P_load(m) from the loading
       ! interval it holds where that is eval_kernel's cubic) = turning_point's from the
-      ! table itself, to the bit: over (cut-off, 6), the ln P tail below 0 included
+      ! table itself, to the bit: over (cut-off, 6), the ln P tail below 0 included (the
+      ! suite's EP-GW table stores log ratios: its six weights in state(5:10), 1/(s_max L)
+      ! as s_max L in state(13); a gap table's four in state(7:10), 1/(s_max L) and P_load(m)
+      ! in state(5:6))
       do i = 1, 800
          m = t%loading%cutoff + (6.0_dp - t%loading%cutoff)*(i - 0.5_dp)/800
          call hysteresis_state_init(state)
@@ -499,8 +502,15 @@ contains
          call hysteresis_eval_state(t, m, state, f, k, stat)
          call hysteresis_eval_state(t, m - 1.0e-4_dp, state, f, k, stat)
          call turning_point(t, m, first, w, inv_span, f_m, knee)
-         if (.not. (state(2) == m .and. int(state(4)) == first .and. state(5) == inv_span &
-            & .and. state(6) == f_m .and. all(state(7:10) == w))) mismatches = mismatches + 1
+         if (t%log_ratio) then
+            if (.not. (state(2) == m .and. int(state(4)) == first .and. t%n_w == 6 .and. &
+               & state(13) == 1.0_dp/inv_span .and. all(state(5:10) == w(1:6)))) &
+               & mismatches = mismatches + 1
+         else if (.not. (state(2) == m .and. int(state(4)) == first .and. &
+            & state(5) == inv_span .and. state(6) == f_m .and. all(state(7:10) == w(1:4)))) &
+            & then
+            mismatches = mismatches + 1
+         end if
       end do
       call check(error, mismatches, 0, "turning points whose state differs from turning_point")
       if (allocated(error)) return

@@ -19,7 +19,7 @@ module egw_hysteresis
       & gap_cubic, turning_point, gap_combination, unload_tail_ratio, make_lookup, &
       & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan, turning_knee, map_s, &
       & map_x, map_piece, s_knee, s_zero, map_lengths, log_unload, edge_breaks, &
-      & edge_segment, edge_s, edge_xi
+      & edge_segment, edge_s, edge_xi, max_stencil, stencil_width, stencil_window, stencil_sum
    use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, log_energy_prepare, &
       & energy_prepare
    implicit none
@@ -78,7 +78,7 @@ contains
       integer, intent(out) :: stat         !< 0 or an egw status
       !> allocated when stat is not 0, with a message naming the argument
       type(egw_error), allocatable, intent(out), optional :: error
-      real(dp) :: w(4), inv_span, f_m, c(4), s, knee, dsdx
+      real(dp) :: w(max_stencil), inv_span, f_m, c(4), s, knee, dsdx
       integer :: first, i
       stat = 0
       force = 0.0_dp
@@ -162,7 +162,7 @@ contains
       integer, intent(out) :: stat         !< 0 or an egw status
       !> allocated when stat is not 0, with a message naming the argument
       type(egw_error), allocatable, intent(out), optional :: error
-      real(dp) :: w(4), g(4), s, knee, dsdx, xi_b(3), ds
+      real(dp) :: w(max_stencil), g(4), s, knee, dsdx, xi_b(3), ds, inv_span, f_m
       integer :: first, i
       logical :: found
       stat = 0
@@ -203,29 +203,38 @@ contains
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
-         & state(4) <= size(table%m) - 3)) then
+         & state(4) <= size(table%m) - table%n_w + 1)) then
          ! (P_load of the turning point from the loading interval the state holds)
-         call turning_point(table, state(1), first, w, state(5), state(6), knee, &
-            & state(18:24))
+         if (table%log_ratio) then
+            ! (six weights in (5:10): the log-ratio pieces need neither 1/L nor P_load(m))
+            call turning_point(table, state(1), first, w, inv_span, f_m, knee, &
+               & state(18:24))
+            state(11 - table%n_w:10) = w(1:table%n_w)
+            state(13) = 1.0_dp/inv_span
+         else
+            call turning_point(table, state(1), first, w, state(5), state(6), knee, &
+               & state(18:24))
+            state(7:10) = w(1:4)
+            state(13) = 1.0_dp/state(5)
+         end if
          state(2) = state(1)
          state(4) = real(first, dp)
-         state(7:10) = w
-         state(13) = 1.0_dp/state(5)
       end if
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
       if (table%log_ratio) then
+         w = 0.0_dp
+         w(1:table%n_w) = state(11 - table%n_w:10)
          call edge_breaks(state(13), table%params%sigma, xi_b)
          call edge_s(xi_b, state(1) - delta, s, ds)
          s = min(s, 1.0_dp)
          i = locate(table%s_lookup, table%s, s)
-         call make_log_piece(table, state(7:10), first, i, s, state(1), delta, xi_b, &
+         call make_log_piece(table, w, first, i, s, state(1), delta, xi_b, &
             & state(18:24), state(11:12), state(14:17), found)
          if (found) then
             call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
          else   ! (the clamp s = 1, or rounding at a piece's end: hysteresis_eval's)
-            call log_unload(table, first, state(7:10), state(13), state(1), delta, force, &
-               & stiffness)
+            call log_unload(table, first, w, state(13), state(1), delta, force, stiffness)
          end if
          if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
             & stiffness, stat, error)
@@ -234,19 +243,21 @@ contains
       s = (state(1) - delta)*state(5)
       dsdx = state(5)
       knee = 0.0_dp
+      w = 0.0_dp
+      w(1:4) = state(7:10)
       if (table%mapped) then
          ! (the knee from the cached weights: the state has no room for it)
-         knee = turning_knee(table, first, state(7:10), state(1))
+         knee = turning_knee(table, first, w, state(1))
          call map_s(table, state(1), knee, state(5), state(1) - delta, s, dsdx)
       end if
       s = min(s, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
-      call make_piece(table, state(7:10), first, i, s, state(1), delta, state(5), knee, &
+      call make_piece(table, w, first, i, s, state(1), delta, state(5), knee, &
          & state(6), state(18:24), state(11:12), state(14:17), found)
       if (found) then
          call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
       else   ! (the interval's gap cubic only here: the piece has its own)
-         call gap_combination(table, first, state(7:10), i, g)
+         call gap_combination(table, first, w, i, g)
          call unload_branch(table, g, i, s, state(1), state(6), state(5), knee, dsdx, delta, &
             & force, stiffness)
       end if
@@ -307,7 +318,7 @@ contains
    pure subroutine make_piece(table, w, first, i, s, m, delta, iota, knee, f_m, seg, ends, &
       & c, found)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: w(4), s, m, delta, iota, knee, f_m
+      real(dp), intent(in) :: w(max_stencil), s, m, delta, iota, knee, f_m
       integer, intent(in) :: first, i
       real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: ends(2), c(4)
@@ -344,10 +355,10 @@ contains
       scale = 1.0_dp
       if (table%mapped) scale = table%piece_scale(map_piece(.true., 0.5_dp*(table%s(a) + &
          & table%s(b))), first:first + 3)
-      g_a = dot_product(w, table%gap(a, first:first + 3))
-      g_b = dot_product(w, table%gap(b, first:first + 3))
-      h_a = width*dot_product(w, scale*table%slope(a, first:first + 3))
-      h_b = width*dot_product(w, scale*table%slope(b, first:first + 3))
+      g_a = dot_product(w(1:4), table%gap(a, first:first + 3))
+      g_b = dot_product(w(1:4), table%gap(b, first:first + 3))
+      h_a = width*dot_product(w(1:4), scale*table%slope(a, first:first + 3))
+      h_b = width*dot_product(w(1:4), scale*table%slope(b, first:first + 3))
       g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
       ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo (s linear in delta on
       ! the run: s_a + (m - delta - x_a) dsdx)
@@ -383,7 +394,7 @@ contains
    !> intervals.
    pure subroutine make_log_piece(table, w, first, i, s, m, delta, xi_b, seg, ends, c, found)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: w(4), s, m, delta, xi_b(3)
+      real(dp), intent(in) :: w(max_stencil), s, m, delta, xi_b(3)
       integer, intent(in) :: first, i
       real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: ends(2), c(4)
@@ -416,11 +427,11 @@ contains
       ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' values and slopes
       ! (dh/dxi times each curve's dxi/ds on segment k)
       width = table%s(b) - table%s(a)
-      g_a = dot_product(w, table%gap(a, first:first + 3))
-      g_b = dot_product(w, table%gap(b, first:first + 3))
+      g_a = stencil_sum(table%n_w, w, table%gap(a, first:first + table%n_w - 1))
+      g_b = stencil_sum(table%n_w, w, table%gap(b, first:first + table%n_w - 1))
       h_a = 0.0_dp
       h_b = 0.0_dp
-      do j = 1, 4
+      do j = 1, table%n_w
          h_a = h_a + w(j)*table%slope(a, first + j - 1)*table%xi_scale(k, first + j - 1)
          h_b = h_b + w(j)*table%slope(b, first + j - 1)*table%xi_scale(k, first + j - 1)
       end do
@@ -496,7 +507,7 @@ contains
    !> only) from the stored nodes; called by the build and by readers.
    pure subroutine hysteresis_prepare(table)
       type(hysteresis_table), intent(inout) :: table
-      integer :: n_s, n_m, i, j, first, k, l
+      integer :: n_s, n_m, i, j, first, k, l, lo, hi
       real(dp) :: h, xi_b(3)
       real(dp), allocatable :: dxi_ds(:, :)
       table%tag = data_tag(table)
@@ -538,7 +549,9 @@ contains
                & table%tail_length
          end do
       end if
-      allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))
+      table%n_w = stencil_width(table%log_ratio, n_m)
+      allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), &
+         & table%lagrange(max_stencil, n_m - 1))
       ! dxi/ds of each curve's edge-map segments (log-ratio: slopes are dh/dxi); 1 else
       allocate (dxi_ds(3, n_m))
       dxi_ds = 1.0_dp
@@ -573,11 +586,12 @@ contains
       end do
       table%m_break = m_breakpoint(table%m)
       table%m_coord = m_coordinate(table%m, table%m_break)
+      table%lagrange = 0.0_dp
       do j = 1, n_m - 1
-         first = stencil_first(j, n_m, table%m_break)
-         do k = 1, 4
+         call stencil_window(j, n_m, table%m_break, table%n_w, first, lo, hi)
+         do k = lo, hi
             h = 1.0_dp
-            do l = 1, 4
+            do l = lo, hi
                if (l /= k) h = h*(m_coordinate(table%m(first + k - 1), table%m_break) - &
                   & m_coordinate(table%m(first + l - 1), table%m_break))
             end do
@@ -636,21 +650,21 @@ contains
          if (table%mapped .and. (table%s(i) == s_knee .or. table%s(i) == s_zero)) &
             & joined(:, i) = .false.
       end do
-      allocate (table%run_first(max(n_m - 3, 1), n_s - 1), &
-         & table%run_last(max(n_m - 3, 1), n_s - 1))
-      do first = 1, max(n_m - 3, 1)
+      allocate (table%run_first(max(n_m - table%n_w + 1, 1), n_s - 1), &
+         & table%run_last(max(n_m - table%n_w + 1, 1), n_s - 1))
+      do first = 1, max(n_m - table%n_w + 1, 1)
          k = 1
          do i = 1, n_s - 1
             ! a union node that is one of the stencil's curves' own starts a new run
             if (i > 1) then
-               if (.not. all(joined(first:min(first + 3, n_m), i))) k = i
+               if (.not. all(joined(first:min(first + table%n_w - 1, n_m), i))) k = i
             end if
             table%run_first(first, i) = k
          end do
          k = n_s - 1
          do i = n_s - 1, 1, -1
             if (i < n_s - 1) then
-               if (.not. all(joined(first:min(first + 3, n_m), i + 1))) k = i
+               if (.not. all(joined(first:min(first + table%n_w - 1, n_m), i + 1))) k = i
             end if
             table%run_last(first, i) = k
          end do

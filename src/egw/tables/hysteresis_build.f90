@@ -12,7 +12,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
       & table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    use egw_hysteresis_data, only: s_knee, s_zero, map_s, map_x, map_piece, map_iota, &
-      & map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, max_log_ratio
+      & map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, max_log_ratio, &
+      & max_stencil, stencil_width, stencil_window
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -478,28 +479,34 @@ contains
    !> Largest |r_stencil - r_mid| of interval j over the nodes of the midpoint curve (solves):
    !> the table's whole error there, its interpolation in s included (the curves are built
    !> to rel_tol/4, so that what remains is mostly the error in m, which bisection removes).
+   !> The stencil is the evaluation's (stencil_window: six nodes for log-ratio curves).
    pure real(dp) function stencil_mismatch(table, m, curves, j, mid) result(err)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:), mid
       integer, intent(in) :: j
-      real(dp) :: x, w(4), r, dr, v, s, length, xm(4), knee, offset, dsdx, xi_b(3), xi, ds
-      integer :: first, k, l, i, k_b
+      real(dp) :: x, w(max_stencil), r, dr, v, s, length, xm(max_stencil), knee, offset, &
+         & dsdx, xi_b(3), xi, ds
+      integer :: first, k, l, i, k_b, lo, hi
       k_b = m_breakpoint(m)
-      first = stencil_first(j, size(m), k_b)
+      call stencil_window(j, size(m), k_b, stencil_width(table%log_ratio, size(m)), first, &
+         & lo, hi)
+      first = first + lo - 1   ! (the stencil's own nodes: w(1:n))
+      hi = hi - lo + 1
       x = m_coordinate(0.5_dp*(m(j) + m(j + 1)), k_b)
-      xm = m_coordinate(m(first:first + 3), k_b)
-      do k = 1, 4
+      xm(1:hi) = m_coordinate(m(first:first + hi - 1), k_b)
+      do k = 1, hi
          w(k) = 1.0_dp
-         do l = 1, 4
+         do l = 1, hi
             if (l /= k) w(k) = w(k)*(x - xm(l))/(xm(k) - xm(l))
          end do
       end do
       ! the table's s of the midpoint curve's delta: with the interpolated L(m)
       ! as the evaluation: 1/L interpolated
-      length = 1.0_dp/sum(w/curves(first:first + 3)%length)
+      length = 1.0_dp/sum(w(1:hi)/curves(first:first + hi - 1)%length)
       ! mapped: the knee interpolated and the first piece's span from it (turning_point)
-      knee = min(max(sum(w*curves(first:first + 3)%knee), 0.0_dp), 0.99_dp*max(mid%m, 0.0_dp))
+      knee = min(max(sum(w(1:hi)*curves(first:first + hi - 1)%knee), 0.0_dp), &
+         & 0.99_dp*max(mid%m, 0.0_dp))
       if (table%mapped) length = 1.0_dp/map_iota(table, mid%m, knee)
       err = 0.0_dp
       ! (log-ratio: the edge map of the interpolated L, the mismatch in h weighted)
@@ -517,7 +524,7 @@ contains
             s = min(mid%s(i)*mid%length/length, 1.0_dp)
          end if
          v = 0.0_dp
-         do k = 1, 4
+         do k = 1, hi
             call curve_eval(curves(first + k - 1), s, r, dr)
             v = v + w(k)*r
          end do

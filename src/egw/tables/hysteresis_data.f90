@@ -44,17 +44,22 @@ module egw_hysteresis_data
       & turning_point, gap_combination, unload_tail_ratio, make_lookup, m_breakpoint, &
       & m_coordinate, stencil_first, locate, turning_knee, map_s, map_x, map_piece, &
       & map_iota, map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, log_branch, &
-      & max_log_ratio, log_unload
+      & max_log_ratio, log_unload, stencil_width, stencil_window, stencil_sum
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
-   !> belong to): (4) the Lagrange stencil, (5) 1/(s_max L), (6) P_load, (7:10) the weights;
-   !> (13) s_max L; of the piece of its unloading curve last used (make_piece): (11:12) its
+   !> belong to): (4) the Lagrange stencil, (5) 1/(s_max L), (6) P_load, (7:10) the weights
+   !> (a log-ratio table's six-point stencil: (5:10) the weights, its pieces need neither
+   !> 1/(s_max L) nor P_load); (13) s_max L; of the piece of its unloading curve last used (make_piece): (11:12) its
    !> open ends, (14:17) its cubic in delta; of the loading table's interval last used
    !> (the piece's, while there is one): (18:19) its ends, (20:23) its cubic, (24) 1 where
    !> that is ln P (then the piece's cubic is the gap part). A contact that stays inside
    !> its piece (most DEM steps) touches nothing but its state.
    integer, parameter, public :: hysteresis_state_size = 24
+
+   !> Most delta_max nodes of a Lagrange stencil: log-ratio tables interpolate their curves
+   !> across delta_max on six nodes (stencil_width), the gap tables on four.
+   integer, parameter, public :: max_stencil = 6
 
    !> The two-piece s map of rough + cap tables (mapped; doc/theory.md section 12): every
    !> curve's knee (the smooth cap's residual overlap delta_r(m)) at s = s_knee and
@@ -134,7 +139,12 @@ module egw_hysteresis_data
       !> the sample's span force was clipped all along: an overlap in that of both samples
       !> around m (less a twentieth) returns only the energy below lo (energy_prepare)
       real(dp), allocatable :: dip_low(:)
-      !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
+      !> nodes of the window of every stencil (stencil_width: 6 for log-ratio tables of 6
+      !> or more delta_max nodes, 4 else; hysteresis_prepare)
+      integer :: n_w = 4
+      !> (max_stencil, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's
+      !> stencil at the nodes of its window (stencil_window), 0 at a window node outside the
+      !> stencil (and at 5, 6 where n_w = 4)
       real(dp), allocatable :: lagrange(:, :)
       !> (n_m): m_coordinate of the delta_max nodes (hysteresis_prepare: no sqrt per
       !> node in turning_point)
@@ -184,7 +194,8 @@ module egw_hysteresis_data
    !> One turning point's unloading curve (turning_point): what its span force needs.
    type :: unload_curve
       real(dp) :: m = 0.0_dp               !< the turning point
-      real(dp) :: w(4) = 0.0_dp            !< Lagrange weights of its stencil
+      !> Lagrange weights of its stencil's window (table%n_w of them; 0 beyond)
+      real(dp) :: w(max_stencil) = 0.0_dp
       real(dp) :: inv_span = 0.0_dp        !< 1/(s_max L(m))
       real(dp) :: f_m = 0.0_dp             !< P_load(m)
       integer :: first = 1                 !< the stencil's first curve
@@ -228,8 +239,10 @@ contains
    end subroutine gap_cubic
 
    !> What the unloading branch needs of the turning point m: the Lagrange stencil of the
-   !> m interval (clamped at the ends of the grid; the last curve above the table), its
-   !> weights, 1/(s_max L) interpolated with them and the loading force P_load(m). seg
+   !> m interval (clamped at the ends of the grid; the last curve above the table): the
+   !> first node of its window (stencil_window) and the weights of the window's table%n_w
+   !> nodes (0 beyond them, and at window nodes outside the stencil), 1/(s_max L)
+   !> interpolated with them and the loading force P_load(m). seg
    !> (optional): an interval of the loading table (table_segment's layout, e.g. a state's
    !> copy from its last loading step); where it holds m above the resampled tail, P_load(m)
    !> comes from it without the table's lookup (eval_kernel's arithmetic: the same value).
@@ -237,11 +250,11 @@ contains
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m
       integer, intent(out) :: first
-      real(dp), intent(out) :: w(4), inv_span, f_m
+      real(dp), intent(out) :: w(max_stencil), inv_span, f_m
       real(dp), intent(out) :: knee   !< the map's knee (turning_knee; 0 unless mapped)
       real(dp), intent(in), optional :: seg(7)
-      real(dp) :: d(4), k_m
-      integer :: j, n_m
+      real(dp) :: d(max_stencil), k_m, lead(max_stencil), trail
+      integer :: j, n_m, k, lo, hi
       logical :: held
       held = .false.
       if (present(seg)) held = seg(1) <= m .and. m < seg(2) .and. &
@@ -254,16 +267,40 @@ contains
       end if
       n_m = size(table%m)
       j = locate(table%m_lookup, table%m, min(m, table%delta_max))
-      first = stencil_first(j, n_m, table%m_break)
-      d = m_coordinate(m, table%m_break) - table%m_coord(first:first + 3)
-      w(1) = d(2)*d(3)*d(4)*table%lagrange(1, j)
-      w(2) = d(1)*d(3)*d(4)*table%lagrange(2, j)
-      w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
-      w(4) = d(1)*d(2)*d(3)*table%lagrange(4, j)
-      if (m > table%delta_max) w = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
-      ! 1/(s_max L) interpolated (no division on the hot path; smooth and > 0 as L)
-      inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
-         & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
+      w = 0.0_dp
+      if (table%n_w == 4) then
+         first = stencil_first(j, n_m, table%m_break)
+         d(1:4) = m_coordinate(m, table%m_break) - table%m_coord(first:first + 3)
+         w(1) = d(2)*d(3)*d(4)*table%lagrange(1, j)
+         w(2) = d(1)*d(3)*d(4)*table%lagrange(2, j)
+         w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
+         w(4) = d(1)*d(2)*d(3)*table%lagrange(4, j)
+         if (m > table%delta_max) w(1:4) = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
+         ! 1/(s_max L) interpolated (no division on the hot path; smooth and > 0 as L)
+         inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
+            & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
+      else
+         ! the window's nodes: prod_{l /= k} (x - x_l) from products before and after k,
+         ! a node outside the stencil (lagrange 0) counted as 1
+         call stencil_window(j, n_m, table%m_break, table%n_w, first, lo, hi)
+         d(1:table%n_w) = m_coordinate(m, table%m_break) - &
+            & table%m_coord(first:first + table%n_w - 1)
+         where (table%lagrange(1:table%n_w, j) == 0.0_dp) d(1:table%n_w) = 1.0_dp
+         lead(1) = 1.0_dp
+         do k = 2, table%n_w
+            lead(k) = lead(k - 1)*d(k - 1)
+         end do
+         trail = 1.0_dp
+         do k = table%n_w, 1, -1
+            w(k) = lead(k)*trail*table%lagrange(k, j)
+            trail = trail*d(k)
+         end do
+         if (m > table%delta_max) then
+            w = 0.0_dp
+            w(table%n_w) = 1.0_dp
+         end if
+         inv_span = stencil_sum(table%n_w, w, table%inv_span(first:first + table%n_w - 1))
+      end if
       if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
       knee = 0.0_dp
       if (table%mapped) then
@@ -279,7 +316,7 @@ contains
    pure real(dp) function turning_knee(table, first, w, m) result(knee)
       type(hysteresis_table), intent(in) :: table
       integer, intent(in) :: first
-      real(dp), intent(in) :: w(4), m
+      real(dp), intent(in) :: w(max_stencil), m
       knee = 0.0_dp
       if (.not. (table%mapped .and. m > 0.0_dp)) return
       knee = w(1)*table%knee(first) + w(2)*table%knee(first + 1) + &
@@ -368,19 +405,37 @@ contains
    end function map_lengths
 
    !> The gap cubic g(t) of the turning point (stencil first, weights w) on s interval i:
-   !> the four curves' cubics (16 contiguous numbers) combined.
+   !> the window's curves' cubics (16 or 24 contiguous numbers) combined.
    pure subroutine gap_combination(table, first, w, i, c)
       type(hysteresis_table), intent(in) :: table
       integer, intent(in) :: first, i
-      real(dp), intent(in) :: w(4)
+      real(dp), intent(in) :: w(max_stencil)
       real(dp), intent(out) :: c(4)
-      associate (cf => table%coef(:, first:first + 3, i))
-         c(1) = w(1)*cf(1, 1) + w(2)*cf(1, 2) + w(3)*cf(1, 3) + w(4)*cf(1, 4)
-         c(2) = w(1)*cf(2, 1) + w(2)*cf(2, 2) + w(3)*cf(2, 3) + w(4)*cf(2, 4)
-         c(3) = w(1)*cf(3, 1) + w(2)*cf(3, 2) + w(3)*cf(3, 3) + w(4)*cf(3, 4)
-         c(4) = w(1)*cf(4, 1) + w(2)*cf(4, 2) + w(3)*cf(4, 3) + w(4)*cf(4, 4)
-      end associate
+      if (table%n_w == 4) then
+         associate (cf => table%coef(:, first:first + 3, i))
+            c(1) = w(1)*cf(1, 1) + w(2)*cf(1, 2) + w(3)*cf(1, 3) + w(4)*cf(1, 4)
+            c(2) = w(1)*cf(2, 1) + w(2)*cf(2, 2) + w(3)*cf(2, 3) + w(4)*cf(2, 4)
+            c(3) = w(1)*cf(3, 1) + w(2)*cf(3, 2) + w(3)*cf(3, 3) + w(4)*cf(3, 4)
+            c(4) = w(1)*cf(4, 1) + w(2)*cf(4, 2) + w(3)*cf(4, 3) + w(4)*cf(4, 4)
+         end associate
+      else
+         associate (cf => table%coef(:, first:first + 5, i))
+            c = ((w(1)*cf(:, 1) + w(2)*cf(:, 2)) + (w(3)*cf(:, 3) + w(4)*cf(:, 4))) + &
+               & (w(5)*cf(:, 5) + w(6)*cf(:, 6))
+         end associate
+      end if
    end subroutine gap_combination
+
+   !> sum_k w(k) x(k) over a stencil's window of n_w (4 or 6) nodes (dot_product's for 4).
+   pure real(dp) function stencil_sum(n_w, w, x) result(v)
+      integer, intent(in) :: n_w
+      real(dp), intent(in) :: w(max_stencil), x(:)
+      if (n_w == 4) then
+         v = dot_product(w(1:4), x(1:4))
+      else
+         v = ((w(1)*x(1) + w(2)*x(2)) + (w(3)*x(3) + w(4)*x(4))) + (w(5)*x(5) + w(6)*x(6))
+      end if
+   end function stencil_sum
 
    !> The unloading force over the loading force at the end d_1 of a curve's span, where
    !> its gap is g_1 (P_load(m) = f_m), in [0, 1]: below d_1 the unloading force is that
@@ -459,6 +514,50 @@ contains
          end if
       end if
    end function stencil_first
+
+   !> Nodes of the window of every Lagrange stencil of a table (its curves store log_ratio;
+   !> n_m delta_max nodes): six for log-ratio tables of six or more nodes (their curves'
+   !> error in delta_max is the force's relative error down to 1e-3 of the turning point's:
+   !> four nodes needed 109 on egw-bench's range at 1e-4, six 71; doc/benchmarks.md stop
+   !> 46), four else.
+   pure integer function stencil_width(log_ratio, n_m) result(n_w)
+      logical, intent(in) :: log_ratio
+      integer, intent(in) :: n_m
+      n_w = 4
+      if (log_ratio .and. n_m >= 6) n_w = 6
+   end function stencil_width
+
+   !> The window of n_w (4 or 6, at most n_m) nodes first .. first + n_w - 1 of the Lagrange
+   !> stencil of interval j and the stencil's nodes in it, window positions lo .. hi: with
+   !> n_w = 4 stencil_first's four; with 6 the six nodes around the interval (j - 2 ..
+   !> j + 3, clamped at the grid's ends) on its side of a breakpoint k_b, or where that
+   !> side has fewer than six nodes, stencil_first's four inside a window of six.
+   pure subroutine stencil_window(j, n_m, k_b, n_w, first, lo, hi)
+      integer, intent(in) :: j, n_m, k_b, n_w
+      integer, intent(out) :: first, lo, hi
+      integer :: k
+      first = stencil_first(j, n_m, k_b)
+      lo = 1
+      hi = 4
+      if (n_w == 4) return
+      k = min(max(j - 2, 1), n_m - 5)
+      if (k_b > 0) then
+         if (j < k_b) then
+            k = min(k, k_b - 5)
+         else
+            k = max(k, k_b)
+         end if
+      end if
+      if (k >= 1 .and. k + 5 <= n_m) then
+         first = k
+         hi = 6
+      else
+         k = min(max(first - 1, 1), n_m - 5)
+         lo = first - k + 1
+         hi = lo + 3
+         first = k
+      end if
+   end subroutine stencil_window
 
    !> The edge map of a log-ratio curve of unloading length L (roughness sigma): the
    !> values xi(1:3) of m - delta at s = 1/2, 3/4 and 1. For a deep turning point (L >> sigma)
@@ -551,7 +650,7 @@ contains
    pure subroutine log_unload(table, first, w, length, m, delta, force, stiffness)
       type(hysteresis_table), intent(in) :: table
       integer, intent(in) :: first
-      real(dp), intent(in) :: w(4), length, m, delta
+      real(dp), intent(in) :: w(max_stencil), length, m, delta
       real(dp), intent(out) :: force, stiffness
       real(dp) :: xi_b(3), s, ds, c(4)
       integer :: i

@@ -11,7 +11,8 @@ module egw_unload_energy
    use egw_table, only: table_eval, gl_x, gl_w, table_energy, table_interval, beyond_status
    use egw_hysteresis_data, only: hysteresis_table, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, locate, map_s, map_x, s_knee, &
-      & s_zero, map_lengths, log_unload, edge_breaks, edge_s, edge_xi, edge_segment
+      & s_zero, map_lengths, log_unload, edge_breaks, edge_s, edge_xi, edge_segment, &
+      & stencil_sum
    implicit none
    private
 
@@ -116,8 +117,8 @@ contains
       ! s(lo) (gap_work; the two-piece map: piece by piece); the span starts at the
       ! cut-off if d_1 is below it (no force there)
       d_1 = curve_x(table, cv, 1.0_dp)
-      ratio = unload_tail_ratio(table, d_1, cv%f_m, dot_product(cv%w, &
-         & table%gap(size(table%s), cv%first:cv%first + 3)))
+      ratio = unload_tail_ratio(table, d_1, cv%f_m, stencil_sum(table%n_w, cv%w, &
+         & table%gap(size(table%s), cv%first:cv%first + table%n_w - 1)))
       if (.not. delta > d_1) then
          energy = ratio*energy
          return
@@ -209,7 +210,8 @@ contains
       length = 1.0_dp/cv%inv_span
       call edge_breaks(length, table%params%sigma, xi_b)
       d_1 = cv%m - xi_b(3)
-      ratio = exp(-dot_product(cv%w, table%gap(n_s, cv%first:cv%first + 3)))
+      ratio = exp(-stencil_sum(table%n_w, cv%w, table%gap(n_s, cv%first:cv%first + &
+         & table%n_w - 1)))
       if (.not. delta > d_1) then
          energy = ratio*table_energy(table%loading, delta)
          return
@@ -261,18 +263,27 @@ contains
       call edge_breaks(1.0_dp/cv%inv_span, table%params%sigma, xi_b)
       call edge_s(xi_b, cv%m - delta, s, ds)
       if (s >= 1.0_dp) then
-         eta = dot_product(cv%w, table%gap(size(table%s), f:f + 3))
+         eta = stencil_sum(table%n_w, cv%w, table%gap(size(table%s), f:f + table%n_w - 1))
       else
          i = locate(table%s_lookup, table%s, s)
-         if (i + 1 >= minval(table%energy_cut(f:f + 3))) then
+         ! (the window's curves that are the stencil's: weight not 0)
+         if (i + 1 >= minval(table%energy_cut(f:f + table%n_w - 1), &
+            & mask=cv%w(1:table%n_w) /= 0.0_dp)) then
             ! the stencil's curves reach the cut-off by this interval's end: eta has a layer
             ! there (E/E_load runs from e^-h at the cut-off to its value within a few
             ! 1/(d ln P_load/d delta)): the short walk from the cut-off
             energy = log_energy(table, cv, delta)
             return
          end if
-         c = cv%w(1)*table%energy_coef(:, f, i) + cv%w(2)*table%energy_coef(:, f + 1, i) + &
-            & cv%w(3)*table%energy_coef(:, f + 2, i) + cv%w(4)*table%energy_coef(:, f + 3, i)
+         if (table%n_w == 4) then
+            c = cv%w(1)*table%energy_coef(:, f, i) + cv%w(2)*table%energy_coef(:, f + 1, i) + &
+               & cv%w(3)*table%energy_coef(:, f + 2, i) + cv%w(4)*table%energy_coef(:, f + 3, i)
+         else
+            associate (ec => table%energy_coef(:, f:f + 5, i))
+               c = ((cv%w(1)*ec(:, 1) + cv%w(2)*ec(:, 2)) + (cv%w(3)*ec(:, 3) + &
+                  & cv%w(4)*ec(:, 4))) + (cv%w(5)*ec(:, 5) + cv%w(6)*ec(:, 6))
+            end associate
+         end if
          t = (s - table%s(i))*table%inv_ds(i)
          eta = (c(1) + t*c(2)) + t*t*(c(3) + t*c(4))
       end if
@@ -384,7 +395,8 @@ contains
       real(dp) :: x_lo, total
       integer :: i
       x_lo = max(cv%m - xi_b(3), table%loading%cutoff)
-      total = exp(-dot_product(cv%w, table%gap(size(table%s), cv%first:cv%first + 3)))* &
+      total = exp(-stencil_sum(table%n_w, cv%w, table%gap(size(table%s), &
+         & cv%first:cv%first + table%n_w - 1)))* &
          & table_energy(table%loading, x_lo)
       do i = 1, size(x)
          if (x(i) > x_lo) then
@@ -438,7 +450,7 @@ contains
       h = table%s(i + 1) - table%s(i)
       t = (x - table%s(i))/h
       total = 0.0_dp
-      do k = 1, 4
+      do k = 1, table%n_w
          associate (c => table%coef(:, cv%first + k - 1, i))
             total = total + cv%w(k)*(table%gap_integral(cv%first + k - 1, i) + h*t*(c(1) + &
                & t*(c(2)/2 + t*(c(3)/3 + t*c(4)/4))))
