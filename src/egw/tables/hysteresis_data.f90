@@ -21,7 +21,8 @@
 !> Each node m_j carries g(., m_j) as a cubic Hermite curve in s (slopes from the solver's
 !> stiffnesses, solves at rel_tol/10, s bisected until value and slope at every midpoint
 !> meet the solves to rel_tol/4); between nodes g and 1/L are cubic Lagrange combinations
-!> of four neighbouring curves, and the m grid is bisected until that combination meets
+!> of four neighbouring curves (log-ratio tables: quintic, of six; stencil_window), and
+!> the m grid is bisected until that combination meets
 !> the midpoint's curve at all its nodes to rel_tol (the table's whole error there).
 !> Every curve's cubics are then resampled onto the union of the s nodes (exactly: the
 !> union refines every curve's own nodes), so that an evaluation needs one lookup in s and
@@ -101,12 +102,13 @@ module egw_hysteresis_data
       real(dp), allocatable :: gap(:, :), slope(:, :)
       ! evaluation data (hysteresis_prepare)
       !> (4, n_m, n_s - 1): the cubic in t = (s - s_i)/(s_{i+1} - s_i) of curve j on
-      !> interval i (the four curves of a Lagrange stencil share two cache lines)
+      !> interval i (the four curves of a Lagrange stencil share two cache lines, the six
+      !> of a log-ratio table's three)
       real(dp), allocatable :: coef(:, :, :)
       real(dp), allocatable :: inv_ds(:)       !< 1/(s_{i+1} - s_i)
-      !> (n_m - 3, n_s - 1): the first and last s interval of the run around interval i
-      !> on which the four curves of stencil first are each one cubic (the union nodes
-      !> inside it are none of theirs): a state's piece spans the run
+      !> (n_m - n_w + 1, n_s - 1): the first and last s interval of the run around interval
+      !> i on which the n_w curves of the stencil window first are each one cubic (the
+      !> union nodes inside it are none of theirs): a state's piece spans the run
       integer, allocatable :: run_first(:, :), run_last(:, :)
       !> (n_m, n_s): int_0^{s_i} g(s, m_j) ds of each curve's cubics (hysteresis_energy)
       real(dp), allocatable :: gap_integral(:, :)
