@@ -23,9 +23,10 @@ module egw
    use egw_smooth_sphere, only: hertz_contact, hertz_force, hertz_stiffness, &
       & hertz_contact_radius, hertz_energy, hertz_pressure, hertz_deflection, hertz_gap
    use egw_rough_sphere, only: solver_options, solve_result, method_auto, method_newton, &
-      & method_picard, validate_options, solve_contact, contact_profile, loading_history, &
-      & load_history, solve_unload, solve_contact_unload, unload_profile, solve_contact_law, &
-      & unload_start, contact_profile_unload
+      & method_picard, validate_options, solve_contact, loading_history, &
+      & load_history, solve_unload, solve_contact_unload, solve_contact_law, &
+      & unload_start
+   use egw_rough_profile, only: contact_profile, contact_profile_unload, unload_profile
    use egw_impact, only: restitution, time_step
    use egw_progress, only: progress_hook, set_progress, progress_count
    use egw_table, only: force_table, build_table, build_table_law, table_eval, &

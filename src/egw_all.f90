@@ -19,6 +19,7 @@ module egw_all
    use egw_smooth_sphere
    use egw_halfspace
    use egw_rough_sphere
+   use egw_rough_profile
    use egw_impact
    use egw_progress
    use egw_table

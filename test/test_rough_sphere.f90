@@ -8,8 +8,9 @@ module test_rough_sphere
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
       & egw_not_converged
    use egw_params, only: contact_params, model_hertz, model_gw, model_egw, model_epgw
-   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & validate_options, method_newton, method_picard
+   use egw_rough_profile, only: contact_profile
    use ref_rough_sphere, only: ref_f52_11, ref_f52_13
    use egw_lapack, only: lu_factor, lu_solve, dgetf2
    implicit none

@@ -11,8 +11,8 @@ module test_unload_sphere
    use egw_gauss, only: get_gauss_integral
    use egw_asperity, only: flat_pressure
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
-      & load_history, solve_unload, solve_contact_unload, unload_profile, &
-      & contact_profile, contact_profile_unload
+      & load_history, solve_unload, solve_contact_unload
+   use egw_rough_profile, only: unload_profile, contact_profile, contact_profile_unload
    use egw_impact, only: restitution
    use egw_progress, only: set_progress
    use data_rows, only: read_data_rows, row_length

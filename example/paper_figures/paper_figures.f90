@@ -9,7 +9,8 @@ program paper_figures
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    use egw, only: dp, contact_params, egw_error, model_gw, model_egw, model_epgw, &
       & model_name, hertz_force, hertz_pressure, hertz_deflection, egw_version_string
-   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact
+   use egw_rough_profile, only: contact_profile
    implicit none
 
    real(dp), parameter :: overlap = 0.01_dp        !< the paper's delta for Figs. 3, 4, 5, 7

@@ -10,9 +10,9 @@ module egw_capi
    use egw_params, only: contact_params, mu_from_summits, psi_from_hardness
    use egw_version, only: egw_version_number
    use egw_progress, only: set_progress
-   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, contact_profile, &
-      & contact_profile_unload, &
+   use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & solve_contact_unload
+   use egw_rough_profile, only: contact_profile, contact_profile_unload
    use egw_impact, only: restitution, time_step
    use egw_gauss, only: get_gauss_integral, get_gauss_integral_deriv
    use egw_ellip, only: get_ellipk, get_ellipe
@@ -62,8 +62,9 @@ contains
 
    !> C: egw_set_progress: this thread's progress hook (NULL: off) and its user pointer.
    subroutine egw_set_progress(hook, user) bind(C, name="egw_set_progress")
+      !> egw_progress_fn: called with done in [0, 1], the stage and user (NULL: off)
       type(c_funptr), value, intent(in) :: hook
-      type(c_ptr), value, intent(in) :: user
+      type(c_ptr), value, intent(in) :: user   !< passed to the hook as given
       c_hook = hook
       c_user = user
       if (c_associated(hook)) then
@@ -392,26 +393,7 @@ contains
       real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int), value, intent(in) :: n   !< C: `int n`
       integer(c_int) :: stat
-      type(contact_params) :: params
-      type(solver_options) :: options
-      real(c_double), pointer :: cr(:), cp(:), cw(:)
-      real(dp), allocatable :: pr(:), w(:)
-      type(egw_error), allocatable :: error
-      stat = check_count(n)
-      if (stat == egw_ok) stat = read_contact(p, o, params, options)
-      if (stat == egw_ok) stat = require(r, "r")
-      if (stat == egw_ok) stat = require(pressure, "pressure")
-      if (stat == egw_ok) stat = require(deflection, "deflection")
-      if (stat /= egw_ok) return
-      call c_f_pointer(r, cr, [n])
-      call c_f_pointer(pressure, cp, [n])
-      call c_f_pointer(deflection, cw, [n])
-      allocate (pr(n), w(n))
-      call contact_profile(params, options, delta, cr, pr, w, error)
-      stat = settle(error)
-      if (stat /= egw_ok) return
-      cp = pr
-      cw = w
+      stat = profile_c(p, o, delta, delta, .false., n, r, pressure, deflection)
    end function egw_profile
 
    !> C: egw_profile_unload: pressure and deflection of the unloading (reloading) solve
@@ -425,6 +407,20 @@ contains
       real(c_double), value, intent(in) :: delta, delta_max
       integer(c_int), value, intent(in) :: n   !< C: `int n`
       integer(c_int) :: stat
+      stat = profile_c(p, o, delta, delta_max, .true., n, r, pressure, deflection)
+   end function egw_profile_unload
+
+   ! ---------------------------------------------------------------- helpers
+
+   !> egw_profile's and egw_profile_unload's check, call and copy: contact_profile at delta,
+   !> or (unloading) contact_profile_unload at delta after delta_max; pressure and
+   !> deflection untouched on failure.
+   integer(c_int) function profile_c(p, o, delta, delta_max, unloading, n, r, pressure, &
+      & deflection) result(stat)
+      type(c_ptr), intent(in) :: p, o, r, pressure, deflection
+      real(c_double), intent(in) :: delta, delta_max
+      logical, intent(in) :: unloading
+      integer(c_int), intent(in) :: n
       type(contact_params) :: params
       type(solver_options) :: options
       real(c_double), pointer :: cr(:), cp(:), cw(:)
@@ -440,14 +436,16 @@ contains
       call c_f_pointer(pressure, cp, [n])
       call c_f_pointer(deflection, cw, [n])
       allocate (pr(n), w(n))
-      call contact_profile_unload(params, options, delta, delta_max, cr, pr, w, error)
+      if (unloading) then
+         call contact_profile_unload(params, options, delta, delta_max, cr, pr, w, error)
+      else
+         call contact_profile(params, options, delta, cr, pr, w, error)
+      end if
       stat = settle(error)
       if (stat /= egw_ok) return
       cp = pr
       cw = w
-   end function egw_profile_unload
-
-   ! ---------------------------------------------------------------- helpers
+   end function profile_c
 
    !> Restitution with its energies into nullable double* (NULL: not wanted); all
    !> outputs untouched on failure.

@@ -60,7 +60,7 @@ contains
    !> outermost one, 0 .. 1 again and again); outside, it also forgets any open call (one
    !> a hook switched off from inside left open).
    subroutine set_progress(hook)
-      procedure(progress_hook), optional :: hook
+      procedure(progress_hook), optional :: hook   !< the new hook (absent: reports off)
       state%hook => null()
       if (present(hook)) state%hook => hook
       if (state%calling) return
@@ -78,7 +78,7 @@ contains
    !> A long call starts (pair with progress_end on every return). Outermost: its span is
    !> [0, 1] and it reports 0; nested: the share its caller gave (progress_part), else none.
    subroutine progress_begin(stage)
-      character(len=*), intent(in) :: stage
+      character(len=*), intent(in) :: stage   !< what the call does, as the hook hears it
       integer :: d
       if (.not. progress_on()) return
       d = state%depth
@@ -102,7 +102,7 @@ contains
 
    !> The long call opened last ends: it reports 1 (done at the end of its span).
    subroutine progress_end(stage)
-      character(len=*), intent(in) :: stage
+      character(len=*), intent(in) :: stage   !< the stage its progress_begin named
       if (.not. progress_on() .or. state%depth == 0) return
       call progress_report(1.0_dp, stage)
       state%depth = state%depth - 1
@@ -111,7 +111,7 @@ contains
    !> The share [lo, hi] (fractions of the current call's span, 0 <= lo <= hi <= 1) that
    !> the next long call opened inside it reports in.
    subroutine progress_part(lo, hi)
-      real(dp), intent(in) :: lo, hi
+      real(dp), intent(in) :: lo, hi   !< the share's ends, fractions of the current span
       integer :: d
       if (.not. progress_on()) return
       d = state%depth
@@ -122,8 +122,8 @@ contains
 
    !> Report the fraction done of the current call (0 .. 1 of its span), with its stage.
    subroutine progress_report(fraction, stage)
-      real(dp), intent(in) :: fraction
-      character(len=*), intent(in) :: stage
+      real(dp), intent(in) :: fraction   !< done, 0 .. 1 of the current call's span
+      character(len=*), intent(in) :: stage   !< what is being done, as the hook hears it
       real(dp) :: done
       integer :: d
       if (.not. progress_on()) return
@@ -143,7 +143,7 @@ contains
    !> own; at most one every note_interval seconds after the last call of the hook (the
    !> notes of a small-sigma first call came ~170 a second).
    subroutine progress_note(stage)
-      character(len=*), intent(in) :: stage
+      character(len=*), intent(in) :: stage   !< what is being done, as the hook hears it
       real(dp), parameter :: note_interval = 0.5_dp
       integer(8) :: now, rate
       if (.not. progress_on()) return
@@ -162,7 +162,7 @@ contains
    !> progress argument (the C entries do). total grows as a build refines; done stays
    !> monotone (progress_report), and the build's last report (done = total) is 1.
    subroutine progress_count(done, total)
-      integer, intent(in) :: done, total
+      integer, intent(in) :: done, total   !< solves done, and of how many so far
       real(dp) :: fraction
       if (.not. progress_on() .or. total <= 0) return
       fraction = min(1.0_dp, max(0.0_dp, real(done, dp)/real(total, dp)))

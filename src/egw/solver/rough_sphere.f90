@@ -1,10 +1,11 @@
 !> Normal contact of rough spheres: classic GW (Greenwood-Tripp), E-GW and EP-GW
 !> (doc/theory.md §5; paper eqs. 10-13 and 28-35), with Hertz as sigma = 0.
 !>
-!> The solves in the caller's units, their validation, contact profiles and the unloading
-!> histories. The problem is solved in scaled variables by egw_sphere_solver: radii in
-!> units of sqrt(R sigma), gaps and deflections in sigma, pressures in E sqrt(sigma/R),
-!> forces in E sqrt(R) sigma**1.5, so that scale invariance is exact.
+!> The solves in the caller's units, their validation and the unloading histories (their
+!> contact profiles: egw_rough_profile). The problem is solved in scaled variables by
+!> egw_sphere_solver: radii in units of sqrt(R sigma), gaps and deflections in sigma,
+!> pressures in E sqrt(sigma/R), forces in E sqrt(R) sigma**1.5, so that scale invariance
+!> is exact.
 !>
 !> Unloading (doc/theory.md §8, issue 10 item 3): a loading_history keeps the separation field
 !> d_max(r) of the solve at delta_max (its mesh and nodal w_G); an unloading solve at
@@ -21,25 +22,23 @@ module egw_rough_sphere
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_not_converged, egw_unsupported, fatal_error, &
+      & egw_not_converged, fatal_error, &
       & format_real, int_str
    use egw_params, only: contact_params, validate_params, model_hertz, model_gw, model_egw, &
       & model_epgw, model_flat_law, check_scaled_overlap, length_unit, pressure_unit, &
       & force_unit, stiffness_unit, product4
    use egw_progress, only: progress_begin, progress_end, progress_part, progress_report, &
       & progress_note
-   use egw_smooth_sphere, only: hertz_pressure, hertz_deflection, hertz_force, &
+   use egw_smooth_sphere, only: hertz_pressure, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
-   use egw_unloading, only: unloading_law_of, unloading_pressure
-   use egw_halfspace, only: influence_row
+   use egw_unloading, only: unloading_law_of
    use egw_flat_law, only: flat_law
    use egw_sphere_problem, only: force_floor
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
-      & cap_profile, cap_unload_profile, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
-      & scaled, normal, negligible, base_gap, closest_gap, solve_scaled, differentiate, &
+      & scaled, normal, negligible, solve_scaled, differentiate, &
       & effective_radius, total_pressure, smooth_force, smooth_stiffness
    implicit none
    private
@@ -63,17 +62,14 @@ module egw_rough_sphere
       integer :: method_used = method_auto !< method that produced the result
    end type solve_result
 
-   public :: validate_options, solve_contact, solve_contact_law, contact_profile
-   public :: load_history, solve_unload, solve_contact_unload, unload_profile
-   public :: contact_profile_unload
+   public :: validate_options, solve_contact, solve_contact_law
+   public :: load_history, solve_unload, solve_contact_unload
    public :: unload_start
    public :: above_first_yield, cap_solve_options
+   ! for egw_rough_profile (the profiles of these solves)
+   public :: check_input, check_unload_input, smooth_capped, unloading_problem, &
+      & history_cap, loaded_by_route
 
-   !> contact_profile: at most this many re-solves at rel_tol/10 each, down to the finest
-   !> tolerance the solver's error estimate can resolve in double precision.
-   integer, parameter :: profile_levels = 4
-   !> capped_profile: the cap solver's rings (finest level)
-   integer, parameter :: cap_profile_rings = 256
    !> With the cap: sigma/delta_y at or below which a solve that does not converge takes
    !> the asymptotic route (small_sigma_loading, small_sigma_unload; doc/theory.md §12
    !> "Small sigma"): from 1e-6 down, where the discrete solves fail at some overlaps.
@@ -125,7 +121,6 @@ module egw_rough_sphere
    !> 2.7e-7 at every rel_tol (the wide solves at 1e-9 took 24 s to show it); at probe_tol
    !> the four wide solves take ~1 s.
    real(dp), parameter :: probe_tol = 1.0e-7_dp, probe_margin = 10.0_dp
-   real(dp), parameter :: finest_profile_tol = 1.0e-12_dp
 
    !> Loading history of one contact: the loading solve at delta_max and its separation
    !> field, from which any number of unloading/reloading solves at delta <= delta_max
@@ -875,8 +870,8 @@ contains
       class(flat_law), intent(in) :: law           !< the rough-flat law p(u)
       type(solver_options), intent(in) :: options  !< mesh, tolerance, method and threads
       real(dp), intent(in) :: delta   !< overlap [length] with the law's reference plane
-      type(solve_result), intent(out) :: result
-      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result), intent(out) :: result   !< force, stiffness, radius ... at delta
+      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(contact_params) :: lp
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -1227,7 +1222,8 @@ contains
    !> One unloading solve from scratch: load to delta_max, then solve_unload at delta
    !> (delta >= delta_max: just the loading solve at delta). The history is loaded at
    !> 1e-4 rel_tol (at least 1e-10): the unloading solve's estimate cannot see its error;
-   !> where it does not converge at 1e-3, then 1e-2 rel_tol, then at rel_tol. The last history is kept per thread (history_cache): calls with the same params,
+   !> where it does not converge at 1e-3, then 1e-2 rel_tol, then at rel_tol. The last
+   !> history is kept per thread (history_cache): calls with the same params,
    !> options and delta_max load it once, with the same results. For several turning
    !> points at once use load_history (as tightly) and solve_unload. Errors as
    !> load_history and solve_unload; result untouched on error.
@@ -1259,13 +1255,8 @@ contains
       real(dp), parameter :: history_steps(4) = [1.0e-4_dp, 1.0e-3_dp, 1.0e-2_dp, 1.0_dp]
       integer :: step
 
-      call check_input(params, options, delta, error)
+      call check_unload_input(params, options, delta, delta_max, error)
       if (allocated(error)) return
-      if (.not. ieee_is_finite(delta_max)) then
-         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
-            & //": the largest overlap must be finite")
-         return
-      end if
       if (delta >= delta_max) then
          ! at or above the turning point: the loading solve itself (the history below is
          ! loaded more tightly than rel_tol)
@@ -1313,285 +1304,33 @@ contains
       call solve_unload(last_history%history, delta, result, error)
    end subroutine unload_from_scratch
 
-   !> Rough (asperity) pressure p_G, separation d and closest-approach separation d_max
-   !> at the radii r(:) >= 0 of the unloading solve at delta < history%delta_max (where
-   !> d < d_max the loading law holds; elsewhere the unloading law). For delta >=
-   !> delta_max or a reversible history, d_max = d. Errors as solve_unload, and sizes or
-   !> radii that do not fit (egw_invalid_argument); outputs untouched on error.
-   subroutine unload_profile(history, delta, r, pressure, separation, separation_min, error)
-      type(loading_history), intent(in) :: history   !< from load_history (only read)
+   !> The scaled problem of an unloading solve at delta (< history%delta_max) on a rough
+   !> history: the loading problem at delta with the history's closest-approach field
+   !> d_max(r) and the unloading law (egw_rough_profile's unloading profiles).
+   pure function unloading_problem(history, delta) result(prob)
+      type(loading_history), intent(in) :: history   !< a loaded rough history
       real(dp), intent(in) :: delta   !< overlap [length] of the unloading solve
-      real(dp), intent(in) :: r(:)                   !< radii, >= 0
-      real(dp), intent(inout) :: pressure(:)         !< p_G at r
-      real(dp), intent(inout) :: separation(:)       !< d at r
-      real(dp), intent(inout) :: separation_min(:)   !< d_max at r
-      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
-      type(scaled_problem) :: prob
-      type(discrete_solution) :: sol
-      real(dp), allocatable :: row(:), rs(:), gap(:), gap_min(:), f(:), dfdh(:)
-      real(dp) :: est, length, c
-      integer :: i, method_used
-
-      if (history%capped .or. (history%params%flow_pressure > 0.0_dp .and. &
-         & .not. history%reversible)) then
-         call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(history%params%flow_pressure)//": the unloading profile " &
-            & //"with the cap (beyond first yield, or rough) is not available yet (forces are)")
-         return
-      end if
-      if (size(pressure) /= size(r) .or. size(separation) /= size(r) .or. &
-         & size(separation_min) /= size(r)) then
-         call fatal_error(error, egw_invalid_argument, "pressure/separation/separation_min:" &
-            & //" sizes differ from size(r) = "//int_str(size(r)))
-         return
-      end if
-      do i = 1, size(r)
-         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
-               & //format_real(r(i))//": radii must be finite and >= 0")
-            return
-         end if
-      end do
-      if (.not. history%loaded .or. .not. ieee_is_finite(delta)) then
-         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
-            & //" or history: the overlap must be finite and the history loaded")
-         return
-      end if
-      if (history%reversible .or. delta >= history%delta_max) then
-         call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
-            & //": the unloading profile needs delta < delta_max and a rough history")
-         return
-      end if
+      type(scaled_problem) :: prob   !< in scaled units (egw_sphere_problem)
       prob = scaled(history%params, delta)
       allocate (prob%closest)
       prob%closest = history%closest
       prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
-      length = length_unit(history%params)
-      rs = r/length
-      if (negligible(prob)) then
-         gap = base_gap(prob, rs)
-         f = 0.0_dp*rs
-      else
-         call solve_scaled(prob, history%options, sol, est, method_used, error)
-         if (allocated(error)) return
-         allocate (row(size(sol%p)), gap(size(r)), f(size(r)), dfdh(size(r)))
-         do i = 1, size(r)
-            call influence_row(sol%mesh, rs(i), row)
-            gap(i) = base_gap(prob, rs(i)) + dot_product(row, sol%p)
-         end do
-      end if
-      gap_min = closest_gap(prob%closest, rs)
-      if (.not. negligible(prob)) call unloading_pressure(prob%unload, gap, gap_min, f, dfdh)
-      c = pressure_unit(history%params)
-      pressure = c*prob%scale*f
-      separation = history%params%sigma*gap
-      separation_min = history%params%sigma*gap_min
-   end subroutine unload_profile
+   end function unloading_problem
 
-   !> Total pressure p and deflection w at the radii r(:) >= 0 of the unloading (or
-   !> reloading) solve at delta after loading to delta_max (solve_contact_unload's
-   !> contact): delta >= delta_max is contact_profile at delta; reversible histories (Hertz
-   !> below first yield, GW/E-GW, EP-GW with psi = 0: the unloading law is the loading
-   !> law) too; the smooth sphere with the cap loaded beyond first yield is
-   !> cap_unload_profile's (w the surfaces' total displacement, plastic crater included);
-   !> EP-GW: Hertz + the rough unloading pressure p_G(d, d_max) (unload_profile) and w
-   !> the rough layer's deflection + Hertz's, the unloading solve tightened by 10 until
-   !> the profile changes by at most rel_tol of its peak (pressure) and of its largest
-   !> deflection (the history loaded at 1e-4 of rel_tol, at least 1e-10). A rough sphere
-   !> with the cap: capped_rough_unload_profile; after a history the small-sigma route
-   !> loaded (no rough field): egw_unsupported.
-   subroutine contact_profile_unload(params, options, delta, delta_max, r, pressure, &
-      & deflection, error)
-      type(contact_params), intent(in) :: params   !< the contact
-      type(solver_options), intent(in) :: options   !< tolerance of the solves
-      real(dp), intent(in) :: delta       !< overlap of the profile [length]
-      real(dp), intent(in) :: delta_max   !< largest overlap reached before [length]
-      real(dp), intent(in) :: r(:)             !< radii, >= 0
-      real(dp), intent(out) :: pressure(:)     !< total pressure at r, size(r)
-      real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
-      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
-      type(loading_history) :: hist
-      type(solve_result) :: loaded
-      type(solver_options) :: tight
-      type(scaled_problem) :: prob
-      real(dp), allocatable :: pg(:), d(:), dmin(:), p_prev(:), w_prev(:), p_new(:), &
-         & w_new(:), rs(:)
-      integer :: i, level
-      logical :: converged
+   !> The smooth cap's loading history of a history with history%capped (a smooth sphere
+   !> loaded beyond first yield: cap_unload_profile's input), a copy.
+   pure function history_cap(history) result(cap)
+      type(loading_history), intent(in) :: history   !< a loaded history
+      type(cap_history) :: cap   !< egw_cap_sphere's history (empty unless capped)
+      cap = history%cap
+   end function history_cap
 
-      call check_input(params, options, delta, error)
-      if (allocated(error)) return
-      if (.not. ieee_is_finite(delta_max)) then
-         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
-            & //": the largest overlap must be finite")
-         return
-      end if
-      if (delta >= delta_max .or. ((params%model == model_hertz .or. params%sigma == &
-         & 0.0_dp) .and. .not. smooth_capped(params, delta_max))) then
-         call contact_profile(params, options, delta, r, pressure, deflection, error)
-         return
-      end if
-      if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
-         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
-            & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
-            & //" differs from size(r) = "//int_str(size(r)))
-         return
-      end if
-      do i = 1, size(r)
-         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
-               & //format_real(r(i))//": radii must be finite and >= 0")
-            return
-         end if
-      end do
-      tight = options
-      tight%rel_tol = max(1.0e-10_dp, 1.0e-4_dp*options%rel_tol)
-      call load_history(params, tight, delta_max, hist, loaded, error)
-      if (allocated(error)) return
-      if (hist%capped) then
-         call cap_unload_profile(hist%cap, cap_profile_rings, delta, r, pressure, deflection, &
-            & error)
-         return
-      end if
-      if (hist%reversible) then
-         call contact_profile(params, options, delta, r, pressure, deflection, error)
-         return
-      end if
-      if (hist%asymptotic) then
-         call fatal_error(error, egw_unsupported, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//", delta_max = "//format_real(delta_max) &
-            & //": the history was loaded by the small-sigma route (no rough field), whose " &
-            & //"unloading profile is not available (forces are)")
-         return
-      end if
-      if (params%flow_pressure > 0.0_dp) then
-         call capped_rough_unload_profile(hist, options, delta, r, pressure, deflection, &
-            & error)
-         return
-      end if
-      ! the rough unloading pressure p_G and separation d: the rough layer's deflection
-      ! is d - sigma base_gap (base_gap: the Hertz-deformed or rigid gap)
-      prob = scaled(params, delta)
-      rs = r/length_unit(params)
-      allocate (pg(size(r)), d(size(r)), dmin(size(r)), p_new(size(r)), w_new(size(r)), &
-         & p_prev(size(r)), w_prev(size(r)))
-      hist%options = options
-      converged = .false.
-      do level = 0, profile_levels
-         call unload_profile(hist, delta, r, pg, d, dmin, error)
-         if (allocated(error)) return
-         do i = 1, size(r)
-            w_new(i) = d(i) - params%sigma*base_gap(prob, rs(i))
-         end do
-         p_new = pg
-         if (prob%extended) then
-            p_new = p_new + hertz_pressure(r, delta, params%radius, params%modulus)
-            w_new = w_new + hertz_deflection(r, delta, params%radius)
-         end if
-         if (level > 0) then
-            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
-               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
-            if (converged) exit
-         end if
-         p_prev = p_new
-         w_prev = w_new
-         if (hist%options%rel_tol <= finest_profile_tol) exit
-         hist%options%rel_tol = max(hist%options%rel_tol/10.0_dp, finest_profile_tol)
-      end do
-      if (.not. converged) then
-         call fatal_error(error, egw_not_converged, "profile_unload: the pressure profile " &
-            & //"did not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
-         return
-      end if
-      pressure = p_new
-      deflection = w_new
-   end subroutine contact_profile_unload
-
-   !> The scaled problem prob (loading, or unloading on a history's field) solved at
-   !> options%rel_tol, then again at rel_tol/10 (down to finest_profile_tol) until its
-   !> total pressure and deflection at the radii r (>= 0, checked) change by at most
-   !> rel_tol of the peak pressure and of the largest deflection; egw_not_converged
-   !> (naming what, the caller's entry) if they do not. In params' units.
-   subroutine settled_profile(prob, options, params, r, pressure, deflection, error, what)
-      type(scaled_problem), intent(inout) :: prob
-      type(solver_options), intent(in) :: options
-      type(contact_params), intent(in) :: params
-      real(dp), intent(in) :: r(:)
-      real(dp), intent(out) :: pressure(:), deflection(:)
-      type(egw_error), allocatable, intent(out) :: error
-      character(len=*), intent(in) :: what
-      type(discrete_solution) :: sol
-      type(solver_options) :: level_options
-      real(dp) :: est
-      real(dp), allocatable :: rs_all(:), p_prev(:), w_prev(:), p_new(:), w_new(:)
-      integer :: i, method_used, level
-      logical :: converged
-      ! The force's error control does not bound the pressure pointwise (classic GW deep
-      ! in contact: 2e-4 of the peak at rel_tol 1e-6). Solve again at rel_tol/10 until
-      ! the profile changes by at most rel_tol of its peak (pressure) and of the largest
-      ! deflection: the finer of the two is then the answer.
-      rs_all = [0.0_dp, r/length_unit(params)]
-      do i = 2, size(rs_all)
-         if (.not. ieee_is_finite(rs_all(i))) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i - 1)//") = " &
-               & //format_real(r(i - 1))//": r/sqrt(R sigma) exceeds the largest double")
-            return
-         end if
-         ! the fields are even and smooth in r: below 1e-150 of the scaled length they
-         ! equal their value at 0 to rounding (and the kernels' 1/r would overflow)
-         if (rs_all(i) < 1.0e-150_dp) rs_all(i) = 0.0_dp
-      end do
-      allocate (p_prev(size(rs_all)), w_prev(size(rs_all)), p_new(size(rs_all)), &
-         & w_new(size(rs_all)))
-      level_options = options
-      converged = .false.
-      do level = 0, profile_levels
-         call solve_scaled(prob, level_options, sol, est, method_used, error)
-         if (allocated(error)) return
-         call profile_values(prob, sol, rs_all, p_new, w_new)
-         if (level > 0) then
-            converged = maxval(abs(p_new - p_prev)) <= options%rel_tol*maxval(abs(p_new)) &
-               & .and. maxval(abs(w_new - w_prev)) <= options%rel_tol*maxval(abs(w_new))
-            if (converged) exit
-         end if
-         p_prev = p_new
-         w_prev = w_new
-         if (level_options%rel_tol <= finest_profile_tol) exit
-         level_options%rel_tol = max(level_options%rel_tol/10.0_dp, finest_profile_tol)
-      end do
-      if (.not. converged) then
-         call fatal_error(error, egw_not_converged, what//": the pressure profile did " &
-            & //"not settle to rel_tol = "//format_real(options%rel_tol)//" of its peak")
-         return
-      end if
-      pressure = p_new(2:)*pressure_unit(params)
-      deflection = w_new(2:)*params%sigma
-   end subroutine settled_profile
-
-   !> contact_profile_unload of a rough sphere with the cap after the discrete loading
-   !> history hist: the unloading solve (the history's closest field, the cap's law and
-   !> plastic shift: total_pressure) re-done at rel_tol/10 until the profile settles (as
-   !> contact_profile); w the elastic deflection (rough layer + Hertz's).
-   subroutine capped_rough_unload_profile(hist, options, delta, r, pressure, deflection, &
-      & error)
-      type(loading_history), intent(in) :: hist
-      type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: delta, r(:)
-      real(dp), intent(out) :: pressure(:), deflection(:)
-      type(egw_error), allocatable, intent(out) :: error
-      type(scaled_problem) :: prob
-      prob = scaled(hist%params, delta)
-      allocate (prob%closest)
-      prob%closest = hist%closest
-      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
-      if (negligible(prob)) then
-         pressure = 0.0_dp
-         deflection = 0.0_dp
-         return
-      end if
-      call settled_profile(prob, options, hist%params, r, pressure, deflection, error, &
-         & "profile_unload")
-   end subroutine capped_rough_unload_profile
+   !> Whether the small-sigma route loaded history (no rough field: only the route answers
+   !> its unloading, and no unloading profile exists).
+   pure logical function loaded_by_route(history)
+      type(loading_history), intent(in) :: history   !< a loaded history
+      loaded_by_route = history%asymptotic
+   end function loaded_by_route
 
    !> Whether cache holds the history of exactly these inputs (every field equal).
    pure logical function cached(cache, params, options, delta_max)
@@ -1614,103 +1353,6 @@ contains
       end associate
    end function cached
 
-   !> Total pressure p and deflection w (Hertz + rough part for E-GW/EP-GW, the GW part for
-   !> classic GW, Hertz for model_hertz or sigma = 0) at the radii r(:) >= 0, pointwise
-   !> within options%rel_tol of the peak pressure and of the largest deflection (re-solved
-   !> at rel_tol/10 until the profile settles; egw_not_converged if it does not).
-   subroutine contact_profile(params, options, delta, r, pressure, deflection, error)
-      type(contact_params), intent(in) :: params   !< the contact
-      type(solver_options), intent(in) :: options   !< tolerance of the solves
-      real(dp), intent(in) :: delta   !< overlap [length]: > 0 pressed together, < 0 apart
-      real(dp), intent(in) :: r(:)             !< radii, >= 0
-      real(dp), intent(out) :: pressure(:)     !< total pressure at r, size(r)
-      real(dp), intent(out) :: deflection(:)   !< total deflection at r, size(r)
-      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
-      type(scaled_problem) :: prob
-      integer :: i
-
-      call check_input(params, options, delta, error)
-      if (allocated(error)) return
-      if (size(pressure) /= size(r) .or. size(deflection) /= size(r)) then
-         call fatal_error(error, egw_invalid_argument, "pressure/deflection: size " &
-            & //int_str(size(pressure))//"/"//int_str(size(deflection)) &
-            & //" differs from size(r) = "//int_str(size(r)))
-         return
-      end if
-      do i = 1, size(r)
-         if (.not. ieee_is_finite(r(i)) .or. r(i) < 0.0_dp) then
-            call fatal_error(error, egw_invalid_argument, "r("//int_str(i)//") = " &
-               & //format_real(r(i))//": radii must be finite and >= 0")
-            return
-         end if
-      end do
-      if (smooth_capped(params, delta)) then
-         call capped_profile(params, delta, r, pressure, deflection, error)
-         return
-      end if
-      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
-         pressure = hertz_pressure(r, delta, params%radius, params%modulus)
-         deflection = hertz_deflection(r, delta, params%radius)
-         if (.not. all(ieee_is_finite(pressure) .and. ieee_is_finite(deflection))) &
-            & call fatal_error(error, egw_invalid_argument, "delta = "//format_real(delta) &
-            & //": the Hertz pressure or deflection at r exceeds the largest double")
-         return
-      end if
-
-      prob = scaled(params, delta)
-      if (negligible(prob)) then
-         pressure = 0.0_dp
-         deflection = 0.0_dp
-         return
-      end if
-      call settled_profile(prob, options, params, r, pressure, deflection, error, "profile")
-   end subroutine contact_profile
-
-   !> contact_profile of the smooth sphere with the cap beyond first yield (cap_profile) on
-   !> up to cap_profile_rings rings, whatever options%rel_tol: the rings' pressures
-   !> converge as (1/rings)**2 (a change of 3e-5 p_y from 128 to 256 rings at 2 delta_y),
-   !> so rel_tol 1e-6 would take ~4000 rings. Measured against
-   !> tools/reference/cap_reference.py --profile 2 5 20: p within 1.5e-5 p_y (the
-   !> reference's own error: up to 3.1e-5), w within 1e-9 delta_y; 2 pi int p r dr within
-   !> 5.2e-6 of the force from 1.5 to 30 delta_y (test_cap_sphere, test_cap_profile).
-   subroutine capped_profile(params, delta, r, pressure, deflection, error)
-      type(contact_params), intent(in) :: params
-      real(dp), intent(in) :: delta, r(:)
-      real(dp), intent(out) :: pressure(:), deflection(:)
-      type(egw_error), allocatable, intent(out) :: error
-      call cap_profile(params%radius, params%modulus, params%flow_pressure, delta, &
-         & cap_options(n_rings=cap_profile_rings/2, n_levels=2), r, pressure, deflection, &
-         & error)
-   end subroutine capped_profile
-
-   !> Total pressure and deflection of a solved contact at scaled radii rs (scaled units).
-   subroutine profile_values(prob, sol, rs, pressure, deflection)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(in) :: sol
-      real(dp), intent(in) :: rs(:)
-      real(dp), intent(out) :: pressure(:), deflection(:)
-      real(dp), allocatable :: row(:)
-      real(dp) :: wg, f(1), dfdh(1)
-      integer :: i
-      allocate (row(size(sol%p)))
-      do i = 1, size(rs)
-         call influence_row(sol%mesh, rs(i), row)
-         wg = dot_product(row, sol%p)
-         if (allocated(prob%cap)) then
-            ! the cap on the total pressure (its law and plastic shift: total_pressure)
-            pressure(i) = total_pressure(prob, sol, rs(i))
-         else
-            call prob%law%pressure([base_gap(prob, rs(i)) + wg], f, dfdh)
-            pressure(i) = f(1)
-            if (prob%extended) pressure(i) = pressure(i) + &
-               & hertz_pressure(rs(i), prob%delta, 1.0_dp, 1.0_dp)
-         end if
-         deflection(i) = wg
-         if (prob%extended) deflection(i) = deflection(i) + &
-            & hertz_deflection(rs(i), prob%delta, 1.0_dp)
-      end do
-   end subroutine profile_values
-
    !> Whether params (validated) have the flow-pressure cap and delta lies beyond its first
    !> yield delta_y = (pi p_y/(2 E*))**2 R (Hertz p_max = p_y): the cap model's range.
    !> At or below delta_y the cap never acts and the solves are Hertz's.
@@ -1728,8 +1370,8 @@ contains
    !> Whether params are a smooth sphere (Hertz or sigma = 0) with the cap beyond first
    !> yield: egw_cap_sphere's range. A rough sphere's cap lives in its scaled problem.
    elemental logical function smooth_capped(params, delta)
-      type(contact_params), intent(in) :: params
-      real(dp), intent(in) :: delta
+      type(contact_params), intent(in) :: params   !< the contact (validated)
+      real(dp), intent(in) :: delta   !< overlap [length]
       smooth_capped = (params%model == model_hertz .or. params%sigma == 0.0_dp) .and. &
          & above_first_yield(params, delta)
    end function smooth_capped
@@ -1771,10 +1413,16 @@ contains
       if (res%force > 0.0_dp) result%est_rel_err = res%force_error/res%force
    end subroutine put_cap_result
 
+   !> The checks of every solve's input: params (validate_params), options
+   !> (validate_options), a finite delta whose Hertz force and stiffness stay finite
+   !> (smooth), or within the solver's range of delta/sigma and, with the cap, at most
+   !> 1e12 delta_y (rough: check_scaled_overlap, check_cap_overlap).
    pure subroutine check_input(params, options, delta, error, allow_flat_law)
-      type(contact_params), intent(in) :: params
-      type(solver_options), intent(in) :: options
-      real(dp), intent(in) :: delta
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< the solve's options
+      real(dp), intent(in) :: delta   !< overlap [length]
+      !> allocated (egw_invalid_parameter or egw_invalid_argument, naming the value) when
+      !> an input is refused
       type(egw_error), allocatable, intent(out) :: error
       logical, intent(in), optional :: allow_flat_law   !< the caller has the law
       call validate_params(params, error, allow_flat_law)
@@ -1797,6 +1445,24 @@ contains
          if (.not. allocated(error)) call check_cap_overlap("delta", delta, params, error)
       end if
    end subroutine check_input
+
+   !> check_input for an unloading solve at delta after delta_max, and a finite delta_max.
+   pure subroutine check_unload_input(params, options, delta, delta_max, error)
+      type(contact_params), intent(in) :: params   !< the contact
+      type(solver_options), intent(in) :: options   !< the solve's options
+      real(dp), intent(in) :: delta       !< overlap [length] of the unloading solve
+      real(dp), intent(in) :: delta_max   !< largest overlap reached before [length]
+      !> allocated (egw_invalid_parameter or egw_invalid_argument, naming the value) when
+      !> an input is refused
+      type(egw_error), allocatable, intent(out) :: error
+      call check_input(params, options, delta, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max)) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
+            & //": the largest overlap must be finite")
+         return
+      end if
+   end subroutine check_unload_input
 
    !> A rough sphere with the cap: egw_invalid_argument naming name beyond rough_cap_range
    !> delta_y, where E-GW and EP-GW solves stop converging (doc/stability.md "Rough + cap far

@@ -181,7 +181,7 @@ module egw_table
          type(force_table), intent(out) :: table   !< the built table, prepared
          !> a solve's failure or an unreached rel_tol
          type(egw_error), allocatable, intent(out) :: error
-         procedure(table_progress), optional :: progress
+         procedure(table_progress), optional :: progress   !< optional hook (table_progress)
       end subroutine build_table_law
 
       !> Build a table whose cut-off is fixed at cutoff (used by the universal table,
@@ -217,6 +217,7 @@ module egw_table
          type(force_table), intent(inout) :: tables(:)
          !> a solve's failure or an unreached rel_tol
          type(egw_error), allocatable, intent(out) :: error
+         !> optional hook (table_progress): solves done and total, from solves_before
          procedure(table_progress), optional :: progress
          !> solves counted before this build (default 0)
          integer, intent(in), optional :: solves_before
