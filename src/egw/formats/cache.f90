@@ -58,8 +58,10 @@ module egw_cache
    !> 22: rough + cap unloading's plastic shift in the deep zone from one root of law = p_y
    !> per mesh (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids;
    !> 23: the log-ratio curves' s bisection weighted by the largest weight of each interval
-   !> (ends and middle), not the middle's (branch local12); 24: both of 22 and 23.
-   integer, parameter, public :: cache_revision = 24
+   !> (ends and middle), not the middle's (branch local12); 24: both of 22 and 23, the
+   !> log-ratio curves on six-point stencils in delta_max (branch local13); 25: their check
+   !> curves not solved where four points meet check_skip (hysteresis_build).
+   integer, parameter, public :: cache_revision = 25
 
 
 contains
