@@ -57,11 +57,14 @@ module egw_cache
    !> had the log-ratio tables without 19's map, main's 19 not the log-ratio tables);
    !> 22: rough + cap unloading's plastic shift in the deep zone from one root of law = p_y
    !> per mesh (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids;
-   !> 23: the log-ratio curves' s bisection weighted by the largest weight of each interval
-   !> (ends and middle), not the middle's (branch local12); 24: both of 22 and 23, the
-   !> log-ratio curves on six-point stencils in delta_max (branch local13); 25: their check
-   !> curves not solved where four points meet check_skip (hysteresis_build).
-   integer, parameter, public :: cache_revision = 25
+   !> 23 (main): unloading with elastic summits (GW, E-GW, with or without the cap) takes
+   !> Newton's chord steps: rough + cap tables moved by <= 5.3e-9 of P(m), same grids;
+   !> 23 (branch local12): the log-ratio curves' s bisection weighted by the largest weight
+   !> of each interval (ends and middle), not the middle's; 24 (branch local13): local12's
+   !> 23 with main's 22, the log-ratio curves on six-point stencils in delta_max; 25: their
+   !> check curves not solved where four points meet check_skip (hysteresis_build); 26:
+   !> both of 25 and main's 23.
+   integer, parameter, public :: cache_revision = 26
 
 
 contains

@@ -410,7 +410,7 @@ contains
    !> chord step contracts like |w - w*|, so the fallback only costs one evaluation, while
    !> the LU (n**3) is most of an iteration's cost on the solver's meshes. Far from the
    !> solution chord steps would cost iterations: max_iter counts both kinds alike.
-   !> Unloading solves take no chord steps (see below).
+   !> EP-GW unloading solves take no chord steps (see below).
    subroutine newton(prob, sol, max_iter, error)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem
       type(discrete_solution), intent(inout) :: sol   !< in: the start; out: the solution
@@ -475,13 +475,19 @@ contains
                if (f2_try <= (1.0_dp - 1.0e-4_dp*lambda)*f2) exit
                lambda = 0.5_dp*lambda
             end do
-            ! Factors from far away (damped, or slow) are not worth reusing. Unloading never
-            ! reuses them: an evaluation of Z_u costs ~1.5x the loading law's, so on the
-            ! solver's meshes the LU costs less than the evaluation a chord step adds, and
-            ! the law's kink at d = d_max (dp/dh jumps) slows chord steps to a 20-50-fold
+            ! Factors from far away (damped, or slow) are not worth reusing. EP-GW unloading
+            ! never reuses them: an evaluation of Z_u costs ~1.5x the loading law's, so on
+            ! the solver's meshes the LU costs less than the evaluation a chord step adds,
+            ! and the law's kink at d = d_max (dp/dh jumps) slows chord steps to a 20-50-fold
             ! gain each (seen: 5 chord steps from 1e-4 to 1e-11 where Newton takes 2).
+            ! Elastic summits (psi = 0: GW, E-GW, with or without the cap) unload on the
+            ! loading law, whose evaluation costs less than an LU, and have no d = d_max
+            ! branch: they take chord steps as loading does (E-GW + cap table of the
+            ! README, sigma = delta_y/100 to 6 delta_y at 1e-4: build CPU 0.94, the table's
+            ! gaps within 5e-9 of P(m) of the Newton-only build's; doc/benchmarks.md
+            ! "Stop 47 (rcost12)").
             factored = lambda == 1.0_dp .and. f2_try <= f2/chord_start**2 .and. &
-               & .not. allocated(prob%closest)
+               & .not. (allocated(prob%closest) .and. prob%psi > 0.0_dp)
          end if
          res = res_try
          norm = norm_try
