@@ -260,6 +260,11 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * <= 1e-6 needs the looser ones, and from a history at rel_tol the unloading near the
  * residual overlap can miss rel_tol under a small estimate, doc/stability.md "Rough + cap
  * as sigma -> 0") and kept for the next call on the same
+ * thread. Known limit: rough + cap unloading within ~0.01 delta_max of the residual
+ * overlap (a small central contact disc) can be accepted off by more than rel_tol under
+ * a small est_rel_err (E-GW + cap, sigma = 2e-5 delta_y, 0.1442 delta_max after
+ * 2 delta_y, rel_tol 1e-6: 5.6e-4 off under 1.1e-7); cross-check such forces at two
+ * rel_tol (doc/stability.md "Stop 47 (resid13)"). The history is kept per
  * thread: calls with the same p, o and delta_max (a sweep of the unloading curve) load it
  * once, one unloading solve each after the first (results identical either way; each
  * thread keeps its own, no lock). Statuses: as egw_solve, and EGW_INVALID_ARGUMENT

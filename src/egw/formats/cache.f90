@@ -63,8 +63,11 @@ module egw_cache
    !> of each interval (ends and middle), not the middle's; 24 (branch local13): local12's
    !> 23 with main's 22, the log-ratio curves on six-point stencils in delta_max; 25: their
    !> check curves not solved where four points meet check_skip (hysteresis_build); 26:
-   !> both of 25 and main's 23.
-   integer, parameter, public :: cache_revision = 26
+   !> both of 25 and main's 23; 25 (main): the loading law's series panel by reciprocals
+   !> (egw_gauss series_panel: F values move by <= 5 ulp): the EP-GW + cap table of issue
+   !> 32 moved by <= 9.7e-10 relative in its gaps, same grids; 27 (branch local14): local13's
+   !> 26 with main's 25.
+   integer, parameter, public :: cache_revision = 27
 
 
 contains

@@ -596,11 +596,13 @@ contains
    !> + lo, hi of 26 bits (Dekker split), hi^2/2 is exact and the rest, |small| < 2e-5 for
    !> the |z| < 40 of the windows, enters through a cubic (egw_gauss's exp_neg_half_square
    !> without its branches, so that the 16 nodes vectorise). |z| > 38.6: 0 (underflow).
+   !> Of fixed size 16: with z(:) the result was a temporary of run-time size, which
+   !> gfortran took from the heap (malloc and free on every panel, ~9 % of Z_u's time).
    pure function gaussian(z) result(phi)
-      real(dp), intent(in) :: z(:)
-      real(dp) :: phi(size(z))
+      real(dp), intent(in) :: z(16)
+      real(dp) :: phi(16)
       real(dp), parameter :: splitter = 134217729.0_dp  ! 2^27 + 1
-      real(dp) :: a(size(z)), c(size(z)), hi(size(z)), small(size(z))
+      real(dp) :: a(16), c(16), hi(16), small(16)
       a = min(abs(z), 40.0_dp)
       c = splitter*a
       hi = c - (c - a)

@@ -987,13 +987,8 @@ contains
       type(discrete_solution) :: sol
       type(solve_result) :: checked
 
-      call check_input(params, options, 0.0_dp, error)
+      call check_unload_input(params, options, 0.0_dp, delta_max, error)
       if (allocated(error)) return
-      if (.not. ieee_is_finite(delta_max)) then
-         call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
-            & //": the largest overlap must be finite")
-         return
-      end if
       if (params%model /= model_hertz) call check_scaled_overlap("delta_max", delta_max, &
          & params%sigma, error)
       if (allocated(error)) return
