@@ -66,8 +66,10 @@ module egw_cache
    !> both of 25 and main's 23; 25 (main): the loading law's series panel by reciprocals
    !> (egw_gauss series_panel: F values move by <= 5 ulp): the EP-GW + cap table of issue
    !> 32 moved by <= 9.7e-10 relative in its gaps, same grids; 27 (branch local14): local13's
-   !> 26 with main's 25.
-   integer, parameter, public :: cache_revision = 27
+   !> 26 with main's 25; 28: log-ratio curves' s midpoints accepted on an embedded
+   !> estimate (midpoint_skip) and delta_max splits deferred beside larger misses
+   !> (split_defer; hysteresis_build): other grids.
+   integer, parameter, public :: cache_revision = 28
 
 
 contains
