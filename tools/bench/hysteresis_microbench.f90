@@ -7,7 +7,9 @@
 ! libegw.a, A: the build's other libraries):
 !   gfortran -O2 -ffree-line-length-none -fopenmp -I$B hysteresis_microbench.f90 $L $A \
 !      -lfftw3_omp -lfftw3 -llapack -lblas -o mb
-!   OMP_NUM_THREADS=1 ./mb FILE
+!   OMP_NUM_THREADS=1 ./mb FILE [CASE]
+! CASE (1-5: Hertz, eval, rest, moving, energy) times that loop alone (for perf record);
+! the others print huge.
 program mb
    use, intrinsic :: iso_fortran_env, only: int64
    use egw_kinds, only: dp
@@ -27,9 +29,15 @@ program mb
    real(dp) :: delta(n), state(n), wobble(0:63), f, k, m, u, sink, best(5), tt
    real(dp), allocatable :: states(:, :), moving(:, :)
    integer(int64) :: c0, c1, rate
-   integer :: i, r, s, stat, j
+   integer :: i, r, s, stat, j, only
    logical :: there
    call get_command_argument(1, file)
+   only = 0
+   if (command_argument_count() >= 2) then
+      call get_command_argument(2, file)
+      read (file, *) only
+      call get_command_argument(1, file)
+   end if
    inquire (file=trim(file), exist=there)
    if (.not. there) then
       call build_hysteresis(contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
@@ -60,6 +68,7 @@ program mb
    sink = 0
    do r = 1, rounds
       do j = 1, 5
+         if (only > 0 .and. j /= only) cycle
          call system_clock(c0, rate)
          do s = 1, sweeps
             do i = 1, n
