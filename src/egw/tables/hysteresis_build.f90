@@ -464,7 +464,9 @@ contains
             where (m(:size(m) - 1) == 0.0_dp .or. m(2:) == 0.0_dp) wide = &
                & m(2:) - m(:size(m) - 1) >= min_width/32*(m(size(m)) - m(1))
          end if
-         if (log_table(table)) call defer_splits(err_mid, m_bound, wide)
+         ! (not in the last third of the passes, so that deferring never brings a grid
+         ! to their limit)
+         if (log_table(table) .and. pass <= 20) call defer_splits(err_mid, m_bound, wide)
          n_split = count(err_mid > m_bound .and. wide)
          ! built: the nodes' curves and the kept midpoints'; pending: two per split
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
