@@ -68,8 +68,9 @@ module egw_cache
    !> 32 moved by <= 9.7e-10 relative in its gaps, same grids; 27 (branch local14): local13's
    !> 26 with main's 25; 28: log-ratio curves' s midpoints accepted on an embedded
    !> estimate (midpoint_skip) and delta_max splits deferred beside larger misses
-   !> (split_defer; hysteresis_build): other grids.
-   integer, parameter, public :: cache_revision = 28
+   !> (split_defer; hysteresis_build): other grids; 29: their check curves solved at the
+   !> s nodes both neighbours hold (not the union).
+   integer, parameter, public :: cache_revision = 29
 
 
 contains
