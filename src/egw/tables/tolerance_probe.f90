@@ -28,7 +28,8 @@ module egw_tolerance_probe
    !> 61, 107, 235 nodes at 1e-3, 1e-4, 1e-5, x1.75 then x2.2, x1.96 a decade over both;
    !> on six-point stencils 42, 71, 170, x1.69 then x2.39, x2.01 a decade over both, with
    !> the check's skip (hysteresis_build's check_skip) 42, 67, 146, x1.60 then x2.18, with
-   !> the deferred splits (split_defer) 37, 59, 139, x1.59 then x2.36, x1.94 over both;
+   !> the deferred splits (split_defer) 37, 59, 139, x1.59 then x2.36, x1.94 over both,
+   !> and check curves at the shared s nodes 37, 58, 131, x1.57 then x2.26;
    !> steel pair 80, 134, 249, x1.76 a decade). The gap curves before grew faster from a
    !> smaller pilot (glass 27, 50, 137: x2.74 in the second decade).
    real(dp), parameter :: m_growth_per_decade = 2.0_dp
