@@ -58,6 +58,7 @@ contains
          & new_unittest("loading above delta_max: the deep law", test_deep_loading), &
          & new_unittest("low delta_max: loading table to the deep law's floor", &
          & test_deep_floor), &
+         & new_unittest("unloading from above delta_max: against solves", test_deep_unloading), &
          & new_unittest("history: load, unload, reload, new contact", test_history), &
          & new_unittest("state with cached turning point = plain history", test_state), &
          & new_unittest("energy: the force's integral; e^2 at a turning point", test_energy), &
@@ -356,6 +357,60 @@ contains
       end do
       call check(error, worst <= 1.0e-2_dp, "loading above delta_max: error "//format_real(worst))
    end subroutine test_deep_loading
+
+   !> Unloading from turning points above the table's delta_max (6 sigma; 2, 4 and 8 times
+   !> that, as DEM contacts beyond a capped reach: LAMMPS's tables stop at 140 sigma) over
+   !> the whole span to the cut-off, against unloading solves at rel_tol 1e-7: the last
+   !> curve continued (an extrapolation, not checked by the build) within 2 % of the force
+   !> at the turning point and never above the loading force by more than rel_tol of it;
+   !> the unloading stiffness within 3 times the loading stiffness at the turning point.
+   !> The solves' curves lie within 1e-3 of P_load(delta) over most of the span (the
+   !> asperities' residual set is sigma's, not m's), so a log-ratio table whose last curve
+   !> kept its own span (m - delta over L(6 sigma)) dropped the force to 0 at m - L,
+   !> (~1e-25 of the solves' at 2 and 4 delta_max, its stiffness there ~100 times the
+   !> loading one: the lost atoms of in.pour.drum with EP-GW, doc/benchmarks.md "Stop 48
+   !> (gain14)").
+   subroutine test_deep_unloading(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(solver_options) :: fine
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: m, d, f, k, f_m, k_m, fl, kl, state, worst, over, stiff
+      integer :: i, j, stat
+      call build(ep, t, error)
+      if (allocated(error)) return
+      fine%rel_tol = 1.0e-7_dp
+      worst = 0.0_dp
+      over = 0.0_dp
+      stiff = 0.0_dp
+      do j = 1, 3
+         m = t%delta_max*2.0_dp**j
+         state = -huge(1.0_dp)
+         call hysteresis_eval(t, m, state, f_m, k_m, stat)
+         do i = 1, 12
+            d = m - (m - t%loading%cutoff)*(i/12.5_dp)
+            call solve_contact_unload(ep, fine, d, m, res, err)
+            if (allocated(err)) then
+               call test_failed(error, "solve: "//err%message)
+               return
+            end if
+            state = m
+            call hysteresis_eval(t, d, state, f, k, stat)
+            call check(error, stat == egw_out_of_range .and. state == m, &
+               & "above delta_max: flagged, history kept")
+            if (allocated(error)) return
+            state = -huge(1.0_dp)
+            call hysteresis_eval(t, d, state, fl, kl, stat)
+            worst = max(worst, abs(f - res%force)/f_m)
+            over = max(over, (f - fl)/f_m)
+            stiff = max(stiff, k/k_m)
+         end do
+      end do
+      call check(error, worst <= 2.0e-2_dp .and. over <= tol .and. stiff <= 3.0_dp, &
+         & "unloading above delta_max: error "//format_real(worst)//" of P(m), above "// &
+         & "loading "//format_real(over)//", stiffness "//format_real(stiff)//" x S(m)")
+   end subroutine test_deep_unloading
 
    !> A table asked to end at 0.5 sigma (below 2 sigma, where the deep-overlap law starts to
    !> hold its 1 %: egw_table's deep_law_floor): its unloading grid ends there, its loading

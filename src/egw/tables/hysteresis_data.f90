@@ -304,6 +304,14 @@ contains
          inv_span = stencil_sum(table%n_w, w, table%inv_span(first:first + table%n_w - 1))
       end if
       if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
+      ! above the table a log-ratio table's last curve is stretched to span m - delta_max
+      ! more, so that its residual end stays where the last curve's is: s of (m - delta)
+      ! at the last curve's span would reach s = 1 (h = ln(P_load/P) at its largest, P ~ 0)
+      ! at m - L, a drop of the force to 0 within a few sigma, ~100 times the loading
+      ! stiffness, where egw_solve_unload's force stays within 1e-4 of P_load (EP-GW,
+      ! mu 2, psi 1, m = 420 sigma, L = 140 sigma: doc/benchmarks.md "Stop 48 (gain14)")
+      if (table%log_ratio .and. m > table%delta_max) &
+         & inv_span = 1.0_dp/(1.0_dp/inv_span + (m - table%delta_max))
       knee = 0.0_dp
       if (table%mapped) then
          ! the first piece's 1/span from the interpolated knee, so that the pieces meet
