@@ -107,12 +107,19 @@ def test_lammps_decks_converted():
     """LAMMPS's own in.pour.flatwall, in.pour.drum, in.pour.heat converted to egw
     (bench/flatwall.in, drum.in, heat.in: E-GW at sigma = 1e-16, walls with wall_material
     contact, in.pour.heat's floor at 'temperature v_oscillate'), short runs (flatwall 2500
-    steps, the grains landing; drum 1500 + 300 steps on 2 ranks with fix balance; heat 3000
-    steps, the grains on the heated floor): no ERROR, no lost atom, no NaN; drum and heat
+    steps, the grains landing; drum 1500 + 300 steps on 2 ranks with fix balance, and with
+    EP-GW (sigma 1e-3, psi 1) 2000 + 400 steps on 1 rank through the turn of gravity; heat
+    3000 steps, the grains on the heated floor): no ERROR, no lost atom, no NaN; drum and heat
     keep the size neighbor list with fix balance; heat flowed (the temperatures' sum is not
     0)."""
     msgs, ok = [], True
+    # (drum with EP-GW, sigma 1e-3, psi 1 as bench.py runs it, through the turn of gravity:
+    # the log-ratio tables lost atoms at step 2100-2200 there when contacts beyond the
+    # tables' 140 sigma unloaded (the last curve's span not stretched, doc/benchmarks.md
+    # "Stop 48 (gain14)"), the kinetic energy rising from the turn on)
     for deck, np, var in (("flatwall.in", 1, dict(nrun=2500)), ("drum.in", 2, dict(n1=1500, n2=300)),
+                          ("drum.in", 1, dict(n1=2000, n2=400, model="EP-GW", sig="1e-3",
+                                              plastic="psi 1")),
                           ("heat.in", 1, dict(nrun=3000))):
         args = [LMP, "-np", str(np), "-in", os.path.join(BENCH, deck), "-var", "law", "egw",
                 "-log", "none", "-nocite"]
