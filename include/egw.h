@@ -687,7 +687,11 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
 /* Force [force] and stiffness dP/ddelta [force/length] at overlap delta for the contact
  * whose history is *delta_max_state, updated to max(*delta_max_state, delta). force or
  * stiffness may be NULL. A state above the table's delta_max: EGW_OUT_OF_RANGE with the
- * values written (the last unloading curve, the loading table's deep-overlap asymptote).
+ * values written (the last unloading curve, the loading table's deep-overlap asymptote;
+ * on a ln(P_load/P) table the last curve's span stretched by the state's excess over
+ * delta_max, its residual end kept: from 3 delta_max within 4e-5 of the turning point's
+ * force of unloading solves, the deep loading law's own error there (EP-GW,
+ * doc/benchmarks.md "Stop 48 (gain14)")).
  * Below the loading table's cut-off: 0 (a turning point at or below it unloads on the
  * loading curve, so 0 there too). With the flow-pressure cap a turning point at or below
  * first yield delta_y unloads on the loading curve (Hertz), one above it gives 0 below its
