@@ -650,8 +650,10 @@ void egw_universal_free(egw_universal *u);
  * delta_max_state owned by the caller (a double per contact; a new contact starts at
  * -HUGE_VAL). Loading (delta >= state) follows the loading table and moves the state up;
  * below the state, the unloading curve of that state (reloading retraces it). Built
- * adaptively: solves at the midpoints of both grids agree to rel_tol of the force at the
- * turning point. Evaluation allocates nothing and takes no lock; a table is read-only
+ * adaptively: solves at the midpoints of both grids agree to rel_tol of the local force
+ * down to 1e-3 of the force at the turning point, and of 1e-3 of that below (EP-GW, and
+ * rough models whose cap does not act, store ln(P_load/P)); where the flow-pressure cap
+ * acts, to rel_tol of the force at the turning point (doc/formats.md section 6). Evaluation allocates nothing and takes no lock; a table is read-only
  * after the build, so any number of threads may evaluate it (each with its own states).
  * EP-GW alone does not let a packing come to rest: it dissipates only while a contact
  * loads beyond its past maximum overlap, and below it unloading and reloading retrace one
@@ -675,10 +677,10 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * probe of 18 such solves (loading and unloading from delta_max and delta_max/2;
  * milliseconds at the usual tolerances) fails at once where they cannot reach it, rather
  * than after minutes of building; below rel_tol 1e-4 a pilot table at 1e-3 (a few
- * percent of a 1e-5 build) estimates the build's delta_max grid (growing 2.75x per
+ * percent of a 1e-5 build) estimates the build's delta_max grid (growing 2x per
  * decade of rel_tol, as measured builds do) and refuses a rel_tol whose grid would pass
  * the build's limit of 400 nodes, naming the smallest rel_tol within it (the glass pair
- * of issue 22: 1e-6 refused in seconds, ~2.2e-6 within). A probe that passes promises
+ * of issue 22: 1e-6 refused in seconds, ~1.9e-6 within). A probe that passes promises
  * nothing: the build may still meet a failing solve or its limit. Every
  * EGW_NOT_CONVERGED message starts "hysteresis table: rel_tol = <the caller's> ..." and
  * says what the solves' tolerance was and what the failing solve reached (its error
@@ -691,7 +693,11 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
 /* Force [force] and stiffness dP/ddelta [force/length] at overlap delta for the contact
  * whose history is *delta_max_state, updated to max(*delta_max_state, delta). force or
  * stiffness may be NULL. A state above the table's delta_max: EGW_OUT_OF_RANGE with the
- * values written (the last unloading curve, the loading table's deep-overlap asymptote).
+ * values written (the last unloading curve, the loading table's deep-overlap asymptote;
+ * on a ln(P_load/P) table the last curve's span stretched by the state's excess over
+ * delta_max, its residual end kept: from 3 delta_max within 4e-5 of the turning point's
+ * force of unloading solves, the deep loading law's own error there (EP-GW,
+ * doc/benchmarks.md "Stop 48 (gain14)")).
  * Below the loading table's cut-off: 0 (a turning point at or below it unloads on the
  * loading curve, so 0 there too). With the flow-pressure cap a turning point at or below
  * first yield delta_y unloads on the loading curve (Hertz), one above it gives 0 below its
@@ -748,8 +754,9 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
 {
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
-   * [17..23] the loading table's interval (ends, cubic in delta - [17], 1 where it is
-   * ln P) */
+   * [17..23] the loading table's interval (ends, cubic in delta - [17], > 0 where it is
+   * ln P; on a log-ratio table's piece, whose cubic is -ln(P_load/P), 2 for ln P and -1
+   * for a linear interval) */
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (!(state[2] == tag)) return 0;
@@ -761,12 +768,21 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
     f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
     k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
   }
-  if (loading || state[23] > 0.0) {
-    /* the loading interval's force: all of it when loading; on a piece its ln P part */
+  if (loading || state[23] > 0.0 || (piece && state[23] < 0.0)) {
+    /* the loading interval's force: all of it when loading; on a piece its ln P part, or
+     * on a log-ratio piece the factor exp(-h) of the loading force (one exp) */
     double t = delta - state[17], t2 = t * t;
     double v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
     double d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
-    if (state[23] > 0.0) {
+    if (piece && state[23] > 1.0) {
+      double p = exp(v + f);
+      k = p * (d + k);
+      f = p;
+    } else if (piece && state[23] < 0.0) {
+      double e = exp(f);
+      k = e * (d + v * k);
+      f = v * e;
+    } else if (state[23] > 0.0) {
       double p = exp(v);
       f = f + p;
       k = k + p * d;
@@ -793,11 +809,19 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
  * from the loading cut-off to delta. On the loading curve it is the part of the loading
  * work that comes back; the rest is dissipated when the contact unloads (a DEM code's
  * kinetic + this energy falls while contacts load and stays while they unload or reload).
- * Reversible tables: the loading curve's energy. The state is not changed. It integrates
- * the force egw_hysteresis_eval returns, 0 also where, far down the separated range, the
- * interpolated curve dips below 0 within rel_tol (those dips sampled per table when it
- * is built or read; kinetic + this energy is constant to ~1e-8 of it while a contact
- * unloads, measured against quadrature of the force; a few table lookups a call).
+ * Reversible tables: the loading curve's energy. The state is not changed. On a
+ * ln(P_load/P) table (EP-GW) it is the loading energy times e^-eta, eta = ln(E_load/E)
+ * tabulated per curve when the table is built or read and interpolated as the force's
+ * log ratio (one exp a call): within rel_tol of max(energy, 1e-3 of the energy at the
+ * turning point) of the integral of the force egw_hysteresis_eval returns (measured
+ * 0.2-0.4 rel_tol), so kinetic + this energy drifts by up to that while a contact
+ * unloads; overlaps within an s interval of the loading cut-off, and turning points
+ * within ~1.5 sigma of it, integrate that force piece by piece instead (exact; a cost
+ * that grows with the pieces). On a gap table (the cap acting) it integrates that force,
+ * 0 also where, far down the separated range, the interpolated curve dips below 0 within
+ * rel_tol (those dips sampled per table when it is built or read; a few table lookups a
+ * call); kinetic + this energy is constant to ~1e-8 of it while a contact unloads,
+ * measured against quadrature of the force.
  * EGW_OUT_OF_RANGE above the table's delta_max (value written); EGW_INVALID_ARGUMENT for
  * NaN or overflowing input; EGW_NULL_POINTER for h or energy. */
 int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,
@@ -822,8 +846,8 @@ void egw_hysteresis_free(egw_hysteresis *h);
 
 /* Write h to path (NUL-terminated) atomically (temporary file, then rename: a failed write
  * leaves an existing file intact). format: EGW_FORMAT_CSV (unloading data as rows
- * delta_max,s,ratio,dratio_ds; loading curve and metadata as '#' lines; a checksum line
- * last) or EGW_FORMAT_BINARY (versioned, checksummed); doc/formats.md section 6.
+ * delta_max,length,s and log_ratio,dlog_ratio_dxi (EP-GW) or gap,dgap_ds (the cap acting);
+ * loading curve and metadata as '#' lines; a checksum line last) or EGW_FORMAT_BINARY (versioned, checksummed); doc/formats.md section 6.
  * Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (other formats), EGW_NULL_POINTER. */
 int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
 
@@ -831,8 +855,10 @@ int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
  * the file's start). *out receives a handle only for a file that passed every check
  * (checksum; finite values; the loading curve every check of egw_table_read, stiffness
  * and energy consistent with its forces included; increasing grids; gaps 0 at the
- * turning point and within [0, 1], with slopes that keep each curve near that range:
- * doc/formats.md section 6).
+ * turning point and within [0, 1], with slopes that keep each curve near that range, or
+ * log ratios 0 there and within [-100, 100]: doc/formats.md section 6). An EP-GW
+ * file of the gap curves (binary version 1 / CSV format 1 with curves, egw before the log
+ * ratio) is refused: rebuild it.
  * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),
  * EGW_NULL_POINTER. */
 int egw_hysteresis_read(const char *path, egw_hysteresis *out);
@@ -855,7 +881,8 @@ typedef struct {
   double reference_force; /* P_ref [force] of the loading table's cut-off rule: the loading
                            * force at min(0, delta_max) for rough models, at delta_max for
                            * Hertz (egw_table_info.reference_force of the loading curve) */
-  double rel_tol;      /* requested tolerance, relative to the force at the turning point */
+  double rel_tol;      /* requested tolerance, relative to max(P, 1e-3 P(m)) (ln(P_load/P)
+                        * curves) or to the force at the turning point P(m) (the cap acting) */
   double max_error;    /* largest mismatch found at the build's check solves */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;

@@ -315,7 +315,9 @@ int egw_capi_test_hysteresis(void) {
     /* egw_hysteresis_energy: the energy returned grows with delta below a turning point
      * and with the turning point; the table's force integrated by the trapezoid rule from
      * 2 to 3 below m = 3 (2000 steps: the force is smooth there, error ~1e-7 relative)
-     * equals the energy's difference; 0 below the cut-off; refusals. */
+     * equals the energy's difference to the table's rel_tol of each energy (an EP-GW
+     * table: its energy interpolates ln(E_load/E), within rel_tol of itself; doc/theory.md
+     * section 8); 0 below the cut-off; refusals. */
     double u2, u3, u3b, sum = 0.0, fa, fb, u = 9.0;
     HCHECK(egw_hysteresis_energy(h, 2.0, 3.0, &u2) == EGW_OK);
     HCHECK(egw_hysteresis_energy(h, 3.0, 3.0, &u3) == EGW_OK);
@@ -327,7 +329,7 @@ int egw_capi_test_hysteresis(void) {
       egw_hysteresis_eval(h, b, &s2, &fb, NULL);
       sum += 0.5 * (fa + fb) / 2000.0;
     }
-    HCHECK(fabs((u3 - u2) - sum) <= 1e-6 * sum);
+    HCHECK(fabs((u3 - u2) - sum) <= 1e-3 * (u2 + u3));
     HCHECK(egw_hysteresis_energy(h, -10.0, 3.0, &u) == EGW_OK && u == 0.0);
     u = 9.0;
     HCHECK(egw_hysteresis_energy(h, NAN, 3.0, &u) == EGW_INVALID_ARGUMENT && u == 9.0);

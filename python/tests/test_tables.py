@@ -98,14 +98,16 @@ def test_hysteresis_table_histories():
 def test_hysteresis_energy():
     # the energy returned below a turning point is the integral of the table's own force
     # (trapezoid rule, 4000 steps from 1 to 3 below m = 3: the force is smooth there,
-    # error ~1e-7 relative); it grows with the turning point; the states are not changed
+    # error ~1e-7 relative) to the table's rel_tol of each energy (EP-GW tables interpolate
+    # ln(E_load/E): within rel_tol of the energy, doc/theory.md section 8); it grows with
+    # the turning point; the states are not changed
     p = egw.Params(model="EP-GW", sigma=1.0, mu=4.0, psi=2.0)
     h = egw.HysteresisTable.build(p, -2.0, 4.0, rel_tol=1e-3)
     x = np.linspace(1.0, 3.0, 4001)
     f, _ = h.eval(x, np.full(x.size, 3.0))
     u = h.energy([1.0, 3.0], 3.0)
     trapezoid = 0.5 * np.sum((f[1:] + f[:-1]) * np.diff(x))
-    assert abs((u[1] - u[0]) - trapezoid) <= 1e-6 * (u[1] - u[0])
+    assert abs((u[1] - u[0]) - trapezoid) <= 1e-3 * (u[0] + u[1])
     state = np.array([3.0, 3.0])
     assert np.all(h.energy([3.5, 3.5], state) > u[1]) and np.all(state == 3.0)
 

@@ -50,20 +50,32 @@ module egw_cache
    !> rel_tol >= 1e-7, and at 1e-7 for a history the route loaded: route answers at
    !> sigma/delta_y <= 1e-6 move within their estimates; 19: rough + cap tables with
    !> plastic summits on the two-piece s map too (turning points at or below 0 on its
-   !> tail), every mapped table's slopes stored as dg/dx times tail_length); 22: rough +
-   !> cap unloading's plastic shift in the deep zone from one root of law = p_y per mesh
-   !> (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids; 23:
-   !> unloading with elastic summits (GW, E-GW, with or without the cap) takes Newton's
-   !> chord steps: rough + cap tables moved by <= 5.3e-9 of P(m), same grids; 25: the
-   !> loading law's series panel by reciprocals (egw_gauss series_panel: F values move
-   !> by <= 5 ulp): the EP-GW + cap table of issue 32 moved by <= 9.7e-10 relative in
-   !> its gaps, same grids; 27: unloading after a capped loading (extended models, sigma/
-   !> delta_y >= 1e-5) grades a central-disc contact's elements about its edge on every
-   !> level (sphere_solver's central_disc): rough + cap tables moved; 28: rough + cap
-   !> unloading's central-disc route up to a disc edge of 0.5 a (was 0.25): solves that
-   !> took the history-edges route there may take it instead (within rel_tol), and tables
-   !> at sigma/delta_y ~ 2e-4 that failed build.
-   integer, parameter, public :: cache_revision = 28
+   !> tail), every mapped table's slopes stored as dg/dx times tail_length; 20: EP-GW
+   !> hysteresis tables without the cap store ln(P_load/P) on the edge map, to rel_tol of
+   !> the local force (format version 3), their delta_max intervals at m = 0 split down to
+   !> 1/32 of the others' width limit; 21: both of 19 and 20 (branch local10's 19 and 20
+   !> had the log-ratio tables without 19's map, main's 19 not the log-ratio tables);
+   !> 22: rough + cap unloading's plastic shift in the deep zone from one root of law = p_y
+   !> per mesh (flow_cap's plastic_shifts): tables moved by <= 4.3e-15 of P(m), same grids;
+   !> 23 (main): unloading with elastic summits (GW, E-GW, with or without the cap) takes
+   !> Newton's chord steps: rough + cap tables moved by <= 5.3e-9 of P(m), same grids;
+   !> 23 (branch local12): the log-ratio curves' s bisection weighted by the largest weight
+   !> of each interval (ends and middle), not the middle's; 24 (branch local13): local12's
+   !> 23 with main's 22, the log-ratio curves on six-point stencils in delta_max; 25: their
+   !> check curves not solved where four points meet check_skip (hysteresis_build); 26:
+   !> both of 25 and main's 23; 25 (main): the loading law's series panel by reciprocals
+   !> (egw_gauss series_panel: F values move by <= 5 ulp): the EP-GW + cap table of issue
+   !> 32 moved by <= 9.7e-10 relative in its gaps, same grids; 27 (branch local14): local13's
+   !> 26 with main's 25; 28: log-ratio curves' s midpoints accepted on an embedded
+   !> estimate (midpoint_skip) and delta_max splits deferred beside larger misses
+   !> (split_defer; hysteresis_build): other grids; 29: their check curves solved at the
+   !> s nodes both neighbours hold (not the union) (branch local14); 27 (main): unloading
+   !> after a capped loading (extended models, sigma/delta_y >= 1e-5) grades a
+   !> central-disc contact's elements about its edge on every level (sphere_solver's
+   !> central_disc): rough + cap tables moved; 28 (main): rough + cap unloading's
+   !> central-disc route up to a disc edge of 0.5 a (was 0.25); 29: main's 28 with branch
+   !> local14's log-ratio tables (its 29).
+   integer, parameter, public :: cache_revision = 29
 
 
 contains

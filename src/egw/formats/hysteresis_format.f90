@@ -16,7 +16,8 @@ module egw_hysteresis_format
    use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
       & get_f64, split_checksum, checksum_line, check_table
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare, first_yield, hertz_capped
-   use egw_hysteresis_data, only: s_knee, s_zero, map_piece, map_iota, map_lengths
+   use egw_hysteresis_data, only: s_knee, s_zero, map_piece, map_iota, map_lengths, &
+      & max_log_ratio, edge_breaks, edge_xi
    implicit none
    private
 
@@ -25,12 +26,17 @@ module egw_hysteresis_format
    character(len=8), parameter :: magic = "EGWHYST1"
    !> Version 1: no flow-pressure cap; version 2 (the cap, params%flow_pressure > 0: Hertz
    !> + cap, or a rough model + cap, told apart by model and sigma as the evaluation does):
-   !> flow_pressure follows the seven parameters (one float64 more in the header). Tables
-   !> without the cap are still written as version 1, byte for byte as before. Version 4
-   !> (a rough model + cap with the two-piece s map, table%mapped): as version 2, then
-   !> tail_length after flow_pressure, and each curve's knee after the lengths; version 2
-   !> files of rough models + cap are read with their linear map, as written.
-   integer(int32), parameter :: hysteresis_version = 1, cap_version = 2, mapped_version = 4
+   !> flow_pressure follows the seven parameters (one float64 more in the header); version 3
+   !> (log_ratio curves: EP-GW without the cap, or a rough model whose cap does not act)
+   !> the layout of version 2 (flow_pressure >= 0), the curves h = ln(P_load/P) on the
+   !> edge map with slopes dh/d(m - delta) in place of the gap and dg/ds. Reversible
+   !> tables without the cap are still written as version 1.
+   !> A version-1 file with curves (egw before the log-ratio curves) is refused: rebuild.
+   !> Version 4 (a rough model + cap with the two-piece s map, table%mapped): as version
+   !> 2, then tail_length after flow_pressure, and each curve's knee after the lengths;
+   !> version 2 files of rough models + cap are read with their linear map, as written.
+   integer(int32), parameter :: hysteresis_version = 1, cap_version = 2, log_version = 3, &
+      & mapped_version = 4
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
    !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
@@ -41,6 +47,14 @@ module egw_hysteresis_format
    character(len=*), parameter :: csv_title_cap = "# egw hysteresis table, CSV format 2"
    !> The title of a table with the two-piece s map (tail_length and knee lines).
    character(len=*), parameter :: csv_title_mapped = "# egw hysteresis table, CSV format 4"
+   !> A log-ratio table's header (columns and title): h = ln(P_load/P) and dh/dxi.
+   character(len=*), parameter :: csv_columns_log = "delta_max,length,s,log_ratio,"// &
+      & "dlog_ratio_dxi"
+   character(len=*), parameter :: csv_title_log = "# egw hysteresis table, CSV format 3"
+   !> What a file of the gap curves that the log-ratio curves replaced is told.
+   character(len=*), parameter :: rebuild_note = ": an EP-GW table of the gap curves "// &
+      & "(egw before the log-ratio curves, doc/formats.md section 6), which this egw "// &
+      & "does not read: rebuild the table (egw-table, egw_hysteresis_build)"
    !> Most rows a hysteresis file may announce (a corrupted count must not allocate wildly).
    integer, parameter :: max_rows = 10000000
 
@@ -55,6 +69,7 @@ module egw_hysteresis_format
       real(dp) :: flow_pressure = 0.0_dp   !< format 2 only
       integer :: format = 1                !< the CSV title's format
       integer :: k_knee = 0                !< knee lines read (format 4)
+      logical :: log = .false.             !< format 3 (log-ratio curves)
       real(dp) :: v(5)
    end type csv_reading
 
@@ -97,14 +112,18 @@ contains
          call parse_binary(path, bytes, table, error)
       else if (starts_with(bytes, csv_columns//new_line("a")//csv_title) .or. &
          & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap) .or. &
-         & starts_with(bytes, csv_columns//new_line("a")//csv_title_mapped)) then
+         & starts_with(bytes, csv_columns//new_line("a")//csv_title_mapped) .or. &
+         & starts_with(bytes, csv_columns_log//new_line("a")//csv_title_log)) then
          call parse_csv(path, bytes, table, error)
       else
          call fatal_error(error, egw_bad_file, "path = "//path//": not an egw hysteresis "// &
             & "table (neither binary magic "//magic//" nor its CSV header)")
          return
       end if
-      if (allocated(error)) return
+      if (allocated(error)) then   ! (a parse may have filled part of it)
+         call clear(table)
+         return
+      end if
       call check_hysteresis(path, table, error)
       if (allocated(error)) then
          call clear(table)
@@ -128,7 +147,10 @@ contains
       call grid_sizes(table, n_m, n_s)
       version = hysteresis_version
       extra = 0
-      if (table%params%flow_pressure /= 0.0_dp) then
+      if (table%log_ratio) then
+         version = log_version
+         extra = 8
+      else if (table%params%flow_pressure /= 0.0_dp) then
          version = cap_version
          extra = 8
       end if
@@ -193,14 +215,24 @@ contains
          return
       end if
       if (head(1) /= hysteresis_version .and. head(1) /= cap_version .and. &
-         & head(1) /= mapped_version) then
+         & head(1) /= log_version .and. head(1) /= mapped_version) then
          call bad(error, path, "format version "//int_str(int(head(1)))//" is not "// &
             & "supported (this egw reads versions "//int_str(int(hysteresis_version))// &
-            & ", "//int_str(int(cap_version))//" and "//int_str(int(mapped_version))//")")
+            & ", "//int_str(int(cap_version))//", "//int_str(int(log_version))//" and "// &
+            & int_str(int(mapped_version))//")")
+         return
+      end if
+      if (head(1) == hysteresis_version .and. head(5) == 0) then
+         call bad(error, path, "format version 1 with curves"//rebuild_note)
+         return
+      end if
+      if (head(1) == log_version .and. head(5) /= 0) then
+         call bad(error, path, "format version 3 of a reversible table (version 3 is the "// &
+            & "log-ratio curves')")
          return
       end if
       extra = 0
-      if (head(1) == cap_version) extra = 8
+      if (head(1) == cap_version .or. head(1) == log_version) extra = 8
       n_load = head(6)
       n_m = head(8)
       n_s = head(9)
@@ -226,15 +258,22 @@ contains
       call get_f64(bytes, pos, lmeta)
       table%params = params_from(int(head(4)), p)
       table%params%flow_pressure = flow(1)
-      if (head(1) /= hysteresis_version .and. .not. flow(1) > 0.0_dp) then
+      if ((head(1) == cap_version .or. head(1) == mapped_version) .and. &
+         & .not. flow(1) > 0.0_dp) then
          call bad(error, path, "format version "//int_str(int(head(1)))// &
             & " with flow_pressure = "//format_real(flow(1))//" (versions 2 and 4 are "// &
             & "the flow-pressure cap's, > 0)")
          return
       end if
+      if (head(1) == log_version .and. .not. flow(1) >= 0.0_dp) then
+         call bad(error, path, "format version 3 with flow_pressure = "// &
+            & format_real(flow(1))//" (must be >= 0)")
+         return
+      end if
       table%mapped = head(1) == mapped_version
       table%tail_length = tail(1)
       table%reversible = head(5) /= 0
+      table%log_ratio = head(1) == log_version
       table%rel_tol = meta(1)
       table%delta_max = meta(2)
       table%max_error = meta(3)
@@ -276,10 +315,14 @@ contains
       associate (l => table%loading)
          ! the column header first and the metadata as '#' lines, as the 1-D tables:
          ! pandas.read_csv(path, comment="#") reads the unloading rows as they are
-         head = csv_columns//new_line("a")//merge(csv_title_cap, csv_title, &
-            & table%params%flow_pressure /= 0.0_dp)//new_line("a")
-         if (table%mapped .and. .not. table%reversible) head = csv_columns//new_line("a")// &
-            & csv_title_mapped//new_line("a")
+         if (table%log_ratio) then
+            head = csv_columns_log//new_line("a")//csv_title_log//new_line("a")
+         else if (table%mapped .and. .not. table%reversible) then
+            head = csv_columns//new_line("a")//csv_title_mapped//new_line("a")
+         else
+            head = csv_columns//new_line("a")//merge(csv_title_cap, csv_title, &
+               & table%params%flow_pressure /= 0.0_dp)//new_line("a")
+         end if
          head = head// &
             & "# egw_version = "//egw_version_string//new_line("a")// &
             & "# model = "//int_str(table%params%model)//" ("// &
@@ -306,9 +349,7 @@ contains
             & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
             & "stiffness [modulus*length]; energy [modulus*length^3]; s, gap [1]"// &
             & new_line("a")// &
-            & "# rows: unloading force = P_load(delta) - P_load(delta_max)*gap at s = "// &
-            & "(delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), cubic Lagrange in "// &
-            & "delta_max over four neighbouring curves, length too (doc/formats.md)"// &
+            & rows_note(table%log_ratio)// &
             & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
          if (table%mapped .and. .not. table%reversible) then
             head = head//new_line("a")//"# the two-piece s map: each curve's knee (in "// &
@@ -342,6 +383,24 @@ contains
       end subroutine put_line
    end subroutine write_csv
 
+   !> The '# rows:' line of a hysteresis CSV: what a row's numbers are.
+   pure function rows_note(log_ratio) result(line)
+      logical, intent(in) :: log_ratio
+      character(len=:), allocatable :: line
+      if (log_ratio) then
+         line = "# rows: unloading force = P_load(delta)*exp(-log_ratio) at s of the edge "// &
+            & "map of length and sigma (s piecewise linear in delta_max - delta, "// &
+            & "doc/formats.md), cubic Hermite in s (slope dlog_ratio_dxi per "// &
+            & "delta_max - delta), cubic Lagrange in delta_max over four neighbouring "// &
+            & "curves, 1/length too (doc/formats.md)"
+      else
+         line = "# rows: unloading force = P_load(delta) - P_load(delta_max)*gap at s = "// &
+            & "(delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), "// &
+            & "cubic Lagrange in delta_max over four neighbouring curves, length too "// &
+            & "(doc/formats.md)"
+      end if
+   end function rows_note
+
    !> Read the CSV form (doc/formats.md §6): the checksum line, then line by line the
    !> metadata and loading nodes ('#' lines, read_csv_meta) and the unloading rows
    !> (read_csv_row), then whether all were there (finish_csv).
@@ -362,6 +421,7 @@ contains
          return
       end if
       if (starts_with(text, csv_columns//new_line("a")//csv_title_mapped)) reading%format = 4
+      reading%log = starts_with(text, csv_columns_log//new_line("a"))
       start = 1
       do while (start <= sum_at)
          eol = index(text(start:), new_line("a"))
@@ -564,6 +624,17 @@ contains
             & "n_delta_max = "//int_str(size(table%m))//" (and a table with curves)")
          return
       end if
+      if (.not. reading%log .and. .not. table%reversible .and. &
+         & .not. reading%flow_pressure > 0.0_dp) then
+         call bad(error, path, "CSV format 1 with curves"//rebuild_note)
+         return
+      end if
+      if (reading%log .and. (table%reversible .or. reading%flow_pressure < 0.0_dp)) then
+         call bad(error, path, "CSV format 3 of a reversible table (format 3 is the "// &
+            & "log-ratio curves')")
+         return
+      end if
+      table%log_ratio = reading%log
       table%loading%params = table%params
       table%loading%n_log = reading%n_log
       call set_table_meta(table%loading, reading%lmeta)
@@ -664,6 +735,10 @@ contains
             & "and s from 0 to 1 must increase")
          return
       end if
+      if (t%log_ratio) then
+         call check_log_curves(path, t, error)
+         return
+      end if
       ! the gap is relative to the turning-point force: within [0, 1] up to the tables'
       ! own errors
       if (any(t%gap(1, :) /= 0.0_dp) .or. any(t%gap < -10*t%rel_tol) .or. &
@@ -711,6 +786,52 @@ contains
       if (findloc(t%s, s_knee, 1) == 0 .or. findloc(t%s, s_zero, 1) == 0) &
          & call bad(error, path, "two-piece s map (format 4): s = 1/2 and 3/4 must be nodes")
    end subroutine check_map
+
+   !> The log-ratio curves (EP-GW without the cap): s_max = 1, the edge map's breaks 1/2
+   !> and 3/4 among the s nodes (no interval straddles one), h = ln(P_load/P) 0 at s = 0
+   !> and within [-max_log_ratio, max_log_ratio] (below the loading table's cut-off, where
+   !> the curves run on the loading tail's continuation and the evaluation returns 0, h
+   !> reaches -0.25 on LAMMPS's pour tables, mu 8-23, psi 0.5, to 140 sigma, and -1.48 on
+   !> its column's types 2 2 table, mu 3, psi 0.3, R*/sigma 283, 1e-3, where the bound was
+   !> -1 and the ranks could not share it), and no cubic rising by more
+   !> than 10 max_log_ratio over an interval from its slopes (|dh/dxi| dxi; built tables:
+   !> up to 452 on the last interval of egw-bench's 1e-4 table (mu 4, psi 2, to 30
+   !> sigma), 469 to 140 sigma at 1e-3, where h climbs from ~50 at s = 3/4 to the stored
+   !> 100 over the separated tail's 12 sigma; the bound was 4 max_log_ratio and refused
+   !> the first; a crafted slope of 1e300 does not pass).
+   subroutine check_log_curves(path, t, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: xi_b(3), x0, x1
+      integer :: i, j
+      if (t%s_max /= 1.0_dp .or. .not. (any(t%s == 0.5_dp) .and. any(t%s == 0.75_dp))) then
+         call bad(error, path, "unloading grid: log-ratio curves need s_max = 1 and the "// &
+            & "edge map's breaks s = 0.5, 0.75 among the s nodes")
+         return
+      end if
+      if (any(t%gap(1, :) /= 0.0_dp) .or. any(t%gap < -max_log_ratio) .or. &
+         & any(t%gap > max_log_ratio)) then
+         call bad(error, path, "unloading data: log_ratio must be 0 at s = 0 and within "// &
+            & "[-"//format_real(max_log_ratio)//", "//format_real(max_log_ratio)//"]")
+         return
+      end if
+      do j = 1, size(t%m)
+         call edge_breaks(t%length(j), t%params%sigma, xi_b)
+         do i = 1, size(t%s) - 1
+            call edge_xi(xi_b, t%s(i), x0)
+            call edge_xi(xi_b, t%s(i + 1), x1)
+            if (max(abs(t%slope(i, j)), abs(t%slope(i + 1, j)))*(x1 - x0) > &
+               & 10*max_log_ratio) then
+               call bad(error, path, "unloading data: curve "//int_str(j)//", s nodes "// &
+                  & int_str(i)//", "//int_str(i + 1)//": slope "// &
+                  & format_real(max(abs(t%slope(i, j)), abs(t%slope(i + 1, j))))// &
+                  & " inconsistent with the log ratio")
+               return
+            end if
+         end do
+      end do
+   end subroutine check_log_curves
 
    !> The gap's slopes: |dg/ds| (s_{i+1} - s_i) <= 2 at both ends of every interval of
    !> every curve, so that a curve's cubic stays within about 1 of the chord of its

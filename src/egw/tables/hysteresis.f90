@@ -18,8 +18,9 @@ module egw_hysteresis
    use egw_hysteresis_data, only: hysteresis_table, hysteresis_state_size, nan_error, &
       & gap_cubic, turning_point, gap_combination, unload_tail_ratio, make_lookup, &
       & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan, turning_knee, map_s, &
-      & map_x, map_piece, s_knee, s_zero, map_lengths
-   use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, &
+      & map_x, map_piece, s_knee, s_zero, map_lengths, log_unload, edge_breaks, &
+      & edge_segment, edge_s, edge_xi, max_stencil, stencil_width, stencil_window, stencil_sum
+   use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, log_energy_prepare, &
       & energy_prepare
    implicit none
    private
@@ -60,7 +61,8 @@ contains
    !> loading table; unloading and reloading below the state the unloading curve of the
    !> state, 0 below the loading table's cut-off (where the loading force is below 1e-12
    !> of the reference force; a state at or below the cut-off unloads on the loading
-   !> curve's tail). A state above the table's delta_max uses the last curve and returns
+   !> curve's tail). A state above the table's delta_max uses the last curve (log-ratio
+   !> tables: its span stretched by the state's excess, turning_point) and returns
    !> egw_out_of_range (values written). NaN delta or state: egw_invalid_argument, nothing
    !> changed (force, stiffness 0); a state above delta_max whose force leaves the doubles:
    !> egw_invalid_argument, the values as computed (egw_hysteresis_eval's statuses). The
@@ -77,7 +79,7 @@ contains
       integer, intent(out) :: stat         !< 0 or an egw status
       !> allocated when stat is not 0, with a message naming the argument
       type(egw_error), allocatable, intent(out), optional :: error
-      real(dp) :: w(4), inv_span, f_m, c(4), s, knee, dsdx
+      real(dp) :: w(max_stencil), inv_span, f_m, c(4), s, knee, dsdx
       integer :: first, i
       stat = 0
       force = 0.0_dp
@@ -100,16 +102,21 @@ contains
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       call turning_point(table, delta_max_state, first, w, inv_span, f_m, knee)
-      ! (the linear map inline: no call on the path of every table without the map)
-      s = (delta_max_state - delta)*inv_span
-      dsdx = inv_span
-      if (table%mapped) call map_s(table, delta_max_state, knee, inv_span, &
-         & delta_max_state - delta, s, dsdx)
-      s = min(s, 1.0_dp)
-      i = locate(table%s_lookup, table%s, s)
-      call gap_combination(table, first, w, i, c)
-      call unload_branch(table, c, i, s, delta_max_state, f_m, inv_span, knee, dsdx, delta, &
-         & force, stiffness)
+      if (table%log_ratio) then
+         call log_unload(table, first, w, 1.0_dp/inv_span, delta_max_state, delta, force, &
+            & stiffness)
+      else
+         ! (the linear map inline: no call on the path of every table without the map)
+         s = (delta_max_state - delta)*inv_span
+         dsdx = inv_span
+         if (table%mapped) call map_s(table, delta_max_state, knee, inv_span, &
+            & delta_max_state - delta, s, dsdx)
+         s = min(s, 1.0_dp)
+         i = locate(table%s_lookup, table%s, s)
+         call gap_combination(table, first, w, i, c)
+         call unload_branch(table, c, i, s, delta_max_state, f_m, inv_span, knee, dsdx, &
+            & delta, force, stiffness)
+      end if
       if (delta_max_state > table%delta_max) call beyond(table, "delta_max_state", &
          & delta_max_state, force, stiffness, stat, error)
    end subroutine hysteresis_eval
@@ -156,7 +163,7 @@ contains
       integer, intent(out) :: stat         !< 0 or an egw status
       !> allocated when stat is not 0, with a message naming the argument
       type(egw_error), allocatable, intent(out), optional :: error
-      real(dp) :: w(4), g(4), s, knee, dsdx
+      real(dp) :: w(max_stencil), g(4), s, knee, dsdx, xi_b(3), ds, inv_span, f_m
       integer :: first, i
       logical :: found
       stat = 0
@@ -197,33 +204,61 @@ contains
       end if
       if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
       if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
-         & state(4) <= size(table%m) - 3)) then
+         & state(4) <= size(table%m) - table%n_w + 1)) then
          ! (P_load of the turning point from the loading interval the state holds)
-         call turning_point(table, state(1), first, w, state(5), state(6), knee, &
-            & state(18:24))
+         if (table%log_ratio) then
+            ! (six weights in (5:10): the log-ratio pieces need neither 1/L nor P_load(m))
+            call turning_point(table, state(1), first, w, inv_span, f_m, knee, &
+               & state(18:24))
+            state(11 - table%n_w:10) = w(1:table%n_w)
+            state(13) = 1.0_dp/inv_span
+         else
+            call turning_point(table, state(1), first, w, state(5), state(6), knee, &
+               & state(18:24))
+            state(7:10) = w(1:4)
+            state(13) = 1.0_dp/state(5)
+         end if
          state(2) = state(1)
          state(4) = real(first, dp)
-         state(7:10) = w
-         state(13) = 1.0_dp/state(5)
       end if
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
+      if (table%log_ratio) then
+         w = 0.0_dp
+         w(1:table%n_w) = state(11 - table%n_w:10)
+         call edge_breaks(state(13), table%params%sigma, xi_b)
+         call edge_s(xi_b, state(1) - delta, s, ds)
+         s = min(s, 1.0_dp)
+         i = locate(table%s_lookup, table%s, s)
+         call make_log_piece(table, w, first, i, s, state(1), delta, xi_b, &
+            & state(18:24), state(11:12), state(14:17), found)
+         if (found) then
+            call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
+         else   ! (the clamp s = 1, or rounding at a piece's end: hysteresis_eval's)
+            call log_unload(table, first, w, state(13), state(1), delta, force, stiffness)
+         end if
+         if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
+            & stiffness, stat, error)
+         return
+      end if
       s = (state(1) - delta)*state(5)
       dsdx = state(5)
       knee = 0.0_dp
+      w = 0.0_dp
+      w(1:4) = state(7:10)
       if (table%mapped) then
          ! (the knee from the cached weights: the state has no room for it)
-         knee = turning_knee(table, first, state(7:10), state(1))
+         knee = turning_knee(table, first, w, state(1))
          call map_s(table, state(1), knee, state(5), state(1) - delta, s, dsdx)
       end if
       s = min(s, 1.0_dp)
       i = locate(table%s_lookup, table%s, s)
-      call make_piece(table, state(7:10), first, i, s, state(1), delta, state(5), knee, &
+      call make_piece(table, w, first, i, s, state(1), delta, state(5), knee, &
          & state(6), state(18:24), state(11:12), state(14:17), found)
       if (found) then
          call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
       else   ! (the interval's gap cubic only here: the piece has its own)
-         call gap_combination(table, first, state(7:10), i, g)
+         call gap_combination(table, first, w, i, g)
          call unload_branch(table, g, i, s, state(1), state(6), state(5), knee, dsdx, delta, &
             & force, stiffness)
       end if
@@ -233,16 +268,33 @@ contains
 
    !> The force and stiffness at delta inside a piece (make_piece: start lo, cubic c),
    !> with the loading interval seg it was made with: the cubic, plus exp of seg's cubic
-   !> where that is ln P; 0 where the force is not positive.
+   !> where that is ln P; 0 where the force is not positive. A log-ratio piece
+   !> (make_log_piece: seg(7) 2 on a ln P interval, -1 on a linear one; c is -h):
+   !> exp(ln P - h), or P e^-h, one exp (egw.h's inline egw_hysteresis_eval_cached does
+   !> the same arithmetic in the same order: the same bits).
    pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
       real(dp), intent(in) :: lo, c(4), seg(7), delta
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: x, x2, p, k
+      real(dp) :: x, x2, p, k, t, t2, v, d, e
       x = delta - lo
       x2 = x*x
       force = (c(1) + x*c(2)) + x2*(c(3) + x*c(4))
       stiffness = (c(2) + 2*x*c(3)) + 3*x2*c(4)
-      if (seg(7) > 0.0_dp) then
+      if (seg(7) > 1.0_dp .or. seg(7) < 0.0_dp) then
+         t = delta - seg(1)
+         t2 = t*t
+         v = (seg(3) + t*seg(4)) + t2*(seg(5) + t*seg(6))
+         d = (seg(4) + 2*t*seg(5)) + 3*t2*seg(6)
+         if (seg(7) > 1.0_dp) then
+            p = exp(v + force)
+            stiffness = p*(d + stiffness)
+            force = p
+         else
+            e = exp(force)
+            stiffness = e*(d + v*stiffness)
+            force = v*e
+         end if
+      else if (seg(7) > 0.0_dp) then
          call segment_eval(seg, delta, p, k)
          force = force + p
          stiffness = stiffness + k
@@ -267,7 +319,7 @@ contains
    pure subroutine make_piece(table, w, first, i, s, m, delta, iota, knee, f_m, seg, ends, &
       & c, found)
       type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: w(4), s, m, delta, iota, knee, f_m
+      real(dp), intent(in) :: w(max_stencil), s, m, delta, iota, knee, f_m
       integer, intent(in) :: first, i
       real(dp), intent(inout) :: seg(7)
       real(dp), intent(out) :: ends(2), c(4)
@@ -304,10 +356,10 @@ contains
       scale = 1.0_dp
       if (table%mapped) scale = table%piece_scale(map_piece(.true., 0.5_dp*(table%s(a) + &
          & table%s(b))), first:first + 3)
-      g_a = dot_product(w, table%gap(a, first:first + 3))
-      g_b = dot_product(w, table%gap(b, first:first + 3))
-      h_a = width*dot_product(w, scale*table%slope(a, first:first + 3))
-      h_b = width*dot_product(w, scale*table%slope(b, first:first + 3))
+      g_a = dot_product(w(1:4), table%gap(a, first:first + 3))
+      g_b = dot_product(w(1:4), table%gap(b, first:first + 3))
+      h_a = width*dot_product(w(1:4), scale*table%slope(a, first:first + 3))
+      h_b = width*dot_product(w(1:4), scale*table%slope(b, first:first + 3))
       g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
       ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo (s linear in delta on
       ! the run: s_a + (m - delta - x_a) dsdx)
@@ -332,6 +384,85 @@ contains
       ends = [lo, hi]
       found = .true.
    end subroutine make_piece
+
+   !> make_piece of a log-ratio table: the piece around delta where the run of s
+   !> intervals around i (one cubic per curve of the stencil first, weights w; inside one
+   !> segment of the edge map xi_b of the turning point m, where s is linear in delta) and
+   !> the loading interval seg do not change, as -h, a cubic c in delta - lo; seg(7) is
+   !> marked 2 (ln P) or -1 (linear) so that piece_force and egw.h's inline evaluate
+   !> exp(ln P - h) or P e^-h (every other use of seg reads seg(7) > 0 as ln P: the same).
+   !> No piece (found false, NaN ends) at the clamp s = 1 or outside the loading table's
+   !> intervals.
+   pure subroutine make_log_piece(table, w, first, i, s, m, delta, xi_b, seg, ends, c, found)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: w(max_stencil), s, m, delta, xi_b(3)
+      integer, intent(in) :: first, i
+      real(dp), intent(inout) :: seg(7)
+      real(dp), intent(out) :: ends(2), c(4)
+      logical, intent(out) :: found
+      real(dp) :: lo, hi, t0, alpha, g(4), g_a, g_b, h_a, h_b, width, x_a, x_b, ds, s_0, &
+         & x_0
+      integer :: a, b, k, j
+      logical :: inside
+      ends = quiet_nan
+      c = 0.0_dp
+      found = .false.
+      if (.not. s < 1.0_dp) return   ! the clamp: h held
+      if (.not. (seg(1) <= delta .and. delta < seg(2))) then
+         call table_segment(table%loading, delta, seg, inside)   ! the interval around delta
+         if (.not. inside) return
+      end if
+      if (seg(7) > 0.0_dp) then
+         seg(7) = 2.0_dp
+      else
+         seg(7) = -1.0_dp
+      end if
+      a = table%run_first(first, i)
+      b = table%run_last(first, i) + 1
+      k = edge_segment(table%s(a), table%s(b))
+      call edge_xi(xi_b, table%s(a), x_a)
+      call edge_xi(xi_b, table%s(b), x_b)
+      lo = max(m - x_b, seg(1), table%loading%cutoff)
+      hi = min(m - x_a, seg(2))
+      if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
+      ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' values and slopes
+      ! (dh/dxi times each curve's dxi/ds on segment k)
+      width = table%s(b) - table%s(a)
+      g_a = stencil_sum(table%n_w, w, table%gap(a, first:first + table%n_w - 1))
+      g_b = stencil_sum(table%n_w, w, table%gap(b, first:first + table%n_w - 1))
+      h_a = 0.0_dp
+      h_b = 0.0_dp
+      do j = 1, table%n_w
+         h_a = h_a + w(j)*table%slope(a, first + j - 1)*table%xi_scale(k, first + j - 1)
+         h_b = h_b + w(j)*table%slope(b, first + j - 1)*table%xi_scale(k, first + j - 1)
+      end do
+      h_a = width*h_a
+      h_b = width*h_b
+      g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
+      ! s = s_0 + (m - delta - x_0) ds on segment k; t = t0 + alpha x, x = delta - lo
+      select case (k)
+      case (1)
+         s_0 = 0.0_dp
+         x_0 = 0.0_dp
+         ds = 0.5_dp/xi_b(1)
+      case (2)
+         s_0 = 0.5_dp
+         x_0 = xi_b(1)
+         ds = 0.25_dp/(xi_b(2) - xi_b(1))
+      case default
+         s_0 = 0.75_dp
+         x_0 = xi_b(2)
+         ds = 0.25_dp/(xi_b(3) - xi_b(2))
+      end select
+      t0 = (s_0 + (m - lo - x_0)*ds - table%s(a))/width
+      alpha = -ds/width
+      c(1) = -(g(1) + t0*(g(2) + t0*(g(3) + t0*g(4))))
+      c(2) = -alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
+      c(3) = -alpha**2*(g(3) + 3*t0*g(4))
+      c(4) = -alpha**3*g(4)
+      ends = [lo, hi]
+      found = .true.
+   end subroutine make_log_piece
 
    !> A new contact's state for hysteresis_eval_state: never touched (-huge), no cache.
    pure subroutine hysteresis_state_init(state)
@@ -377,8 +508,9 @@ contains
    !> only) from the stored nodes; called by the build and by readers.
    pure subroutine hysteresis_prepare(table)
       type(hysteresis_table), intent(inout) :: table
-      integer :: n_s, n_m, i, j, first, k, l
-      real(dp) :: h
+      integer :: n_s, n_m, i, j, first, k, l, lo, hi
+      real(dp) :: h, xi_b(3)
+      real(dp), allocatable :: dxi_ds(:, :)
       table%tag = data_tag(table)
       table%capped = hertz_capped(table%params)
       table%elastic_limit = table%loading%cutoff
@@ -395,6 +527,7 @@ contains
             & l%stiffness(size(l%stiffness)), deep_coefficient(l%params), &
             & 0.25_dp*huge(1.0_dp))
       end associate
+      if (table%reversible) table%log_ratio = .false.
       if (table%reversible) return   ! no curves: the loading table serves
       n_s = size(table%s)
       n_m = size(table%m)
@@ -417,15 +550,29 @@ contains
                & table%tail_length
          end do
       end if
-      allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), table%lagrange(4, n_m - 1))
+      table%n_w = stencil_width(table%log_ratio, n_m)
+      allocate (table%coef(4, n_m, n_s - 1), table%inv_ds(n_s - 1), &
+         & table%lagrange(max_stencil, n_m - 1))
+      ! dxi/ds of each curve's edge-map segments (log-ratio: slopes are dh/dxi); 1 else
+      allocate (dxi_ds(3, n_m))
+      dxi_ds = 1.0_dp
+      if (table%log_ratio) then
+         do j = 1, n_m
+            call edge_breaks(table%length(j), table%params%sigma, xi_b)
+            dxi_ds(:, j) = [2*xi_b(1), 4*(xi_b(2) - xi_b(1)), 4*(xi_b(3) - xi_b(2))]
+         end do
+      end if
+      table%xi_scale = dxi_ds
       do i = 1, n_s - 1
          h = table%s(i + 1) - table%s(i)
          table%inv_ds(i) = 1.0_dp/h
+         ! the interval's piece of the map: two-piece (mapped) or edge map (log-ratio)
          k = map_piece(table%mapped, 0.5_dp*(table%s(i) + table%s(i + 1)))
+         if (table%log_ratio) k = edge_segment(table%s(i), table%s(i + 1))
          do j = 1, n_m
             associate (r0 => table%gap(i, j), r1 => table%gap(i + 1, j), &
-               & d0 => h*table%slope(i, j)*table%piece_scale(k, j), &
-               & d1 => h*table%slope(i + 1, j)*table%piece_scale(k, j))
+               & d0 => h*dxi_ds(k, j)*table%slope(i, j)*table%piece_scale(k, j), &
+               & d1 => h*dxi_ds(k, j)*table%slope(i + 1, j)*table%piece_scale(k, j))
                table%coef(:, j, i) = [r0, d0, 3*(r1 - r0) - 2*d0 - d1, 2*(r0 - r1) + d0 + d1]
             end associate
          end do
@@ -440,11 +587,12 @@ contains
       end do
       table%m_break = m_breakpoint(table%m)
       table%m_coord = m_coordinate(table%m, table%m_break)
+      table%lagrange = 0.0_dp
       do j = 1, n_m - 1
-         first = stencil_first(j, n_m, table%m_break)
-         do k = 1, 4
+         call stencil_window(j, n_m, table%m_break, table%n_w, first, lo, hi)
+         do k = lo, hi
             h = 1.0_dp
-            do l = 1, 4
+            do l = lo, hi
                if (l /= k) h = h*(m_coordinate(table%m(first + k - 1), table%m_break) - &
                   & m_coordinate(table%m(first + l - 1), table%m_break))
             end do
@@ -454,7 +602,9 @@ contains
       call make_lookup(table%m, table%m_lookup)
       call make_lookup(table%s, table%s_lookup)
       call make_runs(table)
-      call energy_prepare(table)
+      ! (log-ratio tables: P_load e^-h is never below 0, no dips to sample)
+      if (.not. table%log_ratio) call energy_prepare(table)
+      if (table%log_ratio) call log_energy_prepare(table)
    end subroutine hysteresis_prepare
 
    !> Whether params are a smooth sphere (Hertz or sigma = 0) with the flow-pressure cap:
@@ -501,21 +651,21 @@ contains
          if (table%mapped .and. (table%s(i) == s_knee .or. table%s(i) == s_zero)) &
             & joined(:, i) = .false.
       end do
-      allocate (table%run_first(max(n_m - 3, 1), n_s - 1), &
-         & table%run_last(max(n_m - 3, 1), n_s - 1))
-      do first = 1, max(n_m - 3, 1)
+      allocate (table%run_first(max(n_m - table%n_w + 1, 1), n_s - 1), &
+         & table%run_last(max(n_m - table%n_w + 1, 1), n_s - 1))
+      do first = 1, max(n_m - table%n_w + 1, 1)
          k = 1
          do i = 1, n_s - 1
             ! a union node that is one of the stencil's curves' own starts a new run
             if (i > 1) then
-               if (.not. all(joined(first:min(first + 3, n_m), i))) k = i
+               if (.not. all(joined(first:min(first + table%n_w - 1, n_m), i))) k = i
             end if
             table%run_first(first, i) = k
          end do
          k = n_s - 1
          do i = n_s - 1, 1, -1
             if (i < n_s - 1) then
-               if (.not. all(joined(first:min(first + 3, n_m), i + 1))) k = i
+               if (.not. all(joined(first:min(first + table%n_w - 1, n_m), i + 1))) k = i
             end if
             table%run_last(first, i) = k
          end do

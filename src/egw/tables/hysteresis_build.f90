@@ -12,7 +12,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
       & table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    use egw_hysteresis_data, only: s_knee, s_zero, map_s, map_x, map_piece, map_iota, &
-      & map_lengths
+      & map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, max_log_ratio, &
+      & max_stencil, stencil_width, stencil_window
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -25,6 +26,46 @@ submodule (egw_hysteresis) egw_hysteresis_build
       & mapped_first_nodes(6) = [0.0_dp, 0.0625_dp, 0.25_dp, s_knee, s_zero, 1.0_dp], &
       & tail_first_nodes(7) = [0.0_dp, s_zero, s_zero + 0.25_dp*0.0625_dp, &
       & s_zero + 0.25_dp*0.125_dp, s_zero + 0.25_dp*0.25_dp, s_zero + 0.25_dp*0.5_dp, 1.0_dp]
+   !> The first s nodes of a log-ratio curve: the edge map's breaks 1/2, 3/4, 1 among them
+   !> (no interval straddles one).
+   real(dp), parameter :: first_log_nodes(7) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, &
+      & 0.625_dp, 0.75_dp, 1.0_dp]
+   !> Log-ratio curves: both bisections weigh a mismatch in h (the relative error of the
+   !> force) by min(1, P/(local_floor P(m))): the tolerance holds relative to the local
+   !> force down to local_floor of the turning point's, and relative to that below.
+   real(dp), parameter :: local_floor = 1.0e-3_dp
+   !> Intervals (in s, or in delta_max relative to the grid's range) narrower than this
+   !> are not split: at the residual-overlap edge of deep curves (dh/ds ~ 100) curves
+   !> 1e-5 sigma apart differed by 3 % of the local force, the solves' own noise there
+   !> (doc/benchmarks.md, local4 (e)).
+   real(dp), parameter :: min_width = 2.0_dp**(-11)
+   !> Log-ratio tables on six-point stencils: a check curve is not solved at a node s of
+   !> its neighbours where the four-point stencil's h at its turning point lies within
+   !> check_skip rel_tol of the six-point one's (weighted by a bound on its weight there,
+   !> check_weight; order_gap): an embedded estimate, the six-point combination being the
+   !> more accurate (four points needed 109 delta_max nodes where six need 71), so it is
+   !> taken to meet rel_tol there. The checks keep the nodes where the interpolation in
+   !> delta_max can still miss: egw-bench's table at 1e-4, 1522 of ~3770 check solves
+   !> fewer, build CPU -29 %, 67 x 78 nodes; far_errors unchanged on the suite's three
+   !> tables; 1.0 rel_tol measured too (doc/benchmarks.md, stop 47).
+   real(dp), parameter :: check_skip = 0.3_dp
+   !> Log-ratio curves: an s interval is not solved at its middle where the cubic Hermite
+   !> there lies within midpoint_skip of the bisection's bound rel_tol/4 of the quintic
+   !> Hermite through it and a neighbouring node (each side that has one, the larger
+   !> difference, weighted by the larger of its ends' weights; midpoint_estimate): an
+   !> embedded estimate, accepted without the solve whose only use would have been to
+   !> accept it. egw-bench's table at 1e-4: 856 of 1954 midpoint solves fewer, the same
+   !> grid (no interval that the solve splits was skipped; the largest error among the
+   !> skipped 0.68 of rel_tol/4); at 0.5 eight intervals that the solves split were
+   !> skipped, up to 2.2 of rel_tol/4 (doc/benchmarks.md, stop 48).
+   real(dp), parameter :: midpoint_skip = 0.3_dp
+   !> Log-ratio tables: a delta_max interval whose check misses by less than split_defer
+   !> times the bound is not split in a pass where a neighbour that misses by more is:
+   !> that split moves a node of its six-point stencil nearer (its midpoint's Lagrange
+   !> product falls 2.5x with one neighbour split, 6.25x with both), and it is checked
+   !> again with the new stencil, at no solve (its check curve is kept). egw-bench's
+   !> table at 1e-4: 59 delta_max nodes against 67 (doc/benchmarks.md, stop 48).
+   real(dp), parameter :: split_defer = 4.0_dp
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
@@ -43,6 +84,13 @@ submodule (egw_hysteresis) egw_hysteresis_build
       real(dp) :: scale = 1.0_dp    !< the loading table's force at m (g's unit)
       real(dp) :: c_turn = 1.0_dp   !< the solve's force at m over scale
       logical :: verified = .false. !< bisected in s to rel_tol/4 (refine_curve)
+      !> h = ln(c P_ext/P) at s of the edge map xi (edge_breaks of length), slopes as
+      !> dh/d(m - delta) (the table's log_ratio); else the gap, slopes dg/ds
+      logical :: log = .false.
+      real(dp) :: xi(3) = 0.0_dp
+      real(dp) :: p_turn = 0.0_dp   !< the solve's force at m (log: the weights' unit)
+      !> per node min(1, P/(local_floor P(m))) (log; 1 else): the mismatch's weight
+      real(dp), allocatable :: weight(:)
       type(loading_history) :: hist !< the loading solve at m (loaded: reused)
       !> the deflection of the curve's last unloading solve, the next one's start
       type(unload_start) :: start
@@ -134,6 +182,10 @@ contains
          call cap_reached(params, options, rel_tol, delta_max, shift, error)
          if (allocated(error)) return
       end if
+      ! log-ratio curves where the unloading force stays positive: EP-GW without the cap,
+      ! and a rough model whose cap does not act below delta_max (the cap-free table);
+      ! where it acts, the force vanishes below a residual overlap: the gap
+      table%log_ratio = .not. shift
       ! delta_max grid: from the loading cut-off (1e-12 of P_ref: the slowest impacts turn
       ! in the tail, where summits yield too) to delta_max, dyadic (bisection keeps it so:
       ! the m buckets rely on it)
@@ -190,6 +242,8 @@ contains
       table%s_max = 2*maxval((m - unloading_floor(table%loading, table%rel_tol))/ &
          & curves%length)
       if (table%mapped) table%s_max = 1.0_dp   ! (length: the first piece's span)
+      ! log-ratio curves on the edge map (s = 1 at its last break)
+      if (table%log_ratio) table%s_max = 1.0_dp
       call build_curves(table, options, m, shift, curves, error)
       if (allocated(error)) return
       call refine_m(table, options, shift, m, curves, error, progress)
@@ -336,7 +390,8 @@ contains
    !> Bisect the delta_max intervals until, for each, the Lagrange combination of its
    !> stencil's curves meets the midpoint's own curve at every node of that curve within
    !> rel_tol. A midpoint's curve is a check curve: solved at the union of its two
-   !> neighbours' s nodes (where their bisection found the curves need nodes), not
+   !> neighbours' s nodes (where their bisection found the curves need nodes; log-ratio
+   !> curves: the nodes both hold, less check_skip's), not
    !> bisected itself (a node's curve costs twice its nodes in solves, one check solve an
    !> interval: the EP-GW table at 1e-4 of egw-bench 3933 -> 3100 solves). Check curves
    !> are kept until their interval is split, then bisected from the first nodes as a
@@ -352,10 +407,11 @@ contains
       procedure(table_progress), optional :: progress
       type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
       real(dp), allocatable :: new_m(:), err_mid(:)
-      logical, allocatable :: have_mid(:), new_have(:)
+      logical, allocatable :: have_mid(:), new_have(:), wide(:)
       integer, allocatable :: idx(:), promoted(:)
       integer :: pass, j, k, n_split
       real(dp) :: m_bound
+      logical, allocatable :: keep(:)
       ! the bound at the check curves' nodes: rel_tol; with the two-piece map rel_tol/2,
       ! for what falls between those nodes (E-GW + cap, 1e-4: 28 delta_max nodes with
       ! rel_tol met 1.2e-4 of P(m) off main's table between a check curve's s nodes, at
@@ -373,8 +429,29 @@ contains
             ! (but s = 0, where every gap is 0 and so is the mismatch: its solve gives
             ! only the slope, which the check does not use)
             do k = 1, size(idx)
-               call merge_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
+               if (log_table(table)) then
+                  ! (log-ratio: the nodes both neighbours hold, where their values are
+                  ! solves and the mismatch is the interpolation's in delta_max; a node of
+                  ! one of them alone is its own bisection's, checked there to rel_tol/4:
+                  ! egw-bench's table at 1e-4 58 x 75 nodes against 59 x 75 with the
+                  ! union, build CPU -6 %, far_errors passing, the [-2, 3] sigma table's
+                  ! 7.2e-5 -> 8.1e-5 (doc/benchmarks.md, stop 48))
+                  call shared_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
+               else
+                  call merge_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
+               end if
                built(k)%s = pack(built(k)%s, built(k)%s > 0.0_dp)
+               ! (six-point log-ratio stencils: not where four points meet check_skip)
+               if (log_table(table) .and. size(m) >= 6) then
+                  allocate (keep(size(built(k)%s)))
+                  do j = 1, size(built(k)%s)
+                     keep(j) = check_weight(curves(idx(k)), curves(idx(k) + 1), &
+                        & built(k)%s(j))*order_gap(table, m, curves, idx(k), &
+                        & built(k)%s(j)) >= check_skip*m_bound
+                  end do
+                  built(k)%s = pack(built(k)%s, keep)
+                  deallocate (keep)
+               end if
             end do
             call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), shift, built, &
                & error, check=.true.)
@@ -385,11 +462,23 @@ contains
             deallocate (built)
             have_mid = .true.
          end if
-         allocate (err_mid(size(m) - 1))
+         allocate (err_mid(size(m) - 1), wide(size(m) - 1))
          do j = 1, size(m) - 1
             err_mid(j) = stencil_mismatch(table, m, curves, j, mids(j))
          end do
-         n_split = count(err_mid > m_bound)
+         ! (log-ratio: an interval narrower than min_width of the range is not split; at
+         ! the node m = 0, where the Hertz part sets in and the curves change as sqrt(m),
+         ! 1/32 of that: its first interval met its check curve to 9.5e-4 at min_width)
+         wide = .true.
+         if (log_table(table)) then
+            wide = m(2:) - m(:size(m) - 1) >= min_width*(m(size(m)) - m(1))
+            where (m(:size(m) - 1) == 0.0_dp .or. m(2:) == 0.0_dp) wide = &
+               & m(2:) - m(:size(m) - 1) >= min_width/32*(m(size(m)) - m(1))
+         end if
+         ! (not in the last third of the passes, so that deferring never brings a grid
+         ! to their limit)
+         if (log_table(table) .and. pass <= 20) call defer_splits(err_mid, m_bound, wide)
+         n_split = count(err_mid > m_bound .and. wide)
          ! built: the nodes' curves and the kept midpoints'; pending: two per split
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
@@ -414,7 +503,7 @@ contains
             new_m(k) = m(j)
             call move_curve(curves(j), new_curves(k))
             if (j == size(m)) exit
-            if (err_mid(j) > m_bound) then
+            if (err_mid(j) > m_bound .and. wide(j)) then
                k = k + 1
                new_m(k) = 0.5_dp*(m(j) + m(j + 1))
                call move_curve(mids(j), new_curves(k))
@@ -429,7 +518,7 @@ contains
          call move_alloc(new_curves, curves)
          call move_alloc(new_mids, mids)
          call move_alloc(new_have, have_mid)
-         deallocate (err_mid)
+         deallocate (err_mid, wide)
          ! the new nodes: bisected in s as every node's curve
          call verify_curves(table, curves, promoted, error)
          if (allocated(error)) return
@@ -440,48 +529,230 @@ contains
          & "after 30 bisections")
    end subroutine refine_m
 
+   !> Splits deferred (log-ratio tables, split_defer): wide(j) is cleared where interval j
+   !> misses the bound by less than split_defer times it and a neighbour misses by more.
+   !> The interval of the largest miss is always split (the passes end).
+   pure subroutine defer_splits(err_mid, bound, wide)
+      real(dp), intent(in) :: err_mid(:), bound
+      logical, intent(inout) :: wide(:)
+      logical :: fails(size(err_mid))
+      integer :: j, n
+      n = size(err_mid)
+      fails = err_mid > bound .and. wide
+      do j = 1, n
+         if (.not. fails(j) .or. err_mid(j) >= split_defer*bound) cycle
+         if (j > 1) then
+            if (fails(j - 1) .and. err_mid(j - 1) > err_mid(j)) wide(j) = .false.
+         end if
+         if (j < n) then
+            if (fails(j + 1) .and. err_mid(j + 1) > err_mid(j)) wide(j) = .false.
+         end if
+      end do
+   end subroutine defer_splits
+
+   !> |h6 - h4| at s of the turning point halfway along delta_max interval j: the node
+   !> curves combined on the six-point and on the four-point stencil of the interval, each
+   !> at xi = m - delta of s on the six-point stencil's edge map (its interpolated L), so
+   !> that the difference of the interpolated L's maps counts as in the check; huge where
+   !> the interval's side of the m = 0 node has fewer than six nodes (both are four there).
+   pure real(dp) function order_gap(table, m, curves, j, s) result(d)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:), s
+      type(unloading_curve), intent(in) :: curves(:)
+      integer, intent(in) :: j
+      real(dp) :: x, xm(max_stencil), w(max_stencil), v(2), r, dr, length, xi_b(3), xi, &
+         & s_p, ds
+      integer :: first, lo, hi, k, l, pass, k_b, n
+      d = huge(1.0_dp)
+      k_b = m_breakpoint(m)
+      x = m_coordinate(0.5_dp*(m(j) + m(j + 1)), k_b)
+      xi = 0.0_dp
+      do pass = 1, 2
+         call stencil_window(j, size(m), k_b, merge(6, 4, pass == 1), first, lo, hi)
+         first = first + lo - 1
+         n = hi - lo + 1
+         if (pass == 1 .and. n < 6) return
+         xm(1:n) = m_coordinate(m(first:first + n - 1), k_b)
+         do k = 1, n
+            w(k) = 1.0_dp
+            do l = 1, n
+               if (l /= k) w(k) = w(k)*(x - xm(l))/(xm(k) - xm(l))
+            end do
+         end do
+         length = 1.0_dp/sum(w(1:n)/curves(first:first + n - 1)%length)
+         call edge_breaks(length, table%params%sigma, xi_b)
+         if (pass == 1) then
+            call edge_xi(xi_b, s, xi)
+            s_p = s
+         else
+            call edge_s(xi_b, xi, s_p, ds)
+            s_p = min(s_p, 1.0_dp)
+         end if
+         v(pass) = 0.0_dp
+         do k = 1, n
+            call curve_eval(curves(first + k - 1), s_p, r, dr)
+            v(pass) = v(pass) + w(k)*r
+         end do
+      end do
+      d = abs(v(1) - v(2))
+   end function order_gap
+
+   !> A bound on the weight min(1, P/(local_floor P(m))) at s of the check curve between the
+   !> node curves a and b: twice the larger of their weights at their last node at or
+   !> below s (the force falls along s), at most 1.
+   pure real(dp) function check_weight(a, b, s) result(w)
+      type(unloading_curve), intent(in) :: a, b
+      real(dp), intent(in) :: s
+      w = min(1.0_dp, 2*max(weight_before(a), weight_before(b)))
+   contains
+      pure real(dp) function weight_before(c) result(wc)
+         type(unloading_curve), intent(in) :: c
+         integer :: i
+         wc = 1.0_dp
+         do i = 1, size(c%s)
+            if (c%s(i) <= s) wc = c%weight(i)
+         end do
+      end function weight_before
+   end function check_weight
+
    !> Largest |r_stencil - r_mid| of interval j over the nodes of the midpoint curve (solves):
    !> the table's whole error there, its interpolation in s included (the curves are built
    !> to rel_tol/4, so that what remains is mostly the error in m, which bisection removes).
+   !> The stencil is the evaluation's (stencil_window: six nodes for log-ratio curves).
    pure real(dp) function stencil_mismatch(table, m, curves, j, mid) result(err)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:), mid
       integer, intent(in) :: j
-      real(dp) :: x, w(4), r, dr, v, s, length, xm(4), knee, offset, dsdx
-      integer :: first, k, l, i, k_b
+      real(dp) :: x, w(max_stencil), r, dr, v, s, length, xm(max_stencil), knee, offset, &
+         & dsdx, xi_b(3), xi, ds
+      integer :: first, k, l, i, k_b, lo, hi
       k_b = m_breakpoint(m)
-      first = stencil_first(j, size(m), k_b)
+      call stencil_window(j, size(m), k_b, stencil_width(table%log_ratio, size(m)), first, &
+         & lo, hi)
+      first = first + lo - 1   ! (the stencil's own nodes: w(1:n))
+      hi = hi - lo + 1
       x = m_coordinate(0.5_dp*(m(j) + m(j + 1)), k_b)
-      xm = m_coordinate(m(first:first + 3), k_b)
-      do k = 1, 4
+      xm(1:hi) = m_coordinate(m(first:first + hi - 1), k_b)
+      do k = 1, hi
          w(k) = 1.0_dp
-         do l = 1, 4
+         do l = 1, hi
             if (l /= k) w(k) = w(k)*(x - xm(l))/(xm(k) - xm(l))
          end do
       end do
       ! the table's s of the midpoint curve's delta: with the interpolated L(m)
       ! as the evaluation: 1/L interpolated
-      length = 1.0_dp/sum(w/curves(first:first + 3)%length)
+      length = 1.0_dp/sum(w(1:hi)/curves(first:first + hi - 1)%length)
       ! mapped: the knee interpolated and the first piece's span from it (turning_point)
-      knee = min(max(sum(w*curves(first:first + 3)%knee), 0.0_dp), 0.99_dp*max(mid%m, 0.0_dp))
+      knee = min(max(sum(w(1:hi)*curves(first:first + hi - 1)%knee), 0.0_dp), &
+         & 0.99_dp*max(mid%m, 0.0_dp))
       if (table%mapped) length = 1.0_dp/map_iota(table, mid%m, knee)
       err = 0.0_dp
+      ! (log-ratio: the edge map of the interpolated L, the mismatch in h weighted)
+      if (mid%log) call edge_breaks(length, table%params%sigma, xi_b)
       do i = 1, size(mid%s)
-         s = min(mid%s(i)*mid%length/length, 1.0_dp)
-         if (table%mapped) then
+         if (mid%log) then
+            call edge_xi(mid%xi, mid%s(i), xi)
+            call edge_s(xi_b, xi, s, ds)
+            s = min(s, 1.0_dp)
+         else if (table%mapped) then
             offset = curve_offset(table, mid, mid%s(i))
             call map_s(table, mid%m, knee, 1.0_dp/length, offset, s, dsdx)
             s = min(s, 1.0_dp)
+         else
+            s = min(mid%s(i)*mid%length/length, 1.0_dp)
          end if
          v = 0.0_dp
-         do k = 1, 4
+         do k = 1, hi
             call curve_eval(curves(first + k - 1), s, r, dr)
             v = v + w(k)*r
          end do
-         err = max(err, abs(v - mid%gap(i)))
+         err = max(err, mid%weight(i)*abs(v - mid%gap(i)))
       end do
    end function stencil_mismatch
+
+   !> The mismatch refine_curve would find at the middle of s interval i of a log-ratio
+   !> curve with nodes s, h, dh/dxi and weights, estimated (midpoint_skip): the
+   !> interval's cubic Hermite against the quintic Hermite through it and the node before
+   !> or after it (each that exists, the larger difference), in xi = m - delta (h is
+   !> smooth in xi across the edge map's breaks), value and slope as refine_curve weighs
+   !> them, by the larger weight of the interval's ends. huge where the curve has fewer
+   !> than three nodes, or a node of those has h = max_log_ratio (the force vanished).
+   pure real(dp) function midpoint_estimate(curve, s, h, dh, weight, i) result(est)
+      type(unloading_curve), intent(in) :: curve
+      real(dp), intent(in) :: s(:), h(:), dh(:), weight(:)
+      integer, intent(in) :: i
+      real(dp) :: x(3), x_a, x_mid, width, dxi, r, dr, q, dq, w
+      integer :: side, a, k, n
+      n = size(s)
+      est = huge(1.0_dp)
+      if (n < 3) return
+      if (maxval(h(max(i - 1, 1):min(i + 2, n))) >= max_log_ratio) return
+      call edge_xi(curve%xi, s(i), x_a, dxi, edge_segment(s(i), s(i + 1)))
+      call edge_xi(curve%xi, 0.5_dp*(s(i) + s(i + 1)), x_mid)
+      width = (s(i + 1) - s(i))*dxi
+      ! the interval's cubic at its middle (curve_eval's, in xi)
+      call hermite_cubic(width, h(i), dh(i), h(i + 1), dh(i + 1), 0.5_dp, r, dr)
+      w = max(weight(i), weight(i + 1))
+      est = 0.0_dp
+      do side = 0, 1
+         a = i - 1 + side   ! the nodes a .. a + 2
+         if (a < 1 .or. a + 2 > n) cycle
+         do k = 1, 3
+            call edge_xi(curve%xi, s(a + k - 1), x(k))
+         end do
+         call hermite_quintic(x, h(a:a + 2), dh(a:a + 2), x_mid, q, dq)
+         est = max(est, w*max(abs(q - r), 0.25_dp*width*abs(dq - dr)))
+      end do
+   end function midpoint_estimate
+
+   !> The cubic Hermite on an interval of the given width (values f, slopes d at its
+   !> ends) and its slope, at the fraction t of it.
+   pure subroutine hermite_cubic(width, f_a, d_a, f_b, d_b, t, v, dv)
+      real(dp), intent(in) :: width, f_a, d_a, f_b, d_b, t
+      real(dp), intent(out) :: v, dv
+      v = (1 + 2*t)*(1 - t)**2*f_a + t*(1 - t)**2*width*d_a + t*t*(3 - 2*t)*f_b + &
+         & t*t*(t - 1)*width*d_b
+      dv = 6*t*(t - 1)/width*(f_a - f_b) + (1 - t)*(1 - 3*t)*d_a + t*(3*t - 2)*d_b
+   end subroutine hermite_cubic
+
+   !> The quintic through three points x with values f and slopes d (Newton's form on
+   !> the doubled nodes) and its slope, at xv.
+   pure subroutine hermite_quintic(x, f, d, xv, v, dv)
+      real(dp), intent(in) :: x(3), f(3), d(3), xv
+      real(dp), intent(out) :: v, dv
+      real(dp) :: z(6), c(6)
+      integer :: j, l
+      z = [x(1), x(1), x(2), x(2), x(3), x(3)]
+      c = [f(1), f(1), f(2), f(2), f(3), f(3)]
+      ! first divided differences: the slopes at the doubled nodes
+      do j = 6, 2, -1
+         if (mod(j, 2) == 0) then
+            c(j) = d(j/2)
+         else
+            c(j) = (c(j) - c(j - 1))/(z(j) - z(j - 1))
+         end if
+      end do
+      do l = 2, 5
+         do j = 6, l + 1, -1
+            c(j) = (c(j) - c(j - 1))/(z(j) - z(j - l))
+         end do
+      end do
+      v = c(6)
+      dv = 0.0_dp
+      do j = 5, 1, -1
+         dv = dv*(xv - z(j)) + v
+         v = v*(xv - z(j)) + c(j)
+      end do
+   end subroutine hermite_quintic
+
+   !> Whether the table's curves are log-ratio curves (build_hysteresis sets it: EP-GW
+   !> without the cap or with a cap that does not act; curves on which the cap acts,
+   !> whose force is 0 below a residual overlap, keep the gap).
+   elemental logical function log_table(table)
+      type(hysteresis_table), intent(in) :: table
+      log_table = table%log_ratio
+   end function log_table
 
    !> The overlap where the loading table's force falls to rel_tol of its reference force
    !> (bisection on the monotone table; its cut-off if the force there is larger).
@@ -671,20 +942,23 @@ contains
          known%s = curves(idx(k))%s
          known%gap = curves(idx(k))%gap
          known%slope = curves(idx(k))%slope
+         known%weight = curves(idx(k))%weight
          ! the bisection of a node's curve from its first nodes, the check solves taken
          ! where it meets them (all first nodes but s = 0): the curve a node built at once
          ! has
          curves(idx(k))%s = first
-         deallocate (curves(idx(k))%gap, curves(idx(k))%slope)
-         allocate (curves(idx(k))%gap(size(first)), curves(idx(k))%slope(size(first)))
+         deallocate (curves(idx(k))%gap, curves(idx(k))%slope, curves(idx(k))%weight)
+         allocate (curves(idx(k))%gap(size(first)), curves(idx(k))%slope(size(first)), &
+            & curves(idx(k))%weight(size(first)))
          do i = 1, size(first)
             at = findloc(known%s, first(i), 1)
             if (at > 0) then
                curves(idx(k))%gap(i) = known%gap(at)
                curves(idx(k))%slope(i) = known%slope(at)
+               curves(idx(k))%weight(i) = known%weight(at)
             else
                call gap_at(table, curves(idx(k)), first(i), curves(idx(k))%gap(i), &
-                  & curves(idx(k))%slope(i), err)
+                  & curves(idx(k))%slope(i), curves(idx(k))%weight(i), err)
                if (allocated(err)) exit
             end if
          end do
@@ -739,6 +1013,9 @@ contains
       end if
       if (allocated(error)) return
       curve%span = table%s_max*curve%length
+      curve%log = log_table(table)
+      curve%p_turn = f_turn
+      if (curve%log) call edge_breaks(curve%length, table%params%sigma, curve%xi)
    end subroutine start_curve
 
    !> The two-piece map of the curve of turning point m (mapped): its knee, the smooth cap
@@ -771,13 +1048,15 @@ contains
       if (table%mapped) call map_x(table, curve%m, curve%knee, 1.0_dp/curve%span, s, x, dsdx)
    end function curve_offset
 
-   !> The first s nodes of the table's curves (first_nodes; mapped: its breaks too).
+   !> The first s nodes of the table's curves (first_nodes; mapped: its breaks too, and
+   !> the tail's nodes at or below 0; log-ratio: the edge map's breaks).
    pure function start_nodes(table, m) result(s)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m
       real(dp), allocatable :: s(:)
       s = first_nodes
       if (table%mapped) s = mapped_first_nodes
+      if (table%log_ratio) s = first_log_nodes
       if (table%mapped .and. .not. m > 0.0_dp) s = tail_first_nodes
    end function start_nodes
 
@@ -790,9 +1069,11 @@ contains
       integer :: i
       curve%s = s
       if (allocated(curve%gap)) deallocate (curve%gap, curve%slope)
-      allocate (curve%gap(size(s)), curve%slope(size(s)))
+      if (allocated(curve%weight)) deallocate (curve%weight)
+      allocate (curve%gap(size(s)), curve%slope(size(s)), curve%weight(size(s)))
       do i = 1, size(s)
-         call gap_at(table, curve, s(i), curve%gap(i), curve%slope(i), error)
+         call gap_at(table, curve, s(i), curve%gap(i), curve%slope(i), curve%weight(i), &
+            & error)
          if (allocated(error)) return
       end do
    end subroutine solve_nodes
@@ -807,8 +1088,9 @@ contains
       real(dp), intent(out) :: worst
       type(egw_error), allocatable, intent(out) :: error
       type(unloading_curve), intent(in), optional :: known
-      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), r_mid, d_mid, &
-         & r_int, d_int, s_mid, err
+      real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), &
+         & weight(max_s_nodes), r_mid, d_mid, r_int, d_int, s_mid, err, w_mid, width, dxi, &
+         & xi_mid, w_int
       integer :: n, i, k
       logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
@@ -819,6 +1101,7 @@ contains
       s(1:n) = curve%s
       gap(1:n) = curve%gap
       slope(1:n) = curve%slope
+      weight(1:n) = curve%weight
       checked(1:n - 1) = .false.
       do
          refined = .false.
@@ -831,23 +1114,60 @@ contains
             s_mid = 0.5_dp*(s(i) + s(i + 1))
             k = 0
             if (present(known)) k = findloc(known%s, s_mid, 1)
+            ! (log-ratio, no solve there yet: an interval at the width limit is not split,
+            ! whatever its mismatch; one whose estimate meets midpoint_skip is accepted)
+            if (curve%log .and. k == 0) then
+               err = 0.0_dp
+               if (.not. s(i + 1) - s(i) < min_width) err = midpoint_estimate(curve, s(1:n), &
+                  & gap(1:n), slope(1:n), weight(1:n), i)
+               if (err <= midpoint_skip*0.25_dp*table%rel_tol) then
+                  checked(i) = .true.
+                  worst = max(worst, err)
+                  i = i + 1
+                  cycle
+               end if
+            end if
             if (k > 0) then
                r_mid = known%gap(k)
                d_mid = known%slope(k)
+               w_mid = known%weight(k)
             else
-               call gap_at(table, curve, s_mid, r_mid, d_mid, error)
+               call gap_at(table, curve, s_mid, r_mid, d_mid, w_mid, error)
                if (allocated(error)) return
             end if
             probe%s = s(i:i + 1)
             probe%gap = gap(i:i + 1)
             probe%slope = slope(i:i + 1)
             probe%piece_scale = curve%piece_scale
+            probe%log = curve%log
+            probe%xi = curve%xi
             call curve_eval(probe, s_mid, r_int, d_int)
             ! the slope's mismatch too: a midpoint value can agree by chance where the
             ! curve bends (near the residual overlap) while a quarter point does not (dg/ds
-            ! on the interval's piece of the map)
-            err = max(abs(r_int - r_mid), 0.25_dp*(s(i + 1) - s(i))*abs(d_int - &
-               & d_mid*curve%piece_scale(map_piece(table%mapped, s_mid))))
+            ! on the interval's piece of the two-piece map; log-ratio: slopes per xi, the
+            ! interval's width in xi, the mismatch weighted)
+            width = s(i + 1) - s(i)
+            if (curve%log) then
+               call edge_xi(curve%xi, s_mid, xi_mid, dxi, edge_segment(s(i), s(i + 1)))
+               width = width*dxi
+            end if
+            ! (log-ratio: weighted by the largest of the interval's weights, at its ends and
+            ! middle: with the middle's alone, where the force falls steeply across the
+            ! interval, a cubic's error nearer its start, where the force and so the weight
+            ! is larger, passed; far_errors at every delta_max interval found 1.08 rel_tol of
+            ! the local force at m = -5.69 sigma, P ~ 1e-4 P(m), on the 1e-4 [-3, 30] sigma
+            ! table, and with the s check at rel_tol/8 4.2 rel_tol at s = 0.64 over m in
+            ! [0.26, 2.9] sigma; the weights are 1 on gap curves: unchanged there). Not
+            ! where the force has vanished at an end or the middle (h = max_log_ratio):
+            ! the jump to it would be split to the width limit and the resampled cubics
+            ! there overshoot the readers' range [-1, max_log_ratio]
+            w_int = w_mid
+            if (max(gap(i), gap(i + 1), r_mid) < max_log_ratio) w_int = max(w_mid, &
+               & weight(i), weight(i + 1))
+            err = w_int*max(abs(r_int - r_mid), &
+               & 0.25_dp*width*abs(d_int - d_mid*curve%piece_scale(map_piece(table%mapped, &
+               & s_mid))))
+            if (curve%log .and. s(i + 1) - s(i) < min_width) err = 0.0_dp   ! not split
             if (err > 0.25_dp*table%rel_tol) then
                if (n == max_s_nodes) then
                   call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
@@ -859,11 +1179,13 @@ contains
                s(i + 2:n + 1) = s(i + 1:n)
                gap(i + 2:n + 1) = gap(i + 1:n)
                slope(i + 2:n + 1) = slope(i + 1:n)
+               weight(i + 2:n + 1) = weight(i + 1:n)
                checked(i + 2:n) = checked(i + 1:n - 1)
                checked(i:i + 1) = .false.
                s(i + 1) = s_mid
                gap(i + 1) = r_mid
                slope(i + 1) = d_mid
+               weight(i + 1) = w_mid
                n = n + 1
                refined = .true.
                i = i + 1   ! the new left half is checked in the next sweep
@@ -878,6 +1200,7 @@ contains
       curve%s = s(1:n)
       curve%gap = gap(1:n)
       curve%slope = slope(1:n)
+      curve%weight = weight(1:n)
       curve%verified = .true.
       curve%hist = unloaded   ! (no more solves: its mesh and field freed)
       curve%start = none
@@ -888,17 +1211,24 @@ contains
    !> the cut-off too: the curve is a neighbour of others in the m direction), c the
    !> solve's force at m over the table's; g = 0 at the turning point, so that the force
    !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
-   subroutine gap_at(table, curve, x, g, dg, error)
+   subroutine gap_at(table, curve, x, g, dg, weight, error)
       type(hysteresis_table), intent(in) :: table
       type(unloading_curve), intent(inout) :: curve   !< (its start replaced)
       real(dp), intent(in) :: x
       real(dp), intent(out) :: g, dg
+      !> the mismatch's weight there: min(1, P/(local_floor P(m))) (log), else 1
+      real(dp), intent(out) :: weight
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
       real(dp) :: p_ext, k_ext, x_solve
       logical :: at_turn
       g = 0.0_dp
       dg = 0.0_dp
+      weight = 1.0_dp
+      if (curve%log) then
+         call log_ratio_at(table, curve, x, g, dg, weight, error)
+         return
+      end if
       ! At s = 0 solve_unload returns the loading solve, whose stiffness is the loading
       ! branch's; unloading leaves the turning point stiffer (mu 4, psi 2, m = sigma:
       ! 2.740 against 2.539), so a slope of ~0 there made the first interval's cubic
@@ -932,6 +1262,43 @@ contains
       if (abs(g) < tiny_ratio) g = 0.0_dp
       if (abs(dg) < tiny_ratio) dg = 0.0_dp
    end subroutine gap_at
+
+   !> gap_at of a log-ratio curve: h = ln(c P_ext(delta)/P_unload(delta)) (h = 0 at the
+   !> turning point: the force is continuous there) and dh/dxi = K/P - K_ext/P_ext at
+   !> delta = m - xi(s) on the curve's edge map (at s = 0 the unloading branch's slope,
+   !> from s = 1e-4, as gap_at); max_log_ratio (slope 0) where the force has vanished.
+   subroutine log_ratio_at(table, curve, x, h, dh, weight, error)
+      type(hysteresis_table), intent(in) :: table
+      type(unloading_curve), intent(inout) :: curve
+      real(dp), intent(in) :: x
+      real(dp), intent(out) :: h, dh, weight
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      real(dp) :: p_ext, k_ext, xi
+      h = max_log_ratio
+      dh = 0.0_dp
+      weight = 0.0_dp
+      call edge_xi(curve%xi, max(x, 1.0e-4_dp), xi)
+      call solve_unload(curve%hist, curve%m - xi, res, error, curve%start)
+      if (allocated(error)) return
+      call table_eval_tail_law(table%loading, curve%m - xi, p_ext, k_ext)
+      if (curve%p_turn > 0.0_dp) then
+         weight = min(1.0_dp, max(res%force, 0.0_dp)/(local_floor*curve%p_turn))
+      else
+         weight = 1.0_dp
+      end if
+      if (x == 0.0_dp) weight = 1.0_dp
+      if (.not. (res%force > 0.0_dp .and. p_ext > 0.0_dp)) return
+      h = log(curve%c_turn*p_ext/res%force)
+      dh = res%stiffness/res%force - k_ext/p_ext
+      if (x == 0.0_dp) h = 0.0_dp
+      if (.not. h < max_log_ratio) then
+         h = max_log_ratio
+         dh = 0.0_dp
+      end if
+      if (abs(h) < tiny_ratio) h = 0.0_dp
+      if (abs(dh) < tiny_ratio) dh = 0.0_dp
+   end subroutine log_ratio_at
 
    !> Put every curve on the union of their s nodes: the union refines each curve's own
    !> nodes, so the Hermite data there reproduce each curve's cubics exactly.
@@ -968,7 +1335,7 @@ contains
       !> dr in the stored slopes' unit (the first piece's dg/ds; 0 on a piece of no
       !> width), not dg/ds on s's piece
       logical, intent(in), optional :: stored
-      real(dp) :: h, t, h00, h10, h01, h11, f
+      real(dp) :: h, t, h00, h10, h01, h11, f, fac, x
       integer :: i, lo, hi, mid
       lo = 1
       hi = size(curve%s)
@@ -985,6 +1352,11 @@ contains
       t = min(max((s - curve%s(i))/h, 0.0_dp), 1.0_dp)
       ! the stored slopes are the first piece's: dg/ds on the interval's piece
       f = curve%piece_scale(map_piece(.true., 0.5_dp*(curve%s(i) + curve%s(i + 1))))
+      ! log-ratio: slopes per xi, dxi/ds of the interval's segment
+      if (curve%log) then
+         call edge_xi(curve%xi, curve%s(i), x, fac, edge_segment(curve%s(i), curve%s(i + 1)))
+         h = h*fac
+      end if
       h00 = (1 + 2*t)*(1 - t)**2
       h10 = t*(1 - t)**2
       h01 = t*t*(3 - 2*t)
@@ -1033,6 +1405,30 @@ contains
       c = work(1:n)
    end subroutine merge_nodes
 
+   !> c = the values that both increasing node lists a and b hold, increasing.
+   pure subroutine shared_nodes(a, b, c)
+      real(dp), intent(in) :: a(:), b(:)
+      real(dp), allocatable, intent(out) :: c(:)
+      real(dp) :: work(min(size(a), size(b)))
+      integer :: i, j, n
+      i = 1
+      j = 1
+      n = 0
+      do while (i <= size(a) .and. j <= size(b))
+         if (a(i) == b(j)) then
+            n = n + 1
+            work(n) = a(i)
+            i = i + 1
+            j = j + 1
+         else if (a(i) < b(j)) then
+            i = i + 1
+         else
+            j = j + 1
+         end if
+      end do
+      c = work(1:n)
+   end subroutine shared_nodes
+
    pure subroutine move_curve(from, to)
       type(unloading_curve), intent(inout) :: from
       type(unloading_curve), intent(out) :: to
@@ -1045,6 +1441,10 @@ contains
       to%piece_scale = from%piece_scale
       to%verified = from%verified
       to%hist = from%hist
+      to%log = from%log
+      to%xi = from%xi
+      to%p_turn = from%p_turn
+      if (allocated(from%weight)) call move_alloc(from%weight, to%weight)
       call move_alloc(from%s, to%s)
       call move_alloc(from%gap, to%gap)
       call move_alloc(from%slope, to%slope)

@@ -21,7 +21,8 @@
 !> Each node m_j carries g(., m_j) as a cubic Hermite curve in s (slopes from the solver's
 !> stiffnesses, solves at rel_tol/10, s bisected until value and slope at every midpoint
 !> meet the solves to rel_tol/4); between nodes g and 1/L are cubic Lagrange combinations
-!> of four neighbouring curves, and the m grid is bisected until that combination meets
+!> of four neighbouring curves (log-ratio tables: quintic, of six; stencil_window), and
+!> the m grid is bisected until that combination meets
 !> the midpoint's curve at all its nodes to rel_tol (the table's whole error there).
 !> Every curve's cubics are then resampled onto the union of the s nodes (exactly: the
 !> union refines every curve's own nodes), so that an evaluation needs one lookup in s and
@@ -43,17 +44,23 @@ module egw_hysteresis_data
    public :: hysteresis_table, grid_lookup, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, make_lookup, m_breakpoint, &
       & m_coordinate, stencil_first, locate, turning_knee, map_s, map_x, map_piece, &
-      & map_iota, map_lengths
+      & map_iota, map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, log_branch, &
+      & max_log_ratio, log_unload, stencil_width, stencil_window, stencil_sum
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
-   !> belong to): (4) the Lagrange stencil, (5) 1/(s_max L), (6) P_load, (7:10) the weights;
-   !> (13) s_max L; of the piece of its unloading curve last used (make_piece): (11:12) its
+   !> belong to): (4) the Lagrange stencil, (5) 1/(s_max L), (6) P_load, (7:10) the weights
+   !> (a log-ratio table's six-point stencil: (5:10) the weights, its pieces need neither
+   !> 1/(s_max L) nor P_load); (13) s_max L; of the piece of its unloading curve last used (make_piece): (11:12) its
    !> open ends, (14:17) its cubic in delta; of the loading table's interval last used
    !> (the piece's, while there is one): (18:19) its ends, (20:23) its cubic, (24) 1 where
    !> that is ln P (then the piece's cubic is the gap part). A contact that stays inside
    !> its piece (most DEM steps) touches nothing but its state.
    integer, parameter, public :: hysteresis_state_size = 24
+
+   !> Most delta_max nodes of a Lagrange stencil: log-ratio tables interpolate their curves
+   !> across delta_max on six nodes (stencil_width), the gap tables on four.
+   integer, parameter, public :: max_stencil = 6
 
    !> The two-piece s map of rough + cap tables (mapped; doc/theory.md section 12): every
    !> curve's knee (the smooth cap's residual overlap delta_r(m)) at s = s_knee and
@@ -95,15 +102,28 @@ module egw_hysteresis_data
       real(dp), allocatable :: gap(:, :), slope(:, :)
       ! evaluation data (hysteresis_prepare)
       !> (4, n_m, n_s - 1): the cubic in t = (s - s_i)/(s_{i+1} - s_i) of curve j on
-      !> interval i (the four curves of a Lagrange stencil share two cache lines)
+      !> interval i (the four curves of a Lagrange stencil share two cache lines, the six
+      !> of a log-ratio table's three)
       real(dp), allocatable :: coef(:, :, :)
       real(dp), allocatable :: inv_ds(:)       !< 1/(s_{i+1} - s_i)
-      !> (n_m - 3, n_s - 1): the first and last s interval of the run around interval i
-      !> on which the four curves of stencil first are each one cubic (the union nodes
-      !> inside it are none of theirs): a state's piece spans the run
+      !> (n_m - n_w + 1, n_s - 1): the first and last s interval of the run around interval
+      !> i on which the n_w curves of the stencil window first are each one cubic (the
+      !> union nodes inside it are none of theirs): a state's piece spans the run
       integer, allocatable :: run_first(:, :), run_last(:, :)
       !> (n_m, n_s): int_0^{s_i} g(s, m_j) ds of each curve's cubics (hysteresis_energy)
       real(dp), allocatable :: gap_integral(:, :)
+      !> log-ratio tables, (4, n_m, n_s - 1): the cubic in t (as coef) of each curve's
+      !> eta = ln(E_load(delta)/E(delta)), E its energy from the cut-off (hysteresis_energy),
+      !> E_load the loading table's; from exact values and slopes at the s nodes
+      !> (log_energy_prepare, called by hysteresis_prepare)
+      real(dp), allocatable :: energy_coef(:, :, :)
+      !> log-ratio tables, (n_m - 1): delta_max intervals whose energy is the walk's
+      !> (where energy_coef missed it at the interval's middle curve; log_energy_prepare)
+      logical, allocatable :: energy_walk(:)
+      !> log-ratio tables, (n_m): each curve's first s node at or below the loading
+      !> cut-off (n_s + 1: none): an s interval that reaches it on a curve of the stencil
+      !> takes the walk from the cut-off (log_energy_prepare)
+      integer, allocatable :: energy_cut(:)
       !> the part of the unloading integral that the clip at 0 removes, int min(F, 0) dx
       !> over the whole span of the turning point m (F the span force before the clip),
       !> times 1/(s_max L(m) P_load(m)), at m = m_j + dip_u (m_{j+1} - m_j) in delta_max
@@ -121,7 +141,12 @@ module egw_hysteresis_data
       !> the sample's span force was clipped all along: an overlap in that of both samples
       !> around m (less a twentieth) returns only the energy below lo (energy_prepare)
       real(dp), allocatable :: dip_low(:)
-      !> (4, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's stencil
+      !> nodes of the window of every stencil (stencil_width: 6 for log-ratio tables of 6
+      !> or more delta_max nodes, 4 else; hysteresis_prepare)
+      integer :: n_w = 4
+      !> (max_stencil, n_m - 1): 1/prod(m_k - m_l) of the Lagrange weights of interval j's
+      !> stencil at the nodes of its window (stencil_window), 0 at a window node outside the
+      !> stencil (and at 5, 6 where n_w = 4)
       real(dp), allocatable :: lagrange(:, :)
       !> (n_m): m_coordinate of the delta_max nodes (hysteresis_prepare: no sqrt per
       !> node in turning_point)
@@ -130,6 +155,15 @@ module egw_hysteresis_data
       !> an integer in [1, 2**52) hashed from the stored data: a state's cached turning
       !> point is used only by a table with the same data (hysteresis_eval_state)
       real(dp) :: tag = 0.0_dp
+      !> the curves store h = ln(P_load(delta)/P) (log_ratio: EP-GW without the cap, or a
+      !> rough model whose cap does not act below delta_max; set by the build and the
+      !> readers) instead of the gap g, at s of the edge map (edge_breaks: s piecewise linear in m - delta,
+      !> the residual-overlap edge at s in [1/2, 3/4] for every m), slopes as
+      !> dh/d(m - delta); s_max = 1 and inv_span = 1/L (hysteresis_prepare)
+      logical :: log_ratio = .false.
+      !> (3, n_m): dxi/ds of each curve's edge-map segments (log_ratio; hysteresis_prepare):
+      !> a stored slope dh/dxi times it is the curve's dh/ds there
+      real(dp), allocatable :: xi_scale(:, :)
       !> index of the delta_max node at 0 where stencils stop (m_breakpoint; 0: none)
       integer :: m_break = 0
       !> turning points at or below it unload on the loading curve (hysteresis_prepare):
@@ -162,12 +196,18 @@ module egw_hysteresis_data
    !> One turning point's unloading curve (turning_point): what its span force needs.
    type :: unload_curve
       real(dp) :: m = 0.0_dp               !< the turning point
-      real(dp) :: w(4) = 0.0_dp            !< Lagrange weights of its stencil
+      !> Lagrange weights of its stencil's window (table%n_w of them; 0 beyond)
+      real(dp) :: w(max_stencil) = 0.0_dp
       real(dp) :: inv_span = 0.0_dp        !< 1/(s_max L(m))
       real(dp) :: f_m = 0.0_dp             !< P_load(m)
       integer :: first = 1                 !< the stencil's first curve
       real(dp) :: knee = 0.0_dp            !< its knee (mapped tables; turning_knee)
    end type unload_curve
+
+   !> The largest ln(P_load/P) a log-ratio curve stores (e^-100 ~ 4e-44: far below every
+   !> tolerance, far above subnormals): where the unloading force has vanished or
+   !> underflowed.
+   real(dp), parameter :: max_log_ratio = 100.0_dp
 
    !> A quiet NaN (ieee_value's bits, 0x7FF8000000000000) as a constant: the states' "no
    !> piece" mark, written on the DEM hot path, where ieee_value is a library call
@@ -201,8 +241,10 @@ contains
    end subroutine gap_cubic
 
    !> What the unloading branch needs of the turning point m: the Lagrange stencil of the
-   !> m interval (clamped at the ends of the grid; the last curve above the table), its
-   !> weights, 1/(s_max L) interpolated with them and the loading force P_load(m). seg
+   !> m interval (clamped at the ends of the grid; the last curve above the table): the
+   !> first node of its window (stencil_window) and the weights of the window's table%n_w
+   !> nodes (0 beyond them, and at window nodes outside the stencil), 1/(s_max L)
+   !> interpolated with them and the loading force P_load(m). seg
    !> (optional): an interval of the loading table (table_segment's layout, e.g. a state's
    !> copy from its last loading step); where it holds m above the resampled tail, P_load(m)
    !> comes from it without the table's lookup (eval_kernel's arithmetic: the same value).
@@ -210,11 +252,11 @@ contains
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m
       integer, intent(out) :: first
-      real(dp), intent(out) :: w(4), inv_span, f_m
+      real(dp), intent(out) :: w(max_stencil), inv_span, f_m
       real(dp), intent(out) :: knee   !< the map's knee (turning_knee; 0 unless mapped)
       real(dp), intent(in), optional :: seg(7)
-      real(dp) :: d(4), k_m
-      integer :: j, n_m
+      real(dp) :: d(max_stencil), k_m, lead(max_stencil), trail
+      integer :: j, n_m, k, lo, hi
       logical :: held
       held = .false.
       if (present(seg)) held = seg(1) <= m .and. m < seg(2) .and. &
@@ -227,17 +269,49 @@ contains
       end if
       n_m = size(table%m)
       j = locate(table%m_lookup, table%m, min(m, table%delta_max))
-      first = stencil_first(j, n_m, table%m_break)
-      d = m_coordinate(m, table%m_break) - table%m_coord(first:first + 3)
-      w(1) = d(2)*d(3)*d(4)*table%lagrange(1, j)
-      w(2) = d(1)*d(3)*d(4)*table%lagrange(2, j)
-      w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
-      w(4) = d(1)*d(2)*d(3)*table%lagrange(4, j)
-      if (m > table%delta_max) w = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
-      ! 1/(s_max L) interpolated (no division on the hot path; smooth and > 0 as L)
-      inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
-         & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
+      w = 0.0_dp
+      if (table%n_w == 4) then
+         first = stencil_first(j, n_m, table%m_break)
+         d(1:4) = m_coordinate(m, table%m_break) - table%m_coord(first:first + 3)
+         w(1) = d(2)*d(3)*d(4)*table%lagrange(1, j)
+         w(2) = d(1)*d(3)*d(4)*table%lagrange(2, j)
+         w(3) = d(1)*d(2)*d(4)*table%lagrange(3, j)
+         w(4) = d(1)*d(2)*d(3)*table%lagrange(4, j)
+         if (m > table%delta_max) w(1:4) = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp]
+         ! 1/(s_max L) interpolated (no division on the hot path; smooth and > 0 as L)
+         inv_span = w(1)*table%inv_span(first) + w(2)*table%inv_span(first + 1) + &
+            & w(3)*table%inv_span(first + 2) + w(4)*table%inv_span(first + 3)
+      else
+         ! the window's nodes: prod_{l /= k} (x - x_l) from products before and after k,
+         ! a node outside the stencil (lagrange 0) counted as 1
+         call stencil_window(j, n_m, table%m_break, table%n_w, first, lo, hi)
+         d(1:table%n_w) = m_coordinate(m, table%m_break) - &
+            & table%m_coord(first:first + table%n_w - 1)
+         where (table%lagrange(1:table%n_w, j) == 0.0_dp) d(1:table%n_w) = 1.0_dp
+         lead(1) = 1.0_dp
+         do k = 2, table%n_w
+            lead(k) = lead(k - 1)*d(k - 1)
+         end do
+         trail = 1.0_dp
+         do k = table%n_w, 1, -1
+            w(k) = lead(k)*trail*table%lagrange(k, j)
+            trail = trail*d(k)
+         end do
+         if (m > table%delta_max) then
+            w = 0.0_dp
+            w(table%n_w) = 1.0_dp
+         end if
+         inv_span = stencil_sum(table%n_w, w, table%inv_span(first:first + table%n_w - 1))
+      end if
       if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
+      ! above the table a log-ratio table's last curve is stretched to span m - delta_max
+      ! more, so that its residual end stays where the last curve's is: s of (m - delta)
+      ! at the last curve's span would reach s = 1 (h = ln(P_load/P) at its largest, P ~ 0)
+      ! at m - L, a drop of the force to 0 within a few sigma, ~100 times the loading
+      ! stiffness, where egw_solve_unload's force stays within 1e-4 of P_load (EP-GW,
+      ! mu 2, psi 1, m = 420 sigma, L = 140 sigma: doc/benchmarks.md "Stop 48 (gain14)")
+      if (table%log_ratio .and. m > table%delta_max) &
+         & inv_span = 1.0_dp/(1.0_dp/inv_span + (m - table%delta_max))
       knee = 0.0_dp
       if (table%mapped) then
          ! the first piece's 1/span from the interpolated knee, so that the pieces meet
@@ -252,7 +326,7 @@ contains
    pure real(dp) function turning_knee(table, first, w, m) result(knee)
       type(hysteresis_table), intent(in) :: table
       integer, intent(in) :: first
-      real(dp), intent(in) :: w(4), m
+      real(dp), intent(in) :: w(max_stencil), m
       knee = 0.0_dp
       if (.not. (table%mapped .and. m > 0.0_dp)) return
       knee = w(1)*table%knee(first) + w(2)*table%knee(first + 1) + &
@@ -341,19 +415,37 @@ contains
    end function map_lengths
 
    !> The gap cubic g(t) of the turning point (stencil first, weights w) on s interval i:
-   !> the four curves' cubics (16 contiguous numbers) combined.
+   !> the window's curves' cubics (16 or 24 contiguous numbers) combined.
    pure subroutine gap_combination(table, first, w, i, c)
       type(hysteresis_table), intent(in) :: table
       integer, intent(in) :: first, i
-      real(dp), intent(in) :: w(4)
+      real(dp), intent(in) :: w(max_stencil)
       real(dp), intent(out) :: c(4)
-      associate (cf => table%coef(:, first:first + 3, i))
-         c(1) = w(1)*cf(1, 1) + w(2)*cf(1, 2) + w(3)*cf(1, 3) + w(4)*cf(1, 4)
-         c(2) = w(1)*cf(2, 1) + w(2)*cf(2, 2) + w(3)*cf(2, 3) + w(4)*cf(2, 4)
-         c(3) = w(1)*cf(3, 1) + w(2)*cf(3, 2) + w(3)*cf(3, 3) + w(4)*cf(3, 4)
-         c(4) = w(1)*cf(4, 1) + w(2)*cf(4, 2) + w(3)*cf(4, 3) + w(4)*cf(4, 4)
-      end associate
+      if (table%n_w == 4) then
+         associate (cf => table%coef(:, first:first + 3, i))
+            c(1) = w(1)*cf(1, 1) + w(2)*cf(1, 2) + w(3)*cf(1, 3) + w(4)*cf(1, 4)
+            c(2) = w(1)*cf(2, 1) + w(2)*cf(2, 2) + w(3)*cf(2, 3) + w(4)*cf(2, 4)
+            c(3) = w(1)*cf(3, 1) + w(2)*cf(3, 2) + w(3)*cf(3, 3) + w(4)*cf(3, 4)
+            c(4) = w(1)*cf(4, 1) + w(2)*cf(4, 2) + w(3)*cf(4, 3) + w(4)*cf(4, 4)
+         end associate
+      else
+         associate (cf => table%coef(:, first:first + 5, i))
+            c = ((w(1)*cf(:, 1) + w(2)*cf(:, 2)) + (w(3)*cf(:, 3) + w(4)*cf(:, 4))) + &
+               & (w(5)*cf(:, 5) + w(6)*cf(:, 6))
+         end associate
+      end if
    end subroutine gap_combination
+
+   !> sum_k w(k) x(k) over a stencil's window of n_w (4 or 6) nodes (dot_product's for 4).
+   pure real(dp) function stencil_sum(n_w, w, x) result(v)
+      integer, intent(in) :: n_w
+      real(dp), intent(in) :: w(max_stencil), x(:)
+      if (n_w == 4) then
+         v = dot_product(w(1:4), x(1:4))
+      else
+         v = ((w(1)*x(1) + w(2)*x(2)) + (w(3)*x(3) + w(4)*x(4))) + (w(5)*x(5) + w(6)*x(6))
+      end if
+   end function stencil_sum
 
    !> The unloading force over the loading force at the end d_1 of a curve's span, where
    !> its gap is g_1 (P_load(m) = f_m), in [0, 1]: below d_1 the unloading force is that
@@ -432,6 +524,153 @@ contains
          end if
       end if
    end function stencil_first
+
+   !> Nodes of the window of every Lagrange stencil of a table (its curves store log_ratio;
+   !> n_m delta_max nodes): six for log-ratio tables of six or more nodes (their curves'
+   !> error in delta_max is the force's relative error down to 1e-3 of the turning point's:
+   !> four nodes needed 109 on egw-bench's range at 1e-4, six 71; doc/benchmarks.md stop
+   !> 46), four else.
+   pure integer function stencil_width(log_ratio, n_m) result(n_w)
+      logical, intent(in) :: log_ratio
+      integer, intent(in) :: n_m
+      n_w = 4
+      if (log_ratio .and. n_m >= 6) n_w = 6
+   end function stencil_width
+
+   !> The window of n_w (4 or 6, at most n_m) nodes first .. first + n_w - 1 of the Lagrange
+   !> stencil of interval j and the stencil's nodes in it, window positions lo .. hi: with
+   !> n_w = 4 stencil_first's four; with 6 the six nodes around the interval (j - 2 ..
+   !> j + 3, clamped at the grid's ends) on its side of a breakpoint k_b, or where that
+   !> side has fewer than six nodes, stencil_first's four inside a window of six.
+   pure subroutine stencil_window(j, n_m, k_b, n_w, first, lo, hi)
+      integer, intent(in) :: j, n_m, k_b, n_w
+      integer, intent(out) :: first, lo, hi
+      integer :: k
+      first = stencil_first(j, n_m, k_b)
+      lo = 1
+      hi = 4
+      if (n_w == 4) return
+      k = min(max(j - 2, 1), n_m - 5)
+      if (k_b > 0) then
+         if (j < k_b) then
+            k = min(k, k_b - 5)
+         else
+            k = max(k, k_b)
+         end if
+      end if
+      if (k >= 1 .and. k + 5 <= n_m) then
+         first = k
+         hi = 6
+      else
+         k = min(max(first - 1, 1), n_m - 5)
+         lo = first - k + 1
+         hi = lo + 3
+         first = k
+      end if
+   end subroutine stencil_window
+
+   !> The edge map of a log-ratio curve of unloading length L (roughness sigma): the
+   !> values xi(1:3) of m - delta at s = 1/2, 3/4 and 1. For a deep turning point (L >> sigma)
+   !> the residual-overlap edge, where the unloading force vanishes within a rounding ~sigma
+   !> wide, lies at xi ~ L: s in [1/2, 3/4] spans L - 1.5 sigma .. L + 4 sigma there
+   !> whatever m, so the edge sits at a fixed s at a fixed width (the curves' shared s
+   !> nodes resolve it for every m); [3/4, 1] the 12 sigma of the separated tail beyond.
+   !> A shallow one (L <~ sigma, the separated tail) gets L .. 5 L and 12 sigma more.
+   !> xi(1) >= L/4 > 0.
+   pure subroutine edge_breaks(length, sigma, xi)
+      real(dp), intent(in) :: length, sigma
+      real(dp), intent(out) :: xi(3)
+      xi(1) = length - 1.5_dp*sigma*length**2/(length**2 + sigma**2)
+      xi(2) = length + 4.0_dp*sigma*length/(length + sigma)
+      xi(3) = xi(2) + 12.0_dp*sigma
+   end subroutine edge_breaks
+
+   !> The segment (1, 2, 3) of the edge map that holds the s interval [a, b] (its breaks
+   !> 1/2, 3/4 are s nodes of every curve: no interval straddles one).
+   elemental integer function edge_segment(a, b) result(k)
+      real(dp), intent(in) :: a, b
+      real(dp) :: c
+      c = 0.5_dp*(a + b)
+      k = 3
+      if (c < 0.75_dp) k = 2
+      if (c < 0.5_dp) k = 1
+   end function edge_segment
+
+   !> s of xi = m - delta on the edge map xi (edge_breaks), not clamped (> 1 beyond the
+   !> span), and ds/dxi there.
+   pure subroutine edge_s(xi_b, x, s, ds)
+      real(dp), intent(in) :: xi_b(3), x
+      real(dp), intent(out) :: s, ds
+      if (x <= xi_b(1)) then
+         ds = 0.5_dp/xi_b(1)
+         s = x*ds
+      else if (x <= xi_b(2)) then
+         ds = 0.25_dp/(xi_b(2) - xi_b(1))
+         s = 0.5_dp + (x - xi_b(1))*ds
+      else
+         ds = 0.25_dp/(xi_b(3) - xi_b(2))
+         s = 0.75_dp + (x - xi_b(2))*ds
+      end if
+   end subroutine edge_s
+
+   !> xi = m - delta at s in [0, 1] on the edge map xi_b (edge_s inverted), and dxi/ds on
+   !> segment k (1..3).
+   pure subroutine edge_xi(xi_b, s, x, dxi, k)
+      real(dp), intent(in) :: xi_b(3), s
+      real(dp), intent(out) :: x
+      real(dp), intent(out), optional :: dxi
+      integer, intent(in), optional :: k
+      real(dp) :: d(3)
+      d = [2*xi_b(1), 4*(xi_b(2) - xi_b(1)), 4*(xi_b(3) - xi_b(2))]
+      if (s <= 0.5_dp) then
+         x = s*d(1)
+      else if (s <= 0.75_dp) then
+         x = xi_b(1) + (s - 0.5_dp)*d(2)
+      else
+         x = xi_b(2) + (s - 0.75_dp)*d(3)
+      end if
+      if (present(dxi) .and. present(k)) dxi = d(k)
+   end subroutine edge_xi
+
+   !> The force and stiffness at delta (cut-off < delta < m) of a log-ratio table below
+   !> the turning point m from the cubic c of h = ln(P_load/P) on s interval i, at s (not
+   !> clamped: above 1 h is held at its value at s = 1, as the gap's tail ratio), ds/dxi
+   !> = ds: P = P_load(delta) e^-h, dP/ddelta = e^-h (K_load + P_load dh/ds ds/dxi).
+   pure subroutine log_branch(table, c, i, s, ds, delta, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: c(4), s, ds, delta
+      integer, intent(in) :: i
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: h, dh, f_d, k_d, e
+      call table_eval(table%loading, delta, f_d, k_d)
+      if (s >= 1.0_dp) then
+         h = ((c(1) + c(2)) + (c(3) + c(4)))
+         dh = 0.0_dp
+      else
+         call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), h, dh)
+      end if
+      e = exp(-h)
+      force = f_d*e
+      stiffness = e*(k_d + f_d*dh*ds)
+   end subroutine log_branch
+
+   !> The unloading force and stiffness at delta (cut-off < delta < m) of a log-ratio
+   !> table below the turning point m (stencil first, weights w, interpolated unloading
+   !> length L = length): s on the edge map of L, its interval's cubic, log_branch.
+   pure subroutine log_unload(table, first, w, length, m, delta, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      integer, intent(in) :: first
+      real(dp), intent(in) :: w(max_stencil), length, m, delta
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: xi_b(3), s, ds, c(4)
+      integer :: i
+      call edge_breaks(length, table%params%sigma, xi_b)
+      call edge_s(xi_b, m - delta, s, ds)
+      s = min(s, 1.0_dp)
+      i = locate(table%s_lookup, table%s, s)
+      call gap_combination(table, first, w, i, c)
+      call log_branch(table, c, i, s, ds, delta, force, stiffness)
+   end subroutine log_unload
 
    !> i with x(i) <= v < x(i+1), clamped to [1, n-1]: the bucket's interval, then a short
    !> forward scan (at most one step where the buckets are as fine as the grid).

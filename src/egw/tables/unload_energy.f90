@@ -11,11 +11,12 @@ module egw_unload_energy
    use egw_table, only: table_eval, gl_x, gl_w, table_energy, table_interval, beyond_status
    use egw_hysteresis_data, only: hysteresis_table, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, locate, map_s, map_x, s_knee, &
-      & s_zero, map_lengths
+      & s_zero, map_lengths, log_unload, edge_breaks, edge_s, edge_xi, edge_segment, &
+      & stencil_sum
    implicit none
    private
 
-   public :: hysteresis_energy, hysteresis_energy_walk, energy_prepare
+   public :: hysteresis_energy, hysteresis_energy_walk, energy_prepare, log_energy_prepare
 
    !> Turning points sampled per delta_max interval for the energy's clipped dips
    !> (energy_prepare): dip_samples + 1 evenly spaced, each gap bisected (to a width of
@@ -99,14 +100,25 @@ contains
       if (table%reversible .or. .not. m > table%elastic_limit) return
       cv%m = m
       call turning_point(table, m, cv%first, cv%w, cv%inv_span, cv%f_m, cv%knee)
+      if (table%log_ratio) then   ! (no dips; the walk: the reference)
+         if (walk .or. .not. allocated(table%energy_coef)) then
+            energy = log_energy(table, cv, delta)
+         else if (m < table%delta_max .and. table%energy_walk(locate(table%m_lookup, &
+            & table%m, m))) then
+            energy = log_energy(table, cv, delta)
+         else
+            energy = log_energy_ratio(table, cv, delta)
+         end if
+         return
+      end if
       ! below the span's end d_1 the force is ratio P_load (unload_branch), above it
       ! P_load - f_m g(s), clipped at 0: int g(s(x)) dx over (lo, delta) with s = (m -
       ! x)/(s_max L) is (1/(s_max L)) times the integral of g over s from s(delta) to
       ! s(lo) (gap_work; the two-piece map: piece by piece); the span starts at the
       ! cut-off if d_1 is below it (no force there)
       d_1 = curve_x(table, cv, 1.0_dp)
-      ratio = unload_tail_ratio(table, d_1, cv%f_m, dot_product(cv%w, &
-         & table%gap(size(table%s), cv%first:cv%first + 3)))
+      ratio = unload_tail_ratio(table, d_1, cv%f_m, stencil_sum(table%n_w, cv%w, &
+         & table%gap(size(table%s), cv%first:cv%first + table%n_w - 1)))
       if (.not. delta > d_1) then
          energy = ratio*energy
          return
@@ -183,6 +195,249 @@ contains
       end if
    end function dips_below
 
+   !> The energy of a log-ratio table (P = P_load e^-h, never below 0: nothing clipped) at
+   !> delta below the turning point of cv: below the span's end d_1 (s = 1) the loading
+   !> table's energy times e^-h(1), above it that at d_1 plus the force's integral from d_1,
+   !> by 8-point Gauss-Legendre on each smooth piece (between the loading table's nodes
+   !> and the s nodes): O(pieces between d_1 and delta).
+   pure real(dp) function log_energy(table, cv, delta) result(energy)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: delta
+      real(dp) :: length, xi_b(3), d_1, ratio, lo, x_a, x_b, s_a, ds, next, f, k, part
+      integer :: i, q, it, n_s
+      n_s = size(table%s)
+      length = 1.0_dp/cv%inv_span
+      call edge_breaks(length, table%params%sigma, xi_b)
+      d_1 = cv%m - xi_b(3)
+      ratio = exp(-stencil_sum(table%n_w, cv%w, table%gap(n_s, cv%first:cv%first + &
+         & table%n_w - 1)))
+      if (.not. delta > d_1) then
+         energy = ratio*table_energy(table%loading, delta)
+         return
+      end if
+      lo = max(d_1, table%loading%cutoff)
+      energy = ratio*table_energy(table%loading, lo)
+      x_a = lo
+      do it = 1, 4*(size(table%loading%delta) + n_s) + 8
+         if (.not. x_a < delta) exit
+         x_b = delta
+         if (x_a < table%loading%delta_max) then
+            i = table_interval(table%loading, x_a)
+            x_b = min(x_b, table%loading%delta(i + 1))
+         end if
+         ! the next s node below s(x_a) (s falls as x grows)
+         call edge_s(xi_b, cv%m - x_a, s_a, ds)
+         i = locate(table%s_lookup, table%s, min(s_a, 1.0_dp))
+         call edge_xi(xi_b, table%s(i), next)
+         next = cv%m - next
+         if (.not. next > x_a .and. i > 1) then
+            call edge_xi(xi_b, table%s(i - 1), next)
+            next = cv%m - next
+         end if
+         if (next > x_a) x_b = min(x_b, next)
+         if (.not. x_b > x_a) exit   ! round-off at a break
+         part = 0.0_dp
+         do q = 1, size(gl_x)
+            call log_unload(table, cv%first, cv%w, length, cv%m, x_a + (x_b - x_a)*gl_x(q), &
+               & f, k)
+            part = part + gl_w(q)*f
+         end do
+         energy = energy + part*(x_b - x_a)
+         x_a = x_b
+      end do
+   end function log_energy
+
+   !> The energy of a log-ratio table at delta below the turning point of cv in O(1):
+   !> E_load(delta) e^-eta with eta = ln(E_load/E) interpolated as h is (the stencil's
+   !> weights on energy_coef's cubics at s of the edge map of the interpolated L); below
+   !> the span's end (s >= 1) E_load(delta) e^-h(1), as log_energy. eta's error is a
+   !> relative error of the energy, as h's is of the force (doc/theory.md section 8).
+   pure real(dp) function log_energy_ratio(table, cv, delta) result(energy)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: delta
+      real(dp) :: xi_b(3), s, ds, c(4), t, eta
+      integer :: i, f
+      f = cv%first
+      call edge_breaks(1.0_dp/cv%inv_span, table%params%sigma, xi_b)
+      call edge_s(xi_b, cv%m - delta, s, ds)
+      if (s >= 1.0_dp) then
+         eta = stencil_sum(table%n_w, cv%w, table%gap(size(table%s), f:f + table%n_w - 1))
+      else
+         i = locate(table%s_lookup, table%s, s)
+         ! (the window's curves that are the stencil's: weight not 0)
+         if (i + 1 >= minval(table%energy_cut(f:f + table%n_w - 1), &
+            & mask=cv%w(1:table%n_w) /= 0.0_dp)) then
+            ! the stencil's curves reach the cut-off by this interval's end: eta has a layer
+            ! there (E/E_load runs from e^-h at the cut-off to its value within a few
+            ! 1/(d ln P_load/d delta)): the short walk from the cut-off
+            energy = log_energy(table, cv, delta)
+            return
+         end if
+         if (table%n_w == 4) then
+            c = cv%w(1)*table%energy_coef(:, f, i) + cv%w(2)*table%energy_coef(:, f + 1, i) + &
+               & cv%w(3)*table%energy_coef(:, f + 2, i) + cv%w(4)*table%energy_coef(:, f + 3, i)
+         else
+            associate (ec => table%energy_coef(:, f:f + 5, i))
+               c = ((cv%w(1)*ec(:, 1) + cv%w(2)*ec(:, 2)) + (cv%w(3)*ec(:, 3) + &
+                  & cv%w(4)*ec(:, 4))) + (cv%w(5)*ec(:, 5) + cv%w(6)*ec(:, 6))
+            end associate
+         end if
+         t = (s - table%s(i))*table%inv_ds(i)
+         eta = (c(1) + t*c(2)) + t*t*(c(3) + t*c(4))
+      end if
+      energy = table_energy(table%loading, delta)*exp(-eta)
+   end function log_energy_ratio
+
+   !> energy_coef of a log-ratio table: on each curve (its own force, from the loading
+   !> table's cut-off or the span's end s = 1, whichever is higher) the energy E at every s
+   !> node by a walk up the curve (curve_energies), eta = ln(E_load/E) there and its exact
+   !> slope d eta/d xi = P/E - P_load/E_load (xi = m - delta), joined by Hermite cubics on
+   !> the s intervals. Where a node lies at or below the cut-off (both energies 0) eta is
+   !> continued by h and its slope (the limit of E/E_load at the cut-off is P/P_load =
+   !> e^-h), and energy_cut marks the curve's first such node: log_energy_ratio walks
+   !> from the cut-off on the s intervals that reach it (eta's layer there). Then
+   !> energy_walk: three turning points of each delta_max interval (a quarter, a half and
+   !> three quarters in), walked, at their own s nodes and the nodes' midpoints; an
+   !> interval where log_energy_ratio misses one by more than rel_tol/2 of max(E, 1e-3
+   !> E_m) (the force's local tolerance) takes the walk (turning points near the
+   !> cut-off, where ln P_load bends hard). Cost: four walks per curve (8-point
+   !> Gauss-Legendre, two panels per piece).
+   pure subroutine log_energy_prepare(table)
+      !> a log-ratio table prepared but for this (hysteresis_prepare): energy_coef,
+      !> energy_walk and energy_cut set
+      type(hysteresis_table), intent(inout) :: table
+      type(unload_curve) :: cv
+      real(dp) :: xi_b(3), d(3), length, x_i, xi, e_l, p_l, k_l, p_u, h, d0, d1, e_m
+      real(dp), allocatable :: eta(:), deta(:), x(:), e(:)
+      integer :: i, j, k, l, n_s, n_m
+      n_s = size(table%s)
+      n_m = size(table%m)
+      if (allocated(table%energy_coef)) deallocate (table%energy_coef)
+      if (allocated(table%energy_walk)) deallocate (table%energy_walk)
+      if (allocated(table%energy_cut)) deallocate (table%energy_cut)
+      allocate (table%energy_coef(4, n_m, n_s - 1), eta(n_s), deta(n_s), x(2*n_s - 1), &
+         & e(2*n_s - 1), table%energy_walk(n_m - 1), table%energy_cut(n_m))
+      table%energy_walk = .false.
+      table%energy_cut = n_s + 1
+      do j = 1, n_m
+         cv%m = table%m(j)
+         call turning_point(table, cv%m, cv%first, cv%w, cv%inv_span, cv%f_m, cv%knee)
+         length = 1.0_dp/cv%inv_span
+         call edge_breaks(length, table%params%sigma, xi_b)
+         d = [2*xi_b(1), 4*(xi_b(2) - xi_b(1)), 4*(xi_b(3) - xi_b(2))]
+         do i = 1, n_s
+            call edge_xi(xi_b, table%s(n_s + 1 - i), xi)
+            x(i) = cv%m - xi
+         end do
+         x(n_s) = cv%m
+         call curve_energies(table, cv, xi_b, x(1:n_s), e(1:n_s))
+         do i = 1, n_s
+            x_i = x(n_s + 1 - i)
+            e_l = table_energy(table%loading, x_i)
+            if (x_i > table%loading%cutoff .and. e(n_s + 1 - i) > 0.0_dp .and. &
+               & e_l > 0.0_dp) then
+               call table_eval(table%loading, x_i, p_l, k_l)
+               call log_unload(table, cv%first, cv%w, length, cv%m, x_i, p_u, k_l)
+               eta(i) = log(e_l/e(n_s + 1 - i))
+               deta(i) = p_u/e(n_s + 1 - i) - p_l/e_l
+            else
+               eta(i) = table%gap(i, j)
+               deta(i) = table%slope(i, j)
+               table%energy_cut(j) = min(table%energy_cut(j), i)
+            end if
+         end do
+         do i = 1, n_s - 1
+            k = edge_segment(table%s(i), table%s(i + 1))
+            h = table%s(i + 1) - table%s(i)
+            d0 = h*d(k)*deta(i)
+            d1 = h*d(k)*deta(i + 1)
+            table%energy_coef(:, j, i) = [eta(i), d0, 3*(eta(i + 1) - eta(i)) - 2*d0 - d1, &
+               & 2*(eta(i) - eta(i + 1)) + d0 + d1]
+         end do
+      end do
+      do l = 1, 3*(n_m - 1)
+         j = (l - 1)/3 + 1
+         if (table%energy_walk(j)) cycle
+         cv%m = table%m(j) + 0.25_dp*(mod(l - 1, 3) + 1)*(table%m(j + 1) - table%m(j))
+         if (.not. cv%m > table%elastic_limit) cycle
+         call turning_point(table, cv%m, cv%first, cv%w, cv%inv_span, cv%f_m, cv%knee)
+         call edge_breaks(1.0_dp/cv%inv_span, table%params%sigma, xi_b)
+         do i = 1, 2*n_s - 1   ! nodes and midpoints, s falling
+            k = n_s - i/2
+            if (mod(i, 2) == 1) then
+               call edge_xi(xi_b, table%s(k), xi)
+            else
+               call edge_xi(xi_b, 0.5_dp*(table%s(k) + table%s(k + 1)), xi)
+            end if
+            x(i) = cv%m - xi
+         end do
+         x(2*n_s - 1) = cv%m
+         call curve_energies(table, cv, xi_b, x, e)
+         e_m = e(2*n_s - 1)
+         do i = 1, 2*n_s - 1
+            if (.not. x(i) > table%loading%cutoff) cycle
+            if (abs(log_energy_ratio(table, cv, x(i)) - e(i)) > 0.5_dp*table%rel_tol* &
+               & max(e(i), 1.0e-3_dp*e_m)) table%energy_walk(j) = .true.
+         end do
+      end do
+   end subroutine log_energy_prepare
+
+   !> The energies e(i) at the overlaps x(i) (increasing, at most cv%m) of the log-ratio
+   !> curve cv (edge map xi_b): one walk up the curve from its start (the cut-off or the
+   !> span's end s = 1, whichever is higher), log_integral between consecutive overlaps.
+   pure subroutine curve_energies(table, cv, xi_b, x, e)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: xi_b(3), x(:)
+      real(dp), intent(out) :: e(:)
+      real(dp) :: x_lo, total
+      integer :: i
+      x_lo = max(cv%m - xi_b(3), table%loading%cutoff)
+      total = exp(-stencil_sum(table%n_w, cv%w, table%gap(size(table%s), &
+         & cv%first:cv%first + table%n_w - 1)))* &
+         & table_energy(table%loading, x_lo)
+      do i = 1, size(x)
+         if (x(i) > x_lo) then
+            total = total + log_integral(table, cv, 1.0_dp/cv%inv_span, x_lo, x(i))
+            x_lo = x(i)
+         end if
+         e(i) = total
+         if (.not. x(i) > table%loading%cutoff) e(i) = 0.0_dp
+      end do
+   end subroutine curve_energies
+
+   !> int_{x0}^{x1} of the force of log-ratio curve cv (unloading length length), x0 < x1
+   !> within one of its s intervals: 8-point Gauss-Legendre on two panels of each piece
+   !> between the loading table's nodes.
+   pure real(dp) function log_integral(table, cv, length, x0, x1) result(total)
+      type(hysteresis_table), intent(in) :: table
+      type(unload_curve), intent(in) :: cv
+      real(dp), intent(in) :: length, x0, x1
+      real(dp) :: x_a, x_b, f, k
+      integer :: i, p, q, it
+      total = 0.0_dp
+      x_a = x0
+      do it = 1, size(table%loading%delta) + 2
+         if (.not. x_a < x1) exit
+         x_b = x1
+         if (x_a < table%loading%delta_max) then
+            i = table_interval(table%loading, x_a)
+            x_b = min(x_b, table%loading%delta(i + 1))
+         end if
+         if (.not. x_b > x_a) exit   ! round-off at a node
+         do p = 0, 1
+            do q = 1, size(gl_x)
+               call log_unload(table, cv%first, cv%w, length, cv%m, x_a + 0.5_dp*(x_b - &
+                  & x_a)*(p + gl_x(q)), f, k)
+               total = total + 0.5_dp*gl_w(q)*f*(x_b - x_a)
+            end do
+         end do
+         x_a = x_b
+      end do
+   end function log_integral
+
    !> int_0^s g(s', m) ds' of curve cv, s <= 1.
    pure real(dp) function gap_primitive(table, cv, s) result(total)
       type(hysteresis_table), intent(in) :: table
@@ -195,7 +450,7 @@ contains
       h = table%s(i + 1) - table%s(i)
       t = (x - table%s(i))/h
       total = 0.0_dp
-      do k = 1, 4
+      do k = 1, table%n_w
          associate (c => table%coef(:, cv%first + k - 1, i))
             total = total + cv%w(k)*(table%gap_integral(cv%first + k - 1, i) + h*t*(c(1) + &
                & t*(c(2)/2 + t*(c(3)/3 + t*c(4)/4))))
@@ -482,6 +737,7 @@ contains
    !> (cost: a walk per
    !> sample, 33 per interval where the dips are smooth in m, more where they are not).
    pure subroutine energy_prepare(table)
+      !> a gap table prepared but for this (hysteresis_prepare): its dip samples set
       type(hysteresis_table), intent(inout) :: table
       real(dp), allocatable :: store(:, :)
       real(dp) :: band, scale, u0, u1, q0, q1, top, low0, low1
