@@ -218,9 +218,10 @@ contains
    !> egw_invalid_argument for a NaN overlap delta or a NaN history (called name; a new
    !> contact starts from fresh, the way to start one).
    pure subroutine nan_error(delta, name, fresh, error)
-      real(dp), intent(in) :: delta
-      character(len=*), intent(in) :: name, fresh
-      type(egw_error), allocatable, intent(out) :: error
+      real(dp), intent(in) :: delta   !< the overlap given (named in the message if NaN)
+      character(len=*), intent(in) :: name    !< the history argument's name, for the message
+      character(len=*), intent(in) :: fresh   !< the fresh-contact value, for the message
+      type(egw_error), allocatable, intent(out) :: error   !< egw_invalid_argument, always
       if (ieee_is_nan(delta)) then
          call fatal_error(error, egw_invalid_argument, "delta = NaN: must be a number")
       else
@@ -232,8 +233,11 @@ contains
    !> g and dg/ds of the cubic c in t = (s - s_i)/(s_{i+1} - s_i) (inv_ds = the 1/width);
    !> Estrin's scheme: shorter dependency chains than Horner.
    pure subroutine gap_cubic(c, t, inv_ds, g, dg)
-      real(dp), intent(in) :: c(4), t, inv_ds
-      real(dp), intent(out) :: g, dg
+      real(dp), intent(in) :: c(4)     !< the cubic's coefficients in t (coef's layout)
+      real(dp), intent(in) :: t        !< (s - s_i)/(s_{i+1} - s_i), in [0, 1] on the interval
+      real(dp), intent(in) :: inv_ds   !< 1/(s_{i+1} - s_i)
+      real(dp), intent(out) :: g       !< the cubic's value at t (g; h in log-ratio tables)
+      real(dp), intent(out) :: dg      !< its derivative in s
       real(dp) :: t2
       t2 = t*t
       g = (c(1) + t*c(2)) + t2*(c(3) + t*c(4))
@@ -249,11 +253,19 @@ contains
    !> copy from its last loading step); where it holds m above the resampled tail, P_load(m)
    !> comes from it without the table's lookup (eval_kernel's arithmetic: the same value).
    pure subroutine turning_point(table, m, first, w, inv_span, f_m, knee, seg)
-      type(hysteresis_table), intent(in) :: table
+      type(hysteresis_table), intent(in) :: table   !< the table (prepared)
+      !> the turning point delta_max (above the table's last node: its last curve)
       real(dp), intent(in) :: m
-      integer, intent(out) :: first
-      real(dp), intent(out) :: w(max_stencil), inv_span, f_m
+      integer, intent(out) :: first    !< the first delta_max node of the stencil's window
+      !> Lagrange weights of the window's table%n_w nodes (0 beyond)
+      real(dp), intent(out) :: w(max_stencil)
+      !> 1/(s_max L(m)) (log-ratio tables: 1/L, above the table stretched; mapped: the
+      !> first piece's ds/dx, map_iota)
+      real(dp), intent(out) :: inv_span
+      real(dp), intent(out) :: f_m     !< the loading force P_load(m)
       real(dp), intent(out) :: knee   !< the map's knee (turning_knee; 0 unless mapped)
+      !> an interval of the loading table (table_segment's layout): P_load(m) from it
+      !> where it holds m
       real(dp), intent(in), optional :: seg(7)
       real(dp) :: d(max_stencil), k_m, lead(max_stencil), trail
       integer :: j, n_m, k, lo, hi
@@ -324,9 +336,10 @@ contains
    !> nodes' knees interpolated, kept in [0, 0.99 m] (0 <= delta_r < m: the clamp only
    !> catches the interpolation's overshoot near first yield); 0 unless mapped.
    pure real(dp) function turning_knee(table, first, w, m) result(knee)
-      type(hysteresis_table), intent(in) :: table
-      integer, intent(in) :: first
-      real(dp), intent(in) :: w(max_stencil), m
+      type(hysteresis_table), intent(in) :: table   !< the table (its knee(:) where mapped)
+      integer, intent(in) :: first     !< the stencil's first delta_max node (turning_point)
+      real(dp), intent(in) :: w(max_stencil)   !< the stencil's Lagrange weights (turning_point)
+      real(dp), intent(in) :: m        !< the turning point delta_max
       knee = 0.0_dp
       if (.not. (table%mapped .and. m > 0.0_dp)) return
       knee = w(1)*table%knee(first) + w(2)*table%knee(first + 1) + &
@@ -337,8 +350,8 @@ contains
    !> The piece (1, 2, 3) of the two-piece map that holds s (an interval's midpoint:
    !> the breaks are nodes); 1 unless mapped.
    elemental integer function map_piece(mapped, s) result(p)
-      logical, intent(in) :: mapped
-      real(dp), intent(in) :: s
+      logical, intent(in) :: mapped    !< whether the table has the two-piece map (table%mapped)
+      real(dp), intent(in) :: s        !< the unloading coordinate, in [0, 1]
       p = 1
       if (.not. mapped) return
       if (s > s_knee) p = 2
@@ -350,9 +363,13 @@ contains
    !> (m - knee, s_knee), (m, s_zero) and on at slope (1 - s_zero)/tail_length (not
    !> clamped: the callers clamp at 1).
    pure subroutine map_s(table, m, knee, iota, x, s, dsdx)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: m, knee, iota, x
-      real(dp), intent(out) :: s, dsdx
+      type(hysteresis_table), intent(in) :: table   !< the table (mapped, tail_length)
+      real(dp), intent(in) :: m        !< the turning point delta_max
+      real(dp), intent(in) :: knee     !< its knee delta_r(m) (turning_knee; mapped)
+      real(dp), intent(in) :: iota     !< the first piece's ds/dx (turning_point's inv_span)
+      real(dp), intent(in) :: x        !< m - delta, >= 0
+      real(dp), intent(out) :: s       !< the unloading coordinate at x (not clamped at 1)
+      real(dp), intent(out) :: dsdx    !< ds/dx of the piece that holds x
       if (table%mapped .and. .not. m > 0.0_dp) then
          ! a turning point at or below 0: the first two pieces are the point x = 0
          dsdx = (1.0_dp - s_zero)/table%tail_length
@@ -374,9 +391,14 @@ contains
    !> x = m - delta at s on the curve of turning point m (map_s's inverse), and ds/dx of
    !> the piece that holds s (at a break: the piece below it in s).
    pure subroutine map_x(table, m, knee, iota, s, x, dsdx)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: m, knee, iota, s
-      real(dp), intent(out) :: x, dsdx
+      type(hysteresis_table), intent(in) :: table   !< the table (mapped, tail_length)
+      real(dp), intent(in) :: m        !< the turning point delta_max
+      real(dp), intent(in) :: knee     !< its knee delta_r(m) (turning_knee; mapped)
+      real(dp), intent(in) :: iota     !< the first piece's ds/dx (turning_point's inv_span)
+      real(dp), intent(in) :: s        !< the unloading coordinate, >= 0
+      real(dp), intent(out) :: x       !< m - delta at s
+      !> ds/dx of the piece that holds s (huge for a piece of no width)
+      real(dp), intent(out) :: dsdx
       if (table%mapped .and. .not. m > 0.0_dp) then   ! (map_s)
          dsdx = (1.0_dp - s_zero)/table%tail_length
          x = max(s - s_zero, 0.0_dp)/dsdx
@@ -398,8 +420,9 @@ contains
    !> ds/dx of the first piece of the two-piece map of turning point m with its knee:
    !> s_knee/(m - knee); at or below 0 (no first piece) the tail's, (1 - s_zero)/tail_length.
    pure real(dp) function map_iota(table, m, knee) result(iota)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: m, knee
+      type(hysteresis_table), intent(in) :: table   !< the table (its tail_length)
+      real(dp), intent(in) :: m        !< the turning point delta_max
+      real(dp), intent(in) :: knee     !< its knee delta_r(m), 0 <= knee < m where m > 0
       iota = (1.0_dp - s_zero)/table%tail_length
       if (m > 0.0_dp) iota = s_knee/(m - knee)
    end function map_iota
@@ -407,8 +430,9 @@ contains
    !> dx/ds of the three pieces of the two-piece map of turning point m with its knee (0
    !> for a piece of no width).
    pure function map_lengths(table, m, knee) result(dxds)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: m, knee
+      type(hysteresis_table), intent(in) :: table   !< the table (its tail_length)
+      real(dp), intent(in) :: m        !< the turning point delta_max
+      real(dp), intent(in) :: knee     !< its knee delta_r(m), 0 <= knee < m where m > 0
       real(dp) :: dxds(3)
       dxds = [0.0_dp, 0.0_dp, table%tail_length/(1.0_dp - s_zero)]
       if (m > 0.0_dp) dxds(1:2) = [(m - knee)/s_knee, knee/(s_zero - s_knee)]
@@ -417,9 +441,11 @@ contains
    !> The gap cubic g(t) of the turning point (stencil first, weights w) on s interval i:
    !> the window's curves' cubics (16 or 24 contiguous numbers) combined.
    pure subroutine gap_combination(table, first, w, i, c)
-      type(hysteresis_table), intent(in) :: table
-      integer, intent(in) :: first, i
-      real(dp), intent(in) :: w(max_stencil)
+      type(hysteresis_table), intent(in) :: table   !< the table (prepared: coef, n_w)
+      integer, intent(in) :: first     !< the stencil's first delta_max node (turning_point)
+      integer, intent(in) :: i         !< the s interval, 1 .. n_s - 1
+      real(dp), intent(in) :: w(max_stencil)   !< the stencil's Lagrange weights (turning_point)
+      !> the combined cubic in t on interval i (of g; of h in log-ratio tables)
       real(dp), intent(out) :: c(4)
       if (table%n_w == 4) then
          associate (cf => table%coef(:, first:first + 3, i))
@@ -438,8 +464,9 @@ contains
 
    !> sum_k w(k) x(k) over a stencil's window of n_w (4 or 6) nodes (dot_product's for 4).
    pure real(dp) function stencil_sum(n_w, w, x) result(v)
-      integer, intent(in) :: n_w
-      real(dp), intent(in) :: w(max_stencil), x(:)
+      integer, intent(in) :: n_w       !< nodes of the window, 4 or 6
+      real(dp), intent(in) :: w(max_stencil)   !< the weights (the first n_w are used)
+      real(dp), intent(in) :: x(:)     !< the values at the window's nodes (at least n_w)
       if (n_w == 4) then
          v = dot_product(w(1:4), x(1:4))
       else
@@ -451,8 +478,10 @@ contains
    !> its gap is g_1 (P_load(m) = f_m), in [0, 1]: below d_1 the unloading force is that
    !> ratio of the loading tail (continuous at d_1 where the force there is positive).
    pure real(dp) function unload_tail_ratio(table, d_1, f_m, g_1) result(ratio)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: d_1, f_m, g_1
+      type(hysteresis_table), intent(in) :: table   !< the table (its loading curve; capped: 0)
+      real(dp), intent(in) :: d_1      !< the overlap at the end of the curve's span (s = 1)
+      real(dp), intent(in) :: f_m      !< the loading force P_load(m) at the turning point
+      real(dp), intent(in) :: g_1      !< the gap g at s = 1
       real(dp) :: f_1, k_1
       ratio = 0.0_dp
       if (table%capped) return   ! below the residual overlap: apart
@@ -460,10 +489,11 @@ contains
       if (f_1 > 0.0_dp) ratio = min(max(1.0_dp - f_m*g_1/f_1, 0.0_dp), 1.0_dp)
    end function unload_tail_ratio
 
+   !> Uniform buckets over the grid x, their width at most 3/4 of its finest interval,
    !> capped at 2**max_bucket_level.
    pure subroutine make_lookup(x, lookup)
-      real(dp), intent(in) :: x(:)
-      type(grid_lookup), intent(out) :: lookup
+      real(dp), intent(in) :: x(:)     !< the grid, strictly increasing, at least 2 nodes
+      type(grid_lookup), intent(out) :: lookup   !< its buckets (locate)
       real(dp) :: width, finest, xb
       integer :: n, b, i, level
       n = size(x)
@@ -491,7 +521,7 @@ contains
    !> extended models first touches (its Hertz part grows as m^(3/2) from there: the curves
    !> are not smooth across it), if there are 4 nodes on each side (it included); else 0.
    pure integer function m_breakpoint(m) result(k)
-      real(dp), intent(in) :: m(:)
+      real(dp), intent(in) :: m(:)     !< the delta_max nodes, increasing
       integer :: j
       k = 0
       do j = 4, size(m) - 3
@@ -503,8 +533,8 @@ contains
    !> with a breakpoint at 0 (k_b > 0) sqrt(m) above it, in which the curves just above it
    !> are smooth (the contact radius grows as sqrt(m)); no stencil mixes the two sides.
    elemental real(dp) function m_coordinate(m, k_b) result(x)
-      real(dp), intent(in) :: m
-      integer, intent(in) :: k_b
+      real(dp), intent(in) :: m        !< a delta_max (node or turning point)
+      integer, intent(in) :: k_b       !< the breakpoint node (m_breakpoint; 0: none)
       x = m
       if (k_b > 0 .and. m > 0.0_dp) x = sqrt(m)
    end function m_coordinate
@@ -514,7 +544,9 @@ contains
    !> node k_b (m_breakpoint), on interval j's side of it (the cubic does not straddle the
    !> onset of the Hertz part).
    pure integer function stencil_first(j, n_m, k_b) result(first)
-      integer, intent(in) :: j, n_m, k_b
+      integer, intent(in) :: j         !< the delta_max interval, 1 .. n_m - 1
+      integer, intent(in) :: n_m       !< delta_max nodes of the grid, >= 4
+      integer, intent(in) :: k_b       !< the breakpoint node (m_breakpoint; 0: none)
       first = min(max(j - 1, 1), n_m - 3)
       if (k_b > 0) then
          if (j < k_b) then
@@ -531,8 +563,8 @@ contains
    !> four nodes needed 109 on egw-bench's range at 1e-4, six 71; doc/benchmarks.md stop
    !> 46), four else.
    pure integer function stencil_width(log_ratio, n_m) result(n_w)
-      logical, intent(in) :: log_ratio
-      integer, intent(in) :: n_m
+      logical, intent(in) :: log_ratio   !< the curves store h = ln(P_load/P) (table%log_ratio)
+      integer, intent(in) :: n_m       !< delta_max nodes of the grid
       n_w = 4
       if (log_ratio .and. n_m >= 6) n_w = 6
    end function stencil_width
@@ -543,8 +575,13 @@ contains
    !> j + 3, clamped at the grid's ends) on its side of a breakpoint k_b, or where that
    !> side has fewer than six nodes, stencil_first's four inside a window of six.
    pure subroutine stencil_window(j, n_m, k_b, n_w, first, lo, hi)
-      integer, intent(in) :: j, n_m, k_b, n_w
-      integer, intent(out) :: first, lo, hi
+      integer, intent(in) :: j         !< the delta_max interval, 1 .. n_m - 1
+      integer, intent(in) :: n_m       !< delta_max nodes of the grid, >= n_w
+      integer, intent(in) :: k_b       !< the breakpoint node (m_breakpoint; 0: none)
+      integer, intent(in) :: n_w       !< nodes of the window, 4 or 6 (stencil_width)
+      integer, intent(out) :: first    !< the window's first delta_max node
+      integer, intent(out) :: lo       !< the stencil's first position in the window
+      integer, intent(out) :: hi       !< the stencil's last position in the window
       integer :: k
       first = stencil_first(j, n_m, k_b)
       lo = 1
@@ -578,8 +615,9 @@ contains
    !> A shallow one (L <~ sigma, the separated tail) gets L .. 5 L and 12 sigma more.
    !> xi(1) >= L/4 > 0.
    pure subroutine edge_breaks(length, sigma, xi)
-      real(dp), intent(in) :: length, sigma
-      real(dp), intent(out) :: xi(3)
+      real(dp), intent(in) :: length   !< the curve's unloading length L (> 0)
+      real(dp), intent(in) :: sigma    !< the summit heights' standard deviation (unit of L)
+      real(dp), intent(out) :: xi(3)   !< m - delta at s = 1/2, 3/4, 1, increasing
       xi(1) = length - 1.5_dp*sigma*length**2/(length**2 + sigma**2)
       xi(2) = length + 4.0_dp*sigma*length/(length + sigma)
       xi(3) = xi(2) + 12.0_dp*sigma
@@ -588,7 +626,8 @@ contains
    !> The segment (1, 2, 3) of the edge map that holds the s interval [a, b] (its breaks
    !> 1/2, 3/4 are s nodes of every curve: no interval straddles one).
    elemental integer function edge_segment(a, b) result(k)
-      real(dp), intent(in) :: a, b
+      real(dp), intent(in) :: a        !< the interval's lower end in s
+      real(dp), intent(in) :: b        !< its upper end in s
       real(dp) :: c
       c = 0.5_dp*(a + b)
       k = 3
@@ -599,8 +638,10 @@ contains
    !> s of xi = m - delta on the edge map xi (edge_breaks), not clamped (> 1 beyond the
    !> span), and ds/dxi there.
    pure subroutine edge_s(xi_b, x, s, ds)
-      real(dp), intent(in) :: xi_b(3), x
-      real(dp), intent(out) :: s, ds
+      real(dp), intent(in) :: xi_b(3)  !< the edge map's breaks (edge_breaks)
+      real(dp), intent(in) :: x        !< xi = m - delta, >= 0
+      real(dp), intent(out) :: s       !< the unloading coordinate (not clamped at 1)
+      real(dp), intent(out) :: ds      !< ds/dxi of the segment that holds x
       if (x <= xi_b(1)) then
          ds = 0.5_dp/xi_b(1)
          s = x*ds
@@ -616,10 +657,11 @@ contains
    !> xi = m - delta at s in [0, 1] on the edge map xi_b (edge_s inverted), and dxi/ds on
    !> segment k (1..3).
    pure subroutine edge_xi(xi_b, s, x, dxi, k)
-      real(dp), intent(in) :: xi_b(3), s
-      real(dp), intent(out) :: x
-      real(dp), intent(out), optional :: dxi
-      integer, intent(in), optional :: k
+      real(dp), intent(in) :: xi_b(3)  !< the edge map's breaks (edge_breaks)
+      real(dp), intent(in) :: s        !< the unloading coordinate, in [0, 1]
+      real(dp), intent(out) :: x       !< xi = m - delta at s
+      real(dp), intent(out), optional :: dxi   !< dxi/ds on segment k (set only with k)
+      integer, intent(in), optional :: k       !< the segment (1..3, edge_segment) for dxi
       real(dp) :: d(3)
       d = [2*xi_b(1), 4*(xi_b(2) - xi_b(1)), 4*(xi_b(3) - xi_b(2))]
       if (s <= 0.5_dp) then
@@ -637,10 +679,14 @@ contains
    !> clamped: above 1 h is held at its value at s = 1, as the gap's tail ratio), ds/dxi
    !> = ds: P = P_load(delta) e^-h, dP/ddelta = e^-h (K_load + P_load dh/ds ds/dxi).
    pure subroutine log_branch(table, c, i, s, ds, delta, force, stiffness)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: c(4), s, ds, delta
-      integer, intent(in) :: i
-      real(dp), intent(out) :: force, stiffness
+      type(hysteresis_table), intent(in) :: table   !< a log-ratio table (loading curve, s grid)
+      real(dp), intent(in) :: c(4)     !< the cubic of h on interval i (gap_combination)
+      real(dp), intent(in) :: s        !< the unloading coordinate (>= 1: h held at s = 1)
+      real(dp), intent(in) :: ds       !< ds/dxi at delta (edge_s)
+      real(dp), intent(in) :: delta    !< the overlap, cut-off < delta < m
+      integer, intent(in) :: i         !< the s interval that holds s, 1 .. n_s - 1
+      real(dp), intent(out) :: force   !< the unloading force P
+      real(dp), intent(out) :: stiffness   !< dP/ddelta
       real(dp) :: h, dh, f_d, k_d, e
       call table_eval(table%loading, delta, f_d, k_d)
       if (s >= 1.0_dp) then
@@ -658,10 +704,14 @@ contains
    !> table below the turning point m (stencil first, weights w, interpolated unloading
    !> length L = length): s on the edge map of L, its interval's cubic, log_branch.
    pure subroutine log_unload(table, first, w, length, m, delta, force, stiffness)
-      type(hysteresis_table), intent(in) :: table
-      integer, intent(in) :: first
-      real(dp), intent(in) :: w(max_stencil), length, m, delta
-      real(dp), intent(out) :: force, stiffness
+      type(hysteresis_table), intent(in) :: table   !< the table (log-ratio, prepared)
+      integer, intent(in) :: first     !< the stencil's first delta_max node (turning_point)
+      real(dp), intent(in) :: w(max_stencil)   !< the stencil's Lagrange weights (turning_point)
+      real(dp), intent(in) :: length   !< the interpolated unloading length L (1/inv_span)
+      real(dp), intent(in) :: m        !< the turning point delta_max
+      real(dp), intent(in) :: delta    !< the overlap, cut-off < delta < m
+      real(dp), intent(out) :: force   !< the unloading force P
+      real(dp), intent(out) :: stiffness   !< dP/ddelta
       real(dp) :: xi_b(3), s, ds, c(4)
       integer :: i
       call edge_breaks(length, table%params%sigma, xi_b)
@@ -675,8 +725,9 @@ contains
    !> i with x(i) <= v < x(i+1), clamped to [1, n-1]: the bucket's interval, then a short
    !> forward scan (at most one step where the buckets are as fine as the grid).
    pure integer function locate(lookup, x, v) result(i)
-      type(grid_lookup), intent(in) :: lookup
-      real(dp), intent(in) :: x(:), v
+      type(grid_lookup), intent(in) :: lookup   !< the buckets of x (make_lookup)
+      real(dp), intent(in) :: x(:)     !< the grid, strictly increasing, at least 2 nodes
+      real(dp), intent(in) :: v        !< the value to locate (outside the grid: clamped)
       integer :: b, n
       n = size(x)
       b = min(max(int((v - lookup%origin)*lookup%scale), 0), lookup%n_bucket)
