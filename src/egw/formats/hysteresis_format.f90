@@ -348,9 +348,10 @@ contains
             & "# loading.n_log = "//int_str(l%n_log)//new_line("a")// &
             & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
             & "stiffness [modulus*length]; energy [modulus*length^3]; s, gap [1]"// &
-            & new_line("a")// &
-            & rows_note(table%log_ratio)// &
-            & new_line("a")//"# loading columns = delta,force,stiffness,energy,contact_radius"
+            & new_line("a")
+         call add_rows_note(head, table%log_ratio)
+         head = head//new_line("a")//"# loading columns = delta,force,stiffness,energy,"// &
+            & "contact_radius"
          if (table%mapped .and. .not. table%reversible) then
             head = head//new_line("a")//"# the two-piece s map: each curve's knee (in "// &
                & "delta_max order) at s = 1/2, delta = 0 at s = 3/4, -tail_length at s = 1; "// &
@@ -383,23 +384,24 @@ contains
       end subroutine put_line
    end subroutine write_csv
 
-   !> The '# rows:' line of a hysteresis CSV: what a row's numbers are.
-   pure function rows_note(log_ratio) result(line)
-      logical, intent(in) :: log_ratio
-      character(len=:), allocatable :: line
+   !> Appends the '# rows:' line of a hysteresis CSV (what a row's numbers are) to head
+   !> (a subroutine: the library has no deferred-length function results).
+   pure subroutine add_rows_note(head, log_ratio)
+      character(len=:), allocatable, intent(inout) :: head   !< the header so far
+      logical, intent(in) :: log_ratio   !< a log-ratio table (format 3), else gap rows
       if (log_ratio) then
-         line = "# rows: unloading force = P_load(delta)*exp(-log_ratio) at s of the edge "// &
-            & "map of length and sigma (s piecewise linear in delta_max - delta, "// &
+         head = head//"# rows: unloading force = P_load(delta)*exp(-log_ratio) at s of "// &
+            & "the edge map of length and sigma (s piecewise linear in delta_max - delta, "// &
             & "doc/formats.md), cubic Hermite in s (slope dlog_ratio_dxi per "// &
-            & "delta_max - delta), cubic Lagrange in delta_max over four neighbouring "// &
-            & "curves, 1/length too (doc/formats.md)"
+            & "delta_max - delta), Lagrange in delta_max over six neighbouring curves "// &
+            & "(four where fewer), 1/length too (doc/formats.md)"
       else
-         line = "# rows: unloading force = P_load(delta) - P_load(delta_max)*gap at s = "// &
-            & "(delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), "// &
+         head = head//"# rows: unloading force = P_load(delta) - P_load(delta_max)*gap at "// &
+            & "s = (delta_max - delta)/(s_max*length), cubic Hermite in s (slope dgap_ds), "// &
             & "cubic Lagrange in delta_max over four neighbouring curves, length too "// &
             & "(doc/formats.md)"
       end if
-   end function rows_note
+   end subroutine add_rows_note
 
    !> Read the CSV form (doc/formats.md §6): the checksum line, then line by line the
    !> metadata and loading nodes ('#' lines, read_csv_meta) and the unloading rows
