@@ -430,6 +430,13 @@ void FixWallEGW::build_law(int t)
   }
   if (wallstyle == REGION && t < (int) need_rhi.size() && need_rhi[t] > 0)
     rlo = std::min(rlo, need_rlo[t]), rhi = std::max(rhi, need_rhi[t]);
+  // rough + cap with sigma far below the first-yield overlap: its Hertz + cap limit
+  std::string note = L.smooth_cap_limit(rlo, rhi);
+  if (!note.empty() && comm->me == 0 &&
+      std::find(smooth_cap_warned.begin(), smooth_cap_warned.end(), t) == smooth_cap_warned.end()) {
+    smooth_cap_warned.push_back(t);
+    error->warning(FLERR, "Fix wall/egw {}: type {} against the wall: {}", id, t, note);
+  }
   bool covered = built_rhi[t] > 0 && rlo >= built_rlo[t] && rhi <= built_rhi[t] &&
       law[t].kind == L.kind && law[t].E_star == L.E_star && law[t].sigma == L.sigma &&
       law[t].flow_pressure == L.flow_pressure && built_model == model;
