@@ -309,9 +309,14 @@ def test_cap_restart():
     continued by read_restart ends as the uninterrupted split run (1e-12 of the speed:
     delta_max in units of delta_y came back, and the state refilled from it), and the
     rebound lost energy (relative speed after / before < 0.9: without friction only the
-    cap dissipates)."""
-    return cap_restart_check("egw Hertz 1e-3", f"E {E} nu {NU} flow_pressure {0.01 * E_STAR!r}",
-                             "cap.restart")
+    cap dissipates). The same with E-GW at sigma 1e-16 (its Hertz + cap limit, stop 49): the
+    continued run takes the limit again (its WARNING) and ends as the split run."""
+    ok1, m1 = cap_restart_check("egw Hertz 1e-3", f"E {E} nu {NU} flow_pressure {0.01 * E_STAR!r}",
+                                "cap.restart")
+    ok2, m2 = cap_restart_check("egw E-GW 1e-3", f"E {E} nu {NU} sigma 1e-16 mu 4 flow_pressure "
+                                f"{0.01 * E_STAR!r}", "cap_tiny.restart",
+                                law="the Hertz + cap table is used")
+    return ok1 and ok2, f"Hertz: {m1}; E-GW at sigma 1e-16: {m2}"
 
 
 def test_cap_energy():
