@@ -384,6 +384,17 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
   if (ratio <= RCAP_SIGMA_MIN)
     fail_with(fmt::format("sigma/delta_y = {:.3g} at or below {:g} reached the rough + cap "
                           "build (the Hertz + cap limit was not taken)", ratio, RCAP_SIGMA_MIN));
+  // a build that fails (egw's solves do not converge at small sigma/delta_y, a few 1e-4
+  // and below with the default reach, doc/stability.md "Stop 49 (lmp15)"): its message and
+  // what the user can do
+  auto fail_rcap = [&](const std::string &msg) {
+    if (!(ratio < 2e-3)) fail_with(msg);
+    fail_with(fmt::format("{} (rough + cap at sigma/delta_y = {:.3g}: egw's rough + cap tables "
+                          "may not build below ~1e-3 of delta_y; a smaller overlap_max or TOL "
+                          "1e-3 may let it build, or give sigma 0 for Hertz + cap, which "
+                          "differs from this law by ~0.15 (sigma/delta_y)^(2/3) = {:.2g} of the "
+                          "force)", msg, ratio, 0.15 * std::cbrt(ratio * ratio)));
+  };
   // h = ln 2 / 4 first: level 1's lowest node (R steps of 41 %) may lie 29 % below R_lo
   const int FIRST_LEVEL = 2;
   double a = std::log(R_lo * inv_sigma), b = std::log(R_hi * inv_sigma);
@@ -419,7 +430,7 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
   hyst_built = 0;
   interp_error = 0.0;
   if (R_lo == R_hi) {
-    xc = hold_hysteresis({key_at(R_hi)}, comm, fail_with);
+    xc = hold_hysteresis({key_at(R_hi)}, comm, fail_rcap);
     lnr0 = b, inv_hr = 0.0;
   } else {
     // linear in ln R between neighbouring nodes; the level refined until the error
@@ -429,7 +440,7 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
       double h = lattice(level, k0, k1);
       std::vector<EgwTables::HystKey> keys;
       for (int k = k0; k <= k1; k++) keys.push_back(key_at(sigma * std::exp(k * h)));
-      xc = hold_hysteresis(keys, comm, fail_with);
+      xc = hold_hysteresis(keys, comm, fail_rcap);
       interp_error = EgwTables::lnmu_error_estimate(hyst, xc, len / sigma);
       lnr0 = k0 * h, inv_hr = 1.0 / h;
       if (LNMU_SAFETY * interp_error <= tol || level >= RCAP_MAX_LEVEL) break;

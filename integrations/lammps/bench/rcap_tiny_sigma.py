@@ -29,11 +29,12 @@ speeds = [2 * vy, 5 * vy]
 smooth = [cap_reference(p_y, R_STAR, M_STAR, v) for v in speeds]
 dt = 0.5 * min(r[3] for r in smooth)
 nrun = int((20 * dt + 2.0 * max(r[2] for r in smooth)) / dt)
-print(f"TOL {tol:g}, limit {limit:g} s; smooth cap e at 2, 5 v_y: "
+print(f"TOL {tol:g}, limit {limit:g} s, RCAP_REACH {os.environ.get('RCAP_REACH', '6')}; smooth cap e at 2, 5 v_y: "
       f"{smooth[0][0]:.6f} {smooth[1][0]:.6f}", flush=True)
 for ratio in ratios:
     s_body = ratio * dy / math.sqrt(2)    # the contact's sigma = sqrt(2) s_body
-    style = f"egw E-GW {tol!r} overlap_max {6 * dy / R_STAR!r}"
+    reach = float(os.environ.get("RCAP_REACH", "6"))
+    style = f"egw E-GW {tol!r}" + (f" overlap_max {reach * dy / R_STAR!r}" if reach > 0 else "")
     coeff = f"E {E} nu {NU} sigma {s_body!r} mu 4 flow_pressure {p_y!r}"
     deck = cap_deck(coeff, None, speeds, dt, nrun, style=style)
     t0 = time.perf_counter()
