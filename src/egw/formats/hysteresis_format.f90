@@ -422,6 +422,7 @@ contains
             & "written by egw)")
          return
       end if
+      if (starts_with(text, csv_columns//new_line("a")//csv_title_cap)) reading%format = 2
       if (starts_with(text, csv_columns//new_line("a")//csv_title_mapped)) reading%format = 4
       reading%log = starts_with(text, csv_columns_log//new_line("a"))
       start = 1
@@ -624,6 +625,15 @@ contains
       if (table%mapped .and. (reading%k_knee /= size(table%m) .or. table%reversible)) then
          call bad(error, path, "CSV format 4: "//int_str(reading%k_knee)//" knee lines, "// &
             & "n_delta_max = "//int_str(size(table%m))//" (and a table with curves)")
+         return
+      end if
+      ! formats 2 and 4 are the cap's: a flow_pressure line that is not > 0 is named (as
+      ! the binary reader does), not taken for a format-1 file of the gap curves
+      if ((reading%format == 2 .or. reading%format == 4) .and. &
+         & .not. reading%flow_pressure > 0.0_dp) then
+         call bad(error, path, "CSV format "//int_str(reading%format)// &
+            & " with flow_pressure = "//format_real(reading%flow_pressure)// &
+            & " (formats 2 and 4 are the flow-pressure cap's, > 0)")
          return
       end if
       if (.not. reading%log .and. .not. table%reversible .and. &
