@@ -991,6 +991,26 @@ contains
             & trim(bad_values(it))//": "//err%message)
          if (allocated(error)) return
       end do
+      ! an EP-GW log-ratio table (CSV format 3) given a flow_pressure line of -1: named
+      ! (was "CSV format 3 of a reversible table")
+      call build(ep, t, error)
+      if (allocated(error)) return
+      call write_hysteresis(t, "build/hyst_bad.csv", format_csv, err)
+      call slurp("build/hyst_bad.csv", bytes)
+      at = index(bytes, new_line("a")//"# plastic_ratio = ")
+      at = at + index(bytes(at + 1:), new_line("a"))
+      bytes = bytes(1:at)//"# flow_pressure = -1.0"//bytes(at:)
+      at = index(bytes, new_line("a")//"# fnv1a32 = ", back=.true.)
+      bytes = bytes(1:at)//"# fnv1a32 = "//hex8(checksum_of(bytes(1:at)))// &
+         & " (checksum of the bytes above this line)"//new_line("a")
+      call spill("build/hyst_bad.csv", bytes)
+      call read_hysteresis("build/hyst_bad.csv", back, err)
+      call check(error, allocated(err), "flow_pressure = -1 in CSV format 3 read")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_bad_file .and. &
+         & index(err%message, "flow_pressure = ") > 0, "format 3, flow_pressure = -1: "// &
+         & err%message)
+      if (allocated(error)) return
       call read_hysteresis("build/no_such_hysteresis_file", back, err)
       call check(error, allocated(err), "missing file")
       if (allocated(error)) return

@@ -641,7 +641,12 @@ contains
          call bad(error, path, "CSV format 1 with curves"//rebuild_note)
          return
       end if
-      if (reading%log .and. (table%reversible .or. reading%flow_pressure < 0.0_dp)) then
+      if (reading%log .and. reading%flow_pressure < 0.0_dp) then
+         call bad(error, path, "CSV format 3 with flow_pressure = "// &
+            & format_real(reading%flow_pressure)//" (must be >= 0)")
+         return
+      end if
+      if (reading%log .and. table%reversible) then
          call bad(error, path, "CSV format 3 of a reversible table (format 3 is the "// &
             & "log-ratio curves')")
          return
