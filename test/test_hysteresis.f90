@@ -897,7 +897,7 @@ contains
          & "NaN"]
       type(egw_error), allocatable :: err
       character(len=:), allocatable :: bytes
-      integer :: at, it
+      integer :: at, it, c0, c1
       call build(ep, t, error)
       if (allocated(error)) return
       call write_hysteresis(t, "build/hyst_bad.bin", format_binary, err)
@@ -1010,6 +1010,32 @@ contains
       call check(error, err%stat == egw_bad_file .and. &
          & index(err%message, "flow_pressure = ") > 0, "format 3, flow_pressure = -1: "// &
          & err%message)
+      if (allocated(error)) return
+      ! a served log-ratio node made absurd, inside the bound [-100, 100]: the last curve's
+      ! second s node (just below its turning point, far above the cut-off) given h = -5,
+      ! an unloading force ~e**5 = 148 times the turning point's; checksum valid: refused
+      ! (before, read, and evaluated to that force)
+      call write_hysteresis(t, "build/hyst_bad.csv", format_csv, err)
+      call slurp("build/hyst_bad.csv", bytes)
+      at = index(bytes, new_line("a")//"# end of table", back=.true.)
+      do it = 1, size(t%s) - 1
+         at = index(bytes(1:at - 1), new_line("a"), back=.true.)
+      end do
+      c0 = at
+      do it = 1, 3
+         c0 = c0 + index(bytes(c0 + 1:), ",")
+      end do
+      c1 = c0 + index(bytes(c0 + 1:), ",")
+      bytes = bytes(1:c0)//"-5.0"//bytes(c1:)
+      at = index(bytes, new_line("a")//"# fnv1a32 = ", back=.true.)
+      bytes = bytes(1:at)//"# fnv1a32 = "//hex8(checksum_of(bytes(1:at)))// &
+         & " (checksum of the bytes above this line)"//new_line("a")
+      call spill("build/hyst_bad.csv", bytes)
+      call read_hysteresis("build/hyst_bad.csv", back, err)
+      call check(error, allocated(err), "a served log ratio of -5 read")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_bad_file .and. &
+         & index(err%message, "twice the turning point") > 0, "log ratio -5: "//err%message)
       if (allocated(error)) return
       call read_hysteresis("build/no_such_hysteresis_file", back, err)
       call check(error, allocated(err), "missing file")
