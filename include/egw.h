@@ -856,7 +856,8 @@ int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
  * (checksum; finite values; the loading curve every check of egw_table_read, stiffness
  * and energy consistent with its forces included; increasing grids; gaps 0 at the
  * turning point and within [0, 1], with slopes that keep each curve near that range, or
- * log ratios 0 there and within [-100, 100]: doc/formats.md section 6). An EP-GW
+ * log ratios 0 there and within [-100, 100], where the force is served an unloading
+ * force at most twice its turning point's: doc/formats.md section 6). An EP-GW
  * file of the gap curves (binary version 1 / CSV format 1 with curves, egw before the log
  * ratio) is refused: rebuild it.
  * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),

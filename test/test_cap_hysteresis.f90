@@ -28,6 +28,10 @@ module test_cap_hysteresis
       integer(c_int) function c_cap_dem_loop() bind(C, name="egw_capi_test_cap_dem_loop")
          import :: c_int
       end function c_cap_dem_loop
+      integer(c_int) function c_rough_cap_dem_loop() &
+         & bind(C, name="egw_capi_test_rough_cap_dem_loop")
+         import :: c_int
+      end function c_rough_cap_dem_loop
    end interface
 
    !> A steel-like pair: R = 1 mm, E* = 100 GPa, p_y = 1 GPa (p_y/E* = 0.01).
@@ -51,7 +55,9 @@ contains
          & test_formats), &
          & new_unittest("refused: beyond 1000 delta_y", test_rough_refused), &
          & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
-         & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop) &
+         & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop), &
+         & new_unittest("C DEM loop, rough + cap: e to 1e-3", &
+         & test_c_rough_dem_loop) &
          & ]
    end subroutine collect_cap_hysteresis
 
@@ -349,5 +355,12 @@ contains
       failures = c_cap_dem_loop()
       call check(error, failures == 0, "C DEM loop with the cap: failed checks")
    end subroutine test_c_dem_loop
+
+   subroutine test_c_rough_dem_loop(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer(c_int) :: failures
+      failures = c_rough_cap_dem_loop()
+      call check(error, failures == 0, "C DEM loop, rough + cap: failed checks")
+   end subroutine test_c_rough_dem_loop
 
 end module test_cap_hysteresis

@@ -5,7 +5,7 @@ module test_hysteresis
    use test_compare, only: same => same_bits, c_message => last_error_c
    use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, format_real, &
       & egw_not_converged
-   use egw_params, only: contact_params, model_epgw, model_egw
+   use egw_params, only: contact_params, model_epgw, model_egw, model_hertz
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & solve_contact_unload
    use egw_table, only: table_eval
@@ -893,9 +893,11 @@ contains
    subroutine test_bad_files(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t, back
+      character(len=*), parameter :: bad_values(3) = [character(len=4) :: "-1.0", "0.0", &
+         & "NaN"]
       type(egw_error), allocatable :: err
       character(len=:), allocatable :: bytes
-      integer :: at
+      integer :: at, it, c0, c1
       call build(ep, t, error)
       if (allocated(error)) return
       call write_hysteresis(t, "build/hyst_bad.bin", format_binary, err)
@@ -957,6 +959,83 @@ contains
       if (allocated(error)) return
       call check(error, err%stat == egw_bad_file .and. index(err%message, "rebuild") > 0 &
          & .and. .not. allocated(back%m), "format 1 with curves: "//err%message)
+      if (allocated(error)) return
+      ! a Hertz + cap table (CSV format 2) whose flow_pressure line was edited to -1, 0 or
+      ! NaN, checksum valid: refused naming flow_pressure (was taken for a format-1 file of
+      ! the gap curves, "rebuild the table")
+      call build_hysteresis(contact_params(model=model_hertz, radius=1.0_dp, modulus=1.0_dp, &
+         & flow_pressure=2.0_dp/acos(-1.0_dp)), solver_options(), -1.0_dp, 5.0_dp, 1e-3_dp, &
+         & t, err)
+      call check(error, .not. allocated(err), "Hertz + cap table built")
+      if (allocated(error)) return
+      do it = 1, 3
+         call write_hysteresis(t, "build/hyst_bad.csv", format_csv, err)
+         call slurp("build/hyst_bad.csv", bytes)
+         at = index(bytes, new_line("a")//"# flow_pressure = ")
+         call check(error, at > 0, "no flow_pressure line in a Hertz + cap CSV")
+         if (allocated(error)) return
+         at = at + len("# flow_pressure = ")
+         bytes = bytes(1:at)//trim(bad_values(it))//bytes(at + index(bytes(at + 1:), &
+            & new_line("a")):)
+         at = index(bytes, new_line("a")//"# fnv1a32 = ", back=.true.)
+         bytes = bytes(1:at)//"# fnv1a32 = "//hex8(checksum_of(bytes(1:at)))// &
+            & " (checksum of the bytes above this line)"//new_line("a")
+         call spill("build/hyst_bad.csv", bytes)
+         call read_hysteresis("build/hyst_bad.csv", back, err)
+         call check(error, allocated(err), "flow_pressure = "//trim(bad_values(it))// &
+            & " in CSV format 2 read")
+         if (allocated(error)) return
+         call check(error, err%stat == egw_bad_file .and. &
+            & index(err%message, "flow_pressure = ") > 0 .and. &
+            & index(err%message, "rebuild") == 0, "flow_pressure = "// &
+            & trim(bad_values(it))//": "//err%message)
+         if (allocated(error)) return
+      end do
+      ! an EP-GW log-ratio table (CSV format 3) given a flow_pressure line of -1: named
+      ! (was "CSV format 3 of a reversible table")
+      call build(ep, t, error)
+      if (allocated(error)) return
+      call write_hysteresis(t, "build/hyst_bad.csv", format_csv, err)
+      call slurp("build/hyst_bad.csv", bytes)
+      at = index(bytes, new_line("a")//"# plastic_ratio = ")
+      at = at + index(bytes(at + 1:), new_line("a"))
+      bytes = bytes(1:at)//"# flow_pressure = -1.0"//bytes(at:)
+      at = index(bytes, new_line("a")//"# fnv1a32 = ", back=.true.)
+      bytes = bytes(1:at)//"# fnv1a32 = "//hex8(checksum_of(bytes(1:at)))// &
+         & " (checksum of the bytes above this line)"//new_line("a")
+      call spill("build/hyst_bad.csv", bytes)
+      call read_hysteresis("build/hyst_bad.csv", back, err)
+      call check(error, allocated(err), "flow_pressure = -1 in CSV format 3 read")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_bad_file .and. &
+         & index(err%message, "flow_pressure = ") > 0, "format 3, flow_pressure = -1: "// &
+         & err%message)
+      if (allocated(error)) return
+      ! a served log-ratio node made absurd, inside the bound [-100, 100]: the last curve's
+      ! second s node (just below its turning point, far above the cut-off) given h = -5,
+      ! an unloading force ~e**5 = 148 times the turning point's; checksum valid: refused
+      ! (before, read, and evaluated to that force)
+      call write_hysteresis(t, "build/hyst_bad.csv", format_csv, err)
+      call slurp("build/hyst_bad.csv", bytes)
+      at = index(bytes, new_line("a")//"# end of table", back=.true.)
+      do it = 1, size(t%s) - 1
+         at = index(bytes(1:at - 1), new_line("a"), back=.true.)
+      end do
+      c0 = at
+      do it = 1, 3
+         c0 = c0 + index(bytes(c0 + 1:), ",")
+      end do
+      c1 = c0 + index(bytes(c0 + 1:), ",")
+      bytes = bytes(1:c0)//"-5.0"//bytes(c1:)
+      at = index(bytes, new_line("a")//"# fnv1a32 = ", back=.true.)
+      bytes = bytes(1:at)//"# fnv1a32 = "//hex8(checksum_of(bytes(1:at)))// &
+         & " (checksum of the bytes above this line)"//new_line("a")
+      call spill("build/hyst_bad.csv", bytes)
+      call read_hysteresis("build/hyst_bad.csv", back, err)
+      call check(error, allocated(err), "a served log ratio of -5 read")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_bad_file .and. &
+         & index(err%message, "twice the turning point") > 0, "log ratio -5: "//err%message)
       if (allocated(error)) return
       call read_hysteresis("build/no_such_hysteresis_file", back, err)
       call check(error, allocated(err), "missing file")

@@ -12,7 +12,7 @@ module egw_hysteresis_format
    use egw_version, only: egw_version_string, egw_version_number
    use egw_io, only: write_file, read_file, text_buffer
    use egw_text, only: real_text, real_text_len, csv_row
-   use egw_table, only: force_table, table_prepare, table_meta, set_table_meta
+   use egw_table, only: force_table, table_prepare, table_meta, set_table_meta, table_eval
    use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
       & get_f64, split_checksum, checksum_line, check_table
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare, first_yield, hertz_capped
@@ -130,6 +130,13 @@ contains
          return
       end if
       call table_prepare(table%loading, resample=.false.)
+      if (table%log_ratio .and. .not. table%reversible) then
+         call check_log_served(path, table, error)
+         if (allocated(error)) then
+            call clear(table)
+            return
+         end if
+      end if
       call hysteresis_prepare(table)
    end subroutine read_hysteresis
 
@@ -422,6 +429,7 @@ contains
             & "written by egw)")
          return
       end if
+      if (starts_with(text, csv_columns//new_line("a")//csv_title_cap)) reading%format = 2
       if (starts_with(text, csv_columns//new_line("a")//csv_title_mapped)) reading%format = 4
       reading%log = starts_with(text, csv_columns_log//new_line("a"))
       start = 1
@@ -626,12 +634,26 @@ contains
             & "n_delta_max = "//int_str(size(table%m))//" (and a table with curves)")
          return
       end if
+      ! formats 2 and 4 are the cap's: a flow_pressure line that is not > 0 is named (as
+      ! the binary reader does), not taken for a format-1 file of the gap curves
+      if ((reading%format == 2 .or. reading%format == 4) .and. &
+         & .not. reading%flow_pressure > 0.0_dp) then
+         call bad(error, path, "CSV format "//int_str(reading%format)// &
+            & " with flow_pressure = "//format_real(reading%flow_pressure)// &
+            & " (formats 2 and 4 are the flow-pressure cap's, > 0)")
+         return
+      end if
       if (.not. reading%log .and. .not. table%reversible .and. &
          & .not. reading%flow_pressure > 0.0_dp) then
          call bad(error, path, "CSV format 1 with curves"//rebuild_note)
          return
       end if
-      if (reading%log .and. (table%reversible .or. reading%flow_pressure < 0.0_dp)) then
+      if (reading%log .and. reading%flow_pressure < 0.0_dp) then
+         call bad(error, path, "CSV format 3 with flow_pressure = "// &
+            & format_real(reading%flow_pressure)//" (must be >= 0)")
+         return
+      end if
+      if (reading%log .and. table%reversible) then
          call bad(error, path, "CSV format 3 of a reversible table (format 3 is the "// &
             & "log-ratio curves')")
          return
@@ -793,9 +815,10 @@ contains
    !> and 3/4 among the s nodes (no interval straddles one), h = ln(P_load/P) 0 at s = 0
    !> and within [-max_log_ratio, max_log_ratio] (below the loading table's cut-off, where
    !> the curves run on the loading tail's continuation and the evaluation returns 0, h
-   !> reaches -0.25 on LAMMPS's pour tables, mu 8-23, psi 0.5, to 140 sigma, and -1.48 on
-   !> its column's types 2 2 table, mu 3, psi 0.3, R*/sigma 283, 1e-3, where the bound was
-   !> -1 and the ranks could not share it), and no cubic rising by more
+   !> reaches -1.48 on LAMMPS's column's types 2 2 table, mu 3, psi 0.3, R*/sigma 283,
+   !> 1e-3, where the bound was -1 and the ranks could not share it; above it -0.27 on its
+   !> pour tables, mu 8-23, psi 0.5, to 140 sigma: check_log_served bounds those nodes by
+   !> the turning point's force), and no cubic rising by more
    !> than 10 max_log_ratio over an interval from its slopes (|dh/dxi| dxi; built tables:
    !> up to 452 on the last interval of egw-bench's 1e-4 table (mu 4, psi 2, to 30
    !> sigma), 469 to 140 sigma at 1e-3, where h climbs from ~50 at s = 3/4 to the stored
@@ -834,6 +857,44 @@ contains
          end do
       end do
    end subroutine check_log_curves
+
+   !> Log-ratio nodes where the force is served (overlap m_j - xi above the loading
+   !> table's cut-off): the unloading force P_load(delta) e**(-h) at most twice the force
+   !> P_load(m_j) at the curve's turning point. An unloading force never exceeds its
+   !> turning point's (the loading force does not decrease, the unloading curve lies
+   !> below it within the table's tolerance); built tables reach h = -0.27 at served nodes
+   !> far below the turning point (P ~ 5e-9 P(m), LAMMPS's pour tables; 193 tables of the
+   !> on-disk cache scanned, doc/stability.md "Stop 49 (audit15)"), where this bound is
+   !> h >= -19; the factor 2 leaves room for rel_tol up to 0.1. The bound [-100, 100] of
+   !> check_log_curves let a crafted node h = -99 through: a force 3.8e37 P(m). Needs the
+   !> loading table prepared (table_eval).
+   subroutine check_log_served(path, t, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: xi_b(3), xi, delta, p_m, p_d, k
+      integer :: i, j
+      do j = 1, size(t%m)
+         if (.not. t%m(j) > t%loading%cutoff) cycle
+         call table_eval(t%loading, t%m(j), p_m, k)
+         if (.not. p_m > 0.0_dp) cycle
+         call edge_breaks(t%length(j), t%params%sigma, xi_b)
+         do i = 2, size(t%s)
+            call edge_xi(xi_b, t%s(i), xi)
+            delta = t%m(j) - xi
+            if (.not. delta > t%loading%cutoff) cycle
+            call table_eval(t%loading, delta, p_d, k)
+            if (.not. p_d > 0.0_dp) cycle
+            if (t%gap(i, j) < log(p_d/p_m) - log(2.0_dp)) then
+               call bad(error, path, "unloading data: curve "//int_str(j)//", s node "// &
+                  & int_str(i)//": log_ratio "//format_real(t%gap(i, j))// &
+                  & " gives an unloading force of "//format_real(p_d*exp(-t%gap(i, j)))// &
+                  & ", above twice the turning point's "//format_real(p_m))
+               return
+            end if
+         end do
+      end do
+   end subroutine check_log_served
 
    !> The gap's slopes: |dg/ds| (s_{i+1} - s_i) <= 2 at both ends of every interval of
    !> every curve, so that a curve's cubic stays within about 1 of the chord of its
