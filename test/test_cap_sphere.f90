@@ -13,7 +13,7 @@ module test_cap_sphere
       & solve_contact, solve_contact_unload, loading_history, load_history, solve_unload, &
       & restitution, egw_invalid_parameter, egw_unsupported, contact_profile, &
       & contact_profile_unload, &
-      & first_yield_overlap, first_yield_speed
+      & first_yield_overlap, first_yield_speed, time_step
    use egw_rough_sphere, only: cap_solve_options
    implicit none
    private
@@ -52,7 +52,9 @@ contains
          & new_unittest("public: e <= 1, dissipated >= 0 just above first yield", &
          & test_public_near_yield), &
          & new_unittest("first_yield_overlap/speed: closed forms, never without p_y", &
-         & test_first_yield_functions) &
+         & test_first_yield_functions), &
+         & new_unittest("impacts beyond the model's range refused naming the value", &
+         & test_impact_range) &
          & ]
    end subroutine collect_cap_sphere
 
@@ -1110,5 +1112,41 @@ contains
          & first_yield_speed(p, 1.3e-4_dp) == huge(1.0_dp), "no flow_pressure: "// &
          & str(first_yield_overlap(p))//str(first_yield_speed(p, 1.3e-4_dp))//" (not never)")
    end subroutine test_first_yield_functions
+
+   !> The cap's impacts are refused beyond 1e4 v_y (egw.h: a/R ~ 70 p_y/E* long before):
+   !> 1.1e4 v_y was accepted (the check was 0.4 (v/v_y)**2 > 1e8, i.e. 1.58e4 v_y). An
+   !> effective mass of 1e264 kg (SI steel: v_y ~ 1e-128 m/s) made p**5 R**3/(m E**4)
+   !> underflow to v_y = 0 in the message; a subnormal speed made time_step report
+   !> "not converged" instead of naming the velocity.
+   subroutine test_impact_range(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: mass = 16.0_dp/15.0_dp   ! unit_cap: v_y = 1
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      real(dp) :: e, dissipated, duration, step
+      call restitution(unit_cap(), solver_options(), mass, 1.1e4_dp, e, dissipated, err)
+      call check(error, allocated(err), "1.1e4 v_y accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. &
+         & index(err%message, "velocity") > 0 .and. index(err%message, "1e4 v_y") > 0, &
+         & "1.1e4 v_y: "//err%message)
+      if (allocated(error)) return
+      deallocate (err)
+      p = contact_params(model=model_hertz, radius=1e-3_dp, modulus=1e11_dp, &
+         & flow_pressure=1e9_dp)
+      call restitution(p, solver_options(), 1e264_dp, 1.0_dp, e, dissipated, err)
+      call check(error, allocated(err), "m* = 1e264 at 1 m/s (~1e128 v_y) accepted")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. &
+         & index(err%message, "1e4 v_y") > 0 .and. index(err%message, "v_y = 0") == 0, &
+         & "m* = 1e264: "//err%message)
+      if (allocated(error)) return
+      deallocate (err)
+      call time_step(p, solver_options(), 1e-6_dp, 4.9e-324_dp, 1e-3_dp, duration, step, err)
+      call check(error, allocated(err), "a subnormal speed accepted by time_step")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_invalid_argument .and. &
+         & index(err%message, "velocity") > 0, "subnormal speed: "//err%message)
+   end subroutine test_impact_range
 
 end module test_cap_sphere

@@ -879,13 +879,21 @@ contains
       if (allocated(error)) return
       call positive(mass, "mass", error); if (allocated(error)) return
       call positive(velocity, "velocity", error); if (allocated(error)) return
-      vy = sqrt(16.0_dp/15.0_dp*(pi/2.0_dp)**5*flow_pressure**5*radius**3 &
-         & /(mass*modulus**4))
+      ! factored so that no power of the inputs overflows or underflows on the way (the
+      ! plain p**5 R**3/(m E**4) gave v_y = 0 for m* ~ 1e264 kg in SI)
+      vy = sqrt(16.0_dp/15.0_dp*(pi/2.0_dp)**5)*(flow_pressure/modulus)**2* &
+         & sqrt(flow_pressure/mass)*sqrt(radius)**3
+      if (.not. (vy > 0.0_dp .and. ieee_is_finite(vy))) then
+         call fatal_error(error, egw_invalid_argument, "mass = "//format_real(mass)// &
+            & ": the first-yield speed v_y = "//format_real(vy)//" is not a positive " &
+            & //"double (v_y**2 = (16/15) (pi/2)**5 p_y**5 R**3/(m* E***4))")
+         return
+      end if
       target = 0.4_dp*(velocity/vy)**2
       if (present(max_overlap)) max_overlap = (target/0.4_dp)**0.4_dp* &
          & (pi*flow_pressure/(2.0_dp*modulus))**2*radius
       if (velocity <= vy) return
-      if (target > 1.0e8_dp) then
+      if (velocity > 1.0e4_dp*vy) then
          call fatal_error(error, egw_invalid_argument, "velocity = "//format_real(velocity) &
             & //": above 1e4 v_y (v_y = "//format_real(vy)//"), beyond the cap model")
          return

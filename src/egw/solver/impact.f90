@@ -474,6 +474,14 @@ contains
       call restitution(params, options, mass, velocity, e, dissipated, error, &
          & max_overlap=delta_m)
       if (allocated(error)) return
+      if (.not. delta_m > tiny(1.0_dp)) then
+         ! a speed so small (subnormal) that the deepest overlap underflows: no curve to
+         ! time, the caller's value named (not a solver's failure)
+         call fatal_error(error, egw_invalid_argument, "velocity = "//format_real(velocity) &
+            & //": the deepest overlap "//format_real(delta_m)//" underflows (mass, " &
+            & //"velocity too small for a time step)")
+         return
+      end if
       call progress_part(0.6_dp, 0.8_dp)
       call load_history(params, options, delta_m, hist, top, error)
       if (allocated(error)) return
