@@ -553,7 +553,7 @@ contains
          mesh%layered = .true.
          mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
       end if
-      first = coarse
+      call move_solution(coarse, first)
       call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
          & mesh%step_prev, mesh%outer, coarse, error, first, cache=cache)
       if (.not. allocated(error)) call relocate_kinks(prob, options, method, mesh%layered, &
@@ -579,7 +579,7 @@ contains
       ! The first level again, on the refocused mesh family: two levels of different
       ! families can agree by accident (seen: both 1.3e-7 off at mu = 0.1,
       ! delta/sigma = 100, their difference 1.5e-8), so Richardson needs one family.
-      first = coarse
+      call move_solution(coarse, first)
       call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
          & mesh%step_prev, mesh%outer, coarse, error, first, cache=cache)
    end subroutine refocus_classic_gw
@@ -648,7 +648,7 @@ contains
                & cache=cache)
             if (allocated(error)) return
             if (est <= 0.5_dp*options%rel_tol) then
-               sol = fine
+               call take_level(fine, sol)
                return
             end if
             if (mesh%step <= finest_step) exit
@@ -656,7 +656,7 @@ contains
             mesh%step_prev = mesh%step
             mesh%step = max(finest_step, 0.25_dp*mesh%step, min(mesh%step/1.25_dp, &
                & mesh%step*(0.25_dp*options%rel_tol/est)**(1.0_dp/force_order)))
-            coarse = sol
+            call copy_level(sol, coarse)
             cycle
          end if
          if (est <= 0.5_dp*options%rel_tol) then
@@ -680,7 +680,7 @@ contains
             confirming = .true.
             mesh%step_prev = mesh%step
             mesh%step = max(finest_step, 0.5_dp*mesh%step)
-            coarse = sol
+            call copy_level(sol, coarse)
             cycle
          end if
          confirming = .false.
@@ -688,7 +688,7 @@ contains
          mesh%step_prev = mesh%step
          mesh%step = max(finest_step, 0.25_dp*mesh%step, min(mesh%step/1.25_dp, &
             & mesh%step*(0.25_dp*options%rel_tol/est)**(1.0_dp/force_order)))
-         coarse = sol
+         call copy_level(sol, coarse)
       end do
       call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(options%rel_tol) &
          & //" not reached: the finest mesh's force error estimate is "//format_real(est) &
@@ -797,13 +797,13 @@ contains
       if (kink_err > 0.1_dp*options%rel_tol .and. options%n_radial == 0) then
          prob%branch = moved
          prob%n_branch = n_moved
-         ! each level restarts from its own solution: a copy, since the result (intent out)
-         ! may not be the guess too
-         guess = coarse
+         ! each level restarts from its own solution (moved: the result, intent out, may
+         ! not be the guess too)
+         call move_solution(coarse, guess)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
             & mesh%step_prev, mesh%outer, coarse, error, guess, cache=cache)
          if (allocated(error)) return
-         guess = sol
+         call move_solution(sol, guess)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
             & mesh%step, mesh%outer, sol, error, guess, cache=cache)
          if (allocated(error)) return
@@ -1064,13 +1064,47 @@ contains
          & c <= 2.0_dp*central_fraction*prob%a))) c = 0.0_dp
    end function central_disc
 
-   !> to <- from (the arrays moved, not copied).
+   !> to <- from as a guess (its mesh and w, all solve_mesh reads of a guess; w moved).
    pure subroutine move_solution(from, to)
       type(discrete_solution), intent(inout) :: from
       type(discrete_solution), intent(out) :: to
       to%mesh = from%mesh
       call move_alloc(from%w, to%w)
    end subroutine move_solution
+
+   !> to <- from but for the influence matrix and the LU factors (n x 3n and n x n
+   !> doubles, most of a level's memory), which only the iteration and differentiate of
+   !> the solution that owns them read: a level kept as the coarse level (its force, mesh
+   !> and w) is a copy of the rest. from is returned as it came.
+   pure subroutine copy_level(from, to)
+      type(discrete_solution), intent(inout) :: from
+      type(discrete_solution), intent(inout) :: to
+      real(dp), allocatable :: infl(:, :), lu(:, :)
+      integer, allocatable :: pivots(:)
+      call move_alloc(from%infl, infl)
+      call move_alloc(from%lu, lu)
+      call move_alloc(from%pivots, pivots)
+      to = from
+      call move_alloc(infl, from%infl)
+      call move_alloc(lu, from%lu)
+      call move_alloc(pivots, from%pivots)
+   end subroutine copy_level
+
+   !> to <- from whole, the influence matrix and the LU factors moved (not copied): from
+   !> loses them.
+   pure subroutine take_level(from, to)
+      type(discrete_solution), intent(inout) :: from
+      type(discrete_solution), intent(inout) :: to
+      real(dp), allocatable :: infl(:, :), lu(:, :)
+      integer, allocatable :: pivots(:)
+      call move_alloc(from%infl, infl)
+      call move_alloc(from%lu, lu)
+      call move_alloc(from%pivots, pivots)
+      to = from
+      call move_alloc(infl, to%infl)
+      call move_alloc(lu, to%lu)
+      call move_alloc(pivots, to%pivots)
+   end subroutine take_level
 
    !> Force an unloading solution misses because its kink edges (prob%branch) are off the
    !> kinks of its own field (moved: the kinks located again on sol, branch_radii): at a
