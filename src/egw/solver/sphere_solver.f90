@@ -75,6 +75,15 @@ module egw_sphere_solver
    !> agreed while 6e-6 off and converged like step**1 beyond (kinks inside the disc
    !> that come and go); not examined further (doc/stability.md Stop 48).
    real(dp), parameter :: disc_sigma = 1.0e-5_dp
+   !> The default route's levels refine the central disc [0, c] with the step (as the
+   !> central-disc route does, disc_refined) where the innermost kink c of an unloading
+   !> after a capped loading is below this fraction of the Hertz radius
+   !> (first_unloading_level; branch mesh13's disc_split, doc/benchmarks.md "Stop 47
+   !> (mesh13)", "Stop 49 (rcost15)") ...
+   real(dp), parameter :: disc_split = 0.5_dp
+   !> ... and only at sigma/delta_y at least this (measured at 1e-2 and 0.0105; at 1e-6
+   !> a rough_cap solve came out 1.7e-5 off under an estimate of 3.6e-6)
+   real(dp), parameter :: disc_split_sigma = 1.0e-3_dp
 
 contains
 
@@ -500,6 +509,24 @@ contains
          & sqrt(prob%closest%delta), 1.0e-4_dp*options%rel_tol)
       if (options%n_radial == 0) call trim_to_unloading_decay(prob, options, first, mesh)
       if (options%n_radial == 0) prob%disc = central_disc(prob, first)
+      ! After a capped loading (sums_total) the innermost kink c can lie well inside the
+      ! Hertz radius a the family is graded about: [0, c] is then one graded element on
+      ! the first levels (between the fixed edges 0 and c), whose forces agree while both
+      ! are off; bisection_check finds it, and the levels then refined the whole mesh by
+      ! a global step until the graded edges split [0, c] (E-GW + cap, sigma =
+      ! delta_y/100 to 6 delta_y at 1e-4: 110 of 1444 checks found the disc off by 1e-7
+      ! .. 2.9e-4 at c/a 0.05 .. 0.4, and the levels after them held 300-550 nodes, 47 %
+      ! of the build's LU work). Below disc_split a the disc's elements shrink with the
+      ! step from the first level on (disc_refined, as on the central-disc route; it
+      ! takes the place of central_disc's grading there). Only at sigma/delta_y >=
+      ! disc_split_sigma (delta_y/sigma = (pi p_y/2)**2 in these units), where it was
+      ! measured: at 1e-6 (rough_cap's "solve_contact_unload near the residual", c =
+      ! 0.21 a) the split disc came out 1.7e-5 off under an estimate of 3.6e-6.
+      if (sums_total(prob) .and. options%n_radial == 0 .and. allocated(prob%branch)) then
+         if (any(prob%branch > 0.0_dp) .and. (0.5_dp*pi*prob%cap%p_y)**2 <= &
+            & 1.0_dp/disc_split_sigma) prob%refine_disc = prob%refine_disc .or. &
+            & minval(prob%branch, mask=prob%branch > 0.0_dp) <= disc_split*prob%a
+      end if
       ! (the trimmed mesh still reaches past the rim: the contact can end just inside it)
       mesh%outer = max(mesh%outer, reach)
       ! The first level only enters the estimate through its difference to the next
