@@ -378,19 +378,23 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
   // R_hi: pair egw and fix wall/egw pass the types' one radius), else at the nodes of a
   // lattice in ln(R/sigma) covering [R_lo, R_hi]
   rcap_R = R_hi, rcap_R_lo = R_lo;
-  // sigma far below the first-yield overlap (the largest radius has the largest delta_y):
-  // no table would build in a run; say so and what to give instead of running on silently
+  // sigma far below the first-yield overlap: the callers took the law to its smooth limit
+  // (smooth_cap_limit) before building; no table would build in a run here
   double ratio = sigma / (cap_c * R_hi);
   if (ratio <= RCAP_SIGMA_MIN)
-    fail_with(fmt::format(
-        "sigma = {:.6g} with flow_pressure {:.6g}: sigma/delta_y = {:.3g} at R = {:.6g} "
-        "(first yield delta_y = {:.6g}), at or below {:g}, where egw's rough + cap solves take "
-        "its small-sigma route (tens of seconds each) and their hysteresis tables do not build "
-        "in a run; for a smooth contact give sigma 0 (Hertz + cap, the rough model's sigma -> 0 "
-        "limit; E-GW + cap differs from it by ~0.15 (sigma/delta_y)^(2/3) = {:.2g} of the "
-        "force, doc/theory.md section 12)",
-        sigma, flow_pressure, ratio, R_hi, cap_c * R_hi, RCAP_SIGMA_MIN,
-        0.15 * std::cbrt(ratio * ratio)));
+    fail_with(fmt::format("sigma/delta_y = {:.3g} at or below {:g} reached the rough + cap "
+                          "build (the Hertz + cap limit was not taken)", ratio, RCAP_SIGMA_MIN));
+  // a build that fails (egw's solves do not converge at small sigma/delta_y, a few 1e-4
+  // and below with the default reach, doc/stability.md "Stop 49 (lmp15)"): its message and
+  // what the user can do
+  auto fail_rcap = [&](const std::string &msg) {
+    if (!(ratio < 2e-3)) fail_with(msg);
+    fail_with(fmt::format("{} (rough + cap at sigma/delta_y = {:.3g}: egw's rough + cap tables "
+                          "may not build below ~1e-3 of delta_y; a smaller overlap_max or TOL "
+                          "1e-3 may let it build, or give sigma 0 for Hertz + cap, which "
+                          "differs from this law by ~0.15 (sigma/delta_y)^(2/3) = {:.2g} of the "
+                          "force)", msg, ratio, 0.15 * std::cbrt(ratio * ratio)));
+  };
   // h = ln 2 / 4 first: level 1's lowest node (R steps of 41 %) may lie 29 % below R_lo
   const int FIRST_LEVEL = 2;
   double a = std::log(R_lo * inv_sigma), b = std::log(R_hi * inv_sigma);
@@ -426,7 +430,7 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
   hyst_built = 0;
   interp_error = 0.0;
   if (R_lo == R_hi) {
-    xc = hold_hysteresis({key_at(R_hi)}, comm, fail_with);
+    xc = hold_hysteresis({key_at(R_hi)}, comm, fail_rcap);
     lnr0 = b, inv_hr = 0.0;
   } else {
     // linear in ln R between neighbouring nodes; the level refined until the error
@@ -436,7 +440,7 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
       double h = lattice(level, k0, k1);
       std::vector<EgwTables::HystKey> keys;
       for (int k = k0; k <= k1; k++) keys.push_back(key_at(sigma * std::exp(k * h)));
-      xc = hold_hysteresis(keys, comm, fail_with);
+      xc = hold_hysteresis(keys, comm, fail_rcap);
       interp_error = EgwTables::lnmu_error_estimate(hyst, xc, len / sigma);
       lnr0 = k0 * h, inv_hr = 1.0 / h;
       if (LNMU_SAFETY * interp_error <= tol || level >= RCAP_MAX_LEVEL) break;
@@ -446,6 +450,35 @@ void EgwLaw::build_rcap(double R_lo, double R_hi, double tol, double overlap_max
   tail = -xc * sigma;
   reach = len;
   fast = nullptr;
+}
+
+std::string EgwLaw::smooth_cap_limit(double R_lo, double R_hi)
+{
+  if (kind != HYST_RCAP || !(R_hi > 0) || !(cap_c > 0)) return std::string();
+  // the largest radius has the largest delta_y, so the smallest sigma/delta_y: where that
+  // is at or below the limit, the nodes of the rough + cap tables there do not build
+  double dy = cap_c * R_hi, ratio = sigma / dy;
+  if (!(ratio <= RCAP_SIGMA_MIN)) return std::string();
+  kind = HYST_CAP;
+  // the bound at the smallest radius (the largest sigma/delta_y)
+  double r_lo = R_lo > 0 && R_lo < R_hi ? R_lo : R_hi, worst = sigma / (cap_c * r_lo);
+  std::string range = r_lo < R_hi ? fmt::format(" ({:.3g} at the smallest R = {:.6g})", worst,
+                                                r_lo)
+                                   : std::string();
+  // the rough layer, as sigma -> 0: before contact its tail carries ~ E* sqrt(R) sigma^1.5,
+  // (sigma/delta_y)^1.5 of the first-yield force E* sqrt(R) delta_y^1.5; in contact its
+  // compliance moves the force by ~0.15 (sigma/delta_y)^(2/3) of it (egw's E-GW + cap
+  // against the smooth cap, 1e-3 ... 1e-6 of delta_y: doc/theory.md section 12)
+  return fmt::format(
+      "the contact's sigma = {:.6g} with flow_pressure {:.6g}: sigma/delta_y = {:.3g} at R = "
+      "{:.6g} (first yield delta_y = {:.6g}){}, at or below {:g}: the Hertz + cap table is "
+      "used (rough + cap reduces to smooth + cap as sigma -> 0: the rough tail's force is "
+      "~(sigma/delta_y)^1.5 = {:.2g} of the first-yield force, and the rough layer moves the "
+      "loaded force by ~0.15 (sigma/delta_y)^(2/3) = {:.2g} of it); egw's rough + cap "
+      "tables do not build in a run there (their solves fail or take minutes). Give sigma 0 "
+      "for a smooth contact",
+      sigma, flow_pressure, ratio, R_hi, dy, range, RCAP_SIGMA_MIN, worst * std::sqrt(worst),
+      0.15 * std::cbrt(worst * worst));
 }
 
 void EgwLaw::build_flat(double R_lo, double R_hi, double tol, double overlap_max,
@@ -614,7 +647,7 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
 void EgwLaw::set_reach(double w_ref, double frac, double R_hi)
 {
   xt = xc, tail = -xc * sigma, tail_work = 0.0;
-  if (kind == HERTZ || !(sigma > 0) || !(R_hi > 0)) return;
+  if (kind == HERTZ || kind == HYST_CAP || !(sigma > 0) || !(R_hi > 0)) return;
   // the loading force p(x) of each table (R = E* = sigma = 1); the tail's work grows with
   // mu, so every node's table is integrated and the lowest reach kept
   std::vector<std::function<double(double)>> curves;

@@ -96,11 +96,20 @@ struct EgwLaw {
   // threads, 2026-11-29: builds that grow fast with the reach)
   static constexpr double RCAP_X_MAX = 20.0;
   static constexpr int RCAP_MAX_LEVEL = 5;
-  // sigma/delta_y at or below which a rough + cap law is refused: egw's rough + cap solves
-  // take their small-sigma route there (tens of seconds each, doc/stability.md "Rough + cap
-  // as sigma -> 0"), so its hysteresis tables do not build in a run (E-GW, TOL 1e-3: none
-  // after 150 s at 1e-6; the sigma = 1e-16 of a converted granular deck ran without a word)
-  static constexpr double RCAP_SIGMA_MIN = 1e-6;
+  // sigma/delta_y at or below which a rough + cap law takes the Hertz + cap table (its
+  // sigma -> 0 limit, smooth_cap_limit) with a WARNING: egw's rough + cap tables do not
+  // build there in a run (E-GW, mu 4, p_y = 0.01 E*, TOL 1e-3, one rank, 2026-11-30,
+  // bench/rcap_tiny_sigma.py: at 2e-6, 1e-5, 2e-5, 5e-5 an ERROR after 10-33 s (Newton not
+  // converged), at 1e-6 and below none after 150 s; 7e-5 and 1e-4 build, 30 s and 23 s
+  // under load 9; e at 2 and 5 v_y 1.2e-4 and 1.3e-4 below the smooth cap's there). The
+  // smooth cap's force is within ~0.15 (5e-5)^(2/3) = 2e-4 of the rough one's at the limit
+  static constexpr double RCAP_SIGMA_MIN = 5e-5;
+  /* a rough + cap law (HYST_RCAP) whose sigma is at most RCAP_SIGMA_MIN of the first-yield
+   * overlap of its largest equivalent radius R_hi becomes the smooth sphere with the cap
+   * (HYST_CAP), the rough model's sigma -> 0 limit; returns the WARNING's text naming
+   * sigma/delta_y and the bound of the difference at the smallest radius R_lo (0: R_hi)
+   * (empty: the law is unchanged) */
+  std::string smooth_cap_limit(double R_lo, double R_hi);
   double rcap_R = 0, rcap_F = 0;   // the (largest) radius, E* sigma^2
   double rcap_R_lo = 0, rcap_R_ref = 0;    // the smallest radius; the reach's delta_y radius
   double lnr0 = 0, inv_hr = 0;     // the first node's ln(R/sigma), 1 / node spacing

@@ -142,7 +142,13 @@ void FixWallEGW::parse(int narg, char **arg)
   else if (m == "GW" || m == "gw") model = EGW_MODEL_GW;
   else if (m == "E-GW" || m == "e-gw" || m == "EGW") model = EGW_MODEL_EGW;
   else if (m == "EP-GW" || m == "ep-gw" || m == "EPGW") model = EGW_MODEL_EPGW;
-  else error->all(FLERR, "{}: MODEL = '{}': must be Hertz, GW, E-GW or EP-GW", who, m);
+  else
+    error->all(FLERR, "{}: MODEL = '{}': must be Hertz, GW, E-GW or EP-GW{}", who, m,
+               m == "granular" || m == "hooke" || m == "hooke/history" || m == "hertz/history"
+                   ? " (fix wall/gran's 'granular hertz/material E e nu ...' converts to "
+                     "'wall/egw E-GW TOL E E nu nu sigma 1e-16 mu 4 wall_material contact "
+                     "damping e ...': README's conversion table)"
+                   : "");
   double v;
   if (!egw_parse_number(arg[4], v) || v < 1e-8 || v > 0.1)
     error->all(FLERR, "{}: TOL = '{}': must be a number in [1e-8, 0.1]", who, arg[4]);
@@ -158,9 +164,19 @@ void FixWallEGW::parse(int narg, char **arg)
       error->all(FLERR, "{}: {} = '{}': not a finite number", who, key, arg[k]);
     return x;
   };
+  // fix wall/gran granular's normal models: a converted line that kept one
+  static const char *granular_normal[] = {"hooke", "hertz", "hertz/material", "dmt", "jkr",
+                                          "mdr", "granular"};
   while (i < narg) {
     std::string key = arg[i];
     if (key == "xplane" || key == "yplane" || key == "zplane" || key == "zcylinder") break;
+    for (const char *g : granular_normal)
+      if (key == g)
+        error->all(FLERR, "{}: '{}' (fix wall/gran's normal model) is not supported: egw's wall "
+                          "takes keywords: E v nu v [wall_material own|contact] sigma v mu v "
+                          "... ('granular hertz/material E e nu' is 'E E nu nu sigma 1e-16 mu 4 "
+                          "wall_material contact damping e': README's conversion table)",
+                   who, key);
     int next = egw_submodels_parse(error, who, narg, arg, i, wall.sub);
     if (next < 0) next = egw_flow_parse(error, who, narg, arg, i, wall, flow_given);
     if (next > 0) {
@@ -430,6 +446,13 @@ void FixWallEGW::build_law(int t)
   }
   if (wallstyle == REGION && t < (int) need_rhi.size() && need_rhi[t] > 0)
     rlo = std::min(rlo, need_rlo[t]), rhi = std::max(rhi, need_rhi[t]);
+  // rough + cap with sigma far below the first-yield overlap: its Hertz + cap limit
+  std::string note = L.smooth_cap_limit(rlo, rhi);
+  if (!note.empty() && comm->me == 0 &&
+      std::find(smooth_cap_warned.begin(), smooth_cap_warned.end(), t) == smooth_cap_warned.end()) {
+    smooth_cap_warned.push_back(t);
+    error->warning(FLERR, "Fix wall/egw {}: type {} against the wall: {}", id, t, note);
+  }
   bool covered = built_rhi[t] > 0 && rlo >= built_rlo[t] && rhi <= built_rhi[t] &&
       law[t].kind == L.kind && law[t].E_star == L.E_star && law[t].sigma == L.sigma &&
       law[t].flow_pressure == L.flow_pressure && built_model == model;

@@ -76,6 +76,7 @@ class FixWallEGW : public Fix, public EgwHeatWall {
   void region_cover_radii(bool before_build);
   std::vector<EgwLaw> law;         // per particle type
   std::vector<double> built_rlo, built_rhi;
+  std::vector<int> smooth_cap_warned;    // types whose rough + cap law took Hertz + cap
   int built_model;
   bool warned_range;
   const EgwTypeCoeffs *pair;    // pair egw: the particle types' coefficients

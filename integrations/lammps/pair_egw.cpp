@@ -227,10 +227,10 @@ void PairEGW::init_style()
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) {
       if (!setflag[i][j] && !(pcoeff[i][i].set && pcoeff[j][j].set)) continue;
-      make_law(i, j);
       double rlo_i = rad_min[i], rlo_j = rad_min[j], rhi_i = rad_max[i], rhi_j = rad_max[j];
       double R_hi = rhi_i > 0 && rhi_j > 0 ? rhi_i * rhi_j / (rhi_i + rhi_j) : 0.0;
       double R_lo = rlo_i > 0 && rlo_j > 0 ? rlo_i * rlo_j / (rlo_i + rlo_j) : 0.0;
+      make_law(i, j, R_lo, R_hi);
       EgwLaw &L = law[i][j];
       bool needs_r = L.kind == EgwLaw::UNIVERSAL || L.kind == EgwLaw::HYST_MU ||
           L.kind == EgwLaw::FLAT || L.kind == EgwLaw::HYST_RCAP;

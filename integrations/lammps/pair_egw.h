@@ -85,7 +85,9 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
 
   void allocate();
   void parse_coeff(int, char **, Coeff &);
-  void make_law(int, int);
+  void make_law(int, int, double R_lo, double R_hi);
+  // type pairs whose rough + cap law was taken to its Hertz + cap limit: warned once
+  std::vector<std::pair<int, int>> smooth_cap_warned;
   void check_law_model(const char *file);
   EgwSubmodels::Params mix_submodels(int, int, const EgwSubmodels::Params &,
                                      const EgwSubmodels::Params &);

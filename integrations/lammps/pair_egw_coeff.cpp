@@ -444,8 +444,9 @@ EgwSubmodels::Params PairEGW::mix_submodels(int i, int j, const EgwSubmodels::Pa
   return m;
 }
 
-/* the law of pair (i, j), i <= j: explicit coefficients as for like types, else mixed */
-void PairEGW::make_law(int i, int j)
+/* the law of pair (i, j), i <= j: explicit coefficients as for like types, else mixed;
+ * R_lo, R_hi its equivalent radii (0: not known) */
+void PairEGW::make_law(int i, int j, double R_lo, double R_hi)
 {
   EgwLaw L;
   if (pcoeff[i][j].set) {
@@ -467,6 +468,14 @@ void PairEGW::make_law(int i, int j)
   egw_flow_check(error, "Pair egw", fmt::format("types {} {}", i, j), L.flow_pressure,
                  L.flow_keyword, L.E_star);
   L.setup(model);
+  // rough + cap with sigma far below the first-yield overlap: its Hertz + cap limit
+  std::string note = L.smooth_cap_limit(R_lo, R_hi);
+  if (!note.empty() && comm->me == 0 &&
+      std::find(smooth_cap_warned.begin(), smooth_cap_warned.end(), std::make_pair(i, j)) ==
+          smooth_cap_warned.end()) {
+    smooth_cap_warned.emplace_back(i, j);
+    error->warning(FLERR, "Pair egw: types {} {}: {}", i, j, note);
+  }
   // keep the tables of an unchanged law
   EgwLaw &old = law[i][j];
   // (a law's sigma is its file's length, known once built: the file name stands for it)

@@ -193,9 +193,11 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (19 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    """Bad fix wall/egw input (21 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
     never a crash or hang. 'temperature' without its value after a region ID said "region ID
-    'temperature' does not exist" before, and one given twice was taken silently."""
+    'temperature' does not exist" before, and one given twice was taken silently; fix
+    wall/gran's 'hertz/material E e nu' kept in a converted line said "unknown keyword" (stop
+    49), 'granular' as MODEL now names the conversion."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
         (f"wall/egw E-GW 1e-4 {c}", "wall style"),
@@ -218,6 +220,11 @@ def test_bad_wall():
         (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL temperature", "'temperature' needs a value"),
         (f"wall/egw E-GW 1e-4 {c} temperature 300 zplane 0 NULL temperature 200",
          "'temperature' given twice"),
+        # fix wall/gran's normal model kept in a converted line (was "unknown keyword")
+        (f"wall/egw E-GW 1e-4 hertz/material {E} 0.5 {NU} zplane 0 NULL",
+         "'hertz/material' (fix wall/gran's normal model) is not supported"),
+        (f"wall/egw granular hertz/material {E} 0.5 {NU} zplane 0 NULL",
+         "MODEL = 'granular': must be Hertz, GW, E-GW or EP-GW (fix wall/gran's"),
     ]
     bad = []
     for wall, key in cases:

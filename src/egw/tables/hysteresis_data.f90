@@ -333,7 +333,7 @@ contains
    end subroutine turning_point
 
    !> The knee of turning point m (stencil first, weights w) of a mapped table: the
-   !> nodes' knees interpolated, kept in [0, 0.99 m] (0 <= delta_r < m: the clamp only
+   !> nodes' knees interpolated over the stencil's table%n_w nodes, kept in [0, 0.99 m] (0 <= delta_r < m: the clamp only
    !> catches the interpolation's overshoot near first yield); 0 unless mapped.
    pure real(dp) function turning_knee(table, first, w, m) result(knee)
       type(hysteresis_table), intent(in) :: table   !< the table (its knee(:) where mapped)
@@ -342,8 +342,12 @@ contains
       real(dp), intent(in) :: m        !< the turning point delta_max
       knee = 0.0_dp
       if (.not. (table%mapped .and. m > 0.0_dp)) return
-      knee = w(1)*table%knee(first) + w(2)*table%knee(first + 1) + &
-         & w(3)*table%knee(first + 2) + w(4)*table%knee(first + 3)
+      if (table%n_w == 4) then
+         knee = w(1)*table%knee(first) + w(2)*table%knee(first + 1) + &
+            & w(3)*table%knee(first + 2) + w(4)*table%knee(first + 3)
+      else   ! today's mapped tables have 4-node windows; a wider one sums all its nodes
+         knee = stencil_sum(table%n_w, w, table%knee(first:first + table%n_w - 1))
+      end if
       knee = min(max(knee, 0.0_dp), 0.99_dp*m)
    end function turning_knee
 
