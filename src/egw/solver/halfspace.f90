@@ -640,6 +640,8 @@ contains
       integer :: i, j, k, e, c, ng, n, threads, ios, slot
       integer, allocatable :: node_at(:, :), elem_at(:, :), row_slot(:)
       real(dp), allocatable :: rows(:, :)
+      ! known(e, slot): element e's coefficients come from that slot's mesh (the same for
+      ! every row taken from it: a column a slot, not a column a row)
       logical, allocatable :: known(:, :)
       logical :: shares(cache_meshes)
       n = size(mesh%node)
@@ -654,7 +656,8 @@ contains
          cache%n_gauss = ng
       end if
       allocate (rows(mesh%n_elem*ng, n), node_at(n, cache_meshes), &
-         & elem_at(mesh%n_elem, cache_meshes), row_slot(n), known(mesh%n_elem, n), stat=ios)
+         & elem_at(mesh%n_elem, cache_meshes), row_slot(n), known(mesh%n_elem, cache_meshes), &
+         & stat=ios)
       if (present(stat)) stat = ios
       if (ios /= 0) return
       node_at = 0
@@ -666,9 +669,9 @@ contains
          shares(j) = any(elem_at(:, j) > 0)
          if (shares(j)) call match_sorted(mesh%node, cache%slot(j)%node, node_at(:, j))
       end do
+      known = elem_at > 0
       ! each row from the most recent mesh that has its node (and shares elements)
       row_slot = 0
-      known = .false.
       do i = 1, n
          do k = 0, cache_meshes - 1
             slot = modulo(cache%last - 1 - k, cache_meshes) + 1
@@ -682,7 +685,6 @@ contains
          do e = 1, mesh%n_elem
             c = elem_at(e, slot)
             if (c == 0) cycle
-            known(e, i) = .true.
             rows((e - 1)*ng + 1:e*ng, i) = cache%slot(slot)%rows((c - 1)*ng + 1:c*ng, &
                & node_at(i, slot))
          end do
@@ -714,7 +716,7 @@ contains
       subroutine row_of(i)
          integer, intent(in) :: i
          if (row_slot(i) > 0) then
-            call influence_row(mesh, mesh%node(i), rows(:, i), known(:, i))
+            call influence_row(mesh, mesh%node(i), rows(:, i), known(:, row_slot(i)))
          else
             call influence_row(mesh, mesh%node(i), rows(:, i))
          end if

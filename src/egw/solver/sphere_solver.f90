@@ -75,6 +75,15 @@ module egw_sphere_solver
    !> agreed while 6e-6 off and converged like step**1 beyond (kinks inside the disc
    !> that come and go); not examined further (doc/stability.md Stop 48).
    real(dp), parameter :: disc_sigma = 1.0e-5_dp
+   !> The default route's levels refine the central disc [0, c] with the step (as the
+   !> central-disc route does, disc_refined) where the innermost kink c of an unloading
+   !> after a capped loading is below this fraction of the Hertz radius
+   !> (first_unloading_level; branch mesh13's disc_split, doc/benchmarks.md "Stop 47
+   !> (mesh13)", "Stop 49 (rcost15)") ...
+   real(dp), parameter :: disc_split = 0.5_dp
+   !> ... and only at sigma/delta_y at least this (measured at 1e-2 and 0.0105; at 1e-6
+   !> a rough_cap solve came out 1.7e-5 off under an estimate of 3.6e-6)
+   real(dp), parameter :: disc_split_sigma = 1.0e-3_dp
 
 contains
 
@@ -500,6 +509,24 @@ contains
          & sqrt(prob%closest%delta), 1.0e-4_dp*options%rel_tol)
       if (options%n_radial == 0) call trim_to_unloading_decay(prob, options, first, mesh)
       if (options%n_radial == 0) prob%disc = central_disc(prob, first)
+      ! After a capped loading (sums_total) the innermost kink c can lie well inside the
+      ! Hertz radius a the family is graded about: [0, c] is then one graded element on
+      ! the first levels (between the fixed edges 0 and c), whose forces agree while both
+      ! are off; bisection_check finds it, and the levels then refined the whole mesh by
+      ! a global step until the graded edges split [0, c] (E-GW + cap, sigma =
+      ! delta_y/100 to 6 delta_y at 1e-4: 110 of 1444 checks found the disc off by 1e-7
+      ! .. 2.9e-4 at c/a 0.05 .. 0.4, and the levels after them held 300-550 nodes, 47 %
+      ! of the build's LU work). Below disc_split a the disc's elements shrink with the
+      ! step from the first level on (disc_refined, as on the central-disc route; it
+      ! takes the place of central_disc's grading there). Only at sigma/delta_y >=
+      ! disc_split_sigma (delta_y/sigma = (pi p_y/2)**2 in these units), where it was
+      ! measured: at 1e-6 (rough_cap's "solve_contact_unload near the residual", c =
+      ! 0.21 a) the split disc came out 1.7e-5 off under an estimate of 3.6e-6.
+      if (sums_total(prob) .and. options%n_radial == 0 .and. allocated(prob%branch)) then
+         if (any(prob%branch > 0.0_dp) .and. (0.5_dp*pi*prob%cap%p_y)**2 <= &
+            & 1.0_dp/disc_split_sigma) prob%refine_disc = prob%refine_disc .or. &
+            & minval(prob%branch, mask=prob%branch > 0.0_dp) <= disc_split*prob%a
+      end if
       ! (the trimmed mesh still reaches past the rim: the contact can end just inside it)
       mesh%outer = max(mesh%outer, reach)
       ! The first level only enters the estimate through its difference to the next
@@ -553,7 +580,7 @@ contains
          mesh%layered = .true.
          mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
       end if
-      first = coarse
+      call move_solution(coarse, first)
       call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
          & mesh%step_prev, mesh%outer, coarse, error, first, cache=cache)
       if (.not. allocated(error)) call relocate_kinks(prob, options, method, mesh%layered, &
@@ -579,7 +606,7 @@ contains
       ! The first level again, on the refocused mesh family: two levels of different
       ! families can agree by accident (seen: both 1.3e-7 off at mu = 0.1,
       ! delta/sigma = 100, their difference 1.5e-8), so Richardson needs one family.
-      first = coarse
+      call move_solution(coarse, first)
       call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
          & mesh%step_prev, mesh%outer, coarse, error, first, cache=cache)
    end subroutine refocus_classic_gw
@@ -648,7 +675,7 @@ contains
                & cache=cache)
             if (allocated(error)) return
             if (est <= 0.5_dp*options%rel_tol) then
-               sol = fine
+               call take_level(fine, sol)
                return
             end if
             if (mesh%step <= finest_step) exit
@@ -656,7 +683,7 @@ contains
             mesh%step_prev = mesh%step
             mesh%step = max(finest_step, 0.25_dp*mesh%step, min(mesh%step/1.25_dp, &
                & mesh%step*(0.25_dp*options%rel_tol/est)**(1.0_dp/force_order)))
-            coarse = sol
+            call copy_level(sol, coarse)
             cycle
          end if
          if (est <= 0.5_dp*options%rel_tol) then
@@ -680,7 +707,7 @@ contains
             confirming = .true.
             mesh%step_prev = mesh%step
             mesh%step = max(finest_step, 0.5_dp*mesh%step)
-            coarse = sol
+            call copy_level(sol, coarse)
             cycle
          end if
          confirming = .false.
@@ -688,7 +715,7 @@ contains
          mesh%step_prev = mesh%step
          mesh%step = max(finest_step, 0.25_dp*mesh%step, min(mesh%step/1.25_dp, &
             & mesh%step*(0.25_dp*options%rel_tol/est)**(1.0_dp/force_order)))
-         coarse = sol
+         call copy_level(sol, coarse)
       end do
       call fatal_error(error, egw_not_converged, "rel_tol = "//format_real(options%rel_tol) &
          & //" not reached: the finest mesh's force error estimate is "//format_real(est) &
@@ -797,13 +824,13 @@ contains
       if (kink_err > 0.1_dp*options%rel_tol .and. options%n_radial == 0) then
          prob%branch = moved
          prob%n_branch = n_moved
-         ! each level restarts from its own solution: a copy, since the result (intent out)
-         ! may not be the guess too
-         guess = coarse
+         ! each level restarts from its own solution (moved: the result, intent out, may
+         ! not be the guess too)
+         call move_solution(coarse, guess)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
             & mesh%step_prev, mesh%outer, coarse, error, guess, cache=cache)
          if (allocated(error)) return
-         guess = sol
+         call move_solution(sol, guess)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
             & mesh%step, mesh%outer, sol, error, guess, cache=cache)
          if (allocated(error)) return
@@ -1064,13 +1091,47 @@ contains
          & c <= 2.0_dp*central_fraction*prob%a))) c = 0.0_dp
    end function central_disc
 
-   !> to <- from (the arrays moved, not copied).
+   !> to <- from as a guess (its mesh and w, all solve_mesh reads of a guess; w moved).
    pure subroutine move_solution(from, to)
       type(discrete_solution), intent(inout) :: from
       type(discrete_solution), intent(out) :: to
       to%mesh = from%mesh
       call move_alloc(from%w, to%w)
    end subroutine move_solution
+
+   !> to <- from but for the influence matrix and the LU factors (n x 3n and n x n
+   !> doubles, most of a level's memory), which only the iteration and differentiate of
+   !> the solution that owns them read: a level kept as the coarse level (its force, mesh
+   !> and w) is a copy of the rest. from is returned as it came.
+   pure subroutine copy_level(from, to)
+      type(discrete_solution), intent(inout) :: from
+      type(discrete_solution), intent(inout) :: to
+      real(dp), allocatable :: infl(:, :), lu(:, :)
+      integer, allocatable :: pivots(:)
+      call move_alloc(from%infl, infl)
+      call move_alloc(from%lu, lu)
+      call move_alloc(from%pivots, pivots)
+      to = from
+      call move_alloc(infl, from%infl)
+      call move_alloc(lu, from%lu)
+      call move_alloc(pivots, from%pivots)
+   end subroutine copy_level
+
+   !> to <- from whole, the influence matrix and the LU factors moved (not copied): from
+   !> loses them.
+   pure subroutine take_level(from, to)
+      type(discrete_solution), intent(inout) :: from
+      type(discrete_solution), intent(inout) :: to
+      real(dp), allocatable :: infl(:, :), lu(:, :)
+      integer, allocatable :: pivots(:)
+      call move_alloc(from%infl, infl)
+      call move_alloc(from%lu, lu)
+      call move_alloc(from%pivots, pivots)
+      to = from
+      call move_alloc(infl, to%infl)
+      call move_alloc(lu, to%lu)
+      call move_alloc(pivots, to%pivots)
+   end subroutine take_level
 
    !> Force an unloading solution misses because its kink edges (prob%branch) are off the
    !> kinks of its own field (moved: the kinks located again on sol, branch_radii): at a
