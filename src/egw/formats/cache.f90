@@ -74,8 +74,10 @@ module egw_cache
    !> central-disc contact's elements about its edge on every level (sphere_solver's
    !> central_disc): rough + cap tables moved; 28 (main): rough + cap unloading's
    !> central-disc route up to a disc edge of 0.5 a (was 0.25); 29: main's 28 with branch
-   !> local14's log-ratio tables (its 29).
-   integer, parameter, public :: cache_revision = 29
+   !> local14's log-ratio tables (its 29); 33 (branch capl15, the lead renumbers): gap
+   !> curves hold the unloading solve over c = P_solve(m)/P_table(m) (was: the loading
+   !> force times c), Hertz + cap curves bisected in s relative to the local force.
+   integer, parameter, public :: cache_revision = 33
 
 
 contains
