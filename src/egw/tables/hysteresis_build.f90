@@ -1266,7 +1266,7 @@ contains
       ! Hertz + cap: refine_curve's weight, g's unit over max(P, local_floor P(m)), so that
       ! each curve's cubics hold the tolerance relative to the local force down to
       ! local_floor P(m) (near the residual overlap P ~ (delta - delta_r)**1.5: the last
-      ! intervals halved ~6 times more; 1e-4: 20 -> 50 s nodes, build time unchanged).
+      ! intervals halved ~6 times more; 1e-4: 20 -> 50 s nodes, build CPU 1.4x).
       ! Not rough + cap (E-GW + cap at 1e-3: 19 -> 137 s nodes in the tail, build 2x),
       ! nor stencil_mismatch's check in m: between the curves the gap's interpolation
       ! carries the loading table's error at delta, ~rel_tol P_load(delta), which does not
