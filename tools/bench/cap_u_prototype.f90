@@ -14,7 +14,10 @@ program cap_u_prototype
    use egw, only: dp, contact_params, model_hertz, solver_options, solve_result, &
       & egw_error, hysteresis_table, build_hysteresis, hysteresis_eval, loading_history, &
       & load_history, solve_unload
+   use egw_cap_sphere, only: cap_history, cap_result, cap_load
+   use egw_rough_sphere, only: cap_solve_options
    implicit none
+   integer, parameter :: n_fine(3) = [2, 4, 8]
    type(contact_params) :: p
    type(hysteresis_table) :: t
    type(egw_error), allocatable :: err
@@ -22,7 +25,9 @@ program cap_u_prototype
    type(solve_result) :: peak, res
    real(dp), allocatable :: u(:, :), du(:, :), p_node(:)
    real(dp) :: dy, tol, top, m, d, lo, hi, f, k, state, f_u, f_x, e_gap, e_u, e_x, worst(4), &
-      & band(6, 4), p_m, pm_solve, f_g, e_g, p_d
+      & band(6, 4), p_m, pm_solve, f_g, e_g, p_d, worst_fine(3)
+   real(dp), allocatable :: m_fine(:, :), l_fine(:, :)
+   integer :: q, nf
    integer :: j, i, n_m, n_s, b
    character(len=32) :: arg
    call get_command_argument(1, arg)
@@ -52,6 +57,22 @@ program cap_u_prototype
       u(1, j) = 1.0_dp
       u(n_s, j) = 0.0_dp
    end do
+   ! 1/L on k-fold finer delta_max grids (k = n_fine): the cap model's residual overlap
+   ! (cap_load, as the build's cap_length) at every node, no unloading solve
+   nf = (n_m - 1)*n_fine(size(n_fine)) + 1
+   allocate (m_fine(nf, size(n_fine)), l_fine(nf, size(n_fine)))
+   do q = 1, size(n_fine)
+      do j = 1, (n_m - 1)*n_fine(q) + 1
+         i = (j - 1)/n_fine(q) + 1
+         if (i < n_m) then
+            m_fine(j, q) = t%m(i) + (t%m(i + 1) - t%m(i))*mod(j - 1, n_fine(q))/n_fine(q)
+         else
+            m_fine(j, q) = t%m(n_m)
+         end if
+         l_fine(j, q) = m_fine(j, q) - residual(m_fine(j, q))
+      end do
+   end do
+   worst_fine = 0
    print '(a,es8.1,a,i0,a,i0)', "Hertz + cap, rel_tol", tol, ": the table's grid ", n_m, &
       & " x ", n_s
    worst = 0
@@ -86,6 +107,10 @@ program cap_u_prototype
          call hysteresis_eval(t, d, state, p_d, k, b)   ! P_load(delta)
          f_g = max(p_d - p_m*gap_eval(m, d, 1.0_dp/(m - hi)), 0.0_dp)
          e_g = abs(f_g - res%force)/max(res%force, 1.0e-3_dp*pm_solve)
+         do q = 1, size(n_fine)
+            worst_fine(q) = max(worst_fine(q), abs(p_m*u_eval(m, d, fine_inv_l(m, q)) - &
+               & res%force)/max(res%force, 1.0e-3_dp*pm_solve))
+         end do
          e_gap = abs(f - res%force)/max(res%force, 1.0e-3_dp*pm_solve)
          e_u = abs(f_u - res%force)/max(res%force, 1.0e-3_dp*pm_solve)
          e_x = abs(f_x - res%force)/max(res%force, 1.0e-3_dp*pm_solve)
@@ -100,6 +125,7 @@ program cap_u_prototype
    print '(a,6es9.2)', "  u prototype by decade of P/P(m):", band(:, 2)
    print '(a,6es9.2)', "  u, the solves' residual overlap:", band(:, 3)
    print '(a,6es9.2)', "  the gap, the solves' overlap:   ", band(:, 4)
+   print '(a,3i3,a,3es10.2)', "  u, 1/L on grids", n_fine, " times finer in m:", worst_fine
 contains
    !> u at (m, delta): the table's stencil and 1/L (or exact_inv_l where it is > 0: the
    !> map of the solves' own residual overlap), each curve's cubic Hermite at s.
@@ -131,6 +157,35 @@ contains
       end do
       v = max(v, 0.0_dp)
    end function u_eval
+
+   !> The cap model's residual overlap at m (cap_load on the cap solver's options).
+   real(dp) function residual(m) result(d_r)
+      real(dp), intent(in) :: m
+      type(cap_history) :: h
+      type(cap_result) :: r
+      call cap_load(p%radius, p%modulus, p%flow_pressure, m, cap_solve_options(), h, r, err)
+      if (allocated(err)) stop 1
+      d_r = h%residual*h%delta_y
+   end function residual
+
+   !> 1/L at m, cubic Lagrange in m on the q-th finer grid (four-node stencils).
+   real(dp) function fine_inv_l(m, q) result(v)
+      real(dp), intent(in) :: m
+      integer, intent(in) :: q
+      real(dp) :: w(4)
+      integer :: n, jj, first, kk, ll
+      n = (n_m - 1)*n_fine(q) + 1
+      jj = max(1, min(n - 1, count(m_fine(1:n, q) <= m)))
+      first = min(max(jj - 1, 1), n - 3)
+      do kk = 1, 4
+         w(kk) = 1.0_dp
+         do ll = 1, 4
+            if (ll /= kk) w(kk) = w(kk)*(m - m_fine(first + ll - 1, q))/ &
+               & (m_fine(first + kk - 1, q) - m_fine(first + ll - 1, q))
+         end do
+      end do
+      v = sum(w/l_fine(first:first + 3, q))
+   end function fine_inv_l
 
    !> The table's own gap at (m, delta) with the map of the solves' residual overlap
    !> (inv_l = 1/(m - delta_r)): its stencil, stored gaps and slopes, cubic Hermite in s.
