@@ -653,7 +653,9 @@ void egw_universal_free(egw_universal *u);
  * adaptively: solves at the midpoints of both grids agree to rel_tol of the local force
  * down to 1e-3 of the force at the turning point, and of 1e-3 of that below (EP-GW, and
  * rough models whose cap does not act, store ln(P_load/P)); where the flow-pressure cap
- * acts, to rel_tol of the force at the turning point (doc/formats.md section 6). Evaluation allocates nothing and takes no lock; a table is read-only
+ * acts, to rel_tol of the force at the turning point (Hertz + cap: at the turning points
+ * of the table's nodes to rel_tol of the local force down to 1e-3 of that force;
+ * doc/formats.md section 6). Evaluation allocates nothing and takes no lock; a table is read-only
  * after the build, so any number of threads may evaluate it (each with its own states).
  * EP-GW alone does not let a packing come to rest: it dissipates only while a contact
  * loads beyond its past maximum overlap, and below it unloading and reloading retrace one

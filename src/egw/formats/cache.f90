@@ -74,11 +74,13 @@ module egw_cache
    !> central-disc contact's elements about its edge on every level (sphere_solver's
    !> central_disc): rough + cap tables moved; 28 (main): rough + cap unloading's
    !> central-disc route up to a disc edge of 0.5 a (was 0.25); 29: main's 28 with branch
-   !> local14's log-ratio tables (its 29); 32 (branch rcost15): unloading after a capped
-   !> loading refines a central disc inside an innermost kink below a/2 with the step at
-   !> sigma/delta_y >= 1e-3 (sphere_solver's disc_split, branch mesh13's): rough + cap
-   !> tables moved.
-   integer, parameter, public :: cache_revision = 32
+   !> local14's log-ratio tables (its 29); 30 (main): unloading after a capped loading
+   !> refines a central disc inside an innermost kink below a/2 with the step at
+   !> sigma/delta_y >= 1e-3 (sphere_solver's disc_split, branch mesh13's, via rcost15):
+   !> rough + cap tables moved; 31 (main): gap curves hold the unloading solve over c =
+   !> P_solve(m)/P_table(m) (was: the loading force times c), Hertz + cap curves bisected
+   !> in s relative to the local force (capl15).
+   integer, parameter, public :: cache_revision = 31
 
 
 contains

@@ -89,7 +89,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
       logical :: log = .false.
       real(dp) :: xi(3) = 0.0_dp
       real(dp) :: p_turn = 0.0_dp   !< the solve's force at m (log: the weights' unit)
-      !> per node min(1, P/(local_floor P(m))) (log; 1 else): the mismatch's weight
+      !> per node the mismatch's weight (gap_at): min(1, P/(local_floor P(m))) (log),
+      !> P_load(m)/max(P, local_floor P(m)) (Hertz + cap), 1 else
       real(dp), allocatable :: weight(:)
       type(loading_history) :: hist !< the loading solve at m (loaded: reused)
       !> the deflection of the curve's last unloading solve, the next one's start
@@ -667,7 +668,12 @@ contains
             call curve_eval(curves(first + k - 1), s, r, dr)
             v = v + w(k)*r
          end do
-         err = max(err, mid%weight(i)*abs(v - mid%gap(i)))
+         ! (gap curves: relative to P(m), their weight is refine_curve's alone)
+         if (.not. mid%log) then
+            err = max(err, abs(v - mid%gap(i)))
+         else
+            err = max(err, mid%weight(i)*abs(v - mid%gap(i)))
+         end if
       end do
    end function stencil_mismatch
 
@@ -995,9 +1001,13 @@ contains
       ! evaluation multiplies them by)
       call table_eval(table%loading, m, curve%scale, k_turn)
       if (.not. curve%scale > 0.0_dp) curve%scale = table%loading%reference_force*table%rel_tol
-      ! the loading reference scaled to the solve's force at the turning point, so that the
-      ! gap vanishes there continuously (the table's own error, <= rel_tol of the force,
-      ! would otherwise be a jump that no refinement in s removes)
+      ! the solve's force at the turning point over the table's: the log ratio's loading
+      ! force is scaled by it, the gap's unloading force by its inverse, so that either
+      ! vanishes there continuously (the table's own error, <= rel_tol of the force, would
+      ! otherwise be a jump that no refinement in s removes) and the curve is the solves'
+      ! times P_table(m)/P_solve(m): relative to the local force (the gap scaled the
+      ! loading force instead: its error (1 - c) P_load(delta) stayed where the unloading
+      ! force vanishes, 6.2e-5 P(m) at Hertz + cap's residual overlap at 1e-3)
       curve%c_turn = 1.0_dp
       if (f_turn > 0.0_dp .and. curve%scale > 0.0_dp) curve%c_turn = f_turn/curve%scale
       if (table%capped) then
@@ -1206,17 +1216,19 @@ contains
       curve%start = none
    end subroutine refine_curve
 
-   !> The hysteresis gap g = (c P_ext(delta) - P_unload(delta))/P_load(m) and dg/ds at
+   !> The hysteresis gap g = (P_ext(delta) - P_unload(delta)/c)/P_load(m) and dg/ds at
    !> delta = m - s span, P_ext the loading table with its tail below the cut-off (below
    !> the cut-off too: the curve is a neighbour of others in the m direction), c the
    !> solve's force at m over the table's; g = 0 at the turning point, so that the force
-   !> is continuous there. At s = 0 the slope is the unloading branch's, dg/ds(0+).
+   !> is continuous there, and the table's force P_load(delta) - P_load(m) g is the
+   !> solve's over c. At s = 0 the slope is the unloading branch's, dg/ds(0+).
    subroutine gap_at(table, curve, x, g, dg, weight, error)
       type(hysteresis_table), intent(in) :: table
       type(unloading_curve), intent(inout) :: curve   !< (its start replaced)
       real(dp), intent(in) :: x
       real(dp), intent(out) :: g, dg
-      !> the mismatch's weight there: min(1, P/(local_floor P(m))) (log), else 1
+      !> the mismatch's weight there: min(1, P/(local_floor P(m))) (log);
+      !> P_load(m)/max(P, local_floor P(m)) (Hertz + cap), else 1
       real(dp), intent(out) :: weight
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
@@ -1250,12 +1262,23 @@ contains
       ! the loading force continued below its cut-off by the tail law (table_eval
       ! gives 0 there), so that the gap stays smooth across it
       call table_eval_tail_law(table%loading, curve%m - x_solve, p_ext, k_ext)
-      if (x > 0.0_dp .and. .not. at_turn) g = (curve%c_turn*p_ext - res%force)/curve%scale
+      if (x > 0.0_dp .and. .not. at_turn) g = (p_ext - res%force/curve%c_turn)/curve%scale
+      ! Hertz + cap: refine_curve's weight, g's unit over max(P, local_floor P(m)), so that
+      ! each curve's cubics hold the tolerance relative to the local force down to
+      ! local_floor P(m) (near the residual overlap P ~ (delta - delta_r)**1.5: the last
+      ! intervals halved ~6 times more; 1e-4: 20 -> 50 s nodes, build CPU 1.4x).
+      ! Not rough + cap (E-GW + cap at 1e-3: 19 -> 137 s nodes in the tail, build 2x),
+      ! nor stencil_mismatch's check in m: between the curves the gap's interpolation
+      ! carries the loading table's error at delta, ~rel_tol P_load(delta), which does not
+      ! vanish at the residual overlap (103 delta_max nodes against 15 at 1e-3, 1e-4 did
+      ! not settle; doc/stability.md, stop 49)
+      if (table%capped .and. curve%p_turn > 0.0_dp .and. x > 0.0_dp) &
+         & weight = curve%scale/max(res%force, local_floor*curve%p_turn)
       ! (dg/ds of the linear map; the two-piece map: dg/dx times tail_length)
       if (table%mapped) then
-         dg = (res%stiffness - curve%c_turn*k_ext)*table%tail_length/curve%scale
+         dg = (res%stiffness/curve%c_turn - k_ext)*table%tail_length/curve%scale
       else
-         dg = (res%stiffness - curve%c_turn*k_ext)*curve%span/curve%scale
+         dg = (res%stiffness/curve%c_turn - k_ext)*curve%span/curve%scale
       end if
       ! far below the cut-off the forces underflow: no subnormal numbers in the table
       ! (they would slow every evaluation that touches them by two orders)
