@@ -474,9 +474,11 @@ contains
       call restitution(params, options, mass, velocity, e, dissipated, error, &
          & max_overlap=delta_m)
       if (allocated(error)) return
-      if (.not. delta_m > tiny(1.0_dp)) then
-         ! a speed so small (subnormal) that the deepest overlap underflows: no curve to
-         ! time, the caller's value named (not a solver's failure)
+      if ((params%model == model_hertz .or. .not. params%sigma > 0.0_dp) .and. &
+         & .not. delta_m > tiny(1.0_dp)) then
+         ! a smooth sphere's speed so small (subnormal) that the deepest overlap underflows:
+         ! no curve to time, the caller's value named (not a solver's failure); a rough
+         ! sphere's deepest overlap may be < 0 (its impact energy is bounded in check)
          call fatal_error(error, egw_invalid_argument, "velocity = "//format_real(velocity) &
             & //": the deepest overlap "//format_real(delta_m)//" underflows (mass, " &
             & //"velocity too small for a time step)")
