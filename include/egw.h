@@ -263,10 +263,13 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * thread. Near the residual overlap (a small central contact disc) E-GW and EP-GW +
  * cap at sigma/delta_y >= 1e-5 grade the disc's elements on every level (before: E-GW +
  * cap, sigma = 2e-5 delta_y, 0.1442 delta_max after 2 delta_y, rel_tol 1e-6: 5.6e-4 off
- * under an est_rel_err of 1.1e-7). Known limit: below sigma/delta_y = 1e-5 and for GW +
- * cap (not examined) such solves can still be accepted off by more than rel_tol under a
- * small est_rel_err: cross-check forces within ~0.01 delta_max of the residual overlap at
- * two rel_tol (doc/stability.md "Stop 48 (resid14)"). The history is kept per
+ * under an est_rel_err of 1.1e-7); at sigma/delta_y <= 1e-6 a converged unloading solve
+ * of E-GW + cap is checked against the small-sigma route (which replaces it or the call
+ * fails where they disagree). GW + cap's unloading there has no kink edges and its levels
+ * refine every element. Known limit: between sigma/delta_y = 1e-6 and 1e-5 such solves
+ * can still be accepted off by more than their est_rel_err (within rel_tol where
+ * measured): cross-check forces within ~0.01 delta_max of the residual overlap at two
+ * rel_tol (doc/stability.md "Stop 48 (resid14)", "Stop 49 (resid15)"). The history is kept per
  * thread: calls with the same p, o and delta_max (a sweep of the unloading curve) load it
  * once, one unloading solve each after the first (results identical either way; each
  * thread keeps its own, no lock). Statuses: as egw_solve, and EGW_INVALID_ARGUMENT

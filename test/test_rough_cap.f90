@@ -85,6 +85,8 @@ contains
          & test_tiny_sigma_residual), &
          & new_unittest("sigma/delta_y = 1e-6: solve_contact_unload near the residual", &
          & test_small_sigma_contact_unload), &
+         & new_unittest("sigma/delta_y = 1e-6: a converged unloading solve checked", &
+         & test_small_sigma_unload_checked), &
          & new_unittest("sigma/delta_y = 1e-7, 1e-6: restitution at 3 v_y", &
          & test_small_sigma_restitution), &
          & new_unittest("sigma/delta_y = 1e-6: restitution at rel_tol 1e-5", &
@@ -568,6 +570,44 @@ contains
          & //str(res%force/force_y)//", reference "//str(ref)//", estimate " &
          & //str(res%est_rel_err))
    end subroutine test_small_sigma_contact_unload
+
+   !> E-GW + cap at sigma/delta_y = 1e-6 (mu 4) from 2 delta_y (history at rel_tol 1e-7, as
+   !> test_small_sigma_residual), unloading at 0.15 delta_max at rel_tol 2e-5: the discrete
+   !> solve converges (0.01 s) and on main answered 1.870099e-3 P_y, 6.9e-6 below the
+   !> reference under an estimate of 1.3e-6 (doc/stability.md "Stop 48 (sigma14)", "Stop
+   !> 49 (resid15)"); now checked against the small-sigma route (unload_check_limit), which
+   !> answers. Reference test_small_sigma_contact_unload's (the smooth cap,
+   !> cap_near_residual.py, times the rough correction from direct solves at 5e-5 .. 1e-3
+   !> delta_y; sigma14's shift reference agrees within 2e-7). Tolerance: the answer's
+   !> estimate plus the reference's uncertainty 3e-6 (as there). Measured 1.0e-6 off,
+   !> estimate 1.4e-6.
+   subroutine test_small_sigma_unload_checked(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: smooth = 1.8716741e-3_dp, correction = -8.346386e-4_dp
+      type(contact_params) :: p
+      type(loading_history) :: h
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y, ref
+      call yield_units(delta_y, force_y)
+      p = egw_cap(1.0e-6_dp)
+      call load_history(p, solver_options(rel_tol=1.0e-7_dp), 2.0_dp*delta_y, h, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "history from 2 delta_y: "//err%message)
+         return
+      end if
+      h%options%rel_tol = 2.0e-5_dp
+      call solve_unload(h, 0.3_dp*delta_y, res, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading at 0.15 delta_max: "//err%message)
+         return
+      end if
+      ref = smooth*(1.0_dp + correction)
+      call check(error, res%est_rel_err <= 1.0e-5_dp .and. abs(res%force/force_y - ref) <= &
+         & res%est_rel_err*res%force/force_y + 3.0e-6_dp*ref, "P/P_y = " &
+         & //str(res%force/force_y)//", reference "//str(ref)//", estimate " &
+         & //str(res%est_rel_err))
+   end subroutine test_small_sigma_unload_checked
 
    !> restitution of E-GW + cap at sigma/delta_y = 1e-7 and 1e-6 (mu 4, 3 v_y, rel_tol
    !> 1e-4), as test_tiny_sigma_restitution at 1e-8: on main egw_not_converged (an

@@ -91,6 +91,14 @@ module egw_rough_sphere
    !> off by up to 800 times their estimates; at 1e-6 the route's own estimate is often
    !> above 5e-7, so a check there would refuse solves the guided route answers.
    real(dp), parameter :: small_sigma_check_limit = 1.0e-7_dp
+   !> As small_sigma_check_limit for the unloading solves of a capped history: there from
+   !> 1e-6 (small_sigma_limit) down. Near the residual overlap the discrete solves at
+   !> sigma/delta_y = 1e-6 converge off by several times their estimates (E-GW + cap, mu 4,
+   !> from 2 delta_y: 0.15 delta_max at rel_tol 2e-5 6.9e-6 off under 1.3e-6; the levels'
+   !> answer there moves by 1e-5 .. 4e-4 with the mesh's kink set, doc/stability.md
+   !> "Stop 49 (resid15)"), while the route's histories are loaded anyway and its check
+   !> costs ~1 s.
+   real(dp), parameter :: unload_check_limit = 1.0e-6_dp
    !> the wide solves' rel_tol in asymptotic_unloading's further order, relative to the
    !> solve's (at least validate_options' 1e-10)
    real(dp), parameter :: further_tol = 0.1_dp
@@ -304,7 +312,7 @@ contains
       real(dp) :: delta_y
       logical :: ok, floored
       if (.not. route_wanted(params, options, delta, prob%extended .and. &
-         & allocated(prob%cap), error, delta_y)) return
+         & allocated(prob%cap), error, small_sigma_check_limit, delta_y)) return
       call asymptotic_loading(params, options, delta, delta_y, allocated(error), asym, ok, &
          & floored)
       if (ok) call use_asymptotic(options, delta, asym, 0.0_dp, result, error)
@@ -325,7 +333,8 @@ contains
       real(dp) :: delta_y, floor
       logical :: ok
       if (.not. route_wanted(history%params, history%options, history%delta_max, &
-         & history%closest%extended .and. history%closest%capped, error, delta_y)) return
+         & history%closest%extended .and. history%closest%capped, error, &
+         & unload_check_limit, delta_y)) return
       floor = max(unload_floor*history%loading%force, force_floor)
       call asymptotic_unloading(history, delta, delta_y, floor, asym, ok)
       if (ok) then
@@ -337,22 +346,24 @@ contains
    end subroutine small_sigma_unload
 
    !> Whether the asymptotic route answers a failed solve (error allocated: only
-   !> egw_not_converged) or checks a converged one (sigma/delta_y <=
-   !> small_sigma_check_limit); asymptotic_applies either way. delta_y of params.
-   logical function route_wanted(params, options, delta, capped, error, delta_y) &
-      & result(wanted)
+   !> egw_not_converged) or checks a converged one (sigma/delta_y <= check_limit:
+   !> small_sigma_check_limit, unload_check_limit); asymptotic_applies either way.
+   !> delta_y of params.
+   logical function route_wanted(params, options, delta, capped, error, check_limit, &
+      & delta_y) result(wanted)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta
       logical, intent(in) :: capped
       type(egw_error), allocatable, intent(in) :: error
+      real(dp), intent(in) :: check_limit
       real(dp), intent(out) :: delta_y
       wanted = asymptotic_applies(params, options, delta, capped, delta_y)
       if (.not. wanted) return
       if (allocated(error)) then
          wanted = error%stat == egw_not_converged
       else
-         wanted = params%sigma <= small_sigma_check_limit*delta_y
+         wanted = params%sigma <= check_limit*delta_y
       end if
    end function route_wanted
 
