@@ -414,8 +414,8 @@ contains
       real(dp), intent(out) :: ends(2), c(4)
       logical, intent(out) :: found
       real(dp) :: lo, hi, t0, alpha, g(4), g_a, g_b, h_a, h_b, width, x_a, x_b, ds, s_0, &
-         & x_0
-      integer :: a, b, k, j
+         & x_0, v_a(max_stencil), v_b(max_stencil), scale
+      integer :: a, b, k, j, q
       logical :: inside
       ends = quiet_nan
       c = 0.0_dp
@@ -439,14 +439,25 @@ contains
       ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' values and slopes
       ! (dh/dxi times each curve's dxi/ds on segment k)
       width = table%s(b) - table%s(a)
-      g_a = stencil_sum(table%n_w, w, table%gap(a, first:first + table%n_w - 1))
-      g_b = stencil_sum(table%n_w, w, table%gap(b, first:first + table%n_w - 1))
+      ! (one pass over gap_slope, the stencil's curves side by side at nodes a and b; the
+      ! six-point sums as stencil_sum's, inline: no call on the refill path)
       h_a = 0.0_dp
       h_b = 0.0_dp
       do j = 1, table%n_w
-         h_a = h_a + w(j)*table%slope(a, first + j - 1)*table%xi_scale(k, first + j - 1)
-         h_b = h_b + w(j)*table%slope(b, first + j - 1)*table%xi_scale(k, first + j - 1)
+         q = first + j - 1
+         scale = table%xi_scale(k, q)
+         v_a(j) = w(j)*table%gap_slope(1, q, a)
+         v_b(j) = w(j)*table%gap_slope(1, q, b)
+         h_a = h_a + w(j)*table%gap_slope(2, q, a)*scale
+         h_b = h_b + w(j)*table%gap_slope(2, q, b)*scale
       end do
+      if (table%n_w == 6) then
+         g_a = ((v_a(1) + v_a(2)) + (v_a(3) + v_a(4))) + (v_a(5) + v_a(6))
+         g_b = ((v_b(1) + v_b(2)) + (v_b(3) + v_b(4))) + (v_b(5) + v_b(6))
+      else
+         g_a = stencil_sum(4, w, table%gap_slope(1, first:first + 3, a))
+         g_b = stencil_sum(4, w, table%gap_slope(1, first:first + 3, b))
+      end if
       h_a = width*h_a
       h_b = width*h_b
       g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
@@ -575,6 +586,14 @@ contains
          end do
       end if
       table%xi_scale = dxi_ds
+      if (allocated(table%gap_slope)) deallocate (table%gap_slope)
+      if (table%log_ratio) then
+         allocate (table%gap_slope(2, n_m, n_s))
+         do i = 1, n_s
+            table%gap_slope(1, :, i) = table%gap(i, :)
+            table%gap_slope(2, :, i) = table%slope(i, :)
+         end do
+      end if
       do i = 1, n_s - 1
          h = table%s(i + 1) - table%s(i)
          table%inv_ds(i) = 1.0_dp/h
