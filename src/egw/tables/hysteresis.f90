@@ -234,8 +234,13 @@ contains
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
       if (table%log_ratio) then
-         w = 0.0_dp
-         w(1:table%n_w) = state(11 - table%n_w:10)
+         ! (fixed-size copies: no memcpy call on the refill path)
+         if (table%n_w == 6) then
+            w(1:6) = state(5:10)
+         else
+            w(1:4) = state(7:10)
+            w(5:6) = 0.0_dp
+         end if
          call edge_breaks(state(13), table%params%sigma, xi_b)
          call edge_s(xi_b, state(1) - delta, s, ds)
          s = min(s, 1.0_dp)
