@@ -296,6 +296,8 @@ contains
          & size(t%run_last) + size(t%m_lookup%bucket) + size(t%s_lookup%bucket)) + &
          & 8.0_dp*(6*size(t%loading%delta) + size(t%loading%seg)) + &
          & 4.0_dp*size(t%loading%bucket)
+      ! (log-ratio tables: gap and slope side by side for the states' refills)
+      if (allocated(t%gap_slope)) bytes = bytes + 8.0_dp*size(t%gap_slope)
    end function table_bytes
 
 end module bench_hysteresis

@@ -29,7 +29,7 @@ extern "C" {
 #endif
 
 /* Version of this header; egw_get_version() returns the library's. */
-#define EGW_VERSION 200
+#define EGW_VERSION 300
 
 /* Status codes. */
 enum {
@@ -721,8 +721,10 @@ int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
  * that this call fills: the turning point's data and the piece of its unloading curve
  * last used as one cubic in delta, so that a contact that stays below the same turning
  * point and inside the same piece (most DEM steps: a contact moves little) reads nothing
- * but its state. The values of egw_hysteresis_eval to rounding (1e-12 of the loading
- * force at the turning point), the same statuses and history. Start a contact with
+ * but its state (on a ln(P_load/P) table the piece spans the loading table's intervals:
+ * crossing into the next one refills that interval alone). The values of
+ * egw_hysteresis_eval to rounding (1e-12 of the loading force at the turning point), the
+ * same statuses and history. Start a contact with
  * egw_hysteresis_state_init or with all zeros (as calloc'ed or zeroed contact arrays): both
  * mean a new contact. A state may be copied with its contact (restarts, migration between
  * ranks): it keeps its history with a table of the same data (a rebuild with the same
@@ -761,11 +763,13 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
    * [17..23] the loading table's interval (ends, cubic in delta - [17], > 0 where it is
    * ln P; on a log-ratio table's piece, whose cubic is -ln(P_load/P), 2 for ln P and -1
-   * for a linear interval) */
+   * for a linear interval). A log-ratio piece spans loading intervals: it serves delta
+   * inside both its ends and the loading interval's. */
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (!(state[2] == tag)) return 0;
-  piece = state[1] == state[0] && state[10] < delta && delta < state[11];
+  piece = state[1] == state[0] && state[10] < delta && delta < state[11] &&
+          state[17] <= delta && delta < state[18];
   loading = !piece && delta >= state[0] && state[17] < delta && delta < state[18];
   if (!piece && !loading) return 0;
   if (piece) {

@@ -61,6 +61,7 @@ contains
          & new_unittest("unloading from above delta_max: against solves", test_deep_unloading), &
          & new_unittest("history: load, unload, reload, new contact", test_history), &
          & new_unittest("state with cached turning point = plain history", test_state), &
+         & new_unittest("log-ratio pieces span the loading intervals", test_piece_span), &
          & new_unittest("energy: the force's integral; e^2 at a turning point", test_energy), &
          & new_unittest("elastic summits: no hysteresis", test_reversible), &
          & new_unittest("bad input", test_bad_input), &
@@ -638,6 +639,60 @@ contains
          & back%tag /= other%tag .and. &
          & back%tag >= 1.0_dp, "reversible tables: own tags, the other's cache not used")
    end subroutine test_state
+
+   !> A log-ratio state's piece is the run of s intervals around delta (its h one cubic in
+   !> delta there), not cut at the loading table's intervals: a contact unloading in small
+   !> steps from 40 turning points over (1, 6) sigma to the cut-off must (a) find every
+   !> piece's ends at s nodes of the table (edge_s of m - end on the turning point's edge
+   !> map, to 1e-9: rounding of the end's delta), or at the cut-off, (b) see pieces that
+   !> reach past their loading interval (state(18:19)) and (c) keep one piece while it
+   !> crosses a loading node, taking the next loading interval alone (the piece's ends
+   !> and cubic, state(11:17), unchanged), with the values of hysteresis_eval (differ:
+   !> rounding). Before, the ends were cut at the loading interval's: (a) to (c) fail.
+   subroutine test_piece_span(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      real(dp) :: state(hysteresis_state_size), prev(hysteresis_state_size), plain, d, m, &
+         & f, k, f2, k2, xi_b(3), s, ds
+      integer :: i, j, step, stat, stat2, mismatches, off_node, spanning, kept
+      call build(ep, t, error)
+      if (allocated(error)) return
+      call check(error, t%log_ratio, "the suite's EP-GW table stores log ratios")
+      if (allocated(error)) return
+      mismatches = 0
+      off_node = 0
+      spanning = 0
+      kept = 0
+      do i = 1, 40
+         m = 1.0_dp + 5.0_dp*(i - 0.5_dp)/40
+         call hysteresis_state_init(state)
+         call hysteresis_eval_state(t, m, state, f, k, stat)
+         plain = m
+         do step = 1, 4000
+            d = m - step*(m - t%loading%cutoff)/4000
+            prev = state
+            call hysteresis_eval_state(t, d, state, f, k, stat)
+            call hysteresis_eval(t, d, plain, f2, k2, stat2)
+            if (differ(t, plain, f, k, f2, k2) .or. stat /= stat2) mismatches = mismatches + 1
+            if (.not. state(11) < state(12)) cycle   ! no piece (the clamp s = 1)
+            call edge_breaks(state(13), t%params%sigma, xi_b)
+            do j = 11, 12
+               if (state(j) == t%loading%cutoff) cycle
+               call edge_s(xi_b, m - state(j), s, ds)
+               if (minval(abs(t%s - s)) > 1.0e-9_dp) off_node = off_node + 1
+            end do
+            if (state(11) < state(18) .or. state(12) > state(19)) spanning = spanning + 1
+            if (prev(11) < prev(12) .and. prev(18) /= state(18) .and. &
+               & all(prev(11:17) == state(11:17))) kept = kept + 1
+         end do
+      end do
+      call check(error, mismatches, 0, "steps where the state differs from hysteresis_eval")
+      if (allocated(error)) return
+      call check(error, off_node, 0, "piece ends that are neither s nodes nor the cut-off")
+      if (allocated(error)) return
+      call check(error, spanning > 0 .and. kept > 0, "pieces past their loading interval: "// &
+         & to_string(spanning)//", kept across a loading node: "//to_string(kept))
+   end subroutine test_piece_span
 
    !> Whether the state's (f, k) and the plain evaluation's (f2, k2) below turning point m
    !> differ by more than rounding. The state writes the unloading force as a cubic in

@@ -144,8 +144,9 @@ contains
    !> contact that stays below the same turning point and inside the same piece evaluates
    !> one cubic (and an exp in the loading table's ln P tail), reading only its state. A
    !> piece is hysteresis_eval's unloading force where its run of s intervals (make_runs)
-   !> and loading interval do not change, written out as a cubic in delta: the same values
-   !> to rounding (test
+   !> and loading interval do not change, written out as a cubic in delta (a log-ratio
+   !> table's: h = ln(P_load/P) over the whole run, the loading interval beside it, taken
+   !> alone when the contact crosses into the next): the same values to rounding (test
    !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
    !> histories. Only a state that this table filled is trusted (its tag, state(3)): any
    !> other (all zero, as a DEM code's zeroed contact arrays; hysteresis_state_init's;
@@ -165,16 +166,25 @@ contains
       type(egw_error), allocatable, intent(out), optional :: error
       real(dp) :: w(max_stencil), g(4), s, knee, dsdx, xi_b(3), ds, inv_span, f_m
       integer :: first, i
-      logical :: found
+      logical :: found, inside
       stat = 0
-      ! inside the cached piece (below the turning point, above the cut-off; NaN fails
-      ! the tests): most DEM steps
+      ! inside the cached piece and its loading interval (below the turning point, above
+      ! the cut-off; NaN fails the tests): most DEM steps. A log-ratio piece spans its run
+      ! of s intervals across the loading table's intervals (make_log_piece): one that
+      ! left its loading interval takes the next (table_segment), its cubic of h kept.
       if (state(3) == table%tag .and. state(2) == state(1) .and. state(11) < delta .and. &
          & delta < state(12)) then
-         call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
-         if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
-            & stiffness, stat, error)
-         return
+         inside = state(18) <= delta .and. delta < state(19)
+         if (.not. inside .and. (state(24) > 1.0_dp .or. state(24) < 0.0_dp)) then
+            call table_segment(table%loading, delta, state(18:24), inside)
+            if (inside) state(24) = merge(2.0_dp, -1.0_dp, state(24) > 0.0_dp)
+         end if
+         if (inside) then
+            call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
+            if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
+               & stiffness, stat, error)
+            return
+         end if
       end if
       force = 0.0_dp
       stiffness = 0.0_dp
@@ -224,8 +234,13 @@ contains
       ! hysteresis_eval's unloading branch from the cached turning point, and the piece
       first = int(state(4))
       if (table%log_ratio) then
-         w = 0.0_dp
-         w(1:table%n_w) = state(11 - table%n_w:10)
+         ! (fixed-size copies: no memcpy call on the refill path)
+         if (table%n_w == 6) then
+            w(1:6) = state(5:10)
+         else
+            w(1:4) = state(7:10)
+            w(5:6) = 0.0_dp
+         end if
          call edge_breaks(state(13), table%params%sigma, xi_b)
          call edge_s(xi_b, state(1) - delta, s, ds)
          s = min(s, 1.0_dp)
@@ -387,12 +402,15 @@ contains
 
    !> make_piece of a log-ratio table: the piece around delta where the run of s
    !> intervals around i (one cubic per curve of the stencil first, weights w; inside one
-   !> segment of the edge map xi_b of the turning point m, where s is linear in delta) and
-   !> the loading interval seg do not change, as -h, a cubic c in delta - lo; seg(7) is
-   !> marked 2 (ln P) or -1 (linear) so that piece_force and egw.h's inline evaluate
-   !> exp(ln P - h) or P e^-h (every other use of seg reads seg(7) > 0 as ln P: the same).
-   !> No piece (found false, NaN ends) at the clamp s = 1 or outside the loading table's
-   !> intervals.
+   !> segment of the edge map xi_b of the turning point m, where s is linear in delta)
+   !> does not change, as -h, a cubic c in delta - lo, ends = (lo, hi) the run's overlaps
+   !> (above the cut-off), seg the loading interval around delta. The piece is not cut at
+   !> seg's ends (the gap pieces are: their cubic holds the loading force): a contact
+   !> that crosses into the next loading interval keeps it and refills seg alone
+   !> (hysteresis_eval_state; egw.h's inline tests both). seg(7) is marked 2 (ln P) or -1
+   !> (linear) so that piece_force and egw.h's inline evaluate exp(ln P - h) or P e^-h
+   !> (every other use of seg reads seg(7) > 0 as ln P: the same). No piece (found
+   !> false, NaN ends) at the clamp s = 1 or outside the loading table's intervals.
    pure subroutine make_log_piece(table, w, first, i, s, m, delta, xi_b, seg, ends, c, found)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: w(max_stencil), s, m, delta, xi_b(3)
@@ -401,8 +419,8 @@ contains
       real(dp), intent(out) :: ends(2), c(4)
       logical, intent(out) :: found
       real(dp) :: lo, hi, t0, alpha, g(4), g_a, g_b, h_a, h_b, width, x_a, x_b, ds, s_0, &
-         & x_0
-      integer :: a, b, k, j
+         & x_0, v_a(max_stencil), v_b(max_stencil), scale
+      integer :: a, b, k, j, q
       logical :: inside
       ends = quiet_nan
       c = 0.0_dp
@@ -412,30 +430,39 @@ contains
          call table_segment(table%loading, delta, seg, inside)   ! the interval around delta
          if (.not. inside) return
       end if
-      if (seg(7) > 0.0_dp) then
-         seg(7) = 2.0_dp
-      else
-         seg(7) = -1.0_dp
-      end if
+      seg(7) = merge(2.0_dp, -1.0_dp, seg(7) > 0.0_dp)
       a = table%run_first(first, i)
       b = table%run_last(first, i) + 1
       k = edge_segment(table%s(a), table%s(b))
       call edge_xi(xi_b, table%s(a), x_a)
       call edge_xi(xi_b, table%s(b), x_b)
-      lo = max(m - x_b, seg(1), table%loading%cutoff)
-      hi = min(m - x_a, seg(2))
+      ! the run's overlaps, not cut at seg's ends: h is one cubic in delta across the
+      ! loading intervals (hysteresis_eval_state then refills seg alone)
+      lo = max(m - x_b, table%loading%cutoff)
+      hi = m - x_a
       if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
       ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' values and slopes
       ! (dh/dxi times each curve's dxi/ds on segment k)
       width = table%s(b) - table%s(a)
-      g_a = stencil_sum(table%n_w, w, table%gap(a, first:first + table%n_w - 1))
-      g_b = stencil_sum(table%n_w, w, table%gap(b, first:first + table%n_w - 1))
+      ! (one pass over gap_slope, the stencil's curves side by side at nodes a and b; the
+      ! six-point sums as stencil_sum's, inline: no call on the refill path)
       h_a = 0.0_dp
       h_b = 0.0_dp
       do j = 1, table%n_w
-         h_a = h_a + w(j)*table%slope(a, first + j - 1)*table%xi_scale(k, first + j - 1)
-         h_b = h_b + w(j)*table%slope(b, first + j - 1)*table%xi_scale(k, first + j - 1)
+         q = first + j - 1
+         scale = table%xi_scale(k, q)
+         v_a(j) = w(j)*table%gap_slope(1, q, a)
+         v_b(j) = w(j)*table%gap_slope(1, q, b)
+         h_a = h_a + w(j)*table%gap_slope(2, q, a)*scale
+         h_b = h_b + w(j)*table%gap_slope(2, q, b)*scale
       end do
+      if (table%n_w == 6) then
+         g_a = ((v_a(1) + v_a(2)) + (v_a(3) + v_a(4))) + (v_a(5) + v_a(6))
+         g_b = ((v_b(1) + v_b(2)) + (v_b(3) + v_b(4))) + (v_b(5) + v_b(6))
+      else
+         g_a = stencil_sum(4, w, table%gap_slope(1, first:first + 3, a))
+         g_b = stencil_sum(4, w, table%gap_slope(1, first:first + 3, b))
+      end if
       h_a = width*h_a
       h_b = width*h_b
       g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
@@ -564,6 +591,14 @@ contains
          end do
       end if
       table%xi_scale = dxi_ds
+      if (allocated(table%gap_slope)) deallocate (table%gap_slope)
+      if (table%log_ratio) then
+         allocate (table%gap_slope(2, n_m, n_s))
+         do i = 1, n_s
+            table%gap_slope(1, :, i) = table%gap(i, :)
+            table%gap_slope(2, :, i) = table%slope(i, :)
+         end do
+      end if
       do i = 1, n_s - 1
          h = table%s(i + 1) - table%s(i)
          table%inv_ds(i) = 1.0_dp/h

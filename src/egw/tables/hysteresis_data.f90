@@ -164,6 +164,10 @@ module egw_hysteresis_data
       !> (3, n_m): dxi/ds of each curve's edge-map segments (log_ratio; hysteresis_prepare):
       !> a stored slope dh/dxi times it is the curve's dh/ds there
       real(dp), allocatable :: xi_scale(:, :)
+      !> log-ratio tables, (2, n_m, n_s): gap and slope at each s node, the curves side by
+      !> side (hysteresis_prepare): a state's piece reads a stencil's six curves at a run's
+      !> two end nodes from four cache lines, not from gap's and slope's 24
+      real(dp), allocatable :: gap_slope(:, :, :)
       !> index of the delta_max node at 0 where stencils stop (m_breakpoint; 0: none)
       integer :: m_break = 0
       !> turning points at or below it unload on the loading curve (hysteresis_prepare):
