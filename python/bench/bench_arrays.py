@@ -66,7 +66,7 @@ def bench_flat(repeats=20):
     total = egw.flat_pressure(p, sep).sum()
     with tempfile.TemporaryDirectory() as tmp:
         exe = os.path.join(tmp, "c_flat_loop")
-        for name in ("libegw.so", "libegw.so.0.2"):
+        for name in ("libegw.so", "libegw.so.0.3"):
             os.symlink(_capi.lib._name, os.path.join(tmp, name))
         subprocess.run(["cc", "-O2", "-o", exe, os.path.join(here, "c_flat_loop.c"),
                         "-I", os.path.join(repo, "include"), "-L", tmp, "-legw",

@@ -39,8 +39,8 @@ def main():
         table.write(path, "binary")
         exe = os.path.join(tmp, "c_loop")
         # link the very library Python loaded, under the names the linker and the loader
-        # look for (the bundled file keeps the SONAME libegw.so.0.2 of the CMake build)
-        for name in ("libegw.so", "libegw.so.0.2"):
+        # look for (the bundled file keeps the SONAME libegw.so.0.3 of the CMake build)
+        for name in ("libegw.so", "libegw.so.0.3"):
             os.symlink(lib, os.path.join(tmp, name))
         subprocess.run(["cc", "-O2", "-o", exe, os.path.join(here, "c_loop.c"),
                         "-I", os.path.join(repo, "include"), "-L", tmp, "-legw",

@@ -65,7 +65,7 @@ def test_every_documented_pip_install_line_names_an_installable_egw():
 
 def test_every_documented_shared_pkg_config_link_line_finds_libegw_at_run_time():
     # a program linked with `pkg-config --libs egw` (the shared library) builds but stops
-    # at start (libegw.so.0.2 not found) unless the line records the rpath or the loader is
+    # at start (libegw.so.0.3 not found) unless the line records the rpath or the loader is
     # told (LD_LIBRARY_PATH); egw-static needs neither
     checked = 0
     for doc in DOCS:
