@@ -339,9 +339,9 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(discrete_solution), intent(in), optional :: warm   !< solve_scaled's
       type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
-      type(discrete_solution) :: coarse
+      type(discrete_solution) :: coarse, first
       type(scaled_problem) :: prob
-      type(mesh_family) :: mesh
+      type(mesh_family) :: mesh, unfocused
       real(dp) :: order
 
       prob = problem
@@ -372,8 +372,18 @@ contains
          if (allocated(error)) return
       end if
       if (.not. prob%extended .and. prob%delta > 1.0_dp) then
+         unfocused = mesh
+         first = coarse
          call refocus_classic_gw(prob, options, method_used, mesh, coarse, error, cache=cache)
-         if (allocated(error)) return
+         if (allocated(error)) then
+            ! GW with the cap: where the refocused first level does not converge (loading
+            ! just past first yield, sigma/delta_y = 1e-4: Newton stalled at a residual of
+            ! 1.8e-4), the levels go on in the first level's family
+            if (.not. (allocated(prob%cap) .and. error%stat == egw_not_converged)) return
+            deallocate (error)
+            mesh = unfocused
+            coarse = first
+         end if
       end if
       if (allocated(prob%cap) .and. .not. allocated(prob%closest)) then
          call first_cap_level(prob, options, method_used, mesh, coarse, error, cache=cache)
@@ -611,7 +621,11 @@ contains
          ! The previous level's solution is the initial guess: 2-3 Newton steps instead of 5-8.
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
             & mesh%step, mesh%outer, sol, error, coarse, cache=cache)
-         if (allocated(error)) return
+         if (allocated(error)) then
+            if (.not. skip_failed_level(prob, options, error, mesh)) return
+            deallocate (error)
+            cycle
+         end if
          if (options%n_radial == 0) prob%disc = central_disc(prob, sol)
          ! (a sign of life for a progress hook: a level of a hard solve takes seconds)
          call progress_note("solve: mesh level")
@@ -646,7 +660,12 @@ contains
             confirm = .true.
             call bisection_check(prob, options, method, total, coarse, sol, fine, est, error, &
                & cache=cache)
-            if (allocated(error)) return
+            if (allocated(error)) then
+               ! (where the halved mesh does not converge, the check failed: on as below)
+               if (error%stat /= egw_not_converged) return
+               deallocate (error)
+               est = huge(1.0_dp)
+            end if
             if (est <= 0.5_dp*options%rel_tol) then
                sol = fine
                return
@@ -696,6 +715,20 @@ contains
          & //" (half: a margin for the estimate); this solve reaches rel_tol >= " &
          & //format_real(2.0_dp*est))
    end subroutine refine_levels
+
+   !> Unloading after a capped loading: a refinement level whose Newton did not converge
+   !> (warm-started from the level before) is skipped: the next level at half its step,
+   !> estimated against the last converged level (coarse) with their step ratio.
+   logical function skip_failed_level(prob, options, error, mesh) result(skip)
+      type(scaled_problem), intent(in) :: prob
+      type(solver_options), intent(in) :: options
+      type(egw_error), intent(in) :: error
+      type(mesh_family), intent(inout) :: mesh
+      skip = allocated(prob%closest) .and. allocated(prob%cap) .and. options%n_radial == 0 &
+         & .and. error%stat == egw_not_converged .and. mesh%step > finest_step
+      if (.not. skip) return
+      mesh%step = max(finest_step, 0.5_dp*mesh%step)
+   end function skip_failed_level
 
    !> EP-GW unloading after a loading on which the flow-pressure cap acted.
    pure logical function capped_history(prob)
@@ -787,26 +820,42 @@ contains
       logical, intent(out) :: vanished
       type(egw_error), allocatable, intent(out) :: error
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
-      real(dp), allocatable :: moved(:)
+      real(dp), allocatable :: moved(:), kept_branch(:)
       real(dp) :: kink_err, total_again
-      integer :: n_moved
-      type(discrete_solution) :: guess
+      integer :: n_moved, kept_n
+      type(discrete_solution) :: guess, moved_coarse, moved_sol
 
       vanished = .false.
       kink_err = kink_offset_error(prob, sol, options%rel_tol, moved, n_moved)/total
       if (kink_err > 0.1_dp*options%rel_tol .and. options%n_radial == 0) then
+         kept_branch = prob%branch
+         kept_n = prob%n_branch
          prob%branch = moved
          prob%n_branch = n_moved
          ! each level restarts from its own solution: a copy, since the result (intent out)
          ! may not be the guess too
          guess = coarse
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step_prev, mesh%outer, coarse, error, guess, cache=cache)
-         if (allocated(error)) return
-         guess = sol
-         call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
-            & mesh%step, mesh%outer, sol, error, guess, cache=cache)
-         if (allocated(error)) return
+            & mesh%step_prev, mesh%outer, moved_coarse, error, guess, cache=cache)
+         if (.not. allocated(error)) then
+            guess = sol
+            call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, &
+               & mesh%width, mesh%step, mesh%outer, moved_sol, error, guess, cache=cache)
+         end if
+         if (allocated(error)) then
+            ! Unloading after a capped loading: where a level with the moved edges does
+            ! not converge, both levels stay as they were, est with what their edges miss
+            ! by (the next level relocates them again)
+            if (.not. (allocated(prob%cap) .and. allocated(prob%closest) .and. &
+               & error%stat == egw_not_converged)) return
+            deallocate (error)
+            prob%branch = kept_branch
+            prob%n_branch = kept_n
+            est = est + kink_err
+            return
+         end if
+         coarse = moved_coarse
+         sol = moved_sol
          total_again = abs(smooth_force(prob) + sol%force)
          vanished = total_again < tiny_force
          if (vanished) return
