@@ -591,8 +591,10 @@ contains
       real(dp), parameter :: m(2) = [5.3127423456516532e4_dp, 9.2499375140498625e4_dp], &
          & d(2) = [3.0799813320482648e4_dp, 4.8510945547667710e4_dp], &
          & r(2) = [40528473.45693511_dp/2, 81056946.91387022_dp/2]
-      real(dp), parameter :: p_m(2) = [P_M_GW, P_M_EGW], p_ref(2) = [P_REF_GW, P_REF_EGW]
+      real(dp), parameter :: p_m(2) = [4.7667373916e10_dp, 1.6192035133e11_dp], &
+         & p_ref(2) = [1.6255758555e9_dp, 1.0667617495e9_dp]
       integer, parameter :: models(2) = [model_gw, model_egw]
+      character(len=*), parameter :: names(2) = ["GW + cap  ", "E-GW + cap"]
       type(contact_params) :: params
       type(loading_history) :: hist
       type(solve_result) :: top, res
@@ -604,15 +606,15 @@ contains
          call load_history(params, solver_options(rel_tol=rel_tol), m(i), hist, top, err)
          if (.not. allocated(err)) call solve_unload(hist, d(i), res, err)
          if (allocated(err)) then
-            call check(error, .false., "case "//trim(str(real(i, dp)))//": "//err%message)
+            call check(error, .false., trim(names(i))//": "//err%message)
             return
          end if
          call check(error, abs(top%force - p_m(i)) <= rel_tol*p_m(i) .and. &
-            & abs(res%force - p_ref(i)) <= rel_tol*p_m(i), "case "//trim(str(real(i, dp))) &
+            & abs(res%force - p_ref(i)) <= rel_tol*p_m(i), trim(names(i)) &
             & //": P(m) "//str(top%force)//", reference "//str(p_m(i))//"; P "// &
             & str(res%force)//", reference "//str(p_ref(i)))
          if (allocated(error)) return
-         print '(4x, a, i0, a, es9.2, a)', "case ", i, ": |P - P_ref|/P(m) = ", &
+         print '(4x, 2a, es9.2, a)', trim(names(i)), ": |P - P_ref|/P(m) = ", &
             & abs(res%force - p_ref(i))/p_m(i), " (bound 1e-4)"
       end do
    end subroutine test_stalled_levels

@@ -495,6 +495,13 @@ contains
          call solve_with_tail(locate, options, method, .false., mesh%focus, mesh%width, &
             & 2.0_dp*mesh%step_prev, mesh%outer, first, error, start, cache=cache)
       end if
+      ! (after a capped loading, a locating solve that failed from its start again by
+      ! continuation in delta from the history's deflection at delta_max: unloading_descent)
+      if (allocated(error) .and. options%n_radial == 0 .and. prob%closest%capped .and. &
+         & allocated(prob%cap)) then
+         deallocate (error)
+         call unloading_descent(locate, options, method, mesh, first, error, cache)
+      end if
       if (allocated(error)) then
          deallocate (error)
          call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
@@ -532,6 +539,41 @@ contains
       if (.not. allocated(error)) call relocate_kinks(prob, options, method, mesh%layered, &
          & mesh%focus, mesh%width, mesh%step_prev, mesh%outer, coarse, error, cache=cache)
    end subroutine first_unloading_level
+
+   !> Unloading after a capped loading, the locating solve (locate, on the coarse mesh
+   !> of first_unloading_level) where it failed from its start: continuation in delta
+   !> from the history's own deflection at delta_max (the unloading solution there), at
+   !> descent_stages overlaps evenly from delta_max down to locate%delta, each solved from
+   !> the one before. Newton stalled from the initial and the neighbouring curve's
+   !> deflections on every route (E-GW + cap, sigma/delta_y = 1e-4, 71049 sigma after
+   !> 116562: residual 7.6e-3, issue 32); from here it converged (at sigma/delta_y = 2e-5
+   !> and 1e-5, 0.5 and 0.65 delta_max, the first level stalls after it, unresolved).
+   subroutine unloading_descent(locate, options, method, mesh, sol, error, cache)
+      type(scaled_problem), intent(in) :: locate
+      type(solver_options), intent(in) :: options
+      integer, intent(in) :: method
+      type(mesh_family), intent(inout) :: mesh
+      type(discrete_solution), intent(out) :: sol
+      type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout), optional :: cache
+      integer, parameter :: descent_stages = 8
+      type(scaled_problem) :: stage
+      type(discrete_solution) :: previous
+      integer :: k
+      previous%mesh = locate%closest%mesh
+      previous%w = locate%closest%w
+      stage = locate
+      do k = 1, descent_stages
+         stage%delta = locate%closest%delta + (locate%delta - locate%closest%delta)* &
+            & real(k, dp)/real(descent_stages, dp)
+         if (k == descent_stages) stage%delta = locate%delta
+         stage%a = sqrt(max(stage%delta, 0.0_dp))
+         call solve_with_tail(stage, options, method, .false., mesh%focus, mesh%width, &
+            & 2.0_dp*mesh%step_prev, mesh%outer, sol, error, previous, cache=cache)
+         if (allocated(error)) return
+         previous = sol
+      end do
+   end subroutine unloading_descent
 
    !> Loading with the cap (doc/theory.md §12 "Rough spheres with the cap"): the cap edges
    !> of the first level's solution (coarse) become element edges (prob%branch: where
