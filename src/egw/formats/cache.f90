@@ -74,8 +74,12 @@ module egw_cache
    !> central-disc contact's elements about its edge on every level (sphere_solver's
    !> central_disc): rough + cap tables moved; 28 (main): rough + cap unloading's
    !> central-disc route up to a disc edge of 0.5 a (was 0.25); 29: main's 28 with branch
-   !> local14's log-ratio tables (its 29).
-   integer, parameter, public :: cache_revision = 29
+   !> local14's log-ratio tables (its 29); 30 (branch tbl15): rough + cap unloading solves
+   !> that stalled converge by sphere_solver's fallbacks (skipped levels, kink edges kept,
+   !> unloading_descent; GW + cap loading unrefocused): tables that failed build, others
+   !> whose solves had stalled on a route moved (E-GW + cap at sigma/delta_y = 2e-4 to
+   !> 12 delta_y at 1e-3: 3.6e-7 of P(m)).
+   integer, parameter, public :: cache_revision = 30
 
 
 contains
