@@ -568,6 +568,8 @@ contains
             & real(k, dp)/real(descent_stages, dp)
          if (k == descent_stages) stage%delta = locate%delta
          stage%a = sqrt(max(stage%delta, 0.0_dp))
+         ! (as scaled(): the extended models' Hertz part only at delta > 0)
+         stage%extended = locate%closest%extended .and. stage%delta > 0.0_dp
          call solve_with_tail(stage, options, method, .false., mesh%focus, mesh%width, &
             & 2.0_dp*mesh%step_prev, mesh%outer, sol, error, previous, cache=cache)
          if (allocated(error)) return
