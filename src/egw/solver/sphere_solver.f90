@@ -373,7 +373,7 @@ contains
       end if
       if (.not. prob%extended .and. prob%delta > 1.0_dp) then
          unfocused = mesh
-         first = coarse
+         if (stall_fallbacks(prob)) first = coarse
          call refocus_classic_gw(prob, options, method_used, mesh, coarse, error, cache=cache)
          if (allocated(error)) then
             ! GW with the cap: where the refocused first level does not converge (loading
