@@ -79,8 +79,12 @@ module egw_cache
    !> sigma/delta_y >= 1e-3 (sphere_solver's disc_split, branch mesh13's, via rcost15):
    !> rough + cap tables moved; 31 (main): gap curves hold the unloading solve over c =
    !> P_solve(m)/P_table(m) (was: the loading force times c), Hertz + cap curves bisected
-   !> in s relative to the local force (capl15).
-   integer, parameter, public :: cache_revision = 31
+   !> in s relative to the local force (capl15); 32 (main): rough + cap unloading solves
+   !> that stalled converge by sphere_solver's fallbacks (skipped levels, kink edges kept,
+   !> unloading_descent; GW + cap loading unrefocused; tbl15): tables that failed build,
+   !> others whose solves had stalled on a route moved (E-GW + cap at sigma/delta_y = 2e-4
+   !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)).
+   integer, parameter, public :: cache_revision = 32
 
 
 contains

@@ -1,0 +1,45 @@
+#!/usr/bin/env python3
+"""References of test rough_cap_hysteresis's "GW, E-GW + cap: unloading solves whose levels
+stalled" (issue 32, doc/stability.md "Stop 49 (tbl15)"): two unloading solves of the
+normalised contact E* = 1, sigma = 1, mu 4, p_y = 0.01 E* that stalled inside egw-table's
+hysteresis builds on main bc77115 (histories at rel_tol 1e-4, the build's), here from
+scratch by egw.solve_unload (its history tighter), an independent, finer computation:
+
+  GW + cap, R = 2.0264e7 (sigma/delta_y = 2e-4): delta 30799.81 after 53127.42. main's
+      automatic levels stall at every rel_tol (residual 0.25), so on fixed meshes
+      (n_radial 513, 1025, 2049: no levels, no fallback), the finest the reference and
+      the last difference its uncertainty.
+  E-GW + cap, R = 4.0528e7 (sigma/delta_y = 1e-4): delta 48510.95 after 92499.38, at
+      rel_tol 1e-7.
+
+usage: EGW_LIBRARY=/path/to/libegw.so python3 rough_cap_stalls.py
+(measured with main bc77115's libegw of the project venv)
+"""
+import egw
+
+GW = ("GW", 40528473.45693511 / 2, 5.3127423456516532e04, 3.0799813320482648e04)
+EGW = ("E-GW", 81056946.91387022 / 2, 9.2499375140498625e04, 4.8510945547667710e04)
+
+
+def params(model, r):
+    return egw.Params(model=model, radius=r, modulus=1.0, sigma=1.0, mu=4.0,
+                      flow_pressure=0.01)
+
+
+def report(label, case, opts):
+    model, r, m, d = case
+    p = params(model, r)
+    try:
+        top = egw.solve(p, m, opts)
+        un = egw.solve_unload(p, d, m, opts)
+    except egw.NotConvergedError as exc:
+        print(f"{label}: not converged ({exc})")
+        return
+    print(f"{label}: P(m) = {top.force:.10e} (est {top.est_rel_err:.1e}), "
+          f"P(delta, m) = {un.force:.10e} (est {un.est_rel_err:.1e})", flush=True)
+
+
+report("E-GW, rel_tol 1e-7", EGW, egw.Options(rel_tol=1e-7))
+report("GW, rel_tol 1e-7", GW, egw.Options(rel_tol=1e-7))
+for n in (513, 1025, 2049):
+    report(f"GW, n_radial {n}", GW, egw.Options(n_radial=n))
