@@ -337,8 +337,9 @@ contains
    end subroutine turning_point
 
    !> The knee of turning point m (stencil first, weights w) of a mapped table: the
-   !> nodes' knees interpolated over the stencil's table%n_w nodes, kept in [0, 0.99 m] (0 <= delta_r < m: the clamp only
-   !> catches the interpolation's overshoot near first yield); 0 unless mapped.
+   !> nodes' knees interpolated over the stencil's table%n_w nodes, kept in [0, 0.99 m]
+   !> (0 <= delta_r < m: the clamp only catches the interpolation's overshoot near first
+   !> yield); 0 unless mapped.
    pure real(dp) function turning_knee(table, first, w, m) result(knee)
       type(hysteresis_table), intent(in) :: table   !< the table (its knee(:) where mapped)
       integer, intent(in) :: first     !< the stencil's first delta_max node (turning_point)
