@@ -1231,15 +1231,10 @@ contains
    pure subroutine take_level(from, to)
       type(discrete_solution), intent(inout) :: from
       type(discrete_solution), intent(inout) :: to
-      real(dp), allocatable :: infl(:, :), lu(:, :)
-      integer, allocatable :: pivots(:)
-      call move_alloc(from%infl, infl)
-      call move_alloc(from%lu, lu)
-      call move_alloc(from%pivots, pivots)
-      to = from
-      call move_alloc(infl, to%infl)
-      call move_alloc(lu, to%lu)
-      call move_alloc(pivots, to%pivots)
+      call copy_level(from, to)
+      call move_alloc(from%infl, to%infl)
+      call move_alloc(from%lu, to%lu)
+      call move_alloc(from%pivots, to%pivots)
    end subroutine take_level
 
    !> Force an unloading solution misses because its kink edges (prob%branch) are off the

@@ -563,7 +563,7 @@ contains
       integer, intent(in) :: j
       real(dp) :: x, xm(max_stencil), w(max_stencil), v(2), r, dr, length, xi_b(3), xi, &
          & s_p, ds
-      integer :: first, lo, hi, k, l, pass, k_b, n
+      integer :: first, lo, hi, k, pass, k_b, n
       d = huge(1.0_dp)
       k_b = m_breakpoint(m)
       x = m_coordinate(0.5_dp*(m(j) + m(j + 1)), k_b)
@@ -574,12 +574,7 @@ contains
          n = hi - lo + 1
          if (pass == 1 .and. n < 6) return
          xm(1:n) = m_coordinate(m(first:first + n - 1), k_b)
-         do k = 1, n
-            w(k) = 1.0_dp
-            do l = 1, n
-               if (l /= k) w(k) = w(k)*(x - xm(l))/(xm(k) - xm(l))
-            end do
-         end do
+         call lagrange_weights(x, xm(1:n), w(1:n))
          length = 1.0_dp/sum(w(1:n)/curves(first:first + n - 1)%length)
          call edge_breaks(length, table%params%sigma, xi_b)
          if (pass == 1) then
@@ -597,6 +592,19 @@ contains
       end do
       d = abs(v(1) - v(2))
    end function order_gap
+
+   !> The Lagrange weights at x of the nodes xm (the stencil's coordinates in m).
+   pure subroutine lagrange_weights(x, xm, w)
+      real(dp), intent(in) :: x, xm(:)
+      real(dp), intent(out) :: w(:)   !< size(xm)
+      integer :: k, l
+      do k = 1, size(xm)
+         w(k) = 1.0_dp
+         do l = 1, size(xm)
+            if (l /= k) w(k) = w(k)*(x - xm(l))/(xm(k) - xm(l))
+         end do
+      end do
+   end subroutine lagrange_weights
 
    !> A bound on the weight min(1, P/(local_floor P(m))) at s of the check curve between the
    !> node curves a and b: twice the larger of their weights at their last node at or
@@ -627,7 +635,7 @@ contains
       integer, intent(in) :: j
       real(dp) :: x, w(max_stencil), r, dr, v, s, length, xm(max_stencil), knee, offset, &
          & dsdx, xi_b(3), xi, ds
-      integer :: first, k, l, i, k_b, lo, hi
+      integer :: first, k, i, k_b, lo, hi
       k_b = m_breakpoint(m)
       call stencil_window(j, size(m), k_b, stencil_width(table%log_ratio, size(m)), first, &
          & lo, hi)
@@ -635,12 +643,7 @@ contains
       hi = hi - lo + 1
       x = m_coordinate(0.5_dp*(m(j) + m(j + 1)), k_b)
       xm(1:hi) = m_coordinate(m(first:first + hi - 1), k_b)
-      do k = 1, hi
-         w(k) = 1.0_dp
-         do l = 1, hi
-            if (l /= k) w(k) = w(k)*(x - xm(l))/(xm(k) - xm(l))
-         end do
-      end do
+      call lagrange_weights(x, xm(1:hi), w(1:hi))
       ! the table's s of the midpoint curve's delta: with the interpolated L(m)
       ! as the evaluation: 1/L interpolated
       length = 1.0_dp/sum(w(1:hi)/curves(first:first + hi - 1)%length)
