@@ -62,7 +62,8 @@ contains
    !> loading table; unloading and reloading below the state the unloading curve of the
    !> state, 0 below the loading table's cut-off (where the loading force is below 1e-12
    !> of the reference force; a state at or below the cut-off unloads on the loading
-   !> curve's tail). A state above the table's delta_max uses the last curve (log-ratio
+   !> curve's tail; force_ratio tables, Hertz + cap: down to the residual overlap, which
+   !> needs no loading force). A state above the table's delta_max uses the last curve (log-ratio
    !> tables: its span stretched by the state's excess, turning_point) and returns
    !> egw_out_of_range (values written). NaN delta or state: egw_invalid_argument, nothing
    !> changed (force, stiffness 0); a state above delta_max whose force leaves the doubles:

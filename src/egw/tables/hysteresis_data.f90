@@ -30,7 +30,9 @@
 !> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
 !> retraces the loading table exactly. Rough + cap tables whose cap acts below delta_max
 !> (mapped) take s piecewise linear in m - delta instead (the two-piece map, map_s;
-!> turning points at or below 0 only its tail).
+!> turning points at or below 0 only its tail). Hertz + cap tables (force_ratio, format
+!> version 5) store the unloading force itself, u = P/P_load(m), P = P_load(m) u(s, m),
+!> with 1/L on a fine delta_max grid of their own (fine_inv_span).
 module egw_hysteresis_data
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use, intrinsic :: iso_fortran_env, only: int64
