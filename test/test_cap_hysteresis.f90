@@ -202,11 +202,12 @@ contains
    !> point's (issue 33 item 5). There the table is the curve's own cubics (its solves
    !> times P_table(m)/P_solve(m), the loading table's error at m, <= rel_tol, with the
    !> Hertz + cap curves bisected to rel_tol/4 of the local force where the union grid's
-   !> node is not the curve's own). Before stop 49 the gap carried that error on the
+   !> node is not the curve's own; since stop 50 u = P/P_load(m)). Before stop 49 the gap
+   !> carried that error on the
    !> loading force instead, (1 - c) P_load(delta), which does not vanish where the
    !> unloading force does, and the curves were bisected relative to P(m): 1.1e-1 of the
-   !> local force at m = 1.14 delta_y, s = 0.984 (P = 2.2e-3 P(m)). Between the nodes in
-   !> m the gap's tolerance is relative to P(m) (test_solves; doc/formats.md section 6).
+   !> local force at m = 1.14 delta_y, s = 0.984 (P = 2.2e-3 P(m)). Between the nodes:
+   !> test_local_between (the force-ratio curves of stop 50).
    subroutine test_local(error)
       type(error_type), allocatable, intent(out) :: error
       type(egw_error), allocatable :: err

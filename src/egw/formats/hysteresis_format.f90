@@ -271,6 +271,7 @@ contains
          return
       end if
       n_f = 0
+      count_f = 0.0_dp
       if (head(1) == ratio_version) then
          ! (n_f, a float64 after flow_pressure, needed for the size)
          if (len(bytes) >= header_bytes + 16) then

@@ -509,9 +509,10 @@ contains
    !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
    !> (P_load(m) = f_m, 1/(s_max L) = inv_span) from its gap cubic c on s interval i, at
    !> s = min((m - delta) inv_span, 1): P_load(delta) - P_load(m) g(s, m) (force_ratio
-   !> tables: P_load(m) u(s, m), 0 at s = 1), 0 where that is not positive. Below the curve's span (s clamped at 1, where the loading force is
-   !> below rel_tol of P_ref) the unloading force keeps its ratio to the loading force at
-   !> the span's end (unload_tail_ratio): the loading tail, scaled.
+   !> tables: P_load(m) u(s, m), 0 at s = 1), 0 where that is not positive. Below the
+   !> curve's span (s clamped at 1, where the loading force is below rel_tol of P_ref)
+   !> the unloading force keeps its ratio to the loading force at the span's end
+   !> (unload_tail_ratio): the loading tail, scaled.
    pure subroutine unload_branch(table, c, i, s, m, f_m, inv_span, knee, dsdx, delta, force, &
       & stiffness)
       type(hysteresis_table), intent(in) :: table
