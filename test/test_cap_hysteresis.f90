@@ -17,7 +17,8 @@ module test_cap_hysteresis
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_energy, hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
-   use egw_table_format, only: format_csv, format_binary, checksum_line
+   use egw_table_format, only: format_csv, format_binary, checksum_line, fnv1a32, &
+      & checksum_i32
    use egw_impact, only: restitution, time_step
    use testdrive, only: new_unittest, unittest_type, error_type, check
    implicit none
@@ -367,7 +368,8 @@ contains
    !> with a message naming what is wrong: fine grid arrays of different sizes (the binary
    !> file's size does not match its counts), u outside [0, 1 + 10 rel_tol], u(0) /= 1,
    !> u(1) /= 0, a delta_max node missing from the fine grid, a fine length above its
-   !> delta_max; and a CSV with a fine line removed.
+   !> delta_max; a binary file whose fine node count n_f is not an integer; and a CSV with
+   !> a fine line removed.
    subroutine test_crafted(error)
       type(error_type), allocatable, intent(out) :: error
       character(len=*), parameter :: name = "build/cap_crafted.bin", csv = &
@@ -410,6 +412,27 @@ contains
          if (allocated(error)) return
          deallocate (err)
       end do
+      ! binary: n_f (the float64 after flow_pressure, offset 108) not an integer, the
+      ! checksum made anew: refused naming n_f before any size is trusted
+      call write_hysteresis(cap_table, name, format_binary, err)
+      call check(error, .not. allocated(err), "write binary")
+      if (allocated(error)) return
+      open (newunit=u, file=name, access="stream", form="unformatted", status="old")
+      inquire (unit=u, size=n)
+      allocate (character(len=n) :: text)
+      read (u) text
+      close (u)
+      text(109:116) = transfer(4.5_dp, text(109:116))
+      text(n - 3:n) = transfer(checksum_i32(fnv1a32(text(1:n - 4))), text(n - 3:n))
+      open (newunit=u, file=name, access="stream", form="unformatted", status="replace")
+      write (u) text
+      close (u)
+      call read_hysteresis(name, back, err)
+      call check(error, allocated(err), "a version-5 file with n_f = 4.5 read")
+      if (allocated(error)) return
+      call check(error, index(err%message, "node count n_f") > 0, "n_f: "//err%message)
+      if (allocated(error)) return
+      deallocate (err, text)
       ! CSV: the last fine line dropped, the checksum line made anew for the bytes above
       ! it (as egw writes it), so that the reader's format check, not the checksum, refuses
       call write_hysteresis(cap_table, csv, format_csv, err)
