@@ -42,7 +42,7 @@ contains
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       !> influence matrices of the caller's earlier meshes: shared coefficients reused
       type(influence_cache), intent(inout), optional :: cache
-      integer :: n, ng, max_iter, i, stat
+      integer :: n, ng, max_iter, stat
       real(dp) :: kappa, rn
       logical, allocatable :: known(:)
       logical :: reuse
