@@ -6,7 +6,8 @@ module test_halfspace
    use egw_ellip, only: ellipk, ellipe
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, influence_row, &
       & assemble_influence, interpolate_nodal, mesh_nodes, influence_cache, &
-      & assemble_influence_cached, cached_point_values, keep_point_values
+      & assemble_influence_cached, cached_point_values, keep_point_values, &
+      & interpolate_nodal_walk
    implicit none
    private
    public :: collect_halfspace
@@ -22,7 +23,8 @@ contains
          & new_unittest("parallel assembly equals the rows", test_assembly), &
          & new_unittest("cached assembly equals the plain one", test_cached_assembly), &
          & new_unittest("point values kept with the cache", test_cached_point_values), &
-         & new_unittest("nodal interpolation reproduces polynomials", test_interpolation) &
+         & new_unittest("nodal interpolation reproduces polynomials", test_interpolation), &
+         & new_unittest("the walk interpolates as the bisection", test_interpolation_walk) &
          & ]
    end subroutine collect_halfspace
 
@@ -244,6 +246,59 @@ contains
       end do
       call check(error, worst < 1.0e-13_dp, "cubic not reproduced: "//real_str(worst))
    end subroutine test_interpolation
+
+   !> interpolate_nodal_walk against interpolate_nodal point by point (its bisection is
+   !> the reference): the same element and expression, so equal to the bit (another
+   !> element's quadratic through sin(3 r) is off by far more than rounding inside an
+   !> element; a walk that does not start again after a decreasing radius failed here).
+   !> The radii: increasing, with element edges and nodes exactly (the walk's stop
+   !> test; there either element gives the node's value), points beyond the outer edge
+   !> (the last element's polynomial), then a decreasing run (the walk starts again).
+   subroutine test_interpolation_walk(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: v(:), r(:), val(:)
+      integer :: i, bad
+      call build_mesh(graded_edges(1.0_dp, 0.1_dp, 3.0_dp, 0.7_dp), 2, 6, mesh)
+      v = sin(3.0_dp*mesh%node)
+      r = [(3.3_dp*real(i, dp)/97.0_dp, i=0, 97)]
+      r = [r(1:40), mesh%edge(1:3), mesh%node(7:9), r(41:)]
+      ! (ordered again: the edges and nodes above fall between r(40) and r(41))
+      call sort_increasing(r)
+      r = [r, 2.9_dp, 1.0_dp, mesh%edge(2), 0.0_dp, 0.5_dp]
+      allocate (val(size(r)))
+      call interpolate_nodal_walk(mesh, v, r, val)
+      bad = 0
+      do i = 1, size(r)
+         if (val(i) /= interpolate_nodal(mesh, v, r(i))) bad = bad + 1
+      end do
+      call check(error, bad == 0, int_str(bad)//" of "//int_str(size(r)) &
+         & //" values differ from interpolate_nodal's")
+   end subroutine test_interpolation_walk
+
+   pure subroutine sort_increasing(x)
+      real(dp), intent(inout) :: x(:)
+      integer :: i, j
+      real(dp) :: t
+      do i = 2, size(x)
+         t = x(i)
+         j = i - 1
+         do while (j >= 1)
+            if (x(j) <= t) exit
+            x(j + 1) = x(j)
+            j = j - 1
+         end do
+         x(j + 1) = t
+      end do
+   end subroutine sort_increasing
+
+   function int_str(k) result(s)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') k
+      s = trim(buf)
+   end function int_str
 
    elemental real(dp) function cubic(r)
       real(dp), intent(in) :: r

@@ -31,7 +31,8 @@ module egw_halfspace
    private
 
    public :: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index
-   public :: influence_row, assemble_influence, interpolate_nodal, halfspace_kernel
+   public :: influence_row, assemble_influence, interpolate_nodal, interpolate_nodal_walk, &
+      & halfspace_kernel
    public :: influence_cache, assemble_influence_cached, cached_point_values, keep_point_values
    public :: gauss_legendre
 
@@ -826,5 +827,32 @@ contains
       l = lagrange_weights(mesh%node_s, local_coord(mesh%edge(e - 1), mesh%edge(e), r))
       val = dot_product(l, v(node_index(mesh, e, 0):node_index(mesh, e, mesh%degree)))
    end function interpolate_nodal
+
+   !> interpolate_nodal at many radii, val(i) at r(i): the element of each found by a walk
+   !> from the last one's (forward while r > its right edge), which for increasing r (a
+   !> mesh's nodes or Gauss points, the solver's calls) visits each element once instead
+   !> of a bisection a point; a smaller r starts the walk again from the first element.
+   !> The element is the one bisection finds (the first e with r <= edge(e), else the
+   !> last) and the value the same expression: the same numbers to the bit.
+   pure subroutine interpolate_nodal_walk(mesh, v, r, val)
+      type(radial_mesh), intent(in) :: mesh   !< a built mesh
+      real(dp), intent(in) :: v(:)   !< nodal values, one per mesh node
+      real(dp), intent(in) :: r(:)   !< the radii (increasing: one pass)
+      real(dp), intent(out) :: val(:)   !< (size(r)) the values
+      integer :: i, e
+      real(dp) :: l(0:mesh%degree)
+      e = 1
+      do i = 1, size(r)
+         if (i > 1) then
+            if (r(i) < r(i - 1)) e = 1
+         end if
+         do while (e < mesh%n_elem)
+            if (.not. r(i) > mesh%edge(e)) exit
+            e = e + 1
+         end do
+         l = lagrange_weights(mesh%node_s, local_coord(mesh%edge(e - 1), mesh%edge(e), r(i)))
+         val(i) = dot_product(l, v(node_index(mesh, e, 0):node_index(mesh, e, mesh%degree)))
+      end do
+   end subroutine interpolate_nodal_walk
 
 end module egw_halfspace

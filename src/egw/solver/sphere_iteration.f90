@@ -12,7 +12,7 @@ module egw_sphere_iteration
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure
    use egw_halfspace, only: build_mesh, mesh_nodes, node_index, assemble_influence, &
       & influence_cache, assemble_influence_cached, cached_point_values, keep_point_values, &
-      & interpolate_nodal
+      & interpolate_nodal_walk
    use egw_lapack, only: lu_factor, lu_solve
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
       & scaled_problem, discrete_solution, law_at, law_inverse, base_gap, base_gap_rate, &
@@ -42,7 +42,7 @@ contains
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       !> influence matrices of the caller's earlier meshes: shared coefficients reused
       type(influence_cache), intent(inout), optional :: cache
-      integer :: n, ng, max_iter, i, stat
+      integer :: n, ng, max_iter, stat
       real(dp) :: kappa, rn
       logical, allocatable :: known(:)
       logical :: reuse
@@ -100,10 +100,8 @@ contains
       if (present(guess)) then
          ! Interpolated; beyond the guess's mesh its outermost value (w_G varies slowly there).
          allocate (sol%w(n))
-         do i = 1, n
-            sol%w(i) = interpolate_nodal(guess%mesh, guess%w, &
-               & min(sol%mesh%node(i), guess%mesh%edge(guess%mesh%n_elem)))
-         end do
+         call interpolate_nodal_walk(guess%mesh, guess%w, &
+            & min(sol%mesh%node, guess%mesh%edge(guess%mesh%n_elem)), sol%w)
       else
          call initial_deflection(prob, sol)
       end if

@@ -10,7 +10,8 @@ module egw_sphere_problem
    use egw_flat_law, only: flat_law, gw_flat_law
    use egw_flow_cap, only: flow_cap
    use egw_unloading, only: unloading_law, unloading_law_of, unloading_pressure
-   use egw_halfspace, only: radial_mesh, node_index, influence_row, interpolate_nodal
+   use egw_halfspace, only: radial_mesh, node_index, influence_row, &
+      & interpolate_nodal_walk
    implicit none
    private
 
@@ -152,14 +153,12 @@ contains
       integer :: i
       r_out = field%mesh%edge(field%mesh%n_elem)
       w_out = field%w(size(field%w))
+      ! (a value beyond r_out is replaced below)
+      call interpolate_nodal_walk(field%mesh, field%w, min(r, r_out), gap)
       do i = 1, size(r)
-         if (r(i) <= r_out) then
-            gap(i) = interpolate_nodal(field%mesh, field%w, r(i))
-         else
-            ! Beyond the loading mesh the pressure was negligible: the deflection is that
-            ! of a point load there, continued from the outer radius.
-            gap(i) = w_out*r_out/r(i)
-         end if
+         ! Beyond the loading mesh the pressure was negligible: the deflection is that
+         ! of a point load there, continued from the outer radius.
+         if (r(i) > r_out) gap(i) = w_out*r_out/r(i)
          if (field%extended) then
             gap(i) = gap(i) + hertz_gap(r(i), field%delta, 1.0_dp)
          else
