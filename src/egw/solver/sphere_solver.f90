@@ -117,6 +117,7 @@ contains
       !> the start of the default route's locating solve (first_unloading_level)
       type(discrete_solution), intent(in), optional :: warm
       type(egw_error), allocatable :: guided_error
+      logical :: wide
       call solve_default(problem, options, sol, est, method_used, error, warm)
       if (.not. allocated(error)) return
       ! Loading of an extended model with the cap that did not converge (small
@@ -135,7 +136,8 @@ contains
          if (allocated(guided_error) .and. sums_total(problem) .and. &
             & (0.5_dp*pi*problem%cap%p_y)**2 < 0.5e6_dp) then
             deallocate (guided_error)
-            call disc_cap_unload(problem, options, sol, est, method_used, guided_error)
+            call disc_cap_unload(problem, options, sol, est, method_used, guided_error, &
+               & refused=wide)
             ! and else the history-edges route (mid-unloading)
             if (allocated(guided_error)) then
                deallocate (guided_error)
@@ -143,8 +145,9 @@ contains
                   & guided_error)
             end if
             ! and last, where the stall fallbacks apply, the central-disc route on an
-            ! unloaded centre up to the Hertz radius (wide_disc_fraction)
-            if (allocated(guided_error) .and. stall_fallbacks(problem)) then
+            ! unloaded centre up to the Hertz radius (wide_disc_fraction), where the
+            ! central-disc route refused a wider disc (its first level converged)
+            if (allocated(guided_error) .and. stall_fallbacks(problem) .and. wide) then
                deallocate (guided_error)
                call disc_cap_unload(problem, options, sol, est, method_used, guided_error, &
                   & wide_disc_fraction)
@@ -181,7 +184,8 @@ contains
    !> (the fixed edges 0 and c) they agreed by accident, and refined with the step they
    !> shrank like step a, so the finest step was reached with estimates of 6.0e-7 ..
    !> 6.7e-7 (steel beads, E-GW + cap and EP-GW + cap, sigma 10 nm, doc/stability.md).
-   subroutine disc_cap_unload(problem, options, sol, est, method_used, error, fraction)
+   subroutine disc_cap_unload(problem, options, sol, est, method_used, error, fraction, &
+      & refused)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
@@ -190,11 +194,14 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       !> the route only where c is below this fraction of a (default disc_fraction)
       real(dp), intent(in), optional :: fraction
+      !> the route refused a disc beyond disc_fraction a (its first level converged)
+      logical, intent(out), optional :: refused
       type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(scaled_problem) :: prob
       type(mesh_family) :: mesh
       type(discrete_solution) :: coarse
       real(dp) :: disc, most
+      if (present(refused)) refused = .false.
       most = disc_fraction
       if (present(fraction)) most = fraction
       prob = problem
@@ -214,6 +221,7 @@ contains
       ! (the wide route only where the first refused: c beyond disc_fraction a)
       if (.not. disc <= most*prob%a .or. (present(fraction) .and. disc <= &
          & disc_fraction*prob%a)) then
+         if (present(refused)) refused = disc > disc_fraction*prob%a
          call fatal_error(error, egw_not_converged, "no central disc")
          return
       end if
