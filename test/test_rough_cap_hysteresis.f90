@@ -55,7 +55,9 @@ contains
          & new_unittest("E-GW + cap at sigma/delta_y = 2e-4: builds, within rel_tol", &
          & test_small_sigma), &
          & new_unittest("GW, E-GW + cap: unloading solves whose levels stalled", &
-         & test_stalled_levels) &
+         & test_stalled_levels), &
+         & new_unittest("E-GW + cap at sigma/delta_y = 2e-5: a wide unloaded centre", &
+         & test_wide_unloaded_centre) &
          & ]
    end subroutine collect_rough_cap_hysteresis
 
@@ -618,6 +620,42 @@ contains
             & abs(res%force - p_ref(i))/p_m(i), " (bound 1e-4)"
       end do
    end subroutine test_stalled_levels
+
+   !> An unloading solve that stalled inside egw-table's E-GW + cap build at sigma/delta_y =
+   !> 2e-5 (issue 32; R = 2.0264e8 sigma, E* = 1, mu 4, p_y = 0.01, the history and the
+   !> solve at rel_tol 1e-4 as the build runs them): delta = 164294 after 324999 (0.51
+   !> delta_max, 6.5 delta_y), where the unloaded centre (total pressure at its floor 0)
+   !> reaches 0.76 of the Hertz radius and Newton stalled on the first level of every
+   !> route (main f47caf8: "Newton did not converge", residual 9.4e-3). The central-disc
+   !> route on so wide a disc (sphere_solver's wide_disc_fraction) converges within
+   !> rel_tol of P(m) (the table's measure) of the reference, a solve from scratch at
+   !> rel_tol 1e-7 by main's libegw (tools/reference/rough_cap_stalls.py; its rel_tol 1e-6
+   !> solve 5e-10 apart). Measured 3.3e-5 of P(m): the history's rel_tol 1e-4 (on that
+   !> history a fixed mesh of 2049 nodes gives 5.4e-7 of the force from this answer).
+   subroutine test_wide_unloaded_centre(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: rel_tol = 1.0e-4_dp, m = 324999.0_dp, d = 164294.0_dp, &
+         & r = 405284734.5693511_dp/2
+      real(dp), parameter :: p_m = 2.6491708972e12_dp, p_ref = 1.3783238669e11_dp
+      type(contact_params) :: params
+      type(loading_history) :: hist
+      type(solve_result) :: top, res
+      type(egw_error), allocatable :: err
+      params = contact_params(model=model_egw, radius=r, modulus=1.0_dp, sigma=1.0_dp, &
+         & mu=4.0_dp, flow_pressure=0.01_dp)
+      call load_history(params, solver_options(rel_tol=rel_tol), m, hist, top, err)
+      if (.not. allocated(err)) call solve_unload(hist, d, res, err)
+      if (allocated(err)) then
+         call check(error, .false., err%message)
+         return
+      end if
+      call check(error, abs(top%force - p_m) <= rel_tol*p_m .and. &
+         & abs(res%force - p_ref) <= rel_tol*p_m, "P(m) "//str(top%force)//", reference " &
+         & //str(p_m)//"; P "//str(res%force)//", reference "//str(p_ref))
+      if (allocated(error)) return
+      print '(4x, a, es9.2, a)', "|P - P_ref|/P(m) = ", abs(res%force - p_ref)/p_m, &
+         & " (bound 1e-4)"
+   end subroutine test_wide_unloaded_centre
 
    !> The table at (turning point, overlap) points(:, i) against load_history +
    !> solve_unload at rel_tol 1e-7 (independent, finer solves): |P_table - P_solve| <=

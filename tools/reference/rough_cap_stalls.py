@@ -11,14 +11,19 @@ scratch by egw.solve_unload (its history tighter), an independent, finer computa
       the last difference its uncertainty.
   E-GW + cap, R = 4.0528e7 (sigma/delta_y = 1e-4): delta 48510.95 after 92499.38, at
       rel_tol 1e-7.
+  E-GW + cap, R = 2.0264e8 (sigma/delta_y = 2e-5): delta 164294 after 324999 (test
+      "E-GW + cap at sigma/delta_y = 2e-5: a wide unloaded centre"; doc/stability.md
+      "Stop 50 (tiny16)"), at rel_tol 1e-6 and 1e-7 (measured 5e-10 apart).
 
 usage: EGW_LIBRARY=/path/to/libegw.so python3 rough_cap_stalls.py
-(measured with main bc77115's libegw of the project venv)
+(measured with main bc77115's libegw of the project venv; the 2e-5 case with the venv's
+libegw of 2026-11-30 14:40 UTC)
 """
 import egw
 
 GW = ("GW", 40528473.45693511 / 2, 5.3127423456516532e04, 3.0799813320482648e04)
 EGW = ("E-GW", 81056946.91387022 / 2, 9.2499375140498625e04, 4.8510945547667710e04)
+EGW_WIDE = ("E-GW", 405284734.5693511 / 2, 324999.0, 164294.0)
 
 
 def params(model, r):
@@ -40,6 +45,8 @@ def report(label, case, opts):
 
 
 report("E-GW, rel_tol 1e-7", EGW, egw.Options(rel_tol=1e-7))
+for tol in (1e-6, 1e-7):
+    report(f"E-GW 2e-5, rel_tol {tol:g}", EGW_WIDE, egw.Options(rel_tol=tol))
 report("GW, rel_tol 1e-7", GW, egw.Options(rel_tol=1e-7))
 for n in (513, 1025, 2049):
     report(f"GW, n_radial {n}", GW, egw.Options(n_radial=n))

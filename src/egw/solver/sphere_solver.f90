@@ -67,6 +67,19 @@ module egw_sphere_solver
    !> other route stalled (Newton cycling between the Gauss points' branches of the
    !> total's floor at 0 in the unloaded centre); 0.25 refused it there.
    real(dp), parameter :: disc_fraction = 0.5_dp
+   !> ... and, last of all routes (where the default, guided, central-disc and
+   !> history-edges routes all failed) and only where the stall fallbacks apply
+   !> (stall_fallbacks), below this fraction: the unloaded centre [0, c] of an unloading
+   !> mid-way from a deep capped loading (the total at its floor 0 there, the gap within a
+   !> sigma of d_max) spans most of the contact. E-GW + cap, sigma/delta_y = 2e-5, 164294
+   !> sigma after 324999 (0.51 delta_max, 6.5 delta_y; c = 0.76 a, issue 32): Newton
+   !> stalled on the first level of every other route (residual 0.17 .. 0.2, the Gauss
+   !> points in elements ~0.1 a long switching between the floor and the stiff law); with
+   !> [0, c] split with the step from the first level on it converged, 5.4e-7 of the force
+   !> from a fixed mesh of 2049 nodes on the same history (doc/stability.md "Stop 50
+   !> (tiny16)"). Not the first choice: refining so wide a disc costs nodes (at 2e-5 a
+   !> table build then met a solve that needed more than max_mesh_nodes).
+   real(dp), parameter :: wide_disc_fraction = 1.0_dp
    !> The levels' central disc (central_disc): a contact ending below this fraction of
    !> the Hertz radius (kept up to twice it once a solve's levels have one).
    real(dp), parameter :: central_fraction = 0.25_dp
@@ -104,6 +117,7 @@ contains
       !> the start of the default route's locating solve (first_unloading_level)
       type(discrete_solution), intent(in), optional :: warm
       type(egw_error), allocatable :: guided_error
+      logical :: wide
       call solve_default(problem, options, sol, est, method_used, error, warm)
       if (.not. allocated(error)) return
       ! Loading of an extended model with the cap that did not converge (small
@@ -122,12 +136,21 @@ contains
          if (allocated(guided_error) .and. sums_total(problem) .and. &
             & (0.5_dp*pi*problem%cap%p_y)**2 < 0.5e6_dp) then
             deallocate (guided_error)
-            call disc_cap_unload(problem, options, sol, est, method_used, guided_error)
+            call disc_cap_unload(problem, options, sol, est, method_used, guided_error, &
+               & refused=wide)
             ! and else the history-edges route (mid-unloading)
             if (allocated(guided_error)) then
                deallocate (guided_error)
                call history_cap_unload(problem, options, sol, est, method_used, &
                   & guided_error)
+            end if
+            ! and last, where the stall fallbacks apply, the central-disc route on an
+            ! unloaded centre up to the Hertz radius (wide_disc_fraction), where the
+            ! central-disc route refused a wider disc (its first level converged)
+            if (allocated(guided_error) .and. stall_fallbacks(problem) .and. wide) then
+               deallocate (guided_error)
+               call disc_cap_unload(problem, options, sol, est, method_used, guided_error, &
+                  & wide_disc_fraction)
             end if
          end if
       else
@@ -161,18 +184,26 @@ contains
    !> (the fixed edges 0 and c) they agreed by accident, and refined with the step they
    !> shrank like step a, so the finest step was reached with estimates of 6.0e-7 ..
    !> 6.7e-7 (steel beads, E-GW + cap and EP-GW + cap, sigma 10 nm, doc/stability.md).
-   subroutine disc_cap_unload(problem, options, sol, est, method_used, error)
+   subroutine disc_cap_unload(problem, options, sol, est, method_used, error, fraction, &
+      & refused)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      !> the route only where c is below this fraction of a (default disc_fraction)
+      real(dp), intent(in), optional :: fraction
+      !> the route refused a disc beyond disc_fraction a (its first level converged)
+      logical, intent(out), optional :: refused
       type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(scaled_problem) :: prob
       type(mesh_family) :: mesh
       type(discrete_solution) :: coarse
-      real(dp) :: disc
+      real(dp) :: disc, most
+      if (present(refused)) refused = .false.
+      most = disc_fraction
+      if (present(fraction)) most = fraction
       prob = problem
       prob%refine_disc = .true.
       method_used = solve_method(options)
@@ -187,7 +218,10 @@ contains
       if (allocated(prob%branch)) then
          if (any(prob%branch > 0.0_dp)) disc = minval(prob%branch, mask=prob%branch > 0.0_dp)
       end if
-      if (.not. disc <= disc_fraction*prob%a) then
+      ! (the wide route only where the first refused: c beyond disc_fraction a)
+      if (.not. disc <= most*prob%a .or. (present(fraction) .and. disc <= &
+         & disc_fraction*prob%a)) then
+         if (present(refused)) refused = disc > disc_fraction*prob%a
          call fatal_error(error, egw_not_converged, "no central disc")
          return
       end if
