@@ -117,8 +117,12 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
   // has one table, two (HYST_CACHE) when one interpolates two (HYST_MU, rough + cap over
   // radii); on 64-byte lines, so that a state is 3 of them. compute() prefetches the block
   // of the entry HYST_PREFETCH ahead: a block is read from where its contact began, not in
-  // list order, and waiting for it was half of the drum's EP-GW evaluations
-  static constexpr int HYST_PREFETCH = 2;
+  // list order, and waiting for it was half of the drum's EP-GW evaluations. Most entries
+  // are pairs out of reach (a few instructions each): 2 entries ahead the block was still
+  // on its way (the pair's share of the drum's perf samples, EP-GW: 2 ahead 16.7-17.8 %,
+  // 4 ahead 14.6-16.1 %, 8 ahead 13.7-14.7 %, 16 ahead 14.5-14.9 %; doc/benchmarks.md
+  // "Stop 50 (drum16)")
+  static constexpr int HYST_PREFETCH = 8;
   template <class T> struct LineAllocator {
     using value_type = T;
     LineAllocator() = default;
