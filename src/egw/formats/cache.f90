@@ -83,8 +83,10 @@ module egw_cache
    !> that stalled converge by sphere_solver's fallbacks (skipped levels, kink edges kept,
    !> unloading_descent; GW + cap loading unrefocused; tbl15): tables that failed build,
    !> others whose solves had stalled on a route moved (E-GW + cap at sigma/delta_y = 2e-4
-   !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)).
-   integer, parameter, public :: cache_revision = 32
+   !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)); 33 (branch gw16): classic GW unloading after
+   !> a capped loading takes one confirming level more, and a tail-grown mesh that stalled
+   !> is solved again from the last attempt: GW + cap tables moved (other models' not).
+   integer, parameter, public :: cache_revision = 33
 
 
 contains
