@@ -84,8 +84,9 @@ module egw_cache
    !> unloading_descent; GW + cap loading unrefocused; tbl15): tables that failed build,
    !> others whose solves had stalled on a route moved (E-GW + cap at sigma/delta_y = 2e-4
    !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)); 33 (branch gw16): classic GW unloading after
-   !> a capped loading takes one confirming level more, and a tail-grown mesh that stalled
-   !> is solved again from the last attempt: GW + cap tables moved (other models' not).
+   !> a capped loading takes one confirming level more at sigma/delta_y <= 1e-3, and a
+   !> tail-grown mesh that stalled is solved again from the last attempt: GW + cap tables
+   !> there moved (other models' not; README's GW + cap build at 1e-2 byte-identical).
    integer, parameter, public :: cache_revision = 33
 
 
