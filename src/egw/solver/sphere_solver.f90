@@ -1148,7 +1148,8 @@ contains
             ! Classic GW unloading after a capped loading: a mesh grown by the tail check
             ! that stalls from the caller's start (the initial deflection: 25-30 Gauss
             ! points beyond the law's underflow, where dp/dh = 0 and Newton's step cannot
-            ! see them; residual 0.78 at sigma/delta_y = 1e-4, 53532 sigma after 65012)
+            ! see them; sigma/delta_y = 1e-4, 53532 sigma after 65012: residual 0.57, the
+            ! solve failed at 0.78 after unloading_descent and the continuation in delta)
             ! is solved again from the last attempt's converged solution (doc/stability.md
             ! "Stop 50 (gw16)"); only where it failed, so converging solves are unchanged.
             if (error%stat == egw_not_converged .and. stall_fallbacks(prob)) then
