@@ -17,7 +17,7 @@ scratch by egw.solve_unload (its history tighter), an independent, finer computa
 
 usage: EGW_LIBRARY=/path/to/libegw.so python3 rough_cap_stalls.py
 (measured with main bc77115's libegw of the project venv; the 2e-5 case with the venv's
-libegw of 2026-11-30 14:40 UTC)
+libegw of 2026-11-30 14:40 UTC, the GW 1e-4 cases below with main f47caf8's)
 """
 import egw
 
@@ -50,3 +50,17 @@ for tol in (1e-6, 1e-7):
 report("GW, rel_tol 1e-7", GW, egw.Options(rel_tol=1e-7))
 for n in (513, 1025, 2049):
     report(f"GW, n_radial {n}", GW, egw.Options(n_radial=n))
+
+# GW + cap at sigma/delta_y = 1e-4 (R = 4.0528e7, issue 32, doc/stability.md "Stop 50
+# (gw16)"): three unloading solves of egw-table's build (TOL 1e-3) that stalled on main
+# f47caf8 at the build's rel_tol 1e-4 (the locating solve, residual 0.78, 0.12, 0.14), and
+# a fourth that main answered 5e-4 off under an estimate of 4.2e-5 (78759 -> 65764), on
+# fixed meshes (n_radial 1025, 2049; history on the same mesh), the finest the reference.
+GW4 = [("GW", 81056946.91387022 / 2, 6.5012269369623180e04, 5.3532025905558483e04),
+       ("GW", 81056946.91387022 / 2, 7.8759202027217383e04, 6.5020730641208109e04),
+       ("GW", 81056946.91387022 / 2, 1.2e05, 1.0346772315096174e05),
+       ("GW", 81056946.91387022 / 2, 7.8759202027217383e04, 6.5763933692726496e04)]
+for case in GW4:
+    for n in (1025, 2049):
+        report(f"GW 1e-4, {case[2]:.6e} -> {case[3]:.6e}, n_radial {n}", case,
+               egw.Options(n_radial=n))

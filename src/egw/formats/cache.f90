@@ -83,8 +83,11 @@ module egw_cache
    !> that stalled converge by sphere_solver's fallbacks (skipped levels, kink edges kept,
    !> unloading_descent; GW + cap loading unrefocused; tbl15): tables that failed build,
    !> others whose solves had stalled on a route moved (E-GW + cap at sigma/delta_y = 2e-4
-   !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)).
-   integer, parameter, public :: cache_revision = 33
+   !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)); 34 (gw16): classic GW unloading after
+   !> a capped loading takes one confirming level more at sigma/delta_y <= 1e-3, and a
+   !> tail-grown mesh that stalled is solved again from the last attempt: GW + cap tables
+   !> there moved; 33 was capu16's Hertz + cap force ratio, format 5 (other models' not; README's GW + cap build at 1e-2 byte-identical).
+   integer, parameter, public :: cache_revision = 34
 
 
 contains
