@@ -657,10 +657,10 @@ void egw_universal_free(egw_universal *u);
  * below the state, the unloading curve of that state (reloading retraces it). Built
  * adaptively: solves at the midpoints of both grids agree to rel_tol of the local force
  * down to 1e-3 of the force at the turning point, and of 1e-3 of that below (EP-GW, and
- * rough models whose cap does not act, store ln(P_load/P)); where the flow-pressure cap
- * acts, to rel_tol of the force at the turning point (Hertz + cap: at the turning points
- * of the table's nodes to rel_tol of the local force down to 1e-3 of that force;
- * doc/formats.md section 6). Evaluation allocates nothing and takes no lock; a table is read-only
+ * rough models whose cap does not act, store ln(P_load/P); Hertz + cap stores the
+ * unloading force over the turning point's, P/P_load(delta_max), with its residual overlap
+ * on a finer delta_max grid: the same tolerance); on rough models where the flow-pressure
+ * cap acts, to rel_tol of the force at the turning point (doc/formats.md section 6). Evaluation allocates nothing and takes no lock; a table is read-only
  * after the build, so any number of threads may evaluate it (each with its own states).
  * EP-GW alone does not let a packing come to rest: it dissipates only while a contact
  * loads beyond its past maximum overlap, and below it unloading and reloading retrace one
@@ -832,7 +832,8 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
  * 0 also where, far down the separated range, the interpolated curve dips below 0 within
  * rel_tol (those dips sampled per table when it is built or read; a few table lookups a
  * call); kinetic + this energy is constant to ~1e-8 of it while a contact unloads,
- * measured against quadrature of the force.
+ * measured against quadrature of the force; on a Hertz + cap table (the force ratio) the
+ * same, the force integrated from the residual overlap.
  * EGW_OUT_OF_RANGE above the table's delta_max (value written); EGW_INVALID_ARGUMENT for
  * NaN or overflowing input; EGW_NULL_POINTER for h or energy. */
 int egw_hysteresis_energy(egw_hysteresis h, double delta, double delta_max_state,
@@ -857,7 +858,8 @@ void egw_hysteresis_free(egw_hysteresis *h);
 
 /* Write h to path (NUL-terminated) atomically (temporary file, then rename: a failed write
  * leaves an existing file intact). format: EGW_FORMAT_CSV (unloading data as rows
- * delta_max,length,s and log_ratio,dlog_ratio_dxi (EP-GW) or gap,dgap_ds (the cap acting);
+ * delta_max,length,s and log_ratio,dlog_ratio_dxi (EP-GW), force_ratio,dforce_ratio_ds
+ * (Hertz + cap, with its fine delta_max grid) or gap,dgap_ds (rough models, the cap acting);
  * loading curve and metadata as '#' lines; a checksum line last) or EGW_FORMAT_BINARY (versioned, checksummed); doc/formats.md section 6.
  * Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (other formats), EGW_NULL_POINTER. */
 int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
@@ -868,7 +870,10 @@ int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
  * and energy consistent with its forces included; increasing grids; gaps 0 at the
  * turning point and within [0, 1], with slopes that keep each curve near that range, or
  * log ratios 0 there and within [-100, 100], where the force is served an unloading
- * force at most twice its turning point's: doc/formats.md section 6). An EP-GW
+ * force at most twice its turning point's, or force ratios 1 there, 0 at the residual
+ * overlap and within [0, 1 + 10 rel_tol], with a fine grid that holds every delta_max
+ * node: doc/formats.md section 6; Hertz + cap files of egw before stop 50, version 2,
+ * are read as written). An EP-GW
  * file of the gap curves (binary version 1 / CSV format 1 with curves, egw before the log
  * ratio) is refused: rebuild it.
  * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),

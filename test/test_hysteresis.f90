@@ -1015,9 +1015,9 @@ contains
       call check(error, err%stat == egw_bad_file .and. index(err%message, "rebuild") > 0 &
          & .and. .not. allocated(back%m), "format 1 with curves: "//err%message)
       if (allocated(error)) return
-      ! a Hertz + cap table (CSV format 2) whose flow_pressure line was edited to -1, 0 or
-      ! NaN, checksum valid: refused naming flow_pressure (was taken for a format-1 file of
-      ! the gap curves, "rebuild the table")
+      ! a Hertz + cap table (CSV format 5; 2 before stop 50) whose flow_pressure line was
+      ! edited to -1, 0 or NaN, checksum valid: refused naming flow_pressure (was taken for
+      ! a format-1 file of the gap curves, "rebuild the table")
       call build_hysteresis(contact_params(model=model_hertz, radius=1.0_dp, modulus=1.0_dp, &
          & flow_pressure=2.0_dp/acos(-1.0_dp)), solver_options(), -1.0_dp, 5.0_dp, 1e-3_dp, &
          & t, err)

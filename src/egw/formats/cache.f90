@@ -84,7 +84,7 @@ module egw_cache
    !> unloading_descent; GW + cap loading unrefocused; tbl15): tables that failed build,
    !> others whose solves had stalled on a route moved (E-GW + cap at sigma/delta_y = 2e-4
    !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)).
-   integer, parameter, public :: cache_revision = 32
+   integer, parameter, public :: cache_revision = 33
 
 
 contains

@@ -117,6 +117,11 @@ contains
          call check_log_curves(path, t, error)
          return
       end if
+      if (t%force_ratio) then
+         call check_ratio_curves(path, t, error)
+         if (.not. allocated(error)) call check_gap_slopes(path, t, error)
+         return
+      end if
       ! the gap is relative to the turning-point force: within [0, 1] up to the tables'
       ! own errors
       if (any(t%gap(1, :) /= 0.0_dp) .or. any(t%gap < -10*t%rel_tol) .or. &
@@ -130,6 +135,69 @@ contains
       end if
       call check_gap_slopes(path, t, error)
    end subroutine check_hysteresis
+
+   !> The force-ratio curves of format 5 (Hertz + cap): the cap's smooth sphere, s_max = 1,
+   !> u = P/P_load(m) 1 at s = 0, 0 at s = 1 and within [0, 1 + 10 rel_tol] (an unloading
+   !> force never exceeds its turning point's; the solves' own error aside), and the fine
+   !> grid: at least 4 nodes, finite, increasing from m(1) to m(n_m), every delta_max node
+   !> among them with its curve's length, each length in (0, its delta_max] (L = m -
+   !> residual overlap).
+   subroutine check_ratio_curves(path, t, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: n_f, j, k
+      if (.not. (hertz_capped(t%params) .and. t%s_max == 1.0_dp)) then
+         call bad(error, path, "force-ratio curves (format 5): need Hertz (or sigma = 0) "// &
+            & "with the cap and s_max = 1")
+         return
+      end if
+      if (any(t%gap(1, :) /= 1.0_dp) .or. any(t%gap(size(t%s), :) /= 0.0_dp) .or. &
+         & any(t%gap < 0.0_dp) .or. any(t%gap > 1.0_dp + 10*t%rel_tol)) then
+         call bad(error, path, "unloading data: force_ratio must be 1 at s = 0, 0 at "// &
+            & "s = 1 and within [0, 1 + 10 rel_tol]")
+         return
+      end if
+      if (.not. (allocated(t%fine_m) .and. allocated(t%fine_length))) then
+         call bad(error, path, "force-ratio curves (format 5): no fine grid")
+         return
+      end if
+      n_f = size(t%fine_m)
+      if (n_f < 4 .or. size(t%fine_length) /= n_f) then
+         call bad(error, path, "force-ratio curves (format 5): fine grid of "// &
+            & int_str(n_f)//" nodes (at least 4)")
+         return
+      end if
+      if (.not. (all(ieee_is_finite(t%fine_m)) .and. all(ieee_is_finite(t%fine_length)))) then
+         call bad(error, path, "force-ratio curves (format 5): a fine grid value is not finite")
+         return
+      end if
+      if (any(t%fine_m(2:n_f) <= t%fine_m(1:n_f - 1)) .or. t%fine_m(1) /= t%m(1) .or. &
+         & t%fine_m(n_f) /= t%m(size(t%m))) then
+         call bad(error, path, "force-ratio curves (format 5): the fine grid must increase "// &
+            & "from the first delta_max node to the last")
+         return
+      end if
+      if (any(t%fine_length <= 0.0_dp) .or. any(t%fine_length > t%fine_m)) then
+         call bad(error, path, "force-ratio curves (format 5): each fine length must lie "// &
+            & "in (0, its delta_max]")
+         return
+      end if
+      do j = 1, size(t%m)
+         k = findloc(t%fine_m, t%m(j), 1)
+         if (k == 0) then
+            call bad(error, path, "force-ratio curves (format 5): delta_max node "// &
+               & int_str(j)//" is not a node of the fine grid")
+            return
+         end if
+         if (t%fine_length(k) /= t%length(j)) then
+            call bad(error, path, "force-ratio curves (format 5): fine length at delta_max "// &
+               & "node "//int_str(j)//" = "//format_real(t%fine_length(k))// &
+               & " differs from the curve's length "//format_real(t%length(j)))
+            return
+         end if
+      end do
+   end subroutine check_ratio_curves
 
    !> The two-piece map of format 4: a rough model with the cap (flow_pressure > 0, not
    !> Hertz + cap), s_max = 1, tail_length > 0, each knee in [0, 0.99 max(m, 0)] and its

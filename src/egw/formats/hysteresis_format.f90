@@ -34,8 +34,13 @@ module egw_hysteresis_format
    !> Version 4 (a rough model + cap with the two-piece s map, table%mapped): as version
    !> 2, then tail_length after flow_pressure, and each curve's knee after the lengths;
    !> version 2 files of rough models + cap are read with their linear map, as written.
+   !> Version 5 (Hertz + cap storing the unloading force, table%force_ratio): as version 2,
+   !> then n_f (the fine grid's nodes, as a float64) after flow_pressure, the fine grid's
+   !> delta_max nodes and lengths (fine_m, fine_length: n_f each) after the lengths, and
+   !> the curves u = P/P_load(m) and du/ds in place of the gap and dg/ds; version 2 files
+   !> of Hertz + cap are read as gap tables, as written.
    integer(int32), parameter :: hysteresis_version = 1, cap_version = 2, log_version = 3, &
-      & mapped_version = 4
+      & mapped_version = 4, ratio_version = 5
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
    !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
@@ -46,6 +51,11 @@ module egw_hysteresis_format
    character(len=*), parameter :: csv_title_cap = "# egw hysteresis table, CSV format 2"
    !> The title of a table with the two-piece s map (tail_length and knee lines).
    character(len=*), parameter :: csv_title_mapped = "# egw hysteresis table, CSV format 4"
+   !> A force-ratio table's header (Hertz + cap, format 5): u = P/P_load(m) and du/ds, and
+   !> fine_length lines.
+   character(len=*), parameter :: csv_columns_ratio = "delta_max,length,s,force_ratio,"// &
+      & "dforce_ratio_ds"
+   character(len=*), parameter :: csv_title_ratio = "# egw hysteresis table, CSV format 5"
    !> A log-ratio table's header (columns and title): h = ln(P_load/P) and dh/dxi.
    character(len=*), parameter :: csv_columns_log = "delta_max,length,s,log_ratio,"// &
       & "dlog_ratio_dxi"
@@ -68,6 +78,8 @@ module egw_hysteresis_format
       real(dp) :: flow_pressure = 0.0_dp   !< format 2 only
       integer :: format = 1                !< the CSV title's format
       integer :: k_knee = 0                !< knee lines read (format 4)
+      integer :: k_fine = 0                !< fine lines read (format 5)
+      integer :: n_f = -1                  !< n_fine (format 5; -1: not read)
       logical :: log = .false.             !< format 3 (log-ratio curves)
       real(dp) :: v(5)
    end type csv_reading
@@ -112,6 +124,7 @@ contains
       else if (starts_with(bytes, csv_columns//new_line("a")//csv_title) .or. &
          & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap) .or. &
          & starts_with(bytes, csv_columns//new_line("a")//csv_title_mapped) .or. &
+         & starts_with(bytes, csv_columns_ratio//new_line("a")//csv_title_ratio) .or. &
          & starts_with(bytes, csv_columns_log//new_line("a")//csv_title_log)) then
          call parse_csv(path, bytes, table, error)
       else
@@ -164,6 +177,10 @@ contains
          version = mapped_version
          extra = 16 + 8*n_m
       end if
+      if (table%force_ratio .and. .not. table%reversible) then
+         version = ratio_version
+         extra = 16 + 16*size(table%fine_m)
+      end if
       allocate (character(len=header_bytes + extra + 8*(5*n_load + 2*n_m + n_s + &
          & 2*n_m*n_s) + 4) :: buf)
       buf(1:8) = magic
@@ -175,6 +192,7 @@ contains
       call put_f64(buf, pos, params_array(table%params))
       if (version /= hysteresis_version) call put_f64(buf, pos, [table%params%flow_pressure])
       if (version == mapped_version) call put_f64(buf, pos, [table%tail_length])
+      if (version == ratio_version) call put_f64(buf, pos, [real(size(table%fine_m), dp)])
       call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
       call put_f64(buf, pos, table_meta(table%loading))
       call put_f64(buf, pos, table%loading%delta)
@@ -186,6 +204,10 @@ contains
          call put_f64(buf, pos, table%m)
          call put_f64(buf, pos, table%length)
          if (version == mapped_version) call put_f64(buf, pos, table%knee)
+         if (version == ratio_version) then
+            call put_f64(buf, pos, table%fine_m)
+            call put_f64(buf, pos, table%fine_length)
+         end if
          call put_f64(buf, pos, table%s)
          call put_f64(buf, pos, reshape(table%gap, [n_m*n_s]))
          call put_f64(buf, pos, reshape(table%slope, [n_m*n_s]))
@@ -201,8 +223,8 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       integer(int32) :: head(9), stored(1)
       integer(int64) :: expected
-      integer :: pos, n_load, n_m, n_s, extra
-      real(dp) :: p(7), meta(4), lmeta(7), flow(1), tail(1)
+      integer :: pos, n_load, n_m, n_s, extra, n_f, pos_f
+      real(dp) :: p(7), meta(4), lmeta(7), flow(1), tail(1), count_f(1)
       if (len(bytes) < header_bytes + 4) then
          call bad(error, path, "truncated: "//int_str(len(bytes))//" bytes")
          return
@@ -221,11 +243,11 @@ contains
          return
       end if
       if (head(1) /= hysteresis_version .and. head(1) /= cap_version .and. &
-         & head(1) /= log_version .and. head(1) /= mapped_version) then
+         & head(1) /= log_version .and. head(1) /= mapped_version .and. &
+         & head(1) /= ratio_version) then
          call bad(error, path, "format version "//int_str(int(head(1)))//" is not "// &
             & "supported (this egw reads versions "//int_str(int(hysteresis_version))// &
-            & ", "//int_str(int(cap_version))//", "//int_str(int(log_version))//" and "// &
-            & int_str(int(mapped_version))//")")
+            & " to "//int_str(int(ratio_version))//")")
          return
       end if
       if (head(1) == hysteresis_version .and. head(5) == 0) then
@@ -243,6 +265,29 @@ contains
       n_m = head(8)
       n_s = head(9)
       if (head(1) == mapped_version) extra = 16 + 8*max(min(n_m, max_rows), 0)
+      if (head(1) == ratio_version .and. head(5) /= 0) then
+         call bad(error, path, "format version 5 of a reversible table (version 5 is the "// &
+            & "force-ratio curves')")
+         return
+      end if
+      n_f = 0
+      count_f = 0.0_dp
+      if (head(1) == ratio_version) then
+         ! (n_f, a float64 after flow_pressure, needed for the size)
+         if (len(bytes) >= header_bytes + 16) then
+            pos_f = 9 + 4*9 + 8*8
+            call get_f64(bytes, pos_f, count_f)
+            if (count_f(1) >= 4.0_dp .and. count_f(1) <= max_rows) n_f = int(count_f(1))
+            if (real(n_f, dp) /= count_f(1)) n_f = 0
+         end if
+         if (n_f == 0) then
+            call bad(error, path, "format version 5: the fine grid's node count n_f = "// &
+               & format_real(count_f(1))//" is not an integer in [4, "// &
+               & int_str(max_rows)//"]")
+            return
+         end if
+         extra = 16 + 16*n_f
+      end if
       if (n_load < 2 .or. n_load > max_rows .or. n_m < 0 .or. n_m > max_rows .or. &
          & n_s < 0 .or. n_s > max_rows) then
          call bad(error, path, "node counts out of range")
@@ -260,14 +305,15 @@ contains
       tail = 0.0_dp
       if (extra > 0) call get_f64(bytes, pos, flow)
       if (head(1) == mapped_version) call get_f64(bytes, pos, tail)
+      if (head(1) == ratio_version) call get_f64(bytes, pos, count_f)
       call get_f64(bytes, pos, meta)
       call get_f64(bytes, pos, lmeta)
       table%params = params_from(int(head(4)), p)
       table%params%flow_pressure = flow(1)
-      if ((head(1) == cap_version .or. head(1) == mapped_version) .and. &
-         & .not. flow(1) > 0.0_dp) then
+      if ((head(1) == cap_version .or. head(1) == mapped_version .or. &
+         & head(1) == ratio_version) .and. .not. flow(1) > 0.0_dp) then
          call bad(error, path, "format version "//int_str(int(head(1)))// &
-            & " with flow_pressure = "//format_real(flow(1))//" (versions 2 and 4 are "// &
+            & " with flow_pressure = "//format_real(flow(1))//" (versions 2, 4 and 5 are "// &
             & "the flow-pressure cap's, > 0)")
          return
       end if
@@ -277,6 +323,7 @@ contains
          return
       end if
       table%mapped = head(1) == mapped_version
+      table%force_ratio = head(1) == ratio_version
       table%tail_length = tail(1)
       table%reversible = head(5) /= 0
       table%log_ratio = head(1) == log_version
@@ -303,6 +350,11 @@ contains
          allocate (table%knee(n_m))
          call get_f64(bytes, pos, table%knee)
       end if
+      if (table%force_ratio) then
+         allocate (table%fine_m(n_f), table%fine_length(n_f))
+         call get_f64(bytes, pos, table%fine_m)
+         call get_f64(bytes, pos, table%fine_length)
+      end if
       call get_f64(bytes, pos, table%s)
       call get_matrix(bytes, pos, table%gap)
       call get_matrix(bytes, pos, table%slope)
@@ -323,6 +375,8 @@ contains
          ! pandas.read_csv(path, comment="#") reads the unloading rows as they are
          if (table%log_ratio) then
             head = csv_columns_log//new_line("a")//csv_title_log//new_line("a")
+         else if (table%force_ratio .and. .not. table%reversible) then
+            head = csv_columns_ratio//new_line("a")//csv_title_ratio//new_line("a")
          else if (table%mapped .and. .not. table%reversible) then
             head = csv_columns//new_line("a")//csv_title_mapped//new_line("a")
          else
@@ -355,7 +409,7 @@ contains
             & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
             & "stiffness [modulus*length]; energy [modulus*length^3]; s, gap [1]"// &
             & new_line("a")
-         call add_rows_note(head, table%log_ratio)
+         call add_rows_note(head, table%log_ratio, table%force_ratio)
          head = head//new_line("a")//"# loading columns = delta,force,stiffness,energy,"// &
             & "contact_radius"
          if (table%mapped .and. .not. table%reversible) then
@@ -364,6 +418,16 @@ contains
                & "dgap_ds: the first piece's (doc/formats.md)"
             do j = 1, n_m
                head = head//new_line("a")//"# knee = "//fmt(table%knee(j))
+            end do
+         end if
+         if (table%force_ratio .and. .not. table%reversible) then
+            head = head//new_line("a")//"# 1/length interpolated on the fine delta_max grid "// &
+               & "(cubic Lagrange on four neighbouring nodes): its nodes as delta_max, "// &
+               & "length (doc/formats.md)"//new_line("a")//"# n_fine = "// &
+               & int_str(size(table%fine_m))
+            do j = 1, size(table%fine_m)
+               head = head//new_line("a")//"# fine = "//csv_row([table%fine_m(j), &
+                  & table%fine_length(j)])
             end do
          end if
          call put_line(head)
@@ -392,10 +456,16 @@ contains
 
    !> Appends the '# rows:' line of a hysteresis CSV (what a row's numbers are) to head
    !> (a subroutine: the library has no deferred-length function results).
-   pure subroutine add_rows_note(head, log_ratio)
+   pure subroutine add_rows_note(head, log_ratio, force_ratio)
       character(len=:), allocatable, intent(inout) :: head   !< the header so far
       logical, intent(in) :: log_ratio   !< a log-ratio table (format 3), else gap rows
-      if (log_ratio) then
+      logical, intent(in) :: force_ratio   !< a force-ratio table (format 5)
+      if (force_ratio) then
+         head = head//"# rows: unloading force = P_load(delta_max)*force_ratio at s = "// &
+            & "(delta_max - delta)/length, 0 from s = 1 on, cubic Hermite in s (slope "// &
+            & "dforce_ratio_ds), cubic Lagrange in delta_max over four neighbouring "// &
+            & "curves, 1/length on the fine grid of the fine_length lines (doc/formats.md)"
+      else if (log_ratio) then
          head = head//"# rows: unloading force = P_load(delta)*exp(-log_ratio) at s of "// &
             & "the edge map of length and sigma (s piecewise linear in delta_max - delta, "// &
             & "doc/formats.md), cubic Hermite in s (slope dlog_ratio_dxi per "// &
@@ -430,6 +500,8 @@ contains
       end if
       if (starts_with(text, csv_columns//new_line("a")//csv_title_cap)) reading%format = 2
       if (starts_with(text, csv_columns//new_line("a")//csv_title_mapped)) reading%format = 4
+      if (starts_with(text, csv_columns_ratio//new_line("a")//csv_title_ratio)) &
+         & reading%format = 5
       reading%log = starts_with(text, csv_columns_log//new_line("a"))
       start = 1
       do while (start <= sum_at)
@@ -482,6 +554,19 @@ contains
          case ("knee")
             call read_knee(path, value, table, reading, ios, error)
             if (allocated(error)) return
+         case ("n_fine")
+            read (value, *, iostat=ios) reading%n_f
+            if (ios == 0 .and. (reading%format /= 5 .or. reading%n_f < 4 .or. &
+               & reading%n_f > max_rows .or. allocated(table%fine_m))) then
+               call bad(error, path, "line "//int_str(reading%line)//": n_fine outside "// &
+                  & "CSV format 5, repeated, or not in [4, "//int_str(max_rows)//"]")
+               return
+            end if
+            if (ios == 0) allocate (table%fine_m(reading%n_f), &
+               & table%fine_length(reading%n_f))
+         case ("fine")
+            call read_fine(path, value, table, reading, ios, error)
+            if (allocated(error)) return
          case ("reversible"); read (value, *, iostat=ios) reading%rev
          case ("n_delta_max"); read (value, *, iostat=ios) reading%n_m
          case ("n_s"); read (value, *, iostat=ios) reading%n_s
@@ -533,6 +618,30 @@ contains
       end if
       call get_real(value, table%knee(reading%k_knee), ios)
    end subroutine read_knee
+
+   !> A '# fine = ' line of format 5: the next node of the fine grid, delta_max and its
+   !> length (ios: of its numbers).
+   subroutine read_fine(path, value, table, reading, ios, error)
+      character(len=*), intent(in) :: path, value
+      type(hysteresis_table), intent(inout) :: table
+      type(csv_reading), intent(inout) :: reading
+      integer, intent(out) :: ios
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: v(2)
+      ios = 0
+      if (.not. allocated(table%fine_m)) then
+         call bad(error, path, "line "//int_str(reading%line)//": fine before n_fine")
+         return
+      end if
+      reading%k_fine = reading%k_fine + 1
+      if (reading%k_fine > size(table%fine_m)) then
+         call bad(error, path, "more fine lines than n_fine")
+         return
+      end if
+      read (value, *, iostat=ios) v
+      table%fine_m(reading%k_fine) = v(1)
+      table%fine_length(reading%k_fine) = v(2)
+   end subroutine read_fine
 
    !> A '# loading = ' line: the next node of the loading table (ios: of its numbers).
    subroutine read_loading_node(path, value, table, reading, ios, error)
@@ -628,6 +737,13 @@ contains
       table%params%flow_pressure = reading%flow_pressure
       table%reversible = reading%rev /= 0
       table%mapped = reading%format == 4
+      table%force_ratio = reading%format == 5
+      if (table%force_ratio .and. (table%reversible .or. reading%n_f < 0 .or. &
+         & reading%k_fine /= reading%n_f)) then
+         call bad(error, path, "CSV format 5: "//int_str(reading%k_fine)//" fine lines, "// &
+            & "n_fine = "//int_str(reading%n_f)//" (and a table with curves)")
+         return
+      end if
       if (table%mapped .and. (reading%k_knee /= size(table%m) .or. table%reversible)) then
          call bad(error, path, "CSV format 4: "//int_str(reading%k_knee)//" knee lines, "// &
             & "n_delta_max = "//int_str(size(table%m))//" (and a table with curves)")
@@ -635,11 +751,11 @@ contains
       end if
       ! formats 2 and 4 are the cap's: a flow_pressure line that is not > 0 is named (as
       ! the binary reader does), not taken for a format-1 file of the gap curves
-      if ((reading%format == 2 .or. reading%format == 4) .and. &
+      if ((reading%format == 2 .or. reading%format == 4 .or. reading%format == 5) .and. &
          & .not. reading%flow_pressure > 0.0_dp) then
          call bad(error, path, "CSV format "//int_str(reading%format)// &
             & " with flow_pressure = "//format_real(reading%flow_pressure)// &
-            & " (formats 2 and 4 are the flow-pressure cap's, > 0)")
+            & " (formats 2, 4 and 5 are the flow-pressure cap's, > 0)")
          return
       end if
       if (.not. reading%log .and. .not. table%reversible .and. &

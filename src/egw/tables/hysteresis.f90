@@ -19,7 +19,8 @@ module egw_hysteresis
       & gap_cubic, turning_point, gap_combination, unload_tail_ratio, make_lookup, &
       & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan, turning_knee, map_s, &
       & map_x, map_piece, s_knee, s_zero, map_lengths, log_unload, edge_breaks, &
-      & edge_segment, edge_s, edge_xi, max_stencil, stencil_width, stencil_window, stencil_sum
+      & edge_segment, edge_s, edge_xi, max_stencil, stencil_width, stencil_window, stencil_sum, &
+      & unload_floor
    use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, log_energy_prepare, &
       & energy_prepare
    implicit none
@@ -61,7 +62,8 @@ contains
    !> loading table; unloading and reloading below the state the unloading curve of the
    !> state, 0 below the loading table's cut-off (where the loading force is below 1e-12
    !> of the reference force; a state at or below the cut-off unloads on the loading
-   !> curve's tail). A state above the table's delta_max uses the last curve (log-ratio
+   !> curve's tail; force_ratio tables, Hertz + cap: down to the residual overlap, which
+   !> needs no loading force). A state above the table's delta_max uses the last curve (log-ratio
    !> tables: its span stretched by the state's excess, turning_point) and returns
    !> egw_out_of_range (values written). NaN delta or state: egw_invalid_argument, nothing
    !> changed (force, stiffness 0); a state above delta_max whose force leaves the doubles:
@@ -100,7 +102,7 @@ contains
             & delta_max_state, force, stiffness, stat, error)
          return
       end if
-      if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
+      if (.not. delta > unload_floor(table)) return   ! below the cut-off: no force
       call turning_point(table, delta_max_state, first, w, inv_span, f_m, knee)
       if (table%log_ratio) then
          call log_unload(table, first, w, 1.0_dp/inv_span, delta_max_state, delta, force, &
@@ -212,7 +214,7 @@ contains
             & stiffness, stat, error)
          return
       end if
-      if (.not. delta > table%loading%cutoff) return   ! below the cut-off: no force
+      if (.not. delta > unload_floor(table)) return   ! below the cut-off: no force
       if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
          & state(4) <= size(table%m) - table%n_w + 1)) then
          ! (P_load of the turning point from the loading interval the state holds)
@@ -351,6 +353,10 @@ contains
          call table_segment(table%loading, delta, seg, inside)   ! the interval around delta
          if (.not. inside) return
       end if
+      ! (force_ratio: the piece is f_m u alone, cut at seg's ends as a gap piece, so that
+      ! piece_force and egw.h's inline read it as one; on a ln P loading interval they
+      ! would add P_load: no piece there, hysteresis_eval's arithmetic instead)
+      if (table%force_ratio .and. seg(7) > 0.0_dp) return
       ! s = (m - delta) iota in [s_i, s_{i+1}): delta in (m - s_{i+1}/iota, m - s_i/iota];
       ! the piece is open below (the cut-off itself has no force)
       a = table%run_first(first, i)
@@ -363,7 +369,7 @@ contains
          call map_x(table, m, knee, iota, table%s(a), x_a, dsdx)
          call map_x(table, m, knee, iota, table%s(b), x_b, dsdx)
       end if
-      lo = max(m - x_b, seg(1), table%loading%cutoff)
+      lo = max(m - x_b, seg(1), unload_floor(table))
       hi = min(m - x_a, seg(2))
       if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
       ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' gaps and slopes
@@ -388,7 +394,9 @@ contains
       c(2) = -f_m*alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
       c(3) = -f_m*alpha**2*(g(3) + 3*t0*g(4))
       c(4) = -f_m*alpha**3*g(4)
-      if (.not. seg(7) > 0.0_dp) then
+      if (table%force_ratio) then
+         c = -c   ! f_m u(t), no loading cubic
+      else if (.not. seg(7) > 0.0_dp) then
          ! the loading cubic in delta - seg(1), moved to delta - lo
          d = lo - seg(1)
          c(1) = c(1) + (seg(3) + d*(seg(4) + d*(seg(5) + d*seg(6))))
@@ -500,10 +508,11 @@ contains
 
    !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
    !> (P_load(m) = f_m, 1/(s_max L) = inv_span) from its gap cubic c on s interval i, at
-   !> s = min((m - delta) inv_span, 1): P_load(delta) - P_load(m) g(s, m), 0 where that is
-   !> not positive. Below the curve's span (s clamped at 1, where the loading force is
-   !> below rel_tol of P_ref) the unloading force keeps its ratio to the loading force at
-   !> the span's end (unload_tail_ratio): the loading tail, scaled.
+   !> s = min((m - delta) inv_span, 1): P_load(delta) - P_load(m) g(s, m) (force_ratio
+   !> tables: P_load(m) u(s, m), 0 at s = 1), 0 where that is not positive. Below the
+   !> curve's span (s clamped at 1, where the loading force is below rel_tol of P_ref)
+   !> the unloading force keeps its ratio to the loading force at the span's end
+   !> (unload_tail_ratio): the loading tail, scaled.
    pure subroutine unload_branch(table, c, i, s, m, f_m, inv_span, knee, dsdx, delta, force, &
       & stiffness)
       type(hysteresis_table), intent(in) :: table
@@ -513,6 +522,16 @@ contains
       real(dp), intent(out) :: force, stiffness
       real(dp) :: g, dg, f_d, k_d, ratio, x_1, dummy
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
+      if (table%force_ratio) then
+         ! the curves' u = P/P_load(m): no loading force, 0 from s = 1 on (apart)
+         force = f_m*g
+         stiffness = -f_m*dg*dsdx
+         if (.not. (force > 0.0_dp .and. s < 1.0_dp)) then
+            force = 0.0_dp
+            stiffness = 0.0_dp
+         end if
+         return
+      end if
       call table_eval(table%loading, delta, f_d, k_d)
       if (s >= 1.0_dp) then
          x_1 = 1.0_dp/inv_span
@@ -637,11 +656,34 @@ contains
       end do
       call make_lookup(table%m, table%m_lookup)
       call make_lookup(table%s, table%s_lookup)
+      if (table%force_ratio) call fine_prepare(table)
       call make_runs(table)
       ! (log-ratio tables: P_load e^-h is never below 0, no dips to sample)
       if (.not. table%log_ratio) call energy_prepare(table)
       if (table%log_ratio) call log_energy_prepare(table)
    end subroutine hysteresis_prepare
+
+   !> 1/L on the fine delta_max grid of a force_ratio table, the Lagrange denominators of
+   !> each four-node stencil (first .. first + 3) and the grid's buckets, for turning_point.
+   pure subroutine fine_prepare(table)
+      type(hysteresis_table), intent(inout) :: table
+      integer :: n_f, j, k, l
+      real(dp) :: h
+      n_f = size(table%fine_m)
+      if (allocated(table%fine_lagrange)) deallocate (table%fine_lagrange)
+      table%fine_inv = 1.0_dp/table%fine_length
+      allocate (table%fine_lagrange(4, n_f - 3))
+      do j = 1, n_f - 3
+         do k = 1, 4
+            h = 1.0_dp
+            do l = 1, 4
+               if (l /= k) h = h*(table%fine_m(j + k - 1) - table%fine_m(j + l - 1))
+            end do
+            table%fine_lagrange(k, j) = 1.0_dp/h
+         end do
+      end do
+      call make_lookup(table%fine_m, table%fine_lookup)
+   end subroutine fine_prepare
 
    !> Whether params are a smooth sphere (Hertz or sigma = 0) with the flow-pressure cap:
    !> a table of the cap solver's curves (capped). A rough model with the cap is built and
@@ -725,6 +767,10 @@ contains
          if (table%mapped) then
             call mix(h, table%knee)
             call mix(h, [table%tail_length])
+         end if
+         if (table%force_ratio) then
+            call mix(h, table%fine_m)
+            call mix(h, table%fine_length)
          end if
       end if
       call mix(h, table%loading%delta)

@@ -13,7 +13,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    use egw_hysteresis_data, only: s_knee, s_zero, map_s, map_x, map_piece, map_iota, &
       & map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, max_log_ratio, &
-      & max_stencil, stencil_width, stencil_window
+      & max_stencil, stencil_width, stencil_window, fine_length_tol
    implicit none
 
    !> Most nodes in s of one unloading curve, and of the delta_max grid.
@@ -275,6 +275,8 @@ contains
       m(1) = delta_y
       m(n) = table%delta_max
       table%s_max = 1.0_dp
+      ! the curves store u = P/P_load(m) (force_ratio; format version 5)
+      table%force_ratio = .true.
       allocate (curves(n))
       if (present(progress)) call progress(0, 2*n - 1)
       call build_curves(table, options, m, .false., curves, error)
@@ -282,8 +284,98 @@ contains
       call refine_m(table, options, .false., m, curves, error, progress)
       if (allocated(error)) return
       call resample(table, m, curves)
+      call fine_lengths(table, curves, error)
+      if (allocated(error)) return
       call hysteresis_prepare(table)
    end subroutine build_cap_curves
+
+   !> The fine delta_max grid of a force_ratio table for L(m) = m - residual overlap
+   !> (cap_length: the cap model's, no unloading solve): from the table's nodes (their
+   !> curves' lengths), each interval bisected until 1/L's cubic Lagrange on the grid (the
+   !> evaluation's, fine_inv_span) meets cap_length at its midpoint within fine_length_tol
+   !> rel_tol relative (the midpoint's value kept as a node where it does not), the
+   !> midpoints of a pass solved in parallel. Intervals narrower than min_width**2 of the
+   !> range are not split (first yield, where delta_r(m) sets in, aside: not reached on
+   !> the suite's tables).
+   subroutine fine_lengths(table, curves, error)
+      type(hysteresis_table), intent(inout) :: table
+      type(unloading_curve), intent(in) :: curves(:)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: x(:), l(:), mid(:), l_mid(:), new_x(:), new_l(:)
+      logical, allocatable :: done(:), split(:), new_done(:), fresh(:)
+      integer, allocatable :: stats(:)
+      character(len=256), allocatable :: messages(:)
+      real(dp) :: w(4), inv
+      integer :: pass, k, n, first, q, i
+      x = table%m
+      l = curves%length
+      allocate (done(size(x) - 1))
+      done = .false.
+      do pass = 1, 40
+         n = size(x)
+         mid = 0.5_dp*(x(1:n - 1) + x(2:n))
+         allocate (l_mid(n - 1), stats(n - 1), messages(n - 1), split(n - 1))
+         stats = 0
+         l_mid = 0.0_dp
+         !$omp parallel do schedule(dynamic) default(shared) private(k)
+         do k = 1, n - 1
+            if (.not. done(k)) call one_length(k)
+         end do
+         !$omp end parallel do
+         call first_failure(stats, messages, error)
+         if (allocated(error)) return
+         split = .false.
+         do k = 1, n - 1
+            if (done(k)) cycle
+            first = min(max(k - 1, 1), n - 3)
+            call lagrange_weights(mid(k), x(first:first + 3), w)
+            inv = sum(w/l(first:first + 3))
+            split(k) = abs(inv*l_mid(k) - 1.0_dp) > fine_length_tol*table%rel_tol .and. &
+               & x(k + 1) - x(k) >= min_width**2*(x(n) - x(1))
+            done(k) = .not. split(k)
+         end do
+         if (.not. any(split)) exit
+         allocate (new_x(n + count(split)), new_l(n + count(split)), &
+            & new_done(n + count(split) - 1), fresh(n + count(split)))
+         q = 0
+         fresh = .false.
+         do k = 1, n
+            q = q + 1
+            new_x(q) = x(k)
+            new_l(q) = l(k)
+            if (k == n) exit
+            new_done(q) = done(k)
+            if (split(k)) then
+               q = q + 1
+               new_x(q) = mid(k)
+               new_l(q) = l_mid(k)
+               fresh(q) = .true.
+            end if
+         end do
+         ! (an interval whose stencil holds a new node: checked again)
+         do i = 1, size(new_done)
+            first = min(max(i - 1, 1), size(new_x) - 3)
+            if (any(fresh(first:first + 3))) new_done(i) = .false.
+         end do
+         deallocate (fresh)
+         call move_alloc(new_x, x)
+         call move_alloc(new_l, l)
+         call move_alloc(new_done, done)
+         deallocate (l_mid, stats, messages, split)
+      end do
+      table%fine_m = x
+      table%fine_length = l
+   contains
+      subroutine one_length(k)
+         integer, intent(in) :: k
+         type(egw_error), allocatable :: err
+         call cap_length(table%params, mid(k), l_mid(k), err)
+         if (allocated(err)) then
+            stats(k) = err%stat
+            messages(k) = err%message
+         end if
+      end subroutine one_length
+   end subroutine fine_lengths
 
    !> Whether the flow-pressure cap acts on the loading of a rough sphere up to delta_max:
    !> the largest total pressure of the loading solve there (at the curves' tolerance)
@@ -471,6 +563,8 @@ contains
          ! the node m = 0, where the Hertz part sets in and the curves change as sqrt(m),
          ! 1/32 of that: its first interval met its check curve to 9.5e-4 at min_width)
          wide = .true.
+         if (table%force_ratio) wide = m(2:) - m(:size(m) - 1) >= &
+            & min_width*(m(size(m)) - m(1))
          if (log_table(table)) then
             wide = m(2:) - m(:size(m) - 1) >= min_width*(m(size(m)) - m(1))
             where (m(:size(m) - 1) == 0.0_dp .or. m(2:) == 0.0_dp) wide = &
@@ -663,6 +757,9 @@ contains
             offset = curve_offset(table, mid, mid%s(i))
             call map_s(table, mid%m, knee, 1.0_dp/length, offset, s, dsdx)
             s = min(s, 1.0_dp)
+         else if (table%force_ratio) then
+            ! (1/L from the fine grid, of which the midpoint is a node: its own L)
+            s = mid%s(i)
          else
             s = min(mid%s(i)*mid%length/length, 1.0_dp)
          end if
@@ -671,8 +768,12 @@ contains
             call curve_eval(curves(first + k - 1), s, r, dr)
             v = v + w(k)*r
          end do
-         ! (gap curves: relative to P(m), their weight is refine_curve's alone)
-         if (.not. mid%log) then
+         ! (gap curves: relative to P(m), their weight is refine_curve's alone; u curves
+         ! weighted as in refine_curve: the local force's tolerance down to local_floor
+         ! P(m) between the node curves too)
+         if (table%force_ratio) then
+            err = max(err, mid%weight(i)*abs(v - mid%gap(i)))
+         else if (.not. mid%log) then
             err = max(err, abs(v - mid%gap(i)))
          else
             err = max(err, mid%weight(i)*abs(v - mid%gap(i)))
@@ -1265,6 +1366,20 @@ contains
       ! the loading force continued below its cut-off by the tail law (table_eval
       ! gives 0 there), so that the gap stays smooth across it
       call table_eval_tail_law(table%loading, curve%m - x_solve, p_ext, k_ext)
+      if (table%force_ratio) then
+         ! u = P/P_load(m) of the solves times 1/c (the gap's scaling): 1 at s = 0, 0 at
+         ! s = 1 (the residual overlap of L), du/ds = -K span/(c P_load(m))
+         g = 1.0_dp
+         if (x > 0.0_dp) g = max(res%force, 0.0_dp)/(curve%c_turn*curve%scale)
+         if (x >= 1.0_dp) g = 0.0_dp
+         dg = 0.0_dp
+         if (res%force > 0.0_dp) dg = -res%stiffness*curve%span/(curve%c_turn*curve%scale)
+         if (curve%p_turn > 0.0_dp .and. x > 0.0_dp) &
+            & weight = curve%scale/max(res%force, local_floor*curve%p_turn)
+         if (abs(g) < tiny_ratio) g = 0.0_dp
+         if (abs(dg) < tiny_ratio) dg = 0.0_dp
+         return
+      end if
       if (x > 0.0_dp .and. .not. at_turn) g = (p_ext - res%force/curve%c_turn)/curve%scale
       ! Hertz + cap: refine_curve's weight, g's unit over max(P, local_floor P(m)), so that
       ! each curve's cubics hold the tolerance relative to the local force down to

@@ -30,7 +30,9 @@
 !> history changes. Elastic summits (not EP-GW, psi = 0) store no curves: unloading
 !> retraces the loading table exactly. Rough + cap tables whose cap acts below delta_max
 !> (mapped) take s piecewise linear in m - delta instead (the two-piece map, map_s;
-!> turning points at or below 0 only its tail).
+!> turning points at or below 0 only its tail). Hertz + cap tables (force_ratio, format
+!> version 5) store the unloading force itself, u = P/P_load(m), P = P_load(m) u(s, m),
+!> with 1/L on a fine delta_max grid of their own (fine_inv_span).
 module egw_hysteresis_data
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use, intrinsic :: iso_fortran_env, only: int64
@@ -45,7 +47,7 @@ module egw_hysteresis_data
       & turning_point, gap_combination, unload_tail_ratio, make_lookup, m_breakpoint, &
       & m_coordinate, stencil_first, locate, turning_knee, map_s, map_x, map_piece, &
       & map_iota, map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, log_branch, &
-      & max_log_ratio, log_unload, stencil_width, stencil_window, stencil_sum
+      & max_log_ratio, log_unload, stencil_width, stencil_window, stencil_sum, unload_floor
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
@@ -68,6 +70,15 @@ module egw_hysteresis_data
    !> 0 over [s_zero, 1] in a fixed length; nodes of every curve (dyadic: the union grid
    !> keeps them exactly).
    real(dp), parameter, public :: s_knee = 0.5_dp, s_zero = 0.75_dp
+
+   !> The relative error of L(m) that a force_ratio table's fine grid is bisected to, in
+   !> units of rel_tol: near the residual overlap u ~ (1 - s)**1.5, so a relative error e
+   !> of L (of s) is 1.5 e/(1 - s) of the local force, 1 - s ~ 1e-3**(2/3) = 0.01 where u
+   !> is 1e-3 (the floor of the local tolerance): e <= rel_tol/4 0.01/1.5 = rel_tol/600.
+   !> (1/L on the table's own nodes left 0.057 of the local force at 1e-3 on stop 49's
+   !> 15 nodes, four times finer 4.1e-4; four times finer on a 29-node grid graded
+   !> towards first yield 1.1e-3: doc/stability.md stops 49 and 50)
+   real(dp), parameter, public :: fine_length_tol = 1.0_dp/600
 
    !> Finest bucket level (2**14 buckets): the grids are dyadic, so buckets at the finest
    !> level hold at most one node and the forward scan takes at most one step.
@@ -179,6 +190,22 @@ module egw_hysteresis_data
       !> §12): L(m_j) is m_j minus the residual overlap, s_max = 1, and below s = 1 there
       !> is no force (a rough model with the cap is not capped here: EP-GW's layout)
       logical :: capped = .false.
+      !> Hertz + cap, format version 5 (the build's since stop 50): the curves store the
+      !> unloading force itself, u = P/P_load(m) (1 at s = 0, 0 at s = 1) with du/ds, in
+      !> place of the gap (P = P_load(m) sum_k w_k u_k(s), no loading force below the
+      !> turning point), and 1/L comes from fine_length, not from length: the table
+      !> holds rel_tol of the local force down to 1e-3 of the turning point's between its
+      !> node curves too (doc/stability.md, stops 49 and 50)
+      logical :: force_ratio = .false.
+      !> force_ratio: L(m) = m - residual overlap (the cap model's) on its own delta_max
+      !> grid fine_m (n_f, increasing, from m(1) to m(n_m), every node of m among them
+      !> with its length), finer than m's where 1/L's cubic interpolation needs it
+      !> (the build bisects it to fine_length_tol): the stored data
+      real(dp), allocatable :: fine_m(:), fine_length(:)
+      !> force_ratio: 1/L at fine_m and the Lagrange denominators of the four-node stencils
+      !> fine_m(k .. k + 3) (4, n_f - 3), their buckets (hysteresis_prepare)
+      real(dp), allocatable :: fine_inv(:), fine_lagrange(:, :)
+      type(grid_lookup) :: fine_lookup
       !> rough + cap with the two-piece s map (format version 4): s = (m - delta)/(s_max
       !> L(m)) with L(m) = (m - knee(m))/s_knee down to the knee, then linear to s_zero at
       !> delta = 0, then on below 0 at slope (1 - s_zero)/tail_length (map_s; a turning
@@ -319,6 +346,7 @@ contains
          end if
          inv_span = stencil_sum(table%n_w, w, table%inv_span(first:first + table%n_w - 1))
       end if
+      if (table%force_ratio) inv_span = fine_inv_span(table, m)
       if (.not. inv_span > 0.0_dp) inv_span = table%inv_span(j)
       ! above the table a log-ratio table's last curve is stretched to span m - delta_max
       ! more, so that its residual end stays where the last curve's is: s of (m - delta)
@@ -335,6 +363,29 @@ contains
          inv_span = map_iota(table, m, knee)
       end if
    end subroutine turning_point
+
+   !> 1/L at the turning point m of a force_ratio table: cubic Lagrange on the four fine
+   !> nodes around m's fine interval (clamped at the grid's ends; at and above delta_max
+   !> the last node's).
+   pure real(dp) function fine_inv_span(table, m) result(inv)
+      type(hysteresis_table), intent(in) :: table   !< a force_ratio table (prepared)
+      real(dp), intent(in) :: m        !< the turning point
+      real(dp) :: d(4)
+      integer :: n_f, first
+      n_f = size(table%fine_m)
+      if (m >= table%delta_max) then
+         inv = table%fine_inv(n_f)
+         return
+      end if
+      first = min(max(locate(table%fine_lookup, table%fine_m, m) - 1, 1), n_f - 3)
+      d = m - table%fine_m(first:first + 3)
+      associate (w => table%fine_lagrange(:, first))
+         inv = d(2)*d(3)*d(4)*w(1)*table%fine_inv(first) + &
+            & d(1)*d(3)*d(4)*w(2)*table%fine_inv(first + 1) + &
+            & d(1)*d(2)*d(4)*w(3)*table%fine_inv(first + 2) + &
+            & d(1)*d(2)*d(3)*w(4)*table%fine_inv(first + 3)
+      end associate
+   end function fine_inv_span
 
    !> The knee of turning point m (stencil first, weights w) of a mapped table: the
    !> nodes' knees interpolated over the stencil's table%n_w nodes, kept in [0, 0.99 m]
@@ -497,6 +548,17 @@ contains
       call table_eval(table%loading, d_1, f_1, k_1)
       if (f_1 > 0.0_dp) ratio = min(max(1.0_dp - f_m*g_1/f_1, 0.0_dp), 1.0_dp)
    end function unload_tail_ratio
+
+   !> The overlap at and below which an unloading curve has no force: the loading table's
+   !> cut-off (the gap and log-ratio curves need the loading force); -huge for force_ratio
+   !> tables, whose force f_m u(s) needs none (their curves end at s = 1, the residual
+   !> overlap, which lies below the cut-off for turning points within ~1 % of first yield:
+   !> 7e-4 P(m) was dropped there at 1e-3, doc/stability.md stop 50).
+   elemental real(dp) function unload_floor(table) result(floor)
+      type(hysteresis_table), intent(in) :: table   !< the table (its loading cut-off)
+      floor = table%loading%cutoff
+      if (table%force_ratio) floor = -huge(1.0_dp)
+   end function unload_floor
 
    !> Uniform buckets over the grid x, their width at most 3/4 of its finest interval,
    !> capped at 2**max_bucket_level.

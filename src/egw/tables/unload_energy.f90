@@ -12,7 +12,7 @@ module egw_unload_energy
    use egw_hysteresis_data, only: hysteresis_table, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, locate, map_s, map_x, s_knee, &
       & s_zero, map_lengths, log_unload, edge_breaks, edge_s, edge_xi, edge_segment, &
-      & stencil_sum
+      & stencil_sum, unload_floor
    implicit none
    private
 
@@ -95,9 +95,12 @@ contains
       end if
       m = max(delta_max_state, delta)
       if (m > table%delta_max) stat = egw_out_of_range
-      if (.not. delta > table%loading%cutoff) return
+      if (.not. delta > unload_floor(table)) return
       energy = table_energy(table%loading, delta)
-      if (table%reversible .or. .not. m > table%elastic_limit) return
+      if (table%reversible .or. .not. m > table%elastic_limit) then
+         if (.not. delta > table%loading%cutoff) energy = 0.0_dp   ! (force_ratio)
+         return
+      end if
       cv%m = m
       call turning_point(table, m, cv%first, cv%w, cv%inv_span, cv%f_m, cv%knee)
       if (table%log_ratio) then   ! (no dips; the walk: the reference)
@@ -123,14 +126,18 @@ contains
          energy = ratio*energy
          return
       end if
-      lo = max(d_1, table%loading%cutoff)
+      lo = max(d_1, unload_floor(table))
       if (walk) then
          call span_dips(table, cv, lo, delta, dips, x_top)
       else
          dips = dips_below(table, cv, lo, delta)
       end if
-      energy = ratio*table_energy(table%loading, lo) + (energy - table_energy(table%loading, &
-         & lo)) - gap_term(table, cv, lo, delta) - dips
+      if (table%force_ratio) then   ! (the force is f_m u: its integral alone; ratio 0)
+         energy = gap_term(table, cv, lo, delta) - dips
+      else
+         energy = ratio*table_energy(table%loading, lo) + (energy - &
+            & table_energy(table%loading, lo)) - gap_term(table, cv, lo, delta) - dips
+      end if
       energy = max(energy, 0.0_dp)
    end subroutine energy_value
 
@@ -513,8 +520,8 @@ contains
       x = cv%m - x
    end function curve_x
 
-   !> The unclipped span force P_load(x) - f_m g(s(x)) of curve cv and its slope dF/dx
-   !> (unload_branch before its clip).
+   !> The unclipped span force P_load(x) - f_m g(s(x)) (force_ratio tables: f_m u(s(x)))
+   !> of curve cv and its slope dF/dx (unload_branch before its clip).
    pure subroutine span_eval(table, cv, x, f, k)
       type(hysteresis_table), intent(in) :: table
       type(unload_curve), intent(in) :: cv
@@ -529,6 +536,11 @@ contains
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, cv%first, cv%w, i, c)
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
+      if (table%force_ratio) then   ! f_m u(s)
+         f = cv%f_m*g
+         k = -cv%f_m*dg*dsdx
+         return
+      end if
       call table_eval(table%loading, x, f_d, k_d)
       f = f_d - cv%f_m*g
       k = k_d + cv%f_m*dg*dsdx
@@ -626,11 +638,16 @@ contains
    end subroutine span_dips
 
    !> int_a^b F dx of the span force of curve cv, a < b in its span (s <= 1), from the
-   !> primitives: the loading table's energy less f_m/(s_max L) times the gap's integral.
+   !> primitives: the loading table's energy less f_m/(s_max L) times the gap's integral
+   !> (force_ratio tables: f_m/(s_max L) times the integral of u).
    pure real(dp) function span_integral(table, cv, a, b) result(total)
       type(hysteresis_table), intent(in) :: table
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: a, b
+      if (table%force_ratio) then   ! (f_m u: the curves' integral alone)
+         total = gap_term(table, cv, a, b)
+         return
+      end if
       total = table_energy(table%loading, b) - table_energy(table%loading, a) - &
          & gap_term(table, cv, a, b)
    end function span_integral
@@ -837,7 +854,7 @@ contains
       if (.not. cv%m > table%elastic_limit) return
       call turning_point(table, cv%m, cv%first, cv%w, cv%inv_span, cv%f_m, cv%knee)
       if (.not. cv%f_m > 0.0_dp) return
-      lo = max(curve_x(table, cv, 1.0_dp), table%loading%cutoff)
+      lo = max(curve_x(table, cv, 1.0_dp), unload_floor(table))
       if (.not. lo < cv%m) return
       call span_dips(table, cv, lo, cv%m, total, x_top, x_low)
       q = total*cv%inv_span/cv%f_m
