@@ -226,8 +226,8 @@ contains
       integer(c_int) :: stat
       type(hysteresis_table), pointer :: h
       real(c_double), pointer :: delta(:), state(:), f(:), k(:)
-      real(dp) :: fi, ki
-      integer :: i, st, first_out
+      real(dp), allocatable :: fa(:), ka(:), ma(:)
+      integer :: i, st, first_out, alloc_stat
       stat = get_table(hp, h)
       if (stat == egw_ok) stat = check_count(n)
       if (stat /= egw_ok .or. n == 0) return
@@ -240,13 +240,29 @@ contains
       if (stat /= egw_ok) return
       f => double_array(force, n)
       k => double_array(stiffness, n)
+      ! evaluated into copies first: a value that leaves the doubles (a state inside the
+      ! input limit on a curve stretched beyond them, as egw_hysteresis_eval refuses) is
+      ! refused before anything is written, as egw.h says
+      allocate (fa(n), ka(n), ma(n), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = failure(egw_out_of_memory, "hysteresis_eval_array: out of memory")
+         return
+      end if
+      ma = state
       first_out = 0
       do i = 1, n
-         call hysteresis_eval(h, delta(i), state(i), fi, ki, st)
-         if (associated(f)) f(i) = fi
-         if (associated(k)) k(i) = ki
+         call hysteresis_eval(h, delta(i), ma(i), fa(i), ka(i), st)
+         if (.not. (ieee_is_finite(fa(i)) .and. ieee_is_finite(ka(i)))) then
+            stat = invalid("delta["//int_str(i - 1)//"] = "//format_real(delta(i))// &
+               & ", delta_max_state["//int_str(i - 1)//"] = "//format_real(state(i))// &
+               & ": the force there exceeds the doubles")
+            return
+         end if
          if (st /= egw_ok .and. first_out == 0) first_out = i
       end do
+      state = ma
+      if (associated(f)) f = fa
+      if (associated(k)) k = ka
       if (first_out > 0) stat = failure(egw_out_of_range, "delta["//int_str(first_out - 1)// &
          & "] or its state above the table's delta_max = "//format_real(h%delta_max)// &
          & " (values extrapolated)")

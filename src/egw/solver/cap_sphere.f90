@@ -322,8 +322,12 @@ contains
          if (abs(d1*step) <= 1.0e-15_dp*st%force .and. d2 > 0.0_dp .and. &
             & abs(step) <= 1.0e-3_dp) exit
       end do
+      ! after max_iter: a flat minimum where the steps cycle on the differences' rounding
+      ! (|step| ~1e-4, P* the same to 1e-14: 5 of 30000 overlaps in 1.0008 .. 1.0043
+      ! delta_y, audit16) is settled too
       if (.not. (abs(step) <= 1.0e-3_dp .and. abs(d1*step) <= 1.0e-15_dp*st%force .or. &
-         & abs(step) <= 1.0e-6_dp) &
+         & abs(step) <= 1.0e-3_dp .and. abs(d1*step) <= 1.0e-13_dp*st%force .and. &
+         & d2 > 0.0_dp .or. abs(step) <= 1.0e-6_dp) &
          & .or. .not. ieee_is_finite(t)) then
          call fatal_error(error, egw_not_converged, "cap solver: the cap radius at delta = " &
             & //format_real(delta)//" delta_y did not converge")
