@@ -57,7 +57,7 @@ module egw_cap_sphere
 
    public :: cap_options, cap_result, cap_history
    public :: cap_load, cap_unload, cap_restitution, cap_units
-   public :: cap_load_scaled_work, cap_unload_scaled_work
+   public :: cap_load_scaled_work, cap_unload_scaled_work, cap_residual
    ! for egw_cap_profile (the profiles of these solves: the rings of a loading solve, the
    ! plastic field and the unloading rings of a history)
    public :: n_press, elastic_margin, fitted_load, check_inputs, gamma_start, load_fitted, &
@@ -675,6 +675,69 @@ contains
       call unscale(history, st%force, st%stiffness, st%a, gamma*st%a, 1.0_dp, &
          & abs(st%force - coarse%force)*history%force_y, result)
    end subroutine cap_load
+
+   !> The residual overlap delta_r/delta_y of cap_load's history at delta_max, without
+   !> what only its force and unloading need (the coarse level's solve, the unloading
+   !> meshes): the same steps, the same value (the hysteresis build's fine L grid). The
+   !> inputs as cap_load's (checked the same way); gamma, when present, is the start of
+   !> the cap radius's search (c/a in (0, 1), e.g. a neighbouring turning point's, out:
+   !> the solution's; 0 or absent: gamma_start's).
+   subroutine cap_residual(radius, modulus, flow_pressure, delta_max, options, residual, &
+      & error, gamma)
+      real(dp), intent(in) :: radius, modulus, flow_pressure, delta_max
+      type(cap_options), intent(in) :: options
+      real(dp), intent(out) :: residual   !< delta_r/delta_y (0 up to first yield)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), intent(inout), optional :: gamma
+      type(cap_history) :: history
+      type(fitted_load) :: st
+      real(dp) :: dm, g, du
+      integer :: m
+      logical :: full
+      residual = 0.0_dp
+      call check_inputs(radius, modulus, flow_pressure, options, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_finite(delta_max) .or. .not. delta_max >= 0.0_dp) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = " &
+            & //format_real(delta_max)//": must be finite and >= 0")
+         return
+      end if
+      call cap_units(radius, modulus, flow_pressure, history%delta_y, history%a_y, &
+         & history%force_y)
+      dm = delta_max/history%delta_y
+      if (dm > 1.0e6_dp) then
+         call fatal_error(error, egw_invalid_argument, "delta_max = " &
+            & //format_real(delta_max)//": beyond 1e6 delta_y (the cap model's range)")
+         return
+      end if
+      if (dm <= 1.0_dp + elastic_margin) return
+      history%delta_max = dm
+      history%options = options
+      m = options%n_rings*2**(options%n_levels - 1)
+      g = gamma_start(dm)
+      if (present(gamma)) then
+         if (gamma > 0.0_dp .and. gamma < 1.0_dp) g = gamma
+      end if
+      call load_fitted(m, dm, options%max_active, g, st, full, error)
+      if (allocated(error)) return
+      if (present(gamma)) gamma = g
+      if (full) then
+         history%contact = -8.0_dp/pi**2 + sqrt(64.0_dp/pi**4 + 2.0_dp*dm)
+         history%cap = history%contact
+         history%disc = history%contact
+         history%u_cheb = 0.0_dp
+         history%n_panels = 1
+         history%s_break(0:1) = [0.0_dp, 1.0_dp]
+         call u_plastic(history, 0.0_dp, residual, du)
+         return
+      end if
+      history%contact = st%a
+      history%cap = g*st%a
+      history%disc = sqrt(2.0_dp*st%force/3.0_dp)
+      call keep_plastic(st, history)
+      call u_plastic(history, 0.0_dp, residual, du)
+      residual = max(0.0_dp, residual)
+   end subroutine cap_residual
 
    !> The fully capped limit at Delta (see t_cap): a from Delta = a**2/2 + 8 a/pi**2,
    !> P = 3 a**2/2, dP/dDelta = 3 a/(a + 8/pi**2); u_pl = Delta - rho**2/2 - w of the

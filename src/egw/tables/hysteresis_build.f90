@@ -5,8 +5,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_status, only: egw_not_converged, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, model_hertz
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
-      & unload_start, cap_solve_options, solve_contact
-   use egw_cap_sphere, only: cap_history, cap_result, cap_load
+      & unload_start, cap_solve_options, solve_contact, history_residual
+   use egw_cap_sphere, only: cap_history, cap_result, cap_load, cap_residual, cap_units
    use egw_cap_loading, only: build_cap_loading
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
       & table_prepare
@@ -472,12 +472,13 @@ contains
       real(dp), intent(in) :: m
       real(dp), intent(out) :: length
       type(egw_error), allocatable, intent(out) :: error
-      type(cap_history) :: hist
-      type(cap_result) :: res
-      call cap_load(params%radius, params%modulus, params%flow_pressure, m, &
-         & cap_solve_options(), hist, res, error)
+      real(dp) :: residual, delta_y, a_y, force_y
+      call cap_residual(params%radius, params%modulus, params%flow_pressure, m, &
+         & cap_solve_options(), residual, error)
       if (allocated(error)) return
-      length = m - hist%residual*hist%delta_y
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+      length = m - residual*delta_y
    end subroutine cap_length
 
    !> Bisect the delta_max intervals until, for each, the Lagrange combination of its
@@ -1114,7 +1115,10 @@ contains
       ! force vanishes, 6.2e-5 P(m) at Hertz + cap's residual overlap at 1e-3)
       curve%c_turn = 1.0_dp
       if (f_turn > 0.0_dp .and. curve%scale > 0.0_dp) curve%c_turn = f_turn/curve%scale
-      if (table%capped) then
+      if (table%capped .and. curve%hist%capped) then
+         ! (the history's own cap_load: its residual overlap is cap_length's, no second solve)
+         curve%length = m - history_residual(curve%hist)
+      else if (table%capped) then
          call cap_length(table%params, m, curve%length, error)
       else if (table%mapped) then
          call mapped_length(table, m, curve, error)
