@@ -5,7 +5,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_status, only: egw_not_converged, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, model_hertz
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
-      & unload_start, cap_solve_options, solve_contact, history_residual
+      & unload_start, cap_solve_options, solve_contact, history_residual, &
+      & history_cap_ratio
    use egw_cap_sphere, only: cap_history, cap_result, cap_load, cap_residual, cap_units
    use egw_cap_loading, only: build_cap_loading
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
@@ -301,7 +302,8 @@ contains
       type(hysteresis_table), intent(inout) :: table
       type(unloading_curve), intent(in) :: curves(:)
       type(egw_error), allocatable, intent(out) :: error
-      real(dp), allocatable :: x(:), l(:), mid(:), l_mid(:), new_x(:), new_l(:)
+      real(dp), allocatable :: x(:), l(:), mid(:), l_mid(:), new_x(:), new_l(:), gam(:), &
+         & g_mid(:), new_g(:)
       logical, allocatable :: done(:), split(:), new_done(:), fresh(:)
       integer, allocatable :: stats(:)
       character(len=256), allocatable :: messages(:)
@@ -309,14 +311,19 @@ contains
       integer :: pass, k, n, first, q, i
       x = table%m
       l = curves%length
+      ! c/a of the cap at each node (the curves' histories'; 0: unknown): the midpoints'
+      ! searches start from their neighbours' (20 % fewer fitted solves; the same
+      ! residual overlaps to ~1e-13)
+      gam = history_cap_ratio(curves%hist)
       allocate (done(size(x) - 1))
       done = .false.
       do pass = 1, 40
          n = size(x)
          mid = 0.5_dp*(x(1:n - 1) + x(2:n))
-         allocate (l_mid(n - 1), stats(n - 1), messages(n - 1), split(n - 1))
+         allocate (l_mid(n - 1), g_mid(n - 1), stats(n - 1), messages(n - 1), split(n - 1))
          stats = 0
          l_mid = 0.0_dp
+         g_mid = 0.0_dp
          !$omp parallel do schedule(dynamic) default(shared) private(k)
          do k = 1, n - 1
             if (.not. done(k)) call one_length(k)
@@ -335,7 +342,7 @@ contains
             done(k) = .not. split(k)
          end do
          if (.not. any(split)) exit
-         allocate (new_x(n + count(split)), new_l(n + count(split)), &
+         allocate (new_x(n + count(split)), new_l(n + count(split)), new_g(n + count(split)), &
             & new_done(n + count(split) - 1), fresh(n + count(split)))
          q = 0
          fresh = .false.
@@ -343,12 +350,14 @@ contains
             q = q + 1
             new_x(q) = x(k)
             new_l(q) = l(k)
+            new_g(q) = gam(k)
             if (k == n) exit
             new_done(q) = done(k)
             if (split(k)) then
                q = q + 1
                new_x(q) = mid(k)
                new_l(q) = l_mid(k)
+               new_g(q) = g_mid(k)
                fresh(q) = .true.
             end if
          end do
@@ -360,8 +369,9 @@ contains
          deallocate (fresh)
          call move_alloc(new_x, x)
          call move_alloc(new_l, l)
+         call move_alloc(new_g, gam)
          call move_alloc(new_done, done)
-         deallocate (l_mid, stats, messages, split)
+         deallocate (l_mid, g_mid, stats, messages, split)
       end do
       table%fine_m = x
       table%fine_length = l
@@ -369,12 +379,29 @@ contains
       subroutine one_length(k)
          integer, intent(in) :: k
          type(egw_error), allocatable :: err
-         call cap_length(table%params, mid(k), l_mid(k), err)
+         real(dp) :: g
+         g = 0.0_dp
+         if (inside(gam(k)) .and. inside(gam(k + 1))) then
+            g = 1.0_dp/(1.0_dp + sqrt((1.0_dp - gam(k))*(1.0_dp - gam(k + 1))/ &
+               & (gam(k)*gam(k + 1))))
+         else if (inside(gam(k))) then
+            g = gam(k)
+         else if (inside(gam(k + 1))) then
+            g = gam(k + 1)
+         end if
+         call cap_length(table%params, mid(k), l_mid(k), err, g)
+         g_mid(k) = g
          if (allocated(err)) then
             stats(k) = err%stat
             messages(k) = err%message
          end if
       end subroutine one_length
+
+      !> (a start of c/a: in (0, 1))
+      elemental logical function inside(g)
+         real(dp), intent(in) :: g
+         inside = g > 0.0_dp .and. g < 1.0_dp
+      end function inside
    end subroutine fine_lengths
 
    !> Whether the flow-pressure cap acts on the loading of a rough sphere up to delta_max:
@@ -467,14 +494,16 @@ contains
    !> The unloading length of a Hertz + cap curve of turning point m: m minus the residual
    !> overlap of cap_load (on the public solves' options); m at and below first yield
    !> (Hertz: the residual overlap is 0).
-   subroutine cap_length(params, m, length, error)
+   subroutine cap_length(params, m, length, error, gamma)
       type(contact_params), intent(in) :: params
       real(dp), intent(in) :: m
       real(dp), intent(out) :: length
       type(egw_error), allocatable, intent(out) :: error
+      !> cap_residual's start of c/a (0: its own), out: the solution's
+      real(dp), intent(inout), optional :: gamma
       real(dp) :: residual, delta_y, a_y, force_y
       call cap_residual(params%radius, params%modulus, params%flow_pressure, m, &
-         & cap_solve_options(), residual, error)
+         & cap_solve_options(), residual, error, gamma)
       if (allocated(error)) return
       call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
          & force_y)
