@@ -304,7 +304,9 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       real(dp), allocatable :: x(:), l(:), mid(:), l_mid(:), new_x(:), new_l(:), gam(:), &
          & g_mid(:), new_g(:)
-      logical, allocatable :: done(:), split(:), new_done(:), fresh(:)
+      real(dp), allocatable :: new_lm(:), new_gm(:)
+      logical, allocatable :: done(:), split(:), new_done(:), fresh(:), solved(:), &
+         & new_solved(:)
       integer, allocatable :: stats(:)
       character(len=256), allocatable :: messages(:)
       real(dp) :: w(4), inv
@@ -313,24 +315,29 @@ contains
       l = curves%length
       ! c/a of the cap at each node (the curves' histories'; 0: unknown): the midpoints'
       ! searches start from their neighbours' (20 % fewer fitted solves; the same
-      ! residual overlaps to ~1e-13)
+      ! residual overlaps to ~1e-15)
       gam = history_cap_ratio(curves%hist)
-      allocate (done(size(x) - 1))
+      ! (an interval's midpoint solved once: kept, with its c/a, while the interval is
+      ! not split, for its checks again after a neighbour's split; it was solved again)
+      allocate (done(size(x) - 1), solved(size(x) - 1), l_mid(size(x) - 1), &
+         & g_mid(size(x) - 1))
       done = .false.
+      solved = .false.
+      l_mid = 0.0_dp
+      g_mid = 0.0_dp
       do pass = 1, 40
          n = size(x)
          mid = 0.5_dp*(x(1:n - 1) + x(2:n))
-         allocate (l_mid(n - 1), g_mid(n - 1), stats(n - 1), messages(n - 1), split(n - 1))
+         allocate (stats(n - 1), messages(n - 1), split(n - 1))
          stats = 0
-         l_mid = 0.0_dp
-         g_mid = 0.0_dp
          !$omp parallel do schedule(dynamic) default(shared) private(k)
          do k = 1, n - 1
-            if (.not. done(k)) call one_length(k)
+            if (.not. (done(k) .or. solved(k))) call one_length(k)
          end do
          !$omp end parallel do
          call first_failure(stats, messages, error)
          if (allocated(error)) return
+         solved = solved .or. .not. done
          split = .false.
          do k = 1, n - 1
             if (done(k)) cycle
@@ -343,7 +350,9 @@ contains
          end do
          if (.not. any(split)) exit
          allocate (new_x(n + count(split)), new_l(n + count(split)), new_g(n + count(split)), &
-            & new_done(n + count(split) - 1), fresh(n + count(split)))
+            & new_done(n + count(split) - 1), fresh(n + count(split)), &
+            & new_solved(n + count(split) - 1), new_lm(n + count(split) - 1), &
+            & new_gm(n + count(split) - 1))
          q = 0
          fresh = .false.
          do k = 1, n
@@ -353,11 +362,17 @@ contains
             new_g(q) = gam(k)
             if (k == n) exit
             new_done(q) = done(k)
+            new_solved(q) = solved(k) .and. .not. split(k)
+            new_lm(q) = l_mid(k)
+            new_gm(q) = g_mid(k)
             if (split(k)) then
                q = q + 1
                new_x(q) = mid(k)
                new_l(q) = l_mid(k)
                new_g(q) = g_mid(k)
+               new_solved(q) = .false.
+               new_lm(q) = 0.0_dp
+               new_gm(q) = 0.0_dp
                fresh(q) = .true.
             end if
          end do
@@ -370,8 +385,11 @@ contains
          call move_alloc(new_x, x)
          call move_alloc(new_l, l)
          call move_alloc(new_g, gam)
+         call move_alloc(new_solved, solved)
+         call move_alloc(new_lm, l_mid)
+         call move_alloc(new_gm, g_mid)
          call move_alloc(new_done, done)
-         deallocate (l_mid, g_mid, stats, messages, split)
+         deallocate (stats, messages, split)
       end do
       table%fine_m = x
       table%fine_length = l
