@@ -338,28 +338,45 @@ contains
       g = 1.0_dp/(1.0_dp + exp(-t))
    end function logistic
 
-   !> A start for gamma = c/a at Delta > 1: ln(c/(a - c)) of the solutions (32/64 rings),
-   !> linear between them in ln(Delta - 1), beyond 30 delta_y along the last slope.
+   !> A start for gamma = c/a at Delta > 1: t = ln(c/(a - c)) of the converged solutions
+   !> (64 rings) at Delta = 1 + exp(x), x from ln(1e-4) to ln(36) in steps of 0.2
+   !> (tools/bench/cap_gamma_start_table.f90), cubic Lagrange in x (within 8e-5 of t at
+   !> the midpoints: load_fitted's Newton then takes 2 iterations, 3-4 from the 14-point
+   !> linear table before, which missed t by up to 0.2), beyond 37 delta_y along the
+   !> last slope (t_cap is reached there: the fully capped limit).
    pure real(dp) function gamma_start(delta) result(g)
       real(dp), intent(in) :: delta   !< scaled Delta = delta/delta_y (> 1)
-      real(dp), parameter :: at(14) = [1.0002_dp, 1.001_dp, 1.01_dp, 1.1_dp, 1.5_dp, &
-         & 2.0_dp, 3.0_dp, 4.0_dp, 5.0_dp, 6.5_dp, 8.0_dp, 12.0_dp, 20.0_dp, 30.0_dp], &
-         & t_at(14) = [-2.952_dp, -2.819_dp, -1.964_dp, -0.539_dp, 0.843_dp, 1.689_dp, &
-         & 2.856_dp, 3.779_dp, 4.583_dp, 5.650_dp, 6.603_dp, 8.786_dp, 12.267_dp, 15.751_dp]
-      real(dp) :: t, x0, x1
-      integer :: i
-      if (delta >= at(14)) then
-         t = t_at(14) + 0.348_dp*(delta - at(14))
-      else if (delta <= at(1)) then
+      integer, parameter :: n_t = 65
+      real(dp), parameter :: x_first = log(1.0e-4_dp), h_x = 0.2_dp, &
+         & x_last = x_first + h_x*(n_t - 1)
+      real(dp), parameter :: t_at(n_t) = [ &
+         & -2.968520_dp, -2.964795_dp, -2.960248_dp, -2.954695_dp, -2.947913_dp, &
+         & -2.939636_dp, -2.929535_dp, -2.917217_dp, -2.902209_dp, -2.883951_dp, &
+         & -2.861784_dp, -2.834955_dp, -2.802636_dp, -2.763950_dp, -2.718046_dp, &
+         & -2.664214_dp, -2.601992_dp, -2.531301_dp, -2.452478_dp, -2.366243_dp, &
+         & -2.273558_dp, -2.175450_dp, -2.072869_dp, -1.966594_dp, -1.857205_dp, &
+         & -1.745090_dp, -1.630471_dp, -1.513440_dp, -1.393976_dp, -1.271976_dp, &
+         & -1.147263_dp, -1.019594_dp, -0.888669_dp, -0.754118_dp, -0.615527_dp, &
+         & -0.472382_dp, -0.324105_dp, -0.170017_dp, -0.009321_dp,  0.158917_dp, &
+         & 0.335802_dp,  0.522650_dp,  0.721035_dp,  0.932852_dp,  1.160389_dp, &
+         & 1.406416_dp,  1.674277_dp,  1.967985_dp,  2.292309_dp,  2.652811_dp, &
+         & 3.055837_dp,  3.508421_dp,  4.018140_dp,  4.592938_dp,  5.241014_dp, &
+         & 5.970812_dp,  6.791114_dp,  7.711208_dp,  8.741076_dp,  9.891577_dp, &
+         & 11.174624_dp, 12.603347_dp, 14.192258_dp, 15.957419_dp, 17.916617_dp]
+      real(dp) :: x, t, p
+      integer :: first
+      x = log(max(delta - 1.0_dp, tiny(1.0_dp)))
+      if (x >= x_last) then
+         t = t_at(n_t) + 0.348_dp*(delta - 1.0_dp - exp(x_last))
+      else if (x <= x_first) then
          t = t_at(1)
       else
-         i = 1
-         do while (at(i + 1) < delta)
-            i = i + 1
-         end do
-         x0 = log(at(i) - 1.0_dp)
-         x1 = log(at(i + 1) - 1.0_dp)
-         t = t_at(i) + (t_at(i + 1) - t_at(i))*(log(delta - 1.0_dp) - x0)/(x1 - x0)
+         first = min(max(int((x - x_first)/h_x), 1), n_t - 3)
+         p = (x - x_first)/h_x - real(first - 1, dp)
+         t = -(p - 1.0_dp)*(p - 2.0_dp)*(p - 3.0_dp)/6.0_dp*t_at(first) &
+            & + p*(p - 2.0_dp)*(p - 3.0_dp)/2.0_dp*t_at(first + 1) &
+            & - p*(p - 1.0_dp)*(p - 3.0_dp)/2.0_dp*t_at(first + 2) &
+            & + p*(p - 1.0_dp)*(p - 2.0_dp)/6.0_dp*t_at(first + 3)
       end if
       g = logistic(min(t, t_cap))
    end function gamma_start
