@@ -7,8 +7,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
       & unload_start, cap_solve_options, solve_contact, history_residual, &
       & history_cap_ratio
-   use egw_cap_sphere, only: cap_history, cap_result, cap_load, cap_residual, cap_units, &
-      & gamma_start
+   use egw_cap_sphere, only: cap_residual, cap_units, gamma_start
    use egw_cap_loading, only: build_cap_loading
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
       & table_prepare
@@ -524,8 +523,9 @@ contains
    end subroutine rough_length
 
    !> The unloading length of a Hertz + cap curve of turning point m: m minus the residual
-   !> overlap of cap_load (on the public solves' options); m at and below first yield
-   !> (Hertz: the residual overlap is 0).
+   !> overlap of cap_load (on the public solves' options; cap_residual, the same value
+   !> without the unloading's parts); m at and below first yield (Hertz: the residual
+   !> overlap is 0).
    subroutine cap_length(params, m, length, error, gamma)
       type(contact_params), intent(in) :: params
       real(dp), intent(in) :: m
