@@ -65,7 +65,7 @@ module egw_rough_sphere
    public :: validate_options, solve_contact, solve_contact_law
    public :: load_history, solve_unload, solve_contact_unload
    public :: unload_start
-   public :: above_first_yield, cap_solve_options
+   public :: above_first_yield, cap_solve_options, history_residual, history_cap_ratio
    ! for egw_rough_profile (the profiles of these solves)
    public :: check_input, check_unload_input, smooth_capped, unloading_problem, &
       & history_cap, loaded_by_route
@@ -1407,6 +1407,23 @@ contains
       type(cap_options) :: options
       options = cap_options(n_rings=32, n_levels=2)
    end function cap_solve_options
+
+   !> The residual overlap [length] of a capped history (capped: cap_load's on
+   !> cap_solve_options, the value cap_residual gives at its delta_max); 0 otherwise.
+   elemental real(dp) function history_residual(history) result(residual)
+      type(loading_history), intent(in) :: history
+      residual = 0.0_dp
+      if (history%capped) residual = history%cap%residual*history%cap%delta_y
+   end function history_residual
+
+   !> c/a, the cap's radius over the contact's, of a capped history's loading (a start for
+   !> cap_residual's search at a neighbouring overlap); 0 otherwise (elastic: none).
+   elemental real(dp) function history_cap_ratio(history) result(ratio)
+      type(loading_history), intent(in) :: history
+      ratio = 0.0_dp
+      if (history%capped .and. history%cap%contact > 0.0_dp) &
+         & ratio = history%cap%cap/history%cap%contact
+   end function history_cap_ratio
 
    !> A cap solve's result as a solve_result: est_rel_err from its two finest levels.
    pure subroutine put_cap_result(res, options, result)
