@@ -212,6 +212,12 @@ contains
          call table_eval_cached(table%loading, delta, state(18:24), force, stiffness)
          if (delta > table%delta_max) call beyond(table, "state(1)", state(1), force, &
             & stiffness, stat, error)
+         ! a contact whose history lies where the loading force is 0 (below a rough
+         ! table's cut-off: never touched, or separated before it touched): a zero piece
+         ! and a zero loading interval up to there, so that its next calls (egw.h's
+         ! inline too) read only the state
+         if (state(1) < table%loading%zero_below .and. .not. table%force_ratio) &
+            & call zero_piece(table%loading%zero_below, delta < state(1), state)
          return
       end if
       if (.not. delta > unload_floor(table)) return   ! below the cut-off: no force
@@ -498,6 +504,36 @@ contains
       ends = [lo, hi]
       found = .true.
    end subroutine make_log_piece
+
+   !> The caches of a state whose history state(1) lies below zero_below, the loading
+   !> table's overlap below which its force and stiffness are 0 (both +0, as table_eval
+   !> returns there): a linear loading interval of zero cubic over (lo, zero_below), lo =
+   !> -sqrt(huge)/4 so that the cubics' powers of delta - lo stay finite, and after a call
+   !> below the history (unloading) also a piece of zero cubic over (lo, state(1)) for the
+   !> turning point state(1) (its turning-point data marked stale, state(4) = 0). Below
+   !> the cut-off a state at or under elastic_limit is evaluated by the loading table
+   !> (hysteresis_eval_state), so both give that call's values: the piece below state(1),
+   !> the interval loading further. A call loading further leaves no piece, as
+   !> egw_hysteresis_eval_cached's loading step (state(1) = delta, the piece dropped, the
+   !> interval kept): the inline step and the call leave the same state. A lower delta
+   !> than lo, or one at zero_below or above, takes the call.
+   pure subroutine zero_piece(zero_below, unloading, state)
+      real(dp), intent(in) :: zero_below   !< the loading table's zero_below
+      logical, intent(in) :: unloading     !< the call's delta below the history state(1)
+      real(dp), intent(inout) :: state(hysteresis_state_size)   !< a tagged state
+      real(dp), parameter :: lo = -0.25_dp*sqrt(huge(1.0_dp))
+      if (.not. state(1) > lo) return
+      if (unloading) then
+         state(2) = state(1)
+         state(4) = 0.0_dp
+         state(11) = lo
+         state(12) = state(1)
+         state(14:17) = 0.0_dp
+      end if
+      state(18) = lo
+      state(19) = zero_below
+      state(20:24) = 0.0_dp
+   end subroutine zero_piece
 
    !> A new contact's state for hysteresis_eval_state: never touched (-huge), no cache.
    pure subroutine hysteresis_state_init(state)
