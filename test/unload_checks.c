@@ -306,7 +306,9 @@ int egw_capi_test_hysteresis(void) {
       egw_hysteresis_info info;
       double sp[EGW_HYSTERESIS_STATE_SIZE], se[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0;
       double plain = -HUGE_VAL, fi, ki, fe, ke, fp, kp, c;
-      int served = 0, below = 0, exact = 1, same = 1, prev_loading = 1, misses = 1;
+      int served = 0, below = 0, exact = 1, same = 1, prev_loading = 1, misses = 1,
+          after = 0, served_after = 0;
+      double prev_d = 0.0;
       HCHECK(egw_hysteresis_get_info(h, &info) == EGW_OK && info.cutoff < 0.0);
       HCHECK(egw_hysteresis_state_tag(h, &tag) == EGW_OK);
       c = info.cutoff;
@@ -338,7 +340,8 @@ int egw_capi_test_hysteresis(void) {
         a = hit ? EGW_OK : egw_hysteresis_eval_state(h, d, sp, &fi, &ki);
         HCHECK(egw_hysteresis_eval_state(h, d, se, &fe, &ke) == a);
         HCHECK(egw_hysteresis_eval(h, d, &plain, &fp, &kp) == a);
-        exact = exact && fi == fe && ki == ke && memcmp(sp, se, sizeof sp) == 0;
+        exact = exact && fi == fe && ki == ke && memcmp(sp, se, sizeof sp) == 0 &&
+                (d < c ? fi == 0.0 && ki == 0.0 : 1);
         same = same && se[0] == plain && near_force(h, plain, fe, fp);
         if (i < 400) {
           /* not served: only the first step and a step right after one that loaded
@@ -346,13 +349,21 @@ int egw_capi_test_hysteresis(void) {
           misses = misses && (hit || prev_loading);
           prev_loading = loading;
           below++, served += hit;
-          exact = exact && fi == 0.0 && ki == 0.0 && fp == 0.0 && kp == 0.0;
+          exact = exact && fp == 0.0 && kp == 0.0;
+        } else if (d < c) {
+          /* touched and unloaded below the cut-off: served but for the first step there */
+          misses = misses && (hit || !(prev_d < c));
+          after++, served_after += hit;
+          exact = exact && fp == 0.0 && kp == 0.0;
         }
+        prev_d = d;
       }
       HCHECK(exact);
       HCHECK(same);
       HCHECK(misses);
-      printf("    below the cut-off: %d of %d steps served inline\n", served, below);
+      HCHECK(after > 10);
+      printf("    below the cut-off: %d of %d steps served inline before touching, %d of %d "
+             "after\n", served, below, served_after, after);
     }
     {
       double garbage[EGW_HYSTERESIS_STATE_SIZE];

@@ -220,7 +220,13 @@ contains
             & call zero_piece(table%loading%zero_below, delta < state(1), state)
          return
       end if
-      if (.not. delta > unload_floor(table)) return   ! below the cut-off: no force
+      if (.not. delta > unload_floor(table)) then   ! below the cut-off: no force
+         ! (a zero piece there, so that the next calls below it read only the state;
+         ! its turning-point data kept where they are state(1)'s)
+         if (.not. table%force_ratio) call zero_piece(unload_floor(table), .true., state, &
+            & unload_floor(table))
+         return
+      end if
       if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
          & state(4) <= size(table%m) - table%n_w + 1)) then
          ! (P_load of the turning point from the loading interval the state holds)
@@ -517,17 +523,24 @@ contains
    !> egw_hysteresis_eval_cached's loading step (state(1) = delta, the piece dropped, the
    !> interval kept): the inline step and the call leave the same state. A lower delta
    !> than lo, or one at zero_below or above, takes the call.
-   pure subroutine zero_piece(zero_below, unloading, state)
+   !> A turning point above elastic_limit (unload_floor given: the piece ends there, below
+   !> which its unloading force is 0) keeps its turning-point data where they are its own
+   !> (state(2) = state(1)); the loading interval is then never read (no loading below
+   !> the history, and the piece's interval is linear).
+   pure subroutine zero_piece(zero_below, unloading, state, floor)
       real(dp), intent(in) :: zero_below   !< the loading table's zero_below
       logical, intent(in) :: unloading     !< the call's delta below the history state(1)
       real(dp), intent(inout) :: state(hysteresis_state_size)   !< a tagged state
+      !> the unloading floor of a turning point above elastic_limit (the piece's end)
+      real(dp), intent(in), optional :: floor
       real(dp), parameter :: lo = -0.25_dp*sqrt(huge(1.0_dp))
       if (.not. state(1) > lo) return
       if (unloading) then
+         if (.not. state(2) == state(1)) state(4) = 0.0_dp
          state(2) = state(1)
-         state(4) = 0.0_dp
          state(11) = lo
          state(12) = state(1)
+         if (present(floor)) state(12) = floor
          state(14:17) = 0.0_dp
       end if
       state(18) = lo
