@@ -32,6 +32,10 @@ module egw_hysteresis
       & stencil_first, m_coordinate, first_yield, hertz_capped
    public :: hysteresis_state_size
 
+   !> The start of a zero piece and zero loading interval (zero_piece): a real piece never
+   !> starts there, and the cubics' powers of delta - zero_lo stay finite.
+   real(dp), parameter :: zero_lo = -0.25_dp*sqrt(huge(1.0_dp))
+
    interface
       !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
       !> (relative to the force at the turning point). Errors: invalid params or range,
@@ -180,6 +184,13 @@ contains
          if (.not. inside .and. (state(24) > 1.0_dp .or. state(24) < 0.0_dp)) then
             call table_segment(table%loading, delta, state(18:24), inside)
             if (inside) state(24) = merge(2.0_dp, -1.0_dp, state(24) > 0.0_dp)
+         end if
+         if (inside .and. state(11) == zero_lo) then
+            ! a zero piece (zero_piece: separated, no force): 0, no status, as the call
+            ! that made it (hysteresis_eval returns there before its delta_max check)
+            force = 0.0_dp
+            stiffness = 0.0_dp
+            return
          end if
          if (inside) then
             call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
@@ -533,7 +544,7 @@ contains
       real(dp), intent(inout) :: state(hysteresis_state_size)   !< a tagged state
       !> the unloading floor of a turning point above elastic_limit (the piece's end)
       real(dp), intent(in), optional :: floor
-      real(dp), parameter :: lo = -0.25_dp*sqrt(huge(1.0_dp))
+      real(dp), parameter :: lo = zero_lo
       if (.not. state(1) > lo) return
       if (unloading) then
          if (.not. state(2) == state(1)) state(4) = 0.0_dp
