@@ -154,7 +154,9 @@ contains
    !> table's: h = ln(P_load/P) over the whole run, the loading interval beside it, taken
    !> alone when the contact crosses into the next): the same values to rounding (test
    !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
-   !> histories. Only a state that this table filled is trusted (its tag, state(3)): any
+   !> histories. Where the force is 0 below the cut-off (a contact that has not touched, or
+   !> one below its turning point's unloading floor) the state keeps a zero piece
+   !> (zero_piece), so that separated contacts too read only their state. Only a state that this table filled is trusted (its tag, state(3)): any
    !> other (all zero, as a DEM code's zeroed contact arrays; hysteresis_state_init's;
    !> another table's; garbled) is a new contact, its history reset to -huge; but a NaN
    !> state(1), as a NaN delta, is refused (egw_invalid_argument, nothing changed, as
