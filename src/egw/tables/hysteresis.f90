@@ -30,7 +30,7 @@ module egw_hysteresis
       & hysteresis_state_init, hysteresis_energy, hysteresis_energy_walk, hysteresis_prepare, &
       & m_breakpoint, &
       & stencil_first, m_coordinate, first_yield, hertz_capped
-   public :: hysteresis_state_size
+   public :: hysteresis_state_size, zero_lo
 
    !> The start of a zero piece and zero loading interval (zero_piece): a real piece never
    !> starts there, and the cubics' powers of delta - zero_lo stay finite.
