@@ -766,7 +766,10 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
    * [17..23] the loading table's interval (ends, cubic in delta - [17], > 0 where it is
    * ln P; on a log-ratio table's piece, whose cubic is -ln(P_load/P), 2 for ln P and -1
    * for a linear interval). A log-ratio piece spans loading intervals: it serves delta
-   * inside both its ends and the loading interval's. */
+   * inside both its ends and the loading interval's. Where the force is 0 below the
+   * loading table's cut-off (a contact that has not touched, or one separated below its
+   * turning point's unloading curve) the call leaves a zero piece and a zero linear
+   * interval from -sqrt(DBL_MAX)/4, so that separated contacts are served here too. */
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (!(state[2] == tag)) return 0;

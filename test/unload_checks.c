@@ -293,6 +293,79 @@ int egw_capi_test_hysteresis(void) {
              "values and states identical\n", served_up, up, served_down, down);
     }
     {
+      /* a contact that has never touched (or separated before it touched): below the
+       * loading table's cut-off the first call fills the state (this table's tag, a zero
+       * piece below its history), so that the next calls there are served by the inline
+       * egw_hysteresis_eval_cached alone (after a call below the history, which leaves
+       * the piece; a call loading further leaves none, as the inline's loading step) --
+       * loading further and unloading -- with the
+       * call's values bit for bit (0 force, 0 stiffness: egw_hysteresis_eval's) and the
+       * history of egw_hysteresis_eval; then the contact touches and unloads past the
+       * turning point: the same values and states with the inline step first as with the
+       * call alone (bit for bit), and egw_hysteresis_eval's to rounding (near_force) */
+      egw_hysteresis_info info;
+      double sp[EGW_HYSTERESIS_STATE_SIZE], se[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0;
+      double plain = -HUGE_VAL, fi, ki, fe, ke, fp, kp, c;
+      int served = 0, below = 0, exact = 1, same = 1, prev_loading = 1, misses = 1,
+          after = 0, served_after = 0;
+      double prev_d = 0.0;
+      HCHECK(egw_hysteresis_get_info(h, &info) == EGW_OK && info.cutoff < 0.0);
+      HCHECK(egw_hysteresis_state_tag(h, &tag) == EGW_OK);
+      c = info.cutoff;
+      egw_hysteresis_state_init(sp);
+      egw_hysteresis_state_init(se);
+      HCHECK(egw_hysteresis_eval_state(h, c - 0.5, sp, &fi, &ki) == EGW_OK &&
+             fi == 0.0 && ki == 0.0 && sp[0] == c - 0.5);
+      /* filled: the table's tag, and the inline serves a lower and a higher overlap
+       * (on main: not served, the state held no interval below the cut-off) */
+      HCHECK(sp[2] == tag);
+      HCHECK(egw_hysteresis_eval_state(h, c - 0.6, sp, &fi, &ki) == EGW_OK && fi == 0.0 &&
+             ki == 0.0 && sp[0] == c - 0.5);
+      memcpy(se, sp, sizeof sp);
+      HCHECK(egw_hysteresis_eval_cached(tag, c - 0.7, se, &fe, &ke) == 1 && fe == 0.0 &&
+             ke == 0.0 && se[0] == c - 0.5);
+      memcpy(se, sp, sizeof sp);
+      HCHECK(egw_hysteresis_eval_cached(tag, c - 0.3, se, &fe, &ke) == 1 && fe == 0.0 &&
+             ke == 0.0 && se[0] == c - 0.3);
+      egw_hysteresis_state_init(sp);
+      egw_hysteresis_state_init(se);
+      for (int i = 0; i <= 800; i++) {
+        /* c - 0.6 ... c - 0.01 back and forth (jitter 0.003), then up to 2.5, down to
+         * c - 0.4 and up to 1.0 */
+        double d = i < 400 ? c - 0.3 + 0.29 * sin(0.37 * i) + 0.003 * cos(5.1 * i)
+                   : i <= 600 ? c - 0.3 + (2.8 - c) * (i - 400) / 200.0
+                   : i <= 700 ? 2.5 - (2.9 - c) * (i - 600) / 100.0
+                              : c - 0.4 + (1.4 - c) * (i - 700) / 100.0;
+        int loading = d >= sp[0], a, hit = egw_hysteresis_eval_cached(tag, d, sp, &fi, &ki);
+        a = hit ? EGW_OK : egw_hysteresis_eval_state(h, d, sp, &fi, &ki);
+        HCHECK(egw_hysteresis_eval_state(h, d, se, &fe, &ke) == a);
+        HCHECK(egw_hysteresis_eval(h, d, &plain, &fp, &kp) == a);
+        exact = exact && fi == fe && ki == ke && memcmp(sp, se, sizeof sp) == 0 &&
+                (d < c ? fi == 0.0 && ki == 0.0 : 1);
+        same = same && se[0] == plain && near_force(h, plain, fe, fp);
+        if (i < 400) {
+          /* not served: only the first step and a step right after one that loaded
+           * further (which leaves no piece; that call fills it) */
+          misses = misses && (hit || prev_loading);
+          prev_loading = loading;
+          below++, served += hit;
+          exact = exact && fp == 0.0 && kp == 0.0;
+        } else if (d < c) {
+          /* touched and unloaded below the cut-off: served but for the first step there */
+          misses = misses && (hit || !(prev_d < c));
+          after++, served_after += hit;
+          exact = exact && fp == 0.0 && kp == 0.0;
+        }
+        prev_d = d;
+      }
+      HCHECK(exact);
+      HCHECK(same);
+      HCHECK(misses);
+      HCHECK(after > 10);
+      printf("    below the cut-off: %d of %d steps served inline before touching, %d of %d "
+             "after\n", served, below, served_after, after);
+    }
+    {
       double garbage[EGW_HYSTERESIS_STATE_SIZE];
       for (int i = 0; i < EGW_HYSTERESIS_STATE_SIZE; i++) garbage[i] = 1e300 * (i + 1);
       garbage[0] = 3.0;

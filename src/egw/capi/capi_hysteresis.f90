@@ -12,7 +12,7 @@ module egw_capi_hysteresis
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_cache, only: build_hysteresis_cached
-   use egw_hysteresis, only: hysteresis_table, hysteresis_eval, &
+   use egw_hysteresis, only: hysteresis_table, hysteresis_eval, zero_lo, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
@@ -124,6 +124,22 @@ contains
       end if
       call c_f_pointer(hp, h)
       call c_f_pointer(state_p, state, [hysteresis_state_size])
+      ! a separated contact's zero piece (hysteresis_eval_state's first test, its zero
+      ! piece's exit): 0 before the checks, which it passed when the piece was made
+      if (state(3) == h%tag .and. state(11) == zero_lo .and. state(2) == state(1) .and. &
+         & state(11) < delta .and. delta < state(12) .and. state(18) <= delta .and. &
+         & delta < state(19) .and. state(1) <= h%input_limit) then
+         if (c_associated(force)) then
+            call c_f_pointer(force, out)
+            out = 0.0_dp
+         end if
+         if (c_associated(stiffness)) then
+            call c_f_pointer(stiffness, out)
+            out = 0.0_dp
+         end if
+         stat = egw_ok
+         return
+      end if
       if (ieee_is_nan(state(1))) then
          stat = invalid("state[0] = NaN: a new contact starts from "// &
             & "egw_hysteresis_state_init (state[0] = -HUGE_VAL)")

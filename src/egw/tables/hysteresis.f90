@@ -30,7 +30,11 @@ module egw_hysteresis
       & hysteresis_state_init, hysteresis_energy, hysteresis_energy_walk, hysteresis_prepare, &
       & m_breakpoint, &
       & stencil_first, m_coordinate, first_yield, hertz_capped
-   public :: hysteresis_state_size
+   public :: hysteresis_state_size, zero_lo
+
+   !> The start of a zero piece and zero loading interval (zero_piece): a real piece never
+   !> starts there, and the cubics' powers of delta - zero_lo stay finite.
+   real(dp), parameter :: zero_lo = -0.25_dp*sqrt(huge(1.0_dp))
 
    interface
       !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
@@ -150,7 +154,9 @@ contains
    !> table's: h = ln(P_load/P) over the whole run, the loading interval beside it, taken
    !> alone when the contact crosses into the next): the same values to rounding (test
    !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
-   !> histories. Only a state that this table filled is trusted (its tag, state(3)): any
+   !> histories. Where the force is 0 below the cut-off (a contact that has not touched, or
+   !> one below its turning point's unloading floor) the state keeps a zero piece
+   !> (zero_piece), so that separated contacts too read only their state. Only a state that this table filled is trusted (its tag, state(3)): any
    !> other (all zero, as a DEM code's zeroed contact arrays; hysteresis_state_init's;
    !> another table's; garbled) is a new contact, its history reset to -huge; but a NaN
    !> state(1), as a NaN delta, is refused (egw_invalid_argument, nothing changed, as
@@ -180,6 +186,13 @@ contains
          if (.not. inside .and. (state(24) > 1.0_dp .or. state(24) < 0.0_dp)) then
             call table_segment(table%loading, delta, state(18:24), inside)
             if (inside) state(24) = merge(2.0_dp, -1.0_dp, state(24) > 0.0_dp)
+         end if
+         if (inside .and. state(11) == zero_lo) then
+            ! a zero piece (zero_piece: separated, no force): 0, no status, as the call
+            ! that made it (hysteresis_eval returns there before its delta_max check)
+            force = 0.0_dp
+            stiffness = 0.0_dp
+            return
          end if
          if (inside) then
             call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
@@ -212,9 +225,21 @@ contains
          call table_eval_cached(table%loading, delta, state(18:24), force, stiffness)
          if (delta > table%delta_max) call beyond(table, "state(1)", state(1), force, &
             & stiffness, stat, error)
+         ! a contact whose history lies where the loading force is 0 (below a rough
+         ! table's cut-off: never touched, or separated before it touched): a zero piece
+         ! and a zero loading interval up to there, so that its next calls (egw.h's
+         ! inline too) read only the state
+         if (state(1) < table%loading%zero_below .and. .not. table%force_ratio) &
+            & call zero_piece(table%loading%zero_below, delta < state(1), state)
          return
       end if
-      if (.not. delta > unload_floor(table)) return   ! below the cut-off: no force
+      if (.not. delta > unload_floor(table)) then   ! below the cut-off: no force
+         ! (a zero piece there, so that the next calls below it read only the state;
+         ! its turning-point data kept where they are state(1)'s)
+         if (.not. table%force_ratio) call zero_piece(unload_floor(table), .true., state, &
+            & unload_floor(table))
+         return
+      end if
       if (.not. (state(2) == state(1) .and. state(4) >= 1.0_dp .and. &
          & state(4) <= size(table%m) - table%n_w + 1)) then
          ! (P_load of the turning point from the loading interval the state holds)
@@ -498,6 +523,43 @@ contains
       ends = [lo, hi]
       found = .true.
    end subroutine make_log_piece
+
+   !> The caches of a state whose history state(1) lies below zero_below, the loading
+   !> table's overlap below which its force and stiffness are 0 (both +0, as table_eval
+   !> returns there): a linear loading interval of zero cubic over (lo, zero_below), lo =
+   !> -sqrt(huge)/4 so that the cubics' powers of delta - lo stay finite, and after a call
+   !> below the history (unloading) also a piece of zero cubic over (lo, state(1)) for the
+   !> turning point state(1) (its turning-point data marked stale, state(4) = 0). Below
+   !> the cut-off a state at or under elastic_limit is evaluated by the loading table
+   !> (hysteresis_eval_state), so both give that call's values: the piece below state(1),
+   !> the interval loading further. A call loading further leaves no piece, as
+   !> egw_hysteresis_eval_cached's loading step (state(1) = delta, the piece dropped, the
+   !> interval kept): the inline step and the call leave the same state. A lower delta
+   !> than lo, or one at zero_below or above, takes the call.
+   !> A turning point above elastic_limit (unload_floor given: the piece ends there, below
+   !> which its unloading force is 0) keeps its turning-point data where they are its own
+   !> (state(2) = state(1)); the loading interval is then never read (no loading below
+   !> the history, and the piece's interval is linear).
+   pure subroutine zero_piece(zero_below, unloading, state, floor)
+      real(dp), intent(in) :: zero_below   !< the loading table's zero_below
+      logical, intent(in) :: unloading     !< the call's delta below the history state(1)
+      real(dp), intent(inout) :: state(hysteresis_state_size)   !< a tagged state
+      !> the unloading floor of a turning point above elastic_limit (the piece's end)
+      real(dp), intent(in), optional :: floor
+      real(dp), parameter :: lo = zero_lo
+      if (.not. state(1) > lo) return
+      if (unloading) then
+         if (.not. state(2) == state(1)) state(4) = 0.0_dp
+         state(2) = state(1)
+         state(11) = lo
+         state(12) = state(1)
+         if (present(floor)) state(12) = floor
+         state(14:17) = 0.0_dp
+      end if
+      state(18) = lo
+      state(19) = zero_below
+      state(20:24) = 0.0_dp
+   end subroutine zero_piece
 
    !> A new contact's state for hysteresis_eval_state: never touched (-huge), no cache.
    pure subroutine hysteresis_state_init(state)

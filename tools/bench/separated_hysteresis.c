@@ -1,0 +1,115 @@
+/* Cost of an EP-GW hysteresis contact that is separated, as a DEM meets it when a
+ * neighbour enters the skin (a state fresh from egw_hysteresis_state_init) or after it
+ * touched, against an inline Hertz formula (issue 33 item 5: <= 2x beyond the cut-off,
+ * <= 5x in the tail). egw.h alone.
+ *
+ * Build (from the worktree; LIB the fpm archive, e.g. build/gfortran_<hash>/egw/libegw.a):
+ *   gcc -O2 -std=c99 -Iinclude tools/bench/separated_hysteresis.c LIB \
+ *       -lfftw3_omp -lfftw3 -llapack -lblas -lgfortran -lquadmath -lgomp -lm \
+ *       -o /tmp/sephyst
+ * Run: OMP_NUM_THREADS=1 /tmp/sephyst [rounds]   (prints ns per evaluation, the minimum
+ * over the rounds, and the ratio to the inline Hertz loop of the same round).
+ *
+ * Contact: E-GW/EP-GW R 0.5 mm, E* 36.8 GPa, sigma 1 um, mu 4, psi 1; table rel_tol 1e-4
+ * over [-3, 30] sigma (the loading table's cut-off lies below -3 sigma). 256 contacts, each
+ * evaluated at x0 + (uniform +-0.005 sigma) overlaps from a table of 4096, 2^22
+ * evaluations a case. Cases: x0 = cut-off - 2 sigma ("beyond") and -2.5 sigma ("tail",
+ * between the cut-off and 0); states fresh (egw_hysteresis_state_init before the loop:
+ * never touched) or with a history (loaded to 1 sigma before the loop: separated);
+ * paths: "inline" = egw_hysteresis_eval_cached, egw_hysteresis_eval_state when it does
+ * not serve; "call" = egw_hysteresis_eval_state alone. Hertz: (4/3) E* sqrt(R) |d|^1.5
+ * and its stiffness, inline (|d| so that it computes, as a contact in touch). */
+#define _POSIX_C_SOURCE 199309L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+#include "egw.h"
+
+#define NC 256
+#define ND 4096
+#define NEVAL (1 << 22)
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static double st[NC][EGW_HYSTERESIS_STATE_SIZE];
+static double dl[ND];
+static volatile double sink;
+
+int main(int argc, char **argv) {
+  int rounds = argc > 1 ? atoi(argv[1]) : 5;
+  egw_params p;
+  egw_hysteresis h = NULL;
+  egw_hysteresis_info info;
+  double tag, sigma = 1e-6, best[2][2][2], hertz_best = 1e30, ratio[2][2][2];
+  const char *where[2] = {"beyond", "tail"}, *hist[2] = {"fresh", "history"},
+             *path[2] = {"inline", "call"};
+  egw_params_default(&p);
+  p.model = EGW_MODEL_EPGW;
+  p.radius = 0.5e-3;
+  p.modulus = 36.8e9;
+  p.sigma = sigma;
+  p.mu = 4.0;
+  p.psi = 1.0;
+  if (egw_hysteresis_build(&p, NULL, -3 * sigma, 30 * sigma, 1e-4, &h) != EGW_OK) {
+    printf("build failed\n");
+    return 1;
+  }
+  egw_hysteresis_get_info(h, &info);
+  egw_hysteresis_state_tag(h, &tag);
+  printf("cut-off %.4f sigma, version %d\n", info.cutoff / sigma, egw_get_version());
+  for (int a = 0; a < 2; a++)
+    for (int b = 0; b < 2; b++)
+      for (int c = 0; c < 2; c++) best[a][b][c] = 1e30, ratio[a][b][c] = 1e30;
+  unsigned long long seed = 20261130;
+  for (int r = 0; r < rounds; r++) {
+    double hertz, c43 = 4.0 / 3.0 * p.modulus * sqrt(p.radius), acc = 0.0, t0;
+    for (int i = 0; i < ND; i++) {
+      seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+      dl[i] = (((seed >> 11) * 0x1.0p-53) - 0.5) * 0.01 * sigma;
+    }
+    t0 = now();
+    for (int n = 0; n < NEVAL; n++) {
+      double d = fabs(-2.5 * sigma + dl[(n * 257) & (ND - 1)]), s = sqrt(d);
+      acc += c43 * d * s + 1.5 * c43 * s;
+    }
+    hertz = (now() - t0) / NEVAL;
+    sink = acc;
+    if (hertz < hertz_best) hertz_best = hertz;
+    for (int w = 0; w < 2; w++)
+      for (int hi = 0; hi < 2; hi++)
+        for (int pa = 0; pa < 2; pa++) {
+          double x0 = w == 0 ? info.cutoff - 2 * sigma : -2.5 * sigma, f, k, dt;
+          for (int j = 0; j < NC; j++) {
+            egw_hysteresis_state_init(st[j]);
+            if (hi) egw_hysteresis_eval_state(h, 1.0 * sigma, st[j], &f, &k);
+          }
+          acc = 0.0;
+          t0 = now();
+          for (int n = 0; n < NEVAL; n++) {
+            int j = n & (NC - 1);
+            double d = x0 + dl[(n * 257) & (ND - 1)];
+            if (pa == 1 || !egw_hysteresis_eval_cached(tag, d, st[j], &f, &k))
+              egw_hysteresis_eval_state(h, d, st[j], &f, &k);
+            acc += f + k;
+          }
+          dt = (now() - t0) / NEVAL;
+          sink = acc;
+          if (dt < best[w][hi][pa]) best[w][hi][pa] = dt;
+          if (dt / hertz < ratio[w][hi][pa]) ratio[w][hi][pa] = dt / hertz;
+        }
+  }
+  printf("inline Hertz %.2f ns (min of %d rounds)\n", 1e9 * hertz_best, rounds);
+  for (int w = 0; w < 2; w++)
+    for (int hi = 0; hi < 2; hi++)
+      for (int pa = 0; pa < 2; pa++)
+        printf("%-6s %-7s %-6s %6.2f ns  %5.2fx Hertz (best round ratio %5.2fx)\n", where[w],
+               hist[hi], path[pa], 1e9 * best[w][hi][pa], best[w][hi][pa] / hertz_best,
+               ratio[w][hi][pa]);
+  egw_hysteresis_free(&h);
+  return 0;
+}
