@@ -2,6 +2,7 @@
 !> against closed forms: Hertz below first yield, first yield at p_max = p_y, the
 !> fully capped asymptote P -> pi a**2 p_y, energy balance, convergence under refinement.
 module test_cap_sphere
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
    use testdrive, only: new_unittest, unittest_type, error_type, check
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument
@@ -1120,22 +1121,39 @@ contains
    !> delta_y = (pi p_y/(2 E*))**2 R and (1/2) m* v_y**2 = (8/15) E* sqrt(R) delta_y**2.5
    !> (1e-14: a few roundings), and without a flow pressure "never" (huge), as C's
    !> egw_first_yield says (DBL_MAX), so that v > first_yield_speed(p, m) is false.
+   !> A mass of 0, -1, NaN, +Inf (NaN on main: sqrt of a negative or 0/0) is refused,
+   !> naming the mass (egw_invalid_argument), and v_y is 0, not NaN.
    subroutine test_first_yield_functions(error)
       type(error_type), allocatable, intent(out) :: error
       type(contact_params) :: p
-      real(dp) :: dy, vy
+      type(egw_error), allocatable :: err
+      real(dp) :: dy, vy, v, bad(4)
+      integer :: i
       p = contact_params(model=model_hertz, radius=1e-3_dp, modulus=1e11_dp, &
          & flow_pressure=1.6e9_dp)
       dy = (pi*1.6e9_dp/2e11_dp)**2*1e-3_dp
       vy = sqrt(2.0_dp*8.0_dp/15.0_dp*1e11_dp*sqrt(1e-3_dp)*dy**2.5_dp/1.3e-4_dp)
-      call check(error, abs(first_yield_overlap(p)/dy - 1.0_dp) < 1e-14_dp .and. &
-         & abs(first_yield_speed(p, 1.3e-4_dp)/vy - 1.0_dp) < 1e-14_dp, &
-         & "closed forms: "//str(first_yield_overlap(p))//str(first_yield_speed(p, 1.3e-4_dp)))
+      v = first_yield_speed(p, 1.3e-4_dp, err)
+      call check(error, .not. allocated(err) .and. &
+         & abs(first_yield_overlap(p)/dy - 1.0_dp) < 1e-14_dp .and. &
+         & abs(v/vy - 1.0_dp) < 1e-14_dp, &
+         & "closed forms: "//str(first_yield_overlap(p))//str(v))
       if (allocated(error)) return
+      bad = [0.0_dp, -1.0_dp, ieee_value(1.0_dp, ieee_quiet_nan), &
+         & ieee_value(1.0_dp, ieee_positive_inf)]
+      do i = 1, size(bad)
+         v = first_yield_speed(p, bad(i), err)
+         call check(error, allocated(err), "mass = "//str(bad(i))//" accepted: v_y = "//str(v))
+         if (allocated(error)) return
+         call check(error, err%stat == egw_invalid_argument .and. index(err%message, "mass") > 0 &
+            & .and. v == 0.0_dp, "mass = "//str(bad(i))//": "//err%message//", v_y = "//str(v))
+         if (allocated(error)) return
+      end do
       p%flow_pressure = 0.0_dp
-      call check(error, first_yield_overlap(p) == huge(1.0_dp) .and. &
-         & first_yield_speed(p, 1.3e-4_dp) == huge(1.0_dp), "no flow_pressure: "// &
-         & str(first_yield_overlap(p))//str(first_yield_speed(p, 1.3e-4_dp))//" (not never)")
+      v = first_yield_speed(p, 1.3e-4_dp, err)
+      call check(error, .not. allocated(err) .and. first_yield_overlap(p) == huge(1.0_dp) .and. &
+         & v == huge(1.0_dp), "no flow_pressure: "// &
+         & str(first_yield_overlap(p))//str(v)//" (not never)")
    end subroutine test_first_yield_functions
 
    !> The cap's impacts are refused beyond 1e4 v_y (egw.h: a/R ~ 70 p_y/E* long before):

@@ -22,6 +22,7 @@ module test_hysteresis
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc, c_null_ptr, c_char
    use, intrinsic :: iso_fortran_env, only: int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
    public :: collect_hysteresis
@@ -70,7 +71,8 @@ contains
          & new_unittest("write/read CSV and binary: same values", test_round_trip), &
          & new_unittest("read refuses corrupted and insane files", test_bad_files), &
          & new_unittest("C DEM loop, egw_time_step: e at 1e-4..10 m/s", t_c_dem_loop), &
-         & new_unittest("C egw_hysteresis_build, _eval, _free", test_c_api) &
+         & new_unittest("C egw_hysteresis_build, _eval, _free", test_c_api), &
+         & new_unittest("stretched last curve far above the table: finite", test_stretched_far) &
          & ]
    end subroutine collect_hysteresis
 
@@ -1334,5 +1336,52 @@ contains
       nfail = c_dem_loop()
       call check(error, int(nfail) == 0, to_string(int(nfail))//" C check(s) failed (see above)")
    end subroutine t_c_dem_loop
+
+   !> A state far above a log-ratio table stretches its last curve to L ~ the state
+   !> (turning_point): from L ~ 1e15 (ulp(L) > 12 sigma) rounding merged the edge map's
+   !> breaks (edge_s: ds = 0.25/0, stiffness 0*Inf) and from 1.3e154 length**2 overflowed
+   !> (edge_breaks: Inf/Inf), so hysteresis_eval gave a force ~1e-47 with a NaN stiffness
+   !> at states 1e15, 1e18, 1e24, ... and every one from 1e155 (Stop 50 audit16, the
+   !> egw-fuzz table: EP-GW, R = E* = 1, sigma 1e-3, mu 2, psi 0.5, [-1e-3, 4e-3], 5e-2).
+   !> Every state 1e4 .. 1e205 (below the table's input limit 1.04e205) with overlaps in
+   !> the table must give a finite force >= 0 and a finite stiffness with
+   !> egw_out_of_range, and the cached state path the same status and values to 1e-12
+   !> (its piece is the same curve written as a cubic in delta: roundings apart).
+   subroutine test_stretched_far(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      real(dp) :: state(hysteresis_state_size), m, f, k, f2, k2, d(3)
+      integer :: e, j, stat, stat2
+      call build_hysteresis(contact_params(model=model_epgw, radius=1.0_dp, modulus=1.0_dp, &
+         & sigma=1e-3_dp, mu=2.0_dp, psi=0.5_dp), solver_options(), -1e-3_dp, 4e-3_dp, &
+         & 5e-2_dp, t, err)
+      call check(error, .not. allocated(err), "fuzz table build")
+      if (allocated(error)) return
+      call check(error, t%log_ratio .and. t%input_limit > 1e205_dp, "a log-ratio table "// &
+         & "with input limit above 1e205")
+      if (allocated(error)) return
+      d = [2e-3_dp, 0.0_dp, 3.9e-3_dp]
+      do e = 4, 205
+         do j = 1, 3
+            m = 10.0_dp**e
+            call hysteresis_eval(t, d(j), m, f, k, stat)
+            call check(error, ieee_is_finite(f) .and. ieee_is_finite(k) .and. f >= 0.0_dp &
+               & .and. stat == egw_out_of_range, "state 1e"//to_string(e)//", delta "// &
+               & format_real(d(j))//": force "//format_real(f)//", stiffness "// &
+               & format_real(k)//", stat "//to_string(stat))
+            if (allocated(error)) return
+            call hysteresis_state_init(state)
+            call hysteresis_eval_state(t, 10.0_dp**e, state, f2, k2, stat2)
+            call hysteresis_eval_state(t, d(j), state, f2, k2, stat2)
+            call check(error, abs(f2 - f) <= 1e-12_dp*f .and. abs(k2 - k) <= 1e-12_dp* &
+               & abs(k) .and. stat2 == stat, "state 1e"// &
+               & to_string(e)//", delta "//format_real(d(j))//": the state path "// &
+               & format_real(f2)//", "//format_real(k2)//" against "//format_real(f)// &
+               & ", "//format_real(k))
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine test_stretched_far
 
 end module test_hysteresis

@@ -48,7 +48,8 @@ contains
          & new_unittest("calculix sphere export", test_calculix_sphere), &
          & new_unittest("calculix rough flat export", test_calculix_flat), &
          & new_unittest("calculix limits and shift", test_calculix_limits), &
-         & new_unittest("unsupported and missing", test_unsupported) &
+         & new_unittest("unsupported and missing", test_unsupported), &
+         & new_unittest("universal table relabelled Hertz refused", test_universal_relabelled) &
          & ]
    end subroutine collect_table_format
 
@@ -1173,6 +1174,51 @@ contains
       end do
       close (unit)
    end function fields_ok
+
+   !> An E-GW universal table whose model field is set to 0 (Hertz), written with a valid
+   !> checksum, was read and served E-GW forces (tail below delta = 0 included) to Hertz
+   !> contacts (Stop 50 audit16). The reader refuses it naming the model field, in both
+   !> formats; a Hertz table (n_log 0, no force at x <= 0, slices equal) still reads back.
+   subroutine test_universal_relabelled(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(universal_table) :: u, back
+      type(egw_error), allocatable :: err
+      integer :: k
+      integer, parameter :: fmts(2) = [format_csv, format_binary]
+      character(len=5), parameter :: ext(2) = [".csv ", ".egwu"]
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 2.0_dp, &
+         & 8.0_dp, -3.0_dp, 10.0_dp, 1e-3_dp, u, err)
+      call check(error, .not. allocated(err), "E-GW universal build")
+      if (allocated(error)) return
+      call check(error, u%n_log > 0 .and. u%x_cut < 0.0_dp, "E-GW table has a tail")
+      if (allocated(error)) return
+      u%model = model_hertz
+      do k = 1, 2
+         call write_universal(u, dir//"/relabelled"//trim(ext(k)), fmts(k), err)
+         call check(error, .not. allocated(err), "relabelled write")
+         if (allocated(error)) return
+         call read_universal(dir//"/relabelled"//trim(ext(k)), back, err)
+         call check(error, allocated(err), "E-GW table relabelled Hertz accepted ("// &
+            & trim(ext(k))//")")
+         if (allocated(error)) return
+         call check(error, err%stat == egw_bad_file .and. index(err%message, "model = 0") &
+            & > 0, "message: "//err%message)
+         if (allocated(error)) return
+      end do
+      call build_universal(model_hertz, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 1.0_dp, &
+         & 2.0_dp, -1.0_dp, 10.0_dp, 1e-4_dp, u, err)
+      call check(error, .not. allocated(err), "Hertz universal build")
+      if (allocated(error)) return
+      do k = 1, 2
+         call write_universal(u, dir//"/hertz_u"//trim(ext(k)), fmts(k), err)
+         call check(error, .not. allocated(err), "Hertz write")
+         if (allocated(error)) return
+         call read_universal(dir//"/hertz_u"//trim(ext(k)), back, err)
+         call check(error, .not. allocated(err), "Hertz universal table refused ("// &
+            & trim(ext(k))//")")
+         if (allocated(error)) return
+      end do
+   end subroutine test_universal_relabelled
 
    subroutine test_unsupported(error)
       type(error_type), allocatable, intent(out) :: error

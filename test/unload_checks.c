@@ -203,19 +203,26 @@ int egw_capi_test_hysteresis(void) {
       d[1] = 1.0;   /* far above delta_max, inside the limit: extrapolated, finite */
       HCHECK(egw_hysteresis_eval_array(hs, 2, d, sm, fa, NULL) == EGW_OUT_OF_RANGE &&
              isfinite(fa[1]) && fa[1] > fa[0]);
-      /* a state inside the input limit whose stretched last curve leaves the doubles
-       * (1e200 on this table: the scalar call refuses it, its stiffness NaN): the array
-       * refuses it too, before anything is written (it once returned EGW_OUT_OF_RANGE
-       * with a NaN stiffness and a force of 8e-48; egw-fuzz, audit16) */
+      /* a state far above the table, inside the input limit (1e200 on this table): its
+       * stretched last curve once gave a NaN stiffness (force 8e-48), which the scalar
+       * call refused and the array returned (egw-fuzz, audit16); the edge map is now
+       * finite there (read16): scalar, array and state answer EGW_OUT_OF_RANGE with the
+       * same finite force >= 0 and stiffness */
       {
         double d2[2] = {2e-3, 2.5e-3}, s2[2] = {3e-3, 1e200}, f2[2] = {7.0, 7.0};
-        double k2[2] = {7.0, 7.0}, one = 1e200, f1 = 7.0;
-        int scalar = egw_hysteresis_eval(hs, 2.5e-3, &one, &f1, NULL);
-        HCHECK(scalar == EGW_INVALID_ARGUMENT && f1 == 7.0 && one == 1e200);
+        double k2[2] = {7.0, 7.0}, one = 1e200, f1 = 7.0, k1 = 7.0, f0, k0, m0 = 3e-3;
+        double state[EGW_HYSTERESIS_STATE_SIZE], fs = 7.0, ks = 7.0;
+        int scalar = egw_hysteresis_eval(hs, 2.5e-3, &one, &f1, &k1);
+        HCHECK(scalar == EGW_OUT_OF_RANGE && isfinite(f1) && f1 >= 0.0 && isfinite(k1) &&
+               one == 1e200);
+        HCHECK(egw_hysteresis_eval(hs, 2e-3, &m0, &f0, &k0) == EGW_OK);
         HCHECK(egw_hysteresis_eval_array(hs, 2, d2, s2, f2, k2) == scalar &&
-               f2[0] == 7.0 && f2[1] == 7.0 && k2[0] == 7.0 && k2[1] == 7.0 &&
+               f2[0] == f0 && k2[0] == k0 && f2[1] == f1 && k2[1] == k1 &&
                s2[0] == 3e-3 && s2[1] == 1e200);
-        nf += !last_error_names("delta_max_state[1]");
+        egw_hysteresis_state_init(state);
+        egw_hysteresis_eval_state(hs, 1e200, state, &fs, &ks);
+        HCHECK(egw_hysteresis_eval_state(hs, 2.5e-3, state, &fs, &ks) == scalar &&
+               fabs(fs - f1) <= 1e-12 * f1 && fabs(ks - k1) <= 1e-12 * fabs(k1));
       }
       egw_hysteresis_free(&hs);
     }

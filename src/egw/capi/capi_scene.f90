@@ -18,7 +18,7 @@ module egw_capi_scene
    use egw_capi_utils, only: settle, require, read_options, c_string, copy_to_c, read_params, &
       & check_positive, invalid, put
    use egw_params, only: contact_params
-   use egw_impact_regime, only: first_yield_overlap, first_yield_speed
+   use egw_impact_regime, only: first_yield_overlap, yield_speed
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -276,7 +276,7 @@ contains
       if (stat /= egw_ok) return
       if (params%flow_pressure > 0.0_dp) then
          d_y = first_yield_overlap(params)
-         v_y = first_yield_speed(params, mass)
+         v_y = yield_speed(params, mass)
          if (.not. (ieee_is_finite(v_y) .and. v_y > 0.0_dp .and. d_y > 0.0_dp)) then
             stat = invalid("mass = "//format_real(mass)//": with flow_pressure, radius "// &
                & "and modulus the first-yield speed is not a positive double")

@@ -14,7 +14,7 @@ module egw_table_format
    use egw_status, only: egw_error, egw_ok, egw_bad_file, egw_io_error, egw_invalid_argument, &
       & egw_invalid_parameter, &
       & egw_unsupported, fatal_error, format_real, int_str, bad => bad_file_error
-   use egw_params, only: contact_params, validate_params, model_name, model_epgw
+   use egw_params, only: contact_params, validate_params, model_name, model_epgw, model_hertz
    use egw_version, only: egw_version_string, egw_version_number
    use egw_io, only: write_file, read_file, text_buffer
    use egw_asperity, only: flat_pressure

@@ -196,9 +196,54 @@ contains
             return
          end if
       end do
-      if (.not. universal_nodes_shared(u)) &
-         & call bad(error, path, "slices do not share their nodes or ln p intervals")
+      if (.not. universal_nodes_shared(u)) then
+         call bad(error, path, "slices do not share their nodes or ln p intervals")
+         return
+      end if
+      if (u%model == model_hertz) call check_universal_hertz(path, u, error)
    end procedure check_universal_slices
+
+   !> A universal table labelled Hertz (model = 0) must hold Hertz's data, or a relabelled
+   !> rough table would serve its forces, tail below delta = 0 included, to Hertz contacts
+   !> (Stop 50 audit16): Hertz has no force at x <= 0, so no ln p (tail) intervals, and its
+   !> force does not depend on mu, so every slice is the first (the build's slices are
+   !> equal bit for bit; 1e-12 of the largest force allows a text round trip's last bit).
+   subroutine check_universal_hertz(path, u, error)
+      character(len=*), intent(in) :: path
+      type(universal_table), intent(in) :: u
+      type(egw_error), allocatable, intent(out) :: error
+      integer :: j, i
+      real(dp) :: tol
+      if (u%slices(1)%n_log /= 0) then
+         call bad(error, path, "model = 0 (Hertz) does not fit the data: the slices have "// &
+            & int_str(u%slices(1)%n_log)//" ln p (separated tail) intervals; Hertz has no "// &
+            & "force below delta = 0")
+         return
+      end if
+      do j = 1, u%n_mu
+         do i = 1, size(u%slices(j)%delta)
+            if (u%slices(j)%delta(i) <= 0.0_dp .and. u%slices(j)%force(i) /= 0.0_dp) then
+               call bad(error, path, "model = 0 (Hertz) does not fit the data: slice "// &
+                  & int_str(j)//" node "//int_str(i)//" has force "// &
+                  & format_real(u%slices(j)%force(i))//" at x = "// &
+                  & format_real(u%slices(j)%delta(i))//" <= 0; Hertz has none there")
+               return
+            end if
+         end do
+      end do
+      tol = 1.0e-12_dp*maxval(abs(u%slices(1)%force))
+      do j = 2, u%n_mu
+         i = maxloc(abs(u%slices(j)%force - u%slices(1)%force), 1)
+         if (abs(u%slices(j)%force(i) - u%slices(1)%force(i)) > tol) then
+            call bad(error, path, "model = 0 (Hertz) does not fit the data: slice "// &
+               & int_str(j)//" (mu = "//format_real(slice_mu(u, j))//") differs from "// &
+               & "slice 1 at node "//int_str(i)//" ("//format_real(u%slices(j)%force(i))// &
+               & " against "//format_real(u%slices(1)%force(i))//"); Hertz's force does "// &
+               & "not depend on mu")
+            return
+         end if
+      end do
+   end subroutine check_universal_hertz
 
    module procedure slice_mu
       if (j == 1) then

@@ -9,7 +9,7 @@ module egw_impact_regime
    implicit none
    private
 
-   public :: impact_regime, classify_impact, first_yield_speed, first_yield_overlap
+   public :: impact_regime, classify_impact, first_yield_speed, first_yield_overlap, yield_speed
 
    !> Roughness matters for an impact whose deepest overlap is below this many sigma:
    !> beyond it EP-GW's e exceeds 0.998 for the steel beads of doc/restitution.md
@@ -46,18 +46,41 @@ contains
 
    !> First-yield speed of a head-on impact of effective mass m*: Hertz's deepest overlap
    !> reaches delta_y, v_y = sqrt((16/15) (pi/2)**5 p_y**5 R**3/(m* E***4)); huge (never)
-   !> for p_y = 0, as C's egw_first_yield. Unchecked: mass must be finite and > 0 (NaN
-   !> otherwise; egw_first_yield and classify_impact refuse it with a message).
-   pure real(dp) function first_yield_speed(params, mass) result(v_y)
+   !> for p_y = 0, as C's egw_first_yield. A mass that is not finite and > 0, or one for
+   !> which v_y is not a positive double, is refused with egw_invalid_argument naming the
+   !> mass (v_y is then 0), as egw_first_yield and classify_impact refuse it.
+   function first_yield_speed(params, mass, error) result(v_y)
       type(contact_params), intent(in) :: params   !< R, E* and flow_pressure of valid parameters
       real(dp), intent(in) :: mass   !< effective mass m* > 0
+      !> egw_invalid_argument naming the mass refused
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: v_y
+      v_y = 0.0_dp
+      if (.not. (ieee_is_finite(mass) .and. mass > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "mass = "//format_real(mass) &
+            & //": must be finite and > 0")
+         return
+      end if
+      v_y = yield_speed(params, mass)
+      if (.not. (ieee_is_finite(v_y) .and. v_y > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "mass = "//format_real(mass) &
+            & //": with flow_pressure, radius and modulus the first-yield speed is not " &
+            & //"a positive double")
+         v_y = 0.0_dp
+      end if
+   end function first_yield_speed
+
+   !> first_yield_speed's closed form, unchecked (mass finite and > 0: its callers check)
+   pure real(dp) function yield_speed(params, mass) result(v_y)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: mass
       if (.not. (params%flow_pressure > 0.0_dp)) then
          v_y = huge(1.0_dp)
          return
       end if
       v_y = sqrt(16.0_dp/15.0_dp*(pi/2.0_dp)**5*params%flow_pressure**5*params%radius**3 &
          & /(mass*params%modulus**4))
-   end function first_yield_speed
+   end function yield_speed
 
    !> Classify a head-on impact at speed v of effective mass m*: the cap matters when
    !> flow_pressure > 0 and v > v_y; the roughness when sigma > 0 and Hertz's deepest
@@ -89,7 +112,7 @@ contains
       regime%max_overlap = (15.0_dp*mass*speed**2/(16.0_dp*params%modulus &
          & *sqrt(params%radius)))**0.4_dp
       if (params%flow_pressure > 0.0_dp) then
-         regime%yield_speed = first_yield_speed(params, mass)
+         regime%yield_speed = yield_speed(params, mass)
          regime%yield_overlap = first_yield_overlap(params)
          regime%cap_matters = speed > regime%yield_speed
          cap = merge("above", "below", regime%cap_matters)//" the first-yield speed v_y = " &

@@ -686,11 +686,20 @@ contains
    !> A shallow one (L <~ sigma, the separated tail) gets L .. 5 L and 12 sigma more.
    !> xi(1) >= L/4 > 0.
    pure subroutine edge_breaks(length, sigma, xi)
+      !> above this length the breaks are formed scaled by it (length**2 stays finite below)
+      real(dp), parameter :: huge_length = 1.0e150_dp
       real(dp), intent(in) :: length   !< the curve's unloading length L (> 0)
       real(dp), intent(in) :: sigma    !< the summit heights' standard deviation (unit of L)
       real(dp), intent(out) :: xi(3)   !< m - delta at s = 1/2, 3/4, 1, increasing
-      xi(1) = length - 1.5_dp*sigma*length**2/(length**2 + sigma**2)
-      xi(2) = length + 4.0_dp*sigma*length/(length + sigma)
+      if (length < huge_length) then
+         xi(1) = length - 1.5_dp*sigma*length**2/(length**2 + sigma**2)
+         xi(2) = length + 4.0_dp*sigma*length/(length + sigma)
+      else
+         ! a last curve stretched far above the table (turning_point): length**2 and
+         ! sigma length would overflow; the same breaks scaled by length
+         xi(1) = length - 1.5_dp*sigma/(1.0_dp + (sigma/length)**2)
+         xi(2) = length + 4.0_dp*sigma/(1.0_dp + sigma/length)
+      end if
       xi(3) = xi(2) + 12.0_dp*sigma
    end subroutine edge_breaks
 
@@ -719,9 +728,15 @@ contains
       else if (x <= xi_b(2)) then
          ds = 0.25_dp/(xi_b(2) - xi_b(1))
          s = 0.5_dp + (x - xi_b(1))*ds
-      else
+      else if (xi_b(3) > xi_b(2)) then
          ds = 0.25_dp/(xi_b(3) - xi_b(2))
          s = 0.75_dp + (x - xi_b(2))*ds
+      else
+         ! breaks that rounding merged (a last curve stretched to L with ulp(L) > 12 sigma,
+         ! turning_point): x > xi_b(2) = xi_b(3) is beyond the span, where s is held at 1
+         ! (log_branch); 0.25/0 would make ds infinite and the stiffness 0*Inf = NaN
+         ds = 0.0_dp
+         s = 1.0_dp
       end if
    end subroutine edge_s
 
