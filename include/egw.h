@@ -29,7 +29,7 @@ extern "C" {
 #endif
 
 /* Version of this header; egw_get_version() returns the library's. */
-#define EGW_VERSION 300
+#define EGW_VERSION 301
 
 /* Status codes. */
 enum {
