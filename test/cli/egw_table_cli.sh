@@ -169,7 +169,7 @@ printf '&scene\n  model = "Hertz"\n  radius = 1e-3\n  modulus = 200e9\n  poisson
 "$exe" "$work/cap.nml" --out "$work/cap" -q >"$work/stdout" 2>"$work/stderr"
 rc=$?
 [ "$rc" -eq 0 ] || fail "cap scene: exit status $rc: $(cat "$work/stderr")"
-grep -q "CSV format 2" "$work/cap/scene_hysteresis.csv" ||
+grep -q "CSV format 5" "$work/cap/scene_hysteresis.csv" ||
   fail "cap scene: scene_hysteresis.csv is not a Hertz + cap table"
 grep -q "^# flow_pressure = 9.600000000" "$work/cap/scene_hysteresis.csv" ||
   fail "cap scene: flow_pressure is not 1.6 yield_stress: $(grep flow "$work/cap/scene_hysteresis.csv")"
