@@ -750,7 +750,8 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * further (delta >= state[0]) inside the loading table's interval the state holds -- most
  * DEM steps -- it writes the force and stiffness egw_hysteresis_eval_state would (the
  * same arithmetic on the state's cached cubics), changes the state as that call would
- * (loading: state[0] = delta, the piece dropped) and returns 1; otherwise (also when
+ * (loading further: state[0] = delta, the piece dropped; at state[0] exactly: nothing
+ * changed) and returns 1; otherwise (also when
  * the values would not be finite) it returns 0 and changes nothing: call
  * egw_hysteresis_eval_state. It does not report
  * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max) and refuses
@@ -808,10 +809,10 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
   if (piece && !(f > 0.0)) f = k = 0.0;
   /* not a number (a garbled state with this table's tag): the call refuses it */
   if (!(f - f == 0.0 && k - k == 0.0)) return 0;
-  if (loading) {
+  if (loading && delta > state[0]) {
     state[10] = state[11] = NAN;    /* loading further: no piece, the new history */
     state[0] = delta;
-  }
+  }                                 /* back at the history exactly: the piece kept */
   if (force) *force = f;
   if (stiffness) *stiffness = k;
   return 1;

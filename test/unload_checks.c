@@ -373,6 +373,45 @@ int egw_capi_test_hysteresis(void) {
              "after\n", served, below, served_after, after);
     }
     {
+      /* the separated tail (between the loading cut-off and 0, where the EP-GW loading
+       * interval is ln P and the unloading piece a log ratio): a contact loads from -2 to
+       * -1.5 in small steps, then moves back and forth over 16 overlaps -1.5 + 0.01 j/15
+       * (j = 0..15, in a shuffled cycle, as a DEM contact jittering near its largest
+       * overlap), so that it returns to its history exactly. The inline step first (the
+       * call when it does not serve) and the call alone: the same values and states bit
+       * for bit, egw_hysteresis_eval's to rounding (near_force); and once the history has
+       * reached its top (the first cycle), every later step is served inline: a return to
+       * the history keeps the unloading piece (on main it dropped it, so that the next
+       * step below took the call: 1 miss in 16 steps) */
+      double sp[EGW_HYSTERESIS_STATE_SIZE], se[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0;
+      double plain = -HUGE_VAL, fi, ki, fe, ke, fp, kp, c;
+      egw_hysteresis_info info;
+      static const int order[16] = {7, 15, 2, 11, 0, 9, 4, 13, 6, 1, 14, 8, 3, 12, 5, 10};
+      int exact = 1, same = 1, late = 0, served_late = 0, positive = 1;
+      HCHECK(egw_hysteresis_get_info(h, &info) == EGW_OK && info.cutoff < -2.0);
+      HCHECK(egw_hysteresis_state_tag(h, &tag) == EGW_OK);
+      c = info.cutoff;
+      egw_hysteresis_state_init(sp);
+      egw_hysteresis_state_init(se);
+      for (int i = 0; i <= 1000; i++) {
+        double d = i <= 200 ? -2.0 + 0.5 * i / 200.0 : -1.5 + 0.01 * order[i % 16] / 15.0;
+        int a, hit = egw_hysteresis_eval_cached(tag, d, sp, &fi, &ki);
+        a = hit ? EGW_OK : egw_hysteresis_eval_state(h, d, sp, &fi, &ki);
+        HCHECK(a == EGW_OK && egw_hysteresis_eval_state(h, d, se, &fe, &ke) == EGW_OK);
+        HCHECK(egw_hysteresis_eval(h, d, &plain, &fp, &kp) == EGW_OK);
+        exact = exact && fi == fe && ki == ke && memcmp(sp, se, sizeof sp) == 0;
+        same = same && se[0] == plain && near_force(h, plain, fe, fp);
+        positive = positive && d > c && fe > 0.0;
+        if (i >= 200 + 32) late++, served_late += hit;
+      }
+      HCHECK(exact);
+      HCHECK(same);
+      HCHECK(positive);
+      HCHECK(late > 700 && served_late == late);
+      printf("    separated tail: %d of %d steps served inline after the history's top\n",
+             served_late, late);
+    }
+    {
       double garbage[EGW_HYSTERESIS_STATE_SIZE];
       for (int i = 0; i < EGW_HYSTERESIS_STATE_SIZE; i++) garbage[i] = 1e300 * (i + 1);
       garbage[0] = 3.0;

@@ -217,8 +217,12 @@ contains
          state(18:19) = state(2)
          state(3) = table%tag
       end if
-      ! no piece unless one is made below (the loading interval may change)
-      state(11:12) = quiet_nan
+      ! no piece unless one is made below (the loading interval may change); but a
+      ! contact back at its history exactly (delta = state(1)) inside the loading interval
+      ! keeps its piece: the turning point and the interval stay, and so does the piece
+      ! (egw.h's inline loading step keeps it too: the two leave the same state)
+      if (.not. (delta == state(1) .and. state(18) <= delta .and. delta < state(19))) &
+         & state(11:12) = quiet_nan
       if (.not. delta < state(1) .or. table%reversible .or. &
          & .not. state(1) > table%elastic_limit) then
          state(1) = max(state(1), delta)
