@@ -1,4 +1,4 @@
-!> The cap solver's start table (egw_cap_sphere's gamma_start): t = ln(c/(a - c)) of the
+!> The cap solver's start table (egw_cap_start, read by egw_cap_sphere's gamma_start): t = ln(c/(a - c)) of the
 !> converged loading solve (load_fitted, 64 rings: cap_solve_options's finest level) at
 !> Delta = 1 + exp(x), x from ln(1e-4) to ln(36) in steps of 0.05 (257 points; printed as
 !> Fortran). Build as tools/bench/cap_local_error.f90 (its header), run without arguments.

@@ -72,8 +72,8 @@ contains
 
    !> first_yield_speed's closed form, unchecked (mass finite and > 0: its callers check)
    pure real(dp) function yield_speed(params, mass) result(v_y)
-      type(contact_params), intent(in) :: params
-      real(dp), intent(in) :: mass
+      type(contact_params), intent(in) :: params   !< R, E* and flow_pressure of valid parameters
+      real(dp), intent(in) :: mass   !< effective mass m*, finite and > 0 (not checked)
       if (.not. (params%flow_pressure > 0.0_dp)) then
          v_y = huge(1.0_dp)
          return

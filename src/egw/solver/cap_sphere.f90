@@ -52,6 +52,7 @@ module egw_cap_sphere
    use egw_halfspace, only: radial_mesh, build_mesh, assemble_influence, influence_row
    use egw_lapack, only: dgetrf, dgetrs
    use egw_ellip, only: ellipe_comp, ellipk_comp
+   use egw_cap_start, only: cap_start_logit
    implicit none
    private
 
@@ -342,100 +343,11 @@ contains
       g = 1.0_dp/(1.0_dp + exp(-t))
    end function logistic
 
-   !> A start for gamma = c/a at Delta > 1: t = ln(c/(a - c)) of the converged solutions
-   !> (64 rings) at Delta = 1 + exp(x), x from ln(1e-4) to ln(36) in steps of 0.05
-   !> (tools/bench/cap_gamma_start_table.f90), cubic Lagrange in x (at the midpoints within
-   !> 1e-6 of t at 90 % of them, 4.7e-5 at most, near 1.003 delta_y where the minimum in
-   !> t is flat: load_fitted's Newton then mostly stops after one iteration; 2-4 from the
-   !> 14-point linear table before, which missed t by up to 0.2), beyond 37 delta_y along
-   !> the last slope (t_cap is reached there: the fully capped limit).
+   !> A start for gamma = c/a at Delta > 1: the tabulated ln(c/(a - c)) (egw_cap_start)
+   !> below t_cap.
    pure real(dp) function gamma_start(delta) result(g)
       real(dp), intent(in) :: delta   !< scaled Delta = delta/delta_y (> 1)
-      integer, parameter :: n_t = 257
-      real(dp), parameter :: x_first = log(1.0e-4_dp), h_x = 0.05_dp, &
-         & x_last = x_first + h_x*(n_t - 1)
-      real(dp), parameter :: t_at(n_t) = [ &
-         & -2.968519450_dp, -2.967656571_dp, -2.966751754_dp, -2.965797484_dp, &
-         & -2.964797174_dp, -2.963743043_dp, -2.962636560_dp, -2.961471338_dp, &
-         & -2.960248000_dp, -2.958961167_dp, -2.957610388_dp, -2.956188694_dp, &
-         & -2.954695000_dp, -2.953123794_dp, -2.951473463_dp, -2.949737223_dp, &
-         & -2.947913517_dp, -2.945996758_dp, -2.943981168_dp, -2.941862632_dp, &
-         & -2.939636507_dp, -2.937296097_dp, -2.934836068_dp, -2.932251505_dp, &
-         & -2.929535246_dp, -2.926680112_dp, -2.923680751_dp, -2.920528531_dp, &
-         & -2.917217000_dp, -2.913737889_dp, -2.910082162_dp, -2.906242662_dp, &
-         & -2.902209454_dp, -2.897973139_dp, -2.893525451_dp, -2.888853186_dp, &
-         & -2.883951000_dp, -2.878802813_dp, -2.873400700_dp, -2.867730945_dp, &
-         & -2.861784000_dp, -2.855543608_dp, -2.849000925_dp, -2.842143276_dp, &
-         & -2.834955367_dp, -2.827424016_dp, -2.819536213_dp, -2.811278569_dp, &
-         & -2.802636165_dp, -2.793596248_dp, -2.784143460_dp, -2.774265846_dp, &
-         & -2.763949710_dp, -2.753181909_dp, -2.741950261_dp, -2.730242413_dp, &
-         & -2.718046247_dp, -2.705355423_dp, -2.692157301_dp, -2.678445864_dp, &
-         & -2.664213899_dp, -2.649455551_dp, -2.634167133_dp, -2.618346756_dp, &
-         & -2.601992080_dp, -2.585107367_dp, -2.567693864_dp, -2.549756455_dp, &
-         & -2.531300510_dp, -2.512335011_dp, -2.492784264_dp, -2.472911071_dp, &
-         & -2.452477418_dp, -2.431579343_dp, -2.410230873_dp, -2.388377358_dp, &
-         & -2.366243032_dp, -2.343636349_dp, -2.320642379_dp, -2.297277726_dp, &
-         & -2.273557591_dp, -2.249499916_dp, -2.225119466_dp, -2.200431447_dp, &
-         & -2.175450057_dp, -2.150190548_dp, -2.124665726_dp, -2.098887573_dp, &
-         & -2.072869075_dp, -2.046620731_dp, -2.020152189_dp, -1.993474028_dp, &
-         & -1.966594303_dp, -1.939520435_dp, -1.912260396_dp, -1.884820154_dp, &
-         & -1.857204930_dp, -1.829420521_dp, -1.801470533_dp, -1.773359340_dp, &
-         & -1.745089795_dp, -1.716664149_dp, -1.688085104_dp, -1.659353671_dp, &
-         & -1.630471476_dp, -1.601438725_dp, -1.572256116_dp, -1.542923101_dp, &
-         & -1.513439585_dp, -1.483804315_dp, -1.454016320_dp, -1.424074229_dp, &
-         & -1.393975926_dp, -1.363710256_dp, -1.333302595_dp, -1.302722392_dp, &
-         & -1.271976081_dp, -1.241060605_dp, -1.209972313_dp, -1.178707671_dp, &
-         & -1.147262772_dp, -1.115633483_dp, -1.083815431_dp, -1.051804009_dp, &
-         & -1.019594381_dp, -0.987181473_dp, -0.954559972_dp, -0.921724330_dp, &
-         & -0.888668689_dp, -0.855387140_dp, -0.821873265_dp, -0.788120578_dp, &
-         & -0.754118493_dp, -0.719871124_dp, -0.685359782_dp, -0.650581008_dp, &
-         & -0.615526561_dp, -0.580188183_dp, -0.544557295_dp, -0.508624986_dp, &
-         & -0.472382000_dp, -0.435818720_dp, -0.398925154_dp, -0.361690917_dp, &
-         & -0.324105217_dp, -0.286156832_dp, -0.247834094_dp, -0.209124864_dp, &
-         & -0.170016513_dp, -0.130495895_dp, -0.090549323_dp, -0.050162542_dp, &
-         & -0.009320699_dp,  0.031991690_dp,  0.073790765_dp,  0.116093368_dp, &
-         & 0.158917070_dp,  0.202280216_dp,  0.246201962_dp,  0.290702325_dp, &
-         & 0.335802224_dp,  0.381523532_dp,  0.427889126_dp,  0.474922944_dp, &
-         & 0.522650044_dp,  0.571096659_dp,  0.620290268_dp,  0.670259659_dp, &
-         & 0.721035001_dp,  0.772647918_dp,  0.825131566_dp,  0.878520709_dp, &
-         & 0.932851811_dp,  0.988163113_dp,  1.044494727_dp,  1.101888726_dp, &
-         & 1.160389237_dp,  1.220042536_dp,  1.280897145_dp,  1.343003927_dp, &
-         & 1.406416186_dp,  1.471189758_dp,  1.537383109_dp,  1.605057423_dp, &
-         & 1.674276686_dp,  1.745107773_dp,  1.817620516_dp,  1.891887770_dp, &
-         & 1.967985471_dp,  2.045992673_dp,  2.125991583_dp,  2.208067571_dp, &
-         & 2.292309168_dp,  2.378808047_dp,  2.467658983_dp,  2.558959789_dp, &
-         & 2.652811242_dp,  2.749316981_dp,  2.848583386_dp,  2.950719445_dp, &
-         & 3.055836599_dp,  3.164048580_dp,  3.275471232_dp,  3.390222337_dp, &
-         & 3.508421432_dp,  3.630189631_dp,  3.755649461_dp,  3.884924709_dp, &
-         & 4.018140285_dp,  4.155422111_dp,  4.296897035_dp,  4.442692775_dp, &
-         & 4.592937893_dp,  4.747761796_dp,  4.907294772_dp,  5.071668054_dp, &
-         & 5.241013911_dp,  5.415465758_dp,  5.595158297_dp,  5.780227662_dp, &
-         & 5.970811591_dp,  6.167049599_dp,  6.369083161_dp,  6.577055899_dp, &
-         & 6.791113772_dp,  7.011405266_dp,  7.238081580_dp,  7.471296814_dp, &
-         & 7.711208150_dp,  7.957976034_dp,  8.211764351_dp,  8.472740597_dp, &
-         & 8.741076052_dp,  9.016945946_dp,  9.300529625_dp,  9.592010714_dp, &
-         & 9.891577276_dp, 10.199421979_dp, 10.515742249_dp, 10.840740432_dp, &
-         & 11.174623951_dp, 11.517605472_dp, 11.869903049_dp, 12.231740300_dp, &
-         & 12.603346558_dp, 12.984957043_dp, 13.376813006_dp, 13.779161933_dp, &
-         & 14.192257681_dp, 14.616360625_dp, 15.051737946_dp, 15.498663701_dp, &
-         & 15.957419013_dp, 16.428292067_dp, 16.911579263_dp, 17.407583539_dp, &
-         & 17.916616638_dp]
-      real(dp) :: x, t, p
-      integer :: first
-      x = log(max(delta - 1.0_dp, tiny(1.0_dp)))
-      if (x >= x_last) then
-         t = t_at(n_t) + 0.348_dp*(delta - 1.0_dp - exp(x_last))
-      else if (x <= x_first) then
-         t = t_at(1)
-      else
-         first = min(max(int((x - x_first)/h_x), 1), n_t - 3)
-         p = (x - x_first)/h_x - real(first - 1, dp)
-         t = -(p - 1.0_dp)*(p - 2.0_dp)*(p - 3.0_dp)/6.0_dp*t_at(first) &
-            & + p*(p - 2.0_dp)*(p - 3.0_dp)/2.0_dp*t_at(first + 1) &
-            & - p*(p - 1.0_dp)*(p - 3.0_dp)/2.0_dp*t_at(first + 2) &
-            & + p*(p - 1.0_dp)*(p - 2.0_dp)/6.0_dp*t_at(first + 3)
-      end if
-      g = logistic(min(t, t_cap))
+      g = logistic(min(cap_start_logit(delta), t_cap))
    end function gamma_start
 
    !> Clenshaw sum of the Chebyshev series c at y in [-1, 1].
@@ -758,10 +670,14 @@ contains
    !> the solution's; 0 or absent: gamma_start's).
    subroutine cap_residual(radius, modulus, flow_pressure, delta_max, options, residual, &
       & error, gamma)
-      real(dp), intent(in) :: radius, modulus, flow_pressure, delta_max
-      type(cap_options), intent(in) :: options
+      real(dp), intent(in) :: radius          !< effective radius R [length]
+      real(dp), intent(in) :: modulus         !< effective modulus E* [pressure]
+      real(dp), intent(in) :: flow_pressure   !< p_y > 0 [pressure]
+      real(dp), intent(in) :: delta_max       !< the loading's deepest overlap [length]
+      type(cap_options), intent(in) :: options   !< rings and levels (cap_load's)
       real(dp), intent(out) :: residual   !< delta_r/delta_y (0 up to first yield)
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< bad input, no convergence
+      !> in: a start for c/a in (0, 1) (else gamma_start's); out: the solution's c/a
       real(dp), intent(inout), optional :: gamma
       type(cap_history) :: history
       type(fitted_load) :: st

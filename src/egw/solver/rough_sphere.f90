@@ -1411,7 +1411,7 @@ contains
    !> The residual overlap [length] of a capped history (capped: cap_load's on
    !> cap_solve_options, the value cap_residual gives at its delta_max); 0 otherwise.
    elemental real(dp) function history_residual(history) result(residual)
-      type(loading_history), intent(in) :: history
+      type(loading_history), intent(in) :: history   !< a loading history (load_history)
       residual = 0.0_dp
       if (history%capped) residual = history%cap%residual*history%cap%delta_y
    end function history_residual
@@ -1419,7 +1419,7 @@ contains
    !> c/a, the cap's radius over the contact's, of a capped history's loading (a start for
    !> cap_residual's search at a neighbouring overlap); 0 otherwise (elastic: none).
    elemental real(dp) function history_cap_ratio(history) result(ratio)
-      type(loading_history), intent(in) :: history
+      type(loading_history), intent(in) :: history   !< a loading history (load_history)
       ratio = 0.0_dp
       if (history%capped .and. history%cap%contact > 0.0_dp) &
          & ratio = history%cap%cap/history%cap%contact
