@@ -44,6 +44,8 @@ contains
          & test_tiny_sigma), &
          & new_unittest("E-GW + cap at sigma/delta_y = 1e-10, 1e-8: converged solves checked", &
          & test_tiny_sigma_checked), &
+         & new_unittest("sigma/delta_y = 1e-7: the route's contact radius is a*", &
+         & test_route_contact_radius), &
          & new_unittest("sigma/delta_y = 1e-6: unloading at 0.99 delta_max", &
          & test_small_sigma_unload_top), &
          & new_unittest("EP-GW + cap unloading from 6 delta_y at rel_tol 1e-6", &
@@ -1257,6 +1259,55 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_tiny_sigma
+
+   !> The contact radius every rough solve reports is a* = (3 pi/4) int r p dr / int p dr,
+   !> which for a capped contact is well above its edge a (3 pi a/8 once fully capped). The
+   !> small-sigma route (sigma/delta_y <= ~1e-6) extrapolated it towards the smooth cap's
+   !> edge a instead (audit17: E-GW + cap at 3 delta_y gave a = 2.0849 at sigma/delta_y =
+   !> 1e-6, the discrete solve, and 1.8271 at 1e-7, the route, 12 % apart; at 10 delta_y
+   !> 4.3995 and 3.7661). Reference: the discrete rough solve at sigma/delta_y = 1e-6
+   !> (another algorithm), whose a* differs from the sigma -> 0 limit by O((sigma/
+   !> delta_y)**(2/3)) (measured: 8e-6 between 1e-5 and 1e-6 at 10 delta_y): within 1e-4.
+   !> Unloading at 0.95 delta_max after 3 delta_y likewise (the route's unloading; rel_tol
+   !> 1e-5: at 1e-6 the route's unloading there refuses, its estimate 8.2e-7).
+   subroutine test_route_contact_radius(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: x(2) = [3.0_dp, 10.0_dp]
+      type(solve_result) :: route, discrete
+      type(loading_history) :: hist
+      type(egw_error), allocatable :: err
+      real(dp) :: delta_y, force_y
+      integer :: i
+      call yield_units(delta_y, force_y)
+      do i = 1, size(x)
+         call solve_contact(egw_cap(1.0e-7_dp), solver_options(rel_tol=1.0e-6_dp), &
+            & x(i)*delta_y, route, err)
+         if (.not. allocated(err)) call solve_contact(egw_cap(1.0e-6_dp), &
+            & solver_options(rel_tol=1.0e-6_dp), x(i)*delta_y, discrete, err)
+         if (allocated(err)) then
+            call check(error, .false., "delta/delta_y = "//str(x(i))//": "//err%message)
+            return
+         end if
+         call check(error, abs(route%contact_radius/discrete%contact_radius - 1.0_dp) <= &
+            & 1.0e-4_dp, "loading at "//str(x(i))//" delta_y: a* = " &
+            & //str(route%contact_radius)//" (sigma/delta_y = 1e-7), " &
+            & //str(discrete%contact_radius)//" (1e-6)")
+         if (allocated(error)) return
+      end do
+      call load_history(egw_cap(1.0e-7_dp), solver_options(rel_tol=1.0e-5_dp), &
+         & 3.0_dp*delta_y, hist, route, err)
+      if (.not. allocated(err)) call solve_unload(hist, 2.85_dp*delta_y, route, err)
+      if (.not. allocated(err)) call load_history(egw_cap(1.0e-6_dp), &
+         & solver_options(rel_tol=1.0e-5_dp), 3.0_dp*delta_y, hist, discrete, err)
+      if (.not. allocated(err)) call solve_unload(hist, 2.85_dp*delta_y, discrete, err)
+      if (allocated(err)) then
+         call check(error, .false., "unloading: "//err%message)
+         return
+      end if
+      call check(error, abs(route%contact_radius/discrete%contact_radius - 1.0_dp) <= &
+         & 1.0e-4_dp, "unloading at 2.85 after 3 delta_y: a* = "//str(route%contact_radius) &
+         & //" (sigma/delta_y = 1e-7), "//str(discrete%contact_radius)//" (1e-6)")
+   end subroutine test_route_contact_radius
 
    !> E-GW with the cap at sigma/delta_y = 1e-10 and 1e-8, 10 delta_y, rel_tol 1e-6, where
    !> the discrete solve converges (rough_sphere's small_sigma_check_loading checks it

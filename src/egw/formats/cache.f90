@@ -87,7 +87,10 @@ module egw_cache
    !> a capped loading takes one confirming level more at sigma/delta_y <= 1e-3, and a
    !> tail-grown mesh that stalled is solved again from the last attempt: GW + cap tables
    !> there moved; 33 was capu16's Hertz + cap force ratio, format 5 (other models' not; README's GW + cap build at 1e-2 byte-identical).
-   integer, parameter, public :: cache_revision = 34
+   !> 35 (audit17): the small-sigma route (rough + cap, sigma/delta_y <= ~1e-6) reports
+   !> the rough solver's a* as contact radius (was: extrapolated towards the smooth cap's
+   !> edge a); forces unchanged, the loading tables' contact radii there moved.
+   integer, parameter, public :: cache_revision = 35
 
 
 contains

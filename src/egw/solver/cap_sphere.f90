@@ -82,7 +82,11 @@ module egw_cap_sphere
    type :: cap_result
       real(dp) :: force = 0.0_dp           !< P
       real(dp) :: stiffness = 0.0_dp       !< dP/d delta (loading: along the loading curve)
-      real(dp) :: contact_radius = 0.0_dp  !< a
+      real(dp) :: contact_radius = 0.0_dp  !< a, the contact's edge (p = 0 beyond)
+      !> a* = (3 pi/4) int r p dr / int p dr, the rough solver's contact radius (= a for
+      !> Hertz, 3 pi a/8 for the fully capped disc): the sigma -> 0 limit of a rough + cap
+      !> solve's, which the small-sigma route extrapolates to
+      real(dp) :: effective_radius = 0.0_dp
       real(dp) :: cap_radius = 0.0_dp      !< radius of the capped (plastic) zone
       real(dp) :: max_pressure = 0.0_dp    !< max p (<= p_y)
       real(dp) :: force_error = 0.0_dp     !< estimate: |P(finest) - P(level before)|
@@ -130,6 +134,8 @@ module egw_cap_sphere
       integer :: m = 0   !< rings on the elastic annulus [gamma, 1]
       !> gamma = c/a, scaled Delta, contact radius a, force P, stiffness dP/dDelta
       real(dp) :: gamma = 0, delta = 0, a = 0, force = 0, stiffness = 0
+      !> a*/a = (3 pi/4) int x p dx / int p dx on the unit contact (x = r/a)
+      real(dp) :: effective = 0
       !> the capped disc (element 1) and the rings, n_press Gauss points each
       type(radial_mesh) :: mesh
       !> ring midpoints (unit a), the capped disc's deflection there, the rings' influence
@@ -277,6 +283,8 @@ contains
       rhs(:, 1) = delta/a - 0.5_dp*a*st%x**2 - st%hc
       call dgetrs('N', m, 1, st%lu, m, st%piv, rhs, m, info)
       st%q = rhs(:, 1)
+      st%effective = 0.75_dp*pi*(0.5_dp*gamma**2 + sum(ar*st%q))/(gamma + &
+         & sum((edges(2:m + 1) - edges(1:m))*st%q))
    end subroutine fitted_solve
 
    !> The loading solution at Delta on m rings: Newton on dP*/dt = 0, t = ln(gamma/(1 -
@@ -633,7 +641,7 @@ contains
          history%elastic = .true.
          history%residual = 0.0_dp
          call hertz_scaled(dm, f, k, a, pm)
-         call unscale(history, f, k, a, 0.0_dp, pm, 0.0_dp, result)
+         call unscale(history, f, k, a, a, 0.0_dp, pm, 0.0_dp, result)
          return
       end if
       history%elastic = .false.
@@ -658,8 +666,8 @@ contains
       history%residual = max(0.0_dp, u)
       call keep_unloading(history, m, error)
       if (allocated(error)) return
-      call unscale(history, st%force, st%stiffness, st%a, gamma*st%a, 1.0_dp, &
-         & abs(st%force - coarse%force)*history%force_y, result)
+      call unscale(history, st%force, st%stiffness, st%a, st%effective*st%a, gamma*st%a, &
+         & 1.0_dp, abs(st%force - coarse%force)*history%force_y, result)
    end subroutine cap_load
 
    !> The residual overlap delta_r/delta_y of cap_load's history at delta_max, without
@@ -745,7 +753,8 @@ contains
       history%n_panels = 1
       history%s_break(0:1) = [0.0_dp, 1.0_dp]
       call u_plastic(history, 0.0_dp, history%residual, dummy)
-      call unscale(history, 1.5_dp*a**2, 3.0_dp*a/(a + 8.0_dp/pi**2), a, a, 1.0_dp, &
+      call unscale(history, 1.5_dp*a**2, 3.0_dp*a/(a + 8.0_dp/pi**2), a, 0.375_dp*pi*a, a, &
+         & 1.0_dp, &
          & 1.0e-8_dp*1.5_dp*a**2*history%force_y, result)
    end subroutine load_full
 
@@ -778,13 +787,15 @@ contains
       pm = a
    end subroutine hertz_scaled
 
-   pure subroutine unscale(history, f, k, a, c, pm, ferr, result)
+   pure subroutine unscale(history, f, k, a, as, c, pm, ferr, result)
       type(cap_history), intent(in) :: history
       real(dp), intent(in) :: f, k, a, c, pm, ferr
+      real(dp), intent(in) :: as   !< scaled a* (effective radius)
       type(cap_result), intent(inout) :: result
       result%force = f*history%force_y
       result%stiffness = k*history%force_y/history%delta_y
       result%contact_radius = a*history%a_y
+      result%effective_radius = as*history%a_y
       result%cap_radius = c*history%a_y
       result%max_pressure = pm*history%flow_pressure
       result%force_error = ferr
@@ -799,8 +810,8 @@ contains
       type(cap_result), intent(out) :: result   !< force, stiffness, radii, peak pressure at delta
       !> egw_invalid_argument: no loaded history, or delta refused (named)
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: d, f, k, a, pm, b, dl, fc, u, du
-      real(dp), allocatable :: q(:, :)
+      real(dp) :: d, f, k, a, pm, b, dl, fc, u, du, as
+      real(dp), allocatable :: q(:, :), edges(:)
       integer :: m, i, info
       if (history%delta_y <= 0.0_dp) then
          call fatal_error(error, egw_invalid_argument, "cap_unload: history not loaded")
@@ -820,11 +831,11 @@ contains
       end if
       if (history%elastic) then
          call hertz_scaled(d, f, k, a, pm)
-         call unscale(history, f, k, a, 0.0_dp, pm, 0.0_dp, result)
+         call unscale(history, f, k, a, a, 0.0_dp, pm, 0.0_dp, result)
          return
       end if
       if (d <= history%residual) then
-         call unscale(history, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, result)
+         call unscale(history, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, result)
          return
       end if
       call unload_radius(history, 1, d, b, error)
@@ -838,14 +849,20 @@ contains
       f = f + 3.0_dp*b*history%r_unload(2)*(d - dl)
       k = 3.0_dp*b*history%r_unload(2)
       m = history%n_unload(2)
-      allocate (q(m, 1))
+      allocate (q(m, 1), edges(0:m))
       do i = 1, m
          call u_plastic(history, b*history%x_unload(i, 2), u, du)
          q(i, 1) = (d - 0.5_dp*(b*history%x_unload(i, 2))**2 - u)/b
       end do
       call dgetrs('N', m, 1, history%lu_unload, m, history%piv_unload, q, m, info)
       pm = maxval(q(:, 1))
-      call unscale(history, f, k, b, 0.0_dp, pm, abs(f - fc)*history%force_y, result)
+      ! a* from the rings' pressures (unit b; edges as unload_mesh's)
+      edges = toward_one([(real(i, dp)/real(m, dp), i=0, m)])
+      edges(0) = 0.0_dp
+      edges(m) = 1.0_dp
+      as = 0.75_dp*pi*b*sum(0.5_dp*(edges(1:m)**2 - edges(0:m - 1)**2)*q(:, 1))/ &
+         & sum((edges(1:m) - edges(0:m - 1))*q(:, 1))
+      call unscale(history, f, k, b, as, 0.0_dp, pm, abs(f - fc)*history%force_y, result)
    end subroutine cap_unload
 
    !> Scaled loading work W(Delta_m) = int_0^Delta_m P dDelta (units P_y delta_y):

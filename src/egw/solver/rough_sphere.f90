@@ -683,8 +683,9 @@ contains
       asym = wide(1)
       asym%force = cap%force + (wide(1)%force - cap%force)*shrink(1)
       asym%stiffness = cap%stiffness + (wide(1)%stiffness - cap%stiffness)*shrink(1)
-      asym%contact_radius = cap%contact_radius + (wide(1)%contact_radius - &
-         & cap%contact_radius)*shrink(1)
+      ! (the cap's a*, the rough solver's definition: its edge a is up to 3 pi/8 smaller)
+      asym%contact_radius = cap%effective_radius + (wide(1)%contact_radius - &
+         & cap%effective_radius)*shrink(1)
       asym%max_pressure = params%flow_pressure
       total = max(abs(asym%force), floor)
       ! (a wide solve's force 0 is the underflow answer, est_rel_err 1 by convention: its
@@ -785,11 +786,11 @@ contains
          real(dp) :: q(3), w(m)
          integer :: p
          w = weights(m)
-         q = [cap%force, cap%stiffness, cap%contact_radius]
+         q = [cap%force, cap%stiffness, cap%effective_radius]
          do p = 1, m
             associate (v => wide(order(p)))
                q = q + w(p)/x(p)*([v%force, v%stiffness, v%contact_radius] - &
-                  & [cap%force, cap%stiffness, cap%contact_radius])
+                  & [cap%force, cap%stiffness, cap%effective_radius])
             end associate
          end do
       end function extrapolate
