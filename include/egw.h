@@ -218,7 +218,11 @@ void egw_options_default(egw_options *o);
 
 /* Solve the contact of p at overlap delta (> 0 overlap, < 0 separation).
  * force: total normal force P (>= 0); stiffness: dP/ddelta by implicit differentiation;
- * contact_radius: effective a* = (3 pi/4) int r p dr / int p dr (= a for Hertz);
+ * contact_radius: effective a* = (3 pi/4) int r p dr / int p dr (= a for Hertz; Hertz
+ * or sigma = 0 with the flow-pressure cap beyond first yield: the contact's edge a, where
+ * p falls to 0, which is not a*: a fully capped disc has a* = 3 pi a/8 = 1.18 a, and a
+ * rough + cap contact reports a*, so its contact_radius tends to a* of the smooth cap,
+ * not to this a, as sigma -> 0; egw_solve_unload alike, its edge b);
  * max_pressure: max of the total pressure. Works for every model (Hertz exactly).
  * o may be NULL (defaults). Statuses: EGW_INVALID_PARAMETER (also parameters outside the
  * ranges the numerics represent, doc/parameters.md "Valid ranges"), EGW_INVALID_ARGUMENT

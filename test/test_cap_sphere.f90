@@ -22,6 +22,74 @@ module test_cap_sphere
 
 contains
 
+   !> cap_result%effective_radius, a* = (3 pi/4) int r p dr / int p dr (the contact radius
+   !> of every rough solve, which the small-sigma route extrapolates to): below first yield
+   !> Hertz's a = sqrt(R delta) (a* = a for Hertz's pressure; to 1e-14); fully capped (40
+   !> delta_y: p = p_y on [0, a], a**2/2 + 8 a/pi**2 = Delta in units of a_y, delta_y) 3 pi
+   !> a/8 (1e-12); at 3 and 10 delta_y, and unloading to 2.85 after 3 delta_y, the same
+   !> ratio of the public profile's pressure (contact_profile(_unload): up to 256 rings,
+   !> not the solve's 32/64; within 1.5e-5 p_y of tools/reference/cap_reference.py)
+   !> integrated by the trapezoid rule on 4001 radii over [0, 1.05 a] (its error at the
+   !> square-root edge ~(h/a)**1.5 ~ 1e-5): within 5e-5 (measured 7.6e-7, 1.6e-6, 1.1e-5).
+   subroutine test_effective_radius(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 4001
+      real(dp), parameter :: r = 1.0_dp, e = 1.0_dp, py = 2.0_dp/pi   ! a_y = delta_y = 1
+      type(cap_history) :: h
+      type(cap_result) :: res
+      type(egw_error), allocatable :: err
+      type(contact_params) :: params
+      real(dp) :: x(n), pr(n), w(n), a, star, dm(3), d(3)
+      integer :: j, k
+      call cap_load(r, e, py, 0.5_dp, cap_options(), h, res, err)
+      if (allocated(err)) then
+         call check(error, .false., err%message)
+         return
+      end if
+      call check(error, abs(res%effective_radius/sqrt(0.5_dp) - 1.0_dp) <= 1.0e-14_dp, &
+         & "0.5 delta_y: a* = "//str(res%effective_radius)//", Hertz's a "//str(sqrt(0.5_dp)))
+      if (allocated(error)) return
+      call cap_load(r, e, py, 40.0_dp, cap_options(), h, res, err)
+      if (allocated(err)) then
+         call check(error, .false., err%message)
+         return
+      end if
+      a = -8.0_dp/pi**2 + sqrt(64.0_dp/pi**4 + 80.0_dp)
+      call check(error, abs(res%effective_radius/(0.375_dp*pi*a) - 1.0_dp) <= 1.0e-12_dp, &
+         & "40 delta_y: a* = "//str(res%effective_radius)//", 3 pi a/8 = "//str(0.375_dp*pi*a))
+      if (allocated(error)) return
+      params = contact_params(model=model_hertz, radius=r, modulus=e, flow_pressure=py)
+      dm = [3.0_dp, 10.0_dp, 3.0_dp]
+      d = [3.0_dp, 10.0_dp, 2.85_dp]
+      do k = 1, 3
+         call cap_load(r, e, py, dm(k), cap_options(n_rings=32, n_levels=2), h, res, err)
+         if (.not. allocated(err) .and. d(k) < dm(k)) call cap_unload(h, d(k), res, err)
+         if (.not. allocated(err)) then
+            x = 1.05_dp*res%contact_radius*[(real(j - 1, dp), j = 1, n)]/real(n - 1, dp)
+            if (d(k) < dm(k)) then
+               call contact_profile_unload(params, solver_options(), d(k), dm(k), x, pr, w, err)
+            else
+               call contact_profile(params, solver_options(), d(k), x, pr, w, err)
+            end if
+         end if
+         if (allocated(err)) then
+            call check(error, .false., err%message)
+            return
+         end if
+         star = 0.75_dp*pi*trapezoid(x*pr)/trapezoid(pr)
+         call check(error, abs(res%effective_radius/star - 1.0_dp) <= 5.0e-5_dp, "delta " &
+            & //str(d(k))//" after "//str(dm(k))//" delta_y: a* = " &
+            & //str(res%effective_radius)//", the profile's "//str(star)//" (edge a " &
+            & //str(res%contact_radius)//")")
+         if (allocated(error)) return
+      end do
+   contains
+      pure real(dp) function trapezoid(f)
+         real(dp), intent(in) :: f(n)
+         trapezoid = (x(2) - x(1))*(sum(f) - 0.5_dp*(f(1) + f(n)))
+      end function trapezoid
+   end subroutine test_effective_radius
+
    subroutine collect_cap_sphere(testsuite)
       type(unittest_type), allocatable, intent(out) :: testsuite(:)
       testsuite = [ &
@@ -29,6 +97,8 @@ contains
          & new_unittest("first yield at p_max = p_y", test_first_yield), &
          & new_unittest("plastic zone grows above delta_y", test_zone_growth), &
          & new_unittest("fully capped: P -> pi a**2 p_y", test_fully_capped), &
+         & new_unittest("effective radius a*: Hertz's a, 3 pi a/8, the profile's", &
+         & test_effective_radius), &
          & new_unittest("unloading at delta_max is the loading state", test_turning_point), &
          & new_unittest("force converges under refinement", test_convergence), &
          & new_unittest("public options converge from 1 to 100 delta_y", test_robust), &

@@ -30,7 +30,8 @@ class SolveResult:
     ----------
     force : total force P [force], >= 0 (compression positive).
     stiffness : dP/ddelta [force/length].
-    contact_radius : effective contact radius a* [length].
+    contact_radius : effective contact radius a* [length] (Hertz or sigma = 0 with the
+        flow-pressure cap beyond first yield: the contact's edge a, not a*).
     max_pressure : largest pressure of the profile [pressure].
     est_rel_err : estimated error of the force relative to |force| (1 for force 0).
         Unloading after a capped loading is accepted against rel_tol/2 of

@@ -49,7 +49,8 @@ module egw_rough_sphere
    type, public :: solve_result
       real(dp) :: force = 0.0_dp           !< total normal force P
       real(dp) :: stiffness = 0.0_dp       !< dP/d(delta), by implicit differentiation
-      real(dp) :: contact_radius = 0.0_dp  !< a* = (3 pi/4) int r p dr / int p dr
+      !> a* = (3 pi/4) int r p dr / int p dr (Hertz + cap beyond first yield: the edge a)
+      real(dp) :: contact_radius = 0.0_dp
       real(dp) :: max_pressure = 0.0_dp    !< maximum of the total pressure
       !> estimated error of P relative to |P| itself: |P_true - P| <~ est_rel_err |P| (1 for
       !> P = 0). A solve accepts when its error estimate is below rel_tol/2 of |P| or, for
