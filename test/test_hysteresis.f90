@@ -11,7 +11,7 @@ module test_hysteresis
    use egw_table, only: table_eval
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
-      & hysteresis_energy
+      & hysteresis_energy, first_yield
    use egw_hysteresis_data, only: turning_point, edge_breaks, edge_s, edge_xi, max_stencil
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary, format_lammps
@@ -1170,18 +1170,21 @@ contains
    !> 0.02 of x0 (returns to the history, the log-ratio pieces), receding 3 below x0 (past
    !> the cut-off: zero pieces) and coming back; and 400 in contact (0 to 6, the loading
    !> and unloading pieces there, the states above delta_max = 6 whose status the call
-   !> reports). The C call (one state) and hysteresis_eval_state (another) at every step:
+   !> reports); and 200 on a Hertz + cap table (its force-ratio pieces). The C call (one
+   !> state) and hysteresis_eval_state (another) at every step:
    !> the same status, force, stiffness and state, bit for bit (the C entry's own checks
    !> pass for these inputs, so the call is hysteresis_eval_state there; before the
    !> served steps were answered at the call's top, it called it for each: this holds on
-   !> main too and guards the served steps' arithmetic, which only timing shows taken:
-   !> doc/benchmarks.md "Stop 51 (tailc17)").
+   !> main too and guards the served steps' arithmetic; that they are taken, instruction
+   !> counts show: doc/benchmarks.md "Stop 51 (tailc17)").
    subroutine test_c_separated(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table), target :: t
       real(c_double), target :: sc(hysteresis_state_size), fc, kc
       real(dp) :: sf(hysteresis_state_size), ff, kf, x0, d, cut
       integer :: j, n, stat_c, stat_f, steps, mismatches, positive, zero, beyond
+      type(egw_error), allocatable :: err
+      type(contact_params) :: capped
       interface
          integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
             & bind(C, name="egw_hysteresis_eval_state")
@@ -1240,6 +1243,34 @@ contains
       call check(error, positive > 30000 .and. zero > 3000 .and. beyond > 1000, &
          & "cases covered: "//to_string(positive)//" tail, "//to_string(zero)// &
          & " below the cut-off, "//to_string(beyond)//" above delta_max")
+      if (allocated(error)) return
+      ! a Hertz + cap table (force-ratio pieces, f_m u, and the loading curve; no zero
+      ! pieces): 200 contacts oscillating over [-delta_y, 12 delta_y] with growing and
+      ! shrinking amplitudes (past its delta_max 10 delta_y), the same comparison
+      capped = contact_params(model=model_hertz, radius=1.0_dp, modulus=1.0_dp, &
+         & flow_pressure=0.01_dp)
+      call build_hysteresis(capped, solver_options(), -first_yield(capped), &
+         & 10*first_yield(capped), tol, t, err)
+      if (allocated(err)) then
+         call test_failed(error, "Hertz + cap build: "//err%message)
+         return
+      end if
+      cut = first_yield(t%params)
+      do j = 1, 200
+         call hysteresis_state_init(sc)
+         call hysteresis_state_init(sf)
+         do n = 1, 120
+            d = cut*(5.5_dp + (5.0_dp + 1.5_dp*sin(0.37_dp*j))*sin(0.05_dp*n*(1 + mod(j, 7))) &
+               & + 1.0e-3_dp*modulo(7*n, 11))
+            stat_c = c_eval_state(c_loc(t), d, c_loc(sc), c_loc(fc), c_loc(kc))
+            call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
+            steps = steps + 1
+            if (.not. (stat_c == stat_f .and. same(fc, ff) .and. same(kc, kf) .and. &
+               & all(same(sc, sf)))) mismatches = mismatches + 1
+         end do
+      end do
+      call check(error, mismatches, 0, "Hertz + cap steps where the C call and "// &
+         & "hysteresis_eval_state differ")
    end subroutine test_c_separated
 
    !> The optional error of hysteresis_eval, hysteresis_eval_state and hysteresis_energy
