@@ -121,10 +121,12 @@ contains
       real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
       real(c_double), pointer :: out
       real(dp) :: f, k
+      logical :: served
       if (c_associated(hp) .and. c_associated(state_p)) then
          call c_f_pointer(hp, h)
          call c_f_pointer(state_p, state, [hysteresis_state_size])
-         if (eval_state_served(h, delta, state, f, k)) then
+         call eval_state_served(h, delta, state, f, k, served)
+         if (served) then
             if (c_associated(force)) then
                call c_f_pointer(force, out)
                out = f
@@ -149,12 +151,13 @@ contains
    !> segment_eval's arithmetic in the same order, exp from the same libm: bit for bit,
    !> test hysteresis), and so is the state it leaves; a step whose status would not be
    !> EGW_OK (a history above the table's delta_max, values that are not finite: a garbled
-   !> state) is not served (.false., nothing changed).
-   logical function eval_state_served(h, delta, state, force, stiffness) result(served)
+   !> state) is not served (served .false., the state unchanged).
+   pure subroutine eval_state_served(h, delta, state, force, stiffness, served)
       type(hysteresis_table), intent(in) :: h
       real(dp), intent(in) :: delta
       real(dp), intent(inout) :: state(hysteresis_state_size)
       real(dp), intent(out) :: force, stiffness
+      logical, intent(out) :: served
       real(dp) :: x, x2, t, t2, v, d, p
       served = .false.
       force = 0.0_dp
@@ -227,7 +230,7 @@ contains
          return
       end if
       served = ieee_is_finite(force) .and. ieee_is_finite(stiffness)
-   end function eval_state_served
+   end subroutine eval_state_served
 
    !> egw_hysteresis_eval_state's checks and hysteresis_eval_state: the steps eval_state_served
    !> does not serve. (Kept out of line: the served steps then need no stack frame of it.)
