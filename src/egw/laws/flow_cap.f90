@@ -102,8 +102,9 @@ contains
 
    !> cap_plastic_shift at many points (the Gauss points of a mesh). Where law(h_max) > p_y
    !> (t = p_y, the deep plastic zone) the shifted gap h_c is the one root h_y of
-   !> law(h) = p_y whatever the point, so it is solved once (from the largest such h_max,
-   !> the closest) and u_pl = h_y - h_max: point by point the same Newton from each h_max
+   !> law(h) = p_y whatever the point, so it is solved once (by prepare, for the cap's law:
+   !> cap%h_yield; a cap not prepared solves it here, from the largest such h_max, the
+   !> closest) and u_pl = h_y - h_max: point by point the same Newton from each h_max
    !> cost ~5 law evaluations a point (a third of an EP-GW + cap hysteresis build). The
    !> same root to rounding. Deep points need no law value either (their shift and offset
    !> follow from h_y and p_y): the law is evaluated from the largest h_max down (sorted)
