@@ -1937,7 +1937,7 @@ contains
    !> law(h0) at h0 from -200 to 4 (GW and ZMC summits), so the root is h0 itself: h_y
    !> within 1e-12 (1 + |h0|) of h0 (law_root stops at a step of 4 ulps, and rounding of
    !> p_y moves the root by |ulp(p)/p'| <= ~1e-14 (1 + |h0|) here; the start h = 0, -1,
-   !> -2, -4, ... itself misses h0 by 0.4 to 72 here). A p_y the law never reaches
+   !> -2, -4, ... itself misses h0 by 0.5 to 56 here). A p_y the law never reaches
    !> down to h = -2^60 (1e300): not known, and plastic_shifts then solves as before (the
    !> GW law at h = -2^60 is ~1e27).
    subroutine test_cap_prepare(error)
