@@ -736,8 +736,12 @@ int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
  * ranks): it keeps its history with a table of the same data (a rebuild with the same
  * parameters, tolerance and options, or the same file). A state that no call filled for
  * this table (another table's, garbled) is a new contact: its history is reset, never read
- * as a turning point. EGW_INVALID_ARGUMENT for NaN delta or state[0] (nothing changed);
- * EGW_NULL_POINTER for h or state. */
+ * as a turning point. The steps that egw_hysteresis_eval_cached below serves (a piece that
+ * covers delta, zero pieces of separated contacts included, or loading further inside the
+ * state's loading interval; not above the table's delta_max) this call answers at its top
+ * from the state alone, with the same values and state: the inline's cost plus a call's.
+ * EGW_INVALID_ARGUMENT for NaN delta or state[0] (nothing changed); EGW_NULL_POINTER for h
+ * or state. */
 int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
                               double state[EGW_HYSTERESIS_STATE_SIZE], double *force,
                               double *stiffness);

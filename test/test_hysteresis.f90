@@ -11,7 +11,7 @@ module test_hysteresis
    use egw_table, only: table_eval
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
-      & hysteresis_energy
+      & hysteresis_energy, first_yield
    use egw_hysteresis_data, only: turning_point, edge_breaks, edge_s, edge_xi, max_stencil
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary, format_lammps
@@ -72,6 +72,7 @@ contains
          & new_unittest("read refuses corrupted and insane files", test_bad_files), &
          & new_unittest("C DEM loop, egw_time_step: e at 1e-4..10 m/s", t_c_dem_loop), &
          & new_unittest("C egw_hysteresis_build, _eval, _free", test_c_api), &
+         & new_unittest("C eval_state = hysteresis_eval_state, separated", test_c_separated), &
          & new_unittest("stretched last curve far above the table: finite", test_stretched_far) &
          & ]
    end subroutine collect_hysteresis
@@ -1159,6 +1160,118 @@ contains
       nfail = c_hysteresis()
       call check(error, nfail == 0, to_string(nfail)//" C check(s) failed (see above)")
    end subroutine test_c_api
+
+   !> egw_hysteresis_eval_state answers the steps its state serves itself (issue 33 item 5:
+   !> separated contacts through the call alone) with hysteresis_eval_state's arithmetic
+   !> written out: the same bits. 400 contacts spread over the separated tail (cut-off, 0)
+   !> of the suite's EP-GW table, every other one touched first (history 1: unloading
+   !> pieces of a log ratio on ln P intervals), each approaching from 1 below its overlap
+   !> x0 (from below the cut-off for most: the zero interval, loading), jittering within
+   !> 0.02 of x0 (returns to the history, the log-ratio pieces), receding 3 below x0 (past
+   !> the cut-off: zero pieces) and coming back; and 400 in contact (0 to 6, the loading
+   !> and unloading pieces there, the states above delta_max = 6 whose status the call
+   !> reports); and 200 on a Hertz + cap table (its force-ratio pieces). The C call (one
+   !> state) and hysteresis_eval_state (another) at every step:
+   !> the same status, force, stiffness and state, bit for bit (the C entry's own checks
+   !> pass for these inputs, so the call is hysteresis_eval_state there; before the
+   !> served steps were answered at the call's top, it called it for each: this holds on
+   !> main too and guards the served steps' arithmetic; that they are taken, instruction
+   !> counts show: doc/benchmarks.md "Stop 51 (tailc17)").
+   subroutine test_c_separated(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table), target :: t
+      real(c_double), target :: sc(hysteresis_state_size), fc, kc
+      real(dp) :: sf(hysteresis_state_size), ff, kf, x0, d, cut
+      integer :: j, n, stat_c, stat_f, steps, mismatches, positive, zero, beyond
+      type(egw_error), allocatable :: err
+      type(contact_params) :: capped
+      interface
+         integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
+            & bind(C, name="egw_hysteresis_eval_state")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, state, force, stiffness
+            real(c_double), value :: delta
+         end function c_eval_state
+      end interface
+      call build(ep, t, error)
+      if (allocated(error)) return
+      cut = t%loading%cutoff
+      call check(error, cut < -2.0_dp .and. t%log_ratio, "the tail is wide, log ratios")
+      if (allocated(error)) return
+      steps = 0
+      mismatches = 0
+      positive = 0
+      zero = 0
+      beyond = 0
+      do j = 1, 800
+         if (j <= 400) then
+            x0 = cut*(1.0_dp - (j - 0.5_dp)/400)   ! (cut-off, 0)
+         else
+            x0 = 6.2_dp*(j - 400.5_dp)/400   ! (0, 6.2): in contact, past delta_max
+         end if
+         call hysteresis_state_init(sc)
+         call hysteresis_state_init(sf)
+         do n = 0, 160
+            if (n == 0) then
+               d = merge(1.0_dp, x0 - 1.0_dp, mod(j, 2) == 0)   ! touched, or not
+            else if (n <= 20) then
+               d = x0 - 1.0_dp + n/20.0_dp   ! approaching x0
+            else if (n <= 100) then
+               ! jitter within 0.02 of x0, over 8 overlaps in a shuffled cycle (returns to
+               ! the history exactly) and a slow drift
+               d = x0 + 0.02_dp*(modulo(5*n, 8)/7.0_dp - 0.5_dp) + 1.0e-4_dp*sin(0.1_dp*n)
+            else if (n <= 130) then
+               d = x0 - 3.0_dp*(n - 100)/30.0_dp   ! receding past the cut-off
+            else
+               d = x0 - 3.0_dp + 3.0_dp*(n - 130)/30.0_dp   ! and back
+            end if
+            stat_c = c_eval_state(c_loc(t), d, c_loc(sc), c_loc(fc), c_loc(kc))
+            call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
+            steps = steps + 1
+            if (.not. (stat_c == stat_f .and. same(fc, ff) .and. same(kc, kf) .and. &
+               & all(same(sc, sf)))) mismatches = mismatches + 1
+            if (ff > 0.0_dp .and. d < 0.0_dp) positive = positive + 1
+            if (ff == 0.0_dp .and. d < cut) zero = zero + 1
+            if (stat_f == egw_out_of_range) beyond = beyond + 1
+         end do
+      end do
+      call check(error, mismatches, 0, "steps where the C call and hysteresis_eval_state "// &
+         & "differ (of "//to_string(steps)//")")
+      if (allocated(error)) return
+      ! the walks cover the separated tail, the zero pieces below the cut-off and states
+      ! above the table's delta_max
+      call check(error, positive > 30000 .and. zero > 3000 .and. beyond > 1000, &
+         & "cases covered: "//to_string(positive)//" tail, "//to_string(zero)// &
+         & " below the cut-off, "//to_string(beyond)//" above delta_max")
+      if (allocated(error)) return
+      ! a Hertz + cap table (force-ratio pieces, f_m u, and the loading curve; no zero
+      ! pieces): 200 contacts oscillating over [-delta_y, 12 delta_y] with growing and
+      ! shrinking amplitudes (past its delta_max 10 delta_y), the same comparison
+      capped = contact_params(model=model_hertz, radius=1.0_dp, modulus=1.0_dp, &
+         & flow_pressure=0.01_dp)
+      call build_hysteresis(capped, solver_options(), -first_yield(capped), &
+         & 10*first_yield(capped), tol, t, err)
+      if (allocated(err)) then
+         call test_failed(error, "Hertz + cap build: "//err%message)
+         return
+      end if
+      cut = first_yield(t%params)
+      do j = 1, 200
+         call hysteresis_state_init(sc)
+         call hysteresis_state_init(sf)
+         do n = 1, 120
+            d = cut*(5.5_dp + (5.0_dp + 1.5_dp*sin(0.37_dp*j))*sin(0.05_dp*n*(1 + mod(j, 7))) &
+               & + 1.0e-3_dp*modulo(7*n, 11))
+            stat_c = c_eval_state(c_loc(t), d, c_loc(sc), c_loc(fc), c_loc(kc))
+            call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
+            steps = steps + 1
+            if (.not. (stat_c == stat_f .and. same(fc, ff) .and. same(kc, kf) .and. &
+               & all(same(sc, sf)))) mismatches = mismatches + 1
+         end do
+      end do
+      call check(error, mismatches, 0, "Hertz + cap steps where the C call and "// &
+         & "hysteresis_eval_state differ")
+   end subroutine test_c_separated
 
    !> The optional error of hysteresis_eval, hysteresis_eval_state and hysteresis_energy
    !> (issue 33 item 5: they returned a bare stat): on the EP-GW table, at loading and

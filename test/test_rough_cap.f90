@@ -108,7 +108,8 @@ contains
          & new_unittest("plastic_shifts: law(h_max + u_pl) = p_y, offsets, GW and ZMC", &
          & test_plastic_shifts), &
          & new_unittest("plastic_shifts: deep points unevaluated, law_max and reuse", &
-         & test_plastic_shifts_deep) &
+         & test_plastic_shifts_deep), &
+         & new_unittest("flow_cap prepare: the root of law = p_y once", test_cap_prepare) &
          & ]
    end subroutine collect_rough_cap
 
@@ -1927,13 +1928,19 @@ contains
       type(gw_flat_law) :: law
       type(flow_cap) :: cap
       real(dp) :: p(8), dpdh(8), shift(8), offset(8), ps_max(8), p1(1), d1(1), c, t
-      integer :: k, i, cases(3)
+      integer :: k, i, cases(3), pass
       real(dp), parameter :: psi(2) = [0.0_dp, 1.0_dp]
+      ! pass 1: the root solved in the call; pass 2: by prepare, once for the cap
+      do pass = 1, 2
       do k = 1, 2
          law%scale = 1.0_dp
          law%psi = psi(k)
          call law%pressure([1.0_dp], p1, d1)
-         cap%p_y = p1(1)
+         cap = flow_cap(p_y=p1(1))
+         if (pass == 2) call cap%prepare(law)
+         call check(error, cap%yield_known .eqv. pass == 2, "psi "//str(psi(k)) &
+            & //": the cap's root known after prepare only")
+         if (allocated(error)) return
          ps_max = ps_frac*cap%p_y
          call cap%plastic_shifts(law, ps_max, h_max, shift, offset)
          call law%pressure(h_max, p, dpdh)
@@ -1974,7 +1981,45 @@ contains
             & //str(real(cases(3), dp)))
          if (allocated(error)) return
       end do
+      end do
    end subroutine test_plastic_shifts
+
+   !> flow_cap's prepare: the root h_y of law(h) = p_y, solved once for a cap. p_y =
+   !> law(h0) at h0 from -200 to 4 (GW and ZMC summits), so the root is h0 itself: h_y
+   !> within 1e-12 (1 + |h0|) of h0 (law_root stops at a step of 4 ulps, and rounding of
+   !> p_y moves the root by |ulp(p)/p'| <= ~1e-14 (1 + |h0|) here; the start h = 0, -1,
+   !> -2, -4, ... itself misses h0 by 0.5 to 56 here). A p_y the law never reaches
+   !> down to h = -2^60 (1e300): not known, and plastic_shifts then solves as before (the
+   !> GW law at h = -2^60 is ~1e27).
+   subroutine test_cap_prepare(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: h0(5) = [-200.0_dp, -7.5_dp, -0.4_dp, 1.0_dp, 4.0_dp]
+      real(dp), parameter :: psi(2) = [0.0_dp, 1.0_dp]
+      type(gw_flat_law) :: law
+      type(flow_cap) :: cap
+      real(dp) :: p1(1), d1(1)
+      integer :: k, i
+      law%scale = 1.0_dp
+      do k = 1, 2
+         law%psi = psi(k)
+         do i = 1, size(h0)
+            call law%pressure([h0(i)], p1, d1)
+            cap = flow_cap(p_y=p1(1))
+            call cap%prepare(law)
+            call check(error, cap%yield_known, "psi "//str(psi(k))//", h0 "//str(h0(i)) &
+               & //": no root found")
+            if (allocated(error)) return
+            call check(error, abs(cap%h_yield - h0(i)) <= 1.0e-12_dp*(1.0_dp + abs(h0(i))), &
+               & "psi "//str(psi(k))//": root "//str(cap%h_yield)//", expected "//str(h0(i)))
+            if (allocated(error)) return
+         end do
+         cap = flow_cap(p_y=1.0e300_dp)
+         call cap%prepare(law)
+         call check(error, .not. cap%yield_known, "psi "//str(psi(k)) &
+            & //": a root of law = 1e300 reported")
+         if (allocated(error)) return
+      end do
+   end subroutine test_cap_prepare
 
    !> flow_cap's plastic_shifts on a mesh-like field with a deep plastic zone (h_max from
    !> -40 to 3, not in order, a ring that is not deep inside it; 61 points): the law is not evaluated at deep points whose

@@ -15,6 +15,7 @@ module egw_capi_hysteresis
    use egw_hysteresis, only: hysteresis_table, hysteresis_eval, zero_lo, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
+   use egw_hysteresis_data, only: quiet_nan
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_capi_utils, only: settle, require, invalid, failure, check_number, check_count, &
       & read_contact, put, put_handle_settled, take_handle, double_array, from_params, &
@@ -30,6 +31,9 @@ module egw_capi_hysteresis
    end type egw_hysteresis_info_c
 
    public :: egw_hysteresis_info_c
+   ! (public so that the compiler keeps it out of line: the steps egw_hysteresis_eval_state
+   ! serves itself, which it inlines, then set up no frame for it)
+   public :: eval_state_full
 
 contains
 
@@ -102,7 +106,10 @@ contains
    end function egw_hysteresis_eval
 
    !> C: egw_hysteresis_eval_state: egw_hysteresis_eval with the turning point's data kept
-   !> in the caller's state (EGW_HYSTERESIS_STATE_SIZE doubles; state[0] the history).
+   !> in the caller's state (EGW_HYSTERESIS_STATE_SIZE doubles; state[0] the history). The
+   !> steps that read nothing but the state (eval_state_served: what egw.h's inline
+   !> egw_hysteresis_eval_cached serves) are answered here, before the argument checks,
+   !> which the call that filled the state passed; every other step takes eval_state_full.
    function egw_hysteresis_eval_state(hp, delta, state_p, force, stiffness) result(stat) &
       & bind(C, name="egw_hysteresis_eval_state")
       !> C: `egw_hysteresis h`; `double state[EGW_HYSTERESIS_STATE_SIZE]`; `double *force`
@@ -113,9 +120,129 @@ contains
       type(hysteresis_table), pointer :: h
       real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
       real(c_double), pointer :: out
+      real(dp) :: f, k
+      logical :: served
+      if (c_associated(hp) .and. c_associated(state_p)) then
+         call c_f_pointer(hp, h)
+         call c_f_pointer(state_p, state, [hysteresis_state_size])
+         call eval_state_served(h, delta, state, f, k, served)
+         if (served) then
+            if (c_associated(force)) then
+               call c_f_pointer(force, out)
+               out = f
+            end if
+            if (c_associated(stiffness)) then
+               call c_f_pointer(stiffness, out)
+               out = k
+            end if
+            stat = egw_ok
+            return
+         end if
+      end if
+      stat = eval_state_full(hp, delta, state_p, force, stiffness)
+   end function egw_hysteresis_eval_state
+
+   !> The steps of egw_hysteresis_eval_state that its state answers alone (egw.h's inline
+   !> egw_hysteresis_eval_cached serves the same): a state this table filled (its tag)
+   !> whose piece covers delta with the loading interval beside it (hysteresis_eval_state's
+   !> first test; a zero piece: 0), or a step loading further (delta >= state(1)) inside
+   !> the loading interval the state holds (above the loading table's cut-off, or in a zero
+   !> interval below it). The values are hysteresis_eval_state's (piece_force's and
+   !> segment_eval's arithmetic in the same order, exp from the same libm: bit for bit,
+   !> test hysteresis), and so is the state it leaves; a step whose status would not be
+   !> EGW_OK (a history above the table's delta_max, values that are not finite: a garbled
+   !> state) is not served (served .false., the state unchanged).
+   pure subroutine eval_state_served(h, delta, state, force, stiffness, served)
+      type(hysteresis_table), intent(in) :: h
+      real(dp), intent(in) :: delta
+      real(dp), intent(inout) :: state(hysteresis_state_size)
+      real(dp), intent(out) :: force, stiffness
+      logical, intent(out) :: served
+      real(dp) :: x, x2, t, t2, v, d, p
+      served = .false.
+      force = 0.0_dp
+      stiffness = 0.0_dp
+      if (.not. state(3) == h%tag) return
+      if (state(2) == state(1) .and. state(11) < delta .and. delta < state(12) .and. &
+         & state(18) <= delta .and. delta < state(19)) then
+         if (state(11) == zero_lo) then
+            ! a zero piece (separated, no force; hysteresis_eval_state's exit there)
+            served = state(1) <= h%input_limit
+            return
+         end if
+         if (.not. (state(1) <= h%delta_max .and. state(1) <= h%input_limit)) return
+         x = delta - state(11)
+         x2 = x*x
+         force = (state(14) + x*state(15)) + x2*(state(16) + x*state(17))
+         stiffness = (state(15) + 2*x*state(16)) + 3*x2*state(17)
+         if (state(24) > 0.0_dp .or. state(24) < 0.0_dp) then
+            t = delta - state(18)
+            t2 = t*t
+            v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
+            d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
+            if (state(24) > 1.0_dp) then
+               ! a log-ratio piece on a ln P interval (the separated tail): exp(ln P - h)
+               p = exp(v + force)
+               stiffness = p*(d + stiffness)
+               force = p
+            else if (state(24) < 0.0_dp) then
+               ! a log-ratio piece on a linear interval: P e^-h
+               p = exp(force)
+               stiffness = p*(d + v*stiffness)
+               force = v*p
+            else
+               ! a gap piece on a ln P interval: the cubic plus P
+               p = exp(v)
+               force = force + p
+               stiffness = stiffness + p*d
+            end if
+         end if
+         if (.not. force > 0.0_dp) then
+            force = 0.0_dp
+            stiffness = 0.0_dp
+         end if
+      else if (delta >= state(1) .and. state(18) <= delta .and. delta < state(19) .and. &
+         & delta <= h%delta_max .and. delta <= h%input_limit) then
+         ! loading further (or back at the history) inside the loading interval
+         if (state(18) == zero_lo) then
+            ! the zero interval below the cut-off (a contact that has not touched)
+            if (.not. delta < h%loading%cutoff) return
+         else
+            if (.not. delta > h%loading%cutoff) return
+            t = delta - state(18)
+            t2 = t*t
+            v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
+            d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
+            if (state(24) > 0.0_dp) then
+               force = exp(v)
+               stiffness = force*d
+            else
+               force = v
+               stiffness = d
+            end if
+         end if
+         if (.not. (ieee_is_finite(force) .and. ieee_is_finite(stiffness))) return
+         if (.not. delta == state(1)) state(11:12) = quiet_nan
+         state(1) = delta
+         served = .true.
+         return
+      else
+         return
+      end if
+      served = ieee_is_finite(force) .and. ieee_is_finite(stiffness)
+   end subroutine eval_state_served
+
+   !> egw_hysteresis_eval_state's checks and hysteresis_eval_state: the steps eval_state_served
+   !> does not serve. (Kept out of line: the served steps then need no stack frame of it.)
+   function eval_state_full(hp, delta, state_p, force, stiffness) result(stat)
+      type(c_ptr), value, intent(in) :: hp, state_p, force, stiffness   !< as the C entry's
+      real(c_double), value, intent(in) :: delta   !< as the C entry's
+      integer(c_int) :: stat
+      type(hysteresis_table), pointer :: h
+      real(c_double), pointer, contiguous :: state(:)   ! no packing on the hot path
+      real(c_double), pointer :: out
       real(dp) :: f, k, kept, limit
       integer :: st
-      ! good arguments pass an inline test, not the checks' calls (the hot path)
       if (.not. (c_associated(hp) .and. c_associated(state_p)) .or. ieee_is_nan(delta)) then
          stat = require(hp, "h")
          if (stat == egw_ok) stat = require(state_p, "state")
@@ -124,22 +251,6 @@ contains
       end if
       call c_f_pointer(hp, h)
       call c_f_pointer(state_p, state, [hysteresis_state_size])
-      ! a separated contact's zero piece (hysteresis_eval_state's first test, its zero
-      ! piece's exit): 0 before the checks, which it passed when the piece was made
-      if (state(3) == h%tag .and. state(11) == zero_lo .and. state(2) == state(1) .and. &
-         & state(11) < delta .and. delta < state(12) .and. state(18) <= delta .and. &
-         & delta < state(19) .and. state(1) <= h%input_limit) then
-         if (c_associated(force)) then
-            call c_f_pointer(force, out)
-            out = 0.0_dp
-         end if
-         if (c_associated(stiffness)) then
-            call c_f_pointer(stiffness, out)
-            out = 0.0_dp
-         end if
-         stat = egw_ok
-         return
-      end if
       if (ieee_is_nan(state(1))) then
          stat = invalid("state[0] = NaN: a new contact starts from "// &
             & "egw_hysteresis_state_init (state[0] = -HUGE_VAL)")
@@ -171,7 +282,7 @@ contains
       end if
       stat = int(st, c_int)
       if (stat == egw_out_of_range) stat = above_table(h, "state[0]", state(1))
-   end function egw_hysteresis_eval_state
+   end function eval_state_full
 
    !> C: egw_hysteresis_state_tag: the tag egw writes into the states h fills (state[2]),
    !> for egw.h's inline egw_hysteresis_eval_cached.

@@ -86,11 +86,13 @@ module egw_cache
    !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)); 34 (gw16): classic GW unloading after
    !> a capped loading takes one confirming level more at sigma/delta_y <= 1e-3, and a
    !> tail-grown mesh that stalled is solved again from the last attempt: GW + cap tables
-   !> there moved; 33 was capu16's Hertz + cap force ratio, format 5 (other models' not; README's GW + cap build at 1e-2 byte-identical).
-   !> 35 (audit17): the small-sigma route (rough + cap, sigma/delta_y <= ~1e-6) reports
+   !> there moved; 33 was capu16's Hertz + cap force ratio, format 5 (other models' not; README's GW + cap build at 1e-2 byte-identical);
+   !> 35 (psi17): the cap's root of law = p_y solved once per problem (flow_cap's
+   !> prepare): rough + cap tables move by rounding (EP-GW + cap psi 1: 3.2e-15 of P(m));
+   !> 36 (audit17): the small-sigma route (rough + cap, sigma/delta_y <= ~1e-6) reports
    !> the rough solver's a* as contact radius (was: extrapolated towards the smooth cap's
    !> edge a); forces unchanged, the loading tables' contact radii there moved.
-   integer, parameter, public :: cache_revision = 35
+   integer, parameter, public :: cache_revision = 36
 
 
 contains

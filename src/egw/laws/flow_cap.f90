@@ -20,7 +20,13 @@ module egw_flow_cap
    !> The flow-pressure cap: p_y in the solver's pressure unit.
    type, public :: flow_cap
       real(dp) :: p_y = huge(1.0_dp)   !< scaled flow pressure (> 0)
+      !> The root h_y of law(h) = p_y of the law the cap was prepared for (prepare), where
+      !> yield_known: the deep plastic zone's shifted gap, the same for every point and
+      !> every solve of one law (cap_plastic_shifts)
+      real(dp) :: h_yield = 0.0_dp
+      logical :: yield_known = .false.
    contains
+      procedure :: prepare => cap_prepare
       procedure :: apply => cap_apply
       procedure :: unload_floor => cap_unload_floor
       procedure :: plastic_shift => cap_plastic_shift
@@ -96,8 +102,9 @@ contains
 
    !> cap_plastic_shift at many points (the Gauss points of a mesh). Where law(h_max) > p_y
    !> (t = p_y, the deep plastic zone) the shifted gap h_c is the one root h_y of
-   !> law(h) = p_y whatever the point, so it is solved once (from the largest such h_max,
-   !> the closest) and u_pl = h_y - h_max: point by point the same Newton from each h_max
+   !> law(h) = p_y whatever the point, so it is solved once (by prepare, for the cap's law:
+   !> cap%h_yield; a cap not prepared solves it here, from the largest such h_max, the
+   !> closest) and u_pl = h_y - h_max: point by point the same Newton from each h_max
    !> cost ~5 law evaluations a point (a third of an EP-GW + cap hysteresis build). The
    !> same root to rounding. Deep points need no law value either (their shift and offset
    !> follow from h_y and p_y): the law is evaluated from the largest h_max down (sorted)
@@ -181,7 +188,9 @@ contains
          law_max = p
       end if
       h_y = 0.0_dp
-      if (deepest > 0) then
+      if (deepest > 0 .and. cap%yield_known) then
+         h_y = cap%h_yield
+      else if (deepest > 0) then
          if (.not. fresh(deepest)) then
             ! (known: law_root's start needs the slope too)
             call law_point(law, h_max(deepest), p1(1), dpdh(deepest))
@@ -197,6 +206,34 @@ contains
          shift(i) = h_y - h_max(i)
       end do
    end subroutine cap_plastic_shifts
+
+   !> The cap for one law: its root h_y of law(h) = p_y, solved once here (from the first of
+   !> h = 0, -1, -2, -4, ... where law(h) > p_y, by law_root) instead of once in every
+   !> cap_plastic_shifts call from that call's closest deep point: 5-6 law evaluations a
+   !> call, ~0.6 M evaluations of the ZMC law (~3 % of CPU) in the EP-GW + cap psi 1 table
+   !> of issue 32 (doc/benchmarks.md "Stop 51 (psi17)"). The same root to its last bits
+   !> (law_root stops at a step of 4 ulps). Not found (the law stays <= p_y down to
+   !> h = -2^60, or is not finite): yield_known false, and cap_plastic_shifts solves as
+   !> before.
+   pure subroutine cap_prepare(cap, law)
+      class(flow_cap), intent(inout) :: cap
+      class(flat_law), intent(in) :: law   !< the loading law the cap acts on
+      real(dp) :: h, p, dpdh, h_y
+      integer :: i
+      cap%yield_known = .false.
+      cap%h_yield = 0.0_dp
+      h = 0.0_dp
+      do i = 0, 61
+         call law_point(law, h, p, dpdh)
+         if (p > cap%p_y) exit
+         if (.not. abs(p) <= huge(p)) return
+         h = -2.0_dp**i
+      end do
+      if (.not. (p > cap%p_y .and. p <= huge(p))) return
+      call law_root(law, cap%p_y, h, p, dpdh, h_y)
+      cap%h_yield = h_y
+      cap%yield_known = .true.
+   end subroutine cap_prepare
 
    !> The law and its slope at one point.
    pure subroutine law_point(law, h, p, dpdh)

@@ -906,6 +906,8 @@ contains
       end if
       prob = scaled(lp, delta)
       call law%rescaled(law%length(), pressure_unit(lp), prob%law)
+      ! (the cap's root is the given law's)
+      if (allocated(prob%cap)) call prob%cap%prepare(prob%law)
       if (negligible(prob)) then
          result%method_used = options%method
          result%est_rel_err = 1.0_dp

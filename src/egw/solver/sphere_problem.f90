@@ -188,8 +188,10 @@ contains
       prob%plastic_ratio = params%plastic_ratio
       allocate (prob%law, source=gw_flat_law(scale=prob%scale, psi=prob%psi, &
          & hardness_coeff=prob%hardness, plastic_ratio=prob%plastic_ratio))
-      if (params%flow_pressure > 0.0_dp) prob%cap = &
-         & flow_cap(p_y=params%flow_pressure/pressure_unit(params))
+      if (params%flow_pressure > 0.0_dp) then
+         prob%cap = flow_cap(p_y=params%flow_pressure/pressure_unit(params))
+         call prob%cap%prepare(prob%law)
+      end if
    end function scaled
 
    !> Scaled pressure of the loading law at one scaled separation h, and its derivative.
