@@ -86,8 +86,12 @@ module egw_cache
    !> to 12 delta_y at 1e-3: 3.6e-7 of P(m)); 34 (gw16): classic GW unloading after
    !> a capped loading takes one confirming level more at sigma/delta_y <= 1e-3, and a
    !> tail-grown mesh that stalled is solved again from the last attempt: GW + cap tables
-   !> there moved; 33 was capu16's Hertz + cap force ratio, format 5 (other models' not; README's GW + cap build at 1e-2 byte-identical).
-   integer, parameter, public :: cache_revision = 34
+   !> there moved; 33 was capu16's Hertz + cap force ratio, format 5 (other models' not; README's GW + cap build at 1e-2 byte-identical);
+   !> 35 (mesh17): unloading after a capped loading (extended models) halves on every
+   !> level the elements it keeps of the level before, in place of the accepted level's
+   !> bisection check (sphere_solver's halved_levels): rough + cap tables moved (E-GW +
+   !> cap to 6 delta_y at 1e-4: 5.1e-6 of P(m)).
+   integer, parameter, public :: cache_revision = 35
 
 
 contains
