@@ -643,20 +643,21 @@ contains
    end function with_history_edges
 
    !> edge with every element whose both ends are edges of coarse (the level before) cut
-   !> at coarse's edges between them and each piece halved: no element of the new level
-   !> is one of coarse's, nor coarser than coarse there (both increasing, edge(0) =
-   !> coarse(0) = 0). An element between two fixed edges (r = 0, kink edges, the layers
-   !> at a, the rim) stays the same while the step exceeds it, and its error is then in
-   !> both levels, which their difference cannot see; halved, it shrinks like the rest
-   !> (egw_sphere_solver's refine_levels).
-   pure function split_kept(edge, coarse) result(out)
+   !> at coarse's edges between them and each piece into parts equal parts: no element of
+   !> the new level is one of coarse's, nor coarser than coarse there (both increasing,
+   !> edge(0) = coarse(0) = 0). An element between two fixed edges (r = 0, kink edges, the
+   !> layers at a, the rim) stays the same while the step exceeds it, and its error is
+   !> then in both levels, which their difference cannot see; cut into at least the step
+   !> ratio's parts, it shrinks at least like the rest (egw_sphere_solver's refine_levels).
+   pure function split_kept(edge, coarse, parts) result(out)
       real(dp), intent(in) :: edge(0:)     !< the new level's element boundaries
       real(dp), intent(in) :: coarse(0:)   !< the level before's
+      integer, intent(in) :: parts         !< parts of each piece (at least 2)
       real(dp), allocatable :: out(:)
-      integer :: i, j, k, q, m, n, nc
+      integer :: i, j, k, q, m, n, nc, l
       n = size(edge) - 1
       nc = size(coarse) - 1
-      allocate (out(0:n + 2*nc + 1))
+      allocate (out(0:n + parts*nc + 1))
       out(0) = edge(0)
       m = 0
       j = 0   ! coarse(j): the first of coarse's edges at or beyond edge(i - 1)
@@ -672,9 +673,12 @@ contains
          end if
          if (k > j .and. coarse(k) == edge(i)) then
             do q = j + 1, k
-               out(m + 1) = 0.5_dp*(coarse(q - 1) + coarse(q))
-               out(m + 2) = coarse(q)
-               m = m + 2
+               do l = 1, parts - 1
+                  out(m + l) = coarse(q - 1) + (coarse(q) - coarse(q - 1))*real(l, dp)/ &
+                     & real(parts, dp)
+               end do
+               out(m + parts) = coarse(q)
+               m = m + parts
             end do
          else
             m = m + 1

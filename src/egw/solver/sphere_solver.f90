@@ -735,7 +735,8 @@ contains
          if (halve) then
             call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, &
                & mesh%width, mesh%step, mesh%outer, sol, error, coarse, cache=cache, &
-               & level_before=coarse%mesh%edge(0:coarse%mesh%n_elem), kept=kept_any)
+               & level_before=coarse%mesh%edge(0:coarse%mesh%n_elem), &
+               & step_before=mesh%step_prev, kept=kept_any)
          else
             call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, &
                & mesh%width, mesh%step, mesh%outer, sol, error, coarse, cache=cache)
@@ -870,15 +871,17 @@ contains
 
    !> Unloading after a capped loading (sums_total), the levels of a discretisation
    !> error estimate (n_radial 0): each level halves the elements it would keep of the
-   !> level before (solve_with_tail's level_before, sphere_mesh's split_kept). Richardson
+   !> level before (cut into kept_parts: solve_with_tail's level_before, sphere_mesh's
+   !> split_kept). Richardson
    !> assumes that every element shrinks with the step, but an element between two fixed
    !> edges (r = 0, kink edges, the layers at a and at the rim) stays the same while the
    !> step exceeds it, and its error is in both levels: near the residual overlap the
    !> total pressure lives on such a disc [0, 0.091] (E-GW, sigma = 0.059 delta_y, delta
    !> = 0.0174 delta_y after 1.297 delta_y), one element at steps 0.19, 0.15 and 0.076,
    !> whose levels agreed to 6e-8 while all were 8.2e-6 off (doc/theory.md section 12).
-   !> Halved, those elements shrink by 2 where the step shrinks by 1.5, so the
-   !> Richardson estimate (step ratio 1.5) of their change is conservative. Until stop 51
+   !> Cut into at least the step ratio's parts (2 on the first refinement level, whose
+   !> step is 1.5 times finer), those elements shrink at least like the step, so the
+   !> Richardson estimate with the step ratio is conservative for them. Until stop 51
    !> an accepted level was solved again with them halved (a bisection check, the
    !> difference added whole to its estimate): the same mesh as the halved level, one
    !> mesh solve more in 56 % of the unloading solves of an E-GW + cap table
@@ -931,7 +934,7 @@ contains
                call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, &
                   & mesh%width, mesh%step, mesh%outer, moved_sol, error, guess, &
                   & cache=cache, level_before=moved_coarse%mesh%edge(0: &
-                  & moved_coarse%mesh%n_elem))
+                  & moved_coarse%mesh%n_elem), step_before=mesh%step_prev)
             else
                call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, &
                   & mesh%width, mesh%step, mesh%outer, moved_sol, error, guess, cache=cache)
@@ -1024,7 +1027,7 @@ contains
    !> Solve on the mesh of the given step, growing the outer radius (kept for the next
    !> levels) until the force estimated beyond it is below 1 % of the tolerance.
    subroutine solve_with_tail(prob, options, method, layered, focus, width, step, outer, sol, &
-      & error, guess, cache, level_before, kept)
+      & error, guess, cache, level_before, step_before, kept)
       type(scaled_problem), intent(in) :: prob
       type(solver_options), intent(in) :: options
       integer, intent(in) :: method
@@ -1035,9 +1038,10 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
-      !> the level before's element edges: the elements this mesh keeps of it halved
-      !> (split_kept), unless that needs more than max_mesh_nodes (refine_levels)
-      real(dp), intent(in), optional :: level_before(0:)
+      !> the level before's element edges: the elements this mesh keeps of it cut into
+      !> kept_parts(step_before/step) (split_kept), unless that needs more than
+      !> max_mesh_nodes (refine_levels); with step_before, its step
+      real(dp), intent(in), optional :: level_before(0:), step_before
       !> level_before given and an element of it kept (and halved, but for the node limit)
       logical, intent(out), optional :: kept
       real(dp) :: total, keep
@@ -1133,7 +1137,8 @@ contains
                end do
             end if
          end if
-         if (present(level_before)) call halve_kept(edges, level_before, kept)
+         if (present(level_before) .and. present(step_before)) call halve_kept(edges, &
+            & level_before, kept_parts(step_before/step), kept)
          call solve_mesh(prob, options, method, edges, sol, error, guess, cache=cache)
          if (allocated(error) .and. attempt > 1 .and. capped_gw(prob)) then
             ! Classic GW unloading after a capped loading: a mesh grown by the tail check
@@ -1163,19 +1168,29 @@ contains
          & //format_real(outer))
    end subroutine solve_with_tail
 
-   !> edges with the elements they keep of coarse's halved (sphere_mesh's split_kept),
-   !> where that needs at most max_mesh_nodes (else as they were); kept: whether they
-   !> kept any.
-   pure subroutine halve_kept(edges, coarse, kept)
+   !> edges with the elements they keep of coarse's cut into parts (sphere_mesh's
+   !> split_kept), where that needs at most max_mesh_nodes (else as they were); kept:
+   !> whether they kept any.
+   pure subroutine halve_kept(edges, coarse, parts, kept)
       real(dp), allocatable, intent(inout) :: edges(:)
       real(dp), intent(in) :: coarse(0:)
+      integer, intent(in) :: parts
       logical, intent(out), optional :: kept
       real(dp), allocatable :: halved(:)
-      halved = split_kept(edges, coarse)
+      halved = split_kept(edges, coarse, parts)
       if (present(kept)) kept = size(halved) > size(edges)
       if ((size(halved) - 1)*deflection_degree + 1 > max_mesh_nodes) return
       call move_alloc(halved, edges)
    end subroutine halve_kept
+
+   !> The parts a kept element is cut into on a level whose step is ratio times finer
+   !> than the level before's: at least 2 and at least ratio (the levels' steps shrink by
+   !> 1.25 .. 4), so that it shrinks at least like the step and the Richardson estimate
+   !> with that ratio stays conservative for it.
+   elemental integer function kept_parts(ratio) result(parts)
+      real(dp), intent(in) :: ratio
+      parts = max(2, ceiling(ratio - 1.0e-9_dp))
+   end function kept_parts
 
    !> Kink edges of an unloading solve placed from a solution with them in place (sol, the
    !> first level): while what the edges still miss by (kink_offset_error) exceeds a tenth
