@@ -13,7 +13,8 @@ module test_rough_cap
       & solve_unload, restitution, solve_contact_unload
    use egw_status, only: egw_not_converged
    use egw_table, only: force_table, build_table, table_eval
-   use egw_sphere_mesh, only: disc_refined, disc_graded, edge_layer_width, with_history_edges
+   use egw_sphere_mesh, only: disc_refined, disc_graded, edge_layer_width, with_history_edges, &
+      & split_kept
    use egw_flow_cap, only: flow_cap, not_evaluated
    use egw_rough_profile, only: contact_profile_unload
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load, u_plastic
@@ -71,6 +72,8 @@ contains
          & test_residual_disc_beads), &
          & new_unittest("the two routes' meshes: disc_refined, with_history_edges", &
          & test_route_meshes), &
+         & new_unittest("split_kept: the levels' kept elements halved, none coarsened", &
+         & test_split_kept), &
          & new_unittest("E-GW + cap steel beads, 42 nm: mid-unloading reaches the rim", &
          & test_mid_unloading_rim), &
          & new_unittest("E-GW + cap, rim within the focus's layers: the mesh reaches it", &
@@ -239,6 +242,53 @@ contains
       call check(error, abs(real(i, dp)/real(n, dp) - 2.0_dp) <= 0.2_dp, &
          & "disc_graded: elements at half the step "//str(real(i, dp)))
    end subroutine test_route_meshes
+
+   !> The unloading levels after a capped loading (egw_sphere_solver's halved_levels):
+   !> split_kept halves each element of a level that is an element of the level before,
+   !> cuts one that spans several of them (both its ends theirs) at their edges and halves
+   !> those, and leaves the rest; with 3 parts, thirds. On hand-made edges against the list
+   !> worked out by hand: exact (midpoints of dyadic edges, the others copied; thirds to
+   !> 1e-15, their rounding); a mesh none of whose elements
+   !> has both ends among the level before's edges comes back bit for bit, and a mesh
+   !> against itself has every element halved.
+   subroutine test_split_kept(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: level(0:5) = [0.0_dp, 1.0_dp, 2.0_dp, 3.0_dp, 5.0_dp, 8.0_dp]
+      real(dp), parameter :: before(0:6) = [0.0_dp, 1.0_dp, 2.5_dp, 3.0_dp, 4.0_dp, 5.0_dp, &
+         & 6.0_dp]
+      real(dp), allocatable :: out(:)
+      integer :: i
+      ! [0, 1] kept: halved; [1, 2], [2, 3] and [5, 8] end off the level before's edges:
+      ! as they are; [3, 5] spans [3, 4] and [4, 5]: cut at 4, each half halved
+      out = split_kept(level, before, 2)
+      call check(error, size(out) == 10, "split_kept: "//str(real(size(out), dp))//" edges")
+      if (allocated(error)) return
+      call check(error, all(out == [0.0_dp, 0.5_dp, 1.0_dp, 2.0_dp, 3.0_dp, 3.5_dp, 4.0_dp, &
+         & 4.5_dp, 5.0_dp, 8.0_dp]), "split_kept: the edges")
+      if (allocated(error)) return
+      ! no element has both ends among the level before's edges: unchanged
+      out = split_kept(level, [0.0_dp, 0.75_dp, 1.5_dp, 2.5_dp, 3.0_dp, 4.0_dp, 7.0_dp], 2)
+      call check(error, size(out) == size(level), "split_kept: a mesh sharing no element")
+      if (allocated(error)) return
+      call check(error, all(out == level), "split_kept: a mesh sharing no element, edges")
+      if (allocated(error)) return
+      ! the same mesh: every element halved
+      out = split_kept(before, before, 2)
+      call check(error, size(out) == 2*size(before) - 1, "split_kept: the same mesh, " &
+         & //str(real(size(out), dp))//" edges")
+      if (allocated(error)) return
+      call check(error, all(out(1::2) == before) .and. all([(out(2*i) == 0.5_dp*(before(i - &
+         & 1) + before(i)), i=1, size(before) - 1)]), "split_kept: the same mesh, edges")
+      if (allocated(error)) return
+      ! 3 parts (a level 3 times finer): [0, 1] in thirds, [3, 5] cut at 4, each in thirds
+      out = split_kept(level, before, 3)
+      call check(error, size(out) == 13, "split_kept in thirds: "//str(real(size(out), dp)) &
+         & //" edges")
+      if (allocated(error)) return
+      call check(error, all(abs(out - [0.0_dp, 1.0_dp/3, 2.0_dp/3, 1.0_dp, 2.0_dp, 3.0_dp, &
+         & 10.0_dp/3, 11.0_dp/3, 4.0_dp, 13.0_dp/3, 14.0_dp/3, 5.0_dp, 8.0_dp]) <= 1.0e-15_dp &
+         & *max(1.0_dp, out)), "split_kept in thirds: the edges")
+   end subroutine test_split_kept
 
    !> Steel beads of example cap-bead-grid (R* = 0.5 mm, E = 210 GPa, nu 0.3, pair sigma
    !> 42 nm = 0.0443 delta_y, mu 4, p_y = 3.2 GPa), E-GW + cap unloading from the turning

@@ -92,7 +92,11 @@ module egw_cache
    !> 36 (audit17): the small-sigma route (rough + cap, sigma/delta_y <= ~1e-6) reports
    !> the rough solver's a* as contact radius (was: extrapolated towards the smooth cap's
    !> edge a); forces unchanged, the loading tables' contact radii there moved.
-   integer, parameter, public :: cache_revision = 36
+   !> 37 (mesh17): unloading after a capped loading (extended models) halves on every
+   !> level the elements it keeps of the level before, in place of the accepted level's
+   !> bisection check (sphere_solver's halved_levels): rough + cap tables moved (E-GW +
+   !> cap to 6 delta_y at 1e-4: 5.1e-6 of P(m)).
+   integer, parameter, public :: cache_revision = 37
 
 
 contains

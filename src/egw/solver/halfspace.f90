@@ -630,7 +630,7 @@ contains
    !> in the cache in place of the oldest (not a matrix of more than cache_max_entries).
    !> Levels of a solve share elements and nodes where edges are fixed (r = 0, kinks,
    !> layers, the inner part when only the outer radius grows); a kink relocation or a
-   !> bisection check keeps most of its mesh.
+   !> level after a capped loading (halved elements) keeps most of its mesh.
    subroutine assemble_influence_cached(mesh, infl, n_threads, cache, stat)
       type(radial_mesh), intent(in) :: mesh   !< a built mesh
       real(dp), intent(out) :: infl(:, :)   !< (nodes, n_elem*n_gauss)

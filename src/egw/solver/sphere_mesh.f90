@@ -51,7 +51,7 @@ module egw_sphere_mesh
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
       & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined, &
-      & disc_graded, with_history_edges
+      & disc_graded, with_history_edges, split_kept
 
 
    !> The state of an Illinois root search (illinois_begin, illinois_step).
@@ -641,6 +641,52 @@ contains
       end do
       out = out(:m)
    end function with_history_edges
+
+   !> edge with every element whose both ends are edges of coarse (the level before) cut
+   !> at coarse's edges between them and each piece into parts equal parts: no element of
+   !> the new level is one of coarse's, nor coarser than coarse there (both increasing,
+   !> edge(0) = coarse(0) = 0). An element between two fixed edges (r = 0, kink edges, the
+   !> layers at a, the rim) stays the same while the step exceeds it, and its error is
+   !> then in both levels, which their difference cannot see; cut into at least the step
+   !> ratio's parts, it shrinks at least like the rest (egw_sphere_solver's refine_levels).
+   pure function split_kept(edge, coarse, parts) result(out)
+      real(dp), intent(in) :: edge(0:)     !< the new level's element boundaries
+      real(dp), intent(in) :: coarse(0:)   !< the level before's
+      integer, intent(in) :: parts         !< parts of each piece (at least 2)
+      real(dp), allocatable :: out(:)
+      integer :: i, j, k, q, m, n, nc, l
+      n = size(edge) - 1
+      nc = size(coarse) - 1
+      allocate (out(0:n + parts*nc + 1))
+      out(0) = edge(0)
+      m = 0
+      j = 0   ! coarse(j): the first of coarse's edges at or beyond edge(i - 1)
+      do i = 1, n
+         do while (j < nc .and. coarse(j) < edge(i - 1))
+            j = j + 1
+         end do
+         k = j
+         if (coarse(j) == edge(i - 1)) then
+            do while (k < nc .and. coarse(k) < edge(i))
+               k = k + 1
+            end do
+         end if
+         if (k > j .and. coarse(k) == edge(i)) then
+            do q = j + 1, k
+               do l = 1, parts - 1
+                  out(m + l) = coarse(q - 1) + (coarse(q) - coarse(q - 1))*real(l, dp)/ &
+                     & real(parts, dp)
+               end do
+               out(m + parts) = coarse(q)
+               m = m + parts
+            end do
+         else
+            m = m + 1
+            out(m) = edge(i)
+         end if
+      end do
+      out = out(0:m)
+   end function split_kept
 
    !> Width of the boundary layer outside a contact edge at radius edge (scaled units):
    !> where the gap outside a Hertz-like edge, (4/3)(a**2/pi)(2 s/a)**1.5, reaches one
