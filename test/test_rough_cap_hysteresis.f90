@@ -6,7 +6,7 @@
 module test_rough_cap_hysteresis
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_unsupported
+      & egw_unsupported, egw_not_converged
    use egw_params, only: contact_params, model_egw, model_epgw, model_flat_law, model_gw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & loading_history, load_history, solve_unload
@@ -64,7 +64,9 @@ contains
          & new_unittest("rough + cap at sigma/delta_y <= 1e-4 beyond 2e5 sigma: refused", &
          & test_tiny_sigma_refused), &
          & new_unittest("E-GW + cap at sigma/delta_y = 1e-5 to 2e5 sigma: within rel_tol", &
-         & test_tiny_sigma_table)]
+         & test_tiny_sigma_table), &
+         & new_unittest("a rough + cap build failing at small sigma/delta_y: its routes", &
+         & test_tiny_sigma_routes)]
    end subroutine collect_rough_cap_hysteresis
 
    function str(x) result(s)
@@ -743,6 +745,29 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_tiny_sigma_refused
+
+   !> GW + cap at sigma/delta_y = 2e-5 (R = 2.0264e8 sigma, E* = 1, mu 4, p_y = 0.01) to
+   !> 1e5 sigma, inside the refusal's reach: a loading solve of the table stalls (Newton;
+   !> doc/stability.md "Stop 51 (tiny17)"). The failure (egw_not_converged, the solve's
+   !> own message first) adds sigma/delta_y, delta_max in sigma and delta_y and the
+   !> routes: a smaller delta_max, the Hertz + cap table, single solves. On main 6922da8
+   !> the message was the solve's alone.
+   subroutine test_tiny_sigma_routes(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: params
+      type(hysteresis_table) :: table
+      type(egw_error), allocatable :: err
+      params = contact_params(model=model_gw, radius=405284734.5693511_dp/2, &
+         & modulus=1.0_dp, sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
+      call build_hysteresis(params, solver_options(), 0.0_dp, 1.0e5_dp, 1.0e-3_dp, table, err)
+      call check(error, allocated(err), "built (the routes are not checked)")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_not_converged .and. index(err%message, &
+         & "sigma/delta_y = 2.000E-05") > 0 .and. index(err%message, &
+         & "delta_max = 1.000E+05 sigma = 2.000E+00 delta_y") > 0 .and. &
+         & index(err%message, "sigma = 0") > 0 .and. index(err%message, "solve_unload") &
+         & > 0, err%message)
+   end subroutine test_tiny_sigma_routes
 
    !> E-GW + cap at sigma/delta_y = 1e-5 (R = 4.0528e8 sigma, E* = 1, mu 4, p_y = 0.01),
    !> 0 .. 2e5 sigma (2 delta_y), TOL 1e-3: at the refusal's reach (test

@@ -2,8 +2,7 @@
 !> declares build_hysteresis): the delta_max grid, each node's unloading curve from
 !> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
 submodule (egw_hysteresis) egw_hysteresis_build
-   use egw_status, only: egw_not_converged, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_unsupported, fatal_error, format_real
+   use egw_status, only: egw_not_converged, egw_unsupported, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, model_hertz
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
       & unload_start, cap_solve_options, solve_contact, history_residual, &
@@ -128,9 +127,8 @@ contains
       real(dp) :: ratio
       call build_work(params, options, delta_min, delta_max, rel_tol, table, error, progress)
       if (.not. allocated(error)) return
-      if (error%stat == egw_invalid_argument .or. error%stat == egw_invalid_parameter .or. &
-         & error%stat == egw_unsupported) return
-      ! a rough + cap build that failed at small sigma/delta_y: what the user can do
+      if (error%stat /= egw_not_converged) return
+      ! a rough + cap build whose solves failed at small sigma/delta_y: what the user can do
       if (.not. (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
          & params%sigma > 0.0_dp)) return
       ratio = params%sigma/first_yield(params)
