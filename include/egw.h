@@ -696,7 +696,12 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * EGW_NOT_CONVERGED message starts "hysteresis table: rel_tol = <the caller's> ..." and
  * says what the solves' tolerance was and what the failing solve reached (its error
  * estimate, and the rel_tol it could meet). Statuses: EGW_INVALID_PARAMETER, EGW_INVALID_ARGUMENT
- * (range, rel_tol), EGW_NOT_CONVERGED (a solve failed or a node limit was reached),
+ * (range, rel_tol), EGW_NOT_CONVERGED (a solve failed or a node limit was reached; a rough
+ * model with the cap below sigma/delta_y 2e-3 adds sigma/delta_y and the routes: a smaller
+ * delta_max, sigma 0 for Hertz + cap with its bound, single solves), EGW_UNSUPPORTED (a
+ * rough model with the cap at sigma/delta_y <= 1e-4 with delta_max beyond 2e5 sigma,
+ * plastic summits 1.5e5 sigma: such builds failed after their solves, so they are refused
+ * before any, naming the same routes; doc/stability.md "Stop 51 (tiny17)"),
  * EGW_OUT_OF_MEMORY, EGW_NULL_POINTER. */
 int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta_min,
                          double delta_max, double rel_tol, egw_hysteresis *out);

@@ -5,7 +5,8 @@
 !> quadrature of solves, the file formats, and what is still refused.
 module test_rough_cap_hysteresis
    use egw_kinds, only: dp, pi
-   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter
+   use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
+      & egw_unsupported, egw_not_converged
    use egw_params, only: contact_params, model_egw, model_epgw, model_flat_law, model_gw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & loading_history, load_history, solve_unload
@@ -59,8 +60,13 @@ contains
          & new_unittest("E-GW + cap at sigma/delta_y = 2e-5: a wide unloaded centre", &
          & test_wide_unloaded_centre), &
          & new_unittest("GW + cap at sigma/delta_y = 1e-4: the build's stalled solves", &
-         & test_gw_stalls) &
-         & ]
+         & test_gw_stalls), &
+         & new_unittest("rough + cap at sigma/delta_y <= 1e-4 beyond 2e5 sigma: refused", &
+         & test_tiny_sigma_refused), &
+         & new_unittest("E-GW + cap at sigma/delta_y = 1e-5 to 2e5 sigma: within rel_tol", &
+         & test_tiny_sigma_table), &
+         & new_unittest("a rough + cap build failing at small sigma/delta_y: its routes", &
+         & test_tiny_sigma_routes)]
    end subroutine collect_rough_cap_hysteresis
 
    function str(x) result(s)
@@ -703,6 +709,104 @@ contains
             & m(i), ": |P - P_ref|/P(m) = ", abs(res%force - p_ref(i))/p_m(i), " (bound 1e-4)"
       end do
    end subroutine test_gw_stalls
+
+   !> Rough + cap tables at sigma/delta_y = 2e-5 and 1e-5 reaching beyond 2e5 sigma
+   !> (plastic summits: 1.5e5; issue 32; R = 2.0264e8 or 4.0528e8 sigma, E* = 1, mu 4, p_y
+   !> = 0.01 as egw-table's scene): on main 6922da8 the builds failed after 1 .. 150 s of
+   !> solves (GW 2e-5 to 6 delta_y and E-GW 1e-5 to 3 delta_y: Newton stalled; E-GW 2e-5
+   !> to 12 delta_y: "the mesh would need 6765 nodes" after 2.4 min; EP-GW psi 1 1e-5 to
+   !> 2 delta_y: 6145 nodes after 92 s; doc/stability.md "Stop 51 (tiny17)"). Here they
+   !> are refused before any solve: egw_unsupported, the message naming delta_max, the
+   !> sigma/delta_y, the reach that builds and the Hertz + cap route with its bound.
+   subroutine test_tiny_sigma_refused(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: r(4) = [405284734.5693511_dp/2, 405284734.5693511_dp/2, &
+         & 810569469.1387022_dp/2, 810569469.1387022_dp/2], &
+         & reach(4) = [3.0e5_dp, 6.0e5_dp, 3.0e5_dp, 2.0e5_dp], psi(4) = [0, 0, 0, 1]
+      integer, parameter :: models(4) = [model_gw, model_egw, model_egw, model_epgw]
+      character(len=*), parameter :: ratio(4) = ["2.000E-05", "2.000E-05", "1.000E-05", &
+         & "1.000E-05"], limit(4) = ["2.0", "2.0", "2.0", "1.5"]
+      type(contact_params) :: params
+      type(hysteresis_table) :: table
+      type(egw_error), allocatable :: err
+      integer :: i
+      do i = 1, 4
+         params = contact_params(model=models(i), radius=r(i), modulus=1.0_dp, &
+            & sigma=1.0_dp, mu=4.0_dp, psi=psi(i), flow_pressure=0.01_dp)
+         call build_hysteresis(params, solver_options(), 0.0_dp, reach(i), 1.0e-3_dp, &
+            & table, err)
+         call check(error, allocated(err), "case "//str(real(i, dp))//": built")
+         if (allocated(error)) return
+         call check(error, err%stat == egw_unsupported .and. index(err%message, &
+            & "delta_max = ") == 1 .and. index(err%message, "sigma/delta_y = "// &
+            & ratio(i)) > 0 .and. index(err%message, "delta_max <= "//limit(i)) > 0 .and. &
+            & index(err%message, "sigma = 0") > 0, "case "//str(real(i, dp))//": "// &
+            & err%message)
+         if (allocated(error)) return
+      end do
+   end subroutine test_tiny_sigma_refused
+
+   !> GW + cap at sigma/delta_y = 2e-5 (R = 2.0264e8 sigma, E* = 1, mu 4, p_y = 0.01) to
+   !> 1e5 sigma, inside the refusal's reach: a loading solve of the table stalls (Newton;
+   !> doc/stability.md "Stop 51 (tiny17)"). The failure (egw_not_converged, the solve's
+   !> own message first) adds sigma/delta_y, delta_max in sigma and delta_y and the
+   !> routes: a smaller delta_max, the Hertz + cap table, single solves. On main 6922da8
+   !> the message was the solve's alone.
+   subroutine test_tiny_sigma_routes(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: params
+      type(hysteresis_table) :: table
+      type(egw_error), allocatable :: err
+      params = contact_params(model=model_gw, radius=405284734.5693511_dp/2, &
+         & modulus=1.0_dp, sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
+      call build_hysteresis(params, solver_options(), 0.0_dp, 1.0e5_dp, 1.0e-3_dp, table, err)
+      call check(error, allocated(err), "built (the routes are not checked)")
+      if (allocated(error)) return
+      call check(error, err%stat == egw_not_converged .and. index(err%message, &
+         & "sigma/delta_y = 2.000E-05") > 0 .and. index(err%message, &
+         & "delta_max = 1.000E+05 sigma = 2.000E+00 delta_y") > 0 .and. &
+         & index(err%message, "sigma = 0") > 0 .and. index(err%message, "solve_unload") &
+         & > 0, err%message)
+   end subroutine test_tiny_sigma_routes
+
+   !> E-GW + cap at sigma/delta_y = 1e-5 (R = 4.0528e8 sigma, E* = 1, mu 4, p_y = 0.01),
+   !> 0 .. 2e5 sigma (2 delta_y), TOL 1e-3: at the refusal's reach (test
+   !> tiny_sigma_refused) the table builds (as on main) and is within TOL of P(m) (the
+   !> table's measure) of the references, unloading solves from scratch at rel_tol 1e-7
+   !> (tools/reference/rough_cap_tiny_table.py, main's libegw; its 1e-6 solves within
+   !> 5e-7 of P(m)). Measured 2.1e-4, 3.4e-4 and 1.3e-5 of P(m); on 13 such points
+   !> (tools/bench/rough_cap_table_check.py) at most 3.4e-4.
+   subroutine test_tiny_sigma_table(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: rel_tol = 1.0e-3_dp, r = 810569469.1387022_dp/2
+      real(dp), parameter :: m(3) = [133373.881_dp, 133373.881_dp, 166718.772_dp], &
+         & d(3) = [130706.651_dp, 93365.433_dp, 83367.149_dp]
+      real(dp), parameter :: p_m(3) = [1.3002967889e12_dp, 1.3002967889e12_dp, &
+         & 1.7908294659e12_dp], p_ref(3) = [1.2611914589e12_dp, 7.5696794193e11_dp, &
+         & 5.8558465313e11_dp]
+      type(contact_params) :: params
+      type(hysteresis_table) :: table
+      type(egw_error), allocatable :: err
+      real(dp) :: f, k, state
+      integer :: i, stat
+      params = contact_params(model=model_egw, radius=r, modulus=1.0_dp, sigma=1.0_dp, &
+         & mu=4.0_dp, flow_pressure=0.01_dp)
+      call build_hysteresis(params, solver_options(), 0.0_dp, 2.0e5_dp, rel_tol, table, err)
+      if (allocated(err)) then
+         call check(error, .false., "build failed: "//err%message)
+         return
+      end if
+      do i = 1, 3
+         state = m(i)
+         call hysteresis_eval(table, d(i), state, f, k, stat)
+         call check(error, stat == 0 .and. abs(f - p_ref(i)) <= rel_tol*p_m(i), "delta "// &
+            & str(d(i))//" after "//str(m(i))//": table "//str(f)//", reference "// &
+            & str(p_ref(i))//", P(m) "//str(p_m(i)))
+         if (allocated(error)) return
+         print '(4x, a, f9.1, a, f9.1, a, es9.2, a)', "E-GW + cap 1e-5, ", d(i), " after ", &
+            & m(i), ": |P - P_ref|/P(m) = ", abs(f - p_ref(i))/p_m(i), " (bound 1e-3)"
+      end do
+   end subroutine test_tiny_sigma_table
 
    !> The table at (turning point, overlap) points(:, i) against load_history +
    !> solve_unload at rel_tol 1e-7 (independent, finer solves): |P_table - P_solve| <=

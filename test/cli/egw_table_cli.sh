@@ -188,6 +188,19 @@ grep -q "Hertz + cap hysteresis table(s) not built" "$work/stdout" ||
   2>"$work/stderr" || fail "cap scene --formats lammps: $(cat "$work/stderr")"
 grep -q "hysteresis table(s) come in the csv and binary formats only" "$work/stdout" ||
   fail "cap scene --formats lammps: $(grep files "$work/stdout")"
+# rough + cap at sigma/delta_y = 2e-5 (the normalised scene E* = 1, sigma = 1, mu 4, p_y =
+# 0.01, two spheres of R 4.0528e8: delta_y = 5e4): to 12 delta_y (6e5 sigma, beyond the 2e5
+# sigma such tables build to) refused before any solve, naming delta_max and the Hertz +
+# cap route; GW + cap to 1e5 sigma fails in the model choice's solves, with their own
+# message (doc/stability.md "Stop 51 (tiny17)")
+tiny="--radius 4.0528473e8 --effective-modulus 1 --sigma 1 --mu 4 --flow-pressure 0.01 \
+  --delta-min 0 --tol 1e-3 -q"
+refuse rough_cap_tiny_sigma "rough + cap tables beyond 2.000E+05 sigma at sigma/delta_y" \
+  $tiny --delta-max 6e5 --model E-GW
+grep -qF "give sigma = 0 (or model Hertz) for the Hertz + cap table" "$work/stderr" ||
+  fail "rough_cap_tiny_sigma: no Hertz + cap route: $(cat "$work/stderr")"
+refuse rough_cap_tiny_sigma_gw "Hertz check of parameter set 1 (delta = " $tiny \
+  --delta-max 1e5 --model GW
 # the same beads, E-GW with sigma = 1 nm (delta_y/94): the rough model's table with the cap
 "$exe" "$work/cap.nml" --model E-GW --sigma 1e-9 --mu 4 --delta-min -3e-9 --out \
   "$work/rough_cap" -q >"$work/stdout" 2>"$work/stderr"

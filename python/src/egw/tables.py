@@ -508,6 +508,11 @@ class HysteresisTable(_Handle):
         Raises
         ------
         InvalidArgumentError, NotConvergedError
+        EgwError
+            Status UNSUPPORTED: a rough model with the cap at sigma/delta_y <= 1e-4 whose
+            delta_max lies beyond 2e5 sigma (plastic summits 1.5e5 sigma), where such
+            builds failed after their solves; the message names the routes (a smaller
+            delta_max, sigma = 0 for Hertz + cap with its bound, single solves).
         """
         _require("egw_hysteresis_build")
         p = _params(params)

@@ -124,6 +124,8 @@ contains
       type(solver_options) :: opts
       real(dp), allocatable :: deltas(:, :), force(:, :), p_ref(:)
       integer, allocatable :: stat(:, :), n_pts(:)
+      !> the failed solves' own messages (what failed: Newton, the mesh's node limit, ...)
+      character(len=400), allocatable :: why(:, :)
       integer :: ns, s, i, idx, np, nmax, i0
       real(dp) :: lo, hi, e
       type(solve_result) :: res
@@ -145,7 +147,7 @@ contains
          if (scene%delta_min(s) <= 0.0_dp) n_pts(s) = n_pts(s) + 1
          nmax = max(nmax, n_pts(s))
       end do
-      allocate (deltas(nmax, ns), force(nmax, ns), stat(nmax, ns), p_ref(ns))
+      allocate (deltas(nmax, ns), force(nmax, ns), stat(nmax, ns), p_ref(ns), why(nmax, ns))
       deltas = 0.0_dp
       force = 0.0_dp
       stat = 0
@@ -168,7 +170,10 @@ contains
          if (i <= n_pts(s)) then
             call solve_contact(scene%sets(s), opts, deltas(i, s), res, err)
             force(i, s) = res%force
-            if (allocated(err)) stat(i, s) = err%stat
+            if (allocated(err)) then
+               stat(i, s) = err%stat
+               why(i, s) = err%message
+            end if
          end if
       end do
       !$omp end parallel do
@@ -185,6 +190,7 @@ contains
                call fatal_error(error, egw_not_converged, "delta = "// &
                   & format_real(deltas(i, s))//": full solve failed in the Hertz check "// &
                   & "of parameter set "//int_str(s))
+               if (stat(i, s) /= 0) error%message = error%message//" ("//trim(why(i, s))//")"
                return
             end if
          end do

@@ -2,7 +2,7 @@
 !> declares build_hysteresis): the delta_max grid, each node's unloading curve from
 !> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
 submodule (egw_hysteresis) egw_hysteresis_build
-   use egw_status, only: egw_not_converged, fatal_error, format_real
+   use egw_status, only: egw_not_converged, egw_unsupported, fatal_error, format_real
    use egw_params, only: validate_params, model_epgw, model_hertz
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
       & unload_start, cap_solve_options, solve_contact, history_residual, &
@@ -21,6 +21,19 @@ submodule (egw_hysteresis) egw_hysteresis_build
    integer, parameter :: max_s_nodes = 400, max_m_nodes = build_m_node_limit
    !> The deepest turning point of a Hertz + cap table, in units of first yield delta_y.
    real(dp), parameter :: max_cap_range = 1000.0_dp
+   !> Rough + cap tables refused before any solve (rough_cap_reach): at sigma/delta_y <=
+   !> small_cap_sigma, a delta_max beyond max_layer_reach sigma (plastic summits:
+   !> plastic_layer_reach). There the builds failed after 1 .. 150 s (an unloading solve's
+   !> Newton stalling or its mesh needing more than 4097 nodes: the rough layer is ~
+   !> (sigma/delta)**(2/3) of the contact radius wide). mu 4, p_y = 0.01 E*, TOL 1e-3,
+   !> sigma/delta_y 1e-4 .. 1e-6: E-GW built at <= 2e5 sigma (9 builds; one at 3e5 too)
+   !> and failed at >= 2.4e5 (16 of 16); EP-GW psi 1 built at <= 1.5e5 (4) and failed at
+   !> >= 2e5 (3); GW failed at 3e5 (doc/stability.md "Stop 51 (tiny17)").
+   real(dp), parameter :: small_cap_sigma = 1.0e-4_dp, max_layer_reach = 2.0e5_dp, &
+      & plastic_layer_reach = 1.5e5_dp
+   !> A rough + cap build that fails at sigma/delta_y below hint_sigma: its message adds
+   !> sigma/delta_y and the routes the user can take (rough_cap_routes), as LAMMPS's.
+   real(dp), parameter :: hint_sigma = 2.0e-3_dp
    !> The first s nodes of every curve (bisection adds nodes between them); with the
    !> two-piece map (mapped) its breaks s_knee = 1/2 and s_zero = 3/4 too.
    real(dp), parameter :: first_nodes(5) = [0.0_dp, 0.0625_dp, 0.25_dp, 0.5_dp, 1.0_dp], &
@@ -111,6 +124,29 @@ contains
       ! a full header (not `module procedure`): gfortran 12 loses the interface of a
       ! procedure dummy in a separate module procedure body
       procedure(table_progress), optional :: progress
+      real(dp) :: ratio
+      call build_work(params, options, delta_min, delta_max, rel_tol, table, error, progress)
+      if (.not. allocated(error)) return
+      if (error%stat /= egw_not_converged) return
+      ! a rough + cap build whose solves failed at small sigma/delta_y: what the user can do
+      if (.not. (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
+         & params%sigma > 0.0_dp)) return
+      ratio = params%sigma/first_yield(params)
+      if (ratio < hint_sigma) error%message = error%message//" (rough + cap at "// &
+         & rough_cap_where(params, delta_max)//": its tables may not build at small "// &
+         & "sigma/delta_y; a smaller delta_max or rel_tol 1e-3 may let it build, or "// &
+         & rough_cap_routes(ratio)//")"
+   end subroutine build_hysteresis
+
+   !> build_hysteresis's work (that routine adds the routes to a rough + cap failure).
+   subroutine build_work(params, options, delta_min, delta_max, rel_tol, table, error, &
+      & progress)
+      type(contact_params), intent(in) :: params
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_min, delta_max, rel_tol
+      type(hysteresis_table), intent(out) :: table
+      type(egw_error), allocatable, intent(out) :: error
+      procedure(table_progress), optional :: progress
       type(unloading_curve), allocatable :: curves(:)
       real(dp), allocatable :: m(:)
       integer :: j, n, n_above
@@ -140,6 +176,10 @@ contains
             & "), where a hysteresis table with the cap ends: a/R is ~70 p_y/E* there, far "// &
             & "beyond a half-space (doc/theory.md section 12)")
          return
+      end if
+      if (rough_cap) then
+         call rough_cap_reach(params, delta_max, error)
+         if (allocated(error)) return
       end if
       if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) then
          call build_cap_loading(params, options, delta_min, delta_max, rel_tol, &
@@ -252,7 +292,68 @@ contains
       if (allocated(error)) return
       call resample(table, m, curves)
       call hysteresis_prepare(table)
-   end subroutine build_hysteresis
+   end subroutine build_work
+
+   !> Refuses (egw_unsupported, naming delta_max) a rough + cap table that reaches
+   !> beyond max_layer_reach sigma (plastic summits: plastic_layer_reach) at sigma/delta_y
+   !> <= small_cap_sigma, where such builds
+   !> failed after up to minutes of solves, with the routes the user can take.
+   subroutine rough_cap_reach(params, delta_max, error)
+      type(contact_params), intent(in) :: params   !< a rough model with the cap
+      real(dp), intent(in) :: delta_max
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: ratio, reach
+      ratio = params%sigma/first_yield(params)
+      reach = max_layer_reach
+      if (plastic_summits(params)) reach = plastic_layer_reach
+      if (.not. (ratio <= small_cap_sigma .and. delta_max > reach*params%sigma)) return
+      call fatal_error(error, egw_unsupported, "delta_max = "//format_real(delta_max)// &
+         & ": rough + cap tables beyond "//short_real(reach)//" sigma at "// &
+         & "sigma/delta_y <= "//short_real(small_cap_sigma)//" do not build (here "// &
+         & rough_cap_where(params, delta_max)//"; their unloading solves stall or need "// &
+         & "more than the mesh's nodes, the rough layer being ~(sigma/delta)^(2/3) of the "// &
+         & 'contact radius wide: doc/stability.md "Stop 51 (tiny17)"): take delta_max <= '// &
+         & format_real(reach*params%sigma)//", or "//rough_cap_routes(ratio))
+   end subroutine rough_cap_reach
+
+   !> "sigma/delta_y = r (first yield delta_y = d), delta_max = x sigma = y delta_y"
+   function rough_cap_where(params, delta_max) result(text)
+      type(contact_params), intent(in) :: params
+      real(dp), intent(in) :: delta_max
+      character(len=:), allocatable :: text
+      real(dp) :: delta_y
+      delta_y = first_yield(params)
+      text = "sigma/delta_y = "//short_real(params%sigma/delta_y)//" (first yield delta_y"// &
+         & " = "//short_real(delta_y)//"), delta_max = "//short_real(delta_max/params%sigma) &
+         & //" sigma = "//short_real(delta_max/delta_y)//" delta_y"
+   end function rough_cap_where
+
+   !> The routes of a rough + cap table that does not build at sigma/delta_y = ratio:
+   !> Hertz + cap, the rough model's sigma -> 0 limit, with its bound (doc/theory.md
+   !> section 12's table: the rough layer moves the loading force by ~0.15
+   !> (sigma/delta_y)**(2/3) of it; near the residual overlap the unloading force by ~8.3
+   !> (sigma/delta_y)**(2/3) of its own, doc/stability.md "Stop 49 (resid15)"), or single
+   !> solves.
+   function rough_cap_routes(ratio) result(text)
+      real(dp), intent(in) :: ratio   !< sigma/delta_y
+      character(len=:), allocatable :: text
+      real(dp) :: s23
+      s23 = ratio**(2.0_dp/3.0_dp)
+      text = "give sigma = 0 (or model Hertz) for the Hertz + cap table, the rough model's sigma -> 0 "// &
+         & "limit: the rough layer moves the loading force by ~0.15 (sigma/delta_y)^(2/3)"// &
+         & " = "//short_real(0.15_dp*s23)//" of it, the unloading force near the residual "// &
+         & "overlap by ~8 (sigma/delta_y)^(2/3) = "//short_real(8.0_dp*s23)//" of its own;"// &
+         & " or solve the contacts one by one (solve_unload, egw_solve_unload, restitution)"
+   end function rough_cap_routes
+
+   !> x with three significant digits.
+   function short_real(x) result(text)
+      real(dp), intent(in) :: x
+      character(len=:), allocatable :: text
+      character(len=16) :: buf
+      write (buf, '(es10.3)') x
+      text = trim(adjustl(buf))
+   end function short_real
 
    ! ---------------------------------------------------------------------------------------
 
