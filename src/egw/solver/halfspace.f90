@@ -114,6 +114,9 @@ module egw_halfspace
       type(cached_matrix) :: slot(cache_meshes)
       !> the next mesh's rows (as a slot's), swapped with the slot that stores it
       real(dp), allocatable :: spare(:)
+      !> a mesh whose rules build_mesh copies (the first its owner built: rules depend
+      !> only on the degree and n_gauss; kept by clear_cache)
+      type(radial_mesh) :: rules
    end type influence_cache
 
 contains
@@ -189,19 +192,67 @@ contains
    end function graded_edges
 
    !> Build the mesh on the element boundaries edge(0:n) (edge(0) = 0, increasing).
-   pure subroutine build_mesh(edge, degree, n_gauss, mesh)
+   !> rules (optional): a built mesh whose quadrature rules and element interpolation are
+   !> taken where its degree and n_gauss are these (they depend on nothing else: the same
+   !> numbers as computed here), instead of computing them again.
+   pure subroutine build_mesh(edge, degree, n_gauss, mesh, rules)
       real(dp), intent(in) :: edge(0:)   !< element boundaries, edge(0) = 0, increasing
       integer, intent(in) :: degree    !< deflection element degree >= 1
       integer, intent(in) :: n_gauss   !< pressure points per element >= 1
       type(radial_mesh), intent(out) :: mesh   !< the mesh, nodes and Gauss points filled
-      integer :: e, j, q, k, n
-      real(dp) :: x0, x1, pk, pkm1, pkm2
+      type(radial_mesh), intent(in), optional :: rules
+      integer :: e, j, q, n
+      real(dp) :: x0, x1
+      logical :: copied
 
       n = size(edge) - 1
       mesh%n_elem = n
       mesh%degree = degree
       mesh%n_gauss = n_gauss
       mesh%edge = edge
+      copied = .false.
+      if (present(rules)) copied = rules%degree == degree .and. rules%n_gauss == n_gauss &
+         & .and. allocated(rules%log_lw)
+      if (copied) then
+         mesh%local_s = rules%local_s
+         mesh%local_w = rules%local_w
+         mesh%local_bary = rules%local_bary
+         mesh%node_s = rules%node_s
+         mesh%interp = rules%interp
+         mesh%fine_s = rules%fine_s
+         mesh%fine_w = rules%fine_w
+         mesh%log_x = rules%log_x
+         mesh%log_w = rules%log_w
+         mesh%log_lw = rules%log_lw
+      else
+         call build_rules(mesh)
+      end if
+      allocate (mesh%node(n*degree + 1), mesh%gauss_r(n*n_gauss), mesh%gauss_w(n*n_gauss))
+      do e = 1, n
+         x0 = edge(e - 1)
+         x1 = edge(e)
+         do j = 0, degree
+            mesh%node(node_index(mesh, e, j)) = 0.5_dp*(x0 + x1) + 0.5_dp*(x1 - x0)*mesh%node_s(j)
+         end do
+         ! Ends exactly equal to the edges, so collocation at an edge is recognised as such.
+         mesh%node(node_index(mesh, e, 0)) = x0
+         mesh%node(node_index(mesh, e, degree)) = x1
+         do q = 1, n_gauss
+            mesh%gauss_r((e - 1)*n_gauss + q) = 0.5_dp*(x0 + x1) + 0.5_dp*(x1 - x0)*mesh%local_s(q)
+            mesh%gauss_w((e - 1)*n_gauss + q) = 0.5_dp*(x1 - x0)*mesh%local_w(q)
+         end do
+      end do
+   end subroutine build_mesh
+
+   !> build_mesh's rules for mesh%degree and mesh%n_gauss: the Gauss points and weights,
+   !> barycentric weights, element nodes and interpolation, the near pieces' and the
+   !> log-product rules.
+   pure subroutine build_rules(mesh)
+      type(radial_mesh), intent(inout) :: mesh
+      integer :: j, q, k, degree, n_gauss
+      real(dp) :: pk, pkm1, pkm2
+      degree = mesh%degree
+      n_gauss = mesh%n_gauss
       allocate (mesh%local_s(n_gauss), mesh%local_w(n_gauss))
       call gauss_legendre(n_gauss, mesh%local_s, mesh%local_w)
       allocate (mesh%local_bary(n_gauss))
@@ -218,21 +269,6 @@ contains
       allocate (mesh%interp(0:degree, n_gauss))
       do q = 1, n_gauss
          mesh%interp(:, q) = lagrange_weights(mesh%node_s, mesh%local_s(q))
-      end do
-      allocate (mesh%node(n*degree + 1), mesh%gauss_r(n*n_gauss), mesh%gauss_w(n*n_gauss))
-      do e = 1, n
-         x0 = edge(e - 1)
-         x1 = edge(e)
-         do j = 0, degree
-            mesh%node(node_index(mesh, e, j)) = 0.5_dp*(x0 + x1) + 0.5_dp*(x1 - x0)*mesh%node_s(j)
-         end do
-         ! Ends exactly equal to the edges, so collocation at an edge is recognised as such.
-         mesh%node(node_index(mesh, e, 0)) = x0
-         mesh%node(node_index(mesh, e, degree)) = x1
-         do q = 1, n_gauss
-            mesh%gauss_r((e - 1)*n_gauss + q) = 0.5_dp*(x0 + x1) + 0.5_dp*(x1 - x0)*mesh%local_s(q)
-            mesh%gauss_w((e - 1)*n_gauss + q) = 0.5_dp*(x1 - x0)*mesh%local_w(q)
-         end do
       end do
       allocate (mesh%fine_s(n_fine), mesh%fine_w(n_fine))
       call gauss_legendre(n_fine, mesh%fine_s, mesh%fine_w)
@@ -256,7 +292,7 @@ contains
          end do
          mesh%log_lw(j) = mesh%log_lw(j)*mesh%log_w(j)
       end do
-   end subroutine build_mesh
+   end subroutine build_rules
 
    !> Number of deflection nodes.
    pure integer function mesh_nodes(mesh)

@@ -55,7 +55,13 @@ contains
             & //int_str(max_mesh_nodes))
          return
       end if
-      call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
+      if (present(cache)) then
+         ! (the rules of the caller's first mesh, the same numbers: ~1 % of a build)
+         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh, cache%rules)
+         if (.not. allocated(cache%rules%log_lw)) cache%rules = sol%mesh
+      else
+         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
+      end if
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
       ! unloading with the cap: the law at gap_min where an earlier level of the solve has
