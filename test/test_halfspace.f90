@@ -24,6 +24,7 @@ contains
          & new_unittest("cached assembly equals the plain one", test_cached_assembly), &
          & new_unittest("point values kept with the cache", test_cached_point_values), &
          & new_unittest("a cleared cache is a new one with its storage", test_cleared_cache), &
+         & new_unittest("a mesh built with another's rules is the same", test_mesh_rules), &
          & new_unittest("nodal interpolation reproduces polynomials", test_interpolation), &
          & new_unittest("the walk interpolates as the bisection", test_interpolation_walk) &
          & ]
@@ -301,6 +302,49 @@ contains
       call check(error, n_reused > size(infl)/2, "after clear_cache: the meshes assembled " &
          & //"since are not reused")
    end subroutine test_cleared_cache
+
+   !> build_mesh with rules (the solver's meshes take those of the first mesh its cache
+   !> kept): the same mesh, bit for bit, as built alone, where the rules' degree and
+   !> n_gauss are the mesh's; rules of another degree or n_gauss are not taken.
+   subroutine test_mesh_rules(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: rules, other, alone, with
+      real(dp), allocatable :: edges(:)
+      integer :: k
+      call build_mesh(graded_edges(1.0_dp, 0.3_dp, 4.0_dp, 0.5_dp), 2, 6, rules)
+      call build_mesh(graded_edges(1.0_dp, 0.3_dp, 4.0_dp, 0.5_dp), 3, 5, other)
+      edges = graded_edges(3.0_dp, 0.2_dp, 5.0_dp, 0.25_dp)
+      do k = 1, 3
+         select case (k)
+         case (1)
+            call build_mesh(edges, 2, 6, alone)
+            call build_mesh(edges, 2, 6, with, rules)
+         case (2)
+            call build_mesh(edges, 2, 6, with, other)
+         case (3)
+            call build_mesh(edges, 3, 5, alone)
+            call build_mesh(edges, 3, 5, with, rules)
+         end select
+         call check(error, same_mesh(alone, with), "case "//char(48 + k)// &
+            & ": the mesh built with rules differs from the one built alone")
+         if (allocated(error)) return
+      end do
+   contains
+      logical function same_mesh(a, b)
+         type(radial_mesh), intent(in) :: a, b
+         same_mesh = a%n_elem == b%n_elem .and. a%degree == b%degree .and. &
+            & a%n_gauss == b%n_gauss .and. lbound(b%node_s, 1) == 0 .and. &
+            & lbound(b%interp, 1) == 0 .and. all(shape(a%interp) == shape(b%interp))
+         if (.not. same_mesh) return
+         same_mesh = all(a%edge == b%edge) .and. all(a%node == b%node) .and. &
+            & all(a%gauss_r == b%gauss_r) .and. all(a%gauss_w == b%gauss_w) .and. &
+            & all(a%local_s == b%local_s) .and. all(a%local_w == b%local_w) .and. &
+            & all(a%local_bary == b%local_bary) .and. all(a%node_s == b%node_s) .and. &
+            & all(a%interp == b%interp) .and. all(a%fine_s == b%fine_s) .and. &
+            & all(a%fine_w == b%fine_w) .and. all(a%log_x == b%log_x) .and. &
+            & all(a%log_w == b%log_w) .and. all(a%log_lw == b%log_lw)
+      end function same_mesh
+   end subroutine test_mesh_rules
 
    !> Continuous Lagrange elements of degree 3 reproduce a cubic to rounding (1e-13 for
    !> values ~ 30), at nodes and between them.
