@@ -200,7 +200,7 @@ contains
       integer, intent(in) :: degree    !< deflection element degree >= 1
       integer, intent(in) :: n_gauss   !< pressure points per element >= 1
       type(radial_mesh), intent(out) :: mesh   !< the mesh, nodes and Gauss points filled
-      type(radial_mesh), intent(in), optional :: rules
+      type(radial_mesh), intent(in), optional :: rules   !< a built mesh (its rules taken)
       integer :: e, j, q, n
       real(dp) :: x0, x1
       logical :: copied
@@ -791,7 +791,7 @@ contains
    !> Empty the cache as a new one (no mesh, no values) but keep its storage for the
    !> meshes to come.
    pure subroutine clear_cache(cache)
-      type(influence_cache), intent(inout) :: cache
+      type(influence_cache), intent(inout) :: cache   !< emptied, its storage kept
       integer :: j
       cache%last = 0
       cache%n_gauss = 0

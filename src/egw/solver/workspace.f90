@@ -24,9 +24,9 @@ contains
    !> buffer holds at least n entries afterwards (grown, its values dropped, only when it
    !> held fewer); stat: nonzero if it could not be allocated (buffer then unallocated).
    pure subroutine reserve(buffer, n, stat)
-      real(dp), allocatable, intent(inout) :: buffer(:)
-      integer, intent(in) :: n
-      integer, intent(out) :: stat
+      real(dp), allocatable, intent(inout) :: buffer(:)   !< the buffer
+      integer, intent(in) :: n   !< entries needed
+      integer, intent(out) :: stat   !< 0, or the allocation's nonzero status
       stat = 0
       if (allocated(buffer)) then
          if (size(buffer) >= n) return
