@@ -700,12 +700,14 @@ contains
          cache%n_gauss = ng
       end if
       ! (the rows in the spare, node i's at (i - 1)*nr + 1: grown only, by a quarter more
-      ! than needed, so that a build's slowly growing meshes reallocate it rarely)
+      ! than needed (at most cache_max_entries more), so that a build's slowly growing
+      ! meshes reallocate it rarely)
       ios = 0
       if (allocated(cache%spare)) then
          if (size(cache%spare, kind=8) < int(nr, 8)*n) deallocate (cache%spare)
       end if
-      if (.not. allocated(cache%spare)) allocate (cache%spare(nr*n + nr*n/4), stat=ios)
+      if (.not. allocated(cache%spare)) allocate (cache%spare(nr*n + min(nr*n/4, &
+         & cache_max_entries)), stat=ios)
       if (ios == 0) allocate (node_at(n, cache_meshes), elem_at(mesh%n_elem, cache_meshes), &
          & row_slot(n), known(mesh%n_elem, cache_meshes), stat=ios)
       if (present(stat)) stat = ios
