@@ -6,7 +6,7 @@ module test_halfspace
    use egw_ellip, only: ellipk, ellipe
    use egw_halfspace, only: radial_mesh, build_mesh, graded_edges, influence_row, &
       & assemble_influence, interpolate_nodal, mesh_nodes, influence_cache, &
-      & assemble_influence_cached, cached_point_values, keep_point_values, &
+      & assemble_influence_cached, cached_point_values, keep_point_values, clear_cache, &
       & interpolate_nodal_walk
    implicit none
    private
@@ -23,6 +23,8 @@ contains
          & new_unittest("parallel assembly equals the rows", test_assembly), &
          & new_unittest("cached assembly equals the plain one", test_cached_assembly), &
          & new_unittest("point values kept with the cache", test_cached_point_values), &
+         & new_unittest("a cleared cache is a new one with its storage", test_cleared_cache), &
+         & new_unittest("a mesh built with another's rules is the same", test_mesh_rules), &
          & new_unittest("nodal interpolation reproduces polynomials", test_interpolation), &
          & new_unittest("the walk interpolates as the bisection", test_interpolation_walk) &
          & ]
@@ -228,6 +230,121 @@ contains
       call check(error, all(pack(values, known) == pack(1.0_dp + mesh2%gauss_r**2, known)), &
          & "a served value is not the one kept at the same radius")
    end subroutine test_cached_point_values
+
+   !> clear_cache (a solver_workspace's cache, reused by the routes of many solves): after
+   !> it nothing of before is served, neither coefficients (the storage of before poisoned
+   !> with -1: none shows up, and every matrix equals the plain assembly bit for bit) nor
+   !> point values; the storage is kept (meshes smaller than the first one reuse it: the
+   !> buffers are not reallocated, so their lengths stay those of the first mesh's), and a
+   !> mesh that shares elements with one assembled after the clear still takes them from
+   !> it (-1 from a poisoned copy shows).
+   subroutine test_cleared_cache(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: big, mesh, halved
+      type(influence_cache) :: cache, poisoned
+      real(dp), allocatable :: infl(:, :), plain(:, :), base(:), edges(:), values(:)
+      logical, allocatable :: known(:)
+      integer :: j, k, storage, n_reused
+      call build_mesh(graded_edges(3.0_dp, 0.2_dp, 9.0_dp, 0.15_dp), 4, 6, big)
+      allocate (infl(mesh_nodes(big), big%n_elem*big%n_gauss))
+      ! (four times: every slot and the spare then hold storage for the big mesh)
+      do k = 1, 4
+         call assemble_influence_cached(big, infl, 1, cache)
+      end do
+      call keep_point_values(cache, big, 2.0_dp, 1.0_dp + big%gauss_r**2)
+      deallocate (infl)
+      call clear_cache(cache)
+      storage = 0
+      do j = 1, size(cache%slot)
+         cache%slot(j)%rows = -1.0_dp
+         storage = storage + size(cache%slot(j)%rows)
+      end do
+      cache%spare = -1.0_dp
+      storage = storage + size(cache%spare)
+      allocate (values(size(big%gauss_r)), known(size(big%gauss_r)))
+      call cached_point_values(cache, big, 2.0_dp, values, known)
+      call check(error, .not. any(known), "point values served after clear_cache")
+      if (allocated(error)) return
+      base = graded_edges(3.0_dp, 0.2_dp, 5.0_dp, 0.25_dp)
+      do k = 1, 3
+         select case (k)
+         case (1)
+            edges = base
+         case (2)
+            edges = graded_edges(2.0_dp, 0.3_dp, 5.0_dp, 0.3_dp)
+         case (3)
+            edges = graded_edges(3.0_dp, 0.2_dp, 9.0_dp, 0.15_dp)
+         end select
+         call build_mesh(edges, 4, 6, mesh)
+         allocate (infl(mesh_nodes(mesh), mesh%n_elem*mesh%n_gauss))
+         allocate (plain(mesh_nodes(mesh), mesh%n_elem*mesh%n_gauss))
+         call assemble_influence(mesh, mesh%node, plain, 1)
+         call assemble_influence_cached(mesh, infl, 1, cache)
+         call check(error, all(infl == plain), "mesh "//char(48 + k)// &
+            & " after clear_cache: the cached assembly differs from the plain one")
+         if (allocated(error)) return
+         deallocate (infl, plain)
+      end do
+      ! (the largest of these meshes is the big one: no buffer grew)
+      call check(error, size(cache%spare) + sum([(size(cache%slot(j)%rows), j = 1, &
+         & size(cache%slot))]), storage, "clear_cache: the storage was reallocated for " &
+         & //"meshes no larger than the one before")
+      if (allocated(error)) return
+      ! the cache still serves what was assembled after the clear: the last mesh with
+      ! three elements halved
+      edges = [mesh%edge(0:3), 0.5_dp*(mesh%edge(3) + mesh%edge(4)), mesh%edge(4:)]
+      call build_mesh(edges, 4, 6, halved)
+      poisoned = cache
+      poisoned%slot(poisoned%last)%rows = -1.0_dp
+      allocate (infl(mesh_nodes(halved), halved%n_elem*halved%n_gauss))
+      call assemble_influence_cached(halved, infl, 1, poisoned)
+      n_reused = count(infl == -1.0_dp)
+      call check(error, n_reused > size(infl)/2, "after clear_cache: the meshes assembled " &
+         & //"since are not reused")
+   end subroutine test_cleared_cache
+
+   !> build_mesh with rules (the solver's meshes take those of the first mesh its cache
+   !> kept): the same mesh, bit for bit, as built alone, where the rules' degree and
+   !> n_gauss are the mesh's; rules of another degree or n_gauss are not taken.
+   subroutine test_mesh_rules(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: rules, other, alone, with
+      real(dp), allocatable :: edges(:)
+      integer :: k
+      call build_mesh(graded_edges(1.0_dp, 0.3_dp, 4.0_dp, 0.5_dp), 2, 6, rules)
+      call build_mesh(graded_edges(1.0_dp, 0.3_dp, 4.0_dp, 0.5_dp), 3, 5, other)
+      edges = graded_edges(3.0_dp, 0.2_dp, 5.0_dp, 0.25_dp)
+      do k = 1, 3
+         select case (k)
+         case (1)
+            call build_mesh(edges, 2, 6, alone)
+            call build_mesh(edges, 2, 6, with, rules)
+         case (2)
+            call build_mesh(edges, 2, 6, with, other)
+         case (3)
+            call build_mesh(edges, 3, 5, alone)
+            call build_mesh(edges, 3, 5, with, rules)
+         end select
+         call check(error, same_mesh(alone, with), "case "//char(48 + k)// &
+            & ": the mesh built with rules differs from the one built alone")
+         if (allocated(error)) return
+      end do
+   contains
+      logical function same_mesh(a, b)
+         type(radial_mesh), intent(in) :: a, b
+         same_mesh = a%n_elem == b%n_elem .and. a%degree == b%degree .and. &
+            & a%n_gauss == b%n_gauss .and. lbound(b%node_s, 1) == 0 .and. &
+            & lbound(b%interp, 1) == 0 .and. all(shape(a%interp) == shape(b%interp))
+         if (.not. same_mesh) return
+         same_mesh = all(a%edge == b%edge) .and. all(a%node == b%node) .and. &
+            & all(a%gauss_r == b%gauss_r) .and. all(a%gauss_w == b%gauss_w) .and. &
+            & all(a%local_s == b%local_s) .and. all(a%local_w == b%local_w) .and. &
+            & all(a%local_bary == b%local_bary) .and. all(a%node_s == b%node_s) .and. &
+            & all(a%interp == b%interp) .and. all(a%fine_s == b%fine_s) .and. &
+            & all(a%fine_w == b%fine_w) .and. all(a%log_x == b%log_x) .and. &
+            & all(a%log_w == b%log_w) .and. all(a%log_lw == b%log_lw)
+      end function same_mesh
+   end subroutine test_mesh_rules
 
    !> Continuous Lagrange elements of degree 3 reproduce a cubic to rounding (1e-13 for
    !> values ~ 30), at nodes and between them.

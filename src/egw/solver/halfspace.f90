@@ -33,7 +33,8 @@ module egw_halfspace
    public :: radial_mesh, build_mesh, graded_edges, mesh_nodes, node_index
    public :: influence_row, assemble_influence, interpolate_nodal, interpolate_nodal_walk, &
       & halfspace_kernel
-   public :: influence_cache, assemble_influence_cached, cached_point_values, keep_point_values
+   public :: influence_cache, assemble_influence_cached, cached_point_values, keep_point_values, &
+      & clear_cache
    public :: gauss_legendre
 
    !> Points of the plain rule on near pieces and of the log-product rule. Max error on the
@@ -83,12 +84,17 @@ module egw_halfspace
 
    !> One mesh's influence matrix as assemble_influence_cached stored it.
    type :: cached_matrix
+      logical :: filled = .false.   !< holds a mesh (else its storage is free)
       real(dp), allocatable :: edge(:)       !< (0:n_elem) its element edges
       real(dp), allocatable :: node(:)       !< its deflection nodes
-      !> (n_elem*n_gauss, nodes): the matrix transposed, a node's row contiguous
-      real(dp), allocatable :: rows(:, :)
+      integer :: n_row = 0   !< n_elem*n_gauss: the length of a node's row
+      !> the matrix transposed, a node's row contiguous: node k's row is
+      !> rows((k - 1)*n_row + 1:k*n_row) (storage kept when the slot is emptied or
+      !> refilled, so that it may be longer)
+      real(dp), allocatable :: rows(:)
       !> values its caller keeps at the mesh's Gauss points (keep_point_values), and the
       !> caller's key for them (values under another key are not served)
+      logical :: has_values = .false.
       real(dp), allocatable :: point_values(:)
       real(dp) :: key = 0.0_dp
    end type cached_matrix
@@ -97,12 +103,20 @@ module egw_halfspace
    !> for assemble_influence_cached. A coefficient depends only on the node's radius and
    !> the element's two edges (and the rules, fixed by n_gauss), so a mesh that shares
    !> nodes and elements with a stored one takes those coefficients from it: the same
-   !> numbers, computed the same way. Owned by one caller (a local of the solve): no
-   !> sharing between threads.
+   !> numbers, computed the same way. Owned by one caller (a solve's route, or a
+   !> solver_workspace that its routes reuse one after another): no sharing between
+   !> threads. clear_cache empties it as a new one but keeps its storage, which the next
+   !> meshes reuse (a slot's rows and the spare grow only; issue 32: fresh matrices a
+   !> mesh were ~8 % of a rough + cap hysteresis build's CPU in page faults).
    type :: influence_cache
       integer :: last = 0   !< the slot stored last (0: none)
       integer :: n_gauss = 0
       type(cached_matrix) :: slot(cache_meshes)
+      !> the next mesh's rows (as a slot's), swapped with the slot that stores it
+      real(dp), allocatable :: spare(:)
+      !> a mesh whose rules build_mesh copies (the first its owner built: rules depend
+      !> only on the degree and n_gauss; kept by clear_cache)
+      type(radial_mesh) :: rules
    end type influence_cache
 
 contains
@@ -178,19 +192,67 @@ contains
    end function graded_edges
 
    !> Build the mesh on the element boundaries edge(0:n) (edge(0) = 0, increasing).
-   pure subroutine build_mesh(edge, degree, n_gauss, mesh)
+   !> rules (optional): a built mesh whose quadrature rules and element interpolation are
+   !> taken where its degree and n_gauss are these (they depend on nothing else: the same
+   !> numbers as computed here), instead of computing them again.
+   pure subroutine build_mesh(edge, degree, n_gauss, mesh, rules)
       real(dp), intent(in) :: edge(0:)   !< element boundaries, edge(0) = 0, increasing
       integer, intent(in) :: degree    !< deflection element degree >= 1
       integer, intent(in) :: n_gauss   !< pressure points per element >= 1
       type(radial_mesh), intent(out) :: mesh   !< the mesh, nodes and Gauss points filled
-      integer :: e, j, q, k, n
-      real(dp) :: x0, x1, pk, pkm1, pkm2
+      type(radial_mesh), intent(in), optional :: rules   !< a built mesh (its rules taken)
+      integer :: e, j, q, n
+      real(dp) :: x0, x1
+      logical :: copied
 
       n = size(edge) - 1
       mesh%n_elem = n
       mesh%degree = degree
       mesh%n_gauss = n_gauss
       mesh%edge = edge
+      copied = .false.
+      if (present(rules)) copied = rules%degree == degree .and. rules%n_gauss == n_gauss &
+         & .and. allocated(rules%log_lw)
+      if (copied) then
+         mesh%local_s = rules%local_s
+         mesh%local_w = rules%local_w
+         mesh%local_bary = rules%local_bary
+         mesh%node_s = rules%node_s
+         mesh%interp = rules%interp
+         mesh%fine_s = rules%fine_s
+         mesh%fine_w = rules%fine_w
+         mesh%log_x = rules%log_x
+         mesh%log_w = rules%log_w
+         mesh%log_lw = rules%log_lw
+      else
+         call build_rules(mesh)
+      end if
+      allocate (mesh%node(n*degree + 1), mesh%gauss_r(n*n_gauss), mesh%gauss_w(n*n_gauss))
+      do e = 1, n
+         x0 = edge(e - 1)
+         x1 = edge(e)
+         do j = 0, degree
+            mesh%node(node_index(mesh, e, j)) = 0.5_dp*(x0 + x1) + 0.5_dp*(x1 - x0)*mesh%node_s(j)
+         end do
+         ! Ends exactly equal to the edges, so collocation at an edge is recognised as such.
+         mesh%node(node_index(mesh, e, 0)) = x0
+         mesh%node(node_index(mesh, e, degree)) = x1
+         do q = 1, n_gauss
+            mesh%gauss_r((e - 1)*n_gauss + q) = 0.5_dp*(x0 + x1) + 0.5_dp*(x1 - x0)*mesh%local_s(q)
+            mesh%gauss_w((e - 1)*n_gauss + q) = 0.5_dp*(x1 - x0)*mesh%local_w(q)
+         end do
+      end do
+   end subroutine build_mesh
+
+   !> build_mesh's rules for mesh%degree and mesh%n_gauss: the Gauss points and weights,
+   !> barycentric weights, element nodes and interpolation, the near pieces' and the
+   !> log-product rules.
+   pure subroutine build_rules(mesh)
+      type(radial_mesh), intent(inout) :: mesh
+      integer :: j, q, k, degree, n_gauss
+      real(dp) :: pk, pkm1, pkm2
+      degree = mesh%degree
+      n_gauss = mesh%n_gauss
       allocate (mesh%local_s(n_gauss), mesh%local_w(n_gauss))
       call gauss_legendre(n_gauss, mesh%local_s, mesh%local_w)
       allocate (mesh%local_bary(n_gauss))
@@ -207,21 +269,6 @@ contains
       allocate (mesh%interp(0:degree, n_gauss))
       do q = 1, n_gauss
          mesh%interp(:, q) = lagrange_weights(mesh%node_s, mesh%local_s(q))
-      end do
-      allocate (mesh%node(n*degree + 1), mesh%gauss_r(n*n_gauss), mesh%gauss_w(n*n_gauss))
-      do e = 1, n
-         x0 = edge(e - 1)
-         x1 = edge(e)
-         do j = 0, degree
-            mesh%node(node_index(mesh, e, j)) = 0.5_dp*(x0 + x1) + 0.5_dp*(x1 - x0)*mesh%node_s(j)
-         end do
-         ! Ends exactly equal to the edges, so collocation at an edge is recognised as such.
-         mesh%node(node_index(mesh, e, 0)) = x0
-         mesh%node(node_index(mesh, e, degree)) = x1
-         do q = 1, n_gauss
-            mesh%gauss_r((e - 1)*n_gauss + q) = 0.5_dp*(x0 + x1) + 0.5_dp*(x1 - x0)*mesh%local_s(q)
-            mesh%gauss_w((e - 1)*n_gauss + q) = 0.5_dp*(x1 - x0)*mesh%local_w(q)
-         end do
       end do
       allocate (mesh%fine_s(n_fine), mesh%fine_w(n_fine))
       call gauss_legendre(n_fine, mesh%fine_s, mesh%fine_w)
@@ -245,7 +292,7 @@ contains
          end do
          mesh%log_lw(j) = mesh%log_lw(j)*mesh%log_w(j)
       end do
-   end subroutine build_mesh
+   end subroutine build_rules
 
    !> Number of deflection nodes.
    pure integer function mesh_nodes(mesh)
@@ -638,34 +685,38 @@ contains
       !> earlier meshes' coefficients; this mesh's stored
       type(influence_cache), intent(inout) :: cache
       integer, intent(out), optional :: stat   !< nonzero: a buffer could not be allocated
-      integer :: i, j, k, e, c, ng, n, threads, ios, slot
+      integer :: i, j, k, e, c, ng, n, nr, threads, ios, slot, src
       integer, allocatable :: node_at(:, :), elem_at(:, :), row_slot(:)
-      real(dp), allocatable :: rows(:, :)
+      real(dp), allocatable :: swap(:)
       ! known(e, slot): element e's coefficients come from that slot's mesh (the same for
       ! every row taken from it: a column a slot, not a column a row)
       logical, allocatable :: known(:, :)
       logical :: shares(cache_meshes)
       n = size(mesh%node)
       ng = mesh%n_gauss
+      nr = mesh%n_elem*ng
       if (cache%n_gauss /= ng) then
-         cache%last = 0
-         do j = 1, cache_meshes
-            if (allocated(cache%slot(j)%edge)) deallocate (cache%slot(j)%edge, &
-               & cache%slot(j)%node, cache%slot(j)%rows)
-            if (allocated(cache%slot(j)%point_values)) deallocate (cache%slot(j)%point_values)
-         end do
+         call clear_cache(cache)
          cache%n_gauss = ng
       end if
-      allocate (rows(mesh%n_elem*ng, n), node_at(n, cache_meshes), &
-         & elem_at(mesh%n_elem, cache_meshes), row_slot(n), known(mesh%n_elem, cache_meshes), &
-         & stat=ios)
+      ! (the rows in the spare, node i's at (i - 1)*nr + 1: grown only, by a quarter more
+      ! than needed (at most cache_max_entries more), so that a build's slowly growing
+      ! meshes reallocate it rarely)
+      ios = 0
+      if (allocated(cache%spare)) then
+         if (size(cache%spare, kind=8) < int(nr, 8)*n) deallocate (cache%spare)
+      end if
+      if (.not. allocated(cache%spare)) allocate (cache%spare(nr*n + min(nr*n/4, &
+         & cache_max_entries)), stat=ios)
+      if (ios == 0) allocate (node_at(n, cache_meshes), elem_at(mesh%n_elem, cache_meshes), &
+         & row_slot(n), known(mesh%n_elem, cache_meshes), stat=ios)
       if (present(stat)) stat = ios
       if (ios /= 0) return
       node_at = 0
       elem_at = 0
       shares = .false.
       do j = 1, cache_meshes
-         if (.not. allocated(cache%slot(j)%edge)) cycle
+         if (.not. cache%slot(j)%filled) cycle
          call match_elements(mesh%edge, cache%slot(j)%edge, elem_at(:, j))
          shares(j) = any(elem_at(:, j) > 0)
          if (shares(j)) call match_sorted(mesh%node, cache%slot(j)%node, node_at(:, j))
@@ -683,11 +734,12 @@ contains
          end do
          if (row_slot(i) == 0) cycle
          slot = row_slot(i)
+         src = (node_at(i, slot) - 1)*cache%slot(slot)%n_row
          do e = 1, mesh%n_elem
             c = elem_at(e, slot)
             if (c == 0) cycle
-            rows((e - 1)*ng + 1:e*ng, i) = cache%slot(slot)%rows((c - 1)*ng + 1:c*ng, &
-               & node_at(i, slot))
+            cache%spare((i - 1)*nr + (e - 1)*ng + 1:(i - 1)*nr + e*ng) = &
+               & cache%slot(slot)%rows(src + (c - 1)*ng + 1:src + c*ng)
          end do
       end do
       threads = n_threads
@@ -705,24 +757,51 @@ contains
          end do
          !$omp end parallel do
       end if
-      infl = transpose(rows)
+      call transpose_rows(nr, n, cache%spare, infl)
       if (size(infl, kind=8) > int(cache_max_entries, 8)) return
+      ! stored in place of the oldest: the spare becomes its rows, its storage the spare
       slot = modulo(cache%last, cache_meshes) + 1
-      if (allocated(cache%slot(slot)%point_values)) deallocate (cache%slot(slot)%point_values)
+      cache%slot(slot)%has_values = .false.
       cache%slot(slot)%edge = mesh%edge
       cache%slot(slot)%node = mesh%node
-      call move_alloc(rows, cache%slot(slot)%rows)
+      cache%slot(slot)%n_row = nr
+      if (allocated(cache%slot(slot)%rows)) call move_alloc(cache%slot(slot)%rows, swap)
+      call move_alloc(cache%spare, cache%slot(slot)%rows)
+      if (allocated(swap)) call move_alloc(swap, cache%spare)
+      cache%slot(slot)%filled = .true.
       cache%last = slot
    contains
       subroutine row_of(i)
          integer, intent(in) :: i
          if (row_slot(i) > 0) then
-            call influence_row(mesh, mesh%node(i), rows(:, i), known(:, row_slot(i)))
+            call influence_row(mesh, mesh%node(i), cache%spare((i - 1)*nr + 1:i*nr), &
+               & known(:, row_slot(i)))
          else
-            call influence_row(mesh, mesh%node(i), rows(:, i))
+            call influence_row(mesh, mesh%node(i), cache%spare((i - 1)*nr + 1:i*nr))
          end if
       end subroutine row_of
    end subroutine assemble_influence_cached
+
+   !> infl = the transpose of the first nr*n entries of rows read as an nr x n matrix.
+   pure subroutine transpose_rows(nr, n, rows, infl)
+      integer, intent(in) :: nr, n
+      real(dp), intent(in) :: rows(nr, n)
+      real(dp), intent(out) :: infl(:, :)   !< (n, nr)
+      infl = transpose(rows)
+   end subroutine transpose_rows
+
+   !> Empty the cache as a new one (no mesh, no values) but keep its storage for the
+   !> meshes to come.
+   pure subroutine clear_cache(cache)
+      type(influence_cache), intent(inout) :: cache   !< emptied, its storage kept
+      integer :: j
+      cache%last = 0
+      cache%n_gauss = 0
+      do j = 1, cache_meshes
+         cache%slot(j)%filled = .false.
+         cache%slot(j)%has_values = .false.
+      end do
+   end subroutine clear_cache
 
    !> Values a caller kept (keep_point_values, under the same key) at the Gauss points of
    !> the cached meshes' elements that mesh shares (the same two edges, so the same Gauss
@@ -741,7 +820,7 @@ contains
       if (cache%n_gauss /= ng) return
       do k = 0, cache_meshes - 1
          slot = modulo(cache%last - 1 - k, cache_meshes) + 1
-         if (.not. allocated(cache%slot(slot)%point_values)) cycle
+         if (.not. (cache%slot(slot)%filled .and. cache%slot(slot)%has_values)) cycle
          if (cache%slot(slot)%key /= key) cycle
          call match_elements(mesh%edge, cache%slot(slot)%edge, elem_at)
          do e = 1, mesh%n_elem
@@ -764,11 +843,12 @@ contains
       integer :: slot
       slot = cache%last
       if (slot == 0) return
-      if (.not. allocated(cache%slot(slot)%edge)) return
+      if (.not. cache%slot(slot)%filled) return
       if (size(cache%slot(slot)%edge) /= size(mesh%edge)) return
       if (any(cache%slot(slot)%edge /= mesh%edge)) return
       if (size(values) /= mesh%n_elem*mesh%n_gauss) return
       cache%slot(slot)%point_values = values
+      cache%slot(slot)%has_values = .true.
       cache%slot(slot)%key = key
    end subroutine keep_point_values
 

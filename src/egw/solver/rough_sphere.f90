@@ -39,7 +39,7 @@ module egw_rough_sphere
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & scaled, normal, negligible, solve_scaled, differentiate, &
-      & effective_radius, total_pressure, smooth_force, smooth_stiffness
+      & effective_radius, total_pressure, smooth_force, smooth_stiffness, solver_workspace
    implicit none
    private
 
@@ -169,11 +169,13 @@ module egw_rough_sphere
    !> rough deflection of that history's last converged discrete unloading solve, which
    !> starts the next one's locating solve (doc/theory.md section 12, "Solves of one
    !> history"). Owned by one caller (a curve of a table build), never shared between
-   !> threads; a start of another history (another delta_max) is not used.
+   !> threads; a start of another history (another delta_max) is not used. It also
+   !> carries the solver's buffers (solver_workspace), which the solves it starts reuse.
    type :: unload_start
       logical, private :: valid = .false.
       real(dp), private :: delta_max = 0.0_dp
       type(discrete_solution), private :: sol   !< its mesh and w only
+      type(solver_workspace), private :: work
    end type unload_start
 
    !> The history solve_contact_unload loaded last on this thread, with the inputs it was
@@ -919,7 +921,7 @@ contains
    !> The discrete solve of a rough scaled problem (loading, or unloading when
    !> prob%closest is allocated), its stiffness, and the result in the caller's units.
    !> result is only written on success.
-   subroutine solve_rough(params, options, prob, sol, result, error, warm)
+   subroutine solve_rough(params, options, prob, sol, result, error, warm, work)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       type(scaled_problem), intent(in) :: prob
@@ -928,10 +930,12 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       !> unloading: a solution of another solve of the same history (solve_scaled's)
       type(discrete_solution), intent(in), optional :: warm
+      !> the buffers of the caller's earlier solves (solve_scaled's, differentiate's)
+      type(solver_workspace), intent(inout), optional :: work
       type(solve_result) :: res
       real(dp) :: est, force_scale, pmax
 
-      call solve_scaled(prob, options, sol, est, res%method_used, error, warm)
+      call solve_scaled(prob, options, sol, est, res%method_used, error, warm, work)
       if (allocated(error)) return
       if (sol%force == 0.0_dp .and. est >= 1.0_dp) then
          ! Underflow range (tiny_force): 0 with relative error 1, as negligible().
@@ -939,7 +943,7 @@ contains
          result = res
          return
       end if
-      call differentiate(prob, sol, error)
+      call differentiate(prob, sol, error, work)
       if (allocated(error)) return
 
       force_scale = force_unit(params)
@@ -1217,7 +1221,9 @@ contains
       warm = .false.
       if (present(start)) warm = start%valid .and. start%delta_max == closest%delta
       if (warm) then
-         call solve_rough(params, options, prob, sol, result, error, start%sol)
+         call solve_rough(params, options, prob, sol, result, error, start%sol, start%work)
+      else if (present(start)) then
+         call solve_rough(params, options, prob, sol, result, error, work=start%work)
       else
          call solve_rough(params, options, prob, sol, result, error)
       end if

@@ -14,6 +14,7 @@ module egw_sphere_iteration
       & influence_cache, assemble_influence_cached, cached_point_values, keep_point_values, &
       & interpolate_nodal_walk
    use egw_lapack, only: lu_factor, lu_solve
+   use egw_solver_workspace, only: solver_workspace, reserve
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
       & scaled_problem, discrete_solution, law_at, law_inverse, base_gap, base_gap_rate, &
       & closest_gap, gauss_values, gauss_gap, deflection_degree, pressure_points, rough_pressure, &
@@ -54,7 +55,13 @@ contains
             & //int_str(max_mesh_nodes))
          return
       end if
-      call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
+      if (present(cache)) then
+         ! (the rules of the caller's first mesh, the same numbers: ~1 % of a build)
+         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh, cache%rules)
+         if (.not. allocated(cache%rules%log_lw)) cache%rules = sol%mesh
+      else
+         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
+      end if
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
       ! unloading with the cap: the law at gap_min where an earlier level of the solve has
@@ -149,19 +156,41 @@ contains
    !> last factors belong to an iterate near the solution: iterative refinement with them
    !> (residuals with the exact J) contracts by |J_old**-1 (J - J_old)| << 1 per sweep
    !> and spares an LU; without them, or if refinement stalls, J itself is factored.
-   subroutine differentiate(prob, sol, error)
+   subroutine differentiate(prob, sol, error, work)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem
       type(discrete_solution), intent(inout) :: sol   !< converged; its delta-derivatives filled
       !> egw_not_converged (singular Jacobian) or egw_out_of_memory
       type(egw_error), allocatable, intent(out) :: error
+      !> the caller's buffers (the Jacobian's taken from it; else allocated here)
+      type(solver_workspace), intent(inout), optional :: work
+      real(dp), allocatable :: own(:)
+      integer :: n, stat
+      n = size(sol%w)
+      if (present(work)) then
+         call reserve(work%jac, n*n, stat)
+         if (stat == 0) call differentiate_in(prob, sol, work%jac, error)
+      else
+         allocate (own(n*n), stat=stat)
+         if (stat == 0) call differentiate_in(prob, sol, own, error)
+      end if
+      if (stat /= 0) call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+         & //int_str(n)//" nodes could not be allocated")
+   end subroutine differentiate
+
+   !> differentiate's work, its Jacobian in jac (the first n**2 entries of the buffer).
+   subroutine differentiate_in(prob, sol, jac, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(inout) :: sol
+      real(dp), intent(inout) :: jac(size(sol%w), size(sol%w))
+      type(egw_error), allocatable, intent(out) :: error
       integer, parameter :: max_sweeps = 6
-      real(dp), allocatable :: jac(:, :), rhs(:), x(:, :), corr(:, :), rate(:)
+      real(dp), allocatable :: rhs(:), x(:, :), corr(:, :), rate(:)
       integer, allocatable :: ipiv(:)
       integer :: n, info, sweep
       logical :: refined, edge_capped
       real(dp), allocatable :: free_rate(:)
       n = size(sol%w)
-      allocate (jac(n, n), x(n, 1), corr(n, 1), stat=info)
+      allocate (x(n, 1), corr(n, 1), stat=info)
       if (info /= 0) then
          call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
             & //int_str(n)//" nodes could not be allocated")
@@ -227,7 +256,7 @@ contains
       end if
       rate = sol%dbase + gauss_values(sol%mesh, x(:, 1))
       sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%dpdh*rate + sol%dpdd))
-   end subroutine differentiate
+   end subroutine differentiate_in
 
    !> Loading with the cap of an extended model (differentiate): whether the Gauss point
    !> nearest the Hertz edge a from inside is capped (sol%dpdd < 0 there).
@@ -351,16 +380,17 @@ contains
 
    !> Jacobian J = I - infl diag(p') interp. A column of J (a node of element e) gets the
    !> element's Gauss columns of infl in one pass (c(q) = p'_q interp(j, q)), not one pass
-   !> a Gauss point; points where p' = 0 (capped, floored, separated) are left out.
+   !> a Gauss point; points where p' = 0 (capped, floored, separated) are left out. No
+   !> pass zeroes J first: a column's first element writes it (0 - sum, then 1 + that on
+   !> the diagonal: the numbers of 0 - sum and 1 - sum to the bit), a column no element
+   !> writes is the identity's.
    pure subroutine jacobian(sol, jac)
       type(discrete_solution), intent(in) :: sol   !< evaluated at the current w
       real(dp), intent(out) :: jac(:, :)   !< J, nodes x nodes
       integer :: e, q, j, g0, col, n_used, used(sol%mesh%n_gauss), i
       real(dp) :: c(sol%mesh%n_gauss), acc
-      jac = 0.0_dp
-      do j = 1, size(jac, 1)
-         jac(j, j) = 1.0_dp
-      end do
+      logical :: written(size(jac, 2))
+      written = .false.
       do e = 1, sol%mesh%n_elem
          g0 = (e - 1)*sol%mesh%n_gauss
          n_used = 0
@@ -376,7 +406,26 @@ contains
             do q = 1, n_used
                c(q) = sol%dpdh(used(q))*sol%mesh%interp(j, used(q) - g0)
             end do
-            if (n_used == sol%mesh%n_gauss .and. n_used == 6) then
+            if (.not. written(col)) then
+               if (n_used == sol%mesh%n_gauss .and. n_used == 6) then
+                  do i = 1, size(jac, 1)
+                     jac(i, col) = 0.0_dp - (((c(1)*sol%infl(i, g0 + 1) &
+                        & + c(2)*sol%infl(i, g0 + 2)) + (c(3)*sol%infl(i, g0 + 3) &
+                        & + c(4)*sol%infl(i, g0 + 4))) + (c(5)*sol%infl(i, g0 + 5) &
+                        & + c(6)*sol%infl(i, g0 + 6)))
+                  end do
+               else
+                  do i = 1, size(jac, 1)
+                     acc = 0.0_dp
+                     do q = 1, n_used
+                        acc = acc + c(q)*sol%infl(i, used(q))
+                     end do
+                     jac(i, col) = 0.0_dp - acc
+                  end do
+               end if
+               jac(col, col) = 1.0_dp + jac(col, col)
+               written(col) = .true.
+            else if (n_used == sol%mesh%n_gauss .and. n_used == 6) then
                ! (the solver's six points: the sum unrolled, one pass over the column)
                do i = 1, size(jac, 1)
                   jac(i, col) = jac(i, col) - (((c(1)*sol%infl(i, g0 + 1) &
@@ -394,6 +443,11 @@ contains
                end do
             end if
          end do
+      end do
+      do col = 1, size(jac, 2)
+         if (written(col)) cycle
+         jac(:, col) = 0.0_dp
+         jac(col, col) = 1.0_dp
       end do
    end subroutine jacobian
 

@@ -39,7 +39,8 @@ module egw_sphere_solver
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
    use egw_unloading, only: unloading_law_of, unloading_kinks
-   use egw_halfspace, only: graded_edges, interpolate_nodal, influence_cache
+   use egw_halfspace, only: graded_edges, interpolate_nodal, influence_cache, clear_cache
+   use egw_solver_workspace, only: solver_workspace
    use egw_sphere_problem, only: method_auto, method_newton, method_picard, solver_options, &
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & deflection_degree, &
@@ -60,7 +61,7 @@ module egw_sphere_solver
       & tiny_force
    public :: separation_field, scaled_problem, discrete_solution
    public :: scaled, normal, negligible, base_gap, closest_gap, solve_scaled, differentiate, &
-      & effective_radius, total_pressure, smooth_force, smooth_stiffness
+      & effective_radius, total_pressure, smooth_force, smooth_stiffness, solver_workspace
 
    !> The central-disc route (disc_cap_unload) only where the innermost kink edge is
    !> below this fraction of the Hertz radius. 0.5: at sigma/delta_y = 2e-4 (E-GW + cap,
@@ -111,7 +112,7 @@ contains
    !> level's mesh (first_mesh), the first level (first_unloading_level for unloading;
    !> continuation if a cold start fails; refocus_classic_gw), then the refinement levels
    !> (refine_levels).
-   subroutine solve_scaled(problem, options, sol, est, method_used, error, warm)
+   subroutine solve_scaled(problem, options, sol, est, method_used, error, warm, work)
       type(scaled_problem), intent(in) :: problem   !< the scaled problem (doc/theory.md section 5)
       !> the solver's options (rel_tol, method, n_radial)
       type(solver_options), intent(in) :: options
@@ -122,9 +123,31 @@ contains
       !> unloading: the solution of another solve of the same history (another delta),
       !> the start of the default route's locating solve (first_unloading_level)
       type(discrete_solution), intent(in), optional :: warm
+      !> buffers of the caller's earlier solves, reused (else this solve's own)
+      type(solver_workspace), intent(inout), optional :: work
+      type(solver_workspace) :: own
+      if (present(work)) then
+         call solve_routes(problem, options, sol, est, method_used, error, work%cache, warm)
+      else
+         call solve_routes(problem, options, sol, est, method_used, error, own%cache, warm)
+      end if
+   end subroutine solve_scaled
+
+   !> solve_scaled's routes, each starting from the cache cleared (clear_cache: as a new
+   !> one, its storage reused).
+   subroutine solve_routes(problem, options, sol, est, method_used, error, cache, warm)
+      type(scaled_problem), intent(in) :: problem
+      type(solver_options), intent(in) :: options
+      type(discrete_solution), intent(out) :: sol
+      real(dp), intent(out) :: est
+      integer, intent(out) :: method_used
+      type(egw_error), allocatable, intent(out) :: error
+      type(influence_cache), intent(inout) :: cache
+      type(discrete_solution), intent(in), optional :: warm
       type(egw_error), allocatable :: guided_error
       logical :: wide
-      call solve_default(problem, options, sol, est, method_used, error, warm)
+      call clear_cache(cache)
+      call solve_default(problem, options, sol, est, method_used, error, cache, warm)
       if (.not. allocated(error)) return
       ! Loading of an extended model with the cap that did not converge (small
       ! sigma/delta_y: the plastic zone's edge is a layer the default meshes do not
@@ -133,7 +156,8 @@ contains
       if (options%n_radial > 0) return
       if (allocated(problem%closest)) then
          if (.not. problem%closest%extended) return
-         call guided_cap_unload(problem, options, sol, est, method_used, guided_error)
+         call clear_cache(cache)
+         call guided_cap_unload(problem, options, sol, est, method_used, guided_error, cache)
          ! then, unloading after a capped loading, the central-disc route (near the
          ! residual overlap; last, so that every solve that converged before it came
          ! is unchanged)
@@ -142,29 +166,33 @@ contains
          if (allocated(guided_error) .and. sums_total(problem) .and. &
             & (0.5_dp*pi*problem%cap%p_y)**2 < 0.5e6_dp) then
             deallocate (guided_error)
+            call clear_cache(cache)
             call disc_cap_unload(problem, options, sol, est, method_used, guided_error, &
-               & refused=wide)
+               & cache, refused=wide)
             ! and else the history-edges route (mid-unloading)
             if (allocated(guided_error)) then
                deallocate (guided_error)
+               call clear_cache(cache)
                call history_cap_unload(problem, options, sol, est, method_used, &
-                  & guided_error)
+                  & guided_error, cache)
             end if
             ! and last, where the stall fallbacks apply, the central-disc route on an
             ! unloaded centre up to the Hertz radius (wide_disc_fraction), where the
             ! central-disc route refused a wider disc (its first level converged)
             if (allocated(guided_error) .and. stall_fallbacks(problem) .and. wide) then
                deallocate (guided_error)
+               call clear_cache(cache)
                call disc_cap_unload(problem, options, sol, est, method_used, guided_error, &
-                  & wide_disc_fraction)
+                  & cache, wide_disc_fraction)
             end if
          end if
       else
          if (.not. problem%extended) return
-         call guided_cap_solve(problem, options, sol, est, method_used, guided_error)
+         call clear_cache(cache)
+         call guided_cap_solve(problem, options, sol, est, method_used, guided_error, cache)
       end if
       if (.not. allocated(guided_error)) deallocate (error)
-   end subroutine solve_scaled
+   end subroutine solve_routes
 
    !> The method a solve runs: options%method, Newton for auto.
    elemental integer function solve_method(options) result(method)
@@ -190,19 +218,20 @@ contains
    !> (the fixed edges 0 and c) they agreed by accident, and refined with the step they
    !> shrank like step a, so the finest step was reached with estimates of 6.0e-7 ..
    !> 6.7e-7 (steel beads, E-GW + cap and EP-GW + cap, sigma 10 nm, doc/stability.md).
-   subroutine disc_cap_unload(problem, options, sol, est, method_used, error, fraction, &
-      & refused)
+   subroutine disc_cap_unload(problem, options, sol, est, method_used, error, cache, &
+      & fraction, refused)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      !> the levels' influence matrices (shared elements), cleared
+      type(influence_cache), intent(inout) :: cache
       !> the route only where c is below this fraction of a (default disc_fraction)
       real(dp), intent(in), optional :: fraction
       !> the route refused a disc beyond disc_fraction a (its first level converged)
       logical, intent(out), optional :: refused
-      type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(scaled_problem) :: prob
       type(mesh_family) :: mesh
       type(discrete_solution) :: coarse
@@ -248,17 +277,19 @@ contains
    !> 2.1e-6 off at the finest step, estimate 1.2e-6). With them one level met rel_tol,
    !> both within 9e-9 of the same route on the history's edges beyond 0.87 a only
    !> (fewer nodes, so that its bisection check ran).
-   subroutine history_cap_unload(problem, options, sol, est, method_used, error)
+   subroutine history_cap_unload(problem, options, sol, est, method_used, error, cache)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      !> the levels' influence matrices (shared elements), cleared
+      type(influence_cache), intent(inout) :: cache
       type(scaled_problem) :: prob
       prob = problem
       prob%history_edges = .true.
-      call solve_default(prob, options, sol, est, method_used, error)
+      call solve_default(prob, options, sol, est, method_used, error, cache)
    end subroutine history_cap_unload
 
    !> Unloading after a capped loading, the guided route (as guided_cap_solve): the
@@ -266,14 +297,15 @@ contains
    !> has its edge, is an element edge with layers on both sides (prob%kink_width) from
    !> the locating solve on; then first_unloading_level and the levels as on the default
    !> route.
-   subroutine guided_cap_unload(problem, options, sol, est, method_used, error)
+   subroutine guided_cap_unload(problem, options, sol, est, method_used, error, cache)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
-      type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
+      !> the levels' influence matrices (shared elements), cleared
+      type(influence_cache), intent(inout) :: cache
       type(discrete_solution) :: coarse, start
       type(scaled_problem) :: prob, at_max
       type(mesh_family) :: mesh
@@ -310,14 +342,15 @@ contains
    !> (prob%kink_width, kink_layers); beyond the Hertz radius the family is focused there.
    !> Then the levels as on the default route (first_cap_level relocates the edge onto
    !> the rough solution's own cap edges).
-   subroutine guided_cap_solve(problem, options, sol, est, method_used, error)
+   subroutine guided_cap_solve(problem, options, sol, est, method_used, error, cache)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
-      type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
+      !> the levels' influence matrices (shared elements), cleared
+      type(influence_cache), intent(inout) :: cache
       type(discrete_solution) :: coarse, first
       type(scaled_problem) :: prob, relocated
       type(mesh_family) :: mesh, moved_mesh
@@ -379,15 +412,16 @@ contains
    end subroutine smooth_cap_edge
 
    !> The levels of solve_scaled's default route (all solves but guided_cap_solve's).
-   subroutine solve_default(problem, options, sol, est, method_used, error, warm)
+   subroutine solve_default(problem, options, sol, est, method_used, error, cache, warm)
       type(scaled_problem), intent(in) :: problem
       type(solver_options), intent(in) :: options
       type(discrete_solution), intent(out) :: sol
       real(dp), intent(out) :: est
       integer, intent(out) :: method_used
       type(egw_error), allocatable, intent(out) :: error
+      !> the levels' influence matrices (shared elements), cleared
+      type(influence_cache), intent(inout) :: cache
       type(discrete_solution), intent(in), optional :: warm   !< solve_scaled's
-      type(influence_cache) :: cache   !< the levels' influence matrices (shared elements)
       type(discrete_solution) :: coarse, first
       type(scaled_problem) :: prob
       type(mesh_family) :: mesh, unfocused

@@ -1167,6 +1167,7 @@ contains
          integer, intent(in) :: j
          type(egw_error), allocatable :: err
          real(dp), allocatable :: s(:)
+         type(unload_start) :: none
          call start_curve(table, serial, m(j), shift, curves(j), err)
          if (.not. allocated(err)) then
             if (only_check) then
@@ -1178,6 +1179,10 @@ contains
          end if
          if (.not. (allocated(err) .or. only_check)) call refine_curve(table, curves(j), &
             & worst(j), err)
+         ! (a check curve's start is not used again, move_curve leaves it behind: freed
+         ! here with the solver's buffers it carries, so that the check curves solved in
+         ! parallel do not all hold them until the last is done)
+         if (only_check) curves(j)%start = none
          if (allocated(err)) then
             stats(j) = err%stat
             messages(j) = err%message
