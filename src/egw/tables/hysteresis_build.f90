@@ -3,6 +3,7 @@
 !> solves, the bisection of both to rel_tol and the resampling onto the union s grid.
 submodule (egw_hysteresis) egw_hysteresis_build
    use egw_status, only: egw_not_converged, egw_unsupported, fatal_error, format_real
+   use egw_text, only: real_text, real_text_len
    use egw_params, only: validate_params, model_epgw, model_hertz
    use egw_rough_sphere, only: solve_result, loading_history, load_history, solve_unload, &
       & unload_start, cap_solve_options, solve_contact, history_residual, &
@@ -125,6 +126,7 @@ contains
       ! procedure dummy in a separate module procedure body
       procedure(table_progress), optional :: progress
       real(dp) :: ratio
+      character(len=:), allocatable :: place, routes
       call build_work(params, options, delta_min, delta_max, rel_tol, table, error, progress)
       if (.not. allocated(error)) return
       if (error%stat /= egw_not_converged) return
@@ -132,10 +134,12 @@ contains
       if (.not. (params%flow_pressure > 0.0_dp .and. params%model /= model_hertz .and. &
          & params%sigma > 0.0_dp)) return
       ratio = params%sigma/first_yield(params)
-      if (ratio < hint_sigma) error%message = error%message//" (rough + cap at "// &
-         & rough_cap_where(params, delta_max)//": its tables may not build at small "// &
-         & "sigma/delta_y; a smaller delta_max or rel_tol 1e-3 may let it build, or "// &
-         & rough_cap_routes(ratio)//")"
+      if (.not. ratio < hint_sigma) return
+      call rough_cap_where(params, delta_max, place)
+      call rough_cap_routes(ratio, routes)
+      error%message = error%message//" (rough + cap at "//place//": its tables may not "// &
+         & "build at small sigma/delta_y; a smaller delta_max or rel_tol 1e-3 may let it "// &
+         & "build, or "//routes//")"
    end subroutine build_hysteresis
 
    !> build_hysteresis's work (that routine adds the routes to a rough + cap failure).
@@ -303,30 +307,34 @@ contains
       real(dp), intent(in) :: delta_max
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: ratio, reach
+      character(len=:), allocatable :: place, routes
       ratio = params%sigma/first_yield(params)
       reach = max_layer_reach
       if (plastic_summits(params)) reach = plastic_layer_reach
       if (.not. (ratio <= small_cap_sigma .and. delta_max > reach*params%sigma)) return
+      call rough_cap_where(params, delta_max, place)
+      call rough_cap_routes(ratio, routes)
       call fatal_error(error, egw_unsupported, "delta_max = "//format_real(delta_max)// &
-         & ": rough + cap tables beyond "//short_real(reach)//" sigma at "// &
-         & "sigma/delta_y <= "//short_real(small_cap_sigma)//" do not build (here "// &
-         & rough_cap_where(params, delta_max)//"; their unloading solves stall or need "// &
+         & ": rough + cap tables beyond "//sci3(reach)//" sigma at "// &
+         & "sigma/delta_y <= "//sci3(small_cap_sigma)//" do not build (here "// &
+         & place//"; their unloading solves stall or need "// &
          & "more than the mesh's nodes, the rough layer being ~(sigma/delta)^(2/3) of the "// &
          & 'contact radius wide: doc/stability.md "Stop 51 (tiny17)"): take delta_max <= '// &
-         & format_real(reach*params%sigma)//", or "//rough_cap_routes(ratio))
+         & format_real(reach*params%sigma)//", or "//routes)
    end subroutine rough_cap_reach
 
    !> "sigma/delta_y = r (first yield delta_y = d), delta_max = x sigma = y delta_y"
-   function rough_cap_where(params, delta_max) result(text)
+   !> (a subroutine: no deferred-length function results, see egw_text)
+   subroutine rough_cap_where(params, delta_max, text)
       type(contact_params), intent(in) :: params
       real(dp), intent(in) :: delta_max
-      character(len=:), allocatable :: text
+      character(len=:), allocatable, intent(out) :: text
       real(dp) :: delta_y
       delta_y = first_yield(params)
-      text = "sigma/delta_y = "//short_real(params%sigma/delta_y)//" (first yield delta_y"// &
-         & " = "//short_real(delta_y)//"), delta_max = "//short_real(delta_max/params%sigma) &
-         & //" sigma = "//short_real(delta_max/delta_y)//" delta_y"
-   end function rough_cap_where
+      text = "sigma/delta_y = "//sci3(params%sigma/delta_y)//" (first yield delta_y"// &
+         & " = "//sci3(delta_y)//"), delta_max = "//sci3(delta_max/params%sigma) &
+         & //" sigma = "//sci3(delta_max/delta_y)//" delta_y"
+   end subroutine rough_cap_where
 
    !> The routes of a rough + cap table that does not build at sigma/delta_y = ratio:
    !> Hertz + cap, the rough model's sigma -> 0 limit, with its bound (doc/theory.md
@@ -334,26 +342,25 @@ contains
    !> (sigma/delta_y)**(2/3) of it; near the residual overlap the unloading force by ~8.3
    !> (sigma/delta_y)**(2/3) of its own, doc/stability.md "Stop 49 (resid15)"), or single
    !> solves.
-   function rough_cap_routes(ratio) result(text)
+   subroutine rough_cap_routes(ratio, text)
       real(dp), intent(in) :: ratio   !< sigma/delta_y
-      character(len=:), allocatable :: text
+      character(len=:), allocatable, intent(out) :: text
       real(dp) :: s23
       s23 = ratio**(2.0_dp/3.0_dp)
       text = "give sigma = 0 (or model Hertz) for the Hertz + cap table, the rough model's sigma -> 0 "// &
          & "limit: the rough layer moves the loading force by ~0.15 (sigma/delta_y)^(2/3)"// &
-         & " = "//short_real(0.15_dp*s23)//" of it, the unloading force near the residual "// &
-         & "overlap by ~8 (sigma/delta_y)^(2/3) = "//short_real(8.0_dp*s23)//" of its own;"// &
+         & " = "//sci3(0.15_dp*s23)//" of it, the unloading force near the residual "// &
+         & "overlap by ~8 (sigma/delta_y)^(2/3) = "//sci3(8.0_dp*s23)//" of its own;"// &
          & " or solve the contacts one by one (solve_unload, egw_solve_unload, restitution)"
-   end function rough_cap_routes
+   end subroutine rough_cap_routes
 
-   !> x with three significant digits.
-   function short_real(x) result(text)
-      real(dp), intent(in) :: x
-      character(len=:), allocatable :: text
-      character(len=16) :: buf
-      write (buf, '(es10.3)') x
-      text = trim(adjustl(buf))
-   end function short_real
+   !> x as ES10.3 writes it, for messages (a length from a specification function, not
+   !> a deferred one: see egw_text).
+   pure function sci3(x) result(str)
+      real(dp), intent(in) :: x   !< any double
+      character(len=real_text_len(x, 3, 2)) :: str
+      str = real_text(x, 3, 2)
+   end function sci3
 
    ! ---------------------------------------------------------------------------------------
 
