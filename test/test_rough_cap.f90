@@ -112,7 +112,9 @@ contains
          & test_plastic_shifts), &
          & new_unittest("plastic_shifts: deep points unevaluated, law_max and reuse", &
          & test_plastic_shifts_deep), &
-         & new_unittest("flow_cap prepare: the root of law = p_y once", test_cap_prepare) &
+         & new_unittest("flow_cap prepare: the root of law = p_y once", test_cap_prepare), &
+         & new_unittest("E-GW + cap, sigma = delta_y/100: unloading near the edge at 1e-6", &
+         & test_edge_unload) &
          & ]
    end subroutine collect_rough_cap
 
@@ -2159,5 +2161,46 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_plastic_shifts_deep
+
+   !> README's rough + cap contact (E-GW + cap, mu 4, sigma = delta_y/100) unloaded from
+   !> 2.3 delta_y to 4.92 sigma, where the force is 9.5e-4 P(m) (the edge, where it
+   !> vanishes, is at delta = 0; doc/benchmarks.md "Stop 51 (ratio17)"): a history and
+   !> unloading solve at rel_tol 1e-6 within 1e-6 P(m) (rel_tol of the turning point's
+   !> force, README's meaning of an unloading solve's rel_tol) of a history and solve at
+   !> rel_tol 1e-9. The reference shares the code but not its error: its field and mesh
+   !> are solved 1000 times tighter, and it moves by 8e-12 P(m) from 1e-8 to 1e-9
+   !> (doc/stability.md "Stop 51 (edge17)"). Main's history field at rel_tol 1e-6 put
+   !> this solve 2.4e-6 P(m) off, whatever the unloading rel_tol; with the field at
+   !> 0.1 rel_tol it is 3.0e-8 off, so the bound 1e-6 separates the two by 30x each way.
+   subroutine test_edge_unload(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(loading_history) :: hist
+      type(solve_result) :: peak, res, ref
+      type(egw_error), allocatable :: err
+      real(dp), parameter :: m = 230.0_dp, d = 4.92_dp
+      character(len=80) :: text
+      p = contact_params(model=model_egw, radius=810569.469138702_dp, modulus=1.0_dp, &
+         & sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
+      call load_history(p, solver_options(rel_tol=1.0e-9_dp), m, hist, peak, err)
+      call check(error, .not. allocated(err), "reference history")
+      if (allocated(error)) return
+      call solve_unload(hist, d, ref, err)
+      call check(error, .not. allocated(err), "reference unloading")
+      if (allocated(error)) return
+      call load_history(p, solver_options(rel_tol=1.0e-6_dp), m, hist, peak, err)
+      call check(error, .not. allocated(err), "history at 1e-6")
+      if (allocated(error)) return
+      call solve_unload(hist, d, res, err)
+      call check(error, .not. allocated(err), "unloading at 1e-6")
+      if (allocated(error)) return
+      ! (the force here: between 5e-4 and 2e-3 P(m), near the edge)
+      write (text, '(a,es10.3,a,es10.3,a)') "P/P(m) = ", ref%force/peak%force, &
+         & ", off by ", (res%force - ref%force)/peak%force, " P(m)"
+      call check(error, ref%force > 5.0e-4_dp*peak%force .and. &
+         & ref%force < 2.0e-3_dp*peak%force, text)
+      if (allocated(error)) return
+      call check(error, abs(res%force - ref%force) <= 1.0e-6_dp*peak%force, text)
+   end subroutine test_edge_unload
 
 end module test_rough_cap

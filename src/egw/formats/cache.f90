@@ -96,7 +96,10 @@ module egw_cache
    !> level the elements it keeps of the level before, in place of the accepted level's
    !> bisection check (sphere_solver's halved_levels): rough + cap tables moved (E-GW +
    !> cap to 6 delta_y at 1e-4: 5.1e-6 of P(m)).
-   integer, parameter, public :: cache_revision = 37
+   !> 38 (edge17): a rough history's field d_max(r) is loaded at 0.1 of rel_tol
+   !> (load_history): every rough hysteresis table moved (README's E-GW + cap to 6
+   !> delta_y at 1e-4: gaps by up to 3.0e-6, the same 37 x 50 grid).
+   integer, parameter, public :: cache_revision = 38
 
 
 contains

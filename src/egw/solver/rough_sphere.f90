@@ -122,6 +122,11 @@ module egw_rough_sphere
    !> 1e-5) 0.15 and 0.145 delta_max were refused (estimates 6.8e-6, 7.9e-6), at 1e-7 they
    !> answer within 1.9e-6 of the references.
    real(dp), parameter :: wide_history_floor = 1.0e-7_dp
+   !> load_history's rough field d_max(r) at this fraction of its rel_tol (at least 1e-10;
+   !> at rel_tol where that does not converge): its error is not in the unloading solves'
+   !> estimates (doc/stability.md "Stop 51 (edge17)"). The route's wide histories keep
+   !> theirs at their rel_tol (wide_history_tol, _floor).
+   real(dp), parameter :: history_field_tol = 0.1_dp
    !> the unloading's force floor of the route's estimates, relative to P(delta_max)
    real(dp), parameter :: unload_floor = 1.0e-6_dp
    !> The rel_tol of the route's probe (route_floor), and the factor on it that bounds a
@@ -618,8 +623,10 @@ contains
             ! discrete loading solve takes the most, 16 of 17 s at 1e-6 from 2 delta_y)
             call progress_part(0.6_dp + 0.1_dp*real(2*pair + k - 3, dp), &
                & 0.6_dp + 0.1_dp*real(2*pair + k - 2, dp))
-            call load_history(wider, wide_options, hist%delta_max, wide_history, res, &
-               & wide_error)
+            call progress_begin("history")
+            call history_load(wider, wide_options, hist%delta_max, wide_history, res, &
+               & wide_error, 1.0_dp)
+            call progress_end("history")
             ! (above first yield at sigma = 1e-5 .. 2e-4 delta_y: a rough field, never
             ! the route's, reversible or smooth)
             loaded = .not. allocated(wide_error)
@@ -989,15 +996,19 @@ contains
       type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       call progress_begin("history")
-      call history_load(params, options, delta_max, history, result, error)
+      call history_load(params, options, delta_max, history, result, error, history_field_tol)
       call progress_end("history")
    end subroutine load_history
 
    !> load_history's work.
-   recursive subroutine history_load(params, options, delta_max, history, result, error)
+   recursive subroutine history_load(params, options, delta_max, history, result, error, &
+      & field_tol)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_max
+      !> the rough field's rel_tol as a fraction of options%rel_tol (history_field_tol; 1
+      !> for unload_from_scratch's histories, loaded at 1e-4 of the solve's already)
+      real(dp), intent(in) :: field_tol
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
@@ -1005,6 +1016,7 @@ contains
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
       type(solve_result) :: checked
+      type(solver_options) :: field
 
       call check_unload_input(params, options, 0.0_dp, delta_max, error)
       if (allocated(error)) return
@@ -1031,7 +1043,21 @@ contains
          call solve_contact(params, options, delta_max, hist%loading, error)
          if (allocated(error)) return
       else
-         call solve_rough(params, options, prob, sol, hist%loading, error)
+         ! The field d_max(r) at field_tol of rel_tol (at least 1e-10): its error
+         ! is not in the unloading solves' estimates, and near the unloading force's edge
+         ! it dominates them (E-GW + cap, mu 4, sigma = delta_y/100, from 2.3 delta_y at
+         ! 9.5e-4 P(m): 2.4e-6 P(m) off from fields at rel_tol 1e-6 .. 1e-4, whatever the
+         ! unloading solve's rel_tol; 3e-8 from one at 1e-7; doc/stability.md "Stop 51
+         ! (edge17)"). Where it does not converge, the field at rel_tol.
+         field = options
+         field%rel_tol = max(1.0e-10_dp, field_tol*options%rel_tol)
+         call solve_rough(params, field, prob, sol, hist%loading, error)
+         if (allocated(error)) then
+            if (error%stat == egw_not_converged .and. field%rel_tol < options%rel_tol) then
+               deallocate (error)
+               call solve_rough(params, options, prob, sol, hist%loading, error)
+            end if
+         end if
          call progress_report(0.6_dp, "history: loading")
          if (allocated(error)) then
             ! A capped loading that does not converge at sigma/delta_y <= 1e-6 (E-GW,
@@ -1305,7 +1331,10 @@ contains
             end if
             if (allocated(error)) deallocate (error)
             call progress_part(0.225_dp*real(step - 1, dp), 0.225_dp*real(step, dp))
-            call load_history(params, tight, delta_max, last_history%history, loaded, error)
+            call progress_begin("history")
+            call history_load(params, tight, delta_max, last_history%history, loaded, error, &
+               & 1.0_dp)
+            call progress_end("history")
             if (.not. allocated(error)) exit
             if (error%stat /= egw_not_converged) return
          end do
