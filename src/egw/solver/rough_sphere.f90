@@ -1050,7 +1050,8 @@ contains
          ! unloading solve's rel_tol; 3e-8 from one at 1e-7; doc/stability.md "Stop 51
          ! (edge17)"). Where it does not converge, the field at rel_tol.
          field = options
-         field%rel_tol = max(1.0e-10_dp, field_tol*options%rel_tol)
+         ! (never looser than asked: a rel_tol below 1e-10 keeps its own)
+         field%rel_tol = min(options%rel_tol, max(1.0e-10_dp, field_tol*options%rel_tol))
          call solve_rough(params, field, prob, sol, hist%loading, error)
          if (allocated(error)) then
             if (error%stat == egw_not_converged .and. field%rel_tol < options%rel_tol) then
