@@ -917,7 +917,15 @@ typedef struct {
                            * Hertz (egw_table_info.reference_force of the loading curve) */
   double rel_tol;      /* requested tolerance, relative to max(P, 1e-3 P(m)) (ln(P_load/P)
                         * curves) or to the force at the turning point P(m) (the cap acting) */
-  double max_error;    /* largest mismatch found at the build's check solves */
+  double max_error;    /* largest mismatch found at the build's check solves, in rel_tol's
+                        * units (relative to P(m) on the cap's gap curves; to the local
+                        * force down to 1e-3 P(m) on Hertz + cap's force-ratio curves and
+                        * the ln(P_load/P) curves). It includes delta_max intervals
+                        * narrower than 2^-11 of the range, which the build does not
+                        * split: there it may exceed rel_tol (a Hertz + cap table at
+                        * 1e-4: 3.8e-4, while evaluations between its curves met
+                        * 5.6e-5 of max(P, 1e-3 P(m)): doc/stability.md "Stop 51
+                        * (audit17)") */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;
 

@@ -450,8 +450,11 @@ class HysteresisInfo:
     reference_force : float
         P_ref of the loading table [force].
     rel_tol, max_error : float
-        Requested tolerance and largest mismatch found at the check solves, relative to
-        the force at the turning point.
+        Requested tolerance and largest mismatch found at the check solves, both
+        relative to the turning point's force P(m) where the cap acts on gap curves, and
+        to the local force down to 1e-3 P(m) on force-ratio and ln(P_load/P) curves.
+        max_error includes delta_max intervals too narrow to split, where it may exceed
+        rel_tol (egw.h, egw_hysteresis_info).
     """
     model: int
     reversible: bool

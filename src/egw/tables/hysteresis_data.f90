@@ -97,7 +97,9 @@ module egw_hysteresis_data
       type(contact_params) :: params           !< parameters the table was built for
       real(dp) :: rel_tol = 0.0_dp             !< requested tolerance
       real(dp) :: delta_max = 0.0_dp           !< last delta_max node (table range)
-      real(dp) :: max_error = 0.0_dp           !< largest mismatch found at check solves
+      !> largest weighted mismatch found at check solves (rel_tol's units; egw.h's
+      !> egw_hysteresis_info.max_error: it includes intervals too narrow to split)
+      real(dp) :: max_error = 0.0_dp
       type(force_table) :: loading             !< the loading curve
       !> no plastic summits (not EP-GW, psi = 0 or sigma = 0): no unloading curves, the
       !> loading table serves loading and unloading alike (no spurious hysteresis)
