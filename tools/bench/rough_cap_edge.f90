@@ -13,6 +13,9 @@
 !> in sigma, and P/P(m) at 0.01, 0.1, 1, 10 sigma above it. Part 2: at m = 2.3 and 4
 !> delta_y, three overlaps above the edge, the history and unloading solved at rel_tol
 !> 1e-4 .. 1e-7 against 1e-8: the local error |P - P_ref|/P_ref.
+!> (Part 1's bisection on P > 0 finds the asperity heights' Gaussian foot -- P/P(m) ~1e-57
+!> at 0.01 sigma for m = 2.23 delta_y -- not the force's 3/2-law front:
+!> tools/bench/rough_cap_front.f90, doc/benchmarks.md "Stop 52 (local18)".)
 program rough_cap_edge
    use egw, only: dp, contact_params, model_egw, solver_options, solve_result, egw_error, &
       & hysteresis_table, build_hysteresis, loading_history, load_history, solve_unload

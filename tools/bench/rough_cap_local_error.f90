@@ -14,6 +14,7 @@
 !>   OMP_NUM_THREADS=1 /tmp/rough_cap_local_error 1e-4 6 1 24   # TOL, top, stride, n_d
 !>   OMP_NUM_THREADS=1 /tmp/rough_cap_local_error 1e-4 6 1 24 0 # at the nodes themselves
 !>   OMP_NUM_THREADS=1 /tmp/rough_cap_local_error 1e-4 6 1 24 0.5 1e-7 # curve solves at 1e-7
+!>   OMP_NUM_THREADS=1 /tmp/rough_cap_local_error 1e-4 6 1 24 0.5 1e-6 by # and by turning point
 program rough_cap_local_error
    use egw, only: dp, contact_params, model_egw, solver_options, solve_result, egw_error, &
       & hysteresis_table, build_hysteresis, hysteresis_eval, loading_history, &
@@ -27,8 +28,9 @@ program rough_cap_local_error
    type(solve_result) :: peak, res
    type(solver_options) :: ref, defaults
    real(dp) :: dy, tol, top, m, d, f, k, state, e_loc, worst_loc, at(3), band(4), d_end, &
-      & lo, hi, where, solve_tol
+      & lo, hi, where, solve_tol, worst_m
    integer :: j, i, stat, b, stride, n_d, it, n_pts
+   logical :: by_m
    integer(int64) :: c0, c1, rate
    character(len=32) :: arg
    call get_command_argument(1, arg)
@@ -52,6 +54,8 @@ program rough_cap_local_error
       call get_command_argument(6, arg)
       read (arg, *) solve_tol
    end if
+   ! (a seventh argument: the worst local error of every turning point too)
+   by_m = command_argument_count() >= 7
    p = contact_params(model=model_egw, radius=810569.469138702_dp, modulus=1.0_dp, &
       & sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
    dy = 100.0_dp
@@ -89,6 +93,7 @@ program rough_cap_local_error
          end if
       end do
       d_end = hi
+      worst_m = 0
       do i = 1, n_d
          d = m - (m - d_end)*(1.0_dp - (1.0_dp - i/real(n_d, dp))**2)
          call solve_unload(hist, d, res, err)
@@ -97,6 +102,7 @@ program rough_cap_local_error
          call hysteresis_eval(t, d, state, f, k, stat)
          e_loc = abs(f - res%force)/max(res%force, 1.0e-3_dp*peak%force)
          n_pts = n_pts + 1
+         worst_m = max(worst_m, e_loc)
          if (e_loc > worst_loc) then
             worst_loc = e_loc
             at = [m/dy, d/dy, res%force/peak%force]
@@ -104,6 +110,7 @@ program rough_cap_local_error
          b = min(4, max(1, 1 + int(-log10(max(res%force/peak%force, 1.0e-12_dp)))))
          band(b) = max(band(b), e_loc)
       end do
+      if (by_m) print '(a,f7.4,a,es9.2)', "    m/delta_y ", m/dy, "  worst local ", worst_m
    end do
    print '(a,i0,a,es9.2,a,3es10.2)', "  points ", n_pts, ", worst local ", worst_loc, &
       & " at m/delta_y, delta/delta_y, P/P(m)", at
