@@ -2163,8 +2163,9 @@ contains
    end subroutine test_plastic_shifts_deep
 
    !> README's rough + cap contact (E-GW + cap, mu 4, sigma = delta_y/100) unloaded from
-   !> 2.3 delta_y to 4.92 sigma, where the force is 9.5e-4 P(m) (the edge, where it
-   !> vanishes, is at delta = 0; doc/benchmarks.md "Stop 51 (ratio17)"): a history and
+   !> 2.3 delta_y to 4.92 sigma, where the force is 9.5e-4 P(m) (~2 sigma above its front,
+   !> where it rises as Hertz's (delta - delta_f)^(3/2) from a Gaussian foot; doc/benchmarks.md
+   !> "Stop 51 (ratio17)", "Stop 52 (local18)"): a history and
    !> unloading solve at rel_tol 1e-6 within 1e-6 P(m) (rel_tol of the turning point's
    !> force, README's meaning of an unloading solve's rel_tol) of a history and solve at
    !> rel_tol 1e-9. The reference shares the code but not its error: its field and mesh
