@@ -36,12 +36,14 @@ contains
    !> then the first level itself, whose kink edges are relocated (relocate_kinks).
    subroutine first_unloading_level(prob, options, method, mesh, coarse, error, start, cache, &
       & warm)
+      !> the scaled problem, its edges and disc set here
       type(scaled_problem), intent(inout) :: prob
-      type(solver_options), intent(in) :: options
-      integer, intent(in) :: method
+      type(solver_options), intent(in) :: options   !< the solver's options
+      integer, intent(in) :: method   !< method_newton or method_picard
+      !> the route's mesh family, trimmed and grown past the rim
       type(mesh_family), intent(inout) :: mesh
-      type(discrete_solution), intent(out) :: coarse
-      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution), intent(out) :: coarse   !< the first level
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged or the failure met
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       !> start of the locating solve (the cap's guided route; else the initial deflection)
       type(discrete_solution), intent(in), optional :: start
@@ -238,12 +240,14 @@ contains
    !> p_s + p reaches p_y, dp/dr jumps), the first level is solved again with them and
    !> they are relocated on it (relocate_kinks), as for the unloading's kinks.
    subroutine first_cap_level(prob, options, method, mesh, coarse, error, cache)
-      type(scaled_problem), intent(inout) :: prob
-      type(solver_options), intent(in) :: options
-      integer, intent(in) :: method
+      type(scaled_problem), intent(inout) :: prob   !< the scaled problem, the cap edges set here
+      type(solver_options), intent(in) :: options   !< the solver's options
+      integer, intent(in) :: method   !< method_newton or method_picard
+      !> the route's mesh family, refocused at an outer cap edge
       type(mesh_family), intent(inout) :: mesh
+      !> the first level, solved again with the cap edges
       type(discrete_solution), intent(inout) :: coarse
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged or the failure met
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution) :: first
       real(dp) :: edge
@@ -275,12 +279,14 @@ contains
    !> around d = 0 whose place is only known from a solution (near, not at, the Hertz
    !> edge): the mesh family is refocused there and the first level (coarse) solved again.
    subroutine refocus_classic_gw(prob, options, method, mesh, coarse, error, cache)
-      type(scaled_problem), intent(in) :: prob
-      type(solver_options), intent(in) :: options
-      integer, intent(in) :: method
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(solver_options), intent(in) :: options   !< the solver's options
+      integer, intent(in) :: method   !< method_newton or method_picard
+      !> the route's mesh family, refocused at the gap's zero
       type(mesh_family), intent(inout) :: mesh
+      !> the first level, solved again on the refocused family
       type(discrete_solution), intent(inout) :: coarse
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged or the failure met
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution) :: first
       if (.not. law_inverse(prob, 2.0_dp*prob%a/pi) < -3.0_dp) return
@@ -298,13 +304,13 @@ contains
    !> values growing by at most a factor 4 up to prob%delta, each started from the previous
    !> solution stretched by the Hertz similarity (r ~ sqrt(delta), w ~ delta).
    subroutine continuation(prob, options, method, focus, width, step, outer, sol, error, cache)
-      type(scaled_problem), intent(in) :: prob
-      type(solver_options), intent(in) :: options
-      integer, intent(in) :: method
-      real(dp), intent(in) :: focus, width, step
-      real(dp), intent(inout) :: outer
-      type(discrete_solution), intent(out) :: sol
-      type(egw_error), allocatable, intent(out) :: error
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(solver_options), intent(in) :: options   !< the solver's options
+      integer, intent(in) :: method   !< method_newton or method_picard
+      real(dp), intent(in) :: focus, width, step   !< the family's focus, layer width and step
+      real(dp), intent(inout) :: outer   !< the problem's outer radius, its last stage's on return
+      type(discrete_solution), intent(out) :: sol   !< the solution at prob%delta
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged or the failure met
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(scaled_problem) :: stage
       type(discrete_solution) :: previous

@@ -23,14 +23,14 @@ contains
    !> levels) until the force estimated beyond it is below 1 % of the tolerance.
    subroutine solve_with_tail(prob, options, method, layered, focus, width, step, outer, sol, &
       & error, guess, cache, level_before, step_before, kept)
-      type(scaled_problem), intent(in) :: prob
-      type(solver_options), intent(in) :: options
-      integer, intent(in) :: method
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(solver_options), intent(in) :: options   !< the solver's options
+      integer, intent(in) :: method   !< method_newton or method_picard
       logical, intent(in) :: layered   !< geometric layers at the focus
-      real(dp), intent(in) :: focus, width, step
-      real(dp), intent(inout) :: outer
-      type(discrete_solution), intent(out) :: sol
-      type(egw_error), allocatable, intent(out) :: error
+      real(dp), intent(in) :: focus, width, step   !< the family's focus, layer width and step
+      real(dp), intent(inout) :: outer   !< outer radius, grown where the tail is not negligible
+      type(discrete_solution), intent(out) :: sol   !< the level's solution
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged or the failure met
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       !> the level before's element edges: the elements this mesh keeps of it cut into
@@ -189,8 +189,8 @@ contains
 
    !> to <- from as a guess (its mesh and w, all solve_mesh reads of a guess; w moved).
    pure subroutine move_solution(from, to)
-      type(discrete_solution), intent(inout) :: from
-      type(discrete_solution), intent(out) :: to
+      type(discrete_solution), intent(inout) :: from   !< the solution, its w moved out
+      type(discrete_solution), intent(out) :: to   !< a guess: from's mesh and w
       to%mesh = from%mesh
       call move_alloc(from%w, to%w)
    end subroutine move_solution
@@ -200,8 +200,8 @@ contains
    !> the solution that owns them read: a level kept as the coarse level (its force, mesh
    !> and w) is a copy of the rest. from is returned as it came.
    pure subroutine copy_level(from, to)
-      type(discrete_solution), intent(inout) :: from
-      type(discrete_solution), intent(inout) :: to
+      type(discrete_solution), intent(inout) :: from   !< the level, returned as it came
+      type(discrete_solution), intent(inout) :: to   !< the copy, without the matrices
       real(dp), allocatable :: infl(:, :), lu(:, :)
       integer, allocatable :: pivots(:)
       call move_alloc(from%infl, infl)
@@ -216,8 +216,8 @@ contains
    !> to <- from whole, the influence matrix and the LU factors moved (not copied): from
    !> loses them.
    pure subroutine take_level(from, to)
-      type(discrete_solution), intent(inout) :: from
-      type(discrete_solution), intent(inout) :: to
+      type(discrete_solution), intent(inout) :: from   !< the level, its matrices moved out
+      type(discrete_solution), intent(inout) :: to   !< the level whole
       call copy_level(from, to)
       call move_alloc(from%infl, to%infl)
       call move_alloc(from%lu, to%lu)

@@ -35,15 +35,17 @@ contains
    !> else the next step is predicted from the estimate. Unloading after a capped loading
    !> (sums_total): no level keeps an element of the level before (halved_levels).
    subroutine refine_levels(prob, options, method, order, mesh, coarse, sol, est, error, cache)
+      !> the scaled problem (its kink edges and disc follow the levels)
       type(scaled_problem), intent(inout) :: prob
-      type(solver_options), intent(in) :: options
-      integer, intent(in) :: method
+      type(solver_options), intent(in) :: options   !< the solver's options
+      integer, intent(in) :: method   !< method_newton or method_picard
       real(dp), intent(in) :: order   !< order assumed by the Richardson estimate
+      !> the route's mesh family, its step refined level by level
       type(mesh_family), intent(inout) :: mesh
       type(discrete_solution), intent(inout) :: coarse   !< the previous level
-      type(discrete_solution), intent(out) :: sol
-      real(dp), intent(out) :: est
-      type(egw_error), allocatable, intent(out) :: error
+      type(discrete_solution), intent(out) :: sol   !< the accepted level's solution
+      real(dp), intent(out) :: est   !< its estimated relative force error
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged or the failure met
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       real(dp) :: total
       integer :: level
@@ -243,14 +245,15 @@ contains
    !> of rel_tol, move them and solve that level again (at most 3 times).
    subroutine relocate_kinks(prob, options, method, layered, focus, width, step, outer, sol, &
       & error, cache)
-      type(scaled_problem), intent(inout) :: prob
-      type(solver_options), intent(in) :: options
-      integer, intent(in) :: method
-      logical, intent(in) :: layered
-      real(dp), intent(in) :: focus, width, step
-      real(dp), intent(inout) :: outer
+      type(scaled_problem), intent(inout) :: prob   !< the scaled problem, its kink edges moved
+      type(solver_options), intent(in) :: options   !< the solver's options
+      integer, intent(in) :: method   !< method_newton or method_picard
+      logical, intent(in) :: layered   !< geometric layers at the focus
+      real(dp), intent(in) :: focus, width, step   !< the family's focus, layer width and step
+      real(dp), intent(inout) :: outer   !< outer radius, grown where the tail is not negligible
+      !> the level, solved again with the edges moved
       type(discrete_solution), intent(inout) :: sol
-      type(egw_error), allocatable, intent(out) :: error
+      type(egw_error), allocatable, intent(out) :: error   !< egw_not_converged or the failure met
       type(influence_cache), intent(inout), optional :: cache   !< of the route's levels
       type(discrete_solution) :: guess
       real(dp), allocatable :: moved(:)
@@ -288,8 +291,8 @@ contains
    !> (the disc 0.12 in a = 10.9): rel_tol 1e-7 8.5e-7 of the force floor off under
    !> 1.6e-9 (doc/stability.md Stop 47 resid13, Stop 48 resid14).
    pure real(dp) function central_disc(prob, sol) result(c)
-      type(scaled_problem), intent(in) :: prob
-      type(discrete_solution), intent(in) :: sol
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem, its disc so far
+      type(discrete_solution), intent(in) :: sol   !< a level's solution
       logical, allocatable :: inside(:)
       c = prob%disc
       if (.not. sums_total(prob) .or. .not. allocated(sol%p_smooth)) return

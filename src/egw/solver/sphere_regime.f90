@@ -27,14 +27,14 @@ contains
    !> reference, test rough_cap 'sigma/delta_y = 1e-6: unloading near the residual
    !> overlap', where the route answers within 7.6e-7).
    pure logical function stall_fallbacks(prob)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       stall_fallbacks = .false.
       if (allocated(prob%cap)) stall_fallbacks = (0.5_dp*pi*prob%cap%p_y)**2 < 0.5e6_dp
    end function stall_fallbacks
 
    !> Classic GW unloading after a loading on which the flow-pressure cap acted.
    pure logical function capped_gw(prob)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       capped_gw = .false.
       if (allocated(prob%closest) .and. allocated(prob%cap)) capped_gw = &
          & prob%closest%capped .and. .not. prob%closest%extended
@@ -42,14 +42,14 @@ contains
 
    !> capped_gw at sigma/delta_y <= gw_confirm_sigma (delta_y/sigma = (pi p_y/2)**2 here).
    pure logical function gw_confirm(prob)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       gw_confirm = capped_gw(prob)
       if (gw_confirm) gw_confirm = (0.5_dp*pi*prob%cap%p_y)**2 >= 1.0_dp/gw_confirm_sigma
    end function gw_confirm
 
    !> EP-GW unloading after a loading on which the flow-pressure cap acted.
    pure logical function capped_history(prob)
-      type(scaled_problem), intent(in) :: prob
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
       capped_history = .false.
       if (allocated(prob%closest) .and. prob%psi > 0.0_dp) capped_history = &
          & prob%closest%capped
@@ -73,8 +73,8 @@ contains
    !> mesh solve more in 56 % of the unloading solves of an E-GW + cap table
    !> (doc/benchmarks.md "Stop 51 (mesh17)").
    pure logical function halved_levels(prob, options)
-      type(scaled_problem), intent(in) :: prob
-      type(solver_options), intent(in) :: options
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(solver_options), intent(in) :: options   !< the solver's options (n_radial)
       halved_levels = sums_total(prob) .and. options%n_radial == 0
    end function halved_levels
 
