@@ -9,8 +9,9 @@ module egw_sphere_first_level
    use egw_sphere_problem, only: solver_options, scaled_problem, discrete_solution, law_inverse, &
       & sums_total
    use egw_sphere_mesh, only: mesh_family, trim_to_unloading_decay, gap_edge, kink_radii, &
-      & negligible_at, mesh_geometry, plastic_rim, edge_layer_width, step_for_nodes, coarsen
-   use egw_sphere_regime, only: stall_fallbacks
+      & negligible_at, mesh_geometry, plastic_rim, edge_layer_width, step_for_nodes, coarsen, &
+      & focus_beyond, innermost_kink
+   use egw_sphere_regime, only: yield_overlap, stall_fallbacks
    use egw_sphere_level, only: solve_with_tail, move_solution
    use egw_sphere_refine, only: relocate_kinks, central_disc
    implicit none
@@ -170,10 +171,9 @@ contains
       ! disc_split_sigma (delta_y/sigma = (pi p_y/2)**2 in these units), where it was
       ! measured: at 1e-6 (rough_cap's "solve_contact_unload near the residual", c =
       ! 0.21 a) the split disc came out 1.7e-5 off under an estimate of 3.6e-6.
-      if (sums_total(prob) .and. options%n_radial == 0 .and. allocated(prob%branch)) then
-         if (any(prob%branch > 0.0_dp) .and. (0.5_dp*pi*prob%cap%p_y)**2 <= &
-            & 1.0_dp/disc_split_sigma) prob%refine_disc = prob%refine_disc .or. &
-            & minval(prob%branch, mask=prob%branch > 0.0_dp) <= disc_split*prob%a
+      if (sums_total(prob) .and. options%n_radial == 0) then
+         if (yield_overlap(prob) <= 1.0_dp/disc_split_sigma) prob%refine_disc = &
+            & prob%refine_disc .or. innermost_kink(prob) <= disc_split*prob%a
       end if
       ! (the trimmed mesh still reaches past the rim: the contact can end just inside it)
       mesh%outer = max(mesh%outer, reach)
@@ -261,12 +261,7 @@ contains
       ! pressure jumps from p_y to 0 there, trap iv): the family is refocused there (the
       ! Hertz edge, where the base gap has its onset, stays an element edge).
       edge = maxval(prob%branch)
-      if (edge > mesh%focus + 4.0_dp*mesh%width) then
-         mesh%focus = edge
-         mesh%width = edge_layer_width(edge)
-         mesh%layered = .true.
-         mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
-      end if
+      call focus_beyond(mesh, edge)
       call move_solution(coarse, first)
       call solve_with_tail(prob, options, method, mesh%layered, mesh%focus, mesh%width, &
          & mesh%step_prev, mesh%outer, coarse, error, first, cache=cache)

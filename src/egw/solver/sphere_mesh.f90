@@ -49,6 +49,7 @@ module egw_sphere_mesh
    public :: mesh_family
    public :: kink_radii, cap_kink_radii, plastic_rim, edge_layer_width
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
+      & focus_beyond, innermost_kink, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
       & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined, &
       & disc_graded, with_history_edges, split_kept
@@ -148,6 +149,29 @@ contains
          end if
       end do
    end subroutine gap_edge
+
+   !> The family refocused at edge (its layer width there, geometric layers, the outer
+   !> radius at least four widths past it) where edge lies beyond four layer widths of
+   !> the focus; else unchanged. A contact that ends there (the cap's plastic radius, an
+   !> outer cap edge) ends in a layer as thin as the Hertz edge's.
+   pure subroutine focus_beyond(mesh, edge)
+      type(mesh_family), intent(inout) :: mesh   !< the family, refocused or not
+      real(dp), intent(in) :: edge   !< the radius (scaled) it may be refocused at
+      if (edge > mesh%focus + 4.0_dp*mesh%width) then
+         mesh%focus = edge
+         mesh%width = edge_layer_width(edge)
+         mesh%layered = .true.
+         mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
+      end if
+   end subroutine focus_beyond
+
+   !> The innermost positive kink edge of prob%branch, huge() where it has none.
+   pure real(dp) function innermost_kink(prob) result(c)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      c = huge(1.0_dp)
+      if (.not. allocated(prob%branch)) return
+      if (any(prob%branch > 0.0_dp)) c = minval(prob%branch, mask=prob%branch > 0.0_dp)
+   end function innermost_kink
 
    !> The radii where p(r) of a solution has kinks that become element edges: unloading,
    !> the branch radii (d = d_max crossings, then the kinks of Z_u in Delta); with the cap

@@ -10,7 +10,8 @@ module egw_sphere_refine
    use egw_sphere_problem, only: solver_options, tiny_force, scaled_problem, discrete_solution, &
       & base_gap, closest_gap, smooth_force, rough_pressure, cap_fields, force_floor, sums_total
    use egw_sphere_mesh, only: force_order, finest_step, mesh_family, kink_radii
-   use egw_sphere_regime, only: stall_fallbacks, gw_confirm, capped_history, halved_levels
+   use egw_sphere_regime, only: yield_overlap, stall_fallbacks, gw_confirm, capped_history, &
+      & halved_levels
    use egw_sphere_level, only: solve_with_tail, move_solution, copy_level, take_level
    implicit none
    private
@@ -297,7 +298,7 @@ contains
       c = prob%disc
       if (.not. sums_total(prob) .or. .not. allocated(sol%p_smooth)) return
       ! (delta_y/sigma = (pi p_y/2)**2 in these units)
-      if ((0.5_dp*pi*prob%cap%p_y)**2 > 1.0_dp/disc_sigma) return
+      if (yield_overlap(prob) > 1.0_dp/disc_sigma) return
       inside = sol%p + sol%p_smooth > 0.0_dp
       if (.not. any(inside)) return
       c = maxval(sol%mesh%gauss_r, mask=inside)

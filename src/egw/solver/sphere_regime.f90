@@ -8,7 +8,7 @@ module egw_sphere_regime
    implicit none
    private
 
-   public :: stall_fallbacks, capped_gw, gw_confirm, capped_history, halved_levels
+   public :: yield_overlap, stall_fallbacks, capped_gw, gw_confirm, capped_history, halved_levels
 
    !> Classic GW unloading after a capped loading takes refine_levels' confirming level at
    !> sigma/delta_y at most this: at 1e-4 and 2e-4 two coarse levels agreed while up to 5e-4
@@ -17,6 +17,13 @@ module egw_sphere_regime
    real(dp), parameter :: gw_confirm_sigma = 1.0e-3_dp
 
 contains
+
+   !> delta_y/sigma of a problem with the cap, (pi p_y/2)**2 in its scaled units (p_y in
+   !> E* sqrt(sigma/R)): first yield of the smooth sphere, delta_y = R (pi p_y/(2 E*))**2.
+   pure real(dp) function yield_overlap(prob) result(ratio)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem, with the cap
+      ratio = (0.5_dp*pi*prob%cap%p_y)**2
+   end function yield_overlap
 
    !> Whether the fallbacks of solves that stall with the cap apply (skip_failed_level,
    !> add_kink_error, unloading_descent, solve_default's refocus):
@@ -29,7 +36,7 @@ contains
    pure logical function stall_fallbacks(prob)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem
       stall_fallbacks = .false.
-      if (allocated(prob%cap)) stall_fallbacks = (0.5_dp*pi*prob%cap%p_y)**2 < 0.5e6_dp
+      if (allocated(prob%cap)) stall_fallbacks = yield_overlap(prob) < 0.5e6_dp
    end function stall_fallbacks
 
    !> Classic GW unloading after a loading on which the flow-pressure cap acted.
@@ -44,7 +51,7 @@ contains
    pure logical function gw_confirm(prob)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem
       gw_confirm = capped_gw(prob)
-      if (gw_confirm) gw_confirm = (0.5_dp*pi*prob%cap%p_y)**2 >= 1.0_dp/gw_confirm_sigma
+      if (gw_confirm) gw_confirm = yield_overlap(prob) >= 1.0_dp/gw_confirm_sigma
    end function gw_confirm
 
    !> EP-GW unloading after a loading on which the flow-pressure cap acted.

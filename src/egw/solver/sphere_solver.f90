@@ -47,10 +47,10 @@ module egw_sphere_solver
       & normal, negligible, base_gap, closest_gap, effective_radius, total_pressure, &
       & smooth_force, smooth_stiffness, sums_total
    use egw_sphere_mesh, only: force_order, unload_order, mesh_family, first_mesh, &
-      & edge_layer_width
+      & focus_beyond, innermost_kink
    use egw_sphere_iteration, only: differentiate
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load
-   use egw_sphere_regime, only: stall_fallbacks
+   use egw_sphere_regime, only: yield_overlap, stall_fallbacks
    use egw_sphere_level, only: solve_with_tail
    use egw_sphere_refine, only: refine_levels
    use egw_sphere_first_level, only: first_unloading_level, first_cap_level, refocus_classic_gw, &
@@ -143,7 +143,7 @@ contains
          ! (not at sigma/delta_y <= 2e-6, delta_y/sigma = (pi p_y/2)**2 here: below
          ! 1e-6 egw_rough_sphere's asymptotic route answers after a failure, unchanged)
          if (allocated(guided_error) .and. sums_total(problem) .and. &
-            & (0.5_dp*pi*problem%cap%p_y)**2 < 0.5e6_dp) then
+            & stall_fallbacks(problem)) then
             deallocate (guided_error)
             call clear_cache(cache)
             call disc_cap_unload(problem, options, sol, est, method_used, guided_error, &
@@ -228,10 +228,7 @@ contains
       ! only where the innermost kink edge is a central disc's well inside the Hertz edge
       ! (elsewhere, e.g. mid-unloading at 0.67 delta_max, the route would only repeat the
       ! default route's levels)
-      disc = huge(1.0_dp)
-      if (allocated(prob%branch)) then
-         if (any(prob%branch > 0.0_dp)) disc = minval(prob%branch, mask=prob%branch > 0.0_dp)
-      end if
+      disc = innermost_kink(prob)
       ! (the wide route only where the first refused: c beyond disc_fraction a)
       if (.not. disc <= most*prob%a .or. (present(fraction) .and. disc <= &
          & disc_fraction*prob%a)) then
@@ -342,12 +339,7 @@ contains
       prob%branch = [edge]
       prob%n_branch = 1
       prob%kink_width = mesh%width
-      if (edge > mesh%focus + 4.0_dp*mesh%width) then
-         mesh%focus = edge
-         mesh%width = edge_layer_width(edge)
-         mesh%layered = .true.
-         mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
-      end if
+      call focus_beyond(mesh, edge)
       call solve_with_tail(prob, options, method_used, mesh%layered, mesh%focus, mesh%width, &
          & mesh%step_prev, mesh%outer, coarse, error, cache=cache)
       if (allocated(error)) return
@@ -381,7 +373,7 @@ contains
       type(cap_result) :: res
       real(dp) :: ratio, delta_y_unit
       edge = prob%a
-      ratio = prob%delta/(0.5_dp*pi*prob%cap%p_y)**2
+      ratio = prob%delta/yield_overlap(prob)
       if (.not. ratio > 1.0_dp) return
       delta_y_unit = (0.5_dp*pi*p_unit)**2
       call cap_load(1.0_dp, 1.0_dp, p_unit, ratio*delta_y_unit, cap_options(), history, res, &
