@@ -441,7 +441,7 @@ contains
    !> a tenth of the error: 1.1e-5 under 7e-7 at 9.7 delta_y, sigma = delta_y/100). Each
    !> layer is as long as its distance to a, so its polynomial error is ~1e-5 of its
    !> share, and the last, 2**-8 of the element, leaves (2**-8)**1.5 of the error. n: that
-   !> many layers instead (unloading after a capped loading takes 5, egw_sphere_solver).
+   !> many layers instead (unloading after a capped loading takes 5, egw_sphere_level).
    pure function inner_layers(edge, r, n) result(out)
       real(dp), intent(in) :: edge(0:), r   !< element boundaries, and the edge r (one of them)
       integer, intent(in), optional :: n   !< layers (default cap_edge_layers)
@@ -593,7 +593,7 @@ contains
    !> elements graded as the family's, in asinh((c - r)/w) about c with w the layer width
    !> of a contact edge at c (edge_layer_width), disc_elements per unit of the level's step;
    !> c becomes an edge. Unloading after a capped loading whose contact is a central disc
-   !> [0, c] far inside the Hertz radius a the family is graded about (egw_sphere_solver's
+   !> [0, c] far inside the Hertz radius a the family is graded about (egw_sphere_refine's
    !> central_disc): the graded elements there are ~ step a long, so the disc lay in one to
    !> a few of them, kept from level to level (fixed edges 0 and c), whose forces agreed
    !> while off (E-GW + cap, sigma = 2e-5 delta_y, 0.1442 delta_max after 2 delta_y: 5.6e-4
@@ -672,7 +672,7 @@ contains
    !> edge(0) = coarse(0) = 0). An element between two fixed edges (r = 0, kink edges, the
    !> layers at a, the rim) stays the same while the step exceeds it, and its error is
    !> then in both levels, which their difference cannot see; cut into at least the step
-   !> ratio's parts, it shrinks at least like the rest (egw_sphere_solver's refine_levels).
+   !> ratio's parts, it shrinks at least like the rest (egw_sphere_refine's refine_levels).
    pure function split_kept(edge, coarse, parts) result(out)
       real(dp), intent(in) :: edge(0:)     !< the new level's element boundaries
       real(dp), intent(in) :: coarse(0:)   !< the level before's
