@@ -245,7 +245,7 @@ contains
          & "disc_graded: elements at half the step "//str(real(i, dp)))
    end subroutine test_route_meshes
 
-   !> The unloading levels after a capped loading (egw_sphere_solver's halved_levels):
+   !> The unloading levels after a capped loading (egw_sphere_regime's halved_levels):
    !> split_kept halves each element of a level that is an element of the level before,
    !> cuts one that spans several of them (both its ends theirs) at their edges and halves
    !> those, and leaves the rest; with 3 parts, thirds. On hand-made edges against the list
@@ -909,7 +909,7 @@ contains
    !> central-disc route, 117 elements in the contact) and 6.331779e-6 (estimate 1.1e-7):
    !> 5.6e-4 apart, the second's levels all holding the whole contact in the one element
    !> from r = 0 to the kink edge, which Richardson cannot see (doc/stability.md, Stop 47
-   !> resid13). With the disc graded (sphere_solver's central_disc): 6.335328e-6 and
+   !> resid13). With the disc graded (sphere_refine's central_disc): 6.335328e-6 and
    !> 6.335331e-6 (estimates 2.1e-6, 1.6e-7; Stop 48 resid14). A refusal
    !> (egw_not_converged) passes.
    subroutine test_contact_in_one_element(error)
@@ -1522,7 +1522,7 @@ contains
    !> Unloading after a deep capped loading (EP-GW, psi 1, mu 4, sigma = delta_y, history
    !> at 6 delta_y, rel_tol 1e-9): every one of 70 unloading solves at rel_tol 1e-6 from
    !> 0.3 to 5.97 delta_y converges (before a_max was an element edge with halving layers
-   !> inside it, sphere_solver's solve_with_tail, 7 of them did not reach 1e-6: the
+   !> inside it, sphere_level's solve_with_tail, 7 of them did not reach 1e-6: the
    !> offset's sqrt(a_max - r) edge, where the total steps from its floor to ~p_s, made
    !> the levels' forces alternate by 1.2e-3), and at 7 overlaps they agree with rel_tol
    !> 1e-8 solves (error <= 5e-9) within 5e-6 (5 rel_tol; measured 2.8e-6 at 2.57 delta_y,
@@ -1800,7 +1800,7 @@ contains
    !> rel_tol 1e-6, every fourth difference within 8e-6 of P (16 x rel_tol/2: four
    !> differences of errors each within the solver's rel_tol/2; the smooth force's own
    !> is ~(0.01/5)**4 P, 1e-11). Measured 2.2e-6 and 5e-13; before the Hertz edge was
-   !> always an element edge with its layers (sphere_solver's solve_with_tail) the
+   !> always an element edge with its layers (sphere_level's solve_with_tail) the
    !> Hertz edge fell inside an element on some levels and the force near 9.68 delta_y
    !> was 8.5e-5 off under an estimate of 5e-7: fourth differences 2.6e-4.
    subroutine test_smooth_in_delta(error)

@@ -591,7 +591,7 @@ contains
    !> after 53127: a refinement level stalled at a residual of 0.26 (classic GW has no
    !> other route). E-GW + cap, sigma/delta_y = 1e-4 (R twice that), 48511 after 92499:
    !> the levels with relocated kink edges stalled on every route. Both converge here
-   !> (sphere_solver's skip_failed_level, add_kink_error) within rel_tol of P(m) (the
+   !> (sphere_refine's skip_failed_level, add_kink_error) within rel_tol of P(m) (the
    !> table's measure) of the references, solves from scratch at rel_tol 1e-6 (GW: 1e-7
    !> needs more than 4097 nodes) and 1e-7 by main's libegw
    !> (tools/reference/rough_cap_stalls.py; measured: 5.9e-6 and 2.7e-6 of P(m)).

@@ -49,6 +49,7 @@ module egw_sphere_mesh
    public :: mesh_family
    public :: kink_radii, cap_kink_radii, plastic_rim, edge_layer_width
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
+      & focus_beyond, innermost_kink, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
       & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined, &
       & disc_graded, with_history_edges, split_kept
@@ -148,6 +149,29 @@ contains
          end if
       end do
    end subroutine gap_edge
+
+   !> The family refocused at edge (its layer width there, geometric layers, the outer
+   !> radius at least four widths past it) where edge lies beyond four layer widths of
+   !> the focus; else unchanged. A contact that ends there (the cap's plastic radius, an
+   !> outer cap edge) ends in a layer as thin as the Hertz edge's.
+   pure subroutine focus_beyond(mesh, edge)
+      type(mesh_family), intent(inout) :: mesh   !< the family, refocused or not
+      real(dp), intent(in) :: edge   !< the radius (scaled) it may be refocused at
+      if (edge > mesh%focus + 4.0_dp*mesh%width) then
+         mesh%focus = edge
+         mesh%width = edge_layer_width(edge)
+         mesh%layered = .true.
+         mesh%outer = max(mesh%outer, edge + 4.0_dp*mesh%width)
+      end if
+   end subroutine focus_beyond
+
+   !> The innermost positive kink edge of prob%branch, huge() where it has none.
+   pure real(dp) function innermost_kink(prob) result(c)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      c = huge(1.0_dp)
+      if (.not. allocated(prob%branch)) return
+      if (any(prob%branch > 0.0_dp)) c = minval(prob%branch, mask=prob%branch > 0.0_dp)
+   end function innermost_kink
 
    !> The radii where p(r) of a solution has kinks that become element edges: unloading,
    !> the branch radii (d = d_max crossings, then the kinks of Z_u in Delta); with the cap
@@ -417,7 +441,7 @@ contains
    !> a tenth of the error: 1.1e-5 under 7e-7 at 9.7 delta_y, sigma = delta_y/100). Each
    !> layer is as long as its distance to a, so its polynomial error is ~1e-5 of its
    !> share, and the last, 2**-8 of the element, leaves (2**-8)**1.5 of the error. n: that
-   !> many layers instead (unloading after a capped loading takes 5, egw_sphere_solver).
+   !> many layers instead (unloading after a capped loading takes 5, egw_sphere_level).
    pure function inner_layers(edge, r, n) result(out)
       real(dp), intent(in) :: edge(0:), r   !< element boundaries, and the edge r (one of them)
       integer, intent(in), optional :: n   !< layers (default cap_edge_layers)
@@ -569,7 +593,7 @@ contains
    !> elements graded as the family's, in asinh((c - r)/w) about c with w the layer width
    !> of a contact edge at c (edge_layer_width), disc_elements per unit of the level's step;
    !> c becomes an edge. Unloading after a capped loading whose contact is a central disc
-   !> [0, c] far inside the Hertz radius a the family is graded about (egw_sphere_solver's
+   !> [0, c] far inside the Hertz radius a the family is graded about (egw_sphere_refine's
    !> central_disc): the graded elements there are ~ step a long, so the disc lay in one to
    !> a few of them, kept from level to level (fixed edges 0 and c), whose forces agreed
    !> while off (E-GW + cap, sigma = 2e-5 delta_y, 0.1442 delta_max after 2 delta_y: 5.6e-4
@@ -648,7 +672,7 @@ contains
    !> edge(0) = coarse(0) = 0). An element between two fixed edges (r = 0, kink edges, the
    !> layers at a, the rim) stays the same while the step exceeds it, and its error is
    !> then in both levels, which their difference cannot see; cut into at least the step
-   !> ratio's parts, it shrinks at least like the rest (egw_sphere_solver's refine_levels).
+   !> ratio's parts, it shrinks at least like the rest (egw_sphere_refine's refine_levels).
    pure function split_kept(edge, coarse, parts) result(out)
       real(dp), intent(in) :: edge(0:)     !< the new level's element boundaries
       real(dp), intent(in) :: coarse(0:)   !< the level before's

@@ -100,7 +100,7 @@ module egw_sphere_problem
       !> element edges of every level (sphere_mesh's with_history_edges).
       logical :: history_edges = .false.
       !> Unloading after a capped loading whose contact is a central disc far inside the
-      !> Hertz radius (egw_sphere_solver's central_disc): its radius, about which the
+      !> Hertz radius (egw_sphere_refine's central_disc): its radius, about which the
       !> elements inside it are graded on every level (sphere_mesh's disc_graded); 0: none.
       real(dp) :: disc = 0.0_dp
       !> Scaled residual at which Newton stops (looser only for the unloading's locating
