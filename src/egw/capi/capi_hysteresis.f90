@@ -5,6 +5,7 @@ module egw_capi_hysteresis
       & c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
       & ieee_negative_inf
+   use, intrinsic :: iso_fortran_env, only: int64
    use egw_progress, only: progress_begin, progress_end, progress_count
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_out_of_range, egw_out_of_memory, format_real, &
@@ -180,16 +181,17 @@ contains
             t2 = t*t
             v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
             d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
-            if (state(24) > 1.0_dp) then
-               ! a log-ratio piece on a ln P interval (the separated tail): exp(ln P - h)
-               p = exp(v + force)
-               stiffness = p*(d + stiffness)
-               force = p
-            else if (state(24) < 0.0_dp) then
-               ! a log-ratio piece on a linear interval: P e^-h
-               p = exp(force)
-               stiffness = p*(d + v*stiffness)
-               force = v*p
+            if (state(24) > 1.0_dp .or. state(24) < 0.0_dp) then
+               ! a log-ratio piece (one piece_exp call: inlined): on a ln P interval (the
+               ! separated tail) exp(ln P - h), on a linear one P e^-h
+               p = piece_exp(merge(v + force, force, state(24) > 1.0_dp))
+               if (state(24) > 1.0_dp) then
+                  stiffness = p*(d + stiffness)
+                  force = p
+               else
+                  stiffness = p*(d + v*stiffness)
+                  force = v*p
+               end if
             else
                ! a gap piece on a ln P interval: the cubic plus P
                p = exp(v)
@@ -231,6 +233,8 @@ contains
       end if
       served = ieee_is_finite(force) .and. ieee_is_finite(stiffness)
    end subroutine eval_state_served
+
+   include "../tables/piece_exp.inc"
 
    !> egw_hysteresis_eval_state's checks and hysteresis_eval_state: the steps eval_state_served
    !> does not serve. (Kept out of line: the served steps then need no stack frame of it.)
