@@ -776,7 +776,7 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * own): the library's piece_exp (src/egw/tables/piece_exp.inc, which explains it), the same
  * operations on the same constants in the same order, so the same bits as
  * egw_hysteresis_eval_state (compile without FMA contraction, e.g. -std=c99 or
- * -ffp-contract=off, as for the cubics). Within 0.53 ulp of exp, 1 ulp of glibc's;
+ * -ffp-contract=off, as for the cubics). Within 0.55 ulp of exp, 1 ulp of glibc's;
  * |x| >= 708 and NaN: libm's exp. */
 static inline double egw_piece_exp_(double x)
 {
