@@ -150,9 +150,10 @@ contains
    !> the loading interval the state holds (above the loading table's cut-off, or in a zero
    !> interval below it). The values are hysteresis_eval_state's (piece_force's and
    !> segment_eval's arithmetic in the same order; a log-ratio piece's exp piece_exp, the
-   !> others' exp from the same libm: bit for bit, test hysteresis), and so is the state it leaves; a step whose status would not be
-   !> EGW_OK (a history above the table's delta_max, values that are not finite: a garbled
-   !> state) is not served (served .false., the state unchanged).
+   !> others' exp from the same libm: bit for bit, test hysteresis), and so is the state
+   !> it leaves; a step whose status would not be EGW_OK (a history above the table's
+   !> delta_max, values that are not finite: a garbled state) is not served (served
+   !> .false., the state unchanged).
    pure subroutine eval_state_served(h, delta, state, force, stiffness, served)
       type(hysteresis_table), intent(in) :: h
       real(dp), intent(in) :: delta

@@ -317,7 +317,8 @@ contains
    !> where that is ln P; 0 where the force is not positive. A log-ratio piece
    !> (make_log_piece: seg(7) 2 on a ln P interval, -1 on a linear one; c is -h):
    !> exp(ln P - h), or P e^-h, one exp (piece_exp; egw.h's inline
-   !> egw_hysteresis_eval_cached does the same arithmetic in the same order: the same bits).
+   !> egw_hysteresis_eval_cached does the same arithmetic in the same order: the same
+   !> bits).
    pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
       real(dp), intent(in) :: lo, c(4), seg(7), delta
       real(dp), intent(out) :: force, stiffness
