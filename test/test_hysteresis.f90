@@ -21,8 +21,9 @@ module test_hysteresis
    use egw_cache, only: build_hysteresis_cached
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc, c_null_ptr, c_char
-   use, intrinsic :: iso_fortran_env, only: int64
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: iso_fortran_env, only: int64, real128
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_value, &
+      & ieee_quiet_nan
    implicit none
    private
    public :: collect_hysteresis
@@ -73,7 +74,9 @@ contains
          & new_unittest("C DEM loop, egw_time_step: e at 1e-4..10 m/s", t_c_dem_loop), &
          & new_unittest("C egw_hysteresis_build, _eval, _free", test_c_api), &
          & new_unittest("C eval_state = hysteresis_eval_state, separated", test_c_separated), &
-         & new_unittest("stretched last curve far above the table: finite", test_stretched_far) &
+         & new_unittest("stretched last curve far above the table: finite", test_stretched_far), &
+         & new_unittest("piece_exp: within 0.55 ulp of exp, egw.h's the same bits", &
+         & test_piece_exp) &
          & ]
    end subroutine collect_hysteresis
 
@@ -1496,5 +1499,82 @@ contains
          end do
       end do
    end subroutine test_stretched_far
+
+   !> piece_exp, the exp of the log-ratio pieces (the separated tail's force exp(ln P - h),
+   !> evaluated inline by egw_hysteresis_eval_state's served steps, piece_force and egw.h's
+   !> egw_hysteresis_eval_cached; piece_exp.inc, included here as in the library): against
+   !> exp in quadruple precision (libquadmath's, independent of it) at 400 000 arguments
+   !> over (-708, 708) and the tail's range (-60, 10), and at 3 000 reduction boundaries
+   !> (x = (k + 1/2) ln2/32, where |r| is largest and k may go either way): within 0.55
+   !> ulp (the final addition's half ulp and five roundings below 1/128 ulp each,
+   !> piece_exp.inc; truncation 4e-18 of e^r); within 1 ulp of the
+   !> intrinsic exp (glibc's, within 0.51 ulp: the two differ by at most 1 ulp);
+   !> exactly 1 at 0, the intrinsic's values for |x| >= 708, NaN and infinities. egw.h's
+   !> C egw_piece_exp_ (test/unload_checks.c) gives the same bits at every argument.
+   !> (A dropped tail_j or Taylor term, or an ln2/32 in one part, fails the first check.)
+   subroutine test_piece_exp(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 403000
+      real(dp), parameter :: ln2_32 = 0.693147180559945309417232121458176568_dp/32
+      real(c_double), allocatable, target :: x(:), yc(:)
+      real(dp) :: y, worst, u(2), e
+      real(real128) :: ref
+      integer :: i, differ, apart, not_c
+      interface
+         subroutine c_piece_exp(n, x, y) bind(C, name="egw_capi_test_piece_exp")
+            import :: c_int, c_ptr
+            integer(c_int), value :: n
+            type(c_ptr), value :: x, y
+         end subroutine c_piece_exp
+      end interface
+      allocate (x(n), yc(n))
+      call random_seed(put=[(20261130 + i, i=1, 64)])
+      do i = 1, n
+         call random_number(u)
+         if (i <= 200000) then
+            x(i) = -708.0_dp + 1416.0_dp*u(1)
+         else if (i <= 400000) then
+            x(i) = -60.0_dp + 70.0_dp*u(1)
+         else   ! reduction boundaries, k = -1500 .. 1499, one ulp or so either side
+            x(i) = (i - 401500 + 0.5_dp)*ln2_32*(1.0_dp + (u(2) - 0.5_dp)*1.0e-15_dp)
+         end if
+      end do
+      call c_piece_exp(int(n, c_int), c_loc(x), c_loc(yc))
+      worst = 0.0_dp
+      differ = 0
+      apart = 0
+      not_c = 0
+      do i = 1, n
+         y = piece_exp(x(i))
+         ref = exp(real(x(i), real128))
+         worst = max(worst, real(abs(real(y, real128) - ref)/spacing(real(ref, dp)), dp))
+         e = exp(x(i))
+         if (.not. y == e) differ = differ + 1
+         if (abs(y - e) > spacing(e)) apart = apart + 1
+         if (.not. same(y, yc(i))) not_c = not_c + 1
+      end do
+      write (*, "(4x,a,f6.4,a,i0,a,i0,a)") "piece_exp: within ", worst, " ulp of exp; ", &
+         & differ, " of ", n, " differ from the intrinsic's by 1 ulp"
+      call check(error, worst <= 0.55_dp, "piece_exp's error "//format_real(worst)// &
+         & " ulp > 0.55")
+      if (allocated(error)) return
+      call check(error, apart, 0, "arguments where piece_exp and exp are > 1 ulp apart")
+      if (allocated(error)) return
+      call check(error, not_c, 0, "arguments where egw.h's egw_piece_exp_ differs")
+      if (allocated(error)) return
+      x(1:8) = [0.0_dp, 708.0_dp, -708.0_dp, 709.7_dp, -745.0_dp, huge(1.0_dp), &
+         & -huge(1.0_dp), ieee_value(1.0_dp, ieee_quiet_nan)]
+      call c_piece_exp(8_c_int, c_loc(x), c_loc(yc))
+      call check(error, piece_exp(x(1)) == 1.0_dp .and. yc(1) == 1.0_dp, "exp(0) = 1")
+      if (allocated(error)) return
+      do i = 2, 7
+         call check(error, same(piece_exp(x(i)), exp(x(i))) .and. same(yc(i), exp(x(i))), &
+            & "x = "//format_real(x(i))//": the intrinsic exp's value")
+         if (allocated(error)) return
+      end do
+      call check(error, ieee_is_nan(piece_exp(x(8))) .and. ieee_is_nan(yc(8)), "NaN: NaN")
+   end subroutine test_piece_exp
+
+   include "../src/egw/tables/piece_exp.inc"
 
 end module test_hysteresis

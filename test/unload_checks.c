@@ -253,7 +253,8 @@ int egw_capi_test_hysteresis(void) {
        * reloading to 3.6 in small steps, once with the inline step first (the call when it
        * does not serve) and once with the call alone: the same forces, stiffnesses and
        * states bit for bit at every step (the same arithmetic on the same cached cubics,
-       * exp from the same libm), most steps served on each branch; nothing served for a
+       * the log-ratio pieces' egw_piece_exp_ = piece_exp, otherwise exp from the same
+       * libm), most steps served on each branch; nothing served for a
        * new, zeroed or foreign-tag state */
       double sp[EGW_HYSTERESIS_STATE_SIZE], se[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0;
       double fi, ki, fe, ke;
@@ -526,4 +527,11 @@ int egw_capi_test_hysteresis(void) {
          h == NULL);
 #undef HCHECK
   return nf;
+}
+
+/* egw.h's egw_piece_exp_ (egw_hysteresis_eval_cached's exp of a log-ratio piece) at n
+ * arguments, for test hysteresis "piece_exp: within 0.53 ulp of exp, egw.h's the same
+ * bits", which compares it with the library's piece_exp. */
+void egw_capi_test_piece_exp(int n, const double *x, double *y) {
+  for (int i = 0; i < n; i++) y[i] = egw_piece_exp_(x[i]);
 }

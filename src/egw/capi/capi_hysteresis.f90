@@ -5,6 +5,7 @@ module egw_capi_hysteresis
       & c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
       & ieee_negative_inf
+   use, intrinsic :: iso_fortran_env, only: int64
    use egw_progress, only: progress_begin, progress_end, progress_count
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_ok, egw_out_of_range, egw_out_of_memory, format_real, &
@@ -148,10 +149,11 @@ contains
    !> first test; a zero piece: 0), or a step loading further (delta >= state(1)) inside
    !> the loading interval the state holds (above the loading table's cut-off, or in a zero
    !> interval below it). The values are hysteresis_eval_state's (piece_force's and
-   !> segment_eval's arithmetic in the same order, exp from the same libm: bit for bit,
-   !> test hysteresis), and so is the state it leaves; a step whose status would not be
-   !> EGW_OK (a history above the table's delta_max, values that are not finite: a garbled
-   !> state) is not served (served .false., the state unchanged).
+   !> segment_eval's arithmetic in the same order; a log-ratio piece's exp piece_exp, the
+   !> others' exp from the same libm: bit for bit, test hysteresis), and so is the state
+   !> it leaves; a step whose status would not be EGW_OK (a history above the table's
+   !> delta_max, values that are not finite: a garbled state) is not served (served
+   !> .false., the state unchanged).
    pure subroutine eval_state_served(h, delta, state, force, stiffness, served)
       type(hysteresis_table), intent(in) :: h
       real(dp), intent(in) :: delta
@@ -180,16 +182,17 @@ contains
             t2 = t*t
             v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
             d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
-            if (state(24) > 1.0_dp) then
-               ! a log-ratio piece on a ln P interval (the separated tail): exp(ln P - h)
-               p = exp(v + force)
-               stiffness = p*(d + stiffness)
-               force = p
-            else if (state(24) < 0.0_dp) then
-               ! a log-ratio piece on a linear interval: P e^-h
-               p = exp(force)
-               stiffness = p*(d + v*stiffness)
-               force = v*p
+            if (state(24) > 1.0_dp .or. state(24) < 0.0_dp) then
+               ! a log-ratio piece (one piece_exp call: inlined): on a ln P interval (the
+               ! separated tail) exp(ln P - h), on a linear one P e^-h
+               p = piece_exp(merge(v + force, force, state(24) > 1.0_dp))
+               if (state(24) > 1.0_dp) then
+                  stiffness = p*(d + stiffness)
+                  force = p
+               else
+                  stiffness = p*(d + v*stiffness)
+                  force = v*p
+               end if
             else
                ! a gap piece on a ln P interval: the cubic plus P
                p = exp(v)
@@ -231,6 +234,8 @@ contains
       end if
       served = ieee_is_finite(force) .and. ieee_is_finite(stiffness)
    end subroutine eval_state_served
+
+   include "../tables/piece_exp.inc"
 
    !> egw_hysteresis_eval_state's checks and hysteresis_eval_state: the steps eval_state_served
    !> does not serve. (Kept out of line: the served steps then need no stack frame of it.)

@@ -316,12 +316,13 @@ contains
    !> with the loading interval seg it was made with: the cubic, plus exp of seg's cubic
    !> where that is ln P; 0 where the force is not positive. A log-ratio piece
    !> (make_log_piece: seg(7) 2 on a ln P interval, -1 on a linear one; c is -h):
-   !> exp(ln P - h), or P e^-h, one exp (egw.h's inline egw_hysteresis_eval_cached does
-   !> the same arithmetic in the same order: the same bits).
+   !> exp(ln P - h), or P e^-h, one exp (piece_exp; egw.h's inline
+   !> egw_hysteresis_eval_cached does the same arithmetic in the same order: the same
+   !> bits).
    pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
       real(dp), intent(in) :: lo, c(4), seg(7), delta
       real(dp), intent(out) :: force, stiffness
-      real(dp) :: x, x2, p, k, t, t2, v, d, e
+      real(dp) :: x, x2, p, k, t, t2, v, d
       x = delta - lo
       x2 = x*x
       force = (c(1) + x*c(2)) + x2*(c(3) + x*c(4))
@@ -331,14 +332,13 @@ contains
          t2 = t*t
          v = (seg(3) + t*seg(4)) + t2*(seg(5) + t*seg(6))
          d = (seg(4) + 2*t*seg(5)) + 3*t2*seg(6)
+         p = piece_exp(merge(v + force, force, seg(7) > 1.0_dp))
          if (seg(7) > 1.0_dp) then
-            p = exp(v + force)
             stiffness = p*(d + stiffness)
             force = p
          else
-            e = exp(force)
-            stiffness = e*(d + v*stiffness)
-            force = v*e
+            stiffness = p*(d + v*stiffness)
+            force = v*p
          end if
       else if (seg(7) > 0.0_dp) then
          call segment_eval(seg, delta, p, k)
@@ -350,6 +350,8 @@ contains
          stiffness = 0.0_dp
       end if
    end subroutine piece_force
+
+   include "piece_exp.inc"
 
    !> The piece of the unloading curve of turning point m (P_load(m) = f_m, 1/(s_max L) =
    !> iota, its inverse span; stencil first) around delta for a state: the overlaps
