@@ -54,6 +54,15 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> 1e-5 sigma apart differed by 3 % of the local force, the solves' own noise there
    !> (doc/benchmarks.md, local4 (e)).
    real(dp), parameter :: min_width = 2.0_dp**(-11)
+   !> Hertz + cap (force-ratio) tables: delta_max intervals narrower than this (of the
+   !> range) are not split. The curves change fastest just above the first capped turning
+   !> point (cap_first_turn): at 1e-4 to 20 delta_y the first intervals at 2^-11 missed by
+   !> 1.3e-3 of the local force (1.5e-3 against solves), their mismatch halving in ~2
+   !> bisections; split further the table met 1e-4 with 58 nodes (7.1e-5) and 1e-3 with 27,
+   !> 1e-5 with 146 leaving two intervals at this width (1.5e-5); doc/stability.md
+   !> "Stop 52 (doubt18)". (The cap solver ignores rel_tol: its check solves are the same
+   !> solves a user's reference makes, so a mismatch here is the table's own error.)
+   real(dp), parameter :: ratio_min_width = 2.0_dp**(-18)
    !> Log-ratio tables on six-point stencils: a check curve is not solved at a node s of
    !> its neighbours where the four-point stencil's h at its turning point lies within
    !> check_skip rel_tol of the six-point one's (weighted by a bound on its weight there,
@@ -364,8 +373,9 @@ contains
 
    ! ---------------------------------------------------------------------------------------
 
-   !> The unloading curves of Hertz + cap (doc/theory.md §12): turning points from first
-   !> yield delta_y (where the contact is still Hertz's: gap 0) to delta_max, 9 at first,
+   !> The unloading curves of Hertz + cap (doc/theory.md §12): turning points from the
+   !> first capped one (cap_first_turn, delta_y (1 + 1e-4): up to it the cap solver's
+   !> contact is Hertz's, reversible) to delta_max, 9 at first,
    !> then refine_m; L(m) = m - residual overlap and s_max = 1, so that s = 1 is where the
    !> unloading force vanishes on every curve (the one place where the curves are not
    !> smooth: (delta - delta_r)**(3/2) there), and the evaluation gives 0 below it.
@@ -378,7 +388,8 @@ contains
       real(dp), allocatable :: m(:)
       real(dp) :: delta_y
       integer :: j, n
-      delta_y = first_yield(table%params)
+      ! (from the first capped turning point: up to it the solves are Hertz's)
+      delta_y = cap_first_turn(table%params)
       n = 9
       m = delta_y + (table%delta_max - delta_y)*[(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       m(1) = delta_y
@@ -734,7 +745,7 @@ contains
          ! 1/32 of that: its first interval met its check curve to 9.5e-4 at min_width)
          wide = .true.
          if (table%force_ratio) wide = m(2:) - m(:size(m) - 1) >= &
-            & min_width*(m(size(m)) - m(1))
+            & ratio_min_width*(m(size(m)) - m(1))
          if (log_table(table)) then
             wide = m(2:) - m(:size(m) - 1) >= min_width*(m(size(m)) - m(1))
             where (m(:size(m) - 1) == 0.0_dp .or. m(2:) == 0.0_dp) wide = &
