@@ -924,10 +924,12 @@ typedef struct {
                         * the ln(P_load/P) curves). It includes delta_max intervals too
                         * narrow to split (Hertz + cap: 2^-18 of the range, others 2^-11):
                         * above rel_tol where those intervals miss it. Hertz + cap, whose
-                        * check solves are the cap solver's own: <= rel_tol when the
-                        * table met rel_tol against solves, > rel_tol when it did not
-                        * (1e-4 to 20 delta_y: 7.1e-5 reported, 8.7e-5 measured; 1e-5:
-                        * 1.5e-5 and 2.3e-5; doc/stability.md "Stop 52 (doubt18)") */
+                        * check solves are the cap solver's own: the force's error there,
+                        * the loading table's at the turning point included; <= rel_tol
+                        * when the table met rel_tol against solves, > rel_tol when it
+                        * did not (1e-4 to 20 delta_y: 7.7e-5 reported, 8.7e-5 measured;
+                        * to 8.57 delta_y 1.2e-4 and 1.03e-4; 1e-5 to 20 delta_y 1.5e-5
+                        * and 2.3e-5; doc/stability.md "Stop 52 (doubt18)") */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;
 

@@ -759,6 +759,18 @@ contains
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
             table%max_error = max(table%max_error, maxval(err_mid))
+            ! (Hertz + cap: what the table's force misses there, the loading table's error
+            ! at the turning point included, P = P_load,table(m) sum w u; at the nodes'
+            ! curves that error alone. The splits above weigh the curves' mismatch only:
+            ! the loading table is built to rel_tol of its own, and the two add)
+            if (table%force_ratio) then
+               do j = 1, size(m) - 1
+                  table%max_error = max(table%max_error, whole_mismatch(table, m, curves, j, &
+                     & mids(j)))
+               end do
+               table%max_error = max(table%max_error, maxval(abs(1.0_dp - &
+                  & curves%c_turn)/curves%c_turn))
+            end if
             return
          end if
          if (size(m) + n_split > max_m_nodes) then
@@ -961,6 +973,21 @@ contains
          end if
       end do
    end function stencil_mismatch
+
+   !> A force-ratio (Hertz + cap) table's error at the nodes of the check curve of interval
+   !> j relative to max(P, local_floor P(m)): the stencil's sum of u against the check
+   !> solves' P/P_load,table(m) (c_turn u), so that the loading table's error at the
+   !> turning point counts as in the evaluation. Its stencil, s and weights: stencil_mismatch's.
+   pure real(dp) function whole_mismatch(table, m, curves, j, mid) result(err)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(in) :: curves(:), mid
+      integer, intent(in) :: j
+      type(unloading_curve) :: shifted
+      shifted = mid
+      shifted%gap = mid%c_turn*mid%gap
+      err = stencil_mismatch(table, m, curves, j, shifted)
+   end function whole_mismatch
 
    !> The mismatch refine_curve would find at the middle of s interval i of a log-ratio
    !> curve with nodes s, h, dh/dxi and weights, estimated (midpoint_skip): the
