@@ -255,8 +255,9 @@ contains
    !> rel_tol 1e-8 (the cap solver's; the table's curves are its solves, interpolated
    !> in delta_max and s: what differs is the table's interpolation alone), relative to
    !> max(P, 1e-3 P(m)) as rel_tol (egw.h). Both directions: max_error > rel_tol exactly
-   !> when that error is (1e-4: 7.1e-5 reported, 8.7e-5 measured; 1e-5: two intervals left
-   !> at the width limit, 1.5e-5 reported, 2.3e-5 measured). And a turning point between
+   !> when that error is (1e-4: 7.7e-5 reported, 8.7e-5 measured over every interval; 1e-5:
+   !> two intervals left at the width limit, 1.5e-5 reported, 2.3e-5 measured). And a
+   !> turning point between
    !> delta_y and the first capped one is Hertz's (reversible, as the solver's).
    !> Main's 1e-4 table (first curve at delta_y, intervals not split below 2^-11 of the
    !> range) reported 1.3e-3 and missed by 1.5e-3 at m = 1.0012 delta_y.
