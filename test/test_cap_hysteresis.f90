@@ -281,6 +281,15 @@ contains
             & "first turning point "//str(t%m(1)))
          if (allocated(error)) return
          if (n == 1) then
+            ! a table ending between delta_y and the first capped turning point: reversible
+            call build_hysteresis(unit_cap, solver_options(), -1.0_dp, 1.00005_dp, tols(n), &
+               & t, err)
+            call check(error, .not. allocated(err) .and. t%reversible, "to 1.00005 delta_y")
+            if (allocated(error)) return
+            call build_hysteresis(unit_cap, solver_options(), -1.0_dp, 20.0_dp, tols(n), t, &
+               & err)
+            call check(error, .not. allocated(err), "build at "//str(tols(n)))
+            if (allocated(error)) return
             ! between delta_y and the first curve: the solver's and the table's Hertz
             m = 0.5_dp*(1.0_dp + t%m(1))
             call load_history(unit_cap, solver_options(rel_tol=1.0e-8_dp), m, hist, top, err)

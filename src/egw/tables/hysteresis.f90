@@ -631,8 +631,9 @@ contains
          & first_yield(table%params))
       ! (from stop 52 a Hertz + cap table's first curve is at cap_first_turn, above delta_y:
       ! turning points up to it are Hertz's, as the cap solver's; earlier tables: delta_y)
-      if (table%capped .and. size(table%m) > 0) table%elastic_limit = &
-         & max(table%elastic_limit, table%m(1))
+      if (table%capped .and. allocated(table%m)) then
+         if (size(table%m) > 0) table%elastic_limit = max(table%elastic_limit, table%m(1))
+      end if
       ! a rough model with the cap: its curves start at the first turning point (the
       ! cut-off, or with elastic summits the rough first yield, below which it is elastic)
       if (table%params%flow_pressure > 0.0_dp .and. .not. table%capped .and. &

@@ -213,8 +213,10 @@ contains
       ! only dissipates from first yield on
       table%reversible = params%model /= model_epgw .or. params%psi == 0.0_dp .or. &
          & params%sigma == 0.0_dp
+      ! (Hertz + cap: up to the first capped turning point the cap solver's contact is
+      ! Hertz's, reversible)
       if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) table%reversible = .not. &
-         & delta_max > first_yield(params)
+         & delta_max > cap_first_turn(params)
       if (rough_cap .and. .not. plastic_summits(params)) then
          ! elastic summits: irreversible once the cap acts, i.e. once the largest total
          ! pressure reaches p_y somewhere (it grows with the overlap on loading)
@@ -388,8 +390,11 @@ contains
       real(dp), allocatable :: m(:)
       real(dp) :: delta_y
       integer :: j, n
-      ! (from the first capped turning point: up to it the solves are Hertz's)
+      ! (from the first capped turning point: up to it the solves are Hertz's; from first
+      ! yield where the table ends within 1e-9 of it, which has no room for a grid)
       delta_y = cap_first_turn(table%params)
+      if (.not. table%delta_max - delta_y > 1.0e-9_dp*delta_y) delta_y = &
+         & first_yield(table%params)
       n = 9
       m = delta_y + (table%delta_max - delta_y)*[(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       m(1) = delta_y
