@@ -677,7 +677,8 @@ void egw_universal_free(egw_universal *u);
 typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
 
 /* Build for p (EP-GW, or Hertz/sigma = 0 with p->flow_pressure > 0, for hysteresis: the
- * cap's turning points from first yield delta_y on, doc/theory.md 12; GW, E-GW, EP-GW
+ * cap's turning points from the first capped one on, delta_y (1 + 1e-4), below which the
+ * cap solver's contact is Hertz's (reversible), doc/theory.md 12; GW, E-GW, EP-GW
  * with p->flow_pressure > 0: EP-GW's curves from the rough solver with the cap, the
  * turning points of GW/E-GW from the rough first yield on, where the largest total
  * pressure reaches p_y (reversible when it never does up to delta_max); other models
@@ -968,12 +969,15 @@ typedef struct {
   double max_error;    /* largest mismatch found at the build's check solves, in rel_tol's
                         * units (relative to P(m) on the cap's gap curves; to the local
                         * force down to 1e-3 P(m) on Hertz + cap's force-ratio curves and
-                        * the ln(P_load/P) curves). It includes delta_max intervals
-                        * narrower than 2^-11 of the range, which the build does not
-                        * split: there it may exceed rel_tol (a Hertz + cap table at
-                        * 1e-4: 3.8e-4, while evaluations between its curves met
-                        * 5.6e-5 of max(P, 1e-3 P(m)): doc/stability.md "Stop 51
-                        * (audit17)") */
+                        * the ln(P_load/P) curves). It includes delta_max intervals too
+                        * narrow to split (Hertz + cap: 2^-18 of the range, others 2^-11):
+                        * above rel_tol where those intervals miss it. Hertz + cap, whose
+                        * check solves are the cap solver's own: the force's error there,
+                        * the loading table's at the turning point included; <= rel_tol
+                        * when the table met rel_tol against solves, > rel_tol when it
+                        * did not (1e-4 to 20 delta_y: 7.7e-5 reported, 8.7e-5 measured;
+                        * to 8.57 delta_y 1.2e-4 and 1.03e-4; 1e-5 to 20 delta_y 1.5e-5
+                        * and 2.3e-5; doc/stability.md "Stop 52 (doubt18)") */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;
 

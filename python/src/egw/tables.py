@@ -453,8 +453,8 @@ class HysteresisInfo:
         Requested tolerance and largest mismatch found at the check solves, both
         relative to the turning point's force P(m) where the cap acts on gap curves, and
         to the local force down to 1e-3 P(m) on force-ratio and ln(P_load/P) curves.
-        max_error includes delta_max intervals too narrow to split, where it may exceed
-        rel_tol (egw.h, egw_hysteresis_info).
+        max_error includes delta_max intervals too narrow to split, and exceeds rel_tol
+        where those miss it (egw.h, egw_hysteresis_info).
     """
     model: int
     reversible: bool

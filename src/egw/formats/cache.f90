@@ -99,7 +99,10 @@ module egw_cache
    !> 38 (edge17): a rough history's field d_max(r) is loaded at 0.1 of rel_tol
    !> (load_history): every rough hysteresis table moved (README's E-GW + cap to 6
    !> delta_y at 1e-4: gaps by up to 3.0e-6, the same 37 x 50 grid).
-   integer, parameter, public :: cache_revision = 38
+   !> 39 (doubt18): Hertz + cap tables start their curves at the first capped turning
+   !> point (cap_first_turn) and split delta_max intervals down to 2^-18 of the range:
+   !> other grids near first yield (1e-4 to 20 delta_y: 47 -> 58 delta_max nodes).
+   integer, parameter, public :: cache_revision = 39
 
 
 contains

@@ -9,7 +9,7 @@ module egw_hysteresis_checks
    use egw_params, only: validate_params
    use egw_table, only: table_eval
    use egw_table_format, only: check_table
-   use egw_hysteresis, only: hysteresis_table, first_yield, hertz_capped
+   use egw_hysteresis, only: hysteresis_table, first_yield, hertz_capped, cap_first_turn
    use egw_hysteresis_data, only: s_knee, s_zero, map_piece, map_iota, map_lengths, &
       & max_log_ratio, edge_breaks, edge_xi
    implicit none
@@ -104,11 +104,16 @@ contains
       ! a rough model with the cap and elastic summits starts at its rough first yield
       if (t%params%flow_pressure > 0.0_dp .and. .not. hertz_capped(t%params) .and. &
          & t%m(1) >= first) first = t%m(1)
+      ! (Hertz + cap from stop 52: the first capped turning point; earlier files delta_y)
+      if (hertz_capped(t%params)) then
+         if (t%m(1) == cap_first_turn(t%params)) first = t%m(1)
+      end if
       if (any(t%m(2:n_m) <= t%m(1:n_m - 1)) .or. t%m(1) /= first .or. &
          & t%m(n_m) /= t%delta_max .or. any(t%s(2:n_s) <= t%s(1:n_s - 1)) .or. &
          & t%s(1) /= 0.0_dp .or. t%s(n_s) /= 1.0_dp) then
          call bad(error, path, "unloading grid: delta_max from the cut-off (first yield "// &
-            & "delta_y with the flow-pressure cap; a rough model with the cap: at or above "// &
+            & "delta_y, or the first capped turning point, with the flow-pressure cap; a "// &
+            & "rough model with the cap: at or above "// &
             & "the cut-off) to delta_max "// &
             & "and s from 0 to 1 must increase")
          return

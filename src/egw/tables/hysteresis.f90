@@ -14,7 +14,7 @@ module egw_hysteresis
    use egw_table, only: table_eval, table_eval_cached, table_segment, segment_eval, &
       & table_progress, deep_coefficient, beyond_status
    use egw_table_ends, only: deep_reach
-   use egw_cap_sphere, only: cap_units
+   use egw_cap_sphere, only: cap_units, elastic_margin
    use egw_hysteresis_data, only: hysteresis_table, hysteresis_state_size, nan_error, &
       & gap_cubic, turning_point, gap_combination, unload_tail_ratio, make_lookup, &
       & m_breakpoint, m_coordinate, stencil_first, locate, quiet_nan, turning_knee, map_s, &
@@ -29,7 +29,7 @@ module egw_hysteresis
    public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_eval_state, &
       & hysteresis_state_init, hysteresis_energy, hysteresis_energy_walk, hysteresis_prepare, &
       & m_breakpoint, &
-      & stencil_first, m_coordinate, first_yield, hertz_capped
+      & stencil_first, m_coordinate, first_yield, hertz_capped, cap_first_turn
    public :: hysteresis_state_size, zero_lo
 
    !> The start of a zero piece and zero loading interval (zero_piece): a real piece never
@@ -631,6 +631,11 @@ contains
       table%elastic_limit = table%loading%cutoff
       if (table%capped) table%elastic_limit = max(table%elastic_limit, &
          & first_yield(table%params))
+      ! (from stop 52 a Hertz + cap table's first curve is at cap_first_turn, above delta_y:
+      ! turning points up to it are Hertz's, as the cap solver's; earlier tables: delta_y)
+      if (table%capped .and. allocated(table%m)) then
+         if (size(table%m) > 0) table%elastic_limit = max(table%elastic_limit, table%m(1))
+      end if
       ! a rough model with the cap: its curves start at the first turning point (the
       ! cut-off, or with elastic summits the rough first yield, below which it is elastic)
       if (table%params%flow_pressure > 0.0_dp .and. .not. table%capped .and. &
@@ -770,6 +775,27 @@ contains
       call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
          & force_y)
    end function first_yield
+
+   !> The first turning point of a Hertz + cap table's unloading curves (its delta_max node
+   !> m(1) since stop 52): the least double m that egw_cap_sphere's solves take as capped,
+   !> m/delta_y > 1 + elastic_margin. Up to it they are Hertz's (the cap's zone ~0.03 a wide,
+   !> residual overlap ~1e-6 delta_y), and just above it the curves jump from Hertz's by
+   !> ~3e-4 of the local force at 1e-3 P(m): a stencil across that jump met its check curve
+   !> only to 3-4e-4 at every width (doc/stability.md "Stop 52 (doubt18)"). The table serves
+   !> turning points up to m(1) by the loading curve (reversible), as the solves do.
+   pure real(dp) function cap_first_turn(params) result(m)
+      type(contact_params), intent(in) :: params   !< with flow_pressure > 0
+      real(dp) :: delta_y, a_y, force_y
+      integer :: k
+      call cap_units(params%radius, params%modulus, params%flow_pressure, delta_y, a_y, &
+         & force_y)
+      m = delta_y*(1.0_dp + elastic_margin)
+      ! (the solves divide by delta_y: step up until that quotient passes the margin)
+      do k = 1, 64
+         if (m/delta_y > 1.0_dp + elastic_margin) exit
+         m = nearest(m, 1.0_dp)
+      end do
+   end function cap_first_turn
 
    !> run_first/run_last: for each stencil, the runs of s intervals joined by union nodes
    !> that are none of its four curves' own nodes. Such a node is where a curve's cubics

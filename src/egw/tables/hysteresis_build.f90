@@ -54,6 +54,15 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> 1e-5 sigma apart differed by 3 % of the local force, the solves' own noise there
    !> (doc/benchmarks.md, local4 (e)).
    real(dp), parameter :: min_width = 2.0_dp**(-11)
+   !> Hertz + cap (force-ratio) tables: delta_max intervals narrower than this (of the
+   !> range) are not split. The curves change fastest just above the first capped turning
+   !> point (cap_first_turn): at 1e-4 to 20 delta_y the first intervals at 2^-11 missed by
+   !> 1.3e-3 of the local force (1.5e-3 against solves), their mismatch halving in ~2
+   !> bisections; split further the table met 1e-4 with 58 nodes (7.1e-5) and 1e-3 with 27,
+   !> 1e-5 with 146 leaving two intervals at this width (1.5e-5); doc/stability.md
+   !> "Stop 52 (doubt18)". (The cap solver ignores rel_tol: its check solves are the same
+   !> solves a user's reference makes, so a mismatch here is the table's own error.)
+   real(dp), parameter :: ratio_min_width = 2.0_dp**(-18)
    !> Log-ratio tables on six-point stencils: a check curve is not solved at a node s of
    !> its neighbours where the four-point stencil's h at its turning point lies within
    !> check_skip rel_tol of the six-point one's (weighted by a bound on its weight there,
@@ -204,8 +213,10 @@ contains
       ! only dissipates from first yield on
       table%reversible = params%model /= model_epgw .or. params%psi == 0.0_dp .or. &
          & params%sigma == 0.0_dp
+      ! (Hertz + cap: up to the first capped turning point the cap solver's contact is
+      ! Hertz's, reversible)
       if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) table%reversible = .not. &
-         & delta_max > first_yield(params)
+         & delta_max > cap_first_turn(params)
       if (rough_cap .and. .not. plastic_summits(params)) then
          ! elastic summits: irreversible once the cap acts, i.e. once the largest total
          ! pressure reaches p_y somewhere (it grows with the overlap on loading)
@@ -364,8 +375,9 @@ contains
 
    ! ---------------------------------------------------------------------------------------
 
-   !> The unloading curves of Hertz + cap (doc/theory.md §12): turning points from first
-   !> yield delta_y (where the contact is still Hertz's: gap 0) to delta_max, 9 at first,
+   !> The unloading curves of Hertz + cap (doc/theory.md §12): turning points from the
+   !> first capped one (cap_first_turn, delta_y (1 + 1e-4): up to it the cap solver's
+   !> contact is Hertz's, reversible) to delta_max, 9 at first,
    !> then refine_m; L(m) = m - residual overlap and s_max = 1, so that s = 1 is where the
    !> unloading force vanishes on every curve (the one place where the curves are not
    !> smooth: (delta - delta_r)**(3/2) there), and the evaluation gives 0 below it.
@@ -378,7 +390,11 @@ contains
       real(dp), allocatable :: m(:)
       real(dp) :: delta_y
       integer :: j, n
-      delta_y = first_yield(table%params)
+      ! (from the first capped turning point: up to it the solves are Hertz's; from first
+      ! yield where the table ends within 1e-9 of it, which has no room for a grid)
+      delta_y = cap_first_turn(table%params)
+      if (.not. table%delta_max - delta_y > 1.0e-9_dp*delta_y) delta_y = &
+         & first_yield(table%params)
       n = 9
       m = delta_y + (table%delta_max - delta_y)*[(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)
       m(1) = delta_y
@@ -734,7 +750,7 @@ contains
          ! 1/32 of that: its first interval met its check curve to 9.5e-4 at min_width)
          wide = .true.
          if (table%force_ratio) wide = m(2:) - m(:size(m) - 1) >= &
-            & min_width*(m(size(m)) - m(1))
+            & ratio_min_width*(m(size(m)) - m(1))
          if (log_table(table)) then
             wide = m(2:) - m(:size(m) - 1) >= min_width*(m(size(m)) - m(1))
             where (m(:size(m) - 1) == 0.0_dp .or. m(2:) == 0.0_dp) wide = &
@@ -748,6 +764,18 @@ contains
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
             table%max_error = max(table%max_error, maxval(err_mid))
+            ! (Hertz + cap: what the table's force misses there, the loading table's error
+            ! at the turning point included, P = P_load,table(m) sum w u; at the nodes'
+            ! curves that error alone. The splits above weigh the curves' mismatch only:
+            ! the loading table is built to rel_tol of its own, and the two add)
+            if (table%force_ratio) then
+               do j = 1, size(m) - 1
+                  table%max_error = max(table%max_error, whole_mismatch(table, m, curves, j, &
+                     & mids(j)))
+               end do
+               table%max_error = max(table%max_error, maxval(abs(1.0_dp - &
+                  & curves%c_turn)/curves%c_turn))
+            end if
             return
          end if
          if (size(m) + n_split > max_m_nodes) then
@@ -950,6 +978,21 @@ contains
          end if
       end do
    end function stencil_mismatch
+
+   !> A force-ratio (Hertz + cap) table's error at the nodes of the check curve of interval
+   !> j relative to max(P, local_floor P(m)): the stencil's sum of u against the check
+   !> solves' P/P_load,table(m) (c_turn u), so that the loading table's error at the
+   !> turning point counts as in the evaluation. Its stencil, s and weights: stencil_mismatch's.
+   pure real(dp) function whole_mismatch(table, m, curves, j, mid) result(err)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(in) :: curves(:), mid
+      integer, intent(in) :: j
+      type(unloading_curve) :: shifted
+      shifted = mid
+      shifted%gap = mid%c_turn*mid%gap
+      err = stencil_mismatch(table, m, curves, j, shifted)
+   end function whole_mismatch
 
    !> The mismatch refine_curve would find at the middle of s interval i of a log-ratio
    !> curve with nodes s, h, dh/dxi and weights, estimated (midpoint_skip): the
