@@ -99,7 +99,10 @@ module egw_cache
    !> 38 (edge17): a rough history's field d_max(r) is loaded at 0.1 of rel_tol
    !> (load_history): every rough hysteresis table moved (README's E-GW + cap to 6
    !> delta_y at 1e-4: gaps by up to 3.0e-6, the same 37 x 50 grid).
-   integer, parameter, public :: cache_revision = 38
+   !> 39 (zmc18): EP-GW hysteresis tables (psi > 0) unload with the ZMC loading law
+   !> tabulated once per build (egw_law_pieces): README's EP-GW + cap psi 1 table to 6
+   !> delta_y at 1e-4 moved by up to 3.3e-9 of P(m), the same grid.
+   integer, parameter, public :: cache_revision = 39
 
 
 contains
