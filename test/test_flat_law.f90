@@ -27,6 +27,7 @@ contains
          & new_unittest("table law: steep given slopes stay monotone", test_steep_slopes), &
          & new_unittest("tabulated GW law = classic GW solve", test_tabulated_gw), &
          & new_unittest("C egw_flat_law_*, egw_solve_flat_law", test_c), &
+         & new_unittest("ZMC law from pieces = the integral at random h", test_zmc_pieces), &
          & new_unittest("Persson: u(p) vs independent quadrature", test_persson_reference), &
          & new_unittest("Persson: small-load area, large-u asymptote", test_persson_limits), &
          & new_unittest("Persson: scale invariance, bad input", test_persson_scaling)]
@@ -191,6 +192,72 @@ contains
       call solve_contact_law(params, law, options, 0.0_dp, res, e)
       call check(error, allocated(e), "a law of another E* was accepted")
    end subroutine test_tabulated_gw
+
+   !> The tabulated ZMC law (egw_law_pieces, egw_zmc_table_law) against the integral it
+   !> was built from (rough_flat_law; itself checked against 40-digit quadrature in
+   !> suite gauss) at 4000 random h per law over and beyond the table's range, for
+   !> psi 0.2 .. 20 and two (K, rho_p). Tolerances: the pieces' acceptance, checked at
+   !> 49 points a piece when built, with a factor 5 for points between those (the
+   !> interpolation error of a degree-24 series varies by less between the check points
+   !> and anywhere else on a piece: its error curve is near-equioscillating, and its
+   !> maximum on the 49 points is within a few x of its maximum on the piece): p to
+   !> 5 ln_tol (1 + |ln p|/64) relative, dp/dh to 5 slope_tol; outside the range the exact
+   !> law itself (bit-equal). The table must cover h in [-40, 30] (where a build's
+   !> gaps lie) and be built at width 1 or 1/2 (its cost).
+   subroutine test_zmc_pieces(error)
+      use egw_flat_law, only: gw_flat_law
+      use egw_law_pieces, only: law_pieces, zmc_law_pieces, ln_tol, slope_tol
+      use egw_zmc_table_law, only: zmc_table_law
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: psis(5) = [0.2_dp, 0.7_dp, 1.0_dp, 3.0_dp, 20.0_dp]
+      real(dp), parameter :: ks(2) = [0.6_dp, 0.4_dp], rhos(2) = [54.0_dp, 10.0_dp]
+      integer, parameter :: n = 4000
+      type(zmc_table_law) :: tab
+      type(gw_flat_law) :: exact
+      real(dp) :: h(n), pt(n), dt(n), pe(n), de(n), worst_p, worst_d, r(n)
+      integer :: i, j
+      logical :: inside(n)
+      call random_seed(put=[(7919*i, i=1, 64)])
+      do j = 1, size(psis)*size(ks)
+         associate (psi => psis(1 + mod(j - 1, size(psis))), &
+            & k => ks(1 + (j - 1)/size(psis)), rho => rhos(1 + (j - 1)/size(psis)))
+            tab%scale = 0.7_dp
+            tab%pieces = zmc_law_pieces(psi, k, rho)
+            exact = gw_flat_law(scale=0.7_dp, psi=psi, hardness_coeff=k, plastic_ratio=rho)
+            call check(error, tab%pieces%n > 0 .and. tab%pieces%h_lo <= -40.0_dp .and. &
+               & tab%pieces%h_hi >= 30.0_dp .and. tab%pieces%width >= 0.5_dp, &
+               & "psi "//format_real(psi)//": no table over [-40, 30] at width >= 1/2 (n " &
+               & //to_string(tab%pieces%n)//", width "//format_real(tab%pieces%width)//")")
+            if (allocated(error)) return
+            call random_number(r)
+            h = -45.0_dp + r*(tab%pieces%h_hi + 10.0_dp)
+            call tab%pressure(h, pt, dt)
+            call exact%pressure(h, pe, de)
+            inside = h >= tab%pieces%h_lo .and. h < tab%pieces%h_hi
+            worst_p = maxval(abs(pt/pe - 1.0_dp)/(1.0_dp + abs(log(pe/0.7_dp))/64.0_dp), &
+               & mask=inside)
+            worst_d = maxval(abs(dt/de - 1.0_dp), mask=inside)
+            call check(error, worst_p <= 5.0_dp*ln_tol .and. worst_d <= 5.0_dp*slope_tol, &
+               & "psi "//format_real(psi)//", K "//format_real(k)//": p off by " &
+               & //format_real(worst_p)//", dp/dh by "//format_real(worst_d))
+            if (allocated(error)) return
+            call check(error, all(pack(pt, .not. inside) == pack(pe, .not. inside)) .and. &
+               & all(pack(dt, .not. inside) == pack(de, .not. inside)), &
+               & "outside the range: not the exact law")
+            if (allocated(error)) return
+            print '(a, es9.2, a, es9.2, a, es9.2, a, es9.2, a, f6.3, a, f7.2, a, i4)', &
+               & "   zmc pieces psi ", psi, " K ", k, ": p ", worst_p, ", dp/dh ", &
+               & worst_d, ", width ", tab%pieces%width, ", h_hi ", tab%pieces%h_hi, &
+               & ", n ", tab%pieces%n
+         end associate
+      end do
+      ! bad input: no table (every value from the integral)
+      tab%pieces = zmc_law_pieces(0.0_dp, 0.6_dp, 54.0_dp)
+      call check(error, tab%pieces%n == 0, "psi 0 tabulated")
+      if (allocated(error)) return
+      tab%pieces = zmc_law_pieces(1.0_dp, 0.6_dp, 54.0_dp, h_lo=0.5_dp)
+      call check(error, tab%pieces%n == 0, "h_lo 0.5 tabulated")
+   end subroutine test_zmc_pieces
 
    subroutine test_c(error)
       type(error_type), allocatable, intent(out) :: error

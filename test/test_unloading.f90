@@ -27,6 +27,7 @@ contains
          & new_unittest("Z_u continuous at the kinks", test_continuity), &
          & new_unittest("dZ_u/dh against differences", test_derivative), &
          & new_unittest("prepared law: same Z_u, its kinks in Delta", test_prepared_law), &
+         & new_unittest("prepared law with the loading table: same Z_u", test_loading_table), &
          & new_unittest("flat_pressure_unload: units and bad input", test_dimensional) &
          & ]
    end subroutine collect_unloading
@@ -262,6 +263,55 @@ contains
          c = abs(d2(2)/d2(1) - 1.0_dp)
       end function d2_change
    end subroutine test_prepared_law
+
+   !> A prepared law given the tabulated loading law (zmc_law_pieces) answers as the law
+   !> without it: the loading branch (h < h_min, and h = h_min's value) from the table, to
+   !> the table's acceptance (p to 5 ln_tol (1 + |ln p|/64) relative, dp/dh to 5 slope_tol:
+   !> test flat_law's factor for points between the checked ones), the unloading branch
+   !> (h > h_min) bit-equal (the same integral); a table of other parameters is ignored
+   !> (bit-equal everywhere). 3000 random (h, h_min) in [-30, 8]^2, psi 1 and 0.3.
+   subroutine test_loading_table(error)
+      use egw_law_pieces, only: law_pieces, zmc_law_pieces, ln_tol, slope_tol
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 3000
+      real(dp) :: h(n), hm(n), p0(n), d0(n), p1(n), d1(n), r(n), psi
+      type(unloading_law) :: plain, tabled, other
+      type(law_pieces) :: pieces
+      integer :: i, k
+      call random_seed(put=[(104729*i, i=1, 64)])
+      do k = 1, 2
+         psi = merge(1.0_dp, 0.3_dp, k == 1)
+         pieces = zmc_law_pieces(psi, 0.6_dp, 54.0_dp)
+         plain = unloading_law_of(psi, 0.6_dp, 54.0_dp)
+         tabled = unloading_law_of(psi, 0.6_dp, 54.0_dp, pieces)
+         other = unloading_law_of(psi, 0.6_dp, 40.0_dp, pieces)
+         call random_number(r)
+         h = -30.0_dp + 38.0_dp*r
+         call random_number(r)
+         hm = -30.0_dp + 38.0_dp*r
+         hm(:50) = h(:50)   ! h = h_min
+         call unloading_pressure(plain, h, hm, p0, d0)
+         call unloading_pressure(tabled, h, hm, p1, d1)
+         call check(error, all(pack(p1, h > hm) == pack(p0, h > hm)) .and. &
+            & all(pack(d1, h > hm) == pack(d0, h > hm)), "unloading branch not the same")
+         if (allocated(error)) return
+         call check(error, maxval(abs(p1/p0 - 1.0_dp)/(1.0_dp + abs(log(p0))/64.0_dp), &
+            & mask=h <= hm) <= 5.0_dp*ln_tol, "loading branch: p off by "// &
+            & format_real(maxval(abs(p1/p0 - 1.0_dp), mask=h <= hm)))
+         if (allocated(error)) return
+         call check(error, maxval(abs(d1/d0 - 1.0_dp), mask=h < hm) <= 5.0_dp*slope_tol, &
+            & "loading branch: dp/dh off by "//format_real(maxval(abs(d1/d0 - 1.0_dp), &
+            & mask=h < hm)))
+         if (allocated(error)) return
+         call check(error, any(p1 /= p0 .and. h < hm), "the table was not used")
+         if (allocated(error)) return
+         call unloading_pressure(unloading_law_of(psi, 0.6_dp, 40.0_dp), h, hm, p0, d0)
+         call unloading_pressure(other, h, hm, p1, d1)
+         call check(error, all(p1 == p0) .and. all(d1 == d0), &
+            & "a table of other parameters was used")
+         if (allocated(error)) return
+      end do
+   end subroutine test_loading_table
 
    !> p_G,u = C sigma^(3/2) Z_u with C = mu E/(2 sigma sqrt(2R)); bad input gives a status
    !> naming the argument and leaves the outputs as they were.

@@ -102,7 +102,10 @@ module egw_cache
    !> 39 (doubt18): Hertz + cap tables start their curves at the first capped turning
    !> point (cap_first_turn) and split delta_max intervals down to 2^-18 of the range:
    !> other grids near first yield (1e-4 to 20 delta_y: 47 -> 58 delta_max nodes).
-   integer, parameter, public :: cache_revision = 39
+   !> 40 (zmc18): EP-GW hysteresis tables (psi > 0) unload with the ZMC loading law
+   !> tabulated once per build (egw_law_pieces): README's EP-GW + cap psi 1 table to 6
+   !> delta_y at 1e-4 moved by up to 3.3e-9 of P(m), the same grid.
+   integer, parameter, public :: cache_revision = 40
 
 
 contains

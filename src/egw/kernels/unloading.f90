@@ -24,6 +24,7 @@ module egw_unloading
    use egw_params, only: contact_params
    use egw_asperity, only: rough_flat_law, check_flat_input, flat_psi, flat_scaled_to_units
    use egw_gauss, only: gl_x, gl_w
+   use egw_law_pieces, only: law_pieces, law_pieces_at
    implicit none
    private
 
@@ -78,6 +79,9 @@ module egw_unloading
       integer :: n_sw = 0               !< switch points, ascending in sw(:n_sw)
       real(dp) :: sw(6) = 0.0_dp
       real(dp) :: r_q = 0.0_dp          !< recovery at q, r(q)
+      !> The loading law of the same parameters tabulated (egw_law_pieces; empty: the
+      !> integral), answering where h <= h_min (the loading branch).
+      type(law_pieces) :: loading
    end type unloading_law
 
 contains
@@ -170,10 +174,14 @@ contains
 
    !> The unloading law of one parameter set, prepared for many unloading_pressure calls
    !> (the switch points of the recovery found once). Preconditions as rough_flat_law.
-   elemental function unloading_law_of(psi, hardness_coeff, plastic_ratio) result(law)
+   !> loading: the same parameters' loading law tabulated (zmc_law_pieces), taken for the
+   !> loading branch (h <= h_min) where its parameters are these (else ignored).
+   elemental function unloading_law_of(psi, hardness_coeff, plastic_ratio, loading) &
+      & result(law)
       real(dp), intent(in) :: psi             !< plasticity index of the paper (0: elastic)
       real(dp), intent(in) :: hardness_coeff  !< ZMC K
       real(dp), intent(in) :: plastic_ratio   !< ZMC rho_p
+      type(law_pieces), intent(in), optional :: loading   !< the tabulated loading law
       type(unloading_law) :: law
       law%psi = psi
       law%hardness_coeff = hardness_coeff
@@ -183,6 +191,11 @@ contains
       law%zmc = make_law(psi, hardness_coeff, plastic_ratio)
       call clamp_switches(law%zmc, 0.0_dp, huge(1.0_dp), law%sw, law%n_sw)
       law%r_q = recovery(law%zmc, law%zmc%q)
+      if (present(loading)) then
+         if (abs(loading%psi - psi) <= 0.0_dp .and. &
+            & abs(loading%hardness_coeff - hardness_coeff) <= 0.0_dp .and. &
+            & abs(loading%plastic_ratio - plastic_ratio) <= 0.0_dp) law%loading = loading
+      end if
    end function unloading_law_of
 
    !> The Delta = h - h_min > 0 at which Z_u(h, h_min) is less smooth in h: where the
@@ -213,16 +226,27 @@ contains
       real(dp), intent(out) :: dpdh           !< dZ_u/dh at fixed h_min (<= 0)
       real(dp) :: p_load, dp_load
       if (.not. law%plastic .or. h < h_min) then
-         call rough_flat_law(h, law%psi, law%hardness_coeff, law%plastic_ratio, p, dpdh)
+         call loading_pressure(law, h, p, dpdh)
          return
       end if
       call unload_integral(law, h - h_min, h_min, p, dpdh)
       if (.not. h > h_min) then  ! h = h_min: the loading value exactly
-         call rough_flat_law(h, law%psi, law%hardness_coeff, law%plastic_ratio, p_load, &
-            & dp_load)
+         call loading_pressure(law, h, p_load, dp_load)
          p = p_load
       end if
    end subroutine unloading_pressure
+
+   !> The loading law of a prepared unloading law at h: its table where it has one and h
+   !> is in its range, else the integral.
+   elemental subroutine loading_pressure(law, h, p, dpdh)
+      type(unloading_law), intent(in) :: law
+      real(dp), intent(in) :: h
+      real(dp), intent(out) :: p, dpdh
+      logical :: inside
+      call law_pieces_at(law%loading, h, p, dpdh, inside)
+      if (.not. inside) call rough_flat_law(h, law%psi, law%hardness_coeff, &
+         & law%plastic_ratio, p, dpdh)
+   end subroutine loading_pressure
 
    !> Nominal pressure p_G,u(d, d_min) = C sigma^(3/2) Z_u(d/sigma, d_min/sigma) of the rough
    !> flat at separation d after the closest approach d_min (d_min <= d: unloading or

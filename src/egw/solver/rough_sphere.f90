@@ -32,6 +32,7 @@ module egw_rough_sphere
    use egw_smooth_sphere, only: hertz_pressure, hertz_force, &
       & hertz_stiffness, hertz_contact_radius
    use egw_unloading, only: unloading_law_of
+   use egw_law_pieces, only: law_pieces
    use egw_flat_law, only: flat_law
    use egw_sphere_problem, only: force_floor
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
@@ -168,6 +169,9 @@ module egw_rough_sphere
       logical, private :: wide_loaded(2) = .false.   !< per pair of wide_sigmas
       type(separation_field), private :: wide(2, 2)
       type(cap_history), private :: wide_cap
+      !> GW's ZMC loading law tabulated once by the caller (load_history's loading): the
+      !> law of the unloading solves (empty: the integral).
+      type(law_pieces), private :: loading_law
    end type loading_history
 
    !> The start of the next unloading solve of one history (solve_unload's start): the
@@ -986,7 +990,8 @@ contains
    !> are left untouched on any error. A delta_max so far apart that the summit pressure
    !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
    !> Reports progress (egw_progress) as one long call, stage "history".
-   recursive subroutine load_history(params, options, delta_max, history, result, error)
+   recursive subroutine load_history(params, options, delta_max, history, result, error, &
+      & loading)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the loading solve and of the unloading solves that follow
       type(solver_options), intent(in) :: options
@@ -995,8 +1000,13 @@ contains
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
+      !> GW's ZMC law of params tabulated once (zmc_law_pieces), for the unloading solves
+      !> that follow (one table for many histories of one build); ignored where its
+      !> parameters are not params'
+      type(law_pieces), intent(in), optional :: loading
       call progress_begin("history")
       call history_load(params, options, delta_max, history, result, error, history_field_tol)
+      if (present(loading) .and. .not. allocated(error)) history%loading_law = loading
       call progress_end("history")
    end subroutine load_history
 
@@ -1219,7 +1229,7 @@ contains
             & //"loading failed or was replaced), so only that route answers its unloading")
       else
          call rough_unload(history%params, history%options, history%closest, delta, res, &
-            & error, start)
+            & error, start, history%loading_law)
          call progress_report(0.2_dp, "unloading")
       end if
       floor = 0.0_dp
@@ -1230,7 +1240,7 @@ contains
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the
    !> asymptotic route).
-   subroutine rough_unload(params, options, closest, delta, result, error, start)
+   subroutine rough_unload(params, options, closest, delta, result, error, start, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       type(separation_field), intent(in) :: closest   !< the history's loading field
@@ -1238,13 +1248,14 @@ contains
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
       type(unload_start), intent(inout), optional :: start   !< solve_unload's
+      type(law_pieces), intent(in), optional :: loading   !< the history's tabulated law
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
       logical :: warm
-      prob = scaled(params, delta)
+      prob = scaled(params, delta, loading)
       allocate (prob%closest)
       prob%closest = closest
-      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
+      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio, loading)
       warm = .false.
       if (present(start)) warm = start%valid .and. start%delta_max == closest%delta
       if (warm) then
@@ -1357,10 +1368,11 @@ contains
       type(loading_history), intent(in) :: history   !< a loaded rough history
       real(dp), intent(in) :: delta   !< overlap [length] of the unloading solve
       type(scaled_problem) :: prob   !< in scaled units (egw_sphere_problem)
-      prob = scaled(history%params, delta)
+      prob = scaled(history%params, delta, history%loading_law)
       allocate (prob%closest)
       prob%closest = history%closest
-      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio)
+      prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio, &
+         & history%loading_law)
    end function unloading_problem
 
    !> The smooth cap's loading history of a history with history%capped (a smooth sphere

@@ -8,6 +8,8 @@ module egw_sphere_problem
    use egw_params, only: contact_params, model_egw, model_epgw, pressure_unit
    use egw_smooth_sphere, only: hertz_gap, hertz_pressure, hertz_force, hertz_stiffness
    use egw_flat_law, only: flat_law, gw_flat_law
+   use egw_law_pieces, only: law_pieces
+   use egw_zmc_table_law, only: zmc_table_law
    use egw_flow_cap, only: flow_cap
    use egw_unloading, only: unloading_law, unloading_law_of, unloading_pressure
    use egw_halfspace, only: radial_mesh, node_index, influence_row, &
@@ -167,10 +169,13 @@ contains
       end do
    end function closest_gap
 
-   !> The scaled problem of params at overlap delta (sigma > 0).
-   pure function scaled(params, delta) result(prob)
+   !> The scaled problem of params at overlap delta (sigma > 0). loading: GW's ZMC law of
+   !> params tabulated once (zmc_law_pieces), the problem's law where its parameters are
+   !> params' (else GW's law as without it).
+   pure function scaled(params, delta, loading) result(prob)
       type(contact_params), intent(in) :: params   !< validated, sigma > 0
       real(dp), intent(in) :: delta   !< overlap [length]
+      type(law_pieces), intent(in), optional :: loading   !< the tabulated loading law
       type(scaled_problem) :: prob
       prob%model = params%model
       prob%delta = delta/params%sigma
@@ -186,13 +191,29 @@ contains
       if (params%model == model_epgw) prob%psi = params%psi
       prob%hardness = params%hardness_coeff
       prob%plastic_ratio = params%plastic_ratio
-      allocate (prob%law, source=gw_flat_law(scale=prob%scale, psi=prob%psi, &
-         & hardness_coeff=prob%hardness, plastic_ratio=prob%plastic_ratio))
+      if (tabulated(prob, loading)) then
+         allocate (prob%law, source=zmc_table_law(scale=prob%scale, pieces=loading))
+      else
+         allocate (prob%law, source=gw_flat_law(scale=prob%scale, psi=prob%psi, &
+            & hardness_coeff=prob%hardness, plastic_ratio=prob%plastic_ratio))
+      end if
       if (params%flow_pressure > 0.0_dp) then
          prob%cap = flow_cap(p_y=params%flow_pressure/pressure_unit(params))
          call prob%cap%prepare(prob%law)
       end if
    end function scaled
+
+   !> Whether loading is present, tabulated, and the ZMC law of prob's psi (> 0), K, rho_p.
+   pure logical function tabulated(prob, loading)
+      type(scaled_problem), intent(in) :: prob
+      type(law_pieces), intent(in), optional :: loading
+      tabulated = .false.
+      if (.not. present(loading)) return
+      tabulated = prob%psi > 0.0_dp .and. loading%n > 0 .and. &
+         & abs(loading%psi - prob%psi) <= 0.0_dp .and. &
+         & abs(loading%hardness_coeff - prob%hardness) <= 0.0_dp .and. &
+         & abs(loading%plastic_ratio - prob%plastic_ratio) <= 0.0_dp
+   end function tabulated
 
    !> Scaled pressure of the loading law at one scaled separation h, and its derivative.
    pure subroutine law_at(prob, h, p, dpdh)

@@ -10,6 +10,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
       & history_cap_ratio
    use egw_cap_sphere, only: cap_residual, cap_units, gamma_start
    use egw_cap_loading, only: build_cap_loading
+   use egw_law_pieces, only: law_pieces, zmc_law_pieces
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
       & table_prepare
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
@@ -288,6 +289,10 @@ contains
       if (table%mapped) table%tail_length = max(-2*unloading_floor(table%loading, &
          & table%rel_tol), 2*params%sigma)
       allocate (curves(n))
+      ! the ZMC loading law tabulated once for every unloading solve (~25 % of psi 1's
+      ! build was its integral; empty for elastic summits: the integral's F_3/2 is cheap)
+      if (plastic_summits(params)) table%loading_law = zmc_law_pieces(params%psi, &
+         & params%hardness_coeff, params%plastic_ratio)
       if (present(progress)) call progress(0, 2*n - 1)
       ! the s range: twice the largest (m - delta_u)/L of the first nodes, so that every
       ! curve reaches delta_u, where the loading force is rel_tol of P_ref (below, an
@@ -307,6 +312,7 @@ contains
       if (allocated(error)) return
       call resample(table, m, curves)
       call hysteresis_prepare(table)
+      table%loading_law = law_pieces()
    end subroutine build_work
 
    !> Refuses (egw_unsupported, naming delta_max) a rough + cap table that reaches
@@ -1132,7 +1138,8 @@ contains
          else if (table%params%flow_pressure > 0.0_dp) then   ! (rough: the smooth cap's)
             call rough_length(table%params, serial, m(j), shift, curves(j)%length, err)
          else
-            call load_history(table%params, serial, m(j), curves(j)%hist, top, err)
+            call load_history(table%params, serial, m(j), curves(j)%hist, top, err, &
+               & table%loading_law)
             if (.not. allocated(err)) call solve_unload(curves(j)%hist, m(j), res, err)
             if (.not. allocated(err)) curves(j)%length = unloading_length(top%force, &
                & res%stiffness, table%params%sigma)
@@ -1315,7 +1322,8 @@ contains
       if (curve%hist%loaded .and. curve%hist%delta_max == m) then
          res = curve%hist%loading
       else
-         call load_history(table%params, options, m, curve%hist, res, error)
+         call load_history(table%params, options, m, curve%hist, res, error, &
+            & table%loading_law)
          if (allocated(error)) return
       end if
       f_turn = res%force

@@ -40,6 +40,7 @@ module egw_hysteresis_data
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error
    use egw_params, only: contact_params
    use egw_table, only: force_table, table_eval, segment_eval
+   use egw_law_pieces, only: law_pieces
    implicit none
    private
 
@@ -225,6 +226,9 @@ module egw_hysteresis_data
       !> the loading table's deep-overlap law beyond delta_max reaches huge/4 (the C
       !> layer's input check; hysteresis_prepare, once: four powers, off the hot path)
       real(dp) :: input_limit = 0.0_dp
+      !> During the build only (emptied at its end; in no format): GW's ZMC loading law
+      !> tabulated once (zmc_law_pieces) for every curve's unloading solves (EP-GW, psi > 0)
+      type(law_pieces) :: loading_law
    end type hysteresis_table
 
    !> One turning point's unloading curve (turning_point): what its span force needs.
