@@ -16,6 +16,7 @@ module test_rough_cap
    use egw_sphere_mesh, only: disc_refined, disc_graded, edge_layer_width, with_history_edges, &
       & split_kept
    use egw_flow_cap, only: flow_cap, not_evaluated
+   use egw_sphere_problem, only: lagrange_undershoot, deflection_degree
    use egw_rough_profile, only: contact_profile_unload
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load, u_plastic
    use egw_cap_profile, only: cap_unload_profile
@@ -114,7 +115,10 @@ contains
          & test_plastic_shifts_deep), &
          & new_unittest("flow_cap prepare: the root of law = p_y once", test_cap_prepare), &
          & new_unittest("E-GW + cap, sigma = delta_y/100: unloading near the edge at 1e-6", &
-         & test_edge_unload) &
+         & test_edge_unload), &
+         & new_unittest("EP-GW + cap below first yield: the cap-free unloading, bit for bit", &
+         & test_cap_never_acts), &
+         & new_unittest("cap_never_acts: the element bound", test_lagrange_undershoot) &
          & ]
    end subroutine collect_rough_cap
 
@@ -988,6 +992,88 @@ contains
          if (allocated(error)) return
       end do
    end subroutine check_restitution_near_cap
+
+   !> The rough + cap table of issue 32 (the README's command with --model EP-GW --psi 1:
+   !> mu 4, sigma = 1, R = 810569.469138702/2, E* = 1, p_y = 0.01, first yield ~98 sigma):
+   !> histories whose loading never reaches p_y anywhere (cap_never_acts) unload by the
+   !> cap-free route, which solves the same equations (shift, offset 0, the floor never
+   !> acts on Z_u >= 0): against the cap's routes (cap_free set false on the same history)
+   !> force and stiffness bit for bit (measured so: the kink scans find no kink, the meshes
+   !> are the same). Such a history's loading peak is below p_y (the solve's max_pressure,
+   !> an independent read of the same loading); one loaded beyond first yield (99 sigma,
+   !> the loading's peak at p_y) keeps the cap's routes.
+   subroutine test_cap_never_acts(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: tops(4) = [-3.0_dp, 0.0_dp, 50.0_dp, 93.0_dp]
+      real(dp), parameter :: fractions(3) = [0.05_dp, 0.4_dp, 0.9_dp]
+      type(contact_params) :: p
+      type(solver_options) :: o
+      type(loading_history) :: h
+      type(solve_result) :: top, free, capped
+      type(egw_error), allocatable :: err
+      real(dp) :: delta
+      integer :: i, k
+      p = contact_params(model=model_epgw, radius=810569.469138702_dp/2, modulus=1.0_dp, &
+         & sigma=1.0_dp, mu=4.0_dp, psi=1.0_dp, flow_pressure=0.01_dp)
+      o%rel_tol = 1.0e-5_dp
+      o%n_threads = 1
+      do i = 1, size(tops)
+         call load_history(p, o, tops(i), h, top, err)
+         call check(error, .not. allocated(err), "history at "//str(tops(i))//" failed")
+         if (allocated(error)) return
+         call check(error, h%cap_free .and. top%max_pressure < p%flow_pressure, &
+            & "delta_max = "//str(tops(i))//": not cap-free, or its peak "// &
+            & str(top%max_pressure)//" at p_y")
+         if (allocated(error)) return
+         do k = 1, size(fractions)
+            delta = tops(i) - fractions(k)*(tops(i) + 8.0_dp)
+            h%cap_free = .true.
+            call solve_unload(h, delta, free, err)
+            call check(error, .not. allocated(err), "cap-free unloading failed")
+            if (allocated(error)) return
+            h%cap_free = .false.
+            call solve_unload(h, delta, capped, err)
+            call check(error, .not. allocated(err), "unloading on the cap's routes failed")
+            if (allocated(error)) return
+            call check(error, free%force == capped%force .and. &
+               & free%stiffness == capped%stiffness, "delta_max "//str(tops(i))// &
+               & ", delta "//str(delta)//": "//str(free%force)//" /= "//str(capped%force))
+            if (allocated(error)) return
+         end do
+      end do
+      call load_history(p, o, 99.0_dp, h, top, err)
+      call check(error, .not. allocated(err), "history at 99 sigma failed")
+      if (allocated(error)) return
+      call check(error, .not. h%cap_free .and. top%max_pressure >= 0.999_dp*p%flow_pressure, &
+         & "99 sigma (beyond first yield): cap-free, or its peak "//str(top%max_pressure))
+   end subroutine test_cap_never_acts
+
+   !> lagrange_undershoot bounds the negative parts of the degree-4 Chebyshev-Lobatto
+   !> Lagrange basis on [-1, 1] (the solver's deflection elements): their sum sampled at
+   !> 200 001 points is 0.39938 (numpy, the same nodes: 0.3993809), and between samples
+   !> it moves by at most its slope bound max sum |l_k'| = 16 (numpy) times 5e-6: 8e-5.
+   subroutine test_lagrange_undershoot(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 200000
+      real(dp) :: s(0:4), l(0:4), x, worst
+      integer :: i, j, k
+      call check(error, deflection_degree == 4, "the bound is the degree-4 elements'")
+      if (allocated(error)) return
+      s = [(-cos(pi*real(j, dp)/4.0_dp), j = 0, 4)]
+      s(0) = -1.0_dp
+      s(4) = 1.0_dp
+      worst = 0.0_dp
+      do i = 0, n
+         x = -1.0_dp + 2.0_dp*real(i, dp)/real(n, dp)
+         do k = 0, 4
+            l(k) = product([((x - s(j))/(s(k) - s(j)), j = 0, k - 1), &
+               & ((x - s(j))/(s(k) - s(j)), j = k + 1, 4)])
+         end do
+         worst = max(worst, -sum(min(l, 0.0_dp)))
+      end do
+      call check(error, abs(worst - 0.3993809_dp) < 1.0e-6_dp .and. &
+         & worst + 2.0e-4_dp < lagrange_undershoot, "negative parts "//str(worst))
+   end subroutine test_lagrange_undershoot
 
    function str(x) result(s)
       real(dp), intent(in) :: x

@@ -34,7 +34,7 @@ module egw_rough_sphere
    use egw_unloading, only: unloading_law_of
    use egw_law_pieces, only: law_pieces
    use egw_flat_law, only: flat_law
-   use egw_sphere_problem, only: force_floor
+   use egw_sphere_problem, only: force_floor, cap_never_acts
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
@@ -153,6 +153,12 @@ module egw_rough_sphere
       !> A smooth sphere loaded beyond first yield of the flow-pressure cap: unloading is
       !> cap_unload's (elastic from the deformed shape).
       logical :: capped = .false.
+      !> A rough sphere with the cap whose loading never reached p_y (cap_never_acts: no
+      !> point of d_max(r) where the loading total can reach it): every unloading solve of
+      !> this history is the cap-free one, the same equations (no gap shift, no offset, the
+      !> floor never acts) without the cap's fields, kink scans and routes. (Tests set it
+      !> false to solve on the cap's routes and compare.)
+      logical :: cap_free = .false.
       type(separation_field), private :: closest
       type(cap_history), private :: cap
       !> Loaded by the small-sigma route (its discrete loading did not converge at
@@ -1099,6 +1105,7 @@ contains
          hist%closest%force = smooth_force(prob) + sol%force
          call move_alloc(sol%w, hist%closest%w)
          hist%closest%mesh = sol%mesh
+         hist%cap_free = cap_never_acts(prob, hist%closest)
          call route_histories(hist)
       end if
       hist%loaded = .true.
@@ -1135,6 +1142,7 @@ contains
       history%loading = hist%loading
       history%reversible = hist%reversible
       history%capped = hist%capped
+      history%cap_free = hist%cap_free
       history%cap = hist%cap
       history%asymptotic = hist%asymptotic
       history%wide_loaded = hist%wide_loaded
@@ -1229,7 +1237,7 @@ contains
             & //"loading failed or was replaced), so only that route answers its unloading")
       else
          call rough_unload(history%params, history%options, history%closest, delta, res, &
-            & error, start, history%loading_law)
+            & error, start, history%loading_law, history%cap_free)
          call progress_report(0.2_dp, "unloading")
       end if
       floor = 0.0_dp
@@ -1239,8 +1247,9 @@ contains
    end subroutine unload_solve
 
    !> The discrete unloading solve of a rough history (solve_unload's, without the
-   !> asymptotic route).
-   subroutine rough_unload(params, options, closest, delta, result, error, start, loading)
+   !> asymptotic route); cap_free: the history's (loading_history%cap_free), the cap left out.
+   subroutine rough_unload(params, options, closest, delta, result, error, start, loading, &
+      & cap_free)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       type(separation_field), intent(in) :: closest   !< the history's loading field
@@ -1249,10 +1258,14 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(unload_start), intent(inout), optional :: start   !< solve_unload's
       type(law_pieces), intent(in), optional :: loading   !< the history's tabulated law
+      logical, intent(in), optional :: cap_free   !< the history's cap_free: the cap left out
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
       logical :: warm
       prob = scaled(params, delta, loading)
+      if (present(cap_free)) then
+         if (cap_free .and. allocated(prob%cap)) deallocate (prob%cap)
+      end if
       allocate (prob%closest)
       prob%closest = closest
       prob%unload = unloading_law_of(prob%psi, prob%hardness, prob%plastic_ratio, loading)

@@ -44,6 +44,11 @@ module egw_sphere_problem
    !> with 6 Gauss points were the cheapest per digit of the pairs tried (degree 2-4,
    !> 4-8 points); the force error then falls like step**5 to step**6.
    integer, parameter, public :: deflection_degree = 4, pressure_points = 6
+   !> On [-1, 1] the Lagrange basis of the degree-4 Chebyshev-Lobatto element nodes sums its
+   !> negative parts to at most 0.3994 (half its Lebesgue constant 1.7988, less 1/2): an
+   !> element's interpolant stays above its smallest nodal value less that times the nodal
+   !> range. Taken as 0.5 (test rough_cap 'cap_never_acts: the element bound').
+   real(dp), parameter, public :: lagrange_undershoot = 0.5_dp
 
    !> Separation field of the loading solve at delta_max (scaled): d_max(r) = z_max(r) +
    !> w_max(r) with z_max the base gap at delta_max and w_max the nodal rough deflection
@@ -142,7 +147,7 @@ module egw_sphere_problem
    public :: scaled, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
       & estimated_gap, law_inverse, gauss_values, gauss_gap, effective_radius, total_pressure, &
       & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, &
-      & cap_excess_points, sums_total, force_floor
+      & cap_excess_points, sums_total, force_floor, cap_never_acts
 
 contains
 
@@ -469,6 +474,49 @@ contains
          call prob%cap%plastic_shifts(prob%law, ps_max, gap_min, shift, offset)
       end if
    end subroutine cap_fields
+
+   !> Whether the cap never acts on an unloading from field (its loading uncapped there): at
+   !> every r the unloading's cap fields (cap_fields) would be 0, since the loading total
+   !> p_s(delta_max, r) + law(d_max(r)) stays at or below p_y, so that cap_plastic_shifts
+   !> gives no shift and no offset, the rough part (Z_u >= 0) never meets the floor, and
+   !> the unloading with the cap solves the cap-free equations. Decided from a bound, not
+   !> from points: on each element of the field's mesh d_max >= its smallest nodal w less
+   !> lagrange_undershoot times the nodal range, plus the base gap at the element's inner
+   !> edge (increasing in r), p_s at most its value there (decreasing), and the law
+   !> decreasing in the gap; beyond the mesh d_max >= min(w_out, 0) + the base gap at its
+   !> edge. False if any bound reaches p_y (less a rounding margin), the cap is absent
+   !> or the field was capped.
+   pure logical function cap_never_acts(prob, field) result(free)
+      type(scaled_problem), intent(in) :: prob   !< a problem of the field's params, with the cap
+      type(separation_field), intent(in) :: field   !< a loading's field at delta_max
+      real(dp), allocatable :: gap_low(:), ps_max(:), r0(:), p(:), dpdh(:)
+      real(dp), allocatable :: v(:)
+      integer :: e, n
+      free = .false.
+      if (.not. allocated(prob%cap) .or. field%capped .or. .not. allocated(field%w)) return
+      if (field%mesh%degree /= deflection_degree .or. field%mesh%n_elem < 1) return
+      n = field%mesh%n_elem
+      allocate (gap_low(n + 1), r0(n + 1))
+      do e = 1, n
+         v = field%w(node_index(field%mesh, e, 0):node_index(field%mesh, e, &
+            & field%mesh%degree))
+         gap_low(e) = minval(v) - lagrange_undershoot*(maxval(v) - minval(v))
+         r0(e) = field%mesh%edge(e - 1)
+      end do
+      gap_low(n + 1) = min(field%w(size(field%w)), 0.0_dp)
+      r0(n + 1) = field%mesh%edge(n)
+      if (field%extended) then
+         gap_low = gap_low + hertz_gap(r0, field%delta, 1.0_dp)
+         ps_max = hertz_pressure(r0, field%delta, 1.0_dp, 1.0_dp)
+      else
+         gap_low = gap_low + 0.5_dp*r0*r0 - field%delta
+         ps_max = 0.0_dp*r0
+      end if
+      allocate (p(n + 1), dpdh(n + 1))
+      call prob%law%pressure(gap_low, p, dpdh)
+      ! (a margin for the rounding of p_s and of the law between the bound and the points)
+      free = all(p + ps_max <= (1.0_dp - 1.0e-12_dp)*prob%cap%p_y)
+   end function cap_never_acts
 
    !> Where p(r) has a kink from the cap, the sign of this changes (prob%cap allocated;
    !> gap: the solution's gap at r): loading (kind 1) p_s + law(gap) - p_y, the cap edge;
