@@ -561,7 +561,8 @@ contains
    !> solves at sigma/delta_y = 5e-5, 1e-4, 2e-4, 5e-4 (rel_tol 1e-8; example
    !> small-sigma-residual -- 2e-6; not the route): -7.3e-3 .. -2.0e-4 relative, the fits
    !> of third and fourth order 3.6e-7, 6.4e-8, 4e-9, 3.5e-8, 3.8e-8 apart. spread: the
-   !> sum of those two uncertainties. Tolerance rel_tol + spread. Measured: MEAS_NOTE.
+   !> sum of those two uncertainties. Tolerance rel_tol + spread. Measured: 7.1e-6, 1.6e-6, 1.6e-6, 1.2e-6,
+   !> 1.3e-6 off (estimates 1.7e-6, 8.5e-7, 1.2e-6, 1.1e-6, 5.9e-7), ~10 s CPU.
    !> The discrete solves with the stall fallbacks let down to 2e-6 (tried, not kept)
    !> are 4.7e-7 .. 5.8e-7 from these references at rel_tol 1e-5: two independent answers.
    subroutine test_gap_sigma_residual(error)
@@ -611,7 +612,7 @@ contains
    !> (sigma/delta_y)**(2/3) = -0.110 at 2 delta_y and -0.146 .. -0.147 at 3 delta_y in the
    !> discrete solves at 2e-6 .. 5e-6 (rel_tol 1e-6, doc/stability.md "Stop 52 (small18)"),
    !> e_ref here. Tolerance: 1e-6 (rel_tol) + 0.01 (sigma/delta_y)**(2/3) (the law's
-   !> spread, 1.3e-6 at 1.5e-6); measured 0.2e-6 .. 0.5e-6 off. A solve that stalled at
+   !> spread, 1.3e-6 at 1.5e-6); measured 0.8e-7 .. 4.1e-7 off. A solve that stalled at
    !> Hertz + cap (e = 0) would be 1.5e-5 .. 2e-5 off.
    subroutine test_gap_sigma_loading(error)
       type(error_type), allocatable, intent(out) :: error
