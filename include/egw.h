@@ -101,7 +101,7 @@ int egw_last_error(char *buf, int buflen);
 /* Progress of long calls (since 0.2.0): hook(done, stage, user) is called as this
  * thread's long calls proceed: egw_solve, egw_solve_unload, egw_restitution(...),
  * egw_time_step and the table, hysteresis and scene builds (a solve of rough + cap at
- * sigma/delta_y <= 1e-6 can take half a minute: its small-sigma route, doc/stability.md).
+ * sigma/delta_y <= 2e-6 can take half a minute: its small-sigma route, doc/stability.md).
  * done lies in [0, 1] and never decreases within one call: 0 at its start, 1 at its
  * end; stage is a short NUL-terminated name of the step ("history", "small-sigma route:
  * wide histories", "unloading", "restitution: loading", "table build" ...), valid only

@@ -15,9 +15,11 @@
 !> route's: history at rel_tol 1e-7, unloading at 1e-5 at 1e-6 and at 1e-6 at 1e-10): P/P_y,
 !> est_rel_err and CPU seconds, or the failure. With `restitution`: e at 3 v_y (rel_tol
 !> 1e-4) at sigma/delta_y = 0 (the smooth cap), 1e-6, 1e-7, 1e-8, 1e-10, CPU seconds.
+!> With a number: that sigma/delta_y as the target of the cases at 1e-6 (doc/stability.md
+!> "Stop 52 (small18)": the references at 2e-6; with `route` after it, the solves there).
 !>
 !>     OMP_NUM_THREADS=1 fpm run --profile release --example small-sigma-residual \
-!>        [-- route | restitution]
+!>        [-- route | restitution | 2e-6 [route]]
 program small_sigma_residual
    use egw, only: dp, contact_params, model_egw, solver_options, solve_result, &
       & loading_history, load_history, solve_unload, restitution, egw_error
@@ -29,15 +31,24 @@ program small_sigma_residual
    real(dp), parameter :: maxima(n_cases) = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 10.0_dp, 2.0_dp]
    real(dp), parameter :: fractions(n_cases) = [0.145_dp, 0.15_dp, 0.16_dp, 0.18_dp, &
       & 0.53_dp, 0.2_dp]
-   real(dp), parameter :: targets(n_cases) = [1.0e-6_dp, 1.0e-6_dp, 1.0e-6_dp, 1.0e-6_dp, &
+   real(dp) :: targets(n_cases) = [1.0e-6_dp, 1.0e-6_dp, 1.0e-6_dp, 1.0e-6_dp, &
       & 1.0e-10_dp, 1.0e-6_dp]
    real(dp) :: py, force_y, p_cap, force, d(4), s(4), used(4), fit3, fit4
    integer :: i, k, n
    logical :: ok
    character(len=16) :: mode
+   real(dp) :: target
+   integer :: stat
    py = 2.0_dp/pi
    force_y = 4.0_dp/3.0_dp
    call get_command_argument(1, mode)
+   read (mode, *, iostat=stat) target
+   if (stat == 0) then
+      if (.not. (target > 0.0_dp .and. target < 1.0e-4_dp)) error stop "the target " &
+         & //"sigma/delta_y must lie in (0, 1e-4)"
+      where (targets == 1.0e-6_dp) targets = target
+      call get_command_argument(2, mode)
+   end if
    if (mode == "route") then
       do i = 1, n_cases
          call route_at(i)

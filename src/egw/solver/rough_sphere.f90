@@ -74,8 +74,16 @@ module egw_rough_sphere
 
    !> With the cap: sigma/delta_y at or below which a solve that does not converge takes
    !> the asymptotic route (small_sigma_loading, small_sigma_unload; doc/theory.md §12
-   !> "Small sigma"): from 1e-6 down, where the discrete solves fail at some overlaps.
-   real(dp), parameter :: small_sigma_limit = 1.0e-6_dp
+   !> "Small sigma"): from 2e-6 down, where the discrete solves fail at some overlaps.
+   !> It meets sphere_solver's stall fallbacks (sigma/delta_y > 2e-6): with the route
+   !> at 1e-6 and below, E-GW + cap (mu 4, p_y = 2/pi E*) between them failed with
+   !> neither (loading at 1.2e-6, 1.5e-6 from 2 and 3 delta_y; unloading at 2e-6 from 2
+   !> delta_y at 0.145 .. 0.2 delta_max, Newton stalling at rel_tol 1e-4 .. 1e-6;
+   !> doc/stability.md "Stop 52 (small18)"). Converged solves there are unchanged (the
+   !> route checks them only at small_sigma_check_limit, unload_check_limit). 1e-7 above
+   !> 2e-6: the fallbacks' bound is computed in other units, and rounding there must
+   !> leave no sigma to neither (at exactly 2e-6 neither applied before).
+   real(dp), parameter :: small_sigma_limit = 2.0e-6_dp*(1.0_dp + 1.0e-7_dp)
    !> sigma/delta_y of the rough solves that give the asymptotic route its sigma**(2/3)
    !> correction: the nearer, and the farther that checks it. There the discrete solves
    !> converge at every overlap tried and their differences from the smooth cap fall by
@@ -162,7 +170,7 @@ module egw_rough_sphere
       type(separation_field), private :: closest
       type(cap_history), private :: cap
       !> Loaded by the small-sigma route (its discrete loading did not converge at
-      !> sigma/delta_y <= 1e-6, or was replaced by the route's check at <= 1e-7): no rough
+      !> sigma/delta_y <= 2e-6, or was replaced by the route's check at <= 1e-7): no rough
       !> field; every unloading solve is the route's.
       logical, private :: asymptotic = .false.
       !> The small-sigma route's own histories, loaded once with this one where the route
@@ -241,7 +249,7 @@ contains
    !> closed form; the rough models by the discrete solve, refined until the two-level
    !> estimate of the force error is below options%rel_tol/2 (n_radial = 0) or on the mesh
    !> of about n_radial nodes. Fails with egw_not_converged rather than return a doubtful
-   !> answer. E-GW (EP-GW at psi = 0) with the cap at sigma/delta_y <= 1e-6 whose
+   !> answer. E-GW (EP-GW at psi = 0) with the cap at sigma/delta_y <= 2e-6 whose
    !> discrete solve does not converge: the asymptotic route (small_sigma_loading,
    !> doc/theory.md §12), if its estimate meets rel_tol; at sigma/delta_y <= 1e-7 a
    !> converged solve of those models is checked against that route
@@ -1077,7 +1085,7 @@ contains
          end if
          call progress_report(0.6_dp, "history: loading")
          if (allocated(error)) then
-            ! A capped loading that does not converge at sigma/delta_y <= 1e-6 (E-GW,
+            ! A capped loading that does not converge at sigma/delta_y <= 2e-6 (E-GW,
             ! EP-GW at psi 0): the small-sigma route answers it (its estimate meeting
             ! rel_tol/2), and then every unloading solve of this history (no rough field
             ! to keep; doc/theory.md section 12 "Small sigma: the asymptotic route").
@@ -1163,7 +1171,7 @@ contains
    !> delta_max returns the history's loading solve; delta > delta_max is the loading
    !> solve (the curve has left the history: load a new one). Same meshes, Newton, error
    !> estimate, stiffness (dP/d(delta) at fixed history) and egw_not_converged contract
-   !> as solve_contact (after a capped loading at sigma/delta_y <= 1e-6 the asymptotic
+   !> as solve_contact (after a capped loading at sigma/delta_y <= 2e-6 the asymptotic
    !> route too: small_sigma_unload). history is only read: thread-safe. result untouched
    !> on error. force_floor: where the caller needs the force only to an absolute error
    !> (restitution's work integral), the route's estimates are relative to at least it.
