@@ -25,7 +25,7 @@
 module egw_halfspace
    !$ use omp_lib, only: omp_get_num_procs
    use egw_kinds, only: dp, pi
-   use egw_simd, only: simd_level, simd_far_kernel
+   use egw_simd, only: simd_level, simd_far_kernel, simd_batch6
    use egw_ellip, only: ellipk_comp_fast, ellipk_log_split, ellipk_fast_p, ellipk_fast_q, &
       & ellipk_split_a, ellipk_split_b
    implicit none
@@ -557,7 +557,10 @@ contains
       m = pts%m
       pts%m = 0
       if (m == 0) return
-      if (n == 6) then
+      if (n == 6 .and. simd_level() == 1) then
+         call simd_batch6(m, mesh%local_s, mesh%local_bary, pts%s, pts%wt, acc)
+         return
+      else if (n == 6) then
          call add_batch_six(mesh%local_s, mesh%local_bary, pts%s(1:m), pts%wt(1:m), acc)
          return
       end if

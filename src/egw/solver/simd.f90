@@ -1,7 +1,8 @@
 !> The solver's AVX2 + FMA kernels (simd_kernels.c), chosen at run time (issue 32): the
 !> library is built for any x86-64; where the CPU has AVX2 and FMA (simd_level() == 1)
-!> the half-space's far-field kernel (egw_halfspace) and the dense LU's rank-4 update
-!> (egw_lapack) take the 4-lane routines, else gfortran's 2-lane loops.
+!> the half-space's far-field kernel and its near pieces' basis sums (egw_halfspace) and
+!> the dense LU's rank-4 update (egw_lapack) take the 4-lane routines, else gfortran's
+!> loops.
 !> EGW_SIMD=sse2 in the environment keeps the baseline. The two paths differ in rounding
 !> only (test_halfspace).
 module egw_simd
@@ -9,7 +10,7 @@ module egw_simd
    implicit none
    private
 
-   public :: simd_level, simd_set, simd_far_kernel, simd_rank4
+   public :: simd_level, simd_set, simd_far_kernel, simd_batch6, simd_rank4
 
    interface
       !> The path in use: 1 AVX2 + FMA, 0 the baseline (set once when the library loads).
@@ -31,6 +32,13 @@ module egw_simd
          real(c_double), value :: r
          real(c_double), intent(out) :: row(*)
       end subroutine simd_far_kernel
+      !> egw_halfspace's add_batch_six over m points, four at a time.
+      pure subroutine simd_batch6(m, ls, bary, s, wt, acc) bind(C, name="egw_simd_batch6")
+         import :: c_int, c_double
+         integer(c_int), value :: m
+         real(c_double), intent(in) :: ls(*), bary(*), s(*), wt(*)
+         real(c_double), intent(inout) :: acc(*)
+      end subroutine simd_batch6
       !> a = (a - (u1 c1 + u2 c2)) - (u3 c3 + u4 c4) over m entries.
       pure subroutine simd_rank4(m, a, c1, c2, c3, c4, u1, u2, u3, u4) &
          & bind(C, name="egw_simd_rank4")

@@ -1,10 +1,12 @@
 /*
- * The solver's two hottest loops in 4-lane AVX2 + FMA, chosen at run time (module
- * egw_simd; issue 32): the half-space assembly's far-field kernel (egw_halfspace's
- * far_kernel_run) and the rank-4 update of the dense LU (egw_lapack's panel_of_four).
+ * The solver's hottest loops in 4-lane AVX2 + FMA, chosen at run time (module egw_simd;
+ * issue 32): the half-space assembly's far-field kernel (egw_halfspace's far_kernel_run),
+ * its near pieces' sums over the six-point pressure basis (add_batch_six), and the rank-4
+ * update of the dense LU (egw_lapack's panel_of_four).
  *
  * The library is built for the baseline x86-64 (SSE2): there gfortran vectorizes these
- * loops two lanes wide (the kernel with glibc's 2-lane vector log). On a CPU with AVX2
+ * loops two lanes wide (the kernel with glibc's 2-lane vector log; the basis sums, a
+ * reduction, one point at a time). On a CPU with AVX2
  * and FMA this file's routines do the same sums four lanes wide, the kernel with glibc's
  * 4-lane log (_ZGVdN4v_log, libmvec; the log is most of the kernel's cost). Only these
  * functions are compiled for AVX2 (GCC's target attribute); egw_simd_level tells the
@@ -151,7 +153,74 @@ __attribute__((target("avx2,fma"))) void egw_simd_rank4(int m, double *a, const 
     for (; i < m; i++)
         a[i] = (a[i] - __builtin_fma(u2, c2[i], u1 * c1[i])) - __builtin_fma(u4, c4[i], u3 * c3[i]);
 }
+/* acc(q) += bary(q) sum_p wt(p) prod_{k /= q} (s(p) - ls(k)), q = 1..6, over m points:
+ * egw_halfspace's add_batch_six four points at a time (its six sums in four lanes each,
+ * added up at the end). Only when egw_simd_level() is 1. */
+__attribute__((target("avx2,fma"))) void egw_simd_batch6(int m, const double *ls,
+                                                         const double *bary, const double *s,
+                                                         const double *wt, double *acc)
+{
+    const __m256d l1 = _mm256_set1_pd(ls[0]), l2 = _mm256_set1_pd(ls[1]);
+    const __m256d l3 = _mm256_set1_pd(ls[2]), l4 = _mm256_set1_pd(ls[3]);
+    const __m256d l5 = _mm256_set1_pd(ls[4]), l6 = _mm256_set1_pd(ls[5]);
+    __m256d a1 = _mm256_setzero_pd(), a2 = a1, a3 = a1, a4 = a1, a5 = a1, a6 = a1;
+    double lane[6][4];
+    int i, j, q;
+    for (i = 0; i < m; i += 4) {
+        __m256d sv, wv, d1, d2, d3, d4, d5, d6, p, q1, q2, q3, q4, q5;
+        if (i + 4 <= m) {
+            sv = _mm256_loadu_pd(s + i);
+            wv = _mm256_loadu_pd(wt + i);
+        } else {
+            /* the last one to three points; the unused lanes weigh 0: they add exact zeros */
+            double ss[4] = {0.0, 0.0, 0.0, 0.0}, ww[4] = {0.0, 0.0, 0.0, 0.0};
+            for (j = 0; i + j < m; j++) {
+                ss[j] = s[i + j];
+                ww[j] = wt[i + j];
+            }
+            sv = _mm256_loadu_pd(ss);
+            wv = _mm256_loadu_pd(ww);
+        }
+        d1 = _mm256_sub_pd(sv, l1);
+        d2 = _mm256_sub_pd(sv, l2);
+        d3 = _mm256_sub_pd(sv, l3);
+        d4 = _mm256_sub_pd(sv, l4);
+        d5 = _mm256_sub_pd(sv, l5);
+        d6 = _mm256_sub_pd(sv, l6);
+        /* suffixes q(k) = prod_{j > k} d(j); prefixes wt prod_{j < k} d(j) */
+        q5 = d6;
+        q4 = _mm256_mul_pd(q5, d5);
+        q3 = _mm256_mul_pd(q4, d4);
+        q2 = _mm256_mul_pd(q3, d3);
+        q1 = _mm256_mul_pd(q2, d2);
+        a1 = _mm256_fmadd_pd(wv, q1, a1);
+        p = _mm256_mul_pd(wv, d1);
+        a2 = _mm256_fmadd_pd(p, q2, a2);
+        p = _mm256_mul_pd(p, d2);
+        a3 = _mm256_fmadd_pd(p, q3, a3);
+        p = _mm256_mul_pd(p, d3);
+        a4 = _mm256_fmadd_pd(p, q4, a4);
+        p = _mm256_mul_pd(p, d4);
+        a5 = _mm256_fmadd_pd(p, q5, a5);
+        a6 = _mm256_add_pd(a6, _mm256_mul_pd(p, d5));
+    }
+    _mm256_storeu_pd(lane[0], a1);
+    _mm256_storeu_pd(lane[1], a2);
+    _mm256_storeu_pd(lane[2], a3);
+    _mm256_storeu_pd(lane[3], a4);
+    _mm256_storeu_pd(lane[4], a5);
+    _mm256_storeu_pd(lane[5], a6);
+    for (q = 0; q < 6; q++)
+        acc[q] += bary[q] * ((lane[q][0] + lane[q][1]) + (lane[q][2] + lane[q][3]));
+}
 #else
+void egw_simd_batch6(int m, const double *ls, const double *bary, const double *s,
+                     const double *wt, double *acc)
+{
+    (void)m; (void)ls; (void)bary; (void)s; (void)wt; (void)acc;
+    abort(); /* unreachable: egw_simd_level() is 0 without the AVX2 path */
+}
+
 void egw_simd_rank4(int m, double *a, const double *c1, const double *c2, const double *c3,
                     const double *c4, double u1, double u2, double u3, double u4)
 {
