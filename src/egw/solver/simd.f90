@@ -4,7 +4,7 @@
 !> the dense LU's rank-4 update (egw_lapack) take the 4-lane routines, else gfortran's
 !> loops.
 !> EGW_SIMD=sse2 in the environment keeps the baseline. The two paths differ in rounding
-!> only (test_halfspace).
+!> only (test_halfspace, test_rough_sphere's dense LU).
 module egw_simd
    use, intrinsic :: iso_c_binding, only: c_int, c_double
    implicit none

@@ -12,8 +12,9 @@
  * functions are compiled for AVX2 (GCC's target attribute); egw_simd_level tells the
  * Fortran callers whether they may call them, so that the library runs on any x86-64.
  *
- * The two paths differ in rounding only (the 4-lane log, the fused multiply-adds):
- * test_halfspace checks both against the exact uniform-disc deflection and each other.
+ * The two paths differ in rounding only (the 4-lane log, the fused multiply-adds, the
+ * sums' order): test_halfspace checks both against the exact uniform-disc deflection and
+ * each other, test_rough_sphere the LU on both against reference LAPACK's dgetf2.
  * EGW_SIMD=sse2 (or off, 0) in the environment keeps the baseline path.
  *
  * Not an API: no declaration in egw.h.
