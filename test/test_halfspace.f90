@@ -8,6 +8,7 @@ module test_halfspace
       & assemble_influence, interpolate_nodal, mesh_nodes, influence_cache, &
       & assemble_influence_cached, cached_point_values, keep_point_values, clear_cache, &
       & interpolate_nodal_walk
+   use egw_simd, only: simd_level, simd_set
    implicit none
    private
    public :: collect_halfspace
@@ -18,6 +19,8 @@ contains
       type(unittest_type), allocatable, intent(out) :: testsuite(:)
       testsuite = [ &
          & new_unittest("uniform pressure on a disc is exact", test_uniform_disc), &
+         & new_unittest("the far kernel's AVX2 path: exact disc, baseline's rows", &
+         & test_simd_paths), &
          & new_unittest("Hertz pressure converges at order 1.5", test_hertz_order), &
          & new_unittest("deflection at r = 0 is 2 int p dt", test_centre), &
          & new_unittest("parallel assembly equals the rows", test_assembly), &
@@ -29,6 +32,67 @@ contains
          & new_unittest("the walk interpolates as the bisection", test_interpolation_walk) &
          & ]
    end subroutine collect_halfspace
+
+   !> egw_simd's two paths of the far-field kernel (AVX2 + FMA, four lanes, glibc's 4-lane
+   !> log; the baseline, two lanes): the uniform disc exact on each (test_uniform_disc's
+   !> 1e-13, so a wrong coefficient, lane or tail of the AVX2 routine fails), and their
+   !> rows within rounding of each other: a coefficient is ~20 roundings (the log's few
+   !> ulp among them) from its value on either path, 1e-14 of the row's largest allows
+   !> a hundred ulp. Runs of far points of every length mod 4 (the 4-lane routine's
+   !> tail) arise on these meshes (6 and 8 Gauss points an element, runs of 1..n
+   !> elements). Skipped (passes) on a CPU without AVX2 and FMA.
+   subroutine test_simd_paths(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(radial_mesh) :: mesh
+      real(dp), allocatable :: row(:), base(:)
+      real(dp) :: r, w, exact, worst, apart
+      integer :: i, imesh, level0, got
+
+      level0 = simd_level()
+      if (simd_set(1) /= 1) then
+         got = simd_set(level0)
+         return
+      end if
+      do imesh = 1, 3
+         select case (imesh)
+         case (1)
+            call build_mesh([(real(i, dp)/7.0_dp, i=0, 7)], 2, 8, mesh)
+         case (2)
+            call build_mesh(graded_edges(0.999_dp, 0.01_dp, 1.0_dp, 0.4_dp), 3, 6, mesh)
+         case default
+            call build_mesh([(real(i, dp)/13.0_dp, i=0, 13)], 2, 6, mesh)
+         end select
+         allocate (row(mesh%n_elem*mesh%n_gauss), base(mesh%n_elem*mesh%n_gauss))
+         worst = 0.0_dp
+         apart = 0.0_dp
+         do i = 0, 161
+            r = 2.0_dp*real(i, dp)/161.0_dp
+            if (i == 161) r = mesh%node(2)
+            got = simd_set(0)
+            call influence_row(mesh, r, base)
+            got = simd_set(1)
+            call influence_row(mesh, r, row)
+            w = sum(row)
+            if (r <= 1.0_dp) then
+               exact = 4.0_dp/pi*ellipe(r)
+            else
+               exact = 4.0_dp*r/pi*(ellipe(1.0_dp/r) - (1.0_dp - 1.0_dp/r**2)*ellipk(1.0_dp/r))
+            end if
+            worst = max(worst, abs(w - exact))
+            apart = max(apart, maxval(abs(row - base))/maxval(abs(base)))
+         end do
+         deallocate (row, base)
+         got = simd_set(level0)
+         call check(error, worst < 1.0e-13_dp, "AVX2 path, uniform disc: max |w - exact| = " &
+            & //real_str(worst))
+         if (allocated(error)) return
+         call check(error, apart <= 1.0e-14_dp, "AVX2 and baseline rows apart by " &
+            & //real_str(apart)//" of the row's largest")
+         if (allocated(error)) return
+         got = simd_set(1)
+      end do
+      got = simd_set(level0)
+   end subroutine test_simd_paths
 
    !> Uniform pressure p = 1 on the unit disc (E = 1): w = (4/pi) E(r) inside and
    !> w = (4 r/pi) [E(1/r) - (1 - 1/r**2) K(1/r)] outside. The pressure is a polynomial on

@@ -13,6 +13,7 @@ module test_rough_sphere
    use egw_rough_profile, only: contact_profile
    use ref_rough_sphere, only: ref_f52_11, ref_f52_13
    use egw_lapack, only: lu_factor, lu_solve, dgetf2
+   use egw_simd, only: simd_level, simd_set
    implicit none
    private
    public :: collect_rough_sphere
@@ -697,7 +698,7 @@ contains
    subroutine test_dense_lu(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp) :: a(4, 4), lu(4, 4), x(4), b(4), big(12, 12)
-      integer :: ipiv(4), info, n, i, ipiv12(12)
+      integer :: ipiv(4), info, n, i, ipiv12(12), level, level0, got
       a = reshape([0.0_dp, 1.0_dp, 2.0_dp, -1.0_dp, &
          & 2.0_dp, 1.0_dp, 0.0_dp, 3.0_dp, &
          & 1.0_dp, 0.0_dp, 3.0_dp, 1.0_dp, &
@@ -719,11 +720,20 @@ contains
       call check(error, info, 3, "lu_factor on a zero third column: info")
       if (allocated(error)) return
       ! four columns a sweep (panel_of_four) while more than 3 are left, then the rest two
-      ! at a time: every remainder 0..3, and a panel alone (5)
-      do n = 36, 39
-         call check_against_dgetf2(n, error)
-         if (allocated(error)) return
+      ! at a time: every remainder 0..3, and a panel alone (5); panels' rank-4 updates on
+      ! both of egw_simd's paths (AVX2 + FMA where the CPU has it, and the baseline)
+      level0 = simd_level()
+      do level = 1, 0, -1
+         if (simd_set(level) /= level) cycle   ! no AVX2 on this CPU: the baseline alone
+         do n = 36, 39
+            call check_against_dgetf2(n, error)
+            if (allocated(error)) then
+               got = simd_set(level0)
+               return
+            end if
+         end do
       end do
+      got = simd_set(level0)
       call check_against_dgetf2(5, error)
       if (allocated(error)) return
       ! a zero column inside a panel's second step (columns 5..8): info = its index

@@ -25,6 +25,7 @@
 module egw_halfspace
    !$ use omp_lib, only: omp_get_num_procs
    use egw_kinds, only: dp, pi
+   use egw_simd, only: simd_level, simd_far_kernel, simd_batch6
    use egw_ellip, only: ellipk_comp_fast, ellipk_log_split, ellipk_fast_p, ellipk_fast_q, &
       & ellipk_split_a, ellipk_split_b
    implicit none
@@ -379,12 +380,18 @@ contains
    !> row(i) = w(i) halfspace_kernel(r, t(i)) for points t(i) > 0 off r (kc in (0, 1]),
    !> with ellipk_comp_fast's formula written out so that the loop has no branch and no
    !> call but log (the compiler's vector log): the far field is most of the kernel
-   !> evaluations of an assembly.
+   !> evaluations of an assembly. On CPUs with AVX2 and FMA, egw_simd's 4-lane routine.
    pure subroutine far_kernel_run(t, w, r, row)
-      real(dp), intent(in) :: t(:), w(:), r
-      real(dp), intent(out) :: row(:)
+      real(dp), intent(in), contiguous :: t(:), w(:)
+      real(dp), intent(in) :: r
+      real(dp), intent(out), contiguous :: row(:)
       integer :: i
       real(dp) :: kc, eta, e2, e4, p, q, inv_sum
+      if (size(t) == 0) return
+      if (simd_level() == 1) then
+         call simd_far_kernel(size(t), t, w, r, ellipk_fast_p, ellipk_fast_q, row)
+         return
+      end if
       do i = 1, size(t)
          inv_sum = 1.0_dp/(r + t(i))  ! one division a point
          kc = abs(r - t(i))*inv_sum
@@ -550,7 +557,10 @@ contains
       m = pts%m
       pts%m = 0
       if (m == 0) return
-      if (n == 6) then
+      if (n == 6 .and. simd_level() == 1) then
+         call simd_batch6(m, mesh%local_s, mesh%local_bary, pts%s, pts%wt, acc)
+         return
+      else if (n == 6) then
          call add_batch_six(mesh%local_s, mesh%local_bary, pts%s(1:m), pts%wt(1:m), acc)
          return
       end if

@@ -5,6 +5,7 @@
 !> reference BLAS (a dger/dtrsm call a column): 1.6x faster on the solver's n ~ 50-70.
 module egw_lapack
    use egw_kinds, only: dp
+   use egw_simd, only: simd_level, simd_rank4
    implicit none
    private
 
@@ -127,7 +128,10 @@ contains
          u4 = a(k + 3, j) - a(k + 3, k + 2)*u3
          a(k + 3, j) = u4
          if (u1 /= 0.0_dp .or. u2 /= 0.0_dp) then
-            if (u3 /= 0.0_dp .or. u4 /= 0.0_dp) then
+            if ((u3 /= 0.0_dp .or. u4 /= 0.0_dp) .and. simd_level() == 1) then
+               if (k + 4 <= n) call simd_rank4(n - k - 3, a(k + 4, j), a(k + 4, k), &
+                  & a(k + 4, k + 1), a(k + 4, k + 2), a(k + 4, k + 3), u1, u2, u3, u4)
+            else if (u3 /= 0.0_dp .or. u4 /= 0.0_dp) then
                do i = k + 4, n
                   a(i, j) = (a(i, j) - (u1*a(i, k) + u2*a(i, k + 1))) &
                      & - (u3*a(i, k + 2) + u4*a(i, k + 3))
