@@ -35,6 +35,7 @@ module egw_rough_sphere
    use egw_law_pieces, only: law_pieces
    use egw_flat_law, only: flat_law
    use egw_sphere_problem, only: force_floor, cap_never_acts
+   use egw_sphere_regime, only: stall_overlap
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
@@ -81,9 +82,10 @@ module egw_rough_sphere
    !> delta_y at 0.145 .. 0.2 delta_max, Newton stalling at rel_tol 1e-4 .. 1e-6;
    !> doc/stability.md "Stop 52 (small18)"). Converged solves there are unchanged (the
    !> route checks them only at small_sigma_check_limit, unload_check_limit). 1e-7 above
-   !> 2e-6: the fallbacks' bound is computed in other units, and rounding there must
-   !> leave no sigma to neither (at exactly 2e-6 neither applied before).
-   real(dp), parameter :: small_sigma_limit = 2.0e-6_dp*(1.0_dp + 1.0e-7_dp)
+   !> 2e-6 (egw_sphere_regime's stall_overlap, the fallbacks' bound): that bound is
+   !> computed in other units, and rounding there must leave no sigma to neither (at
+   !> exactly 2e-6 neither applied before).
+   real(dp), parameter :: small_sigma_limit = (1.0_dp + 1.0e-7_dp)/stall_overlap
    !> sigma/delta_y of the rough solves that give the asymptotic route its sigma**(2/3)
    !> correction: the nearer, and the farther that checks it. There the discrete solves
    !> converge at every overlap tried and their differences from the smooth cap fall by

@@ -9,6 +9,11 @@ module egw_sphere_regime
    private
 
    public :: yield_overlap, stall_fallbacks, capped_gw, gw_confirm, capped_history, halved_levels
+   public :: stall_overlap
+
+   !> delta_y/sigma below which stall_fallbacks apply (sigma/delta_y > 2e-6); at and above
+   !> it egw_rough_sphere's small-sigma route answers (its small_sigma_limit is this bound).
+   real(dp), parameter :: stall_overlap = 0.5e6_dp
 
    !> Classic GW unloading after a capped loading takes refine_levels' confirming level at
    !> sigma/delta_y at most this: at 1e-4 and 2e-4 two coarse levels agreed while up to 5e-4
@@ -36,7 +41,7 @@ contains
    pure logical function stall_fallbacks(prob)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem
       stall_fallbacks = .false.
-      if (allocated(prob%cap)) stall_fallbacks = yield_overlap(prob) < 0.5e6_dp
+      if (allocated(prob%cap)) stall_fallbacks = yield_overlap(prob) < stall_overlap
    end function stall_fallbacks
 
    !> Classic GW unloading after a loading on which the flow-pressure cap acted.
