@@ -5,8 +5,9 @@
 !> below 1e-3 P(m) (n_d of them, graded toward that end), against load_history/solve_unload
 !> at rel_tol 1e-7 (independent of the table). README's rough + cap numbers: R =
 !> 810569.469138702, E* = 1, sigma = 1, mu 4, p_y = 0.01 (delta_y = 100 sigma); the table
-!> from 0 to top delta_y. Prints the build's wall time (threads as OMP_NUM_THREADS), the
-!> grid, the worst local error and where, and by decade of P/P(m).
+!> from 0 to top delta_y. Prints the build's wall and CPU time (threads as
+!> OMP_NUM_THREADS; CPU: cpu_time, the process's), the grid, the worst local error and
+!> where, and by decade of P/P(m).
 !>
 !>   B=$(dirname $(find build -path '*/egw_hysteresis.mod' | head -1))
 !>   gfortran -O2 -fopenmp -ffree-line-length-none -I$B tools/bench/rough_cap_local_error.f90 \
@@ -28,7 +29,7 @@ program rough_cap_local_error
    type(solve_result) :: peak, res
    type(solver_options) :: ref, defaults
    real(dp) :: dy, tol, top, m, d, f, k, state, e_loc, worst_loc, at(3), band(4), d_end, &
-      & lo, hi, where, solve_tol, worst_m
+      & lo, hi, where, solve_tol, worst_m, cpu0, cpu1
    integer :: j, i, stat, b, stride, n_d, it, n_pts
    logical :: by_m
    integer(int64) :: c0, c1, rate
@@ -61,15 +62,17 @@ program rough_cap_local_error
    dy = 100.0_dp
    ref = solver_options(rel_tol=1.0e-7_dp, n_threads=1)
    call system_clock(c0, rate)
+   call cpu_time(cpu0)
    call build_hysteresis(p, solver_options(rel_tol=solve_tol), 0.0_dp, top*dy, tol, t, err)
    call system_clock(c1)
+   call cpu_time(cpu1)
    if (allocated(err)) then
       print '(a)', "build failed: "//err%message
       stop 1
    end if
-   print '(a,es8.1,a,f6.1,a,f8.2,a,i0,a,i0)', "E-GW + cap, rel_tol", tol, " to", top, &
-      & " delta_y: build", real(c1 - c0, dp)/rate, " s wall, n_m ", size(t%m), ", n_s ", &
-      & size(t%s)
+   print '(a,es8.1,a,f6.1,a,f8.2,a,f8.2,a,i0,a,i0)', "E-GW + cap, rel_tol", tol, " to", &
+      & top, " delta_y: build", real(c1 - c0, dp)/rate, " s wall,", cpu1 - cpu0, &
+      & " s CPU, n_m ", size(t%m), ", n_s ", size(t%s)
    worst_loc = 0
    band = 0
    at = 0
