@@ -74,6 +74,8 @@ contains
          & new_unittest("C DEM loop, egw_time_step: e at 1e-4..10 m/s", t_c_dem_loop), &
          & new_unittest("C egw_hysteresis_build, _eval, _free", test_c_api), &
          & new_unittest("C eval_state = hysteresis_eval_state, separated", test_c_separated), &
+         & new_unittest("C eval_state = hysteresis_eval_state, log-ratio pieces at the "// &
+         & "doubles' ends", test_c_piece_ends), &
          & new_unittest("stretched last curve far above the table: finite", test_stretched_far), &
          & new_unittest("piece_exp: within 0.55 ulp of exp, egw.h's the same bits", &
          & test_piece_exp) &
@@ -1275,6 +1277,93 @@ contains
       call check(error, mismatches, 0, "Hertz + cap steps where the C call and "// &
          & "hysteresis_eval_state differ")
    end subroutine test_c_separated
+
+   !> The C entry's served log-ratio pieces where their values leave the fast path (stop 53,
+   !> tail19: the entry serves only a positive force with finite values and leaves every
+   !> other step to the full evaluation, where it served zeros itself): states of the EP-GW
+   !> table holding a tail piece (exp(ln P - h)) and a contact piece (P e^-h) whose cubic
+   !> is shifted so that the exp's argument is -800 (exp 0: force and stiffness 0), -720
+   !> (subnormal, libm's exp), 708.5 (libm's, finite), 720 (inf), and, on the contact
+   !> piece, whose loading force P is made negative (the force then 0) or whose slope is
+   !> 1e300 (the stiffness leaves the doubles). Each: the C call and hysteresis_eval_state
+   !> give the same status, force, stiffness and state bits where hysteresis_eval_state's
+   !> values are finite, and else EGW_INVALID_ARGUMENT with the history kept (the entry's
+   !> input guard). (Mutation: serving every step, served = .true., fails the 720 cases.)
+   subroutine test_c_piece_ends(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table), target :: t
+      real(c_double), target :: sc(hysteresis_state_size), fc, kc
+      real(dp) :: base(hysteresis_state_size), sf(hysteresis_state_size), ff, kf, x0, d, &
+         & shift
+      real(dp), parameter :: targets(4) = [-800.0_dp, -720.0_dp, 708.5_dp, 720.0_dp]
+      integer :: piece, i, stat_c, stat_f, cases, zeros, infinite
+      interface
+         integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
+            & bind(C, name="egw_hysteresis_eval_state")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, state, force, stiffness
+            real(c_double), value :: delta
+         end function c_eval_state
+      end interface
+      call build(ep, t, error)
+      if (allocated(error)) return
+      cases = 0
+      zeros = 0
+      infinite = 0
+      do piece = 1, 2
+         ! touched at 1, then unloading to x0 (the tail, then in contact): a piece there
+         x0 = merge(0.5_dp*t%loading%cutoff, 0.5_dp, piece == 1)
+         call hysteresis_state_init(base)
+         call hysteresis_eval_state(t, 1.0_dp, base, ff, kf, stat_f)
+         call hysteresis_eval_state(t, x0, base, ff, kf, stat_f)
+         d = x0 - 1.0e-3_dp
+         call hysteresis_eval_state(t, d, base, ff, kf, stat_f)
+         call check(error, stat_f == 0 .and. ff > 0.0_dp .and. base(11) < d .and. &
+            & d < base(12) .and. merge(base(24) > 1.0_dp, base(24) < 0.0_dp, piece == 1), &
+            & "a log-ratio piece at "//format_real(d)//": state(24) = "//format_real(base(24)))
+         if (allocated(error)) return
+         do i = 1, size(targets) + merge(0, 2, piece == 1)
+            sf = base
+            if (i <= size(targets)) then
+               ! the exp's argument (ln P - h, or -h) moved to targets(i): ff is exp of it
+               ! (times P on a linear interval, whose P is then 1: its cubic made 1, 0, 0, 0)
+               if (piece == 2) sf(20:23) = [1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+               call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
+               shift = targets(i) - log(ff)
+               sf = base
+               if (piece == 2) sf(20:23) = [1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+               sf(14) = sf(14) + shift
+            else if (i == size(targets) + 1) then
+               sf(20) = -abs(sf(20)) - 1.0_dp   ! P < 0: the force 0
+            else
+               sf(15) = 1.0e300_dp   ! the stiffness leaves the doubles
+            end if
+            sc = sf
+            stat_c = c_eval_state(c_loc(t), d, c_loc(sc), c_loc(fc), c_loc(kc))
+            call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
+            cases = cases + 1
+            if (ieee_is_finite(ff) .and. ieee_is_finite(kf)) then
+               if (ff == 0.0_dp) zeros = zeros + 1
+               call check(error, stat_c == stat_f .and. same(fc, ff) .and. same(kc, kf) &
+                  & .and. all(same(sc, sf)), "piece "//to_string(piece)//", case "// &
+                  & to_string(i)//": C "//to_string(stat_c)//" "//format_real(fc)//" "// &
+                  & format_real(kc)//", Fortran "//to_string(stat_f)//" "//format_real(ff)// &
+                  & " "//format_real(kf))
+            else
+               infinite = infinite + 1
+               call check(error, stat_c == egw_invalid_argument .and. same(sc(1), base(1)), &
+                  & "piece "//to_string(piece)//", case "//to_string(i)// &
+                  & ": not finite, C status "//to_string(stat_c))
+            end if
+            if (allocated(error)) return
+         end do
+      end do
+      ! the cases reach what they are for: forces 0 (exp 0, P < 0) and values beyond the
+      ! doubles (exp's inf, the stiffness)
+      call check(error, cases == 10 .and. zeros >= 3 .and. infinite >= 3, "cases "// &
+         & to_string(cases)//", zero forces "//to_string(zeros)//", not finite "// &
+         & to_string(infinite))
+   end subroutine test_c_piece_ends
 
    !> The optional error of hysteresis_eval, hysteresis_eval_state and hysteresis_energy
    !> (issue 33 item 5: they returned a bare stat): on the EP-GW table, at loading and

@@ -153,14 +153,16 @@ contains
    !> others' exp from the same libm: bit for bit, test hysteresis), and so is the state
    !> it leaves; a step whose status would not be EGW_OK (a history above the table's
    !> delta_max, values that are not finite: a garbled state) is not served (served
-   !> .false., the state unchanged).
+   !> .false., the state unchanged), nor a log-ratio piece's whose force is 0 (the full
+   !> call gives it the same zeros: its served step keeps one test).
    pure subroutine eval_state_served(h, delta, state, force, stiffness, served)
       type(hysteresis_table), intent(in) :: h
       real(dp), intent(in) :: delta
       real(dp), intent(inout) :: state(hysteresis_state_size)
       real(dp), intent(out) :: force, stiffness
       logical, intent(out) :: served
-      real(dp) :: x, x2, t, t2, v, d, p
+      real(dp) :: x, x2, t, t2, v, d, p, q
+      logical :: lnp
       served = .false.
       force = 0.0_dp
       stiffness = 0.0_dp
@@ -177,28 +179,36 @@ contains
          x2 = x*x
          force = (state(14) + x*state(15)) + x2*(state(16) + x*state(17))
          stiffness = (state(15) + 2*x*state(16)) + 3*x2*state(17)
-         if (state(24) > 0.0_dp .or. state(24) < 0.0_dp) then
+         if (state(24) > 1.0_dp .or. state(24) < 0.0_dp) then
             t = delta - state(18)
             t2 = t*t
             v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
             d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
-            if (state(24) > 1.0_dp .or. state(24) < 0.0_dp) then
-               ! a log-ratio piece (one piece_exp call: inlined): on a ln P interval (the
-               ! separated tail) exp(ln P - h), on a linear one P e^-h
-               p = piece_exp(merge(v + force, force, state(24) > 1.0_dp))
-               if (state(24) > 1.0_dp) then
-                  stiffness = p*(d + stiffness)
-                  force = p
-               else
-                  stiffness = p*(d + v*stiffness)
-                  force = v*p
-               end if
-            else
-               ! a gap piece on a ln P interval: the cubic plus P
-               p = exp(v)
-               force = force + p
-               stiffness = stiffness + p*d
-            end if
+            ! a log-ratio piece (one piece_exp call: inlined): on a ln P interval (the
+            ! separated tail) exp(ln P - h), on a linear one P e^-h. Written as one with
+            ! q = 1 or P (1 times a double is that double, and force + 0 differs from force
+            ! only at -0, whose exp is 1 as +0's: the same bits): gcc then tests state(24)
+            ! once where the two branches took three tests (stop 53, tail19)
+            lnp = state(24) > 1.0_dp
+            q = merge(1.0_dp, v, lnp)
+            p = piece_exp(force + merge(v, 0.0_dp, lnp))
+            stiffness = p*(d + q*stiffness)
+            force = q*p
+            ! (served only with a positive force and finite values, one test for both: a
+            ! force 0 (exp 0, P <= 0) or values beyond the doubles take the full call,
+            ! which gives them the same bits, as it does the rare finite pair whose sum
+            ! would overflow)
+            served = force > 0.0_dp .and. abs(stiffness) + force <= huge(1.0_dp)
+            return
+         else if (state(24) > 0.0_dp) then
+            ! a gap piece on a ln P interval: the cubic plus P
+            t = delta - state(18)
+            t2 = t*t
+            v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
+            d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
+            p = exp(v)
+            force = force + p
+            stiffness = stiffness + p*d
          end if
          if (.not. force > 0.0_dp) then
             force = 0.0_dp
