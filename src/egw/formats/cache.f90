@@ -109,7 +109,10 @@ module egw_cache
    !> 40 (zmc18): EP-GW hysteresis tables (psi > 0) unload with the ZMC loading law
    !> tabulated once per build (egw_law_pieces): README's EP-GW + cap psi 1 table to 6
    !> delta_y at 1e-4 moved by up to 3.3e-9 of P(m), the same grid.
-   integer, parameter, public :: cache_revision = 40
+   !> 41 (doubt19): Hertz + cap tables split delta_max intervals down to 2^-24 delta_y
+   !> (was 2^-18 of the range) on the force's whole error, their loading table built to
+   !> rel_tol/4: other grids from 20 delta_y at 1e-4, everywhere at 1e-5.
+   integer, parameter, public :: cache_revision = 41
 
 
 contains
