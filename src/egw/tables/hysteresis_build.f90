@@ -66,8 +66,8 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> In units of delta_y, not of the range (stop 53, doubt19): the curves' fast change
    !> above first yield has delta_y's scale whatever the range, and 2^-18 of a range of
    !> 100 or 1000 delta_y stopped the first intervals at 1e-4 and 1e-5 missing by 1.0e-4 ..
-   !> 9.9e-4 (doc/stability.md "Stop 53 (doubt19)"); 2^-24 delta_y is below the width at
-   !> which they met 1e-6 there.
+   !> 9.9e-4 (doc/stability.md "Stop 53 (doubt19)"); 2^-24 delta_y (6e-8) lies below the
+   !> narrowest interval the tables down to rel_tol 2e-6 needed (3.7e-6 delta_y).
    real(dp), parameter :: ratio_min_width = 2.0_dp**(-24)
    !> Hertz + cap tables: the share of rel_tol given to the loading table, whose error at
    !> a turning point multiplies the whole unloading curve (P = P_load,table(m) u); refine_m
