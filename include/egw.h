@@ -404,7 +404,9 @@ int egw_profile_unload(const egw_params *p, const egw_options *o, double delta,
  * P(delta_max) for Hertz. Evaluation allocates nothing and is thread-safe. File formats:
  * doc/formats.md. The builds go through an on-disk cache (EGW_CACHE_DIR, else
  * $XDG_CACHE_HOME/egw or $HOME/.cache/egw; EGW_CACHE_DIR=off turns it off): a build done
- * before with the same arguments is read back (checksummed, verified, rebuilt if corrupt). 
+ * before with the same arguments is read back (checksummed, verified, rebuilt if corrupt);
+ * one entry per SIMD path (AVX2 + FMA or the baseline, EGW_SIMD=sse2), whose tables differ
+ * in their last digits, so a shared cache hands each path its own bits.
  * ------------------------------------------------------------------------ */
 
 typedef struct egw_table_s *egw_table;         /* opaque: one parameter set */
