@@ -404,7 +404,9 @@ int egw_profile_unload(const egw_params *p, const egw_options *o, double delta,
  * P(delta_max) for Hertz. Evaluation allocates nothing and is thread-safe. File formats:
  * doc/formats.md. The builds go through an on-disk cache (EGW_CACHE_DIR, else
  * $XDG_CACHE_HOME/egw or $HOME/.cache/egw; EGW_CACHE_DIR=off turns it off): a build done
- * before with the same arguments is read back (checksummed, verified, rebuilt if corrupt). 
+ * before with the same arguments is read back (checksummed, verified, rebuilt if corrupt);
+ * one entry per SIMD path (AVX2 + FMA or the baseline, EGW_SIMD=sse2), whose tables differ
+ * in their last digits, so a shared cache hands each path its own bits.
  * ------------------------------------------------------------------------ */
 
 typedef struct egw_table_s *egw_table;         /* opaque: one parameter set */
@@ -682,7 +684,9 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * with p->flow_pressure > 0: EP-GW's curves from the rough solver with the cap, the
  * turning points of GW/E-GW from the rough first yield on, where the largest total
  * pressure reaches p_y (reversible when it never does up to delta_max); other models
- * give reversible curves; with p_y, delta_max above 1000 delta_y: EGW_INVALID_ARGUMENT)
+ * give reversible curves; with p_y, delta_max above 1000 delta_y: EGW_INVALID_ARGUMENT;
+ * Hertz + cap beyond its first capped turning point below rel_tol 3e-6, which its solves'
+ * smoothness (~3e-7) does not let it reach: EGW_INVALID_ARGUMENT naming rel_tol)
  * over overlaps [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL
  * (defaults). *out receives a handle only on success. The unloading curves are solved at rel_tol/10,
  * or at o->rel_tol where that is set below its default 1e-6 and below rel_tol/10 (the
@@ -970,14 +974,17 @@ typedef struct {
                         * units (relative to P(m) on the cap's gap curves; to the local
                         * force down to 1e-3 P(m) on Hertz + cap's force-ratio curves and
                         * the ln(P_load/P) curves). It includes delta_max intervals too
-                        * narrow to split (Hertz + cap: 2^-18 of the range, others 2^-11):
-                        * above rel_tol where those intervals miss it. Hertz + cap, whose
-                        * check solves are the cap solver's own: the force's error there,
-                        * the loading table's at the turning point included; <= rel_tol
-                        * when the table met rel_tol against solves, > rel_tol when it
-                        * did not (1e-4 to 20 delta_y: 7.7e-5 reported, 8.7e-5 measured;
-                        * to 8.57 delta_y 1.2e-4 and 1.03e-4; 1e-5 to 20 delta_y 1.5e-5
-                        * and 2.3e-5; doc/stability.md "Stop 52 (doubt18)") */
+                        * narrow to split (Hertz + cap: 2^-24 delta_y, others 2^-11 of the
+                        * range): above rel_tol where those intervals miss it. Hertz + cap,
+                        * whose check solves are the cap solver's own: the force's error
+                        * there, the loading table's at the turning point included (its
+                        * grid refined on it; the loading table built to rel_tol/4): met
+                        * from 2 to 1000 delta_y at 1e-4, 1e-5 and 3e-6, at or above the
+                        * error measured between the nodes (1e-5 to 20 delta_y: 9.8e-6
+                        * reported, 8.6e-6 measured at 447 turning points; doc/stability.md
+                        * "Stop 53 (doubt19)"). Rough + cap (E-GW + cap, sigma/delta_y
+                        * 1e-2, to 6 delta_y): both below rel_tol, measured ~1.5x the
+                        * reported (1e-4: 4.3e-5 and 6.7e-5 of P(m)) */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;
 

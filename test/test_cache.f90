@@ -5,14 +5,17 @@
 !> set with setenv(3) for these tests only (build/test_cache, emptied first).
 module test_cache
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
-   use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed
+   use, intrinsic :: iso_fortran_env, only: int64
+   use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, skip_test
    use egw_kinds, only: dp
    use egw_status, only: egw_error
    use egw_params, only: contact_params, model_egw, model_epgw
    use egw_rough_sphere, only: solver_options
-   use egw_table, only: force_table, table_eval
+   use egw_table, only: force_table, table_eval, build_table
+   use egw_simd, only: simd_level, simd_set
    use egw_hysteresis, only: hysteresis_table, hysteresis_eval
-   use egw_cache, only: cache_directory, build_table_cached, build_hysteresis_cached
+   use egw_cache, only: cache_directory, build_table_cached, build_hysteresis_cached, &
+      & fnv1a_mix
    implicit none
    private
    public :: collect_cache
@@ -38,7 +41,9 @@ contains
          & new_unittest("1-D table: second build read back, same values", test_table), &
          & new_unittest("hysteresis: second build read back, same values", test_hysteresis), &
          & new_unittest("changed request, corrupt entry: rebuilt", test_miss), &
-         & new_unittest("off, or a directory that cannot be written", test_off) &
+         & new_unittest("off, or a directory that cannot be written", test_off), &
+         & new_unittest("one entry per SIMD path, each path's own bits", test_simd_path), &
+         & new_unittest("the key's hash is FNV-1a 64, wrapping", test_fnv1a) &
          & ]
    end subroutine collect_cache
 
@@ -180,5 +185,104 @@ contains
          & "an unwritable directory: built, not cached")
       call set_dir(dir)
    end subroutine test_off
+
+   !> The AVX2 + FMA path's tables differ from the baseline's in their last digits, so the
+   !> key holds the path: a build on one path is not read back on the other (on main it
+   !> was: the second path's build was a hit with the first path's bits), each path gets
+   !> back its own fresh build bit for bit, and the directory holds two entries. Skipped on
+   !> a CPU without AVX2 and FMA (one path only).
+   subroutine test_simd_path(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: a(0:1), fresh(0:1)
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      logical :: hit(0:1), again(0:1)
+      integer :: level, level0, got, stat, unit, n
+      level0 = simd_level()
+      if (simd_set(1) /= 1) then
+         got = simd_set(level0)
+         call skip_test(error, "the CPU has no AVX2 + FMA: one SIMD path only")
+         return
+      end if
+      p = contact_params(model=model_egw, sigma=1.0e-3_dp, mu=4.0_dp)
+      call fresh_dir()
+      ! path 1, then path 0, each a first build; then each again (hits)
+      do level = 1, 0, -1
+         got = simd_set(level)
+         call build_table_cached(p, solver_options(), -3.0e-3_dp, 5.0e-3_dp, 1.0e-4_dp, &
+            & a(level), err, hit(level))
+         if (.not. allocated(err)) call build_table(p, solver_options(), -3.0e-3_dp, &
+            & 5.0e-3_dp, 1.0e-4_dp, fresh(level), err)
+         if (allocated(err)) exit
+      end do
+      do level = 1, 0, -1
+         if (allocated(err)) exit
+         got = simd_set(level)
+         call build_table_cached(p, solver_options(), -3.0e-3_dp, 5.0e-3_dp, 1.0e-4_dp, &
+            & a(level), err, again(level))
+         if (allocated(err)) exit
+         call check(error, again(level), "a second build on the same path is a cache hit")
+         if (allocated(error)) exit
+         call check(error, same_table(a(level), fresh(level)), &
+            & "the hit is the path's own fresh build, bit for bit")
+         if (allocated(error)) exit
+      end do
+      got = simd_set(level0)
+      if (allocated(err)) then
+         call test_failed(error, err%message)
+         return
+      end if
+      if (allocated(error)) return
+      call check(error, .not. hit(1) .and. .not. hit(0), &
+         & "a build on the other path is not read from the first path's entry")
+      if (allocated(error)) return
+      ! the case the key guards: the two paths' tables are not the same bits
+      call check(error, .not. same_table(fresh(0), fresh(1)), &
+         & "the paths' tables differ (else this test shows nothing)")
+      if (allocated(error)) return
+      call execute_command_line("ls "//dir//"/*.bin | wc -l > "//dir//"_count.txt", &
+         & exitstat=stat)
+      open (newunit=unit, file=dir//"_count.txt", status="old", action="read")
+      read (unit, *) n
+      close (unit, status="delete")
+      call check(error, stat == 0 .and. n == 2, "two entries, one per path")
+   end subroutine test_simd_path
+
+   !> fnv1a_mix against FNV-1a 64 computed with Python's unbounded integers:
+   !>   h = 14695981039346656037; for b in bytes: h = ((h ^ b)*1099511628211) % 2**64
+   !> over the word's 8 bytes, low byte first. Words with zero bytes are the case gfortran
+   !> -O3 folded to huge(h) where the overflowing int64 multiply of main's mix was inlined
+   !> with such a word (entry_path's SIMD level: test_simd_path); called across modules,
+   !> as here, main's mix gave these values too: this test guards the arithmetic.
+   subroutine test_fnv1a(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer(int64), parameter :: basis = -3750763034362895579_int64
+      integer(int64) :: h
+      character(len=16) :: got
+      h = basis
+      call fnv1a_mix(h, 0_int64)
+      write (got, "(z16.16)") h
+      call check(error, got == "A8C7F832281A39C5", "word 0: got "//got)
+      if (allocated(error)) return
+      h = basis
+      call fnv1a_mix(h, 1_int64)
+      write (got, "(z16.16)") h
+      call check(error, got == "89CD31291D2AEFA4", "word 1: got "//got)
+      if (allocated(error)) return
+      ! "foobar" and two NUL bytes as one word, then the word 2**63 (seven zero bytes, 128)
+      h = basis
+      call fnv1a_mix(h, transfer("foobar"//achar(0)//achar(0), h))
+      call fnv1a_mix(h, shiftl(1_int64, 63))
+      write (got, "(z16.16)") h
+      call check(error, got == "91B10E294FAC4AA8", "'foobar', 2**63: got "//got)
+   end subroutine test_fnv1a
+
+   !> Two 1-D tables with the same nodes, forces and stiffnesses, bit for bit.
+   logical function same_table(a, b)
+      type(force_table), intent(in) :: a, b
+      same_table = size(a%delta) == size(b%delta)
+      if (same_table) same_table = all(a%delta == b%delta) .and. all(a%force == b%force) &
+         & .and. all(a%stiffness == b%stiffness) .and. a%cutoff == b%cutoff
+   end function same_table
 
 end module test_cache

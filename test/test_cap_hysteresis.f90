@@ -54,6 +54,8 @@ contains
          & test_local_between), &
          & new_unittest("max_error <= rel_tol where the table meets it, > where not", &
          & test_max_error), &
+         & new_unittest("1000 delta_y at 1e-4: first yield resolved, rel_tol met", &
+         & test_wide_range), &
          & new_unittest("reversible below first yield", test_reversible), &
          & new_unittest("residual overlap: no force below it", test_residual), &
          & new_unittest("energy of a cycle = closed integral of P d delta", test_cycle), &
@@ -61,6 +63,8 @@ contains
          & test_formats), &
          & new_unittest("crafted version-5 files refused", test_crafted), &
          & new_unittest("refused: beyond 1000 delta_y", test_rough_refused), &
+         & new_unittest("refused at once: rel_tol below the cap solver's reach", &
+         & test_least_tol), &
          & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop), &
          & new_unittest("C DEM loop, rough + cap: e to 1e-3", &
@@ -351,6 +355,69 @@ contains
       end do
    end subroutine test_max_error
 
+   !> A table over 1000 delta_y (the builds' limit) at rel_tol 1e-4: its delta_max
+   !> intervals just above first yield, where the curves change fastest on delta_y's
+   !> scale, are split as in a table over 20 delta_y (on main the width limit was 2^-18 of
+   !> the range, 3.8e-3 delta_y here: max_error 9.2e-4 and the first intervals missing by
+   !> as much); and the loading table's error counted in the splits (main: 1.04e-4 to 100
+   !> delta_y). Turning points at 1/4, 1/2, 3/4 of the first eight intervals above the
+   !> first capped one and of the last, 16 overlaps each against solve_unload (the cap
+   !> solver, rel_tol 1e-8: the build's check solves are the same solves, but the
+   !> turning points lie between the nodes), relative to max(P, 1e-3 P(m)) as max_error.
+   subroutine test_wide_range(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params), parameter :: unit_cap = contact_params(model=model_hertz, &
+         & radius=1.0_dp, modulus=1.0_dp, flow_pressure=2.0_dp/pi)
+      real(dp), parameter :: tol_w = 1.0e-4_dp, frac(3) = [0.25_dp, 0.5_dp, 0.75_dp]
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      type(loading_history) :: hist
+      type(solve_result) :: top, res
+      real(dp) :: m, d, f, k, state, worst, lo, hi
+      integer :: i, j, jj, q, stat
+      call build_hysteresis(unit_cap, solver_options(), -1.0_dp, 1000.0_dp, tol_w, t, err)
+      call check(error, .not. allocated(err), "build to 1000 delta_y")
+      if (allocated(error)) return
+      call check(error, t%max_error <= tol_w, "max_error "//str(t%max_error)//" > rel_tol")
+      if (allocated(error)) return
+      worst = 0
+      do jj = 1, 9
+         j = jj
+         if (jj == 9) j = size(t%m) - 1
+         do q = 1, size(frac)
+            m = t%m(j) + frac(q)*(t%m(j + 1) - t%m(j))
+            call load_history(unit_cap, solver_options(rel_tol=1.0e-8_dp), m, hist, top, err)
+            call check(error, .not. allocated(err), "load_history")
+            if (allocated(error)) return
+            lo = 0.0_dp
+            hi = m
+            do i = 1, 50   ! the solves' residual overlap, to 1e-15 m
+               d = 0.5_dp*(lo + hi)
+               call solve_unload(hist, d, res, err)
+               if (res%force > 0.0_dp) then
+                  hi = d
+               else
+                  lo = d
+               end if
+            end do
+            do i = 1, 16
+               d = hi + (m - hi)*10.0_dp**(-i/6.0_dp)
+               call solve_unload(hist, d, res, err)
+               call check(error, .not. allocated(err), "solve_unload")
+               if (allocated(error)) return
+               state = m
+               call hysteresis_eval(t, d, state, f, k, stat)
+               call check(error, stat == 0, "status")
+               if (allocated(error)) return
+               worst = max(worst, abs(f - res%force)/max(res%force, 1.0e-3_dp*top%force))
+            end do
+         end do
+      end do
+      print '(4x, a, i0, a, es9.2, a, es9.2)', "1000 delta_y at 1e-4: ", size(t%m), &
+         & " delta_max nodes, max_error ", t%max_error, ", measured ", worst
+      call check(error, worst <= tol_w, "the table's error "//str(worst)//" > rel_tol")
+   end subroutine test_wide_range
+
    !> Turning points at or below delta_y: the contact is Hertz's, unloading retraces the
    !> loading curve bit for bit, within rel_tol of Hertz's closed form; a table that ends
    !> at delta_y is reversible (no curves).
@@ -630,6 +697,38 @@ contains
       call check(error, err%stat == egw_invalid_argument .and. &
          & index(err%message, "delta_max") > 0, "message: "//err%message)
    end subroutine test_rough_refused
+
+   !> Hertz + cap at rel_tol 1e-6 (below 3e-6, the least its curves reach: the cap solver's
+   !> forces are smooth to ~3e-7, and the build works to rel_tol/4): refused before any
+   !> solve, naming rel_tol and the range in delta_y. On main the same request to 100
+   !> delta_y built a table 135x off rel_tol (max_error 1.35e-4), to 10 delta_y failed
+   !> after its 400 delta_max nodes. A table ending below the first capped turning point
+   !> (Hertz's, reversible) still builds at 1e-6.
+   subroutine test_least_tol(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params), parameter :: unit_cap = contact_params(model=model_hertz, &
+         & radius=1.0_dp, modulus=1.0_dp, flow_pressure=2.0_dp/pi)
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      call build_hysteresis(unit_cap, solver_options(), -1.0_dp, 100.0_dp, 1.0e-6_dp, t, err)
+      call check(error, allocated(err), "built at 1e-6 to 100 delta_y: max_error "// &
+         & str(t%max_error))
+      if (allocated(error)) return
+      ! (format_real writes 100 as 1.000000000000000E+002)
+      call check(error, err%stat == egw_invalid_argument .and. &
+         & index(err%message, "rel_tol = ") == 1 .and. &
+         & index(err%message, "E+002 delta_y") > 0, "message: "//err%message)
+      if (allocated(error)) return
+      ! (refused before the loading table's solves: main took ~20 s CPU to fail at 10
+      ! delta_y)
+      call check(error, .not. allocated(t%loading%delta), "a loading table was built")
+      if (allocated(error)) return
+      call build_hysteresis(unit_cap, solver_options(), -1.0_dp, 1.00005_dp, 1.0e-6_dp, t, &
+         & err)
+      call check(error, .not. allocated(err), "to 1.00005 delta_y")
+      if (allocated(error)) return
+      call check(error, t%reversible, "to 1.00005 delta_y: reversible")
+   end subroutine test_least_tol
 
    !> egw_time_step at 60 v_y: omega**2 = K/m* with K the elastic unloading stiffness from
    !> the flattened shape at delta_m, which for an axisymmetric contact of radius a is

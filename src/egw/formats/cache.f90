@@ -3,15 +3,19 @@
 !> a DEM or LAMMPS run that builds its tables at start-up pays for them once per machine.
 !> Entries are the tables' own checksummed binary files, written atomically (egw_io) under
 !> a name hashed from everything the build depends on; one that is missing, corrupt, or
-!> does not match the request field by field is ignored and rebuilt. The cache directory
-!> is EGW_CACHE_DIR, else $XDG_CACHE_HOME/egw, else $HOME/.cache/egw; EGW_CACHE_DIR=off
-!> turns it off. A cache that cannot be written costs nothing but the rebuild.
+!> does not match the request field by field is ignored and rebuilt. The key includes the
+!> solver's SIMD path (egw_simd: AVX2 + FMA or the baseline), whose tables differ in their
+!> last digits, so that a cache shared between machines hands each path its own bits.
+!> The cache directory is EGW_CACHE_DIR, else $XDG_CACHE_HOME/egw, else
+!> $HOME/.cache/egw; EGW_CACHE_DIR=off turns it off. A cache that cannot be written costs
+!> nothing but the rebuild.
 module egw_cache
    use, intrinsic :: iso_fortran_env, only: int64
    use egw_kinds, only: dp
    use egw_status, only: egw_error
    use egw_version, only: egw_version_number
    use egw_io, only: make_directories
+   use egw_simd, only: simd_level
    use egw_params, only: contact_params, refuse_flow_pressure
    use egw_rough_sphere, only: solver_options
    use egw_table, only: force_table, build_table, table_progress
@@ -25,7 +29,7 @@ module egw_cache
    private
 
    public :: cache_directory, build_table_cached, build_universal_cached, &
-      & build_hysteresis_cached
+      & build_hysteresis_cached, fnv1a_mix
 
    !> Bumped whenever a build's algorithm changes what it produces, so that entries of an
    !> earlier build (same parameters) are not taken for the new one (5: the smooth Hertz +
@@ -105,7 +109,10 @@ module egw_cache
    !> 40 (zmc18): EP-GW hysteresis tables (psi > 0) unload with the ZMC loading law
    !> tabulated once per build (egw_law_pieces): README's EP-GW + cap psi 1 table to 6
    !> delta_y at 1e-4 moved by up to 3.3e-9 of P(m), the same grid.
-   integer, parameter, public :: cache_revision = 40
+   !> 41 (doubt19): Hertz + cap tables split delta_max intervals down to 2^-24 delta_y
+   !> (was 2^-18 of the range) on the force's whole error, their loading table built to
+   !> rel_tol/4: other grids from 20 delta_y at 1e-4, everywhere at 1e-5.
+   integer, parameter, public :: cache_revision = 41
 
 
 contains
@@ -244,7 +251,8 @@ contains
    ! ---------------------------------------------------------------------------------------
 
    !> The file of a cache entry: <dir>/<kind>-<16 hex digits of the key>.bin, "" when the
-   !> cache is off. The key hashes the kind, egw's version, cache_revision and values.
+   !> cache is off. The key hashes the kind, egw's version, cache_revision, the SIMD path
+   !> in use and values.
    subroutine entry_path(kind, values, path)
       character(len=*), intent(in) :: kind
       real(dp), intent(in) :: values(:)
@@ -257,26 +265,40 @@ contains
       if (len(dir) == 0) return
       h = -3750763034362895579_int64   ! the FNV-1a 64 offset basis 14695981039346656037
       do i = 1, len(kind)
-         call mix(h, int(iachar(kind(i:i)), int64))
+         call fnv1a_mix(h, int(iachar(kind(i:i)), int64))
       end do
-      call mix(h, int(egw_version_number, int64))
-      call mix(h, int(cache_revision, int64))
+      call fnv1a_mix(h, int(egw_version_number, int64))
+      call fnv1a_mix(h, int(cache_revision, int64))
+      ! the AVX2 path's tables differ from the baseline's in their last digits: one entry
+      ! per path, so that a shared cache never hands one path's bits to the other
+      call fnv1a_mix(h, int(simd_level(), int64))
       do i = 1, size(values)
-         call mix(h, transfer(values(i), h))
+         call fnv1a_mix(h, transfer(values(i), h))
       end do
       path = dir//"/"//kind//"-"//hex(h)//".bin"
    end subroutine entry_path
 
-   !> One 64-bit word into an FNV-1a hash (byte by byte, wrapping modulo 2**64).
-   pure subroutine mix(h, word)
-      integer(int64), intent(inout) :: h
-      integer(int64), intent(in) :: word
-      integer(int64), parameter :: prime = 1099511628211_int64
+   !> One 64-bit word into an FNV-1a hash (byte by byte; the multiply modulo 2**64).
+   !> The product by the FNV prime 2**40 + 435 is formed on 32-bit halves: a signed
+   !> int64 product that overflows is undefined, and gfortran -O3 folded the seven
+   !> multiplies of a word's zero bytes to huge(h), whatever came before (the key then
+   !> lost that word: the SIMD path's 0 and 1 gave one name).
+   pure subroutine fnv1a_mix(h, word)
+      integer(int64), intent(inout) :: h   !< the hash so far
+      integer(int64), intent(in) :: word   !< the word mixed in, low byte first
+      integer(int64), parameter :: low32 = 4294967295_int64, low24 = 16777215_int64
+      integer(int64) :: lo, hi, p
       integer :: k
       do k = 0, 7
-         h = ieor(h, iand(shiftr(word, 8*k), 255_int64))*prime
+         h = ieor(h, iand(shiftr(word, 8*k), 255_int64))
+         lo = iand(h, low32)
+         hi = shiftr(h, 32)
+         ! h*435 on the halves (each product < 2**41), plus h*2**40, whose low word is 0
+         p = lo*435_int64
+         hi = iand(hi*435_int64 + shiftr(p, 32) + shiftl(iand(lo, low24), 8), low32)
+         h = ior(shiftl(hi, 32), iand(p, low32))
       end do
-   end subroutine mix
+   end subroutine fnv1a_mix
 
    !> 16 lower-case hex digits of h.
    pure function hex(h) result(text)

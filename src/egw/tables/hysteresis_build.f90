@@ -63,7 +63,26 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> 1e-5 with 146 leaving two intervals at this width (1.5e-5); doc/stability.md
    !> "Stop 52 (doubt18)". (The cap solver ignores rel_tol: its check solves are the same
    !> solves a user's reference makes, so a mismatch here is the table's own error.)
-   real(dp), parameter :: ratio_min_width = 2.0_dp**(-18)
+   !> In units of delta_y, not of the range (stop 53, doubt19): the curves' fast change
+   !> above first yield has delta_y's scale whatever the range, and 2^-18 of a range of
+   !> 100 or 1000 delta_y stopped the first intervals at 1e-4 and 1e-5 missing by 1.0e-4 ..
+   !> 9.9e-4 (doc/stability.md "Stop 53 (doubt19)"); 2^-24 delta_y (6e-8) lies below the
+   !> narrowest interval the tables down to rel_tol 2e-6 needed (3.7e-6 delta_y).
+   real(dp), parameter :: ratio_min_width = 2.0_dp**(-24)
+   !> Hertz + cap tables: the share of rel_tol given to the loading table, whose error at
+   !> a turning point multiplies the whole unloading curve (P = P_load,table(m) u); refine_m
+   !> splits delta_max intervals until the force's whole error at the check curves' nodes,
+   !> that share included (whole_mismatch), is within rel_tol (stop 53, doubt19: with both
+   !> at rel_tol, 1e-4 to 100 delta_y reported 1.04e-4, to 8.5666 delta_y 1.23e-4).
+   real(dp), parameter :: ratio_loading_share = 0.25_dp
+   !> Hertz + cap tables: the least rel_tol built (a smaller one is refused at once). The
+   !> cap solver's forces (32/64 rings) are smooth in delta and delta_max to ~3e-7 of
+   !> themselves: at rel_tol 1e-6 the loading table to rel_tol/4 did not settle (and on
+   !> main, to rel_tol, the curves' bisection to rel_tol/4 stalled at 3.2e-7 or the grid
+   !> passed 400 delta_max nodes, to 2 and 10 delta_y; to 100 and 1000 delta_y tables were
+   !> built 135x and 990x off rel_tol). 3e-6 met rel_tol with 278-289 delta_max nodes from
+   !> 10 to 1000 delta_y (doc/stability.md "Stop 53 (doubt19)").
+   real(dp), parameter :: ratio_least_tol = 3.0e-6_dp
    !> Log-ratio tables on six-point stencils: a check curve is not solved at a node s of
    !> its neighbours where the four-point stencil's h at its turning point lies within
    !> check_skip rel_tol of the six-point one's (weighted by a bound on its weight there,
@@ -191,13 +210,27 @@ contains
             & "beyond a half-space (doc/theory.md section 12)")
          return
       end if
+      if (params%flow_pressure > 0.0_dp .and. .not. rough_cap .and. rel_tol < &
+         & ratio_least_tol .and. delta_max > cap_first_turn(params)) then
+         call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
+            & ": below "//format_real(ratio_least_tol)//", the least a Hertz + cap "// &
+            & "hysteresis table reaches (here to "//format_real(delta_max/ &
+            & first_yield(params))//" delta_y): the cap solver's forces are smooth to ~3e-7 "// &
+            & "of themselves, which its loading table and curves, built to rel_tol/4, need "// &
+            & "(doc/stability.md, stop 53)")
+         return
+      end if
       if (rough_cap) then
          call rough_cap_reach(params, delta_max, error)
          if (allocated(error)) return
       end if
       if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) then
-         call build_cap_loading(params, options, delta_min, delta_max, rel_tol, &
-            & table%loading, error)
+         ! (a quarter of rel_tol: the curves store P/P_load(m), so the loading table's
+         ! error at the turning point adds to theirs, which refine_m bounds by the rest)
+         call build_cap_loading(params, options, delta_min, delta_max, &
+            & ratio_loading_share*rel_tol, table%loading, error)
+         ! (a bound it meets; the files state the table's rel_tol for both)
+         if (.not. allocated(error)) table%loading%rel_tol = rel_tol
       else
          ! (a rough model with the cap: its capped loading curve, not a force law)
          call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, &
@@ -749,14 +782,19 @@ contains
          end if
          allocate (err_mid(size(m) - 1), wide(size(m) - 1))
          do j = 1, size(m) - 1
-            err_mid(j) = stencil_mismatch(table, m, curves, j, mids(j))
+            ! (Hertz + cap: the force's error, the loading table's share included)
+            if (table%force_ratio) then
+               err_mid(j) = whole_mismatch(table, m, curves, j, mids(j))
+            else
+               err_mid(j) = stencil_mismatch(table, m, curves, j, mids(j))
+            end if
          end do
          ! (log-ratio: an interval narrower than min_width of the range is not split; at
          ! the node m = 0, where the Hertz part sets in and the curves change as sqrt(m),
          ! 1/32 of that: its first interval met its check curve to 9.5e-4 at min_width)
          wide = .true.
          if (table%force_ratio) wide = m(2:) - m(:size(m) - 1) >= &
-            & ratio_min_width*(m(size(m)) - m(1))
+            & ratio_min_width*first_yield(table%params)
          if (log_table(table)) then
             wide = m(2:) - m(:size(m) - 1) >= min_width*(m(size(m)) - m(1))
             where (m(:size(m) - 1) == 0.0_dp .or. m(2:) == 0.0_dp) wide = &
@@ -770,18 +808,11 @@ contains
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
             table%max_error = max(table%max_error, maxval(err_mid))
-            ! (Hertz + cap: what the table's force misses there, the loading table's error
-            ! at the turning point included, P = P_load,table(m) sum w u; at the nodes'
-            ! curves that error alone. The splits above weigh the curves' mismatch only:
-            ! the loading table is built to rel_tol of its own, and the two add)
-            if (table%force_ratio) then
-               do j = 1, size(m) - 1
-                  table%max_error = max(table%max_error, whole_mismatch(table, m, curves, j, &
-                     & mids(j)))
-               end do
-               table%max_error = max(table%max_error, maxval(abs(1.0_dp - &
-                  & curves%c_turn)/curves%c_turn))
-            end if
+            ! (Hertz + cap: err_mid is what the table's force misses there, the loading
+            ! table's error at the turning point included, P = P_load,table(m) sum w u; at
+            ! the nodes' curves that error alone)
+            if (table%force_ratio) table%max_error = max(table%max_error, &
+               & maxval(abs(1.0_dp - curves%c_turn)/curves%c_turn))
             return
          end if
          if (size(m) + n_split > max_m_nodes) then
