@@ -105,7 +105,10 @@ module egw_cache
    !> 40 (zmc18): EP-GW hysteresis tables (psi > 0) unload with the ZMC loading law
    !> tabulated once per build (egw_law_pieces): README's EP-GW + cap psi 1 table to 6
    !> delta_y at 1e-4 moved by up to 3.3e-9 of P(m), the same grid.
-   integer, parameter, public :: cache_revision = 40
+   !> 41 (zu19): EP-GW + cap tables (psi > 0) unload their deep plastic zone with Z_u
+   !> tabulated at h_y (egw_unloading's tabulate_unloading): README's psi 1 table to 6
+   !> delta_y at 1e-4 moved by up to 3.2e-15 of P(m), the same grid.
+   integer, parameter, public :: cache_revision = 41
 
 
 contains
