@@ -320,8 +320,9 @@ contains
    !> The table at one h_min against the integral on 4000 random Delta over its range (psi
    !> 1 and 0.3, h_min -3.7 and 0.8, K 0.6, rho_p 54): within 5x the acceptance; the
    !> table used (values differ from the integral's somewhere), its acceptance met as
-   !> recorded; at an h_min beyond the slack, and beyond the range, the integral bit for
-   !> bit; no table for an empty loading law.
+   !> recorded; at an h_min beyond the slack, and on [d_end, d_end + 1), the integral bit
+   !> for bit; from d_end + 1 on 0, where the integral is below 1e-280; no table for an
+   !> empty loading law.
    subroutine test_unloading_table(error)
       use egw_law_pieces, only: law_pieces, zmc_law_pieces, ln_tol
       type(error_type), allocatable, intent(out) :: error
@@ -369,6 +370,13 @@ contains
          call unloading_pressure(plain, h, hm, p0, d0)
          call unloading_pressure(tabled, h, hm, p1, d1)
          call check(error, all(p1 == p0) .and. all(d1 == d0), "table used beyond its range")
+         if (allocated(error)) return
+         ! from d_end + 1 on: 0, where the integral is below 1e-280 (p_floor)
+         h = h_min + d_end + 1.0_dp + 30.0_dp*r
+         call unloading_pressure(plain, h, hm, p0, d0)
+         call unloading_pressure(tabled, h, hm, p1, d1)
+         call check(error, all(p1 == 0.0_dp) .and. all(d1 == 0.0_dp) .and. &
+            & all(p0 < 1.0e-280_dp), "beyond d_end + 1: not 0, or the integral above 1e-280")
          if (allocated(error)) return
       end do
       pieces = law_pieces()

@@ -42,8 +42,11 @@ module egw_law_pieces
    !> the cap's one root h_y): ln Z_u in Chebyshev series of this module's degree on the
    !> pieces between edges(0:n), broken at unloading_kinks (where d^2 Z_u/dh^2 jumps).
    !> Answers h_min within slack of its own (rounding of the solver's shifted gaps; Z_u
-   !> moves by |dZ_u/dh_min| slack, below 1e-10 relative, the acceptance's scale). Empty
-   !> (n = 0): the integral answers.
+   !> moves by |dZ_u/dh_min| slack, below 1e-10 relative, the acceptance's scale). From
+   !> edges(n) + 1 on Z_u < p_floor (the build found it there, and Z_u decreases in
+   !> Delta): answered as 0, as the integral's own Gaussian cut-off answers farther out
+   !> (a pressure 1e-280 of the law's scale moves no sum of the solver). Empty (n = 0):
+   !> the integral answers.
    type, public :: unload_pieces
       real(dp) :: h_min = 0.0_dp, slack = -1.0_dp
       integer :: n = 0
@@ -233,8 +236,9 @@ contains
    end subroutine chebyshev_fit
 
    !> Z_u and dZ_u/dh (at fixed h_min) of a tabulated unloading law at Delta = h - h_min
-   !> for a closest approach h_min; inside false (p, dpdh untouched) where h_min is not
-   !> the table's (beyond its slack), Delta outside its range or NaN, or the table empty.
+   !> for a closest approach h_min (0 from edges(n) + 1 on); inside false (p, dpdh
+   !> untouched) where h_min is not the table's (beyond its slack), Delta in [edges(n),
+   !> edges(n) + 1), below 0 or NaN, or the table empty.
    elemental subroutine unload_pieces_at(t, delta, h_min, p, dpdh, inside)
       type(unload_pieces), intent(in) :: t   !< from egw_unloading's tabulate_unloading
       real(dp), intent(in) :: delta, h_min   !< h - h_min and h_min, / sigma
@@ -245,6 +249,14 @@ contains
       inside = .false.
       if (t%n == 0) return
       if (.not. abs(h_min - t%h_min) <= t%slack) return
+      if (delta >= t%edges(t%n) + 1.0_dp) then
+         ! (~1 M of the psi 1 build's 3.8 M calls: there the integral found t* and then
+         ! ~5 % of them integrated a Z_u below 1e-280)
+         p = 0.0_dp
+         dpdh = 0.0_dp
+         inside = .true.
+         return
+      end if
       if (.not. (delta >= t%edges(0) .and. delta < t%edges(t%n))) return
       lo = 0
       hi = t%n

@@ -300,7 +300,8 @@ contains
    !> |h_min|)). A rough + cap build's unloading solves evaluate most of their Z_u at one
    !> h_min, the deep plastic zone's h_y (flow_cap's plastic_shifts: every deep point's
    !> shifted h_min is that root), ~3 us a call by the integral. The range: Delta from 0 to
-   !> the last whole unit where Z_u >= p_floor; the pieces end at every unloading_kinks
+   !> the last whole unit d_end where Z_u >= p_floor (Z_u < p_floor from d_end + 1 on:
+   !> answered as 0); the pieces end at every unloading_kinks
    !> Delta (the series need Z_u smooth on each, graded towards them) and are at most 1
    !> wide. Accepted as zmc_law_pieces: at each piece's Chebyshev extrema and midpoints
    !> between them, ln Z_u within ln_tol (1 + |ln Z_u|/64) and dZ_u/dh within
