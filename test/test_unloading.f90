@@ -9,7 +9,7 @@ module test_unloading
    use egw_unloading, only: asperity_load_force, asperity_contact_area, &
       & asperity_residual_interference, asperity_unload_force, rough_flat_unload_law, &
       & flat_pressure_unload, unloading_law, unloading_law_of, unloading_pressure, &
-      & unloading_kinks
+      & unloading_kinks, tabulate_unloading, unload_slope_tol
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
    implicit none
    private
@@ -28,6 +28,9 @@ contains
          & new_unittest("dZ_u/dh against differences", test_derivative), &
          & new_unittest("prepared law: same Z_u, its kinks in Delta", test_prepared_law), &
          & new_unittest("prepared law with the loading table: same Z_u", test_loading_table), &
+         & new_unittest("unloading table at one h_min: 40-digit references", &
+         & test_unloading_table_references), &
+         & new_unittest("unloading table at one h_min: the integral's Z_u", test_unloading_table), &
          & new_unittest("flat_pressure_unload: units and bad input", test_dimensional) &
          & ]
    end subroutine collect_unloading
@@ -263,6 +266,123 @@ contains
          c = abs(d2(2)/d2(1) - 1.0_dp)
       end function d2_change
    end subroutine test_prepared_law
+
+   !> Z_u tabulated at one h_min (tabulate_unloading) against the 40-digit references of
+   !> every row with h > h_min whose Delta the table covers: a table per (psi, K, rho_p,
+   !> h_min) of the file, evaluated through unloading_pressure. Tolerance: the integral's
+   !> 1e-12 (test_references) plus 5x the table's acceptance against the integral (ln_tol
+   !> on ln Z_u, scaled as there; unload_slope_tol on dZ_u/dh), the check's points lying between
+   !> the series' nodes as these rows do.
+   subroutine test_unloading_table_references(error)
+      use egw_law_pieces, only: law_pieces, zmc_law_pieces, ln_tol
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: path = "test/data/unload_reference.csv"
+      character(len=512) :: line
+      real(dp) :: psi, k, rho, h, h_min, z, dz, p, dp_, last(4), bound
+      type(law_pieces) :: pieces
+      type(unloading_law) :: law
+      integer :: unit, ios, rows
+      open (newunit=unit, file=path, status="old", action="read", iostat=ios)
+      if (ios /= 0) then
+         call test_failed(error, "cannot open "//path//" (run the tests from the project root)")
+         return
+      end if
+      rows = 0
+      last = -1.0_dp
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (line(1:1) == "#" .or. line(1:4) == "psi,") cycle
+         read (line, *) psi, k, rho, h, h_min, z, dz
+         if (.not. (psi > 0.0_dp .and. h > h_min)) cycle
+         if (any([psi, k, rho, h_min] /= last)) then
+            pieces = zmc_law_pieces(psi, k, rho)
+            call tabulate_unloading(pieces, h_min)
+            law = unloading_law_of(psi, k, rho, pieces)
+            last = [psi, k, rho, h_min]
+         end if
+         if (pieces%unload%n == 0) cycle
+         if (.not. h - h_min < pieces%unload%edges(pieces%unload%n)) cycle
+         call unloading_pressure(law, h, h_min, p, dp_)
+         rows = rows + 1
+         bound = 1.0e-12_dp + 5.0_dp*ln_tol*(1.0_dp + abs(log(z))/64.0_dp)
+         call check(error, p, z, trim(line)//": Z_u from the table", rel=.true., thr=bound)
+         if (allocated(error)) exit
+         call check(error, dp_, dz, trim(line)//": dZ_u/dh from the table", rel=.true., &
+            & thr=1.0e-12_dp + 5.0_dp*unload_slope_tol)
+         if (allocated(error)) exit
+      end do
+      close (unit)
+      if (allocated(error)) return
+      call check(error, rows >= 150, to_string(rows)//" rows answered by tables")
+   end subroutine test_unloading_table_references
+
+   !> The table at one h_min against the integral on 4000 random Delta over its range (psi
+   !> 1 and 0.3, h_min -3.7 and 0.8, K 0.6, rho_p 54): within 5x the acceptance; the
+   !> table used (values differ from the integral's somewhere), its acceptance met as
+   !> recorded; at an h_min beyond the slack, and on [d_end, d_end + 1), the integral bit
+   !> for bit; from d_end + 1 on 0, where the integral is below 1e-280; no table for an
+   !> empty loading law.
+   subroutine test_unloading_table(error)
+      use egw_law_pieces, only: law_pieces, zmc_law_pieces, ln_tol
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 4000
+      real(dp) :: h(n), hm(n), p0(n), d0(n), p1(n), d1(n), r(n), psi, h_min, d_end
+      type(unloading_law) :: plain, tabled
+      type(law_pieces) :: pieces
+      integer :: i, k
+      call random_seed(put=[(7919*i, i=1, 64)])
+      do k = 1, 4
+         psi = merge(1.0_dp, 0.3_dp, k <= 2)
+         h_min = merge(-3.7_dp, 0.8_dp, mod(k, 2) == 1)
+         pieces = zmc_law_pieces(psi, 0.6_dp, 54.0_dp)
+         call tabulate_unloading(pieces, h_min)
+         call check(error, pieces%unload%n > 0, "psi "//format_real(psi)//", h_min "// &
+            & format_real(h_min)//": no table")
+         if (allocated(error)) return
+         call check(error, pieces%unload%ln_error <= ln_tol .and. &
+            & pieces%unload%slope_error <= unload_slope_tol, "acceptance not met as recorded")
+         if (allocated(error)) return
+         d_end = pieces%unload%edges(pieces%unload%n)
+         plain = unloading_law_of(psi, 0.6_dp, 54.0_dp)
+         tabled = unloading_law_of(psi, 0.6_dp, 54.0_dp, pieces)
+         call random_number(r)
+         hm = h_min
+         h = h_min + d_end*r
+         call unloading_pressure(plain, h, hm, p0, d0)
+         call unloading_pressure(tabled, h, hm, p1, d1)
+         call check(error, any(p1 /= p0), "the table was not used")
+         if (allocated(error)) return
+         call check(error, maxval(abs(log(p1/p0))/(1.0_dp + abs(log(p0))/64.0_dp)) <= &
+            & 5.0_dp*ln_tol, "Z_u off by "//format_real(maxval(abs(p1/p0 - 1.0_dp))))
+         if (allocated(error)) return
+         call check(error, maxval(abs(d1/d0 - 1.0_dp)) <= 5.0_dp*unload_slope_tol, &
+            & "dZ_u/dh off by "//format_real(maxval(abs(d1/d0 - 1.0_dp))))
+         if (allocated(error)) return
+         ! another h_min (beyond the slack), and Delta beyond the range: the integral's
+         hm = h_min + 1.0e-9_dp
+         call unloading_pressure(plain, h, hm, p0, d0)
+         call unloading_pressure(tabled, h, hm, p1, d1)
+         call check(error, all(p1 == p0) .and. all(d1 == d0), "table used at another h_min")
+         if (allocated(error)) return
+         hm = h_min
+         h = h_min + d_end + r
+         call unloading_pressure(plain, h, hm, p0, d0)
+         call unloading_pressure(tabled, h, hm, p1, d1)
+         call check(error, all(p1 == p0) .and. all(d1 == d0), "table used beyond its range")
+         if (allocated(error)) return
+         ! from d_end + 1 on: 0, where the integral is below 1e-280 (p_floor)
+         h = h_min + d_end + 1.0_dp + 30.0_dp*r
+         call unloading_pressure(plain, h, hm, p0, d0)
+         call unloading_pressure(tabled, h, hm, p1, d1)
+         call check(error, all(p1 == 0.0_dp) .and. all(d1 == 0.0_dp) .and. &
+            & all(p0 < 1.0e-280_dp), "beyond d_end + 1: not 0, or the integral above 1e-280")
+         if (allocated(error)) return
+      end do
+      pieces = law_pieces()
+      call tabulate_unloading(pieces, -3.7_dp)
+      call check(error, pieces%unload%n == 0, "a table without a loading law")
+   end subroutine test_unloading_table
 
    !> A prepared law given the tabulated loading law (zmc_law_pieces) answers as the law
    !> without it: the loading branch (h < h_min, and h = h_min's value) from the table, to

@@ -112,7 +112,10 @@ module egw_cache
    !> 41 (doubt19): Hertz + cap tables split delta_max intervals down to 2^-24 delta_y
    !> (was 2^-18 of the range) on the force's whole error, their loading table built to
    !> rel_tol/4: other grids from 20 delta_y at 1e-4, everywhere at 1e-5.
-   integer, parameter, public :: cache_revision = 41
+   !> 42 (zu19): EP-GW + cap tables (psi > 0) unload their deep plastic zone with Z_u
+   !> tabulated at h_y (egw_unloading's tabulate_unloading): README's psi 1 table to 6
+   !> delta_y at 1e-4 moved by up to 3.2e-15 of P(m), the same grid.
+   integer, parameter, public :: cache_revision = 42
 
 
 contains

@@ -24,17 +24,37 @@ module egw_law_pieces
    implicit none
    private
 
-   public :: zmc_law_pieces, law_pieces_at
+   public :: zmc_law_pieces, law_pieces_at, unload_pieces_at, chebyshev_fit, clenshaw
 
    !> Degree of each piece's series.
-   integer, parameter :: degree = 24
+   integer, parameter, public :: degree = 24
    !> Acceptance on ln p (absolute, scaled by 1 + |ln p|/64) and on dp/dh (relative).
    real(dp), parameter, public :: ln_tol = 5.0e-13_dp, slope_tol = 3.0e-10_dp
    !> Widths tried: 1, 1/2, ... 1/2^max_halvings.
-   integer, parameter :: max_halvings = 4
+   integer, parameter, public :: max_halvings = 4
    !> Below this p the law is left to the exact integral (ln p near ln(tiny) ~ -708 has
    !> few digits left and the series would carry p into subnormals).
-   real(dp), parameter :: p_floor = 1.0e-280_dp
+   real(dp), parameter, public :: p_floor = 1.0e-280_dp
+
+   !> The unloading law Z_u(Delta, h_min) of the same ZMC law at one closest approach
+   !> h_min, tabulated in Delta = h - h_min >= 0 by egw_unloading's tabulate_unloading
+   !> (the deep plastic zone of a rough + cap build, where every point's shifted h_min is
+   !> the cap's one root h_y): ln Z_u in Chebyshev series of this module's degree on the
+   !> pieces between edges(0:n), broken at unloading_kinks (where d^2 Z_u/dh^2 jumps).
+   !> Answers h_min within slack of its own (rounding of the solver's shifted gaps; Z_u
+   !> moves by |dZ_u/dh_min| slack, below 1e-10 relative, the acceptance's scale). From
+   !> edges(n) + 1 on Z_u < p_floor (the build found it there, and Z_u decreases in
+   !> Delta): answered as 0, as the integral's own Gaussian cut-off answers farther out
+   !> (a pressure 1e-280 of the law's scale moves no sum of the solver). Empty (n = 0):
+   !> the integral answers.
+   type, public :: unload_pieces
+      real(dp) :: h_min = 0.0_dp, slack = -1.0_dp
+      integer :: n = 0
+      real(dp), allocatable :: edges(:)   !< (0:n), ascending, edges(0) = 0
+      real(dp), allocatable :: c(:, :)    !< (0:degree, n): ln Z_u's coefficients
+      !> the largest |ln Z_u error|/(1 + |ln Z_u|/64) and dZ_u/dh relative error checked
+      real(dp) :: ln_error = 0.0_dp, slope_error = 0.0_dp
+   end type unload_pieces
 
    !> A tabulated ZMC loading law (see the module's notes). Empty (n = 0): not tabulated.
    type, public :: law_pieces
@@ -46,6 +66,8 @@ module egw_law_pieces
       real(dp), allocatable :: c(:, :)
       !> the largest |ln p error|/(1 + |ln p|/64) and dp/dh relative error met at the check
       real(dp) :: ln_error = 0.0_dp, slope_error = 0.0_dp
+      !> the same law's unloading at one h_min (empty unless a build added it)
+      type(unload_pieces) :: unload
    end type law_pieces
 
 contains
@@ -163,8 +185,11 @@ contains
 
    !> sum c_k T_k(x) and its derivative in h (dxdh = dx/dh), Clenshaw's recurrences.
    pure subroutine clenshaw(c, x, dxdh, s, ds)
-      real(dp), intent(in) :: c(0:), x, dxdh
-      real(dp), intent(out) :: s, ds
+      real(dp), intent(in) :: c(0:)   !< the coefficients c_0 .. c_degree
+      real(dp), intent(in) :: x       !< the local coordinate in [-1, 1]
+      real(dp), intent(in) :: dxdh    !< dx/dh of the piece
+      real(dp), intent(out) :: s      !< the series' value
+      real(dp), intent(out) :: ds     !< its derivative in h
       real(dp) :: b0, b1, b2, d0, d1, d2, x2
       integer :: k
       x2 = 2.0_dp*x
@@ -184,6 +209,72 @@ contains
       s = c(0) + x*b1 - b2
       ds = (b1 + x*d1 - d2)*dxdh
    end subroutine clenshaw
+
+   !> The Chebyshev coefficients c(0:degree) of the series interpolating v at the points
+   !> x_j = cos(pi (j - 1/2)/(degree + 1)), j = 1 .. degree + 1 (chebyshev_fit's nodes:
+   !> pass x to get them).
+   pure subroutine chebyshev_fit(v, c, x)
+      real(dp), intent(in), optional :: v(degree + 1)   !< the values at the nodes
+      real(dp), intent(out), optional :: c(0:degree)    !< their series' coefficients
+      real(dp), intent(out), optional :: x(degree + 1)  !< the nodes
+      integer, parameter :: m = degree + 1
+      integer :: j, k
+      if (present(x)) then
+         do j = 1, m
+            x(j) = cos(pi*(real(j, dp) - 0.5_dp)/m)
+         end do
+      end if
+      if (.not. (present(v) .and. present(c))) return
+      do k = 0, degree
+         c(k) = 0.0_dp
+         do j = 1, m
+            c(k) = c(k) + v(j)*cos(pi*k*(real(j, dp) - 0.5_dp)/m)
+         end do
+         c(k) = (2.0_dp/m)*c(k)
+      end do
+      c(0) = 0.5_dp*c(0)
+   end subroutine chebyshev_fit
+
+   !> Z_u and dZ_u/dh (at fixed h_min) of a tabulated unloading law at Delta = h - h_min
+   !> for a closest approach h_min (0 from edges(n) + 1 on); inside false (p, dpdh
+   !> untouched) where h_min is not the table's (beyond its slack), Delta in [edges(n),
+   !> edges(n) + 1), below 0 or NaN, or the table empty.
+   elemental subroutine unload_pieces_at(t, delta, h_min, p, dpdh, inside)
+      type(unload_pieces), intent(in) :: t   !< from egw_unloading's tabulate_unloading
+      real(dp), intent(in) :: delta, h_min   !< h - h_min and h_min, / sigma
+      real(dp), intent(inout) :: p, dpdh     !< Z_u and dZ_u/dh
+      logical, intent(out) :: inside         !< answered from the table
+      real(dp) :: x, lnp, dlnp
+      integer :: lo, hi, mid
+      inside = .false.
+      if (t%n == 0) return
+      if (.not. abs(h_min - t%h_min) <= t%slack) return
+      if (delta >= t%edges(t%n) + 1.0_dp) then
+         ! (~1 M of the psi 1 build's 3.8 M calls: there the integral found t* and then
+         ! ~5 % of them integrated a Z_u below 1e-280)
+         p = 0.0_dp
+         dpdh = 0.0_dp
+         inside = .true.
+         return
+      end if
+      if (.not. (delta >= t%edges(0) .and. delta < t%edges(t%n))) return
+      lo = 0
+      hi = t%n
+      do while (hi - lo > 1)
+         mid = (lo + hi)/2
+         if (delta < t%edges(mid)) then
+            hi = mid
+         else
+            lo = mid
+         end if
+      end do
+      ! piece hi spans [edges(lo), edges(hi))
+      x = (2.0_dp*delta - (t%edges(lo) + t%edges(hi)))/(t%edges(hi) - t%edges(lo))
+      call clenshaw(t%c(:, hi), x, 2.0_dp/(t%edges(hi) - t%edges(lo)), lnp, dlnp)
+      p = exp(lnp)
+      dpdh = p*dlnp
+      inside = .true.
+   end subroutine unload_pieces_at
 
    !> p and dp/dh of the tabulated law at h (unscaled, as rough_flat_law); inside false
    !> (p, dpdh untouched) where h is outside the table's range, NaN, or the table empty.

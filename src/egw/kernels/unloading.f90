@@ -19,18 +19,20 @@
 !> evaluated at exact node values z = t + h_min.
 module egw_unloading
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use egw_kinds, only: dp, inv_sqrt2pi
+   use egw_kinds, only: dp, inv_sqrt2pi, pi
    use egw_status, only: egw_error, egw_invalid_argument, fatal_error, format_real
    use egw_params, only: contact_params
    use egw_asperity, only: rough_flat_law, check_flat_input, flat_psi, flat_scaled_to_units
    use egw_gauss, only: gl_x, gl_w
-   use egw_law_pieces, only: law_pieces, law_pieces_at
+   use egw_law_pieces, only: law_pieces, law_pieces_at, unload_pieces, unload_pieces_at, &
+      & chebyshev_fit, clenshaw, degree, ln_tol, max_halvings, p_floor
    implicit none
    private
 
    public :: asperity_load_force, asperity_contact_area, asperity_residual_interference, &
       & asperity_unload_force, rough_flat_unload_law, flat_pressure_unload
-   public :: unloading_law, unloading_law_of, unloading_pressure, unloading_kinks
+   public :: unloading_law, unloading_law_of, unloading_pressure, unloading_kinks, &
+      & tabulate_unloading
 
    !> Gaussian factor kept down to e^-loss_max (2e-16) of its largest value on the domain,
    !> plus the growth of f^ (at most (t_hi/t_lo)^(3/2), a few e-folds) on top.
@@ -49,6 +51,16 @@ module egw_unloading
    !> logarithmic grid, then refined by bisection to full precision.
    integer, parameter :: clamp_samples = 48
    integer, parameter :: max_panels = 400
+   !> Halvings of a tabulated Z_u's pieces towards each kink (tabulate_unloading): the
+   !> piece touching it 2^-12 of the segment's piece width. ln Z_u's series error there
+   !> falls as (width)^(5/2), dZ_u/dh's as (width)^(3/2) (at 1/64: 1e-10 at psi 1, h_min
+   !> -3.7, but 8e-8 at h_min 0.8, 9e-7 at psi 0.3), while the integral's last-bit noise
+   !> in the series' derivative grows as 1/width: 12 halvings balance them (measured
+   !> dZ_u/dh within 2e-9 .. 2e-8 at psi 0.3 .. 10, h_min -6 .. 0.8; ln Z_u 7e-14 ..
+   !> 4e-13), hence the slope acceptance unload_slope_tol, looser than the loading
+   !> law's (slope_tol): dZ_u/dh enters Newton's Jacobian and the stiffness only.
+   integer, parameter :: kink_grades = 12
+   real(dp), parameter, public :: unload_slope_tol = 1.0e-7_dp
 
    !> 16-point Gauss-Legendre nodes on [0, 1] and weights summing to 1 (from egw_gauss's).
    real(dp), parameter :: gl_u(16) = [0.5_dp*(1.0_dp - gl_x), 0.5_dp*(1.0_dp + gl_x)]
@@ -225,11 +237,13 @@ contains
       real(dp), intent(out) :: p              !< Z_u
       real(dp), intent(out) :: dpdh           !< dZ_u/dh at fixed h_min (<= 0)
       real(dp) :: p_load, dp_load
+      logical :: inside
       if (.not. law%plastic .or. h < h_min) then
          call loading_pressure(law, h, p, dpdh)
          return
       end if
-      call unload_integral(law, h - h_min, h_min, p, dpdh)
+      call unload_pieces_at(law%loading%unload, h - h_min, h_min, p, dpdh, inside)
+      if (.not. inside) call unload_integral(law, h - h_min, h_min, p, dpdh)
       if (.not. h > h_min) then  ! h = h_min: the loading value exactly
          call loading_pressure(law, h, p_load, dp_load)
          p = p_load
@@ -279,6 +293,128 @@ contains
       pressure = pu
       dpressure = dpu
    end subroutine flat_pressure_unload
+
+   !> Adds to loading (a tabulated ZMC law, zmc_law_pieces) its unloading law at one
+   !> closest approach h_min: Z_u(Delta, h_min) in Delta (egw_law_pieces' unload_pieces),
+   !> which unloading_pressure then answers at that h_min (within rounding: 1e-12 (1 +
+   !> |h_min|)). A rough + cap build's unloading solves evaluate most of their Z_u at one
+   !> h_min, the deep plastic zone's h_y (flow_cap's plastic_shifts: every deep point's
+   !> shifted h_min is that root), ~3 us a call by the integral. The range: Delta from 0 to
+   !> the last whole unit d_end where Z_u >= p_floor (Z_u < p_floor from d_end + 1 on:
+   !> answered as 0); the pieces end at every unloading_kinks
+   !> Delta (the series need Z_u smooth on each, graded towards them) and are at most 1
+   !> wide. Accepted as zmc_law_pieces: at each piece's Chebyshev extrema and midpoints
+   !> between them, ln Z_u within ln_tol (1 + |ln Z_u|/64) and dZ_u/dh within
+   !> unload_slope_tol of the integral's (relative); a piece that fails halves the widths
+   !> (max_halvings times), then the table stays empty (the integral answers). An empty or elastic loading is left as it is.
+   pure subroutine tabulate_unloading(loading, h_min)
+      type(law_pieces), intent(inout) :: loading   !< the tabulated loading law
+      real(dp), intent(in) :: h_min   !< the closest approach / sigma (finite)
+      type(unloading_law) :: law
+      real(dp), allocatable :: kinks(:)
+      real(dp) :: d_end, p, dpdh, w
+      integer :: halving
+      logical :: ok
+      loading%unload = unload_pieces()
+      if (loading%n == 0 .or. .not. loading%psi > 0.0_dp .or. &
+         & .not. ieee_is_finite(h_min)) return
+      law = unloading_law_of(loading%psi, loading%hardness_coeff, loading%plastic_ratio)
+      ! the last whole unit of Delta where Z_u >= p_floor
+      d_end = 0.0_dp
+      do
+         call unload_integral(law, d_end + 1.0_dp, h_min, p, dpdh)
+         if (.not. p >= p_floor .or. d_end >= 1.0e3_dp) exit
+         d_end = d_end + 1.0_dp
+      end do
+      if (.not. d_end > 0.0_dp) return
+      kinks = unloading_kinks(law)
+      kinks = pack(kinks, kinks > 0.0_dp .and. kinks < d_end)
+      call sort(kinks)
+      w = 1.0_dp
+      do halving = 0, max_halvings
+         call unloading_series(law, h_min, [0.0_dp, kinks, d_end], w, loading%unload, ok)
+         if (ok) return
+         w = 0.5_dp*w
+      end do
+      loading%unload = unload_pieces()
+   end subroutine tabulate_unloading
+
+   !> tabulate_unloading's pieces of width at most w between the breaks (ascending) and
+   !> their check; ok when every piece passes.
+   pure subroutine unloading_series(law, h_min, breaks, w, t, ok)
+      type(unloading_law), intent(in) :: law
+      real(dp), intent(in) :: h_min, breaks(:), w
+      type(unload_pieces), intent(out) :: t
+      logical, intent(out) :: ok
+      integer, parameter :: m = degree + 1
+      real(dp) :: x(m), xc(2*m - 1), lnp(m), d, p, dpdh, lt, dlt, a, b, lo, hi, err
+      real(dp), allocatable :: edges(:)
+      integer :: i, j, k, n
+      call chebyshev_fit(x=x)
+      do i = 1, 2*m - 1
+         xc(i) = cos(0.5_dp*pi*real(i, dp)/m)
+      end do
+      ! every segment in equal pieces of width <= w, those next to a kink (an interior
+      ! break) graded towards it: Z_u has a (Delta - kink)^(5/2)-type term there, whose
+      ! series error on a piece of width h next to it falls as h^(5/2) (ln Z_u) and
+      ! h^(3/2) (dZ_u/dh; 7e-8 at h = 1, psi 1, h_min -3.7): kink_grades halvings bring
+      ! it below the acceptance
+      edges = [breaks(1)]
+      do i = 1, size(breaks) - 1
+         a = breaks(i)
+         b = breaks(i + 1)
+         n = max(1, ceiling((b - a)/w - 1.0e-9_dp))
+         do j = 1, n
+            lo = a + (b - a)*real(j - 1, dp)/n
+            hi = a + (b - a)*real(j, dp)/n
+            if (j == n) hi = b
+            if (i > 1 .and. j == 1) edges = [edges, [(lo + (hi - lo)*0.5_dp**k, &
+               & k = kink_grades, 1, -1)]]
+            ! (a piece graded at both ends has its midpoint once)
+            if (i < size(breaks) - 1 .and. j == n) edges = [edges, [(hi - (hi - lo)* &
+               & 0.5_dp**k, k = merge(2, 1, i > 1 .and. n == 1), kink_grades)]]
+            edges = [edges, hi]
+         end do
+      end do
+      n = size(edges) - 1
+      t%h_min = h_min
+      t%slack = 1.0e-12_dp*(1.0_dp + abs(h_min))
+      t%n = n
+      allocate (t%c(0:degree, n), t%edges(0:n))
+      t%edges(:) = edges
+      ok = .true.
+      do k = 1, n
+         a = t%edges(k - 1)
+         b = t%edges(k)
+         do j = 1, m
+            d = 0.5_dp*(a + b) + 0.5_dp*(b - a)*x(j)
+            call unload_integral(law, d, h_min, p, dpdh)
+            if (.not. (p > 0.0_dp .and. ieee_is_finite(p))) then
+               ok = .false.
+               return
+            end if
+            lnp(j) = log(p)
+         end do
+         call chebyshev_fit(lnp, t%c(:, k))
+         do j = 1, 2*m - 1
+            d = 0.5_dp*(a + b) + 0.5_dp*(b - a)*xc(j)
+            call unload_integral(law, d, h_min, p, dpdh)
+            call clenshaw(t%c(:, k), xc(j), 2.0_dp/(b - a), lt, dlt)
+            if (.not. (p > 0.0_dp .and. dpdh < 0.0_dp)) then
+               ok = .false.
+               return
+            end if
+            err = abs(lt - log(p))/(1.0_dp + abs(log(p))/64.0_dp)
+            t%ln_error = max(t%ln_error, err)
+            err = abs(exp(lt)*dlt - dpdh)/abs(dpdh)
+            t%slope_error = max(t%slope_error, err)
+         end do
+         if (.not. (t%ln_error <= ln_tol .and. t%slope_error <= unload_slope_tol)) then
+            ok = .false.
+            return
+         end if
+      end do
+   end subroutine unloading_series
 
    ! ---------------------------------------------------------------------------------------
 

@@ -11,7 +11,8 @@ module egw_sphere_problem
    use egw_law_pieces, only: law_pieces
    use egw_zmc_table_law, only: zmc_table_law
    use egw_flow_cap, only: flow_cap
-   use egw_unloading, only: unloading_law, unloading_law_of, unloading_pressure
+   use egw_unloading, only: unloading_law, unloading_law_of, unloading_pressure, &
+      & tabulate_unloading
    use egw_halfspace, only: radial_mesh, node_index, influence_row, &
       & interpolate_nodal_walk
    implicit none
@@ -144,7 +145,7 @@ module egw_sphere_problem
    end type discrete_solution
 
    public :: separation_field, scaled_problem, discrete_solution
-   public :: scaled, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
+   public :: scaled, deep_unloading, normal, negligible, base_gap, base_gap_rate, closest_gap, law_at, &
       & estimated_gap, law_inverse, gauss_values, gauss_gap, effective_radius, total_pressure, &
       & smooth_force, smooth_stiffness, rough_pressure, cap_fields, cap_excess, &
       & cap_excess_points, sums_total, force_floor, cap_never_acts
@@ -207,6 +208,22 @@ contains
          call prob%cap%prepare(prob%law)
       end if
    end function scaled
+
+   !> loading (params' tabulated ZMC law, zmc_law_pieces) with its unloading law at the
+   !> deep plastic zone's closest approach (egw_unloading's tabulate_unloading): h_y, the
+   !> root of the cap prepared on the tabulated law, as every unloading problem of params
+   !> made with loading prepares it (scaled), so that their deep points' shifted h_min is
+   !> h_y to rounding. Unchanged without a cap, a root, or a tabulated law.
+   pure subroutine deep_unloading(params, loading)
+      type(contact_params), intent(in) :: params   !< validated, sigma > 0
+      type(law_pieces), intent(inout) :: loading   !< from zmc_law_pieces for params
+      type(scaled_problem) :: prob
+      if (.not. params%flow_pressure > 0.0_dp) return
+      prob = scaled(params, params%sigma, loading)
+      if (.not. tabulated(prob, loading)) return
+      if (.not. prob%cap%yield_known) return
+      call tabulate_unloading(loading, prob%cap%h_yield)
+   end subroutine deep_unloading
 
    !> Whether loading is present, tabulated, and the ZMC law of prob's psi (> 0), K, rho_p.
    pure logical function tabulated(prob, loading)

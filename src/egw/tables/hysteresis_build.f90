@@ -10,6 +10,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
       & history_cap_ratio
    use egw_cap_sphere, only: cap_residual, cap_units, gamma_start
    use egw_cap_loading, only: build_cap_loading
+   use egw_sphere_problem, only: deep_unloading
    use egw_law_pieces, only: law_pieces, zmc_law_pieces
    use egw_table, only: force_table, table_eval, build_table, table_eval_tail_law, &
       & table_prepare
@@ -326,6 +327,9 @@ contains
       ! build was its integral; empty for elastic summits: the integral's F_3/2 is cheap)
       if (plastic_summits(params)) table%loading_law = zmc_law_pieces(params%psi, &
          & params%hardness_coeff, params%plastic_ratio)
+      ! and, with the cap, its Z_u at the deep plastic zone's h_min (~36 % of psi 1's build)
+      if (plastic_summits(params) .and. rough_cap) call deep_unloading(params, &
+         & table%loading_law)
       if (present(progress)) call progress(0, 2*n - 1)
       ! the s range: twice the largest (m - delta_u)/L of the first nodes, so that every
       ! curve reaches delta_u, where the loading force is rel_tol of P_ref (below, an
