@@ -560,8 +560,9 @@ contains
    !> Newton's residual 8e-4 .. 1.3e-3 on the first level: the stall fallbacks apply only
    !> above 2e-6 and the small-sigma route only at 1e-6 and below; since stop 52 the route
    !> answers). At rel_tol 1e-6 at 0.16, 0.18, 0.2: each answer within rel_tol and within
-   !> its own estimate (+ spread), or refused (stop 52's route answered 6.7e-7 .. 7.7e-7 off under
-   !> estimates of 3.4e-7 .. 4.1e-7, its smooth cap 1.1e-6 off; now 1.3e-7, 0.8e-7 off under
+   !> its own estimate (+ spread), or refused (557b1ba's route answered 7.8e-7, 7.1e-7,
+   !> 6.5e-7 off under estimates of 4.1e-7, 3.4e-7, 3.6e-7, its smooth cap 1.1e-6 off:
+   !> fails here; now 1.3e-7, 0.8e-7 off under
    !> 4.4e-7, 4.3e-7 at 0.18, 0.2, and 0.16 refused, estimate 5.2e-7; doc/stability.md
    !> "Stop 53 (small19)"). Reference as test_small_sigma_residual's: the smooth cap
    !> (tools/reference/cap_near_residual.py --m 40; its Richardson errors 3.7e-7, 7.3e-8,
