@@ -511,18 +511,21 @@ contains
    !> 5.3e-6 against 5e-6). Reference: the smooth cap's force (tools/reference/
    !> cap_near_residual.py --m 40, an independent solve; its Richardson errors 3.7e-7,
    !> 3.8e-8, 2.7e-8 relative) times 1 + the rough layer's correction from the rough
-   !> model's own discrete solves at four sigma/delta_y in 5e-5 .. 1e-3 (rel_tol 1e-8, not
-   !> the route; example small-sigma-residual, fitted in sigma**(2/3) to fourth order:
-   !> -4.6e-3, -3.5e-4, -1.8e-4 relative, the fits of third and fourth order apart by
-   !> 2.5e-6, 1.6e-8, 1.8e-8 of the force). Tolerance: rel_tol plus those (1e-5 + 3e-6).
-   !> Measured: 1.4e-6, 7.6e-7, 1.2e-6 off (estimates 2.1e-6, 7.6e-7, 8.4e-7), 12 s.
+   !> model's own discrete solves at sigma/delta_y = 5e-5, 1e-4, 2e-4, 5e-4 less
+   !> egw_cap_limit's smooth cap (rel_tol 1e-8, not the route; example small-sigma-residual,
+   !> stop 53; fitted in sigma**(2/3) to fourth order: -4.6e-3, -3.5e-4, -1.8e-4 relative,
+   !> the fits of third and fourth order apart by 2.7e-7, 2.7e-8, 5.8e-9 of the force;
+   !> until stop 53 -4.601825e-3, -3.541831e-4, -1.816596e-4 from the solves of stop 44
+   !> and a 64-ring smooth cap). Tolerance: rel_tol plus those (1e-5 + 3e-6). Measured
+   !> against the old values: 1.4e-6, 7.6e-7, 1.2e-6 off (estimates 2.1e-6, 7.6e-7,
+   !> 8.4e-7), 12 s.
    subroutine test_small_sigma_residual(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: fractions(3) = [0.145_dp, 0.16_dp, 0.18_dp]
       ! P/P_y of the smooth cap and the rough correction relative to it
       real(dp), parameter :: smooth(3) = [1.162796266339e-4_dp, 8.226717030518e-3_dp, &
          & 2.776761469579e-2_dp]
-      real(dp), parameter :: correction(3) = [-4.601825e-3_dp, -3.541831e-4_dp, -1.816596e-4_dp]
+      real(dp), parameter :: correction(3) = [-4.603500e-3_dp, -3.539259e-4_dp, -1.813434e-4_dp]
       type(contact_params) :: p
       type(loading_history) :: h
       type(solve_result) :: res

@@ -21,8 +21,9 @@ module egw_cap_limit
    !> not yet the asymptotic one. Loading the three: ~1 s at 2 delta_y (the 800-ring
    !> finest level 0.84 s).
    integer, parameter :: limit_rings(3) = [100, 200, 400]
-   !> Richardson's extrapolation only where the differences shrink by at least this
-   !> factor's inverse (tools/reference/cap_reference.py's richardson: 0.9).
+   !> Richardson's extrapolation only where d2/d1, the ratio of successive differences, is
+   !> in (0, shrink_max): they shrink with one sign (tools/reference/cap_reference.py's
+   !> richardson, the same bound).
    real(dp), parameter :: shrink_max = 0.9_dp
 
    !> The smooth cap's loading to delta_max at limit_rings.
