@@ -36,6 +36,7 @@ module egw_rough_sphere
    use egw_flat_law, only: flat_law
    use egw_sphere_problem, only: force_floor, cap_never_acts
    use egw_sphere_regime, only: stall_overlap
+   use egw_cap_limit, only: cap_limit, limit_load, limit_unload
    use egw_cap_sphere, only: cap_options, cap_result, cap_history, cap_load, cap_unload, &
       & cap_units
    use egw_sphere_solver, only: method_auto, method_newton, method_picard, solver_options, &
@@ -178,13 +179,14 @@ module egw_rough_sphere
       !> The small-sigma route's own histories, loaded once with this one where the route
       !> may answer or check its unloading solves (asymptotic_applies at delta_max;
       !> route_histories): the rough model's separation fields after loading to delta_max
-      !> at wide_sigmas and the smooth cap's loading (cap_load, 100 rings). Every route
-      !> unloading solve reuses them (it reloaded them before: 0.5-20 s a solve).
+      !> at wide_sigmas and the smooth cap's loading (egw_cap_limit's three histories,
+      !> extrapolated). Every route unloading solve reuses them (it reloaded them before:
+      !> 0.5-20 s a solve).
       !> wide_loaded(j) false where a loading of pair j failed (the route then tries the
       !> other pair; it fails where both fail).
       logical, private :: wide_loaded(2) = .false.   !< per pair of wide_sigmas
       type(separation_field), private :: wide(2, 2)
-      type(cap_history), private :: wide_cap
+      type(cap_limit), private :: wide_cap
       !> GW's ZMC loading law tabulated once by the caller (load_history's loading): the
       !> law of the unloading solves (empty: the integral).
       type(law_pieces), private :: loading_law
@@ -512,7 +514,7 @@ contains
    end subroutine route_floor
 
    !> The asymptotic route's unloading answer at delta after history: as
-   !> asymptotic_loading, with the smooth cap's unloading from delta_max (cap_unload) and
+   !> asymptotic_loading, with the smooth cap's unloading from delta_max (limit_unload) and
    !> the rough model's histories and unloading solves at wide_sigmas. Where that answer's
    !> estimate misses rel_tol/2 or both pairs fail (near the residual overlap the sigma**(2/3)
    !> term's own next order dominates, and solves at 1e-5 delta_y fail), every wide solve
@@ -541,7 +543,7 @@ contains
          end do
          if (all(solved(:, pair) == 1)) exit
       end do
-      call cap_unload(history%wide_cap, delta, cap, cap_error)
+      call limit_unload(history%wide_cap, delta, cap, cap_error)
       if (allocated(cap_error)) return
       if (pair <= 2) then
          call asymptotic_result(history%params, cap, wide(:, pair), wide_sigmas(:, pair), &
@@ -610,7 +612,9 @@ contains
    !> The small-sigma route's histories of hist (loaded, its params and options; see
    !> loading_history%wide_loaded), where the route may answer or check its unloading
    !> solves: the rough model loaded to delta_max at wide_sigmas (load_history, as the
-   !> route's unloading solves did each time before) and the smooth cap's cap_load.
+   !> route's unloading solves did each time before) and the smooth cap's limit_load (three
+   !> ring counts: one cap history's estimate misses its plastic field's error, which put
+   !> the route's answers up to 7e-7 off under estimates of 3.4e-7; egw_cap_limit).
    !> Nothing where the route does not apply; wide_loaded false where a loading fails.
    recursive subroutine route_histories(hist)
       type(loading_history), intent(inout) :: hist
@@ -630,9 +634,8 @@ contains
       wide_options%rel_tol = min(max(hist%options%rel_tol, wide_history_floor), &
          & wide_history_tol)
       if (hist%asymptotic) wide_options%rel_tol = wide_history_floor
-      call cap_load(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
-         & hist%delta_max, cap_options(n_rings=100, n_levels=2), hist%wide_cap, cap, &
-         & wide_error, "delta_max")
+      call limit_load(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
+         & hist%delta_max, hist%wide_cap, cap, wide_error)
       if (allocated(wide_error)) return
       do pair = 1, 2
          loaded = .true.
