@@ -105,7 +105,9 @@ module egw_cache
    !> 40 (zmc18): EP-GW hysteresis tables (psi > 0) unload with the ZMC loading law
    !> tabulated once per build (egw_law_pieces): README's EP-GW + cap psi 1 table to 6
    !> delta_y at 1e-4 moved by up to 3.3e-9 of P(m), the same grid.
-   integer, parameter, public :: cache_revision = 40
+   !> 41 (stiff19): rough + cap loading stiffness (the Hermite slopes of rough + cap
+   !> loading tables) from the accepted mesh moved with its kinks (egw_sphere_moving_mesh)
+   integer, parameter, public :: cache_revision = 41
 
 
 contains
