@@ -115,7 +115,9 @@ module egw_cache
    !> 42 (zu19): EP-GW + cap tables (psi > 0) unload their deep plastic zone with Z_u
    !> tabulated at h_y (egw_unloading's tabulate_unloading): README's psi 1 table to 6
    !> delta_y at 1e-4 moved by up to 3.2e-15 of P(m), the same grid.
-   integer, parameter, public :: cache_revision = 42
+   !> 43 (stiff19): rough + cap loading stiffness (the Hermite slopes of rough + cap
+   !> loading tables) from the accepted mesh moved with its kinks (egw_sphere_moving_mesh)
+   integer, parameter, public :: cache_revision = 43
 
 
 contains

@@ -43,6 +43,7 @@ module egw_rough_sphere
       & max_mesh_nodes, tiny_force, separation_field, scaled_problem, discrete_solution, &
       & scaled, normal, negligible, solve_scaled, differentiate, &
       & effective_radius, total_pressure, smooth_force, smooth_stiffness, solver_workspace
+   use egw_sphere_moving_mesh, only: kink_following_rate
    implicit none
    private
 
@@ -963,7 +964,8 @@ contains
       !> the buffers of the caller's earlier solves (solve_scaled's, differentiate's)
       type(solver_workspace), intent(inout), optional :: work
       type(solve_result) :: res
-      real(dp) :: est, force_scale, pmax
+      real(dp) :: est, force_scale, pmax, rate
+      logical :: moved
 
       call solve_scaled(prob, options, sol, est, res%method_used, error, warm, work)
       if (allocated(error)) return
@@ -975,6 +977,13 @@ contains
       end if
       call differentiate(prob, sol, error, work)
       if (allocated(error)) return
+      if (allocated(prob%cap) .and. .not. allocated(prob%closest)) then
+         ! loading with the cap: the derivative of the converged answer, on the accepted
+         ! mesh moved with its kinks (the implicit one can be ~1e-3 off; issue 32)
+         rate = sol%dforce
+         call kink_following_rate(prob, options, sol, rate, moved)
+         sol%dforce = rate
+      end if
 
       force_scale = force_unit(params)
       res%force = force_scale*(smooth_force(prob) + sol%force)
