@@ -9,9 +9,10 @@
 !> 1. The front: P/P(m) at fixed overlaps delta (sigma) as m grows. Below ~210.7 sigma the
 !>    end of the contact branch, delta_f(m), lies below delta = 0; where it passes, the
 !>    force at that delta falls by decades within a few sigma of m.
-!> 2. The centre's lift-off: P/P(m) at fixed unloading distances x = m - delta. Every curve
-!>    with a capped centre has a kink in its stiffness near x = delta_y (p_y - p_Hertz(x)
-!>    reaches 0 at the centre, the contact turns annular); printed: the kink's x on curves
+!> 2. A kink at x ~ delta_y: P/P(m) at fixed unloading distances x = m - delta. The rough
+!>    curves above first yield have a kink in their stiffness near x = delta_y (its cause
+!>    not established: the smooth Hertz + cap curve from 230 sigma has none there); printed:
+!>    the kink's x on curves
 !>    at m = 206 and 230 (largest jump of the stiffness's slope on a 0.25 sigma grid).
 !> 3. What that does to interpolation in m: the worst four-point Lagrange error at the
 !>    midpoint of the middle interval, stencil spacing h, relative to max(P, 1e-3 P(m)) (the
@@ -23,14 +24,17 @@
 !>    as local19's prototype) against 1e-9/1e-8: the error changes by 1.3e-4 of the local
 !>    force between 209.3175 and 209.3180 (a discretisation switch), where a 1e-4 table's
 !>    delta_max check splits an interval to the minimum width.
+!> 5. The smooth cap model at the same x: the Hertz + cap curve from 230 sigma (model_hertz,
+!>    the same p_y), its stiffness and the stiffness's increments every 0.5 sigma over x =
+!>    197 ... 203 sigma (no kink there).
 !>
 !>   B=$(dirname $(find build -path '*/egw_hysteresis.mod' | head -1))
 !>   gfortran -O2 -fopenmp -I$B tools/bench/rough_cap_unload_features.f90 \
 !>      $(find build -name libegw.a | head -1) -llapack -lblas -o /tmp/rough_cap_unload_features
 !>   OMP_NUM_THREADS=1 /tmp/rough_cap_unload_features 196 0.25 121   # M0, DM, N (sigma)
 program rough_cap_unload_features
-   use egw, only: dp, contact_params, model_egw, solver_options, solve_result, egw_error, &
-      & loading_history, load_history, solve_unload
+   use egw, only: dp, contact_params, model_egw, model_hertz, solver_options, solve_result, &
+      & egw_error, loading_history, load_history, solve_unload
    implicit none
    integer, parameter :: n_d = 9, n_x = 7
    real(dp), parameter :: deltas(n_d) = [-2.0_dp, -1.5_dp, -1.0_dp, -0.5_dp, 0.0_dp, &
@@ -77,7 +81,34 @@ program rough_cap_unload_features
       print '(a,9es9.1)', "    fixed delta, m >= M0 ", (worst(u_d(:, k), step, m0), k = 1, n_d)
    end do
    call solve_jump()
+   call smooth_cap(230.0_dp)
 contains
+   !> Part 5 (see the header).
+   subroutine smooth_cap(mm)
+      real(dp), intent(in) :: mm
+      type(contact_params) :: h
+      type(loading_history) :: hist
+      type(solve_result) :: peak, res
+      type(egw_error), allocatable :: err
+      real(dp) :: k_prev, x
+      integer :: j
+      h = contact_params(model=model_hertz, radius=p%radius, modulus=p%modulus, &
+         & flow_pressure=p%flow_pressure)
+      call load_history(h, solver_options(rel_tol=1.0e-8_dp, n_threads=1), mm, hist, peak, &
+         & err)
+      if (allocated(err)) error stop "load_history failed (Hertz + cap)"
+      hist%options%rel_tol = 1.0e-7_dp
+      print '(a,f6.1,a)', "5. Hertz + cap from m = ", mm, ": x, stiffness, its increment"
+      k_prev = 0.0_dp
+      do j = 0, 12
+         x = 197.0_dp + 0.5_dp*j
+         call solve_unload(hist, mm - x, res, err)
+         if (allocated(err)) error stop "solve_unload failed (Hertz + cap)"
+         if (j > 0) print '(f10.2,2es14.5)', x, res%stiffness, res%stiffness - k_prev
+         k_prev = res%stiffness
+      end do
+   end subroutine smooth_cap
+
    !> Part 4 (see the header).
    subroutine solve_jump()
       type(loading_history) :: hist
