@@ -21,7 +21,6 @@
 #ifndef EGW_H
 #define EGW_H
 
-#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -843,77 +842,59 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
    * for a linear interval). A log-ratio piece spans loading intervals: it serves delta
    * inside both its ends and the loading interval's. Where the force is 0 below the
    * loading table's cut-off (a contact that has not touched, or one separated below its
-   * turning point's unloading curve) the call leaves a zero piece (from
-   * -sqrt(DBL_MAX)/4, exactly) and a zero linear interval, so that separated contacts are
-   * served here too: 0 at once, as the call answers them. */
-  double f, k, t, t2, v, d;
+   * turning point's unloading curve) the call leaves a zero piece and a zero linear
+   * interval from -sqrt(DBL_MAX)/4, so that separated contacts are served here too, at
+   * once. */
+  double f = 0.0, k = 0.0;
+  int piece, loading;
   if (EGW_UNLIKELY_(!(state[2] == tag))) return 0;
-  if (state[1] == state[0] && state[10] < delta && delta < state[11] &&
-      state[17] <= delta && delta < state[18]) {
-    double x, x2;
-    if (state[10] == -3.351951982485649e+153) {
-      /* a zero piece (it starts at -sqrt(DBL_MAX)/4, the library's zero_lo): its cubic
-       * and interval are zeros, so their values are +0; the call answers it so too */
-      if (force) *force = 0.0;
-      if (stiffness) *stiffness = 0.0;
-      return 1;
-    }
-    x = delta - state[10];
-    x2 = x * x;
+  piece = state[1] == state[0] && state[10] < delta && delta < state[11] &&
+          state[17] <= delta && delta < state[18];
+  if (piece && state[10] == -3.351951982485649e+153) {
+    /* a zero piece (it starts at -sqrt(DBL_MAX)/4, the library's zero_lo): its cubic
+     * and interval are zeros, so their values are +0; the call answers it so too */
+    if (force) *force = 0.0;
+    if (stiffness) *stiffness = 0.0;
+    return 1;
+  }
+  loading = !piece && delta >= state[0] && state[17] < delta && delta < state[18];
+  if (EGW_UNLIKELY_(!piece && !loading)) return 0;
+  if (piece) {
+    double x = delta - state[10], x2 = x * x;
     f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
     k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
-    if (state[23] > 1.0 || state[23] < 0.0) {
-      /* a log-ratio piece, one exp: on a ln P interval (the separated tail)
-       * exp(ln P - h), on a linear one P e^-h; written as one with q = 1 or P (1 times a
-       * double is that double, and exp(f + 0) is exp(f) also at f = -0: the bits of the
-       * two branches, the Fortran piece_force's) */
-      int lnp = state[23] > 1.0;
-      double q, p;
-      t = delta - state[17];
-      t2 = t * t;
-      v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
-      d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
-      q = lnp ? 1.0 : v;
-      p = egw_piece_exp_(f + (lnp ? v : 0.0));
-      k = p * (d + q * k);
-      f = q * p;
+  }
+  if (loading || state[23] > 0.0 || (piece && state[23] < 0.0)) {
+    /* the loading interval's force: all of it when loading; on a piece its ln P part, or
+     * on a log-ratio piece the factor exp(-h) of the loading force (one exp) */
+    double t = delta - state[17], t2 = t * t;
+    double v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
+    double d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
+    if (piece && (state[23] > 1.0 || state[23] < 0.0)) {
+      double p = egw_piece_exp_(state[23] > 1.0 ? v + f : f);
+      if (state[23] > 1.0) {
+        k = p * (d + k);
+        f = p;
+      } else {
+        k = p * (d + v * k);
+        f = v * p;
+      }
     } else if (state[23] > 0.0) {
-      /* a gap piece on a ln P interval: the cubic plus P */
-      double p;
-      t = delta - state[17];
-      t2 = t * t;
-      v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
-      d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
-      p = exp(v);
+      double p = exp(v);
       f = f + p;
       k = k + p * d;
-    }
-    if (!(f > 0.0)) f = k = 0.0;
-    /* f >= 0 here: not finite (a garbled state with this table's tag), or so large that
-     * |k| + f overflows (the call serves it with the same values), takes the call */
-    if (EGW_UNLIKELY_(!(fabs(k) + f <= DBL_MAX))) return 0;
-  } else if (delta >= state[0] && state[17] < delta && delta < state[18]) {
-    /* loading further (or back at the history) inside the loading interval: its force */
-    t = delta - state[17];
-    t2 = t * t;
-    v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
-    d = (state[20] + 2 * t * state[21]) + 3 * t2 * state[22];
-    if (state[23] > 0.0) {
-      double p = exp(v);
-      f = 0.0 + p;
-      k = 0.0 + p * d;
     } else {
       f = v;
       k = d;
     }
-    if (EGW_UNLIKELY_(!(f - f == 0.0 && k - k == 0.0))) return 0;
-    if (delta > state[0]) {
-      state[10] = state[11] = NAN;  /* loading further: no piece, the new history */
-      state[0] = delta;
-    }                               /* back at the history exactly: the piece kept */
-  } else {
-    return 0;
   }
+  if (piece && !(f > 0.0)) f = k = 0.0;
+  /* not a number (a garbled state with this table's tag): the call refuses it */
+  if (EGW_UNLIKELY_(!(f - f == 0.0 && k - k == 0.0))) return 0;
+  if (loading && delta > state[0]) {
+    state[10] = state[11] = NAN;    /* loading further: no piece, the new history */
+    state[0] = delta;
+  }                                 /* back at the history exactly: the piece kept */
   if (force) *force = f;
   if (stiffness) *stiffness = k;
   return 1;

@@ -19,8 +19,11 @@
  * between the cut-off and 0); states fresh (egw_hysteresis_state_init before the loop:
  * never touched) or with a history (loaded to 1 sigma before the loop: separated);
  * paths: "inline" = egw_hysteresis_eval_cached, egw_hysteresis_eval_state when it does
- * not serve; "call" = egw_hysteresis_eval_state alone. Hertz: (4/3) E* sqrt(R) |d|^1.5
- * and its stiffness, inline (|d| so that it computes, as a contact in touch). */
+ * not serve; "call" = egw_hysteresis_eval_state alone, each path in its own loop (as a
+ * DEM force loop has one; stop 54: they shared one loop with a test of the path, which
+ * made gcc keep the sum in memory on both). Hertz: (4/3) E* sqrt(R) |d|^1.5 and its
+ * stiffness, inline (|d| so that it computes, as a contact in touch), summed the same way;
+ * gcc -O2 does not vectorize it (an FP sum; a scalar sqrtsd a step). */
 #define _POSIX_C_SOURCE 199309L
 #include <math.h>
 #include <stdio.h>
@@ -43,9 +46,7 @@ static double st[NC][EGW_HYSTERESIS_STATE_SIZE];
 static double dl[ND];
 static volatile double sink;
 
-/* One loop per path, as a DEM code has one (a loop-invariant test of the path inside the
- * loop made gcc see the call as taken half the time and keep the sum in memory on both
- * paths). noinline: each loop compiled alone, as in a force routine. */
+/* One loop per path (noinline: each compiled alone, as a force routine is). */
 static __attribute__((noinline)) double loop_inline(egw_hysteresis h, double tag,
                                                     double x0) {
   double acc = 0.0, f, k;
