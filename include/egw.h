@@ -823,8 +823,8 @@ static inline double egw_piece_exp_(double x)
                                r2 * 0.001388888888888889));
 }
 
-/* The branch the caller's library call takes as unlikely, so that a force loop keeps its
- * sums in registers across the call (GCC and Clang; elsewhere the plain test). */
+/* The branches to the caller's library call marked unlikely, so that the served steps
+ * are laid out straight (GCC and Clang; elsewhere the plain test). */
 #if defined(__GNUC__)
 #define EGW_UNLIKELY_(c) __builtin_expect(!!(c), 0)
 #else
