@@ -20,8 +20,8 @@
  * never touched) or with a history (loaded to 1 sigma before the loop: separated);
  * paths: "inline" = egw_hysteresis_eval_cached, egw_hysteresis_eval_state when it does
  * not serve; "call" = egw_hysteresis_eval_state alone, each path in its own loop (as a
- * DEM force loop has one; stop 54: they shared one loop with a test of the path, which
- * made gcc keep the sum in memory on both). Hertz: (4/3) E* sqrt(R) |d|^1.5 and its
+ * DEM force loop has one; before stop 54 they shared one loop with a test of the path;
+ * main's times are the same in both shapes). Hertz: (4/3) E* sqrt(R) |d|^1.5 and its
  * stiffness, inline (|d| so that it computes, as a contact in touch), summed the same way;
  * gcc -O2 does not vectorize it (an FP sum; a scalar sqrtsd a step). */
 #define _POSIX_C_SOURCE 199309L
