@@ -823,6 +823,14 @@ static inline double egw_piece_exp_(double x)
                                r2 * 0.001388888888888889));
 }
 
+/* The branches to the caller's library call marked unlikely, so that the served steps
+ * are laid out straight (GCC and Clang; elsewhere the plain test). */
+#if defined(__GNUC__)
+#define EGW_UNLIKELY_(c) __builtin_expect(!!(c), 0)
+#else
+#define EGW_UNLIKELY_(c) (c)
+#endif
+
 static inline int egw_hysteresis_eval_cached(double tag, double delta,
                                              double state[EGW_HYSTERESIS_STATE_SIZE],
                                              double *force, double *stiffness)
@@ -835,14 +843,22 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
    * inside both its ends and the loading interval's. Where the force is 0 below the
    * loading table's cut-off (a contact that has not touched, or one separated below its
    * turning point's unloading curve) the call leaves a zero piece and a zero linear
-   * interval from -sqrt(DBL_MAX)/4, so that separated contacts are served here too. */
+   * interval from -sqrt(DBL_MAX)/4, so that separated contacts are served here too, at
+   * once. */
   double f = 0.0, k = 0.0;
   int piece, loading;
-  if (!(state[2] == tag)) return 0;
+  if (EGW_UNLIKELY_(!(state[2] == tag))) return 0;
   piece = state[1] == state[0] && state[10] < delta && delta < state[11] &&
           state[17] <= delta && delta < state[18];
+  if (piece && state[10] == -3.351951982485649e+153) {
+    /* a zero piece (it starts at -sqrt(DBL_MAX)/4, the library's zero_lo): its cubic
+     * and interval are zeros, so their values are +0; the call answers it so too */
+    if (force) *force = 0.0;
+    if (stiffness) *stiffness = 0.0;
+    return 1;
+  }
   loading = !piece && delta >= state[0] && state[17] < delta && delta < state[18];
-  if (!piece && !loading) return 0;
+  if (EGW_UNLIKELY_(!piece && !loading)) return 0;
   if (piece) {
     double x = delta - state[10], x2 = x * x;
     f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
@@ -874,7 +890,7 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
   }
   if (piece && !(f > 0.0)) f = k = 0.0;
   /* not a number (a garbled state with this table's tag): the call refuses it */
-  if (!(f - f == 0.0 && k - k == 0.0)) return 0;
+  if (EGW_UNLIKELY_(!(f - f == 0.0 && k - k == 0.0))) return 0;
   if (loading && delta > state[0]) {
     state[10] = state[11] = NAN;    /* loading further: no piece, the new history */
     state[0] = delta;
