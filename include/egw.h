@@ -982,9 +982,12 @@ typedef struct {
                         * from 2 to 1000 delta_y at 1e-4, 1e-5 and 3e-6, at or above the
                         * error measured between the nodes (1e-5 to 20 delta_y: 9.8e-6
                         * reported, 8.6e-6 measured at 447 turning points; doc/stability.md
-                        * "Stop 53 (doubt19)"). Rough + cap (E-GW + cap, sigma/delta_y
-                        * 1e-2, to 6 delta_y): both below rel_tol, measured ~1.5x the
-                        * reported (1e-4: 4.3e-5 and 6.7e-5 of P(m)) */
+                        * "Stop 53 (doubt19)"). Rough + cap: the check curves' mismatch
+                        * plus the stencil's Lebesgue sum times its curves' error in s,
+                        * a bound for what falls between the check curves' s nodes (E-GW
+                        * + cap, sigma/delta_y 1e-2, to 6 delta_y: 1e-3 5.8e-4 reported,
+                        * 3.9e-4 of P(m) measured between the nodes; 1e-4 7.3e-5, 7.0e-5;
+                        * doc/stability.md "Stop 54 (doubt20)") */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;
 

@@ -129,6 +129,9 @@ submodule (egw_hysteresis) egw_hysteresis_build
       real(dp) :: scale = 1.0_dp    !< the loading table's force at m (g's unit)
       real(dp) :: c_turn = 1.0_dp   !< the solve's force at m over scale
       logical :: verified = .false. !< bisected in s to rel_tol/4 (refine_curve)
+      !> refine_curve's largest accepted mismatch: its cubics' error in s (max_error's
+      !> share from the s direction, gap_bound)
+      real(dp) :: worst = 0.0_dp
       !> h = ln(c P_ext/P) at s of the edge map xi (edge_breaks of length), slopes as
       !> dh/d(m - delta) (the table's log_ratio); else the gap, slopes dg/ds
       logical :: log = .false.
@@ -812,6 +815,13 @@ contains
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
             table%max_error = max(table%max_error, maxval(err_mid))
+            ! (gap curves: the bound between the check curves' s nodes too, gap_bound)
+            if (table%mapped) then
+               do j = 1, size(m) - 1
+                  table%max_error = max(table%max_error, gap_bound(table, m, curves, j, &
+                     & err_mid(j)))
+               end do
+            end if
             ! (Hertz + cap: err_mid is what the table's force misses there, the loading
             ! table's error at the turning point included, P = P_load,table(m) sum w u; at
             ! the nodes' curves that error alone)
@@ -862,6 +872,38 @@ contains
          & format_real(table%rel_tol)//" not reached: the delta_max grid did not settle "// &
          & "after 30 bisections")
    end subroutine refine_m
+
+   !> A gap curve table's (rough + cap's, relative to P(m)) error bound on delta_max
+   !> interval j: its check curve's mismatch err_mid, found at that curve's s nodes, plus
+   !> the stencil's Lebesgue sum (the largest sum |w| at seven points of the interval)
+   !> times its curves' largest error in s (refine_curve's, their cubics' mismatch at
+   !> their intervals' middles): between the check curve's s nodes each stencil curve's
+   !> cubic errs by up to that, the weights carrying it into the evaluation. err_mid alone
+   !> under-reported the dense check's error ~1.5x (E-GW + cap, sigma/delta_y 1e-2, to 6
+   !> delta_y: 1e-3 2.47e-4 against 3.9e-4 of P(m), 1e-4 4.33e-5 against 6.7e-5;
+   !> doc/stability.md "Stop 54 (doubt20)").
+   pure real(dp) function gap_bound(table, m, curves, j, err_mid) result(bound)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(in) :: curves(:)
+      integer, intent(in) :: j
+      real(dp), intent(in) :: err_mid   !< the check curve's mismatch (stencil_mismatch)
+      real(dp) :: w(max_stencil), xm(max_stencil), lebesgue
+      integer :: first, lo, hi, k_b, i
+      k_b = m_breakpoint(m)
+      call stencil_window(j, size(m), k_b, stencil_width(table%log_ratio, size(m)), first, &
+         & lo, hi)
+      first = first + lo - 1
+      hi = hi - lo + 1
+      xm(1:hi) = m_coordinate(m(first:first + hi - 1), k_b)
+      lebesgue = 0.0_dp
+      do i = 1, 7
+         call lagrange_weights(m_coordinate(m(j) + real(i, dp)/8.0_dp*(m(j + 1) - m(j)), &
+            & k_b), xm(1:hi), w(1:hi))
+         lebesgue = max(lebesgue, sum(abs(w(1:hi))))
+      end do
+      bound = err_mid + lebesgue*maxval(curves(first:first + hi - 1)%worst)
+   end function gap_bound
 
    !> Splits deferred (log-ratio tables, split_defer): wide(j) is cleared where interval j
    !> misses the bound by less than split_defer times it and a neighbour misses by more.
@@ -1271,6 +1313,7 @@ contains
          end if
          if (.not. (allocated(err) .or. only_check)) call refine_curve(table, curves(j), &
             & worst(j), err)
+         curves(j)%worst = worst(j)
          ! (a check curve's start is not used again, move_curve leaves it behind: freed
          ! here with the solver's buffers it carries, so that the check curves solved in
          ! parallel do not all hold them until the last is done)
@@ -1334,6 +1377,7 @@ contains
          end do
          if (.not. allocated(err)) call refine_curve(table, curves(idx(k)), worst(k), err, &
             & known)
+         curves(idx(k))%worst = worst(k)
          if (allocated(err)) then
             stats(k) = err%stat
             messages(k) = err%message
@@ -1845,6 +1889,7 @@ contains
       to%knee = from%knee
       to%piece_scale = from%piece_scale
       to%verified = from%verified
+      to%worst = from%worst
       to%hist = from%hist
       to%log = from%log
       to%xi = from%xi
