@@ -686,7 +686,9 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * pressure reaches p_y (reversible when it never does up to delta_max); other models
  * give reversible curves; with p_y, delta_max above 1000 delta_y: EGW_INVALID_ARGUMENT;
  * Hertz + cap beyond its first capped turning point below rel_tol 3e-6, which its solves'
- * smoothness (~3e-7) does not let it reach: EGW_INVALID_ARGUMENT naming rel_tol)
+ * smoothness (~3e-7) does not let it reach, and a rough model + cap whose cap acts below
+ * delta_max below rel_tol 3e-6 (its unloading solves reach ~2.4e-7; one loading solve
+ * tells): EGW_INVALID_ARGUMENT naming rel_tol)
  * over overlaps [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL
  * (defaults). *out receives a handle only on success. The unloading curves are solved at rel_tol/10,
  * or at o->rel_tol where that is set below its default 1e-6 and below rel_tol/10 (the
@@ -985,7 +987,7 @@ typedef struct {
                         * "Stop 53 (doubt19)"). Rough + cap: the check curves' mismatch
                         * plus the stencil's Lebesgue sum times its curves' error in s,
                         * a bound for what falls between the check curves' s nodes (E-GW
-                        * + cap, sigma/delta_y 1e-2, to 6 delta_y: 1e-3 5.8e-4 reported,
+                        * + cap, README's scene to 600 sigma = 3 delta_y: 1e-3 5.8e-4 reported,
                         * 3.9e-4 of P(m) measured between the nodes; 1e-4 7.3e-5, 7.0e-5;
                         * doc/stability.md "Stop 54 (doubt20)") */
   egw_params params;   /* the parameters the table was built for */

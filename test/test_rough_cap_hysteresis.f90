@@ -48,6 +48,8 @@ contains
          & test_max_error), &
          & new_unittest("binary and CSV round trip (version 4, sigma kept)", test_formats), &
          & new_unittest("refused: flat law, beyond 1000 delta_y, bad p_y", test_refused), &
+         & new_unittest("refused at once: rel_tol below the rough + cap solves' reach", &
+         & test_least_tol), &
          & new_unittest("DEM loop on the table: e = restitution to 1e-3", test_dem_loop), &
          & new_unittest("two-piece s map: state pieces and energy as the force", &
          & test_map_state_energy), &
@@ -459,6 +461,36 @@ contains
       close (u)
       call check(error, magic == "EGWHYST1" .and. version == 4, "binary version")
    end subroutine test_formats
+
+   !> E-GW + cap at rel_tol 1e-6 (below 3e-6, the least a rough + cap table reaches where
+   !> the cap acts: its unloading solves at rel_tol/10 reach ~2.4e-7): refused after one
+   !> loading solve, naming rel_tol and the range in delta_y, before the loading table. On
+   !> main README's E-GW + cap to 3 delta_y at 1e-6 failed after 272 s CPU (egw_not_converged
+   !> on one of its solves; doc/stability.md "Stop 54 (doubt20)"). A table ending below
+   !> the rough first yield (the cap never acts: reversible, the cap-free E-GW table)
+   !> still builds at 1e-6.
+   subroutine test_least_tol(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      call build_hysteresis(egw_pair(), solver_options(), -3*sigma, 10*delta_y(), &
+         & 1.0e-6_dp, t, err)
+      call check(error, allocated(err), "built at 1e-6 to 10 delta_y: max_error "// &
+         & str(t%max_error))
+      if (allocated(error)) return
+      ! (format_real writes 10 as 1.000000000000000E+001)
+      call check(error, err%stat == egw_invalid_argument .and. &
+         & index(err%message, "rel_tol = ") == 1 .and. &
+         & index(err%message, "E+001 delta_y") > 0, "message: "//err%message)
+      if (allocated(error)) return
+      call check(error, .not. allocated(t%loading%delta), "a loading table was built")
+      if (allocated(error)) return
+      call build_hysteresis(egw_pair(), solver_options(), -3*sigma, 0.5_dp*delta_y(), &
+         & 1.0e-6_dp, t, err)
+      call check(error, .not. allocated(err), "to 0.5 delta_y")
+      if (allocated(error)) return
+      call check(error, t%reversible, "to 0.5 delta_y: reversible")
+   end subroutine test_least_tol
 
    !> What is still refused, naming the parameter: a flat law (model_flat_law: a
    !> hysteresis table takes no law object; its solves need one), a table with the cap

@@ -84,6 +84,15 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> built 135x and 990x off rel_tol). 3e-6 met rel_tol with 278-289 delta_max nodes from
    !> 10 to 1000 delta_y (doc/stability.md "Stop 53 (doubt19)").
    real(dp), parameter :: ratio_least_tol = 3.0e-6_dp
+   !> Rough + cap tables where the cap acts below delta_max: the least rel_tol built (a
+   !> smaller one is refused after one loading solve). Their curves' unloading solves, at
+   !> rel_tol/10, reach ~2.4e-7 of the force: README's E-GW + cap to 3 delta_y at 1e-6
+   !> failed after 272 s CPU (a solve's finest-mesh estimate 1.2e-7 against rel_tol/2 =
+   !> 5e-8, "reaches rel_tol >= 2.4e-7"), its delta_max grid at 209 nodes and splitting
+   !> (9, 17, 33, 65, 127, 209: the check curves' mismatch falls only ~2.7x per halving);
+   !> stop 53's run of it had not finished in 1200 s wall. 1e-5 builds in 21 s CPU (101
+   !> nodes); doc/stability.md "Stop 54 (doubt20)".
+   real(dp), parameter :: rough_least_tol = 3.0e-6_dp
    !> Log-ratio tables on six-point stencils: a check curve is not solved at a node s of
    !> its neighbours where the four-point stencil's h at its turning point lies within
    !> check_skip rel_tol of the six-point one's (weighted by a bound on its weight there,
@@ -227,6 +236,10 @@ contains
       if (rough_cap) then
          call rough_cap_reach(params, delta_max, error)
          if (allocated(error)) return
+         if (rel_tol < rough_least_tol) then
+            call rough_cap_floor(params, options, delta_max, rel_tol, error)
+            if (allocated(error)) return
+         end if
       end if
       if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) then
          ! (a quarter of rel_tol: the curves store P/P_load(m), so the loading table's
@@ -354,6 +367,26 @@ contains
       call hysteresis_prepare(table)
       table%loading_law = law_pieces()
    end subroutine build_work
+
+   !> Refuses (egw_invalid_argument, naming rel_tol and rough_least_tol) a rough + cap
+   !> table below rough_least_tol where the cap acts below delta_max (cap_reached: one
+   !> loading solve, at 1e-4: whether p_y is reached needs no more); where it never acts
+   !> the table is the cap-free one, built at any rel_tol.
+   subroutine rough_cap_floor(params, options, delta_max, rel_tol, error)
+      type(contact_params), intent(in) :: params   !< a rough model with the cap
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max, rel_tol
+      type(egw_error), allocatable, intent(out) :: error
+      logical :: acts
+      call cap_reached(params, options, 1.0e-3_dp, delta_max, acts, error)
+      if (allocated(error) .or. .not. acts) return
+      call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
+         & ": below "//format_real(rough_least_tol)//", the least a rough + cap "// &
+         & "hysteresis table reaches where the cap acts (here to "//format_real(delta_max/ &
+         & first_yield(params))//" delta_y): its unloading solves, at rel_tol/10, reach "// &
+         & "~2.4e-7 of the force, and its delta_max grid passes 200 nodes on the way "// &
+         & "(doc/stability.md, stop 54)")
+   end subroutine rough_cap_floor
 
    !> Refuses (egw_unsupported, naming delta_max) a rough + cap table that reaches
    !> beyond max_layer_reach sigma (plastic summits: plastic_layer_reach) at sigma/delta_y
@@ -879,8 +912,8 @@ contains
    !> times its curves' largest error in s (refine_curve's, their cubics' mismatch at
    !> their intervals' middles): between the check curve's s nodes each stencil curve's
    !> cubic errs by up to that, the weights carrying it into the evaluation. err_mid alone
-   !> under-reported the dense check's error ~1.5x (E-GW + cap, sigma/delta_y 1e-2, to 6
-   !> delta_y: 1e-3 2.47e-4 against 3.9e-4 of P(m), 1e-4 4.33e-5 against 6.7e-5;
+   !> under-reported the dense check's error ~1.5x (README's E-GW + cap, to 600 sigma =
+   !> 3 delta_y: 1e-3 2.47e-4 against 3.9e-4 of P(m), 1e-4 4.33e-5 against 6.7e-5;
    !> doc/stability.md "Stop 54 (doubt20)").
    pure real(dp) function gap_bound(table, m, curves, j, err_mid) result(bound)
       type(hysteresis_table), intent(in) :: table
