@@ -987,7 +987,7 @@ typedef struct {
                         * "Stop 53 (doubt19)"). Rough + cap: the check curves' mismatch
                         * plus the stencil's Lebesgue sum times its curves' error in s,
                         * a bound for what falls between the check curves' s nodes (E-GW
-                        * + cap, README's scene to 600 sigma = 3 delta_y: 1e-3 5.8e-4 reported,
+                        * + cap, sigma/delta_y 5e-3, to 3 delta_y: 1e-3 5.8e-4 reported,
                         * 3.9e-4 of P(m) measured between the nodes; 1e-4 7.3e-5, 7.0e-5;
                         * doc/stability.md "Stop 54 (doubt20)") */
   egw_params params;   /* the parameters the table was built for */

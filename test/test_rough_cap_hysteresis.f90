@@ -465,7 +465,7 @@ contains
    !> E-GW + cap at rel_tol 1e-6 (below 3e-6, the least a rough + cap table reaches where
    !> the cap acts: its unloading solves at rel_tol/10 reach ~2.4e-7): refused after one
    !> loading solve, naming rel_tol and the range in delta_y, before the loading table. On
-   !> main README's E-GW + cap to 3 delta_y at 1e-6 failed after 272 s CPU (egw_not_converged
+   !> main E-GW + cap (sigma/delta_y 5e-3) to 3 delta_y at 1e-6 failed after 272 s CPU (egw_not_converged
    !> on one of its solves; doc/stability.md "Stop 54 (doubt20)"). A table ending below
    !> the rough first yield (the cap never acts: reversible, the cap-free E-GW table)
    !> still builds at 1e-6.

@@ -86,7 +86,7 @@ submodule (egw_hysteresis) egw_hysteresis_build
    real(dp), parameter :: ratio_least_tol = 3.0e-6_dp
    !> Rough + cap tables where the cap acts below delta_max: the least rel_tol built (a
    !> smaller one is refused after one loading solve). Their curves' unloading solves, at
-   !> rel_tol/10, reach ~2.4e-7 of the force: README's E-GW + cap to 3 delta_y at 1e-6
+   !> rel_tol/10, reach ~2.4e-7 of the force: E-GW + cap (sigma/delta_y 5e-3) to 3 delta_y at 1e-6
    !> failed after 272 s CPU (a solve's finest-mesh estimate 1.2e-7 against rel_tol/2 =
    !> 5e-8, "reaches rel_tol >= 2.4e-7"), its delta_max grid at 209 nodes and splitting
    !> (9, 17, 33, 65, 127, 209: the check curves' mismatch falls only ~2.7x per halving);
@@ -912,7 +912,7 @@ contains
    !> times its curves' largest error in s (refine_curve's, their cubics' mismatch at
    !> their intervals' middles): between the check curve's s nodes each stencil curve's
    !> cubic errs by up to that, the weights carrying it into the evaluation. err_mid alone
-   !> under-reported the dense check's error ~1.5x (README's E-GW + cap, to 600 sigma =
+   !> under-reported the dense check's error ~1.5x (E-GW + cap, sigma/delta_y 5e-3, to
    !> 3 delta_y: 1e-3 2.47e-4 against 3.9e-4 of P(m), 1e-4 4.33e-5 against 6.7e-5;
    !> doc/stability.md "Stop 54 (doubt20)").
    pure real(dp) function gap_bound(table, m, curves, j, err_mid) result(bound)
