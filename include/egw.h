@@ -687,7 +687,8 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * give reversible curves; with p_y, delta_max above 1000 delta_y: EGW_INVALID_ARGUMENT;
  * Hertz + cap beyond its first capped turning point below rel_tol 3e-6, which its solves'
  * smoothness (~3e-7) does not let it reach, and a rough model + cap whose cap acts below
- * delta_max below rel_tol 3e-6 (its unloading solves reach ~2.4e-7; one loading solve
+ * delta_max below rel_tol 1e-5 (below it builds failed after minutes: an unloading solve
+ * at rel_tol/10 reaching ~2.4e-7, or the delta_max grid not settling; one loading solve
  * tells): EGW_INVALID_ARGUMENT naming rel_tol)
  * over overlaps [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL
  * (defaults). *out receives a handle only on success. The unloading curves are solved at rel_tol/10,
@@ -986,10 +987,11 @@ typedef struct {
                         * reported, 8.6e-6 measured at 447 turning points; doc/stability.md
                         * "Stop 53 (doubt19)"). Rough + cap: the check curves' mismatch
                         * plus the stencil's Lebesgue sum times its curves' error in s,
-                        * a bound for what falls between the check curves' s nodes (E-GW
-                        * + cap, sigma/delta_y 5e-3, to 3 delta_y: 1e-3 5.8e-4 reported,
-                        * 3.9e-4 of P(m) measured between the nodes; 1e-4 7.3e-5, 7.0e-5;
-                        * doc/stability.md "Stop 54 (doubt20)") */
+                        * plus the solves' rel_tol (rel_tol/10), a bound for what falls
+                        * between the check curves' s nodes (E-GW + cap, sigma/delta_y
+                        * 1e-2, to 6 delta_y: 1e-3 7.7e-4 reported, 4.9e-4 of P(m)
+                        * measured between the nodes; 1e-4 9.9e-5, 9.0e-5; it may exceed
+                        * rel_tol; doc/stability.md "Stop 54 (doubt20)") */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;
 
