@@ -686,7 +686,10 @@ typedef struct egw_hysteresis_s *egw_hysteresis; /* opaque: one parameter set */
  * pressure reaches p_y (reversible when it never does up to delta_max); other models
  * give reversible curves; with p_y, delta_max above 1000 delta_y: EGW_INVALID_ARGUMENT;
  * Hertz + cap beyond its first capped turning point below rel_tol 3e-6, which its solves'
- * smoothness (~3e-7) does not let it reach: EGW_INVALID_ARGUMENT naming rel_tol)
+ * smoothness (~3e-7) does not let it reach, and a rough model + cap whose cap acts below
+ * delta_max below rel_tol 1e-5 (below it builds failed after minutes: an unloading solve
+ * at rel_tol/10 reaching ~2.4e-7, or the delta_max grid not settling; one loading solve
+ * tells): EGW_INVALID_ARGUMENT naming rel_tol)
  * over overlaps [delta_min, delta_max] [length] to rel_tol in [1e-8, 0.1]; o may be NULL
  * (defaults). *out receives a handle only on success. The unloading curves are solved at rel_tol/10,
  * or at o->rel_tol where that is set below its default 1e-6 and below rel_tol/10 (the
@@ -998,9 +1001,13 @@ typedef struct {
                         * from 2 to 1000 delta_y at 1e-4, 1e-5 and 3e-6, at or above the
                         * error measured between the nodes (1e-5 to 20 delta_y: 9.8e-6
                         * reported, 8.6e-6 measured at 447 turning points; doc/stability.md
-                        * "Stop 53 (doubt19)"). Rough + cap (E-GW + cap, sigma/delta_y
-                        * 1e-2, to 6 delta_y): both below rel_tol, measured ~1.5x the
-                        * reported (1e-4: 4.3e-5 and 6.7e-5 of P(m)) */
+                        * "Stop 53 (doubt19)"). Rough + cap: the check curves' mismatch
+                        * plus the stencil's Lebesgue sum times its curves' error in s,
+                        * plus the solves' rel_tol (rel_tol/10), a bound for what falls
+                        * between the check curves' s nodes (E-GW + cap, sigma/delta_y
+                        * 1e-2, to 6 delta_y: 1e-3 7.7e-4 reported, 4.9e-4 of P(m)
+                        * measured between the nodes; 1e-4 9.9e-5, 9.0e-5; it may exceed
+                        * rel_tol; doc/stability.md "Stop 54 (doubt20)") */
   egw_params params;   /* the parameters the table was built for */
 } egw_hysteresis_info;
 

@@ -683,8 +683,13 @@ contains
    !> delta_y fail there, so neither pair answered). Reference as
    !> test_small_sigma_residual's: the smooth cap (cap_near_residual.py, 1.8e-8 relative)
    !> and the rough correction from sigma/delta_y = 1e-4 .. 1e-3 (-4.0e-7 relative, the
-   !> fits apart by 4e-15 of the force). Tolerance rel_tol + 1e-7 (measured: 4.6e-7 off,
-   !> estimate 1.0e-7).
+   !> fits apart by 4e-15 of the force). Tolerance: the answer's own estimate plus 3e-8,
+   !> the reference's uncertainty (1.8e-8; the route's smooth cap, egw_cap_limit, is
+   !> 2.4e-8 from it). Stop 44 measured this 4.6e-7 off under an estimate of 1.0e-7 (the
+   !> wide pair 1e-4/2e-4, per-call histories); on 5d14490 (the route's wide histories
+   !> and egw_cap_limit) 1.93e-8 off, estimate 1.27e-8 (AVX2 path; baseline 1.86e-8,
+   !> 1.24e-8; doc/stability.md "Stop 54 (doubt20)"): the old tolerance, rel_tol + 1e-7,
+   !> let an answer 50x its estimate pass.
    subroutine test_tiny_sigma_residual(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: smooth = 3.103690750064e-2_dp, correction = -4.003284e-7_dp
@@ -707,8 +712,9 @@ contains
          return
       end if
       ref = smooth*(1.0_dp + correction)
-      call check(error, abs(res%force/force_y - ref) <= 1.1e-6_dp*ref, "P/P_y = " &
-         & //str(res%force/force_y)//", reference "//str(ref))
+      call check(error, res%est_rel_err <= 0.5e-6_dp .and. abs(res%force/force_y - ref) <= &
+         & (res%est_rel_err + 3.0e-8_dp)*ref, "P/P_y = "//str(res%force/force_y)// &
+         & ", reference "//str(ref)//", estimate "//str(res%est_rel_err))
    end subroutine test_tiny_sigma_residual
 
    !> solve_contact_unload (C egw_solve_unload) of E-GW + cap at sigma/delta_y = 1e-6 (mu 4)

@@ -117,7 +117,10 @@ module egw_cache
    !> delta_y at 1e-4 moved by up to 3.2e-15 of P(m), the same grid.
    !> 43 (stiff19): rough + cap loading stiffness (the Hermite slopes of rough + cap
    !> loading tables) from the accepted mesh moved with its kinks (egw_sphere_moving_mesh)
-   integer, parameter, public :: cache_revision = 43
+   !> 44 (doubt20): rough + cap tables' max_error bounds the error between the check
+   !> curves' s nodes (hysteresis_build's gap_bound) and adds the solves' rel_tol: the
+   !> stored max_error changes, the grids and curves do not.
+   integer, parameter, public :: cache_revision = 44
 
 
 contains

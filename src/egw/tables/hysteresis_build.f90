@@ -84,6 +84,16 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> built 135x and 990x off rel_tol). 3e-6 met rel_tol with 278-289 delta_max nodes from
    !> 10 to 1000 delta_y (doc/stability.md "Stop 53 (doubt19)").
    real(dp), parameter :: ratio_least_tol = 3.0e-6_dp
+   !> Rough + cap tables where the cap acts below delta_max: the least rel_tol built (a
+   !> smaller one is refused after one loading solve). E-GW + cap (mu 4, p_y = 0.01 E*):
+   !> sigma/delta_y 5e-3 to 3 delta_y at 1e-6 failed after 272 s CPU (an unloading solve
+   !> at rel_tol/10 "reaches rel_tol >= 2.4e-7"; its delta_max grid at 209 nodes and
+   !> splitting, the check curves' mismatch falling only ~2.7x per halving), at 3e-6 built
+   !> (231 nodes, 87 s); README's scene, sigma/delta_y 1e-2 to 6 delta_y, at 3e-6 failed
+   !> after 163 s ("the delta_max grid did not settle after 30 bisections"), at 1e-6 ran
+   !> past 1200 s wall (stop 53); 1e-5 built on both (21 s, 101 nodes; 41 s, 154 nodes).
+   !> Between 1e-5 and 3e-6 not mapped; doc/stability.md "Stop 54 (doubt20)".
+   real(dp), parameter :: rough_least_tol = 1.0e-5_dp
    !> Log-ratio tables on six-point stencils: a check curve is not solved at a node s of
    !> its neighbours where the four-point stencil's h at its turning point lies within
    !> check_skip rel_tol of the six-point one's (weighted by a bound on its weight there,
@@ -129,6 +139,9 @@ submodule (egw_hysteresis) egw_hysteresis_build
       real(dp) :: scale = 1.0_dp    !< the loading table's force at m (g's unit)
       real(dp) :: c_turn = 1.0_dp   !< the solve's force at m over scale
       logical :: verified = .false. !< bisected in s to rel_tol/4 (refine_curve)
+      !> refine_curve's largest accepted mismatch: its cubics' error in s (max_error's
+      !> share from the s direction, gap_bound)
+      real(dp) :: worst = 0.0_dp
       !> h = ln(c P_ext/P) at s of the edge map xi (edge_breaks of length), slopes as
       !> dh/d(m - delta) (the table's log_ratio); else the gap, slopes dg/ds
       logical :: log = .false.
@@ -224,6 +237,10 @@ contains
       if (rough_cap) then
          call rough_cap_reach(params, delta_max, error)
          if (allocated(error)) return
+         if (rel_tol < rough_least_tol) then
+            call rough_cap_floor(params, options, delta_max, rel_tol, error)
+            if (allocated(error)) return
+         end if
       end if
       if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) then
          ! (a quarter of rel_tol: the curves store P/P_load(m), so the loading table's
@@ -351,6 +368,26 @@ contains
       call hysteresis_prepare(table)
       table%loading_law = law_pieces()
    end subroutine build_work
+
+   !> Refuses (egw_invalid_argument, naming rel_tol and rough_least_tol) a rough + cap
+   !> table below rough_least_tol where the cap acts below delta_max (cap_reached: one
+   !> loading solve, at 1e-4: whether p_y is reached needs no more); where it never acts
+   !> the table is the cap-free one, built at any rel_tol.
+   subroutine rough_cap_floor(params, options, delta_max, rel_tol, error)
+      type(contact_params), intent(in) :: params   !< a rough model with the cap
+      type(solver_options), intent(in) :: options
+      real(dp), intent(in) :: delta_max, rel_tol
+      type(egw_error), allocatable, intent(out) :: error
+      logical :: acts
+      call cap_reached(params, options, 1.0e-3_dp, delta_max, acts, error)
+      if (allocated(error) .or. .not. acts) return
+      call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
+         & ": below "//format_real(rough_least_tol)//", the least a rough + cap "// &
+         & "hysteresis table reaches where the cap acts (here to "//format_real(delta_max/ &
+         & first_yield(params))//" delta_y): below it builds ran for minutes and failed, "// &
+         & "an unloading solve at rel_tol/10 reaching only ~2.4e-7, or the delta_max grid "// &
+         & "not settling (doc/stability.md, stop 54)")
+   end subroutine rough_cap_floor
 
    !> Refuses (egw_unsupported, naming delta_max) a rough + cap table that reaches
    !> beyond max_layer_reach sigma (plastic summits: plastic_layer_reach) at sigma/delta_y
@@ -812,6 +849,16 @@ contains
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
             table%max_error = max(table%max_error, maxval(err_mid))
+            ! (gap curves: the bound between the check curves' s nodes too, gap_bound, and
+            ! the solves' own error, which every mismatch above leaves out: their rel_tol,
+            ! twice what their estimates meet; README's scene at 1e-4 measured 8.99e-5
+            ! against 8.89e-5 without it, doc/stability.md "Stop 54 (doubt20)")
+            if (table%mapped) then
+               do j = 1, size(m) - 1
+                  table%max_error = max(table%max_error, gap_bound(table, m, curves, j, &
+                     & err_mid(j)) + hysteresis_solve_tol(options, table%rel_tol))
+               end do
+            end if
             ! (Hertz + cap: err_mid is what the table's force misses there, the loading
             ! table's error at the turning point included, P = P_load,table(m) sum w u; at
             ! the nodes' curves that error alone)
@@ -862,6 +909,39 @@ contains
          & format_real(table%rel_tol)//" not reached: the delta_max grid did not settle "// &
          & "after 30 bisections")
    end subroutine refine_m
+
+   !> A gap curve table's (rough + cap's, relative to P(m)) error bound on delta_max
+   !> interval j: its check curve's mismatch err_mid, found at that curve's s nodes, plus
+   !> the stencil's Lebesgue sum (the largest sum |w| at seven points of the interval)
+   !> times its curves' largest error in s (refine_curve's, their cubics' mismatch at
+   !> their intervals' middles): between the check curve's s nodes each stencil curve's
+   !> cubic errs by up to that, the weights carrying it into the evaluation (refine_m adds
+   !> the solves' rel_tol). err_mid alone
+   !> under-reported the dense check's error ~1.5x (E-GW + cap, sigma/delta_y 5e-3, to
+   !> 3 delta_y: 1e-3 2.47e-4 against 3.9e-4 of P(m), 1e-4 4.33e-5 against 6.7e-5;
+   !> doc/stability.md "Stop 54 (doubt20)").
+   pure real(dp) function gap_bound(table, m, curves, j, err_mid) result(bound)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:)
+      type(unloading_curve), intent(in) :: curves(:)
+      integer, intent(in) :: j
+      real(dp), intent(in) :: err_mid   !< the check curve's mismatch (stencil_mismatch)
+      real(dp) :: w(max_stencil), xm(max_stencil), lebesgue
+      integer :: first, lo, hi, k_b, i
+      k_b = m_breakpoint(m)
+      call stencil_window(j, size(m), k_b, stencil_width(table%log_ratio, size(m)), first, &
+         & lo, hi)
+      first = first + lo - 1
+      hi = hi - lo + 1
+      xm(1:hi) = m_coordinate(m(first:first + hi - 1), k_b)
+      lebesgue = 0.0_dp
+      do i = 1, 7
+         call lagrange_weights(m_coordinate(m(j) + real(i, dp)/8.0_dp*(m(j + 1) - m(j)), &
+            & k_b), xm(1:hi), w(1:hi))
+         lebesgue = max(lebesgue, sum(abs(w(1:hi))))
+      end do
+      bound = err_mid + lebesgue*maxval(curves(first:first + hi - 1)%worst)
+   end function gap_bound
 
    !> Splits deferred (log-ratio tables, split_defer): wide(j) is cleared where interval j
    !> misses the bound by less than split_defer times it and a neighbour misses by more.
@@ -1271,6 +1351,7 @@ contains
          end if
          if (.not. (allocated(err) .or. only_check)) call refine_curve(table, curves(j), &
             & worst(j), err)
+         curves(j)%worst = worst(j)
          ! (a check curve's start is not used again, move_curve leaves it behind: freed
          ! here with the solver's buffers it carries, so that the check curves solved in
          ! parallel do not all hold them until the last is done)
@@ -1334,6 +1415,7 @@ contains
          end do
          if (.not. allocated(err)) call refine_curve(table, curves(idx(k)), worst(k), err, &
             & known)
+         curves(idx(k))%worst = worst(k)
          if (allocated(err)) then
             stats(k) = err%stat
             messages(k) = err%message
@@ -1845,6 +1927,7 @@ contains
       to%knee = from%knee
       to%piece_scale = from%piece_scale
       to%verified = from%verified
+      to%worst = from%worst
       to%hist = from%hist
       to%log = from%log
       to%xi = from%xi

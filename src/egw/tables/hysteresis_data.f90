@@ -100,7 +100,8 @@ module egw_hysteresis_data
       real(dp) :: delta_max = 0.0_dp           !< last delta_max node (table range)
       !> largest weighted mismatch found at check solves (rel_tol's units; egw.h's
       !> egw_hysteresis_info.max_error: it includes intervals too narrow to split, and is
-      !> above rel_tol where they miss it)
+      !> above rel_tol where they miss it; on gap curves the error in s between the check
+      !> curves' nodes too, hysteresis_build's gap_bound)
       real(dp) :: max_error = 0.0_dp
       type(force_table) :: loading             !< the loading curve
       !> no plastic summits (not EP-GW, psi = 0 or sigma = 0): no unloading curves, the
