@@ -65,6 +65,12 @@ module egw_rough_sphere
       real(dp) :: residual = 0.0_dp        !< final scaled nonlinear residual
       integer :: iterations = 0            !< nonlinear iterations of the final solve
       integer :: method_used = method_auto !< method that produced the result
+      !> A loading solve with the cap whose stiffness is the implicit derivative on the
+      !> accepted mesh held fixed while the cap's kinks move through it: the derivative of
+      !> the converged answer on the moved mesh failed (a solve, the kinks' match) or was
+      !> not asked (load_history's stiffness = .false.). Up to ~1e-3 of the stiffness off
+      !> then (doc/theory.md section 12); .false. for every other solve.
+      logical :: implicit_stiffness = .false.
    end type solve_result
 
    public :: validate_options, solve_contact, solve_contact_law
@@ -988,6 +994,10 @@ contains
          rate = sol%dforce
          call kink_following_rate(prob, options, sol, rate, moved)
          sol%dforce = rate
+         res%implicit_stiffness = .not. moved
+      else if (allocated(prob%cap) .and. .not. allocated(prob%closest)) then
+         ! (not asked: the caller reads the force only)
+         res%implicit_stiffness = .true.
       end if
 
       force_scale = force_unit(params)
