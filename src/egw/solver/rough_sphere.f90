@@ -65,6 +65,12 @@ module egw_rough_sphere
       real(dp) :: residual = 0.0_dp        !< final scaled nonlinear residual
       integer :: iterations = 0            !< nonlinear iterations of the final solve
       integer :: method_used = method_auto !< method that produced the result
+      !> A loading solve with the cap whose stiffness is the implicit derivative on the
+      !> accepted mesh held fixed while the cap's kinks move through it: the derivative of
+      !> the converged answer on the moved mesh failed (a solve, the kinks' match) or was
+      !> not asked (load_history's stiffness = .false.). Up to ~1e-3 of the stiffness off
+      !> then (doc/theory.md section 12); .false. for every other solve.
+      logical :: implicit_stiffness = .false.
    end type solve_result
 
    public :: validate_options, solve_contact, solve_contact_law
@@ -952,7 +958,7 @@ contains
    !> The discrete solve of a rough scaled problem (loading, or unloading when
    !> prob%closest is allocated), its stiffness, and the result in the caller's units.
    !> result is only written on success.
-   subroutine solve_rough(params, options, prob, sol, result, error, warm, work)
+   subroutine solve_rough(params, options, prob, sol, result, error, warm, work, moved_rate)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       type(scaled_problem), intent(in) :: prob
@@ -963,9 +969,12 @@ contains
       type(discrete_solution), intent(in), optional :: warm
       !> the buffers of the caller's earlier solves (solve_scaled's, differentiate's)
       type(solver_workspace), intent(inout), optional :: work
+      !> loading with the cap: .false. keeps the implicit stiffness (no moved-mesh solves);
+      !> absent: .true.
+      logical, intent(in), optional :: moved_rate
       type(solve_result) :: res
       real(dp) :: est, force_scale, pmax, rate
-      logical :: moved
+      logical :: moved, want_moved
 
       call solve_scaled(prob, options, sol, est, res%method_used, error, warm, work)
       if (allocated(error)) return
@@ -977,12 +986,18 @@ contains
       end if
       call differentiate(prob, sol, error, work)
       if (allocated(error)) return
-      if (allocated(prob%cap) .and. .not. allocated(prob%closest)) then
+      want_moved = .true.
+      if (present(moved_rate)) want_moved = moved_rate
+      if (want_moved .and. allocated(prob%cap) .and. .not. allocated(prob%closest)) then
          ! loading with the cap: the derivative of the converged answer, on the accepted
          ! mesh moved with its kinks (the implicit one can be ~1e-3 off; issue 32)
          rate = sol%dforce
          call kink_following_rate(prob, options, sol, rate, moved)
          sol%dforce = rate
+         res%implicit_stiffness = .not. moved
+      else if (allocated(prob%cap) .and. .not. allocated(prob%closest)) then
+         ! (not asked: the caller reads the force only)
+         res%implicit_stiffness = .true.
       end if
 
       force_scale = force_unit(params)
@@ -1019,7 +1034,7 @@ contains
    !> underflows (force 0, as solve_contact) gives a reversible history: nothing touched.
    !> Reports progress (egw_progress) as one long call, stage "history".
    recursive subroutine load_history(params, options, delta_max, history, result, error, &
-      & loading)
+      & loading, stiffness)
       type(contact_params), intent(in) :: params   !< the contact
       !> of the loading solve and of the unloading solves that follow
       type(solver_options), intent(in) :: options
@@ -1032,21 +1047,32 @@ contains
       !> that follow (one table for many histories of one build); ignored where its
       !> parameters are not params'
       type(law_pieces), intent(in), optional :: loading
+      !> .false.: result's (and the history's) loading stiffness may be the implicit one
+      !> (with the cap ~1e-3 off; it saves the three moved-mesh solves of solve_rough, at
+      !> the history's tight rel_tol), for callers that use its force only (the table
+      !> builds' curves); default .true.
+      logical, intent(in), optional :: stiffness
+      logical :: moved_rate
+      moved_rate = .true.
+      if (present(stiffness)) moved_rate = stiffness
       call progress_begin("history")
-      call history_load(params, options, delta_max, history, result, error, history_field_tol)
+      call history_load(params, options, delta_max, history, result, error, history_field_tol, &
+         & moved_rate)
       if (present(loading) .and. .not. allocated(error)) history%loading_law = loading
       call progress_end("history")
    end subroutine load_history
 
    !> load_history's work.
    recursive subroutine history_load(params, options, delta_max, history, result, error, &
-      & field_tol)
+      & field_tol, moved_rate)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_max
       !> the rough field's rel_tol as a fraction of options%rel_tol (history_field_tol; 1
       !> for unload_from_scratch's histories, loaded at 1e-4 of the solve's already)
       real(dp), intent(in) :: field_tol
+      !> load_history's stiffness (absent: .true.)
+      logical, intent(in), optional :: moved_rate
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
@@ -1090,11 +1116,13 @@ contains
          field = options
          ! (never looser than asked: a rel_tol below 1e-10 keeps its own)
          field%rel_tol = min(options%rel_tol, max(1.0e-10_dp, field_tol*options%rel_tol))
-         call solve_rough(params, field, prob, sol, hist%loading, error)
+         call solve_rough(params, field, prob, sol, hist%loading, error, &
+            & moved_rate=moved_rate)
          if (allocated(error)) then
             if (error%stat == egw_not_converged .and. field%rel_tol < options%rel_tol) then
                deallocate (error)
-               call solve_rough(params, options, prob, sol, hist%loading, error)
+               call solve_rough(params, options, prob, sol, hist%loading, error, &
+                  & moved_rate=moved_rate)
             end if
          end if
          call progress_report(0.6_dp, "history: loading")

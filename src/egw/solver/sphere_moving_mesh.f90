@@ -40,7 +40,9 @@ contains
    !> delta (1 - h) mirrored (the kinks move smoothly: the mirror's error is O(h**2)),
    !> then the forces on the two moved meshes. rate: the scaled stiffness of the rough
    !> part; ok = .false. (rate untouched) where a solve failed, the kinks could not be
-   !> matched or the moved edges would not increase: the caller keeps the implicit one.
+   !> matched or the moved edges would not increase, or at delta <= 0: the caller keeps
+   !> the implicit one and says so (solve_result's implicit_stiffness). Where the cap
+   !> leaves no kink the implicit rate is exact as it is: ok, rate untouched.
    subroutine kink_following_rate(prob, options, sol, rate, ok)
       type(scaled_problem), intent(in) :: prob   !< the scaled loading problem with the cap
       type(solver_options), intent(in) :: options   !< the solver's options (threads)
@@ -55,13 +57,16 @@ contains
       integer :: n, side
 
       ok = .false.
-      if (.not. (prob%delta > 0.0_dp)) return
-      n = sol%mesh%n_elem
-      edges = sol%mesh%edge(0:n)
       knots = cap_kink_radii(prob, sol, negligible_weight)
       ! (no kink: the cap does not act, and the implicit stiffness is the cap-free one's
       ! bit for bit, test_rough_cap's test_no_cap_load)
-      if (size(knots) == 0) return
+      if (size(knots) == 0) then
+         ok = .true.
+         return
+      end if
+      if (.not. (prob%delta > 0.0_dp)) return
+      n = sol%mesh%n_elem
+      edges = sol%mesh%edge(0:n)
       ! (the accepted mesh has its cap edges where the first level put them; an edge
       ! exactly at each kink makes the quotient insensitive to how well the kinks' motion
       ! is known: E-GW + cap, sigma/delta_y = 1e-4 at 20 delta_y, 1.0e-3 off -> 3e-5)
