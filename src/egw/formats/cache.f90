@@ -117,7 +117,10 @@ module egw_cache
    !> delta_y at 1e-4 moved by up to 3.2e-15 of P(m), the same grid.
    !> 43 (stiff19): rough + cap loading stiffness (the Hermite slopes of rough + cap
    !> loading tables) from the accepted mesh moved with its kinks (egw_sphere_moving_mesh)
-   integer, parameter, public :: cache_revision = 43
+   !> 44 (psi20): EP-GW histories (psi > 0) load with the ZMC law tabulated once per
+   !> build (egw_law_pieces, as their unloading): README's EP-GW + cap psi 1 table to 6
+   !> delta_y at 1e-4 moved by up to 4.2e-9 of P(m), the same grid.
+   integer, parameter, public :: cache_revision = 44
 
 
 contains

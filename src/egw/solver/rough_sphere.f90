@@ -1033,14 +1033,15 @@ contains
       !> parameters are not params'
       type(law_pieces), intent(in), optional :: loading
       call progress_begin("history")
-      call history_load(params, options, delta_max, history, result, error, history_field_tol)
+      call history_load(params, options, delta_max, history, result, error, history_field_tol, &
+         & loading)
       if (present(loading) .and. .not. allocated(error)) history%loading_law = loading
       call progress_end("history")
    end subroutine load_history
 
    !> load_history's work.
    recursive subroutine history_load(params, options, delta_max, history, result, error, &
-      & field_tol)
+      & field_tol, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_max
@@ -1050,6 +1051,11 @@ contains
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
+      !> the tabulated ZMC law of params (load_history's), the loading solve's law: the
+      !> integral's values to ~5e-13, at ~1/10 of its cost (issue 32: the loading solves
+      !> of a psi 1 build spent ~8 % of its CPU in the integral, most in the cap's
+      !> moved-mesh stiffness)
+      type(law_pieces), intent(in), optional :: loading
       type(loading_history) :: hist
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -1071,7 +1077,7 @@ contains
       hist%reversible = (params%model == model_hertz .or. params%sigma == 0.0_dp) .and. &
          & .not. hist%capped
       if (.not. (hist%reversible .or. hist%capped)) then
-         prob = scaled(params, delta_max)
+         prob = scaled(params, delta_max, loading)
          hist%reversible = negligible(prob)
       end if
       if (hist%capped) then
@@ -1244,7 +1250,8 @@ contains
          if (.not. allocated(error)) call put_cap_result(cres, history%options, result)
          return
       end if
-      prob = scaled(history%params, delta)
+      ! (with the tabulated law: scaled prepares the cap on the law, ~8 evaluations)
+      prob = scaled(history%params, delta, history%loading_law)
       if (negligible(prob)) then
          ! Unloading never presses harder than loading at the same delta (Z_u <= Z).
          res%method_used = history%options%method
