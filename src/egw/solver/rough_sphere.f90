@@ -1028,9 +1028,9 @@ contains
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
-      !> GW's ZMC law of params tabulated once (zmc_law_pieces), for the unloading solves
-      !> that follow (one table for many histories of one build); ignored where its
-      !> parameters are not params'
+      !> GW's ZMC law of params tabulated once (zmc_law_pieces), the law of the loading
+      !> solve and of the unloading solves that follow (one table for many histories of
+      !> one build); ignored where its parameters are not params'
       type(law_pieces), intent(in), optional :: loading
       call progress_begin("history")
       call history_load(params, options, delta_max, history, result, error, history_field_tol, &
