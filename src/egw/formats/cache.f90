@@ -120,7 +120,10 @@ module egw_cache
    !> 44 (doubt20): rough + cap tables' max_error bounds the error between the check
    !> curves' s nodes (hysteresis_build's gap_bound) and adds the solves' rel_tol: the
    !> stored max_error changes, the grids and curves do not.
-   integer, parameter, public :: cache_revision = 44
+   !> 45 (psi20): EP-GW histories (psi > 0) load with the ZMC law tabulated once per
+   !> build (egw_law_pieces, as their unloading): README's EP-GW + cap psi 1 table to 6
+   !> delta_y at 1e-4 moved by up to 4.2e-9 of P(m), the same grid.
+   integer, parameter, public :: cache_revision = 45
 
 
 contains

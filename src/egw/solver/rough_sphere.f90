@@ -1043,9 +1043,9 @@ contains
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result   !< the loading solve at delta_max
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
-      !> GW's ZMC law of params tabulated once (zmc_law_pieces), for the unloading solves
-      !> that follow (one table for many histories of one build); ignored where its
-      !> parameters are not params'
+      !> GW's ZMC law of params tabulated once (zmc_law_pieces), the law of the loading
+      !> solve and of the unloading solves that follow (one table for many histories of
+      !> one build); ignored where its parameters are not params'
       type(law_pieces), intent(in), optional :: loading
       !> .false.: result's (and the history's) loading stiffness may be the implicit one
       !> (with the cap ~1e-3 off; it saves the three moved-mesh solves of solve_rough, at
@@ -1057,14 +1057,14 @@ contains
       if (present(stiffness)) moved_rate = stiffness
       call progress_begin("history")
       call history_load(params, options, delta_max, history, result, error, history_field_tol, &
-         & moved_rate)
+         & moved_rate, loading)
       if (present(loading) .and. .not. allocated(error)) history%loading_law = loading
       call progress_end("history")
    end subroutine load_history
 
    !> load_history's work.
    recursive subroutine history_load(params, options, delta_max, history, result, error, &
-      & field_tol, moved_rate)
+      & field_tol, moved_rate, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_max
@@ -1076,6 +1076,11 @@ contains
       type(loading_history), intent(inout) :: history
       type(solve_result), intent(inout) :: result
       type(egw_error), allocatable, intent(out) :: error
+      !> the tabulated ZMC law of params (load_history's), the loading solve's law: the
+      !> integral's values to ~5e-13, at ~1/10 of its cost (issue 32: the loading solves
+      !> of a psi 1 build spent ~8 % of its CPU in the integral, most in the cap's
+      !> moved-mesh stiffness)
+      type(law_pieces), intent(in), optional :: loading
       type(loading_history) :: hist
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
@@ -1097,7 +1102,7 @@ contains
       hist%reversible = (params%model == model_hertz .or. params%sigma == 0.0_dp) .and. &
          & .not. hist%capped
       if (.not. (hist%reversible .or. hist%capped)) then
-         prob = scaled(params, delta_max)
+         prob = scaled(params, delta_max, loading)
          hist%reversible = negligible(prob)
       end if
       if (hist%capped) then
@@ -1272,7 +1277,8 @@ contains
          if (.not. allocated(error)) call put_cap_result(cres, history%options, result)
          return
       end if
-      prob = scaled(history%params, delta)
+      ! (with the tabulated law: scaled prepares the cap on the law, ~8 evaluations)
+      prob = scaled(history%params, delta, history%loading_law)
       if (negligible(prob)) then
          ! Unloading never presses harder than loading at the same delta (Z_u <= Z).
          res%method_used = history%options%method
