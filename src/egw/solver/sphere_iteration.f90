@@ -462,7 +462,7 @@ contains
    !> chord step contracts like |w - w*|, so the fallback only costs one evaluation, while
    !> the LU (n**3) is most of an iteration's cost on the solver's meshes. Far from the
    !> solution chord steps would cost iterations: max_iter counts both kinds alike.
-   !> EP-GW unloading solves without the cap take no chord steps (see below).
+   !> EP-GW unloading solves take no chord steps (see below).
    subroutine newton(prob, sol, max_iter, error)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem
       type(discrete_solution), intent(inout) :: sol   !< in: the start; out: the solution
@@ -537,15 +537,9 @@ contains
             ! branch: they take chord steps as loading does (E-GW + cap table of the
             ! README, sigma = delta_y/100 to 6 delta_y at 1e-4: build CPU 0.94, the table's
             ! gaps within 5e-9 of P(m) of the Newton-only build's; doc/benchmarks.md
-            ! "Stop 47 (rcost12)"). EP-GW unloading with the cap takes them too: in a
-            ! hysteresis build its deep plastic zone's Z_u comes from the build's table
-            ! (tabulate_unloading), so an evaluation costs less than the LU (psi 1 table of
-            ! the README: build CPU 0.94-0.95, gaps within 4e-9 of P(m); doc/benchmarks.md
-            ! "Stop 54: psi20"; a lone solve_contact_unload, Z_u all integrals, not
-            ! measured). Without the cap they did not pay (EP-GW psi 1 build: 1.00-1.03).
+            ! "Stop 47 (rcost12)").
             factored = lambda == 1.0_dp .and. f2_try <= f2/chord_start**2 .and. &
-               & .not. (allocated(prob%closest) .and. prob%psi > 0.0_dp .and. &
-               & .not. allocated(prob%cap))
+               & .not. (allocated(prob%closest) .and. prob%psi > 0.0_dp)
          end if
          res = res_try
          norm = norm_try
