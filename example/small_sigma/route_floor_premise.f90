@@ -1,5 +1,5 @@
 !> The route floor's premise measured (issue 32 item 3; doc/stability.md "The route
-!> floor's premise"): route_floor (src/egw/solver/rough_sphere.f90) bounds the error of a
+!> floor's premise"): route_floor (src/egw/solver/small_sigma_route.f90) bounds the error of a
 !> loading solve at the probe's rel_tol 1e-7 by probe_margin = 10 times 1e-7 of its force.
 !> Here E-GW + cap loading solves (mu 4, R = E* = 1, p_y = 2/pi, so delta_y = 1) at
 !> sigma/delta_y in {2e-4, 1e-4, 2e-5, 1e-5} (the route's wide sigmas) and 1e-6, at several
