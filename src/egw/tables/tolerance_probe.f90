@@ -17,7 +17,7 @@ module egw_tolerance_probe
 
    public :: probe_hysteresis_tolerance, probe_hysteresis_size, hysteresis_solve_tol
 
-   !> The most delta_max nodes a hysteresis build may place (hysteresis_build.f90's
+   !> The most delta_max nodes a hysteresis build may place (hysteresis_grid.f90's
    !> max_m_nodes is this one).
    integer, parameter, public :: build_m_node_limit = 400
    !> The pilot's tolerance, and the rel_tol below which a build is preceded by the pilot
