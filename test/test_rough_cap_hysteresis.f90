@@ -847,11 +847,13 @@ contains
    end subroutine test_tiny_sigma_refused
 
    !> GW + cap at sigma/delta_y = 2e-5 (R = 2.0264e8 sigma, E* = 1, mu 4, p_y = 0.01) to
-   !> 1e5 sigma, inside the refusal's reach: a loading solve of the table stalls (Newton;
+   !> 1e5 sigma, inside the refusal's reach: a loading solve of the build stalls (Newton;
    !> doc/stability.md "Stop 51 (tiny17)"). The failure (egw_not_converged, the solve's
    !> own message first) adds sigma/delta_y, delta_max in sigma and delta_y and the
    !> routes: a smaller delta_max, the Hertz + cap table, single solves. On main 6922da8
-   !> the message was the solve's alone.
+   !> the message was the solve's alone; on 01559e5 it did not say which of the build's
+   !> solves failed (now first: "the capped loading solve at delta = ...", a solve of the
+   !> first yield's bisection, cap_reached).
    subroutine test_tiny_sigma_routes(error)
       type(error_type), allocatable, intent(out) :: error
       type(contact_params) :: params
@@ -866,7 +868,8 @@ contains
          & "sigma/delta_y = 2.000E-05") > 0 .and. index(err%message, &
          & "delta_max = 1.000E+05 sigma = 2.000E+00 delta_y") > 0 .and. &
          & index(err%message, "sigma = 0") > 0 .and. index(err%message, "solve_unload") &
-         & > 0, err%message)
+         & > 0 .and. index(err%message, &
+         & "the capped loading solve at delta = 6.2497486111111") == 1, err%message)
    end subroutine test_tiny_sigma_routes
 
    !> E-GW + cap at sigma/delta_y = 1e-5 (R = 4.0528e8 sigma, E* = 1, mu 4, p_y = 0.01),

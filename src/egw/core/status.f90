@@ -27,7 +27,7 @@ module egw_status
    end type egw_error
 
    public :: status_message, fatal_error, format_real, format_real_len, int_str
-   public :: parameter_error, bad_file_error, tolerance_context
+   public :: parameter_error, bad_file_error, tolerance_context, first_failure
 
 contains
 
@@ -66,6 +66,30 @@ contains
       error%stat = stat
       error%message = message
    end subroutine fatal_error
+
+   !> The first failure of a parallel loop (stats(i) /= 0, with its message) as error: the
+   !> lowest i wins, whatever the threads' order. With what and at, the message says which
+   !> item failed first, "what = at(i): " before the item's own message (a build that
+   !> fails after minutes names where: the turning point of the curve, the overlap).
+   pure subroutine first_failure(stats, messages, error, what, at)
+      integer, intent(in) :: stats(:)   !< per item: 0 or the status
+      character(len=*), intent(in) :: messages(:)   !< per item: the message
+      type(egw_error), allocatable, intent(out) :: error   !< the first failure
+      character(len=*), intent(in), optional :: what   !< the items' name, e.g. "delta_max"
+      real(dp), intent(in), optional :: at(:)   !< per item: its value of what
+      integer :: i
+      do i = 1, size(stats)
+         if (stats(i) /= 0) then
+            if (present(what) .and. present(at)) then
+               call fatal_error(error, stats(i), what//" = "//format_real(at(i))//": "// &
+                  & trim(messages(i)))
+            else
+               call fatal_error(error, stats(i), trim(messages(i)))
+            end if
+            return
+         end if
+      end do
+   end subroutine first_failure
 
    !> A tolerance that was not reached, told in the caller's terms: a not-converged
    !> error of a job asked for rel_tol (a table build, a restitution) whose inner solves

@@ -13,7 +13,8 @@
 !> again after each round: a split changes its neighbours' slopes).
 module egw_cap_loading
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real, int_str
+   use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real, int_str, &
+      & first_failure
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact
    use egw_cap_sphere, only: cap_units
@@ -208,7 +209,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       type(solver_options) :: serial
       integer :: stats(size(x)), i
-      character(len=256) :: messages(size(x))
+      character(len=512) :: messages(size(x))
       serial = solver_options(n_threads=1)
       stats = 0
       !$omp parallel do schedule(dynamic) default(shared) private(i)
@@ -216,12 +217,7 @@ contains
          call one_point(i)
       end do
       !$omp end parallel do
-      do i = 1, size(x)
-         if (stats(i) /= 0) then
-            call fatal_error(error, stats(i), trim(messages(i)))
-            return
-         end if
-      end do
+      call first_failure(stats, messages, error, "the capped loading solve at delta", x)
    contains
       subroutine one_point(i)
          integer, intent(in) :: i

@@ -5,7 +5,7 @@
 !> doc/theory.md §8.
 module egw_hysteresis_curves
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
+   use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real, first_failure
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload, unload_start, history_residual
    use egw_table, only: table_eval, table_eval_tail_law
@@ -13,7 +13,7 @@ module egw_hysteresis_curves
       & map_iota, map_lengths, edge_breaks, edge_xi, edge_segment, max_log_ratio
    use egw_hysteresis, only: first_yield
    use egw_hysteresis_lengths, only: rough_length, cap_length, log_table, curve_options, &
-      & first_failure, unloading_length
+      & unloading_length
    implicit none
    private
 
@@ -174,7 +174,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(solver_options) :: serial
       integer :: stats(size(m)), j
-      character(len=256) :: messages(size(m))
+      character(len=512) :: messages(size(m))
       serial = curve_options(options, table%rel_tol)
       stats = 0
       !$omp parallel do schedule(dynamic) default(shared) private(j)
@@ -182,7 +182,7 @@ contains
          call one_length(j)
       end do
       !$omp end parallel do
-      call first_failure(stats, messages, error)
+      call first_failure(stats, messages, error, "the unloading length at delta_max", m)
    contains
       subroutine one_length(j)
          integer, intent(in) :: j
@@ -223,7 +223,7 @@ contains
       type(solver_options) :: serial
       real(dp) :: worst(size(m))
       integer :: stats(size(m)), j
-      character(len=256) :: messages(size(m))
+      character(len=512) :: messages(size(m))
       logical :: only_check
       only_check = .false.
       if (present(check)) only_check = check
@@ -235,7 +235,7 @@ contains
          call one_curve(j)
       end do
       !$omp end parallel do
-      call first_failure(stats, messages, error)
+      call first_failure(stats, messages, error, "the unloading curve from delta_max", m)
       if (allocated(error)) return
       table%max_error = max(table%max_error, maxval(worst))
    contains
@@ -275,7 +275,7 @@ contains
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       real(dp) :: worst(size(idx))
       integer :: stats(size(idx)), k
-      character(len=256) :: messages(size(idx))
+      character(len=512) :: messages(size(idx))
       stats = 0
       worst = 0.0_dp
       !$omp parallel do schedule(dynamic) default(shared) private(k)
@@ -283,7 +283,8 @@ contains
          call one_verify(k)
       end do
       !$omp end parallel do
-      call first_failure(stats, messages, error)
+      call first_failure(stats, messages, error, "the unloading curve from delta_max", &
+         & curves(idx)%m)
       if (allocated(error) .or. size(idx) == 0) return
       table%max_error = max(table%max_error, maxval(worst))
    contains

@@ -5,7 +5,7 @@
 !> union s grid the table stores (resample). doc/theory.md §8.
 module egw_hysteresis_grid
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
+   use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real, first_failure
    use egw_rough_sphere, only: solver_options, history_cap_ratio
    use egw_cap_sphere, only: cap_units, gamma_start
    use egw_table, only: table_progress
@@ -14,7 +14,7 @@ module egw_hysteresis_grid
       & edge_xi, max_stencil, stencil_width, stencil_window, fine_length_tol, m_breakpoint, &
       & m_coordinate
    use egw_hysteresis, only: first_yield
-   use egw_hysteresis_lengths, only: cap_length, log_table, first_failure
+   use egw_hysteresis_lengths, only: cap_length, log_table
    use egw_hysteresis_curves, only: unloading_curve, min_width, build_curves, verify_curves, &
       & curve_offset, curve_eval
    implicit none
@@ -76,7 +76,7 @@ contains
       logical, allocatable :: done(:), split(:), new_done(:), fresh(:), solved(:), &
          & new_solved(:)
       integer, allocatable :: stats(:)
-      character(len=256), allocatable :: messages(:)
+      character(len=512), allocatable :: messages(:)
       real(dp) :: w(4), inv, delta_y, a_y, force_y
       integer :: pass, k, n, first, q, i
       x = table%m
@@ -105,7 +105,8 @@ contains
             if (.not. (done(k) .or. solved(k))) call one_length(k)
          end do
          !$omp end parallel do
-         call first_failure(stats, messages, error)
+         call first_failure(stats, messages, error, "the unloading length at delta_max", &
+            & mid(1:n - 1))
          if (allocated(error)) return
          solved = solved .or. .not. done
          split = .false.

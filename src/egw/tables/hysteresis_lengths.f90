@@ -5,7 +5,7 @@
 !> the build's parallel solves over curves. doc/theory.md §8, §12.
 module egw_hysteresis_lengths
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, fatal_error
+   use egw_status, only: egw_error, format_real
    use egw_params, only: contact_params, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, cap_solve_options, &
       & solve_contact
@@ -18,7 +18,7 @@ module egw_hysteresis_lengths
    private
 
    public :: cap_reached, plastic_summits, rough_first_yield, rough_length, cap_length, &
-      & log_table, unloading_floor, curve_options, first_failure, unloading_length
+      & log_table, unloading_floor, curve_options, unloading_length
 
 
 
@@ -36,6 +36,9 @@ contains
       type(solve_result) :: res
       reached = .false.
       call solve_contact(params, curve_options(options, rel_tol), delta_max, res, error)
+      ! (the solve's message in its scaled units: which solve of the build, in the user's)
+      if (allocated(error)) error%message = "the capped loading solve at delta = "// &
+         & format_real(delta_max)//": "//error%message
       if (allocated(error)) return
       reached = res%max_pressure >= (1.0_dp - 1.0e-9_dp)*params%flow_pressure
    end subroutine cap_reached
@@ -173,21 +176,6 @@ contains
       serial%n_threads = 1
       serial%rel_tol = hysteresis_solve_tol(options, rel_tol)
    end function curve_options
-
-   !> The first failure of a parallel loop over curves (stats(j) /= 0, with its message) as
-   !> error: the lowest j wins, whatever the threads' order.
-   pure subroutine first_failure(stats, messages, error)
-      integer, intent(in) :: stats(:)   !< per curve: 0 or the status
-      character(len=*), intent(in) :: messages(:)   !< per curve: the message
-      type(egw_error), allocatable, intent(out) :: error   !< the first failure
-      integer :: j
-      do j = 1, size(stats)
-         if (stats(j) /= 0) then
-            call fatal_error(error, stats(j), trim(messages(j)))
-            return
-         end if
-      end do
-   end subroutine first_failure
 
    !> L = 1.5 P/K_unload: m minus the residual overlap of Hertzian unloading
    !> P (1 - (m - delta)/L)^{3/2}, and 1.5 times the decay length of the separated tail

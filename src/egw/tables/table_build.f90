@@ -510,6 +510,9 @@ contains
             if (stat(i, s) /= 0) then
                ! redo the first failure serially to recover its message
                call solve_point(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), error, law)
+               ! (the solve's message in its scaled units: which table node, in the user's)
+               if (allocated(error)) error%message = "the table's solve at delta = "// &
+                  & format_real(x(i))//": "//error%message
                if (.not. allocated(error)) call fatal_error(error, stat(i, s), "delta = "// &
                   & format_real(x(i))//": solve failed while building the table")
                return
