@@ -827,14 +827,18 @@ static inline double egw_piece_exp_(double x)
 }
 
 /* The branches to the caller's library call marked unlikely, so that the served steps
- * are laid out straight (GCC and Clang; elsewhere the plain test). */
+ * are laid out straight; and the inline inlined wherever it is called (GCC and Clang:
+ * gcc 12 -O2 made it an out-of-line function, a call per contact, in a file that calls
+ * it twice; elsewhere the plain test and inline). */
 #if defined(__GNUC__)
 #define EGW_UNLIKELY_(c) __builtin_expect(!!(c), 0)
+#define EGW_ALWAYS_INLINE_ __attribute__((always_inline))
 #else
 #define EGW_UNLIKELY_(c) (c)
+#define EGW_ALWAYS_INLINE_
 #endif
 
-static inline int egw_hysteresis_eval_cached(double tag, double delta,
+static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(double tag, double delta,
                                              double state[EGW_HYSTERESIS_STATE_SIZE],
                                              double *force, double *stiffness)
 {
@@ -851,15 +855,19 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (EGW_UNLIKELY_(!(state[2] == tag))) return 0;
-  piece = state[1] == state[0] && state[10] < delta && delta < state[11] &&
-          state[17] <= delta && delta < state[18];
-  if (piece && state[10] == -3.351951982485649e+153) {
-    /* a zero piece (it starts at -sqrt(DBL_MAX)/4, the library's zero_lo): its cubic
-     * and interval are zeros, so their values are +0; the call answers it so too */
+  if (state[10] == -3.351951982485649e+153 && state[10] < delta && delta <= state[11] &&
+      state[1] == state[0]) {
+    /* a zero piece (it starts at -sqrt(DBL_MAX)/4, the library's zero_lo): +0 and +0,
+     * the values of its zero cubic and interval, as the call answers it. The library
+     * writes it with its zero interval, [17] = [10] and [11] <= [18] (zero_piece), so
+     * the interval is not read (a cache line fewer); at its end [11] (the history, or
+     * the unloading floor) the call gives the same +0 and leaves the state as it was */
     if (force) *force = 0.0;
     if (stiffness) *stiffness = 0.0;
     return 1;
   }
+  piece = state[1] == state[0] && state[10] < delta && delta < state[11] &&
+          state[17] <= delta && delta < state[18];
   loading = !piece && delta >= state[0] && state[17] < delta && delta < state[18];
   if (EGW_UNLIKELY_(!piece && !loading)) return 0;
   if (piece) {
