@@ -843,9 +843,9 @@ static inline double egw_piece_exp_(double x)
 #define EGW_ALWAYS_INLINE_
 #endif
 
-static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(double tag, double delta,
-                                             double state[EGW_HYSTERESIS_STATE_SIZE],
-                                             double *force, double *stiffness)
+static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
+    double tag, double delta, double state[EGW_HYSTERESIS_STATE_SIZE], double *force,
+    double *stiffness)
 {
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],

@@ -148,7 +148,8 @@ contains
    !> whose piece covers delta with the loading interval beside it (hysteresis_eval_state's
    !> first test; a zero piece: 0), or a step loading further (delta >= state(1)) inside
    !> the loading interval the state holds (above the loading table's cut-off, or in a zero
-   !> interval below it). A zero piece is served up to its end, as hysteresis_eval_state. The values are hysteresis_eval_state's (piece_force's and
+   !> interval below it; a zero piece up to its end, as hysteresis_eval_state). The values
+   !> are hysteresis_eval_state's (piece_force's and
    !> segment_eval's arithmetic in the same order; a log-ratio piece's exp piece_exp, the
    !> others' exp from the same libm: bit for bit, test hysteresis), and so is the state
    !> it leaves; a step whose status would not be EGW_OK (a history above the table's
