@@ -781,7 +781,7 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * is egw's: use it with the library of the same version as this header. C99 or C++.
  * A loop with the call inside keeps its sums in memory around it (no floating-point
  * register survives a call): a sweep of this inline over the contacts, the ones it
- * declines collected and called after the sweep, took 0.82-0.87 of the time of the call
+ * declines collected and called after the sweep, took 0.83-0.94 of the time of the call
  * in the loop (tools/bench/separated_hysteresis.c, "batch"; doc/benchmarks.md
  * "Stop 55: sep21"). */
 #if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 199901L)
