@@ -778,7 +778,12 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * egw_hysteresis_eval_state. It does not report
  * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max) and refuses
  * nothing (what it does not serve, the call checks). It reads the state's layout, which
- * is egw's: use it with the library of the same version as this header. C99 or C++. */
+ * is egw's: use it with the library of the same version as this header. C99 or C++.
+ * A loop with the call inside keeps its sums in memory around it (no floating-point
+ * register survives a call): a sweep of this inline over the contacts, the ones it
+ * declines collected and called after the sweep, took 0.83-0.94 of the time of the call
+ * in the loop (tools/bench/separated_hysteresis.c, "batch"; doc/benchmarks.md
+ * "Stop 55: sep21"). */
 #if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 199901L)
 /* exp(x) of a log-ratio piece's force, for egw_hysteresis_eval_cached (not an API of its
  * own): the library's piece_exp (src/egw/tables/piece_exp.inc, which explains it), the same
@@ -827,16 +832,20 @@ static inline double egw_piece_exp_(double x)
 }
 
 /* The branches to the caller's library call marked unlikely, so that the served steps
- * are laid out straight (GCC and Clang; elsewhere the plain test). */
+ * are laid out straight; and the inline inlined wherever it is called (GCC and Clang:
+ * gcc 12 -O2 made it an out-of-line function, a call per contact, in a file that calls
+ * it twice; elsewhere the plain test and inline). */
 #if defined(__GNUC__)
 #define EGW_UNLIKELY_(c) __builtin_expect(!!(c), 0)
+#define EGW_ALWAYS_INLINE_ __attribute__((always_inline))
 #else
 #define EGW_UNLIKELY_(c) (c)
+#define EGW_ALWAYS_INLINE_
 #endif
 
-static inline int egw_hysteresis_eval_cached(double tag, double delta,
-                                             double state[EGW_HYSTERESIS_STATE_SIZE],
-                                             double *force, double *stiffness)
+static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
+    double tag, double delta, double state[EGW_HYSTERESIS_STATE_SIZE], double *force,
+    double *stiffness)
 {
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
@@ -851,15 +860,20 @@ static inline int egw_hysteresis_eval_cached(double tag, double delta,
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (EGW_UNLIKELY_(!(state[2] == tag))) return 0;
-  piece = state[1] == state[0] && state[10] < delta && delta < state[11] &&
-          state[17] <= delta && delta < state[18];
+  piece = state[1] == state[0] && state[10] < delta && delta <= state[11];
   if (piece && state[10] == -3.351951982485649e+153) {
-    /* a zero piece (it starts at -sqrt(DBL_MAX)/4, the library's zero_lo): its cubic
-     * and interval are zeros, so their values are +0; the call answers it so too */
+    /* a zero piece (it starts at -sqrt(DBL_MAX)/4, the library's zero_lo): +0 and +0,
+     * the values of its zero cubic and interval, as the call answers it. The library
+     * writes it inside its zero interval, [17] = [10] and [11] <= [18] (zero_piece), so
+     * the interval is not read (a cache line fewer); at its end [11] (the history, or
+     * the unloading floor) the call gives the same +0 and leaves the state as it was.
+     * (Tested here, after the piece's ends: the tail's steps keep main's branch layout,
+     * 5 % faster than with this test first, stop 55) */
     if (force) *force = 0.0;
     if (stiffness) *stiffness = 0.0;
     return 1;
   }
+  piece = piece && delta < state[11] && state[17] <= delta && delta < state[18];
   loading = !piece && delta >= state[0] && state[17] < delta && delta < state[18];
   if (EGW_UNLIKELY_(!piece && !loading)) return 0;
   if (piece) {

@@ -2,6 +2,7 @@
  * (egw_solve_unload, egw_restitution, egw_restitution_energy), with good and bad input.
  * Each egw_capi_test_* returns the number of failed checks and prints why;
  * test/test_unload_sphere.f90 runs them. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -315,7 +316,7 @@ int egw_capi_test_hysteresis(void) {
       double sp[EGW_HYSTERESIS_STATE_SIZE], se[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0;
       double plain = -HUGE_VAL, fi, ki, fe, ke, fp, kp, c;
       int served = 0, below = 0, exact = 1, same = 1, prev_loading = 1, misses = 1,
-          after = 0, served_after = 0;
+          after = 0, served_after = 0, zero_pieces = 0, inside = 1;
       double prev_d = 0.0;
       HCHECK(egw_hysteresis_get_info(h, &info) == EGW_OK && info.cutoff < 0.0);
       HCHECK(egw_hysteresis_state_tag(h, &tag) == EGW_OK);
@@ -335,6 +336,35 @@ int egw_capi_test_hysteresis(void) {
       memcpy(se, sp, sizeof sp);
       HCHECK(egw_hysteresis_eval_cached(tag, c - 0.3, se, &fe, &ke) == 1 && fe == 0.0 &&
              ke == 0.0 && se[0] == c - 0.3);
+      {
+        /* a zero piece at its end, [11]: the history (never touched) or the unloading
+         * floor, the cut-off (touched, then separated): the inline serves it (+0, +0, the
+         * state unchanged) as the call answers it, bit for bit (on main the inline did
+         * not serve the floor: the call did) */
+        double keep[EGW_HYSTERESIS_STATE_SIZE], sc[EGW_HYSTERESIS_STATE_SIZE];
+        double hist = 1.0, fp, kp;
+        for (int t = 0; t < 2; t++) {
+          if (t == 1) {
+            egw_hysteresis_state_init(sp);
+            HCHECK(egw_hysteresis_eval_state(h, 1.0, sp, &fi, &ki) == EGW_OK && fi > 0.0);
+            HCHECK(egw_hysteresis_eval_state(h, c - 0.5, sp, &fi, &ki) == EGW_OK &&
+                   fi == 0.0 && sp[11] == c && sp[0] == 1.0);
+          }
+          HCHECK(sp[10] == -0.25 * sqrt(DBL_MAX) && sp[11] == (t ? c : c - 0.5));
+          memcpy(keep, sp, sizeof sp);
+          memcpy(se, sp, sizeof sp);
+          memcpy(sc, sp, sizeof sp);
+          fe = ke = fi = ki = 7.0;
+          HCHECK(egw_hysteresis_eval_cached(tag, sp[11], se, &fe, &ke) == 1);
+          HCHECK(egw_hysteresis_eval_state(h, sp[11], sc, &fi, &ki) == EGW_OK);
+          HCHECK(fe == 0.0 && ke == 0.0 && !signbit(fe) && !signbit(ke) &&
+                 memcmp(&fe, &fi, sizeof fe) == 0 && memcmp(&ke, &ki, sizeof ke) == 0 &&
+                 memcmp(se, keep, sizeof se) == 0 && memcmp(sc, keep, sizeof sc) == 0);
+          hist = t ? 1.0 : c - 0.5;
+          HCHECK(egw_hysteresis_eval(h, sp[11], &hist, &fp, &kp) == EGW_OK && fp == 0.0 &&
+                 kp == 0.0);
+        }
+      }
       egw_hysteresis_state_init(sp);
       egw_hysteresis_state_init(se);
       for (int i = 0; i <= 800; i++) {
@@ -365,11 +395,16 @@ int egw_capi_test_hysteresis(void) {
           exact = exact && fp == 0.0 && kp == 0.0;
         }
         prev_d = d;
+        /* the zero piece lies in its zero interval, so that the zero exits (egw.h's
+         * inline, the call's) read the piece alone: [17] = [10] and [11] <= [18] */
+        if (sp[10] == -0.25 * sqrt(DBL_MAX))
+          zero_pieces++, inside = inside && sp[17] == sp[10] && sp[11] <= sp[18];
       }
       HCHECK(exact);
       HCHECK(same);
       HCHECK(misses);
       HCHECK(after > 10);
+      HCHECK(zero_pieces > 300 && inside);
       printf("    below the cut-off: %d of %d steps served inline before touching, %d of %d "
              "after\n", served, below, served_after, after);
     }

@@ -148,7 +148,8 @@ contains
    !> whose piece covers delta with the loading interval beside it (hysteresis_eval_state's
    !> first test; a zero piece: 0), or a step loading further (delta >= state(1)) inside
    !> the loading interval the state holds (above the loading table's cut-off, or in a zero
-   !> interval below it). The values are hysteresis_eval_state's (piece_force's and
+   !> interval below it; a zero piece up to its end, as hysteresis_eval_state). The values
+   !> are hysteresis_eval_state's (piece_force's and
    !> segment_eval's arithmetic in the same order; a log-ratio piece's exp piece_exp, the
    !> others' exp from the same libm: bit for bit, test hysteresis), and so is the state
    !> it leaves; a step whose status would not be EGW_OK (a history above the table's
@@ -167,13 +168,15 @@ contains
       force = 0.0_dp
       stiffness = 0.0_dp
       if (.not. state(3) == h%tag) return
+      if (state(11) == zero_lo .and. state(11) < delta .and. delta <= state(12) .and. &
+         & state(2) == state(1)) then
+         ! a zero piece (separated, no force; hysteresis_eval_state's exit there, tested
+         ! first as there: its zero interval need not be read)
+         served = state(1) <= h%input_limit
+         return
+      end if
       if (state(2) == state(1) .and. state(11) < delta .and. delta < state(12) .and. &
          & state(18) <= delta .and. delta < state(19)) then
-         if (state(11) == zero_lo) then
-            ! a zero piece (separated, no force; hysteresis_eval_state's exit there)
-            served = state(1) <= h%input_limit
-            return
-         end if
          if (.not. (state(1) <= h%delta_max .and. state(1) <= h%input_limit)) return
          x = delta - state(11)
          x2 = x*x

@@ -176,6 +176,18 @@ contains
       integer :: first, i
       logical :: found, inside
       stat = 0
+      ! a zero piece (zero_piece: separated, no force): 0, no status, as the call that
+      ! made it (hysteresis_eval returns there before its delta_max check). zero_piece
+      ! writes it with its zero interval around it (state(18) = state(11), state(12) <=
+      ! state(19)), so that interval is not read (a cache line fewer for a DEM's contact
+      ! arrays); at its end state(12) (the history, or the unloading floor) the steps
+      ! below give the same zeros and leave the state as it is, so the piece serves it.
+      if (state(3) == table%tag .and. state(11) == zero_lo .and. state(11) < delta .and. &
+         & delta <= state(12) .and. state(2) == state(1)) then
+         force = 0.0_dp
+         stiffness = 0.0_dp
+         return
+      end if
       ! inside the cached piece and its loading interval (below the turning point, above
       ! the cut-off; NaN fails the tests): most DEM steps. A log-ratio piece spans its run
       ! of s intervals across the loading table's intervals (make_log_piece): one that
@@ -186,13 +198,6 @@ contains
          if (.not. inside .and. (state(24) > 1.0_dp .or. state(24) < 0.0_dp)) then
             call table_segment(table%loading, delta, state(18:24), inside)
             if (inside) state(24) = merge(2.0_dp, -1.0_dp, state(24) > 0.0_dp)
-         end if
-         if (inside .and. state(11) == zero_lo) then
-            ! a zero piece (zero_piece: separated, no force): 0, no status, as the call
-            ! that made it (hysteresis_eval returns there before its delta_max check)
-            force = 0.0_dp
-            stiffness = 0.0_dp
-            return
          end if
          if (inside) then
             call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
@@ -545,7 +550,11 @@ contains
    !> A turning point above elastic_limit (unload_floor given: the piece ends there, below
    !> which its unloading force is 0) keeps its turning-point data where they are its own
    !> (state(2) = state(1)); the loading interval is then never read (no loading below
-   !> the history, and the piece's interval is linear).
+   !> the history, and the piece's interval is linear). The piece always lies in the
+   !> interval written with it (state(18) = state(11) = lo; state(12) = state(1) <
+   !> zero_below, or floor = state(19)), and only this routine writes lo into state(11):
+   !> the zero exits (hysteresis_eval_state's, the C entry's, egw.h's inline) read the
+   !> piece alone (test hysteresis 'C egw_hysteresis_build, _eval, _free').
    pure subroutine zero_piece(zero_below, unloading, state, floor)
       real(dp), intent(in) :: zero_below   !< the loading table's zero_below
       logical, intent(in) :: unloading     !< the call's delta below the history state(1)
