@@ -33,8 +33,10 @@ contains
          & ]
    end subroutine collect_halfspace
 
-   !> egw_simd's two paths of the far-field kernel (AVX2 + FMA, four lanes, glibc's 4-lane
-   !> log; the baseline, two lanes): the uniform disc exact on each (test_uniform_disc's
+   !> egw_simd's two paths of the far-field kernel and of the near pieces' log-product
+   !> weights (AVX2 + FMA, four lanes, glibc's 4-lane log; the baseline, two lanes; the
+   !> rows hold both: the log-piece weights scaled by 1 + 1e-13 put the rows 1.1e-13
+   !> apart, asm21): the uniform disc exact on each (test_uniform_disc's
    !> 1e-13, so a wrong coefficient, lane or tail of the AVX2 routine fails), and their
    !> rows within rounding of each other: a coefficient is ~20 roundings (the log's few
    !> ulp among them) from its value on either path, 1e-14 of the row's largest allows

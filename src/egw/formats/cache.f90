@@ -123,7 +123,10 @@ module egw_cache
    !> 45 (psi20): EP-GW histories (psi > 0) load with the ZMC law tabulated once per
    !> build (egw_law_pieces, as their unloading): README's EP-GW + cap psi 1 table to 6
    !> delta_y at 1e-4 moved by up to 4.2e-9 of P(m), the same grid.
-   integer, parameter, public :: cache_revision = 45
+   !> 46 (asm21): on AVX2 + FMA the half-space's log-product weights of near pieces are
+   !> computed four lanes wide (egw_simd_log_piece): coefficients move in their last
+   !> digits, so do the AVX2 path's tables (the baseline's are unchanged).
+   integer, parameter, public :: cache_revision = 46
 
 
 contains

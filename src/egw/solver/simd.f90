@@ -1,6 +1,7 @@
 !> The solver's AVX2 + FMA kernels (simd_kernels.c), chosen at run time (issue 32): the
 !> library is built for any x86-64; where the CPU has AVX2 and FMA (simd_level() == 1)
-!> the half-space's far-field kernel and its near pieces' basis sums (egw_halfspace) and
+!> the half-space's far-field kernel, its near pieces' log-product weights and basis sums
+!> (egw_halfspace) and
 !> the dense LU's rank-4 update (egw_lapack) take the 4-lane routines, else gfortran's
 !> loops.
 !> EGW_SIMD=sse2 in the environment keeps the baseline. The two paths differ in rounding
@@ -10,7 +11,7 @@ module egw_simd
    implicit none
    private
 
-   public :: simd_level, simd_set, simd_far_kernel, simd_batch6, simd_rank4
+   public :: simd_level, simd_set, simd_far_kernel, simd_log_piece, simd_batch6, simd_rank4
 
    interface
       !> The path in use: 1 AVX2 + FMA, 0 the baseline (set once when the library loads).
@@ -32,6 +33,16 @@ module egw_simd
          real(c_double), value :: r
          real(c_double), intent(out) :: row(*)
       end subroutine simd_far_kernel
+      !> egw_halfspace's add_log_piece weights (split_near's range) four lanes wide (a, b:
+      !> ellipk_split_a, _b).
+      pure subroutine simd_log_piece(n, x, lw, llw, r, len, direction, a, b, wt) &
+         & bind(C, name="egw_simd_log_piece")
+         import :: c_int, c_double
+         integer(c_int), value :: n
+         real(c_double), intent(in) :: x(*), lw(*), llw(*), a(*), b(*)
+         real(c_double), value :: r, len, direction
+         real(c_double), intent(out) :: wt(*)
+      end subroutine simd_log_piece
       !> egw_halfspace's add_batch_six over m points, four at a time.
       pure subroutine simd_batch6(m, ls, bary, s, wt, acc) bind(C, name="egw_simd_batch6")
          import :: c_int, c_double

@@ -1,7 +1,8 @@
 /*
  * The solver's hottest loops in 4-lane AVX2 + FMA, chosen at run time (module egw_simd;
  * issue 32): the half-space assembly's far-field kernel (egw_halfspace's far_kernel_run),
- * its near pieces' sums over the six-point pressure basis (add_batch_six), and the rank-4
+ * its near pieces' log-product weights (add_log_piece) and sums over the six-point
+ * pressure basis (add_batch_six), and the rank-4
  * update of the dense LU (egw_lapack's panel_of_four).
  *
  * The library is built for the baseline x86-64 (SSE2): there gfortran vectorizes these
@@ -133,6 +134,76 @@ __attribute__((target("avx2,fma"))) void egw_simd_far_kernel(int n, const double
             row[i + j] = out[j];
     }
 }
+/* Estrin's scheme of c(0) + c(1) x + ... + c(17) x**17 as split_near writes it. */
+__attribute__((target("avx2,fma"), always_inline)) static inline __m256d poly17(const double *c, __m256d x,
+                                                                  __m256d x2, __m256d x4,
+                                                                  __m256d x8, __m256d x16)
+{
+#define EGW_PAIR(i) _mm256_fmadd_pd(_mm256_set1_pd(c[(i) + 1]), x, _mm256_set1_pd(c[i]))
+    __m256d lo = _mm256_fmadd_pd(x4, _mm256_fmadd_pd(x2, EGW_PAIR(6), EGW_PAIR(4)),
+                                 _mm256_fmadd_pd(x2, EGW_PAIR(2), EGW_PAIR(0)));
+    __m256d hi = _mm256_fmadd_pd(x4, _mm256_fmadd_pd(x2, EGW_PAIR(14), EGW_PAIR(12)),
+                                 _mm256_fmadd_pd(x2, EGW_PAIR(10), EGW_PAIR(8)));
+    return _mm256_fmadd_pd(x16, EGW_PAIR(16), _mm256_fmadd_pd(x8, hi, lo));
+#undef EGW_PAIR
+}
+
+/* Four points of add_log_piece's weights (split_near's kc <= 1/3). */
+__attribute__((target("avx2,fma"), always_inline)) static inline __m256d log_four(
+    __m256d x, __m256d lw, __m256d llw, __m256d r, __m256d len, __m256d dir,
+    __m256d inv_len, const double *a, const double *b)
+{
+    const __m256d four_pi = _mm256_set1_pd(1.2732395447351628); /* 4/pi */
+    __m256d t = _mm256_fmadd_pd(_mm256_mul_pd(dir, len), x, r);
+    __m256d sum = _mm256_add_pd(r, t);
+    __m256d inv_sum = _mm256_div_pd(_mm256_set1_pd(1.0), sum);
+    __m256d kc = _mm256_mul_pd(_mm256_mul_pd(len, x), inv_sum);
+    __m256d e = _mm256_mul_pd(kc, kc);
+    __m256d e2 = _mm256_mul_pd(e, e);
+    __m256d e4 = _mm256_mul_pd(e2, e2);
+    __m256d e8 = _mm256_mul_pd(e4, e4);
+    __m256d e16 = _mm256_mul_pd(e8, e8);
+    __m256d kreg = poly17(a, e, e2, e4, e8, e16);
+    __m256d klog = poly17(b, e, e2, e4, e8, e16);
+    __m256d lg = _ZGVdN4v_log(_mm256_mul_pd(sum, inv_len));
+    __m256d inner = _mm256_fmsub_pd(lw, _mm256_fmadd_pd(klog, lg, kreg), _mm256_mul_pd(llw, klog));
+    return _mm256_mul_pd(_mm256_mul_pd(len, _mm256_mul_pd(_mm256_mul_pd(four_pi, t), inv_sum)),
+                         inner);
+}
+
+/* wt(i) = len c(t) (log_w(i) (kreg + klog ln((r + t)/len)) - log_lw(i) klog),
+ * t = r + direction len x(i), c = 4/pi t/(r + t), kreg and klog the power series of
+ * split_near at kc = len x(i)/(r + t) (a, b: ellipk_split_a, _b, 18 each), i = 1..n:
+ * add_log_piece's weights on a piece no longer than r/2 touching r. Only when
+ * egw_simd_level() is 1. */
+__attribute__((target("avx2,fma"))) void egw_simd_log_piece(int n, const double *x,
+                                                            const double *lw,
+                                                            const double *llw, double r,
+                                                            double len, double direction,
+                                                            const double *a,
+                                                            const double *b, double *wt)
+{
+    const __m256d rv = _mm256_set1_pd(r), lv = _mm256_set1_pd(len);
+    const __m256d dv = _mm256_set1_pd(direction), il = _mm256_set1_pd(1.0 / len);
+    int i = 0;
+    for (; i + 4 <= n; i += 4)
+        _mm256_storeu_pd(wt + i, log_four(_mm256_loadu_pd(x + i), _mm256_loadu_pd(lw + i),
+                                          _mm256_loadu_pd(llw + i), rv, lv, dv, il, a, b));
+    if (i < n) {
+        /* the last one to three points, the unused lanes at x = 1/2 (inside the piece) */
+        double xx[4], ww[4], ll[4], out[4];
+        int m = n - i, j;
+        for (j = 0; j < 4; j++) {
+            xx[j] = j < m ? x[i + j] : 0.5;
+            ww[j] = j < m ? lw[i + j] : 0.0;
+            ll[j] = j < m ? llw[i + j] : 0.0;
+        }
+        _mm256_storeu_pd(out, log_four(_mm256_loadu_pd(xx), _mm256_loadu_pd(ww),
+                                       _mm256_loadu_pd(ll), rv, lv, dv, il, a, b));
+        for (j = 0; j < m; j++)
+            wt[i + j] = out[j];
+    }
+}
 /* a(i) = (a(i) - (u1 c1(i) + u2 c2(i))) - (u3 c3(i) + u4 c4(i)), i = 1..m: the rank-4
  * update of one column below a panel of four (panel_of_four). Only when
  * egw_simd_level() is 1. */
@@ -227,6 +298,15 @@ void egw_simd_rank4(int m, double *a, const double *c1, const double *c2, const 
 {
     (void)m; (void)a; (void)c1; (void)c2; (void)c3; (void)c4;
     (void)u1; (void)u2; (void)u3; (void)u4;
+    abort(); /* unreachable: egw_simd_level() is 0 without the AVX2 path */
+}
+
+void egw_simd_log_piece(int n, const double *x, const double *lw, const double *llw,
+                        double r, double len, double direction, const double *a,
+                        const double *b, double *wt)
+{
+    (void)n; (void)x; (void)lw; (void)llw; (void)r; (void)len; (void)direction;
+    (void)a; (void)b; (void)wt;
     abort(); /* unreachable: egw_simd_level() is 0 without the AVX2 path */
 }
 
