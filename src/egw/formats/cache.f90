@@ -123,7 +123,10 @@ module egw_cache
    !> 45 (psi20): EP-GW histories (psi > 0) load with the ZMC law tabulated once per
    !> build (egw_law_pieces, as their unloading): README's EP-GW + cap psi 1 table to 6
    !> delta_y at 1e-4 moved by up to 4.2e-9 of P(m), the same grid.
-   integer, parameter, public :: cache_revision = 45
+   !> 46 (psi21): EP-GW unloading solves (psi > 0) take Newton's chord steps, with the cap
+   !> and without: README's psi 1 + cap table moved by up to 3.6e-9 of P(m), EP-GW psi 1
+   !> to 30 sigma by 3.3e-10, the same grids.
+   integer, parameter, public :: cache_revision = 46
 
 
 contains
