@@ -266,7 +266,7 @@ contains
    !> converged solve of those models is checked against that route
    !> (small_sigma_loading).
    !> Reports progress (egw_progress) as one long call, stage "solve".
-   subroutine solve_contact(params, options, delta, result, error)
+   subroutine solve_contact(params, options, delta, result, error, loading)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options   !< mesh, tolerance, method and threads
@@ -275,6 +275,9 @@ contains
       type(solve_result), intent(out) :: result
       !> allocated on failure (result is then not defined)
       type(egw_error), allocatable, intent(out) :: error
+      !> GW's ZMC law of params tabulated once (zmc_law_pieces): the law where its
+      !> parameters are params' (a hysteresis build's loading table), else ignored
+      type(law_pieces), intent(in), optional :: loading
       if ((params%model == model_hertz .or. params%sigma == 0.0_dp) .and. .not. &
          & params%flow_pressure > 0.0_dp) then
          ! (the closed form, ~80 ns: no progress to report, and no 5 ns spent on it)
@@ -282,17 +285,18 @@ contains
          return
       end if
       call progress_begin("solve")
-      call contact_solve(params, options, delta, result, error)
+      call contact_solve(params, options, delta, result, error, loading)
       call progress_end("solve")
    end subroutine solve_contact
 
    !> solve_contact's work.
-   subroutine contact_solve(params, options, delta, result, error)
+   subroutine contact_solve(params, options, delta, result, error, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta
       type(solve_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
+      type(law_pieces), intent(in), optional :: loading
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
       type(cap_history) :: cap
@@ -318,7 +322,7 @@ contains
          return
       end if
 
-      prob = scaled(params, delta)
+      prob = scaled(params, delta, loading)
       if (negligible(prob)) then
          ! Beyond ~37 sigma apart the summit pressure underflows: the force is below
          ! 1e-250 E sqrt(R) sigma**1.5 and is returned as 0 with est_rel_err = 1 (honest:
