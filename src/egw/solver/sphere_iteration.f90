@@ -577,10 +577,11 @@ contains
             ! takes chord steps, EP-GW unloading (psi > 0) with and without the cap alike:
             ! its law's kink at d = d_max (dp/dh jumps) slows them (seen: 5 chord steps
             ! from 1e-4 to 1e-11 where Newton takes 2), and a failed one no longer pays a
-            ! second evaluation (keep_evaluation), so they cost less than the LUs they
-            ! save (psi 1 + cap table of the README: build CPU 0.9x; EP-GW psi 1 without
-            ! the cap 0.9x; doc/benchmarks.md "Stop 55: psi21"). One rule for both keeps
-            ! an unloading the cap never touches the cap-free one, bit for bit.
+            ! second evaluation (keep_evaluation): the psi 1 + cap table of the README
+            ! builds in 0.93-0.98 of the CPU, EP-GW psi 1 to 30 sigma without the cap in
+            ! 1.003x the instructions (its meshes are small: LU 1.6 %, Z_u's integral 47 %;
+            ! doc/benchmarks.md "Stop 55: psi21"). One rule for both keeps an unloading the
+            ! cap never touches the cap-free one, bit for bit.
             factored = lambda == 1.0_dp .and. f2_try <= f2/chord_start**2
          end if
          res = res_try
