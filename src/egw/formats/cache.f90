@@ -126,7 +126,11 @@ module egw_cache
    !> 46 (asm21): on AVX2 + FMA the half-space's log-product weights of near pieces are
    !> computed four lanes wide (egw_simd_log_piece): coefficients move in their last
    !> digits, so do the AVX2 path's tables (the baseline's are unchanged).
-   integer, parameter, public :: cache_revision = 46
+   !> 47 (psi21): EP-GW unloading solves (psi > 0) take Newton's chord steps, with the cap
+   !> and without: README's psi 1 + cap table moved by up to 3.6e-9 of P(m), EP-GW psi 1
+   !> to 30 sigma by 3.3e-10, the same grids; and their loading tables solve on the
+   !> build's tabulated ZMC law (as their curves): psi 1 + cap 1.7e-11 more.
+   integer, parameter, public :: cache_revision = 47
 
 
 contains

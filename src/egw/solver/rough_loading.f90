@@ -12,6 +12,7 @@ module egw_rough_loading
    use egw_smooth_sphere, only: hertz_pressure, hertz_force, hertz_stiffness, &
       & hertz_contact_radius
    use egw_flat_law, only: flat_law
+   use egw_law_pieces, only: law_pieces
    use egw_cap_sphere, only: cap_history
    use egw_sphere_solver, only: solver_options, scaled_problem, discrete_solution, scaled, &
       & normal, negligible
@@ -35,7 +36,7 @@ contains
    !> converged solve of those models is checked against that route
    !> (small_sigma_loading).
    !> Reports progress (egw_progress) as one long call, stage "solve".
-   subroutine solve_contact(params, options, delta, result, error)
+   subroutine solve_contact(params, options, delta, result, error, loading)
       !> the contact (model, R, E*, sigma, mu, psi, K, rho_p)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options   !< mesh, tolerance, method and threads
@@ -44,24 +45,28 @@ contains
       type(solve_result), intent(out) :: result
       !> allocated on failure (result is then not defined)
       type(egw_error), allocatable, intent(out) :: error
+      !> GW's ZMC law of params tabulated once (zmc_law_pieces): the law where its
+      !> parameters are params' (a hysteresis build's loading table), else ignored
+      type(law_pieces), intent(in), optional :: loading
       if ((params%model == model_hertz .or. params%sigma == 0.0_dp) .and. .not. &
          & params%flow_pressure > 0.0_dp) then
          ! (the closed form, ~80 ns: no progress to report, and no 5 ns spent on it)
-         call contact_solve(params, options, delta, result, error)
+         call contact_solve(params, options, delta, result, error, loading)
          return
       end if
       call progress_begin("solve")
-      call contact_solve(params, options, delta, result, error)
+      call contact_solve(params, options, delta, result, error, loading)
       call progress_end("solve")
    end subroutine solve_contact
 
    !> solve_contact's work.
-   subroutine contact_solve(params, options, delta, result, error)
+   subroutine contact_solve(params, options, delta, result, error, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta
       type(solve_result), intent(out) :: result
       type(egw_error), allocatable, intent(out) :: error
+      type(law_pieces), intent(in), optional :: loading
       type(scaled_problem) :: prob
       type(discrete_solution) :: sol
       type(cap_history) :: cap
@@ -87,7 +92,7 @@ contains
          return
       end if
 
-      prob = scaled(params, delta)
+      prob = scaled(params, delta, loading)
       if (negligible(prob)) then
          ! Beyond ~37 sigma apart the summit pressure underflows: the force is below
          ! 1e-250 E sqrt(R) sigma**1.5 and is returned as 0 with est_rel_err = 1 (honest:

@@ -27,8 +27,8 @@
 !> law is p_G = scale Z_u(d/sigma, d_max/sigma) at fixed d_max (egw_unloading), on the same
 !> meshes with the same Newton, error estimate and stiffness (h_min does not depend on
 !> delta or w, so the Jacobian and the implicit derivative keep their form); the meshes
-!> also get element edges where p(r) is less smooth (first_unloading_level), Newton takes
-!> no chord steps, and Z_u's law-only work is done once (unloading_law_of).
+!> also get element edges where p(r) is less smooth (first_unloading_level), and Z_u's
+!> law-only work is done once (unloading_law_of).
 !>
 !> The work is split by concern: the problem and what is read off a solution
 !> (egw_sphere_problem), the meshes (egw_sphere_mesh), one mesh's nonlinear solve

@@ -153,9 +153,12 @@ contains
          ! (a bound it meets; the files state the table's rel_tol for both)
          if (.not. allocated(error)) table%loading%rel_tol = rel_tol
       else
-         ! (a rough model with the cap: its capped loading curve, not a force law)
+         ! (a rough model with the cap: its capped loading curve, not a force law; plastic
+         ! summits: on the ZMC law tabulated below, built here already)
+         if (plastic_summits(params)) table%loading_law = zmc_law_pieces(params%psi, &
+            & params%hardness_coeff, params%plastic_ratio)
          call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, &
-            & error, loading_curve=rough_cap)
+            & error, loading_curve=rough_cap, loading=table%loading_law)
       end if
       if (allocated(error)) return
       ! the loading branch evaluates its ln P intervals (table_eval = table_eval_cached)
@@ -245,8 +248,7 @@ contains
       allocate (curves(n))
       ! the ZMC loading law tabulated once for every unloading solve (~25 % of psi 1's
       ! build was its integral; empty for elastic summits: the integral's F_3/2 is cheap)
-      if (plastic_summits(params)) table%loading_law = zmc_law_pieces(params%psi, &
-         & params%hardness_coeff, params%plastic_ratio)
+      ! (built with the loading table above)
       ! and, with the cap, its Z_u at the deep plastic zone's h_min (~36 % of psi 1's build)
       if (plastic_summits(params) .and. rough_cap) call deep_unloading(params, &
          & table%loading_law)

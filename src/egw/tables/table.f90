@@ -37,6 +37,7 @@ module egw_table
       & model_epgw, model_flat_law, check_scaled_overlap, refuse_flow_pressure, is_rough
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, solve_contact_law
    use egw_flat_law, only: flat_law
+   use egw_law_pieces, only: law_pieces
    use egw_smooth_sphere, only: hertz_force, hertz_stiffness
    use egw_table_ends, only: tail_force, deep_law, deep_law_fit, deep_law_force, &
       & deep_law_energy, deep_law_radius_factor
@@ -150,7 +151,7 @@ module egw_table
       !> counts solves; the cut-off search is counted in done but not reported on its own
       !> (its length is not known in advance).
       module subroutine build_table(params, options, delta_min, delta_max, rel_tol, table, error, &
-         & progress, loading_curve)
+         & progress, loading_curve, loading)
          type(contact_params), intent(in) :: params   !< one parameter set
          type(solver_options), intent(in) :: options !< of the solves (rel_tol at most rel_tol/10)
          real(dp), intent(in) :: delta_min   !< smallest overlap of interest [length] (< 0: apart)
@@ -163,6 +164,9 @@ module egw_table
          !> the flow-pressure cap (a capped loading curve is no reversible force law, so a
          !> force table refuses flow_pressure otherwise); default false
          logical, intent(in), optional :: loading_curve
+         !> GW's ZMC law of params tabulated once (zmc_law_pieces), the solves' law where
+         !> its parameters are params' (a hysteresis build's: its curves' law too)
+         type(law_pieces), intent(in), optional :: loading
       end subroutine build_table
 
       !> build_table for a sphere pair whose local pressure is a rough-flat law (doc/theory.md

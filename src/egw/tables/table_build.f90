@@ -10,7 +10,7 @@ contains
    ! build_table: interface and documentation in egw_table (table.f90)
    module procedure build_table
       call build_1d(params, options, delta_min, delta_max, rel_tol, table, error, progress, &
-         & loading_curve=loading_curve)
+         & loading_curve=loading_curve, loading=loading)
    end procedure build_table
 
    ! build_table_law: interface and documentation in egw_table (table.f90)
@@ -68,7 +68,7 @@ contains
 
    !> The 1-D build of build_table and build_table_law (law present: solves with it).
    subroutine build_1d(params, options, delta_min, delta_max, rel_tol, table, error, &
-      & progress, law, loading_curve)
+      & progress, law, loading_curve, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
@@ -77,6 +77,7 @@ contains
       procedure(table_progress), optional :: progress
       class(flat_law), intent(in), optional :: law
       logical, intent(in), optional :: loading_curve   !< as build_table's
+      type(law_pieces), intent(in), optional :: loading   !< as build_table's
       type(solver_options) :: opts
       real(dp) :: cutoff, p_ref
       type(force_table) :: tables(1)
@@ -89,11 +90,11 @@ contains
       if (allocated(error)) return
       opts = point_options(options, rel_tol)
       call find_cutoff(params, opts, delta_min, delta_max, rel_tol, cutoff, p_ref, n_solves, &
-         & error, law)
+         & error, law, loading)
       ! nodes at least up to where the deep-overlap law above the last node holds its 1 %
       if (.not. allocated(error)) call build_shared_nodes([params], opts, cutoff, &
          & max(delta_max, deep_law_floor(params)), rel_tol, [p_ref], .false., tables, error, &
-         & n_solves, progress, law)
+         & n_solves, progress, law, loading)
       if (allocated(error)) then
          call tolerance_context(error, "table", rel_tol, opts%rel_tol)   ! the caller's terms
          return
@@ -103,7 +104,7 @@ contains
 
    !> table_find_cutoff, also counting its solves (n_solves, for progress reports).
    subroutine find_cutoff(params, options, delta_min, delta_max, rel_tol, cutoff, p_ref, &
-      & n_solves, error, law)
+      & n_solves, error, law, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: options
       real(dp), intent(in) :: delta_min, delta_max, rel_tol
@@ -111,6 +112,7 @@ contains
       integer, intent(out) :: n_solves
       type(egw_error), allocatable, intent(out) :: error
       class(flat_law), intent(in), optional :: law   !< solves with this law
+      type(law_pieces), intent(in), optional :: loading   !< as build_table's
       real(dp) :: lo, hi, p_lo, k, a, target, step, d_ref, xs(2), ps(2, 1), ks(2, 1), &
          & as(2, 1)
       integer :: it, j
@@ -120,7 +122,7 @@ contains
       lo = min(delta_min, d_ref)
       ! P_ref and the force at delta_min together (solve_grid: in parallel)
       n_solves = 2
-      call solve_grid([params], options, [d_ref, lo], ps, ks, as, error, law)
+      call solve_grid([params], options, [d_ref, lo], ps, ks, as, error, law, loading)
       if (allocated(error)) return
       p_ref = ps(1, 1)
       p_lo = ps(2, 1)
@@ -145,7 +147,7 @@ contains
          lo = lo - step
          step = 2*step
          n_solves = n_solves + 1
-         call solve_point(params, options, lo, p_lo, k, a, error, law)
+         call solve_point(params, options, lo, p_lo, k, a, error, law, loading)
          if (allocated(error)) return
       end do
       ! trisection: two solves per step in parallel shrink the bracket 3x per solve
@@ -157,7 +159,7 @@ contains
          xs = [lo + (hi - lo)/3, lo + 2*(hi - lo)/3]
          if (.not. (xs(1) > lo .and. xs(2) > xs(1) .and. hi > xs(2))) exit
          n_solves = n_solves + 2
-         call solve_grid([params], options, xs, ps, ks, as, error, law)
+         call solve_grid([params], options, xs, ps, ks, as, error, law, loading)
          if (allocated(error)) return
          do j = 2, 1, -1
             if (.not. ps(j, 1) > target) exit
@@ -196,7 +198,7 @@ contains
    !> set is the ordinary 1-D build. n_solves: solves done before (counted on in place, for
    !> the optional progress hook, which is called after every batch of solves).
    subroutine build_shared_nodes(params, opts, cutoff, delta_max, rel_tol, p_ref, log_all, &
-      & tables, error, n_solves, progress, law)
+      & tables, error, n_solves, progress, law, loading)
       type(contact_params), intent(in) :: params(:)
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: cutoff, delta_max, rel_tol, p_ref(:)
@@ -206,6 +208,7 @@ contains
       integer, intent(inout) :: n_solves
       procedure(table_progress), optional :: progress
       class(flat_law), intent(in), optional :: law   !< solves with this law (one set)
+      type(law_pieces), intent(in), optional :: loading   !< as build_table's (one set)
       real(dp), allocatable :: x(:), f(:, :), k(:, :), a(:, :), xm(:), fm(:, :), km(:, :)
       real(dp), allocatable :: am(:, :), err_f(:), err_k(:)
       logical, allocatable :: accepted(:), split(:)
@@ -216,7 +219,7 @@ contains
       call initial_nodes(params(1), cutoff, delta_max, x)
       n = size(x)
       allocate (f(n, ns), k(n, ns), a(n, ns))
-      call solve_grid(params, opts, x, f, k, a, error, law)
+      call solve_grid(params, opts, x, f, k, a, error, law, loading)
       if (allocated(error)) return
       n_solves = n_solves + n*ns
       ! pending: one midpoint solve per set for each of the n - 1 unchecked intervals
@@ -246,7 +249,7 @@ contains
             return
          end if
          allocate (fm(m, ns), km(m, ns), am(m, ns), split(m))
-         call solve_grid(params, opts, xm, fm, km, am, error, law)
+         call solve_grid(params, opts, xm, fm, km, am, error, law, loading)
          if (allocated(error)) return
          call check_midpoints(params, rel_tol, log_all, x, f, k, todo, xm, fm, km, split, &
             & err_f, err_k)
@@ -487,13 +490,14 @@ contains
    end subroutine initial_nodes
 
    !> Solve every (point, parameter set) pair in parallel (solver threads off).
-   subroutine solve_grid(params, opts, x, f, k, a, error, law)
+   subroutine solve_grid(params, opts, x, f, k, a, error, law, loading)
       type(contact_params), intent(in) :: params(:)
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: x(:)
       real(dp), intent(out) :: f(:, :), k(:, :), a(:, :)
       type(egw_error), allocatable, intent(out) :: error
       class(flat_law), intent(in), optional :: law   !< solves with this law
+      type(law_pieces), intent(in), optional :: loading   !< as build_table's
       integer, allocatable :: stat(:, :)
       integer :: i, s, idx, nx
       nx = size(x)
@@ -502,14 +506,16 @@ contains
       do idx = 1, nx*size(params)
          i = mod(idx - 1, nx) + 1
          s = (idx - 1)/nx + 1
-         call solve_quiet(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), stat(i, s), law)
+         call solve_quiet(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), stat(i, s), law, &
+            & loading)
       end do
       !$omp end parallel do
       do s = 1, size(params)
          do i = 1, nx
             if (stat(i, s) /= 0) then
                ! redo the first failure serially to recover its message
-               call solve_point(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), error, law)
+               call solve_point(params(s), opts, x(i), f(i, s), k(i, s), a(i, s), error, law, &
+                  & loading)
                ! (the solve's message in its scaled units: which table node, in the user's)
                if (allocated(error)) error%message = "the table's solve at delta = "// &
                   & format_real(x(i))//": "//error%message
@@ -521,31 +527,34 @@ contains
       end do
    end subroutine solve_grid
 
-   subroutine solve_quiet(params, opts, x, f, k, a, stat, law)
+   subroutine solve_quiet(params, opts, x, f, k, a, stat, law, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: x
       real(dp), intent(out) :: f, k, a
       integer, intent(out) :: stat
       class(flat_law), intent(in), optional :: law
+      type(law_pieces), intent(in), optional :: loading
       type(egw_error), allocatable :: error
-      call solve_point(params, opts, x, f, k, a, error, law)
+      call solve_point(params, opts, x, f, k, a, error, law, loading)
       stat = 0
       if (allocated(error)) stat = error%stat
    end subroutine solve_quiet
 
-   subroutine solve_point(params, opts, x, f, k, a, error, law)
+   subroutine solve_point(params, opts, x, f, k, a, error, law, loading)
       type(contact_params), intent(in) :: params
       type(solver_options), intent(in) :: opts
       real(dp), intent(in) :: x
       real(dp), intent(out) :: f, k, a
       type(egw_error), allocatable, intent(out) :: error
       class(flat_law), intent(in), optional :: law   !< (params: R, E* of the pair)
+      !> GW's ZMC law tabulated (solve_contact's loading), where law is absent
+      type(law_pieces), intent(in), optional :: loading
       type(solve_result) :: res
       if (present(law)) then
          call solve_contact_law(params, law, opts, x, res, error)
       else
-         call solve_contact(params, opts, x, res, error)
+         call solve_contact(params, opts, x, res, error, loading)
       end if
       f = res%force
       k = res%stiffness
