@@ -123,7 +123,10 @@ module egw_cache
    !> 45 (psi20): EP-GW histories (psi > 0) load with the ZMC law tabulated once per
    !> build (egw_law_pieces, as their unloading): README's EP-GW + cap psi 1 table to 6
    !> delta_y at 1e-4 moved by up to 4.2e-9 of P(m), the same grid.
-   integer, parameter, public :: cache_revision = 45
+   !> 46 (dcap21): rough + cap loading stiffness (the Hermite slopes of rough + cap
+   !> loading tables) on the mesh moved with its kinks at their rate (the fixed point of
+   !> the kink's motion, egw_sphere_moving_mesh's follow_kink): the tables' bits change.
+   integer, parameter, public :: cache_revision = 46
 
 
 contains

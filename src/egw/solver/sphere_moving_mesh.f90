@@ -1,16 +1,18 @@
 !> The loading stiffness with the flow-pressure cap as the derivative of the converged
 !> answer (issue 32, doc/theory.md §12 "Rough spheres with the cap"): the accepted
-!> level's discrete force at delta (1 +- h) on its mesh moved with the problem, the Hertz
-!> edge a and the cap's kinks c (where the total pressure reaches p_y) carried to their
-!> places at delta (1 +- h), the elements between them stretched linearly.
+!> level's discrete force at delta and delta (1 + h) on its mesh moved with the problem,
+!> the Hertz edge a and the cap's kinks c (where the total pressure reaches p_y) carried
+!> to their places at delta (1 + h) at the rate at which each kink stays at its edge, the
+!> elements between them stretched linearly.
 !>
 !> Why: the implicit derivative (egw_sphere_iteration's differentiate) holds the mesh
 !> fixed while a and c move through it; the Gauss sums of the kinked rates are then off
 !> by up to ~1e-3 of the stiffness at rel_tol 1e-6, where the converged forces, whose
 !> mesh edges follow a and c from level to level, are right to ~rel_tol and smooth in
 !> delta (stop 52, doubt18). On a mesh that moves with the kinks, the discrete force is
-!> as smooth in delta as the converged one, and its central quotient agrees with
-!> quotients of forces solved at rel_tol 1e-9 to a few rel_tol.
+!> as smooth in delta as the converged one, and its quotient agrees with quotients of
+!> forces solved at rel_tol 1e-8 to a few rel_tol (stop 55: not at sigma/delta_y 1e-4,
+!> 10 delta_y, 1.2e-5; doc/theory.md §12 Limits).
 module egw_sphere_moving_mesh
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
@@ -24,10 +26,11 @@ module egw_sphere_moving_mesh
 
    public :: kink_following_rate
 
-   !> The relative step h of delta. The forces at delta (1 +- h) come from Newton on the
-   !> same mesh from the converged deflection (to round-off), so the quotient's round-off
-   !> is ~1e-16/h of the force; its truncation h**2 of the curvature. 1e-6: both below
-   !> 1e-9 of the stiffness.
+   !> The relative step h of delta. The forces at delta and delta (1 + h) come from Newton
+   !> on the same mesh from the converged deflection (to round-off), so the quotient's
+   !> round-off is ~1e-16/h of the force; its truncation h/2 delta P''/P' (measured <= 2e-6
+   !> of the rough part's rate against a central quotient), and the kink's motion over the
+   !> step stays far inside its edge's Gauss points.
    real(dp), parameter :: step = 1.0e-6_dp
    !> cap_kink_radii skips kinks whose neighbourhood carries less than this fraction of
    !> the force (as the first level does with 1e-4 rel_tol: far below any tolerance).
