@@ -130,7 +130,10 @@ module egw_cache
    !> and without: README's psi 1 + cap table moved by up to 3.6e-9 of P(m), EP-GW psi 1
    !> to 30 sigma by 3.3e-10, the same grids; and their loading tables solve on the
    !> build's tabulated ZMC law (as their curves): psi 1 + cap 1.7e-11 more.
-   integer, parameter, public :: cache_revision = 47
+   !> 48 (dcap21): rough + cap loading stiffness (the Hermite slopes of rough + cap
+   !> loading tables) on the mesh moved with its kinks at their rate (the fixed point of
+   !> the kink's motion, egw_sphere_moving_mesh's follow_kink): the tables' bits change.
+   integer, parameter, public :: cache_revision = 48
 
 
 contains

@@ -30,7 +30,7 @@ module egw_sphere_iteration
 
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
 
-   public :: solve_mesh, differentiate, initial_deflection, evaluate, residual, jacobian, &
+   public :: solve_mesh, differentiate, gap_rate, initial_deflection, evaluate, residual, jacobian, &
       & newton, picard
 
 contains
@@ -188,25 +188,88 @@ contains
       type(discrete_solution), intent(inout) :: sol
       real(dp), intent(inout) :: jac(size(sol%w), size(sol%w))
       type(egw_error), allocatable, intent(out) :: error
-      integer, parameter :: max_sweeps = 6
-      real(dp), allocatable :: rhs(:), x(:, :), corr(:, :), rate(:)
-      integer, allocatable :: ipiv(:)
-      integer :: n, info, sweep
-      logical :: refined, edge_capped
-      real(dp), allocatable :: free_rate(:)
-      n = size(sol%w)
-      allocate (x(n, 1), corr(n, 1), stat=info)
-      if (info /= 0) then
-         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
-            & //int_str(n)//" nodes could not be allocated")
-         return
-      end if
+      real(dp), allocatable :: x(:, :), rate(:), free_rate(:)
+      logical :: edge_capped
       ! Newton and Picard return with the law evaluated at the converged w (their last
       ! evaluate); only a solution whose fields no longer match w is evaluated again (the
       ! same pure computation, so the same numbers either way). Unloading: the law's
       ! integrals Z_u are ~45 % of a hysteresis build, this evaluation a third of the
       ! finest level's.
       if (.not. evaluated_at_w(sol)) call evaluate(prob, sol)
+      call rate_system(prob, sol, jac, x, edge_capped, free_rate, error)
+      if (allocated(error)) return
+      if (edge_capped) then
+         ! (solve_rough adds the Hertz stiffness, which the total holds)
+         rate = gauss_values(sol%mesh, x(:, 1)) - 1.0_dp
+         sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%dpdh*rate + &
+            & free_rate)) - smooth_stiffness(prob)
+         return
+      end if
+      rate = sol%dbase + gauss_values(sol%mesh, x(:, 1))
+      sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%dpdh*rate + sol%dpdd))
+   end subroutine differentiate_in
+
+   !> The delta-derivative of a converged loading solution's gap as a nodal field: the
+   !> gap's rate at r is base_gap_rate(r) + the field interpolated at r, or, where the
+   !> capped zone holds the Hertz edge (total), the field less 1 (differentiate's system
+   !> for the total deflection). Its Jacobian built here, solved with Newton's last
+   !> factors as differentiate does. sol: evaluated at its w (as differentiate leaves it);
+   !> else egw_not_converged.
+   subroutine gap_rate(prob, sol, field, total, error)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(discrete_solution), intent(in) :: sol   !< converged, evaluated at its w
+      real(dp), allocatable, intent(out) :: field(:)   !< the nodal field
+      logical, intent(out) :: total   !< the field is the total deflection's rate
+      !> egw_not_converged (not evaluated, singular Jacobian) or egw_out_of_memory
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp), allocatable :: jac(:, :), x(:, :), free_rate(:)
+      integer :: n, stat
+      total = .false.
+      if (.not. evaluated_at_w(sol)) then
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): the gap's rate of a solution not evaluated at its w")
+         return
+      end if
+      n = size(sol%w)
+      allocate (jac(n, n), stat=stat)
+      if (stat /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
+      call rate_system(prob, sol, jac, x, total, free_rate, error)
+      if (allocated(error)) return
+      field = x(:, 1)
+   end subroutine gap_rate
+
+   !> The implicit derivative's linear system at a solution evaluated at its w:
+   !> J x = infl (p' dz/d(delta) + dp/d(delta)), x = dw/d(delta), or where the capped zone
+   !> holds the Hertz edge (edge_capped) the same J with the total deflection's right-hand
+   !> side (free_rate: uncapped_rate). Newton's last factors belong to an iterate near
+   !> the solution: iterative refinement with them (residuals with the exact J) contracts
+   !> by |J_old**-1 (J - J_old)| << 1 per sweep and spares an LU; without them, or if
+   !> refinement stalls, J itself is factored (in jac).
+   subroutine rate_system(prob, sol, jac, x, edge_capped, free_rate, error)
+      type(scaled_problem), intent(in) :: prob
+      type(discrete_solution), intent(in) :: sol
+      real(dp), intent(inout) :: jac(size(sol%w), size(sol%w))
+      real(dp), allocatable, intent(out) :: x(:, :)
+      logical, intent(out) :: edge_capped
+      real(dp), allocatable, intent(out) :: free_rate(:)
+      type(egw_error), allocatable, intent(out) :: error
+      integer, parameter :: max_sweeps = 6
+      real(dp), allocatable :: rhs(:), corr(:, :)
+      integer, allocatable :: ipiv(:)
+      integer :: n, info, sweep
+      logical :: refined
+      n = size(sol%w)
+      edge_capped = .false.
+      allocate (x(n, 1), corr(n, 1), stat=info)
+      if (info /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
       call jacobian(sol, jac)
       ! with the cap the rough part also moves with delta at fixed gap (sol%dpdd)
       edge_capped = capped_at_edge(prob, sol)
@@ -252,16 +315,7 @@ contains
          x(:, 1) = rhs
          call lu_solve(n, jac, ipiv, x(:, 1))
       end if
-      if (edge_capped) then
-         ! (solve_rough adds the Hertz stiffness, which the total holds)
-         rate = gauss_values(sol%mesh, x(:, 1)) - 1.0_dp
-         sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%dpdh*rate + &
-            & free_rate)) - smooth_stiffness(prob)
-         return
-      end if
-      rate = sol%dbase + gauss_values(sol%mesh, x(:, 1))
-      sol%dforce = 2.0_dp*pi*sum(sol%mesh%gauss_w*sol%mesh%gauss_r*(sol%dpdh*rate + sol%dpdd))
-   end subroutine differentiate_in
+   end subroutine rate_system
 
    !> Loading with the cap of an extended model (differentiate): whether the Gauss point
    !> nearest the Hertz edge a from inside is capped (sol%dpdd < 0 there).
