@@ -25,7 +25,7 @@ contains
          & new_unittest("special values and bad text", test_special), &
          & new_unittest("integers", test_integers), &
          & new_unittest("full device: EGW_IO_ERROR", test_full_device), &
-         & new_unittest("write_file onto a directory", test_directory), &
+         & new_unittest("write_file onto a directory, read_file of one", test_directory), &
          & new_unittest("no deferred-length function results", test_no_deferred), &
          & new_unittest("to_lower = C's tolower, every byte", test_to_lower) &
          & ]
@@ -190,6 +190,14 @@ contains
       call read_file(dir//"/ok.txt", bytes, e)
       call check(error, .not. allocated(e) .and. bytes == "two"//new_line("a")//"lines"// &
          & new_line("a"), "read_file does not give back what was written")
+      if (allocated(error)) return
+      ! a directory given as a file (a table, scene or law path): the system's reason, not
+      ! the huge "size" a directory seeks to (before: "larger than 2147483647 bytes")
+      call read_file(dir//"/in_the_way", bytes, e)
+      call check(error, allocated(e), "reading a directory reported success")
+      if (allocated(error)) return
+      call check(error, e%stat == egw_io_error .and. index(e%message, "Is a directory") > 0, &
+         & e%message)
    end subroutine test_directory
 
    !> No function in src/ returns character(len=:), allocatable: gfortran 12 keeps the

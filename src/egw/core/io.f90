@@ -239,6 +239,8 @@ contains
       integer(c_long) :: size
       integer(c_size_t) :: got
       character(len=:), allocatable :: why
+      character(len=1), target :: first
+      integer(c_int), pointer :: errno
       if (len(path) == 0) then
          call fatal_error(error, egw_io_error, "path: empty")
          return
@@ -251,8 +253,18 @@ contains
       end if
       why = ""
       size = -1
-      if (c_fseek(fp, 0_c_long, seek_end) == 0) size = c_ftell(fp)
-      if (size < 0) then
+      ! a directory opens and seeks (to a huge "size" on ext4): one byte read says what it is
+      call c_f_pointer(c_errno_location(), errno)
+      errno = 0
+      got = c_fread(c_loc(first), 1_c_size_t, 1_c_size_t, fp)
+      if (got == 0 .and. errno /= 0) then
+         call failed("read", why)
+      else if (c_fseek(fp, 0_c_long, seek_end) == 0) then
+         size = c_ftell(fp)
+      end if
+      if (len(why) > 0) then
+         ! the reason is given
+      else if (size < 0) then
          why = "not a regular file, or its size is unknown"
       else if (size > huge(1)) then
          why = "larger than "//int_text(int(huge(1), int64))//" bytes"
