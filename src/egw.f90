@@ -1,8 +1,9 @@
 !> egw: extended Greenwood-Williamson contact of rough spheres (Zhao & Feng 2018).
 !> `use egw` gives a Fortran user the public API: parameters, options and results, model
 !> and status constants with egw_error, the solves, restitution, force and hysteresis
-!> tables with their files, scenes, and dp. Internals (mesh, kernels, pi, unset, ...) stay
-!> in their modules and in egw_all (src/egw_all.f90); the C API is include/egw.h.
+!> tables with their files, scenes, rough-flat laws (tabulated, Persson's, the BEM's),
+!> and dp. Internals (mesh, kernels, pi, unset, ...) stay in their modules and in egw_all
+!> (src/egw_all.f90); the C API is include/egw.h.
 module egw
    use egw_kinds, only: dp
    use egw_version, only: egw_version_string, egw_version_number, get_egw_version
@@ -12,6 +13,9 @@ module egw
    use egw_params, only: contact_params, model_hertz, model_gw, model_egw, model_epgw, &
       & model_flat_law, validate_params, model_name, mu_from_summits, psi_from_hardness
    use egw_flat_law, only: flat_law, table_flat_law, new_table_law
+   use egw_flat_persson, only: persson_options, self_affine_psd, persson_flat_curve
+   use egw_flat_bem, only: bem_options, bem_state, bem_result, bem_solve_load, &
+      & bem_solve_gap, bem_flat_curve, bem_state_release
    use egw_gauss, only: gauss_integral, gauss_integral_deriv, get_gauss_integral, &
       & get_gauss_integral_deriv, zmc_integrals
    use egw_ellip, only: ellipk, ellipe, ellipk_comp, ellipe_comp, get_ellipk, get_ellipe

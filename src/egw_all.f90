@@ -1,7 +1,9 @@
-!> egw_all: every public name of every egw module (the constants of egw_kinds, the mesh,
+!> egw_all: the public names of egw's modules (the constants of egw_kinds, the mesh,
 !> kernels and numerical helpers, the table internals, file helpers ...), for power users
-!> and the tests. Programs that only compute contacts `use egw` (src/egw.f90), whose
-!> shorter list does not collide with the names of a host code.
+!> and the tests; the C layer (capi/) and the inner modules of the solver's levels and of
+!> the builds (sphere_*, cap_*, hysteresis_curves, ...) are used by their own names.
+!> Programs that only compute contacts `use egw` (src/egw.f90), whose shorter list does
+!> not collide with the names of a host code.
 module egw_all
    use egw_kinds
    use egw_version
@@ -30,6 +32,7 @@ module egw_all
    use egw_io
    use egw_cache
    use egw_flat_bem
+   use egw_flat_persson
    implicit none
    public
 end module egw_all
