@@ -32,6 +32,34 @@ def test_epgw_restitution():
     return ok, f"e = {e:.6f}, egw_restitution = {ref:.6f}, |diff| = {abs(e - ref):.2e} (< 5e-3)"
 
 
+def test_restitution_tool_args():
+    """build/lammps/egw-restitution, the reference the examples and tests print, reads its
+    arguments whole: MODEL by number or name (EP-GW by name gives the e of 3, below 1;
+    before audit22 atoi read "EP-GW" as 0, Hertz, e = 1, without a word), and a word that
+    is not a number (MODEL foo, REL_TOL abc, SPEED 0.2x) exits 2 naming the argument
+    (before: atof read them as 0 or 0.2, and "foo" ran Hertz with status 0)."""
+    sigma = math.sqrt(2) * 0.5e-6
+
+    def run(args):
+        p = subprocess.run([REST] + [str(a) for a in args], stdout=subprocess.PIPE,
+                           stderr=subprocess.STDOUT, text=True)
+        return p.returncode, p.stdout.strip()
+
+    base = [repr(E_STAR), repr(R_STAR), repr(sigma), "4", "1", "0.6", "54", repr(M_STAR)]
+    by_number = run(["3"] + base + [repr(2 * V)])
+    by_name = run(["EP-GW"] + base + [repr(2 * V)])
+    msgs, ok = [f"3: {by_number}, EP-GW: {by_name}"], by_number == by_name and by_number[0] == 0
+    ok = ok and float(by_number[1]) < 0.99
+    for args, name in ((["foo"] + base + [repr(2 * V)], "MODEL"),
+                       (["3"] + base + [repr(2 * V), "abc"], "REL_TOL"),
+                       (["3"] + base + ["0.2x"], "SPEED")):
+        rc, out = run(args)
+        good = rc == 2 and out.startswith(f"egw-restitution: {name} = ")
+        ok = ok and good
+        msgs.append(f"{name}: rc {rc} '{out[:60]}'")
+    return ok, "; ".join(msgs)
+
+
 # the issue-22 pairs: (E, nu, sphere radius, the contact's sigma, mu, psi, density); K = 0.6
 IMPACT_PAIRS = {"glass": (70e9, 0.22, 1e-3, 1e-6, 4.0, 2.0, 2500.0),
                 "steel": (210e9, 0.3, 2e-3, 0.5e-6, 10.0, 5.0, 7800.0)}
