@@ -31,8 +31,8 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sphere_reference as sr  # noqa: E402  (first: it installs numpy, scipy, mpmath if missing)
 import numpy as np  # noqa: E402
-import sphere_reference as sr  # noqa: E402
 
 SQRT2PI = math.sqrt(2.0 * math.pi)
 
