@@ -78,3 +78,17 @@ def test_ignored_psi_warning_is_short():
         egw.Params(model="E-GW", radius=1e-3, modulus=1e9, sigma=1e-6, mu=4.0,
                    psi=np.full(1000, 2.0))
     assert len(str(rec[0].message)) < 300
+
+
+def test_table_evaluators_name_delta_in_their_messages():
+    # Table.eval, HysteresisTable.eval and .energy read delta through the same helper as
+    # the functions: before audit22 their messages said "value" instead of naming delta
+    t = egw.Table.build(P, -2e-6, 2e-5, rel_tol=1e-4)
+    h = egw.HysteresisTable.build(P.replace(model="EP-GW", psi=1.0), -2e-6, 2e-5,
+                                  rel_tol=1e-3)
+    calls = [lambda: t.eval(MASKED), lambda: t.eval(LONG),
+             lambda: h.eval(MASKED, h.new_state(3)), lambda: h.energy(LONG, 1e-6)]
+    for call in calls:
+        with pytest.raises(TypeError) as info:
+            call()
+        assert str(info.value).startswith("delta"), str(info.value)

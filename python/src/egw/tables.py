@@ -227,7 +227,7 @@ class Table(_Handle):
         InvalidArgumentError
             A NaN overlap.
         """
-        d = _array(delta)
+        d = _array(delta, "delta")
         force = np.empty_like(d)
         stiffness = np.empty_like(d)
         if d.size:
@@ -621,7 +621,7 @@ class HysteresisTable(_Handle):
         InvalidArgumentError
             A NaN overlap.
         """
-        d = _array(delta)
+        d = _array(delta, "delta")
         if not (isinstance(state, np.ndarray) and state.dtype == np.float64
                 and state.shape == d.shape and state.flags.c_contiguous) \
                 or isinstance(state, np.ma.MaskedArray):
@@ -670,7 +670,7 @@ class HysteresisTable(_Handle):
         InvalidArgumentError
             A NaN overlap.
         """
-        d = _array(delta)
+        d = _array(delta, "delta")
         s = np.broadcast_to(_array(state, "state"), d.shape)
         out = np.empty(d.shape)
         u = ctypes.c_double()
