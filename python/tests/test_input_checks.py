@@ -92,3 +92,33 @@ def test_table_evaluators_name_delta_in_their_messages():
         with pytest.raises(TypeError) as info:
             call()
         assert str(info.value).startswith("delta"), str(info.value)
+
+
+@pytest.mark.parametrize("field, value", [
+    ("n_radial", 16.5), ("max_iter", 2.7), ("n_threads", 1.5), ("method", 1.7),
+    ("n_radial", "16"), ("rel_tol", "x"), ("rel_tol", None), ("n_threads", True),
+    ("rel_tol", np.array([1e-6, 1e-5])),
+])
+def test_options_of_a_wrong_type_are_refused_naming_the_field(field, value):
+    # before audit22 Options(n_radial=16.5) ran with 16 (int() truncated it silently),
+    # method=1.7 with Newton, and rel_tol="x" raised numpy's "could not convert string
+    # to float" naming nothing
+    with pytest.raises(TypeError) as info:
+        egw.solve(P, 1e-6, options=egw.Options(**{field: value}))
+    assert str(info.value).startswith(field), str(info.value)
+
+
+def test_options_integral_floats_are_their_integers():
+    # a float that is a whole number is that integer (numpy scalars alike)
+    o = egw.Options(n_radial=64.0, max_iter=np.int64(50), n_threads=1.0)
+    a = egw.solve(P, 1e-6, options=o).force
+    b = egw.solve(P, 1e-6, options=egw.Options(n_radial=64, max_iter=50, n_threads=1)).force
+    assert a == b
+
+
+def test_time_step_takes_one_tolerance_and_says_so():
+    # egw_time_step_array takes one tolerance for the call; an array of them raised
+    # numpy's "only 0-dimensional arrays can be converted" before audit22
+    with pytest.raises(TypeError) as info:
+        egw.time_step(P, mass=1e-3, velocity=1.0, tolerance=[1e-3, 1e-4])
+    assert str(info.value).startswith("tolerance"), str(info.value)

@@ -13,7 +13,7 @@ import numpy as np
 
 from ._capi import lib
 from .errors import OK, PointFailedWarning, _FAILED, _exception, check, last_error
-from .params import ArrayLike, FloatOrArray, Options, Params, _number_array, _options
+from .params import ArrayLike, FloatOrArray, Options, Params, _brief, _number_array, _options
 from ._calls import _Batch, _arr, _array, _keyword_only, _loop, _scalar_or_array
 
 @dataclass
@@ -108,6 +108,8 @@ def time_step(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
 
     Raises
     ------
+    TypeError
+        A non-numeric input, or a tolerance that is not one number (one per call).
     InvalidArgumentError
         mass, velocity or tolerance out of range (named).
     """
@@ -115,7 +117,11 @@ def time_step(params: Params, *, mass: ArrayLike, velocity: ArrayLike,
     duration, step = b.out(2)
     o = _options(options)
     (pm, sm), (pv, sv) = b.inputs["mass"], b.inputs["velocity"]
-    tol = float(_number_array("tolerance", tolerance))
+    tol_array = _number_array("tolerance", tolerance)
+    if tol_array.ndim != 0:   # egw_time_step_array takes one tolerance for the whole call
+        raise TypeError(f"tolerance = {_brief(tolerance)}: one value for the call (the "
+                        "largest step for each tolerance: one call each)")
+    tol = float(tol_array)
     b.run(lambda flags, nf: lib.egw_time_step_array(
         b.params[0], b.params[1], o, b.n, pm, sm, pv, sv, tol, *_arr(duration, step),
         flags, nf))

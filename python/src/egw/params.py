@@ -353,8 +353,12 @@ class Options:
 
         Raises
         ------
+        TypeError
+            A field of the wrong type, naming it: rel_tol not a real number, an integer
+            field (n_radial, max_iter, method, n_threads) not a whole number (a fraction is
+            never truncated), a string, None or a bool.
         InvalidArgumentError
-            An unknown method name.
+            An unknown method name, or an integer beyond a C int.
         """
         if isinstance(self.method, str):
             if self.method not in METHODS:
@@ -362,9 +366,31 @@ class Options:
                                            f"must be one of {list(METHODS)}")
             method = METHODS[self.method]
         else:
-            method = int(self.method)
-        return _capi.Options(int(self.n_radial), float(self.rel_tol), int(self.max_iter),
-                             method, int(self.n_threads))
+            method = _option_value("method", self.method, True)
+        return _capi.Options(_option_value("n_radial", self.n_radial, True),
+                             _option_value("rel_tol", self.rel_tol, False),
+                             _option_value("max_iter", self.max_iter, True), method,
+                             _option_value("n_threads", self.n_threads, True))
+
+
+def _option_value(name: str, value, integer: bool):
+    """A field of Options as the C struct takes it: one real number, or for an integer
+    field one whole number within a C int (int() would truncate 16.5 to 16 silently)."""
+    _refuse_masked(name, value)
+    a = None if isinstance(value, str) else np.asarray(value)
+    kind = "an integer" if integer else "a real number"
+    if a is None or a.ndim != 0 or a.dtype.kind not in "iuf":
+        raise TypeError(f"{name} = {_brief(value)}: must be {kind}")
+    x = a.item()
+    if not integer:
+        return float(x)
+    if not float(x).is_integer():
+        raise TypeError(f"{name} = {_brief(value)}: must be {kind} (a fraction is not "
+                        "truncated)")
+    if not -2 ** 31 <= int(x) < 2 ** 31:
+        raise InvalidArgumentError(INVALID_ARGUMENT, f"{name} = {_brief(value)}: beyond "
+                                   "the range of a C int")
+    return int(x)
 
 
 _P_PARAMS = ctypes.POINTER(_capi.Params)
