@@ -122,3 +122,14 @@ def test_time_step_takes_one_tolerance_and_says_so():
     with pytest.raises(TypeError) as info:
         egw.time_step(P, mass=1e-3, velocity=1.0, tolerance=[1e-3, 1e-4])
     assert str(info.value).startswith("tolerance"), str(info.value)
+
+
+@pytest.mark.parametrize("field, value", [
+    ("model", 2.5), ("tol", "x"), ("delta_in_sigma", 0.5), ("mu", None), ("radius", ["1e-3"]),
+])
+def test_scene_fields_of_a_wrong_type_are_refused_naming_the_field(field, value):
+    # before audit22 model=2.5 chose for E-GW (int() truncated it), delta_in_sigma=0.5 read
+    # as True, tol="x" raised numpy's "could not convert string to float"
+    with pytest.raises(TypeError) as info:
+        egw.choose(egw.Scene(**{field: value}))
+    assert str(info.value).startswith(field), str(info.value)
