@@ -133,3 +133,17 @@ def test_scene_fields_of_a_wrong_type_are_refused_naming_the_field(field, value)
     with pytest.raises(TypeError) as info:
         egw.choose(egw.Scene(**{field: value}))
     assert str(info.value).startswith(field), str(info.value)
+
+
+def test_build_arguments_of_a_wrong_type_name_themselves():
+    # float() raised "could not convert string to float: 'x'" without the argument's name
+    # before audit22, or read a one-element array as its value
+    calls = {"rel_tol": lambda: egw.Table.build(P, -2e-6, 2e-5, rel_tol="x"),
+             "delta_max": lambda: egw.HysteresisTable.build(P, -2e-6, [2e-5, 3e-5]),
+             "mu_min": lambda: egw.UniversalTable.build(P, None, 8.0, -2, 20),
+             "hardness": lambda: egw.psi_from_hardness(modulus=1e11, hardness="2e9",
+                                                       sigma=1e-6, summit_radius=1e-5)}
+    for name, call in calls.items():
+        with pytest.raises(TypeError) as info:
+            call()
+        assert str(info.value).startswith(name), str(info.value)

@@ -366,16 +366,17 @@ class Options:
                                            f"must be one of {list(METHODS)}")
             method = METHODS[self.method]
         else:
-            method = _option_value("method", self.method, True)
-        return _capi.Options(_option_value("n_radial", self.n_radial, True),
-                             _option_value("rel_tol", self.rel_tol, False),
-                             _option_value("max_iter", self.max_iter, True), method,
-                             _option_value("n_threads", self.n_threads, True))
+            method = _c_scalar("method", self.method, True)
+        return _capi.Options(_c_scalar("n_radial", self.n_radial, True),
+                             _c_scalar("rel_tol", self.rel_tol, False),
+                             _c_scalar("max_iter", self.max_iter, True), method,
+                             _c_scalar("n_threads", self.n_threads, True))
 
 
-def _option_value(name: str, value, integer: bool):
-    """A field of Options as the C struct takes it: one real number, or for an integer
-    field one whole number within a C int (int() would truncate 16.5 to 16 silently)."""
+def _c_scalar(name: str, value, integer: bool = False):
+    """One number as a C argument or struct field takes it, value named in a TypeError: one
+    real number, or for an integer one whole number within a C int (int() would truncate
+    16.5 to 16 silently, float() raise without the name)."""
     _refuse_masked(name, value)
     a = None if isinstance(value, str) else np.asarray(value)
     kind = "an integer" if integer else "a real number"

@@ -10,7 +10,7 @@ from typing import List, Optional, Tuple, Union
 from . import _capi
 from ._capi import SCENE_MAX_TYPES, lib
 from .errors import check, INVALID_PARAMETER, InvalidArgumentError
-from .params import MODELS, Options, _option_value, _options
+from .params import MODELS, Options, _c_scalar, _options
 from .tables import Table, UniversalTable
 
 CHOICES = {0: "Hertz", 1: "table", 2: "universal"}
@@ -165,16 +165,16 @@ class Scene:
                 raise InvalidArgumentError(
                     INVALID_PARAMETER, f"{name}: at most {SCENE_MAX_TYPES} particle types")
         c = _capi.Scene()
-        c.model = _option_value("model", model, True)
+        c.model = _c_scalar("model", model, True)
         c.n_types = len(self.radius)
         for name in ("radius", "modulus", "poisson"):
             arr = getattr(c, name)
             for i, v in enumerate(getattr(self, name)):
-                arr[i] = _option_value(f"{name}[{i}]", v, False)
+                arr[i] = _c_scalar(f"{name}[{i}]", v, False)
         for name in ("radius_min", "radius_max", "effective_modulus", "sigma_min",
                      "sigma_max", "mu", "summit_density", "summit_radius", "psi",
                      "hardness_coeff", "plastic_ratio", "delta_min", "delta_max", "tol"):
-            setattr(c, name, _option_value(name, getattr(self, name), False))
+            setattr(c, name, _c_scalar(name, getattr(self, name), False))
         if self.delta_in_sigma not in (True, False):   # 0.5 was True (bool()), silently
             raise TypeError(f"delta_in_sigma = {self.delta_in_sigma!r}: must be True or "
                             "False (overlaps in units of sigma, or in length)")

@@ -19,7 +19,7 @@ from . import _capi
 from ._capi import lib
 from .errors import OK, PointFailedWarning, _FAILED, _exception, _require, check, last_error
 from .params import (ArrayLike, FloatOrArray, Options, Params, RESULT_DTYPE, _number_array,
-                     _options, _params)
+                     _c_scalar, _options, _params)
 from ._calls import _Batch, _array, _double_ptr
 
 @dataclass
@@ -247,6 +247,7 @@ def profile(params: Params, delta: float, r: ArrayLike,
                               _double_ptr(deflection)))
     else:
         check(lib.egw_profile_unload(ctypes.byref(p), _options(options), float(delta),
-                                     float(delta_max), radii.size, _double_ptr(radii),
-                                     _double_ptr(pressure), _double_ptr(deflection)))
+                                     _c_scalar("delta_max", delta_max), radii.size,
+                                     _double_ptr(radii), _double_ptr(pressure),
+                                     _double_ptr(deflection)))
     return pressure, deflection

@@ -16,7 +16,7 @@ import numpy as np
 from . import _capi
 from ._capi import lib
 from .errors import check, _FAILED, OK, OUT_OF_RANGE, PointFailedWarning, _require
-from .params import ArrayLike, FloatOrArray, Options, _options, Params, _params
+from .params import ArrayLike, FloatOrArray, Options, _c_scalar, _options, Params, _params
 from ._calls import _array, _Batch, _double_ptr, _scalar_or_array
 
 FORMATS = {"csv": 0, "binary": 1, "lammps": 2, "calculix": 3}
@@ -145,13 +145,15 @@ class Table(_Handle):
         p = _params(params)
         h = ctypes.c_void_p()
         if params.flat_law is not None:
-            check(lib.egw_table_build_flat_law(ctypes.byref(p), params.flat_law._ptr,
-                                               _options(options), float(delta_min),
-                                               float(delta_max), float(rel_tol),
-                                               ctypes.byref(h)))
+            check(lib.egw_table_build_flat_law(
+                ctypes.byref(p), params.flat_law._ptr, _options(options),
+                _c_scalar("delta_min", delta_min), _c_scalar("delta_max", delta_max),
+                _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
             return cls(h)
-        check(lib.egw_table_build(ctypes.byref(p), _options(options), float(delta_min),
-                                  float(delta_max), float(rel_tol), ctypes.byref(h)))
+        check(lib.egw_table_build(ctypes.byref(p), _options(options),
+                                  _c_scalar("delta_min", delta_min),
+                                  _c_scalar("delta_max", delta_max),
+                                  _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
         return cls(h)
 
     @classmethod
@@ -304,9 +306,10 @@ class UniversalTable(_Handle):
         """
         p = _params(params)
         h = ctypes.c_void_p()
-        check(lib.egw_universal_build(ctypes.byref(p), _options(options), float(mu_min),
-                                      float(mu_max), float(x_min), float(x_max),
-                                      float(rel_tol), ctypes.byref(h)))
+        check(lib.egw_universal_build(ctypes.byref(p), _options(options),
+                                      _c_scalar("mu_min", mu_min), _c_scalar("mu_max", mu_max),
+                                      _c_scalar("x_min", x_min), _c_scalar("x_max", x_max),
+                                      _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
         return cls(h)
 
     @classmethod
@@ -424,7 +427,8 @@ class UniversalTable(_Handle):
             check(lib.egw_universal_slice(self._ptr, ctypes.byref(p), ctypes.byref(h)))
         else:
             check(lib.egw_universal_slice_range(self._ptr, ctypes.byref(p),
-                                                float(delta_max), ctypes.byref(h)))
+                                                _c_scalar("delta_max", delta_max),
+                                                ctypes.byref(h)))
         return Table(h)
 
 
@@ -520,8 +524,10 @@ class HysteresisTable(_Handle):
         _require("egw_hysteresis_build")
         p = _params(params)
         h = ctypes.c_void_p()
-        check(lib.egw_hysteresis_build(ctypes.byref(p), _options(options), float(delta_min),
-                                       float(delta_max), float(rel_tol), ctypes.byref(h)))
+        check(lib.egw_hysteresis_build(ctypes.byref(p), _options(options),
+                                       _c_scalar("delta_min", delta_min),
+                                       _c_scalar("delta_max", delta_max),
+                                       _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
         return cls(h)
 
     @classmethod

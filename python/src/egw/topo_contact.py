@@ -9,7 +9,7 @@ from typing import Any, List, Optional, Tuple
 
 from ._capi import lib
 from .errors import check
-from .params import Params
+from .params import Params, _c_scalar
 from ._calls import _keyword_only
 from .functions import effective_modulus, mu_from_summits
 from .topo_maps import height_map, sum_surface
@@ -53,8 +53,12 @@ def psi_from_hardness(*, modulus: float, hardness: float, sigma: float,
         A positional argument.
     """
     psi = ctypes.c_double()
-    check(lib.egw_psi_from_hardness(float(modulus), float(hardness), float(hardness_coeff),
-                                    float(sigma), float(summit_radius), ctypes.byref(psi)))
+    check(lib.egw_psi_from_hardness(_c_scalar("modulus", modulus),
+                                    _c_scalar("hardness", hardness),
+                                    _c_scalar("hardness_coeff", hardness_coeff),
+                                    _c_scalar("sigma", sigma),
+                                    _c_scalar("summit_radius", summit_radius),
+                                    ctypes.byref(psi)))
     return psi.value
 
 
