@@ -134,15 +134,17 @@ contains
    !> the scene is unchanged.
    subroutine test_bad_files(error)
       type(error_type), allocatable, intent(out) :: error
-      character(len=60), parameter :: bodies(11) = [character(len=60) :: &
+      ! mu = 0 without summit data: the message names mu (before audit22 summit_density,
+      ! which the file never gave)
+      character(len=60), parameter :: bodies(12) = [character(len=60) :: &
          & "&scene sigma = -1e-6 /", "&scene K = 1.5 /", "&scene tol = 0 /", &
          & "&scene radius = 1e-3, -2e-3 /", "&scene poisson = 0.7 /", &
          & "&scene model = 'JKR' /", "&scene sigmaa = 1e-6 /", &
          & "&scene mu = 2, summit_density = 1e10 /", "&scene delta_max_sigma = -5 /", &
-         & "&scene psi = 0.1,   tol = abc /", "&scene tol = 1e-3"]
-      character(len=20), parameter :: names(11) = [character(len=20) :: "sigma", "K", &
+         & "&scene psi = 0.1,   tol = abc /", "&scene tol = 1e-3", "&scene mu = 0 /"]
+      character(len=20), parameter :: names(12) = [character(len=20) :: "sigma", "K", &
          & "tol", "radius(2)", "poisson(1)", "model", "sigmaa", "mu", "delta_max_sigma", &
-         & "tol = abc", "closing '/'"]
+         & "tol = abc", "closing '/'", "mu = 0"]
       type(scene_input) :: s, s0
       type(egw_error), allocatable :: err
       character(len=*), parameter :: path = "test_scene_bad.nml"

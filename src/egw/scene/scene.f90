@@ -437,6 +437,11 @@ contains
             if (.not. positive_finite(s%mu)) then
                call bad(error, "mu", s%mu, "must be finite and > 0"); return
             end if
+         else if (s%summit_density == 0.0_dp .and. s%summit_radius == 0.0_dp) then
+            ! no summit data either: mu is what is missing (e.g. --mu 0), not the summits
+            call bad(error, "mu", s%mu, "must be finite and > 0 (or give summit_density "// &
+               & "and summit_radius)")
+            return
          else
             if (.not. positive_finite(s%summit_density)) then
                call bad(error, "summit_density", s%summit_density, &
