@@ -154,6 +154,10 @@ program egw_table_app
    write (output_unit, '(a)') "model: "//choice_name(choice%kind)//" ("// &
       & model_name(merge(0, input%model, choice%kind == choice_hertz))//")"
    write (output_unit, '(a)') "  why: "//choice%reason
+   ! as Python's IgnoredParameterWarning and LAMMPS's WARNING: a psi the model ignores
+   if (input%psi > 0.0_dp .and. input%model /= model_epgw) write (output_unit, '(a)') &
+      & "  note: psi = "//num(input%psi)//" is EP-GW's plasticity index: model "// &
+      & trim(model_name(input%model))//" ignores it"
    if (input%flow_pressure > 0.0_dp .and. choice%kind == choice_hertz) write (output_unit, &
       & '(a)') "  note: flow_pressure = "// &
       & num(input%flow_pressure)//": Hertz holds up to first yield only, (pi p_y/(2 E*))^2 R;"// &

@@ -217,5 +217,14 @@ grep -q "E-GW + cap" "$work/stdout" || fail "rough cap scene: summary does not n
 grep -A2 -- "--flow-pressure" "$work/help" | grep -q "rough model + cap" ||
   fail "--help: --flow-pressure does not say rough models take the cap: $(grep -A1 -- "--flow-pressure" "$work/help")"
 
+# psi with a model that ignores it: said (as Python's IgnoredParameterWarning, LAMMPS's
+# WARNING), not silently dropped (before audit22 nothing was said)
+"$exe" --psi 1 --choose-only -q >"$work/stdout" 2>"$work/stderr" ||
+  fail "--psi 1 with E-GW: exit status $?: $(cat "$work/stderr")"
+grep -qF "note: psi = 1.0000E+00 is EP-GW's plasticity index: model E-GW ignores it" \
+  "$work/stdout" || fail "--psi 1 with E-GW: no note: $(cat "$work/stdout")"
+"$exe" --psi 1 --model EP-GW --choose-only -q >"$work/stdout" 2>"$work/stderr"
+if grep -q "note: psi" "$work/stdout"; then fail "EP-GW: psi noted as ignored"; fi
+
 echo "    $fails CLI check(s) failed"
 exit "$fails"
