@@ -14,7 +14,8 @@ program egw_table_app
       & format_binary, format_lammps, format_calculix, contact_params, flat_pressure, &
       & hertz_force, hertz_stiffness, hertz_contact_radius, rename_file, model_epgw, &
       & text_buffer, remove_file, hysteresis_table, build_hysteresis, write_hysteresis, &
-      & table_flat_law, read_flat_law, write_flat_law, model_flat_law, model_hertz
+      & table_flat_law, read_flat_law, write_flat_law, model_flat_law, model_hertz, &
+      & make_directories
    use egw_progress_bar, only: bar_start, bar_update, bar_finish
    use egw_terminal, only: stderr_is_terminal, exit_process
    implicit none
@@ -171,6 +172,14 @@ program egw_table_app
    ! every output: at most 10 tables and curves, and a hysteresis table in two formats
    ! per parameter set
    allocate (character(len=1024) :: written(10 + 2*max_types*(max_types + 1)/2))
+   ! the output directory before any build (one that cannot be made stops at once), and
+   ! without a shell: "mkdir -p '...'" broke on a quote in the path and printed the
+   ! shell's own error beside egw-table's
+   if (.not. choose_only .and. (input%flow_pressure > 0.0_dp .or. &
+      & choice%kind /= choice_hertz)) then
+      if (.not. make_directories(out_dir)) call die("--out "//out_dir// &
+         & ": cannot create the directory (nothing written)")
+   end if
    if (.not. choose_only .and. input%flow_pressure > 0.0_dp) then
       ! the flow-pressure cap: no force table (the closed form holds up to first yield
       ! only; a rough capped loading curve is no reversible law), the hysteresis tables
@@ -213,7 +222,6 @@ contains
    subroutine write_all()
       character(len=:), allocatable :: base
       integer :: i
-      call execute_command_line("mkdir -p '"//out_dir//"'")
       select case (tables%kind)
       case (choice_table)
          base = out_dir//"/scene_table"

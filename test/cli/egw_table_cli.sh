@@ -226,5 +226,13 @@ grep -qF "note: psi = 1.0000E+00 is EP-GW's plasticity index: model E-GW ignores
 "$exe" --psi 1 --model EP-GW --choose-only -q >"$work/stdout" 2>"$work/stderr"
 if grep -q "note: psi" "$work/stdout"; then fail "EP-GW: psi noted as ignored"; fi
 
+# the output directory is made without a shell: a quote in its name is a name (before
+# audit22 "mkdir -p '...'" failed on it), and one that cannot be made is one line
+"$exe" --out "$work/Bob's runs" --choose-only -q >/dev/null 2>"$work/stderr" &&
+  "$exe" --out "$work/Bob's runs" --tol 1e-3 -q >/dev/null 2>>"$work/stderr" ||
+  fail "--out with a quote: exit status $?: $(cat "$work/stderr")"
+[ -s "$work/Bob's runs/scene_table.csv" ] || fail "--out with a quote: no scene_table.csv"
+refuse out_not_creatable "cannot create the directory" -q --tol 1e-3 --out /proc/egw_no_such_dir
+
 echo "    $fails CLI check(s) failed"
 exit "$fails"
