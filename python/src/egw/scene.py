@@ -20,7 +20,10 @@ CHOICES = {0: "Hertz", 1: "table", 2: "universal"}
 class Scene:
     """A contact scene (fields of the C struct egw_scene, lists for the per-type arrays;
     defaults: egw-table's default scene, two 1 mm glass beads, sigma = 1 um, mu = 4).
-    doc/scenes.md describes scenes and the choice rule. Units: any consistent set.
+    doc/scenes.md describes scenes and the choice rule. Units: any consistent set. There
+    is no flow_pressure (nor yield_stress): egw_scene has none (an ABI change); a pair
+    with the bulk cap takes ``HysteresisTable.build(Params(..., flow_pressure=p_y), ...)``,
+    or egw-table's ``--flow-pressure``/``--yield-stress``.
 
     Parameters
     ----------
