@@ -467,7 +467,8 @@ contains
    !> The build's decisions do not depend on the thread count or on which curve a thread
    !> takes first (the curve loops are dynamic, largest delta_max first): the suite's table
    !> built on 1 thread and on 2 (or on the default count, when it is not 1) gives the same
-   !> binary file byte for byte, and so the same table.
+   !> binary file byte for byte, and so the same table, and the same energy dip samples
+   !> (hysteresis_prepare's, per delta_max interval in parallel).
    subroutine test_threads(error)
       type(error_type), allocatable, intent(out) :: error
       character(len=*), parameter :: names(2) = ["build/rough_cap_threads_a.bin", &
@@ -509,8 +510,16 @@ contains
       end do
       call check(error, bytes(1) == bytes(2), "the table's bytes differ between thread counts")
       if (allocated(error)) return
-      print '(4x, a, i0, a, i0, a, i0, a)', "threads ", nt, " and ", other, ": ", n(1), &
-         & " bytes the same"
+      ! (and the evaluation data prepared from them in parallel: the energy's dip samples)
+      call check(error, size(t%dip) == size(cap_table%dip) .and. all(same(t%dip, &
+         & cap_table%dip)) .and. all(same(t%dip_u, cap_table%dip_u)) .and. &
+         & all(same(t%dip_low, cap_table%dip_low)) .and. all(t%dip_first == &
+         & cap_table%dip_first) .and. all(t%dip_base == cap_table%dip_base) .and. &
+         & all(same(t%dip_band, cap_table%dip_band)), "the energy's dip samples differ "// &
+         & "between thread counts")
+      if (allocated(error)) return
+      print '(4x, a, i0, a, i0, a, i0, a, i0, a)', "threads ", nt, " and ", other, ": ", &
+         & n(1), " bytes, ", size(t%dip), " dip samples the same"
    end subroutine test_threads
 
    !> E-GW + cap at rel_tol 1e-6 (below 1e-5, the least a rough + cap table reaches where
