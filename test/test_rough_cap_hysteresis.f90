@@ -21,6 +21,7 @@ module test_rough_cap_hysteresis
    use egw_impact, only: restitution
    use test_compare, only: same => same_bits
    use testdrive, only: new_unittest, unittest_type, error_type, check
+   !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    implicit none
    private
    public :: collect_rough_cap_hysteresis
@@ -47,6 +48,7 @@ contains
          & new_unittest("E-GW + cap: max_error bounds the error between the nodes", &
          & test_max_error), &
          & new_unittest("binary and CSV round trip (version 4, sigma kept)", test_formats), &
+         & new_unittest("1 and 2 threads: byte-identical table files", test_threads), &
          & new_unittest("refused: flat law, beyond 1000 delta_y, bad p_y", test_refused), &
          & new_unittest("refused at once: rel_tol below the rough + cap tables' reach", &
          & test_least_tol), &
@@ -461,6 +463,64 @@ contains
       close (u)
       call check(error, magic == "EGWHYST1" .and. version == 4, "binary version")
    end subroutine test_formats
+
+   !> The build's decisions do not depend on the thread count or on which curve a thread
+   !> takes first (the curve loops are dynamic, largest delta_max first): the suite's table
+   !> built on 1 thread and on 2 (or on the default count, when it is not 1) gives the same
+   !> binary file byte for byte, and so the same table, and the same energy dip samples
+   !> (hysteresis_prepare's, per delta_max interval in parallel).
+   subroutine test_threads(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: names(2) = ["build/rough_cap_threads_a.bin", &
+         & "build/rough_cap_threads_b.bin"]
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      character(len=:), allocatable :: bytes(:)
+      integer :: nt, other, it, u, n(2)
+      call get_table(error)
+      if (allocated(error)) return
+      nt = 1
+      !$ nt = omp_get_max_threads()
+      other = 1
+      if (nt == 1) other = 2
+      !$ call omp_set_num_threads(other)
+      call build_hysteresis(egw_pair(), solver_options(), -3*sigma, 10*delta_y(), tol, t, err)
+      !$ call omp_set_num_threads(nt)
+      if (allocated(err)) then
+         call check(error, .false., "build on the other thread count failed: "//err%message)
+         return
+      end if
+      call write_hysteresis(cap_table, names(1), format_binary, err)
+      if (.not. allocated(err)) call write_hysteresis(t, names(2), format_binary, err)
+      if (allocated(err)) then
+         call check(error, .false., "write: "//err%message)
+         return
+      end if
+      do it = 1, 2
+         inquire (file=names(it), size=n(it))
+      end do
+      call check(error, n(1) == n(2) .and. n(1) > 0, "file sizes differ between thread "// &
+         & "counts (or are empty)")
+      if (allocated(error)) return
+      allocate (character(len=n(1)) :: bytes(2))
+      do it = 1, 2
+         open (newunit=u, file=names(it), access="stream", form="unformatted", status="old")
+         read (u) bytes(it)
+         close (u, status="delete")
+      end do
+      call check(error, bytes(1) == bytes(2), "the table's bytes differ between thread counts")
+      if (allocated(error)) return
+      ! (and the evaluation data prepared from them in parallel: the energy's dip samples)
+      call check(error, size(t%dip) == size(cap_table%dip) .and. all(same(t%dip, &
+         & cap_table%dip)) .and. all(same(t%dip_u, cap_table%dip_u)) .and. &
+         & all(same(t%dip_low, cap_table%dip_low)) .and. all(t%dip_first == &
+         & cap_table%dip_first) .and. all(t%dip_base == cap_table%dip_base) .and. &
+         & all(same(t%dip_band, cap_table%dip_band)), "the energy's dip samples differ "// &
+         & "between thread counts")
+      if (allocated(error)) return
+      print '(4x, a, i0, a, i0, a, i0, a, i0, a)', "threads ", nt, " and ", other, ": ", &
+         & n(1), " bytes, ", size(t%dip), " dip samples the same"
+   end subroutine test_threads
 
    !> E-GW + cap at rel_tol 1e-6 (below 1e-5, the least a rough + cap table reaches where
    !> the cap acts on the scenes measured: below it builds failed after minutes): refused

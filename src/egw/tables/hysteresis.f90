@@ -629,7 +629,7 @@ contains
    !> Derive the evaluation data (cubics on the union s grid, Lagrange denominators,
    !> lookup buckets, the curves' integrals, the data tag; reversible tables: the tag
    !> only) from the stored nodes; called by the build and by readers.
-   pure subroutine hysteresis_prepare(table)
+   subroutine hysteresis_prepare(table)
       !> the table: its stored nodes in, its evaluation data added
       type(hysteresis_table), intent(inout) :: table
       integer :: n_s, n_m, i, j, first, k, l, lo, hi

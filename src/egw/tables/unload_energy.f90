@@ -25,6 +25,14 @@ module egw_unload_energy
    integer, parameter :: dip_samples = 16, dip_samples_max = 1024
    real(dp), parameter :: dip_tol = 1.0e-9_dp
 
+   !> One delta_max interval's dip samples (energy_prepare), numbered from its first.
+   type :: interval_dips
+      real(dp), allocatable :: store(:, :)   !< (u, q, low) per sample
+      integer :: used = 0   !< samples in store
+      integer :: base(dip_samples) = 0   !< u0's sample of each part (dip_base less the offset)
+      real(dp) :: band = 0.0_dp   !< dip_band
+   end type interval_dips
+
 contains
 
    !> Elastic energy [force*length] that a contact at overlap delta returns if it
@@ -753,12 +761,11 @@ contains
    !> from its start over which it clipped everything. Called by hysteresis_prepare
    !> (cost: a walk per
    !> sample, 33 per interval where the dips are smooth in m, more where they are not).
-   pure subroutine energy_prepare(table)
+   subroutine energy_prepare(table)
       !> a gap table prepared but for this (hysteresis_prepare): its dip samples set
       type(hysteresis_table), intent(inout) :: table
-      real(dp), allocatable :: store(:, :)
-      real(dp) :: band, scale, u0, u1, q0, q1, top, low0, low1
-      integer :: j, k, n_m, used
+      type(interval_dips), allocatable :: parts(:)
+      integer :: j, n_m, used
       n_m = size(table%m)
       if (allocated(table%dip)) deallocate (table%dip)
       if (allocated(table%dip_u)) deallocate (table%dip_u)
@@ -766,32 +773,63 @@ contains
       if (allocated(table%dip_band)) deallocate (table%dip_band)
       if (allocated(table%dip_low)) deallocate (table%dip_low)
       if (allocated(table%dip_base)) deallocate (table%dip_base)
-      allocate (table%dip_first(n_m), table%dip_band(n_m - 1), store(3, 64*n_m), &
+      allocate (parts(n_m - 1))
+      ! the intervals in parallel, each into its own samples, joined in order below: the
+      ! same samples on any thread count (~1 % of README's rough + cap builds' CPU, serial
+      ! before: doc/benchmarks.md "Stop 56: par22")
+      !$omp parallel do schedule(dynamic) default(shared) private(j)
+      do j = 1, n_m - 1
+         call sample_interval(table, j, parts(j))
+      end do
+      !$omp end parallel do
+      allocate (table%dip_first(n_m), table%dip_band(n_m - 1), &
          & table%dip_base(dip_samples, n_m - 1))
       used = 0
       do j = 1, n_m - 1
-         band = huge(1.0_dp)
          table%dip_first(j) = used + 1
-         u0 = 0.0_dp
-         call dip_sample(table, j, u0, q0, top, scale, low0)
-         band = min(band, top)
-         call dip_push(store, used, [u0, q0, low0])
-         do k = 1, dip_samples
-            u1 = real(k, dp)/dip_samples
-            call dip_sample(table, j, u1, q1, top, scale, low1)
-            band = min(band, top)
-            table%dip_base(k, j) = used   ! u0's sample
-            call refine(table, j, u0, u1, q0, q1, low1, band, store, used)
-            u0 = u1
-            q0 = q1
-         end do
-         table%dip_band(j) = max(0.95_dp*band, 0.0_dp)
+         table%dip_base(:, j) = used + parts(j)%base
+         table%dip_band(j) = parts(j)%band
+         used = used + parts(j)%used
       end do
       table%dip_first(n_m) = used + 1
-      table%dip_u = store(1, 1:used)
-      table%dip = store(2, 1:used)
-      table%dip_low = store(3, 1:used)
+      allocate (table%dip_u(used), table%dip(used), table%dip_low(used))
+      used = 0
+      do j = 1, n_m - 1
+         associate (n => parts(j)%used)
+            table%dip_u(used + 1:used + n) = parts(j)%store(1, 1:n)
+            table%dip(used + 1:used + n) = parts(j)%store(2, 1:n)
+            table%dip_low(used + 1:used + n) = parts(j)%store(3, 1:n)
+            used = used + n
+         end associate
+      end do
    end subroutine energy_prepare
+
+   !> energy_prepare's samples of delta_max interval j (numbered from its first), its
+   !> dip_base (u0's sample of each of the dip_samples parts) and dip_band.
+   pure subroutine sample_interval(table, j, part)
+      type(hysteresis_table), intent(in) :: table   !< as energy_prepare's
+      integer, intent(in) :: j   !< the interval
+      type(interval_dips), intent(out) :: part   !< its samples
+      real(dp) :: band, scale, u0, u1, q0, q1, top, low0, low1
+      integer :: k
+      allocate (part%store(3, 64))
+      part%used = 0
+      band = huge(1.0_dp)
+      u0 = 0.0_dp
+      call dip_sample(table, j, u0, q0, top, scale, low0)
+      band = min(band, top)
+      call dip_push(part%store, part%used, [u0, q0, low0])
+      do k = 1, dip_samples
+         u1 = real(k, dp)/dip_samples
+         call dip_sample(table, j, u1, q1, top, scale, low1)
+         band = min(band, top)
+         part%base(k) = part%used   ! u0's sample
+         call refine(table, j, u0, u1, q0, q1, low1, band, part%store, part%used)
+         u0 = u1
+         q0 = q1
+      end do
+      part%band = max(0.95_dp*band, 0.0_dp)
+   end subroutine sample_interval
 
    !> Append the samples of (u0, u1] of delta_max interval j (q0, q1 the samples at its
    !> ends, low1 u1's dip_low; u0's already stored): its midpoint's, then each half
