@@ -690,7 +690,9 @@ contains
       !> into SIMD code (vector log, exp, sqrt; as egw_gauss's panels of the loading law).
       !> Evaluated node by node through law_at, this was ~70 % of Z_u's time. The law's
       !> constants are prepared (make_law) so that a node divides once (1/D); below e,
-      !> where f^ = t^(3/2) and D = t, G is sqrt(t - Delta) phi outright.
+      !> where f^ = t^(3/2) and D = t, G is sqrt(t - Delta) phi outright. Where the CPU has
+      !> AVX2 + FMA (egw_simd_path), unloading_simd.c evaluates the same formulas four
+      !> lanes wide instead (the results differ in rounding only: test_unloading).
       pure subroutine integrands(t_mid, z, fz, gz)
          real(dp), intent(in) :: t_mid, z(16)
          real(dp), intent(out) :: fz(16), gz(16)
