@@ -133,7 +133,10 @@ module egw_cache
    !> 48 (dcap21): rough + cap loading stiffness (the Hermite slopes of rough + cap
    !> loading tables) on the mesh moved with its kinks at their rate (the fixed point of
    !> the kink's motion, egw_sphere_moving_mesh's follow_kink): the tables' bits change.
-   integer, parameter, public :: cache_revision = 48
+   !> 49 (psi22): on AVX2 + FMA the EP-GW unloading integral's nodes are evaluated four
+   !> lanes wide (egw_unloading's egw_unload_integrands): Z_u moves by rounding (<= 1.9e-13),
+   !> the AVX2 path's EP-GW tables with it (README's psi 1 + cap: 3.8e-15 of P(m)).
+   integer, parameter, public :: cache_revision = 49
 
 
 contains

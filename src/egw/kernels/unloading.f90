@@ -24,6 +24,8 @@ module egw_unloading
    use egw_params, only: contact_params
    use egw_asperity, only: rough_flat_law, check_flat_input, flat_psi, flat_scaled_to_units
    use egw_gauss, only: gl_x, gl_w
+   use egw_simd_path, only: simd_level
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
    use egw_law_pieces, only: law_pieces, law_pieces_at, unload_pieces, unload_pieces_at, &
       & chebyshev_fit, clenshaw, degree, ln_tol, max_halvings, p_floor
    implicit none
@@ -95,6 +97,19 @@ module egw_unloading
       !> integral), answering where h <= h_min (the loading branch).
       type(law_pieces) :: loading
    end type unloading_law
+
+   interface
+      !> integrands' 16 nodes four lanes wide (unloading_simd.c), where simd_level() is 1:
+      !> branch 0 below e, 1 on (e, q), 2 beyond q; e .. c: zmc_law's constants.
+      pure subroutine simd_integrands(branch, z, h_min, delta, e, inv_qe, slope, lnq, c, &
+         & fz, gz) bind(C, name="egw_unload_integrands")
+         import :: c_int, c_double
+         integer(c_int), value :: branch
+         real(c_double), intent(in) :: z(16)
+         real(c_double), value :: h_min, delta, e, inv_qe, slope, lnq, c
+         real(c_double), intent(out) :: fz(16), gz(16)
+      end subroutine simd_integrands
+   end interface
 
 contains
 
@@ -675,12 +690,26 @@ contains
       !> into SIMD code (vector log, exp, sqrt; as egw_gauss's panels of the loading law).
       !> Evaluated node by node through law_at, this was ~70 % of Z_u's time. The law's
       !> constants are prepared (make_law) so that a node divides once (1/D); below e,
-      !> where f^ = t^(3/2) and D = t, G is sqrt(t - Delta) phi outright.
+      !> where f^ = t^(3/2) and D = t, G is sqrt(t - Delta) phi outright. Where the CPU has
+      !> AVX2 + FMA (egw_simd_path), unloading_simd.c evaluates the same formulas four
+      !> lanes wide instead (the results differ in rounding only: test_unloading).
       pure subroutine integrands(t_mid, z, fz, gz)
          real(dp), intent(in) :: t_mid, z(16)
          real(dp), intent(out) :: fz(16), gz(16)
          real(dp) :: t(16), f(16), d(16), x(16), l(16), area(16), pres(16), phi(16), &
             & inv_d(16)
+         integer(c_int) :: branch
+         if (simd_level() == 1) then
+            ! AVX2 + FMA: the same nodes four lanes wide (0.6-0.7 of the time of this
+            ! code's two lanes; doc/benchmarks.md "Stop 56: psi22")
+            associate (law => ulaw%zmc)
+               branch = merge(0_c_int, merge(1_c_int, 2_c_int, t_mid <= law%q), &
+                  & t_mid <= law%e)
+               call simd_integrands(branch, z, h_min, delta, law%e, law%inv_qe, &
+                  & law%slope, law%lnq, law%c, fz, gz)
+            end associate
+            return
+         end if
          t = max(z - h_min, tiny(1.0_dp))  ! nodes lie above t* >= 0
          phi = gaussian(z)
          associate (law => ulaw%zmc)

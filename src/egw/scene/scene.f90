@@ -174,7 +174,8 @@ module egw_scene
       !> the missing force of all separations) and at 4 overlaps per decade from the
       !> smallest positive overlap of interest (delta_min, or sigma/100) to delta_max, where
       !> roughness matters most relative to Hertz at the small end. Solves in parallel at
-      !> rel_tol = min(options%rel_tol, tol/10).
+      !> rel_tol = min(options%rel_tol, tol/10); EP-GW sets with psi > 0 on their ZMC law
+      !> tabulated once (zmc_law_pieces, as a hysteresis build's solves).
       module subroutine scene_hertz_error(scene, options, worst, n_solves, error)
          type(contact_scene), intent(in) :: scene   !< a resolved scene
          type(solver_options), intent(in) :: options   !< the solver's options (rel_tol as above)

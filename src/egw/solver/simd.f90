@@ -4,9 +4,11 @@
 !> (egw_halfspace) and
 !> the dense LU's rank-4 update (egw_lapack) take the 4-lane routines, else gfortran's
 !> loops.
-!> EGW_SIMD=sse2 in the environment keeps the baseline. The two paths differ in rounding
+!> EGW_SIMD=sse2 in the environment keeps the baseline (the switch: core's egw_simd_path,
+!> shared with egw_unloading's kernel). The two paths differ in rounding
 !> only (test_halfspace, test_rough_sphere's dense LU).
 module egw_simd
+   use egw_simd_path, only: simd_level, simd_set
    use, intrinsic :: iso_c_binding, only: c_int, c_double
    implicit none
    private
@@ -14,16 +16,6 @@ module egw_simd
    public :: simd_level, simd_set, simd_far_kernel, simd_log_piece, simd_batch6, simd_rank4
 
    interface
-      !> The path in use: 1 AVX2 + FMA, 0 the baseline (set once when the library loads).
-      pure integer(c_int) function simd_level() bind(C, name="egw_simd_level")
-         import :: c_int
-      end function simd_level
-      !> Ask for a path (1 AVX2 + FMA, only where the CPU has it; 0 the baseline); returns
-      !> the path now in use. Tests and benchmarks only, never while threads solve.
-      integer(c_int) function simd_set(level) bind(C, name="egw_simd_set")
-         import :: c_int
-         integer(c_int), value :: level
-      end function simd_set
       !> egw_halfspace's far_kernel_run four lanes wide (fp, fq: ellipk_fast_p, _q).
       pure subroutine simd_far_kernel(n, t, w, r, fp, fq, row) &
          & bind(C, name="egw_simd_far_kernel")

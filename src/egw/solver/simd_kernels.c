@@ -10,8 +10,9 @@
  * reduction, one point at a time). On a CPU with AVX2
  * and FMA this file's routines do the same sums four lanes wide, the kernel with glibc's
  * 4-lane log (_ZGVdN4v_log, libmvec; the log is most of the kernel's cost). Only these
- * functions are compiled for AVX2 (GCC's target attribute); egw_simd_level tells the
- * Fortran callers whether they may call them, so that the library runs on any x86-64.
+ * functions are compiled for AVX2 (GCC's target attribute); egw_simd_level (core/simd_path.c,
+ * the one switch of every layer) tells the Fortran callers whether they may call them, so
+ * that the library runs on any x86-64.
  *
  * The two paths differ in rounding only (the 4-lane log, the fused multiply-adds, the
  * sums' order): test_halfspace checks both against the exact uniform-disc deflection and
@@ -26,48 +27,11 @@
 #endif
 
 #include <stdlib.h>
-#include <string.h>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(EGW_NO_SIMD)
 #define EGW_HAVE_AVX2_PATH 1
 #include <immintrin.h>
 #endif
-
-/* 1: the AVX2 path is used; 0: the baseline. Set once at load time (a constructor),
- * before any thread of the library runs; egw_simd_set changes it (tests). */
-static int simd_level = 0;
-
-static int simd_hardware(void)
-{
-#ifdef EGW_HAVE_AVX2_PATH
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#else
-    return 0;
-#endif
-}
-
-__attribute__((constructor)) static void simd_init(void)
-{
-    const char *env = getenv("EGW_SIMD");
-    int off = env != NULL && (strcmp(env, "sse2") == 0 || strcmp(env, "off") == 0 ||
-                              strcmp(env, "0") == 0);
-    simd_level = off ? 0 : simd_hardware();
-}
-
-/* The path in use: 1 AVX2, 0 the baseline. */
-int egw_simd_level(void)
-{
-    return simd_level;
-}
-
-/* Ask for a path (1 AVX2, 0 the baseline); AVX2 only where the CPU has it. Returns the
- * path now in use. For tests and benchmarks: not while other threads assemble. */
-int egw_simd_set(int level)
-{
-    simd_level = level != 0 ? simd_hardware() : 0;
-    return simd_level;
-}
 
 #ifdef EGW_HAVE_AVX2_PATH
 /* glibc's 4-lane vector log (libmvec, which libm's linker script brings in). */
