@@ -133,7 +133,10 @@ module egw_cache
    !> 48 (dcap21): rough + cap loading stiffness (the Hermite slopes of rough + cap
    !> loading tables) on the mesh moved with its kinks at their rate (the fixed point of
    !> the kink's motion, egw_sphere_moving_mesh's follow_kink): the tables' bits change.
-   integer, parameter, public :: cache_revision = 48
+   !> 49 (kink22): rough + cap loading solves insert a cap or Hertz edge unless an element
+   !> edge lies within 1 % (was 10 %) of an element of it (egw_sphere_level's
+   !> loading_move_room): their meshes, histories and tables change within their rel_tol.
+   integer, parameter, public :: cache_revision = 49
 
 
 contains
