@@ -124,9 +124,51 @@ contains
          & new_unittest("sigma/delta_y = 2e-6: unloading near the residual overlap, " &
          & //"within its estimate at rel_tol 1e-6", test_gap_sigma_residual), &
          & new_unittest("sigma/delta_y = 1.2e-6, 1.5e-6: loading from 2, 3 delta_y", &
-         & test_gap_sigma_loading) &
+         & test_gap_sigma_loading), &
+         & new_unittest("E-GW + cap histories at 1e-7: unloading force continuous in delta_max", &
+         & test_history_continuous) &
          & ]
    end subroutine collect_rough_cap
+
+   !> README's rough + cap pair in sigma units (R = 810569.469138702, E* = sigma = 1, mu 4,
+   !> p_y = 0.01: delta_y = 200 sigma), histories at rel_tol 1e-7 (a 1e-4 table's curve
+   !> solves as local19's prototype had them), unloading at 1e-5 to delta = 2.1221 sigma
+   !> (1.1e-3 of the turning point's force): the force is a smooth function of delta_max,
+   !> so its second difference over delta_max = 209.3170, 209.3175, 209.3180 sigma is
+   !> ~(5e-4)**2 f'' (3e-10 of the force by 1e-9/1e-8 solves); bound: the
+   !> unloading solve's rel_tol, 1e-5 of the force. Before stop 56 the history's mesh
+   !> switched between 209.3175 and 209.3180 (a cap edge moved onto an element edge or
+   !> inserted, with_kink_edges' tenth of an element) and the force jumped by 1.3e-4 of
+   !> itself (doc/benchmarks.md "Stop 56: kink22").
+   subroutine test_history_continuous(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(loading_history) :: hist
+      type(solve_result) :: peak, res
+      type(egw_error), allocatable :: err
+      real(dp) :: u(3), second
+      integer :: j
+      p = contact_params(model=model_egw, radius=810569.469138702_dp, modulus=1.0_dp, &
+         & sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
+      do j = 1, 3
+         call load_history(p, solver_options(rel_tol=1.0e-7_dp, n_threads=1), &
+            & 209.3170_dp + 5.0e-4_dp*(j - 1), hist, peak, err, stiffness=.false.)
+         if (allocated(err)) then
+            call check(error, .false., "load_history: "//err%message)
+            return
+         end if
+         hist%options%rel_tol = 1.0e-5_dp
+         call solve_unload(hist, 2.1221_dp, res, err)
+         if (allocated(err)) then
+            call check(error, .false., "solve_unload: "//err%message)
+            return
+         end if
+         u(j) = res%force
+      end do
+      second = abs(u(1) - 2.0_dp*u(2) + u(3))/u(2)
+      call check(error, second <= 1.0e-5_dp, "second difference in delta_max of the "// &
+         & "unloading force / force above 1e-5")
+   end subroutine test_history_continuous
 
    !> Polished steel beads (R = 0.5 mm, E* = 210 GPa/(2 (1 - 0.29**2)), sigma = 14.1 nm,
    !> mu 4, p_y = 1.6 GPa: sigma = 0.0587 delta_y), E-GW + cap unloading from 1.2971

@@ -136,7 +136,10 @@ module egw_cache
    !> 49 (psi22): on AVX2 + FMA the EP-GW unloading integral's nodes are evaluated four
    !> lanes wide (egw_unloading's egw_unload_integrands): Z_u moves by rounding (<= 1.9e-13),
    !> the AVX2 path's EP-GW tables with it (README's psi 1 + cap: 3.8e-15 of P(m)).
-   integer, parameter, public :: cache_revision = 49
+   !> 50 (kink22): rough + cap loading solves insert a cap or Hertz edge unless an element
+   !> edge lies within 1 % (was 10 %) of an element of it (egw_sphere_level's
+   !> loading_move_room): their meshes, histories and tables change within their rel_tol.
+   integer, parameter, public :: cache_revision = 50
 
 
 contains

@@ -508,15 +508,20 @@ contains
    !> the kink, not the discretisation (seen: 3.8e-7 for an error of 2e-9). The a_max edge
    !> (keep) and the focus layers are never moved onto a kink (without the a_max edge the
    !> unloading forces of psi 10 after delta_max 1, 2 were off by up to 1.3e-6).
-   pure function with_kink_edges(edge, radii, focus, n_strong, keep) result(out)
+   pure function with_kink_edges(edge, radii, focus, n_strong, keep, move_room) result(out)
       !> element boundaries, kink radii, the focus
       real(dp), intent(in) :: edge(:), radii(:), focus
       integer, intent(in) :: n_strong   !< radii(:n_strong): d = d_max crossings
       real(dp), intent(in) :: keep      !< an edge never moved (the a_max edge; 0: none)
+      !> how far (a fraction of both elements beside it) an edge is moved onto a kink
+      !> rather than the kink inserted; absent: 0.1
+      real(dp), intent(in), optional :: move_room
       real(dp), allocatable :: out(:)   ! indices 1..m (the edges' 0..n)
       logical, allocatable :: fixed(:)
-      real(dp) :: r, room
+      real(dp) :: r, room, fraction
       integer :: i, j, k, m, kf
+      fraction = 0.1_dp
+      if (present(move_room)) fraction = move_room
       allocate (out(size(edge)))
       out(:) = edge
       fixed = out == focus .or. out == keep
@@ -550,7 +555,7 @@ contains
             cycle
          end if
          if (j > 1 .and. j < m) then
-            room = 0.1_dp*min(out(j) - out(j - 1), out(j + 1) - out(j))
+            room = fraction*min(out(j) - out(j - 1), out(j + 1) - out(j))
             if (.not. fixed(j) .and. abs(out(j) - r) <= room) then
                out(j) = r
                fixed(j) = .true.
