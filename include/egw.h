@@ -793,7 +793,15 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * egw_hysteresis_eval_state (compile without FMA contraction, e.g. -std=c99 or
  * -ffp-contract=off, as for the cubics). Within 0.55 ulp of exp, 1 ulp of glibc's;
  * |x| >= 708 and NaN: libm's exp. */
+static inline double egw_piece_exp_core_(double x);
 static inline double egw_piece_exp_(double x)
+{
+  if (!(fabs(x) < 708.0)) return exp(x);
+  return egw_piece_exp_core_(x);
+}
+
+/* egw_piece_exp_ for |x| < 708 (a folded piece's argument, tested by its caller) */
+static inline double egw_piece_exp_core_(double x)
 {
   /* 2^(j/32) = t_j (1 + tail_j): t_j, tail_j, j = 0 .. 31 */
   static const double table[64] = {
@@ -818,7 +826,6 @@ static inline double egw_piece_exp_(double x)
   double z, kd, r, r2, s;
   long long k, j;
   unsigned long long bits;
-  if (!(fabs(x) < 708.0)) return exp(x);
   z = x * 46.16624130844683 + 6755399441055744.0;
   kd = z - 6755399441055744.0;
   r = (x - kd * 0.021660849392446835) - kd * 5.145609244655338e-14;
@@ -884,10 +891,12 @@ static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
     double x = delta - state[10], x2 = x * x;
     f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
     k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
-    f = egw_piece_exp_(f);
+    /* (an argument beyond the library's bound, a garbled state: the call; below it the
+     * force is positive and finite, so only the stiffness is tested) */
+    if (EGW_UNLIKELY_(!(fabs(f) < 708.0))) return 0;
+    f = egw_piece_exp_core_(f);
     k = f * k;
-    /* (a garbled state's 0 or values beyond the doubles: the call) */
-    if (EGW_UNLIKELY_(!(f > 0.0 && fabs(k) + f < HUGE_VAL))) return 0;
+    if (EGW_UNLIKELY_(!(fabs(k) < HUGE_VAL))) return 0;
     if (force) *force = f;
     if (stiffness) *stiffness = k;
     return 1;

@@ -155,8 +155,9 @@ contains
    !> one cubic (and an exp in the loading table's ln P tail), reading only its state. A
    !> piece is hysteresis_eval's unloading force where its run of s intervals (make_runs)
    !> and loading interval do not change, written out as a cubic in delta (a log-ratio
-   !> table's: h = ln(P_load/P) over the whole run, the loading interval beside it, taken
-   !> alone when the contact crosses into the next): the same values to rounding (test
+   !> table's: h = ln(P_load/P) over the whole run on a linear loading interval, the
+   !> interval beside it, taken alone when the contact crosses into the next; on a ln P
+   !> interval ln P - h, one cubic inside it, make_log_piece): the same values to rounding (test
    !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
    !> histories. Where the force is 0 below the cut-off (a contact that has not touched, or
    !> one below its turning point's unloading floor) the state keeps a zero piece
