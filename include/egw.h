@@ -30,7 +30,7 @@ extern "C" {
 #endif
 
 /* Version of this header; egw_get_version() returns the library's. */
-#define EGW_VERSION 301
+#define EGW_VERSION 302
 
 /* Status codes. */
 enum {
@@ -778,7 +778,9 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * egw_hysteresis_eval_state. It does not report
  * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max) and refuses
  * nothing (what it does not serve, the call checks). It reads the state's layout, which
- * is egw's: use it with the library of the same version as this header. C99 or C++.
+ * is egw's: use it with the library of the same version as this header (0.3.2's pieces
+ * in the separated tail hold one cubic of ln P - h, state[23] = 3, which 0.3.1's inline
+ * would misread: rebuild a program that uses it). C99 or C++.
  * A loop with the call inside keeps its sums in memory around it (no floating-point
  * register survives a call): a sweep of this inline over the contacts, the ones it
  * declines collected and called after the sweep, took 0.83-0.94 of the time of the call
@@ -791,7 +793,15 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * egw_hysteresis_eval_state (compile without FMA contraction, e.g. -std=c99 or
  * -ffp-contract=off, as for the cubics). Within 0.55 ulp of exp, 1 ulp of glibc's;
  * |x| >= 708 and NaN: libm's exp. */
+static inline double egw_piece_exp_core_(double x);
 static inline double egw_piece_exp_(double x)
+{
+  if (!(fabs(x) < 708.0)) return exp(x);
+  return egw_piece_exp_core_(x);
+}
+
+/* egw_piece_exp_ for |x| < 708 (a folded piece's argument, tested by its caller) */
+static inline double egw_piece_exp_core_(double x)
 {
   /* 2^(j/32) = t_j (1 + tail_j): t_j, tail_j, j = 0 .. 31 */
   static const double table[64] = {
@@ -816,7 +826,6 @@ static inline double egw_piece_exp_(double x)
   double z, kd, r, r2, s;
   long long k, j;
   unsigned long long bits;
-  if (!(fabs(x) < 708.0)) return exp(x);
   z = x * 46.16624130844683 + 6755399441055744.0;
   kd = z - 6755399441055744.0;
   r = (x - kd * 0.021660849392446835) - kd * 5.145609244655338e-14;
@@ -831,15 +840,18 @@ static inline double egw_piece_exp_(double x)
                                r2 * 0.001388888888888889));
 }
 
-/* The branches to the caller's library call marked unlikely, so that the served steps
- * are laid out straight; and the inline inlined wherever it is called (GCC and Clang:
- * gcc 12 -O2 made it an out-of-line function, a call per contact, in a file that calls
- * it twice; elsewhere the plain test and inline). */
+/* The branches to the caller's library call marked unlikely (and the separated tail's
+ * folded piece likely), so that the served steps are laid out straight; and the inline
+ * inlined wherever it is called (GCC and Clang: gcc 12 -O2 made it an out-of-line
+ * function, a call per contact, in a file that calls it twice; elsewhere the plain test
+ * and inline). */
 #if defined(__GNUC__)
 #define EGW_UNLIKELY_(c) __builtin_expect(!!(c), 0)
+#define EGW_LIKELY_(c) __builtin_expect(!!(c), 1)
 #define EGW_ALWAYS_INLINE_ __attribute__((always_inline))
 #else
 #define EGW_UNLIKELY_(c) (c)
+#define EGW_LIKELY_(c) (c)
 #define EGW_ALWAYS_INLINE_
 #endif
 
@@ -851,8 +863,10 @@ static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
    * [17..23] the loading table's interval (ends, cubic in delta - [17], > 0 where it is
    * ln P; on a log-ratio table's piece, whose cubic is -ln(P_load/P), 2 for ln P and -1
-   * for a linear interval). A log-ratio piece spans loading intervals: it serves delta
-   * inside both its ends and the loading interval's. Where the force is 0 below the
+   * for a linear interval; 3 where the piece's cubic is ln P - ln(P_load/P) itself, the
+   * force its exp: 0.3.2's pieces in the ln P tail, which lie inside their loading
+   * interval). A log-ratio piece on a linear interval spans loading intervals: it serves
+   * delta inside both its ends and the loading interval's. Where the force is 0 below the
    * loading table's cut-off (a contact that has not touched, or one separated below its
    * turning point's unloading curve) the call leaves a zero piece and a zero linear
    * interval from -sqrt(DBL_MAX)/4, so that separated contacts are served here too, at
@@ -871,6 +885,25 @@ static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
      * 5 % faster than with this test first, stop 55) */
     if (force) *force = 0.0;
     if (stiffness) *stiffness = 0.0;
+    return 1;
+  }
+  if (EGW_LIKELY_(piece && delta < state[11] && state[23] == 3.0)) {
+    /* a folded log-ratio piece (the separated tail, 0.3.2): its cubic is ln P - h, the
+     * force exp of it, one cubic and one exp; the library cuts it inside its loading
+     * interval (not read) and keeps exp's argument within +-700 over it. (Marked likely:
+     * laid out straight, the tail's inline took 0.94 of the time, and a contact's
+     * unloading piece (0.5 sigma, touched) 0.94 too, back at 0.3.1's: stop 56) */
+    double x = delta - state[10], x2 = x * x;
+    f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
+    k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
+    /* (an argument beyond the library's bound, a garbled state: the call; below it the
+     * force is positive and finite, so only the stiffness is tested) */
+    if (EGW_UNLIKELY_(!(fabs(f) < 708.0))) return 0;
+    f = egw_piece_exp_core_(f);
+    k = f * k;
+    if (EGW_UNLIKELY_(!(fabs(k) < HUGE_VAL))) return 0;
+    if (force) *force = f;
+    if (stiffness) *stiffness = k;
     return 1;
   }
   piece = piece && delta < state[11] && state[17] <= delta && delta < state[18];

@@ -11,7 +11,7 @@ module test_hysteresis
    use egw_table, only: table_eval
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
-      & hysteresis_energy, first_yield
+      & hysteresis_energy, first_yield, folded
    use egw_hysteresis_data, only: turning_point, edge_breaks, edge_s, edge_xi, max_stencil
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary, format_lammps
@@ -63,7 +63,7 @@ contains
          & new_unittest("unloading from above delta_max: against solves", test_deep_unloading), &
          & new_unittest("history: load, unload, reload, new contact", test_history), &
          & new_unittest("state with cached turning point = plain history", test_state), &
-         & new_unittest("log-ratio pieces span the loading intervals", test_piece_span), &
+         & new_unittest("log-ratio pieces: ln P folded, linear spanned", test_piece_span), &
          & new_unittest("energy: the force's integral; e^2 at a turning point", test_energy), &
          & new_unittest("elastic summits: no hysteresis", test_reversible), &
          & new_unittest("bad input", test_bad_input), &
@@ -649,20 +649,26 @@ contains
    end subroutine test_state
 
    !> A log-ratio state's piece is the run of s intervals around delta (its h one cubic in
-   !> delta there), not cut at the loading table's intervals: a contact unloading in small
-   !> steps from 40 turning points over (1, 6) sigma to the cut-off must (a) find every
-   !> piece's ends at s nodes of the table (edge_s of m - end on the turning point's edge
-   !> map, to 1e-9: rounding of the end's delta), or at the cut-off, (b) see pieces that
-   !> reach past their loading interval (state(18:19)) and (c) keep one piece while it
-   !> crosses a loading node, taking the next loading interval alone (the piece's ends
-   !> and cubic, state(11:17), unchanged), with the values of hysteresis_eval (differ:
-   !> rounding). Before, the ends were cut at the loading interval's: (a) to (c) fail.
+   !> delta there); on a ln P loading interval (the separated tail) cut at that interval's
+   !> ends and folded (0.3.2: the cubic ln P - h, state(24) = folded, its force one exp),
+   !> on a linear one not cut at the loading table's intervals. A contact unloading in
+   !> small steps from 40 turning points over (1, 6) sigma to the cut-off must (a) find
+   !> every piece's ends at s nodes of the table (edge_s of m - end on the turning point's
+   !> edge map, to 1e-9: rounding of the end's delta), at the cut-off, or, on a ln P
+   !> interval, at that interval's ends, (b) see folded pieces, each inside its loading
+   !> interval (state(18:19)), (c) see pieces on linear intervals that reach past their
+   !> loading interval and (d) keep one such piece while it crosses a loading node, taking
+   !> the next loading interval alone (the piece's ends and cubic, state(11:17),
+   !> unchanged), with the values of hysteresis_eval (differ: rounding). Before 0.3.2 no
+   !> piece was folded and the ln P pieces spanned their intervals: (b) fails there;
+   !> before 0.3.0 the ends were cut at every loading interval's: (a), (c), (d) fail.
    subroutine test_piece_span(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table) :: t
       real(dp) :: state(hysteresis_state_size), prev(hysteresis_state_size), plain, d, m, &
          & f, k, f2, k2, xi_b(3), s, ds
-      integer :: i, j, step, stat, stat2, mismatches, off_node, spanning, kept
+      integer :: i, j, step, stat, stat2, mismatches, off_node, spanning, kept, n_folded, &
+         & outside
       call build(ep, t, error)
       if (allocated(error)) return
       call check(error, t%log_ratio, "the suite's EP-GW table stores log ratios")
@@ -671,6 +677,8 @@ contains
       off_node = 0
       spanning = 0
       kept = 0
+      n_folded = 0
+      outside = 0
       do i = 1, 40
          m = 1.0_dp + 5.0_dp*(i - 0.5_dp)/40
          call hysteresis_state_init(state)
@@ -688,9 +696,13 @@ contains
             call edge_breaks(state(13), t%params%sigma, xi_b)
             do j = 11, 12
                if (state(j) == t%loading%cutoff) cycle
+               if (state(24) > 0.0_dp .and. state(j) == state(18 + j - 11)) cycle
                call edge_s(xi_b, m - state(j), s, ds)
                if (minval(abs(t%s - s)) > 1.0e-9_dp) off_node = off_node + 1
             end do
+            if (state(24) == folded) n_folded = n_folded + 1
+            if (state(24) > 0.0_dp .and. (state(11) < state(18) .or. state(12) > state(19))) &
+               & outside = outside + 1
             if (state(11) < state(18) .or. state(12) > state(19)) spanning = spanning + 1
             if (prev(11) < prev(12) .and. prev(18) /= state(18) .and. &
                & all(prev(11:17) == state(11:17))) kept = kept + 1
@@ -698,7 +710,12 @@ contains
       end do
       call check(error, mismatches, 0, "steps where the state differs from hysteresis_eval")
       if (allocated(error)) return
-      call check(error, off_node, 0, "piece ends that are neither s nodes nor the cut-off")
+      call check(error, off_node, 0, "piece ends that are neither s nodes nor the cut-off "// &
+         & "nor a ln P interval's ends")
+      if (allocated(error)) return
+      call check(error, n_folded > 0 .and. outside == 0, "folded pieces: "// &
+         & to_string(n_folded)//", ln P pieces past their loading interval: "// &
+         & to_string(outside))
       if (allocated(error)) return
       call check(error, spanning > 0 .and. kept > 0, "pieces past their loading interval: "// &
          & to_string(spanning)//", kept across a loading node: "//to_string(kept))

@@ -418,12 +418,13 @@ int egw_capi_test_hysteresis(void) {
        * for bit, egw_hysteresis_eval's to rounding (near_force); and once the history has
        * reached its top (the first cycle), every later step is served inline: a return to
        * the history keeps the unloading piece (on main it dropped it, so that the next
-       * step below took the call: 1 miss in 16 steps) */
+       * step below took the call: 1 miss in 16 steps); 0.3.2: on a folded piece (ln P - h
+       * one cubic, state[23] = 3), the inline's one-cubic branch (0.3.1: none) */
       double sp[EGW_HYSTERESIS_STATE_SIZE], se[EGW_HYSTERESIS_STATE_SIZE], tag = 0.0;
       double plain = -HUGE_VAL, fi, ki, fe, ke, fp, kp, c;
       egw_hysteresis_info info;
       static const int order[16] = {7, 15, 2, 11, 0, 9, 4, 13, 6, 1, 14, 8, 3, 12, 5, 10};
-      int exact = 1, same = 1, late = 0, served_late = 0, positive = 1;
+      int exact = 1, same = 1, late = 0, served_late = 0, positive = 1, folded = 0;
       HCHECK(egw_hysteresis_get_info(h, &info) == EGW_OK && info.cutoff < -2.0);
       HCHECK(egw_hysteresis_state_tag(h, &tag) == EGW_OK);
       c = info.cutoff;
@@ -438,14 +439,14 @@ int egw_capi_test_hysteresis(void) {
         exact = exact && fi == fe && ki == ke && memcmp(sp, se, sizeof sp) == 0;
         same = same && se[0] == plain && near_force(h, plain, fe, fp);
         positive = positive && d > c && fe > 0.0;
-        if (i >= 200 + 32) late++, served_late += hit;
+        if (i >= 200 + 32) late++, served_late += hit, folded += sp[23] == 3.0;
       }
       HCHECK(exact);
       HCHECK(same);
       HCHECK(positive);
-      HCHECK(late > 700 && served_late == late);
-      printf("    separated tail: %d of %d steps served inline after the history's top\n",
-             served_late, late);
+      HCHECK(late > 700 && served_late == late && folded == late);
+      printf("    separated tail: %d of %d steps served inline after the history's top, "
+             "%d on a folded piece\n", served_late, late, folded);
     }
     {
       double garbage[EGW_HYSTERESIS_STATE_SIZE];

@@ -15,8 +15,9 @@
  * Contact: E-GW/EP-GW R 0.5 mm, E* 36.8 GPa, sigma 1 um, mu 4, psi 1; table rel_tol 1e-4
  * over [-3, 30] sigma (the loading table's cut-off lies below -3 sigma). 256 contacts, each
  * evaluated at x0 + (uniform +-0.005 sigma) overlaps from a table of 4096, 2^22
- * evaluations a case. Cases: x0 = cut-off - 2 sigma ("beyond") and -2.5 sigma ("tail",
- * between the cut-off and 0); states fresh (egw_hysteresis_state_init before the loop:
+ * evaluations a case. Cases: x0 = cut-off - 2 sigma ("beyond"), -2.5 sigma ("tail",
+ * between the cut-off and 0) and 0.5 sigma ("contact", stop 56: in contact, below the
+ * history of 1 sigma when touched, loading when fresh); states fresh (egw_hysteresis_state_init before the loop:
  * never touched) or with a history (loaded to 1 sigma before the loop: separated);
  * paths: "inline" = egw_hysteresis_eval_cached, egw_hysteresis_eval_state when it does
  * not serve; "call" = egw_hysteresis_eval_state alone, each path in its own loop (as a
@@ -105,8 +106,8 @@ int main(int argc, char **argv) {
   egw_params p;
   egw_hysteresis h = NULL;
   egw_hysteresis_info info;
-  double tag, sigma = 1e-6, best[2][2][3], hertz_best = 1e30, ratio[2][2][3];
-  const char *where[2] = {"beyond", "tail"}, *hist[2] = {"fresh", "history"},
+  double tag, sigma = 1e-6, best[3][2][3], hertz_best = 1e30, ratio[3][2][3];
+  const char *where[3] = {"beyond", "tail", "contact"}, *hist[2] = {"fresh", "history"},
              *path[3] = {"inline", "call", "batch"};
   egw_params_default(&p);
   p.model = EGW_MODEL_EPGW;
@@ -122,7 +123,7 @@ int main(int argc, char **argv) {
   egw_hysteresis_get_info(h, &info);
   egw_hysteresis_state_tag(h, &tag);
   printf("cut-off %.4f sigma, version %d\n", info.cutoff / sigma, egw_get_version());
-  for (int a = 0; a < 2; a++)
+  for (int a = 0; a < 3; a++)
     for (int b = 0; b < 2; b++)
       for (int c = 0; c < 3; c++) best[a][b][c] = 1e30, ratio[a][b][c] = 1e30;
   unsigned long long seed = 20261130;
@@ -140,10 +141,10 @@ int main(int argc, char **argv) {
     hertz = (now() - t0) / NEVAL;
     sink = acc;
     if (hertz < hertz_best) hertz_best = hertz;
-    for (int w = 0; w < 2; w++)
+    for (int w = 0; w < 3; w++)
       for (int hi = 0; hi < 2; hi++)
         for (int pa = 0; pa < 3; pa++) {
-          double x0 = w == 0 ? info.cutoff - 2 * sigma : -2.5 * sigma, f, k, dt;
+          double x0 = w == 0 ? info.cutoff - 2 * sigma : w == 1 ? -2.5 * sigma : 0.5 * sigma, f, k, dt;
           char name[32];
           snprintf(name, sizeof name, "%s-%s-%s", where[w], hist[hi], path[pa]);
           if (only != NULL && strcmp(only, name) != 0) continue;
@@ -161,11 +162,11 @@ int main(int argc, char **argv) {
         }
   }
   printf("inline Hertz %.2f ns (min of %d rounds)\n", 1e9 * hertz_best, rounds);
-  for (int w = 0; w < 2; w++)
+  for (int w = 0; w < 3; w++)
     for (int hi = 0; hi < 2; hi++)
       for (int pa = 0; pa < 3; pa++)
         if (best[w][hi][pa] < 1e30)
-          printf("%-6s %-7s %-6s %6.2f ns  %5.2fx Hertz (best round ratio %5.2fx)\n",
+          printf("%-7s %-7s %-6s %6.2f ns  %5.2fx Hertz (best round ratio %5.2fx)\n",
                  where[w], hist[hi], path[pa], 1e9 * best[w][hi][pa],
                  best[w][hi][pa] / hertz_best, ratio[w][hi][pa]);
   egw_hysteresis_free(&h);

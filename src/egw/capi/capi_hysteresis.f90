@@ -13,7 +13,7 @@ module egw_capi_hysteresis
    use egw_params, only: contact_params
    use egw_rough_sphere, only: solver_options
    use egw_cache, only: build_hysteresis_cached
-   use egw_hysteresis, only: hysteresis_table, hysteresis_eval, zero_lo, &
+   use egw_hysteresis, only: hysteresis_table, hysteresis_eval, zero_lo, folded, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
       & hysteresis_energy
    use egw_hysteresis_data, only: quiet_nan
@@ -175,7 +175,19 @@ contains
          served = state(1) <= h%input_limit
          return
       end if
-      if (state(2) == state(1) .and. state(11) < delta .and. delta < state(12) .and. &
+      if (state(24) == folded .and. state(11) < delta .and. delta < state(12) .and. &
+         & state(2) == state(1)) then
+         ! a folded log-ratio piece (the separated tail: exp of the one cubic ln P - h;
+         ! make_log_piece cut it inside its loading interval, which is not read)
+         if (.not. (state(1) <= h%delta_max .and. state(1) <= h%input_limit)) return
+         x = delta - state(11)
+         x2 = x*x
+         force = (state(14) + x*state(15)) + x2*(state(16) + x*state(17))
+         stiffness = (state(15) + 2*x*state(16)) + 3*x2*state(17)
+         ! (below: exp(force + 0), p (-0 + stiffness): exp(force), p stiffness bit for bit)
+         v = 0.0_dp
+         d = -0.0_dp
+      else if (state(2) == state(1) .and. state(11) < delta .and. delta < state(12) .and. &
          & state(18) <= delta .and. delta < state(19)) then
          if (.not. (state(1) <= h%delta_max .and. state(1) <= h%input_limit)) return
          x = delta - state(11)
@@ -187,35 +199,23 @@ contains
             t2 = t*t
             v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
             d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
-            ! a log-ratio piece (one piece_exp call: inlined): on a ln P interval (the
-            ! separated tail) exp(ln P - h), on a linear one P e^-h. Written as one with
-            ! q = 1 or P (1 times a double is that double, and force + 0 differs from force
-            ! only at -0, whose exp is 1 as +0's: the same bits): gcc then tests state(24)
-            ! once where the two branches took three tests (stop 53, tail19)
-            lnp = state(24) > 1.0_dp
-            q = merge(1.0_dp, v, lnp)
-            p = piece_exp(force + merge(v, 0.0_dp, lnp))
-            stiffness = p*(d + q*stiffness)
-            force = q*p
-            ! (served only with a positive force and finite values, one test for both: a
-            ! force 0 (exp 0, P <= 0) or values beyond the doubles take the full call,
-            ! which gives them the same bits, as it does the rare finite pair whose sum
-            ! would overflow)
-            served = force > 0.0_dp .and. abs(stiffness) + force <= huge(1.0_dp)
+         else
+            if (state(24) > 0.0_dp) then
+               ! a gap piece on a ln P interval: the cubic plus P
+               t = delta - state(18)
+               t2 = t*t
+               v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
+               d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
+               p = exp(v)
+               force = force + p
+               stiffness = stiffness + p*d
+            end if
+            if (.not. force > 0.0_dp) then
+               force = 0.0_dp
+               stiffness = 0.0_dp
+            end if
+            served = ieee_is_finite(force) .and. ieee_is_finite(stiffness)
             return
-         else if (state(24) > 0.0_dp) then
-            ! a gap piece on a ln P interval: the cubic plus P
-            t = delta - state(18)
-            t2 = t*t
-            v = (state(20) + t*state(21)) + t2*(state(22) + t*state(23))
-            d = (state(21) + 2*t*state(22)) + 3*t2*state(23)
-            p = exp(v)
-            force = force + p
-            stiffness = stiffness + p*d
-         end if
-         if (.not. force > 0.0_dp) then
-            force = 0.0_dp
-            stiffness = 0.0_dp
          end if
       else if (delta >= state(1) .and. state(18) <= delta .and. delta < state(19) .and. &
          & delta <= h%delta_max .and. delta <= h%input_limit) then
@@ -245,7 +245,21 @@ contains
       else
          return
       end if
-      served = ieee_is_finite(force) .and. ieee_is_finite(stiffness)
+      ! a log-ratio piece (one piece_exp call for the folded and the other log-ratio
+      ! pieces: gfortran inlines a single call site, two it calls out of line): on a ln P
+      ! interval (the separated tail) exp(ln P - h), on a linear one P e^-h. Written as
+      ! one with q = 1 or P (1 times a double is that double, and force + 0 differs from
+      ! force only at -0, whose exp is 1 as +0's: the same bits): gcc then tests state(24)
+      ! once where the two branches took three tests (stop 53, tail19)
+      lnp = state(24) > 1.0_dp
+      q = merge(1.0_dp, v, lnp)
+      p = piece_exp(force + merge(v, 0.0_dp, lnp))
+      stiffness = p*(d + q*stiffness)
+      force = q*p
+      ! (served only with a positive force and finite values, one test for both: a force
+      ! 0 (exp 0, P <= 0) or values beyond the doubles take the full call, which gives
+      ! them the same bits, as it does the rare finite pair whose sum would overflow)
+      served = force > 0.0_dp .and. abs(stiffness) + force <= huge(1.0_dp)
    end subroutine eval_state_served
 
    include "../tables/piece_exp.inc"

@@ -30,11 +30,15 @@ module egw_hysteresis
       & hysteresis_state_init, hysteresis_energy, hysteresis_energy_walk, hysteresis_prepare, &
       & m_breakpoint, &
       & stencil_first, m_coordinate, first_yield, hertz_capped, cap_first_turn
-   public :: hysteresis_state_size, zero_lo
+   public :: hysteresis_state_size, zero_lo, folded
 
    !> The start of a zero piece and zero loading interval (zero_piece): a real piece never
    !> starts there, and the cubics' powers of delta - zero_lo stay finite.
    real(dp), parameter :: zero_lo = -0.25_dp*sqrt(huge(1.0_dp))
+   !> The loading interval's mark (state(24)) of a folded log-ratio piece (make_log_piece
+   !> on a ln P interval): its cubic is ln P - h itself, its force exp of it. (2: the
+   !> piece's cubic is -h, ln P the interval's; -1: P e^-h on a linear interval.)
+   real(dp), parameter :: folded = 3.0_dp
 
    interface
       !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
@@ -151,8 +155,9 @@ contains
    !> one cubic (and an exp in the loading table's ln P tail), reading only its state. A
    !> piece is hysteresis_eval's unloading force where its run of s intervals (make_runs)
    !> and loading interval do not change, written out as a cubic in delta (a log-ratio
-   !> table's: h = ln(P_load/P) over the whole run, the loading interval beside it, taken
-   !> alone when the contact crosses into the next): the same values to rounding (test
+   !> table's: h = ln(P_load/P) over the whole run on a linear loading interval, the
+   !> interval beside it, taken alone when the contact crosses into the next; on a ln P
+   !> interval ln P - h, one cubic inside it, make_log_piece): the same values to rounding (test
    !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
    !> histories. Where the force is 0 below the cut-off (a contact that has not touched, or
    !> one below its turning point's unloading floor) the state keeps a zero piece
@@ -189,15 +194,19 @@ contains
          return
       end if
       ! inside the cached piece and its loading interval (below the turning point, above
-      ! the cut-off; NaN fails the tests): most DEM steps. A log-ratio piece spans its run
-      ! of s intervals across the loading table's intervals (make_log_piece): one that
-      ! left its loading interval takes the next (table_segment), its cubic of h kept.
+      ! the cut-off; NaN fails the tests): most DEM steps. A log-ratio piece on a linear
+      ! loading interval spans its run of s intervals across the loading table's linear
+      ! intervals (make_log_piece): one that left its loading interval for the next linear
+      ! one takes it (table_segment), its cubic of h kept; into a ln P interval (and a
+      ! folded piece, ln P - h, out of its own) it is remade.
       if (state(3) == table%tag .and. state(2) == state(1) .and. state(11) < delta .and. &
          & delta < state(12)) then
          inside = state(18) <= delta .and. delta < state(19)
-         if (.not. inside .and. (state(24) > 1.0_dp .or. state(24) < 0.0_dp)) then
+         if (.not. inside .and. state(24) < 0.0_dp) then
+            ! (into a ln P interval the piece is remade below, folded)
             call table_segment(table%loading, delta, state(18:24), inside)
-            if (inside) state(24) = merge(2.0_dp, -1.0_dp, state(24) > 0.0_dp)
+            inside = inside .and. .not. state(24) > 0.0_dp
+            if (inside) state(24) = -1.0_dp
          end if
          if (inside) then
             call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
@@ -320,8 +329,8 @@ contains
    !> The force and stiffness at delta inside a piece (make_piece: start lo, cubic c),
    !> with the loading interval seg it was made with: the cubic, plus exp of seg's cubic
    !> where that is ln P; 0 where the force is not positive. A log-ratio piece
-   !> (make_log_piece: seg(7) 2 on a ln P interval, -1 on a linear one; c is -h):
-   !> exp(ln P - h), or P e^-h, one exp (piece_exp; egw.h's inline
+   !> (make_log_piece: seg(7) folded on a ln P interval, c is ln P - h; 2 there with c
+   !> -h; -1 on a linear one, c -h): exp(ln P - h), or P e^-h, one exp (piece_exp; egw.h's inline
    !> egw_hysteresis_eval_cached does the same arithmetic in the same order: the same
    !> bits).
    pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
@@ -333,10 +342,17 @@ contains
       force = (c(1) + x*c(2)) + x2*(c(3) + x*c(4))
       stiffness = (c(2) + 2*x*c(3)) + 3*x2*c(4)
       if (seg(7) > 1.0_dp .or. seg(7) < 0.0_dp) then
-         t = delta - seg(1)
-         t2 = t*t
-         v = (seg(3) + t*seg(4)) + t2*(seg(5) + t*seg(6))
-         d = (seg(4) + 2*t*seg(5)) + 3*t2*seg(6)
+         if (seg(7) == folded) then
+            ! (force is ln P - h: exp(0 + force) and p (-0 + stiffness) below are
+            ! exp(force) and p stiffness bit for bit, egw.h's arithmetic)
+            v = 0.0_dp
+            d = -0.0_dp
+         else
+            t = delta - seg(1)
+            t2 = t*t
+            v = (seg(3) + t*seg(4)) + t2*(seg(5) + t*seg(6))
+            d = (seg(4) + 2*t*seg(5)) + 3*t2*seg(6)
+         end if
          p = piece_exp(merge(v + force, force, seg(7) > 1.0_dp))
          if (seg(7) > 1.0_dp) then
             stiffness = p*(d + stiffness)
@@ -448,13 +464,16 @@ contains
    !> intervals around i (one cubic per curve of the stencil first, weights w; inside one
    !> segment of the edge map xi_b of the turning point m, where s is linear in delta)
    !> does not change, as -h, a cubic c in delta - lo, ends = (lo, hi) the run's overlaps
-   !> (above the cut-off), seg the loading interval around delta. The piece is not cut at
-   !> seg's ends (the gap pieces are: their cubic holds the loading force): a contact
-   !> that crosses into the next loading interval keeps it and refills seg alone
-   !> (hysteresis_eval_state; egw.h's inline tests both). seg(7) is marked 2 (ln P) or -1
-   !> (linear) so that piece_force and egw.h's inline evaluate exp(ln P - h) or P e^-h
-   !> (every other use of seg reads seg(7) > 0 as ln P: the same). No piece (found
-   !> false, NaN ends) at the clamp s = 1 or outside the loading table's intervals.
+   !> (above the cut-off), seg the loading interval around delta. On a ln P interval (the
+   !> separated tail) the piece is cut at seg's ends, as the gap pieces are, and c is
+   !> ln P - h, one cubic (seg(7) = folded): its force is one exp of one cubic (issue 33
+   !> item 5: the tail's step ~0.6 of the two cubics' instructions), kept only where
+   !> |ln P - h| <= 700 over the piece (piece_exp's range test then never taken), else
+   !> c = -h on the cut piece (seg(7) = 2). On a linear interval the piece is not cut at
+   !> seg's ends: a contact that crosses into the next loading interval keeps it and
+   !> refills seg alone (hysteresis_eval_state; egw.h's inline tests both); seg(7) = -1
+   !> there (P e^-h). Every other use of seg reads seg(7) > 0 as ln P: the same. No piece
+   !> (found false, NaN ends) at the clamp s = 1 or outside the loading table's intervals.
    pure subroutine make_log_piece(table, w, first, i, s, m, delta, xi_b, seg, ends, c, found)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: w(max_stencil), s, m, delta, xi_b(3)
@@ -463,9 +482,9 @@ contains
       real(dp), intent(out) :: ends(2), c(4)
       logical, intent(out) :: found
       real(dp) :: lo, hi, t0, alpha, g(4), g_a, g_b, h_a, h_b, width, x_a, x_b, ds, s_0, &
-         & x_0, v_a(max_stencil), v_b(max_stencil), scale
+         & x_0, v_a(max_stencil), v_b(max_stencil), scale, f(4), d_lo, span
       integer :: a, b, k, j, q
-      logical :: inside
+      logical :: inside, fold
       ends = quiet_nan
       c = 0.0_dp
       found = .false.
@@ -480,11 +499,17 @@ contains
       k = edge_segment(table%s(a), table%s(b))
       call edge_xi(xi_b, table%s(a), x_a)
       call edge_xi(xi_b, table%s(b), x_b)
-      ! the run's overlaps, not cut at seg's ends: h is one cubic in delta across the
-      ! loading intervals (hysteresis_eval_state then refills seg alone)
+      ! the run's overlaps; on a linear loading interval not cut at seg's ends (h one
+      ! cubic in delta across the intervals: hysteresis_eval_state then refills seg
+      ! alone), on a ln P interval cut there, so that ln P - h is one cubic (folded below)
       lo = max(m - x_b, table%loading%cutoff)
       hi = m - x_a
       if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
+      fold = seg(7) > 0.0_dp .and. max(lo, seg(1)) < delta .and. delta < min(hi, seg(2))
+      if (fold) then
+         lo = max(lo, seg(1))
+         hi = min(hi, seg(2))
+      end if
       ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' values and slopes
       ! (dh/dxi times each curve's dxi/ds on segment k)
       width = table%s(b) - table%s(a)
@@ -531,6 +556,23 @@ contains
       c(2) = -alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
       c(3) = -alpha**2*(g(3) + 3*t0*g(4))
       c(4) = -alpha**3*g(4)
+      if (fold) then
+         ! ln P - h: the loading cubic in delta - seg(1) moved to delta - lo and added
+         ! (make_piece's re-expansion, lo - seg(1) within seg), kept where its argument
+         ! bound over the piece leaves piece_exp's range test untaken (|x| < 708: a
+         ! folded piece's exp never takes libm's); else the cut piece as -h alone
+         d_lo = lo - seg(1)
+         f(1) = c(1) + (seg(3) + d_lo*(seg(4) + d_lo*(seg(5) + d_lo*seg(6))))
+         f(2) = c(2) + (seg(4) + d_lo*(2*seg(5) + 3*d_lo*seg(6)))
+         f(3) = c(3) + (seg(5) + 3*d_lo*seg(6))
+         f(4) = c(4) + seg(6)
+         span = hi - lo
+         if (abs(f(1)) + span*(abs(f(2)) + span*(abs(f(3)) + span*abs(f(4)))) <= &
+            & 700.0_dp) then
+            c = f
+            seg(7) = folded
+         end if
+      end if
       ends = [lo, hi]
       found = .true.
    end subroutine make_log_piece
