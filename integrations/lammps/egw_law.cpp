@@ -586,14 +586,24 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                          interp_error);
   if (kind == HYST || kind == HYST_MU)
     extra += fmt::format(", hysteresis tables built for it: {} (the others shared)", hyst_built);
-  if (kind == HYST_CAP)
+  if (kind == HYST_CAP) {
+    // the contact radius at the reach x (delta_y): fully capped from ~20 delta_y on, x =
+    // alpha^2/2 + 8 alpha/pi^2 in a_y = sqrt(R delta_y) (doc/theory.md section 12), a/R =
+    // alpha sqrt(cap_c); a half-space stops being a sphere from a/R ~0.24 on (issue 32)
+    double x = hyst_dmax.empty() ? 0.0 : hyst_dmax[0], k = 8.0 / (M_PI * M_PI);
+    double a_r = (std::sqrt(k * k + 2.0 * x) - k) * std::sqrt(cap_c);
     extra = fmt::format(", flow pressure p_y = {:.6g} (from {}), first yield delta_y = {:.6g} R, "
-                        "the table reaches {:.4g} delta_y at rel_tol {:.2g}{}, built for it: {} "
-                        "(the others shared)", flow_pressure,
-                        flow_keyword ? "yield_stress: 1.6 Y" : "flow_pressure", cap_c,
-                        hyst_dmax.empty() ? 0.0 : hyst_dmax[0], tol_cap,
-                        tol_cap > built_tol ? " (TOL raised to the cap's least, 1e-3)" : "",
+                        "the table reaches {:.4g} delta_y (a/R ~{:.2g} there{}) at rel_tol "
+                        "{:.2g}{}, built for it: {} (the others shared)", flow_pressure,
+                        flow_keyword ? "yield_stress: 1.6 Y" : "flow_pressure", cap_c, x, a_r,
+                        a_r > 0.24 ? ": the half-space model leaves its range from a/R ~0.24 on"
+                                   : "",
+                        tol_cap,
+                        tol_cap > built_tol
+                            ? fmt::format(" (TOL raised to the cap's least, {:g})", CAP_TOL_MIN)
+                            : std::string(),
                         hyst_built);
+  }
   if (kind == HYST_RCAP && hyst.size() <= 1)
     extra = fmt::format(", R = {:.6g} (the types' one radius), flow pressure p_y = {:.6g} (from "
                         "{}), first yield delta_y = {:.6g} ({:.4g} sigma), the table reaches "

@@ -75,10 +75,13 @@ struct EgwLaw {
   // (pi p_y/(2 E*))^2; one table in units of delta_y (R = E* = 1, p_y = 2/pi: delta_y =
   // 1), universal: F = E* sqrt(R) delta_y^1.5 p(delta/delta_y) (doc/theory.md section 12)
   double cap_c = 0;
-  // its reach at most CAP_X_MAX delta_y, its rel_tol at least CAP_TOL_MIN (to 40 delta_y on
-  // 2 threads: 1e-4 in 1.1 s, 1e-5 in 3.1 s, 1e-6 in 13 s, 2026-11-29; the cap solver is
-  // smooth in delta since then, it was a sawtooth of ~3e-3 that held tables at 1e-3)
-  static constexpr double CAP_X_MAX = 40.0;
+  // its reach at most CAP_X_MAX delta_y, egw's limit for tables with the cap (a/R is ~70
+  // p_y/E* there), its rel_tol at least CAP_TOL_MIN. The reach costs little: the contact is
+  // fully capped from ~20 delta_y on, where the unloading curves in s are one shape, so
+  // nodes grow as ln(reach) (one thread, no disk cache, stop 57, doc/benchmarks.md "Stop 57:
+  // capreach": 40 -> 1000 delta_y at 1e-3 0.87 -> 1.14 s, 29 -> 39 nodes; at 1e-4 2.0 ->
+  // 2.6 s). It was 40 (~60 v_y): e at 76 v_y 2.3 % low, extrapolated, with a WARNING
+  static constexpr double CAP_X_MAX = 1000.0;
   static constexpr double CAP_TOL_MIN = 1e-5;
   double tol_cap = 0, built_tol = 0;    // the cap table's rel_tol, and the TOL asked for
   double cap_wanted = 0;           // overlap_max R in delta_y (the reach before the cap)
@@ -260,9 +263,11 @@ inline const char *egw_reach_advice(const EgwLaw &L)
            "at most 1000 delta_y (the first-yield overlap delta_y = (pi p_y/(2 E*))^2 R): "
            "beyond it the force is the table's extrapolation, not the cap model's";
   if (L.kind == EgwLaw::HYST_CAP)
-    return "the flow-pressure cap's table stops at 40 delta_y (the first-yield overlap "
-           "delta_y = (pi p_y/(2 E*))^2 R; ~60 times the first-yield speed v_y): beyond it "
-           "the force is the table's extrapolation, not the cap model's";
+    return "the flow-pressure cap's table stops at overlap_max R or at egw's 1000 delta_y, "
+           "whichever is nearer (the first-yield overlap delta_y = (pi p_y/(2 E*))^2 R; 1000 "
+           "delta_y is ~1900 times the first-yield speed v_y, where a/R is ~70 p_y/E*, far "
+           "beyond a half-space): beyond it the force is the table's extrapolation, not the "
+           "cap model's";
   if (L.capped_solver)
     return "the tables stop at 5e14 sigma, within egw's range of delta/sigma (sigma is that "
            "small against the radii; the deep law tends to Hertz there)";
