@@ -78,9 +78,9 @@ struct EgwLaw {
   // its reach at most CAP_X_MAX delta_y, egw's limit for tables with the cap (a/R is ~70
   // p_y/E* there), its rel_tol at least CAP_TOL_MIN. The reach costs little: the contact is
   // fully capped from ~20 delta_y on, where the unloading curves in s are one shape, so
-  // nodes grow as ln(reach) (one thread, no disk cache, stop 57, doc/benchmarks.md "Stop 57:
-  // capreach": 40 -> 1000 delta_y at 1e-3 0.87 -> 1.14 s, 29 -> 39 nodes; at 1e-4 2.0 ->
-  // 2.6 s). It was 40 (~60 v_y): e at 76 v_y 2.3 % low, extrapolated, with a WARNING
+  // nodes grow about as ln(reach) (egw-table, one thread, no disk cache, doc/benchmarks.md
+  // "Stop 57: capreach": 40 -> 1000 delta_y at 1e-3 0.9 -> 1.2 s CPU, 29 -> 39 nodes; at
+  // 1e-4 2.1 -> 2.7 s). It was 40 (~60 v_y): e at 76 v_y 2.3 % low, extrapolated, warned
   static constexpr double CAP_X_MAX = 1000.0;
   static constexpr double CAP_TOL_MIN = 1e-5;
   double tol_cap = 0, built_tol = 0;    // the cap table's rel_tol, and the TOL asked for
