@@ -646,7 +646,11 @@ std::string EgwLaw::describe(double R_lo, double R_hi) const
                      xc * sigma, reach, extra) +
       (capped_solver ? fmt::format(" (capped at {:g} sigma, the solver's range)", TABLE_X_MAX)
                      : std::string()) +
-      (capped && (kind == HYST_CAP || kind == HYST_RCAP)
+      (kind == HYST_CAP && !hyst_dmax.empty() && hyst_dmax[0] >= CAP_FULL_MIN
+           ? fmt::format(" (beyond it, to overlap_max R = {:.4g} delta_y and farther, the fully "
+                         "capped continuation, exact in the cap model: doc/theory.md section 12)",
+                         cap_wanted)
+       : capped && (kind == HYST_CAP || kind == HYST_RCAP)
            ? fmt::format(" (capped at {:.4g} delta_y; overlap_max R is {:.4g} delta_y)",
                          kind == HYST_CAP ? CAP_X_MAX : reach / (cap_c * rcap_R_ref), cap_wanted)
        : capped ? fmt::format(" (capped at {} sigma: hysteresis tables beyond it cost more "

@@ -31,7 +31,7 @@ TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_re
          test_column_vs_granular, test_peratom_energy_virial, test_pile_vs_granular, test_ranks_agree,
          test_reneighbor_keeps_history, test_size_list_reaches_tail, test_restart_keeps_history, test_bad_coeff,
          test_flat_law_vs_solve, test_flat_law_energy, test_flat_law_mixing, test_lnmu_error_estimate, test_inline_law, test_normalised_table_scaling, test_pour_tables_shared,
-         test_cap_pair_restitution, test_cap_pair_beyond_40, test_cap_wall_restitution, test_cap_wall_material_contact,
+         test_cap_pair_restitution, test_cap_pair_beyond_40, test_cap_continuation, test_cap_wall_restitution, test_cap_wall_material_contact,
          test_bad_flow_pressure, test_rough_cap_tiny_sigma,
          test_cap_restart, test_cap_energy, test_rough_cap_pair_restitution,
          test_rough_cap_wall_restitution, test_rough_cap_wall_rim, test_rough_cap_restart,
