@@ -551,7 +551,8 @@ int egw_tables_write_lammps(int n, const egw_table *tables, const char *path);
  * truncated, corrupted (checksum), wrong-version or inconsistent file, or one whose
  * numbers do not make a table, even under a valid checksum (not finite; negative force,
  * stiffness, energy or contact radius; a force that decreases with the overlap; a
- * stiffness or an energy inconsistent with the forces between nodes; an interpolated
+ * stiffness or an energy inconsistent with the forces between nodes (a force jump the
+ * stiffnesses do not give; an energy that is not the integral of the force); an interpolated
  * force that dips below 0 between nodes; a node value above 1e200 in magnitude; metadata
  * out of range: doc/formats.md section 1, "Checks on read")
  * gives EGW_BAD_FILE with a message saying what is wrong, and no table. A CSV file
