@@ -551,7 +551,8 @@ int egw_tables_write_lammps(int n, const egw_table *tables, const char *path);
  * truncated, corrupted (checksum), wrong-version or inconsistent file, or one whose
  * numbers do not make a table, even under a valid checksum (not finite; negative force,
  * stiffness, energy or contact radius; a force that decreases with the overlap; a
- * stiffness or an energy inconsistent with the forces between nodes; an interpolated
+ * stiffness or an energy inconsistent with the forces between nodes (a force jump the
+ * stiffnesses do not give; an energy that is not the integral of the force); an interpolated
  * force that dips below 0 between nodes; a node value above 1e200 in magnitude; metadata
  * out of range: doc/formats.md section 1, "Checks on read")
  * gives EGW_BAD_FILE with a message saying what is wrong, and no table. A CSV file
@@ -793,6 +794,19 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * egw_hysteresis_eval_state (compile without FMA contraction, e.g. -std=c99 or
  * -ffp-contract=off, as for the cubics). Within 0.55 ulp of exp, 1 ulp of glibc's;
  * |x| >= 708 and NaN: libm's exp. */
+/* 64-bit integers of its bit arithmetic: long long, which C++98 lacks (g++ -std=c++98
+ * -pedantic warned); GCC and Clang have it there, its warning silenced for these two
+ * lines, so that egw.h compiles without a warning in C89 to C11 and C++98 to C++17
+ * (test/cli/header_std.sh) */
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wlong-long"
+#endif
+typedef long long egw_i64_;
+typedef unsigned long long egw_u64_;
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 static inline double egw_piece_exp_core_(double x);
 static inline double egw_piece_exp_(double x)
 {
@@ -824,15 +838,15 @@ static inline double egw_piece_exp_core_(double x)
       1.8340080864093424, 1.790126907604513e-17, 1.8741676341103, -3.266924100901318e-17,
       1.9152065613971474, -5.545065618639427e-17, 1.9571441241754002, 4.5784915277060095e-17};
   double z, kd, r, r2, s;
-  long long k, j;
-  unsigned long long bits;
+  egw_i64_ k, j;
+  egw_u64_ bits;
   z = x * 46.16624130844683 + 6755399441055744.0;
   kd = z - 6755399441055744.0;
   r = (x - kd * 0.021660849392446835) - kd * 5.145609244655338e-14;
-  k = (long long)kd;
+  k = (egw_i64_)kd;
   j = k & 31;
   memcpy(&bits, &table[2 * j], sizeof bits);
-  bits += (unsigned long long)(k - j) << 47;
+  bits += (egw_u64_)(k - j) << 47;
   memcpy(&s, &bits, sizeof s);
   r2 = r * r;
   return s + s * (((table[2 * j + 1] + r) + r2 * (0.5 + 0.16666666666666666 * r)) +

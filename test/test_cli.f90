@@ -10,7 +10,8 @@ contains
 
    subroutine collect_cli(testsuite)
       type(unittest_type), allocatable, intent(out) :: testsuite(:)
-      testsuite = [new_unittest("egw-table: errors, --sigma 0, progress in logs", test_table)]
+      testsuite = [new_unittest("egw-table: errors, --sigma 0, progress in logs", test_table), &
+         & new_unittest("egw.h: C89-C11, C++98-C++17 -pedantic, no warning", test_header)]
    end subroutine collect_cli
 
    subroutine test_table(error)
@@ -32,5 +33,18 @@ contains
       if (allocated(error)) return
       call check(error, stat, 0, to_string(stat)//" CLI check(s) failed (see above)")
    end subroutine test_table
+
+   !> include/egw.h compiled as C89, C99, C11 and C++98, C++11, C++17 with -pedantic -Wall
+   !> -Wextra -Werror (test/cli/header_std.sh): a C or C++ user's strictest flags see no
+   !> warning (C++98 warned on long long in egw_piece_exp_ before audit23).
+   subroutine test_header(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer :: stat, cmdstat
+      call execute_command_line("sh test/cli/header_std.sh include", exitstat=stat, &
+         & cmdstat=cmdstat)
+      call check(error, cmdstat, 0, "could not run test/cli/header_std.sh")
+      if (allocated(error)) return
+      call check(error, stat, 0, to_string(stat)//" compilation(s) of egw.h warned (see above)")
+   end subroutine test_header
 
 end module test_cli

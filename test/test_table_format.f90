@@ -579,6 +579,21 @@ contains
       hc = h
       hc%slope(2, 2) = 1.0e300_dp
       call crafted_hysteresis(hc, "slope")
+      if (allocated(error)) return
+      ! audit22: the loading curve's last force x1e6 (increasing, slopes below 10x the
+      ! secant's, energy within the bounds that grow with the jump) was accepted; with its
+      ! stiffness set to twice the new secant's the slopes fit, but the cubic's integral is
+      ! not the stored energy
+      n = size(h%loading%delta)
+      hc = h
+      hc%loading%force(n) = 1.0e6_dp*hc%loading%force(n)
+      call crafted_hysteresis(hc, "loading curve: nodes "//to_string(n - 1)//", "// &
+         & to_string(n)//": the forces")
+      if (allocated(error)) return
+      hc%loading%stiffness(n) = 2*(hc%loading%force(n) - hc%loading%force(n - 1))/ &
+         & (hc%loading%delta(n) - hc%loading%delta(n - 1))
+      call crafted_hysteresis(hc, "loading curve: nodes "//to_string(n - 1)//", "// &
+         & to_string(n)//": energy rise")
    contains
       !> t written (the writer's checksum) as name in format fmt_id: refused, naming what.
       subroutine crafted(t, name, fmt_id, what)
@@ -615,7 +630,9 @@ contains
    !> Issue 33's crafted files: a valid E-GW binary table (doc/formats.md §3) with n_log
    !> (int32 at offset 28) lowered to 0, 1 and 2, so that separated-tail intervals are
    !> read as P instead of ln P, and one with the last node's force (offset 144 + 8 n +
-   !> 8 (n - 1)) set to 1e300 (still increasing, so the older checks passed it); each
+   !> 8 (n - 1)) set to 1e300 (still increasing, so the older checks passed it; since
+   !> audit23 with its stiffness and energy made to match, as the slope and energy checks
+   !> refuse the force alone, as they refuse audit22's force x1e6 below); each
    !> with its FNV-1a checksum recomputed here from the documented rule (not the
    !> writer's code). Each is refused with egw_bad_file naming what is wrong: a negative
    !> interpolated force between two named nodes, and the node's force above 1e200.
@@ -627,6 +644,7 @@ contains
       type(egw_error), allocatable :: err
       character(len=:), allocatable :: b, c
       integer :: n, n_log
+      real(dp) :: h, k_n
       call rough_table(t, error)
       if (allocated(error)) return
       call check(error, t%n_log > 3, "the E-GW table has more than 3 ln P intervals")
@@ -651,12 +669,40 @@ contains
             & "falls to -")
          if (allocated(error)) return
       end do
+      ! the last force 1e300 with a stiffness (twice the secant's) and an energy (the
+      ! cubic's integral) to match: only the 1e200 bound refuses it (the slope and energy
+      ! checks refuse the force alone)
+      h = t%delta(n) - t%delta(n - 1)
+      k_n = 2*(1.0e300_dp - t%force(n - 1))/h
       c = b
       c(145 + 16*n - 8:145 + 16*n - 1) = transfer(1.0e300_dp, c(1:8))
+      c(145 + 24*n - 8:145 + 24*n - 1) = transfer(k_n, c(1:8))
+      c(145 + 32*n - 8:145 + 32*n - 1) = transfer(t%energy(n - 1) + h*(t%force(n - 1) + &
+         & 1.0e300_dp)/2 + h*h*(t%stiffness(n - 1) - k_n)/12, c(1:8))
       call resum(c)
       call spit(dir//"/tail_absurd.egwt", c)
       call expect_bad(error, dir//"/tail_absurd.egwt", "node "//to_string(n)//": force "// &
          & format_real(1.0e300_dp)//" above")
+      if (allocated(error)) return
+      ! audit22's forged jump: the last force x1e6 (8 bytes at 145 + 16 n - 8), still
+      ! increasing and far below 1e200: a loading force has no stiffness peak inside an
+      ! interval (built tables: larger end slope >= 1.000 secant, bound 1/10); with the
+      ! last stiffness twice the new secant (at 145 + 24 n - 8) the slopes fit, but the energy
+      ! is not the integral of the force between the nodes (built: < 6e-12 of h P off,
+      ! bound rel_tol = 1e-4). Both were read on main.
+      c = b
+      c(145 + 16*n - 8:145 + 16*n - 1) = transfer(1.0e6_dp*t%force(n), c(1:8))
+      call resum(c)
+      call spit(dir//"/tail_jump.egwt", c)
+      call expect_bad(error, dir//"/tail_jump.egwt", "nodes "//to_string(n - 1)//", "// &
+         & to_string(n)//": the forces")
+      if (allocated(error)) return
+      c(145 + 24*n - 8:145 + 24*n - 1) = transfer(2*(1.0e6_dp*t%force(n) - t%force(n - 1))/ &
+         & (t%delta(n) - t%delta(n - 1)), c(1:8))
+      call resum(c)
+      call spit(dir//"/tail_jump2.egwt", c)
+      call expect_bad(error, dir//"/tail_jump2.egwt", "nodes "//to_string(n - 1)//", "// &
+         & to_string(n)//": energy rise")
    contains
       !> The checksum of doc/formats.md §3: FNV-1a 32 over every byte before it, stored as
       !> a little-endian uint32 in the last 4 bytes.

@@ -206,3 +206,22 @@ def test_topography_keeps_every_public_name_of_its_modules():
             if isinstance(value, type(topography)):
                 continue
             assert getattr(topography, name, None) is value, f"{module.__name__}.{name}"
+
+
+def test_egw_topo_command_line_advice_and_version(tmp_path):
+    # audit23: --choose (and --model BEM) on a non-periodic map answered with the Python
+    # keyword "periodic=True" and method='Persson'; egw-topo had no --version
+    surface, _ = synthetic(n=32)
+    np.save(tmp_path / "s.npy", surface.heights)
+    command = os.path.join(os.path.dirname(sys.executable), "egw-topo")
+    base = [command, str(tmp_path / "s.npy"), "--pixel-size", "1e-6", "--unit", "m"]
+    for extra in (["--choose", "1e-2", "--radius", "1e-3", "--modulus", "1e9"],
+                  ["--model", "BEM", "--modulus", "1e9"]):
+        run = subprocess.run(base + extra, capture_output=True, text=True)
+        assert run.returncode == 2 and run.stderr.startswith("egw-topo: "), run.stderr
+        assert "--periodic" in run.stderr and "--model Persson" in run.stderr
+        assert "periodic=True" not in run.stderr and "method=" not in run.stderr
+        assert "Traceback" not in run.stderr
+    run = subprocess.run([command, "--version"], capture_output=True, text=True)
+    assert run.returncode == 0
+    assert run.stdout.strip() == f"egw-topo {egw.__version__} (libegw {egw.version()})"

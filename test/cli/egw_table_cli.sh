@@ -160,6 +160,9 @@ refuse cap_both "flow_pressure and yield_stress: give one" $smooth --flow-pressu
   --yield-stress 1e9
 refuse cap_negative "flow_pressure = -1" $smooth --flow-pressure -1
 refuse cap_negative_yield "yield_stress = -2" $smooth --yield-stress -2
+# p_y = 1.6 Y above E* (115 GPa here) is refused naming the yield stress given, not p_y
+refuse cap_yield_above_modulus "yield_stress = 1.000000000000000E+012: must lie below E*/1.6" \
+  $smooth --yield-stress 1e12
 printf '&scene\n  model = "Hertz"\n  yield_stress = 0.6e9\n  flow_pressure = 1e9\n/\n' \
   >"$work/cap_both.nml"
 refuse cap_both_file "flow_pressure and yield_stress" "$work/cap_both.nml"

@@ -9,6 +9,7 @@ import sys
 import warnings
 from typing import List, Optional, Sequence, Tuple
 
+from .errors import version
 from .params import Params
 from .functions import mu_from_summits
 from .topo_maps import HeightMap, _unit_factor, height_map, sum_surface
@@ -23,6 +24,10 @@ def _write_flat_law(surface: HeightMap, args) -> List[str]:
     from .tables import Table
     if args.modulus is None:
         raise ValueError("--model needs --modulus (E* in Pa)")
+    if args.model == "BEM" and not surface.periodic:
+        raise ValueError("--model BEM needs a periodic map (the periodic BEM would wrap "
+                         "its edges onto each other): add --periodic if the map is one "
+                         "period of a periodic surface, or use --model Persson")
     law = FlatLaw.from_topography(surface, args.modulus, args.model)
     law.write(args.law)
     lines = [f"{args.model} rough-flat law: length {law.length:.6g} m, u in "
@@ -43,6 +48,11 @@ def _choose_lines(surface: HeightMap, args) -> List[str]:
     from .surface_choice import choose_for_surface
     if args.radius is None or args.modulus is None:
         raise ValueError("--choose needs --radius and --modulus (E* in Pa)")
+    if not surface.periodic:
+        raise ValueError("--choose judges the models against the surface's BEM law, which "
+                         "needs a periodic map: add --periodic if the map is one period of "
+                         "a periodic surface (a non-periodic map has no BEM law; --model "
+                         "Persson writes its Persson law)")
     try:
         lo, hi = (float(v) for v in args.overlaps.split(","))
     except ValueError:
@@ -120,6 +130,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         prog="egw-topo", description="Greenwood-Williamson parameters (sigma, eta, beta, "
         "y_s) of a measured height map, by summit identification and by spectral moments, "
         "with which to trust. Options may come in any order.")
+    from . import __version__   # egw's __init__ imports this module: read it here
+    ap.add_argument("--version", action="version",
+                    version=f"egw-topo {__version__} (libegw {version()})")
     ap.add_argument("maps", nargs="+", help="height map(s): .npy, .csv or a text matrix "
                     "(with --pixel-size and --unit), or an instrument file SurfaceTopography "
                     "reads (x3p, datx, opd, gwy, ...); two maps: their sum surface")

@@ -2,6 +2,7 @@
 !> the small helpers the format submodules share (separate module procedures: gfortran
 !> drops private procedures of a module that only its submodules call).
 submodule (egw_table_format) egw_table_format_checks
+   use egw_table, only: gl_x, gl_w
    implicit none
 
    !> The largest node value (overlap, force, stiffness, energy, contact radius, in the
@@ -89,6 +90,8 @@ contains
          call check_interval(path, where, t, i, error)
          if (allocated(error)) return
          if (i > t%n_log) call check_positive_cubic(path, where, t, i, error)
+         if (allocated(error)) return
+         call check_energy_integral(path, where, t, i, error)
          if (allocated(error)) return
       end do
       ! last: values that pass every check above but no contact has
@@ -343,6 +346,16 @@ contains
             & " inconsistent with the forces "//format_real(p0)//", "//format_real(p1)// &
             & " (end slopes more than "//format_real(slope_bound)//" times the secant's)")
          return
+      else if (slope_bound*max(d0, d1) < rise) then
+         ! a loading force has no stiffness peak inside an interval: the larger end slope
+         ! is at least the secant's (built tables: >= 1.000, measured); a forged force jump
+         ! with the stiffnesses kept is a step the cubic draws and no contact has
+         call bad(error, path, where//"nodes "//int_str(i)//", "//int_str(i + 1)// &
+            & ": the forces "//format_real(p0)//", "//format_real(p1)//" rise more than "// &
+            & format_real(slope_bound)//" times what the stiffnesses "// &
+            & format_real(t%stiffness(i))//", "//format_real(t%stiffness(i + 1))// &
+            & " give over "//format_real(h)//" (a force jump between them)")
+         return
       end if
       if (in_log) then
          spread = exp(min(2.25_dp*rise, 700.0_dp))
@@ -360,6 +373,51 @@ contains
             & format_real(p0)//", "//format_real(p1)//" over "//format_real(h))
       end if
    end subroutine check_interval
+
+   !> The writer's energies are the integrals of the interpolant (table_prepare): exact in
+   !> P intervals (Hermite's rule h (P_0 + P_1)/2 + h^2 (K_0 - K_1)/12), in ln P ones the
+   !> resampled tail's, within rel_tol/2 of the ln P cubic's (8-point Gauss-Legendre, as
+   !> table_prepare). check_interval's energy bounds grow with the force jump itself (a
+   !> last node's force x1e6 with a stiffness to match passed them); the integral of the
+   !> cubic through the nodes follows a forged force, the stored energy does not unless it
+   !> is forged with it. Tolerance rel_tol h max(P) (built tables: < 6e-12 of h max(P) in
+   !> P intervals, measured) plus the rounding of W. Run after check_interval, whose
+   !> slope bounds keep the cubic's exponent finite.
+   subroutine check_energy_integral(path, where, t, i, error)
+      character(len=*), intent(in) :: path, where
+      type(force_table), intent(in) :: t
+      integer, intent(in) :: i
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: h, p0, p1, rise, d0, d1, c2, c3, u, w_int, w_rise, slack
+      integer :: q
+      h = t%delta(i + 1) - t%delta(i)
+      p0 = t%force(i)
+      p1 = t%force(i + 1)
+      if (i > t%n_log) then
+         w_int = h*(p0 + p1)/2 + h*h*(t%stiffness(i) - t%stiffness(i + 1))/12
+      else
+         ! ln P(u) = ln P_0 + d0 u + c2 u^2 + c3 u^3 on u in [0, 1]
+         rise = log(p1) - log(p0)
+         d0 = h*t%stiffness(i)/p0
+         d1 = h*t%stiffness(i + 1)/p1
+         c2 = 3*rise - 2*d0 - d1
+         c3 = d0 + d1 - 2*rise
+         w_int = 0.0_dp
+         do q = 1, size(gl_x)
+            u = gl_x(q)
+            w_int = w_int + gl_w(q)*exp(min(u*(d0 + u*(c2 + u*c3)), 700.0_dp))
+         end do
+         w_int = w_int*h*p0
+      end if
+      w_rise = t%energy(i + 1) - t%energy(i)
+      slack = 1.0e-9_dp*h*max(p0, p1) + 64*epsilon(1.0_dp)*abs(t%energy(i + 1))
+      if (abs(w_rise - w_int) > t%rel_tol*h*max(p0, p1) + slack) then
+         call bad(error, path, where//"nodes "//int_str(i)//", "//int_str(i + 1)// &
+            & ": energy rise "//format_real(w_rise)//" is not the integral "// &
+            & format_real(w_int)//" of the force between the nodes (forces "// &
+            & format_real(p0)//", "//format_real(p1)//" over "//format_real(h)//")")
+      end if
+   end subroutine check_energy_integral
 
    !> The metadata of a table: finite, rel_tol in (0, 0.1], P_ref > 0, errors and
    !> R1 + R2 >= 0.

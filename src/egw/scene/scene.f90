@@ -71,6 +71,9 @@ module egw_scene
       !> rough model's with the cap for sigma > 0 (doc/scenes.md). From yield_stress Y:
       !> p_y = 1.6 Y.
       real(dp) :: flow_pressure = 0.0_dp
+      !> The yield stress Y that flow_pressure came from (0: flow_pressure given itself):
+      !> a refusal of p_y then names the parameter the user gave.
+      real(dp) :: yield_stress = 0.0_dp
    end type scene_input
 
    !> "Not given" marker of scene_overrides (a value no scene uses).
@@ -490,6 +493,25 @@ contains
       end if
    end subroutine check_cap
 
+   !> resolve_scene: a pair's refusal of p_y = 1.6 Y (validate_params names flow_pressure)
+   !> restated in the yield stress the user gave (egw-table --yield-stress, a scene's
+   !> yield_stress), with the bound in Y where p_y is not below the pair's E*.
+   pure subroutine name_yield_stress(yield_stress, p, error)
+      real(dp), intent(in) :: yield_stress   !< Y, > 0
+      type(contact_params), intent(in) :: p   !< the pair's parameters (p_y = 1.6 Y)
+      type(egw_error), intent(inout) :: error   !< validate_params' refusal of flow_pressure
+      character(len=:), allocatable :: named
+      named = "yield_stress = "//format_real(yield_stress)
+      if (p%flow_pressure >= p%modulus) then
+         error%message = named//": must lie below E*/1.6 = "// &
+            & format_real(p%modulus/flow_pressure_per_yield_stress)//" (flow_pressure = "// &
+            & "1.6 yield_stress = "//format_real(p%flow_pressure)//" must lie below the "// &
+            & "pair's effective modulus E* = "//format_real(p%modulus)//": a small-strain cap)"
+      else
+         error%message = named//" (flow_pressure = 1.6 yield_stress): "//error%message
+      end if
+   end subroutine name_yield_stress
+
    !> validate_scene_input: the overlap range and its unit (length or sigma).
    pure subroutine check_overlaps(s, error)
       type(scene_input), intent(in) :: s
@@ -581,6 +603,9 @@ contains
                end if
                call validate_params(p, error, input%model == model_flat_law)
                if (allocated(error)) then
+                  if (input%yield_stress > 0.0_dp .and. &
+                     & index(error%message, "flow_pressure = ") == 1) &
+                     & call name_yield_stress(input%yield_stress, p, error)
                   error%message = "pair of types "//int_str(i)//", "//int_str(j)//": "// &
                      & error%message
                   return

@@ -270,6 +270,9 @@ contains
             return
          end if
          s%flow_pressure = flow_pressure_per_yield_stress*ov%yield_stress
+         s%yield_stress = ov%yield_stress
+      else if (given(ov%flow_pressure)) then
+         s%yield_stress = 0.0_dp
       end if
    end subroutine override_cap
 
