@@ -34,7 +34,7 @@ module egw_capi_hysteresis
    end type egw_hysteresis_info_c
 
    !> What the handle egw_hysteresis points to (C: capi_hysteresis_state.c's struct
-   !> egw_hysteresis_s, the same layout): the table, and the two numbers of it that
+   !> egw_hysteresis_s, the same layout): the table, and the three numbers of it that
    !> egw_hysteresis_eval_state's steps read in C (no Fortran descriptor there).
    type, bind(C) :: hysteresis_handle
       real(c_double) :: tag = 0   !< the table's tag (hysteresis_table%tag)
@@ -121,8 +121,9 @@ contains
 
    !> C: egw_hysteresis_eval_state (capi_hysteresis_state.c) but for the steps it answers
    !> in C (zero, folded, log-ratio on a linear interval, loading; both outputs given):
-   !> egw_hysteresis_eval with the turning point's data kept in the caller's state (EGW_HYSTERESIS_STATE_SIZE doubles; state[0] the history). The steps
-   !> that read nothing but the state (eval_state_served: what egw.h's inline
+   !> egw_hysteresis_eval with the turning point's data kept in the caller's state
+   !> (EGW_HYSTERESIS_STATE_SIZE doubles; state[0] the history). The steps that read
+   !> nothing but the state (eval_state_served: what egw.h's inline
    !> egw_hysteresis_eval_cached serves) are answered here, before the argument checks,
    !> which the call that filled the state passed; every other step takes eval_state_full.
    function egw_hysteresis_eval_state_general(hp, delta, state_p, force, stiffness) &

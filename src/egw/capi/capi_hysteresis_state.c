@@ -56,7 +56,8 @@ int egw_hysteresis_eval_state_general(void *table, double delta,
 #define EGW_ZERO_LO_ (-3.351951982485649e+153)
 
 /* The bits of a double: equal bits are equal doubles but for NaN, and the tag, zero_lo
- * and 3.0 compared so are never NaN (one integer compare, where ucomisd branches twice) */
+ * and 3.0 compared so are never NaN (one integer compare, where ucomisd branches twice;
+ * beyond the cut-off 1.76-1.78x Hertz against 1.83-1.87x, stop 57) */
 static inline EGW_ALWAYS_INLINE_ uint64_t bits_of(double x)
 {
   uint64_t b;
@@ -92,7 +93,10 @@ static inline EGW_ALWAYS_INLINE_ int state_step(egw_hysteresis h, double delta,
   double f, k;
   if (EGW_UNLIKELY_(!(h && state && force && stiffness))) return 0;
   if (EGW_UNLIKELY_(bits_of(state[2]) != bits_of(h->tag))) return 0;
-  if (EGW_LIKELY_(state[1] == state[0] && state[10] < delta && state[0] <= h->served_limit)) {
+  /* (the turning point compared by its bits too: equal bits are equal doubles or a NaN
+   * history, which the limit refuses; -0 against +0 declined, the Fortran entry's) */
+  if (EGW_LIKELY_(bits_of(state[1]) == bits_of(state[0]) && state[10] < delta &&
+                  state[0] <= h->served_limit)) {
     if (bits_of(state[10]) == bits_of(EGW_ZERO_LO_)) {
       if (EGW_LIKELY_(delta <= state[11])) {
         *force = 0.0;
