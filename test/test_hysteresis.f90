@@ -19,6 +19,7 @@ module test_hysteresis
    use egw_impact, only: restitution
    use egw_tolerance_probe, only: probe_hysteresis_size, build_m_node_limit
    use egw_cache, only: build_hysteresis_cached
+   use egw_capi_hysteresis, only: hysteresis_handle, hysteresis_handle_for
    use testdrive, only: new_unittest, unittest_type, error_type, check, test_failed, to_string
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_loc, c_null_ptr, c_char
    use, intrinsic :: iso_fortran_env, only: int64, real128
@@ -1202,6 +1203,7 @@ contains
    subroutine test_c_separated(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table), target :: t
+      type(hysteresis_handle), target :: hd   ! the C handle of t
       real(c_double), target :: sc(hysteresis_state_size), fc, kc
       real(dp) :: sf(hysteresis_state_size), ff, kf, x0, d, cut
       integer :: j, n, stat_c, stat_f, steps, mismatches, positive, zero, beyond
@@ -1217,6 +1219,7 @@ contains
       end interface
       call build(ep, t, error)
       if (allocated(error)) return
+      hd = hysteresis_handle_for(t)
       cut = t%loading%cutoff
       call check(error, cut < -2.0_dp .and. t%log_ratio, "the tail is wide, log ratios")
       if (allocated(error)) return
@@ -1247,7 +1250,7 @@ contains
             else
                d = x0 - 3.0_dp + 3.0_dp*(n - 130)/30.0_dp   ! and back
             end if
-            stat_c = c_eval_state(c_loc(t), d, c_loc(sc), c_loc(fc), c_loc(kc))
+            stat_c = c_eval_state(c_loc(hd), d, c_loc(sc), c_loc(fc), c_loc(kc))
             call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
             steps = steps + 1
             if (.not. (stat_c == stat_f .and. same(fc, ff) .and. same(kc, kf) .and. &
@@ -1277,6 +1280,7 @@ contains
          call test_failed(error, "Hertz + cap build: "//err%message)
          return
       end if
+      hd = hysteresis_handle_for(t)
       cut = first_yield(t%params)
       do j = 1, 200
          call hysteresis_state_init(sc)
@@ -1284,7 +1288,7 @@ contains
          do n = 1, 120
             d = cut*(5.5_dp + (5.0_dp + 1.5_dp*sin(0.37_dp*j))*sin(0.05_dp*n*(1 + mod(j, 7))) &
                & + 1.0e-3_dp*modulo(7*n, 11))
-            stat_c = c_eval_state(c_loc(t), d, c_loc(sc), c_loc(fc), c_loc(kc))
+            stat_c = c_eval_state(c_loc(hd), d, c_loc(sc), c_loc(fc), c_loc(kc))
             call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
             steps = steps + 1
             if (.not. (stat_c == stat_f .and. same(fc, ff) .and. same(kc, kf) .and. &
@@ -1309,6 +1313,7 @@ contains
    subroutine test_c_piece_ends(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table), target :: t
+      type(hysteresis_handle), target :: hd   ! the C handle of t
       real(c_double), target :: sc(hysteresis_state_size), fc, kc
       real(dp) :: base(hysteresis_state_size), sf(hysteresis_state_size), ff, kf, x0, d, &
          & shift
@@ -1324,6 +1329,7 @@ contains
       end interface
       call build(ep, t, error)
       if (allocated(error)) return
+      hd = hysteresis_handle_for(t)
       cases = 0
       zeros = 0
       infinite = 0
@@ -1356,7 +1362,7 @@ contains
                sf(15) = 1.0e300_dp   ! the stiffness leaves the doubles
             end if
             sc = sf
-            stat_c = c_eval_state(c_loc(t), d, c_loc(sc), c_loc(fc), c_loc(kc))
+            stat_c = c_eval_state(c_loc(hd), d, c_loc(sc), c_loc(fc), c_loc(kc))
             call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
             cases = cases + 1
             if (ieee_is_finite(ff) .and. ieee_is_finite(kf)) then
@@ -1395,6 +1401,7 @@ contains
    subroutine test_eval_errors(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table), target :: t
+      type(hysteresis_handle), target :: hd   ! the C handle of t
       type(egw_error), allocatable :: err
       real(dp), parameter :: big = 1.0e250_dp
       real(dp) :: nan, cases(2, 7), f, k, f0, k0, m, m0, st(hysteresis_state_size), &
@@ -1424,6 +1431,7 @@ contains
       end interface
       call build(ep, t, error)
       if (allocated(error)) return
+      hd = hysteresis_handle_for(t)
       nan = ieee_nan()
       ! (delta, history) pairs
       cases = reshape([1.0_dp, -huge(1.0_dp), 1.0_dp, 3.0_dp, t%delta_max + 1, 3.0_dp, &
@@ -1439,7 +1447,7 @@ contains
          mc = m0
          call hysteresis_eval(t, cases(1, i), m0, f0, k0, stat0)
          call hysteresis_eval(t, cases(1, i), m, f, k, stat, err)
-         stat_c = c_eval(c_loc(t), cases(1, i), c_loc(mc), c_null_ptr, c_null_ptr)
+         stat_c = c_eval(c_loc(hd), cases(1, i), c_loc(mc), c_null_ptr, c_null_ptr)
          call expect("hysteresis_eval", names(i), codes(i) /= egw_invalid_argument)
          if (allocated(error)) return
          call check(error, same(m, m0), "hysteresis_eval: history differs with the error")
@@ -1457,7 +1465,7 @@ contains
          stc = st0
          call hysteresis_eval_state(t, cases(1, i), st0, f0, k0, stat0)
          call hysteresis_eval_state(t, cases(1, i), st, f, k, stat, err)
-         stat_c = c_eval_state(c_loc(t), cases(1, i), c_loc(stc), c_null_ptr, c_null_ptr)
+         stat_c = c_eval_state(c_loc(hd), cases(1, i), c_loc(stc), c_null_ptr, c_null_ptr)
          if (names(i) == "delta_max_state") names(i) = "state(1)"
          call expect("hysteresis_eval_state", names(i), .false.)
          if (allocated(error)) return
@@ -1466,7 +1474,7 @@ contains
          ! hysteresis_energy (no NaN result check: f, k unused there)
          call hysteresis_energy(t, cases(1, i), cases(2, i), u0, stat0)
          call hysteresis_energy(t, cases(1, i), cases(2, i), u, stat, err)
-         stat_c = c_energy(c_loc(t), cases(1, i), cases(2, i), c_loc(uc))
+         stat_c = c_energy(c_loc(hd), cases(1, i), cases(2, i), c_loc(uc))
          f = u
          f0 = u0
          k = 0

@@ -556,6 +556,96 @@ int egw_capi_test_hysteresis(void) {
     HCHECK(egw_hysteresis_read("build/capi_hyst.csv", NULL) == EGW_NULL_POINTER);
     HCHECK(egw_hysteresis_get_info(h, NULL) == EGW_NULL_POINTER);
   }
+  {
+    /* The routes egw_hysteresis_eval_state answers in C (src/egw/capi/
+     * capi_hysteresis_state.c, stop 57): zero pieces beyond the cut-off, folded pieces in
+     * the separated tail, log-ratio pieces in contact, loading further (a linear and a
+     * ln P loading interval), each walked as the bench's contacts are (an approach, then
+     * 16 overlaps within 0.01 of x0 in a shuffled cycle, so that it returns to its history
+     * exactly), never touched and touched (history 3). At every step the call's C top
+     * (egw_hysteresis_state_step) against egw.h's inline egw_hysteresis_eval_cached (its
+     * own arithmetic, the reference) on another copy of the state: both serve (route
+     * taken), the same force, stiffness and state bits; and the call (C top, else the
+     * Fortran entry) gives them too. A folded piece's step serves with its loading
+     * interval blanked (NaN: the full evaluation would remake the piece), so it reads the
+     * piece alone; a NULL output, a foreign tag, a history above delta_max are declined
+     * (0, nothing written) and then answered by the call as before.
+     * (On main there is no C top: egw_hysteresis_state_step does not link. Mutation: the
+     * folded route's exp core replaced by libm's exp fails the bits here.) */
+    int egw_hysteresis_state_step(egw_hysteresis, double, double *, double *, double *);
+    static const int order[16] = {7, 15, 2, 11, 0, 9, 4, 13, 6, 1, 14, 8, 3, 12, 5, 10};
+    egw_hysteresis_info info;
+    double tag = 0.0, c, x0s[4];
+    int served[4] = {0, 0, 0, 0}, steps[4] = {0, 0, 0, 0}, exact = 1, calls = 1, routes = 1;
+    HCHECK(egw_hysteresis_get_info(h, &info) == EGW_OK && info.cutoff < -2.0);
+    HCHECK(egw_hysteresis_state_tag(h, &tag) == EGW_OK);
+    c = info.cutoff;
+    x0s[0] = c - 1.0;   /* beyond the cut-off: zero pieces */
+    x0s[1] = -1.5;      /* the separated tail: folded pieces (touched), ln P loading */
+    x0s[2] = 2.0;       /* in contact: log-ratio pieces (touched), linear loading */
+    x0s[3] = 2.9;       /* in contact near the history 3 */
+    for (int w = 0; w < 4; w++)
+      for (int touched = 0; touched < 2; touched++) {
+        double sc[EGW_HYSTERESIS_STATE_SIZE], si[EGW_HYSTERESIS_STATE_SIZE];
+        double sa[EGW_HYSTERESIS_STATE_SIZE], fc, kc, fi, ki, fa, ka;
+        egw_hysteresis_state_init(sc);
+        if (touched) HCHECK(egw_hysteresis_eval_state(h, 3.0, sc, &fc, &kc) == EGW_OK);
+        for (int i = 0; i <= 300; i++) {
+          double d = i < 20 ? x0s[w] - 1.0 + i / 20.0 : x0s[w] + 0.01 * order[i % 16] / 15.0;
+          int a, b;
+          memcpy(si, sc, sizeof sc);
+          memcpy(sa, sc, sizeof sc);
+          a = egw_hysteresis_state_step(h, d, sc, &fc, &kc);
+          b = egw_hysteresis_eval_cached(tag, d, si, &fi, &ki);
+          if (!a) HCHECK(egw_hysteresis_eval_state(h, d, sc, &fc, &kc) == EGW_OK);
+          if (!b) HCHECK(egw_hysteresis_eval_state(h, d, si, &fi, &ki) == EGW_OK);
+          HCHECK(egw_hysteresis_eval_state(h, d, sa, &fa, &ka) == EGW_OK);
+          exact = exact && memcmp(&fc, &fi, sizeof fc) == 0 &&
+                  memcmp(&kc, &ki, sizeof kc) == 0 && memcmp(sc, si, sizeof sc) == 0;
+          calls = calls && memcmp(&fc, &fa, sizeof fc) == 0 &&
+                  memcmp(&kc, &ka, sizeof kc) == 0 && memcmp(sc, sa, sizeof sc) == 0;
+          if (i >= 40) {
+            steps[w]++, served[w] += a;
+            /* once the history has its top, the C top serves what the inline serves */
+            routes = routes && a == b;
+          }
+        }
+        if (w == 1 && touched) {
+          /* a folded piece read alone: its loading interval blanked, the same values */
+          double d = x0s[1] + 0.004, keep[EGW_HYSTERESIS_STATE_SIZE];
+          HCHECK(egw_hysteresis_eval_state(h, d, sc, &fc, &kc) == EGW_OK);
+          HCHECK(sc[23] == 3.0 && sc[10] < d && d < sc[11]);
+          memcpy(keep, sc, sizeof sc);
+          HCHECK(egw_hysteresis_state_step(h, d, keep, &fi, &ki) == 1);
+          sc[17] = sc[18] = NAN;
+          HCHECK(egw_hysteresis_state_step(h, d, sc, &fc, &kc) == 1 && fc == fi &&
+                 kc == ki && fc > 0.0 && isnan(sc[17]));
+          /* declined, nothing written: a NULL output, a foreign tag, a history above
+           * delta_max (its piece kept, the full call's status EGW_OUT_OF_RANGE) */
+          fc = kc = 7.0;
+          memcpy(sa, keep, sizeof sc);
+          HCHECK(egw_hysteresis_state_step(h, d, sa, &fc, NULL) == 0 && fc == 7.0);
+          HCHECK(egw_hysteresis_eval_state(h, d, sa, &fc, NULL) == EGW_OK && fc == fi);
+          sa[2] = tag + 1.0;
+          HCHECK(egw_hysteresis_state_step(h, d, sa, &fc, &kc) == 0 && kc == 7.0);
+          memcpy(sa, keep, sizeof sc);
+          sa[0] = sa[1] = info.delta_max + 1.0;
+          memcpy(si, sa, sizeof sc);
+          HCHECK(egw_hysteresis_state_step(h, d, sa, &fc, &kc) == 0 && kc == 7.0 &&
+                 memcmp(sa, si, sizeof sa) == 0);
+          HCHECK(egw_hysteresis_eval_state(h, d, sa, &fc, &kc) == EGW_OUT_OF_RANGE);
+        }
+      }
+    HCHECK(exact);
+    HCHECK(calls);
+    HCHECK(routes);
+    /* each route served at 9 steps in 10 at least (never touched and touched: two walks
+     * of 261 steps each; the rest cross a piece's end, which the Fortran entry remakes) */
+    for (int w = 0; w < 4; w++) HCHECK(10 * served[w] >= 9 * steps[w]);
+    printf("    C top: served %d/%d beyond, %d/%d tail, %d/%d contact, %d/%d near the "
+           "history\n", served[0], steps[0], served[1], steps[1], served[2], steps[2],
+           served[3], steps[3]);
+  }
   egw_hysteresis_free(&h);
   HCHECK(h == NULL);
   egw_hysteresis_free(&h); /* NULL handle: nothing */

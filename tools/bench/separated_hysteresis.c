@@ -7,7 +7,7 @@
  *   gcc -O2 -std=c99 -Iinclude tools/bench/separated_hysteresis.c LIB \
  *       -lfftw3_omp -lfftw3 -llapack -lblas -lgfortran -lquadmath -lgomp -lm \
  *       -o /tmp/sephyst
- * Run: OMP_NUM_THREADS=1 /tmp/sephyst [rounds [case]]   (prints ns per evaluation, the
+ * Run: OMP_NUM_THREADS=1 /tmp/sephyst [rounds [case]]   (prints CPU ns per evaluation, the
  * minimum over the rounds, and the ratio to the inline Hertz loop of the same round; case,
  * e.g. "tail-history-call", runs that case alone (and Hertz): for `perf stat -e
  * instructions`, whose count over 3 rounds less 1 round, halved, is one round's).
@@ -41,9 +41,11 @@
 #define ND 4096
 #define NEVAL (1 << 22)
 
+/* The process's CPU time (stop 57: one thread, so its loops' time; on a loaded machine the
+ * wall clock also counts other processes' turns) */
 static double now(void) {
   struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 

@@ -1,8 +1,10 @@
-!> C API of the EP-GW hysteresis tables (include/egw.h): an opaque handle to a Fortran
-!> hysteresis_table (c_loc of an allocated object, released by egw_hysteresis_free).
+!> C API of the EP-GW hysteresis tables (include/egw.h): an opaque handle, a
+!> hysteresis_handle (c_loc of an allocated one, released by egw_hysteresis_free) that
+!> points to an allocated hysteresis_table. egw_hysteresis_eval_state is C
+!> (capi_hysteresis_state.c): the steps its state answers alone there, the others here.
 module egw_capi_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_associated, c_f_pointer, &
-      & c_loc
+      & c_loc, c_null_ptr
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite, ieee_value, &
       & ieee_negative_inf
    use, intrinsic :: iso_fortran_env, only: int64
@@ -31,9 +33,21 @@ module egw_capi_hysteresis
       type(egw_params_c) :: params
    end type egw_hysteresis_info_c
 
-   public :: egw_hysteresis_info_c
-   ! (public so that the compiler keeps it out of line: the steps egw_hysteresis_eval_state
-   ! serves itself, which it inlines, then set up no frame for it)
+   !> What the handle egw_hysteresis points to (C: capi_hysteresis_state.c's struct
+   !> egw_hysteresis_s, the same layout): the table, and the three numbers of it that
+   !> egw_hysteresis_eval_state's steps read in C (no Fortran descriptor there).
+   type, bind(C) :: hysteresis_handle
+      real(c_double) :: tag = 0   !< the table's tag (hysteresis_table%tag)
+      !> min(delta_max, input_limit): a history or overlap above it takes the Fortran entry
+      real(c_double) :: served_limit = 0
+      real(c_double) :: cutoff = 0   !< the loading table's cut-off
+      type(c_ptr) :: table   !< c_loc of the hysteresis_table
+   end type hysteresis_handle
+
+   public :: egw_hysteresis_info_c, hysteresis_handle, hysteresis_handle_for
+   ! (public so that the compiler keeps it out of line: the steps
+   ! egw_hysteresis_eval_state_general serves itself, which it inlines, then set up no
+   ! frame for it)
    public :: eval_state_full
 
 contains
@@ -63,8 +77,7 @@ contains
       ! in the caller's terms (its curves are solved at a tenth of rel_tol)
       if (allocated(error)) call tolerance_context(error, "hysteresis table", rel_tol, &
          & min(options%rel_tol, 0.1_dp*rel_tol))
-      stat = put_handle_settled(out, c_loc(h), error)
-      if (stat /= egw_ok) deallocate (h)
+      stat = put_table_handle(out, h, error)
    end function egw_hysteresis_build
 
    !> C: egw_hysteresis_eval: the per-contact hot path (no allocation, no lock).
@@ -86,7 +99,7 @@ contains
          if (stat == egw_ok) stat = check_number("delta", delta)
          return
       end if
-      call c_f_pointer(hp, h)
+      call handle_table(hp, h)
       call c_f_pointer(state, s)
       if (ieee_is_nan(s)) then
          stat = invalid("delta_max_state = NaN: a new contact starts from -HUGE_VAL")
@@ -106,15 +119,17 @@ contains
       if (stat == egw_out_of_range) stat = above_table(h, "delta_max_state", m)
    end function egw_hysteresis_eval
 
-   !> C: egw_hysteresis_eval_state: egw_hysteresis_eval with the turning point's data kept
-   !> in the caller's state (EGW_HYSTERESIS_STATE_SIZE doubles; state[0] the history). The
-   !> steps that read nothing but the state (eval_state_served: what egw.h's inline
+   !> C: egw_hysteresis_eval_state (capi_hysteresis_state.c) but for the steps it answers
+   !> in C (zero, folded, log-ratio on a linear interval, loading; both outputs given):
+   !> egw_hysteresis_eval with the turning point's data kept in the caller's state
+   !> (EGW_HYSTERESIS_STATE_SIZE doubles; state[0] the history). The steps that read
+   !> nothing but the state (eval_state_served: what egw.h's inline
    !> egw_hysteresis_eval_cached serves) are answered here, before the argument checks,
    !> which the call that filled the state passed; every other step takes eval_state_full.
-   function egw_hysteresis_eval_state(hp, delta, state_p, force, stiffness) result(stat) &
-      & bind(C, name="egw_hysteresis_eval_state")
-      !> C: `egw_hysteresis h`; `double state[EGW_HYSTERESIS_STATE_SIZE]`; `double *force`
-      !> (out); `double *stiffness` (out)
+   function egw_hysteresis_eval_state_general(hp, delta, state_p, force, stiffness) &
+      & result(stat) bind(C, name="egw_hysteresis_eval_state_general")
+      !> C: `void *table` (the handle's hysteresis_table, NULL for a NULL handle); `double
+      !> state[EGW_HYSTERESIS_STATE_SIZE]`; `double *force` (out); `double *stiffness` (out)
       type(c_ptr), value, intent(in) :: hp, state_p, force, stiffness
       real(c_double), value, intent(in) :: delta   !< C: `double delta`
       integer(c_int) :: stat
@@ -141,7 +156,7 @@ contains
          end if
       end if
       stat = eval_state_full(hp, delta, state_p, force, stiffness)
-   end function egw_hysteresis_eval_state
+   end function egw_hysteresis_eval_state_general
 
    !> The steps of egw_hysteresis_eval_state that its state answers alone (egw.h's inline
    !> egw_hysteresis_eval_cached serves the same): a state this table filled (its tag)
@@ -432,11 +447,14 @@ contains
       !> C: `egw_hysteresis *h` (released, then set to NULL; NULL is fine)
       type(c_ptr), value, intent(in) :: hp
       type(c_ptr) :: object
+      type(hysteresis_handle), pointer :: handle
       type(hysteresis_table), pointer :: h
       object = take_handle(hp)
       if (.not. c_associated(object)) return
-      call c_f_pointer(object, h)
+      call c_f_pointer(object, handle)
+      call c_f_pointer(handle%table, h)
       deallocate (h)
+      deallocate (handle)
    end subroutine egw_hysteresis_free
 
    !> C: egw_hysteresis_write: CSV or binary, atomically.
@@ -469,8 +487,7 @@ contains
       if (stat == egw_ok) stat = new_table(h)
       if (stat /= egw_ok) return
       call read_hysteresis(fpath, h, error)
-      stat = put_handle_settled(out, c_loc(h), error)
-      if (stat /= egw_ok) deallocate (h)
+      stat = put_table_handle(out, h, error)
    end function egw_hysteresis_read
 
    !> C: egw_hysteresis_get_info.
@@ -509,8 +526,56 @@ contains
       type(hysteresis_table), pointer, intent(out) :: h
       h => null()
       stat = require(hp, "h")
-      if (stat == egw_ok) call c_f_pointer(hp, h)
+      if (stat == egw_ok) call handle_table(hp, h)
    end function get_table
+
+   !> The table of a handle (not NULL: the entries' hot paths, which test it themselves).
+   subroutine handle_table(hp, h)
+      type(c_ptr), intent(in) :: hp
+      type(hysteresis_table), pointer, intent(out) :: h
+      type(hysteresis_handle), pointer :: handle
+      call c_f_pointer(hp, handle)
+      call c_f_pointer(handle%table, h)
+   end subroutine handle_table
+
+   !> The handle of a table (its address and the numbers egw_hysteresis_eval_state reads
+   !> in C): build's and read's, and the tests' for a table of their own.
+   function hysteresis_handle_for(table) result(handle)
+      type(hysteresis_table), target, intent(in) :: table   !< built or read
+      type(hysteresis_handle) :: handle
+      handle%tag = table%tag
+      handle%served_limit = min(table%delta_max, table%input_limit)
+      handle%cutoff = table%loading%cutoff
+      handle%table = c_loc(table)
+   end function hysteresis_handle_for
+
+   !> Status of the build or read that made h (put_handle_settled): on success a new
+   !> handle of h at *out; on failure (that status, or no memory for the handle) h is
+   !> released and *out untouched.
+   integer(c_int) function put_table_handle(out, h, error) result(stat)
+      type(c_ptr), intent(in) :: out   !< egw_hysteresis* (not NULL)
+      type(hysteresis_table), pointer, intent(inout) :: h   !< the new table
+      !> the build's or read's error, unallocated on success
+      type(egw_error), allocatable, intent(in) :: error
+      type(hysteresis_handle), pointer :: handle
+      integer :: alloc_stat
+      stat = egw_ok
+      if (.not. allocated(error)) then
+         allocate (handle, stat=alloc_stat)
+         if (alloc_stat /= 0) then
+            deallocate (h)
+            stat = failure(egw_out_of_memory, "hysteresis table: out of memory")
+            return
+         end if
+         handle = hysteresis_handle_for(h)
+         stat = put_handle_settled(out, c_loc(handle), error)
+         if (stat == egw_ok) return
+         deallocate (handle)
+      else
+         stat = put_handle_settled(out, c_null_ptr, error)
+      end if
+      deallocate (h)
+   end function put_table_handle
 
    !> A new, empty table at h, or EGW_OUT_OF_MEMORY (a fine table is large: no abort).
    integer(c_int) function new_table(h) result(stat)
