@@ -11,8 +11,9 @@
 !> mesh edges follow a and c from level to level, are right to ~rel_tol and smooth in
 !> delta (stop 52, doubt18). On a mesh that moves with the kinks, the discrete force is
 !> as smooth in delta as the converged one, and its quotient agrees with quotients of
-!> forces solved at rel_tol 1e-8 to a few rel_tol (stop 55: not at sigma/delta_y 1e-4,
-!> 10 delta_y, 1.2e-5; doc/theory.md §12 Limits).
+!> forces solved at rel_tol 1e-8 to a fraction of rel_tol once the elements whose error
+!> moves fastest are split (steep_split; stop 57: <= 3.0e-7 at rel_tol 1e-6, where
+!> sigma/delta_y 1e-4, 10 delta_y was 1.7e-5 off; doc/theory.md §12 Limits).
 module egw_sphere_moving_mesh
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
@@ -96,8 +97,8 @@ contains
       if (allocated(error)) return
       call follow_kink(moved, options, at, placed, knots, kinks, rates, force, ok)
       if (.not. ok) return
-      ! (one-sided: its truncation ~h/2 delta P''/P', measured <= 2e-6 of the rough
-      ! part's rate against a central quotient, which would cost one solve more)
+      ! (one-sided: its truncation ~0.45 h of the stiffness, see step; a central
+      ! quotient would cost one solve more)
       rate = (force - at%force)/(step*prob%delta)
    end subroutine kink_following_rate
 
