@@ -253,8 +253,8 @@ contains
    !> field the layer sits in. The forces of those meshes are within rel_tol, their
    !> derivatives on the moving mesh were not: sigma/delta_y 1e-4 at 10 delta_y -1.7e-5,
    !> at 20 delta_y 2.3e-6, 1e-5 at 10 delta_y 1.5e-6; with inner_parts = 2 and
-   !> layer_parts = 4 within 3.1e-7 at the nine points of 1e-2, 1e-4, 1e-5 x 1.5, 10,
-   !> 20 delta_y (doc/benchmarks.md "Stop 57: stiff23"). Unchanged where c lies inside a
+   !> layer_parts = 4 within 3.1e-7 at the eight of 1e-2, 1e-4, 1e-5 x 1.5, 10, 20
+   !> delta_y with a reference (doc/benchmarks.md "Stop 57: stiff23"). Unchanged where c lies inside a
    !> (no layer: the contact ends in the rough part's own decay) or where the split mesh
    !> would exceed max_mesh_nodes.
    function steep_split(prob, sol, placed, c) result(edges)
