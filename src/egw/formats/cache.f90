@@ -139,7 +139,11 @@ module egw_cache
    !> 50 (kink22): rough + cap loading solves insert a cap or Hertz edge unless an element
    !> edge lies within 1 % (was 10 %) of an element of it (egw_sphere_level's
    !> loading_move_room): their meshes, histories and tables change within their rel_tol.
-   integer, parameter, public :: cache_revision = 50
+   !> 51 (stiff23): rough + cap loading stiffness (the Hermite slopes of rough + cap
+   !> loading tables) on a derivative mesh with the layer past the cap's edge and the
+   !> elements inside a split (egw_sphere_moving_mesh's steep_split), step 1e-7: the
+   !> tables' bits change (forces unchanged).
+   integer, parameter, public :: cache_revision = 51
 
 
 contains
