@@ -280,7 +280,8 @@ int egw_solve(const egw_params *p, const egw_options *o, double delta, egw_resul
  * thread: calls with the same p, o and delta_max (a sweep of the unloading curve) load it
  * once, one unloading solve each after the first (results identical either way; each
  * thread keeps its own, no lock). Statuses: as egw_solve, and EGW_INVALID_ARGUMENT
- * naming delta_max when it is not finite; res is left untouched on any failure. */
+ * naming delta_max when it is not finite (smooth spheres: or its Hertz force or stiffness
+ * is not a double); res is left untouched on any failure. */
 int egw_solve_unload(const egw_params *p, const egw_options *o, double delta, double delta_max,
                      egw_result *res);
 

@@ -77,6 +77,7 @@ contains
          & new_unittest("hertz stiffness between nodes", test_hertz_stiffness), &
          & new_unittest("hertz energy", test_hertz_energy), &
          & new_unittest("hertz cut-off and zero below", test_hertz_cutoff), &
+         & new_unittest("cut-off from a delta_min far below the contact", test_far_delta_min), &
          & new_unittest("extrapolation above delta_max", test_extrapolation), &
          & new_unittest("deep law: prepared, read back, refitted; far above", &
          & test_deep_prepared), &
@@ -311,6 +312,59 @@ contains
       call table_eval(t, -1.0_dp, f, k)
       call check(error, f == 0.0_dp .and. k == 0.0_dp, "no force apart (delta < 0)")
    end subroutine test_hertz_cutoff
+
+   !> A delta_min far below the contact (-1e100) gives the cut-off of the documented rule,
+   !> as a delta_min near it does: the force at the first node in [1/2, 1] of rel_tol P_ref
+   !> (Hertz; the closed form P_ref = (4/3) E sqrt(R) delta_max^1.5) or of 1e-12 P_ref
+   !> (E-GW). Before, 200 trisections of [-1e100, P_ref's overlap] stopped 3.8e4 (in sigma
+   !> or delta_max units) below the contact: Hertz failed ("node spacing reached
+   !> round-off"), E-GW built 1020 nodes from a cut-off at -3.8e4 where the force is 0;
+   !> a universal table from x_min -1e100 was built but refused every evaluation.
+   subroutine test_far_delta_min(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(force_table) :: t
+      type(egw_error), allocatable :: err
+      type(contact_params) :: p
+      type(universal_table) :: u, u_near
+      real(dp) :: pref, f, f_near, k
+      integer :: stat, stat_near
+      p = contact_params(model=model_hertz, radius=0.5_dp, modulus=2.0_dp)
+      call build_table(p, solver_options(), -1.0e100_dp, 1.0e-2_dp, tol, t, err)
+      call check(error, .not. allocated(err), "Hertz, delta_min -1e100: build failed")
+      if (allocated(error)) return
+      pref = p_hertz(2.0_dp, 0.5_dp, 1.0e-2_dp)
+      call check(error, t%force(1) <= tol*pref .and. t%force(1) >= 0.5_dp*tol*pref, &
+         & "Hertz, delta_min -1e100: force at the cut-off "//format_real(t%force(1)/pref)// &
+         & " * P_ref, cut-off "//format_real(t%cutoff))
+      if (allocated(error)) return
+      p = contact_params(model=model_egw, radius=1.0e3_dp, modulus=1.0_dp, sigma=1.0_dp, &
+         & mu=4.0_dp)
+      call build_table(p, solver_options(), -1.0e100_dp, 10.0_dp, 1.0e-3_dp, t, err)
+      call check(error, .not. allocated(err), "E-GW, delta_min -1e100: build failed")
+      if (allocated(error)) return
+      call check(error, t%force(1) <= 1.0e-12_dp*t%reference_force .and. &
+         & t%force(1) >= 0.5e-12_dp*t%reference_force .and. t%cutoff > -20.0_dp, &
+         & "E-GW, delta_min -1e100: force at the cut-off "// &
+         & format_real(t%force(1)/t%reference_force)//" * P_ref, cut-off "// &
+         & format_real(t%cutoff)//" sigma, "//to_string(size(t%force))//" nodes")
+      if (allocated(error)) return
+      ! a universal table from x_min -1e100 (before: built, then refused every evaluation,
+      ! "the force ... exceeds the largest double" at delta = -5 sigma): the tail's force at
+      ! -5 sigma as the same table from x_min -3 gives it, to rel_tol
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 2.0_dp, &
+         & 8.0_dp, -1.0e100_dp, 20.0_dp, 1.0e-3_dp, u, err)
+      call check(error, .not. allocated(err), "universal E-GW, x_min -1e100: build failed")
+      if (allocated(error)) return
+      call build_universal(model_egw, 0.0_dp, 0.6_dp, 54.0_dp, solver_options(), 2.0_dp, &
+         & 8.0_dp, -3.0_dp, 20.0_dp, 1.0e-3_dp, u_near, err)
+      call check(error, .not. allocated(err), "universal E-GW, x_min -3: build failed")
+      if (allocated(error)) return
+      call universal_eval(u, 1.0_dp, 1.0_dp, 1.0_dp, 4.0_dp, -5.0_dp, f, k, stat)
+      call universal_eval(u_near, 1.0_dp, 1.0_dp, 1.0_dp, 4.0_dp, -5.0_dp, f_near, k, stat_near)
+      call check(error, stat == 0 .and. stat_near == 0 .and. abs(f/f_near - 1) <= 1.0e-3_dp, &
+         & "universal E-GW, x_min -1e100: p(-5) = "//format_real(f)//" (stat "// &
+         & to_string(stat)//"), from x_min -3 "//format_real(f_near))
+   end subroutine test_far_delta_min
 
    !> The deep-overlap law table_prepare fits once (the sigma -> 0 regime of a DEM deck
    !> evaluates it every step) gives the values of deep_force (and its energy and contact

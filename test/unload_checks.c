@@ -61,6 +61,16 @@ int egw_capi_test_unload(void) {
   CHECK(last_error_names("delta_max") && res.force == -1.0);
   CHECK(egw_solve_unload(&p, NULL, NAN, 1.0, &res) == EGW_INVALID_ARGUMENT);
   CHECK(last_error_names("delta") && res.force == -1.0);
+  { /* a smooth sphere loaded to a delta_max whose Hertz force is no double: the message
+     * names delta_max, not delta (audit24: "delta = 1e+300: the Hertz force ...") */
+    egw_params h;
+    egw_params_default(&h);
+    h.model = EGW_MODEL_HERTZ;
+    CHECK(egw_solve_unload(&h, NULL, 1e-3, 1e300, &res) == EGW_INVALID_ARGUMENT);
+    CHECK(last_error_names("delta_max = 1.000000000000000E+300") && res.force == -1.0);
+    CHECK(egw_solve_unload(&h, NULL, 1e-3, 1e100, &res) == EGW_OK);
+    CHECK(close_rel(res.force, 4.0 / 3.0 * pow(1e-3, 1.5), 1e-14));
+    res.force = -1.0; }
   { egw_params q = p; q.psi = -1.0;
     CHECK(egw_solve_unload(&q, NULL, 1.0, 2.0, &res) == EGW_INVALID_PARAMETER);
     CHECK(last_error_names("psi") && res.force == -1.0); }

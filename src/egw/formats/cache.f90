@@ -143,7 +143,11 @@ module egw_cache
    !> loading tables) on a derivative mesh with the layer past the cap's edge and the
    !> elements inside a split (egw_sphere_moving_mesh's steep_split), step 1e-7: the
    !> tables' bits change (forces unchanged).
-   integer, parameter, public :: cache_revision = 51
+   !> 52 (audit24): a table's cut-off search from a delta_min so far below the contact that
+   !> 200 trisections do not reach its length scale is bracketed again from above
+   !> (table_build's find_cutoff): such tables (E-GW, sigma 1e-6, delta_min -1e100: cut-off
+   !> -3.8e4 at force 0, 1020 nodes) change; the others' bits do not.
+   integer, parameter, public :: cache_revision = 52
 
 
 contains

@@ -313,7 +313,8 @@ contains
       end if
    end subroutine check_input
 
-   !> check_input for an unloading solve at delta after delta_max, and a finite delta_max.
+   !> check_input for an unloading solve at delta after delta_max, and a finite delta_max
+   !> (smooth spheres: one whose Hertz force and stiffness stay finite).
    pure subroutine check_unload_input(params, options, delta, delta_max, error)
       type(contact_params), intent(in) :: params   !< the contact
       type(solver_options), intent(in) :: options   !< the solve's options
@@ -328,6 +329,15 @@ contains
          call fatal_error(error, egw_invalid_argument, "delta_max = "//format_real(delta_max) &
             & //": the largest overlap must be finite")
          return
+      end if
+      ! a smooth sphere is loaded to delta_max first: its Hertz force must be a double, and
+      ! the message names delta_max (the loading solve's own check would name delta)
+      if (params%model == model_hertz .or. params%sigma == 0.0_dp) then
+         if (.not. (ieee_is_finite(hertz_force(delta_max, params%radius, params%modulus)) &
+            & .and. ieee_is_finite(hertz_stiffness(delta_max, params%radius, &
+            & params%modulus)))) call fatal_error(error, egw_invalid_argument, "delta_max = " &
+            & //format_real(delta_max)//": the Hertz force (4/3) E sqrt(R) delta_max**1.5 or" &
+            & //" stiffness 2 E sqrt(R delta_max) at the largest overlap exceeds the largest double")
       end if
    end subroutine check_unload_input
 

@@ -115,7 +115,7 @@ contains
       type(law_pieces), intent(in), optional :: loading   !< as build_table's
       real(dp) :: lo, hi, p_lo, k, a, target, step, d_ref, xs(2), ps(2, 1), ks(2, 1), &
          & as(2, 1)
-      integer :: it, j
+      integer :: it, j, pass
 
       d_ref = reference_overlap(params, delta_max)
       hi = d_ref
@@ -153,23 +153,46 @@ contains
       ! trisection: two solves per step in parallel shrink the bracket 3x per solve
       ! time (bisection: 2x); a fixed two points, so the result does not depend on the
       ! number of threads
-      do it = 1, 200
-         if (p_lo >= 0.5_dp*target) exit
-         if (hi - lo <= 1.0e-14_dp*max(abs(lo), abs(hi), step)) exit
-         xs = [lo + (hi - lo)/3, lo + 2*(hi - lo)/3]
-         if (.not. (xs(1) > lo .and. xs(2) > xs(1) .and. hi > xs(2))) exit
-         n_solves = n_solves + 2
-         call solve_grid([params], options, xs, ps, ks, as, error, law, loading)
-         if (allocated(error)) return
-         do j = 2, 1, -1
-            if (.not. ps(j, 1) > target) exit
-            hi = xs(j)
+      do pass = 1, 2
+         do it = 1, 200
+            if (p_lo >= 0.5_dp*target) exit
+            if (hi - lo <= 1.0e-14_dp*max(abs(lo), abs(hi), step)) exit
+            xs = [lo + (hi - lo)/3, lo + 2*(hi - lo)/3]
+            if (.not. (xs(1) > lo .and. xs(2) > xs(1) .and. hi > xs(2))) exit
+            n_solves = n_solves + 2
+            call solve_grid([params], options, xs, ps, ks, as, error, law, loading)
+            if (allocated(error)) return
+            do j = 2, 1, -1
+               if (.not. ps(j, 1) > target) exit
+               hi = xs(j)
+            end do
+            ! j = last point with force <= target (0: none)
+            if (j >= 1) then
+               lo = xs(j)
+               p_lo = ps(j, 1)
+            end if
          end do
-         ! j = last point with force <= target (0: none)
-         if (j >= 1) then
-            lo = xs(j)
-            p_lo = ps(j, 1)
-         end if
+         ! 3**200 did not bring a bracket from a delta_min far below the contact to its
+         ! length scale (E-GW, sigma 1e-6, delta_min -1e100: a cut-off at -3.8e4 where the
+         ! force is 0, 1020 nodes; Hertz at -1e100: a build failed at round-off): bracket
+         ! it again from hi down, in steps of the length scale doubling
+         if (it <= 200 .or. hi - lo <= length_scale(params, delta_max)) exit
+         step = length_scale(params, delta_max)
+         do it = 1, 61
+            if (it > 60) then
+               call fatal_error(error, egw_not_converged, "delta_min = "// &
+                  & format_real(delta_min)//": no force below rel_tol*P_ref found below "// &
+                  & format_real(hi))
+               return
+            end if
+            lo = hi - step
+            n_solves = n_solves + 1
+            call solve_point(params, options, lo, p_lo, k, a, error, law, loading)
+            if (allocated(error)) return
+            if (.not. p_lo > target) exit
+            hi = lo
+            step = 2*step
+         end do
       end do
       cutoff = lo
    end subroutine find_cutoff
