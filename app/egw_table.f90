@@ -589,6 +589,12 @@ contains
       if (i + 1 > command_argument_count()) call die(name//" needs a value (see --help)")
       i = i + 1
       call get_arg(i, val)
+      ! another option where the value should be ("--flow-pressure --out d" said "'--out':
+      ! not a number"); no number or path a user means starts with "--"
+      if (len(val) >= 2) then
+         if (val(1:2) == "--") call die(name//" needs a value, got the option "//val// &
+            & " (see --help)")
+      end if
    end subroutine next_value
 
    real(dp) function real_value(name, text) result(x)

@@ -31,6 +31,7 @@ refuse() {
 refuse unknown "egw-table: unknown option --x (see --help)" --x
 refuse unknown_with_value "unknown option --bogus" --bogus 3
 refuse missing_value "--tol needs a value" --tol
+refuse value_is_option "--flow-pressure needs a value, got the option --model" --flow-pressure --model E-GW
 refuse not_a_number "--radius = 'abc': not a number" --radius abc
 refuse bad_radius "radius" --radius -1e-3
 refuse bad_tol "tol" --tol 2
