@@ -247,13 +247,8 @@ contains
       integer, allocatable :: idx(:), promoted(:)
       integer :: pass, j, k, n_split
       real(dp) :: m_bound
-      logical, allocatable :: keep(:)
-      ! (gap tables: per interval the nodes its check curve was not solved at, those of
-      ! them a changed stencil needs solved, and the check curves of those solves)
-      type(skipped_nodes), allocatable :: skipped(:), new_skipped(:), need(:)
-      type(unloading_curve), allocatable :: solved(:), extra(:)
-      type(unloading_curve) :: blank
-      integer, allocatable :: sel(:), redo(:)
+      ! (gap tables: per interval the nodes its check curve was not solved at)
+      type(skipped_nodes), allocatable :: skipped(:), new_skipped(:)
       ! the bound at the check curves' nodes: rel_tol; with the two-piece map rel_tol/2,
       ! for what falls between those nodes (E-GW + cap, 1e-4: 28 delta_max nodes with
       ! rel_tol met 1.2e-4 of P(m) off main's table between a check curve's s nodes, at
@@ -265,99 +260,21 @@ contains
       do pass = 1, 30
          ! (a kept check curve whose stencil changed: solved at the skipped nodes where
          ! the estimate no longer meets gap_check_skip, its history reused)
-         allocate (need(size(m) - 1))
-         do j = 1, size(m) - 1
-            if (.not. have_mid(j) .or. .not. allocated(skipped(j)%s)) cycle
-            if (size(skipped(j)%s) == 0) cycle
-            allocate (keep(size(skipped(j)%s)))
-            do k = 1, size(skipped(j)%s)
-               keep(k) = shift_gap(table, m, curves, j, skipped(j)%s(k)) >= &
-                  & gap_check_skip*m_bound
-            end do
-            need(j)%s = pack(skipped(j)%s, keep)
-            skipped(j)%s = pack(skipped(j)%s, .not. keep)
-            deallocate (keep)
-         end do
-         redo = pack([(j, j = 1, size(m) - 1)], [(allocated(need(j)%s), j = 1, size(m) - 1)])
-         if (size(redo) > 0) redo = pack(redo, [(size(need(redo(k))%s) > 0, k = 1, size(redo))])
-         if (size(redo) > 0) then
-            allocate (extra(size(redo)))
-            do k = 1, size(redo)
-               extra(k) = mids(redo(k))
-               call move_alloc(need(redo(k))%s, extra(k)%s)
-            end do
-            call build_curves(table, options, 0.5_dp*(m(redo) + m(redo + 1)), shift, extra, &
-               & error, check=.true.)
-            if (allocated(error)) return
-            do k = 1, size(redo)
-               call join_nodes(extra(k), mids(redo(k)))
-               call move_curve(extra(k), mids(redo(k)))
-            end do
-            deallocate (extra)
-         end if
-         deallocate (need)
+         call solve_uncleared(table, options, shift, m, curves, m_bound, have_mid, mids, &
+            & skipped, error)
+         if (allocated(error)) return
          idx = pack([(j, j = 1, size(m) - 1)], .not. have_mid)
          if (size(idx) > 0) then
             ! check curves, solved at their neighbours' nodes (the grid in s that the
             ! neighbours' bisection found; refine_curve completes one that becomes a node)
             allocate (built(size(idx)))
-            ! (but s = 0, where every gap is 0 and so is the mismatch: its solve gives
-            ! only the slope, which the check does not use)
             do k = 1, size(idx)
-               if (log_table(table)) then
-                  ! (log-ratio: the nodes both neighbours hold, where their values are
-                  ! solves and the mismatch is the interpolation's in delta_max; a node of
-                  ! one of them alone is its own bisection's, checked there to rel_tol/4:
-                  ! egw-bench's table at 1e-4 58 x 75 nodes against 59 x 75 with the
-                  ! union, build CPU -6 %, far_errors passing, the [-2, 3] sigma table's
-                  ! 7.2e-5 -> 8.1e-5 (doc/benchmarks.md, stop 48))
-                  call shared_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
-               else
-                  call merge_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
-               end if
-               built(k)%s = pack(built(k)%s, built(k)%s > 0.0_dp)
-               ! (six-point log-ratio stencils: not where four points meet check_skip)
-               if (log_table(table) .and. size(m) >= 6) then
-                  allocate (keep(size(built(k)%s)))
-                  do j = 1, size(built(k)%s)
-                     keep(j) = check_weight(curves(idx(k)), curves(idx(k) + 1), &
-                        & built(k)%s(j))*order_gap(table, m, curves, idx(k), &
-                        & built(k)%s(j)) >= check_skip*m_bound
-                  end do
-                  built(k)%s = pack(built(k)%s, keep)
-                  deallocate (keep)
-               end if
-               ! (gap tables: not where two four-point stencils meet gap_check_skip)
-               if (allocated(skipped(idx(k))%s)) deallocate (skipped(idx(k))%s)
-               if (table%mapped .and. size(m) >= 5) then
-                  allocate (keep(size(built(k)%s)))
-                  do j = 1, size(built(k)%s)
-                     keep(j) = shift_gap(table, m, curves, idx(k), built(k)%s(j)) >= &
-                        & gap_check_skip*m_bound
-                  end do
-                  skipped(idx(k))%s = pack(built(k)%s, .not. keep)
-                  built(k)%s = pack(built(k)%s, keep)
-                  deallocate (keep)
-               end if
+               call check_nodes(table, m, curves, idx(k), m_bound, built(k)%s, &
+                  & skipped(idx(k))%s)
             end do
-            ! (gap tables: an interval none of whose nodes needs a solve gets no check
-            ! curve, nor its loading solve)
-            sel = [(k, k = 1, size(idx))]
-            if (table%mapped) sel = pack(sel, [(size(built(k)%s) > 0, k = 1, size(idx))])
-            allocate (solved(size(sel)))
-            do k = 1, size(sel)
-               call move_curve(built(sel(k)), solved(k))
-            end do
-            call build_curves(table, options, 0.5_dp*(m(idx(sel)) + m(idx(sel) + 1)), shift, &
-               & solved, error, check=.true.)
+            call solve_checks(table, options, shift, m, idx, built, mids, error)
             if (allocated(error)) return
-            do k = 1, size(idx)
-               call move_curve(blank, mids(idx(k)))
-            end do
-            do k = 1, size(sel)
-               call move_curve(solved(k), mids(idx(sel(k))))
-            end do
-            deallocate (built, solved)
+            deallocate (built)
             have_mid = .true.
          end if
          allocate (err_mid(size(m) - 1), wide(size(m) - 1))
@@ -456,6 +373,131 @@ contains
          & format_real(table%rel_tol)//" not reached: the delta_max grid did not settle "// &
          & "after 30 bisections")
    end subroutine refine_m
+
+   !> The s nodes at which the check curve of delta_max interval j is solved (s) and, on gap
+   !> tables, those left to the estimate (skipped; gap_check_skip): its neighbours' union
+   !> (log-ratio: the nodes both hold, less check_skip's), s = 0 aside.
+   pure subroutine check_nodes(table, m, curves, j, m_bound, s, skipped)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:), m_bound
+      type(unloading_curve), intent(in) :: curves(:)
+      integer, intent(in) :: j
+      real(dp), allocatable, intent(out) :: s(:), skipped(:)
+      logical, allocatable :: keep(:)
+      integer :: i
+      if (log_table(table)) then
+         ! (log-ratio: the nodes both neighbours hold, where their values are
+         ! solves and the mismatch is the interpolation's in delta_max; a node of
+         ! one of them alone is its own bisection's, checked there to rel_tol/4:
+         ! egw-bench's table at 1e-4 58 x 75 nodes against 59 x 75 with the
+         ! union, build CPU -6 %, far_errors passing, the [-2, 3] sigma table's
+         ! 7.2e-5 -> 8.1e-5 (doc/benchmarks.md, stop 48))
+         call shared_nodes(curves(j)%s, curves(j + 1)%s, s)
+      else
+         call merge_nodes(curves(j)%s, curves(j + 1)%s, s)
+      end if
+      ! (but s = 0, where every gap is 0 and so is the mismatch: its solve gives only the
+      ! slope, which the check does not use)
+      s = pack(s, s > 0.0_dp)
+      ! (six-point log-ratio stencils: not where four points meet check_skip)
+      if (log_table(table) .and. size(m) >= 6) then
+         allocate (keep(size(s)))
+         do i = 1, size(s)
+            keep(i) = check_weight(curves(j), curves(j + 1), s(i))*order_gap(table, m, &
+               & curves, j, s(i)) >= check_skip*m_bound
+         end do
+         s = pack(s, keep)
+         deallocate (keep)
+      end if
+      ! (gap tables: not where two four-point stencils meet gap_check_skip)
+      if (table%mapped .and. size(m) >= 5) then
+         allocate (keep(size(s)))
+         do i = 1, size(s)
+            keep(i) = shift_gap(table, m, curves, j, s(i)) >= gap_check_skip*m_bound
+         end do
+         skipped = pack(s, .not. keep)
+         s = pack(s, keep)
+      end if
+   end subroutine check_nodes
+
+   !> Solve the check curves built(:) (their nodes s set) of the delta_max intervals idx(:)
+   !> into mids(idx): gap tables' intervals with no node left get an empty curve instead,
+   !> without its loading solve.
+   subroutine solve_checks(table, options, shift, m, idx, built, mids, error)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      logical, intent(in) :: shift
+      real(dp), intent(in) :: m(:)
+      integer, intent(in) :: idx(:)
+      type(unloading_curve), intent(inout) :: built(:), mids(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(unloading_curve), allocatable :: solved(:)
+      type(unloading_curve) :: blank
+      integer, allocatable :: sel(:)
+      integer :: k
+      sel = [(k, k = 1, size(idx))]
+      if (table%mapped) sel = pack(sel, [(size(built(k)%s) > 0, k = 1, size(idx))])
+      allocate (solved(size(sel)))
+      do k = 1, size(sel)
+         call move_curve(built(sel(k)), solved(k))
+      end do
+      call build_curves(table, options, 0.5_dp*(m(idx(sel)) + m(idx(sel) + 1)), shift, &
+         & solved, error, check=.true.)
+      if (allocated(error)) return
+      do k = 1, size(idx)
+         call move_curve(blank, mids(idx(k)))
+      end do
+      do k = 1, size(sel)
+         call move_curve(solved(k), mids(idx(sel(k))))
+      end do
+   end subroutine solve_checks
+
+   !> Gap tables: the kept check curves (have_mid) whose skipped nodes a changed stencil no
+   !> longer clears (shift_gap against gap_check_skip) solved there, on their own loading
+   !> histories, and those nodes joined to theirs.
+   subroutine solve_uncleared(table, options, shift, m, curves, m_bound, have_mid, mids, &
+      & skipped, error)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      logical, intent(in) :: shift
+      real(dp), intent(in) :: m(:), m_bound
+      type(unloading_curve), intent(in) :: curves(:)
+      logical, intent(in) :: have_mid(:)
+      type(unloading_curve), intent(inout) :: mids(:)
+      type(skipped_nodes), intent(inout) :: skipped(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(skipped_nodes) :: need(size(mids))
+      type(unloading_curve), allocatable :: extra(:)
+      integer, allocatable :: redo(:)
+      logical, allocatable :: keep(:)
+      integer :: j, k
+      do j = 1, size(mids)
+         if (.not. have_mid(j) .or. .not. allocated(skipped(j)%s)) cycle
+         if (size(skipped(j)%s) == 0) cycle
+         allocate (keep(size(skipped(j)%s)))
+         do k = 1, size(skipped(j)%s)
+            keep(k) = shift_gap(table, m, curves, j, skipped(j)%s(k)) >= gap_check_skip*m_bound
+         end do
+         need(j)%s = pack(skipped(j)%s, keep)
+         skipped(j)%s = pack(skipped(j)%s, .not. keep)
+         deallocate (keep)
+      end do
+      redo = pack([(j, j = 1, size(mids))], [(allocated(need(j)%s), j = 1, size(mids))])
+      if (size(redo) > 0) redo = pack(redo, [(size(need(redo(k))%s) > 0, k = 1, size(redo))])
+      if (size(redo) == 0) return
+      allocate (extra(size(redo)))
+      do k = 1, size(redo)
+         extra(k) = mids(redo(k))
+         call move_alloc(need(redo(k))%s, extra(k)%s)
+      end do
+      call build_curves(table, options, 0.5_dp*(m(redo) + m(redo + 1)), shift, extra, &
+         & error, check=.true.)
+      if (allocated(error)) return
+      do k = 1, size(redo)
+         call join_nodes(extra(k), mids(redo(k)))
+         call move_curve(extra(k), mids(redo(k)))
+      end do
+   end subroutine solve_uncleared
 
    !> A gap curve table's (rough + cap's, relative to P(m)) error bound on delta_max
    !> interval j: its check curve's mismatch err_mid, found at that curve's s nodes, plus
