@@ -12,7 +12,7 @@ module egw_hysteresis_grid
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
    use egw_hysteresis_data, only: hysteresis_table, map_s, map_iota, edge_breaks, edge_s, &
       & edge_xi, max_stencil, stencil_width, stencil_window, fine_length_tol, m_breakpoint, &
-      & m_coordinate
+      & m_coordinate, map_x
    use egw_hysteresis, only: first_yield
    use egw_hysteresis_lengths, only: cap_length, log_table
    use egw_hysteresis_curves, only: unloading_curve, min_width, build_curves, verify_curves, &
@@ -48,6 +48,19 @@ module egw_hysteresis_grid
    !> fewer, build CPU -29 %, 67 x 78 nodes; far_errors unchanged on the suite's three
    !> tables; 1.0 rel_tol measured too (doc/benchmarks.md, stop 47).
    real(dp), parameter :: check_skip = 0.3_dp
+   !> Gap tables (rough + cap, mapped): a check curve is not solved at a node s of its
+   !> neighbours where the evaluation's four-point stencil and a stencil shifted by one
+   !> node (each side that has one, the larger difference; shift_gap) lie within
+   !> gap_check_skip of the bound at the same delta: an embedded estimate (on an even grid
+   !> at the interval's middle the difference is ~2.7x the centred stencil's error), so
+   !> the interval is taken to meet the bound there; err_mid takes the estimate, and where
+   !> a neighbour's split changes the stencil the nodes it no longer clears are solved.
+   !> An interval with no node left gets no check curve (nor its loading solve). README's
+   !> E-GW + cap build at 1e-4: 1580 -> 600 check solves, 2604 -> 1874 in all (the
+   !> promoted check curves' bisection 593 -> 843: it meets fewer check solves), the same
+   !> 38 x 50 nodes, the table within 2.0e-8 of P(m) of the unskipped build's
+   !> (doc/benchmarks.md, stop 58).
+   real(dp), parameter :: gap_check_skip = 0.3_dp
    !> Log-ratio tables: a delta_max interval whose check misses by less than split_defer
    !> times the bound is not split in a pass where a neighbour that misses by more is:
    !> that split moves a node of its six-point stencil nearer (its midpoint's Lagrange
@@ -55,6 +68,11 @@ module egw_hysteresis_grid
    !> again with the new stencil, at no solve (its check curve is kept). egw-bench's
    !> table at 1e-4: 59 delta_max nodes against 67 (doc/benchmarks.md, stop 48).
    real(dp), parameter :: split_defer = 4.0_dp
+
+   !> The s nodes of a check curve left unsolved (gap_check_skip).
+   type :: skipped_nodes
+      real(dp), allocatable :: s(:)
+   end type skipped_nodes
 
 contains
 
@@ -213,7 +231,8 @@ contains
    !> interval: the EP-GW table at 1e-4 of egw-bench 3933 -> 3100 solves). Check curves
    !> are kept until their interval is split, then bisected from the first nodes as a
    !> node's curve is (refine_curve, taking the check solves it meets: the same curve)
-   !> and rechecked when the stencil changed: only new midpoints cost solves.
+   !> and rechecked when the stencil changed: only new midpoints cost solves. Gap tables:
+   !> not at the nodes where two shifted stencils agree (gap_check_skip, shift_gap).
    subroutine refine_m(table, options, shift, m, curves, error, progress)
       type(hysteresis_table), intent(inout) :: table   !< the table being built
       type(solver_options), intent(in) :: options   !< the build's solver options
@@ -228,54 +247,33 @@ contains
       integer, allocatable :: idx(:), promoted(:)
       integer :: pass, j, k, n_split
       real(dp) :: m_bound
-      logical, allocatable :: keep(:)
+      ! (gap tables: per interval the nodes its check curve was not solved at)
+      type(skipped_nodes), allocatable :: skipped(:), new_skipped(:)
       ! the bound at the check curves' nodes: rel_tol; with the two-piece map rel_tol/2,
       ! for what falls between those nodes (E-GW + cap, 1e-4: 28 delta_max nodes with
       ! rel_tol met 1.2e-4 of P(m) off main's table between a check curve's s nodes, at
       ! s = 0.17 of m = 333 sigma, where main's 62 nodes erred by 5e-5 against 1e-6 solves)
       m_bound = table%rel_tol
       if (table%mapped) m_bound = 0.5_dp*table%rel_tol
-      allocate (mids(size(m) - 1), have_mid(size(m) - 1))
+      allocate (mids(size(m) - 1), have_mid(size(m) - 1), skipped(size(m) - 1))
       have_mid = .false.
       do pass = 1, 30
+         ! (a kept check curve whose stencil changed: solved at the skipped nodes where
+         ! the estimate no longer meets gap_check_skip, its history reused)
+         call solve_uncleared(table, options, shift, m, curves, m_bound, have_mid, mids, &
+            & skipped, error)
+         if (allocated(error)) return
          idx = pack([(j, j = 1, size(m) - 1)], .not. have_mid)
          if (size(idx) > 0) then
             ! check curves, solved at their neighbours' nodes (the grid in s that the
             ! neighbours' bisection found; refine_curve completes one that becomes a node)
             allocate (built(size(idx)))
-            ! (but s = 0, where every gap is 0 and so is the mismatch: its solve gives
-            ! only the slope, which the check does not use)
             do k = 1, size(idx)
-               if (log_table(table)) then
-                  ! (log-ratio: the nodes both neighbours hold, where their values are
-                  ! solves and the mismatch is the interpolation's in delta_max; a node of
-                  ! one of them alone is its own bisection's, checked there to rel_tol/4:
-                  ! egw-bench's table at 1e-4 58 x 75 nodes against 59 x 75 with the
-                  ! union, build CPU -6 %, far_errors passing, the [-2, 3] sigma table's
-                  ! 7.2e-5 -> 8.1e-5 (doc/benchmarks.md, stop 48))
-                  call shared_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
-               else
-                  call merge_nodes(curves(idx(k))%s, curves(idx(k) + 1)%s, built(k)%s)
-               end if
-               built(k)%s = pack(built(k)%s, built(k)%s > 0.0_dp)
-               ! (six-point log-ratio stencils: not where four points meet check_skip)
-               if (log_table(table) .and. size(m) >= 6) then
-                  allocate (keep(size(built(k)%s)))
-                  do j = 1, size(built(k)%s)
-                     keep(j) = check_weight(curves(idx(k)), curves(idx(k) + 1), &
-                        & built(k)%s(j))*order_gap(table, m, curves, idx(k), &
-                        & built(k)%s(j)) >= check_skip*m_bound
-                  end do
-                  built(k)%s = pack(built(k)%s, keep)
-                  deallocate (keep)
-               end if
+               call check_nodes(table, m, curves, idx(k), m_bound, built(k)%s, &
+                  & skipped(idx(k))%s)
             end do
-            call build_curves(table, options, 0.5_dp*(m(idx) + m(idx + 1)), shift, built, &
-               & error, check=.true.)
+            call solve_checks(table, options, shift, m, idx, built, mids, error)
             if (allocated(error)) return
-            do k = 1, size(idx)
-               call move_curve(built(k), mids(idx(k)))
-            end do
             deallocate (built)
             have_mid = .true.
          end if
@@ -284,9 +282,14 @@ contains
             ! (Hertz + cap: the force's error, the loading table's share included)
             if (table%force_ratio) then
                err_mid(j) = whole_mismatch(table, m, curves, j, mids(j))
-            else
+            else if (allocated(mids(j)%s)) then
                err_mid(j) = stencil_mismatch(table, m, curves, j, mids(j))
+            else
+               err_mid(j) = 0.0_dp
             end if
+            ! (the estimate at the nodes left unsolved: below gap_check_skip of the bound)
+            if (allocated(skipped(j)%s)) err_mid(j) = max(err_mid(j), &
+               & skip_estimate(table, m, curves, j, skipped(j)%s))
          end do
          ! (log-ratio: an interval narrower than min_width of the range is not split; at
          ! the node m = 0, where the Hertz part sets in and the curves change as sqrt(m),
@@ -332,7 +335,8 @@ contains
             return
          end if
          allocate (new_m(size(m) + n_split), new_curves(size(m) + n_split), &
-            & new_mids(size(m) + n_split - 1), new_have(size(m) + n_split - 1))
+            & new_mids(size(m) + n_split - 1), new_have(size(m) + n_split - 1), &
+            & new_skipped(size(m) + n_split - 1))
          new_have = .false.
          allocate (promoted(n_split))
          n_split = 0
@@ -350,6 +354,7 @@ contains
                promoted(n_split) = k
             else
                call move_curve(mids(j), new_mids(k))
+               if (allocated(skipped(j)%s)) call move_alloc(skipped(j)%s, new_skipped(k)%s)
                new_have(k) = .true.
             end if
          end do
@@ -357,6 +362,7 @@ contains
          call move_alloc(new_curves, curves)
          call move_alloc(new_mids, mids)
          call move_alloc(new_have, have_mid)
+         call move_alloc(new_skipped, skipped)
          deallocate (err_mid, wide)
          ! the new nodes: bisected in s as every node's curve
          call verify_curves(table, curves, promoted, error)
@@ -367,6 +373,131 @@ contains
          & format_real(table%rel_tol)//" not reached: the delta_max grid did not settle "// &
          & "after 30 bisections")
    end subroutine refine_m
+
+   !> The s nodes at which the check curve of delta_max interval j is solved (s) and, on gap
+   !> tables, those left to the estimate (skipped; gap_check_skip): its neighbours' union
+   !> (log-ratio: the nodes both hold, less check_skip's), s = 0 aside.
+   pure subroutine check_nodes(table, m, curves, j, m_bound, s, skipped)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:), m_bound
+      type(unloading_curve), intent(in) :: curves(:)
+      integer, intent(in) :: j
+      real(dp), allocatable, intent(out) :: s(:), skipped(:)
+      logical, allocatable :: keep(:)
+      integer :: i
+      if (log_table(table)) then
+         ! (log-ratio: the nodes both neighbours hold, where their values are
+         ! solves and the mismatch is the interpolation's in delta_max; a node of
+         ! one of them alone is its own bisection's, checked there to rel_tol/4:
+         ! egw-bench's table at 1e-4 58 x 75 nodes against 59 x 75 with the
+         ! union, build CPU -6 %, far_errors passing, the [-2, 3] sigma table's
+         ! 7.2e-5 -> 8.1e-5 (doc/benchmarks.md, stop 48))
+         call shared_nodes(curves(j)%s, curves(j + 1)%s, s)
+      else
+         call merge_nodes(curves(j)%s, curves(j + 1)%s, s)
+      end if
+      ! (but s = 0, where every gap is 0 and so is the mismatch: its solve gives only the
+      ! slope, which the check does not use)
+      s = pack(s, s > 0.0_dp)
+      ! (six-point log-ratio stencils: not where four points meet check_skip)
+      if (log_table(table) .and. size(m) >= 6) then
+         allocate (keep(size(s)))
+         do i = 1, size(s)
+            keep(i) = check_weight(curves(j), curves(j + 1), s(i))*order_gap(table, m, &
+               & curves, j, s(i)) >= check_skip*m_bound
+         end do
+         s = pack(s, keep)
+         deallocate (keep)
+      end if
+      ! (gap tables: not where two four-point stencils meet gap_check_skip)
+      if (table%mapped .and. size(m) >= 5) then
+         allocate (keep(size(s)))
+         do i = 1, size(s)
+            keep(i) = shift_gap(table, m, curves, j, s(i)) >= gap_check_skip*m_bound
+         end do
+         skipped = pack(s, .not. keep)
+         s = pack(s, keep)
+      end if
+   end subroutine check_nodes
+
+   !> Solve the check curves built(:) (their nodes s set) of the delta_max intervals idx(:)
+   !> into mids(idx): gap tables' intervals with no node left get an empty curve instead,
+   !> without its loading solve.
+   subroutine solve_checks(table, options, shift, m, idx, built, mids, error)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      logical, intent(in) :: shift
+      real(dp), intent(in) :: m(:)
+      integer, intent(in) :: idx(:)
+      type(unloading_curve), intent(inout) :: built(:), mids(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(unloading_curve), allocatable :: solved(:)
+      type(unloading_curve) :: blank
+      integer, allocatable :: sel(:)
+      integer :: k
+      sel = [(k, k = 1, size(idx))]
+      if (table%mapped) sel = pack(sel, [(size(built(k)%s) > 0, k = 1, size(idx))])
+      allocate (solved(size(sel)))
+      do k = 1, size(sel)
+         call move_curve(built(sel(k)), solved(k))
+      end do
+      call build_curves(table, options, 0.5_dp*(m(idx(sel)) + m(idx(sel) + 1)), shift, &
+         & solved, error, check=.true.)
+      if (allocated(error)) return
+      do k = 1, size(idx)
+         call move_curve(blank, mids(idx(k)))
+      end do
+      do k = 1, size(sel)
+         call move_curve(solved(k), mids(idx(sel(k))))
+      end do
+   end subroutine solve_checks
+
+   !> Gap tables: the kept check curves (have_mid) whose skipped nodes a changed stencil no
+   !> longer clears (shift_gap against gap_check_skip) solved there, on their own loading
+   !> histories, and those nodes joined to theirs.
+   subroutine solve_uncleared(table, options, shift, m, curves, m_bound, have_mid, mids, &
+      & skipped, error)
+      type(hysteresis_table), intent(inout) :: table
+      type(solver_options), intent(in) :: options
+      logical, intent(in) :: shift
+      real(dp), intent(in) :: m(:), m_bound
+      type(unloading_curve), intent(in) :: curves(:)
+      logical, intent(in) :: have_mid(:)
+      type(unloading_curve), intent(inout) :: mids(:)
+      type(skipped_nodes), intent(inout) :: skipped(:)
+      type(egw_error), allocatable, intent(out) :: error
+      type(skipped_nodes) :: need(size(mids))
+      type(unloading_curve), allocatable :: extra(:)
+      integer, allocatable :: redo(:)
+      logical, allocatable :: keep(:)
+      integer :: j, k
+      do j = 1, size(mids)
+         if (.not. have_mid(j) .or. .not. allocated(skipped(j)%s)) cycle
+         if (size(skipped(j)%s) == 0) cycle
+         allocate (keep(size(skipped(j)%s)))
+         do k = 1, size(skipped(j)%s)
+            keep(k) = shift_gap(table, m, curves, j, skipped(j)%s(k)) >= gap_check_skip*m_bound
+         end do
+         need(j)%s = pack(skipped(j)%s, keep)
+         skipped(j)%s = pack(skipped(j)%s, .not. keep)
+         deallocate (keep)
+      end do
+      redo = pack([(j, j = 1, size(mids))], [(allocated(need(j)%s), j = 1, size(mids))])
+      if (size(redo) > 0) redo = pack(redo, [(size(need(redo(k))%s) > 0, k = 1, size(redo))])
+      if (size(redo) == 0) return
+      allocate (extra(size(redo)))
+      do k = 1, size(redo)
+         extra(k) = mids(redo(k))
+         call move_alloc(need(redo(k))%s, extra(k)%s)
+      end do
+      call build_curves(table, options, 0.5_dp*(m(redo) + m(redo + 1)), shift, extra, &
+         & error, check=.true.)
+      if (allocated(error)) return
+      do k = 1, size(redo)
+         call join_nodes(extra(k), mids(redo(k)))
+         call move_curve(extra(k), mids(redo(k)))
+      end do
+   end subroutine solve_uncleared
 
    !> A gap curve table's (rough + cap's, relative to P(m)) error bound on delta_max
    !> interval j: its check curve's mismatch err_mid, found at that curve's s nodes, plus
@@ -421,6 +552,79 @@ contains
          end if
       end do
    end subroutine defer_splits
+
+   !> The largest shift_gap of interval j at the nodes s.
+   pure real(dp) function skip_estimate(table, m, curves, j, s) result(est)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:), s(:)
+      type(unloading_curve), intent(in) :: curves(:)
+      integer, intent(in) :: j
+      integer :: i
+      est = 0.0_dp
+      do i = 1, size(s)
+         est = max(est, shift_gap(table, m, curves, j, s(i)))
+      end do
+   end function skip_estimate
+
+   !> Gap tables (mapped): |g_A - g_B| at the turning point halfway along delta_max
+   !> interval j, where A is the evaluation's four-point stencil and B that stencil
+   !> shifted by one node (each side where one fits on the interval's side of the
+   !> breakpoint; the larger difference), both at the same m - delta, that of s on A's
+   !> interpolated map, each stencil's s from its own interpolated knee (map_s), so that
+   !> the knee's interpolation counts as in the check (stencil_mismatch); huge where no
+   !> shifted stencil fits.
+   pure real(dp) function shift_gap(table, m, curves, j, s) result(d)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m(:), s
+      type(unloading_curve), intent(in) :: curves(:)
+      integer, intent(in) :: j
+      real(dp) :: mid, x, v_a, v_b
+      integer :: first, lo, hi, k_b, shift, n
+      d = huge(1.0_dp)
+      n = size(m)
+      k_b = m_breakpoint(m)
+      mid = 0.5_dp*(m(j) + m(j + 1))
+      call stencil_window(j, n, k_b, 4, first, lo, hi)
+      call combine(first, .true., x, v_a)
+      do shift = -1, 1, 2
+         if (first + shift < 1 .or. first + shift + 3 > n) cycle
+         if (k_b > 0) then
+            if (j < k_b .and. first + shift + 3 > k_b) cycle
+            if (j >= k_b .and. first + shift < k_b) cycle
+         end if
+         call combine(first + shift, .false., x, v_b)
+         if (d == huge(1.0_dp)) d = 0.0_dp
+         d = max(d, abs(v_a - v_b))
+      end do
+   contains
+      !> The stencil first .. first + 3 at the turning point mid: its g at x (at s, and x
+      !> set from its map, where at_s).
+      pure subroutine combine(first, at_s, x, v)
+         integer, intent(in) :: first
+         logical, intent(in) :: at_s
+         real(dp), intent(inout) :: x
+         real(dp), intent(out) :: v
+         real(dp) :: w(4), knee, iota, s_p, r, dr, dsdx
+         integer :: k
+         call lagrange_weights(m_coordinate(mid, k_b), m_coordinate(m(first:first + 3), &
+            & k_b), w)
+         knee = min(max(sum(w*curves(first:first + 3)%knee), 0.0_dp), &
+            & 0.99_dp*max(mid, 0.0_dp))
+         iota = map_iota(table, mid, knee)
+         if (at_s) then
+            call map_x(table, mid, knee, iota, s, x, dsdx)
+            s_p = s
+         else
+            call map_s(table, mid, knee, iota, x, s_p, dsdx)
+            s_p = min(s_p, 1.0_dp)
+         end if
+         v = 0.0_dp
+         do k = 1, 4
+            call curve_eval(curves(first + k - 1), s_p, r, dr)
+            v = v + w(k)*r
+         end do
+      end subroutine combine
+   end function shift_gap
 
    !> |h6 - h4| at s of the turning point halfway along delta_max interval j: the node
    !> curves combined on the six-point and on the four-point stencil of the interval, each
@@ -652,6 +856,42 @@ contains
       end do
       c = work(1:n)
    end subroutine shared_nodes
+
+   !> Add the nodes (s, gap, slope, weight) of the check curve old to those of into (none
+   !> of them the same), increasing in s.
+   pure subroutine join_nodes(into, old)
+      type(unloading_curve), intent(inout) :: into
+      type(unloading_curve), intent(in) :: old
+      real(dp), allocatable :: s(:), g(:), d(:), w(:)
+      integer :: i, k, n
+      real(dp) :: v(4)
+      if (.not. allocated(old%s)) return
+      s = [into%s, old%s]
+      g = [into%gap, old%gap]
+      d = [into%slope, old%slope]
+      w = [into%weight, old%weight]
+      n = size(s)
+      do i = 2, n
+         v = [s(i), g(i), d(i), w(i)]
+         k = i - 1
+         do while (k >= 1)
+            if (s(k) <= v(1)) exit
+            s(k + 1) = s(k)
+            g(k + 1) = g(k)
+            d(k + 1) = d(k)
+            w(k + 1) = w(k)
+            k = k - 1
+         end do
+         s(k + 1) = v(1)
+         g(k + 1) = v(2)
+         d(k + 1) = v(3)
+         w(k + 1) = v(4)
+      end do
+      call move_alloc(s, into%s)
+      call move_alloc(g, into%gap)
+      call move_alloc(d, into%slope)
+      call move_alloc(w, into%weight)
+   end subroutine join_nodes
 
    pure subroutine move_curve(from, to)
       type(unloading_curve), intent(inout) :: from
