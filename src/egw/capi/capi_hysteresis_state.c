@@ -85,8 +85,8 @@ static inline EGW_ALWAYS_INLINE_ uint64_t bits_of(double x)
  *   loading force P times exp(-h), h the piece's cubic; a positive force with finite
  *   values (else the Fortran entry: zeros, or its refusal).
  * (Inlined into egw_hysteresis_eval_state, which then needs no stack frame on these
- * routes: loading_step, with its libm call, is out of line; the tail's call 0.95 of the
- * time, stop 58.) */
+ * routes: loading_step, with its libm call, is in loading_or_general, out of line; the
+ * tail's call 0.94 of the time, stop 58.) */
 static inline EGW_ALWAYS_INLINE_ int piece_step(egw_hysteresis h, double delta,
                                                 double *state, double *force,
                                                 double *stiffness)
@@ -142,7 +142,7 @@ static inline EGW_ALWAYS_INLINE_ int piece_step(egw_hysteresis h, double delta,
  * beyond the history the piece is dropped and the history moved to delta (at it exactly,
  * nothing changed). Else 0 and nothing written. For a step piece_step left (-1: h,
  * state and the outputs given, the tag h's). */
-static __attribute__((noinline)) int loading_step(egw_hysteresis h, double delta,
+static inline EGW_ALWAYS_INLINE_ int loading_step(egw_hysteresis h, double delta,
                                                   double *state, double *force,
                                                   double *stiffness)
 {
@@ -184,8 +184,9 @@ static int state_step(egw_hysteresis h, double delta, double *state, double *for
   return loading_step(h, delta, state, force, stiffness);
 }
 
-/* egw_hysteresis_eval_state where no piece covers delta: loading_step, else the Fortran
- * entry (h given) */
+/* egw_hysteresis_eval_state where no piece covers delta: loading_step (inlined here: 18
+ * instructions fewer on a never-touched contact's step back at its history, stop 58), else
+ * the Fortran entry (h given) */
 static __attribute__((noinline)) int loading_or_general(egw_hysteresis h, double delta,
                                                         double *state, double *force,
                                                         double *stiffness)
