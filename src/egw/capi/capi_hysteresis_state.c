@@ -184,12 +184,17 @@ static int state_step(egw_hysteresis h, double delta, double *state, double *for
   return loading_step(h, delta, state, force, stiffness);
 }
 
+#if defined(__GNUC__)
+#define EGW_NOINLINE_ __attribute__((noinline))
+#else
+#define EGW_NOINLINE_
+#endif
+
 /* egw_hysteresis_eval_state where no piece covers delta: loading_step (inlined here: 18
  * instructions fewer on a never-touched contact's step back at its history, stop 58), else
  * the Fortran entry (h given) */
-static __attribute__((noinline)) int loading_or_general(egw_hysteresis h, double delta,
-                                                        double *state, double *force,
-                                                        double *stiffness)
+static EGW_NOINLINE_ int loading_or_general(egw_hysteresis h, double delta, double *state,
+                                            double *force, double *stiffness)
 {
   if (loading_step(h, delta, state, force, stiffness)) return EGW_OK;
   return egw_hysteresis_eval_state_general(h->table, delta, state, force, stiffness);
