@@ -66,7 +66,8 @@ static inline EGW_ALWAYS_INLINE_ uint64_t bits_of(double x)
 }
 
 /* The bits of a double as a signed integer: below those of -708.0 exactly for x in
- * (-708, -0] (the sign bit set, then |x|'s bits; NaN's above every number's) */
+ * (-708, -0] (x with its sign bit set is INT64_MIN plus |x|'s bits, which order the
+ * magnitudes, a NaN's above infinity's; +0 and positive x are not negative) */
 static inline EGW_ALWAYS_INLINE_ int64_t signed_bits_of(double x)
 {
   int64_t b;
