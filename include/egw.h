@@ -791,19 +791,19 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
 #if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 199901L)
 /* exp(x) of a log-ratio piece's force, for egw_hysteresis_eval_cached (not an API of its
  * own): the library's piece_exp (src/egw/tables/piece_exp.inc, which explains it), the same
- * operations on the same constants in the same order, so the same bits as
+ * floating-point operations on the same constants in the same order (its scale 2^e t_j
+ * formed from other integers, the same bits), so the same bits as
  * egw_hysteresis_eval_state (compile without FMA contraction, e.g. -std=c99 or
  * -ffp-contract=off, as for the cubics). Within 0.55 ulp of exp, 1 ulp of glibc's;
  * |x| >= 708 and NaN: libm's exp. */
-/* 64-bit integers of its bit arithmetic: long long, which C++98 lacks (g++ -std=c++98
- * -pedantic warned); GCC and Clang have it there, its warning silenced for these two
- * lines, so that egw.h compiles without a warning in C89 to C11 and C++98 to C++17
+/* 64-bit integers of its bit arithmetic: unsigned long long, which C++98 lacks (g++
+ * -std=c++98 -pedantic warned); GCC and Clang have it there, its warning silenced for this
+ * line, so that egw.h compiles without a warning in C89 to C11 and C++98 to C++17
  * (test/cli/header_std.sh) */
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wlong-long"
 #endif
-typedef long long egw_i64_;
 typedef unsigned long long egw_u64_;
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
@@ -818,39 +818,44 @@ static inline double egw_piece_exp_(double x)
 /* egw_piece_exp_ for |x| < 708 (a folded piece's argument, tested by its caller) */
 static inline double egw_piece_exp_core_(double x)
 {
-  /* 2^(j/32) = t_j (1 + tail_j): t_j, tail_j, j = 0 .. 31 */
+  /* [j] the double whose bits are t_j's less j 2^47, [32 + j] tail_j: 2^(j/32) = t_j (1 +
+   * tail_j), j = 0 .. 31 (tools/reference/piece_exp_table.py) */
   static const double table[64] = {
-      1.0, 0.0, 1.0218971486541166, 4.9997448722726326e-17, 1.0442737824274138,
-      8.189317638195515e-17, 1.0671404006768237, -7.402825309426177e-17,
-      1.0905077326652577, -2.7939114859515733e-17, 1.1143867425958924,
-      9.341710609905046e-17, 1.1387886347566916, 7.826573258636076e-17, 1.1637248587775775,
-      3.2904726646008416e-17, 1.189207115002721, 3.3484623336251524e-17, 1.215247359980469,
-      -6.346552106729483e-17, 1.241857812073484, 3.750854201303127e-17, 1.2690509571917332,
-      2.1023049675215714e-18, 1.2968395546510096, 1.9572585293112036e-17,
-      1.3252366431597413, -2.1571477251208752e-17, 1.3542555469368927,
-      5.68648095791174e-17, 1.383909881963832, -4.8923067513522756e-17, 1.4142135623730951,
-      -6.835808657661922e-17, 1.4451808069770467, -2.092304381843353e-17,
-      1.4768261459394993, -2.3591094770850053e-17, 1.5091644275934228,
-      -6.735219232374683e-17, 1.5422108254079407, 5.1548301170786783e-17,
-      1.5759808451078865, -6.432131775424189e-18, 1.6104903319492543,
-      1.5341410053603723e-17, 1.645755478153965, -6.152602891550265e-17, 1.681792830507429,
-      4.875160526227062e-17, 1.718619298122478, -1.0772487078934056e-17,
-      1.7562521603732995, 1.685487290628973e-17, 1.7947090750031072, 1.01562190116415e-17,
-      1.8340080864093424, 1.790126907604513e-17, 1.8741676341103, -3.266924100901318e-17,
-      1.9152065613971474, -5.545065618639427e-17, 1.9571441241754002, 4.5784915277060095e-17};
+      1.0, 0.9953235743270583, 0.9908868912137069, 0.9866952003384118, 0.9827538663326288,
+      0.9790683712979462, 0.9756443173783458, 0.9724874293887887, 0.9696035575013605,
+      0.9669986799902345, 0.964678906036742, 0.9626504785958666, 0.9609197773255048,
+      0.9594933215798707, 0.9583777734684463, 0.957579940981916, 0.9571067811865476,
+      0.9569654034885233, 0.9571630729697497, 0.9577072137967114, 0.9586054127039704,
+      0.9598654225539432, 0.9614951659746271, 0.9635027390769825, 0.9658964152537145,
+      0.968684649061239, 0.9718760801866497, 0.9754795375015536, 0.9795040432046712,
+      0.98395881705515, 0.9888532806985737, 0.9941970620877001,
+      0.0, 4.9997448722726326e-17, 8.189317638195515e-17, -7.402825309426177e-17,
+      -2.7939114859515733e-17, 9.341710609905046e-17, 7.826573258636076e-17,
+      3.2904726646008416e-17, 3.3484623336251524e-17, -6.346552106729483e-17,
+      3.750854201303127e-17, 2.1023049675215714e-18, 1.9572585293112036e-17,
+      -2.1571477251208752e-17, 5.68648095791174e-17, -4.8923067513522756e-17,
+      -6.835808657661922e-17, -2.092304381843353e-17, -2.3591094770850053e-17,
+      -6.735219232374683e-17, 5.1548301170786783e-17, -6.432131775424189e-18,
+      1.5341410053603723e-17, -6.152602891550265e-17, 4.875160526227062e-17,
+      -1.0772487078934056e-17, 1.685487290628973e-17, 1.01562190116415e-17,
+      1.790126907604513e-17, -3.266924100901318e-17, -5.545065618639427e-17,
+      4.5784915277060095e-17};
   double z, kd, r, r2, s;
-  egw_i64_ k, j;
-  egw_u64_ bits;
+  egw_u64_ bits, j, sb;
   z = x * 46.16624130844683 + 6755399441055744.0;
   kd = z - 6755399441055744.0;
   r = (x - kd * 0.021660849392446835) - kd * 5.145609244655338e-14;
-  k = (egw_i64_)kd;
-  j = k & 31;
-  memcpy(&bits, &table[2 * j], sizeof bits);
-  bits += (egw_u64_)(k - j) << 47;
-  memcpy(&s, &bits, sizeof s);
+  /* s = 2^e t_j (k = kd = 32 e + j) is t_j's bits plus (k - j) 2^52/32: table[j]'s plus
+   * k 2^47, and z's bits are 1.5 2^52's plus k (|k| < 2^15), whose low 17 bits are k's:
+   * bits << 47 = k 2^47 modulo 2^64. (piece_exp converts kd to an integer instead: here 2
+   * instructions fewer and no cvttsd2si, stop 58) */
+  memcpy(&bits, &z, sizeof bits);
+  j = bits & 31;
+  memcpy(&sb, &table[j], sizeof sb);
+  sb += bits << 47;
+  memcpy(&s, &sb, sizeof s);
   r2 = r * r;
-  return s + s * (((table[2 * j + 1] + r) + r2 * (0.5 + 0.16666666666666666 * r)) +
+  return s + s * (((table[32 + j] + r) + r2 * (0.5 + 0.16666666666666666 * r)) +
                   (r2 * r2) * ((0.041666666666666664 + 0.008333333333333333 * r) +
                                r2 * 0.001388888888888889));
 }
