@@ -143,7 +143,11 @@ module egw_cache
    !> loading tables) on a derivative mesh with the layer past the cap's edge and the
    !> elements inside a split (egw_sphere_moving_mesh's steep_split), step 1e-7: the
    !> tables' bits change (forces unchanged).
-   integer, parameter, public :: cache_revision = 51
+   !> 52 (edge24): rough + cap loading solves of E-GW/EP-GW grade the elements inside a
+   !> towards it where the capped zone reaches past a (egw_sphere_mesh's graded_inside)
+   !> and end with a confirming level at every rel_tol (egw_sphere_refine): their forces,
+   !> histories and tables change within their rel_tol.
+   integer, parameter, public :: cache_revision = 52
 
 
 contains
