@@ -66,6 +66,8 @@ contains
          & test_stiffness), &
          & new_unittest("E-GW + cap loading: stiffness within rel_tol at the nine points", &
          & test_stiffness_points), &
+         & new_unittest("E-GW + cap loading: force within rel_tol at the Hertz edge's points", &
+         & test_force_points), &
          & new_unittest("load_history(stiffness=.false.): the same history, bit for bit", &
          & test_history_stiffness), &
          & new_unittest("E-GW + cap loading table at 1e-5 against solves", &
@@ -2204,6 +2206,52 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_stiffness_points
+
+   !> The loading force at rel_tol 1e-6 within rel_tol of rel_tol 1e-9 forces
+   !> (test/data/rough_cap_force_reference.csv, written by
+   !> tools/bench/rough_cap_force_error.f90; main 114b9b2's rel_tol 1e-9 forces, on other
+   !> meshes inside a, agree with them within 3.5e-10, checked here to 1e-8), E-GW + cap at
+   !> five points where the capped zone holds the Hertz edge a (the error's ratio to the
+   !> estimate: doc/benchmarks.md "Stop 58: edge24"). Bound: 1e-6, the solve's rel_tol;
+   !> measured <= 3.0e-7. Before stop 58 (main 114b9b2): -4.84e-6 at 1e-2, 20
+   !> delta_y (under an estimate of 4.4e-8), -1.30e-6 at 1e-3, 20, -1.07e-6 at 1e-5, 10
+   !> and -1.91e-5 at 1e-5, 40 delta_y: this test fails there (egw_sphere_mesh's
+   !> graded_inside and egw_sphere_refine's confirming level of capped loading).
+   subroutine test_force_points(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: path = "test/data/rough_cap_force_reference.csv"
+      character(len=row_length), allocatable :: rows(:)
+      type(contact_params) :: p
+      type(solve_result) :: res
+      type(egw_error), allocatable :: err
+      real(dp) :: ratio, x, f_ref, est, f_main
+      integer :: i, comma
+      call read_data_rows(path, rows, error)
+      if (allocated(error)) return
+      call check(error, size(rows) == 5, path//": "//str(real(size(rows), dp))//" rows, not 5")
+      if (allocated(error)) return
+      do i = 1, size(rows)
+         comma = index(rows(i), ",")
+         read (rows(i)(comma + 1:), *) ratio, x, f_ref, est, f_main
+         ! (the reference's own spread, far inside the bound)
+         call check(error, abs(f_main - f_ref) <= 1.0e-8_dp*f_ref, path//": row " &
+            & //str(real(i, dp))//": the two references differ by more than 1e-8")
+         if (allocated(error)) return
+         p = contact_params(model=model_egw, radius=1.0_dp/ratio, modulus=1.0_dp, &
+            & sigma=1.0_dp, mu=4.0_dp, flow_pressure=2.0_dp/pi)
+         call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), x*p%radius, res, err)
+         if (allocated(err)) then
+            call check(error, .false., "sigma/delta_y "//str(ratio)//" at "//str(x) &
+               & //" delta_y: "//err%message)
+            return
+         end if
+         call check(error, abs(res%force - f_ref) <= 1.0e-6_dp*f_ref, "sigma/delta_y " &
+            & //str(ratio)//" at "//str(x)//" delta_y: force "//str(res%force) &
+            & //" vs reference "//str(f_ref)//" (relative "//str(res%force/f_ref - 1) &
+            & //", estimate "//str(res%est_rel_err)//")")
+         if (allocated(error)) return
+      end do
+   end subroutine test_force_points
 
    !> load_history with stiffness=.false. (what a hysteresis build's curves load: they read
    !> the history's force only) skips the moved-mesh stiffness: the history's force and

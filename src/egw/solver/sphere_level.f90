@@ -9,7 +9,8 @@ module egw_sphere_level
    use egw_sphere_problem, only: solver_options, max_mesh_nodes, scaled_problem, &
       & discrete_solution, deflection_degree, smooth_force, force_floor, cap_excess, sums_total
    use egw_sphere_mesh, only: with_edge, with_kink_edges, focus_refined, grown_outer, &
-      & inner_layers, kink_layers, disc_refined, with_history_edges, disc_graded, split_kept
+      & inner_layers, graded_inside, kink_layers, disc_refined, with_history_edges, disc_graded, &
+      & split_kept
    use egw_sphere_iteration, only: solve_mesh
    use egw_sphere_regime, only: stall_fallbacks, capped_gw
    implicit none
@@ -134,6 +135,11 @@ contains
             if (prob%extended) then
                edges = with_kink_edges(edges, [prob%a, prob%branch], focus, &
                   & prob%n_branch + 1, 0.0_dp, loading_move_room)
+               ! (and, where the capped zone reaches past a, the elements inside it graded
+               ! towards a with the step, graded_inside)
+               if (size(prob%branch) > 0) then
+                  if (maxval(prob%branch) > prob%a) edges = graded_inside(edges, prob%a, step)
+               end if
                edges = inner_layers(edges, prob%a)
             else
                edges = with_kink_edges(edges, prob%branch, focus, prob%n_branch, 0.0_dp, &

@@ -51,7 +51,8 @@ module egw_sphere_mesh
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & focus_beyond, innermost_kink, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
-      & mesh_geometry, step_for_nodes, grown_outer, inner_layers, kink_layers, disc_refined, &
+      & mesh_geometry, step_for_nodes, grown_outer, inner_layers, graded_inside, kink_layers, &
+      & disc_refined, &
       & disc_graded, with_history_edges, split_kept
 
 
@@ -456,6 +457,48 @@ contains
       h = edge(k) - edge(k - 1)
       out = [edge(0:k - 1), (r - h*0.5_dp**i, i=1, layers), edge(k:)]
    end function inner_layers
+
+   !> edge with each element inside the edge r (an edge of it, exactly), before the
+   !> element ending at r, split so that no part is longer than ratio times its distance
+   !> to r: elements graded geometrically towards r. Loading with the cap (doc/theory.md
+   !> section 12): where the capped zone holds the Hertz edge a, the rough part p_y - p_s
+   !> has the sqrt(a - r) edge there, and an element of length L whose end is d from a
+   !> holds it only to ~ rho**(-2 pressure_points), rho of the Bernstein ellipse of
+   !> 1 + 2 d/L. Graded about a focus beyond a (the cap's edge c), the family's elements
+   !> had L/d up to ~6 there (rho ~ 2), an error that changed with the fragment left of
+   !> the element at a from level to level and that their estimate did not see (E-GW +
+   !> cap, sigma/delta_y = 1e-2, 20 delta_y, rel_tol 1e-6: 4.8e-6 of P under an estimate
+   !> of 4.4e-8; doc/benchmarks.md "Stop 58: edge24"). With ratio the level's step
+   !> (rho >= 6.5 at the coarsest step) that error is ~1e-10 and shrinks with the step.
+   pure function graded_inside(edge, r, ratio) result(out)
+      !> element boundaries, the edge r (one of them), the largest length/distance
+      real(dp), intent(in) :: edge(0:), r, ratio
+      real(dp), allocatable :: out(:)
+      real(dp) :: e1
+      integer :: k, j, m
+      out = edge
+      k = findloc(edge, r, dim=1) - 1
+      if (k < 2 .or. .not. ratio > 0.0_dp) return
+      ! from edge(k-1) inwards: a new edge at e1 - ratio (r - e1) wherever the element
+      ! beyond e1 is longer than that (filled from the right end of out)
+      deallocate (out)
+      allocate (out(0:size(edge) - 1 + ceiling(log(r/(r - edge(k - 1)))/log(1.0_dp + &
+         & ratio)) + 1))
+      m = ubound(out, 1) + 1
+      e1 = edge(k - 1)
+      j = k - 2
+      do while (j >= 0)
+         m = m - 1
+         if (e1 - edge(j) > ratio*(r - e1)*(1.0_dp + 1.0e-12_dp)) then
+            e1 = e1 - ratio*(r - e1)
+         else
+            e1 = edge(j)
+            j = j - 1
+         end if
+         out(m) = e1
+      end do
+      out = [out(m:), edge(k - 1:)]
+   end function graded_inside
 
    !> edge with the two elements beside the edge r (an edge of it, exactly) split into
    !> layers halving towards r until the one at r is at most width long (at most 40 each

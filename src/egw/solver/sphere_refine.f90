@@ -117,10 +117,15 @@ contains
             ! after a capped loading (gw_confirm, no kink edges) likewise: sigma/delta_y =
             ! 1e-4, 65764 sigma after 78759 at rel_tol 1e-4, the first two levels agreed to
             ! 4.2e-5 while 5e-4 off, and egw-table's build at 1e-3 did not (doc/stability.md
-            ! "Stop 50 (gw16)").
+            ! "Stop 50 (gw16)"). Loading E-GW/EP-GW with the cap at any rel_tol: two levels
+            ! agreed while both were off by as much as 20-90x their estimate (sigma/delta_y
+            ! = 1e-5, 40 delta_y, rel_tol 1e-6: 1.9e-5 under 2.1e-7; 1e-2, 40 delta_y:
+            ! 1.5e-6 under 2.8e-8 with the elements inside a graded), the cap's edge c
+            ! moving through the levels' elements (doc/benchmarks.md "Stop 58: edge24").
             if (confirm .or. .not. ((allocated(prob%branch) .and. &
-               & (options%rel_tol < 1.0e-6_dp .or. capped_history(prob))) .or. &
-               & gw_confirm(prob)) .or. mesh%step <= finest_step) return
+               & (options%rel_tol < 1.0e-6_dp .or. capped_history(prob) .or. &
+               & capped_loading(prob))) .or. gw_confirm(prob)) .or. &
+               & mesh%step <= finest_step) return
             confirm = .true.
             confirming = .true.
             mesh%step_prev = mesh%step
@@ -141,6 +146,14 @@ contains
          & //" (half: a margin for the estimate); this solve reaches rel_tol >= " &
          & //format_real(2.0_dp*est))
    end subroutine refine_levels
+
+   !> Loading an extended model (E-GW, EP-GW) with the cap: its levels end with a
+   !> confirming level (refine_levels).
+   pure logical function capped_loading(prob)
+      type(scaled_problem), intent(in) :: prob
+      capped_loading = prob%extended .and. allocated(prob%cap) .and. &
+         & .not. allocated(prob%closest)
+   end function capped_loading
 
    !> Unloading after a capped loading: a refinement level whose Newton did not converge
    !> (warm-started from the level before) is skipped: the next level at half its step,
