@@ -29,6 +29,11 @@ module egw_sphere_level
    !> curves are smooth; doc/benchmarks.md "Stop 56: kink22"). At 0.01 a switch moves
    !> one edge by at most 1 % of its element.
    real(dp), parameter :: loading_move_room = 0.01_dp
+   !> Loading with the cap where the capped zone reaches past the Hertz edge a: the
+   !> largest length/distance-to-a of an element inside a (graded_inside), the coarsest
+   !> level's step: a Bernstein-ellipse rho >= 6.5 for p_y - p_s's sqrt(a - r) edge
+   !> (doc/benchmarks.md "Stop 58: edge24").
+   real(dp), parameter :: inside_grading = 0.6_dp
 
 contains
 
@@ -136,9 +141,13 @@ contains
                edges = with_kink_edges(edges, [prob%a, prob%branch], focus, &
                   & prob%n_branch + 1, 0.0_dp, loading_move_room)
                ! (and, where the capped zone reaches past a, the elements inside it graded
-               ! towards a with the step, graded_inside)
+               ! towards a, graded_inside, at the ratio inside_grading on every level: its
+               ! error there ~1e-10 of the force; graded with the level's step, the
+               ! confirming level that ends such solves doubled those elements, and
+               ! README's rough + cap builds took 1.8x their time, stop 58)
                if (size(prob%branch) > 0) then
-                  if (maxval(prob%branch) > prob%a) edges = graded_inside(edges, prob%a, step)
+                  if (maxval(prob%branch) > prob%a) edges = graded_inside(edges, prob%a, &
+                     & max(step, inside_grading))
                end if
                edges = inner_layers(edges, prob%a)
             else
