@@ -2172,9 +2172,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       character(len=*), parameter :: path = "test/data/rough_cap_stiffness_reference.csv"
       character(len=row_length), allocatable :: rows(:)
-      type(contact_params) :: p
       type(solve_result) :: res
-      type(egw_error), allocatable :: err
       real(dp) :: ratio, x, k_ref, k_check, est
       integer :: i, comma
       call read_data_rows(path, rows, error)
@@ -2188,14 +2186,8 @@ contains
          call check(error, abs(k_check - k_ref) <= 1.0e-6_dp*k_ref, path//": row " &
             & //str(real(i, dp))//": the two quotients differ by more than 1e-6")
          if (allocated(error)) return
-         p = contact_params(model=model_egw, radius=1.0_dp/ratio, modulus=1.0_dp, &
-            & sigma=1.0_dp, mu=4.0_dp, flow_pressure=2.0_dp/pi)
-         call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), x*p%radius, res, err)
-         if (allocated(err)) then
-            call check(error, .false., "sigma/delta_y "//str(ratio)//" at "//str(x) &
-               & //" delta_y: "//err%message)
-            return
-         end if
+         call edge_point_solve(ratio, x, res, error)
+         if (allocated(error)) return
          call check(error, .not. res%implicit_stiffness, "sigma/delta_y "//str(ratio) &
             & //" at "//str(x)//" delta_y: implicit_stiffness set")
          if (allocated(error)) return
@@ -2221,9 +2213,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       character(len=*), parameter :: path = "test/data/rough_cap_force_reference.csv"
       character(len=row_length), allocatable :: rows(:)
-      type(contact_params) :: p
       type(solve_result) :: res
-      type(egw_error), allocatable :: err
       real(dp) :: ratio, x, f_ref, est, f_main
       integer :: i, comma
       call read_data_rows(path, rows, error)
@@ -2237,14 +2227,8 @@ contains
          call check(error, abs(f_main - f_ref) <= 1.0e-8_dp*f_ref, path//": row " &
             & //str(real(i, dp))//": the two references differ by more than 1e-8")
          if (allocated(error)) return
-         p = contact_params(model=model_egw, radius=1.0_dp/ratio, modulus=1.0_dp, &
-            & sigma=1.0_dp, mu=4.0_dp, flow_pressure=2.0_dp/pi)
-         call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), x*p%radius, res, err)
-         if (allocated(err)) then
-            call check(error, .false., "sigma/delta_y "//str(ratio)//" at "//str(x) &
-               & //" delta_y: "//err%message)
-            return
-         end if
+         call edge_point_solve(ratio, x, res, error)
+         if (allocated(error)) return
          call check(error, abs(res%force - f_ref) <= 1.0e-6_dp*f_ref, "sigma/delta_y " &
             & //str(ratio)//" at "//str(x)//" delta_y: force "//str(res%force) &
             & //" vs reference "//str(f_ref)//" (relative "//str(res%force/f_ref - 1) &
@@ -2252,6 +2236,22 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_force_points
+
+   !> test_stiffness_points' and test_force_points' solve: E-GW + cap, sigma = E* = 1,
+   !> R = 1/ratio, p_y = 2/pi (delta_y = R), mu 4, at x delta_y and rel_tol 1e-6; a failed
+   !> solve is the test's error, naming the point.
+   subroutine edge_point_solve(ratio, x, res, error)
+      real(dp), intent(in) :: ratio, x
+      type(solve_result), intent(out) :: res
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(egw_error), allocatable :: err
+      p = contact_params(model=model_egw, radius=1.0_dp/ratio, modulus=1.0_dp, &
+         & sigma=1.0_dp, mu=4.0_dp, flow_pressure=2.0_dp/pi)
+      call solve_contact(p, solver_options(rel_tol=1.0e-6_dp), x*p%radius, res, err)
+      if (allocated(err)) call check(error, .false., "sigma/delta_y "//str(ratio)//" at " &
+         & //str(x)//" delta_y: "//err%message)
+   end subroutine edge_point_solve
 
    !> load_history with stiffness=.false. (what a hysteresis build's curves load: they read
    !> the history's force only) skips the moved-mesh stiffness: the history's force and

@@ -150,10 +150,10 @@ module egw_cache
    !> 53 (stop 58, build24): rough + cap builds skip the check solves that two shifted
    !> four-point stencils clear (hysteresis_grid's gap_check_skip): the promoted check
    !> curves' solves start from other solves, the tables' bits change (2e-8 of P(m)).
-   !> 54 (stop 58, edge24): rough + cap loading solves of E-GW/EP-GW grade the elements inside a
-   !> towards it where the capped zone reaches past a (egw_sphere_mesh's graded_inside)
-   !> and end with a confirming level at every rel_tol (egw_sphere_refine): their forces,
-   !> histories and tables change within their rel_tol.
+   !> 54 (stop 58, edge24): rough + cap loading solves of E-GW/EP-GW grade the elements
+   !> inside a towards it where the capped zone reaches past a (egw_sphere_mesh's
+   !> graded_inside) and end with a confirming level at every rel_tol (egw_sphere_refine):
+   !> their forces, histories and tables change within their rel_tol.
    integer, parameter, public :: cache_revision = 54
 
 
