@@ -5,6 +5,7 @@
 
 #include "egw_submodels.h"
 
+#include <set>
 #include <string>
 
 namespace LAMMPS_NS {
@@ -14,6 +15,12 @@ bool egw_parse_number(const char *s, double &v);
 /* one sub-model keyword at arg[i] into p; the index after it, or -1 if it is none */
 int egw_submodels_parse(Error *error, const char *who, int narg, char **arg, int i,
                         EgwSubmodels::Params &p);
+/* an ERROR when the keyword at arg[i] was given before on this line (seen: the keywords so
+ * far): the first value would be dropped without a word. damping takes a value and a model
+ * once each (granular's hertz/material coefficient and its damping model); friction is a
+ * tangential model; yield_stress beside flow_pressure is egw_flow_parse's error. */
+void egw_check_repeat(Error *error, const char *who, std::set<std::string> &seen, int narg,
+                      char **arg, int i);
 struct EgwCoeff;
 /* a WARNING for keywords model (EGW_MODEL_*) ignores: psi, K, plastic_ratio (have_plastic)
  * with a model other than EP-GW; sigma, mu or summit data with Hertz.  Rank 0 only. */

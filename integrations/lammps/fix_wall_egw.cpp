@@ -156,6 +156,7 @@ void FixWallEGW::parse(int narg, char **arg)
   bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
        havebeta = false, haveplastic = false;
   int flow_given = -1;
+  std::set<std::string> seen;   // keywords so far: one given twice is an ERROR
   int i = 5;
   auto number = [&](const std::string &key, int k) {
     if (k >= narg) error->all(FLERR, "{}: keyword '{}' needs a value", who, key);
@@ -177,6 +178,8 @@ void FixWallEGW::parse(int narg, char **arg)
                           "... ('granular hertz/material E e nu' is 'E E nu nu sigma 1e-16 mu 4 "
                           "wall_material contact damping e': README's conversion table)",
                    who, key);
+    // temperature may also follow the wall style: set_temperature refuses it twice
+    if (key != "temperature") egw_check_repeat(error, who, seen, narg, arg, i);
     int next = egw_submodels_parse(error, who, narg, arg, i, wall.sub);
     if (next < 0) next = egw_flow_parse(error, who, narg, arg, i, wall, flow_given);
     if (next > 0) {

@@ -202,6 +202,21 @@ int LAMMPS_NS::egw_submodels_parse(Error *error, const char *who, int narg, char
   return -1;
 }
 
+/* a keyword given twice on one line: an ERROR naming it (egw_submodels_parse.h) */
+void LAMMPS_NS::egw_check_repeat(Error *error, const char *who, std::set<std::string> &seen,
+                                 int narg, char **arg, int i)
+{
+  std::string key = arg[i], slot = key;
+  double v;
+  if (key == "friction") slot = "tangential";
+  else if (key == "damping" && i + 1 < narg)
+    slot = egw_parse_number(arg[i + 1], v) ? "damping <value>" : "damping <model>";
+  if (!seen.insert(slot).second)
+    error->all(FLERR, "{}: keyword '{}' given twice{}: give it once (the first would be "
+                      "dropped without a word)", who, slot,
+               key == "friction" ? " (friction is a tangential model)" : "");
+}
+
 /* 'flow_pressure P' or 'yield_stress Y' (p_y = 1.6 Y, doc/theory.md section 12) at
  * arg[i] into c: the index after it, -1 if arg[i] is neither. Refused: a value that is not
  * a finite number >= 0, and both keywords for one body. who: as egw_submodels_parse. */
@@ -277,6 +292,7 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
   bool haveE = false, havenu = false, havesig = false, havemu = false, haveeta = false,
        havebeta = false, haveplastic = false, havelaw = false;
   int flow_given = -1;
+  std::set<std::string> seen;
   c = Coeff();
   static const char *granular_normal[] = {"hooke", "hertz", "hertz/material", "dmt", "jkr",
                                           "mdr"};
@@ -287,6 +303,7 @@ void PairEGW::parse_coeff(int narg, char **arg, Coeff &c)
         error->all(FLERR, "Pair coeff egw: '{}' (pair granular's normal model) is not supported: "
                           "egw's normal law takes keywords: E v nu v sigma v mu v ... (damping, "
                           "tangential, rolling, twisting and heat as in granular)", key);
+    egw_check_repeat(error, "Pair coeff egw", seen, narg, arg, i);
     int next = egw_submodels_parse(error, "Pair coeff egw", narg, arg, i, c.sub);
     if (next < 0) next = egw_flow_parse(error, "Pair coeff egw", narg, arg, i, c, flow_given);
     if (next > 0) {

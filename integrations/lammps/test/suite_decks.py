@@ -151,7 +151,7 @@ def test_submodels_ranks_agree():
     to 1e-12."""
     w = ("tangential mindlin_rescale NULL 1.0 0.3 rolling sds 1e5 0.05 0.2 twisting marshall "
          "damping coeff_restitution")
-    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.7 damping coeff_restitution " + w
+    c = f"E {E} nu {NU} sigma 0.5e-6 mu 4 psi 1 damping 0.7 " + w
     kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5)
     res = []
     for np, newton in ((1, "on"), (2, "on"), (2, "off")):
@@ -500,7 +500,7 @@ def test_size_list_reaches_tail():
 
 
 def test_bad_coeff():
-    """Bad pair_coeff / pair_style input (66 cases, granular's sub-model syntax among them): a
+    """Bad pair_coeff / pair_style input (70 cases, granular's sub-model syntax among them): a
     LAMMPS ERROR naming the keyword, a non-zero exit, never a crash; granular's keywords and
     models egw does not have (cutoff, synchronized_verlet, the classic tangential models,
     rolling cdt, ..., every granular normal model) say "not supported"."""
@@ -550,6 +550,14 @@ def test_bad_coeff():
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat conduction 1", "heat"),
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat area nan", "h_s"),
         ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 heat radius 1", "heat"),
+        # a keyword given twice: the first value was dropped without a word (audit24)
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 E {E}", "'E' given twice"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 damping 0.5 damping 0.6",
+         "'damping <value>' given twice"),
+        ("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 friction 0.5 tangential mindlin NULL 1 0.5",
+         "'tangential' given twice"),
+        ("egw Hertz 1e-4", f"{base} flow_pressure 10 flow_pressure 20",
+         "'flow_pressure' given twice"),
     ]
     # granular's words egw does not have: "not supported", never "needs a value"
     cases += [("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 {w}", "not supported") for w in (

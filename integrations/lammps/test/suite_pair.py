@@ -382,7 +382,7 @@ def test_twisting_pair_vs_granular():
     v = 0.05
     words = "tangential mindlin NULL 1.0 0.3 {tw}damping tsuji"
     gran = f"hertz/material {E} 0.7 {NU} " + words
-    egw = f"E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 damping coeff_restitution " + words
+    egw = f"E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 " + words
     worst = 0.0
     for tol in ("1e-6", "1e-8"):
         a = twisting_pair(f"egw E-GW {tol}", egw.format(tw="twisting marshall "), 2.0123e-5)
@@ -416,7 +416,7 @@ def test_pair_local_granular_columns():
             "damping coeff_restitution"
     kw = dict(yoff=0.0008, wz=60.0, wx=80.0, gap=2.0123e-5, pairlocal=2, thermo_every=2600,
               n1=2600)
-    rc1, out1 = collision("egw Hertz 1e-4", f"E {E} nu {NU} sigma 0 damping 0.7 damping coeff_restitution " + words, **kw)
+    rc1, out1 = collision("egw Hertz 1e-4", f"E {E} nu {NU} sigma 0 damping 0.7 " + words, **kw)
     rc2, out2 = collision("granular", f"hertz/material {E} 0.7 {NU} " + words, **kw)
     got = []
     for out in (out1, out2):

@@ -149,7 +149,7 @@ def test_wall_rolling_vs_wall_gran():
          "damping coeff_restitution")
     kw = dict(vx=0.05, wx=30.0, g=9.81)
     rc1, o1 = wall_run("egw E-GW 1e-8", f"E {E} nu {NU} sigma 1e-16 mu 4",
-                       f"wall/egw E-GW 1e-8 E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 damping coeff_restitution {W} "
+                       f"wall/egw E-GW 1e-8 E {E} nu {NU} sigma 1e-16 mu 4 damping 0.7 {W} "
                        "zplane 0 NULL", 0.0, 1e-6, 20000, RAD, **kw)
     rc2, o2 = wall_run("granular", f"hertz/material {E} 0.7 {NU} {W}",
                        f"wall/gran granular hertz/material {E} 0.7 {NU} {W} zplane 0 NULL",
@@ -193,11 +193,12 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (21 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    """Bad fix wall/egw input (24 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
     never a crash or hang. 'temperature' without its value after a region ID said "region ID
     'temperature' does not exist" before, and one given twice was taken silently; fix
     wall/gran's 'hertz/material E e nu' kept in a converted line said "unknown keyword" (stop
-    49), 'granular' as MODEL now names the conversion."""
+    49), 'granular' as MODEL now names the conversion; a keyword given twice was taken
+    silently, its first value dropped (stop 58)."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
         (f"wall/egw E-GW 1e-4 {c}", "wall style"),
@@ -225,6 +226,12 @@ def test_bad_wall():
          "'hertz/material' (fix wall/gran's normal model) is not supported"),
         (f"wall/egw granular hertz/material {E} 0.5 {NU} zplane 0 NULL",
          "MODEL = 'granular': must be Hertz, GW, E-GW or EP-GW (fix wall/gran's"),
+        # a keyword given twice: the first value was dropped without a word (audit24)
+        (f"wall/egw E-GW 1e-4 {c} damping 0.5 damping 0.7 zplane 0 NULL",
+         "'damping <value>' given twice"),
+        (f"wall/egw E-GW 1e-4 {c} wall_material contact wall_material own zplane 0 NULL",
+         "'wall_material' given twice"),
+        (f"wall/egw E-GW 1e-4 {c} mu 4 zplane 0 NULL", "'mu' given twice"),
     ]
     bad = []
     for wall, key in cases:
@@ -316,7 +323,7 @@ def test_wall_curvature_vs_wall_gran():
             ("flat", "zplane -0.005 NULL", None)):
         style = "wall/egw" if "plane" in egw_wall or "cylinder" in egw_wall else "wall/egw/region"
         rc1, o1 = curved_run("drum" if shape == "flat" else shape, "egw E-GW 1e-8", c,
-                             f"{style} E-GW 1e-8 {c} damping 0.7 damping coeff_restitution {CURVED_SUB} {egw_wall}")
+                             f"{style} E-GW 1e-8 {c} damping 0.7 {CURVED_SUB} {egw_wall}")
         if rc1:
             return False, f"{shape}: " + " ".join(l for l in o1.splitlines() if "ERROR" in l)
         res[shape] = result(o1)
@@ -392,7 +399,7 @@ def test_wall_contacts_vs_wall_gran():
         ew = "wreg contacts" if shape == "drum" else "zcylinder 0.005 contacts"
         gw = "region wreg contacts" if shape == "drum" else "zcylinder 0.005 contacts"
         rc1, o1 = curved_run(shape, "egw E-GW 1e-8", c,
-                             f"{egw_wall} E-GW 1e-8 {c} damping 0.7 damping coeff_restitution {CURVED_SUB} {ew}", nmid=5200)
+                             f"{egw_wall} E-GW 1e-8 {c} damping 0.7 {CURVED_SUB} {ew}", nmid=5200)
         rc2, o2 = curved_run(shape, "granular", f"hertz/material {E} 0.7 {NU} {CURVED_SUB}",
                              f"{gran_wall} granular hertz/material {E} 0.7 {NU} {CURVED_SUB} {gw}",
                              nmid=5200)
