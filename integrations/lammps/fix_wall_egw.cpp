@@ -62,6 +62,7 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
     // any order
     while (last > 5) {
       if (std::string(arg[last]) == "contacts") {
+        if (contacts) error->all(FLERR, "Fix wall/egw/region: keyword 'contacts' given twice");
         contacts = true, last--;
       } else if (std::string(arg[last]) == "temperature") {
         // 'region ID temperature' with its value missing: not a region named 'temperature'
@@ -77,7 +78,17 @@ FixWallEGW::FixWallEGW(LAMMPS *lmp, int narg, char **arg) :
                                     "MODEL TOL <wall keywords> region-ID [contacts]'");
     region_id = arg[last];
     region = domain->get_region_by_id(region_id);
-    if (!region) error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
+    if (!region) {
+      // a keyword after 'region ID' that fix wall/gran/region does not take there either:
+      // name it rather than call it a missing region
+      for (int k = last - 1; k >= 5; k--)
+        if (domain->get_region_by_id(arg[k]))
+          error->all(FLERR, "Fix wall/egw/region: '{}' after the region ID '{}': only "
+                            "'contacts' and 'temperature T' may follow it (as in fix "
+                            "wall/gran/region); the wall keywords come before it",
+                     arg[k + 1], arg[k]);
+      error->all(FLERR, "Fix wall/egw/region: region ID '{}' does not exist", region_id);
+    }
     wallstyle = REGION;
     tmax = std::max(1, region->tmax);
     restart_global = 1;    // the region's motion (as fix wall/gran/region)
@@ -287,6 +298,7 @@ void FixWallEGW::parse(int narg, char **arg)
   }
   while (i < narg) {
     std::string key = arg[i];
+    if (key != "temperature") egw_check_repeat(error, who, seen, narg, arg, i);
     auto dim_of = [&](int k) {
       if (k >= narg) error->all(FLERR, "{}: '{}' needs a dimension x, y or z", who, key);
       std::string d = arg[k];

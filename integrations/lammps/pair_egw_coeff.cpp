@@ -43,8 +43,15 @@ void PairEGW::settings(int narg, char **arg)
   if (!egw_parse_number(arg[1], v) || v < 1e-8 || v > 0.1)
     error->all(FLERR, "Pair style egw: TOL = '{}': must be a number in [1e-8, 0.1]", arg[1]);
   tol = v;
+  std::set<std::string> seen;
   for (int i = 2; i < narg; i += 2) {
     std::string key = arg[i];
+    // pair_style granular's optional global cutoff, kept in a converted line
+    if (egw_parse_number(arg[i], v))
+      error->all(FLERR, "Pair style egw: '{}' where a keyword is expected (rmin, rmax, "
+                        "overlap_max, tail_energy): a global cutoff (pair_style granular's "
+                        "argument) is not supported by egw", key);
+    egw_check_repeat(error, "Pair style egw", seen, narg, arg, i);
     if (i + 1 >= narg) error->all(FLERR, "Pair style egw: keyword '{}' needs a value", key);
     if (key == "tail_energy") {
       if (!egw_parse_number(arg[i + 1], v) || v < 0.0)

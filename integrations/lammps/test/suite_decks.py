@@ -500,7 +500,7 @@ def test_size_list_reaches_tail():
 
 
 def test_bad_coeff():
-    """Bad pair_coeff / pair_style input (70 cases, granular's sub-model syntax among them): a
+    """Bad pair_coeff / pair_style input (73 cases, granular's sub-model syntax among them): a
     LAMMPS ERROR naming the keyword, a non-zero exit, never a crash; granular's keywords and
     models egw does not have (cutoff, synchronized_verlet, the classic tangential models,
     rolling cdt, ..., every granular normal model) say "not supported"."""
@@ -558,6 +558,12 @@ def test_bad_coeff():
          "'tangential' given twice"),
         ("egw Hertz 1e-4", f"{base} flow_pressure 10 flow_pressure 20",
          "'flow_pressure' given twice"),
+        # the same in pair_style's keywords (stop 59), and granular's global cutoff kept in
+        # a converted pair_style line (was "keyword '10' needs a value")
+        ("egw E-GW 1e-4 overlap_max 0.5 overlap_max 0.7", f"{base} sigma 1e-6 mu 4",
+         "'overlap_max' given twice"),
+        ("egw E-GW 1e-4 rmin 1e-4 rmin 2e-4", f"{base} sigma 1e-6 mu 4", "'rmin' given twice"),
+        ("egw E-GW 1e-4 10", f"{base} sigma 1e-6 mu 4", "global cutoff"),
     ]
     # granular's words egw does not have: "not supported", never "needs a value"
     cases += [("egw E-GW 1e-4", f"{base} sigma 1e-6 mu 4 {w}", "not supported") for w in (

@@ -193,12 +193,13 @@ def test_wall_restart_and_ranks():
 
 
 def test_bad_wall():
-    """Bad fix wall/egw input (24 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
+    """Bad fix wall/egw input (29 cases): a LAMMPS ERROR naming the keyword, a non-zero exit,
     never a crash or hang. 'temperature' without its value after a region ID said "region ID
     'temperature' does not exist" before, and one given twice was taken silently; fix
     wall/gran's 'hertz/material E e nu' kept in a converted line said "unknown keyword" (stop
     49), 'granular' as MODEL now names the conversion; a keyword given twice was taken
-    silently, its first value dropped (stop 58)."""
+    silently, its first value dropped (stop 58; after the wall style, stop 59); a wall keyword
+    after the region ID was called a missing region (stop 59)."""
     c = f"E {E} nu {NU} sigma 0.5e-6 mu 4"
     cases = [
         (f"wall/egw E-GW 1e-4 {c}", "wall style"),
@@ -232,6 +233,17 @@ def test_bad_wall():
         (f"wall/egw E-GW 1e-4 {c} wall_material contact wall_material own zplane 0 NULL",
          "'wall_material' given twice"),
         (f"wall/egw E-GW 1e-4 {c} mu 4 zplane 0 NULL", "'mu' given twice"),
+        # after the wall style or the region ID too (stop 59: the first wiggle was dropped)
+        (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL wiggle z 1e-5 1 wiggle z 2e-5 1",
+         "'wiggle' given twice"),
+        (f"wall/egw E-GW 1e-4 {c} zplane 0 NULL shear x 1 shear y 1", "'shear' given twice"),
+        (f"wall/egw/region E-GW 1e-4 {c} region wreg contacts contacts",
+         "'contacts' given twice"),
+        # a wall keyword after the region ID (was "region ID 'limit_damping' does not exist")
+        (f"wall/egw/region E-GW 1e-4 {c} region wreg limit_damping",
+         "'limit_damping' after the region ID 'wreg'"),
+        (f"wall/egw/region E-GW 1e-4 {c} wreg damping 0.5 contacts",
+         "'damping' after the region ID 'wreg'"),
     ]
     bad = []
     for wall, key in cases:
