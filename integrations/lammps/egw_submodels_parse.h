@@ -23,7 +23,8 @@ void egw_check_repeat(Error *error, const char *who, std::set<std::string> &seen
                       char **arg, int i);
 struct EgwCoeff;
 /* a WARNING for keywords model (EGW_MODEL_*) ignores: psi, K, plastic_ratio (have_plastic)
- * with a model other than EP-GW; sigma, mu or summit data with Hertz.  Rank 0 only. */
+ * with a model other than EP-GW; sigma, mu or summit data with Hertz, mu or summit data
+ * with sigma 0; limit_damping with damping none.  Rank 0 only. */
 void egw_warn_ignored(Error *error, const char *who, int model, const EgwCoeff &c,
                       bool have_sigma, bool have_plastic);
 /* ranges that depend on more than one keyword (the damping value by its model, ...) */

@@ -273,6 +273,14 @@ void LAMMPS_NS::egw_warn_ignored(Error *error, const char *who, int model, const
   if (model == EGW_MODEL_HERTZ && (c.mu_mode != 0 || (have_sigma && c.sigma > 0)))
     error->warning(FLERR, "{}: model Hertz is smooth: it ignores sigma, mu and summit data",
                    who);
+  // a smooth body's surface data: EgwLaw::combine takes the rough partner's (or none)
+  if (model != EGW_MODEL_HERTZ && c.sigma == 0 && c.mu_mode != 0)
+    error->warning(FLERR, "{}: sigma 0 is a smooth surface: it ignores mu and summit data (a "
+                          "contact takes its rough partner's)", who);
+  // egw's elastic force is never negative: only a damping force can make the total so
+  if (c.sub.limit_damping && c.sub.damping == EgwSubmodels::DAMP_NONE)
+    error->warning(FLERR, "{}: limit_damping with damping none is ignored (no damping force "
+                          "to limit)", who);
 }
 
 /* the damping value's range once the model is known */

@@ -505,7 +505,7 @@ def rcap_run(wall, r, m, np=1):
     # overlap_max: 6 delta_y of the pair (the speeds' deepest overlaps are below 5)
     style = f"egw E-GW 1e-3 overlap_max {6 * dy / R_STAR!r}"
     coeff = f"E {E} nu {NU} sigma {s_body!r} mu 4 flow_pressure {p_y!r}"
-    wfix = None if wall is None else f"wall/egw E-GW 1e-3 E {E} nu {NU} sigma 0 mu 4"
+    wfix = None if wall is None else f"wall/egw E-GW 1e-3 E {E} nu {NU} sigma 0"
     rc, out = lmp(cap_deck(coeff, wfix, speeds, dt, nrun, style=style), np=np)
     if rc != 0:
         return None, refs, [l for l in out.splitlines() if "ERROR" in l or "WARN" in l], dy
@@ -615,7 +615,7 @@ def test_rough_cap_polydisperse():
     style = f"egw E-GW 1e-3 overlap_max {6 * (math.pi * p_y / (2 * E_STAR)) ** 2!r}"
     coeff = f"E {E} nu {NU} sigma {s_body!r} mu 4 flow_pressure {p_y!r}"
     rc, out = lmp(rcap_poly_deck(coeff, style, [c[4] for c in cases], dt, nrun, None))
-    wfix = f"wall/egw E-GW 1e-3 E {E} nu {NU} sigma 0 mu 4 overlap_max " \
+    wfix = f"wall/egw E-GW 1e-3 E {E} nu {NU} sigma 0 overlap_max " \
         f"{6 * (math.pi * p_y / (2 * E_STAR)) ** 2!r}"
     rcw, outw = lmp(rcap_poly_deck(coeff, style, [c[4] for c in walls], dt, nrun, wfix))
     # the same beads on a plane region wall/egw/region (R = R_i, the tables' range found

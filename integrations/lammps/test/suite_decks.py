@@ -286,7 +286,8 @@ def test_collision_example():
 def test_ignored_keywords_warn():
     """Keywords the model ignores are named in a WARNING (as egw's Python warns): psi (and K,
     plastic_ratio) with E-GW in pair_coeff and in fix wall/egw; mu with Hertz; a wall's
-    temperature without a heat model."""
+    temperature without a heat model; mu with sigma 0 (pair and wall: the rough partner's
+    is taken) and limit_damping with damping none (stop 59: both were taken silently)."""
     c = f"E {E} nu {NU} sigma 1e-6 mu 4"
     bad = []
     for ps, pc, wall, word in (
@@ -295,7 +296,11 @@ def test_ignored_keywords_warn():
             ("egw Hertz 1e-4", f"E {E} nu {NU} mu 4", None, "Hertz"),
             ("egw E-GW 1e-4", c, f"wall/egw E-GW 1e-4 {c} psi 1 zplane -0.003 NULL", "psi"),
             ("egw E-GW 1e-4", c, f"wall/egw E-GW 1e-4 {c} temperature 300 zplane -0.003 NULL",
-             "temperature")):
+             "temperature"),
+            ("egw E-GW 1e-4", f"E {E} nu {NU} sigma 0 mu 4", None, "sigma 0"),
+            ("egw E-GW 1e-4", c, f"wall/egw E-GW 1e-4 E {E} nu {NU} mu 4 zplane -0.003 NULL",
+             "sigma 0"),
+            ("egw E-GW 1e-4", c + " damping none limit_damping", None, "limit_damping")):
         if wall:
             rc, out = wall_run(ps, pc, wall, 0.1, 1e-8, 0, RAD + 1e-5)
         else:
@@ -303,7 +308,7 @@ def test_ignored_keywords_warn():
         warn = [l for l in out.splitlines() if "WARNING" in l and word in l]
         if rc != 0 or not warn:
             bad.append(f"{pc} {wall or ''}: rc {rc}, no WARNING naming {word}")
-    return not bad, "5/5 warned" if not bad else "; ".join(bad)
+    return not bad, "8/8 warned" if not bad else "; ".join(bad)
 
 
 def pile(pstyle, c11, c22, np=1, newton="on", nrun=50000, seed=4821, deck="pile.in"):
