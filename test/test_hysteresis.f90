@@ -1407,7 +1407,7 @@ contains
    !> Fortran entry's); values beyond the doubles: the entries' EGW_INVALID_ARGUMENT, the
    !> history kept. Every C route is walked (counts below). The copies agree on main
    !> 7893885 as well (this test passes there); it fails where eval_state_served departs:
-   !> mutations of it, the log-ratio exp piece_exp replaced by libm's exp (901 steps
+   !> mutations of it, the log-ratio exp piece_exp replaced by libm's exp (997 steps
    !> differ) or the loading step dropping the piece back at the history (1641), fail
    !> here while test_c_separated, whose C call takes the C top on those steps, passes.
    subroutine test_served_copies(error)
