@@ -879,6 +879,8 @@ static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
     double tag, double delta, double state[EGW_HYSTERESIS_STATE_SIZE], double *force,
     double *stiffness)
 {
+  /* (one of the library's four copies of this arithmetic, kept the same bits: its
+   * src/egw/capi/README.md) */
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
    * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
    * [17..23] the loading table's interval (ends, cubic in delta - [17], > 0 where it is

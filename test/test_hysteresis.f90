@@ -11,7 +11,7 @@ module test_hysteresis
    use egw_table, only: table_eval
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_eval_state, hysteresis_state_init, hysteresis_state_size, &
-      & hysteresis_energy, first_yield, folded
+      & hysteresis_energy, first_yield, folded, zero_lo
    use egw_hysteresis_data, only: turning_point, edge_breaks, edge_s, edge_xi, max_stencil
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary, format_lammps
@@ -77,6 +77,8 @@ contains
          & new_unittest("C eval_state = hysteresis_eval_state, separated", test_c_separated), &
          & new_unittest("C eval_state = hysteresis_eval_state, log-ratio pieces at the "// &
          & "doubles' ends", test_c_piece_ends), &
+         & new_unittest("served steps: the C top = the Fortran entry = "// &
+         & "hysteresis_eval_state, bit for bit", test_served_copies), &
          & new_unittest("stretched last curve far above the table: finite", test_stretched_far), &
          & new_unittest("piece_exp: within 0.55 ulp of exp, egw.h's the same bits", &
          & test_piece_exp) &
@@ -1387,6 +1389,186 @@ contains
          & to_string(cases)//", zero forces "//to_string(zeros)//", not finite "// &
          & to_string(infinite))
    end subroutine test_c_piece_ends
+
+   !> The served arithmetic's copies agree bit for bit (stop 59, tail25: the doubt in stop
+   !> 58's notes; the four copies: src/egw/capi/README.md): the C entry's top
+   !> (capi_hysteresis_state.c, egw_hysteresis_state_step), the Fortran entry
+   !> (egw_hysteresis_eval_state_general: eval_state_served, else the checked full call)
+   !> and the reference hysteresis_eval_state, over 800 contacts of the suite's EP-GW table
+   !> walked as in test_c_separated (never touched and touched; approach, jitter, recession
+   !> past the cut-off and back) with a cycle of 16 overlaps added that returns to its top
+   !> exactly (loading back at the history). At every step, from one state: the Fortran
+   !> entry, with both outputs and with each alone, gives hysteresis_eval_state's status,
+   !> force, stiffness and state bits (compared as integers: -0 is not +0); where the C top
+   !> serves, it gives them too, with status 0; where it declines it writes nothing. Then
+   !> the folded route's ends: a tail state's cubic made target + x slope (targets -708.5,
+   !> -708, -707.5, -1, -0, +0, 1e-300, 0.5, 707.5; slopes 0, 3, 2^1023), the same
+   !> comparison, the C top serving exactly f in (-708, -0] at slope 0 (+0 and above: the
+   !> Fortran entry's); values beyond the doubles: the entries' EGW_INVALID_ARGUMENT, the
+   !> history kept. Every C route is walked (counts below). The copies agree on main
+   !> 7893885 as well (this test passes there); it fails where eval_state_served departs:
+   !> mutations of it, the log-ratio exp piece_exp replaced by libm's exp (997 steps
+   !> differ) or the loading step dropping the piece back at the history (1641), fail
+   !> here while test_c_separated, whose C call takes the C top on those steps, passes.
+   subroutine test_served_copies(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(hysteresis_table), target :: t
+      type(hysteresis_handle), target :: hd   ! the C handle of t
+      real(c_double), target :: sc(hysteresis_state_size), sg(hysteresis_state_size), fc, kc, &
+         & fg, kg
+      real(dp) :: s0(hysteresis_state_size), sf(hysteresis_state_size), ff, kf, x0, d, cut, &
+         & base(hysteresis_state_size)
+      real(dp), parameter :: targets(9) = [-708.5_dp, -708.0_dp, -707.5_dp, -1.0_dp, -0.0_dp, &
+         & 0.0_dp, 1.0e-300_dp, 0.5_dp, 707.5_dp], slopes(3) = [0.0_dp, 3.0_dp, 2.0_dp**1023]
+      integer :: j, n, i, m, a, stat_g, stat_f, mismatches, steps, routes(4), served_b, &
+         & at_history
+      interface
+         integer(c_int) function c_state_step(h, delta, state, force, stiffness) &
+            & bind(C, name="egw_hysteresis_state_step")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, state, force, stiffness
+            real(c_double), value :: delta
+         end function c_state_step
+         integer(c_int) function c_general(table, delta, state, force, stiffness) &
+            & bind(C, name="egw_hysteresis_eval_state_general")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: table, state, force, stiffness
+            real(c_double), value :: delta
+         end function c_general
+      end interface
+      call build(ep, t, error)
+      if (allocated(error)) return
+      hd = hysteresis_handle_for(t)
+      cut = t%loading%cutoff
+      mismatches = 0
+      steps = 0
+      routes = 0
+      at_history = 0
+      do j = 1, 800
+         if (j <= 400) then
+            x0 = cut*(1.0_dp - (j - 0.5_dp)/400)   ! (cut-off, 0)
+         else
+            x0 = 6.2_dp*(j - 400.5_dp)/400   ! (0, 6.2): in contact, past delta_max
+         end if
+         call hysteresis_state_init(sf)
+         do n = 0, 160
+            if (n == 0) then
+               d = merge(1.0_dp, x0 - 1.0_dp, mod(j, 2) == 0)   ! touched, or not
+            else if (n <= 20) then
+               d = x0 - 1.0_dp + n/20.0_dp
+            else if (n <= 60) then
+               d = x0 + 0.02_dp*(modulo(5*n, 8)/7.0_dp - 0.5_dp) + 1.0e-4_dp*sin(0.1_dp*n)
+            else if (n <= 100) then
+               d = x0 + 0.02_dp + 0.01_dp*modulo(7*n, 16)/15.0_dp   ! a cycle: back at its top
+            else if (n <= 130) then
+               d = x0 - 3.0_dp*(n - 100)/30.0_dp
+            else
+               d = x0 - 3.0_dp + 3.0_dp*(n - 130)/30.0_dp
+            end if
+            s0 = sf
+            call compare_step(a)
+            if (a == 1) routes(route()) = routes(route()) + 1
+            if (a == 1 .and. d == s0(1)) at_history = at_history + 1
+         end do
+      end do
+      call check(error, mismatches, 0, "walk steps where the C top, the Fortran entry and "// &
+         & "hysteresis_eval_state differ (of "//to_string(steps)//")")
+      if (allocated(error)) return
+      ! each route the C top serves is walked (the counts on 7893885: zero pieces 5 384,
+      ! folded 46 897, log-ratio on a linear interval 37 475, loading 13 440, 547 of
+      ! these back at the history)
+      call check(error, all(routes > 2500) .and. at_history > 250, "steps the C top "// &
+         & "served: zero "//to_string(routes(1))//", folded "//to_string(routes(2))// &
+         & ", log-ratio "//to_string(routes(3))//", loading "//to_string(routes(4))// &
+         & " (back at the history "//to_string(at_history)//")")
+      if (allocated(error)) return
+      ! the folded route's boundaries: touched at 1, unloaded into the tail
+      call hysteresis_state_init(sf)
+      call hysteresis_eval_state(t, 1.0_dp, sf, ff, kf, stat_f)
+      d = 0.5_dp*cut
+      call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
+      d = d - 1.0e-3_dp
+      call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
+      call check(error, stat_f == 0 .and. sf(24) == folded .and. sf(11) < d .and. d < sf(12), &
+         & "a folded piece at "//format_real(d))
+      if (allocated(error)) return
+      base = sf
+      served_b = 0
+      do i = 1, size(targets)
+         do m = 1, size(slopes)
+            ! the cubic (c1 + x c2) + x^2 (c3 + x c4) = target + x slope, exactly the
+            ! target where the slope is 0 (c2 = c3 = c4 = +0; -0 keeps its sign: x 0 = +0)
+            s0 = base
+            s0(14:17) = [targets(i), slopes(m), 0.0_dp, 0.0_dp]
+            if (m == 1 .and. i == 5) s0(14:17) = -0.0_dp   ! f = -0 exactly
+            call compare_step(a)
+            served_b = served_b + a
+            if (m == 1) call check(error, a == merge(1, 0, i >= 3 .and. i <= 5), &
+               & "C top at ln P - h = "//format_real(targets(i))//": served "//to_string(a))
+            if (allocated(error)) return
+         end do
+      end do
+      call check(error, mismatches, 0, "boundary cases where the C top, the Fortran "// &
+         & "entry and hysteresis_eval_state differ (C top served "//to_string(served_b)//")")
+   contains
+      !> One step from s0 at d by the three: mismatches counted; a the C top's answer.
+      !> Where hysteresis_eval_state's values are not finite, the entries' input guard:
+      !> EGW_INVALID_ARGUMENT and the history kept, the C top declining.
+      subroutine compare_step(a)
+         integer, intent(out) :: a
+         integer :: stat_1, want
+         real(c_double), target :: f1, k1
+         logical :: finite
+         sf = s0
+         call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
+         steps = steps + 1
+         finite = ieee_is_finite(ff) .and. ieee_is_finite(kf)
+         want = merge(stat_f, egw_invalid_argument, finite)
+         ! the Fortran entry: both outputs, then each alone
+         sg = s0
+         stat_g = c_general(c_loc(t), d, c_loc(sg), c_loc(fg), c_loc(kg))
+         if (finite) then
+            if (.not. (stat_g == want .and. bits(fg, ff) .and. bits(kg, kf) .and. &
+               & all(bits(sg, sf)))) mismatches = mismatches + 1
+         else if (.not. (stat_g == want .and. bits(sg(1), s0(1)))) then
+            mismatches = mismatches + 1
+         end if
+         sg = s0
+         f1 = 7.0_dp
+         stat_1 = c_general(c_loc(t), d, c_loc(sg), c_loc(f1), c_null_ptr)
+         if (.not. (stat_1 == want .and. (.not. finite .or. (bits(f1, ff) .and. &
+            & all(bits(sg, sf)))))) mismatches = mismatches + 1
+         sg = s0
+         k1 = 7.0_dp
+         stat_1 = c_general(c_loc(t), d, c_loc(sg), c_null_ptr, c_loc(k1))
+         if (.not. (stat_1 == want .and. (.not. finite .or. (bits(k1, kf) .and. &
+            & all(bits(sg, sf)))))) mismatches = mismatches + 1
+         ! the C top (nothing written where it declines)
+         sc = s0
+         a = c_state_step(c_loc(hd), d, c_loc(sc), c_loc(fc), c_loc(kc))
+         if (a == 1) then
+            if (.not. (finite .and. stat_f == 0 .and. bits(fc, ff) .and. bits(kc, kf) .and. &
+               & all(bits(sc, sf)))) mismatches = mismatches + 1
+         else if (.not. (a == 0 .and. all(bits(sc, s0)))) then
+            mismatches = mismatches + 1
+         end if
+      end subroutine compare_step
+      !> The route of a step the C top served, from the state before it: 1 a zero piece,
+      !> 2 a folded piece, 3 a log-ratio piece on a linear interval, 4 loading.
+      integer function route()
+         if (s0(2) == s0(1) .and. s0(11) < d .and. d <= s0(12) .and. s0(11) == zero_lo) then
+            route = 1
+         else if (s0(2) == s0(1) .and. s0(11) < d .and. d < s0(12)) then
+            route = merge(2, 3, s0(24) == folded)
+         else
+            route = 4
+         end if
+      end function route
+      elemental logical function bits(x, y)
+         real(dp), intent(in) :: x, y
+         bits = transfer(x, 0_int64) == transfer(y, 0_int64)
+      end function bits
+   end subroutine test_served_copies
 
    !> The optional error of hysteresis_eval, hysteresis_eval_state and hysteresis_energy
    !> (issue 33 item 5: they returned a bare stat): on the EP-GW table, at loading and

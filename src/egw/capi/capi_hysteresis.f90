@@ -170,7 +170,8 @@ contains
    !> it leaves; a step whose status would not be EGW_OK (a history above the table's
    !> delta_max, values that are not finite: a garbled state) is not served (served
    !> .false., the state unchanged), nor a log-ratio piece's whose force is 0 (the full
-   !> call gives it the same zeros: its served step keeps one test).
+   !> call gives it the same zeros: its served step keeps one test). One of the served
+   !> arithmetic's four copies (src/egw/capi/README.md: a change goes into all four).
    pure subroutine eval_state_served(h, delta, state, force, stiffness, served)
       type(hysteresis_table), intent(in) :: h
       real(dp), intent(in) :: delta

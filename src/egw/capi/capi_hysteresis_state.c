@@ -10,7 +10,9 @@
  * arithmetic is egw_capi_hysteresis's eval_state_served's (and egw.h's inline
  * egw_hysteresis_eval_cached's), in the same order, the log-ratio pieces' exp egw.h's
  * egw_piece_exp_ (= piece_exp): the same bits, and the same state left (tests
- * hysteresis "C eval_state = hysteresis_eval_state, separated" and unload_checks.c).
+ * hysteresis "C eval_state = hysteresis_eval_state, separated", "served steps: the C top =
+ * the Fortran entry = hysteresis_eval_state, bit for bit" and unload_checks.c). One of the
+ * served arithmetic's four copies (src/egw/capi/README.md: a change goes into all four).
  * Why in C: in Fortran the call cost 2.1x an inline Hertz formula beyond the cut-off and
  * 6.1-6.5x in the tail, where issue 33 item 5 asks 2x and 5x (doc/benchmarks.md "Stop
  * 57: callcost").

@@ -332,7 +332,8 @@ contains
    !> (make_log_piece: seg(7) folded on a ln P interval, c is ln P - h; 2 there with c
    !> -h; -1 on a linear one, c -h): exp(ln P - h), or P e^-h, one exp (piece_exp; egw.h's inline
    !> egw_hysteresis_eval_cached does the same arithmetic in the same order: the same
-   !> bits).
+   !> bits). With hysteresis_eval_state's top, the reference of the served arithmetic's
+   !> four copies (src/egw/capi/README.md: a change goes into all four).
    pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
       real(dp), intent(in) :: lo, c(4), seg(7), delta
       real(dp), intent(out) :: force, stiffness
