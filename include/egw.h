@@ -1232,7 +1232,8 @@ int egw_restitution_array(const egw_params *p, int p_stride, const egw_options *
                           int *n_failed);
 
 /* egw_time_step at n impacts (mass, velocity) with one tolerance: duration and time_step
- * (each may be NULL); threads as egw_solve_array. */
+ * (each may be NULL); threads as egw_solve_array. The tolerance is shared: one outside
+ * (0, 0.1] is EGW_INVALID_ARGUMENT naming it whatever flags, outputs untouched. */
 int egw_time_step_array(const egw_params *p, int p_stride, const egw_options *o, int n,
                         const double *mass, int mass_stride, const double *velocity,
                         int velocity_stride, double tolerance, double *duration,
