@@ -3,6 +3,7 @@
 !> against full solves at overlaps the choice did not sample, and the measured error of
 !> the chosen tables against full solves.
 module test_scene
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_parameter, egw_io_error, egw_bad_file, &
@@ -360,6 +361,38 @@ contains
       call check(error, allocated(err), "negative mass accepted")
       if (allocated(error)) return
       call check(error, index(err%message, "mass") > 0, err%message)
+      if (allocated(error)) return
+      ! invalid parameters and closed forms beyond the doubles: refused naming them (audit25:
+      ! an Inf radius gave v_y = +Inf and 'the cap never acts', p_y = 1e300 > E* the same,
+      ! an Inf modulus v_y = 0 and 'the cap matters', mass = speed = 1e300 an Inf overlap)
+      p%sigma = 1.8e-7_dp
+      p%flow_pressure = 3.2e9_dp
+      call refused(p, ieee_value(1.0_dp, ieee_positive_inf), 1.15e11_dp, 3.2e9_dp, mass, 1.0_dp, "radius")
+      if (allocated(error)) return
+      call refused(p, 5e-4_dp, ieee_value(1.0_dp, ieee_positive_inf), 3.2e9_dp, mass, 1.0_dp, "modulus")
+      if (allocated(error)) return
+      call refused(p, 5e-4_dp, 1.15e11_dp, 1e300_dp, mass, 1.0_dp, "flow_pressure")
+      if (allocated(error)) return
+      call refused(p, 5e-4_dp, 1.15e11_dp, 3.2e9_dp, 1e300_dp, 1e300_dp, "speed")
+      if (allocated(error)) return
+      call refused(p, 5e-4_dp, 1.15e11_dp, 3.2e9_dp, 1e300_dp, 1.0_dp, "mass")
+
+   contains
+
+      subroutine refused(p0, radius, modulus, flow_pressure, m, v, name)
+         type(contact_params), intent(in) :: p0
+         real(dp), intent(in) :: radius, modulus, flow_pressure, m, v
+         character(len=*), intent(in) :: name
+         type(contact_params) :: q
+         q = p0
+         q%radius = radius
+         q%modulus = modulus
+         q%flow_pressure = flow_pressure
+         call classify_impact(q, m, v, r, err)
+         call check(error, allocated(err), name//": accepted: "//r%reason)
+         if (allocated(error)) return
+         call check(error, index(err%message, name) == 1, name//": "//err%message)
+      end subroutine refused
    end subroutine test_impact_regime
 
    !> delta/sigma in [300, 3000], tol 1e-2: roughness changes the force by ~0.3 %, so
