@@ -1340,10 +1340,11 @@ int egw_flat_law_read(const char *path, egw_flat_law *out);
 
 /* The loading solve of a sphere pair with a rough-flat law: R = p->radius, E* =
  * p->modulus (the other fields of p must be valid, as egw_params_default leaves them, and
- * are not used; p->model may be EGW_MODEL_FLAT_LAW), delta [length] the overlap with the
- * law's reference plane. Results,
+ * are not used; p->model may be EGW_MODEL_FLAT_LAW; flow_pressure must be 0: a law has no
+ * cap), delta [length] the overlap with the law's reference plane. Results,
  * options and statuses as egw_solve, plus EGW_INVALID_PARAMETER when the law was made
- * with another E* than p->modulus. Unloading is EP-GW's alone (egw_solve_unload). */
+ * with another E* than p->modulus or p->flow_pressure > 0 (named). Unloading is EP-GW's
+ * alone (egw_solve_unload). */
 int egw_solve_flat_law(const egw_params *p, egw_flat_law law, const egw_options *o,
                        double delta, egw_result *res);
 
@@ -1354,7 +1355,8 @@ int egw_solve_flat_law(const egw_params *p, egw_flat_law law, const egw_options 
  * egw_table_read: a file needs no law): below the cut-off the exponential continuation of
  * the first node P = P_c exp((K_c/P_c)(delta - delta_c)), above the last node the
  * deep-overlap asymptote, nodes at least to 10 lengths. Not cached on disk (a law is not
- * a few numbers). Statuses as egw_table_build and egw_solve_flat_law. */
+ * a few numbers). Statuses as egw_table_build and egw_solve_flat_law (flow_pressure > 0
+ * refused). */
 int egw_table_build_flat_law(const egw_params *p, egw_flat_law law, const egw_options *o,
                              double delta_min, double delta_max, double rel_tol,
                              egw_table *out);

@@ -72,6 +72,13 @@ def test_bad_input():
     law_e = exponential_law(modulus=E)
     with pytest.raises(egw.InvalidArgumentError, match="modulus"):
         egw.solve(egw.Params(radius=R, modulus=2 * E, flat_law=law_e), 0.0)
+    # a law has no flow-pressure cap: refused naming it (solve and table ignored it before
+    # audit25)
+    capped = egw.Params(radius=R, modulus=E, flat_law=law_e, flow_pressure=1e-3 * E)
+    with pytest.raises(egw.InvalidArgumentError, match="flow_pressure"):
+        egw.solve(capped, 0.0)
+    with pytest.raises(egw.InvalidArgumentError, match="flow_pressure"):
+        egw.Table.build(capped, -8e-6, 4e-6, 1e-4)
 
 
 def test_file_round_trip(tmp_path):
