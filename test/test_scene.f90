@@ -31,6 +31,8 @@ contains
          & new_unittest("pairs: radii, materials, mu from summits", test_pairs), &
          & new_unittest("smooth scene: Hertz exact", test_smooth), &
          & new_unittest("flow_pressure: the cap matters beyond delta_y", test_cap_choice), &
+         & new_unittest("rough + cap: the Hertz check measures the roughness", &
+         & test_rough_cap_choice), &
          & new_unittest("impact: cap above v_y, roughness within a few sigma", &
          & test_impact_regime), &
          & new_unittest("Hertz chosen: bound vs full solves", test_hertz_chosen), &
@@ -311,6 +313,52 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_cap_choice
+
+   !> Two 1 mm steel beads (E-GW, sigma = 1 nm, mu 4) to delta_max = 3.7e-7 m = 4 delta_y of
+   !> p_y = 1 GPa, tol 1e-2: roughness is delta_max/370 and changes the uncapped force by
+   !> e0 ~ 5e-3 of P(delta_max) (the same scene without the cap); with the cap the measure
+   !> must still be the roughness's (against the smooth sphere with the same cap), so Hertz
+   !> (+ cap) is chosen, the measure <= tol and within 2 e0 (doc/scenes.md: "chosen as
+   !> without it, the choice line reports the roughness"). Before audit25 the check took
+   !> Hertz's closed form without the cap: 0.18 (the cap's own effect), a 1-D table.
+   subroutine test_rough_cap_choice(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(scene_input) :: s
+      type(contact_scene) :: scene
+      type(model_choice) :: choice
+      type(egw_error), allocatable :: err
+      real(dp) :: e0
+      s = default_scene_input()
+      s%model = model_egw
+      s%n_types = 1
+      s%radius(1) = 1.0e-3_dp
+      s%modulus(1) = 210.0e9_dp
+      s%poisson(1) = 0.3_dp
+      s%sigma_min = 1.0e-9_dp
+      s%sigma_max = 1.0e-9_dp
+      s%mu = 4.0_dp
+      s%delta_in_sigma = 0
+      s%delta_min = 0.0_dp
+      s%delta_max = 3.7e-7_dp
+      s%tol = 1.0e-2_dp
+      call resolve_scene(s, scene, err)
+      call check(error, .not. allocated(err), "steel scene failed")
+      if (allocated(error)) return
+      call choose_model(scene, solver_options(), choice, err)
+      call check(error, .not. allocated(err) .and. choice%kind == choice_hertz, &
+         & "without the cap: "//choice%reason)
+      if (allocated(error)) return
+      e0 = choice%hertz_error
+      scene%sets(1)%flow_pressure = 1.0e9_dp
+      call choose_model(scene, solver_options(), choice, err)
+      call check(error, .not. allocated(err), "with the cap: the choice failed")
+      if (allocated(error)) return
+      call check(error, choice%cap_matters .and. choice%kind == choice_hertz .and. &
+         & choice%hertz_error <= min(s%tol, 2.0_dp*e0) .and. &
+         & index(choice%reason, "Hertz + cap") > 0, "with the cap: measure " &
+         & //format_real(choice%hertz_error)//" against "//format_real(e0) &
+         & //" without it: "//choice%reason)
+   end subroutine test_rough_cap_choice
 
    !> classify_impact against closed forms: at v = v_y Hertz's deepest overlap is delta_y
    !> itself (an identity between the two closed forms, checked to 1e-12); the cap matters
