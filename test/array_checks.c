@@ -155,6 +155,21 @@ int egw_capi_test_array_impact(void) {
   CHECK(egw_restitution_array(&p, 0, &o, 3, &mass, 0, v, 1, e, NULL, NULL, NULL,
                               EGW_ARRAY_RAISE, NULL) == EGW_INVALID_ARGUMENT);
   CHECK(last_error_starts("point 1: "));
+  /* the shared tolerance is refused whatever the flags, outputs untouched (audit25: under
+   * EGW_ARRAY_NAN it gave EGW_OK, every point NaN, no message) */
+  {
+    double bad_tol[3] = {0.0, NAN, 0.2}, tc2[3] = {7.0, 7.0, 7.0};
+    int nf = -1;
+    v[1] = 0.1;
+    for (int i = 0; i < 3; i++) {
+      for (int flags = EGW_ARRAY_RAISE; flags <= EGW_ARRAY_NAN; flags++) {
+        CHECK(egw_time_step_array(&p, 0, &o, 3, &mass, 0, v, 1, bad_tol[i], tc2, NULL, flags,
+                                  &nf) == EGW_INVALID_ARGUMENT);
+        CHECK(last_error_starts("tolerance = "));
+        CHECK(tc2[0] == 7.0 && tc2[1] == 7.0 && tc2[2] == 7.0 && nf == -1);
+      }
+    }
+  }
   return failures;
 }
 

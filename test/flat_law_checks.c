@@ -158,6 +158,19 @@ int egw_capi_test_flat_law(void) {
         last_error_names("modulus"));
   CHECK(egw_solve_flat_law(&par, NULL, NULL, 0.0, &res) == EGW_NULL_POINTER &&
         last_error_names("law"));
+  /* a law has no flow-pressure cap: refused naming it, the result untouched (audit25: the
+   * solve and the table of the uncapped law came back with EGW_OK) */
+  par.modulus = E;
+  par.flow_pressure = 1e-3 * E;
+  res.force = -7.0;
+  {
+    egw_table tc = NULL;
+    CHECK(egw_solve_flat_law(&par, law, NULL, 0.0, &res) == EGW_INVALID_PARAMETER &&
+          last_error_names("flow_pressure") && res.force == -7.0);
+    CHECK(egw_table_build_flat_law(&par, law, NULL, -8e-6, 4e-6, 1e-4, &tc) ==
+          EGW_INVALID_PARAMETER && last_error_names("flow_pressure") && tc == NULL);
+  }
+  par.flow_pressure = 0.0;
   egw_flat_law_free(&law);
   CHECK(law == NULL);
   egw_flat_law_free(&law);

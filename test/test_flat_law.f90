@@ -24,6 +24,7 @@ contains
       testsuite = [ &
          & new_unittest("table law: nodes, slopes, C1, ends", test_table_law), &
          & new_unittest("table law: bad tables", test_bad_tables), &
+         & new_unittest("table law: a table with flow_pressure refused", test_law_table_cap), &
          & new_unittest("table law: steep given slopes stay monotone", test_steep_slopes), &
          & new_unittest("tabulated GW law = classic GW solve", test_tabulated_gw), &
          & new_unittest("C egw_flat_law_*, egw_solve_flat_law", test_c), &
@@ -37,6 +38,34 @@ contains
    !> continuations are the same line), to rounding (1e-14); a curved table is exact at
    !> its nodes and continuous with a continuous slope across them (C1: one-sided
    !> differences at 1e-7 of the spacing agree to 1e-5 of the slope).
+   !> build_table_law refuses flow_pressure > 0 naming it (a law has no cap; before
+   !> audit25 it was dropped and the uncapped table built), as egw_table_build_flat_law.
+   subroutine test_law_table_cap(error)
+      use egw_flat_law, only: table_flat_law, new_table_law
+      use egw_table, only: build_table_law, force_table
+      use egw_rough_sphere, only: solver_options
+      use egw_status, only: egw_invalid_parameter
+      type(error_type), allocatable, intent(out) :: error
+      type(table_flat_law) :: law
+      type(force_table) :: table
+      type(contact_params) :: pair
+      type(egw_error), allocatable :: e
+      real(dp) :: u(3)
+      u = [0.0_dp, 1.0e-6_dp, 3.0e-6_dp]
+      call new_table_law(u, exp(-u/1.0e-6_dp), law, e)
+      call check(error, .not. allocated(e))
+      if (allocated(error)) return
+      pair%radius = 1.0e-2_dp
+      pair%modulus = 1.0e12_dp
+      pair%flow_pressure = 1.0e9_dp
+      call build_table_law(pair, law, solver_options(), -8.0e-6_dp, 4.0e-6_dp, 1.0e-4_dp, &
+         & table, e)
+      call check(error, allocated(e), "a law's table with flow_pressure was built")
+      if (allocated(error)) return
+      call check(error, e%stat == egw_invalid_parameter .and. &
+         & index(e%message, "flow_pressure") == 1, e%message)
+   end subroutine test_law_table_cap
+
    subroutine test_table_law(error)
       ! (egw_flat_law used here, not by the module: gfortran 12 writes the abstract type
       ! into this module's .mod in a form it then cannot read)

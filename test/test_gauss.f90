@@ -23,6 +23,7 @@ contains
          & new_unittest("doc/theory.md check values of F_3/2", test_design_values), &
          & new_unittest("fitted orders to 1e-14", test_fitted_orders), &
          & new_unittest("other orders to 1e-12", test_general_orders), &
+         & new_unittest("high orders where phi(h) is subnormal", test_high_orders_far), &
          & new_unittest("derivative dF_n/dh = -n F_(n-1)", test_derivative), &
          & new_unittest("named kernels equal gauss_integral", test_named_kernels), &
          & new_unittest("recurrence F_5/2 = 3/2 F_1/2 - h F_3/2", test_recurrence), &
@@ -74,6 +75,37 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call compare_orders(error, .true., 1.0e-14_dp)
    end subroutine test_fitted_orders
+
+   !> n = 100 .. 150 at h = 37.2 .. 38.6, where phi(h) is subnormal (or nearly) but F_n(h)
+   !> is a normal double (Gamma(n+1)/h^(n+1) > 1): the 1e-12 of other orders (egw.h).
+   !> 50-digit values of tools/reference/gauss_high_order_refs.py. Before audit25 the
+   !> quadrature's result was rounded through phi(h): 1.2e-11 off at (150, 38.0), 1.8e-3
+   !> at (150, 38.5) and 0 for 1.55e-304 at (150, 38.6).
+   subroutine test_high_orders_far(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: ref(3, 9) = reshape([ &
+         & 150.0_dp, 37.5_dp, 1.2560252896818976e-284_dp, &
+         & 150.0_dp, 37.9_dp, 8.2375254641585366e-292_dp, &
+         & 150.0_dp, 38.0_dp, 1.2882948005357761e-293_dp, &
+         & 150.0_dp, 38.3_dp, 4.6632999536882344e-299_dp, &
+         & 150.0_dp, 38.5_dp, 1.04990572804025e-302_dp, &
+         & 150.0_dp, 38.6_dp, 1.5537319444957278e-304_dp, &
+         & 120.0_dp, 37.5_dp, 3.1606807981076504e-300_dp, &
+         & 137.25_dp, 38.1_dp, 2.6295821920828703e-302_dp, &
+         & 100.0_dp, 37.2_dp, 8.6967855149485654e-304_dp], [3, 9])
+      real(dp) :: f
+      character(len=100) :: msg
+      integer :: i
+      do i = 1, size(ref, 2)
+         f = gauss_integral(ref(1, i), ref(2, i))
+         if (.not. close(f, ref(3, i), 1.0e-12_dp)) then
+            write (msg, '("n=",f7.2," h=",f6.2," got ",es23.16," want ",es23.16)') &
+               & ref(1, i), ref(2, i), f, ref(3, i)
+            call test_failed(error, "F_n beyond phi's underflow: "//trim(msg))
+            return
+         end if
+      end do
+   end subroutine test_high_orders_far
 
    !> n in {0.3, 2, 3.7, 7, -0.7}: the issue's 1e-12 target.
    subroutine test_general_orders(error)

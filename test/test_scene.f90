@@ -3,6 +3,7 @@
 !> against full solves at overlaps the choice did not sample, and the measured error of
 !> the chosen tables against full solves.
 module test_scene
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
    use testdrive, only: new_unittest, unittest_type, error_type, check, to_string
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_invalid_parameter, egw_io_error, egw_bad_file, &
@@ -30,6 +31,8 @@ contains
          & new_unittest("pairs: radii, materials, mu from summits", test_pairs), &
          & new_unittest("smooth scene: Hertz exact", test_smooth), &
          & new_unittest("flow_pressure: the cap matters beyond delta_y", test_cap_choice), &
+         & new_unittest("rough + cap: the Hertz check measures the roughness", &
+         & test_rough_cap_choice), &
          & new_unittest("impact: cap above v_y, roughness within a few sigma", &
          & test_impact_regime), &
          & new_unittest("Hertz chosen: bound vs full solves", test_hertz_chosen), &
@@ -311,6 +314,52 @@ contains
       end do
    end subroutine test_cap_choice
 
+   !> Two 1 mm steel beads (E-GW, sigma = 1 nm, mu 4) to delta_max = 3.7e-7 m = 4 delta_y of
+   !> p_y = 1 GPa, tol 1e-2: roughness is delta_max/370 and changes the uncapped force by
+   !> e0 ~ 5e-3 of P(delta_max) (the same scene without the cap); with the cap the measure
+   !> must still be the roughness's (against the smooth sphere with the same cap), so Hertz
+   !> (+ cap) is chosen, the measure <= tol and within 2 e0 (doc/scenes.md: "chosen as
+   !> without it, the choice line reports the roughness"). Before audit25 the check took
+   !> Hertz's closed form without the cap: 0.18 (the cap's own effect), a 1-D table.
+   subroutine test_rough_cap_choice(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(scene_input) :: s
+      type(contact_scene) :: scene
+      type(model_choice) :: choice
+      type(egw_error), allocatable :: err
+      real(dp) :: e0
+      s = default_scene_input()
+      s%model = model_egw
+      s%n_types = 1
+      s%radius(1) = 1.0e-3_dp
+      s%modulus(1) = 210.0e9_dp
+      s%poisson(1) = 0.3_dp
+      s%sigma_min = 1.0e-9_dp
+      s%sigma_max = 1.0e-9_dp
+      s%mu = 4.0_dp
+      s%delta_in_sigma = 0
+      s%delta_min = 0.0_dp
+      s%delta_max = 3.7e-7_dp
+      s%tol = 1.0e-2_dp
+      call resolve_scene(s, scene, err)
+      call check(error, .not. allocated(err), "steel scene failed")
+      if (allocated(error)) return
+      call choose_model(scene, solver_options(), choice, err)
+      call check(error, .not. allocated(err) .and. choice%kind == choice_hertz, &
+         & "without the cap: "//choice%reason)
+      if (allocated(error)) return
+      e0 = choice%hertz_error
+      scene%sets(1)%flow_pressure = 1.0e9_dp
+      call choose_model(scene, solver_options(), choice, err)
+      call check(error, .not. allocated(err), "with the cap: the choice failed")
+      if (allocated(error)) return
+      call check(error, choice%cap_matters .and. choice%kind == choice_hertz .and. &
+         & choice%hertz_error <= min(s%tol, 2.0_dp*e0) .and. &
+         & index(choice%reason, "Hertz + cap") > 0, "with the cap: measure " &
+         & //format_real(choice%hertz_error)//" against "//format_real(e0) &
+         & //" without it: "//choice%reason)
+   end subroutine test_rough_cap_choice
+
    !> classify_impact against closed forms: at v = v_y Hertz's deepest overlap is delta_y
    !> itself (an identity between the two closed forms, checked to 1e-12); the cap matters
    !> just above v_y and not just below (and never without flow_pressure); the roughness
@@ -360,6 +409,38 @@ contains
       call check(error, allocated(err), "negative mass accepted")
       if (allocated(error)) return
       call check(error, index(err%message, "mass") > 0, err%message)
+      if (allocated(error)) return
+      ! invalid parameters and closed forms beyond the doubles: refused naming them (audit25:
+      ! an Inf radius gave v_y = +Inf and 'the cap never acts', p_y = 1e300 > E* the same,
+      ! an Inf modulus v_y = 0 and 'the cap matters', mass = speed = 1e300 an Inf overlap)
+      p%sigma = 1.8e-7_dp
+      p%flow_pressure = 3.2e9_dp
+      call refused(p, ieee_value(1.0_dp, ieee_positive_inf), 1.15e11_dp, 3.2e9_dp, mass, 1.0_dp, "radius")
+      if (allocated(error)) return
+      call refused(p, 5e-4_dp, ieee_value(1.0_dp, ieee_positive_inf), 3.2e9_dp, mass, 1.0_dp, "modulus")
+      if (allocated(error)) return
+      call refused(p, 5e-4_dp, 1.15e11_dp, 1e300_dp, mass, 1.0_dp, "flow_pressure")
+      if (allocated(error)) return
+      call refused(p, 5e-4_dp, 1.15e11_dp, 3.2e9_dp, 1e300_dp, 1e300_dp, "speed")
+      if (allocated(error)) return
+      call refused(p, 5e-4_dp, 1.15e11_dp, 3.2e9_dp, 1e300_dp, 1.0_dp, "mass")
+
+   contains
+
+      subroutine refused(p0, radius, modulus, flow_pressure, m, v, name)
+         type(contact_params), intent(in) :: p0
+         real(dp), intent(in) :: radius, modulus, flow_pressure, m, v
+         character(len=*), intent(in) :: name
+         type(contact_params) :: q
+         q = p0
+         q%radius = radius
+         q%modulus = modulus
+         q%flow_pressure = flow_pressure
+         call classify_impact(q, m, v, r, err)
+         call check(error, allocated(err), name//": accepted: "//r%reason)
+         if (allocated(error)) return
+         call check(error, index(err%message, name) == 1, name//": "//err%message)
+      end subroutine refused
    end subroutine test_impact_regime
 
    !> delta/sigma in [300, 3000], tol 1e-2: roughness changes the force by ~0.3 %, so

@@ -39,6 +39,12 @@ def test_sphere_on_exponential_law():
     exact = 2 * math.pi * R * P0 * L * np.exp(delta / L)
     np.testing.assert_allclose(r.force, exact, rtol=1e-7)
     np.testing.assert_allclose(r.stiffness, exact / L, rtol=1e-6)
+    # a scalar overlap (README's egw.solve(p, delta_m).force): floats, the same values
+    # (before audit25 every field came back NaN without a word)
+    for i, d in enumerate(delta):
+        one = egw.solve(p, float(d))
+        assert isinstance(one.force, float) and one.force == r.force[i], (one, r.force[i])
+        assert one.stiffness == r.stiffness[i] and one.iterations == r.iterations[i]
     t = egw.Table.build(p, -8e-6, 4e-6, 1e-6)
     f, k = t.eval(np.linspace(-30e-6, 4e-6, 35))
     np.testing.assert_allclose(f, 2 * math.pi * R * P0 * L * np.exp(np.linspace(-30e-6, 4e-6,
@@ -66,6 +72,13 @@ def test_bad_input():
     law_e = exponential_law(modulus=E)
     with pytest.raises(egw.InvalidArgumentError, match="modulus"):
         egw.solve(egw.Params(radius=R, modulus=2 * E, flat_law=law_e), 0.0)
+    # a law has no flow-pressure cap: refused naming it (solve and table ignored it before
+    # audit25)
+    capped = egw.Params(radius=R, modulus=E, flat_law=law_e, flow_pressure=1e-3 * E)
+    with pytest.raises(egw.InvalidArgumentError, match="flow_pressure"):
+        egw.solve(capped, 0.0)
+    with pytest.raises(egw.InvalidArgumentError, match="flow_pressure"):
+        egw.Table.build(capped, -8e-6, 4e-6, 1e-4)
 
 
 def test_file_round_trip(tmp_path):

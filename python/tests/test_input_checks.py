@@ -124,6 +124,17 @@ def test_time_step_takes_one_tolerance_and_says_so():
     assert str(info.value).startswith("tolerance"), str(info.value)
 
 
+@pytest.mark.parametrize("tolerance", [0.0, float("nan"), 0.2])
+def test_time_step_bad_tolerance_raises_even_under_errstate_nan(tolerance):
+    # one tolerance for the call: refused like a shared parameter, never NaN per point
+    # (before audit25, under errstate(failed="nan") every point came back NaN silently)
+    smooth = egw.Params(model="Hertz", radius=1e-3, modulus=1e11)
+    with egw.errstate(failed="nan"):
+        with pytest.raises(egw.InvalidArgumentError) as info:
+            egw.time_step(smooth, mass=[1e-5, 1e-5], velocity=1.0, tolerance=tolerance)
+    assert "tolerance" in str(info.value), str(info.value)
+
+
 @pytest.mark.parametrize("field, value", [
     ("model", 2.5), ("tol", "x"), ("delta_in_sigma", 0.5), ("mu", None), ("radius", ["1e-3"]),
 ])

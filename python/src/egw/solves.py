@@ -144,6 +144,9 @@ def _solve_flat_law(params: Params, delta: ArrayLike, options: Optional[Options]
     law = params.flat_law._ptr
     out = np.full((5,) + d.shape, np.nan)
     iters = np.full(d.shape, -1, dtype=np.int64)
+    # flat views (out[k] of a scalar delta is a numpy scalar, not a view: writing through
+    # out[k].reshape(-1) lost every result and a scalar solve came back NaN)
+    out_flat, iters_flat = out.reshape(5, -1), iters.reshape(-1)
     res = _capi.Result()
     failed = 0
     for i, x in enumerate(d.reshape(-1)):
@@ -157,8 +160,8 @@ def _solve_flat_law(params: Params, delta: ArrayLike, options: Optional[Options]
             continue
         for k, v in enumerate((res.force, res.stiffness, res.contact_radius, res.max_pressure,
                                res.est_rel_err)):
-            out[k].reshape(-1)[i] = v
-        iters.reshape(-1)[i] = res.iterations
+            out_flat[k, i] = v
+        iters_flat[i] = res.iterations
     if failed and _FAILED.get() == "warn":
         warnings.warn(f"{failed} of {d.size} points failed and are NaN", PointFailedWarning,
                       stacklevel=3)

@@ -694,6 +694,11 @@ contains
       if (stat == egw_ok) stat = open_input(velocity, "velocity", velocity_stride, n, &
          & task%velocity, task%velocity_stride)
       if (stat == egw_ok) stat = open_options(o, task%options, threads)
+      ! The tolerance is shared by the points, as a shared *p: refused whatever the flags
+      ! (under EGW_ARRAY_NAN every point came back NaN with EGW_OK and no message).
+      if (stat == egw_ok .and. want_time_step .and. &
+         & .not. (tolerance > 0.0_dp .and. tolerance <= 0.1_dp)) &
+         & stat = invalid("tolerance = "//format_real(tolerance)//": must lie in (0, 0.1]")
       if (stat /= egw_ok) return
       task%want_time_step = want_time_step
       if (want_time_step) then

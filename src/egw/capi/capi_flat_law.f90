@@ -6,7 +6,8 @@ module egw_capi_flat_law
       & c_loc
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_ok, egw_unsupported, format_real, int_str
+   use egw_status, only: egw_error, egw_ok, egw_unsupported, egw_invalid_parameter, &
+      & fatal_error, format_real, int_str
    use egw_params, only: contact_params
    use egw_flat_law, only: flat_law, table_flat_law, new_table_law
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact_law
@@ -307,6 +308,7 @@ contains
       stat = require(res, "res")
       if (stat == egw_ok) stat = require(h, "law")
       if (stat == egw_ok) stat = read_contact(p, o, params, options, allow_flat_law=.true.)
+      if (stat == egw_ok) stat = no_cap(params)
       if (stat /= egw_ok) return
       call c_f_pointer(h, law)
       call solve_contact_law(params, law, options, delta, result, error)
@@ -332,6 +334,7 @@ contains
       stat = require(out, "out")
       if (stat == egw_ok) stat = require(h, "law")
       if (stat == egw_ok) stat = read_contact(p, o, params, options, allow_flat_law=.true.)
+      if (stat == egw_ok) stat = no_cap(params)
       if (stat /= egw_ok) return
       call c_f_pointer(h, law)
       allocate (t)
@@ -339,6 +342,18 @@ contains
       stat = put_handle_settled(out, c_loc(t), error)
       if (stat /= egw_ok) deallocate (t)
    end function egw_table_build_flat_law
+
+   !> A law's solve and table have no flow-pressure cap: p%flow_pressure > 0 is refused
+   !> (it was ignored without a word, the solve and table those of the uncapped law).
+   integer(c_int) function no_cap(params) result(stat)
+      type(contact_params), intent(in) :: params
+      type(egw_error), allocatable :: error
+      if (params%flow_pressure > 0.0_dp) call fatal_error(error, egw_invalid_parameter, &
+         & "flow_pressure = "//format_real(params%flow_pressure)//": a rough-flat law " &
+         & //"has no flow-pressure cap (the cap is Hertz's and GW, E-GW, EP-GW's, " &
+         & //"doc/theory.md section 12): 0 with a law")
+      stat = settle(error)
+   end function no_cap
 
    !> C: egw_flat_law_write: the law as egw CSV (atomic).
    function egw_flat_law_write(h, path) result(stat) bind(C, name="egw_flat_law_write")

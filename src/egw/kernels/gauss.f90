@@ -586,11 +586,19 @@ contains
          s4 = s4 + r4
          x = x - w
       end do
-      r1 = inv_sqrt2pi*exp_neg_half_square(zh, zl)
-      m1 = s1*r1
-      m2 = s2*r1
-      m3 = s3*r1
-      m4 = s4*r1
+      if (kind == kind_power .and. zh > 37.0_dp) then
+         ! phi(h) is subnormal from h ~ 37.6 on, where a high order's F_n is not (F_150(38.6)
+         ! = 1.6e-304): scaled by e^704 and back, as `fitted` does (here x_m = 0, zl = 0).
+         r1 = inv_sqrt2pi*exp_neg_half_square_scaled(zh)
+         m1 = (s1*r1)*exp_m704
+         m2 = (s2*r1)*exp_m704
+      else
+         r1 = inv_sqrt2pi*exp_neg_half_square(zh, zl)
+         m1 = s1*r1
+         m2 = s2*r1
+         m3 = s3*r1
+         m4 = s4*r1
+      end if
 
    contains
 

@@ -5,7 +5,7 @@ module egw_impact_regime
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, fatal_error, format_real, egw_invalid_argument
-   use egw_params, only: contact_params
+   use egw_params, only: contact_params, validate_params
    implicit none
    private
 
@@ -103,16 +103,30 @@ contains
             & //": must be finite and > 0")
          return
       end if
-      if (.not. (params%radius > 0.0_dp .and. params%modulus > 0.0_dp .and. &
-         & params%sigma >= 0.0_dp .and. params%flow_pressure >= 0.0_dp)) then
-         call fatal_error(error, egw_invalid_argument, "params: radius, modulus must be " &
-            & //"> 0 and sigma, flow_pressure >= 0")
-         return
-      end if
+      ! The whole validation (an Inf radius or modulus, p_y >= E* gave v_y = Inf or 0 and
+      ! an answer; audit25), and closed forms that are positive doubles.
+      call validate_params(params, error)
+      if (allocated(error)) return
       regime%max_overlap = (15.0_dp*mass*speed**2/(16.0_dp*params%modulus &
          & *sqrt(params%radius)))**0.4_dp
+      if (.not. (ieee_is_finite(regime%max_overlap) .and. regime%max_overlap > 0.0_dp)) then
+         call fatal_error(error, egw_invalid_argument, "speed = "//format_real(speed) &
+            & //", mass = "//format_real(mass)//": Hertz's deepest overlap (15 m* v**2/" &
+            & //"(16 E* sqrt(R)))**(2/5) = "//format_real(regime%max_overlap) &
+            & //" is not a positive double")
+         regime%max_overlap = 0.0_dp
+         return
+      end if
       if (params%flow_pressure > 0.0_dp) then
          regime%yield_speed = yield_speed(params, mass)
+         if (.not. (ieee_is_finite(regime%yield_speed) .and. regime%yield_speed > 0.0_dp)) then
+            call fatal_error(error, egw_invalid_argument, "mass = "//format_real(mass) &
+               & //": with flow_pressure, radius and modulus the first-yield speed is not " &
+               & //"a positive double")
+            regime%yield_speed = 0.0_dp
+            regime%max_overlap = 0.0_dp
+            return
+         end if
          regime%yield_overlap = first_yield_overlap(params)
          regime%cap_matters = speed > regime%yield_speed
          cap = merge("above", "below", regime%cap_matters)//" the first-yield speed v_y = " &

@@ -178,7 +178,9 @@ module egw_scene
       !> smallest positive overlap of interest (delta_min, or sigma/100) to delta_max, where
       !> roughness matters most relative to Hertz at the small end. Solves in parallel at
       !> rel_tol = min(options%rel_tol, tol/10); EP-GW sets with psi > 0 on their ZMC law
-      !> tabulated once (zmc_law_pieces, as a hysteresis build's solves).
+      !> tabulated once (zmc_law_pieces, as a hysteresis build's solves). A set with a
+      !> flow_pressure is measured against the smooth sphere with the same cap (Hertz + cap
+      !> solves), not Hertz's closed form: the measure is the roughness's, not the cap's.
       module subroutine scene_hertz_error(scene, options, worst, n_solves, error)
          type(contact_scene), intent(in) :: scene   !< a resolved scene
          type(solver_options), intent(in) :: options   !< the solver's options (rel_tol as above)

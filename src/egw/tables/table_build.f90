@@ -3,6 +3,7 @@
 !> the shared nodes of several parameter sets. The table type, its evaluation and the
 !> interfaces of the public builds are in egw_table (table.f90).
 submodule (egw_table) egw_table_build
+   use egw_status, only: egw_invalid_parameter
    implicit none
 
 contains
@@ -16,6 +17,14 @@ contains
    ! build_table_law: interface and documentation in egw_table (table.f90)
    module procedure build_table_law
       type(contact_params) :: lp
+      ! a law has no cap: refused, as egw_table_build_flat_law does (it was dropped here)
+      if (params%flow_pressure > 0.0_dp) then
+         call fatal_error(error, egw_invalid_parameter, "flow_pressure = " &
+            & //format_real(params%flow_pressure)//": a rough-flat law has no " &
+            & //"flow-pressure cap (the cap is Hertz's and GW, E-GW, EP-GW's, doc/theory.md " &
+            & //"section 12): 0 with a law")
+         return
+      end if
       lp = contact_params(model=model_flat_law, radius=params%radius, &
          & modulus=params%modulus, sigma=law%length())
       call build_1d(lp, options, delta_min, delta_max, rel_tol, table, error, progress, law)
