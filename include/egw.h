@@ -316,7 +316,8 @@ int egw_restitution_overlap(const egw_params *p, const egw_options *o, double ma
 /* The time step of a DEM loop (doc/theory.md 10): for a head-on impact of effective mass
  * m* = mass at approach speed velocity (the fastest of the run: slower impacts are softer),
  * *duration = the time its force spends above 1 % of its peak (loading and unloading)
- * [time; a 16-point rule, ~1e-4 relative: Hertz 9.5e-5, doc/theory.md 10], and *time_step = the largest velocity-Verlet step whose error in the coefficient
+ * [time; a 16-point rule, ~1e-4 relative: Hertz 9.5e-5, doc/theory.md 10], and
+ * *time_step = the largest velocity-Verlet step whose error in the coefficient
  * of restitution stays below tolerance (in (0, 0.1]): dt = sqrt(tolerance/0.06)/omega,
  * omega^2 = K_max/m* with K_max the stiffest point of the impact (the unloading stiffness
  * at delta_m; with the flow-pressure cap beyond v_y the elastic unloading from the
@@ -1342,11 +1343,11 @@ int egw_flat_law_read(const char *path, egw_flat_law *out);
 
 /* The loading solve of a sphere pair with a rough-flat law: R = p->radius, E* =
  * p->modulus (the other fields of p must be valid, as egw_params_default leaves them, and
- * are not used; p->model may be EGW_MODEL_FLAT_LAW; flow_pressure must be 0: a law has no
- * cap), delta [length] the overlap with the law's reference plane. Results,
- * options and statuses as egw_solve, plus EGW_INVALID_PARAMETER when the law was made
- * with another E* than p->modulus or p->flow_pressure > 0 (named). Unloading is EP-GW's
- * alone (egw_solve_unload). */
+ * are not used but p->flow_pressure: with it the total pressure is capped at p_y, the law
+ * below it, doc/theory.md 12; p->model may be EGW_MODEL_FLAT_LAW), delta [length] the
+ * overlap with the law's reference plane. Results, options and statuses as egw_solve, plus
+ * EGW_INVALID_PARAMETER when the law was made with another E* than p->modulus. Unloading
+ * is EP-GW's alone (egw_solve_unload). */
 int egw_solve_flat_law(const egw_params *p, egw_flat_law law, const egw_options *o,
                        double delta, egw_result *res);
 
@@ -1357,8 +1358,8 @@ int egw_solve_flat_law(const egw_params *p, egw_flat_law law, const egw_options 
  * egw_table_read: a file needs no law): below the cut-off the exponential continuation of
  * the first node P = P_c exp((K_c/P_c)(delta - delta_c)), above the last node the
  * deep-overlap asymptote, nodes at least to 10 lengths. Not cached on disk (a law is not
- * a few numbers). Statuses as egw_table_build and egw_solve_flat_law (flow_pressure > 0
- * refused). */
+ * a few numbers). Statuses as egw_table_build and egw_solve_flat_law; p->flow_pressure > 0
+ * is EGW_INVALID_PARAMETER naming it (force tables have no cap, as egw_table_build). */
 int egw_table_build_flat_law(const egw_params *p, egw_flat_law law, const egw_options *o,
                              double delta_min, double delta_max, double rel_tol,
                              egw_table *out);

@@ -158,17 +158,32 @@ int egw_capi_test_flat_law(void) {
         last_error_names("modulus"));
   CHECK(egw_solve_flat_law(&par, NULL, NULL, 0.0, &res) == EGW_NULL_POINTER &&
         last_error_names("law"));
-  /* a law has no flow-pressure cap: refused naming it, the result untouched (audit25: the
-   * solve and the table of the uncapped law came back with EGW_OK) */
+  /* the flow-pressure cap (doc/theory.md 12 "Rough spheres with the cap"): a law's solve
+   * caps the total pressure at p_y (max_pressure = p_y to rounding: the cap clamps it), the
+   * force below the uncapped one; a cap above every pressure changes nothing; a law's force
+   * table refuses it naming it, as egw_table_build does (it dropped it: audit25). The
+   * same law on a soft sphere (E* = 1e3 p0: 3e-6 is ~12 delta_y at the p_y below; on the
+   * rigid one delta_y is 2.5e-12 and the solve refuses delta beyond 1e12 delta_y) */
   par.modulus = E;
-  par.flow_pressure = 1e-3 * E;
-  res.force = -7.0;
   {
+    egw_result free_res, capped;
     egw_table tc = NULL;
-    CHECK(egw_solve_flat_law(&par, law, NULL, 0.0, &res) == EGW_INVALID_PARAMETER &&
-          last_error_names("flow_pressure") && res.force == -7.0);
-    CHECK(egw_table_build_flat_law(&par, law, NULL, -8e-6, 4e-6, 1e-4, &tc) ==
+    egw_flat_law soft = NULL;
+    egw_params sp = par;
+    sp.modulus = 1e3 * p0;
+    CHECK(egw_flat_law_from_table(u, p, NULL, NULL, 2, 0.0, sp.modulus, &soft) == EGW_OK);
+    CHECK(egw_solve_flat_law(&sp, soft, NULL, 3e-6, &free_res) == EGW_OK);
+    sp.flow_pressure = 0.5 * free_res.max_pressure;
+    CHECK(egw_solve_flat_law(&sp, soft, NULL, 3e-6, &capped) == EGW_OK &&
+          capped.max_pressure <= sp.flow_pressure * (1.0 + 1e-12) &&
+          capped.max_pressure >= sp.flow_pressure * (1.0 - 1e-12) &&
+          capped.force < free_res.force);
+    sp.flow_pressure = 2.0 * free_res.max_pressure;
+    CHECK(egw_solve_flat_law(&sp, soft, NULL, 3e-6, &capped) == EGW_OK &&
+          fabs(capped.force - free_res.force) <= 1e-12 * free_res.force);
+    CHECK(egw_table_build_flat_law(&sp, soft, NULL, -8e-6, 4e-6, 1e-4, &tc) ==
           EGW_INVALID_PARAMETER && last_error_names("flow_pressure") && tc == NULL);
+    egw_flat_law_free(&soft);
   }
   par.flow_pressure = 0.0;
   egw_flat_law_free(&law);

@@ -38,7 +38,7 @@ contains
    !> continuations are the same line), to rounding (1e-14); a curved table is exact at
    !> its nodes and continuous with a continuous slope across them (C1: one-sided
    !> differences at 1e-7 of the spacing agree to 1e-5 of the slope).
-   !> build_table_law refuses flow_pressure > 0 naming it (a law has no cap; before
+   !> build_table_law refuses flow_pressure > 0 naming it (force tables have no cap; before
    !> audit25 it was dropped and the uncapped table built), as egw_table_build_flat_law.
    subroutine test_law_table_cap(error)
       use egw_flat_law, only: table_flat_law, new_table_law

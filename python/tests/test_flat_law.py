@@ -72,11 +72,18 @@ def test_bad_input():
     law_e = exponential_law(modulus=E)
     with pytest.raises(egw.InvalidArgumentError, match="modulus"):
         egw.solve(egw.Params(radius=R, modulus=2 * E, flat_law=law_e), 0.0)
-    # a law has no flow-pressure cap: refused naming it (solve and table ignored it before
-    # audit25)
-    capped = egw.Params(radius=R, modulus=E, flat_law=law_e, flow_pressure=1e-3 * E)
-    with pytest.raises(egw.InvalidArgumentError, match="flow_pressure"):
-        egw.solve(capped, 0.0)
+    # the flow-pressure cap: a law's solve caps the total pressure at p_y (the cap clamps
+    # it: p_y to rounding) with less force; its force table refuses the cap naming it, as
+    # egw_table_build does (it dropped the cap before stop 59)
+    # (on a soft sphere, E* = 1e3 P0: 3e-6 is ~12 delta_y; on the rigid one delta_y is
+    # 2.5e-12 and the solve refuses an overlap beyond 1e12 delta_y)
+    soft = exponential_law(modulus=1e3 * P0)
+    free = egw.solve(egw.Params(radius=R, modulus=1e3 * P0, flat_law=soft), 3e-6)
+    p_y = 0.5 * float(free.max_pressure)
+    capped = egw.Params(radius=R, modulus=1e3 * P0, flat_law=soft, flow_pressure=p_y)
+    res = egw.solve(capped, 3e-6)
+    assert abs(float(res.max_pressure) / p_y - 1.0) <= 1e-12
+    assert float(res.force) < float(free.force)
     with pytest.raises(egw.InvalidArgumentError, match="flow_pressure"):
         egw.Table.build(capped, -8e-6, 4e-6, 1e-4)
 

@@ -308,7 +308,6 @@ contains
       stat = require(res, "res")
       if (stat == egw_ok) stat = require(h, "law")
       if (stat == egw_ok) stat = read_contact(p, o, params, options, allow_flat_law=.true.)
-      if (stat == egw_ok) stat = no_cap(params)
       if (stat /= egw_ok) return
       call c_f_pointer(h, law)
       call solve_contact_law(params, law, options, delta, result, error)
@@ -343,15 +342,16 @@ contains
       if (stat /= egw_ok) deallocate (t)
    end function egw_table_build_flat_law
 
-   !> A law's solve and table have no flow-pressure cap: p%flow_pressure > 0 is refused
-   !> (it was ignored without a word, the solve and table those of the uncapped law).
+   !> A law's force table has no flow-pressure cap (as egw_table_build's: a capped contact
+   !> is a hysteresis table's): p%flow_pressure > 0 is refused naming it (the build dropped
+   !> it, the uncapped law's table with EGW_OK; audit25). A law's solve takes the cap.
    integer(c_int) function no_cap(params) result(stat)
       type(contact_params), intent(in) :: params
       type(egw_error), allocatable :: error
       if (params%flow_pressure > 0.0_dp) call fatal_error(error, egw_invalid_parameter, &
-         & "flow_pressure = "//format_real(params%flow_pressure)//": a rough-flat law " &
-         & //"has no flow-pressure cap (the cap is Hertz's and GW, E-GW, EP-GW's, " &
-         & //"doc/theory.md section 12): 0 with a law")
+         & "flow_pressure = "//format_real(params%flow_pressure)//": a rough-flat law's " &
+         & //"force table has no flow-pressure cap (force tables refuse it; the law's " &
+         & //"solve, egw_solve_flat_law, takes it): 0 for a table")
       stat = settle(error)
    end function no_cap
 

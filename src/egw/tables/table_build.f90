@@ -17,12 +17,13 @@ contains
    ! build_table_law: interface and documentation in egw_table (table.f90)
    module procedure build_table_law
       type(contact_params) :: lp
-      ! a law has no cap: refused, as egw_table_build_flat_law does (it was dropped here)
+      ! force tables refuse the cap (a capped contact is a hysteresis table's), a law's as
+      ! build_table's; it was dropped here (audit25). solve_contact_law takes it.
       if (params%flow_pressure > 0.0_dp) then
          call fatal_error(error, egw_invalid_parameter, "flow_pressure = " &
-            & //format_real(params%flow_pressure)//": a rough-flat law has no " &
-            & //"flow-pressure cap (the cap is Hertz's and GW, E-GW, EP-GW's, doc/theory.md " &
-            & //"section 12): 0 with a law")
+            & //format_real(params%flow_pressure)//": a rough-flat law's force table has no " &
+            & //"flow-pressure cap (force tables refuse it; the law's solve takes it): 0 " &
+            & //"for a table")
          return
       end if
       lp = contact_params(model=model_flat_law, radius=params%radius, &
