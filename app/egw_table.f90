@@ -270,6 +270,7 @@ contains
    !> (only discrete particle types do).
    subroutine put_hysteresis()
       type(hysteresis_table) :: h
+      type(contact_params) :: set
       character(len=:), allocatable :: base
       integer :: i, n_sets
       if (.not. ((input%model == model_epgw .and. input%psi > 0.0_dp) .or. &
@@ -287,12 +288,17 @@ contains
          call progress("building the "//either(input%flow_pressure > 0.0_dp, &
             & cap_label(), "EP-GW")//" hysteresis table of parameter set "// &
             & int_str(i)//" at tol = "//num(input%tol)//" ...")
+         set = scene%sets(i)
+         ! the chooser found the roughness within tol of Hertz + cap: the smooth sphere's
+         ! table (a model no more than the scene needs; it was the rough model's + cap)
+         if (hertz_cap()) set = contact_params(model=model_hertz, radius=set%radius, &
+            & modulus=set%modulus, flow_pressure=set%flow_pressure)
          if (quiet) then
-            call build_hysteresis(scene%sets(i), options, scene%delta_min(i), &
+            call build_hysteresis(set, options, scene%delta_min(i), &
                & scene%delta_max(i), input%tol, h, error)
          else
             call bar_start("hysteresis", stderr_is_terminal(), "unloading curves")
-            call build_hysteresis(scene%sets(i), options, scene%delta_min(i), &
+            call build_hysteresis(set, options, scene%delta_min(i), &
                & scene%delta_max(i), input%tol, h, error, bar_update)
             call bar_finish()
          end if
@@ -309,9 +315,14 @@ contains
    function cap_label() result(label)
       character(len=:), allocatable :: label
       label = "Hertz + cap"
-      if (input%model /= model_hertz .and. input%sigma_max > 0.0_dp) label = &
-         & model_name(input%model)//" + cap"
+      if (input%model /= model_hertz .and. input%sigma_max > 0.0_dp .and. .not. &
+         & hertz_cap()) label = model_name(input%model)//" + cap"
    end function cap_label
+
+   !> With the cap, the chooser took Hertz for a rough scene: Hertz + cap's tables.
+   logical function hertz_cap()
+      hertz_cap = input%flow_pressure > 0.0_dp .and. choice%kind == choice_hertz
+   end function hertz_cap
 
    subroutine put_hysteresis_file(h, path, format)
       type(hysteresis_table), intent(in) :: h

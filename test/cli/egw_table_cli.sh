@@ -196,17 +196,26 @@ grep -q "hysteresis table(s) come in the csv and binary formats only" "$work/std
 # 0.01, two spheres of R 4.0528e8: delta_y = 5e4): to 12 delta_y (6e5 sigma, beyond the 2e5
 # sigma such tables build to) refused before any solve, naming delta_max and the Hertz +
 # cap route; GW + cap to 1e5 sigma fails in the model choice's solves, with their own
-# message (doc/stability.md "Stop 51 (tiny17)")
+# message (doc/stability.md "Stop 51 (tiny17)"). The E-GW refusal needs tol 1e-5: the
+# roughness changes the force by 2.5e-5 of P(delta_max) against Hertz + cap, so at 1e-3 the
+# chooser takes Hertz and the Hertz + cap table is written (the route the refusal names)
 tiny="--radius 4.0528473e8 --effective-modulus 1 --sigma 1 --mu 4 --flow-pressure 0.01 \
-  --delta-min 0 --tol 1e-3 -q"
+  --delta-min 0 -q"
 refuse rough_cap_tiny_sigma "rough + cap tables beyond 2.000E+05 sigma at sigma/delta_y" \
-  $tiny --delta-max 6e5 --model E-GW
+  $tiny --tol 1e-5 --delta-max 6e5 --model E-GW
 grep -qF "give sigma = 0 (or model Hertz) for the Hertz + cap table" "$work/stderr" ||
   fail "rough_cap_tiny_sigma: no Hertz + cap route: $(cat "$work/stderr")"
+"$exe" $tiny --tol 1e-3 --delta-max 6e5 --model E-GW --out "$work/tiny_hertz" \
+  >"$work/stdout" 2>"$work/stderr" ||
+  fail "rough_cap_tiny_sigma at tol 1e-3: exit status $?: $(cat "$work/stderr")"
+grep -q "CSV format 5" "$work/tiny_hertz/scene_hysteresis.csv" ||
+  fail "rough_cap_tiny_sigma at tol 1e-3: not the Hertz + cap table"
 refuse rough_cap_tiny_sigma_gw "Hertz check of parameter set 1 (delta = " $tiny \
-  --delta-max 1e5 --model GW
-# the same beads, E-GW with sigma = 1 nm (delta_y/94): the rough model's table with the cap
-"$exe" "$work/cap.nml" --model E-GW --sigma 1e-9 --mu 4 --delta-min -3e-9 --out \
+  --tol 1e-3 --delta-max 1e5 --model GW
+# the same beads, E-GW with sigma = 1 nm (delta_y/94), at tol 1e-3: the roughness changes
+# the force by 3.0e-3 of P(delta_max) against Hertz + cap, so the rough model's table with
+# the cap
+"$exe" "$work/cap.nml" --model E-GW --sigma 1e-9 --mu 4 --delta-min -3e-9 --tol 1e-3 --out \
   "$work/rough_cap" -q >"$work/stdout" 2>"$work/stderr"
 rc=$?
 [ "$rc" -eq 0 ] || fail "rough cap scene: exit status $rc: $(cat "$work/stderr")"
@@ -216,6 +225,18 @@ grep -q "CSV format 4" "$work/rough_cap/scene_hysteresis.csv" &&
   fail "rough cap scene: scene_hysteresis.csv is not a rough + cap table"
 [ ! -e "$work/rough_cap/scene_table.csv" ] || fail "rough cap scene: a force table written"
 grep -q "E-GW + cap" "$work/stdout" || fail "rough cap scene: summary does not name the cap"
+# at the namelist's tol 1e-2 the chooser takes Hertz (3.0e-3 <= 1e-2): the Hertz + cap table,
+# not the rough model's (a model no more than the scene needs; before stop 59 the E-GW +
+# cap table was built whatever the choice, 4.6x the CPU)
+"$exe" "$work/cap.nml" --model E-GW --sigma 1e-9 --mu 4 --delta-min -3e-9 --out \
+  "$work/rough_cap_hertz" -q >"$work/stdout" 2>"$work/stderr" ||
+  fail "rough cap scene, Hertz chosen: exit status $?: $(cat "$work/stderr")"
+grep -q "model chosen *Hertz" "$work/stdout" ||
+  fail "rough cap scene at tol 1e-2: Hertz not chosen: $(grep chosen "$work/stdout")"
+grep -q "CSV format 5" "$work/rough_cap_hertz/scene_hysteresis.csv" ||
+  fail "rough cap scene, Hertz chosen: scene_hysteresis.csv is not a Hertz + cap table"
+grep -q "hysteresis *1 Hertz + cap" "$work/stdout" ||
+  fail "rough cap scene, Hertz chosen: the summary does not name Hertz + cap: $(grep hysteresis "$work/stdout")"
 # --help says so too (it said "(Hertz or sigma = 0)" while rough scenes take the cap)
 "$exe" --help >"$work/help" 2>&1
 grep -A2 -- "--flow-pressure" "$work/help" | grep -q "rough model + cap" ||
