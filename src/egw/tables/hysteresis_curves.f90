@@ -51,6 +51,22 @@ module egw_hysteresis_curves
    !> skipped 0.68 of rel_tol/4); at 0.5 eight intervals that the solves split were
    !> skipped, up to 2.2 of rel_tol/4 (doc/benchmarks.md, stop 48).
    real(dp), parameter :: midpoint_skip = 0.3_dp
+   !> Gap curves (rough + cap): an s interval is not solved at its middle where the cubic
+   !> there lies within gap_skip of the bisection's bound rel_tol/4 of the quintic Hermite
+   !> through it and a neighbouring node on its piece of the map (gap_estimate), unless an
+   !> end is a first node (s = 0, whose slope is taken at 1e-4; the map's breaks, where the
+   !> curves bend most): an embedded estimate, as midpoint_skip's. Or, on a promoted
+   !> check curve, where the larger of that estimate and the mismatches both its
+   !> neighbours in delta_max accepted on the same interval lies within neighbour_skip of
+   !> the bound. Either alone misjudged: README's rough + cap scenes at 1e-4 (E-GW, GW,
+   !> EP-GW psi 1; every midpoint solved and compared) had intervals the quintic put
+   !> within 0.1 of the bound and the solve at 1.6-1.7 of it (all at a first node), and
+   !> intervals both neighbours accepted within 0.3 of it whose solve missed by up to 1.7
+   !> (one neighbour's midpoint can meet its cubic by chance); the two rules together
+   !> cleared 181, 105 and 251 midpoints of 1122, 539 and 1655, none that the solve would
+   !> have split, the largest of their solves' mismatches 0.37, 0.81 and 0.33 of the bound
+   !> (doc/benchmarks.md, stop 60: grid26).
+   real(dp), parameter :: gap_skip = 0.1_dp, neighbour_skip = 0.2_dp
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 
@@ -72,6 +88,9 @@ module egw_hysteresis_curves
       !> refine_curve's largest accepted mismatch: its cubics' error in s (max_error's
       !> share from the s direction, gap_bound)
       real(dp) :: worst = 0.0_dp
+      !> per s interval, the mismatch refine_curve accepted there (measured, or the
+      !> estimate that cleared it: gap_skip, neighbour_skip)
+      real(dp), allocatable :: mismatch(:)
       !> h = ln(c P_ext/P) at s of the edge map xi (edge_breaks of length), slopes as
       !> dh/d(m - delta) (the table's log_ratio); else the gap, slopes dg/ds
       logical :: log = .false.
@@ -121,6 +140,48 @@ contains
          est = max(est, w*max(abs(q - r), 0.25_dp*width*abs(dq - dr)))
       end do
    end function midpoint_estimate
+
+   !> The mismatch refine_curve would find at the middle of s interval i of a gap curve
+   !> (nodes s, g and stored slopes d; gap_skip), estimated as midpoint_estimate's: the
+   !> interval's cubic against the quintic Hermite through it and the node before or
+   !> after it (each side whose three nodes lie on the interval's piece of the map, in s,
+   !> where the map is linear; the larger difference). huge where no side does.
+   pure real(dp) function gap_estimate(curve, s, g, d, i) result(est)
+      type(unloading_curve), intent(in) :: curve
+      real(dp), intent(in) :: s(:), g(:), d(:)
+      integer, intent(in) :: i
+      real(dp) :: f, width, s_mid, r, dr, q, dq
+      integer :: side, a, piece
+      est = huge(1.0_dp)
+      s_mid = 0.5_dp*(s(i) + s(i + 1))
+      piece = map_piece(.true., s_mid)
+      ! (the stored slopes are the first piece's: dg/ds on this piece, as curve_eval)
+      f = curve%piece_scale(piece)
+      width = s(i + 1) - s(i)
+      call hermite_cubic(width, g(i), f*d(i), g(i + 1), f*d(i + 1), 0.5_dp, r, dr)
+      do side = 0, 1
+         a = i - 1 + side   ! the nodes a .. a + 2
+         if (a < 1 .or. a + 2 > size(s)) cycle
+         if (map_piece(.true., 0.5_dp*(s(a) + s(a + 1))) /= piece .or. &
+            & map_piece(.true., 0.5_dp*(s(a + 1) + s(a + 2))) /= piece) cycle
+         call hermite_quintic(s(a:a + 2), g(a:a + 2), f*d(a:a + 2), s_mid, q, dq)
+         if (est == huge(1.0_dp)) est = 0.0_dp
+         est = max(est, max(abs(q - r), 0.25_dp*width*abs(dq - dr)))
+      end do
+   end function gap_estimate
+
+   !> The mismatch the bisected curve c accepted on its s interval [a, b]; huge where it
+   !> has no such interval.
+   pure real(dp) function accepted_mismatch(c, a, b) result(err)
+      type(unloading_curve), intent(in) :: c
+      real(dp), intent(in) :: a, b
+      integer :: i
+      err = huge(1.0_dp)
+      if (.not. (c%verified .and. allocated(c%mismatch))) return
+      i = findloc(c%s, a, 1)
+      if (i < 1 .or. i >= size(c%s)) return
+      if (c%s(i + 1) == b) err = c%mismatch(i)
+   end function accepted_mismatch
 
    !> The cubic Hermite on an interval of the given width (values f, slopes d at its
    !> ends) and its slope, at the fraction t of it.
@@ -327,8 +388,16 @@ contains
                if (allocated(err)) exit
             end if
          end do
-         if (.not. allocated(err)) call refine_curve(table, curves(idx(k)), worst(k), err, &
-            & known)
+         ! (its neighbours in delta_max, the nodes it was inserted between, bisected
+         ! already and not written in this pass: neighbour_skip)
+         if (.not. allocated(err)) then
+            if (table%mapped .and. idx(k) > 1 .and. idx(k) < size(curves)) then
+               call refine_curve(table, curves(idx(k)), worst(k), err, known, &
+                  & curves(idx(k) - 1), curves(idx(k) + 1))
+            else
+               call refine_curve(table, curves(idx(k)), worst(k), err, known)
+            end if
+         end if
          curves(idx(k))%worst = worst(k)
          if (allocated(err)) then
             stats(k) = err%stat
@@ -459,16 +528,20 @@ contains
    !> Bisect the curve's s intervals (from the nodes it holds) until the Hermite curve
    !> agrees with the solves at every midpoint to rel_tol/4 (an interval that passed is not
    !> solved again); worst: the largest mismatch accepted. known: solves of this curve
-   !> done before (a check curve's), taken instead of solving again at their s.
-   subroutine refine_curve(table, curve, worst, error, known)
+   !> done before (a check curve's), taken instead of solving again at their s. Gap
+   !> curves: midpoints cleared by an estimate are not solved (gap_skip; with lower and
+   !> upper, neighbour_skip).
+   subroutine refine_curve(table, curve, worst, error, known, lower, upper)
       type(hysteresis_table), intent(in) :: table
       type(unloading_curve), intent(inout) :: curve
       real(dp), intent(out) :: worst
       type(egw_error), allocatable, intent(out) :: error
       type(unloading_curve), intent(in), optional :: known
+      !> its neighbours in delta_max, bisected (a promoted check curve's)
+      type(unloading_curve), intent(in), optional :: lower, upper
       real(dp) :: s(max_s_nodes), gap(max_s_nodes), slope(max_s_nodes), &
          & weight(max_s_nodes), r_mid, d_mid, r_int, d_int, s_mid, err, w_mid, width, dxi, &
-         & xi_mid, w_int
+         & xi_mid, w_int, mismatch(max_s_nodes), est
       integer :: n, i, k
       logical :: refined, checked(max_s_nodes)
       type(unloading_curve) :: probe
@@ -481,6 +554,7 @@ contains
       slope(1:n) = curve%slope
       weight(1:n) = curve%weight
       checked(1:n - 1) = .false.
+      mismatch(1:n - 1) = 0.0_dp
       do
          refined = .false.
          i = 1
@@ -500,6 +574,26 @@ contains
                   & gap(1:n), slope(1:n), weight(1:n), i)
                if (err <= midpoint_skip*0.25_dp*table%rel_tol) then
                   checked(i) = .true.
+                  worst = max(worst, err)
+                  i = i + 1
+                  cycle
+               end if
+            end if
+            if (table%mapped .and. k == 0) then
+               est = gap_estimate(curve, s(1:n), gap(1:n), slope(1:n), i)
+               err = huge(1.0_dp)
+               if (.not. (any(s(i) == [0.0_dp, s_knee, s_zero]) .or. &
+                  & any(s(i + 1) == [s_knee, s_zero, 1.0_dp]))) then
+                  if (est <= gap_skip*0.25_dp*table%rel_tol) err = est
+               end if
+               if (err == huge(1.0_dp) .and. present(lower) .and. present(upper)) then
+                  err = max(est, accepted_mismatch(lower, s(i), s(i + 1)), &
+                     & accepted_mismatch(upper, s(i), s(i + 1)))
+                  if (err > neighbour_skip*0.25_dp*table%rel_tol) err = huge(1.0_dp)
+               end if
+               if (err < huge(1.0_dp)) then
+                  checked(i) = .true.
+                  mismatch(i) = err
                   worst = max(worst, err)
                   i = i + 1
                   cycle
@@ -560,6 +654,7 @@ contains
                weight(i + 2:n + 1) = weight(i + 1:n)
                checked(i + 2:n) = checked(i + 1:n - 1)
                checked(i:i + 1) = .false.
+               mismatch(i + 2:n) = mismatch(i + 1:n - 1)
                s(i + 1) = s_mid
                gap(i + 1) = r_mid
                slope(i + 1) = d_mid
@@ -569,6 +664,7 @@ contains
                i = i + 1   ! the new left half is checked in the next sweep
             else
                checked(i) = .true.
+               mismatch(i) = err
                worst = max(worst, err)
             end if
             i = i + 1
@@ -579,6 +675,7 @@ contains
       curve%gap = gap(1:n)
       curve%slope = slope(1:n)
       curve%weight = weight(1:n)
+      curve%mismatch = mismatch(1:n - 1)
       curve%verified = .true.
       curve%hist = unloaded   ! (no more solves: its mesh and field freed)
       curve%start = none

@@ -910,6 +910,7 @@ contains
       to%xi = from%xi
       to%p_turn = from%p_turn
       if (allocated(from%weight)) call move_alloc(from%weight, to%weight)
+      if (allocated(from%mismatch)) call move_alloc(from%mismatch, to%mismatch)
       call move_alloc(from%s, to%s)
       call move_alloc(from%gap, to%gap)
       call move_alloc(from%slope, to%slope)
