@@ -29,7 +29,14 @@ def main(argv=None):
     ap.add_argument("--data", default="out/restitution.csv")
     ap.add_argument("--out", default="doc/figures/restitution.png")
     args = ap.parse_args(argv)
-    import matplotlib
+    if not os.path.exists(args.data):
+        sys.exit(f"plot_restitution.py: no {args.data}: run "
+                 "fpm run --example restitution-curves --profile release first")
+    try:
+        import matplotlib
+    except ImportError:  # no make target installs it: say how, not a traceback
+        sys.exit("plot_restitution.py: needs matplotlib: .venv/bin/pip install matplotlib, "
+                 "then .venv/bin/python tools/plot_restitution.py (README.md)")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     rows = read(args.data)

@@ -18,7 +18,8 @@ F/(pi E* H), against the overlap), the curve's linear interpolation adds 5e-4. A
 the whole load sits in the rough tail over a wide annulus that this mesh resolves to ~3 %:
 printed, not checked.
 
-Usage: sphere.py SCENE_FLAT_INP SCENE_TABLE_CSV [CCX]   (mm, N, MPa; see .ci/examples.sh)
+Usage: sphere.py SCENE_FLAT_INP SCENE_TABLE_CSV [CCX]   (mm, N, MPa: the egw-table line of
+example/README.md, as .ci/examples.sh runs it)
 """
 import math
 import os
@@ -121,6 +122,14 @@ def main():
     ccx = sys.argv[3] if len(sys.argv) > 3 else "ccx"
     meta = header_values(flat)
     sigma, d_c = meta["sigma"], meta["d_c"]
+    # the deck is in mm, N, MPa and models the sphere's lower part r <= L: a scene in other
+    # units (make run's default scene is SI) or of another model would fail obscurely
+    model = re.search(r"^# model = (\d+)", open(table).read(), re.M)
+    if meta["R"] <= L or model is None or model.group(1) != "1":
+        print(f"sphere.py: needs egw-table's GW scene in mm, N, MPa with R > {L} (got R = "
+              f"{meta['R']:g}, model {model.group(1) if model else '?'}): run the egw-table "
+              "line of example/README.md first", file=sys.stderr)
+        return 2
     overlaps = [0.0] + [x * sigma for x in CHECKED]
     with tempfile.TemporaryDirectory() as work:
         shutil.copy(flat, os.path.join(work, "flat.inc"))

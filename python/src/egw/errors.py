@@ -70,6 +70,16 @@ def last_error() -> str:
     return buf.value.decode("utf-8", "replace")
 
 
+def _point_index(flat: int, shape) -> str:
+    """A failing point's numpy index as a message shows it: ``3`` in 1-D, ``(1, 0)`` in n-D
+    (plain ints: numpy 2's np.int64 reprs would print ``(np.int64(1), ...)``)."""
+    index, rest = [], int(flat)
+    for n in reversed(tuple(shape)):
+        rest, i = divmod(rest, int(n))
+        index.insert(0, i)
+    return str(index[0]) if len(index) == 1 else str(tuple(index))
+
+
 def _exception(status: int, message: str) -> Exception:
     """The exception of a non-zero egw status with egw's message."""
     if status in (INVALID_ARGUMENT, INVALID_PARAMETER):

@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 from . import _capi
 from ._capi import lib
 from .errors import (INVALID_ARGUMENT, INVALID_PARAMETER, IgnoredParameterWarning,
-                     InvalidArgumentError, OK, check, last_error)
+                     InvalidArgumentError, OK, _point_index, check, last_error)
 
 #: what the functions take: a number, a sequence of numbers or an array
 ArrayLike = Union[float, np.ndarray, list, tuple]
@@ -277,8 +277,8 @@ class Params:
         for i in range(block.size):
             status = lib.egw_params_validate(block[i:].ctypes.data_as(_P_PARAMS))
             if status != OK:
-                idx = np.unravel_index(i, self.shape)
-                raise InvalidArgumentError(status, f"index {idx}: {last_error()}")
+                raise InvalidArgumentError(
+                    status, f"index {_point_index(i, self.shape)}: {last_error()}")
 
     def replace(self, **changes) -> "Params":
         """A copy with the given fields changed (checked as at construction).

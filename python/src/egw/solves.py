@@ -17,7 +17,8 @@ from numpy.typing import NDArray
 
 from . import _capi
 from ._capi import lib
-from .errors import OK, PointFailedWarning, _FAILED, _exception, _require, check, last_error
+from .errors import (OK, PointFailedWarning, _FAILED, _exception, _point_index, _require, check,
+                     last_error)
 from .params import (ArrayLike, FloatOrArray, Options, Params, RESULT_DTYPE, _number_array,
                      _c_scalar, _options, _params)
 from ._calls import _Batch, _array, _double_ptr
@@ -155,7 +156,7 @@ def _solve_flat_law(params: Params, delta: ArrayLike, options: Optional[Options]
             if _FAILED.get() == "raise":
                 message = last_error()
                 raise _exception(status, message if d.ndim == 0 else
-                                 f"index {np.unravel_index(i, d.shape)}: {message}")
+                                 f"index {_point_index(i, d.shape)}: {message}")
             failed += 1
             continue
         for k, v in enumerate((res.force, res.stiffness, res.contact_radius, res.max_pressure,

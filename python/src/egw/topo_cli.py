@@ -9,7 +9,7 @@ import sys
 import warnings
 from typing import List, Optional, Sequence, Tuple
 
-from .errors import version
+from .errors import EgwError, version
 from .params import Params
 from .functions import mu_from_summits
 from .topo_maps import HeightMap, _unit_factor, height_map, sum_surface
@@ -203,7 +203,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 with open(tmp, "w") as f:
                     json.dump(data, f, indent=2)
                 os.replace(tmp, args.json)
-    except (ValueError, OSError, ImportError) as exc:
+    except (ValueError, OSError, ImportError, EgwError, MemoryError) as exc:
+        # egw's own errors too (NotConvergedError is no ValueError): one line, never a traceback
         print(f"egw-topo: {exc}", file=sys.stderr)
         return 2
     return 0
