@@ -740,18 +740,18 @@ int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
 
 /* egw_hysteresis_eval with a larger per-contact state that the caller owns and keeps with
  * the contact (EGW_HYSTERESIS_STATE_SIZE doubles, no allocation, no lock): state[0] is the
- * history (the largest overlap so far, as *delta_max_state above), state[1..23] caches
- * that this call fills: the turning point's data and the piece of its unloading curve
- * last used as one cubic in delta, so that a contact that stays below the same turning
- * point and inside the same piece (most DEM steps: a contact moves little) reads nothing
- * but its state (on a ln(P_load/P) table the piece spans the loading table's intervals:
- * crossing into the next one refills that interval alone). The values of
- * egw_hysteresis_eval to rounding (1e-12 of the loading force at the turning point), the
- * same statuses and history; but back at its history exactly on a piece of the separated
- * tail, the unloading curve's stiffness, its limit from below (1.1-1.4 times the loading
- * curve's, which egw_hysteresis_eval gives there, on test hysteresis's EP-GW table). Start
- * a contact with egw_hysteresis_state_init or with all zeros (as calloc'ed or zeroed
- * contact arrays): both mean a new contact. A state may be copied with its contact (restarts, migration between
+ * history (the largest overlap so far, as *delta_max_state above), state[1..23] caches that
+ * this call fills: the turning point's data and the piece of its unloading curve last used
+ * as one cubic in delta, so that a contact that stays below the same turning point and
+ * inside the same piece (most DEM steps: a contact moves little) reads nothing but its
+ * state (on a ln(P_load/P) table the piece spans the loading table's intervals: crossing
+ * into the next one refills that interval alone). The values of egw_hysteresis_eval to
+ * rounding (1e-12 of the loading force at the turning point), the same statuses and
+ * history; but back at its history exactly on a piece of the separated tail, the unloading
+ * curve's stiffness, its limit from below (1.1-1.4 times the loading curve's, which
+ * egw_hysteresis_eval gives there, on test hysteresis's EP-GW table). Start a contact with
+ * egw_hysteresis_state_init or with all zeros (as calloc'ed or zeroed contact arrays): both
+ * mean a new contact. A state may be copied with its contact (restarts, migration between
  * ranks): it keeps its history with a table of the same data (a rebuild with the same
  * parameters, tolerance and options, or the same file). A state that no call filled for
  * this table (another table's, garbled) is a new contact: its history is reset, never read

@@ -1395,12 +1395,12 @@ contains
    !> (capi_hysteresis_state.c, egw_hysteresis_state_step), the Fortran entry
    !> (egw_hysteresis_eval_state_general: eval_state_served, else the checked full call)
    !> and the reference hysteresis_eval_state, over 800 contacts of the suite's EP-GW table
-   !> walked as in test_c_separated (never touched and touched; approach, jitter, recession
-   !> past the cut-off and back) with a cycle of 16 overlaps added that returns to its top
-   !> exactly (loading back at the history). At every step, from one state: the Fortran
-   !> entry, with both outputs and with each alone, gives hysteresis_eval_state's status,
-   !> force, stiffness and state bits (compared as integers: -0 is not +0); where the C top
-   !> serves, it gives them too, with status 0; where it declines it writes nothing. Then
+   !> walked as in test_c_separated (never touched and touched; approach, jitter, recession past
+   !> the cut-off and back) with a cycle of 16 overlaps added that returns to its top exactly
+   !> (back at the history: a folded piece's end, else loading). At every step, from one state:
+   !> the Fortran entry, with both outputs and with each alone, gives hysteresis_eval_state's
+   !> status, force, stiffness and state bits (compared as integers: -0 is not +0); where the C
+   !> top serves, it gives them too, with status 0; where it declines it writes nothing. Then
    !> the folded route's ends: a tail state's cubic made target + x slope (targets -708.5,
    !> -708, -707.5, -1, -0, +0, 1e-300, 0.5, 707.5; slopes 0, 3, 2^1023), the same
    !> comparison, the C top serving exactly f in (-708, -0] at slope 0 (+0 and above: the

@@ -158,17 +158,17 @@ contains
    !> table's: h = ln(P_load/P) over the whole run on a linear loading interval, the
    !> interval beside it, taken alone when the contact crosses into the next; on a ln P
    !> interval ln P - h, one cubic inside it, make_log_piece): the same values to rounding (test
-   !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
-   !> histories; but back at the history exactly on a folded piece (the separated tail) the
-   !> unloading curve's stiffness, the piece's limit from below (hysteresis_eval: the
-   !> loading curve's there). Where the force is 0 below the cut-off (a contact that has not touched, or
-   !> one below its turning point's unloading floor) the state keeps a zero piece
-   !> (zero_piece), so that separated contacts too read only their state. Only a state that this table filled is trusted (its tag, state(3)): any
-   !> other (all zero, as a DEM code's zeroed contact arrays; hysteresis_state_init's;
-   !> another table's; garbled) is a new contact, its history reset to -huge; but a NaN
-   !> state(1), as a NaN delta, is refused (egw_invalid_argument, nothing changed, as
-   !> egw_hysteresis_eval_state). The optional error says what stat says, with a message
-   !> naming the argument (formed only when stat is not 0).
+   !> hysteresis: 1e-12 of the force at the turning point), the same statuses and histories; but
+   !> back at the history exactly on a folded piece (the separated tail) the unloading curve's
+   !> stiffness, the piece's limit from below (hysteresis_eval: the loading curve's there).
+   !> Where the force is 0 below the cut-off (a contact that has not touched, or one below its
+   !> turning point's unloading floor) the state keeps a zero piece (zero_piece), so that
+   !> separated contacts too read only their state. Only a state that this table filled is
+   !> trusted (its tag, state(3)): any other (all zero, as a DEM code's zeroed contact arrays;
+   !> hysteresis_state_init's; another table's; garbled) is a new contact, its history reset to
+   !> -huge; but a NaN state(1), as a NaN delta, is refused (egw_invalid_argument, nothing
+   !> changed, as egw_hysteresis_eval_state). The optional error says what stat says, with a
+   !> message naming the argument (formed only when stat is not 0).
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat, error)
       type(hysteresis_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
