@@ -1401,7 +1401,8 @@ contains
    !> the Fortran entry, with both outputs and with each alone, gives hysteresis_eval_state's
    !> status, force, stiffness and state bits (compared as integers: -0 is not +0); where the C
    !> top serves, it gives them too, with status 0; where it declines it writes nothing. Then
-   !> the folded route's ends: a tail state's cubic made target + x slope (targets -708.5,
+   !> the folded route's ends: a tail piece's end below the history (served, stop 60) and
+   !> the next double up (not), and the piece's cubic made target + x slope (targets -708.5,
    !> -708, -707.5, -1, -0, +0, 1e-300, 0.5, 707.5; slopes 0, 3, 2^1023), the same
    !> comparison, the C top serving exactly f in (-708, -0] at slope 0 (+0 and above: the
    !> Fortran entry's); values beyond the doubles: the entries' EGW_INVALID_ARGUMENT, the
@@ -1513,6 +1514,19 @@ contains
       if (allocated(error)) return
       base = sf
       served_b = 0
+      ! its end, here below the history (a loading interval's or a run's end): the piece's
+      ! (stop 60; on f4799c7 the C top declined it); the next double up: past the piece
+      x0 = d
+      do i = 1, 2
+         s0 = base
+         d = merge(base(12), nearest(base(12), 1.0_dp), i == 1)
+         call compare_step(a)
+         call check(error, a == merge(1, 0, i == 1) .and. base(12) < base(1), "C top at "// &
+            & "the folded piece's end "//format_real(base(12))//" + "//to_string(i - 1)// &
+            & " ulp, the history "//format_real(base(1))//": served "//to_string(a))
+         if (allocated(error)) return
+      end do
+      d = x0
       do i = 1, size(targets)
          do m = 1, size(slopes)
             ! the cubic (c1 + x c2) + x^2 (c3 + x c4) = target + x slope, exactly the
