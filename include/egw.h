@@ -740,14 +740,16 @@ int egw_hysteresis_eval(egw_hysteresis h, double delta, double *delta_max_state,
 
 /* egw_hysteresis_eval with a larger per-contact state that the caller owns and keeps with
  * the contact (EGW_HYSTERESIS_STATE_SIZE doubles, no allocation, no lock): state[0] is the
- * history (the largest overlap so far, as *delta_max_state above), state[1..23] caches
- * that this call fills: the turning point's data and the piece of its unloading curve
- * last used as one cubic in delta, so that a contact that stays below the same turning
- * point and inside the same piece (most DEM steps: a contact moves little) reads nothing
- * but its state (on a ln(P_load/P) table the piece spans the loading table's intervals:
- * crossing into the next one refills that interval alone). The values of
- * egw_hysteresis_eval to rounding (1e-12 of the loading force at the turning point), the
- * same statuses and history. Start a contact with
+ * history (the largest overlap so far, as *delta_max_state above), state[1..23] caches that
+ * this call fills: the turning point's data and the piece of its unloading curve last used
+ * as one cubic in delta, so that a contact that stays below the same turning point and
+ * inside the same piece (most DEM steps: a contact moves little) reads nothing but its
+ * state (on a ln(P_load/P) table the piece spans the loading table's intervals: crossing
+ * into the next one refills that interval alone). The values of egw_hysteresis_eval to
+ * rounding (1e-12 of the loading force at the turning point), the same statuses and
+ * history; but back at its history exactly on a piece of the separated tail, the unloading
+ * curve's stiffness, its limit from below (1.1-1.4 times the loading curve's, which
+ * egw_hysteresis_eval gives there, on test hysteresis's EP-GW table). Start a contact with
  * egw_hysteresis_state_init or with all zeros (as calloc'ed or zeroed contact arrays): both
  * mean a new contact. A state may be copied with its contact (restarts, migration between
  * ranks): it keeps its history with a table of the same data (a rebuild with the same
@@ -883,17 +885,17 @@ static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
   /* (one of the library's four copies of this arithmetic, kept the same bits: its
    * src/egw/capi/README.md) */
   /* state[2] the filling table's tag, [1] the turning point the caches belong to, [0]
-   * the history, [10], [11] the piece's open ends, [13..16] its cubic in delta - [10],
-   * [17..23] the loading table's interval (ends, cubic in delta - [17], > 0 where it is
-   * ln P; on a log-ratio table's piece, whose cubic is -ln(P_load/P), 2 for ln P and -1
-   * for a linear interval; 3 where the piece's cubic is ln P - ln(P_load/P) itself, the
-   * force its exp: 0.3.2's pieces in the ln P tail, which lie inside their loading
-   * interval). A log-ratio piece on a linear interval spans loading intervals: it serves
-   * delta inside both its ends and the loading interval's. Where the force is 0 below the
-   * loading table's cut-off (a contact that has not touched, or one separated below its
-   * turning point's unloading curve) the call leaves a zero piece and a zero linear
-   * interval from -sqrt(DBL_MAX)/4, so that separated contacts are served here too, at
-   * once. */
+   * the history, [10], [11] the piece's ends (open; [11] a zero or folded piece's too),
+   * [13..16] its cubic in delta - [10], [17..23] the loading table's interval (ends,
+   * cubic in delta - [17], > 0 where it is ln P; on a log-ratio table's piece, whose
+   * cubic is -ln(P_load/P), 2 for ln P and -1 for a linear interval; 3 where the piece's
+   * cubic is ln P - ln(P_load/P) itself, the force its exp: 0.3.2's pieces in the ln P
+   * tail, which lie inside their loading interval). A log-ratio piece on a linear
+   * interval spans loading intervals: it serves delta inside both its ends and the
+   * loading interval's. Where the force is 0 below the loading table's cut-off (a contact
+   * that has not touched, or one separated below its turning point's unloading curve)
+   * the call leaves a zero piece and a zero linear interval from -sqrt(DBL_MAX)/4, so
+   * that separated contacts are served here too, at once. */
   double f = 0.0, k = 0.0;
   int piece, loading;
   if (EGW_UNLIKELY_(!(state[2] == tag))) return 0;
@@ -910,12 +912,13 @@ static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
     if (stiffness) *stiffness = 0.0;
     return 1;
   }
-  if (EGW_LIKELY_(piece && delta < state[11] && state[23] == 3.0)) {
+  if (EGW_LIKELY_(piece && state[23] == 3.0)) {
     /* a folded log-ratio piece (the separated tail, 0.3.2): its cubic is ln P - h, the
      * force exp of it, one cubic and one exp; the library cuts it inside its loading
-     * interval (not read) and keeps exp's argument within +-700 over it. (Marked likely:
-     * laid out straight, the tail's inline took 0.94 of the time, and a contact's
-     * unloading piece (0.5 sigma, touched) 0.94 too, back at 0.3.1's: stop 56) */
+     * interval (not read) and keeps exp's argument within +-700 over it. Its end [11]
+     * included: the step back at the history exactly is the piece's (stop 60). (Marked
+     * likely: laid out straight, the tail's inline took 0.94 of the time, and a
+     * contact's unloading piece (0.5 sigma, touched) 0.94 too, back at 0.3.1's: stop 56) */
     double x = delta - state[10], x2 = x * x;
     f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
     k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];

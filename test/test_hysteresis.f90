@@ -1395,13 +1395,14 @@ contains
    !> (capi_hysteresis_state.c, egw_hysteresis_state_step), the Fortran entry
    !> (egw_hysteresis_eval_state_general: eval_state_served, else the checked full call)
    !> and the reference hysteresis_eval_state, over 800 contacts of the suite's EP-GW table
-   !> walked as in test_c_separated (never touched and touched; approach, jitter, recession
-   !> past the cut-off and back) with a cycle of 16 overlaps added that returns to its top
-   !> exactly (loading back at the history). At every step, from one state: the Fortran
-   !> entry, with both outputs and with each alone, gives hysteresis_eval_state's status,
-   !> force, stiffness and state bits (compared as integers: -0 is not +0); where the C top
-   !> serves, it gives them too, with status 0; where it declines it writes nothing. Then
-   !> the folded route's ends: a tail state's cubic made target + x slope (targets -708.5,
+   !> walked as in test_c_separated (never touched and touched; approach, jitter, recession past
+   !> the cut-off and back) with a cycle of 16 overlaps added that returns to its top exactly
+   !> (back at the history: a folded piece's end, else loading). At every step, from one state:
+   !> the Fortran entry, with both outputs and with each alone, gives hysteresis_eval_state's
+   !> status, force, stiffness and state bits (compared as integers: -0 is not +0); where the C
+   !> top serves, it gives them too, with status 0; where it declines it writes nothing. Then
+   !> the folded route's ends: a tail piece's end below the history (served, stop 60) and
+   !> the next double up (not), and the piece's cubic made target + x slope (targets -708.5,
    !> -708, -707.5, -1, -0, +0, 1e-300, 0.5, 707.5; slopes 0, 3, 2^1023), the same
    !> comparison, the C top serving exactly f in (-708, -0] at slope 0 (+0 and above: the
    !> Fortran entry's); values beyond the doubles: the entries' EGW_INVALID_ARGUMENT, the
@@ -1410,6 +1411,14 @@ contains
    !> mutations of it, the log-ratio exp piece_exp replaced by libm's exp (997 steps
    !> differ) or the loading step dropping the piece back at the history (1641), fail
    !> here while test_c_separated, whose C call takes the C top on those steps, passes.
+   !> A folded piece serves its end, the step back at the history exactly (stop 60,
+   !> tail26; before, the loading route's libm exp): there its force is the loading
+   !> table's P(m) to rounding (ln P re-expanded with h = 0 at s = 0: 3.7e-15 measured,
+   !> 1e-12 allowed, the table's tolerance 1e-3) and its force and stiffness are the
+   !> piece's limit from below (the next double down, 1e-12 allowed: the cubic's change
+   !> over one ulp); the stiffness is the unloading curve's, 1.11-1.42 times the loading
+   !> curve's there (the kink at the turning point). On f4799c7 these steps took the
+   !> loading route: no folded step at the history, and its stiffness the loading slope.
    subroutine test_served_copies(error)
       type(error_type), allocatable, intent(out) :: error
       type(hysteresis_table), target :: t
@@ -1421,7 +1430,8 @@ contains
       real(dp), parameter :: targets(9) = [-708.5_dp, -708.0_dp, -707.5_dp, -1.0_dp, -0.0_dp, &
          & 0.0_dp, 1.0e-300_dp, 0.5_dp, 707.5_dp], slopes(3) = [0.0_dp, 3.0_dp, 2.0_dp**1023]
       integer :: j, n, i, m, a, stat_g, stat_f, mismatches, steps, routes(4), served_b, &
-         & at_history
+         & at_history, folded_top, top_off
+      real(dp) :: f_load, k_load, s_below(hysteresis_state_size), f_below, k_below, top_worst
       interface
          integer(c_int) function c_state_step(h, delta, state, force, stiffness) &
             & bind(C, name="egw_hysteresis_state_step")
@@ -1444,6 +1454,9 @@ contains
       steps = 0
       routes = 0
       at_history = 0
+      folded_top = 0
+      top_off = 0
+      top_worst = 0.0_dp
       do j = 1, 800
          if (j <= 400) then
             x0 = cut*(1.0_dp - (j - 0.5_dp)/400)   ! (cut-off, 0)
@@ -1469,6 +1482,7 @@ contains
             call compare_step(a)
             if (a == 1) routes(route()) = routes(route()) + 1
             if (a == 1 .and. d == s0(1)) at_history = at_history + 1
+            if (a == 1 .and. d == s0(1) .and. route() == 2) call folded_at_history()
          end do
       end do
       call check(error, mismatches, 0, "walk steps where the C top, the Fortran entry and "// &
@@ -1476,11 +1490,17 @@ contains
       if (allocated(error)) return
       ! each route the C top serves is walked (the counts on 7893885: zero pieces 5 384,
       ! folded 46 897, log-ratio on a linear interval 37 475, loading 13 440, 547 of
-      ! these back at the history)
+      ! these back at the history; since stop 60 folded 47 093 and loading 13 244: 196
+      ! steps back at the history are the folded pieces')
       call check(error, all(routes > 2500) .and. at_history > 250, "steps the C top "// &
          & "served: zero "//to_string(routes(1))//", folded "//to_string(routes(2))// &
          & ", log-ratio "//to_string(routes(3))//", loading "//to_string(routes(4))// &
          & " (back at the history "//to_string(at_history)//")")
+      if (allocated(error)) return
+      call check(error, folded_top > 100 .and. top_off == 0, "steps back at the history "// &
+         & "served by a folded piece: "//to_string(folded_top)//", of them off the "// &
+         & "loading table's force or the piece's limit from below: "//to_string(top_off)// &
+         & " (largest force difference "//format_real(top_worst)//" of P(m))")
       if (allocated(error)) return
       ! the folded route's boundaries: touched at 1, unloaded into the tail
       call hysteresis_state_init(sf)
@@ -1494,6 +1514,19 @@ contains
       if (allocated(error)) return
       base = sf
       served_b = 0
+      ! its end, here below the history (a loading interval's or a run's end): the piece's
+      ! (stop 60; on f4799c7 the C top declined it); the next double up: past the piece
+      x0 = d
+      do i = 1, 2
+         s0 = base
+         d = merge(base(12), nearest(base(12), 1.0_dp), i == 1)
+         call compare_step(a)
+         call check(error, a == merge(1, 0, i == 1) .and. base(12) < base(1), "C top at "// &
+            & "the folded piece's end "//format_real(base(12))//" + "//to_string(i - 1)// &
+            & " ulp, the history "//format_real(base(1))//": served "//to_string(a))
+         if (allocated(error)) return
+      end do
+      d = x0
       do i = 1, size(targets)
          do m = 1, size(slopes)
             ! the cubic (c1 + x c2) + x^2 (c3 + x c4) = target + x slope, exactly the
@@ -1553,13 +1586,31 @@ contains
             mismatches = mismatches + 1
          end if
       end subroutine compare_step
+      !> A step back at the history on a folded piece (ff, kf hysteresis_eval_state's):
+      !> its force against the loading table's, and both values against the piece's at
+      !> the next double down; top_off counts the steps off by more than 1e-12.
+      subroutine folded_at_history()
+         integer :: st
+         folded_top = folded_top + 1
+         call table_eval(t%loading, d, f_load, k_load)
+         s_below = s0
+         call hysteresis_eval_state(t, nearest(d, -1.0_dp), s_below, f_below, k_below, st)
+         top_worst = max(top_worst, abs(ff - f_load)/f_load)
+         if (abs(ff - f_load) > 1.0e-12_dp*f_load .or. st /= 0 .or. &
+            & abs(ff - f_below) > 1.0e-12_dp*f_load .or. &
+            & abs(kf - k_below) > 1.0e-12_dp*abs(k_below)) top_off = top_off + 1
+      end subroutine folded_at_history
       !> The route of a step the C top served, from the state before it: 1 a zero piece,
-      !> 2 a folded piece, 3 a log-ratio piece on a linear interval, 4 loading.
+      !> 2 a folded piece (its end included), 3 a log-ratio piece on a linear interval,
+      !> 4 loading.
       integer function route()
          if (s0(2) == s0(1) .and. s0(11) < d .and. d <= s0(12) .and. s0(11) == zero_lo) then
             route = 1
+         else if (s0(2) == s0(1) .and. s0(11) < d .and. d <= s0(12) .and. &
+            & s0(24) == folded) then
+            route = 2
          else if (s0(2) == s0(1) .and. s0(11) < d .and. d < s0(12)) then
-            route = merge(2, 3, s0(24) == folded)
+            route = 3
          else
             route = 4
          end if

@@ -163,7 +163,8 @@ contains
    !> whose piece covers delta with the loading interval beside it (hysteresis_eval_state's
    !> first test; a zero piece: 0), or a step loading further (delta >= state(1)) inside
    !> the loading interval the state holds (above the loading table's cut-off, or in a zero
-   !> interval below it; a zero piece up to its end, as hysteresis_eval_state). The values
+   !> interval below it; a zero piece and a folded piece up to its end, as
+   !> hysteresis_eval_state). The values
    !> are hysteresis_eval_state's (piece_force's and
    !> segment_eval's arithmetic in the same order; a log-ratio piece's exp piece_exp, the
    !> others' exp from the same libm: bit for bit, test hysteresis), and so is the state
@@ -191,10 +192,11 @@ contains
          served = state(1) <= h%input_limit
          return
       end if
-      if (state(24) == folded .and. state(11) < delta .and. delta < state(12) .and. &
+      if (state(24) == folded .and. state(11) < delta .and. delta <= state(12) .and. &
          & state(2) == state(1)) then
          ! a folded log-ratio piece (the separated tail: exp of the one cubic ln P - h;
-         ! make_log_piece cut it inside its loading interval, which is not read)
+         ! make_log_piece cut it inside its loading interval, which is not read), its end
+         ! included (the step back at the history, as hysteresis_eval_state)
          if (.not. (state(1) <= h%delta_max .and. state(1) <= h%input_limit)) return
          x = delta - state(11)
          x2 = x*x

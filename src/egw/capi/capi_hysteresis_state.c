@@ -88,7 +88,8 @@ static inline EGW_ALWAYS_INLINE_ int64_t signed_bits_of(double x)
  * piece_step: 1 and the force and stiffness where a piece answers delta; 0 (nothing
  * written) where the Fortran entry must; -1 where no piece covers delta: loading_step's.
  * - A zero piece (state[10] = zero_lo; (state[10], state[11]]): +0 and +0.
- * - A folded piece (state[23] = 3; (state[10], state[11])): its cubic f and slope k, then
+ * - A folded piece (state[23] = 3; (state[10], state[11]], its end included: the step
+ *   back at the history exactly is the piece's, stop 60): its cubic f and slope k, then
  *   exp(f) and exp(f) k. Served here where -708 < f <= -0 and |k| < 2^1023: exp(f) <= 1,
  *   so the stiffness is finite without a test after the exp, at the end of the step's
  *   dependency chain (0.8 ns a step there, stop 57); f's range is one compare of its bits
@@ -118,7 +119,7 @@ static inline EGW_ALWAYS_INLINE_ int piece_step(egw_hysteresis h, double delta,
         *stiffness = 0.0;
         return 1;
       }
-    } else if (EGW_LIKELY_(delta < state[11])) {
+    } else if (EGW_LIKELY_(delta <= state[11])) {
       double x = delta - state[10], x2 = x * x;
       f = (state[13] + x * state[14]) + x2 * (state[15] + x * state[16]);
       k = (state[14] + 2 * x * state[15]) + 3 * x2 * state[16];
@@ -132,6 +133,8 @@ static inline EGW_ALWAYS_INLINE_ int piece_step(egw_hysteresis h, double delta,
         }
         return 0;
       }
+      /* (the other pieces are open at their end: there the loading route's) */
+      if (!(delta < state[11])) return -1;
       if (state[23] < 0.0 && state[17] <= delta && delta < state[18]) {
         double t = delta - state[17], t2 = t * t, p;
         double v = (state[19] + t * state[20]) + t2 * (state[21] + t * state[22]);
@@ -206,8 +209,8 @@ static int state_step(egw_hysteresis h, double delta, double *state, double *for
 #endif
 
 /* egw_hysteresis_eval_state where no piece covers delta: loading_step (inlined here: 18
- * instructions fewer on a never-touched contact's step back at its history, stop 58), else
- * the Fortran entry (h given) */
+ * instructions fewer on a step back at the history, stop 58, where the piece there is not
+ * folded), else the Fortran entry (h given) */
 static EGW_NOINLINE_ int loading_or_general(egw_hysteresis h, double delta, double *state,
                                             double *force, double *stiffness)
 {

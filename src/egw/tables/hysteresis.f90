@@ -158,15 +158,17 @@ contains
    !> table's: h = ln(P_load/P) over the whole run on a linear loading interval, the
    !> interval beside it, taken alone when the contact crosses into the next; on a ln P
    !> interval ln P - h, one cubic inside it, make_log_piece): the same values to rounding (test
-   !> hysteresis: 1e-12 of the force at the turning point), the same statuses and
-   !> histories. Where the force is 0 below the cut-off (a contact that has not touched, or
-   !> one below its turning point's unloading floor) the state keeps a zero piece
-   !> (zero_piece), so that separated contacts too read only their state. Only a state that this table filled is trusted (its tag, state(3)): any
-   !> other (all zero, as a DEM code's zeroed contact arrays; hysteresis_state_init's;
-   !> another table's; garbled) is a new contact, its history reset to -huge; but a NaN
-   !> state(1), as a NaN delta, is refused (egw_invalid_argument, nothing changed, as
-   !> egw_hysteresis_eval_state). The optional error says what stat says, with a message
-   !> naming the argument (formed only when stat is not 0).
+   !> hysteresis: 1e-12 of the force at the turning point), the same statuses and histories; but
+   !> back at the history exactly on a folded piece (the separated tail) the unloading curve's
+   !> stiffness, the piece's limit from below (hysteresis_eval: the loading curve's there).
+   !> Where the force is 0 below the cut-off (a contact that has not touched, or one below its
+   !> turning point's unloading floor) the state keeps a zero piece (zero_piece), so that
+   !> separated contacts too read only their state. Only a state that this table filled is
+   !> trusted (its tag, state(3)): any other (all zero, as a DEM code's zeroed contact arrays;
+   !> hysteresis_state_init's; another table's; garbled) is a new contact, its history reset to
+   !> -huge; but a NaN state(1), as a NaN delta, is refused (egw_invalid_argument, nothing
+   !> changed, as egw_hysteresis_eval_state). The optional error says what stat says, with a
+   !> message naming the argument (formed only when stat is not 0).
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat, error)
       type(hysteresis_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
@@ -198,10 +200,15 @@ contains
       ! loading interval spans its run of s intervals across the loading table's linear
       ! intervals (make_log_piece): one that left its loading interval for the next linear
       ! one takes it (table_segment), its cubic of h kept; into a ln P interval (and a
-      ! folded piece, ln P - h, out of its own) it is remade.
+      ! folded piece, ln P - h, out of its own) it is remade. A folded piece (the
+      ! separated tail) serves its end too, where its cubic is as accurate as inside: the
+      ! step back at the history exactly (stop 60: the loading route there, libm's exp,
+      ! cost a mispredicted branch a return), the force the loading curve's to rounding
+      ! (h = 0 at s = 0), the stiffness the unloading curve's, its limit from below (test
+      ! hysteresis "served steps: ..."); it lies inside its loading interval (not read).
       if (state(3) == table%tag .and. state(2) == state(1) .and. state(11) < delta .and. &
-         & delta < state(12)) then
-         inside = state(18) <= delta .and. delta < state(19)
+         & (delta < state(12) .or. (delta == state(12) .and. state(24) == folded))) then
+         inside = state(24) == folded .or. (state(18) <= delta .and. delta < state(19))
          if (.not. inside .and. state(24) < 0.0_dp) then
             ! (into a ln P interval the piece is remade below, folded)
             call table_segment(table%loading, delta, state(18:24), inside)
