@@ -36,6 +36,13 @@ module test_hysteresis
       integer(c_int) function c_dem_loop() bind(C, name="egw_capi_test_dem_loop")
          import :: c_int
       end function c_dem_loop
+      !> The C entry egw_hysteresis_eval_state (include/egw.h), called as a C program does.
+      integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
+         & bind(C, name="egw_hysteresis_eval_state")
+         import :: c_int, c_double, c_ptr
+         type(c_ptr), value :: h, state, force, stiffness
+         real(c_double), value :: delta
+      end function c_eval_state
    end interface
 
    !> Scaled EP-GW contact (R = E = sigma = 1): psi = 2 (delta_ep = sigma/4), mu = 4.
@@ -1211,14 +1218,6 @@ contains
       integer :: j, n, stat_c, stat_f, steps, mismatches, positive, zero, beyond
       type(egw_error), allocatable :: err
       type(contact_params) :: capped
-      interface
-         integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
-            & bind(C, name="egw_hysteresis_eval_state")
-            import :: c_int, c_double, c_ptr
-            type(c_ptr), value :: h, state, force, stiffness
-            real(c_double), value :: delta
-         end function c_eval_state
-      end interface
       call build(ep, t, error)
       if (allocated(error)) return
       hd = hysteresis_handle_for(t)
@@ -1231,27 +1230,11 @@ contains
       zero = 0
       beyond = 0
       do j = 1, 800
-         if (j <= 400) then
-            x0 = cut*(1.0_dp - (j - 0.5_dp)/400)   ! (cut-off, 0)
-         else
-            x0 = 6.2_dp*(j - 400.5_dp)/400   ! (0, 6.2): in contact, past delta_max
-         end if
+         x0 = walk_start(j, cut)
          call hysteresis_state_init(sc)
          call hysteresis_state_init(sf)
          do n = 0, 160
-            if (n == 0) then
-               d = merge(1.0_dp, x0 - 1.0_dp, mod(j, 2) == 0)   ! touched, or not
-            else if (n <= 20) then
-               d = x0 - 1.0_dp + n/20.0_dp   ! approaching x0
-            else if (n <= 100) then
-               ! jitter within 0.02 of x0, over 8 overlaps in a shuffled cycle (returns to
-               ! the history exactly) and a slow drift
-               d = x0 + 0.02_dp*(modulo(5*n, 8)/7.0_dp - 0.5_dp) + 1.0e-4_dp*sin(0.1_dp*n)
-            else if (n <= 130) then
-               d = x0 - 3.0_dp*(n - 100)/30.0_dp   ! receding past the cut-off
-            else
-               d = x0 - 3.0_dp + 3.0_dp*(n - 130)/30.0_dp   ! and back
-            end if
+            d = walk_overlap(j, n, x0, .false.)
             stat_c = c_eval_state(c_loc(hd), d, c_loc(sc), c_loc(fc), c_loc(kc))
             call hysteresis_eval_state(t, d, sf, ff, kf, stat_f)
             steps = steps + 1
@@ -1301,6 +1284,42 @@ contains
          & "hysteresis_eval_state differ")
    end subroutine test_c_separated
 
+   !> The start x0 of walk j of 800 on a table with tail cut-off cut: 400 over the separated
+   !> tail (cut-off, 0), 400 in contact over (0, 6.2) (past the EP-GW table's delta_max 6).
+   pure real(dp) function walk_start(j, cut) result(x0)
+      integer, intent(in) :: j
+      real(dp), intent(in) :: cut
+      if (j <= 400) then
+         x0 = cut*(1.0_dp - (j - 0.5_dp)/400)
+      else
+         x0 = 6.2_dp*(j - 400.5_dp)/400
+      end if
+   end function walk_start
+
+   !> Step n (0 .. 160) of walk j about x0: touched at 1 first (even j) or not, approaching
+   !> x0 from 1 below (n 1-20), jittering within 0.02 of x0 over 8 overlaps in a shuffled
+   !> cycle (returns to the history exactly) with a slow drift (n 21-100; with_cycle: from
+   !> n 61 a cycle of 16 overlaps whose top is its first: loading back at the history),
+   !> receding 3 below x0, past the cut-off (n 101-130), and back (n 131-160).
+   pure real(dp) function walk_overlap(j, n, x0, with_cycle) result(d)
+      integer, intent(in) :: j, n
+      real(dp), intent(in) :: x0
+      logical, intent(in) :: with_cycle
+      if (n == 0) then
+         d = merge(1.0_dp, x0 - 1.0_dp, mod(j, 2) == 0)
+      else if (n <= 20) then
+         d = x0 - 1.0_dp + n/20.0_dp
+      else if (n <= 100 .and. .not. (with_cycle .and. n > 60)) then
+         d = x0 + 0.02_dp*(modulo(5*n, 8)/7.0_dp - 0.5_dp) + 1.0e-4_dp*sin(0.1_dp*n)
+      else if (n <= 100) then
+         d = x0 + 0.02_dp + 0.01_dp*modulo(7*n, 16)/15.0_dp
+      else if (n <= 130) then
+         d = x0 - 3.0_dp*(n - 100)/30.0_dp
+      else
+         d = x0 - 3.0_dp + 3.0_dp*(n - 130)/30.0_dp
+      end if
+   end function walk_overlap
+
    !> The C entry's served log-ratio pieces where their values leave the fast path (stop 53,
    !> tail19: the entry serves only a positive force with finite values and leaves every
    !> other step to the full evaluation, where it served zeros itself): states of the EP-GW
@@ -1321,14 +1340,6 @@ contains
          & shift
       real(dp), parameter :: targets(4) = [-800.0_dp, -720.0_dp, 708.5_dp, 720.0_dp]
       integer :: piece, i, stat_c, stat_f, cases, zeros, infinite
-      interface
-         integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
-            & bind(C, name="egw_hysteresis_eval_state")
-            import :: c_int, c_double, c_ptr
-            type(c_ptr), value :: h, state, force, stiffness
-            real(c_double), value :: delta
-         end function c_eval_state
-      end interface
       call build(ep, t, error)
       if (allocated(error)) return
       hd = hysteresis_handle_for(t)
@@ -1458,26 +1469,10 @@ contains
       top_off = 0
       top_worst = 0.0_dp
       do j = 1, 800
-         if (j <= 400) then
-            x0 = cut*(1.0_dp - (j - 0.5_dp)/400)   ! (cut-off, 0)
-         else
-            x0 = 6.2_dp*(j - 400.5_dp)/400   ! (0, 6.2): in contact, past delta_max
-         end if
+         x0 = walk_start(j, cut)
          call hysteresis_state_init(sf)
          do n = 0, 160
-            if (n == 0) then
-               d = merge(1.0_dp, x0 - 1.0_dp, mod(j, 2) == 0)   ! touched, or not
-            else if (n <= 20) then
-               d = x0 - 1.0_dp + n/20.0_dp
-            else if (n <= 60) then
-               d = x0 + 0.02_dp*(modulo(5*n, 8)/7.0_dp - 0.5_dp) + 1.0e-4_dp*sin(0.1_dp*n)
-            else if (n <= 100) then
-               d = x0 + 0.02_dp + 0.01_dp*modulo(7*n, 16)/15.0_dp   ! a cycle: back at its top
-            else if (n <= 130) then
-               d = x0 - 3.0_dp*(n - 100)/30.0_dp
-            else
-               d = x0 - 3.0_dp + 3.0_dp*(n - 130)/30.0_dp
-            end if
+            d = walk_overlap(j, n, x0, .true.)
             s0 = sf
             call compare_step(a)
             if (a == 1) routes(route()) = routes(route()) + 1
@@ -1649,12 +1644,6 @@ contains
             type(c_ptr), value :: h, state, force, stiffness
             real(c_double), value :: delta
          end function c_eval
-         integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
-            & bind(C, name="egw_hysteresis_eval_state")
-            import :: c_int, c_double, c_ptr
-            type(c_ptr), value :: h, state, force, stiffness
-            real(c_double), value :: delta
-         end function c_eval_state
          integer(c_int) function c_energy(h, delta, state, energy) &
             & bind(C, name="egw_hysteresis_energy")
             import :: c_int, c_double, c_ptr
