@@ -66,6 +66,8 @@ contains
          & new_unittest("refused at once: rel_tol below the cap solver's reach", &
          & test_least_tol), &
          & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
+         & new_unittest("contact duration: Hertz to 1e-8 of the closed form", &
+         & test_hertz_duration), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop), &
          & new_unittest("C DEM loop, rough + cap: e to 1e-3", &
          & test_c_rough_dem_loop) &
@@ -760,6 +762,44 @@ contains
       if (allocated(error)) return
       print '(4x, a, f8.5)', "time step / closed form at 60 v_y: ", step/expected
    end subroutine test_time_step
+
+   !> Hertz's contact duration (force above 1 % of its peak) is C_H delta_m/v with
+   !> C_H = (4/5) int_{0.01**(5/3)}^1 z**(-3/5) (1 - z)**(-1/2) dz (an incomplete Beta
+   !> function; tools/reference/duration_reference.py derives it and evaluates it with
+   !> mpmath at 40 digits, checked against a direct quadrature). egw_time_step within
+   !> 1e-8 (its quadrature's target is 1e-9; measured -1.3e-11) from 1e-4 to 10 m/s (Hertz
+   !> is self-similar: the same rule at every speed) and with a cap below first yield
+   !> (the solves are Hertz's). Main's 16-point rule: -9.48e-5 (fails).
+   subroutine test_hertz_duration(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: c_hertz = 2.850437250874421873709_dp, mass = 1.0e-5_dp
+      real(dp), parameter :: speeds(4) = [1.0e-4_dp, 1.0e-2_dp, 1.0_dp, 10.0_dp]
+      type(contact_params) :: hertz
+      type(egw_error), allocatable :: err
+      real(dp) :: dm, duration, step, vy, expected
+      integer :: i, j
+      vy = sqrt(16.0_dp/15.0_dp*(pi/2)**5*capped%flow_pressure**5*capped%radius**3 &
+         & /(mass*capped%modulus**4))
+      do j = 1, 2
+         hertz = capped
+         if (j == 1) hertz%flow_pressure = 0.0_dp
+         do i = 1, size(speeds)
+            if (j == 2 .and. speeds(i) >= vy) cycle
+            call time_step(hertz, solver_options(), mass, speeds(i), 1.0e-3_dp, duration, &
+               & step, err)
+            call check(error, .not. allocated(err), "time_step refused")
+            if (allocated(error)) return
+            dm = (15*mass*speeds(i)**2/(16*hertz%modulus*sqrt(hertz%radius)))**0.4_dp
+            expected = c_hertz*dm/speeds(i)
+            call check(error, abs(duration/expected - 1) <= 1.0e-8_dp, "p_y " &
+               & //str(hertz%flow_pressure)//" v "//str(speeds(i))//": duration " &
+               & //str(duration)//" closed form "//str(expected))
+            if (allocated(error)) return
+            print '(4x, a, es9.2, a, es10.2)', "Hertz duration at v = ", speeds(i), &
+               & ": relative error ", duration/expected - 1
+         end do
+      end do
+   end subroutine test_hertz_duration
 
    subroutine test_c_dem_loop(error)
       type(error_type), allocatable, intent(out) :: error
