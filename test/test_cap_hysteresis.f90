@@ -7,7 +7,7 @@ module test_cap_hysteresis
    use egw_kinds, only: dp, pi
    use test_compare, only: same => same_bits
    use egw_status, only: egw_error, egw_invalid_argument
-   use egw_params, only: contact_params, model_hertz
+   use egw_params, only: contact_params, model_hertz, model_gw, model_egw, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
       & load_history, solve_unload
    use egw_cap_sphere, only: cap_units, cap_history, cap_result, cap_load, cap_options, &
@@ -68,6 +68,8 @@ contains
          & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
          & new_unittest("contact duration: Hertz to 1e-8 of the closed form", &
          & test_hertz_duration), &
+         & new_unittest("contact duration: cap and rough models against a brute-force " &
+         & //"quadrature", test_brute_duration), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop), &
          & new_unittest("C DEM loop, rough + cap: e to 1e-3", &
          & test_c_rough_dem_loop) &
@@ -800,6 +802,47 @@ contains
          end do
       end do
    end subroutine test_hertz_duration
+
+   !> Contact durations of Hertz + cap (at 3.6 v_y) and GW, E-GW, EP-GW (1 um, mu 4, psi
+   !> 2; at 1e-2 m/s, EP-GW at 1e-4 m/s too, turning in the tail), 1 mm glass beads,
+   !> against tools/reference/duration_reference.py: an adaptive Runge-Kutta (DOP853,
+   !> rtol 1e-10; 1e-9 within 8e-10 of it) on egw's own forces (egw.solve, egw.solve_unload,
+   !> egw.restitution's delta_m, the onset by brentq). Independent of egw's quadrature, not
+   !> of its forces (the script's Hertz: within 1e-13 of the exact duration). Within 1e-8
+   !> (the quadrature's target 1e-9 plus the reference's own error); measured -5.9e-10
+   !> (Hertz + cap), -8.8e-11, -8.8e-11, +3.9e-11, -8.4e-11. Main's 16-point rule:
+   !> -1.2e-4, -2.1e-4, -2.1e-4, -2.2e-4, -2.2e-4 (fails).
+   subroutine test_brute_duration(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: mass = 6.5e-6_dp
+      type(contact_params) :: p(5)
+      real(dp) :: v(5), reference(5), duration, step
+      type(egw_error), allocatable :: err
+      integer :: i
+      p = contact_params(model=model_epgw, radius=5.0e-4_dp, modulus=4.0e10_dp, &
+         & sigma=1.0e-6_dp, mu=4.0_dp, psi=2.0_dp)
+      p(1) = contact_params(model=model_hertz, radius=5.0e-4_dp, modulus=4.0e10_dp, &
+         & flow_pressure=1.0e9_dp)
+      p(2)%model = model_gw
+      p(2)%psi = 0.0_dp
+      p(3)%model = model_egw
+      p(3)%psi = 0.0_dp
+      ! tools/reference/duration_reference.py (rtol 1e-10; rtol 1e-9 within 1.3e-10, 2.3e-10,
+      ! 2.3e-10, 7.7e-10, 6.7e-10 of these)
+      v = [1.0_dp, 1.0e-2_dp, 1.0e-2_dp, 1.0e-2_dp, 1.0e-4_dp]
+      reference = [5.937009372456605e-06_dp, 2.921082797351597e-04_dp, &
+         & 2.921082797351597e-04_dp, 2.509431910986742e-04_dp, 1.818920227756315e-02_dp]
+      do i = 1, size(p)
+         call time_step(p(i), solver_options(), mass, v(i), 1.0e-3_dp, duration, step, err)
+         call check(error, .not. allocated(err), "time_step refused")
+         if (allocated(error)) return
+         call check(error, abs(duration/reference(i) - 1) <= 1.0e-8_dp, "case "// &
+            & str(real(i, dp))//": duration "//str(duration)//" reference "//str(reference(i)))
+         if (allocated(error)) return
+         print '(4x, a, i0, a, es10.2)', "duration case ", i, ": relative error ", &
+            & duration/reference(i) - 1
+      end do
+   end subroutine test_brute_duration
 
    subroutine test_c_dem_loop(error)
       type(error_type), allocatable, intent(out) :: error
