@@ -23,7 +23,7 @@ module egw_impact
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
       & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options
    use egw_cap_sphere, only: cap_options, cap_restitution, cap_history, cap_result, cap_load, &
-      & cap_unload
+      & cap_unload, cap_units
    implicit none
    private
 
@@ -555,7 +555,7 @@ contains
       real(dp), intent(out) :: time
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: u_max, s_16(0:16, 0:16), s_8(0:8, 0:8), s_4(0:4, 0:4)
-      real(dp) :: a, b, w_a, p_a, g_0, t(3), w(3), budget, err, noise
+      real(dp) :: a, b, w_a, p_a, g_0, t(3), w(3), budget, err, noise, u_y
       real(dp) :: p(0:16), ends(max_panel_depth)
       integer :: n_ends, depth(max_panel_depth), d
       time = 0.0_dp
@@ -572,10 +572,16 @@ contains
       w_a = 0.0_dp
       p_a = p_m
       ! pending right ends (a stack, nearest on top) and their depths
-      ! [0, u_max/2] then [u_max/2, u_max]: a single panel rarely suffices
+      ! [0, u_max/2] then [u_max/2, u_max]: a single panel rarely suffices; the smooth
+      ! sphere's loading with the cap splits at first yield (Hertz below, a kink there)
       n_ends = 2
       ends(1:2) = [u_max, 0.5_dp*u_max]
-      depth(1:2) = 1
+      u_y = yield_break(hist, unloading, delta_m, u_max)
+      if (u_y > 0.0_dp) then
+         n_ends = 3
+         ends(1:3) = [u_max, u_y, 0.5_dp*u_y]
+      end if
+      depth(1:n_ends) = 1
       do while (n_ends > 0)
          b = ends(n_ends)
          d = depth(n_ends)
@@ -606,6 +612,23 @@ contains
          n_ends = n_ends - 1
       end do
    end subroutine half_time
+
+   !> u at first yield delta_y on the loading curve of a smooth sphere with the cap, where
+   !> its force leaves Hertz's with a kink, if it lies inside (5 %, 95 %) of [0, u_max]
+   !> (else, an unloading curve or without the cap, 0).
+   pure real(dp) function yield_break(hist, unloading, delta_m, u_max) result(u_y)
+      type(loading_history), intent(in) :: hist
+      logical, intent(in) :: unloading
+      real(dp), intent(in) :: delta_m, u_max
+      real(dp) :: delta_y, a_y, force_y
+      u_y = 0.0_dp
+      if (unloading .or. .not. hist%params%flow_pressure > 0.0_dp .or. .not. &
+         & (hist%params%model == model_hertz .or. hist%params%sigma == 0.0_dp)) return
+      call cap_units(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
+         & delta_y, a_y, force_y)
+      if (delta_y < delta_m) u_y = sqrt(delta_m - delta_y)
+      if (.not. (u_y > 0.05_dp*u_max .and. u_y < 0.95_dp*u_max)) u_y = 0.0_dp
+   end function yield_break
 
    !> One panel [a, b] of half_time: the force at its 17 Chebyshev-Lobatto nodes (p(0) =
    !> p_a given), W at the nodes from w_a, and the panel's time t and W(b) w by the 17-,
