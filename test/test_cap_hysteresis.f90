@@ -809,7 +809,7 @@ contains
    !> rtol 1e-10; 1e-9 within 8e-10 of it) on egw's own forces (egw.solve, egw.solve_unload,
    !> egw.restitution's delta_m, the onset by brentq). Independent of egw's quadrature, not
    !> of its forces (the script's Hertz: within 1e-13 of the exact duration). Within 1e-8
-   !> (the quadrature's target 1e-9 plus the reference's own error); measured -5.9e-10
+   !> (the quadrature's target 1e-9 plus the reference's own error); measured -5.3e-10
    !> (Hertz + cap), -8.8e-11, -8.8e-11, +3.9e-11, -8.4e-11. Main's 16-point rule:
    !> -1.2e-4, -2.1e-4, -2.1e-4, -2.2e-4, -2.2e-4 (fails).
    subroutine test_brute_duration(error)

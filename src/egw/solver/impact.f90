@@ -14,7 +14,7 @@
 !> bound is below rel_tol/20 of the impact energy and the bound is added to both integrals.
 module egw_impact
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use egw_kinds, only: dp
+   use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, egw_unsupported, &
       & fatal_error, &
       & format_real
@@ -33,14 +33,13 @@ module egw_impact
    !> pairs from 1e-4 to 10 m/s (doc/theory.md §10): |delta e| <= verlet_error (omega dt)**2
    !> with omega**2 = K_max/m*, the stiffest point of the impact.
    real(dp), parameter :: verlet_error = 0.03_dp
-   !> The contact duration's quadrature (half_time): Chebyshev-Lobatto panels of cc_n + 1
-   !> nodes, bisected to duration_tol of the duration, at most max_panel_depth times.
+   !> The contact duration's quadrature (half_time): Chebyshev-Lobatto panels of 17 nodes,
+   !> bisected to duration_tol of the duration, at most max_panel_depth times.
    integer, parameter :: max_panel_depth = 30
    real(dp), parameter :: duration_tol = 1.0e-9_dp
    !> The forces' relative noise in units of rel_tol (the history's solves at 1e-4 of it,
    !> the rough solves' errors well inside their estimates)
    real(dp), parameter :: noise_level = 1.0e-3_dp
-   real(dp), parameter :: pi = acos(-1.0_dp)
    !> Depth of the interval bisection, and steps allowed to find delta_lo and delta_m.
    integer, parameter :: max_depth = 24, max_steps = 400
    !> The unloading solves' force floor (solve_unload's force_floor), in units of the
@@ -556,8 +555,9 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: u_max, s_16(0:16, 0:16), s_8(0:8, 0:8), s_4(0:4, 0:4)
       real(dp) :: a, b, w_a, p_a, g_0, t(3), w(3), budget, err, noise, u_y
-      real(dp) :: p(0:16), ends(max_panel_depth)
-      integer :: n_ends, depth(max_panel_depth), d
+      ! the stack holds at most the 3 first panels and one per bisection
+      real(dp) :: p(0:16), ends(max_panel_depth + 2)
+      integer :: n_ends, depth(max_panel_depth + 2), d
       time = 0.0_dp
       call onset(hist, unloading, delta_m, p_m, k_m, u_max, error)
       if (allocated(error)) return
