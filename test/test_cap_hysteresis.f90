@@ -7,7 +7,7 @@ module test_cap_hysteresis
    use egw_kinds, only: dp, pi
    use test_compare, only: same => same_bits
    use egw_status, only: egw_error, egw_invalid_argument
-   use egw_params, only: contact_params, model_hertz
+   use egw_params, only: contact_params, model_hertz, model_gw, model_egw, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
       & load_history, solve_unload
    use egw_cap_sphere, only: cap_units, cap_history, cap_result, cap_load, cap_options, &
@@ -66,6 +66,10 @@ contains
          & new_unittest("refused at once: rel_tol below the cap solver's reach", &
          & test_least_tol), &
          & new_unittest("time step beyond v_y: 2 E* a at delta_m", test_time_step), &
+         & new_unittest("contact duration: Hertz to 1e-8 of the closed form", &
+         & test_hertz_duration), &
+         & new_unittest("contact duration: cap and rough models against a brute-force " &
+         & //"quadrature", test_brute_duration), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop), &
          & new_unittest("C DEM loop, rough + cap: e to 1e-3", &
          & test_c_rough_dem_loop) &
@@ -760,6 +764,85 @@ contains
       if (allocated(error)) return
       print '(4x, a, f8.5)', "time step / closed form at 60 v_y: ", step/expected
    end subroutine test_time_step
+
+   !> Hertz's contact duration (force above 1 % of its peak) is C_H delta_m/v with
+   !> C_H = (4/5) int_{0.01**(5/3)}^1 z**(-3/5) (1 - z)**(-1/2) dz (an incomplete Beta
+   !> function; tools/reference/duration_reference.py derives it and evaluates it with
+   !> mpmath at 40 digits, checked against a direct quadrature). egw_time_step within
+   !> 1e-8 (its quadrature's target is 1e-9; measured -1.3e-11) from 1e-4 to 10 m/s (Hertz
+   !> is self-similar: the same rule at every speed) and with a cap below first yield
+   !> (the solves are Hertz's). Main's 16-point rule: -9.48e-5 (fails).
+   subroutine test_hertz_duration(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: c_hertz = 2.850437250874421873709_dp, mass = 1.0e-5_dp
+      real(dp), parameter :: speeds(4) = [1.0e-4_dp, 1.0e-2_dp, 1.0_dp, 10.0_dp]
+      type(contact_params) :: hertz
+      type(egw_error), allocatable :: err
+      real(dp) :: dm, duration, step, vy, expected
+      integer :: i, j
+      vy = sqrt(16.0_dp/15.0_dp*(pi/2)**5*capped%flow_pressure**5*capped%radius**3 &
+         & /(mass*capped%modulus**4))
+      do j = 1, 2
+         hertz = capped
+         if (j == 1) hertz%flow_pressure = 0.0_dp
+         do i = 1, size(speeds)
+            if (j == 2 .and. speeds(i) >= vy) cycle
+            call time_step(hertz, solver_options(), mass, speeds(i), 1.0e-3_dp, duration, &
+               & step, err)
+            call check(error, .not. allocated(err), "time_step refused")
+            if (allocated(error)) return
+            dm = (15*mass*speeds(i)**2/(16*hertz%modulus*sqrt(hertz%radius)))**0.4_dp
+            expected = c_hertz*dm/speeds(i)
+            call check(error, abs(duration/expected - 1) <= 1.0e-8_dp, "p_y " &
+               & //str(hertz%flow_pressure)//" v "//str(speeds(i))//": duration " &
+               & //str(duration)//" closed form "//str(expected))
+            if (allocated(error)) return
+            print '(4x, a, es9.2, a, es10.2)', "Hertz duration at v = ", speeds(i), &
+               & ": relative error ", duration/expected - 1
+         end do
+      end do
+   end subroutine test_hertz_duration
+
+   !> Contact durations of Hertz + cap (at 3.6 v_y) and GW, E-GW, EP-GW (1 um, mu 4, psi
+   !> 2; at 1e-2 m/s, EP-GW at 1e-4 m/s too, turning in the tail), 1 mm glass beads,
+   !> against tools/reference/duration_reference.py: an adaptive Runge-Kutta (DOP853,
+   !> rtol 1e-10; 1e-9 within 8e-10 of it) on egw's own forces (egw.solve, egw.solve_unload,
+   !> egw.restitution's delta_m, the onset by brentq). Independent of egw's quadrature, not
+   !> of its forces (the script's Hertz: within 1e-13 of the exact duration). Within 1e-8
+   !> (the quadrature's target 1e-9 plus the reference's own error); measured -5.3e-10
+   !> (Hertz + cap), -8.8e-11, -8.8e-11, +3.9e-11, -8.4e-11. Main's 16-point rule:
+   !> -1.2e-4, -2.1e-4, -2.1e-4, -2.2e-4, -2.2e-4 (fails).
+   subroutine test_brute_duration(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: mass = 6.5e-6_dp
+      type(contact_params) :: p(5)
+      real(dp) :: v(5), reference(5), duration, step
+      type(egw_error), allocatable :: err
+      integer :: i
+      p = contact_params(model=model_epgw, radius=5.0e-4_dp, modulus=4.0e10_dp, &
+         & sigma=1.0e-6_dp, mu=4.0_dp, psi=2.0_dp)
+      p(1) = contact_params(model=model_hertz, radius=5.0e-4_dp, modulus=4.0e10_dp, &
+         & flow_pressure=1.0e9_dp)
+      p(2)%model = model_gw
+      p(2)%psi = 0.0_dp
+      p(3)%model = model_egw
+      p(3)%psi = 0.0_dp
+      ! tools/reference/duration_reference.py (rtol 1e-10; rtol 1e-9 within 1.3e-10, 2.3e-10,
+      ! 2.3e-10, 7.7e-10, 6.7e-10 of these)
+      v = [1.0_dp, 1.0e-2_dp, 1.0e-2_dp, 1.0e-2_dp, 1.0e-4_dp]
+      reference = [5.937009372456605e-06_dp, 2.921082797351597e-04_dp, &
+         & 2.921082797351597e-04_dp, 2.509431910986742e-04_dp, 1.818920227756315e-02_dp]
+      do i = 1, size(p)
+         call time_step(p(i), solver_options(), mass, v(i), 1.0e-3_dp, duration, step, err)
+         call check(error, .not. allocated(err), "time_step refused")
+         if (allocated(error)) return
+         call check(error, abs(duration/reference(i) - 1) <= 1.0e-8_dp, "case "// &
+            & str(real(i, dp))//": duration "//str(duration)//" reference "//str(reference(i)))
+         if (allocated(error)) return
+         print '(4x, a, i0, a, es10.2)', "duration case ", i, ": relative error ", &
+            & duration/reference(i) - 1
+      end do
+   end subroutine test_brute_duration
 
    subroutine test_c_dem_loop(error)
       type(error_type), allocatable, intent(out) :: error

@@ -5,7 +5,8 @@ d = d_m (1 - s^2) the time from there to the turning point is
   t = int_0^s1 2 s d_m / (v sqrt(1 - (1 - s^2)^2.5)) ds,
 regular at s = 0 (written with expm1/log1p). The duration is twice that (Hertz is
 reversible). doc/theory.md section 10 quotes egw's relative error (audit25: -9.48e-5 at
-every speed: the 16-point rule's, Hertz being self-similar).
+every speed: the 16-point rule's, Hertz being self-similar; stop 60, tstep26: -1.3e-11,
+the adaptive panels; the closed form is in tools/reference/duration_reference.py).
 
     PYTHONPATH=<mpmath> .venv/bin/python tools/reference/hertz_duration_ref.py
 """

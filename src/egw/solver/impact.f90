@@ -14,7 +14,7 @@
 !> bound is below rel_tol/20 of the impact energy and the bound is added to both integrals.
 module egw_impact
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use egw_kinds, only: dp
+   use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, egw_not_converged, egw_unsupported, &
       & fatal_error, &
       & format_real
@@ -23,7 +23,7 @@ module egw_impact
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
       & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options
    use egw_cap_sphere, only: cap_options, cap_restitution, cap_history, cap_result, cap_load, &
-      & cap_unload
+      & cap_unload, cap_units
    implicit none
    private
 
@@ -33,14 +33,13 @@ module egw_impact
    !> pairs from 1e-4 to 10 m/s (doc/theory.md §10): |delta e| <= verlet_error (omega dt)**2
    !> with omega**2 = K_max/m*, the stiffest point of the impact.
    real(dp), parameter :: verlet_error = 0.03_dp
-   !> Gauss-Legendre nodes and weights on [0, 1] (16 points) for the contact duration.
-   real(dp), parameter :: gl16_x(8) = [0.0052995325041750_dp, 0.0277124884633837_dp, &
-      & 0.0671843988060841_dp, 0.1222977958224985_dp, 0.1910618777986781_dp, &
-      & 0.2709916111713863_dp, 0.3591982246103705_dp, 0.4524937450811813_dp]
-   real(dp), parameter :: gl16_w(8) = [0.0135762297058770_dp, 0.0310735511116880_dp, &
-      & 0.0475792558412464_dp, 0.0623144856277670_dp, 0.0747979944082884_dp, &
-      & 0.0845782596975013_dp, 0.0913017075224618_dp, 0.0947253052275342_dp]
-
+   !> The contact duration's quadrature (half_time): Chebyshev-Lobatto panels of 17 nodes,
+   !> bisected to duration_tol of the duration, at most max_panel_depth times.
+   integer, parameter :: max_panel_depth = 30
+   real(dp), parameter :: duration_tol = 1.0e-9_dp
+   !> The forces' relative noise in units of rel_tol (the history's solves at 1e-4 of it,
+   !> the rough solves' errors well inside their estimates)
+   real(dp), parameter :: noise_level = 1.0e-3_dp
    !> Depth of the interval bisection, and steps allowed to find delta_lo and delta_m.
    integer, parameter :: max_depth = 24, max_steps = 400
    !> The unloading solves' force floor (solve_unload's force_floor), in units of the
@@ -535,10 +534,18 @@ contains
    end subroutine cap_unload_stiffness
 
    !> The time from the overlap where the force is 1 % of P(delta_m) to delta_m (loading)
-   !> or back (unloading): int dx/v(x), v(x)**2 = (2/m*) int_x^{delta_m} P, with x =
-   !> delta_m - u**2 (the 1/sqrt singularity at the turning point becomes regular) on 16
-   !> Gauss points in u; int_x^{delta_m} P cumulated over the sorted points by the Hermite
-   !> rule from the solves' force and stiffness.
+   !> or back (unloading): t = int dx/v(x), v(x)**2 = (2/m*) W(x), W(x) = int_x^{delta_m} P.
+   !> With x = delta_m - u**2 (the 1/sqrt singularity at the turning point becomes
+   !> regular) t = int_0^{u_max} 2u/v du and W(u) = int_0^u 2s P(delta_m - s**2) ds, both on
+   !> the same Chebyshev-Lobatto panels in u: W at every node from the panel's interpolant
+   !> of 2s P integrated exactly (Clenshaw-Curtis' cumulative matrix), t by its last row.
+   !> The 17-point rule's error on a panel is extrapolated from its nested 9- and 5-point
+   !> rules at their observed (algebraic) rate; a panel is kept when that error (with W's
+   !> share) is within duration_tol of t (lower bound u_max sqrt(2 m*/P_m)) per unit of
+   !> panel length (at least u_max/16), or its rules differ by no more than the solves'
+   !> noise; else bisected. The panels grade themselves towards a branch point beyond u_max
+   !> (Hertz's at delta = 0, 2.4 % of u_max past it: 4 panels) and a kink (the rough +
+   !> cap force's first yield).
    subroutine half_time(hist, unloading, mass, delta_m, p_m, k_m, time, error)
       type(loading_history), intent(in) :: hist
       logical, intent(in) :: unloading
@@ -546,38 +553,193 @@ contains
       real(dp), intent(in) :: p_m, k_m   !< the curve's force and stiffness at delta_m
       real(dp), intent(out) :: time
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: u_max, x(16), w(16), p(0:16), k(0:16), xs(0:16), work, v2
-      type(solve_result) :: res
-      integer :: i
+      real(dp) :: u_max, s_16(0:16, 0:16), s_8(0:8, 0:8), s_4(0:4, 0:4)
+      real(dp) :: a, b, w_a, p_a, g_0, t(3), w(3), budget, err, noise, u_y
+      ! the stack holds at most the 3 first panels and one per bisection
+      real(dp) :: p(0:16), ends(max_panel_depth + 2)
+      integer :: n_ends, depth(max_panel_depth + 2), d
       time = 0.0_dp
       call onset(hist, unloading, delta_m, p_m, k_m, u_max, error)
       if (allocated(error)) return
-      ! u nodes increasing: x decreasing from delta_m
-      x(1:8) = gl16_x
-      x(9:16) = 1.0_dp - gl16_x(8:1:-1)
-      w(1:8) = gl16_w
-      w(9:16) = gl16_w(8:1:-1)
-      xs(0) = delta_m
-      p(0) = p_m
-      k(0) = k_m
-      do i = 1, 16
-         xs(i) = delta_m - (u_max*x(i))**2
-         call curve_point(hist, unloading, xs(i), res, error)
+      s_16 = cc_cumulative(16)
+      s_8 = cc_cumulative(8)
+      s_4 = cc_cumulative(4)
+      ! dt/du at u = 0: W ~ P_m u**2
+      g_0 = sqrt(2*mass/p_m)
+      budget = duration_tol*g_0   ! per unit length of u
+      noise = noise_level*hist%options%rel_tol
+      a = 0.0_dp
+      w_a = 0.0_dp
+      p_a = p_m
+      ! pending right ends (a stack, nearest on top) and their depths
+      ! [0, u_max/2] then [u_max/2, u_max]: a single panel rarely suffices; the smooth
+      ! sphere's loading with the cap splits at first yield (Hertz below, a kink there)
+      n_ends = 2
+      ends(1:2) = [u_max, 0.5_dp*u_max]
+      u_y = yield_break(hist, unloading, delta_m, u_max)
+      if (u_y > 0.0_dp) then
+         n_ends = 3
+         ends(1:3) = [u_max, u_y, 0.5_dp*u_y]
+      end if
+      depth(1:n_ends) = 1
+      do while (n_ends > 0)
+         b = ends(n_ends)
+         d = depth(n_ends)
+         call panel(hist, unloading, mass, delta_m, a, b, p_a, w_a, g_0, s_16, s_8, s_4, &
+            & p, t, w, error)
          if (allocated(error)) return
-         p(i) = res%force
-         k(i) = res%stiffness
-      end do
-      work = 0.0_dp
-      do i = 1, 16
-         work = work + hermite_rule(xs(i), p(i), k(i), xs(i - 1), p(i - 1), k(i - 1))
-         v2 = 2*work/mass
-         if (.not. v2 > 0.0_dp) cycle   ! a zero-force stretch: v from the next points
-         time = time + w(i)*u_max*2*u_max*x(i)/sqrt(v2)
+         ! the 17-point rule's error from the 9- and 5-point ones' (their observed rate);
+         ! W's reaches the rest of the time (<= ~u_max g_0) as half its relative
+         ! error
+         err = extrapolated_error(t) + u_max*g_0*extrapolated_error(w)/max(w(1), tiny(w(1)))
+         ! kept: within the budget of its length (at least u_max/16: a singular point
+         ! costs a few budgets u_max/16 in all), or its 9-point rule is within the solves'
+         ! own noise of the 17-point one (nothing left to learn)
+         if (err > budget*max(b - a, u_max/16) .and. abs(t(1) - t(2)) > noise*abs(t(1)) &
+            & .and. d < max_panel_depth - 1) then
+            ! bisect: the left half next, the right one pending
+            ends(n_ends) = b
+            depth(n_ends) = d + 1
+            n_ends = n_ends + 1
+            ends(n_ends) = 0.5_dp*(a + b)
+            depth(n_ends) = d + 1
+            cycle
+         end if
+         time = time + t(1)
+         a = b
+         w_a = w(1)
+         p_a = p(16)
+         n_ends = n_ends - 1
       end do
    end subroutine half_time
 
-   !> u_max = sqrt(delta_m - x_1) with the force at x_1 1 % of P(delta_m) (to 0.1 %): a
-   !> bracket widened from the Hertzian unloading length 1.5 P/K, then bisected.
+   !> u at first yield delta_y on the loading curve of a smooth sphere with the cap, where
+   !> its force leaves Hertz's with a kink, if it lies inside (5 %, 95 %) of [0, u_max]
+   !> (else, an unloading curve or without the cap, 0).
+   pure real(dp) function yield_break(hist, unloading, delta_m, u_max) result(u_y)
+      type(loading_history), intent(in) :: hist
+      logical, intent(in) :: unloading
+      real(dp), intent(in) :: delta_m, u_max
+      real(dp) :: delta_y, a_y, force_y
+      u_y = 0.0_dp
+      if (unloading .or. .not. hist%params%flow_pressure > 0.0_dp .or. .not. &
+         & (hist%params%model == model_hertz .or. hist%params%sigma == 0.0_dp)) return
+      call cap_units(hist%params%radius, hist%params%modulus, hist%params%flow_pressure, &
+         & delta_y, a_y, force_y)
+      if (delta_y < delta_m) u_y = sqrt(delta_m - delta_y)
+      if (.not. (u_y > 0.05_dp*u_max .and. u_y < 0.95_dp*u_max)) u_y = 0.0_dp
+   end function yield_break
+
+   !> One panel [a, b] of half_time: the force at its 17 Chebyshev-Lobatto nodes (p(0) =
+   !> p_a given), W at the nodes from w_a, and the panel's time t and W(b) w by the 17-,
+   !> 9- and 5-point rules (nested: every 2nd, 4th node).
+   subroutine panel(hist, unloading, mass, delta_m, a, b, p_a, w_a, g_0, s_16, s_8, s_4, &
+         & p, t, w, error)
+      type(loading_history), intent(in) :: hist
+      logical, intent(in) :: unloading
+      real(dp), intent(in) :: mass, delta_m, a, b, p_a, w_a, g_0
+      real(dp), intent(in) :: s_16(0:, 0:), s_8(0:, 0:), s_4(0:, 0:)
+      real(dp), intent(out) :: p(0:16), t(3), w(3)
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: u(0:16), f(0:16), h
+      type(solve_result) :: res
+      integer :: j
+      h = 0.5_dp*(b - a)
+      do j = 0, 16
+         u(j) = a + h*(1.0_dp - cos(pi*j/16))
+      end do
+      u(16) = b
+      p(0) = p_a
+      do j = 1, 16
+         call curve_point(hist, unloading, delta_m - u(j)**2, res, error)
+         if (allocated(error)) return
+         p(j) = res%force
+      end do
+      f = 2*u*p
+      call rule(s_16, 1, t(1), w(1))
+      call rule(s_8, 2, t(2), w(2))
+      call rule(s_4, 4, t(3), w(3))
+   contains
+      !> The rule on every stride-th node: W at its nodes, the panel's time, W(b).
+      subroutine rule(s, stride, time, work)
+         real(dp), intent(in) :: s(0:, 0:)
+         integer, intent(in) :: stride
+         real(dp), intent(out) :: time, work
+         real(dp) :: ww(0:16/stride)
+         ww = w_a + h*matmul(s, f(0:16:stride))
+         time = h*dot_product(s(16/stride, :), speed_inverse(u(0:16:stride), ww))
+         work = ww(16/stride)
+      end subroutine rule
+      !> 2u/v = 2u/sqrt(2 W/m*), its limit g_0 at u = 0; a zero-work stretch (a zero force
+      !> at the turning point, then v from the next points) counts nothing.
+      elemental real(dp) function speed_inverse(uu, ww) result(gg)
+         real(dp), intent(in) :: uu, ww
+         if (uu == 0.0_dp) then
+            gg = g_0
+         else if (ww > 0.0_dp) then
+            gg = 2*uu/sqrt(2*ww/mass)
+         else
+            gg = 0.0_dp
+         end if
+      end function speed_inverse
+   end subroutine panel
+
+   !> The error of q(1), the finest of three nested rules q(1:3) (17, 9, 5 points), from
+   !> their observed rate: e_8 = |q1 - q2|, e_4 = |q1 - q3|, e_16 ~ e_8 (e_8/e_4) (the
+   !> algebraic rate; a geometric one would give (e_8/e_4)**2, which the cap's unloading
+   !> curve at 3 v_y missed 40-fold: 2.1e-8 of the duration against a brute-force
+   !> quadrature), at most e_8 where the rules do not converge.
+   pure real(dp) function extrapolated_error(q) result(e)
+      real(dp), intent(in) :: q(3)
+      real(dp) :: e_8, e_4
+      e_8 = abs(q(1) - q(2))
+      e_4 = abs(q(1) - q(3))
+      e = e_8
+      if (e_8 < e_4) e = e_8*(e_8/e_4)
+   end function extrapolated_error
+
+   !> Clenshaw-Curtis' cumulative matrix on the Chebyshev-Lobatto nodes t_i = -cos(pi i/n):
+   !> s(i, j) = int_{-1}^{t_i} l_j, l_j the nodes' Lagrange polynomials (so s(n, :) are the
+   !> Clenshaw-Curtis weights): l_j's Chebyshev coefficients, integrated term by term.
+   pure function cc_cumulative(n) result(s)
+      integer, intent(in) :: n
+      real(dp) :: s(0:n, 0:n)
+      real(dp) :: c(0:n), t_at(0:n+1, 0:n), theta(0:n), sgn
+      integer :: i, j, k
+      do i = 0, n
+         theta(i) = pi*real(n - i, dp)/n   ! t_i = cos(theta_i)
+      end do
+      ! int_{-1}^{t_i} T_k for k = 0 .. n
+      do i = 0, n
+         do k = 0, n
+            sgn = merge(1.0_dp, -1.0_dp, mod(k, 2) == 0)   ! T_k(-1) = (-1)**k
+            if (k == 0) then
+               t_at(k, i) = cos(theta(i)) + 1.0_dp
+            else if (k == 1) then
+               t_at(k, i) = 0.5_dp*(cos(theta(i))**2 - 1.0_dp)
+            else
+               t_at(k, i) = (cos((k + 1)*theta(i)) + sgn)/(2.0_dp*(k + 1)) &
+                  & - (cos((k - 1)*theta(i)) + sgn)/(2.0_dp*(k - 1))
+            end if
+         end do
+      end do
+      do j = 0, n
+         ! coefficients of l_j: c_k = (2/n) (1/2 at j = 0, n) cos(k theta_j), c_0, c_n halved
+         do k = 0, n
+            c(k) = 2.0_dp/n*cos(k*theta(j))
+            if (j == 0 .or. j == n) c(k) = 0.5_dp*c(k)
+            if (k == 0 .or. k == n) c(k) = 0.5_dp*c(k)
+         end do
+         do i = 0, n
+            s(i, j) = sum(c*t_at(0:n, i))
+         end do
+      end do
+   end function cc_cumulative
+
+   !> u_max = sqrt(delta_m - x_1) with the force at x_1 1 % of P(delta_m): a bracket
+   !> widened from the Hertzian unloading length 1.5 P/K, then Newton on the solves'
+   !> stiffness kept inside it (bisection where it leaves), to 1e-13 of delta_m - x_1
+   !> (t changes by dx_1/v(x_1): ~1e-13 of t).
    subroutine onset(hist, unloading, delta_m, p_m, k_m, u_max, error)
       type(loading_history), intent(in) :: hist
       logical, intent(in) :: unloading
@@ -585,7 +747,7 @@ contains
       real(dp), intent(out) :: u_max
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
-      real(dp) :: lo, hi, x, target, width
+      real(dp) :: lo, hi, x, x_new, target, width
       integer :: it
       target = 0.01_dp*p_m
       hi = delta_m
@@ -599,17 +761,23 @@ contains
          width = 2*width
          lo = delta_m - width
       end do
-      x = 0.5_dp*(lo + hi)
-      do it = 1, 60
-         call curve_point(hist, unloading, x, res, error)
-         if (allocated(error)) return
+      x = lo
+      do it = 1, 100
          if (res%force > target) then
             hi = x
          else
             lo = x
          end if
-         if (abs(res%force/target - 1.0_dp) < 1.0e-3_dp .or. hi - lo <= 1.0e-12_dp*width) exit
-         x = 0.5_dp*(lo + hi)
+         if (res%force == target) exit
+         x_new = x - (res%force - target)/res%stiffness
+         if (.not. (x_new > lo .and. x_new < hi)) x_new = 0.5_dp*(lo + hi)
+         if (abs(x_new - x) <= 1.0e-13_dp*(delta_m - x) .or. hi - lo <= 1.0e-13_dp*width) then
+            x = x_new
+            exit
+         end if
+         x = x_new
+         call curve_point(hist, unloading, x, res, error)
+         if (allocated(error)) return
       end do
       u_max = sqrt(max(delta_m - x, 0.0_dp))
    end subroutine onset
