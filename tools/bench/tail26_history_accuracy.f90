@@ -4,6 +4,8 @@
 ! the loading route at the next double up, the piece's own value at the next double down
 ! (test hysteresis "served steps: ...": top_off), over test_served_copies's walks of the
 ! suite's EP-GW table (1e-3 over [-2, 6] sigma).
+! The walk (the loop over n below) repeats test_hysteresis's walk_start/walk_overlap: a
+! standalone program cannot link the test module; change both together.
 ! Build (fpm's release objects): gfortran -O2 -Ibuild/gfortran_<mods> \
 !   tools/bench/tail26_history_accuracy.f90 LIB -lfftw3_omp -lfftw3 -llapack -lblas -fopenmp
 program tail26_history_accuracy
