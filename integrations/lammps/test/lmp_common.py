@@ -101,3 +101,20 @@ def write_user_law(path, scale=1.0, modulus=None):
         for k in range(61):
             u = -1e-6 + k * 1e-7
             f.write(f"{u!r},{scale * LAW_P0 * math.exp(-u / LAW_U0)!r}\n")
+
+
+def refusal_fault(rc, out, key):
+    """What went wrong in a run that must stop with a LAMMPS ERROR naming key: "" when it
+    did (a non-zero exit, key in the first ERROR line, no crash), else its exit code and
+    first ERROR line."""
+    err = [l for l in out.splitlines() if "ERROR" in l]
+    crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
+    if rc == 0 or not err or key not in err[0] or crashed:
+        return f"rc {rc}, {err[:1]}"
+    return ""
+
+
+def refusal_verdict(n, bad):
+    """(passed, message) of n bad-input cases, bad the faults of those not refused."""
+    return not bad, f"{n - len(bad)}/{n} refused with the keyword named" + (
+        "; " + "; ".join(bad) if bad else "")

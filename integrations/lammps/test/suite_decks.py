@@ -605,9 +605,7 @@ def test_bad_coeff():
     bad = []
     for ps, pc, key in cases:
         rc, out = collision(ps, pc, nrun=0)
-        err = [l for l in out.splitlines() if "ERROR" in l]
-        crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
-        if rc == 0 or not err or key not in err[0] or crashed:
-            bad.append(f"{pc!r}: rc {rc}, {err[:1]}")
-    return not bad, f"{len(cases) - len(bad)}/{len(cases)} refused with the keyword named" + (
-        "; " + "; ".join(bad) if bad else "")
+        fault = refusal_fault(rc, out, key)
+        if fault:
+            bad.append(f"{pc!r}: {fault}")
+    return refusal_verdict(len(cases), bad)
