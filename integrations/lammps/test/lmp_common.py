@@ -1,6 +1,7 @@
 """Shared by the LAMMPS plugin's test suites (run_tests.py): the runner of decks through
 build/lammps/lmp, their RESULT and thermo lines, the collision deck's beads, egw-restitution
-as the reference e, and pair_style granular's line for the same beads."""
+as the reference e, pair_style granular's line for the same beads, and the verdicts the
+suites share (velocity and spin gaps of two runs; refusals of bad input)."""
 import math
 import os
 import re
@@ -62,6 +63,13 @@ def collision(pstyle, pcoeff, yoff=0.0, wz=0.0, nrun=6000, np=1, newton="on", th
                d2=2 * r2, check=check,
                dt=DT, n1=n1, n2=nrun - n1, newton=newton, thermo=thermo_every,
                restart=restart, rfile=rfile, pairlocal=pairlocal, wx=wx)
+
+
+def velocity_spin_gaps(a, b):
+    """Of two collision.in RESULT lines (vx1 vy1 vx2 vy2 w1 w2): the largest velocity
+    difference over the approach scale V, and the largest spin difference times RAD over V."""
+    return (max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V,
+            max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD))
 
 
 def restitution_of(out):

@@ -253,7 +253,7 @@ def test_default_damping_vs_granular():
     if rc1 or rc2:
         return False, " ".join(l for l in (o1 + o2).splitlines() if "ERROR" in l)
     a, b = result(o1), result(o2)
-    d = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
+    d = velocity_spin_gaps(a, b)[0]
     e = restitution_of(o2)
     return d < 1e-6 and e < 0.9, f"e {restitution_of(o1):.9f} vs {e:.9f}, |dv|/v {d:.1e} (< 1e-6)"
 
