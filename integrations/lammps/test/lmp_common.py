@@ -72,6 +72,20 @@ def velocity_spin_gaps(a, b):
             max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD))
 
 
+def pair_write(pstyle, pcoeff, path, np=1):
+    """pairwrite.in: pair_write of types 1 and 2 (1 and 0.5 mm beads) into path. Returns ""
+    when the run ended well and wrote path, else its exit code and first ERROR line."""
+    rc, out = lmp("pairwrite.in", np=np, pstyle=pstyle, pcoeff=pcoeff, file=path)
+    if rc != 0 or not os.path.exists(path):
+        return "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    return ""
+
+
+def pair_write_rows(path):
+    """The numbered rows of a pair_write file, split (index, r, energy, force)."""
+    return [l.split() for l in open(path) if re.match(r"^\s+\d+\s", l)]
+
+
 def restitution_of(out):
     vx1, vy1, vx2, vy2, w1, w2 = result(out)
     return (vx2 - vx1) / (2 * V)

@@ -474,13 +474,12 @@ def test_pair_write():
     types' radii (1 and 0.5 mm), F = 4/3 E* sqrt(R) delta^3/2, U = 2/5 F delta (1e-10: the
     table file's 15 digits); a type without atoms: an ERROR naming pair_write."""
     f = os.path.join(TMP, "pw.table")
-    rc, out = lmp("pairwrite.in", pstyle="egw Hertz 1e-4", pcoeff=f"E {E} nu {NU} sigma 0",
-                  file=f)
-    if rc != 0 or not os.path.exists(f):
-        return False, "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    failed = pair_write("egw Hertz 1e-4", f"E {E} nu {NU} sigma 0", f)
+    if failed:
+        return False, failed
     R = 1e-3 * 0.5e-3 / 1.5e-3
     worst = 0.0
-    rows = [l.split() for l in open(f) if re.match(r"^\s+\d+\s", l)]
+    rows = pair_write_rows(f)
     for row in rows:
         r, u, fr = float(row[1]), float(row[2]), float(row[3])
         d = 1.5e-3 - r
@@ -520,10 +519,9 @@ def test_flat_law_file():
     law = os.path.join(TMP, "law.csv")
     write_exponential_law(law, ell, p0, E_STAR)
     f = os.path.join(TMP, "law.table")
-    rc, out = lmp("pairwrite.in", pstyle="egw E-GW 1e-4", pcoeff=f"E {E} nu {NU} law {law}",
-                  file=f)
-    if rc != 0 or not os.path.exists(f):
-        return False, "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    failed = pair_write("egw E-GW 1e-4", f"E {E} nu {NU} law {law}", f)
+    if failed:
+        return False, failed
     R = 1e-3 * 0.5e-3 / 1.5e-3
     worst, rows, below = 0.0, [], True
     for line in open(f):
