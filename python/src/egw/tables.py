@@ -85,12 +85,11 @@ class _Handle:
         check(getattr(lib, self._writer)(self._ptr, _path(path), _format(format)))
 
     @classmethod
-    def _build_over_overlaps(cls, c_build: str, params: Params, delta_min: float,
+    def _build_over_overlaps(cls, c_build: str, p: ctypes.Structure, delta_min: float,
                              delta_max: float, rel_tol: float, options: Optional[Options]):
-        """A new object owning the table that the C function c_build(p, o, delta_min,
-        delta_max, rel_tol, &handle) builds over the overlaps [delta_min, delta_max]."""
-        _require(c_build)
-        p = _params(params)
+        """A new object owning the table that the C function c_build(&p, o, delta_min,
+        delta_max, rel_tol, &handle) builds over the overlaps [delta_min, delta_max] (p:
+        the parameters' C struct, converted by the caller)."""
         h = ctypes.c_void_p()
         check(getattr(lib, c_build)(ctypes.byref(p), _options(options),
                                     _c_scalar("delta_min", delta_min),
@@ -175,16 +174,16 @@ class Table(_Handle):
         ------
         InvalidArgumentError, NotConvergedError
         """
+        p = _params(params)
         if params.flat_law is not None:
-            p = _params(params)
             h = ctypes.c_void_p()
             check(lib.egw_table_build_flat_law(
                 ctypes.byref(p), params.flat_law._ptr, _options(options),
                 _c_scalar("delta_min", delta_min), _c_scalar("delta_max", delta_max),
                 _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
             return cls(h)
-        return cls._build_over_overlaps("egw_table_build", params, delta_min, delta_max,
-                                        rel_tol, options)
+        return cls._build_over_overlaps("egw_table_build", p, delta_min, delta_max, rel_tol,
+                                        options)
 
     @classmethod
     def read(cls, path: PathLike) -> "Table":
@@ -549,7 +548,8 @@ class HysteresisTable(_Handle):
             builds failed after their solves; the message names the routes (a smaller
             delta_max, sigma = 0 for Hertz + cap with its bound, single solves).
         """
-        return cls._build_over_overlaps("egw_hysteresis_build", params, delta_min,
+        _require("egw_hysteresis_build")
+        return cls._build_over_overlaps("egw_hysteresis_build", _params(params), delta_min,
                                         delta_max, rel_tol, options)
 
     @classmethod
