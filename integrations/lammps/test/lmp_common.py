@@ -1,6 +1,7 @@
 """Shared by the LAMMPS plugin's test suites (run_tests.py): the runner of decks through
 build/lammps/lmp, their RESULT and thermo lines, the collision deck's beads, egw-restitution
-as the reference e, and pair_style granular's line for the same beads."""
+as the reference e, pair_style granular's line for the same beads, and the verdicts the
+suites share (velocity and spin gaps of two runs; refusals of bad input)."""
 import math
 import os
 import re
@@ -64,6 +65,27 @@ def collision(pstyle, pcoeff, yoff=0.0, wz=0.0, nrun=6000, np=1, newton="on", th
                restart=restart, rfile=rfile, pairlocal=pairlocal, wx=wx)
 
 
+def velocity_spin_gaps(a, b):
+    """Of two collision.in RESULT lines (vx1 vy1 vx2 vy2 w1 w2): the largest velocity
+    difference over the approach scale V, and the largest spin difference times RAD over V."""
+    return (max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V,
+            max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD))
+
+
+def pair_write(pstyle, pcoeff, path, np=1):
+    """pairwrite.in: pair_write of types 1 and 2 (1 and 0.5 mm beads) into path. Returns ""
+    when the run ended well and wrote path, else its exit code and first ERROR line."""
+    rc, out = lmp("pairwrite.in", np=np, pstyle=pstyle, pcoeff=pcoeff, file=path)
+    if rc != 0 or not os.path.exists(path):
+        return "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    return ""
+
+
+def pair_write_rows(path):
+    """The numbered rows of a pair_write file, split (index, r, energy, force)."""
+    return [l.split() for l in open(path) if re.match(r"^\s+\d+\s", l)]
+
+
 def restitution_of(out):
     vx1, vy1, vx2, vy2, w1, w2 = result(out)
     return (vx2 - vx1) / (2 * V)
@@ -101,3 +123,20 @@ def write_user_law(path, scale=1.0, modulus=None):
         for k in range(61):
             u = -1e-6 + k * 1e-7
             f.write(f"{u!r},{scale * LAW_P0 * math.exp(-u / LAW_U0)!r}\n")
+
+
+def refusal_fault(rc, out, key):
+    """What went wrong in a run that must stop with a LAMMPS ERROR naming key: "" when it
+    did (a non-zero exit, key in the first ERROR line, no crash), else its exit code and
+    first ERROR line."""
+    err = [l for l in out.splitlines() if "ERROR" in l]
+    crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
+    if rc == 0 or not err or key not in err[0] or crashed:
+        return f"rc {rc}, {err[:1]}"
+    return ""
+
+
+def refusal_verdict(n, bad):
+    """(passed, message) of n bad-input cases, bad the faults of those not refused."""
+    return not bad, f"{n - len(bad)}/{n} refused with the keyword named" + (
+        "; " + "; ".join(bad) if bad else "")

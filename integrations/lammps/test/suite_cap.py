@@ -130,6 +130,40 @@ def test_cap_pair_restitution():
     return ok and d2 < 1e-12, msg + f"; 2 ranks: max |de| = {d2:.1e} (< 1e-12)"
 
 
+def metal_bead_impacts(metal, young, nu, density, yield_stress, speeds, ratio_digits,
+                       log_check):
+    """Head-on pairs of beads of one metal (R* = RAD/2, m* = m/2; pair_coeff E, nu,
+    yield_stress: p_y = 1.6 Y), then one bead onto a fix wall/egw zplane of the same metal
+    (R = RAD, m* = m), at each of speeds: e within cap_verdict's budget of egw_restitution
+    (cap_reference), Verlet at half its shortest step. log_check(out) -> (ok, note) judges
+    what the run's log must also say; the v/v_y in the notes are rounded to ratio_digits.
+    Returns (ok, notes) of both runs."""
+    e_star = young / (2 * (1 - nu ** 2))
+    m_star = density * 4 / 3 * math.pi * RAD ** 3 / 2
+    p_y = 1.6 * yield_stress
+    coeff = f"E {young!r} nu {nu} yield_stress {yield_stress!r}"
+    notes, ok = [], True
+    for wall in (None, f"wall/egw Hertz 1e-3 {coeff}"):
+        r, m = (R_STAR, m_star) if wall is None else (RAD, 2 * m_star)
+        vy, dy = cap_units(p_y, r, m, e_star)
+        refs = [cap_reference(p_y, r, m, v, e_star) for v in speeds]
+        dt = 0.5 * min(ref[3] for ref in refs)
+        nrun = int((20 * dt + 1.5 * max(ref[2] for ref in refs)) / dt)
+        rc, out = lmp(cap_deck(coeff, wall, speeds, dt, nrun, density=density))
+        what = f"{metal} pair" if wall is None else f"{metal} wall"
+        if rc != 0:
+            ok = False
+            notes.append(what + ": " + " ".join(l for l in out.splitlines()
+                                                 if "ERROR" in l or "WARN" in l))
+            continue
+        ok_r, msg = cap_verdict(result(out), refs, out, dy, what,
+                                ratios=[round(v / vy, ratio_digits) for v in speeds])
+        ok_log, note = log_check(out)
+        ok = ok and ok_r and ok_log
+        notes.append(msg + note)
+    return ok, "; ".join(notes)
+
+
 # a steel bead pair (r = 1 mm, E 210 GPa, nu 0.3, 7830 kg/m^3) of a mild steel, Y = 0.52
 # GPa (p_y = 1.6 Y = 0.83 GPa = 0.0072 E*): v_y = 0.0132 m/s, 1 m/s ~76 v_y (issue 32's
 # outside check: LAMMPS e 0.4625 against egw-restitution's 0.4732 with the 40 delta_y table)
@@ -151,33 +185,15 @@ def test_cap_pair_beyond_40():
     (a 1e-3 table; Verlet at half egw_time_step's 1e-4 step; measured 1.1e-5). On main
     (reach 40 delta_y) the pair run warns and e is 0.46227 against 0.47304 at 76 v_y,
     6.8e-2 low at 756 v_y."""
-    e_star = STEEL_E / (2 * (1 - STEEL_NU ** 2))
-    m_star = STEEL_RHO * 4 / 3 * math.pi * RAD ** 3 / 2
-    p_y = 1.6 * STEEL_Y
-    coeff = f"E {STEEL_E!r} nu {STEEL_NU} yield_stress {STEEL_Y!r}"
-    speeds = [1.0, 3.0, 10.0]
-    notes, ok = [], True
-    for wall in (None, f"wall/egw Hertz 1e-3 {coeff}"):
-        r, m = (R_STAR, m_star) if wall is None else (RAD, 2 * m_star)
-        vy, dy = cap_units(p_y, r, m, e_star)
-        refs = [cap_reference(p_y, r, m, v, e_star) for v in speeds]
-        dt = 0.5 * min(ref[3] for ref in refs)
-        nrun = int((20 * dt + 1.5 * max(ref[2] for ref in refs)) / dt)
-        rc, out = lmp(cap_deck(coeff, wall, speeds, dt, nrun, density=STEEL_RHO))
-        what = "steel pair" if wall is None else "steel wall"
-        if rc != 0:
-            ok = False
-            notes.append(what + ": " + " ".join(l for l in out.splitlines()
-                                                 if "ERROR" in l or "WARN" in l))
-            continue
-        ok_r, msg = cap_verdict(result(out), refs, out, dy, what,
-                                ratios=[round(v / vy, 1) for v in speeds])
+    def reach_named(out):
         # the log names the reach and the contact radius there
         reach = re.search(r"the table reaches ([0-9.e+]+) delta_y \(a/R ~([0-9.e+-]+)", out)
-        ok = ok and ok_r and reach is not None and float(reach.group(1)) == 1000.0
-        notes.append(msg + (f"; table reach {reach.group(1)} delta_y, a/R ~{reach.group(2)} "
-                            "there" if reach else "; no reach in the log"))
-    return ok, "; ".join(notes)
+        return reach is not None and float(reach.group(1)) == 1000.0, (
+            f"; table reach {reach.group(1)} delta_y, a/R ~{reach.group(2)} there" if reach
+            else "; no reach in the log")
+
+    return metal_bead_impacts("steel", STEEL_E, STEEL_NU, STEEL_RHO, STEEL_Y,
+                              [1.0, 3.0, 10.0], 1, reach_named)
 
 
 # annealed copper beads (r = 1 mm, E 120 GPa, nu 0.34, 8960 kg/m^3, Y 70 MPa: p_y/E* =
@@ -198,32 +214,13 @@ def test_cap_continuation():
     test_cap_pair_restitution's (measured 1.3e-6 pair, 2.9e-6 wall). Without the
     continuation (d272f3c, the table alone to 1000 delta_y) the pair's 1 and 2 m/s impacts
     leave the table: e 0.16114 against 0.17999 and 0.13291 against 0.15162, a WARNING."""
-    e_star = COPPER_E / (2 * (1 - COPPER_NU ** 2))
-    m_star = COPPER_RHO * 4 / 3 * math.pi * RAD ** 3 / 2
-    p_y = 1.6 * COPPER_Y
-    coeff = f"E {COPPER_E!r} nu {COPPER_NU} yield_stress {COPPER_Y!r}"
-    speeds = [0.3, 1.0, 2.0]
-    notes, ok = [], True
-    for wall in (None, f"wall/egw Hertz 1e-3 {coeff}"):
-        r, m = (R_STAR, m_star) if wall is None else (RAD, 2 * m_star)
-        vy, dy = cap_units(p_y, r, m, e_star)
-        refs = [cap_reference(p_y, r, m, v, e_star) for v in speeds]
-        dt = 0.5 * min(ref[3] for ref in refs)
-        nrun = int((20 * dt + 1.5 * max(ref[2] for ref in refs)) / dt)
-        rc, out = lmp(cap_deck(coeff, wall, speeds, dt, nrun, density=COPPER_RHO))
-        what = "copper pair" if wall is None else "copper wall"
-        if rc != 0:
-            ok = False
-            notes.append(what + ": " + " ".join(l for l in out.splitlines()
-                                                 if "ERROR" in l or "WARN" in l))
-            continue
-        ok_r, msg = cap_verdict(result(out), refs, out, dy, what,
-                                ratios=[round(v / vy) for v in speeds])
+    def continuation_named(out):
         named = "the fully capped continuation" in out
-        ok = ok and ok_r and named
-        notes.append(msg + ("; the log names the continuation" if named else
-                            "; the log does not name the continuation"))
-    return ok, "; ".join(notes)
+        return named, ("; the log names the continuation" if named else
+                       "; the log does not name the continuation")
+
+    return metal_bead_impacts("copper", COPPER_E, COPPER_NU, COPPER_RHO, COPPER_Y,
+                              [0.3, 1.0, 2.0], None, continuation_named)
 
 
 def test_cap_wall_restitution():
@@ -342,10 +339,9 @@ def test_bad_flow_pressure():
     bad = []
 
     def check(rc, out, key, what):
-        err = [l for l in out.splitlines() if "ERROR" in l]
-        crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
-        if rc == 0 or not err or key not in err[0] or crashed:
-            bad.append(f"{what}: rc {rc}, {err[:1]}")
+        fault = refusal_fault(rc, out, key)
+        if fault:
+            bad.append(f"{what}: {fault}")
 
     for pstyle, coeff, key in pair_cases:
         rc, out = collision(pstyle, coeff, nrun=0)
@@ -376,9 +372,7 @@ def test_bad_flow_pressure():
         pstyle = "egw E-GW 1e-3" if "sigma" in coeff else "egw Hertz 1e-3"
         rc, out = wall_run(pstyle, coeff, wall, 0.1, 1e-8, 0, RAD + 1e-5)
         check(rc, out, key, wall)
-    n = len(pair_cases) + 1 + len(wall_cases)
-    return not bad, f"{n - len(bad)}/{n} refused with the keyword named" + (
-        "; " + "; ".join(bad) if bad else "")
+    return refusal_verdict(len(pair_cases) + 1 + len(wall_cases), bad)
 
 
 def cap_restart_check(pstyle, coeff, rfile, law=None, n1=2640):

@@ -20,10 +20,6 @@ def egw_python(script):
     return p.stdout
 
 
-def pair_write_rows(path):
-    return [l.split() for l in open(path) if re.match(r"^\s+\d+\s", l)]
-
-
 def test_flat_law_vs_solve():
     """pair_coeff ... law FILE (types of 1 and 0.5 mm, R = 1/3 mm, E-GW pair style, TOL
     1e-4): the force pair_write gives at 20 overlaps (0.1 to 10 um, 0.2 to 20 U0) against
@@ -44,11 +40,9 @@ def test_flat_law_vs_solve():
     for name, path, np_, ps in (("plain", plain, 1, ""), ("half", half, 1, ""),
                                 ("own", own, 1, ""), ("own2", own, 2, "")):
         f = os.path.join(TMP, f"pw_law_{name}.table")
-        rc, out = lmp("pairwrite.in", np=np_, pstyle="egw E-GW 1e-4" + ps,
-                      pcoeff=f"E {E} nu {NU} law {path}", file=f)
-        if rc != 0 or not os.path.exists(f):
-            return False, f"{name}: rc {rc}: " + str([l for l in out.splitlines()
-                                                       if "ERROR" in l][:1])
+        failed = pair_write("egw E-GW 1e-4" + ps, f"E {E} nu {NU} law {path}", f, np=np_)
+        if failed:
+            return False, f"{name}: {failed}"
         rows = pair_write_rows(f)
         forces[name] = [(1.5e-3 - float(r[1]), float(r[3])) for r in rows]
     deltas = [d for d, _ in forces["plain"]]

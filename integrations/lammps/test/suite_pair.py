@@ -261,8 +261,7 @@ def test_oblique_friction_vs_granular():
     rc1, out1 = collision("egw Hertz 1e-4", c, yoff=0.0008, wz=60.0)
     rc2, out2 = collision("granular", granular(e=0.7, mut=0.3), yoff=0.0008, wz=60.0)
     a, b = result(out1), result(out2)
-    dv = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
-    dw = max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD)
+    dv, dw = velocity_spin_gaps(a, b)
     moved = abs(a[1]) > 1e-3 * V
     ok = rc1 == 0 and rc2 == 0 and dv < 1e-12 and dw < 1e-12 and moved
     return ok, (f"max |dv|/v = {dv:.1e}, max |dw| R/v = {dw:.1e} (< 1e-12); vy1 = {a[1]:.6g} "
@@ -282,8 +281,7 @@ def test_sigma_to_zero_vs_granular():
     rc3, out3 = collision("egw E-GW 1e-4", c, yoff=0.0008, wz=60.0)
     rc4, out4 = collision("granular", granular(e=0.7, mut=0.3), yoff=0.0008, wz=60.0)
     a, b = result(out3), result(out4)
-    dv = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
-    dw = max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD)
+    dv, dw = velocity_spin_gaps(a, b)
     ok = (rc1 == 0 and rc2 == 0 and rc3 == 0 and rc4 == 0 and abs(e1 - e2) < 1e-3 and
           dv < 5e-3 and dw < 5e-3)
     return ok, (f"head-on: egw e = {e1:.6f}, granular e = {e2:.6f} (|diff| < 1e-3); oblique "
@@ -344,8 +342,7 @@ def test_submodels_vs_granular():
             err = [l for l in (out1 + out2).splitlines() if "ERROR" in l]
             return False, f"{words}: rc {rc1} {rc2} {err[:1]}"
         a, b = result(out1), result(out2)
-        dv = max(abs(x - y) for x, y in zip(a[:4], b[:4])) / V
-        dw = max(abs(x - y) for x, y in zip(a[4:], b[4:])) / (V / RAD)
+        dv, dw = velocity_spin_gaps(a, b)
         worst = max(worst, dv, dw)
         if not (dv < 1e-6 and dw < 1e-6):
             msgs.append(f"{damp} + {tang} + {roll or '-'} + {twist or '-'}: dv {dv:.1e} dw {dw:.1e}")
@@ -477,13 +474,12 @@ def test_pair_write():
     types' radii (1 and 0.5 mm), F = 4/3 E* sqrt(R) delta^3/2, U = 2/5 F delta (1e-10: the
     table file's 15 digits); a type without atoms: an ERROR naming pair_write."""
     f = os.path.join(TMP, "pw.table")
-    rc, out = lmp("pairwrite.in", pstyle="egw Hertz 1e-4", pcoeff=f"E {E} nu {NU} sigma 0",
-                  file=f)
-    if rc != 0 or not os.path.exists(f):
-        return False, "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    failed = pair_write("egw Hertz 1e-4", f"E {E} nu {NU} sigma 0", f)
+    if failed:
+        return False, failed
     R = 1e-3 * 0.5e-3 / 1.5e-3
     worst = 0.0
-    rows = [l.split() for l in open(f) if re.match(r"^\s+\d+\s", l)]
+    rows = pair_write_rows(f)
     for row in rows:
         r, u, fr = float(row[1]), float(row[2]), float(row[3])
         d = 1.5e-3 - r
@@ -523,10 +519,9 @@ def test_flat_law_file():
     law = os.path.join(TMP, "law.csv")
     write_exponential_law(law, ell, p0, E_STAR)
     f = os.path.join(TMP, "law.table")
-    rc, out = lmp("pairwrite.in", pstyle="egw E-GW 1e-4", pcoeff=f"E {E} nu {NU} law {law}",
-                  file=f)
-    if rc != 0 or not os.path.exists(f):
-        return False, "rc %d: %s" % (rc, [l for l in out.splitlines() if "ERROR" in l][:1])
+    failed = pair_write("egw E-GW 1e-4", f"E {E} nu {NU} law {law}", f)
+    if failed:
+        return False, failed
     R = 1e-3 * 0.5e-3 / 1.5e-3
     worst, rows, below = 0.0, [], True
     for line in open(f):

@@ -248,12 +248,10 @@ def test_bad_wall():
     bad = []
     for wall, key in cases:
         rc, out = wall_run("egw E-GW 1e-4", c, wall, 0.1, 1e-8, 0, RAD + 1e-5)
-        err = [l for l in out.splitlines() if "ERROR" in l]
-        crashed = re.search(r"Segmentation|signal|backtrace|core dumped|Abort", out)
-        if rc == 0 or not err or key not in err[0] or crashed:
-            bad.append(f"{wall!r}: rc {rc}, {err[:1]}")
-    return not bad, f"{len(cases) - len(bad)}/{len(cases)} refused with the keyword named" + (
-        "; " + "; ".join(bad) if bad else "")
+        fault = refusal_fault(rc, out, key)
+        if fault:
+            bad.append(f"{wall!r}: {fault}")
+    return refusal_verdict(len(cases), bad)
 
 
 def test_wall_region():

@@ -66,6 +66,37 @@ class _Handle:
             raise ValueError("the table was closed")
         return self._handle
 
+    # the C file functions of the subclass's tables: reader(path, &handle) and
+    # writer(handle, path, format)
+    _reader = None
+    _writer = None
+
+    @classmethod
+    def _read_file(cls, path: PathLike):
+        """A new object owning the table that the class's C reader reads from path."""
+        _require(cls._reader)
+        h = ctypes.c_void_p()
+        check(getattr(lib, cls._reader)(_path(path), ctypes.byref(h)))
+        return cls(h)
+
+    def _write_file(self, path: PathLike, format: Union[str, int]) -> None:
+        """Write the table to path with the class's C writer (atomic there)."""
+        _require(self._writer)
+        check(getattr(lib, self._writer)(self._ptr, _path(path), _format(format)))
+
+    @classmethod
+    def _build_over_overlaps(cls, c_build: str, p: ctypes.Structure, delta_min: float,
+                             delta_max: float, rel_tol: float, options: Optional[Options]):
+        """A new object owning the table that the C function c_build(&p, o, delta_min,
+        delta_max, rel_tol, &handle) builds over the overlaps [delta_min, delta_max] (p:
+        the parameters' C struct, converted by the caller)."""
+        h = ctypes.c_void_p()
+        check(getattr(lib, c_build)(ctypes.byref(p), _options(options),
+                                    _c_scalar("delta_min", delta_min),
+                                    _c_scalar("delta_max", delta_max),
+                                    _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
+        return cls(h)
+
 
 @dataclass
 class TableInfo:
@@ -115,6 +146,7 @@ class Table(_Handle):
         The C handle (egw_table) this object owns (internal).
     """
     _free = "egw_table_free"
+    _reader, _writer = "egw_table_read", "egw_table_write"
 
     @classmethod
     def build(cls, params: Params, delta_min: float, delta_max: float,
@@ -143,18 +175,15 @@ class Table(_Handle):
         InvalidArgumentError, NotConvergedError
         """
         p = _params(params)
-        h = ctypes.c_void_p()
         if params.flat_law is not None:
+            h = ctypes.c_void_p()
             check(lib.egw_table_build_flat_law(
                 ctypes.byref(p), params.flat_law._ptr, _options(options),
                 _c_scalar("delta_min", delta_min), _c_scalar("delta_max", delta_max),
                 _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
             return cls(h)
-        check(lib.egw_table_build(ctypes.byref(p), _options(options),
-                                  _c_scalar("delta_min", delta_min),
-                                  _c_scalar("delta_max", delta_max),
-                                  _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
-        return cls(h)
+        return cls._build_over_overlaps("egw_table_build", p, delta_min, delta_max, rel_tol,
+                                        options)
 
     @classmethod
     def read(cls, path: PathLike) -> "Table":
@@ -174,9 +203,7 @@ class Table(_Handle):
         FileError
             The file cannot be opened, or its content is refused (message says what).
         """
-        h = ctypes.c_void_p()
-        check(lib.egw_table_read(_path(path), ctypes.byref(h)))
-        return cls(h)
+        return cls._read_file(path)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
         """Write atomically (a temporary file renamed on success).
@@ -195,7 +222,7 @@ class Table(_Handle):
         FileError
             The file cannot be written.
         """
-        check(lib.egw_table_write(self._ptr, _path(path), _format(format)))
+        self._write_file(path, format)
 
     @property
     def info(self) -> TableInfo:
@@ -276,6 +303,7 @@ class UniversalTable(_Handle):
         The C handle (egw_universal) this object owns (internal).
     """
     _free = "egw_universal_free"
+    _reader, _writer = "egw_universal_read", "egw_universal_write"
 
     @classmethod
     def build(cls, params: Params, mu_min: float, mu_max: float, x_min: float,
@@ -330,9 +358,7 @@ class UniversalTable(_Handle):
         FileError
             The file cannot be opened, or its content is refused.
         """
-        h = ctypes.c_void_p()
-        check(lib.egw_universal_read(_path(path), ctypes.byref(h)))
-        return cls(h)
+        return cls._read_file(path)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
         """Write atomically (a temporary file renamed on success).
@@ -351,7 +377,7 @@ class UniversalTable(_Handle):
         FileError
             The file cannot be written.
         """
-        check(lib.egw_universal_write(self._ptr, _path(path), _format(format)))
+        self._write_file(path, format)
 
     def eval(self, params: Params, delta: ArrayLike) -> Tuple[FloatOrArray, FloatOrArray]:
         """Force and stiffness of contacts read from the table, in one C call.
@@ -487,6 +513,7 @@ class HysteresisTable(_Handle):
         The C handle (egw_hysteresis) this object owns (internal).
     """
     _free = "egw_hysteresis_free"
+    _reader, _writer = "egw_hysteresis_read", "egw_hysteresis_write"
 
     @classmethod
     def build(cls, params: Params, delta_min: float, delta_max: float,
@@ -522,13 +549,8 @@ class HysteresisTable(_Handle):
             delta_max, sigma = 0 for Hertz + cap with its bound, single solves).
         """
         _require("egw_hysteresis_build")
-        p = _params(params)
-        h = ctypes.c_void_p()
-        check(lib.egw_hysteresis_build(ctypes.byref(p), _options(options),
-                                       _c_scalar("delta_min", delta_min),
-                                       _c_scalar("delta_max", delta_max),
-                                       _c_scalar("rel_tol", rel_tol), ctypes.byref(h)))
-        return cls(h)
+        return cls._build_over_overlaps("egw_hysteresis_build", _params(params), delta_min,
+                                        delta_max, rel_tol, options)
 
     @classmethod
     def read(cls, path: PathLike) -> "HysteresisTable":
@@ -550,10 +572,7 @@ class HysteresisTable(_Handle):
         NotImplementedError
             The loaded libegw has no hysteresis tables.
         """
-        _require("egw_hysteresis_read")
-        h = ctypes.c_void_p()
-        check(lib.egw_hysteresis_read(_path(path), ctypes.byref(h)))
-        return cls(h)
+        return cls._read_file(path)
 
     def write(self, path: PathLike, format: Union[str, int] = "binary") -> None:
         """Write atomically (a temporary file renamed on success).
@@ -572,8 +591,7 @@ class HysteresisTable(_Handle):
         FileError
             The file cannot be written.
         """
-        _require("egw_hysteresis_write")
-        check(lib.egw_hysteresis_write(self._ptr, _path(path), _format(format)))
+        self._write_file(path, format)
 
     def info(self) -> "HysteresisInfo":
         """Facts about the table (egw_hysteresis_get_info).

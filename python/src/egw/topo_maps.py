@@ -100,18 +100,11 @@ def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1
     else:
         z = np.loadtxt(path, delimiter="," if ext == ".csv" else None, comments="#", ndmin=2)
     z = np.asarray(z, dtype=np.float64)
-    if z.ndim != 2 or min(z.shape) < 3:
-        raise ValueError(f"{path}: a height map must be a 2-D matrix of at least 3 x 3 "
-                         f"values (got shape {z.shape})")
+    _check_shape(z, path)
     if not np.all(np.isfinite(z)):
         raise ValueError(f"{path}: the height map has {np.count_nonzero(~np.isfinite(z))} "
                          "non-finite values (fill or crop missing data first)")
-    dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
-    if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
-        raise ValueError(f"pixel_size = {pixel_size}: must be finite and > 0")
-    _check_scales(z, float(dx), float(dy), path)
-    _check_unit(unit)
-    return HeightMap(z, float(dx), float(dy), unit, bool(periodic))
+    return _on_grid(z, pixel_size, unit, periodic, path)
 
 
 def detrend(surface: HeightMap, mode: Optional[str] = None) -> HeightMap:
@@ -284,9 +277,7 @@ def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic:
                          ": masked pixels are missing data; fill or crop them first "
                          "(summits and moments are undefined next to them)")
     z = np.asarray(heights, dtype=np.float64)
-    if z.ndim != 2 or min(z.shape) < 3:
-        raise ValueError(f"{what}: a height map must be a 2-D matrix of at least 3 x 3 "
-                         f"values (got shape {z.shape})")
+    _check_shape(z, what)
     bad = np.count_nonzero(~np.isfinite(z))
     if bad:
         raise ValueError(f"{what}: {bad} NaN or infinite pixels: fill or crop missing "
@@ -294,6 +285,20 @@ def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic:
     if pixel_size is None:
         raise ValueError(f"{what}: give pixel_size (dx or (dx, dy), in the unit of the "
                          "heights)")
+    return _on_grid(z, pixel_size, unit, periodic, what)
+
+
+def _check_shape(z: np.ndarray, what: str) -> None:
+    """Refuse heights that are not a 2-D matrix of at least 3 x 3 (what: their source)."""
+    if z.ndim != 2 or min(z.shape) < 3:
+        raise ValueError(f"{what}: a height map must be a 2-D matrix of at least 3 x 3 "
+                         f"values (got shape {z.shape})")
+
+
+def _on_grid(z: np.ndarray, pixel_size, unit: Optional[str], periodic: bool,
+             what: str) -> HeightMap:
+    """The HeightMap of the finite heights z on pixels of pixel_size (dx or (dx, dy)),
+    after the checks of the pixel size, the scales and the unit (what: their source)."""
     dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
     if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
         raise ValueError(f"pixel_size = {pixel_size}: must be finite and > 0")

@@ -193,16 +193,27 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       character(len=:), allocatable :: why
       type(c_ptr) :: fp
-      fp = c_fopen(path//c_null_char, "wb"//c_null_char)
-      if (.not. c_associated(fp)) then
-         call system_reason(why)
-         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("//why//")")
-         return
-      end if
+      call open_file(path, "wb", fp, error)
+      if (allocated(error)) return
       call write_and_close(fp, bytes, why)
       if (len(why) > 0) call fatal_error(error, egw_io_error, "path = "//path// &
          & ": writing failed ("//why//")")
    end subroutine write_stream
+
+   !> fopen(path, mode) of write_stream and read_file: fp, or egw_io_error naming path and
+   !> the system's reason (fp then null).
+   subroutine open_file(path, mode, fp, error)
+      character(len=*), intent(in) :: path   !< the file to open
+      character(len=*), intent(in) :: mode   !< fopen's mode ("rb", "wb")
+      type(c_ptr), intent(out) :: fp   !< the open stream (null on failure)
+      !> egw_io_error naming path and the system's reason
+      type(egw_error), allocatable, intent(out) :: error
+      character(len=:), allocatable :: why
+      fp = c_fopen(path//c_null_char, mode//c_null_char)
+      if (c_associated(fp)) return
+      call system_reason(why)
+      call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("//why//")")
+   end subroutine open_file
 
    !> fwrite, fflush, fsync and fclose, each checked; why: "" or what failed and why.
    !> fsync refused by a device or pipe (EINVAL, EROFS, ENOTSUP) is not a failure.
@@ -245,12 +256,8 @@ contains
          call fatal_error(error, egw_io_error, "path: empty")
          return
       end if
-      fp = c_fopen(path//c_null_char, "rb"//c_null_char)
-      if (.not. c_associated(fp)) then
-         call system_reason(why)
-         call fatal_error(error, egw_io_error, "path = "//path//": cannot open ("//why//")")
-         return
-      end if
+      call open_file(path, "rb", fp, error)
+      if (allocated(error)) return
       why = ""
       size = -1
       ! a directory opens and seeks (to a huge "size" on ext4): one byte read says what it is

@@ -14,7 +14,7 @@ module egw_hysteresis_format
    use egw_text, only: real_text, real_text_len, csv_row
    use egw_table, only: force_table, table_prepare, table_meta, set_table_meta
    use egw_table_format, only: format_csv, format_binary, fnv1a32, checksum_i32, put_f64, &
-      & get_f64, split_checksum, checksum_line
+      & get_f64, put_nodes, get_nodes, split_checksum, checksum_line
    use egw_hysteresis, only: hysteresis_table, hysteresis_prepare
    use egw_hysteresis_checks, only: check_hysteresis, check_log_served
    implicit none
@@ -195,11 +195,7 @@ contains
       if (version == ratio_version) call put_f64(buf, pos, [real(size(table%fine_m), dp)])
       call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
       call put_f64(buf, pos, table_meta(table%loading))
-      call put_f64(buf, pos, table%loading%delta)
-      call put_f64(buf, pos, table%loading%force)
-      call put_f64(buf, pos, table%loading%stiffness)
-      call put_f64(buf, pos, table%loading%energy)
-      call put_f64(buf, pos, table%loading%contact_radius)
+      call put_nodes(buf, pos, table%loading)
       if (.not. table%reversible) then
          call put_f64(buf, pos, table%m)
          call put_f64(buf, pos, table%length)
@@ -334,14 +330,7 @@ contains
       table%loading%params = table%params
       table%loading%n_log = head(7)
       call set_table_meta(table%loading, lmeta)
-      allocate (table%loading%delta(n_load), table%loading%force(n_load), &
-         & table%loading%stiffness(n_load), table%loading%energy(n_load), &
-         & table%loading%contact_radius(n_load))
-      call get_f64(bytes, pos, table%loading%delta)
-      call get_f64(bytes, pos, table%loading%force)
-      call get_f64(bytes, pos, table%loading%stiffness)
-      call get_f64(bytes, pos, table%loading%energy)
-      call get_f64(bytes, pos, table%loading%contact_radius)
+      call get_nodes(bytes, pos, n_load, table%loading)
       allocate (table%m(n_m), table%length(n_m), table%s(n_s), table%gap(n_s, n_m), &
          & table%slope(n_s, n_m))
       call get_f64(bytes, pos, table%m)

@@ -29,7 +29,7 @@ module egw_table_format
    public :: split_checksum, checksum_line
    public :: write_table, read_table, write_universal, read_universal, write_lammps, &
       & write_calculix_flat, write_calculix_sphere, fnv1a32, checksum_i32, &
-      & put_f64, get_f64, check_table
+      & put_f64, get_f64, put_nodes, get_nodes, check_table
 
    integer, parameter, public :: format_csv = 0       !< egw CSV with metadata header
    integer, parameter, public :: format_binary = 1    !< egw binary, versioned, checksummed
@@ -421,5 +421,34 @@ contains
       v = transfer(buf(pos:pos + nb - 1), v, size(v))
       pos = pos + nb
    end subroutine get_f64
+
+   !> Append a force table's nodes to the binary buffer buf at pos, advancing pos: the
+   !> arrays delta, force, stiffness, energy, contact_radius, one after the other
+   !> (doc/formats.md; the 1-D, universal and hysteresis binaries share this layout).
+   pure subroutine put_nodes(buf, pos, t)
+      character(len=*), intent(inout) :: buf   !< the buffer, long enough
+      integer, intent(inout) :: pos   !< the next byte to write (1-based)
+      type(force_table), intent(in) :: t   !< the table whose nodes are written
+      call put_f64(buf, pos, t%delta)
+      call put_f64(buf, pos, t%force)
+      call put_f64(buf, pos, t%stiffness)
+      call put_f64(buf, pos, t%energy)
+      call put_f64(buf, pos, t%contact_radius)
+   end subroutine put_nodes
+
+   !> Allocate a force table's n nodes and read them from buf at pos in put_nodes'
+   !> layout, advancing pos (the caller has checked that buf holds them).
+   pure subroutine get_nodes(buf, pos, n, t)
+      character(len=*), intent(in) :: buf   !< the file's bytes
+      integer, intent(inout) :: pos   !< the next byte to read (1-based)
+      integer, intent(in) :: n   !< nodes to read
+      type(force_table), intent(inout) :: t   !< gets delta ... contact_radius(n)
+      allocate (t%delta(n), t%force(n), t%stiffness(n), t%energy(n), t%contact_radius(n))
+      call get_f64(buf, pos, t%delta)
+      call get_f64(buf, pos, t%force)
+      call get_f64(buf, pos, t%stiffness)
+      call get_f64(buf, pos, t%energy)
+      call get_f64(buf, pos, t%contact_radius)
+   end subroutine get_nodes
 
 end module egw_table_format

@@ -34,11 +34,7 @@ contains
          & table%params%mu, table%params%psi, table%params%hardness_coeff, &
          & table%params%plastic_ratio])
       call put_f64(buf, pos, table_meta(table))
-      call put_f64(buf, pos, table%delta)
-      call put_f64(buf, pos, table%force)
-      call put_f64(buf, pos, table%stiffness)
-      call put_f64(buf, pos, table%energy)
-      call put_f64(buf, pos, table%contact_radius)
+      call put_nodes(buf, pos, table)
       call write_checked(path, buf, pos, error)
    end procedure write_table_binary
 
@@ -68,11 +64,7 @@ contains
             call put_i32(buf, pos, int(s%n_log, int32))
             call put_f64(buf, pos, [s%rel_tol, s%cutoff, s%delta_max, s%reference_force, &
                & s%max_force_error, s%max_stiffness_error, s%params%mu])
-            call put_f64(buf, pos, s%delta)
-            call put_f64(buf, pos, s%force)
-            call put_f64(buf, pos, s%stiffness)
-            call put_f64(buf, pos, s%energy)
-            call put_f64(buf, pos, s%contact_radius)
+            call put_nodes(buf, pos, s)
          end associate
       end do
       call write_checked(path, buf, pos, error)
@@ -100,12 +92,7 @@ contains
       t%params = contact_params(model=int(model), radius=p(1), modulus=p(2), sigma=p(3), &
          & mu=p(4), psi=p(5), hardness_coeff=p(6), plastic_ratio=p(7))
       call set_table_meta(t, meta)
-      allocate (t%delta(n), t%force(n), t%stiffness(n), t%energy(n), t%contact_radius(n))
-      call get_f64(bytes, pos, t%delta)
-      call get_f64(bytes, pos, t%force)
-      call get_f64(bytes, pos, t%stiffness)
-      call get_f64(bytes, pos, t%energy)
-      call get_f64(bytes, pos, t%contact_radius)
+      call get_nodes(bytes, pos, n, t)
       ! (a table of a flat law is a table like any other: its tail needs no law)
       call validate_params(t%params, error, allow_flat_law=.true.)
       if (allocated(error)) then
@@ -152,12 +139,7 @@ contains
             call set_table_meta(s, [meta(1:6), 0.0_dp])
             s%params = universal_slice_params(u%model, u%psi, u%hardness_coeff, &
                & u%plastic_ratio, meta(7))
-            allocate (s%delta(n), s%force(n), s%stiffness(n), s%energy(n), s%contact_radius(n))
-            call get_f64(bytes, pos, s%delta)
-            call get_f64(bytes, pos, s%force)
-            call get_f64(bytes, pos, s%stiffness)
-            call get_f64(bytes, pos, s%energy)
-            call get_f64(bytes, pos, s%contact_radius)
+            call get_nodes(bytes, pos, n, s)
             if (abs(meta(7) - slice_mu(u, j)) > 1.0e-12_dp*meta(7)) then
                call bad(error, path, "slice "//int_str(j)//": mu = "//format_real(meta(7))// &
                   & " is not on the grid")
