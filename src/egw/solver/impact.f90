@@ -46,7 +46,7 @@ module egw_impact
    !> eps and the time by eps/2, so the duration is not known better than that; a panel
    !> whose 9- and 17-point rules agree within a tenth of it is kept (the unloading solves
    !> after a capped loading accept relative to a force floor: est_rel_err 1e-7 .. 5e-7,
-   !> and 1e-3 rel_tol had their noise bisected to depth 7, 28 panels at EP-GW + cap 1.6
+   !> and 1e-3 rel_tol had their noise bisected to depth 7, 28 panels at EP-GW + cap 1.9
    !> delta_y, now 12; the loading solves' ~5e-9 leave noise_level in charge). Not on the
    !> smooth cap's curves: there it moved the duration by 8.7e-9 and saved no time (its
    !> panels, 5.9e-10 from a DOP853 on the same forces, resolve its error estimate's
@@ -445,8 +445,8 @@ contains
    !> beyond first yield the elastic unloading from the flattened shape, ~2 E* a),
    !> capped at 0.5/omega. The
    !> duration is the time the force spends above 1 % of its peak P(delta_m), loading and
-   !> unloading, from the solver's force curves (16-point Gauss rule in sqrt(delta_m -
-   !> delta)); a DEM step should resolve it too (dt is far below it for tolerance <= 1e-3).
+   !> unloading, from the solver's force curves (adaptive Clenshaw-Curtis panels in
+   !> sqrt(delta_m - delta), half_time); a DEM step should resolve it too (dt is far below it for tolerance <= 1e-3).
    !> For the fastest impact of a run: slower ones are softer. Errors as restitution, and
    !> tolerance not in (0, 0.1] (egw_invalid_argument); outputs untouched on error.
    !> Progress (egw_progress): one call, the restitution 0 .. 0.6 of it, the history at
@@ -556,8 +556,9 @@ contains
    !> share) is within duration_tol of t (lower bound u_max sqrt(2 m*/P_m)) per unit of
    !> panel length (at least u_max/16), or its rules differ by no more than the solves'
    !> noise; else bisected. The panels grade themselves towards a branch point beyond u_max
-   !> (Hertz's at delta = 0, 2.4 % of u_max past it: 4 panels) and a kink (the rough +
-   !> cap force's first yield).
+   !> (Hertz's at delta = 0, 2.4 % of u_max past it: 4 panels) and a kink (a capped rough
+   !> history's unloading); those a rough sphere's law places inside are panel ends, the
+   !> panels before them graded (rough_breaks).
    subroutine half_time(hist, unloading, mass, delta_m, p_m, k_m, time, error)
       type(loading_history), intent(in) :: hist
       logical, intent(in) :: unloading
