@@ -72,6 +72,8 @@ contains
          & //"quadrature", test_brute_duration), &
          & new_unittest("contact duration: EP-GW + cap against a brute-force quadrature", &
          & test_rough_cap_duration), &
+         & new_unittest("contact duration: Hertz + cap against cap_reference's forces", &
+         & test_cap_duration_independent), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop), &
          & new_unittest("C DEM loop, rough + cap: e to 1e-3", &
          & test_c_rough_dem_loop) &
@@ -872,6 +874,32 @@ contains
       if (allocated(error)) return
       print '(4x, a, es10.2)', "EP-GW + cap duration: relative error ", duration/reference - 1
    end subroutine test_rough_cap_duration
+
+   !> Hertz + cap at 1 m/s (3.61 v_y; test_brute_duration's case 1) against the duration
+   !> from an independent cap solver's forces: tools/reference/cap_duration_reference.py
+   !> (cap_reference.py's rings, Chebyshev fits of the loading and unloading curves in the
+   !> contact and cap radii; 5.937014135e-6, 5.937010710e-6, 5.937010291e-6 at 20, 40, 80
+   !> ring elements: its own error <= 7e-8). Tolerance 2e-6: egw's cap forces lie within
+   !> ~3e-6 of that solver's (doc/theory.md section 12) and a force error eps moves the time
+   !> by at most eps/2, plus the reference's error. Measured -1.6e-7; f4799c7's 16-point
+   !> rule -1.2e-4 (fails).
+   subroutine test_cap_duration_independent(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: mass = 6.5e-6_dp, reference = 5.937010291319e-06_dp
+      type(contact_params) :: p
+      type(egw_error), allocatable :: err
+      real(dp) :: duration, step
+      p = contact_params(model=model_hertz, radius=5.0e-4_dp, modulus=4.0e10_dp, &
+         & flow_pressure=1.0e9_dp)
+      call time_step(p, solver_options(), mass, 1.0_dp, 1.0e-3_dp, duration, step, err)
+      call check(error, .not. allocated(err), "time_step refused")
+      if (allocated(error)) return
+      call check(error, abs(duration/reference - 1) <= 2.0e-6_dp, "duration "//str(duration) &
+         & //" reference "//str(reference))
+      if (allocated(error)) return
+      print '(4x, a, es10.2)', "Hertz + cap duration against cap_reference's forces: ", &
+         & duration/reference - 1
+   end subroutine test_cap_duration_independent
 
    subroutine test_c_dem_loop(error)
       type(error_type), allocatable, intent(out) :: error
