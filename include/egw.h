@@ -317,7 +317,9 @@ int egw_restitution_overlap(const egw_params *p, const egw_options *o, double ma
  * m* = mass at approach speed velocity (the fastest of the run: slower impacts are softer),
  * *duration = the time its force spends above 1 % of its peak (loading and unloading)
  * [time; adaptive Clenshaw-Curtis panels to ~1e-9 of the duration: Hertz 1e-11 of the
- * exact one; as accurate as the solves' forces, doc/theory.md 10], and
+ * exact one; a rough sphere's unloading after the cap acted to a tenth of its solves'
+ * own error estimate (EP-GW + cap: 2.3e-8 of a brute-force quadrature); as accurate as
+ * the solves' forces, doc/theory.md 10], and
  * *time_step = the largest velocity-Verlet step whose error in the coefficient
  * of restitution stays below tolerance (in (0, 0.1]): dt = sqrt(tolerance/0.06)/omega,
  * omega^2 = K_max/m* with K_max the stiffest point of the impact (the unloading stiffness

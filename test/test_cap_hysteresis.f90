@@ -70,6 +70,10 @@ contains
          & test_hertz_duration), &
          & new_unittest("contact duration: cap and rough models against a brute-force " &
          & //"quadrature", test_brute_duration), &
+         & new_unittest("contact duration: EP-GW + cap against a brute-force quadrature", &
+         & test_rough_cap_duration), &
+         & new_unittest("contact duration: Hertz + cap against cap_reference's forces", &
+         & test_cap_duration_independent), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop), &
          & new_unittest("C DEM loop, rough + cap: e to 1e-3", &
          & test_c_rough_dem_loop) &
@@ -843,6 +847,59 @@ contains
             & duration/reference(i) - 1
       end do
    end subroutine test_brute_duration
+
+   !> EP-GW + cap (1 mm glass beads as test_brute_duration, sigma 1 um, mu 4, psi 2, p_y 1
+   !> GPa) at 1 m/s (delta_m = 1.9 delta_y): its loading curve has branch points at the
+   !> rough first yield and at delta = 0, its unloading solves accept relative to a force
+   !> floor (est_rel_err 1e-7 .. 5e-7). Reference: tools/reference/duration_reference.py
+   !> --rough-cap, DOP853 on egw's own forces, the loading half at rtol 1e-8, the unloading
+   !> half at 3e-8 (at rtol 1e-7 they differ from these by 2.0e-8 and 2.9e-8 of the
+   !> duration: the reference's error, at most ~3e-8). Tolerance 1e-7: that plus the
+   !> quadrature's own target on the unloading panels (a tenth of their solves'
+   !> est_rel_err, <= 5e-8). Measured +2.3e-8; f4799c7's 16-point Gauss rule -1.9e-4
+   !> (fails; 87a8984's panels pass in ~5 s).
+   subroutine test_rough_cap_duration(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: mass = 6.5e-6_dp, reference = 7.446240730733197e-06_dp
+      type(contact_params) :: p
+      type(egw_error), allocatable :: err
+      real(dp) :: duration, step
+      p = contact_params(model=model_epgw, radius=5.0e-4_dp, modulus=4.0e10_dp, &
+         & sigma=1.0e-6_dp, mu=4.0_dp, psi=2.0_dp, flow_pressure=1.0e9_dp)
+      call time_step(p, solver_options(), mass, 1.0_dp, 1.0e-3_dp, duration, step, err)
+      call check(error, .not. allocated(err), "time_step refused")
+      if (allocated(error)) return
+      call check(error, abs(duration/reference - 1) <= 1.0e-7_dp, "duration "//str(duration) &
+         & //" reference "//str(reference))
+      if (allocated(error)) return
+      print '(4x, a, es10.2)', "EP-GW + cap duration: relative error ", duration/reference - 1
+   end subroutine test_rough_cap_duration
+
+   !> Hertz + cap at 1 m/s (3.61 v_y; test_brute_duration's case 1) against the duration
+   !> from an independent cap solver's forces: tools/reference/cap_duration_reference.py
+   !> (cap_reference.py's rings, Chebyshev fits of the loading and unloading curves in the
+   !> contact and cap radii; 5.937014135e-6, 5.937010710e-6, 5.937010291e-6 at 20, 40, 80
+   !> ring elements: its own error <= 7e-8). Tolerance 2e-6: egw's cap forces lie within
+   !> ~3e-6 of that solver's (doc/theory.md section 12) and a force error eps moves the time
+   !> by at most eps/2, plus the reference's error. Measured -1.6e-7; f4799c7's 16-point
+   !> rule -1.2e-4 (fails).
+   subroutine test_cap_duration_independent(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: mass = 6.5e-6_dp, reference = 5.937010291319e-06_dp
+      type(contact_params) :: p
+      type(egw_error), allocatable :: err
+      real(dp) :: duration, step
+      p = contact_params(model=model_hertz, radius=5.0e-4_dp, modulus=4.0e10_dp, &
+         & flow_pressure=1.0e9_dp)
+      call time_step(p, solver_options(), mass, 1.0_dp, 1.0e-3_dp, duration, step, err)
+      call check(error, .not. allocated(err), "time_step refused")
+      if (allocated(error)) return
+      call check(error, abs(duration/reference - 1) <= 2.0e-6_dp, "duration "//str(duration) &
+         & //" reference "//str(reference))
+      if (allocated(error)) return
+      print '(4x, a, es10.2)', "Hertz + cap duration against cap_reference's forces: ", &
+         & duration/reference - 1
+   end subroutine test_cap_duration_independent
 
    subroutine test_c_dem_loop(error)
       type(error_type), allocatable, intent(out) :: error

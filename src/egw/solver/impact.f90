@@ -19,7 +19,8 @@ module egw_impact
       & fatal_error, &
       & format_real
    use egw_progress, only: progress_begin, progress_end, progress_part, progress_report
-   use egw_params, only: contact_params, model_hertz, validate_params, overlap_ratio_max
+   use egw_params, only: contact_params, model_hertz, model_egw, model_epgw, validate_params, &
+      & overlap_ratio_max
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
       & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options
    use egw_cap_sphere, only: cap_options, cap_restitution, cap_history, cap_result, cap_load, &
@@ -40,6 +41,17 @@ module egw_impact
    !> The forces' relative noise in units of rel_tol (the history's solves at 1e-4 of it,
    !> the rough solves' errors well inside their estimates)
    real(dp), parameter :: noise_level = 1.0e-3_dp
+   !> ... or, on a rough sphere's curves, where larger, this share of the largest
+   !> est_rel_err of a panel's solves: a force error eps moves W, hence v**2, by at most
+   !> eps and the time by eps/2, so the duration is not known better than that; a panel
+   !> whose 9- and 17-point rules agree within a tenth of it is kept (the unloading solves
+   !> after a capped loading accept relative to a force floor: est_rel_err 1e-7 .. 5e-7,
+   !> and 1e-3 rel_tol had their noise bisected to depth 7, 28 panels at EP-GW + cap 1.9
+   !> delta_y, now 12; the loading solves' ~5e-9 leave noise_level in charge). Not on the
+   !> smooth cap's curves: there it moved the duration by 8.7e-9 and saved no time (its
+   !> panels, 5.9e-10 from a DOP853 on the same forces, resolve its error estimate's
+   !> bound, not noise).
+   real(dp), parameter :: est_share = 0.1_dp
    !> Depth of the interval bisection, and steps allowed to find delta_lo and delta_m.
    integer, parameter :: max_depth = 24, max_steps = 400
    !> The unloading solves' force floor (solve_unload's force_floor), in units of the
@@ -433,8 +445,8 @@ contains
    !> beyond first yield the elastic unloading from the flattened shape, ~2 E* a),
    !> capped at 0.5/omega. The
    !> duration is the time the force spends above 1 % of its peak P(delta_m), loading and
-   !> unloading, from the solver's force curves (16-point Gauss rule in sqrt(delta_m -
-   !> delta)); a DEM step should resolve it too (dt is far below it for tolerance <= 1e-3).
+   !> unloading, from the solver's force curves (adaptive Clenshaw-Curtis panels in
+   !> sqrt(delta_m - delta), half_time); a DEM step should resolve it too (dt is far below it for tolerance <= 1e-3).
    !> For the fastest impact of a run: slower ones are softer. Errors as restitution, and
    !> tolerance not in (0, 0.1] (egw_invalid_argument); outputs untouched on error.
    !> Progress (egw_progress): one call, the restitution 0 .. 0.6 of it, the history at
@@ -544,8 +556,9 @@ contains
    !> share) is within duration_tol of t (lower bound u_max sqrt(2 m*/P_m)) per unit of
    !> panel length (at least u_max/16), or its rules differ by no more than the solves'
    !> noise; else bisected. The panels grade themselves towards a branch point beyond u_max
-   !> (Hertz's at delta = 0, 2.4 % of u_max past it: 4 panels) and a kink (the rough +
-   !> cap force's first yield).
+   !> (Hertz's at delta = 0, 2.4 % of u_max past it: 4 panels) and a kink (a capped rough
+   !> history's unloading); those a rough sphere's law places inside are panel ends, the
+   !> panels before them graded (rough_breaks).
    subroutine half_time(hist, unloading, mass, delta_m, p_m, k_m, time, error)
       type(loading_history), intent(in) :: hist
       logical, intent(in) :: unloading
@@ -554,10 +567,12 @@ contains
       real(dp), intent(out) :: time
       type(egw_error), allocatable, intent(out) :: error
       real(dp) :: u_max, s_16(0:16, 0:16), s_8(0:8, 0:8), s_4(0:4, 0:4)
-      real(dp) :: a, b, w_a, p_a, g_0, t(3), w(3), budget, err, noise, u_y
-      ! the stack holds at most the 3 first panels and one per bisection
-      real(dp) :: p(0:16), ends(max_panel_depth + 2)
-      integer :: n_ends, depth(max_panel_depth + 2), d
+      real(dp) :: a, b, w_a, p_a, g_0, t(3), w(3), budget, err, noise, u_y, cuts(2), est, share
+      ! the stack holds at most the 4 first panels and one per bisection
+      real(dp) :: p(0:16), ends(max_panel_depth + 3)
+      integer :: n_ends, depth(max_panel_depth + 3), d, n_cuts, k
+      ! graded(i): the panel ending at ends(i) has a branch point at its right end
+      logical :: graded(max_panel_depth + 3), g
       time = 0.0_dp
       call onset(hist, unloading, delta_m, p_m, k_m, u_max, error)
       if (allocated(error)) return
@@ -568,6 +583,9 @@ contains
       g_0 = sqrt(2*mass/p_m)
       budget = duration_tol*g_0   ! per unit length of u
       noise = noise_level*hist%options%rel_tol
+      ! the solves' own estimates count on a rough sphere's curves (est_share)
+      share = 0.0_dp
+      if (hist%params%model /= model_hertz .and. hist%params%sigma > 0.0_dp) share = est_share
       a = 0.0_dp
       w_a = 0.0_dp
       p_a = p_m
@@ -576,17 +594,33 @@ contains
       ! sphere's loading with the cap splits at first yield (Hertz below, a kink there)
       n_ends = 2
       ends(1:2) = [u_max, 0.5_dp*u_max]
+      graded = .false.
       u_y = yield_break(hist, unloading, delta_m, u_max)
       if (u_y > 0.0_dp) then
          n_ends = 3
          ends(1:3) = [u_max, u_y, 0.5_dp*u_y]
       end if
+      ! a rough sphere's branch points (rough_breaks): [0, c_1], [c_1, c_2], ..., [c_n,
+      ! u_max], graded towards each c_k (EP-GW + cap, 1 mm glass beads at 0.5, 1, 3 m/s:
+      ! 3, 3, 5 loading panels; 22 before at 1.1 m/s)
+      call rough_breaks(hist, unloading, delta_m, u_max, cuts, n_cuts, error)
+      if (allocated(error)) return
+      if (n_cuts > 0) then
+         n_ends = 1
+         ends(1) = u_max
+         do k = n_cuts, 1, -1
+            n_ends = n_ends + 1
+            ends(n_ends) = cuts(k)
+            graded(n_ends) = .true.
+         end do
+      end if
       depth(1:n_ends) = 1
       do while (n_ends > 0)
          b = ends(n_ends)
          d = depth(n_ends)
-         call panel(hist, unloading, mass, delta_m, a, b, p_a, w_a, g_0, s_16, s_8, s_4, &
-            & p, t, w, error)
+         g = graded(n_ends)
+         call panel(hist, unloading, mass, delta_m, a, b, g, p_a, w_a, g_0, s_16, s_8, &
+            & s_4, p, t, w, est, error)
          if (allocated(error)) return
          ! the 17-point rule's error from the 9- and 5-point ones' (their observed rate);
          ! W's reaches the rest of the time (<= ~u_max g_0) as half its relative
@@ -594,15 +628,17 @@ contains
          err = extrapolated_error(t) + u_max*g_0*extrapolated_error(w)/max(w(1), tiny(w(1)))
          ! kept: within the budget of its length (at least u_max/16: a singular point
          ! costs a few budgets u_max/16 in all), or its 9-point rule is within the solves'
-         ! own noise of the 17-point one (nothing left to learn)
-         if (err > budget*max(b - a, u_max/16) .and. abs(t(1) - t(2)) > noise*abs(t(1)) &
-            & .and. d < max_panel_depth - 1) then
-            ! bisect: the left half next, the right one pending
+         ! own noise of the 17-point one (nothing left to learn): 1e-3 rel_tol, or a tenth
+         ! of the largest error the panel's solves estimate for themselves
+         if (err > budget*max(b - a, u_max/16) .and. abs(t(1) - t(2)) > max(noise, &
+            & share*est)*abs(t(1)) .and. d < max_panel_depth - 1) then
+            ! bisect: the left half next, the right one pending (graded as its parent)
             ends(n_ends) = b
             depth(n_ends) = d + 1
             n_ends = n_ends + 1
             ends(n_ends) = 0.5_dp*(a + b)
             depth(n_ends) = d + 1
+            graded(n_ends) = .false.
             cycle
          end if
          time = time + t(1)
@@ -630,32 +666,142 @@ contains
       if (.not. (u_y > 0.05_dp*u_max .and. u_y < 0.95_dp*u_max)) u_y = 0.0_dp
    end function yield_break
 
+   !> Break points c_k (in u, increasing) of a rough sphere's curve where its force has a
+   !> branch point, a term ~(delta - x_k)**(3/2) on the side of the larger overlap, found
+   !> from the law (the panels ending there are graded, panel): E-GW's and EP-GW's smooth
+   !> part, P = P_H(delta) + P_G with P_H = 0 at delta <= 0 (doc/theory.md section 5), at
+   !> delta = 0 on loading and on the unloading of a history the cap did not reach (its
+   !> smooth part is Hertz's at the current delta); with the cap, on loading, the rough
+   !> first yield m_y where the largest pressure reaches p_y (the capped region grows from
+   !> nothing there; rough_yield). Kept where they lie inside (1 %, 99 %) of [0, u_max]. The
+   !> unloading of a capped history has its branch point where the floor stops cancelling
+   !> the smooth part (x_k > 0, not known beforehand): no break, the panels bisect to it.
+   subroutine rough_breaks(hist, unloading, delta_m, u_max, cuts, n_cuts, error)
+      type(loading_history), intent(in) :: hist
+      logical, intent(in) :: unloading
+      real(dp), intent(in) :: delta_m, u_max
+      real(dp), intent(out) :: cuts(2)
+      integer, intent(out) :: n_cuts
+      type(egw_error), allocatable, intent(out) :: error
+      real(dp) :: m_y
+      logical :: capped
+      n_cuts = 0
+      cuts = 0.0_dp
+      if (hist%params%model == model_hertz .or. .not. hist%params%sigma > 0.0_dp) return
+      capped = hist%params%flow_pressure > 0.0_dp .and. hist%loading%max_pressure >= &
+         & (1.0_dp - 1.0e-9_dp)*hist%params%flow_pressure
+      if (capped .and. .not. unloading) then
+         call rough_yield(hist, delta_m, u_max, m_y, error)
+         if (allocated(error)) return
+         call add(sqrt(max(delta_m - m_y, 0.0_dp)))
+      end if
+      if ((hist%params%model == model_egw .or. hist%params%model == model_epgw) .and. &
+         & .not. (capped .and. unloading)) call add(sqrt(max(delta_m, 0.0_dp)))
+      if (n_cuts == 2) then
+         if (cuts(1) > cuts(2)) cuts = cuts(2:1:-1)
+      end if
+   contains
+      subroutine add(c)
+         real(dp), intent(in) :: c
+         if (c > 0.01_dp*u_max .and. c < 0.99_dp*u_max) then
+            n_cuts = n_cuts + 1
+            cuts(n_cuts) = c
+         end if
+      end subroutine add
+   end subroutine rough_breaks
+
+   !> The rough first yield m_y on the loading curve of a rough sphere with the cap
+   !> (reached at delta_m): the overlap in [delta_m - u_max**2, delta_m] where the loading
+   !> solves' largest pressure reaches p_y (as egw_hysteresis_lengths' cap_reached, 1e-9
+   !> below counts). Below m_y that pressure rises smoothly and concavely (~sqrt(delta)
+   !> far from contact), so the secant through the two highest points below m_y
+   !> approaches it from below in a few solves; bisection where the secant leaves the
+   !> bracket. To 1e-10 of u_max**2 (a break that far off a (delta - m_y)**(3/2) term
+   !> leaves ~1e-15 of the duration).
+   subroutine rough_yield(hist, delta_m, u_max, m_y, error)
+      type(loading_history), intent(in) :: hist
+      real(dp), intent(in) :: delta_m, u_max
+      real(dp), intent(out) :: m_y
+      type(egw_error), allocatable, intent(out) :: error
+      type(solve_result) :: res
+      real(dp) :: lo, hi, x, tol, x_a, g_a, x_b, g_b, level
+      integer :: it, n_below
+      level = (1.0_dp - 1.0e-9_dp)*hist%params%flow_pressure
+      lo = delta_m - u_max**2
+      hi = delta_m
+      m_y = lo
+      tol = 1.0e-10_dp*u_max**2
+      call curve_point(hist, .false., lo, res, error)
+      if (allocated(error)) return
+      if (res%max_pressure >= level) return
+      x_a = lo
+      g_a = res%max_pressure - level
+      x_b = lo
+      g_b = g_a
+      n_below = 1
+      do it = 1, 40
+         x = 0.5_dp*(lo + hi)
+         if (n_below >= 2 .and. g_b > g_a) then
+            x = x_b - g_b*(x_b - x_a)/(g_b - g_a)
+            if (.not. (x > lo .and. x < hi)) x = 0.5_dp*(lo + hi)
+            if (abs(x - x_b) <= tol) exit
+         end if
+         if (hi - lo <= tol) exit
+         call curve_point(hist, .false., x, res, error)
+         if (allocated(error)) return
+         if (res%max_pressure >= level) then
+            hi = x
+         else
+            lo = x
+            x_a = x_b
+            g_a = g_b
+            x_b = x
+            g_b = res%max_pressure - level
+            n_below = n_below + 1
+         end if
+      end do
+      m_y = max(lo, min(x, hi))
+   end subroutine rough_yield
+
    !> One panel [a, b] of half_time: the force at its 17 Chebyshev-Lobatto nodes (p(0) =
    !> p_a given), W at the nodes from w_a, and the panel's time t and W(b) w by the 17-,
    !> 9- and 5-point rules (nested: every 2nd, 4th node).
-   subroutine panel(hist, unloading, mass, delta_m, a, b, p_a, w_a, g_0, s_16, s_8, s_4, &
-         & p, t, w, error)
+   subroutine panel(hist, unloading, mass, delta_m, a, b, graded, p_a, w_a, g_0, s_16, s_8, &
+         & s_4, p, t, w, est, error)
       type(loading_history), intent(in) :: hist
       logical, intent(in) :: unloading
       real(dp), intent(in) :: mass, delta_m, a, b, p_a, w_a, g_0
+      !> a branch point (delta - c)**(3/2) at b: nodes in s with u = b - (b - a)(1 - s)**2,
+      !> s in [0, 1], where it is (1 - s)**3, smooth
+      logical, intent(in) :: graded
       real(dp), intent(in) :: s_16(0:, 0:), s_8(0:, 0:), s_4(0:, 0:)
       real(dp), intent(out) :: p(0:16), t(3), w(3)
+      real(dp), intent(out) :: est   !< the largest est_rel_err of its solves (P > 0)
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: u(0:16), f(0:16), h
+      real(dp) :: u(0:16), f(0:16), jac(0:16), s
       type(solve_result) :: res
       integer :: j
-      h = 0.5_dp*(b - a)
+      ! u(s) and du/dt (t = 2s - 1 in [-1, 1], the rules' variable)
       do j = 0, 16
-         u(j) = a + h*(1.0_dp - cos(pi*j/16))
+         s = 0.5_dp*(1.0_dp - cos(pi*j/16))
+         if (graded) then
+            u(j) = a + (b - a)*s*(2.0_dp - s)
+            jac(j) = (b - a)*(1.0_dp - s)
+         else
+            u(j) = a + (b - a)*s
+            jac(j) = 0.5_dp*(b - a)
+         end if
       end do
       u(16) = b
       p(0) = p_a
+      est = 0.0_dp
       do j = 1, 16
          call curve_point(hist, unloading, delta_m - u(j)**2, res, error)
          if (allocated(error)) return
          p(j) = res%force
+         if (res%force > 0.0_dp) est = max(est, res%est_rel_err)
       end do
-      f = 2*u*p
+      f = 2*u*p*jac
       call rule(s_16, 1, t(1), w(1))
       call rule(s_8, 2, t(2), w(2))
       call rule(s_4, 4, t(3), w(3))
@@ -666,8 +812,9 @@ contains
          integer, intent(in) :: stride
          real(dp), intent(out) :: time, work
          real(dp) :: ww(0:16/stride)
-         ww = w_a + h*matmul(s, f(0:16:stride))
-         time = h*dot_product(s(16/stride, :), speed_inverse(u(0:16:stride), ww))
+         ww = w_a + matmul(s, f(0:16:stride))
+         time = dot_product(s(16/stride, :), speed_inverse(u(0:16:stride), ww) &
+            & *jac(0:16:stride))
          work = ww(16/stride)
       end subroutine rule
       !> 2u/v = 2u/sqrt(2 W/m*), its limit g_0 at u = 0; a zero-work stretch (a zero force
