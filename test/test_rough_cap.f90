@@ -16,6 +16,7 @@ module test_rough_cap
    use egw_sphere_mesh, only: disc_refined, disc_graded, edge_layer_width, with_history_edges, &
       & split_kept
    use egw_flow_cap, only: flow_cap, not_evaluated
+   use egw_law_pieces, only: law_pieces, zmc_law_pieces
    use egw_sphere_problem, only: lagrange_undershoot, deflection_degree
    use egw_rough_profile, only: contact_profile_unload
    use egw_cap_sphere, only: cap_options, cap_history, cap_result, cap_load, u_plastic
@@ -70,6 +71,8 @@ contains
          & test_force_points), &
          & new_unittest("load_history(stiffness=.false.): the same history, bit for bit", &
          & test_history_stiffness), &
+         & new_unittest("solve_contact(stiffness=.false.): force and peak pressure, bit for bit", &
+         & test_contact_stiffness), &
          & new_unittest("E-GW + cap loading table at 1e-5 against solves", &
          & test_loading_table), &
          & new_unittest("EP-GW + cap loading table at 1e-4: quarter points", &
@@ -2252,6 +2255,56 @@ contains
       if (allocated(err)) call check(error, .false., "sigma/delta_y "//str(ratio)//" at " &
          & //str(x)//" delta_y: "//err%message)
    end subroutine edge_point_solve
+
+   !> solve_contact with stiffness=.false. (what the scene's Hertz check and cap_reached
+   !> ask: they read the force, resp. the peak pressure only) skips the moved-mesh
+   !> stiffness: force, peak pressure and contact radius the default solve's to the bit,
+   !> the stiffness the implicit derivative, said by implicit_stiffness (the default
+   !> solve's not), within 1e-2 of the default's (test_history_stiffness's bound). E-GW +
+   !> cap, sigma/delta_y = 1e-2, mu 4 (README's scene's) at 3.5 and 10 delta_y, rel_tol
+   !> 1e-5; and EP-GW psi 1 + cap at 10 delta_y on its tabulated law.
+   subroutine test_contact_stiffness(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: at(3) = [3.5_dp, 10.0_dp, 10.0_dp]
+      type(contact_params) :: p
+      type(solve_result) :: res, res_fast
+      type(egw_error), allocatable :: err
+      type(law_pieces) :: law
+      real(dp) :: d
+      integer :: k
+      do k = 1, size(at)
+         p = contact_params(model=model_egw, radius=100.0_dp, modulus=1.0_dp, sigma=1.0_dp, &
+            & mu=4.0_dp, flow_pressure=2.0_dp/pi)
+         if (k == 3) then
+            p%model = model_epgw
+            p%psi = 1.0_dp
+            law = zmc_law_pieces(p%psi, p%hardness_coeff, p%plastic_ratio)
+         end if
+         d = at(k)*p%radius   ! (delta_y = R here: pi p_y/(2 E*) = 1)
+         call solve_contact(p, solver_options(rel_tol=1.0e-5_dp), d, res, err, law)
+         if (.not. allocated(err)) call solve_contact(p, solver_options(rel_tol=1.0e-5_dp), &
+            & d, res_fast, err, law, stiffness=.false.)
+         if (allocated(err)) then
+            call check(error, .false., "solve at "//str(at(k))//" delta_y: "//err%message)
+            return
+         end if
+         call check(error, res_fast%force == res%force .and. res_fast%max_pressure == &
+            & res%max_pressure .and. res_fast%contact_radius == res%contact_radius, &
+            & "at "//str(at(k))//" delta_y: force "//str(res_fast%force)//" vs " &
+            & //str(res%force)//", peak pressure "//str(res_fast%max_pressure)//" vs " &
+            & //str(res%max_pressure))
+         if (allocated(error)) return
+         call check(error, res_fast%implicit_stiffness .and. .not. res%implicit_stiffness, &
+            & "at "//str(at(k))//" delta_y: implicit_stiffness: stiffness=.false. "// &
+            & merge("T", "F", res_fast%implicit_stiffness)//", default "// &
+            & merge("T", "F", res%implicit_stiffness))
+         if (allocated(error)) return
+         call check(error, abs(res_fast%stiffness - res%stiffness) <= 1.0e-2_dp* &
+            & res%stiffness, "at "//str(at(k))//" delta_y: stiffness "// &
+            & str(res_fast%stiffness)//" vs the default's "//str(res%stiffness))
+         if (allocated(error)) return
+      end do
+   end subroutine test_contact_stiffness
 
    !> load_history with stiffness=.false. (what a hysteresis build's curves load: they read
    !> the history's force only) skips the moved-mesh stiffness: the history's force and

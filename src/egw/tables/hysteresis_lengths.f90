@@ -35,7 +35,10 @@ contains
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(solve_result) :: res
       reached = .false.
-      call solve_contact(params, curve_options(options, rel_tol), delta_max, res, error)
+      ! (its largest pressure only: no moved-mesh stiffness, the serial bisection of
+      ! rough_first_yield is ~24 of these solves)
+      call solve_contact(params, curve_options(options, rel_tol), delta_max, res, error, &
+         & stiffness=.false.)
       ! (the solve's message in its scaled units: which solve of the build, in the user's)
       if (allocated(error)) error%message = "the capped loading solve at delta = "// &
          & format_real(delta_max)//": "//error%message
