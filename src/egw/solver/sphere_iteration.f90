@@ -167,7 +167,7 @@ contains
       type(scaled_problem), intent(in) :: prob   !< the scaled problem (extended, delta > 0)
       type(radial_mesh), intent(in) :: mesh   !< the solution's mesh
       real(dp), intent(in) :: p(:), p_smooth(:)   !< rough and Hertz pressures at its Gauss points
-      real(dp) :: sq1, sq2, in1, in2
+      real(dp) :: q1, q2, s1, s2, r2
       integer :: e, g0, g1
       force = 2.0_dp*pi*sum(mesh%gauss_w*mesh%gauss_r*(p + p_smooth))
       do e = 1, mesh%n_elem
@@ -175,16 +175,17 @@ contains
          g0 = (e - 1)*mesh%n_gauss + 1
          g1 = e*mesh%n_gauss
          if (any(.not. p(g0:g1) + p_smooth(g0:g1) > 0.0_dp)) cycle
-         ! int 2 pi r (2/pi) sqrt(a**2 - r**2) dr over [r1, r2] = (4/3)(in1**3 - in2**3),
-         ! in = sqrt(a**2 - r**2), as (4/3)(in1**2 - in2**2)(in1**2 + in1 in2 + in2**2)/
-         ! (in1 + in2) without cancelling
-         in1 = (prob%a - mesh%edge(e - 1))*(prob%a + mesh%edge(e - 1))
-         in2 = max(0.0_dp, (prob%a - mesh%edge(e))*(prob%a + mesh%edge(e)))
-         sq1 = sqrt(in1)
-         sq2 = sqrt(in2)
+         ! int 2 pi r (2/pi) sqrt(a**2 - r**2) dr over [r1, r2] = (4/3)(q1**1.5 - q2**1.5),
+         ! q = a**2 - r**2, written (4/3)(q1 - q2)(q1 + s1 s2 + q2)/(s1 + s2), s = sqrt(q),
+         ! q1 - q2 = (r2 - r1)(r2 + r1): no cancellation
+         r2 = min(mesh%edge(e), prob%a)
+         q1 = (prob%a - mesh%edge(e - 1))*(prob%a + mesh%edge(e - 1))
+         q2 = (prob%a - r2)*(prob%a + r2)
+         s1 = sqrt(q1)
+         s2 = sqrt(q2)
          force = force - 2.0_dp*pi*sum(mesh%gauss_w(g0:g1)*mesh%gauss_r(g0:g1)*p_smooth(g0:g1)) &
-            & + (4.0_dp/3.0_dp)*(min(mesh%edge(e), prob%a) - mesh%edge(e - 1)) &
-            & *(min(mesh%edge(e), prob%a) + mesh%edge(e - 1))*(in1 + sq1*sq2 + in2)/(sq1 + sq2)
+            & + (4.0_dp/3.0_dp)*(r2 - mesh%edge(e - 1))*(r2 + mesh%edge(e - 1)) &
+            & *(q1 + s1*s2 + q2)/(s1 + s2)
       end do
    end function total_force
 
