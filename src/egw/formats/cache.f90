@@ -157,7 +157,10 @@ module egw_cache
    !> 55 (stop 60, grid26): rough + cap builds leave the s midpoints that an estimate
    !> clears unsolved (hysteresis_curves' gap_skip, neighbour_skip): later solves of a
    !> curve start from other solves, the tables' bits change (<= 1e-9 of P(m)).
-   integer, parameter, public :: cache_revision = 55
+   !> 56 (stop 61, acc27): unloading solves after a capped loading (E-GW, EP-GW + cap) sum
+   !> p_s in closed form on the elements above the floor (egw_sphere_iteration's
+   !> total_force): their forces and accepted levels change, so do the tables' bits.
+   integer, parameter, public :: cache_revision = 56
 
 
 contains
