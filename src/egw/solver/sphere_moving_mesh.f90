@@ -39,9 +39,10 @@ module egw_sphere_moving_mesh
    real(dp), parameter :: step = 1.0e-7_dp
    !> Where the capped zone holds the Hertz edge, the derivative's mesh splits each
    !> element of the layer past the outermost kink into layer_parts (steep_split); a
-   !> layer element is one whose inner edge's pressure exceeds layer_pressure p_y.
+   !> layer element is one whose inner edge's pressure exceeds layer_pressure p_y and
+   !> across which the pressure falls more than 1/layer_drop-fold.
    integer, parameter :: layer_parts = 4
-   real(dp), parameter :: layer_pressure = 1.0e-20_dp
+   real(dp), parameter :: layer_pressure = 1.0e-20_dp, layer_drop = 0.1_dp
    !> cap_kink_radii skips kinks whose neighbourhood carries less than this fraction of
    !> the force (as the first level does with 1e-4 rel_tol: far below any tolerance).
    real(dp), parameter :: negligible_weight = 1.0e-12_dp
@@ -322,7 +323,12 @@ contains
    !> within one or two of the accepted mesh's elements (E-GW + cap, sigma/delta_y 1e-4 at
    !> 10 delta_y: one element 0.5 wide from 52 to 1e-27), and that layer slides through
    !> the element's Gauss points at the small rate by which it and the mesh's motion
-   !> differ. The forces of those meshes are within rel_tol, their derivatives on the
+   !> differ. Only elements across which the pressure falls more than ten-fold are split:
+   !> at 3.4 delta_y, 1e-2, the pressure past c falls gradually over 23 graded elements
+   !> (1 .. 0.013 p_y, each less than 4.5-fold) before the last four drop it to 1e-16
+   !> p_y; splitting the gradual ones moved none of the 21 points below by more than
+   !> 1.3e-8 and cost ~2/3 of the derivative's mesh there (doc/benchmarks.md "Stop 62:
+   !> stiff28"). The forces of those meshes are within rel_tol, their derivatives on the
    !> moving mesh were not: sigma/delta_y 1e-4 at 10 delta_y -1.7e-5, at 20 delta_y
    !> 2.3e-6, 1e-5 at 10 delta_y 1.5e-6 (doc/benchmarks.md "Stop 57: stiff23"); with
    !> layer_parts = 4 within 3.3e-7 of fourth-order quotients of rel_tol 1e-8 forces at
@@ -340,7 +346,7 @@ contains
       real(dp), intent(in) :: placed(:)   !< its edges with an edge at each kink
       real(dp), intent(in) :: c   !< the outermost kink
       real(dp), allocatable :: edges(:)
-      real(dp) :: lo, hi, p, dpdh
+      real(dp) :: lo, hi, p, p_out, dpdh
       integer :: i, j, parts
       edges = placed
       if (.not. (prob%extended .and. c > prob%a)) return
@@ -353,7 +359,10 @@ contains
             ! (the pressure falls outwards: its inner edge's is the element's largest)
             call law_at(prob, base_gap(prob, lo) + interpolate_nodal(sol%mesh, sol%w, lo), &
                & p, dpdh)
-            if (p > layer_pressure*prob%cap%p_y) parts = layer_parts
+            call law_at(prob, base_gap(prob, hi) + interpolate_nodal(sol%mesh, sol%w, hi), &
+               & p_out, dpdh)
+            if (p > layer_pressure*prob%cap%p_y .and. p_out < layer_drop*p) &
+               & parts = layer_parts
          end if
          edges = [edges, (lo + (hi - lo)*real(j, dp)/real(parts, dp), j = 1, parts - 1), hi]
       end do
