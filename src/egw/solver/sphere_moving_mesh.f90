@@ -221,7 +221,7 @@ contains
       type(discrete_solution), intent(out) :: near   !< the solution on edges
       logical, intent(out) :: ok   !< whether near converged
       integer, parameter :: max_chord = 30
-      real(dp), allocatable :: res(:), step(:)
+      real(dp), allocatable :: res(:), dw(:)
       real(dp) :: norm, last
       integer :: n, it, stat
       ok = .false.
@@ -229,7 +229,7 @@ contains
       call build_mesh(edges, deflection_degree, pressure_points, near%mesh, sol%mesh)
       n = mesh_nodes(near%mesh)
       if (n /= size(sol%w) .or. size(sol%lu, 1) /= n) return
-      allocate (near%infl(n, size(near%mesh%gauss_r)), res(n), step(n), stat=stat)
+      allocate (near%infl(n, size(near%mesh%gauss_r)), res(n), dw(n), stat=stat)
       if (stat /= 0) return
       call assemble_influence(near%mesh, near%mesh%node, near%infl, options%n_threads, stat)
       if (stat /= 0) return
@@ -242,20 +242,20 @@ contains
       call residual(near, res, norm)
       last = huge(1.0_dp)
       do it = 1, max_chord
-         step = -res
-         call lu_solve(n, sol%lu, sol%pivots, step)
-         near%w = near%w + step
+         dw = -res
+         call lu_solve(n, sol%lu, sol%pivots, dw)
+         near%w = near%w + dw
          call evaluate(prob, near)
          call residual(near, res, norm)
          if (.not. norm < huge(1.0_dp)) return
-         if (maxval(abs(step)) <= 1.0e-14_dp*max(1.0_dp, maxval(abs(near%w))) .and. &
+         if (maxval(abs(dw)) <= 1.0e-14_dp*max(1.0_dp, maxval(abs(near%w))) .and. &
             & norm <= 1.0e-9_dp) then
             ok = .true.
             exit
          end if
          ! (a step that does not shrink: the factors are too far from the moved system)
-         if (.not. maxval(abs(step)) < 0.5_dp*last) return
-         last = maxval(abs(step))
+         if (.not. maxval(abs(dw)) < 0.5_dp*last) return
+         last = maxval(abs(dw))
       end do
       if (.not. ok) return
       near%iterations = it
