@@ -160,7 +160,11 @@ module egw_cache
    !> 56 (stop 61, acc27): unloading solves after a capped loading (E-GW, EP-GW + cap) sum
    !> p_s in closed form on the elements above the floor (egw_sphere_iteration's
    !> total_force): their forces and accepted levels change, so do the tables' bits.
-   integer, parameter, public :: cache_revision = 56
+   !> 57 (stop 62, stiff28): rough + cap loading stiffness (the Hermite slopes of rough +
+   !> cap loading tables) from chord steps on the moved meshes and without stop 57's
+   !> split of the elements inside a (egw_sphere_moving_mesh): the slopes move by <= 4e-8
+   !> of the stiffness, the tables' bits with them (forces unchanged).
+   integer, parameter, public :: cache_revision = 57
 
 
 contains

@@ -19,10 +19,11 @@ module egw_sphere_moving_mesh
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
    use egw_sphere_problem, only: solver_options, method_newton, scaled_problem, &
       & discrete_solution, base_gap, base_gap_rate, law_at, cap_excess, deflection_degree, &
-      & max_mesh_nodes
-   use egw_halfspace, only: interpolate_nodal
+      & max_mesh_nodes, pressure_points, cap_fields
+   use egw_halfspace, only: interpolate_nodal, build_mesh, mesh_nodes, assemble_influence
+   use egw_lapack, only: lu_solve
    use egw_sphere_mesh, only: cap_kink_radii
-   use egw_sphere_iteration, only: solve_mesh, gap_rate
+   use egw_sphere_iteration, only: solve_mesh, gap_rate, evaluate, residual
    implicit none
    private
 
@@ -37,11 +38,11 @@ module egw_sphere_moving_mesh
    !> far inside its edge's Gauss points.
    real(dp), parameter :: step = 1.0e-7_dp
    !> Where the capped zone holds the Hertz edge, the derivative's mesh splits each
-   !> element inside a into inner_parts and each element of the layer past the outermost
-   !> kink into layer_parts (steep_split); a layer element is one whose inner edge's
-   !> pressure exceeds layer_pressure p_y.
-   integer, parameter :: inner_parts = 2, layer_parts = 4
-   real(dp), parameter :: layer_pressure = 1.0e-20_dp
+   !> element of the layer past the outermost kink into layer_parts (steep_split); a
+   !> layer element is one whose inner edge's pressure exceeds layer_pressure p_y and
+   !> across which the pressure falls more than 1/layer_drop-fold.
+   integer, parameter :: layer_parts = 4
+   real(dp), parameter :: layer_pressure = 1.0e-20_dp, layer_drop = 0.1_dp
    !> cap_kink_radii skips kinks whose neighbourhood carries less than this fraction of
    !> the force (as the first level does with 1e-4 rel_tol: far below any tolerance).
    real(dp), parameter :: negligible_weight = 1.0e-12_dp
@@ -54,9 +55,11 @@ contains
    !> d(force)/d(delta) of the rough part of sol (a loading solve with the cap, the
    !> accepted level) on its mesh moved with the Hertz edge and the cap's kinks at their
    !> rate: an edge put at each kink (placed) and the force there; then the force at delta
-   !> (1 + h) on the mesh moved with a guess of the kinks' rate, and with the rate the
-   !> kink had on it; the rate at which the kink stays where its edge is found from
-   !> the two, the force there interpolated, and the quotient taken (follow_kink). rate:
+   !> (1 + h) on the mesh moved with a guess of the kinks' rate (the accepted level's
+   !> fixed-mesh rate), and with the rate the kink had on it, each solved from the
+   !> solution on placed by chord steps (chord_solve); the rate at which the kink stays
+   !> where its edge is found from the two, the force there interpolated, and the
+   !> quotient taken (follow_kink). rate:
    !> the scaled stiffness of the rough part; ok = .false. (rate untouched) where a solve
    !> failed, a kink was lost, the moved edges would not increase, or at delta <= 0: the
    !> caller keeps the implicit one and says so (solve_result's implicit_stiffness).
@@ -93,7 +96,15 @@ contains
       if (allocated(error)) return
       kinks = cap_kink_radii(moved, at, negligible_weight)
       if (size(kinks) /= size(knots)) return
-      call kink_rates(moved, at, kinks, rates, error)
+      ! (one kink: the rate only starts follow_kink's fixed point, which its two solves
+      ! locate whatever the start, so the accepted level's will do: its linear system
+      ! is ~1/16 of an LU on placed, which refinement with Newton's last factors did not
+      ! spare at 3.4 delta_y; more kinks: moved at their rates on placed)
+      if (size(knots) == 1) then
+         call kink_rates(prob, sol, knots, rates, error)
+      else
+         call kink_rates(moved, at, kinks, rates, error)
+      end if
       if (allocated(error)) return
       call follow_kink(moved, options, at, placed, knots, kinks, rates, force, ok)
       if (.not. ok) return
@@ -108,7 +119,7 @@ contains
    !> at D(m) = D_0 + f m (f: 0.65, 0.15, ~0 at 1.5, 10, 20 delta_y, E-GW + cap,
    !> sigma/delta_y 1e-4), so its rate on a mesh that follows it is the fixed point m* of
    !> D. Two solves at delta (1 + h): on the mesh moved at m_A, the fixed-mesh rate
-   !> (kink_rates), and at m_B = D(m_A); D from the kinks found on them, the force at m*
+   !> (kink_rates, of the accepted level), and at m_B = D(m_A); D from the kinks found on them, the force at m*
    !> interpolated linearly in m between theirs (the force and D are smooth in m while the
    !> kink keeps to its edge's side of the Gauss points). m* within 3e-4 of the rate of
    !> the kinks of rel_tol 1e-8 solves at delta (1 +- 1e-3), where m_A, the fixed-mesh
@@ -179,8 +190,12 @@ contains
          end if
          edges = moved_edges(placed, from, to, sqrt(1.0_dp + step))
          if (size(edges) == 0) return
-         call solve_mesh(ahead, options, method_newton, edges, near, error, guess=sol)
-         if (allocated(error)) return
+         call chord_solve(ahead, options, sol, edges, near, done)
+         if (.not. done) then
+            call solve_mesh(ahead, options, method_newton, edges, near, error, guess=sol)
+            if (allocated(error)) return
+         end if
+         done = .false.
          again = cap_kink_radii(ahead, near, negligible_weight)
          if (size(again) /= size(kinks)) return
          f = near%force
@@ -188,6 +203,65 @@ contains
          done = .true.
       end subroutine force_ahead
    end subroutine follow_kink
+
+   !> The solution of prob on edges, sol's mesh moved by ~h (the same elements and nodes),
+   !> from sol's deflection by chord steps with sol's last Newton factors: the moved
+   !> system differs from sol's by ~h, so each step contracts by ~|J_sol**-1 (J - J_sol)|
+   !> and costs an evaluation and a triangular solve, where Newton from sol interpolated
+   !> factored the moved mesh's Jacobian (n**3, the split mesh's ~930 nodes at 3.4
+   !> delta_y: most of the stiffness's cost). Converged as Newton (egw_sphere_iteration)
+   !> with residual_tol 0: a step at rounding level and a residual below 1e-9; ok =
+   !> .false. where sol has no factors, the steps stop contracting or max_chord is spent
+   !> (the caller then solves with Newton).
+   subroutine chord_solve(prob, options, sol, edges, near, ok)
+      type(scaled_problem), intent(in) :: prob   !< the scaled loading problem with the cap
+      type(solver_options), intent(in) :: options   !< the solver's options (threads)
+      type(discrete_solution), intent(in) :: sol   !< converged on edges' unmoved mesh
+      real(dp), intent(in) :: edges(0:)   !< sol's edges moved
+      type(discrete_solution), intent(out) :: near   !< the solution on edges
+      logical, intent(out) :: ok   !< whether near converged
+      integer, parameter :: max_chord = 30
+      real(dp), allocatable :: res(:), dw(:)
+      real(dp) :: norm, last
+      integer :: n, it, stat
+      ok = .false.
+      if (.not. (allocated(sol%lu) .and. allocated(sol%pivots))) return
+      call build_mesh(edges, deflection_degree, pressure_points, near%mesh, sol%mesh)
+      n = mesh_nodes(near%mesh)
+      if (n /= size(sol%w) .or. size(sol%lu, 1) /= n) return
+      allocate (near%infl(n, size(near%mesh%gauss_r)), res(n), dw(n), stat=stat)
+      if (stat /= 0) return
+      call assemble_influence(near%mesh, near%mesh%node, near%infl, options%n_threads, stat)
+      if (stat /= 0) return
+      near%base = base_gap(prob, near%mesh%gauss_r)
+      near%dbase = base_gap_rate(prob, near%mesh%gauss_r)
+      call cap_fields(prob, near%mesh%gauss_r, 0.0_dp*near%mesh%gauss_r, near%p_smooth, &
+         & near%dps, near%shift, near%offset)
+      near%w = sol%w
+      call evaluate(prob, near)
+      call residual(near, res, norm)
+      last = huge(1.0_dp)
+      do it = 1, max_chord
+         dw = -res
+         call lu_solve(n, sol%lu, sol%pivots, dw)
+         near%w = near%w + dw
+         call evaluate(prob, near)
+         call residual(near, res, norm)
+         if (.not. norm < huge(1.0_dp)) return
+         if (maxval(abs(dw)) <= 1.0e-14_dp*max(1.0_dp, maxval(abs(near%w))) .and. &
+            & norm <= 1.0e-9_dp) then
+            ok = .true.
+            exit
+         end if
+         ! (a step that does not shrink: the factors are too far from the moved system)
+         if (.not. maxval(abs(dw)) < 0.5_dp*last) return
+         last = maxval(abs(dw))
+      end do
+      if (.not. ok) return
+      near%iterations = it
+      near%residual = norm
+      near%force = 2.0_dp*pi*sum(near%mesh%gauss_w*near%mesh%gauss_r*near%p)
+   end subroutine chord_solve
 
    !> dc/d(delta) of each cap kink c of a loading solution on its fixed mesh: the kink is
    !> where the cap excess e(r, delta) = p_s + law(gap) - p_y of the solution's field
@@ -249,21 +323,30 @@ contains
    !> within one or two of the accepted mesh's elements (E-GW + cap, sigma/delta_y 1e-4 at
    !> 10 delta_y: one element 0.5 wide from 52 to 1e-27), and that layer slides through
    !> the element's Gauss points at the small rate by which it and the mesh's motion
-   !> differ; inside a, the elements carry the capped rough part p_y - p_s and set the
-   !> field the layer sits in. The forces of those meshes are within rel_tol, their
-   !> derivatives on the moving mesh were not: sigma/delta_y 1e-4 at 10 delta_y -1.7e-5,
-   !> at 20 delta_y 2.3e-6, 1e-5 at 10 delta_y 1.5e-6; with inner_parts = 2 and
-   !> layer_parts = 4 within 3.1e-7 at the eight of 1e-2, 1e-4, 1e-5 x 1.5, 10, 20
-   !> delta_y with a reference (doc/benchmarks.md "Stop 57: stiff23"). Unchanged where c lies inside a
-   !> (no layer: the contact ends in the rough part's own decay) or where the split mesh
-   !> would exceed max_mesh_nodes.
+   !> differ. Only elements across which the pressure falls more than ten-fold are split:
+   !> at 3.4 delta_y, 1e-2, the pressure past c falls gradually over 23 graded elements
+   !> (1 .. 0.013 p_y, each less than 4.5-fold) before the last four drop it to 1e-16
+   !> p_y; splitting the gradual ones moved none of the 21 points below by more than
+   !> 1.3e-8 and cost ~2/3 of the derivative's mesh there (doc/benchmarks.md "Stop 62:
+   !> stiff28"). The forces of those meshes are within rel_tol, their derivatives on the
+   !> moving mesh were not: sigma/delta_y 1e-4 at 10 delta_y -1.7e-5, at 20 delta_y
+   !> 2.3e-6, 1e-5 at 10 delta_y 1.5e-6 (doc/benchmarks.md "Stop 57: stiff23"); with
+   !> layer_parts = 4 within 3.3e-7 of fourth-order quotients of rel_tol 1e-8 forces at
+   !> 21 points (1e-2 x 1.5 .. 40, 1e-3 x 1.5 .. 20, 1e-4, 1e-5 x 1.5, 10, 20 delta_y).
+   !> The elements inside a, split in two at stop 57 (there 1e-2 at 20 delta_y was
+   !> -7.7e-6 without), are no longer split: on today's accepted meshes (stop 58's at
+   !> the Hertz edge) the split moved none of those 21 by more than 4.3e-8, and it cost
+   !> half the derivative at 3.4 delta_y, 1e-2 (61 of the 91 elements lie inside a;
+   !> doc/benchmarks.md "Stop 62: stiff28"). Unchanged where c lies inside a (no layer:
+   !> the contact ends in the rough part's own decay) or where the split mesh would
+   !> exceed max_mesh_nodes.
    function steep_split(prob, sol, placed, c) result(edges)
       type(scaled_problem), intent(in) :: prob   !< the scaled loading problem with the cap
       type(discrete_solution), intent(in) :: sol   !< the accepted level's solution
       real(dp), intent(in) :: placed(:)   !< its edges with an edge at each kink
       real(dp), intent(in) :: c   !< the outermost kink
       real(dp), allocatable :: edges(:)
-      real(dp) :: lo, hi, p, dpdh
+      real(dp) :: lo, hi, p, p_out, dpdh
       integer :: i, j, parts
       edges = placed
       if (.not. (prob%extended .and. c > prob%a)) return
@@ -272,12 +355,14 @@ contains
          lo = placed(i)
          hi = placed(i + 1)
          parts = 1
-         if (hi <= prob%a*(1.0_dp + 1.0e-12_dp)) parts = inner_parts
          if (lo >= c*(1.0_dp - 1.0e-12_dp)) then
             ! (the pressure falls outwards: its inner edge's is the element's largest)
             call law_at(prob, base_gap(prob, lo) + interpolate_nodal(sol%mesh, sol%w, lo), &
                & p, dpdh)
-            if (p > layer_pressure*prob%cap%p_y) parts = layer_parts
+            call law_at(prob, base_gap(prob, hi) + interpolate_nodal(sol%mesh, sol%w, hi), &
+               & p_out, dpdh)
+            if (p > layer_pressure*prob%cap%p_y .and. p_out < layer_drop*p) &
+               & parts = layer_parts
          end if
          edges = [edges, (lo + (hi - lo)*real(j, dp)/real(parts, dp), j = 1, parts - 1), hi]
       end do
