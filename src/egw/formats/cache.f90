@@ -160,7 +160,10 @@ module egw_cache
    !> 56 (stop 61, acc27): unloading solves after a capped loading (E-GW, EP-GW + cap) sum
    !> p_s in closed form on the elements above the floor (egw_sphere_iteration's
    !> total_force): their forces and accepted levels change, so do the tables' bits.
-   integer, parameter, public :: cache_revision = 56
+   !> 57 (stop 62, yield28): a rough + cap table's first yield m_y (its first turning
+   !> point) by egw_rough_yield's secant to the same tolerance as the bisection before:
+   !> m_y moves within 6e-8 of the bracket, so do the tables' bits.
+   integer, parameter, public :: cache_revision = 57
 
 
 contains

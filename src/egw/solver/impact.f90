@@ -23,6 +23,7 @@ module egw_impact
       & overlap_ratio_max
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
       & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options
+   use egw_rough_yield, only: cap_acts, rough_first_yield
    use egw_cap_sphere, only: cap_options, cap_restitution, cap_history, cap_result, cap_load, &
       & cap_unload, cap_units
    implicit none
@@ -673,7 +674,7 @@ contains
    !> delta = 0 on loading and on the unloading of a history the cap did not reach (its
    !> smooth part is Hertz's at the current delta); with the cap, on loading, the rough
    !> first yield m_y where the largest pressure reaches p_y (the capped region grows from
-   !> nothing there; rough_yield). Kept where they lie inside (1 %, 99 %) of [0, u_max]. The
+   !> nothing there; rough_first_yield). Kept where they lie inside (1 %, 99 %) of [0, u_max]. The
    !> unloading of a capped history has its branch point where the floor stops cancelling
    !> the smooth part (x_k > 0, not known beforehand): no break, the panels bisect to it.
    subroutine rough_breaks(hist, unloading, delta_m, u_max, cuts, n_cuts, error)
@@ -688,10 +689,12 @@ contains
       n_cuts = 0
       cuts = 0.0_dp
       if (hist%params%model == model_hertz .or. .not. hist%params%sigma > 0.0_dp) return
-      capped = hist%params%flow_pressure > 0.0_dp .and. hist%loading%max_pressure >= &
-         & (1.0_dp - 1.0e-9_dp)*hist%params%flow_pressure
+      capped = cap_acts(hist%loading%max_pressure, hist%params%flow_pressure)
       if (capped .and. .not. unloading) then
-         call rough_yield(hist, delta_m, u_max, m_y, error)
+         ! (to 1e-10 of u_max**2: a break that far off a (delta - m_y)**(3/2) term leaves
+         ! ~1e-15 of the duration)
+         call rough_first_yield(hist%params, hist%options, delta_m - u_max**2, delta_m, &
+            & 1.0e-10_dp*u_max**2, m_y, error)
          if (allocated(error)) return
          call add(sqrt(max(delta_m - m_y, 0.0_dp)))
       end if
@@ -709,59 +712,6 @@ contains
          end if
       end subroutine add
    end subroutine rough_breaks
-
-   !> The rough first yield m_y on the loading curve of a rough sphere with the cap
-   !> (reached at delta_m): the overlap in [delta_m - u_max**2, delta_m] where the loading
-   !> solves' largest pressure reaches p_y (as egw_hysteresis_lengths' cap_reached, 1e-9
-   !> below counts). Below m_y that pressure rises smoothly and concavely (~sqrt(delta)
-   !> far from contact), so the secant through the two highest points below m_y
-   !> approaches it from below in a few solves; bisection where the secant leaves the
-   !> bracket. To 1e-10 of u_max**2 (a break that far off a (delta - m_y)**(3/2) term
-   !> leaves ~1e-15 of the duration).
-   subroutine rough_yield(hist, delta_m, u_max, m_y, error)
-      type(loading_history), intent(in) :: hist
-      real(dp), intent(in) :: delta_m, u_max
-      real(dp), intent(out) :: m_y
-      type(egw_error), allocatable, intent(out) :: error
-      type(solve_result) :: res
-      real(dp) :: lo, hi, x, tol, x_a, g_a, x_b, g_b, level
-      integer :: it, n_below
-      level = (1.0_dp - 1.0e-9_dp)*hist%params%flow_pressure
-      lo = delta_m - u_max**2
-      hi = delta_m
-      m_y = lo
-      tol = 1.0e-10_dp*u_max**2
-      call curve_point(hist, .false., lo, res, error)
-      if (allocated(error)) return
-      if (res%max_pressure >= level) return
-      x_a = lo
-      g_a = res%max_pressure - level
-      x_b = lo
-      g_b = g_a
-      n_below = 1
-      do it = 1, 40
-         x = 0.5_dp*(lo + hi)
-         if (n_below >= 2 .and. g_b > g_a) then
-            x = x_b - g_b*(x_b - x_a)/(g_b - g_a)
-            if (.not. (x > lo .and. x < hi)) x = 0.5_dp*(lo + hi)
-            if (abs(x - x_b) <= tol) exit
-         end if
-         if (hi - lo <= tol) exit
-         call curve_point(hist, .false., x, res, error)
-         if (allocated(error)) return
-         if (res%max_pressure >= level) then
-            hi = x
-         else
-            lo = x
-            x_a = x_b
-            g_a = g_b
-            x_b = x
-            g_b = res%max_pressure - level
-            n_below = n_below + 1
-         end if
-      end do
-      m_y = max(lo, min(x, hi))
-   end subroutine rough_yield
 
    !> One panel [a, b] of half_time: the force at its 17 Chebyshev-Lobatto nodes (p(0) =
    !> p_a given), W at the nodes from w_a, and the panel's time t and W(b) w by the 17-,
