@@ -72,6 +72,8 @@ contains
          & //"quadrature", test_brute_duration), &
          & new_unittest("contact duration: EP-GW + cap against a brute-force quadrature", &
          & test_rough_cap_duration), &
+         & new_unittest("contact duration: E-GW, EP-GW turning a sigma into contact", &
+         & test_near_contact_duration), &
          & new_unittest("contact duration: Hertz + cap against cap_reference's forces", &
          & test_cap_duration_independent), &
          & new_unittest("C DEM loop: e = egw_restitution to 1e-3", test_c_dem_loop), &
@@ -874,6 +876,42 @@ contains
       if (allocated(error)) return
       print '(4x, a, es10.2)', "EP-GW + cap duration: relative error ", duration/reference - 1
    end subroutine test_rough_cap_duration
+
+   !> E-GW and EP-GW (psi 2) without the cap, 1 mm glass beads as test_brute_duration, at
+   !> 1 m/s: the deepest overlap 1.27 and 1.43 sigma, so that both halves of the duration
+   !> cross delta = 0, where the Hertz part's delta**(3/2) sets in (rough_breaks' break at
+   !> u = sqrt(delta_m), its panel graded; test_brute_duration's cases turn at -2.8 sigma
+   !> and never reach it). Reference: tools/reference/duration_reference.py
+   !> --near-contact, DOP853 on egw's own forces at rtol 1e-10 (rtol 1e-9: +1.1e-9 and
+   !> +1.4e-8 of these, the reference's own error). Tolerances 3e-9 and 5e-8: the
+   !> quadrature's target 1e-9 plus that error with room. Measured +4.6e-11 and -1.6e-9
+   !> (f2e5898 the same); without the break at delta = 0 (the panels bisect towards it)
+   !> -6.8e-9 and -1.6e-9 (E-GW fails); f4799c7's 16-point Gauss rule -1.17e-4 and
+   !> -1.17e-4 (fails).
+   subroutine test_near_contact_duration(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: mass = 6.5e-6_dp
+      real(dp), parameter :: reference(2) = [8.316922106330718e-06_dp, &
+         & 7.714743569822620e-06_dp], tol(2) = [3.0e-9_dp, 5.0e-8_dp]
+      type(contact_params) :: p(2)
+      type(egw_error), allocatable :: err
+      real(dp) :: duration, step
+      integer :: i
+      p = contact_params(model=model_egw, radius=5.0e-4_dp, modulus=4.0e10_dp, &
+         & sigma=1.0e-6_dp, mu=4.0_dp)
+      p(2)%model = model_epgw
+      p(2)%psi = 2.0_dp
+      do i = 1, 2
+         call time_step(p(i), solver_options(), mass, 1.0_dp, 1.0e-3_dp, duration, step, err)
+         call check(error, .not. allocated(err), "time_step refused")
+         if (allocated(error)) return
+         call check(error, abs(duration/reference(i) - 1) <= tol(i), "case "// &
+            & str(real(i, dp))//": duration "//str(duration)//" reference "//str(reference(i)))
+         if (allocated(error)) return
+         print '(4x, a, i0, a, es10.2)', "near-contact duration case ", i, &
+            & ": relative error ", duration/reference(i) - 1
+      end do
+   end subroutine test_near_contact_duration
 
    !> Hertz + cap at 1 m/s (3.61 v_y; test_brute_duration's case 1) against the duration
    !> from an independent cap solver's forces: tools/reference/cap_duration_reference.py

@@ -912,10 +912,13 @@ contains
    !> own message first) adds sigma/delta_y, delta_max in sigma and delta_y and the
    !> routes: a smaller delta_max, the Hertz + cap table, single solves. On main 6922da8
    !> the message was the solve's alone; on 01559e5 it did not say which of the build's
-   !> solves failed (now first: "the capped loading solve at delta = ...", a solve of the
-   !> first yield's bisection, cap_reached). Since stop 56 (kink22: loading kink edges
+   !> solves failed (now first: which solve). Since stop 56 (kink22: loading kink edges
    !> inserted unless within 1 % of an element edge) the solve at 6.2497e4 sigma
-   !> converges and the first failing one is at 7.4998e4 sigma; the build still fails.
+   !> converged and the first failing one was the first yield's bisection's at 7.4998e4
+   !> sigma ("the capped loading solve at delta = ..."); since stop 62 (yield28: the
+   !> first yield by a secant, which does not solve there) the first yield is found and
+   !> the first failing solve is an unloading curve's ("the unloading curve from
+   !> delta_max = 6.2531e4 ..."); the build still fails.
    subroutine test_tiny_sigma_routes(error)
       type(error_type), allocatable, intent(out) :: error
       type(contact_params) :: params
@@ -931,7 +934,7 @@ contains
          & "delta_max = 1.000E+05 sigma = 2.000E+00 delta_y") > 0 .and. &
          & index(err%message, "sigma = 0") > 0 .and. index(err%message, "solve_unload") &
          & > 0 .and. index(err%message, &
-         & "the capped loading solve at delta = 7.4998324074074") == 1, err%message)
+         & "the unloading curve from delta_max = 6.25309559404") == 1, err%message)
    end subroutine test_tiny_sigma_routes
 
    !> E-GW + cap at sigma/delta_y = 1e-5 (R = 4.0528e8 sigma, E* = 1, mu 4, p_y = 0.01),

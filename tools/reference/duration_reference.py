@@ -35,6 +35,12 @@ v(x)**2 = (2/m*) int_x^{delta_m} P (the speed vanishes at the turning point delt
 
     PYTHONPATH=<mpmath, scipy> .venv/bin/python tools/reference/duration_reference.py
     PYTHONPATH=<mpmath, scipy> .venv/bin/python tools/reference/duration_reference.py --rough-cap
+
+4. E-GW and EP-GW (psi 2) without the cap at 1 m/s (--near-contact; stop 62): the
+   deepest overlap 1.27 and 1.43 sigma, so that both halves cross delta = 0, where the
+   Hertz part's (delta)**(3/2) sets in (rough_breaks' break). As 2., rtol 1e-9 and 1e-10.
+
+    PYTHONPATH=<mpmath, scipy> .venv/bin/python tools/reference/duration_reference.py --near-contact
 """
 import math
 import sys
@@ -118,9 +124,28 @@ def rough_cap():
           f"egw_time_step {got / total - 1:+.2e}", flush=True)
 
 
+def near_contact():
+    """E-GW and EP-GW (psi 2) without the cap at 1 m/s, delta_m = 1.27 and 1.43 sigma: both
+    halves pass delta = 0, where the Hertz part sets in (test_cap_hysteresis "contact
+    duration: E-GW, EP-GW turning a sigma into contact"; stop 62)."""
+    import egw
+    for name, model, psi in (("E-GW", "E-GW", 0.0), ("EP-GW", "EP-GW", PSI)):
+        params = egw.Params(model=model, radius=RADIUS, modulus=MODULUS, sigma=SIGMA, mu=MU,
+                            psi=psi)
+        dm, coarse = brute_duration(params, MASS, 1.0, 1e-9)
+        _, fine = brute_duration(params, MASS, 1.0, 1e-10)
+        got = egw.time_step(params, mass=MASS, velocity=1.0, tolerance=1e-3).duration
+        print(f"{name:12s} v = 1: delta_m = {dm / SIGMA:.4f} sigma, duration {fine:.15e} "
+              f"(rtol 1e-9 {coarse / fine - 1:+.1e}); egw_time_step {got / fine - 1:+.2e}",
+              flush=True)
+
+
 def main():
     if "--rough-cap" in sys.argv:
         rough_cap()
+        return
+    if "--near-contact" in sys.argv:
+        near_contact()
         return
     c_beta, c_direct = hertz_constant()
     print(f"Hertz: duration v0/delta_m = {mp.nstr(c_beta, 22)} (incomplete Beta), "

@@ -164,6 +164,9 @@ module egw_cache
    !> cap loading tables) from chord steps on the moved meshes and without stop 57's
    !> split of the elements inside a (egw_sphere_moving_mesh): the slopes move by <= 4e-8
    !> of the stiffness, the tables' bits with them (forces unchanged).
+   !>     And (yield28) a rough + cap table's first yield m_y (its first turning
+   !> point) by egw_rough_yield's secant to the same tolerance as the bisection before:
+   !> m_y moves within 6e-8 of the bracket, so do the tables' bits.
    integer, parameter, public :: cache_revision = 57
 
 

@@ -22,7 +22,12 @@ module egw_impact
    use egw_params, only: contact_params, model_hertz, model_egw, model_epgw, validate_params, &
       & overlap_ratio_max
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, validate_options, &
-      & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options
+      & loading_history, load_history, solve_unload, above_first_yield, cap_solve_options, &
+      & unloading_problem, loaded_by_route
+   use egw_rough_yield, only: cap_acts, rough_first_yield
+   use egw_sphere_solver, only: scaled_problem, discrete_solution, solve_scaled, negligible
+   use egw_sphere_problem, only: cap_excess, base_gap
+   use egw_halfspace, only: influence_row
    use egw_cap_sphere, only: cap_options, cap_restitution, cap_history, cap_result, cap_load, &
       & cap_unload, cap_units
    implicit none
@@ -556,9 +561,9 @@ contains
    !> share) is within duration_tol of t (lower bound u_max sqrt(2 m*/P_m)) per unit of
    !> panel length (at least u_max/16), or its rules differ by no more than the solves'
    !> noise; else bisected. The panels grade themselves towards a branch point beyond u_max
-   !> (Hertz's at delta = 0, 2.4 % of u_max past it: 4 panels) and a kink (a capped rough
-   !> history's unloading); those a rough sphere's law places inside are panel ends, the
-   !> panels before them graded (rough_breaks).
+   !> (Hertz's at delta = 0, 2.4 % of u_max past it: 4 panels) and a kink; those a rough
+   !> sphere's law places inside are panel ends, the panels before them graded
+   !> (rough_breaks).
    subroutine half_time(hist, unloading, mass, delta_m, p_m, k_m, time, error)
       type(loading_history), intent(in) :: hist
       logical, intent(in) :: unloading
@@ -613,6 +618,13 @@ contains
             ends(n_ends) = cuts(k)
             graded(n_ends) = .true.
          end do
+         ! an unloading curve's [0, c_1] in two panels, as [0, u_max] without breaks (the
+         ! capped unloading's centre lift-off near u_max: as one it was bisected anyway;
+         ! the bench pair at 3 v_y 7 panels solved, 8 as one)
+         if (unloading) then
+            n_ends = n_ends + 1
+            ends(n_ends) = 0.5_dp*cuts(1)
+         end if
       end if
       depth(1:n_ends) = 1
       do while (n_ends > 0)
@@ -673,9 +685,9 @@ contains
    !> delta = 0 on loading and on the unloading of a history the cap did not reach (its
    !> smooth part is Hertz's at the current delta); with the cap, on loading, the rough
    !> first yield m_y where the largest pressure reaches p_y (the capped region grows from
-   !> nothing there; rough_yield). Kept where they lie inside (1 %, 99 %) of [0, u_max]. The
-   !> unloading of a capped history has its branch point where the floor stops cancelling
-   !> the smooth part (x_k > 0, not known beforehand): no break, the panels bisect to it.
+   !> nothing there; rough_first_yield), on unloading where the centre lifts off
+   !> (centre_lift_off: the contact's inner disc shrinks to nothing there). Kept where
+   !> they lie inside (1 %, 99 %) of [0, u_max].
    subroutine rough_breaks(hist, unloading, delta_m, u_max, cuts, n_cuts, error)
       type(loading_history), intent(in) :: hist
       logical, intent(in) :: unloading
@@ -683,17 +695,22 @@ contains
       real(dp), intent(out) :: cuts(2)
       integer, intent(out) :: n_cuts
       type(egw_error), allocatable, intent(out) :: error
-      real(dp) :: m_y
+      real(dp) :: m_y, x_c
       logical :: capped
       n_cuts = 0
       cuts = 0.0_dp
       if (hist%params%model == model_hertz .or. .not. hist%params%sigma > 0.0_dp) return
-      capped = hist%params%flow_pressure > 0.0_dp .and. hist%loading%max_pressure >= &
-         & (1.0_dp - 1.0e-9_dp)*hist%params%flow_pressure
+      capped = cap_acts(hist%loading%max_pressure, hist%params%flow_pressure)
       if (capped .and. .not. unloading) then
-         call rough_yield(hist, delta_m, u_max, m_y, error)
+         ! (to 1e-10 of u_max**2: a break that far off a (delta - m_y)**(3/2) term leaves
+         ! ~1e-15 of the duration)
+         call rough_first_yield(hist%params, hist%options, delta_m - u_max**2, delta_m, &
+            & 1.0e-10_dp*u_max**2, m_y, error)
          if (allocated(error)) return
          call add(sqrt(max(delta_m - m_y, 0.0_dp)))
+      else if (capped) then
+         call centre_lift_off(hist, delta_m, u_max, x_c)
+         call add(sqrt(max(delta_m - x_c, 0.0_dp)))
       end if
       if ((hist%params%model == model_egw .or. hist%params%model == model_epgw) .and. &
          & .not. (capped .and. unloading)) call add(sqrt(max(delta_m, 0.0_dp)))
@@ -710,58 +727,89 @@ contains
       end subroutine add
    end subroutine rough_breaks
 
-   !> The rough first yield m_y on the loading curve of a rough sphere with the cap
-   !> (reached at delta_m): the overlap in [delta_m - u_max**2, delta_m] where the loading
-   !> solves' largest pressure reaches p_y (as egw_hysteresis_lengths' cap_reached, 1e-9
-   !> below counts). Below m_y that pressure rises smoothly and concavely (~sqrt(delta)
-   !> far from contact), so the secant through the two highest points below m_y
-   !> approaches it from below in a few solves; bisection where the secant leaves the
-   !> bracket. To 1e-10 of u_max**2 (a break that far off a (delta - m_y)**(3/2) term
-   !> leaves ~1e-15 of the duration).
-   subroutine rough_yield(hist, delta_m, u_max, m_y, error)
-      type(loading_history), intent(in) :: hist
+   !> Where the centre lifts off on the unloading curve of a rough history with the cap
+   !> (doc/theory.md section 12, "Plastic displacement and unloading"): the overlap x_c
+   !> in [delta_m - u_max**2, delta_m) where the total pressure at r = 0 before the floor
+   !> falls to 0. At delta_m it is p_y where the cap reached the centre; it falls as the
+   !> Hertz part unloads beneath the rough part's offset, and below x_c the floor holds
+   !> the centre at 0: the contact's inner disc has shrunk to nothing (a ring remains),
+   !> and the stiffness loses a c sqrt(delta - x_c) term (EP-GW + cap, the bench pair at
+   !> 3 v_y: p(0) 3.8e6 Pa at 3.5e-8 m, 0 at 3.0e-8 m; x_c = 3.384e-8 m). Regula falsi
+   !> (Illinois) on that pressure from discrete unloading solves (solve_scaled on the
+   !> history's options; no stiffness), until a step is within 1e-6 of u_max**2 (there
+   !> 7 solves and one at delta_m - u_max**2; an x_c off by a little leaves the branch
+   !> point just inside a panel, which then bisects). x_c = delta_m (no break) where the
+   !> centre is still pressed at delta_m - u_max**2 or a solve fails (the panels then
+   !> bisect towards the kink as before).
+   subroutine centre_lift_off(hist, delta_m, u_max, x_c)
+      type(loading_history), intent(in) :: hist   !< a rough history the cap reached
       real(dp), intent(in) :: delta_m, u_max
-      real(dp), intent(out) :: m_y
-      type(egw_error), allocatable, intent(out) :: error
-      type(solve_result) :: res
-      real(dp) :: lo, hi, x, tol, x_a, g_a, x_b, g_b, level
-      integer :: it, n_below
-      level = (1.0_dp - 1.0e-9_dp)*hist%params%flow_pressure
+      real(dp), intent(out) :: x_c   !< the overlap where the centre lifts off
+      type(egw_error), allocatable :: error
+      type(scaled_problem) :: prob
+      real(dp) :: lo, hi, g_lo, g_hi, x, g, tol, x_prev
+      integer :: it, last
+      x_c = delta_m
+      if (hist%reversible .or. hist%capped .or. hist%cap_free .or. loaded_by_route(hist)) &
+         & return
       lo = delta_m - u_max**2
+      call centre_pressure(lo, g_lo, error)
+      if (allocated(error) .or. .not. g_lo < 0.0_dp) return
+      ! (at delta_m the total before the floor is p_y where the cap reached)
       hi = delta_m
-      m_y = lo
-      tol = 1.0e-10_dp*u_max**2
-      call curve_point(hist, .false., lo, res, error)
-      if (allocated(error)) return
-      if (res%max_pressure >= level) return
-      x_a = lo
-      g_a = res%max_pressure - level
-      x_b = lo
-      g_b = g_a
-      n_below = 1
-      do it = 1, 40
-         x = 0.5_dp*(lo + hi)
-         if (n_below >= 2 .and. g_b > g_a) then
-            x = x_b - g_b*(x_b - x_a)/(g_b - g_a)
-            if (.not. (x > lo .and. x < hi)) x = 0.5_dp*(lo + hi)
-            if (abs(x - x_b) <= tol) exit
+      prob = unloading_problem(hist, delta_m)
+      if (.not. allocated(prob%cap)) return
+      g_hi = prob%cap%p_y
+      tol = 1.0e-6_dp*u_max**2
+      last = 0
+      x = lo
+      do it = 1, 12
+         x_prev = x
+         x = (lo*g_hi - hi*g_lo)/(g_hi - g_lo)
+         if (.not. (x > lo .and. x < hi)) x = 0.5_dp*(lo + hi)
+         if (abs(x - x_prev) <= tol) exit
+         call centre_pressure(x, g, error)
+         if (allocated(error)) then
+            x_c = delta_m
+            return
+         end if
+         if (g < 0.0_dp) then
+            lo = x
+            g_lo = g
+            ! (Illinois: the end kept twice is halved)
+            if (last < 0) g_hi = 0.5_dp*g_hi
+            last = -1
+         else
+            hi = x
+            g_hi = g
+            if (last > 0) g_lo = 0.5_dp*g_lo
+            last = 1
          end if
          if (hi - lo <= tol) exit
-         call curve_point(hist, .false., x, res, error)
-         if (allocated(error)) return
-         if (res%max_pressure >= level) then
-            hi = x
-         else
-            lo = x
-            x_a = x_b
-            g_a = g_b
-            x_b = x
-            g_b = res%max_pressure - level
-            n_below = n_below + 1
-         end if
       end do
-      m_y = max(lo, min(x, hi))
-   end subroutine rough_yield
+      x_c = max(lo, min(x, hi))
+   contains
+      !> The total pressure at r = 0 before the floor (scaled) of the unloading solve at
+      !> delta (-1 where the contact is negligible).
+      subroutine centre_pressure(delta, p0, error)
+         real(dp), intent(in) :: delta
+         real(dp), intent(out) :: p0
+         type(egw_error), allocatable, intent(out) :: error
+         type(scaled_problem) :: prob
+         type(discrete_solution) :: sol
+         real(dp), allocatable :: row(:)
+         real(dp) :: est
+         integer :: method_used
+         p0 = -1.0_dp
+         prob = unloading_problem(hist, delta)
+         if (negligible(prob) .or. .not. allocated(prob%cap)) return
+         call solve_scaled(prob, hist%options, sol, est, method_used, error)
+         if (allocated(error)) return
+         allocate (row(size(sol%p)))
+         call influence_row(sol%mesh, 0.0_dp, row)
+         p0 = cap_excess(prob, 0.0_dp, base_gap(prob, 0.0_dp) + dot_product(row, sol%p), 1)
+      end subroutine centre_pressure
+   end subroutine centre_lift_off
 
    !> One panel [a, b] of half_time: the force at its 17 Chebyshev-Lobatto nodes (p(0) =
    !> p_a given), W at the nodes from w_a, and the panel's time t and W(b) w by the 17-,

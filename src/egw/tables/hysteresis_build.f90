@@ -12,8 +12,9 @@ submodule (egw_hysteresis) egw_hysteresis_build
    use egw_sphere_problem, only: deep_unloading
    use egw_law_pieces, only: law_pieces, zmc_law_pieces
    use egw_table, only: build_table, table_prepare
-   use egw_hysteresis_lengths, only: cap_reached, plastic_summits, rough_first_yield, &
-      & unloading_floor
+   use egw_hysteresis_lengths, only: cap_reached, plastic_summits, unloading_floor, &
+      & curve_options
+   use egw_rough_yield, only: rough_first_yield
    use egw_hysteresis_curves, only: unloading_curve, unloading_lengths, build_curves
    use egw_hysteresis_grid, only: fine_lengths, refine_m, resample
    implicit none
@@ -213,7 +214,11 @@ contains
          ! (where its largest total pressure reaches p_y), and the curves have a kink in
          ! m there (g = 0 below): the turning points start at m_y, as the smooth cap's at
          ! delta_y (hysteresis_prepare: elastic_limit = m(1))
-         call rough_first_yield(params, options, rel_tol, table%loading%cutoff, delta_max, &
+         ! (to 6e-8 of the bracket: turning points below m_y unload on the loading curve; a
+         ! misplaced m_y leaves out only the hysteresis of those just above it, which
+         ! starts from 0 at m_y; doc/theory.md section 12)
+         call rough_first_yield(params, curve_options(options, rel_tol), &
+            & table%loading%cutoff, delta_max, 6.0e-8_dp*(delta_max - table%loading%cutoff), &
             & m(1), error)
          if (allocated(error)) return
          m = m(1) + (delta_max - m(1))*[(real(j, dp), j = 0, n - 1)]/real(n - 1, dp)

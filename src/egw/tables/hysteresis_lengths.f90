@@ -1,8 +1,8 @@
 !> What a hysteresis build knows of a turning point m before its curve: the unloading
 !> length L(m) of its curve (unloading_length, cap_length, rough_length), where the
-!> flow-pressure cap starts to act on a rough sphere's loading (cap_reached,
-!> rough_first_yield), the loading table's floor, and the options and first failure of
-!> the build's parallel solves over curves. doc/theory.md §8, §12.
+!> flow-pressure cap acts on a rough sphere's loading (cap_reached; where it starts:
+!> egw_rough_yield), the loading table's floor, and the options and first failure of the
+!> build's parallel solves over curves. doc/theory.md §8, §12.
 module egw_hysteresis_lengths
    use egw_kinds, only: dp
    use egw_status, only: egw_error, format_real
@@ -10,6 +10,7 @@ module egw_hysteresis_lengths
    use egw_rough_sphere, only: solver_options, solve_result, cap_solve_options, &
       & solve_contact
    use egw_cap_sphere, only: cap_residual, cap_units
+   use egw_rough_yield, only: cap_acts
    use egw_table, only: force_table, table_eval
    use egw_tolerance_probe, only: hysteresis_solve_tol
    use egw_hysteresis_data, only: hysteresis_table
@@ -17,7 +18,7 @@ module egw_hysteresis_lengths
    implicit none
    private
 
-   public :: cap_reached, plastic_summits, rough_first_yield, rough_length, cap_length, &
+   public :: cap_reached, plastic_summits, rough_length, cap_length, &
       & log_table, unloading_floor, curve_options, unloading_length
 
 
@@ -26,7 +27,7 @@ contains
 
    !> Whether the flow-pressure cap acts on the loading of a rough sphere up to delta_max:
    !> the largest total pressure of the loading solve there (at the curves' tolerance)
-   !> reaches p_y (the cap holds it at p_y; rounding aside, 1e-9 below counts).
+   !> reaches p_y (cap_acts).
    subroutine cap_reached(params, options, rel_tol, delta_max, reached, error)
       type(contact_params), intent(in) :: params   !< the contact
       type(solver_options), intent(in) :: options   !< the build's solver options
@@ -35,15 +36,14 @@ contains
       type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
       type(solve_result) :: res
       reached = .false.
-      ! (its largest pressure only: no moved-mesh stiffness, the serial bisection of
-      ! rough_first_yield is ~24 of these solves)
+      ! (its largest pressure only: no moved-mesh stiffness)
       call solve_contact(params, curve_options(options, rel_tol), delta_max, res, error, &
          & stiffness=.false.)
       ! (the solve's message in its scaled units: which solve of the build, in the user's)
       if (allocated(error)) error%message = "the capped loading solve at delta = "// &
          & format_real(delta_max)//": "//error%message
       if (allocated(error)) return
-      reached = res%max_pressure >= (1.0_dp - 1.0e-9_dp)*params%flow_pressure
+      reached = cap_acts(res%max_pressure, params%flow_pressure)
    end subroutine cap_reached
 
    !> EP-GW with yielding summits (psi > 0): dissipative without the cap.
@@ -51,35 +51,6 @@ contains
       type(contact_params), intent(in) :: params   !< the contact
       plastic_summits = params%model == model_epgw .and. params%psi > 0.0_dp
    end function plastic_summits
-
-   !> The first yield m_y of a rough sphere with the cap (elastic summits): the overlap in
-   !> (lo, hi) where the loading solve's largest total pressure reaches p_y (cap_reached at
-   !> hi), by bisection to 6e-8 of hi - lo: turning points below it unload on the loading
-   !> curve (a misplaced m_y leaves out only the hysteresis of turning points that close
-   !> above it, which starts from 0 at m_y; doc/theory.md section 12).
-   subroutine rough_first_yield(params, options, rel_tol, lo, hi, m_y, error)
-      type(contact_params), intent(in) :: params   !< the contact
-      type(solver_options), intent(in) :: options   !< the build's solver options
-      real(dp), intent(in) :: rel_tol, lo, hi   !< the table's tolerance, bracket
-      real(dp), intent(out) :: m_y   !< the first yield [length]
-      type(egw_error), allocatable, intent(out) :: error   !< allocated on failure
-      real(dp) :: a, b, mid
-      logical :: reached
-      integer :: it
-      a = lo
-      b = hi
-      do it = 1, 24
-         mid = 0.5_dp*(a + b)
-         call cap_reached(params, options, rel_tol, mid, reached, error)
-         if (allocated(error)) return
-         if (reached) then
-            b = mid
-         else
-            a = mid
-         end if
-      end do
-      m_y = a
-   end subroutine rough_first_yield
 
    !> L(m) of a rough model with the cap: unloading_length of the cap-free loading solve at
    !> m, less (shift: where the cap acts below the table's delta_max) the smooth cap
