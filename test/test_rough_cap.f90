@@ -194,20 +194,7 @@ contains
    !> history's own error is shared by both solves and not tested here.
    subroutine test_unload_tight_tol(error)
       type(error_type), allocatable, intent(out) :: error
-      real(dp), parameter :: ref = 3431.4860803496281_dp
-      type(contact_params) :: p
-      type(solve_result) :: res
-      type(egw_error), allocatable :: err
-      p = contact_params(model=model_egw, radius=810569.469138702_dp, modulus=1.0_dp, &
-         & sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
-      call solve_contact_unload(p, solver_options(rel_tol=1.0e-8_dp, n_threads=1), &
-         & 2.1221_dp, 212.7_dp, res, err)
-      if (allocated(err)) then
-         call check(error, .false., "solve_contact_unload: "//err%message)
-         return
-      end if
-      call check(error, abs(res%force - ref) <= 1.0e-8_dp*ref, "P = "//str(res%force) &
-         & //", reference "//str(ref))
+      call check_tight_unload(error, 2.1221_dp, 212.7_dp, 3431.4860803496281_dp)
    end subroutine test_unload_tight_tol
 
    !> README's E-GW + cap pair as test_unload_tight_tol, 2.1221 sigma after 209 sigma at
@@ -223,21 +210,28 @@ contains
    !> reference's error (measured 4.9e-10, estimate 2.3e-10; before 1.32e-8).
    subroutine test_unload_first_refinement(error)
       type(error_type), allocatable, intent(out) :: error
-      real(dp), parameter :: ref = 4246.8545221924160_dp
+      call check_tight_unload(error, 2.1221_dp, 209.0_dp, 4246.8545221924160_dp)
+   end subroutine test_unload_first_refinement
+
+   !> README's E-GW + cap pair in sigma units (as test_unload_tight_tol): the unloading
+   !> solve at delta after delta_max at rel_tol 1e-8 within rel_tol of ref.
+   subroutine check_tight_unload(error, delta, delta_max, ref)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), intent(in) :: delta, delta_max, ref
       type(contact_params) :: p
       type(solve_result) :: res
       type(egw_error), allocatable :: err
       p = contact_params(model=model_egw, radius=810569.469138702_dp, modulus=1.0_dp, &
          & sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
       call solve_contact_unload(p, solver_options(rel_tol=1.0e-8_dp, n_threads=1), &
-         & 2.1221_dp, 209.0_dp, res, err)
+         & delta, delta_max, res, err)
       if (allocated(err)) then
          call check(error, .false., "solve_contact_unload: "//err%message)
          return
       end if
       call check(error, abs(res%force - ref) <= 1.0e-8_dp*ref, "P = "//str(res%force) &
          & //", reference "//str(ref))
-   end subroutine test_unload_first_refinement
+   end subroutine check_tight_unload
 
    !> Polished steel beads (R = 0.5 mm, E* = 210 GPa/(2 (1 - 0.29**2)), sigma = 14.1 nm,
    !> mu 4, p_y = 1.6 GPa: sigma = 0.0587 delta_y), E-GW + cap unloading from 1.2971
