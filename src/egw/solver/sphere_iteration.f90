@@ -30,7 +30,7 @@ module egw_sphere_iteration
 
    integer, parameter :: newton_max_default = 100, picard_max_default = 3000
 
-   public :: solve_mesh, differentiate, gap_rate, initial_deflection, evaluate, residual, jacobian, &
+   public :: solve_mesh, prepare_mesh, differentiate, gap_rate, initial_deflection, evaluate, residual, jacobian, &
       & newton, picard
 
 contains
@@ -48,67 +48,13 @@ contains
       type(discrete_solution), intent(in), optional :: guess  !< solution on another mesh
       !> influence matrices of the caller's earlier meshes: shared coefficients reused
       type(influence_cache), intent(inout), optional :: cache
-      integer :: n, ng, max_iter, stat
+      integer :: n, ng, max_iter
       real(dp) :: kappa, rn
-      logical, allocatable :: known(:)
-      logical :: reuse
 
-      if ((size(edges) - 1)*deflection_degree + 1 > max_mesh_nodes) then
-         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
-            & //" (in units of sigma): the mesh would need " &
-            & //int_str((size(edges) - 1)*deflection_degree + 1)//" nodes, more than " &
-            & //int_str(max_mesh_nodes))
-         return
-      end if
-      if (present(cache)) then
-         ! (the rules of the caller's first mesh, the same numbers: ~1 % of a build)
-         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh, cache%rules)
-         if (.not. allocated(cache%rules%log_lw)) cache%rules = sol%mesh
-      else
-         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
-      end if
+      call prepare_mesh(prob, options, edges, sol, error, cache)
+      if (allocated(error)) return
       n = mesh_nodes(sol%mesh)
       ng = size(sol%mesh%gauss_r)
-      ! unloading with the cap: the law at gap_min where an earlier level of the solve has
-      ! the same Gauss points (cap_fields; the history, prob%closest, is the key)
-      reuse = present(cache) .and. allocated(prob%closest) .and. allocated(prob%cap)
-      if (reuse) then
-         allocate (sol%law_min(ng), known(ng))
-         call cached_point_values(cache, sol%mesh, prob%closest%delta, sol%law_min, known)
-      end if
-      allocate (sol%infl(n, ng), stat=stat)
-      if (stat == 0) then
-         if (present(cache)) then
-            call assemble_influence_cached(sol%mesh, sol%infl, options%n_threads, cache, &
-               & stat)
-         else
-            call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads, &
-               & stat)
-         end if
-      end if
-      if (stat /= 0) then
-         call fatal_error(error, egw_out_of_memory, "the influence matrix of " &
-            & //int_str(n)//" nodes could not be allocated")
-         return
-      end if
-      sol%base = base_gap(prob, sol%mesh%gauss_r)
-      sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
-      if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
-      if (allocated(prob%cap)) then
-         if (allocated(sol%gap_min)) then
-            if (reuse) then
-               call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
-                  & sol%shift, sol%offset, sol%law_min, known)
-               call keep_point_values(cache, sol%mesh, prob%closest%delta, sol%law_min)
-            else
-               call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
-                  & sol%shift, sol%offset, sol%law_min)
-            end if
-         else
-            call cap_fields(prob, sol%mesh%gauss_r, 0.0_dp*sol%mesh%gauss_r, sol%p_smooth, &
-               & sol%dps, sol%shift, sol%offset)
-         end if
-      end if
       if (present(guess)) then
          ! Interpolated; beyond the guess's mesh its outermost value (w_G varies slowly there).
          allocate (sol%w(n))
@@ -154,6 +100,85 @@ contains
          if (sol%p(ng) == 0.0_dp) sol%tail = 0.0_dp
       end if
    end subroutine solve_mesh
+
+   !> The set-up of one mesh's solve, everything before the first iterate: the mesh on
+   !> edges, its influence matrix, the base gap and its delta-rate at the Gauss points, and
+   !> with the cap its fields (from the history's closest approach when unloading). Shared
+   !> by solve_mesh and the moved-mesh chord solves (egw_sphere_moving_mesh).
+   subroutine prepare_mesh(prob, options, edges, sol, error, cache, rules)
+      type(scaled_problem), intent(in) :: prob   !< the scaled problem
+      type(solver_options), intent(in) :: options   !< the solver's options (threads)
+      real(dp), intent(in) :: edges(0:)   !< element boundaries, edges(0) = 0, increasing
+      type(discrete_solution), intent(out) :: sol   !< the mesh and its fields, no w yet
+      !> egw_not_converged (too many nodes) or egw_out_of_memory
+      type(egw_error), allocatable, intent(out) :: error
+      !> influence matrices of the caller's earlier meshes: shared coefficients reused
+      type(influence_cache), intent(inout), optional :: cache
+      !> a mesh whose Gauss rules are taken (without cache; the same numbers, less work)
+      type(radial_mesh), intent(in), optional :: rules
+      integer :: n, ng, stat
+      logical, allocatable :: known(:)
+      logical :: reuse
+
+      if ((size(edges) - 1)*deflection_degree + 1 > max_mesh_nodes) then
+         call fatal_error(error, egw_not_converged, "delta = "//format_real(prob%delta) &
+            & //" (in units of sigma): the mesh would need " &
+            & //int_str((size(edges) - 1)*deflection_degree + 1)//" nodes, more than " &
+            & //int_str(max_mesh_nodes))
+         return
+      end if
+      if (present(cache)) then
+         ! (the rules of the caller's first mesh, the same numbers: ~1 % of a build)
+         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh, cache%rules)
+         if (.not. allocated(cache%rules%log_lw)) cache%rules = sol%mesh
+      else if (present(rules)) then
+         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh, rules)
+      else
+         call build_mesh(edges, deflection_degree, pressure_points, sol%mesh)
+      end if
+      n = mesh_nodes(sol%mesh)
+      ng = size(sol%mesh%gauss_r)
+      ! unloading with the cap: the law at gap_min where an earlier level of the solve has
+      ! the same Gauss points (cap_fields; the history, prob%closest, is the key)
+      reuse = present(cache) .and. allocated(prob%closest) .and. allocated(prob%cap)
+      if (reuse) then
+         allocate (sol%law_min(ng), known(ng))
+         call cached_point_values(cache, sol%mesh, prob%closest%delta, sol%law_min, known)
+      end if
+      allocate (sol%infl(n, ng), stat=stat)
+      if (stat == 0) then
+         if (present(cache)) then
+            call assemble_influence_cached(sol%mesh, sol%infl, options%n_threads, cache, &
+               & stat)
+         else
+            call assemble_influence(sol%mesh, sol%mesh%node, sol%infl, options%n_threads, &
+               & stat)
+         end if
+      end if
+      if (stat /= 0) then
+         call fatal_error(error, egw_out_of_memory, "the influence matrix of " &
+            & //int_str(n)//" nodes could not be allocated")
+         return
+      end if
+      sol%base = base_gap(prob, sol%mesh%gauss_r)
+      sol%dbase = base_gap_rate(prob, sol%mesh%gauss_r)
+      if (allocated(prob%closest)) sol%gap_min = closest_gap(prob%closest, sol%mesh%gauss_r)
+      if (allocated(prob%cap)) then
+         if (allocated(sol%gap_min)) then
+            if (reuse) then
+               call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
+                  & sol%shift, sol%offset, sol%law_min, known)
+               call keep_point_values(cache, sol%mesh, prob%closest%delta, sol%law_min)
+            else
+               call cap_fields(prob, sol%mesh%gauss_r, sol%gap_min, sol%p_smooth, sol%dps, &
+                  & sol%shift, sol%offset, sol%law_min)
+            end if
+         else
+            call cap_fields(prob, sol%mesh%gauss_r, 0.0_dp*sol%mesh%gauss_r, sol%p_smooth, &
+               & sol%dps, sol%shift, sol%offset)
+         end if
+      end if
+   end subroutine prepare_mesh
 
    !> Unloading after a capped loading (sums_total): the force, the Gauss sum of the total
    !> pressure p + p_s, with p_s's share of every element above the floor at all its Gauss

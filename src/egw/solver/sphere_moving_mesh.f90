@@ -19,11 +19,11 @@ module egw_sphere_moving_mesh
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real
    use egw_sphere_problem, only: solver_options, method_newton, scaled_problem, &
       & discrete_solution, base_gap, base_gap_rate, law_at, cap_excess, deflection_degree, &
-      & max_mesh_nodes, pressure_points, cap_fields
-   use egw_halfspace, only: interpolate_nodal, build_mesh, mesh_nodes, assemble_influence
+      & max_mesh_nodes
+   use egw_halfspace, only: interpolate_nodal, mesh_nodes
    use egw_lapack, only: lu_solve
    use egw_sphere_mesh, only: cap_kink_radii
-   use egw_sphere_iteration, only: solve_mesh, gap_rate, evaluate, residual
+   use egw_sphere_iteration, only: solve_mesh, prepare_mesh, gap_rate, evaluate, residual
    implicit none
    private
 
@@ -224,19 +224,15 @@ contains
       real(dp), allocatable :: res(:), dw(:)
       real(dp) :: norm, last
       integer :: n, it, stat
+      type(egw_error), allocatable :: error
       ok = .false.
       if (.not. (allocated(sol%lu) .and. allocated(sol%pivots))) return
-      call build_mesh(edges, deflection_degree, pressure_points, near%mesh, sol%mesh)
+      call prepare_mesh(prob, options, edges, near, error, rules=sol%mesh)
+      if (allocated(error)) return
       n = mesh_nodes(near%mesh)
       if (n /= size(sol%w) .or. size(sol%lu, 1) /= n) return
-      allocate (near%infl(n, size(near%mesh%gauss_r)), res(n), dw(n), stat=stat)
+      allocate (res(n), dw(n), stat=stat)
       if (stat /= 0) return
-      call assemble_influence(near%mesh, near%mesh%node, near%infl, options%n_threads, stat)
-      if (stat /= 0) return
-      near%base = base_gap(prob, near%mesh%gauss_r)
-      near%dbase = base_gap_rate(prob, near%mesh%gauss_r)
-      call cap_fields(prob, near%mesh%gauss_r, 0.0_dp*near%mesh%gauss_r, near%p_smooth, &
-         & near%dps, near%shift, near%offset)
       near%w = sol%w
       call evaluate(prob, near)
       call residual(near, res, norm)
