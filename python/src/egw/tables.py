@@ -635,7 +635,9 @@ class HysteresisTable(_Handle):
         Warns
         -----
         OutOfRangeWarning
-            Overlaps above the table's last node (extrapolated).
+            Overlaps or states above the table's last node (extrapolated; with the
+            flow-pressure cap without a bound, 1.6e-2 of the force at 1.25 delta_max: build
+            to the deepest overlap, include/egw.h egw_hysteresis_eval).
 
         Raises
         ------
