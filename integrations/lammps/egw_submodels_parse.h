@@ -39,6 +39,14 @@ int egw_flow_parse(Error *error, const char *who, int narg, char **arg, int i, E
  * contact's p_y > 0 is not below its E*; what: the contact, for the message */
 void egw_flow_check(Error *error, const char *who, const std::string &what,
                     double flow_pressure, int flow_keyword, double E_star);
+/* an ERROR naming the keyword when the cap's first-yield scales of the contact (a_y, delta_y
+ * and P_y at its equivalent radii R_lo, R_hi; 0: not known) leave egw's range, as
+ * egw_params_validate refuses them (a p_y far below E*: delta_y underflowed, and the
+ * contacts' overlaps in delta_y were NaN); radii not known: the scale (pi p_y/(2 E*))^2 of
+ * delta_y/R must be a normal double */
+void egw_flow_scale_check(Error *error, const char *who, const std::string &what,
+                          double flow_pressure, int flow_keyword, double E_star, double R_lo,
+                          double R_hi);
 }    // namespace LAMMPS_NS
 
 #endif

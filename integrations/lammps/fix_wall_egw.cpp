@@ -444,6 +444,7 @@ void FixWallEGW::build_law(int t)
                  L.flow_pressure, L.flow_keyword, L.E_star);
   L.setup(model);
   double rhi = pair->type_radius_max(t), rlo = pair->type_radius_min(t);
+  bool radii_known = rhi > 0;
   if (L.kind == EgwLaw::HYST_RCAP && !(rhi > 0))
     error->all(FLERR, "Fix wall/egw: type {}: flow_pressure with a rough surface (sigma = "
                       "{:.6g}) needs the type's radii (no atoms and no fix pour give them): "
@@ -461,6 +462,9 @@ void FixWallEGW::build_law(int t)
   }
   if (wallstyle == REGION && t < (int) need_rhi.size() && need_rhi[t] > 0)
     rlo = std::min(rlo, need_rlo[t]), rhi = std::max(rhi, need_rhi[t]);
+  egw_flow_scale_check(error, "Fix wall/egw", fmt::format("type {} against the wall", t),
+                       L.flow_pressure, L.flow_keyword, L.E_star, radii_known ? rlo : 0.0,
+                       radii_known ? rhi : 0.0);
   // rough + cap with sigma far below the first-yield overlap: its Hertz + cap limit
   std::string note = L.smooth_cap_limit(rlo, rhi);
   if (!note.empty() && comm->me == 0 &&

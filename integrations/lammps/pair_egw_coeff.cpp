@@ -13,6 +13,7 @@
 #include "utils.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 
@@ -262,6 +263,34 @@ void LAMMPS_NS::egw_flow_check(Error *error, const char *who, const std::string 
                     "cap is a small-strain model)", who, flow_pressure, what, E_star);
 }
 
+/* the cap's scales of the contact within egw's range: egw_params_validate at its radii */
+void LAMMPS_NS::egw_flow_scale_check(Error *error, const char *who, const std::string &what,
+                                     double flow_pressure, int flow_keyword, double E_star,
+                                     double R_lo, double R_hi)
+{
+  if (!(flow_pressure > 0)) return;
+  std::string key = flow_keyword ? fmt::format("yield_stress = {} (p_y = 1.6 Y = {})",
+                                               flow_pressure / 1.6, flow_pressure)
+                                 : fmt::format("flow_pressure = {}", flow_pressure);
+  double r = M_PI * flow_pressure / (2.0 * E_star);
+  if (!(r * r >= DBL_MIN))
+    error->all(FLERR, "{}: {} for {}: with the contact's E* = {} the first-yield overlap "
+                      "delta_y = (pi p_y/(2 E*))^2 R is not a double for any radius (p_y/E* "
+                      "= {:.3g}: the cap never acts; flow_pressure 0 for no bulk yield)",
+               who, key, what, E_star, flow_pressure / E_star);
+  for (double R : {R_lo, R_hi}) {
+    if (!(R > 0)) continue;
+    egw_params q;
+    egw_params_default(&q);
+    q.model = EGW_MODEL_HERTZ, q.radius = R, q.modulus = E_star, q.flow_pressure = flow_pressure;
+    if (egw_params_validate(&q) == EGW_OK) continue;
+    char msg[512];
+    egw_last_error(msg, sizeof msg);
+    error->all(FLERR, "{}: {} for {} at the equivalent radius R = {}: egw refuses it: {}", who,
+               key, what, R, msg);
+  }
+}
+
 /* keywords the model ignores: a WARNING naming them (as Python's egw warns) */
 void LAMMPS_NS::egw_warn_ignored(Error *error, const char *who, int model, const EgwCoeff &c,
                                  bool have_sigma, bool have_plastic)
@@ -499,6 +528,8 @@ void PairEGW::make_law(int i, int j, double R_lo, double R_hi)
   if (!L.law_file.empty()) check_law_model(L.law_file.c_str());
   egw_flow_check(error, "Pair egw", fmt::format("types {} {}", i, j), L.flow_pressure,
                  L.flow_keyword, L.E_star);
+  egw_flow_scale_check(error, "Pair egw", fmt::format("types {} {}", i, j), L.flow_pressure,
+                       L.flow_keyword, L.E_star, R_lo, R_hi);
   L.setup(model);
   // rough + cap with sigma far below the first-yield overlap: its Hertz + cap limit
   std::string note = L.smooth_cap_limit(R_lo, R_hi);

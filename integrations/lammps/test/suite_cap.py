@@ -316,9 +316,14 @@ def test_rough_cap_tiny_sigma():
 
 def test_bad_flow_pressure():
     """Bad flow_pressure / yield_stress input for particles and walls: negative, not finite,
-    no value, both keywords, p_y >= E* (like types, mixed types and the wall contact) and a
-    rough-flat law: a LAMMPS ERROR naming the keyword, a non-zero exit, never a crash.
-    (Rough models with the cap are served: test_rough_cap_*, with their refusals.)"""
+    no value, both keywords, p_y >= E* (like types, mixed types and the wall contact), p_y so
+    far below E* that the cap's first-yield scales leave egw's range (egw_params_validate's
+    [1e-278, 1e278] for a_y, delta_y, P_y; 1e-150: delta_y/R underflows, 1e-140: delta_y
+    = 9e-305 at R = 0.5 mm) and a rough-flat law: a LAMMPS ERROR naming the keyword, a
+    non-zero exit, never a crash. (Rough models with the cap are served: test_rough_cap_*,
+    with their refusals.) Stop 63 (audit29): the tiny p_y were accepted; a pair in contact
+    then stopped at "evaluation failed at overlap -nan", a bead on the wall left it with a
+    NaN velocity and no word."""
     base = f"E {E} nu {NU}"
     big = 1.01 * E_STAR
     pair_cases = [
@@ -331,6 +336,9 @@ def test_bad_flow_pressure():
         ("egw Hertz 1e-3", f"{base} yield_stress 1e8 flow_pressure 1e8", "flow_pressure"),
         ("egw Hertz 1e-3", f"{base} flow_pressure {big!r}", "flow_pressure"),
         ("egw Hertz 1e-3", f"{base} yield_stress {big / 1.6!r}", "yield_stress"),
+        ("egw Hertz 1e-3", f"{base} flow_pressure 1e-150", "flow_pressure"),
+        ("egw Hertz 1e-3", f"{base} flow_pressure 1e-140", "flow_pressure"),
+        ("egw Hertz 1e-3", f"{base} yield_stress 1e-150", "yield_stress"),
         ("egw E-GW 1e-3", f"{base} law {os.path.join(TMP, 'cap_law.csv')} flow_pressure 1e8",
          "flow_pressure"),
     ]
@@ -366,6 +374,10 @@ def test_bad_flow_pressure():
         (f"{base}", f"wall/egw Hertz 1e-3 {base} flow_pressure 1e8 yield_stress 1e8 "
                     "zplane 0 NULL", "yield_stress"),
         (f"{base}", f"wall/egw Hertz 1e-3 {base} flow_pressure {big!r} zplane 0 NULL",
+         "flow_pressure"),
+        (f"{base}", f"wall/egw Hertz 1e-3 {base} flow_pressure 1e-150 zplane 0 NULL",
+         "flow_pressure"),
+        (f"{base}", f"wall/egw Hertz 1e-3 {base} flow_pressure 1e-140 zplane 0 NULL",
          "flow_pressure"),
     ]
     for coeff, wall, key in wall_cases:
