@@ -572,7 +572,9 @@ void egw_table_free(egw_table *t);
  * overclosure = -separation) from zero pressure where p_G < rel_tol * p_G(0) up to
  * overclosure_max > 0 [length], linear-interpolation error <= rel_tol of the local
  * pressure if 200 pairs allow it (else the best 200: see egw_write_flat_calculix_shifted).
- * Needs p->sigma > 0. Statuses as egw_table_write, EGW_INVALID_PARAMETER. */
+ * Needs p->sigma > 0 and p->flow_pressure = 0 (a reversible curve cannot hold the cap's
+ * plastic flow; the FE model's material carries a bulk's yield: EGW_INVALID_PARAMETER naming
+ * flow_pressure, since stop 63). Statuses as egw_table_write, EGW_INVALID_PARAMETER. */
 int egw_write_flat_calculix(const egw_params *p, double overclosure_max, double rel_tol,
                             const char *path);
 

@@ -286,6 +286,16 @@ int egw_capi_test_table_files(void) {
       CHECK(calculix_pairs("build/capi_flat_s.inp", &x0) > 0 && x0 == 0.0);
       CHECK(err > 0.0 && err <= 1e-3);
     }
+    /* a reversible curve cannot hold the cap: refused, naming flow_pressure (before
+     * stop 63 (audit29) the uncapped p_G was written, up to ~30 p_y here) */
+    q.flow_pressure = 1e-3;
+    CHECK(egw_write_flat_calculix(&q, 3e-3, 1e-3, "build/capi_flat_cap.inp")
+          == EGW_INVALID_PARAMETER);
+    CHECK(last_error_names("flow_pressure"));
+    CHECK(egw_write_flat_calculix_shifted(&q, 3e-3, 1e-3, 1, "build/capi_flat_cap.inp", NULL)
+          == EGW_INVALID_PARAMETER);
+    CHECK(last_error_names("flow_pressure"));
+    q.flow_pressure = 0.0;
     q.sigma = 0.0;
     CHECK(egw_write_flat_calculix(&q, 3e-3, 1e-5, "build/capi_flat.inp")
           == EGW_INVALID_PARAMETER);

@@ -160,7 +160,9 @@ module egw_table_format
       !> write_calculix_sphere for why CalculiX needs this). max_error: the achieved error.
       module subroutine write_calculix_flat(params, overclosure_max, rel_tol, path, error, &
          & shift, max_error)
-         type(contact_params), intent(in) :: params   !< the rough flat's parameters (sigma > 0)
+         !> the rough flat's parameters (sigma > 0; flow_pressure 0: a reversible curve
+         !> cannot hold the cap, egw_invalid_parameter naming it)
+         type(contact_params), intent(in) :: params
          real(dp), intent(in) :: overclosure_max   !< largest overclosure tabulated [length]
          real(dp), intent(in) :: rel_tol   !< tolerance of the piecewise-linear curve
          character(len=*), intent(in) :: path   !< file to write (replaced atomically)

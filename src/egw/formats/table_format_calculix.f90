@@ -76,6 +76,17 @@ contains
             & ": a rough flat needs sigma > 0")
          return
       end if
+      ! A pressure-overclosure curve is reversible: it cannot carry the cap's plastic flow,
+      ! and p_G beyond p_y written without a word misled (audit29); the FE model's material
+      ! carries a bulk's yield.
+      if (params%flow_pressure > 0.0_dp) then
+         call fatal_error(error, egw_invalid_parameter, "flow_pressure = " &
+            & //format_real(params%flow_pressure)//": a CalculiX pressure-overclosure " &
+            & //"curve is the rough flat's reversible law p_G(d) and cannot hold the " &
+            & //"flow-pressure cap (bulk yield belongs to the FE model's material); " &
+            & //"flow_pressure = 0 for the curve")
+         return
+      end if
       if (.not. (rel_tol >= 1.0e-12_dp .and. rel_tol <= 0.1_dp)) then
          call fatal_error(error, egw_invalid_argument, "rel_tol = "//format_real(rel_tol)// &
             & ": must lie in [1e-12, 0.1]")
