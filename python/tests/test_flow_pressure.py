@@ -173,3 +173,17 @@ def test_rough_hysteresis_table_with_the_cap(tmp_path):
         back = egw.HysteresisTable.read(path)
         g, _ = back.eval(d, np.full(d.size, m))
         np.testing.assert_array_equal(f, g)
+
+
+@pytest.mark.parametrize("field, values, where", [
+    ("flow_pressure", [0.0, PY, -1.0], "flow_pressure[2] = -1.0"),
+    ("flow_pressure", [[PY, PY], [PY, float("nan")]], "flow_pressure[1, 1] = nan"),
+    ("radius", [1.0, 0.0, 2.0], "radius[1] = 0.0"),
+    ("hardness_coeff", [0.6, 1.5], "hardness_coeff[1] = 1.5"),
+])
+def test_bad_array_element_named_with_its_index(field, values, where):
+    # an array field's refused element is named with its index: before stop 63 (audit29)
+    # 'flow_pressure = -1.0' left the user to search an array of 1000 contacts for it
+    with pytest.raises(egw.InvalidArgumentError) as info:
+        egw.Params(model="Hertz", **{field: np.array(values)})
+    assert str(info.value).startswith(where), str(info.value)

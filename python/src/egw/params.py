@@ -84,6 +84,15 @@ def _number_array(name: str, value) -> np.ndarray:
     return np.asarray(raw, dtype=np.float64)
 
 
+def _first_bad(name: str, a: np.ndarray, bad: np.ndarray) -> str:
+    """'name = value' of a scalar field, 'name[i, ...] = value' of the first bad element of
+    an array field (among 1000 values the message says which one; audit29)."""
+    if a.ndim == 0:
+        return f"{name} = {float(a)!r}"
+    index = tuple(int(i) for i in np.argwhere(bad)[0])
+    return f"{name}[{', '.join(map(str, index))}] = {float(a[index])!r}"
+
+
 # (field, lower bound, strict, bound text): the checks egw_params_validate makes first
 _BOUNDS = {"radius": (0.0, True), "modulus": (0.0, True), "sigma": (0.0, False),
            "mu": (0.0, True), "psi": (0.0, False), "plastic_ratio": (1.0, True),
@@ -208,16 +217,15 @@ class Params:
                 a, rough = np.broadcast_arrays(a, np.asarray(self.sigma) > 0)
                 bad = np.broadcast_to(bad, a.shape) & rough
             if np.any(bad):
-                value = float(a[bad].flat[0]) if a.ndim else float(a)
                 rel = ">" if strict else ">="
                 raise InvalidArgumentError(
-                    INVALID_PARAMETER, f"{name} = {value!r}: must be finite and {rel} {low:g}")
+                    INVALID_PARAMETER, f"{_first_bad(name, a, bad)}: must be finite and {rel} "
+                    f"{low:g}")
         k = np.asarray(self.hardness_coeff)
         bad = ~((k > 0) & (k < 1))
         if np.any(bad):
-            value = k[bad].flat[0] if k.ndim else float(k)
             raise InvalidArgumentError(
-                INVALID_PARAMETER, f"hardness_coeff = {value!r}: K must lie in (0, 1)")
+                INVALID_PARAMETER, f"{_first_bad('hardness_coeff', k, bad)}: K must lie in (0, 1)")
 
     @property
     def is_scalar(self) -> bool:
