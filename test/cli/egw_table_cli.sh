@@ -179,6 +179,12 @@ grep -q "^# flow_pressure = 9.600000000" "$work/cap/scene_hysteresis.csv" ||
   fail "cap scene: flow_pressure is not 1.6 yield_stress: $(grep flow "$work/cap/scene_hysteresis.csv")"
 [ -s "$work/cap/scene_hysteresis.bin" ] || fail "cap scene: scene_hysteresis.bin not written"
 grep -q "Hertz + cap" "$work/stdout" || fail "cap scene: summary does not name the cap"
+# the summary gives the written table's tol and measured error, not only the Hertz choice's
+# bound 0, which read as an exact table (audit29)
+grep -q "^  error bound .*hysteresis table(s): tol = 1.0000E-02" "$work/stdout" ||
+  fail "cap scene: the error bound does not give the table's tol: $(grep bound "$work/stdout")"
+grep -q "^  measured error    [0-9].*Hertz + cap hysteresis build" "$work/stdout" ||
+  fail "cap scene: no measured error of the hysteresis table: $(grep -c . "$work/stdout") lines"
 # --choose-only: no files, and the summary must not say the cap needs none
 "$exe" "$work/cap.nml" --choose-only -q >"$work/stdout" 2>"$work/stderr" ||
   fail "cap scene --choose-only: $(cat "$work/stderr")"
