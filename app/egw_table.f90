@@ -306,7 +306,8 @@ contains
             call bar_finish()
          end if
          if (allocated(error)) call fail_write("hysteresis table: "//error%message)
-         hysteresis_error = max(hysteresis_error, h%max_error)
+         ! (a reversible table's error is its loading table's: max_error is 0 there)
+         hysteresis_error = max(hysteresis_error, h%max_error, h%loading%max_force_error)
          base = out_dir//"/scene_hysteresis"
          if (n_sets > 1) base = base//"_"//int_str(i)
          if (want(format_csv)) call put_hysteresis_file(h, base//".csv", format_csv)

@@ -185,6 +185,16 @@ grep -q "^  error bound .*hysteresis table(s): tol = 1.0000E-02" "$work/stdout" 
   fail "cap scene: the error bound does not give the table's tol: $(grep bound "$work/stdout")"
 grep -q "^  measured error    [0-9].*Hertz + cap hysteresis build" "$work/stdout" ||
   fail "cap scene: no measured error of the hysteresis table: $(grep -c . "$work/stdout") lines"
+# below first yield (delta_y ~ 100 sigma) an E-GW + cap table is reversible (max_error 0):
+# the measured error printed is its loading table's, not 0 (lead, stop 63)
+"$exe" --radius 810569.469138702 --effective-modulus 1 --sigma 1 --mu 4 --delta-min 0 \
+  --delta-max 50 --tol 1e-2 -q --flow-pressure 0.01 --model E-GW --out "$work/rev" \
+  >"$work/stdout" 2>"$work/stderr" || fail "reversible cap scene: $(cat "$work/stderr")"
+grep -q "^# reversible = 1" "$work/rev/scene_hysteresis.csv" ||
+  fail "reversible cap scene: the table is not reversible: $(grep reversible "$work/rev/scene_hysteresis.csv")"
+if grep -q "^  measured error    0.0000E+00" "$work/stdout"; then
+  fail "reversible cap scene: the measured error printed is 0"
+fi
 # --choose-only: no files, and the summary must not say the cap needs none
 "$exe" "$work/cap.nml" --choose-only -q >"$work/stdout" 2>"$work/stderr" ||
   fail "cap scene --choose-only: $(cat "$work/stderr")"
