@@ -74,8 +74,8 @@ contains
       ! of 40 random unloading solves agrees with rel_tol 1e-9 solves as well as with
       ! the layers (worst 5e-7, the same case either way).
       ! Nor, after a capped loading, the layers at a_max, at the rim and inside a (the
-      ! first level has them, and relocate_kinks moves its kink edges again): the mesh
-      ! ~40 % smaller (solve_with_tail's locating).
+      ! first level has them, and relocate_kinks moves its kink edges again; solve_with_tail's
+      ! locating): README's E-GW + cap build spent ~70 % less CPU in its locating solves.
       ! After a capped loading deep in the cap the unloading contact ends near the rim of
       ! the history's plastic zone, far outside the Hertz edge (the focus), in a layer as
       ! thin as the loading's there (first_cap_level): there the graded elements are

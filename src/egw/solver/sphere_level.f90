@@ -70,8 +70,8 @@ contains
       ! The layers at a_max, at the rim and inside a resolve the total pressure's edges
       ! for the levels' estimate; a locating solve only places the kink edges and starts
       ! the first level, which has them all and whose kinks relocate_kinks moves again.
-      ! Without them its mesh held ~40 % fewer nodes and README's E-GW + cap build took
-      ! ~0.85 of the CPU (doc/benchmarks.md "Stop 63: unl29").
+      ! Without them README's E-GW + cap build spent ~70 % less CPU in its locating solves
+      ! and took ~0.9 of the CPU (doc/benchmarks.md "Stop 63: unl29").
       layers = .true.
       if (present(locating)) layers = .not. locating
       do attempt = 1, 8
