@@ -167,7 +167,10 @@ module egw_cache
    !>     And (yield28) a rough + cap table's first yield m_y (its first turning
    !> point) by egw_rough_yield's secant to the same tolerance as the bisection before:
    !> m_y moves within 6e-8 of the bracket, so do the tables' bits.
-   integer, parameter, public :: cache_revision = 57
+   !> 58 (stop 63, unl29): an unloading's locating solve after a capped loading without
+   !> the history's layers (egw_sphere_level's locating): other kink edges and starts,
+   !> E-GW and EP-GW + cap tables within 2.5e-5 of P(m) (GW + cap unchanged).
+   integer, parameter, public :: cache_revision = 58
 
 
 contains

@@ -40,7 +40,7 @@ contains
    !> Solve on the mesh of the given step, growing the outer radius (kept for the next
    !> levels) until the force estimated beyond it is below 1 % of the tolerance.
    subroutine solve_with_tail(prob, options, method, layered, focus, width, step, outer, sol, &
-      & error, guess, cache, level_before, step_before, kept)
+      & error, guess, cache, level_before, step_before, kept, locating)
       type(scaled_problem), intent(in) :: prob   !< the scaled problem
       type(solver_options), intent(in) :: options   !< the solver's options
       integer, intent(in) :: method   !< method_newton or method_picard
@@ -57,12 +57,23 @@ contains
       real(dp), intent(in), optional :: level_before(0:), step_before
       !> level_before given and an element of it kept (and halved, but for the node limit)
       logical, intent(out), optional :: kept
+      !> an unloading's locating solve (first_unloading_level): without the history's
+      !> layers (below), its edges kept
+      logical, intent(in), optional :: locating
       real(dp) :: total, keep
+      logical :: layers
       integer :: attempt, i
       real(dp), allocatable :: edges(:)
       type(discrete_solution) :: previous   !< the last attempt's mesh and w
 
       if (present(kept)) kept = .false.
+      ! The layers at a_max, at the rim and inside a resolve the total pressure's edges
+      ! for the levels' estimate; a locating solve only places the kink edges and starts
+      ! the first level, which has them all and whose kinks relocate_kinks moves again.
+      ! Without them README's E-GW + cap build spent ~70 % less CPU in its locating solves
+      ! and took ~0.9 of the CPU (doc/benchmarks.md "Stop 63: unl29").
+      layers = .true.
+      if (present(locating)) layers = .not. locating
       do attempt = 1, 8
          edges = graded_edges(focus, width, outer, step)
          if (layered) edges = focus_refined(edges, focus)
@@ -84,12 +95,12 @@ contains
             ! levels' forces alternated by 1.2e-3 (estimates 6e-7 .. 6e-4).
             if (prob%closest%extended .and. prob%amax_edge .and. prob%closest%capped) then
                edges = with_kink_edges(edges, [sqrt(prob%closest%delta)], focus, 1, 0.0_dp)
-               edges = inner_layers(edges, sqrt(prob%closest%delta))
+               if (layers) edges = inner_layers(edges, sqrt(prob%closest%delta))
             end if
             ! the rim of the history's plastic zone (first_unloading_level)
             if (prob%rim > 0.0_dp) then
                edges = with_kink_edges(edges, [prob%rim], focus, 1, sqrt(prob%closest%delta))
-               edges = kink_layers(edges, prob%rim, prob%rim_width)
+               if (layers) edges = kink_layers(edges, prob%rim, prob%rim_width)
             end if
             if (allocated(prob%branch)) then
                keep = 0.0_dp
@@ -115,8 +126,8 @@ contains
             ! finest step, egw_not_converged at rel_tol 1e-6). (8 layers: the E-GW + cap
             ! table of theory.md section 12 built 2.8x slower than without; 5: 2.2x, and
             ! 3 left the error at 0.018 delta_y above its estimate, 2.5e-7 > 1.95e-7.)
-            if (sums_total(prob) .and. prob%delta > 0.0_dp) edges = inner_layers(edges, &
-               & sqrt(prob%delta), 5)
+            if (sums_total(prob) .and. prob%delta > 0.0_dp .and. layers) edges = &
+               & inner_layers(edges, sqrt(prob%delta), 5)
             ! (the central-disc route: the disc's elements shrink with the step; elsewhere
             ! a contact that is a central disc far inside the Hertz radius, central_disc:
             ! its elements graded about its edge, the kink edges put back inside it)
