@@ -243,7 +243,7 @@ contains
       procedure(table_progress), optional :: progress   !< called with (curves built, pending)
       type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
       real(dp), allocatable :: new_m(:), err_mid(:)
-      logical, allocatable :: have_mid(:), new_have(:), wide(:)
+      logical, allocatable :: have_mid(:), new_have(:), wide(:), miss(:)
       integer, allocatable :: idx(:), promoted(:)
       integer :: pass, j, k, n_split
       real(dp) :: m_bound
@@ -305,7 +305,16 @@ contains
          ! (not in the last third of the passes, so that deferring never brings a grid
          ! to their limit)
          if (log_table(table) .and. pass <= 20) call defer_splits(err_mid, m_bound, wide)
-         n_split = count(err_mid > m_bound .and. wide)
+         miss = err_mid > m_bound .and. wide
+         ! (gap tables: split where the bound the table reports below, gap_bound and the
+         ! solves' rel_tol, exceeds rel_tol; m_bound stays the scale of the skips)
+         if (table%mapped) then
+            do j = 1, size(m) - 1
+               miss(j) = wide(j) .and. gap_bound(table, m, curves, j, err_mid(j)) + &
+                  & hysteresis_solve_tol(options, table%rel_tol) > table%rel_tol
+            end do
+         end if
+         n_split = count(miss)
          ! built: the nodes' curves and the kept midpoints'; pending: two per split
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
@@ -346,7 +355,7 @@ contains
             new_m(k) = m(j)
             call move_curve(curves(j), new_curves(k))
             if (j == size(m)) exit
-            if (err_mid(j) > m_bound .and. wide(j)) then
+            if (miss(j)) then
                k = k + 1
                new_m(k) = 0.5_dp*(m(j) + m(j + 1))
                call move_curve(mids(j), new_curves(k))
