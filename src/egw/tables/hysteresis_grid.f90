@@ -244,7 +244,7 @@ contains
       type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
       real(dp), allocatable :: new_m(:), err_mid(:)
       logical, allocatable :: have_mid(:), new_have(:), wide(:), miss(:)
-      integer, allocatable :: idx(:), promoted(:)
+      integer, allocatable :: idx(:), promoted(:), fresh(:)
       integer :: pass, j, k, n_split
       real(dp) :: m_bound
       ! (gap tables: per interval the nodes its check curve was not solved at)
@@ -373,7 +373,22 @@ contains
          call move_alloc(new_have, have_mid)
          call move_alloc(new_skipped, skipped)
          deallocate (err_mid, wide)
-         ! the new nodes: bisected in s as every node's curve
+         ! the new nodes: bisected in s as every node's curve; one whose check curve has
+         ! no solve (every node cleared by the estimate: split for its stencil's share of
+         ! gap_bound) built from its first nodes
+         fresh = pack(promoted, [(.not. allocated(curves(promoted(k))%s), &
+            & k = 1, size(promoted))])
+         if (size(fresh) > 0) then
+            promoted = pack(promoted, [(allocated(curves(promoted(k))%s), &
+               & k = 1, size(promoted))])
+            allocate (built(size(fresh)))
+            call build_curves(table, options, m(fresh), shift, built, error)
+            if (allocated(error)) return
+            do k = 1, size(fresh)
+               call move_curve(built(k), curves(fresh(k)))
+            end do
+            deallocate (built)
+         end if
          call verify_curves(table, curves, promoted, error)
          if (allocated(error)) return
          deallocate (promoted)
