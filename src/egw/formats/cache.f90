@@ -167,7 +167,11 @@ module egw_cache
    !>     And (yield28) a rough + cap table's first yield m_y (its first turning
    !> point) by egw_rough_yield's secant to the same tolerance as the bisection before:
    !> m_y moves within 6e-8 of the bracket, so do the tables' bits.
-   integer, parameter, public :: cache_revision = 57
+   !> 58 (stop 63, node29): rough + cap builds split a delta_max interval where the bound
+   !> they report (gap_bound plus the solves' rel_tol) exceeds rel_tol, not where the
+   !> check curve's mismatch exceeds rel_tol/2 (egw_hysteresis_grid's refine_m): other
+   !> delta_max grids (README's E-GW + cap 38 -> 36 nodes), the tables' bits with them.
+   integer, parameter, public :: cache_revision = 58
 
 
 contains
