@@ -232,7 +232,9 @@ contains
    !> are kept until their interval is split, then bisected from the first nodes as a
    !> node's curve is (refine_curve, taking the check solves it meets: the same curve)
    !> and rechecked when the stencil changed: only new midpoints cost solves. Gap tables:
-   !> not at the nodes where two shifted stencils agree (gap_check_skip, shift_gap).
+   !> not at the nodes where two shifted stencils agree (gap_check_skip, shift_gap), and an
+   !> interval is split where the bound the table reports (gap_bound plus the solves'
+   !> rel_tol) exceeds rel_tol.
    subroutine refine_m(table, options, shift, m, curves, error, progress)
       type(hysteresis_table), intent(inout) :: table   !< the table being built
       type(solver_options), intent(in) :: options   !< the build's solver options
@@ -252,7 +254,9 @@ contains
       ! the bound at the check curves' nodes: rel_tol; with the two-piece map rel_tol/2,
       ! for what falls between those nodes (E-GW + cap, 1e-4: 28 delta_max nodes with
       ! rel_tol met 1.2e-4 of P(m) off main's table between a check curve's s nodes, at
-      ! s = 0.17 of m = 333 sigma, where main's 62 nodes erred by 5e-5 against 1e-6 solves)
+      ! s = 0.17 of m = 333 sigma, where main's 62 nodes erred by 5e-5 against 1e-6 solves);
+      ! since stop 63 the two-piece map's split is on gap_bound (below), rel_tol/2 the
+      ! scale of its check skips
       m_bound = table%rel_tol
       if (table%mapped) m_bound = 0.5_dp*table%rel_tol
       allocate (mids(size(m) - 1), have_mid(size(m) - 1), skipped(size(m) - 1))
