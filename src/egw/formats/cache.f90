@@ -170,7 +170,8 @@ module egw_cache
    !> 58 (stop 63, node29): rough + cap builds split a delta_max interval where the bound
    !> they report (gap_bound plus the solves' rel_tol) exceeds rel_tol, not where the
    !> check curve's mismatch exceeds rel_tol/2 (egw_hysteresis_grid's refine_m): other
-   !> delta_max grids (README's E-GW + cap 38 -> 36 nodes), the tables' bits with them.
+   !> delta_max grids (README's E-GW + cap 38 -> 36 nodes), the tables' bits with them;
+   !> and their s bisection clears midpoints at neighbour_skip 0.3 (was 0.2).
    integer, parameter, public :: cache_revision = 58
 
 
