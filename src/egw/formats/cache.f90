@@ -170,6 +170,11 @@ module egw_cache
    !> 58 (stop 63, unl29): an unloading's locating solve after a capped loading without
    !> the history's layers (egw_sphere_level's locating): other kink edges and starts,
    !> E-GW and EP-GW + cap tables within 2.5e-5 of P(m) (GW + cap unchanged).
+   !>     And (node29) rough + cap builds split a delta_max interval where the bound
+   !> they report (gap_bound plus the solves' rel_tol) exceeds rel_tol, not where the
+   !> check curve's mismatch exceeds rel_tol/2 (egw_hysteresis_grid's refine_m): other
+   !> delta_max grids (README's E-GW + cap 38 -> 36 nodes), the tables' bits with them;
+   !> and their s bisection clears midpoints at neighbour_skip 0.3 (was 0.2).
    integer, parameter, public :: cache_revision = 58
 
 

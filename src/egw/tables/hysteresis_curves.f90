@@ -65,8 +65,11 @@ module egw_hysteresis_curves
    !> (one neighbour's midpoint can meet its cubic by chance); the two rules together
    !> cleared 181, 105 and 251 midpoints of 1122, 539 and 1655, none that the solve would
    !> have split, the largest of their solves' mismatches 0.37, 0.81 and 0.33 of the bound
-   !> (doc/benchmarks.md, stop 60: grid26).
-   real(dp), parameter :: gap_skip = 0.1_dp, neighbour_skip = 0.2_dp
+   !> (doc/benchmarks.md, stop 60: grid26). neighbour_skip 0.3 (stop 63, node29, on the
+   !> grids of refine_m's split on gap_bound, the same audit): 199, 108 and 308 of 1055,
+   !> 515 and 1591 cleared, none that the solve would split, largest 0.37, 0.81 and 0.77;
+   !> ~2 % fewer solves.
+   real(dp), parameter :: gap_skip = 0.1_dp, neighbour_skip = 0.3_dp
    !> Ratios below this are stored as 0 (far below every tolerance, far above subnormals).
    real(dp), parameter :: tiny_ratio = 1.0e-100_dp
 

@@ -232,7 +232,9 @@ contains
    !> are kept until their interval is split, then bisected from the first nodes as a
    !> node's curve is (refine_curve, taking the check solves it meets: the same curve)
    !> and rechecked when the stencil changed: only new midpoints cost solves. Gap tables:
-   !> not at the nodes where two shifted stencils agree (gap_check_skip, shift_gap).
+   !> not at the nodes where two shifted stencils agree (gap_check_skip, shift_gap), and an
+   !> interval is split where the bound the table reports (gap_bound plus the solves'
+   !> rel_tol) exceeds rel_tol.
    subroutine refine_m(table, options, shift, m, curves, error, progress)
       type(hysteresis_table), intent(inout) :: table   !< the table being built
       type(solver_options), intent(in) :: options   !< the build's solver options
@@ -243,8 +245,8 @@ contains
       procedure(table_progress), optional :: progress   !< called with (curves built, pending)
       type(unloading_curve), allocatable :: mids(:), new_curves(:), new_mids(:), built(:)
       real(dp), allocatable :: new_m(:), err_mid(:)
-      logical, allocatable :: have_mid(:), new_have(:), wide(:)
-      integer, allocatable :: idx(:), promoted(:)
+      logical, allocatable :: have_mid(:), new_have(:), wide(:), miss(:)
+      integer, allocatable :: idx(:), promoted(:), fresh(:)
       integer :: pass, j, k, n_split
       real(dp) :: m_bound
       ! (gap tables: per interval the nodes its check curve was not solved at)
@@ -252,7 +254,9 @@ contains
       ! the bound at the check curves' nodes: rel_tol; with the two-piece map rel_tol/2,
       ! for what falls between those nodes (E-GW + cap, 1e-4: 28 delta_max nodes with
       ! rel_tol met 1.2e-4 of P(m) off main's table between a check curve's s nodes, at
-      ! s = 0.17 of m = 333 sigma, where main's 62 nodes erred by 5e-5 against 1e-6 solves)
+      ! s = 0.17 of m = 333 sigma, where main's 62 nodes erred by 5e-5 against 1e-6 solves);
+      ! since stop 63 the two-piece map's split is on gap_bound (below), rel_tol/2 the
+      ! scale of its check skips
       m_bound = table%rel_tol
       if (table%mapped) m_bound = 0.5_dp*table%rel_tol
       allocate (mids(size(m) - 1), have_mid(size(m) - 1), skipped(size(m) - 1))
@@ -305,7 +309,16 @@ contains
          ! (not in the last third of the passes, so that deferring never brings a grid
          ! to their limit)
          if (log_table(table) .and. pass <= 20) call defer_splits(err_mid, m_bound, wide)
-         n_split = count(err_mid > m_bound .and. wide)
+         miss = err_mid > m_bound .and. wide
+         ! (gap tables: split where the bound the table reports below, gap_bound and the
+         ! solves' rel_tol, exceeds rel_tol; m_bound stays the scale of the skips)
+         if (table%mapped) then
+            do j = 1, size(m) - 1
+               miss(j) = wide(j) .and. gap_bound(table, m, curves, j, err_mid(j)) + &
+                  & hysteresis_solve_tol(options, table%rel_tol) > table%rel_tol
+            end do
+         end if
+         n_split = count(miss)
          ! built: the nodes' curves and the kept midpoints'; pending: two per split
          if (present(progress)) call progress(2*size(m) - 1, 2*size(m) - 1 + 2*n_split)
          if (n_split == 0) then
@@ -346,7 +359,7 @@ contains
             new_m(k) = m(j)
             call move_curve(curves(j), new_curves(k))
             if (j == size(m)) exit
-            if (err_mid(j) > m_bound .and. wide(j)) then
+            if (miss(j)) then
                k = k + 1
                new_m(k) = 0.5_dp*(m(j) + m(j + 1))
                call move_curve(mids(j), new_curves(k))
@@ -364,7 +377,22 @@ contains
          call move_alloc(new_have, have_mid)
          call move_alloc(new_skipped, skipped)
          deallocate (err_mid, wide)
-         ! the new nodes: bisected in s as every node's curve
+         ! the new nodes: bisected in s as every node's curve; one whose check curve has
+         ! no solve (every node cleared by the estimate: split for its stencil's share of
+         ! gap_bound) built from its first nodes
+         fresh = pack(promoted, [(.not. allocated(curves(promoted(k))%s), &
+            & k = 1, size(promoted))])
+         if (size(fresh) > 0) then
+            promoted = pack(promoted, [(allocated(curves(promoted(k))%s), &
+               & k = 1, size(promoted))])
+            allocate (built(size(fresh)))
+            call build_curves(table, options, m(fresh), shift, built, error)
+            if (allocated(error)) return
+            do k = 1, size(fresh)
+               call move_curve(built(k), curves(fresh(k)))
+            end do
+            deallocate (built)
+         end if
          call verify_curves(table, curves, promoted, error)
          if (allocated(error)) return
          deallocate (promoted)
