@@ -19,7 +19,7 @@ module egw_sphere_iteration
    use egw_sphere_problem, only: method_picard, solver_options, max_mesh_nodes, &
       & scaled_problem, discrete_solution, law_at, law_inverse, base_gap, base_gap_rate, &
       & closest_gap, gauss_values, gauss_gap, deflection_degree, pressure_points, rough_pressure, &
-      & cap_fields, sums_total, smooth_stiffness, closest_gap
+      & cap_fields, sums_total, smooth_stiffness
    implicit none
    private
 
