@@ -175,6 +175,11 @@ module egw_cache
    !> check curve's mismatch exceeds rel_tol/2 (egw_hysteresis_grid's refine_m): other
    !> delta_max grids (README's E-GW + cap 38 -> 36 nodes), the tables' bits with them;
    !> and their s bisection clears midpoints at neighbour_skip 0.3 (was 0.2).
+   !>     And (stiffb29) the implicit stiffness of unloading solves after a capped
+   !> loading (E-GW, EP-GW + cap) puts back what the Gauss sums miss at the floor
+   !> (egw_sphere_iteration's floor_stiffness): the Hermite slopes near the bottom move,
+   !> and with them the s midpoints the builds solve and the later solves' starts: the
+   !> tables' bits change (<= 2.6e-5 of P(m) at 1e-4, forces of single solves unchanged).
    integer, parameter, public :: cache_revision = 58
 
 
