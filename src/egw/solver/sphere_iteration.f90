@@ -498,15 +498,15 @@ contains
       type(egw_error), allocatable, intent(out) :: error
       real(dp), intent(in), optional :: source(:), extra(:, :)
       integer, parameter :: max_sweeps = 6
-      real(dp), allocatable :: rhs(:), corr(:, :)
+      real(dp), allocatable :: rhs(:), b(:, :), corr(:)
       integer, allocatable :: ipiv(:)
-      integer :: n, info, sweep, k, n_extra
-      logical :: refined
+      integer :: n, info, k, n_extra
+      logical :: refined, done
       n = size(sol%w)
       edge_capped = .false.
       n_extra = 0
       if (present(extra)) n_extra = size(extra, 2)
-      allocate (x(n, 1 + n_extra), corr(n, 1), stat=info)
+      allocate (x(n, 1 + n_extra), b(n, 1 + n_extra), corr(n), stat=info)
       if (info /= 0) then
          call fatal_error(error, egw_out_of_memory, "the Jacobian of " &
             & //int_str(n)//" nodes could not be allocated")
@@ -532,31 +532,19 @@ contains
       else
          rhs = matmul(sol%infl, sol%dpdh*sol%dbase + sol%dpdd)
       end if
+      b(:, 1) = rhs
+      if (n_extra > 0) b(:, 2:) = extra
+      x = b
       refined = .false.
       if (allocated(sol%lu)) then
          if (size(sol%lu, 1) == n) then
-            x(:, 1) = rhs
-            call lu_solve(n, sol%lu, sol%pivots, x(:, 1))
-            do sweep = 1, max_sweeps
-               corr(:, 1) = rhs - matmul(jac, x(:, 1))
-               call lu_solve(n, sol%lu, sol%pivots, corr(:, 1))
-               x(:, 1) = x(:, 1) + corr(:, 1)
-               if (maxval(abs(corr)) <= 1.0e-14_dp*maxval(abs(x(:, 1)))) then
-                  refined = .true.
-                  exit
-               end if
-            end do
-            ! (the extra columns refined alike, each on its own)
-            do k = 2, merge(1 + n_extra, 1, refined)
-               x(:, k) = extra(:, k - 1)
-               call lu_solve(n, sol%lu, sol%pivots, x(:, k))
-               do sweep = 1, max_sweeps
-                  corr(:, 1) = extra(:, k - 1) - matmul(jac, x(:, k))
-                  call lu_solve(n, sol%lu, sol%pivots, corr(:, 1))
-                  x(:, k) = x(:, k) + corr(:, 1)
-                  if (maxval(abs(corr)) <= 1.0e-14_dp*maxval(abs(x(:, k)))) exit
+            ! (the extra columns refined alike, each on its own, once the first is)
+            call refine(1, refined)
+            if (refined) then
+               do k = 2, 1 + n_extra
+                  call refine(k, done)
                end do
-            end do
+            end if
          end if
       end if
       if (.not. refined) then
@@ -567,13 +555,29 @@ contains
                & //" (in units of sigma): singular Jacobian at the solution")
             return
          end if
-         x(:, 1) = rhs
-         call lu_solve(n, jac, ipiv, x(:, 1))
-         do k = 2, 1 + n_extra
-            x(:, k) = extra(:, k - 1)
+         x = b
+         do k = 1, 1 + n_extra
             call lu_solve(n, jac, ipiv, x(:, k))
          end do
       end if
+   contains
+      !> column k of x solved with Newton's last factors and refined with the exact J
+      subroutine refine(k, converged)
+         integer, intent(in) :: k
+         logical, intent(out) :: converged
+         integer :: sweep
+         converged = .false.
+         call lu_solve(n, sol%lu, sol%pivots, x(:, k))
+         do sweep = 1, max_sweeps
+            corr = b(:, k) - matmul(jac, x(:, k))
+            call lu_solve(n, sol%lu, sol%pivots, corr)
+            x(:, k) = x(:, k) + corr
+            if (maxval(abs(corr)) <= 1.0e-14_dp*maxval(abs(x(:, k)))) then
+               converged = .true.
+               return
+            end if
+         end do
+      end subroutine refine
    end subroutine rate_system
 
    !> Loading with the cap of an extended model (differentiate): whether the Gauss point
