@@ -470,7 +470,10 @@ contains
 
    !> The two-piece map of the curve of turning point m (mapped): its knee, the smooth cap
    !> model's residual overlap delta_r(m) (0 up to first yield), the first piece's span
-   !> (m - knee)/s_knee as its length (s_max = 1) and the pieces' slope scales.
+   !> (m - knee)/s_knee as its length (s_max = 1) and the pieces' slope scales. delta_r
+   !> puts the rough curves' zero edge at s = 1/2 from ~1.4 delta_y on; knees that follow
+   !> their other features (the half-force edge, the annulus kink, c delta_r) built denser
+   !> grids (doc/benchmarks.md, stop 64: knee30).
    subroutine mapped_length(table, m, curve, error)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m
