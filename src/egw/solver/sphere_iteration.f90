@@ -569,7 +569,7 @@ contains
          converged = .false.
          call lu_solve(n, sol%lu, sol%pivots, x(:, k))
          do sweep = 1, max_sweeps
-            corr = b(:, k) - matmul(jac, x(:, k))
+            call less_product(n, jac, x(:, k), b(:, k), corr)
             call lu_solve(n, sol%lu, sol%pivots, corr)
             x(:, k) = x(:, k) + corr
             if (maxval(abs(corr)) <= 1.0e-14_dp*maxval(abs(x(:, k)))) then
@@ -579,6 +579,24 @@ contains
          end do
       end subroutine refine
    end subroutine rate_system
+
+   !> r = b - jac x, with jac x summed column after column as gfortran's inline matmul
+   !> sums it (the same numbers). rate_system's refinement wrote it inside its contained
+   !> procedure, where jac, x and b are the host's: the compiler reloaded their
+   !> descriptors at every element (scalar, ~20 instructions an element) and that loop
+   !> was ~11 % of a rough + cap build's CPU (doc/benchmarks.md "Stop 64: psi30").
+   pure subroutine less_product(n, jac, x, b, r)
+      integer, intent(in) :: n
+      real(dp), intent(in) :: jac(n, n), x(n), b(n)
+      real(dp), intent(out) :: r(n)
+      real(dp) :: t(n)
+      integer :: j
+      t = 0.0_dp
+      do j = 1, n
+         t = t + jac(:, j)*x(j)
+      end do
+      r = b - t
+   end subroutine less_product
 
    !> Loading with the cap of an extended model (differentiate): whether the Gauss point
    !> nearest the Hertz edge a from inside is capped (sol%dpdd < 0 there).
