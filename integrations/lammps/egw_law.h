@@ -9,6 +9,7 @@
 #include "egw_tables.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -261,6 +262,18 @@ struct EgwLaw {
 };
 
 extern const char *egw_law_kind_name[];
+
+/* a law's model and kind, for messages: "EP-GW + flow-pressure cap (hysteresis table)" */
+std::string egw_law_name(const EgwLaw &L);
+
+/* whether a law's force F and stiffness S are finite (one test each, no libm call): a law
+ * whose parameters or table give forces beyond the doubles answers EGW_OK with an inf or a
+ * NaN (Hertz's closed form at E* ~ 1e308, a table's absurd node), which the callers stop
+ * with an ERROR naming the contact (pair_style egw, fix wall/egw) */
+inline bool egw_law_finite(double F, double S)
+{
+  return __builtin_expect(std::fabs(F) <= DBL_MAX && std::fabs(S) <= DBL_MAX, 1);
+}
 
 /* what a user can do about a contact beyond the tables' reach (the warning's advice) */
 inline const char *egw_reach_advice(const EgwLaw &L)
