@@ -203,12 +203,73 @@ contains
          stiffness = 4*a/(a + k)*(0.75_dp*force_y/delta_y)
          return
       end if
-      r = (sqrt(k*k + 2*(history/delta_y)) - k)/ &
-         & (sqrt(k*k + 2*(table%delta_max/delta_y)) - k)
+      r = cap_ratio(table, history)
       call last_curve(table, table%delta_max - (history - delta)/r, force, stiffness)
       force = r*r*force
       stiffness = r*stiffness
    end subroutine cap_continue
+
+   !> r = alpha(m)/alpha(X) of cap_continue: the contact radius at the history m over the
+   !> one at the table's delta_max X (fully capped: m/delta_y = alpha^2/2 + k alpha).
+   pure real(dp) function cap_ratio(table, m) result(r)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m   !< the history, above delta_max
+      real(dp), parameter :: k = 8.0_dp/pi**2
+      real(dp) :: delta_y, a_y, force_y
+      call cap_units(table%params%radius, table%params%modulus, &
+         & table%params%flow_pressure, delta_y, a_y, force_y)
+      r = (sqrt(k*k + 2*(m/delta_y)) - k)/(sqrt(k*k + 2*(table%delta_max/delta_y)) - k)
+   end function cap_ratio
+
+   !> hysteresis_eval_state's step below a history m above the delta_max X of a Hertz + cap
+   !> table that continues (cap_continues): the piece of the last curve around x = X - (m -
+   !> delta)/r (make_piece, r = cap_ratio), moved to the contact (x - x_lo = (delta - lo)/r,
+   !> the force r^2 times the curve's: the cubic's coefficients times r^2, r, 1, 1/r), kept
+   !> as the state's piece with a zero linear loading interval over the same overlaps (the
+   !> piece's force needs none; egw.h's inline and this routine's top read it as any
+   !> piece: the contact's next steps inside it read only the state). Where no piece (the
+   !> clamp, an end, a ln P loading interval) cap_continue's values. The turning-point caches
+   !> marked stale (state(4) = 0: they would be X's, not the history's).
+   pure subroutine continue_state(table, delta, state, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(inout) :: state(hysteresis_state_size)
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: r, x, x_top, w(max_stencil), inv_span, f_m, knee, s, dsdx, c(4), ends(2), &
+         & seg(7)
+      integer :: first, i
+      logical :: found
+      x_top = table%delta_max
+      r = cap_ratio(table, state(1))
+      x = x_top - (state(1) - delta)/r
+      state(2) = state(1)
+      state(4) = 0.0_dp
+      state(11:12) = quiet_nan
+      state(18:19) = quiet_nan
+      found = .false.
+      if (x > unload_floor(table)) then
+         call turning_point(table, x_top, first, w, inv_span, f_m, knee)
+         s = (x_top - x)*inv_span
+         dsdx = inv_span
+         if (table%mapped) call map_s(table, x_top, knee, inv_span, x_top - x, s, dsdx)
+         s = min(s, 1.0_dp)
+         i = locate(table%s_lookup, table%s, s)
+         seg = quiet_nan
+         call make_piece(table, w, first, i, s, x_top, x, inv_span, knee, f_m, seg, ends, c, &
+            & found)
+         found = found .and. .not. seg(7) > 0.0_dp
+      end if
+      if (.not. found) then
+         call cap_continue(table, delta, state(1), force, stiffness)
+         return
+      end if
+      state(11) = state(1) - (x_top - ends(1))*r
+      state(12) = state(1) - (x_top - ends(2))*r
+      state(14:17) = [r*r*c(1), r*c(2), c(3), c(4)/r]
+      state(18:19) = state(11:12)
+      state(20:24) = 0.0_dp
+      call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
+   end subroutine continue_state
 
    !> The force and stiffness at delta on the unloading curve of the table's last turning
    !> point delta_max: hysteresis_eval's unloading branch (not log-ratio: a Hertz + cap
@@ -309,8 +370,9 @@ contains
    !> hysteresis_state_init's; another table's; garbled) is a new contact, its history reset to
    !> -huge; but a NaN state(1), as a NaN delta, is refused (egw_invalid_argument, nothing
    !> changed, as egw_hysteresis_eval_state). Beyond a Hertz + cap table that continues
-   !> (cap_continues) the state keeps its history alone (no piece, no loading interval:
-   !> each step is this call's cap_continue, hysteresis_eval's values). The optional error says what stat says, with a
+   !> (cap_continues) loading steps are this call's (no piece), and unloading ones below
+   !> a history there keep a piece of the last curve moved to the contact
+   !> (continue_state): hysteresis_eval's values to rounding. The optional error says what stat says, with a
    !> message naming the argument (formed only when stat is not 0).
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat, error)
       type(hysteresis_table), intent(in) :: table   !< built or read
@@ -360,8 +422,11 @@ contains
          end if
          if (inside) then
             call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
-            if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
-               & stiffness, stat, error)
+            ! (a continued table's piece beyond it: status 0, continue_state)
+            if (state(1) > table%delta_max) then
+               if (.not. cap_continues(table)) call beyond(table, "state(1)", state(1), &
+                  & force, stiffness, stat, error)
+            end if
             return
          end if
       end if
@@ -403,10 +468,10 @@ contains
       end if
       if (state(1) > table%delta_max) then   ! (a Hertz + cap table's continuation)
          if (cap_continues(table)) then
-            ! (no piece, no loading interval: every step of the contact takes this call)
-            state(11:12) = quiet_nan
-            state(18:19) = quiet_nan
-            call past_top(table, delta, "state(1)", state(1), force, stiffness, stat, error)
+            ! (a piece of the last curve, moved to the contact: continue_state)
+            call continue_state(table, delta, state, force, stiffness)
+            if (.not. (ieee_is_finite(force) .and. ieee_is_finite(stiffness))) call beyond( &
+               & table, "state(1)", state(1), force, stiffness, stat, error)
             return
          end if
       end if
