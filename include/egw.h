@@ -737,7 +737,9 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
  * curve scaled by r = alpha(m)/alpha(delta_max) (doc/theory.md 12 "Beyond a table"), to
  * the table's rel_tol at any depth (2, 5, 20 delta_max: test cap_hysteresis "beyond
  * delta_max: the fully capped continuation"); egw_hysteresis_eval_state and
- * egw_hysteresis_energy alike (such a state holds no piece: each step is a call). Other
+ * egw_hysteresis_energy alike (a state unloading there keeps a piece of the last curve
+ * moved to the contact, which egw_hysteresis_eval_cached serves as any piece; loading
+ * steps there are calls). Other
  * tables with the flow-pressure cap (Hertz + cap below 35 delta_y, rough + cap) have no
  * bound: above delta_max the loading force is Hertz's asymptote, not the capped contact's,
  * and a state there unloads on the last curve, so the values drift fast (Hertz + cap to
@@ -801,7 +803,8 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * changed) and returns 1; otherwise (also when
  * the values would not be finite) it returns 0 and changes nothing: call
  * egw_hysteresis_eval_state. It does not report
- * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max) and refuses
+ * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max; a Hertz + cap
+ * table to 35 delta_y or more continues beyond it, EGW_OK there) and refuses
  * nothing (what it does not serve, the call checks). It reads the state's layout, which
  * is egw's: use it with the library of the same version as this header (0.3.2's pieces
  * in the separated tail hold one cubic of ln P - h, state[23] = 3, which 0.3.1's inline
