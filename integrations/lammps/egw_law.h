@@ -516,7 +516,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       // force, stiffness and energy units: HYST sigma, E* sqrt(R) sigma^1.5; HYST_RCAP
       // sigma, E* sigma^2 (the table of this law's one radius); HYST_CAP the contact's
       // first yield delta_y = cap_c R, E* sqrt(R) delta_y^1.5
-      double x, fF, fS, fU;
+      double x, fF, fS, fU, top = hyst_dmax[0];
       if (kind == HYST) {
         x = delta * inv_sigma, fF = sr * s15, fS = sr * s05, fU = sr * s25;
       } else if (kind == HYST_RCAP) {
@@ -532,11 +532,13 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
         if (!(std::fabs(R - rcap_R) <= 1e-9 * rcap_R)) return R_OTHER;
       } else {
         double s = cap_c * R, sq = sr * std::sqrt(s);    // E* sqrt(R) delta_y^0.5
-        // (beyond a table to CAP_FULL_MIN delta_y or more egw continues it: no test here)
         x = delta / s, fF = sq * s, fS = sq, fU = sq * s * s;
+        // beyond a table to CAP_FULL_MIN delta_y or more egw continues it, status OK: its
+        // unloading pieces there (served inline too) are not out of range
+        if (top >= CAP_FULL_MIN) top = HUGE_VAL;
       }
       double p, dp;
-      st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], x, *dmax, cache, p, dp,
+      st = egw_law_hyst_eval(hyst[0], hyst_tag[0], top, x, *dmax, cache, p, dp,
                              !states_are_history);
       *dmax = cache[0];
       // the energy the contact returns if it separates now (the rest of its loading work
