@@ -441,9 +441,9 @@ contains
    !> loading the same bits; on unloading the state's piece of the last curve moved to the
    !> contact within 1e-12 of P(m), measured 1.2e-15, served again bit for bit, 42 of 42
    !> steps inside their piece). Tolerances, each the table's: the force within rel_tol of
-   !> max(P, 1e-3 P(m)) of the solves (load_history, solve_unload; the solver's own error ~1e-6) and of the
-   !> reference; the energy within rel_tol of max(U, 1e-3 U(m)) of the reference's (it
-   !> integrates that force); the stiffness within rel_tol of the turning point's
+   !> max(P, 1e-3 P(m)) of the solves (load_history, solve_unload; the solver's own error
+   !> ~1e-6) and of the reference; the energy within rel_tol of max(U, 1e-3 U(m)) of the
+   !> reference's (it integrates that force); the stiffness within rel_tol of the turning point's
    !> unloading stiffness 2 E* a_m of the reference's 2 E* b (dP/ddelta = 2 E* b of every
    !> elastic axisymmetric contact; the table promises the force only, its slope measured
    !> within 0.21 rel_tol here). Measured: P 0.12 rel_tol of the solves and of the

@@ -82,11 +82,11 @@ contains
    !> needs no loading force). A state above the table's delta_max uses the last curve (log-ratio
    !> tables: its span stretched by the state's excess, turning_point) and returns
    !> egw_out_of_range (values written); a Hertz + cap table that reaches cap_full_reach
-   !> continues exactly above it instead (cap_continue, status 0). NaN delta or state: egw_invalid_argument, nothing
-   !> changed (force, stiffness 0); a state above delta_max whose force leaves the doubles:
-   !> egw_invalid_argument, the values as computed (egw_hysteresis_eval's statuses). The
-   !> optional error says the same with a message naming the argument (formed only when
-   !> stat is not 0).
+   !> continues exactly above it instead (cap_continue, status 0). NaN delta or state:
+   !> egw_invalid_argument, nothing changed (force, stiffness 0); a state above delta_max
+   !> whose force leaves the doubles: egw_invalid_argument, the values as computed
+   !> (egw_hysteresis_eval's statuses). The optional error says the same with a message
+   !> naming the argument (formed only when stat is not 0).
    pure subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat, &
       & error)
       type(hysteresis_table), intent(in) :: table   !< built or read
@@ -372,8 +372,8 @@ contains
    !> changed, as egw_hysteresis_eval_state). Beyond a Hertz + cap table that continues
    !> (cap_continues) loading steps are this call's (no piece), and unloading ones below
    !> a history there keep a piece of the last curve moved to the contact
-   !> (continue_state): hysteresis_eval's values to rounding. The optional error says what stat says, with a
-   !> message naming the argument (formed only when stat is not 0).
+   !> (continue_state): hysteresis_eval's values to rounding. The optional error says
+   !> what stat says, with a message naming the argument (formed only when stat is not 0).
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat, error)
       type(hysteresis_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
