@@ -730,16 +730,24 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
  * on a ln(P_load/P) table the last curve's span stretched by the state's excess over
  * delta_max, its residual end kept: from 3 delta_max within 4e-5 of the turning point's
  * force of unloading solves, the deep loading law's own error there (EP-GW,
- * doc/benchmarks.md "Stop 48 (gain14)")). Tables with the flow-pressure cap have no such
+ * doc/benchmarks.md "Stop 48 (gain14)")). A Hertz + cap table whose delta_max reaches 35
+ * delta_y (first yield delta_y; the contact is fully capped there) continues beyond it
+ * exactly, EGW_OK: loading by P = pi a^2 p_y (delta/delta_y = alpha^2/2 + 8 alpha/pi^2,
+ * alpha = a/a_y), unloading and reloading below a history m above delta_max by its last
+ * curve scaled by r = alpha(m)/alpha(delta_max) (doc/theory.md 12 "Beyond a table"), to
+ * the table's rel_tol at any depth (2, 5, 20 delta_max: test cap_hysteresis "beyond
+ * delta_max: the fully capped continuation"); egw_hysteresis_eval_state and
+ * egw_hysteresis_energy alike (a state unloading there keeps a piece of the last curve
+ * moved to the contact, which egw_hysteresis_eval_cached serves as any piece; loading
+ * steps there are calls). Other
+ * tables with the flow-pressure cap (Hertz + cap below 35 delta_y, rough + cap) have no
  * bound: above delta_max the loading force is Hertz's asymptote, not the capped contact's,
  * and a state there unloads on the last curve, so the values drift fast (Hertz + cap to
  * 20 delta_y at rel_tol 1e-4: loading 7.8e-4, 1.6e-2, 0.15, 0.91 of the force too high at
  * 1.05, 1.25, 2, 5 delta_max, unloading up to 1.6e-2, 7.6e-2, 0.15 of the turning point's
  * force at 1.05, 1.25, 2 delta_max; E-GW + cap, sigma = delta_y/100, to 6 delta_y at 1e-3:
  * 2.3e-2, 0.11 at 1.08, 1.5 delta_max; doc/benchmarks.md "Stop 63"): build them to the
- * deepest overlap a run reaches (up to 1000 delta_y), and beyond a Hertz + cap table use
- * the fully capped continuation (doc/theory.md 12 "Beyond a table"; LAMMPS's pair_style
- * egw does).
+ * deepest overlap a run reaches (up to 1000 delta_y; Hertz + cap at least 35 delta_y).
  * Below the loading table's cut-off: 0 (a turning point at or below it unloads on the
  * loading curve, so 0 there too). With the flow-pressure cap a turning point at or below
  * first yield delta_y unloads on the loading curve (Hertz), one above it gives 0 below its
@@ -795,7 +803,8 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * changed) and returns 1; otherwise (also when
  * the values would not be finite) it returns 0 and changes nothing: call
  * egw_hysteresis_eval_state. It does not report
- * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max) and refuses
+ * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max; a Hertz + cap
+ * table to 35 delta_y or more continues beyond it, EGW_OK there) and refuses
  * nothing (what it does not serve, the call checks). It reads the state's layout, which
  * is egw's: use it with the library of the same version as this header (0.3.2's pieces
  * in the separated tail hold one cubic of ln P - h, state[23] = 3, which 0.3.1's inline

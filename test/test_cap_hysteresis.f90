@@ -6,7 +6,7 @@ module test_cap_hysteresis
    use, intrinsic :: iso_c_binding, only: c_int
    use egw_kinds, only: dp, pi
    use test_compare, only: same => same_bits
-   use egw_status, only: egw_error, egw_invalid_argument
+   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range
    use egw_params, only: contact_params, model_hertz, model_gw, model_egw, model_epgw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, loading_history, &
       & load_history, solve_unload
@@ -21,6 +21,7 @@ module test_cap_hysteresis
       & checksum_i32
    use egw_impact, only: restitution, time_step
    use testdrive, only: new_unittest, unittest_type, error_type, check
+   use data_rows, only: read_data_rows, row_length
    implicit none
    private
    public :: collect_cap_hysteresis
@@ -57,6 +58,8 @@ contains
          & new_unittest("1000 delta_y at 1e-4: first yield resolved, rel_tol met", &
          & test_wide_range), &
          & new_unittest("reversible below first yield", test_reversible), &
+         & new_unittest("beyond delta_max: the fully capped continuation", &
+         & test_continuation), &
          & new_unittest("residual overlap: no force below it", test_residual), &
          & new_unittest("energy of a cycle = closed integral of P d delta", test_cycle), &
          & new_unittest("binary and CSV round trip; version 5 only with the cap", &
@@ -427,6 +430,138 @@ contains
          & " delta_max nodes, max_error ", t%max_error, ", measured ", worst
       call check(error, worst <= tol_w, "the table's error "//str(worst)//" > rel_tol")
    end subroutine test_wide_range
+
+   !> A table to 40 delta_y (past cap_full_reach, 35: fully capped there) beyond its
+   !> delta_max X (stop 64; before it egw_out_of_range, the Hertz asymptote and the last
+   !> curve: 0.17 of the force too high at 2 X on loading): at delta_m = 2, 5, 20 X, loading
+   !> from a new contact and unloading at the rows of test/data/cap_continuation_reference.csv
+   !> (tools/reference/cap_continuation_reference.py: Sneddon's solution of the fully
+   !> capped unloading in mpmath, no egw code; beta = b/a_m from 0.05 to 0.999), through
+   !> hysteresis_eval and hysteresis_eval_state (status 0, the history max(., delta); on
+   !> loading the same bits; on unloading the state's piece of the last curve moved to the
+   !> contact within 1e-12 of P(m), measured 1.2e-15, served again bit for bit, 42 of 42
+   !> steps inside their piece). Tolerances, each the table's: the force within rel_tol of
+   !> max(P, 1e-3 P(m)) of the solves (load_history, solve_unload; the solver's own error
+   !> ~1e-6) and of the reference; the energy within rel_tol of max(U, 1e-3 U(m)) of the
+   !> reference's (it integrates that force); the stiffness within rel_tol of the turning point's
+   !> unloading stiffness 2 E* a_m of the reference's 2 E* b (dP/ddelta = 2 E* b of every
+   !> elastic axisymmetric contact; the table promises the force only, its slope measured
+   !> within 0.21 rel_tol here). Measured: P 0.12 rel_tol of the solves and of the
+   !> reference, U 0.02. Without the continuation (cap_full_reach raised past the table)
+   !> the first check fails (egw_out_of_range). A table that ends below cap_full_reach
+   !> (cap_table, 10 delta_y) keeps egw_out_of_range there.
+   subroutine test_continuation(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(dp), parameter :: kk = 8.0_dp/pi**2, mult(3) = [2.0_dp, 5.0_dp, 20.0_dp]
+      type(hysteresis_table) :: t
+      type(egw_error), allocatable :: err
+      type(loading_history) :: hist
+      type(solve_result) :: top, res
+      character(len=row_length), allocatable :: rows(:)
+      real(dp) :: dy, a_y, f_y, f_u, x_top, dm, am, d, f, k, fs, ks, state, u, u_m, p_m, &
+         & beta, dd, g, uh, st(hysteresis_state_size), worst(4), local, f2, k2, worst_s
+      integer :: i, j, stat, stat_s, stat_2, served
+      call read_data_rows("test/data/cap_continuation_reference.csv", rows, error)
+      if (allocated(error)) return
+      call check(error, size(rows) >= 10, "rows of cap_continuation_reference.csv")
+      if (allocated(error)) return
+      call cap_units(capped%radius, capped%modulus, capped%flow_pressure, dy, a_y, f_y)
+      f_u = 0.75_dp*f_y   ! E* sqrt(R) delta_y^1.5
+      call build_hysteresis(capped, solver_options(), -dy, 40*dy, tol, t, err)
+      call check(error, .not. allocated(err), "build to 40 delta_y")
+      if (allocated(error)) return
+      x_top = t%delta_max
+      worst = 0
+      worst_s = 0
+      served = 0
+      do i = 1, size(mult)
+         dm = mult(i)*x_top
+         am = sqrt(kk*kk + 2*(dm/dy)) - kk   ! a_m/a_y
+         p_m = 2*am*am*f_u
+         call load_history(capped, solver_options(), dm, hist, top, err)
+         call check(error, .not. allocated(err), "load_history")
+         if (allocated(error)) return
+         state = -huge(1.0_dp)
+         call hysteresis_state_init(st)
+         call hysteresis_eval(t, dm, state, f, k, stat)
+         call hysteresis_eval_state(t, dm, st, fs, ks, stat_s)
+         call check(error, stat == 0 .and. stat_s == 0 .and. state == dm .and. st(1) == dm &
+            & .and. same(f, fs) .and. same(k, ks), "loading to "//str(dm/x_top)//" X: "// &
+            & "statuses, histories or the state path's bits")
+         if (allocated(error)) return
+         worst(1) = max(worst(1), abs(f - top%force)/top%force)
+         call check(error, abs(f - top%force) <= tol*top%force .and. abs(k - top%stiffness) &
+            & <= tol*top%stiffness, "loading to "//str(dm/x_top)//" X: "//str(f)//", "// &
+            & str(k)//" solve "//str(top%force)//", "//str(top%stiffness))
+         if (allocated(error)) return
+         call hysteresis_energy(t, dm, dm, u_m, stat)
+         read (rows(size(rows)), *) beta, dd, g, uh
+         call check(error, stat == 0 .and. beta == 1.0_dp .and. abs(u_m - am**3*uh*f_u*dy) &
+            & <= tol*am**3*uh*f_u*dy, "energy at "//str(dm/x_top)//" X: "//str(u_m)// &
+            & " reference "//str(am**3*uh*f_u*dy))
+         if (allocated(error)) return
+         do j = 1, size(rows) - 1
+            read (rows(j), *) beta, dd, g, uh
+            d = dy*(dm/dy - 4*am/pi + am*dd)
+            call solve_unload(hist, d, res, err)
+            call check(error, .not. allocated(err), "solve_unload")
+            if (allocated(error)) return
+            state = dm
+            call hysteresis_eval(t, d, state, f, k, stat)
+            call hysteresis_eval_state(t, d, st, fs, ks, stat_s)
+            ! the state's piece (continue_state), served again at the state routine's top
+            call hysteresis_eval_state(t, d, st, f2, k2, stat_2)
+            served = served + merge(1, 0, st(11) < d .and. d < st(12))
+            call check(error, stat_2 == 0 .and. same(f2, fs) .and. same(k2, ks), &
+               & "the piece served again: status or bits")
+            if (allocated(error)) return
+            call hysteresis_energy(t, d, dm, u, stat)
+            local = max(res%force, 1.0e-3_dp*p_m)
+            worst(1) = max(worst(1), abs(f - res%force)/local)
+            worst(2) = max(worst(2), abs(f - am*am*g*f_u)/max(am*am*g*f_u, 1.0e-3_dp*p_m))
+            worst(3) = max(worst(3), abs(k - 2*beta*am*capped%modulus*a_y)/(2*am* &
+               & capped%modulus*a_y))
+            worst(4) = max(worst(4), abs(u - am**3*uh*f_u*dy)/max(am**3*uh*f_u*dy, &
+               & 1.0e-3_dp*u_m))
+            call check(error, stat == 0 .and. stat_s == 0 .and. state == dm .and. &
+               & st(1) == dm .and. abs(f - fs) <= 1.0e-12_dp*p_m .and. abs(k - ks) <= &
+               & 1.0e-10_dp*2*am*capped%modulus*a_y, "unloading from "//str(dm/x_top)// &
+               & " X at beta "//str(beta)//": statuses, histories, or the state's piece "// &
+               & str(fs)//", "//str(ks)//" against "//str(f)//", "//str(k))
+            worst_s = max(worst_s, abs(f - fs)/p_m)
+            if (allocated(error)) return
+            call check(error, abs(f - res%force) <= tol*local .and. abs(f - am*am*g*f_u) <= &
+               & tol*max(am*am*g*f_u, 1.0e-3_dp*p_m) .and. abs(k - 2*beta*am* &
+               & capped%modulus*a_y) <= tol*2*am*capped%modulus*a_y .and. &
+               & abs(u - am**3*uh*f_u*dy) <= tol*max(am**3*uh*f_u*dy, 1.0e-3_dp*u_m), &
+               & "unloading from "//str(dm/x_top)//" X at beta "//str(beta)//": P "// &
+               & str(f)//" solve "//str(res%force)//" reference "//str(am*am*g*f_u)// &
+               & "; dP/ddelta "//str(k)//" reference "//str(2*beta*am*capped%modulus*a_y)// &
+               & "; U "//str(u)//" reference "//str(am**3*uh*f_u*dy))
+            if (allocated(error)) return
+         end do
+         ! reloading past the history: the loading law again, the history moved
+         d = 1.5_dp*dm
+         call hysteresis_eval(t, d, state, f, k, stat)
+         am = sqrt(kk*kk + 2*(d/dy)) - kk
+         call check(error, stat == 0 .and. state == d .and. abs(f - 2*am*am*f_u) <= &
+            & 1.0e-12_dp*f, "reloading to 1.5 delta_m: "//str(f))
+         if (allocated(error)) return
+      end do
+      print '(4x, a, 4es9.2)', "beyond X: largest error in P vs solves, P, dP/ddelta, U "// &
+         & "vs the reference (rel_tol units follow): ", worst
+      print '(4x, a, 4f7.3)', "  in rel_tol: ", worst/tol
+      print '(4x, a, es9.2, a, i0, a, i0)', "  state path vs hysteresis_eval: ", worst_s, &
+         & " of P(m); steps left inside their piece: ", served, " of ", 3*(size(rows) - 1)
+      call check(error, served >= 3*(size(rows) - 1)/2, "few continued pieces kept")
+      if (allocated(error)) return
+      ! a table ending below cap_full_reach: today's out-of-range values and status
+      call get_table(error)
+      if (allocated(error)) return
+      state = -huge(1.0_dp)
+      call hysteresis_eval(cap_table, 2*cap_table%delta_max, state, f, k, stat)
+      call check(error, stat == egw_out_of_range, "10 delta_y table beyond: out of range")
+   end subroutine test_continuation
 
    !> Turning points at or below delta_y: the contact is Hertz's, unloading retraces the
    !> loading curve bit for bit, within rel_tol of Hertz's closed form; a table that ends

@@ -14,6 +14,16 @@ const char *LAMMPS_NS::egw_law_kind_name[] = {
     "rough surface with the flow-pressure cap: hysteresis tables in delta/sigma, one per "
     "equivalent radius (one radius, or nodes in ln R, linear in ln R)"};
 
+std::string LAMMPS_NS::egw_law_name(const EgwLaw &L)
+{
+  static const char *models[] = {"Hertz", "GW", "E-GW", "EP-GW"};
+  const int m = L.prm.model;
+  std::string name = L.kind == EgwLaw::FLAT ? std::string("law ") + L.law_file
+      : m >= 0 && m < 4 ? std::string(models[m]) : fmt::format("model {}", m);
+  if (L.prm.flow_pressure > 0) name += " + flow-pressure cap";
+  return name + " (" + egw_law_kind_name[L.kind] + ")";
+}
+
 egw_flat_law LAMMPS_NS::egw_law_read_file(const std::string &path, MPI_Comm comm,
                                           const std::function<void(const std::string &)> &fail)
 {

@@ -9,6 +9,7 @@
 #include "egw_tables.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -85,17 +86,11 @@ struct EgwLaw {
   static constexpr double CAP_TOL_MIN = 1e-5;
   // Beyond a table that reaches at least CAP_FULL_MIN delta_y (the contact fully capped:
   // its elastic edge ring thinner than 1e-7 a from 32 delta_y on, doc/theory.md section 12
-  // trap iv) a contact loads and unloads by the fully capped continuation (cap_continue):
-  // exact in the cap model, so no reach WARNING there
+  // trap iv) egw continues it by the fully capped continuation (egw_hysteresis_eval_state
+  // and egw_hysteresis_energy, status OK: the library's cap_full_reach, the same 35; until
+  // stop 64 this plugin's own copy, cap_continue): exact in the cap model, so no reach
+  // WARNING there
   static constexpr double CAP_FULL_MIN = 35.0;
-  /* HYST_CAP beyond its table's reach X = hyst_dmax[0] >= CAP_FULL_MIN, in table units (x
-   * in delta_y; *dmax the contact's delta_max, state its hysteresis state or cache, kept at
-   * X): loading beyond max(X, *dmax) P = 2 alpha^2 (pi a^2 p_y) with x = alpha^2/2 + 8
-   * alpha/pi^2 (alpha = a/a_y); unloading from *dmax > X the table's curve from X scaled
-   * by r = alpha(*dmax)/alpha(X): P(x) = r^2 P_X(X - (*dmax - x)/r), dP/dx = r P_X',
-   * energy r^3 (doc/theory.md section 12, "Beyond a table: the fully capped continuation") */
-  inline int cap_continue(double x, double *dmax, double *state, int want_energy,
-                          bool states_are_history, double &p, double &dp, double &u) const;
   double tol_cap = 0, built_tol = 0;    // the cap table's rel_tol, and the TOL asked for
   double cap_wanted = 0;           // overlap_max R in delta_y (the reach before the cap)
   // HYST_RCAP (a rough model with the cap): the cap's delta_y ~ R next to sigma, so no
@@ -267,6 +262,18 @@ struct EgwLaw {
 };
 
 extern const char *egw_law_kind_name[];
+
+/* a law's model and kind, for messages: "EP-GW + flow-pressure cap (hysteresis table)" */
+std::string egw_law_name(const EgwLaw &L);
+
+/* whether a law's force F and stiffness S are finite (one test each, no libm call): a law
+ * whose parameters or table give forces beyond the doubles answers EGW_OK with an inf or a
+ * NaN (Hertz's closed form at E* ~ 1e308, a table's absurd node), which the callers stop
+ * with an ERROR naming the contact (pair_style egw, fix wall/egw) */
+inline bool egw_law_finite(double F, double S)
+{
+  return __builtin_expect(std::fabs(F) <= DBL_MAX && std::fabs(S) <= DBL_MAX, 1);
+}
 
 /* what a user can do about a contact beyond the tables' reach (the warning's advice) */
 inline const char *egw_reach_advice(const EgwLaw &L)
@@ -440,49 +447,6 @@ inline int EgwLaw::hyst_step(double delta, double R, double *dmax, double *state
   return st;
 }
 
-inline int EgwLaw::cap_continue(double x, double *dmax, double *state, int want_energy,
-                                bool states_are_history, double &p, double &dp,
-                                double &u) const
-{
-  // fully capped, the contact is a disk of radius a at p_y (R = E* = 1, p_y = 2/pi: a_y =
-  // 1, P = 2 alpha^2) whose edge displacement 4 p_y a/(pi E*) closes the gap: x = alpha^2/2
-  // + k alpha. Its deformed shape inside a_m is delta_m minus the disk's displacement,
-  // a_m times one function of rho/a_m, so its elastic unloading is a_m times one problem:
-  // delta_m - delta = alpha_m f(b/a_m), P = alpha_m^2 g(b/a_m)
-  const double X = hyst_dmax[0], k = 8.0 / (M_PI * M_PI);
-  auto alpha = [k](double d) { return std::sqrt(k * k + 2.0 * d) - k; };
-  const double aX = alpha(X);
-  double pX, dpX;
-  // the state at X: a cache loaded there anew; the history itself (wall/egw) loaded
-  // further from its delta_max (<= X where it is not yet X), as the contact was
-  if (!(state[0] == X)) {
-    if (!states_are_history) egw_hysteresis_state_init(state);
-    egw_hysteresis_eval_state(hyst[0], X, state, &pX, &dpX);
-  }
-  u = 0.0;
-  if (x >= *dmax) {    // loading beyond X (and beyond the contact's delta_max)
-    *dmax = x;
-    double a = alpha(x), r = a / aX;
-    p = 2.0 * a * a, dp = 4.0 * a / (a + k);
-    if (want_energy) {
-      egw_hysteresis_energy(hyst[0], X, X, &u);
-      u *= r * r * r;
-    }
-    return EGW_OK;
-  }
-  // unloading (or reloading below it) from *dmax > X: at the same s = (delta_m - delta)/
-  // (4 a_m/pi) on the curve from X, where the table's unloading is that same shape
-  const double r = alpha(*dmax) / aX, xs = X - (*dmax - x) / r;
-  int st = egw_law_hyst_eval(hyst[0], hyst_tag[0], X, xs, X, state, pX, dpX,
-                             !states_are_history);
-  p = r * r * pX, dp = r * dpX;
-  if (want_energy) {
-    egw_hysteresis_energy(hyst[0], xs, X, &u);
-    u *= r * r * r;
-  }
-  return st;
-}
-
 inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, double &F,
                         double &S, double &U, int want_energy, bool states_are_history,
                         EgwMemo *memo) const
@@ -552,7 +516,7 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       // force, stiffness and energy units: HYST sigma, E* sqrt(R) sigma^1.5; HYST_RCAP
       // sigma, E* sigma^2 (the table of this law's one radius); HYST_CAP the contact's
       // first yield delta_y = cap_c R, E* sqrt(R) delta_y^1.5
-      double x, fF, fS, fU;
+      double x, fF, fS, fU, top = hyst_dmax[0];
       if (kind == HYST) {
         x = delta * inv_sigma, fF = sr * s15, fS = sr * s05, fU = sr * s25;
       } else if (kind == HYST_RCAP) {
@@ -569,16 +533,12 @@ inline int EgwLaw::eval(double delta, double R, double *hist, double *cache, dou
       } else {
         double s = cap_c * R, sq = sr * std::sqrt(s);    // E* sqrt(R) delta_y^0.5
         x = delta / s, fF = sq * s, fS = sq, fU = sq * s * s;
-        const double top = hyst_dmax[0];
-        if ((x > top || *dmax > top) && top >= CAP_FULL_MIN) {    // beyond the table
-          double p, dp, u;
-          st = cap_continue(x, dmax, cache, want_energy, states_are_history, p, dp, u);
-          F = fF * p, S = fS * dp, U = fU * u;
-          break;
-        }
+        // beyond a table to CAP_FULL_MIN delta_y or more egw continues it, status OK: its
+        // unloading pieces there (served inline too) are not out of range
+        if (top >= CAP_FULL_MIN) top = HUGE_VAL;
       }
       double p, dp;
-      st = egw_law_hyst_eval(hyst[0], hyst_tag[0], hyst_dmax[0], x, *dmax, cache, p, dp,
+      st = egw_law_hyst_eval(hyst[0], hyst_tag[0], top, x, *dmax, cache, p, dp,
                              !states_are_history);
       *dmax = cache[0];
       // the energy the contact returns if it separates now (the rest of its loading work

@@ -643,6 +643,11 @@ void FixWallEGW::wall_contact(int i, EgwLaw &L, double delta, double R, const do
     egw_last_error(buf, sizeof(buf));
     error->one(FLERR, "Fix wall/egw: evaluation failed at overlap {}: {}", delta, buf);
   }
+  if (!egw_law_finite(Fn, S))    // (an ERROR naming the atom: egw_law_finite)
+    error->one(FLERR, "Fix wall/egw {}: atom {} (type {}), overlap {} (R = {}): the normal law "
+                      "{} gave force {} and stiffness {}, not finite: its parameters (E, "
+                      "radii) or its table file give forces beyond the doubles",
+               id, atom->tag[i], atom->type[i], delta, R, egw_law_name(L), Fn, S);
   double **v = atom->v, **f = atom->f, **torque = atom->torque;
   const double zero[3] = {0.0, 0.0, 0.0}, radi = atom->radius[i];
   const bool heat = wall.sub.heat != EgwSubmodels::HEAT_NONE;

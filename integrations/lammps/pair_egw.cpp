@@ -434,6 +434,18 @@ void PairEGW::report(const EgwLaw &L, int st, double delta, double R)
   }
 }
 
+/* a law's force or stiffness that is not finite with status OK (egw_law_finite): an ERROR
+ * naming the pair, the overlap and the law, before it reaches the atoms' forces */
+void PairEGW::not_finite(const EgwLaw &L, int i, int j, double delta, double R, double F,
+                         double S)
+{
+  error->one(FLERR, "Pair egw: atoms {} and {} (types {} {}), overlap {} (R = {}): the normal "
+                    "law {} gave force {} and stiffness {}, not finite: its parameters (E, "
+                    "radii) or its table file give forces beyond the doubles",
+             atom->tag[i], atom->tag[j], atom->type[i], atom->type[j], delta, R,
+             egw_law_name(L), F, S);
+}
+
 void PairEGW::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -519,6 +531,7 @@ void PairEGW::compute(int eflag, int vflag)
         U = 0.0;
         if (st != EGW_OK) report(L, st, delta, R);
       }
+      if (!egw_law_finite(Fn, S)) not_finite(L, i, j, delta, R, Fn, S);
       ncontact += (newton_pair || j < nlocal) ? 1.0 : 0.5;
 
       double mi = rmass[i], mj = rmass[j];

@@ -99,6 +99,8 @@ class PairEGW : public Pair, public EgwTypeCoeffs {
   inline void normal(EgwLaw &, double delta, double R, double *hist, double *cache, double &F,
                      double &S, double &U, int want_energy, EgwMemo *memo = nullptr);
   void report(const EgwLaw &, int st, double delta, double R);
+  [[gnu::cold, gnu::noinline]] void not_finite(const EgwLaw &, int i, int j, double delta,
+                                               double R, double F, double S);
   // per neighbor-list entry: entry jj of ilist[ii] is entry_first[ii] + jj (rebuilt with
   // the list, list_rows())
   std::vector<size_t> entry_first;

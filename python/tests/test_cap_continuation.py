@@ -51,3 +51,41 @@ def test_unloading_scales_from_the_table_end(dm):
     s_big = np.asarray(big.stiffness)
     assert np.max(np.abs(s_big - r * np.asarray(small.stiffness))) <= 1e-12 * np.max(s_big)
     assert np.asarray(big.force)[-1] < 0.02 * p_m    # the curve reaches near separation
+
+
+@pytest.fixture(scope="module")
+def table_to_40():
+    # a Hertz + cap table past the full-cap reach (35 delta_y) at 1e-3 (~1 s)
+    return egw.HysteresisTable.build(capped(), 0.0, 40.0, 1e-3)
+
+
+@pytest.mark.parametrize("k", [2.0, 5.0, 20.0])
+def test_table_continues_beyond_its_top(table_to_40, k):
+    # the library continues the table beyond its delta_max X (stop 64; egw_hysteresis_eval
+    # through egw_hysteresis_eval_array, and egw_hysteresis_energy): loading to k X from a
+    # new contact and unloading below it, no OutOfRangeWarning (an error here), the force
+    # within the table's 1e-3 of max(P, 1e-3 P_m) of egw's cap solves and the energy of
+    # its own force's integral (trapezoid on 4000 points, ~1e-6 of U_m). Before stop 64:
+    # the warning, and 0.17 of the force too high at 2 X on loading.
+    import warnings
+    X = table_to_40.info().delta_max
+    dm = k * X
+    p_m = 2 * alpha(dm) ** 2
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        st = table_to_40.new_state(1)
+        f, s = table_to_40.eval(np.array([dm]), st)
+        assert st[0] == dm and abs(f[0] - p_m) <= 1e-12 * p_m
+        d = dm - np.array([1e-6, 0.05, 0.3, 0.6, 0.9, 0.97]) * 4 * alpha(dm) / math.pi
+        st = np.full(d.shape, dm)
+        f, s = table_to_40.eval(d, st)
+        ref = np.asarray(egw.solve_unload(capped(), d, dm).force)
+        assert np.all(st == dm)
+        assert np.max(np.abs(f - ref) / np.maximum(ref, 1e-3 * p_m)) <= 1e-3
+        # the energy returned from d[2] on: the integral of the table's force below it
+        x = np.linspace(dm - 1.05 * 4 * alpha(dm) / math.pi, d[2], 4001)
+        fx, _ = table_to_40.eval(x, np.full(x.shape, dm))
+        quad = float(np.sum(0.5 * (fx[1:] + fx[:-1]) * np.diff(x)))
+        u = table_to_40.energy(d[2], dm)
+        u_m = table_to_40.energy(dm, dm)
+        assert abs(float(u) - quad) <= 1e-5 * float(u_m)

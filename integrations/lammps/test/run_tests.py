@@ -21,7 +21,7 @@ from suite_cap import *  # noqa: F401,F403
 TESTS = [test_energy_elastic, test_flat_law_file, test_epgw_restitution, test_restitution_tool_args, test_slow_impacts, test_energy_epgw, test_single_pair_local, test_summit_data_restitution, test_unequal_radii_summit, test_hertz_damping_vs_granular,
          test_oblique_friction_vs_granular, test_sigma_to_zero_vs_granular,
          test_submodels_vs_granular, test_twisting_pair_vs_granular, test_submodels_ranks_agree, test_pair_local_granular_columns, test_heat_vs_granular,
-         test_heat_flow_needs_model, test_pair_write, test_overlap_beyond_tables,
+         test_heat_flow_needs_model, test_pair_write, test_overlap_beyond_tables, test_not_finite_force,
          test_rmin_rmax_strict, test_pour_uses_both_ranks, test_wall_restitution, test_wall_material_contact, test_wall_sink_through, test_wall_bounces_start_afresh,
          test_wall_rolling_vs_wall_gran, test_wall_restart_and_ranks,
          test_bad_wall, test_wall_region, test_drum_example,

@@ -586,3 +586,26 @@ def test_pour_uses_both_ranks():
     ok = p.returncode == 0 and m and float(m.group(3)) > 0 and not err and not ignored
     return ok, (f"Nlocal ave {m.group(1)} max {m.group(2)} min {m.group(3)}" if m else "no Nlocal") + (
         f"; {err[0]}" if err else "") + (f"; {len(ignored)} x {ignored[0][:90]}" if ignored else "")
+
+
+def test_not_finite_force():
+    """A law that answers EGW_OK with a force beyond the doubles (issue 33: a user's call
+    cannot go wrong silently): Hertz at E = 1e308, nu = 0 (E* = 5e307) between two 2 m
+    spheres overlapping 3.9 m (F = (4/3) E* sqrt(R) delta^1.5 ~ 5e308 = inf), and one such
+    sphere 1.9 m into a fix wall/egw zplane of the same material (~2.5e308). pair_style egw
+    and fix wall/egw stop with an ERROR naming the atoms (ids 1 and 2, or atom 1), the
+    overlap and the law. Before stop 64 both ran on with an infinite force (no ERROR)."""
+    c = "E 1e308 nu 0"
+    cases = [(dict(wall=0), "Pair egw: atoms 1 and 2"),
+             (dict(wall=1, wallfix=f"wall/egw Hertz 1e-4 {c} zplane 0 NULL"),
+              "Fix wall/egw w: atom 1")]
+    bad = []
+    for var, key in cases:
+        rc, out = lmp("notfinite.in", pcoeff=c, **var)
+        # (error->one: MPI_Abort ends the run, as the wall's "sank through")
+        err = [l for l in out.splitlines() if "ERROR" in l][:1]
+        if rc == 0 or not err or key not in err[0] or not all(
+                w in err[0] for w in ("overlap", "Hertz", "not finite")) or "RESULT" in out:
+            bad.append(f"{var}: rc {rc} {err}")
+    return not bad, "ERROR naming the contact, pair and wall" + (
+        "; " + "; ".join(bad) if bad else "")

@@ -637,7 +637,9 @@ class HysteresisTable(_Handle):
         OutOfRangeWarning
             Overlaps or states above the table's last node (extrapolated; with the
             flow-pressure cap without a bound, 1.6e-2 of the force at 1.25 delta_max: build
-            to the deepest overlap, include/egw.h egw_hysteresis_eval).
+            to the deepest overlap, include/egw.h egw_hysteresis_eval). Not for a Hertz +
+            cap table to 35 delta_y or more: beyond it the exact fully capped
+            continuation, no warning.
 
         Raises
         ------

@@ -7,8 +7,9 @@
 module egw_hysteresis
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use, intrinsic :: iso_fortran_env, only: int64
-   use egw_kinds, only: dp
-   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range
+   use egw_kinds, only: dp, pi
+   use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, fatal_error, &
+      & format_real
    use egw_params, only: contact_params, model_hertz
    use egw_rough_sphere, only: solver_options
    use egw_table, only: table_eval, table_eval_cached, table_segment, segment_eval, &
@@ -21,16 +22,23 @@ module egw_hysteresis
       & map_x, map_piece, s_knee, s_zero, map_lengths, log_unload, edge_breaks, &
       & edge_segment, edge_s, edge_xi, max_stencil, stencil_width, stencil_window, stencil_sum, &
       & unload_floor
-   use egw_unload_energy, only: hysteresis_energy, hysteresis_energy_walk, log_energy_prepare, &
-      & energy_prepare
+   use egw_unload_energy, only: curve_energy => hysteresis_energy, hysteresis_energy_walk, &
+      & log_energy_prepare, energy_prepare
    implicit none
    private
 
    public :: hysteresis_table, build_hysteresis, hysteresis_eval, hysteresis_eval_state, &
       & hysteresis_state_init, hysteresis_energy, hysteresis_energy_walk, hysteresis_prepare, &
       & m_breakpoint, &
-      & stencil_first, m_coordinate, first_yield, hertz_capped, cap_first_turn
+      & stencil_first, m_coordinate, first_yield, hertz_capped, cap_first_turn, &
+      & cap_continues
    public :: hysteresis_state_size, zero_lo, folded
+
+   !> The turning point, in first-yield overlaps delta_y, from which a Hertz + cap contact is
+   !> fully capped (doc/theory.md section 12, trap iv: its elastic edge ring below 1e-7 a
+   !> from 32 delta_y): a Hertz + cap table whose delta_max reaches it continues beyond it
+   !> by the fully capped continuation (cap_continues; LAMMPS's CAP_FULL_MIN, the same).
+   real(dp), parameter, public :: cap_full_reach = 35.0_dp
 
    !> The start of a zero piece and zero loading interval (zero_piece): a real piece never
    !> starts there, and the cubics' powers of delta - zero_lo stay finite.
@@ -73,11 +81,12 @@ contains
    !> curve's tail; force_ratio tables, Hertz + cap: down to the residual overlap, which
    !> needs no loading force). A state above the table's delta_max uses the last curve (log-ratio
    !> tables: its span stretched by the state's excess, turning_point) and returns
-   !> egw_out_of_range (values written). NaN delta or state: egw_invalid_argument, nothing
-   !> changed (force, stiffness 0); a state above delta_max whose force leaves the doubles:
-   !> egw_invalid_argument, the values as computed (egw_hysteresis_eval's statuses). The
-   !> optional error says the same with a message naming the argument (formed only when
-   !> stat is not 0).
+   !> egw_out_of_range (values written); a Hertz + cap table that reaches cap_full_reach
+   !> continues exactly above it instead (cap_continue, status 0). NaN delta or state:
+   !> egw_invalid_argument, nothing changed (force, stiffness 0); a state above delta_max
+   !> whose force leaves the doubles: egw_invalid_argument, the values as computed
+   !> (egw_hysteresis_eval's statuses). The optional error says the same with a message
+   !> naming the argument (formed only when stat is not 0).
    pure subroutine hysteresis_eval(table, delta, delta_max_state, force, stiffness, stat, &
       & error)
       type(hysteresis_table), intent(in) :: table   !< built or read
@@ -106,9 +115,16 @@ contains
          & .not. delta_max_state > table%elastic_limit) then
          delta_max_state = max(delta_max_state, delta)
          call table_eval(table%loading, delta, force, stiffness)
-         if (delta > table%delta_max) call beyond(table, "delta_max_state", &
+         if (delta > table%delta_max) call past_top(table, delta, "delta_max_state", &
             & delta_max_state, force, stiffness, stat, error)
          return
+      end if
+      if (delta_max_state > table%delta_max) then   ! (a Hertz + cap table's continuation)
+         if (cap_continues(table)) then
+            call past_top(table, delta, "delta_max_state", delta_max_state, force, &
+               & stiffness, stat, error)
+            return
+         end if
       end if
       if (.not. delta > unload_floor(table)) return   ! below the cut-off: no force
       call turning_point(table, delta_max_state, first, w, inv_span, f_m, knee)
@@ -130,6 +146,192 @@ contains
       if (delta_max_state > table%delta_max) call beyond(table, "delta_max_state", &
          & delta_max_state, force, stiffness, stat, error)
    end subroutine hysteresis_eval
+
+   !> An evaluation above the table's delta_max (loading past it, or a history x, called
+   !> name, above it): a Hertz + cap table that continues (cap_continues) answers by the
+   !> fully capped continuation (cap_continue: force and stiffness replaced, history moved
+   !> to max(x, delta), stat 0, or egw_invalid_argument where they leave the doubles);
+   !> any other keeps the values it was given and takes beyond's status.
+   pure subroutine past_top(table, delta, name, x, force, stiffness, stat, error)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      character(len=*), intent(in) :: name
+      real(dp), intent(inout) :: x, force, stiffness
+      integer, intent(out) :: stat
+      type(egw_error), allocatable, intent(out), optional :: error
+      if (cap_continues(table)) then
+         call cap_continue(table, delta, x, force, stiffness)
+         stat = 0
+         if (ieee_is_finite(force) .and. ieee_is_finite(stiffness)) return
+      end if
+      call beyond(table, name, x, force, stiffness, stat, error)
+   end subroutine past_top
+
+   !> Whether table continues beyond its delta_max by the fully capped continuation: a
+   !> Hertz + cap table (force_ratio curves of the cap solver) whose last turning point is
+   !> fully capped, delta_max >= cap_full_reach delta_y. (Others: egw_out_of_range there.)
+   pure logical function cap_continues(table)
+      type(hysteresis_table), intent(in) :: table   !< built or read
+      cap_continues = table%capped .and. .not. table%reversible
+      ! (a hair below: a table built to 35 delta_y in units where delta_y rounds above 1
+      ! continues, as LAMMPS's test of its x_max >= 35 says)
+      if (cap_continues) cap_continues = table%delta_max >= &
+         & (cap_full_reach - 1.0e-9_dp)*first_yield(table%params)
+   end function cap_continues
+
+   !> The fully capped continuation of a Hertz + cap table beyond its delta_max X
+   !> (doc/theory.md section 12, "Beyond a table"; cap_continues): with alpha = a/a_y,
+   !> delta/delta_y = alpha^2/2 + k alpha (k = 8/pi^2) and P_u = E* sqrt(R) delta_y^1.5,
+   !> loading (delta >= the history, which moves to delta) P = 2 alpha^2 P_u, dP/ddelta =
+   !> 4 alpha/(alpha + k) P_u/delta_y; unloading and reloading below a history m > X the
+   !> table's last curve scaled by r = alpha(m)/alpha(X): P = r^2 P_X(X - (m - delta)/r),
+   !> dP/ddelta = r P_X' there (exact in the cap model: the capped disk's deformed shape,
+   !> so its elastic unloading, is a_m times one function of rho/a_m).
+   pure subroutine cap_continue(table, delta, history, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta          !< the overlap [length]
+      real(dp), intent(inout) :: history     !< the contact's largest overlap so far
+      real(dp), intent(out) :: force, stiffness
+      real(dp), parameter :: k = 8.0_dp/pi**2
+      real(dp) :: delta_y, a_y, force_y, a, r
+      call cap_units(table%params%radius, table%params%modulus, &
+         & table%params%flow_pressure, delta_y, a_y, force_y)
+      if (.not. delta < history) then
+         history = delta
+         a = sqrt(k*k + 2*(delta/delta_y)) - k
+         force = 2*a*a*(0.75_dp*force_y)
+         stiffness = 4*a/(a + k)*(0.75_dp*force_y/delta_y)
+         return
+      end if
+      r = cap_ratio(table, history)
+      call last_curve(table, table%delta_max - (history - delta)/r, force, stiffness)
+      force = r*r*force
+      stiffness = r*stiffness
+   end subroutine cap_continue
+
+   !> r = alpha(m)/alpha(X) of cap_continue: the contact radius at the history m over the
+   !> one at the table's delta_max X (fully capped: m/delta_y = alpha^2/2 + k alpha).
+   pure real(dp) function cap_ratio(table, m) result(r)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: m   !< the history, above delta_max
+      real(dp), parameter :: k = 8.0_dp/pi**2
+      real(dp) :: delta_y, a_y, force_y
+      call cap_units(table%params%radius, table%params%modulus, &
+         & table%params%flow_pressure, delta_y, a_y, force_y)
+      r = (sqrt(k*k + 2*(m/delta_y)) - k)/(sqrt(k*k + 2*(table%delta_max/delta_y)) - k)
+   end function cap_ratio
+
+   !> hysteresis_eval_state's step below a history m above the delta_max X of a Hertz + cap
+   !> table that continues (cap_continues): the piece of the last curve around x = X - (m -
+   !> delta)/r (make_piece, r = cap_ratio), moved to the contact (x - x_lo = (delta - lo)/r,
+   !> the force r^2 times the curve's: the cubic's coefficients times r^2, r, 1, 1/r), kept
+   !> as the state's piece with a zero linear loading interval over the same overlaps (the
+   !> piece's force needs none; egw.h's inline and this routine's top read it as any
+   !> piece: the contact's next steps inside it read only the state). Where no piece (the
+   !> clamp, an end, a ln P loading interval) cap_continue's values. The turning-point caches
+   !> marked stale (state(4) = 0: they would be X's, not the history's).
+   pure subroutine continue_state(table, delta, state, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(inout) :: state(hysteresis_state_size)
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: r, x, x_top, w(max_stencil), inv_span, f_m, knee, s, dsdx, c(4), ends(2), &
+         & seg(7)
+      integer :: first, i
+      logical :: found
+      x_top = table%delta_max
+      r = cap_ratio(table, state(1))
+      x = x_top - (state(1) - delta)/r
+      state(2) = state(1)
+      state(4) = 0.0_dp
+      state(11:12) = quiet_nan
+      state(18:19) = quiet_nan
+      found = .false.
+      if (x > unload_floor(table)) then
+         call turning_point(table, x_top, first, w, inv_span, f_m, knee)
+         s = (x_top - x)*inv_span
+         dsdx = inv_span
+         if (table%mapped) call map_s(table, x_top, knee, inv_span, x_top - x, s, dsdx)
+         s = min(s, 1.0_dp)
+         i = locate(table%s_lookup, table%s, s)
+         seg = quiet_nan
+         call make_piece(table, w, first, i, s, x_top, x, inv_span, knee, f_m, seg, ends, c, &
+            & found)
+         found = found .and. .not. seg(7) > 0.0_dp
+      end if
+      if (.not. found) then
+         call cap_continue(table, delta, state(1), force, stiffness)
+         return
+      end if
+      state(11) = state(1) - (x_top - ends(1))*r
+      state(12) = state(1) - (x_top - ends(2))*r
+      state(14:17) = [r*r*c(1), r*c(2), c(3), c(4)/r]
+      state(18:19) = state(11:12)
+      state(20:24) = 0.0_dp
+      call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
+   end subroutine continue_state
+
+   !> The force and stiffness at delta on the unloading curve of the table's last turning
+   !> point delta_max: hysteresis_eval's unloading branch (not log-ratio: a Hertz + cap
+   !> table's), written out for cap_continue alone, so that hysteresis_eval's own stays
+   !> inline on its hot path.
+   pure subroutine last_curve(table, delta, force, stiffness)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: delta
+      real(dp), intent(out) :: force, stiffness
+      real(dp) :: w(max_stencil), inv_span, f_m, c(4), s, knee, dsdx, m
+      integer :: first, i
+      force = 0.0_dp
+      stiffness = 0.0_dp
+      m = table%delta_max
+      if (.not. delta > unload_floor(table)) return
+      call turning_point(table, m, first, w, inv_span, f_m, knee)
+      s = (m - delta)*inv_span
+      dsdx = inv_span
+      if (table%mapped) call map_s(table, m, knee, inv_span, m - delta, s, dsdx)
+      s = min(s, 1.0_dp)
+      i = locate(table%s_lookup, table%s, s)
+      call gap_combination(table, first, w, i, c)
+      call unload_branch(table, c, i, s, m, f_m, inv_span, knee, dsdx, delta, force, &
+         & stiffness)
+   end subroutine last_curve
+
+   !> hysteresis_energy (egw_unload_energy's: the elastic energy a contact at delta returns
+   !> if it separates now, turning point max(delta, delta_max_state)), continued beyond a
+   !> Hertz + cap table that continues (cap_continues, cap_continue): the energy of the
+   !> last curve at X - (m - delta)/r times r^3 (the force scales by r^2, the overlaps by
+   !> r), stat 0. Statuses and error as egw_unload_energy's hysteresis_energy.
+   pure subroutine hysteresis_energy(table, delta, delta_max_state, energy, stat, error)
+      type(hysteresis_table), intent(in) :: table   !< built or read
+      real(dp), intent(in) :: delta             !< overlap [length]
+      real(dp), intent(in) :: delta_max_state   !< the contact's largest overlap so far
+      real(dp), intent(out) :: energy           !< [force*length], >= 0
+      integer, intent(out) :: stat              !< 0 or an egw status
+      !> allocated when stat is not 0, with a message naming the argument
+      type(egw_error), allocatable, intent(out), optional :: error
+      real(dp), parameter :: k = 8.0_dp/pi**2
+      real(dp) :: m, r, delta_y, a_y, force_y
+      m = delta_max_state
+      if (delta > m) m = delta
+      if (m > table%delta_max .and. .not. ieee_is_nan(delta)) then
+         if (cap_continues(table)) then
+            call cap_units(table%params%radius, table%params%modulus, &
+               & table%params%flow_pressure, delta_y, a_y, force_y)
+            r = (sqrt(k*k + 2*(m/delta_y)) - k)/(sqrt(k*k + 2*(table%delta_max/delta_y)) - k)
+            call curve_energy(table, table%delta_max - (m - delta)/r, table%delta_max, &
+               & energy, stat, error)
+            energy = r**3*energy
+            if (stat == 0 .and. .not. ieee_is_finite(energy)) then
+               stat = egw_invalid_argument
+               if (present(error)) call fatal_error(error, stat, "delta = "// &
+                  & format_real(delta)//", delta_max_state = "// &
+                  & format_real(delta_max_state)//": the energy there exceeds the doubles")
+            end if
+            return
+         end if
+      end if
+      call curve_energy(table, delta, delta_max_state, energy, stat, error)
+   end subroutine hysteresis_energy
 
    !> The status of an evaluation whose turning point (or overlap) x, called name, lies
    !> above the table's delta_max, with the force and stiffness it gave: egw_out_of_range,
@@ -167,8 +369,11 @@ contains
    !> trusted (its tag, state(3)): any other (all zero, as a DEM code's zeroed contact arrays;
    !> hysteresis_state_init's; another table's; garbled) is a new contact, its history reset to
    !> -huge; but a NaN state(1), as a NaN delta, is refused (egw_invalid_argument, nothing
-   !> changed, as egw_hysteresis_eval_state). The optional error says what stat says, with a
-   !> message naming the argument (formed only when stat is not 0).
+   !> changed, as egw_hysteresis_eval_state). Beyond a Hertz + cap table that continues
+   !> (cap_continues) loading steps are this call's (no piece), and unloading ones below
+   !> a history there keep a piece of the last curve moved to the contact
+   !> (continue_state): hysteresis_eval's values to rounding. The optional error says
+   !> what stat says, with a message naming the argument (formed only when stat is not 0).
    pure subroutine hysteresis_eval_state(table, delta, state, force, stiffness, stat, error)
       type(hysteresis_table), intent(in) :: table   !< built or read
       real(dp), intent(in) :: delta   !< overlap [length] (> 0 in contact, < 0 apart)
@@ -217,8 +422,11 @@ contains
          end if
          if (inside) then
             call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
-            if (state(1) > table%delta_max) call beyond(table, "state(1)", state(1), force, &
-               & stiffness, stat, error)
+            ! (a continued table's piece beyond it: status 0, continue_state)
+            if (state(1) > table%delta_max) then
+               if (.not. cap_continues(table)) call beyond(table, "state(1)", state(1), &
+                  & force, stiffness, stat, error)
+            end if
             return
          end if
       end if
@@ -248,8 +456,8 @@ contains
          & .not. state(1) > table%elastic_limit) then
          state(1) = max(state(1), delta)
          call table_eval_cached(table%loading, delta, state(18:24), force, stiffness)
-         if (delta > table%delta_max) call beyond(table, "state(1)", state(1), force, &
-            & stiffness, stat, error)
+         if (delta > table%delta_max) call past_top(table, delta, "state(1)", state(1), &
+            & force, stiffness, stat, error)
          ! a contact whose history lies where the loading force is 0 (below a rough
          ! table's cut-off: never touched, or separated before it touched): a zero piece
          ! and a zero loading interval up to there, so that its next calls (egw.h's
@@ -257,6 +465,15 @@ contains
          if (state(1) < table%loading%zero_below .and. .not. table%force_ratio) &
             & call zero_piece(table%loading%zero_below, delta < state(1), state)
          return
+      end if
+      if (state(1) > table%delta_max) then   ! (a Hertz + cap table's continuation)
+         if (cap_continues(table)) then
+            ! (a piece of the last curve, moved to the contact: continue_state)
+            call continue_state(table, delta, state, force, stiffness)
+            if (.not. (ieee_is_finite(force) .and. ieee_is_finite(stiffness))) call beyond( &
+               & table, "state(1)", state(1), force, stiffness, stat, error)
+            return
+         end if
       end if
       if (.not. delta > unload_floor(table)) then   ! below the cut-off: no force
          ! (a zero piece there, so that the next calls below it read only the state;
