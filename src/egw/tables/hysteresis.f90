@@ -40,6 +40,10 @@ module egw_hysteresis
    !> by the fully capped continuation (cap_continues; LAMMPS's CAP_FULL_MIN, the same).
    real(dp), parameter, public :: cap_full_reach = 35.0_dp
 
+   !> k = 8/pi^2 of the fully capped contact: delta/delta_y = alpha^2/2 + k alpha
+   !> (cap_continue, cap_ratio).
+   real(dp), parameter :: capped_k = 8.0_dp/pi**2
+
    !> The start of a zero piece and zero loading interval (zero_piece): a real piece never
    !> starts there, and the cubics' powers of delta - zero_lo stay finite.
    real(dp), parameter :: zero_lo = -0.25_dp*sqrt(huge(1.0_dp))
@@ -192,7 +196,7 @@ contains
       real(dp), intent(in) :: delta          !< the overlap [length]
       real(dp), intent(inout) :: history     !< the contact's largest overlap so far
       real(dp), intent(out) :: force, stiffness
-      real(dp), parameter :: k = 8.0_dp/pi**2
+      real(dp), parameter :: k = capped_k
       real(dp) :: delta_y, a_y, force_y, a, r
       call cap_units(table%params%radius, table%params%modulus, &
          & table%params%flow_pressure, delta_y, a_y, force_y)
@@ -214,7 +218,7 @@ contains
    pure real(dp) function cap_ratio(table, m) result(r)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m   !< the history, above delta_max
-      real(dp), parameter :: k = 8.0_dp/pi**2
+      real(dp), parameter :: k = capped_k
       real(dp) :: delta_y, a_y, force_y
       call cap_units(table%params%radius, table%params%modulus, &
          & table%params%flow_pressure, delta_y, a_y, force_y)
@@ -309,15 +313,12 @@ contains
       integer, intent(out) :: stat              !< 0 or an egw status
       !> allocated when stat is not 0, with a message naming the argument
       type(egw_error), allocatable, intent(out), optional :: error
-      real(dp), parameter :: k = 8.0_dp/pi**2
-      real(dp) :: m, r, delta_y, a_y, force_y
+      real(dp) :: m, r
       m = delta_max_state
       if (delta > m) m = delta
       if (m > table%delta_max .and. .not. ieee_is_nan(delta)) then
          if (cap_continues(table)) then
-            call cap_units(table%params%radius, table%params%modulus, &
-               & table%params%flow_pressure, delta_y, a_y, force_y)
-            r = (sqrt(k*k + 2*(m/delta_y)) - k)/(sqrt(k*k + 2*(table%delta_max/delta_y)) - k)
+            r = cap_ratio(table, m)
             call curve_energy(table, table%delta_max - (m - delta)/r, table%delta_max, &
                & energy, stat, error)
             energy = r**3*energy
