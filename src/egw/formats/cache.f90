@@ -180,11 +180,7 @@ module egw_cache
    !> (egw_sphere_iteration's floor_stiffness): the Hermite slopes near the bottom move,
    !> and with them the s midpoints the builds solve and the later solves' starts: the
    !> tables' bits change (<= 2.6e-5 of P(m) at 1e-4, forces of single solves unchanged).
-   !> 59 (stop 64, cut30): a rough + cap build's check curve stops at the node that splits
-   !> its interval (egw_hysteresis_grid's solve_split_checks): the promoted curve's
-   !> bisection solves the later nodes it meets itself, from other starts: the tables'
-   !> bits change (the same delta_max grids).
-   integer, parameter, public :: cache_revision = 59
+   integer, parameter, public :: cache_revision = 58
 
 
 contains

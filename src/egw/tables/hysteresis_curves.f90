@@ -18,7 +18,7 @@ module egw_hysteresis_curves
    private
 
    public :: unloading_curve, min_width, unloading_lengths, build_curves, verify_curves, &
-      & curve_offset, curve_eval, start_curve, gap_at
+      & curve_offset, curve_eval
 
    !> Most nodes in s of one unloading curve.
    integer, parameter :: max_s_nodes = 400

@@ -6,7 +6,7 @@
 module egw_hysteresis_grid
    use egw_kinds, only: dp
    use egw_status, only: egw_error, egw_not_converged, fatal_error, format_real, first_failure
-   use egw_rough_sphere, only: solver_options, history_cap_ratio, unload_start
+   use egw_rough_sphere, only: solver_options, history_cap_ratio
    use egw_cap_sphere, only: cap_units, gamma_start
    use egw_table, only: table_progress
    use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
@@ -14,9 +14,9 @@ module egw_hysteresis_grid
       & edge_xi, max_stencil, stencil_width, stencil_window, fine_length_tol, m_breakpoint, &
       & m_coordinate, map_x
    use egw_hysteresis, only: first_yield
-   use egw_hysteresis_lengths, only: cap_length, log_table, curve_options
+   use egw_hysteresis_lengths, only: cap_length, log_table
    use egw_hysteresis_curves, only: unloading_curve, min_width, build_curves, verify_curves, &
-      & curve_offset, curve_eval, start_curve, gap_at
+      & curve_offset, curve_eval
    implicit none
    private
 
@@ -276,7 +276,7 @@ contains
                call check_nodes(table, m, curves, idx(k), m_bound, built(k)%s, &
                   & skipped(idx(k))%s)
             end do
-            call solve_checks(table, options, shift, m, curves, idx, built, mids, error)
+            call solve_checks(table, options, shift, m, idx, built, mids, error)
             if (allocated(error)) return
             deallocate (built)
             have_mid = .true.
@@ -450,14 +450,12 @@ contains
 
    !> Solve the check curves built(:) (their nodes s set) of the delta_max intervals idx(:)
    !> into mids(idx): gap tables' intervals with no node left get an empty curve instead,
-   !> without its loading solve, and a gap table's check curve stops at the node that
-   !> splits its interval (solve_split_checks).
-   subroutine solve_checks(table, options, shift, m, curves, idx, built, mids, error)
+   !> without its loading solve.
+   subroutine solve_checks(table, options, shift, m, idx, built, mids, error)
       type(hysteresis_table), intent(inout) :: table
       type(solver_options), intent(in) :: options
       logical, intent(in) :: shift
       real(dp), intent(in) :: m(:)
-      type(unloading_curve), intent(in) :: curves(:)   !< the grid's node curves
       integer, intent(in) :: idx(:)
       type(unloading_curve), intent(inout) :: built(:), mids(:)
       type(egw_error), allocatable, intent(out) :: error
@@ -471,12 +469,8 @@ contains
       do k = 1, size(sel)
          call move_curve(built(sel(k)), solved(k))
       end do
-      if (table%mapped .and. .not. (table%force_ratio .or. log_table(table))) then
-         call solve_split_checks(table, options, shift, m, curves, idx(sel), solved, error)
-      else
-         call build_curves(table, options, 0.5_dp*(m(idx(sel)) + m(idx(sel) + 1)), shift, &
-            & solved, error, check=.true.)
-      end if
+      call build_curves(table, options, 0.5_dp*(m(idx(sel)) + m(idx(sel) + 1)), shift, &
+         & solved, error, check=.true.)
       if (allocated(error)) return
       do k = 1, size(idx)
          call move_curve(blank, mids(idx(k)))
@@ -485,80 +479,6 @@ contains
          call move_curve(solved(k), mids(idx(sel(k))))
       end do
    end subroutine solve_checks
-
-   !> Gap tables' check curves (build_curves' check, its order: increasing s, each solve
-   !> started from the one before) of the delta_max intervals idx(:), each solved up to the
-   !> node whose mismatch alone makes refine_m split its interval (gap_bound of it plus the
-   !> solves' rel_tol above rel_tol; err_mid is the largest over the nodes, so the split
-   !> is certain): its later nodes are not solved. The interval splits in this pass, its
-   !> check curve becomes a node and refine_curve bisects it from its first nodes, taking
-   !> the check solves it meets: a later node solved here was lost where the bisection
-   !> did not meet it (README's builds at 1e-4: E-GW + cap 81 -> 13 such solves, psi 1
-   !> 193 -> 30; the bisection, from other starts, solves more: 1681 -> 1668 and
-   !> 2975 -> 2916 solves in all, the same delta_max grids; doc/benchmarks.md "Stop 64:
-   !> cut30").
-   subroutine solve_split_checks(table, options, shift, m, curves, idx, checks, error)
-      type(hysteresis_table), intent(in) :: table
-      type(solver_options), intent(in) :: options
-      logical, intent(in) :: shift
-      real(dp), intent(in) :: m(:)
-      type(unloading_curve), intent(in) :: curves(:)   !< the grid's node curves
-      integer, intent(in) :: idx(:)   !< the intervals
-      type(unloading_curve), intent(inout) :: checks(:)   !< their check curves (s set)
-      type(egw_error), allocatable, intent(out) :: error
-      type(solver_options) :: serial
-      integer :: stats(size(idx)), k
-      character(len=512) :: messages(size(idx))
-      serial = curve_options(options, table%rel_tol)
-      stats = 0
-      ! (largest delta_max first, idx increasing: see build_curves)
-      !$omp parallel do schedule(dynamic) default(shared) private(k)
-      do k = size(idx), 1, -1
-         call one_check(k)
-      end do
-      !$omp end parallel do
-      call first_failure(stats, messages, error, "the unloading curve from delta_max", &
-         & 0.5_dp*(m(idx) + m(idx + 1)))
-   contains
-      subroutine one_check(k)
-         integer, intent(in) :: k
-         type(egw_error), allocatable :: err
-         type(unload_start) :: none
-         integer :: i, n
-         real(dp), allocatable :: s(:)
-         call start_curve(table, serial, 0.5_dp*(m(idx(k)) + m(idx(k) + 1)), shift, &
-            & checks(k), err)
-         if (.not. allocated(err)) then
-            n = size(checks(k)%s)
-            if (allocated(checks(k)%gap)) deallocate (checks(k)%gap, checks(k)%slope)
-            if (allocated(checks(k)%weight)) deallocate (checks(k)%weight)
-            allocate (checks(k)%gap(n), checks(k)%slope(n), checks(k)%weight(n))
-            do i = 1, n
-               call gap_at(table, checks(k), checks(k)%s(i), checks(k)%gap(i), &
-                  & checks(k)%slope(i), checks(k)%weight(i), err)
-               if (allocated(err)) exit
-               if (i == n) exit
-               if (gap_bound(table, m, curves, idx(k), stencil_mismatch(table, m, curves, &
-                  & idx(k), checks(k), i)) + hysteresis_solve_tol(options, table%rel_tol) &
-                  & > table%rel_tol) then
-                  s = checks(k)%s(:i)
-                  call move_alloc(s, checks(k)%s)
-                  checks(k)%gap = checks(k)%gap(:i)
-                  checks(k)%slope = checks(k)%slope(:i)
-                  checks(k)%weight = checks(k)%weight(:i)
-                  exit
-               end if
-            end do
-         end if
-         checks(k)%worst = 0.0_dp
-         ! (its start is not used again: freed with the solver's buffers, as build_curves)
-         checks(k)%start = none
-         if (allocated(err)) then
-            stats(k) = err%stat
-            messages(k) = err%message
-         end if
-      end subroutine one_check
-   end subroutine solve_split_checks
 
    !> Gap tables: the kept check curves (have_mid) whose skipped nodes a changed stencil no
    !> longer clears (shift_gap against gap_check_skip) solved there, on their own loading
@@ -811,15 +731,14 @@ contains
    !> the table's whole error there, its interpolation in s included (the curves are built
    !> to rel_tol/4, so that what remains is mostly the error in m, which bisection removes).
    !> The stencil is the evaluation's (stencil_window: six nodes for log-ratio curves).
-   pure real(dp) function stencil_mismatch(table, m, curves, j, mid, node) result(err)
+   pure real(dp) function stencil_mismatch(table, m, curves, j, mid) result(err)
       type(hysteresis_table), intent(in) :: table
       real(dp), intent(in) :: m(:)
       type(unloading_curve), intent(in) :: curves(:), mid
       integer, intent(in) :: j
-      integer, intent(in), optional :: node   !< at this node of mid only (its s solved)
       real(dp) :: x, w(max_stencil), r, dr, v, s, length, xm(max_stencil), knee, offset, &
          & dsdx, xi_b(3), xi, ds
-      integer :: first, k, i, k_b, lo, hi, i_lo, i_hi
+      integer :: first, k, i, k_b, lo, hi
       k_b = m_breakpoint(m)
       call stencil_window(j, size(m), k_b, stencil_width(table%log_ratio, size(m)), first, &
          & lo, hi)
@@ -838,13 +757,7 @@ contains
       err = 0.0_dp
       ! (log-ratio: the edge map of the interpolated L, the mismatch in h weighted)
       if (mid%log) call edge_breaks(length, table%params%sigma, xi_b)
-      i_lo = 1
-      i_hi = size(mid%s)
-      if (present(node)) then
-         i_lo = node
-         i_hi = node
-      end if
-      do i = i_lo, i_hi
+      do i = 1, size(mid%s)
          if (mid%log) then
             call edge_xi(mid%xi, mid%s(i), xi)
             call edge_s(xi_b, xi, s, ds)
