@@ -180,7 +180,11 @@ module egw_cache
    !> (egw_sphere_iteration's floor_stiffness): the Hermite slopes near the bottom move,
    !> and with them the s midpoints the builds solve and the later solves' starts: the
    !> tables' bits change (<= 2.6e-5 of P(m) at 1e-4, forces of single solves unchanged).
-   integer, parameter, public :: cache_revision = 58
+   !> 59 (stop 64, lay30): unloading solves after a capped loading above rel_tol 1e-6
+   !> take fewer layers inside a and a wider last layer at the rim (egw_sphere_level's
+   !> floor_layer_count, rim_layer_width): E-GW and EP-GW + cap tables at 1e-4 within
+   !> 1.2e-6 of P(m) of 58's (tables at tol <= 1e-5, solves at <= 1e-6, unchanged).
+   integer, parameter, public :: cache_revision = 59
 
 
 contains

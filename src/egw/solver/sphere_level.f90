@@ -34,6 +34,13 @@ module egw_sphere_level
    !> level's step: a Bernstein-ellipse rho >= 6.5 for p_y - p_s's sqrt(a - r) edge
    !> (doc/benchmarks.md "Stop 58: edge24").
    real(dp), parameter :: inside_grading = 0.6_dp
+   !> Unloading after a capped loading: the layers at the Hertz radius a and at the rim of
+   !> the history's plastic zone are those its guards were measured with up to this
+   !> rel_tol, and coarser above it (floor_layer_count, rim_layer_width): at the tables'
+   !> 1e-5 their error was below rel_tol/10 on README's E-GW + cap pair, and the levels,
+   !> half of whose elements they were, ~0.8 of the CPU (doc/benchmarks.md "Stop 64:
+   !> lay30").
+   real(dp), parameter :: layers_tol = 1.0e-6_dp
 
 contains
 
@@ -100,7 +107,8 @@ contains
             ! the rim of the history's plastic zone (first_unloading_level)
             if (prob%rim > 0.0_dp) then
                edges = with_kink_edges(edges, [prob%rim], focus, 1, sqrt(prob%closest%delta))
-               if (layers) edges = kink_layers(edges, prob%rim, prob%rim_width)
+               if (layers) edges = kink_layers(edges, prob%rim, &
+                  & rim_layer_width(prob%rim_width, options%rel_tol))
             end if
             if (allocated(prob%branch)) then
                keep = 0.0_dp
@@ -126,8 +134,9 @@ contains
             ! finest step, egw_not_converged at rel_tol 1e-6). (8 layers: the E-GW + cap
             ! table of theory.md section 12 built 2.8x slower than without; 5: 2.2x, and
             ! 3 left the error at 0.018 delta_y above its estimate, 2.5e-7 > 1.95e-7.)
+            ! Fewer above rel_tol 1e-6 (floor_layer_count).
             if (sums_total(prob) .and. prob%delta > 0.0_dp .and. layers) edges = &
-               & inner_layers(edges, sqrt(prob%delta), 5)
+               & inner_layers(edges, sqrt(prob%delta), floor_layer_count(options%rel_tol))
             ! (the central-disc route: the disc's elements shrink with the step; elsewhere
             ! a contact that is a central disc far inside the Hertz radius, central_disc:
             ! its elements graded about its edge, the kink edges put back inside it)
@@ -216,6 +225,33 @@ contains
       if ((size(halved) - 1)*deflection_degree + 1 > max_mesh_nodes) return
       call move_alloc(halved, edges)
    end subroutine halve_kept
+
+   !> The halving layers inside the Hertz radius a of an unloading after a capped loading
+   !> (solve_with_tail): 5 at rel_tol <= layers_tol, one fewer for each factor 2**1.5 of
+   !> rel_tol above it (each halving cuts the last layer's share of p_s's sqrt(a - r)
+   !> edge error by that factor), at least 1: 3 at 1e-5, 1 at 1e-4. The guard's case
+   !> (E-GW + cap steel beads, 0.017419 delta_y after 1.2971 delta_y) came out 3.3e-6 off
+   !> at 1e-5 with 3 and 2.5e-5 off at 1e-4 with 1, its estimates 2.5e-6 and 1.8e-5
+   !> (5.5e-7 and 5.2e-7 with 5; doc/benchmarks.md "Stop 64: lay30").
+   pure integer function floor_layer_count(rel_tol) result(n)
+      real(dp), intent(in) :: rel_tol   !< the solve's tolerance
+      n = 5
+      if (rel_tol > layers_tol) n = max(1, n - floor(log(rel_tol/layers_tol)/(1.5_dp* &
+         & log(2.0_dp))))
+   end function floor_layer_count
+
+   !> The last layer's width at the rim of the history's plastic zone (kink_layers): the
+   !> contact's edge layer there (width, first_unloading_level) at rel_tol <= layers_tol,
+   !> wider by (rel_tol/layers_tol)**0.6 above it (4x at 1e-5, 16x at 1e-4: two and four
+   !> halvings fewer on each side). The guard's case (EP-GW + cap, sigma = delta_y/100,
+   !> 17.65375 after 18.90625 delta_y: the contact ends 0.5 inside the rim) came out 1.0e-6
+   !> of its force off at 1e-5 and 9.5e-7 at 1e-4, its estimates 1.7e-6 and 5.3e-7
+   !> (4.0e-7 at both with the edge layer's width).
+   pure real(dp) function rim_layer_width(width, rel_tol) result(w)
+      real(dp), intent(in) :: width   !< the contact's edge layer width at the rim
+      real(dp), intent(in) :: rel_tol   !< the solve's tolerance
+      w = width*max(1.0_dp, rel_tol/layers_tol)**0.6_dp
+   end function rim_layer_width
 
    !> The parts a kept element is cut into on a level whose step is ratio times finer
    !> than the level before's: at least 2 and at least ratio (the levels' steps shrink by
