@@ -252,12 +252,7 @@ contains
       state(18:19) = quiet_nan
       found = .false.
       if (x > unload_floor(table)) then
-         call turning_point(table, x_top, first, w, inv_span, f_m, knee)
-         s = (x_top - x)*inv_span
-         dsdx = inv_span
-         if (table%mapped) call map_s(table, x_top, knee, inv_span, x_top - x, s, dsdx)
-         s = min(s, 1.0_dp)
-         i = locate(table%s_lookup, table%s, s)
+         call last_curve_point(table, x, first, w, inv_span, f_m, knee, s, dsdx, i)
          seg = quiet_nan
          call make_piece(table, w, first, i, s, x_top, x, inv_span, knee, f_m, seg, ends, c, &
             & found)
@@ -289,16 +284,29 @@ contains
       stiffness = 0.0_dp
       m = table%delta_max
       if (.not. delta > unload_floor(table)) return
-      call turning_point(table, m, first, w, inv_span, f_m, knee)
-      s = (m - delta)*inv_span
-      dsdx = inv_span
-      if (table%mapped) call map_s(table, m, knee, inv_span, m - delta, s, dsdx)
-      s = min(s, 1.0_dp)
-      i = locate(table%s_lookup, table%s, s)
+      call last_curve_point(table, delta, first, w, inv_span, f_m, knee, s, dsdx, i)
       call gap_combination(table, first, w, i, c)
       call unload_branch(table, c, i, s, m, f_m, inv_span, knee, dsdx, delta, force, &
          & stiffness)
    end subroutine last_curve
+
+   !> Where overlap x lies on the unloading curve of the table's last turning point
+   !> delta_max (continue_state, last_curve): its stencil, the curve's s and ds/dx, and the
+   !> s interval i.
+   pure subroutine last_curve_point(table, x, first, w, inv_span, f_m, knee, s, dsdx, i)
+      type(hysteresis_table), intent(in) :: table
+      real(dp), intent(in) :: x
+      integer, intent(out) :: first, i
+      real(dp), intent(out) :: w(max_stencil), inv_span, f_m, knee, s, dsdx
+      real(dp) :: m
+      m = table%delta_max
+      call turning_point(table, m, first, w, inv_span, f_m, knee)
+      s = (m - x)*inv_span
+      dsdx = inv_span
+      if (table%mapped) call map_s(table, m, knee, inv_span, m - x, s, dsdx)
+      s = min(s, 1.0_dp)
+      i = locate(table%s_lookup, table%s, s)
+   end subroutine last_curve_point
 
    !> hysteresis_energy (egw_unload_energy's: the elastic energy a contact at delta returns
    !> if it separates now, turning point max(delta, delta_max_state)), continued beyond a
