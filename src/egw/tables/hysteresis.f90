@@ -2,8 +2,9 @@
 !> the force of one parameter set over (delta, delta_max), with a per-contact history that
 !> the caller owns (the largest overlap so far; -huge for a contact that never touched):
 !> the evaluation, with and without a per-contact state, and the preparation of a built or
-!> read table. The layout: egw_hysteresis_data; the energy: egw_unload_energy; the
-!> adaptive build: the submodule egw_hysteresis_build (hysteresis_build.f90).
+!> read table. The layout: egw_hysteresis_data; the energy: egw_unload_energy; a state's
+!> pieces: egw_hysteresis_piece; beyond delta_max: egw_hysteresis_beyond; the adaptive
+!> build: the submodule egw_hysteresis_build (hysteresis_build.f90).
 module egw_hysteresis
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
    use, intrinsic :: iso_fortran_env, only: int64
@@ -22,8 +23,10 @@ module egw_hysteresis
       & map_x, map_piece, s_knee, s_zero, map_lengths, log_unload, edge_breaks, &
       & edge_segment, edge_s, edge_xi, max_stencil, stencil_width, stencil_window, stencil_sum, &
       & unload_floor
-   use egw_unload_energy, only: curve_energy => hysteresis_energy, hysteresis_energy_walk, &
-      & log_energy_prepare, energy_prepare
+   use egw_unload_energy, only: hysteresis_energy_walk, log_energy_prepare, energy_prepare
+   use egw_hysteresis_piece, only: piece_force, make_piece, unload_branch, folded
+   use egw_hysteresis_beyond, only: cap_full_reach, cap_continues, cap_continue, &
+      & continue_state, hysteresis_energy
    implicit none
    private
 
@@ -31,26 +34,12 @@ module egw_hysteresis
       & hysteresis_state_init, hysteresis_energy, hysteresis_energy_walk, hysteresis_prepare, &
       & m_breakpoint, &
       & stencil_first, m_coordinate, first_yield, hertz_capped, cap_first_turn, &
-      & cap_continues
+      & cap_continues, cap_full_reach
    public :: hysteresis_state_size, zero_lo, folded
-
-   !> The turning point, in first-yield overlaps delta_y, from which a Hertz + cap contact is
-   !> fully capped (doc/theory.md section 12, trap iv: its elastic edge ring below 1e-7 a
-   !> from 32 delta_y): a Hertz + cap table whose delta_max reaches it continues beyond it
-   !> by the fully capped continuation (cap_continues; LAMMPS's CAP_FULL_MIN, the same).
-   real(dp), parameter, public :: cap_full_reach = 35.0_dp
-
-   !> k = 8/pi^2 of the fully capped contact: delta/delta_y = alpha^2/2 + k alpha
-   !> (cap_continue, cap_ratio).
-   real(dp), parameter :: capped_k = 8.0_dp/pi**2
 
    !> The start of a zero piece and zero loading interval (zero_piece): a real piece never
    !> starts there, and the cubics' powers of delta - zero_lo stay finite.
    real(dp), parameter :: zero_lo = -0.25_dp*sqrt(huge(1.0_dp))
-   !> The loading interval's mark (state(24)) of a folded log-ratio piece (make_log_piece
-   !> on a ln P interval): its cubic is ln P - h itself, its force exp of it. (2: the
-   !> piece's cubic is -h, ln P the interval's; -1: P e^-h on a linear interval.)
-   real(dp), parameter :: folded = 3.0_dp
 
    interface
       !> Build the hysteresis table of params over overlaps [delta_min, delta_max] to rel_tol
@@ -171,176 +160,6 @@ contains
       call beyond(table, name, x, force, stiffness, stat, error)
    end subroutine past_top
 
-   !> Whether table continues beyond its delta_max by the fully capped continuation: a
-   !> Hertz + cap table (force_ratio curves of the cap solver) whose last turning point is
-   !> fully capped, delta_max >= cap_full_reach delta_y. (Others: egw_out_of_range there.)
-   pure logical function cap_continues(table)
-      type(hysteresis_table), intent(in) :: table   !< built or read
-      cap_continues = table%capped .and. .not. table%reversible
-      ! (a hair below: a table built to 35 delta_y in units where delta_y rounds above 1
-      ! continues, as LAMMPS's test of its x_max >= 35 says)
-      if (cap_continues) cap_continues = table%delta_max >= &
-         & (cap_full_reach - 1.0e-9_dp)*first_yield(table%params)
-   end function cap_continues
-
-   !> The fully capped continuation of a Hertz + cap table beyond its delta_max X
-   !> (doc/theory.md section 12, "Beyond a table"; cap_continues): with alpha = a/a_y,
-   !> delta/delta_y = alpha^2/2 + k alpha (k = 8/pi^2) and P_u = E* sqrt(R) delta_y^1.5,
-   !> loading (delta >= the history, which moves to delta) P = 2 alpha^2 P_u, dP/ddelta =
-   !> 4 alpha/(alpha + k) P_u/delta_y; unloading and reloading below a history m > X the
-   !> table's last curve scaled by r = alpha(m)/alpha(X): P = r^2 P_X(X - (m - delta)/r),
-   !> dP/ddelta = r P_X' there (exact in the cap model: the capped disk's deformed shape,
-   !> so its elastic unloading, is a_m times one function of rho/a_m).
-   pure subroutine cap_continue(table, delta, history, force, stiffness)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: delta          !< the overlap [length]
-      real(dp), intent(inout) :: history     !< the contact's largest overlap so far
-      real(dp), intent(out) :: force, stiffness
-      real(dp), parameter :: k = capped_k
-      real(dp) :: delta_y, a_y, force_y, a, r
-      call cap_units(table%params%radius, table%params%modulus, &
-         & table%params%flow_pressure, delta_y, a_y, force_y)
-      if (.not. delta < history) then
-         history = delta
-         a = sqrt(k*k + 2*(delta/delta_y)) - k
-         force = 2*a*a*(0.75_dp*force_y)
-         stiffness = 4*a/(a + k)*(0.75_dp*force_y/delta_y)
-         return
-      end if
-      r = cap_ratio(table, history)
-      call last_curve(table, table%delta_max - (history - delta)/r, force, stiffness)
-      force = r*r*force
-      stiffness = r*stiffness
-   end subroutine cap_continue
-
-   !> r = alpha(m)/alpha(X) of cap_continue: the contact radius at the history m over the
-   !> one at the table's delta_max X (fully capped: m/delta_y = alpha^2/2 + k alpha).
-   pure real(dp) function cap_ratio(table, m) result(r)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: m   !< the history, above delta_max
-      real(dp), parameter :: k = capped_k
-      real(dp) :: delta_y, a_y, force_y
-      call cap_units(table%params%radius, table%params%modulus, &
-         & table%params%flow_pressure, delta_y, a_y, force_y)
-      r = (sqrt(k*k + 2*(m/delta_y)) - k)/(sqrt(k*k + 2*(table%delta_max/delta_y)) - k)
-   end function cap_ratio
-
-   !> hysteresis_eval_state's step below a history m above the delta_max X of a Hertz + cap
-   !> table that continues (cap_continues): the piece of the last curve around x = X - (m -
-   !> delta)/r (make_piece, r = cap_ratio), moved to the contact (x - x_lo = (delta - lo)/r,
-   !> the force r^2 times the curve's: the cubic's coefficients times r^2, r, 1, 1/r), kept
-   !> as the state's piece with a zero linear loading interval over the same overlaps (the
-   !> piece's force needs none; egw.h's inline and this routine's top read it as any
-   !> piece: the contact's next steps inside it read only the state). Where no piece (the
-   !> clamp, an end, a ln P loading interval) cap_continue's values. The turning-point caches
-   !> marked stale (state(4) = 0: they would be X's, not the history's).
-   pure subroutine continue_state(table, delta, state, force, stiffness)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      real(dp), intent(inout) :: state(hysteresis_state_size)
-      real(dp), intent(out) :: force, stiffness
-      real(dp) :: r, x, x_top, w(max_stencil), inv_span, f_m, knee, s, dsdx, c(4), ends(2), &
-         & seg(7)
-      integer :: first, i
-      logical :: found
-      x_top = table%delta_max
-      r = cap_ratio(table, state(1))
-      x = x_top - (state(1) - delta)/r
-      state(2) = state(1)
-      state(4) = 0.0_dp
-      state(11:12) = quiet_nan
-      state(18:19) = quiet_nan
-      found = .false.
-      if (x > unload_floor(table)) then
-         call last_curve_point(table, x, first, w, inv_span, f_m, knee, s, dsdx, i)
-         seg = quiet_nan
-         call make_piece(table, w, first, i, s, x_top, x, inv_span, knee, f_m, seg, ends, c, &
-            & found)
-         found = found .and. .not. seg(7) > 0.0_dp
-      end if
-      if (.not. found) then
-         call cap_continue(table, delta, state(1), force, stiffness)
-         return
-      end if
-      state(11) = state(1) - (x_top - ends(1))*r
-      state(12) = state(1) - (x_top - ends(2))*r
-      state(14:17) = [r*r*c(1), r*c(2), c(3), c(4)/r]
-      state(18:19) = state(11:12)
-      state(20:24) = 0.0_dp
-      call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
-   end subroutine continue_state
-
-   !> The force and stiffness at delta on the unloading curve of the table's last turning
-   !> point delta_max: hysteresis_eval's unloading branch (not log-ratio: a Hertz + cap
-   !> table's), written out for cap_continue alone, so that hysteresis_eval's own stays
-   !> inline on its hot path.
-   pure subroutine last_curve(table, delta, force, stiffness)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: delta
-      real(dp), intent(out) :: force, stiffness
-      real(dp) :: w(max_stencil), inv_span, f_m, c(4), s, knee, dsdx, m
-      integer :: first, i
-      force = 0.0_dp
-      stiffness = 0.0_dp
-      m = table%delta_max
-      if (.not. delta > unload_floor(table)) return
-      call last_curve_point(table, delta, first, w, inv_span, f_m, knee, s, dsdx, i)
-      call gap_combination(table, first, w, i, c)
-      call unload_branch(table, c, i, s, m, f_m, inv_span, knee, dsdx, delta, force, &
-         & stiffness)
-   end subroutine last_curve
-
-   !> Where overlap x lies on the unloading curve of the table's last turning point
-   !> delta_max (continue_state, last_curve): its stencil, the curve's s and ds/dx, and the
-   !> s interval i.
-   pure subroutine last_curve_point(table, x, first, w, inv_span, f_m, knee, s, dsdx, i)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: x
-      integer, intent(out) :: first, i
-      real(dp), intent(out) :: w(max_stencil), inv_span, f_m, knee, s, dsdx
-      real(dp) :: m
-      m = table%delta_max
-      call turning_point(table, m, first, w, inv_span, f_m, knee)
-      s = (m - x)*inv_span
-      dsdx = inv_span
-      if (table%mapped) call map_s(table, m, knee, inv_span, m - x, s, dsdx)
-      s = min(s, 1.0_dp)
-      i = locate(table%s_lookup, table%s, s)
-   end subroutine last_curve_point
-
-   !> hysteresis_energy (egw_unload_energy's: the elastic energy a contact at delta returns
-   !> if it separates now, turning point max(delta, delta_max_state)), continued beyond a
-   !> Hertz + cap table that continues (cap_continues, cap_continue): the energy of the
-   !> last curve at X - (m - delta)/r times r^3 (the force scales by r^2, the overlaps by
-   !> r), stat 0. Statuses and error as egw_unload_energy's hysteresis_energy.
-   pure subroutine hysteresis_energy(table, delta, delta_max_state, energy, stat, error)
-      type(hysteresis_table), intent(in) :: table   !< built or read
-      real(dp), intent(in) :: delta             !< overlap [length]
-      real(dp), intent(in) :: delta_max_state   !< the contact's largest overlap so far
-      real(dp), intent(out) :: energy           !< [force*length], >= 0
-      integer, intent(out) :: stat              !< 0 or an egw status
-      !> allocated when stat is not 0, with a message naming the argument
-      type(egw_error), allocatable, intent(out), optional :: error
-      real(dp) :: m, r
-      m = delta_max_state
-      if (delta > m) m = delta
-      if (m > table%delta_max .and. .not. ieee_is_nan(delta)) then
-         if (cap_continues(table)) then
-            r = cap_ratio(table, m)
-            call curve_energy(table, table%delta_max - (m - delta)/r, table%delta_max, &
-               & energy, stat, error)
-            energy = r**3*energy
-            if (stat == 0 .and. .not. ieee_is_finite(energy)) then
-               stat = egw_invalid_argument
-               if (present(error)) call fatal_error(error, stat, "delta = "// &
-                  & format_real(delta)//", delta_max_state = "// &
-                  & format_real(delta_max_state)//": the energy there exceeds the doubles")
-            end if
-            return
-         end if
-      end if
-      call curve_energy(table, delta, delta_max_state, energy, stat, error)
-   end subroutine hysteresis_energy
 
    !> The status of an evaluation whose turning point (or overlap) x, called name, lies
    !> above the table's delta_max, with the force and stiffness it gave: egw_out_of_range,
@@ -559,140 +378,6 @@ contains
          & stiffness, stat, error)
    end subroutine hysteresis_eval_state
 
-   !> The force and stiffness at delta inside a piece (make_piece: start lo, cubic c),
-   !> with the loading interval seg it was made with: the cubic, plus exp of seg's cubic
-   !> where that is ln P; 0 where the force is not positive. A log-ratio piece
-   !> (make_log_piece: seg(7) folded on a ln P interval, c is ln P - h; 2 there with c
-   !> -h; -1 on a linear one, c -h): exp(ln P - h), or P e^-h, one exp (piece_exp; egw.h's inline
-   !> egw_hysteresis_eval_cached does the same arithmetic in the same order: the same
-   !> bits). With hysteresis_eval_state's top, the reference of the served arithmetic's
-   !> four copies (src/egw/capi/README.md: a change goes into all four).
-   pure subroutine piece_force(lo, c, seg, delta, force, stiffness)
-      real(dp), intent(in) :: lo, c(4), seg(7), delta
-      real(dp), intent(out) :: force, stiffness
-      real(dp) :: x, x2, p, k, t, t2, v, d
-      x = delta - lo
-      x2 = x*x
-      force = (c(1) + x*c(2)) + x2*(c(3) + x*c(4))
-      stiffness = (c(2) + 2*x*c(3)) + 3*x2*c(4)
-      if (seg(7) > 1.0_dp .or. seg(7) < 0.0_dp) then
-         if (seg(7) == folded) then
-            ! (force is ln P - h: exp(0 + force) and p (-0 + stiffness) below are
-            ! exp(force) and p stiffness bit for bit, egw.h's arithmetic)
-            v = 0.0_dp
-            d = -0.0_dp
-         else
-            t = delta - seg(1)
-            t2 = t*t
-            v = (seg(3) + t*seg(4)) + t2*(seg(5) + t*seg(6))
-            d = (seg(4) + 2*t*seg(5)) + 3*t2*seg(6)
-         end if
-         p = piece_exp(merge(v + force, force, seg(7) > 1.0_dp))
-         if (seg(7) > 1.0_dp) then
-            stiffness = p*(d + stiffness)
-            force = p
-         else
-            stiffness = p*(d + v*stiffness)
-            force = v*p
-         end if
-      else if (seg(7) > 0.0_dp) then
-         call segment_eval(seg, delta, p, k)
-         force = force + p
-         stiffness = stiffness + k
-      end if
-      if (.not. force > 0.0_dp) then
-         force = 0.0_dp
-         stiffness = 0.0_dp
-      end if
-   end subroutine piece_force
-
-   include "piece_exp.inc"
-
-   !> The piece of the unloading curve of turning point m (P_load(m) = f_m, 1/(s_max L) =
-   !> iota, its inverse span; stencil first) around delta for a state: the overlaps
-   !> ends = (lo, hi) where s (its value at delta, clamped at 1) stays in the run of s
-   !> intervals around i on which the stencil's curves are one cubic each and the loading
-   !> table in its interval around delta (seg, refilled), with the force there as the
-   !> cubic c in delta - lo; where the loading interval is ln P (seg(7) = 1) c is the gap
-   !> part only and piece_force adds exp(ln P). The gap cubic is the Hermite cubic of the
-   !> run's end nodes (weights w of the stencil), the same cubic as interval i's but
-   !> conditioned on the whole run: interval i's own coefficients, re-expanded many of its
-   !> widths away, would lose digits (4.6e-11 of f_m measured on a 1e-5 table). No piece
-   !> (found false, NaN ends) at the clamp s = 1 or outside the loading table's intervals.
-   pure subroutine make_piece(table, w, first, i, s, m, delta, iota, knee, f_m, seg, ends, &
-      & c, found)
-      type(hysteresis_table), intent(in) :: table
-      real(dp), intent(in) :: w(max_stencil), s, m, delta, iota, knee, f_m
-      integer, intent(in) :: first, i
-      real(dp), intent(inout) :: seg(7)
-      real(dp), intent(out) :: ends(2), c(4)
-      logical, intent(out) :: found
-      real(dp) :: lo, hi, t0, alpha, d, g(4), g_a, g_b, h_a, h_b, width, x_a, x_b, dsdx, &
-         & scale(4)
-      integer :: a, b
-      logical :: inside
-      ends = quiet_nan
-      c = 0.0_dp
-      found = .false.
-      if (.not. s < 1.0_dp) return   ! the clamp: g held
-      if (.not. (seg(1) <= delta .and. delta < seg(2))) then
-         call table_segment(table%loading, delta, seg, inside)   ! the interval around delta
-         if (.not. inside) return
-      end if
-      ! (force_ratio: the piece is f_m u alone, cut at seg's ends as a gap piece, so that
-      ! piece_force and egw.h's inline read it as one; on a ln P loading interval they
-      ! would add P_load: no piece there, hysteresis_eval's arithmetic instead)
-      if (table%force_ratio .and. seg(7) > 0.0_dp) return
-      ! s = (m - delta) iota in [s_i, s_{i+1}): delta in (m - s_{i+1}/iota, m - s_i/iota];
-      ! the piece is open below (the cut-off itself has no force)
-      a = table%run_first(first, i)
-      b = table%run_last(first, i) + 1
-      ! (a run lies in one piece of the map: its breaks end runs, make_runs)
-      x_a = table%s(a)*(1.0_dp/iota)
-      x_b = table%s(b)*(1.0_dp/iota)
-      dsdx = iota
-      if (table%mapped) then
-         call map_x(table, m, knee, iota, table%s(a), x_a, dsdx)
-         call map_x(table, m, knee, iota, table%s(b), x_b, dsdx)
-      end if
-      lo = max(m - x_b, seg(1), unload_floor(table))
-      hi = min(m - x_a, seg(2))
-      if (.not. (lo < delta .and. delta < hi)) return   ! rounding at an end
-      ! the run's cubic in t = (s - s_a)/(s_b - s_a) from its end nodes' gaps and slopes
-      width = table%s(b) - table%s(a)
-      scale = 1.0_dp
-      if (table%mapped) scale = table%piece_scale(map_piece(.true., 0.5_dp*(table%s(a) + &
-         & table%s(b))), first:first + 3)
-      g_a = dot_product(w(1:4), table%gap(a, first:first + 3))
-      g_b = dot_product(w(1:4), table%gap(b, first:first + 3))
-      h_a = width*dot_product(w(1:4), scale*table%slope(a, first:first + 3))
-      h_b = width*dot_product(w(1:4), scale*table%slope(b, first:first + 3))
-      g = [g_a, h_a, 3*(g_b - g_a) - 2*h_a - h_b, 2*(g_a - g_b) + h_a + h_b]
-      ! -f_m g(t), t = t0 + alpha x, as a cubic in x = delta - lo (s linear in delta on
-      ! the run: s_a + (m - delta - x_a) dsdx)
-      if (table%mapped) then
-         t0 = (m - lo - x_a)*dsdx/width
-      else   ! (the linear map's arithmetic, bit for bit as before the map)
-         t0 = ((m - lo)*iota - table%s(a))/width
-      end if
-      alpha = -dsdx/width
-      c(1) = -f_m*(g(1) + t0*(g(2) + t0*(g(3) + t0*g(4))))
-      c(2) = -f_m*alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
-      c(3) = -f_m*alpha**2*(g(3) + 3*t0*g(4))
-      c(4) = -f_m*alpha**3*g(4)
-      if (table%force_ratio) then
-         c = -c   ! f_m u(t), no loading cubic
-      else if (.not. seg(7) > 0.0_dp) then
-         ! the loading cubic in delta - seg(1), moved to delta - lo
-         d = lo - seg(1)
-         c(1) = c(1) + (seg(3) + d*(seg(4) + d*(seg(5) + d*seg(6))))
-         c(2) = c(2) + (seg(4) + d*(2*seg(5) + 3*d*seg(6)))
-         c(3) = c(3) + (seg(5) + 3*d*seg(6))
-         c(4) = c(4) + seg(6)
-      end if
-      ends = [lo, hi]
-      found = .true.
-   end subroutine make_piece
 
    !> make_piece of a log-ratio table: the piece around delta where the run of s
    !> intervals around i (one cubic per curve of the stencil first, weights w; inside one
@@ -859,48 +544,6 @@ contains
       state(1) = -huge(1.0_dp)
    end subroutine hysteresis_state_init
 
-   !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
-   !> (P_load(m) = f_m, 1/(s_max L) = inv_span) from its gap cubic c on s interval i, at
-   !> s = min((m - delta) inv_span, 1): P_load(delta) - P_load(m) g(s, m) (force_ratio
-   !> tables: P_load(m) u(s, m), 0 at s = 1), 0 where that is not positive. Below the
-   !> curve's span (s clamped at 1, where the loading force is below rel_tol of P_ref)
-   !> the unloading force keeps its ratio to the loading force at the span's end
-   !> (unload_tail_ratio): the loading tail, scaled.
-   pure subroutine unload_branch(table, c, i, s, m, f_m, inv_span, knee, dsdx, delta, force, &
-      & stiffness)
-      type(hysteresis_table), intent(in) :: table
-      !> ds/ddelta = -dsdx at delta (map_s; inv_span and knee: the turning point's map)
-      real(dp), intent(in) :: c(4), s, m, f_m, inv_span, knee, dsdx, delta
-      integer, intent(in) :: i
-      real(dp), intent(out) :: force, stiffness
-      real(dp) :: g, dg, f_d, k_d, ratio, x_1, dummy
-      call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
-      if (table%force_ratio) then
-         ! the curves' u = P/P_load(m): no loading force, 0 from s = 1 on (apart)
-         force = f_m*g
-         stiffness = -f_m*dg*dsdx
-         if (.not. (force > 0.0_dp .and. s < 1.0_dp)) then
-            force = 0.0_dp
-            stiffness = 0.0_dp
-         end if
-         return
-      end if
-      call table_eval(table%loading, delta, f_d, k_d)
-      if (s >= 1.0_dp) then
-         x_1 = 1.0_dp/inv_span
-         if (table%mapped) call map_x(table, m, knee, inv_span, 1.0_dp, x_1, dummy)
-         ratio = unload_tail_ratio(table, m - x_1, f_m, g)
-         force = ratio*f_d
-         stiffness = ratio*k_d
-         return
-      end if
-      force = f_d - f_m*g
-      stiffness = k_d + f_m*dg*dsdx
-      if (.not. force > 0.0_dp) then
-         force = 0.0_dp
-         stiffness = 0.0_dp
-      end if
-   end subroutine unload_branch
 
    !> Derive the evaluation data (cubics on the union s grid, Lagrange denominators,
    !> lookup buckets, the curves' integrals, the data tag; reversible tables: the tag
@@ -913,9 +556,10 @@ contains
       real(dp), allocatable :: dxi_ds(:, :)
       table%tag = data_tag(table)
       table%capped = hertz_capped(table%params)
+      table%delta_yield = 0.0_dp
+      if (table%params%flow_pressure > 0.0_dp) table%delta_yield = first_yield(table%params)
       table%elastic_limit = table%loading%cutoff
-      if (table%capped) table%elastic_limit = max(table%elastic_limit, &
-         & first_yield(table%params))
+      if (table%capped) table%elastic_limit = max(table%elastic_limit, table%delta_yield)
       ! (from stop 52 a Hertz + cap table's first curve is at cap_first_turn, above delta_y:
       ! turning points up to it are Hertz's, as the cap solver's; earlier tables: delta_y)
       if (table%capped .and. allocated(table%m)) then

@@ -195,6 +195,10 @@ module egw_hysteresis_data
       !> §12): L(m_j) is m_j minus the residual overlap, s_max = 1, and below s = 1 there
       !> is no force (a rough model with the cap is not capped here: EP-GW's layout)
       logical :: capped = .false.
+      !> first yield of the flow-pressure cap delta_y (first_yield; 0 without the cap), set
+      !> by hysteresis_prepare at build and read: the continuation's scale beyond delta_max
+      !> (egw_hysteresis_beyond), not recomputed at every call there
+      real(dp) :: delta_yield = 0.0_dp
       !> Hertz + cap, format version 5 (the build's since stop 50): the curves store the
       !> unloading force itself, u = P/P_load(m) (1 at s = 0, 0 at s = 1) with du/ds, in
       !> place of the gap (P = P_load(m) sum_k w_k u_k(s), no loading force below the
