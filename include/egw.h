@@ -739,9 +739,13 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
  * delta_max: the fully capped continuation"); egw_hysteresis_eval_state and
  * egw_hysteresis_energy alike (a state unloading there keeps a piece of the last curve
  * moved to the contact, which egw_hysteresis_eval_cached serves as any piece; loading
- * steps there are calls). Other
- * tables with the flow-pressure cap (Hertz + cap below 35 delta_y, rough + cap) have no
- * bound: above delta_max the loading force is Hertz's asymptote, not the capped contact's,
+ * steps there are calls). A rough + cap table to 35 delta_y or more with sigma/delta_y in
+ * [0.01, 1] continues likewise (that law shifted and scaled to match the table's top, its
+ * last curve scaled) up to a reach where its measured error bound meets the table's
+ * rel_tol, at most 5 delta_max (E-GW, sigma/delta_y = 0.01 at 1e-3: 4.9 delta_max; 0.1:
+ * 1.32; doc/theory.md 12 "Beyond a rough + cap table"), EGW_OK there. Other
+ * tables with the flow-pressure cap (Hertz + cap below 35 delta_y, rough + cap otherwise
+ * and past that reach) have no bound: above delta_max the loading force is Hertz's asymptote, not the capped contact's,
  * and a state there unloads on the last curve, so the values drift fast (Hertz + cap to
  * 20 delta_y at rel_tol 1e-4: loading 7.8e-4, 1.6e-2, 0.15, 0.91 of the force too high at
  * 1.05, 1.25, 2, 5 delta_max, unloading up to 1.6e-2, 7.6e-2, 0.15 of the turning point's
@@ -804,7 +808,8 @@ int egw_hysteresis_state_tag(egw_hysteresis h, double *tag);
  * the values would not be finite) it returns 0 and changes nothing: call
  * egw_hysteresis_eval_state. It does not report
  * EGW_OUT_OF_RANGE (compare state[0] with egw_hysteresis_info.delta_max; a Hertz + cap
- * table to 35 delta_y or more continues beyond it, EGW_OK there) and refuses
+ * table to 35 delta_y or more continues beyond it, a rough + cap one to its reach
+ * (egw_hysteresis_eval above), EGW_OK there) and refuses
  * nothing (what it does not serve, the call checks). It reads the state's layout, which
  * is egw's: use it with the library of the same version as this header (0.3.2's pieces
  * in the separated tail hold one cubic of ln P - h, state[23] = 3, which 0.3.1's inline

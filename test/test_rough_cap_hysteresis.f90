@@ -6,7 +6,7 @@
 module test_rough_cap_hysteresis
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error, egw_invalid_argument, egw_invalid_parameter, &
-      & egw_unsupported, egw_not_converged
+      & egw_unsupported, egw_not_converged, egw_out_of_range
    use egw_params, only: contact_params, model_egw, model_epgw, model_flat_law, model_gw
    use egw_rough_sphere, only: solver_options, solve_result, solve_contact, &
       & loading_history, load_history, solve_unload
@@ -72,7 +72,9 @@ contains
          & new_unittest("E-GW + cap at sigma/delta_y = 1e-5 to 2e5 sigma: within rel_tol", &
          & test_tiny_sigma_table), &
          & new_unittest("a rough + cap build failing at small sigma/delta_y: its routes", &
-         & test_tiny_sigma_routes)]
+         & test_tiny_sigma_routes), &
+         & new_unittest("beyond delta_max: the rough + cap continuation to its reach", &
+         & test_rough_continuation)]
    end subroutine collect_rough_cap_hysteresis
 
    function str(x) result(s)
@@ -1023,5 +1025,102 @@ contains
          if (allocated(error)) return
       end do
    end subroutine check_against_solves
+
+   !> Beyond delta_max X = 35 delta_y of an E-GW + cap table at sigma/delta_y = 0.1, tol
+   !> 1e-3 (doc/theory.md section 12, "Beyond a rough + cap table"): the smooth fully
+   !> capped law matched to the table's top continues it to its reach, X exp(tol/(0.02
+   !> 0.1**0.75)) = 1.325 X. At the history m = 1.25 X, loading and unloading against
+   !> load_history + solve_unload at rel_tol 1e-7: within 2 tol of P(m) (the table's own
+   !> error at X, tol, scaled with the curve, plus the continuation's bound, tol; measured
+   !> there 3.9e-4 of P(m), doc/benchmarks.md "Stop 65: beyond31"), status 0; the state path
+   !> within 1e-12 P(m) of the stateless one; the energy at 0.95 m within rel_tol/2 of the
+   !> energy at m of a trapezoid quadrature of the continued force (4000 intervals on a C1
+   !> piecewise cubic: ~1e-8): the table's own energy, which the continuation scales by
+   !> r^3, is off its force's quadrature by 1.4e-4 of the top's at X (measured, 0.944 X).
+   !> Past the reach (2 X) egw_out_of_range, as before. (main d4174cb: egw_out_of_range at
+   !> 1.25 X, and values without a bound.)
+   subroutine test_rough_continuation(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_params) :: p
+      type(hysteresis_table) :: table
+      type(loading_history) :: hist
+      type(solve_result) :: top, res
+      type(egw_error), allocatable :: err
+      real(dp), parameter :: fractions(6) = [0.0_dp, 0.01_dp, 0.03_dp, 0.06_dp, 0.1_dp, &
+         & 0.15_dp]
+      real(dp) :: x, m, h, f, k, fs, ks, d, worst, state(hysteresis_state_size), energy, &
+         & quad, lo, step, f_prev, u_top
+      integer :: stat, j, n
+      p = egw_pair()
+      p%sigma = 0.1_dp*delta_y()
+      x = 35*delta_y()
+      call build_hysteresis(p, solver_options(), -3*p%sigma, x, tol, table, err)
+      if (allocated(err)) then
+         call check(error, .false., "build failed: "//err%message)
+         return
+      end if
+      m = 1.25_dp*x
+      call load_history(p, solver_options(rel_tol=1.0e-7_dp), m, hist, top, err)
+      if (allocated(err)) then
+         call check(error, .false., "load_history: "//err%message)
+         return
+      end if
+      worst = 0
+      do j = 1, size(fractions)
+         d = m*(1 - fractions(j))
+         h = 0.9_dp*x
+         if (j > 1) h = m
+         call hysteresis_eval(table, d, h, f, k, stat)
+         call check(error, stat == 0 .and. h == m, "stat "//str(real(stat, dp))// &
+            & " or history "//str(h/x)//" X at delta = "//str(d/x)//" X")
+         if (allocated(error)) return
+         if (j == 1) then
+            fs = top%force
+         else
+            call solve_unload(hist, d, res, err)
+            if (allocated(err)) then
+               call check(error, .false., "solve_unload: "//err%message)
+               return
+            end if
+            fs = res%force
+         end if
+         worst = max(worst, abs(f - fs)/top%force)
+         ! the state path: loaded to m, then at d
+         state = 0
+         call hysteresis_eval_state(table, m, state, fs, ks, stat)
+         if (stat == 0) call hysteresis_eval_state(table, d, state, fs, ks, stat)
+         call check(error, stat == 0 .and. abs(fs - f) <= 1.0e-12_dp*top%force, &
+            & "state path at "//str(d/x)//" X: "//str((fs - f)/top%force)//" of P(m)")
+         if (allocated(error)) return
+      end do
+      print '(4x, a, es9.2, a)', "continued to 1.25 X: within ", worst/tol, " tol of solves"
+      call check(error, worst <= 2*tol, "continuation "//str(worst)//" of P(m) off solves")
+      if (allocated(error)) return
+      ! the energy at 0.95 m against a trapezoid of the continued force from where it is 0
+      d = 0.95_dp*m
+      call hysteresis_energy(table, d, m, energy, stat)
+      if (stat == 0) call hysteresis_energy(table, m, m, u_top, stat)
+      call check(error, stat == 0 .and. energy > 0, "energy stat "//str(real(stat, dp)))
+      if (allocated(error)) return
+      lo = 0.5_dp*m
+      n = 4000
+      step = (d - lo)/n
+      quad = 0
+      h = m
+      call hysteresis_eval(table, lo, h, f_prev, k, stat)
+      do j = 1, n
+         call hysteresis_eval(table, lo + j*step, h, f, k, stat)
+         quad = quad + 0.5_dp*step*(f + f_prev)
+         f_prev = f
+      end do
+      call check(error, abs(energy - quad) <= 0.5_dp*tol*u_top, "energy "//str(energy)// &
+         & " against its quadrature "//str(quad))
+      if (allocated(error)) return
+      ! past the reach: out of range, as before
+      h = 0.9_dp*x
+      call hysteresis_eval(table, 2*x, h, f, k, stat)
+      call check(error, stat == egw_out_of_range, "2 X: stat "//str(real(stat, dp))// &
+         & ", not egw_out_of_range")
+   end subroutine test_rough_continuation
 
 end module test_rough_cap_hysteresis

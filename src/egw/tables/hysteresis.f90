@@ -75,7 +75,8 @@ contains
    !> needs no loading force). A state above the table's delta_max uses the last curve (log-ratio
    !> tables: its span stretched by the state's excess, turning_point) and returns
    !> egw_out_of_range (values written); a Hertz + cap table that reaches cap_full_reach
-   !> continues exactly above it instead (cap_continue, status 0). NaN delta or state:
+   !> continues exactly above it instead (cap_continue, status 0), and a rough + cap one
+   !> to 35 delta_y or more up to its measured reach (cap_continues). NaN delta or state:
    !> egw_invalid_argument, nothing changed (force, stiffness 0); a state above delta_max
    !> whose force leaves the doubles: egw_invalid_argument, the values as computed
    !> (egw_hysteresis_eval's statuses). The optional error says the same with a message
@@ -112,8 +113,8 @@ contains
             & delta_max_state, force, stiffness, stat, error)
          return
       end if
-      if (delta_max_state > table%delta_max) then   ! (a Hertz + cap table's continuation)
-         if (cap_continues(table)) then
+      if (delta_max_state > table%delta_max) then   ! (a capped table's continuation)
+         if (cap_continues(table, delta_max_state)) then
             call past_top(table, delta, "delta_max_state", delta_max_state, force, &
                & stiffness, stat, error)
             return
@@ -141,8 +142,9 @@ contains
    end subroutine hysteresis_eval
 
    !> An evaluation above the table's delta_max (loading past it, or a history x, called
-   !> name, above it): a Hertz + cap table that continues (cap_continues) answers by the
-   !> fully capped continuation (cap_continue: force and stiffness replaced, history moved
+   !> name, above it): a table that continues there (cap_continues: Hertz + cap from 35
+   !> delta_y, rough + cap to its reach) answers by the fully capped continuation
+   !> (cap_continue: force and stiffness replaced, history moved
    !> to max(x, delta), stat 0, or egw_invalid_argument where they leave the doubles);
    !> any other keeps the values it was given and takes beyond's status.
    pure subroutine past_top(table, delta, name, x, force, stiffness, stat, error)
@@ -152,7 +154,7 @@ contains
       real(dp), intent(inout) :: x, force, stiffness
       integer, intent(out) :: stat
       type(egw_error), allocatable, intent(out), optional :: error
-      if (cap_continues(table)) then
+      if (cap_continues(table, max(x, delta))) then
          call cap_continue(table, delta, x, force, stiffness)
          stat = 0
          if (ieee_is_finite(force) .and. ieee_is_finite(stiffness)) return
@@ -197,7 +199,7 @@ contains
    !> trusted (its tag, state(3)): any other (all zero, as a DEM code's zeroed contact arrays;
    !> hysteresis_state_init's; another table's; garbled) is a new contact, its history reset to
    !> -huge; but a NaN state(1), as a NaN delta, is refused (egw_invalid_argument, nothing
-   !> changed, as egw_hysteresis_eval_state). Beyond a Hertz + cap table that continues
+   !> changed, as egw_hysteresis_eval_state). Beyond a capped table that continues
    !> (cap_continues) loading steps are this call's (no piece), and unloading ones below
    !> a history there keep a piece of the last curve moved to the contact
    !> (continue_state): hysteresis_eval's values to rounding. The optional error says
@@ -252,8 +254,8 @@ contains
             call piece_force(state(11), state(14:17), state(18:24), delta, force, stiffness)
             ! (a continued table's piece beyond it: status 0, continue_state)
             if (state(1) > table%delta_max) then
-               if (.not. cap_continues(table)) call beyond(table, "state(1)", state(1), &
-                  & force, stiffness, stat, error)
+               if (.not. cap_continues(table, state(1))) call beyond(table, "state(1)", &
+                  & state(1), force, stiffness, stat, error)
             end if
             return
          end if
@@ -294,8 +296,8 @@ contains
             & call zero_piece(table%loading%zero_below, delta < state(1), state)
          return
       end if
-      if (state(1) > table%delta_max) then   ! (a Hertz + cap table's continuation)
-         if (cap_continues(table)) then
+      if (state(1) > table%delta_max) then   ! (a capped table's continuation)
+         if (cap_continues(table, state(1))) then
             ! (a piece of the last curve, moved to the contact: continue_state)
             call continue_state(table, delta, state, force, stiffness)
             if (.not. (ieee_is_finite(force) .and. ieee_is_finite(stiffness))) call beyond( &
