@@ -11,7 +11,8 @@
 !> Build: gfortran -O2 -fopenmp -I build/gfortran_<mods> \
 !>   tools/bench/beyond31_rough_continuation.f90 build/gfortran_<lib>/egw/libegw.a \
 !>   -lfftw3_omp -lfftw3 -llapack -lblas -o /tmp/cont
-!> Run:   /tmp/cont MODEL SIGMA_OVER_DY X_OVER_DY [rel_tol]   (MODEL: egw, epgw, gw)
+!> Run:   /tmp/cont MODEL SIGMA_OVER_DY X_OVER_DY [rel_tol [F1,F2,F3]]   (MODEL: egw, epgw,
+!>        gw; F: the m/X sampled, default 1.2,2,5)
 program beyond31_rough_continuation
    use egw_kinds, only: dp, pi
    use egw_status, only: egw_error
@@ -22,7 +23,7 @@ program beyond31_rough_continuation
    implicit none
    real(dp), parameter :: radius = 1.0e-3_dp, modulus = 1.0e11_dp, py = 1.0e9_dp
    real(dp), parameter :: k = 8.0_dp/pi**2
-   real(dp), parameter :: factors(3) = [1.2_dp, 2.0_dp, 5.0_dp]
+   real(dp) :: factors(3) = [1.2_dp, 2.0_dp, 5.0_dp]
    integer, parameter :: n_u = 12
    type(contact_params) :: p
    type(solver_options) :: opt
@@ -48,6 +49,9 @@ program beyond31_rough_continuation
    if (command_argument_count() >= 4) then
       call get_command_argument(4, arg); read (arg, *) t
       opt = solver_options(rel_tol=t)
+   end if
+   if (command_argument_count() >= 5) then
+      call get_command_argument(5, arg); read (arg, *) factors
    end if
    p = contact_params(model=model, radius=radius, modulus=modulus, sigma=sig*dy, mu=4.0_dp, &
       & flow_pressure=py)
