@@ -745,7 +745,8 @@ int egw_hysteresis_build(const egw_params *p, const egw_options *o, double delta
  * rel_tol, at most 5 delta_max (E-GW, sigma/delta_y = 0.01 at 1e-3: 4.9 delta_max; 0.1:
  * 1.32; doc/theory.md 12 "Beyond a rough + cap table"), EGW_OK there. Other
  * tables with the flow-pressure cap (Hertz + cap below 35 delta_y, rough + cap otherwise
- * and past that reach) have no bound: above delta_max the loading force is Hertz's asymptote, not the capped contact's,
+ * and past that reach) have no bound: above delta_max the loading force is Hertz's
+ * asymptote, not the capped contact's,
  * and a state there unloads on the last curve, so the values drift fast (Hertz + cap to
  * 20 delta_y at rel_tol 1e-4: loading 7.8e-4, 1.6e-2, 0.15, 0.91 of the force too high at
  * 1.05, 1.25, 2, 5 delta_max, unloading up to 1.6e-2, 7.6e-2, 0.15 of the turning point's

@@ -639,7 +639,9 @@ class HysteresisTable(_Handle):
             flow-pressure cap without a bound, 1.6e-2 of the force at 1.25 delta_max: build
             to the deepest overlap, include/egw.h egw_hysteresis_eval). Not for a Hertz +
             cap table to 35 delta_y or more: beyond it the exact fully capped
-            continuation, no warning.
+            continuation, no warning; nor for a rough + cap table to 35 delta_y or more
+            up to its measured reach (doc/theory.md section 12, "Beyond a rough + cap
+            table").
 
         Raises
         ------
