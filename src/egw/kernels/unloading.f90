@@ -99,16 +99,18 @@ module egw_unloading
    end type unloading_law
 
    interface
-      !> integrands' 16 nodes four lanes wide (unloading_simd.c), where simd_level() is 1:
-      !> branch 0 below e, 1 on (e, q), 2 beyond q; e .. c: zmc_law's constants.
-      pure subroutine simd_integrands(branch, z, h_min, delta, e, inv_qe, slope, lnq, c, &
-         & fz, gz) bind(C, name="egw_unload_integrands")
+      !> One panel of unload_integral four lanes wide (unloading_simd.c), where simd_level()
+      !> is 1: its nodes (edge 0: plain, 1: z = z* + v^2), the integrands there (branch 0
+      !> below e, 1 on (e, q), 2 beyond q) and their weighted sums rp, rdp; e .. c:
+      !> zmc_law's constants; gl_u, gl_w: the nodes and weights on [0, 1].
+      pure subroutine simd_panel(branch, edge, za, zb, z_star, h_min, delta, e, inv_qe, &
+         & slope, lnq, c, gl_u, gl_w, rp, rdp) bind(C, name="egw_unload_panel")
          import :: c_int, c_double
-         integer(c_int), value :: branch
-         real(c_double), intent(in) :: z(16)
-         real(c_double), value :: h_min, delta, e, inv_qe, slope, lnq, c
-         real(c_double), intent(out) :: fz(16), gz(16)
-      end subroutine simd_integrands
+         integer(c_int), value :: branch, edge
+         real(c_double), value :: za, zb, z_star, h_min, delta, e, inv_qe, slope, lnq, c
+         real(c_double), intent(in) :: gl_u(16), gl_w(16)
+         real(c_double), intent(out) :: rp, rdp
+      end subroutine simd_panel
    end interface
 
 contains
@@ -623,6 +625,7 @@ contains
       real(dp) :: t_star, z_star, z_lo, z_hi, z_peak, span, breaks(8), z0, z1, w
       real(dp) :: s_p, s_dp, r_p, r_dp, t0
       integer :: nb, i, ip
+      logical :: wide
       p = 0.0_dp
       dpdh = 0.0_dp
       t_star = contact_start(ulaw, delta)
@@ -643,6 +646,8 @@ contains
          call add_break(ulaw%sw(i) + h_min, z_lo, z_hi, breaks, nb)
       end do
       call sort(breaks(:nb))
+      ! AVX2 + FMA: each panel four lanes wide in unloading_simd.c (asked once a call)
+      wide = simd_level() == 1
       s_p = 0.0_dp
       s_dp = 0.0_dp
       z0 = z_lo
@@ -691,25 +696,13 @@ contains
       !> Evaluated node by node through law_at, this was ~70 % of Z_u's time. The law's
       !> constants are prepared (make_law) so that a node divides once (1/D); below e,
       !> where f^ = t^(3/2) and D = t, G is sqrt(t - Delta) phi outright. Where the CPU has
-      !> AVX2 + FMA (egw_simd_path), unloading_simd.c evaluates the same formulas four
-      !> lanes wide instead (the results differ in rounding only: test_unloading).
+      !> AVX2 + FMA (egw_simd_path), wide_panel evaluates the same formulas four lanes wide
+      !> in unloading_simd.c instead (the results differ in rounding only: test_unloading).
       pure subroutine integrands(t_mid, z, fz, gz)
          real(dp), intent(in) :: t_mid, z(16)
          real(dp), intent(out) :: fz(16), gz(16)
          real(dp) :: t(16), f(16), d(16), x(16), l(16), area(16), pres(16), phi(16), &
             & inv_d(16)
-         integer(c_int) :: branch
-         if (simd_level() == 1) then
-            ! AVX2 + FMA: the same nodes four lanes wide (0.6-0.7 of the time of this
-            ! code's two lanes; doc/benchmarks.md "Stop 56: psi22")
-            associate (law => ulaw%zmc)
-               branch = merge(0_c_int, merge(1_c_int, 2_c_int, t_mid <= law%q), &
-                  & t_mid <= law%e)
-               call simd_integrands(branch, z, h_min, delta, law%e, law%inv_qe, &
-                  & law%slope, law%lnq, law%c, fz, gz)
-            end associate
-            return
-         end if
          t = max(z - h_min, tiny(1.0_dp))  ! nodes lie above t* >= 0
          phi = gaussian(z)
          associate (law => ulaw%zmc)
@@ -735,10 +728,32 @@ contains
          fz = gz*x
       end subroutine integrands
 
+      !> The whole panel in unloading_simd.c (AVX2 + FMA): the same nodes, integrands and
+      !> sums as plain_panel and edge_panel, in the same order (the same bits), one call a
+      !> panel instead of the integrands' wrapper and two-lane nodes and sums here.
+      pure subroutine wide_panel(edge, za, zb, rp, rdp)
+         integer(c_int), intent(in) :: edge
+         real(dp), intent(in) :: za, zb
+         real(dp), intent(out) :: rp, rdp
+         real(dp) :: t_mid
+         integer(c_int) :: branch
+         t_mid = 0.5_dp*(za + zb) - h_min
+         associate (law => ulaw%zmc)
+            branch = merge(0_c_int, merge(1_c_int, 2_c_int, t_mid <= law%q), &
+               & t_mid <= law%e)
+            call simd_panel(branch, edge, za, zb, z_star, h_min, delta, law%e, law%inv_qe, &
+               & law%slope, law%lnq, law%c, gl_u, gl_w16, rp, rdp)
+         end associate
+      end subroutine wide_panel
+
       pure subroutine plain_panel(za, zb, rp, rdp)
          real(dp), intent(in) :: za, zb
          real(dp), intent(out) :: rp, rdp
          real(dp) :: fz(16), gz(16)
+         if (wide) then
+            call wide_panel(0_c_int, za, zb, rp, rdp)
+            return
+         end if
          call integrands(0.5_dp*(za + zb) - h_min, za + (zb - za)*gl_u, fz, gz)
          rp = sum16(gl_w16*fz)*(zb - za)
          rdp = sum16(gl_w16*gz)*(zb - za)
@@ -749,6 +764,10 @@ contains
          real(dp), intent(in) :: za, zb
          real(dp), intent(out) :: rp, rdp
          real(dp) :: fz(16), gz(16), va, vb, v(16)
+         if (wide) then
+            call wide_panel(1_c_int, za, zb, rp, rdp)
+            return
+         end if
          va = sqrt(max(za - z_star, 0.0_dp))
          vb = sqrt(max(zb - z_star, 0.0_dp))
          v = va + (vb - va)*gl_u
