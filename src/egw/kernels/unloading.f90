@@ -15,8 +15,9 @@
 !> "complete" (D = t, u_r clamped at 0) and "partial" (D = f^/sqrt(A^)); the integral is a
 !> fixed composite 16-point Gauss-Legendre rule on the pieces between those points, with
 !> t = t* + w^2 on the first panel (the edge becomes smooth), panels sized by the Gaussian's
-!> slope and by the distance to t = 0 (the law's branch point), and the Gaussian factor
-!> evaluated at exact node values z = t + h_min.
+!> slope and by the distance to t = 0 (the law's branch point), wider in the Gaussian's
+!> tail where they carry little of Z_u (tail_width), and the Gaussian factor evaluated at
+!> exact node values z = t + h_min.
 module egw_unloading
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, inv_sqrt2pi, pi
@@ -792,7 +793,8 @@ contains
    !> at 20). Not graded: the distance to the law's branch point t = 0 (ratio_max t0) and
    !> to the contact edge (at most twice z0 - z*: the edge's (z - z*)^(3/2) then lies a
    !> Bernstein ellipse rho >= 3.7 away, 3.7^-32 = 6e-19). Stop 65 (psi31): 4.05 -> 2.53
-   !> panels a call of README's psi 1 + cap build, Z_u within 3e-15 of the ungraded rule.
+   !> panels a call of README's psi 1 + cap build, Z_u and dZ_u/dh within 7e-16 of the
+   !> ungraded rule there and on 200 000 random parameters (doc/benchmarks.md).
    pure real(dp) function tail_width(z0, z1, z_peak, z_star, t0, e) result(w)
       real(dp), intent(in) :: z0       !< the panel's start, beyond z_peak and the edge
       real(dp), intent(in) :: z1       !< the next breakpoint or the window's end

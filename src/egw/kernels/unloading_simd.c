@@ -1,7 +1,7 @@
 /*
- * The EP-GW unloading integral's integrands (egw_unloading's `integrands`: Z_u(h, h_min)
- * and dZ_u/dh at the 16 nodes of one panel) in 4-lane AVX2 + FMA, chosen at run time
- * (issue 32). The library is built for the baseline x86-64, where gfortran evaluates the
+ * The EP-GW unloading integral's panels (egw_unloading's unload_integral: one panel's 16
+ * nodes, the integrands of Z_u(h, h_min) and dZ_u/dh there and their weighted sums) in
+ * 4-lane AVX2 + FMA, chosen at run time (issue 32). The library is built for the baseline x86-64, where gfortran evaluates the
  * nodes two lanes wide (glibc's 2-lane vector log and exp); with AVX2 and FMA this file
  * does four lanes with glibc's 4-lane log and exp (_ZGVdN4v_log, _ZGVdN4v_exp: libmvec,
  * part of glibc on x86-64, which the baseline code and solver/simd_kernels.c use already).
@@ -150,10 +150,11 @@ __attribute__((target("avx2,fma"), optimize("O2", "fp-contract=off"))) void egw_
         }
         width = vb - va;
     } else {
-        for (i = 0; i < 4; i++)
+        for (i = 0; i < 4; i++) {
+            __m256d u = _mm256_loadu_pd(gl_u + 4 * i);
             _mm256_storeu_pd(z + 4 * i, _mm256_add_pd(_mm256_set1_pd(za),
-                                                      _mm256_mul_pd(_mm256_set1_pd(zb - za),
-                                                                    _mm256_loadu_pd(gl_u + 4 * i))));
+                                                      _mm256_mul_pd(_mm256_set1_pd(zb - za), u)));
+        }
         width = zb - za;
     }
     integrands(branch, z, h_min, delta, e, inv_qe, slope, lnq, c, fz, gz);
