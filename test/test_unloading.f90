@@ -102,9 +102,20 @@ contains
    !> ~1e-15, the rest is rounding of the Gaussian factor far in the tail); dZ_u/dh the same.
    subroutine test_references(error)
       type(error_type), allocatable, intent(out) :: error
-      character(len=*), parameter :: path = "test/data/unload_reference.csv"
+      call check_reference_file(error, "test/data/unload_reference.csv", 1.0e-12_dp, &
+         & 0.0_dp, 300, "")
+   end subroutine test_references
+
+   !> Every row (psi, K, rho_p, h, h_min, Z_u, dZ_u/dh) of a 40-digit reference file against
+   !> rough_flat_unload_law, Z_u and dZ_u/dh within tol_floor + tol_per_log |ln Z_u|
+   !> relative; at least min_rows rows; label heads the failure's message.
+   subroutine check_reference_file(error, path, tol_floor, tol_per_log, min_rows, label)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), intent(in) :: path, label
+      real(dp), intent(in) :: tol_floor, tol_per_log
+      integer, intent(in) :: min_rows
       character(len=512) :: line
-      real(dp) :: psi, k, rho, h, h_min, z, dz, p, dp_
+      real(dp) :: psi, k, rho, h, h_min, z, dz, p, dp_, tol
       integer :: unit, ios, rows
       open (newunit=unit, file=path, status="old", action="read", iostat=ios)
       if (ios /= 0) then
@@ -119,15 +130,16 @@ contains
          read (line, *) psi, k, rho, h, h_min, z, dz
          call rough_flat_unload_law(h, h_min, psi, k, rho, p, dp_)
          rows = rows + 1
-         call check(error, p, z, trim(line)//": Z_u", rel=.true., thr=1.0e-12_dp)
+         tol = tol_floor + tol_per_log*abs(log(z))
+         call check(error, p, z, label//trim(line)//": Z_u", rel=.true., thr=tol)
          if (allocated(error)) exit
-         call check(error, dp_, dz, trim(line)//": dZ_u/dh", rel=.true., thr=1.0e-12_dp)
+         call check(error, dp_, dz, label//trim(line)//": dZ_u/dh", rel=.true., thr=tol)
          if (allocated(error)) exit
       end do
       close (unit)
       if (allocated(error)) return
-      call check(error, rows >= 300, to_string(rows)//" rows read from "//path)
-   end subroutine test_references
+      call check(error, rows >= min_rows, to_string(rows)//" rows read from "//path)
+   end subroutine check_reference_file
 
    !> Z_u where the integral's panels in the Gaussian's tail are graded (egw_unloading's
    !> tail_width): test/data/unload_tail_reference.csv (tools/reference/unload_refs.py
@@ -139,37 +151,12 @@ contains
    !> where Z_u ~ 1e-4 .. 4, 7.2e-14 at Z_u = 2e-71, dZ_u/dh alike).
    subroutine test_tail_references(error)
       type(error_type), allocatable, intent(out) :: error
-      character(len=*), parameter :: path = "test/data/unload_tail_reference.csv"
-      character(len=512) :: line
-      real(dp) :: psi, k, rho, h, h_min, z, dz, p, dp_, tol
-      integer :: unit, ios, rows, level0, got, level
+      integer :: level0, got, level
       level0 = simd_level()
       do level = 0, 1
          if (simd_set(level) /= level) cycle  ! no AVX2 + FMA here: the baseline path only
-         open (newunit=unit, file=path, status="old", action="read", iostat=ios)
-         if (ios /= 0) then
-            call test_failed(error, "cannot open "//path//" (run the tests from the project root)")
-            exit
-         end if
-         rows = 0
-         do
-            read (unit, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            if (line(1:1) == "#" .or. line(1:4) == "psi,") cycle
-            read (line, *) psi, k, rho, h, h_min, z, dz
-            call rough_flat_unload_law(h, h_min, psi, k, rho, p, dp_)
-            rows = rows + 1
-            tol = 2.0e-14_dp*(1.0_dp + abs(log(z)))
-            call check(error, p, z, "path "//to_string(level)//", "//trim(line)//": Z_u", &
-               & rel=.true., thr=tol)
-            if (allocated(error)) exit
-            call check(error, dp_, dz, "path "//to_string(level)//", "//trim(line)// &
-               & ": dZ_u/dh", rel=.true., thr=tol)
-            if (allocated(error)) exit
-         end do
-         close (unit)
-         if (allocated(error)) exit
-         call check(error, rows >= 8, to_string(rows)//" rows read from "//path)
+         call check_reference_file(error, "test/data/unload_tail_reference.csv", 2.0e-14_dp, &
+            & 2.0e-14_dp, 8, "path "//to_string(level)//", ")
          if (allocated(error)) exit
       end do
       got = simd_set(level0)
