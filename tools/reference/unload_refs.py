@@ -17,6 +17,8 @@ against a numerical derivative of the s-form.
 
 Run from the repository root (a few minutes on 2 cores):
     python3 tools/reference/unload_refs.py            # writes test/data/unload_reference.csv
+    python3 tools/reference/unload_refs.py --tail     # writes test/data/unload_tail_reference.csv
+(--tail: tail_cases(), where egw_unloading's panels in the Gaussian's tail are graded.)
 Needs mpmath (the project venv: .venv/bin/pip install mpmath).
 """
 import itertools
@@ -220,13 +222,30 @@ def cases():
         yield psi, k, rho, 6.0 + e, 5.0
 
 
+def tail_cases():
+    """Where Z_u's tail panels are graded (egw_unloading's tail_width, stop 65 psi31): the
+    edge left of the Gaussian's peak with small K (the points where a grading 7x too
+    strong moved Z_u most, 3e-13 .. 4e-13, among 200 000 random), and README's psi 1 + cap
+    build's typical calls (K 0.6, rho_p 54; the edge right of the peak)."""
+    yield 0.5155, 0.0899, 15.12, -1.8596752 + 5.43e-7, -1.8596752
+    yield 0.4713, 0.0582, 10.76, -2.5223176 + 6.18e-7, -2.5223176
+    yield 0.4992, 0.0856, 5.347, -1.9934887 + 3.7e-8, -1.9934887
+    yield 0.5035, 0.0630, 350.4, -2.0141423 + 8.58e-5, -2.0141423
+    yield 1.0, 0.6, 54, 0.5758599 + 1.6747678, 0.5758599
+    yield 1.0, 0.6, 54, 2.4254324 + 0.031675, 2.4254324
+    yield 1.0, 0.6, 54, -3.6457265 + 8.0, -3.6457265
+    yield 1.0, 0.6, 54, 5.0 + 3.0, 5.0
+
+
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join("test", "data",
-                                                             "unload_reference.csv")
+    tail = "--tail" in sys.argv[1:]
+    args = [a for a in sys.argv[1:] if a != "--tail"]
+    name = "unload_tail_reference.csv" if tail else "unload_reference.csv"
+    out = args[0] if args else os.path.join("test", "data", name)
     rows = []
     worst = mp.mpf(0)
     seen = set()
-    for psi, k, rho, h, h_min in cases():
+    for psi, k, rho, h, h_min in (tail_cases() if tail else cases()):
         key = (psi, k, rho, h, h_min)
         if key in seen:
             continue

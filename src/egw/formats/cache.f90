@@ -184,7 +184,10 @@ module egw_cache
    !> take fewer layers inside a and a wider last layer at the rim (egw_sphere_level's
    !> floor_layer_count, rim_layer_width): E-GW and EP-GW + cap tables at 1e-4 within
    !> 1.2e-6 of P(m) of 58's (tables at tol <= 1e-5, solves at <= 1e-6, unchanged).
-   integer, parameter, public :: cache_revision = 59
+   !> 60 (stop 65, psi31): Z_u's integral takes wider panels in the Gaussian's tail
+   !> (egw_unloading's tail_width): Z_u and dZ_u/dh move by rounding (<= 8e-16 relative),
+   !> and EP-GW tables' bits with them.
+   integer, parameter, public :: cache_revision = 60
 
 
 contains

@@ -15,8 +15,9 @@
 !> "complete" (D = t, u_r clamped at 0) and "partial" (D = f^/sqrt(A^)); the integral is a
 !> fixed composite 16-point Gauss-Legendre rule on the pieces between those points, with
 !> t = t* + w^2 on the first panel (the edge becomes smooth), panels sized by the Gaussian's
-!> slope and by the distance to t = 0 (the law's branch point), and the Gaussian factor
-!> evaluated at exact node values z = t + h_min.
+!> slope and by the distance to t = 0 (the law's branch point), wider in the Gaussian's
+!> tail where they carry little of Z_u (tail_width), and the Gaussian factor evaluated at
+!> exact node values z = t + h_min.
 module egw_unloading
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use egw_kinds, only: dp, inv_sqrt2pi, pi
@@ -49,6 +50,8 @@ module egw_unloading
    !> Z_u > 1e-30 (and test_unloading's 40-digit references hold at 1e-12); width 4 or
    !> dloss 12 would not (2e-11, 8e-13).
    real(dp), parameter :: max_width = 2.5_dp, dloss = 10.0_dp, ratio_max = 2.0_dp
+   !> Growth of the panels' exponent change per e-fold the Gaussian has lost (tail_width).
+   real(dp), parameter :: tail_grade = 0.15_dp
    !> Samples of the clamp test t = f^/sqrt(A^) on (e, q): sign changes are located on this
    !> logarithmic grid, then refined by bisection to full precision.
    integer, parameter :: clamp_samples = 48
@@ -99,16 +102,18 @@ module egw_unloading
    end type unloading_law
 
    interface
-      !> integrands' 16 nodes four lanes wide (unloading_simd.c), where simd_level() is 1:
-      !> branch 0 below e, 1 on (e, q), 2 beyond q; e .. c: zmc_law's constants.
-      pure subroutine simd_integrands(branch, z, h_min, delta, e, inv_qe, slope, lnq, c, &
-         & fz, gz) bind(C, name="egw_unload_integrands")
+      !> One panel of unload_integral four lanes wide (unloading_simd.c), where simd_level()
+      !> is 1: its nodes (edge 0: plain, 1: z = z* + v^2), the integrands there (branch 0
+      !> below e, 1 on (e, q), 2 beyond q) and their weighted sums rp, rdp; e .. c:
+      !> zmc_law's constants; gl_u, gl_w: the nodes and weights on [0, 1].
+      pure subroutine simd_panel(branch, edge, za, zb, z_star, h_min, delta, e, inv_qe, &
+         & slope, lnq, c, gl_u, gl_w, rp, rdp) bind(C, name="egw_unload_panel")
          import :: c_int, c_double
-         integer(c_int), value :: branch
-         real(c_double), intent(in) :: z(16)
-         real(c_double), value :: h_min, delta, e, inv_qe, slope, lnq, c
-         real(c_double), intent(out) :: fz(16), gz(16)
-      end subroutine simd_integrands
+         integer(c_int), value :: branch, edge
+         real(c_double), value :: za, zb, z_star, h_min, delta, e, inv_qe, slope, lnq, c
+         real(c_double), intent(in) :: gl_u(16), gl_w(16)
+         real(c_double), intent(out) :: rp, rdp
+      end subroutine simd_panel
    end interface
 
 contains
@@ -623,6 +628,7 @@ contains
       real(dp) :: t_star, z_star, z_lo, z_hi, z_peak, span, breaks(8), z0, z1, w
       real(dp) :: s_p, s_dp, r_p, r_dp, t0
       integer :: nb, i, ip
+      logical :: wide
       p = 0.0_dp
       dpdh = 0.0_dp
       t_star = contact_start(ulaw, delta)
@@ -643,6 +649,8 @@ contains
          call add_break(ulaw%sw(i) + h_min, z_lo, z_hi, breaks, nb)
       end do
       call sort(breaks(:nb))
+      ! AVX2 + FMA: each panel four lanes wide in unloading_simd.c (asked once a call)
+      wide = simd_level() == 1
       s_p = 0.0_dp
       s_dp = 0.0_dp
       z0 = z_lo
@@ -669,6 +677,8 @@ contains
                if (z0 > z_star) w = min(w, 8.0_dp*(z0 - z_star))
                call edge_panel(z0, z0 + w, r_p, r_dp)
             else
+               if (z0 > z_peak) w = max(w, tail_width(z0, z1, z_peak, z_star, t0, &
+                  & ulaw%zmc%e))
                call plain_panel(z0, z0 + w, r_p, r_dp)
             end if
             s_p = s_p + r_p
@@ -691,25 +701,13 @@ contains
       !> Evaluated node by node through law_at, this was ~70 % of Z_u's time. The law's
       !> constants are prepared (make_law) so that a node divides once (1/D); below e,
       !> where f^ = t^(3/2) and D = t, G is sqrt(t - Delta) phi outright. Where the CPU has
-      !> AVX2 + FMA (egw_simd_path), unloading_simd.c evaluates the same formulas four
-      !> lanes wide instead (the results differ in rounding only: test_unloading).
+      !> AVX2 + FMA (egw_simd_path), wide_panel evaluates the same formulas four lanes wide
+      !> in unloading_simd.c instead (the results differ in rounding only: test_unloading).
       pure subroutine integrands(t_mid, z, fz, gz)
          real(dp), intent(in) :: t_mid, z(16)
          real(dp), intent(out) :: fz(16), gz(16)
          real(dp) :: t(16), f(16), d(16), x(16), l(16), area(16), pres(16), phi(16), &
             & inv_d(16)
-         integer(c_int) :: branch
-         if (simd_level() == 1) then
-            ! AVX2 + FMA: the same nodes four lanes wide (0.6-0.7 of the time of this
-            ! code's two lanes; doc/benchmarks.md "Stop 56: psi22")
-            associate (law => ulaw%zmc)
-               branch = merge(0_c_int, merge(1_c_int, 2_c_int, t_mid <= law%q), &
-                  & t_mid <= law%e)
-               call simd_integrands(branch, z, h_min, delta, law%e, law%inv_qe, &
-                  & law%slope, law%lnq, law%c, fz, gz)
-            end associate
-            return
-         end if
          t = max(z - h_min, tiny(1.0_dp))  ! nodes lie above t* >= 0
          phi = gaussian(z)
          associate (law => ulaw%zmc)
@@ -735,10 +733,32 @@ contains
          fz = gz*x
       end subroutine integrands
 
+      !> The whole panel in unloading_simd.c (AVX2 + FMA): the same nodes, integrands and
+      !> sums as plain_panel and edge_panel, in the same order (the same bits), one call a
+      !> panel instead of the integrands' wrapper and two-lane nodes and sums here.
+      pure subroutine wide_panel(edge, za, zb, rp, rdp)
+         integer(c_int), intent(in) :: edge
+         real(dp), intent(in) :: za, zb
+         real(dp), intent(out) :: rp, rdp
+         real(dp) :: t_mid
+         integer(c_int) :: branch
+         t_mid = 0.5_dp*(za + zb) - h_min
+         associate (law => ulaw%zmc)
+            branch = merge(0_c_int, merge(1_c_int, 2_c_int, t_mid <= law%q), &
+               & t_mid <= law%e)
+            call simd_panel(branch, edge, za, zb, z_star, h_min, delta, law%e, law%inv_qe, &
+               & law%slope, law%lnq, law%c, gl_u, gl_w16, rp, rdp)
+         end associate
+      end subroutine wide_panel
+
       pure subroutine plain_panel(za, zb, rp, rdp)
          real(dp), intent(in) :: za, zb
          real(dp), intent(out) :: rp, rdp
          real(dp) :: fz(16), gz(16)
+         if (wide) then
+            call wide_panel(0_c_int, za, zb, rp, rdp)
+            return
+         end if
          call integrands(0.5_dp*(za + zb) - h_min, za + (zb - za)*gl_u, fz, gz)
          rp = sum16(gl_w16*fz)*(zb - za)
          rdp = sum16(gl_w16*gz)*(zb - za)
@@ -749,6 +769,10 @@ contains
          real(dp), intent(in) :: za, zb
          real(dp), intent(out) :: rp, rdp
          real(dp) :: fz(16), gz(16), va, vb, v(16)
+         if (wide) then
+            call wide_panel(1_c_int, za, zb, rp, rdp)
+            return
+         end if
          va = sqrt(max(za - z_star, 0.0_dp))
          vb = sqrt(max(zb - z_star, 0.0_dp))
          v = va + (vb - va)*gl_u
@@ -758,6 +782,33 @@ contains
       end subroutine edge_panel
 
    end subroutine unload_integral
+
+   !> The width of a plain panel starting at z0 > z_peak in the Gaussian's tail, where phi
+   !> has lost L = (z0^2 - z_peak^2)/2 e-folds from its largest value on the window: the
+   !> panel's share of Z_u is below e^-L, so its relative error may be e^L times larger
+   !> and the exponent change it spans (dloss and max_width, the limits at L = 0) grows
+   !> by the factor 1 + tail_grade L. The 16-point rule's relative error on e^-lambda x,
+   !> x in [0, 1] (mpmath): 2e-15 at lambda 20, 3e-12 at 30, 8e-10 at 40, 6e-7 at 60;
+   !> lambda = 10 + 1.5 L keeps e^-L times it below 2e-17 at every L (5e-18 at L 10, 2e-18
+   !> at 20). Not graded: the distance to the law's branch point t = 0 (ratio_max t0) and
+   !> to the contact edge (at most twice z0 - z*: the edge's (z - z*)^(3/2) then lies a
+   !> Bernstein ellipse rho >= 3.7 away, 3.7^-32 = 6e-19). Stop 65 (psi31): 4.05 -> 2.53
+   !> panels a call of README's psi 1 + cap build, Z_u and dZ_u/dh within 7e-16 of the
+   !> ungraded rule there and on 200 000 random parameters (doc/benchmarks.md).
+   pure real(dp) function tail_width(z0, z1, z_peak, z_star, t0, e) result(w)
+      real(dp), intent(in) :: z0       !< the panel's start, beyond z_peak and the edge
+      real(dp), intent(in) :: z1       !< the next breakpoint or the window's end
+      real(dp), intent(in) :: z_peak   !< where phi is largest on the window
+      real(dp), intent(in) :: z_star   !< the contact edge z* = t* + h_min
+      real(dp), intent(in) :: t0       !< the summits' interference at z0
+      real(dp), intent(in) :: e        !< delta_ep/sigma, where log t enters the law
+      real(dp) :: g
+      g = 1.0_dp + tail_grade*0.5_dp*(z0 - z_peak)*(z0 + z_peak)
+      w = g*max_width
+      if (abs(z0) > 1.0_dp) w = min(w, g*dloss/abs(z0))
+      if (t0 >= e) w = min(w, ratio_max*t0)
+      w = min(z1 - z0, w, 2.0_dp*(z0 - z_star))
+   end function tail_width
 
    !> Sum of a panel's 16 terms as a tree of halves (vector adds; the sum intrinsic adds
    !> them one after the other, a chain of 15 dependent adds, since the compiler may not
