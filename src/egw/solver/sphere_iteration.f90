@@ -766,7 +766,7 @@ contains
       type(discrete_solution), intent(in) :: sol   !< evaluated at the current w
       real(dp), intent(out) :: jac(:, :)   !< J, nodes x nodes
       integer :: e, q, j, g0, col, n_used, used(sol%mesh%n_gauss), i
-      real(dp) :: c(sol%mesh%n_gauss), acc, c5(6, 0:4)
+      real(dp) :: c(sol%mesh%n_gauss), acc
       logical :: written(size(jac, 2))
       written = .false.
       do e = 1, sol%mesh%n_elem
@@ -779,20 +779,6 @@ contains
             end if
          end do
          if (n_used == 0) cycle
-         if (n_used == 6 .and. sol%mesh%n_gauss == 6 .and. sol%mesh%degree == 4) then
-            ! (the solver's elements: all five columns in one pass over the six)
-            col = node_index(sol%mesh, e, 0)
-            do j = 0, 4
-               c5(:, j) = sol%dpdh(g0 + 1:g0 + 6)*sol%mesh%interp(j, 1:6)
-            end do
-            call element_columns(size(jac, 1), sol%infl(:, g0 + 1:g0 + 6), c5, &
-               & written(col), jac(:, col:col + 4))
-            do j = 0, 4
-               if (.not. written(col + j)) jac(col + j, col + j) = 1.0_dp + jac(col + j, col + j)
-               written(col + j) = .true.
-            end do
-            cycle
-         end if
          do j = 0, sol%mesh%degree
             col = node_index(sol%mesh, e, j)
             do q = 1, n_used
@@ -842,39 +828,6 @@ contains
          jac(col, col) = 1.0_dp
       end do
    end subroutine jacobian
-
-   !> jacobian's five columns of an element of degree 4 with six used Gauss points:
-   !> cols(:, j) = 0 - sum_q c(q, j) infl(:, q) (cols(:, 0) less that sum where an element
-   !> before wrote it: shared), each entry the sum jacobian writes column by column, in
-   !> its order. One pass over the element's six Gauss columns of infl instead of one a
-   !> node (five): those loads bound the column-by-column loops (doc/benchmarks.md
-   !> "Stop 65: fast31").
-   pure subroutine element_columns(m, infl, c, shared, cols)
-      integer, intent(in) :: m
-      real(dp), intent(in) :: infl(m, 6), c(6, 0:4)
-      logical, intent(in) :: shared
-      real(dp), intent(inout) :: cols(m, 0:4)
-      integer :: i, j
-      real(dp) :: s(0:4)
-      if (shared) then
-         do i = 1, m
-            do j = 0, 4
-               s(j) = ((c(1, j)*infl(i, 1) + c(2, j)*infl(i, 2)) + (c(3, j)*infl(i, 3) &
-                  & + c(4, j)*infl(i, 4))) + (c(5, j)*infl(i, 5) + c(6, j)*infl(i, 6))
-            end do
-            cols(i, 0) = cols(i, 0) - s(0)
-            cols(i, 1:4) = 0.0_dp - s(1:4)
-         end do
-      else
-         do i = 1, m
-            do j = 0, 4
-               s(j) = ((c(1, j)*infl(i, 1) + c(2, j)*infl(i, 2)) + (c(3, j)*infl(i, 3) &
-                  & + c(4, j)*infl(i, 4))) + (c(5, j)*infl(i, 5) + c(6, j)*infl(i, 6))
-            end do
-            cols(i, 0:4) = 0.0_dp - s(0:4)
-         end do
-      end if
-   end subroutine element_columns
 
    !> Newton with backtracking (Armijo on |F|_2). Converged when the scaled residual is
    !> below prob%residual_tol: 1e-11 (the rounding floor of H p is ~1e-12 for w ~ 1e6;
