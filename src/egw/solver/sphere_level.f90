@@ -105,9 +105,9 @@ contains
                if (layers) edges = inner_layers(edges, sqrt(prob%closest%delta))
             end if
             ! the unloading contact's end outside the focus's grading (first_unloading_level,
-            ! unloading_contact_end), before the rim and the kinks: its edge is not theirs,
-            ! their edges may be moved onto their kinks but not onto it; its layers as
-            ! the rim's (the same width there; coarser above rel_tol 1e-6)
+            ! unloading_contact_end), its layers as the rim's (the same width there, coarser
+            ! above rel_tol 1e-6); placed before the rim and the kinks (placed after, the
+            ! edge moved onto it could be a kink's, taken off its kink)
             if (prob%contact_end > 0.0_dp) then
                edges = with_kink_edges(edges, [prob%contact_end], focus, 1, &
                   & sqrt(prob%closest%delta))
