@@ -56,8 +56,6 @@ contains
          & test_deep_unloading), &
          & new_unittest("EP-GW + cap unloading from 9.375 delta_y at rel_tol 1e-5", &
          & test_deep_unloading_loose), &
-         & new_unittest("EP-GW + cap unloading mid-way from 9.375, 10 delta_y: rel_tol 1e-6 met", &
-         & test_mid_unloading_contact_end), &
          & new_unittest("EP-GW + cap unloading from 18.9 delta_y: the contact's end", &
          & test_rim_unloading), &
          & new_unittest("impact: dissipated = closed integral of P d delta", test_energy), &
@@ -1976,60 +1974,6 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_deep_unloading_loose
-
-   !> Unloading solves at rel_tol 1e-6 mid-way down from a deep capped loading (the pair
-   !> of test_deep_unloading_loose: EP-GW + cap, psi 1, mu 4, sigma = delta_y/100), at
-   !> 0.8357 of 9.375 delta_y and 0.815 of 10 delta_y, where the unloading contact ends
-   !> ~1.4 sqrt(R sigma) inside the rim of the history's plastic zone, beyond the rim's
-   !> layers and far outside the Hertz radius's grading: its end in one element 1.1 .. 1.6
-   !> long on both levels, which agreed while 1.72e-6 and 4.30e-6 of the force off, under
-   !> estimates of 1.9e-8 and 4.1e-7 (now an element edge with layers,
-   !> unloading_contact_end; doc/benchmarks.md "Stop 65: dbg31"). Against rel_tol 1e-8
-   !> solves of the same history (their estimates ~6e-10; at 9.375 delta_y rel_tol 1e-9
-   !> and 1e-10 solves agree with it to 2.7e-10, a history at rel_tol 1e-7 moves both
-   !> solves by 1e-8). Bounds: rel_tol 1e-6 of the force, the solve's promise; and the
-   !> error at most 4 times the estimate (90 and 10.6 times before, 2.5 and 0.8 with the
-   !> layers): the estimate, a Richardson fraction (order 2) of the last two levels' force
-   !> difference, is then of the error's order again. It is not a bound at errors of
-   !> 0.1 .. 0.3 rel_tol: on the band of overlaps measured about these, the worst ratio
-   !> was 50 (0.895 of 9.375 delta_y, 1.9e-7 under 3.8e-9, the same before the layers).
-   subroutine test_mid_unloading_contact_end(error)
-      type(error_type), allocatable, intent(out) :: error
-      real(dp), parameter :: maxima(2) = [9.375_dp, 10.0_dp], fractions(2) = [0.8357_dp, &
-         & 0.815_dp]
-      type(contact_params) :: p
-      type(loading_history) :: h
-      type(solve_result) :: top, res, ref
-      type(egw_error), allocatable :: err
-      real(dp) :: delta_y, force_y, off
-      integer :: i
-      call yield_units(delta_y, force_y)
-      p = impact_pair()
-      p%sigma = 0.01_dp*delta_y
-      do i = 1, size(maxima)
-         call load_history(p, solver_options(rel_tol=1.0e-6_dp), maxima(i)*delta_y, h, top, &
-            & err)
-         call check(error, .not. allocated(err), "history at "//str(maxima(i)) &
-            & //" delta_y failed")
-         if (allocated(error)) return
-         call unload_at_tols(h, fractions(i)*maxima(i)*delta_y, 1.0e-6_dp, 1.0e-8_dp, res, &
-            & ref, err)
-         if (allocated(err)) then
-            call check(error, .false., "unloading at "//str(fractions(i))//" of " &
-               & //str(maxima(i))//" delta_y: "//err%message)
-            return
-         end if
-         off = abs(res%force - ref%force)/abs(ref%force)
-         call check(error, off <= 1.0e-6_dp, "at "//str(fractions(i))//" of " &
-            & //str(maxima(i))//" delta_y: "//str(res%force)//" vs rel_tol 1e-8 " &
-            & //str(ref%force)//", off by "//str(off))
-         if (allocated(error)) return
-         call check(error, off <= 4.0_dp*res%est_rel_err, "at "//str(fractions(i))//" of " &
-            & //str(maxima(i))//" delta_y: off by "//str(off)//", estimate " &
-            & //str(res%est_rel_err))
-         if (allocated(error)) return
-      end do
-   end subroutine test_mid_unloading_contact_end
 
    !> The unloading solve at rel_tol 1e-5 after the capped loading to 18.90625 delta_y
    !> (the pair of test_deep_unloading_loose: a delta_max node of the hysteresis table at

@@ -187,10 +187,6 @@ module egw_cache
    !> 60 (stop 65, psi31): Z_u's integral takes wider panels in the Gaussian's tail
    !> (egw_unloading's tail_width): Z_u and dZ_u/dh move by rounding (<= 8e-16 relative),
    !> and EP-GW tables' bits with them.
-   !>    And (dbg31): unloading solves after a capped loading get an element edge
-   !> with layers where the contact ends outside the Hertz radius's grading
-   !> (sphere_mesh's unloading_contact_end): README's E-GW + cap table at 1e-4 within
-   !> 7.3e-6 of P(m) of 59's, the same nodes and max_error.
    integer, parameter, public :: cache_revision = 60
 
 

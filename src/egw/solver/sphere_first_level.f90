@@ -10,7 +10,7 @@ module egw_sphere_first_level
       & sums_total
    use egw_sphere_mesh, only: mesh_family, trim_to_unloading_decay, gap_edge, kink_radii, &
       & negligible_at, mesh_geometry, plastic_rim, edge_layer_width, step_for_nodes, coarsen, &
-      & focus_beyond, innermost_kink, unloading_contact_end
+      & focus_beyond, innermost_kink
    use egw_sphere_regime, only: yield_overlap, stall_fallbacks
    use egw_sphere_level, only: solve_with_tail, move_solution
    use egw_sphere_refine, only: relocate_kinks, central_disc
@@ -162,10 +162,6 @@ contains
       if (prob%closest%extended) prob%amax_edge = .not. negligible_at(first, &
          & sqrt(prob%closest%delta), 1.0e-4_dp*options%rel_tol)
       if (options%n_radial == 0) call trim_to_unloading_decay(prob, options, first, mesh)
-      ! (after a capped loading, where the contact ends outside the focus's grading: an
-      ! element edge with layers on every level, as the rim's; unloading_contact_end)
-      if (sums_total(prob) .and. options%n_radial == 0) prob%contact_end = &
-         & unloading_contact_end(first, mesh%focus + 4.0_dp*mesh%width)
       if (options%n_radial == 0) prob%disc = central_disc(prob, first)
       ! After a capped loading (sums_total) the innermost kink c can lie well inside the
       ! Hertz radius a the family is graded about: [0, c] is then one graded element on

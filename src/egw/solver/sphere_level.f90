@@ -10,7 +10,7 @@ module egw_sphere_level
       & discrete_solution, deflection_degree, smooth_force, force_floor, cap_excess, sums_total
    use egw_sphere_mesh, only: with_edge, with_kink_edges, focus_refined, grown_outer, &
       & inner_layers, graded_inside, kink_layers, disc_refined, with_history_edges, disc_graded, &
-      & split_kept, edge_layer_width
+      & split_kept
    use egw_sphere_iteration, only: solve_mesh
    use egw_sphere_regime, only: stall_fallbacks, capped_gw
    implicit none
@@ -103,16 +103,6 @@ contains
             if (prob%closest%extended .and. prob%amax_edge .and. prob%closest%capped) then
                edges = with_kink_edges(edges, [sqrt(prob%closest%delta)], focus, 1, 0.0_dp)
                if (layers) edges = inner_layers(edges, sqrt(prob%closest%delta))
-            end if
-            ! the unloading contact's end outside the focus's grading (first_unloading_level,
-            ! unloading_contact_end), its layers as the rim's (the same width there, coarser
-            ! above rel_tol 1e-6); placed before the rim and the kinks (placed after, the
-            ! edge moved onto it could be a kink's, taken off its kink)
-            if (prob%contact_end > 0.0_dp) then
-               edges = with_kink_edges(edges, [prob%contact_end], focus, 1, &
-                  & sqrt(prob%closest%delta))
-               if (layers) edges = kink_layers(edges, prob%contact_end, &
-                  & rim_layer_width(edge_layer_width(prob%contact_end), options%rel_tol))
             end if
             ! the rim of the history's plastic zone (first_unloading_level)
             if (prob%rim > 0.0_dp) then

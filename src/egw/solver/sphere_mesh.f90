@@ -34,14 +34,6 @@ module egw_sphere_mesh
    !> A kink of Z_u in Delta closer than this fraction of its element to a branch edge
    !> gets no edge of its own (with_kink_edges).
    real(dp), parameter :: near_kink = 0.3_dp
-   !> Unloading after a capped loading (unloading_contact_end): the contact ends where its
-   !> total pressure falls through this fraction of its peak, inside the steepest part
-   !> of its fall (EP-GW + cap, sigma = delta_y/100, psi 1, 0.8357 of 9.375 delta_y: the
-   !> total falls from 0.5 to 1e-3 of its peak within 0.4 sqrt(R sigma), 1.4 widths of
-   !> edge_layer_width; layers there at 0.1 or 0.01 of it, or by hand at 33.9, 34.05 or
-   !> 34.3, all left the rel_tol 1e-6 solve within 1.5e-7 of the rel_tol 1e-8 one; at
-   !> rel_tol 1e-4, 1.2e-7 off at 0.1, 5.2e-6 at 0.01; doc/benchmarks.md "Stop 65: dbg31").
-   real(dp), parameter :: contact_end_fraction = 0.1_dp
 
    public :: coarsen, force_order, unload_order, finest_step
 
@@ -55,7 +47,7 @@ module egw_sphere_mesh
    end type mesh_family
 
    public :: mesh_family
-   public :: kink_radii, cap_kink_radii, plastic_rim, edge_layer_width, unloading_contact_end
+   public :: kink_radii, cap_kink_radii, plastic_rim, edge_layer_width
    public :: first_mesh, coarsest_level_step, trim_to_unloading_decay, gap_edge, branch_radii, &
       & focus_beyond, innermost_kink, &
       & negligible_at, decayed_radius, focus_refined, with_edge, with_kink_edges, &
@@ -233,41 +225,6 @@ contains
          return
       end do
    end function plastic_rim
-
-   !> Unloading after a capped loading: the radius where the contact of a solution (the
-   !> locating solve, first_unloading_level) ends, where its total pressure p + p_s,
-   !> from the outside in, first reaches contact_end_fraction of its peak (linear between
-   !> Gauss points); 0 where that is not beyond the radius beyond (the family's grading
-   !> about the Hertz edge resolves it there) or the pressure does not fall that far.
-   !> Mid-way down from a deep capped loading the contact has left the rim of the
-   !> history's plastic zone (and the rim's layers) and ends in a layer as thin as the
-   !> Hertz edge's, several widths outside the focus, where the graded elements are ~
-   !> step (r - focus) long: EP-GW + cap, sigma = delta_y/100, psi 1, from 9.375 delta_y,
-   !> at 0.8357 delta_max the contact ended at 34.3 (a 28.0, rim 35.7) inside elements
-   !> 1.1 and 1.6 long on the two levels, which agreed to 3.4e-8 while 1.7e-6 off at
-   !> rel_tol 1e-6 (doc/benchmarks.md "Stop 65: dbg31").
-   pure real(dp) function unloading_contact_end(sol, beyond) result(c)
-      type(discrete_solution), intent(in) :: sol   !< a solution with p_smooth (the cap)
-      real(dp), intent(in) :: beyond   !< the least radius returned (scaled)
-      real(dp) :: level, p0, p1
-      integer :: g
-      c = 0.0_dp
-      if (.not. allocated(sol%p_smooth)) return
-      level = contact_end_fraction*maxval(sol%p + sol%p_smooth)
-      if (.not. level > 0.0_dp) return
-      p1 = sol%p(size(sol%p)) + sol%p_smooth(size(sol%p))
-      if (p1 >= level) return
-      do g = size(sol%p) - 1, 1, -1
-         p0 = sol%p(g) + sol%p_smooth(g)
-         if (p0 >= level) then
-            c = sol%mesh%gauss_r(g) + (p0 - level)/(p0 - p1)*(sol%mesh%gauss_r(g + 1) - &
-               & sol%mesh%gauss_r(g))
-            exit
-         end if
-         p1 = p0
-      end do
-      if (.not. c > beyond) c = 0.0_dp
-   end function unloading_contact_end
 
    !> Radii where the cap puts a kink into p(r) of a solution (cap_excess changes sign; its
    !> kinds 1 to 3), at most 8 of each kind: bracketed by the Gauss points, then solved on

@@ -98,11 +98,6 @@ module egw_sphere_problem
       !> element edge with geometric layers down to rim_width (first_unloading_level);
       !> 0: none.
       real(dp) :: rim = 0.0_dp, rim_width = 0.0_dp
-      !> Unloading after a capped loading: where the unloading contact ends (its total
-      !> pressure falls through contact_end_fraction of its peak on the locating solve),
-      !> when that is beyond the family's grading about the Hertz radius: an element edge
-      !> with geometric layers (first_unloading_level, sphere_mesh's contact_end); 0: none.
-      real(dp) :: contact_end = 0.0_dp
       !> Unloading after a capped loading, the central-disc route (egw_sphere_solver's
       !> disc_cap_unload): the elements inside the innermost kink edge shrink with the
       !> level's step relative to that radius (sphere_mesh's disc_refined); .false.: the
