@@ -1019,7 +1019,8 @@ static inline EGW_ALWAYS_INLINE_ int egw_hysteresis_eval_cached(
  * 0.2-0.4 rel_tol), so kinetic + this energy drifts by up to that while a contact
  * unloads; overlaps within an s interval of the loading cut-off, and turning points
  * within ~1.5 sigma of it, integrate that force piece by piece instead (exact; a cost
- * that grows with the pieces). On a gap table (the cap acting) it integrates that force,
+ * that grows with the pieces). On a gap or force-ratio table of a rough model with the
+ * cap acting it integrates that force,
  * 0 also where, far down the separated range, the interpolated curve dips below 0 within
  * rel_tol (those dips sampled per table when it is built or read; a few table lookups a
  * call); kinetic + this energy is constant to ~1e-8 of it while a contact unloads,
@@ -1050,7 +1051,9 @@ void egw_hysteresis_free(egw_hysteresis *h);
 /* Write h to path (NUL-terminated) atomically (temporary file, then rename: a failed write
  * leaves an existing file intact). format: EGW_FORMAT_CSV (unloading data as rows
  * delta_max,length,s and log_ratio,dlog_ratio_dxi (EP-GW), force_ratio,dforce_ratio_ds
- * (Hertz + cap, with its fine delta_max grid) or gap,dgap_ds (rough models, the cap acting);
+ * (Hertz + cap, with its fine delta_max grid, CSV format 5; rough models with the cap
+ * acting, on the two-piece s map with its knees, format 6, binary version 6) or
+ * gap,dgap_ds (rough models with the cap acting, written by egw 0.3.4 and earlier);
  * loading curve and metadata as '#' lines; a checksum line last) or EGW_FORMAT_BINARY (versioned, checksummed); doc/formats.md section 6.
  * Statuses: EGW_IO_ERROR, EGW_INVALID_ARGUMENT (other formats), EGW_NULL_POINTER. */
 int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
@@ -1063,8 +1066,10 @@ int egw_hysteresis_write(egw_hysteresis h, const char *path, int format);
  * log ratios 0 there and within [-100, 100], where the force is served an unloading
  * force at most twice its turning point's, or force ratios 1 there, 0 at the residual
  * overlap and within [0, 1 + 10 rel_tol], with a fine grid that holds every delta_max
- * node: doc/formats.md section 6; Hertz + cap files of egw before stop 50, version 2,
- * are read as written). An EP-GW
+ * node, or, on the two-piece s map of a rough model with the cap (version 6), force ratios
+ * 1 there and within [-10 rel_tol, 1 + 10 rel_tol]: doc/formats.md section 6; Hertz + cap
+ * files of egw before stop 50, version 2, and rough + cap files of the gap on the map,
+ * version 4, are read as written). An EP-GW
  * file of the gap curves (binary version 1 / CSV format 1 with curves, egw before the log
  * ratio) is refused: rebuild it.
  * Statuses: EGW_IO_ERROR (cannot open), EGW_BAD_FILE (what is wrong in the message),
@@ -1092,7 +1097,8 @@ typedef struct {
   double rel_tol;      /* requested tolerance, relative to max(P, 1e-3 P(m)) (ln(P_load/P)
                         * curves) or to the force at the turning point P(m) (the cap acting) */
   double max_error;    /* largest mismatch found at the build's check solves, in rel_tol's
-                        * units (relative to P(m) on the cap's gap curves; to the local
+                        * units (relative to P(m) on a rough model's with the cap, gap
+                        * curves or force ratios on the two-piece map; to the local
                         * force down to 1e-3 P(m) on Hertz + cap's force-ratio curves and
                         * the ln(P_load/P) curves). It includes delta_max intervals too
                         * narrow to split (Hertz + cap: 2^-24 delta_y, others 2^-11 of the

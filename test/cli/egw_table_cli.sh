@@ -235,8 +235,9 @@ refuse rough_cap_tiny_sigma_gw "Hertz check of parameter set 1 (delta = " $tiny 
   "$work/rough_cap" -q >"$work/stdout" 2>"$work/stderr"
 rc=$?
 [ "$rc" -eq 0 ] || fail "rough cap scene: exit status $rc: $(cat "$work/stderr")"
-# (E-GW + cap: elastic summits, turning points above 0: the two-piece s map, CSV format 4)
-grep -q "CSV format 4" "$work/rough_cap/scene_hysteresis.csv" &&
+# (E-GW + cap: elastic summits, turning points above 0: u on the two-piece s map, CSV
+# format 6; format 4, the gap on it, before stop 66)
+grep -q "CSV format 6" "$work/rough_cap/scene_hysteresis.csv" &&
   grep -q "^# sigma = 1.000000000" "$work/rough_cap/scene_hysteresis.csv" ||
   fail "rough cap scene: scene_hysteresis.csv is not a rough + cap table"
 [ ! -e "$work/rough_cap/scene_table.csv" ] || fail "rough cap scene: a force table written"

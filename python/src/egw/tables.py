@@ -481,8 +481,10 @@ class HysteresisInfo:
         P_ref of the loading table [force].
     rel_tol, max_error : float
         Requested tolerance and largest mismatch found at the check solves, both
-        relative to the turning point's force P(m) where the cap acts on gap curves, and
-        to the local force down to 1e-3 P(m) on force-ratio and ln(P_load/P) curves.
+        relative to the turning point's force P(m) where the cap acts on a rough model
+        (gap curves, and since format 6 force-ratio curves on the two-piece map), and
+        to the local force down to 1e-3 P(m) on Hertz + cap's force-ratio and
+        ln(P_load/P) curves.
         max_error includes delta_max intervals too narrow to split, and exceeds rel_tol
         where those miss it (egw.h, egw_hysteresis_info).
     """

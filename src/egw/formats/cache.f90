@@ -187,7 +187,10 @@ module egw_cache
    !> 60 (stop 65, psi31): Z_u's integral takes wider panels in the Gaussian's tail
    !> (egw_unloading's tail_width): Z_u and dZ_u/dh move by rounding (<= 8e-16 relative),
    !> and EP-GW tables' bits with them.
-   integer, parameter, public :: cache_revision = 60
+   !> 61 (stop 66, umap33): rough + cap tables on the two-piece map store u =
+   !> P/P_load(m) instead of the gap (format version 6, egw_hysteresis_data's
+   !> ratio_on_map): other s and delta_max grids and other curves.
+   integer, parameter, public :: cache_revision = 61
 
 
 contains

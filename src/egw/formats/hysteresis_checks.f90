@@ -127,6 +127,13 @@ contains
          if (.not. allocated(error)) call check_gap_slopes(path, t, error)
          return
       end if
+      if (t%mapped .and. t%ratio_on_map) then
+         call check_map_ratio(path, t, error)
+         if (allocated(error)) return
+         call check_map(path, t, error)
+         if (.not. allocated(error)) call check_gap_slopes(path, t, error)
+         return
+      end if
       ! the gap is relative to the turning-point force: within [0, 1] up to the tables'
       ! own errors
       if (any(t%gap(1, :) /= 0.0_dp) .or. any(t%gap < -10*t%rel_tol) .or. &
@@ -204,7 +211,24 @@ contains
       end do
    end subroutine check_ratio_curves
 
-   !> The two-piece map of format 4: a rough model with the cap (flow_pressure > 0, not
+   !> The curves of format 6 (u = P/P_load(m) on the two-piece map): u 1 at s = 0 and
+   !> within [-10 rel_tol, 1 + 10 rel_tol] (an unloading force is never negative and never
+   !> exceeds its turning point's; the solves' and the resampled cubics' own errors aside:
+   !> built tables dip to -0.15 rel_tol, E-GW + cap at 1e-3, where the evaluation clips the
+   !> force at 0); the map itself: check_map. (Not 0 at s = 1: the tail's end, where a
+   !> turning point at or below 0 keeps much of its force.)
+   subroutine check_map_ratio(path, t, error)
+      character(len=*), intent(in) :: path
+      type(hysteresis_table), intent(in) :: t
+      type(egw_error), allocatable, intent(out) :: error
+      if (any(t%gap(1, :) /= 1.0_dp) .or. any(t%gap < -10*t%rel_tol) .or. &
+         & any(t%gap > 1.0_dp + 10*t%rel_tol)) then
+         call bad(error, path, "unloading data (format 6): force_ratio must be 1 at s = 0 "// &
+            & "and within [-10 rel_tol, 1 + 10 rel_tol]")
+      end if
+   end subroutine check_map_ratio
+
+   !> The two-piece map of format 4 (and 6): a rough model with the cap (flow_pressure > 0, not
    !> Hertz + cap), s_max = 1, tail_length > 0, each knee in [0, 0.99 max(m, 0)] and its
    !> length 1/map_iota ((m - knee)/s_knee above 0; to rounding), the breaks s_knee and
    !> s_zero nodes.

@@ -39,8 +39,12 @@ module egw_hysteresis_format
    !> delta_max nodes and lengths (fine_m, fine_length: n_f each) after the lengths, and
    !> the curves u = P/P_load(m) and du/ds in place of the gap and dg/ds; version 2 files
    !> of Hertz + cap are read as gap tables, as written.
+   !> Version 6 (a rough model + cap with the two-piece s map storing the unloading force,
+   !> table%ratio_on_map; the build's since stop 66): version 4's layout (tail_length,
+   !> knees), the curves u = P/P_load(m) and du/ds times tail_length in place of the gap
+   !> and its slope; version 4 files are read as gap tables, as written.
    integer(int32), parameter :: hysteresis_version = 1, cap_version = 2, log_version = 3, &
-      & mapped_version = 4, ratio_version = 5
+      & mapped_version = 4, ratio_version = 5, mapped_ratio_version = 6
    integer(int32), parameter :: byte_order_mark = int(z'01020304', int32)
    !> Fixed part of a binary file before the arrays: magic, 9 int32, 18 float64.
    integer, parameter :: header_bytes = 8 + 4*9 + 8*18
@@ -56,6 +60,10 @@ module egw_hysteresis_format
    character(len=*), parameter :: csv_columns_ratio = "delta_max,length,s,force_ratio,"// &
       & "dforce_ratio_ds"
    character(len=*), parameter :: csv_title_ratio = "# egw hysteresis table, CSV format 5"
+   !> A rough + cap table storing u on the two-piece map (format 6): format 5's columns,
+   !> format 4's tail_length and knee lines.
+   character(len=*), parameter :: csv_title_mapped_ratio = &
+      & "# egw hysteresis table, CSV format 6"
    !> A log-ratio table's header (columns and title): h = ln(P_load/P) and dh/dxi.
    character(len=*), parameter :: csv_columns_log = "delta_max,length,s,log_ratio,"// &
       & "dlog_ratio_dxi"
@@ -125,6 +133,7 @@ contains
          & starts_with(bytes, csv_columns//new_line("a")//csv_title_cap) .or. &
          & starts_with(bytes, csv_columns//new_line("a")//csv_title_mapped) .or. &
          & starts_with(bytes, csv_columns_ratio//new_line("a")//csv_title_ratio) .or. &
+         & starts_with(bytes, csv_columns_ratio//new_line("a")//csv_title_mapped_ratio) .or. &
          & starts_with(bytes, csv_columns_log//new_line("a")//csv_title_log)) then
          call parse_csv(path, bytes, table, error)
       else
@@ -175,6 +184,7 @@ contains
       end if
       if (table%mapped .and. .not. table%reversible) then
          version = mapped_version
+         if (table%ratio_on_map) version = mapped_ratio_version   ! (the same layout)
          extra = 16 + 8*n_m
       end if
       if (table%force_ratio .and. .not. table%reversible) then
@@ -191,7 +201,8 @@ contains
          & int(table%loading%n_log, int32), int(n_m, int32), int(n_s, int32)])
       call put_f64(buf, pos, params_array(table%params))
       if (version /= hysteresis_version) call put_f64(buf, pos, [table%params%flow_pressure])
-      if (version == mapped_version) call put_f64(buf, pos, [table%tail_length])
+      if (version == mapped_version .or. version == mapped_ratio_version) &
+         & call put_f64(buf, pos, [table%tail_length])
       if (version == ratio_version) call put_f64(buf, pos, [real(size(table%fine_m), dp)])
       call put_f64(buf, pos, [table%rel_tol, table%delta_max, table%max_error, table%s_max])
       call put_f64(buf, pos, table_meta(table%loading))
@@ -199,7 +210,8 @@ contains
       if (.not. table%reversible) then
          call put_f64(buf, pos, table%m)
          call put_f64(buf, pos, table%length)
-         if (version == mapped_version) call put_f64(buf, pos, table%knee)
+         if (version == mapped_version .or. version == mapped_ratio_version) &
+            & call put_f64(buf, pos, table%knee)
          if (version == ratio_version) then
             call put_f64(buf, pos, table%fine_m)
             call put_f64(buf, pos, table%fine_length)
@@ -221,6 +233,7 @@ contains
       integer(int64) :: expected
       integer :: pos, n_load, n_m, n_s, extra, n_f, pos_f
       real(dp) :: p(7), meta(4), lmeta(7), flow(1), tail(1), count_f(1)
+      logical :: map_layout
       if (len(bytes) < header_bytes + 4) then
          call bad(error, path, "truncated: "//int_str(len(bytes))//" bytes")
          return
@@ -240,10 +253,10 @@ contains
       end if
       if (head(1) /= hysteresis_version .and. head(1) /= cap_version .and. &
          & head(1) /= log_version .and. head(1) /= mapped_version .and. &
-         & head(1) /= ratio_version) then
+         & head(1) /= ratio_version .and. head(1) /= mapped_ratio_version) then
          call bad(error, path, "format version "//int_str(int(head(1)))//" is not "// &
             & "supported (this egw reads versions "//int_str(int(hysteresis_version))// &
-            & " to "//int_str(int(ratio_version))//")")
+            & " to "//int_str(int(mapped_ratio_version))//")")
          return
       end if
       if (head(1) == hysteresis_version .and. head(5) == 0) then
@@ -260,7 +273,9 @@ contains
       n_load = head(6)
       n_m = head(8)
       n_s = head(9)
-      if (head(1) == mapped_version) extra = 16 + 8*max(min(n_m, max_rows), 0)
+      ! (versions 4 and 6: the two-piece map's tail_length and knees)
+      map_layout = head(1) == mapped_version .or. head(1) == mapped_ratio_version
+      if (map_layout) extra = 16 + 8*max(min(n_m, max_rows), 0)
       if (head(1) == ratio_version .and. head(5) /= 0) then
          call bad(error, path, "format version 5 of a reversible table (version 5 is the "// &
             & "force-ratio curves')")
@@ -300,17 +315,17 @@ contains
       flow = 0.0_dp
       tail = 0.0_dp
       if (extra > 0) call get_f64(bytes, pos, flow)
-      if (head(1) == mapped_version) call get_f64(bytes, pos, tail)
+      if (map_layout) call get_f64(bytes, pos, tail)
       if (head(1) == ratio_version) call get_f64(bytes, pos, count_f)
       call get_f64(bytes, pos, meta)
       call get_f64(bytes, pos, lmeta)
       table%params = params_from(int(head(4)), p)
       table%params%flow_pressure = flow(1)
-      if ((head(1) == cap_version .or. head(1) == mapped_version .or. &
+      if ((head(1) == cap_version .or. map_layout .or. &
          & head(1) == ratio_version) .and. .not. flow(1) > 0.0_dp) then
          call bad(error, path, "format version "//int_str(int(head(1)))// &
-            & " with flow_pressure = "//format_real(flow(1))//" (versions 2, 4 and 5 are "// &
-            & "the flow-pressure cap's, > 0)")
+            & " with flow_pressure = "//format_real(flow(1))//" (versions 2, 4, 5 and 6 "// &
+            & "are the flow-pressure cap's, > 0)")
          return
       end if
       if (head(1) == log_version .and. .not. flow(1) >= 0.0_dp) then
@@ -318,7 +333,8 @@ contains
             & format_real(flow(1))//" (must be >= 0)")
          return
       end if
-      table%mapped = head(1) == mapped_version
+      table%mapped = map_layout
+      table%ratio_on_map = head(1) == mapped_ratio_version
       table%force_ratio = head(1) == ratio_version
       table%tail_length = tail(1)
       table%reversible = head(5) /= 0
@@ -366,6 +382,8 @@ contains
             head = csv_columns_log//new_line("a")//csv_title_log//new_line("a")
          else if (table%force_ratio .and. .not. table%reversible) then
             head = csv_columns_ratio//new_line("a")//csv_title_ratio//new_line("a")
+         else if (table%mapped .and. table%ratio_on_map .and. .not. table%reversible) then
+            head = csv_columns_ratio//new_line("a")//csv_title_mapped_ratio//new_line("a")
          else if (table%mapped .and. .not. table%reversible) then
             head = csv_columns//new_line("a")//csv_title_mapped//new_line("a")
          else
@@ -398,13 +416,15 @@ contains
             & "# units = delta, delta_max, contact_radius [length]; force [modulus*length^2]; "// &
             & "stiffness [modulus*length]; energy [modulus*length^3]; s, gap [1]"// &
             & new_line("a")
-         call add_rows_note(head, table%log_ratio, table%force_ratio)
+         call add_rows_note(head, table%log_ratio, table%force_ratio, &
+            & table%mapped .and. table%ratio_on_map .and. .not. table%reversible)
          head = head//new_line("a")//"# loading columns = delta,force,stiffness,energy,"// &
             & "contact_radius"
          if (table%mapped .and. .not. table%reversible) then
             head = head//new_line("a")//"# the two-piece s map: each curve's knee (in "// &
                & "delta_max order) at s = 1/2, delta = 0 at s = 3/4, -tail_length at s = 1; "// &
-               & "dgap_ds: the first piece's (doc/formats.md)"
+               & trim(merge("dforce_ratio_ds", "dgap_ds        ", table%ratio_on_map))// &
+               & ": the first piece's (doc/formats.md)"
             do j = 1, n_m
                head = head//new_line("a")//"# knee = "//fmt(table%knee(j))
             end do
@@ -445,11 +465,17 @@ contains
 
    !> Appends the '# rows:' line of a hysteresis CSV (what a row's numbers are) to head
    !> (a subroutine: the library has no deferred-length function results).
-   pure subroutine add_rows_note(head, log_ratio, force_ratio)
+   pure subroutine add_rows_note(head, log_ratio, force_ratio, ratio_on_map)
       character(len=:), allocatable, intent(inout) :: head   !< the header so far
       logical, intent(in) :: log_ratio   !< a log-ratio table (format 3), else gap rows
       logical, intent(in) :: force_ratio   !< a force-ratio table (format 5)
-      if (force_ratio) then
+      logical, intent(in) :: ratio_on_map   !< u on the two-piece map (format 6)
+      if (ratio_on_map) then
+         head = head//"# rows: unloading force = P_load(delta_max)*force_ratio at s of "// &
+            & "the two-piece map (knee lines), cubic Hermite in s (slope dforce_ratio_ds "// &
+            & "as the map line says), cubic Lagrange in delta_max over four neighbouring "// &
+            & "curves, the knee too; below s = 1 the loading tail scaled (doc/formats.md)"
+      else if (force_ratio) then
          head = head//"# rows: unloading force = P_load(delta_max)*force_ratio at s = "// &
             & "(delta_max - delta)/length, 0 from s = 1 on, cubic Hermite in s (slope "// &
             & "dforce_ratio_ds), cubic Lagrange in delta_max over four neighbouring "// &
@@ -491,6 +517,8 @@ contains
       if (starts_with(text, csv_columns//new_line("a")//csv_title_mapped)) reading%format = 4
       if (starts_with(text, csv_columns_ratio//new_line("a")//csv_title_ratio)) &
          & reading%format = 5
+      if (starts_with(text, csv_columns_ratio//new_line("a")//csv_title_mapped_ratio)) &
+         & reading%format = 6
       reading%log = starts_with(text, csv_columns_log//new_line("a"))
       start = 1
       do while (start <= sum_at)
@@ -586,7 +614,7 @@ contains
       end if
    end subroutine read_csv_meta
 
-   !> A '# knee = ' line of format 4: the next curve's knee (ios: of its number).
+   !> A '# knee = ' line of format 4 or 6: the next curve's knee (ios: of its number).
    subroutine read_knee(path, value, table, reading, ios, error)
       character(len=*), intent(in) :: path, value
       type(hysteresis_table), intent(inout) :: table
@@ -594,9 +622,10 @@ contains
       integer, intent(out) :: ios
       type(egw_error), allocatable, intent(out) :: error
       ios = 0
-      if (reading%format /= 4 .or. reading%n_m < 0 .or. reading%n_m > max_rows) then
+      if (.not. (reading%format == 4 .or. reading%format == 6) .or. reading%n_m < 0 .or. &
+         & reading%n_m > max_rows) then
          call bad(error, path, "line "//int_str(reading%line)//": knee before a valid "// &
-            & "n_delta_max, or outside CSV format 4")
+            & "n_delta_max, or outside CSV formats 4 and 6")
          return
       end if
       if (.not. allocated(table%knee)) allocate (table%knee(reading%n_m))
@@ -725,7 +754,8 @@ contains
       table%params = params_from(reading%model, reading%p)
       table%params%flow_pressure = reading%flow_pressure
       table%reversible = reading%rev /= 0
-      table%mapped = reading%format == 4
+      table%mapped = reading%format == 4 .or. reading%format == 6
+      table%ratio_on_map = reading%format == 6
       table%force_ratio = reading%format == 5
       if (table%force_ratio .and. (table%reversible .or. reading%n_f < 0 .or. &
          & reading%k_fine /= reading%n_f)) then
@@ -734,18 +764,20 @@ contains
          return
       end if
       if (table%mapped .and. (reading%k_knee /= size(table%m) .or. table%reversible)) then
-         call bad(error, path, "CSV format 4: "//int_str(reading%k_knee)//" knee lines, "// &
+         call bad(error, path, "CSV format "//int_str(reading%format)//": "// &
+            & int_str(reading%k_knee)//" knee lines, "// &
             & "n_delta_max = "//int_str(size(table%m))//" (and a table with curves)")
          return
       end if
       ! formats 2 and 4 are the cap's: a flow_pressure line that is not > 0 is named (as
       ! the binary reader does), not taken for a format-1 file of the gap curves
-      if ((reading%format == 2 .or. reading%format == 4 .or. reading%format == 5) .and. &
-         & .not. reading%flow_pressure > 0.0_dp) then
-         call bad(error, path, "CSV format "//int_str(reading%format)// &
-            & " with flow_pressure = "//format_real(reading%flow_pressure)// &
-            & " (formats 2, 4 and 5 are the flow-pressure cap's, > 0)")
-         return
+      if (reading%format >= 4 .or. reading%format == 2) then
+         if (.not. reading%flow_pressure > 0.0_dp) then
+            call bad(error, path, "CSV format "//int_str(reading%format)// &
+               & " with flow_pressure = "//format_real(reading%flow_pressure)// &
+               & " (formats 2, 4, 5 and 6 are the flow-pressure cap's, > 0)")
+            return
+         end if
       end if
       if (.not. reading%log .and. .not. table%reversible .and. &
          & .not. reading%flow_pressure > 0.0_dp) then

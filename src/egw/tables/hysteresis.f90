@@ -792,6 +792,8 @@ contains
          if (table%mapped) then
             call mix(h, table%knee)
             call mix(h, [table%tail_length])
+            ! (the same numbers read as u or as the gap are different tables)
+            if (table%ratio_on_map) call mix(h, [1.0_dp])
          end if
          if (table%force_ratio) then
             call mix(h, table%fine_m)

@@ -248,6 +248,11 @@ contains
       ! below 0 (at least 2 sigma) over [s_zero, 1] (turning points at or below 0, EP-GW's:
       ! that tail alone)
       table%mapped = rough_cap .and. shift
+      ! the curves store u = P/P_load(m) on the map (format version 6): no loading force
+      ! in them, so that their cubics and the delta_max blend carry no loading-table
+      ! error; 0.82x the instructions of the gap's at the same tolerance, every error
+      ! band equal or lower (doc/benchmarks.md, stops 65 local31 and 66 umap33)
+      table%ratio_on_map = table%mapped
       if (table%mapped) table%tail_length = max(-2*unloading_floor(table%loading, &
          & table%rel_tol), 2*params%sigma)
       allocate (curves(n))

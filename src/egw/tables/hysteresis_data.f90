@@ -48,7 +48,8 @@ module egw_hysteresis_data
       & turning_point, gap_combination, unload_tail_ratio, make_lookup, m_breakpoint, &
       & m_coordinate, stencil_first, locate, turning_knee, map_s, map_x, map_piece, &
       & map_iota, map_lengths, edge_breaks, edge_s, edge_xi, edge_segment, log_branch, &
-      & max_log_ratio, log_unload, stencil_width, stencil_window, stencil_sum, unload_floor
+      & max_log_ratio, log_unload, stencil_width, stencil_window, stencil_sum, unload_floor, &
+      & stores_ratio
 
    !> Doubles of a contact's state for hysteresis_eval_state: (1) the largest overlap so far,
    !> then caches that name the table (3, its tag): of the turning point (2, the m they
@@ -224,6 +225,14 @@ module egw_hysteresis_data
       logical :: mapped = .false.
       real(dp), allocatable :: knee(:)         !< (n_m) the knee delta_r(m_j) (mapped)
       real(dp) :: tail_length = 0.0_dp         !< the tail piece's length in delta (mapped)
+      !> mapped, format version 6 (the build's since stop 66): the curves store the
+      !> unloading force u = P/P_load(m) (1 at s = 0) with du/ds times tail_length on the
+      !> two-piece map, in place of the gap: P = P_load(m) sum_k w_k u_k(s), no loading
+      !> force below the turning point; below the tail's end (s = 1) the loading tail
+      !> scaled as the gap's. The loading table's error at delta does not enter the
+      !> curves (doc/benchmarks.md, stops 65 local31 and 66 umap33). Not force_ratio:
+      !> L(m) stays the map's, the cut-off the loading table's. (Version 4: the gap.)
+      logical :: ratio_on_map = .false.
       !> (3, n_m): per curve and piece, (dx/ds of the piece)/tail_length, x = m - delta: the
       !> stored slope times it is dg/ds on that piece (hysteresis_prepare; 1 unless mapped)
       real(dp), allocatable :: piece_scale(:, :)
@@ -553,13 +562,28 @@ contains
       type(hysteresis_table), intent(in) :: table   !< the table (its loading curve; capped: 0)
       real(dp), intent(in) :: d_1      !< the overlap at the end of the curve's span (s = 1)
       real(dp), intent(in) :: f_m      !< the loading force P_load(m) at the turning point
-      real(dp), intent(in) :: g_1      !< the gap g at s = 1
+      !> the gap g at s = 1 (a table that stores_ratio: u there)
+      real(dp), intent(in) :: g_1
       real(dp) :: f_1, k_1
       ratio = 0.0_dp
       if (table%capped) return   ! below the residual overlap: apart
       call table_eval(table%loading, d_1, f_1, k_1)
-      if (f_1 > 0.0_dp) ratio = min(max(1.0_dp - f_m*g_1/f_1, 0.0_dp), 1.0_dp)
+      if (.not. f_1 > 0.0_dp) return
+      if (stores_ratio(table)) then   ! (u on the two-piece map: P = f_m u there)
+         ratio = min(max(f_m*g_1/f_1, 0.0_dp), 1.0_dp)
+      else
+         ratio = min(max(1.0_dp - f_m*g_1/f_1, 0.0_dp), 1.0_dp)
+      end if
    end function unload_tail_ratio
+
+   !> Whether the table's curves store the unloading force u = P/P_load(m) rather than
+   !> the gap: a Hertz + cap table's (force_ratio, format 5) or a rough + cap table's on
+   !> the two-piece map (ratio_on_map, format 6). P = P_load(m) u(s, m) then, with no
+   !> loading force below the turning point.
+   elemental logical function stores_ratio(table)
+      type(hysteresis_table), intent(in) :: table   !< built or read
+      stores_ratio = table%force_ratio .or. (table%mapped .and. table%ratio_on_map)
+   end function stores_ratio
 
    !> The overlap at and below which an unloading curve has no force: the loading table's
    !> cut-off (the gap and log-ratio curves need the loading force); -huge for force_ratio

@@ -779,8 +779,9 @@ contains
          end do
          ! (gap curves: relative to P(m), their weight is refine_curve's alone; u curves
          ! weighted as in refine_curve: the local force's tolerance down to local_floor
-         ! P(m) between the node curves too)
-         if (table%force_ratio) then
+         ! P(m) between the node curves too; on the two-piece map the weights are 1
+         ! unless local_force_goal)
+         if (table%force_ratio .or. table%ratio_on_map) then
             err = max(err, mid%weight(i)*abs(v - mid%gap(i)))
          else if (.not. mid%log) then
             err = max(err, abs(v - mid%gap(i)))

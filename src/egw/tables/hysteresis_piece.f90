@@ -8,7 +8,7 @@ module egw_hysteresis_piece
    use egw_kinds, only: dp
    use egw_table, only: table_eval, table_segment, segment_eval
    use egw_hysteresis_data, only: hysteresis_table, gap_cubic, unload_tail_ratio, &
-      & map_x, map_piece, quiet_nan, unload_floor, max_stencil
+      & map_x, map_piece, quiet_nan, unload_floor, max_stencil, stores_ratio
    implicit none
    private
 
@@ -108,10 +108,11 @@ contains
          call table_segment(table%loading, delta, seg, inside)   ! the interval around delta
          if (.not. inside) return
       end if
-      ! (force_ratio: the piece is f_m u alone, cut at seg's ends as a gap piece, so that
-      ! piece_force and egw.h's inline read it as one; on a ln P loading interval they
-      ! would add P_load: no piece there, hysteresis_eval's arithmetic instead)
-      if (table%force_ratio .and. seg(7) > 0.0_dp) return
+      ! (curves of u, stores_ratio: the piece is f_m u alone, cut at seg's ends as a gap
+      ! piece, so that piece_force and egw.h's inline read it as one; on a ln P loading
+      ! interval they would add P_load: no piece there, hysteresis_eval's arithmetic
+      ! instead)
+      if (stores_ratio(table) .and. seg(7) > 0.0_dp) return
       ! s = (m - delta) iota in [s_i, s_{i+1}): delta in (m - s_{i+1}/iota, m - s_i/iota];
       ! the piece is open below (the cut-off itself has no force)
       a = table%run_first(first, i)
@@ -149,7 +150,7 @@ contains
       c(2) = -f_m*alpha*(g(2) + t0*(2*g(3) + 3*t0*g(4)))
       c(3) = -f_m*alpha**2*(g(3) + 3*t0*g(4))
       c(4) = -f_m*alpha**3*g(4)
-      if (table%force_ratio) then
+      if (stores_ratio(table)) then
          c = -c   ! f_m u(t), no loading cubic
       else if (.not. seg(7) > 0.0_dp) then
          ! the loading cubic in delta - seg(1), moved to delta - lo
@@ -165,11 +166,11 @@ contains
 
    !> The force and stiffness at delta (cut-off < delta < m) below the turning point m
    !> (P_load(m) = f_m, 1/(s_max L) = inv_span) from its gap cubic c on s interval i, at
-   !> s = min((m - delta) inv_span, 1): P_load(delta) - P_load(m) g(s, m) (force_ratio
-   !> tables: P_load(m) u(s, m), 0 at s = 1), 0 where that is not positive. Below the
-   !> curve's span (s clamped at 1, where the loading force is below rel_tol of P_ref)
-   !> the unloading force keeps its ratio to the loading force at the span's end
-   !> (unload_tail_ratio): the loading tail, scaled.
+   !> s = min((m - delta) inv_span, 1): P_load(delta) - P_load(m) g(s, m) (tables that
+   !> store u, stores_ratio: P_load(m) u(s, m); Hertz + cap's 0 from s = 1 on), 0 where
+   !> that is not positive. Below the curve's span (s clamped at 1, where the loading
+   !> force is below rel_tol of P_ref) the unloading force keeps its ratio to the loading
+   !> force at the span's end (unload_tail_ratio): the loading tail, scaled.
    pure subroutine unload_branch(table, c, i, s, m, f_m, inv_span, knee, dsdx, delta, force, &
       & stiffness)
       type(hysteresis_table), intent(in) :: table   !< built or read (not log-ratio)
@@ -180,8 +181,9 @@ contains
       real(dp), intent(out) :: force, stiffness
       real(dp) :: g, dg, f_d, k_d, ratio, x_1, dummy
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
-      if (table%force_ratio) then
-         ! the curves' u = P/P_load(m): no loading force, 0 from s = 1 on (apart)
+      if (stores_ratio(table) .and. (s < 1.0_dp .or. table%capped)) then
+         ! the curves' u = P/P_load(m): no loading force (Hertz + cap: 0 from s = 1 on,
+         ! apart; u on the two-piece map: the loading tail scaled there, below)
          force = f_m*g
          stiffness = -f_m*dg*dsdx
          if (.not. (force > 0.0_dp .and. s < 1.0_dp)) then

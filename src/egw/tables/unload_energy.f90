@@ -12,7 +12,7 @@ module egw_unload_energy
    use egw_hysteresis_data, only: hysteresis_table, unload_curve, nan_error, gap_cubic, &
       & turning_point, gap_combination, unload_tail_ratio, locate, map_s, map_x, s_knee, &
       & s_zero, map_lengths, log_unload, edge_breaks, edge_s, edge_xi, edge_segment, &
-      & stencil_sum, unload_floor
+      & stencil_sum, unload_floor, stores_ratio
    implicit none
    private
 
@@ -140,8 +140,11 @@ contains
       else
          dips = dips_below(table, cv, lo, delta)
       end if
-      if (table%force_ratio) then   ! (the force is f_m u: its integral alone; ratio 0)
-         energy = gap_term(table, cv, lo, delta) - dips
+      if (stores_ratio(table)) then
+         ! (the force is f_m u: its integral, on the loading tail's below d_1 scaled by
+         ! ratio; Hertz + cap: ratio 0, apart below the residual overlap)
+         energy = ratio*table_energy(table%loading, lo) + gap_term(table, cv, lo, delta) - &
+            & dips
       else
          energy = ratio*table_energy(table%loading, lo) + (energy - &
             & table_energy(table%loading, lo)) - gap_term(table, cv, lo, delta) - dips
@@ -528,7 +531,8 @@ contains
       x = cv%m - x
    end function curve_x
 
-   !> The unclipped span force P_load(x) - f_m g(s(x)) (force_ratio tables: f_m u(s(x)))
+   !> The unclipped span force P_load(x) - f_m g(s(x)) (tables of u, stores_ratio:
+   !> f_m u(s(x)))
    !> of curve cv and its slope dF/dx (unload_branch before its clip).
    pure subroutine span_eval(table, cv, x, f, k)
       type(hysteresis_table), intent(in) :: table
@@ -544,7 +548,7 @@ contains
       i = locate(table%s_lookup, table%s, s)
       call gap_combination(table, cv%first, cv%w, i, c)
       call gap_cubic(c, (s - table%s(i))*table%inv_ds(i), table%inv_ds(i), g, dg)
-      if (table%force_ratio) then   ! f_m u(s)
+      if (stores_ratio(table)) then   ! f_m u(s)
          f = cv%f_m*g
          k = -cv%f_m*dg*dsdx
          return
@@ -647,12 +651,12 @@ contains
 
    !> int_a^b F dx of the span force of curve cv, a < b in its span (s <= 1), from the
    !> primitives: the loading table's energy less f_m/(s_max L) times the gap's integral
-   !> (force_ratio tables: f_m/(s_max L) times the integral of u).
+   !> (tables of u, stores_ratio: f_m times the integral of u(s(x)), gap_term).
    pure real(dp) function span_integral(table, cv, a, b) result(total)
       type(hysteresis_table), intent(in) :: table
       type(unload_curve), intent(in) :: cv
       real(dp), intent(in) :: a, b
-      if (table%force_ratio) then   ! (f_m u: the curves' integral alone)
+      if (stores_ratio(table)) then   ! (f_m u: the curves' integral alone)
          total = gap_term(table, cv, a, b)
          return
       end if
