@@ -15,11 +15,13 @@ module test_rough_cap_hysteresis
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, &
       & hysteresis_energy, hysteresis_energy_walk, hysteresis_eval_state, &
       & hysteresis_state_init, hysteresis_state_size
-   use egw_hysteresis_data, only: s_knee, s_zero, turning_point, max_stencil
+   use egw_hysteresis_data, only: s_knee, s_zero
    use egw_hysteresis_curves, only: local_force_weight, local_force_goal
    use egw_hysteresis_format, only: write_hysteresis, read_hysteresis
    use egw_table_format, only: format_csv, format_binary
    use egw_impact, only: restitution
+   use egw_capi_hysteresis, only: hysteresis_handle, hysteresis_handle_for
+   use iso_c_binding, only: c_int, c_double, c_ptr, c_loc
    use test_compare, only: same => same_bits
    use testdrive, only: new_unittest, unittest_type, error_type, check
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
@@ -34,7 +36,7 @@ module test_rough_cap_hysteresis
    real(dp), parameter :: tol = 1.0e-3_dp
    real(dp), parameter :: sigma = 1.0e-2_dp*(pi*py/(2*modulus))**2*radius
    !> The table of egw_pair() over [-3 sigma, 10 delta_y] at tol, built once for the suite.
-   type(hysteresis_table), save :: cap_table
+   type(hysteresis_table), save, target :: cap_table
    logical, save :: built = .false.
 
 contains
@@ -54,6 +56,8 @@ contains
          & new_unittest("crafted version-6 tables refused", test_crafted6), &
          & new_unittest("u on the map: the local force at 3e-3 to 0.1 P(m)", test_local_force), &
          & new_unittest("local_force_goal's weight (off by default)", test_goal_weight), &
+         & new_unittest("C egw_hysteresis_eval_state on the u table: bit for bit", &
+         & test_c_state), &
          & new_unittest("1 and 2 threads: byte-identical table files", test_threads), &
          & new_unittest("refused: flat law, beyond 1000 delta_y, bad p_y", test_refused), &
          & new_unittest("refused at once: rel_tol below the rough + cap tables' reach", &
@@ -686,6 +690,53 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_goal_weight
+
+   !> egw.h's inline and the C entry serve the state's pieces of a u table (make_piece's
+   !> force-ratio pieces, f_m u as one cubic in delta, never on a ln P loading interval):
+   !> egw_hysteresis_eval_state called as a C program does gives hysteresis_eval_state's
+   !> force, stiffness, status and state bit for bit on 200 contacts oscillating over
+   !> [-3 sigma, 9.9 delta_y] with growing and shrinking amplitudes (24 000 steps, most of
+   !> them below their history, served by pieces).
+   subroutine test_c_state(error)
+      type(error_type), allocatable, intent(out) :: error
+      interface
+         integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
+            & bind(C, name="egw_hysteresis_eval_state")
+            import :: c_int, c_double, c_ptr
+            type(c_ptr), value :: h, state, force, stiffness
+            real(c_double), value :: delta
+         end function c_eval_state
+      end interface
+      type(hysteresis_handle), target :: hd
+      real(c_double), target :: sc(hysteresis_state_size), fc, kc
+      real(dp) :: sf(hysteresis_state_size), ff, kf, d, top
+      integer :: j, n, stat_c, stat_f, mismatches, pieces
+      call get_table(error)
+      if (allocated(error)) return
+      hd = hysteresis_handle_for(cap_table)
+      top = 0.99_dp*cap_table%delta_max
+      mismatches = 0
+      pieces = 0
+      do j = 1, 200
+         call hysteresis_state_init(sc)
+         call hysteresis_state_init(sf)
+         do n = 1, 120
+            d = -3*sigma + (top + 3*sigma)*(0.5_dp + 0.5_dp*sin(0.37_dp*j)*sin(0.05_dp*n* &
+               & (1 + mod(j, 7))) + 0.004_dp*modulo(7*n, 11))
+            d = min(d, top)
+            stat_c = c_eval_state(c_loc(hd), d, c_loc(sc), c_loc(fc), c_loc(kc))
+            call hysteresis_eval_state(cap_table, d, sf, ff, kf, stat_f)
+            if (.not. (stat_c == stat_f .and. same(fc, ff) .and. same(kc, kf) .and. &
+               & all(same(sc, sf)))) mismatches = mismatches + 1
+            if (d < sf(1) .and. sf(11) < d .and. d <= sf(12)) pieces = pieces + 1
+         end do
+      end do
+      call check(error, mismatches == 0 .and. pieces > 10000, str(real(mismatches, dp))// &
+         & " steps where the C call and hysteresis_eval_state differ; "// &
+         & str(real(pieces, dp))//" steps on pieces")
+      if (allocated(error)) return
+      print '(4x, a, i0, a)', "C and Fortran the same bits; ", pieces, " steps on pieces"
+   end subroutine test_c_state
 
    !> The build's decisions do not depend on the thread count or on which curve a thread
    !> takes first (the curve loops are dynamic, largest delta_max first): the suite's table
