@@ -1,12 +1,13 @@
 !> Helpers the suites share to compare egw's Fortran and C doors: bitwise equality of
-!> doubles, the C API's last error message and egw_table_eval as a C caller sees it.
+!> doubles, the C API's last error message, egw_table_eval and egw_hysteresis_eval_state
+!> as a C caller sees them.
 module test_compare
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_ptr, c_loc
    use egw_kinds, only: dp
    implicit none
    private
-   public :: same_bits, last_error_c, c_table_eval
+   public :: same_bits, last_error_c, c_table_eval, c_eval_state
 
    interface
       !> include/egw.h: int egw_table_eval(egw_table t, double delta, double *force,
@@ -17,6 +18,14 @@ module test_compare
          type(c_ptr), value :: h, force, stiffness
          real(c_double), value :: delta
       end function c_table_eval
+      !> include/egw.h: int egw_hysteresis_eval_state(egw_hysteresis h, double delta,
+      !> double state[], double *force, double *stiffness), called as a C program does
+      integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
+         & bind(C, name="egw_hysteresis_eval_state")
+         import :: c_int, c_double, c_ptr
+         type(c_ptr), value :: h, state, force, stiffness
+         real(c_double), value :: delta
+      end function c_eval_state
    end interface
 
 contains

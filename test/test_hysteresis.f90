@@ -2,7 +2,7 @@
 !> history semantics of the evaluation, reversibility of elastic summits, bad input.
 module test_hysteresis
    use egw_kinds, only: dp
-   use test_compare, only: same => same_bits, c_message => last_error_c
+   use test_compare, only: same => same_bits, c_message => last_error_c, c_eval_state
    use egw_status, only: egw_error, egw_invalid_argument, egw_out_of_range, format_real, &
       & egw_not_converged
    use egw_params, only: contact_params, model_epgw, model_egw, model_hertz
@@ -36,13 +36,6 @@ module test_hysteresis
       integer(c_int) function c_dem_loop() bind(C, name="egw_capi_test_dem_loop")
          import :: c_int
       end function c_dem_loop
-      !> The C entry egw_hysteresis_eval_state (include/egw.h), called as a C program does.
-      integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
-         & bind(C, name="egw_hysteresis_eval_state")
-         import :: c_int, c_double, c_ptr
-         type(c_ptr), value :: h, state, force, stiffness
-         real(c_double), value :: delta
-      end function c_eval_state
    end interface
 
    !> Scaled EP-GW contact (R = E = sigma = 1): psi = 2 (delta_ep = sigma/4), mu = 4.

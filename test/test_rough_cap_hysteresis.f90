@@ -21,8 +21,8 @@ module test_rough_cap_hysteresis
    use egw_table_format, only: format_csv, format_binary
    use egw_impact, only: restitution
    use egw_capi_hysteresis, only: hysteresis_handle, hysteresis_handle_for
-   use iso_c_binding, only: c_int, c_double, c_ptr, c_loc
-   use test_compare, only: same => same_bits
+   use iso_c_binding, only: c_double, c_loc
+   use test_compare, only: same => same_bits, c_eval_state
    use testdrive, only: new_unittest, unittest_type, error_type, check
    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    implicit none
@@ -701,14 +701,6 @@ contains
    !> them below their history, served by pieces).
    subroutine test_c_state(error)
       type(error_type), allocatable, intent(out) :: error
-      interface
-         integer(c_int) function c_eval_state(h, delta, state, force, stiffness) &
-            & bind(C, name="egw_hysteresis_eval_state")
-            import :: c_int, c_double, c_ptr
-            type(c_ptr), value :: h, state, force, stiffness
-            real(c_double), value :: delta
-         end function c_eval_state
-      end interface
       type(hysteresis_handle), target :: hd
       real(c_double), target :: sc(hysteresis_state_size), fc, kc
       real(dp) :: sf(hysteresis_state_size), ff, kf, d, top
