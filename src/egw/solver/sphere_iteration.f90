@@ -502,6 +502,7 @@ contains
       integer, allocatable :: ipiv(:)
       integer :: n, info, k, n_extra
       logical :: refined, done
+      logical, allocatable :: pending(:)
       n = size(sol%w)
       edge_capped = .false.
       n_extra = 0
@@ -535,19 +536,24 @@ contains
       b(:, 1) = rhs
       if (n_extra > 0) b(:, 2:) = extra
       x = b
-      refined = .false.
+      ! pending(k): column k still to be solved with J's own factors
+      allocate (pending(1 + n_extra))
+      pending = .true.
       if (allocated(sol%lu)) then
          if (size(sol%lu, 1) == n) then
-            ! (the extra columns refined alike, each on its own, once the first is)
+            ! (the extra columns refined alike, each on its own, once the first is; one
+            ! whose refinement stalls is solved with J's factors below, not left as is)
             call refine(1, refined)
             if (refined) then
+               pending(1) = .false.
                do k = 2, 1 + n_extra
                   call refine(k, done)
+                  pending(k) = .not. done
                end do
             end if
          end if
       end if
-      if (.not. refined) then
+      if (any(pending)) then
          allocate (ipiv(n))
          call lu_factor(n, jac, ipiv, info)
          if (info /= 0) then
@@ -555,8 +561,9 @@ contains
                & //" (in units of sigma): singular Jacobian at the solution")
             return
          end if
-         x = b
          do k = 1, 1 + n_extra
+            if (.not. pending(k)) cycle
+            x(:, k) = b(:, k)
             call lu_solve(n, jac, ipiv, x(:, k))
          end do
       end if
