@@ -30,7 +30,7 @@ extern "C" {
 #endif
 
 /* Version of this header; egw_get_version() returns the library's. */
-#define EGW_VERSION 304
+#define EGW_VERSION 305
 
 /* Status codes. */
 enum {
