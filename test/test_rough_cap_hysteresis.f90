@@ -603,7 +603,7 @@ contains
    !> (measured <= 2.3 rel_tol; the version-4 gap table of test_version4, printed beside,
    !> 13.7 rel_tol at 3.4 delta_y) and 20 rel_tol at 4e-3 P(m) (measured <= 13.5; the gap
    !> 30.6): rel_tol 1e-3 of the turning point's force everywhere, not yet rel_tol of the
-   !> local force (the weighting local_force_goal, off by default, is for that).
+   !> local force (goal33's weighting meets that at 4.4-5.1x the build: not switched on).
    subroutine test_local_force(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: at(3) = [1.77_dp, 3.4_dp, 5.06_dp]
@@ -675,7 +675,7 @@ contains
    !> local_force_weight): max(1, P(m)/(c max(P, 1e-3 P(m)))) from 5e-4 P(m) up, 1 below it
    !> and 1 for c <= 0 (exact values of that formula: P(m) = 1, c = 2 gives 5 at P = 0.1,
    !> 500 at 6e-4 (the floor 1e-3), 1 at 0.9 and at 4e-4 (below the cut)); the build's
-   !> default c is 0 (the tolerance relative to P(m), as before: the lead's to switch).
+   !> default c is 0 (the tolerance relative to P(m), as before; doc/benchmarks.md "Stop 66: goal33").
    subroutine test_goal_weight(error)
       type(error_type), allocatable, intent(out) :: error
       real(dp), parameter :: p(5) = [0.1_dp, 6.0e-4_dp, 0.9_dp, 4.0e-4_dp, 1.0e-2_dp]

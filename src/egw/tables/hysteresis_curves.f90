@@ -39,11 +39,13 @@ module egw_hysteresis_curves
    !> The local force goal c of a rough + cap table's u curves (ratio_on_map; 0: off, the
    !> tolerance relative to the turning point's force, today's): with c > 0 refine_curve's
    !> mismatch (and its midpoint estimate) and, through the check curve's node weights,
-   !> refine_m's (stencil_mismatch) are weighted by local_force_weight, so that the table
-   !> holds c rel_tol of the local force down to local_floor P(m) (issue 33 item 5). A
-   !> build parameter (no file stores it): c = 2 met rel_tol of the local force below
-   !> 1.3 delta_y at 1.72-1.76x the build's CPU, c = 4 at 1.31-1.36x (doc/benchmarks.md
-   !> "Stop 65: local31"); the default is the lead's to set from those measurements.
+   !> refine_m's (stencil_mismatch) are weighted by local_force_weight, toward c rel_tol
+   !> of the local force down to local_floor P(m) (issue 33 item 5). A build parameter (no
+   !> file stores it), off: alone it does not reach that (the check's unweighted skips
+   !> clear every check node near the front, and the loading table's error at m enters
+   !> the force); with those weighted and tightened as well the goal is met on README's
+   !> E-GW + cap table, at 4.4-5.1x the build's CPU (tools/bench/goal33_weighting.patch,
+   !> doc/benchmarks.md "Stop 66: goal33").
    real(dp), parameter, public :: local_force_goal = 0.0_dp
    !> Below goal_cut P(m) a u curve's node weighs 1 (the weight would chase the last
    !> tail where the force has all but vanished; 1e-4 and 2e-5 gave more nodes and the
