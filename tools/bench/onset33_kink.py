@@ -6,8 +6,8 @@
 CSV: an egw-table hysteresis CSV of a rough + cap table (format 6: u on the two-piece map,
 README's E-GW + cap with delta_y = 100). Per delta_max node m in [M_LO, M_HI] (delta_y;
 default 0.98-1.3), the s in (0.3, 1/2) of the first piece where u's second divided difference
-jumps most (its largest ratio to the mean of its two neighbours' on each side: a kink in
-u(s) between s nodes), that s as an overlap above the knee, delta - k = (m - k)(1 - 2 s)
+jumps most (its largest ratio to the mean of its two neighbours' on each side: a kink of
+the slope du/ds, d2u/ds2 stepping up, between s nodes), that s as an overlap above the knee, delta - k = (m - k)(1 - 2 s)
 (the map's first piece, doc/formats.md), and the jump. --loo S: per node the leave-one-out
 error at the s node nearest S: u(m_j) minus the cubic in m through m_(j-2), m_(j-1),
 m_(j+1), m_(j+2), over max(u, 1e-3) (the weight of the local force goal).
