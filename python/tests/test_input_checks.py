@@ -73,6 +73,45 @@ def test_short_message_still_names_the_argument_and_shape():
     assert "delta" in text and "(1000,)" in text and "'0.0'" in text
 
 
+WORD = "X" * 1000                            # a 1000-character word where a name is asked
+NUMBERS = np.arange(1000.0)                  # an array where a word or a callable is asked
+
+
+def _map():
+    return topo.height_map(np.random.default_rng(1).standard_normal((32, 32)), 1.0, "um")
+
+
+@pytest.mark.parametrize("name, call", [
+    ("model", lambda: egw.Params(model=WORD)),
+    ("model", lambda: egw.Params(model=NUMBERS)),
+    ("model", lambda: egw.Scene(model=WORD).validate()),
+    ("radius", lambda: egw.Scene(radius=WORD).validate()),
+    ("format", lambda: egw.Table.build(P, -2e-6, 2e-5, rel_tol=1e-4).write("x.egwt", WORD)),
+    ("callback", lambda: egw.set_progress(NUMBERS)),
+    ("failed", lambda: egw.errstate(failed=WORD).__enter__()),
+    ("unit", lambda: topo.height_map(np.ones((8, 8)), 1.0, WORD)),
+    ("mode", lambda: topo.detrend(_map(), mode=WORD)),
+    ("method", lambda: topo.spectral_moments(_map(), method=WORD)),
+    ("model", lambda: egw.contact_from_topography(_map(), radius=5e-4, E1=70e9, nu1=0.22,
+                                                  model=WORD)),
+    ("estimate", lambda: egw.contact_from_topography(_map(), radius=5e-4, E1=70e9, nu1=0.22,
+                                                     model="E-GW", estimate=WORD)),
+], ids=["Params model word", "Params model array", "Scene model", "Scene radius",
+        "Table.write format", "set_progress", "errstate", "height_map unit", "detrend mode",
+        "spectral_moments method", "contact_from_topography model",
+        "contact_from_topography estimate"])
+def test_messages_naming_a_word_or_object_stay_short(name, call, tmp_path, monkeypatch):
+    # messages that quote a model name, a format, a unit or a callback quoted the whole
+    # value before audit33 (1036-6714 characters for these inputs): python/README.md says
+    # a message shows a value in at most ~60 characters; 300 hold the name, the value's
+    # head and the valid choices
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises((TypeError, ValueError)) as info:
+        call()
+    text = str(info.value)
+    assert len(text) < 300 and text.startswith(name), text
+
+
 def test_ignored_psi_warning_is_short():
     with pytest.warns(egw.IgnoredParameterWarning) as rec:
         egw.Params(model="E-GW", radius=1e-3, modulus=1e9, sigma=1e-6, mu=4.0,

@@ -17,7 +17,7 @@ from typing import Optional, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .errors import check, INVALID_ARGUMENT, InvalidArgumentError, _require
+from .errors import check, INVALID_ARGUMENT, InvalidArgumentError, _brief, _require
 from .params import ArrayLike, FloatOrArray, _number_array, Options
 from ._calls import _loop, _scalar_or_array
 from .tables import _Handle
@@ -226,7 +226,7 @@ class FlatLaw(_Handle):
         """
         from .topography import height_map
         if method not in ("BEM", "Persson"):
-            raise ValueError(f"method = {method!r}: must be 'BEM' or 'Persson'")
+            raise ValueError(f"method = {_brief(method)}: must be 'BEM' or 'Persson'")
         hm = height_map(top, pixel_size, unit).to_metres()
         z = hm.heights - np.mean(hm.heights)
         if not math.isclose(hm.dx, hm.dy, rel_tol=1e-9):
@@ -410,7 +410,7 @@ def psd_from_heights(heights: ArrayLike, pixel: float, per_decade: int = 20
     if z.ndim != 2 or not np.all(np.isfinite(z)):
         raise InvalidArgumentError(INVALID_ARGUMENT, "heights: a finite 2-D map is needed")
     if not (math.isfinite(pixel) and pixel > 0):
-        raise InvalidArgumentError(INVALID_ARGUMENT, f"pixel = {pixel!r}: must be > 0")
+        raise InvalidArgumentError(INVALID_ARGUMENT, f"pixel = {_brief(pixel)}: must be > 0")
     ny, nx = z.shape
     z = z - z.mean()
     power = np.abs(np.fft.fft2(z)) ** 2 / (nx * ny) ** 2  # |a_k|^2: sum = variance

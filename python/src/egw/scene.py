@@ -9,7 +9,7 @@ from typing import List, Optional, Tuple, Union
 
 from . import _capi
 from ._capi import SCENE_MAX_TYPES, lib
-from .errors import check, INVALID_PARAMETER, InvalidArgumentError
+from .errors import check, INVALID_PARAMETER, InvalidArgumentError, _brief
 from .params import MODELS, Options, _c_scalar, _options
 from .tables import Table, UniversalTable
 
@@ -158,12 +158,12 @@ class Scene:
         model = MODELS.get(self.model, self.model) if isinstance(self.model, str) else self.model
         if isinstance(model, str):
             raise InvalidArgumentError(INVALID_PARAMETER,
-                                       f"model = {model!r}: must be one of {list(MODELS)}")
+                                       f"model = {_brief(model)}: must be one of {list(MODELS)}")
         for name in ("radius", "modulus", "poisson"):
             value = getattr(self, name)
             if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
-                raise TypeError(f"{name} = {value!r}: must be a list of floats, one per "
-                                f"particle type (e.g. {name}=[{value!r}])")
+                raise TypeError(f"{name} = {_brief(value)}: must be a list of floats, one per "
+                                f"particle type (e.g. {name}=[{_brief(value)}])")
             if len(value) > SCENE_MAX_TYPES:
                 raise InvalidArgumentError(
                     INVALID_PARAMETER, f"{name}: at most {SCENE_MAX_TYPES} particle types")
@@ -179,7 +179,7 @@ class Scene:
                      "hardness_coeff", "plastic_ratio", "delta_min", "delta_max", "tol"):
             setattr(c, name, _c_scalar(name, getattr(self, name), False))
         if self.delta_in_sigma not in (True, False):   # 0.5 was True (bool()), silently
-            raise TypeError(f"delta_in_sigma = {self.delta_in_sigma!r}: must be True or "
+            raise TypeError(f"delta_in_sigma = {_brief(self.delta_in_sigma)}: must be True or "
                             "False (overlaps in units of sigma, or in length)")
         c.delta_in_sigma = int(bool(self.delta_in_sigma))
         return c

@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _capi
 from ._capi import lib
-from .errors import check, _FAILED, OK, OUT_OF_RANGE, PointFailedWarning, _require
+from .errors import check, _brief, _FAILED, OK, OUT_OF_RANGE, PointFailedWarning, _require
 from .params import ArrayLike, FloatOrArray, Options, _c_scalar, _options, Params, _params
 from ._calls import _array, _Batch, _double_ptr, _scalar_or_array
 
@@ -26,7 +26,7 @@ PathLike = Union[str, os.PathLike]
 def _format(fmt: Union[str, int]) -> int:
     if isinstance(fmt, str):
         if fmt not in FORMATS:
-            raise ValueError(f"format = {fmt!r}: must be one of {list(FORMATS)}")
+            raise ValueError(f"format = {_brief(fmt)}: must be one of {list(FORMATS)}")
         return FORMATS[fmt]
     return int(fmt)
 

@@ -11,6 +11,8 @@ from typing import Any, Optional, Tuple, Union
 
 import numpy as np
 
+from .errors import _brief
+
 
 #: length units a map may carry, in metres
 LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9,
@@ -134,7 +136,7 @@ def detrend(surface: HeightMap, mode: Optional[str] = None) -> HeightMap:
     if mode == "mean":
         return dataclasses.replace(surface, heights=z - z.mean())
     if mode != "plane":
-        raise ValueError(f"mode = {mode!r}: must be 'plane' or 'mean'")
+        raise ValueError(f"mode = {_brief(mode)}: must be 'plane' or 'mean'")
     ny, nx = z.shape
     y, x = np.mgrid[0:ny, 0:nx]
     a = np.column_stack([np.ones(z.size), x.ravel(), y.ravel()])
@@ -164,7 +166,7 @@ def sum_surface(a: HeightMap, b: HeightMap) -> HeightMap:
     if a.heights.shape != b.heights.shape or (a.dx, a.dy) != (b.dx, b.dy):
         raise ValueError("sum_surface: the two maps need the same shape and pixel size")
     if a.unit != b.unit:
-        raise ValueError(f"sum_surface: the maps are in {a.unit!r} and {b.unit!r}: "
+        raise ValueError(f"sum_surface: the maps are in {_brief(a.unit)} and {_brief(b.unit)}: "
                          "convert one (HeightMap.to_metres)")
     return HeightMap(a.heights + b.heights, a.dx, a.dy, a.unit, a.periodic and b.periodic)
 
@@ -229,7 +231,7 @@ def _check_scales(z: np.ndarray, dx: float, dy: float, what: str) -> None:
 
 def _check_unit(unit: Optional[str]) -> None:
     if unit is not None and unit not in LENGTH_UNITS:
-        raise ValueError(f"unit = {unit!r}: must be one of {sorted(set(LENGTH_UNITS))}")
+        raise ValueError(f"unit = {_brief(unit)}: must be one of {sorted(set(LENGTH_UNITS))}")
 
 
 def _unit_factor(unit: Optional[str]) -> float:
@@ -255,7 +257,8 @@ def _from_surface_topography(top: Any, unit: Optional[str],
                          "(top.interpolate_undefined_data()) or crop them first")
     top_unit = getattr(top, "unit", None)
     if top_unit is not None and unit is not None and top_unit != unit:
-        raise ValueError(f"mixed units: the topography is in {top_unit!r}, unit = {unit!r} "
+        raise ValueError(f"mixed units: the topography is in {_brief(top_unit)}, "
+                         f"unit = {_brief(unit)} "
                          "was given: convert the topography (top.to_unit(...)) instead")
     unit = top_unit if top_unit is not None else unit
     if unit is None:
@@ -343,12 +346,13 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
         An instrument format without SurfaceTopography installed.
     """
     if height_unit is not None and height_unit != unit:
-        raise ValueError(f"mixed units: heights in {height_unit!r}, pixel size in "
-                         f"{unit!r}: give both in one unit (scale the heights by "
+        raise ValueError(f"mixed units: heights in {_brief(height_unit)}, pixel size in "
+                         f"{_brief(unit)}: give both in one unit (scale the heights by "
                          f"{_unit_factor(height_unit) / _unit_factor(unit):g})")
     if isinstance(source, HeightMap):
         if unit is not None and source.unit is not None and unit != source.unit:
-            raise ValueError(f"mixed units: the map is in {source.unit!r}, unit = {unit!r}")
+            raise ValueError(f"mixed units: the map is in {_brief(source.unit)}, "
+                             f"unit = {_brief(unit)}")
         return dataclasses.replace(source, unit=source.unit or unit,
                                    periodic=source.periodic if periodic is None
                                    else bool(periodic))
