@@ -197,3 +197,33 @@ def test_build_arguments_of_a_wrong_type_name_themselves():
         with pytest.raises(TypeError) as info:
             call()
         assert str(info.value).startswith(name), str(info.value)
+
+
+@pytest.mark.parametrize("pixel_size", [True, "0.5", (1.0, 2.0, 3.0), [1.0, [2.0, 3.0]]])
+def test_a_pixel_size_that_is_not_one_or_two_numbers_is_refused_naming_it(pixel_size):
+    # before audit33 True was read as a pixel of 1 (a map silently in the wrong scale),
+    # and the others raised Python's "too many values to unpack" or "'>' not supported",
+    # naming nothing
+    z = np.random.default_rng(2).standard_normal((16, 16))
+    with pytest.raises(ValueError) as info:
+        topo.height_map(z, pixel_size, "um")
+    assert str(info.value).startswith("pixel_size = "), str(info.value)
+
+
+def test_pixel_sizes_as_numpy_numbers_are_their_values():
+    z = np.random.default_rng(2).standard_normal((16, 16))
+    a = topo.height_map(z, 0.5, "um")
+    for size in (np.array(0.5), np.float32(0.5), (0.5, 0.5), np.array([0.5, 0.5])):
+        b = topo.height_map(z, size, "um")
+        assert (b.dx, b.dy) == (a.dx, a.dy)
+
+
+@pytest.mark.parametrize("factor", [2.7, True, "2", float("nan"), float("inf")])
+def test_coarse_grain_takes_a_whole_factor_only(factor):
+    # before audit33 int() truncated 2.7 to 2 without a word (and took True as 1)
+    surface = topo.height_map(np.random.default_rng(3).standard_normal((32, 32)), 1.0, "um")
+    with pytest.raises(ValueError) as info:
+        topo.coarse_grain(surface, factor)
+    assert str(info.value).startswith("factor = "), str(info.value)
+    assert np.array_equal(topo.coarse_grain(surface, 2.0).heights,
+                          topo.coarse_grain(surface, 2).heights)

@@ -302,9 +302,19 @@ def _on_grid(z: np.ndarray, pixel_size, unit: Optional[str], periodic: bool,
              what: str) -> HeightMap:
     """The HeightMap of the finite heights z on pixels of pixel_size (dx or (dx, dy)),
     after the checks of the pixel size, the scales and the unit (what: their source)."""
-    dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
+    # numbers only: a word, a boolean or a third size is refused, not read as a number
+    try:
+        sizes = [pixel_size] if np.isscalar(pixel_size) else list(np.ravel(pixel_size))
+    except ValueError:   # a ragged sequence
+        sizes = []
+    if len(sizes) not in (1, 2) or not all(
+            isinstance(v, (int, float, np.integer, np.floating)) and
+            not isinstance(v, (bool, np.bool_)) for v in sizes):
+        raise ValueError(f"pixel_size = {_brief(pixel_size)}: must be dx or (dx, dy), "
+                         "real numbers")
+    dx, dy = float(sizes[0]), float(sizes[-1])
     if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
-        raise ValueError(f"pixel_size = {pixel_size}: must be finite and > 0")
+        raise ValueError(f"pixel_size = {_brief(pixel_size)}: must be finite and > 0")
     _check_scales(z, float(dx), float(dy), what)
     _check_unit(unit)
     return HeightMap(z, float(dx), float(dy), unit, bool(periodic))
@@ -409,8 +419,13 @@ def coarse_grain(surface: HeightMap, factor: int = 2) -> HeightMap:
     Raises
     ------
     ValueError
-        A factor < 1, or a map with fewer than 3 x 3 blocks.
+        A factor that is not a whole number or < 1, or a map with fewer than 3 x 3 blocks.
     """
+    # a whole number only: int() would truncate 2.7 to 2 without a word
+    if isinstance(factor, (bool, np.bool_)) or not isinstance(
+            factor, (int, float, np.integer, np.floating)) or not (
+            math.isfinite(factor) and factor == int(factor)):
+        raise ValueError(f"factor = {_brief(factor)}: must be a whole number")
     factor = int(factor)
     ny, nx = surface.heights.shape
     if factor < 1 or ny // factor < 3 or nx // factor < 3:
