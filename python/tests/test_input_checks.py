@@ -227,3 +227,53 @@ def test_coarse_grain_takes_a_whole_factor_only(factor):
     assert str(info.value).startswith("factor = "), str(info.value)
     assert np.array_equal(topo.coarse_grain(surface, 2.0).heights,
                           topo.coarse_grain(surface, 2).heights)
+
+
+def _table():
+    return egw.Table.build(P, -2e-6, 2e-5, rel_tol=1e-4)
+
+
+@pytest.mark.parametrize("name, call", [
+    ("delta", lambda: _table().eval_all(True)),
+    ("delta", lambda: _table().eval_all("1e-6")),
+    ("delta", lambda: egw.profile(P, True, np.linspace(0, 1e-4, 5))),
+    ("delta", lambda: egw.profile(P, np.array([1e-6, 2e-6]), np.linspace(0, 1e-4, 5))),
+    ("format", lambda: _table().write("t.bin", 1.5)),
+    ("format", lambda: _table().write("t.bin", True)),
+    ("radius", lambda: egw.contact_from_topography(
+        np.random.default_rng(1).standard_normal((32, 32)), radius=True, E1=70e9, nu1=0.22,
+        pixel_size=0.5, unit="um", model="E-GW")),
+    ("length", lambda: egw.FlatLaw.from_table([0.0, 1.0], [2.0, 1.0], length="1")),
+], ids=["eval_all True", "eval_all str", "profile True", "profile array",
+        "write format 1.5", "write format True", "contact_from_topography radius",
+        "FlatLaw length"])
+def test_one_number_arguments_refuse_booleans_words_and_fractions(name, call, tmp_path,
+                                                                 monkeypatch):
+    # before audit33 these went through float() or int(): True was an overlap of 1 (or a
+    # radius of 1, the binary format), "1e-6" a number, format 1.5 binary, all silently
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(TypeError) as info:
+        call()
+    assert str(info.value).startswith(name), str(info.value)
+
+
+@pytest.mark.parametrize("radius, modulus, poisson", [
+    ([1e-3, 2e-3], [70e9, 200e9], [0.22]),          # type 2's nu left out: was nu = 0
+    ([1e-3], [70e9, 200e9], [0.22, 0.3]),           # a type beyond the radii: was unused
+])
+def test_scene_materials_must_match_the_types(radius, modulus, poisson):
+    scene = egw.Scene(radius=radius, modulus=modulus, poisson=poisson, effective_modulus=0.0)
+    with pytest.raises(egw.InvalidArgumentError) as info:
+        scene.validate()
+    assert str(info.value).startswith("modulus, poisson: "), str(info.value)
+
+
+def test_scene_types_left_out_of_both_lists_take_type_1s_material():
+    # egw_scene's documented rule, kept: modulus 0 for a type >= 2 is type 1's material
+    one = egw.choose(egw.Scene(radius=[1e-3, 2e-3], modulus=[70e9], poisson=[0.22]))
+    both = egw.choose(egw.Scene(radius=[1e-3, 2e-3], modulus=[70e9, 70e9],
+                                poisson=[0.22, 0.22]))
+    assert one.hertz_error == both.hertz_error
+    # with effective_modulus the lists are unused and not checked
+    egw.Scene(radius=[1e-3, 2e-3], modulus=[70e9, 1e9, 2e9], poisson=[0.22],
+              effective_modulus=3e10).validate()

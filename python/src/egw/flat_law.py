@@ -18,7 +18,7 @@ import numpy as np
 
 from ._capi import lib
 from .errors import check, INVALID_ARGUMENT, InvalidArgumentError, _brief, _require
-from .params import ArrayLike, FloatOrArray, _number_array, Options
+from .params import ArrayLike, FloatOrArray, _c_scalar, _number_array, Options
 from ._calls import _loop, _scalar_or_array
 from .tables import _Handle
 
@@ -92,7 +92,8 @@ class FlatLaw(_Handle):
         aa = None if area is None else _nodes("area", area, ua.size)
         h = ctypes.c_void_p()
         check(lib.egw_flat_law_from_table(_ptr(ua), _ptr(pa), _ptr(da), _ptr(aa),
-                                          int(ua.size), float(length), float(modulus),
+                                          int(ua.size), _c_scalar("length", length),
+                                          _c_scalar("modulus", modulus),
                                           ctypes.byref(h)))
         return cls(h)
 
@@ -122,6 +123,8 @@ class FlatLaw(_Handle):
         ------
         InvalidArgumentError
             A bad spectrum or range (the message names it).
+        TypeError
+            modulus, p_min or p_max not one real number.
         NotImplementedError
             The loaded libegw has no Persson law.
         """
@@ -129,8 +132,10 @@ class FlatLaw(_Handle):
         qa = _nodes("q", q)
         ca = _nodes("C", C, qa.size)
         h = ctypes.c_void_p()
-        check(lib.egw_flat_law_from_psd(_ptr(qa), _ptr(ca), int(qa.size), float(modulus),
-                                        float(p_min or 0.0), float(p_max or 0.0),
+        check(lib.egw_flat_law_from_psd(_ptr(qa), _ptr(ca), int(qa.size),
+                                        _c_scalar("modulus", modulus),
+                                        _c_scalar("p_min", p_min or 0.0),
+                                        _c_scalar("p_max", p_max or 0.0),
                                         ctypes.byref(h)))
         return cls(h)
 
@@ -163,6 +168,8 @@ class FlatLaw(_Handle):
         ------
         InvalidArgumentError
             A bad map or range (NaN pixels, a map that is not 2-D, ...).
+        TypeError
+            pixel, modulus, p_min or p_max not one real number.
         NotConvergedError
             A load did not converge.
         NotImplementedError
@@ -174,11 +181,12 @@ class FlatLaw(_Handle):
             raise InvalidArgumentError(INVALID_ARGUMENT,
                                        f"heights: a 2-D map is needed (shape {z.shape})")
         ny, nx = z.shape
-        o = Options(n_threads=int(n_threads)).to_c()
+        o = Options(n_threads=n_threads).to_c()
         h = ctypes.c_void_p()
-        check(lib.egw_flat_law_from_heights(_ptr(z), int(nx), int(ny), float(pixel),
-                                            float(modulus), float(p_min or 0.0),
-                                            float(p_max or 0.0), ctypes.byref(o),
+        check(lib.egw_flat_law_from_heights(_ptr(z), int(nx), int(ny), _c_scalar("pixel", pixel),
+                                            _c_scalar("modulus", modulus),
+                                            _c_scalar("p_min", p_min or 0.0),
+                                            _c_scalar("p_max", p_max or 0.0), ctypes.byref(o),
                                             ctypes.byref(h)))
         return cls(h)
 
@@ -405,10 +413,13 @@ def psd_from_heights(heights: ArrayLike, pixel: float, per_decade: int = 20
     ------
     InvalidArgumentError
         A map that is not 2-D, or not finite, or a pixel size that is not > 0.
+    TypeError
+        A pixel size that is not one real number.
     """
     z = np.asarray(_number_array("heights", heights), dtype=np.float64)
     if z.ndim != 2 or not np.all(np.isfinite(z)):
         raise InvalidArgumentError(INVALID_ARGUMENT, "heights: a finite 2-D map is needed")
+    pixel = _c_scalar("pixel", pixel)
     if not (math.isfinite(pixel) and pixel > 0):
         raise InvalidArgumentError(INVALID_ARGUMENT, f"pixel = {_brief(pixel)}: must be > 0")
     ny, nx = z.shape

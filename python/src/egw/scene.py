@@ -149,7 +149,9 @@ class Scene:
         Raises
         ------
         InvalidArgumentError
-            An unknown model, or more than SCENE_MAX_TYPES particle types.
+            An unknown model, more than SCENE_MAX_TYPES particle types, or (without
+            effective_modulus) modulus and poisson lists of different lengths or
+            longer than radius.
         TypeError
             radius, modulus or poisson not a list (one value per type); a field that is
             not a real number, a model number that is not a whole number, delta_in_sigma
@@ -167,6 +169,15 @@ class Scene:
             if len(value) > SCENE_MAX_TYPES:
                 raise InvalidArgumentError(
                     INVALID_PARAMETER, f"{name}: at most {SCENE_MAX_TYPES} particle types")
+        # E and nu per type are used (no effective_modulus): the C struct's zeros would give
+        # a type whose poisson was left out nu = 0, and values beyond the types go unused
+        n_types = max(1, len(self.radius))
+        if not _c_scalar("effective_modulus", self.effective_modulus) > 0 and (
+                len(self.modulus) != len(self.poisson) or len(self.modulus) > n_types):
+            raise InvalidArgumentError(
+                INVALID_PARAMETER, f"modulus, poisson: {len(self.modulus)} and "
+                f"{len(self.poisson)} values for {n_types} particle type(s): give both for "
+                "each type (a type >= 2 left out of both has type 1's material)")
         c = _capi.Scene()
         c.model = _c_scalar("model", model, True)
         c.n_types = len(self.radius)

@@ -28,7 +28,7 @@ def _format(fmt: Union[str, int]) -> int:
         if fmt not in FORMATS:
             raise ValueError(f"format = {_brief(fmt)}: must be one of {list(FORMATS)}")
         return FORMATS[fmt]
-    return int(fmt)
+    return _c_scalar("format", fmt, True)
 
 
 def _path(path: PathLike) -> bytes:
@@ -219,6 +219,8 @@ class Table(_Handle):
         ------
         ValueError
             An unknown format name.
+        TypeError
+            A format number that is not a whole number (True, 1.5).
         FileError
             The file cannot be written.
         """
@@ -283,9 +285,12 @@ class Table(_Handle):
         ------
         InvalidArgumentError
             A NaN overlap (above the last node: OutOfRangeWarning, extrapolated).
+        TypeError
+            delta not one real number (an array, a string, a bool).
         """
         out = [ctypes.c_double() for _ in range(4)]
-        check(lib.egw_table_eval_all(self._ptr, float(delta), *map(ctypes.byref, out)),
+        d = _c_scalar("delta", delta)
+        check(lib.egw_table_eval_all(self._ptr, d, *map(ctypes.byref, out)),
               allow_out_of_range=True)
         return tuple(v.value for v in out)
 
@@ -374,6 +379,8 @@ class UniversalTable(_Handle):
         ------
         ValueError
             An unknown format name.
+        TypeError
+            A format number that is not a whole number (True, 1.5).
         FileError
             The file cannot be written.
         """
@@ -590,6 +597,8 @@ class HysteresisTable(_Handle):
         ------
         ValueError
             An unknown format name.
+        TypeError
+            A format number that is not a whole number (True, 1.5).
         FileError
             The file cannot be written.
         """

@@ -181,6 +181,8 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
     ------
     ValueError
         Missing units, NaN pixels, maps on different grids, EP-GW without hardness.
+    TypeError
+        radius (or another number) not a real number.
     """
     if model not in ("GW", "E-GW", "EP-GW", "Persson", "BEM"):
         raise ValueError(f"model = {_brief(model)}: a rough contact needs 'GW', 'E-GW', 'EP-GW', "
@@ -217,7 +219,7 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
         stats = rep.summits if chosen == "summits" else rep.spectral
         notes += rep.warnings
     e_star = effective_modulus(E1, nu1, E2, nu2)
-    r_mu = 1.0 if radius is None else float(radius)
+    r_mu = 1.0 if radius is None else _c_scalar("radius", radius)
     if radius is None:
         notes.append("radius None: a flat; mu computed for R = 1 m (flat_pressure depends "
                      "on mu/sqrt(R) only)")
