@@ -277,3 +277,13 @@ def test_scene_types_left_out_of_both_lists_take_type_1s_material():
     # with effective_modulus the lists are unused and not checked
     egw.Scene(radius=[1e-3, 2e-3], modulus=[70e9, 1e9, 2e9], poisson=[0.22],
               effective_modulus=3e10).validate()
+
+
+@pytest.mark.parametrize("heights", [np.ones((8, 8), bool), np.full((8, 8), "1.0"),
+                                     np.ones((8, 8), complex)], ids=["bool", "str", "complex"])
+def test_height_maps_of_other_than_real_numbers_are_refused(heights):
+    # before audit33 float64 conversion read True as 1, "1.0" as 1 and dropped the
+    # imaginary part (numpy's ComplexWarning at most)
+    with pytest.raises(ValueError, match="heights must be real numbers"):
+        topo.height_map(heights, 1.0, "um")
+    topo.height_map(np.arange(64).reshape(8, 8) % 5, 1.0, "um")   # integers are numbers

@@ -279,7 +279,10 @@ def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic:
         raise ValueError(f"{what}: a masked array with {n} masked pixel{'' if n == 1 else 's'}"
                          ": masked pixels are missing data; fill or crop them first "
                          "(summits and moments are undefined next to them)")
-    z = np.asarray(heights, dtype=np.float64)
+    raw = np.asarray(heights)
+    if raw.dtype.kind not in "iuf":   # float64 would read True as 1, "1" as 1, 1+2j as 1
+        raise ValueError(f"{what}: heights must be real numbers (got dtype {raw.dtype})")
+    z = raw.astype(np.float64)
     _check_shape(z, what)
     bad = np.count_nonzero(~np.isfinite(z))
     if bad:
@@ -351,7 +354,8 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
     Raises
     ------
     ValueError
-        NaN pixels, a missing or unknown unit, mixed units, a bad pixel size or shape.
+        NaN pixels, heights that are not real numbers, a missing or unknown unit,
+        mixed units, a bad pixel size or shape.
     ImportError
         An instrument format without SurfaceTopography installed.
     """
