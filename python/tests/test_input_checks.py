@@ -287,3 +287,14 @@ def test_height_maps_of_other_than_real_numbers_are_refused(heights):
     with pytest.raises(ValueError, match="heights must be real numbers"):
         topo.height_map(heights, 1.0, "um")
     topo.height_map(np.arange(64).reshape(8, 8) % 5, 1.0, "um")   # integers are numbers
+
+
+@pytest.mark.parametrize("shape", [2.5, True, -1, (2, 1.5), "3"])
+def test_new_state_names_a_bad_shape(shape):
+    # before audit33 numpy's own messages ("expected a sequence of integers", "negative
+    # dimensions are not allowed") named nothing
+    with pytest.raises(ValueError if shape == -1 else TypeError) as info:
+        egw.HysteresisTable.new_state(shape)
+    assert str(info.value).startswith("shape = "), str(info.value)
+    assert egw.HysteresisTable.new_state((2, np.int64(3))).shape == (2, 3)
+    assert egw.HysteresisTable.new_state().shape == ()

@@ -735,7 +735,21 @@ class HysteresisTable(_Handle):
         -------
         ndarray
             float64 filled with -inf, for :meth:`eval`.
+
+        Raises
+        ------
+        TypeError
+            A shape that is not whole numbers (2.5, True, "3"), named.
+        ValueError
+            A negative size, named.
         """
+        dims = [shape] if np.ndim(shape) == 0 else list(np.ravel(shape))
+        if not all(isinstance(k, (int, np.integer)) and not isinstance(k, (bool, np.bool_))
+                   for k in dims):
+            raise TypeError(f"shape = {_brief(shape)}: must be a whole number or a tuple "
+                            "of them")
+        if any(k < 0 for k in dims):
+            raise ValueError(f"shape = {_brief(shape)}: sizes must be >= 0")
         return np.full(shape, -np.inf)
 
 
