@@ -298,3 +298,24 @@ def test_new_state_names_a_bad_shape(shape):
     assert str(info.value).startswith("shape = "), str(info.value)
     assert egw.HysteresisTable.new_state((2, np.int64(3))).shape == (2, 3)
     assert egw.HysteresisTable.new_state().shape == ()
+
+
+@pytest.mark.parametrize("call", [
+    lambda v: egw.gauss_integral(1.0, 0.5, derivative=v),
+    lambda v: egw.flat_pressure(P, 1e-6, derivative=v),
+    lambda v: egw.flat_pressure_unload(P, 1e-6, 5e-7, derivative=v),
+    lambda v: topo.height_map(np.random.default_rng(4).standard_normal((16, 16)), 1.0, "um",
+                              periodic=v),
+    lambda v: topo.summit_statistics(
+        topo.height_map(np.random.default_rng(4).standard_normal((16, 16)), 1.0, "um"), v),
+], ids=["gauss_integral", "flat_pressure", "flat_pressure_unload", "height_map",
+        "summit_statistics"])
+def test_yes_no_arguments_take_true_or_false_only(call):
+    # before audit33 bool() read derivative="no" or periodic="no" (or 0.5) as True: a
+    # derivative returned, a map made periodic (FFT derivatives), without a word
+    for bad in ("no", 0.5, np.array([True, False])):
+        with pytest.raises(TypeError) as info:
+            call(bad)
+        assert str(info.value).split(" = ")[0] in ("derivative", "periodic"), str(info.value)
+    for good in (False, np.bool_(True), 0, 1):
+        call(good)

@@ -39,6 +39,15 @@ def _brief(value) -> str:
     return f"<{type(value).__name__} shape {a.shape} dtype {a.dtype}: {head}, ...>"
 
 
+def _flag(name: str, value) -> bool:
+    """A yes/no argument: True or False (numpy's too, or 0 and 1); anything else named in a
+    TypeError (bool() would read "no", 0.5 or an array's truth as True)."""
+    if isinstance(value, (bool, np.bool_)) or (
+            isinstance(value, (int, np.integer)) and value in (0, 1)):
+        return bool(value)
+    raise TypeError(f"{name} = {_brief(value)}: must be True or False")
+
+
 class EgwError(Exception):
     """A refused egw call: `status` is the egw status code, `message` egw's own text
     (it names the offending parameter and its valid range)."""

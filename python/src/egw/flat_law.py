@@ -17,7 +17,7 @@ from typing import Optional, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .errors import check, INVALID_ARGUMENT, InvalidArgumentError, _brief, _require
+from .errors import check, INVALID_ARGUMENT, InvalidArgumentError, _brief, _flag, _require
 from .params import ArrayLike, FloatOrArray, _c_scalar, _number_array, Options
 from ._calls import _loop, _scalar_or_array
 from .tables import _Handle
@@ -342,10 +342,11 @@ class FlatLaw(_Handle):
         Raises
         ------
         TypeError
-            u is not numeric.
+            u is not numeric, derivative not True or False.
         InvalidArgumentError
             A NaN u, or one where the law is beyond the doubles (the message names it).
         """
+        derivative = _flag("derivative", derivative)
         ua = np.asarray(_number_array("u", u), dtype=np.float64)
         flat, h = ua.reshape(-1), self._ptr
         p, d = _loop(ua.shape, 2, lambda i, rp, rd: check(

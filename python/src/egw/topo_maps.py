@@ -11,7 +11,7 @@ from typing import Any, Optional, Tuple, Union
 
 import numpy as np
 
-from .errors import _brief
+from .errors import _brief, _flag
 
 
 #: length units a map may carry, in metres
@@ -95,7 +95,10 @@ def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1
         an unknown unit.
     OSError
         The file cannot be read.
+    TypeError
+        periodic not True or False ("no" would have meant True).
     """
+    periodic = _flag("periodic", periodic)
     ext = os.path.splitext(path)[1].lower()
     if ext == ".npy":
         z = np.load(path, allow_pickle=False)
@@ -358,7 +361,11 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
         mixed units, a bad pixel size or shape.
     ImportError
         An instrument format without SurfaceTopography installed.
+    TypeError
+        periodic neither None nor True or False ("no" would have meant True).
     """
+    if periodic is not None:
+        periodic = _flag("periodic", periodic)
     if height_unit is not None and height_unit != unit:
         raise ValueError(f"mixed units: heights in {_brief(height_unit)}, pixel size in "
                          f"{_brief(unit)}: give both in one unit (scale the heights by "
