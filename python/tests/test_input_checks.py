@@ -73,6 +73,45 @@ def test_short_message_still_names_the_argument_and_shape():
     assert "delta" in text and "(1000,)" in text and "'0.0'" in text
 
 
+WORD = "X" * 1000                            # a 1000-character word where a name is asked
+NUMBERS = np.arange(1000.0)                  # an array where a word or a callable is asked
+
+
+def _map():
+    return topo.height_map(np.random.default_rng(1).standard_normal((32, 32)), 1.0, "um")
+
+
+@pytest.mark.parametrize("name, call", [
+    ("model", lambda: egw.Params(model=WORD)),
+    ("model", lambda: egw.Params(model=NUMBERS)),
+    ("model", lambda: egw.Scene(model=WORD).validate()),
+    ("radius", lambda: egw.Scene(radius=WORD).validate()),
+    ("format", lambda: egw.Table.build(P, -2e-6, 2e-5, rel_tol=1e-4).write("x.egwt", WORD)),
+    ("callback", lambda: egw.set_progress(NUMBERS)),
+    ("failed", lambda: egw.errstate(failed=WORD).__enter__()),
+    ("unit", lambda: topo.height_map(np.ones((8, 8)), 1.0, WORD)),
+    ("mode", lambda: topo.detrend(_map(), mode=WORD)),
+    ("method", lambda: topo.spectral_moments(_map(), method=WORD)),
+    ("model", lambda: egw.contact_from_topography(_map(), radius=5e-4, E1=70e9, nu1=0.22,
+                                                  model=WORD)),
+    ("estimate", lambda: egw.contact_from_topography(_map(), radius=5e-4, E1=70e9, nu1=0.22,
+                                                     model="E-GW", estimate=WORD)),
+], ids=["Params model word", "Params model array", "Scene model", "Scene radius",
+        "Table.write format", "set_progress", "errstate", "height_map unit", "detrend mode",
+        "spectral_moments method", "contact_from_topography model",
+        "contact_from_topography estimate"])
+def test_messages_naming_a_word_or_object_stay_short(name, call, tmp_path, monkeypatch):
+    # messages that quote a model name, a format, a unit or a callback quoted the whole
+    # value before audit33 (1036-6714 characters for these inputs): python/README.md says
+    # a message shows a value in at most ~60 characters; 300 hold the name, the value's
+    # head and the valid choices
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises((TypeError, ValueError)) as info:
+        call()
+    text = str(info.value)
+    assert len(text) < 300 and text.startswith(name), text
+
+
 def test_ignored_psi_warning_is_short():
     with pytest.warns(egw.IgnoredParameterWarning) as rec:
         egw.Params(model="E-GW", radius=1e-3, modulus=1e9, sigma=1e-6, mu=4.0,
@@ -158,3 +197,125 @@ def test_build_arguments_of_a_wrong_type_name_themselves():
         with pytest.raises(TypeError) as info:
             call()
         assert str(info.value).startswith(name), str(info.value)
+
+
+@pytest.mark.parametrize("pixel_size", [True, "0.5", (1.0, 2.0, 3.0), [1.0, [2.0, 3.0]]])
+def test_a_pixel_size_that_is_not_one_or_two_numbers_is_refused_naming_it(pixel_size):
+    # before audit33 True was read as a pixel of 1 (a map silently in the wrong scale),
+    # and the others raised Python's "too many values to unpack" or "'>' not supported",
+    # naming nothing
+    z = np.random.default_rng(2).standard_normal((16, 16))
+    with pytest.raises(ValueError) as info:
+        topo.height_map(z, pixel_size, "um")
+    assert str(info.value).startswith("pixel_size = "), str(info.value)
+
+
+def test_pixel_sizes_as_numpy_numbers_are_their_values():
+    z = np.random.default_rng(2).standard_normal((16, 16))
+    a = topo.height_map(z, 0.5, "um")
+    for size in (np.array(0.5), np.float32(0.5), (0.5, 0.5), np.array([0.5, 0.5])):
+        b = topo.height_map(z, size, "um")
+        assert (b.dx, b.dy) == (a.dx, a.dy)
+
+
+@pytest.mark.parametrize("factor", [2.7, True, "2", float("nan"), float("inf")])
+def test_coarse_grain_takes_a_whole_factor_only(factor):
+    # before audit33 int() truncated 2.7 to 2 without a word (and took True as 1)
+    surface = topo.height_map(np.random.default_rng(3).standard_normal((32, 32)), 1.0, "um")
+    with pytest.raises(ValueError) as info:
+        topo.coarse_grain(surface, factor)
+    assert str(info.value).startswith("factor = "), str(info.value)
+    assert np.array_equal(topo.coarse_grain(surface, 2.0).heights,
+                          topo.coarse_grain(surface, 2).heights)
+
+
+def _table():
+    return egw.Table.build(P, -2e-6, 2e-5, rel_tol=1e-4)
+
+
+@pytest.mark.parametrize("name, call", [
+    ("delta", lambda: _table().eval_all(True)),
+    ("delta", lambda: _table().eval_all("1e-6")),
+    ("delta", lambda: egw.profile(P, True, np.linspace(0, 1e-4, 5))),
+    ("delta", lambda: egw.profile(P, np.array([1e-6, 2e-6]), np.linspace(0, 1e-4, 5))),
+    ("format", lambda: _table().write("t.bin", 1.5)),
+    ("format", lambda: _table().write("t.bin", True)),
+    ("radius", lambda: egw.contact_from_topography(
+        np.random.default_rng(1).standard_normal((32, 32)), radius=True, E1=70e9, nu1=0.22,
+        pixel_size=0.5, unit="um", model="E-GW")),
+    ("length", lambda: egw.FlatLaw.from_table([0.0, 1.0], [2.0, 1.0], length="1")),
+], ids=["eval_all True", "eval_all str", "profile True", "profile array",
+        "write format 1.5", "write format True", "contact_from_topography radius",
+        "FlatLaw length"])
+def test_one_number_arguments_refuse_booleans_words_and_fractions(name, call, tmp_path,
+                                                                 monkeypatch):
+    # before audit33 these went through float() or int(): True was an overlap of 1 (or a
+    # radius of 1, the binary format), "1e-6" a number, format 1.5 binary, all silently
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(TypeError) as info:
+        call()
+    assert str(info.value).startswith(name), str(info.value)
+
+
+@pytest.mark.parametrize("radius, modulus, poisson", [
+    ([1e-3, 2e-3], [70e9, 200e9], [0.22]),          # type 2's nu left out: was nu = 0
+    ([1e-3], [70e9, 200e9], [0.22, 0.3]),           # a type beyond the radii: was unused
+])
+def test_scene_materials_must_match_the_types(radius, modulus, poisson):
+    scene = egw.Scene(radius=radius, modulus=modulus, poisson=poisson, effective_modulus=0.0)
+    with pytest.raises(egw.InvalidArgumentError) as info:
+        scene.validate()
+    assert str(info.value).startswith("modulus, poisson: "), str(info.value)
+
+
+def test_scene_types_left_out_of_both_lists_take_type_1s_material():
+    # egw_scene's documented rule, kept: modulus 0 for a type >= 2 is type 1's material
+    one = egw.choose(egw.Scene(radius=[1e-3, 2e-3], modulus=[70e9], poisson=[0.22]))
+    both = egw.choose(egw.Scene(radius=[1e-3, 2e-3], modulus=[70e9, 70e9],
+                                poisson=[0.22, 0.22]))
+    assert one.hertz_error == both.hertz_error
+    # with effective_modulus the lists are unused and not checked
+    egw.Scene(radius=[1e-3, 2e-3], modulus=[70e9, 1e9, 2e9], poisson=[0.22],
+              effective_modulus=3e10).validate()
+
+
+@pytest.mark.parametrize("heights", [np.ones((8, 8), bool), np.full((8, 8), "1.0"),
+                                     np.ones((8, 8), complex)], ids=["bool", "str", "complex"])
+def test_height_maps_of_other_than_real_numbers_are_refused(heights):
+    # before audit33 float64 conversion read True as 1, "1.0" as 1 and dropped the
+    # imaginary part (numpy's ComplexWarning at most)
+    with pytest.raises(ValueError, match="heights must be real numbers"):
+        topo.height_map(heights, 1.0, "um")
+    topo.height_map(np.arange(64).reshape(8, 8) % 5, 1.0, "um")   # integers are numbers
+
+
+@pytest.mark.parametrize("shape", [2.5, True, -1, (2, 1.5), "3"])
+def test_new_state_names_a_bad_shape(shape):
+    # before audit33 numpy's own messages ("expected a sequence of integers", "negative
+    # dimensions are not allowed") named nothing
+    with pytest.raises(ValueError if shape == -1 else TypeError) as info:
+        egw.HysteresisTable.new_state(shape)
+    assert str(info.value).startswith("shape = "), str(info.value)
+    assert egw.HysteresisTable.new_state((2, np.int64(3))).shape == (2, 3)
+    assert egw.HysteresisTable.new_state().shape == ()
+
+
+@pytest.mark.parametrize("call", [
+    lambda v: egw.gauss_integral(1.0, 0.5, derivative=v),
+    lambda v: egw.flat_pressure(P, 1e-6, derivative=v),
+    lambda v: egw.flat_pressure_unload(P, 1e-6, 5e-7, derivative=v),
+    lambda v: topo.height_map(np.random.default_rng(4).standard_normal((16, 16)), 1.0, "um",
+                              periodic=v),
+    lambda v: topo.summit_statistics(
+        topo.height_map(np.random.default_rng(4).standard_normal((16, 16)), 1.0, "um"), v),
+], ids=["gauss_integral", "flat_pressure", "flat_pressure_unload", "height_map",
+        "summit_statistics"])
+def test_yes_no_arguments_take_true_or_false_only(call):
+    # before audit33 bool() read derivative="no" or periodic="no" (or 0.5) as True: a
+    # derivative returned, a map made periodic (FFT derivatives), without a word
+    for bad in ("no", 0.5, np.array([True, False])):
+        with pytest.raises(TypeError) as info:
+            call(bad)
+        assert str(info.value).split(" = ")[0] in ("derivative", "periodic"), str(info.value)
+    for good in (False, np.bool_(True), 0, 1):
+        call(good)

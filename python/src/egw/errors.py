@@ -9,12 +9,43 @@ import ctypes
 import warnings
 from typing import Iterator
 
+import numpy as np
+
 from . import _capi
 from ._capi import lib
 
 #: Status codes (include/egw.h).
 OK, INVALID_ARGUMENT, INVALID_PARAMETER, NOT_CONVERGED = 0, 1, 2, 3
 IO_ERROR, BAD_FILE, OUT_OF_MEMORY, NULL_POINTER, OUT_OF_RANGE, UNSUPPORTED = 4, 5, 6, 7, 8, 9
+
+
+#: an error message shows at most this many characters of a value (never a whole array)
+BRIEF_CHARS = 60
+
+
+def _brief(value) -> str:
+    """A short repr for error messages: a value itself when short, else its type, shape,
+    dtype and first elements (a message must never print a whole input array)."""
+    text = repr(value)
+    if len(text) <= BRIEF_CHARS and "\n" not in text:
+        return text
+    try:
+        a = np.asarray(value)
+    except Exception:  # noqa: BLE001 - any object: fall back to its cut repr
+        return text[:BRIEF_CHARS] + "..."
+    if a.ndim == 0:
+        return text[:BRIEF_CHARS] + "..."
+    head = ", ".join(repr(x)[:12] for x in a.reshape(-1)[:3].tolist())
+    return f"<{type(value).__name__} shape {a.shape} dtype {a.dtype}: {head}, ...>"
+
+
+def _flag(name: str, value) -> bool:
+    """A yes/no argument: True or False (numpy's too, or 0 and 1); anything else named in a
+    TypeError (bool() would read "no", 0.5 or an array's truth as True)."""
+    if isinstance(value, (bool, np.bool_)) or (
+            isinstance(value, (int, np.integer)) and value in (0, 1)):
+        return bool(value)
+    raise TypeError(f"{name} = {_brief(value)}: must be True or False")
 
 
 class EgwError(Exception):
@@ -171,7 +202,7 @@ def errstate(failed: str = "raise") -> Iterator[None]:
     ...     f, k, a = egw.hertz(p, [1e-6, float("nan")])   # f[1] is NaN
     """
     if failed not in _FAILED_MODES:
-        raise ValueError(f"failed = {failed!r}: must be one of {_FAILED_MODES}")
+        raise ValueError(f"failed = {_brief(failed)}: must be one of {_FAILED_MODES}")
     token = _FAILED.set(failed)
     try:
         yield

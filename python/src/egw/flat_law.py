@@ -17,8 +17,8 @@ from typing import Optional, Tuple, Union
 import numpy as np
 
 from ._capi import lib
-from .errors import check, INVALID_ARGUMENT, InvalidArgumentError, _require
-from .params import ArrayLike, FloatOrArray, _number_array, Options
+from .errors import check, INVALID_ARGUMENT, InvalidArgumentError, _brief, _flag, _require
+from .params import ArrayLike, FloatOrArray, _c_scalar, _number_array, Options
 from ._calls import _loop, _scalar_or_array
 from .tables import _Handle
 
@@ -92,7 +92,8 @@ class FlatLaw(_Handle):
         aa = None if area is None else _nodes("area", area, ua.size)
         h = ctypes.c_void_p()
         check(lib.egw_flat_law_from_table(_ptr(ua), _ptr(pa), _ptr(da), _ptr(aa),
-                                          int(ua.size), float(length), float(modulus),
+                                          int(ua.size), _c_scalar("length", length),
+                                          _c_scalar("modulus", modulus),
                                           ctypes.byref(h)))
         return cls(h)
 
@@ -122,6 +123,8 @@ class FlatLaw(_Handle):
         ------
         InvalidArgumentError
             A bad spectrum or range (the message names it).
+        TypeError
+            modulus, p_min or p_max not one real number.
         NotImplementedError
             The loaded libegw has no Persson law.
         """
@@ -129,8 +132,10 @@ class FlatLaw(_Handle):
         qa = _nodes("q", q)
         ca = _nodes("C", C, qa.size)
         h = ctypes.c_void_p()
-        check(lib.egw_flat_law_from_psd(_ptr(qa), _ptr(ca), int(qa.size), float(modulus),
-                                        float(p_min or 0.0), float(p_max or 0.0),
+        check(lib.egw_flat_law_from_psd(_ptr(qa), _ptr(ca), int(qa.size),
+                                        _c_scalar("modulus", modulus),
+                                        _c_scalar("p_min", p_min or 0.0),
+                                        _c_scalar("p_max", p_max or 0.0),
                                         ctypes.byref(h)))
         return cls(h)
 
@@ -163,6 +168,8 @@ class FlatLaw(_Handle):
         ------
         InvalidArgumentError
             A bad map or range (NaN pixels, a map that is not 2-D, ...).
+        TypeError
+            pixel, modulus, p_min or p_max not one real number.
         NotConvergedError
             A load did not converge.
         NotImplementedError
@@ -174,11 +181,12 @@ class FlatLaw(_Handle):
             raise InvalidArgumentError(INVALID_ARGUMENT,
                                        f"heights: a 2-D map is needed (shape {z.shape})")
         ny, nx = z.shape
-        o = Options(n_threads=int(n_threads)).to_c()
+        o = Options(n_threads=n_threads).to_c()
         h = ctypes.c_void_p()
-        check(lib.egw_flat_law_from_heights(_ptr(z), int(nx), int(ny), float(pixel),
-                                            float(modulus), float(p_min or 0.0),
-                                            float(p_max or 0.0), ctypes.byref(o),
+        check(lib.egw_flat_law_from_heights(_ptr(z), int(nx), int(ny), _c_scalar("pixel", pixel),
+                                            _c_scalar("modulus", modulus),
+                                            _c_scalar("p_min", p_min or 0.0),
+                                            _c_scalar("p_max", p_max or 0.0), ctypes.byref(o),
                                             ctypes.byref(h)))
         return cls(h)
 
@@ -226,7 +234,7 @@ class FlatLaw(_Handle):
         """
         from .topography import height_map
         if method not in ("BEM", "Persson"):
-            raise ValueError(f"method = {method!r}: must be 'BEM' or 'Persson'")
+            raise ValueError(f"method = {_brief(method)}: must be 'BEM' or 'Persson'")
         hm = height_map(top, pixel_size, unit).to_metres()
         z = hm.heights - np.mean(hm.heights)
         if not math.isclose(hm.dx, hm.dy, rel_tol=1e-9):
@@ -334,10 +342,11 @@ class FlatLaw(_Handle):
         Raises
         ------
         TypeError
-            u is not numeric.
+            u is not numeric, derivative not True or False.
         InvalidArgumentError
             A NaN u, or one where the law is beyond the doubles (the message names it).
         """
+        derivative = _flag("derivative", derivative)
         ua = np.asarray(_number_array("u", u), dtype=np.float64)
         flat, h = ua.reshape(-1), self._ptr
         p, d = _loop(ua.shape, 2, lambda i, rp, rd: check(
@@ -405,12 +414,15 @@ def psd_from_heights(heights: ArrayLike, pixel: float, per_decade: int = 20
     ------
     InvalidArgumentError
         A map that is not 2-D, or not finite, or a pixel size that is not > 0.
+    TypeError
+        A pixel size that is not one real number.
     """
     z = np.asarray(_number_array("heights", heights), dtype=np.float64)
     if z.ndim != 2 or not np.all(np.isfinite(z)):
         raise InvalidArgumentError(INVALID_ARGUMENT, "heights: a finite 2-D map is needed")
+    pixel = _c_scalar("pixel", pixel)
     if not (math.isfinite(pixel) and pixel > 0):
-        raise InvalidArgumentError(INVALID_ARGUMENT, f"pixel = {pixel!r}: must be > 0")
+        raise InvalidArgumentError(INVALID_ARGUMENT, f"pixel = {_brief(pixel)}: must be > 0")
     ny, nx = z.shape
     z = z - z.mean()
     power = np.abs(np.fft.fft2(z)) ** 2 / (nx * ny) ** 2  # |a_k|^2: sum = variance

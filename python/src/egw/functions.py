@@ -13,7 +13,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from ._capi import lib
-from .errors import INVALID_ARGUMENT, InvalidArgumentError, _require, check
+from .errors import INVALID_ARGUMENT, InvalidArgumentError, _flag, _require, check
 from .params import ArrayLike, FloatOrArray, Params, _brief, _number_array
 from ._calls import _Batch, _arr, _array, _keyword_only, _loop, _scalar_or_array
 
@@ -120,7 +120,10 @@ def gauss_integral(n: ArrayLike, h: ArrayLike, derivative: bool = False) -> Floa
     ------
     InvalidArgumentError
         A negative order or NaN limit (the message names the index).
+    TypeError
+        derivative not True or False ("no" would have meant True).
     """
+    derivative = _flag("derivative", derivative)
     b = _Batch(None, order=n, h=h)
     (out,) = b.out(1)
     value, deriv = (None, out) if derivative else (out, None)
@@ -239,7 +242,10 @@ def flat_pressure(params: Params, separation: ArrayLike, derivative: bool = Fals
     ------
     InvalidArgumentError
         sigma = 0, or a NaN separation (named with its index).
+    TypeError
+        derivative not True or False ("no" would have meant True).
     """
+    derivative = _flag("derivative", derivative)
     b = _Batch(params, separation=separation)
     pressure, dpressure = b.out(2)
     (ps, ss) = b.inputs["separation"]
@@ -270,7 +276,10 @@ def flat_pressure_unload(params: Params, separation: ArrayLike, separation_min: 
     ------
     InvalidArgumentError
         A NaN or infinite separation_min, or as :func:`flat_pressure`.
+    TypeError
+        derivative not True or False ("no" would have meant True).
     """
+    derivative = _flag("derivative", derivative)
     _require("egw_flat_pressure_unload_array")
     b = _Batch(params, separation=separation, separation_min=separation_min)
     pressure, dpressure = b.out(2)

@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 from . import _capi
 from ._capi import lib
 from .errors import (INVALID_ARGUMENT, INVALID_PARAMETER, IgnoredParameterWarning,
-                     InvalidArgumentError, OK, _point_index, check, last_error)
+                     InvalidArgumentError, OK, _brief, _point_index, check, last_error)
 
 #: what the functions take: a number, a sequence of numbers or an array
 ArrayLike = Union[float, np.ndarray, list, tuple]
@@ -40,26 +40,6 @@ RESULT_DTYPE = np.dtype([(f, np.float64) for f in ("force", "stiffness", "contac
                                                    "max_pressure", "est_rel_err", "residual")]
                         + [("iterations", np.int32), ("method_used", np.int32)], align=True)
 assert RESULT_DTYPE.itemsize == ctypes.sizeof(_capi.Result)
-
-
-#: an error message shows at most this many characters of a value (never a whole array)
-BRIEF_CHARS = 60
-
-
-def _brief(value) -> str:
-    """A short repr for error messages: a value itself when short, else its type, shape,
-    dtype and first elements (a message must never print a whole input array)."""
-    text = repr(value)
-    if len(text) <= BRIEF_CHARS and "\n" not in text:
-        return text
-    try:
-        a = np.asarray(value)
-    except Exception:  # noqa: BLE001 - any object: fall back to its cut repr
-        return text[:BRIEF_CHARS] + "..."
-    if a.ndim == 0:
-        return text[:BRIEF_CHARS] + "..."
-    head = ", ".join(repr(x)[:12] for x in a.reshape(-1)[:3].tolist())
-    return f"<{type(value).__name__} shape {a.shape} dtype {a.dtype}: {head}, ...>"
 
 
 def _refuse_masked(name: str, value) -> None:
@@ -194,7 +174,7 @@ class Params:
             check(lib.egw_params_validate(ctypes.byref(self.to_c())))
         if self.model != "EP-GW" and np.any(np.asarray(self.psi) > 0):
             warnings.warn(f"psi = {_brief(self.psi)}: the plasticity index is used by EP-GW only; "
-                          f"model {self.model!r} ignores it", IgnoredParameterWarning,
+                          f"model {_brief(self.model)} ignores it", IgnoredParameterWarning,
                           stacklevel=3)
 
     def _take_flat_law(self) -> None:
@@ -203,7 +183,7 @@ class Params:
             raise TypeError(f"flat_law must be an egw.FlatLaw, not "
                             f"{type(self.flat_law).__name__}")
         if self.model not in ("E-GW", "flat law"):
-            raise InvalidArgumentError(INVALID_PARAMETER, f"model = {self.model!r} with a "
+            raise InvalidArgumentError(INVALID_PARAMETER, f"model = {_brief(self.model)} with a "
                                        "flat_law: the law replaces the model (leave model "
                                        "out, or give 'flat law')")
         self.model = "flat law"
@@ -316,11 +296,11 @@ class Params:
 
 def _model_name(model) -> str:
     if isinstance(model, (bool, np.bool_)) or not isinstance(model, (str, int, np.integer)):
-        raise TypeError(f"model = {model!r}: must be one of {list(MODELS)} or 0..4")
+        raise TypeError(f"model = {_brief(model)}: must be one of {list(MODELS)} or 0..4")
     if isinstance(model, str):
         if model not in MODELS:
             raise InvalidArgumentError(
-                INVALID_PARAMETER, f"model = {model!r}: must be one of {list(MODELS)}")
+                INVALID_PARAMETER, f"model = {_brief(model)}: must be one of {list(MODELS)}")
         return model
     names = {v: k for k, v in MODELS.items()}
     if int(model) not in names:
@@ -370,7 +350,7 @@ class Options:
         """
         if isinstance(self.method, str):
             if self.method not in METHODS:
-                raise InvalidArgumentError(INVALID_ARGUMENT, f"method = {self.method!r}: "
+                raise InvalidArgumentError(INVALID_ARGUMENT, f"method = {_brief(self.method)}: "
                                            f"must be one of {list(METHODS)}")
             method = METHODS[self.method]
         else:

@@ -20,6 +20,7 @@ import threading
 from typing import Callable, Optional
 
 from ._capi import PROGRESS_FN, has, lib
+from .errors import _brief
 
 __all__ = ["set_progress"]
 
@@ -54,7 +55,7 @@ def set_progress(callback: Optional[Callable[[float, str], None]]) -> None:
         raise NotImplementedError("set_progress: this libegw has no egw_set_progress "
                                   "(older than the Python package)")
     if callback is not None and not callable(callback):
-        raise TypeError(f"callback = {callback!r}: must be callable(done, stage) or None")
+        raise TypeError(f"callback = {_brief(callback)}: must be callable(done, stage) or None")
     # (a callback may call set_progress: the C thunk it runs in must outlive that call,
     # so one replaced from inside a callback is kept until the next set_progress outside)
     running = getattr(_local, "running", 0) > 0

@@ -9,7 +9,7 @@ from typing import List, Optional, Tuple, Union
 
 from . import _capi
 from ._capi import SCENE_MAX_TYPES, lib
-from .errors import check, INVALID_PARAMETER, InvalidArgumentError
+from .errors import check, INVALID_PARAMETER, InvalidArgumentError, _brief
 from .params import MODELS, Options, _c_scalar, _options
 from .tables import Table, UniversalTable
 
@@ -149,7 +149,9 @@ class Scene:
         Raises
         ------
         InvalidArgumentError
-            An unknown model, or more than SCENE_MAX_TYPES particle types.
+            An unknown model, more than SCENE_MAX_TYPES particle types, or (without
+            effective_modulus) modulus and poisson lists of different lengths or
+            longer than radius.
         TypeError
             radius, modulus or poisson not a list (one value per type); a field that is
             not a real number, a model number that is not a whole number, delta_in_sigma
@@ -158,15 +160,24 @@ class Scene:
         model = MODELS.get(self.model, self.model) if isinstance(self.model, str) else self.model
         if isinstance(model, str):
             raise InvalidArgumentError(INVALID_PARAMETER,
-                                       f"model = {model!r}: must be one of {list(MODELS)}")
+                                       f"model = {_brief(model)}: must be one of {list(MODELS)}")
         for name in ("radius", "modulus", "poisson"):
             value = getattr(self, name)
             if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
-                raise TypeError(f"{name} = {value!r}: must be a list of floats, one per "
-                                f"particle type (e.g. {name}=[{value!r}])")
+                raise TypeError(f"{name} = {_brief(value)}: must be a list of floats, one per "
+                                f"particle type (e.g. {name}=[{_brief(value)}])")
             if len(value) > SCENE_MAX_TYPES:
                 raise InvalidArgumentError(
                     INVALID_PARAMETER, f"{name}: at most {SCENE_MAX_TYPES} particle types")
+        # E and nu per type are used (no effective_modulus): the C struct's zeros would give
+        # a type whose poisson was left out nu = 0, and values beyond the types go unused
+        n_types = max(1, len(self.radius))
+        if not _c_scalar("effective_modulus", self.effective_modulus) > 0 and (
+                len(self.modulus) != len(self.poisson) or len(self.modulus) > n_types):
+            raise InvalidArgumentError(
+                INVALID_PARAMETER, f"modulus, poisson: {len(self.modulus)} and "
+                f"{len(self.poisson)} values for {n_types} particle type(s): give both for "
+                "each type (a type >= 2 left out of both has type 1's material)")
         c = _capi.Scene()
         c.model = _c_scalar("model", model, True)
         c.n_types = len(self.radius)
@@ -179,7 +190,7 @@ class Scene:
                      "hardness_coeff", "plastic_ratio", "delta_min", "delta_max", "tol"):
             setattr(c, name, _c_scalar(name, getattr(self, name), False))
         if self.delta_in_sigma not in (True, False):   # 0.5 was True (bool()), silently
-            raise TypeError(f"delta_in_sigma = {self.delta_in_sigma!r}: must be True or "
+            raise TypeError(f"delta_in_sigma = {_brief(self.delta_in_sigma)}: must be True or "
                             "False (overlaps in units of sigma, or in length)")
         c.delta_in_sigma = int(bool(self.delta_in_sigma))
         return c

@@ -237,6 +237,8 @@ def profile(params: Params, delta: float, r: ArrayLike,
     ------
     InvalidArgumentError
         Invalid parameters, a NaN overlap or delta_max, or a negative radius.
+    TypeError
+        delta or delta_max not one real number (an array, a string, a bool).
     NotConvergedError
         The solve did not converge (also the small-sigma route's refusal, whose
         unloading profile is the smooth cap's shifted to the route's force).
@@ -245,12 +247,13 @@ def profile(params: Params, delta: float, r: ArrayLike,
     radii = _array(r, "r").reshape(-1).copy()
     pressure = np.empty_like(radii)
     deflection = np.empty_like(radii)
+    d = _c_scalar("delta", delta)
     if delta_max is None:
-        check(lib.egw_profile(ctypes.byref(p), _options(options), float(delta), radii.size,
+        check(lib.egw_profile(ctypes.byref(p), _options(options), d, radii.size,
                               _double_ptr(radii), _double_ptr(pressure),
                               _double_ptr(deflection)))
     else:
-        check(lib.egw_profile_unload(ctypes.byref(p), _options(options), float(delta),
+        check(lib.egw_profile_unload(ctypes.byref(p), _options(options), d,
                                      _c_scalar("delta_max", delta_max), radii.size,
                                      _double_ptr(radii), _double_ptr(pressure),
                                      _double_ptr(deflection)))

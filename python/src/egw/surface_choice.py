@@ -17,6 +17,7 @@ from typing import Any, List, Optional, Sequence
 
 import numpy as np
 
+from .errors import _brief
 from .params import Options, Params
 from .functions import hertz
 from .solves import solve
@@ -150,16 +151,16 @@ def choose_for_surface(top: Any, *, radius: float, modulus: float, tol: float,
     from .topography import contact_from_topography, height_map
     for name, v in (("radius", radius), ("modulus", modulus)):
         if not (np.isfinite(v) and v > 0):
-            raise ValueError(f"{name} = {v!r}: must be finite and > 0")
+            raise ValueError(f"{name} = {_brief(v)}: must be finite and > 0")
     if not (np.isfinite(tol) and 0 < tol < 1):
-        raise ValueError(f"tol = {tol!r}: must lie in (0, 1)")
+        raise ValueError(f"tol = {_brief(tol)}: must lie in (0, 1)")
     if not (np.isfinite(delta_min_sigma) and np.isfinite(delta_max_sigma)
             and delta_min_sigma < delta_max_sigma and delta_max_sigma > 0):
-        raise ValueError(f"delta_min_sigma = {delta_min_sigma!r}, delta_max_sigma = "
-                         f"{delta_max_sigma!r}: need delta_min_sigma < delta_max_sigma, "
+        raise ValueError(f"delta_min_sigma = {_brief(delta_min_sigma)}, delta_max_sigma = "
+                         f"{_brief(delta_max_sigma)}: need delta_min_sigma < delta_max_sigma, "
                          "delta_max_sigma > 0")
     if not (isinstance(n_overlaps, (int, np.integer)) and n_overlaps >= 2):
-        raise ValueError(f"n_overlaps = {n_overlaps!r}: must be an integer >= 2")
+        raise ValueError(f"n_overlaps = {_brief(n_overlaps)}: must be an integer >= 2")
     bad = [m for m in models if m not in MODELS[:-1]]
     if bad:
         raise ValueError(f"models: {bad[0]!r} is not one of {MODELS[:-1]}")

@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _capi
 from ._capi import lib
-from .errors import check, _FAILED, OK, OUT_OF_RANGE, PointFailedWarning, _require
+from .errors import check, _brief, _FAILED, OK, OUT_OF_RANGE, PointFailedWarning, _require
 from .params import ArrayLike, FloatOrArray, Options, _c_scalar, _options, Params, _params
 from ._calls import _array, _Batch, _double_ptr, _scalar_or_array
 
@@ -26,9 +26,9 @@ PathLike = Union[str, os.PathLike]
 def _format(fmt: Union[str, int]) -> int:
     if isinstance(fmt, str):
         if fmt not in FORMATS:
-            raise ValueError(f"format = {fmt!r}: must be one of {list(FORMATS)}")
+            raise ValueError(f"format = {_brief(fmt)}: must be one of {list(FORMATS)}")
         return FORMATS[fmt]
-    return int(fmt)
+    return _c_scalar("format", fmt, True)
 
 
 def _path(path: PathLike) -> bytes:
@@ -219,6 +219,8 @@ class Table(_Handle):
         ------
         ValueError
             An unknown format name.
+        TypeError
+            A format number that is not a whole number (True, 1.5).
         FileError
             The file cannot be written.
         """
@@ -283,9 +285,12 @@ class Table(_Handle):
         ------
         InvalidArgumentError
             A NaN overlap (above the last node: OutOfRangeWarning, extrapolated).
+        TypeError
+            delta not one real number (an array, a string, a bool).
         """
         out = [ctypes.c_double() for _ in range(4)]
-        check(lib.egw_table_eval_all(self._ptr, float(delta), *map(ctypes.byref, out)),
+        d = _c_scalar("delta", delta)
+        check(lib.egw_table_eval_all(self._ptr, d, *map(ctypes.byref, out)),
               allow_out_of_range=True)
         return tuple(v.value for v in out)
 
@@ -374,6 +379,8 @@ class UniversalTable(_Handle):
         ------
         ValueError
             An unknown format name.
+        TypeError
+            A format number that is not a whole number (True, 1.5).
         FileError
             The file cannot be written.
         """
@@ -590,6 +597,8 @@ class HysteresisTable(_Handle):
         ------
         ValueError
             An unknown format name.
+        TypeError
+            A format number that is not a whole number (True, 1.5).
         FileError
             The file cannot be written.
         """
@@ -726,7 +735,21 @@ class HysteresisTable(_Handle):
         -------
         ndarray
             float64 filled with -inf, for :meth:`eval`.
+
+        Raises
+        ------
+        TypeError
+            A shape that is not whole numbers (2.5, True, "3"), named.
+        ValueError
+            A negative size, named.
         """
+        dims = [shape] if np.ndim(shape) == 0 else list(np.ravel(shape))
+        if not all(isinstance(k, (int, np.integer)) and not isinstance(k, (bool, np.bool_))
+                   for k in dims):
+            raise TypeError(f"shape = {_brief(shape)}: must be a whole number or a tuple "
+                            "of them")
+        if any(k < 0 for k in dims):
+            raise ValueError(f"shape = {_brief(shape)}: sizes must be >= 0")
         return np.full(shape, -np.inf)
 
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from typing import Any, List, Optional, Tuple
 
 from ._capi import lib
-from .errors import check
+from .errors import _brief, check
 from .params import Params, _c_scalar
 from ._calls import _keyword_only
 from .functions import effective_modulus, mu_from_summits
@@ -95,7 +95,7 @@ def reference_plane_offset(model: str, stats: SummitStatistics) -> float:
     if model not in SUMMIT_PLANE_MODELS:
         return 0.0
     if stats.mean_summit_height is None:
-        raise ValueError(f"model {model!r} measures delta from the mean summit plane, but "
+        raise ValueError(f"model {_brief(model)} measures delta from the mean summit plane, but "
                          f"the statistics ({stats.method}) carry no mean summit height")
     return float(stats.mean_summit_height)
 
@@ -181,17 +181,19 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
     ------
     ValueError
         Missing units, NaN pixels, maps on different grids, EP-GW without hardness.
+    TypeError
+        radius (or another number) not a real number.
     """
     if model not in ("GW", "E-GW", "EP-GW", "Persson", "BEM"):
-        raise ValueError(f"model = {model!r}: a rough contact needs 'GW', 'E-GW', 'EP-GW', "
+        raise ValueError(f"model = {_brief(model)}: a rough contact needs 'GW', 'E-GW', 'EP-GW', "
                          "'Persson' or 'BEM'")
     if model in ("Persson", "BEM") and isinstance(top1, Moments):
-        raise ValueError(f"model {model!r} needs a height map (a power spectrum or the map "
+        raise ValueError(f"model {_brief(model)} needs a height map (a power spectrum or the map "
                          "itself), not profile Moments")
     if model == "EP-GW" and hardness is None:
         raise ValueError("model EP-GW needs hardness= (psi follows from it)")
     if estimate not in ("auto", "summits", "spectral"):
-        raise ValueError(f"estimate = {estimate!r}: 'auto', 'summits' or 'spectral'")
+        raise ValueError(f"estimate = {_brief(estimate)}: 'auto', 'summits' or 'spectral'")
     notes: List[str] = []
     surfaces: List[TopographyReport] = []
     if isinstance(top1, Moments):
@@ -217,7 +219,7 @@ def contact_from_topography(top1: Any, top2: Any = None, *, radius: Optional[flo
         stats = rep.summits if chosen == "summits" else rep.spectral
         notes += rep.warnings
     e_star = effective_modulus(E1, nu1, E2, nu2)
-    r_mu = 1.0 if radius is None else float(radius)
+    r_mu = 1.0 if radius is None else _c_scalar("radius", radius)
     if radius is None:
         notes.append("radius None: a flat; mu computed for R = 1 m (flat_pressure depends "
                      "on mu/sqrt(R) only)")

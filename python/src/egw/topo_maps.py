@@ -11,6 +11,8 @@ from typing import Any, Optional, Tuple, Union
 
 import numpy as np
 
+from .errors import _brief, _flag
+
 
 #: length units a map may carry, in metres
 LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9,
@@ -93,7 +95,10 @@ def read_height_map(path: str, pixel_size: Union[float, Tuple[float, float]] = 1
         an unknown unit.
     OSError
         The file cannot be read.
+    TypeError
+        periodic not True or False ("no" would have meant True).
     """
+    periodic = _flag("periodic", periodic)
     ext = os.path.splitext(path)[1].lower()
     if ext == ".npy":
         z = np.load(path, allow_pickle=False)
@@ -134,7 +139,7 @@ def detrend(surface: HeightMap, mode: Optional[str] = None) -> HeightMap:
     if mode == "mean":
         return dataclasses.replace(surface, heights=z - z.mean())
     if mode != "plane":
-        raise ValueError(f"mode = {mode!r}: must be 'plane' or 'mean'")
+        raise ValueError(f"mode = {_brief(mode)}: must be 'plane' or 'mean'")
     ny, nx = z.shape
     y, x = np.mgrid[0:ny, 0:nx]
     a = np.column_stack([np.ones(z.size), x.ravel(), y.ravel()])
@@ -164,7 +169,7 @@ def sum_surface(a: HeightMap, b: HeightMap) -> HeightMap:
     if a.heights.shape != b.heights.shape or (a.dx, a.dy) != (b.dx, b.dy):
         raise ValueError("sum_surface: the two maps need the same shape and pixel size")
     if a.unit != b.unit:
-        raise ValueError(f"sum_surface: the maps are in {a.unit!r} and {b.unit!r}: "
+        raise ValueError(f"sum_surface: the maps are in {_brief(a.unit)} and {_brief(b.unit)}: "
                          "convert one (HeightMap.to_metres)")
     return HeightMap(a.heights + b.heights, a.dx, a.dy, a.unit, a.periodic and b.periodic)
 
@@ -229,7 +234,7 @@ def _check_scales(z: np.ndarray, dx: float, dy: float, what: str) -> None:
 
 def _check_unit(unit: Optional[str]) -> None:
     if unit is not None and unit not in LENGTH_UNITS:
-        raise ValueError(f"unit = {unit!r}: must be one of {sorted(set(LENGTH_UNITS))}")
+        raise ValueError(f"unit = {_brief(unit)}: must be one of {sorted(set(LENGTH_UNITS))}")
 
 
 def _unit_factor(unit: Optional[str]) -> float:
@@ -255,7 +260,8 @@ def _from_surface_topography(top: Any, unit: Optional[str],
                          "(top.interpolate_undefined_data()) or crop them first")
     top_unit = getattr(top, "unit", None)
     if top_unit is not None and unit is not None and top_unit != unit:
-        raise ValueError(f"mixed units: the topography is in {top_unit!r}, unit = {unit!r} "
+        raise ValueError(f"mixed units: the topography is in {_brief(top_unit)}, "
+                         f"unit = {_brief(unit)} "
                          "was given: convert the topography (top.to_unit(...)) instead")
     unit = top_unit if top_unit is not None else unit
     if unit is None:
@@ -276,7 +282,10 @@ def _checked_map(heights: np.ndarray, pixel_size, unit: Optional[str], periodic:
         raise ValueError(f"{what}: a masked array with {n} masked pixel{'' if n == 1 else 's'}"
                          ": masked pixels are missing data; fill or crop them first "
                          "(summits and moments are undefined next to them)")
-    z = np.asarray(heights, dtype=np.float64)
+    raw = np.asarray(heights)
+    if raw.dtype.kind not in "iuf":   # float64 would read True as 1, "1" as 1, 1+2j as 1
+        raise ValueError(f"{what}: heights must be real numbers (got dtype {raw.dtype})")
+    z = raw.astype(np.float64)
     _check_shape(z, what)
     bad = np.count_nonzero(~np.isfinite(z))
     if bad:
@@ -299,9 +308,19 @@ def _on_grid(z: np.ndarray, pixel_size, unit: Optional[str], periodic: bool,
              what: str) -> HeightMap:
     """The HeightMap of the finite heights z on pixels of pixel_size (dx or (dx, dy)),
     after the checks of the pixel size, the scales and the unit (what: their source)."""
-    dx, dy = (pixel_size, pixel_size) if np.isscalar(pixel_size) else pixel_size
+    # numbers only: a word, a boolean or a third size is refused, not read as a number
+    try:
+        sizes = [pixel_size] if np.isscalar(pixel_size) else list(np.ravel(pixel_size))
+    except ValueError:   # a ragged sequence
+        sizes = []
+    if len(sizes) not in (1, 2) or not all(
+            isinstance(v, (int, float, np.integer, np.floating)) and
+            not isinstance(v, (bool, np.bool_)) for v in sizes):
+        raise ValueError(f"pixel_size = {_brief(pixel_size)}: must be dx or (dx, dy), "
+                         "real numbers")
+    dx, dy = float(sizes[0]), float(sizes[-1])
     if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
-        raise ValueError(f"pixel_size = {pixel_size}: must be finite and > 0")
+        raise ValueError(f"pixel_size = {_brief(pixel_size)}: must be finite and > 0")
     _check_scales(z, float(dx), float(dy), what)
     _check_unit(unit)
     return HeightMap(z, float(dx), float(dy), unit, bool(periodic))
@@ -338,17 +357,23 @@ def height_map(source: Any, pixel_size: Union[None, float, Tuple[float, float]] 
     Raises
     ------
     ValueError
-        NaN pixels, a missing or unknown unit, mixed units, a bad pixel size or shape.
+        NaN pixels, heights that are not real numbers, a missing or unknown unit,
+        mixed units, a bad pixel size or shape.
     ImportError
         An instrument format without SurfaceTopography installed.
+    TypeError
+        periodic neither None nor True or False ("no" would have meant True).
     """
+    if periodic is not None:
+        periodic = _flag("periodic", periodic)
     if height_unit is not None and height_unit != unit:
-        raise ValueError(f"mixed units: heights in {height_unit!r}, pixel size in "
-                         f"{unit!r}: give both in one unit (scale the heights by "
+        raise ValueError(f"mixed units: heights in {_brief(height_unit)}, pixel size in "
+                         f"{_brief(unit)}: give both in one unit (scale the heights by "
                          f"{_unit_factor(height_unit) / _unit_factor(unit):g})")
     if isinstance(source, HeightMap):
         if unit is not None and source.unit is not None and unit != source.unit:
-            raise ValueError(f"mixed units: the map is in {source.unit!r}, unit = {unit!r}")
+            raise ValueError(f"mixed units: the map is in {_brief(source.unit)}, "
+                             f"unit = {_brief(unit)}")
         return dataclasses.replace(source, unit=source.unit or unit,
                                    periodic=source.periodic if periodic is None
                                    else bool(periodic))
@@ -405,8 +430,13 @@ def coarse_grain(surface: HeightMap, factor: int = 2) -> HeightMap:
     Raises
     ------
     ValueError
-        A factor < 1, or a map with fewer than 3 x 3 blocks.
+        A factor that is not a whole number or < 1, or a map with fewer than 3 x 3 blocks.
     """
+    # a whole number only: int() would truncate 2.7 to 2 without a word
+    if isinstance(factor, (bool, np.bool_)) or not isinstance(
+            factor, (int, float, np.integer, np.floating)) or not (
+            math.isfinite(factor) and factor == int(factor)):
+        raise ValueError(f"factor = {_brief(factor)}: must be a whole number")
     factor = int(factor)
     ny, nx = surface.heights.shape
     if factor < 1 or ny // factor < 3 or nx // factor < 3:

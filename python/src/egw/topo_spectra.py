@@ -8,6 +8,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
+from .errors import _brief
 from .topo_maps import HeightMap, default_derivatives
 
 
@@ -72,7 +73,7 @@ def _derivatives(surface: HeightMap, method: str):
         zxx = (z[1:-1, 2:] - 2 * c + z[1:-1, :-2]) / dx ** 2
         zyy = (z[2:, 1:-1] - 2 * c + z[:-2, 1:-1]) / dy ** 2
         return zx, zy, zxx, zyy
-    raise ValueError(f"method = {method!r}: must be 'fft' or 'difference'")
+    raise ValueError(f"method = {_brief(method)}: must be 'fft' or 'difference'")
 
 
 def spectral_moments(surface: HeightMap, method: Optional[str] = None) -> Moments:

@@ -9,6 +9,7 @@ from typing import List, Optional
 
 import numpy as np
 
+from .errors import _flag
 from .topo_maps import HeightMap
 from .topo_spectra import Moments
 
@@ -114,8 +115,14 @@ def identify_summits(surface: HeightMap, periodic: bool = False):
     -------
     iy, ix : ndarray of int
         Row and column indices of the summits.
+
+    Raises
+    ------
+    TypeError
+        periodic not True or False ("no" would have meant True).
     """
     z = surface.heights
+    periodic = _flag("periodic", periodic)
     if periodic:
         is_max = np.ones(z.shape, dtype=bool)
         for sy in (-1, 0, 1):
