@@ -3,7 +3,7 @@
 
     python3 tools/bench/goal33_bands.py OUT [OUT ...] [--worst N]
 
-OUT: the probe's output (its "pt" lines: kind, m/delta_y, delta/delta_y, P_ref/P(m),
+OUT: the probe's output (any EGW_PROBE_MODEL; its "pt" lines: kind, m/delta_y, delta/delta_y, P_ref/P(m),
 hist, tab, tot). Per band of P_ref/P(m) the worst tot (error / max(P_ref, 1e-3 P(m))),
 midpoints and nodes pooled, for m < 1.3 delta_y | m >= 1.3 delta_y, and in the lowest
 band how many points exceed 1e-4 (as local31's table). --worst N: the N worst points of
@@ -18,7 +18,7 @@ def table(path, n_worst):
     head = ""
     pts = []
     for line in open(path):
-        if line.startswith("E-GW"):
+        if " + cap, rel_tol" in line and not line.startswith("pt "):
             head = line.split(":", 1)[1].strip()
         if not line.startswith("pt "):
             continue

@@ -2,7 +2,11 @@
 !> (issue 33 item 5; doc/benchmarks.md "Stop 58: local24"). README's E-GW + cap table
 !> (egw-table --radius 810569.469138702 --effective-modulus 1 --sigma 1 --mu 4
 !> --flow-pressure 0.01 --delta-max 600 --tol TOL: R = 405284.734569351 effective,
-!> delta_y = 100 sigma, to 6 delta_y) is built; at turning points m (the
+!> delta_y = 100 sigma, to 6 delta_y), or with EGW_PROBE_MODEL = EP-GW, psi1 or GW
+!> (default E-GW) the same scene's EP-GW + cap (--model EP-GW), EP-GW psi 1 + cap
+!> (--model EP-GW --psi 1) or GW + cap (--model GW) table, the contact_params egw-table
+!> builds for them (its other parameters the defaults, as egw-table's), is built; at
+!> turning points m (the
 !> midpoints of its delta_max intervals and its nodes, from 1.01 delta_y) and n_d
 !> overlaps from m down to where the table's force is 1e-3 P(m) (graded toward that end),
 !> three forces: P_ref, a history and unloading solve at REF (independent of the table);
@@ -19,7 +23,8 @@
 !>   B=$(dirname $(find build -path '*/egw_hysteresis_lengths.mod' | head -1))
 !>   gfortran -O2 -fopenmp -ffree-line-length-none -I$B tools/bench/rough_cap_local_decompose.f90 \
 !>      $(find build -name libegw.a | head -1) -llapack -lblas -o /tmp/rough_cap_local_decompose
-!>   OMP_NUM_THREADS=1 /tmp/rough_cap_local_decompose 1e-4 12 1e-8 [STRIDE] [REPLAY]
+!>   [EGW_PROBE_MODEL=EP-GW|psi1|GW] OMP_NUM_THREADS=1 /tmp/rough_cap_local_decompose \
+!>      1e-4 12 1e-8 [STRIDE] [REPLAY]
 !>
 !> STRIDE (default 1): every STRIDE-th interval and node; n_d = 0: the build alone. Prints
 !> per overlap a "pt" line (kind, m/delta_y, delta/delta_y, P_ref/P(m), hist, tab, tot) and
@@ -29,7 +34,7 @@
 program rough_cap_local_decompose
    use egw_kinds, only: dp
    use egw_status, only: egw_error
-   use egw_params, only: contact_params, model_egw
+   use egw_params, only: contact_params, model_egw, model_epgw, model_gw, model_name
    use egw_rough_sphere, only: solver_options, solve_result, loading_history, load_history, &
       & solve_unload
    use egw_hysteresis, only: hysteresis_table, build_hysteresis, hysteresis_eval, first_yield
@@ -50,7 +55,7 @@ program rough_cap_local_decompose
    real(dp) :: e(3, max_pts), frac(max_pts)
    logical :: node_pt(max_pts)
    integer :: n_d, stride, j, i, it, stat, n, n_m, retries
-   character(len=64) :: arg
+   character(len=64) :: arg, which, label
    call get_command_argument(1, arg)
    read (arg, *) tol
    call get_command_argument(2, arg)
@@ -62,8 +67,25 @@ program rough_cap_local_decompose
       call get_command_argument(4, arg)
       read (arg, *) stride
    end if
+   call get_environment_variable("EGW_PROBE_MODEL", which)
+   if (len_trim(which) == 0) which = "E-GW"
    p = contact_params(model=model_egw, radius=405284.734569351_dp, modulus=1.0_dp, &
       & sigma=1.0_dp, mu=4.0_dp, flow_pressure=0.01_dp)
+   select case (trim(which))
+   case ("E-GW")
+   case ("EP-GW")
+      p%model = model_epgw
+   case ("psi1")
+      p%model = model_epgw
+      p%psi = 1.0_dp
+   case ("GW")
+      p%model = model_gw
+   case default
+      print '(a)', "EGW_PROBE_MODEL = "//trim(which)//": must be E-GW, EP-GW, psi1 or GW"
+      stop 1
+   end select
+   label = model_name(p%model)//" + cap"
+   if (p%psi > 0.0_dp) label = model_name(p%model)//" psi 1 + cap"
    dy = first_yield(p)
    call cpu_time(cpu0)
    call build_hysteresis(p, solver_options(n_threads=1), 0.0_dp, 6*dy, tol, t, err)
@@ -72,7 +94,7 @@ program rough_cap_local_decompose
       print '(a)', "build failed: "//err%message
       stop 1
    end if
-   print '(a,es8.1,a,f8.3,a,f8.2,a,i0,a,i0,a,es10.3)', "E-GW + cap, rel_tol", tol, &
+   print '(a,es8.1,a,f8.3,a,f8.2,a,i0,a,i0,a,es10.3)', trim(label)//", rel_tol", tol, &
       & ", delta_y", dy, " sigma: build CPU", cpu1 - cpu0, " s, n_m ", size(t%m), ", n_s ", &
       & size(t%s), ", max_error ", t%max_error
    if (n_d == 0) stop   ! (the build alone: its CPU)
