@@ -23,7 +23,8 @@ nodes, worst per band of u ([0.1, 1], [0.01, 0.1), [0.003, 0.01), and [0, 0.003)
 m < 1.3 | >= 1.3 delta_y (delta_y = 100: README's E-GW + cap), the count above 1e-4.
 With "full" the stencil curves are evaluated as the table does: the knee interpolated with
 the same weights, s recomputed from x = m - delta with it, each curve's cubic Hermite in s
-(slopes: the stored ones for u, (du/ds)/u for ln u, ...) there.
+(slopes: the stored ones for u, (du/ds)/u for ln u, ...) there; ln r stays at fixed s in
+both modes (its slope in s would need dP_load/ddelta).
 Part 2 (s): on every curve, each interior s node not at a break (1/2, 3/4) dropped and its
 value from the cubic Hermite over its two neighbours (values and slopes in the
 representation): |u~ - u|/max(u, 1e-3) per band, near the knee (s in [0.45, 0.5)), on the
