@@ -34,8 +34,9 @@ submodule (egw_hysteresis) egw_hysteresis_build
    !> A rough + cap build that fails at sigma/delta_y below hint_sigma: its message adds
    !> sigma/delta_y and the routes the user can take (rough_cap_routes), as LAMMPS's.
    real(dp), parameter :: hint_sigma = 2.0e-3_dp
-   !> Hertz + cap tables: the share of rel_tol given to the loading table, whose error at
-   !> a turning point multiplies the whole unloading curve (P = P_load,table(m) u); refine_m
+   !> Hertz + cap tables and rough + cap tables where the cap acts: the share of rel_tol
+   !> given to the loading table, whose error at a turning point multiplies the whole
+   !> unloading curve (P = P_load,table(m) u); for Hertz + cap refine_m
    !> splits delta_max intervals until the force's whole error at the check curves' nodes,
    !> that share included (whole_mismatch), is within rel_tol (stop 53, doubt19: with both
    !> at rel_tol, 1e-4 to 100 delta_y reported 1.04e-4, to 8.5666 delta_y 1.23e-4).
@@ -100,8 +101,9 @@ contains
       procedure(table_progress), optional :: progress
       type(unloading_curve), allocatable :: curves(:)
       real(dp), allocatable :: m(:)
+      real(dp) :: loading_tol
       integer :: j, n, n_above
-      logical :: rough_cap, shift
+      logical :: rough_cap, shift, acts
 
       call validate_params(params, error)
       if (allocated(error)) return
@@ -146,6 +148,13 @@ contains
             if (allocated(error)) return
          end if
       end if
+      ! a rough model: whether its cap acts on the loading up to delta_max (the largest
+      ! total pressure reaches p_y), before the loading table, whose tolerance follows it
+      acts = .false.
+      if (rough_cap) then
+         call cap_reached(params, options, rel_tol, delta_max, acts, error)
+         if (allocated(error)) return
+      end if
       if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) then
          ! (a quarter of rel_tol: the curves store P/P_load(m), so the loading table's
          ! error at the turning point adds to theirs, which refine_m bounds by the rest)
@@ -158,8 +167,17 @@ contains
          ! summits: on the ZMC law tabulated below, built here already)
          if (plastic_summits(params)) table%loading_law = zmc_law_pieces(params%psi, &
             & params%hardness_coeff, params%plastic_ratio)
-         call build_table(params, options, delta_min, delta_max, rel_tol, table%loading, &
+         ! where the cap acts the curves store u = P/P_load(m) on the two-piece map, and
+         ! the table's force is P_load,table(m) u: the loading table's relative error at m
+         ! is the local force's all along the curve (8e-5 at 3.3 delta_y on README's E-GW
+         ! + cap table at 1e-4), so it gets a quarter of rel_tol, as Hertz + cap's; where
+         ! the cap never acts the table is the cap-free one, at rel_tol
+         loading_tol = rel_tol
+         if (acts) loading_tol = ratio_loading_share*rel_tol
+         call build_table(params, options, delta_min, delta_max, loading_tol, table%loading, &
             & error, loading_curve=rough_cap, loading=table%loading_law)
+         if (allocated(error) .and. acts) call quarter_context(error, rel_tol)
+         if (.not. allocated(error)) table%loading%rel_tol = rel_tol
       end if
       if (allocated(error)) return
       ! the loading branch evaluates its ln P intervals (table_eval = table_eval_cached)
@@ -176,13 +194,9 @@ contains
       ! Hertz's, reversible)
       if (params%flow_pressure > 0.0_dp .and. .not. rough_cap) table%reversible = .not. &
          & delta_max > cap_first_turn(params)
-      if (rough_cap .and. .not. plastic_summits(params)) then
-         ! elastic summits: irreversible once the cap acts, i.e. once the largest total
-         ! pressure reaches p_y somewhere (it grows with the overlap on loading)
-         call cap_reached(params, options, rel_tol, delta_max, table%reversible, error)
-         if (allocated(error)) return
-         table%reversible = .not. table%reversible
-      end if
+      ! elastic summits: irreversible once the cap acts, i.e. once the largest total
+      ! pressure reaches p_y somewhere (it grows with the overlap on loading)
+      if (rough_cap .and. .not. plastic_summits(params)) table%reversible = .not. acts
       if (table%reversible) then
          call hysteresis_prepare(table)   ! the tag only
          return
@@ -194,10 +208,7 @@ contains
       ! a rough model whose cap acts below delta_max (elastic summits: the table is
       ! irreversible only then): L(m) less the smooth cap's residual overlap (rough_length)
       shift = rough_cap
-      if (rough_cap .and. plastic_summits(params)) then
-         call cap_reached(params, options, rel_tol, delta_max, shift, error)
-         if (allocated(error)) return
-      end if
+      if (rough_cap .and. plastic_summits(params)) shift = acts
       ! log-ratio curves where the unloading force stays positive: EP-GW without the cap,
       ! and a rough model whose cap does not act below delta_max (the cap-free table);
       ! where it acts, the force vanishes below a residual overlap: the gap
@@ -341,6 +352,20 @@ contains
          & " = "//sci3(delta_y)//"), delta_max = "//sci3(delta_max/params%sigma) &
          & //" sigma = "//sci3(delta_max/delta_y)//" delta_y"
    end subroutine rough_cap_where
+
+   !> A failed rough + cap loading table, built to a quarter of the caller's rel_tol:
+   !> its message names the table and says whose tolerance it quotes.
+   pure subroutine quarter_context(error, rel_tol)
+      type(egw_error), intent(inout) :: error   !< the loading build's error
+      real(dp), intent(in) :: rel_tol           !< the caller's tolerance
+      character(len=*), parameter :: caller = " (the caller's)"
+      integer :: k
+      if (.not. allocated(error%message)) error%message = ""
+      k = index(error%message, caller)
+      if (k > 0) error%message = error%message(:k - 1)//" (a quarter of the caller's "// &
+         & format_real(rel_tol)//")"//error%message(k + len(caller):)
+      error%message = "the capped loading table: "//error%message
+   end subroutine quarter_context
 
    !> The routes of a rough + cap table that does not build at sigma/delta_y = ratio:
    !> Hertz + cap, the rough model's sigma -> 0 limit, with its bound (doc/theory.md

@@ -18,7 +18,7 @@ module egw_hysteresis_curves
    private
 
    public :: unloading_curve, min_width, unloading_lengths, build_curves, verify_curves, &
-      & curve_offset, curve_eval, local_force_weight
+      & curve_offset, curve_eval, local_weight
 
    !> Most nodes in s of one unloading curve.
    integer, parameter :: max_s_nodes = 400
@@ -36,21 +36,29 @@ module egw_hysteresis_curves
    !> force) by min(1, P/(local_floor P(m))): the tolerance holds relative to the local
    !> force down to local_floor of the turning point's, and relative to that below.
    real(dp), parameter :: local_floor = 1.0e-3_dp
-   !> The local force goal c of a rough + cap table's u curves (ratio_on_map; 0: off, the
-   !> tolerance relative to the turning point's force, today's): with c > 0 refine_curve's
-   !> mismatch (and its midpoint estimate) and, through the check curve's node weights,
-   !> refine_m's (stencil_mismatch) are weighted by local_force_weight, toward c rel_tol
-   !> of the local force down to local_floor P(m) (issue 33 item 5). A build parameter (no
-   !> file stores it), off: alone it does not reach that (the check's unweighted skips
-   !> clear every check node near the front, and the loading table's error at m enters
-   !> the force); with those weighted and tightened as well the goal is met on README's
-   !> E-GW + cap table, at 4.4-5.1x the build's CPU (tools/bench/goal33_weighting.patch,
-   !> doc/benchmarks.md "Stop 66: goal33").
-   real(dp), parameter, public :: local_force_goal = 0.0_dp
-   !> Below goal_cut P(m) a u curve's node weighs 1 (the weight would chase the last
-   !> tail where the force has all but vanished; 1e-4 and 2e-5 gave more nodes and the
-   !> same errors, local31).
-   real(dp), parameter :: goal_cut = 5.0e-4_dp
+   !> Rough + cap tables' u curves (u = P/P_load(m) on the two-piece map): both
+   !> bisections weigh a mismatch in u by local_weight(u, c) = max(1, 1/(c max(u,
+   !> local_floor))) from u >= local_cut (1 below: the weight would chase the last tail
+   !> where the force has all but vanished), so that the table holds rel_tol relative to
+   !> the local force down to local_floor P(m) (issue 33 item 5): refine_curve's s
+   !> bisection, whose bound is rel_tol/4, with c = s_share (the local force's rel_tol/2);
+   !> refine_m's check across delta_max (stencil_mismatch), whose bound is rel_tol less
+   !> the stencil's s errors, with c = m_share, and its skips alike (hysteresis_grid's
+   !> skip_weight: unweighted, the skip's estimate in u cleared every check node near the
+   !> front, where u ~ 1e-3). Measured on README's E-GW + cap table at 1e-4 against 5808
+   !> rel_tol 1e-8 solves down to 1e-3 P(m): every P/P(m) band's worst 9.6e-5 of the
+   !> local force, unweighted 2.1e-2; m_share 2 left 1.1e-4, 4 2.0e-4 (doc/benchmarks.md
+   !> "Stop 66: goal33").
+   real(dp), parameter :: s_share = 2.0_dp, local_cut = 5.0e-4_dp
+   !> u curves: s intervals narrower than this are bisected on the tolerance relative to
+   !> P(m) only. Near the knee the unloading solves (at hysteresis_solve_tol, relative to
+   !> P(m)) scatter by ~4e-7 P(m) with their start: on README's GW + cap table at 1e-4 two
+   !> solves at one overlap gave u = 1.20302e-3 and 1.20345e-3, 3.6e-4 of the local force,
+   !> and the weighted bisection split that interval to zero width and failed ("needs
+   !> more than 400 nodes"; doc/benchmarks.md "Stop 67: onset33"). README's E-GW + cap
+   !> table's finest s interval is 2^-13: this floor leaves it as it is.
+   real(dp), parameter :: u_min_width = 2.0_dp**(-14)
+   real(dp), parameter, public :: m_share = 1.5_dp
    !> Intervals (in s, or in delta_max relative to the grid's range) narrower than this
    !> are not split: at the residual-overlap edge of deep curves (dh/ds ~ 100) curves
    !> 1e-5 sigma apart differed by 3 % of the local force, the solves' own noise there
@@ -115,8 +123,8 @@ module egw_hysteresis_curves
       real(dp) :: xi(3) = 0.0_dp
       real(dp) :: p_turn = 0.0_dp   !< the solve's force at m (log: the weights' unit)
       !> per node the mismatch's weight (gap_at): min(1, P/(local_floor P(m))) (log),
-      !> P_load(m)/max(P, local_floor P(m)) (Hertz + cap), local_force_weight (u on the
-      !> two-piece map: 1 unless local_force_goal), 1 else
+      !> P_load(m)/max(P, local_floor P(m)) (Hertz + cap), local_weight(u, s_share) (u on
+      !> the two-piece map), 1 else
       real(dp), allocatable :: weight(:)
       type(loading_history) :: hist !< the loading solve at m (loaded: reused)
       !> the deflection of the curve's last unloading solve, the next one's start
@@ -435,6 +443,7 @@ contains
       type(unloading_curve), intent(inout) :: curve
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
+      type(solver_options) :: hist_options
       real(dp) :: f_turn, k_turn
       curve%m = m
       curve%verified = .false.
@@ -445,9 +454,12 @@ contains
          ! curves' slopes start at s = 1e-4: the three moved-mesh solves of each history,
          ! at its rel_tol/10, are saved, ~3 % of an E-GW + cap build's instructions, the
          ! same tables; without the cap it changes nothing)
-         call load_history(table%params, options, m, curve%hist, res, error, &
+         hist_options = options
+         hist_options%rel_tol = 0.1_dp*options%rel_tol
+         call load_history(table%params, hist_options, m, curve%hist, res, error, &
             & table%loading_law, stiffness=.false.)
          if (allocated(error)) return
+         curve%hist%options%rel_tol = options%rel_tol
       end if
       f_turn = res%force
       ! gaps relative to the loading table's force at the turning point (what the
@@ -603,7 +615,7 @@ contains
             end if
             if (table%mapped .and. k == 0) then
                est = gap_estimate(curve, s(1:n), gap(1:n), slope(1:n), i)
-               ! (u curves: weighted as the mismatch below; 1 unless local_force_goal)
+               ! (u curves: weighted as the mismatch below)
                if (table%ratio_on_map) est = est*max(weight(i), weight(i + 1))
                err = huge(1.0_dp)
                if (.not. (any(s(i) == [0.0_dp, s_knee, s_zero]) .or. &
@@ -660,6 +672,9 @@ contains
             w_int = w_mid
             if (max(gap(i), gap(i + 1), r_mid) < max_log_ratio) w_int = max(w_mid, &
                & weight(i), weight(i + 1))
+            ! (u curves: an interval narrower than u_min_width keeps the tolerance relative
+            ! to P(m), which the solves meet)
+            if (table%ratio_on_map .and. s(i + 1) - s(i) < u_min_width) w_int = 1.0_dp
             err = w_int*max(abs(r_int - r_mid), &
                & 0.25_dp*width*abs(d_int - d_mid*curve%piece_scale(map_piece(table%mapped, &
                & s_mid))))
@@ -717,8 +732,8 @@ contains
       real(dp), intent(in) :: x
       real(dp), intent(out) :: g, dg
       !> the mismatch's weight there: min(1, P/(local_floor P(m))) (log);
-      !> P_load(m)/max(P, local_floor P(m)) (Hertz + cap), local_force_weight (u on the
-      !> two-piece map), else 1
+      !> P_load(m)/max(P, local_floor P(m)) (Hertz + cap), local_weight(u, s_share) (u on
+      !> the two-piece map), else 1
       real(dp), intent(out) :: weight
       type(egw_error), allocatable, intent(out) :: error
       type(solve_result) :: res
@@ -775,8 +790,8 @@ contains
          if (x > 0.0_dp .and. .not. at_turn) g = max(res%force, 0.0_dp)/ &
             & (curve%c_turn*curve%scale)
          dg = -res%stiffness*table%tail_length/(curve%c_turn*curve%scale)
-         if (x > 0.0_dp) weight = local_force_weight(local_force_goal, res%force, &
-            & curve%p_turn, curve%scale)
+         if (x > 0.0_dp .and. .not. at_turn .and. curve%p_turn > 0.0_dp) &
+            & weight = local_weight(g, s_share)
          if (abs(g) < tiny_ratio) g = 0.0_dp
          if (abs(dg) < tiny_ratio) dg = 0.0_dp
          return
@@ -805,21 +820,15 @@ contains
       if (abs(dg) < tiny_ratio) dg = 0.0_dp
    end subroutine gap_at
 
-   !> The weight of a u curve's mismatch at a node of force p (ratio_on_map; turning
-   !> point force p_turn, the curve's unit scale = P_load(m)): with a local force goal
-   !> goal > 0, max(1, scale/(goal max(p, local_floor p_turn))), so that a weighted
-   !> mismatch of rel_tol is goal rel_tol of the local force down to local_floor p_turn;
-   !> 1 below goal_cut p_turn, and 1 where goal <= 0 (the tolerance relative to P(m)).
-   pure real(dp) function local_force_weight(goal, p, p_turn, scale) result(weight)
-      real(dp), intent(in) :: goal     !< the local force goal c (local_force_goal)
-      real(dp), intent(in) :: p        !< the unloading solve's force at the node
-      real(dp), intent(in) :: p_turn   !< the solve's force at the turning point
-      real(dp), intent(in) :: scale    !< the curve's unit, the loading table's P(m)
-      weight = 1.0_dp
-      if (.not. (goal > 0.0_dp .and. p_turn > 0.0_dp)) return
-      if (p < goal_cut*p_turn) return
-      weight = max(1.0_dp, scale/(goal*max(p, local_floor*p_turn)))
-   end function local_force_weight
+   !> The weight of a mismatch in u = P/P_load(m) on a rough + cap table's u curve:
+   !> max(1, 1/(c max(u, local_floor))) from u >= local_cut, 1 below, so that a weighted
+   !> mismatch of rel_tol is c rel_tol of the local force down to local_floor P(m).
+   elemental real(dp) function local_weight(u, c) result(w)
+      real(dp), intent(in) :: u   !< the curve's u there
+      real(dp), intent(in) :: c   !< the local force's share (s_share, m_share)
+      w = 1.0_dp
+      if (u >= local_cut) w = max(1.0_dp, 1.0_dp/(c*max(u, local_floor)))
+   end function local_weight
 
    !> gap_at of a log-ratio curve: h = ln(c P_ext(delta)/P_unload(delta)) (h = 0 at the
    !> turning point: the force is continuous there) and dh/dxi = K/P - K_ext/P_ext at

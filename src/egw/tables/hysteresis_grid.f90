@@ -16,7 +16,7 @@ module egw_hysteresis_grid
    use egw_hysteresis, only: first_yield
    use egw_hysteresis_lengths, only: cap_length, log_table
    use egw_hysteresis_curves, only: unloading_curve, min_width, build_curves, verify_curves, &
-      & curve_offset, curve_eval
+      & curve_offset, curve_eval, local_weight, m_share
    implicit none
    private
 
@@ -441,7 +441,8 @@ contains
       if (table%mapped .and. size(m) >= 5) then
          allocate (keep(size(s)))
          do i = 1, size(s)
-            keep(i) = shift_gap(table, m, curves, j, s(i)) >= gap_check_skip*m_bound
+            keep(i) = skip_weight(table, curves(j), curves(j + 1), s(i))* &
+               & shift_gap(table, m, curves, j, s(i)) >= gap_check_skip*m_bound
          end do
          skipped = pack(s, .not. keep)
          s = pack(s, keep)
@@ -504,7 +505,8 @@ contains
          if (size(skipped(j)%s) == 0) cycle
          allocate (keep(size(skipped(j)%s)))
          do k = 1, size(skipped(j)%s)
-            keep(k) = shift_gap(table, m, curves, j, skipped(j)%s(k)) >= gap_check_skip*m_bound
+            keep(k) = skip_weight(table, curves(j), curves(j + 1), skipped(j)%s(k))* &
+               & shift_gap(table, m, curves, j, skipped(j)%s(k)) >= gap_check_skip*m_bound
          end do
          need(j)%s = pack(skipped(j)%s, keep)
          skipped(j)%s = pack(skipped(j)%s, .not. keep)
@@ -581,6 +583,36 @@ contains
       end do
    end subroutine defer_splits
 
+   !> The weight of a check skip's estimate at s between the node curves a and b: on u
+   !> curves (rough + cap, ratio_on_map) the largest local_weight(u, m_share) of their
+   !> nodes around s, the check's own weight there (unweighted, the estimate in u cleared
+   !> every check node near the front, where u ~ 1e-3, and the weighted check never saw
+   !> it: README's E-GW + cap table at 1e-4 erred by 1.3e-3 of the local force at 1e-3
+   !> P(m) from 3.2 to 5.1 delta_y; doc/benchmarks.md "Stop 66: goal33"); 1 else.
+   pure real(dp) function skip_weight(table, a, b, s) result(w)
+      type(hysteresis_table), intent(in) :: table
+      type(unloading_curve), intent(in) :: a, b   !< the interval's node curves
+      real(dp), intent(in) :: s                   !< the check node
+      w = 1.0_dp
+      if (.not. table%ratio_on_map) return
+      w = max(around(a), around(b))
+   contains
+      !> c's weight at its last node at or below s and its first at or above, the larger
+      pure real(dp) function around(c) result(wc)
+         type(unloading_curve), intent(in) :: c
+         integer :: i
+         wc = 1.0_dp
+         if (.not. c%p_turn > 0.0_dp) return
+         do i = 1, size(c%s)
+            if (c%s(i) <= s) wc = local_weight(c%gap(i), m_share)
+            if (c%s(i) >= s) then
+               wc = max(wc, local_weight(c%gap(i), m_share))
+               exit
+            end if
+         end do
+      end function around
+   end function skip_weight
+
    !> The largest shift_gap of interval j at the nodes s.
    pure real(dp) function skip_estimate(table, m, curves, j, s) result(est)
       type(hysteresis_table), intent(in) :: table
@@ -590,7 +622,8 @@ contains
       integer :: i
       est = 0.0_dp
       do i = 1, size(s)
-         est = max(est, shift_gap(table, m, curves, j, s(i)))
+         est = max(est, skip_weight(table, curves(j), curves(j + 1), s(i))* &
+            & shift_gap(table, m, curves, j, s(i)))
       end do
    end function skip_estimate
 
@@ -778,10 +811,12 @@ contains
             v = v + w(k)*r
          end do
          ! (gap curves: relative to P(m), their weight is refine_curve's alone; u curves
-         ! weighted as in refine_curve: the local force's tolerance down to local_floor
-         ! P(m) between the node curves too; on the two-piece map the weights are 1
-         ! unless local_force_goal)
-         if (table%force_ratio .or. table%ratio_on_map) then
+         ! weighted: the local force's tolerance down to local_floor P(m) between the
+         ! node curves too; Hertz + cap's as in refine_curve, on the two-piece map by
+         ! local_weight with m_share)
+         if (table%ratio_on_map .and. mid%p_turn > 0.0_dp) then
+            err = max(err, local_weight(mid%gap(i), m_share)*abs(v - mid%gap(i)))
+         else if (table%force_ratio .or. table%ratio_on_map) then
             err = max(err, mid%weight(i)*abs(v - mid%gap(i)))
          else if (.not. mid%log) then
             err = max(err, abs(v - mid%gap(i)))
