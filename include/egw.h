@@ -30,7 +30,7 @@ extern "C" {
 #endif
 
 /* Version of this header; egw_get_version() returns the library's. */
-#define EGW_VERSION 305
+#define EGW_VERSION 306
 
 /* Status codes. */
 enum {
@@ -674,8 +674,11 @@ void egw_universal_free(egw_universal *u);
  * down to 1e-3 of the force at the turning point, and of 1e-3 of that below (EP-GW, and
  * rough models whose cap does not act, store ln(P_load/P); Hertz + cap stores the
  * unloading force over the turning point's, P/P_load(delta_max), with its residual overlap
- * on a finer delta_max grid: the same tolerance); on rough models where the flow-pressure
- * cap acts, to rel_tol of the force at the turning point (doc/formats.md section 6). Evaluation allocates nothing and takes no lock; a table is read-only
+ * on a finer delta_max grid: the same tolerance); rough models where the flow-pressure
+ * cap acts store P/P_load(delta_max) on a two-piece map, their checks weighted to the local
+ * force: the same tolerance (since egw 0.3.6; egw 0.3.5 built them to rel_tol of the
+ * force at the turning point in ~1/5 of the time, and files it wrote read as such;
+ * doc/formats.md section 6). Evaluation allocates nothing and takes no lock; a table is read-only
  * after the build, so any number of threads may evaluate it (each with its own states).
  * EP-GW alone does not let a packing come to rest: it dissipates only while a contact
  * loads beyond its past maximum overlap, and below it unloading and reloading retrace one

@@ -35,7 +35,7 @@ int egw_capi_test_flow_pressure_params(void) {
   failures = 0;
   egw_params_default(&p);
   CHECK(p.flow_pressure == 0.0);
-  CHECK(egw_get_version() == EGW_VERSION && EGW_VERSION == 305);
+  CHECK(egw_get_version() == EGW_VERSION && EGW_VERSION == 306);
 #define BAD(value) do { egw_params q = p; q.flow_pressure = value; \
     CHECK(egw_params_validate(&q) == EGW_INVALID_PARAMETER); \
     CHECK(message_has("flow_pressure")); } while (0)

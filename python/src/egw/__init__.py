@@ -24,7 +24,7 @@ from .surface_choice import SurfaceChoice, choose_for_surface
 from . import topography
 from .topography import contact_from_topography, psi_from_hardness
 
-__version__ = "0.3.5"
+__version__ = "0.3.6"
 
 __all__ = ["EgwError", "FileError", "InvalidArgumentError", "NotConvergedError", "Options",
            "OutOfRangeWarning", "Params", "Restitution", "SolveResult", "ellipe", "ellipk",

@@ -2,8 +2,8 @@
 module egw_version
    implicit none
    private
-   integer, parameter, public :: egw_major = 0, egw_minor = 3, egw_patch = 5
-   character(len=*), parameter, public :: egw_version_string = "0.3.5"
+   integer, parameter, public :: egw_major = 0, egw_minor = 3, egw_patch = 6
+   character(len=*), parameter, public :: egw_version_string = "0.3.6"
    !> 10000*major + 100*minor + patch, as returned by egw_get_version().
    integer, parameter, public :: egw_version_number = 10000*egw_major + 100*egw_minor + egw_patch
    public :: get_egw_version
