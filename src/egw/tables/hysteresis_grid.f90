@@ -9,7 +9,7 @@ module egw_hysteresis_grid
    use egw_rough_sphere, only: solver_options, history_cap_ratio
    use egw_cap_sphere, only: cap_units, gamma_start
    use egw_table, only: table_progress
-   use egw_tolerance_probe, only: hysteresis_solve_tol, build_m_node_limit
+   use egw_tolerance_probe, only: hysteresis_solve_tol, m_node_limit
    use egw_hysteresis_data, only: hysteresis_table, map_s, map_iota, edge_breaks, edge_s, &
       & edge_xi, max_stencil, stencil_width, stencil_window, fine_length_tol, m_breakpoint, &
       & m_coordinate, map_x
@@ -22,8 +22,6 @@ module egw_hysteresis_grid
 
    public :: fine_lengths, refine_m, resample
 
-   !> Most nodes of the delta_max grid.
-   integer, parameter :: max_m_nodes = build_m_node_limit
    !> Hertz + cap (force-ratio) tables: delta_max intervals narrower than this (of the
    !> range) are not split. The curves change fastest just above the first capped turning
    !> point (cap_first_turn): at 1e-4 to 20 delta_y the first intervals at 2^-11 missed by
@@ -340,10 +338,11 @@ contains
                & maxval(abs(1.0_dp - curves%c_turn)/curves%c_turn))
             return
          end if
-         if (size(m) + n_split > max_m_nodes) then
+         if (size(m) + n_split > m_node_limit(table%ratio_on_map)) then
             call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
                & format_real(table%rel_tol)//" not reached: more than "// &
-               & format_real(real(max_m_nodes, dp))//" delta_max nodes needed, the largest "// &
+               & format_real(real(m_node_limit(table%ratio_on_map), dp))// &
+               & " delta_max nodes needed, the largest "// &
                & "mismatch between them still "//format_real(maxval(err_mid)))
             return
          end if

@@ -15,11 +15,20 @@ module egw_tolerance_probe
    implicit none
    private
 
-   public :: probe_hysteresis_tolerance, probe_hysteresis_size, hysteresis_solve_tol
+   public :: probe_hysteresis_tolerance, probe_hysteresis_size, hysteresis_solve_tol, &
+      & m_node_limit
 
-   !> The most delta_max nodes a hysteresis build may place (hysteresis_grid.f90's
-   !> max_m_nodes is this one).
+   !> The most delta_max nodes a hysteresis build may place (m_node_limit; u curves on
+   !> the two-piece map: mapped_m_node_limit).
    integer, parameter, public :: build_m_node_limit = 400
+   !> The most delta_max nodes of a table whose curves store u on the two-piece map
+   !> (rough + cap where the cap acts): its check weighs a mismatch by the local force,
+   !> up to 1/(1.5e-3) near the contact's front, and there the curves' kink that moves
+   !> in s (the annulus opening, doc/benchmarks.md "Stop 67: kink33") lets the mismatch
+   !> fall only as h^2 (3.2-4x a bisection), not as a cubic's h^4. cap_hysteresis's psi 1
+   !> + cap DEM table at 3e-4 (sigma = delta_y/10) needs 458 nodes, 438 before its last
+   !> pass, all in [0.87, 1.28] delta_y (doc/benchmarks.md "Stop 68: dem34").
+   integer, parameter, public :: mapped_m_node_limit = 2*build_m_node_limit
    !> The pilot's tolerance, and the rel_tol below which a build is preceded by the pilot
    !> (above it even a pilot at the node limit estimates at most 2x its grid).
    real(dp), parameter :: pilot_tol = 1.0e-3_dp, pilot_below = 1.0e-4_dp
@@ -133,11 +142,19 @@ contains
       if (options%rel_tol < defaults%rel_tol) tol = min(tol, options%rel_tol)
    end function hysteresis_solve_tol
 
+   !> The most delta_max nodes of a build (refine_m's limit): mapped_m_node_limit for u
+   !> curves on the two-piece map, else build_m_node_limit.
+   pure integer function m_node_limit(on_map) result(n)
+      logical, intent(in) :: on_map   !< the table's ratio_on_map
+      n = build_m_node_limit
+      if (on_map) n = mapped_m_node_limit
+   end function m_node_limit
+
    !> Before build_hysteresis(params, options, delta_min, delta_max, rel_tol) with rel_tol
    !> below 1e-4 (plastic summits only): a pilot table at 1e-3 over the same range (a few
    !> percent of a 1e-5 build's solves), whose delta_max grid of n_p nodes, grown by 2x
    !> per decade to rel_tol (m_growth_per_decade: an estimate from measured builds, not a
-   !> bound), gives the build's n_p 2^log10(1e-3/rel_tol). Above build_m_node_limit the
+   !> bound), gives the build's n_p 2^log10(1e-3/rel_tol). Above the build's m_node_limit the
    !> build would run for many minutes (the glass pair at 1e-6: 21.6 min) and then stop at
    !> the limit or at a solve: refused now, egw_not_converged, with a message that quotes
    !> the caller's rel_tol, the pilot's grid, the estimate and the smallest rel_tol within
@@ -154,7 +171,7 @@ contains
       integer, intent(out), optional :: pilot_nodes   !< the pilot's delta_max nodes
       type(hysteresis_table) :: pilot
       real(dp) :: estimate, reach
-      integer :: n_p
+      integer :: n_p, limit
       character(len=16) :: short
       if (present(pilot_nodes)) pilot_nodes = 0
       if (.not. (params%model == model_epgw .and. params%psi > 0.0_dp .and. &
@@ -173,15 +190,17 @@ contains
       n_p = size(pilot%m)
       if (present(pilot_nodes)) pilot_nodes = n_p
       estimate = n_p*m_growth_per_decade**log10(pilot_tol/rel_tol)
-      if (.not. estimate > build_m_node_limit) return
+      ! (the build's own limit: the pilot's curves are of the build's kind)
+      limit = m_node_limit(pilot%ratio_on_map)
+      if (.not. estimate > limit) return
       ! the rel_tol whose estimate is the limit
-      reach = pilot_tol/10.0_dp**(log(real(build_m_node_limit, dp)/n_p)/ &
+      reach = pilot_tol/10.0_dp**(log(real(limit, dp)/n_p)/ &
          & log(m_growth_per_decade))
       ! (the text spells pilot_tol and m_growth_per_decade out)
       write (short, '(es8.1)') reach
       call fatal_error(error, egw_not_converged, "hysteresis table: rel_tol = "// &
          & format_real(rel_tol)//" (the caller's) cannot be reached within the build's "// &
-         & "limit of "//int_str(build_m_node_limit)//" delta_max nodes, found before the "// &
+         & "limit of "//int_str(limit)//" delta_max nodes, found before the "// &
          & "build: a pilot table at 1e-3 needed "//int_str(n_p)//", and at about 2x "// &
          & "per decade of rel_tol (as measured builds grow) rel_tol = "//format_real(rel_tol) &
          & //" needs ~"//int_str(nint(estimate))//" (a build of many minutes that would "// &
