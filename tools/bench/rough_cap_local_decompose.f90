@@ -26,6 +26,9 @@
 !>   [EGW_PROBE_MODEL=EP-GW|psi1|GW] OMP_NUM_THREADS=1 /tmp/rough_cap_local_decompose \
 !>      1e-4 12 1e-8 [STRIDE] [REPLAY]
 !>
+!> EGW_PROBE_HIST_SHARE (default 1): P_b's history at that fraction of the curve solves'
+!> rel_tol (0.1 for w34's builds, 0.01 for gw34's rough + cap u curves), its unloading
+!> solves at theirs.
 !> STRIDE (default 1): every STRIDE-th interval and node; n_d = 0: the build alone. Prints
 !> per overlap a "pt" line (kind, m/delta_y, delta/delta_y, P_ref/P(m), hist, tab, tot) and
 !> a "ref" line (kind, is node, m, delta, P_ref, P_b, P(m) in full), then the band
@@ -47,9 +50,9 @@ program rough_cap_local_decompose
    type(egw_error), allocatable :: err
    type(loading_history) :: h_ref, h_b
    type(solve_result) :: peak, peak_b, res
-   type(solver_options) :: ref_opt, build_opt, defaults
+   type(solver_options) :: ref_opt, build_opt, hist_opt, defaults
    real(dp) :: tol, ref_tol, dy, m, d, d_end, lo, hi, f, k, state, p_ref, p_b, p_t, scale, &
-      & cpu0, cpu1
+      & cpu0, cpu1, hist_share
    real(dp), allocatable :: ms(:)
    logical, allocatable :: is_node(:)
    real(dp) :: e(3, max_pts), frac(max_pts)
@@ -105,6 +108,9 @@ program rough_cap_local_decompose
    end if
    ref_opt = solver_options(rel_tol=ref_tol, n_threads=1)
    build_opt = curve_options(solver_options(), tol)
+   hist_share = 1.0_dp
+   call get_environment_variable("EGW_PROBE_HIST_SHARE", arg, status=stat)
+   if (stat == 0 .and. len_trim(arg) > 0) read (arg, *) hist_share
    print '(a,es9.2,a,es9.2)', "curve solves at rel_tol", build_opt%rel_tol, &
       & ", references at", ref_tol
    ! the turning points: every stride-th interval's midpoint and node above 1.01 delta_y
@@ -133,8 +139,12 @@ program rough_cap_local_decompose
          deallocate (err)
          cycle
       end if
-      call load_history(p, build_opt, m, h_b, peak_b, err, t%loading_law, stiffness=.false.)
+      ! (the build's history: at hist_share of the curve solves' rel_tol, then theirs)
+      hist_opt = build_opt
+      hist_opt%rel_tol = hist_share*build_opt%rel_tol
+      call load_history(p, hist_opt, m, h_b, peak_b, err, t%loading_law, stiffness=.false.)
       if (allocated(err)) stop 2
+      h_b%options%rel_tol = build_opt%rel_tol
       ! where the table's force falls to 1e-3 P(m) (bisection on the table)
       lo = -3.0_dp
       hi = m

@@ -19,6 +19,8 @@ module egw_sphere_regime
    !> sigma/delta_y at most this: at 1e-4 and 2e-4 two coarse levels agreed while up to 5e-4
    !> off (doc/stability.md "Stop 50 (gw16)"); at 1e-2 (README's GW + cap build to 6 delta_y
    !> at 1e-4, within 6.7e-5 of rel_tol 1e-7 solves without it) it cost 4x the build's CPU.
+   !> Above it refine_levels confirms only an acceptance at the first refinement level
+   !> (capped_gw; near the unloading curve's knee that pair agreed while 3.6e-4 off).
    real(dp), parameter :: gw_confirm_sigma = 1.0e-3_dp
 
 contains

@@ -58,6 +58,15 @@ module egw_hysteresis_curves
    !> more than 400 nodes"; doc/benchmarks.md "Stop 67: onset33"). README's E-GW + cap
    !> table's finest s interval is 2^-13: this floor leaves it as it is.
    real(dp), parameter :: u_min_width = 2.0_dp**(-14)
+   !> u curves: their histories at this fraction of the curve solves' rel_tol. On
+   !> README's GW + cap table at 1e-4 a history at rel_tol/100 (1e-6, its field at 1e-7,
+   !> force estimate 9e-9) put the unloading force at 1.09 delta_y, u = 1e-3 .. 3e-3, off
+   !> by 2.7e-7 P(m), 1.2e-4 of the local force (5e-7, 3e-7: 1.1e-4; 2e-7: 1.4e-5; 1e-7:
+   !> 8e-7); at rel_tol/1000 every band of its table is within 5.3e-5 of the local force
+   !> (E-GW + cap: as at rel_tol/100; 1.1x the build's CPU on both; doc/benchmarks.md
+   !> "Stop 68: gw34"). (Until egw_sphere_refine confirmed classic GW's first refinement
+   !> level, that table's refine_m did not settle with them: the knee's 3.6e-4 errors.)
+   real(dp), parameter :: hist_share = 1.0e-2_dp
    real(dp), parameter, public :: m_share = 1.5_dp
    !> Intervals (in s, or in delta_max relative to the grid's range) narrower than this
    !> are not split: at the residual-overlap edge of deep curves (dh/ds ~ 100) curves
@@ -454,8 +463,13 @@ contains
          ! curves' slopes start at s = 1e-4: the three moved-mesh solves of each history,
          ! at its rel_tol/10, are saved, ~3 % of an E-GW + cap build's instructions, the
          ! same tables; without the cap it changes nothing)
+         ! The history at hist_share of the curve solves' rel_tol (its field d_max(r) at
+         ! a tenth of that: load_history), its unloading solves at theirs: near the
+         ! front an error of the field moves the unloading force by an absolute amount,
+         ! which the local weight of u curves multiplies by up to 1/(s_share local_floor)
          hist_options = options
          hist_options%rel_tol = 0.1_dp*options%rel_tol
+         if (table%ratio_on_map) hist_options%rel_tol = hist_share*options%rel_tol
          call load_history(table%params, hist_options, m, curve%hist, res, error, &
             & table%loading_law, stiffness=.false.)
          if (allocated(error)) return
