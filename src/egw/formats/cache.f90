@@ -190,9 +190,11 @@ module egw_cache
    !> 61 (stop 66, umap33): rough + cap tables on the two-piece map store u =
    !> P/P_load(m) instead of the gap (format version 6, egw_hysteresis_data's
    !> ratio_on_map): other s and delta_max grids and other curves.
-   !> 62 (stop 67, weight33): rough + cap tables where the cap acts weigh their checks
-   !> to the local force (egw_hysteresis_curves' local_weight) and build their loading
-   !> table to rel_tol/4: other grids (README's E-GW + cap at 1e-4: 180 x 156 nodes).
+   !> 62 (stop 68, 0.3.6): rough + cap tables where the cap acts weigh their checks to
+   !> the local force (egw_hysteresis_curves' local_weight), build their loading table
+   !> to rel_tol/4 and their curves' histories to rel_tol/1000, and classic GW's
+   !> unloading after a capped loading confirms its first refinement level: other grids
+   !> (README's E-GW + cap at 1e-4: 179 x 157 nodes).
    integer, parameter, public :: cache_revision = 62
 
 

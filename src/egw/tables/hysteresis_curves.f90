@@ -463,12 +463,12 @@ contains
          ! curves' slopes start at s = 1e-4: the three moved-mesh solves of each history,
          ! at its rel_tol/10, are saved, ~3 % of an E-GW + cap build's instructions, the
          ! same tables; without the cap it changes nothing)
-         ! The history at hist_share of the curve solves' rel_tol (its field d_max(r) at
-         ! a tenth of that: load_history), its unloading solves at theirs: near the
-         ! front an error of the field moves the unloading force by an absolute amount,
-         ! which the local weight of u curves multiplies by up to 1/(s_share local_floor)
+         ! u curves: the history at hist_share of the curve solves' rel_tol (its field
+         ! d_max(r) at a tenth of that: load_history), its unloading solves at theirs:
+         ! near the front an error of the field moves the unloading force by an absolute
+         ! amount, which their local weight multiplies by up to 1/(s_share local_floor);
+         ! other curves' histories at the curve solves' rel_tol, as before
          hist_options = options
-         hist_options%rel_tol = 0.1_dp*options%rel_tol
          if (table%ratio_on_map) hist_options%rel_tol = hist_share*options%rel_tol
          call load_history(table%params, hist_options, m, curve%hist, res, error, &
             & table%loading_law, stiffness=.false.)
